@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages roprec needs (only the missing ones) and configures +
+# builds Release into build/. Idempotent; quiet when everything is present.
+set -euo pipefail
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+
+PACKAGES=(
+  build-essential cmake ninja-build pkg-config
+  libeigen3-dev libsundials-dev liburdfdom-dev libtinyxml2-dev libnlopt-cxx-dev libnlopt-dev
+  nlohmann-json3-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  liborocos-kdl-dev libkdl-parser-dev
+)
+if [[ "${ROPREC_WITH_CHROMIUM:-0}" == "1" ]]; then PACKAGES+=(chromium); fi
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}"
+  SUDO=""
+  if [[ $(id -u) -ne 0 ]]; then SUDO="sudo"; fi
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+BUILD="${ROPREC_BUILD_DIR:-$ROOT/build}"
+GEN=()
+if command -v ninja >/dev/null 2>&1; then GEN=(-G Ninja); fi
+if [[ ! -f "$BUILD/CMakeCache.txt" ]]; then
+  cmake -S "$ROOT" -B "$BUILD" "${GEN[@]}" -DCMAKE_BUILD_TYPE=Release ${ROPREC_CMAKE_ARGS:-} >/dev/null
+fi
+cmake --build "$BUILD" --parallel "$(nproc)" -- ${ROPREC_BUILD_TARGETS:-} 2>&1 | { grep -E "error|warning:|FAILED" || true; }
+test "${PIPESTATUS[0]}" -eq 0

@@ -1,0 +1,58 @@
+#include "tests/support/test_support.hpp"
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+namespace roprec::test {
+
+std::string sourceDir() { return ROPREC_SOURCE_DIR; }
+
+std::string corpusDir() {
+  const fs::path p = fs::path(ROPREC_SOURCE_DIR) / ".." / "shared" / "corpus";
+  return fs::exists(p) ? fs::canonical(p).string() : std::string();
+}
+
+std::string roprecBin() { return ROPREC_BIN; }
+
+std::string readFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+void writeFile(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out << text;
+}
+
+std::string tempDir(const std::string& tag) {
+  static int counter = 0;
+  const fs::path p = fs::temp_directory_path() /
+                     ("roprec-test-" + std::to_string(::getpid()) + "-" + tag + "-" + std::to_string(counter++));
+  fs::remove_all(p);
+  fs::create_directories(p);
+  return p.string();
+}
+
+RunResult runRoprec(const std::string& args) {
+  const std::string dir = tempDir("run");
+  const std::string out = dir + "/stdout";
+  const std::string err = dir + "/stderr";
+  const std::string cmd = "'" + roprecBin() + "' " + args + " >'" + out + "' 2>'" + err + "' </dev/null";
+  const int status = std::system(cmd.c_str());
+  RunResult r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128;
+  r.out = readFile(out);
+  r.err = readFile(err);
+  fs::remove_all(dir);
+  return r;
+}
+
+}  // namespace roprec::test
