@@ -203,9 +203,23 @@ ChainDescription loadUrdfChain(const std::string& path, const UrdfChainRequest& 
     throw InputError(path, idx.robot_line, "unknown tip link '" + tip + "'");
   }
 
-  // Walk from the tip to the base.
+  // The base may hang off the chain through fixed joints (e.g. FANUC's world frame `base` at J2
+  // height is a fixed child of `base_link`): collect base -> root, fixed joints only.
+  std::map<std::string, Pose> T_anc_base;  // ancestor link -> pose of the base in it
+  {
+    Pose T = Pose::Identity();
+    urdf::LinkConstSharedPtr cur = model->getLink(base);
+    T_anc_base[cur->name] = T;
+    while (cur->parent_joint && cur->parent_joint->type == urdf::Joint::FIXED) {
+      T = toPose(cur->parent_joint->parent_to_joint_origin_transform) * T;
+      cur = model->getLink(cur->parent_joint->parent_link_name);
+      T_anc_base[cur->name] = T;
+    }
+  }
+  // Walk from the tip up to the base or to one of its fixed ancestors.
   std::vector<urdf::JointConstSharedPtr> path_joints;
-  for (urdf::LinkConstSharedPtr cur = model->getLink(tip); cur->name != base;) {
+  std::string meet = tip;
+  for (urdf::LinkConstSharedPtr cur = model->getLink(tip); !T_anc_base.count(cur->name);) {
     const urdf::JointConstSharedPtr pj = cur->parent_joint;
     if (!pj) {
       throw InputError(path, idx.link_line.at(tip),
@@ -213,6 +227,7 @@ ChainDescription loadUrdfChain(const std::string& path, const UrdfChainRequest& 
     }
     path_joints.push_back(pj);
     cur = model->getLink(pj->parent_link_name);
+    meet = cur->name;
   }
   std::reverse(path_joints.begin(), path_joints.end());
 
@@ -222,7 +237,7 @@ ChainDescription loadUrdfChain(const std::string& path, const UrdfChainRequest& 
   chain.base_link = base;
   chain.tip_link = tip;
   int n = 0;
-  Pose pending = Pose::Identity();
+  Pose pending = T_anc_base.at(meet).inverse();
   for (const auto& j : path_joints) {
     const int line = idx.joint_line.count(j->name) ? idx.joint_line.at(j->name) : idx.robot_line;
     const Pose O = toPose(j->parent_to_joint_origin_transform);

@@ -1,0 +1,42 @@
+#include "tests/support/kdl_support.hpp"
+
+#include <gtest/gtest.h>
+#include <kdl/tree.hpp>
+#include <kdl_parser/kdl_parser.hpp>
+
+namespace roprec::test {
+
+KDL::Frame toKdl(const Pose& T) {
+  const Mat3& R = T.linear();
+  return KDL::Frame(KDL::Rotation(R(0, 0), R(0, 1), R(0, 2), R(1, 0), R(1, 1), R(1, 2), R(2, 0), R(2, 1), R(2, 2)),
+                    KDL::Vector(T.translation().x(), T.translation().y(), T.translation().z()));
+}
+
+Pose fromKdl(const KDL::Frame& F) {
+  Pose T = Pose::Identity();
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) T.linear()(r, c) = F.M(r, c);
+    T.translation()[r] = F.p(r);
+  }
+  return T;
+}
+
+KDL::Chain kdlChain(const std::string& urdf, const std::string& base, const std::string& tip,
+                    const Pose& extra) {
+  KDL::Tree tree;
+  KDL::Chain chain;
+  if (!kdl_parser::treeFromFile(urdf, tree)) {
+    ADD_FAILURE() << "kdl_parser could not read " << urdf;
+    return chain;
+  }
+  if (!tree.getChain(base, tip, chain)) {
+    ADD_FAILURE() << "KDL has no chain " << base << " -> " << tip << " in " << urdf;
+    return chain;
+  }
+  if (!extra.isApprox(Pose::Identity(), 0.0)) {
+    chain.addSegment(KDL::Segment("roprec_extra", KDL::Joint(KDL::Joint::None), toKdl(extra)));
+  }
+  return chain;
+}
+
+}  // namespace roprec::test
