@@ -1,5 +1,6 @@
 #include "compensator/model.hpp"
 
+#include <cassert>
 #include <cmath>
 
 namespace roprec::nc {
@@ -102,10 +103,7 @@ Model buildModel(const ChainDescription& chain, const ToolAttachment& tool) {
   return m;
 }
 
-Data::Data(const Model& /*model*/) {
-  for (auto& g : G) g.setIdentity();
-  for (auto& lu : G_lu) lu.compute(Mat3::Identity());
-}
+Data::Data(const Model& /*model*/) {}
 
 void evaluatePhi(const Model& model, Data& data, const VecQ& q) {
   VecC& Phi = data.Phi;
@@ -134,124 +132,115 @@ void factorize(const Model& model, Data& data) {
   const VecQ& q = data.q;
   for (int i = 0; i < 6; ++i) {
     const size_t s = static_cast<size_t>(i);
+    Data::BodyCache& bc = data.body[s];
     const double th = q[idxTheta(i)];
-    data.cross_form[s] = std::abs(std::sin(th)) <= std::sqrt(0.5);
-    const Vec3 u = parentAxis(model, q, i);
-    const Vec3 v = seg(q, idxV(i));
-    const Vec3 a = angleRef(model, q, i);
-    Mat3& G = data.G[s];
-    G.row(0) = 2.0 * v.transpose();
-    G.row(1) = u.transpose();
+    const double sn = std::sin(th);
+    const double cs = std::cos(th);
+    data.cross_form[s] = std::abs(sn) <= std::sqrt(0.5);
+    bc.u = parentAxis(model, q, i);
+    bc.v = seg(q, idxV(i));
+    bc.w = seg(q, idxW(i));
+    bc.a = angleRef(model, q, i);
+    Mat3 G;
+    G.row(0) = 2.0 * bc.v.transpose();
+    G.row(1) = bc.u.transpose();
     if (data.cross_form[s]) {
-      G.row(2) = u.cross(a).transpose();
+      // Φ = u·(a×v) − sin θ:  ∂/∂u = a×v, ∂/∂a = v×u, ∂/∂v = u×a, ∂/∂θ = −cos θ
+      G.row(2) = bc.u.cross(bc.a).transpose();
+      bc.g_du = bc.a.cross(bc.v);
+      bc.g_da = bc.v.cross(bc.u);
+      bc.g_th = -cs;
     } else {
-      G.row(2) = a.transpose();
+      // Φ = a·v − cos θ:  ∂/∂a = v, ∂/∂v = a, ∂/∂θ = sin θ
+      G.row(2) = bc.a.transpose();
+      bc.g_du.setZero();
+      bc.g_da = bc.v;
+      bc.g_th = sn;
     }
-    data.G_lu[s].compute(G);
+    // G is well conditioned by construction (rows ≈ orthogonal, switching rule of §2).
+    bc.Ginv = G.inverse();
   }
+  data.factorized = true;
 }
 
 void solveA(const Model& model, const Data& data, const VecQ& r, VecQ& x) {
-  const VecQ& q = data.q;
+  assert(data.factorized && "factorize() the configuration before solving with A");
   for (int i = 0; i < 6; ++i) x[idxTheta(i)] = r[kNc + i];
+  Vec3 du = Vec3::Zero();  // increments of the parent's shared elements
+  Vec3 dp = Vec3::Zero();
+  Vec3 dup = Vec3::Zero();  // increment of the grandparent axis (parent body's u)
   for (int i = 0; i < 6; ++i) {
     const size_t s = static_cast<size_t>(i);
     const Body& b = model.bodies[s];
+    const Data::BodyCache& bc = data.body[s];
     const int row = i < 5 ? rowBody(i) : 55;
-    const Vec3 u = parentAxis(model, q, i);
-    const Vec3 v = seg(q, idxV(i));
-    const Vec3 du = i == 0 ? Vec3::Zero() : Vec3(x.segment<3>(idxUnext(i - 1)));
-    const Vec3 dp = i == 0 ? Vec3::Zero() : Vec3(x.segment<3>(idxPnext(i - 1)));
     Vec3 da = Vec3::Zero();
     if (i > 0) {
-      const Vec3 dup = i == 1 ? Vec3::Zero() : Vec3(x.segment<3>(idxUnext(i - 2)));
       da = b.alpha.x() * dup + b.alpha.y() * x.segment<3>(idxV(i - 1)) + b.alpha.z() * x.segment<3>(idxW(i - 1));
     }
-    const Vec3 a = angleRef(model, q, i);
-    const double th = q[idxTheta(i)];
-    const double dth = x[idxTheta(i)];
-    const double ra = r[kAngleRow + i];
-    Vec3 sv;
-    sv[0] = r[row];
-    sv[1] = r[row + 1] - v.dot(du);
-    if (data.cross_form[s]) {
-      // d[u·(a×v) − sin θ] = (a×v)·du + (v×u)·da + (u×a)·dv − cos θ dθ
-      sv[2] = ra - a.cross(v).dot(du) - v.cross(u).dot(da) + std::cos(th) * dth;
-    } else {
-      // d[a·v − cos θ] = v·da + a·dv + sin θ dθ
-      sv[2] = ra - v.dot(da) - std::sin(th) * dth;
-    }
-    const Vec3 dv = data.G_lu[s].solve(sv);
-    const Vec3 dw = r.segment<3>(row + 2) + du.cross(v) + u.cross(dv);
+    const Vec3 sv(r[row], r[row + 1] - bc.v.dot(du),
+                  r[kAngleRow + i] - bc.g_du.dot(du) - bc.g_da.dot(da) - bc.g_th * x[idxTheta(i)]);
+    const Vec3 dv = bc.Ginv * sv;
+    const Vec3 dw = r.segment<3>(row + 2) + du.cross(bc.v) + bc.u.cross(dv);
     x.segment<3>(idxV(i)) = dv;
     x.segment<3>(idxW(i)) = dw;
     if (i < 5) {
-      x.segment<3>(idxPnext(i)) =
-          r.segment<3>(row + 5) + dp + b.c_next.x() * du + b.c_next.y() * dv + b.c_next.z() * dw;
-      x.segment<3>(idxUnext(i)) =
-          r.segment<3>(row + 8) + b.e_next.x() * du + b.e_next.y() * dv + b.e_next.z() * dw;
+      const Vec3 dpn = r.segment<3>(row + 5) + dp + b.c_next.x() * du + b.c_next.y() * dv + b.c_next.z() * dw;
+      const Vec3 dun = r.segment<3>(row + 8) + b.e_next.x() * du + b.e_next.y() * dv + b.e_next.z() * dw;
+      x.segment<3>(idxPnext(i)) = dpn;
+      x.segment<3>(idxUnext(i)) = dun;
+      dup = du;
+      du = dun;
+      dp = dpn;
     }
   }
 }
 
 void solveAT(const Model& model, const Data& data, const VecQ& b_in, VecQ& y) {
-  // Reverse-mode sweep of solveA: y = (A⁻¹)ᵀ b. `bar` holds the adjoints of the coordinates.
-  const VecQ& q = data.q;
-  VecQ bar = b_in;
-  y.setZero();
+  assert(data.factorized && "factorize() the configuration before solving with A^T");
+  // Reverse-mode sweep of solveA: y = (A⁻¹)ᵀ b. `bar_*` are the adjoints of the increments.
+  Vec3 bar_un = Vec3::Zero();  // adjoint of the next joint's axis/point (from the child body)
+  Vec3 bar_pn = Vec3::Zero();
+  Vec3 bar_v_acc = Vec3::Zero();  // contributions of the child's angle reference to this body
+  Vec3 bar_w_acc = Vec3::Zero();
+  Vec3 bar_u_acc = Vec3::Zero();  // ... and to this body's own axis (= the parent's next axis)
   for (int i = 5; i >= 0; --i) {
     const size_t s = static_cast<size_t>(i);
     const Body& b = model.bodies[s];
+    const Data::BodyCache& bc = data.body[s];
     const int row = i < 5 ? rowBody(i) : 55;
-    const Vec3 u = parentAxis(model, q, i);
-    const Vec3 v = seg(q, idxV(i));
-    const Vec3 a = angleRef(model, q, i);
-    const double th = q[idxTheta(i)];
-    Vec3 bar_du = Vec3::Zero();
+    Vec3 bar_du = bar_u_acc;
     Vec3 bar_dp = Vec3::Zero();
-    Vec3 bar_dv = bar.segment<3>(idxV(i));
-    Vec3 bar_dw = bar.segment<3>(idxW(i));
+    Vec3 bar_dv = b_in.segment<3>(idxV(i)) + bar_v_acc;
+    Vec3 bar_dw = b_in.segment<3>(idxW(i)) + bar_w_acc;
     if (i < 5) {
-      const Vec3 bu = bar.segment<3>(idxUnext(i));
-      const Vec3 bp = bar.segment<3>(idxPnext(i));
+      const Vec3 bu = b_in.segment<3>(idxUnext(i)) + bar_un;
+      const Vec3 bp = b_in.segment<3>(idxPnext(i)) + bar_pn;
       y.segment<3>(row + 8) = bu;
-      bar_du += b.e_next.x() * bu;
-      bar_dv += b.e_next.y() * bu;
-      bar_dw += b.e_next.z() * bu;
       y.segment<3>(row + 5) = bp;
+      bar_du += b.e_next.x() * bu + b.c_next.x() * bp;
+      bar_dv += b.e_next.y() * bu + b.c_next.y() * bp;
+      bar_dw += b.e_next.z() * bu + b.c_next.z() * bp;
       bar_dp += bp;
-      bar_du += b.c_next.x() * bp;
-      bar_dv += b.c_next.y() * bp;
-      bar_dw += b.c_next.z() * bp;
     }
     // dw = r_w + du × v + u × dv  =  r_w − [v]× du + [u]× dv
     y.segment<3>(row + 2) = bar_dw;
-    bar_du += v.cross(bar_dw);          // (−[v]×)ᵀ = [v]×
-    bar_dv += -u.cross(bar_dw);         // ([u]×)ᵀ = −[u]×
+    bar_du += bc.v.cross(bar_dw);
+    bar_dv -= bc.u.cross(bar_dw);
     // dv = G⁻¹ s
-    const Vec3 bar_s = data.G_lu[s].transpose().solve(bar_dv);
+    const Vec3 bar_s = bc.Ginv.transpose() * bar_dv;
     y[row] = bar_s[0];
     y[row + 1] = bar_s[1];
     y[kAngleRow + i] = bar_s[2];
-    bar_du += -v * bar_s[1];
-    Vec3 bar_da = Vec3::Zero();
-    double bar_dth = bar[idxTheta(i)];
-    if (data.cross_form[s]) {
-      bar_du += -a.cross(v) * bar_s[2];
-      bar_da += -v.cross(u) * bar_s[2];
-      bar_dth += std::cos(th) * bar_s[2];
-    } else {
-      bar_da += -v * bar_s[2];
-      bar_dth += -std::sin(th) * bar_s[2];
-    }
-    y[kNc + i] = bar_dth;
-    if (i > 0) {
-      bar.segment<3>(idxUnext(i - 1)) += bar_du;
-      bar.segment<3>(idxPnext(i - 1)) += bar_dp;
-      if (i > 1) bar.segment<3>(idxUnext(i - 2)) += b.alpha.x() * bar_da;
-      bar.segment<3>(idxV(i - 1)) += b.alpha.y() * bar_da;
-      bar.segment<3>(idxW(i - 1)) += b.alpha.z() * bar_da;
-    }
+    bar_du -= bc.v * bar_s[1] + bc.g_du * bar_s[2];
+    const Vec3 bar_da = -bc.g_da * bar_s[2];
+    y[kNc + i] = b_in[idxTheta(i)] - bc.g_th * bar_s[2];
+    // hand the adjoints of the shared parent elements to the parent body
+    bar_un = bar_du;
+    bar_pn = bar_dp;
+    bar_u_acc = b.alpha.x() * bar_da;
+    bar_v_acc = b.alpha.y() * bar_da;
+    bar_w_acc = b.alpha.z() * bar_da;
   }
 }
 
@@ -286,7 +275,9 @@ PositionResult solvePosition(const Model& model, Data& data, const Vec6& z, Gues
     for (int i = 0; i < 6; ++i) data.q[idxTheta(i)] = z[i];
   }
   PositionResult res;
-  factorize(model, data);
+  // Angle-row forms are chosen once per configuration (from θ = z), never inside Newton.
+  for (int i = 0; i < 6; ++i) data.cross_form[static_cast<size_t>(i)] = std::abs(std::sin(z[i])) <= std::sqrt(0.5);
+  data.factorized = false;
   for (;;) {
     evaluatePhi(model, data, data.q);
     res.residual = data.Phi.lpNorm<Eigen::Infinity>();
@@ -296,28 +287,67 @@ PositionResult solvePosition(const Model& model, Data& data, const Vec6& z, Gues
       break;
     }
     if (res.iterations >= model.max_iterations) break;
+    factorize(model, data);
     data.rhs.head<kNc>() = -data.Phi;
     data.rhs.tail<kNz>().setZero();
     solveA(model, data, data.rhs, data.scratch);
     data.q += data.scratch;
     ++res.iterations;
-    factorize(model, data);
+    data.factorized = false;
   }
-  if (res.converged && res.iterations > 0) factorize(model, data);
   return res;
 }
 
+namespace {
+void ensureFactorized(const Model& model, Data& data) {
+  if (!data.factorized) factorize(model, data);
+}
+}  // namespace
+
 const MatR& velocityTransform(const Model& model, Data& data) {
+  ensureFactorized(model, data);
+  MatR& R = data.R;
+  R.setZero();
+  // Column j: unit rate of θ_j; bodies before j do not move, body j's v responds to the angle
+  // row alone, later bodies only to their parents (r = 0 there).
   for (int j = 0; j < kNz; ++j) {
-    data.rhs.setZero();
-    data.rhs[kNc + j] = 1.0;
-    solveA(model, data, data.rhs, data.scratch);
-    data.R.col(j) = data.scratch;
+    auto x = R.col(j);
+    x[idxTheta(j)] = 1.0;
+    Vec3 du = Vec3::Zero();
+    Vec3 dp = Vec3::Zero();
+    Vec3 dup = Vec3::Zero();
+    for (int i = j; i < 6; ++i) {
+      const size_t s = static_cast<size_t>(i);
+      const Body& b = model.bodies[s];
+      const Data::BodyCache& bc = data.body[s];
+      Vec3 dv;
+      if (i == j) {
+        dv = bc.Ginv.col(2) * (-bc.g_th);
+      } else {
+        const Vec3 da = b.alpha.x() * dup + b.alpha.y() * Vec3(x.segment<3>(idxV(i - 1))) +
+                        b.alpha.z() * Vec3(x.segment<3>(idxW(i - 1)));
+        const Vec3 sv(0.0, -bc.v.dot(du), -bc.g_du.dot(du) - bc.g_da.dot(da));
+        dv = bc.Ginv * sv;
+      }
+      const Vec3 dw = du.cross(bc.v) + bc.u.cross(dv);
+      x.segment<3>(idxV(i)) = dv;
+      x.segment<3>(idxW(i)) = dw;
+      if (i < 5) {
+        const Vec3 dpn = dp + b.c_next.x() * du + b.c_next.y() * dv + b.c_next.z() * dw;
+        const Vec3 dun = b.e_next.x() * du + b.e_next.y() * dv + b.e_next.z() * dw;
+        x.segment<3>(idxPnext(i)) = dpn;
+        x.segment<3>(idxUnext(i)) = dun;
+        dup = du;
+        du = dun;
+        dp = dpn;
+      }
+    }
   }
-  return data.R;
+  return R;
 }
 
 const VecQ& velocities(const Model& model, Data& data, const Vec6& zd) {
+  ensureFactorized(model, data);
   data.rhs.setZero();
   data.rhs.tail<kNz>() = zd;
   solveA(model, data, data.rhs, data.qd);
@@ -325,6 +355,7 @@ const VecQ& velocities(const Model& model, Data& data, const Vec6& zd) {
 }
 
 const VecQ& accelerationTerm(const Model& model, Data& data, const Vec6& zd) {
+  ensureFactorized(model, data);
   const VecQ& q = data.q;
   const VecQ& qd = data.qd;
   VecC& c = data.c;

@@ -126,8 +126,20 @@ struct Data {
   VecQ qdd{VecQ::Zero()};
   VecC Phi{VecC::Zero()};
   std::array<bool, 6> cross_form{};    ///< angle-row form per joint (chosen per configuration)
-  std::array<Mat3, 6> G{};             ///< 3×3 pivot block of each body (rows vv, vu, angle)
-  std::array<Eigen::PartialPivLU<Mat3>, 6> G_lu{};
+  /// Per-body quantities at the factorised configuration: elements, angle reference, the
+  /// inverse of the 3×3 pivot block G = [2vᵀ; uᵀ; ∂Φ_angle/∂v] and the angle row's partials.
+  struct BodyCache {
+    Vec3 u{Vec3::Zero()};
+    Vec3 v{Vec3::Zero()};
+    Vec3 w{Vec3::Zero()};
+    Vec3 a{Vec3::Zero()};
+    Vec3 g_du{Vec3::Zero()};   ///< ∂Φ_angle/∂u
+    Vec3 g_da{Vec3::Zero()};   ///< ∂Φ_angle/∂a
+    double g_th{0.0};          ///< ∂Φ_angle/∂θ
+    Mat3 Ginv{Mat3::Identity()};
+  };
+  std::array<BodyCache, 6> body{};
+  bool factorized{false};              ///< body[] matches q
   MatR R{MatR::Zero()};
   VecQ Sc{VecQ::Zero()};
   VecC c{VecC::Zero()};                ///< −Φ̇_q q̇
@@ -153,17 +165,19 @@ enum class Guess {
   kWarmStart,   ///< Newton from the q already in data (previous configuration)
 };
 
-/// Solves Φ(q) = 0 for the dependent coordinates with θ = z fixed, then factorises A at the
-/// solution (angle-row forms, 3×3 blocks) for the velocity/acceleration/dynamics solves.
+/// Solves Φ(q) = 0 for the dependent coordinates with θ = z fixed (Newton–Raphson; the angle-row
+/// forms are chosen once from z). The factorisation at the solution is made lazily by the
+/// velocity/acceleration/dynamics functions (or explicitly with `factorize`).
 PositionResult solvePosition(const Model& model, Data& data, const Vec6& z,
                              Guess guess = Guess::kClosedForm);
 
 /// Φ(q) into data.Phi (uses data.cross_form).
 void evaluatePhi(const Model& model, Data& data, const VecQ& q);
-/// Chooses the angle-row forms from data.z and factorises the 3×3 blocks at data.q.
+/// Chooses the angle-row forms from the angles in data.q and factorises the 3×3 blocks there.
 void factorize(const Model& model, Data& data);
 
-/// x = A⁻¹ r (r: 66 constraint rows then 6 B rows). x and r may not alias.
+/// x = A⁻¹ r (r: 66 constraint rows then 6 B rows). x and r may not alias. Requires
+/// `factorize` at data.q (velocityTransform/velocities/accelerationTerm do it when needed).
 void solveA(const Model& model, const Data& data, const VecQ& r, VecQ& x);
 /// y = A⁻ᵀ b (adjoint sweep). y and b may not alias.
 void solveAT(const Model& model, const Data& data, const VecQ& b, VecQ& y);

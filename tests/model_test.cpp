@@ -169,6 +169,7 @@ TEST(NaturalModel, PhiqMatchesCentralDifferencesAndSolvesMatchDenseLu) {
       EXPECT_LE((fd - J.col(k)).lpNorm<Eigen::Infinity>(), 1e-8) << "column " << k;
     }
     // Structured solves vs dense LU.
+    nc::factorize(model, data);
     const Eigen::MatrixXd A = denseA(model, data);
     const Eigen::PartialPivLU<Eigen::MatrixXd> lu(A);
     nc::VecQ r;
