@@ -2,10 +2,12 @@
 /// joint limits are the datasheet ranges, the link masses add up to the datasheet mass, every
 /// number has a source and estimates say so, and the flange frame is each vendor's tool-0 frame.
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <random>
 
 #include "compensator/chain.hpp"
@@ -183,6 +185,36 @@ TEST(Robots, FlangeZPointsOutOfTheFlangeAndTool0IsTheSameFrame) {
       EXPECT_GT(out.norm(), 0.19);
       EXPECT_LT((out.normalized() - F.linear().col(2)).norm(), 1e-12) << "flange z must point out of the flange";
     }
+  }
+}
+
+// End to end through the CLI: `roprec fk --robot NAME` at each vendor's reference pose prints the
+// flange pose computed above from the published dimensions (contract: position_mm, quaternion_wxyz).
+TEST(Robots, CliFkPrintsTheVendorsFlangePose) {
+  struct Case {
+    const char* name;
+    const char* joints;
+    Vec3 position_mm;
+    Eigen::Quaterniond q;
+  };
+  const double s = std::sqrt(0.5);
+  const std::array<Case, 3> cases{{
+      {"kuka-kr120-r2500-pro", "0 -90 90 0 0 0", Vec3(1565, 0, 1784), Eigen::Quaterniond(s, 0, s, 0)},
+      {"abb-irb6640-185-280", "0 0 0 0 0 0", Vec3(1912, 0, 2055), Eigen::Quaterniond(s, 0, s, 0)},
+      // W 180, P -90, R 0 = Ry(-90) Rx(180): quaternion (0, s, 0, s) up to sign.
+      {"fanuc-r2000ic-165f", "0 0 0 0 0 0", Vec3(1807, 0, 1300), Eigen::Quaterniond(0, s, 0, s)},
+  }};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    const test::RunResult r =
+        test::runRoprec(std::string("fk --robot ") + c.name + " --joints \"" + c.joints + "\"");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    const auto& f = j.at("flange");
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(f.at("position_mm")[static_cast<size_t>(i)].get<double>(), c.position_mm[i], 1e-6);
+    const Eigen::Quaterniond got(f.at("quaternion_wxyz")[0].get<double>(), f.at("quaternion_wxyz")[1].get<double>(),
+                                 f.at("quaternion_wxyz")[2].get<double>(), f.at("quaternion_wxyz")[3].get<double>());
+    EXPECT_NEAR(std::abs(got.dot(c.q)), 1.0, 1e-8);
   }
 }
 
