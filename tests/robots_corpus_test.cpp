@@ -11,8 +11,8 @@
 
 #include <array>
 #include <filesystem>
-#include <random>
 #include <fstream>
+#include <random>
 #include <sstream>
 
 #include "compensator/chain.hpp"
@@ -60,7 +60,8 @@ void checkAgainstCorpus(const std::string& robot_name, const std::string& target
   if (corpus.empty()) GTEST_SKIP() << "corpus absent";
   const std::string path = corpus + "/robodk/" + targets_file;
   if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " absent";
-  const Robot robot = loadRobot({test::sourceDir() + "/robots/" + robot_name + "/robot.xml", "", ""});
+  const Robot robot =
+      loadRobot({test::sourceDir() + "/robots/" + robot_name + "/robot.xml", "", ""});
   const std::vector<TargetRow> rows = readTargets(path);
   ASSERT_EQ(rows.size(), 18u);  // 3 holes x 6 targets
   Pose tool = Pose::Identity();
@@ -69,13 +70,15 @@ void checkAgainstCorpus(const std::string& robot_name, const std::string& target
   for (const TargetRow& r : rows) {
     const Eigen::Matrix<double, 6, 1> q = fromControllerJoints(robot.card, r.joints_deg * kDeg);
     // Round trip of the joint convention.
-    EXPECT_LT((toControllerJoints(robot.card, q) - r.joints_deg * kDeg).cwiseAbs().maxCoeff(), 1e-12);
+    EXPECT_LT((toControllerJoints(robot.card, q) - r.joints_deg * kDeg).cwiseAbs().maxCoeff(),
+              1e-12);
     const Pose tcp = chainForwardKinematics(robot.chain, q) * tool;
     const double err_mm = (tcp.translation() * 1e3 - r.target_mm).norm();
     worst_mm = std::max(worst_mm, err_mm);
     // The joints are printed with 5 decimals (<= 5e-6 deg each): <= ~1e-3 mm at 2.8 m.
     EXPECT_LE(err_mm, 1e-3) << path << ":" << r.line;
-    // Straight down; tool x along base +x (FANUC W 180 P 0 R 0, ABB q [0 1 0 0], KUKA A 0 B 0 C 180).
+    // Straight down; tool x along base +x (FANUC W 180 P 0 R 0, ABB q [0 1 0 0], KUKA A 0 B 0 C
+    // 180).
     EXPECT_LT((tcp.linear().col(2) - Vec3(0, 0, -1)).norm(), 1e-6) << path << ":" << r.line;
     EXPECT_LT((tcp.linear().col(0) - Vec3(1, 0, 0)).norm(), 1e-6) << path << ":" << r.line;
   }
@@ -99,7 +102,8 @@ TEST(RobotsCorpus, FanucR2000icReproducesRoboDkR30iaTargetsInWorld) {
 // orientation unchanged (the controller measures J3 from the horizontal), so the wrist centre
 // moves on a circle about J2 while the forearm stays horizontal.
 TEST(RobotsCorpus, FanucControllerJ2KeepsTheJ3ArmHorizontal) {
-  const Robot robot = loadRobot({test::sourceDir() + "/robots/fanuc-r2000ic-165f/robot.xml", "", ""});
+  const Robot robot =
+      loadRobot({test::sourceDir() + "/robots/fanuc-r2000ic-165f/robot.xml", "", ""});
   for (const double j2_deg : {-40.0, -10.0, 0.0, 25.0, 60.0}) {
     Eigen::Matrix<double, 6, 1> ctrl;
     ctrl << 0, j2_deg, 0, 0, 0, 0;
@@ -127,7 +131,8 @@ TEST(RobotsCorpus, BundledUrdfsAgreeWithTheRosIndustrialUrdfs) {
   for (const auto& [name, file] : pairs) {
     SCOPED_TRACE(name);
     const Robot ours = loadRobot({test::sourceDir() + "/robots/" + name + "/robot.xml", "", ""});
-    const ChainDescription rosi = loadUrdfChain(corpus + "/urdf/" + file, {ours.card.base_link, "tool0"});
+    const ChainDescription rosi =
+        loadUrdfChain(corpus + "/urdf/" + file, {ours.card.base_link, "tool0"});
     for (size_t i = 0; i < 6; ++i) {
       EXPECT_EQ(ours.chain.joints[i].name, rosi.joints[i].name);
       EXPECT_LT((ours.chain.joints[i].axis - rosi.joints[i].axis).norm(), 1e-15);

@@ -38,18 +38,39 @@ struct Datasheet {
 const std::array<Datasheet, 3> kRobots{{
     // KUKA KR QUANTEC pro specification / KR 120 R2500 pro datasheet: axis ranges, approx. 1049 kg,
     // 120 kg rated payload, pose repeatability +-0.06 mm (ISO 9283).
-    {"kuka-kr120-r2500-pro", "KUKA",
+    {"kuka-kr120-r2500-pro",
+     "KUKA",
      {"joint_a1", "joint_a2", "joint_a3", "joint_a4", "joint_a5", "joint_a6"},
-     {-185, -155, -130, -350, -130, -350}, {185, 35, 154, 350, 130, 350}, 1049, 120, 0.06, 0, "base_link"},
+     {-185, -155, -130, -350, -130, -350},
+     {185, 35, 154, 350, 130, 350},
+     1049,
+     120,
+     0.06,
+     0,
+     "base_link"},
     // ABB IRB 6640 product specification / data sheet, variant 185/2.8: working ranges, 1310 kg,
     // 185 kg, RP 0.07 mm.
-    {"abb-irb6640-185-280", "ABB",
+    {"abb-irb6640-185-280",
+     "ABB",
      {"joint_1", "joint_2", "joint_3", "joint_4", "joint_5", "joint_6"},
-     {-170, -65, -180, -300, -120, -360}, {170, 85, 70, 300, 120, 360}, 1310, 185, 0.07, 0, "base_link"},
+     {-170, -65, -180, -300, -120, -360},
+     {170, 85, 70, 300, 120, 360},
+     1310,
+     185,
+     0.07,
+     0,
+     "base_link"},
     // FANUC R-2000iC/165F data sheet: motion ranges, 1090 kg, 165 kg, repeatability +-0.05 mm.
-    {"fanuc-r2000ic-165f", "FANUC",
+    {"fanuc-r2000ic-165f",
+     "FANUC",
      {"joint_1", "joint_2", "joint_3", "joint_4", "joint_5", "joint_6"},
-     {-185, -60, -132, -360, -125, -360}, {185, 76, 180, 360, 125, 360}, 1090, 165, 0.05, -1, "base"},
+     {-185, -60, -132, -360, -125, -360},
+     {185, 76, 180, 360, 125, 360},
+     1090,
+     165,
+     0.05,
+     -1,
+     "base"},
 }};
 
 bool startsWith(const std::string& s, const std::string& p) { return s.rfind(p, 0) == 0; }
@@ -148,7 +169,8 @@ TEST(Robots, FlangeIsTheVendorsToolZeroFrame) {
   }};
   // Flange positions at those poses from the published dimensions (mm):
   //   KUKA at HOME (link arm vertical, arm horizontal): (350 + 1000 + 215, 0, 675 + 1150 - 41).
-  //   ABB: (320 + 1392 + 200, 0, 780 + 1075 + 200).  FANUC (World, J2 height): (312 + 1280 + 215, 0, 1075 + 225).
+  //   ABB: (320 + 1392 + 200, 0, 780 + 1075 + 200).  FANUC (World, J2 height): (312 + 1280 + 215,
+  //   0, 1075 + 225).
   const std::array<Vec3, 3> pos{{Vec3(1565, 0, 1784), Vec3(1912, 0, 2055), Vec3(1807, 0, 1300)}};
   for (size_t k = 0; k < 3; ++k) {
     SCOPED_TRACE(kRobots[k].name);
@@ -183,13 +205,15 @@ TEST(Robots, FlangeZPointsOutOfTheFlangeAndTool0IsTheSameFrame) {
       }
       const Vec3 out = F.translation() - W.translation();
       EXPECT_GT(out.norm(), 0.19);
-      EXPECT_LT((out.normalized() - F.linear().col(2)).norm(), 1e-12) << "flange z must point out of the flange";
+      EXPECT_LT((out.normalized() - F.linear().col(2)).norm(), 1e-12)
+          << "flange z must point out of the flange";
     }
   }
 }
 
 // End to end through the CLI: `roprec fk --robot NAME` at each vendor's reference pose prints the
-// flange pose computed above from the published dimensions (contract: position_mm, quaternion_wxyz).
+// flange pose computed above from the published dimensions (contract: position_mm,
+// quaternion_wxyz).
 TEST(Robots, CliFkPrintsTheVendorsFlangePose) {
   struct Case {
     const char* name;
@@ -199,7 +223,8 @@ TEST(Robots, CliFkPrintsTheVendorsFlangePose) {
   };
   const double s = std::sqrt(0.5);
   const std::array<Case, 3> cases{{
-      {"kuka-kr120-r2500-pro", "0 -90 90 0 0 0", Vec3(1565, 0, 1784), Eigen::Quaterniond(s, 0, s, 0)},
+      {"kuka-kr120-r2500-pro", "0 -90 90 0 0 0", Vec3(1565, 0, 1784),
+       Eigen::Quaterniond(s, 0, s, 0)},
       {"abb-irb6640-185-280", "0 0 0 0 0 0", Vec3(1912, 0, 2055), Eigen::Quaterniond(s, 0, s, 0)},
       // W 180, P -90, R 0 = Ry(-90) Rx(180): quaternion (0, s, 0, s) up to sign.
       {"fanuc-r2000ic-165f", "0 0 0 0 0 0", Vec3(1807, 0, 1300), Eigen::Quaterniond(0, s, 0, s)},
@@ -211,9 +236,12 @@ TEST(Robots, CliFkPrintsTheVendorsFlangePose) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const nlohmann::json j = nlohmann::json::parse(r.out);
     const auto& f = j.at("flange");
-    for (int i = 0; i < 3; ++i) EXPECT_NEAR(f.at("position_mm")[static_cast<size_t>(i)].get<double>(), c.position_mm[i], 1e-6);
-    const Eigen::Quaterniond got(f.at("quaternion_wxyz")[0].get<double>(), f.at("quaternion_wxyz")[1].get<double>(),
-                                 f.at("quaternion_wxyz")[2].get<double>(), f.at("quaternion_wxyz")[3].get<double>());
+    for (int i = 0; i < 3; ++i)
+      EXPECT_NEAR(f.at("position_mm")[static_cast<size_t>(i)].get<double>(), c.position_mm[i],
+                  1e-6);
+    const Eigen::Quaterniond got(
+        f.at("quaternion_wxyz")[0].get<double>(), f.at("quaternion_wxyz")[1].get<double>(),
+        f.at("quaternion_wxyz")[2].get<double>(), f.at("quaternion_wxyz")[3].get<double>());
     EXPECT_NEAR(std::abs(got.dot(c.q)), 1.0, 1e-8);
   }
 }

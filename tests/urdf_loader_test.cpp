@@ -21,8 +21,12 @@ namespace {
 
 using Vec6 = Eigen::Matrix<double, 6, 1>;
 
-std::string fixture(const std::string& name) { return test::sourceDir() + "/tests/data/urdf_fixtures/" + name; }
-std::string bad(const std::string& name) { return test::sourceDir() + "/tests/data/urdf_bad/" + name; }
+std::string fixture(const std::string& name) {
+  return test::sourceDir() + "/tests/data/urdf_fixtures/" + name;
+}
+std::string bad(const std::string& name) {
+  return test::sourceDir() + "/tests/data/urdf_bad/" + name;
+}
 
 Pose fromKdl(const KDL::Frame& F) {
   Pose T = Pose::Identity();
@@ -39,7 +43,8 @@ struct KdlReference {
   bool ok{false};
   KdlReference(const std::string& urdf, const std::string& base, const std::string& tip) {
     KDL::Tree tree;
-    ok = kdl_parser::treeFromFile(urdf, tree) && tree.getChain(base, tip, chain) && chain.getNrOfJoints() == 6;
+    ok = kdl_parser::treeFromFile(urdf, tree) && tree.getChain(base, tip, chain) &&
+         chain.getNrOfJoints() == 6;
   }
   Pose fk(const Vec6& q) const {
     KDL::ChainFkSolverPos_recursive solver(chain);
@@ -55,7 +60,8 @@ Vec6 randomWithinLimits(const ChainDescription& c, std::mt19937& rng) {
   Vec6 q;
   for (int i = 0; i < 6; ++i) {
     const ChainJoint& j = c.joints[static_cast<size_t>(i)];
-    q[i] = std::uniform_real_distribution<double>(std::max(j.lower, -2 * kPi), std::min(j.upper, 2 * kPi))(rng);
+    q[i] = std::uniform_real_distribution<double>(std::max(j.lower, -2 * kPi),
+                                                  std::min(j.upper, 2 * kPi))(rng);
   }
   return q;
 }
@@ -64,15 +70,18 @@ double rotationError(const Pose& a, const Pose& b) {
   return Eigen::AngleAxisd(a.linear().transpose() * b.linear()).angle();
 }
 
-/// chainForwardKinematics == KDL on 200 seeded random joint vectors; `pre` maps KDL's base into ours.
-void expectMatchesKdl(const ChainDescription& c, const KdlReference& ref, const Pose& pre, unsigned seed) {
+/// chainForwardKinematics == KDL on 200 seeded random joint vectors; `pre` maps KDL's base into
+/// ours.
+void expectMatchesKdl(const ChainDescription& c, const KdlReference& ref, const Pose& pre,
+                      unsigned seed) {
   ASSERT_TRUE(ref.ok) << c.file << " " << c.base_link << " -> " << c.tip_link;
   std::mt19937 rng(seed);
   for (int k = 0; k < 200; ++k) {
     const Vec6 q = randomWithinLimits(c, rng);
     const Pose ours = chainForwardKinematics(c, q);
     const Pose theirs = pre * ref.fk(q);
-    ASSERT_LT((ours.translation() - theirs.translation()).norm(), 1e-12) << c.file << " q=" << q.transpose();
+    ASSERT_LT((ours.translation() - theirs.translation()).norm(), 1e-12)
+        << c.file << " q=" << q.transpose();
     ASSERT_LT(rotationError(ours, theirs), 1e-12) << c.file << " q=" << q.transpose();
   }
 }
@@ -90,7 +99,8 @@ TEST(UrdfLoader, EveryCorpusUrdfLoadsWithTheDefaultTipAndMatchesKdl) {
     const ChainDescription c = loadUrdfChain(path);
     EXPECT_EQ(c.base_link, "base_link");
     EXPECT_EQ(c.tip_link, "tool0");  // every ROS-Industrial support package defines tool0
-    expectMatchesKdl(c, KdlReference(path, c.base_link, c.tip_link), Pose::Identity(), 7u + static_cast<unsigned>(n));
+    expectMatchesKdl(c, KdlReference(path, c.base_link, c.tip_link), Pose::Identity(),
+                     7u + static_cast<unsigned>(n));
     ++n;
   }
   EXPECT_EQ(n, 6);
@@ -102,7 +112,8 @@ TEST(UrdfLoader, AbbIrb6640SideBranchIsNotPartOfTheChain) {
   const std::string path = corpus + "/urdf/irb6640_185_280.urdf";
   for (const std::string tip : {"link_6", "tool0"}) {
     const ChainDescription c = loadUrdfChain(path, {"base_link", tip});
-    for (int i = 0; i < 6; ++i) EXPECT_EQ(c.joints[static_cast<size_t>(i)].name, "joint_" + std::to_string(i + 1));
+    for (int i = 0; i < 6; ++i)
+      EXPECT_EQ(c.joints[static_cast<size_t>(i)].name, "joint_" + std::to_string(i + 1));
     expectMatchesKdl(c, KdlReference(path, "base_link", tip), Pose::Identity(), 11u);
   }
   // The balancing cylinder and piston (continuous, mimic) hang off link_1 and link_2; the chain
@@ -175,7 +186,8 @@ Pose handComposed(const Vec6& q, bool from_world, bool to_tcp) {
   Pose T = from_world ? originOf(0.5, -0.2, 0.1, 0, 0, 0.7) : Pose::Identity();
   T = T * originOf(0.01, 0.02, 0.4, 0.1, -0.2, 0.3) * rot(Vec3(0, 0, -1), q[0]);
   T = T * originOf(0.3, 0.05, 0.2, h, 0, 0) * rot(Vec3(0, 0, 1), q[1]);
-  T = T * originOf(0.9, 0, 0, 0, 0, -0.4) * originOf(0.05, 0.1, 0, 0.2, 0.3, -0.1) * rot(Vec3(0, -1, 0), q[2]);
+  T = T * originOf(0.9, 0, 0, 0, 0, -0.4) * originOf(0.05, 0.1, 0, 0.2, 0.3, -0.1) *
+      rot(Vec3(0, -1, 0), q[2]);
   T = T * originOf(0.8, 0, 0.12, -0.25, 0.15, 0.05) * rot(Vec3(1, 1, 0), q[3]);
   T = T * originOf(0, 0, 0, 0, 0, -h) * rot(Vec3(0, 1, 0), q[4]);
   T = T * originOf(0.1, 0, 0, kPi, 0, 0) * rot(Vec3(-1, 0, 0), q[5]);
@@ -201,7 +213,8 @@ TEST(UrdfLoader, RpyOriginsFixedJointsAndObliqueAxesMatchTheHandComposedProduct)
   for (int k = 0; k < 500; ++k) {
     Vec6 q;
     for (int i = 0; i < 6; ++i) q[i] = u(rng);
-    for (const auto& [c, world, tcp] : {std::tuple{&def, true, false}, std::tuple{&named, false, true}}) {
+    for (const auto& [c, world, tcp] :
+         {std::tuple{&def, true, false}, std::tuple{&named, false, true}}) {
       const Pose ours = chainForwardKinematics(*c, q);
       const Pose ref = handComposed(q, world, tcp);
       ASSERT_LT((ours.translation() - ref.translation()).norm(), 1e-13);
@@ -214,8 +227,8 @@ TEST(UrdfLoader, RpyOriginsFixedJointsAndObliqueAxesMatchTheHandComposedProduct)
 
 TEST(UrdfLoader, FixedLinksAreFoldedIntoTheBodyInertial) {
   const ChainDescription c = loadUrdfChain(fixture("rpy_chain.urdf"));
-  // Body 1 = l1 (10 kg at (0.1, 0, 0.2), I = diag(1,2,3)) + l1_cover (2 kg, fixed at xyz (0.2 0 0.1)
-  // rpy (0 0.5 0); its COM at (0, 0.3, 0) with rpy (0.3 0 0), I = diag(0.1, 0.2, 0.3)).
+  // Body 1 = l1 (10 kg at (0.1, 0, 0.2), I = diag(1,2,3)) + l1_cover (2 kg, fixed at xyz (0.2 0
+  // 0.1) rpy (0 0.5 0); its COM at (0, 0.3, 0) with rpy (0.3 0 0), I = diag(0.1, 0.2, 0.3)).
   const Inertial& b1 = c.inertials[0];
   EXPECT_TRUE(b1.present);
   EXPECT_DOUBLE_EQ(b1.mass, 12.0);
@@ -246,7 +259,8 @@ struct BadCase {
   const char* words;  ///< a fragment the message must contain
 };
 
-void expectInputError(const std::string& path, const UrdfChainRequest& req, int line, const std::string& words) {
+void expectInputError(const std::string& path, const UrdfChainRequest& req, int line,
+                      const std::string& words) {
   try {
     (void)loadUrdfChain(path, req);
     ADD_FAILURE() << path << ": no error";
@@ -257,7 +271,8 @@ void expectInputError(const std::string& path, const UrdfChainRequest& req, int 
   }
 }
 
-void expectCliError(const std::string& args, const std::string& path, int line, const std::string& words) {
+void expectCliError(const std::string& args, const std::string& path, int line,
+                    const std::string& words) {
   const test::RunResult r = test::runRoprec(args);
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_EQ(r.out, "");
@@ -279,15 +294,27 @@ constexpr BadCase kFiveDof{"five_dof.urdf", 9, "5 revolute joints"};
 constexpr BadCase kNan{"nan_origin.urdf", 14, "nan"};
 constexpr BadCase kMissing{"missing_attribute.urdf", 12, "type"};
 
-TEST(UrdfLoaderBadInput, MalformedXml) { expectInputError(bad(kMalformed.file), {}, kMalformed.line, kMalformed.words); }
-TEST(UrdfLoaderBadInput, LoopSecondParent) { expectInputError(bad(kLoop.file), {}, kLoop.line, kLoop.words); }
-TEST(UrdfLoaderBadInput, LoopThroughTheRoot) { expectInputError(bad(kLoopRoot.file), {}, kLoopRoot.line, kLoopRoot.words); }
+TEST(UrdfLoaderBadInput, MalformedXml) {
+  expectInputError(bad(kMalformed.file), {}, kMalformed.line, kMalformed.words);
+}
+TEST(UrdfLoaderBadInput, LoopSecondParent) {
+  expectInputError(bad(kLoop.file), {}, kLoop.line, kLoop.words);
+}
+TEST(UrdfLoaderBadInput, LoopThroughTheRoot) {
+  expectInputError(bad(kLoopRoot.file), {}, kLoopRoot.line, kLoopRoot.words);
+}
 TEST(UrdfLoaderBadInput, PrismaticJointInTheChain) {
   expectInputError(bad(kPrismatic.file), {}, kPrismatic.line, kPrismatic.words);
 }
-TEST(UrdfLoaderBadInput, FiveDofChain) { expectInputError(bad(kFiveDof.file), {}, kFiveDof.line, kFiveDof.words); }
-TEST(UrdfLoaderBadInput, NanInOrigin) { expectInputError(bad(kNan.file), {}, kNan.line, kNan.words); }
-TEST(UrdfLoaderBadInput, MissingAttribute) { expectInputError(bad(kMissing.file), {}, kMissing.line, kMissing.words); }
+TEST(UrdfLoaderBadInput, FiveDofChain) {
+  expectInputError(bad(kFiveDof.file), {}, kFiveDof.line, kFiveDof.words);
+}
+TEST(UrdfLoaderBadInput, NanInOrigin) {
+  expectInputError(bad(kNan.file), {}, kNan.line, kNan.words);
+}
+TEST(UrdfLoaderBadInput, MissingAttribute) {
+  expectInputError(bad(kMissing.file), {}, kMissing.line, kMissing.words);
+}
 TEST(UrdfLoaderBadInput, UnknownBaseAndTipLinks) {
   // The <robot> element is on line 3 of the fixture.
   expectInputError(fixture("six_r.urdf"), {"no_such_base", ""}, 3, "no_such_base");
@@ -302,31 +329,40 @@ TEST(UrdfLoaderBadInput, UnknownRobotName) {
     ADD_FAILURE() << "no error";
   } catch (const InputError& e) {
     EXPECT_NE(e.message().find("no-such-robot"), std::string::npos);
-    EXPECT_NE(e.message().find("kuka-kr120-r2500-pro"), std::string::npos) << "lists the bundled robots";
+    EXPECT_NE(e.message().find("kuka-kr120-r2500-pro"), std::string::npos)
+        << "lists the bundled robots";
   }
 }
 
 // The same through the CLI (`roprec fk`): exit code 2, `roprec: error: FILE:LINE: ...`, no output.
 TEST(UrdfLoaderBadInputCli, MalformedXml) {
-  expectCliError(fkArgs(bad(kMalformed.file)), bad(kMalformed.file), kMalformed.line, kMalformed.words);
+  expectCliError(fkArgs(bad(kMalformed.file)), bad(kMalformed.file), kMalformed.line,
+                 kMalformed.words);
 }
-TEST(UrdfLoaderBadInputCli, Loop) { expectCliError(fkArgs(bad(kLoop.file)), bad(kLoop.file), kLoop.line, kLoop.words); }
+TEST(UrdfLoaderBadInputCli, Loop) {
+  expectCliError(fkArgs(bad(kLoop.file)), bad(kLoop.file), kLoop.line, kLoop.words);
+}
 TEST(UrdfLoaderBadInputCli, LoopThroughTheRoot) {
   expectCliError(fkArgs(bad(kLoopRoot.file)), bad(kLoopRoot.file), kLoopRoot.line, kLoopRoot.words);
 }
 TEST(UrdfLoaderBadInputCli, PrismaticJointInTheChain) {
-  expectCliError(fkArgs(bad(kPrismatic.file)), bad(kPrismatic.file), kPrismatic.line, kPrismatic.words);
+  expectCliError(fkArgs(bad(kPrismatic.file)), bad(kPrismatic.file), kPrismatic.line,
+                 kPrismatic.words);
 }
 TEST(UrdfLoaderBadInputCli, FiveDofChain) {
   expectCliError(fkArgs(bad(kFiveDof.file)), bad(kFiveDof.file), kFiveDof.line, kFiveDof.words);
 }
-TEST(UrdfLoaderBadInputCli, NanInOrigin) { expectCliError(fkArgs(bad(kNan.file)), bad(kNan.file), kNan.line, kNan.words); }
+TEST(UrdfLoaderBadInputCli, NanInOrigin) {
+  expectCliError(fkArgs(bad(kNan.file)), bad(kNan.file), kNan.line, kNan.words);
+}
 TEST(UrdfLoaderBadInputCli, MissingAttribute) {
   expectCliError(fkArgs(bad(kMissing.file)), bad(kMissing.file), kMissing.line, kMissing.words);
 }
 TEST(UrdfLoaderBadInputCli, UnknownBaseAndTipLinks) {
-  expectCliError(fkArgs(fixture("six_r.urdf"), "--base no_such_base"), fixture("six_r.urdf"), 3, "no_such_base");
-  expectCliError(fkArgs(fixture("six_r.urdf"), "--tip no_such_tip"), fixture("six_r.urdf"), 3, "no_such_tip");
+  expectCliError(fkArgs(fixture("six_r.urdf"), "--base no_such_base"), fixture("six_r.urdf"), 3,
+                 "no_such_base");
+  expectCliError(fkArgs(fixture("six_r.urdf"), "--tip no_such_tip"), fixture("six_r.urdf"), 3,
+                 "no_such_tip");
 }
 TEST(UrdfLoaderBadInputCli, UnknownRobotName) {
   const test::RunResult r = test::runRoprec("fk --robot no-such-robot --joints \"0 0 0 0 0 0\"");
