@@ -140,7 +140,8 @@ void expandTurns(const IkModel& m, const IkSolution& base, const IkOptions& opt,
       double best_d = std::abs(qw + kTwoPi * lo - ref);
       for (int k = lo + 1; k <= hi; ++k) {
         const double d = std::abs(qw + kTwoPi * k - ref);
-        if (d < best_d) {
+        // Ties (e.g. ±180° for a zero reference, within 1e-9 rad) go to the larger representative.
+        if (d < best_d - 1e-9 || (d <= best_d + 1e-9 && k > best)) {
           best = k;
           best_d = d;
         }
