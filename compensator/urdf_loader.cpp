@@ -3,6 +3,7 @@
 #include <console_bridge/console.h>
 #include <urdf_parser/urdf_parser.h>
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <fstream>
 #include <map>
@@ -55,8 +56,17 @@ UrdfIndex validate(const XmlNode& robot) {
         if (m == nullptr) in->fail("<inertial> has no <mass>");
         const double mass = m->number("value");
         if (mass < 0) m->fail("negative mass " + m->str("value"));
-        if (const XmlNode* I = in->child("inertia")) {
-          for (const char* k : {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"}) (void)I->number(k);
+        const XmlNode* I = in->child("inertia");
+        if (I == nullptr) in->fail("<inertial> of link '" + name + "' has no <inertia>");
+        Mat3 T;
+        T << I->number("ixx"), I->number("ixy"), I->number("ixz"), I->number("ixy"), I->number("iyy"),
+            I->number("iyz"), I->number("ixz"), I->number("iyz"), I->number("izz");
+        const Eigen::SelfAdjointEigenSolver<Mat3> es(T);
+        const Vec3 ev = es.eigenvalues();
+        const double tol = 1e-9 * std::max(1.0, ev.cwiseAbs().maxCoeff());
+        if (ev.minCoeff() < -tol || ev[0] + ev[1] < ev[2] - tol) {
+          I->fail("<inertia> of link '" + name +
+                  "' is not physically valid (principal moments must be >= 0 and satisfy the triangle inequality)");
         }
       }
     }
@@ -89,11 +99,27 @@ UrdfIndex validate(const XmlNode& robot) {
       for (const char* k : {"lower", "upper", "velocity", "effort"}) {
         if (l->has(k)) (void)l->number(k);
       }
+      // urdfdom requires effort and velocity on every <limit>
+      for (const char* k : {"effort", "velocity"}) {
+        if (!l->has(k)) l->fail("joint '" + name + "': <limit> is missing the attribute '" + k + "'");
+      }
+    } else if (type == "revolute" || type == "prismatic") {
+      e.fail("joint '" + name + "' (" + type + ") has no <limit>");
     }
     if (type != "revolute" && type != "continuous" && type != "fixed" && type != "prismatic" &&
         type != "floating" && type != "planar") {
       e.fail("joint '" + name + "' has an unknown type '" + type + "'");
     }
+  }
+  if (idx.link_line.empty()) robot.fail("the URDF has no <link>");
+  std::vector<std::string> roots;
+  for (const std::string& l : idx.link_order) {
+    if (!idx.parent_joint_of_link.count(l)) roots.push_back(l);
+  }
+  if (roots.size() > 1) {
+    throw InputError(robot.file, idx.link_line.at(roots[1]),
+                     "link '" + roots[1] + "' has no parent joint, but '" + roots[0] +
+                         "' is already the root: a URDF must be one connected tree");
   }
   // A loop through the root: a link that is its own ancestor.
   for (const auto& [link, joint] : idx.parent_joint_of_link) {
@@ -189,15 +215,23 @@ ChainDescription loadUrdfChain(const std::string& path, const UrdfChainRequest& 
     throw InputError(path, idx.robot_line, "unknown base link '" + base + "'");
   }
   if (tip.empty()) {
-    // Child link of the 6th moving joint below the base (first branch only).
-    urdf::LinkConstSharedPtr cur = model->getLink(base);
-    int moving = 0;
-    while (cur && !cur->child_joints.empty() && moving < 6) {
-      const auto& j = cur->child_joints.front();
-      if (isMoving(j->type)) ++moving;
-      cur = model->getLink(j->child_link_name);
+    // The deepest link of the subtree below the base, counted in moving joints (side branches
+    // such as a balancing cylinder are shallower than the arm); ties: document order.
+    std::string best = base;
+    int best_depth = -1;
+    std::vector<std::pair<urdf::LinkConstSharedPtr, int>> stack{{model->getLink(base), 0}};
+    while (!stack.empty()) {
+      auto [link, depth] = stack.back();
+      stack.pop_back();
+      if (depth > best_depth) {
+        best_depth = depth;
+        best = link->name;
+      }
+      for (auto it = link->child_joints.rbegin(); it != link->child_joints.rend(); ++it) {
+        stack.emplace_back(model->getLink((*it)->child_link_name), depth + (isMoving((*it)->type) ? 1 : 0));
+      }
     }
-    tip = cur ? cur->name : base;
+    tip = best;
   }
   if (!idx.link_line.count(tip)) {
     throw InputError(path, idx.robot_line, "unknown tip link '" + tip + "'");

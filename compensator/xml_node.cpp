@@ -2,6 +2,7 @@
 
 #include <tinyxml2.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -134,8 +135,16 @@ XmlNode parseXmlText(const std::string& text, const std::string& file) {
   tinyxml2::XMLDocument doc;
   const tinyxml2::XMLError err = doc.Parse(text.c_str(), text.size());
   if (err != tinyxml2::XML_SUCCESS) {
-    const std::string msg = std::string("malformed XML: ") + doc.ErrorName();
-    throw InputError(file, doc.ErrorLineNum(), msg);
+    std::string detail = doc.ErrorStr() ? doc.ErrorStr() : "";
+    // tinyxml2: "Error=XML_ERROR_X ErrorID=n (0xn) Line number=k: detail" -> keep the detail
+    if (const auto p = detail.find(": "); p != std::string::npos) {
+      detail = detail.substr(p + 2);
+    } else if (detail.rfind("Error=", 0) == 0) {
+      detail.clear();
+    }
+    std::string msg = std::string("malformed XML (") + doc.ErrorName() + ")";
+    if (!detail.empty()) msg += ": " + detail;
+    throw InputError(file, std::max(1, doc.ErrorLineNum()), msg);
   }
   const tinyxml2::XMLElement* root = doc.RootElement();
   if (root == nullptr) throw InputError(file, 1, "XML document has no root element");
