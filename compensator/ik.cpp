@@ -30,6 +30,29 @@ Mat3 axisRotation(const Vec3& a, double q) {
   return R;
 }
 
+/// R · Rot(axis_i, q) with the fast path for axes along the joint frame's coordinate axes.
+void rotateJoint(const IkModel& m, size_t i, double q, Mat3& R) {
+  const int kind = m.axis_kind[i];
+  if (kind < 0) {
+    R = R * axisRotation(m.axis[i], q);
+    return;
+  }
+  const double th = m.axis_sign[i] * q;
+  const double c = std::cos(th);
+  const double s = std::sin(th);
+  const int a = (kind + 1) % 3;  // Rot about e_k mixes columns k+1 and k+2 (cyclic)
+  const int b = (kind + 2) % 3;
+  const Vec3 ca = R.col(a);
+  const Vec3 cb = R.col(b);
+  R.col(a) = c * ca + s * cb;
+  R.col(b) = -s * ca + c * cb;
+}
+
+/// R · origin_R_i, skipping identity rotations.
+void applyOrigin(const IkModel& m, size_t i, Mat3& R) {
+  if (!m.origin_rotation_identity[i]) R = R * m.origin_R[i];
+}
+
 /// ang(v) = atan2(v_x, v_z): angle of an (x, z) vector, increasing with rotations about +y.
 double ang(const Eigen::Vector2d& v) { return std::atan2(v.x(), v.y()); }
 
@@ -50,8 +73,13 @@ Mat3 rotYMat(double theta) {
 
 /// World rotation of link 3 for (q1, q2, q3).
 Mat3 linkThreeRotation(const IkModel& m, double q1, double q2, double q3) {
-  return m.origin_R[0] * axisRotation(m.axis[0], q1) * m.origin_R[1] * axisRotation(m.axis[1], q2) *
-         m.origin_R[2] * axisRotation(m.axis[2], q3);
+  Mat3 R = m.origin_R[0];
+  rotateJoint(m, 0, q1, R);
+  applyOrigin(m, 1, R);
+  rotateJoint(m, 1, q2, R);
+  applyOrigin(m, 2, R);
+  rotateJoint(m, 2, q3, R);
+  return R;
 }
 
 /// Rotation error ω with R_target = Exp(ω) R and its exact angle.
@@ -67,17 +95,18 @@ Vec3 rotationError(const Mat3& R_target, const Mat3& R, double& angle) {
 
 bool finitePose(const Pose& T) { return T.matrix().allFinite(); }
 
-/// Newton iterations on the exact chain; returns the iterations used.
-int refine(const IkModel& m, const Pose& target, Vec6& q, int max_iterations, double tol, double max_step) {
+/// Newton iterations on the exact chain; returns the steps taken and the residual at the final q.
+int refine(const IkModel& m, const Pose& target, Vec6& q, int max_iterations, double tol, double max_step,
+           IkResidual& residual) {
   Pose T;
   Mat6 J;
-  for (int it = 0; it < max_iterations; ++it) {
+  for (int it = 0;; ++it) {
     ikForwardKinematicsJacobian(m, q, T, J);
     Vec6 e;
-    double angle = 0.0;
     e.head<3>() = target.translation() - T.translation();
-    e.tail<3>() = rotationError(target.linear(), T.linear(), angle);
-    if (e.head<3>().norm() <= tol && angle <= tol) return it;
+    e.tail<3>() = rotationError(target.linear(), T.linear(), residual.rotation);
+    residual.position = e.head<3>().norm();
+    if ((residual.position <= tol && residual.rotation <= tol) || it >= max_iterations) return it;
     const Eigen::PartialPivLU<Mat6> lu(J);
     Vec6 dq = lu.solve(e);
     if (!dq.allFinite() || std::abs(lu.determinant()) < 1e-14) {
@@ -89,16 +118,10 @@ int refine(const IkModel& m, const Pose& target, Vec6& q, int max_iterations, do
     if (n > max_step) dq *= max_step / n;
     q += dq;
   }
-  return max_iterations;
 }
 
 void finishSolution(const IkModel& m, const Pose& target, const IkOptions& opt, IkSolution& s) {
-  s.residual = ikResidual(m, s.q, target);
-  s.iterations = 0;
-  if (s.residual.position > kRefineTol || s.residual.rotation > kRefineTol) {
-    s.iterations = refine(m, target, s.q, opt.max_refine_iterations, kRefineTol, 0.5);
-    s.residual = ikResidual(m, s.q, target);
-  }
+  s.iterations = refine(m, target, s.q, opt.max_refine_iterations, kRefineTol, 0.5, s.residual);
   for (int i = 0; i < 6; ++i) s.q[i] = wrapAngle(s.q[i]);
   s.converged = s.residual.position <= kConvergedTol && s.residual.rotation <= kConvergedTol;
   s.branch = ikBranch(m, s.q);
@@ -206,6 +229,15 @@ IkModel buildIkModel(const ChainDescription& chain, const IkModelOptions& option
     m.origin_R[i] = j.origin.linear();
     m.origin_p[i] = j.origin.translation();
     m.axis[i] = j.axis.normalized();
+    m.axis_kind[i] = -1;
+    m.axis_sign[i] = 1.0;
+    for (int k = 0; k < 3; ++k) {
+      if (std::abs(std::abs(m.axis[i][k]) - 1.0) == 0.0) {
+        m.axis_kind[i] = k;
+        m.axis_sign[i] = m.axis[i][k] > 0 ? 1.0 : -1.0;
+      }
+    }
+    m.origin_rotation_identity[i] = m.origin_R[i] == Mat3::Identity();
     m.lower[static_cast<int>(i)] = j.continuous ? -4.0 * kPi : j.lower;
     m.upper[static_cast<int>(i)] = j.continuous ? 4.0 * kPi : j.upper;
   }
@@ -357,7 +389,8 @@ Pose ikForwardKinematics(const IkModel& m, const Vec6& q) {
   Vec3 t = Vec3::Zero();
   for (size_t i = 0; i < 6; ++i) {
     t = t + R * m.origin_p[i];
-    R = R * m.origin_R[i] * axisRotation(m.axis[i], q[static_cast<int>(i)]);
+    applyOrigin(m, i, R);
+    rotateJoint(m, i, q[static_cast<int>(i)], R);
   }
   Pose T = Pose::Identity();
   T.translation() = t + R * m.tip_p;
@@ -372,10 +405,10 @@ void ikForwardKinematicsJacobian(const IkModel& m, const Vec6& q, Pose& T, Mat6&
   std::array<Vec3, 6> o;
   for (size_t i = 0; i < 6; ++i) {
     t = t + R * m.origin_p[i];
-    R = R * m.origin_R[i];
-    z[i] = R * m.axis[i];
+    applyOrigin(m, i, R);
+    z[i] = m.axis_kind[i] >= 0 ? Vec3(m.axis_sign[i] * R.col(m.axis_kind[i])) : Vec3(R * m.axis[i]);
     o[i] = t;
-    R = R * axisRotation(m.axis[i], q[static_cast<int>(i)]);
+    rotateJoint(m, i, q[static_cast<int>(i)], R);
   }
   const Vec3 pt = t + R * m.tip_p;
   T = Pose::Identity();
@@ -557,8 +590,7 @@ IkNearResult solveIkNear(const IkModel& m, const Pose& target, const Vec6& seed,
   IkNearResult r;
   r.q = seed;
   if (!finitePose(target) || !seed.allFinite()) return r;
-  r.iterations = refine(m, target, r.q, options.max_iterations, options.tolerance, options.max_step);
-  r.residual = ikResidual(m, r.q, target);
+  r.iterations = refine(m, target, r.q, options.max_iterations, options.tolerance, options.max_step, r.residual);
   r.converged = r.residual.position <= kConvergedTol && r.residual.rotation <= kConvergedTol;
   if (!r.converged || ikBranch(m, r.q).index() != ikBranch(m, seed).index()) {
     IkResult all;

@@ -90,6 +90,9 @@ struct IkModel {
   std::array<Mat3, 6> origin_R;
   std::array<Vec3, 6> origin_p;
   std::array<Vec3, 6> axis;   ///< unit axis in the joint frame
+  std::array<int, 6> axis_kind{};        ///< 0/1/2: axis = ±x/±y/±z of the joint frame (fast path); -1 general
+  std::array<double, 6> axis_sign{};     ///< ±1 for the fast path
+  std::array<bool, 6> origin_rotation_identity{};
   Mat3 tip_R{Mat3::Identity()};
   Vec3 tip_p{Vec3::Zero()};
   Vec6 lower{Vec6::Constant(-kPi)};  ///< joint limits (rad)
@@ -236,7 +239,7 @@ struct IkNearResult {
 struct IkNearOptions {
   int max_iterations{8};
   double max_step{0.5};      ///< rad, largest joint step per iteration (scaled down to this)
-  double tolerance{1e-12};   ///< stop when both residuals (m, rad) are below
+  double tolerance{1e-10};   ///< stop when both residuals (m, rad) are below (converged: ≤ 1e-9)
 };
 IkNearResult solveIkNear(const IkModel& model, const Pose& target, const Vec6& seed,
                          const IkNearOptions& options = {});
