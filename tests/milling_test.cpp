@@ -1,0 +1,248 @@
+#include "compensator/milling.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace roprec {
+namespace {
+
+MillingCoefficients kienzle800() {
+  MillingCoefficients c;  // process.md §4.2 Kienzle column: kc1.1 800, mc 0.25, Fr = 0.35 Ft
+  c.kc11 = 800e6;
+  c.mc = 0.25;
+  c.radial_ratio = 0.35;
+  return c;
+}
+
+MillingModel model(double ae_mm, double fz_mm, MillingMode mode, double runout_um = 0, int steps = 720) {
+  MillingTool t;  // D 10, Nt 3, β 30°
+  t.runout = runout_um * 1e-6;
+  MillingCut c;
+  c.ap = 5e-3;
+  c.ae = ae_mm * 1e-3;
+  c.fz = fz_mm * 1e-3;
+  c.mode = mode;
+  return makeMillingModel(t, c, kienzle800(), steps, 20);
+}
+
+TEST(Milling, EntryExitAngles) {
+  const ImmersionAngles up = immersionAngles(10e-3, 2e-3, MillingMode::kUp);
+  EXPECT_NEAR(up.start, 0.0, 1e-15);
+  EXPECT_NEAR(up.exit / kDeg, 53.1301, 1e-4);  // acos(0.6)
+  const ImmersionAngles dn = immersionAngles(10e-3, 2e-3, MillingMode::kDown);
+  EXPECT_NEAR(dn.start / kDeg, 126.8699, 1e-4);
+  EXPECT_NEAR(dn.exit, kPi, 1e-15);
+  const ImmersionAngles half = immersionAngles(10e-3, 5e-3, MillingMode::kUp);
+  EXPECT_NEAR(half.exit, kPi / 2, 1e-15);
+  const ImmersionAngles slot = immersionAngles(10e-3, 10e-3, MillingMode::kSlot);
+  EXPECT_NEAR(slot.start, 0.0, 1e-15);
+  EXPECT_NEAR(slot.exit, kPi, 1e-15);
+  // Geometric check: the radial depth covered by the arc is ae (y from R cos φex to R).
+  for (double ae : {0.3e-3, 1e-3, 2e-3, 4.9e-3}) {
+    const ImmersionAngles a = immersionAngles(10e-3, ae, MillingMode::kUp);
+    EXPECT_NEAR(5e-3 - 5e-3 * std::cos(a.exit), ae, 1e-15);
+    const ImmersionAngles d = immersionAngles(10e-3, ae, MillingMode::kDown);
+    EXPECT_NEAR(5e-3 * std::cos(d.start) + 5e-3, ae, 1e-15);
+  }
+}
+
+TEST(Milling, MeanChipThicknessFormulaAndLimits) {
+  const double fz = 0.1e-3;
+  const double D = 10e-3;
+  for (double ae : {0.2e-3, 1e-3, 2e-3, 5e-3, 8e-3}) {
+    for (MillingMode mode : {MillingMode::kUp, MillingMode::kDown}) {
+      const ImmersionAngles a = immersionAngles(D, ae, mode);
+      // numerical average of fz sin φ over the arc
+      double s = 0;
+      const int n = 100000;
+      for (int i = 0; i < n; ++i) s += fz * std::sin(a.start + (a.exit - a.start) * (i + 0.5) / n);
+      EXPECT_NEAR(meanChipThickness(fz, a), s / n, 1e-12);
+      EXPECT_NEAR(meanChipThickness(fz, a), 2 * fz * ae / D / std::acos(1 - 2 * ae / D), 1e-15);
+    }
+  }
+  EXPECT_NEAR(meanChipThickness(fz, immersionAngles(D, D, MillingMode::kSlot)), 2 * fz / kPi, 1e-18);
+  // small-immersion limit fz √(ae/D)
+  const double ae = 0.05e-3;
+  EXPECT_NEAR(meanChipThickness(fz, immersionAngles(D, ae, MillingMode::kUp)) / (fz * std::sqrt(ae / D)), 1.0, 0.01);
+}
+
+// process.md §4.2, Kienzle column: F̄x / F̄y / peak |F| (N), ±1 % (±1.5 N on small components).
+TEST(Milling, Section42TableRegression) {
+  struct Row {
+    MillingMode mode;
+    double ae, fz, Fx, Fy, peak;
+  };
+  const Row rows[] = {{MillingMode::kUp, 1, 0.05, -54, 4, 199},     {MillingMode::kUp, 2, 0.10, -162, 41, 500},
+                      {MillingMode::kUp, 5, 0.10, -292, 213, 714},  {MillingMode::kDown, 2, 0.10, 101, 133, 501},
+                      {MillingMode::kDown, 5, 0.10, 96, 349, 714},  {MillingMode::kSlot, 10, 0.10, -196, 561, 736}};
+  for (const Row& r : rows) {
+    const MillingProfile P = millingForceProfile(model(r.ae, r.fz, r.mode));
+    EXPECT_NEAR(P.mean.x(), r.Fx, std::max(1.5, 0.01 * std::abs(r.Fx))) << r.ae;
+    EXPECT_NEAR(P.mean.y(), r.Fy, std::max(1.5, 0.01 * std::abs(r.Fy))) << r.ae;
+    EXPECT_NEAR(P.peak_xy, r.peak, 0.01 * r.peak) << r.ae;
+    // The Gauss–Legendre arc average used by the coupling equals the profile mean.
+    const MillingModel m = model(r.ae, r.fz, r.mode);
+    const Vec3 avg = millingMeanForce(m, m.cut.fz, m.cut.ae);
+    EXPECT_NEAR(avg.x(), P.mean.x(), 4e-3 * P.mean.norm());
+    EXPECT_NEAR(avg.y(), P.mean.y(), 4e-3 * P.mean.norm());
+  }
+}
+
+// Power identity F̄t vc = kc(h_m) ap ae vf for the mean-chip law, and the §4.4 size effect:
+// +10 % fz → +7.41 % (1.1^0.75), +10 % ae → ≈ 1.1^0.875 for small ae/D.
+TEST(Milling, MeanChipLawScaling) {
+  MillingModel m = model(2, 0.1, MillingMode::kUp);
+  m.mean_law = MeanForceLaw::kMeanChip;
+  const Vec3 F0 = millingMeanForce(m, 0.1e-3, 2e-3);
+  const Vec3 F1 = millingMeanForce(m, 0.11e-3, 2e-3);
+  EXPECT_NEAR(F1.norm() / F0.norm(), std::pow(1.1, 0.75), 1e-12);
+  // power: tangential mean over the arc, from Fz = −ca F̄t
+  const ImmersionAngles a = immersionAngles(10e-3, 2e-3, MillingMode::kUp);
+  const double hm = meanChipThickness(0.1e-3, a);
+  const double Ft_bar = -F0.z() / m.coeff.axial_ratio;
+  const double n = 1.0;  // rev/s
+  const double vc = kPi * 10e-3 * n;
+  const double vf = 3 * 0.1e-3 * n;
+  const double kc = 800e6 * std::pow(hm / 1e-3, -0.25);
+  EXPECT_NEAR(Ft_bar * vc / (kc * 5e-3 * 2e-3 * vf), 1.0, 1e-12);
+  MillingModel small = model(0.1, 0.1, MillingMode::kUp);
+  small.mean_law = MeanForceLaw::kMeanChip;
+  const double r = millingMeanForce(small, 0.1e-3, 0.11e-3).z() / millingMeanForce(small, 0.1e-3, 0.1e-3).z();
+  EXPECT_NEAR(r, std::pow(1.1, 0.875), 0.002);
+}
+
+// Runout: a tooth whose radius is smaller than the previous one's by more than fz sin φ cuts
+// nothing, and the next tooth then removes what it left: chip = 2 fz sin φ + (R_j − R_{j−2}).
+TEST(Milling, ChipThicknessRemembersWhatThePreviousEdgeDidNotCut) {
+  MillingTool t;
+  t.teeth = 3;
+  t.runout = 0.06e-3;
+  t.runout_angle = 0.0;  // R_0 = R + ρ, R_1 = R_2 = R − ρ/2
+  MillingCut c;
+  c.fz = 0.05e-3;
+  c.ae = 10e-3;
+  c.mode = MillingMode::kSlot;
+  const MillingModel m = makeMillingModel(t, c, kienzle800());
+  const double phi = 80 * kDeg;
+  const double s = std::sin(phi);
+  const double R0 = m.tooth_radius[0], R1 = m.tooth_radius[1], R2 = m.tooth_radius[2];
+  // tooth 0 (largest): chip from tooth 2 is fz s + R0 − R2
+  EXPECT_NEAR(toothChipThickness(m, 0, phi, c.fz), c.fz * s + R0 - R2, 1e-15);
+  // tooth 1: fz s + R1 − R0 = 0.0492 − 0.09 < 0 → no chip
+  EXPECT_LT(c.fz * s + R1 - R0, 0.0);
+  EXPECT_DOUBLE_EQ(toothChipThickness(m, 1, phi, c.fz), 0.0);
+  // tooth 2: against tooth 1 it would be fz s (R2 = R1) but tooth 1 did not cut: against tooth 0,
+  // 2 fz s + R2 − R0, which is smaller and therefore the real surface.
+  EXPECT_NEAR(toothChipThickness(m, 2, phi, c.fz), 2 * c.fz * s + R2 - R0, 1e-15);
+  // Over one revolution the teeth share exactly Nt·fz of feed on average: the max chips reflect it.
+  const MillingProfile P = millingForceProfile(m);
+  EXPECT_DOUBLE_EQ(P.max_chip[1], 0.0);
+  // Deflection history: a tool that moved by δ along n(φ) since the last pass cuts δ more.
+  const Eigen::Vector2d hist[4] = {Eigen::Vector2d(std::sin(phi), std::cos(phi)) * 2e-6, Eigen::Vector2d::Zero(),
+                                   Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
+  EXPECT_NEAR(toothChipThickness(m, 0, phi, c.fz, hist), c.fz * s + R0 - R2 + 2e-6, 1e-15);
+}
+
+CouplingResult steadyPoint(const MillingModel& m, const Mat3& C, const CouplingOptions& o, int points = 8) {
+  const std::vector<ComplianceFunction> path(static_cast<size_t>(points), linearCompliance(C));
+  return coupleMillingPath(m, path, o).back();
+}
+
+// §4.4 typical case: up-milling ae 2, fz 0.1, robot compliance 0.5–2 µm/N → loop gain 0.04–0.15,
+// converges (0.1 µm) in ≤ 10 iterations at every path point.
+TEST(Milling, CoupledIterationConvergesForTypicalCases) {
+  for (MillingMode mode : {MillingMode::kUp, MillingMode::kDown}) {
+    for (double c_um : {0.5, 1.0, 2.0}) {
+      const MillingModel m = model(2, 0.1, mode);
+      const Mat3 C = Mat3::Identity() * c_um * 1e-6;
+      const std::vector<ComplianceFunction> path(12, linearCompliance(C));
+      const std::vector<CouplingResult> res = coupleMillingPath(m, path, CouplingOptions{});
+      for (const CouplingResult& r : res) {
+        EXPECT_TRUE(r.converged) << c_um;
+        EXPECT_LE(r.iterations, 10);
+        EXPECT_LE(r.residual, 0.1e-6);
+        EXPECT_LT(r.loop_gain, 0.3);
+      }
+      // Fixed point: δ = C F(δ) at the converged point.
+      const CouplingResult& last = res.back();
+      EXPECT_LT((last.delta - C * last.force).norm(), 0.2e-6);
+      // The wall-normal loop gain alone is c · ∂F/∂ae ≈ c · F(1−mc/2)/ae (order of §4.4's 0.04–0.15).
+      EXPECT_GT(last.loop_gain, 0.01);
+    }
+  }
+}
+
+// Under-milling pulls the tool into the wall: the larger the compliance, the larger ae_eff; when
+// compliance × sensitivity ≥ 1 the point is reported as not converged (and the loop stops).
+TEST(Milling, ReportsNonConvergenceWhenLoopGainReachesOne) {
+  const MillingModel m = model(2, 0.1, MillingMode::kUp);
+  // Sensitivity of F̄y to ae at the nominal point (finite difference), then a compliance along Y
+  // that makes the loop gain 1.5.
+  const double dF = (millingMeanForce(m, 0.1e-3, 2.001e-3).y() - millingMeanForce(m, 0.1e-3, 1.999e-3).y()) / 2e-6;
+  ASSERT_GT(dF, 0.0);
+  Mat3 C = Mat3::Zero();
+  C(1, 1) = 1.5 / dF;
+  const CouplingResult r = coupleMillingPoint(m, linearCompliance(C), CouplingState{}, CouplingOptions{});
+  EXPECT_FALSE(r.converged);
+  EXPECT_GE(r.loop_gain, 1.0);
+  EXPECT_LE(r.iterations, 50);
+  // Just below one it converges (slowly).
+  C(1, 1) = 0.5 / dF;
+  CouplingOptions o;
+  o.max_iterations = 200;
+  const CouplingResult ok = coupleMillingPoint(m, linearCompliance(C), CouplingState{}, o);
+  EXPECT_TRUE(ok.converged);
+  EXPECT_LT(ok.loop_gain, 1.0);
+}
+
+// An oscillating loop (negative feedback, gain > 1) is reported without relaxation and converges
+// with under-relaxation ω = 0.3 to the same static equilibrium δ = C F(δ).
+TEST(Milling, UnderRelaxationHandlesAnOscillatingLoop) {
+  const MillingModel m = model(2, 0.1, MillingMode::kDown);  // pushed away from the wall
+  const double dF = (millingMeanForce(m, 0.1e-3, 2.001e-3).y() - millingMeanForce(m, 0.1e-3, 1.999e-3).y()) / 2e-6;
+  Mat3 C = Mat3::Zero();
+  C(1, 1) = 1.4 / std::abs(dF);
+  const CouplingResult plain = coupleMillingPoint(m, linearCompliance(C), CouplingState{}, CouplingOptions{});
+  EXPECT_FALSE(plain.converged);
+  CouplingOptions o;
+  o.relaxation = 0.3;
+  o.max_iterations = 300;
+  const CouplingResult relaxed = coupleMillingPoint(m, linearCompliance(C), CouplingState{}, o);
+  EXPECT_TRUE(relaxed.converged);
+  EXPECT_LT((relaxed.delta - C * relaxed.force).norm(), 1e-6);
+}
+
+// Qualitative (paper): the deviation grows with the feed because the force does.
+TEST(Milling, DeflectionGrowsWithFeed) {
+  double last = 0;
+  for (double fz : {0.03, 0.05, 0.08, 0.1, 0.15}) {
+    const CouplingResult r = steadyPoint(model(2, fz, MillingMode::kUp), Mat3::Identity() * 1e-6, CouplingOptions{});
+    ASSERT_TRUE(r.converged);
+    EXPECT_GT(r.delta.norm(), last);
+    last = r.delta.norm();
+  }
+}
+
+// The feed term: a deflection along the feed that grows between points raises fz_i; the uncut
+// remainder δprev of a tooth that did not reach the surface is carried to the next point.
+TEST(Milling, FeedTermAndUncutCarry) {
+  const MillingModel m = model(2, 0.1, MillingMode::kUp);
+  const auto zero = [](const Vec3&) { return Vec3::Zero(); };
+  CouplingOptions o;
+  o.teeth_between_points = 1;  // path points one tooth apart
+  CouplingState st;
+  st.delta_prev = Vec3(-0.15e-3, 0, 0);  // the previous point lagged 0.15 mm along the feed
+  const CouplingResult r = coupleMillingPoint(m, zero, st, o);
+  EXPECT_NEAR(r.fz_effective, 0.1e-3 + 0.15e-3, 1e-15);
+  st.delta_prev = Vec3(0.15e-3, 0, 0);  // it ran ahead: this tooth misses the surface
+  const CouplingResult miss = coupleMillingPoint(m, zero, st, o);
+  EXPECT_NEAR(miss.fz_effective, -0.05e-3, 1e-15);
+  EXPECT_EQ(miss.force.norm(), 0.0);
+  EXPECT_NEAR(miss.next.uncut_prev, -0.05e-3, 1e-15);
+  const CouplingResult after = coupleMillingPoint(m, zero, miss.next, o);
+  EXPECT_NEAR(after.fz_effective, 0.05e-3, 1e-15);  // x_{i+1} − s = 0.2 − 0.15 mm
+}
+
+}  // namespace
+}  // namespace roprec
