@@ -298,7 +298,8 @@ int run(Args& args, CommandContext& ctx) {
   const auto csv_path = args.option("csv");
   const auto json_path = args.option("json");
   const auto calibrate = args.option("calibrate");
-  const auto out_xml = args.option("o");
+  auto out_xml = args.option("o");
+  if (const auto alt = args.option("output")) out_xml = alt;
   const auto step_mm = args.option("step-mm");
   const auto points_opt = args.option("points");
   args.finish();
@@ -360,7 +361,7 @@ int run(Args& args, CommandContext& ctx) {
 const CommandRegistration reg{
     {"forces", "process forces of a cell (drilling, milling, wrench); single-test calibration",
      "usage: roprec forces --cell CELL.xml [--csv F.csv] [--json F.json] [--step-mm S]\n"
-     "                     [--calibrate \"Fa_N=... M_Nm=...\" [--o OUT.xml]] [--points N]\n\n"
+     "                     [--calibrate \"Fa_N=... M_Nm=...\" [--o|--output OUT.xml]] [--points N]\n\n"
      "Computes the process forces of the cell's <process> (the robot is not loaded).\n"
      "  drilling: steady thrust, torque, rotating runout force Fr, per-lip forces, chisel share, the wrench\n"
      "            on the TCP in the tool frame (z into the material: force z = -thrust, torque z = -M), the\n"

@@ -42,6 +42,21 @@ TEST(DrillCalibration, RecoversKnownCoefficientsFromOneTest) {
   }
 }
 
+// The pressure chisel model (F_ch = c_p ksa0 a f) keeps the thrust linear in ksa0: exact recovery too.
+TEST(DrillCalibration, PressureChiselModelIsCalibratedExactly) {
+  DrillingCoefficients prior = findMaterial("AlSi9Cu3")->drilling;
+  prior.chisel.kind = ChiselModelKind::kPressure;
+  prior.chisel.pressure_ratio = 5.0;
+  DrillingCoefficients truth = prior;
+  truth.tangential.k0 = 640e6;
+  truth.axial.k0 = 910e6;
+  const DrillingForces meas = drillingForces(model(8, 0.15, truth), 0.15e-3);
+  EXPECT_NEAR(meas.thrust_chisel, 5.0 * 910e6 * 0.08 * 8e-3 / std::sin(125 * kDeg) * 0.15e-3, 1e-6);
+  const DrillingCalibration cal = calibrateDrilling(model(8, 0.15, prior), 0.15e-3, meas.thrust, meas.torque);
+  EXPECT_NEAR(cal.coeff.axial.k0 / 910e6, 1.0, 1e-12);
+  EXPECT_NEAR(cal.coeff.tangential.k0 / 640e6, 1.0, 1e-12);
+}
+
 // Calibrate on the catalogue at Dc 10 / f 0.2, then predict Dc 6–12, f 0.1–0.3 against the
 // catalogue. Documented band (docs/process.md): ±10 % for thrust and torque (measured worst:
 // thrust +8.6 % at f 0.1, torque −5.7 % at f 0.3).

@@ -64,6 +64,20 @@ TEST(DrillGeometry, LipTwoIsLipOneTurnedByHalfARevolution) {
   }
 }
 
+// Stabler's rule: the chip-flow direction lies in the rake face and makes the angle |λs| with the
+// in-face direction normal to the edge.
+TEST(DrillGeometry, ChipFlowFollowsStablersRule) {
+  const DrillGeometry g = workedExample();
+  for (double r : {1.2e-3, 2.5e-3, 5e-3}) {
+    const EdgeFrame F = edgeFrame(g, r, 0);
+    EXPECT_NEAR(F.chip_flow.dot(F.n_gamma), 0.0, 1e-12);
+    EXPECT_NEAR(F.chip_flow.norm(), 1.0, 1e-12);
+    const Vec3 u = F.n_gamma.cross(F.t).normalized();
+    EXPECT_NEAR(std::acos(std::abs(F.chip_flow.dot(u))), std::abs(F.lambda_s), 1e-9);
+    EXPECT_GT(F.chip_flow.dot(F.helix), 0.0);  // up the flute
+  }
+}
+
 TEST(DrillGeometry, ZeroWebLimit) {
   DrillGeometry g = workedExample();
   g.web_thickness = 0;
