@@ -1,0 +1,33 @@
+#pragma once
+/// \file dialects.hpp
+/// Internal interface between the generic program model (program.cpp) and the dialect readers.
+
+#include "postproc/program.hpp"
+
+namespace roprec::postproc {
+
+/// Readers fill p.target_list/motions/frames/unresolved from p.files (already loaded, lines
+/// indexed). They throw InputError(file, line, message) on real errors.
+void parseKrl(Program& p);
+void parseRapid(Program& p);
+void parseTp(Program& p);
+void parseCsv(Program& p);
+void parseJson(Program& p);
+
+/// Writes a configuration change into the target's tokens (dialect specific).
+EditResult writeConfiguration(Program& p, Target& t, const Configuration& c);
+
+/// Number-style hints for a field of a program (file-level style detection).
+NumberHints hintsFor(const Program& p, const NumberField& f, bool quaternion);
+
+/// Throws InputError at the token's line.
+[[noreturn]] void failAt(const SourceFile& f, std::size_t offset, const std::string& msg);
+
+/// Adds a frame snapshot unless identical to the last one; returns its index.
+int internFrame(Program& p, const Frame& f);
+
+/// Number field from a token span [begin, end) whose text parses as a number; throws a
+/// "broken number" InputError otherwise. `file` is the index into p.files.
+NumberField numberField(const Program& p, int file, std::uint32_t begin, std::uint32_t end);
+
+}  // namespace roprec::postproc

@@ -1,0 +1,77 @@
+#pragma once
+/// \file drill.hpp
+/// Drill-point recognition (robot-programs.md §8.2) and matching to the contract's hole list.
+///
+/// A drill cycle is a maximal run of consecutive motions whose Cartesian targets lie on one line
+/// through the first target, along its drilling axis a = R_first · tool_axis (|Δp × a| < line
+/// tolerance), with constant orientation (< orientation tolerance), one tool and one base, all
+/// after the first being linear moves, that goes into the material (some target deeper than the
+/// first along +a) and carries evidence of drilling: a feed slower than the run's fastest move,
+/// a dwell, a spindle/drill call or a drilling comment. The drill point ("bottom") is the deepest
+/// target along +a; every target of the run moves together when compensated. A TP/KRL call of a
+/// drilling macro after a single target also makes a hole (entry = bottom = that target).
+///
+/// Convention: roprec's drilling axis is the TCP +z axis (into the material) for every vendor;
+/// `RecognitionOptions::tool_axis` changes it (e.g. +x for a KUKA tool with X tool direction).
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "postproc/program.hpp"
+
+namespace roprec::postproc {
+
+struct RecognitionOptions {
+  Vec3 tool_axis{0, 0, 1};   ///< drilling axis in the TCP frame (unit)
+  double line_tol_mm{0.05};  ///< |Δp × a| tolerance
+  double ori_tol_deg{0.05};  ///< orientation constancy
+};
+
+struct Hole {
+  std::string id;            ///< `H1`, `H2`… in program order (or the matched hole-list id)
+  int entry_target{-1};      ///< first target of the cycle
+  int bottom_target{-1};     ///< deepest target (the drill point)
+  int entry_motion{-1};
+  int bottom_motion{-1};
+  std::vector<int> targets;  ///< every target of the cycle (distinct, program order)
+  Vec3 position{Vec3::Zero()};  ///< bottom point in the base frame's coordinates of the program (m)
+  Vec3 axis{Vec3::UnitZ()};     ///< drilling direction, same frame (unit)
+  double depth{0.0};            ///< bottom depth below the entry target along axis (m)
+  int base{-1};              ///< index into Program::frames
+  int tool{-1};
+  std::vector<std::string> evidence;
+};
+
+std::vector<Hole> recognizeHoles(const Program& p, const RecognitionOptions& o = {});
+
+/// One row of the contract's hole list: `id,x,y,z,i,j,k[,diameter,depth,tolerance]` (mm,
+/// workobject frame, i,j,k = drilling direction into the material).
+struct HoleSpec {
+  std::string id;
+  Vec3 position_mm{Vec3::Zero()};
+  Vec3 direction{Vec3::UnitZ()};  ///< unit
+  std::optional<double> diameter_mm;
+  std::optional<double> depth_mm;
+  std::optional<double> tolerance_mm;
+  int line{0};
+};
+
+/// Reads the contract's hole-list CSV; InputError(file, line, msg) on bad rows.
+std::vector<HoleSpec> readHoleList(const std::string& path);
+std::vector<HoleSpec> parseHoleList(const std::string& path, const std::string& bytes);
+
+struct HoleMatch {
+  int hole{-1};  ///< index into the recognised holes
+  int spec{-1};  ///< index into the hole list
+  double distance_mm{0.0};  ///< distance of the hole-list point from the program's drill line
+};
+
+/// Matches recognised holes to a hole list: by id when the ids agree, else by position — the
+/// hole-list point within `tol_mm` of the segment entry..bottom (extended by the hole-list
+/// depth) with parallel axes (< 1°). Positions compare in the program's frame coordinates,
+/// which is the workobject frame when the program's base frame is the workobject.
+std::vector<HoleMatch> matchHoles(const std::vector<Hole>& holes, const Program& p,
+                                  const std::vector<HoleSpec>& specs, double tol_mm);
+
+}  // namespace roprec::postproc

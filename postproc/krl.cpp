@@ -1,0 +1,722 @@
+/// KUKA KRL reader (`.src` + `.dat`), robot-programs.md §2.
+#include <cmath>
+#include <unordered_map>
+
+#include "compensator/error.hpp"
+#include "postproc/dialects.hpp"
+#include "postproc/lexer.hpp"
+
+namespace roprec::postproc {
+namespace {
+
+struct Component {
+  std::string name;  // upper case
+  std::uint32_t begin{0};
+  std::uint32_t end{0};
+  enum Kind { kNumber, kLiteral, kString, kOther, kNested } kind{kOther};
+  double value{0};
+};
+
+struct Aggregate {
+  std::string type;  // upper case, "" when untyped
+  std::vector<Component> comps;
+  std::uint32_t open{0};
+  std::uint32_t close{0};
+  [[nodiscard]] const Component* find(std::string_view n) const {
+    for (const Component& c : comps) {
+      if (c.name == n) return &c;
+    }
+    return nullptr;
+  }
+};
+
+std::optional<int> parseKrlLiteralInt(std::string_view s) {
+  // 'B0101' binary, 'H1F' hex
+  if (s.size() < 3 || s.front() != '\'' || s.back() != '\'') return std::nullopt;
+  const char base = static_cast<char>(std::toupper(static_cast<unsigned char>(s[1])));
+  const std::string_view d = s.substr(2, s.size() - 3);
+  if (d.empty() || d.size() > 30) return std::nullopt;
+  int v = 0;
+  for (const char c : d) {
+    int digit = -1;
+    if (c >= '0' && c <= '9') digit = c - '0';
+    if (c >= 'a' && c <= 'f') digit = c - 'a' + 10;
+    if (c >= 'A' && c <= 'F') digit = c - 'A' + 10;
+    if (base == 'B' && (digit < 0 || digit > 1)) return std::nullopt;
+    if (base == 'H' && digit < 0) return std::nullopt;
+    if (base != 'B' && base != 'H') return std::nullopt;
+    v = v * (base == 'B' ? 2 : 16) + digit;
+  }
+  return v;
+}
+
+int sigDigits(std::string_view s) {
+  int n = 0;
+  bool nz = false;
+  for (const char c : s) {
+    if (c == 'e' || c == 'E') break;
+    if (isDigit(c)) {
+      if (c != '0') nz = true;
+      if (nz) ++n;
+    }
+  }
+  return n;
+}
+
+class KrlReader {
+ public:
+  explicit KrlReader(Program& p) : p_(p) {}
+
+  void run() {
+    LexOptions o;
+    o.comment = ';';
+    o.header_amp = true;
+    o.single_quote_string = true;
+    for (SourceFile& f : p_.files) lex(f, o);
+    if (p_.files.size() > 1) readDat();
+    readSrc();
+  }
+
+ private:
+  Program& p_;
+  int file_{0};
+  std::unordered_map<std::string, int> targets_;  // upper name -> index
+  struct Fdat {
+    int tool{-1};
+    int base{-1};
+    bool tcp{false};
+  };
+  std::unordered_map<std::string, Fdat> fdats_;
+  std::unordered_map<std::string, double> ldat_vel_;  // m/s
+  std::unordered_map<std::string, Frame> named_frames_;
+  std::unordered_map<int, Frame> base_data_;
+  std::unordered_map<int, Frame> tool_data_;
+  std::unordered_map<std::string, bool> reported_;
+  Frame tool_{"$TOOL", false, Pose::Identity(), -1, 0};
+  Frame base_{"$BASE", false, Pose::Identity(), -1, 0};
+  Fdat fdat_;
+  double vel_cp_{-1};
+  bool ext_tcp_{false};
+
+  const SourceFile& file() const { return p_.files[static_cast<std::size_t>(file_)]; }
+
+  [[noreturn]] void fail(std::size_t offset, const std::string& msg) const { failAt(file(), offset, msg); }
+
+  void unresolved(const std::string& ref, std::size_t offset, const std::string& what) {
+    if (reported_.emplace(upper(ref), true).second) {
+      p_.unresolved.push_back(Unresolved{ref, file_, file().lineOf(offset), what});
+    }
+  }
+
+  // Logical line [b, e): token indices, comment and newline tokens excluded at the end.
+  template <class F>
+  void forEachLine(F&& fn) {
+    const std::vector<Token>& t = file().tokens;
+    std::size_t i = 0;
+    while (i < t.size()) {
+      std::size_t j = i;
+      while (j < t.size() && t[j].kind != TokenKind::kNewline) ++j;
+      std::size_t e = j;
+      while (e > i && t[e - 1].kind == TokenKind::kComment) --e;
+      fn(i, e, j);
+      i = j + 1;
+    }
+  }
+
+  Aggregate parseAggregate(TokenCursor& c) {
+    Aggregate a;
+    const Token& open = c.next();  // '{'
+    a.open = open.offset;
+    if (c.isKind(TokenKind::kIdentifier) && c.isPunct(':', 1)) {
+      a.type = upper(c.text());
+      c.next();
+      c.next();
+    }
+    while (true) {
+      if (c.done() || c.isKind(TokenKind::kNewline) || c.isKind(TokenKind::kComment)) {
+        fail(open.offset, "unterminated aggregate (missing '}')");
+      }
+      if (c.isPunct('}')) {
+        a.close = c.next().offset;
+        return a;
+      }
+      if (c.isPunct(',')) {
+        c.next();
+        continue;
+      }
+      Component comp;
+      if (!c.isKind(TokenKind::kIdentifier)) fail(c.peek().offset, "expected a component name in aggregate");
+      comp.name = upper(c.text());
+      c.next();
+      if (c.isPunct('[')) {  // POINT2[]
+        while (!c.done() && !c.isPunct(']') && !c.isKind(TokenKind::kNewline)) c.next();
+        if (c.isPunct(']')) c.next();
+      }
+      if (c.isPunct('{')) {
+        const Aggregate nested = parseAggregate(c);
+        comp.kind = Component::kNested;
+        comp.begin = nested.open;
+        comp.end = nested.close + 1;
+        a.comps.push_back(comp);
+        continue;
+      }
+      const std::size_t start = c.index();
+      while (!c.done() && !c.isPunct(',') && !c.isPunct('}') && !c.isKind(TokenKind::kNewline) &&
+             !c.isKind(TokenKind::kComment)) {
+        c.next();
+      }
+      const std::size_t stop = c.index();
+      if (stop == start) fail(c.peek().offset, "component " + comp.name + " has no value");
+      const SourceFile& f = file();
+      const Token& t0 = f.tokens[start];
+      const Token& tl = f.tokens[stop - 1];
+      comp.begin = t0.offset;
+      comp.end = tl.offset + tl.length;
+      const bool signed_start = t0.kind == TokenKind::kPunct && (f.bytes[t0.offset] == '-' || f.bytes[t0.offset] == '+');
+      if (t0.kind == TokenKind::kNumber || signed_start) {
+        const bool one = (stop - start == 1 && !signed_start) ||
+                         (stop - start == 2 && signed_start && f.tokens[start + 1].kind == TokenKind::kNumber);
+        const std::string_view txt = std::string_view(f.bytes).substr(comp.begin, comp.end - comp.begin);
+        if (!one) fail(comp.begin, "broken number '" + std::string(txt) + "' in component " + comp.name);
+        const auto v = parseNumber(txt);
+        if (!v) fail(comp.begin, "broken number '" + std::string(txt) + "'");
+        comp.kind = Component::kNumber;
+        comp.value = *v;
+      } else if (t0.kind == TokenKind::kString) {
+        const std::string_view s = f.text(t0);
+        if (s.size() < 2 || s.back() != s.front()) fail(t0.offset, "unterminated string");
+        comp.kind = Component::kString;
+        if (const auto v = parseKrlLiteralInt(s)) {
+          comp.kind = Component::kLiteral;
+          comp.value = *v;
+        }
+      } else {
+        comp.kind = Component::kOther;
+      }
+      a.comps.push_back(comp);
+    }
+  }
+
+  NumberField field(const Component& c) {
+    NumberField f;
+    f.file = file_;
+    f.offset = c.begin;
+    f.length = c.end - c.begin;
+    f.value = c.value;
+    return f;
+  }
+
+  // Builds a target from a position aggregate; returns its index.
+  int makeTarget(const Aggregate& a, const std::string& name, const std::string& type) {
+    Target t;
+    t.name = name;
+    t.file = file_;
+    t.line = file().lineOf(a.open);
+    t.aggregate_end = a.close;
+    t.config.vendor = Vendor::kKuka;
+    const bool joint = type == "AXIS" || type == "E6AXIS" || (type.empty() && a.find("A1") != nullptr);
+    t.kind = joint ? TargetKind::kJoint : TargetKind::kCartesian;
+    t.orientation = joint ? Orientation::kNone : Orientation::kKukaAbc;
+    for (const Component& c : a.comps) {
+      const std::string& n = c.name;
+      if (c.kind != Component::kNumber && c.kind != Component::kLiteral) {
+        if (n == "X" || n == "Y" || n == "Z" || n == "A" || n == "B" || n == "C" || n == "S" || n == "T" ||
+            (n.size() == 2 && (n[0] == 'A' || n[0] == 'E') && n[1] >= '1' && n[1] <= '6')) {
+          fail(c.begin, "component " + n + " is not a number");
+        }
+        continue;
+      }
+      const NumberField f = field(c);
+      if (c.kind == Component::kLiteral && n != "S" && n != "T") fail(c.begin, "component " + n + " is not a number");
+      if (n == "X") t.pos[0] = f;
+      else if (n == "Y") t.pos[1] = f;
+      else if (n == "Z") t.pos[2] = f;
+      else if (n == "A") t.rot[0] = f;
+      else if (n == "B") t.rot[1] = f;
+      else if (n == "C") t.rot[2] = f;
+      else if (n == "S" || n == "T") {
+        if (c.value < 0 || c.value != std::floor(c.value) || c.value > 1e6) fail(c.begin, n + " must be a non-negative integer");
+        if (n == "S") {
+          t.status_field = f;
+          t.config.status = static_cast<int>(c.value);
+        } else {
+          t.turn_field = f;
+          t.config.turn = static_cast<int>(c.value);
+        }
+      } else if (n.size() == 2 && n[1] >= '1' && n[1] <= '6') {
+        const auto k = static_cast<std::size_t>(n[1] - '1');
+        if (n[0] == 'A') t.joints[k] = f;
+        if (n[0] == 'E') t.ext[k] = f;
+      }
+    }
+    if (!joint) {
+      for (const NumberField* f : {&t.pos[0], &t.pos[1], &t.pos[2], &t.rot[0], &t.rot[1], &t.rot[2]}) {
+        if (f->present() && sigDigits(std::string_view(file().bytes).substr(f->offset, f->length)) >= 9) {
+          p_.files[static_cast<std::size_t>(file_)].significant9 = true;
+        }
+      }
+    }
+    p_.target_list.push_back(std::move(t));
+    const int idx = static_cast<int>(p_.target_list.size() - 1);
+    if (!name.empty()) targets_[upper(name)] = idx;
+    return idx;
+  }
+
+  static Pose poseOf(const Aggregate& a) {
+    auto v = [&](const char* n) {
+      const Component* c = a.find(n);
+      return c != nullptr && c->kind == Component::kNumber ? c->value : 0.0;
+    };
+    Pose T = Pose::Identity();
+    T.translation() = Vec3(v("X"), v("Y"), v("Z")) * 1e-3;
+    T.linear() = rotationFromZyx(v("A") * kDeg, v("B") * kDeg, v("C") * kDeg);
+    return T;
+  }
+
+  static bool isPositionType(const std::string& t) {
+    return t == "E6POS" || t == "POS" || t == "FRAME" || t == "E6AXIS" || t == "AXIS";
+  }
+
+  // DECL [GLOBAL] [CONST] TYPE NAME[...] [= value]  (DECL optional for predefined types)
+  bool tryDecl(TokenCursor& c) {
+    const std::size_t save = c.index();
+    bool decl = false;
+    if (c.isIdent("DECL")) {
+      c.next();
+      decl = true;
+    }
+    while (c.isIdent("GLOBAL") || c.isIdent("CONST")) c.next();
+    if (!c.isKind(TokenKind::kIdentifier) || !c.isKind(TokenKind::kIdentifier, 1)) {
+      c.seek(save);
+      return decl;
+    }
+    const std::string type = upper(c.text());
+    if (!decl && !isPositionType(type) && type != "FDAT" && type != "LDAT" && type != "PDAT") {
+      c.seek(save);
+      return false;
+    }
+    c.next();
+    const std::string name(c.text());
+    const std::size_t name_off = c.peek().offset;
+    c.next();
+    if (c.isPunct('[')) return true;  // arrays: runtime values
+    if (!c.isPunct('=')) return true;
+    c.next();
+    if (!c.isPunct('{')) return true;
+    const Aggregate a = parseAggregate(c);
+    if (type == "FRAME") {
+      named_frames_[upper(name)] = Frame{name, true, poseOf(a), file_, file().lineOf(name_off)};
+    } else if (isPositionType(type)) {
+      makeTarget(a, name, type);
+      if (type == "POS" || type == "E6POS") named_frames_[upper(name)] = Frame{name, true, poseOf(a), file_, file().lineOf(name_off)};
+    } else if (type == "FDAT") {
+      Fdat fd;
+      if (const Component* t = a.find("TOOL_NO"); t != nullptr && t->kind == Component::kNumber) fd.tool = static_cast<int>(t->value);
+      if (const Component* b = a.find("BASE_NO"); b != nullptr && b->kind == Component::kNumber) fd.base = static_cast<int>(b->value);
+      if (const Component* ipo = a.find("IPO_FRAME")) {
+        fd.tcp = upper(std::string_view(file().bytes).substr(ipo->begin, ipo->end - ipo->begin)).find("TCP") != std::string::npos;
+      }
+      fdats_[upper(name)] = fd;
+    } else if (type == "LDAT") {
+      if (const Component* v = a.find("VEL"); v != nullptr && v->kind == Component::kNumber) ldat_vel_[upper(name)] = v->value;
+    }
+    return true;
+  }
+
+  void readDat() {
+    file_ = 1;
+    bool defdat = false;
+    bool enddat = false;
+    std::size_t defdat_off = 0;
+    forEachLine([&](std::size_t b, std::size_t e, std::size_t) {
+      if (b >= e) return;
+      TokenCursor c(file(), b, e);
+      if (c.isIdent("DEFDAT")) {
+        defdat = true;
+        defdat_off = c.peek().offset;
+        return;
+      }
+      if (c.isIdent("ENDDAT")) {
+        enddat = true;
+        return;
+      }
+      tryDecl(c);
+    });
+    if (defdat && !enddat) fail(file().bytes.size(), "truncated file: DEFDAT without ENDDAT");
+    if (!defdat) fail(0, "no DEFDAT in the .dat file");
+    (void)defdat_off;
+  }
+
+  Frame tableFrame(bool base, int n, std::size_t offset) {
+    const std::string ref = std::string(base ? "BASE_DATA[" : "TOOL_DATA[") + std::to_string(n) + "]";
+    if (n == 0) return Frame{"$NULLFRAME", true, Pose::Identity(), -1, 0};
+    auto& table = base ? base_data_ : tool_data_;
+    const auto it = table.find(n);
+    if (it != table.end()) return it->second;
+    unresolved(ref, offset, base ? "base frame defined outside the program ($config.dat)" : "tool defined outside the program ($config.dat)");
+    return Frame{ref, false, Pose::Identity(), -1, 0};
+  }
+
+  // Evaluates a frame expression over tokens [b, e): terms joined by ':'.
+  Frame evalFrame(std::size_t b, std::size_t e) {
+    TokenCursor c(file(), b, e);
+    Frame out{"", true, Pose::Identity(), file_, c.line()};
+    std::string ref;
+    int terms = 0;
+    while (!c.done()) {
+      Frame term{"", false, Pose::Identity(), file_, c.line()};
+      const std::size_t off = c.peek().offset;
+      if (c.isPunct('{')) {
+        const Aggregate a = parseAggregate(c);
+        term = Frame{"{...}", true, poseOf(a), file_, file().lineOf(a.open)};
+      } else if (c.isKind(TokenKind::kIdentifier)) {
+        const std::string n = upper(c.text());
+        c.next();
+        if ((n == "BASE_DATA" || n == "TOOL_DATA") && c.isPunct('[') && c.isKind(TokenKind::kNumber, 1) && c.isPunct(']', 2)) {
+          c.next();  // '['
+          const int idx = static_cast<int>(parseNumber(c.text()).value_or(0));
+          c.next();  // number
+          c.next();  // ']'
+          term = tableFrame(n == "BASE_DATA", idx, off);
+          term.ref = n + "[" + std::to_string(idx) + "]";
+        } else if (n == "$NULLFRAME" || n == "$WORLD" || n == "$ROBROOT") {
+          term = Frame{n, true, Pose::Identity(), -1, 0};
+        } else if (n == "$BASE") {
+          term = base_;
+        } else if (n == "$TOOL") {
+          term = tool_;
+        } else if (named_frames_.count(n) != 0) {
+          term = named_frames_[n];
+        } else {
+          term = Frame{std::string(file().text(file().tokens[c.index() - 1])), false, Pose::Identity(), -1, 0};
+          unresolved(term.ref, off, "frame not defined in the program");
+          while (!c.done() && !c.isPunct(':')) c.next();
+        }
+      } else {
+        term = Frame{"expression", false, Pose::Identity(), -1, 0};
+        unresolved(std::string(c.text()), off, "frame expression not understood");
+        while (!c.done() && !c.isPunct(':')) c.next();
+      }
+      out.resolved = out.resolved && term.resolved;
+      out.pose = out.pose * term.pose;
+      if (!term.ref.empty()) ref += (ref.empty() ? "" : ":") + term.ref;
+      ++terms;
+      if (c.isPunct(':')) {
+        c.next();
+        continue;
+      }
+      if (!c.done()) {
+        unresolved(std::string(c.text()), c.peek().offset, "frame expression not understood");
+        out.resolved = false;
+        break;
+      }
+    }
+    (void)terms;
+    out.ref = ref;
+    if (!out.resolved) out.pose = Pose::Identity();
+    return out;
+  }
+
+  void applyFdat(const Fdat& fd, std::size_t offset) {
+    if (fd.tool >= 0) tool_ = tableFrame(false, fd.tool, offset);
+    if (fd.base >= 0) base_ = tableFrame(true, fd.base, offset);
+    if (fd.tcp && !ext_tcp_) {
+      ext_tcp_ = true;
+      p_.notes.push_back("IPO_FRAME #TCP (external TCP) at " + file().path + ":" + std::to_string(file().lineOf(offset)) +
+                         ": the robot carries the part; base and tool swap roles");
+    }
+  }
+
+  Fdat fdatFromAggregate(const Aggregate& a) const {
+    Fdat fd;
+    if (const Component* t = a.find("TOOL_NO"); t != nullptr && t->kind == Component::kNumber) fd.tool = static_cast<int>(t->value);
+    if (const Component* b = a.find("BASE_NO"); b != nullptr && b->kind == Component::kNumber) fd.base = static_cast<int>(b->value);
+    return fd;
+  }
+
+  void addMarker(const std::string& m) {
+    if (!p_.motions.empty()) p_.motions.back().markers.push_back(m);
+  }
+
+  static bool isApprox(std::string_view w) {
+    return iequals(w, "C_DIS") || iequals(w, "C_PTP") || iequals(w, "C_VEL") || iequals(w, "C_ORI") || iequals(w, "C_SPL");
+  }
+
+  // Resolves one target expression [b, e) of a motion; returns the target index or -1.
+  int motionTarget(std::size_t b, std::size_t e, Motion& m, bool relative) {
+    const SourceFile& f = file();
+    if (b >= e) fail(b < f.tokens.size() ? f.tokens[b].offset : f.bytes.size(), "motion without a target");
+    const std::uint32_t s = f.tokens[b].offset;
+    const std::uint32_t en = f.tokens[e - 1].offset + f.tokens[e - 1].length;
+    m.target_text = f.bytes.substr(s, en - s);
+    TokenCursor c(f, b, e);
+    if (c.isPunct('{')) {
+      const Aggregate a = parseAggregate(c);
+      if (!c.done()) {
+        m.derivation = ":";
+        return -1;
+      }
+      if (relative) {
+        m.derivation = m.instruction;
+        return -1;
+      }
+      return makeTarget(a, "", a.type);
+    }
+    if (e - b == 1 && c.isKind(TokenKind::kIdentifier)) {
+      const std::string n = upper(c.text());
+      const auto it = targets_.find(n);
+      if (it != targets_.end()) return it->second;
+      if (n[0] == '$') {
+        m.derivation = "system variable";
+        return -1;
+      }
+      if (p_.files.size() < 2) {
+        fail(s, "missing .dat: target '" + std::string(c.text()) + "' is declared nowhere (expected " + p_.dat_path + ")");
+      }
+      unresolved(std::string(c.text()), s, "target not declared in the .src or .dat");
+      m.derivation = "undeclared";
+      return -1;
+    }
+    for (std::size_t k = b; k < e; ++k) {
+      if (f.tokens[k].kind == TokenKind::kPunct && f.bytes[f.tokens[k].offset] == ':') {
+        m.derivation = ":";
+        return -1;
+      }
+    }
+    m.derivation = "runtime";
+    return -1;
+  }
+
+  void motion(TokenCursor& c, std::size_t e) {
+    const SourceFile& f = file();
+    Motion m;
+    m.instruction = std::string(c.text());
+    const std::string kw = upper(m.instruction);
+    const std::size_t kw_off = c.peek().offset;
+    c.next();
+    m.file = file_;
+    m.line = f.lineOf(kw_off);
+    const bool relative = kw.find("_REL") != std::string::npos;
+    if (kw.rfind("PTP", 0) == 0 || kw == "SPTP") {
+      m.type = MotionType::kJoint;
+    } else if (kw.find("CIRC") != std::string::npos) {
+      m.type = MotionType::kCircular;
+    } else {
+      m.type = MotionType::kLinear;
+    }
+    m.config_honoured = m.type == MotionType::kJoint;
+    // split target expressions at top-level ',' until an approximation/WITH/CA/# keyword
+    std::vector<std::pair<std::size_t, std::size_t>> exprs;
+    std::size_t start = c.index();
+    int depth = 0;
+    std::size_t k = c.index();
+    for (; k < e; ++k) {
+      const Token& t = f.tokens[k];
+      const std::string_view tx = f.text(t);
+      if (t.kind == TokenKind::kPunct && (tx == "{" || tx == "(" || tx == "[")) ++depth;
+      if (t.kind == TokenKind::kPunct && (tx == "}" || tx == ")" || tx == "]")) --depth;
+      if (depth > 0) continue;
+      if (t.kind == TokenKind::kPunct && tx == ",") {
+        exprs.emplace_back(start, k);
+        start = k + 1;
+        continue;
+      }
+      if (t.kind == TokenKind::kIdentifier && (isApprox(tx) || iequals(tx, "WITH") || iequals(tx, "CA"))) break;
+      if (t.kind == TokenKind::kPunct && tx == "#") break;
+    }
+    exprs.emplace_back(start, k);
+    if (m.type == MotionType::kCircular && exprs.size() >= 2) {
+      Motion aux_dummy = m;
+      m.aux = motionTarget(exprs[0].first, exprs[0].second, aux_dummy, relative);
+      m.target = motionTarget(exprs[1].first, exprs[1].second, m, relative);
+    } else {
+      m.target = motionTarget(exprs[0].first, exprs[0].second, m, relative);
+    }
+    std::string zone;
+    for (std::size_t j = k; j < e; ++j) {
+      const Token& t = f.tokens[j];
+      const std::string_view tx = f.text(t);
+      if (t.kind == TokenKind::kIdentifier && isApprox(tx)) zone += (zone.empty() ? "" : " ") + std::string(tx);
+      if (t.kind == TokenKind::kIdentifier && iequals(tx, "WITH")) {
+        for (std::size_t q = j + 1; q + 2 < e; ++q) {
+          const std::string_view w = f.text(f.tokens[q]);
+          if ((iequals(w, "STOOL2") || iequals(w, "SBASE") || iequals(w, "SFRAME")) && f.text(f.tokens[q + 1]) == "(") {
+            const auto it = fdats_.find(upper(f.text(f.tokens[q + 2])));
+            if (it != fdats_.end()) {
+              Fdat fd = it->second;
+              if (iequals(w, "SBASE")) fd.tool = -1;
+              if (iequals(w, "STOOL2")) fd.base = -1;
+              applyFdat(fd, t.offset);
+            }
+          }
+        }
+        break;
+      }
+    }
+    m.zone_text = zone;
+    m.fine = zone.empty();
+    if (m.type != MotionType::kJoint && vel_cp_ > 0) {
+      m.speed_mm_s = vel_cp_ * 1000.0;
+      char buf[48];
+      std::snprintf(buf, sizeof buf, "%g m/s", vel_cp_);
+      m.speed_text = buf;
+    }
+    m.tool = internFrame(p_, tool_);
+    m.base = internFrame(p_, base_);
+    p_.motions.push_back(std::move(m));
+    const int mi = static_cast<int>(p_.motions.size() - 1);
+    const Motion& mm = p_.motions.back();
+    if (mm.target >= 0) p_.target_list[static_cast<std::size_t>(mm.target)].uses.push_back(mi);
+    if (mm.aux >= 0) p_.target_list[static_cast<std::size_t>(mm.aux)].uses.push_back(mi);
+  }
+
+  static bool isMotionKeyword(std::string_view w) {
+    static const char* const kw[] = {"PTP", "LIN", "CIRC", "SPTP", "SLIN", "SCIRC", "PTP_REL", "LIN_REL", "CIRC_REL",
+                                     "SPTP_REL", "SLIN_REL", "SCIRC_REL", "SPL"};
+    for (const char* k : kw) {
+      if (iequals(w, k)) return true;
+    }
+    return false;
+  }
+
+  void statement(std::size_t b, std::size_t e) {
+    const SourceFile& f = file();
+    TokenCursor c(f, b, e);
+    const std::string_view w = c.text();
+    if (c.isKind(TokenKind::kIdentifier) && isMotionKeyword(w)) {
+      motion(c, e);
+      return;
+    }
+    if (c.isIdent("DECL") || (c.isKind(TokenKind::kIdentifier) && c.isKind(TokenKind::kIdentifier, 1) &&
+                              isPositionType(upper(w)))) {
+      tryDecl(c);
+      return;
+    }
+    if (c.isIdent("WAIT") && c.isIdent("SEC", 1)) {
+      addMarker("dwell " + std::string(c.text(2)) + " s");
+      return;
+    }
+    if (c.isIdent("BAS") && c.isPunct('(', 1) && c.isPunct('#', 2)) {
+      const std::string what = upper(c.text(3));
+      const std::size_t off = c.peek().offset;
+      std::optional<double> arg;
+      if (c.isPunct(',', 4) && c.isKind(TokenKind::kNumber, 5)) arg = parseNumber(c.text(5));
+      if (what == "FRAMES" || what == "PTP_PARAMS" || what == "CP_PARAMS") applyFdat(fdat_, off);
+      if (what == "TOOL" && arg) tool_ = tableFrame(false, static_cast<int>(*arg), off);
+      if (what == "BASE" && arg) base_ = tableFrame(true, static_cast<int>(*arg), off);
+      return;
+    }
+    if (c.isKind(TokenKind::kIdentifier)) {
+      const std::string n = upper(w);
+      // assignments
+      std::size_t eq = b;
+      while (eq < e && !(f.tokens[eq].kind == TokenKind::kPunct && f.bytes[f.tokens[eq].offset] == '=')) ++eq;
+      if (eq < e && eq + 1 < e) {
+        const std::size_t off = f.tokens[b].offset;
+        if (n == "$BASE" && eq == b + 1) {
+          base_ = evalFrame(eq + 1, e);
+          if (base_.ref.empty() || base_.ref == "{...}") base_.ref = "$BASE";
+          return;
+        }
+        if (n == "$TOOL" && eq == b + 1) {
+          tool_ = evalFrame(eq + 1, e);
+          if (tool_.ref.empty() || tool_.ref == "{...}") tool_.ref = "$TOOL";
+          return;
+        }
+        if ((n == "BASE_DATA" || n == "TOOL_DATA") && eq == b + 4 && c.isKind(TokenKind::kNumber, 2)) {
+          const int idx = static_cast<int>(parseNumber(c.text(2)).value_or(-1));
+          Frame fr = evalFrame(eq + 1, e);
+          fr.ref = n + "[" + std::to_string(idx) + "]";
+          (n == "BASE_DATA" ? base_data_ : tool_data_)[idx] = fr;
+          reported_.erase(upper(fr.ref));
+          return;
+        }
+        if (n == "FDAT_ACT" && eq == b + 1) {
+          TokenCursor v(f, eq + 1, e);
+          if (v.isPunct('{')) {
+            fdat_ = fdatFromAggregate(parseAggregate(v));
+          } else if (v.isKind(TokenKind::kIdentifier)) {
+            const auto it = fdats_.find(upper(v.text()));
+            if (it != fdats_.end()) {
+              fdat_ = it->second;
+            } else {
+              fdat_ = Fdat{};
+              unresolved(std::string(v.text()), off, "frame data set not declared");
+            }
+          }
+          return;
+        }
+        if (n == "LDAT_ACT" && eq == b + 1) {
+          TokenCursor v(f, eq + 1, e);
+          if (v.isKind(TokenKind::kIdentifier)) {
+            const auto it = ldat_vel_.find(upper(v.text()));
+            if (it != ldat_vel_.end()) vel_cp_ = it->second;
+          } else if (v.isPunct('{')) {
+            const Aggregate a = parseAggregate(v);
+            if (const Component* vel = a.find("VEL"); vel != nullptr && vel->kind == Component::kNumber) vel_cp_ = vel->value;
+          }
+          return;
+        }
+        if (n == "$VEL" && c.isPunct('.', 1) && c.isIdent("CP", 2) && eq == b + 3) {
+          TokenCursor v(f, eq + 1, e);
+          const std::size_t vb = v.peek().offset;
+          const Token& last = f.tokens[e - 1];
+          if (const auto val = parseNumber(std::string_view(f.bytes).substr(vb, last.offset + last.length - vb))) vel_cp_ = *val;
+          return;
+        }
+        if (eq == b + 1 || (c.isPunct('[', 1))) {
+          // Other assignments may still hold aggregates: validate them (unterminated / broken numbers).
+          TokenCursor v(f, eq + 1, e);
+          if (v.isPunct('{')) parseAggregate(v);
+          return;
+        }
+      }
+      if (c.isPunct('(', 1)) {
+        const std::string name = upper(w);
+        if (name.find("SPINDLE") != std::string::npos || name.find("DRILL") != std::string::npos) addMarker("call " + std::string(w));
+      }
+    }
+  }
+
+  void readSrc() {
+    file_ = 0;
+    int depth = 0;
+    bool any_def = false;
+    forEachLine([&](std::size_t b, std::size_t e, std::size_t j) {
+      const SourceFile& f = file();
+      // comment markers on comment-only lines
+      if (b == e) {
+        for (std::size_t k = b; k < j; ++k) {
+          if (f.tokens[k].kind != TokenKind::kComment) continue;
+          const std::string u = upper(f.text(f.tokens[k]));
+          if (u.rfind(";FOLD", 0) == 0 || u.rfind(";ENDFOLD", 0) == 0 || u.rfind("&", 0) == 0) continue;
+          if (u.find("PLUNGE") != std::string::npos || u.find("DRILL") != std::string::npos) {
+            addMarker("comment " + std::string(f.text(f.tokens[k])));
+          }
+        }
+        return;
+      }
+      TokenCursor c(f, b, e);
+      if (c.isIdent("GLOBAL")) c.next();
+      if (c.isIdent("DEF") || c.isIdent("DEFFCT")) {
+        ++depth;
+        any_def = true;
+        return;
+      }
+      if (c.isIdent("END") || c.isIdent("ENDFCT")) {
+        --depth;
+        return;
+      }
+      if (c.isIdent("DEFDAT")) fail(c.peek().offset, "DEFDAT in a .src file");
+      statement(c.index(), e);
+    });
+    if (!any_def) fail(0, "no DEF found: not a KRL .src");
+    if (depth != 0) fail(file().bytes.size(), "truncated file: DEF without END");
+  }
+};
+
+}  // namespace
+
+void parseKrl(Program& p) { KrlReader(p).run(); }
+
+}  // namespace roprec::postproc

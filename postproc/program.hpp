@@ -1,0 +1,273 @@
+#pragma once
+/// \file program.hpp
+/// One model for robot programs of every supported dialect (robot-programs.md): KUKA KRL
+/// (`.src` + `.dat`), ABB RAPID (`.mod`/`.prg`/`.sys`), FANUC TP ASCII (`.ls`), CSV/JSON target
+/// lists and the contract's hole-list CSV.
+///
+/// Storage rule (robot-programs.md §1): a program is its files' bytes, kept verbatim, plus an
+/// index of the tokens the readers found (byte offset, length, kind) and of every line's
+/// terminator. Targets point at the exact byte spans of their numeric fields. An edit replaces
+/// only the bytes of the numeric tokens whose printed value changes, printed in the style of the
+/// token it replaces (decimals or significant digits, leading zero, exponent style, padding).
+/// Writing a program that was not edited reproduces the input byte for byte.
+///
+/// Library API used by `roprec inspect/convert` and later by `predict/compensate`:
+/// ```
+///   Program p = readProgram("job.src");              // throws InputError(file, line, msg)
+///   for (const Target& t : p.targets()) ...          // pose via targetPose(t) (SI, frame-local)
+///   std::vector<Hole> holes = recognizeHoles(p);     // drill.hpp
+///   EditResult r = replaceTargetPose(p, i, T_frame_tcp, config);   // r.ok or r.reason
+///   writeProgram(p, "out.src");                      // atomic; KRL writes out.src + out.dat
+/// ```
+/// Units: poses handed in and out of the API are SI (m, rad) with the rotation as a matrix;
+/// the files hold mm and degrees (or quaternions). Frames: a target's pose is T_frame_tcp, the
+/// TCP in the frame the program expresses it in (KUKA $BASE, ABB wobj uframe·oframe, FANUC
+/// UFRAME); the base-frame pose is T_base_frame · T_frame_tcp when the frame resolves.
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "compensator/rotation.hpp"
+
+namespace roprec::postproc {
+
+enum class Dialect { kKrl, kRapid, kTp, kCsv, kJson, kHoleCsv };
+/// "krl", "rapid", "tp", "csv", "json", "holes".
+std::string dialectName(Dialect d);
+
+enum class LineEnd : std::uint8_t { kNone, kLf, kCrLf, kCr, kCrCrLf };
+
+enum class TokenKind : std::uint8_t { kNumber, kIdentifier, kString, kPunct, kComment, kNewline, kOther };
+
+struct Token {
+  std::uint32_t offset{0};
+  std::uint32_t length{0};
+  TokenKind kind{TokenKind::kOther};
+};
+
+/// One input file kept verbatim.
+struct SourceFile {
+  std::string path;
+  std::string bytes;
+  bool bom{false};                        ///< starts with a UTF-8 byte-order mark (kept)
+  std::vector<std::uint32_t> line_starts; ///< byte offset of every line
+  std::vector<LineEnd> line_ends;         ///< terminator of every line, as found
+  std::vector<Token> tokens;              ///< the reader's token index
+  bool bare_fractions{false};             ///< numbers such as `.044` occur (FANUC controller style)
+  bool zero_fractions{false};             ///< numbers such as `0.044` occur
+  bool significant9{false};               ///< KSS style: positions written with 9 significant digits
+
+  /// Builds line_starts/line_ends and the fraction-style flags.
+  void indexLines();
+  /// 1-based line of a byte offset.
+  [[nodiscard]] int lineOf(std::size_t offset) const;
+  [[nodiscard]] std::string_view text(const Token& t) const {
+    return std::string_view(bytes).substr(t.offset, t.length);
+  }
+  /// The most frequent line terminator ("\n" when the file has none).
+  [[nodiscard]] std::string dominantLineEnd() const;
+};
+
+/// A number in a file: value plus the span of its token (sign included). `pad` counts the
+/// whitespace bytes before `offset` that belong to a right-aligned field (FANUC `%9.3f`).
+struct NumberField {
+  int file{-1};
+  std::uint32_t offset{0};
+  std::uint32_t length{0};
+  std::uint32_t pad{0};
+  double value{0.0};
+  [[nodiscard]] bool present() const { return file >= 0; }
+};
+
+enum class Vendor { kNone, kKuka, kAbb, kFanuc };
+
+/// Raw vendor configuration exactly as the program states it (robot-programs.md §2.4, §3.3, §4.5).
+struct Configuration {
+  Vendor vendor{Vendor::kNone};
+  int status{-1};                 ///< KUKA S (-1 = absent)
+  int turn{-1};                   ///< KUKA T (-1 = absent)
+  std::array<int, 4> cf{0, 0, 0, 0};  ///< ABB cf1, cf4, cf6, cfx
+  char flip{0};                   ///< FANUC 'F'|'N'
+  char elbow{0};                  ///< FANUC 'U'|'D'
+  char front{0};                  ///< FANUC 'T'|'B'
+  std::array<int, 3> turns{0, 0, 0};  ///< FANUC turn digits t1, t2, t3
+
+  [[nodiscard]] bool present() const;
+  /// Branch b = 4s + 2e + w of robot-programs.md §7.1 (s = shoulder back, e = elbow down,
+  /// w = θ5 < 0). KUKA uses the table's bit-1 = elbow-up reading (§9 item 2, documented).
+  [[nodiscard]] std::optional<int> branch() const;
+  /// Human-readable: `S 2 T 35`, `[0,0,-2,0]`, `N U T, 0, 0, 0`.
+  [[nodiscard]] std::string text() const;
+};
+
+/// Vendor flags for branch b (0..7) from the §7.1 table; turns/quadrants are zero (KUKA T = 0,
+/// ABB cf1 = cf4 = cf6 = 0, FANUC turns 0) — callers carry turns separately where they can.
+Configuration configurationFromBranch(Vendor v, int branch);
+/// Parses Configuration::text() forms: `S 2 T 35`, `[0,0,-2,0]`, `N U T, 0, 0, 0`; vendor kNone
+/// when empty or not understood.
+Configuration parseConfigurationText(const std::string& text);
+
+enum class TargetKind { kCartesian, kJoint };
+/// kKukaAbc: R = Rz(A)Ry(B)Rx(C); kFanucWpr: R = Rz(R)Ry(P)Rx(W); kQuaternion: [w,x,y,z];
+/// kXyzIntrinsic: R = Rx(rx)Ry(ry)Rz(rz) (RoboDK TxyzRxyz); kAxis: hole-list drilling direction
+/// i,j,k = TCP z (the rotation about it is free, built deterministically).
+enum class Orientation { kNone, kKukaAbc, kQuaternion, kFanucWpr, kXyzIntrinsic, kAxis };
+
+struct Target {
+  std::string name;  ///< as declared (`XP2`, `pHole1`, `P[2]`, hole id); empty for inline targets
+  TargetKind kind{TargetKind::kCartesian};
+  Orientation orientation{Orientation::kNone};
+  int file{-1};
+  int line{0};
+  std::array<NumberField, 3> pos;     ///< x, y, z mm
+  std::array<NumberField, 4> rot;     ///< A,B,C deg | q1..q4 | W,P,R deg | i,j,k
+  std::array<NumberField, 6> joints;  ///< A1..A6 / J1..J6 (deg or mm)
+  std::array<NumberField, 6> ext;     ///< E1..E6 / eax_a..eax_f
+  Configuration config;
+  NumberField status_field, turn_field;   ///< KUKA S, T tokens (may be 'B...' literals)
+  std::array<NumberField, 4> cf_fields;   ///< ABB cf1, cf4, cf6, cfx
+  NumberField fanuc_config;               ///< FANUC span of the CONFIG string contents (value unused)
+  std::uint32_t aggregate_end{0};         ///< KRL: offset of the closing `}` (S/T insertion)
+  std::string frame_ref;                  ///< frame the target itself declares (FANUC `UF`, CSV `frame`)
+  std::string tool_ref;                   ///< tool the target itself declares (FANUC `UT`, CSV `tool`)
+  std::vector<int> uses;                  ///< indices of the motions that use this target
+};
+
+enum class MotionType { kJoint, kLinear, kCircular };
+
+/// A resolved (or unresolved) frame: tool, base, work object, user frame.
+struct Frame {
+  std::string ref;       ///< as the program names it: `BASE_DATA[1]`, `$BASE`, `rdkWObj`, `UFRAME[1]`
+  bool resolved{false};
+  Pose pose{Pose::Identity()};  ///< SI; base: T_base_frame, tool: T_flange_tcp
+  int file{-1};
+  int line{0};           ///< where its value was set (0 = predefined)
+};
+
+struct Motion {
+  std::string instruction;   ///< as written: `LIN`, `MoveL`, `L`
+  MotionType type{MotionType::kLinear};
+  int file{-1};
+  int line{0};
+  int target{-1};            ///< index into targets (-1: runtime target, see target_text)
+  int aux{-1};               ///< CIRC/MoveC auxiliary point
+  std::string target_text;   ///< source text of the target expression
+  std::string derivation;    ///< "" plain; else `Offs`, `RelTool`, `LIN_REL`, `PR`, `:`, `Offset`, `Tool_Offset`...
+  int tool{-1};              ///< index into frames
+  int base{-1};              ///< index into frames
+  double speed_mm_s{-1.0};   ///< linear speed when known, else < 0
+  std::string speed_text;    ///< as written: `10mm/sec`, `rdkSpeed`, `0.01 m/s`
+  std::string zone_text;     ///< `FINE`, `CNT50`, `z1`, `C_DIS`...
+  bool fine{false};          ///< exact stop at the point
+  bool config_honoured{true};///< KUKA PTP / ABB ConfJ,ConfL \On / FANUC J: configuration is taken
+  std::vector<std::string> markers;  ///< dwell, spindle, drill-call, comment markers after this motion
+  bool has_offset{false};    ///< target = T_target · offset (tool frame) or offset · T_target (frame)
+  bool offset_in_tool{false};
+  Pose offset{Pose::Identity()};  ///< SI; RAPID Offs/RelTool, TP Offset/Tool_Offset with known values
+};
+
+struct Unresolved {
+  std::string ref;
+  int file{-1};
+  int line{0};
+  std::string what;
+};
+
+struct Edit {
+  int file{-1};
+  std::uint32_t offset{0};
+  std::uint32_t length{0};
+  std::string text;
+};
+
+struct Program {
+  Dialect dialect{Dialect::kKrl};
+  std::vector<SourceFile> files;  ///< KRL: [src, dat] (dat may be absent); others: one
+  std::string dat_path;           ///< KRL: the `.dat` that belongs to the `.src` (may not exist)
+  std::vector<Target> target_list;
+  std::vector<Motion> motions;
+  std::vector<Frame> frames;
+  std::vector<Unresolved> unresolved;
+  std::vector<std::string> notes;
+  std::map<std::pair<int, std::uint32_t>, Edit> edits;  ///< pending edits by (file, offset)
+  /// FANUC `$SCR_GRP[1].$TURN_AXIS[1..3]` (1-based joint numbers) when known (robot-programs.md §9.1).
+  std::optional<std::array<int, 3>> fanuc_turn_axes;
+
+  [[nodiscard]] const std::vector<Target>& targets() const { return target_list; }
+};
+
+/// Reads a program; the dialect comes from the extension and the content. KRL: `x.src` reads
+/// `x.dat` beside it when present. Throws InputError(file, line, message) on real errors.
+Program readProgram(const std::string& path);
+/// Same from bytes already in memory (`dat_bytes` only for KRL; nullopt = no .dat).
+Program parseProgram(Dialect d, const std::string& path, std::string bytes,
+                     std::optional<std::string> dat_bytes = std::nullopt, const std::string& dat_path = "");
+/// Dialect from a path (extension, then content); throws InputError when unknown.
+Dialect detectDialect(const std::string& path, const std::string& bytes);
+
+/// Pose of a Cartesian target in its own frame (SI). Missing components read as 0 (see complete()).
+Pose targetPose(const Program& p, const Target& t);
+/// Whether the target states all six pose components.
+bool targetComplete(const Target& t);
+/// Pose the motion moves to in its base frame's coordinates (target pose with any known
+/// offset applied); nullopt for joint or runtime targets.
+std::optional<Pose> motionPose(const Program& p, const Motion& m);
+/// Joint values in degrees (or mm) of a joint target.
+std::vector<double> targetJointsDeg(const Target& t);
+/// Base frame / tool frame of the first motion that uses the target (or the target's own
+/// declaration); nullptr when unknown.
+const Frame* targetBase(const Program& p, const Target& t);
+const Frame* targetTool(const Program& p, const Target& t);
+/// Whether every motion that uses the target shares one tool and one base.
+bool targetFramesConsistent(const Program& p, const Target& t);
+
+struct EditResult {
+  bool ok{false};
+  std::string reason;  ///< why the edit was refused (nothing changed then)
+};
+
+/// Replaces target `index`'s pose by T_frame_tcp (SI, same frame as the target) and, when given,
+/// its configuration (raw flags of the target's vendor). Only changed numeric tokens are
+/// re-printed. Refuses (ok = false, program unchanged) rather than guess (robot-programs.md §9):
+/// joint targets, targets missing pose components, targets shared by motions with different
+/// tools/frames, FANUC turn digits changed while $TURN_AXIS is unknown, a configuration of
+/// another vendor.
+EditResult replaceTargetPose(Program& p, int index, const Pose& T_frame_tcp,
+                             const std::optional<Configuration>& config = std::nullopt);
+
+/// Defines a frame the program refers to but does not define (e.g. `UFRAME[1]` of a TP
+/// program, `BASE_DATA[3]` of a KRL program from $config.dat). Returns how many uses resolved.
+int resolveFrame(Program& p, const std::string& ref, const Pose& pose);
+
+/// The program's files after the pending edits: (path suffix role, bytes). KRL: [.src, .dat].
+std::vector<std::string> renderFiles(const Program& p);
+/// Writes the program atomically. KRL: `out_path` names the `.src`; the `.dat` goes beside it
+/// (same stem) when the program has one.
+void writeProgram(const Program& p, const std::string& out_path);
+/// The paths writeProgram(p, out_path) writes.
+std::vector<std::string> outputPaths(const Program& p, const std::string& out_path);
+
+// ---- number style (robot-programs.md §2.9, §3.8, §4.8)
+
+struct NumberHints {
+  int min_decimals{3};       ///< absolute resolution kept for changed values (mm/deg: 3, quaternions: 9)
+  bool significant9{false};  ///< KSS style: 9 significant digits, trailing zeros kept
+  bool drop_leading_zero{false};  ///< file writes `.044` (FANUC controller)
+};
+
+/// Prints `value` in the style of `original` (a token's text, sign included).
+std::string formatLike(std::string_view original, double value, const NumberHints& h);
+/// Parses a number token (sign, decimals, exponent); nullopt when malformed.
+std::optional<double> parseNumber(std::string_view text);
+
+/// Queues a replacement of a numeric field when its printed value changes; updates f.value.
+void setNumber(Program& p, NumberField& f, double value, const NumberHints& h);
+/// Queues an arbitrary span replacement (used by dialect writers for non-numeric spans).
+void queueEdit(Program& p, int file, std::uint32_t offset, std::uint32_t length, std::string text);
+
+}  // namespace roprec::postproc

@@ -1,0 +1,634 @@
+/// ABB RAPID reader (`.mod`, `.prg`, `.sys`), robot-programs.md §3.
+#include <cmath>
+#include <unordered_map>
+
+#include "compensator/error.hpp"
+#include "postproc/dialects.hpp"
+#include "postproc/lexer.hpp"
+
+namespace roprec::postproc {
+namespace {
+
+struct Node {
+  bool list{false};
+  std::vector<Node> items;
+  std::uint32_t begin{0};
+  std::uint32_t end{0};
+  bool number{false};
+  double value{0};
+  std::string ident;  // upper case, for identifier leaves
+};
+
+struct ToolState {
+  Pose pose{Pose::Identity()};
+  bool resolved{false};
+  bool stationary{false};  // robhold FALSE (tool) / TRUE (wobj): roles swap
+  int line{0};
+};
+
+class RapidReader {
+ public:
+  explicit RapidReader(Program& p) : p_(p), f_(p.files[0]) {}
+
+  void run() {
+    LexOptions o;
+    o.comment = '!';
+    o.rapid_assign = true;
+    o.percent_header = true;
+    lex(p_.files[0], o);
+    tools_["TOOL0"] = ToolState{Pose::Identity(), true, false, 0};
+    wobjs_["WOBJ0"] = ToolState{Pose::Identity(), true, false, 0};
+    const std::vector<Token>& t = f_.tokens;
+    std::size_t i = 0;
+    int modules = 0;
+    int routines = 0;
+    bool any_module = false;
+    // S4-era header: %%% / VERSION:1 / LANGUAGE:ENGLISH / %%%
+    while (i < t.size() && t[i].kind == TokenKind::kNewline) ++i;
+    if (i < t.size() && t[i].kind == TokenKind::kComment && f_.text(t[i]).rfind("%%%", 0) == 0) {
+      ++i;
+      while (i < t.size() && !(t[i].kind == TokenKind::kComment && f_.text(t[i]).rfind("%%%", 0) == 0)) ++i;
+      if (i >= t.size()) failAt(f_, f_.bytes.size(), "truncated file: %%% header not closed");
+      ++i;
+    }
+    while (i < t.size()) {
+      if (t[i].kind == TokenKind::kNewline || t[i].kind == TokenKind::kComment) {
+        ++i;
+        continue;
+      }
+      std::size_t b = i;
+      const std::string w = upper(f_.text(t[i]));
+      std::size_t k = i;
+      if (w == "LOCAL" || w == "TASK") ++k;
+      const std::string w2 = k < t.size() ? upper(f_.text(t[k])) : "";
+      static const char* const kLineKw[] = {"MODULE", "ENDMODULE", "PROC", "FUNC", "TRAP", "ENDPROC", "ENDFUNC",
+                                            "ENDTRAP", "ENDIF", "ELSE", "ENDFOR", "ENDWHILE", "ENDTEST", "DEFAULT",
+                                            "ERROR", "UNDO", "BACKWARD", "CASE", "RECORD", "ENDRECORD", "TEST"};
+      bool line_kw = false;
+      for (const char* kw : kLineKw) line_kw = line_kw || w2 == kw;
+      if (line_kw) {
+        while (i < t.size() && t[i].kind != TokenKind::kNewline) ++i;
+        if (w2 == "MODULE") {
+          ++modules;
+          any_module = true;
+        } else if (w2 == "ENDMODULE") {
+          --modules;
+        } else if (w2 == "PROC" || w2 == "FUNC" || w2 == "TRAP") {
+          ++routines;
+        } else if (w2 == "ENDPROC" || w2 == "ENDFUNC" || w2 == "ENDTRAP") {
+          --routines;
+        }
+        continue;
+      }
+      if (w == "IF" || w == "WHILE" || w == "FOR" || w == "ELSEIF") {
+        std::size_t j = i;
+        while (j < t.size() && !(t[j].kind == TokenKind::kPunct && f_.text(t[j]) == ";") &&
+               !(t[j].kind == TokenKind::kIdentifier && (iequals(f_.text(t[j]), "THEN") || iequals(f_.text(t[j]), "DO")))) {
+          ++j;
+        }
+        i = j + 1;
+        continue;
+      }
+      // statement up to ';'
+      std::size_t j = i;
+      int depth = 0;
+      while (j < t.size()) {
+        const std::string_view x = f_.text(t[j]);
+        if (t[j].kind == TokenKind::kPunct) {
+          if (x == "[" || x == "(") ++depth;
+          if (x == "]" || x == ")") --depth;
+          if (x == ";") break;
+        }
+        ++j;
+      }
+      if (j >= t.size()) failAt(f_, t[b].offset, "truncated file: statement without ';'");
+      statement(b, j);
+      i = j + 1;
+    }
+    if (!any_module) failAt(f_, 0, "no MODULE found: not a RAPID module");
+    if (modules != 0) failAt(f_, f_.bytes.size(), "truncated file: MODULE without ENDMODULE");
+    if (routines != 0) failAt(f_, f_.bytes.size(), "truncated file: routine without its END");
+  }
+
+ private:
+  Program& p_;
+  const SourceFile& f_;
+  std::unordered_map<std::string, int> targets_;
+  std::unordered_map<std::string, ToolState> tools_;
+  std::unordered_map<std::string, ToolState> wobjs_;
+  std::unordered_map<std::string, double> speeds_;
+  std::unordered_map<std::string, bool> reported_;
+  bool conf_l_{true};
+  bool conf_j_{true};
+
+  [[noreturn]] void fail(std::size_t off, const std::string& m) const { failAt(f_, off, m); }
+
+  void unresolved(const std::string& ref, std::size_t off, const std::string& what) {
+    if (reported_.emplace(upper(ref), true).second) p_.unresolved.push_back(Unresolved{ref, 0, f_.lineOf(off), what});
+  }
+
+  // Parses an expression element in [i, e); advances i.
+  Node parseElement(std::size_t& i, std::size_t e) {
+    const std::vector<Token>& t = f_.tokens;
+    while (i < e && (t[i].kind == TokenKind::kNewline || t[i].kind == TokenKind::kComment)) ++i;
+    if (i >= e) fail(i < t.size() ? t[i].offset : f_.bytes.size(), "unterminated aggregate (missing ']')");
+    Node n;
+    n.begin = t[i].offset;
+    if (t[i].kind == TokenKind::kPunct && f_.text(t[i]) == "[") {
+      const std::uint32_t open = t[i].offset;
+      n.list = true;
+      ++i;
+      while (true) {
+        while (i < e && (t[i].kind == TokenKind::kNewline || t[i].kind == TokenKind::kComment)) ++i;
+        if (i >= e) fail(open, "unterminated aggregate (missing ']')");
+        if (t[i].kind == TokenKind::kPunct && f_.text(t[i]) == "]") {
+          n.end = t[i].offset + 1;
+          ++i;
+          return n;
+        }
+        n.items.push_back(parseElement(i, e));
+        while (i < e && (t[i].kind == TokenKind::kNewline || t[i].kind == TokenKind::kComment)) ++i;
+        if (i < e && t[i].kind == TokenKind::kPunct && f_.text(t[i]) == ",") {
+          ++i;
+        } else if (!(i < e && t[i].kind == TokenKind::kPunct && f_.text(t[i]) == "]")) {
+          if (i >= e) fail(open, "unterminated aggregate (missing ']')");
+          fail(t[i].offset, "unexpected '" + std::string(f_.text(t[i])) + "' in aggregate");
+        }
+      }
+    }
+    // scalar: tokens until ',' or ']' at depth 0
+    const std::size_t s = i;
+    int depth = 0;
+    while (i < e) {
+      const std::string_view x = f_.text(t[i]);
+      if (t[i].kind == TokenKind::kPunct) {
+        if (x == "(" || x == "[") ++depth;
+        if ((x == ")" || x == "]") && depth == 0) break;
+        if (x == ")" || x == "]") --depth;
+        if (x == "," && depth == 0) break;
+      }
+      if (t[i].kind == TokenKind::kNewline || t[i].kind == TokenKind::kComment) {
+        if (i == s) {
+          ++i;
+          continue;
+        }
+        break;
+      }
+      ++i;
+    }
+    if (i == s) fail(t[s].offset, "empty element in aggregate");
+    n.end = t[i - 1].offset + t[i - 1].length;
+    const bool sign = t[s].kind == TokenKind::kPunct && (f_.text(t[s]) == "-" || f_.text(t[s]) == "+");
+    if (t[s].kind == TokenKind::kNumber || sign) {
+      const std::string_view txt = std::string_view(f_.bytes).substr(n.begin, n.end - n.begin);
+      const bool one = (i - s == 1 && !sign) || (i - s == 2 && sign && t[s + 1].kind == TokenKind::kNumber);
+      const std::size_t num = sign ? s + 1 : s;
+      if (sign && (num >= i || t[num].kind != TokenKind::kNumber)) fail(n.begin, "broken number '" + std::string(txt) + "'");
+      if (!one) {
+        // an expression unless the number runs straight into more number/identifier characters
+        const Token& a = t[num];
+        if (num + 1 < i && t[num + 1].offset == a.offset + a.length &&
+            (t[num + 1].kind == TokenKind::kNumber || t[num + 1].kind == TokenKind::kIdentifier)) {
+          fail(n.begin, "broken number '" + std::string(txt) + "'");
+        }
+        return n;
+      }
+      const auto v = parseNumber(txt);
+      if (!v) fail(n.begin, "broken number '" + std::string(txt) + "'");
+      n.number = true;
+      n.value = *v;
+    } else if (i - s == 1 && t[s].kind == TokenKind::kIdentifier) {
+      n.ident = upper(f_.text(t[s]));
+    }
+    return n;
+  }
+
+  Node parseValue(std::size_t b, std::size_t e) {
+    std::size_t i = b;
+    Node n = parseElement(i, e);
+    while (i < e && (f_.tokens[i].kind == TokenKind::kNewline || f_.tokens[i].kind == TokenKind::kComment)) ++i;
+    if (i < e && n.list) fail(f_.tokens[i].offset, "unexpected '" + std::string(f_.text(f_.tokens[i])) + "' after aggregate");
+    return n;
+  }
+
+  NumberField field(const Node& n, const char* what) const {
+    if (!n.number) fail(n.begin, std::string(what) + " is not a number");
+    NumberField f;
+    f.file = 0;
+    f.offset = n.begin;
+    f.length = n.end - n.begin;
+    f.value = n.value;
+    return f;
+  }
+
+  void shape(const Node& n, std::size_t count, const char* what) const {
+    if (!n.list || n.items.size() != count) {
+      fail(n.begin, std::string(what) + " needs " + std::to_string(count) + " elements");
+    }
+  }
+
+  static Pose poseOf(const Node& n) {
+    Pose T = Pose::Identity();
+    T.translation() = Vec3(n.items[0].items[0].value, n.items[0].items[1].value, n.items[0].items[2].value) * 1e-3;
+    Eigen::Quaterniond q(n.items[1].items[0].value, n.items[1].items[1].value, n.items[1].items[2].value,
+                         n.items[1].items[3].value);
+    if (q.norm() > 0) q.normalize();
+    T.linear() = q.toRotationMatrix();
+    return T;
+  }
+
+  void checkPose(const Node& n, const char* what) const {
+    shape(n, 2, what);
+    shape(n.items[0], 3, what);
+    shape(n.items[1], 4, what);
+    for (const Node& a : n.items[0].items) field(a, what);
+    for (const Node& a : n.items[1].items) field(a, what);
+  }
+
+  int makeRobtarget(const Node& n, const std::string& name) {
+    shape(n, 4, "robtarget");
+    shape(n.items[0], 3, "robtarget trans");
+    shape(n.items[1], 4, "robtarget rot");
+    shape(n.items[2], 4, "robtarget robconf");
+    shape(n.items[3], 6, "robtarget extax");
+    Target t;
+    t.name = name;
+    t.file = 0;
+    t.line = f_.lineOf(n.begin);
+    t.kind = TargetKind::kCartesian;
+    t.orientation = Orientation::kQuaternion;
+    t.config.vendor = Vendor::kAbb;
+    for (std::size_t k = 0; k < 3; ++k) t.pos[k] = field(n.items[0].items[k], "robtarget trans");
+    for (std::size_t k = 0; k < 4; ++k) t.rot[k] = field(n.items[1].items[k], "robtarget rot");
+    for (std::size_t k = 0; k < 4; ++k) {
+      t.cf_fields[k] = field(n.items[2].items[k], "robtarget robconf");
+      t.config.cf[k] = static_cast<int>(std::lround(t.cf_fields[k].value));
+    }
+    for (std::size_t k = 0; k < 6; ++k) t.ext[k] = field(n.items[3].items[k], "robtarget extax");
+    return add(std::move(t));
+  }
+
+  int makeJointtarget(const Node& n, const std::string& name) {
+    shape(n, 2, "jointtarget");
+    shape(n.items[0], 6, "jointtarget robax");
+    shape(n.items[1], 6, "jointtarget extax");
+    Target t;
+    t.name = name;
+    t.file = 0;
+    t.line = f_.lineOf(n.begin);
+    t.kind = TargetKind::kJoint;
+    for (std::size_t k = 0; k < 6; ++k) t.joints[k] = field(n.items[0].items[k], "jointtarget robax");
+    for (std::size_t k = 0; k < 6; ++k) t.ext[k] = field(n.items[1].items[k], "jointtarget extax");
+    return add(std::move(t));
+  }
+
+  int add(Target t) {
+    const std::string key = upper(t.name);
+    p_.target_list.push_back(std::move(t));
+    const int idx = static_cast<int>(p_.target_list.size() - 1);
+    if (!key.empty()) targets_[key] = idx;
+    return idx;
+  }
+
+  ToolState toolFrom(const Node& n) {
+    // [robhold, [[x,y,z],[q]], loaddata]
+    if (!n.list || n.items.size() < 2) fail(n.begin, "tooldata needs [robhold, tframe, tload]");
+    checkPose(n.items[1], "tooldata tframe");
+    return ToolState{poseOf(n.items[1]), true, n.items[0].ident == "FALSE", f_.lineOf(n.begin)};
+  }
+
+  ToolState wobjFrom(const Node& n) {
+    // [robhold, ufprog, ufmec, uframe, oframe]
+    if (!n.list || n.items.size() != 5) fail(n.begin, "wobjdata needs 5 elements");
+    checkPose(n.items[3], "wobjdata uframe");
+    checkPose(n.items[4], "wobjdata oframe");
+    const bool moving = n.items[0].ident == "TRUE" || n.items[1].ident == "FALSE";
+    return ToolState{poseOf(n.items[3]) * poseOf(n.items[4]), true, moving, f_.lineOf(n.begin)};
+  }
+
+  void declaration(std::size_t b, std::size_t e) {
+    const std::vector<Token>& t = f_.tokens;
+    std::size_t i = b;
+    while (i < e && (iequals(f_.text(t[i]), "LOCAL") || iequals(f_.text(t[i]), "TASK"))) ++i;
+    ++i;  // CONST/VAR/PERS
+    if (i + 1 >= e) return;
+    const std::string type = upper(f_.text(t[i]));
+    const std::string name(f_.text(t[i + 1]));
+    const std::size_t name_off = t[i + 1].offset;
+    i += 2;
+    if (i < e && f_.text(t[i]) == "{") return;  // arrays: runtime
+    const std::string key = upper(name);
+    if (i >= e || f_.text(t[i]) != ":=") {
+      if (type == "TOOLDATA") tools_[key] = ToolState{Pose::Identity(), false, false, f_.lineOf(name_off)};
+      if (type == "WOBJDATA") wobjs_[key] = ToolState{Pose::Identity(), false, false, f_.lineOf(name_off)};
+      return;
+    }
+    ++i;
+    if (i >= e) fail(t[i - 1].offset, "declaration without a value");
+    if (f_.text(t[i]) != "[") return;  // expressions: runtime
+    const Node v = parseValue(i, e);
+    if (type == "ROBTARGET") {
+      makeRobtarget(v, name);
+    } else if (type == "JOINTTARGET") {
+      makeJointtarget(v, name);
+    } else if (type == "TOOLDATA") {
+      tools_[key] = toolFrom(v);
+    } else if (type == "WOBJDATA") {
+      wobjs_[key] = wobjFrom(v);
+    } else if (type == "SPEEDDATA") {
+      if (v.list && !v.items.empty() && v.items[0].number) speeds_[key] = v.items[0].value;
+    }
+  }
+
+  void assignment(std::size_t b, std::size_t eq, std::size_t e) {
+    const std::vector<Token>& t = f_.tokens;
+    const std::string name = upper(f_.text(t[b]));
+    std::string member;
+    for (std::size_t k = b + 1; k < eq; ++k) member += upper(f_.text(t[k]));
+    if (eq + 1 >= e || f_.text(t[eq + 1]) != "[") return;
+    const Node v = parseValue(eq + 1, e);
+    if (member.empty()) {
+      if (tools_.count(name) != 0) tools_[name] = toolFrom(v);
+      if (wobjs_.count(name) != 0) wobjs_[name] = wobjFrom(v);
+      if (speeds_.count(name) != 0 && v.list && !v.items.empty() && v.items[0].number) speeds_[name] = v.items[0].value;
+      return;
+    }
+    if (member == ".TFRAME" && tools_.count(name) != 0) {
+      checkPose(v, "tframe");
+      tools_[name].pose = poseOf(v);
+      tools_[name].resolved = true;
+      tools_[name].line = f_.lineOf(t[b].offset);
+    } else if ((member == ".UFRAME" || member == ".OFRAME") && wobjs_.count(name) != 0) {
+      checkPose(v, member == ".UFRAME" ? "uframe" : "oframe");
+      ToolState& w = wobjs_[name];
+      // track uframe and oframe separately
+      auto& parts = wobj_parts_[name];
+      if (!parts.set) {
+        parts.uframe = w.pose;
+        parts.oframe = Pose::Identity();
+        parts.set = true;
+      }
+      (member == ".UFRAME" ? parts.uframe : parts.oframe) = poseOf(v);
+      w.pose = parts.uframe * parts.oframe;
+      w.resolved = true;
+      w.line = f_.lineOf(t[b].offset);
+    }
+  }
+
+  struct WobjParts {
+    bool set{false};
+    Pose uframe{Pose::Identity()};
+    Pose oframe{Pose::Identity()};
+  };
+  std::unordered_map<std::string, WobjParts> wobj_parts_;
+
+  Frame frameOf(const std::unordered_map<std::string, ToolState>& table, const std::string& ref, std::size_t off,
+                bool tool) {
+    const auto it = table.find(upper(ref));
+    if (it == table.end()) {
+      unresolved(ref, off, tool ? "tooldata not declared in the module" : "wobjdata not declared in the module");
+      return Frame{ref, false, Pose::Identity(), -1, 0};
+    }
+    if (!it->second.resolved) unresolved(ref, off, tool ? "tooldata has no value in the module" : "wobjdata has no value in the module");
+    if (it->second.stationary && reported_.emplace("STATIONARY:" + upper(ref), true).second) {
+      p_.notes.push_back(ref + (tool ? ": stationary tool (robhold FALSE)" : ": robot-held or moving work object") +
+                         " — base and tool swap roles; poses reported as written");
+    }
+    return Frame{ref, it->second.resolved, it->second.pose, 0, it->second.line};
+  }
+
+  struct Arg {
+    std::size_t b{0};
+    std::size_t e{0};
+  };
+
+  int targetArg(const Arg& a, Motion& m, bool joint) {
+    const std::vector<Token>& t = f_.tokens;
+    if (a.b >= a.e) fail(t[a.b > 0 ? a.b - 1 : 0].offset, "motion without a target");
+    m.target_text = f_.bytes.substr(t[a.b].offset, t[a.e - 1].offset + t[a.e - 1].length - t[a.b].offset);
+    if (f_.text(t[a.b]) == "[") {
+      const Node n = parseValue(a.b, a.e);
+      return joint ? makeJointtarget(n, "") : makeRobtarget(n, "");
+    }
+    if (a.e - a.b == 1 && t[a.b].kind == TokenKind::kIdentifier) {
+      const auto it = targets_.find(upper(f_.text(t[a.b])));
+      if (it != targets_.end()) return it->second;
+      unresolved(std::string(f_.text(t[a.b])), t[a.b].offset, "target not declared in the module");
+      m.derivation = "undeclared";
+      return -1;
+    }
+    const std::string fn = upper(f_.text(t[a.b]));
+    if ((fn == "OFFS" || fn == "RELTOOL") && a.e - a.b > 3 && f_.text(t[a.b + 1]) == "(" &&
+        t[a.b + 2].kind == TokenKind::kIdentifier) {
+      m.derivation = fn == "OFFS" ? "Offs" : "RelTool";
+      const auto it = targets_.find(upper(f_.text(t[a.b + 2])));
+      if (it == targets_.end()) {
+        unresolved(std::string(f_.text(t[a.b + 2])), t[a.b + 2].offset, "target not declared in the module");
+        return -1;
+      }
+      // literal displacements dx, dy, dz [\Rx:=..][\Ry:=..][\Rz:=..]
+      std::vector<double> d;
+      std::array<double, 3> r{0, 0, 0};
+      bool literal = true;
+      std::size_t k = a.b + 3;
+      while (k < a.e && literal) {
+        if (f_.text(t[k]) == "," || f_.text(t[k]) == ")") {
+          ++k;
+          continue;
+        }
+        if (f_.text(t[k]) == "\\" && k + 3 < a.e && f_.text(t[k + 2]) == ":=") {
+          const std::string sw = upper(f_.text(t[k + 1]));
+          std::size_t s = k + 3;
+          std::size_t q = s;
+          while (q < a.e && f_.text(t[q]) != "," && f_.text(t[q]) != ")" && f_.text(t[q]) != "\\") ++q;
+          const auto v = q > s ? parseNumber(std::string_view(f_.bytes).substr(t[s].offset, t[q - 1].offset + t[q - 1].length - t[s].offset)) : std::nullopt;
+          if (!v) literal = false;
+          if (v && sw == "RX") r[0] = *v;
+          if (v && sw == "RY") r[1] = *v;
+          if (v && sw == "RZ") r[2] = *v;
+          k = q;
+          continue;
+        }
+        std::size_t q = k;
+        while (q < a.e && f_.text(t[q]) != "," && f_.text(t[q]) != ")" && f_.text(t[q]) != "\\") ++q;
+        const auto v = q > k ? parseNumber(std::string_view(f_.bytes).substr(t[k].offset, t[q - 1].offset + t[q - 1].length - t[k].offset)) : std::nullopt;
+        if (!v) literal = false;
+        if (v) d.push_back(*v);
+        k = q;
+      }
+      if (literal && d.size() == 3) {
+        m.has_offset = true;
+        m.offset_in_tool = fn == "RELTOOL";
+        m.offset.setIdentity();
+        m.offset.translation() = Vec3(d[0], d[1], d[2]) * 1e-3;
+        m.offset.linear() = (Eigen::AngleAxisd(r[0] * kDeg, Vec3::UnitX()) * Eigen::AngleAxisd(r[1] * kDeg, Vec3::UnitY()) *
+                             Eigen::AngleAxisd(r[2] * kDeg, Vec3::UnitZ()))
+                                .toRotationMatrix();
+      }
+      return it->second;
+    }
+    m.derivation = "runtime";
+    return -1;
+  }
+
+  void motion(std::size_t b, std::size_t e) {
+    const std::vector<Token>& t = f_.tokens;
+    Motion m;
+    m.instruction = std::string(f_.text(t[b]));
+    const std::string kw = upper(m.instruction);
+    m.file = 0;
+    m.line = f_.lineOf(t[b].offset);
+    const bool absj = kw.rfind("MOVEABSJ", 0) == 0;
+    const bool circ = kw.rfind("MOVEC", 0) == 0 || kw == "TRIGGC";
+    m.type = absj || kw.rfind("MOVEJ", 0) == 0 || kw == "TRIGGJ" ? MotionType::kJoint
+             : circ                                                ? MotionType::kCircular
+                                                                   : MotionType::kLinear;
+    m.config_honoured = m.type == MotionType::kJoint ? conf_j_ : conf_l_;
+    // split arguments
+    std::vector<Arg> pos;
+    std::vector<std::pair<std::string, Arg>> sw;
+    std::size_t i = b + 1;
+    int depth = 0;
+    std::size_t s = i;
+    bool in_switch = false;
+    std::string sw_name;
+    auto close = [&](std::size_t k) {
+      if (in_switch) {
+        std::size_t vb = s;
+        if (vb < k && f_.text(t[vb]) == ":=") ++vb;
+        sw.emplace_back(sw_name, Arg{vb, k});
+      } else if (k > s) {
+        pos.push_back(Arg{s, k});
+      }
+      in_switch = false;
+    };
+    for (; i < e; ++i) {
+      const std::string_view x = f_.text(t[i]);
+      if (t[i].kind == TokenKind::kNewline || t[i].kind == TokenKind::kComment) continue;
+      if (t[i].kind == TokenKind::kPunct) {
+        if (x == "[" || x == "(") ++depth;
+        if (x == "]" || x == ")") --depth;
+      }
+      if (depth != 0) continue;
+      if (x == ",") {
+        close(i);
+        s = i + 1;
+      } else if (x == "\\" && t[i].kind == TokenKind::kPunct) {
+        close(i);
+        in_switch = true;
+        sw_name = i + 1 < e ? upper(f_.text(t[i + 1])) : "";
+        s = i + 2;
+        ++i;
+      }
+    }
+    close(e);
+    // drop leading/trailing newline tokens inside args
+    auto trim = [&](Arg a) {
+      while (a.b < a.e && (t[a.b].kind == TokenKind::kNewline || t[a.b].kind == TokenKind::kComment)) ++a.b;
+      while (a.e > a.b && (t[a.e - 1].kind == TokenKind::kNewline || t[a.e - 1].kind == TokenKind::kComment)) --a.e;
+      return a;
+    };
+    for (Arg& a : pos) a = trim(a);
+    std::size_t ip = 0;
+    if (circ) ip = 1;
+    std::size_t speed_i = ip + 1;
+    std::size_t zone_i = ip + 2;
+    std::size_t tool_i = ip + 3;
+    if (kw == "TRIGGL" || kw == "TRIGGJ" || kw == "TRIGGC") {
+      zone_i = ip + 3;
+      tool_i = ip + 4;
+    }
+    if (kw == "SEARCHL" || kw == "SEARCHJ") {
+      ip = 2;
+      speed_i = 3;
+      zone_i = 99;
+      tool_i = 4;
+    }
+    if (pos.size() <= ip) fail(t[b].offset, m.instruction + " without a target");
+    if (circ) {
+      Motion aux = m;
+      m.aux = targetArg(pos[0], aux, false);
+    }
+    m.target = targetArg(pos[ip], m, absj);
+    auto argText = [&](const Arg& a) {
+      return a.b < a.e ? f_.bytes.substr(t[a.b].offset, t[a.e - 1].offset + t[a.e - 1].length - t[a.b].offset) : std::string();
+    };
+    if (speed_i < pos.size()) {
+      m.speed_text = argText(pos[speed_i]);
+      const std::string u = upper(m.speed_text);
+      if (u.size() > 1 && u[0] == 'V' && isDigit(u[1])) {
+        m.speed_mm_s = parseNumber(u.substr(1)).value_or(-1.0);
+      } else if (speeds_.count(u) != 0) {
+        m.speed_mm_s = speeds_[u];
+      } else if (!u.empty() && u[0] == '[') {
+        const Node n = parseValue(pos[speed_i].b, pos[speed_i].e);
+        if (n.list && !n.items.empty() && n.items[0].number) m.speed_mm_s = n.items[0].value;
+      }
+    }
+    if (zone_i < pos.size()) {
+      m.zone_text = argText(pos[zone_i]);
+      m.fine = iequals(m.zone_text, "fine");
+    }
+    std::string tool = tool_i < pos.size() ? argText(pos[tool_i]) : "tool0";
+    std::string wobj = "wobj0";
+    for (const auto& [name, a] : sw) {
+      if (name == "WOBJ") wobj = argText(trim(a));
+      if (name == "V") m.speed_mm_s = parseNumber(argText(trim(a))).value_or(m.speed_mm_s);
+    }
+    const std::size_t off = t[b].offset;
+    m.tool = internFrame(p_, frameOf(tools_, tool, off, true));
+    m.base = internFrame(p_, frameOf(wobjs_, wobj, off, false));
+    p_.motions.push_back(std::move(m));
+    const int mi = static_cast<int>(p_.motions.size() - 1);
+    const Motion& mm = p_.motions.back();
+    if (mm.target >= 0) p_.target_list[static_cast<std::size_t>(mm.target)].uses.push_back(mi);
+    if (mm.aux >= 0) p_.target_list[static_cast<std::size_t>(mm.aux)].uses.push_back(mi);
+  }
+
+  void statement(std::size_t b, std::size_t e) {
+    const std::vector<Token>& t = f_.tokens;
+    const std::string w = upper(f_.text(t[b]));
+    if (w == "LOCAL" || w == "TASK" || w == "CONST" || w == "VAR" || w == "PERS") {
+      declaration(b, e);
+      return;
+    }
+    if (w.rfind("MOVE", 0) == 0 || w == "TRIGGL" || w == "TRIGGJ" || w == "TRIGGC" || w == "SEARCHL" || w == "SEARCHJ") {
+      if (w != "MOVEEXTJ") {
+        motion(b, e);
+        return;
+      }
+    }
+    if ((w == "CONFL" || w == "CONFJ") && b + 2 < e) {
+      const bool on = iequals(f_.text(t[b + 2]), "On");
+      (w == "CONFL" ? conf_l_ : conf_j_) = on;
+      return;
+    }
+    if (w == "WAITTIME" && b + 1 < e) {
+      if (!p_.motions.empty()) p_.motions.back().markers.push_back("dwell " + std::string(f_.text(t[e - 1])) + " s");
+      return;
+    }
+    for (std::size_t k = b; k < e; ++k) {
+      if (f_.text(t[k]) == ":=" && t[k].kind == TokenKind::kPunct) {
+        assignment(b, k, e);
+        return;
+      }
+    }
+    if (t[b].kind == TokenKind::kIdentifier && (w.find("SPINDLE") != std::string::npos || w.find("DRILL") != std::string::npos)) {
+      if (!p_.motions.empty()) p_.motions.back().markers.push_back("call " + std::string(f_.text(t[b])));
+    }
+    // other statements: kept verbatim; aggregates in them still validated
+    for (std::size_t k = b; k < e; ++k) {
+      if (f_.text(t[k]) == "[" && t[k].kind == TokenKind::kPunct) {
+        std::size_t q = k;
+        parseElement(q, e);
+        k = q > k ? q - 1 : k;
+      }
+    }
+  }
+};
+
+}  // namespace
+
+void parseRapid(Program& p) { RapidReader(p).run(); }
+
+}  // namespace roprec::postproc

@@ -1,0 +1,596 @@
+/// CSV/JSON target lists and the contract's hole-list CSV (robot-programs.md §5, contract.md).
+///
+/// CSV: a header row, then one target a row; `#` starts a comment line. Column names are matched
+/// case-insensitively after stripping `_mm`, `_deg`, `_frame` suffixes. Orientation columns and
+/// their convention: `a,b,c` KUKA Z-Y'-X''; `w,p,r` FANUC fixed X-Y-Z; `qw,qx,qy,qz` or
+/// `q1..q4` quaternion; `rx,ry,rz` only with a declaration comment `# euler: ZYX | XYZ_fixed |
+/// XYZ_intrinsic` (ZYX ≡ XYZ_fixed: R = Rz(rz)Ry(ry)Rx(rx); XYZ_intrinsic: R = Rx(rx)Ry(ry)Rz(rz),
+/// RoboDK's TxyzRxyz); `i,j,k` makes the file a hole list (drilling direction = TCP +z). Frames
+/// may be declared by comments `# frame NAME: x y z qw qx qy qz` / `# tool NAME: ...` (mm) and
+/// referenced by the `frame`/`tool` columns. `j1..j6` rows without a pose are joint targets.
+#include <cmath>
+#include <unordered_map>
+
+#include "compensator/atomic_file.hpp"
+#include "compensator/error.hpp"
+#include "postproc/dialects.hpp"
+#include "postproc/drill.hpp"
+#include "postproc/lexer.hpp"
+
+namespace roprec::postproc {
+namespace {
+
+struct Cell {
+  std::uint32_t begin{0};
+  std::uint32_t end{0};
+};
+
+std::string lower(std::string_view s) {
+  std::string r(s);
+  for (char& c : r) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return r;
+}
+
+std::string columnKey(std::string_view raw) {
+  std::string k = lower(raw);
+  while (!k.empty() && (k.back() == ' ' || k.back() == '"')) k.pop_back();
+  while (!k.empty() && (k.front() == ' ' || k.front() == '"')) k.erase(0, 1);
+  for (const char* suf : {"_mm", "_deg", "_frame"}) {
+    const std::string s(suf);
+    if (k.size() > s.size() && k.compare(k.size() - s.size(), s.size(), s) == 0) k.erase(k.size() - s.size());
+  }
+  return k;
+}
+
+Pose poseFromText(const SourceFile& f, std::size_t off, std::string_view text) {
+  std::vector<double> v;
+  std::size_t i = 0;
+  while (i < text.size()) {
+    while (i < text.size() && (text[i] == ' ' || text[i] == '\t' || text[i] == ',')) ++i;
+    std::size_t j = i;
+    while (j < text.size() && text[j] != ' ' && text[j] != '\t' && text[j] != ',') ++j;
+    if (j > i) {
+      const auto x = parseNumber(text.substr(i, j - i));
+      if (!x) failAt(f, off, "broken number '" + std::string(text.substr(i, j - i)) + "' in frame declaration");
+      v.push_back(*x);
+    }
+    i = j;
+  }
+  if (v.size() != 7) failAt(f, off, "frame declaration needs x y z qw qx qy qz (mm)");
+  Pose T = Pose::Identity();
+  T.translation() = Vec3(v[0], v[1], v[2]) * 1e-3;
+  Eigen::Quaterniond q(v[3], v[4], v[5], v[6]);
+  if (q.norm() < 1e-9) failAt(f, off, "zero quaternion in frame declaration");
+  T.linear() = q.normalized().toRotationMatrix();
+  return T;
+}
+
+class CsvReader {
+ public:
+  explicit CsvReader(Program& p) : p_(p), f_(p.files[0]) {}
+
+  void run() {
+    const std::string& b = f_.bytes;
+    std::size_t line = 0;
+    bool have_header = false;
+    for (; line < f_.line_starts.size(); ++line) {
+      const std::size_t s = f_.line_starts[line] + (line == 0 && f_.bom ? 3 : 0);
+      std::size_t e = line + 1 < f_.line_starts.size() ? f_.line_starts[line + 1] : b.size();
+      while (e > s && (b[e - 1] == '\n' || b[e - 1] == '\r')) --e;
+      std::size_t k = s;
+      while (k < e && (b[k] == ' ' || b[k] == '\t')) ++k;
+      if (k == e) continue;
+      if (b[k] == '#') {
+        comment(k, std::string_view(b).substr(k + 1, e - k - 1));
+        continue;
+      }
+      if (!have_header) {
+        header(s, e);
+        have_header = true;
+        continue;
+      }
+      row(s, e);
+    }
+    if (!have_header) failAt(f_, 0, "empty CSV: a header row is required");
+  }
+
+  std::vector<HoleSpec> holes;
+
+ private:
+  Program& p_;
+  const SourceFile& f_;
+  char delim_{','};
+  std::unordered_map<std::string, int> col_;
+  std::string euler_;
+  std::unordered_map<std::string, Frame> frames_;
+  std::unordered_map<std::string, Frame> tools_;
+  Orientation orient_{Orientation::kNone};
+  bool holes_mode_{false};
+
+  [[noreturn]] void fail(std::size_t off, const std::string& m) const { failAt(f_, off, m); }
+
+  void comment(std::size_t off, std::string_view c) {
+    std::string t = lower(c);
+    while (!t.empty() && t.front() == ' ') t.erase(0, 1);
+    for (const char* kw : {"euler:", "rotation:", "convention:"}) {
+      if (t.rfind(kw, 0) == 0) {
+        euler_ = upper(t.substr(std::string(kw).size()));
+        euler_.erase(0, euler_.find_first_not_of(' '));
+        euler_.erase(euler_.find_last_not_of(" \r") + 1);
+      }
+    }
+    for (const char* kw : {"frame ", "tool "}) {
+      if (t.rfind(kw, 0) == 0) {
+        std::string_view rest = c.substr(c.find_first_not_of(' ') + std::string(kw).size());
+        const std::size_t colon = rest.find(':');
+        if (colon == std::string_view::npos) continue;
+        std::string name(rest.substr(0, colon));
+        name.erase(name.find_last_not_of(' ') + 1);
+        const Pose T = poseFromText(f_, off, rest.substr(colon + 1));
+        (std::string(kw) == "frame " ? frames_ : tools_)[upper(name)] = Frame{name, true, T, 0, f_.lineOf(off)};
+      }
+    }
+  }
+
+  std::vector<Cell> split(std::size_t s, std::size_t e) const {
+    std::vector<Cell> cells;
+    const std::string& b = f_.bytes;
+    std::size_t i = s;
+    while (true) {
+      std::size_t cs = i;
+      std::size_t ce = i;
+      if (i < e && b[i] == '"') {
+        std::size_t j = i + 1;
+        while (j < e && b[j] != '"') ++j;
+        if (j >= e) fail(i, "unterminated quoted CSV cell");
+        cs = i + 1;
+        ce = j;
+        i = j + 1;
+        while (i < e && b[i] != delim_) ++i;
+      } else {
+        while (i < e && b[i] != delim_) ++i;
+        ce = i;
+      }
+      while (cs < ce && (b[cs] == ' ' || b[cs] == '\t')) ++cs;
+      while (ce > cs && (b[ce - 1] == ' ' || b[ce - 1] == '\t')) --ce;
+      cells.push_back(Cell{static_cast<std::uint32_t>(cs), static_cast<std::uint32_t>(ce)});
+      if (i >= e) break;
+      ++i;
+    }
+    return cells;
+  }
+
+  void header(std::size_t s, std::size_t e) {
+    const std::string_view h = std::string_view(f_.bytes).substr(s, e - s);
+    if (h.find(',') == std::string_view::npos) {
+      if (h.find(';') != std::string_view::npos) delim_ = ';';
+      else if (h.find('\t') != std::string_view::npos) delim_ = '\t';
+    }
+    const std::vector<Cell> cells = split(s, e);
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+      const std::string k = columnKey(std::string_view(f_.bytes).substr(cells[i].begin, cells[i].end - cells[i].begin));
+      if (!k.empty() && col_.count(k) == 0) col_[k] = static_cast<int>(i);
+    }
+    auto has = [&](std::initializer_list<const char*> ks) {
+      for (const char* k : ks) {
+        if (col_.count(k) == 0) return false;
+      }
+      return true;
+    };
+    if (has({"i", "j", "k"})) {
+      orient_ = Orientation::kAxis;
+      holes_mode_ = true;
+      p_.dialect = Dialect::kHoleCsv;
+      if (!has({"id", "x", "y", "z"})) fail(s, "hole list needs the columns id,x,y,z,i,j,k");
+    } else if (has({"a", "b", "c"})) {
+      orient_ = Orientation::kKukaAbc;
+    } else if (has({"w", "p", "r"})) {
+      orient_ = Orientation::kFanucWpr;
+    } else if (has({"qw", "qx", "qy", "qz"}) || has({"q1", "q2", "q3", "q4"})) {
+      orient_ = Orientation::kQuaternion;
+      if (!has({"qw"})) {
+        col_["qw"] = col_["q1"];
+        col_["qx"] = col_["q2"];
+        col_["qy"] = col_["q3"];
+        col_["qz"] = col_["q4"];
+      }
+    } else if (has({"rx", "ry", "rz"})) {
+      if (euler_ == "ZYX" || euler_ == "XYZ_FIXED") {
+        orient_ = Orientation::kFanucWpr;
+        col_["w"] = col_["rx"];
+        col_["p"] = col_["ry"];
+        col_["r"] = col_["rz"];
+      } else if (euler_ == "XYZ_INTRINSIC" || euler_ == "TXYZRXYZ") {
+        orient_ = Orientation::kXyzIntrinsic;
+      } else {
+        fail(s, "columns rx,ry,rz need a declared convention: '# euler: ZYX | XYZ_fixed | XYZ_intrinsic'");
+      }
+    } else if (!has({"j1", "j2", "j3", "j4", "j5", "j6"})) {
+      fail(s, "no orientation columns (a,b,c | w,p,r | qw,qx,qy,qz | rx,ry,rz with '# euler:' | i,j,k) and no j1..j6");
+    }
+  }
+
+  std::optional<NumberField> num(const std::vector<Cell>& cells, const char* key) const {
+    const auto it = col_.find(key);
+    if (it == col_.end() || static_cast<std::size_t>(it->second) >= cells.size()) return std::nullopt;
+    const Cell& c = cells[static_cast<std::size_t>(it->second)];
+    if (c.begin == c.end) return std::nullopt;
+    return numberField(p_, 0, c.begin, c.end);
+  }
+
+  std::string text(const std::vector<Cell>& cells, const char* key) const {
+    const auto it = col_.find(key);
+    if (it == col_.end() || static_cast<std::size_t>(it->second) >= cells.size()) return "";
+    const Cell& c = cells[static_cast<std::size_t>(it->second)];
+    return f_.bytes.substr(c.begin, c.end - c.begin);
+  }
+
+  void row(std::size_t s, std::size_t e) {
+    const std::vector<Cell> cells = split(s, e);
+    Target t;
+    t.file = 0;
+    t.line = f_.lineOf(s);
+    t.name = text(cells, "id");
+    if (t.name.empty()) t.name = text(cells, "name");
+    const auto x = num(cells, "x");
+    const auto y = num(cells, "y");
+    const auto z = num(cells, "z");
+    if (x) t.pos[0] = *x;
+    if (y) t.pos[1] = *y;
+    if (z) t.pos[2] = *z;
+    t.orientation = orient_;
+    static const char* const kAbc[] = {"a", "b", "c"};
+    static const char* const kWpr[] = {"w", "p", "r"};
+    static const char* const kQ[] = {"qw", "qx", "qy", "qz"};
+    static const char* const kRxyz[] = {"rx", "ry", "rz"};
+    static const char* const kIjk[] = {"i", "j", "k"};
+    const char* const* keys = nullptr;
+    int n = 3;
+    switch (orient_) {
+      case Orientation::kKukaAbc: keys = kAbc; break;
+      case Orientation::kFanucWpr: keys = kWpr; break;
+      case Orientation::kQuaternion: keys = kQ; n = 4; break;
+      case Orientation::kXyzIntrinsic: keys = kRxyz; break;
+      case Orientation::kAxis: keys = kIjk; break;
+      case Orientation::kNone: break;
+    }
+    bool have_rot = keys != nullptr;
+    for (int i = 0; keys != nullptr && i < n; ++i) {
+      const auto v = num(cells, keys[i]);
+      if (v) t.rot[static_cast<std::size_t>(i)] = *v;
+      have_rot = have_rot && v.has_value();
+    }
+    bool joints = false;
+    static const char* const kJ[] = {"j1", "j2", "j3", "j4", "j5", "j6"};
+    for (int i = 0; i < 6; ++i) {
+      const auto v = num(cells, kJ[i]);
+      if (v) {
+        t.joints[static_cast<std::size_t>(i)] = *v;
+        joints = true;
+      }
+    }
+    static const char* const kE[] = {"e1", "e2", "e3", "e4", "e5", "e6"};
+    for (int i = 0; i < 6; ++i) {
+      if (const auto v = num(cells, kE[i])) t.ext[static_cast<std::size_t>(i)] = *v;
+    }
+    const bool cart = x && y && z && have_rot;
+    if (!cart && !joints) fail(s, "row has neither a complete pose nor joints j1..j6");
+    t.kind = cart ? TargetKind::kCartesian : TargetKind::kJoint;
+    if (!cart) t.orientation = Orientation::kNone;
+    t.config = parseConfigurationText(text(cells, "conf").empty() ? text(cells, "config") : text(cells, "conf"));
+    t.frame_ref = text(cells, "frame");
+    t.tool_ref = text(cells, "tool");
+    if (holes_mode_) {
+      HoleSpec h;
+      h.id = t.name;
+      h.line = t.line;
+      h.position_mm = Vec3(t.pos[0].value, t.pos[1].value, t.pos[2].value);
+      const Vec3 d(t.rot[0].value, t.rot[1].value, t.rot[2].value);
+      if (d.norm() < 1e-9) fail(s, "hole " + h.id + ": drilling direction i,j,k is zero");
+      h.direction = d.normalized();
+      if (const auto v = num(cells, "diameter")) h.diameter_mm = v->value;
+      if (const auto v = num(cells, "depth")) h.depth_mm = v->value;
+      if (const auto v = num(cells, "tolerance")) h.tolerance_mm = v->value;
+      if (h.id.empty()) fail(s, "hole without an id");
+      holes.push_back(h);
+    }
+    // one motion per row
+    Motion m;
+    const std::string mv = upper(text(cells, "move").empty() ? text(cells, "motion") : text(cells, "move"));
+    m.instruction = mv.empty() ? "row" : mv;
+    m.type = (mv == "J" || mv == "PTP" || mv == "MOVEJ" || mv == "MOVEABSJ") ? MotionType::kJoint : MotionType::kLinear;
+    m.file = 0;
+    m.line = t.line;
+    if (const auto v = num(cells, "speed")) m.speed_mm_s = v->value;
+    if (!t.frame_ref.empty()) {
+      const auto it = frames_.find(upper(t.frame_ref));
+      m.base = internFrame(p_, it != frames_.end() ? it->second : Frame{t.frame_ref, false, Pose::Identity(), -1, 0});
+    }
+    if (!t.tool_ref.empty()) {
+      const auto it = tools_.find(upper(t.tool_ref));
+      m.tool = internFrame(p_, it != tools_.end() ? it->second : Frame{t.tool_ref, false, Pose::Identity(), -1, 0});
+    }
+    p_.target_list.push_back(std::move(t));
+    m.target = static_cast<int>(p_.target_list.size() - 1);
+    p_.target_list.back().uses.push_back(static_cast<int>(p_.motions.size()));
+    p_.motions.push_back(std::move(m));
+  }
+};
+
+// ---------------------------------------------------------------- JSON with byte spans
+
+struct JValue {
+  enum Kind { kNull, kBool, kNumber, kString, kArray, kObject } kind{kNull};
+  std::uint32_t begin{0};
+  std::uint32_t end{0};
+  double number{0};
+  std::string str;
+  std::vector<std::pair<std::string, JValue>> members;
+  std::vector<JValue> items;
+  [[nodiscard]] const JValue* get(const std::string& k) const {
+    for (const auto& [key, v] : members) {
+      if (key == k) return &v;
+    }
+    return nullptr;
+  }
+};
+
+class JsonParser {
+ public:
+  explicit JsonParser(const SourceFile& f) : f_(f), b_(f.bytes), i_(f.bom ? 3 : 0) {}
+  JValue parse() {
+    JValue v = value(0);
+    ws();
+    if (i_ != b_.size()) fail("trailing characters after the JSON document");
+    return v;
+  }
+
+ private:
+  const SourceFile& f_;
+  const std::string& b_;
+  std::size_t i_;
+
+  [[noreturn]] void fail(const std::string& m) const { failAt(f_, std::min(i_, b_.size()), m); }
+  void ws() {
+    while (i_ < b_.size() && (b_[i_] == ' ' || b_[i_] == '\t' || b_[i_] == '\n' || b_[i_] == '\r')) ++i_;
+  }
+  std::string string() {
+    std::string s;
+    ++i_;
+    while (i_ < b_.size() && b_[i_] != '"') {
+      if (b_[i_] == '\\') {
+        ++i_;
+        if (i_ >= b_.size()) break;
+      }
+      s += b_[i_++];
+    }
+    if (i_ >= b_.size()) fail("unterminated string");
+    ++i_;
+    return s;
+  }
+  JValue value(int depth) {
+    if (depth > 64) fail("JSON nested too deeply");
+    ws();
+    if (i_ >= b_.size()) fail("truncated JSON");
+    JValue v;
+    v.begin = static_cast<std::uint32_t>(i_);
+    const char c = b_[i_];
+    if (c == '{') {
+      v.kind = JValue::kObject;
+      ++i_;
+      ws();
+      if (i_ < b_.size() && b_[i_] == '}') {
+        ++i_;
+      } else {
+        while (true) {
+          ws();
+          if (i_ >= b_.size()) fail("unterminated object (missing '}')");
+          if (b_[i_] != '"') fail("expected a key string");
+          std::string k = string();
+          ws();
+          if (i_ >= b_.size() || b_[i_] != ':') fail("expected ':'");
+          ++i_;
+          v.members.emplace_back(std::move(k), value(depth + 1));
+          ws();
+          if (i_ < b_.size() && b_[i_] == ',') {
+            ++i_;
+            continue;
+          }
+          if (i_ < b_.size() && b_[i_] == '}') {
+            ++i_;
+            break;
+          }
+          fail("unterminated object (missing '}')");
+        }
+      }
+    } else if (c == '[') {
+      v.kind = JValue::kArray;
+      ++i_;
+      ws();
+      if (i_ < b_.size() && b_[i_] == ']') {
+        ++i_;
+      } else {
+        while (true) {
+          v.items.push_back(value(depth + 1));
+          ws();
+          if (i_ < b_.size() && b_[i_] == ',') {
+            ++i_;
+            continue;
+          }
+          if (i_ < b_.size() && b_[i_] == ']') {
+            ++i_;
+            break;
+          }
+          fail("unterminated array (missing ']')");
+        }
+      }
+    } else if (c == '"') {
+      v.kind = JValue::kString;
+      v.str = string();
+    } else if (c == '-' || isDigit(c)) {
+      std::size_t j = i_ + 1;
+      while (j < b_.size() && (isDigit(b_[j]) || b_[j] == '.' || b_[j] == 'e' || b_[j] == 'E' || b_[j] == '+' || b_[j] == '-')) ++j;
+      const auto x = parseNumber(std::string_view(b_).substr(i_, j - i_));
+      if (!x) fail("broken number '" + b_.substr(i_, j - i_) + "'");
+      v.kind = JValue::kNumber;
+      v.number = *x;
+      i_ = j;
+    } else if (b_.compare(i_, 4, "true") == 0 || b_.compare(i_, 4, "null") == 0) {
+      v.kind = b_[i_] == 't' ? JValue::kBool : JValue::kNull;
+      i_ += 4;
+    } else if (b_.compare(i_, 5, "false") == 0) {
+      v.kind = JValue::kBool;
+      i_ += 5;
+    } else {
+      fail(std::string("unexpected character '") + c + "'");
+    }
+    v.end = static_cast<std::uint32_t>(i_);
+    return v;
+  }
+};
+
+Frame jsonFrame(const SourceFile& f, const JValue& v) {
+  const JValue* name = v.get("name");
+  const JValue* pos = v.get("position_mm");
+  const JValue* q = v.get("quaternion_wxyz");
+  Frame fr;
+  fr.ref = name != nullptr ? name->str : "";
+  fr.file = 0;
+  fr.line = f.lineOf(v.begin);
+  if (pos != nullptr && q != nullptr && pos->items.size() == 3 && q->items.size() == 4) {
+    fr.resolved = true;
+    fr.pose.translation() = Vec3(pos->items[0].number, pos->items[1].number, pos->items[2].number) * 1e-3;
+    Eigen::Quaterniond qq(q->items[0].number, q->items[1].number, q->items[2].number, q->items[3].number);
+    if (qq.norm() < 1e-9) failAt(f, v.begin, "zero quaternion");
+    fr.pose.linear() = qq.normalized().toRotationMatrix();
+  }
+  return fr;
+}
+
+}  // namespace
+
+void parseCsv(Program& p) {
+  CsvReader r(p);
+  r.run();
+}
+
+std::vector<HoleSpec> parseHoleList(const std::string& path, const std::string& bytes) {
+  Program p;
+  p.dialect = Dialect::kHoleCsv;
+  SourceFile f;
+  f.path = path;
+  f.bytes = bytes;
+  f.indexLines();
+  p.files.push_back(std::move(f));
+  CsvReader r(p);
+  r.run();
+  if (p.dialect != Dialect::kHoleCsv) throw InputError(path, 1, "not a hole list: the header needs id,x,y,z,i,j,k");
+  return r.holes;
+}
+
+std::vector<HoleSpec> readHoleList(const std::string& path) { return parseHoleList(path, readFileBytes(path)); }
+
+void parseJson(Program& p) {
+  const SourceFile& f = p.files[0];
+  const JValue root = JsonParser(f).parse();
+  if (root.kind != JValue::kObject) failAt(f, root.begin, "a target list must be a JSON object");
+  const JValue* targets = root.get("targets");
+  if (targets == nullptr || targets->kind != JValue::kArray) failAt(f, root.begin, "a target list needs \"targets\": [...]");
+  std::unordered_map<std::string, Frame> frames;
+  if (const JValue* fr = root.get("frames"); fr != nullptr && fr->kind == JValue::kArray) {
+    for (const JValue& v : fr->items) {
+      const Frame g = jsonFrame(f, v);
+      frames[upper(g.ref)] = g;
+    }
+  }
+  std::string euler;
+  if (const JValue* e = root.get("euler"); e != nullptr) euler = upper(e->str);
+  auto field = [&](const JValue& v) {
+    if (v.kind != JValue::kNumber) failAt(f, v.begin, "expected a number");
+    NumberField nf;
+    nf.file = 0;
+    nf.offset = v.begin;
+    nf.length = v.end - v.begin;
+    nf.value = v.number;
+    return nf;
+  };
+  for (const JValue& o : targets->items) {
+    if (o.kind != JValue::kObject) failAt(f, o.begin, "each target must be an object");
+    Target t;
+    t.file = 0;
+    t.line = f.lineOf(o.begin);
+    if (const JValue* id = o.get("id")) t.name = id->str;
+    const JValue* pos = o.get("position_mm");
+    const JValue* q = o.get("quaternion_wxyz");
+    if (pos != nullptr) {
+      if (pos->items.size() != 3) failAt(f, pos->begin, "position_mm needs 3 numbers");
+      for (std::size_t k = 0; k < 3; ++k) t.pos[k] = field(pos->items[k]);
+    } else if (o.get("x") != nullptr && o.get("y") != nullptr && o.get("z") != nullptr) {
+      t.pos[0] = field(*o.get("x"));
+      t.pos[1] = field(*o.get("y"));
+      t.pos[2] = field(*o.get("z"));
+    }
+    if (q != nullptr) {
+      if (q->items.size() != 4) failAt(f, q->begin, "quaternion_wxyz needs 4 numbers");
+      for (std::size_t k = 0; k < 4; ++k) t.rot[k] = field(q->items[k]);
+      t.orientation = Orientation::kQuaternion;
+    } else if (o.get("a") != nullptr && o.get("b") != nullptr && o.get("c") != nullptr) {
+      t.rot[0] = field(*o.get("a"));
+      t.rot[1] = field(*o.get("b"));
+      t.rot[2] = field(*o.get("c"));
+      t.orientation = Orientation::kKukaAbc;
+    } else if (o.get("w") != nullptr && o.get("p") != nullptr && o.get("r") != nullptr) {
+      t.rot[0] = field(*o.get("w"));
+      t.rot[1] = field(*o.get("p"));
+      t.rot[2] = field(*o.get("r"));
+      t.orientation = Orientation::kFanucWpr;
+    } else if (o.get("rx") != nullptr && o.get("ry") != nullptr && o.get("rz") != nullptr) {
+      t.rot[0] = field(*o.get("rx"));
+      t.rot[1] = field(*o.get("ry"));
+      t.rot[2] = field(*o.get("rz"));
+      if (euler == "ZYX" || euler == "XYZ_FIXED") {
+        t.orientation = Orientation::kFanucWpr;
+      } else if (euler == "XYZ_INTRINSIC") {
+        t.orientation = Orientation::kXyzIntrinsic;
+      } else {
+        failAt(f, o.begin, "rx,ry,rz need a declared \"euler\": \"ZYX\" | \"XYZ_fixed\" | \"XYZ_intrinsic\"");
+      }
+    }
+    if (const JValue* j = o.get("joints_deg"); j != nullptr) {
+      if (j->items.size() > 6) failAt(f, j->begin, "joints_deg holds at most 6 values");
+      for (std::size_t k = 0; k < j->items.size(); ++k) t.joints[k] = field(j->items[k]);
+    }
+    if (const JValue* e = o.get("external_axes"); e != nullptr) {
+      for (std::size_t k = 0; k < e->items.size() && k < 6; ++k) t.ext[k] = field(e->items[k]);
+    }
+    const bool cart = t.pos[0].present() && t.orientation != Orientation::kNone;
+    if (!cart && !t.joints[0].present()) failAt(f, o.begin, "target has neither a pose nor joints_deg");
+    t.kind = cart ? TargetKind::kCartesian : TargetKind::kJoint;
+    if (const JValue* c = o.get("config")) t.config = parseConfigurationText(c->str);
+    if (const JValue* fr = o.get("frame")) t.frame_ref = fr->str;
+    if (const JValue* tl = o.get("tool")) t.tool_ref = tl->str;
+    Motion m;
+    const JValue* mv = o.get("motion");
+    m.instruction = mv != nullptr ? mv->str : "target";
+    const std::string u = upper(m.instruction);
+    m.type = (u == "J" || u == "PTP" || u == "MOVEJ" || u == "MOVEABSJ") ? MotionType::kJoint : MotionType::kLinear;
+    m.file = 0;
+    m.line = t.line;
+    if (const JValue* s = o.get("speed_mm_s"); s != nullptr && s->kind == JValue::kNumber) m.speed_mm_s = s->number;
+    if (const JValue* s = o.get("fine"); s != nullptr) m.fine = f.bytes.compare(s->begin, 4, "true") == 0;
+    if (!t.frame_ref.empty()) {
+      const auto it = frames.find(upper(t.frame_ref));
+      m.base = internFrame(p, it != frames.end() ? it->second : Frame{t.frame_ref, false, Pose::Identity(), -1, 0});
+    }
+    if (!t.tool_ref.empty()) {
+      const auto it = frames.find(upper(t.tool_ref));
+      m.tool = internFrame(p, it != frames.end() ? it->second : Frame{t.tool_ref, false, Pose::Identity(), -1, 0});
+    }
+    p.target_list.push_back(std::move(t));
+    m.target = static_cast<int>(p.target_list.size() - 1);
+    p.target_list.back().uses.push_back(static_cast<int>(p.motions.size()));
+    p.motions.push_back(std::move(m));
+  }
+}
+
+}  // namespace roprec::postproc

@@ -1,0 +1,428 @@
+/// FANUC TP ASCII reader (`.ls`), robot-programs.md §4.
+#include <cmath>
+#include <unordered_map>
+
+#include "compensator/error.hpp"
+#include "postproc/dialects.hpp"
+#include "postproc/lexer.hpp"
+
+namespace roprec::postproc {
+namespace {
+
+class TpReader {
+ public:
+  explicit TpReader(Program& p) : p_(p), f_(p.files[0]) {}
+
+  void run() {
+    LexOptions o;
+    o.comment = 0;
+    o.single_quote_string = true;
+    lex(p_.files[0], o);
+    const std::vector<Token>& t = f_.tokens;
+    enum class Section { kNone, kProg, kAttr, kAppl, kMn, kPos, kEnd } sec = Section::kNone;
+    bool seen_prog = false;
+    std::size_t i = 0;
+    while (i < t.size()) {
+      std::size_t j = i;
+      while (j < t.size() && t[j].kind != TokenKind::kNewline) ++j;
+      // line [i, j)
+      if (j > i && t[i].kind == TokenKind::kPunct && f_.text(t[i]) == "/" && i + 1 < j &&
+          t[i + 1].offset == t[i].offset + 1 && t[i + 1].kind == TokenKind::kIdentifier &&
+          f_.lineOf(t[i].offset) != 0 && f_.line_starts[static_cast<std::size_t>(f_.lineOf(t[i].offset) - 1)] == t[i].offset) {
+        const std::string s = upper(f_.text(t[i + 1]));
+        if (s == "PROG") {
+          sec = Section::kProg;
+          seen_prog = true;
+        } else if (s == "ATTR") {
+          sec = Section::kAttr;
+        } else if (s == "APPL") {
+          sec = Section::kAppl;
+        } else if (s == "MN") {
+          sec = Section::kMn;
+        } else if (s == "POS") {
+          sec = Section::kPos;
+        } else if (s == "END") {
+          sec = Section::kEnd;
+        }
+        i = j + 1;
+        if (sec == Section::kPos) {
+          i = positions(i);
+        }
+        continue;
+      }
+      if (sec == Section::kMn && j > i) mnLine(i, j);
+      i = j + 1;
+    }
+    if (!seen_prog) failAt(f_, 0, "no /PROG header: not a FANUC TP .ls file");
+    if (sec != Section::kEnd) failAt(f_, f_.bytes.size(), "truncated file: no /END");
+    finish();
+  }
+
+ private:
+  Program& p_;
+  const SourceFile& f_;
+  std::unordered_map<int, int> by_number_;  // P number -> target
+  struct Pending {
+    int motion;
+    int number;
+    int aux_number;
+  };
+  std::vector<Pending> pending_;
+  int uframe_{-1};
+  int utool_{-1};
+  int last_motion_line_{-1};
+
+  [[noreturn]] void fail(std::size_t off, const std::string& m) const { failAt(f_, off, m); }
+  std::string_view tx(std::size_t k) const { return f_.text(f_.tokens[k]); }
+  bool punct(std::size_t k, std::string_view c) const {
+    return f_.tokens[k].kind == TokenKind::kPunct && tx(k) == c;
+  }
+
+  // P[n(:comment)] / PR[n(:comment)] at k; returns index after ']' and the number (-1 indirect).
+  std::size_t reference(std::size_t k, std::size_t e, int& number) const {
+    number = -1;
+    if (k + 1 >= e || !punct(k + 1, "[")) return k + 1;
+    std::size_t q = k + 2;
+    if (q < e && f_.tokens[q].kind == TokenKind::kNumber) number = static_cast<int>(parseNumber(tx(q)).value_or(-1));
+    int depth = 1;
+    for (q = k + 2; q < e && depth > 0; ++q) {
+      if (punct(q, "[")) ++depth;
+      if (punct(q, "]")) --depth;
+    }
+    if (depth != 0) fail(f_.tokens[k].offset, "unterminated position reference '['");
+    return q;
+  }
+
+  void marker(const std::string& m) {
+    if (!p_.motions.empty()) p_.motions.back().markers.push_back(m);
+  }
+
+  void mnLine(std::size_t b, std::size_t e) {
+    std::size_t k = b;
+    const bool numbered = f_.tokens[k].kind == TokenKind::kNumber && k + 1 < e && punct(k + 1, ":");
+    if (numbered) {
+      k += 2;
+    } else if (punct(k, ":") && last_motion_line_ >= 0 && k + 1 < e && (iequals(tx(k + 1), "P") || iequals(tx(k + 1), "PR"))) {
+      continuation(k + 1, e);
+      return;
+    } else if (punct(k, ":")) {
+      k += 1;
+    } else if (last_motion_line_ >= 0 && (iequals(tx(k), "P") || iequals(tx(k), "PR"))) {
+      // continuation line of a C/A motion: the end point
+      continuation(k, e);
+      return;
+    } else {
+      return;
+    }
+    if (k >= e) return;
+    last_motion_line_ = -1;
+    // motion letter directly after ':'
+    const Token& lt = f_.tokens[k];
+    const std::string_view letter = tx(k);
+    const bool attached = lt.offset == f_.tokens[k - 1].offset + 1;
+    if (attached && lt.kind == TokenKind::kIdentifier && letter.size() == 1 &&
+        (letter == "J" || letter == "L" || letter == "C" || letter == "A" || letter == "S")) {
+      motion(k, e);
+      return;
+    }
+    const std::string w = upper(letter);
+    if (w == "UFRAME_NUM" || w == "UTOOL_NUM") {
+      if (k + 2 < e && punct(k + 1, "=") && f_.tokens[k + 2].kind == TokenKind::kNumber) {
+        (w == "UFRAME_NUM" ? uframe_ : utool_) = static_cast<int>(parseNumber(tx(k + 2)).value_or(-1));
+      } else {
+        (w == "UFRAME_NUM" ? uframe_ : utool_) = -2;  // register: runtime
+      }
+      return;
+    }
+    if (w == "WAIT" && k + 1 < e && f_.tokens[k + 1].kind == TokenKind::kNumber) {
+      marker("dwell " + std::string(tx(k + 1)) + " s");
+      return;
+    }
+    if (w == "CALL" && k + 1 < e) {
+      marker("call " + std::string(tx(k + 1)));
+      return;
+    }
+    if (punct(k, "!")) {
+      const std::string u = upper(std::string_view(f_.bytes).substr(f_.tokens[k].offset, f_.tokens[e - 1].offset - f_.tokens[k].offset));
+      if (u.find("DRILL") != std::string::npos || u.find("PLUNGE") != std::string::npos) {
+        marker("comment " + std::string(std::string_view(f_.bytes).substr(f_.tokens[k].offset,
+                                                                           f_.tokens[e - 1].offset + f_.tokens[e - 1].length - f_.tokens[k].offset)));
+      }
+    }
+  }
+
+  void tail(Motion& m, std::size_t k, std::size_t e) {
+    // speed, termination, options
+    std::string speed;
+    std::size_t q = k;
+    for (; q < e; ++q) {
+      const std::string u = upper(tx(q));
+      if (u == "FINE" || u.rfind("CNT", 0) == 0 || punct(q, ";")) break;
+      speed += tx(q);
+    }
+    m.speed_text = speed;
+    const auto num = [&]() -> std::optional<double> {
+      std::size_t n = 0;
+      while (n < speed.size() && (isDigit(speed[n]) || speed[n] == '.')) ++n;
+      return n > 0 ? parseNumber(speed.substr(0, n)) : std::nullopt;
+    }();
+    const std::string su = upper(speed);
+    if (num) {
+      if (su.find("MM/SEC") != std::string::npos) m.speed_mm_s = *num;
+      if (su.find("CM/MIN") != std::string::npos) m.speed_mm_s = *num * 10.0 / 60.0;
+      if (su.find("INCH/MIN") != std::string::npos) m.speed_mm_s = *num * 25.4 / 60.0;
+    }
+    if (q < e && !punct(q, ";")) {
+      m.zone_text = std::string(tx(q));
+      if (iequals(m.zone_text, "CNT") && q + 1 < e) m.zone_text += std::string(tx(q + 1));
+      m.fine = iequals(m.zone_text, "FINE");
+    }
+    for (std::size_t r = q; r < e; ++r) {
+      const std::string u = upper(tx(r));
+      if (u == "OFFSET" || u == "TOOL_OFFSET") {
+        m.derivation = u == "OFFSET" ? "Offset" : "Tool_Offset";
+      }
+      if (u == "INC") m.derivation = "INC";
+    }
+  }
+
+  void motion(std::size_t k, std::size_t e) {
+    Motion m;
+    m.instruction = std::string(tx(k));
+    m.file = 0;
+    m.line = f_.lineOf(f_.tokens[k].offset);
+    const char c = m.instruction[0];
+    m.type = c == 'J' ? MotionType::kJoint : (c == 'C' || c == 'A') ? MotionType::kCircular : MotionType::kLinear;
+    m.config_honoured = m.type == MotionType::kJoint;
+    std::size_t q = k + 1;
+    if (q >= e) fail(f_.tokens[k].offset, "motion without a target");
+    const std::string ref = upper(tx(q));
+    int number = -1;
+    const std::size_t after = reference(q, e, number);
+    m.target_text = std::string(std::string_view(f_.bytes).substr(f_.tokens[q].offset, f_.tokens[after - 1].offset + f_.tokens[after - 1].length - f_.tokens[q].offset));
+    int pnum = -1;
+    if (ref == "P" && number >= 0) {
+      pnum = number;
+    } else if (ref == "PR") {
+      m.derivation = "PR";
+    } else {
+      m.derivation = "runtime";
+    }
+    m.base = -1;
+    m.tool = -1;
+    if (m.type == MotionType::kCircular) {
+      // C P[aux] [speed...] ; then the end point on the continuation line
+      tail(m, after, e);
+      p_.motions.push_back(std::move(m));
+      pending_.push_back(Pending{static_cast<int>(p_.motions.size() - 1), -1, pnum});
+      last_motion_line_ = static_cast<int>(p_.motions.size() - 1);
+      return;
+    }
+    tail(m, after, e);
+    p_.motions.push_back(std::move(m));
+    pending_.push_back(Pending{static_cast<int>(p_.motions.size() - 1), pnum, -1});
+  }
+
+  void continuation(std::size_t k, std::size_t e) {
+    Motion& m = p_.motions[static_cast<std::size_t>(last_motion_line_)];
+    int number = -1;
+    const std::string ref = upper(tx(k));
+    const std::size_t after = reference(k, e, number);
+    tail(m, after, e);
+    if (ref == "P" && number >= 0) pending_.back().number = number;
+    if (ref == "PR") m.derivation = "PR";
+    last_motion_line_ = -1;
+  }
+
+  NumberField signedNumber(std::size_t& q, std::size_t e, std::size_t eq_end) {
+    const std::size_t s = q;
+    if (q < e && (punct(q, "-") || punct(q, "+"))) ++q;
+    if (q >= e || f_.tokens[q].kind != TokenKind::kNumber) {
+      fail(f_.tokens[std::min(q, e - 1)].offset, "broken number in position record");
+    }
+    const Token& nt = f_.tokens[q];
+    if (q + 1 < e && f_.tokens[q + 1].offset == nt.offset + nt.length &&
+        (f_.tokens[q + 1].kind == TokenKind::kNumber || punct(q + 1, "."))) {
+      fail(nt.offset, "broken number '" + std::string(tx(q)) + std::string(tx(q + 1)) + "'");
+    }
+    NumberField f = numberField(p_, 0, f_.tokens[s].offset, nt.offset + nt.length);
+    // right-aligned field: the spaces between '=' and the number belong to it
+    std::uint32_t pad = 0;
+    std::uint32_t o = f.offset;
+    while (o > eq_end && f_.bytes[o - 1] == ' ') {
+      --o;
+      ++pad;
+    }
+    if (o == eq_end) f.pad = pad;
+    ++q;
+    return f;
+  }
+
+  std::size_t positions(std::size_t i) {
+    const std::vector<Token>& t = f_.tokens;
+    while (i < t.size()) {
+      if (t[i].kind == TokenKind::kNewline) {
+        ++i;
+        continue;
+      }
+      // '/END' ends the section
+      if (punct(i, "/") && i + 1 < t.size() && iequals(tx(i + 1), "END")) return i;
+      if (!iequals(tx(i), "P") || i + 1 >= t.size() || !punct(i + 1, "[")) {
+        fail(t[i].offset, "expected a position record P[n]{...}; in /POS");
+      }
+      const std::size_t rec = i;
+      int number = -1;
+      i = reference(i, t.size(), number);
+      if (number < 0) fail(t[rec].offset, "position record without a number");
+      if (i >= t.size()) fail(t[rec].offset, "truncated position record");
+      // skip to '{'
+      while (i < t.size() && t[i].kind == TokenKind::kNewline) ++i;
+      if (i >= t.size() || !punct(i, "{")) fail(t[rec].offset, "expected '{' after P[" + std::to_string(number) + "]");
+      // find the closing '};'
+      std::size_t e = i + 1;
+      while (e < t.size() && !punct(e, "}")) {
+        if (punct(e, "/") && e + 1 < t.size() && iequals(tx(e + 1), "END")) e = t.size();
+        else ++e;
+      }
+      if (e >= t.size()) fail(t[rec].offset, "unterminated position record P[" + std::to_string(number) + "] (missing '};')");
+      record(rec, number, i + 1, e);
+      i = e + 1;
+      if (i < t.size() && punct(i, ";")) ++i;
+    }
+    return i;
+  }
+
+  void record(std::size_t rec, int number, std::size_t b, std::size_t e) {
+    Target t;
+    t.name = "P[" + std::to_string(number) + "]";
+    t.file = 0;
+    t.line = f_.lineOf(f_.tokens[rec].offset);
+    t.config.vendor = Vendor::kFanuc;
+    bool gp1 = false;
+    bool cart = false;
+    bool joint = false;
+    int group = 0;
+    std::size_t q = b;
+    while (q < e) {
+      const Token& tk = f_.tokens[q];
+      if (tk.kind != TokenKind::kIdentifier) {
+        ++q;
+        continue;
+      }
+      const std::string n = upper(tx(q));
+      if (n.size() >= 3 && n.rfind("GP", 0) == 0 && q + 1 < e && punct(q + 1, ":")) {
+        group = static_cast<int>(parseNumber(n.substr(2)).value_or(0));
+        gp1 = gp1 || group == 1;
+        q += 2;
+        continue;
+      }
+      if (group != 1) {
+        ++q;
+        continue;
+      }
+      if ((n == "UF" || n == "UT") && q + 2 < e && punct(q + 1, ":")) {
+        std::size_t r = q + 2;
+        const NumberField v = signedNumber(r, e, f_.tokens[q + 1].offset + 1);
+        (n == "UF" ? t.frame_ref : t.tool_ref) = (n == "UF" ? "UFRAME[" : "UTOOL[") + std::to_string(static_cast<int>(v.value)) + "]";
+        q = r;
+        continue;
+      }
+      if (n == "CONFIG" && q + 2 < e && punct(q + 1, ":") && f_.tokens[q + 2].kind == TokenKind::kString) {
+        const Token& s = f_.tokens[q + 2];
+        const std::string_view sv = f_.text(s);
+        if (sv.size() < 2 || sv.back() != '\'') fail(s.offset, "unterminated CONFIG string");
+        t.fanuc_config.file = 0;
+        t.fanuc_config.offset = s.offset + 1;
+        t.fanuc_config.length = s.length - 2;
+        parseConfig(sv.substr(1, sv.size() - 2), t.config, s.offset);
+        q += 3;
+        continue;
+      }
+      if (q + 1 < e && punct(q + 1, "=")) {
+        std::size_t r = q + 2;
+        const NumberField v = signedNumber(r, e, f_.tokens[q + 1].offset + 1);
+        if (n == "X") t.pos[0] = v, cart = true;
+        else if (n == "Y") t.pos[1] = v, cart = true;
+        else if (n == "Z") t.pos[2] = v, cart = true;
+        else if (n == "W") t.rot[0] = v;
+        else if (n == "P") t.rot[1] = v;
+        else if (n == "R") t.rot[2] = v;
+        else if (n.size() == 2 && n[0] == 'J' && n[1] >= '1' && n[1] <= '6') t.joints[static_cast<std::size_t>(n[1] - '1')] = v, joint = true;
+        else if (n.size() == 2 && n[0] == 'E' && n[1] >= '1' && n[1] <= '6') t.ext[static_cast<std::size_t>(n[1] - '1')] = v;
+        q = r;
+        continue;
+      }
+      ++q;
+    }
+    if (!gp1) p_.notes.push_back(t.name + ": no GP1 group; kept verbatim");
+    t.kind = joint && !cart ? TargetKind::kJoint : TargetKind::kCartesian;
+    t.orientation = t.kind == TargetKind::kCartesian ? Orientation::kFanucWpr : Orientation::kNone;
+    if (by_number_.count(number) != 0) fail(f_.tokens[rec].offset, "position P[" + std::to_string(number) + "] defined twice");
+    p_.target_list.push_back(std::move(t));
+    by_number_[number] = static_cast<int>(p_.target_list.size() - 1);
+  }
+
+  void parseConfig(std::string_view s, Configuration& c, std::size_t off) const {
+    int turn = 0;
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      const char ch = static_cast<char>(std::toupper(static_cast<unsigned char>(s[i])));
+      if (ch == 'F' || ch == 'N') c.flip = ch;
+      else if (ch == 'U' || ch == 'D') c.elbow = ch;
+      else if (ch == 'T' || ch == 'B') c.front = ch;
+      else if (isDigit(ch) || ch == '-') {
+        std::size_t j = i + 1;
+        while (j < s.size() && isDigit(s[j])) ++j;
+        const auto v = parseNumber(s.substr(i, j - i));
+        if (!v || turn >= 3) fail(off, "CONFIG string not understood: '" + std::string(s) + "'");
+        c.turns[static_cast<std::size_t>(turn++)] = static_cast<int>(*v);
+        i = j - 1;
+      } else if (ch != ' ' && ch != ',') {
+        fail(off, "CONFIG string not understood: '" + std::string(s) + "'");
+      }
+    }
+    if (c.flip == 0 || c.elbow == 0 || c.front == 0) fail(off, "CONFIG string needs F|N U|D T|B: '" + std::string(s) + "'");
+  }
+
+  Frame frameFor(const std::string& ref, bool tool) {
+    const bool zero = ref == "UFRAME[0]" || ref == "UTOOL[0]";
+    if (zero) return Frame{ref, true, Pose::Identity(), -1, 0};
+    bool seen = false;
+    for (const Unresolved& u : p_.unresolved) seen = seen || u.ref == ref;
+    if (!seen) {
+      p_.unresolved.push_back(Unresolved{ref, 0, 0, tool ? "tool frame lives in the controller (UTOOL)"
+                                                         : "user frame lives in the controller (UFRAME)"});
+    }
+    return Frame{ref, false, Pose::Identity(), -1, 0};
+  }
+
+  void finish() {
+    for (const Pending& pd : pending_) {
+      Motion& m = p_.motions[static_cast<std::size_t>(pd.motion)];
+      auto bind = [&](int number) -> int {
+        if (number < 0) return -1;
+        const auto it = by_number_.find(number);
+        if (it == by_number_.end()) {
+          p_.unresolved.push_back(Unresolved{"P[" + std::to_string(number) + "]", 0, m.line, "position not in /POS"});
+          return -1;
+        }
+        return it->second;
+      };
+      m.target = bind(pd.number);
+      m.aux = bind(pd.aux_number);
+      const int ti = m.target >= 0 ? m.target : m.aux;
+      if (ti >= 0) {
+        const Target& t = p_.target_list[static_cast<std::size_t>(ti)];
+        if (!t.frame_ref.empty()) m.base = internFrame(p_, frameFor(t.frame_ref, false));
+        if (!t.tool_ref.empty()) m.tool = internFrame(p_, frameFor(t.tool_ref, true));
+      }
+      if (m.target >= 0) p_.target_list[static_cast<std::size_t>(m.target)].uses.push_back(pd.motion);
+      if (m.aux >= 0) p_.target_list[static_cast<std::size_t>(m.aux)].uses.push_back(pd.motion);
+    }
+  }
+};
+
+}  // namespace
+
+void parseTp(Program& p) { TpReader(p).run(); }
+
+}  // namespace roprec::postproc
