@@ -1,0 +1,29 @@
+#pragma once
+/// \file uncertainty.hpp
+/// GUM arithmetic used by the per-hole budget (process.md §5; JCGM 100:2008, ISO 9283,
+/// ISO 14253-1). All values SI (m).
+///
+/// * ISO 9283 pose repeatability RP = l̄ + 3 S_l of the 3-D distances to the barycentre. For an
+///   isotropic Gaussian scatter with σ per axis, l follows a chi distribution with 3 degrees of
+///   freedom: l̄ = 2√(2/π) σ = 1.5958 σ, S_l = √(3 − 8/π) σ = 0.6734 σ, so RP = 3.6160 σ.
+/// * 2-D radial coverage: the radius r of a zero-mean bivariate normal with covariance Σ
+///   (eigenvalues λ₁, λ₂) satisfies P(r ≤ R) = (1/2π)∫₀^{2π} [1 − e^{−R² q(φ)/2}] / (√(λ₁λ₂) q(φ)) dφ,
+///   q(φ) = cos²φ/λ₁ + sin²φ/λ₂; for λ₁ = λ₂ = u² it is Rayleigh, R₉₅ = √(−2 ln 0.05) u = 2.4477 u.
+///   Do not use k = 2 on a radius (process.md §5.1).
+
+#include <Eigen/Core>
+
+namespace roprec {
+
+/// σ per axis from an ISO 9283 RP (3-D, isotropic Gaussian): RP / 3.6160.
+double sigmaFromRp(double rp);
+/// RP of an isotropic Gaussian with σ per axis (the inverse).
+double rpFromSigma(double sigma);
+/// Rayleigh coverage factor k such that P(r ≤ k u) = p (2-D isotropic): √(−2 ln(1 − p)).
+double rayleighCoverageFactor(double p = 0.95);
+/// P(r ≤ R) for a zero-mean 2-D normal with covariance Σ (2×2, SPSD).
+double radialProbability(const Eigen::Matrix2d& Sigma, double R);
+/// The radius R with P(r ≤ R) = p (bisection on radialProbability).
+double radialCoverage(const Eigen::Matrix2d& Sigma, double p = 0.95);
+
+}  // namespace roprec

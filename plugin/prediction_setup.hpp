@@ -1,0 +1,57 @@
+#pragma once
+/// \file prediction_setup.hpp
+/// Everything `roprec predict` and `roprec compensate` share: the cell (robot, tool, process,
+/// tolerance, <uncertainty>, <capability>), the job's holes, the prediction model, and the JSON
+/// of a prediction (contract.md keys).
+///
+/// Cell extensions read here (all optional):
+///   <uncertainty method="linear|montecarlo" stiffness_rel="0.10" position_gain_rel="0.20"
+///                process_halfwidth="0.15" samples="400" seed="20201" source="..."/>
+///   <capability mc_approach_s="2.0" source="..."/>
+
+#include <optional>
+#include <string>
+
+#include "compensator/prediction.hpp"
+#include "plugin/cli.hpp"
+#include "plugin/hole_input.hpp"
+#include "plugin/json.hpp"
+
+namespace roprec::cli {
+
+struct PredictionContext {
+  CellSpec cell;
+  Robot robot;
+  nc::ToolAttachment tool;
+  std::optional<ProcessSpec> process;
+  std::string process_description;
+  JobHoles job;
+  PredictionModel model;
+};
+
+/// `uncertainty_override`: "linear" / "montecarlo" from the command line (empty: the cell's).
+PredictionContext loadPredictionContext(const std::string& cell_path, const std::string& job_path,
+                                        const std::optional<std::string>& hole_list,
+                                        const std::string& uncertainty_override);
+
+/// Per-hole JSON object (contract keys + details).
+Json holeJson(const HolePrediction& h, const HoleRequest& r);
+Json summaryJson(const CapabilitySummary& s);
+std::string uncertaintyMethodText(const UncertaintyInputs& u);
+
+/// Writes a progress line to stderr when it is a terminal and not --quiet.
+class Progress {
+ public:
+  Progress(CommandContext& ctx, const std::string& what, size_t total);
+  void step(size_t done);
+  void finish();
+
+ private:
+  CommandContext& ctx_;
+  std::string what_;
+  size_t total_;
+  bool active_;
+  size_t last_{0};
+};
+
+}  // namespace roprec::cli
