@@ -81,7 +81,9 @@ TEST(Ik, RandomRoundTripAllRobots) {
       const Pose T = chainForwardKinematics(c.chain, q);
       IkOptions all;
       all.turns = IkTurns::kAll;
+      Eigen::internal::set_is_malloc_allowed(false);  // caller-owned storage: no allocation per call
       solveIk(c.model, T, all, *result);
+      Eigen::internal::set_is_malloc_allowed(true);
       ASSERT_GT(result->count, 0) << describeIkFailure(*result);
       ASSERT_FALSE(result->truncated);
       double best = 1e9;
