@@ -285,6 +285,74 @@ std::vector<DepthSample> drillingDepthProfile(const DrillingModel& model, Drilli
   return out;
 }
 
+std::vector<AxialCouplingSample> drillingAxialCoupling(const DrillingModel& model, DrillingData& data, double feed,
+                                                       double hole_depth, bool through, double axial_compliance,
+                                                       double tolerance, int max_iterations) {
+  const DrillGeometry& g = model.geometry;
+  const double exit_extra = through ? (g.radius() - g.chiselHalfLength()) / std::tan(g.halfPoint()) : 0.0;
+  const double z_end = hole_depth + exit_extra;
+  const double thickness = through ? hole_depth : 0.0;
+  std::vector<AxialCouplingSample> out;
+  if (!(feed > 0)) return out;
+  double z = 0.0;
+  double d_prev = 0.0;
+  const int max_revs = static_cast<int>(std::ceil(100.0 * z_end / feed)) + 10;
+  for (int k = 1; k <= max_revs && z < z_end; ++k) {
+    AxialCouplingSample s;
+    s.revolution = k;
+    const double z0 = z;
+    auto eval = [&](double d, DrillingForces& F) {
+      const double fk = feed - (d - d_prev);
+      F = fk > 0 ? drillingForcesAtDepth(model, data, fk, std::min(z0 + fk, z_end), thickness) : DrillingForces{};
+      return d - axial_compliance * F.thrust;
+    };
+    DrillingForces Flo, Fhi, Fm;
+    double lo = d_prev;
+    double hi = d_prev + feed;
+    double glo = eval(lo, Flo);
+    double ghi = eval(hi, Fhi);
+    double d = lo;
+    if (glo >= 0) {
+      // The load fell below what the previous deflection holds (breakthrough): the tool springs
+      // forward and the root lies in [0, δ_{k−1}] (g(0) = −c_z Fz ≤ 0).
+      hi = lo;
+      ghi = glo;
+      lo = 0.0;
+      glo = eval(lo, Flo);
+    }
+    int side = 0;
+    for (int it = 1; it <= max_iterations; ++it) {
+      d = ghi - glo > 0 ? (lo * ghi - hi * glo) / (ghi - glo) : 0.5 * (lo + hi);
+      const double gm = eval(d, Fm);
+      s.iterations = it;
+      s.residual = std::abs(gm);
+      if (s.residual <= tolerance || hi - lo <= tolerance) {
+        s.converged = true;
+        break;
+      }
+      if ((gm < 0) == (glo < 0)) {
+        lo = d;
+        glo = gm;
+        if (side == -1) ghi *= 0.5;
+        side = -1;
+      } else {
+        hi = d;
+        ghi = gm;
+        if (side == 1) glo *= 0.5;
+        side = 1;
+      }
+    }
+    s.deflection = d;
+    s.feed = feed - (d - d_prev);
+    z = std::min(z0 + std::max(0.0, s.feed), z_end);
+    s.depth = z;
+    s.forces = Fm;
+    d_prev = d;
+    out.push_back(s);
+  }
+  return out;
+}
+
 DrillingCalibration calibrateDrilling(const DrillingModel& model, double feed, double thrust_measured,
                                       double torque_measured) {
   DrillingCalibration c;

@@ -124,6 +124,27 @@ struct DepthSample {
 std::vector<DepthSample> drillingDepthProfile(const DrillingModel& model, DrillingData& data, double feed,
                                               double hole_depth, bool through, double step);
 
+/// Feed absorbed by the robot's axial compliance during the cut (process.md §2.1, the drilling
+/// analogue of the milling correction). Quasi-static, one step per spindle revolution k:
+///   f_k = f − (δ_k − δ_{k−1}),  z_k = z_{k−1} + f_k,  δ_k = c_z · Fz(z_k, f_k)
+/// (δ = axial deflection of the TCP against the feed [m], c_z = axial compliance [m/N]). Each
+/// revolution is a scalar root of g(δ) = δ − c_z Fz(f − (δ − δ_{k−1})), monotonic in δ, bracketed on
+/// [δ_{k−1}, δ_{k−1} + f] and solved by the Illinois false-position method to `tolerance`, so it
+/// converges also when the loop gain c_z ∂Fz/∂f exceeds 1 (where a fixed-point iteration would not).
+struct AxialCouplingSample {
+  int revolution{0};
+  double depth{0};        ///< z_k, tip depth reached [m]
+  double feed{0};         ///< f_k, actual feed of this revolution [m]
+  double deflection{0};   ///< δ_k [m]
+  bool converged{false};
+  int iterations{0};
+  double residual{0};     ///< |g(δ_k)| [m]
+  DrillingForces forces;
+};
+std::vector<AxialCouplingSample> drillingAxialCoupling(const DrillingModel& model, DrillingData& data, double feed,
+                                                       double hole_depth, bool through, double axial_compliance,
+                                                       double tolerance = 0.1e-6, int max_iterations = 100);
+
 /// Single-test calibration (process.md §2.3): all forces are linear in kst0 (torque) and ksa0
 /// (thrust, including a chisel proportional to ksa0), so one measured (Fz, M) at one diameter
 /// and feed fixes both in closed form: kst0' = kst0 · M_meas / M_model, ksa0' = ksa0 · Fz_meas / Fz_model.

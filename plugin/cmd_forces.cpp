@@ -83,7 +83,7 @@ Json coefficientsJson(const DrillingCoefficients& c, const std::string& source) 
 
 int runDrilling(const CellSpec& cell, ProcessSpec& spec, Json& root, std::string& csv,
                 const std::optional<std::string>& calibrate, const std::optional<std::string>& out_xml,
-                std::string& out_xml_text, double step) {
+                std::string& out_xml_text, double step, std::optional<double> axial_compliance) {
   DrillingSpec& s = spec.drilling;
   const DrillGeometry& g = s.geometry;
   root.set("process", Json::str("drilling"));
@@ -179,6 +179,38 @@ int runDrilling(const CellSpec& cell, ProcessSpec& spec, Json& root, std::string
     maxR = std::max(maxR, f.residual);
   }
   csv = c.str();
+  int code = 0;
+  if (axial_compliance) {
+    const std::vector<AxialCouplingSample> ac =
+        drillingAxialCoupling(model, data, s.feed, s.hole_depth, s.through, *axial_compliance);
+    std::ostringstream c2;
+    c2 << "revolution,depth_mm,engaged_radius_mm,Fa_N,Ft_N,M_Nm,Fr_N,feed_mm,dz_um\n";
+    bool all = true;
+    double max_dz = 0;
+    double min_f = 1e300;
+    double max_f = 0;
+    for (const AxialCouplingSample& x : ac) {
+      const DrillingForces& f = x.forces;
+      c2 << x.revolution << ',' << fixed(x.depth / kMm, 5) << ','
+         << fixed((f.r_out > f.r_in ? f.r_out : 0.0) / kMm, 4) << ',' << fixed(f.thrust, 3) << ','
+         << fixed(f.tangential, 3) << ',' << fixed(f.torque, 5) << ',' << fixed(f.residual, 3) << ','
+         << fixed(x.feed / kMm, 6) << ',' << fixed(x.deflection * 1e6, 3) << '\n';
+      all = all && x.converged;
+      max_dz = std::max(max_dz, x.deflection);
+      min_f = std::min(min_f, x.feed);
+      max_f = std::max(max_f, x.feed);
+    }
+    csv = c2.str();
+    Json aj = Json::object();
+    aj.set("axial_compliance_um_per_N", Json::number(*axial_compliance * 1e6, 5));
+    aj.set("revolutions", Json::integer(static_cast<std::int64_t>(ac.size())));
+    aj.set("all_converged", Json::boolean(all));
+    aj.set("max_deflection_um", Json::number(max_dz * 1e6, 3));
+    aj.set("min_feed_mm", Json::number(min_f / kMm, 6));
+    aj.set("max_feed_mm", Json::number(max_f / kMm, 6));
+    root.set("axial_coupling", aj);
+    if (!all) code = 1;
+  }
   Json mx = Json::object();
   mx.set("thrust_N", Json::number(maxF, 2));
   mx.set("torque_Nm", Json::number(maxM, 4));
@@ -206,7 +238,7 @@ int runDrilling(const CellSpec& cell, ProcessSpec& spec, Json& root, std::string
   }
   mj.set("components", comps);
   root.set("machining_deviation", mj);
-  return 0;
+  return code;
 }
 
 int runMilling(ProcessSpec& spec, Json& root, std::string& csv, int points) {
@@ -302,6 +334,7 @@ int run(Args& args, CommandContext& ctx) {
   if (const auto alt = args.option("output")) out_xml = alt;
   const auto step_mm = args.option("step-mm");
   const auto points_opt = args.option("points");
+  const auto axial_opt = args.option("axial-compliance-um-per-N");
   args.finish();
   if (!cell_path) throw UsageError("give --cell CELL.xml");
   double step = 0.05 * kMm;
@@ -315,6 +348,12 @@ int run(Args& args, CommandContext& ctx) {
     const auto v = parseNumber(*points_opt);
     if (!v || !(*v >= 1 && *v <= 100000) || *v != std::floor(*v)) throw InputError("", 0, "--points must be an integer >= 1");
     points = static_cast<int>(*v);
+  }
+  std::optional<double> axial_compliance;
+  if (axial_opt) {
+    const auto v = parseNumber(*axial_opt);
+    if (!v || !(*v >= 0)) throw InputError("", 0, "--axial-compliance-um-per-N must be a number >= 0");
+    axial_compliance = *v * 1e-6;
   }
   const CellSpec cell = loadCell(*cell_path);
   if (!cell.has_process) throw InputError(cell.file, cell.root.line, "the cell has no <process> element");
@@ -331,7 +370,7 @@ int run(Args& args, CommandContext& ctx) {
   int code = 0;
   switch (spec.type) {
     case ProcessType::kDrilling:
-      code = runDrilling(cell, spec, root, csv, calibrate, out_xml, out_xml_text, step);
+      code = runDrilling(cell, spec, root, csv, calibrate, out_xml, out_xml_text, step, axial_compliance);
       break;
     case ProcessType::kMilling:
       code = runMilling(spec, root, csv, points);
@@ -361,7 +400,8 @@ int run(Args& args, CommandContext& ctx) {
 const CommandRegistration reg{
     {"forces", "process forces of a cell (drilling, milling, wrench); single-test calibration",
      "usage: roprec forces --cell CELL.xml [--csv F.csv] [--json F.json] [--step-mm S]\n"
-     "                     [--calibrate \"Fa_N=... M_Nm=...\" [--o|--output OUT.xml]] [--points N]\n\n"
+     "                     [--calibrate \"Fa_N=... M_Nm=...\" [--o|--output OUT.xml]] [--points N]\n"
+     "                     [--axial-compliance-um-per-N C]\n\n"
      "Computes the process forces of the cell's <process> (the robot is not loaded).\n"
      "  drilling: steady thrust, torque, rotating runout force Fr, per-lip forces, chisel share, the wrench\n"
      "            on the TCP in the tool frame (z into the material: force z = -thrust, torque z = -M), the\n"
@@ -371,6 +411,9 @@ const CommandRegistration reg{
      "            Fz_N, Fxy_N over one revolution; with <coupling compliance_um_per_N=...> the coupled\n"
      "            iteration over --points path points (default 10), per point converged/iterations.\n"
      "  wrench:   echoes the given tool-frame wrench.\n"
+     "--axial-compliance-um-per-N (drilling): the feed absorbed by an axial compliance C at the TCP, one\n"
+     "            quasi-static step per revolution (entry, steady cut, breakthrough lunge); the CSV is then\n"
+     "            per revolution with feed_mm and dz_um columns.\n"
      "--calibrate identifies kst0 and ksa0 from one measured thrust and torque at the cell's diameter and\n"
      "feed; --o OUT.xml writes a copy of the cell with the calibrated <coefficients> (atomically).\n"
      "Exit 0 done; 1 some coupled points did not converge; 2 bad input (nothing written).\n",

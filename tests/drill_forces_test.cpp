@@ -191,3 +191,53 @@ TEST(DrillForces, PaperModeUnderPredictsInnerLipThrust) {
 
 }  // namespace
 }  // namespace roprec
+
+namespace roprec {
+namespace {
+
+// Feed absorbed by an axial compliance (process.md §2.1), one root per revolution.
+TEST(DrillAxialCoupling, RigidLimitEqualsTheDepthProfile) {
+  const DrillingModel m = model(10, 0.2);
+  DrillingData d(m);
+  const auto s = drillingAxialCoupling(m, d, 0.2e-3, 12e-3, true, 0.0);
+  ASSERT_GT(s.size(), 60u);
+  for (const auto& x : s) {
+    EXPECT_TRUE(x.converged);
+    EXPECT_DOUBLE_EQ(x.feed, 0.2e-3);
+    EXPECT_DOUBLE_EQ(x.deflection, 0.0);
+  }
+  DrillingData d2(m);
+  const DrillingForces F = drillingForcesAtDepth(m, d2, 0.2e-3, 5 * 0.2e-3, 12e-3);
+  EXPECT_NEAR(s[4].forces.thrust, F.thrust, 1e-9 * F.thrust);
+}
+
+TEST(DrillAxialCoupling, CompliantRobotAbsorbsFeedOnEntryAndLungesAtBreakthrough) {
+  const DrillingModel m = model(10, 0.2);
+  DrillingData d(m);
+  const double c = 0.5e-6;  // 0.5 µm/N: loop gain c ∂Fz/∂f ≈ 2.9 > 1
+  const auto s = drillingAxialCoupling(m, d, 0.2e-3, 12e-3, true, c);
+  const DrillingForces steady = drillingForces(m, 0.2e-3);
+  double max_feed = 0;
+  double prev_depth = 0;
+  for (size_t k = 0; k < s.size(); ++k) {
+    const auto& x = s[k];
+    EXPECT_TRUE(x.converged) << x.revolution;
+    EXPECT_LE(x.iterations, 10);
+    EXPECT_NEAR(x.deflection, c * x.forces.thrust, 0.1e-6);
+    max_feed = std::max(max_feed, x.feed);
+    if (k + 1 < s.size()) {  // the last revolution is cut short at the exit
+      // the tip advances by the actual feed; the spindle advanced (k+1)·f; the difference is the
+      // deflection the robot holds
+      EXPECT_NEAR(x.depth - prev_depth, x.feed, 1e-15);
+      EXPECT_NEAR((k + 1) * 0.2e-3 - x.depth, x.deflection, 1e-12);
+    }
+    prev_depth = x.depth;
+  }
+  EXPECT_LT(s[0].feed, 0.7 * 0.2e-3);                         // entry: feed absorbed
+  EXPECT_NEAR(s[50].deflection, c * steady.thrust, 0.5e-6);   // steady cut
+  EXPECT_NEAR(s[50].feed, 0.2e-3, 1e-7);
+  EXPECT_GT(max_feed, 2.0 * 0.2e-3);                          // breakthrough lunge
+}
+
+}  // namespace
+}  // namespace roprec
