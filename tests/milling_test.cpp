@@ -144,6 +144,33 @@ TEST(Milling, ChipThicknessRemembersWhatThePreviousEdgeDidNotCut) {
   EXPECT_NEAR(toothChipThickness(m, 0, phi, c.fz, hist), c.fz * s + R0 - R2 + 2e-6, 1e-15);
 }
 
+// Small runout (every tooth still cuts, Kline & DeVor 1983): in a slot the largest chip of tooth j
+// over the revolution is fz + R_j − R_{j−1} at φ = 90° (the chips sum to Nt·fz).
+TEST(Milling, SmallRunoutRedistributesTheChipsBetweenTeeth) {
+  MillingTool t;
+  t.teeth = 4;
+  t.helix_angle = 0.0;
+  t.runout = 0.01e-3;
+  t.runout_angle = 20 * kDeg;
+  MillingCut c;
+  c.fz = 0.1e-3;
+  c.ae = 10e-3;
+  c.mode = MillingMode::kSlot;
+  const MillingModel m = makeMillingModel(t, c, kienzle800(), 3600, 1);
+  const MillingProfile P = millingForceProfile(m);
+  double sum = 0;
+  for (int j = 0; j < 4; ++j) {
+    const double expect = c.fz + m.tooth_radius[static_cast<size_t>(j)] - m.tooth_radius[static_cast<size_t>((j + 3) % 4)];
+    EXPECT_NEAR(P.max_chip[static_cast<size_t>(j)], expect, 1e-9) << j;
+    sum += P.max_chip[static_cast<size_t>(j)];
+  }
+  EXPECT_NEAR(sum, 4 * c.fz, 1e-9);
+  // The largest tooth sets the peak: above the runout-free peak of the same cut.
+  MillingTool t0 = t;
+  t0.runout = 0.0;
+  EXPECT_GT(P.peak_xy, millingForceProfile(makeMillingModel(t0, c, kienzle800(), 3600, 1)).peak_xy);
+}
+
 CouplingResult steadyPoint(const MillingModel& m, const Mat3& C, const CouplingOptions& o, int points = 8) {
   const std::vector<ComplianceFunction> path(static_cast<size_t>(points), linearCompliance(C));
   return coupleMillingPath(m, path, o).back();
