@@ -37,8 +37,15 @@ void generalizedForces(const Model& model, const Data& data, const Loads& loads,
       }
     }
   }
-  const Vec3& F = loads.tcp.force;
-  const Vec3& N = loads.tcp.moment;
+  Vec3 F = loads.tcp.force;
+  Vec3 N = loads.tcp.moment;
+  if (!loads.tcp_tool.force.isZero(0.0) || !loads.tcp_tool.moment.isZero(0.0)) {
+    Mat3 X;
+    X << Vec3(data.q.segment<3>(idxUnext(4))), Vec3(data.q.segment<3>(idxV(5))), Vec3(data.q.segment<3>(idxW(5)));
+    const Mat3 R_W_tcp = X * model.Rbar_tcp;
+    F += R_W_tcp * loads.tcp_tool.force;
+    N += R_W_tcp * loads.tcp_tool.moment;
+  }
   const Vec3& c = model.c_tcp;
   Q.segment<3>(idxPnext(4)) += F;
   Q.segment<3>(idxUnext(4)) += c.x() * F + 0.5 * N.cross(Vec3(data.q.segment<3>(idxUnext(4))));

@@ -30,7 +30,11 @@ struct Wrench {
 
 struct Loads {
   bool gravity{true};   ///< include link, tool and spindle weight (model.gravity)
-  Wrench tcp;           ///< process/environment wrench on the TCP
+  Wrench tcp;           ///< wrench on the TCP, fixed in the base frame
+  /// Wrench on the TCP given in the TCP frame and following the TCP's actual orientation
+  /// (a process load: the thrust acts along the real drill axis). Added to `tcp` after
+  /// rotation by R_W_tcp(q).
+  Wrench tcp_tool;
 };
 
 /// Q_ext into `Q` (72): gravity (if loads.gravity) + TCP wrench, at data.q.

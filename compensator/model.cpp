@@ -267,7 +267,25 @@ void closedFormGuess(const Model& model, Data& data, const Vec6& z) {
 }
 }  // namespace
 
+namespace {
+/// The dot form a·v = cos θ is met by v = Rot(u, ±θ) a: Newton from a distant guess can land on
+/// the mirror. True when every joint's sin θ has the sign of u·(a × v) (and cos θ of a·v).
+bool onCommandedBranch(const Model& model, const Data& data) {
+  const VecQ& q = data.q;
+  for (int i = 0; i < 6; ++i) {
+    const Vec3 u = parentAxis(model, q, i);
+    const Vec3 v = seg(q, idxV(i));
+    const Vec3 a = angleRef(model, q, i);
+    const double th = q[idxTheta(i)];
+    if (u.dot(a.cross(v)) * std::sin(th) < -1e-9 || a.dot(v) * std::cos(th) < -1e-9) return false;
+  }
+  return true;
+}
+}  // namespace
+
 PositionResult solvePosition(const Model& model, Data& data, const Vec6& z, Guess guess) {
+  // A warm start far from z (more than ~30° on a joint) is no better than the closed form.
+  if (guess == Guess::kWarmStart && (z - data.z).lpNorm<Eigen::Infinity>() > 0.5) guess = Guess::kClosedForm;
   data.z = z;
   if (guess == Guess::kClosedForm) {
     closedFormGuess(model, data, z);
@@ -294,6 +312,12 @@ PositionResult solvePosition(const Model& model, Data& data, const Vec6& z, Gues
     data.q += data.scratch;
     ++res.iterations;
     data.factorized = false;
+  }
+  if (res.converged && guess == Guess::kWarmStart && !onCommandedBranch(model, data)) {
+    // converged to a mirror configuration: restart from the exact forward recursion
+    const int it = res.iterations;
+    res = solvePosition(model, data, z, Guess::kClosedForm);
+    res.iterations += it;
   }
   return res;
 }

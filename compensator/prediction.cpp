@@ -209,8 +209,11 @@ HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const Ho
   nc::Loads loads;
   loads.gravity = m.gravity;
   const Mat3& R = h.T_W_tcp.linear();
-  if (proc) loads.tcp = toBaseFrame(proc->wrench, R);
-  p.force_base = loads.tcp.force;
+  if (proc) {
+    loads.tcp_tool.force = proc->wrench.force;  // follows the real drill axis
+    loads.tcp_tool.moment = proc->wrench.torque;
+  }
+  p.force_base = R * loads.tcp_tool.force;
   p.deflection = nc::predictDeflection(m.model, d.nc, m.compliance, sol.q, loads);
   if (!p.deflection.converged || !p.deflection.position_converged) {
     p.status = HoleStatus::kNotConverged;
@@ -256,7 +259,7 @@ HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const Ho
     if (proc) {
       // deviation caused by the process wrench alone, first order: J K_eff⁻¹ Jᵀ w
       Eigen::Matrix<double, 6, 1> w;
-      w << loads.tcp.force, loads.tcp.moment;
+      w << R * loads.tcp_tool.force, R * loads.tcp_tool.moment;
       const Vec6 phi_w = (J.transpose() * w).cwiseQuotient(m.compliance.effective());
       const Eigen::Vector2d sp = inPlane(J.topRows<3>() * phi_w * u_proc_scale);
       cov_def_proc = sp * sp.transpose();
@@ -281,8 +284,8 @@ HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const Ho
       }
       nc::Loads l = loads;
       const double scale = 1.0 + U.process_halfwidth * ud(rng);
-      l.tcp.force *= scale;
-      l.tcp.moment *= scale;
+      l.tcp_tool.force *= scale;
+      l.tcp_tool.moment *= scale;
       const nc::Deflection dd = nc::predictDeflection(m.model, d.nc, c, sol.q, l);
       samples.emplace_back(dd.dp.dot(e1), dd.dp.dot(e2));
     }
@@ -295,7 +298,7 @@ HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const Ho
     const nc::Mat6& J = nc::tcpJacobian(m.model, d.nc);
     if (proc) {
       Eigen::Matrix<double, 6, 1> w;
-      w << loads.tcp.force, loads.tcp.moment;
+      w << R * loads.tcp_tool.force, R * loads.tcp_tool.moment;
       const Vec6 phi_w = (J.transpose() * w).cwiseQuotient(m.compliance.effective());
       const Vec3 dv = J.topRows<3>() * phi_w * u_proc_scale;
       const Eigen::Vector2d sp(dv.dot(e1), dv.dot(e2));

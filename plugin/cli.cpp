@@ -15,9 +15,10 @@ Args::Args(std::vector<std::string> tokens) : tokens_(std::move(tokens)), used_(
 std::optional<std::string> Args::option(const std::string& name) {
   std::optional<std::string> value;
   const std::string key = "--" + name;
+  const std::string short_key = name.size() == 1 ? "-" + name : key;  // -o as well as --o
   for (size_t i = 0; i < tokens_.size(); ++i) {
     if (used_[i]) continue;
-    if (tokens_[i] == key) {
+    if (tokens_[i] == key || tokens_[i] == short_key) {
       if (i + 1 >= tokens_.size()) throw UsageError("option " + key + " needs a value");
       used_[i] = used_[i + 1] = true;
       value = tokens_[i + 1];

@@ -40,8 +40,9 @@ int run(Args& args, CommandContext& ctx) {
     load_source = "--wrench (base frame, on the TCP)";
   } else if (s.cell && s.cell->has_process && !no_process) {
     const SteadyProcessLoad pl = steadyProcessLoad(parseProcess(s.cell->process));
-    loads.tcp = toBaseFrame(pl.wrench, R_W_tcp);
-    load_source = "cell process: " + pl.description;
+    loads.tcp_tool.force = pl.wrench.force;  // tool frame, follows the real tool orientation
+    loads.tcp_tool.moment = pl.wrench.torque;
+    load_source = "cell process (tool frame): " + pl.description;
   }
   const nc::Vec6 offset = no_gravity ? nc::Vec6::Zero() : controllerGravityOffset(s.robot, c, q);
   const nc::Deflection d = nc::predictDeflection(model, data, c, q, loads, {}, offset);
@@ -55,8 +56,8 @@ int run(Args& args, CommandContext& ctx) {
   lj.set("gravity_compensated_by_controller", Json::boolean(s.robot.card.gravity_compensated && loads.gravity));
   lj.set("tool_mass_kg", Json::number(s.tool.mass, 3));
   lj.set("wrench_source", Json::str(load_source));
-  lj.set("force_N", Json::vector(loads.tcp.force, 3));
-  lj.set("moment_Nm", Json::vector(loads.tcp.moment, 4));
+  lj.set("force_N", Json::vector(loads.tcp.force + R_W_tcp * loads.tcp_tool.force, 3));
+  lj.set("moment_Nm", Json::vector(loads.tcp.moment + R_W_tcp * loads.tcp_tool.moment, 4));
   root.set("loads", lj);
   root.set("torques_Nm", Json::vector(d.tau, 3));
   root.set("joint_deflection_urad", Json::vector((d.theta - q) * 1e6, 3));

@@ -60,15 +60,21 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
     job.is_hole_list = true;
     const std::vector<postproc::HoleSpec> specs = postproc::parseHoleList(path, bytes);
     if (specs.empty()) throw InputError(path, 1, "the hole list has no holes");
-    for (const auto& s : specs) {
+    for (size_t i = 0; i < specs.size(); ++i) {
+      const auto& s = specs[i];
       job.requests.push_back(fromSpec(s, cell));
       HoleSource src;
+      if (parsed && i < parsed->targets().size()) {
+        src.targets = {static_cast<int>(i)};
+        src.bottom_target = static_cast<int>(i);
+      }
       src.T_W_frame = cell.T_base_wobj;
       src.frame_resolved = true;
       src.frame_ref = "cell workobject";
       src.T_W_tcp_spec = job.requests.back().T_W_tcp;
       job.sources.push_back(src);
     }
+    job.program = std::move(parsed);
     return job;
   }
   job.program = parsed ? std::move(*parsed) : postproc::readProgram(path);

@@ -21,6 +21,7 @@ struct ReportHole {
   std::optional<double> residual_um;
   std::optional<Pose> T_W_programmed;
   std::optional<double> rotation_about_axis_deg;
+  const HolePrediction* after{nullptr};     ///< compensate: prediction at the programmed pose
 };
 
 struct ReportInput {
