@@ -1,23 +1,72 @@
-/// `roprec convert PROGRAM [--to D] -o OUT`.
+/// `roprec convert PROGRAM [--to D] -o OUT`: a program through its own reader and writer
+/// (byte-identical when nothing changed), or its targets into a new program in another dialect.
+#include <cmath>
+#include <sstream>
+
+#include "compensator/atomic_file.hpp"
 #include "compensator/error.hpp"
 #include "plugin/cli.hpp"
+#include "postproc/convert.hpp"
 #include "postproc/program.hpp"
 
 namespace roprec::cli {
 namespace {
 
-int run(Args& args, CommandContext&) {
-  const std::optional<std::string> out = args.option("o");
-  const std::vector<std::string> pos = args.positionals();
-  args.finish();
-  if (pos.size() != 1 || !out) throw UsageError("convert needs PROGRAM and -o OUT");
-  const postproc::Program p = postproc::readProgram(pos[0]);
-  postproc::writeProgram(p, *out);
-  return 0;
+Pose frameValue(const std::string& text) {
+  std::istringstream in(text);
+  double v[6];
+  for (double& x : v) {
+    if (!(in >> x) || !std::isfinite(x)) throw UsageError("--frame REF=\"x y z a b c\" needs six numbers (mm, deg, KUKA ABC)");
+  }
+  Pose T = Pose::Identity();
+  T.translation() = Vec3(v[0], v[1], v[2]) * 1e-3;
+  T.linear() = rotationFromZyx(v[3] * kDeg, v[4] * kDeg, v[5] * kDeg);
+  return T;
 }
 
-const CommandRegistration reg{{"convert", "a program through its reader and writer, or into another dialect",
-                               "usage: roprec convert PROGRAM [--to krl|rapid|tp|csv|json] -o OUT\n", 61, run}};
+int run(Args& args, CommandContext& ctx) {
+  std::optional<std::string> out = args.option("o");
+  if (!out) out = args.option("output");
+  const std::optional<std::string> to = args.option("to");
+  const std::optional<std::string> frames = args.option("frame");
+  const std::vector<std::string> pos = args.positionals();
+  args.finish();
+  if (pos.size() != 1 || !out) throw UsageError("convert needs one PROGRAM and -o OUT");
+  postproc::Program p = postproc::readProgram(pos[0]);
+  if (frames) {
+    std::istringstream in(*frames);
+    std::string item;
+    while (std::getline(in, item, ';')) {
+      const std::size_t eq = item.find('=');
+      if (eq == std::string::npos) throw UsageError("--frame expects REF=\"x y z a b c\"[;REF=...]");
+      postproc::resolveFrame(p, item.substr(0, eq), frameValue(item.substr(eq + 1)));
+    }
+  }
+  if (!to) {
+    postproc::writeProgram(p, *out);
+    return 0;
+  }
+  postproc::ConversionReport report;
+  const auto files = postproc::convertProgram(p, postproc::dialectFromName(*to), *out, report);
+  for (const auto& [path, bytes] : files) writeFileAtomic(path, bytes);
+  if (!ctx.quiet) {
+    for (const std::string& n : report.notes) ctx.err << "roprec: note: " << n << "\n";
+  }
+  for (const std::string& s : report.skipped) ctx.err << "roprec: not converted: " << s << "\n";
+  return report.skipped.empty() ? 0 : 1;
+}
+
+const CommandRegistration reg{
+    {"convert", "a program through its own reader/writer, or its targets into another dialect",
+     "usage: roprec convert PROGRAM [--to krl|rapid|tp|csv|json] -o OUT [--frame 'REF=x y z a b c[;...]']\n\n"
+     "Without --to: PROGRAM is read and written back through its own reader and writer; the output\n"
+     "is byte-identical to the input (KRL: OUT names the .src, the .dat is written beside it).\n"
+     "With --to: the program's Cartesian targets are written as a new, minimal program in that\n"
+     "dialect (KRL: OUT.src + OUT.dat). Configuration is carried at the branch level (shoulder,\n"
+     "elbow, wrist); joint targets go only into csv/json (joint conventions differ between vendors);\n"
+     "items that cannot be converted are listed and the exit code is 1. Frames that the output must\n"
+     "state by value but the program does not define are given with --frame (mm, deg, KUKA ABC).\n",
+     61, run}};
 
 }  // namespace
 }  // namespace roprec::cli

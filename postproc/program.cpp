@@ -43,7 +43,13 @@ void SourceFile::indexLines() {
       if (i == 0 || (!isDigit(bytes[i - 1]) && !isIdentChar(bytes[i - 1]))) {
         bare_fractions = true;
       } else if (bytes[i - 1] == '0' && (i < 2 || (!isDigit(bytes[i - 2]) && !isIdentChar(bytes[i - 2])))) {
-        zero_fractions = true;
+        // `0.044` is evidence of leading zeros; an exact `0.000` is not (FANUC prints zero so)
+        for (std::size_t k = i + 1; k < n && isDigit(bytes[k]); ++k) {
+          if (bytes[k] != '0') {
+            zero_fractions = true;
+            break;
+          }
+        }
       }
       continue;
     }
@@ -215,6 +221,7 @@ std::string formatLike(std::string_view original, double value, const NumberHint
   }
   if (allZeroDigits(t)) {
     if (!t.empty() && t[0] == '-') t.erase(0, 1);
+    if (st.bare && t.rfind("0.", 0) == 0) t.erase(0, 1);
     if (st.neg) t.insert(0, "-");
     return t;
   }

@@ -1,0 +1,152 @@
+// Conversion between dialects keeps poses (< 1e-6 mm, < 1e-9 rad), frames and the configuration
+// branch (robot-programs.md §7.1).
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "compensator/error.hpp"
+#include "postproc/convert.hpp"
+#include "postproc/program.hpp"
+#include "tests/support/test_support.hpp"
+
+namespace roprec::postproc {
+namespace {
+
+struct Seen {
+  Pose T;
+  std::optional<Pose> base;
+  std::optional<Pose> tool;
+  std::optional<int> branch;
+  MotionType type;
+};
+
+std::vector<Seen> cartesianMotions(const Program& p) {
+  std::vector<Seen> out;
+  for (const Motion& m : p.motions) {
+    const std::optional<Pose> T = motionPose(p, m);
+    if (!T) continue;
+    Seen s{*T, std::nullopt, std::nullopt, p.targets()[static_cast<std::size_t>(m.target)].config.branch(), m.type};
+    if (m.base >= 0 && p.frames[static_cast<std::size_t>(m.base)].resolved) s.base = p.frames[static_cast<std::size_t>(m.base)].pose;
+    if (m.tool >= 0 && p.frames[static_cast<std::size_t>(m.tool)].resolved) s.tool = p.frames[static_cast<std::size_t>(m.tool)].pose;
+    out.push_back(s);
+  }
+  return out;
+}
+
+Program readBack(const std::vector<std::pair<std::string, std::string>>& files, Dialect d) {
+  for (const auto& [path, bytes] : files) test::writeFile(path, bytes);
+  Program p = readProgram(files[0].first);
+  EXPECT_EQ(p.dialect == Dialect::kHoleCsv ? Dialect::kCsv : p.dialect, d);
+  return p;
+}
+
+void expectSame(const std::vector<Seen>& a, const std::vector<Seen>& b, bool frames, bool branch) {
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    SCOPED_TRACE(i);
+    EXPECT_LT((a[i].T.translation() - b[i].T.translation()).norm() * 1e3, 1e-6);
+    EXPECT_LT(smallRotationDifference(a[i].T.linear(), b[i].T.linear()).norm(), 1e-9);
+    EXPECT_EQ(a[i].type, b[i].type);
+    if (frames) {
+      ASSERT_EQ(a[i].base.has_value(), b[i].base.has_value());
+      if (a[i].base) {
+        EXPECT_LT((a[i].base->translation() - b[i].base->translation()).norm() * 1e3, 1e-6);
+        EXPECT_LT(smallRotationDifference(a[i].base->linear(), b[i].base->linear()).norm(), 1e-9);
+      }
+      ASSERT_EQ(a[i].tool.has_value(), b[i].tool.has_value());
+      if (a[i].tool) EXPECT_LT((a[i].tool->translation() - b[i].tool->translation()).norm() * 1e3, 1e-6);
+    }
+    if (branch && a[i].branch) EXPECT_EQ(a[i].branch, b[i].branch);
+  }
+}
+
+// A source program with random poses (incl. gimbal orientations), frames and all eight branches.
+std::string randomRapid(std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::string s = "MODULE mRand\n  PERS tooldata tT:=[TRUE,[[1.5,-2.25,250.125],[0.9238795325,0,0.3826834324,0]],[5,[0,0,100],[1,0,0,0],0,0,0]];\n";
+  s += "  PERS wobjdata wW:=[FALSE,TRUE,\"\",[[1400.5,-12.75,400.25],[0.965925826289068,0,0,0.258819045102521]],[[10,0,0],[1,0,0,0]]];\n";
+  s += "  PROC main()\n";
+  for (int i = 0; i < 40; ++i) {
+    Eigen::Quaterniond q(u(rng), u(rng), u(rng), u(rng));
+    if (i % 10 == 3) q = Eigen::Quaterniond(Eigen::AngleAxisd(kPi / 2, Vec3::UnitY()) * Eigen::AngleAxisd(u(rng), Vec3::UnitX()));
+    q.normalize();
+    char buf[512];
+    std::snprintf(buf, sizeof buf,
+                  "    %s [[%.6f,%.6f,%.6f],[%.12f,%.12f,%.12f,%.12f],[0,-1,2,%d],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]],v100,%s,tT\\WObj:=wW;\n",
+                  i % 3 == 0 ? "MoveJ" : "MoveL", 500 * u(rng), 500 * u(rng), 500 * u(rng), q.w(), q.x(), q.y(), q.z(), i % 8,
+                  i % 2 ? "fine" : "z1");
+    s += buf;
+  }
+  s += "  ENDPROC\nENDMODULE\n";
+  return s;
+}
+
+TEST(PostprocConvert, EveryDialectPairKeepsPoseFramesAndBranch) {
+  std::mt19937 rng(7);
+  const std::string dir = test::tempDir("convert");
+  test::writeFile(dir + "/rand.mod", randomRapid(rng));
+  const Program src = readProgram(dir + "/rand.mod");
+  const std::vector<Seen> ref = cartesianMotions(src);
+  ASSERT_EQ(ref.size(), 40u);
+  for (const Dialect d : {Dialect::kKrl, Dialect::kRapid, Dialect::kTp, Dialect::kCsv, Dialect::kJson}) {
+    SCOPED_TRACE(dialectName(d));
+    ConversionReport rep;
+    const auto files = convertProgram(src, d, dir + "/out_" + dialectName(d), rep);
+    EXPECT_TRUE(rep.skipped.empty());
+    Program back = readBack(files, d);
+    if (d == Dialect::kTp) {  // UFRAME/UTOOL values live in the controller
+      resolveFrame(back, "UFRAME[1]", *ref[0].base);
+      resolveFrame(back, "UTOOL[1]", *ref[0].tool);
+    }
+    const bool branch = d != Dialect::kCsv && d != Dialect::kJson;
+    expectSame(ref, cartesianMotions(back), true, branch);
+    // and onwards: d -> every other dialect
+    for (const Dialect e : {Dialect::kKrl, Dialect::kRapid, Dialect::kTp, Dialect::kJson}) {
+      if (e == d) continue;
+      ConversionReport rep2;
+      const auto files2 = convertProgram(back, e, dir + "/out_" + dialectName(d) + "_" + dialectName(e), rep2);
+      Program back2 = readBack(files2, e);
+      if (e == Dialect::kTp) {
+        resolveFrame(back2, "UFRAME[1]", *ref[0].base);
+        resolveFrame(back2, "UTOOL[1]", *ref[0].tool);
+      }
+      expectSame(ref, cartesianMotions(back2), true, branch && e != Dialect::kJson);
+    }
+  }
+}
+
+TEST(PostprocConvert, CorpusProgramsConvertAndJointTargetsAreReported) {
+  if (test::corpusDir().empty()) GTEST_SKIP() << "no corpus";
+  const std::string dir = test::tempDir("convert-corpus");
+  for (const char* f : {"DrillKRC4.src", "DrillKRC2DAT.src", "DrillIRC5.mod"}) {
+    SCOPED_TRACE(f);
+    const Program src = readProgram(test::corpusDir() + "/robodk/" + f);
+    const auto ref = cartesianMotions(src);
+    ASSERT_EQ(ref.size(), 15u);
+    for (const Dialect d : {Dialect::kKrl, Dialect::kRapid, Dialect::kCsv}) {
+      ConversionReport rep;
+      const auto files = convertProgram(src, d, dir + "/o_" + dialectName(d), rep);
+      if (d == Dialect::kCsv) {
+        EXPECT_LE(rep.skipped.size(), 1u);  // only KRL's `PTP $AXIS_ACT`
+      } else {
+        EXPECT_GE(rep.skipped.size(), 3u);  // the three joint approach targets
+      }
+      const Program back = readBack(files, d);
+      expectSame(ref, cartesianMotions(back), true, d != Dialect::kCsv);
+    }
+  }
+}
+
+TEST(PostprocConvert, UnresolvedFrameNeedsAValue) {
+  if (test::corpusDir().empty()) GTEST_SKIP() << "no corpus";
+  const Program src = readProgram(test::corpusDir() + "/robodk/DRILLR30IA.LS");
+  ConversionReport rep;
+  EXPECT_THROW(convertProgram(src, Dialect::kRapid, test::tempDir("cv") + "/x.mod", rep), InputError);
+  const auto r = test::runRoprec("convert '" + test::corpusDir() + "/robodk/DRILLR30IA.LS' --to rapid --o '" +
+                                 test::tempDir("cv2") + "/x.mod' --frame 'UFRAME[1]=1400 0 400 0 0 0;UTOOL[1]=0 0 250 0 0 0'");
+  EXPECT_EQ(r.exit_code, 1) << r.err;  // joint targets listed
+  EXPECT_NE(r.err.find("joint target"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace roprec::postproc
