@@ -349,13 +349,42 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m, const st
     c.branch_changed = c.before.status == HoleStatus::kOk && c.branch != c.before.branch;
     const ProcessAtDiameter* proc = ev.processFor(h.diameter);
     const nc::Loads loads = ev.loadsFor(proc);
-    c.theta_cmd = nc::compensateCommand(m.model, d.nc, m.compliance, c.theta_d, loads);
+    if (o.mode == OrientationMode::kKeep) {
+      // Positions only: the programmed orientation stays the original one; the programmed
+      // position p is corrected until the predicted real TCP position is the nominal one:
+      // p ← p − (p_real(p) − p_nom) (∂p_real/∂p ≈ I: converges in a few iterations).
+      Pose T = c.T_nominal;
+      Vec6 q = c.theta_d;
+      bool conv = false;
+      for (int it = 0; it < 30; ++it) {
+        const Pose T_flange = T * m.model.T_L6_tcp.inverse() * m.model.T_L6_flange;
+        const IkNearResult ik = solveIkNear(m.ik, T_flange, q);
+        if (!ik.converged) break;
+        q = ik.q;
+        const nc::Deflection df = nc::predictDeflection(m.model, d.nc, m.compliance, q, loads);
+        if (!df.converged) break;
+        const Vec3 err = df.T_real.translation() - c.T_nominal.translation();
+        if (err.norm() < 5e-10) {  // 0.0005 µm: the seeded IK stops at 1e-10
+          conv = true;
+          break;
+        }
+        T.translation() -= err;
+      }
+      if (!conv) {
+        c.reason = "the position-only compensation did not converge";
+        continue;
+      }
+      c.theta_cmd = q;
+    } else {
+      c.theta_cmd = nc::compensateCommand(m.model, d.nc, m.compliance, c.theta_d, loads);
+    }
     const nc::PositionResult pr = nc::forwardKinematics(m.model, d.nc, c.theta_cmd);
     if (!pr.converged) {
       c.reason = "position problem did not converge at the compensated command";
       continue;
     }
     c.T_programmed = d.nc.T_W_tcp;
+    if (o.mode == OrientationMode::kKeep) c.T_programmed.linear() = c.T_nominal.linear();  // exact by construction
     c.delta = c.T_programmed * c.T_nominal.inverse();
     c.config = configurationOf(m.ik, m.robot.card, c.theta_cmd, m.config_options);
     c.config_text = formatConfig(c.config);
@@ -369,7 +398,7 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m, const st
       continue;
     }
     c.residual = def.T_real.translation() - c.T_nominal.translation();
-    c.residual_rot = smallRotationDifference(def.T_real.linear(), c.T_nominal.linear()).norm();
+    c.residual_rot = smallRotationDifference(def.T_real.linear(), c.T_nominal.linear()).norm();  // keep: the real tilt
     HoleRequest after = h;
     after.T_W_tcp = c.T_programmed;
     after.config = c.config;

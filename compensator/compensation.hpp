@@ -14,7 +14,9 @@
 /// (to the equilibrium tolerance), hence a systematic residual at solver precision.
 ///
 /// Orientation modes (`--orientation`):
-///   keep       ψ = 0: positions (and the tiny compensation rotation) only;
+///   keep       ψ = 0 and positions only: the programmed orientation is the original one to the
+///              last bit; the programmed position is iterated until the predicted real TCP
+///              position is the nominal one (the real drill axis keeps its small tilt);
 ///   flip-free  minimise joint travel between consecutive holes with penalties near joint limits
 ///              and the wrist singularity, subject to |θ5| ≥ margin, |Δθ4|, |Δθ6| ≤ threshold and
 ///              the same IK branch (unless a change is allowed);

@@ -236,6 +236,12 @@ HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const Ho
   p.e_tool = Eigen::Vector2d(p.d_work.dot(e1), p.d_work.dot(e2));
   p.position_error = p.e_tool.norm();
   p.axis_tilt = (p.d_rot - p.d_rot.dot(a) * a).norm();
+  if (h.nominal_axis) {
+    const Vec3 real = p.deflection.T_real.translation() + p.d_mach;
+    const Vec3 n = h.nominal_axis->second.normalized();
+    const Vec3 r = real - h.nominal_axis->first;
+    p.nominal_axis_error = (r - r.dot(n) * n).norm();
+  }
 
   // 5. budget
   const UncertaintyInputs& U = m.uncertainty;

@@ -107,6 +107,9 @@ struct HoleRequest {
   double depth{0.0};                ///< m (0: the process depth)
   std::optional<VendorConfig> config;  ///< the program's configuration, if it states one
   int line{0};                      ///< source line (messages)
+  /// The nominal hole (hole list): a point on its axis and the drilling direction, base frame.
+  /// When given, the prediction also reports the real drill point's distance from that axis.
+  std::optional<std::pair<Vec3, Vec3>> nominal_axis;
 };
 
 enum class HoleStatus { kOk, kUnreachable, kSingular, kNotConverged };
@@ -139,6 +142,7 @@ struct HolePrediction {
   Eigen::Vector2d e_tool{Eigen::Vector2d::Zero()};  ///< δwork in the tool XY plane (m)
   double position_error{0};         ///< m, ⊥ hole axis
   double axis_tilt{0};              ///< rad
+  std::optional<double> nominal_axis_error;  ///< m: real drill point ⊥ distance from the nominal axis
   std::vector<BudgetTerm> budget;   ///< u per in-plane axis
   Eigen::Matrix2d robdef_cov{Eigen::Matrix2d::Zero()};
   double u_robot{0}, u_mach{0}, u_work{0};

@@ -74,6 +74,18 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
       src.T_W_tcp_spec = job.requests.back().T_W_tcp;
       job.sources.push_back(src);
     }
+    if (hole_list) {
+      const std::vector<postproc::HoleSpec> ref = postproc::readHoleList(*hole_list);
+      for (HoleRequest& r : job.requests) {
+        for (const auto& s : ref) {
+          if (s.id != r.id) continue;
+          r.nominal_axis = std::make_pair(Vec3(cell.T_base_wobj * (s.position_mm * 1e-3)),
+                                          Vec3(cell.T_base_wobj.linear() * s.direction.normalized()));
+          if (s.tolerance_mm) r.tolerance = *s.tolerance_mm * 1e-3;
+          if (s.diameter_mm) r.diameter = *s.diameter_mm * 1e-3;
+        }
+      }
+    }
     job.program = std::move(parsed);
     return job;
   }
@@ -126,6 +138,8 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
       if (m.hole != static_cast<int>(i)) continue;
       const postproc::HoleSpec& s = specs[static_cast<size_t>(m.spec)];
       r.id = s.id;
+      r.nominal_axis = std::make_pair(Vec3(cell.T_base_wobj * (s.position_mm * 1e-3)),
+                                      Vec3(cell.T_base_wobj.linear() * s.direction.normalized()));
       if (s.tolerance_mm) r.tolerance = *s.tolerance_mm * 1e-3;
       if (s.diameter_mm) r.diameter = *s.diameter_mm * 1e-3;
       if (s.depth_mm) r.depth = *s.depth_mm * 1e-3;

@@ -127,6 +127,7 @@ Json holeJson(const HolePrediction& h, const HoleRequest& r) {
     d.set("work_tool_xy", Json::vector(h.e_tool * 1e6, 3));
     d.set("position_error", Json::number(h.position_error * 1e6, 3));
     d.set("axis_tilt_urad", Json::number(h.axis_tilt * 1e6, 3));
+    if (h.nominal_axis_error) d.set("from_nominal_axis", Json::number(*h.nominal_axis_error * 1e6, 4));
     j.set("deviation_um", d);
     Json u = Json::object();
     u.set("U_robot", Json::number(h.U_robot * 1e6, 3));
