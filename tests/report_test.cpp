@@ -1,0 +1,713 @@
+// The HTML report of `roprec predict` / `roprec compensate` (plugin/report.hpp): structure,
+// determinism, escaping, self-containedness, and a real headless-Chromium render whose screenshot
+// is decoded (own PNG + inflate reader, checked by the PNG CRC-32 and zlib Adler-32 of every
+// stream) and checked for a drawn map.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "compensator/prediction.hpp"
+#include "plugin/report.hpp"
+#include "support/test_support.hpp"
+
+namespace roprec {
+namespace {
+
+namespace fs = std::filesystem;
+
+// ------------------------------------------------------------------ synthetic input
+
+/// Rotation whose third column (tool +z, the drilling direction) is `a`.
+Pose toolPose(const Vec3& p, const Vec3& a) {
+  const Vec3 z = a.normalized();
+  const Vec3 helper = std::abs(z.z()) < 0.9 ? Vec3::UnitZ() : Vec3::UnitX();
+  const Vec3 x = helper.cross(z).normalized();
+  const Vec3 y = z.cross(x);
+  Pose T = Pose::Identity();
+  T.linear().col(0) = x;
+  T.linear().col(1) = y;
+  T.linear().col(2) = z;
+  T.translation() = p;
+  return T;
+}
+
+struct Synthetic {
+  std::vector<HolePrediction> preds;
+  std::vector<Pose> poses;
+  int branch_changes{0};
+  int not_ok{0};
+};
+
+/// 60 holes on two faces (30 on a vertical face drilled along +X, 30 on a top face drilled along −Z),
+/// deviations growing with reach, a wrist-configuration change (branch 0 → 4 → 0) in the middle of face
+/// A, one unreachable and one singular hole, a few holes with a large model uncertainty (does not conform),
+/// tolerances ⌀0.2 / ⌀0.3 mm, verdicts by the ISO 14253-1 rule.
+Synthetic makeSynthetic(unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> U01(0.0, 1.0);
+  Synthetic s;
+  const double k = 2.4477;
+  int prev_branch = -1;
+  for (int face = 0; face < 2; ++face) {
+    for (int r = 0; r < 5; ++r) {
+      for (int c = 0; c < 6; ++c) {
+        HolePrediction p;
+        const int n = face * 30 + r * 6 + c;
+        p.id = "H" + std::to_string(100 + n);
+        if (n == 7) p.id = "<script>&\"";
+        Vec3 pos, axis;
+        if (face == 0) {
+          pos = Vec3(1.35, -0.25 + 0.1 * c, 0.45 + 0.07 * r);
+          axis = Vec3::UnitX();
+        } else {
+          pos = Vec3(1.0 + 0.08 * r, -0.3 + 0.12 * c, 0.8);
+          axis = -Vec3::UnitZ();
+        }
+        s.poses.push_back(toolPose(pos, axis));
+        p.diameter = (c % 3 == 0) ? 12e-3 : 8e-3;
+        p.depth = 2.0 * p.diameter;
+        p.tolerance = (r == 4) ? 0.3e-3 : 0.2e-3;
+        p.mc_time = p.depth / (0.2e-3 * 3000.0 / 60.0) + 2.0;
+        p.branch = face == 0 ? ((r == 2 && c >= 2 && c <= 3) ? 4 : 0) : 2;
+        p.config = p.branch == 0 ? "S 110 T 000010" : p.branch == 4 ? "S 010 T 000010" : "S 110 T 000011";
+        for (int j = 0; j < 6; ++j) p.joints[j] = (0.3 * j - 0.7 + 0.05 * c - 0.03 * r) * (face ? -1 : 1);
+        if (n == 40) {
+          p.status = HoleStatus::kUnreachable;
+          p.verdict = Verdict::kUnreachable;
+          p.reason = "no IK solution within the joint limits";
+          p.config.clear();
+          ++s.not_ok;
+          s.preds.push_back(p);
+          continue;
+        }
+        if (n == 53) {
+          p.status = HoleStatus::kSingular;
+          p.verdict = Verdict::kSingular;
+          p.reason = "wrist singular (|sin θ5| = 0.004)";
+          ++s.not_ok;
+          s.preds.push_back(p);
+          continue;
+        }
+        if (prev_branch >= 0 && p.branch != prev_branch) ++s.branch_changes;
+        prev_branch = p.branch;
+        const double reach = pos.head<2>().norm();
+        const double mag = (25e-6 + 60e-6 * (reach - 1.0)) * (1.0 + 0.15 * U01(rng)) +
+                           (p.branch == 4 ? 45e-6 : 0.0);
+        const Vec3 dir = Vec3(-0.3 + 0.2 * U01(rng), 0.4 * U01(rng) - 0.2, -1.0).normalized();
+        p.d_robot = mag * dir;
+        p.d_mach = Vec3(2e-6 * U01(rng), -1.5e-6 * U01(rng), 0.0);
+        p.d_work = p.d_robot + p.d_mach;
+        p.d_rot = Vec3(1e-5 * U01(rng), -2e-5 * U01(rng), 3e-6);
+        p.position_error = (p.d_work - p.d_work.dot(axis) * axis).norm();
+        p.axis_tilt = (p.d_rot - p.d_rot.dot(axis) * axis).norm();
+        const double scale_mach = p.diameter / 8e-3;
+        p.budget = {{"robot_repeatability", 16.6e-6, false},
+                    {"robot_deflection_model", (n % 11 == 5 ? 45e-6 : 0.12 * mag), false},
+                    {"robot_deflection_process_force", 0.05 * mag, true},
+                    {"mach_axis", 2.4e-6 * scale_mach, true},
+                    {"mach_runout", 4.2e-6 * scale_mach, true},
+                    {"mach_tool_deflection", (3.0e-6 + 6e-6 * U01(rng)) * scale_mach * scale_mach, true}};
+        double u_r2 = 0, u_m2 = 0, proc2 = 0;
+        for (const BudgetTerm& b : p.budget) {
+          (std::string(b.name).rfind("robot", 0) == 0 ? u_r2 : u_m2) += b.u * b.u;
+          if (b.process) proc2 += b.u * b.u;
+        }
+        p.u_robot = std::sqrt(u_r2);
+        p.u_mach = std::sqrt(u_m2);
+        p.u_work = std::sqrt(u_r2 + u_m2);
+        p.k = k;
+        p.U_robot = k * p.u_robot;
+        p.U_mach = k * p.u_mach;
+        p.U_work = k * p.u_work;
+        p.U_work_exact = p.U_work;
+        p.process_share = proc2 / (p.u_work * p.u_work);
+        const double half = 0.5 * p.tolerance;
+        p.verdict = p.U_work > half                       ? Verdict::kDoesNotConform
+                    : p.position_error + p.U_work > half ? Verdict::kConformsAfterCompensation
+                                                          : Verdict::kConforms;
+        s.preds.push_back(p);
+      }
+    }
+  }
+  return s;
+}
+
+cli::ReportInput makeInput(const Synthetic& s, bool compensation) {
+  cli::ReportInput in;
+  in.title = "roprec prediction \u2014 housing_<B>.src";
+  in.robot = "kuka-kr120-r2500-pro (KUKA KR 120 R2500 pro)";
+  in.cell = "e-motor housing cell (cells/housing.xml)";
+  in.program = "programs/housing_<B>.src";
+  in.process = "drilling, Al 6061-T6, Dc 8/12 mm, f 0.2 mm/rev, 3000 rpm";
+  in.uncertainty_method = "linearised";
+  in.uncertainty_source = "stiffness 10 % per joint; servo 20 % (estimate); process force \u00b115 %";
+  in.default_tolerance_mm = 0.2;
+  in.compensation = compensation;
+  for (size_t i = 0; i < s.preds.size(); ++i) {
+    cli::ReportHole h;
+    h.prediction = &s.preds[i];
+    h.T_W_tcp = s.poses[i];
+    if (compensation && s.preds[i].status == HoleStatus::kOk) {
+      h.residual_um = 0.02 * s.preds[i].position_error * 1e6 + 0.3;
+      h.rotation_about_axis_deg = (i % 5 == 0) ? 12.5 : 0.0;
+    }
+    in.holes.push_back(h);
+  }
+  in.summary = summarize(s.preds);
+  return in;
+}
+
+size_t countOf(const std::string& text, const std::string& what) {
+  size_t n = 0;
+  for (size_t p = text.find(what); p != std::string::npos; p = text.find(what, p + what.size())) ++n;
+  return n;
+}
+
+TEST(Report, DeterministicAndSelfContained) {
+  const Synthetic s = makeSynthetic(20201);
+  const std::string a = cli::renderReport(makeInput(s, false));
+  const Synthetic s2 = makeSynthetic(20201);  // rebuilt from scratch: other addresses, same values
+  const std::string b = cli::renderReport(makeInput(s2, false));
+  EXPECT_EQ(a, b);
+  EXPECT_EQ(a.rfind("<!DOCTYPE html>", 0), 0u);
+  EXPECT_NE(a.find("</html>"), std::string::npos);
+
+  // no network: the only URL is the SVG namespace
+  std::string stripped = a;
+  const std::string ns = "xmlns=\"http://www.w3.org/2000/svg\"";
+  for (size_t p = stripped.find(ns); p != std::string::npos; p = stripped.find(ns)) stripped.erase(p, ns.size());
+  EXPECT_EQ(stripped.find("http://"), std::string::npos);
+  EXPECT_EQ(stripped.find("https://"), std::string::npos);
+  EXPECT_EQ(stripped.find("//www."), std::string::npos);
+  EXPECT_EQ(stripped.find("url("), std::string::npos);
+  EXPECT_EQ(stripped.find("@import"), std::string::npos);
+  EXPECT_EQ(stripped.find(" src="), std::string::npos);
+  EXPECT_EQ(stripped.find("<script"), std::string::npos);
+  EXPECT_EQ(stripped.find("<link"), std::string::npos);
+}
+
+TEST(Report, EscapesEveryInputString) {
+  const Synthetic s = makeSynthetic(20201);
+  const std::string html = cli::renderReport(makeInput(s, false));
+  EXPECT_EQ(html.find("<script"), std::string::npos);
+  EXPECT_EQ(html.find("<B>"), std::string::npos);
+  EXPECT_NE(html.find("&lt;script&gt;&amp;&quot;"), std::string::npos);
+  EXPECT_NE(html.find("housing_&lt;B&gt;.src"), std::string::npos);
+  // the hostile id in the table row and in the map tooltips (3 panels)
+  EXPECT_EQ(countOf(html, "<td class=\"id\">&lt;script&gt;&amp;&quot;</td>"), 1u);
+  EXPECT_GE(countOf(html, "<title>&lt;script&gt;&amp;&quot;"), 3u);
+}
+
+TEST(Report, MapsTablesBudgetAndVerdicts) {
+  const Synthetic s = makeSynthetic(20201);
+  const cli::ReportInput in = makeInput(s, false);
+  const std::string html = cli::renderReport(in);
+  // two faces (+X and −Z drilling) × three maps
+  EXPECT_EQ(countOf(html, "<h3 class=\"face\">"), 2u);
+  EXPECT_EQ(countOf(html, "<figure class=\"panel\">"), 6u);
+  EXPECT_EQ(countOf(html, "drilling direction +X"), 1u);
+  EXPECT_EQ(countOf(html, "drilling direction \u2212Z"), 1u);
+  EXPECT_EQ(countOf(html, "<figcaption>|\u03b4robot|"), 2u);
+  EXPECT_EQ(countOf(html, "<figcaption>Position error"), 2u);
+  EXPECT_EQ(countOf(html, "<figcaption>U<sub>work</sub>"), 2u);
+  // every predicted hole is one marker per map; rings mark each configuration change in each map
+  const size_t ok = s.preds.size() - static_cast<size_t>(s.not_ok);
+  EXPECT_EQ(countOf(html, "class=\"mk\""), 3 * ok);
+  EXPECT_EQ(s.branch_changes, 3);  // 0 → 4 → 0 on face A, 0 → 2 at face B
+  EXPECT_EQ(countOf(html, "<circle class=\"chg\""), 3u * static_cast<size_t>(s.branch_changes));
+  EXPECT_EQ(countOf(html, "<td class=\"chg\""), static_cast<size_t>(s.branch_changes));
+  // unreachable and singular holes: crosses in each map (+1 legend icon), reason in the table
+  EXPECT_EQ(countOf(html, "stroke-linecap=\"round\""), 3u * static_cast<size_t>(s.not_ok) + 1u);
+  EXPECT_NE(html.find("no IK solution within the joint limits"), std::string::npos);
+  // table: one row per hole, ids in order
+  size_t last = 0;
+  for (const HolePrediction& p : s.preds) {
+    if (p.id.find('<') != std::string::npos) continue;
+    const size_t at = html.find("<td class=\"id\">" + p.id + "</td>");
+    ASSERT_NE(at, std::string::npos) << p.id;
+    EXPECT_GT(at, last) << p.id;
+    last = at;
+  }
+  const size_t tbody = html.find("<table class=\"holes\">");
+  ASSERT_NE(tbody, std::string::npos);
+  EXPECT_EQ(countOf(html.substr(tbody), "<tr><td>"), s.preds.size());
+  // verdict badges match the predictions
+  const CapabilitySummary& sum = in.summary;
+  EXPECT_EQ(countOf(html, "class=\"badge b-ok\">conforms<"), static_cast<size_t>(sum.conforms));
+  EXPECT_EQ(countOf(html, "class=\"badge b-comp\""), static_cast<size_t>(sum.conforms_after_compensation));
+  EXPECT_EQ(countOf(html, "class=\"badge b-nc\""), static_cast<size_t>(sum.does_not_conform));
+  EXPECT_EQ(countOf(html, "class=\"badge b-unr\""), 1u);
+  EXPECT_EQ(countOf(html, "class=\"badge b-sing\""), 1u);
+  EXPECT_GT(sum.conforms, 0);
+  EXPECT_GT(sum.conforms_after_compensation, 0);
+  EXPECT_GT(sum.does_not_conform, 0);
+  // the summary sentence and the budget (six terms, k explained)
+  EXPECT_NE(html.find("<strong>" + std::to_string(sum.robot_can_take) + " of 60 holes can be taken by the robot"),
+            std::string::npos);
+  EXPECT_NE(html.find("Robot repeatability"), std::string::npos);
+  EXPECT_NE(html.find("Tool deflection"), std::string::npos);
+  EXPECT_NE(html.find("k = 2.448"), std::string::npos);
+  EXPECT_EQ(countOf(html, "<span class=\"sw\""), 6u);
+}
+
+TEST(Report, BudgetStatisticsAreTheMeansOverPredictedHoles) {
+  const Synthetic s = makeSynthetic(7);
+  const std::string html = cli::renderReport(makeInput(s, false));
+  // robot repeatability is 16.6 µm at every hole: mean = max = 16.60
+  const size_t at = html.find("Robot repeatability");
+  ASSERT_NE(at, std::string::npos);
+  const std::string row = html.substr(at, html.find("</tr>", at) - at);
+  EXPECT_EQ(countOf(row, "<td>16.60</td>"), 2u) << row;
+  // mean U_work by hand
+  double sum = 0, mx = 0;
+  int n = 0;
+  for (const HolePrediction& p : s.preds) {
+    if (p.status != HoleStatus::kOk) continue;
+    sum += p.U_work * 1e6;
+    mx = std::max(mx, p.U_work * 1e6);
+    ++n;
+  }
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "<td>%.2f</td><td>%.2f</td>", sum / n, mx);
+  const size_t uw = html.find("<td class=\"l\">U<sub>work</sub>");
+  ASSERT_NE(uw, std::string::npos);
+  EXPECT_NE(html.substr(uw, 300).find(buf), std::string::npos) << html.substr(uw, 300);
+}
+
+TEST(Report, CompensationAddsBeforeAfterMapsAndColumns) {
+  const Synthetic s = makeSynthetic(20201);
+  const std::string html = cli::renderReport(makeInput(s, true));
+  EXPECT_EQ(countOf(html, "<figure class=\"panel\">"), 8u);
+  EXPECT_EQ(countOf(html, "before compensation</figcaption>"), 2u);
+  EXPECT_EQ(countOf(html, "<figcaption>Residual"), 2u);
+  EXPECT_NE(html.find("<th>Residual [\u00b5m]</th>"), std::string::npos);
+  EXPECT_NE(html.find("<td>12.50</td>"), std::string::npos);
+}
+
+TEST(Report, EmptyProgramStillRenders) {
+  cli::ReportInput in;
+  in.title = "empty";
+  const std::string html = cli::renderReport(in);
+  EXPECT_NE(html.find("</html>"), std::string::npos);
+  EXPECT_NE(html.find("0 of 0 holes"), std::string::npos);
+  EXPECT_EQ(countOf(html, "<figure class=\"panel\">"), 0u);
+}
+
+// ------------------------------------------------------------------ PNG decoding (RFC 1950/1951, PNG spec)
+
+std::uint32_t crc32(const std::uint8_t* p, size_t n) {
+  static const std::array<std::uint32_t, 256> table = [] {
+    std::array<std::uint32_t, 256> t{};
+    for (std::uint32_t i = 0; i < 256; ++i) {
+      std::uint32_t c = i;
+      for (int k = 0; k < 8; ++k) c = (c & 1) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+      t[i] = c;
+    }
+    return t;
+  }();
+  std::uint32_t c = 0xFFFFFFFFu;
+  for (size_t i = 0; i < n; ++i) c = table[(c ^ p[i]) & 0xFF] ^ (c >> 8);
+  return c ^ 0xFFFFFFFFu;
+}
+
+/// Inflate (RFC 1951) after the canonical-Huffman decoder of zlib's puff.c (M. Adler).
+class Inflate {
+ public:
+  Inflate(const std::vector<std::uint8_t>& in, size_t pos) : in_(in), pos_(pos) {}
+
+  std::vector<std::uint8_t> run() {
+    int last = 0;
+    do {
+      last = bits(1);
+      const int type = bits(2);
+      if (type == 0) {
+        stored();
+      } else if (type == 1) {
+        fixed();
+      } else if (type == 2) {
+        dynamic();
+      } else {
+        throw std::runtime_error("inflate: invalid block type");
+      }
+    } while (!last);
+    return std::move(out_);
+  }
+  [[nodiscard]] size_t bytePos() const { return pos_; }
+
+ private:
+  struct Huffman {
+    std::array<short, 16> count{};
+    std::vector<short> symbol;
+  };
+
+  int bits(int need) {
+    long val = bitbuf_;
+    while (bitcnt_ < need) {
+      if (pos_ >= in_.size()) throw std::runtime_error("inflate: out of input");
+      val |= static_cast<long>(in_[pos_++]) << bitcnt_;
+      bitcnt_ += 8;
+    }
+    bitbuf_ = static_cast<int>(val >> need);
+    bitcnt_ -= need;
+    return static_cast<int>(val & ((1L << need) - 1));
+  }
+
+  void stored() {
+    bitbuf_ = 0;
+    bitcnt_ = 0;
+    if (pos_ + 4 > in_.size()) throw std::runtime_error("inflate: truncated stored block");
+    const unsigned len = in_[pos_] | (in_[pos_ + 1] << 8);
+    const unsigned nlen = in_[pos_ + 2] | (in_[pos_ + 3] << 8);
+    pos_ += 4;
+    if (len != (~nlen & 0xFFFFu)) throw std::runtime_error("inflate: stored length mismatch");
+    if (pos_ + len > in_.size()) throw std::runtime_error("inflate: truncated stored block");
+    out_.insert(out_.end(), in_.begin() + static_cast<long>(pos_), in_.begin() + static_cast<long>(pos_ + len));
+    pos_ += len;
+  }
+
+  int decode(const Huffman& h) {
+    int code = 0, first = 0, index = 0;
+    for (int len = 1; len <= 15; ++len) {
+      code |= bits(1);
+      const int count = h.count[static_cast<size_t>(len)];
+      if (code - count < first) return h.symbol[static_cast<size_t>(index + (code - first))];
+      index += count;
+      first += count;
+      first <<= 1;
+      code <<= 1;
+    }
+    throw std::runtime_error("inflate: bad Huffman code");
+  }
+
+  static Huffman build(const short* length, int n) {
+    Huffman h;
+    h.symbol.assign(static_cast<size_t>(n), 0);
+    for (int s = 0; s < n; ++s) h.count[static_cast<size_t>(length[s])]++;
+    std::array<short, 16> offs{};
+    for (int len = 1; len < 15; ++len) {
+      offs[static_cast<size_t>(len + 1)] =
+          static_cast<short>(offs[static_cast<size_t>(len)] + h.count[static_cast<size_t>(len)]);
+    }
+    for (int s = 0; s < n; ++s) {
+      if (length[s] != 0) h.symbol[static_cast<size_t>(offs[static_cast<size_t>(length[s])]++)] = static_cast<short>(s);
+    }
+    return h;
+  }
+
+  void codes(const Huffman& lencode, const Huffman& distcode) {
+    static constexpr std::array<short, 29> kLBase{3,  4,  5,  6,  7,  8,  9,  10, 11,  13,  15,  17,  19,  23, 27,
+                                                  31, 35, 43, 51, 59, 67, 83, 99, 115, 131, 163, 195, 227, 258};
+    static constexpr std::array<short, 29> kLExt{0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2,
+                                                 2, 3, 3, 3, 3, 4, 4, 4, 4, 5, 5, 5, 5, 0};
+    static constexpr std::array<int, 30> kDBase{1,   2,   3,   4,   5,   7,    9,    13,   17,   25,
+                                                33,  49,  65,  97,  129, 193,  257,  385,  513,  769,
+                                                1025, 1537, 2049, 3073, 4097, 6145, 8193, 12289, 16385, 24577};
+    static constexpr std::array<short, 30> kDExt{0, 0, 0, 0, 1, 1, 2, 2,  3,  3,  4,  4,  5,  5,  6,
+                                                 6, 7, 7, 8, 8, 9, 9, 10, 10, 11, 11, 12, 12, 13, 13};
+    for (;;) {
+      int sym = decode(lencode);
+      if (sym < 256) {
+        out_.push_back(static_cast<std::uint8_t>(sym));
+      } else if (sym == 256) {
+        return;
+      } else {
+        sym -= 257;
+        if (sym >= 29) throw std::runtime_error("inflate: bad length symbol");
+        const size_t len = static_cast<size_t>(kLBase[static_cast<size_t>(sym)] + bits(kLExt[static_cast<size_t>(sym)]));
+        const int dsym = decode(distcode);
+        if (dsym >= 30) throw std::runtime_error("inflate: bad distance symbol");
+        const size_t dist = static_cast<size_t>(kDBase[static_cast<size_t>(dsym)] + bits(kDExt[static_cast<size_t>(dsym)]));
+        if (dist > out_.size()) throw std::runtime_error("inflate: distance too far back");
+        for (size_t i = 0; i < len; ++i) out_.push_back(out_[out_.size() - dist]);
+      }
+    }
+  }
+
+  void fixed() {
+    std::array<short, 288> l{};
+    for (int s = 0; s < 288; ++s) l[static_cast<size_t>(s)] = s < 144 ? 8 : s < 256 ? 9 : s < 280 ? 7 : 8;
+    std::array<short, 30> d{};
+    d.fill(5);
+    codes(build(l.data(), 288), build(d.data(), 30));
+  }
+
+  void dynamic() {
+    static constexpr std::array<short, 19> kOrder{16, 17, 18, 0, 8, 7, 9, 6, 10, 5, 11, 4, 12, 3, 13, 2, 14, 1, 15};
+    const int nlen = bits(5) + 257, ndist = bits(5) + 1, ncode = bits(4) + 4;
+    if (nlen > 286 || ndist > 30) throw std::runtime_error("inflate: bad counts");
+    std::array<short, 320> lengths{};
+    for (int i = 0; i < ncode; ++i) lengths[static_cast<size_t>(kOrder[static_cast<size_t>(i)])] = static_cast<short>(bits(3));
+    const Huffman lencode0 = build(lengths.data(), 19);
+    int index = 0;
+    while (index < nlen + ndist) {
+      int sym = decode(lencode0);
+      if (sym < 16) {
+        lengths[static_cast<size_t>(index++)] = static_cast<short>(sym);
+      } else {
+        short len = 0;
+        if (sym == 16) {
+          if (index == 0) throw std::runtime_error("inflate: repeat with no first length");
+          len = lengths[static_cast<size_t>(index - 1)];
+          sym = 3 + bits(2);
+        } else if (sym == 17) {
+          sym = 3 + bits(3);
+        } else {
+          sym = 11 + bits(7);
+        }
+        if (index + sym > nlen + ndist) throw std::runtime_error("inflate: too many lengths");
+        while (sym--) lengths[static_cast<size_t>(index++)] = len;
+      }
+    }
+    codes(build(lengths.data(), nlen), build(lengths.data() + nlen, ndist));
+  }
+
+  const std::vector<std::uint8_t>& in_;
+  size_t pos_;
+  int bitbuf_{0}, bitcnt_{0};
+  std::vector<std::uint8_t> out_;
+};
+
+struct Image {
+  int w{0}, h{0};
+  std::vector<std::uint8_t> rgb;  ///< 3 bytes a pixel
+};
+
+std::uint32_t be32(const std::uint8_t* p) {
+  return (std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) | (std::uint32_t{p[2]} << 8) | p[3];
+}
+
+/// 8-bit RGB/RGBA, non-interlaced PNG → RGB (alpha composited on white). Throws on any CRC/Adler error.
+Image decodePng(const std::vector<std::uint8_t>& f) {
+  static constexpr std::array<std::uint8_t, 8> kSig{137, 80, 78, 71, 13, 10, 26, 10};
+  if (f.size() < 8 || !std::equal(kSig.begin(), kSig.end(), f.begin())) throw std::runtime_error("png: signature");
+  size_t p = 8;
+  int w = 0, h = 0, ctype = -1;
+  std::vector<std::uint8_t> idat;
+  bool end = false;
+  while (!end) {
+    if (p + 12 > f.size()) throw std::runtime_error("png: truncated chunk");
+    const std::uint32_t len = be32(&f[p]);
+    if (p + 12 + len > f.size()) throw std::runtime_error("png: truncated chunk data");
+    const std::string type(reinterpret_cast<const char*>(&f[p + 4]), 4);
+    if (crc32(&f[p + 4], len + 4) != be32(&f[p + 8 + len])) throw std::runtime_error("png: CRC of " + type);
+    const std::uint8_t* d = &f[p + 8];
+    if (type == "IHDR") {
+      w = static_cast<int>(be32(d));
+      h = static_cast<int>(be32(d + 4));
+      if (d[8] != 8 || (d[9] != 2 && d[9] != 6) || d[12] != 0) throw std::runtime_error("png: unsupported format");
+      ctype = d[9];
+    } else if (type == "IDAT") {
+      idat.insert(idat.end(), d, d + len);
+    } else if (type == "IEND") {
+      end = true;
+    }
+    p += 12 + len;
+  }
+  if (w <= 0 || h <= 0 || idat.size() < 6) throw std::runtime_error("png: no image");
+  if ((idat[0] & 0x0F) != 8 || ((idat[0] << 8) | idat[1]) % 31 != 0 || (idat[1] & 0x20)) {
+    throw std::runtime_error("png: bad zlib header");
+  }
+  Inflate inf(idat, 2);
+  const std::vector<std::uint8_t> raw = inf.run();
+  std::uint32_t a = 1, b = 0;
+  for (const std::uint8_t c : raw) {
+    a = (a + c) % 65521u;
+    b = (b + a) % 65521u;
+  }
+  if (inf.bytePos() + 4 > idat.size() || be32(&idat[inf.bytePos()]) != ((b << 16) | a)) {
+    throw std::runtime_error("png: Adler-32 mismatch");
+  }
+  const size_t bpp = ctype == 6 ? 4 : 3;
+  const size_t stride = bpp * static_cast<size_t>(w);
+  if (raw.size() != (stride + 1) * static_cast<size_t>(h)) throw std::runtime_error("png: size mismatch");
+  std::vector<std::uint8_t> cur(stride), prev(stride, 0);
+  Image img;
+  img.w = w;
+  img.h = h;
+  img.rgb.resize(3 * static_cast<size_t>(w) * static_cast<size_t>(h));
+  for (int y = 0; y < h; ++y) {
+    const std::uint8_t* row = &raw[static_cast<size_t>(y) * (stride + 1)];
+    const int filter = row[0];
+    for (size_t i = 0; i < stride; ++i) {
+      const int x = row[1 + i];
+      const int left = i >= bpp ? cur[i - bpp] : 0;
+      const int up = prev[i];
+      const int ul = i >= bpp ? prev[i - bpp] : 0;
+      int v = 0;
+      switch (filter) {
+        case 0: v = x; break;
+        case 1: v = x + left; break;
+        case 2: v = x + up; break;
+        case 3: v = x + (left + up) / 2; break;
+        case 4: {
+          const int pp = left + up - ul, pa = std::abs(pp - left), pb = std::abs(pp - up), pc = std::abs(pp - ul);
+          v = x + ((pa <= pb && pa <= pc) ? left : pb <= pc ? up : ul);
+          break;
+        }
+        default: throw std::runtime_error("png: bad filter");
+      }
+      cur[i] = static_cast<std::uint8_t>(v & 0xFF);
+    }
+    for (int xx = 0; xx < w; ++xx) {
+      const std::uint8_t* px = &cur[static_cast<size_t>(xx) * bpp];
+      const double alpha = bpp == 4 ? px[3] / 255.0 : 1.0;
+      for (int c = 0; c < 3; ++c) {
+        img.rgb[3 * (static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(xx)) + static_cast<size_t>(c)] =
+            static_cast<std::uint8_t>(std::lround(alpha * px[c] + (1.0 - alpha) * 255.0));
+      }
+    }
+    std::swap(cur, prev);
+  }
+  return img;
+}
+
+std::vector<std::uint8_t> readBytes(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>()};
+}
+
+TEST(ReportPng, DecoderRejectsCorruption) {
+  // a 2×1 RGB PNG (stored deflate block), hand-assembled from the PNG and zlib specifications
+  auto chunk = [](std::vector<std::uint8_t>& out, const char* type, const std::vector<std::uint8_t>& data) {
+    const std::uint32_t n = static_cast<std::uint32_t>(data.size());
+    for (int s = 24; s >= 0; s -= 8) out.push_back(static_cast<std::uint8_t>(n >> s));
+    std::vector<std::uint8_t> td(type, type + 4);
+    td.insert(td.end(), data.begin(), data.end());
+    out.insert(out.end(), td.begin(), td.end());
+    const std::uint32_t c = crc32(td.data(), td.size());
+    for (int s = 24; s >= 0; s -= 8) out.push_back(static_cast<std::uint8_t>(c >> s));
+  };
+  const std::vector<std::uint8_t> raw{0, 255, 0, 0, 10, 20, 30};  // filter 0, red, dark blue-ish
+  std::uint32_t a = 1, b = 0;
+  for (const std::uint8_t c : raw) {
+    a = (a + c) % 65521u;
+    b = (b + a) % 65521u;
+  }
+  const std::uint32_t adler = (b << 16) | a;
+  std::vector<std::uint8_t> z{0x78, 0x01, 0x01, 7, 0, static_cast<std::uint8_t>(~7), 0xFF};
+  z.insert(z.end(), raw.begin(), raw.end());
+  for (int s = 24; s >= 0; s -= 8) z.push_back(static_cast<std::uint8_t>(adler >> s));
+  std::vector<std::uint8_t> png{137, 80, 78, 71, 13, 10, 26, 10};
+  chunk(png, "IHDR", {0, 0, 0, 2, 0, 0, 0, 1, 8, 2, 0, 0, 0});
+  chunk(png, "IDAT", z);
+  chunk(png, "IEND", {});
+  const Image img = decodePng(png);
+  ASSERT_EQ(img.w, 2);
+  ASSERT_EQ(img.h, 1);
+  EXPECT_EQ(img.rgb, (std::vector<std::uint8_t>{255, 0, 0, 10, 20, 30}));
+  std::vector<std::uint8_t> bad = png;
+  bad[8 + 12 + 13 + 8 + 8] ^= 1;  // a byte of the IDAT payload: CRC fails
+  EXPECT_THROW(decodePng(bad), std::runtime_error);
+}
+
+/// Distance of a colour from the viridis curve (same anchors as the report), for saturated colours.
+double viridisDistance(int r, int g, int b) {
+  static const std::vector<std::array<double, 3>> curve = [] {
+    static constexpr std::array<std::array<int, 3>, 11> kV{{{68, 1, 84},
+                                                             {72, 36, 117},
+                                                             {65, 68, 135},
+                                                             {53, 95, 141},
+                                                             {42, 120, 142},
+                                                             {33, 145, 140},
+                                                             {34, 168, 132},
+                                                             {68, 191, 112},
+                                                             {122, 209, 81},
+                                                             {189, 223, 38},
+                                                             {253, 231, 37}}};
+    std::vector<std::array<double, 3>> c;
+    for (int i = 0; i < 10; ++i) {
+      for (int s = 0; s < 24; ++s) {
+        const double f = s / 24.0;
+        c.push_back({kV[i][0] + f * (kV[i + 1][0] - kV[i][0]), kV[i][1] + f * (kV[i + 1][1] - kV[i][1]),
+                     kV[i][2] + f * (kV[i + 1][2] - kV[i][2])});
+      }
+    }
+    c.push_back({253, 231, 37});
+    return c;
+  }();
+  double best = 1e9;
+  for (const auto& c : curve) {
+    best = std::min(best, std::hypot(r - c[0], g - c[1], b - c[2]));
+  }
+  return best;
+}
+
+TEST(ReportChromium, HeadlessScreenshotShowsTheMaps) {
+  const std::string chromium = "/usr/bin/chromium";
+  if (!fs::exists(chromium)) GTEST_SKIP() << "no " << chromium << " (scripts/test.sh installs it)";
+  const Synthetic s = makeSynthetic(20201);
+  const std::string html = cli::renderReport(makeInput(s, false));
+  const std::string dir = test::tempDir("report-chromium");
+  const std::string page = dir + "/report.html", png = dir + "/report.png", log = dir + "/chromium.log";
+  test::writeFile(page, html);
+  const std::string cmd = "timeout 60 '" + chromium +
+                          "' --headless --no-sandbox --disable-gpu --disable-quic --no-first-run "
+                          "--disable-background-networking --disable-component-update --disable-sync "
+                          "--hide-scrollbars --user-data-dir='" +
+                          dir + "/profile' --window-size=1400,2000 --screenshot='" + png + "' 'file://" + page +
+                          "' >'" + log + "' 2>&1 </dev/null";
+  const int rc = std::system(cmd.c_str());
+  ASSERT_TRUE(fs::exists(png)) << "chromium exit " << rc << "\n" << test::readFile(log);
+  if (const char* keep = std::getenv("ROPREC_REPORT_SCREENSHOT")) {  // for a look by a human
+    fs::copy_file(png, keep, fs::copy_options::overwrite_existing);
+    fs::copy_file(page, std::string(keep) + ".html", fs::copy_options::overwrite_existing);
+  }
+
+  const Image img = decodePng(readBytes(png));
+  ASSERT_EQ(img.w, 1400);
+  ASSERT_EQ(img.h, 2000);
+  const size_t n = static_cast<size_t>(img.w) * static_cast<size_t>(img.h);
+  size_t non_white = 0;
+  std::vector<std::uint32_t> colours;
+  // viridis pixels in short horizontal runs (markers, not the colour bars), per third of the width
+  std::array<size_t, 3> marker_px{};
+  size_t bar_px = 0, ring_px = 0;
+  for (int y = 0; y < img.h; ++y) {
+    int run = 0;
+    for (int x = 0; x <= img.w; ++x) {
+      bool vir = false;
+      if (x < img.w) {
+        const std::uint8_t* p = &img.rgb[3 * (static_cast<size_t>(y) * static_cast<size_t>(img.w) + static_cast<size_t>(x))];
+        const int r = p[0], g = p[1], b = p[2];
+        if (r < 245 || g < 245 || b < 245) ++non_white;
+        colours.push_back((std::uint32_t(r) << 16) | (std::uint32_t(g) << 8) | std::uint32_t(b));
+        const int sat = std::max({r, g, b}) - std::min({r, g, b});
+        vir = sat > 40 && viridisDistance(r, g, b) < 8.0;
+        if (std::hypot(r - 227, g - 18, b - 11) < 20) ++ring_px;  // configuration-change rings (#e3120b)
+      }
+      if (vir) {
+        ++run;
+      } else if (run > 0) {
+        if (run <= 30) {
+          marker_px[static_cast<size_t>(std::min(2, (x - run / 2) * 3 / img.w))] += static_cast<size_t>(run);
+        } else {
+          bar_px += static_cast<size_t>(run);
+        }
+        run = 0;
+      }
+    }
+  }
+  std::sort(colours.begin(), colours.end());
+  const size_t distinct = static_cast<size_t>(std::unique(colours.begin(), colours.end()) - colours.begin());
+  const double non_white_fraction = static_cast<double>(non_white) / static_cast<double>(n);
+  RecordProperty("screenshot", png);
+  EXPECT_GT(non_white_fraction, 0.08) << png;
+  EXPECT_GT(distinct, 500u) << png;
+  // three maps side by side, each with markers (≥ ~20 px a hole for 58 holes)
+  for (size_t third = 0; third < 3; ++third) EXPECT_GT(marker_px[third], 1000u) << "third " << third << " " << png;
+  EXPECT_GT(bar_px, 3000u) << png;  // colour bars
+  EXPECT_GT(ring_px, 40u) << png;   // configuration-change rings
+  if (!HasFailure()) fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace roprec
