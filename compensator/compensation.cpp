@@ -361,7 +361,8 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m, const st
         const IkNearResult ik = solveIkNear(m.ik, T_flange, q);
         if (!ik.converged) break;
         q = ik.q;
-        const nc::Deflection df = nc::predictDeflection(m.model, d.nc, m.compliance, q, loads);
+        const nc::Deflection df =
+            nc::predictDeflection(m.model, d.nc, m.compliance, q, loads, {}, controllerOffset(m, d.nc, q));
         if (!df.converged) break;
         const Vec3 err = df.T_real.translation() - c.T_nominal.translation();
         if (err.norm() < 5e-10) {  // 0.0005 µm: the seeded IK stops at 1e-10
@@ -376,7 +377,15 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m, const st
       }
       c.theta_cmd = q;
     } else {
-      c.theta_cmd = nc::compensateCommand(m.model, d.nc, m.compliance, c.theta_d, loads);
+      const Vec6 theta_m = nc::compensateCommand(m.model, d.nc, m.compliance, c.theta_d, loads);
+      // a gravity-compensating controller adds its offset to the command: θ_cmd + off(θ_cmd) = θ_m
+      c.theta_cmd = theta_m;
+      for (int it = 0; it < 20 && m.controller_gravity; ++it) {
+        const Vec6 next = theta_m - controllerOffset(m, d.nc, c.theta_cmd);
+        const double step = (next - c.theta_cmd).lpNorm<Eigen::Infinity>();
+        c.theta_cmd = next;
+        if (step < 1e-14) break;
+      }
     }
     const nc::PositionResult pr = nc::forwardKinematics(m.model, d.nc, c.theta_cmd);
     if (!pr.converged) {
@@ -392,7 +401,8 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m, const st
       c.reason = "the compensated command leaves the joint limits";
       continue;
     }
-    const nc::Deflection def = nc::predictDeflection(m.model, d.nc, m.compliance, c.theta_cmd, loads);
+    const nc::Deflection def = nc::predictDeflection(m.model, d.nc, m.compliance, c.theta_cmd, loads, {},
+                                                     controllerOffset(m, d.nc, c.theta_cmd));
     if (!def.converged) {
       c.reason = "the compliance equilibrium did not converge at the compensated command";
       continue;

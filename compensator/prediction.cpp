@@ -95,6 +95,8 @@ PredictionModel buildPredictionModel(const PredictionSetup& setup) {
     if (j.position_gain && j.velocity_gain) m.compliance.k_servo[i] = *j.position_gain * *j.velocity_gain;
   }
   m.reference_pose = vendorReferencePose(setup.robot.card);
+  m.controller_gravity = setup.controller_gravity;
+  if (m.controller_gravity) m.calibration_model = nc::buildModel(setup.robot.chain, setup.calibration_load);
   m.uncertainty = setup.uncertainty;
   m.capability = setup.capability;
   m.default_tolerance = setup.default_tolerance;
@@ -113,6 +115,15 @@ PredictionModel buildPredictionModel(const PredictionSetup& setup) {
 }
 
 PredictionData::PredictionData(const PredictionModel& m) : nc(m.model), rng(m.uncertainty.seed) {}
+
+Vec6 controllerOffset(const PredictionModel& m, nc::Data& data, const Vec6& theta) {
+  if (!m.controller_gravity) return Vec6::Zero();
+  // The calibration model has the same chain (same coordinates), so the scratch can be shared.
+  nc::solvePosition(m.calibration_model, data, theta, nc::Guess::kClosedForm);
+  nc::Loads g;
+  const Vec6 tau = nc::staticTorques(m.calibration_model, data, g);
+  return tau.cwiseQuotient(m.compliance.effective());
+}
 
 namespace {
 
@@ -214,7 +225,8 @@ HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const Ho
     loads.tcp_tool.moment = proc->wrench.torque;
   }
   p.force_base = R * loads.tcp_tool.force;
-  p.deflection = nc::predictDeflection(m.model, d.nc, m.compliance, sol.q, loads);
+  const Vec6 offset = controllerOffset(m, d.nc, sol.q);
+  p.deflection = nc::predictDeflection(m.model, d.nc, m.compliance, sol.q, loads, {}, offset);
   if (!p.deflection.converged || !p.deflection.position_converged) {
     p.status = HoleStatus::kNotConverged;
     p.verdict = Verdict::kNotConverged;
@@ -253,9 +265,12 @@ HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const Ho
     // Jacobian at the deflected configuration (data holds it after predictDeflection).
     const nc::Mat6& J = nc::tcpJacobian(m.model, d.nc);
     auto inPlane = [&](const Vec3& v) { return Eigen::Vector2d(v.dot(e1), v.dot(e2)); };
+    // Sensitivity to k_i of the part of the deflection roprec predicts (beyond a controller's own
+    // gravity compensation): net joint deformation Δθ_i = θ_i − θ_m,i − offset_i, first order.
     for (int i = 0; i < 6; ++i) {
       const Vec3 col = J.block<3, 1>(0, i);
-      const Eigen::Vector2d sk = inPlane(col * p.deflection.phi[i] * U.stiffness_rel);
+      const double net = p.deflection.theta[i] - sol.q[i] - p.deflection.dpsi[i];
+      const Eigen::Vector2d sk = inPlane(col * net * U.stiffness_rel);
       cov_def += sk * sk.transpose();
       if (m.compliance.k_servo[i] < 1e299) {
         const Eigen::Vector2d ss = inPlane(col * p.deflection.dpsi[i] * U.position_gain_rel);
@@ -292,7 +307,10 @@ HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const Ho
       const double scale = 1.0 + U.process_halfwidth * ud(rng);
       l.tcp_tool.force *= scale;
       l.tcp_tool.moment *= scale;
-      const nc::Deflection dd = nc::predictDeflection(m.model, d.nc, c, sol.q, l);
+      // a gravity-compensating controller computes its offset with the same (uncertain) stiffness
+      Vec6 off = offset;
+      if (m.controller_gravity) off = offset.cwiseProduct(m.compliance.effective()).cwiseQuotient(c.effective());
+      const nc::Deflection dd = nc::predictDeflection(m.model, d.nc, c, sol.q, l, {}, off);
       samples.emplace_back(dd.dp.dot(e1), dd.dp.dot(e2));
     }
     Eigen::Vector2d mean = Eigen::Vector2d::Zero();
@@ -338,7 +356,9 @@ HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const Ho
   p.process_share = p.u_work > 0 ? (u_mach2 + u_robdef_proc * u_robdef_proc) / (p.u_work * p.u_work) : 0.0;
 
   // 6. verdict
-  p.verdict = verdictFor(p.position_error, p.U_work, p.tolerance);
+  // The hole's real position error: from the nominal hole axis when the nominal hole is known
+  // (e.g. a compensated program checked against its hole list), else from the programmed pose.
+  p.verdict = verdictFor(p.nominal_axis_error.value_or(p.position_error), p.U_work, p.tolerance);
   return p;
 }
 

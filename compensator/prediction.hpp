@@ -84,7 +84,16 @@ struct PredictionModel {
   ConfigurationOptions config_options;
   double default_tolerance{0.2e-3};  ///< m, ⌀
   bool gravity{true};
+  /// The controller compensates gravity deflection itself for a calibration load (robot card
+  /// `<controller gravity_compensated>` or the cell's `<controller>`): it adds K_eff⁻¹ τ_g,cal(θ) to
+  /// its command, computed with `calibration_model` (links + calibration load); roprec then
+  /// predicts only the part beyond it.
+  bool controller_gravity{false};
+  nc::Model calibration_model;
 };
+
+/// The command offset of a gravity-compensating controller at command θ (zero when it does not).
+Vec6 controllerOffset(const PredictionModel& m, nc::Data& data, const Vec6& theta);
 
 struct PredictionSetup {
   Robot robot;
@@ -94,6 +103,8 @@ struct PredictionSetup {
   CapabilityInputs capability;
   double default_tolerance{0.2e-3};
   std::vector<double> hole_diameters;  ///< diameters the holes use (m); the process's is added
+  bool controller_gravity{false};      ///< see PredictionModel
+  nc::ToolAttachment calibration_load; ///< load the controller's gravity compensation assumes
 };
 
 /// Builds the model once (process evaluated per distinct diameter).

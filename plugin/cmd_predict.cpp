@@ -1,4 +1,5 @@
 /// `roprec predict`: per-hole deviation, uncertainty budget, tolerance verdict and capability.
+#include <algorithm>
 #include <filesystem>
 
 #include "compensator/atomic_file.hpp"
@@ -17,11 +18,13 @@ int run(Args& args, CommandContext& ctx) {
   const auto report_out = args.option("report");
   const auto holes = args.option("holes");
   const auto uncertainty = args.option("uncertainty");
+  const auto match_tol = args.option("match-tol");
   const std::vector<std::string> pos = args.positionals();
   args.finish();
   if (!cell) throw UsageError("give --cell CELL.xml");
   if (pos.size() != 1) throw UsageError("give exactly one PROGRAM_OR_HOLES file");
-  const PredictionContext c = loadPredictionContext(*cell, pos[0], holes, uncertainty.value_or(""));
+  const double tol = match_tol ? parseNumberList(*match_tol, 1, "--match-tol (mm)")[0] : 0.5;
+  const PredictionContext c = loadPredictionContext(*cell, pos[0], holes, uncertainty.value_or(""), tol);
 
   PredictionData data(c.model);
   std::vector<HolePrediction> preds;
@@ -90,11 +93,25 @@ int run(Args& args, CommandContext& ctx) {
       ctx.err << ": " << verdictName(h.verdict) << ": " << h.reason << "\n";
     }
   }
-  if (!ctx.quiet && !json_out) return failed ? 1 : 0;
-  if (!ctx.quiet) {
+  if (!ctx.quiet && json_out) {
     ctx.err << "roprec predict: " << sum.holes << " holes: " << sum.conforms << " conform, "
             << sum.conforms_after_compensation << " conform after compensation, " << sum.does_not_conform
             << " do not conform, " << (sum.unreachable + sum.singular + sum.not_converged) << " not handled\n";
+    ctx.err << "  the robot can take " << sum.robot_can_take << " holes = " << formatNumber(sum.mc_time_taken, 0)
+            << " s of machining-center time (of " << formatNumber(sum.mc_time_total, 0) << " s)\n";
+    double mx = 0;
+    double mean = 0;
+    int n = 0;
+    for (const HolePrediction& h : preds) {
+      if (!h.nominal_axis_error) continue;
+      mx = std::max(mx, *h.nominal_axis_error);
+      mean += *h.nominal_axis_error;
+      ++n;
+    }
+    if (n > 0) {
+      ctx.err << "  real drill points from the nominal hole axes: mean " << formatNumber(mean / n * 1e6, 3)
+              << " µm, max " << formatNumber(mx * 1e6, 3) << " µm (" << n << " holes)\n";
+    }
   }
   return failed ? 1 : 0;
 }
@@ -110,7 +127,9 @@ const CommandRegistration reg{
      "uncertainty budget U_robot, U_mach, U_work (2-D radial 95 %, k = 2.4477) and the ISO 14253-1\n"
      "verdict against the hole's position tolerance (hole list, else the cell's <tolerance>):\n"
      "conforms | conforms-after-compensation | does-not-conform | unreachable | singular.\n"
-     "--holes: a hole list matched to the program's holes (ids, diameters, depths, tolerances).\n"
+     "--holes: a hole list matched to the program's holes (ids, diameters, depths, tolerances) by id,\n"
+     "else by position within --match-tol mm (0.5); the JSON then reports from_nominal_axis, the real\n"
+     "drill point's distance from the nominal hole axis (the residual of a compensated program).\n"
      "JSON to stdout unless --json; --report writes one self-contained HTML file.\n"
      "Exit 1 if some holes could not be handled (listed on stderr), 2 for bad input.\n",
      40, run}};

@@ -50,7 +50,7 @@ CapabilityInputs capabilityFromCell(const CellSpec& cell) {
 
 PredictionContext loadPredictionContext(const std::string& cell_path, const std::string& job_path,
                                         const std::optional<std::string>& hole_list,
-                                        const std::string& uncertainty_override) {
+                                        const std::string& uncertainty_override, double match_tol_mm) {
   PredictionContext c;
   c.cell = loadCell(cell_path);
   try {
@@ -73,7 +73,7 @@ PredictionContext loadPredictionContext(const std::string& cell_path, const std:
   } else {
     c.process_description = "no process (gravity and tool weight only)";
   }
-  c.job = loadJobHoles(job_path, c.cell, c.robot, hole_list);
+  c.job = loadJobHoles(job_path, c.cell, c.robot, hole_list, match_tol_mm);
 
   PredictionSetup s;
   s.robot = c.robot;
@@ -86,6 +86,19 @@ PredictionContext loadPredictionContext(const std::string& cell_path, const std:
     throw UsageError("--uncertainty must be linear or montecarlo");
   }
   s.capability = capabilityFromCell(c.cell);
+  // gravity compensation by the controller: robot card, overridden by the cell's <controller>
+  s.controller_gravity = c.robot.card.gravity_compensated;
+  s.calibration_load.mass = c.robot.card.calibration_load_kg;
+  s.calibration_load.com = c.robot.card.calibration_load_com;
+  if (const XmlNode* e = c.cell.root.child("controller")) {
+    s.controller_gravity = e->boolean("gravity_compensated", s.controller_gravity);
+    const std::string load = e->str("calibration_load", "card");
+    if (load == "tool") {
+      s.calibration_load = c.tool;
+    } else if (load != "card") {
+      e->fail("<controller> calibration_load must be \"tool\" (the cell's tool) or \"card\"");
+    }
+  }
   s.default_tolerance = c.cell.tolerance_mm * 1e-3;
   for (const HoleRequest& r : c.job.requests) {
     if (r.diameter > 0) s.hole_diameters.push_back(r.diameter);

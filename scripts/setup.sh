@@ -34,5 +34,11 @@ if command -v ninja >/dev/null 2>&1; then GEN=(-G Ninja); fi
 if [[ ! -f "$BUILD/CMakeCache.txt" ]]; then
   cmake -S "$ROOT" -B "$BUILD" "${GEN[@]}" -DCMAKE_BUILD_TYPE=Release ${ROPREC_CMAKE_ARGS:-} >/dev/null
 fi
-cmake --build "$BUILD" --parallel "$(nproc)" -- ${ROPREC_BUILD_TARGETS:-} 2>&1 | { grep -E "error|warning:|FAILED" || true; }
-test "${PIPESTATUS[0]}" -eq 0
+TARGETS=()
+for t in ${ROPREC_BUILD_TARGETS:-}; do TARGETS+=(--target "$t"); done
+LOG="$BUILD/build.log"
+if ! cmake --build "$BUILD" --parallel "$(nproc)" "${TARGETS[@]}" >"$LOG" 2>&1; then
+  grep -E "error|FAILED" "$LOG" | head -40 >&2
+  echo "setup: build failed (full log: $LOG)" >&2
+  exit 1
+fi
