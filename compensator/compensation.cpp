@@ -127,6 +127,12 @@ bool jumpOk(const Vec6& a, const Vec6& b, double thr) {
   return std::abs(a[3] - b[3]) <= thr && std::abs(a[5] - b[5]) <= thr;
 }
 
+/// The jump limit applies between consecutive holes of one face (drilling axes within 10°): moving
+/// to another face is a repositioning move with a retract, where the wrist may turn.
+bool sameFace(const HoleRequest& a, const HoleRequest& b) {
+  return a.T_W_tcp.linear().col(2).dot(b.T_W_tcp.linear().col(2)) > std::cos(10.0 * kDeg);
+}
+
 double nodeCost(const Node& n, OrientationMode mode) {
   if (mode == OrientationMode::kStiffest) return n.u_def * 1e6 + 0.1 * n.penalty;
   return 0.1 * n.penalty + 1e-3 * n.u_def * 1e6;
@@ -201,7 +207,10 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m, const st
           const double cp = cost[static_cast<size_t>(last)][l];
           if (!std::isfinite(cp)) continue;
           const Node& pn = nodes[static_cast<size_t>(last)][l];
-          if (o.mode != OrientationMode::kKeep && !jumpOk(pn.q, nd.q, thr)) continue;
+          if (o.mode != OrientationMode::kKeep && sameFace(holes[static_cast<size_t>(last)], holes[i]) &&
+              !jumpOk(pn.q, nd.q, thr)) {
+            continue;
+          }
           const double c = cp + c0 + transitionCost(pn, nd, o.mode);
           if (c < cost[i][k]) {
             cost[i][k] = c;
@@ -275,15 +284,19 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m, const st
       if (!chosen[i].feasible) continue;
       const Node* pn = nullptr;
       const Node* nn = nullptr;
+      bool pn_face = false;
+      bool nn_face = false;
       for (size_t k = i; k-- > 0;) {
         if (chosen[k].feasible) {
           pn = &chosen[k];
+          pn_face = sameFace(holes[k], holes[i]);
           break;
         }
       }
       for (size_t k = i + 1; k < n; ++k) {
         if (chosen[k].feasible) {
           nn = &chosen[k];
+          nn_face = sameFace(holes[k], holes[i]);
           break;
         }
       }
@@ -310,10 +323,12 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m, const st
           return std::abs(nd.q[joint] - other->q[joint]) - thr;
         };
       };
-      prob.addInequality(jumpConstraint(pn, 3));
-      prob.addInequality(jumpConstraint(pn, 5));
-      prob.addInequality(jumpConstraint(nn, 3));
-      prob.addInequality(jumpConstraint(nn, 5));
+      const Node* pj = pn_face ? pn : nullptr;
+      const Node* nj = nn_face ? nn : nullptr;
+      prob.addInequality(jumpConstraint(pj, 3));
+      prob.addInequality(jumpConstraint(pj, 5));
+      prob.addInequality(jumpConstraint(nj, 3));
+      prob.addInequality(jumpConstraint(nj, 5));
       prob.setInitialStep(0.25 * step);
       prob.setXtolAbs(1e-4);
       prob.setMaxEvaluations(30);
@@ -322,7 +337,7 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m, const st
       st.nlopt_evaluations += r.evaluations;
       if (r.usable()) {
         const Node nd = evalAt(x[0]);
-        const bool ok_jumps = (!pn || jumpOk(pn->q, nd.q, thr)) && (!nn || jumpOk(nd.q, nn->q, thr));
+        const bool ok_jumps = (!pj || jumpOk(pj->q, nd.q, thr)) && (!nj || jumpOk(nd.q, nj->q, thr));
         const bool better = o.mode == OrientationMode::kStiffest ? nd.u_def <= chosen[i].u_def : total(nd) < total(chosen[i]);
         if (nd.feasible && ok_jumps && better) {
           chosen[i] = nd;

@@ -18,8 +18,9 @@
 ///              last bit; the programmed position is iterated until the predicted real TCP
 ///              position is the nominal one (the real drill axis keeps its small tilt);
 ///   flip-free  minimise joint travel between consecutive holes with penalties near joint limits
-///              and the wrist singularity, subject to |θ5| ≥ margin, |Δθ4|, |Δθ6| ≤ threshold and
-///              the same IK branch (unless a change is allowed);
+///              and the wrist singularity, subject to |θ5| ≥ margin, |Δθ4|, |Δθ6| ≤ threshold between
+///              consecutive holes of one face (axes within 10°; a face change is a repositioning
+///              move) and the same IK branch (unless a change is allowed);
 ///   stiffest   minimise the predicted U_work (stiffness) under the same constraints.
 /// Sequence level: dynamic programming over a discretised ψ grid for the whole program (not hole
 /// by hole), then NLopt (COBYLA, 1-D, constraints as above) refines each hole's ψ with its

@@ -249,7 +249,10 @@ int run(Args& args, CommandContext& ctx) {
       after.push_back(perpNorm(h.residual, h.T_nominal.linear().col(2)) * 1e6);
       if (h.after.verdict == Verdict::kConforms) ++conform_after;
     }
-    if (prevb && h.ok && prevb->ok) {
+    const size_t idx = static_cast<size_t>(&h - comp.data());
+    const bool same_face = idx > 0 && c.job.requests[idx].T_W_tcp.linear().col(2).dot(
+                                          c.job.requests[idx - 1].T_W_tcp.linear().col(2)) > std::cos(10.0 * kDeg);
+    if (prevb && h.ok && prevb->ok && same_face) {
       if (std::abs(h.theta_cmd[3] - prevb->theta_cmd[3]) > opt.jump_threshold ||
           std::abs(h.theta_cmd[5] - prevb->theta_cmd[5]) > opt.jump_threshold) {
         ++flips_after;
@@ -277,7 +280,7 @@ int run(Args& args, CommandContext& ctx) {
     ctx.out << "  position error ⊥ axis before [µm]: " << stat(before) << "\n";
     ctx.out << "  predicted residual after    [µm]: " << stat(after) << "\n";
     ctx.out << "  holes conforming (ISO 14253-1): before " << conform_before << ", after " << conform_after << "\n";
-    ctx.out << "  axis-4/6 jumps > " << formatNumber(opt.jump_threshold / kDeg, 0) << " deg between holes: before "
+    ctx.out << "  axis-4/6 jumps > " << formatNumber(opt.jump_threshold / kDeg, 0) << " deg between holes of a face: before "
             << flips_before << ", after " << flips_after << "\n";
     if (stats.relaxed_jumps) ctx.out << "  note: no orientation sequence met the jump threshold; it was relaxed\n";
     for (const auto& p : postproc::outputPaths(prog, *out)) ctx.out << "  wrote " << p << "\n";

@@ -133,7 +133,17 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
     r.T_W_tcp = src.T_W_frame * *T_frame_tcp;
     r.line = t.line;
     r.depth = h.depth;
-    r.config = programConfig(t.config, robot, p.files[static_cast<size_t>(t.file)].path, t.line);
+    // The drill point is reached by linear moves, which keep the arm configuration the robot had:
+    // the configuration that selects the IK branch is the one of the cycle's approach when the
+    // controller honours it there (KUKA PTP, ABB MoveJ with ConfJ\On, FANUC J), else the bottom
+    // target's when honoured; otherwise none (continuity from the previous hole).
+    for (const int mi : {h.entry_motion, h.bottom_motion}) {
+      if (mi < 0 || r.config) continue;
+      const postproc::Motion& mo = p.motions[static_cast<size_t>(mi)];
+      if (!mo.config_honoured || mo.target < 0) continue;
+      const postproc::Target& ct = p.targets()[static_cast<size_t>(mo.target)];
+      r.config = programConfig(ct.config, robot, p.files[static_cast<size_t>(ct.file)].path, ct.line);
+    }
     for (const auto& m : matches) {
       if (m.hole != static_cast<int>(i)) continue;
       const postproc::HoleSpec& s = specs[static_cast<size_t>(m.spec)];

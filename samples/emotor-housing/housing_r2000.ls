@@ -1246,3673 +1246,3673 @@ CONTROL_CODE	= 00000000 00000000;
 /POS
 P[1]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   150.000  mm,	Y =     0.000  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[2]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   150.000  mm,	Y =     0.000  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[3]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   150.000  mm,	Y =     0.000  mm,	Z =   234.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[4]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   144.889  mm,	Y =    38.823  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[5]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   144.889  mm,	Y =    38.823  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[6]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   144.889  mm,	Y =    38.823  mm,	Z =   234.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[7]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   129.904  mm,	Y =    75.000  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[8]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   129.904  mm,	Y =    75.000  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[9]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   129.904  mm,	Y =    75.000  mm,	Z =   234.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[10]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   106.066  mm,	Y =   106.066  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[11]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   106.066  mm,	Y =   106.066  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[12]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   106.066  mm,	Y =   106.066  mm,	Z =   234.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[13]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    75.000  mm,	Y =   129.904  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[14]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    75.000  mm,	Y =   129.904  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[15]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    75.000  mm,	Y =   129.904  mm,	Z =   234.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[16]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    38.823  mm,	Y =   144.889  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[17]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    38.823  mm,	Y =   144.889  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[18]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    38.823  mm,	Y =   144.889  mm,	Z =   234.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[19]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =     0.000  mm,	Y =   150.000  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[20]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =     0.000  mm,	Y =   150.000  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[21]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =     0.000  mm,	Y =   150.000  mm,	Z =   234.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[22]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -38.823  mm,	Y =   144.889  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[23]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -38.823  mm,	Y =   144.889  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[24]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -38.823  mm,	Y =   144.889  mm,	Z =   234.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[25]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -75.000  mm,	Y =   129.904  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[26]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -75.000  mm,	Y =   129.904  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[27]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -75.000  mm,	Y =   129.904  mm,	Z =   234.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[28]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =  -106.066  mm,	Y =   106.066  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[29]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =  -106.066  mm,	Y =   106.066  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[30]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =  -106.066  mm,	Y =   106.066  mm,	Z =   234.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[31]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =  -129.904  mm,	Y =    75.000  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[32]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =  -129.904  mm,	Y =    75.000  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[33]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =  -129.904  mm,	Y =    75.000  mm,	Z =   234.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[34]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =  -144.889  mm,	Y =    38.823  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[35]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =  -144.889  mm,	Y =    38.823  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[36]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =  -144.889  mm,	Y =    38.823  mm,	Z =   234.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[37]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =  -150.000  mm,	Y =     0.000  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[38]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =  -150.000  mm,	Y =     0.000  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[39]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =  -150.000  mm,	Y =     0.000  mm,	Z =   234.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[40]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =  -144.889  mm,	Y =   -38.823  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[41]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =  -144.889  mm,	Y =   -38.823  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[42]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =  -144.889  mm,	Y =   -38.823  mm,	Z =   234.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[43]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =  -129.904  mm,	Y =   -75.000  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[44]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =  -129.904  mm,	Y =   -75.000  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[45]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =  -129.904  mm,	Y =   -75.000  mm,	Z =   234.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[46]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =  -106.066  mm,	Y =  -106.066  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[47]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =  -106.066  mm,	Y =  -106.066  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[48]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =  -106.066  mm,	Y =  -106.066  mm,	Z =   234.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[49]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   -75.000  mm,	Y =  -129.904  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[50]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   -75.000  mm,	Y =  -129.904  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[51]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   -75.000  mm,	Y =  -129.904  mm,	Z =   234.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[52]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   -38.823  mm,	Y =  -144.889  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[53]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   -38.823  mm,	Y =  -144.889  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[54]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   -38.823  mm,	Y =  -144.889  mm,	Z =   234.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[55]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =     0.000  mm,	Y =  -150.000  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[56]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =     0.000  mm,	Y =  -150.000  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[57]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =     0.000  mm,	Y =  -150.000  mm,	Z =   234.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[58]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =    38.823  mm,	Y =  -144.889  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[59]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =    38.823  mm,	Y =  -144.889  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[60]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =    38.823  mm,	Y =  -144.889  mm,	Z =   234.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[61]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =    75.000  mm,	Y =  -129.904  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[62]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =    75.000  mm,	Y =  -129.904  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[63]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =    75.000  mm,	Y =  -129.904  mm,	Z =   234.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[64]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   106.066  mm,	Y =  -106.066  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[65]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   106.066  mm,	Y =  -106.066  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[66]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   106.066  mm,	Y =  -106.066  mm,	Z =   234.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[67]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   129.904  mm,	Y =   -75.000  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[68]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   129.904  mm,	Y =   -75.000  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[69]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   129.904  mm,	Y =   -75.000  mm,	Z =   234.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[70]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   144.889  mm,	Y =   -38.823  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[71]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   144.889  mm,	Y =   -38.823  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[72]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   144.889  mm,	Y =   -38.823  mm,	Z =   234.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[73]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   106.252  mm,	Y =    28.470  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[74]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   106.252  mm,	Y =    28.470  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[75]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   106.252  mm,	Y =    28.470  mm,	Z =   220.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[76]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    77.782  mm,	Y =    77.782  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[77]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    77.782  mm,	Y =    77.782  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[78]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    77.782  mm,	Y =    77.782  mm,	Z =   220.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[79]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    28.470  mm,	Y =   106.252  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[80]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    28.470  mm,	Y =   106.252  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[81]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    28.470  mm,	Y =   106.252  mm,	Z =   220.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[82]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -28.470  mm,	Y =   106.252  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[83]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -28.470  mm,	Y =   106.252  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[84]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -28.470  mm,	Y =   106.252  mm,	Z =   220.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[85]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -77.782  mm,	Y =    77.782  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[86]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -77.782  mm,	Y =    77.782  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[87]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -77.782  mm,	Y =    77.782  mm,	Z =   220.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[88]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =  -106.252  mm,	Y =    28.470  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[89]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =  -106.252  mm,	Y =    28.470  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[90]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =  -106.252  mm,	Y =    28.470  mm,	Z =   220.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[91]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =  -106.252  mm,	Y =   -28.470  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[92]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =  -106.252  mm,	Y =   -28.470  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[93]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =  -106.252  mm,	Y =   -28.470  mm,	Z =   220.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[94]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   -77.782  mm,	Y =   -77.782  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[95]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   -77.782  mm,	Y =   -77.782  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[96]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   -77.782  mm,	Y =   -77.782  mm,	Z =   220.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[97]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   -28.470  mm,	Y =  -106.252  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[98]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   -28.470  mm,	Y =  -106.252  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[99]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   -28.470  mm,	Y =  -106.252  mm,	Z =   220.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[100]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =    28.470  mm,	Y =  -106.252  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[101]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =    28.470  mm,	Y =  -106.252  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[102]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =    28.470  mm,	Y =  -106.252  mm,	Z =   220.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[103]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =    77.782  mm,	Y =   -77.782  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[104]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =    77.782  mm,	Y =   -77.782  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[105]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =    77.782  mm,	Y =   -77.782  mm,	Z =   220.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[106]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   106.252  mm,	Y =   -28.470  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[107]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   106.252  mm,	Y =   -28.470  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[108]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   106.252  mm,	Y =   -28.470  mm,	Z =   220.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[109]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =    70.000  mm,	Y =     0.000  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[110]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =    70.000  mm,	Y =     0.000  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[111]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =    70.000  mm,	Y =     0.000  mm,	Z =   230.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[112]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    60.622  mm,	Y =    35.000  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[113]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    60.622  mm,	Y =    35.000  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[114]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    60.622  mm,	Y =    35.000  mm,	Z =   230.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[115]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    35.000  mm,	Y =    60.622  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[116]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    35.000  mm,	Y =    60.622  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[117]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    35.000  mm,	Y =    60.622  mm,	Z =   230.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[118]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =     0.000  mm,	Y =    70.000  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[119]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =     0.000  mm,	Y =    70.000  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[120]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =     0.000  mm,	Y =    70.000  mm,	Z =   230.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[121]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -35.000  mm,	Y =    60.622  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[122]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -35.000  mm,	Y =    60.622  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[123]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -35.000  mm,	Y =    60.622  mm,	Z =   230.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[124]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -60.622  mm,	Y =    35.000  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[125]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -60.622  mm,	Y =    35.000  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[126]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -60.622  mm,	Y =    35.000  mm,	Z =   230.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[127]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   -70.000  mm,	Y =     0.000  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[128]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   -70.000  mm,	Y =     0.000  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[129]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   -70.000  mm,	Y =     0.000  mm,	Z =   230.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[130]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   -60.622  mm,	Y =   -35.000  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[131]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   -60.622  mm,	Y =   -35.000  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[132]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   -60.622  mm,	Y =   -35.000  mm,	Z =   230.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[133]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   -35.000  mm,	Y =   -60.622  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[134]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   -35.000  mm,	Y =   -60.622  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[135]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   -35.000  mm,	Y =   -60.622  mm,	Z =   230.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[136]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =     0.000  mm,	Y =   -70.000  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[137]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =     0.000  mm,	Y =   -70.000  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[138]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =     0.000  mm,	Y =   -70.000  mm,	Z =   230.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[139]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =    35.000  mm,	Y =   -60.622  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[140]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =    35.000  mm,	Y =   -60.622  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[141]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =    35.000  mm,	Y =   -60.622  mm,	Z =   230.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[142]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =    60.622  mm,	Y =   -35.000  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[143]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =    60.622  mm,	Y =   -35.000  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[144]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =    60.622  mm,	Y =   -35.000  mm,	Z =   230.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[145]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    29.743  mm,	Y =     3.916  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[146]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    29.743  mm,	Y =     3.916  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[147]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    29.743  mm,	Y =     3.916  mm,	Z =   238.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[148]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    23.801  mm,	Y =    18.263  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[149]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    23.801  mm,	Y =    18.263  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[150]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    23.801  mm,	Y =    18.263  mm,	Z =   238.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[151]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    11.481  mm,	Y =    27.716  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[152]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    11.481  mm,	Y =    27.716  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[153]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    11.481  mm,	Y =    27.716  mm,	Z =   238.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[154]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    -3.916  mm,	Y =    29.743  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[155]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    -3.916  mm,	Y =    29.743  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[156]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    -3.916  mm,	Y =    29.743  mm,	Z =   238.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[157]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -18.263  mm,	Y =    23.801  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[158]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -18.263  mm,	Y =    23.801  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[159]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -18.263  mm,	Y =    23.801  mm,	Z =   238.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[160]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -27.716  mm,	Y =    11.481  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[161]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -27.716  mm,	Y =    11.481  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[162]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -27.716  mm,	Y =    11.481  mm,	Z =   238.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[163]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   -29.743  mm,	Y =    -3.916  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[164]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   -29.743  mm,	Y =    -3.916  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[165]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   -29.743  mm,	Y =    -3.916  mm,	Z =   238.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[166]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   -23.801  mm,	Y =   -18.263  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[167]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   -23.801  mm,	Y =   -18.263  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[168]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   -23.801  mm,	Y =   -18.263  mm,	Z =   238.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[169]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   -11.481  mm,	Y =   -27.716  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[170]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   -11.481  mm,	Y =   -27.716  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[171]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =   -11.481  mm,	Y =   -27.716  mm,	Z =   238.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[172]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =     3.916  mm,	Y =   -29.743  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[173]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =     3.916  mm,	Y =   -29.743  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[174]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =     3.916  mm,	Y =   -29.743  mm,	Z =   238.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[175]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =    18.263  mm,	Y =   -23.801  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[176]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =    18.263  mm,	Y =   -23.801  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[177]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =    18.263  mm,	Y =   -23.801  mm,	Z =   238.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[178]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =    27.716  mm,	Y =   -11.481  mm,	Z =   300.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[179]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =    27.716  mm,	Y =   -11.481  mm,	Z =   252.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[180]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 1',
 	X =    27.716  mm,	Y =   -11.481  mm,	Z =   238.000  mm,
 	W =   180.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[181]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =  -105.000  mm,	Z =    40.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 1, 0',
+	X =  -210.711  mm,	Y =  -105.000  mm,	Z =   190.000  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[182]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =  -105.000  mm,	Z =    40.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 1, 0',
+	X =  -176.770  mm,	Y =  -105.000  mm,	Z =   156.059  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[183]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =  -105.000  mm,	Z =    40.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 1, 0',
+	X =  -158.385  mm,	Y =  -105.000  mm,	Z =   137.674  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[184]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =   -75.000  mm,	Z =    40.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 1, 0',
+	X =  -210.711  mm,	Y =   -75.000  mm,	Z =   190.000  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[185]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =   -75.000  mm,	Z =    40.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 1, 0',
+	X =  -176.770  mm,	Y =   -75.000  mm,	Z =   156.059  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[186]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =   -75.000  mm,	Z =    40.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 1, 0',
+	X =  -158.385  mm,	Y =   -75.000  mm,	Z =   137.674  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[187]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =   -45.000  mm,	Z =    40.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 1, 0',
+	X =  -210.711  mm,	Y =   -45.000  mm,	Z =   190.000  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[188]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =   -45.000  mm,	Z =    40.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 1, 0',
+	X =  -176.770  mm,	Y =   -45.000  mm,	Z =   156.059  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[189]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =   -45.000  mm,	Z =    40.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 1, 0',
+	X =  -158.385  mm,	Y =   -45.000  mm,	Z =   137.674  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[190]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =   -15.000  mm,	Z =    40.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 1, 0',
+	X =  -210.711  mm,	Y =   -15.000  mm,	Z =   190.000  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[191]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =   -15.000  mm,	Z =    40.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 1, 0',
+	X =  -176.770  mm,	Y =   -15.000  mm,	Z =   156.059  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[192]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =   -15.000  mm,	Z =    40.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 1, 0',
+	X =  -158.385  mm,	Y =   -15.000  mm,	Z =   137.674  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[193]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =    15.000  mm,	Z =    40.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -210.711  mm,	Y =    15.000  mm,	Z =   190.000  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[194]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =    15.000  mm,	Z =    40.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -176.770  mm,	Y =    15.000  mm,	Z =   156.059  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[195]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =    15.000  mm,	Z =    40.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -158.385  mm,	Y =    15.000  mm,	Z =   137.674  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[196]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =    45.000  mm,	Z =    40.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -210.711  mm,	Y =    45.000  mm,	Z =   190.000  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[197]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =    45.000  mm,	Z =    40.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -176.770  mm,	Y =    45.000  mm,	Z =   156.059  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[198]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =    45.000  mm,	Z =    40.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -158.385  mm,	Y =    45.000  mm,	Z =   137.674  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[199]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =    75.000  mm,	Z =    40.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -210.711  mm,	Y =    75.000  mm,	Z =   190.000  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[200]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =    75.000  mm,	Z =    40.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -176.770  mm,	Y =    75.000  mm,	Z =   156.059  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[201]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =    75.000  mm,	Z =    40.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -158.385  mm,	Y =    75.000  mm,	Z =   137.674  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[202]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =   105.000  mm,	Z =    40.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -210.711  mm,	Y =   105.000  mm,	Z =   190.000  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[203]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =   105.000  mm,	Z =    40.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -176.770  mm,	Y =   105.000  mm,	Z =   156.059  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[204]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =   105.000  mm,	Z =    40.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -158.385  mm,	Y =   105.000  mm,	Z =   137.674  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[205]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =  -105.000  mm,	Z =    75.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -196.569  mm,	Y =  -105.000  mm,	Z =   204.142  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[206]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =  -105.000  mm,	Z =    75.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -162.627  mm,	Y =  -105.000  mm,	Z =   170.201  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[207]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =  -105.000  mm,	Z =    75.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -144.243  mm,	Y =  -105.000  mm,	Z =   151.816  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[208]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =   -75.000  mm,	Z =    75.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -196.569  mm,	Y =   -75.000  mm,	Z =   204.142  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[209]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =   -75.000  mm,	Z =    75.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -162.627  mm,	Y =   -75.000  mm,	Z =   170.201  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[210]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =   -75.000  mm,	Z =    75.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -144.243  mm,	Y =   -75.000  mm,	Z =   151.816  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[211]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =   -45.000  mm,	Z =    75.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -196.569  mm,	Y =   -45.000  mm,	Z =   204.142  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[212]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =   -45.000  mm,	Z =    75.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -162.627  mm,	Y =   -45.000  mm,	Z =   170.201  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[213]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =   -45.000  mm,	Z =    75.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -144.243  mm,	Y =   -45.000  mm,	Z =   151.816  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[214]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =   -15.000  mm,	Z =    75.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -196.569  mm,	Y =   -15.000  mm,	Z =   204.142  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[215]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =   -15.000  mm,	Z =    75.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -162.627  mm,	Y =   -15.000  mm,	Z =   170.201  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[216]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =   -15.000  mm,	Z =    75.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -144.243  mm,	Y =   -15.000  mm,	Z =   151.816  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[217]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =    15.000  mm,	Z =    75.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -196.569  mm,	Y =    15.000  mm,	Z =   204.142  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[218]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =    15.000  mm,	Z =    75.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -162.627  mm,	Y =    15.000  mm,	Z =   170.201  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[219]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =    15.000  mm,	Z =    75.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -144.243  mm,	Y =    15.000  mm,	Z =   151.816  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[220]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =    45.000  mm,	Z =    75.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -196.569  mm,	Y =    45.000  mm,	Z =   204.142  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[221]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =    45.000  mm,	Z =    75.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -162.627  mm,	Y =    45.000  mm,	Z =   170.201  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[222]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =    45.000  mm,	Z =    75.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -144.243  mm,	Y =    45.000  mm,	Z =   151.816  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[223]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =    75.000  mm,	Z =    75.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -196.569  mm,	Y =    75.000  mm,	Z =   204.142  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[224]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =    75.000  mm,	Z =    75.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -162.627  mm,	Y =    75.000  mm,	Z =   170.201  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[225]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =    75.000  mm,	Z =    75.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -144.243  mm,	Y =    75.000  mm,	Z =   151.816  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[226]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =   105.000  mm,	Z =    75.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -196.569  mm,	Y =   105.000  mm,	Z =   204.142  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[227]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =   105.000  mm,	Z =    75.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -162.627  mm,	Y =   105.000  mm,	Z =   170.201  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[228]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =   105.000  mm,	Z =    75.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -144.243  mm,	Y =   105.000  mm,	Z =   151.816  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[229]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =  -105.000  mm,	Z =   110.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -182.426  mm,	Y =  -105.000  mm,	Z =   218.284  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[230]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =  -105.000  mm,	Z =   110.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -148.485  mm,	Y =  -105.000  mm,	Z =   184.343  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[231]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =  -105.000  mm,	Z =   110.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -130.101  mm,	Y =  -105.000  mm,	Z =   165.958  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[232]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =   -75.000  mm,	Z =   110.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -182.426  mm,	Y =   -75.000  mm,	Z =   218.284  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[233]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =   -75.000  mm,	Z =   110.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -148.485  mm,	Y =   -75.000  mm,	Z =   184.343  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[234]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =   -75.000  mm,	Z =   110.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -130.101  mm,	Y =   -75.000  mm,	Z =   165.958  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[235]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =   -45.000  mm,	Z =   110.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -182.426  mm,	Y =   -45.000  mm,	Z =   218.284  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[236]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =   -45.000  mm,	Z =   110.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -148.485  mm,	Y =   -45.000  mm,	Z =   184.343  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[237]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =   -45.000  mm,	Z =   110.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -130.101  mm,	Y =   -45.000  mm,	Z =   165.958  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[238]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =   -15.000  mm,	Z =   110.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -182.426  mm,	Y =   -15.000  mm,	Z =   218.284  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[239]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =   -15.000  mm,	Z =   110.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -148.485  mm,	Y =   -15.000  mm,	Z =   184.343  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[240]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =   -15.000  mm,	Z =   110.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -130.101  mm,	Y =   -15.000  mm,	Z =   165.958  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[241]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =    15.000  mm,	Z =   110.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -182.426  mm,	Y =    15.000  mm,	Z =   218.284  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[242]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =    15.000  mm,	Z =   110.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -148.485  mm,	Y =    15.000  mm,	Z =   184.343  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[243]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =    15.000  mm,	Z =   110.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -130.101  mm,	Y =    15.000  mm,	Z =   165.958  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[244]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =    45.000  mm,	Z =   110.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -182.426  mm,	Y =    45.000  mm,	Z =   218.284  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[245]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =    45.000  mm,	Z =   110.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -148.485  mm,	Y =    45.000  mm,	Z =   184.343  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[246]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =    45.000  mm,	Z =   110.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -130.101  mm,	Y =    45.000  mm,	Z =   165.958  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[247]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =    75.000  mm,	Z =   110.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -182.426  mm,	Y =    75.000  mm,	Z =   218.284  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[248]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =    75.000  mm,	Z =   110.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -148.485  mm,	Y =    75.000  mm,	Z =   184.343  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[249]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =    75.000  mm,	Z =   110.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -130.101  mm,	Y =    75.000  mm,	Z =   165.958  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[250]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =   105.000  mm,	Z =   110.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -182.426  mm,	Y =   105.000  mm,	Z =   218.284  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[251]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =   105.000  mm,	Z =   110.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -148.485  mm,	Y =   105.000  mm,	Z =   184.343  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[252]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =   105.000  mm,	Z =   110.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -130.101  mm,	Y =   105.000  mm,	Z =   165.958  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[253]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =  -105.000  mm,	Z =   145.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -168.284  mm,	Y =  -105.000  mm,	Z =   232.426  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[254]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =  -105.000  mm,	Z =   145.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -134.343  mm,	Y =  -105.000  mm,	Z =   198.485  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[255]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =  -105.000  mm,	Z =   145.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -115.958  mm,	Y =  -105.000  mm,	Z =   180.101  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[256]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =   -75.000  mm,	Z =   145.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -168.284  mm,	Y =   -75.000  mm,	Z =   232.426  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[257]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =   -75.000  mm,	Z =   145.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -134.343  mm,	Y =   -75.000  mm,	Z =   198.485  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[258]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =   -75.000  mm,	Z =   145.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -115.958  mm,	Y =   -75.000  mm,	Z =   180.101  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[259]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =   -45.000  mm,	Z =   145.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -168.284  mm,	Y =   -45.000  mm,	Z =   232.426  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[260]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =   -45.000  mm,	Z =   145.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -134.343  mm,	Y =   -45.000  mm,	Z =   198.485  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[261]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =   -45.000  mm,	Z =   145.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -115.958  mm,	Y =   -45.000  mm,	Z =   180.101  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[262]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =   -15.000  mm,	Z =   145.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -168.284  mm,	Y =   -15.000  mm,	Z =   232.426  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[263]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =   -15.000  mm,	Z =   145.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -134.343  mm,	Y =   -15.000  mm,	Z =   198.485  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[264]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =   -15.000  mm,	Z =   145.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -115.958  mm,	Y =   -15.000  mm,	Z =   180.101  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[265]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =    15.000  mm,	Z =   145.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -168.284  mm,	Y =    15.000  mm,	Z =   232.426  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[266]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =    15.000  mm,	Z =   145.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -134.343  mm,	Y =    15.000  mm,	Z =   198.485  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[267]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =    15.000  mm,	Z =   145.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -115.958  mm,	Y =    15.000  mm,	Z =   180.101  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[268]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =    45.000  mm,	Z =   145.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -168.284  mm,	Y =    45.000  mm,	Z =   232.426  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[269]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =    45.000  mm,	Z =   145.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -134.343  mm,	Y =    45.000  mm,	Z =   198.485  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[270]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =    45.000  mm,	Z =   145.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -115.958  mm,	Y =    45.000  mm,	Z =   180.101  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[271]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =    75.000  mm,	Z =   145.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -168.284  mm,	Y =    75.000  mm,	Z =   232.426  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[272]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =    75.000  mm,	Z =   145.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -134.343  mm,	Y =    75.000  mm,	Z =   198.485  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[273]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =    75.000  mm,	Z =   145.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -115.958  mm,	Y =    75.000  mm,	Z =   180.101  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[274]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =   105.000  mm,	Z =   145.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -168.284  mm,	Y =   105.000  mm,	Z =   232.426  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[275]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =   105.000  mm,	Z =   145.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -134.343  mm,	Y =   105.000  mm,	Z =   198.485  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[276]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =   105.000  mm,	Z =   145.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -115.958  mm,	Y =   105.000  mm,	Z =   180.101  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[277]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =  -105.000  mm,	Z =   180.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -154.142  mm,	Y =  -105.000  mm,	Z =   246.569  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[278]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =  -105.000  mm,	Z =   180.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -120.201  mm,	Y =  -105.000  mm,	Z =   212.627  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[279]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =  -105.000  mm,	Z =   180.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -101.816  mm,	Y =  -105.000  mm,	Z =   194.243  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[280]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =   -75.000  mm,	Z =   180.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -154.142  mm,	Y =   -75.000  mm,	Z =   246.569  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[281]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =   -75.000  mm,	Z =   180.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -120.201  mm,	Y =   -75.000  mm,	Z =   212.627  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[282]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =   -75.000  mm,	Z =   180.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -101.816  mm,	Y =   -75.000  mm,	Z =   194.243  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[283]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =   -45.000  mm,	Z =   180.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -154.142  mm,	Y =   -45.000  mm,	Z =   246.569  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[284]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =   -45.000  mm,	Z =   180.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -120.201  mm,	Y =   -45.000  mm,	Z =   212.627  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[285]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =   -45.000  mm,	Z =   180.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -101.816  mm,	Y =   -45.000  mm,	Z =   194.243  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[286]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =   -15.000  mm,	Z =   180.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -154.142  mm,	Y =   -15.000  mm,	Z =   246.569  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[287]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =   -15.000  mm,	Z =   180.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -120.201  mm,	Y =   -15.000  mm,	Z =   212.627  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[288]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =   -15.000  mm,	Z =   180.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -101.816  mm,	Y =   -15.000  mm,	Z =   194.243  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[289]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =    15.000  mm,	Z =   180.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -154.142  mm,	Y =    15.000  mm,	Z =   246.569  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[290]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =    15.000  mm,	Z =   180.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -120.201  mm,	Y =    15.000  mm,	Z =   212.627  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[291]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =    15.000  mm,	Z =   180.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -101.816  mm,	Y =    15.000  mm,	Z =   194.243  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[292]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =    45.000  mm,	Z =   180.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -154.142  mm,	Y =    45.000  mm,	Z =   246.569  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[293]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =    45.000  mm,	Z =   180.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -120.201  mm,	Y =    45.000  mm,	Z =   212.627  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[294]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =    45.000  mm,	Z =   180.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -101.816  mm,	Y =    45.000  mm,	Z =   194.243  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[295]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =    75.000  mm,	Z =   180.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -154.142  mm,	Y =    75.000  mm,	Z =   246.569  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[296]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =    75.000  mm,	Z =   180.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -120.201  mm,	Y =    75.000  mm,	Z =   212.627  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[297]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =    75.000  mm,	Z =   180.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -101.816  mm,	Y =    75.000  mm,	Z =   194.243  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[298]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =   105.000  mm,	Z =   180.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -154.142  mm,	Y =   105.000  mm,	Z =   246.569  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[299]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =   105.000  mm,	Z =   180.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -120.201  mm,	Y =   105.000  mm,	Z =   212.627  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[300]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =   105.000  mm,	Z =   180.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -101.816  mm,	Y =   105.000  mm,	Z =   194.243  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[301]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =  -105.000  mm,	Z =   215.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -140.000  mm,	Y =  -105.000  mm,	Z =   260.711  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[302]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =  -105.000  mm,	Z =   215.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -106.059  mm,	Y =  -105.000  mm,	Z =   226.770  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[303]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =  -105.000  mm,	Z =   215.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =   -87.674  mm,	Y =  -105.000  mm,	Z =   208.385  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[304]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =   -75.000  mm,	Z =   215.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -140.000  mm,	Y =   -75.000  mm,	Z =   260.711  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[305]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =   -75.000  mm,	Z =   215.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -106.059  mm,	Y =   -75.000  mm,	Z =   226.770  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[306]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =   -75.000  mm,	Z =   215.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =   -87.674  mm,	Y =   -75.000  mm,	Z =   208.385  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[307]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =   -45.000  mm,	Z =   215.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -140.000  mm,	Y =   -45.000  mm,	Z =   260.711  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[308]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =   -45.000  mm,	Z =   215.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -106.059  mm,	Y =   -45.000  mm,	Z =   226.770  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[309]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =   -45.000  mm,	Z =   215.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =   -87.674  mm,	Y =   -45.000  mm,	Z =   208.385  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[310]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =   -15.000  mm,	Z =   215.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -140.000  mm,	Y =   -15.000  mm,	Z =   260.711  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[311]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =   -15.000  mm,	Z =   215.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =  -106.059  mm,	Y =   -15.000  mm,	Z =   226.770  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[312]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =   -15.000  mm,	Z =   215.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
+	X =   -87.674  mm,	Y =   -15.000  mm,	Z =   208.385  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[313]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =    15.000  mm,	Z =   215.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -140.000  mm,	Y =    15.000  mm,	Z =   260.711  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[314]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =    15.000  mm,	Z =   215.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -106.059  mm,	Y =    15.000  mm,	Z =   226.770  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[315]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =    15.000  mm,	Z =   215.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =   -87.674  mm,	Y =    15.000  mm,	Z =   208.385  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[316]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =    45.000  mm,	Z =   215.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -140.000  mm,	Y =    45.000  mm,	Z =   260.711  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[317]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =    45.000  mm,	Z =   215.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -106.059  mm,	Y =    45.000  mm,	Z =   226.770  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[318]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =    45.000  mm,	Z =   215.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =   -87.674  mm,	Y =    45.000  mm,	Z =   208.385  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[319]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =    75.000  mm,	Z =   215.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -140.000  mm,	Y =    75.000  mm,	Z =   260.711  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[320]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =    75.000  mm,	Z =   215.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -106.059  mm,	Y =    75.000  mm,	Z =   226.770  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[321]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =    75.000  mm,	Z =   215.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =   -87.674  mm,	Y =    75.000  mm,	Z =   208.385  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[322]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -220.000  mm,	Y =   105.000  mm,	Z =   215.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -140.000  mm,	Y =   105.000  mm,	Z =   260.711  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[323]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -172.000  mm,	Y =   105.000  mm,	Z =   215.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =  -106.059  mm,	Y =   105.000  mm,	Z =   226.770  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[324]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
-	X =  -146.000  mm,	Y =   105.000  mm,	Z =   215.000  mm,
-	W =    90.000 deg,	P =     0.000 deg,	R =    90.000 deg
+	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 1',
+	X =   -87.674  mm,	Y =   105.000  mm,	Z =   208.385  mm,
+	W =   180.000 deg,	P =   -45.000 deg,	R =     0.000 deg
 };
 P[325]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =  -105.000  mm,	Y =  -220.000  mm,	Z =    40.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[326]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =  -105.000  mm,	Y =  -172.000  mm,	Z =    40.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[327]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =  -105.000  mm,	Y =  -140.000  mm,	Z =    40.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[328]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -75.000  mm,	Y =  -220.000  mm,	Z =    40.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[329]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -75.000  mm,	Y =  -172.000  mm,	Z =    40.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[330]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -75.000  mm,	Y =  -140.000  mm,	Z =    40.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[331]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -45.000  mm,	Y =  -220.000  mm,	Z =    40.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[332]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -45.000  mm,	Y =  -172.000  mm,	Z =    40.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[333]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -45.000  mm,	Y =  -140.000  mm,	Z =    40.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[334]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -15.000  mm,	Y =  -220.000  mm,	Z =    40.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[335]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -15.000  mm,	Y =  -172.000  mm,	Z =    40.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[336]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -15.000  mm,	Y =  -140.000  mm,	Z =    40.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[337]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    15.000  mm,	Y =  -220.000  mm,	Z =    40.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[338]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    15.000  mm,	Y =  -172.000  mm,	Z =    40.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[339]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    15.000  mm,	Y =  -140.000  mm,	Z =    40.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[340]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    45.000  mm,	Y =  -220.000  mm,	Z =    40.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[341]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    45.000  mm,	Y =  -172.000  mm,	Z =    40.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[342]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    45.000  mm,	Y =  -140.000  mm,	Z =    40.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[343]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    75.000  mm,	Y =  -220.000  mm,	Z =    40.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[344]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    75.000  mm,	Y =  -172.000  mm,	Z =    40.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[345]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    75.000  mm,	Y =  -140.000  mm,	Z =    40.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[346]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   105.000  mm,	Y =  -220.000  mm,	Z =    40.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[347]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   105.000  mm,	Y =  -172.000  mm,	Z =    40.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[348]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   105.000  mm,	Y =  -140.000  mm,	Z =    40.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[349]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =  -105.000  mm,	Y =  -220.000  mm,	Z =    75.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[350]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =  -105.000  mm,	Y =  -172.000  mm,	Z =    75.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[351]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =  -105.000  mm,	Y =  -140.000  mm,	Z =    75.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[352]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -75.000  mm,	Y =  -220.000  mm,	Z =    75.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[353]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -75.000  mm,	Y =  -172.000  mm,	Z =    75.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[354]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -75.000  mm,	Y =  -140.000  mm,	Z =    75.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[355]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -45.000  mm,	Y =  -220.000  mm,	Z =    75.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[356]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -45.000  mm,	Y =  -172.000  mm,	Z =    75.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[357]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -45.000  mm,	Y =  -140.000  mm,	Z =    75.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[358]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -15.000  mm,	Y =  -220.000  mm,	Z =    75.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[359]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -15.000  mm,	Y =  -172.000  mm,	Z =    75.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[360]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -15.000  mm,	Y =  -140.000  mm,	Z =    75.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[361]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    15.000  mm,	Y =  -220.000  mm,	Z =    75.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[362]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    15.000  mm,	Y =  -172.000  mm,	Z =    75.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[363]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    15.000  mm,	Y =  -140.000  mm,	Z =    75.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[364]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    45.000  mm,	Y =  -220.000  mm,	Z =    75.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[365]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    45.000  mm,	Y =  -172.000  mm,	Z =    75.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[366]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    45.000  mm,	Y =  -140.000  mm,	Z =    75.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[367]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    75.000  mm,	Y =  -220.000  mm,	Z =    75.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[368]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    75.000  mm,	Y =  -172.000  mm,	Z =    75.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[369]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    75.000  mm,	Y =  -140.000  mm,	Z =    75.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[370]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   105.000  mm,	Y =  -220.000  mm,	Z =    75.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[371]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   105.000  mm,	Y =  -172.000  mm,	Z =    75.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[372]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   105.000  mm,	Y =  -140.000  mm,	Z =    75.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[373]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =  -105.000  mm,	Y =  -220.000  mm,	Z =   110.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[374]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =  -105.000  mm,	Y =  -172.000  mm,	Z =   110.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[375]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =  -105.000  mm,	Y =  -140.000  mm,	Z =   110.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[376]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -75.000  mm,	Y =  -220.000  mm,	Z =   110.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[377]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -75.000  mm,	Y =  -172.000  mm,	Z =   110.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[378]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -75.000  mm,	Y =  -140.000  mm,	Z =   110.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[379]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -45.000  mm,	Y =  -220.000  mm,	Z =   110.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[380]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -45.000  mm,	Y =  -172.000  mm,	Z =   110.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[381]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -45.000  mm,	Y =  -140.000  mm,	Z =   110.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[382]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -15.000  mm,	Y =  -220.000  mm,	Z =   110.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[383]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -15.000  mm,	Y =  -172.000  mm,	Z =   110.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[384]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -15.000  mm,	Y =  -140.000  mm,	Z =   110.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[385]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    15.000  mm,	Y =  -220.000  mm,	Z =   110.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[386]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    15.000  mm,	Y =  -172.000  mm,	Z =   110.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[387]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    15.000  mm,	Y =  -140.000  mm,	Z =   110.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[388]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    45.000  mm,	Y =  -220.000  mm,	Z =   110.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[389]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    45.000  mm,	Y =  -172.000  mm,	Z =   110.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[390]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    45.000  mm,	Y =  -140.000  mm,	Z =   110.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[391]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    75.000  mm,	Y =  -220.000  mm,	Z =   110.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[392]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    75.000  mm,	Y =  -172.000  mm,	Z =   110.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[393]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    75.000  mm,	Y =  -140.000  mm,	Z =   110.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[394]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   105.000  mm,	Y =  -220.000  mm,	Z =   110.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[395]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   105.000  mm,	Y =  -172.000  mm,	Z =   110.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[396]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   105.000  mm,	Y =  -140.000  mm,	Z =   110.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[397]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =  -105.000  mm,	Y =  -220.000  mm,	Z =   145.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[398]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =  -105.000  mm,	Y =  -172.000  mm,	Z =   145.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[399]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =  -105.000  mm,	Y =  -140.000  mm,	Z =   145.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[400]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -75.000  mm,	Y =  -220.000  mm,	Z =   145.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[401]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -75.000  mm,	Y =  -172.000  mm,	Z =   145.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[402]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -75.000  mm,	Y =  -140.000  mm,	Z =   145.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[403]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -45.000  mm,	Y =  -220.000  mm,	Z =   145.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[404]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -45.000  mm,	Y =  -172.000  mm,	Z =   145.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[405]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -45.000  mm,	Y =  -140.000  mm,	Z =   145.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[406]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -15.000  mm,	Y =  -220.000  mm,	Z =   145.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[407]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -15.000  mm,	Y =  -172.000  mm,	Z =   145.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[408]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -15.000  mm,	Y =  -140.000  mm,	Z =   145.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[409]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    15.000  mm,	Y =  -220.000  mm,	Z =   145.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[410]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    15.000  mm,	Y =  -172.000  mm,	Z =   145.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[411]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    15.000  mm,	Y =  -140.000  mm,	Z =   145.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[412]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    45.000  mm,	Y =  -220.000  mm,	Z =   145.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[413]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    45.000  mm,	Y =  -172.000  mm,	Z =   145.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[414]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    45.000  mm,	Y =  -140.000  mm,	Z =   145.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[415]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    75.000  mm,	Y =  -220.000  mm,	Z =   145.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[416]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    75.000  mm,	Y =  -172.000  mm,	Z =   145.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[417]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    75.000  mm,	Y =  -140.000  mm,	Z =   145.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[418]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   105.000  mm,	Y =  -220.000  mm,	Z =   145.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[419]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   105.000  mm,	Y =  -172.000  mm,	Z =   145.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[420]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   105.000  mm,	Y =  -140.000  mm,	Z =   145.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[421]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =  -105.000  mm,	Y =  -220.000  mm,	Z =   180.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[422]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =  -105.000  mm,	Y =  -172.000  mm,	Z =   180.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[423]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =  -105.000  mm,	Y =  -140.000  mm,	Z =   180.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[424]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -75.000  mm,	Y =  -220.000  mm,	Z =   180.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[425]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -75.000  mm,	Y =  -172.000  mm,	Z =   180.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[426]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -75.000  mm,	Y =  -140.000  mm,	Z =   180.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[427]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -45.000  mm,	Y =  -220.000  mm,	Z =   180.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[428]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -45.000  mm,	Y =  -172.000  mm,	Z =   180.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[429]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -45.000  mm,	Y =  -140.000  mm,	Z =   180.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[430]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -15.000  mm,	Y =  -220.000  mm,	Z =   180.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[431]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -15.000  mm,	Y =  -172.000  mm,	Z =   180.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[432]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -15.000  mm,	Y =  -140.000  mm,	Z =   180.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[433]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    15.000  mm,	Y =  -220.000  mm,	Z =   180.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[434]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    15.000  mm,	Y =  -172.000  mm,	Z =   180.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[435]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    15.000  mm,	Y =  -140.000  mm,	Z =   180.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[436]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    45.000  mm,	Y =  -220.000  mm,	Z =   180.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[437]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    45.000  mm,	Y =  -172.000  mm,	Z =   180.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[438]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    45.000  mm,	Y =  -140.000  mm,	Z =   180.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[439]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    75.000  mm,	Y =  -220.000  mm,	Z =   180.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[440]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    75.000  mm,	Y =  -172.000  mm,	Z =   180.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[441]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    75.000  mm,	Y =  -140.000  mm,	Z =   180.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[442]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   105.000  mm,	Y =  -220.000  mm,	Z =   180.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[443]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   105.000  mm,	Y =  -172.000  mm,	Z =   180.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[444]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   105.000  mm,	Y =  -140.000  mm,	Z =   180.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[445]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =  -105.000  mm,	Y =  -220.000  mm,	Z =   215.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[446]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =  -105.000  mm,	Y =  -172.000  mm,	Z =   215.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[447]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =  -105.000  mm,	Y =  -140.000  mm,	Z =   215.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[448]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -75.000  mm,	Y =  -220.000  mm,	Z =   215.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[449]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -75.000  mm,	Y =  -172.000  mm,	Z =   215.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[450]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -75.000  mm,	Y =  -140.000  mm,	Z =   215.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[451]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -45.000  mm,	Y =  -220.000  mm,	Z =   215.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[452]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -45.000  mm,	Y =  -172.000  mm,	Z =   215.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[453]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -45.000  mm,	Y =  -140.000  mm,	Z =   215.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[454]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -15.000  mm,	Y =  -220.000  mm,	Z =   215.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[455]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -15.000  mm,	Y =  -172.000  mm,	Z =   215.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[456]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   -15.000  mm,	Y =  -140.000  mm,	Z =   215.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[457]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    15.000  mm,	Y =  -220.000  mm,	Z =   215.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[458]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    15.000  mm,	Y =  -172.000  mm,	Z =   215.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[459]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    15.000  mm,	Y =  -140.000  mm,	Z =   215.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[460]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    45.000  mm,	Y =  -220.000  mm,	Z =   215.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[461]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    45.000  mm,	Y =  -172.000  mm,	Z =   215.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[462]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    45.000  mm,	Y =  -140.000  mm,	Z =   215.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[463]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    75.000  mm,	Y =  -220.000  mm,	Z =   215.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[464]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    75.000  mm,	Y =  -172.000  mm,	Z =   215.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[465]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =    75.000  mm,	Y =  -140.000  mm,	Z =   215.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[466]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   105.000  mm,	Y =  -220.000  mm,	Z =   215.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[467]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   105.000  mm,	Y =  -172.000  mm,	Z =   215.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[468]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 0, 1',
 	X =   105.000  mm,	Y =  -140.000  mm,	Z =   215.000  mm,
 	W =   -90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[469]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =  -105.000  mm,	Y =   220.000  mm,	Z =    40.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[470]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =  -105.000  mm,	Y =   172.000  mm,	Z =    40.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[471]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =  -105.000  mm,	Y =   152.000  mm,	Z =    40.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[472]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -75.000  mm,	Y =   220.000  mm,	Z =    40.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[473]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -75.000  mm,	Y =   172.000  mm,	Z =    40.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[474]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -75.000  mm,	Y =   152.000  mm,	Z =    40.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[475]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -45.000  mm,	Y =   220.000  mm,	Z =    40.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[476]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -45.000  mm,	Y =   172.000  mm,	Z =    40.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[477]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -45.000  mm,	Y =   152.000  mm,	Z =    40.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[478]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -15.000  mm,	Y =   220.000  mm,	Z =    40.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[479]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -15.000  mm,	Y =   172.000  mm,	Z =    40.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[480]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -15.000  mm,	Y =   152.000  mm,	Z =    40.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[481]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    15.000  mm,	Y =   220.000  mm,	Z =    40.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[482]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    15.000  mm,	Y =   172.000  mm,	Z =    40.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[483]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    15.000  mm,	Y =   152.000  mm,	Z =    40.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[484]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    45.000  mm,	Y =   220.000  mm,	Z =    40.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[485]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    45.000  mm,	Y =   172.000  mm,	Z =    40.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[486]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    45.000  mm,	Y =   152.000  mm,	Z =    40.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[487]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    75.000  mm,	Y =   220.000  mm,	Z =    40.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[488]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    75.000  mm,	Y =   172.000  mm,	Z =    40.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[489]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    75.000  mm,	Y =   152.000  mm,	Z =    40.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[490]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   105.000  mm,	Y =   220.000  mm,	Z =    40.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[491]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   105.000  mm,	Y =   172.000  mm,	Z =    40.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[492]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   105.000  mm,	Y =   152.000  mm,	Z =    40.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[493]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =  -105.000  mm,	Y =   220.000  mm,	Z =    75.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[494]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =  -105.000  mm,	Y =   172.000  mm,	Z =    75.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[495]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =  -105.000  mm,	Y =   152.000  mm,	Z =    75.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[496]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -75.000  mm,	Y =   220.000  mm,	Z =    75.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[497]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -75.000  mm,	Y =   172.000  mm,	Z =    75.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[498]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -75.000  mm,	Y =   152.000  mm,	Z =    75.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[499]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -45.000  mm,	Y =   220.000  mm,	Z =    75.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[500]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -45.000  mm,	Y =   172.000  mm,	Z =    75.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[501]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -45.000  mm,	Y =   152.000  mm,	Z =    75.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[502]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -15.000  mm,	Y =   220.000  mm,	Z =    75.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[503]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -15.000  mm,	Y =   172.000  mm,	Z =    75.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[504]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -15.000  mm,	Y =   152.000  mm,	Z =    75.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[505]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    15.000  mm,	Y =   220.000  mm,	Z =    75.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[506]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    15.000  mm,	Y =   172.000  mm,	Z =    75.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[507]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    15.000  mm,	Y =   152.000  mm,	Z =    75.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[508]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    45.000  mm,	Y =   220.000  mm,	Z =    75.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[509]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    45.000  mm,	Y =   172.000  mm,	Z =    75.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[510]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    45.000  mm,	Y =   152.000  mm,	Z =    75.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[511]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    75.000  mm,	Y =   220.000  mm,	Z =    75.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[512]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    75.000  mm,	Y =   172.000  mm,	Z =    75.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[513]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    75.000  mm,	Y =   152.000  mm,	Z =    75.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[514]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   105.000  mm,	Y =   220.000  mm,	Z =    75.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[515]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   105.000  mm,	Y =   172.000  mm,	Z =    75.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[516]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   105.000  mm,	Y =   152.000  mm,	Z =    75.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[517]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =  -105.000  mm,	Y =   220.000  mm,	Z =   110.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[518]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =  -105.000  mm,	Y =   172.000  mm,	Z =   110.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[519]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =  -105.000  mm,	Y =   152.000  mm,	Z =   110.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[520]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -75.000  mm,	Y =   220.000  mm,	Z =   110.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[521]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -75.000  mm,	Y =   172.000  mm,	Z =   110.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[522]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -75.000  mm,	Y =   152.000  mm,	Z =   110.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[523]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -45.000  mm,	Y =   220.000  mm,	Z =   110.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[524]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -45.000  mm,	Y =   172.000  mm,	Z =   110.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[525]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -45.000  mm,	Y =   152.000  mm,	Z =   110.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[526]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -15.000  mm,	Y =   220.000  mm,	Z =   110.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[527]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -15.000  mm,	Y =   172.000  mm,	Z =   110.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[528]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -15.000  mm,	Y =   152.000  mm,	Z =   110.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[529]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    15.000  mm,	Y =   220.000  mm,	Z =   110.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[530]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    15.000  mm,	Y =   172.000  mm,	Z =   110.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[531]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    15.000  mm,	Y =   152.000  mm,	Z =   110.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[532]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    45.000  mm,	Y =   220.000  mm,	Z =   110.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[533]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    45.000  mm,	Y =   172.000  mm,	Z =   110.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[534]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    45.000  mm,	Y =   152.000  mm,	Z =   110.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[535]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    75.000  mm,	Y =   220.000  mm,	Z =   110.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[536]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    75.000  mm,	Y =   172.000  mm,	Z =   110.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[537]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    75.000  mm,	Y =   152.000  mm,	Z =   110.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[538]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   105.000  mm,	Y =   220.000  mm,	Z =   110.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[539]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   105.000  mm,	Y =   172.000  mm,	Z =   110.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[540]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   105.000  mm,	Y =   152.000  mm,	Z =   110.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[541]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =  -105.000  mm,	Y =   220.000  mm,	Z =   145.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[542]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =  -105.000  mm,	Y =   172.000  mm,	Z =   145.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[543]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =  -105.000  mm,	Y =   152.000  mm,	Z =   145.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[544]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -75.000  mm,	Y =   220.000  mm,	Z =   145.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[545]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -75.000  mm,	Y =   172.000  mm,	Z =   145.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[546]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -75.000  mm,	Y =   152.000  mm,	Z =   145.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[547]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -45.000  mm,	Y =   220.000  mm,	Z =   145.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[548]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -45.000  mm,	Y =   172.000  mm,	Z =   145.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[549]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -45.000  mm,	Y =   152.000  mm,	Z =   145.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[550]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -15.000  mm,	Y =   220.000  mm,	Z =   145.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[551]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -15.000  mm,	Y =   172.000  mm,	Z =   145.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[552]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -15.000  mm,	Y =   152.000  mm,	Z =   145.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[553]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    15.000  mm,	Y =   220.000  mm,	Z =   145.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[554]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    15.000  mm,	Y =   172.000  mm,	Z =   145.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[555]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    15.000  mm,	Y =   152.000  mm,	Z =   145.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[556]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    45.000  mm,	Y =   220.000  mm,	Z =   145.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[557]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    45.000  mm,	Y =   172.000  mm,	Z =   145.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[558]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    45.000  mm,	Y =   152.000  mm,	Z =   145.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[559]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    75.000  mm,	Y =   220.000  mm,	Z =   145.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[560]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    75.000  mm,	Y =   172.000  mm,	Z =   145.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[561]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    75.000  mm,	Y =   152.000  mm,	Z =   145.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[562]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   105.000  mm,	Y =   220.000  mm,	Z =   145.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[563]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   105.000  mm,	Y =   172.000  mm,	Z =   145.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[564]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   105.000  mm,	Y =   152.000  mm,	Z =   145.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[565]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =  -105.000  mm,	Y =   220.000  mm,	Z =   180.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[566]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =  -105.000  mm,	Y =   172.000  mm,	Z =   180.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[567]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =  -105.000  mm,	Y =   152.000  mm,	Z =   180.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[568]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -75.000  mm,	Y =   220.000  mm,	Z =   180.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[569]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -75.000  mm,	Y =   172.000  mm,	Z =   180.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[570]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -75.000  mm,	Y =   152.000  mm,	Z =   180.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[571]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -45.000  mm,	Y =   220.000  mm,	Z =   180.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[572]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -45.000  mm,	Y =   172.000  mm,	Z =   180.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[573]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -45.000  mm,	Y =   152.000  mm,	Z =   180.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[574]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -15.000  mm,	Y =   220.000  mm,	Z =   180.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[575]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -15.000  mm,	Y =   172.000  mm,	Z =   180.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[576]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -15.000  mm,	Y =   152.000  mm,	Z =   180.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[577]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    15.000  mm,	Y =   220.000  mm,	Z =   180.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[578]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    15.000  mm,	Y =   172.000  mm,	Z =   180.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[579]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    15.000  mm,	Y =   152.000  mm,	Z =   180.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[580]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    45.000  mm,	Y =   220.000  mm,	Z =   180.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[581]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    45.000  mm,	Y =   172.000  mm,	Z =   180.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[582]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    45.000  mm,	Y =   152.000  mm,	Z =   180.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[583]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    75.000  mm,	Y =   220.000  mm,	Z =   180.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[584]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    75.000  mm,	Y =   172.000  mm,	Z =   180.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[585]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    75.000  mm,	Y =   152.000  mm,	Z =   180.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[586]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   105.000  mm,	Y =   220.000  mm,	Z =   180.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[587]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   105.000  mm,	Y =   172.000  mm,	Z =   180.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[588]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   105.000  mm,	Y =   152.000  mm,	Z =   180.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[589]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =  -105.000  mm,	Y =   220.000  mm,	Z =   215.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[590]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =  -105.000  mm,	Y =   172.000  mm,	Z =   215.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[591]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =  -105.000  mm,	Y =   152.000  mm,	Z =   215.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[592]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -75.000  mm,	Y =   220.000  mm,	Z =   215.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[593]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -75.000  mm,	Y =   172.000  mm,	Z =   215.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[594]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -75.000  mm,	Y =   152.000  mm,	Z =   215.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[595]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -45.000  mm,	Y =   220.000  mm,	Z =   215.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[596]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -45.000  mm,	Y =   172.000  mm,	Z =   215.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[597]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -45.000  mm,	Y =   152.000  mm,	Z =   215.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[598]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -15.000  mm,	Y =   220.000  mm,	Z =   215.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[599]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -15.000  mm,	Y =   172.000  mm,	Z =   215.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[600]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   -15.000  mm,	Y =   152.000  mm,	Z =   215.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[601]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    15.000  mm,	Y =   220.000  mm,	Z =   215.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[602]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    15.000  mm,	Y =   172.000  mm,	Z =   215.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[603]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    15.000  mm,	Y =   152.000  mm,	Z =   215.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[604]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    45.000  mm,	Y =   220.000  mm,	Z =   215.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[605]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    45.000  mm,	Y =   172.000  mm,	Z =   215.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[606]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    45.000  mm,	Y =   152.000  mm,	Z =   215.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[607]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    75.000  mm,	Y =   220.000  mm,	Z =   215.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[608]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    75.000  mm,	Y =   172.000  mm,	Z =   215.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[609]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =    75.000  mm,	Y =   152.000  mm,	Z =   215.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[610]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   105.000  mm,	Y =   220.000  mm,	Z =   215.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[611]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   105.000  mm,	Y =   172.000  mm,	Z =   215.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };
 P[612]{
    GP1:
-	UF : 1, UT : 1,		CONFIG : 'N U T, 0, 0, 0',
+	UF : 1, UT : 1,		CONFIG : 'F U T, 0, 1, 0',
 	X =   105.000  mm,	Y =   152.000  mm,	Z =   215.000  mm,
 	W =    90.000 deg,	P =     0.000 deg,	R =     0.000 deg
 };

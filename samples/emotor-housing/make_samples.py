@@ -8,20 +8,26 @@ vertical) with 204 holes of four diameters on four faces, as
   housing_r2000.ls     FANUC TP (/POS records in UFRAME 1 / UTOOL 1; the frame lives in the
                        controller, so roprec takes it from the cell's <workobject>)
 
+The ABB confdata and FANUC CONFIG of every target are computed with roprec's own IK (the solution
+nearest the previous hole's, like an OLP would choose), so the generator needs a built roprec:
+  python3 samples/emotor-housing/make_samples.py build/bin/roprec
 Every hole is an OLP-style drill cycle: approach 50 mm above the entry (joint move), rapid to
 2 mm, feed to the bottom at the process feed, dwell, retract. TCP z = drilling direction; the
 rotation about it follows roprec's hole-list rule (x = workobject x projected, or y near x).
 Deterministic output; run again to regenerate:  python3 samples/emotor-housing/make_samples.py
 """
+import json
 import math
 import os
+import subprocess
+import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 # (workobject pose in each robot's base frame, mm / deg) -- must match samples/cells/*.xml
 WOBJ = {
     "kuka": (1350.0, 0.0, 300.0),
-    "abb": (1450.0, 0.0, 250.0),
+    "abb": (1700.0, 0.0, 250.0),
     "fanuc": (1400.0, 0.0, 300.0 - 670.0),  # FANUC World is at J2 height (670 mm)
 }
 FEED_MM_S = 20.0      # 0.2 mm/rev x 6000 rpm
@@ -46,13 +52,15 @@ def holes():
     for k in range(12):   # sensor flange PCD 60, 6.8
         a = 2 * math.pi * (k + 0.25) / 12
         n += 1; add("T%03d" % n, (30 * math.cos(a), 30 * math.sin(a), 250.0), (0, 0, -1), 6.8, 12.0, 0.15)
-    # front pad x = -170 (faces the robot), drilled +x: mounting holes
+    # front chamfer pad (45 deg, facing the robot and up), drilled along (1, 0, -1)/sqrt2: mounting holes
     n = 0
+    s2 = math.sqrt(0.5)
     for r in range(6):
         for c in range(8):
             n += 1
             dia = 12.0 if (r in (0, 5) and c in (0, 7)) else 8.5
-            add("F%03d" % n, (-170.0, -105.0 + 30.0 * c, 40.0 + 35.0 * r), (1, 0, 0), dia, 24.0, 0.2)
+            t = -50.0 + 20.0 * r  # along the pad's slope (up and inwards)
+            add("F%03d" % n, (-140.0 + t * s2, -105.0 + 30.0 * c, 190.0 + t * s2), (s2, 0, -s2), dia, 24.0, 0.2)
     # right pad y = -170, drilled +y: fluid passages
     n = 0
     for r in range(6):
@@ -109,10 +117,44 @@ def quat(R):
     return (w, x, y, z)
 
 
+ROBOT = {"abb": ("abb-irb6640-185-280", "housing-irb6640.xml"), "fanuc": ("fanuc-r2000ic-165f", "housing-r2000.xml")}
+
+
+def configs(roprec, vendor, hs):
+    """Vendor configuration string per hole (at its drill point), continuity from hole to hole."""
+    name, cell = ROBOT[vendor]
+    cell = os.path.join(HERE, "..", "cells", cell)
+    wx, wy, wz = WOBJ[vendor]
+    seed = None
+    out = []
+    for hid, p, d, dia, depth, tol in hs:
+        q = quat(hole_frame(d))
+        pose = "%f %f %f %.12f %.12f %.12f %.12f" % (wx + p[0] + depth * d[0], wy + p[1] + depth * d[1],
+                                                     wz + p[2] + depth * d[2], q[0], q[1], q[2], q[3])
+        cmd = [roprec, "ik", "--robot", name, "--cell", cell, "--pose", pose]
+        if seed:
+            cmd += ["--seed", " ".join("%f" % v for v in seed)]
+        r = subprocess.run(cmd, capture_output=True, text=True)
+        sols = [x for x in json.loads(r.stdout)["solutions"] if x["within_limits"] and x["converged"]
+                and not any(x["singular"][k] for k in ("wrist", "shoulder", "elbow"))] if r.stdout else []
+        if not sols:
+            raise SystemExit("hole %s unreachable for %s" % (hid, name))
+        ref = seed or sols[0]["joints_deg"]
+        w = (1, 1, 1, 0.5, 0.5, 0.3)
+        best = min(sols, key=lambda x: sum(wi * (a - b) ** 2 for wi, a, b in zip(w, x["joints_deg"], ref)))
+        seed = best["joints_deg"]
+        out.append(best["config"])
+    return out
+
+
 def cycle_points(p, d, depth):
     """approach +50, entry +2, bottom -depth (along the drilling direction d)."""
     return [tuple(p[i] - 50.0 * d[i] for i in range(3)), tuple(p[i] - 2.0 * d[i] for i in range(3)),
             tuple(p[i] + depth * d[i] for i in range(3))]
+
+
+def fd(v):
+    return "%d" % v if v == int(v) else "%.9f" % v
 
 
 def f3(v):
@@ -144,18 +186,18 @@ def krl(hs):
     write("housing_kr120.src", "\n".join(L), crlf=True)
 
 
-def rapid(hs):
+def rapid(hs, cfgs):
     L = ["MODULE housing_irb6640", "  ! e-motor housing drilling (roprec sample)",
          "  PERS tooldata tSpindle:=[TRUE,[[0,0,320],[1,0,0,0]],[25.8,[0,0,120],[1,0,0,0],0.35,0.33,0.08]];",
          "  PERS wobjdata wHousing:=[FALSE,TRUE,\"\",[[%s,%s,%s],[1,0,0,0]],[[0,0,0],[1,0,0,0]]];" % tuple(f3(v) for v in WOBJ["abb"]),
          "  CONST speeddata vFeed:=[%.1f,500,5000,1000];" % FEED_MM_S, "",
          "  PROC main()", "    ConfJ \\On;", "    ConfL \\Off;"]
-    for hid, p, d, dia, depth, tol in hs:
+    for (hid, p, d, dia, depth, tol), cf in zip(hs, cfgs):
         q = quat(hole_frame(d))
         pts = cycle_points(p, d, depth)
         q = tuple(0.0 if abs(c) < 5e-10 else c for c in q)
-        rt = lambda v: "[[%s,%s,%s],[%.9f,%.9f,%.9f,%.9f],[0,0,0,0],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]]" % (
-            f3(v[0]), f3(v[1]), f3(v[2]), q[0], q[1], q[2], q[3])
+        rt = lambda v: "[[%s,%s,%s],[%.9f,%.9f,%.9f,%.9f],%s,[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]]" % (
+            f3(v[0]), f3(v[1]), f3(v[2]), q[0], q[1], q[2], q[3], cf)
         L += ["    ! %s drill D%.1f depth %.1f" % (hid, dia, depth),
               "    MoveJ %s,v1000,z10,tSpindle\\WObj:=wHousing;" % rt(pts[0]),
               "    MoveL %s,v250,z1,tSpindle\\WObj:=wHousing;" % rt(pts[1]),
@@ -166,18 +208,18 @@ def rapid(hs):
     write("housing_irb6640.mod", "\n".join(L))
 
 
-def tp(hs):
+def tp(hs, cfgs):
     mn = []
     pos = []
     n = 0
-    for hid, p, d, dia, depth, tol in hs:
+    for (hid, p, d, dia, depth, tol), cf in zip(hs, cfgs):
         w, pp, r = zyx(hole_frame(d))[::-1]  # FANUC W,P,R = KUKA C,B,A
         pts = cycle_points(p, d, depth)
         idx = []
         for q in pts:
             n += 1
             idx.append(n)
-            pos += ["P[%d]{" % n, "   GP1:", "\tUF : 1, UT : 1,\t\tCONFIG : 'N U T, 0, 0, 0',",
+            pos += ["P[%d]{" % n, "   GP1:", "\tUF : 1, UT : 1,\t\tCONFIG : '%s'," % cf,
                     "\tX = %9.3f  mm,\tY = %9.3f  mm,\tZ = %9.3f  mm," % tuple(0.0 if abs(v) < 5e-4 else v for v in q),
                     "\tW = %9.3f deg,\tP = %9.3f deg,\tR = %9.3f deg" % tuple(0.0 if abs(v) < 5e-4 else v for v in (w, pp, r)), "};"]
         mn += ["!%s drill D%.1f ;" % (hid, dia), "J P[%d] 50%% CNT50 ;" % idx[0], "L P[%d] 250mm/sec CNT10 ;" % idx[1],
@@ -194,17 +236,19 @@ def tp(hs):
 
 
 def holes_csv(hs):
-    L = ["# e-motor housing (AlSi9Cu3 die casting): 204 holes on 4 faces, workobject frame, mm",
+    L = ["# e-motor housing (AlSi9Cu3 die casting): 204 holes on 4 faces (top, 45 deg front chamfer, two sides), workobject frame, mm",
          "id,x,y,z,i,j,k,diameter,depth,tolerance"]
     for hid, p, d, dia, depth, tol in hs:
-        L.append("%s,%s,%s,%s,%d,%d,%d,%.1f,%.1f,%.2f" % (hid, f3(p[0]), f3(p[1]), f3(p[2]), d[0], d[1], d[2], dia, depth, tol))
+        L.append("%s,%s,%s,%s,%s,%s,%s,%.1f,%.1f,%.2f" % (hid, f3(p[0]), f3(p[1]), f3(p[2]), fd(d[0]), fd(d[1]), fd(d[2]), dia, depth, tol))
     write("holes.csv", "\n".join(L) + "\n")
 
 
 if __name__ == "__main__":
+    if len(sys.argv) != 2:
+        raise SystemExit("usage: make_samples.py ROPREC_BINARY")
     hs = holes()
     holes_csv(hs)
     krl(hs)
-    rapid(hs)
-    tp(hs)
+    rapid(hs, configs(sys.argv[1], "abb", hs))
+    tp(hs, configs(sys.argv[1], "fanuc", hs))
     print("%d holes" % len(hs))
