@@ -114,16 +114,17 @@ struct VerdictStyle {
   Verdict verdict;
   const char* label;  ///< human-readable
   const char* cls;    ///< CSS class suffix
+  const char* badge;  ///< short badge text (the table; the full key is its tooltip)
   const char* bar;    ///< bar / cross colour
 };
 
 constexpr std::array<VerdictStyle, 6> kVerdicts{{
-    {Verdict::kConforms, "conforms", "ok", "#2da44e"},
-    {Verdict::kConformsAfterCompensation, "conforms after compensation", "comp", "#d4a72c"},
-    {Verdict::kDoesNotConform, "does not conform", "nc", "#cf222e"},
-    {Verdict::kUnreachable, "unreachable", "unr", "#57606a"},
-    {Verdict::kSingular, "singular", "sing", "#8250df"},
-    {Verdict::kNotConverged, "not converged", "nconv", "#bc4c00"},
+    {Verdict::kConforms, "conforms", "ok", "conforms", "#2da44e"},
+    {Verdict::kConformsAfterCompensation, "conforms after compensation", "comp", "after comp.", "#d4a72c"},
+    {Verdict::kDoesNotConform, "does not conform", "nc", "does not conform", "#cf222e"},
+    {Verdict::kUnreachable, "unreachable", "unr", "unreachable", "#57606a"},
+    {Verdict::kSingular, "singular", "sing", "singular", "#8250df"},
+    {Verdict::kNotConverged, "not converged", "nconv", "not converged", "#bc4c00"},
 }};
 
 const VerdictStyle& styleOf(Verdict v) {
@@ -228,6 +229,24 @@ std::string dirLabel(const Vec3& d) {
     if (std::abs(d[i]) > 0.9995) return std::string(d[i] > 0 ? "+" : "\u2212") + kAxis[static_cast<size_t>(i)];
   }
   return "(" + num(d.x(), 3) + ", " + num(d.y(), 3) + ", " + num(d.z(), 3) + ")";
+}
+
+/// Screen-axis labelling: a direction along ±X/±Y/±Z of the base is labelled with that base
+/// coordinate (tick values then read base mm: sign = the direction's sign); otherwise "u = (…)".
+struct AxisLabel {
+  std::string text;
+  double sign{1};
+};
+
+AxisLabel axisLabel(const char* name, const Vec3& d) {
+  static constexpr std::array<const char*, 3> kAxis{"X", "Y", "Z"};
+  for (int i = 0; i < 3; ++i) {
+    if (std::abs(d[i]) > 0.9995) {
+      return {std::string("base ") + kAxis[static_cast<size_t>(i)] + " [mm]",
+              d[i] > 0 ? 1.0 : -1.0};
+    }
+  }
+  return {std::string(name) + " = " + dirLabel(d) + " [mm]", 1.0};
 }
 
 struct FaceGroup {
@@ -411,6 +430,7 @@ void renderPanel(std::string& o, const FaceGroup& f, const std::vector<HoleView>
   const double y_hi = f.y1, y_lo = f.y1 - f.plot_h / f.s;
   const double step = niceStep(std::max(x_hi - x_lo, y_hi - y_lo) / 6.0);
   const int dec = decimalsFor(step);
+  const AxisLabel lx = axisLabel("u", f.u), ly = axisLabel("v", f.v);
   o += "<rect class=\"plot\" x=\"" + num(kMarginL, 1) + "\" y=\"" + num(kMarginT, 1) + "\" width=\"" +
        num(f.plot_w, 1) + "\" height=\"" + num(f.plot_h, 1) + "\"/>";
   o += "<g class=\"grid\">";
@@ -425,17 +445,17 @@ void renderPanel(std::string& o, const FaceGroup& f, const std::vector<HoleView>
   o += "</g><g class=\"tick\">";
   for (const double t : ticksIn(x_lo, x_hi, step)) {
     o += "<text x=\"" + num(px(t), 1) + "\" y=\"" + num(plot_bottom + 15, 1) + "\" text-anchor=\"middle\">" +
-         num(t, dec) + "</text>";
+         num(lx.sign * t, dec) + "</text>";
   }
   for (const double t : ticksIn(y_lo, y_hi, step)) {
-    o += "<text x=\"" + num(kMarginL - 6, 1) + "\" y=\"" + num(py(t) + 4, 1) + "\" text-anchor=\"end\">" + num(t, dec) +
+    o += "<text x=\"" + num(kMarginL - 6, 1) + "\" y=\"" + num(py(t) + 4, 1) + "\" text-anchor=\"end\">" + num(ly.sign * t, dec) +
          "</text>";
   }
   o += "</g>";
   o += "<text class=\"axis\" x=\"" + num(kMarginL + 0.5 * f.plot_w, 1) + "\" y=\"" + num(plot_bottom + 33, 1) +
-       "\" text-anchor=\"middle\">u = " + esc(dirLabel(f.u)) + " [mm]</text>";
+       "\" text-anchor=\"middle\">" + esc(lx.text) + "</text>";
   o += "<text class=\"axis\" transform=\"translate(14 " + num(kMarginT + 0.5 * f.plot_h, 1) +
-       ") rotate(-90)\" text-anchor=\"middle\">v = " + esc(dirLabel(f.v)) + " [mm]</text>";
+       ") rotate(-90)\" text-anchor=\"middle\">" + esc(ly.text) + "</text>";
 
   // program order path
   if (f.members.size() > 1) {
@@ -566,6 +586,13 @@ constexpr std::array<TermInfo, 6> kTerms{{
     {"mach_tool_deflection", "Tool deflection", "\u03b4deftool under the rotating force Fr, arcsine a/\u221a2"},
 }};
 
+const TermInfo* termInfo(const std::string& name) {
+  for (const TermInfo& ti : kTerms) {
+    if (name == ti.name) return &ti;
+  }
+  return nullptr;
+}
+
 constexpr std::array<const char*, 4> kRobotColours{"#1f4e79", "#3a7dbf", "#8fbbe6", "#c9def5"};
 constexpr std::array<const char*, 5> kProcessColours{"#b45309", "#e8892b", "#f5b971", "#fbd9a6", "#fdebd0"};
 
@@ -633,24 +660,35 @@ svg .barTick{stroke:#57606a;stroke-width:1}
 .meter i{display:block;height:100%;background:#2da44e}
 table{border-collapse:separate;border-spacing:0;font-size:12.5px}
 th,td{padding:4px 8px;text-align:right;white-space:nowrap;border-bottom:1px solid #eaeef2}
-th{background:#f0f3f6;font-weight:600;text-align:center;color:#1f2328}
+th{background:#f0f3f6;font-weight:600;text-align:center;color:#1f2328;vertical-align:bottom}
+th small{font-weight:400;color:var(--muted)}
 td.l,th.l{text-align:left}
 tbody tr:nth-child(even) td{background:#f8fafc}
 tbody tr:hover td{background:#eef5ff}
+.budget{width:100%}
 .budget td,.budget th{padding:5px 10px}
-.budget tr.sum td{border-top:1px solid var(--line);font-weight:600;background:#fff}
+.budget tr.sum td{border-top:1px solid var(--line);background:#fff}
+.budget tr.sum td:first-child,.budget tr.sum td.n{font-weight:600}
 .sw{display:inline-block;width:10px;height:10px;border-radius:2px;margin-right:6px;vertical-align:-1px}
 .share{display:inline-block;height:8px;background:#8fbbe6;border-radius:2px;vertical-align:middle;margin-left:6px}
 .stack{display:flex;height:22px;border-radius:5px;overflow:hidden;border:1px solid var(--line);margin:10px 0 4px}
-.stack span{display:block;height:100%}
+.stack span{display:block;height:100%;overflow:hidden;white-space:nowrap;font-size:11px;line-height:22px;padding-left:5px;color:#fff}
+.stack span.lt{color:#1f2328}
 .scroll{max-height:78vh;overflow:auto;border:1px solid var(--line);border-radius:8px}
-.holes thead th{position:sticky;top:0;z-index:1;box-shadow:inset 0 -1px 0 var(--line)}
+.holes{font-size:12px}
+.holes th,.holes td{padding:3px 5px}
+.holes th{white-space:normal;line-height:1.25}
+.holes thead th{position:sticky;top:0;z-index:2;box-shadow:inset 0 -1px 0 var(--line)}
+.holes .c0,.holes .c1{position:sticky;z-index:1;background:#fff}
+.holes .c0{left:0;min-width:34px}
+.holes .c1{left:34px;box-shadow:inset -1px 0 0 var(--line)}
+.holes thead .c0,.holes thead .c1{z-index:3;background:#f0f3f6}
 .holes td.id{font-weight:600;text-align:left}
-.holes td.v span{display:inline-block;min-width:3.9em}
-.holes td.j span{display:inline-block;min-width:3.6em}
+.holes td.v span{display:inline-block;min-width:3em}
+.holes td.j span{display:inline-block;min-width:3.1em}
 .holes td.reason{text-align:left;color:#57606a;font-style:italic}
 .holes td.chg b{display:inline-block;min-width:1.7em;border:2px solid #e3120b;border-radius:999px;text-align:center;line-height:1.2}
-.badge{display:inline-block;padding:1px 8px;border-radius:999px;font-size:11.5px;font-weight:600;border:1px solid}
+.badge{display:inline-block;padding:0 7px;border-radius:999px;font-size:11px;font-weight:600;border:1px solid}
 .b-ok{color:#116329;background:#dafbe1;border-color:#aceebb}
 .b-comp{color:#7d4e00;background:#fff8c5;border-color:#eac54f}
 .b-nc{color:#a40e26;background:#ffebe9;border-color:#ffcecb}
@@ -660,7 +698,7 @@ tbody tr:hover td{background:#eef5ff}
 footer{margin-top:36px;padding-top:12px;border-top:1px solid var(--line);color:var(--muted);font-size:12px}
 footer p{margin:4px 0}
 @media (max-width:1100px){.maps,.maps.four{grid-template-columns:minmax(0,1fr)}.kpis{grid-template-columns:repeat(3,minmax(0,1fr))}.two,.meta{grid-template-columns:minmax(0,1fr)}}
-@media print{@page{size:A4 landscape;margin:10mm}body{font-size:10pt}main{max-width:none;padding:0}.scroll{max-height:none;overflow:visible;border:0}.holes thead th{position:static}table{font-size:8pt}th,td{padding:2px 4px}h2{break-after:avoid}.card,.panel,.kpi{break-inside:avoid}tbody tr:hover td{background:inherit}}
+@media print{@page{size:A4 landscape;margin:10mm}body{font-size:10pt}main{max-width:none;padding:0}.scroll{max-height:none;overflow:visible;border:0}.holes thead th{position:static}table{font-size:8pt}.holes{font-size:6.4pt}th,td,.holes th,.holes td{padding:1px 3px}.holes .c0,.holes .c1{position:static}h2{break-after:avoid}.card,.panel,.kpi{break-inside:avoid}tbody tr:hover td{background:inherit}}
 )CSS";
 
 // ------------------------------------------------------------------ sections
@@ -928,21 +966,24 @@ void renderBudget(std::string& o, const std::vector<HoleView>& hv) {
        "+ u<sub>deflection</sub>\u00b2, u<sub>mach</sub>\u00b2 = \u03a3 process terms, u<sub>work</sub>\u00b2 = "
        "u<sub>robot</sub>\u00b2 + u<sub>mach</sub>\u00b2. Statistics over the " +
        plural(n_ok, "predicted hole", "predicted holes") + ".</p>";
-  o += "<div class=\"stack\" title=\"mean variance share of each term\">";
+  o += "<div class=\"stack\">";
+  size_t nr_seen = 0, np_seen = 0;
   for (size_t i = 0; i < terms.size(); ++i) {
     const double sh = 100.0 * terms[i].sum_share / n_ok;
-    o += "<span style=\"width:" + num(sh, 3) + "%;background:" + colours[i] + "\" title=\"" + esc(terms[i].name) +
-         ": " + num(sh, 1) + " %\"></span>";
+    const TermInfo* info = termInfo(terms[i].name);
+    const std::string label = info ? std::string(info->label) : esc(terms[i].name);
+    const bool light = (terms[i].process ? np_seen : nr_seen) >= 2;
+    (terms[i].process ? np_seen : nr_seen)++;
+    o += "<span" + std::string(light ? " class=\"lt\"" : "") + " style=\"width:" + num(sh, 3) + "%;background:" +
+         colours[i] + "\" title=\"" + label + ": " + num(sh, 1) + " %\">" + (sh >= 7.0 ? label + " " + num(sh, 0) + " %" : "") +
+         "</span>";
   }
   o += "</div>";
   o += "<table class=\"budget\"><thead><tr><th class=\"l\">Term</th><th class=\"l\">Basis</th><th>Part of</th>"
        "<th>mean u [\u00b5m]</th><th>max u [\u00b5m]</th><th class=\"l\">mean variance share</th></tr></thead><tbody>";
   for (size_t i = 0; i < terms.size(); ++i) {
     const TermStats& t = terms[i];
-    const TermInfo* info = nullptr;
-    for (const TermInfo& ti : kTerms) {
-      if (t.name == ti.name) info = &ti;
-    }
+    const TermInfo* info = termInfo(t.name);
     const double sh = 100.0 * t.sum_share / n_ok;
     o += "<tr><td class=\"l\"><span class=\"sw\" style=\"background:" + colours[i] + "\"></span>" +
          (info ? std::string(info->label) : esc(t.name)) + "</td><td class=\"l note\">" +
@@ -958,7 +999,7 @@ void renderBudget(std::string& o, const std::vector<HoleView>& hv) {
                                          "expanded radial, k \u00b7 u", "expanded radial, k \u00b7 u"};
   for (size_t i = 0; i < 6; ++i) {
     o += std::string("<tr class=\"sum\"><td class=\"l\">") + names[i] + "</td><td class=\"l note\">" + basis[i] +
-         "</td><td></td><td>" + num(agg[i].sum / n_ok * 1e6, 2) + "</td><td>" + num(agg[i].max * 1e6, 2) +
+         "</td><td></td><td class=\"n\">" + num(agg[i].sum / n_ok * 1e6, 2) + "</td><td class=\"n\">" + num(agg[i].max * 1e6, 2) +
          "</td><td class=\"l\">" + (i == 2 ? "100 %" : "") + "</td></tr>";
   }
   o += "</tbody></table>";
@@ -984,20 +1025,23 @@ void renderTable(std::string& o, const ReportInput& in, const std::vector<HoleVi
   o += "<p class=\"note\">In program order. Joints: motor-side command in degrees (URDF convention). Deviations in "
        "the robot base frame (x, y, z) in \u00b5m; e\u22a5 = |\u03b4work \u22a5 hole axis|; tilt = hole-axis tilt "
        "in \u00b5rad; U expanded (k as above). A ringed branch marks a configuration change from the previous "
-       "hole.</p>";
-  o += "<div class=\"scroll\"><table class=\"holes\"><thead><tr><th>#</th><th class=\"l\">Hole</th><th>\u2300 "
-       "[mm]</th><th class=\"l\">Config</th><th>Branch</th><th>Joints J1\u2026J6 [\u00b0]</th><th>\u03b4robot x y z "
-       "[\u00b5m]</th><th>\u03b4mach x y z [\u00b5m]</th><th>\u03b4work x y z [\u00b5m]</th><th>e\u22a5 "
-       "[\u00b5m]</th><th>tilt [\u00b5rad]</th><th>U<sub>robot</sub> [\u00b5m]</th><th>U<sub>mach</sub> "
-       "[\u00b5m]</th><th>U<sub>work</sub> [\u00b5m]</th><th>Tol. \u2300 [mm]</th><th class=\"l\">Verdict</th>"
-       "<th>MC [s]</th>";
-  if (in.compensation) o += "<th>Residual [\u00b5m]</th><th>Rot. about axis [\u00b0]</th>";
+       "hole. Verdict \u201cafter comp.\u201d = conforms-after-compensation.</p>";
+  o += "<div class=\"scroll\"><table class=\"holes\"><thead><tr><th class=\"c0\">#</th><th class=\"l c1\">Hole</th>"
+       "<th>\u2300<br><small>mm</small></th><th class=\"l\">Config</th><th>Br.</th><th>Joints J1\u2026J6<br><small>deg"
+       "</small></th><th>\u03b4robot x y z<br><small>\u00b5m</small></th><th>\u03b4mach x y z<br><small>\u00b5m</small>"
+       "</th><th>\u03b4work x y z<br><small>\u00b5m</small></th><th>e\u22a5<br><small>\u00b5m</small></th><th>tilt<br>"
+       "<small>\u00b5rad</small></th><th>U<sub>robot</sub><br><small>\u00b5m</small></th><th>U<sub>mach</sub><br><small>"
+       "\u00b5m</small></th><th>U<sub>work</sub><br><small>\u00b5m</small></th><th>Tol. \u2300<br><small>mm</small></th>"
+       "<th class=\"l\">Verdict</th><th>MC<br><small>s</small></th>";
+  if (in.compensation) {
+    o += "<th>Residual<br><small>\u00b5m</small></th><th>Rot. about axis<br><small>deg</small></th>";
+  }
   o += "</tr></thead><tbody>";
   for (size_t i = 0; i < hv.size(); ++i) {
     const HoleView& h = hv[i];
     const HolePrediction& p = *h.p;
     const VerdictStyle& vs = styleOf(p.verdict);
-    o += "<tr><td>" + std::to_string(i + 1) + "</td><td class=\"id\">" + esc(p.id) + "</td><td>" +
+    o += "<tr><td class=\"c0\">" + std::to_string(i + 1) + "</td><td class=\"id c1\">" + esc(p.id) + "</td><td>" +
          num(p.diameter * 1e3, 2) + "</td><td class=\"l\">" + (p.config.empty() ? kDash : esc(p.config)) + "</td>";
     const bool has_joints = h.ok || !p.config.empty();
     if (h.config_change) {
@@ -1022,8 +1066,8 @@ void renderTable(std::string& o, const ReportInput& in, const std::vector<HoleVi
       o += "<td class=\"reason\" colspan=\"8\">" + (p.reason.empty() ? std::string(verdictName(p.verdict)) : esc(p.reason)) +
            "</td>";
     }
-    o += "<td>" + num(p.tolerance * 1e3, 3) + "</td><td class=\"l\"><span class=\"badge b-" + vs.cls + "\">" +
-         verdictName(p.verdict) + "</span></td><td>" + num(p.mc_time, 2) + "</td>";
+    o += "<td>" + num(p.tolerance * 1e3, 3) + "</td><td class=\"l\"><span class=\"badge b-" + vs.cls + "\" title=\"" +
+         verdictName(p.verdict) + "\">" + vs.badge + "</span></td><td>" + num(p.mc_time, 2) + "</td>";
     if (in.compensation) {
       o += "<td>" + (h.rh->residual_um ? num(*h.rh->residual_um, 1) : std::string(kDash)) + "</td><td>" +
            (h.rh->rotation_about_axis_deg ? num(*h.rh->rotation_about_axis_deg, 2) : std::string(kDash)) + "</td>";

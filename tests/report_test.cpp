@@ -203,7 +203,7 @@ TEST(Report, EscapesEveryInputString) {
   EXPECT_NE(html.find("&lt;script&gt;&amp;&quot;"), std::string::npos);
   EXPECT_NE(html.find("housing_&lt;B&gt;.src"), std::string::npos);
   // the hostile id in the table row and in the map tooltips (3 panels)
-  EXPECT_EQ(countOf(html, "<td class=\"id\">&lt;script&gt;&amp;&quot;</td>"), 1u);
+  EXPECT_EQ(countOf(html, "<td class=\"id c1\">&lt;script&gt;&amp;&quot;</td>"), 1u);
   EXPECT_GE(countOf(html, "<title>&lt;script&gt;&amp;&quot;"), 3u);
 }
 
@@ -232,17 +232,17 @@ TEST(Report, MapsTablesBudgetAndVerdicts) {
   size_t last = 0;
   for (const HolePrediction& p : s.preds) {
     if (p.id.find('<') != std::string::npos) continue;
-    const size_t at = html.find("<td class=\"id\">" + p.id + "</td>");
+    const size_t at = html.find("<td class=\"id c1\">" + p.id + "</td>");
     ASSERT_NE(at, std::string::npos) << p.id;
     EXPECT_GT(at, last) << p.id;
     last = at;
   }
   const size_t tbody = html.find("<table class=\"holes\">");
   ASSERT_NE(tbody, std::string::npos);
-  EXPECT_EQ(countOf(html.substr(tbody), "<tr><td>"), s.preds.size());
+  EXPECT_EQ(countOf(html.substr(tbody), "<tr><td class=\"c0\">"), s.preds.size());
   // verdict badges match the predictions
   const CapabilitySummary& sum = in.summary;
-  EXPECT_EQ(countOf(html, "class=\"badge b-ok\">conforms<"), static_cast<size_t>(sum.conforms));
+  EXPECT_EQ(countOf(html, "class=\"badge b-ok\" title=\"conforms\">conforms<"), static_cast<size_t>(sum.conforms));
   EXPECT_EQ(countOf(html, "class=\"badge b-comp\""), static_cast<size_t>(sum.conforms_after_compensation));
   EXPECT_EQ(countOf(html, "class=\"badge b-nc\""), static_cast<size_t>(sum.does_not_conform));
   EXPECT_EQ(countOf(html, "class=\"badge b-unr\""), 1u);
@@ -263,7 +263,7 @@ TEST(Report, BudgetStatisticsAreTheMeansOverPredictedHoles) {
   const Synthetic s = makeSynthetic(7);
   const std::string html = cli::renderReport(makeInput(s, false));
   // robot repeatability is 16.6 µm at every hole: mean = max = 16.60
-  const size_t at = html.find("Robot repeatability");
+  const size_t at = html.find("Robot repeatability</td>");
   ASSERT_NE(at, std::string::npos);
   const std::string row = html.substr(at, html.find("</tr>", at) - at);
   EXPECT_EQ(countOf(row, "<td>16.60</td>"), 2u) << row;
@@ -277,7 +277,7 @@ TEST(Report, BudgetStatisticsAreTheMeansOverPredictedHoles) {
     ++n;
   }
   char buf[64];
-  std::snprintf(buf, sizeof buf, "<td>%.2f</td><td>%.2f</td>", sum / n, mx);
+  std::snprintf(buf, sizeof buf, "<td class=\"n\">%.2f</td><td class=\"n\">%.2f</td>", sum / n, mx);
   const size_t uw = html.find("<td class=\"l\">U<sub>work</sub>");
   ASSERT_NE(uw, std::string::npos);
   EXPECT_NE(html.substr(uw, 300).find(buf), std::string::npos) << html.substr(uw, 300);
@@ -289,7 +289,7 @@ TEST(Report, CompensationAddsBeforeAfterMapsAndColumns) {
   EXPECT_EQ(countOf(html, "<figure class=\"panel\">"), 8u);
   EXPECT_EQ(countOf(html, "before compensation</figcaption>"), 2u);
   EXPECT_EQ(countOf(html, "<figcaption>Residual"), 2u);
-  EXPECT_NE(html.find("<th>Residual [\u00b5m]</th>"), std::string::npos);
+  EXPECT_NE(html.find("<th>Residual<br><small>\u00b5m</small></th>"), std::string::npos);
   EXPECT_NE(html.find("<td>12.50</td>"), std::string::npos);
 }
 
