@@ -8,12 +8,13 @@
 /// time stamp and no script. Every string that comes from the inputs is HTML-escaped.
 ///
 /// Maps: each face group (holes whose drilling axes agree within dot > 0.99, first-seen order) is
-/// drawn as seen along its mean drilling direction a, with u × v = −a pointing at the viewer (a true
-/// view, not mirrored), v = u × a. Walls (|a_z| < 0.9) are drawn upright: v = base +z projected on
-/// the face, u = a × v. Top and bottom faces: u = the principal direction of the hole positions
-/// projected on the plane ⊥ a (PCA; its largest-magnitude component made positive). Coordinates are p·u and p·v in mm (base
-/// frame), equal scale on both axes. Colour scale: viridis (matplotlib's perceptually uniform
-/// sequential map, van der Walt & Smith 2015), 11 anchors interpolated linearly in sRGB.
+/// drawn as seen along its mean drilling direction a, with u × v = −a pointing at the viewer (a
+/// true view, not mirrored), v = u × a. Walls (|a_z| < 0.9) are drawn upright: v = base +z
+/// projected on the face, u = a × v. Top and bottom faces: u = the principal direction of the hole
+/// positions projected on the plane ⊥ a (PCA; its largest-magnitude component made positive).
+/// Coordinates are p·u and p·v in mm (base frame), equal scale on both axes. Colour scale: viridis
+/// (matplotlib's perceptually uniform sequential map, van der Walt & Smith 2015), 11 anchors
+/// interpolated linearly in sRGB.
 
 #include "plugin/report.hpp"
 
@@ -21,8 +22,8 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
-#include <numbers>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 #include <string_view>
 
@@ -50,11 +51,21 @@ std::string esc(std::string_view s) {
   o.reserve(s.size() + 8);
   for (const char c : s) {
     switch (c) {
-      case '&': o += "&amp;"; break;
-      case '<': o += "&lt;"; break;
-      case '>': o += "&gt;"; break;
-      case '"': o += "&quot;"; break;
-      case '\'': o += "&#39;"; break;
+      case '&':
+        o += "&amp;";
+        break;
+      case '<':
+        o += "&lt;";
+        break;
+      case '>':
+        o += "&gt;";
+        break;
+      case '"':
+        o += "&quot;";
+        break;
+      case '\'':
+        o += "&#39;";
+        break;
       default:
         if (static_cast<unsigned char>(c) < 0x20 && c != '\n' && c != '\t') {
           o += ' ';
@@ -81,16 +92,16 @@ struct Rgb {
 /// viridis at t ∈ [0, 1] (matplotlib `_viridis_data` sampled at 0, 0.1, …, 1).
 Rgb viridis(double t) {
   static constexpr std::array<std::array<int, 3>, 11> kV{{{68, 1, 84},
-                                                           {72, 36, 117},
-                                                           {65, 68, 135},
-                                                           {53, 95, 141},
-                                                           {42, 120, 142},
-                                                           {33, 145, 140},
-                                                           {34, 168, 132},
-                                                           {68, 191, 112},
-                                                           {122, 209, 81},
-                                                           {189, 223, 38},
-                                                           {253, 231, 37}}};
+                                                          {72, 36, 117},
+                                                          {65, 68, 135},
+                                                          {53, 95, 141},
+                                                          {42, 120, 142},
+                                                          {33, 145, 140},
+                                                          {34, 168, 132},
+                                                          {68, 191, 112},
+                                                          {122, 209, 81},
+                                                          {189, 223, 38},
+                                                          {253, 231, 37}}};
   if (!std::isfinite(t)) t = 0;
   t = std::clamp(t, 0.0, 1.0) * 10.0;
   const int i = std::min(9, static_cast<int>(std::floor(t)));
@@ -120,7 +131,8 @@ struct VerdictStyle {
 
 constexpr std::array<VerdictStyle, 6> kVerdicts{{
     {Verdict::kConforms, "conforms", "ok", "conforms", "#2da44e"},
-    {Verdict::kConformsAfterCompensation, "conforms after compensation", "comp", "after comp.", "#d4a72c"},
+    {Verdict::kConformsAfterCompensation, "conforms after compensation", "comp", "after comp.",
+     "#d4a72c"},
     {Verdict::kDoesNotConform, "does not conform", "nc", "does not conform", "#cf222e"},
     {Verdict::kUnreachable, "unreachable", "unr", "unreachable", "#57606a"},
     {Verdict::kSingular, "singular", "sing", "singular", "#8250df"},
@@ -180,7 +192,8 @@ ColourScale makeScale(const std::vector<const std::vector<std::optional<double>>
     }
   }
   if (!s.valid) return s;
-  const double range = std::max(s.data_max - s.data_min, std::max(1e-3, 0.02 * std::abs(s.data_max)));
+  const double range =
+      std::max(s.data_max - s.data_min, std::max(1e-3, 0.02 * std::abs(s.data_max)));
   s.step = niceStep(range / 5.0);
   s.lo = std::floor(s.data_min / s.step + 1e-9) * s.step;
   s.hi = std::ceil(s.data_max / s.step - 1e-9) * s.step;
@@ -205,7 +218,8 @@ std::vector<HoleView> holeViews(const ReportInput& in) {
   hv.reserve(in.holes.size());
   int prev_branch = -1;
   for (const ReportHole& rh : in.holes) {
-    if (rh.prediction == nullptr) throw std::invalid_argument("renderReport: a hole without a prediction");
+    if (rh.prediction == nullptr)
+      throw std::invalid_argument("renderReport: a hole without a prediction");
     HoleView h;
     h.rh = &rh;
     h.p = rh.prediction;
@@ -226,7 +240,8 @@ std::vector<HoleView> holeViews(const ReportInput& in) {
 std::string dirLabel(const Vec3& d) {
   static constexpr std::array<const char*, 3> kAxis{"X", "Y", "Z"};
   for (int i = 0; i < 3; ++i) {
-    if (std::abs(d[i]) > 0.9995) return std::string(d[i] > 0 ? "+" : "\u2212") + kAxis[static_cast<size_t>(i)];
+    if (std::abs(d[i]) > 0.9995)
+      return std::string(d[i] > 0 ? "+" : "\u2212") + kAxis[static_cast<size_t>(i)];
   }
   return "(" + num(d.x(), 3) + ", " + num(d.y(), 3) + ", " + num(d.z(), 3) + ")";
 }
@@ -255,7 +270,7 @@ struct FaceGroup {
   std::vector<size_t> members;
   std::vector<Eigen::Vector2d> xy;  ///< mm, per member
   // screen mapping
-  double x0{0}, y1{0}, s{1};        ///< visible left, visible top (mm), px per mm
+  double x0{0}, y1{0}, s{1};  ///< visible left, visible top (mm), px per mm
   double plot_w{368}, plot_h{260};
   double marker_r{5};
 };
@@ -372,17 +387,23 @@ std::string shapePath(int branch, double x, double y, double r) {
     return s + "\"";
   };
   switch (((branch % 8) + 8) % 8) {
-    case 0: return "<circle cx=\"" + num(x, 2) + "\" cy=\"" + num(y, 2) + "\" r=\"" + num(r, 2) + "\"";
+    case 0:
+      return "<circle cx=\"" + num(x, 2) + "\" cy=\"" + num(y, 2) + "\" r=\"" + num(r, 2) + "\"";
     case 1: {
       const double h = 0.9 * r;
-      return "<rect x=\"" + num(x - h, 2) + "\" y=\"" + num(y - h, 2) + "\" width=\"" + num(2 * h, 2) +
-             "\" height=\"" + num(2 * h, 2) + "\"";
+      return "<rect x=\"" + num(x - h, 2) + "\" y=\"" + num(y - h, 2) + "\" width=\"" +
+             num(2 * h, 2) + "\" height=\"" + num(2 * h, 2) + "\"";
     }
-    case 2: return poly(4, 0.0, 1.2 * r);
-    case 3: return poly(3, -kPi / 2, 1.25 * r);
-    case 4: return poly(3, kPi / 2, 1.25 * r);
-    case 5: return poly(3, 0.0, 1.25 * r);
-    case 6: return poly(3, kPi, 1.25 * r);
+    case 2:
+      return poly(4, 0.0, 1.2 * r);
+    case 3:
+      return poly(3, -kPi / 2, 1.25 * r);
+    case 4:
+      return poly(3, kPi / 2, 1.25 * r);
+    case 5:
+      return poly(3, 0.0, 1.25 * r);
+    case 6:
+      return poly(3, kPi, 1.25 * r);
     default: {
       std::string s = "<polygon points=\"";
       for (int i = 0; i < 10; ++i) {
@@ -398,9 +419,10 @@ std::string shapePath(int branch, double x, double y, double r) {
 
 std::string crossPath(double x, double y, double r, const char* colour) {
   const double h = 0.95 * r;
-  return "<path d=\"M" + num(x - h, 2) + " " + num(y - h, 2) + "L" + num(x + h, 2) + " " + num(y + h, 2) +
-         "M" + num(x - h, 2) + " " + num(y + h, 2) + "L" + num(x + h, 2) + " " + num(y - h, 2) +
-         "\" stroke=\"" + colour + "\" stroke-width=\"2.2\" stroke-linecap=\"round\" fill=\"none\"";
+  return "<path d=\"M" + num(x - h, 2) + " " + num(y - h, 2) + "L" + num(x + h, 2) + " " +
+         num(y + h, 2) + "M" + num(x - h, 2) + " " + num(y + h, 2) + "L" + num(x + h, 2) + " " +
+         num(y - h, 2) + "\" stroke=\"" + colour +
+         "\" stroke-width=\"2.2\" stroke-linecap=\"round\" fill=\"none\"";
 }
 
 enum class ArrowOf { kNone, kRobot, kWork };
@@ -413,7 +435,8 @@ struct Panel {
   ArrowOf arrows{ArrowOf::kNone};
 };
 
-void renderPanel(std::string& o, const FaceGroup& f, const std::vector<HoleView>& hv, const Panel& pn) {
+void renderPanel(std::string& o, const FaceGroup& f, const std::vector<HoleView>& hv,
+                 const Panel& pn) {
   const double W = kPanelW;
   const double plot_bottom = kMarginT + f.plot_h;
   const double bar_y = plot_bottom + 58;
@@ -431,29 +454,29 @@ void renderPanel(std::string& o, const FaceGroup& f, const std::vector<HoleView>
   const double step = niceStep(std::max(x_hi - x_lo, y_hi - y_lo) / 6.0);
   const int dec = decimalsFor(step);
   const AxisLabel lx = axisLabel("u", f.u), ly = axisLabel("v", f.v);
-  o += "<rect class=\"plot\" x=\"" + num(kMarginL, 1) + "\" y=\"" + num(kMarginT, 1) + "\" width=\"" +
-       num(f.plot_w, 1) + "\" height=\"" + num(f.plot_h, 1) + "\"/>";
+  o += "<rect class=\"plot\" x=\"" + num(kMarginL, 1) + "\" y=\"" + num(kMarginT, 1) +
+       "\" width=\"" + num(f.plot_w, 1) + "\" height=\"" + num(f.plot_h, 1) + "\"/>";
   o += "<g class=\"grid\">";
   for (const double t : ticksIn(x_lo, x_hi, step)) {
-    o += "<line x1=\"" + num(px(t), 1) + "\" y1=\"" + num(kMarginT, 1) + "\" x2=\"" + num(px(t), 1) + "\" y2=\"" +
-         num(plot_bottom, 1) + "\"/>";
+    o += "<line x1=\"" + num(px(t), 1) + "\" y1=\"" + num(kMarginT, 1) + "\" x2=\"" +
+         num(px(t), 1) + "\" y2=\"" + num(plot_bottom, 1) + "\"/>";
   }
   for (const double t : ticksIn(y_lo, y_hi, step)) {
-    o += "<line x1=\"" + num(kMarginL, 1) + "\" y1=\"" + num(py(t), 1) + "\" x2=\"" + num(kMarginL + f.plot_w, 1) +
-         "\" y2=\"" + num(py(t), 1) + "\"/>";
+    o += "<line x1=\"" + num(kMarginL, 1) + "\" y1=\"" + num(py(t), 1) + "\" x2=\"" +
+         num(kMarginL + f.plot_w, 1) + "\" y2=\"" + num(py(t), 1) + "\"/>";
   }
   o += "</g><g class=\"tick\">";
   for (const double t : ticksIn(x_lo, x_hi, step)) {
-    o += "<text x=\"" + num(px(t), 1) + "\" y=\"" + num(plot_bottom + 15, 1) + "\" text-anchor=\"middle\">" +
-         num(lx.sign * t, dec) + "</text>";
+    o += "<text x=\"" + num(px(t), 1) + "\" y=\"" + num(plot_bottom + 15, 1) +
+         "\" text-anchor=\"middle\">" + num(lx.sign * t, dec) + "</text>";
   }
   for (const double t : ticksIn(y_lo, y_hi, step)) {
-    o += "<text x=\"" + num(kMarginL - 6, 1) + "\" y=\"" + num(py(t) + 4, 1) + "\" text-anchor=\"end\">" + num(ly.sign * t, dec) +
-         "</text>";
+    o += "<text x=\"" + num(kMarginL - 6, 1) + "\" y=\"" + num(py(t) + 4, 1) +
+         "\" text-anchor=\"end\">" + num(ly.sign * t, dec) + "</text>";
   }
   o += "</g>";
-  o += "<text class=\"axis\" x=\"" + num(kMarginL + 0.5 * f.plot_w, 1) + "\" y=\"" + num(plot_bottom + 33, 1) +
-       "\" text-anchor=\"middle\">" + esc(lx.text) + "</text>";
+  o += "<text class=\"axis\" x=\"" + num(kMarginL + 0.5 * f.plot_w, 1) + "\" y=\"" +
+       num(plot_bottom + 33, 1) + "\" text-anchor=\"middle\">" + esc(lx.text) + "</text>";
   o += "<text class=\"axis\" transform=\"translate(14 " + num(kMarginT + 0.5 * f.plot_h, 1) +
        ") rotate(-90)\" text-anchor=\"middle\">" + esc(ly.text) + "</text>";
 
@@ -488,7 +511,8 @@ void renderPanel(std::string& o, const FaceGroup& f, const std::vector<HoleView>
       o += shapePath(h.p->branch, x, y, r) + " fill=\"" + fill + "\" class=\"mk\"/>";
       if (h.config_change) {
         tip += " \u00b7 configuration change from branch " + std::to_string(h.prev_branch);
-        o += "<circle class=\"chg\" cx=\"" + num(x, 2) + "\" cy=\"" + num(y, 2) + "\" r=\"" + num(r + 3.2, 2) + "\"/>";
+        o += "<circle class=\"chg\" cx=\"" + num(x, 2) + "\" cy=\"" + num(y, 2) + "\" r=\"" +
+             num(r + 3.2, 2) + "\"/>";
       }
       if (v && (worst == f.members.size() || *v > *(*pn.values)[f.members[worst]])) worst = k;
     }
@@ -515,10 +539,11 @@ void renderPanel(std::string& o, const FaceGroup& f, const std::vector<HoleView>
       const Eigen::Vector2d a0 = c + (r + 3.5) * e, a1 = c + (r + 24) * e;
       const Eigen::Vector2d n(-e.y(), e.x());
       const Eigen::Vector2d b = a1 - 7 * e;
-      o += "<g class=\"arrow\"><line x1=\"" + num(a0.x(), 1) + "\" y1=\"" + num(a0.y(), 1) + "\" x2=\"" +
-           num(b.x(), 1) + "\" y2=\"" + num(b.y(), 1) + "\"/><polygon points=\"" + num(a1.x(), 1) + "," +
-           num(a1.y(), 1) + " " + num(b.x() + 3.5 * n.x(), 1) + "," + num(b.y() + 3.5 * n.y(), 1) + " " +
-           num(b.x() - 3.5 * n.x(), 1) + "," + num(b.y() - 3.5 * n.y(), 1) + "\"/></g>";
+      o += "<g class=\"arrow\"><line x1=\"" + num(a0.x(), 1) + "\" y1=\"" + num(a0.y(), 1) +
+           "\" x2=\"" + num(b.x(), 1) + "\" y2=\"" + num(b.y(), 1) + "\"/><polygon points=\"" +
+           num(a1.x(), 1) + "," + num(a1.y(), 1) + " " + num(b.x() + 3.5 * n.x(), 1) + "," +
+           num(b.y() + 3.5 * n.y(), 1) + " " + num(b.x() - 3.5 * n.x(), 1) + "," +
+           num(b.y() - 3.5 * n.y(), 1) + "\"/></g>";
     }
   }
 
@@ -526,45 +551,52 @@ void renderPanel(std::string& o, const FaceGroup& f, const std::vector<HoleView>
   if (worst < f.members.size()) {
     const HoleView& h = hv[f.members[worst]];
     const double x = px(f.xy[worst].x()), y = py(f.xy[worst].y());
-    const std::string label = esc(h.p->id) + " \u00b7 " + num(*(*pn.values)[f.members[worst]], 1) + " \u00b5m";
+    const std::string label =
+        esc(h.p->id) + " \u00b7 " + num(*(*pn.values)[f.members[worst]], 1) + " \u00b5m";
     const double est_w = 6.2 * static_cast<double>(h.p->id.size() + 10);
     const bool right = x + r + 5 + est_w < kMarginL + f.plot_w;
-    const double ly = std::max(kMarginT + 12, y - r - 4);
-    o += "<text class=\"maxlabel\" x=\"" + num(right ? x + r + 4 : x - r - 4, 1) + "\" y=\"" + num(ly, 1) +
-         "\" text-anchor=\"" + (right ? "start" : "end") + "\">max " + label + "</text>";
+    const double label_y = std::max(kMarginT + 12, y - r - 4);
+    o += "<text class=\"maxlabel\" x=\"" + num(right ? x + r + 4 : x - r - 4, 1) + "\" y=\"" +
+         num(label_y, 1) + "\" text-anchor=\"" + (right ? "start" : "end") + "\">max " + label +
+         "</text>";
   }
 
   // colour bar
   const double bx = kMarginL, bw = f.plot_w;
-  o += "<text class=\"axis\" x=\"" + num(bx, 1) + "\" y=\"" + num(bar_y - 6, 1) + "\">" + esc(pn.quantity) +
-       " [\u00b5m]</text>";
+  o += "<text class=\"axis\" x=\"" + num(bx, 1) + "\" y=\"" + num(bar_y - 6, 1) + "\">" +
+       esc(pn.quantity) + " [\u00b5m]</text>";
   if (sc.valid) {
     o += "<text class=\"tick\" x=\"" + num(bx + bw, 1) + "\" y=\"" + num(bar_y - 6, 1) +
-         "\" text-anchor=\"end\">min " + num(sc.data_min, 1) + " \u00b7 max " + num(sc.data_max, 1) + "</text>";
+         "\" text-anchor=\"end\">min " + num(sc.data_min, 1) + " \u00b7 max " +
+         num(sc.data_max, 1) + "</text>";
     constexpr int kSeg = 48;
     for (int i = 0; i < kSeg; ++i) {
       o += "<rect x=\"" + num(bx + bw * i / kSeg, 2) + "\" y=\"" + num(bar_y, 1) + "\" width=\"" +
-           num(bw / kSeg + (i + 1 < kSeg ? 1.0 : 0.0), 2) + "\" height=\"12\" shape-rendering=\"crispEdges\" fill=\"" +
+           num(bw / kSeg + (i + 1 < kSeg ? 1.0 : 0.0), 2) +
+           "\" height=\"12\" shape-rendering=\"crispEdges\" fill=\"" +
            hex(viridis((i + 0.5) / kSeg)) + "\"/>";
     }
-    o += "<rect class=\"barframe\" x=\"" + num(bx, 1) + "\" y=\"" + num(bar_y, 1) + "\" width=\"" + num(bw, 1) +
-         "\" height=\"12\"/>";
+    o += "<rect class=\"barframe\" x=\"" + num(bx, 1) + "\" y=\"" + num(bar_y, 1) + "\" width=\"" +
+         num(bw, 1) + "\" height=\"12\"/>";
     const int bdec = decimalsFor(sc.step);
     for (const double t : ticksIn(sc.lo, sc.hi, sc.step)) {
       const double x = bx + bw * sc.t(t);
-      o += "<line class=\"barTick\" x1=\"" + num(x, 1) + "\" y1=\"" + num(bar_y + 12, 1) + "\" x2=\"" + num(x, 1) +
-           "\" y2=\"" + num(bar_y + 16, 1) + "\"/><text class=\"tick\" x=\"" + num(x, 1) + "\" y=\"" +
-           num(bar_y + 28, 1) + "\" text-anchor=\"middle\">" + num(t, bdec) + "</text>";
+      o += "<line class=\"barTick\" x1=\"" + num(x, 1) + "\" y1=\"" + num(bar_y + 12, 1) +
+           "\" x2=\"" + num(x, 1) + "\" y2=\"" + num(bar_y + 16, 1) +
+           "\"/><text class=\"tick\" x=\"" + num(x, 1) + "\" y=\"" + num(bar_y + 28, 1) +
+           "\" text-anchor=\"middle\">" + num(t, bdec) + "</text>";
     }
   } else {
-    o += "<text class=\"tick\" x=\"" + num(bx, 1) + "\" y=\"" + num(bar_y + 12, 1) + "\">no value to show</text>";
+    o += "<text class=\"tick\" x=\"" + num(bx, 1) + "\" y=\"" + num(bar_y + 12, 1) +
+         "\">no value to show</text>";
   }
   o += "</svg></figure>";
 }
 
 std::string legendIcon(const std::string& body) {
-  return "<svg class=\"icon\" viewBox=\"0 0 22 22\" width=\"22\" height=\"22\" aria-hidden=\"true\">" + body +
-         "</svg>";
+  return "<svg class=\"icon\" viewBox=\"0 0 22 22\" width=\"22\" height=\"22\" "
+         "aria-hidden=\"true\">" +
+         body + "</svg>";
 }
 
 // ------------------------------------------------------------------ budget labels
@@ -583,7 +615,8 @@ constexpr std::array<TermInfo, 6> kTerms{{
      "force scale rectangular, a/\u221a3, through the robot compliance"},
     {"mach_axis", "Drill axis deviation", "\u03b4axis = La tan \u03b8a, rectangular a/\u221a3"},
     {"mach_runout", "Spindle runout", "\u03b4\u03c1, arcsine a/\u221a2"},
-    {"mach_tool_deflection", "Tool deflection", "\u03b4deftool under the rotating force Fr, arcsine a/\u221a2"},
+    {"mach_tool_deflection", "Tool deflection",
+     "\u03b4deftool under the rotating force Fr, arcsine a/\u221a2"},
 }};
 
 const TermInfo* termInfo(const std::string& name) {
@@ -594,7 +627,8 @@ const TermInfo* termInfo(const std::string& name) {
 }
 
 constexpr std::array<const char*, 4> kRobotColours{"#1f4e79", "#3a7dbf", "#8fbbe6", "#c9def5"};
-constexpr std::array<const char*, 5> kProcessColours{"#b45309", "#e8892b", "#f5b971", "#fbd9a6", "#fdebd0"};
+constexpr std::array<const char*, 5> kProcessColours{"#b45309", "#e8892b", "#f5b971", "#fbd9a6",
+                                                     "#fdebd0"};
 
 struct TermStats {
   std::string name;
@@ -627,6 +661,7 @@ p{margin:6px 0 10px}
 .kpi{border:1px solid var(--line);border-radius:8px;padding:10px 12px;border-top:4px solid var(--c,#8c959f)}
 .kpi b{display:block;font-size:22px;font-weight:650;line-height:1.2}
 .kpi span{color:var(--muted);font-size:12px}
+.kpi b small{font-size:14px;font-weight:500;color:var(--muted)}
 .face{margin:10px 0 6px;color:var(--fg)}
 .face small{color:var(--muted);font-weight:400}
 .maps{display:grid;grid-template-columns:repeat(3,minmax(0,1fr));gap:14px}
@@ -634,6 +669,7 @@ p{margin:6px 0 10px}
 .panel{margin:0;border:1px solid var(--line);border-radius:8px;padding:8px 8px 2px;break-inside:avoid}
 .panel figcaption{font-weight:600;font-size:13px;padding:0 4px 2px}
 .panel svg{display:block;width:100%;height:auto}
+.maps.four .panel svg{max-width:600px;margin:0 auto}
 svg text{font-family:inherit;font-size:11px;fill:#424a53}
 svg .axis{font-size:11.5px;fill:#1f2328}
 svg .plot{fill:#fcfcfd;stroke:#afb8c1;stroke-width:1}
@@ -706,7 +742,8 @@ footer p{margin:4px 0}
 void renderHeader(std::string& o, const ReportInput& in, const std::vector<HoleView>& hv) {
   const CapabilitySummary& s = in.summary;
   o += "<header><h1>" + esc(in.title) + "</h1>";
-  o += "<p class=\"sub\">Per-hole deviation, uncertainty and ISO 14253-1 tolerance verdict of a robotic drilling "
+  o += "<p class=\"sub\">Per-hole deviation, uncertainty and ISO 14253-1 tolerance verdict of a "
+       "robotic drilling "
        "program" +
        std::string(in.compensation ? ", before and after compensation" : "") + ".</p>";
   auto item = [&](const char* k, const std::string& v, bool wide = false) {
@@ -721,7 +758,8 @@ void renderHeader(std::string& o, const ReportInput& in, const std::vector<HoleV
   item("Default position tolerance", "\u2300 " + num(in.default_tolerance_mm, 3) + " mm");
   item("Uncertainty method", esc(in.uncertainty_method));
   if (!in.uncertainty_source.empty()) {
-    item("Uncertainty inputs and sources", "<span class=\"src\">" + esc(in.uncertainty_source) + "</span>", true);
+    item("Uncertainty inputs and sources",
+         "<span class=\"src\">" + esc(in.uncertainty_source) + "</span>", true);
   }
   o += "</dl>";
 
@@ -730,18 +768,21 @@ void renderHeader(std::string& o, const ReportInput& in, const std::vector<HoleV
   std::string sum = "<p class=\"summary\"><strong>" + std::to_string(s.robot_can_take) + " of " +
                     plural(m, "hole", "holes") + " can be taken by the robot</strong> (" +
                     std::to_string(s.conforms) + " conform as programmed, " +
-                    std::to_string(s.conforms_after_compensation) + " after compensation), representing <strong>" +
-                    num(s.mc_time_taken, 1) + " s</strong> of machining-center time (" +
-                    num(pct(s.mc_time_taken, s.mc_time_total), 1) + " % of the " + num(s.mc_time_total, 1) +
-                    " s these holes take on the machining center).";
+                    std::to_string(s.conforms_after_compensation) +
+                    " after compensation), representing <strong>" + num(s.mc_time_taken, 1) +
+                    " s</strong> of machining-center time (" +
+                    num(pct(s.mc_time_taken, s.mc_time_total), 1) + " % of the " +
+                    num(s.mc_time_total, 1) + " s these holes take on the machining center).";
   std::vector<std::string> rest;
   if (s.does_not_conform) {
-    rest.push_back(plural(s.does_not_conform, "hole does", "holes do") +
-                   " not conform even after compensation (the scatter alone exceeds the tolerance)");
+    rest.push_back(
+        plural(s.does_not_conform, "hole does", "holes do") +
+        " not conform even after compensation (the scatter alone exceeds the tolerance)");
   }
   if (s.unreachable) rest.push_back(plural(s.unreachable, "hole is", "holes are") + " unreachable");
   if (s.singular) rest.push_back(plural(s.singular, "hole is", "holes are") + " at a singularity");
-  if (s.not_converged) rest.push_back(plural(s.not_converged, "hole", "holes") + " did not converge");
+  if (s.not_converged)
+    rest.push_back(plural(s.not_converged, "hole", "holes") + " did not converge");
   if (!rest.empty()) {
     sum += " ";
     for (size_t i = 0; i < rest.size(); ++i) {
@@ -752,23 +793,25 @@ void renderHeader(std::string& o, const ReportInput& in, const std::vector<HoleV
   }
   int changes = 0;
   for (const HoleView& h : hv) changes += h.config_change ? 1 : 0;
-  sum += " The robot changes its arm/wrist configuration " + plural(changes, "time", "times") + " along the program.";
+  sum += " The robot changes its arm/wrist configuration " + plural(changes, "time", "times") +
+         " along the program.";
   o += sum + "</p>";
 
   auto kpi = [&](const std::string& big, const std::string& label, const char* colour) {
-    o += std::string("<div class=\"kpi\" style=\"--c:") + colour + "\"><b>" + big + "</b><span>" + label +
-         "</span></div>";
+    o += std::string("<div class=\"kpi\" style=\"--c:") + colour + "\"><b>" + big + "</b><span>" +
+         label + "</span></div>";
   };
   o += "<div class=\"kpis\">";
   kpi(std::to_string(m), "holes in the program", "#8c959f");
-  kpi(std::to_string(s.robot_can_take) + " <small>(" + num(pct(s.robot_can_take, m), 0) + " %)</small>",
+  kpi(std::to_string(s.robot_can_take) + " <small>(" + num(pct(s.robot_can_take, m), 0) +
+          " %)</small>",
       "robot can take", "#0b5cad");
   kpi(std::to_string(s.conforms), "conform", styleOf(Verdict::kConforms).bar);
   kpi(std::to_string(s.conforms_after_compensation), "conform after compensation",
       styleOf(Verdict::kConformsAfterCompensation).bar);
   kpi(std::to_string(s.does_not_conform + s.unreachable + s.singular + s.not_converged),
       "stay on the machining center", styleOf(Verdict::kDoesNotConform).bar);
-  kpi(num(s.mc_time_taken, 1) + " s", "machining-center time taken over", "#0b5cad");
+  kpi(num(s.mc_time_taken, 1) + " s", "machining-center time the robot takes", "#0b5cad");
   o += "</div></header>";
 }
 
@@ -792,24 +835,29 @@ void renderMaps(std::string& o, const ReportInput& in, const std::vector<HoleVie
   const ColourScale s_U = makeScale({&q_U});
 
   std::vector<Panel> panels;
-  const Panel robot{"|\u03b4robot| \u2014 robot deviation under load", "|\u03b4robot|", &q_robot, &s_robot,
-                    ArrowOf::kRobot};
-  const Panel U{"U<sub>work</sub> \u2014 expanded uncertainty (95 %)", "U_work", &q_U, &s_U, ArrowOf::kNone};
+  const Panel robot{"|\u03b4robot| \u2014 robot deviation under load", "|\u03b4robot|", &q_robot,
+                    &s_robot, ArrowOf::kRobot};
+  const Panel U{"U<sub>work</sub> \u2014 expanded uncertainty (95 %)", "U_work", &q_U, &s_U,
+                ArrowOf::kNone};
   if (in.compensation) {
-    panels.push_back({"Position error \u22a5 axis \u2014 before compensation", "e\u22a5 before", &q_err, &s_err,
-                      ArrowOf::kWork});
-    panels.push_back({"Residual \u2014 after compensation", "residual after", &q_res, &s_err, ArrowOf::kNone});
+    panels.push_back({"Position error \u22a5 axis \u2014 before compensation", "e\u22a5 before",
+                      &q_err, &s_err, ArrowOf::kWork});
+    panels.push_back(
+        {"Residual \u2014 after compensation", "residual after", &q_res, &s_err, ArrowOf::kNone});
     panels.push_back(robot);
     panels.push_back(U);
   } else {
     panels.push_back(robot);
-    panels.push_back({"Position error \u22a5 axis |\u03b4work\u22a5|", "e\u22a5", &q_err, &s_err, ArrowOf::kWork});
+    panels.push_back({"Position error \u22a5 axis |\u03b4work\u22a5|", "e\u22a5", &q_err, &s_err,
+                      ArrowOf::kWork});
     panels.push_back(U);
   }
 
   o += "<section id=\"maps\"><h2>Deviation maps over the work area</h2>";
-  o += "<p class=\"note\">Each face is drawn as seen along its drilling direction (into the material), walls "
-       "upright (base +Z up); holes at their nominal positions, coordinates in mm along the directions u and v of "
+  o += "<p class=\"note\">Each face is drawn as seen along its drilling direction (into the "
+       "material), walls "
+       "upright (base +Z up); holes at their nominal positions, coordinates in mm along the "
+       "directions u and v of "
        "the robot base frame. Colours "
        "share one scale per quantity across all faces" +
        std::string(in.compensation ? " (before and after use the same scale)" : "") +
@@ -830,22 +878,31 @@ void renderMaps(std::string& o, const ReportInput& in, const std::vector<HoleVie
   std::sort(idx.begin(), idx.end(), [&](size_t a, size_t b) { return branches[a] < branches[b]; });
   o += "<div class=\"legend\"><strong>Marker shape = IK branch:</strong>";
   for (const size_t i : idx) {
-    o += "<span>" + legendIcon(shapePath(branches[i], 11, 11, 6) + " fill=\"#8fbbe6\" stroke=\"#24292f\"/>") +
+    o += "<span>" +
+         legendIcon(shapePath(branches[i], 11, 11, 6) + " fill=\"#8fbbe6\" stroke=\"#24292f\"/>") +
          "branch " + std::to_string(branches[i]);
-    if (!branch_config[i].empty()) o += " <span class=\"note\">(" + esc(branch_config[i]) + ")</span>";
+    if (!branch_config[i].empty())
+      o += " <span class=\"note\">(" + esc(branch_config[i]) + ")</span>";
     o += "</span>";
   }
   o += "<span>" +
-       legendIcon("<circle cx=\"11\" cy=\"11\" r=\"5\" fill=\"#8fbbe6\" stroke=\"#24292f\"/><circle cx=\"11\" "
-                  "cy=\"11\" r=\"8.5\" fill=\"none\" stroke=\"#e3120b\" stroke-width=\"2\"/>") +
+       legendIcon(
+           "<circle cx=\"11\" cy=\"11\" r=\"5\" fill=\"#8fbbe6\" stroke=\"#24292f\"/><circle "
+           "cx=\"11\" "
+           "cy=\"11\" r=\"8.5\" fill=\"none\" stroke=\"#e3120b\" stroke-width=\"2\"/>") +
        "configuration change from the previous hole</span>";
-  o += "<span>" + legendIcon(crossPath(11, 11, 6, "#57606a") + "/>") + "unreachable / singular / not converged</span>";
+  o += "<span>" + legendIcon(crossPath(11, 11, 6, "#57606a") + "/>") +
+       "unreachable / singular / not converged</span>";
   o += "<span>" +
-       legendIcon("<line x1=\"3\" y1=\"11\" x2=\"14\" y2=\"11\" stroke=\"#1f2328\" stroke-width=\"1.5\"/><polygon "
-                  "points=\"20,11 13,7.5 13,14.5\" fill=\"#1f2328\"/>") +
+       legendIcon(
+           "<line x1=\"3\" y1=\"11\" x2=\"14\" y2=\"11\" stroke=\"#1f2328\" "
+           "stroke-width=\"1.5\"/><polygon "
+           "points=\"20,11 13,7.5 13,14.5\" fill=\"#1f2328\"/>") +
        "direction of \u03b4 at the 3 largest values (not to scale)</span>";
   o += "<span>" +
-       legendIcon("<line x1=\"2\" y1=\"11\" x2=\"20\" y2=\"11\" stroke=\"#afb8c1\" stroke-dasharray=\"3 2\"/>") +
+       legendIcon(
+           "<line x1=\"2\" y1=\"11\" x2=\"20\" y2=\"11\" stroke=\"#afb8c1\" stroke-dasharray=\"3 "
+           "2\"/>") +
        "program order</span></div>";
 
   std::vector<FaceGroup> faces = groupFaces(hv, 0.99);
@@ -855,9 +912,11 @@ void renderMaps(std::string& o, const ReportInput& in, const std::vector<HoleVie
     const FaceGroup& f = faces[g];
     int reach = 0;
     for (const size_t i : f.members) reach += hv[i].ok ? 1 : 0;
-    const std::string name = faces.size() <= 26 ? std::string(1, static_cast<char>('A' + g)) : std::to_string(g + 1);
-    o += "<h3 class=\"face\">Face " + name + " <small>\u00b7 drilling direction " + esc(dirLabel(f.axis)) +
-         " (base) \u00b7 " + plural(static_cast<long>(f.members.size()), "hole", "holes") + ", " +
+    const std::string name =
+        faces.size() <= 26 ? std::string(1, static_cast<char>('A' + g)) : std::to_string(g + 1);
+    o += "<h3 class=\"face\">Face " + name + " <small>\u00b7 drilling direction " +
+         esc(dirLabel(f.axis)) + " (base) \u00b7 " +
+         plural(static_cast<long>(f.members.size()), "hole", "holes") + ", " +
          std::to_string(reach) + " reachable</small></h3>";
     o += std::string("<div class=\"maps") + (panels.size() == 4 ? " four" : "") + "\">";
     for (const Panel& p : panels) renderPanel(o, f, hv, p);
@@ -868,8 +927,9 @@ void renderMaps(std::string& o, const ReportInput& in, const std::vector<HoleVie
 
 void renderVerdicts(std::string& o, const ReportInput& in) {
   const CapabilitySummary& s = in.summary;
-  const std::array<int, 6> counts{s.conforms, s.conforms_after_compensation, s.does_not_conform,
-                                  s.unreachable, s.singular, s.not_converged};
+  const std::array<int, 6> counts{s.conforms,         s.conforms_after_compensation,
+                                  s.does_not_conform, s.unreachable,
+                                  s.singular,         s.not_converged};
   const int cmax = std::max(1, *std::max_element(counts.begin(), counts.end()));
   o += "<section id=\"verdicts\"><h2>Verdicts and capability</h2><div class=\"two\">";
   o += "<div class=\"card vbars\"><h3>Verdict per hole (ISO 14253-1 guard band)</h3>";
@@ -879,38 +939,50 @@ void renderVerdicts(std::string& o, const ReportInput& in) {
   for (size_t i = 0; i < kVerdicts.size(); ++i) {
     const double y = 4 + kRow * static_cast<double>(i);
     const double w = kBar * counts[i] / cmax;
-    o += "<text x=\"" + num(kLabel - 10, 0) + "\" y=\"" + num(y + 19, 1) + "\" text-anchor=\"end\" class=\"axis\">" +
-         kVerdicts[i].label + "</text>";
+    o += "<text x=\"" + num(kLabel - 10, 0) + "\" y=\"" + num(y + 19, 1) +
+         "\" text-anchor=\"end\" class=\"axis\">" + kVerdicts[i].label + "</text>";
     o += "<rect x=\"" + num(kLabel, 0) + "\" y=\"" + num(y + 5, 1) + "\" width=\"" + num(kBar, 1) +
          "\" height=\"20\" rx=\"3\" fill=\"#f0f3f6\"/>";
     if (counts[i] > 0) {
-      o += "<rect x=\"" + num(kLabel, 0) + "\" y=\"" + num(y + 5, 1) + "\" width=\"" + num(std::max(w, 2.0), 1) +
-           "\" height=\"20\" rx=\"3\" fill=\"" + kVerdicts[i].bar + "\"/>";
+      o += "<rect x=\"" + num(kLabel, 0) + "\" y=\"" + num(y + 5, 1) + "\" width=\"" +
+           num(std::max(w, 2.0), 1) + "\" height=\"20\" rx=\"3\" fill=\"" + kVerdicts[i].bar +
+           "\"/>";
     }
-    o += "<text x=\"" + num(kLabel + kBar + 10, 0) + "\" y=\"" + num(y + 19, 1) + "\" class=\"axis\"><tspan font-weight=\"600\">" +
-         std::to_string(counts[i]) + "</tspan> (" + num(pct(counts[i], s.holes), 1) + " %)</text>";
+    o += "<text x=\"" + num(kLabel + kBar + 10, 0) + "\" y=\"" + num(y + 19, 1) +
+         "\" class=\"axis\"><tspan font-weight=\"600\">" + std::to_string(counts[i]) +
+         "</tspan> (" + num(pct(counts[i], s.holes), 1) + " %)</text>";
   }
   o += "</svg>";
-  o += "<p class=\"note\">t = position tolerance \u2300, e\u22a5 = predicted position error \u22a5 the hole axis, "
-       "U = U<sub>work</sub>. <b>conforms</b>: e\u22a5 + U \u2264 t/2; <b>conforms after compensation</b>: "
-       "U \u2264 t/2 &lt; e\u22a5 + U (the systematic part is too large but can be compensated); <b>does not "
+  o += "<p class=\"note\">t = position tolerance \u2300, e\u22a5 = predicted position error \u22a5 "
+       "the hole axis, "
+       "U = U<sub>work</sub>. <b>conforms</b>: e\u22a5 + U \u2264 t/2; <b>conforms after "
+       "compensation</b>: "
+       "U \u2264 t/2 &lt; e\u22a5 + U (the systematic part is too large but can be compensated); "
+       "<b>does not "
        "conform</b>: U &gt; t/2 (the scatter alone is too large).</p></div>";
 
   const double share_taken = pct(s.mc_time_taken, s.mc_time_total);
-  o += "<div class=\"card\"><h3>Capability \u2014 what the robot can take from the machining center</h3>";
-  o += "<div class=\"big\">" + std::to_string(s.robot_can_take) + " <small>of " + plural(s.holes, "hole", "holes") +
-       " (" + num(pct(s.robot_can_take, s.holes), 1) + " %)</small></div>";
-  o += "<div class=\"meter\"><i style=\"width:" + num(pct(s.robot_can_take, s.holes), 2) + "%\"></i></div>";
+  o += "<div class=\"card\"><h3>Capability \u2014 what the robot can take from the machining "
+       "center</h3>";
+  o += "<div class=\"big\">" + std::to_string(s.robot_can_take) + " <small>of " +
+       plural(s.holes, "hole", "holes") + " (" + num(pct(s.robot_can_take, s.holes), 1) +
+       " %)</small></div>";
+  o += "<div class=\"meter\"><i style=\"width:" + num(pct(s.robot_can_take, s.holes), 2) +
+       "%\"></i></div>";
   o += "<div class=\"big\">" + num(s.mc_time_taken, 1) + " s <small>of " + num(s.mc_time_total, 1) +
        " s machining-center time (" + num(share_taken, 1) + " %)</small></div>";
-  o += "<div class=\"meter\"><i style=\"width:" + num(share_taken, 2) + "%;background:#0b5cad\"></i></div>";
+  o += "<div class=\"meter\"><i style=\"width:" + num(share_taken, 2) +
+       "%;background:#0b5cad\"></i></div>";
   o += "<p>Drilling these holes on the robot instead of the machining center frees <strong>" +
-       num(s.mc_time_taken, 1) + " s</strong> of machining-center time per part (" + num(share_taken, 1) +
-       " % of its drilling time); " + plural(s.holes - s.robot_can_take, "hole", "holes") + " (" +
+       num(s.mc_time_taken, 1) + " s</strong> of machining-center time per part (" +
+       num(share_taken, 1) + " % of its drilling time); " +
+       plural(s.holes - s.robot_can_take, "hole", "holes") + " (" +
        num(s.mc_time_total - s.mc_time_taken, 1) + " s) stay on the machining center.</p>";
-  o += "<p class=\"note\">Machining-center time per hole = depth / feed rate + positioning and approach. Process "
+  o += "<p class=\"note\">Machining-center time per hole = depth / feed rate + positioning and "
+       "approach. Process "
        "share of the total uncertainty (variance share): mean " +
-       num(100 * s.mean_process_share, 1) + " %, max " + num(100 * s.max_process_share, 1) + " %.</p></div>";
+       num(100 * s.mean_process_share, 1) + " %, max " + num(100 * s.max_process_share, 1) +
+       " %.</p></div>";
   o += "</div></section>";
 }
 
@@ -931,7 +1003,8 @@ void renderBudget(std::string& o, const std::vector<HoleView>& hv) {
     const double uw2 = p.u_work * p.u_work;
     for (const BudgetTerm& b : p.budget) {
       const std::string name = b.name ? b.name : "";
-      auto it = std::find_if(terms.begin(), terms.end(), [&](const TermStats& t) { return t.name == name; });
+      auto it = std::find_if(terms.begin(), terms.end(),
+                             [&](const TermStats& t) { return t.name == name; });
       if (it == terms.end()) {
         terms.push_back({name, b.process});
         it = terms.end() - 1;
@@ -961,9 +1034,12 @@ void renderBudget(std::string& o, const std::vector<HoleView>& hv) {
     colours.emplace_back(t.process ? kProcessColours[np++ % kProcessColours.size()]
                                    : kRobotColours[nr++ % kRobotColours.size()]);
   }
-  o += "<p class=\"note\">Per-axis standard uncertainties in the plane \u22a5 the hole axis, independent terms "
-       "combined by root-sum-square (GUM, JCGM 100:2008): u<sub>robot</sub>\u00b2 = u<sub>repeatability</sub>\u00b2 "
-       "+ u<sub>deflection</sub>\u00b2, u<sub>mach</sub>\u00b2 = \u03a3 process terms, u<sub>work</sub>\u00b2 = "
+  o += "<p class=\"note\">Per-axis standard uncertainties in the plane \u22a5 the hole axis, "
+       "independent terms "
+       "combined by root-sum-square (GUM, JCGM 100:2008): u<sub>robot</sub>\u00b2 = "
+       "u<sub>repeatability</sub>\u00b2 "
+       "+ u<sub>deflection</sub>\u00b2, u<sub>mach</sub>\u00b2 = \u03a3 process terms, "
+       "u<sub>work</sub>\u00b2 = "
        "u<sub>robot</sub>\u00b2 + u<sub>mach</sub>\u00b2. Statistics over the " +
        plural(n_ok, "predicted hole", "predicted holes") + ".</p>";
   o += "<div class=\"stack\">";
@@ -974,79 +1050,101 @@ void renderBudget(std::string& o, const std::vector<HoleView>& hv) {
     const std::string label = info ? std::string(info->label) : esc(terms[i].name);
     const bool light = (terms[i].process ? np_seen : nr_seen) >= 2;
     (terms[i].process ? np_seen : nr_seen)++;
-    o += "<span" + std::string(light ? " class=\"lt\"" : "") + " style=\"width:" + num(sh, 3) + "%;background:" +
-         colours[i] + "\" title=\"" + label + ": " + num(sh, 1) + " %\">" + (sh >= 7.0 ? label + " " + num(sh, 0) + " %" : "") +
-         "</span>";
+    o += "<span" + std::string(light ? " class=\"lt\"" : "") + " style=\"width:" + num(sh, 3) +
+         "%;background:" + colours[i] + "\" title=\"" + label + ": " + num(sh, 1) + " %\">" +
+         (sh >= 7.0 ? label + " " + num(sh, 0) + " %" : "") + "</span>";
   }
   o += "</div>";
-  o += "<table class=\"budget\"><thead><tr><th class=\"l\">Term</th><th class=\"l\">Basis</th><th>Part of</th>"
-       "<th>mean u [\u00b5m]</th><th>max u [\u00b5m]</th><th class=\"l\">mean variance share</th></tr></thead><tbody>";
+  o += "<table class=\"budget\"><thead><tr><th class=\"l\">Term</th><th "
+       "class=\"l\">Basis</th><th>Part of</th>"
+       "<th>mean u [\u00b5m]</th><th>max u [\u00b5m]</th><th class=\"l\">mean variance "
+       "share</th></tr></thead><tbody>";
   for (size_t i = 0; i < terms.size(); ++i) {
     const TermStats& t = terms[i];
     const TermInfo* info = termInfo(t.name);
     const double sh = 100.0 * t.sum_share / n_ok;
     o += "<tr><td class=\"l\"><span class=\"sw\" style=\"background:" + colours[i] + "\"></span>" +
          (info ? std::string(info->label) : esc(t.name)) + "</td><td class=\"l note\">" +
-         (info ? std::string(info->basis) : esc(t.name)) + "</td><td>" + (t.process ? "process" : "robot") +
-         "</td><td>" + num(t.sum_u / t.n * 1e6, 2) + "</td><td>" + num(t.max_u * 1e6, 2) + "</td><td class=\"l\">" +
-         num(sh, 1) + " %<span class=\"share\" style=\"width:" + num(1.6 * sh, 1) + "px;background:" + colours[i] +
-         "\"></span></td></tr>";
+         (info ? std::string(info->basis) : esc(t.name)) + "</td><td>" +
+         (t.process ? "process" : "robot") + "</td><td>" + num(t.sum_u / t.n * 1e6, 2) +
+         "</td><td>" + num(t.max_u * 1e6, 2) + "</td><td class=\"l\">" + num(sh, 1) +
+         " %<span class=\"share\" style=\"width:" + num(1.6 * sh, 1) +
+         "px;background:" + colours[i] + "\"></span></td></tr>";
   }
-  const std::array<const char*, 6> names{"u<sub>robot</sub>", "u<sub>mach</sub>", "u<sub>work</sub>",
-                                         "U<sub>robot</sub>", "U<sub>mach</sub>", "U<sub>work</sub>"};
-  const std::array<const char*, 6> basis{"combined standard, per axis", "combined standard, per axis",
-                                         "combined standard, per axis", "expanded radial, k \u00b7 u",
-                                         "expanded radial, k \u00b7 u", "expanded radial, k \u00b7 u"};
+  const std::array<const char*, 6> names{"u<sub>robot</sub>", "u<sub>mach</sub>",
+                                         "u<sub>work</sub>",  "U<sub>robot</sub>",
+                                         "U<sub>mach</sub>",  "U<sub>work</sub>"};
+  const std::array<const char*, 6> basis{
+      "combined standard, per axis", "combined standard, per axis", "combined standard, per axis",
+      "expanded radial, k \u00b7 u", "expanded radial, k \u00b7 u", "expanded radial, k \u00b7 u"};
   for (size_t i = 0; i < 6; ++i) {
-    o += std::string("<tr class=\"sum\"><td class=\"l\">") + names[i] + "</td><td class=\"l note\">" + basis[i] +
-         "</td><td></td><td class=\"n\">" + num(agg[i].sum / n_ok * 1e6, 2) + "</td><td class=\"n\">" + num(agg[i].max * 1e6, 2) +
+    o += std::string("<tr class=\"sum\"><td class=\"l\">") + names[i] +
+         "</td><td class=\"l note\">" + basis[i] + "</td><td></td><td class=\"n\">" +
+         num(agg[i].sum / n_ok * 1e6, 2) + "</td><td class=\"n\">" + num(agg[i].max * 1e6, 2) +
          "</td><td class=\"l\">" + (i == 2 ? "100 %" : "") + "</td></tr>";
   }
   o += "</tbody></table>";
   o += "<p>Coverage factor <strong>k = " + num(k, 3) +
-       "</strong>: the position error is a 2-D radius; for an isotropic normal scatter with u per axis the radius is "
-       "Rayleigh-distributed and P(r \u2264 k u) = 95 % needs k = \u221a(\u22122 ln 0.05) = 2.448 (k = 2 would "
-       "cover only 86 % of the radius; process.md \u00a75.1). U<sub>work</sub> = \u221a(U<sub>robot</sub>\u00b2 + "
+       "</strong>: the position error is a 2-D radius; for an isotropic normal scatter with u per "
+       "axis the radius is "
+       "Rayleigh-distributed and P(r \u2264 k u) = 95 % needs k = \u221a(\u22122 ln 0.05) = 2.448 "
+       "(k = 2 would "
+       "cover only 86 % of the radius; process.md \u00a75.1). U<sub>work</sub> = "
+       "\u221a(U<sub>robot</sub>\u00b2 + "
        "U<sub>mach</sub>\u00b2) = k \u00b7 u<sub>work</sub>.</p>";
-  o += "<p>Process share of the total uncertainty (variance share of the process terms in u<sub>work</sub>\u00b2): "
+  o += "<p>Process share of the total uncertainty (variance share of the process terms in "
+       "u<sub>work</sub>\u00b2): "
        "<strong>mean " +
        num(100.0 * share_sum / n_ok, 1) + " %</strong>, max " + num(100.0 * share_max, 1) +
-       " % (as a linear share of u<sub>work</sub>: mean " + num(100.0 * std::sqrt(share_sum / n_ok), 1) + " %).</p>";
+       " % (as a linear share of u<sub>work</sub>: mean " +
+       num(100.0 * std::sqrt(share_sum / n_ok), 1) + " %).</p>";
   o += "</section>";
 }
 
 std::string vec3Cell(const Vec3& v_um) {
-  return "<td class=\"v\"><span>" + num(v_um.x(), 1) + "</span><span>" + num(v_um.y(), 1) + "</span><span>" +
-         num(v_um.z(), 1) + "</span></td>";
+  return "<td class=\"v\"><span>" + num(v_um.x(), 1) + "</span><span>" + num(v_um.y(), 1) +
+         "</span><span>" + num(v_um.z(), 1) + "</span></td>";
 }
 
 void renderTable(std::string& o, const ReportInput& in, const std::vector<HoleView>& hv) {
   o += "<section id=\"holes\"><h2>Per-hole results</h2>";
-  o += "<p class=\"note\">In program order. Joints: motor-side command in degrees (URDF convention). Deviations in "
-       "the robot base frame (x, y, z) in \u00b5m; e\u22a5 = |\u03b4work \u22a5 hole axis|; tilt = hole-axis tilt "
-       "in \u00b5rad; U expanded (k as above). A ringed branch marks a configuration change from the previous "
+  o += "<p class=\"note\">In program order. Joints: motor-side command in degrees (URDF "
+       "convention). Deviations in "
+       "the robot base frame (x, y, z) in \u00b5m; e\u22a5 = |\u03b4work \u22a5 hole axis|; tilt = "
+       "hole-axis tilt "
+       "in \u00b5rad; U expanded (k as above). A ringed branch marks a configuration change from "
+       "the previous "
        "hole. Verdict \u201cafter comp.\u201d = conforms-after-compensation.</p>";
-  o += "<div class=\"scroll\"><table class=\"holes\"><thead><tr><th class=\"c0\">#</th><th class=\"l c1\">Hole</th>"
-       "<th>\u2300<br><small>mm</small></th><th class=\"l\">Config</th><th>Br.</th><th>Joints J1\u2026J6<br><small>deg"
-       "</small></th><th>\u03b4robot x y z<br><small>\u00b5m</small></th><th>\u03b4mach x y z<br><small>\u00b5m</small>"
-       "</th><th>\u03b4work x y z<br><small>\u00b5m</small></th><th>e\u22a5<br><small>\u00b5m</small></th><th>tilt<br>"
-       "<small>\u00b5rad</small></th><th>U<sub>robot</sub><br><small>\u00b5m</small></th><th>U<sub>mach</sub><br><small>"
-       "\u00b5m</small></th><th>U<sub>work</sub><br><small>\u00b5m</small></th><th>Tol. \u2300<br><small>mm</small></th>"
+  o += "<div class=\"scroll\"><table class=\"holes\"><thead><tr><th class=\"c0\">#</th><th "
+       "class=\"l c1\">Hole</th>"
+       "<th>\u2300<br><small>mm</small></th><th class=\"l\">Config</th><th>Br.</th><th>Joints "
+       "J1\u2026J6<br><small>deg"
+       "</small></th><th>\u03b4robot x y z<br><small>\u00b5m</small></th><th>\u03b4mach x y "
+       "z<br><small>\u00b5m</small>"
+       "</th><th>\u03b4work x y "
+       "z<br><small>\u00b5m</small></th><th>e\u22a5<br><small>\u00b5m</small></th><th>tilt<br>"
+       "<small>\u00b5rad</small></th><th>U<sub>robot</sub><br><small>\u00b5m</small></"
+       "th><th>U<sub>mach</sub><br><small>"
+       "\u00b5m</small></th><th>U<sub>work</sub><br><small>\u00b5m</small></th><th>Tol. "
+       "\u2300<br><small>mm</small></th>"
        "<th class=\"l\">Verdict</th><th>MC<br><small>s</small></th>";
   if (in.compensation) {
-    o += "<th>Residual<br><small>\u00b5m</small></th><th>Rot. about axis<br><small>deg</small></th>";
+    o +=
+        "<th>Residual<br><small>\u00b5m</small></th><th>Rot. about axis<br><small>deg</small></th>";
   }
   o += "</tr></thead><tbody>";
   for (size_t i = 0; i < hv.size(); ++i) {
     const HoleView& h = hv[i];
     const HolePrediction& p = *h.p;
     const VerdictStyle& vs = styleOf(p.verdict);
-    o += "<tr><td class=\"c0\">" + std::to_string(i + 1) + "</td><td class=\"id c1\">" + esc(p.id) + "</td><td>" +
-         num(p.diameter * 1e3, 2) + "</td><td class=\"l\">" + (p.config.empty() ? kDash : esc(p.config)) + "</td>";
+    o += "<tr><td class=\"c0\">" + std::to_string(i + 1) + "</td><td class=\"id c1\">" + esc(p.id) +
+         "</td><td>" + num(p.diameter * 1e3, 2) + "</td><td class=\"l\">" +
+         (p.config.empty() ? kDash : esc(p.config)) + "</td>";
     const bool has_joints = h.ok || !p.config.empty();
     if (h.config_change) {
-      o += "<td class=\"chg\" title=\"configuration change: branch " + std::to_string(h.prev_branch) + " \u2192 " +
-           std::to_string(p.branch) + "\"><b>" + std::to_string(p.branch) + "</b></td>";
+      o += "<td class=\"chg\" title=\"configuration change: branch " +
+           std::to_string(h.prev_branch) + " \u2192 " + std::to_string(p.branch) + "\"><b>" +
+           std::to_string(p.branch) + "</b></td>";
     } else {
       o += "<td>" + (has_joints ? std::to_string(p.branch) : std::string(kDash)) + "</td>";
     }
@@ -1059,18 +1157,22 @@ void renderTable(std::string& o, const ReportInput& in, const std::vector<HoleVi
     }
     if (h.ok) {
       o += vec3Cell(p.d_robot * 1e6) + vec3Cell(p.d_mach * 1e6) + vec3Cell(p.d_work * 1e6);
-      o += "<td><strong>" + num(p.position_error * 1e6, 1) + "</strong></td><td>" + num(p.axis_tilt * 1e6, 1) +
-           "</td><td>" + num(p.U_robot * 1e6, 1) + "</td><td>" + num(p.U_mach * 1e6, 1) + "</td><td>" +
-           num(p.U_work * 1e6, 1) + "</td>";
+      o += "<td><strong>" + num(p.position_error * 1e6, 1) + "</strong></td><td>" +
+           num(p.axis_tilt * 1e6, 1) + "</td><td>" + num(p.U_robot * 1e6, 1) + "</td><td>" +
+           num(p.U_mach * 1e6, 1) + "</td><td>" + num(p.U_work * 1e6, 1) + "</td>";
     } else {
-      o += "<td class=\"reason\" colspan=\"8\">" + (p.reason.empty() ? std::string(verdictName(p.verdict)) : esc(p.reason)) +
-           "</td>";
+      o += "<td class=\"reason\" colspan=\"8\">" +
+           (p.reason.empty() ? std::string(verdictName(p.verdict)) : esc(p.reason)) + "</td>";
     }
-    o += "<td>" + num(p.tolerance * 1e3, 3) + "</td><td class=\"l\"><span class=\"badge b-" + vs.cls + "\" title=\"" +
-         verdictName(p.verdict) + "\">" + vs.badge + "</span></td><td>" + num(p.mc_time, 2) + "</td>";
+    o += "<td>" + num(p.tolerance * 1e3, 3) + "</td><td class=\"l\"><span class=\"badge b-" +
+         vs.cls + "\" title=\"" + verdictName(p.verdict) + "\">" + vs.badge + "</span></td><td>" +
+         num(p.mc_time, 2) + "</td>";
     if (in.compensation) {
-      o += "<td>" + (h.rh->residual_um ? num(*h.rh->residual_um, 1) : std::string(kDash)) + "</td><td>" +
-           (h.rh->rotation_about_axis_deg ? num(*h.rh->rotation_about_axis_deg, 2) : std::string(kDash)) + "</td>";
+      o += "<td>" + (h.rh->residual_um ? num(*h.rh->residual_um, 1) : std::string(kDash)) +
+           "</td><td>" +
+           (h.rh->rotation_about_axis_deg ? num(*h.rh->rotation_about_axis_deg, 2)
+                                          : std::string(kDash)) +
+           "</td>";
     }
     o += "</tr>";
   }
@@ -1080,14 +1182,21 @@ void renderTable(std::string& o, const ReportInput& in, const std::vector<HoleVi
 void renderFooter(std::string& o, const ReportInput& in) {
   o += "<footer><p>Generated by " + esc(in.generator) +
        ". Self-contained document: no scripts, no network resources.</p>"
-       "<p>Conventions: SI inside; positions in mm and joints in degrees; deviations and uncertainties in "
-       "\u00b5m, tilts in \u00b5rad; the robot base frame (URDF root link) for all vectors; TCP = flange \u00d7 "
-       "tool frame, tool +z = drilling direction. \u03b4work = \u03b4robot + \u03b4mach; the position error "
-       "e\u22a5 is the part of \u03b4work \u22a5 the hole axis. Position tolerance \u2300t per ISO 1101 (the axis "
+       "<p>Conventions: SI inside; positions in mm and joints in degrees; deviations and "
+       "uncertainties in "
+       "\u00b5m, tilts in \u00b5rad; the robot base frame (URDF root link) for all vectors; TCP = "
+       "flange \u00d7 "
+       "tool frame, tool +z = drilling direction. \u03b4work = \u03b4robot + \u03b4mach; the "
+       "position error "
+       "e\u22a5 is the part of \u03b4work \u22a5 the hole axis. Position tolerance \u2300t per ISO "
+       "1101 (the axis "
        "must lie in a cylinder of diameter t, i.e. e\u22a5 \u2264 t/2).</p>"
-       "<p>Decision rule ISO 14253-1 (guard band g = U): conformance is proven only when e\u22a5 + U<sub>work</sub> "
-       "\u2264 t/2. U<sub>work</sub> is the expanded 2-D radial uncertainty with the Rayleigh coverage factor "
-       "(95 %). Ferreras-Higuero et al., Robotics and Computer-Integrated Manufacturing (2020), give the method "
+       "<p>Decision rule ISO 14253-1 (guard band g = U): conformance is proven only when e\u22a5 + "
+       "U<sub>work</sub> "
+       "\u2264 t/2. U<sub>work</sub> is the expanded 2-D radial uncertainty with the Rayleigh "
+       "coverage factor "
+       "(95 %). Ferreras-Higuero et al., Robotics and Computer-Integrated Manufacturing (2020), "
+       "give the method "
        "this report follows.</p></footer>";
 }
 
@@ -1100,7 +1209,8 @@ std::string renderReport(const ReportInput& in) {
   o += "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
        "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">"
        "<meta name=\"generator\" content=\"" +
-       esc(in.generator) + "\"><title>" + esc(in.title) + "</title><style>" + kCss + "</style></head><body><main>\n";
+       esc(in.generator) + "\"><title>" + esc(in.title) + "</title><style>" + kCss +
+       "</style></head><body><main>\n";
   renderHeader(o, in, hv);
   o += "\n";
   renderMaps(o, in, hv);

@@ -47,10 +47,10 @@ struct Synthetic {
   int not_ok{0};
 };
 
-/// 60 holes on two faces (30 on a vertical face drilled along +X, 30 on a top face drilled along −Z),
-/// deviations growing with reach, a wrist-configuration change (branch 0 → 4 → 0) in the middle of face
-/// A, one unreachable and one singular hole, a few holes with a large model uncertainty (does not conform),
-/// tolerances ⌀0.2 / ⌀0.3 mm, verdicts by the ISO 14253-1 rule.
+/// 60 holes on two faces (30 on a vertical face drilled along +X, 30 on a top face drilled along
+/// −Z), deviations growing with reach, a wrist-configuration change (branch 0 → 4 → 0) in the
+/// middle of face A, one unreachable and one singular hole, a few holes with a large model
+/// uncertainty (does not conform), tolerances ⌀0.2 / ⌀0.3 mm, verdicts by the ISO 14253-1 rule.
 Synthetic makeSynthetic(unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> U01(0.0, 1.0);
@@ -78,8 +78,11 @@ Synthetic makeSynthetic(unsigned seed) {
         p.tolerance = (r == 4) ? 0.3e-3 : 0.2e-3;
         p.mc_time = p.depth / (0.2e-3 * 3000.0 / 60.0) + 2.0;
         p.branch = face == 0 ? ((r == 2 && c >= 2 && c <= 3) ? 4 : 0) : 2;
-        p.config = p.branch == 0 ? "S 110 T 000010" : p.branch == 4 ? "S 010 T 000010" : "S 110 T 000011";
-        for (int j = 0; j < 6; ++j) p.joints[j] = (0.3 * j - 0.7 + 0.05 * c - 0.03 * r) * (face ? -1 : 1);
+        p.config = p.branch == 0   ? "S 110 T 000010"
+                   : p.branch == 4 ? "S 010 T 000010"
+                                   : "S 110 T 000011";
+        for (int j = 0; j < 6; ++j)
+          p.joints[j] = (0.3 * j - 0.7 + 0.05 * c - 0.03 * r) * (face ? -1 : 1);
         if (n == 40) {
           p.status = HoleStatus::kUnreachable;
           p.verdict = Verdict::kUnreachable;
@@ -110,12 +113,13 @@ Synthetic makeSynthetic(unsigned seed) {
         p.position_error = (p.d_work - p.d_work.dot(axis) * axis).norm();
         p.axis_tilt = (p.d_rot - p.d_rot.dot(axis) * axis).norm();
         const double scale_mach = p.diameter / 8e-3;
-        p.budget = {{"robot_repeatability", 16.6e-6, false},
-                    {"robot_deflection_model", (n % 11 == 5 ? 45e-6 : 0.12 * mag), false},
-                    {"robot_deflection_process_force", 0.05 * mag, true},
-                    {"mach_axis", 2.4e-6 * scale_mach, true},
-                    {"mach_runout", 4.2e-6 * scale_mach, true},
-                    {"mach_tool_deflection", (3.0e-6 + 6e-6 * U01(rng)) * scale_mach * scale_mach, true}};
+        p.budget = {
+            {"robot_repeatability", 16.6e-6, false},
+            {"robot_deflection_model", (n % 11 == 5 ? 45e-6 : 0.12 * mag), false},
+            {"robot_deflection_process_force", 0.05 * mag, true},
+            {"mach_axis", 2.4e-6 * scale_mach, true},
+            {"mach_runout", 4.2e-6 * scale_mach, true},
+            {"mach_tool_deflection", (3.0e-6 + 6e-6 * U01(rng)) * scale_mach * scale_mach, true}};
         double u_r2 = 0, u_m2 = 0, proc2 = 0;
         for (const BudgetTerm& b : p.budget) {
           (std::string(b.name).rfind("robot", 0) == 0 ? u_r2 : u_m2) += b.u * b.u;
@@ -131,9 +135,9 @@ Synthetic makeSynthetic(unsigned seed) {
         p.U_work_exact = p.U_work;
         p.process_share = proc2 / (p.u_work * p.u_work);
         const double half = 0.5 * p.tolerance;
-        p.verdict = p.U_work > half                       ? Verdict::kDoesNotConform
+        p.verdict = p.U_work > half                      ? Verdict::kDoesNotConform
                     : p.position_error + p.U_work > half ? Verdict::kConformsAfterCompensation
-                                                          : Verdict::kConforms;
+                                                         : Verdict::kConforms;
         s.preds.push_back(p);
       }
     }
@@ -149,7 +153,8 @@ cli::ReportInput makeInput(const Synthetic& s, bool compensation) {
   in.program = "programs/housing_<B>.src";
   in.process = "drilling, Al 6061-T6, Dc 8/12 mm, f 0.2 mm/rev, 3000 rpm";
   in.uncertainty_method = "linearised";
-  in.uncertainty_source = "stiffness 10 % per joint; servo 20 % (estimate); process force \u00b115 %";
+  in.uncertainty_source =
+      "stiffness 10 % per joint; servo 20 % (estimate); process force \u00b115 %";
   in.default_tolerance_mm = 0.2;
   in.compensation = compensation;
   for (size_t i = 0; i < s.preds.size(); ++i) {
@@ -168,7 +173,8 @@ cli::ReportInput makeInput(const Synthetic& s, bool compensation) {
 
 size_t countOf(const std::string& text, const std::string& what) {
   size_t n = 0;
-  for (size_t p = text.find(what); p != std::string::npos; p = text.find(what, p + what.size())) ++n;
+  for (size_t p = text.find(what); p != std::string::npos; p = text.find(what, p + what.size()))
+    ++n;
   return n;
 }
 
@@ -184,7 +190,8 @@ TEST(Report, DeterministicAndSelfContained) {
   // no network: the only URL is the SVG namespace
   std::string stripped = a;
   const std::string ns = "xmlns=\"http://www.w3.org/2000/svg\"";
-  for (size_t p = stripped.find(ns); p != std::string::npos; p = stripped.find(ns)) stripped.erase(p, ns.size());
+  for (size_t p = stripped.find(ns); p != std::string::npos; p = stripped.find(ns))
+    stripped.erase(p, ns.size());
   EXPECT_EQ(stripped.find("http://"), std::string::npos);
   EXPECT_EQ(stripped.find("https://"), std::string::npos);
   EXPECT_EQ(stripped.find("//www."), std::string::npos);
@@ -242,8 +249,10 @@ TEST(Report, MapsTablesBudgetAndVerdicts) {
   EXPECT_EQ(countOf(html.substr(tbody), "<tr><td class=\"c0\">"), s.preds.size());
   // verdict badges match the predictions
   const CapabilitySummary& sum = in.summary;
-  EXPECT_EQ(countOf(html, "class=\"badge b-ok\" title=\"conforms\">conforms<"), static_cast<size_t>(sum.conforms));
-  EXPECT_EQ(countOf(html, "class=\"badge b-comp\""), static_cast<size_t>(sum.conforms_after_compensation));
+  EXPECT_EQ(countOf(html, "class=\"badge b-ok\" title=\"conforms\">conforms<"),
+            static_cast<size_t>(sum.conforms));
+  EXPECT_EQ(countOf(html, "class=\"badge b-comp\""),
+            static_cast<size_t>(sum.conforms_after_compensation));
   EXPECT_EQ(countOf(html, "class=\"badge b-nc\""), static_cast<size_t>(sum.does_not_conform));
   EXPECT_EQ(countOf(html, "class=\"badge b-unr\""), 1u);
   EXPECT_EQ(countOf(html, "class=\"badge b-sing\""), 1u);
@@ -251,7 +260,8 @@ TEST(Report, MapsTablesBudgetAndVerdicts) {
   EXPECT_GT(sum.conforms_after_compensation, 0);
   EXPECT_GT(sum.does_not_conform, 0);
   // the summary sentence and the budget (six terms, k explained)
-  EXPECT_NE(html.find("<strong>" + std::to_string(sum.robot_can_take) + " of 60 holes can be taken by the robot"),
+  EXPECT_NE(html.find("<strong>" + std::to_string(sum.robot_can_take) +
+                      " of 60 holes can be taken by the robot"),
             std::string::npos);
   EXPECT_NE(html.find("Robot repeatability"), std::string::npos);
   EXPECT_NE(html.find("Tool deflection"), std::string::npos);
@@ -302,7 +312,8 @@ TEST(Report, EmptyProgramStillRenders) {
   EXPECT_EQ(countOf(html, "<figure class=\"panel\">"), 0u);
 }
 
-// ------------------------------------------------------------------ PNG decoding (RFC 1950/1951, PNG spec)
+// ------------------------------------------------------------------ PNG decoding (RFC 1950/1951,
+// PNG spec)
 
 std::uint32_t crc32(const std::uint8_t* p, size_t n) {
   static const std::array<std::uint32_t, 256> table = [] {
@@ -370,7 +381,8 @@ class Inflate {
     pos_ += 4;
     if (len != (~nlen & 0xFFFFu)) throw std::runtime_error("inflate: stored length mismatch");
     if (pos_ + len > in_.size()) throw std::runtime_error("inflate: truncated stored block");
-    out_.insert(out_.end(), in_.begin() + static_cast<long>(pos_), in_.begin() + static_cast<long>(pos_ + len));
+    out_.insert(out_.end(), in_.begin() + static_cast<long>(pos_),
+                in_.begin() + static_cast<long>(pos_ + len));
     pos_ += len;
   }
 
@@ -398,21 +410,25 @@ class Inflate {
           static_cast<short>(offs[static_cast<size_t>(len)] + h.count[static_cast<size_t>(len)]);
     }
     for (int s = 0; s < n; ++s) {
-      if (length[s] != 0) h.symbol[static_cast<size_t>(offs[static_cast<size_t>(length[s])]++)] = static_cast<short>(s);
+      if (length[s] != 0)
+        h.symbol[static_cast<size_t>(offs[static_cast<size_t>(length[s])]++)] =
+            static_cast<short>(s);
     }
     return h;
   }
 
   void codes(const Huffman& lencode, const Huffman& distcode) {
-    static constexpr std::array<short, 29> kLBase{3,  4,  5,  6,  7,  8,  9,  10, 11,  13,  15,  17,  19,  23, 27,
-                                                  31, 35, 43, 51, 59, 67, 83, 99, 115, 131, 163, 195, 227, 258};
+    static constexpr std::array<short, 29> kLBase{3,  4,  5,  6,   7,   8,   9,   10,  11, 13,
+                                                  15, 17, 19, 23,  27,  31,  35,  43,  51, 59,
+                                                  67, 83, 99, 115, 131, 163, 195, 227, 258};
     static constexpr std::array<short, 29> kLExt{0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2,
                                                  2, 3, 3, 3, 3, 4, 4, 4, 4, 5, 5, 5, 5, 0};
-    static constexpr std::array<int, 30> kDBase{1,   2,   3,   4,   5,   7,    9,    13,   17,   25,
-                                                33,  49,  65,  97,  129, 193,  257,  385,  513,  769,
-                                                1025, 1537, 2049, 3073, 4097, 6145, 8193, 12289, 16385, 24577};
-    static constexpr std::array<short, 30> kDExt{0, 0, 0, 0, 1, 1, 2, 2,  3,  3,  4,  4,  5,  5,  6,
-                                                 6, 7, 7, 8, 8, 9, 9, 10, 10, 11, 11, 12, 12, 13, 13};
+    static constexpr std::array<int, 30> kDBase{
+        1,   2,   3,   4,   5,   7,    9,    13,   17,   25,   33,   49,   65,    97,    129,
+        193, 257, 385, 513, 769, 1025, 1537, 2049, 3073, 4097, 6145, 8193, 12289, 16385, 24577};
+    static constexpr std::array<short, 30> kDExt{0, 0, 0,  0,  1,  1,  2,  2,  3,  3,
+                                                 4, 4, 5,  5,  6,  6,  7,  7,  8,  8,
+                                                 9, 9, 10, 10, 11, 11, 12, 12, 13, 13};
     for (;;) {
       int sym = decode(lencode);
       if (sym < 256) {
@@ -422,10 +438,12 @@ class Inflate {
       } else {
         sym -= 257;
         if (sym >= 29) throw std::runtime_error("inflate: bad length symbol");
-        const size_t len = static_cast<size_t>(kLBase[static_cast<size_t>(sym)] + bits(kLExt[static_cast<size_t>(sym)]));
+        const size_t len = static_cast<size_t>(kLBase[static_cast<size_t>(sym)] +
+                                               bits(kLExt[static_cast<size_t>(sym)]));
         const int dsym = decode(distcode);
         if (dsym >= 30) throw std::runtime_error("inflate: bad distance symbol");
-        const size_t dist = static_cast<size_t>(kDBase[static_cast<size_t>(dsym)] + bits(kDExt[static_cast<size_t>(dsym)]));
+        const size_t dist = static_cast<size_t>(kDBase[static_cast<size_t>(dsym)] +
+                                                bits(kDExt[static_cast<size_t>(dsym)]));
         if (dist > out_.size()) throw std::runtime_error("inflate: distance too far back");
         for (size_t i = 0; i < len; ++i) out_.push_back(out_[out_.size() - dist]);
       }
@@ -434,18 +452,21 @@ class Inflate {
 
   void fixed() {
     std::array<short, 288> l{};
-    for (int s = 0; s < 288; ++s) l[static_cast<size_t>(s)] = s < 144 ? 8 : s < 256 ? 9 : s < 280 ? 7 : 8;
+    for (int s = 0; s < 288; ++s)
+      l[static_cast<size_t>(s)] = s < 144 ? 8 : s < 256 ? 9 : s < 280 ? 7 : 8;
     std::array<short, 30> d{};
     d.fill(5);
     codes(build(l.data(), 288), build(d.data(), 30));
   }
 
   void dynamic() {
-    static constexpr std::array<short, 19> kOrder{16, 17, 18, 0, 8, 7, 9, 6, 10, 5, 11, 4, 12, 3, 13, 2, 14, 1, 15};
+    static constexpr std::array<short, 19> kOrder{16, 17, 18, 0, 8,  7, 9,  6, 10, 5,
+                                                  11, 4,  12, 3, 13, 2, 14, 1, 15};
     const int nlen = bits(5) + 257, ndist = bits(5) + 1, ncode = bits(4) + 4;
     if (nlen > 286 || ndist > 30) throw std::runtime_error("inflate: bad counts");
     std::array<short, 320> lengths{};
-    for (int i = 0; i < ncode; ++i) lengths[static_cast<size_t>(kOrder[static_cast<size_t>(i)])] = static_cast<short>(bits(3));
+    for (int i = 0; i < ncode; ++i)
+      lengths[static_cast<size_t>(kOrder[static_cast<size_t>(i)])] = static_cast<short>(bits(3));
     const Huffman lencode0 = build(lengths.data(), 19);
     int index = 0;
     while (index < nlen + ndist) {
@@ -482,13 +503,16 @@ struct Image {
 };
 
 std::uint32_t be32(const std::uint8_t* p) {
-  return (std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) | (std::uint32_t{p[2]} << 8) | p[3];
+  return (std::uint32_t{p[0]} << 24) | (std::uint32_t{p[1]} << 16) | (std::uint32_t{p[2]} << 8) |
+         p[3];
 }
 
-/// 8-bit RGB/RGBA, non-interlaced PNG → RGB (alpha composited on white). Throws on any CRC/Adler error.
+/// 8-bit RGB/RGBA, non-interlaced PNG → RGB (alpha composited on white). Throws on any CRC/Adler
+/// error.
 Image decodePng(const std::vector<std::uint8_t>& f) {
   static constexpr std::array<std::uint8_t, 8> kSig{137, 80, 78, 71, 13, 10, 26, 10};
-  if (f.size() < 8 || !std::equal(kSig.begin(), kSig.end(), f.begin())) throw std::runtime_error("png: signature");
+  if (f.size() < 8 || !std::equal(kSig.begin(), kSig.end(), f.begin()))
+    throw std::runtime_error("png: signature");
   size_t p = 8;
   int w = 0, h = 0, ctype = -1;
   std::vector<std::uint8_t> idat;
@@ -498,12 +522,14 @@ Image decodePng(const std::vector<std::uint8_t>& f) {
     const std::uint32_t len = be32(&f[p]);
     if (p + 12 + len > f.size()) throw std::runtime_error("png: truncated chunk data");
     const std::string type(reinterpret_cast<const char*>(&f[p + 4]), 4);
-    if (crc32(&f[p + 4], len + 4) != be32(&f[p + 8 + len])) throw std::runtime_error("png: CRC of " + type);
+    if (crc32(&f[p + 4], len + 4) != be32(&f[p + 8 + len]))
+      throw std::runtime_error("png: CRC of " + type);
     const std::uint8_t* d = &f[p + 8];
     if (type == "IHDR") {
       w = static_cast<int>(be32(d));
       h = static_cast<int>(be32(d + 4));
-      if (d[8] != 8 || (d[9] != 2 && d[9] != 6) || d[12] != 0) throw std::runtime_error("png: unsupported format");
+      if (d[8] != 8 || (d[9] != 2 && d[9] != 6) || d[12] != 0)
+        throw std::runtime_error("png: unsupported format");
       ctype = d[9];
     } else if (type == "IDAT") {
       idat.insert(idat.end(), d, d + len);
@@ -528,7 +554,8 @@ Image decodePng(const std::vector<std::uint8_t>& f) {
   }
   const size_t bpp = ctype == 6 ? 4 : 3;
   const size_t stride = bpp * static_cast<size_t>(w);
-  if (raw.size() != (stride + 1) * static_cast<size_t>(h)) throw std::runtime_error("png: size mismatch");
+  if (raw.size() != (stride + 1) * static_cast<size_t>(h))
+    throw std::runtime_error("png: size mismatch");
   std::vector<std::uint8_t> cur(stride), prev(stride, 0);
   Image img;
   img.w = w;
@@ -544,16 +571,26 @@ Image decodePng(const std::vector<std::uint8_t>& f) {
       const int ul = i >= bpp ? prev[i - bpp] : 0;
       int v = 0;
       switch (filter) {
-        case 0: v = x; break;
-        case 1: v = x + left; break;
-        case 2: v = x + up; break;
-        case 3: v = x + (left + up) / 2; break;
+        case 0:
+          v = x;
+          break;
+        case 1:
+          v = x + left;
+          break;
+        case 2:
+          v = x + up;
+          break;
+        case 3:
+          v = x + (left + up) / 2;
+          break;
         case 4: {
-          const int pp = left + up - ul, pa = std::abs(pp - left), pb = std::abs(pp - up), pc = std::abs(pp - ul);
+          const int pp = left + up - ul, pa = std::abs(pp - left), pb = std::abs(pp - up),
+                    pc = std::abs(pp - ul);
           v = x + ((pa <= pb && pa <= pc) ? left : pb <= pc ? up : ul);
           break;
         }
-        default: throw std::runtime_error("png: bad filter");
+        default:
+          throw std::runtime_error("png: bad filter");
       }
       cur[i] = static_cast<std::uint8_t>(v & 0xFF);
     }
@@ -561,7 +598,8 @@ Image decodePng(const std::vector<std::uint8_t>& f) {
       const std::uint8_t* px = &cur[static_cast<size_t>(xx) * bpp];
       const double alpha = bpp == 4 ? px[3] / 255.0 : 1.0;
       for (int c = 0; c < 3; ++c) {
-        img.rgb[3 * (static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(xx)) + static_cast<size_t>(c)] =
+        img.rgb[3 * (static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(xx)) +
+                static_cast<size_t>(c)] =
             static_cast<std::uint8_t>(std::lround(alpha * px[c] + (1.0 - alpha) * 255.0));
       }
     }
@@ -577,7 +615,8 @@ std::vector<std::uint8_t> readBytes(const std::string& path) {
 
 TEST(ReportPng, DecoderRejectsCorruption) {
   // a 2×1 RGB PNG (stored deflate block), hand-assembled from the PNG and zlib specifications
-  auto chunk = [](std::vector<std::uint8_t>& out, const char* type, const std::vector<std::uint8_t>& data) {
+  auto chunk = [](std::vector<std::uint8_t>& out, const char* type,
+                  const std::vector<std::uint8_t>& data) {
     const std::uint32_t n = static_cast<std::uint32_t>(data.size());
     for (int s = 24; s >= 0; s -= 8) out.push_back(static_cast<std::uint8_t>(n >> s));
     std::vector<std::uint8_t> td(type, type + 4);
@@ -613,21 +652,22 @@ TEST(ReportPng, DecoderRejectsCorruption) {
 double viridisDistance(int r, int g, int b) {
   static const std::vector<std::array<double, 3>> curve = [] {
     static constexpr std::array<std::array<int, 3>, 11> kV{{{68, 1, 84},
-                                                             {72, 36, 117},
-                                                             {65, 68, 135},
-                                                             {53, 95, 141},
-                                                             {42, 120, 142},
-                                                             {33, 145, 140},
-                                                             {34, 168, 132},
-                                                             {68, 191, 112},
-                                                             {122, 209, 81},
-                                                             {189, 223, 38},
-                                                             {253, 231, 37}}};
+                                                            {72, 36, 117},
+                                                            {65, 68, 135},
+                                                            {53, 95, 141},
+                                                            {42, 120, 142},
+                                                            {33, 145, 140},
+                                                            {34, 168, 132},
+                                                            {68, 191, 112},
+                                                            {122, 209, 81},
+                                                            {189, 223, 38},
+                                                            {253, 231, 37}}};
     std::vector<std::array<double, 3>> c;
     for (int i = 0; i < 10; ++i) {
       for (int s = 0; s < 24; ++s) {
         const double f = s / 24.0;
-        c.push_back({kV[i][0] + f * (kV[i + 1][0] - kV[i][0]), kV[i][1] + f * (kV[i + 1][1] - kV[i][1]),
+        c.push_back({kV[i][0] + f * (kV[i + 1][0] - kV[i][0]),
+                     kV[i][1] + f * (kV[i + 1][1] - kV[i][1]),
                      kV[i][2] + f * (kV[i + 1][2] - kV[i][2])});
       }
     }
@@ -647,14 +687,16 @@ TEST(ReportChromium, HeadlessScreenshotShowsTheMaps) {
   const Synthetic s = makeSynthetic(20201);
   const std::string html = cli::renderReport(makeInput(s, false));
   const std::string dir = test::tempDir("report-chromium");
-  const std::string page = dir + "/report.html", png = dir + "/report.png", log = dir + "/chromium.log";
+  const std::string page = dir + "/report.html", png = dir + "/report.png",
+                    log = dir + "/chromium.log";
   test::writeFile(page, html);
-  const std::string cmd = "timeout 60 '" + chromium +
-                          "' --headless --no-sandbox --disable-gpu --disable-quic --no-first-run "
-                          "--disable-background-networking --disable-component-update --disable-sync "
-                          "--hide-scrollbars --user-data-dir='" +
-                          dir + "/profile' --window-size=1400,2000 --screenshot='" + png + "' 'file://" + page +
-                          "' >'" + log + "' 2>&1 </dev/null";
+  const std::string cmd =
+      "timeout 60 '" + chromium +
+      "' --headless --no-sandbox --disable-gpu --disable-quic --no-first-run "
+      "--disable-background-networking --disable-component-update --disable-sync "
+      "--hide-scrollbars --user-data-dir='" +
+      dir + "/profile' --window-size=1400,2000 --screenshot='" + png + "' 'file://" + page +
+      "' >'" + log + "' 2>&1 </dev/null";
   const int rc = std::system(cmd.c_str());
   ASSERT_TRUE(fs::exists(png)) << "chromium exit " << rc << "\n" << test::readFile(log);
   if (const char* keep = std::getenv("ROPREC_REPORT_SCREENSHOT")) {  // for a look by a human
@@ -676,19 +718,22 @@ TEST(ReportChromium, HeadlessScreenshotShowsTheMaps) {
     for (int x = 0; x <= img.w; ++x) {
       bool vir = false;
       if (x < img.w) {
-        const std::uint8_t* p = &img.rgb[3 * (static_cast<size_t>(y) * static_cast<size_t>(img.w) + static_cast<size_t>(x))];
+        const std::uint8_t* p = &img.rgb[3 * (static_cast<size_t>(y) * static_cast<size_t>(img.w) +
+                                              static_cast<size_t>(x))];
         const int r = p[0], g = p[1], b = p[2];
         if (r < 245 || g < 245 || b < 245) ++non_white;
         colours.push_back((std::uint32_t(r) << 16) | (std::uint32_t(g) << 8) | std::uint32_t(b));
         const int sat = std::max({r, g, b}) - std::min({r, g, b});
         vir = sat > 40 && viridisDistance(r, g, b) < 8.0;
-        if (std::hypot(r - 227, g - 18, b - 11) < 20) ++ring_px;  // configuration-change rings (#e3120b)
+        if (std::hypot(r - 227, g - 18, b - 11) < 20)
+          ++ring_px;  // configuration-change rings (#e3120b)
       }
       if (vir) {
         ++run;
       } else if (run > 0) {
         if (run <= 30) {
-          marker_px[static_cast<size_t>(std::min(2, (x - run / 2) * 3 / img.w))] += static_cast<size_t>(run);
+          marker_px[static_cast<size_t>(std::min(2, (x - run / 2) * 3 / img.w))] +=
+              static_cast<size_t>(run);
         } else {
           bar_px += static_cast<size_t>(run);
         }
@@ -697,13 +742,15 @@ TEST(ReportChromium, HeadlessScreenshotShowsTheMaps) {
     }
   }
   std::sort(colours.begin(), colours.end());
-  const size_t distinct = static_cast<size_t>(std::unique(colours.begin(), colours.end()) - colours.begin());
+  const size_t distinct =
+      static_cast<size_t>(std::unique(colours.begin(), colours.end()) - colours.begin());
   const double non_white_fraction = static_cast<double>(non_white) / static_cast<double>(n);
   RecordProperty("screenshot", png);
   EXPECT_GT(non_white_fraction, 0.08) << png;
   EXPECT_GT(distinct, 500u) << png;
   // three maps side by side, each with markers (≥ ~20 px a hole for 58 holes)
-  for (size_t third = 0; third < 3; ++third) EXPECT_GT(marker_px[third], 1000u) << "third " << third << " " << png;
+  for (size_t third = 0; third < 3; ++third)
+    EXPECT_GT(marker_px[third], 1000u) << "third " << third << " " << png;
   EXPECT_GT(bar_px, 3000u) << png;  // colour bars
   EXPECT_GT(ring_px, 40u) << png;   // configuration-change rings
   if (!HasFailure()) fs::remove_all(dir);
