@@ -88,7 +88,7 @@ std::vector<Item> collect(const Program& p, bool joints_ok, ConversionReport& re
     }
     if (t.kind == TargetKind::kJoint) {
       if (!joints_ok) {
-        rep.skipped.push_back(where + ": joint target " + (t.name.empty() ? m.target_text : t.name) +
+        rep.skipped.push_back(where + ": joint target " + (t.name.empty() ? std::string("(inline)") : t.name) +
                               " (joint conventions differ between vendors; re-teach it in the output)");
         continue;
       }

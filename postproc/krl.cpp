@@ -73,6 +73,12 @@ class KrlReader {
     o.header_amp = true;
     o.single_quote_string = true;
     for (SourceFile& f : p_.files) lex(f, o);
+    const std::size_t expected = p_.files.back().bytes.size() / 128 + 16;  // ~1 declaration per 128 bytes
+    targets_.reserve(expected);
+    fdats_.reserve(expected);
+    ldat_vel_.reserve(expected);
+    named_frames_.reserve(expected);
+    p_.target_list.reserve(expected);
     if (p_.files.size() > 1) readDat();
     readSrc();
   }
@@ -103,7 +109,9 @@ class KrlReader {
   [[noreturn]] void fail(std::size_t offset, const std::string& msg) const { failAt(file(), offset, msg); }
 
   void unresolved(const std::string& ref, std::size_t offset, const std::string& what) {
-    if (reported_.emplace(upper(ref), true).second) {
+    std::string key = upper(ref);
+    if (reported_.count(key) != 0) return;
+    if (reported_.emplace(std::move(key), true).second) {
       p_.unresolved.push_back(Unresolved{ref, file_, file().lineOf(offset), what});
     }
   }
@@ -448,16 +456,13 @@ class KrlReader {
     if (b >= e) fail(b < f.tokens.size() ? f.tokens[b].offset : f.bytes.size(), "motion without a target");
     const std::uint32_t s = f.tokens[b].offset;
     const std::uint32_t en = f.tokens[e - 1].offset + f.tokens[e - 1].length;
-    m.target_text = f.bytes.substr(s, en - s);
     TokenCursor c(f, b, e);
+    if (!c.isPunct('{')) m.target_text = f.bytes.substr(s, en - s);  // literal targets: the target is the text
     if (c.isPunct('{')) {
       const Aggregate a = parseAggregate(c);
-      if (!c.done()) {
-        m.derivation = ":";
-        return -1;
-      }
-      if (relative) {
-        m.derivation = m.instruction;
+      if (!c.done() || relative) {
+        m.derivation = relative ? m.instruction : ":";
+        m.target_text = f.bytes.substr(s, en - s);
         return -1;
       }
       return makeTarget(a, "", a.type);

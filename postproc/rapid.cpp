@@ -124,6 +124,7 @@ class RapidReader {
   [[noreturn]] void fail(std::size_t off, const std::string& m) const { failAt(f_, off, m); }
 
   void unresolved(const std::string& ref, std::size_t off, const std::string& what) {
+    if (reported_.count(upper(ref)) != 0) return;
     if (reported_.emplace(upper(ref), true).second) p_.unresolved.push_back(Unresolved{ref, 0, f_.lineOf(off), what});
   }
 
@@ -405,7 +406,9 @@ class RapidReader {
   int targetArg(const Arg& a, Motion& m, bool joint) {
     const std::vector<Token>& t = f_.tokens;
     if (a.b >= a.e) fail(t[a.b > 0 ? a.b - 1 : 0].offset, "motion without a target");
-    m.target_text = f_.bytes.substr(t[a.b].offset, t[a.e - 1].offset + t[a.e - 1].length - t[a.b].offset);
+    if (f_.text(t[a.b]) != "[") {  // literal targets: the target itself is the text
+      m.target_text = f_.bytes.substr(t[a.b].offset, t[a.e - 1].offset + t[a.e - 1].length - t[a.b].offset);
+    }
     if (f_.text(t[a.b]) == "[") {
       const Node n = parseValue(a.b, a.e);
       return joint ? makeJointtarget(n, "") : makeRobtarget(n, "");

@@ -325,15 +325,18 @@ struct JValue {
   std::uint32_t end{0};
   double number{0};
   std::string str;
-  std::vector<std::pair<std::string, JValue>> members;
-  std::vector<JValue> items;
-  [[nodiscard]] const JValue* get(const std::string& k) const {
-    for (const auto& [key, v] : members) {
-      if (key == k) return &v;
-    }
-    return nullptr;
-  }
+  std::vector<std::string> keys;  // object members: keys[i] -> items[i]
+  std::vector<JValue> items;      // array elements or object member values
+  [[nodiscard]] const JValue* get(const std::string& k) const;
 };
+
+const JValue* JValue::get(const std::string& k) const {
+  if (kind != kObject) return nullptr;
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    if (keys[i] == k) return &items[i];
+  }
+  return nullptr;
+}
 
 class JsonParser {
  public:
@@ -390,7 +393,8 @@ class JsonParser {
           ws();
           if (i_ >= b_.size() || b_[i_] != ':') fail("expected ':'");
           ++i_;
-          v.members.emplace_back(std::move(k), value(depth + 1));
+          v.keys.push_back(std::move(k));
+          v.items.push_back(value(depth + 1));
           ws();
           if (i_ < b_.size() && b_[i_] == ',') {
             ++i_;

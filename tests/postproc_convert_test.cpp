@@ -54,9 +54,13 @@ void expectSame(const std::vector<Seen>& a, const std::vector<Seen>& b, bool fra
         EXPECT_LT(smallRotationDifference(a[i].base->linear(), b[i].base->linear()).norm(), 1e-9);
       }
       ASSERT_EQ(a[i].tool.has_value(), b[i].tool.has_value());
-      if (a[i].tool) EXPECT_LT((a[i].tool->translation() - b[i].tool->translation()).norm() * 1e3, 1e-6);
+      if (a[i].tool) {
+        EXPECT_LT((a[i].tool->translation() - b[i].tool->translation()).norm() * 1e3, 1e-6);
+      }
     }
-    if (branch && a[i].branch) EXPECT_EQ(a[i].branch, b[i].branch);
+    if (branch && a[i].branch) {
+      EXPECT_EQ(a[i].branch, b[i].branch);
+    }
   }
 }
 
