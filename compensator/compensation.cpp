@@ -348,26 +348,22 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m, const st
   }
 
   // 5. Exact compensation at the chosen ψ.
-  for (size_t i = 0; i < n; ++i) {
-    HoleCompensation& c = out[i];
+  // positions_only: keep the programmed orientation (iterate the position); else exact 6-DOF.
+  auto finalize = [&](size_t i, const Node& node, bool positions_only) {
+    HoleCompensation c;
+    c.id = out[i].id;
+    c.before = out[i].before;
     const HoleRequest& h = holes[i];
-    if (!chosen[i].feasible) {
-      c.ok = false;
-      c.reason = c.before.status != HoleStatus::kOk ? c.before.reason
-                                                     : "no admissible orientation about the drill axis (limits, wrist margin)";
-      continue;
-    }
-    c.psi = o.mode == OrientationMode::kKeep ? 0.0 : chosen[i].psi;
+    c.psi = positions_only ? 0.0 : node.psi;
     c.T_nominal = h.T_W_tcp * rotZ(c.psi);
-    c.theta_d = chosen[i].q;
-    c.branch = chosen[i].branch;
+    c.theta_d = node.q;
+    c.branch = node.branch;
     c.branch_changed = c.before.status == HoleStatus::kOk && c.branch != c.before.branch;
     const ProcessAtDiameter* proc = ev.processFor(h.diameter);
     const nc::Loads loads = ev.loadsFor(proc);
-    if (o.mode == OrientationMode::kKeep) {
-      // Positions only: the programmed orientation stays the original one; the programmed
-      // position p is corrected until the predicted real TCP position is the nominal one:
-      // p ← p − (p_real(p) − p_nom) (∂p_real/∂p ≈ I: converges in a few iterations).
+    if (positions_only) {
+      // The programmed position p is corrected until the predicted real TCP position is the
+      // nominal one: p ← p − (p_real(p) − p_nom) (∂p_real/∂p ≈ I: converges in a few iterations).
       Pose T = c.T_nominal;
       Vec6 q = c.theta_d;
       bool conv = false;
@@ -388,7 +384,7 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m, const st
       }
       if (!conv) {
         c.reason = "the position-only compensation did not converge";
-        continue;
+        return c;
       }
       c.theta_cmd = q;
     } else {
@@ -405,37 +401,58 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m, const st
     const nc::PositionResult pr = nc::forwardKinematics(m.model, d.nc, c.theta_cmd);
     if (!pr.converged) {
       c.reason = "position problem did not converge at the compensated command";
-      continue;
+      return c;
     }
     c.T_programmed = d.nc.T_W_tcp;
-    if (o.mode == OrientationMode::kKeep) c.T_programmed.linear() = c.T_nominal.linear();  // exact by construction
+    if (positions_only) c.T_programmed.linear() = c.T_nominal.linear();  // exact by construction
     c.delta = c.T_programmed * c.T_nominal.inverse();
     c.config = configurationOf(m.ik, m.robot.card, c.theta_cmd, m.config_options);
     c.config_text = formatConfig(c.config);
     if (!withinLimits(m.ik, c.theta_cmd)) {
       c.reason = "the compensated command leaves the joint limits";
-      continue;
+      return c;
     }
     const nc::Deflection def = nc::predictDeflection(m.model, d.nc, m.compliance, c.theta_cmd, loads, {},
                                                      controllerOffset(m, d.nc, c.theta_cmd));
     if (!def.converged) {
       c.reason = "the compliance equilibrium did not converge at the compensated command";
-      continue;
+      return c;
     }
     c.residual = def.T_real.translation() - c.T_nominal.translation();
-    c.residual_rot = smallRotationDifference(def.T_real.linear(), c.T_nominal.linear()).norm();  // keep: the real tilt
+    c.residual_rot = smallRotationDifference(def.T_real.linear(), c.T_nominal.linear()).norm();
     HoleRequest after = h;
     after.T_W_tcp = c.T_programmed;
     after.config = c.config;
+    after.nominal_axis.reset();
     c.after = predictHole(m, d, after, &c.theta_cmd);
     if (c.after.status != HoleStatus::kOk) {
       c.reason = "re-prediction of the compensated target failed: " + c.after.reason;
-      continue;
+      return c;
     }
     const Vec3 a = c.T_nominal.linear().col(2);
     const double e = (c.residual - c.residual.dot(a) * a).norm();
     c.after.verdict = verdictFor(e, c.after.U_work, c.after.tolerance);
     c.ok = true;
+    return c;
+  };
+  for (size_t i = 0; i < n; ++i) {
+    if (!chosen[i].feasible) {
+      out[i].ok = false;
+      out[i].reason = out[i].before.status != HoleStatus::kOk
+                          ? out[i].before.reason
+                          : "no admissible orientation about the drill axis (limits, wrist margin)";
+      continue;
+    }
+    HoleCompensation c = finalize(i, chosen[i], o.mode == OrientationMode::kKeep);
+    if (o.mode == OrientationMode::kStiffest && !nodes[i].empty()) {
+      // never stiffer-on-paper but worse than keep: compare with the keep result at this hole
+      const Node& zero = nodes[i][static_cast<size_t>(grid / 2)];
+      if (zero.feasible) {
+        HoleCompensation k = finalize(i, zero, true);
+        if (k.ok && (!c.ok || k.after.U_work < c.after.U_work)) c = std::move(k);
+      }
+    }
+    out[i] = std::move(c);
   }
   if (stats) *stats = st;
   return out;
