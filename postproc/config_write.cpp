@@ -21,7 +21,7 @@ std::string binaryLike(std::string_view original, int value) {
 
 void setInt(Program& p, NumberField& f, int value) {
   const std::string_view orig = std::string_view(p.files[static_cast<std::size_t>(f.file)].bytes).substr(f.offset, f.length);
-  if (static_cast<int>(f.value) == value) {
+  if (f.value == static_cast<double>(value)) {
     p.edits.erase({f.file, f.offset});
     return;
   }

@@ -14,9 +14,10 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string fmt(double v, int decimals) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-  std::string s = buf;
+  const int n = std::snprintf(nullptr, 0, "%.*f", decimals, v);
+  std::string s(static_cast<std::size_t>(std::max(n, 0)) + 1, '\0');
+  std::snprintf(s.data(), s.size(), "%.*f", decimals, v);
+  s.pop_back();
   bool zero = true;
   for (const char c : s) zero = zero && (c == '-' || c == '0' || c == '.');
   if (zero && !s.empty() && s[0] == '-') s.erase(0, 1);
@@ -134,6 +135,7 @@ std::optional<int> tableIndex(const std::string& ref, const char* table) {
   if (u.rfind(t + "[", 0) != 0 || u.back() != ']') return std::nullopt;
   const std::string n = u.substr(t.size() + 1, u.size() - t.size() - 2);
   if (n.empty() || n.find_first_not_of("0123456789") != std::string::npos) return std::nullopt;
+  if (n.size() > 9) return std::nullopt;
   return std::atoi(n.c_str());
 }
 

@@ -20,6 +20,11 @@ EditResult writeConfiguration(Program& p, Target& t, const Configuration& c);
 /// Number-style hints for a field of a program (file-level style detection).
 NumberHints hintsFor(const Program& p, const NumberField& f, bool quaternion);
 
+/// A parsed number as an int; `fallback` when not finite or beyond ±1e9 (never UB on huge input).
+inline int toInt(double v, int fallback = -1) {
+  return (v == v && v > -1e9 && v < 1e9) ? static_cast<int>(v) : fallback;
+}
+
 /// Throws InputError at the token's line.
 [[noreturn]] void failAt(const SourceFile& f, std::size_t offset, const std::string& msg);
 

@@ -246,10 +246,10 @@ class KrlReader {
         if (c.value < 0 || c.value != std::floor(c.value) || c.value > 1e6) fail(c.begin, n + " must be a non-negative integer");
         if (n == "S") {
           t.status_field = f;
-          t.config.status = static_cast<int>(c.value);
+          t.config.status = toInt(c.value);
         } else {
           t.turn_field = f;
-          t.config.turn = static_cast<int>(c.value);
+          t.config.turn = toInt(c.value);
         }
       } else if (n.size() == 2 && n[1] >= '1' && n[1] <= '6') {
         const auto k = static_cast<std::size_t>(n[1] - '1');
@@ -319,8 +319,8 @@ class KrlReader {
       if (type == "POS" || type == "E6POS") named_frames_[upper(name)] = Frame{name, true, poseOf(a), file_, file().lineOf(name_off)};
     } else if (type == "FDAT") {
       Fdat fd;
-      if (const Component* t = a.find("TOOL_NO"); t != nullptr && t->kind == Component::kNumber) fd.tool = static_cast<int>(t->value);
-      if (const Component* b = a.find("BASE_NO"); b != nullptr && b->kind == Component::kNumber) fd.base = static_cast<int>(b->value);
+      if (const Component* t = a.find("TOOL_NO"); t != nullptr && t->kind == Component::kNumber) fd.tool = toInt(t->value);
+      if (const Component* b = a.find("BASE_NO"); b != nullptr && b->kind == Component::kNumber) fd.base = toInt(b->value);
       if (const Component* ipo = a.find("IPO_FRAME")) {
         fd.tcp = upper(std::string_view(file().bytes).substr(ipo->begin, ipo->end - ipo->begin)).find("TCP") != std::string::npos;
       }
@@ -382,7 +382,7 @@ class KrlReader {
         c.next();
         if ((n == "BASE_DATA" || n == "TOOL_DATA") && c.isPunct('[') && c.isKind(TokenKind::kNumber, 1) && c.isPunct(']', 2)) {
           c.next();  // '['
-          const int idx = static_cast<int>(parseNumber(c.text()).value_or(0));
+          const int idx = toInt(parseNumber(c.text()).value_or(0), 0);
           c.next();  // number
           c.next();  // ']'
           term = tableFrame(n == "BASE_DATA", idx, off);
@@ -437,8 +437,8 @@ class KrlReader {
 
   Fdat fdatFromAggregate(const Aggregate& a) const {
     Fdat fd;
-    if (const Component* t = a.find("TOOL_NO"); t != nullptr && t->kind == Component::kNumber) fd.tool = static_cast<int>(t->value);
-    if (const Component* b = a.find("BASE_NO"); b != nullptr && b->kind == Component::kNumber) fd.base = static_cast<int>(b->value);
+    if (const Component* t = a.find("TOOL_NO"); t != nullptr && t->kind == Component::kNumber) fd.tool = toInt(t->value);
+    if (const Component* b = a.find("BASE_NO"); b != nullptr && b->kind == Component::kNumber) fd.base = toInt(b->value);
     return fd;
   }
 
@@ -607,8 +607,8 @@ class KrlReader {
       std::optional<double> arg;
       if (c.isPunct(',', 4) && c.isKind(TokenKind::kNumber, 5)) arg = parseNumber(c.text(5));
       if (what == "FRAMES" || what == "PTP_PARAMS" || what == "CP_PARAMS") applyFdat(fdat_, off);
-      if (what == "TOOL" && arg) tool_ = tableFrame(false, static_cast<int>(*arg), off);
-      if (what == "BASE" && arg) base_ = tableFrame(true, static_cast<int>(*arg), off);
+      if (what == "TOOL" && arg) tool_ = tableFrame(false, toInt(*arg, 0), off);
+      if (what == "BASE" && arg) base_ = tableFrame(true, toInt(*arg, 0), off);
       return;
     }
     if (c.isKind(TokenKind::kIdentifier)) {
@@ -629,7 +629,7 @@ class KrlReader {
           return;
         }
         if ((n == "BASE_DATA" || n == "TOOL_DATA") && eq == b + 4 && c.isKind(TokenKind::kNumber, 2)) {
-          const int idx = static_cast<int>(parseNumber(c.text(2)).value_or(-1));
+          const int idx = toInt(parseNumber(c.text(2)).value_or(-1));
           Frame fr = evalFrame(eq + 1, e);
           fr.ref = n + "[" + std::to_string(idx) + "]";
           (n == "BASE_DATA" ? base_data_ : tool_data_)[idx] = fr;

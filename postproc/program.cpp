@@ -201,13 +201,18 @@ bool allZeroDigits(const std::string& t) {
 
 std::string formatLike(std::string_view original, double value, const NumberHints& h) {
   const NumStyle st = styleOf(original);
-  char buf[64];
+  auto print = [](const char* f, int prec, double v) {
+    const int n = std::snprintf(nullptr, 0, f, prec, v);
+    std::string s(static_cast<std::size_t>(std::max(n, 0)) + 1, '\0');
+    std::snprintf(s.data(), s.size(), f, prec, v);
+    s.pop_back();
+    return s;
+  };
   std::string t;
   if (st.exp) {
-    int prec = std::max(st.sig, 6);
+    int prec = std::clamp(st.sig, 6, 17);
     if (h.min_decimals >= 9) prec = std::max(prec, 9);
-    std::snprintf(buf, sizeof buf, st.exp_lower ? "%.*g" : "%.*G", prec, value);
-    t = buf;
+    t = print(st.exp_lower ? "%.*g" : "%.*G", prec, value);
   } else {
     int d = st.has_point ? st.frac : 0;
     if (h.significant9) {
@@ -215,9 +220,8 @@ std::string formatLike(std::string_view original, double value, const NumberHint
       const int int_digits = a < 1.0 ? 0 : static_cast<int>(std::floor(std::log10(a))) + 1;
       d = std::clamp(9 - int_digits, 1, 9);
     }
-    d = std::max(d, h.min_decimals);
-    std::snprintf(buf, sizeof buf, "%.*f", d, value);
-    t = buf;
+    d = std::clamp(std::max(d, h.min_decimals), 0, 20);
+    t = print("%.*f", d, value);
   }
   if (allZeroDigits(t)) {
     if (!t.empty() && t[0] == '-') t.erase(0, 1);
@@ -348,7 +352,7 @@ Configuration parseConfigurationText(const std::string& text) {
     if (isDigit(u[i]) || (u[i] == '-' && i + 1 < u.size() && isDigit(u[i + 1]))) {
       std::size_t j = i + 1;
       while (j < u.size() && isDigit(u[j])) ++j;
-      nums.push_back(std::atoi(u.substr(i, j - i).c_str()));
+      nums.push_back(j - i > 9 ? 0 : std::atoi(u.substr(i, j - i).c_str()));
       i = j - 1;
     } else if (std::isalpha(static_cast<unsigned char>(u[i]))) {
       letters += u[i];

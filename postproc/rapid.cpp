@@ -263,7 +263,7 @@ class RapidReader {
     for (std::size_t k = 0; k < 4; ++k) t.rot[k] = field(n.items[1].items[k], "robtarget rot");
     for (std::size_t k = 0; k < 4; ++k) {
       t.cf_fields[k] = field(n.items[2].items[k], "robtarget robconf");
-      t.config.cf[k] = static_cast<int>(std::lround(t.cf_fields[k].value));
+      t.config.cf[k] = toInt(std::round(t.cf_fields[k].value), 0);
     }
     for (std::size_t k = 0; k < 6; ++k) t.ext[k] = field(n.items[3].items[k], "robtarget extax");
     return add(std::move(t));

@@ -83,7 +83,7 @@ class TpReader {
     number = -1;
     if (k + 1 >= e || !punct(k + 1, "[")) return k + 1;
     std::size_t q = k + 2;
-    if (q < e && f_.tokens[q].kind == TokenKind::kNumber) number = static_cast<int>(parseNumber(tx(q)).value_or(-1));
+    if (q < e && f_.tokens[q].kind == TokenKind::kNumber) number = toInt(parseNumber(tx(q)).value_or(-1));
     int depth = 1;
     for (q = k + 2; q < e && depth > 0; ++q) {
       if (punct(q, "[")) ++depth;
@@ -128,7 +128,7 @@ class TpReader {
     const std::string w = upper(letter);
     if (w == "UFRAME_NUM" || w == "UTOOL_NUM") {
       if (k + 2 < e && punct(k + 1, "=") && f_.tokens[k + 2].kind == TokenKind::kNumber) {
-        (w == "UFRAME_NUM" ? uframe_ : utool_) = static_cast<int>(parseNumber(tx(k + 2)).value_or(-1));
+        (w == "UFRAME_NUM" ? uframe_ : utool_) = toInt(parseNumber(tx(k + 2)).value_or(-1));
       } else {
         (w == "UFRAME_NUM" ? uframe_ : utool_) = -2;  // register: runtime
       }
@@ -311,7 +311,7 @@ class TpReader {
       }
       const std::string n = upper(tx(q));
       if (n.size() >= 3 && n.rfind("GP", 0) == 0 && q + 1 < e && punct(q + 1, ":")) {
-        group = static_cast<int>(parseNumber(n.substr(2)).value_or(0));
+        group = toInt(parseNumber(n.substr(2)).value_or(0), 0);
         gp1 = gp1 || group == 1;
         q += 2;
         continue;
@@ -323,7 +323,7 @@ class TpReader {
       if ((n == "UF" || n == "UT") && q + 2 < e && punct(q + 1, ":")) {
         std::size_t r = q + 2;
         const NumberField v = signedNumber(r, e, f_.tokens[q + 1].offset + 1);
-        (n == "UF" ? t.frame_ref : t.tool_ref) = (n == "UF" ? "UFRAME[" : "UTOOL[") + std::to_string(static_cast<int>(v.value)) + "]";
+        (n == "UF" ? t.frame_ref : t.tool_ref) = (n == "UF" ? "UFRAME[" : "UTOOL[") + std::to_string(toInt(v.value)) + "]";
         q = r;
         continue;
       }
@@ -374,7 +374,7 @@ class TpReader {
         while (j < s.size() && isDigit(s[j])) ++j;
         const auto v = parseNumber(s.substr(i, j - i));
         if (!v || turn >= 3) fail(off, "CONFIG string not understood: '" + std::string(s) + "'");
-        c.turns[static_cast<std::size_t>(turn++)] = static_cast<int>(*v);
+        c.turns[static_cast<std::size_t>(turn++)] = toInt(*v, 0);
         i = j - 1;
       } else if (ch != ' ' && ch != ',') {
         fail(off, "CONFIG string not understood: '" + std::string(s) + "'");

@@ -23,6 +23,7 @@ for r in "${readers[@]}"; do
   "$CXX" "${FLAGS[@]}" -DROPREC_FUZZ_DIALECT="$n" "${SRC[@]}" "$ROOT/tests/fuzz/postproc_fuzz.cpp" -o "$bin"
   corpus="$OUT/corpus_$r"
   mkdir -p "$corpus"
+  rm -f "$OUT"/artifact_"${r}"_*
   echo "== fuzzing $r for ${SECONDS_PER}s"
   set +e
   (cd "$OUT" && "$bin" "$corpus" "$ROOT/tests/fuzz/seeds/$r" -max_total_time="$SECONDS_PER" -max_len=16384 \
@@ -31,7 +32,7 @@ for r in "${readers[@]}"; do
   rc=${PIPESTATUS[0]}
   set -e
   if ls "$OUT"/artifact_"${r}"_* >/dev/null 2>&1; then
-    cp "$OUT"/artifact_"${r}"_* "$ROOT/tests/fuzz/crashes/"
+    for a in "$OUT"/artifact_"${r}"_*; do cp "$a" "$ROOT/tests/fuzz/crashes/$r-$(basename "$a" | sed "s/^artifact_${r}_//")"; done
     echo "== $r: crash/timeout artifacts copied to tests/fuzz/crashes/"
     exit 1
   fi

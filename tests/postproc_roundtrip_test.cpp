@@ -3,8 +3,10 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
+#include "compensator/error.hpp"
 #include "compensator/rotation.hpp"
 #include "postproc/drill.hpp"
 #include "postproc/program.hpp"
@@ -218,6 +220,34 @@ TEST(PostprocCorpus, HolesMatchTheHoleList) {
   std::vector<HoleSpec> off = specs;
   for (auto& s : off) s.position_mm.x() += 0.5;
   EXPECT_TRUE(matchHoles(holes, p, off, 0.1).empty());
+}
+
+// Inputs that once crashed a fuzzer (tests/fuzz/crashes/<dialect>-crash-*): now an InputError
+// or a program that writes back byte-identically.
+TEST(PostprocFuzzRegression, CrashCorpusIsHandled) {
+  const std::string dir = test::sourceDir() + "/tests/fuzz/crashes";
+  const std::map<std::string, Dialect> dialects{{"krl", Dialect::kKrl}, {"rapid", Dialect::kRapid}, {"tp", Dialect::kTp},
+                                                {"csv", Dialect::kCsv}, {"json", Dialect::kJson}};
+  int n = 0;
+  for (const auto& e : fs::directory_iterator(dir)) {
+    const std::string name = e.path().filename().string();
+    const auto it = dialects.find(name.substr(0, name.find('-')));
+    if (it == dialects.end()) continue;
+    SCOPED_TRACE(name);
+    const std::string bytes = test::readFile(e.path().string());
+    try {
+      Program p = parseProgram(it->second, name, bytes);
+      EXPECT_TRUE(renderFiles(p)[0] == bytes);
+      for (std::size_t i = 0; i < p.targets().size(); ++i) {
+        (void)replaceTargetPose(p, static_cast<int>(i), targetPose(p, p.targets()[i]));
+      }
+      (void)recognizeHoles(p);
+    } catch (const InputError& err) {
+      EXPECT_NE(std::string(err.what()).find(name), std::string::npos);  // names the file
+    }
+    ++n;
+  }
+  EXPECT_GE(n, 1);
 }
 
 }  // namespace
