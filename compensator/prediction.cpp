@@ -353,7 +353,8 @@ HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const Ho
   const Eigen::Matrix2d cov_total =
       cov_def + (u_robpos * u_robpos + u_mach2) * Eigen::Matrix2d::Identity();
   p.U_work_exact = radialCoverage(cov_total, U.coverage_probability);
-  p.process_share = p.u_work > 0 ? (u_mach2 + u_robdef_proc * u_robdef_proc) / (p.u_work * p.u_work) : 0.0;
+  p.process_share = p.u_work > 0 ? u_mach2 / (p.u_work * p.u_work) : 0.0;
+  p.process_force_share = p.u_work > 0 ? u_robdef_proc * u_robdef_proc / (p.u_work * p.u_work) : 0.0;
 
   // 6. verdict
   // The hole's real position error: from the nominal hole axis when the nominal hole is known

@@ -160,7 +160,8 @@ struct HolePrediction {
   double k{2.4477};
   double U_robot{0}, U_mach{0}, U_work{0};
   double U_work_exact{0};           ///< 95 % radius of the anisotropic total (for information)
-  double process_share{0};          ///< variance share of the process terms in u_work²
+  double process_share{0};          ///< machining-process variance share u_mach² / u_work² (the study's figure)
+  double process_force_share{0};    ///< share of the robot deflection caused by process-force uncertainty
   double tolerance{0};              ///< ⌀, m
   Verdict verdict{Verdict::kConforms};
   double mc_time{0};                ///< machining-center time for this hole, s

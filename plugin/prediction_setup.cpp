@@ -153,6 +153,7 @@ Json holeJson(const HolePrediction& h, const HoleRequest& r) {
     for (const BudgetTerm& t : h.budget) b.set(t.name, Json::number(t.u * 1e6, 3));
     u.set("standard_per_axis", b);
     u.set("process_share", Json::number(h.process_share, 4));
+    u.set("process_force_share", Json::number(h.process_force_share, 4));
     j.set("uncertainty_um", u);
     j.set("process_force_N", Json::vector(h.force_base, 2));
     Json eq = Json::object();

@@ -1,0 +1,169 @@
+// Per-hole prediction (issue 6): the robot-process precision study's qualitative findings on a
+// paper-like cell, Monte Carlo vs linearised U_robdef, the budget recomputed by hand, and
+// byte-identical JSON/HTML through the CLI.
+#include "compensator/prediction.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <regex>
+
+#include "compensator/uncertainty.hpp"
+#include "plugin/prediction_setup.hpp"
+#include "tests/support/test_support.hpp"
+
+namespace roprec {
+namespace {
+
+std::string paper(const std::string& f) { return test::sourceDir() + "/tests/data/paper/" + f; }
+
+/// The paper cell with the feed (mm/rev) replaced, written to a temp dir.
+std::string cellWithFeed(double feed) {
+  std::string xml = test::readFile(paper("cell.xml"));
+  xml = std::regex_replace(xml, std::regex("feed_mm_per_rev=\"0.2\""),
+                           "feed_mm_per_rev=\"" + std::to_string(feed) + "\"");
+  const std::string dir = test::tempDir("feed");
+  test::writeFile(dir + "/cell.xml", xml);
+  return dir + "/cell.xml";
+}
+
+const HolePrediction& byId(const std::vector<HolePrediction>& p, const std::string& id) {
+  for (const auto& h : p) {
+    if (h.id == id) return h;
+  }
+  throw std::runtime_error("no hole " + id);
+}
+
+TEST(Prediction, DeviationGrowsWithFeedAndWithArmExtension) {
+  // The process-induced deviation (gravity off: drilling downward, the thrust also lifts the
+  // gravity sag, so the total can fall while the process part grows).
+  double prev = 0;
+  for (const double f : {0.1, 0.2, 0.3}) {
+    cli::PredictionContext c = cli::loadPredictionContext(cellWithFeed(f), paper("holes.csv"), std::nullopt, "");
+    c.model.gravity = false;
+    const auto p = predictHoles(c.model, c.job.requests);
+    const double e = byId(p, "X2").d_robot.norm();
+    EXPECT_GT(e, prev) << "feed " << f;
+    prev = e;
+  }
+  cli::PredictionContext c = cli::loadPredictionContext(paper("cell.xml"), paper("holes.csv"), std::nullopt, "");
+  c.model.gravity = false;
+  const auto p = predictHoles(c.model, c.job.requests);
+  EXPECT_LT(byId(p, "X1").d_robot.norm(), byId(p, "X2").d_robot.norm());
+  EXPECT_LT(byId(p, "X2").d_robot.norm(), byId(p, "X3").d_robot.norm());
+  EXPECT_LT(byId(p, "X3").d_robot.norm(), byId(p, "X4").d_robot.norm());
+}
+
+TEST(Prediction, WristConfigurationChangeIsAJumpOfTensOfMicrometres) {
+  // Neighbouring holes (1 mm apart) drilled with the wrist reconfigured: the OLP turned the
+  // spindle 90° about the drill axis, so the wrist axes take other angles and, with the spindle
+  // mass off the drill axis (paper cell), other loads. A pure flip
+  // (θ4 ± 180°, −θ5, θ6 ± 180°) moves nothing in a joint-compliance model (τ5 and φ5 both change
+  // sign), which this test checks too.
+  const cli::PredictionContext c = cli::loadPredictionContext(paper("cell.xml"), paper("holes.csv"), std::nullopt, "");
+  PredictionData d(c.model);
+  HoleRequest a = c.job.requests[1];
+  HoleRequest b = a;
+  b.T_W_tcp.translation().x() += 1e-3;
+  b.T_W_tcp.rotate(Eigen::AngleAxisd(0.5 * kPi, Vec3::UnitZ()));
+  const HolePrediction pa = predictHole(c.model, d, a, nullptr);
+  const HolePrediction pb = predictHole(c.model, d, b, &pa.joints);
+  ASSERT_EQ(pa.status, HoleStatus::kOk) << pa.reason;
+  ASSERT_EQ(pb.status, HoleStatus::kOk) << pb.reason;
+  EXPECT_GT(std::abs(pb.joints[3] - pa.joints[3]) + std::abs(pb.joints[5] - pa.joints[5]), 45 * kDeg);
+  const double jump = (pa.d_work - pb.d_work).norm();
+  EXPECT_GT(jump, 10e-6) << "jump " << jump * 1e6 << " µm";
+  EXPECT_LT(jump, 1000e-6);
+  HoleRequest f = a;
+  f.config = parseConfig(Vendor::kKuka, "S 6");  // θ5 < 0: the flipped wrist
+  const HolePrediction pf = predictHole(c.model, d, f, nullptr);
+  ASSERT_EQ(pf.status, HoleStatus::kOk) << pf.reason;
+  EXPECT_NE(pf.branch, pa.branch);
+  EXPECT_LT((pf.d_work - pa.d_work).norm(), 5e-6);
+}
+
+TEST(Prediction, MachiningUncertaintyRisesFrom30To60MicrometresWithDiameter) {
+  const cli::PredictionContext c = cli::loadPredictionContext(paper("cell.xml"), paper("holes.csv"), std::nullopt, "");
+  const auto p = predictHoles(c.model, c.job.requests);
+  // the study's ± band is per axis with k = 2 (U = 2 u); the report's U_mach is the 2-D radius
+  const double u8 = 2.0 * byId(p, "D8").u_mach;
+  const double u12 = 2.0 * byId(p, "D12").u_mach;
+  EXPECT_NEAR(u8, 30e-6, 0.15 * 30e-6);
+  EXPECT_NEAR(u12, 60e-6, 0.15 * 60e-6);
+  EXPECT_NEAR(byId(p, "D8").U_mach, rayleighCoverageFactor(0.95) * byId(p, "D8").u_mach, 1e-15);
+}
+
+TEST(Prediction, ProcessShareIsReportedAndAtMostFortyPercentInThePaperLikeCell) {
+  const cli::PredictionContext c = cli::loadPredictionContext(paper("cell.xml"), paper("holes.csv"), std::nullopt, "");
+  const auto p = predictHoles(c.model, c.job.requests);
+  for (const auto& h : p) {
+    ASSERT_EQ(h.status, HoleStatus::kOk) << h.id;
+    EXPECT_GT(h.process_share, 0.0) << h.id;
+    EXPECT_LE(h.process_share, 0.40) << h.id;
+  }
+}
+
+TEST(Prediction, BudgetRecomputedByHand) {
+  const cli::PredictionContext c = cli::loadPredictionContext(paper("cell.xml"), paper("holes.csv"), std::nullopt, "");
+  const auto p = predictHoles(c.model, c.job.requests);
+  const HolePrediction& h = byId(p, "X2");
+  double u2_robot = 0;
+  double u2_mach = 0;
+  for (const BudgetTerm& t : h.budget) (std::string(t.name).rfind("mach", 0) == 0 ? u2_mach : u2_robot) += t.u * t.u;
+  EXPECT_NEAR(h.u_robot, std::sqrt(u2_robot), 1e-15);
+  EXPECT_NEAR(h.u_mach, std::sqrt(u2_mach), 1e-15);
+  EXPECT_NEAR(h.U_work, std::sqrt(h.U_robot * h.U_robot + h.U_mach * h.U_mach), 1e-15);
+  EXPECT_NEAR(h.budget[0].u, 0.06e-3 / 3.6161, 1e-8);  // KR 120 RP 0.06 mm
+  EXPECT_NEAR(h.k, 2.4477, 1e-4);
+  EXPECT_EQ(h.verdict, verdictFor(h.position_error, h.U_work, 0.2e-3));
+}
+
+TEST(Prediction, MonteCarloAgreesWithLinearisationAtSmallInputUncertainty) {
+  std::string xml = test::readFile(paper("cell.xml"));
+  xml = std::regex_replace(xml, std::regex("<tolerance"),
+                           "<uncertainty method=\"montecarlo\" stiffness_rel=\"0.02\" process_halfwidth=\"0.03\" "
+                           "samples=\"4000\" seed=\"7\"/>\n  <tolerance");
+  const std::string dir = test::tempDir("mc");
+  test::writeFile(dir + "/cell.xml", xml);
+  const cli::PredictionContext mc = cli::loadPredictionContext(dir + "/cell.xml", paper("holes.csv"), std::nullopt, "");
+  const cli::PredictionContext lin =
+      cli::loadPredictionContext(dir + "/cell.xml", paper("holes.csv"), std::nullopt, "linear");
+  const auto pm = predictHoles(mc.model, mc.job.requests);
+  const auto pl = predictHoles(lin.model, lin.job.requests);
+  for (size_t i = 0; i < pm.size(); ++i) {
+    const double um = std::sqrt(0.5 * pm[i].robdef_cov.trace());
+    const double ul = std::sqrt(0.5 * pl[i].robdef_cov.trace());
+    EXPECT_NEAR(um, ul, 0.10 * ul) << pm[i].id;
+  }
+}
+
+TEST(PredictionCli, SameInputGivesByteIdenticalJsonAndHtml) {
+  const std::string dir = test::tempDir("pdet");
+  const std::string cell = test::sourceDir() + "/samples/cells/housing-kr120.xml";
+  const std::string prog = test::sourceDir() + "/samples/emotor-housing/housing_kr120.src";
+  for (const char* r : {"a", "b"}) {
+    const auto res = test::runRoprec("predict --cell '" + cell + "' '" + prog + "' --json '" + dir + "/" + r +
+                                     ".json' --report '" + dir + "/" + r + ".html' --quiet");
+    ASSERT_LE(res.exit_code, 1) << res.err;
+  }
+  EXPECT_EQ(test::readFile(dir + "/a.json"), test::readFile(dir + "/b.json"));
+  EXPECT_EQ(test::readFile(dir + "/a.html"), test::readFile(dir + "/b.html"));
+  EXPECT_NE(test::readFile(dir + "/a.json").find("\"verdict\""), std::string::npos);
+}
+
+TEST(PredictionCli, BadInputExitsTwoWithFileAndLine) {
+  const std::string dir = test::tempDir("pbad");
+  test::writeFile(dir + "/holes.csv", "id,x,y,z,i,j,k\nA,1,2,3,0,0,-1\nB,1,2,oops,0,0,-1\n");
+  const auto r = test::runRoprec("predict --cell '" + paper("cell.xml") + "' '" + dir + "/holes.csv' --json '" + dir +
+                                 "/o.json'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("holes.csv:3"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::ifstream(dir + "/o.json").good());
+  test::writeFile(dir + "/cell.xml", "<cell><robot ref=\"no-such-robot\"/></cell>\n");
+  const auto r2 = test::runRoprec("predict --cell '" + dir + "/cell.xml' '" + paper("holes.csv") + "'");
+  EXPECT_EQ(r2.exit_code, 2);
+  EXPECT_NE(r2.err.find("cell.xml:1"), std::string::npos) << r2.err;
+}
+
+}  // namespace
+}  // namespace roprec
