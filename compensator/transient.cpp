@@ -276,6 +276,7 @@ struct TransientSimulator::Impl {
   VecQ Q{VecQ::Zero()};
   VecQ tmp{VecQ::Zero()};
   ProcessSample ps;
+  double ps_time{std::numeric_limits<double>::quiet_NaN()};  ///< t of ps (cache)
   PositionResult last_position;
   std::exception_ptr eptr;
   std::string cvode_message;
@@ -355,7 +356,10 @@ int TransientSimulator::Impl::rhs(double t, const double* yp, double* ydp) {
   }
 
   // 2. loads: gravity + process wrench at the current (or nominal) TCP orientation
-  process.sample(t, ps);
+  if (t != ps_time) {  // Newton iterations and the difference-quotient Jacobian reuse one t
+    process.sample(t, ps);
+    ps_time = t;
+  }
   if (!ps.wrench.force.allFinite() || !ps.wrench.torque.allFinite()) {
     rhs_failure = "non-finite process load at t = " + std::to_string(t) + " s";
     return -1;  // a smaller step cannot help
@@ -542,6 +546,7 @@ Eigen::VectorXd TransientSimulator::equilibriumState(double t0) {
   Impl& m = *impl_;
   const DriveModel& dm = m.problem.drive;
   m.process.sample(t0, m.ps);
+  m.ps_time = t0;
   Loads loads;
   loads.gravity = m.problem.gravity;
   if (m.problem.follower_wrench) {
@@ -587,6 +592,7 @@ TransientResult TransientSimulator::run(double t0, const Eigen::VectorXd& y0, do
   m.eptr = nullptr;
   m.cvode_message.clear();
   m.rhs_failure.clear();
+  m.ps_time = std::numeric_limits<double>::quiet_NaN();
   Eigen::Map<Eigen::VectorXd> y(N_VGetArrayPointer(m.y.get()), m.n);
   y = y0;
   check(CVodeReInit(m.mem.get(), t0, m.y.get()), "CVodeReInit");
