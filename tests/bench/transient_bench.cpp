@@ -47,11 +47,12 @@ Fixture& fixture() {
   return f;
 }
 
-void cycle(benchmark::State& st, nc::Method method, double rtol, bool runout) {
+void cycle(benchmark::State& st, nc::Method method, double rtol, bool runout, double sample = 1e-3) {
   Fixture& f = fixture();
   nc::TransientOptions opt;
   opt.method = method;
   opt.rtol = rtol;
+  opt.sample = sample;
   nc::TransientResult last;
   double sim = 0.0;
   double wall = 0.0;
@@ -77,6 +78,10 @@ void BM_DrillingCycle2s_Bdf(benchmark::State& st) { cycle(st, nc::Method::kBdf, 
 BENCHMARK(BM_DrillingCycle2s_Bdf)->Unit(benchmark::kMillisecond);
 void BM_DrillingCycle2s_Bdf_rtol1e6(benchmark::State& st) { cycle(st, nc::Method::kBdf, 1e-6, false); }
 BENCHMARK(BM_DrillingCycle2s_Bdf_rtol1e6)->Unit(benchmark::kMillisecond);
+void BM_DrillingCycle2s_Adams_Sample10ms(benchmark::State& st) { cycle(st, nc::Method::kAdams, 1e-8, false, 1e-2); }
+BENCHMARK(BM_DrillingCycle2s_Adams_Sample10ms)->Unit(benchmark::kMillisecond);
+void BM_DrillingCycle2s_Bdf_Sample10ms(benchmark::State& st) { cycle(st, nc::Method::kBdf, 1e-8, false, 1e-2); }
+BENCHMARK(BM_DrillingCycle2s_Bdf_Sample10ms)->Unit(benchmark::kMillisecond);
 void BM_DrillingCycle2s_Adams_Runout(benchmark::State& st) { cycle(st, nc::Method::kAdams, 1e-8, true); }
 BENCHMARK(BM_DrillingCycle2s_Adams_Runout)->Unit(benchmark::kMillisecond);
 
