@@ -176,6 +176,21 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m, const st
       if (!nd.feasible) ++st.infeasible_nodes;
       nodes[i].push_back(nd);
     }
+    bool any = false;
+    for (const Node& nd : nodes[i]) any |= nd.feasible;
+    if (!any && o.mode != OrientationMode::kKeep) {
+      // With the drill on the flange axis, ψ turns axis 6 only: if |θ5| < margin for every ψ the
+      // margin cannot be met here. Keep it as a penalty and say so, rather than drop the hole.
+      for (int k = 0; k < grid; ++k) {
+        const double psi = -kPi + 2.0 * kPi * k / grid;
+        nodes[i][static_cast<size_t>(k)] = ev.evaluate(holes[i], psi, branch, s, false, true);
+        any |= nodes[i][static_cast<size_t>(k)].feasible;
+      }
+      if (any) {
+        ++st.relaxed_wrist;
+        out[i].note = "no rotation about the drill axis meets |θ5| ≥ the wrist margin at this hole";
+      }
+    }
     for (const Node& nd : nodes[i]) {
       if (nd.feasible) {
         seed = nd.q;
@@ -302,7 +317,8 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m, const st
       }
       const int branch = chosen[i].branch;
       const Vec6 seed_q = chosen[i].q;
-      auto evalAt = [&](double psi) { return ev.evaluate(holes[i], psi, branch, seed_q, true, true); };
+      const bool enforce_wrist = out[i].note.empty();
+      auto evalAt = [&](double psi) { return ev.evaluate(holes[i], psi, branch, seed_q, enforce_wrist, true); };
       auto total = [&](const Node& nd) {
         double c = nodeCost(nd, o.mode);
         if (pn) c += transitionCost(*pn, nd, o.mode);
@@ -353,6 +369,7 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m, const st
     HoleCompensation c;
     c.id = out[i].id;
     c.before = out[i].before;
+    c.note = out[i].note;
     const HoleRequest& h = holes[i];
     c.psi = positions_only ? 0.0 : node.psi;
     c.T_nominal = h.T_W_tcp * rotZ(c.psi);

@@ -64,6 +64,7 @@ struct HoleCompensation {
   Vec3 residual{Vec3::Zero()};    ///< predicted real − nominal TCP position after compensation, m
   double residual_rot{0.0};       ///< rad
   HolePrediction after;           ///< budget at the compensated pose (U_work, verdict)
+  std::string note;               ///< e.g. the wrist margin could not be met at this hole
 };
 
 struct CompensationStats {
@@ -72,6 +73,7 @@ struct CompensationStats {
   int refined{0};
   int nlopt_evaluations{0};
   bool relaxed_jumps{false};      ///< no path met the jump threshold; it was relaxed
+  int relaxed_wrist{0};           ///< holes where no rotation met |θ5| ≥ margin (kept as a penalty)
 };
 
 std::vector<HoleCompensation> compensateHoles(const PredictionModel& m, const std::vector<HoleRequest>& holes,

@@ -2,6 +2,7 @@
 
 #include <cassert>
 #include <cmath>
+#include <limits>
 
 namespace roprec::nc {
 
@@ -299,7 +300,10 @@ PositionResult solvePosition(const Model& model, Data& data, const Vec6& z, Gues
   for (;;) {
     evaluatePhi(model, data, data.q);
     res.residual = data.Phi.lpNorm<Eigen::Infinity>();
-    if (!std::isfinite(res.residual)) break;
+    if (!std::isfinite(res.residual) || !data.Phi.allFinite() || !data.q.allFinite()) {
+      res.residual = std::numeric_limits<double>::infinity();
+      break;
+    }
     if (res.residual < model.tol_phi) {
       res.converged = true;
       break;

@@ -41,6 +41,7 @@ int run(Args& args, CommandContext& ctx) {
   const auto wrist = args.option("wrist-margin");
   const auto jump = args.option("jump-threshold");
   const auto grid = args.option("grid");
+  const auto turn_axes = args.option("turn-axes");
   const bool allow_partial = args.flag("allow-partial");
   const bool allow_branch = args.flag("allow-branch-change");
   const std::vector<std::string> pos = args.positionals();
@@ -70,6 +71,16 @@ int run(Args& args, CommandContext& ctx) {
   opt.allow_branch_change = allow_branch;
 
   PredictionContext c = loadPredictionContext(*cell, pos[0], holes_csv, "");
+  if (turn_axes) {
+    const Eigen::VectorXd ax = parseNumberList(*turn_axes, 3, "--turn-axes (three joint numbers)");
+    std::array<int, 3> a{};
+    for (int i = 0; i < 3; ++i) {
+      if (ax[i] < 1 || ax[i] > 6 || ax[i] != std::floor(ax[i])) throw UsageError("--turn-axes: joint numbers 1..6");
+      a[static_cast<size_t>(i)] = static_cast<int>(ax[i]);
+    }
+    c.model.config_options.fanuc_turn_axes = a;
+    if (c.job.program) c.job.program->fanuc_turn_axes = a;
+  }
   if (!c.job.program) throw InputError(pos[0], 0, "not a program roprec can rewrite");
   CompensationStats stats;
   const std::vector<HoleCompensation> comp = compensateHoles(c.model, c.job.requests, opt, &stats);
@@ -92,6 +103,7 @@ int run(Args& args, CommandContext& ctx) {
 
   // program edit: every target of a cycle moves with its drill point
   postproc::Program& prog = *c.job.program;
+  prog.position_min_decimals = 5;  // 0.01 µm: the written target carries the compensation
   std::vector<std::string> refused;
   for (size_t i = 0; i < comp.size(); ++i) {
     const HoleCompensation& h = comp[i];
@@ -180,6 +192,7 @@ int run(Args& args, CommandContext& ctx) {
           j.set("residual_um", Json::number(perpNorm(h.residual, a) * 1e6, 4));
           j.set("residual_vector_um", Json::vector(h.residual * 1e6, 4));
           j.set("branch_changed", Json::boolean(h.branch_changed));
+          if (!h.note.empty()) j.set("note", Json::str(h.note));
         }
         const HolePrediction& u = h.ok ? h.after : h.before;
         Json un = Json::object();
@@ -283,6 +296,10 @@ int run(Args& args, CommandContext& ctx) {
     ctx.out << "  axis-4/6 jumps > " << formatNumber(opt.jump_threshold / kDeg, 0) << " deg between holes of a face: before "
             << flips_before << ", after " << flips_after << "\n";
     if (stats.relaxed_jumps) ctx.out << "  note: no orientation sequence met the jump threshold; it was relaxed\n";
+    if (stats.relaxed_wrist > 0) {
+      ctx.out << "  note: at " << stats.relaxed_wrist << " holes no rotation about the drill axis meets |θ5| ≥ "
+              << formatNumber(opt.wrist_margin / kDeg, 0) << "° (flagged in the export)\n";
+    }
     for (const auto& p : postproc::outputPaths(prog, *out)) ctx.out << "  wrote " << p << "\n";
     if (targets) ctx.out << "  wrote " << *targets << "\n";
     if (report) ctx.out << "  wrote " << *report << "\n";
@@ -295,7 +312,7 @@ const CommandRegistration reg{
      "usage: roprec compensate --cell CELL.xml PROGRAM -o OUT [--orientation keep|flip-free|stiffest]\n"
      "                         [--targets F.csv|F.json] [--report F.html] [--holes HOLES.csv]\n"
      "                         [--allow-partial] [--allow-branch-change] [--wrist-margin DEG]\n"
-     "                         [--jump-threshold DEG] [--grid N]\n\n"
+     "                         [--jump-threshold DEG] [--grid N] [--turn-axes \"1 4 6\"]\n\n"
      "For every hole: the motor-side command θ_m = θ_d + K⁻¹τ(θ_d) (+ servo term) that makes the\n"
      "predicted real TCP land on the nominal hole, and the programmed target = the controller's\n"
      "rigid FK of θ_m with its configuration flags. Every target of a drill cycle moves with it.\n"
@@ -304,6 +321,8 @@ const CommandRegistration reg{
      "|θ5| ≥ --wrist-margin (10°), same IK branch unless --allow-branch-change), stiffest (least\n"
      "predicted U_work under the same constraints).\n"
      "OUT is written in the program's dialect; only the compensated targets' bytes change.\n"
+     "FANUC: turn digits 1 and 2 are changed only when $SCR_GRP[1].$TURN_AXIS is known (--turn-axes or\n"
+     "the cell's <controller fanuc_turn_axes>); otherwise such edits are refused.\n"
      "Unreachable, singular or non-converging holes are listed; without --allow-partial nothing is\n"
      "written and the exit code is 1; with it they keep their original targets and are flagged.\n",
      50, run}};

@@ -1,5 +1,6 @@
 #include "plugin/prediction_setup.hpp"
 
+#include <cmath>
 #include <ostream>
 
 #include "compensator/error.hpp"
@@ -92,6 +93,15 @@ PredictionContext loadPredictionContext(const std::string& cell_path, const std:
   s.calibration_load.com = c.robot.card.calibration_load_com;
   if (const XmlNode* e = c.cell.root.child("controller")) {
     s.controller_gravity = e->boolean("gravity_compensated", s.controller_gravity);
+    if (e->has("fanuc_turn_axes")) {
+      const Eigen::VectorXd ax = e->numbers("fanuc_turn_axes", 3);
+      std::array<int, 3> axes{};
+      for (int i = 0; i < 3; ++i) {
+        if (ax[i] < 1 || ax[i] > 6 || ax[i] != std::floor(ax[i])) e->fail("fanuc_turn_axes: three joint numbers 1..6");
+        axes[static_cast<size_t>(i)] = static_cast<int>(ax[i]);
+      }
+      c.fanuc_turn_axes = axes;
+    }
     const std::string load = e->str("calibration_load", "card");
     if (load == "tool") {
       s.calibration_load = c.tool;
@@ -104,6 +114,10 @@ PredictionContext loadPredictionContext(const std::string& cell_path, const std:
     if (r.diameter > 0) s.hole_diameters.push_back(r.diameter);
   }
   c.model = buildPredictionModel(s);
+  if (c.fanuc_turn_axes) {
+    c.model.config_options.fanuc_turn_axes = *c.fanuc_turn_axes;
+    if (c.job.program) c.job.program->fanuc_turn_axes = *c.fanuc_turn_axes;
+  }
   return c;
 }
 
@@ -118,7 +132,7 @@ Json holeJson(const HolePrediction& h, const HoleRequest& r) {
   if (r.line > 0) j.set("line", Json::integer(r.line));
   j.set("nominal", [&] {
     Json n = Json::object();
-    n.set("position_mm", Json::vector(r.T_W_tcp.translation() * 1e3, 4));
+    n.set("position_mm", Json::vector(r.T_W_tcp.translation() * 1e3, 6));
     const Eigen::Quaterniond q = quaternionFromRotation(r.T_W_tcp.linear());
     n.set("quaternion_wxyz", Json::vector(Eigen::Vector4d(q.w(), q.x(), q.y(), q.z()), 9));
     n.set("axis", Json::vector(r.T_W_tcp.linear().col(2), 9));

@@ -27,6 +27,7 @@ struct PredictionContext {
   std::string process_description;
   JobHoles job;
   PredictionModel model;
+  std::optional<std::array<int, 3>> fanuc_turn_axes;  ///< cell <controller fanuc_turn_axes>
 };
 
 /// `uncertainty_override`: "linear" / "montecarlo" from the command line (empty: the cell's).

@@ -565,7 +565,9 @@ EditResult replaceTargetPose(Program& p, int index, const Pose& T, const std::op
   const Vec3 xyz = T.translation() * 1e3;
   for (int i = 0; i < 3; ++i) {
     NumberField& f = t.pos[static_cast<std::size_t>(i)];
-    setNumber(p, f, xyz[i], hintsFor(p, f, false));
+    NumberHints h = hintsFor(p, f, false);
+    h.min_decimals = std::max(h.min_decimals, p.position_min_decimals);
+    setNumber(p, f, xyz[i], h);
   }
   const Mat3 R = T.linear();
   switch (t.orientation) {

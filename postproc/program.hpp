@@ -197,6 +197,10 @@ struct Program {
   std::map<std::pair<int, std::uint32_t>, Edit> edits;  ///< pending edits by (file, offset)
   /// FANUC `$SCR_GRP[1].$TURN_AXIS[1..3]` (1-based joint numbers) when known (robot-programs.md §9.1).
   std::optional<std::array<int, 3>> fanuc_turn_axes;
+  /// Fewest decimals (mm) a changed position is printed with. 3 keeps the usual OLP style (1 µm);
+  /// `roprec compensate` raises it to 5 (0.01 µm) so the written target carries the compensation
+  /// to well below its 0.1 µm residual (the controllers parse any number of decimals).
+  int position_min_decimals{3};
 
   [[nodiscard]] const std::vector<Target>& targets() const { return target_list; }
 };
