@@ -1,0 +1,144 @@
+// Issue 3: static deviation per pose (position problem + inverse dynamics + compliance iteration)
+// vs a KDL kernel (Jacobian + RNE gravity + J K⁻¹ Jᵀ w). Issue 6: full prediction per hole
+// (IK + deviation + forces + linearised budget). Issue 7: compensation of a 1,000-hole program
+// through the library, keep vs flip-free. Same binary, same robot (KR 120 sample cell).
+#include <benchmark/benchmark.h>
+#include <kdl/chainidsolver_recursive_newton_euler.hpp>
+#include <kdl/chainjnttojacsolver.hpp>
+
+#include <random>
+
+#include "compensator/compensation.hpp"
+#include "plugin/prediction_setup.hpp"
+#include "tests/support/kdl_support.hpp"
+#include "tests/support/test_support.hpp"
+
+namespace {
+
+using namespace roprec;
+
+struct Fixture {
+  cli::PredictionContext c;
+  std::vector<nc::Vec6> poses;
+  std::vector<HoleRequest> thousand;
+  Fixture()
+      : c(cli::loadPredictionContext(test::sourceDir() + "/samples/cells/housing-kr120.xml",
+                                     test::sourceDir() + "/samples/emotor-housing/holes.csv", std::nullopt, "")) {
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(-0.3, 0.3);
+    for (int i = 0; i < 64; ++i) {
+      nc::Vec6 q;
+      q << u(rng), -1.2 + u(rng), 1.9 + u(rng), u(rng), 0.9 + u(rng), u(rng);
+      poses.push_back(q);
+    }
+    // 1,000 holes: the 204 housing holes, repeated with small shifts
+    for (int k = 0; thousand.size() < 1000; ++k) {
+      for (const HoleRequest& h : c.job.requests) {
+        if (thousand.size() == 1000) break;
+        HoleRequest r = h;
+        r.id = h.id + "_" + std::to_string(k);
+        r.T_W_tcp.translation().y() += 2e-3 * k;
+        thousand.push_back(r);
+      }
+    }
+  }
+};
+Fixture& fx() {
+  static Fixture f;
+  return f;
+}
+
+void BM_Roprec_StaticDeviation(benchmark::State& st) {
+  Fixture& f = fx();
+  nc::Data d(f.c.model.model);
+  nc::Loads loads;
+  loads.tcp.force = Vec3(0, 0, 800);
+  size_t i = 0;
+  for (auto _ : st) {
+    const nc::Deflection r = nc::predictDeflection(f.c.model.model, d, f.c.model.compliance, f.poses[i++ & 63], loads);
+    benchmark::DoNotOptimize(r.dp);
+  }
+}
+BENCHMARK(BM_Roprec_StaticDeviation);
+
+void BM_KDL_LinearCompliance(benchmark::State& st) {
+  Fixture& f = fx();
+  const ChainDescription& ch = f.c.robot.chain;
+  KDL::Chain kc = test::kdlChain(f.c.robot.card.urdf_path, ch.base_link, ch.tip_link, f.c.tool.T_flange_tcp);
+  KDL::ChainJntToJacSolver jac(kc);
+  KDL::ChainIdSolver_RNE rne(kc, KDL::Vector(0, 0, -9.80665));
+  KDL::JntArray q(6);
+  KDL::JntArray z(6);
+  KDL::JntArray g(6);
+  KDL::Jacobian J(6);
+  KDL::Wrenches f0(kc.getNrOfSegments(), KDL::Wrench::Zero());
+  Eigen::Matrix<double, 6, 1> w;
+  w << 0, 0, 800, 0, 0, 0;
+  const nc::Vec6 k = f.c.model.compliance.k;
+  size_t i = 0;
+  for (auto _ : st) {
+    const nc::Vec6& p = f.poses[i++ & 63];
+    for (unsigned j = 0; j < 6; ++j) q(j) = p[j];
+    jac.JntToJac(q, J);
+    rne.CartToJnt(q, z, z, f0, g);
+    nc::Vec6 tau;
+    for (unsigned j = 0; j < 6; ++j) tau[j] = g(j);
+    const nc::Vec6 phi = (J.data.transpose() * w - tau).cwiseQuotient(k);
+    const Eigen::Matrix<double, 6, 1> dx = J.data * phi;
+    benchmark::DoNotOptimize(dx);
+  }
+}
+BENCHMARK(BM_KDL_LinearCompliance);
+
+void BM_PredictHole(benchmark::State& st) {
+  Fixture& f = fx();
+  PredictionData d(f.c.model);
+  const auto& req = f.c.job.requests;
+  size_t i = 0;
+  for (auto _ : st) {
+    const HolePrediction p = predictHole(f.c.model, d, req[i++ % req.size()], nullptr);
+    benchmark::DoNotOptimize(p.U_work);
+  }
+}
+BENCHMARK(BM_PredictHole);
+
+void BM_Compensate1000(benchmark::State& st) {
+  Fixture& f = fx();
+  CompensationOptions o;
+  o.mode = st.range(0) == 0 ? OrientationMode::kKeep : OrientationMode::kFlipFree;
+  for (auto _ : st) {
+    const auto r = compensateHoles(f.c.model, f.thousand, o);
+    benchmark::DoNotOptimize(r.size());
+  }
+  st.SetLabel(st.range(0) == 0 ? "keep" : "flip-free");
+}
+BENCHMARK(BM_Compensate1000)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+void BM_PredictCli1000(benchmark::State& st) {
+  // 1,000-hole hole list through the CLI: parse, predict, write the JSON
+  const std::string dir = test::tempDir("bench");
+  std::string csv = "id,x,y,z,i,j,k,diameter,depth,tolerance\n";
+  const std::string src = test::readFile(test::sourceDir() + "/samples/emotor-housing/holes.csv");
+  std::vector<std::string> rows;
+  size_t pos = 0;
+  while (pos < src.size()) {
+    const size_t e = src.find('\n', pos);
+    const std::string line = src.substr(pos, e - pos);
+    pos = e == std::string::npos ? src.size() : e + 1;
+    if (!line.empty() && line[0] != '#' && line.rfind("id,", 0) != 0) rows.push_back(line);
+  }
+  for (int k = 0; k < 1000; ++k) {
+    const std::string& r = rows[static_cast<size_t>(k) % rows.size()];
+    csv += "K" + std::to_string(k) + r.substr(r.find(','));
+    csv += "\n";
+  }
+  test::writeFile(dir + "/h.csv", csv);
+  for (auto _ : st) {
+    const auto r = test::runRoprec("predict --cell '" + test::sourceDir() + "/samples/cells/housing-kr120.xml' '" + dir +
+                                   "/h.csv' --json '" + dir + "/o.json' --quiet");
+    benchmark::DoNotOptimize(r.exit_code);
+  }
+}
+BENCHMARK(BM_PredictCli1000)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+}  // namespace
