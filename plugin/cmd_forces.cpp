@@ -9,6 +9,7 @@
 #include "compensator/cell.hpp"
 #include "compensator/error.hpp"
 #include "compensator/process_spec.hpp"
+#include "compensator/milling_robot.hpp"
 #include "plugin/cli.hpp"
 #include "plugin/json.hpp"
 
@@ -241,7 +242,8 @@ int runDrilling(const CellSpec& cell, ProcessSpec& spec, Json& root, std::string
   return code;
 }
 
-int runMilling(ProcessSpec& spec, Json& root, std::string& csv, int points) {
+int runMilling(ProcessSpec& spec, Json& root, std::string& csv, int points,
+               const std::optional<ComplianceFunction>& robot_compliance) {
   const MillingSpec& s = spec.milling;
   root.set("process", Json::str("milling"));
   root.set("material", Json::str(s.material->name));
@@ -294,12 +296,17 @@ int runMilling(ProcessSpec& spec, Json& root, std::string& csv, int points) {
   }
   csv = c.str();
   int code = 0;
-  if (s.compliance) {
-    const std::vector<ComplianceFunction> path(static_cast<size_t>(points), linearCompliance(*s.compliance));
+  if (s.compliance || robot_compliance) {
+    const std::vector<ComplianceFunction> path(static_cast<size_t>(points),
+                                               robot_compliance ? *robot_compliance : linearCompliance(*s.compliance));
     const std::vector<CouplingResult> res = coupleMillingPath(m, path, s.coupling);
     Json cp = Json::object();
-    const Mat3 row_major = s.compliance->transpose();
-    cp.set("compliance_um_per_N", Json::vector(Eigen::Map<const Eigen::VectorXd>(row_major.data(), 9) * 1e6, 5));
+    if (robot_compliance) {
+      cp.set("compliance", Json::str("robot model at --joints (nonlinear joint-compliance equilibrium)"));
+    } else {
+      const Mat3 row_major = s.compliance->transpose();
+      cp.set("compliance_um_per_N", Json::vector(Eigen::Map<const Eigen::VectorXd>(row_major.data(), 9) * 1e6, 5));
+    }
     cp.set("tolerance_um", Json::number(s.coupling.tolerance * 1e6, 4));
     cp.set("relaxation", Json::number(s.coupling.relaxation, 3));
     Json pts = Json::array();
@@ -335,6 +342,7 @@ int run(Args& args, CommandContext& ctx) {
   const auto step_mm = args.option("step-mm");
   const auto points_opt = args.option("points");
   const auto axial_opt = args.option("axial-compliance-um-per-N");
+  const auto joints_opt = args.option("joints");
   args.finish();
   if (!cell_path) throw UsageError("give --cell CELL.xml");
   double step = 0.05 * kMm;
@@ -373,7 +381,29 @@ int run(Args& args, CommandContext& ctx) {
       code = runDrilling(cell, spec, root, csv, calibrate, out_xml, out_xml_text, step, axial_compliance);
       break;
     case ProcessType::kMilling:
-      code = runMilling(spec, root, csv, points);
+    {
+      std::optional<ComplianceFunction> robot;
+      if (joints_opt) {
+        // the robot's own deflection at this pose is the coupling's compliance
+        const Robot r = loadRobot(cell.robot);
+        nc::ToolAttachment tool;
+        tool.T_flange_tcp = cell.tool.T_flange_tcp;
+        tool.mass = cell.tool.mass;
+        tool.com = cell.tool.com;
+        tool.inertia = cell.tool.inertia;
+        const nc::Model model = nc::buildModel(r.chain, tool);
+        nc::JointCompliance c;
+        for (int i = 0; i < 6; ++i) {
+          const JointCard& j = r.card.joints[static_cast<size_t>(i)];
+          if (!(j.stiffness > 0)) throw InputError(r.card.file, j.line, "joint '" + j.name + "' has no stiffness");
+          c.k[i] = j.stiffness;
+          if (j.position_gain && j.velocity_gain) c.k_servo[i] = *j.position_gain * *j.velocity_gain;
+        }
+        robot = robotMillingCompliance(model, c, parseJointsDeg(*joints_opt));
+        root.set("joints_deg", Json::vector(parseJointsDeg(*joints_opt) / kDeg, 6));
+      }
+      code = runMilling(spec, root, csv, points, robot);
+    }
       break;
     case ProcessType::kWrench: {
       root.set("process", Json::str("wrench"));
@@ -401,15 +431,17 @@ const CommandRegistration reg{
     {"forces", "process forces of a cell (drilling, milling, wrench); single-test calibration",
      "usage: roprec forces --cell CELL.xml [--csv F.csv] [--json F.json] [--step-mm S]\n"
      "                     [--calibrate \"Fa_N=... M_Nm=...\" [--o|--output OUT.xml]] [--points N]\n"
-     "                     [--axial-compliance-um-per-N C]\n\n"
-     "Computes the process forces of the cell's <process> (the robot is not loaded).\n"
+     "                     [--axial-compliance-um-per-N C] [--joints \"j1 .. j6\"]\n\n"
+     "Computes the process forces of the cell's <process> (the robot is loaded only with --joints).\n"
      "  drilling: steady thrust, torque, rotating runout force Fr, per-lip forces, chisel share, the wrench\n"
      "            on the TCP in the tool frame (z into the material: force z = -thrust, torque z = -M), the\n"
      "            machining-deviation budget (U_mach, k = 2); --csv writes depth_mm, engaged_radius_mm,\n"
      "            Fa_N, Ft_N, M_Nm, Fr_N through entry, steady cut and breakthrough.\n"
      "  milling:  immersion, h_m, revolution-mean and peak forces; --csv writes angle_deg, Fx_N, Fy_N,\n"
      "            Fz_N, Fxy_N over one revolution; with <coupling compliance_um_per_N=...> the coupled\n"
-     "            iteration over --points path points (default 10), per point converged/iterations.\n"
+     "            iteration over --points path points (default 10), per point converged/iterations;\n"
+     "            --joints (deg): the coupling's compliance is the cell robot's own deflection at that pose\n"
+     "            (nonlinear joint-compliance equilibrium, feed along tool x).\n"
      "  wrench:   echoes the given tool-frame wrench.\n"
      "--axial-compliance-um-per-N (drilling): the feed absorbed by an axial compliance C at the TCP, one\n"
      "            quasi-static step per revolution (entry, steady cut, breakthrough lunge); the CSV is then\n"
