@@ -10,6 +10,16 @@ Vec6 JointCompliance::effective() const {
   return e;
 }
 
+JointCompliance complianceFromCard(const RobotCard& card) {
+  JointCompliance c;
+  for (int i = 0; i < 6; ++i) {
+    const JointCard& j = card.joints[static_cast<size_t>(i)];
+    c.k[i] = j.stiffness > 0 ? j.stiffness : 1e300;
+    if (j.position_gain && j.velocity_gain) c.k_servo[i] = *j.position_gain * *j.velocity_gain;
+  }
+  return c;
+}
+
 namespace {
 /// τ(θ): position problem (warm start) + static torques. Returns false if Newton failed.
 bool torquesAt(const Model& model, Data& data, const Vec6& theta, const Loads& loads, Vec6& tau) {

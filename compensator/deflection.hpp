@@ -23,6 +23,7 @@
 /// Compensation is explicit: for a desired link-side θ_d and load, θ_m = θ_d + τ(θ_d)/k_eff.
 
 #include "compensator/inverse_dynamics.hpp"
+#include "compensator/robot_card.hpp"
 
 namespace roprec::nc {
 
@@ -32,6 +33,10 @@ struct JointCompliance {
   /// 1/k_eff = 1/k + 1/k_servo
   [[nodiscard]] Vec6 effective() const;
 };
+
+/// k from the card (joints without stiffness: rigid), k_servo = Kv·Kω where both gains are given
+/// (otherwise an ideal, integrating servo).
+JointCompliance complianceFromCard(const RobotCard& card);
 
 struct DeflectionOptions {
   double tol{1e-12};     ///< rad, ‖Δθ‖∞

@@ -89,11 +89,7 @@ PredictionModel buildPredictionModel(const PredictionSetup& setup) {
   m.robot = setup.robot;
   m.model = nc::buildModel(setup.robot.chain, setup.tool);
   m.ik = buildIkModel(setup.robot);
-  for (int i = 0; i < 6; ++i) {
-    const JointCard& j = setup.robot.card.joints[static_cast<size_t>(i)];
-    m.compliance.k[i] = j.stiffness > 0 ? j.stiffness : 1e300;
-    if (j.position_gain && j.velocity_gain) m.compliance.k_servo[i] = *j.position_gain * *j.velocity_gain;
-  }
+  m.compliance = nc::complianceFromCard(setup.robot.card);
   m.reference_pose = vendorReferencePose(setup.robot.card);
   m.controller_gravity = setup.controller_gravity;
   if (m.controller_gravity) m.calibration_model = nc::buildModel(setup.robot.chain, setup.calibration_load);

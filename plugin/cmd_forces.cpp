@@ -11,6 +11,7 @@
 #include "compensator/process_spec.hpp"
 #include "compensator/milling_robot.hpp"
 #include "plugin/cli.hpp"
+#include "plugin/robot_compliance.hpp"
 #include "plugin/json.hpp"
 
 namespace roprec::cli {
@@ -392,14 +393,7 @@ int run(Args& args, CommandContext& ctx) {
         tool.com = cell.tool.com;
         tool.inertia = cell.tool.inertia;
         const nc::Model model = nc::buildModel(r.chain, tool);
-        nc::JointCompliance c;
-        for (int i = 0; i < 6; ++i) {
-          const JointCard& j = r.card.joints[static_cast<size_t>(i)];
-          if (!(j.stiffness > 0)) throw InputError(r.card.file, j.line, "joint '" + j.name + "' has no stiffness");
-          c.k[i] = j.stiffness;
-          if (j.position_gain && j.velocity_gain) c.k_servo[i] = *j.position_gain * *j.velocity_gain;
-        }
-        robot = robotMillingCompliance(model, c, parseJointsDeg(*joints_opt));
+        robot = robotMillingCompliance(model, complianceOf(r.card), parseJointsDeg(*joints_opt));
         root.set("joints_deg", Json::vector(parseJointsDeg(*joints_opt) / kDeg, 6));
       }
       code = runMilling(spec, root, csv, points, robot);

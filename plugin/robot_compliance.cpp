@@ -5,17 +5,13 @@
 namespace roprec::cli {
 
 nc::JointCompliance complianceOf(const RobotCard& card) {
-  nc::JointCompliance c;
-  for (int i = 0; i < 6; ++i) {
-    const JointCard& j = card.joints[static_cast<size_t>(i)];
+  for (const JointCard& j : card.joints) {
     if (!(j.stiffness > 0)) {
       throw InputError(card.file, j.line,
                        "joint '" + j.name + "' has no stiffness: give it in the robot card or with --stiffness \"k1 .. k6\"");
     }
-    c.k[i] = j.stiffness;
-    if (j.position_gain && j.velocity_gain) c.k_servo[i] = *j.position_gain * *j.velocity_gain;
   }
-  return c;
+  return nc::complianceFromCard(card);
 }
 
 nc::Vec6 controllerGravityOffset(const Robot& robot, const nc::JointCompliance& c, const nc::Vec6& theta_m) {
