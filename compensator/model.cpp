@@ -475,7 +475,6 @@ void assemblePhiq(const Model& model, const Data& data, Eigen::Ref<Eigen::Matrix
     const int ip = i == 0 ? -1 : idxPnext(i - 1);
     const Vec3 u = parentAxis(model, q, i);
     const Vec3 v = seg(q, idxV(i));
-    const Vec3 w = seg(q, idxW(i));
     put(row, idxV(i), 2.0 * v.transpose());
     put(row + 1, idxV(i), u.transpose());
     put(row + 1, iu, v.transpose());

@@ -59,8 +59,8 @@ TEST(CompensationCli, RepredictingTheCompensatedProgramLeavesAtMostATenthOfAMicr
         ASSERT_TRUE(h.contains("deviation_um")) << h["id"] << " " << h.value("reason", "");
         const auto p = h["nominal"]["position_mm"];
         const auto w = h["deviation_um"]["work"];
-        const Eigen::Vector3d real(double(p[0]) + double(w[0]) * 1e-3, double(p[1]) + double(w[1]) * 1e-3,
-                                   double(p[2]) + double(w[2]) * 1e-3);
+        Eigen::Vector3d real;
+        for (int k = 0; k < 3; ++k) real[k] = p[k].get<double>() + w[k].get<double>() * 1e-3;
         const auto& [p0, a0] = nominal.at(h["id"]);
         const Eigen::Vector3d d = real - p0;
         worst = std::max(worst, (d - d.dot(a0) * a0).norm() * 1e3);  // µm
