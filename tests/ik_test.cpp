@@ -290,7 +290,9 @@ TEST_F(IkSingular, ElbowStretched) {
   double best = 1e9;
   for (int k = 0; k < result_->count; ++k) {
     const IkSolution& s = result_->solutions[static_cast<size_t>(k)];
-    if (s.branch.shoulder == ikBranch(model_, q).shoulder) EXPECT_TRUE(s.singular_elbow);
+    if (s.branch.shoulder == ikBranch(model_, q).shoulder) {
+      EXPECT_TRUE(s.singular_elbow);
+    }
     best = std::min(best, jointDistance(s.q, q));
   }
   // acos near 1 loses half the digits: sqrt(eps) ~ 1.5e-8 rad in q2/q3 while the pose is exact.
@@ -347,7 +349,9 @@ TEST(Ik, SeededNearSolutionNoAllocation) {
       EXPECT_EQ(ikBranch(c.model, r.q).index(), ikBranch(c.model, q).index());
       EXPECT_LT(jointDistance(r.q, q), 0.2);
       newton += r.analytic_fallback ? 0 : 1;
-      if (!r.analytic_fallback) EXPECT_LE(r.iterations, 5);
+      if (!r.analytic_fallback) {
+        EXPECT_LE(r.iterations, 5);
+      }
     }
     EXPECT_GT(newton, 200);
   }
