@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "compensator/quadrature.hpp"
+
 namespace roprec {
 namespace {
 
@@ -59,28 +61,7 @@ MillingModel makeMillingModel(const MillingTool& tool, const MillingCut& cut, co
   // Gauss–Legendre (Newton on P_n) for the arc average; 48 nodes keep the sin^0.75 end point
   // behaviour below 1e-4 relative.
   const int n = 48;
-  m.gl_x.assign(n, 0.0);
-  m.gl_w.assign(n, 0.0);
-  for (int i = 0; i < (n + 1) / 2; ++i) {
-    double z = std::cos(kPi * (i + 0.75) / (n + 0.5));
-    double dp = 0.0;
-    for (int it = 0; it < 100; ++it) {
-      double p0 = 1.0;
-      double p1 = 0.0;
-      for (int j = 1; j <= n; ++j) {
-        const double p2 = p1;
-        p1 = p0;
-        p0 = ((2.0 * j - 1.0) * z * p1 - (j - 1.0) * p2) / j;
-      }
-      dp = n * (z * p0 - p1) / (z * z - 1.0);
-      const double dz = p0 / dp;
-      z -= dz;
-      if (std::abs(dz) < 1e-15) break;
-    }
-    m.gl_x[static_cast<size_t>(i)] = -z;
-    m.gl_x[static_cast<size_t>(n - 1 - i)] = z;
-    m.gl_w[static_cast<size_t>(i)] = m.gl_w[static_cast<size_t>(n - 1 - i)] = 2.0 / ((1.0 - z * z) * dp * dp);
-  }
+  gaussLegendre(n, m.gl_x, m.gl_w);
   for (int s = 0; s < slices; ++s) {
     const double z = (s + 0.5) * m.slice_height;
     m.slice_lag.push_back(z * std::tan(tool.helix_angle) / R);
