@@ -21,13 +21,10 @@ JointCompliance complianceFromCard(const RobotCard& card) {
 }
 
 namespace {
-/// τ(θ): position problem (warm start) + static torques. Returns false if Newton failed.
+/// τ(θ): position problem + static torques. The closed-form recursion is exact, so Newton only
+/// verifies it (cheaper than a warm-started Newton step). Returns false if it did not converge.
 bool torquesAt(const Model& model, Data& data, const Vec6& theta, const Loads& loads, Vec6& tau) {
-  const PositionResult pr = solvePosition(model, data, theta, Guess::kWarmStart);
-  if (!pr.converged) {
-    const PositionResult pr2 = solvePosition(model, data, theta, Guess::kClosedForm);
-    if (!pr2.converged) return false;
-  }
+  if (!solvePosition(model, data, theta, Guess::kClosedForm).converged) return false;
   tau = staticTorques(model, data, loads);
   return true;
 }
@@ -91,8 +88,9 @@ Deflection predictDeflection(const Model& model, Data& data, const JointComplian
       theta = cmd - tau.cwiseQuotient(keff);
     }
   }
-  // State at the final θ (torques and poses consistent with the reported angles).
-  if (!torquesAt(model, data, theta, loads, tau)) {
+  // State at the final θ (torques and poses consistent with the reported angles): after
+  // convergence data and τ already belong to θ; otherwise evaluate once more.
+  if (!d.converged && !torquesAt(model, data, theta, loads, tau)) {
     d.position_converged = false;
     return d;
   }
