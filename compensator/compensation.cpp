@@ -318,7 +318,16 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m, const st
       const int branch = chosen[i].branch;
       const Vec6 seed_q = chosen[i].q;
       const bool enforce_wrist = out[i].note.empty();
-      auto evalAt = [&](double psi) { return ev.evaluate(holes[i], psi, branch, seed_q, enforce_wrist, true); };
+      // COBYLA asks for the objective and the four constraints at the same ψ: evaluate once.
+      double cached_psi = std::numeric_limits<double>::quiet_NaN();
+      Node cached;
+      auto evalAt = [&](double psi) {
+        if (psi != cached_psi) {
+          cached = ev.evaluate(holes[i], psi, branch, seed_q, enforce_wrist, true);
+          cached_psi = psi;
+        }
+        return cached;
+      };
       auto total = [&](const Node& nd) {
         double c = nodeCost(nd, o.mode);
         if (pn) c += transitionCost(*pn, nd, o.mode);

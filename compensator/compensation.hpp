@@ -38,7 +38,7 @@ const char* orientationModeName(OrientationMode m);
 
 struct CompensationOptions {
   OrientationMode mode{OrientationMode::kKeep};
-  int grid{36};                         ///< ψ samples over [−180°, 180°) for the DP
+  int grid{24};                         ///< ψ samples over [−180°, 180°) for the DP (NLopt refines ±1 step)
   double wrist_margin{10.0 * kDeg};     ///< |θ5| ≥ margin (controller convention)
   double jump_threshold{60.0 * kDeg};   ///< max |Δθ4|, |Δθ6| between consecutive holes
   bool allow_branch_change{false};
