@@ -1,6 +1,8 @@
 /// `roprec convert PROGRAM [--to D] -o OUT`: a program through its own reader and writer
 /// (byte-identical when nothing changed), or its targets into a new program in another dialect.
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <sstream>
 
 #include "compensator/atomic_file.hpp"
@@ -50,7 +52,27 @@ int run(Args& args, CommandContext& ctx) {
   const auto files = postproc::convertProgram(p, postproc::dialectFromName(*to), *out, report);
   for (const auto& [path, bytes] : files) writeFileAtomic(path, bytes);
   if (!ctx.quiet) {
-    for (const std::string& n : report.notes) ctx.err << "roprec: note: " << n << "\n";
+    // "p7: no configuration in the source; ..." repeated per target: print each message once with
+    // the targets it concerns (first few named), in first-seen order
+    std::vector<std::string> order;
+    std::map<std::string, std::vector<std::string>> who;
+    for (const std::string& n : report.notes) {
+      const std::size_t c = n.find(": ");
+      const std::string key = c == std::string::npos ? n : n.substr(c + 2);
+      const std::string name = c == std::string::npos ? "" : n.substr(0, c);
+      if (!who.count(key)) order.push_back(key);
+      who[key].push_back(name);
+    }
+    for (const std::string& key : order) {
+      const auto& names = who[key];
+      if (names.size() == 1) {
+        ctx.err << "roprec: note: " << (names[0].empty() ? "" : names[0] + ": ") << key << "\n";
+        continue;
+      }
+      ctx.err << "roprec: note: " << key << " (" << names.size() << " items: ";
+      for (size_t i = 0; i < std::min<size_t>(names.size(), 3); ++i) ctx.err << (i ? ", " : "") << names[i];
+      ctx.err << (names.size() > 3 ? ", ...)" : ")") << "\n";
+    }
   }
   for (const std::string& s : report.skipped) ctx.err << "roprec: not converted: " << s << "\n";
   return report.skipped.empty() ? 0 : 1;
