@@ -43,24 +43,9 @@ struct Evaluator {
   PredictionData& d;
   const CompensationOptions& o;
 
-  nc::Loads loadsFor(const ProcessAtDiameter* proc) const {
-    nc::Loads l;
-    l.gravity = m.gravity;
-    if (proc) {
-      l.tcp_tool.force = proc->wrench.force;
-      l.tcp_tool.moment = proc->wrench.torque;
-    }
-    return l;
-  }
+  nc::Loads loadsFor(const ProcessAtDiameter* proc) const { return processLoads(m, proc); }
 
-  const ProcessAtDiameter* processFor(double diameter) const {
-    if (!m.has_process) return nullptr;
-    double dia = diameter;
-    if (dia <= 0 && m.process.type == ProcessType::kDrilling) dia = m.process.drilling.geometry.diameter;
-    auto it = m.process_by_diameter.find(std::lround(dia * 1e6));
-    if (it == m.process_by_diameter.end()) it = m.process_by_diameter.begin();
-    return it == m.process_by_diameter.end() ? nullptr : &it->second;
-  }
+  const ProcessAtDiameter* processFor(double diameter) const { return roprec::processFor(m, diameter); }
 
   /// IK at T_W_tcp in `branch` (−1: any) nearest `seed`; `enforce_wrist`: |θ5| ≥ margin.
   Node evaluate(const HoleRequest& h, double psi, int branch, const Vec6& seed, bool enforce_wrist,

@@ -121,8 +121,6 @@ Vec6 controllerOffset(const PredictionModel& m, nc::Data& data, const Vec6& thet
   return tau.cwiseQuotient(m.compliance.effective());
 }
 
-namespace {
-
 const ProcessAtDiameter* processFor(const PredictionModel& m, double diameter) {
   if (!m.has_process) return nullptr;
   double d = diameter;
@@ -131,6 +129,18 @@ const ProcessAtDiameter* processFor(const PredictionModel& m, double diameter) {
   if (it == m.process_by_diameter.end()) it = m.process_by_diameter.begin();
   return it == m.process_by_diameter.end() ? nullptr : &it->second;
 }
+
+nc::Loads processLoads(const PredictionModel& m, const ProcessAtDiameter* proc) {
+  nc::Loads l;
+  l.gravity = m.gravity;
+  if (proc) {
+    l.tcp_tool.force = proc->wrench.force;  // follows the real drill axis
+    l.tcp_tool.moment = proc->wrench.torque;
+  }
+  return l;
+}
+
+namespace {
 
 double jointDistance(const Vec6& a, const Vec6& b) {
   // wrist joints weigh less: they move faster and matter less for the arm posture
@@ -213,13 +223,8 @@ HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const Ho
   }
 
   // 2. δrobot
-  nc::Loads loads;
-  loads.gravity = m.gravity;
+  const nc::Loads loads = processLoads(m, proc);
   const Mat3& R = h.T_W_tcp.linear();
-  if (proc) {
-    loads.tcp_tool.force = proc->wrench.force;  // follows the real drill axis
-    loads.tcp_tool.moment = proc->wrench.torque;
-  }
   p.force_base = R * loads.tcp_tool.force;
   const Vec6 offset = controllerOffset(m, d.nc, sol.q);
   p.deflection = nc::predictDeflection(m.model, d.nc, m.compliance, sol.q, loads, {}, offset);

@@ -92,6 +92,12 @@ struct PredictionModel {
   nc::Model calibration_model;
 };
 
+/// The process at a hole diameter (m; ≤ 0: the cell's drill), nullptr without a process.
+const ProcessAtDiameter* processFor(const PredictionModel& m, double diameter);
+
+/// Gravity (unless disabled) + the process wrench in the tool frame, following the real drill axis.
+nc::Loads processLoads(const PredictionModel& m, const ProcessAtDiameter* proc);
+
 /// The command offset of a gravity-compensating controller at command θ (zero when it does not).
 Vec6 controllerOffset(const PredictionModel& m, nc::Data& data, const Vec6& theta);
 
