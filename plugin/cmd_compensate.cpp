@@ -11,6 +11,7 @@
 #include "compensator/atomic_file.hpp"
 #include "compensator/compensation.hpp"
 #include "compensator/error.hpp"
+#include "compensator/milling_compensation.hpp"
 #include "plugin/cli.hpp"
 #include "plugin/json.hpp"
 #include "plugin/prediction_setup.hpp"
@@ -30,6 +31,107 @@ Json poseJsonContract(const Pose& T) {
 double perpNorm(const Vec3& v, const Vec3& a) { return (v - v.dot(a) * a).norm(); }
 
 std::string csvField(double v, int decimals) { return formatNumber(v, decimals); }
+
+/// Milling: every linear path point of the program is compensated with the coupled force
+/// iteration (compensator/milling_compensation.hpp).
+int runMillingPath(CommandContext& ctx, const std::string& cell, const std::string& program, const std::string& out,
+                   const std::optional<std::string>& targets) {
+  PredictionContext c = loadPredictionContext(cell, program, std::nullopt, "", 0.5, false);
+  postproc::Program& prog = *c.job.program;
+  prog.position_min_decimals = 5;
+  std::vector<int> idx;      // targets, path order (first use)
+  std::vector<Pose> frame;   // T_W_frame per point
+  std::vector<Pose> points;  // nominal TCP, base frame
+  std::vector<bool> seen(prog.targets().size(), false);
+  for (const postproc::Motion& mo : prog.motions) {
+    if (mo.type != postproc::MotionType::kLinear || mo.target < 0 || !mo.derivation.empty()) continue;
+    const postproc::Target& t = prog.targets()[static_cast<size_t>(mo.target)];
+    if (t.kind != postproc::TargetKind::kCartesian || !postproc::targetComplete(t) || seen[static_cast<size_t>(mo.target)]) continue;
+    seen[static_cast<size_t>(mo.target)] = true;
+    const postproc::Frame* base = mo.base >= 0 ? &prog.frames[static_cast<size_t>(mo.base)] : nullptr;
+    const Pose T_W_frame = base && base->resolved ? base->pose : c.cell.T_base_wobj;
+    idx.push_back(mo.target);
+    frame.push_back(T_W_frame);
+    points.push_back(T_W_frame * postproc::targetPose(prog, t));
+  }
+  if (points.empty()) throw InputError(program, 0, "no linear path points (LIN/MoveL/L to Cartesian targets) in the program");
+  const std::vector<PathPointCompensation> comp = compensateMillingPath(c.model, points);
+  int failed = 0;
+  for (size_t i = 0; i < comp.size(); ++i) {
+    if (comp[i].ok) continue;
+    ++failed;
+    const postproc::Target& t = prog.targets()[static_cast<size_t>(idx[i])];
+    ctx.err << "roprec: path point " << i + 1 << " (" << prog.files[static_cast<size_t>(t.file)].path << ":" << t.line
+            << "): not compensated: " << comp[i].reason << "\n";
+  }
+  if (failed) {
+    ctx.err << "roprec: " << failed << " of " << comp.size() << " path points could not be compensated; nothing written\n";
+    return 1;
+  }
+  std::vector<std::string> refused;
+  for (size_t i = 0; i < comp.size(); ++i) {
+    const postproc::Target& t = prog.targets()[static_cast<size_t>(idx[i])];
+    std::optional<postproc::Configuration> cfg;
+    if (t.config.present()) cfg = postproc::parseConfigurationText(comp[i].config_text);
+    const postproc::EditResult er =
+        postproc::replaceTargetPose(prog, idx[i], frame[i].inverse() * comp[i].T_programmed, cfg);
+    if (!er.ok) refused.push_back("path point " + std::to_string(i + 1) + ": " + er.reason);
+  }
+  if (!refused.empty()) {
+    for (const auto& r : refused) ctx.err << "roprec: " << r << "\n";
+    ctx.err << "roprec: the writer refused " << refused.size() << " target edits; nothing written\n";
+    return 1;
+  }
+  std::string export_text;
+  if (targets) {
+    Json root = Json::object();
+    root.set("robot", Json::str(c.robot.card.name));
+    root.set("cell", Json::str(c.cell.name));
+    root.set("program", Json::str(std::filesystem::path(program).filename().string()));
+    root.set("process", Json::str(c.process_description));
+    Json ps = Json::array();
+    for (size_t i = 0; i < comp.size(); ++i) {
+      const PathPointCompensation& p = comp[i];
+      Json j = Json::object();
+      j.set("point", Json::integer(static_cast<std::int64_t>(i + 1)));
+      j.set("target", Json::str(prog.targets()[static_cast<size_t>(idx[i])].name));
+      j.set("nominal", poseJsonContract(points[i]));
+      Json b = Json::object();
+      b.set("deviation_um", Json::vector(p.deviation_before * 1e6, 3));
+      j.set("before", b);
+      Json pr = poseJsonContract(p.T_programmed);
+      pr.set("joints_deg", Json::vector(p.theta_cmd / kDeg, 6));
+      pr.set("config", Json::str(p.config_text));
+      j.set("programmed", pr);
+      j.set("residual_um", Json::number(p.residual.norm() * 1e6, 4));
+      j.set("force_N", Json::vector(p.force, 3));
+      Json cp = Json::object();
+      cp.set("converged", Json::boolean(p.coupling_converged));
+      cp.set("iterations", Json::integer(p.coupling_iterations));
+      cp.set("force_fixed_point_iterations", Json::integer(p.force_iterations));
+      j.set("coupling", cp);
+      ps.push(j);
+    }
+    root.set("points", ps);
+    export_text = root.dump();
+  }
+  postproc::writeProgram(prog, out);
+  if (targets) writeFileAtomic(*targets, export_text);
+  if (!ctx.quiet) {
+    double before = 0;
+    double after = 0;
+    for (const auto& p : comp) {
+      before = std::max(before, p.deviation_before.norm());
+      after = std::max(after, p.residual.norm());
+    }
+    ctx.out << "roprec compensate (milling path): " << comp.size() << " path points compensated\n";
+    ctx.out << "  deviation before (coupled force) max " << formatNumber(before * 1e6, 3) << " µm; predicted residual max "
+            << formatNumber(after * 1e6, 4) << " µm\n";
+    for (const auto& pth : postproc::outputPaths(prog, out)) ctx.out << "  wrote " << pth << "\n";
+    if (targets) ctx.out << "  wrote " << *targets << "\n";
+  }
+  return 0;
+}
 
 int run(Args& args, CommandContext& ctx) {
   const auto cell = args.option("cell");
@@ -70,6 +172,10 @@ int run(Args& args, CommandContext& ctx) {
   if (!(opt.wrist_margin >= 0) || !(opt.jump_threshold > 0)) throw UsageError("--wrist-margin >= 0, --jump-threshold > 0");
   opt.allow_branch_change = allow_branch;
 
+  {
+    const CellSpec peek = loadCell(*cell);
+    if (peek.has_process && peek.process.str("type") == "milling") return runMillingPath(ctx, *cell, pos[0], *out, targets);
+  }
   PredictionContext c = loadPredictionContext(*cell, pos[0], holes_csv, "");
   if (turn_axes) {
     const Eigen::VectorXd ax = parseNumberList(*turn_axes, 3, "--turn-axes (three joint numbers)");
@@ -323,6 +429,8 @@ const CommandRegistration reg{
      "OUT is written in the program's dialect; only the compensated targets' bytes change.\n"
      "FANUC: turn digits 1 and 2 are changed only when $SCR_GRP[1].$TURN_AXIS is known (--turn-axes or\n"
      "the cell's <controller fanuc_turn_axes>); otherwise such edits are refused.\n"
+     "With a milling cell every linear path point is compensated instead, with the coupled force\n"
+     "iteration (the force depends on the deviation); the export lists points, forces and iterations.\n"
      "Unreachable, singular or non-converging holes are listed; without --allow-partial nothing is\n"
      "written and the exit code is 1; with it they keep their original targets and are flagged.\n",
      50, run}};

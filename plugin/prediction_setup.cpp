@@ -51,7 +51,8 @@ CapabilityInputs capabilityFromCell(const CellSpec& cell) {
 
 PredictionContext loadPredictionContext(const std::string& cell_path, const std::string& job_path,
                                         const std::optional<std::string>& hole_list,
-                                        const std::string& uncertainty_override, double match_tol_mm) {
+                                        const std::string& uncertainty_override, double match_tol_mm,
+                                        bool load_holes) {
   PredictionContext c;
   c.cell = loadCell(cell_path);
   try {
@@ -74,7 +75,12 @@ PredictionContext loadPredictionContext(const std::string& cell_path, const std:
   } else {
     c.process_description = "no process (gravity and tool weight only)";
   }
-  c.job = loadJobHoles(job_path, c.cell, c.robot, hole_list, match_tol_mm);
+  if (load_holes) {
+    c.job = loadJobHoles(job_path, c.cell, c.robot, hole_list, match_tol_mm);
+  } else {
+    c.job.path = job_path;
+    c.job.program = postproc::readProgram(job_path);
+  }
 
   PredictionSetup s;
   s.robot = c.robot;
