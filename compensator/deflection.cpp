@@ -65,8 +65,11 @@ Deflection predictDeflection(const Model& model, Data& data, const JointComplian
   Vec6 tau;
   double prev = std::numeric_limits<double>::infinity();
   bool newton = false;
+  const bool at_nominal = command_offset.isZero(0.0);  // data already holds the position at θ_m
   for (d.iterations = 0; d.iterations < opt.max_iterations; ++d.iterations) {
-    if (!torquesAt(model, data, theta, loads, tau)) {
+    if (d.iterations == 0 && at_nominal) {
+      tau = staticTorques(model, data, loads);
+    } else if (!torquesAt(model, data, theta, loads, tau)) {
       d.position_converged = false;
       return d;
     }
