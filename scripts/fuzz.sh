@@ -26,7 +26,10 @@ for r in "${readers[@]}"; do
   rm -f "$OUT"/artifact_"${r}"_*
   echo "== fuzzing $r for ${SECONDS_PER}s"
   set +e
-  (cd "$OUT" && "$bin" "$corpus" "$ROOT/tests/fuzz/seeds/$r" -max_total_time="$SECONDS_PER" -max_len=16384 \
+  work="$OUT/work_$r"  # libFuzzer's -jobs writes fuzz-N.log into the cwd: one folder per reader
+  mkdir -p "$work"
+  rm -f "$work"/fuzz-*.log
+  (cd "$work" && "$bin" "$corpus" "$ROOT/tests/fuzz/seeds/$r" -max_total_time="$SECONDS_PER" -max_len=16384 \
      -timeout=10 -rss_limit_mb=2048 -jobs="$JOBS" -workers="$JOBS" -artifact_prefix="$OUT/artifact_${r}_" \
      -print_final_stats=1 2>&1 | tail -n 25)
   rc=${PIPESTATUS[0]}
