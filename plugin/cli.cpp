@@ -101,8 +101,8 @@ Pose parsePoseQuat(const std::string& text) {
   return T;
 }
 
-Pose parsePoseXyzAbc(const std::string& text) {
-  const Eigen::VectorXd v = parseNumberList(text, 6, "--xyzabc (x y z a b c)");
+Pose parsePoseXyzAbc(const std::string& text, const std::string& what) {
+  const Eigen::VectorXd v = parseNumberList(text, 6, what);
   Pose T = Pose::Identity();
   T.translation() = v.head<3>() * 1e-3;
   T.linear() = rotationFromZyx(v[3] * kDeg, v[4] * kDeg, v[5] * kDeg);

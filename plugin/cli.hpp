@@ -41,8 +41,8 @@ Eigen::Matrix<double, 6, 1> parseJointsDeg(const std::string& text);
 /// `--pose "x y z qw qx qy qz"` (mm, unit quaternion) -> SI pose. The quaternion must be
 /// unit within 1e-6 (it is then normalised).
 Pose parsePoseQuat(const std::string& text);
-/// `--xyzabc "x y z a b c"` (mm, deg, KUKA Z-Y'-X'') -> SI pose.
-Pose parsePoseXyzAbc(const std::string& text);
+/// `--xyzabc "x y z a b c"` (mm, deg, KUKA Z-Y'-X'') -> SI pose; `what` names the option in errors.
+Pose parsePoseXyzAbc(const std::string& text, const std::string& what = "--xyzabc (x y z a b c)");
 
 struct CommandContext {
   std::ostream& out;

@@ -91,18 +91,6 @@ Json nativeJson(const Target& t) {
   return j;
 }
 
-Pose parseFrameValue(const std::string& text) {
-  std::istringstream in(text);
-  double v[6];
-  for (double& x : v) {
-    if (!(in >> x) || !std::isfinite(x)) throw UsageError("--frame REF=\"x y z a b c\" needs six numbers (mm, deg, KUKA ABC)");
-  }
-  Pose T = Pose::Identity();
-  T.translation() = Vec3(v[0], v[1], v[2]) * 1e-3;
-  T.linear() = rotationFromZyx(v[3] * kDeg, v[4] * kDeg, v[5] * kDeg);
-  return T;
-}
-
 int run(Args& args, CommandContext& ctx) {
   const std::string out = args.option("o").value_or(args.option("output").value_or("-"));
   const std::optional<std::string> holes_csv = args.option("holes");
@@ -119,7 +107,7 @@ int run(Args& args, CommandContext& ctx) {
     while (std::getline(in, item, ';')) {
       const std::size_t eq = item.find('=');
       if (eq == std::string::npos) throw UsageError("--frame expects REF=\"x y z a b c\"[;REF=...]");
-      postproc::resolveFrame(p, item.substr(0, eq), parseFrameValue(item.substr(eq + 1)));
+      postproc::resolveFrame(p, item.substr(0, eq), parsePoseXyzAbc(item.substr(eq + 1), "--frame REF=\"x y z a b c\" (mm, deg, KUKA ABC)"));
     }
   }
   postproc::RecognitionOptions ro;
