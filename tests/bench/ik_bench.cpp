@@ -118,17 +118,9 @@ KDL::JntArray toJnt(const Vec6& q) {
   return a;
 }
 
-void BM_KDL_ChainIkSolverPos_NR_JL(benchmark::State& st) {
-  IkFixture& f = fixture();
-  KDL::ChainFkSolverPos_recursive fk(f.kchain);
-  KDL::ChainIkSolverVel_pinv vel(f.kchain);
-  KDL::JntArray qmin(6);
-  KDL::JntArray qmax(6);
-  for (unsigned k = 0; k < 6; ++k) {
-    qmin(k) = f.chain.joints[k].lower;
-    qmax(k) = f.chain.joints[k].upper;
-  }
-  KDL::ChainIkSolverPos_NR_JL ik(f.kchain, qmin, qmax, fk, vel);
+/// Times a KDL position IK solver on the fixture's 256 seeded targets; counts convergence.
+template <class Solver>
+void runKdlIk(benchmark::State& st, IkFixture& f, Solver& ik) {
   std::vector<KDL::JntArray> seeds;
   std::vector<KDL::Frame> targets;
   for (size_t k = 0; k < 256; ++k) {
@@ -148,29 +140,26 @@ void BM_KDL_ChainIkSolverPos_NR_JL(benchmark::State& st) {
   }
   st.counters["converged"] = static_cast<double>(ok) / n;
 }
+
+void BM_KDL_ChainIkSolverPos_NR_JL(benchmark::State& st) {
+  IkFixture& f = fixture();
+  KDL::ChainFkSolverPos_recursive fk(f.kchain);
+  KDL::ChainIkSolverVel_pinv vel(f.kchain);
+  KDL::JntArray qmin(6);
+  KDL::JntArray qmax(6);
+  for (unsigned k = 0; k < 6; ++k) {
+    qmin(k) = f.chain.joints[k].lower;
+    qmax(k) = f.chain.joints[k].upper;
+  }
+  KDL::ChainIkSolverPos_NR_JL ik(f.kchain, qmin, qmax, fk, vel);
+  runKdlIk(st, f, ik);
+}
 BENCHMARK(BM_KDL_ChainIkSolverPos_NR_JL);
 
 void BM_KDL_ChainIkSolverPos_LMA(benchmark::State& st) {
   IkFixture& f = fixture();
   KDL::ChainIkSolverPos_LMA ik(f.kchain);
-  std::vector<KDL::JntArray> seeds;
-  std::vector<KDL::Frame> targets;
-  for (size_t k = 0; k < 256; ++k) {
-    seeds.push_back(toJnt(f.seeds[k]));
-    targets.push_back(test::toKdl(f.targets[k]));
-  }
-  KDL::JntArray out(6);
-  size_t i = 0;
-  int ok = 0;
-  int n = 0;
-  for (auto _ : st) {
-    const size_t k = i++ & 255;
-    const int rc = ik.CartToJnt(seeds[k], targets[k], out);
-    benchmark::DoNotOptimize(out.data);
-    ok += rc >= 0 ? 1 : 0;
-    ++n;
-  }
-  st.counters["converged"] = static_cast<double>(ok) / n;
+  runKdlIk(st, f, ik);
 }
 BENCHMARK(BM_KDL_ChainIkSolverPos_LMA);
 
