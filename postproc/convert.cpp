@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <map>
 
-#include "compensator/error.hpp"
+#include "compensator/support/error.hpp"
 #include "postproc/lexer.hpp"
 
 namespace roprec::postproc {

@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "compensator/atomic_file.hpp"
-#include "compensator/error.hpp"
+#include "compensator/support/atomic_file.hpp"
+#include "compensator/support/error.hpp"
 #include "postproc/dialects.hpp"
 #include "postproc/lexer.hpp"
 

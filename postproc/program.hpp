@@ -32,7 +32,7 @@
 #include <string_view>
 #include <vector>
 
-#include "compensator/rotation.hpp"
+#include "compensator/support/rotation.hpp"
 
 namespace roprec::postproc {
 

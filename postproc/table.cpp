@@ -11,8 +11,8 @@
 #include <cmath>
 #include <unordered_map>
 
-#include "compensator/atomic_file.hpp"
-#include "compensator/error.hpp"
+#include "compensator/support/atomic_file.hpp"
+#include "compensator/support/error.hpp"
 #include "postproc/dialects.hpp"
 #include "postproc/drill.hpp"
 #include "postproc/lexer.hpp"

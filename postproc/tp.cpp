@@ -2,7 +2,7 @@
 #include <cmath>
 #include <unordered_map>
 
-#include "compensator/error.hpp"
+#include "compensator/support/error.hpp"
 #include "postproc/dialects.hpp"
 #include "postproc/lexer.hpp"
 

@@ -12,7 +12,7 @@ OUT="${FUZZ_BUILD:-$ROOT/build-fuzz}"
 mkdir -p "$OUT" "$ROOT/tests/fuzz/crashes"
 readers=("$@")
 [ ${#readers[@]} -eq 0 ] && readers=(krl rapid tp csv json)
-SRC=("$ROOT"/postproc/*.cpp "$ROOT/compensator/rotation.cpp" "$ROOT/compensator/error.cpp" "$ROOT/compensator/atomic_file.cpp")
+SRC=("$ROOT"/postproc/*.cpp "$ROOT/compensator/support/rotation.cpp" "$ROOT/compensator/support/error.cpp" "$ROOT/compensator/support/atomic_file.cpp")
 FLAGS=(-std=c++20 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined
        -I"$ROOT" -I/usr/include/eigen3)
 declare -A NUM=([krl]=0 [rapid]=1 [tp]=2 [csv]=3 [json]=4)

@@ -8,7 +8,7 @@
 //    and keeps |θ5| ≥ the margin;
 //  * CLI: unreachable holes -> exit 1 and nothing written; --allow-partial flags them; outputs
 //    are byte-identical for identical inputs.
-#include "compensator/compensation.hpp"
+#include "compensator/compensation/compensation.hpp"
 
 #include <gtest/gtest.h>
 #include <kdl/chainfksolverpos_recursive.hpp>
@@ -17,7 +17,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "plugin/prediction_setup.hpp"
+#include "plugin/api/prediction_setup.hpp"
 #include "tests/support/kdl_support.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -61,7 +61,7 @@ std::string writeHoleSubset(const std::string& dir) {
 
 /// KDL: chain + spindle segment; returns the real TCP position for the command θ_cmd by the
 /// fixed point θ = θ_cmd + off − K⁻¹ τ_KDL(θ) (off: the controller's own gravity compensation).
-Vec3 kdlRealTcp(const cli::PredictionContext& c, const nc::Vec6& theta_cmd, const ToolWrench& w) {
+Vec3 kdlRealTcp(const api::PredictionContext& c, const nc::Vec6& theta_cmd, const ToolWrench& w) {
   const ChainDescription& ch = c.robot.chain;
   KDL::Chain kc = test::kdlChain(c.robot.card.urdf_path, ch.base_link, ch.tip_link);
   const nc::ToolAttachment& t = c.tool;
@@ -106,8 +106,8 @@ TEST(Compensation, EveryRobotEveryModeLandsOnTheNominalHoles) {
   const std::string holes = writeHoleSubset(dir);
   for (const RobotCase& rc : robots()) {
     SCOPED_TRACE(rc.robot);
-    const cli::PredictionContext c =
-        cli::loadPredictionContext(test::sourceDir() + "/samples/cells/" + rc.cell, holes, std::nullopt, "");
+    const api::PredictionContext c =
+        api::loadPredictionContext(test::sourceDir() + "/samples/cells/" + rc.cell, holes, std::nullopt, "");
     ASSERT_TRUE(c.model.has_process);
     const ToolWrench w = c.model.process_by_diameter.begin()->second.wrench;
     std::vector<HoleCompensation> keep;
@@ -147,7 +147,7 @@ TEST(Compensation, FlipFreeRemovesTheFlipsOfASampleBuiltToFlip) {
   // under keep the wrist must turn half a revolution between neighbours.
   const std::string dir = test::tempDir("flip");
   const std::string holes = writeHoleSubset(dir);
-  const cli::PredictionContext c = cli::loadPredictionContext(
+  const api::PredictionContext c = api::loadPredictionContext(
       test::sourceDir() + "/samples/cells/housing-kr120.xml", holes, std::nullopt, "");
   std::vector<HoleRequest> row;
   for (int k = 0; k < 8; ++k) {

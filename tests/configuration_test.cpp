@@ -1,6 +1,6 @@
-// Vendor configuration flags (compensator/configuration.hpp): the §7.1 table, independent geometric
+// Vendor configuration flags (compensator/robot/configuration.hpp): the §7.1 table, independent geometric
 // definitions of the branch bits, flags → solution → flags round trips, and the RoboDK corpus.
-#include "compensator/configuration.hpp"
+#include "compensator/robot/configuration.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <regex>
 #include <sstream>
 
-#include "compensator/error.hpp"
+#include "compensator/support/error.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace roprec {

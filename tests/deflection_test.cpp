@@ -6,7 +6,7 @@
 //  * a nonlinear equilibrium θ = θ_m − K⁻¹ τ_KDL(θ) iterated in the test with KDL FK + RNE
 //    (wrench fixed in the base frame, applied at the TCP): ≤ 0.01 µm;
 //  * compensation ∘ prediction is the identity to ≤ 1e-12 rad.
-#include "compensator/deflection.hpp"
+#include "compensator/robot/deflection.hpp"
 
 #include <gtest/gtest.h>
 #include <kdl/chainfksolverpos_recursive.hpp>
@@ -15,8 +15,8 @@
 
 #include <random>
 
-#include "compensator/robot_card.hpp"
-#include "compensator/urdf_loader.hpp"
+#include "compensator/robot/robot_card.hpp"
+#include "compensator/robot/urdf_loader.hpp"
 #include "tests/support/kdl_support.hpp"
 #include "tests/support/test_support.hpp"
 

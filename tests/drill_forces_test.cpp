@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "compensator/drilling_forces.hpp"
+#include "compensator/process/drilling_forces.hpp"
 
 namespace roprec {
 namespace {

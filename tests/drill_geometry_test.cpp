@@ -1,4 +1,4 @@
-#include "compensator/drill_geometry.hpp"
+#include "compensator/process/drill_geometry.hpp"
 
 #include <gtest/gtest.h>
 

@@ -5,9 +5,9 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "compensator/chain.hpp"
-#include "compensator/configuration.hpp"
-#include "compensator/ik.hpp"
+#include "compensator/robot/chain.hpp"
+#include "compensator/robot/configuration.hpp"
+#include "compensator/robot/ik.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace roprec {

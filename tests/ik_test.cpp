@@ -1,14 +1,14 @@
-// Analytic IK (compensator/ik.hpp) against the chain's own product-of-transforms FK
+// Analytic IK (compensator/robot/ik.hpp) against the chain's own product-of-transforms FK
 // (chainForwardKinematics, an independent code path), on every corpus URDF and bundled robot.
-#include "compensator/ik.hpp"
+#include "compensator/robot/ik.hpp"
 
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <random>
 
-#include "compensator/error.hpp"
-#include "compensator/urdf_loader.hpp"
+#include "compensator/support/error.hpp"
+#include "compensator/robot/urdf_loader.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace roprec {

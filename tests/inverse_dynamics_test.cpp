@@ -5,7 +5,7 @@
 //  * RᵀMR against KDL ChainDynParam::JntToMass;
 //  * motor torque three ways: virtual power (adjoint sweep), minus the multipliers μ of driving
 //    constraints θ − θ(t) = 0 in the dense Lagrange system, and Φ_{i,θ_i} λ_i of the angle rows.
-#include "compensator/inverse_dynamics.hpp"
+#include "compensator/robot/inverse_dynamics.hpp"
 
 #include <gtest/gtest.h>
 #include <kdl/chaindynparam.hpp>
@@ -13,8 +13,8 @@
 
 #include <random>
 
-#include "compensator/robot_card.hpp"
-#include "compensator/urdf_loader.hpp"
+#include "compensator/robot/robot_card.hpp"
+#include "compensator/robot/urdf_loader.hpp"
 #include "tests/support/kdl_support.hpp"
 #include "tests/support/test_support.hpp"
 

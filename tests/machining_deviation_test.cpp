@@ -1,11 +1,11 @@
-#include "compensator/machining_deviation.hpp"
+#include "compensator/process/machining_deviation.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
-#include "compensator/drilling_forces.hpp"
+#include "compensator/process/drilling_forces.hpp"
 
 namespace roprec {
 namespace {

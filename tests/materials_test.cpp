@@ -1,8 +1,8 @@
-#include "compensator/materials.hpp"
+#include "compensator/process/materials.hpp"
 
 #include <gtest/gtest.h>
 
-#include "compensator/rotation.hpp"
+#include "compensator/support/rotation.hpp"
 
 namespace roprec {
 namespace {

@@ -3,7 +3,7 @@
 // equilibrium computed here with KDL (FK + RNE, same stiffness, tool mass and converged milling
 // force on the tool), put the tool on the nominal path ≤ 0.5 µm; through the CLI only the path
 // targets' bytes change.
-#include "compensator/milling_compensation.hpp"
+#include "compensator/compensation/milling_compensation.hpp"
 
 #include <gtest/gtest.h>
 #include <kdl/chainfksolverpos_recursive.hpp>
@@ -11,7 +11,7 @@
 
 #include <sstream>
 
-#include "plugin/prediction_setup.hpp"
+#include "plugin/api/prediction_setup.hpp"
 #include "postproc/program.hpp"
 #include "tests/support/kdl_support.hpp"
 #include "tests/support/test_support.hpp"
@@ -22,7 +22,7 @@ namespace {
 TEST(MillingCompensation, PathLandsOnTheNominalPathAgainstKdl) {
   const std::string cell = test::sourceDir() + "/samples/cells/alu-milling-7075.xml";
   const std::string prog = test::sourceDir() + "/samples/milling/wall_pass.src";
-  const cli::PredictionContext c = cli::loadPredictionContext(cell, prog, std::nullopt, "", 0.5, false);
+  const api::PredictionContext c = api::loadPredictionContext(cell, prog, std::nullopt, "", 0.5, false);
   const postproc::Program& p = *c.job.program;
   std::vector<Pose> points;
   for (const postproc::Motion& m : p.motions) {

@@ -2,12 +2,12 @@
 // J K⁻¹ Jᵀ (same URDF, same stiffness) at a small force: agreement within the second-order
 // (complementary-stiffness and gravity-preload) difference, documented ≤ 2 %; and the coupled
 // iteration with the robot converges for a light cut and reports the heavy one.
-#include "compensator/milling_robot.hpp"
+#include "compensator/process/milling_robot.hpp"
 
 #include <gtest/gtest.h>
 #include <kdl/chainjnttojacsolver.hpp>
 
-#include "compensator/robot_card.hpp"
+#include "compensator/robot/robot_card.hpp"
 #include "tests/support/kdl_support.hpp"
 #include "tests/support/test_support.hpp"
 

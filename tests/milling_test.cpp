@@ -1,4 +1,4 @@
-#include "compensator/milling.hpp"
+#include "compensator/process/milling.hpp"
 
 #include <gtest/gtest.h>
 

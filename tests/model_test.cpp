@@ -4,7 +4,7 @@
 //  * Φ_q against central finite differences of Φ; the structured solves of A and Aᵀ against a
 //    dense LU of the assembled A; R and Sc against finite differences of q(z);
 //  * Newton from a warm start converges quadratically; no allocation in the per-pose path.
-#include "compensator/model.hpp"
+#include "compensator/robot/model.hpp"
 
 #include <gtest/gtest.h>
 #include <kdl/chainfksolverpos_recursive.hpp>
@@ -13,8 +13,8 @@
 #include <filesystem>
 #include <random>
 
-#include "compensator/robot_card.hpp"
-#include "compensator/urdf_loader.hpp"
+#include "compensator/robot/robot_card.hpp"
+#include "compensator/robot/urdf_loader.hpp"
 #include "tests/support/kdl_support.hpp"
 #include "tests/support/test_support.hpp"
 

@@ -4,7 +4,7 @@
 
 #include <random>
 
-#include "compensator/error.hpp"
+#include "compensator/support/error.hpp"
 #include "postproc/convert.hpp"
 #include "postproc/program.hpp"
 #include "tests/support/test_support.hpp"

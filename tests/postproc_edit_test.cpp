@@ -3,7 +3,7 @@
 
 #include <filesystem>
 
-#include "compensator/error.hpp"
+#include "compensator/support/error.hpp"
 #include "postproc/drill.hpp"
 #include "postproc/program.hpp"
 #include "tests/support/test_support.hpp"

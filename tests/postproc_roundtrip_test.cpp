@@ -6,8 +6,8 @@
 #include <map>
 #include <sstream>
 
-#include "compensator/error.hpp"
-#include "compensator/rotation.hpp"
+#include "compensator/support/error.hpp"
+#include "compensator/support/rotation.hpp"
 #include "postproc/drill.hpp"
 #include "postproc/program.hpp"
 #include "tests/support/test_support.hpp"

@@ -1,15 +1,15 @@
 // Per-hole prediction (issue 6): the robot-process precision study's qualitative findings on a
 // paper-like cell, Monte Carlo vs linearised U_robdef, the budget recomputed by hand, and
 // byte-identical JSON/HTML through the CLI.
-#include "compensator/prediction.hpp"
+#include "compensator/precision/prediction.hpp"
 
 #include <gtest/gtest.h>
 
 #include <fstream>
 #include <regex>
 
-#include "compensator/uncertainty.hpp"
-#include "plugin/prediction_setup.hpp"
+#include "compensator/precision/uncertainty.hpp"
+#include "plugin/api/prediction_setup.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace roprec {
@@ -39,14 +39,14 @@ TEST(Prediction, DeviationGrowsWithFeedAndWithArmExtension) {
   // gravity sag, so the total can fall while the process part grows).
   double prev = 0;
   for (const double f : {0.1, 0.2, 0.3}) {
-    cli::PredictionContext c = cli::loadPredictionContext(cellWithFeed(f), paper("holes.csv"), std::nullopt, "");
+    api::PredictionContext c = api::loadPredictionContext(cellWithFeed(f), paper("holes.csv"), std::nullopt, "");
     c.model.gravity = false;
     const auto p = predictHoles(c.model, c.job.requests);
     const double e = byId(p, "X2").d_robot.norm();
     EXPECT_GT(e, prev) << "feed " << f;
     prev = e;
   }
-  cli::PredictionContext c = cli::loadPredictionContext(paper("cell.xml"), paper("holes.csv"), std::nullopt, "");
+  api::PredictionContext c = api::loadPredictionContext(paper("cell.xml"), paper("holes.csv"), std::nullopt, "");
   c.model.gravity = false;
   const auto p = predictHoles(c.model, c.job.requests);
   EXPECT_LT(byId(p, "X1").d_robot.norm(), byId(p, "X2").d_robot.norm());
@@ -60,7 +60,7 @@ TEST(Prediction, WristConfigurationChangeIsAJumpOfTensOfMicrometres) {
   // mass off the drill axis (paper cell), other loads. A pure flip
   // (θ4 ± 180°, −θ5, θ6 ± 180°) moves nothing in a joint-compliance model (τ5 and φ5 both change
   // sign), which this test checks too.
-  const cli::PredictionContext c = cli::loadPredictionContext(paper("cell.xml"), paper("holes.csv"), std::nullopt, "");
+  const api::PredictionContext c = api::loadPredictionContext(paper("cell.xml"), paper("holes.csv"), std::nullopt, "");
   PredictionData d(c.model);
   HoleRequest a = c.job.requests[1];
   HoleRequest b = a;
@@ -83,7 +83,7 @@ TEST(Prediction, WristConfigurationChangeIsAJumpOfTensOfMicrometres) {
 }
 
 TEST(Prediction, MachiningUncertaintyRisesFrom30To60MicrometresWithDiameter) {
-  const cli::PredictionContext c = cli::loadPredictionContext(paper("cell.xml"), paper("holes.csv"), std::nullopt, "");
+  const api::PredictionContext c = api::loadPredictionContext(paper("cell.xml"), paper("holes.csv"), std::nullopt, "");
   const auto p = predictHoles(c.model, c.job.requests);
   // the study's ± band is per axis with k = 2 (U = 2 u); the report's U_mach is the 2-D radius
   const double u8 = 2.0 * byId(p, "D8").u_mach;
@@ -94,7 +94,7 @@ TEST(Prediction, MachiningUncertaintyRisesFrom30To60MicrometresWithDiameter) {
 }
 
 TEST(Prediction, ProcessShareIsReportedAndAtMostFortyPercentInThePaperLikeCell) {
-  const cli::PredictionContext c = cli::loadPredictionContext(paper("cell.xml"), paper("holes.csv"), std::nullopt, "");
+  const api::PredictionContext c = api::loadPredictionContext(paper("cell.xml"), paper("holes.csv"), std::nullopt, "");
   const auto p = predictHoles(c.model, c.job.requests);
   for (const auto& h : p) {
     ASSERT_EQ(h.status, HoleStatus::kOk) << h.id;
@@ -104,7 +104,7 @@ TEST(Prediction, ProcessShareIsReportedAndAtMostFortyPercentInThePaperLikeCell) 
 }
 
 TEST(Prediction, BudgetRecomputedByHand) {
-  const cli::PredictionContext c = cli::loadPredictionContext(paper("cell.xml"), paper("holes.csv"), std::nullopt, "");
+  const api::PredictionContext c = api::loadPredictionContext(paper("cell.xml"), paper("holes.csv"), std::nullopt, "");
   const auto p = predictHoles(c.model, c.job.requests);
   const HolePrediction& h = byId(p, "X2");
   double u2_robot = 0;
@@ -125,9 +125,9 @@ TEST(Prediction, MonteCarloAgreesWithLinearisationAtSmallInputUncertainty) {
                            "samples=\"4000\" seed=\"7\"/>\n  <tolerance");
   const std::string dir = test::tempDir("mc");
   test::writeFile(dir + "/cell.xml", xml);
-  const cli::PredictionContext mc = cli::loadPredictionContext(dir + "/cell.xml", paper("holes.csv"), std::nullopt, "");
-  const cli::PredictionContext lin =
-      cli::loadPredictionContext(dir + "/cell.xml", paper("holes.csv"), std::nullopt, "linear");
+  const api::PredictionContext mc = api::loadPredictionContext(dir + "/cell.xml", paper("holes.csv"), std::nullopt, "");
+  const api::PredictionContext lin =
+      api::loadPredictionContext(dir + "/cell.xml", paper("holes.csv"), std::nullopt, "linear");
   const auto pm = predictHoles(mc.model, mc.job.requests);
   const auto pl = predictHoles(lin.model, lin.job.requests);
   for (size_t i = 0; i < pm.size(); ++i) {

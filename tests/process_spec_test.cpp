@@ -1,9 +1,9 @@
-#include "compensator/process_spec.hpp"
+#include "compensator/process/process_spec.hpp"
 
 #include <gtest/gtest.h>
 
-#include "compensator/cell.hpp"
-#include "compensator/error.hpp"
+#include "compensator/precision/cell.hpp"
+#include "compensator/support/error.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace roprec {

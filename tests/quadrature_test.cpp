@@ -1,6 +1,6 @@
 // Gauss–Legendre against closed-form integrals: exact for degree ≤ 2n − 1 (monomials), weights sum
 // to 2, symmetric nodes; and the 5-point nodes against Abramowitz & Stegun Table 25.4.
-#include "compensator/quadrature.hpp"
+#include "compensator/support/quadrature.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// The HTML report of `roprec predict` / `roprec compensate` (plugin/report.hpp): structure,
+// The HTML report of `roprec predict` / `roprec compensate` (plugin/api/report.hpp): structure,
 // determinism, escaping, self-containedness, and a real headless-Chromium render whose screenshot
 // is decoded (own PNG + inflate reader, checked by the PNG CRC-32 and zlib Adler-32 of every
 // stream) and checked for a drawn map.
@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "compensator/prediction.hpp"
-#include "plugin/report.hpp"
+#include "compensator/precision/prediction.hpp"
+#include "plugin/api/report.hpp"
 #include "support/test_support.hpp"
 
 namespace roprec {
@@ -145,8 +145,8 @@ Synthetic makeSynthetic(unsigned seed) {
   return s;
 }
 
-cli::ReportInput makeInput(const Synthetic& s, bool compensation) {
-  cli::ReportInput in;
+api::ReportInput makeInput(const Synthetic& s, bool compensation) {
+  api::ReportInput in;
   in.title = "roprec prediction \u2014 housing_<B>.src";
   in.robot = "kuka-kr120-r2500-pro (KUKA KR 120 R2500 pro)";
   in.cell = "e-motor housing cell (cells/housing.xml)";
@@ -158,7 +158,7 @@ cli::ReportInput makeInput(const Synthetic& s, bool compensation) {
   in.default_tolerance_mm = 0.2;
   in.compensation = compensation;
   for (size_t i = 0; i < s.preds.size(); ++i) {
-    cli::ReportHole h;
+    api::ReportHole h;
     h.prediction = &s.preds[i];
     h.T_W_tcp = s.poses[i];
     if (compensation && s.preds[i].status == HoleStatus::kOk) {
@@ -180,9 +180,9 @@ size_t countOf(const std::string& text, const std::string& what) {
 
 TEST(Report, DeterministicAndSelfContained) {
   const Synthetic s = makeSynthetic(20201);
-  const std::string a = cli::renderReport(makeInput(s, false));
+  const std::string a = api::renderReport(makeInput(s, false));
   const Synthetic s2 = makeSynthetic(20201);  // rebuilt from scratch: other addresses, same values
-  const std::string b = cli::renderReport(makeInput(s2, false));
+  const std::string b = api::renderReport(makeInput(s2, false));
   EXPECT_EQ(a, b);
   EXPECT_EQ(a.rfind("<!DOCTYPE html>", 0), 0u);
   EXPECT_NE(a.find("</html>"), std::string::npos);
@@ -204,7 +204,7 @@ TEST(Report, DeterministicAndSelfContained) {
 
 TEST(Report, EscapesEveryInputString) {
   const Synthetic s = makeSynthetic(20201);
-  const std::string html = cli::renderReport(makeInput(s, false));
+  const std::string html = api::renderReport(makeInput(s, false));
   EXPECT_EQ(html.find("<script"), std::string::npos);
   EXPECT_EQ(html.find("<B>"), std::string::npos);
   EXPECT_NE(html.find("&lt;script&gt;&amp;&quot;"), std::string::npos);
@@ -216,8 +216,8 @@ TEST(Report, EscapesEveryInputString) {
 
 TEST(Report, MapsTablesBudgetAndVerdicts) {
   const Synthetic s = makeSynthetic(20201);
-  const cli::ReportInput in = makeInput(s, false);
-  const std::string html = cli::renderReport(in);
+  const api::ReportInput in = makeInput(s, false);
+  const std::string html = api::renderReport(in);
   // two faces (+X and −Z drilling) × three maps
   EXPECT_EQ(countOf(html, "<h3 class=\"face\">"), 2u);
   EXPECT_EQ(countOf(html, "<figure class=\"panel\">"), 6u);
@@ -271,7 +271,7 @@ TEST(Report, MapsTablesBudgetAndVerdicts) {
 
 TEST(Report, BudgetStatisticsAreTheMeansOverPredictedHoles) {
   const Synthetic s = makeSynthetic(7);
-  const std::string html = cli::renderReport(makeInput(s, false));
+  const std::string html = api::renderReport(makeInput(s, false));
   // robot repeatability is 16.6 µm at every hole: mean = max = 16.60
   const size_t at = html.find("Robot repeatability</td>");
   ASSERT_NE(at, std::string::npos);
@@ -295,7 +295,7 @@ TEST(Report, BudgetStatisticsAreTheMeansOverPredictedHoles) {
 
 TEST(Report, CompensationAddsBeforeAfterMapsAndColumns) {
   const Synthetic s = makeSynthetic(20201);
-  const std::string html = cli::renderReport(makeInput(s, true));
+  const std::string html = api::renderReport(makeInput(s, true));
   EXPECT_EQ(countOf(html, "<figure class=\"panel\">"), 8u);
   EXPECT_EQ(countOf(html, "before compensation</figcaption>"), 2u);
   EXPECT_EQ(countOf(html, "<figcaption>Residual"), 2u);
@@ -304,9 +304,9 @@ TEST(Report, CompensationAddsBeforeAfterMapsAndColumns) {
 }
 
 TEST(Report, EmptyProgramStillRenders) {
-  cli::ReportInput in;
+  api::ReportInput in;
   in.title = "empty";
-  const std::string html = cli::renderReport(in);
+  const std::string html = api::renderReport(in);
   EXPECT_NE(html.find("</html>"), std::string::npos);
   EXPECT_NE(html.find("0 of 0 holes"), std::string::npos);
   EXPECT_EQ(countOf(html, "<figure class=\"panel\">"), 0u);
@@ -685,7 +685,7 @@ TEST(ReportChromium, HeadlessScreenshotShowsTheMaps) {
   const std::string chromium = "/usr/bin/chromium";
   if (!fs::exists(chromium)) GTEST_SKIP() << "no " << chromium << " (scripts/test.sh installs it)";
   const Synthetic s = makeSynthetic(20201);
-  const std::string html = cli::renderReport(makeInput(s, false));
+  const std::string html = api::renderReport(makeInput(s, false));
   const std::string dir = test::tempDir("report-chromium");
   const std::string page = dir + "/report.html", png = dir + "/report.png",
                     log = dir + "/chromium.log";

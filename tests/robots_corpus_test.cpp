@@ -15,9 +15,9 @@
 #include <random>
 #include <sstream>
 
-#include "compensator/chain.hpp"
-#include "compensator/robot_card.hpp"
-#include "compensator/urdf_loader.hpp"
+#include "compensator/robot/chain.hpp"
+#include "compensator/robot/robot_card.hpp"
+#include "compensator/robot/urdf_loader.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace roprec {

@@ -10,10 +10,10 @@
 #include <cmath>
 #include <random>
 
-#include "compensator/chain.hpp"
-#include "compensator/robot_card.hpp"
-#include "compensator/urdf_loader.hpp"
-#include "compensator/xml_node.hpp"
+#include "compensator/robot/chain.hpp"
+#include "compensator/robot/robot_card.hpp"
+#include "compensator/robot/urdf_loader.hpp"
+#include "compensator/support/xml_node.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace roprec {

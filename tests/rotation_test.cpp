@@ -1,4 +1,4 @@
-#include "compensator/rotation.hpp"
+#include "compensator/support/rotation.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// CVODE transient of the flexible-joint robot under its servo (compensator/transient.hpp) against
+// CVODE transient of the flexible-joint robot under its servo (compensator/robot/transient.hpp) against
 // independent references:
 //  * the steady state equals the static deviation of predictDeflection (fixed point/Newton on the
 //    static equations, no integration) to ≤ 0.01 µm, with integral action (ideal-servo statics)
@@ -10,17 +10,17 @@
 //    the two-inertia oscillator, ω² = k(1/J + 1/B_m) (undamped and damped);
 //  * the C firewall: an exception thrown inside the right-hand side comes back as itself, a
 //    non-finite load is a failed result (a value), and the right-hand side does not allocate.
-#include "compensator/transient.hpp"
+#include "compensator/robot/transient.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <stdexcept>
 
-#include "compensator/cell.hpp"
-#include "compensator/process_load.hpp"
-#include "compensator/robot_card.hpp"
-#include "compensator/urdf_loader.hpp"
+#include "compensator/precision/cell.hpp"
+#include "compensator/process/process_load.hpp"
+#include "compensator/robot/robot_card.hpp"
+#include "compensator/robot/urdf_loader.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace roprec {

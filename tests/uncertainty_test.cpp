@@ -1,15 +1,15 @@
 // GUM arithmetic of the per-hole budget against closed forms, hand-computed cases and seeded
 // simulation: ISO 9283 RP -> σ, 2-D radial coverage factors, the ISO 14253-1 verdict, and the
 // budget of a real hole (bundled KUKA, no process) recomputed by hand.
-#include "compensator/uncertainty.hpp"
+#include "compensator/precision/uncertainty.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <random>
 
-#include "compensator/prediction.hpp"
-#include "compensator/rotation.hpp"
+#include "compensator/precision/prediction.hpp"
+#include "compensator/support/rotation.hpp"
 
 namespace roprec {
 namespace {

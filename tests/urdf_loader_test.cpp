@@ -1,4 +1,4 @@
-/// URDF loading (compensator/urdf_loader.cpp) against independent references: KDL's own URDF
+/// URDF loading (compensator/robot/urdf_loader.cpp) against independent references: KDL's own URDF
 /// parser (kdl_parser) on the real ROS-Industrial files of the corpus, a hand-composed product
 /// of the literal origins of a small fixture, hand-computed combined inertials, and one test
 /// per kind of bad input, through the library and through the CLI.
@@ -10,10 +10,10 @@
 #include <filesystem>
 #include <random>
 
-#include "compensator/chain.hpp"
-#include "compensator/error.hpp"
-#include "compensator/robot_card.hpp"
-#include "compensator/urdf_loader.hpp"
+#include "compensator/robot/chain.hpp"
+#include "compensator/support/error.hpp"
+#include "compensator/robot/robot_card.hpp"
+#include "compensator/robot/urdf_loader.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace roprec {

@@ -6,9 +6,9 @@
 
 #include <random>
 
-#include "compensator/model.hpp"
-#include "compensator/robot_card.hpp"
-#include "compensator/urdf_loader.hpp"
+#include "compensator/robot/model.hpp"
+#include "compensator/robot/robot_card.hpp"
+#include "compensator/robot/urdf_loader.hpp"
 #include "tests/support/kdl_support.hpp"
 #include "tests/support/test_support.hpp"
 

@@ -8,8 +8,8 @@
 
 #include <random>
 
-#include "compensator/compensation.hpp"
-#include "plugin/prediction_setup.hpp"
+#include "compensator/compensation/compensation.hpp"
+#include "plugin/api/prediction_setup.hpp"
 #include "tests/support/kdl_support.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -18,11 +18,11 @@ namespace {
 using namespace roprec;
 
 struct Fixture {
-  cli::PredictionContext c;
+  api::PredictionContext c;
   std::vector<nc::Vec6> poses;
   std::vector<HoleRequest> thousand;
   Fixture()
-      : c(cli::loadPredictionContext(test::sourceDir() + "/samples/cells/housing-kr120.xml",
+      : c(api::loadPredictionContext(test::sourceDir() + "/samples/cells/housing-kr120.xml",
                                      test::sourceDir() + "/samples/emotor-housing/holes.csv", std::nullopt, "")) {
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> u(-0.3, 0.3);

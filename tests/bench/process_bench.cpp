@@ -3,8 +3,8 @@
 /// milling force profile over one revolution, and one coupled milling path point.
 #include <benchmark/benchmark.h>
 
-#include "compensator/drilling_forces.hpp"
-#include "compensator/milling.hpp"
+#include "compensator/process/drilling_forces.hpp"
+#include "compensator/process/milling.hpp"
 
 namespace roprec {
 namespace {

@@ -1,4 +1,4 @@
-// Transient of a drilling cycle (compensator/transient.hpp) on the KUKA KR 120 R2500 pro with the
+// Transient of a drilling cycle (compensator/robot/transient.hpp) on the KUKA KR 120 R2500 pro with the
 // sample cell's spindle and Al 6061 drilling process: simulated-time / real-time ratio of the whole
 // cycle (goal ≥ 200×) and the cost of one right-hand-side evaluation. Counters: `sim_per_real`
 // (simulated s per wall s), `steps`, `rhs` (evaluations incl. the difference-quotient Jacobian).
@@ -6,10 +6,10 @@
 
 #include <chrono>
 
-#include "compensator/cell.hpp"
-#include "compensator/process_spec.hpp"
-#include "compensator/robot_card.hpp"
-#include "compensator/transient.hpp"
+#include "compensator/precision/cell.hpp"
+#include "compensator/process/process_spec.hpp"
+#include "compensator/robot/robot_card.hpp"
+#include "compensator/robot/transient.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace {

@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "compensator/error.hpp"
+#include "compensator/support/error.hpp"
 #include "postproc/convert.hpp"
 #include "postproc/drill.hpp"
 #include "postproc/program.hpp"

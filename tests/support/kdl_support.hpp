@@ -4,7 +4,7 @@
 #include <kdl/frames.hpp>
 #include <string>
 
-#include "compensator/rotation.hpp"
+#include "compensator/support/rotation.hpp"
 
 namespace roprec::test {
 

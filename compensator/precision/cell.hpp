@@ -1,0 +1,40 @@
+#pragma once
+/// \file cell.hpp
+/// The cell file (contract.md): robot reference, tool (TCP in the flange frame, mass, centre of
+/// mass), work object (hole frame in the base frame), process element and default position
+/// tolerance. Files use mm and degrees; everything here is SI.
+
+#include <string>
+
+#include "compensator/robot/robot_card.hpp"
+#include "compensator/support/xml_node.hpp"
+
+namespace roprec {
+
+struct ToolSpec {
+  std::string name;
+  Pose T_flange_tcp{Pose::Identity()};  ///< TCP in the flange frame
+  double mass{0.0};                     ///< kg (tool + spindle)
+  Vec3 com{Vec3::Zero()};               ///< m, in the flange frame
+  Mat3 inertia{Mat3::Zero()};           ///< kg m^2 about the com, flange axes (optional)
+};
+
+struct CellSpec {
+  std::string file;
+  std::string name;
+  RobotRequest robot;   ///< resolved relative to the cell file's folder
+  int robot_line{0};
+  ToolSpec tool;
+  Pose T_base_wobj{Pose::Identity()};  ///< work object frame in the robot base frame
+  bool has_process{false};
+  XmlNode process;                     ///< the <process> element (type="drilling|milling|wrench")
+  double tolerance_mm{0.2};            ///< default ⌀ position tolerance (ISO 1101)
+  XmlNode root;                        ///< the whole cell, for extensions (uncertainty, ...)
+};
+
+/// Pose from `xyz` (mm) and `rpy` (deg, URDF order) attributes of an element.
+Pose poseFromXyzRpyMm(const XmlNode& e);
+
+CellSpec loadCell(const std::string& path);
+
+}  // namespace roprec

@@ -1,0 +1,408 @@
+#include "compensator/precision/prediction.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "compensator/precision/uncertainty.hpp"
+
+namespace roprec {
+
+UncertaintyInputs defaultUncertaintyInputs() {
+  UncertaintyInputs u;
+  u.source =
+      "stiffness 10 % per joint (identification residuals; process.md §5.6: deflection-model error 10-20 % "
+      "of the predicted deflection [L]); servo stiffness 20 % (estimate: vendors publish no gains); "
+      "process force scale rectangular ±15 % (process.md §5.6: kc scatter ±10-15 % and the spread of "
+      "coefficient sets, §4.2)";
+  return u;
+}
+
+const char* verdictName(Verdict v) {
+  switch (v) {
+    case Verdict::kConforms: return "conforms";
+    case Verdict::kConformsAfterCompensation: return "conforms-after-compensation";
+    case Verdict::kDoesNotConform: return "does-not-conform";
+    case Verdict::kUnreachable: return "unreachable";
+    case Verdict::kSingular: return "singular";
+    case Verdict::kNotConverged: return "not-converged";
+  }
+  return "?";
+}
+
+Verdict verdictFor(double e, double U, double t) {
+  const double half = 0.5 * t;
+  if (U > half) return Verdict::kDoesNotConform;
+  if (e + U > half) return Verdict::kConformsAfterCompensation;
+  return Verdict::kConforms;
+}
+
+namespace {
+
+long diameterKey(double d) { return std::lround(d * 1e6); }
+
+ProcessAtDiameter processAt(const ProcessSpec& spec, double diameter) {
+  ProcessAtDiameter p;
+  p.diameter = diameter;
+  if (spec.type == ProcessType::kDrilling) {
+    DrillingSpec s = spec.drilling;
+    const bool same = std::abs(diameter - s.geometry.diameter) < 1e-9;
+    if (!same) {
+      const double scale = diameter / s.geometry.diameter;
+      s.geometry.web_thickness *= scale;
+      s.geometry.diameter = diameter;
+      s.deviation = defaultMachiningDeviation(diameter, s.carbide);
+      s.geometry.runout = s.deviation.runout;
+    }
+    const DrillingModel dm = drillingModelOf(s);
+    const DrillingForces F = drillingForces(dm, s.feed);
+    ToolWrench w = toolWrench(F, 0.0);
+    w.force.x() = 0.0;  // the rotating residual has zero mean
+    w.force.y() = 0.0;
+    p.wrench = w;
+    p.rotating_force = F.residual;
+    p.mach = machiningDeviation(s.deviation, s.geometry, F.residual);
+    p.feed_rate = s.feed * s.spindle_rpm / 60.0;
+    p.default_depth = s.hole_depth > 0 ? s.hole_depth : 2.0 * diameter;
+  } else {
+    const SteadyProcessLoad l = steadyProcessLoad(spec);
+    p.wrench = l.wrench;
+    DrillGeometry g;
+    g.diameter = diameter > 0 ? diameter : 10e-3;
+    const MachiningDeviationParams mp = defaultMachiningDeviation(g.diameter);
+    g.runout = mp.runout;
+    p.mach = machiningDeviation(mp, g, 0.0, Eigen::Vector2d(l.wrench.force.x(), l.wrench.force.y()));
+    p.feed_rate = 0.0;
+  }
+  return p;
+}
+
+/// Unit vectors e1, e2 spanning the plane ⊥ the hole axis: the nominal TCP x and y.
+void planeBasis(const Mat3& R, Vec3& e1, Vec3& e2) {
+  e1 = R.col(0);
+  e2 = R.col(1);
+}
+
+}  // namespace
+
+PredictionModel buildPredictionModel(const PredictionSetup& setup) {
+  PredictionModel m;
+  m.robot = setup.robot;
+  m.model = nc::buildModel(setup.robot.chain, setup.tool);
+  m.ik = buildIkModel(setup.robot);
+  m.compliance = nc::complianceFromCard(setup.robot.card);
+  m.reference_pose = vendorReferencePose(setup.robot.card);
+  m.controller_gravity = setup.controller_gravity;
+  if (m.controller_gravity) m.calibration_model = nc::buildModel(setup.robot.chain, setup.calibration_load);
+  m.uncertainty = setup.uncertainty;
+  m.capability = setup.capability;
+  m.default_tolerance = setup.default_tolerance;
+  if (setup.process) {
+    m.has_process = true;
+    m.process = *setup.process;
+    std::vector<double> ds = setup.hole_diameters;
+    if (m.process.type == ProcessType::kDrilling) ds.push_back(m.process.drilling.geometry.diameter);
+    if (ds.empty()) ds.push_back(0.0);
+    for (const double d : ds) {
+      const long key = diameterKey(d);
+      if (!m.process_by_diameter.count(key)) m.process_by_diameter[key] = processAt(m.process, d);
+    }
+  }
+  return m;
+}
+
+PredictionData::PredictionData(const PredictionModel& m) : nc(m.model), rng(m.uncertainty.seed) {}
+
+Vec6 controllerOffset(const PredictionModel& m, nc::Data& data, const Vec6& theta) {
+  if (!m.controller_gravity) return Vec6::Zero();
+  // The calibration model has the same chain (same coordinates), so the scratch can be shared.
+  nc::solvePosition(m.calibration_model, data, theta, nc::Guess::kClosedForm);
+  nc::Loads g;
+  const Vec6 tau = nc::staticTorques(m.calibration_model, data, g);
+  return tau.cwiseQuotient(m.compliance.effective());
+}
+
+const ProcessAtDiameter* processFor(const PredictionModel& m, double diameter) {
+  if (!m.has_process) return nullptr;
+  double d = diameter;
+  if (d <= 0 && m.process.type == ProcessType::kDrilling) d = m.process.drilling.geometry.diameter;
+  auto it = m.process_by_diameter.find(diameterKey(d));
+  if (it == m.process_by_diameter.end()) it = m.process_by_diameter.begin();
+  return it == m.process_by_diameter.end() ? nullptr : &it->second;
+}
+
+nc::Loads processLoads(const PredictionModel& m, const ProcessAtDiameter* proc) {
+  nc::Loads l;
+  l.gravity = m.gravity;
+  if (proc) {
+    l.tcp_tool.force = proc->wrench.force;  // follows the real drill axis
+    l.tcp_tool.moment = proc->wrench.torque;
+  }
+  return l;
+}
+
+namespace {
+
+double jointDistance(const Vec6& a, const Vec6& b) {
+  // wrist joints weigh less: they move faster and matter less for the arm posture
+  static const double w[6] = {1.0, 1.0, 1.0, 0.5, 0.5, 0.3};
+  double s = 0;
+  for (int i = 0; i < 6; ++i) s += w[i] * (a[i] - b[i]) * (a[i] - b[i]);
+  return s;
+}
+
+}  // namespace
+
+HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const HoleRequest& h, const Vec6* seed) {
+  HolePrediction p;
+  p.id = h.id;
+  p.tolerance = h.tolerance > 0 ? h.tolerance : m.default_tolerance;
+  const ProcessAtDiameter* proc = processFor(m, h.diameter);
+  p.diameter = h.diameter > 0 ? h.diameter : (proc ? proc->diameter : 0.0);
+  p.depth = h.depth > 0 ? h.depth : (proc ? proc->default_depth : 0.0);
+  if (proc && proc->feed_rate > 0) p.mc_time = p.depth / proc->feed_rate + m.capability.mc_approach_s;
+
+  // 1. IK for the flange
+  const Pose T_W_flange = h.T_W_tcp * m.model.T_L6_tcp.inverse() * m.model.T_L6_flange;
+  const Vec6 ref = seed ? *seed : m.reference_pose;
+  bool found = false;
+  IkSolution sol;
+  if (h.config) {
+    const ConfiguredSolution cs = solveIkWithConfiguration(m.ik, m.robot.card, T_W_flange, *h.config, m.config_options);
+    if (cs.found) {
+      sol = cs.solution;
+      found = true;
+    } else {
+      p.status = HoleStatus::kUnreachable;
+      p.verdict = Verdict::kUnreachable;
+      p.reason = "no solution with the program's configuration " + formatConfig(*h.config) + ": " + cs.reason;
+      return p;
+    }
+  } else {
+    IkOptions opt;
+    opt.seed = &ref;
+    solveIk(m.ik, T_W_flange, opt, d.ik);
+    double best = 1e300;
+    for (int i = 0; i < d.ik.count; ++i) {
+      const IkSolution& s = d.ik.solutions[static_cast<size_t>(i)];
+      if (!s.within_limits || !s.converged || s.singular_wrist || s.singular_shoulder) continue;
+      const double dist = jointDistance(s.q, ref);
+      if (dist < best) {
+        best = dist;
+        sol = s;
+        found = true;
+      }
+    }
+    if (!found) {
+      p.status = HoleStatus::kUnreachable;
+      p.verdict = Verdict::kUnreachable;
+      if (d.ik.count == 0) {
+        p.reason = describeIkFailure(d.ik);
+      } else {
+        bool any_in_limits = false;
+        for (int i = 0; i < d.ik.count; ++i) any_in_limits |= d.ik.solutions[static_cast<size_t>(i)].within_limits;
+        if (any_in_limits) {
+          p.status = HoleStatus::kSingular;
+          p.verdict = Verdict::kSingular;
+          p.reason = "every in-limit solution is at a wrist or shoulder singularity";
+        } else {
+          p.reason = "no IK solution within the joint limits";
+        }
+      }
+      return p;
+    }
+  }
+  p.joints = sol.q;
+  p.branch = 4 * sol.branch.shoulder + 2 * sol.branch.elbow + sol.branch.wrist;
+  p.wrist_margin = sol.branch.wrist_margin_rad;
+  p.config = formatConfig(configurationOf(m.ik, m.robot.card, sol.q, m.config_options));
+  if (sol.singular_wrist || sol.singular_shoulder) {
+    p.status = HoleStatus::kSingular;
+    p.verdict = Verdict::kSingular;
+    p.reason = sol.singular_wrist ? "wrist singularity (axis 5 near 0)" : "shoulder singularity";
+    return p;
+  }
+
+  // 2. δrobot
+  const nc::Loads loads = processLoads(m, proc);
+  const Mat3& R = h.T_W_tcp.linear();
+  p.force_base = R * loads.tcp_tool.force;
+  const Vec6 offset = controllerOffset(m, d.nc, sol.q);
+  p.deflection = nc::predictDeflection(m.model, d.nc, m.compliance, sol.q, loads, {}, offset);
+  if (!p.deflection.converged || !p.deflection.position_converged) {
+    p.status = HoleStatus::kNotConverged;
+    p.verdict = Verdict::kNotConverged;
+    p.reason = "the compliance equilibrium did not converge (residual " + std::to_string(p.deflection.residual) + " rad)";
+    return p;
+  }
+  p.d_robot = p.deflection.dp;
+  p.d_rot = p.deflection.drot;
+
+  // 3. δmach (systematic part, tool XY plane)
+  if (proc) p.d_mach = R * Vec3(proc->mach.delta_tool.x(), proc->mach.delta_tool.y(), 0.0);
+  p.d_work = p.d_robot + p.d_mach;
+
+  // 4. errors ⊥ the axis
+  Vec3 e1;
+  Vec3 e2;
+  planeBasis(R, e1, e2);
+  const Vec3 a = R.col(2);
+  p.e_tool = Eigen::Vector2d(p.d_work.dot(e1), p.d_work.dot(e2));
+  p.position_error = p.e_tool.norm();
+  p.axis_tilt = (p.d_rot - p.d_rot.dot(a) * a).norm();
+  if (h.nominal_axis) {
+    const Vec3 real = p.deflection.T_real.translation() + p.d_mach;
+    const Vec3 n = h.nominal_axis->second.normalized();
+    const Vec3 r = real - h.nominal_axis->first;
+    p.nominal_axis_error = (r - r.dot(n) * n).norm();
+  }
+
+  // 5. budget
+  const UncertaintyInputs& U = m.uncertainty;
+  const double u_robpos = m.robot.card.rp_mm > 0 ? sigmaFromRp(m.robot.card.rp_mm * 1e-3) : 0.0;
+  Eigen::Matrix2d cov_def = Eigen::Matrix2d::Zero();
+  Eigen::Matrix2d cov_def_proc = Eigen::Matrix2d::Zero();
+  const double u_proc_scale = U.process_halfwidth / std::sqrt(3.0);
+  if (U.method == UncertaintyInputs::Method::kLinear) {
+    // Jacobian at the deflected configuration (data holds it after predictDeflection).
+    const nc::Mat6& J = nc::tcpJacobian(m.model, d.nc);
+    auto inPlane = [&](const Vec3& v) { return Eigen::Vector2d(v.dot(e1), v.dot(e2)); };
+    // Sensitivity to k_i of the part of the deflection roprec predicts (beyond a controller's own
+    // gravity compensation): net joint deformation Δθ_i = θ_i − θ_m,i − offset_i, first order.
+    for (int i = 0; i < 6; ++i) {
+      const Vec3 col = J.block<3, 1>(0, i);
+      const double net = p.deflection.theta[i] - sol.q[i] - p.deflection.dpsi[i];
+      const Eigen::Vector2d sk = inPlane(col * net * U.stiffness_rel);
+      cov_def += sk * sk.transpose();
+      if (m.compliance.k_servo[i] < 1e299) {
+        const Eigen::Vector2d ss = inPlane(col * p.deflection.dpsi[i] * U.position_gain_rel);
+        cov_def += ss * ss.transpose();
+      }
+    }
+    if (proc) {
+      // deviation caused by the process wrench alone, first order: J K_eff⁻¹ Jᵀ w
+      Eigen::Matrix<double, 6, 1> w;
+      w << R * loads.tcp_tool.force, R * loads.tcp_tool.moment;
+      const Vec6 phi_w = (J.transpose() * w).cwiseQuotient(m.compliance.effective());
+      const Eigen::Vector2d sp = inPlane(J.topRows<3>() * phi_w * u_proc_scale);
+      cov_def_proc = sp * sp.transpose();
+      cov_def += cov_def_proc;
+    }
+  } else {
+    // Monte Carlo: k_i ~ N(k_i, (rel k_i)²), k_servo likewise, force scale ~ U(1 − a, 1 + a).
+    std::uint32_t hid = 2166136261u;  // FNV-1a of the id: per-hole streams, reproducible everywhere
+    for (const char ch : h.id) hid = (hid ^ static_cast<unsigned char>(ch)) * 16777619u;
+    std::mt19937 rng(U.seed ^ hid);
+    std::normal_distribution<double> nd(0.0, 1.0);
+    std::uniform_real_distribution<double> ud(-1.0, 1.0);
+    const int n = std::max(10, U.samples);
+    std::vector<Eigen::Vector2d> samples;
+    std::vector<Eigen::Vector2d> samples_proc;
+    samples.reserve(static_cast<size_t>(n));
+    for (int s = 0; s < n; ++s) {
+      nc::JointCompliance c = m.compliance;
+      for (int i = 0; i < 6; ++i) {
+        c.k[i] *= std::max(0.05, 1.0 + U.stiffness_rel * nd(rng));
+        if (c.k_servo[i] < 1e299) c.k_servo[i] *= std::max(0.05, 1.0 + U.position_gain_rel * nd(rng));
+      }
+      nc::Loads l = loads;
+      const double scale = 1.0 + U.process_halfwidth * ud(rng);
+      l.tcp_tool.force *= scale;
+      l.tcp_tool.moment *= scale;
+      // a gravity-compensating controller computes its offset with the same (uncertain) stiffness
+      Vec6 off = offset;
+      if (m.controller_gravity) off = offset.cwiseProduct(m.compliance.effective()).cwiseQuotient(c.effective());
+      const nc::Deflection dd = nc::predictDeflection(m.model, d.nc, c, sol.q, l, {}, off);
+      samples.emplace_back(dd.dp.dot(e1), dd.dp.dot(e2));
+    }
+    Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+    for (const auto& s : samples) mean += s;
+    mean /= n;
+    for (const auto& s : samples) cov_def += (s - mean) * (s - mean).transpose();
+    cov_def /= (n - 1);
+    // process part by the linear sensitivity (for the share only)
+    const nc::Mat6& J = nc::tcpJacobian(m.model, d.nc);
+    if (proc) {
+      Eigen::Matrix<double, 6, 1> w;
+      w << R * loads.tcp_tool.force, R * loads.tcp_tool.moment;
+      const Vec6 phi_w = (J.transpose() * w).cwiseQuotient(m.compliance.effective());
+      const Vec3 dv = J.topRows<3>() * phi_w * u_proc_scale;
+      const Eigen::Vector2d sp(dv.dot(e1), dv.dot(e2));
+      cov_def_proc = sp * sp.transpose();
+    }
+  }
+  p.robdef_cov = cov_def;
+  const double u_robdef = std::sqrt(0.5 * cov_def.trace());
+  const double u_robdef_proc = std::sqrt(0.5 * cov_def_proc.trace());
+  p.budget.push_back({"robot_repeatability", u_robpos, false});
+  p.budget.push_back({"robot_deflection_model", std::sqrt(std::max(0.0, u_robdef * u_robdef - u_robdef_proc * u_robdef_proc)), false});
+  p.budget.push_back({"robot_deflection_process_force", u_robdef_proc, true});
+  double u_mach2 = 0;
+  if (proc) {
+    for (const UncertaintyComponent& c : proc->mach.components) {
+      const char* name = c.name == "delta_axis" ? "mach_axis" : c.name == "delta_runout" ? "mach_runout" : "mach_tool_deflection";
+      p.budget.push_back({name, c.standard, true});
+      u_mach2 += c.standard * c.standard;
+    }
+  }
+  p.u_robot = std::sqrt(u_robpos * u_robpos + u_robdef * u_robdef);
+  p.u_mach = std::sqrt(u_mach2);
+  p.u_work = std::sqrt(p.u_robot * p.u_robot + p.u_mach * p.u_mach);
+  p.k = rayleighCoverageFactor(U.coverage_probability);
+  p.U_robot = p.k * p.u_robot;
+  p.U_mach = p.k * p.u_mach;
+  p.U_work = p.k * p.u_work;
+  const Eigen::Matrix2d cov_total =
+      cov_def + (u_robpos * u_robpos + u_mach2) * Eigen::Matrix2d::Identity();
+  p.U_work_exact = radialCoverage(cov_total, U.coverage_probability);
+  p.process_share = p.u_work > 0 ? u_mach2 / (p.u_work * p.u_work) : 0.0;
+  p.process_force_share = p.u_work > 0 ? u_robdef_proc * u_robdef_proc / (p.u_work * p.u_work) : 0.0;
+
+  // 6. verdict
+  // The hole's real position error: from the nominal hole axis when the nominal hole is known
+  // (e.g. a compensated program checked against its hole list), else from the programmed pose.
+  p.verdict = verdictFor(p.nominal_axis_error.value_or(p.position_error), p.U_work, p.tolerance);
+  return p;
+}
+
+std::vector<HolePrediction> predictHoles(const PredictionModel& m, const std::vector<HoleRequest>& holes) {
+  PredictionData d(m);
+  std::vector<HolePrediction> out;
+  out.reserve(holes.size());
+  std::optional<Vec6> prev;
+  for (const HoleRequest& h : holes) {
+    out.push_back(predictHole(m, d, h, prev ? &*prev : nullptr));
+    if (out.back().status == HoleStatus::kOk) prev = out.back().joints;
+  }
+  return out;
+}
+
+CapabilitySummary summarize(const std::vector<HolePrediction>& p) {
+  CapabilitySummary s;
+  s.holes = static_cast<int>(p.size());
+  double share_sum = 0;
+  int share_n = 0;
+  for (const HolePrediction& h : p) {
+    s.mc_time_total += h.mc_time;
+    switch (h.verdict) {
+      case Verdict::kConforms: ++s.conforms; break;
+      case Verdict::kConformsAfterCompensation: ++s.conforms_after_compensation; break;
+      case Verdict::kDoesNotConform: ++s.does_not_conform; break;
+      case Verdict::kUnreachable: ++s.unreachable; break;
+      case Verdict::kSingular: ++s.singular; break;
+      case Verdict::kNotConverged: ++s.not_converged; break;
+    }
+    if (h.verdict == Verdict::kConforms || h.verdict == Verdict::kConformsAfterCompensation) {
+      ++s.robot_can_take;
+      s.mc_time_taken += h.mc_time;
+    }
+    if (h.status == HoleStatus::kOk) {
+      s.max_process_share = std::max(s.max_process_share, h.process_share);
+      share_sum += h.process_share;
+      ++share_n;
+    }
+  }
+  s.mean_process_share = share_n ? share_sum / share_n : 0.0;
+  return s;
+}
+
+}  // namespace roprec

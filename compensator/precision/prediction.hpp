@@ -1,0 +1,204 @@
+#pragma once
+/// \file prediction.hpp
+/// Per-hole prediction: where the robot really drills, with what uncertainty, and whether the
+/// hole meets its position tolerance (Ferreras-Higuero et al., RCIM 2020; process.md §5).
+///
+/// For a programmed hole (TCP pose T_W_tcp at the drill point, tool +z = drilling direction):
+///  1. IK: the solution the program's configuration selects; without one (hole lists) the
+///     in-limit, non-singular solution nearest the seed (the previous hole's joints, else the
+///     vendor's reference pose) — continuity, so no flips are introduced by the choice.
+///  2. δrobot: static deviation with flexible joints and servo gain under link weight, tool and
+///     spindle weight (cell) and the process wrench at its maximum steady value (deflection.hpp).
+///  3. δmach: the systematic machining deviation (machining_deviation.hpp; zero-mean terms only
+///     add uncertainty). δwork = δrobot + δmach.
+///  4. Position error e = |δwork − (δwork·a)a| ⊥ the hole axis a, and the axis tilt |δrot × a|.
+///  5. Budget, per in-plane axis standard uncertainties combined by root-sum-square (GUM, independent
+///     terms): u_robpos = RP/3.616 (ISO 9283, uncertainty.hpp); u_robdef propagated from the
+///     joint-stiffness, servo-gain and process-coefficient uncertainties (linearised — the Jacobian
+///     at the deflected pose times the joint deformations — or Monte Carlo with a fixed seed);
+///     u_axis, u_runout, u_deftool from the process. u_robot² = u_robpos² + u_robdef²,
+///     u_mach² = Σ process terms, u_work² = u_robot² + u_mach². Expanded with the 2-D radial
+///     coverage factor k = 2.4477 (95 %, Rayleigh): U_work = √(U_robot² + U_mach²).
+///  6. Verdict (ISO 14253-1 guard band, position ⌀t, process.md §5.4):
+///       conforms                     e + U_work ≤ t/2
+///       conforms-after-compensation  U_work ≤ t/2 < e + U_work  (systematic part too large)
+///       does-not-conform             U_work > t/2                (scatter alone too large)
+///       unreachable / singular       no admissible IK solution / wrist or shoulder singular
+
+#include <map>
+#include <optional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "compensator/robot/configuration.hpp"
+#include "compensator/robot/deflection.hpp"
+#include "compensator/robot/ik.hpp"
+#include "compensator/process/machining_deviation.hpp"
+#include "compensator/process/process_load.hpp"
+#include "compensator/process/process_spec.hpp"
+
+namespace roprec {
+
+struct UncertaintyInputs {
+  enum class Method { kLinear, kMonteCarlo };
+  Method method{Method::kLinear};
+  double stiffness_rel{0.10};      ///< relative standard uncertainty of each k_i (independent)
+  double position_gain_rel{0.20};  ///< relative standard uncertainty of each servo stiffness
+  double process_halfwidth{0.15};  ///< rectangular half-width of the process force scale
+  int samples{400};                ///< Monte Carlo samples
+  unsigned seed{20201};            ///< Monte Carlo seed (fixed: deterministic output)
+  double coverage_probability{0.95};
+  std::string source;
+};
+
+/// Defaults with their sources (see prediction.cpp).
+UncertaintyInputs defaultUncertaintyInputs();
+
+struct CapabilityInputs {
+  double mc_approach_s{2.0};  ///< machining-center positioning + approach + retract per hole
+  std::string source;
+};
+
+/// The process at one hole diameter: steady wrench on the TCP, rotating force, machining deviation.
+struct ProcessAtDiameter {
+  double diameter{0};          ///< m
+  ToolWrench wrench;           ///< tool frame
+  double rotating_force{0};    ///< N
+  MachiningDeviation mach;
+  double feed_rate{0};         ///< m/s (feed per rev × spindle speed)
+  double default_depth{0};     ///< m
+};
+
+struct PredictionModel {
+  Robot robot;
+  nc::Model model;
+  IkModel ik;
+  nc::JointCompliance compliance;
+  Vec6 reference_pose{Vec6::Zero()};
+  bool has_process{false};
+  ProcessSpec process;
+  std::map<long, ProcessAtDiameter> process_by_diameter;  ///< key: diameter in µm
+  UncertaintyInputs uncertainty;
+  CapabilityInputs capability;
+  ConfigurationOptions config_options;
+  double default_tolerance{0.2e-3};  ///< m, ⌀
+  bool gravity{true};
+  /// The controller compensates gravity deflection itself for a calibration load (robot card
+  /// `<controller gravity_compensated>` or the cell's `<controller>`): it adds K_eff⁻¹ τ_g,cal(θ) to
+  /// its command, computed with `calibration_model` (links + calibration load); roprec then
+  /// predicts only the part beyond it.
+  bool controller_gravity{false};
+  nc::Model calibration_model;
+};
+
+/// The process at a hole diameter (m; ≤ 0: the cell's drill), nullptr without a process.
+const ProcessAtDiameter* processFor(const PredictionModel& m, double diameter);
+
+/// Gravity (unless disabled) + the process wrench in the tool frame, following the real drill axis.
+nc::Loads processLoads(const PredictionModel& m, const ProcessAtDiameter* proc);
+
+/// The command offset of a gravity-compensating controller at command θ (zero when it does not).
+Vec6 controllerOffset(const PredictionModel& m, nc::Data& data, const Vec6& theta);
+
+struct PredictionSetup {
+  Robot robot;
+  nc::ToolAttachment tool;
+  std::optional<ProcessSpec> process;
+  UncertaintyInputs uncertainty = defaultUncertaintyInputs();
+  CapabilityInputs capability;
+  double default_tolerance{0.2e-3};
+  std::vector<double> hole_diameters;  ///< diameters the holes use (m); the process's is added
+  bool controller_gravity{false};      ///< see PredictionModel
+  nc::ToolAttachment calibration_load; ///< load the controller's gravity compensation assumes
+};
+
+/// Builds the model once (process evaluated per distinct diameter).
+PredictionModel buildPredictionModel(const PredictionSetup& setup);
+
+struct HoleRequest {
+  std::string id;
+  Pose T_W_tcp{Pose::Identity()};   ///< programmed TCP pose at the drill point, base frame
+  double tolerance{0.0};            ///< ⌀ position tolerance, m (0: the cell default)
+  double diameter{0.0};             ///< m (0: the process drill)
+  double depth{0.0};                ///< m (0: the process depth)
+  std::optional<VendorConfig> config;  ///< the program's configuration, if it states one
+  int line{0};                      ///< source line (messages)
+  /// The nominal hole (hole list): a point on its axis and the drilling direction, base frame.
+  /// When given, the prediction also reports the real drill point's distance from that axis.
+  std::optional<std::pair<Vec3, Vec3>> nominal_axis;
+};
+
+enum class HoleStatus { kOk, kUnreachable, kSingular, kNotConverged };
+enum class Verdict { kConforms, kConformsAfterCompensation, kDoesNotConform, kUnreachable, kSingular, kNotConverged };
+const char* verdictName(Verdict v);
+
+/// ISO 14253-1 decision for a predicted position error e (m) with expanded radial uncertainty U
+/// (m) against a ⌀t position tolerance (m): see the file comment.
+Verdict verdictFor(double e, double U, double t);
+
+struct BudgetTerm {
+  const char* name;
+  double u{0};            ///< per-axis standard uncertainty, m
+  bool process{false};    ///< belongs to the process (for the process share)
+};
+
+struct HolePrediction {
+  std::string id;
+  HoleStatus status{HoleStatus::kOk};
+  std::string reason;
+  Vec6 joints{Vec6::Zero()};        ///< motor-side command (rigid IK of the programmed pose), rad
+  std::string config;               ///< vendor flags
+  int branch{0};
+  double wrist_margin{0};           ///< |sin(θ5 + α)|
+  nc::Deflection deflection;
+  Vec3 d_robot{Vec3::Zero()};       ///< m, base frame
+  Vec3 d_mach{Vec3::Zero()};
+  Vec3 d_work{Vec3::Zero()};
+  Vec3 d_rot{Vec3::Zero()};         ///< rad, base frame
+  Eigen::Vector2d e_tool{Eigen::Vector2d::Zero()};  ///< δwork in the tool XY plane (m)
+  double position_error{0};         ///< m, ⊥ hole axis
+  double axis_tilt{0};              ///< rad
+  std::optional<double> nominal_axis_error;  ///< m: real drill point ⊥ distance from the nominal axis
+  std::vector<BudgetTerm> budget;   ///< u per in-plane axis
+  Eigen::Matrix2d robdef_cov{Eigen::Matrix2d::Zero()};
+  double u_robot{0}, u_mach{0}, u_work{0};
+  double k{2.4477};
+  double U_robot{0}, U_mach{0}, U_work{0};
+  double U_work_exact{0};           ///< 95 % radius of the anisotropic total (for information)
+  double process_share{0};          ///< machining-process variance share u_mach² / u_work² (the study's figure)
+  double process_force_share{0};    ///< share of the robot deflection caused by process-force uncertainty
+  double tolerance{0};              ///< ⌀, m
+  Verdict verdict{Verdict::kConforms};
+  double mc_time{0};                ///< machining-center time for this hole, s
+  double diameter{0};
+  double depth{0};
+  Vec3 force_base{Vec3::Zero()};    ///< process force on the TCP, base frame, N
+};
+
+struct PredictionData {
+  explicit PredictionData(const PredictionModel& m);
+  nc::Data nc;
+  IkResult ik;
+  std::mt19937 rng;
+};
+
+/// Predicts one hole. `seed` (rad) steers the default IK choice; nullptr: the reference pose.
+HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const HoleRequest& h, const Vec6* seed);
+
+/// Predicts a sequence, each hole seeded with the previous admissible solution.
+std::vector<HolePrediction> predictHoles(const PredictionModel& m, const std::vector<HoleRequest>& holes);
+
+struct CapabilitySummary {
+  int holes{0};
+  int conforms{0}, conforms_after_compensation{0}, does_not_conform{0}, unreachable{0}, singular{0},
+      not_converged{0};
+  int robot_can_take{0};            ///< conforms + conforms-after-compensation
+  double mc_time_taken{0};          ///< s of machining-center time the robot can take
+  double mc_time_total{0};
+  double max_process_share{0};
+  double mean_process_share{0};
+};
+CapabilitySummary summarize(const std::vector<HolePrediction>& p);
+
+}  // namespace roprec

@@ -1,0 +1,262 @@
+#include "compensator/process/milling.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+
+#include "compensator/support/quadrature.hpp"
+
+namespace roprec {
+namespace {
+
+constexpr double kH0 = 1e-3;  // Kienzle reference chip thickness
+
+bool inArc(double phi, const ImmersionAngles& a) {
+  const double p = std::fmod(std::fmod(phi, 2 * kPi) + 2 * kPi, 2 * kPi);
+  return p >= a.start && p <= a.exit;
+}
+
+Eigen::Vector2d radial(double phi) { return {std::sin(phi), std::cos(phi)}; }
+
+Vec3 wallNormal(MillingMode mode) {
+  switch (mode) {
+    case MillingMode::kUp:
+      return Vec3::UnitY();
+    case MillingMode::kDown:
+      return -Vec3::UnitY();
+    case MillingMode::kSlot:
+      break;
+  }
+  return Vec3::Zero();
+}
+
+}  // namespace
+
+ImmersionAngles immersionAngles(double diameter, double ae, MillingMode mode) {
+  if (mode == MillingMode::kSlot || ae >= diameter) return {0.0, kPi};
+  const double arc = std::acos(std::clamp(1.0 - 2.0 * ae / diameter, -1.0, 1.0));
+  if (mode == MillingMode::kUp) return {0.0, arc};
+  return {kPi - arc, kPi};
+}
+
+double meanChipThickness(double fz, const ImmersionAngles& a) {
+  const double span = a.exit - a.start;
+  if (!(span > 0)) return 0.0;
+  return fz * (std::cos(a.start) - std::cos(a.exit)) / span;
+}
+
+MillingModel makeMillingModel(const MillingTool& tool, const MillingCut& cut, const MillingCoefficients& c,
+                              int angle_steps, int slices) {
+  MillingModel m;
+  m.tool = tool;
+  m.cut = cut;
+  m.coeff = c;
+  m.angle_steps = angle_steps;
+  m.slices = slices;
+  const double R = 0.5 * tool.diameter;
+  for (int j = 0; j < tool.teeth; ++j) {
+    m.tooth_radius.push_back(R + tool.runout * std::cos(tool.runout_angle - j * 2 * kPi / tool.teeth));
+  }
+  m.slice_height = cut.ap / slices;
+  // Gauss–Legendre (Newton on P_n) for the arc average; 48 nodes keep the sin^0.75 end point
+  // behaviour below 1e-4 relative.
+  const int n = 48;
+  gaussLegendre(n, m.gl_x, m.gl_w);
+  for (int s = 0; s < slices; ++s) {
+    const double z = (s + 0.5) * m.slice_height;
+    m.slice_lag.push_back(z * std::tan(tool.helix_angle) / R);
+  }
+  return m;
+}
+
+double toothChipThickness(const MillingModel& m, int tooth, double phi, double fz,
+                          const Eigen::Vector2d* deflection_history) {
+  const int Nt = m.tool.teeth;
+  const double s = std::sin(phi);
+  const Eigen::Vector2d n = radial(phi);
+  double h = 1e300;
+  for (int k = 1; k <= Nt; ++k) {
+    const int prev = ((tooth - k) % Nt + Nt) % Nt;
+    double hk = k * fz * s + (m.tooth_radius[static_cast<size_t>(tooth)] - m.tooth_radius[static_cast<size_t>(prev)]);
+    if (deflection_history != nullptr) hk += (deflection_history[0] - deflection_history[k]).dot(n);
+    h = std::min(h, hk);
+  }
+  return std::max(0.0, h);
+}
+
+MillingProfile millingForceProfile(const MillingModel& m) {
+  MillingProfile P;
+  const ImmersionAngles arc = immersionAngles(m.tool.diameter, m.cut.ae, m.cut.mode);
+  const int Nt = m.tool.teeth;
+  P.samples.resize(static_cast<size_t>(m.angle_steps));
+  P.max_chip.assign(static_cast<size_t>(Nt), 0.0);
+  const double e = 1.0 - m.coeff.mc;
+  for (int i = 0; i < m.angle_steps; ++i) {
+    const double angle = 2 * kPi * i / m.angle_steps;
+    Vec3 F = Vec3::Zero();
+    for (int j = 0; j < Nt; ++j) {
+      for (int s = 0; s < m.slices; ++s) {
+        const double phi = angle + j * 2 * kPi / Nt - m.slice_lag[static_cast<size_t>(s)];
+        if (!inArc(phi, arc)) continue;
+        const double h = toothChipThickness(m, j, phi, m.cut.fz);
+        P.max_chip[static_cast<size_t>(j)] = std::max(P.max_chip[static_cast<size_t>(j)], h);
+        if (h < m.coeff.h_min) continue;
+        const double dFt = m.coeff.kc11 * m.slice_height * kH0 * std::pow(h / kH0, e);
+        const double dFr = m.coeff.radial_ratio * dFt;
+        const double c = std::cos(phi);
+        const double sn = std::sin(phi);
+        F.x() += -dFt * c - dFr * sn;
+        F.y() += dFt * sn - dFr * c;
+        F.z() += -m.coeff.axial_ratio * dFt;
+      }
+    }
+    P.samples[static_cast<size_t>(i)] = {angle, F};
+    P.mean += F;
+    P.peak_xy = std::max(P.peak_xy, F.head<2>().norm());
+  }
+  P.mean /= m.angle_steps;
+  return P;
+}
+
+Vec3 millingMeanForce(const MillingModel& m, double fz, double ae) {
+  if (!(fz > 0) || !(ae > 0)) return Vec3::Zero();
+  const ImmersionAngles a = immersionAngles(m.tool.diameter, ae, m.cut.mode);
+  if (m.mean_law == MeanForceLaw::kInstantaneous) {
+    const double half = 0.5 * (a.exit - a.start);
+    const double mid = 0.5 * (a.exit + a.start);
+    const double e = 1.0 - m.coeff.mc;
+    const double cr = m.coeff.radial_ratio;
+    Vec3 F = Vec3::Zero();
+    for (size_t i = 0; i < m.gl_x.size(); ++i) {
+      const double phi = mid + half * m.gl_x[i];
+      const double h = fz * std::sin(phi);
+      if (h < m.coeff.h_min) continue;
+      const double Ft = m.coeff.kc11 * m.cut.ap * kH0 * std::pow(h / kH0, e) * half * m.gl_w[i];
+      const double c = std::cos(phi);
+      const double sn = std::sin(phi);
+      F += Vec3(-Ft * c - cr * Ft * sn, Ft * sn - cr * Ft * c, -m.coeff.axial_ratio * Ft);
+    }
+    return F * (m.tool.teeth / (2 * kPi));
+  }
+  const double hm = meanChipThickness(fz, a);
+  if (hm < m.coeff.h_min) return Vec3::Zero();
+  const double Ftm = m.coeff.kc11 * m.cut.ap * kH0 * std::pow(hm / kH0, 1.0 - m.coeff.mc);
+  const double k = m.tool.teeth * Ftm / (2 * kPi);
+  const double cr = m.coeff.radial_ratio;
+  const double ds = std::sin(a.exit) - std::sin(a.start);
+  const double dc = std::cos(a.start) - std::cos(a.exit);
+  return {k * (-ds - cr * dc), k * (dc - cr * ds), -m.coeff.axial_ratio * k * (a.exit - a.start)};
+}
+
+ComplianceFunction linearCompliance(const Mat3& C_m_per_N) {
+  return [C_m_per_N](const Vec3& f) -> Vec3 { return C_m_per_N * f; };
+}
+
+const char* couplingStatusName(CouplingStatus s) {
+  switch (s) {
+    case CouplingStatus::kConverged:
+      return "converged";
+    case CouplingStatus::kDiverged:
+      return "diverged";
+    case CouplingStatus::kMaxIterations:
+      return "max_iterations";
+    case CouplingStatus::kOutOfRange:
+      return "out_of_range";
+  }
+  return "unknown";
+}
+
+namespace {
+
+struct CutAt {
+  double fz{0}, ae{0};
+  bool in_range{true};
+};
+
+CutAt cutAt(const MillingModel& m, const CouplingState& st, const CouplingOptions& o, const Vec3& d) {
+  CutAt c;
+  c.fz = m.cut.fz + (d.x() - st.delta_prev.x()) / std::max(1, o.teeth_between_points) + st.uncut_prev;
+  const Vec3 n = wallNormal(m.cut.mode);
+  c.ae = m.cut.mode == MillingMode::kSlot ? m.cut.ae : m.cut.ae + d.dot(n);
+  if (c.ae > m.tool.diameter) {
+    c.ae = m.tool.diameter;
+    c.in_range = false;
+  }
+  return c;
+}
+
+Vec3 forceAt(const MillingModel& m, const CutAt& c) {
+  if (c.fz <= 0 || c.ae <= 0) return Vec3::Zero();
+  return millingMeanForce(m, c.fz, c.ae);
+}
+
+double loopGain(const MillingModel& m, const ComplianceFunction& C, const CouplingState& st,
+                const CouplingOptions& o, const Vec3& d) {
+  const double step = 1e-6;
+  Mat3 G;
+  for (int i = 0; i < 3; ++i) {
+    Vec3 e = Vec3::Zero();
+    e[i] = step;
+    G.col(i) = (C(forceAt(m, cutAt(m, st, o, d + e))) - C(forceAt(m, cutAt(m, st, o, d - e)))) / (2 * step);
+  }
+  const Eigen::EigenSolver<Mat3> es(G, false);
+  return es.eigenvalues().cwiseAbs().maxCoeff();
+}
+
+}  // namespace
+
+CouplingResult coupleMillingPoint(const MillingModel& m, const ComplianceFunction& compliance,
+                                  const CouplingState& state, const CouplingOptions& o) {
+  CouplingResult r;
+  const double omega = std::clamp(o.relaxation, 1e-3, 1.0);
+  CutAt c = cutAt(m, state, o, Vec3::Zero());
+  r.force_nominal = forceAt(m, CutAt{m.cut.fz + state.uncut_prev, m.cut.ae, true});
+  Vec3 d = compliance(r.force_nominal);
+  const double gain_start = loopGain(m, compliance, state, o, d);
+  double last = 1e300;
+  int growing = 0;
+  r.status = CouplingStatus::kMaxIterations;
+  for (int k = 1; k <= o.max_iterations; ++k) {
+    c = cutAt(m, state, o, d);
+    const Vec3 d_new = (1.0 - omega) * d + omega * compliance(forceAt(m, c));
+    r.residual = (d_new - d).norm();
+    d = d_new;
+    r.iterations = k;
+    if (r.residual <= o.tolerance) {
+      r.status = CouplingStatus::kConverged;
+      break;
+    }
+    growing = r.residual >= last ? growing + 1 : 0;
+    last = r.residual;
+    if (growing >= 3 || !std::isfinite(r.residual)) {
+      r.status = CouplingStatus::kDiverged;
+      break;
+    }
+  }
+  c = cutAt(m, state, o, d);
+  if (r.status == CouplingStatus::kConverged && !c.in_range) r.status = CouplingStatus::kOutOfRange;
+  r.converged = r.status == CouplingStatus::kConverged;
+  r.delta = d;
+  r.force = forceAt(m, c);
+  r.fz_effective = c.fz;
+  r.ae_effective = c.ae;
+  r.loop_gain = std::max(gain_start, loopGain(m, compliance, state, o, d));
+  r.next.delta_prev = d;
+  r.next.uncut_prev = c.fz < 0 ? c.fz : 0.0;
+  return r;
+}
+
+std::vector<CouplingResult> coupleMillingPath(const MillingModel& m,
+                                              const std::vector<ComplianceFunction>& compliance_per_point,
+                                              const CouplingOptions& options) {
+  std::vector<CouplingResult> out;
+  out.reserve(compliance_per_point.size());
+  CouplingState st;
+  for (const ComplianceFunction& C : compliance_per_point) {
+    out.push_back(coupleMillingPoint(m, C, st, options));
+    st = out.back().next;
+  }
+  return out;
+}
+
+}  // namespace roprec

@@ -1,0 +1,324 @@
+#include "compensator/process/process_spec.hpp"
+
+#include <tinyxml2.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <initializer_list>
+
+#include "compensator/support/error.hpp"
+
+namespace roprec {
+namespace {
+
+constexpr double kMm = 1e-3;
+constexpr double kMPa = 1e6;
+
+void allowOnly(const XmlNode& e, std::initializer_list<const char*> names) {
+  for (const auto& [k, v] : e.attributes) {
+    bool ok = false;
+    for (const char* n : names) ok = ok || k == n;
+    if (!ok) {
+      std::string list;
+      for (const char* n : names) list += (list.empty() ? "" : ", ") + std::string(n);
+      e.fail("<" + e.name + "> has an unknown attribute '" + k + "' (known: " + list + ")");
+    }
+  }
+}
+
+void allowChildren(const XmlNode& e, std::initializer_list<const char*> names) {
+  for (const XmlNode& c : e.children) {
+    bool ok = false;
+    for (const char* n : names) ok = ok || c.name == n;
+    if (!ok) {
+      std::string list;
+      for (const char* n : names) list += (list.empty() ? "<" : ">, <") + std::string(n);
+      c.fail("unknown element <" + c.name + "> in <process type=\"" + e.str("type", "") + "\"> (known: " + list +
+             ">)");
+    }
+  }
+}
+
+const XmlNode& required(const XmlNode& parent, const std::string& name, const std::string& what) {
+  const XmlNode* c = parent.child(name);
+  if (c == nullptr) parent.fail("<process type=\"" + parent.str("type", "") + "\"> needs a <" + name + "> element (" + what + ")");
+  return *c;
+}
+
+double positive(const XmlNode& e, const std::string& attr, double fallback, bool has_fallback) {
+  const double v = has_fallback ? e.number(attr, fallback) : e.number(attr);
+  if (!(v > 0)) e.fail("<" + e.name + "> " + attr + " must be > 0, got " + e.str(attr, std::to_string(v)));
+  return v;
+}
+
+double nonNegative(const XmlNode& e, const std::string& attr, double fallback) {
+  const double v = e.number(attr, fallback);
+  if (!(v >= 0)) e.fail("<" + e.name + "> " + attr + " must be >= 0, got " + e.str(attr, ""));
+  return v;
+}
+
+const Material& material(const XmlNode& proc) {
+  const XmlNode& m = required(proc, "material", "workpiece material, e.g. <material name=\"Al 6061-T6\"/>");
+  allowOnly(m, {"name"});
+  const std::string name = m.str("name");
+  const Material* mat = findMaterial(name);
+  if (mat == nullptr) m.fail("unknown material '" + name + "' (known: " + materialNames() + ")");
+  return *mat;
+}
+
+void parseDrilling(const XmlNode& proc, DrillingSpec& s) {
+  allowChildren(proc, {"drill", "cut", "material", "coefficients", "machining_deviation"});
+  const XmlNode& d = required(proc, "drill", "drill geometry");
+  allowOnly(d, {"diameter_mm", "point_angle_deg", "helix_angle_deg", "web_mm", "chisel_angle_deg", "lips",
+                "runout_mm", "tool_material", "stickout_mm", "angle_law", "working_angles"});
+  DrillGeometry& g = s.geometry;
+  g.diameter = positive(d, "diameter_mm", 0, false) * kMm;
+  g.point_angle = d.number("point_angle_deg", 118.0) * kDeg;
+  g.helix_angle = d.number("helix_angle_deg", 30.0) * kDeg;
+  g.web_thickness = d.number("web_mm", 0.16 * g.diameter / kMm) * kMm;
+  g.chisel_angle = d.number("chisel_angle_deg", 125.0) * kDeg;
+  const double lips = d.number("lips", 2.0);
+  if (lips != std::floor(lips)) d.fail("<drill> lips must be an integer");
+  g.lips = static_cast<int>(lips);
+  s.runout_given = d.has("runout_mm");
+  g.runout = nonNegative(d, "runout_mm", 0.0) * kMm;
+  const std::string tm = d.str("tool_material", "carbide");
+  if (tm != "carbide" && tm != "hss") d.fail("<drill> tool_material must be 'carbide' or 'hss', got '" + tm + "'");
+  s.carbide = tm == "carbide";
+  const std::string law = d.str("angle_law", "geometric");
+  if (law != "geometric" && law != "paper") d.fail("<drill> angle_law must be 'geometric' or 'paper', got '" + law + "'");
+  s.law = law == "paper" ? AngleLaw::kPaperProportional : AngleLaw::kGeometric;
+  s.working_angles = d.boolean("working_angles", true);
+  if (const std::string problem = drillGeometryProblem(g); !problem.empty()) d.fail(problem);
+
+  s.deviation = defaultMachiningDeviation(g.diameter, s.carbide);
+  if (d.has("stickout_mm")) {
+    s.deviation.stickout = positive(d, "stickout_mm", 0, false) * kMm;
+    s.deviation.stickout_source = "cell <drill stickout_mm>";
+    s.deviation.runout = 0.25e-3 * s.deviation.stickout;
+  }
+  if (s.runout_given) {
+    s.deviation.runout = g.runout;
+    s.deviation.runout_source = "cell <drill runout_mm>";
+  } else {
+    g.runout = s.deviation.runout;
+  }
+  if (const std::string problem = drillGeometryProblem(g); !problem.empty()) d.fail(problem);
+
+  const XmlNode& c = required(proc, "cut", "feed and speed");
+  allowOnly(c, {"feed_mm_per_rev", "spindle_rpm", "depth_mm", "through"});
+  s.feed_line = c.line;
+  const double f = c.number("feed_mm_per_rev");
+  if (!(f > 0)) c.fail("<cut> feed_mm_per_rev must be > 0, got " + c.str("feed_mm_per_rev"));
+  if (f > 0.1 * g.diameter / kMm) c.fail("<cut> feed_mm_per_rev " + c.str("feed_mm_per_rev") + " is above 0.1 Dc");
+  s.feed = f * kMm;
+  s.spindle_rpm = positive(c, "spindle_rpm", 3000.0, true);
+  s.hole_depth = positive(c, "depth_mm", 2.0 * g.diameter / kMm, true) * kMm;
+  s.through = c.boolean("through", false);
+
+  const Material& mat = material(proc);
+  s.material = &mat;
+  s.coeff = mat.drilling;
+  s.coeff_source = mat.drilling_source;
+  if (const XmlNode* k = proc.child("coefficients")) {
+    allowOnly(*k, {"kst0_N_mm2", "at", "bt_per_deg", "ct_per_deg", "ksa0_N_mm2", "aa", "ba_per_deg", "ca_per_deg", "m",
+                   "h_min_mm", "chisel_model", "chisel_thrust_ratio", "chisel_pressure_ratio", "chisel_torque_ratio",
+                   "source"});
+    SpecificPressure& t = s.coeff.tangential;
+    SpecificPressure& a = s.coeff.axial;
+    t.k0 = positive(*k, "kst0_N_mm2", t.k0 / kMPa, true) * kMPa;
+    a.k0 = positive(*k, "ksa0_N_mm2", a.k0 / kMPa, true) * kMPa;
+    t.a = k->number("at", t.a);
+    t.b = k->number("bt_per_deg", t.b * kDeg) / kDeg;
+    t.c = k->number("ct_per_deg", t.c * kDeg) / kDeg;
+    a.a = k->number("aa", a.a);
+    a.b = k->number("ba_per_deg", a.b * kDeg) / kDeg;
+    a.c = k->number("ca_per_deg", a.c * kDeg) / kDeg;
+    const double m = k->number("m", t.m);
+    if (!(m >= 0 && m < 1)) k->fail("<coefficients> m must lie in [0, 1)");
+    t.m = a.m = m;
+    const double hmin = positive(*k, "h_min_mm", t.h_min / kMm, true) * kMm;
+    t.h_min = a.h_min = hmin;
+    const std::string cm = k->str("chisel_model", "ratio");
+    if (cm != "ratio" && cm != "pressure") k->fail("<coefficients> chisel_model must be 'ratio' or 'pressure'");
+    s.coeff.chisel.kind = cm == "ratio" ? ChiselModelKind::kRatio : ChiselModelKind::kPressure;
+    s.coeff.chisel.thrust_ratio = nonNegative(*k, "chisel_thrust_ratio", s.coeff.chisel.thrust_ratio);
+    s.coeff.chisel.pressure_ratio = nonNegative(*k, "chisel_pressure_ratio", s.coeff.chisel.pressure_ratio);
+    s.coeff.chisel.torque_ratio = nonNegative(*k, "chisel_torque_ratio", s.coeff.chisel.torque_ratio);
+    s.coeff_source = k->str("source", "cell <coefficients> (no source given)");
+  }
+
+  if (const XmlNode* md = proc.child("machining_deviation")) {
+    allowOnly(*md, {"axis_tilt_deg", "axis_lever_mm", "runout_mm", "stickout_mm", "equivalent_diameter_ratio",
+                    "youngs_modulus_GPa", "spindle_compliance_um_per_N", "k"});
+    MachiningDeviationParams& p = s.deviation;
+    const std::string here = "cell <machining_deviation>";
+    if (md->has("axis_tilt_deg")) p.axis_source = here;
+    p.axis_tilt = nonNegative(*md, "axis_tilt_deg", p.axis_tilt / kDeg) * kDeg;
+    p.axis_lever = nonNegative(*md, "axis_lever_mm", p.axis_lever / kMm) * kMm;
+    if (md->has("runout_mm")) p.runout_source = here;
+    p.runout = nonNegative(*md, "runout_mm", p.runout / kMm) * kMm;
+    if (md->has("stickout_mm")) p.stickout_source = here;
+    p.stickout = positive(*md, "stickout_mm", p.stickout / kMm, true) * kMm;
+    p.equivalent_diameter_ratio = positive(*md, "equivalent_diameter_ratio", p.equivalent_diameter_ratio, true);
+    if (p.equivalent_diameter_ratio > 1) md->fail("<machining_deviation> equivalent_diameter_ratio must be <= 1");
+    if (md->has("youngs_modulus_GPa")) p.modulus_source = here;
+    p.youngs_modulus = positive(*md, "youngs_modulus_GPa", p.youngs_modulus / 1e9, true) * 1e9;
+    if (md->has("spindle_compliance_um_per_N")) p.spindle_source = here;
+    p.spindle_compliance = nonNegative(*md, "spindle_compliance_um_per_N", p.spindle_compliance * 1e6) * 1e-6;
+    p.coverage_factor = positive(*md, "k", p.coverage_factor, true);
+  }
+}
+
+void parseMilling(const XmlNode& proc, MillingSpec& s) {
+  allowChildren(proc, {"mill", "cut", "material", "coefficients", "coupling"});
+  const XmlNode& t = required(proc, "mill", "cutter geometry");
+  allowOnly(t, {"diameter_mm", "teeth", "helix_angle_deg", "runout_mm", "runout_angle_deg"});
+  s.tool.diameter = positive(t, "diameter_mm", 0, false) * kMm;
+  const double teeth = t.number("teeth", 3.0);
+  if (!(teeth >= 1 && teeth <= 12 && teeth == std::floor(teeth))) t.fail("<mill> teeth must be an integer 1..12");
+  s.tool.teeth = static_cast<int>(teeth);
+  s.tool.helix_angle = t.number("helix_angle_deg", 30.0) * kDeg;
+  if (!(s.tool.helix_angle >= 0 && s.tool.helix_angle < 60 * kDeg)) t.fail("<mill> helix_angle_deg must lie in [0, 60)");
+  s.tool.runout = nonNegative(t, "runout_mm", 0.0) * kMm;
+  if (!(s.tool.runout < 0.05 * s.tool.diameter)) t.fail("<mill> runout_mm must be < 0.05 D");
+  s.tool.runout_angle = t.number("runout_angle_deg", 0.0) * kDeg;
+
+  const XmlNode& c = required(proc, "cut", "ap, ae, fz and mode");
+  allowOnly(c, {"ap_mm", "ae_mm", "fz_mm", "mode", "spindle_rpm"});
+  s.cut.ap = positive(c, "ap_mm", 0, false) * kMm;
+  s.cut.ae = positive(c, "ae_mm", 0, false) * kMm;
+  const double fz = c.number("fz_mm");
+  if (!(fz > 0)) c.fail("<cut> fz_mm must be > 0, got " + c.str("fz_mm"));
+  s.cut.fz = fz * kMm;
+  if (s.cut.fz > 0.2 * s.tool.diameter) c.fail("<cut> fz_mm is above 0.2 D");
+  if (s.cut.ae > s.tool.diameter) c.fail("<cut> ae_mm must be <= the cutter diameter");
+  const std::string mode = c.str("mode", s.cut.ae >= s.tool.diameter ? "slot" : "up");
+  if (mode == "up") {
+    s.cut.mode = MillingMode::kUp;
+  } else if (mode == "down") {
+    s.cut.mode = MillingMode::kDown;
+  } else if (mode == "slot") {
+    s.cut.mode = MillingMode::kSlot;
+    s.cut.ae = s.tool.diameter;
+  } else {
+    c.fail("<cut> mode must be 'up', 'down' or 'slot', got '" + mode + "'");
+  }
+  s.cut.spindle_rpm = positive(c, "spindle_rpm", 10000.0, true);
+
+  const Material& mat = material(proc);
+  s.material = &mat;
+  s.coeff = mat.milling;
+  s.coeff_source = mat.kienzle_source + "; " + mat.milling_ratio_source;
+  if (const XmlNode* k = proc.child("coefficients")) {
+    allowOnly(*k, {"kc11_N_mm2", "mc", "radial_ratio", "axial_ratio", "force_law", "source"});
+    s.coeff.kc11 = positive(*k, "kc11_N_mm2", s.coeff.kc11 / kMPa, true) * kMPa;
+    s.coeff.mc = k->number("mc", s.coeff.mc);
+    if (!(s.coeff.mc >= 0 && s.coeff.mc < 1)) k->fail("<coefficients> mc must lie in [0, 1)");
+    s.coeff.radial_ratio = nonNegative(*k, "radial_ratio", s.coeff.radial_ratio);
+    s.coeff.axial_ratio = nonNegative(*k, "axial_ratio", s.coeff.axial_ratio);
+    const std::string law = k->str("force_law", "instantaneous");
+    if (law != "instantaneous" && law != "mean_chip") {
+      k->fail("<coefficients> force_law must be 'instantaneous' or 'mean_chip'");
+    }
+    s.mean_law = law == "mean_chip" ? MeanForceLaw::kMeanChip : MeanForceLaw::kInstantaneous;
+    s.coeff_source = k->str("source", "cell <coefficients> (no source given)");
+  }
+  if (const XmlNode* cp = proc.child("coupling")) {
+    allowOnly(*cp, {"tolerance_um", "max_iterations", "relaxation", "teeth_between_points", "point_spacing_mm",
+                    "compliance_um_per_N"});
+    s.coupling.tolerance = positive(*cp, "tolerance_um", s.coupling.tolerance * 1e6, true) * 1e-6;
+    const double it = cp->number("max_iterations", s.coupling.max_iterations);
+    if (!(it >= 1 && it <= 10000 && it == std::floor(it))) cp->fail("<coupling> max_iterations must be an integer 1..10000");
+    s.coupling.max_iterations = static_cast<int>(it);
+    s.coupling.relaxation = positive(*cp, "relaxation", 1.0, true);
+    if (s.coupling.relaxation > 1) cp->fail("<coupling> relaxation must lie in (0, 1]");
+    if (cp->has("teeth_between_points") && cp->has("point_spacing_mm")) {
+      cp->fail("<coupling> give teeth_between_points or point_spacing_mm, not both");
+    }
+    const double tb = cp->number("teeth_between_points", s.coupling.teeth_between_points);
+    if (!(tb >= 1 && tb <= 1e6 && tb == std::floor(tb))) cp->fail("<coupling> teeth_between_points must be an integer >= 1");
+    s.coupling.teeth_between_points = static_cast<int>(tb);
+    if (cp->has("point_spacing_mm")) {
+      const double spacing = positive(*cp, "point_spacing_mm", 0, false) * kMm;
+      s.coupling.teeth_between_points = std::max(1, static_cast<int>(std::lround(spacing / s.cut.fz)));
+    }
+    if (cp->has("compliance_um_per_N")) {
+      const Eigen::VectorXd v = cp->numbers("compliance_um_per_N", 9);
+      Mat3 C;
+      C << v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8];
+      s.compliance = C * 1e-6;
+    }
+  }
+}
+
+}  // namespace
+
+ProcessSpec parseProcess(const XmlNode& proc) {
+  ProcessSpec s;
+  s.file = proc.file;
+  s.line = proc.line;
+  if (proc.name != "process") proc.fail("expected a <process> element, got <" + proc.name + ">");
+  const std::string type = proc.str("type");
+  if (type == "drilling") {
+    allowOnly(proc, {"type"});
+    s.type = ProcessType::kDrilling;
+    s.drilling.line = proc.line;
+    parseDrilling(proc, s.drilling);
+  } else if (type == "milling") {
+    allowOnly(proc, {"type"});
+    s.type = ProcessType::kMilling;
+    s.milling.line = proc.line;
+    parseMilling(proc, s.milling);
+  } else if (type == "wrench") {
+    allowOnly(proc, {"type", "force_N", "torque_Nm"});
+    allowChildren(proc, {});
+    s.type = ProcessType::kWrench;
+    if (!proc.has("force_N") && !proc.has("torque_Nm")) {
+      proc.fail("<process type=\"wrench\"> needs force_N=\"fx fy fz\" and/or torque_Nm=\"mx my mz\" (tool frame)");
+    }
+    s.wrench.force = proc.vec3("force_N", Vec3::Zero());
+    s.wrench.torque = proc.vec3("torque_Nm", Vec3::Zero());
+  } else {
+    proc.fail("unknown process type '" + type + "' (drilling, milling or wrench)");
+  }
+  return s;
+}
+
+DrillingModel drillingModelOf(const DrillingSpec& s, int nodes) {
+  return makeDrillingModel(s.geometry, s.coeff, s.law, s.working_angles ? s.feed : 0.0, nodes);
+}
+
+MillingModel millingModelOf(const MillingSpec& s, int angle_steps, int slices) {
+  MillingModel m = makeMillingModel(s.tool, s.cut, s.coeff, angle_steps, slices);
+  m.mean_law = s.mean_law;
+  return m;
+}
+
+std::string cellWithCalibratedCoefficients(const std::string& cell_text, const std::string& file,
+                                           const DrillingCoefficients& c, const std::string& note) {
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(cell_text.c_str(), cell_text.size()) != tinyxml2::XML_SUCCESS) {
+    throw InputError(file, doc.ErrorLineNum(), std::string("malformed XML: ") + doc.ErrorName());
+  }
+  tinyxml2::XMLElement* root = doc.RootElement();
+  tinyxml2::XMLElement* proc = root != nullptr ? root->FirstChildElement("process") : nullptr;
+  if (proc == nullptr) throw InputError(file, 0, "the cell has no <process> element");
+  tinyxml2::XMLElement* k = proc->FirstChildElement("coefficients");
+  if (k == nullptr) {
+    k = doc.NewElement("coefficients");
+    proc->InsertEndChild(k);
+  }
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.6g", c.tangential.k0 / kMPa);
+  k->SetAttribute("kst0_N_mm2", buf);
+  std::snprintf(buf, sizeof buf, "%.6g", c.axial.k0 / kMPa);
+  k->SetAttribute("ksa0_N_mm2", buf);
+  k->SetAttribute("source", note.c_str());
+  tinyxml2::XMLPrinter printer;
+  doc.Print(&printer);
+  return printer.CStr();
+}
+
+}  // namespace roprec

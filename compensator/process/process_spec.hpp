@@ -1,0 +1,99 @@
+#pragma once
+/// \file process_spec.hpp
+/// The cell's <process> element turned into typed, SI process parameters. Every bad value
+/// throws InputError naming the file and the line of the element that carries it; unknown
+/// elements and attributes are rejected (typos do not pass silently). The schema is documented
+/// in docs/process.md.
+///
+///   <process type="drilling">
+///     <drill diameter_mm point_angle_deg helix_angle_deg web_mm chisel_angle_deg lips runout_mm
+///            tool_material="carbide|hss" stickout_mm angle_law="geometric|paper" working_angles/>
+///     <cut feed_mm_per_rev spindle_rpm depth_mm through/>
+///     <material name/>
+///     <coefficients kst0_N_mm2 at bt_per_deg ct_per_deg ksa0_N_mm2 aa ba_per_deg ca_per_deg m h_min_mm
+///                   chisel_model="ratio|pressure" chisel_thrust_ratio chisel_pressure_ratio
+///                   chisel_torque_ratio source/>                                       (optional)
+///     <machining_deviation axis_tilt_deg axis_lever_mm runout_mm stickout_mm equivalent_diameter_ratio
+///                          youngs_modulus_GPa spindle_compliance_um_per_N k/>          (optional)
+///   </process>
+///   <process type="milling">
+///     <mill diameter_mm teeth helix_angle_deg runout_mm runout_angle_deg/>
+///     <cut ap_mm ae_mm fz_mm mode="up|down|slot" spindle_rpm/>
+///     <material name/>
+///     <coefficients kc11_N_mm2 mc radial_ratio axial_ratio force_law="instantaneous|mean_chip" source/>
+///     <coupling tolerance_um max_iterations relaxation teeth_between_points compliance_um_per_N="9 numbers"/>
+///   </process>
+///   <process type="wrench" force_N="fx fy fz" torque_Nm="mx my mz"/>   (on the TCP, tool frame)
+
+#include <optional>
+#include <string>
+
+#include "compensator/process/drill_geometry.hpp"
+#include "compensator/process/drilling_forces.hpp"
+#include "compensator/process/machining_deviation.hpp"
+#include "compensator/process/materials.hpp"
+#include "compensator/process/milling.hpp"
+#include "compensator/support/xml_node.hpp"
+
+namespace roprec {
+
+enum class ProcessType { kDrilling, kMilling, kWrench };
+
+struct DrillingSpec {
+  DrillGeometry geometry;
+  AngleLaw law{AngleLaw::kGeometric};
+  bool working_angles{true};       ///< build the edge angles with the feed (process.md §1.2)
+  bool carbide{true};
+  double feed{0.2e-3};             ///< f [m/rev]
+  double spindle_rpm{3000};
+  double hole_depth{0};            ///< [m]; 0 = 2·Dc
+  bool through{false};
+  const Material* material{nullptr};
+  DrillingCoefficients coeff;      ///< material values with the cell's overrides applied
+  std::string coeff_source;        ///< "material table" or the <coefficients source=...>
+  bool runout_given{false};
+  MachiningDeviationParams deviation;
+  int line{0};                     ///< <process> line
+  int feed_line{0};                ///< <cut> line (for calibration messages)
+};
+
+struct MillingSpec {
+  MillingTool tool;
+  MillingCut cut;
+  const Material* material{nullptr};
+  MillingCoefficients coeff;
+  MeanForceLaw mean_law{MeanForceLaw::kInstantaneous};
+  std::string coeff_source;
+  CouplingOptions coupling;
+  std::optional<Mat3> compliance;  ///< [m/N] milling frame, from <coupling compliance_um_per_N>
+  int line{0};
+};
+
+struct WrenchSpec {
+  Vec3 force{Vec3::Zero()};   ///< on the TCP, tool frame [N]
+  Vec3 torque{Vec3::Zero()};  ///< [N m]
+};
+
+struct ProcessSpec {
+  ProcessType type{ProcessType::kDrilling};
+  std::string file;
+  int line{0};
+  DrillingSpec drilling;
+  MillingSpec milling;
+  WrenchSpec wrench;
+};
+
+/// Parses a <process> element (file and line numbers come from the node).
+ProcessSpec parseProcess(const XmlNode& process);
+
+/// The drilling model of a spec (working angles at the spec's feed when enabled).
+DrillingModel drillingModelOf(const DrillingSpec& s, int nodes = 24);
+/// The milling model of a spec.
+MillingModel millingModelOf(const MillingSpec& s, int angle_steps = 720, int slices = 20);
+
+/// Writes a copy of the cell XML text with the <process>'s <coefficients> replaced by the
+/// calibrated kst0/ksa0 (all other content kept). `note` goes into the source attribute.
+std::string cellWithCalibratedCoefficients(const std::string& cell_text, const std::string& file,
+                                           const DrillingCoefficients& c, const std::string& note);
+
+}  // namespace roprec

@@ -1,0 +1,77 @@
+#pragma once
+/// \file deflection.hpp
+/// Static deviation of a robot with flexible joints and a finite servo gain, and its exact
+/// inverse (the explicit compensation primitive). formulation.md §6, contract.md "Deviation".
+///
+/// Joint i is a torsional spring between the motor-side angle θ_m,i (what the controller
+/// commands, link side) and the link-side angle θ_i the geometry sees:
+///
+///   θ = θ_m + φ + Δψ_Kpos,   φ = −τ(θ)/k,   Δψ_Kpos = −τ(θ)/k_servo,
+///
+/// with τ(θ) the static drive torques at the **deflected** configuration (inverse_dynamics.hpp:
+/// link and tool weight + TCP wrench), k the joint stiffness (N m/rad) and k_servo = Kv·Kω the
+/// static stiffness of a position loop without integral action (position gain Kv in 1/s times
+/// velocity gain Kω in N m s/rad, both from the robot card; absent → ideal servo, Δψ = 0).
+/// The two act in series: θ = θ_m − τ(θ)/k_eff, 1/k_eff = 1/k + 1/k_servo.
+///
+/// Prediction solves G(θ) = θ − θ_m + τ(θ)/k_eff = 0 by fixed-point iteration (contraction
+/// factor ‖K⁻¹ ∂τ/∂θ‖ ≪ 1 on industrial robots) with a Newton fallback (∂τ/∂θ by central
+/// differences), to ‖Δθ‖∞ ≤ tol (default 1e-12 rad). Convergence is reported as a value.
+/// δrobot = FK(θ) − FK(θ_m): translation (m) and rotation vector of R_real R_nomᵀ (rad), base
+/// frame; it includes the configuration-change ("complementary stiffness") effect.
+///
+/// Compensation is explicit: for a desired link-side θ_d and load, θ_m = θ_d + τ(θ_d)/k_eff.
+
+#include "compensator/robot/inverse_dynamics.hpp"
+#include "compensator/robot/robot_card.hpp"
+
+namespace roprec::nc {
+
+struct JointCompliance {
+  Vec6 k{Vec6::Constant(1e300)};        ///< joint stiffness, N m/rad
+  Vec6 k_servo{Vec6::Constant(1e300)};  ///< servo static stiffness, N m/rad (1e300 = ideal)
+  /// 1/k_eff = 1/k + 1/k_servo
+  [[nodiscard]] Vec6 effective() const;
+};
+
+/// k from the card (joints without stiffness: rigid), k_servo = Kv·Kω where both gains are given
+/// (otherwise an ideal, integrating servo).
+JointCompliance complianceFromCard(const RobotCard& card);
+
+struct DeflectionOptions {
+  double tol{1e-12};     ///< rad, ‖Δθ‖∞
+  int max_iterations{60};
+};
+
+struct Deflection {
+  bool converged{false};
+  int iterations{0};
+  double residual{0.0};         ///< ‖θ − θ_m + τ(θ)/k_eff‖∞ at exit, rad
+  bool position_converged{true};
+  Vec6 theta_m{Vec6::Zero()};   ///< command (rad)
+  Vec6 theta{Vec6::Zero()};     ///< real link angles (rad)
+  Vec6 tau{Vec6::Zero()};       ///< drive torques at θ (N m)
+  Vec6 phi{Vec6::Zero()};       ///< joint deformation −τ/k (rad)
+  Vec6 dpsi{Vec6::Zero()};      ///< servo correction −τ/k_servo (rad)
+  Pose T_nominal{Pose::Identity()};  ///< rigid FK(θ_m) of the TCP
+  Pose T_real{Pose::Identity()};     ///< FK(θ) of the TCP
+  Vec3 dp{Vec3::Zero()};        ///< translation deviation, m, base frame
+  Vec3 drot{Vec3::Zero()};      ///< rotation deviation (rotation vector), rad, base frame
+};
+
+/// Predicts the real TCP for the command θ_m under `loads`. `command_offset` is added to the
+/// command inside the controller (e.g. its own gravity compensation) but not to the nominal.
+Deflection predictDeflection(const Model& model, Data& data, const JointCompliance& c,
+                             const Vec6& theta_m, const Loads& loads,
+                             const DeflectionOptions& opt = {},
+                             const Vec6& command_offset = Vec6::Zero());
+
+/// Explicit inverse: the command θ_m = θ_d + τ(θ_d)/k_eff that makes the link side reach θ_d.
+Vec6 compensateCommand(const Model& model, Data& data, const JointCompliance& c,
+                       const Vec6& theta_d, const Loads& loads);
+
+/// Joint-space stiffness term of the deflected configuration: ∂τ/∂θ by central differences
+/// (6 extra static evaluations). Used by the Newton fallback and by linearised uncertainty.
+Mat6 torqueSensitivity(const Model& model, Data& data, const Vec6& theta, const Loads& loads);
+
+}  // namespace roprec::nc

@@ -1,0 +1,162 @@
+#include "compensator/support/xml_node.hpp"
+
+#include <tinyxml2.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "compensator/support/error.hpp"
+
+namespace roprec {
+
+std::optional<double> parseNumber(const std::string& s) {
+  size_t b = 0;
+  size_t e = s.size();
+  while (b < e && std::isspace(static_cast<unsigned char>(s[b]))) ++b;
+  while (e > b && std::isspace(static_cast<unsigned char>(s[e - 1]))) --e;
+  if (b == e) return std::nullopt;
+  const std::string t = s.substr(b, e - b);
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(t.c_str(), &end);
+  if (end != t.c_str() + t.size() || errno == ERANGE || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
+bool XmlNode::has(const std::string& attr) const { return get(attr).has_value(); }
+
+std::optional<std::string> XmlNode::get(const std::string& attr) const {
+  for (const auto& [k, v] : attributes) {
+    if (k == attr) return v;
+  }
+  return std::nullopt;
+}
+
+void XmlNode::fail(const std::string& message) const { throw InputError(file, line, message); }
+
+std::string XmlNode::str(const std::string& attr) const {
+  auto v = get(attr);
+  if (!v) fail("<" + name + "> is missing the attribute '" + attr + "'");
+  return *v;
+}
+
+std::string XmlNode::str(const std::string& attr, const std::string& fallback) const {
+  auto v = get(attr);
+  return v ? *v : fallback;
+}
+
+double XmlNode::number(const std::string& attr) const {
+  const std::string s = str(attr);
+  auto v = parseNumber(s);
+  if (!v) fail("<" + name + "> attribute '" + attr + "' is not a finite number: '" + s + "'");
+  return *v;
+}
+
+double XmlNode::number(const std::string& attr, double fallback) const {
+  return has(attr) ? number(attr) : fallback;
+}
+
+Eigen::VectorXd XmlNode::numbers(const std::string& attr, int n) const {
+  const std::string s = str(attr);
+  std::istringstream in(s);
+  std::vector<double> vals;
+  std::string tok;
+  while (in >> tok) {
+    auto v = parseNumber(tok);
+    if (!v) fail("<" + name + "> attribute '" + attr + "' has a value that is not a finite number: '" +
+                 tok + "'");
+    vals.push_back(*v);
+  }
+  if (static_cast<int>(vals.size()) != n) {
+    fail("<" + name + "> attribute '" + attr + "' needs " + std::to_string(n) + " numbers, got " +
+         std::to_string(vals.size()) + ": '" + s + "'");
+  }
+  Eigen::VectorXd out(n);
+  for (int i = 0; i < n; ++i) out[i] = vals[static_cast<size_t>(i)];
+  return out;
+}
+
+Eigen::Vector3d XmlNode::vec3(const std::string& attr, const Eigen::Vector3d& fallback) const {
+  if (!has(attr)) return fallback;
+  return numbers(attr, 3);
+}
+
+bool XmlNode::boolean(const std::string& attr, bool fallback) const {
+  auto v = get(attr);
+  if (!v) return fallback;
+  if (*v == "true" || *v == "1" || *v == "yes") return true;
+  if (*v == "false" || *v == "0" || *v == "no") return false;
+  fail("<" + name + "> attribute '" + attr + "' must be true or false, got '" + *v + "'");
+}
+
+const XmlNode* XmlNode::child(const std::string& element) const {
+  for (const auto& c : children) {
+    if (c.name == element) return &c;
+  }
+  return nullptr;
+}
+
+std::vector<const XmlNode*> XmlNode::childrenNamed(const std::string& element) const {
+  std::vector<const XmlNode*> out;
+  for (const auto& c : children) {
+    if (c.name == element) out.push_back(&c);
+  }
+  return out;
+}
+
+namespace {
+XmlNode convert(const tinyxml2::XMLElement* e, const std::string& file) {
+  XmlNode n;
+  n.file = file;
+  n.name = e->Name();
+  n.line = e->GetLineNum();
+  for (const tinyxml2::XMLAttribute* a = e->FirstAttribute(); a != nullptr; a = a->Next()) {
+    n.attributes.emplace_back(a->Name(), a->Value());
+  }
+  if (const char* t = e->GetText()) {
+    std::string s = t;
+    const auto b = s.find_first_not_of(" \t\r\n");
+    const auto en = s.find_last_not_of(" \t\r\n");
+    n.text = b == std::string::npos ? "" : s.substr(b, en - b + 1);
+  }
+  for (const tinyxml2::XMLElement* c = e->FirstChildElement(); c != nullptr;
+       c = c->NextSiblingElement()) {
+    n.children.push_back(convert(c, file));
+  }
+  return n;
+}
+}  // namespace
+
+XmlNode parseXmlText(const std::string& text, const std::string& file) {
+  tinyxml2::XMLDocument doc;
+  const tinyxml2::XMLError err = doc.Parse(text.c_str(), text.size());
+  if (err != tinyxml2::XML_SUCCESS) {
+    std::string detail = doc.ErrorStr() ? doc.ErrorStr() : "";
+    // tinyxml2: "Error=XML_ERROR_X ErrorID=n (0xn) Line number=k: detail" -> keep the detail
+    if (const auto p = detail.find(": "); p != std::string::npos) {
+      detail = detail.substr(p + 2);
+    } else if (detail.rfind("Error=", 0) == 0) {
+      detail.clear();
+    }
+    std::string msg = std::string("malformed XML (") + doc.ErrorName() + ")";
+    if (!detail.empty()) msg += ": " + detail;
+    throw InputError(file, std::max(1, doc.ErrorLineNum()), msg);
+  }
+  const tinyxml2::XMLElement* root = doc.RootElement();
+  if (root == nullptr) throw InputError(file, 1, "XML document has no root element");
+  return convert(root, file);
+}
+
+XmlNode loadXmlFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, 0, "cannot open file");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return parseXmlText(ss.str(), path);
+}
+
+}  // namespace roprec

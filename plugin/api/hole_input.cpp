@@ -1,0 +1,168 @@
+#include "plugin/api/hole_input.hpp"
+
+#include "compensator/support/atomic_file.hpp"
+#include "compensator/support/error.hpp"
+
+namespace roprec::api {
+
+Mat3 holeFrame(const Vec3& direction) {
+  const Vec3 z = direction.normalized();
+  const Vec3 ref = std::abs(z.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
+  const Vec3 y = z.cross(ref).normalized();
+  const Vec3 x = y.cross(z);
+  Mat3 R;
+  R << x, y, z;
+  return R;
+}
+
+namespace {
+
+HoleRequest fromSpec(const postproc::HoleSpec& s, const CellSpec& cell) {
+  HoleRequest r;
+  r.id = s.id;
+  Pose T_wobj_tcp = Pose::Identity();
+  T_wobj_tcp.translation() = s.position_mm * 1e-3;
+  T_wobj_tcp.linear() = holeFrame(s.direction);
+  r.T_W_tcp = cell.T_base_wobj * T_wobj_tcp;
+  if (s.tolerance_mm) r.tolerance = *s.tolerance_mm * 1e-3;
+  if (s.diameter_mm) r.diameter = *s.diameter_mm * 1e-3;
+  if (s.depth_mm) r.depth = *s.depth_mm * 1e-3;
+  r.line = s.line;
+  return r;
+}
+
+std::optional<VendorConfig> programConfig(const postproc::Configuration& c, const Robot& robot,
+                                          const std::string& file, int line) {
+  if (!c.present()) return std::nullopt;
+  const Vendor v = robot.card.vendor;
+  const bool match = (v == Vendor::kKuka && c.vendor == postproc::Vendor::kKuka) ||
+                     (v == Vendor::kAbb && c.vendor == postproc::Vendor::kAbb) ||
+                     (v == Vendor::kFanuc && c.vendor == postproc::Vendor::kFanuc);
+  if (!match) return std::nullopt;
+  if (v == Vendor::kKuka && c.status < 0) return std::nullopt;  // S absent: nothing selects a branch
+  return parseConfig(v, c.text(), file, line);
+}
+
+}  // namespace
+
+JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot& robot,
+                      const std::optional<std::string>& hole_list, double match_tol_mm) {
+  JobHoles job;
+  job.path = path;
+  const std::string bytes = readFileBytes(path);
+  postproc::Dialect dialect = postproc::detectDialect(path, bytes);
+  std::optional<postproc::Program> parsed;
+  if (dialect == postproc::Dialect::kCsv) {
+    parsed = postproc::parseProgram(dialect, path, bytes);
+    dialect = parsed->dialect;  // the CSV reader recognises a hole list by its i,j,k columns
+  }
+  if (dialect == postproc::Dialect::kHoleCsv) {
+    job.is_hole_list = true;
+    const std::vector<postproc::HoleSpec> specs = postproc::parseHoleList(path, bytes);
+    if (specs.empty()) throw InputError(path, 1, "the hole list has no holes");
+    for (size_t i = 0; i < specs.size(); ++i) {
+      const auto& s = specs[i];
+      job.requests.push_back(fromSpec(s, cell));
+      HoleSource src;
+      if (parsed && i < parsed->targets().size()) {
+        src.targets = {static_cast<int>(i)};
+        src.bottom_target = static_cast<int>(i);
+      }
+      src.T_W_frame = cell.T_base_wobj;
+      src.frame_resolved = true;
+      src.frame_ref = "cell workobject";
+      src.T_W_tcp_spec = job.requests.back().T_W_tcp;
+      job.sources.push_back(src);
+    }
+    if (hole_list) {
+      const std::vector<postproc::HoleSpec> ref = postproc::readHoleList(*hole_list);
+      for (HoleRequest& r : job.requests) {
+        for (const auto& s : ref) {
+          if (s.id != r.id) continue;
+          r.nominal_axis = std::make_pair(Vec3(cell.T_base_wobj * (s.position_mm * 1e-3)),
+                                          Vec3(cell.T_base_wobj.linear() * s.direction.normalized()));
+          if (s.tolerance_mm) r.tolerance = *s.tolerance_mm * 1e-3;
+          if (s.diameter_mm) r.diameter = *s.diameter_mm * 1e-3;
+        }
+      }
+    }
+    job.program = std::move(parsed);
+    return job;
+  }
+  job.program = parsed ? std::move(*parsed) : postproc::readProgram(path);
+  const postproc::Program& p = *job.program;
+  job.recognized = postproc::recognizeHoles(p);
+  if (job.recognized.empty()) {
+    throw InputError(path, 0, "no drill cycle recognised in the program (approach -> feed along the tool z axis -> retract)");
+  }
+  std::vector<postproc::HoleSpec> specs;
+  std::vector<postproc::HoleMatch> matches;
+  if (hole_list) {
+    specs = postproc::readHoleList(*hole_list);
+    matches = postproc::matchHoles(job.recognized, p, specs, match_tol_mm);
+  }
+  bool noted_frame = false;
+  for (size_t i = 0; i < job.recognized.size(); ++i) {
+    const postproc::Hole& h = job.recognized[i];
+    HoleSource src;
+    src.hole = static_cast<int>(i);
+    src.targets = h.targets;
+    src.bottom_target = h.bottom_target;
+    const postproc::Frame* base = h.base >= 0 ? &p.frames[static_cast<size_t>(h.base)] : nullptr;
+    if (base && base->resolved) {
+      src.T_W_frame = base->pose;
+      src.frame_resolved = true;
+      src.frame_ref = base->ref;
+    } else {
+      src.T_W_frame = cell.T_base_wobj;
+      src.frame_ref = base ? base->ref : "(none)";
+      if (!noted_frame) {
+        job.notes.push_back("program base frame " + src.frame_ref +
+                            " is not defined in the program: the cell's <workobject> is used as that frame");
+        noted_frame = true;
+      }
+    }
+    const postproc::Target& t = p.targets()[static_cast<size_t>(h.bottom_target)];
+    const std::optional<Pose> T_frame_tcp = postproc::motionPose(p, p.motions[static_cast<size_t>(h.bottom_motion)]);
+    if (!T_frame_tcp) {
+      throw InputError(p.files[static_cast<size_t>(t.file)].path, t.line,
+                       "hole " + h.id + ": the drill point is not a plain Cartesian target");
+    }
+    HoleRequest r;
+    r.id = h.id;
+    r.T_W_tcp = src.T_W_frame * *T_frame_tcp;
+    r.line = t.line;
+    r.depth = h.depth;
+    // The drill point is reached by linear moves, which keep the arm configuration the robot had:
+    // the configuration that selects the IK branch is the one of the cycle's approach when the
+    // controller honours it there (KUKA PTP, ABB MoveJ with ConfJ\On, FANUC J), else the bottom
+    // target's when honoured; otherwise none (continuity from the previous hole).
+    for (const int mi : {h.entry_motion, h.bottom_motion}) {
+      if (mi < 0 || r.config) continue;
+      const postproc::Motion& mo = p.motions[static_cast<size_t>(mi)];
+      if (!mo.config_honoured || mo.target < 0) continue;
+      const postproc::Target& ct = p.targets()[static_cast<size_t>(mo.target)];
+      r.config = programConfig(ct.config, robot, p.files[static_cast<size_t>(ct.file)].path, ct.line);
+    }
+    for (const auto& m : matches) {
+      if (m.hole != static_cast<int>(i)) continue;
+      const postproc::HoleSpec& s = specs[static_cast<size_t>(m.spec)];
+      r.id = s.id;
+      r.nominal_axis = std::make_pair(Vec3(cell.T_base_wobj * (s.position_mm * 1e-3)),
+                                      Vec3(cell.T_base_wobj.linear() * s.direction.normalized()));
+      if (s.tolerance_mm) r.tolerance = *s.tolerance_mm * 1e-3;
+      if (s.diameter_mm) r.diameter = *s.diameter_mm * 1e-3;
+      if (s.depth_mm) r.depth = *s.depth_mm * 1e-3;
+    }
+    job.requests.push_back(r);
+    job.sources.push_back(src);
+  }
+  for (const auto& n : p.notes) job.notes.push_back(n);
+  for (const auto& u : p.unresolved) {
+    job.notes.push_back("unresolved " + u.ref + " (" + p.files[static_cast<size_t>(std::max(0, u.file))].path + ":" +
+                        std::to_string(u.line) + "): " + u.what);
+  }
+  return job;
+}
+
+}  // namespace roprec::api

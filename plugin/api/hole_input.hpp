@@ -1,0 +1,54 @@
+#pragma once
+/// \file hole_input.hpp
+/// The holes of a job, from a robot program (any dialect postproc reads: drill cycles recognised
+/// per robot-programs.md §8.2) or from the contract's hole-list CSV, as prediction requests in the
+/// robot base frame.
+///
+/// Frames: a program target is T_frame_tcp in the program's base frame (KUKA $BASE/BASE_DATA,
+/// ABB wobj, FANUC UFRAME). When the program defines that frame it is used; when it does not
+/// (e.g. BASE_DATA[n] lives in the controller's $config.dat) the cell's <workobject> is taken as
+/// the program's base frame and a note says so. Hole-list rows are in the cell's workobject frame;
+/// their TCP orientation: z = drilling direction, x = the workobject x axis projected ⊥ z (the
+/// workobject y axis when the direction is within 26° of x) — the rotation about the drill axis is
+/// free and `roprec compensate --orientation` may change it.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "compensator/precision/cell.hpp"
+#include "compensator/precision/prediction.hpp"
+#include "postproc/drill.hpp"
+#include "postproc/program.hpp"
+
+namespace roprec::api {
+
+struct HoleSource {
+  int hole{-1};                 ///< index into `recognized` (programs)
+  std::vector<int> targets;     ///< program targets of the cycle (all move together when compensated)
+  int bottom_target{-1};
+  Pose T_W_frame{Pose::Identity()};  ///< base frame of the program frame the target is in
+  bool frame_resolved{false};
+  std::string frame_ref;
+  std::optional<Pose> T_W_tcp_spec;  ///< hole-list nominal pose when a hole list was matched
+};
+
+struct JobHoles {
+  std::string path;
+  bool is_hole_list{false};
+  std::optional<postproc::Program> program;
+  std::vector<postproc::Hole> recognized;
+  std::vector<HoleRequest> requests;
+  std::vector<HoleSource> sources;
+  std::vector<std::string> notes;
+};
+
+/// TCP rotation for a drilling direction (see the file comment), in the frame of `direction`.
+Mat3 holeFrame(const Vec3& direction);
+
+/// Reads the job. `hole_list` (optional CSV) supplies ids, diameters and tolerances for the holes
+/// of a program (matched by id, else by position within `match_tol_mm`).
+JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot& robot,
+                      const std::optional<std::string>& hole_list, double match_tol_mm = 0.5);
+
+}  // namespace roprec::api

@@ -1,0 +1,176 @@
+#include "plugin/api/json.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+
+namespace roprec::api {
+
+Json Json::object() {
+  Json j;
+  j.kind_ = Kind::kObject;
+  return j;
+}
+Json Json::array() {
+  Json j;
+  j.kind_ = Kind::kArray;
+  return j;
+}
+Json Json::str(std::string s) {
+  Json j;
+  j.kind_ = Kind::kString;
+  j.string_ = std::move(s);
+  return j;
+}
+Json Json::boolean(bool b) {
+  Json j;
+  j.kind_ = Kind::kBool;
+  j.bool_ = b;
+  return j;
+}
+Json Json::number(double v, int decimals) {
+  Json j;
+  j.kind_ = Kind::kNumber;
+  j.number_ = v;
+  j.decimals_ = decimals;
+  return j;
+}
+Json Json::integer(std::int64_t v) {
+  Json j;
+  j.kind_ = Kind::kNumber;
+  j.is_integer_ = true;
+  j.integer_ = v;
+  return j;
+}
+Json Json::vector(const Eigen::Ref<const Eigen::VectorXd>& v, int decimals) {
+  Json j = array();
+  for (Eigen::Index i = 0; i < v.size(); ++i) j.push(number(v[i], decimals));
+  return j;
+}
+
+Json& Json::set(const std::string& key, Json value) {
+  for (size_t i = 0; i < keys_.size(); ++i) {
+    if (keys_[i] == key) {
+      items_[i] = std::move(value);
+      return items_[i];
+    }
+  }
+  keys_.push_back(key);
+  items_.push_back(std::move(value));
+  return items_.back();
+}
+
+Json& Json::push(Json value) {
+  items_.push_back(std::move(value));
+  return items_.back();
+}
+
+std::string jsonEscape(const std::string& s) {
+  std::string o;
+  o.reserve(s.size() + 2);
+  for (const char c : s) {
+    switch (c) {
+      case '"': o += "\\\""; break;
+      case '\\': o += "\\\\"; break;
+      case '\n': o += "\\n"; break;
+      case '\r': o += "\\r"; break;
+      case '\t': o += "\\t"; break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20) {
+          char buf[8];
+          std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
+          o += buf;
+        } else {
+          o += c;
+        }
+    }
+  }
+  return o;
+}
+
+std::string formatNumber(double v, int decimals) {
+  if (!std::isfinite(v)) return "null";
+  char buf[64];
+  if (decimals >= 0) {
+    std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+    std::string s = buf;
+    // "-0.000" -> "0.000"
+    bool all_zero = true;
+    for (char c : s) {
+      if (c != '-' && c != '0' && c != '.') all_zero = false;
+    }
+    if (all_zero && !s.empty() && s[0] == '-') s.erase(0, 1);
+    return s;
+  }
+  if (v == 0.0) return "0";
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
+}
+
+void Json::write(std::string& out, int indent, int level) const {
+  const std::string pad = indent > 0 ? std::string(static_cast<size_t>(indent * (level + 1)), ' ') : "";
+  const std::string pad_end = indent > 0 ? std::string(static_cast<size_t>(indent * level), ' ') : "";
+  const char* nl = indent > 0 ? "\n" : "";
+  switch (kind_) {
+    case Kind::kNull: out += "null"; break;
+    case Kind::kBool: out += bool_ ? "true" : "false"; break;
+    case Kind::kNumber:
+      out += is_integer_ ? std::to_string(integer_) : formatNumber(number_, decimals_);
+      break;
+    case Kind::kString: out += "\"" + jsonEscape(string_) + "\""; break;
+    case Kind::kArray: {
+      bool scalars = true;
+      for (const auto& i : items_) {
+        if (i.kind_ == Kind::kArray || i.kind_ == Kind::kObject) scalars = false;
+      }
+      if (items_.empty()) {
+        out += "[]";
+        break;
+      }
+      if (scalars) {  // short arrays of numbers on one line
+        out += "[";
+        for (size_t i = 0; i < items_.size(); ++i) {
+          if (i) out += ", ";
+          items_[i].write(out, indent, level + 1);
+        }
+        out += "]";
+        break;
+      }
+      out += "[";
+      out += nl;
+      for (size_t i = 0; i < items_.size(); ++i) {
+        out += pad;
+        items_[i].write(out, indent, level + 1);
+        if (i + 1 < items_.size()) out += ",";
+        out += nl;
+      }
+      out += pad_end + "]";
+      break;
+    }
+    case Kind::kObject: {
+      if (items_.empty()) {
+        out += "{}";
+        break;
+      }
+      out += "{";
+      out += nl;
+      for (size_t i = 0; i < items_.size(); ++i) {
+        out += pad + "\"" + jsonEscape(keys_[i]) + "\":" + (indent > 0 ? " " : "");
+        items_[i].write(out, indent, level + 1);
+        if (i + 1 < items_.size()) out += ",";
+        out += nl;
+      }
+      out += pad_end + "}";
+      break;
+    }
+  }
+}
+
+std::string Json::dump(int indent) const {
+  std::string out;
+  write(out, indent, 0);
+  if (indent > 0) out += "\n";
+  return out;
+}
+
+}  // namespace roprec::api

@@ -1,0 +1,210 @@
+#include "plugin/api/prediction_setup.hpp"
+
+#include <cmath>
+#include <ostream>
+
+#include "compensator/support/error.hpp"
+#include "compensator/process/process_load.hpp"
+
+namespace roprec::api {
+
+namespace {
+
+UncertaintyInputs uncertaintyFromCell(const CellSpec& cell) {
+  UncertaintyInputs u = defaultUncertaintyInputs();
+  if (const XmlNode* e = cell.root.child("uncertainty")) {
+    const std::string method = e->str("method", "linear");
+    if (method == "linear") {
+      u.method = UncertaintyInputs::Method::kLinear;
+    } else if (method == "montecarlo") {
+      u.method = UncertaintyInputs::Method::kMonteCarlo;
+    } else {
+      e->fail("<uncertainty> method must be linear or montecarlo, got '" + method + "'");
+    }
+    u.stiffness_rel = e->number("stiffness_rel", u.stiffness_rel);
+    u.position_gain_rel = e->number("position_gain_rel", u.position_gain_rel);
+    u.process_halfwidth = e->number("process_halfwidth", u.process_halfwidth);
+    for (const double v : {u.stiffness_rel, u.position_gain_rel, u.process_halfwidth}) {
+      if (v < 0 || v > 1) e->fail("<uncertainty> relative values must lie in [0, 1]");
+    }
+    const double samples = e->number("samples", u.samples);
+    if (samples < 10 || samples > 1e6) e->fail("<uncertainty> samples must lie in [10, 1e6]");
+    u.samples = static_cast<int>(samples);
+    u.seed = static_cast<unsigned>(e->number("seed", u.seed));
+    if (e->has("source")) u.source = e->str("source");
+  }
+  return u;
+}
+
+CapabilityInputs capabilityFromCell(const CellSpec& cell) {
+  CapabilityInputs c;
+  c.source = "estimate: machining-center positioning, approach and retract per hole (rapid ~40 m/min, ~2 s)";
+  if (const XmlNode* e = cell.root.child("capability")) {
+    c.mc_approach_s = e->number("mc_approach_s", c.mc_approach_s);
+    if (c.mc_approach_s < 0) e->fail("<capability> mc_approach_s must be >= 0");
+    if (e->has("source")) c.source = e->str("source");
+  }
+  return c;
+}
+
+}  // namespace
+
+PredictionContext loadPredictionContext(const std::string& cell_path, const std::string& job_path,
+                                        const std::optional<std::string>& hole_list,
+                                        const std::string& uncertainty_override, double match_tol_mm,
+                                        bool load_holes) {
+  PredictionContext c;
+  c.cell = loadCell(cell_path);
+  try {
+    c.robot = loadRobot(c.cell.robot);
+  } catch (const InputError& e) {
+    if (e.file().empty()) throw InputError(c.cell.file, c.cell.robot_line, e.message());
+    throw;
+  }
+  if (!c.robot.card.has_stiffness) {
+    throw InputError(c.cell.file, c.cell.robot_line,
+                     "the robot has no joint stiffness (use a robot card with stiffness values)");
+  }
+  c.tool.T_flange_tcp = c.cell.tool.T_flange_tcp;
+  c.tool.mass = c.cell.tool.mass;
+  c.tool.com = c.cell.tool.com;
+  c.tool.inertia = c.cell.tool.inertia;
+  if (c.cell.has_process) {
+    c.process = parseProcess(c.cell.process);
+    c.process_description = steadyProcessLoad(*c.process).description;
+  } else {
+    c.process_description = "no process (gravity and tool weight only)";
+  }
+  if (load_holes) {
+    c.job = loadJobHoles(job_path, c.cell, c.robot, hole_list, match_tol_mm);
+  } else {
+    c.job.path = job_path;
+    c.job.program = postproc::readProgram(job_path);
+  }
+
+  PredictionSetup s;
+  s.robot = c.robot;
+  s.tool = c.tool;
+  s.process = c.process;
+  s.uncertainty = uncertaintyFromCell(c.cell);
+  if (uncertainty_override == "linear") s.uncertainty.method = UncertaintyInputs::Method::kLinear;
+  if (uncertainty_override == "montecarlo") s.uncertainty.method = UncertaintyInputs::Method::kMonteCarlo;
+  if (!uncertainty_override.empty() && uncertainty_override != "linear" && uncertainty_override != "montecarlo") {
+    throw UsageError("--uncertainty must be linear or montecarlo");
+  }
+  s.capability = capabilityFromCell(c.cell);
+  // gravity compensation by the controller: robot card, overridden by the cell's <controller>
+  s.controller_gravity = c.robot.card.gravity_compensated;
+  s.calibration_load.mass = c.robot.card.calibration_load_kg;
+  s.calibration_load.com = c.robot.card.calibration_load_com;
+  if (const XmlNode* e = c.cell.root.child("controller")) {
+    s.controller_gravity = e->boolean("gravity_compensated", s.controller_gravity);
+    if (e->has("fanuc_turn_axes")) {
+      const Eigen::VectorXd ax = e->numbers("fanuc_turn_axes", 3);
+      std::array<int, 3> axes{};
+      for (int i = 0; i < 3; ++i) {
+        if (ax[i] < 1 || ax[i] > 6 || ax[i] != std::floor(ax[i])) e->fail("fanuc_turn_axes: three joint numbers 1..6");
+        axes[static_cast<size_t>(i)] = static_cast<int>(ax[i]);
+      }
+      c.fanuc_turn_axes = axes;
+    }
+    const std::string load = e->str("calibration_load", "card");
+    if (load == "tool") {
+      s.calibration_load = c.tool;
+    } else if (load != "card") {
+      e->fail("<controller> calibration_load must be \"tool\" (the cell's tool) or \"card\"");
+    }
+  }
+  s.default_tolerance = c.cell.tolerance_mm * 1e-3;
+  for (const HoleRequest& r : c.job.requests) {
+    if (r.diameter > 0) s.hole_diameters.push_back(r.diameter);
+  }
+  c.model = buildPredictionModel(s);
+  if (c.fanuc_turn_axes) {
+    c.model.config_options.fanuc_turn_axes = *c.fanuc_turn_axes;
+    if (c.job.program) c.job.program->fanuc_turn_axes = *c.fanuc_turn_axes;
+  }
+  return c;
+}
+
+std::string uncertaintyMethodText(const UncertaintyInputs& u) {
+  if (u.method == UncertaintyInputs::Method::kLinear) return "linearised (Jacobian at the deflected pose)";
+  return "Monte Carlo (" + std::to_string(u.samples) + " samples, seed " + std::to_string(u.seed) + ")";
+}
+
+Json holeJson(const HolePrediction& h, const HoleRequest& r) {
+  Json j = Json::object();
+  j.set("id", Json::str(h.id));
+  if (r.line > 0) j.set("line", Json::integer(r.line));
+  j.set("nominal", [&] {
+    Json n = Json::object();
+    n.set("position_mm", Json::vector(r.T_W_tcp.translation() * 1e3, 6));
+    const Eigen::Quaterniond q = quaternionFromRotation(r.T_W_tcp.linear());
+    n.set("quaternion_wxyz", Json::vector(Eigen::Vector4d(q.w(), q.x(), q.y(), q.z()), 9));
+    n.set("axis", Json::vector(r.T_W_tcp.linear().col(2), 9));
+    return n;
+  }());
+  j.set("diameter_mm", Json::number(h.diameter * 1e3, 3));
+  j.set("depth_mm", Json::number(h.depth * 1e3, 3));
+  if (h.status == HoleStatus::kOk || h.status == HoleStatus::kNotConverged || h.status == HoleStatus::kSingular) {
+    j.set("joints_deg", Json::vector(h.joints / kDeg, 6));
+    if (!h.config.empty()) j.set("config", Json::str(h.config));
+    j.set("branch", Json::integer(h.branch));
+  }
+  if (h.status == HoleStatus::kOk) {
+    Json d = Json::object();
+    d.set("robot", Json::vector(h.d_robot * 1e6, 3));
+    d.set("mach", Json::vector(h.d_mach * 1e6, 3));
+    d.set("work", Json::vector(h.d_work * 1e6, 3));
+    d.set("robot_rotation_urad", Json::vector(h.d_rot * 1e6, 3));
+    d.set("work_tool_xy", Json::vector(h.e_tool * 1e6, 3));
+    d.set("position_error", Json::number(h.position_error * 1e6, 3));
+    d.set("axis_tilt_urad", Json::number(h.axis_tilt * 1e6, 3));
+    if (h.nominal_axis_error) d.set("from_nominal_axis", Json::number(*h.nominal_axis_error * 1e6, 4));
+    j.set("deviation_um", d);
+    Json u = Json::object();
+    u.set("U_robot", Json::number(h.U_robot * 1e6, 3));
+    u.set("U_mach", Json::number(h.U_mach * 1e6, 3));
+    u.set("U_work", Json::number(h.U_work * 1e6, 3));
+    u.set("k", Json::number(h.k, 4));
+    u.set("coverage", Json::str("2-D radial 95 % (Rayleigh)"));
+    u.set("U_work_anisotropic", Json::number(h.U_work_exact * 1e6, 3));
+    Json b = Json::object();
+    for (const BudgetTerm& t : h.budget) b.set(t.name, Json::number(t.u * 1e6, 3));
+    u.set("standard_per_axis", b);
+    u.set("process_share", Json::number(h.process_share, 4));
+    u.set("process_force_share", Json::number(h.process_force_share, 4));
+    j.set("uncertainty_um", u);
+    j.set("process_force_N", Json::vector(h.force_base, 2));
+    Json eq = Json::object();
+    eq.set("converged", Json::boolean(h.deflection.converged));
+    eq.set("iterations", Json::integer(h.deflection.iterations));
+    j.set("equilibrium", eq);
+  }
+  j.set("tolerance_mm", Json::number(h.tolerance * 1e3, 4));
+  j.set("verdict", Json::str(verdictName(h.verdict)));
+  if (!h.reason.empty()) j.set("reason", Json::str(h.reason));
+  j.set("mc_time_s", Json::number(h.mc_time, 3));
+  return j;
+}
+
+Json summaryJson(const CapabilitySummary& s) {
+  Json j = Json::object();
+  j.set("holes", Json::integer(s.holes));
+  Json v = Json::object();
+  v.set("conforms", Json::integer(s.conforms));
+  v.set("conforms-after-compensation", Json::integer(s.conforms_after_compensation));
+  v.set("does-not-conform", Json::integer(s.does_not_conform));
+  v.set("unreachable", Json::integer(s.unreachable));
+  v.set("singular", Json::integer(s.singular));
+  v.set("not-converged", Json::integer(s.not_converged));
+  j.set("verdicts", v);
+  j.set("robot_can_take", Json::integer(s.robot_can_take));
+  j.set("mc_time_taken_s", Json::number(s.mc_time_taken, 2));
+  j.set("mc_time_total_s", Json::number(s.mc_time_total, 2));
+  j.set("process_share_mean", Json::number(s.mean_process_share, 4));
+  j.set("process_share_max", Json::number(s.max_process_share, 4));
+  return j;
+}
+
+}  // namespace roprec::api

@@ -1,0 +1,43 @@
+#pragma once
+/// \file prediction_setup.hpp
+/// Everything `roprec predict` and `roprec compensate` share: the cell (robot, tool, process,
+/// tolerance, <uncertainty>, <capability>), the job's holes, the prediction model, and the JSON
+/// of a prediction (contract.md keys).
+///
+/// Cell extensions read here (all optional):
+///   <uncertainty method="linear|montecarlo" stiffness_rel="0.10" position_gain_rel="0.20"
+///                process_halfwidth="0.15" samples="400" seed="20201" source="..."/>
+///   <capability mc_approach_s="2.0" source="..."/>
+
+#include <optional>
+#include <string>
+
+#include "compensator/precision/prediction.hpp"
+#include "plugin/api/hole_input.hpp"
+#include "plugin/api/json.hpp"
+
+namespace roprec::api {
+
+struct PredictionContext {
+  CellSpec cell;
+  Robot robot;
+  nc::ToolAttachment tool;
+  std::optional<ProcessSpec> process;
+  std::string process_description;
+  JobHoles job;
+  PredictionModel model;
+  std::optional<std::array<int, 3>> fanuc_turn_axes;  ///< cell <controller fanuc_turn_axes>
+};
+
+/// `uncertainty_override`: "linear" / "montecarlo" from the command line (empty: the cell's).
+PredictionContext loadPredictionContext(const std::string& cell_path, const std::string& job_path,
+                                        const std::optional<std::string>& hole_list,
+                                        const std::string& uncertainty_override, double match_tol_mm = 0.5,
+                                        bool load_holes = true);
+
+/// Per-hole JSON object (contract keys + details).
+Json holeJson(const HolePrediction& h, const HoleRequest& r);
+Json summaryJson(const CapabilitySummary& s);
+std::string uncertaintyMethodText(const UncertaintyInputs& u);
+
+}  // namespace roprec::api

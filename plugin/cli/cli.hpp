@@ -1,0 +1,91 @@
+#pragma once
+/// \file cli.hpp
+/// Command-line plumbing: option parsing and the command registry. Every `plugin/cmd_*.cpp`
+/// registers one command with a static `CommandRegistration`, so commands are added without
+/// touching a shared table.
+
+#include <Eigen/Core>
+#include <functional>
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "compensator/support/rotation.hpp"
+
+namespace roprec::api {}
+namespace roprec::cli {
+
+// The CLI is parsing and printing over the host-facing job API.
+using namespace roprec::api;  // NOLINT(google-build-using-namespace)
+
+
+/// Options are consumed as commands ask for them; `finish()` rejects anything left over.
+class Args {
+ public:
+  explicit Args(std::vector<std::string> tokens);
+
+  /// `--name VALUE` or `--name=VALUE`; the last occurrence wins.
+  std::optional<std::string> option(const std::string& name);
+  /// `--name` present.
+  bool flag(const std::string& name);
+  /// Remaining non-option tokens, in order (call after every option/flag was read).
+  std::vector<std::string> positionals();
+  /// Throws UsageError naming the first unknown option.
+  void finish();
+
+ private:
+  std::vector<std::string> tokens_;
+  std::vector<bool> used_;
+};
+
+/// Parses n whitespace-separated finite numbers; UsageError names `what` on failure.
+Eigen::VectorXd parseNumberList(const std::string& text, int n, const std::string& what);
+/// `--joints "j1 .. j6"` (deg) -> rad.
+Eigen::Matrix<double, 6, 1> parseJointsDeg(const std::string& text);
+/// `--pose "x y z qw qx qy qz"` (mm, unit quaternion) -> SI pose. The quaternion must be
+/// unit within 1e-6 (it is then normalised).
+Pose parsePoseQuat(const std::string& text);
+/// `--xyzabc "x y z a b c"` (mm, deg, KUKA Z-Y'-X'') -> SI pose; `what` names the option in errors.
+Pose parsePoseXyzAbc(const std::string& text, const std::string& what = "--xyzabc (x y z a b c)");
+
+struct CommandContext {
+  std::ostream& out;
+  std::ostream& err;
+  bool quiet{false};
+  bool stderr_is_tty{false};
+};
+
+struct Command {
+  std::string name;
+  std::string summary;  ///< one line for `roprec --help`
+  std::string usage;    ///< full text for `roprec NAME --help`
+  int order{100};       ///< position in the help listing
+  std::function<int(Args&, CommandContext&)> run;
+};
+
+/// Writes a progress line to stderr when it is a terminal and not --quiet.
+class Progress {
+ public:
+  Progress(CommandContext& ctx, const std::string& what, size_t total);
+  void step(size_t done);
+  void finish();
+
+ private:
+  CommandContext& ctx_;
+  std::string what_;
+  size_t total_;
+  bool active_;
+  size_t last_{0};
+};
+
+std::vector<Command>& commandRegistry();
+
+struct CommandRegistration {
+  explicit CommandRegistration(Command c);
+};
+
+/// Writes `text` to `path` atomically, or to ctx.out when path is "-" or empty.
+void emit(CommandContext& ctx, const std::string& path, const std::string& text);
+
+}  // namespace roprec::cli

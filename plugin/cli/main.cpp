@@ -1,0 +1,69 @@
+/// roprec — robot-process precision: predict and compensate where an industrial robot really
+/// drills. This is the command dispatcher; every command lives in plugin/cmd_*.cpp.
+#include <unistd.h>
+
+#include <algorithm>
+#include <exception>
+#include <iostream>
+
+#include "compensator/support/error.hpp"
+#include "plugin/cli/cli.hpp"
+
+namespace {
+
+void printHelp(std::ostream& out) {
+  auto cmds = roprec::cli::commandRegistry();
+  std::sort(cmds.begin(), cmds.end(), [](const auto& a, const auto& b) {
+    return a.order != b.order ? a.order < b.order : a.name < b.name;
+  });
+  out << "roprec — predict and compensate where an industrial robot really drills and mills.\n\n"
+         "usage: roprec COMMAND [options]   (roprec COMMAND --help for details)\n\n"
+         "commands:\n";
+  for (const auto& c : cmds) {
+    out << "  " << c.name << std::string(c.name.size() < 12 ? 12 - c.name.size() : 1, ' ') << c.summary
+        << "\n";
+  }
+  out << "\nUnits: mm and degrees in files and on the command line, SI inside, µm in reports.\n"
+         "Exit codes: 0 done; 1 some items could not be handled (listed); 2 bad usage or input.\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<std::string> tokens(argv + 1, argv + argc);
+  if (tokens.empty() || tokens[0] == "--help" || tokens[0] == "-h" || tokens[0] == "help") {
+    printHelp(std::cout);
+    return tokens.empty() ? 2 : 0;
+  }
+  if (tokens[0] == "--version") {
+    std::cout << "roprec 0.1.0\n";
+    return 0;
+  }
+  const std::string name = tokens[0];
+  tokens.erase(tokens.begin());
+  const auto& reg = roprec::cli::commandRegistry();
+  const auto it = std::find_if(reg.begin(), reg.end(), [&](const auto& c) { return c.name == name; });
+  if (it == reg.end()) {
+    std::cerr << "roprec: error: unknown command '" << name << "' (roprec --help lists them)\n";
+    return 2;
+  }
+  if (std::find(tokens.begin(), tokens.end(), "--help") != tokens.end()) {
+    std::cout << it->usage;
+    return 0;
+  }
+  roprec::cli::Args args(tokens);
+  roprec::cli::CommandContext ctx{std::cout, std::cerr, false, ::isatty(2) != 0};
+  ctx.quiet = args.flag("quiet");
+  try {
+    return it->run(args, ctx);
+  } catch (const roprec::InputError& e) {
+    std::cerr << "roprec: error: " << e.what() << "\n";
+    return 2;
+  } catch (const roprec::UsageError& e) {
+    std::cerr << "roprec: error: " << e.what() << " (roprec " << name << " --help)\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "roprec: error: " << e.what() << "\n";
+    return 2;
+  }
+}
