@@ -1,0 +1,166 @@
+#pragma once
+/// \file job.hpp
+/// The host-facing job API: a cell + a program (or a hole list) + options in, predictions,
+/// compensations and the files a host writes out. Everything the `roprec predict` and
+/// `roprec compensate` commands do, with no argument parsing and no printing; the CLI, the C ABI
+/// (`plugin/c/roprec.h`) and the Python module are thin layers over it.
+///
+/// Units: SI inside every struct (m, rad, N); files and JSON in mm, deg, µm (docs/contract.md).
+/// Errors: bad input throws roprec::InputError (`FILE:LINE: what`) or roprec::UsageError; a hole
+/// that cannot be handled is a per-hole status, never an exception.
+/// Thread safety: the functions here share no state; distinct jobs may run on distinct threads.
+
+#include <array>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "compensator/compensation/compensation.hpp"
+#include "compensator/compensation/milling_compensation.hpp"
+#include "compensator/precision/prediction.hpp"
+#include "plugin/api/json.hpp"
+#include "plugin/api/prediction_setup.hpp"
+
+namespace roprec::api {
+
+/// The library version ("0.2.0").
+const char* version();
+
+/// Called after each hole with (done, total); may be empty.
+using ProgressFn = std::function<void(size_t, size_t)>;
+
+/// How a job's holes are read.
+struct JobOptions {
+  std::optional<std::string> holes;   ///< hole-list CSV matched to the program's holes
+  double match_tol_mm{0.5};           ///< position match when ids differ, mm
+  std::string uncertainty;            ///< "" (the cell's), "linear" or "montecarlo"
+  std::optional<std::array<int, 3>> fanuc_turn_axes;  ///< overrides the cell's <controller>
+};
+
+// ---------------------------------------------------------------- predict
+
+struct PredictionResult {
+  PredictionContext context;              ///< cell, robot, job holes, model
+  std::vector<HolePrediction> holes;      ///< one per context.job.requests entry
+  CapabilitySummary summary;
+  /// Holes whose status is not kOk.
+  [[nodiscard]] int failed() const;
+};
+
+/// Predicts every hole of `program` (each seeded with the previous admissible solution, or with
+/// the request's own `ik_seed`). Throws InputError/UsageError on bad input.
+PredictionResult predictJob(const std::string& cell_path, const std::string& program_path,
+                            const JobOptions& options = {}, const ProgressFn& progress = {});
+
+/// The prediction JSON of the file contract (docs/contract.md "Prediction output").
+Json predictionJson(const PredictionResult& r);
+/// The self-contained HTML report of a prediction.
+std::string predictionReport(const PredictionResult& r);
+
+// ---------------------------------------------------------------- compensate
+
+struct CompensationJob {
+  JobOptions job;
+  CompensationOptions options;            ///< orientation mode, grid, wrist margin, jumps
+  bool allow_partial{false};              ///< keep the original targets of failed holes
+};
+
+/// Drilling-job compensation: per hole the compensated target; the edited program (every target
+/// of a drill cycle moves with its drill point) in `context.job.program`.
+struct CompensationResult {
+  PredictionContext context;
+  std::vector<HoleCompensation> holes;
+  CompensationStats stats;
+  std::vector<std::string> refused;       ///< target edits the dialect writer refused
+  int failed{0};                          ///< holes not compensated
+  /// Statistics of the run (µm; counts) for a summary.
+  struct Stats {
+    std::vector<double> error_before_um;  ///< position error ⊥ axis of every predicted hole
+    std::vector<double> residual_after_um;
+    int conform_before{0};
+    int conform_after{0};
+    int jumps_before{0};                  ///< axis-4/6 jumps > threshold between holes of a face
+    int jumps_after{0};
+  } summary;
+  /// True when the program may be written: nothing failed (or allow_partial) and no edit refused
+  /// (or allow_partial).
+  bool writable{false};
+  std::string why_not_writable;
+};
+
+/// Compensates every hole of a drilling program (a milling cell: see compensateMillingJob).
+/// Throws InputError/UsageError on bad input (a hole list is not a program to rewrite).
+CompensationResult compensateJob(const std::string& cell_path, const std::string& program_path,
+                                 const CompensationJob& job = {}, const ProgressFn& progress = {});
+
+/// The corrected-target export: CSV when `csv`, else JSON (docs/contract.md "Corrected targets").
+std::string compensationTargets(const CompensationResult& r, const std::string& program_path, bool csv);
+/// The compensation report (before/after maps).
+std::string compensationReport(const CompensationResult& r, const std::string& program_path);
+
+/// Milling path compensation (every linear path point, coupled force iteration).
+struct MillingCompensationResult {
+  PredictionContext context;
+  std::vector<int> targets;               ///< program target per point
+  std::vector<Pose> points;               ///< nominal TCP, base frame
+  std::vector<PathPointCompensation> points_comp;
+  std::vector<std::string> failures;      ///< "path point N (FILE:LINE): not compensated: why"
+  std::vector<std::string> refused;
+};
+MillingCompensationResult compensateMillingJob(const std::string& cell_path, const std::string& program_path);
+std::string millingTargetsJson(const MillingCompensationResult& r, const std::string& program_path);
+
+/// True when the cell's process is milling (compensate then runs compensateMillingJob).
+bool cellIsMilling(const std::string& cell_path);
+
+/// Writes the outputs of a compensation all together: the program (and its .dat etc.) to
+/// `program_out`, and each (path, text) of `extra`. Returns the paths written.
+std::vector<std::string> writeCompensatedProgram(PredictionContext& context, const std::string& program_out,
+                                                 const std::vector<std::pair<std::string, std::string>>& extra);
+
+// ---------------------------------------------------------------- one target at a time
+
+/// A cell loaded once for per-target calls (the RoboDK FilterTarget analogue). Not copyable;
+/// not safe for concurrent calls on one session; distinct sessions are independent.
+class Session {
+ public:
+  /// Loads the cell (robot, tool, process, controller). Throws InputError.
+  explicit Session(const std::string& cell_path);
+  ~Session();
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+
+  struct Filtered {
+    bool ok{false};
+    std::string reason;                   ///< why not, when !ok
+    Pose T_programmed{Pose::Identity()};  ///< TCP pose to program, base frame (m)
+    Vec6 joints_controller{Vec6::Zero()}; ///< programmed joints, controller convention, rad
+    std::string config;                   ///< vendor configuration flags of those joints
+    double residual{0};                   ///< |predicted real TCP − wanted|, m
+    HolePrediction before;                ///< prediction of the wanted pose programmed as is
+  };
+  /// The pose to program so that the predicted real TCP lands on `T_W_wanted` (base frame, m)
+  /// under the cell's gravity, tool and process load; orientation kept. `seed_controller` (rad,
+  /// controller convention) picks the IK solution nearest to it; nullptr: the reference pose.
+  Filtered filterTarget(const Pose& T_W_wanted, const Vec6* seed_controller = nullptr);
+
+  struct JointPrediction {
+    bool ok{false};
+    std::string reason;
+    Vec3 d_translation{Vec3::Zero()};     ///< δrobot of the TCP, base frame, m
+    Vec3 d_rotation{Vec3::Zero()};        ///< rotation vector, base frame, rad
+    double U_work{0};                     ///< expanded uncertainty (95 %), m
+    HolePrediction prediction;
+  };
+  /// The predicted TCP deviation at commanded joints (controller convention, rad).
+  JointPrediction predictJoints(const Vec6& joints_controller);
+
+  [[nodiscard]] const PredictionContext& context() const;
+
+ private:
+  struct Impl;
+  Impl* impl_;
+};
+
+}  // namespace roprec::api
