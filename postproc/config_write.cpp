@@ -1,4 +1,4 @@
-/// Writing configuration flags into targets (robot-programs.md §7.4, §9).
+/// Writing configuration flags into targets (docs/programs.md §7.4, §9).
 #include <cmath>
 
 #include "postproc/dialects.hpp"

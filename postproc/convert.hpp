@@ -4,7 +4,7 @@
 /// --to`). Carried: every motion with a Cartesian target (pose in its frame, motion type, linear
 /// speed, exact stop vs approximation), circular motions with their auxiliary point, the base and
 /// tool frames (values where the source resolves them), external axes, and the configuration at
-/// the branch level (robot-programs.md §7.1: shoulder, elbow, wrist → KUKA S bits 0–2 with bit 1 =
+/// the branch level (docs/programs.md §7.1: shoulder, elbow, wrist → KUKA S bits 0–2 with bit 1 =
 /// elbow up (§9 item 2 reading), ABB cfx, FANUC F/N U/D T/B).
 ///
 /// Not carried (reported per item, exit code 1): joint targets into another vendor's dialect

@@ -1,6 +1,6 @@
 #pragma once
 /// \file drill.hpp
-/// Drill-point recognition (robot-programs.md §8.2) and matching to the contract's hole list.
+/// Drill-point recognition (docs/programs.md §8.2) and matching to the contract's hole list.
 ///
 /// A drill cycle is a maximal run of consecutive motions whose Cartesian targets lie on one line
 /// through the first target, along its drilling axis a = R_first · tool_axis (|Δp × a| < line

@@ -1,4 +1,4 @@
-/// KUKA KRL reader (`.src` + `.dat`), robot-programs.md §2.
+/// KUKA KRL reader (`.src` + `.dat`), docs/programs.md §2.
 #include <cmath>
 #include <unordered_map>
 

@@ -493,7 +493,7 @@ Vendor vendorOf(Dialect d) {
 namespace {
 
 // (A, B, C) of R = Rz(A)Ry(B)Rx(C) closest (wrapped, per angle) to `old`; at B = ±90° (gimbal)
-// C keeps its old value and A takes the rest (robot-programs.md §6).
+// C keeps its old value and A takes the rest (docs/programs.md §6).
 Vec3 nearAbc(const Mat3& R, const Vec3& old) {
   auto wrapNear = [&](const Vec3& v) {
     Vec3 o;

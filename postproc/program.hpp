@@ -1,10 +1,10 @@
 #pragma once
 /// \file program.hpp
-/// One model for robot programs of every supported dialect (robot-programs.md): KUKA KRL
+/// One model for robot programs of every supported dialect (docs/programs.md): KUKA KRL
 /// (`.src` + `.dat`), ABB RAPID (`.mod`/`.prg`/`.sys`), FANUC TP ASCII (`.ls`), CSV/JSON target
 /// lists and the contract's hole-list CSV.
 ///
-/// Storage rule (robot-programs.md §1): a program is its files' bytes, kept verbatim, plus an
+/// Storage rule (docs/programs.md §1): a program is its files' bytes, kept verbatim, plus an
 /// index of the tokens the readers found (byte offset, length, kind) and of every line's
 /// terminator. Targets point at the exact byte spans of their numeric fields. An edit replaces
 /// only the bytes of the numeric tokens whose printed value changes, printed in the style of the
@@ -86,7 +86,7 @@ struct NumberField {
 
 enum class Vendor { kNone, kKuka, kAbb, kFanuc };
 
-/// Raw vendor configuration exactly as the program states it (robot-programs.md §2.4, §3.3, §4.5).
+/// Raw vendor configuration exactly as the program states it (docs/programs.md §2.4, §3.3, §4.5).
 struct Configuration {
   Vendor vendor{Vendor::kNone};
   int status{-1};                 ///< KUKA S (-1 = absent)
@@ -98,7 +98,7 @@ struct Configuration {
   std::array<int, 3> turns{0, 0, 0};  ///< FANUC turn digits t1, t2, t3
 
   [[nodiscard]] bool present() const;
-  /// Branch b = 4s + 2e + w of robot-programs.md §7.1 (s = shoulder back, e = elbow down,
+  /// Branch b = 4s + 2e + w of docs/programs.md §7.1 (s = shoulder back, e = elbow down,
   /// w = θ5 < 0). KUKA uses the table's bit-1 = elbow-up reading (§9 item 2, documented).
   [[nodiscard]] std::optional<int> branch() const;
   /// Human-readable: `S 2 T 35`, `[0,0,-2,0]`, `N U T, 0, 0, 0`.
@@ -195,7 +195,7 @@ struct Program {
   std::vector<Unresolved> unresolved;
   std::vector<std::string> notes;
   std::map<std::pair<int, std::uint32_t>, Edit> edits;  ///< pending edits by (file, offset)
-  /// FANUC `$SCR_GRP[1].$TURN_AXIS[1..3]` (1-based joint numbers) when known (robot-programs.md §9.1).
+  /// FANUC `$SCR_GRP[1].$TURN_AXIS[1..3]` (1-based joint numbers) when known (docs/programs.md §9.1 item 1).
   std::optional<std::array<int, 3>> fanuc_turn_axes;
   /// Fewest decimals (mm) a changed position is printed with. 3 keeps the usual OLP style (1 µm);
   /// `roprec compensate` raises it to 5 (0.01 µm) so the written target carries the compensation
@@ -237,7 +237,7 @@ struct EditResult {
 
 /// Replaces target `index`'s pose by T_frame_tcp (SI, same frame as the target) and, when given,
 /// its configuration (raw flags of the target's vendor). Only changed numeric tokens are
-/// re-printed. Refuses (ok = false, program unchanged) rather than guess (robot-programs.md §9):
+/// re-printed. Refuses (ok = false, program unchanged) rather than guess (docs/programs.md §9):
 /// joint targets, targets missing pose components, targets shared by motions with different
 /// tools/frames, FANUC turn digits changed while $TURN_AXIS is unknown, a configuration of
 /// another vendor.
@@ -256,7 +256,7 @@ void writeProgram(const Program& p, const std::string& out_path);
 /// The paths writeProgram(p, out_path) writes.
 std::vector<std::string> outputPaths(const Program& p, const std::string& out_path);
 
-// ---- number style (robot-programs.md §2.9, §3.8, §4.8)
+// ---- number style (docs/programs.md §2.9, §3.8, §4.8)
 
 struct NumberHints {
   int min_decimals{3};       ///< absolute resolution kept for changed values (mm/deg: 3, quaternions: 9)

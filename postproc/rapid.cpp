@@ -1,4 +1,4 @@
-/// ABB RAPID reader (`.mod`, `.prg`, `.sys`), robot-programs.md §3.
+/// ABB RAPID reader (`.mod`, `.prg`, `.sys`), docs/programs.md §3.
 #include <cmath>
 #include <unordered_map>
 

@@ -1,4 +1,4 @@
-/// CSV/JSON target lists and the contract's hole-list CSV (robot-programs.md §5, contract.md).
+/// CSV/JSON target lists and the contract's hole-list CSV (docs/programs.md §5, docs/contract.md §7).
 ///
 /// CSV: a header row, then one target a row; `#` starts a comment line. Column names are matched
 /// case-insensitively after stripping `_mm`, `_deg`, `_frame` suffixes. Orientation columns and

@@ -1,4 +1,4 @@
-/// FANUC TP ASCII reader (`.ls`), robot-programs.md §4.
+/// FANUC TP ASCII reader (`.ls`), docs/programs.md §4.
 #include <cmath>
 #include <unordered_map>
 

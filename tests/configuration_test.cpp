@@ -84,7 +84,7 @@ TEST(Configuration, BranchBitsMatchTheDirectGeometricDefinition) {
 }
 
 TEST(Configuration, Section71TableKukaAndFanucLetters) {
-  // robot-programs.md §7.1: branch → KUKA S (bits 2,1,0) and FANUC letters.
+  // docs/programs.md §7.1: branch → KUKA S (bits 2,1,0) and FANUC letters.
   const int kukaS[8] = {2, 6, 0, 4, 3, 7, 1, 5};
   const char* fanuc[8] = {"F U T", "N U T", "F D T", "N D T", "F U B", "N U B", "F D B", "N D B"};
   int covered = 0;

@@ -14,7 +14,7 @@ DrillingModel model(double D_mm, double f_mm, const DrillingCoefficients& c) {
   return makeDrillingModel(g, c, AngleLaw::kGeometric, f_mm * 1e-3);
 }
 
-// Tungaloy technical reference (2020–21 catalogue p. L068, docs.steelcam.org copy; process.md §2.3),
+// Tungaloy technical reference (2020–21 catalogue p. L068, docs.steelcam.org copy; docs/process.md §3),
 // aluminium 250 MPa / 100 HB, K = 1.01; D mm, f mm/rev. Conventional point, chisel included.
 double tungaloyThrust(double D, double f) { return 570.0 * 1.01 * D * std::pow(f, 0.85); }
 double tungaloyTorque(double D, double f) { return 1.01 * D * D * (0.630 + 16.84 * f) / 100.0; }
@@ -84,7 +84,7 @@ TEST(DrillCalibration, PredictsCatalogueThrustAndTorqueWithinTheDocumentedBand) 
 }
 
 // The second published reference for torque: ISCAR's Mc = f kc D²/8 sin κ / 1000 with a Kienzle
-// kc(h) = kc1.1 h^−mc (process.md §2.3/§3). After calibration on it at Dc 10 / f 0.2 the model
+// kc(h) = kc1.1 h^−mc (docs/process.md §3, §7.5). After calibration on it at Dc 10 / f 0.2 the model
 // follows its feed and diameter trend within ±5 %.
 TEST(DrillCalibration, TorqueFollowsKienzleIscarTrend) {
   auto iscar = [](double D, double f) {

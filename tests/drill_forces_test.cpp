@@ -22,7 +22,7 @@ DrillingModel model(double D_mm, double f_mm, double runout_um = 0) {
   return makeDrillingModel(g, al6061(), AngleLaw::kGeometric, f_mm * 1e-3);
 }
 
-// process.md §3 "Mechanistic §2.3 (lips + chisel)" column: M / F_lips / Fz, ±1 %.
+// docs/process.md §7.5, mechanistic column (lips + chisel): M / F_lips / Fz, ±1 %.
 TEST(DrillForces, MechanisticTableRegression) {
   struct Row {
     double D, f, M, Flips, Fz;
@@ -195,7 +195,7 @@ TEST(DrillForces, PaperModeUnderPredictsInnerLipThrust) {
 namespace roprec {
 namespace {
 
-// Feed absorbed by an axial compliance (process.md §2.1), one root per revolution.
+// Feed absorbed by an axial compliance (docs/process.md §2.1), one root per revolution.
 TEST(DrillAxialCoupling, RigidLimitEqualsTheDepthProfile) {
   const DrillingModel m = model(10, 0.2);
   DrillingData d(m);

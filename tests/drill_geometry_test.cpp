@@ -9,7 +9,7 @@ namespace roprec {
 namespace {
 
 DrillGeometry workedExample() {
-  DrillGeometry g;  // process.md §1.2: Dc 10, 2p 118°, δ0 30°, 2w 1.6 (0.16 Dc), ψ 125°
+  DrillGeometry g;  // docs/process.md §7.1: Dc 10, 2p 118°, δ0 30°, 2w 1.6 (0.16 Dc), ψ 125°
   g.diameter = 10e-3;
   g.point_angle = 118 * kDeg;
   g.helix_angle = 30 * kDeg;
@@ -110,7 +110,7 @@ TEST(DrillGeometry, ChipAreaIdentity) {
   }
 }
 
-// Worked example table of process.md §1.2 (values given to 0.1°) and the §7 regression values.
+// Worked example table of docs/process.md §7.1 (values given to 0.1°) and its regression values.
 TEST(DrillGeometry, WorkedExampleRegression) {
   const DrillGeometry g = workedExample();
   EXPECT_NEAR(g.chiselHalfLength(), 0.977e-3, 0.0005e-3);
@@ -151,7 +151,7 @@ TEST(DrillGeometry, WorkedExampleRegression) {
   }
 }
 
-// Working angle: γne ≈ γn + η_f sin κr / cos λs within 0.05° at f = 0.2 mm (process.md §1.2).
+// Working angle: γne ≈ γn + η_f sin κr / cos λs within 0.05° at f = 0.2 mm (docs/process.md §1.2).
 TEST(DrillGeometry, WorkingRakeApproximation) {
   const DrillGeometry g = workedExample();
   const double f = 0.2e-3;

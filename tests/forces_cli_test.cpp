@@ -21,7 +21,7 @@ TEST(ForcesCli, DrillingSampleCellPrintsThrustTorqueAndFr) {
   EXPECT_EQ(j["process"], "drilling");
   const double thrust = j["steady"]["thrust_N"];
   const double torque = j["steady"]["torque_Nm"];
-  EXPECT_NEAR(thrust, 1542, 1542 * 0.01);  // process.md §3 mechanistic Dc 10 / f 0.2
+  EXPECT_NEAR(thrust, 1542, 1542 * 0.01);  // docs/process.md §7.5 mechanistic Dc 10 / f 0.2
   EXPECT_NEAR(torque, 2.96, 2.96 * 0.01);
   EXPECT_GT(j["steady"]["Fr_N"].get<double>(), 0.0);
   EXPECT_DOUBLE_EQ(j["wrench_tool"]["force_N"][2].get<double>(), -thrust);

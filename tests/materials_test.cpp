@@ -14,7 +14,7 @@ TEST(Materials, RequiredAlloysWithIscarGroupValues) {
     double kc11_N_mm2;
     const char* group;
   };
-  // ISCAR material-group table (process.md §2.3): group 22 800/0.25, 23 and 24 700/0.25.
+  // ISCAR material-group table (docs/process.md §2.3): group 22 800/0.25, 23 and 24 700/0.25.
   const Expect e[] = {{"Al 6061-T6", "Al 6061-T6", 800, "ISCAR 22"},
                       {"6061-t6", "Al 6061-T6", 800, "ISCAR 22"},
                       {"AL7075-T6", "Al 7075-T6", 800, "ISCAR 22"},

@@ -8,7 +8,7 @@ namespace roprec {
 namespace {
 
 MillingCoefficients kienzle800() {
-  MillingCoefficients c;  // process.md §4.2 Kienzle column: kc1.1 800, mc 0.25, Fr = 0.35 Ft
+  MillingCoefficients c;  // docs/process.md §7.6 Kienzle column: kc1.1 800, mc 0.25, Fr = 0.35 Ft
   c.kc11 = 800e6;
   c.mc = 0.25;
   c.radial_ratio = 0.35;
@@ -67,7 +67,7 @@ TEST(Milling, MeanChipThicknessFormulaAndLimits) {
   EXPECT_NEAR(meanChipThickness(fz, immersionAngles(D, ae, MillingMode::kUp)) / (fz * std::sqrt(ae / D)), 1.0, 0.01);
 }
 
-// process.md §4.2, Kienzle column: F̄x / F̄y / peak |F| (N), ±1 % (±1.5 N on small components).
+// docs/process.md §7.6, Kienzle column: F̄x / F̄y / peak |F| (N), ±1 % (±1.5 N on small components).
 TEST(Milling, Section42TableRegression) {
   struct Row {
     MillingMode mode;

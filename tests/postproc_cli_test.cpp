@@ -1,5 +1,5 @@
 // roprec inspect / convert through the CLI: good programs, and bad input -> exit 2 with
-// FILE:LINE and nothing written (contract.md).
+// FILE:LINE and nothing written (docs/contract.md §3).
 #include <gtest/gtest.h>
 
 #include <filesystem>

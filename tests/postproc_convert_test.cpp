@@ -1,5 +1,5 @@
 // Conversion between dialects keeps poses (< 1e-6 mm, < 1e-9 rad), frames and the configuration
-// branch (robot-programs.md §7.1).
+// branch (docs/programs.md §7.1).
 #include <gtest/gtest.h>
 
 #include <random>

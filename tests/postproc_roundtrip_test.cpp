@@ -1,4 +1,4 @@
-// Byte-faithful round trips and the RoboDK corpus (robot-programs.md §1, issue 5 tests).
+// Byte-faithful round trips and the RoboDK corpus (docs/programs.md §1, issue 5 tests).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -93,7 +93,7 @@ TEST(PostprocRoundTrip, IdentityEditIsByteIdentical) {
     (void)edited;
     if (path.find("rapid_drill.mod") != std::string::npos) {
       // pH1's quaternion is not unit (copied from a controller file, |q| - 1 = 4e-7): the writer
-      // normalises it (robot-programs.md §3.3), so exactly those four tokens change.
+      // normalises it (docs/programs.md §3.3), so exactly those four tokens change.
       const Target& h1 = p.targets()[0];
       ASSERT_EQ(h1.name, "pH1");
       EXPECT_GE(p.edits.size(), 1u);

@@ -7,7 +7,7 @@
 namespace roprec {
 namespace {
 
-// Closed forms of robot-programs.md §6 against Eigen's AngleAxis products; seeded.
+// Closed forms of docs/programs.md §6 against Eigen's AngleAxis products; seeded.
 TEST(Rotation, ZyxRoundTripIncludingGimbal) {
   std::mt19937 rng(42);
   std::uniform_real_distribution<double> u(-kPi, kPi);

@@ -2,7 +2,7 @@
 /// \file milling_compensation.hpp
 /// Compensation of a milling path (issue 7 item 5): every path point's target is pre-offset so that
 /// the predicted real tool lands on the nominal path under the milling force, which itself depends
-/// on the deviation (process.md §4.3–4.4). Per point i, in path order:
+/// on the deviation (docs/process.md §4.3–4.4). Per point i, in path order:
 ///   1. θ_d = IK(T_nom,i) (continuity from the previous point);
 ///   2. fixed point on the force: F⁽⁰⁾ = F(fz, ae) nominal; θ_m⁽ᵏ⁾ = θ_d + K⁻¹τ(θ_d; F⁽ᵏ⁾) (exact inverse);
 ///      the coupled iteration of milling.hpp is then run with the compensated robot's compliance

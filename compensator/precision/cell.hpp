@@ -1,6 +1,6 @@
 #pragma once
 /// \file cell.hpp
-/// The cell file (contract.md): robot reference, tool (TCP in the flange frame, mass, centre of
+/// The cell file (docs/contract.md §6): robot reference, tool (TCP in the flange frame, mass, centre of
 /// mass), work object (hole frame in the base frame), process element and default position
 /// tolerance. Files use mm and degrees; everything here is SI.
 

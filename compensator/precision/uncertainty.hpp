@@ -1,6 +1,6 @@
 #pragma once
 /// \file uncertainty.hpp
-/// GUM arithmetic used by the per-hole budget (process.md §5; JCGM 100:2008, ISO 9283,
+/// GUM arithmetic used by the per-hole budget (docs/process.md §5; JCGM 100:2008, ISO 9283,
 /// ISO 14253-1). All values SI (m).
 ///
 /// * ISO 9283 pose repeatability RP = l̄ + 3 S_l of the 3-D distances to the barycentre. For an
@@ -9,7 +9,7 @@
 /// * 2-D radial coverage: the radius r of a zero-mean bivariate normal with covariance Σ
 ///   (eigenvalues λ₁, λ₂) satisfies P(r ≤ R) = (1/2π)∫₀^{2π} [1 − e^{−R² q(φ)/2}] / (√(λ₁λ₂) q(φ)) dφ,
 ///   q(φ) = cos²φ/λ₁ + sin²φ/λ₂; for λ₁ = λ₂ = u² it is Rayleigh, R₉₅ = √(−2 ln 0.05) u = 2.4477 u.
-///   Do not use k = 2 on a radius (process.md §5.1).
+///   Do not use k = 2 on a radius (docs/process.md §5.1).
 
 #include <Eigen/Core>
 

@@ -1,7 +1,7 @@
 #pragma once
 /// \file drill_geometry.hpp
 /// Conventional two-lip twist drill: the cutting-edge geometry as a function of radius
-/// (process.md §1.2) and the edge frame built point by point with unit quaternions (§1.4).
+/// (docs/process.md §1.2) and the edge frame built point by point with unit quaternions (§1.4).
 ///
 /// Tool frame (used everywhere in the process layer):
 ///   z  = drill axis, +z into the workpiece (feed direction); the spindle turns about +z (M03).
@@ -9,14 +9,14 @@
 ///   lip k is lip 1 turned by k·2π/lips about z. "Spindle angle 0" means this placement.
 /// Units: SI (m, rad). Files give mm and degrees (see process_spec.hpp).
 ///
-/// Closed forms for a straight lip (a <= r <= R, a = w / sin ψ) [process.md §1.2, D/L]:
+/// Closed forms for a straight lip (a <= r <= R, a = w / sin ψ) [docs/process.md §1.2, D/L]:
 ///   sin ω = w/r,  tan δ(r) = (r/R) tan δ0,  sin λs = (w/r) sin p,  tan κr = tan p cos ω,
 ///   tan γn = tan δ(r) cos²λs / (sin p cos ω) − cos p tan ω,
 ///   h(r) = (f/2) sin κr  (per lip, two lips),  db = dr / sin κr  ⇒  h·db = (f/2)·dr.
 /// Working angles with feed f: the cutting velocity is v_e = normalize(2πr e_θ + f z) instead of e_θ
 /// (≈ γn + η_f sin κr / cos λs, η_f = atan(f / 2πr)).
 ///
-/// "Paper-compatibility" angle law (Ferreras-Higuero et al. 2020 [P], process.md §1.3):
+/// "Paper-compatibility" angle law (Ferreras-Higuero et al. 2020 [P], docs/process.md §1.3):
 ///   tan γn = (r/R) tan γn0,  tan λs = (r/R) tan λs0,  κr = p, with γn0, λs0 the geometric
 ///   corner values. It disagrees with the geometry near the web (never negative rake); kept only
 ///   as an option.

@@ -1,6 +1,6 @@
 #pragma once
 /// \file drilling_forces.hpp
-/// Mechanistic twist-drill forces (process.md §2.1): specific pressures
+/// Mechanistic twist-drill forces (docs/process.md §2.1): specific pressures
 ///   kst = kst0 (at + bt γn + ct λs)(h/1 mm)^−m,  ksa = ksa0 (aa + ba γn + ca λs)(h/1 mm)^−m
 /// integrated along each lip by Gauss–Legendre on [r_in, r_out] (a ≤ r_in < r_out ≤ R):
 ///   Ft,k = ∫ kst h dr/sin κr,  Fa,k = ∫ ksa h dr/sin κr,  Frad,k = ∫ ksa h dr/(sin κr tan κr),
@@ -124,7 +124,7 @@ struct DepthSample {
 std::vector<DepthSample> drillingDepthProfile(const DrillingModel& model, DrillingData& data, double feed,
                                               double hole_depth, bool through, double step);
 
-/// Feed absorbed by the robot's axial compliance during the cut (process.md §2.1, the drilling
+/// Feed absorbed by the robot's axial compliance during the cut (docs/process.md §2.1, the drilling
 /// analogue of the milling correction). Quasi-static, one step per spindle revolution k:
 ///   f_k = f − (δ_k − δ_{k−1}),  z_k = z_{k−1} + f_k,  δ_k = c_z · Fz(z_k, f_k)
 /// (δ = axial deflection of the TCP against the feed [m], c_z = axial compliance [m/N]). Each
@@ -145,7 +145,7 @@ std::vector<AxialCouplingSample> drillingAxialCoupling(const DrillingModel& mode
                                                        double hole_depth, bool through, double axial_compliance,
                                                        double tolerance = 0.1e-6, int max_iterations = 100);
 
-/// Single-test calibration (process.md §2.3): all forces are linear in kst0 (torque) and ksa0
+/// Single-test calibration (docs/process.md §2.3): all forces are linear in kst0 (torque) and ksa0
 /// (thrust, including a chisel proportional to ksa0), so one measured (Fz, M) at one diameter
 /// and feed fixes both in closed form: kst0' = kst0 · M_meas / M_model, ksa0' = ksa0 · Fz_meas / Fz_model.
 struct DrillingCalibration {

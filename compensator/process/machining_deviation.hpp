@@ -1,7 +1,7 @@
 #pragma once
 /// \file machining_deviation.hpp
 /// Machining deviation δmach of a drilled hole's axis (position at the evaluation depth) and its
-/// uncertainty components, for the budget δwork = δrobot + δmach (process.md §5).
+/// uncertainty components, for the budget δwork = δrobot + δmach (docs/process.md §5.7).
 ///
 /// Three terms, all half-widths `a` at the hole, in the tool's XY plane:
 ///   δaxis    tool-axis deviation: the drill axis deviates from the programmed hole axis by up to θa;
@@ -15,7 +15,7 @@
 ///              a = Fr · (L³ / (3 E I_e) + c_s),  I_e = π d_e⁴ / 64.
 ///            The force rotates with the spindle: arcsine, u = a/√2.
 /// Combined (independent, unit sensitivity): u_c = √(Σ u_i²); expanded U = k u_c with k = 2
-/// (≈ 95 %, 1-D normal; for the 2-D radius use the factor 2.448 of process.md §5.1).
+/// (≈ 95 %, 1-D normal; for the 2-D radius use the factor 2.448 of docs/process.md §5.1).
 ///
 /// The three terms are zero-mean; the systematic part δmach = (L³/(3 E I_e) + c_s)·F_xy,static
 /// comes only from a static in-plane force on the tool (e.g. a `wrench` process), in the tool frame.

@@ -9,7 +9,7 @@ namespace {
 
 constexpr double kMPa = 1e6;
 
-// Sources (process.md §2.3, §1.5, §4.2).
+// Sources (docs/process.md §2.3, §1.5, §4.2).
 const char* const kIscarGroup22 =
     "ISCAR catalogue material-group table (ISO 513 / VDI 3323), group 22 'Al wrought, hardenable': "
     "kc1.1 = 800 N/mm2, mc = 0.25, 100 HB (docs.steelcam.org copy)";

@@ -1,12 +1,12 @@
 #pragma once
 /// \file materials.hpp
 /// Workpiece materials for the process models: Kienzle constants (milling, and the reference
-/// of the drilling law) and the drilling coefficients of process.md §2.1/§2.3, each number with
+/// of the drilling law) and the drilling coefficients of docs/process.md §2.1/§2.3, each number with
 /// its source (or `estimate: why`).
 ///
-/// Drilling law (process.md §2.1, Ferreras-Higuero et al. form [P]):
+/// Drilling law (docs/process.md §2.1, Ferreras-Higuero et al. form [P]):
 ///   kst = kst0 (at + bt γn + ct λs) (h / 1 mm)^−m,   ksa = ksa0 (aa + ba γn + ca λs) (h / 1 mm)^−m
-/// with γn, λs in rad here (files and the note give bt, ct, ba, ca per degree).
+/// with γn, λs in rad here (files and docs/process.md §2.3 give bt, ct, ba, ca per degree).
 /// Milling (§4.1): Ft = kc1.1 ap (h / 1 mm)^(1−mc) · 1 mm, Fr = cr Ft, Fa = ca Ft.
 /// Units: pressures in Pa (N/m²), i.e. N/mm² × 1e6.
 
@@ -25,7 +25,7 @@ struct SpecificPressure {
   double h_min{5e-6}; ///< chip-thickness floor (≈ edge radius) [m]
 };
 
-/// Chisel-edge thrust (process.md §1.5).
+/// Chisel-edge thrust (docs/process.md §1.5).
 ///   kRatio:    F_ch = thrust_ratio · Fa_lips(engaged), M_ch = torque_ratio · M_lips
 ///              (the §2.3 default 1.2 gives a 55 % chisel share of the thrust).
 ///   kPressure: F_ch = pressure_ratio · ksa0 · a · f  (simple engineering form p_ch a f with

@@ -1,6 +1,6 @@
 #pragma once
 /// \file milling.hpp
-/// Peripheral end milling (process.md §4) and its static coupling with the robot (§4.4).
+/// Peripheral end milling (docs/process.md §4) and its static coupling with the robot (§4.4).
 ///
 /// Milling frame (Altintas convention): X = feed direction; the immersion angle φ is measured
 /// clockwise from +Y (radial unit n(φ) = (sin φ, cos φ, 0)); Z points from the tool tip toward the

@@ -42,7 +42,7 @@ enum class ProcessType { kDrilling, kMilling, kWrench };
 struct DrillingSpec {
   DrillGeometry geometry;
   AngleLaw law{AngleLaw::kGeometric};
-  bool working_angles{true};       ///< build the edge angles with the feed (process.md §1.2)
+  bool working_angles{true};       ///< build the edge angles with the feed (docs/process.md §1.2)
   bool carbide{true};
   double feed{0.2e-3};             ///< f [m/rev]
   double spindle_rpm{3000};

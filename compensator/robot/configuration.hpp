@@ -1,6 +1,6 @@
 #pragma once
 /// \file configuration.hpp
-/// Vendor configuration flags ↔ IK solutions (robot-programs.md §2.4, §3.3, §4.5, §7, §9).
+/// Vendor configuration flags ↔ IK solutions (docs/programs.md §2.4, §3.3, §4.5, §7, §9).
 /// All flags are computed from the joint vector in the controller's own joint convention
 /// (toControllerJoints of the robot card); the branch labels s (shoulder), e (elbow), w (wrist) come
 /// from ikBranch (ik.hpp, §7.1): branch = 4 s + 2 e + w.

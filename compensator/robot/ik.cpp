@@ -206,7 +206,7 @@ void expandTurns(const IkModel& m, const IkSolution& base, const IkOptions& opt,
 Vec6 vendorReferencePose(const RobotCard& card) {
   Vec6 ctrl = Vec6::Zero();
   if (card.vendor == Vendor::kKuka) {
-    // KUKA mechanical reference / elbow-up pose {0, −90°, 90°, 0, 0, 0} (robot-programs.md §7.1).
+    // KUKA mechanical reference / elbow-up pose {0, −90°, 90°, 0, 0, 0} (docs/programs.md §7.1).
     ctrl[1] = -90.0 * kDeg;
     ctrl[2] = 90.0 * kDeg;
   }

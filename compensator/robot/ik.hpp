@@ -5,7 +5,7 @@
 ///
 /// Geometry (Brandstötter, Angerer, Hofbaur, "An analytical solution of the inverse kinematics
 /// problem of industrial serial manipulators with an ortho-parallel basis and a spherical wrist",
-/// Austrian Robotics Workshop 2014 — robot-programs.md [S31]). The model is extracted from the
+/// Austrian Robotics Workshop 2014 — docs/programs.md §10 [S31]). The model is extracted from the
 /// ChainDescription at q = 0 and requires
 ///   * axis 2 ∥ axis 3, both ⊥ axis 1 (the ortho-parallel basis), and
 ///   * axes 4, 5, 6 intersecting in one point, the wrist centre C, with axis 4 ⊥ axis 5 ⊥ axis 6.
@@ -38,7 +38,7 @@
 /// Every returned solution is checked against the exact chain (same product as
 /// chainForwardKinematics): `converged` ⇔ position residual ≤ 1e-9 m and rotation residual ≤ 1e-9 rad.
 ///
-/// Branch labels (robot-programs.md §7.1), computed from the joint vector:
+/// Branch labels (docs/programs.md §7.1), computed from the joint vector:
 ///   shoulder s = 0 (front) / 1 (back): sign of the x-coordinate of C in the frame rotating with axis 1,
 ///                calibrated so that the vendor's reference pose is front;
 ///   elbow    e = 0 (up) / 1 (down): sign of ((P3 − P2) × (C − P3)) · axis2, calibrated so that the

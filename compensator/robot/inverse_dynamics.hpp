@@ -1,7 +1,7 @@
 #pragma once
 /// \file inverse_dynamics.hpp
 /// Inverse dynamics by the virtual power principle on the mixed-natural-coordinate model
-/// (formulation.md §4–§5; García de Jalón & Bayo 1994, velocity transformations):
+/// (docs/model.md §4–§5; García de Jalón & Bayo 1994, velocity transformations):
 ///
 ///   τ = Rᵀ (M q̈ − Q_ext),   q̈ = R z̈ + Sc,
 ///
@@ -15,7 +15,7 @@
 ///
 /// Sign convention: τ_i is the torque the drive of joint i applies to the distal chain about
 /// the joint axis (N m) — the torque needed to hold/move the arm; the wrench is what the
-/// environment exerts ON the TCP, base frame, reference point the TCP (contract.md).
+/// environment exerts ON the TCP, base frame, reference point the TCP (docs/contract.md §2).
 /// Requires nc::solvePosition at z first.
 
 #include "compensator/robot/model.hpp"

@@ -20,7 +20,7 @@ Vec3 perpendicular(const Vec3& u) {
 }
 
 /// Second-moment matrix K (4×4) of a rigid body over [p; d1; d2; d3] with orthonormal local
-/// directions X̄ and the point at the link origin (formulation.md §4):
+/// directions X̄ and the point at the link origin (docs/model.md §4.1):
 ///   K = [m, m aᵀ; m a, J],  m a = X̄ᵀ m ḡ,  J = X̄ᵀ J̄ X̄,  J̄ = ½ tr(I_G) I − I_G + m ḡ ḡᵀ.
 Eigen::Matrix4d secondMoments(double m, const Vec3& com, const Mat3& I_G, const Mat3& Xbar) {
   Eigen::Matrix4d K = Eigen::Matrix4d::Zero();

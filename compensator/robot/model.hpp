@@ -1,12 +1,12 @@
 #pragma once
 /// \file model.hpp
 /// A serial 6R robot in **mixed natural coordinates** (García de Jalón & Bayo 1994; roprec
-/// formulation.md §1–§5): Cartesian points and unit vectors shared at the joints, plus the six
+/// docs/model.md §1–§5): Cartesian points and unit vectors shared at the joints, plus the six
 /// relative joint angles. Immutable `Model` built once from a ChainDescription (+ tool);
 /// per-evaluation scratch in `Data`; algorithms are free functions `f(const Model&, Data&, ...)`
 /// that allocate nothing.
 ///
-/// ## Coordinates (generic serial construction, "variant A" of formulation.md §7.1 generalised)
+/// ## Coordinates (generic serial construction, docs/model.md §1.3, §7.1)
 /// Every moving body i (i = 0..5, the child link of joint i+1) is one point and an orthonormal
 /// triad (u_i, v_i, w_i):
 ///   * p_i, u_i — a point on joint i's axis (the joint frame origin) and the axis; **shared** with
@@ -19,7 +19,7 @@
 /// problem for coplanar directions (small a3 on KUKA arms, pitfall §7.1) and a constant mass
 /// matrix M (§4).
 ///
-/// ## Constraints Φ(q) = 0 (m = 66; catalogue of formulation.md §2)
+/// ## Constraints Φ(q) = 0 (m = 66; catalogue of docs/model.md §2)
 /// Per body i, rows 11·i + …  (body 5: rows 55..59):
 ///   0   v·v − 1                       (C2)
 ///   1   v·u                           (C3, α = 90°)
@@ -29,7 +29,7 @@
 /// Angle rows 60 + i, with a_i = α₁u_{i-1} + α₂v_{i-1} + α₃w_{i-1} fixed in the parent (ground
 /// constant for i = 0) and chosen so that θ⁰ = 0 (θ equals the URDF joint value):
 ///   dot form   (C8)  a·v − cos θ          cross form (C9)  u·(a × v) − sin θ
-/// The form is chosen once per configuration: dot when |sin θ| > √2/2 (formulation.md §2, mbse).
+/// The form is chosen once per configuration: dot when |sin θ| > √2/2 (docs/model.md §2.4).
 ///
 /// ## Leading matrix A = [Φ_q; B] (72×72) and its structured solve
 /// A is block lower-bidiagonal by bodies: body i's rows involve only body i's coordinates, its

@@ -1,7 +1,7 @@
 #pragma once
 /// \file transient.hpp
 /// Transient of a flexible-joint robot under a position servo along a drilling cycle, integrated
-/// with SUNDIALS CVODE (formulation.md §5 "Direct dynamics for CVODE", §6 "Dynamic flexible
+/// with SUNDIALS CVODE (docs/model.md §5.3 "Direct dynamics", §6.5 "Dynamic flexible
 /// joints"; Spong, ASME J. Dyn. Syst. Meas. Control 109:310–319, 1987).
 ///
 /// ## Equations (all link side, SI: rad, rad/s, N m, kg m²)

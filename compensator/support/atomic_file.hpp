@@ -1,7 +1,7 @@
 #pragma once
 /// \file atomic_file.hpp
 /// Outputs are written atomically: a temporary file beside the target, then rename(2), so a
-/// failed run never leaves a partial output (contract.md).
+/// failed run never leaves a partial output (docs/contract.md §4).
 
 #include <string>
 

@@ -2,7 +2,7 @@
 /// \file error.hpp
 /// Errors that reach the user. An InputError names the file, the line (1-based, 0 = unknown)
 /// and optionally the column of what is wrong; the CLI prints
-/// `roprec: error: FILE:LINE[:COL]: message` and exits with code 2 (contract.md).
+/// `roprec: error: FILE:LINE[:COL]: message` and exits with code 2 (docs/contract.md §3).
 
 #include <stdexcept>
 #include <string>

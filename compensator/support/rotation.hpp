@@ -1,7 +1,7 @@
 #pragma once
 /// \file rotation.hpp
 /// Orientation conventions used by roprec and by the robot-program dialects
-/// (robot-programs.md §6). All angles in rad unless the name says `_deg`.
+/// (docs/programs.md §6). All angles in rad unless the name says `_deg`.
 ///
 /// * URDF rpy (fixed axes X, Y, Z):             R = Rz(yaw) Ry(pitch) Rx(roll)
 /// * KUKA A,B,C (intrinsic Z-Y'-X''):           R = Rz(A) Ry(B) Rx(C)

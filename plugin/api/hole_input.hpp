@@ -1,7 +1,7 @@
 #pragma once
 /// \file hole_input.hpp
 /// The holes of a job, from a robot program (any dialect postproc reads: drill cycles recognised
-/// per robot-programs.md §8.2) or from the contract's hole-list CSV, as prediction requests in the
+/// per docs/programs.md §8.2) or from the contract's hole-list CSV, as prediction requests in the
 /// robot base frame.
 ///
 /// Frames: a program target is T_frame_tcp in the program's base frame (KUKA $BASE/BASE_DATA,

@@ -1,4 +1,4 @@
-/// `roprec inspect PROGRAM`: what a robot program contains (contract.md, robot-programs.md).
+/// `roprec inspect PROGRAM`: what a robot program contains (docs/contract.md §11, docs/programs.md).
 #include <cmath>
 #include <sstream>
 
