@@ -115,10 +115,7 @@ PredictionData::PredictionData(const PredictionModel& m) : nc(m.model), rng(m.un
 Vec6 controllerOffset(const PredictionModel& m, nc::Data& data, const Vec6& theta) {
   if (!m.controller_gravity) return Vec6::Zero();
   // The calibration model has the same chain (same coordinates), so the scratch can be shared.
-  nc::solvePosition(m.calibration_model, data, theta, nc::Guess::kClosedForm);
-  nc::Loads g;
-  const Vec6 tau = nc::staticTorques(m.calibration_model, data, g);
-  return tau.cwiseQuotient(m.compliance.effective());
+  return nc::gravityCommandOffset(m.calibration_model, data, m.compliance, theta);
 }
 
 const ProcessAtDiameter* processFor(const PredictionModel& m, double diameter) {
@@ -163,7 +160,7 @@ HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const Ho
 
   // 1. IK for the flange
   const Pose T_W_flange = h.T_W_tcp * m.model.T_L6_tcp.inverse() * m.model.T_L6_flange;
-  const Vec6 ref = seed ? *seed : m.reference_pose;
+  const Vec6 ref = h.ik_seed ? *h.ik_seed : seed ? *seed : m.reference_pose;
   bool found = false;
   IkSolution sol;
   if (h.config) {

@@ -1,7 +1,7 @@
 #pragma once
 /// \file prediction.hpp
 /// Per-hole prediction: where the robot really drills, with what uncertainty, and whether the
-/// hole meets its position tolerance (Ferreras-Higuero et al., RCIM 2020; process.md §5).
+/// hole meets its position tolerance (Ferreras-Higuero et al., RCIM 2020; docs/process.md §5).
 ///
 /// For a programmed hole (TCP pose T_W_tcp at the drill point, tool +z = drilling direction):
 ///  1. IK: the solution the program's configuration selects; without one (hole lists) the
@@ -19,7 +19,7 @@
 ///     u_axis, u_runout, u_deftool from the process. u_robot² = u_robpos² + u_robdef²,
 ///     u_mach² = Σ process terms, u_work² = u_robot² + u_mach². Expanded with the 2-D radial
 ///     coverage factor k = 2.4477 (95 %, Rayleigh): U_work = √(U_robot² + U_mach²).
-///  6. Verdict (ISO 14253-1 guard band, position ⌀t, process.md §5.4):
+///  6. Verdict (ISO 14253-1 guard band, position ⌀t, docs/process.md §5.4):
 ///       conforms                     e + U_work ≤ t/2
 ///       conforms-after-compensation  U_work ≤ t/2 < e + U_work  (systematic part too large)
 ///       does-not-conform             U_work > t/2                (scatter alone too large)
@@ -127,6 +127,9 @@ struct HoleRequest {
   /// The nominal hole (hole list): a point on its axis and the drilling direction, base frame.
   /// When given, the prediction also reports the real drill point's distance from that axis.
   std::optional<std::pair<Vec3, Vec3>> nominal_axis;
+  /// Joints (URDF convention, rad) the IK choice of a hole without a configuration is nearest
+  /// to; overrides the sequence's continuity seed (a host's approximate joints).
+  std::optional<Vec6> ik_seed;
 };
 
 enum class HoleStatus { kOk, kUnreachable, kSingular, kNotConverged };

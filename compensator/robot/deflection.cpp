@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "compensator/support/error.hpp"
+
 namespace roprec::nc {
 
 Vec6 JointCompliance::effective() const {
@@ -18,6 +20,22 @@ JointCompliance complianceFromCard(const RobotCard& card) {
     if (j.position_gain && j.velocity_gain) c.k_servo[i] = *j.position_gain * *j.velocity_gain;
   }
   return c;
+}
+
+JointCompliance requireComplianceFromCard(const RobotCard& card) {
+  for (const JointCard& j : card.joints) {
+    if (!(j.stiffness > 0)) {
+      throw InputError(card.file, j.line,
+                       "joint '" + j.name + "' has no stiffness: give it in the robot card or with --stiffness \"k1 .. k6\"");
+    }
+  }
+  return complianceFromCard(card);
+}
+
+Vec6 gravityCommandOffset(const Model& calibration_model, Data& data, const JointCompliance& c, const Vec6& theta) {
+  solvePosition(calibration_model, data, theta, Guess::kClosedForm);
+  const Loads gravity_only;
+  return staticTorques(calibration_model, data, gravity_only).cwiseQuotient(c.effective());
 }
 
 namespace {

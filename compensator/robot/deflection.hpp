@@ -1,7 +1,7 @@
 #pragma once
 /// \file deflection.hpp
 /// Static deviation of a robot with flexible joints and a finite servo gain, and its exact
-/// inverse (the explicit compensation primitive). formulation.md §6, contract.md "Deviation".
+/// inverse (the explicit compensation primitive). docs/model.md §6, docs/contract.md §2.
 ///
 /// Joint i is a torsional spring between the motor-side angle θ_m,i (what the controller
 /// commands, link side) and the link-side angle θ_i the geometry sees:
@@ -69,6 +69,18 @@ Deflection predictDeflection(const Model& model, Data& data, const JointComplian
 /// Explicit inverse: the command θ_m = θ_d + τ(θ_d)/k_eff that makes the link side reach θ_d.
 Vec6 compensateCommand(const Model& model, Data& data, const JointCompliance& c,
                        const Vec6& theta_d, const Loads& loads);
+
+/// The command offset a gravity-compensating controller adds (robot card / cell <controller
+/// gravity_compensated>): Δθ = K_eff⁻¹ τ_g,cal(θ), with τ_g,cal the static gravity torques of
+/// `calibration_model` (the links + the load the controller was calibrated for) at θ (rad).
+/// `data` may be the scratch of any model of the same chain. Non-convergence of the position
+/// problem is not expected here (closed form); the torques are then those of the last iterate.
+Vec6 gravityCommandOffset(const Model& calibration_model, Data& data, const JointCompliance& c, const Vec6& theta);
+
+/// complianceFromCard, but every joint must have a stiffness: throws InputError naming the card
+/// line of the first joint without one.
+JointCompliance requireComplianceFromCard(const RobotCard& card);
+
 
 /// Joint-space stiffness term of the deflected configuration: ∂τ/∂θ by central differences
 /// (6 extra static evaluations). Used by the Newton fallback and by linearised uncertainty.

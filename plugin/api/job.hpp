@@ -53,11 +53,6 @@ struct PredictionResult {
 PredictionResult predictJob(const std::string& cell_path, const std::string& program_path,
                             const JobOptions& options = {}, const ProgressFn& progress = {});
 
-/// The prediction JSON of the file contract (docs/contract.md "Prediction output").
-Json predictionJson(const PredictionResult& r);
-/// The self-contained HTML report of a prediction.
-std::string predictionReport(const PredictionResult& r);
-
 // ---------------------------------------------------------------- compensate
 
 struct CompensationJob {
@@ -72,6 +67,7 @@ struct CompensationResult {
   PredictionContext context;
   std::vector<HoleCompensation> holes;
   CompensationStats stats;
+  std::string orientation;                ///< "keep", "flip-free" or "stiffest"
   std::vector<std::string> refused;       ///< target edits the dialect writer refused
   int failed{0};                          ///< holes not compensated
   /// Statistics of the run (µm; counts) for a summary.
@@ -94,11 +90,6 @@ struct CompensationResult {
 CompensationResult compensateJob(const std::string& cell_path, const std::string& program_path,
                                  const CompensationJob& job = {}, const ProgressFn& progress = {});
 
-/// The corrected-target export: CSV when `csv`, else JSON (docs/contract.md "Corrected targets").
-std::string compensationTargets(const CompensationResult& r, const std::string& program_path, bool csv);
-/// The compensation report (before/after maps).
-std::string compensationReport(const CompensationResult& r, const std::string& program_path);
-
 /// Milling path compensation (every linear path point, coupled force iteration).
 struct MillingCompensationResult {
   PredictionContext context;
@@ -109,7 +100,6 @@ struct MillingCompensationResult {
   std::vector<std::string> refused;
 };
 MillingCompensationResult compensateMillingJob(const std::string& cell_path, const std::string& program_path);
-std::string millingTargetsJson(const MillingCompensationResult& r, const std::string& program_path);
 
 /// True when the cell's process is milling (compensate then runs compensateMillingJob).
 bool cellIsMilling(const std::string& cell_path);
@@ -119,48 +109,7 @@ bool cellIsMilling(const std::string& cell_path);
 std::vector<std::string> writeCompensatedProgram(PredictionContext& context, const std::string& program_out,
                                                  const std::vector<std::pair<std::string, std::string>>& extra);
 
-// ---------------------------------------------------------------- one target at a time
-
-/// A cell loaded once for per-target calls (the RoboDK FilterTarget analogue). Not copyable;
-/// not safe for concurrent calls on one session; distinct sessions are independent.
-class Session {
- public:
-  /// Loads the cell (robot, tool, process, controller). Throws InputError.
-  explicit Session(const std::string& cell_path);
-  ~Session();
-  Session(const Session&) = delete;
-  Session& operator=(const Session&) = delete;
-
-  struct Filtered {
-    bool ok{false};
-    std::string reason;                   ///< why not, when !ok
-    Pose T_programmed{Pose::Identity()};  ///< TCP pose to program, base frame (m)
-    Vec6 joints_controller{Vec6::Zero()}; ///< programmed joints, controller convention, rad
-    std::string config;                   ///< vendor configuration flags of those joints
-    double residual{0};                   ///< |predicted real TCP − wanted|, m
-    HolePrediction before;                ///< prediction of the wanted pose programmed as is
-  };
-  /// The pose to program so that the predicted real TCP lands on `T_W_wanted` (base frame, m)
-  /// under the cell's gravity, tool and process load; orientation kept. `seed_controller` (rad,
-  /// controller convention) picks the IK solution nearest to it; nullptr: the reference pose.
-  Filtered filterTarget(const Pose& T_W_wanted, const Vec6* seed_controller = nullptr);
-
-  struct JointPrediction {
-    bool ok{false};
-    std::string reason;
-    Vec3 d_translation{Vec3::Zero()};     ///< δrobot of the TCP, base frame, m
-    Vec3 d_rotation{Vec3::Zero()};        ///< rotation vector, base frame, rad
-    double U_work{0};                     ///< expanded uncertainty (95 %), m
-    HolePrediction prediction;
-  };
-  /// The predicted TCP deviation at commanded joints (controller convention, rad).
-  JointPrediction predictJoints(const Vec6& joints_controller);
-
-  [[nodiscard]] const PredictionContext& context() const;
-
- private:
-  struct Impl;
-  Impl* impl_;
-};
-
 }  // namespace roprec::api
+
+#include "plugin/api/exports.hpp"  // IWYU pragma: export
+#include "plugin/api/session.hpp"  // IWYU pragma: export

@@ -77,7 +77,7 @@ PredictionContext loadPredictionContext(const std::string& cell_path, const std:
   }
   if (load_holes) {
     c.job = loadJobHoles(job_path, c.cell, c.robot, hole_list, match_tol_mm);
-  } else {
+  } else if (!job_path.empty()) {
     c.job.path = job_path;
     c.job.program = postproc::readProgram(job_path);
   }

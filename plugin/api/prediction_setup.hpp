@@ -2,7 +2,7 @@
 /// \file prediction_setup.hpp
 /// Everything `roprec predict` and `roprec compensate` share: the cell (robot, tool, process,
 /// tolerance, <uncertainty>, <capability>), the job's holes, the prediction model, and the JSON
-/// of a prediction (contract.md keys).
+/// of a prediction (docs/contract.md §9 keys).
 ///
 /// Cell extensions read here (all optional):
 ///   <uncertainty method="linear|montecarlo" stiffness_rel="0.10" position_gain_rel="0.20"
@@ -30,6 +30,8 @@ struct PredictionContext {
 };
 
 /// `uncertainty_override`: "linear" / "montecarlo" from the command line (empty: the cell's).
+/// `load_holes` false: the program is read (not its holes); an empty `job_path` then loads the
+/// cell alone (per-target sessions).
 PredictionContext loadPredictionContext(const std::string& cell_path, const std::string& job_path,
                                         const std::optional<std::string>& hole_list,
                                         const std::string& uncertainty_override, double match_tol_mm = 0.5,

@@ -126,16 +126,17 @@ void emit(CommandContext& ctx, const std::string& path, const std::string& text)
 }
 
 Progress::Progress(CommandContext& ctx, const std::string& what, size_t total)
-    : ctx_(ctx), what_(what), total_(total), active_(ctx.stderr_is_tty && !ctx.quiet && total >= 50) {}
+    : ctx_(ctx), what_(what), total_(total), active_(ctx.stderr_is_tty && !ctx.quiet) {}
 
-void Progress::step(size_t done) {
-  if (!active_ || (done - last_ < total_ / 50 && done != total_)) return;
+void Progress::step(size_t done, size_t total) {
+  if (total > 0) total_ = total;
+  if (!active_ || total_ < 50 || (done - last_ < total_ / 50 && done != total_)) return;
   last_ = done;
   ctx_.err << "\r" << what_ << " " << done << "/" << total_ << std::flush;
 }
 
 void Progress::finish() {
-  if (active_) ctx_.err << "\r" << std::string(what_.size() + 24, ' ') << "\r" << std::flush;
+  if (active_ && last_ > 0) ctx_.err << "\r" << std::string(what_.size() + 24, ' ') << "\r" << std::flush;
 }
 
 }  // namespace roprec::cli

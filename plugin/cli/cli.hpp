@@ -67,8 +67,9 @@ struct Command {
 /// Writes a progress line to stderr when it is a terminal and not --quiet.
 class Progress {
  public:
+  /// `total` 0: given with each step.
   Progress(CommandContext& ctx, const std::string& what, size_t total);
-  void step(size_t done);
+  void step(size_t done, size_t total = 0);
   void finish();
 
  private:

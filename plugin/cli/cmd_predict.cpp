@@ -6,11 +6,32 @@
 #include "compensator/support/error.hpp"
 #include "plugin/cli/cli.hpp"
 #include "plugin/api/json.hpp"
-#include "plugin/api/prediction_setup.hpp"
-#include "plugin/api/report.hpp"
+#include "plugin/api/job.hpp"
 
 namespace roprec::cli {
 namespace {
+
+void printSummary(CommandContext& ctx, const PredictionResult& r) {
+  const CapabilitySummary& sum = r.summary;
+  ctx.err << "roprec predict: " << sum.holes << " holes: " << sum.conforms << " conform, "
+          << sum.conforms_after_compensation << " conform after compensation, " << sum.does_not_conform
+          << " do not conform, " << (sum.unreachable + sum.singular + sum.not_converged) << " not handled\n";
+  ctx.err << "  the robot can take " << sum.robot_can_take << " holes = " << formatNumber(sum.mc_time_taken, 0)
+          << " s of machining-center time (of " << formatNumber(sum.mc_time_total, 0) << " s)\n";
+  double mx = 0;
+  double mean = 0;
+  int n = 0;
+  for (const HolePrediction& h : r.holes) {
+    if (!h.nominal_axis_error) continue;
+    mx = std::max(mx, *h.nominal_axis_error);
+    mean += *h.nominal_axis_error;
+    ++n;
+  }
+  if (n > 0) {
+    ctx.err << "  real drill points from the nominal hole axes: mean " << formatNumber(mean / n * 1e6, 3)
+            << " µm, max " << formatNumber(mx * 1e6, 3) << " µm (" << n << " holes)\n";
+  }
+}
 
 int run(Args& args, CommandContext& ctx) {
   const auto cell = args.option("cell");
@@ -23,97 +44,28 @@ int run(Args& args, CommandContext& ctx) {
   args.finish();
   if (!cell) throw UsageError("give --cell CELL.xml");
   if (pos.size() != 1) throw UsageError("give exactly one PROGRAM_OR_HOLES file");
-  const double tol = match_tol ? parseNumberList(*match_tol, 1, "--match-tol (mm)")[0] : 0.5;
-  const PredictionContext c = loadPredictionContext(*cell, pos[0], holes, uncertainty.value_or(""), tol);
+  JobOptions opt;
+  opt.holes = holes;
+  opt.uncertainty = uncertainty.value_or("");
+  if (match_tol) opt.match_tol_mm = parseNumberList(*match_tol, 1, "--match-tol (mm)")[0];
 
-  PredictionData data(c.model);
-  std::vector<HolePrediction> preds;
-  preds.reserve(c.job.requests.size());
-  Progress progress(ctx, "predicting holes", c.job.requests.size());
-  std::optional<nc::Vec6> prev;
-  for (size_t i = 0; i < c.job.requests.size(); ++i) {
-    preds.push_back(predictHole(c.model, data, c.job.requests[i], prev ? &*prev : nullptr));
-    if (preds.back().status == HoleStatus::kOk) prev = preds.back().joints;
-    progress.step(i + 1);
-  }
+  Progress progress(ctx, "predicting holes", 0);
+  const PredictionResult r = predictJob(*cell, pos[0], opt, [&](size_t done, size_t total) { progress.step(done, total); });
   progress.finish();
-  const CapabilitySummary sum = summarize(preds);
+  const std::string json = predictionJson(r).dump();
+  if (report_out) writeFileAtomic(*report_out, predictionReport(r));
+  emit(ctx, json_out.value_or(""), json);
 
-  Json root = Json::object();
-  root.set("robot", Json::str(c.robot.card.name));
-  root.set("cell", Json::str(c.cell.name));
-  root.set("program", Json::str(std::filesystem::path(pos[0]).filename().string()));
-  root.set("process", Json::str(c.process_description));
-  Json u = Json::object();
-  u.set("method", Json::str(uncertaintyMethodText(c.model.uncertainty)));
-  u.set("stiffness_rel", Json::number(c.model.uncertainty.stiffness_rel, 4));
-  u.set("position_gain_rel", Json::number(c.model.uncertainty.position_gain_rel, 4));
-  u.set("process_halfwidth", Json::number(c.model.uncertainty.process_halfwidth, 4));
-  u.set("coverage", Json::str("2-D radial 95 % (Rayleigh), k = 2.4477"));
-  u.set("source", Json::str(c.model.uncertainty.source));
-  root.set("uncertainty_inputs", u);
-  Json notes = Json::array();
-  for (const auto& n : c.job.notes) notes.push(Json::str(n));
-  root.set("notes", notes);
-  Json hs = Json::array();
-  for (size_t i = 0; i < preds.size(); ++i) hs.push(holeJson(preds[i], c.job.requests[i]));
-  root.set("holes", hs);
-  root.set("summary", summaryJson(sum));
-
-  if (report_out) {
-    ReportInput in;
-    in.title = "roprec prediction — " + std::filesystem::path(pos[0]).filename().string();
-    in.robot = c.robot.card.name + (c.robot.card.model.empty() ? "" : " (" + vendorName(c.robot.card.vendor) + " " + c.robot.card.model + ")");
-    in.cell = c.cell.name + " (" + c.cell.file + ")";
-    in.program = pos[0];
-    in.process = c.process_description;
-    in.uncertainty_method = uncertaintyMethodText(c.model.uncertainty);
-    in.uncertainty_source = c.model.uncertainty.source;
-    in.default_tolerance_mm = c.cell.tolerance_mm;
-    in.summary = sum;
-    for (size_t i = 0; i < preds.size(); ++i) {
-      ReportHole rh;
-      rh.prediction = &preds[i];
-      rh.T_W_tcp = c.job.requests[i].T_W_tcp;
-      in.holes.push_back(rh);
-    }
-    writeFileAtomic(*report_out, renderReport(in));
+  for (size_t i = 0; i < r.holes.size(); ++i) {
+    const HolePrediction& h = r.holes[i];
+    if (h.status == HoleStatus::kOk || ctx.quiet) continue;
+    const HoleRequest& q = r.context.job.requests[i];
+    ctx.err << "roprec: hole " << h.id;
+    if (q.line > 0) ctx.err << " (" << pos[0] << ":" << q.line << ")";
+    ctx.err << ": " << verdictName(h.verdict) << ": " << h.reason << "\n";
   }
-  emit(ctx, json_out.value_or(""), root.dump());
-
-  int failed = 0;
-  for (size_t i = 0; i < preds.size(); ++i) {
-    const HolePrediction& h = preds[i];
-    if (h.status == HoleStatus::kOk) continue;
-    ++failed;
-    if (!ctx.quiet) {
-      const HoleRequest& r = c.job.requests[i];
-      ctx.err << "roprec: hole " << h.id;
-      if (r.line > 0) ctx.err << " (" << pos[0] << ":" << r.line << ")";
-      ctx.err << ": " << verdictName(h.verdict) << ": " << h.reason << "\n";
-    }
-  }
-  if (!ctx.quiet && json_out) {
-    ctx.err << "roprec predict: " << sum.holes << " holes: " << sum.conforms << " conform, "
-            << sum.conforms_after_compensation << " conform after compensation, " << sum.does_not_conform
-            << " do not conform, " << (sum.unreachable + sum.singular + sum.not_converged) << " not handled\n";
-    ctx.err << "  the robot can take " << sum.robot_can_take << " holes = " << formatNumber(sum.mc_time_taken, 0)
-            << " s of machining-center time (of " << formatNumber(sum.mc_time_total, 0) << " s)\n";
-    double mx = 0;
-    double mean = 0;
-    int n = 0;
-    for (const HolePrediction& h : preds) {
-      if (!h.nominal_axis_error) continue;
-      mx = std::max(mx, *h.nominal_axis_error);
-      mean += *h.nominal_axis_error;
-      ++n;
-    }
-    if (n > 0) {
-      ctx.err << "  real drill points from the nominal hole axes: mean " << formatNumber(mean / n * 1e6, 3)
-              << " µm, max " << formatNumber(mx * 1e6, 3) << " µm (" << n << " holes)\n";
-    }
-  }
-  return failed ? 1 : 0;
+  if (!ctx.quiet && json_out) printSummary(ctx, r);
+  return r.failed() ? 1 : 0;
 }
 
 const CommandRegistration reg{
