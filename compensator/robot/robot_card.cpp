@@ -1,5 +1,7 @@
 #include "compensator/robot/robot_card.hpp"
 
+#include <dlfcn.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
@@ -110,10 +112,30 @@ RobotCard loadRobotCard(const std::string& path) {
   return card;
 }
 
+// The robots folder relative to the installed library's folder (set by CMake from the install dirs).
+#ifndef ROPREC_ROBOTS_RELDIR
+#define ROPREC_ROBOTS_RELDIR "../share/roprec/robots"
+#endif
+
 std::string bundledRobotsDir() {
-  if (const char* env = std::getenv("ROPREC_ROBOTS_DIR")) return env;
+  if (const char* env = std::getenv("ROPREC_ROBOTS_DIR"); env != nullptr && *env != '\0') return env;
+  // An installed library: the robots folder next to it (<prefix>/lib/../share/roprec/robots),
+  // found from the path of the loaded shared object that holds this function.
+  static const std::string installed = [] {
+    Dl_info info{};
+    if (dladdr(reinterpret_cast<const void*>(&bundledRobotsDir), &info) == 0 || info.dli_fname == nullptr ||
+        *info.dli_fname == '\0') {
+      return std::string();
+    }
+    std::error_code ec;
+    const fs::path dir = fs::absolute(fs::path(info.dli_fname), ec).parent_path() / ROPREC_ROBOTS_RELDIR;
+    if (ec || !fs::is_directory(dir, ec)) return std::string();
+    const fs::path real = fs::canonical(dir, ec);
+    return (ec ? dir.lexically_normal() : real).string();
+  }();
+  if (!installed.empty()) return installed;
 #ifdef ROPREC_ROBOTS_DIR
-  return ROPREC_ROBOTS_DIR;
+  return ROPREC_ROBOTS_DIR;  // the source tree's robots/ (build-tree use)
 #else
   return "robots";
 #endif

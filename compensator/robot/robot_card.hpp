@@ -62,7 +62,11 @@ struct RobotCard {
 /// Loads a robot card; the URDF path is resolved relative to the card's folder.
 RobotCard loadRobotCard(const std::string& path);
 
-/// Folder holding the bundled robots (env ROPREC_ROBOTS_DIR, else the source tree's robots/).
+/// Folder holding the bundled robots, the first of:
+/// 1. the environment variable ROPREC_ROBOTS_DIR, if set and not empty;
+/// 2. `../share/roprec/robots` relative to the folder of the loaded libroprec shared object
+///    (found with dladdr), if that folder exists: an installed or relocated prefix;
+/// 3. the source tree's robots/ compiled in at build time (use from the build tree).
 std::string bundledRobotsDir();
 /// Names of the bundled robots (sorted).
 std::vector<std::string> bundledRobotNames();
