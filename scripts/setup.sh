@@ -10,6 +10,7 @@ PACKAGES=(
   nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   liborocos-kdl-dev libkdl-parser-dev
+  pybind11-dev python3-pybind11 python3-dev python3-numpy
 )
 if [[ "${ROPREC_WITH_CHROMIUM:-0}" == "1" ]]; then PACKAGES+=(chromium); fi
 

@@ -1,0 +1,183 @@
+/* roprec.h — the C interface of roprec (libroprec_c).
+ *
+ * roprec predicts where an industrial robot really drills (deflection under link weight, tool
+ * weight and the drilling forces) and pre-offsets the targets so that the real hole lands on the
+ * nominal one. This header is the stable C ABI for hosts (OLP tools, C#/Delphi/Python ctypes …):
+ * plain C types only; no C++ exception ever crosses it.
+ *
+ * Installed as  P/include/roprec/roprec.h ; link with  -lroprec_c  (P/lib/libroprec_c.so), or in
+ * CMake:  find_package(roprec)  then  target_link_libraries(app PRIVATE roprec::roprec_c).
+ *
+ * ---------------------------------------------------------------------------------------------
+ * Units and frames
+ *   - Lengths in mm, angles in degrees, deviations in µm (translation) and µrad (rotation).
+ *   - Poses are 4x4 homogeneous matrices, row-major (pose[4*r + c]): rotation in the upper-left
+ *     3x3, translation (mm) in pose[3], pose[7], pose[11], last row 0 0 0 1. A pose passed in
+ *     must be rigid: orthonormal rotation (to 1e-6), last row 0 0 0 1 (to 1e-9), finite values.
+ *   - Poses are the TCP in the robot BASE frame: the robot card's base link (for FANUC, the
+ *     controller's World frame at J2 height). TCP = flange x the cell's <tool>.
+ *   - Joints are in the robot controller's convention (signs, zeros, FANUC J2/J3 coupling as the
+ *     teach pendant shows them), degrees.
+ *   - File paths are UTF-8 (as the operating system takes them); relative paths are relative to
+ *     the process's working directory.
+ *
+ * Return codes (every int function)
+ *   ROPREC_OK           0  done.
+ *   ROPREC_ITEM_FAILED  1  the call was valid but some item (a target, a hole) could not be handled
+ *                          (unreachable, singular, equilibrium not converged); `err` says which
+ *                          and why. See each function for what is still written.
+ *   ROPREC_BAD_INPUT    2  bad input (unreadable or invalid file — the text then reads
+ *                          `FILE:LINE: what is wrong`, exactly as the roprec CLI prints it after
+ *                          `roprec: error: ` —, NULL or non-finite argument, non-rigid pose, bad
+ *                          option, output buffer too small) or the call could not be completed
+ *                          (out of memory, internal error). Nothing is written.
+ *
+ * Error text
+ *   Every function that can fail takes `char* err, size_t err_len`: a caller-owned buffer that
+ *   receives the message (UTF-8). It is truncated to fit and always NUL-terminated when
+ *   err_len > 0; on success it is set to "" . `err` may be NULL when err_len == 0.
+ *
+ * Memory and ownership
+ *   All output buffers are owned by the caller. The library allocates only the session
+ *   (roprec_open), which the caller releases with roprec_close. roprec_version returns a static
+ *   string.
+ *
+ * Thread safety
+ *   The library keeps no global mutable state. Distinct sessions, and the whole-job calls, may
+ *   run concurrently on distinct threads. One session must not be used by two threads at the
+ *   same time (serialise the calls on it).
+ * ------------------------------------------------------------------------------------------- */
+#ifndef ROPREC_ROPREC_H
+#define ROPREC_ROPREC_H
+
+#include <stddef.h>
+
+#if defined(_WIN32)
+#if defined(ROPREC_C_BUILDING)
+#define ROPREC_API __declspec(dllexport)
+#else
+#define ROPREC_API __declspec(dllimport)
+#endif
+#elif defined(__GNUC__)
+#define ROPREC_API __attribute__((visibility("default")))
+#else
+#define ROPREC_API
+#endif
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define ROPREC_OK 0
+#define ROPREC_ITEM_FAILED 1
+#define ROPREC_BAD_INPUT 2
+
+/* A buffer of this size always holds the summary JSON of roprec_predict_file and
+ * roprec_compensate_file (apart from the paths it lists; see there). */
+#define ROPREC_SUMMARY_LEN 4096
+
+/* A cell (robot, tool, process load, controller) loaded once, for per-target calls. */
+typedef struct roprec_session roprec_session;
+
+/* The library version, e.g. "0.2.0" (static string; never NULL). */
+ROPREC_API const char* roprec_version(void);
+
+/* ---------------------------------------------------------------- one target at a time */
+
+/* Loads the cell file `cell_path` (XML: robot, tool, workobject, process, controller).
+ * On success *out receives a new session (release it with roprec_close) and 0 is returned;
+ * otherwise *out is set to NULL and 2 is returned with the reason in `err`. */
+ROPREC_API int roprec_open(const char* cell_path, roprec_session** out, char* err, size_t err_len);
+
+/* Releases a session. NULL is allowed (no-op). */
+ROPREC_API void roprec_close(roprec_session* s);
+
+/* The RoboDK FilterTarget analogue.
+ *   pose_mm           the TCP pose wanted (where the drill must really be), base frame, row-major.
+ *   seed_joints_deg   6 controller joints (deg) whose IK branch and turns the result should keep
+ *                     (the nearest admissible solution is taken), or NULL: the robot's reference
+ *                     pose (KUKA {0,-90,90,0,0,0}, ABB/FANUC all zero).
+ * Returns in out_pose_mm the pose to program (base frame, row-major) and in out_joints_deg its
+ * joints (controller convention, deg) so that the predicted real TCP lands on `pose_mm` under the
+ * cell's gravity, tool weight and process load (the cell's drill at its steady thrust).
+ * Orientation is kept ("keep" mode): out_pose_mm has the rotation of pose_mm, bit for bit; only the
+ * position is pre-offset, so the real drill axis keeps its small predicted tilt.
+ * 1: the target cannot be filtered (unreachable, singular, not converged; reason in err);
+ * the outputs are then left unchanged. out_pose_mm may alias pose_mm. */
+ROPREC_API int roprec_filter_target(roprec_session* s, const double pose_mm[16],
+                                    const double* seed_joints_deg, double out_pose_mm[16],
+                                    double out_joints_deg[6], char* err, size_t err_len);
+
+/* The predicted TCP deviation when the robot is commanded to `joints_deg` (controller convention,
+ * deg) under the cell's gravity, tool weight and process load:
+ *   deviation[0..2]  real − commanded TCP position, µm, base frame;
+ *   deviation[3..5]  real TCP rotation relative to the commanded one (rotation vector), µrad,
+ *                    base frame.
+ * The predicted real TCP position is FK(joints) + deviation[0..2]. U_work_um (may be NULL)
+ * receives the expanded uncertainty U_work (95 %, 2-D radial) of a hole drilled there, µm.
+ * 1: no prediction at these joints (singular, not converged; reason in err); outputs unchanged.
+ */
+ROPREC_API int roprec_predict_joints(roprec_session* s, const double joints_deg[6],
+                                     double deviation[6], double* U_work_um, char* err,
+                                     size_t err_len);
+
+/* ---------------------------------------------------------------- whole programs (by file) */
+
+/* `roprec predict --cell CELL PROGRAM [--holes HOLES] [--json JSON_OUT]`:
+ * predicts every hole of `program_path` (KUKA .src, ABB .mod/.prg/.sys, FANUC .ls, CSV/JSON target
+ * list, or a hole-list CSV). `holes_path` (or NULL) is a hole-list CSV whose ids, diameters,
+ * depths and tolerances are matched to the program's holes (by id, else by position within
+ * 0.5 mm).
+ *   json_out_path     NULL, or where the full prediction JSON is written (atomically) — the same
+ *                     document, byte for byte, as `roprec predict ... --json`.
+ *   summary_json      NULL (then summary_len must be 0), or a buffer that receives (on 0 and 1;
+ *                     "" on 2) a one-line JSON object: the "summary" object of the prediction JSON
+ *                     ("holes", "verdicts" {conforms, conforms-after-compensation,
+ *                     does-not-conform, unreachable, singular, not-converged}, "robot_can_take",
+ *                     "mc_time_taken_s", "mc_time_total_s", "process_share_mean",
+ *                     "process_share_max") plus "failed" (holes not predicted).
+ *                     ROPREC_SUMMARY_LEN bytes suffice; a smaller buffer that cannot hold it gives
+ *                     2 and nothing is written.
+ * Returns 0, or 1 when some holes could not be predicted (the JSON is still written, those holes
+ * carry their verdict and reason; err lists them as `hole ID (FILE:LINE): verdict: reason`), or 2.
+ */
+ROPREC_API int roprec_predict_file(const char* cell_path, const char* program_path,
+                                   const char* holes_path, const char* json_out_path,
+                                   char* summary_json, size_t summary_len, char* err,
+                                   size_t err_len);
+
+/* `roprec compensate --cell CELL PROGRAM -o OUT_PROGRAM --orientation MODE [--holes HOLES]
+ *  [--targets TARGETS_OUT]`: pre-offsets every hole of a drilling program so the predicted real
+ * holes land on the nominal ones (every target of a drill cycle moves with its drill point) and
+ * writes the corrected program in its own dialect (only the compensated targets' bytes change; a
+ * KUKA .src whose points live in its .dat gets the .dat written beside the new .src).
+ *   orientation       "keep" (or NULL): positions only; "flip-free": the rotation about each drill
+ *                     axis chosen so axes 4/6 do not flip; "stiffest": the stiffest rotation.
+ *   holes_path        NULL, or a hole-list CSV matched to the program's holes (as for predict).
+ *   targets_out_path  NULL, or the corrected-target export: CSV when the name ends in ".csv", else
+ *                     JSON — the same document as `roprec compensate ... --targets`.
+ *   summary_json      NULL (summary_len 0), or a buffer that receives (on 0; "" otherwise) a
+ *                     one-line JSON object: {"orientation", "holes", "compensated", "failed",
+ *                     "error_before_um": {"mean", "max"}, "residual_after_um": {"mean", "max"},
+ *                     "conform_before", "conform_after", "jumps_before", "jumps_after",
+ *                     "written": [paths]}.
+ *                     ROPREC_SUMMARY_LEN bytes suffice unless the paths are long; too small gives 2
+ *                     and nothing is written.
+ * All outputs are written together (each atomically) and only when every hole was compensated and
+ * the writer accepted every edit; otherwise 1 is returned, nothing is written and err lists the
+ * holes/edits. A milling cell compensates every linear path point instead (summary: "process",
+ * "points", "failed", "deviation_before_um", "residual_after_um", "written"; orientation and
+ * holes_path are ignored).
+ * The program may be any file roprec_predict_file reads (a hole-list CSV is rewritten as such).
+ * 2: bad input (unreadable program, program without holes, bad orientation). */
+ROPREC_API int roprec_compensate_file(const char* cell_path, const char* program_path,
+                                      const char* holes_path, const char* out_program_path,
+                                      const char* orientation, const char* targets_out_path,
+                                      char* summary_json, size_t summary_len, char* err,
+                                      size_t err_len);
+
+#ifdef __cplusplus
+} /* extern "C" */
+#endif
+
+#endif /* ROPREC_ROPREC_H */

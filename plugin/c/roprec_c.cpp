@@ -1,0 +1,252 @@
+/// \file roprec_c.cpp
+/// The C ABI (plugin/c/roprec.h) over the host-facing job API (plugin/api/job.hpp): argument
+/// checks, unit and layout conversion (mm/deg/row-major <-> SI/Eigen), and a guard that turns
+/// every C++ exception into a status code and a copied message. No global mutable state.
+#define ROPREC_C_BUILDING 1
+#include "plugin/c/roprec.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <exception>
+#include <new>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "compensator/support/atomic_file.hpp"
+#include "compensator/support/error.hpp"
+#include "plugin/api/job.hpp"
+#include "plugin/c/host_common.hpp"
+
+struct roprec_session {
+  explicit roprec_session(const std::string& cell_path) : session(cell_path) {}
+  roprec::api::Session session;
+};
+
+namespace {
+
+namespace host = roprec::host;
+using roprec::Pose;
+using roprec::Vec6;
+
+/// Copies `a` then `b` into err (truncated to err_len − 1 bytes without splitting a UTF-8
+/// sequence; always NUL-terminated). Never allocates.
+void copyError(char* err, size_t err_len, const char* a, const char* b = "") noexcept {
+  if (err == nullptr || err_len == 0) return;
+  size_t n = 0;
+  bool truncated = false;
+  for (const char* src : {a, b}) {
+    for (; *src != '\0'; ++src) {
+      if (n + 1 >= err_len) {
+        truncated = true;
+        break;
+      }
+      err[n++] = *src;
+    }
+  }
+  if (truncated) {
+    size_t k = 0;  // continuation bytes at the end
+    while (k < n && (static_cast<unsigned char>(err[n - 1 - k]) & 0xC0) == 0x80) ++k;
+    if (k < n) {
+      const auto lead = static_cast<unsigned char>(err[n - 1 - k]);
+      const size_t len = lead >= 0xF0 ? 4 : lead >= 0xE0 ? 3 : lead >= 0xC0 ? 2 : 1;
+      if (len > 1 && k + 1 < len) n -= k + 1;  // the last sequence lost bytes: drop it
+    }
+  }
+  err[n] = '\0';
+}
+
+/// An item failure (status 1) carrying its message.
+struct ItemFailure {
+  std::string message;
+};
+
+/// Runs `f` (returning a status) and maps every exception to a status with its text.
+template <class F>
+int guarded(char* err, size_t err_len, F&& f) noexcept {
+  copyError(err, err_len, "");
+  try {
+    return f();
+  } catch (const ItemFailure& e) {
+    copyError(err, err_len, e.message.c_str());
+    return ROPREC_ITEM_FAILED;
+  } catch (const roprec::InputError& e) {
+    copyError(err, err_len, e.what());
+    return ROPREC_BAD_INPUT;
+  } catch (const roprec::UsageError& e) {
+    copyError(err, err_len, e.what());
+    return ROPREC_BAD_INPUT;
+  } catch (const std::bad_alloc&) {
+    copyError(err, err_len, "out of memory");
+    return ROPREC_BAD_INPUT;
+  } catch (const std::exception& e) {
+    copyError(err, err_len, "internal error: ", e.what());
+    return ROPREC_BAD_INPUT;
+  } catch (...) {
+    copyError(err, err_len, "internal error (unknown exception)");
+    return ROPREC_BAD_INPUT;
+  }
+}
+
+void require(const void* p, const char* name) {
+  if (p == nullptr) throw roprec::UsageError(std::string(name) + " is NULL");
+}
+
+std::string pathArg(const char* p, const char* name) {
+  require(p, name);
+  if (*p == '\0') throw roprec::UsageError(std::string(name) + " is empty");
+  return p;
+}
+
+/// NULL or "" -> "".
+std::string optionalArg(const char* p) { return p == nullptr ? std::string() : std::string(p); }
+
+/// Checks the (buffer, length) pair of an optional output text and empties the buffer.
+void checkTextBuffer(char* buf, size_t len, const char* name) {
+  if (buf == nullptr && len != 0)
+    throw roprec::UsageError(std::string(name) + " is NULL but its length is not 0");
+  if (buf != nullptr && len > 0) buf[0] = '\0';
+}
+
+/// UsageError unless `text` fits (with its NUL) into an optional buffer.
+void checkFits(const std::string& text, const char* buf, size_t len, const char* name) {
+  if (buf != nullptr && text.size() + 1 > len) {
+    throw roprec::UsageError(std::string(name) + ": the buffer holds " + std::to_string(len) +
+                             " bytes, " + std::to_string(text.size() + 1) +
+                             " are needed; nothing was written");
+  }
+}
+
+void copyText(const std::string& text, char* buf) {
+  if (buf != nullptr) std::memcpy(buf, text.c_str(), text.size() + 1);
+}
+
+int compensateMilling(const std::string& cell, const std::string& program, const std::string& out,
+                      const std::string& targets, char* summary, size_t summary_len) {
+  roprec::api::MillingCompensationResult r = roprec::api::compensateMillingJob(cell, program);
+  if (const std::string why = host::millingProblems(r); !why.empty()) throw ItemFailure{why};
+  std::vector<std::pair<std::string, std::string>> extra;
+  if (!targets.empty()) extra.emplace_back(targets, roprec::api::millingTargetsJson(r, program));
+  const std::string text =
+      host::millingSummary(r, host::compensationPaths(r.context, out, targets)).dump(0);
+  checkFits(text, summary, summary_len, "summary_json");
+  roprec::api::writeCompensatedProgram(r.context, out, extra);
+  copyText(text, summary);
+  return ROPREC_OK;
+}
+
+}  // namespace
+
+extern "C" {
+
+ROPREC_API const char* roprec_version(void) { return roprec::api::version(); }
+
+ROPREC_API int roprec_open(const char* cell_path, roprec_session** out, char* err, size_t err_len) {
+  if (out != nullptr) *out = nullptr;
+  return guarded(err, err_len, [&] {
+    require(out, "out");
+    const std::string cell = pathArg(cell_path, "cell_path");
+    *out = new roprec_session(cell);
+    return ROPREC_OK;
+  });
+}
+
+ROPREC_API void roprec_close(roprec_session* s) { delete s; }
+
+ROPREC_API int roprec_filter_target(roprec_session* s, const double pose_mm[16],
+                                    const double* seed_joints_deg, double out_pose_mm[16],
+                                    double out_joints_deg[6], char* err, size_t err_len) {
+  return guarded(err, err_len, [&] {
+    require(s, "session");
+    require(out_pose_mm, "out_pose_mm");
+    require(out_joints_deg, "out_joints_deg");
+    const Pose T = host::poseFromRowMajorMm(pose_mm, "pose_mm");
+    std::optional<Vec6> seed;
+    if (seed_joints_deg != nullptr) seed = host::jointsFromDeg(seed_joints_deg, "seed_joints_deg");
+    const roprec::api::Session::Filtered f = s->session.filterTarget(T, seed ? &*seed : nullptr);
+    if (!f.ok) throw ItemFailure{"target not filtered: " + f.reason};
+    host::poseToRowMajorMm(f.T_programmed, out_pose_mm);
+    for (int i = 0; i < 6; ++i) out_joints_deg[i] = f.joints_controller[i] / roprec::kDeg;
+    return ROPREC_OK;
+  });
+}
+
+ROPREC_API int roprec_predict_joints(roprec_session* s, const double joints_deg[6],
+                                     double deviation[6], double* U_work_um, char* err,
+                                     size_t err_len) {
+  return guarded(err, err_len, [&] {
+    require(s, "session");
+    require(deviation, "deviation");
+    const Vec6 q = host::jointsFromDeg(joints_deg, "joints_deg");
+    const roprec::api::Session::JointPrediction p = s->session.predictJoints(q);
+    if (!p.ok) throw ItemFailure{"no prediction at these joints: " + p.reason};
+    for (int i = 0; i < 3; ++i) {
+      deviation[i] = p.d_translation[i] * 1e6;
+      deviation[3 + i] = p.d_rotation[i] * 1e6;
+    }
+    if (U_work_um != nullptr) *U_work_um = p.U_work * 1e6;
+    return ROPREC_OK;
+  });
+}
+
+ROPREC_API int roprec_predict_file(const char* cell_path, const char* program_path,
+                                   const char* holes_path, const char* json_out_path,
+                                   char* summary_json, size_t summary_len, char* err,
+                                   size_t err_len) {
+  return guarded(err, err_len, [&] {
+    const std::string cell = pathArg(cell_path, "cell_path");
+    const std::string program = pathArg(program_path, "program_path");
+    const std::string holes = optionalArg(holes_path);
+    const std::string json_out = optionalArg(json_out_path);
+    checkTextBuffer(summary_json, summary_len, "summary_json");
+    roprec::api::JobOptions options;
+    if (!holes.empty()) options.holes = holes;
+    const roprec::api::PredictionResult r = roprec::api::predictJob(cell, program, options);
+    const std::string summary = host::predictionSummary(r).dump(0);
+    checkFits(summary, summary_json, summary_len, "summary_json");
+    if (!json_out.empty()) roprec::writeFileAtomic(json_out, roprec::api::predictionJson(r).dump());
+    copyText(summary, summary_json);
+    const std::vector<std::string> failures = host::predictionFailures(r, program);
+    if (!failures.empty()) throw ItemFailure{host::joinLines(failures)};
+    return ROPREC_OK;
+  });
+}
+
+ROPREC_API int roprec_compensate_file(const char* cell_path, const char* program_path,
+                                      const char* holes_path, const char* out_program_path,
+                                      const char* orientation, const char* targets_out_path,
+                                      char* summary_json, size_t summary_len, char* err,
+                                      size_t err_len) {
+  return guarded(err, err_len, [&] {
+    const std::string cell = pathArg(cell_path, "cell_path");
+    const std::string program = pathArg(program_path, "program_path");
+    const std::string out = pathArg(out_program_path, "out_program_path");
+    const std::string holes = optionalArg(holes_path);
+    const std::string targets = optionalArg(targets_out_path);
+    checkTextBuffer(summary_json, summary_len, "summary_json");
+    roprec::api::CompensationJob job;
+    job.options.mode = host::orientationMode(optionalArg(orientation));
+    if (!holes.empty()) job.job.holes = holes;
+    if (roprec::api::cellIsMilling(cell))
+      return compensateMilling(cell, program, out, targets, summary_json, summary_len);
+
+    roprec::api::CompensationResult r = roprec::api::compensateJob(cell, program, job);
+    if (const std::string why = host::compensationProblems(r, program); !why.empty())
+      throw ItemFailure{why};
+    std::vector<std::pair<std::string, std::string>> extra;
+    if (!targets.empty())
+      extra.emplace_back(targets,
+                         roprec::api::compensationTargets(r, program, host::isCsvPath(targets)));
+    const std::string summary =
+        host::compensationSummary(r, host::compensationPaths(r.context, out, targets)).dump(0);
+    checkFits(summary, summary_json, summary_len, "summary_json");
+    roprec::api::writeCompensatedProgram(r.context, out, extra);
+    copyText(summary, summary_json);
+    return ROPREC_OK;
+  });
+}
+
+}  // extern "C"

@@ -1,0 +1,178 @@
+"""roprec — predict where an industrial robot really drills, and pre-offset its targets.
+
+The Python face of libroprec (the same library as the ``roprec`` command line and the C ABI
+``roprec.h``), giving the same numbers.
+
+Units and frames
+    mm, degrees; deviations in µm (translation) and µrad (rotation). Poses are 4x4 numpy arrays
+    (homogeneous, mm): the TCP (flange x the cell's ``<tool>``) in the robot base frame (the robot
+    card's base link; FANUC: the World frame at J2 height). Joints of a Session are in the robot
+    controller's convention (as the teach pendant shows them).
+
+API
+    ``__version__``                          the library version
+    ``Session(cell_path)``                   a cell loaded once, for one target at a time:
+        ``.filter_target(pose_mm, seed_joints_deg=None) -> (pose_mm, joints_deg)``
+        ``.predict_joints(joints_deg) -> dict``
+        ``.hole_pose(position_mm, direction) -> pose_mm``
+    ``predict(cell, program, holes=None, json_out=None) -> Prediction``   (a list of per-hole dicts)
+    ``compensate(cell, program, out, orientation="keep", targets=None, holes=None) -> dict``
+
+Errors
+    ``RoprecError`` (subclass of Exception) and its subclasses ``InputError`` (a bad file:
+    ``str(e)`` is ``FILE:LINE: what is wrong``, as the CLI prints it after ``roprec: error:``),
+    ``UsageError`` (a bad argument; also a ValueError) and ``ItemError`` (a target or hole that
+    could not be handled; a compensation not written).
+
+Example::
+
+    import numpy as np, roprec
+    s = roprec.Session("samples/cells/housing-kr120.xml")
+    wanted = s.hole_pose([150, 0, 250], [0, 0, -1])        # hole T001 of the sample hole list
+    program, joints = s.filter_target(wanted)
+    dev = s.predict_joints(joints)["deviation_um"]
+    assert np.allclose(program[:3, 3] + dev * 1e-3, wanted[:3, 3], atol=1e-4)
+"""
+
+import json as _json
+
+from . import _roprec
+from ._roprec import InputError, ItemError, RoprecError, Session, UsageError
+
+__version__ = _roprec.version()
+
+__all__ = [
+    "__version__",
+    "Session",
+    "predict",
+    "compensate",
+    "Prediction",
+    "RoprecError",
+    "InputError",
+    "UsageError",
+    "ItemError",
+]
+
+
+class Prediction(list):
+    """The result of :func:`predict`: a list with one dict per hole, in program order.
+
+    Attributes:
+        summary (dict): the ``summary`` object of the prediction JSON (``holes``, ``verdicts``,
+            ``robot_can_take``, ``mc_time_taken_s``, ``mc_time_total_s``,
+            ``process_share_mean``, ``process_share_max``) plus ``failed`` (holes not predicted).
+        failed (list of dict): the holes whose ``status`` is not ``"ok"``.
+        failures (str): one line per such hole, ``hole ID (FILE:LINE): verdict: reason`` (as the
+            CLI lists them), or "".
+        notes (list of str): notes on how the job was read (e.g. which frame was assumed).
+        robot, cell, process (str): the robot card, the cell and the process description.
+    """
+
+    summary: dict
+    failures: str
+    notes: list
+    robot: str
+    cell: str
+    process: str
+
+    @property
+    def failed(self):
+        """The holes whose ``status`` is not ``"ok"``."""
+        return [h for h in self if h["status"] != "ok"]
+
+
+def predict(cell, program, holes=None, json_out=None):
+    """Predicts every hole of a program: ``roprec predict --cell CELL PROGRAM [--holes H] [--json J]``.
+
+    Args:
+        cell: the cell XML (path).
+        program: KUKA ``.src``, ABB ``.mod/.prg/.sys``, FANUC ``.ls``, a CSV/JSON target list, or a
+            hole-list CSV.
+        holes: optional hole-list CSV whose ids, diameters, depths and tolerances are matched to
+            the program's holes (by id, else by position within 0.5 mm).
+        json_out: optional path: the full prediction JSON is written there, byte for byte the
+            document of ``roprec predict ... --json``.
+
+    Returns:
+        A :class:`Prediction` (a list) of per-hole dicts, at full precision (the JSON rounds):
+        ``id``, ``line``, ``status`` ("ok", "unreachable", "singular", "not-converged"),
+        ``verdict`` (ISO 14253-1: "conforms", "conforms-after-compensation",
+        "does-not-conform", "unreachable", "singular", "not-converged"), ``reason``;
+        the nominal TCP: ``nominal_pose_mm`` (4x4), ``nominal_position_mm``,
+        ``nominal_quaternion_wxyz``, ``axis`` (drilling direction); ``diameter_mm``,
+        ``depth_mm``, ``tolerance_mm``, ``mc_time_s``;
+        the IK solution: ``joints_deg`` (as the prediction JSON: robot-model convention),
+        ``controller_joints_deg``, ``config``, ``branch``;
+        the deviation (base frame): ``deviation_um`` (δwork = δrobot + δmach), ``robot_deviation_um``,
+        ``mach_deviation_um``, ``rotation_urad``, ``work_tool_xy_um``, ``position_error_um``
+        (⊥ the hole axis), ``axis_tilt_urad``, ``from_nominal_axis_um`` (with ``holes``);
+        the budget: ``U_robot_um``, ``U_mach_um``, ``U_work_um`` (expanded, 95 %, 2-D radial),
+        ``k``, ``U_work_anisotropic_um``, ``budget_um`` (standard uncertainties per axis),
+        ``process_share``, ``process_force_share``, ``process_force_N``,
+        ``equilibrium_converged``, ``equilibrium_iterations``.
+        Values that do not exist for a hole (no IK solution, no deviation) are None.
+        Holes that could not be predicted are statuses, not exceptions (see ``.failed``).
+
+    Raises:
+        InputError: a bad cell, program or hole list.
+    """
+    r = _roprec._predict(str(cell), str(program), None if holes is None else str(holes),
+                         None if json_out is None else str(json_out))
+    p = Prediction(r["holes"])
+    p.summary = _json.loads(r["summary_json"])
+    p.failures = r["failures"]
+    p.notes = list(r["notes"])
+    p.robot = r["robot"]
+    p.cell = r["cell"]
+    p.process = r["process"]
+    return p
+
+
+def compensate(cell, program, out, orientation="keep", targets=None, holes=None):
+    """Pre-offsets a drilling program: ``roprec compensate --cell CELL PROGRAM -o OUT ...``.
+
+    Every hole's targets are moved so that the predicted real hole lands on the nominal one (every
+    target of a drill cycle moves with its drill point), and the corrected program is written to
+    ``out`` in the program's own dialect (only the compensated targets' bytes change; KRL writes
+    the ``.dat`` beside the ``.src``). With a milling cell every linear path point is compensated.
+
+    Args:
+        cell, program: as for :func:`predict` (a hole-list CSV is rewritten as a hole list).
+        out: the corrected program's path.
+        orientation: "keep" (positions only), "flip-free" (the rotation about each drill axis
+            chosen so axes 4/6 do not flip) or "stiffest".
+        targets: optional corrected-target export: CSV when the name ends in ".csv", else JSON —
+            the document of ``roprec compensate ... --targets``.
+        holes: optional hole-list CSV matched to the program's holes.
+
+    Returns:
+        dict: ``orientation``, ``holes``, ``compensated``, ``failed``, ``error_before_um`` and
+        ``residual_after_um`` (``{"mean", "max"}``, ⊥ the hole axis), ``conform_before``,
+        ``conform_after``, ``jumps_before``, ``jumps_after`` (axis-4/6 jumps within a face),
+        ``written`` (the paths written), and ``results``: one dict per hole at full precision —
+        ``id``, ``status`` ("compensated" / "original-kept"), ``reason``, ``nominal_pose_mm``,
+        ``nominal_position_mm``, ``nominal_quaternion_wxyz``, ``before_deviation_um``,
+        ``before_rotation_urad``, ``before_verdict``, ``programmed_pose_mm``,
+        ``programmed_position_mm``, ``programmed_quaternion_wxyz``, ``joints_deg`` (as the
+        export), ``controller_joints_deg``, ``config``, ``rotation_about_axis_deg``,
+        ``residual_um``, ``residual_vector_um``, ``branch_changed``, ``note``, ``U_robot_um``,
+        ``U_mach_um``, ``U_work_um``, ``k``, ``verdict``.
+        A milling cell gives ``process``, ``points``, ``failed``, ``deviation_before_um``,
+        ``residual_after_um``, ``written``.
+
+    Raises:
+        ItemError: some holes could not be compensated or the writer refused an edit; nothing was
+            written. ``e.result`` holds the dict above (``written`` empty).
+        InputError, UsageError: bad input or arguments; nothing was written.
+    """
+    r = _roprec._compensate(str(cell), str(program), str(out), str(orientation),
+                            None if targets is None else str(targets),
+                            None if holes is None else str(holes))
+    result = _json.loads(r["summary_json"])
+    if "results" in r:
+        result["results"] = r["results"]
+    if r["problems"]:
+        e = ItemError(r["problems"])
+        e.result = result
+        raise e
+    return result

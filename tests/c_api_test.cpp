@@ -1,0 +1,551 @@
+// The C ABI (plugin/c/roprec.h, libroprec_c): the same numbers as the CLI on the sample job
+// (predict and compensate keep, by file), roprec_filter_target against the library's keep
+// compensation and the CLI's on every sample hole, the real TCP of a filtered target, error texts
+// and statuses, buffers, and sessions on threads.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "compensator/precision/cell.hpp"
+#include "compensator/robot/robot_card.hpp"
+#include "compensator/support/rotation.hpp"
+#include "plugin/api/hole_input.hpp"
+#include "plugin/api/job.hpp"
+#include "plugin/c/roprec.h"
+#include "postproc/drill.hpp"
+#include "tests/support/test_support.hpp"
+
+namespace roprec {
+namespace {
+
+using test::readFile;
+using test::runRoprec;
+using test::sourceDir;
+using test::tempDir;
+using test::writeFile;
+
+const std::string kCell = sourceDir() + "/samples/cells/housing-kr120.xml";
+const std::string kProgram = sourceDir() + "/samples/emotor-housing/housing_kr120.src";
+const std::string kHoles = sourceDir() + "/samples/emotor-housing/holes.csv";
+
+/// Compares two JSON documents: same structure, keys and strings; numbers within `rel`
+/// (relative). Appends the first differences to `diffs`.
+void compareJson(const nlohmann::json& a, const nlohmann::json& b, const std::string& path,
+                 double rel, std::vector<std::string>& diffs) {
+  if (diffs.size() > 20) return;
+  if (a.is_number() && b.is_number()) {
+    const double x = a.get<double>();
+    const double y = b.get<double>();
+    if (std::abs(x - y) > rel * std::max(std::abs(x), std::abs(y))) {
+      diffs.push_back(path + ": " + a.dump() + " vs " + b.dump());
+    }
+    return;
+  }
+  if (a.type() != b.type()) {
+    diffs.push_back(path + ": type " + a.type_name() + " vs " + b.type_name());
+    return;
+  }
+  if (a.is_object()) {
+    if (a.size() != b.size())
+      diffs.push_back(path + ": " + std::to_string(a.size()) + " vs " + std::to_string(b.size()) +
+                      " keys");
+    for (auto it = a.begin(); it != a.end(); ++it) {
+      if (!b.contains(it.key())) {
+        diffs.push_back(path + "/" + it.key() + ": missing");
+        continue;
+      }
+      compareJson(it.value(), b.at(it.key()), path + "/" + it.key(), rel, diffs);
+    }
+  } else if (a.is_array()) {
+    if (a.size() != b.size()) {
+      diffs.push_back(path + ": " + std::to_string(a.size()) + " vs " + std::to_string(b.size()) +
+                      " items");
+      return;
+    }
+    for (size_t i = 0; i < a.size(); ++i)
+      compareJson(a[i], b[i], path + "/" + std::to_string(i), rel, diffs);
+  } else if (a != b) {
+    diffs.push_back(path + ": " + a.dump() + " vs " + b.dump());
+  }
+}
+
+std::string joined(const std::vector<std::string>& v) {
+  std::string s;
+  for (const auto& x : v) s += "  " + x + "\n";
+  return s;
+}
+
+std::array<double, 16> rowMajorMm(const Pose& T) {
+  std::array<double, 16> m{};
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) m[static_cast<size_t>(4 * r + c)] = T.linear()(r, c);
+    m[static_cast<size_t>(4 * r + 3)] = T.translation()[r] * 1e3;
+  }
+  m[15] = 1.0;
+  return m;
+}
+
+Mat3 rotationOf(const std::array<double, 16>& m) {
+  Mat3 R;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) R(r, c) = m[static_cast<size_t>(4 * r + c)];
+  }
+  return R;
+}
+
+double angleBetween(const Mat3& A, const Mat3& B) {
+  return Eigen::AngleAxisd(A.transpose() * B).angle();
+}
+
+/// The CLI's message for an error: stderr without "roprec: error: " and the newline.
+std::string cliErrorText(const test::RunResult& r) {
+  std::string e = r.err;
+  const std::string prefix = "roprec: error: ";
+  if (e.rfind(prefix, 0) == 0) e.erase(0, prefix.size());
+  while (!e.empty() && e.back() == '\n') e.pop_back();
+  return e;
+}
+
+bool validUtf8(const char* s) {
+  const auto* p = reinterpret_cast<const unsigned char*>(s);
+  while (*p) {
+    const int n = *p < 0x80 ? 1 : *p >= 0xF0 ? 4 : *p >= 0xE0 ? 3 : *p >= 0xC0 ? 2 : 0;
+    if (n == 0) return false;
+    for (int i = 1; i < n; ++i) {
+      if ((p[i] & 0xC0) != 0x80) return false;
+    }
+    p += n;
+  }
+  return true;
+}
+
+TEST(CApi, VersionIsTheLibrarys) {
+  ASSERT_NE(roprec_version(), nullptr);
+  EXPECT_STREQ(roprec_version(), api::version());
+}
+
+TEST(CApi, ExportsExactlyTheHeadersFunctions) {
+  const std::string header = readFile(sourceDir() + "/plugin/c/roprec.h");
+  const std::regex decl(R"(ROPREC_API[^;(]*\b(roprec_\w+)\s*\()");
+  std::set<std::string> declared;
+  for (auto it = std::sregex_iterator(header.begin(), header.end(), decl);
+       it != std::sregex_iterator(); ++it) {
+    declared.insert((*it)[1]);
+  }
+  EXPECT_EQ(declared.size(), 7U);
+  // nm -D --defined-only: every dynamic symbol libroprec_c defines.
+  FILE* p = ::popen(("nm -D --defined-only '" + std::string(ROPREC_C_LIB) + "'").c_str(), "r");
+  ASSERT_NE(p, nullptr);
+  std::string listing;
+  char buf[512];
+  while (std::fgets(buf, sizeof buf, p) != nullptr) listing += buf;
+  ASSERT_EQ(::pclose(p), 0) << listing;
+  std::set<std::string> exported;
+  std::istringstream lines(listing);
+  for (std::string line; std::getline(lines, line);) {
+    std::istringstream words(line);
+    std::string address, type, name;
+    words >> address >> type >> name;
+    if (!name.empty()) exported.insert(name);
+  }
+  EXPECT_EQ(exported, declared) << listing;
+}
+
+TEST(CApi, PredictFileGivesTheCliNumbers) {
+  const std::string dir = tempDir("capi-predict");
+  const test::RunResult cli =
+      runRoprec("predict --cell '" + kCell + "' '" + kProgram + "' --holes '" + kHoles +
+                "' --json '" + dir + "/cli.json' --quiet");
+  ASSERT_LE(cli.exit_code, 1) << cli.err;
+  char summary[ROPREC_SUMMARY_LEN];
+  char err[4096];
+  const std::string out = dir + "/c.json";
+  const int rc = roprec_predict_file(kCell.c_str(), kProgram.c_str(), kHoles.c_str(), out.c_str(),
+                                     summary, sizeof summary, err, sizeof err);
+  EXPECT_EQ(rc, cli.exit_code) << err;
+  const auto a = nlohmann::json::parse(readFile(dir + "/cli.json"));
+  const auto b = nlohmann::json::parse(readFile(out));
+  ASSERT_EQ(a.at("holes").size(), 204U);
+  std::vector<std::string> diffs;
+  compareJson(a, b, "", 1e-9, diffs);
+  EXPECT_TRUE(diffs.empty()) << joined(diffs);
+  // The summary is the JSON's summary plus the count of holes not predicted.
+  auto s = nlohmann::json::parse(summary);
+  int failed = 0;
+  for (const auto& h : a.at("holes"))
+    failed += h.at("verdict") == "unreachable" || h.at("verdict") == "singular" ||
+              h.at("verdict") == "not-converged";
+  EXPECT_EQ(s.at("failed").get<int>(), failed);
+  s.erase("failed");
+  diffs.clear();
+  compareJson(a.at("summary"), s, "summary", 1e-9, diffs);
+  EXPECT_TRUE(diffs.empty()) << joined(diffs);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CApi, CompensateKeepFileGivesTheCliNumbersAndBytes) {
+  const std::string dir = tempDir("capi-comp");
+  const test::RunResult cli = runRoprec("compensate --cell '" + kCell + "' '" + kProgram +
+                                        "' --holes '" + kHoles + "' --orientation keep -o '" + dir +
+                                        "/cli.src' --targets '" + dir + "/cli.json' --quiet");
+  ASSERT_EQ(cli.exit_code, 0) << cli.err;
+  char summary[ROPREC_SUMMARY_LEN];
+  char err[4096];
+  const std::string out = dir + "/c.src";
+  const std::string targets = dir + "/c.json";
+  const int rc =
+      roprec_compensate_file(kCell.c_str(), kProgram.c_str(), kHoles.c_str(), out.c_str(), "keep",
+                             targets.c_str(), summary, sizeof summary, err, sizeof err);
+  ASSERT_EQ(rc, ROPREC_OK) << err;
+  EXPECT_STREQ(err, "");
+  const auto a = nlohmann::json::parse(readFile(dir + "/cli.json"));
+  const auto b = nlohmann::json::parse(readFile(targets));
+  ASSERT_EQ(a.at("holes").size(), 204U);
+  std::vector<std::string> diffs;
+  compareJson(a, b, "", 1e-9, diffs);
+  EXPECT_TRUE(diffs.empty()) << joined(diffs);
+  // The corrected program is the CLI's, byte for byte (the sample's points are inline: no .dat).
+  EXPECT_EQ(readFile(dir + "/cli.src"), readFile(out));
+  EXPECT_FALSE(std::filesystem::exists(dir + "/c.dat"));
+  const auto s = nlohmann::json::parse(summary);
+  EXPECT_EQ(s.at("orientation"), "keep");
+  EXPECT_EQ(s.at("holes").get<int>(), 204);
+  EXPECT_EQ(s.at("compensated").get<int>(), 204);
+  EXPECT_EQ(s.at("failed").get<int>(), 0);
+  EXPECT_LT(s.at("residual_after_um").at("max").get<double>(), 0.01);
+  EXPECT_EQ(s.at("written"), (nlohmann::json{out, targets}));
+  std::filesystem::remove_all(dir);
+}
+
+/// The sample hole list as a JSON target program (docs/programs.md): per hole an approach 20 mm
+/// before the hole and a slow linear feed to it, in a frame equal to the cell's workobject, at
+/// full precision — so the program's drill points are the hole-list poses.
+std::string holeListProgram(const std::vector<postproc::HoleSpec>& specs, const Pose& T_base_wobj) {
+  char buf[512];
+  const Eigen::Quaterniond qw = quaternionFromRotation(T_base_wobj.linear());
+  const Vec3 pw = T_base_wobj.translation() * 1e3;
+  std::string s = "{\"frames\": [";
+  std::snprintf(buf, sizeof buf,
+                "{\"name\": \"wobj\", \"position_mm\": [%.17g, %.17g, %.17g], \"quaternion_wxyz\": "
+                "[%.17g, %.17g, %.17g, %.17g]}",
+                pw.x(), pw.y(), pw.z(), qw.w(), qw.x(), qw.y(), qw.z());
+  s += buf;
+  s += "],\n\"targets\": [\n";
+  for (size_t i = 0; i < specs.size(); ++i) {
+    const postproc::HoleSpec& h = specs[i];
+    const Eigen::Quaterniond q = quaternionFromRotation(api::holeFrame(h.direction));
+    const Vec3 d = h.direction.normalized();
+    for (int k = 0; k < 2; ++k) {
+      const Vec3 p = k == 0 ? Vec3(h.position_mm - 20.0 * d) : h.position_mm;
+      std::snprintf(
+          buf, sizeof buf,
+          "%s{\"id\": \"%s%s\", \"motion\": \"L\", \"frame\": \"wobj\", \"speed_mm_s\": %d, "
+          "\"position_mm\": [%.17g, %.17g, %.17g], \"quaternion_wxyz\": [%.17g, %.17g, %.17g, "
+          "%.17g]}",
+          i == 0 && k == 0 ? "" : ",\n", h.id.c_str(), k == 0 ? "_approach" : "", k == 0 ? 250 : 10,
+          p.x(), p.y(), p.z(), q.w(), q.x(), q.y(), q.z());
+      s += buf;
+    }
+  }
+  s += "\n]}\n";
+  return s;
+}
+
+TEST(CApi, FilterTargetEqualsKeepCompensationOnEverySampleHole) {
+  const std::vector<postproc::HoleSpec> specs = postproc::readHoleList(kHoles);
+  ASSERT_EQ(specs.size(), 204U);
+  const CellSpec cell = loadCell(kCell);
+  const std::string dir = tempDir("capi-filter");
+  const std::string program = dir + "/holes_program.json";
+  writeFile(program, holeListProgram(specs, cell.T_base_wobj));
+
+  // The library's keep compensation of those holes (double precision) ...
+  const api::CompensationResult job = api::compensateJob(kCell, program);
+  ASSERT_EQ(job.holes.size(), specs.size());
+  // ... and the CLI's (its export prints 6 decimals of mm and 9 of the quaternion).
+  const test::RunResult cli =
+      runRoprec("compensate --cell '" + kCell + "' '" + program + "' --orientation keep -o '" +
+                dir + "/out.json' --targets '" + dir + "/targets.json' --quiet");
+  ASSERT_EQ(cli.exit_code, 0) << cli.err;
+  const auto exported = nlohmann::json::parse(readFile(dir + "/targets.json")).at("holes");
+  ASSERT_EQ(exported.size(), specs.size());
+
+  roprec_session* s = nullptr;
+  char err[1024];
+  ASSERT_EQ(roprec_open(kCell.c_str(), &s, err, sizeof err), ROPREC_OK) << err;
+  const RobotCard& card = job.context.robot.card;
+  double worst_pos_um = 0;
+  double worst_rot = 0;
+  double worst_real_um = 0;
+  for (size_t i = 0; i < specs.size(); ++i) {
+    SCOPED_TRACE(specs[i].id);
+    const HoleCompensation& h = job.holes[i];
+    ASSERT_TRUE(h.ok) << h.reason;
+    // The hole-list pose: the cell's workobject times the hole frame.
+    Pose T_wobj_tcp = Pose::Identity();
+    T_wobj_tcp.linear() = api::holeFrame(specs[i].direction);
+    T_wobj_tcp.translation() = specs[i].position_mm * 1e-3;
+    const Pose T_want = cell.T_base_wobj * T_wobj_tcp;
+    ASSERT_LT((job.context.job.requests[i].T_W_tcp.translation() - T_want.translation()).norm(),
+              1e-12);
+    ASSERT_LT(angleBetween(job.context.job.requests[i].T_W_tcp.linear(), T_want.linear()), 1e-12);
+
+    // Seeded with the joints the job predicted the hole at (its IK branch and turns).
+    const Vec6 seed_deg = toControllerJoints(card, h.before.joints) / kDeg;
+    const std::array<double, 16> want = rowMajorMm(T_want);
+    std::array<double, 16> prog{};
+    std::array<double, 6> joints{};
+    ASSERT_EQ(roprec_filter_target(s, want.data(), seed_deg.data(), prog.data(), joints.data(), err,
+                                   sizeof err),
+              ROPREC_OK)
+        << err;
+
+    // = the library's compensation: ≤ 1e-3 µm, ≤ 1e-9 rad; orientation kept bit for bit.
+    const Vec3 p(prog[3], prog[7], prog[11]);
+    const double dpos_um = (p - h.T_programmed.translation() * 1e3).norm() * 1e3;
+    const double drot = angleBetween(rotationOf(prog), h.T_programmed.linear());
+    EXPECT_LE(dpos_um, 1e-3);
+    EXPECT_LE(drot, 1e-9);
+    EXPECT_EQ(rotationOf(prog), T_want.linear());
+    EXPECT_EQ(prog[12], 0.0);
+    EXPECT_EQ(prog[15], 1.0);
+    const Vec6 j_job = toControllerJoints(card, h.theta_cmd) / kDeg;
+    for (int k = 0; k < 6; ++k) EXPECT_NEAR(joints[static_cast<size_t>(k)], j_job[k], 1e-7);
+    worst_pos_um = std::max(worst_pos_um, dpos_um);
+    worst_rot = std::max(worst_rot, drot);
+
+    // = the CLI's export to its printed precision (half a unit of the last printed digit).
+    const auto& e = exported[i].at("programmed");
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(e.at("position_mm")[static_cast<size_t>(k)].get<double>(), p[k], 0.5e-6 + 1e-9);
+    const Eigen::Quaterniond q = quaternionFromRotation(rotationOf(prog));
+    const Eigen::Vector4d qv(q.w(), q.x(), q.y(), q.z());
+    for (int k = 0; k < 4; ++k)
+      EXPECT_NEAR(e.at("quaternion_wxyz")[static_cast<size_t>(k)].get<double>(), qv[k],
+                  0.5e-9 + 1e-12);
+
+    // The predicted real TCP at the returned joints (programmed pose + deviation) is the wanted
+    // pose.
+    std::array<double, 6> dev{};
+    double U = 0;
+    ASSERT_EQ(roprec_predict_joints(s, joints.data(), dev.data(), &U, err, sizeof err), ROPREC_OK)
+        << err;
+    const Vec3 real = p + Vec3(dev[0], dev[1], dev[2]) * 1e-3;
+    const double miss_um = (real - T_want.translation() * 1e3).norm() * 1e3;
+    EXPECT_LE(miss_um, 0.1);
+    EXPECT_GT(U, 0.0);
+    EXPECT_NEAR(U, h.after.U_work * 1e6, 1e-6 * h.after.U_work * 1e6);
+    worst_real_um = std::max(worst_real_um, miss_um);
+  }
+  std::printf(
+      "filter_target vs compensate keep over %zu holes: max %.3g um, %.3g rad; real TCP off the "
+      "hole by max %.3g um\n",
+      specs.size(), worst_pos_um, worst_rot, worst_real_um);
+
+  // Without a seed the reference pose picks the IK solution: the first hole's, like the job's.
+  std::array<double, 16> prog0{};
+  std::array<double, 6> joints0{};
+  Pose T0 = Pose::Identity();
+  T0.linear() = api::holeFrame(specs[0].direction);
+  T0.translation() = specs[0].position_mm * 1e-3;
+  const std::array<double, 16> want0 = rowMajorMm(cell.T_base_wobj * T0);
+  ASSERT_EQ(
+      roprec_filter_target(s, want0.data(), nullptr, prog0.data(), joints0.data(), err, sizeof err),
+      ROPREC_OK)
+      << err;
+  EXPECT_LE(
+      (Vec3(prog0[3], prog0[7], prog0[11]) - job.holes[0].T_programmed.translation() * 1e3).norm(),
+      1e-6);
+  // The output may alias the input.
+  std::array<double, 16> inout = want0;
+  ASSERT_EQ(
+      roprec_filter_target(s, inout.data(), nullptr, inout.data(), joints0.data(), err, sizeof err),
+      ROPREC_OK);
+  EXPECT_EQ(inout, prog0);
+  roprec_close(s);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CApi, ErrorsAreStatusesWithTheCliText) {
+  char err[1024];
+  roprec_session* s = reinterpret_cast<roprec_session*>(&err);  // must be reset to NULL
+  const std::string missing = sourceDir() + "/samples/cells/no-such-cell.xml";
+  EXPECT_EQ(roprec_open(missing.c_str(), &s, err, sizeof err), ROPREC_BAD_INPUT);
+  EXPECT_EQ(s, nullptr);
+  const test::RunResult cli = runRoprec("predict --cell '" + missing + "' '" + kProgram + "'");
+  EXPECT_EQ(cli.exit_code, 2);
+  EXPECT_EQ(std::string(err), cliErrorText(cli));
+
+  // A broken cell: FILE:LINE: what, as the CLI prints it.
+  const std::string dir = tempDir("capi-errors");
+  const std::string bad = dir + "/bad.xml";
+  writeFile(bad, "<cell name=\"x\">\n  <robot ref=\"no-such-robot\"/>\n</cell>\n");
+  EXPECT_EQ(roprec_open(bad.c_str(), &s, err, sizeof err), ROPREC_BAD_INPUT);
+  const test::RunResult cli_bad = runRoprec("predict --cell '" + bad + "' '" + kProgram + "'");
+  EXPECT_EQ(cli_bad.exit_code, 2);
+  EXPECT_EQ(std::string(err), cliErrorText(cli_bad));
+  EXPECT_EQ(std::string(err).rfind(bad, 0), 0U) << err;
+
+  // Error buffers: truncated, always NUL-terminated; NULL with length 0 is allowed.
+  char small[8];
+  std::memset(small, 'x', sizeof small);
+  EXPECT_EQ(roprec_open(missing.c_str(), &s, small, sizeof small), ROPREC_BAD_INPUT);
+  EXPECT_EQ(std::strlen(small), 7U);
+  EXPECT_EQ(std::string(small), cliErrorText(cli).substr(0, 7));
+  char one[1] = {'x'};
+  EXPECT_EQ(roprec_open(missing.c_str(), &s, one, 1), ROPREC_BAD_INPUT);
+  EXPECT_EQ(one[0], '\0');
+  EXPECT_EQ(roprec_open(missing.c_str(), &s, nullptr, 0), ROPREC_BAD_INPUT);
+  EXPECT_EQ(roprec_open(nullptr, &s, err, sizeof err), ROPREC_BAD_INPUT);
+  EXPECT_STREQ(err, "cell_path is NULL");
+  EXPECT_EQ(roprec_open(kCell.c_str(), nullptr, err, sizeof err), ROPREC_BAD_INPUT);
+
+  ASSERT_EQ(roprec_open(kCell.c_str(), &s, err, sizeof err), ROPREC_OK) << err;
+  EXPECT_STREQ(err, "");
+  std::array<double, 16> pose{1, 0, 0, 1500, 0, -1, 0, 0, 0, 0, -1, 550, 0, 0, 0, 1};
+  std::array<double, 16> out{};
+  std::array<double, 6> joints{};
+  std::array<double, 6> dev{};
+  EXPECT_EQ(roprec_filter_target(nullptr, pose.data(), nullptr, out.data(), joints.data(), err,
+                                 sizeof err),
+            ROPREC_BAD_INPUT);
+  EXPECT_STREQ(err, "session is NULL");
+  EXPECT_EQ(roprec_filter_target(s, nullptr, nullptr, out.data(), joints.data(), err, sizeof err),
+            ROPREC_BAD_INPUT);
+  // A non-rigid pose; its message holds multi-byte characters: truncation keeps whole characters.
+  std::array<double, 16> skew = pose;
+  skew[1] = 0.01;
+  EXPECT_EQ(
+      roprec_filter_target(s, skew.data(), nullptr, out.data(), joints.data(), err, sizeof err),
+      ROPREC_BAD_INPUT);
+  const std::string full = err;
+  EXPECT_NE(full.find("not orthonormal"), std::string::npos) << full;
+  const size_t mb = full.find("ᵀ");
+  ASSERT_NE(mb, std::string::npos);
+  for (size_t cut = mb + 1; cut <= mb + 3; ++cut) {
+    std::vector<char> buf(cut + 1, 'x');
+    EXPECT_EQ(roprec_filter_target(s, skew.data(), nullptr, out.data(), joints.data(), buf.data(),
+                                   buf.size()),
+              ROPREC_BAD_INPUT);
+    EXPECT_TRUE(validUtf8(buf.data())) << cut;
+    EXPECT_EQ(std::strlen(buf.data()), cut == mb + 3 ? mb + 3 : mb);
+  }
+  std::array<double, 16> row = pose;
+  row[14] = 0.5;
+  EXPECT_EQ(
+      roprec_filter_target(s, row.data(), nullptr, out.data(), joints.data(), err, sizeof err),
+      ROPREC_BAD_INPUT);
+  std::array<double, 16> nan = pose;
+  nan[3] = std::nan("");
+  EXPECT_EQ(
+      roprec_filter_target(s, nan.data(), nullptr, out.data(), joints.data(), err, sizeof err),
+      ROPREC_BAD_INPUT);
+  std::array<double, 6> bad_seed{0, -90, 90, 0, std::nan(""), 0};
+  EXPECT_EQ(roprec_filter_target(s, pose.data(), bad_seed.data(), out.data(), joints.data(), err,
+                                 sizeof err),
+            ROPREC_BAD_INPUT);
+
+  // Out of reach: an item failure, outputs unchanged.
+  std::array<double, 16> far = pose;
+  far[3] = 9000;
+  out.fill(7.0);
+  EXPECT_EQ(
+      roprec_filter_target(s, far.data(), nullptr, out.data(), joints.data(), err, sizeof err),
+      ROPREC_ITEM_FAILED);
+  EXPECT_NE(std::string(err).find("target not filtered"), std::string::npos) << err;
+  EXPECT_EQ(out[0], 7.0);
+  EXPECT_EQ(roprec_predict_joints(s, nullptr, dev.data(), nullptr, err, sizeof err),
+            ROPREC_BAD_INPUT);
+  const std::array<double, 6> home{0, -90, 90, 0, 45, 0};
+  EXPECT_EQ(roprec_predict_joints(s, home.data(), nullptr, nullptr, err, sizeof err),
+            ROPREC_BAD_INPUT);
+  EXPECT_EQ(roprec_predict_joints(s, home.data(), dev.data(), nullptr, err, sizeof err), ROPREC_OK)
+      << err;
+  roprec_close(s);
+  roprec_close(nullptr);
+
+  // Whole jobs: a summary buffer too small writes nothing; a missing program; bad options.
+  char tiny[16];
+  const std::string json = dir + "/p.json";
+  EXPECT_EQ(roprec_predict_file(kCell.c_str(), kHoles.c_str(), nullptr, json.c_str(), tiny,
+                                sizeof tiny, err, sizeof err),
+            ROPREC_BAD_INPUT);
+  EXPECT_NE(std::string(err).find("summary_json"), std::string::npos) << err;
+  EXPECT_FALSE(std::filesystem::exists(json));
+  EXPECT_EQ(roprec_predict_file(kCell.c_str(), kHoles.c_str(), nullptr, nullptr, nullptr, 5, err,
+                                sizeof err),
+            ROPREC_BAD_INPUT);
+  EXPECT_EQ(roprec_predict_file(kCell.c_str(), kHoles.c_str(), nullptr, json.c_str(), nullptr, 0,
+                                err, sizeof err),
+            ROPREC_OK)
+      << err;
+  EXPECT_TRUE(std::filesystem::exists(json));
+  const std::string out_prog = dir + "/o.src";
+  const std::string no_program = dir + "/no-such-program.src";
+  EXPECT_EQ(roprec_compensate_file(kCell.c_str(), no_program.c_str(), nullptr, out_prog.c_str(),
+                                   "keep", nullptr, nullptr, 0, err, sizeof err),
+            ROPREC_BAD_INPUT);
+  const test::RunResult cli_missing = runRoprec("compensate --cell '" + kCell + "' '" + no_program +
+                                                "' -o '" + out_prog + "' --quiet");
+  EXPECT_EQ(cli_missing.exit_code, 2);
+  EXPECT_EQ(std::string(err), cliErrorText(cli_missing));
+  EXPECT_EQ(roprec_compensate_file(kCell.c_str(), kProgram.c_str(), nullptr, out_prog.c_str(),
+                                   "sideways", nullptr, nullptr, 0, err, sizeof err),
+            ROPREC_BAD_INPUT);
+  EXPECT_NE(std::string(err).find("keep, flip-free or stiffest"), std::string::npos) << err;
+  EXPECT_FALSE(std::filesystem::exists(out_prog));
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CApi, DistinctSessionsRunOnThreads) {
+  const std::vector<postproc::HoleSpec> specs = postproc::readHoleList(kHoles);
+  const CellSpec cell = loadCell(kCell);
+  constexpr size_t kTargets = 24;
+  auto run = [&](size_t first, std::vector<std::array<double, 16>>& results, int& status) {
+    roprec_session* s = nullptr;
+    char err[512];
+    status = roprec_open(kCell.c_str(), &s, err, sizeof err);
+    if (status != ROPREC_OK) return;
+    for (size_t i = 0; i < kTargets; ++i) {
+      const postproc::HoleSpec& h = specs[(first + i) % specs.size()];
+      Pose T = Pose::Identity();
+      T.linear() = api::holeFrame(h.direction);
+      T.translation() = h.position_mm * 1e-3;
+      const std::array<double, 16> want = rowMajorMm(cell.T_base_wobj * T);
+      std::array<double, 6> joints{};
+      status = std::max(status, roprec_filter_target(s, want.data(), nullptr, results[i].data(),
+                                                     joints.data(), err, sizeof err));
+    }
+    roprec_close(s);
+  };
+  std::vector<std::array<double, 16>> serial_a(kTargets), serial_b(kTargets), par_a(kTargets),
+      par_b(kTargets);
+  int sa = -1, sb = -1, pa = -1, pb = -1;
+  run(0, serial_a, sa);
+  run(100, serial_b, sb);
+  std::thread ta([&] { run(0, par_a, pa); });
+  std::thread tb([&] { run(100, par_b, pb); });
+  ta.join();
+  tb.join();
+  EXPECT_EQ(sa, ROPREC_OK);
+  EXPECT_EQ(sb, ROPREC_OK);
+  EXPECT_EQ(pa, ROPREC_OK);
+  EXPECT_EQ(pb, ROPREC_OK);
+  EXPECT_EQ(serial_a, par_a);
+  EXPECT_EQ(serial_b, par_b);
+}
+
+}  // namespace
+}  // namespace roprec

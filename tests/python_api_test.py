@@ -1,0 +1,413 @@
+"""The Python module `roprec` against the CLI and the C ABI (through ctypes) on the sample job:
+predict and compensate keep give the same numbers (the CLI's JSON rounds; the Python dicts carry
+full precision and are compared at the JSON's printed decimals, within 1e-9 relative); the same
+files byte for byte; Session.filter_target / predict_joints equal roprec_filter_target /
+roprec_predict_joints; errors are roprec.RoprecError subclasses with the CLI's text; docstrings.
+
+Run by ctest with PYTHONPATH = the build tree's python/ folder, ROPREC_BIN = the CLI and
+ROPREC_C_LIB = libroprec_c.so.
+"""
+
+import ctypes
+import json
+import os
+import shutil
+import subprocess
+import tempfile
+import threading
+import unittest
+from pathlib import Path
+
+import numpy as np
+
+import roprec
+
+SRC = Path(__file__).resolve().parents[1]
+CELL = str(SRC / "samples" / "cells" / "housing-kr120.xml")
+PROGRAM = str(SRC / "samples" / "emotor-housing" / "housing_kr120.src")
+HOLES = str(SRC / "samples" / "emotor-housing" / "holes.csv")
+ROPREC_BIN = os.environ["ROPREC_BIN"]
+REL = 1e-9
+
+
+def cli(*args):
+    return subprocess.run([ROPREC_BIN] + [str(a) for a in args], capture_output=True, text=True, timeout=600)
+
+
+def cli_error_text(r):
+    """The CLI's error message without 'roprec: error: '."""
+    text = r.stderr.strip()
+    return text[len("roprec: error: "):] if text.startswith("roprec: error: ") else text
+
+
+class Num(float):
+    """A JSON number that remembers how it was printed."""
+
+    def __new__(cls, text):
+        n = float.__new__(cls, float(text))
+        n.text = text
+        return n
+
+
+def load_json(path):
+    with open(path, encoding="utf-8") as f:
+        return json.load(f, parse_float=Num, parse_int=Num)
+
+
+def same_number(py_value, token, what):
+    """py_value (full precision) printed like `token` (a JSON number) is `token`, within REL."""
+    text = token.text
+    if "." in text and "e" not in text.lower():
+        decimals = len(text.split(".")[1])
+        printed = float("%.*f" % (decimals, float(py_value)))
+    else:
+        printed = float(py_value)
+    ref = float(token)
+    assert abs(printed - ref) <= REL * max(abs(printed), abs(ref)), "%s: %r (python) vs %s (CLI)" % (what, py_value, text)
+
+
+def compare_value(py_value, ref, what):
+    if isinstance(ref, Num):
+        same_number(py_value, ref, what)
+    elif isinstance(ref, list):
+        values = list(np.asarray(py_value, dtype=float).ravel())
+        assert len(values) == len(ref), "%s: %d vs %d values" % (what, len(values), len(ref))
+        for k, (v, t) in enumerate(zip(values, ref)):
+            same_number(v, t, "%s[%d]" % (what, k))
+    else:
+        assert py_value == ref, "%s: %r vs %r" % (what, py_value, ref)
+
+
+def compare_trees(a, b, path=""):
+    """Two parsed JSON documents: same structure and strings, numbers within REL."""
+    if isinstance(a, dict):
+        assert isinstance(b, dict) and list(a) == list(b), "%s: keys %s vs %s" % (path, list(a), list(b))
+        for k in a:
+            compare_trees(a[k], b[k], path + "/" + k)
+    elif isinstance(a, list):
+        assert isinstance(b, list) and len(a) == len(b), "%s: lengths" % path
+        for i, (x, y) in enumerate(zip(a, b)):
+            compare_trees(x, y, "%s/%d" % (path, i))
+    elif isinstance(a, float) and isinstance(b, float):
+        assert abs(a - b) <= REL * max(abs(a), abs(b)), "%s: %r vs %r" % (path, a, b)
+    else:
+        assert a == b, "%s: %r vs %r" % (path, a, b)
+
+
+def dig(tree, dotted):
+    for key in dotted.split("."):
+        tree = tree[key]
+    return tree
+
+
+# Python per-hole key -> the prediction JSON's key (docs/contract.md "Prediction output").
+PREDICT_KEYS = {
+    "id": "id", "verdict": "verdict", "nominal_position_mm": "nominal.position_mm",
+    "nominal_quaternion_wxyz": "nominal.quaternion_wxyz", "axis": "nominal.axis", "diameter_mm": "diameter_mm",
+    "depth_mm": "depth_mm", "tolerance_mm": "tolerance_mm", "mc_time_s": "mc_time_s", "joints_deg": "joints_deg",
+    "config": "config", "branch": "branch", "deviation_um": "deviation_um.work",
+    "robot_deviation_um": "deviation_um.robot", "mach_deviation_um": "deviation_um.mach",
+    "rotation_urad": "deviation_um.robot_rotation_urad", "work_tool_xy_um": "deviation_um.work_tool_xy",
+    "position_error_um": "deviation_um.position_error", "axis_tilt_urad": "deviation_um.axis_tilt_urad",
+    "from_nominal_axis_um": "deviation_um.from_nominal_axis", "U_robot_um": "uncertainty_um.U_robot",
+    "U_mach_um": "uncertainty_um.U_mach", "U_work_um": "uncertainty_um.U_work", "k": "uncertainty_um.k",
+    "U_work_anisotropic_um": "uncertainty_um.U_work_anisotropic", "process_share": "uncertainty_um.process_share",
+    "process_force_share": "uncertainty_um.process_force_share", "process_force_N": "process_force_N",
+    "equilibrium_converged": "equilibrium.converged", "equilibrium_iterations": "equilibrium.iterations",
+    "line": "line", "reason": "reason",
+}
+
+# Python per-hole compensation key -> the corrected-target export's key.
+COMPENSATE_KEYS = {
+    "id": "id", "status": "status", "reason": "reason", "nominal_position_mm": "nominal.position_mm",
+    "nominal_quaternion_wxyz": "nominal.quaternion_wxyz", "before_deviation_um": "before.deviation_um.translation",
+    "before_rotation_urad": "before.deviation_um.rotation_urad", "before_verdict": "before.verdict",
+    "programmed_position_mm": "programmed.position_mm", "programmed_quaternion_wxyz": "programmed.quaternion_wxyz",
+    "joints_deg": "programmed.joints_deg", "config": "programmed.config",
+    "rotation_about_axis_deg": "rotation_about_axis_deg", "residual_um": "residual_um",
+    "residual_vector_um": "residual_vector_um", "branch_changed": "branch_changed", "note": "note",
+    "U_robot_um": "uncertainty_um.U_robot", "U_mach_um": "uncertainty_um.U_mach",
+    "U_work_um": "uncertainty_um.U_work", "k": "uncertainty_um.k", "verdict": "verdict",
+}
+
+
+def compare_hole(py, ref, mapping, what):
+    """Every key of `mapping` the JSON has is in the dict with the same value; absent ones are None."""
+    for py_key, json_key in mapping.items():
+        try:
+            value = dig(ref, json_key)
+        except KeyError:
+            assert py[py_key] is None, "%s: %s is %r, the JSON has no %s" % (what, py_key, py[py_key], json_key)
+            continue
+        compare_value(py[py_key], value, "%s %s" % (what, py_key))
+
+
+class CApi(object):
+    """libroprec_c through ctypes."""
+
+    def __init__(self, path):
+        lib = ctypes.CDLL(path)
+        D, P, S, I = ctypes.POINTER(ctypes.c_double), ctypes.c_char_p, ctypes.c_size_t, ctypes.c_int
+        lib.roprec_version.restype = P
+        lib.roprec_open.argtypes = [P, ctypes.POINTER(ctypes.c_void_p), P, S]
+        lib.roprec_close.argtypes = [ctypes.c_void_p]
+        lib.roprec_filter_target.argtypes = [ctypes.c_void_p, D, D, D, D, P, S]
+        lib.roprec_predict_joints.argtypes = [ctypes.c_void_p, D, D, D, P, S]
+        lib.roprec_predict_file.argtypes = [P, P, P, P, P, S, P, S]
+        lib.roprec_compensate_file.argtypes = [P, P, P, P, P, P, P, S, P, S]
+        for f in (lib.roprec_open, lib.roprec_filter_target, lib.roprec_predict_joints, lib.roprec_predict_file,
+                  lib.roprec_compensate_file):
+            f.restype = I
+        self.lib = lib
+
+    @staticmethod
+    def b(s):
+        return None if s is None else str(s).encode()
+
+    def version(self):
+        return self.lib.roprec_version().decode()
+
+    def predict_file(self, cell, program, holes, json_out):
+        summary, err = ctypes.create_string_buffer(4096), ctypes.create_string_buffer(4096)
+        rc = self.lib.roprec_predict_file(self.b(cell), self.b(program), self.b(holes), self.b(json_out), summary, 4096,
+                                          err, 4096)
+        return rc, json.loads(summary.value.decode()) if rc != 2 else None, err.value.decode()
+
+    def compensate_file(self, cell, program, holes, out, orientation, targets):
+        summary, err = ctypes.create_string_buffer(4096), ctypes.create_string_buffer(4096)
+        rc = self.lib.roprec_compensate_file(self.b(cell), self.b(program), self.b(holes), self.b(out),
+                                             self.b(orientation), self.b(targets), summary, 4096, err, 4096)
+        return rc, json.loads(summary.value.decode()) if rc == 0 else None, err.value.decode()
+
+    def open(self, cell):
+        s, err = ctypes.c_void_p(), ctypes.create_string_buffer(1024)
+        rc = self.lib.roprec_open(self.b(cell), ctypes.byref(s), err, 1024)
+        if rc:
+            raise RuntimeError(err.value.decode())
+        return s
+
+    def filter_target(self, s, pose, seed):
+        arr = lambda a, n: (ctypes.c_double * n)(*[float(x) for x in np.ravel(a)])
+        out, joints, err = (ctypes.c_double * 16)(), (ctypes.c_double * 6)(), ctypes.create_string_buffer(1024)
+        rc = self.lib.roprec_filter_target(s, arr(pose, 16), None if seed is None else arr(seed, 6), out, joints, err, 1024)
+        return rc, np.array(out[:]).reshape(4, 4), np.array(joints[:]), err.value.decode()
+
+    def predict_joints(self, s, joints):
+        dev, U, err = (ctypes.c_double * 6)(), ctypes.c_double(), ctypes.create_string_buffer(1024)
+        rc = self.lib.roprec_predict_joints(s, (ctypes.c_double * 6)(*joints), dev, ctypes.byref(U), err, 1024)
+        return rc, np.array(dev[:]), U.value
+
+
+C = CApi(os.environ["ROPREC_C_LIB"])
+
+
+class PythonApiTest(unittest.TestCase):
+    def setUp(self):
+        self.tmp = Path(tempfile.mkdtemp(prefix="roprec-pytest-"))
+
+    def tearDown(self):
+        shutil.rmtree(self.tmp)
+
+    def test_version_and_docstrings(self):
+        self.assertEqual(roprec.__version__, C.version())
+        self.assertRegex(roprec.__version__, r"^\d+\.\d+\.\d+$")
+        self.assertTrue(issubclass(roprec.RoprecError, Exception))
+        for cls in (roprec.InputError, roprec.UsageError, roprec.ItemError):
+            self.assertTrue(issubclass(cls, roprec.RoprecError))
+        self.assertTrue(issubclass(roprec.UsageError, ValueError))
+        public = [roprec, roprec.Session, roprec.predict, roprec.compensate, roprec.Prediction, roprec.RoprecError,
+                  roprec.InputError, roprec.UsageError, roprec.ItemError]
+        public += [getattr(roprec.Session, n) for n in ("filter_target", "predict_joints", "hole_pose", "cell_path",
+                                                        "cell", "robot", "tool_pose_mm", "workobject_pose_mm",
+                                                        "process")]
+        for obj in public:
+            self.assertTrue((obj.__doc__ or "").strip(), obj)
+        self.assertEqual(sorted(roprec.__all__), sorted(["__version__", "Session", "predict", "compensate", "Prediction",
+                                                         "RoprecError", "InputError", "UsageError", "ItemError"]))
+
+    def test_predict_gives_the_cli_and_c_numbers(self):
+        r = cli("predict", "--cell", CELL, PROGRAM, "--holes", HOLES, "--json", self.tmp / "cli.json", "--quiet")
+        self.assertLessEqual(r.returncode, 1, r.stderr)
+        p = roprec.predict(CELL, PROGRAM, holes=HOLES, json_out=self.tmp / "py.json")
+        rc, c_summary, err = C.predict_file(CELL, PROGRAM, HOLES, self.tmp / "c.json")
+        self.assertEqual(rc, r.returncode, err)
+        ref = load_json(self.tmp / "cli.json")
+        # The same document from all three.
+        compare_trees(ref, load_json(self.tmp / "py.json"))
+        compare_trees(ref, load_json(self.tmp / "c.json"))
+        self.assertEqual((self.tmp / "py.json").read_bytes(), (self.tmp / "cli.json").read_bytes())
+        # The dicts: every number of the JSON, at full precision.
+        self.assertIsInstance(p, list)
+        self.assertEqual(len(p), len(ref["holes"]))
+        self.assertEqual(len(p), 204)
+        for h, j in zip(p, ref["holes"]):
+            compare_hole(h, j, PREDICT_KEYS, h["id"])
+            budget = dig(j, "uncertainty_um.standard_per_axis") if "uncertainty_um" in j else None
+            if budget is not None:
+                self.assertEqual(list(h["budget_um"]), list(budget))
+                for name, tok in budget.items():
+                    same_number(h["budget_um"][name], tok, h["id"] + " budget " + name)
+            np.testing.assert_allclose(h["nominal_pose_mm"][:3, 3], h["nominal_position_mm"], rtol=0, atol=0)
+        self.assertEqual(p.robot, ref["robot"])
+        self.assertEqual(p.notes, ref["notes"])
+        summary = dict(p.summary)
+        self.assertEqual(summary.pop("failed"), len(p.failed))
+        compare_trees(ref["summary"], summary)
+        compare_trees(p.summary, c_summary)
+        self.assertEqual(p.failures == "", not p.failed)
+
+    def test_compensate_keep_gives_the_cli_and_c_numbers_and_bytes(self):
+        r = cli("compensate", "--cell", CELL, PROGRAM, "--holes", HOLES, "--orientation", "keep",
+                "-o", self.tmp / "cli.src", "--targets", self.tmp / "cli.json", "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        res = roprec.compensate(CELL, PROGRAM, self.tmp / "py.src", orientation="keep", targets=self.tmp / "py.json",
+                                holes=HOLES)
+        rc, c_summary, err = C.compensate_file(CELL, PROGRAM, HOLES, self.tmp / "c.src", "keep", self.tmp / "c.json")
+        self.assertEqual(rc, 0, err)
+        for stem in ("py", "c"):   # the sample keeps its points inline: no .dat
+            self.assertEqual((self.tmp / (stem + ".src")).read_bytes(), (self.tmp / "cli.src").read_bytes())
+        ref = load_json(self.tmp / "cli.json")
+        compare_trees(ref, load_json(self.tmp / "py.json"))
+        compare_trees(ref, load_json(self.tmp / "c.json"))
+        self.assertEqual(len(res["results"]), 204)
+        for h, j in zip(res["results"], ref["holes"]):
+            compare_hole(h, j, COMPENSATE_KEYS, h["id"])
+            np.testing.assert_allclose(h["programmed_pose_mm"][:3, 3], h["programmed_position_mm"], rtol=0, atol=0)
+            # keep: the programmed orientation is the nominal one
+            np.testing.assert_array_equal(h["programmed_pose_mm"][:3, :3], h["nominal_pose_mm"][:3, :3])
+        self.assertEqual(res["written"], [str(self.tmp / "py.src"), str(self.tmp / "py.json")])
+        self.assertEqual(c_summary["written"], [str(self.tmp / "c.src"), str(self.tmp / "c.json")])
+        summary = {k: v for k, v in res.items() if k not in ("results", "written")}
+        compare_trees(summary, {k: v for k, v in c_summary.items() if k != "written"})
+        self.assertEqual((summary["orientation"], summary["holes"], summary["compensated"], summary["failed"]),
+                         ("keep", 204, 204, 0))
+
+    def test_milling_cell_compensates_path_points_like_the_cli(self):
+        cell = str(SRC / "samples" / "cells" / "alu-milling-7075.xml")
+        program = str(SRC / "samples" / "milling" / "wall_pass.src")
+        r = cli("compensate", "--cell", cell, program, "-o", self.tmp / "cli.src", "--targets", self.tmp / "cli.json",
+                "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        res = roprec.compensate(cell, program, self.tmp / "py.src", targets=self.tmp / "py.json")
+        rc, c_summary, err = C.compensate_file(cell, program, None, self.tmp / "c.src", None, self.tmp / "c.json")
+        self.assertEqual(rc, 0, err)
+        for stem in ("py", "c"):
+            for ext in (".src", ".json"):
+                self.assertEqual((self.tmp / (stem + ext)).read_bytes(), (self.tmp / ("cli" + ext)).read_bytes())
+        self.assertEqual((res["process"], res["failed"]), ("milling", 0))
+        self.assertEqual(res["points"], len(load_json(self.tmp / "cli.json")["points"]))
+        compare_trees({k: v for k, v in res.items() if k != "written"},
+                      {k: v for k, v in c_summary.items() if k != "written"})
+
+    def test_session_equals_the_c_session(self):
+        s = roprec.Session(CELL)
+        cs = C.open(CELL)
+        try:
+            p = roprec.predict(CELL, HOLES)
+            for h in p[::17]:
+                wanted = h["nominal_pose_mm"]
+                for seed in (None, h["controller_joints_deg"]):
+                    pose, joints = s.filter_target(wanted, seed)
+                    rc, cpose, cjoints, err = C.filter_target(cs, wanted, seed)
+                    self.assertEqual(rc, 0, err)
+                    np.testing.assert_array_equal(pose, cpose)
+                    np.testing.assert_array_equal(joints, cjoints)
+                    np.testing.assert_array_equal(pose[:3, :3], wanted[:3, :3])   # orientation kept
+                    d = s.predict_joints(joints)
+                    rc, cdev, cU = C.predict_joints(cs, joints)
+                    self.assertEqual(rc, 0)
+                    np.testing.assert_array_equal(d["deviation_um"], cdev[:3])
+                    np.testing.assert_array_equal(d["rotation_urad"], cdev[3:])
+                    self.assertEqual(d["U_work_um"], cU)
+                    real = pose[:3, 3] + d["deviation_um"] * 1e-3
+                    self.assertLess(np.linalg.norm(real - wanted[:3, 3]) * 1e3, 0.1)
+            # hole_pose is the hole list's pose (the cell's workobject x the hole frame).
+            np.testing.assert_allclose(s.hole_pose([150, 0, 250], [0, 0, -1]), p[0]["nominal_pose_mm"], rtol=0, atol=1e-12)
+            self.assertEqual(s.robot, p.robot)
+            self.assertEqual(s.cell_path, CELL)
+        finally:
+            C.lib.roprec_close(cs)
+
+    def test_errors_carry_the_cli_text(self):
+        missing = str(SRC / "samples" / "cells" / "no-such-cell.xml")
+        with self.assertRaises(roprec.InputError) as e:
+            roprec.Session(missing)
+        self.assertEqual(str(e.exception), cli_error_text(cli("predict", "--cell", missing, PROGRAM)))
+        self.assertIsInstance(e.exception, roprec.RoprecError)
+        no_program = self.tmp / "no-such-program.src"
+        with self.assertRaises(roprec.InputError) as e:
+            roprec.compensate(CELL, no_program, self.tmp / "o.src")
+        r = cli("compensate", "--cell", CELL, no_program, "-o", self.tmp / "o.src", "--quiet")
+        self.assertEqual(r.returncode, 2)
+        self.assertEqual(str(e.exception), cli_error_text(r))
+        self.assertFalse((self.tmp / "o.src").exists())
+        with self.assertRaises(roprec.UsageError):
+            roprec.compensate(CELL, PROGRAM, self.tmp / "o.src", orientation="sideways")
+        s = roprec.Session(CELL)
+        with self.assertRaises(roprec.UsageError):
+            s.filter_target(np.eye(3))
+        with self.assertRaises(ValueError):
+            s.filter_target(np.diag([1.0, 1.0, 2.0, 1.0]))                  # not a rotation
+        with self.assertRaises(roprec.UsageError):
+            s.predict_joints([0, -90, 90, 0, float("nan"), 0])
+        far = np.eye(4)
+        far[0, 3] = 9000.0
+        with self.assertRaises(roprec.ItemError) as e:
+            s.filter_target(far)
+        self.assertIn("target not filtered", str(e.exception))
+
+    def test_compensate_with_a_failed_hole_writes_nothing(self):
+        s = roprec.Session(CELL)
+        wobj = s.workobject_pose_mm
+        targets = []
+        for k, (p, d) in enumerate((([150, 0, 250], [0, 0, -1]), ([4000, 0, 250], [0, 0, -1]))):
+            pose = np.linalg.inv(wobj) @ s.hole_pose(p, d)
+            for name, depth, speed in (("A", -20.0, 250), ("", 0.0, 10)):
+                pp = pose[:3, 3] + depth * pose[:3, 2]
+                targets.append({"id": "H%d%s" % (k + 1, name), "motion": "L", "frame": "wobj", "speed_mm_s": speed,
+                                "position_mm": pp.tolist(), "quaternion_wxyz": [0.0, 1.0, 0.0, 0.0]})
+        program = self.tmp / "two_holes.json"
+        program.write_text(json.dumps({"frames": [{"name": "wobj", "position_mm": wobj[:3, 3].tolist(),
+                                                   "quaternion_wxyz": [1, 0, 0, 0]}], "targets": targets}))
+        with self.assertRaises(roprec.ItemError) as e:
+            roprec.compensate(CELL, program, self.tmp / "out.json", targets=self.tmp / "t.json")
+        self.assertIn("not compensated", str(e.exception))
+        self.assertEqual(e.exception.result["failed"], 1)
+        self.assertEqual(e.exception.result["written"], [])
+        self.assertEqual([h["status"] for h in e.exception.result["results"]], ["compensated", "original-kept"])
+        self.assertFalse((self.tmp / "out.json").exists())
+        self.assertFalse((self.tmp / "t.json").exists())
+        rc, _, err = C.compensate_file(CELL, program, None, self.tmp / "out.json", None, None)
+        self.assertEqual(rc, 1)
+        self.assertIn("not compensated", err)
+        self.assertFalse((self.tmp / "out.json").exists())
+
+    def test_sessions_on_threads(self):
+        holes = roprec.predict(CELL, HOLES)[:30]
+        serial = [roprec.Session(CELL).filter_target(h["nominal_pose_mm"])[0] for h in holes]
+        results = [None] * len(holes)
+
+        def work(part):
+            s = roprec.Session(CELL)
+            for i in range(part, len(holes), 2):
+                results[i] = s.filter_target(holes[i]["nominal_pose_mm"])[0]
+
+        shared = roprec.Session(CELL)   # one session shared by threads: calls are serialised
+        shared_results = [None] * len(holes)
+
+        def work_shared(part):
+            for i in range(part, len(holes), 2):
+                shared_results[i] = shared.filter_target(holes[i]["nominal_pose_mm"])[0]
+
+        threads = [threading.Thread(target=f, args=(k,)) for f in (work, work_shared) for k in (0, 1)]
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+        for a, b, c in zip(serial, results, shared_results):
+            np.testing.assert_array_equal(a, b)
+            np.testing.assert_array_equal(a, c)
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=2)
