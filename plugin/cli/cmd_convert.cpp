@@ -1,15 +1,9 @@
 /// `roprec convert PROGRAM [--to D] -o OUT`: a program through its own reader and writer
 /// (byte-identical when nothing changed), or its targets into a new program in another dialect.
-#include <algorithm>
-#include <cmath>
-#include <map>
-#include <sstream>
-
-#include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
+#include "plugin/api/convert.hpp"
 #include "plugin/cli/cli.hpp"
-#include "postproc/convert.hpp"
-#include "postproc/program.hpp"
+#include "plugin/cli/robot_options.hpp"
 
 namespace roprec::cli {
 namespace {
@@ -22,48 +16,17 @@ int run(Args& args, CommandContext& ctx) {
   const std::vector<std::string> pos = args.positionals();
   args.finish();
   if (pos.size() != 1 || !out) throw UsageError("convert needs one PROGRAM and -o OUT");
-  postproc::Program p = postproc::readProgram(pos[0]);
-  if (frames) {
-    std::istringstream in(*frames);
-    std::string item;
-    while (std::getline(in, item, ';')) {
-      const std::size_t eq = item.find('=');
-      if (eq == std::string::npos) throw UsageError("--frame expects REF=\"x y z a b c\"[;REF=...]");
-      postproc::resolveFrame(p, item.substr(0, eq), parsePoseXyzAbc(item.substr(eq + 1), "--frame REF=\"x y z a b c\" (mm, deg, KUKA ABC)"));
-    }
-  }
-  if (!to) {
-    postproc::writeProgram(p, *out);
-    return 0;
-  }
-  postproc::ConversionReport report;
-  const auto files = postproc::convertProgram(p, postproc::dialectFromName(*to), *out, report);
-  for (const auto& [path, bytes] : files) writeFileAtomic(path, bytes);
+  ConvertRequest req;
+  req.program = pos[0];
+  req.output = *out;
+  req.to = to;
+  if (frames) req.frames = parseFrames(*frames);
+  const ConvertResult r = convertProgramFile(req);
   if (!ctx.quiet) {
-    // "p7: no configuration in the source; ..." repeated per target: print each message once with
-    // the targets it concerns (first few named), in first-seen order
-    std::vector<std::string> order;
-    std::map<std::string, std::vector<std::string>> who;
-    for (const std::string& n : report.notes) {
-      const std::size_t c = n.find(": ");
-      const std::string key = c == std::string::npos ? n : n.substr(c + 2);
-      const std::string name = c == std::string::npos ? "" : n.substr(0, c);
-      if (!who.count(key)) order.push_back(key);
-      who[key].push_back(name);
-    }
-    for (const std::string& key : order) {
-      const auto& names = who[key];
-      if (names.size() == 1) {
-        ctx.err << "roprec: note: " << (names[0].empty() ? "" : names[0] + ": ") << key << "\n";
-        continue;
-      }
-      ctx.err << "roprec: note: " << key << " (" << names.size() << " items: ";
-      for (size_t i = 0; i < std::min<size_t>(names.size(), 3); ++i) ctx.err << (i ? ", " : "") << names[i];
-      ctx.err << (names.size() > 3 ? ", ...)" : ")") << "\n";
-    }
+    for (const std::string& n : r.notes) ctx.err << "roprec: note: " << n << "\n";
   }
-  for (const std::string& s : report.skipped) ctx.err << "roprec: not converted: " << s << "\n";
-  return report.skipped.empty() ? 0 : 1;
+  for (const std::string& s : r.skipped) ctx.err << "roprec: not converted: " << s << "\n";
+  return r.skipped.empty() ? 0 : 1;
 }
 
 const CommandRegistration reg{

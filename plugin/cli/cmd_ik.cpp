@@ -1,12 +1,7 @@
 /// `roprec ik`: all analytic inverse-kinematics solutions with the vendor's configuration flags.
-#include <cmath>
-#include <memory>
-
-#include "compensator/robot/configuration.hpp"
 #include "compensator/support/error.hpp"
-#include "compensator/robot/ik.hpp"
+#include "plugin/api/kinematics.hpp"
 #include "plugin/cli/cli.hpp"
-#include "plugin/api/json.hpp"
 #include "plugin/cli/robot_options.hpp"
 
 namespace roprec::cli {
@@ -26,10 +21,10 @@ std::array<int, 3> parseTurnAxes(const std::string& text) {
 }
 
 int run(Args& args, CommandContext& ctx) {
-  RobotSetup s = loadRobotSetup(args);
+  const RobotSetup s = loadRobotFromArgs(args);
   const auto pose = args.option("pose");
   const auto xyzabc = args.option("xyzabc");
-  const auto seed_text = args.option("seed");
+  const auto seed = args.option("seed");
   const auto turn_axes = args.option("turn-axes");
   const bool all_turns = args.flag("all-turns");
   const auto out = args.option("o");
@@ -37,88 +32,16 @@ int run(Args& args, CommandContext& ctx) {
   if (pose.has_value() == xyzabc.has_value()) {
     throw UsageError("give exactly one of --pose \"x y z qw qx qy qz\" or --xyzabc \"x y z a b c\" (mm, deg)");
   }
-  const Pose target = pose ? parsePoseQuat(*pose) : parsePoseXyzAbc(*xyzabc);
-  Vec6 seed = Vec6::Zero();
-  if (seed_text) seed = parseJointsDeg(*seed_text);
-  ConfigurationOptions copt;
-  if (turn_axes) copt.fanuc_turn_axes = parseTurnAxes(*turn_axes);
+  IkRequest req;
+  req.target = pose ? parsePoseQuat(*pose) : parsePoseXyzAbc(*xyzabc);
+  if (seed) req.seed = parseJointsDeg(*seed);
+  if (turn_axes) req.fanuc_turn_axes = parseTurnAxes(*turn_axes);
+  req.all_turns = all_turns;
 
-  const Pose T_flange = s.cell ? Pose(target * s.cell->tool.T_flange_tcp.inverse()) : target;
-  const IkModel model = buildIkModel(s.robot);
-  auto result = std::make_unique<IkResult>();
-  IkOptions opt;
-  opt.turns = all_turns ? IkTurns::kAll : IkTurns::kPrimary;
-  if (seed_text) opt.seed = &seed;
-  solveIk(model, T_flange, opt, *result);
-
-  Json root = Json::object();
-  root.set("robot", Json::str(s.robot.card.name));
-  root.set("vendor", Json::str(vendorName(s.robot.card.vendor)));
-  root.set("base_link", Json::str(s.robot.chain.base_link));
-  root.set("flange_link", Json::str(s.robot.chain.tip_link));
-  root.set("flange", poseJson(T_flange));
-  if (s.cell) root.set("tcp", poseJson(target));
-  Json opw = Json::object();
-  opw.set("a1_mm", Json::number(model.opw.a1 * 1e3, 6));
-  opw.set("a2_mm", Json::number(model.opw.a2 * 1e3, 6));
-  opw.set("b_mm", Json::number(model.opw.b * 1e3, 6));
-  opw.set("c1_mm", Json::number(model.opw.c1 * 1e3, 6));
-  opw.set("c2_mm", Json::number(model.opw.c2 * 1e3, 6));
-  opw.set("c3_mm", Json::number(model.opw.c3 * 1e3, 6));
-  opw.set("c4_mm", Json::number(model.opw.c4 * 1e3, 6));
-  opw.set("ideal_geometry", Json::boolean(model.deviation.exact));
-  root.set("opw", opw);
-  if (s.robot.card.vendor == Vendor::kFanuc) {
-    Json axes = Json::array();
-    for (int a : copt.fanuc_turn_axes) axes.push(Json::integer(a));
-    root.set("fanuc_turn_axes", axes);
-  }
-
-  Json list = Json::array();
-  int usable = 0;
-  for (int k = 0; k < result->count; ++k) {
-    const IkSolution& sol = result->solutions[static_cast<size_t>(k)];
-    Json j = Json::object();
-    j.set("branch_index", Json::integer(sol.branch.index()));
-    Json br = Json::object();
-    br.set("shoulder", Json::str(sol.branch.shoulder == 0 ? "front" : "back"));
-    br.set("elbow", Json::str(sol.branch.elbow == 0 ? "up" : "down"));
-    br.set("wrist", Json::str(sol.branch.wrist == 0 ? "theta5_nonnegative" : "theta5_negative"));
-    j.set("branch", br);
-    j.set("joints_deg", Json::vector(sol.q / kDeg, 6));
-    j.set("controller_joints_deg", Json::vector(toControllerJoints(s.robot.card, sol.q) / kDeg, 6));
-    j.set("config", Json::str(formatConfig(configurationOf(model, s.robot.card, sol.q, copt))));
-    j.set("within_limits", Json::boolean(sol.within_limits));
-    j.set("converged", Json::boolean(sol.converged));
-    Json sing = Json::object();
-    sing.set("wrist", Json::boolean(sol.singular_wrist));
-    sing.set("shoulder", Json::boolean(sol.singular_shoulder));
-    sing.set("elbow", Json::boolean(sol.singular_elbow));
-    sing.set("wrist_margin_deg", Json::number(std::asin(std::min(1.0, sol.branch.wrist_margin_rad)) / kDeg, 6));
-    sing.set("elbow_margin_deg", Json::number(std::asin(std::min(1.0, sol.branch.elbow_margin_rad)) / kDeg, 6));
-    sing.set("shoulder_margin_mm", Json::number(sol.branch.shoulder_margin_m * 1e3, 6));
-    j.set("singular", sing);
-    Json res = Json::object();
-    res.set("position_um", Json::number(sol.residual.position * 1e6, 6));
-    res.set("rotation_urad", Json::number(sol.residual.rotation * 1e6, 6));
-    res.set("refinement_iterations", Json::integer(sol.iterations));
-    j.set("residual", res);
-    list.push(j);
-    usable += (sol.within_limits && sol.converged) ? 1 : 0;
-  }
-  root.set("count", Json::integer(result->count));
-  root.set("solutions", list);
-  if (result->truncated) root.set("turns_truncated", Json::boolean(true));
-  std::string reason;
-  if (result->count == 0) {
-    reason = describeIkFailure(*result);
-  } else if (usable == 0) {
-    reason = "no converged solution within the joint limits";
-  }
-  if (!reason.empty()) root.set("unreachable", Json::str(reason));
-  emit(ctx, out.value_or(""), root.dump());
-  if (!reason.empty()) {
-    ctx.err << "roprec: ik: " << reason << "\n";
+  const IkAnswer a = inverseKinematicsFor(s, req);
+  emit(ctx, out.value_or(""), ikJson(s, a).dump());
+  if (!a.unreachable.empty()) {
+    ctx.err << "roprec: ik: " << a.unreachable << "\n";
     return 1;
   }
   return 0;

@@ -1,0 +1,41 @@
+#pragma once
+/// \file convert.hpp
+/// A robot program through its own reader and writer (byte-identical when nothing changed), or
+/// its Cartesian targets into a new, minimal program in another dialect (`roprec convert`;
+/// docs/programs.md). Configuration is carried at the branch level; joint targets go only into
+/// csv/json.
+///
+/// Errors: InputError for an unreadable program, an unknown dialect name or a frame the output
+/// must state by value but that is unresolved (define it in `frames`). Items that cannot be
+/// converted are listed in `skipped`, not thrown.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "plugin/api/program_frames.hpp"
+
+namespace roprec::api {
+
+struct ConvertRequest {
+  std::string program;                  ///< the source program (any dialect)
+  std::string output;                   ///< the output path (KRL: the .src; the .dat goes beside it)
+  std::optional<std::string> to;        ///< krl, rapid, tp, csv or json; none: the program's own writer
+  std::vector<FrameDefinition> frames;  ///< frames the program uses but does not define
+};
+
+struct ConvertResult {
+  std::vector<std::string> written;  ///< the paths written
+  std::vector<std::string> notes;    ///< what to check in the output, one line per kind (groupNotes)
+  std::vector<std::string> skipped;  ///< items not converted
+};
+
+/// Reads, converts and writes (atomically) the program.
+ConvertResult convertProgramFile(const ConvertRequest& request);
+
+/// The converter's notes ("p7: no configuration in the source; ...", repeated per target), each
+/// message once with the targets it concerns (the first three named), in first-seen order:
+/// "p7: message" for one target, "message (12 items: p1, p2, p3, ...)" for several.
+std::vector<std::string> groupNotes(const std::vector<std::string>& notes);
+
+}  // namespace roprec::api

@@ -1,0 +1,52 @@
+#pragma once
+/// \file deflect.hpp
+/// The static deviation of the TCP at one commanded pose under gravity, the tool's weight and a
+/// process wrench: flexible joints + servo stiffness, equilibrium in the deformed configuration
+/// (θ = θ_m − τ(θ)/k − τ(θ)/k_servo), and the controller's own gravity compensation when the
+/// robot card says the controller has one (plugin/api/robot_compliance.hpp).
+///
+/// Units: SI in the structs (rad, N, N·m, m); JSON in µm, µrad, mm, deg.
+/// Frames: the deviation δrobot = FK(θ) − FK(θ_m) is in the base frame; a given wrench is in the
+/// base frame, the cell's process load in the tool frame (it follows the real tool orientation).
+
+#include <optional>
+#include <string>
+
+#include "compensator/robot/deflection.hpp"
+#include "plugin/api/json.hpp"
+#include "plugin/api/robot_setup.hpp"
+
+namespace roprec::api {
+
+struct DeflectRequest {
+  nc::Vec6 joints{nc::Vec6::Zero()};  ///< commanded θ_m, URDF convention, rad
+  bool gravity{true};                 ///< link and tool weight (and the controller's compensation)
+  std::optional<nc::Wrench> wrench;   ///< on the TCP, base frame; replaces the cell's process
+  bool process{true};                 ///< without `wrench`: the cell's steady process load, if any
+  std::string joints_name{"joints"};  ///< names the joints in errors
+  std::string wrench_source{"given wrench (base frame, on the TCP)"};  ///< loads.wrench_source with `wrench`
+};
+
+struct DeflectResult {
+  nc::Vec6 joints{nc::Vec6::Zero()};  ///< θ_m, URDF, rad
+  nc::Loads loads;
+  std::string load_source;            ///< "none", the request's wrench_source or the cell process
+  Mat3 R_W_tcp{Mat3::Identity()};     ///< nominal (rigid) TCP orientation, base frame
+  nc::Deflection deflection;
+  /// The force (N) and moment (N·m) on the TCP in the base frame (tool-frame loads rotated by R_W_tcp).
+  [[nodiscard]] Vec3 force() const;
+  [[nodiscard]] Vec3 moment() const;
+};
+
+/// Solves the equilibrium. Throws InputError when the joints are outside the limits
+/// ("<joints_name> outside the joint limits: ..."), when the card has no stiffness, and when the
+/// position problem does not converge at this pose. A non-converged compliance equilibrium is
+/// not an error: see deflection.converged and deflection.residual.
+DeflectResult deflectAt(const RobotSetup& setup, const DeflectRequest& request);
+
+/// robot, joints_deg, loads, torques_Nm, joint_deflection_urad, joint_deformation_urad,
+/// servo_correction_urad, deviation {translation_um, rotation_urad, translation_norm_um},
+/// nominal_tcp, real_tcp, equilibrium.
+Json deflectJson(const RobotSetup& setup, const DeflectResult& r);
+
+}  // namespace roprec::api

@@ -1,0 +1,410 @@
+/// Process forces of a cell (plugin/api/forces.hpp).
+#include "plugin/api/forces.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <sstream>
+#include <vector>
+
+#include "compensator/precision/cell.hpp"
+#include "compensator/process/milling_robot.hpp"
+#include "compensator/process/process_spec.hpp"
+#include "compensator/support/atomic_file.hpp"
+#include "compensator/support/error.hpp"
+#include "plugin/api/robot_compliance.hpp"
+#include "plugin/api/robot_setup.hpp"
+
+namespace roprec::api {
+
+namespace {
+
+constexpr double kMm = 1e-3;
+constexpr double kMPa = 1e6;
+
+std::string fixed(double v, int decimals) { return formatNumber(v, decimals); }
+
+Json vec3(const Vec3& v, int decimals) { return Json::vector(v, decimals); }
+
+// ---------------------------------------------------------------- drilling
+
+Json drillJson(const DrillingSpec& s) {
+  const DrillGeometry& g = s.geometry;
+  Json drill = Json::object();
+  drill.set("diameter_mm", Json::number(g.diameter / kMm, 4));
+  drill.set("point_angle_deg", Json::number(g.point_angle / kDeg, 3));
+  drill.set("helix_angle_deg", Json::number(g.helix_angle / kDeg, 3));
+  drill.set("web_mm", Json::number(g.web_thickness / kMm, 4));
+  drill.set("chisel_angle_deg", Json::number(g.chisel_angle / kDeg, 3));
+  drill.set("chisel_half_length_mm", Json::number(g.chiselHalfLength() / kMm, 4));
+  drill.set("point_length_mm", Json::number(g.pointLength() / kMm, 4));
+  drill.set("runout_mm", Json::number(g.runout / kMm, 5));
+  drill.set("runout_source", Json::str(s.runout_given ? "cell <drill runout_mm>" : s.deviation.runout_source));
+  drill.set("angle_law", Json::str(s.law == AngleLaw::kGeometric ? "geometric" : "paper"));
+  drill.set("working_angles", Json::boolean(s.working_angles));
+  return drill;
+}
+
+Json drillingCutJson(const DrillingSpec& s) {
+  Json cut = Json::object();
+  cut.set("feed_mm_per_rev", Json::number(s.feed / kMm, 4));
+  cut.set("spindle_rpm", Json::number(s.spindle_rpm, 1));
+  cut.set("depth_mm", Json::number(s.hole_depth / kMm, 3));
+  cut.set("through", Json::boolean(s.through));
+  return cut;
+}
+
+Json coefficientsJson(const DrillingCoefficients& c, const std::string& source) {
+  Json j = Json::object();
+  j.set("kst0_N_mm2", Json::number(c.tangential.k0 / kMPa, 3));
+  j.set("at", Json::number(c.tangential.a, 4));
+  j.set("bt_per_deg", Json::number(c.tangential.b * kDeg, 5));
+  j.set("ct_per_deg", Json::number(c.tangential.c * kDeg, 5));
+  j.set("ksa0_N_mm2", Json::number(c.axial.k0 / kMPa, 3));
+  j.set("aa", Json::number(c.axial.a, 4));
+  j.set("ba_per_deg", Json::number(c.axial.b * kDeg, 5));
+  j.set("ca_per_deg", Json::number(c.axial.c * kDeg, 5));
+  j.set("m", Json::number(c.tangential.m, 4));
+  j.set("chisel_model", Json::str(c.chisel.kind == ChiselModelKind::kRatio ? "ratio" : "pressure"));
+  j.set("chisel_thrust_ratio", Json::number(c.chisel.thrust_ratio, 4));
+  j.set("chisel_torque_ratio", Json::number(c.chisel.torque_ratio, 4));
+  j.set("source", Json::str(source));
+  return j;
+}
+
+/// Calibrates kst0/ksa0 from one test: updates the spec and the model, sets "calibration" on
+/// `root`, and gives the calibrated cell's text when `want_cell`.
+void calibrate(const CellSpec& cell, DrillingSpec& s, DrillingModel& model, const DrillingMeasurement& meas,
+               bool want_cell, Json& root, std::string& cell_text) {
+  const DrillingCalibration cal = calibrateDrilling(model, s.feed, meas.thrust, meas.torque);
+  Json c = Json::object();
+  c.set("measured_thrust_N", Json::number(meas.thrust, 3));
+  c.set("measured_torque_Nm", Json::number(meas.torque, 4));
+  c.set("model_before_thrust_N", Json::number(cal.thrust_model_before, 3));
+  c.set("model_before_torque_Nm", Json::number(cal.torque_model_before, 4));
+  c.set("kst0_before_N_mm2", Json::number(model.coeff.tangential.k0 / kMPa, 3));
+  c.set("ksa0_before_N_mm2", Json::number(model.coeff.axial.k0 / kMPa, 3));
+  c.set("kst0_N_mm2", Json::number(cal.coeff.tangential.k0 / kMPa, 3));
+  c.set("ksa0_N_mm2", Json::number(cal.coeff.axial.k0 / kMPa, 3));
+  c.set("model_after_thrust_N", Json::number(cal.thrust_model_after, 3));
+  c.set("model_after_torque_Nm", Json::number(cal.torque_model_after, 4));
+  root.set("calibration", c);
+  std::ostringstream note;
+  note << "calibrated by roprec forces from one test: Fa=" << fixed(meas.thrust, 3) << " N, M=" << fixed(meas.torque, 4)
+       << " N m at Dc " << fixed(s.geometry.diameter / kMm, 3) << " mm, f " << fixed(s.feed / kMm, 4) << " mm/rev ("
+       << s.material->name << ")";
+  s.coeff = cal.coeff;
+  s.coeff_source = note.str();
+  model.coeff = cal.coeff;
+  if (want_cell) cell_text = cellWithCalibratedCoefficients(readFileBytes(cell.file), cell.file, cal.coeff, note.str());
+}
+
+Json lipJson(int index, const LipForces& l) {
+  Json j = Json::object();
+  j.set("lip", Json::integer(index));
+  j.set("Ft_N", Json::number(l.Ft, 2));
+  j.set("Fa_N", Json::number(l.Fa, 2));
+  j.set("Frad_N", Json::number(l.Frad, 2));
+  j.set("M_Nm", Json::number(l.M, 4));
+  return j;
+}
+
+Json drillingSteadyJson(const DrillingForces& F, double spindle_rpm) {
+  Json st = Json::object();
+  st.set("thrust_N", Json::number(F.thrust, 2));
+  st.set("torque_Nm", Json::number(F.torque, 4));
+  st.set("Fr_N", Json::number(F.residual, 2));
+  st.set("tangential_N", Json::number(F.tangential, 2));
+  st.set("thrust_lips_N", Json::number(F.thrust_lips, 2));
+  st.set("thrust_chisel_N", Json::number(F.thrust_chisel, 2));
+  st.set("chisel_share", Json::number(F.thrust > 0 ? F.thrust_chisel / F.thrust : 0.0, 4));
+  st.set("torque_chisel_Nm", Json::number(F.torque_chisel, 4));
+  st.set("power_kW", Json::number(F.torque * spindle_rpm * 2 * kPi / 60.0 / 1000.0, 4));
+  Json lips = Json::array();
+  lips.push(lipJson(1, F.lip[0]));
+  lips.push(lipJson(2, F.lip[1]));
+  st.set("lips", lips);
+  return st;
+}
+
+Json drillingWrenchJson(const DrillingForces& F, double spindle_rpm) {
+  const ToolWrench w = toolWrench(F, 0.0);
+  Json wj = Json::object();
+  wj.set("frame", Json::str("tool: z = drill axis into the material; on the TCP; Fr rotates with the spindle "
+                            "(shown at spindle angle 0, lip 1 on +x)"));
+  wj.set("force_N", vec3(w.force, 2));
+  wj.set("torque_Nm", vec3(w.torque, 4));
+  wj.set("spindle_frequency_Hz", Json::number(spindle_rpm / 60.0, 4));
+  return wj;
+}
+
+double engagedRadius(const DrillingForces& f) { return f.r_out > f.r_in ? f.r_out : 0.0; }
+
+/// The curve over depth (CSV) and its maxima ("max_over_depth").
+Json depthProfile(const DrillingModel& model, DrillingData& data, const DrillingSpec& s, double step, std::string& csv) {
+  const std::vector<DepthSample> prof = drillingDepthProfile(model, data, s.feed, s.hole_depth, s.through, step);
+  std::ostringstream c;
+  c << "depth_mm,engaged_radius_mm,Fa_N,Ft_N,M_Nm,Fr_N\n";
+  double maxF = 0;
+  double maxM = 0;
+  double maxR = 0;
+  for (const DepthSample& d : prof) {
+    const DrillingForces& f = d.forces;
+    c << fixed(d.depth / kMm, 4) << ',' << fixed(engagedRadius(f) / kMm, 4) << ',' << fixed(f.thrust, 3) << ','
+      << fixed(f.tangential, 3) << ',' << fixed(f.torque, 5) << ',' << fixed(f.residual, 3) << '\n';
+    maxF = std::max(maxF, f.thrust);
+    maxM = std::max(maxM, f.torque);
+    maxR = std::max(maxR, f.residual);
+  }
+  csv = c.str();
+  Json mx = Json::object();
+  mx.set("thrust_N", Json::number(maxF, 2));
+  mx.set("torque_Nm", Json::number(maxM, 4));
+  mx.set("Fr_N", Json::number(maxR, 2));
+  mx.set("samples", Json::integer(static_cast<std::int64_t>(prof.size())));
+  mx.set("step_mm", Json::number(step / kMm, 4));
+  return mx;
+}
+
+/// The feed absorbed by an axial compliance, one step per revolution: the CSV per revolution and
+/// "axial_coupling"; `converged` false when some revolution did not converge.
+Json axialCoupling(const DrillingModel& model, DrillingData& data, const DrillingSpec& s, double compliance,
+                   std::string& csv, bool& converged) {
+  const std::vector<AxialCouplingSample> ac =
+      drillingAxialCoupling(model, data, s.feed, s.hole_depth, s.through, compliance);
+  std::ostringstream c2;
+  c2 << "revolution,depth_mm,engaged_radius_mm,Fa_N,Ft_N,M_Nm,Fr_N,feed_mm,dz_um\n";
+  bool all = true;
+  double max_dz = 0;
+  double min_f = 1e300;
+  double max_f = 0;
+  for (const AxialCouplingSample& x : ac) {
+    const DrillingForces& f = x.forces;
+    c2 << x.revolution << ',' << fixed(x.depth / kMm, 5) << ',' << fixed(engagedRadius(f) / kMm, 4) << ','
+       << fixed(f.thrust, 3) << ',' << fixed(f.tangential, 3) << ',' << fixed(f.torque, 5) << ','
+       << fixed(f.residual, 3) << ',' << fixed(x.feed / kMm, 6) << ',' << fixed(x.deflection * 1e6, 3) << '\n';
+    all = all && x.converged;
+    max_dz = std::max(max_dz, x.deflection);
+    min_f = std::min(min_f, x.feed);
+    max_f = std::max(max_f, x.feed);
+  }
+  csv = c2.str();
+  converged = all;
+  Json aj = Json::object();
+  aj.set("axial_compliance_um_per_N", Json::number(compliance * 1e6, 5));
+  aj.set("revolutions", Json::integer(static_cast<std::int64_t>(ac.size())));
+  aj.set("all_converged", Json::boolean(all));
+  aj.set("max_deflection_um", Json::number(max_dz * 1e6, 3));
+  aj.set("min_feed_mm", Json::number(min_f / kMm, 6));
+  aj.set("max_feed_mm", Json::number(max_f / kMm, 6));
+  return aj;
+}
+
+Json machiningDeviationJson(const DrillingSpec& s, const DrillingForces& F) {
+  const MachiningDeviation md = machiningDeviation(s.deviation, s.geometry, F.residual);
+  Json mj = Json::object();
+  mj.set("U_mach_um", Json::number(md.U * 1e6, 2));
+  mj.set("u_c_um", Json::number(md.u_c * 1e6, 2));
+  mj.set("k", Json::number(md.k, 2));
+  mj.set("tool_compliance_um_per_N", Json::number(md.tool_compliance * 1e6, 5));
+  mj.set("lateral_force_N", Json::number(md.lateral_force, 2));
+  Json comps = Json::array();
+  for (const UncertaintyComponent& u : md.components) {
+    Json cj = Json::object();
+    cj.set("name", Json::str(u.name));
+    cj.set("half_width_um", Json::number(u.half_width * 1e6, 3));
+    cj.set("distribution", Json::str(distributionName(u.distribution)));
+    cj.set("u_um", Json::number(u.standard * 1e6, 3));
+    cj.set("source", Json::str(u.source));
+    comps.push(cj);
+  }
+  mj.set("components", comps);
+  return mj;
+}
+
+void drillingForcesOf(const CellSpec& cell, DrillingSpec& s, const ForcesRequest& req, ForcesResult& out) {
+  Json& root = out.json;
+  root.set("process", Json::str("drilling"));
+  root.set("material", Json::str(s.material->name));
+  root.set("material_group", Json::str(s.material->group));
+  root.set("drill", drillJson(s));
+  root.set("cut", drillingCutJson(s));
+  DrillingModel model = drillingModelOf(s);
+  if (req.calibrate) calibrate(cell, s, model, *req.calibrate, req.calibrated_cell, root, out.calibrated_cell);
+  root.set("coefficients", coefficientsJson(s.coeff, s.coeff_source));
+  const DrillingForces F = drillingForces(model, s.feed);
+  root.set("steady", drillingSteadyJson(F, s.spindle_rpm));
+  root.set("wrench_tool", drillingWrenchJson(F, s.spindle_rpm));
+  DrillingData data(model);
+  const Json max_over_depth = depthProfile(model, data, s, req.step, out.curve_csv);
+  if (req.axial_compliance) {
+    root.set("axial_coupling", axialCoupling(model, data, s, *req.axial_compliance, out.curve_csv, out.converged));
+  }
+  root.set("max_over_depth", max_over_depth);
+  root.set("machining_deviation", machiningDeviationJson(s, F));
+}
+
+// ---------------------------------------------------------------- milling
+
+Json millJson(const MillingSpec& s) {
+  Json tool = Json::object();
+  tool.set("diameter_mm", Json::number(s.tool.diameter / kMm, 4));
+  tool.set("teeth", Json::integer(s.tool.teeth));
+  tool.set("helix_angle_deg", Json::number(s.tool.helix_angle / kDeg, 3));
+  tool.set("runout_mm", Json::number(s.tool.runout / kMm, 5));
+  tool.set("runout_angle_deg", Json::number(s.tool.runout_angle / kDeg, 3));
+  return tool;
+}
+
+Json millingCutJson(const MillingSpec& s) {
+  Json cut = Json::object();
+  cut.set("ap_mm", Json::number(s.cut.ap / kMm, 4));
+  cut.set("ae_mm", Json::number(s.cut.ae / kMm, 4));
+  cut.set("fz_mm", Json::number(s.cut.fz / kMm, 5));
+  cut.set("mode", Json::str(s.cut.mode == MillingMode::kUp ? "up" : s.cut.mode == MillingMode::kDown ? "down" : "slot"));
+  cut.set("spindle_rpm", Json::number(s.cut.spindle_rpm, 1));
+  return cut;
+}
+
+Json millingCoefficientsJson(const MillingSpec& s) {
+  Json co = Json::object();
+  co.set("kc11_N_mm2", Json::number(s.coeff.kc11 / kMPa, 3));
+  co.set("mc", Json::number(s.coeff.mc, 4));
+  co.set("radial_ratio", Json::number(s.coeff.radial_ratio, 4));
+  co.set("axial_ratio", Json::number(s.coeff.axial_ratio, 4));
+  co.set("force_law", Json::str(s.mean_law == MeanForceLaw::kInstantaneous ? "instantaneous" : "mean_chip"));
+  co.set("source", Json::str(s.coeff_source));
+  return co;
+}
+
+Json immersionJson(const MillingSpec& s) {
+  const ImmersionAngles a = immersionAngles(s.tool.diameter, s.cut.ae, s.cut.mode);
+  Json im = Json::object();
+  im.set("start_deg", Json::number(a.start / kDeg, 4));
+  im.set("exit_deg", Json::number(a.exit / kDeg, 4));
+  im.set("h_m_mm", Json::number(meanChipThickness(s.cut.fz, a) / kMm, 6));
+  return im;
+}
+
+/// "steady" (mean and peak forces over a revolution) and the CSV over the cutter angle.
+Json millingSteady(const MillingModel& m, const MillingSpec& s, std::string& csv) {
+  const MillingProfile P = millingForceProfile(m);
+  Json st = Json::object();
+  st.set("mean_force_N", vec3(P.mean, 2));
+  st.set("mean_force_coupling_law_N", vec3(millingMeanForce(m, s.cut.fz, s.cut.ae), 2));
+  st.set("peak_xy_N", Json::number(P.peak_xy, 2));
+  Json chips = Json::array();
+  for (double h : P.max_chip) chips.push(Json::number(h / kMm, 5));
+  st.set("max_chip_per_tooth_mm", chips);
+  std::ostringstream c;
+  c << "angle_deg,Fx_N,Fy_N,Fz_N,Fxy_N\n";
+  for (const MillingSample& smp : P.samples) {
+    c << fixed(smp.angle / kDeg, 3) << ',' << fixed(smp.force.x(), 3) << ',' << fixed(smp.force.y(), 3) << ','
+      << fixed(smp.force.z(), 3) << ',' << fixed(smp.force.head<2>().norm(), 3) << '\n';
+  }
+  csv = c.str();
+  return st;
+}
+
+Json couplingPointJson(int index, const CouplingResult& r) {
+  Json p = Json::object();
+  p.set("point", Json::integer(index));
+  p.set("converged", Json::boolean(r.converged));
+  p.set("status", Json::str(couplingStatusName(r.status)));
+  p.set("iterations", Json::integer(r.iterations));
+  p.set("residual_um", Json::number(r.residual * 1e6, 5));
+  p.set("loop_gain", Json::number(r.loop_gain, 4));
+  p.set("deflection_um", vec3(r.delta * 1e6, 3));
+  p.set("force_N", vec3(r.force, 2));
+  p.set("fz_effective_mm", Json::number(r.fz_effective / kMm, 6));
+  p.set("ae_effective_mm", Json::number(r.ae_effective / kMm, 6));
+  return p;
+}
+
+/// The coupled force/deflection iteration over `points` path points with the cell's linear
+/// compliance or the robot's own (`robot`).
+Json millingCoupling(const MillingModel& m, const MillingSpec& s, int points,
+                     const std::optional<ComplianceFunction>& robot, bool& converged) {
+  const std::vector<ComplianceFunction> path(static_cast<size_t>(points), robot ? *robot : linearCompliance(*s.compliance));
+  const std::vector<CouplingResult> res = coupleMillingPath(m, path, s.coupling);
+  Json cp = Json::object();
+  if (robot) {
+    cp.set("compliance", Json::str("robot model at --joints (nonlinear joint-compliance equilibrium)"));
+  } else {
+    const Mat3 row_major = s.compliance->transpose();
+    cp.set("compliance_um_per_N", Json::vector(Eigen::Map<const Eigen::VectorXd>(row_major.data(), 9) * 1e6, 5));
+  }
+  cp.set("tolerance_um", Json::number(s.coupling.tolerance * 1e6, 4));
+  cp.set("relaxation", Json::number(s.coupling.relaxation, 3));
+  Json pts = Json::array();
+  int idx = 0;
+  for (const CouplingResult& r : res) {
+    pts.push(couplingPointJson(idx++, r));
+    if (!r.converged) converged = false;
+  }
+  cp.set("points", pts);
+  return cp;
+}
+
+/// The cell robot's own deflection at `joints` as the coupling's compliance.
+ComplianceFunction robotCompliance(const CellSpec& cell, const nc::Vec6& joints) {
+  const Robot r = loadRobot(cell.robot);
+  const nc::Model model = nc::buildModel(r.chain, toolOf(cell));
+  return robotMillingCompliance(model, complianceOf(r.card), joints);
+}
+
+void millingForcesOf(const CellSpec& cell, const MillingSpec& s, const ForcesRequest& req, ForcesResult& out) {
+  Json& root = out.json;
+  std::optional<ComplianceFunction> robot;
+  if (req.joints) {
+    robot = robotCompliance(cell, *req.joints);
+    root.set("joints_deg", Json::vector(*req.joints / kDeg, 6));
+  }
+  root.set("process", Json::str("milling"));
+  root.set("material", Json::str(s.material->name));
+  root.set("frame", Json::str("milling: X = feed, phi clockwise from +Y, Z from the tool tip toward the spindle; "
+                              "forces on the tool"));
+  root.set("mill", millJson(s));
+  root.set("cut", millingCutJson(s));
+  root.set("coefficients", millingCoefficientsJson(s));
+  const MillingModel m = millingModelOf(s);
+  root.set("immersion", immersionJson(s));
+  root.set("steady", millingSteady(m, s, out.curve_csv));
+  if (s.compliance || robot) root.set("coupling", millingCoupling(m, s, req.points, robot, out.converged));
+}
+
+// ---------------------------------------------------------------- wrench
+
+void wrenchForcesOf(const CellSpec& cell, const WrenchSpec& w, const ForcesRequest& req, ForcesResult& out) {
+  out.json.set("process", Json::str("wrench"));
+  Json wj = Json::object();
+  wj.set("frame", Json::str("tool; on the TCP"));
+  wj.set("force_N", vec3(w.force, 3));
+  wj.set("torque_Nm", vec3(w.torque, 4));
+  out.json.set("wrench_tool", wj);
+  if (req.curve) throw InputError(cell.file, cell.process.line, "a wrench process has no curve: drop --csv");
+}
+
+}  // namespace
+
+ForcesResult processForces(const ForcesRequest& request) {
+  const CellSpec cell = loadCell(request.cell);
+  if (!cell.has_process) throw InputError(cell.file, cell.root.line, "the cell has no <process> element");
+  ProcessSpec spec = parseProcess(cell.process);
+  if (request.calibrate && spec.type != ProcessType::kDrilling) {
+    throw InputError(cell.file, cell.process.line, "--calibrate needs a <process type=\"drilling\">");
+  }
+  if (request.calibrated_cell && !request.calibrate) {
+    throw UsageError("-o/--o writes the calibrated cell: use it with --calibrate");
+  }
+  ForcesResult out;
+  out.json = Json::object();
+  out.json.set("cell", Json::str(cell.name));
+  switch (spec.type) {
+    case ProcessType::kDrilling: drillingForcesOf(cell, spec.drilling, request, out); break;
+    case ProcessType::kMilling: millingForcesOf(cell, spec.milling, request, out); break;
+    case ProcessType::kWrench: wrenchForcesOf(cell, spec.wrench, request, out); break;
+  }
+  return out;
+}
+
+}  // namespace roprec::api

@@ -1,0 +1,318 @@
+/// Transient of one process cycle at one pose (plugin/api/simulate.hpp).
+#include "plugin/api/simulate.hpp"
+
+#include <cstdio>
+#include <limits>
+#include <memory>
+#include <optional>
+
+#include "compensator/process/process_load.hpp"
+#include "compensator/robot/configuration.hpp"
+#include "compensator/robot/ik.hpp"
+#include "plugin/api/robot_compliance.hpp"
+#include "postproc/drill.hpp"
+#include "postproc/program.hpp"
+
+namespace roprec::api {
+
+// ---------------------------------------------------------------- the joints of a hole
+
+namespace {
+
+/// Joints for a TCP pose in the base frame: the regular in-limit IK solution nearest the vendor
+/// reference pose. Throws HoleUnreachable at FILE:LINE when there is none.
+nc::Vec6 jointsNearReference(const RobotSetup& s, const Pose& T_base_tcp, const std::string& file, int line,
+                             const std::string& id) {
+  const Pose T_base_flange = T_base_tcp * s.tool.T_flange_tcp.inverse();
+  const IkModel ik = buildIkModel(s.robot);
+  const Vec6 ref = vendorReferencePose(s.robot.card);
+  IkOptions o;
+  o.seed = &ref;
+  IkResult res;
+  solveIk(ik, T_base_flange, o, res);
+  int best = -1;
+  double best_d = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < res.count; ++i) {
+    const IkSolution& sol = res.solutions[static_cast<size_t>(i)];
+    if (!sol.converged || !sol.within_limits || sol.singular_wrist || sol.singular_shoulder || sol.singular_elbow) continue;
+    const double d = (sol.q - ref).norm();
+    if (d < best_d) {
+      best_d = d;
+      best = i;
+    }
+  }
+  if (best < 0) {
+    throw HoleUnreachable(file, line,
+                          "hole '" + id + "' is not reachable: " + (res.count == 0 ? describeIkFailure(res) : "no regular in-limit IK solution"));
+  }
+  return res.solutions[static_cast<size_t>(best)].q;
+}
+
+/// A contract hole list: position and drilling direction in the cell's work object.
+HoleJoints holeListJoints(const RobotSetup& s, const std::string& path, const std::string& id) {
+  for (const postproc::HoleSpec& h : postproc::readHoleList(path)) {
+    if (h.id != id) continue;
+    const Vec3 z = s.cell->T_base_wobj.linear() * h.direction.normalized();
+    Vec3 x = Vec3::UnitX() - Vec3::UnitX().dot(z) * z;
+    if (x.norm() < 1e-6) x = Vec3::UnitY() - Vec3::UnitY().dot(z) * z;
+    x.normalize();
+    Pose T = Pose::Identity();
+    T.linear() << x, z.cross(x), z;
+    T.translation() = s.cell->T_base_wobj * (h.position_mm * 1e-3);
+    HoleJoints hc;
+    hc.joints = jointsNearReference(s, T, path, h.line, id);
+    hc.source = "hole list row " + std::to_string(h.line) + " (cell workobject, IK solution nearest the reference pose)";
+    return hc;
+  }
+  throw InputError(path, 0, "no hole '" + id + "' in the hole list");
+}
+
+const postproc::Hole& findHole(const std::vector<postproc::Hole>& holes, const std::string& path, const std::string& id) {
+  std::string names;
+  const postproc::Hole* hole = nullptr;
+  for (const postproc::Hole& h : holes) {
+    names += (names.empty() ? "" : ", ") + h.id;
+    if (h.id == id) hole = &h;
+  }
+  if (hole == nullptr) {
+    throw InputError(path, 0, "no recognised hole '" + id + "' (holes: " + (names.empty() ? "none" : names) + ")");
+  }
+  return *hole;
+}
+
+HoleJoints jointTargetJoints(const RobotSetup& s, const postproc::Target& t, const std::string& tfile, const std::string& id) {
+  const std::vector<double> j = postproc::targetJointsDeg(t);
+  if (j.size() < 6) throw InputError(tfile, t.line, "joint target of hole '" + id + "' has fewer than 6 axes");
+  nc::Vec6 qc;
+  for (int i = 0; i < 6; ++i) qc[i] = j[static_cast<size_t>(i)] * kDeg;
+  return {fromControllerJoints(s.robot.card, qc), "joint target " + t.name};
+}
+
+/// A Cartesian drill point: in the program's frame when it resolves, else the cell's work object;
+/// IK with the target's configuration when it states one.
+HoleJoints cartesianTargetJoints(const RobotSetup& s, const postproc::Program& prog, const postproc::Hole& hole,
+                                 const std::string& tfile, const std::string& id) {
+  const postproc::Target& t = prog.targets()[static_cast<size_t>(hole.bottom_target)];
+  const std::optional<Pose> pose = postproc::motionPose(prog, prog.motions[static_cast<size_t>(hole.bottom_motion)]);
+  if (!pose) throw InputError(tfile, t.line, "the drill point of hole '" + id + "' has no Cartesian pose");
+  Pose T_base_frame = s.cell->T_base_wobj;
+  std::string frame = "cell workobject";
+  if (hole.base >= 0 && prog.frames[static_cast<size_t>(hole.base)].resolved) {
+    T_base_frame = prog.frames[static_cast<size_t>(hole.base)].pose;
+    frame = "program frame " + prog.frames[static_cast<size_t>(hole.base)].ref;
+  }
+  const IkModel ik = buildIkModel(s.robot);  // first: its errors precede a configuration's
+  if (!t.config.present()) {
+    return {jointsNearReference(s, T_base_frame * *pose, tfile, t.line, id),
+            "target " + t.name + " (" + frame + ", IK solution nearest the reference pose)"};
+  }
+  const Pose T_base_flange = T_base_frame * *pose * s.tool.T_flange_tcp.inverse();
+  const VendorConfig vc = parseConfig(s.robot.card.vendor, t.config.text(), tfile, t.line);
+  const ConfiguredSolution cs = solveIkWithConfiguration(ik, s.robot.card, T_base_flange, vc);
+  if (!cs.found) {
+    throw HoleUnreachable(tfile, t.line,
+                          "hole '" + id + "' is not reachable with configuration " + t.config.text() + ": " + cs.reason);
+  }
+  return {cs.solution.q, "target " + t.name + " (" + frame + ", configuration " + t.config.text() + ")"};
+}
+
+}  // namespace
+
+HoleJoints holeJoints(const RobotSetup& setup, const std::string& program_path, const std::string& id) {
+  if (!setup.cell) throw UsageError("the joints of a program's hole need a cell (work object and tool)");
+  const postproc::Program prog = postproc::readProgram(program_path);
+  if (prog.dialect == postproc::Dialect::kHoleCsv) return holeListJoints(setup, program_path, id);
+  const std::vector<postproc::Hole> holes = postproc::recognizeHoles(prog);
+  const postproc::Hole& hole = findHole(holes, program_path, id);
+  const postproc::Target& t = prog.targets()[static_cast<size_t>(hole.bottom_target)];
+  const std::string tfile = t.file >= 0 ? prog.files[static_cast<size_t>(t.file)].path : program_path;
+  if (t.kind == postproc::TargetKind::kJoint) return jointTargetJoints(setup, t, tfile, id);
+  return cartesianTargetJoints(setup, prog, hole, tfile, id);
+}
+
+// ---------------------------------------------------------------- the transient
+
+namespace {
+
+nc::TransientProblem transientProblem(const RobotSetup& s, const nc::Model& model, nc::Data& data, const nc::Vec6& q,
+                                      const SimulateOptions& o) {
+  nc::DriveEstimateOptions est;
+  est.integral = o.integral;
+  nc::TransientProblem p;
+  p.model = &model;
+  p.drive = nc::driveModelFromCard(s.robot.card, model, data, q, est);
+  p.theta_cmd = q;
+  p.gravity = o.gravity;
+  p.command_offset = o.gravity ? controllerGravityOffset(s.robot, p.drive.staticCompliance(), q) : nc::Vec6::Zero();
+  return p;
+}
+
+/// The static references (the deflect model: same compliance, load at full engagement).
+struct StaticReference {
+  nc::Deflection gravity_only;
+  nc::Deflection full_engagement;
+};
+
+StaticReference staticReference(const nc::Model& model, nc::Data& data, const nc::TransientProblem& p,
+                                const std::optional<ProcessSpec>& spec) {
+  StaticReference ref;
+  nc::Loads gl;
+  gl.gravity = p.gravity;
+  ref.gravity_only = nc::predictDeflection(model, data, p.drive.staticCompliance(), p.theta_cmd, gl, {}, p.command_offset);
+  nc::Loads fl = gl;
+  if (spec) {
+    const SteadyProcessLoad pl = steadyProcessLoad(*spec);
+    fl.tcp_tool.force = pl.wrench.force;
+    fl.tcp_tool.moment = pl.wrench.torque;
+  }
+  ref.full_engagement = nc::predictDeflection(model, data, p.drive.staticCompliance(), p.theta_cmd, fl, {}, p.command_offset);
+  return ref;
+}
+
+/// What the summary reports of the history.
+struct HistoryStats {
+  const nc::TransientSample* last_full{nullptr};  ///< last sample in full engagement
+  double max_entry{0.0};                          ///< |dp| max during entry, m
+  double max_dev{0.0};                            ///< |dp| max, m
+  double t_max{0.0};                              ///< its time, s
+  double max_change{0.0};                         ///< max |dp − dp(0)|, m
+};
+
+HistoryStats historyStats(const nc::TransientResult& r) {
+  HistoryStats h;
+  const Vec3 dp0 = r.samples.empty() ? Vec3::Zero() : r.samples.front().dp;
+  for (const nc::TransientSample& smp : r.samples) {
+    const double n = smp.dp.norm();
+    if (smp.process.phase == nc::CyclePhase::kFull) h.last_full = &smp;
+    if (smp.process.phase == nc::CyclePhase::kEntry) h.max_entry = std::max(h.max_entry, n);
+    if (n > h.max_dev) {
+      h.max_dev = n;
+      h.t_max = smp.t;
+    }
+    h.max_change = std::max(h.max_change, (smp.dp - dp0).norm());
+  }
+  return h;
+}
+
+Json driveJson(const nc::DriveModel& d) {
+  Json drive = Json::object();
+  drive.set("servo", Json::str(d.servo == nc::ServoMode::kIdeal ? "ideal (no position_gain in the card)"
+                                                                : (d.integral ? "cascade P + PI" : "cascade P + P")));
+  drive.set("stiffness_Nm_per_rad", Json::vector(d.k, -1));
+  drive.set("motor_inertia_kgm2", Json::vector(d.motor_inertia, 4));
+  drive.set("damping_Nms_per_rad", Json::vector(d.damping, 3));
+  drive.set("position_gain_per_s", Json::vector(d.kv, 3));
+  drive.set("velocity_gain_Nms_per_rad", Json::vector(d.kw, 3));
+  return drive;
+}
+
+Json staticJson(const StaticReference& ref) {
+  Json st = Json::object();
+  st.set("gravity_only_um", Json::vector(ref.gravity_only.dp * 1e6, 4));
+  st.set("full_engagement_um", Json::vector(ref.full_engagement.dp * 1e6, 4));
+  st.set("full_engagement_rotation_urad", Json::vector(ref.full_engagement.drot * 1e6, 3));
+  return st;
+}
+
+Json transientJson(const nc::TransientResult& r, const StaticReference& ref) {
+  const HistoryStats h = historyStats(r);
+  Json tr = Json::object();
+  if (h.last_full != nullptr) {
+    tr.set("end_of_full_engagement_t_s", Json::number(h.last_full->t, 6));
+    tr.set("end_of_full_engagement_um", Json::vector(h.last_full->dp * 1e6, 4));
+    tr.set("difference_to_static_um", Json::number((h.last_full->dp - ref.full_engagement.dp).norm() * 1e6, 4));
+  }
+  tr.set("max_deviation_entry_um", Json::number(h.max_entry * 1e6, 4));
+  tr.set("max_deviation_um", Json::number(h.max_dev * 1e6, 4));
+  tr.set("max_deviation_t_s", Json::number(h.t_max, 6));
+  tr.set("max_change_from_start_um", Json::number(h.max_change * 1e6, 4));
+  return tr;
+}
+
+Json cvodeJson(const nc::TransientResult& r, const nc::TransientOptions& opt, double t_end) {
+  Json cv = Json::object();
+  cv.set("ok", Json::boolean(r.ok));
+  if (!r.ok) cv.set("message", Json::str(r.message));
+  cv.set("method", Json::str(opt.method == nc::Method::kBdf ? "BDF" : "Adams-Moulton"));
+  cv.set("rtol", Json::number(opt.rtol, -1));
+  cv.set("t_end_s", Json::number(t_end, 6));
+  cv.set("t_reached_s", Json::number(r.t_reached, 6));
+  cv.set("steps", Json::integer(r.stats.steps));
+  cv.set("rhs_evaluations", Json::integer(r.stats.rhs_evals + r.stats.rhs_evals_jac));
+  cv.set("rhs_evaluations_jacobian", Json::integer(r.stats.rhs_evals_jac));
+  cv.set("jacobian_evaluations", Json::integer(r.stats.jac_evals));
+  cv.set("error_test_failures", Json::integer(r.stats.error_test_failures));
+  cv.set("restarts", Json::integer(r.stats.restarts));
+  return cv;
+}
+
+}  // namespace
+
+SimulationResult simulateAt(const RobotSetup& setup, const HoleJoints& at, const SimulateOptions& options) {
+  if (!setup.cell) throw UsageError("a simulation needs a cell (robot, tool and process)");
+  requireWithinLimits(setup.robot.chain, at.joints, "joints");
+  const nc::Model model = nc::buildModel(setup.robot.chain, setup.tool);
+  nc::Data data(model);
+  const nc::TransientProblem p = transientProblem(setup, model, data, at.joints, options);
+
+  std::optional<ProcessSpec> spec;
+  std::unique_ptr<nc::ProcessCycle> cycle;
+  if (setup.cell->has_process) {
+    spec = parseProcess(setup.cell->process);
+    cycle = nc::makeProcessCycle(*spec, {}, options.runout);
+  } else {
+    cycle = std::make_unique<nc::NoProcess>(0.5);
+  }
+  nc::TransientOptions opt;
+  opt.method = options.bdf ? nc::Method::kBdf : nc::Method::kAdams;
+  opt.rtol = options.rtol;
+  opt.sample = options.sample;
+  const double t_end = options.duration > 0 ? options.duration : cycle->duration();
+
+  SimulationResult r;
+  r.transient = nc::simulateCycle(p, *cycle, opt, t_end);
+  const StaticReference ref = staticReference(model, data, p, spec);
+
+  Json& root = r.summary = Json::object();
+  root.set("robot", Json::str(setup.robot.card.name));
+  root.set("cell", Json::str(setup.cell->name));
+  root.set("joints_deg", Json::vector(at.joints / kDeg, 6));
+  root.set("joints_source", Json::str(at.source));
+  root.set("process", Json::str(spec ? steadyProcessLoad(*spec).description : "none (gravity only)"));
+  root.set("drive", driveJson(p.drive));
+  root.set("static", staticJson(ref));
+  root.set("transient", transientJson(r.transient, ref));
+  root.set("cvode", cvodeJson(r.transient, opt, t_end));
+  return r;
+}
+
+namespace {
+
+std::string fmt(const char* f, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v == 0.0 ? 0.0 : v);  // no "-0"
+  return buf;
+}
+
+}  // namespace
+
+std::string transientHistoryCsv(const nc::TransientResult& r) {
+  std::string out =
+      "t_s,depth_mm,Fa_N,Ft_N,M_Nm,Fr_N,dx_um,dy_um,dz_um,rx_urad,ry_urad,rz_urad,"
+      "dq1_urad,dq2_urad,dq3_urad,dq4_urad,dq5_urad,dq6_urad,phase\n";
+  out.reserve(r.samples.size() * 200 + out.size());
+  const nc::Vec6 q0 = r.samples.empty() ? nc::Vec6::Zero() : nc::Vec6(r.samples.front().theta_m);
+  for (const nc::TransientSample& s : r.samples) {
+    out += fmt("%.6f", s.t) + ',' + fmt("%.6f", s.process.depth * 1e3) + ',' + fmt("%.3f", s.process.Fa) + ',' +
+           fmt("%.3f", s.process.Ft) + ',' + fmt("%.4f", s.process.M) + ',' + fmt("%.3f", s.process.Fr);
+    for (int i = 0; i < 3; ++i) out += ',' + fmt("%.4f", s.dp[i] * 1e6);
+    for (int i = 0; i < 3; ++i) out += ',' + fmt("%.3f", s.drot[i] * 1e6);
+    for (int i = 0; i < 6; ++i) out += ',' + fmt("%.3f", (s.theta[i] - q0[i]) * 1e6);
+    out += ',';
+    out += nc::phaseName(s.process.phase);
+    out += '\n';
+  }
+  return out;
+}
+
+}  // namespace roprec::api

@@ -1,0 +1,70 @@
+#pragma once
+/// \file simulate.hpp
+/// The transient of one process cycle at one pose (flexible joints under the cascade servo,
+/// CVODE; compensator/robot/transient.hpp, docs/transient.md): the joints of a program's hole,
+/// the integration, the CSV time history and the JSON summary `roprec simulate` prints.
+///
+/// Units: SI in the structs (s, rad, m, N); CSV and JSON in s, mm, µm, µrad, N, N·m, deg.
+/// Frames: deviations are of the TCP from the nominal rigid TCP, in the base frame.
+/// Errors: InputError for bad files and joints outside the limits; HoleUnreachable (an
+/// InputError) when the hole exists but no admissible IK solution reaches it. A failed
+/// integration is not an error: see transient.ok.
+
+#include <string>
+
+#include "compensator/robot/transient.hpp"
+#include "compensator/support/error.hpp"
+#include "plugin/api/json.hpp"
+#include "plugin/api/robot_setup.hpp"
+
+namespace roprec::api {
+
+/// Joints at which a cycle is simulated, and how they were obtained.
+struct HoleJoints {
+  nc::Vec6 joints{nc::Vec6::Zero()};  ///< URDF convention, rad
+  std::string source;                 ///< e.g. "--joints", "target P[3] (cell workobject, configuration ...)"
+};
+
+/// The hole is in the program but cannot be reached (an item that cannot be handled, not bad input).
+class HoleUnreachable : public InputError {
+ public:
+  using InputError::InputError;
+};
+
+/// Joints of hole `id` of a program (any dialect, incl. the hole-list CSV; needs the setup's
+/// cell): the drill point (bottom target) of the recognised hole, its frame from the program when
+/// resolved, else the cell's work object; the cell's tool; a joint target as it is; IK with the
+/// target's configuration flags when it states them, else the in-limit, non-singular solution
+/// nearest the vendor reference pose. A hole-list hole is drilled along its direction with tool x
+/// = base x projected ⊥ the axis (else base y). Throws InputError (no such hole, no pose) or
+/// HoleUnreachable.
+HoleJoints holeJoints(const RobotSetup& setup, const std::string& program_path, const std::string& id);
+
+struct SimulateOptions {
+  double duration{-1.0};  ///< s; ≤ 0: the process cycle's own duration
+  double sample{1e-3};    ///< output sampling, s
+  double rtol{1e-8};      ///< CVODE relative tolerance
+  bool bdf{false};        ///< BDF instead of Adams-Moulton
+  bool runout{false};     ///< the rotating residual force Fr at spindle frequency
+  bool integral{true};    ///< velocity-loop integral action
+  bool gravity{true};     ///< link and tool weight (and the controller's gravity compensation)
+};
+
+struct SimulationResult {
+  nc::TransientResult transient;  ///< samples; ok/message/t_reached of the integration
+  /// robot, cell, joints_deg, joints_source, process, drive (servo, k, B_m, D, Kv, Kω), static
+  /// (gravity-only and full-engagement deviation, as deflect), transient (end of full engagement,
+  /// maxima), cvode (ok, method, tolerances, statistics).
+  Json summary;
+};
+
+/// Integrates the cell's process cycle (the setup needs a cell; no process: gravity only) with the
+/// arm holding `at`. Throws UsageError without a cell, InputError outside the joint limits or
+/// without stiffness.
+SimulationResult simulateAt(const RobotSetup& setup, const HoleJoints& at, const SimulateOptions& options);
+
+/// CSV: t_s, depth_mm, Fa_N, Ft_N, M_Nm, Fr_N, dx/dy/dz_um, rx/ry/rz_urad, dq1..dq6_urad (link
+/// angle − the first sample's command), phase.
+std::string transientHistoryCsv(const nc::TransientResult& r);
+
+}  // namespace roprec::api

@@ -1,0 +1,200 @@
+// The per-pose and per-file API behind fk, ik, deflect, simulate, forces, inspect, convert and
+// robots (plugin/api/), called directly: the numbers and texts equal what the CLI prints for the
+// same input, and the errors are the documented ones.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "compensator/support/error.hpp"
+#include "plugin/api/convert.hpp"
+#include "plugin/api/deflect.hpp"
+#include "plugin/api/forces.hpp"
+#include "plugin/api/inspect.hpp"
+#include "plugin/api/kinematics.hpp"
+#include "plugin/api/robots.hpp"
+#include "plugin/api/simulate.hpp"
+#include "tests/support/test_support.hpp"
+
+namespace roprec {
+namespace {
+
+using nlohmann::json;
+
+std::string sample(const std::string& rel) { return test::sourceDir() + "/samples/" + rel; }
+
+nc::Vec6 degrees(double a, double b, double c, double d, double e, double f) {
+  return (nc::Vec6() << a, b, c, d, e, f).finished() * kDeg;
+}
+
+api::RobotSetup kuka() {
+  api::RobotSetupRequest req;
+  req.robot = "kuka-kr120-r2500-pro";
+  return api::loadRobotSetup(req);
+}
+
+TEST(ApiCommands, DeflectAtAPoseEqualsTheCliJson) {
+  const api::RobotSetup s = kuka();
+  api::DeflectRequest req;
+  req.joints = degrees(0, -60, 100, 0, 50, 0);
+  req.wrench = nc::Wrench{Vec3(0, 0, 800), Vec3::Zero()};
+  const api::DeflectResult r = api::deflectAt(s, req);
+  ASSERT_TRUE(r.deflection.converged);
+
+  const auto cli = test::runRoprec(
+      "deflect --robot kuka-kr120-r2500-pro --joints \"0 -60 100 0 50 0\" --wrench \"0 0 800 0 0 0\"");
+  ASSERT_EQ(cli.exit_code, 0) << cli.err;
+  const json j = json::parse(cli.out);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(j["deviation"]["translation_um"][static_cast<size_t>(i)].get<double>(), r.deflection.dp[i] * 1e6, 1e-3);
+    EXPECT_NEAR(j["deviation"]["rotation_urad"][static_cast<size_t>(i)].get<double>(), r.deflection.drot[i] * 1e6, 1e-3);
+  }
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_NEAR(j["torques_Nm"][static_cast<size_t>(i)].get<double>(), r.deflection.tau[i], 1e-3);
+  }
+  EXPECT_EQ(j["loads"]["force_N"][2].get<double>(), 800.0);
+  // the JSON the API builds is the CLI's, except for the label the CLI gives its --wrench
+  json api_json = json::parse(api::deflectJson(s, r).dump());
+  EXPECT_EQ(api_json["loads"]["wrench_source"].get<std::string>(), "given wrench (base frame, on the TCP)");
+  api_json["loads"]["wrench_source"] = j["loads"]["wrench_source"];
+  EXPECT_EQ(api_json, j);
+}
+
+TEST(ApiCommands, DeflectRefusesJointsOutsideTheLimitsAndABareUrdf) {
+  const api::RobotSetup s = kuka();
+  api::DeflectRequest req;
+  req.joints = degrees(0, -170, 100, 0, 50, 0);
+  try {
+    api::deflectAt(s, req);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(e.message().find("joints outside the joint limits: joint_a2"), std::string::npos) << e.message();
+  }
+  api::RobotSetupRequest bare;
+  bare.robot = test::sourceDir() + "/robots/kuka-kr120-r2500-pro/kr120r2500pro.urdf";
+  const api::RobotSetup u = api::loadRobotSetup(bare);
+  req.joints = degrees(0, -60, 100, 0, 50, 0);
+  EXPECT_THROW(api::deflectAt(u, req), InputError);
+}
+
+TEST(ApiCommands, RobotSetupErrorsAndStiffnessOverride) {
+  EXPECT_THROW(api::loadRobotSetup({}), UsageError);
+  api::RobotSetup s = kuka();
+  EXPECT_THROW(api::overrideStiffness(s, (nc::Vec6() << 1, 1, 0, 1, 1, 1).finished()), InputError);
+  api::overrideStiffness(s, nc::Vec6::Constant(2e6), "k", "test");
+  EXPECT_EQ(s.robot.card.joints[3].stiffness, 2e6);
+  EXPECT_EQ(s.robot.card.joints[3].source, "test");
+  // a cell gives the tool
+  api::RobotSetupRequest req;
+  req.cell = sample("cells/housing-kr120.xml");
+  const api::RobotSetup c = api::loadRobotSetup(req);
+  ASSERT_TRUE(c.cell.has_value());
+  EXPECT_GT(c.tool.mass, 0.0);
+  EXPECT_EQ(api::limitViolations(c.robot.chain, degrees(0, -60, 100, 0, 50, 0)).size(), 0u);
+  EXPECT_EQ(api::limitViolations(c.robot.chain, degrees(0, -170, 100, 0, 50, 0)).size(), 1u);
+}
+
+TEST(ApiCommands, FkAndIkEqualTheCli) {
+  api::RobotSetupRequest req;
+  req.cell = sample("cells/housing-kr120.xml");
+  const api::RobotSetup s = api::loadRobotSetup(req);
+  const nc::Vec6 q = degrees(10, -80, 100, 20, 40, -30);
+  const api::FkResult fk = api::forwardKinematicsAt(s, q);
+  const auto cli = test::runRoprec("fk --cell '" + *req.cell + "' --joints \"10 -80 100 20 40 -30\"");
+  ASSERT_EQ(cli.exit_code, 0) << cli.err;
+  EXPECT_EQ(api::fkJson(s, fk).dump(), cli.out);
+
+  // IK of that TCP gives back the joints among its solutions
+  api::IkRequest ik;
+  ik.target = fk.T_tcp;
+  const api::IkAnswer a = api::inverseKinematicsFor(s, ik);
+  EXPECT_TRUE(a.unreachable.empty());
+  double best = 1e9;
+  for (int k = 0; k < a.result->count; ++k) best = std::min(best, (a.result->solutions[static_cast<size_t>(k)].q - q).norm());
+  EXPECT_LT(best, 1e-9);
+
+  api::IkRequest far;
+  far.target = Pose::Identity();
+  far.target.translation() = Vec3(8.0, 0, 0);
+  const api::IkAnswer none = api::inverseKinematicsFor(kuka(), far);
+  EXPECT_EQ(none.usable, 0);
+  EXPECT_FALSE(none.unreachable.empty());
+  EXPECT_EQ(json::parse(api::ikJson(kuka(), none).dump())["unreachable"].get<std::string>(), none.unreachable);
+}
+
+TEST(ApiCommands, SimulateAHoleOfAHoleList) {
+  api::RobotSetupRequest req;
+  req.cell = sample("cells/alu-drilling-6061.xml");
+  const api::RobotSetup s = api::loadRobotSetup(req);
+  const std::string holes = test::sourceDir() + "/tests/data/programs/holes.csv";
+  const api::HoleJoints at = api::holeJoints(s, holes, "H2");
+  EXPECT_NE(at.source.find("hole list row"), std::string::npos);
+  EXPECT_THROW(api::holeJoints(s, holes, "NOPE"), InputError);
+
+  api::SimulateOptions opt;
+  opt.duration = 0.05;
+  const api::SimulationResult r = api::simulateAt(s, at, opt);
+  ASSERT_TRUE(r.transient.ok) << r.transient.message;
+  const std::string dir = test::tempDir("api_simulate");
+  const auto cli = test::runRoprec("simulate --cell '" + *req.cell + "' --hole H2 '" + holes + "' --duration 0.05 -o '" +
+                                   dir + "/h.csv' --summary '" + dir + "/h.json'");
+  ASSERT_EQ(cli.exit_code, 0) << cli.err;
+  EXPECT_EQ(api::transientHistoryCsv(r.transient), test::readFile(dir + "/h.csv"));
+  EXPECT_EQ(r.summary.dump(), test::readFile(dir + "/h.json"));
+
+  // a hole out of reach is a per-hole failure, not bad input
+  test::writeFile(dir + "/far.csv", "id,x,y,z,i,j,k,diameter,depth,tolerance\nFAR,9000,0,0,0,0,-1,6.0,12,0.2\n");
+  EXPECT_THROW(api::holeJoints(s, dir + "/far.csv", "FAR"), api::HoleUnreachable);
+}
+
+TEST(ApiCommands, ForcesEqualTheCli) {
+  api::ForcesRequest req;
+  req.cell = sample("cells/alu-drilling-6061.xml");
+  req.calibrate = api::DrillingMeasurement{1466, 4.04};
+  req.calibrated_cell = true;
+  const api::ForcesResult r = api::processForces(req);
+  EXPECT_TRUE(r.converged);
+  const std::string dir = test::tempDir("api_forces");
+  const auto cli = test::runRoprec("forces --cell '" + req.cell + "' --calibrate 'Fa_N=1466 M_Nm=4.04' --o '" + dir +
+                                   "/cal.xml' --csv '" + dir + "/d.csv'");
+  ASSERT_EQ(cli.exit_code, 0) << cli.err;
+  EXPECT_EQ(r.json.dump() + "\n", cli.out);
+  EXPECT_EQ(r.curve_csv, test::readFile(dir + "/d.csv"));
+  EXPECT_EQ(r.calibrated_cell, test::readFile(dir + "/cal.xml"));
+
+  api::ForcesRequest mill;
+  mill.cell = sample("cells/alu-milling-7075.xml");
+  mill.calibrate = api::DrillingMeasurement{3, 4};
+  EXPECT_THROW(api::processForces(mill), InputError);  // calibration needs a drilling process
+  mill.calibrate.reset();
+  mill.calibrated_cell = true;
+  EXPECT_THROW(api::processForces(mill), UsageError);  // a calibrated cell needs a calibration
+}
+
+TEST(ApiCommands, InspectConvertAndRobotsEqualTheCli) {
+  const std::string src = test::sourceDir() + "/tests/data/programs/kss_drill.src";
+  const std::string holes = test::sourceDir() + "/tests/data/programs/holes.csv";
+  api::InspectRequest ins;
+  ins.program = src;
+  ins.hole_list = holes;
+  const auto cli = test::runRoprec("inspect '" + src + "' --holes '" + holes + "'");
+  ASSERT_EQ(cli.exit_code, 0) << cli.err;
+  EXPECT_EQ(api::inspectProgram(ins).dump() + "\n", cli.out);
+
+  const std::string dir = test::tempDir("api_convert");
+  api::ConvertRequest conv;
+  conv.program = src;
+  conv.output = dir + "/copy.src";
+  const api::ConvertResult c = api::convertProgramFile(conv);
+  EXPECT_TRUE(c.skipped.empty());
+  EXPECT_EQ(test::readFile(dir + "/copy.src"), test::readFile(src));
+
+  EXPECT_EQ(api::groupNotes({"p1: no config", "p2: no config", "p3: no config", "p4: no config", "tool: mass"}),
+            (std::vector<std::string>{"no config (4 items: p1, p2, p3, ...)", "tool: mass"}));
+
+  const api::RobotList robots = api::bundledRobotList();
+  EXPECT_EQ(robots.text, test::runRoprec("robots").out);
+  EXPECT_EQ(robots.json.dump(), test::runRoprec("robots --json").out);
+}
+
+}  // namespace
+}  // namespace roprec
