@@ -1,0 +1,934 @@
+#include "compensator/precision/identification.hpp"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "compensator/precision/uncertainty.hpp"
+#include "compensator/support/error.hpp"
+
+namespace roprec {
+
+const char* registrationName(Registration r) {
+  switch (r) {
+    case Registration::kNone: return "none";
+    case Registration::kTranslation: return "translation";
+    case Registration::kRigid: return "rigid";
+  }
+  return "?";
+}
+
+std::optional<Registration> registrationFromName(const std::string& name) {
+  for (const Registration r : {Registration::kNone, Registration::kTranslation, Registration::kRigid}) {
+    if (name == registrationName(r)) return r;
+  }
+  return std::nullopt;
+}
+
+Vec6 compliancePriorSigma(const RobotCard& card, double estimate_rel, double known_rel) {
+  Vec6 s;
+  for (int j = 0; j < 6; ++j) s[j] = card.joints[static_cast<size_t>(j)].estimated() ? estimate_rel : known_rel;
+  return s;
+}
+
+namespace {
+
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+Mat3 rotationOf(const Vec3& w) {
+  const double a = w.norm();
+  return a > 0 ? Mat3(Eigen::AngleAxisd(a, w / a)) : Mat3::Identity();
+}
+
+// ---------------------------------------------------------------- parameters
+
+/// Where each parameter group sits in x: c (0..5), then the tool (4), then the registration.
+struct Layout {
+  int tool{-1};  ///< Δm, Δcom x/y/z
+  int reg{-1};   ///< t x/y/z [, ω x/y/z]
+  int n_reg{0};
+  int n{6};
+};
+
+Layout layoutOf(bool tool, Registration reg) {
+  Layout l;
+  if (tool) {
+    l.tool = l.n;
+    l.n += 4;
+  }
+  l.n_reg = reg == Registration::kNone ? 0 : reg == Registration::kTranslation ? 3 : 6;
+  if (l.n_reg > 0) {
+    l.reg = l.n;
+    l.n += l.n_reg;
+  }
+  return l;
+}
+
+/// Is x_k a robot parameter (changes the prediction) rather than a registration one?
+bool robotParameter(const Layout& l, int k) { return l.reg < 0 || k < l.reg; }
+
+/// Names, units, prior values (internal units: c relative) and σ, FD steps.
+struct ParameterSpec {
+  std::vector<std::string> name, unit;
+  VectorXd x0, s0, step;
+  VectorXd scale;  ///< internal → reported units (c_j: c⁰_eff,j; others 1)
+};
+
+void addParameter(ParameterSpec& p, int k, const std::string& name, const std::string& unit, double x0, double s0,
+                  double step, double scale) {
+  p.name[static_cast<size_t>(k)] = name;
+  p.unit[static_cast<size_t>(k)] = unit;
+  p.x0[k] = x0;
+  p.s0[k] = s0;
+  p.step[k] = step;
+  p.scale[k] = scale;
+}
+
+ParameterSpec parameterSpec(const Layout& l, const Vec6& c0, const IdentificationOptions& o) {
+  ParameterSpec p;
+  p.name.resize(static_cast<size_t>(l.n));
+  p.unit.resize(static_cast<size_t>(l.n));
+  p.x0 = p.s0 = p.step = p.scale = VectorXd::Zero(l.n);
+  for (int j = 0; j < 6; ++j) {
+    std::string name(1, 'c');
+    name += std::to_string(j + 1);
+    addParameter(p, j, name, "rad/(N m)", 1.0, o.compliance_prior_rel[j], o.relative_step, c0[j]);
+  }
+  if (l.tool >= 0) {
+    addParameter(p, l.tool, "tool_mass", "kg", 0.0, o.tool_mass_prior, o.mass_step, 1.0);
+    const char* axes[] = {"x", "y", "z"};
+    for (int a = 0; a < 3; ++a) {
+      addParameter(p, l.tool + 1 + a, std::string("tool_com_") + axes[a], "m", 0.0, o.tool_com_prior, o.com_step, 1.0);
+    }
+  }
+  if (l.reg >= 0) {
+    const char* names[] = {"reg_tx", "reg_ty", "reg_tz", "reg_rx", "reg_ry", "reg_rz"};
+    for (int a = 0; a < l.n_reg; ++a) {
+      const bool rot = a >= 3;
+      addParameter(p, l.reg + a, names[a], rot ? "rad" : "m", 0.0, rot ? o.rotation_prior : o.translation_prior,
+                   rot ? o.rotation_step : o.translation_step, 1.0);
+    }
+  }
+  return p;
+}
+
+// ---------------------------------------------------------------- the problem
+
+/// Everything an evaluation needs, set up once.
+struct Problem {
+  const PredictionModel& m;
+  const std::vector<IdentificationHole>& holes;
+  Layout layout;
+  ParameterSpec spec;
+  Vec6 c0{Vec6::Zero()};                 ///< prior effective compliance, rad/(N m)
+  std::optional<nc::ToolAttachment> tool;
+  Pose T_W_wobj{Pose::Identity()};
+  std::vector<nc::Loads> loads;          ///< per hole
+  std::vector<Vec3> d_mach_tool;         ///< δmach in the tool frame, per hole
+  nc::Data data;
+};
+
+Vec6 priorEffectiveCompliance(const PredictionModel& m) { return m.compliance.effective().cwiseInverse(); }
+
+void setUpHoles(Problem& P) {
+  for (const IdentificationHole& h : P.holes) {
+    const ProcessAtDiameter* proc = processFor(P.m, h.diameter);
+    P.loads.push_back(processLoads(P.m, proc));
+    P.d_mach_tool.push_back(proc ? Vec3(proc->mach.delta_tool.x(), proc->mach.delta_tool.y(), 0.0) : Vec3::Zero());
+  }
+}
+
+/// The model with the candidate tool (mass and centre of mass shifted by x).
+nc::Model toolModel(const Problem& P, const VectorXd& x) {
+  nc::ToolAttachment t = *P.tool;
+  t.mass += x[P.layout.tool];
+  t.com += x.segment<3>(P.layout.tool + 1);
+  nc::Model model = nc::buildModel(P.m.robot.chain, t);
+  model.gravity = P.m.model.gravity;
+  model.tol_phi = P.m.model.tol_phi;
+  model.max_iterations = P.m.model.max_iterations;
+  return model;
+}
+
+/// The effective compliance of x as a JointCompliance (servo folded in: k = 1/c_eff, ideal servo).
+nc::JointCompliance complianceOf(const Problem& P, const VectorXd& x) {
+  nc::JointCompliance c;
+  for (int j = 0; j < 6; ++j) c.k[j] = 1.0 / (x[j] * P.c0[j]);
+  return c;
+}
+
+/// Iterates may leave the physical region (a compliance below zero): the equilibrium is still
+/// defined there for small loads, and a Gauss–Newton path through it reaches an interior optimum
+/// that a bound would trap in a corner (the gravity-torque gradient makes the problem mildly
+/// nonlinear). A non-physical final value is reported, not used (fillCompliance).
+bool admissible(const VectorXd& x) { return x.allFinite(); }
+
+/// p̂_W of every hole at x. Returns the index of the first hole whose equilibrium fails, or −1.
+int predictRobot(Problem& P, const VectorXd& x, std::vector<Vec3>& p) {
+  const nc::JointCompliance c = complianceOf(P, x);
+  std::optional<nc::Model> rebuilt;
+  if (P.layout.tool >= 0) rebuilt = toolModel(P, x);
+  const nc::Model& model = rebuilt ? *rebuilt : P.m.model;
+  p.resize(P.holes.size());
+  for (size_t i = 0; i < P.holes.size(); ++i) {
+    const Vec6& th = P.holes[i].theta_cmd;
+    const Vec6 offset = P.m.controller_gravity ? nc::gravityCommandOffset(P.m.calibration_model, P.data, c, th)
+                                               : Vec6::Zero();
+    const nc::Deflection d = nc::predictDeflection(model, P.data, c, th, P.loads[i], {}, offset);
+    if (!d.converged || !d.position_converged) return static_cast<int>(i);
+    p[i] = d.T_real.translation() + d.T_nominal.linear() * P.d_mach_tool[i];
+  }
+  return -1;
+}
+
+/// m̂_W: the robot position as the CMM sees it through the registration of x.
+Vec3 registered(const Problem& P, const VectorXd& x, const Vec3& p_W) {
+  if (P.layout.reg < 0) return p_W;
+  const Vec3 t = x.segment<3>(P.layout.reg);
+  const Vec3 w = P.layout.n_reg == 6 ? Vec3(x.segment<3>(P.layout.reg + 3)) : Vec3::Zero();
+  return P.T_W_wobj * (rotationOf(w) * (P.T_W_wobj.inverse() * p_W) + t);
+}
+
+/// Unweighted in-plane residual of hole i: [e₁ e₂]ᵀ (p_measured − m̂).
+Eigen::Vector2d inPlaneResidual(const Problem& P, const VectorXd& x, size_t i, const Vec3& p_W) {
+  const IdentificationHole& h = P.holes[i];
+  const Vec3 d = h.p_W_measured - registered(P, x, p_W);
+  const Mat3 R = h.T_W_hole.linear();
+  return {R.col(0).dot(d), R.col(1).dot(d)};
+}
+
+/// σ-weighted data residuals r (2N).
+VectorXd dataResiduals(const Problem& P, const VectorXd& x, const std::vector<Vec3>& p) {
+  VectorXd r(2 * static_cast<Eigen::Index>(P.holes.size()));
+  for (size_t i = 0; i < P.holes.size(); ++i) {
+    r.segment<2>(2 * static_cast<Eigen::Index>(i)) = inPlaneResidual(P, x, i, p[i]) / P.holes[i].sigma;
+  }
+  return r;
+}
+
+double priorCost(const Problem& P, const VectorXd& x) {
+  return (x - P.spec.x0).cwiseQuotient(P.spec.s0).squaredNorm();
+}
+
+/// Central-difference J_d = ∂r/∂x for the columns `cols`; registration columns reuse p at x.
+/// Returns false when an equilibrium fails at a perturbed point.
+bool dataJacobian(Problem& P, const VectorXd& x, const std::vector<Vec3>& p_x, const std::vector<int>& cols,
+                  MatrixXd& J) {
+  J.resize(2 * static_cast<Eigen::Index>(P.holes.size()), static_cast<Eigen::Index>(cols.size()));
+  std::vector<Vec3> pp;
+  std::vector<Vec3> pm;
+  for (size_t c = 0; c < cols.size(); ++c) {
+    const int k = cols[c];
+    const double h = P.spec.step[k];
+    VectorXd xp = x;
+    VectorXd xm = x;
+    xp[k] += h;
+    xm[k] -= h;
+    if (robotParameter(P.layout, k)) {
+      if (predictRobot(P, xp, pp) >= 0 || predictRobot(P, xm, pm) >= 0) return false;
+      J.col(static_cast<Eigen::Index>(c)) = (dataResiduals(P, xp, pp) - dataResiduals(P, xm, pm)) / (2 * h);
+    } else {
+      J.col(static_cast<Eigen::Index>(c)) = (dataResiduals(P, xp, p_x) - dataResiduals(P, xm, p_x)) / (2 * h);
+    }
+  }
+  return true;
+}
+
+/// J_wᵀJ_w restricted to `cols`: data part + the prior's diagonal.
+MatrixXd normalMatrix(const Problem& P, const MatrixXd& J, const std::vector<int>& cols) {
+  MatrixXd A = J.transpose() * J;
+  for (size_t c = 0; c < cols.size(); ++c) {
+    const double s = P.spec.s0[cols[c]];
+    A(static_cast<Eigen::Index>(c), static_cast<Eigen::Index>(c)) += 1.0 / (s * s);
+  }
+  return A;
+}
+
+// ---------------------------------------------------------------- Levenberg–Marquardt
+
+struct LmState {
+  VectorXd x;
+  std::vector<Vec3> p;  ///< p̂ at x
+  VectorXd r;           ///< weighted data residuals at x
+  double cost{0};
+};
+
+struct LmOutcome {
+  LmState state;
+  bool converged{false};
+  int iterations{0};
+  std::string message;
+};
+
+/// Evaluates x; false when x is not admissible or an equilibrium fails.
+bool evaluate(Problem& P, const VectorXd& x, LmState& s) {
+  if (!admissible(x)) return false;
+  std::vector<Vec3> p;
+  if (predictRobot(P, x, p) >= 0) return false;
+  s.x = x;
+  s.p = std::move(p);
+  s.r = dataResiduals(P, x, s.p);
+  s.cost = s.r.squaredNorm() + priorCost(P, x);
+  return true;
+}
+
+/// The gradient J_wᵀ r_w restricted to `cols`.
+VectorXd gradient(const Problem& P, const MatrixXd& J, const LmState& s, const std::vector<int>& cols) {
+  VectorXd g = J.transpose() * s.r;
+  for (size_t c = 0; c < cols.size(); ++c) {
+    const int k = cols[c];
+    g[static_cast<Eigen::Index>(c)] += (s.x[k] - P.spec.x0[k]) / (P.spec.s0[k] * P.spec.s0[k]);
+  }
+  return g;
+}
+
+/// The step on the free columns for damping λ, scattered into the full vector.
+VectorXd dampedStep(const MatrixXd& A, const VectorXd& g, double lambda, const std::vector<int>& cols, int n) {
+  MatrixXd Al = A;
+  Al.diagonal() += lambda * A.diagonal();
+  const VectorXd d = -Al.ldlt().solve(g);
+  VectorXd dx = VectorXd::Zero(n);
+  for (size_t c = 0; c < cols.size(); ++c) dx[cols[c]] = d[static_cast<Eigen::Index>(c)];
+  return dx;
+}
+
+double scaledSize(const Problem& P, const VectorXd& dx) { return dx.cwiseQuotient(P.spec.s0).cwiseAbs().maxCoeff(); }
+
+/// Raises λ (×10) until a damped step does not increase F and takes it; false when none does
+/// below λ = 1e12. On success λ is lowered (÷10) for the next iteration.
+bool takeStep(Problem& P, const MatrixXd& A, const VectorXd& g, const std::vector<int>& cols, double& lambda,
+              LmState& state) {
+  for (; lambda < 1e12; lambda *= 10) {
+    LmState trial;
+    if (evaluate(P, state.x + dampedStep(A, g, lambda, cols, P.layout.n), trial) && trial.cost <= state.cost) {
+      state = std::move(trial);
+      lambda = std::max(lambda / 10, 1e-12);
+      return true;
+    }
+  }
+  return false;
+}
+
+LmOutcome levenbergMarquardt(Problem& P, const LmState& start, const std::vector<int>& cols, int max_iterations,
+                             double tol) {
+  LmOutcome out;
+  out.state = start;
+  double lambda = 1e-3;
+  for (out.iterations = 0; out.iterations < max_iterations; ++out.iterations) {
+    MatrixXd J;
+    if (!dataJacobian(P, out.state.x, out.state.p, cols, J)) {
+      out.message = "the equilibrium failed while differentiating";
+      return out;
+    }
+    const MatrixXd A = normalMatrix(P, J, cols);
+    const VectorXd g = gradient(P, J, out.state, cols);
+    const VectorXd dx = dampedStep(A, g, lambda, cols, P.layout.n);
+    const double step = scaledSize(P, dx);
+    if (step <= tol) {  // the step is below the tolerance: converged
+      LmState trial;
+      if (evaluate(P, out.state.x + dx, trial) && trial.cost <= out.state.cost) out.state = std::move(trial);
+      out.converged = true;
+      ++out.iterations;
+      return out;
+    }
+    if (!takeStep(P, A, g, cols, lambda, out.state)) {  // at the evaluation's rounding floor if tiny
+      out.converged = step <= 100 * tol;
+      if (!out.converged) out.message = "no step lowers the cost";
+      return out;
+    }
+  }
+  out.message = "no convergence in " + std::to_string(max_iterations) + " iterations";
+  return out;
+}
+
+// ---------------------------------------------------------------- statistics of the estimate
+
+/// Posterior covariance on `cols` (internal units): (J_wᵀ J_w)⁻¹.
+MatrixXd posterior(const Problem& P, const MatrixXd& J, const std::vector<int>& cols) {
+  const MatrixXd A = normalMatrix(P, J, cols);
+  return A.ldlt().solve(MatrixXd::Identity(A.rows(), A.cols()));
+}
+
+/// Condition number of JᵀJ with the columns of J scaled to unit norm.
+double scaledCondition(const MatrixXd& J) {
+  MatrixXd Js = J;
+  for (Eigen::Index c = 0; c < Js.cols(); ++c) {
+    const double n = Js.col(c).norm();
+    if (!(n > 0)) return std::numeric_limits<double>::infinity();
+    Js.col(c) /= n;
+  }
+  const Eigen::SelfAdjointEigenSolver<MatrixXd> es(Js.transpose() * Js);
+  const double lo = es.eigenvalues().minCoeff();
+  const double hi = es.eigenvalues().maxCoeff();
+  return lo > 0 ? hi / lo : std::numeric_limits<double>::infinity();
+}
+
+std::vector<int> allColumns(int n) {
+  std::vector<int> c(static_cast<size_t>(n));
+  for (int k = 0; k < n; ++k) c[static_cast<size_t>(k)] = k;
+  return c;
+}
+
+double rmsNorm(const std::vector<Eigen::Vector2d>& r) {
+  double s = 0;
+  for (const auto& v : r) s += v.squaredNorm();
+  return r.empty() ? 0.0 : std::sqrt(s / static_cast<double>(r.size()));
+}
+
+std::vector<Eigen::Vector2d> inPlaneResiduals(const Problem& P, const LmState& s) {
+  std::vector<Eigen::Vector2d> r;
+  for (size_t i = 0; i < P.holes.size(); ++i) r.push_back(inPlaneResidual(P, s.x, i, s.p[i]));
+  return r;
+}
+
+// ---------------------------------------------------------------- set-up and results
+
+void validateHoles(const std::vector<IdentificationHole>& holes) {
+  if (holes.empty()) throw InputError("", 0, "no measured holes to identify from");
+  for (const IdentificationHole& h : holes) {
+    if (!(h.sigma > 0) || !std::isfinite(h.sigma)) {
+      throw InputError("", 0, "hole '" + h.id + "': the measurement σ must be > 0");
+    }
+  }
+}
+
+/// The state at the prior; throws InputError naming the hole whose equilibrium fails.
+LmState priorState(Problem& P) {
+  std::vector<Vec3> p;
+  const int bad = predictRobot(P, P.spec.x0, p);
+  if (bad >= 0) {
+    throw InputError("", 0, "hole '" + P.holes[static_cast<size_t>(bad)].id +
+                                "': the compliance equilibrium does not converge at the card's stiffness");
+  }
+  LmState s;
+  evaluate(P, P.spec.x0, s);
+  return s;
+}
+
+/// One Levenberg–Marquardt run on the columns `cols` (the others stay where the start has them).
+struct Pass {
+  LmOutcome lm;
+  std::vector<int> cols;
+};
+
+Pass estimate(Problem& P, const LmState& start, const std::vector<int>& cols, const IdentificationOptions& o) {
+  Pass pass;
+  pass.cols = cols;
+  pass.lm = levenbergMarquardt(P, start, cols, o.max_iterations, o.step_tolerance);
+  return pass;
+}
+
+/// (J_wᵀJ_w)⁻¹ at the end of a pass on its columns; the prior where the data cannot be evaluated.
+MatrixXd passCovariance(Problem& P, const Pass& pass) {
+  MatrixXd J;
+  if (!pass.cols.empty() && dataJacobian(P, pass.lm.state.x, pass.lm.state.p, pass.cols, J)) {
+    return posterior(P, J, pass.cols);
+  }
+  MatrixXd C = MatrixXd::Zero(static_cast<Eigen::Index>(pass.cols.size()), static_cast<Eigen::Index>(pass.cols.size()));
+  for (size_t c = 0; c < pass.cols.size(); ++c) {
+    C(static_cast<Eigen::Index>(c), static_cast<Eigen::Index>(c)) = P.spec.s0[pass.cols[c]] * P.spec.s0[pass.cols[c]];
+  }
+  return C;
+}
+
+/// Posterior covariance (internal units, all parameters) with the fixed parameters as "consider"
+/// parameters: they keep their prior S_f, and their uncertainty is carried into the estimated
+/// ones through the sensitivity of the estimate, G = A_aa⁻¹ J_aᵀ J_f:
+///   P_aa = A_aa⁻¹ + G S_f Gᵀ,   P_af = −G S_f,   P_ff = S_f.
+MatrixXd considerCovariance(Problem& P, const LmState& s, const std::vector<int>& seen) {
+  const int n = P.layout.n;
+  std::vector<int> fixed;
+  for (int k = 0; k < n; ++k) {
+    if (std::find(seen.begin(), seen.end(), k) == seen.end()) fixed.push_back(k);
+  }
+  MatrixXd C = MatrixXd::Zero(n, n);
+  for (const int k : fixed) C(k, k) = P.spec.s0[k] * P.spec.s0[k];
+  MatrixXd Ja;
+  MatrixXd Jf;
+  if (seen.empty() || !dataJacobian(P, s.x, s.p, seen, Ja) || !dataJacobian(P, s.x, s.p, fixed, Jf)) {
+    for (const int k : seen) C(k, k) = P.spec.s0[k] * P.spec.s0[k];
+    return C;
+  }
+  const MatrixXd Aa_inv = posterior(P, Ja, seen);
+  const MatrixXd G = Aa_inv * (Ja.transpose() * Jf);
+  VectorXd Sf(static_cast<Eigen::Index>(fixed.size()));
+  for (size_t f = 0; f < fixed.size(); ++f) Sf[static_cast<Eigen::Index>(f)] = P.spec.s0[fixed[f]] * P.spec.s0[fixed[f]];
+  const MatrixXd Paa = Aa_inv + G * Sf.asDiagonal() * G.transpose();
+  const MatrixXd Paf = -G * Sf.asDiagonal();
+  for (size_t a = 0; a < seen.size(); ++a) {
+    for (size_t b = 0; b < seen.size(); ++b) {
+      C(seen[a], seen[b]) = Paa(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b));
+    }
+    for (size_t f = 0; f < fixed.size(); ++f) {
+      C(seen[a], fixed[f]) = C(fixed[f], seen[a]) = Paf(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(f));
+    }
+  }
+  return C;
+}
+
+void fillParameters(const Problem& P, const MatrixXd& first_cov, const Pass& final_pass, const MatrixXd& C_internal,
+                    double ratio_limit, IdentificationResult& r) {
+  const int n = P.layout.n;
+  r.covariance = C_internal;
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) r.covariance(i, j) *= P.spec.scale[i] * P.spec.scale[j];
+  }
+  for (int k = 0; k < n; ++k) {
+    IdentifiedParameter q;
+    q.name = P.spec.name[static_cast<size_t>(k)];
+    q.unit = P.spec.unit[static_cast<size_t>(k)];
+    q.prior = P.spec.x0[k] * P.spec.scale[k];
+    q.prior_sigma = P.spec.s0[k] * P.spec.scale[k];
+    q.ratio = std::sqrt(std::max(0.0, first_cov(k, k))) / P.spec.s0[k];
+    q.identifiable = q.ratio <= ratio_limit;
+    q.value = (q.identifiable ? final_pass.lm.state.x[k] : P.spec.x0[k]) * P.spec.scale[k];
+    q.sigma = std::sqrt(r.covariance(k, k));
+    r.parameters.push_back(q);
+  }
+}
+
+/// k_j from the identified effective compliance (the prior servo compliance removed).
+void fillCompliance(const PredictionModel& m, IdentificationResult& r) {
+  r.compliance = m.compliance;
+  for (int j = 0; j < 6; ++j) {
+    const IdentifiedParameter& q = r.parameters[static_cast<size_t>(j)];
+    const double c_servo = m.compliance.k_servo[j] < 1e299 ? 1.0 / m.compliance.k_servo[j] : 0.0;
+    const double c_joint = q.value - c_servo;
+    r.joint_identified[static_cast<size_t>(j)] = q.identifiable && c_joint > 0;
+    if (q.identifiable && !(c_joint > 0)) {
+      r.message += (r.message.empty() ? "" : "; ") + std::string("joint ") + std::to_string(j + 1) +
+                   ": the identified compliance is not above the servo's (not physical); the card keeps its stiffness";
+    }
+    if (r.joint_identified[static_cast<size_t>(j)]) r.compliance.k[j] = 1.0 / c_joint;
+    const double k = r.compliance.k[j];
+    r.k_sigma[j] = q.sigma * k * k;
+  }
+}
+
+void fillToolAndRegistration(const Problem& P, const IdentificationOptions& o, IdentificationResult& r) {
+  const Layout& l = P.layout;
+  if (l.tool >= 0) {
+    r.tool_mass = o.tool->mass + r.parameters[static_cast<size_t>(l.tool)].value;
+    if (!(*r.tool_mass > 0)) {
+      r.message += (r.message.empty() ? "" : "; ") + std::string("the identified tool mass is not positive (not physical)");
+    }
+    r.tool_com = o.tool->com + Vec3(r.parameters[static_cast<size_t>(l.tool + 1)].value,
+                                    r.parameters[static_cast<size_t>(l.tool + 2)].value,
+                                    r.parameters[static_cast<size_t>(l.tool + 3)].value);
+  }
+  r.registration.kind = o.registration;
+  for (int a = 0; a < l.n_reg; ++a) {
+    const IdentifiedParameter& q = r.parameters[static_cast<size_t>(l.reg + a)];
+    (a < 3 ? r.registration.translation : r.registration.rotation)[a % 3] = q.value;
+    (a < 3 ? r.registration.translation_sigma : r.registration.rotation_sigma)[a % 3] = q.sigma;
+  }
+}
+
+/// The parameters whose posterior σ (all free) is at most ratio_limit × their prior σ.
+std::vector<int> identifiableColumns(const MatrixXd& first_cov, const Problem& P, double ratio_limit) {
+  std::vector<int> cols;
+  for (int k = 0; k < P.layout.n; ++k) {
+    if (std::sqrt(std::max(0.0, first_cov(k, k))) / P.spec.s0[k] <= ratio_limit) cols.push_back(k);
+  }
+  return cols;
+}
+
+}  // namespace
+
+Vec3 RegistrationEstimate::unregister(const Pose& T_W_wobj, const Vec3& p_W_measured) const {
+  const Vec3 p_o = T_W_wobj.inverse() * p_W_measured;
+  return T_W_wobj * (rotationOf(rotation).transpose() * (p_o - translation));
+}
+
+namespace {
+
+/// Pass 2: the parameters outside `seen` fixed at their prior, the others re-estimated from the
+/// pass-1 estimate (or from the prior when that point cannot be evaluated).
+Pass reestimate(Problem& P, const Pass& first, const LmState& prior, const std::vector<int>& seen,
+                const IdentificationOptions& o) {
+  VectorXd x = first.lm.state.x;
+  for (int k = 0; k < P.layout.n; ++k) {
+    if (std::find(seen.begin(), seen.end(), k) == seen.end()) x[k] = P.spec.x0[k];
+  }
+  LmState start;
+  if (!evaluate(P, x, start)) start = prior;
+  return estimate(P, start, seen, o);
+}
+
+double conditionOf(Problem& P, const Pass& pass) {
+  MatrixXd J;
+  if (pass.cols.empty() || !dataJacobian(P, pass.lm.state.x, pass.lm.state.p, pass.cols, J)) {
+    return std::numeric_limits<double>::infinity();
+  }
+  return scaledCondition(J);
+}
+
+}  // namespace
+
+IdentificationResult identifyStiffness(const PredictionModel& m, const std::vector<IdentificationHole>& holes,
+                                       const IdentificationOptions& o) {
+  validateHoles(holes);
+  Problem P{m, holes, layoutOf(o.tool.has_value(), o.registration), {}, priorEffectiveCompliance(m), o.tool,
+            o.T_W_wobj, {}, {}, nc::Data(m.model)};
+  P.spec = parameterSpec(P.layout, P.c0, o);
+  setUpHoles(P);
+  const LmState prior = priorState(P);
+
+  // pass 1: every parameter free; its posterior says what the data can see
+  const Pass first = estimate(P, prior, allColumns(P.layout.n), o);
+  const MatrixXd first_cov = passCovariance(P, first);
+  const std::vector<int> seen = identifiableColumns(first_cov, P, o.identifiable_ratio);
+  // pass 2: what the data cannot see keeps its prior
+  const bool refit = static_cast<int>(seen.size()) < P.layout.n;
+  const Pass final_pass = refit ? reestimate(P, first, prior, seen, o) : first;
+
+  IdentificationResult r;
+  r.holes = static_cast<int>(holes.size());
+  r.converged = first.lm.converged && final_pass.lm.converged;
+  r.iterations = first.lm.iterations + (refit ? final_pass.lm.iterations : 0);
+  r.message = final_pass.lm.message.empty() ? first.lm.message : final_pass.lm.message;
+  r.condition_number = conditionOf(P, final_pass);
+  fillParameters(P, first_cov, final_pass, considerCovariance(P, final_pass.lm.state, seen), o.identifiable_ratio, r);
+  fillCompliance(m, r);
+  fillToolAndRegistration(P, o, r);
+  r.residuals = inPlaneResiduals(P, final_pass.lm.state);
+  r.rms_prior = rmsNorm(inPlaneResiduals(P, prior));
+  r.rms_final = rmsNorm(r.residuals);
+  return r;
+}
+
+PredictionModel withIdentification(const PredictionModel& m, const IdentificationResult& r,
+                                   const std::optional<nc::ToolAttachment>& tool) {
+  PredictionModel out = m;
+  out.compliance = r.compliance;
+  if (tool && r.tool_mass && r.tool_com) {
+    nc::ToolAttachment t = *tool;
+    t.mass = *r.tool_mass;
+    t.com = *r.tool_com;
+    out.model = nc::buildModel(m.robot.chain, t);
+    out.model.gravity = m.model.gravity;
+    out.model.tol_phi = m.model.tol_phi;
+    out.model.max_iterations = m.model.max_iterations;
+  }
+  return out;
+}
+
+Vec3 predictedHolePosition(const PredictionModel& m, nc::Data& data, const Vec6& theta_cmd, double diameter) {
+  const ProcessAtDiameter* proc = processFor(m, diameter);
+  const Vec6 offset = controllerOffset(m, data, theta_cmd);
+  const nc::Deflection d = nc::predictDeflection(m.model, data, m.compliance, theta_cmd, processLoads(m, proc), {}, offset);
+  if (!d.converged || !d.position_converged) {
+    throw InputError("", 0, "the compliance equilibrium does not converge at these joints");
+  }
+  const Vec3 mach = proc ? Vec3(proc->mach.delta_tool.x(), proc->mach.delta_tool.y(), 0.0) : Vec3::Zero();
+  return d.T_real.translation() + d.T_nominal.linear() * mach;
+}
+
+// ---------------------------------------------------------------- verification
+
+const char* measuredDecisionName(MeasuredDecision d) {
+  switch (d) {
+    case MeasuredDecision::kConformanceProven: return "conformance-proven";
+    case MeasuredDecision::kNonConformanceProven: return "non-conformance-proven";
+    case MeasuredDecision::kNoDecision: return "no-decision";
+  }
+  return "?";
+}
+
+MeasuredDecision measuredDecision(double e, double U_meas, double t) {
+  const double half = 0.5 * t;
+  if (e + U_meas <= half) return MeasuredDecision::kConformanceProven;
+  if (e - U_meas > half) return MeasuredDecision::kNonConformanceProven;
+  return MeasuredDecision::kNoDecision;
+}
+
+namespace {
+/// u_robpos of a prediction's budget (m; 0 when absent).
+double repeatabilityOf(const HolePrediction& p) {
+  for (const BudgetTerm& b : p.budget) {
+    if (std::string(b.name) == "robot_repeatability") return b.u;
+  }
+  return 0.0;
+}
+}  // namespace
+
+double residualSigma(const HolePrediction& p, double u_measurement) {
+  const double u_rep = repeatabilityOf(p);
+  return std::sqrt(u_measurement * u_measurement + u_rep * u_rep + p.u_mach * p.u_mach);
+}
+
+VerificationInput verificationInput(const HolePrediction& p, const Pose& T_W_hole, const Vec3& p_W_measured,
+                                    double u_measurement) {
+  VerificationInput in;
+  in.id = p.id;
+  in.T_W_hole = T_W_hole;
+  in.p_W_measured = p_W_measured;
+  in.u_measurement = u_measurement;
+  in.p_W_predicted = p.deflection.T_real.translation() + p.d_mach;
+  const double u_rep = repeatabilityOf(p);
+  in.cov_work = p.robdef_cov + (u_rep * u_rep + p.u_mach * p.u_mach) * Eigen::Matrix2d::Identity();
+  in.U_work = p.U_work;
+  in.tolerance = p.tolerance;
+  return in;
+}
+
+HoleVerification verifyHole(const VerificationInput& in) {
+  HoleVerification v;
+  v.id = in.id;
+  const Mat3 R = in.T_W_hole.linear();
+  const Vec3 a = R.col(2);
+  const Vec3 p_nom = in.T_W_hole.translation();
+  const Vec3 e = in.p_W_measured - p_nom;
+  const Vec3 d = in.p_W_predicted - p_nom;
+  v.e_meas = Eigen::Vector2d(R.col(0).dot(e), R.col(1).dot(e));
+  v.e_meas_norm = v.e_meas.norm();
+  v.e_along = a.dot(e);
+  v.d_pred = Eigen::Vector2d(R.col(0).dot(d), R.col(1).dot(d));
+  v.d_pred_norm = v.d_pred.norm();
+  v.r = v.e_meas - v.d_pred;
+  v.r_norm = v.r.norm();
+  v.e_meas_W = e - a.dot(e) * a;
+  v.d_pred_W = d - a.dot(d) * a;
+  v.U_work = in.U_work;
+  const double u2 = in.u_measurement * in.u_measurement;
+  v.U_region = radialCoverage(in.cov_work + u2 * Eigen::Matrix2d::Identity(), 0.95);
+  v.inside = v.r_norm <= v.U_region;
+  v.U_meas = kRadial95 * in.u_measurement;
+  v.tolerance = in.tolerance;
+  v.decision = measuredDecision(v.e_meas_norm, v.U_meas, in.tolerance);
+  return v;
+}
+
+namespace {
+
+MagnitudeStats magnitudes(const std::vector<double>& x) {
+  MagnitudeStats s;
+  if (x.empty()) return s;
+  double sum = 0;
+  double sum2 = 0;
+  for (const double v : x) {
+    sum += v;
+    sum2 += v * v;
+    s.max = std::max(s.max, v);
+  }
+  const double n = static_cast<double>(x.size());
+  s.mean = sum / n;
+  s.rms = std::sqrt(sum2 / n);
+  return s;
+}
+
+double pearson(const std::vector<double>& a, const std::vector<double>& b) {
+  const double n = static_cast<double>(a.size());
+  double ma = 0;
+  double mb = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    ma += a[i] / n;
+    mb += b[i] / n;
+  }
+  double sab = 0;
+  double saa = 0;
+  double sbb = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    sab += (a[i] - ma) * (b[i] - mb);
+    saa += (a[i] - ma) * (a[i] - ma);
+    sbb += (b[i] - mb) * (b[i] - mb);
+  }
+  const double tiny = 1e-30;
+  if (a.size() < 2 || saa <= tiny || sbb <= tiny) return std::numeric_limits<double>::quiet_NaN();
+  return sab / std::sqrt(saa * sbb);
+}
+
+}  // namespace
+
+VerificationSummary summarizeVerification(const std::vector<HoleVerification>& holes, const Mat3& R_W_frame) {
+  VerificationSummary s;
+  s.holes = static_cast<int>(holes.size());
+  std::vector<double> e;
+  std::vector<double> d;
+  std::vector<double> r;
+  for (const HoleVerification& h : holes) {
+    e.push_back(h.e_meas_norm);
+    d.push_back(h.d_pred_norm);
+    r.push_back(h.r_norm);
+    s.inside += h.inside;
+    s.conformance_proven += h.decision == MeasuredDecision::kConformanceProven;
+    s.nonconformance_proven += h.decision == MeasuredDecision::kNonConformanceProven;
+    s.no_decision += h.decision == MeasuredDecision::kNoDecision;
+  }
+  s.measured = magnitudes(e);
+  s.predicted = magnitudes(d);
+  s.residual = magnitudes(r);
+  s.explained = s.measured.rms > 0 ? 1.0 - s.residual.rms / s.measured.rms : 0.0;
+  s.coverage = s.holes ? static_cast<double>(s.inside) / s.holes : 0.0;
+  for (int a = 0; a < 3; ++a) {
+    std::vector<double> pa;
+    std::vector<double> ma;
+    for (const HoleVerification& h : holes) {
+      pa.push_back(R_W_frame.col(a).dot(h.d_pred_W));
+      ma.push_back(R_W_frame.col(a).dot(h.e_meas_W));
+    }
+    s.correlation[a] = pearson(pa, ma);
+  }
+  return s;
+}
+
+// ---------------------------------------------------------------- test planning
+
+namespace {
+
+/// log det of an SPD matrix (−∞ when not positive definite).
+double logDet(const MatrixXd& A) {
+  if (A.rows() == 0) return 0.0;
+  const Eigen::LLT<MatrixXd> llt(A);
+  if (llt.info() != Eigen::Success) return -std::numeric_limits<double>::infinity();
+  return 2.0 * llt.matrixL().toDenseMatrix().diagonal().array().log().sum();
+}
+
+/// D_s criterion: log det M − log det M_nn (nuisance block = the columns from 6 on).
+double dsCriterion(const MatrixXd& M) {
+  const Eigen::Index nn = M.rows() - 6;
+  return logDet(M) - logDet(M.bottomRightCorner(nn, nn));
+}
+
+/// The IdentificationHoles of the admissible candidates (their predicted joints).
+std::vector<IdentificationHole> plannedHoles(const PredictionModel& m, const std::vector<HoleRequest>& candidates,
+                                             double sigma, std::vector<int>& index, TestPlan& plan) {
+  PredictionData d(m);
+  std::vector<IdentificationHole> holes;
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    const HolePrediction p = predictHole(m, d, candidates[i], nullptr);
+    if (p.status != HoleStatus::kOk) {
+      plan.rejected.push_back(static_cast<int>(i));
+      plan.rejected_reason.push_back(p.reason);
+      continue;
+    }
+    IdentificationHole h;
+    h.id = candidates[i].id;
+    h.theta_cmd = p.joints;
+    h.T_W_hole = candidates[i].T_W_tcp;
+    h.diameter = candidates[i].diameter;
+    h.p_W_measured = candidates[i].T_W_tcp.translation();
+    h.sigma = sigma;
+    holes.push_back(h);
+    index.push_back(static_cast<int>(i));
+  }
+  return holes;
+}
+
+/// Greedy selection on the per-hole information blocks J_i (2×n rows of J).
+std::vector<int> greedyDOptimal(const MatrixXd& J, const VectorXd& s0, int count, double& criterion) {
+  const Eigen::Index n = J.cols();
+  MatrixXd M = s0.cwiseInverse().cwiseAbs2().asDiagonal();
+  std::vector<int> chosen;
+  std::vector<bool> used(static_cast<size_t>(J.rows() / 2), false);
+  for (int step = 0; step < count; ++step) {
+    int best = -1;
+    double best_value = -std::numeric_limits<double>::infinity();
+    for (Eigen::Index i = 0; i < J.rows() / 2; ++i) {
+      if (used[static_cast<size_t>(i)]) continue;
+      const MatrixXd Ji = J.middleRows(2 * i, 2);
+      const double v = n > 6 ? dsCriterion(M + Ji.transpose() * Ji) : logDet(M + Ji.transpose() * Ji);
+      if (v > best_value) {
+        best_value = v;
+        best = static_cast<int>(i);
+      }
+    }
+    used[static_cast<size_t>(best)] = true;
+    chosen.push_back(best);
+    const MatrixXd Jb = J.middleRows(2 * best, 2);
+    M += Jb.transpose() * Jb;
+    criterion = best_value;
+  }
+  return chosen;
+}
+
+}  // namespace
+
+TestPlan planTest(const PredictionModel& m, const std::vector<HoleRequest>& candidates, int count,
+                  const PlanOptions& o) {
+  if (count < 1) throw InputError("", 0, "the test program needs at least one hole");
+  TestPlan plan;
+  std::vector<int> index;
+  const std::vector<IdentificationHole> holes = plannedHoles(m, candidates, o.sigma, index, plan);
+  if (static_cast<int>(holes.size()) < count) {
+    throw InputError("", 0, "only " + std::to_string(holes.size()) + " of " + std::to_string(candidates.size()) +
+                                " candidate holes are reachable; " + std::to_string(count) + " wanted");
+  }
+  IdentificationOptions io;
+  io.compliance_prior_rel = o.compliance_prior_rel;
+  io.registration = o.registration;
+  io.T_W_wobj = o.T_W_wobj;
+  io.translation_prior = o.translation_prior;
+  io.rotation_prior = o.rotation_prior;
+  io.relative_step = o.relative_step;
+  Problem P{m, holes, layoutOf(false, o.registration), {}, priorEffectiveCompliance(m), std::nullopt, o.T_W_wobj,
+            {}, {}, nc::Data(m.model)};
+  P.spec = parameterSpec(P.layout, P.c0, io);
+  setUpHoles(P);
+  const LmState prior = priorState(P);
+  MatrixXd J;
+  if (!dataJacobian(P, prior.x, prior.p, allColumns(P.layout.n), J)) {
+    throw InputError("", 0, "the compliance equilibrium fails near the card's stiffness at a candidate hole");
+  }
+  const std::vector<int> chosen = greedyDOptimal(J, P.spec.s0, count, plan.log_det);
+  MatrixXd M = P.spec.s0.cwiseInverse().cwiseAbs2().asDiagonal();
+  for (const int c : chosen) {
+    plan.chosen.push_back(index[static_cast<size_t>(c)]);
+    const MatrixXd Jc = J.middleRows(2 * c, 2);
+    M += Jc.transpose() * Jc;
+  }
+  const MatrixXd C = M.ldlt().solve(MatrixXd::Identity(M.rows(), M.cols()));
+  const Vec6 k = m.compliance.k;
+  for (int j = 0; j < 6; ++j) {
+    plan.prior_sigma_rel[j] = o.compliance_prior_rel[j];
+    plan.expected_sigma_rel[j] = std::sqrt(C(j, j));
+    plan.expected_sigma_k[j] = plan.expected_sigma_rel[j] * P.c0[j] * k[j] * k[j];
+  }
+  return plan;
+}
+
+std::vector<HoleRequest> planningCandidates(const Pose& T_W_wobj, const Vec3& lo, const Vec3& hi, int per_axis,
+                                            const std::vector<Vec3>& directions, const std::vector<double>& psi) {
+  std::vector<HoleRequest> out;
+  const int n = std::max(1, per_axis);
+  auto coord = [&](int a, int i) {
+    if (n == 1 || lo[a] == hi[a]) return lo[a];
+    return lo[a] + (hi[a] - lo[a]) * i / (n - 1);
+  };
+  const int nx = lo.x() == hi.x() ? 1 : n;
+  const int ny = lo.y() == hi.y() ? 1 : n;
+  const int nz = lo.z() == hi.z() ? 1 : n;
+  for (int ix = 0; ix < nx; ++ix) {
+    for (int iy = 0; iy < ny; ++iy) {
+      for (int iz = 0; iz < nz; ++iz) {
+        const Vec3 p(coord(0, ix), coord(1, iy), coord(2, iz));
+        for (const Vec3& dir : directions) {
+          const Vec3 z = dir.normalized();
+          const Vec3 ref = std::abs(z.x()) > std::cos(26.0 * kDeg) ? Vec3::UnitY() : Vec3::UnitX();
+          const Vec3 x = (ref - ref.dot(z) * z).normalized();
+          Mat3 R;
+          R << x, z.cross(x), z;
+          for (const double a : psi) {
+            HoleRequest h;
+            char id[16];
+            std::snprintf(id, sizeof id, "C%04d", static_cast<int>(out.size()) + 1);
+            h.id = id;
+            Pose T = Pose::Identity();
+            T.linear() = R * Eigen::AngleAxisd(a, Vec3::UnitZ()).toRotationMatrix();
+            T.translation() = p;
+            h.T_W_tcp = T_W_wobj * T;
+            out.push_back(h);
+          }
+        }
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace roprec
