@@ -128,47 +128,48 @@ double transitionCost(const Node& a, const Node& b, OrientationMode mode) {
   return travel(a.q, b.q);
 }
 
-}  // namespace
+// ---- stage 1: the program as it is
 
-std::vector<HoleCompensation> compensateHoles(const PredictionModel& m, const std::vector<HoleRequest>& holes,
-                                              const CompensationOptions& o, CompensationStats* stats) {
-  CompensationStats st;
-  PredictionData d(m);
-  Evaluator ev{m, d, o};
-  const size_t n = holes.size();
-  std::vector<HoleCompensation> out(n);
-
-  // 1. Predictions of the program as it is (continuity seeds, like `roprec predict`).
+/// Predictions of the original targets (continuity seeds, like `roprec predict`).
+void predictOriginal(const PredictionModel& m, PredictionData& d, const std::vector<HoleRequest>& holes,
+                     std::vector<HoleCompensation>& out) {
   std::optional<Vec6> prev;
-  for (size_t i = 0; i < n; ++i) {
+  for (size_t i = 0; i < holes.size(); ++i) {
     out[i].id = holes[i].id;
     out[i].before = predictHole(m, d, holes[i], prev ? &*prev : nullptr);
     if (out[i].before.status == HoleStatus::kOk) prev = out[i].before.joints;
   }
+}
 
-  // 2. Candidate ψ per hole.
-  std::vector<std::vector<Node>> nodes(n);
-  const int grid = o.mode == OrientationMode::kKeep ? 1 : std::max(4, o.grid);
-  Vec6 seed = m.reference_pose;
-  for (size_t i = 0; i < n; ++i) {
+// ---- stage 2: candidate rotations about each drill axis
+
+double gridPsi(int k, int grid) { return grid == 1 ? 0.0 : -kPi + 2.0 * kPi * k / grid; }
+
+/// The ψ grid of every hole (keep: the single ψ = 0 candidate), in the branch of the original
+/// solution unless a branch change is allowed. Where |θ5| ≥ margin fails for every ψ, the margin
+/// becomes a penalty and the hole is flagged.
+std::vector<std::vector<Node>> candidateNodes(Evaluator& ev, const std::vector<HoleRequest>& holes,
+                                              std::vector<HoleCompensation>& out, int grid, CompensationStats& st) {
+  const CompensationOptions& o = ev.o;
+  const bool choose = o.mode != OrientationMode::kKeep;
+  std::vector<std::vector<Node>> nodes(holes.size());
+  Vec6 seed = ev.m.reference_pose;
+  for (size_t i = 0; i < holes.size(); ++i) {
     const HolePrediction& b = out[i].before;
     const Vec6 s = b.status == HoleStatus::kOk ? b.joints : seed;
     const int branch = (b.status == HoleStatus::kOk && !o.allow_branch_change) ? b.branch : -1;
-    for (int k = 0; k < grid; ++k) {
-      const double psi = grid == 1 ? 0.0 : -kPi + 2.0 * kPi * k / grid;
-      Node nd = ev.evaluate(holes[i], psi, branch, s, o.mode != OrientationMode::kKeep, o.mode != OrientationMode::kKeep);
-      ++st.dp_nodes;
-      if (!nd.feasible) ++st.infeasible_nodes;
-      nodes[i].push_back(nd);
-    }
     bool any = false;
-    for (const Node& nd : nodes[i]) any |= nd.feasible;
-    if (!any && o.mode != OrientationMode::kKeep) {
+    for (int k = 0; k < grid; ++k) {
+      nodes[i].push_back(ev.evaluate(holes[i], gridPsi(k, grid), branch, s, choose, choose));
+      ++st.dp_nodes;
+      if (!nodes[i].back().feasible) ++st.infeasible_nodes;
+      any |= nodes[i].back().feasible;
+    }
+    if (!any && choose) {
       // With the drill on the flange axis, ψ turns axis 6 only: if |θ5| < margin for every ψ the
       // margin cannot be met here. Keep it as a penalty and say so, rather than drop the hole.
       for (int k = 0; k < grid; ++k) {
-        const double psi = -kPi + 2.0 * kPi * k / grid;
-        nodes[i][static_cast<size_t>(k)] = ev.evaluate(holes[i], psi, branch, s, false, true);
+        nodes[i][static_cast<size_t>(k)] = ev.evaluate(holes[i], gridPsi(k, grid), branch, s, false, true);
         any |= nodes[i][static_cast<size_t>(k)].feasible;
       }
       if (any) {
@@ -183,62 +184,64 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m, const st
       }
     }
   }
+  return nodes;
+}
 
-  // 3. Dynamic programming over the whole sequence (keep: the single ψ = 0 candidate).
-  std::vector<int> choice(n, -1);
-  auto runDp = [&](double thr) -> bool {
-    std::vector<std::vector<double>> cost(n);
-    std::vector<std::vector<int>> from(n);
-    int last = -1;  // previous hole with a feasible node
-    bool all_connected = true;
-    for (size_t i = 0; i < n; ++i) {
-      const size_t K = nodes[i].size();
-      cost[i].assign(K, kInf);
-      from[i].assign(K, -1);
-      for (size_t k = 0; k < K; ++k) {
-        const Node& nd = nodes[i][k];
-        if (!nd.feasible) continue;
-        const double c0 = nodeCost(nd, o.mode);
-        if (last < 0) {
-          cost[i][k] = c0;
-          continue;
-        }
-        for (size_t l = 0; l < nodes[static_cast<size_t>(last)].size(); ++l) {
-          const double cp = cost[static_cast<size_t>(last)][l];
-          if (!std::isfinite(cp)) continue;
-          const Node& pn = nodes[static_cast<size_t>(last)][l];
-          if (o.mode != OrientationMode::kKeep && sameFace(holes[static_cast<size_t>(last)], holes[i]) &&
-              !jumpOk(pn.q, nd.q, thr)) {
-            continue;
-          }
-          const double c = cp + c0 + transitionCost(pn, nd, o.mode);
-          if (c < cost[i][k]) {
-            cost[i][k] = c;
-            from[i][k] = static_cast<int>(l);
-          }
-        }
-      }
-      bool any = false;
-      for (const double c : cost[i]) any |= std::isfinite(c);
-      if (any) {
-        last = static_cast<int>(i);
-      } else {
-        bool feasible_node = false;
-        for (const Node& nd : nodes[i]) feasible_node |= nd.feasible;
-        if (feasible_node) all_connected = false;  // reachable but not within the jump threshold
-      }
-    }
-    if (!all_connected) return false;
-    // backtrack
-    std::fill(choice.begin(), choice.end(), -1);
-    int cur = -1;
-    for (size_t ii = n; ii-- > 0;) {
-      if (cur >= 0) {
-        choice[ii] = cur;
-        cur = from[ii][static_cast<size_t>(cur)];
+// ---- stage 3: dynamic programming over the whole sequence
+
+/// Forward pass: cost[i][k] of the cheapest admissible path ending at node k of hole i (jumps
+/// ≤ thr between holes of one face) and its predecessor. Returns false when a reachable hole
+/// cannot be connected within the threshold.
+bool dpForward(const std::vector<std::vector<Node>>& nodes, const std::vector<HoleRequest>& holes,
+               OrientationMode mode, double thr, std::vector<std::vector<double>>& cost,
+               std::vector<std::vector<int>>& from) {
+  const size_t n = nodes.size();
+  cost.assign(n, {});
+  from.assign(n, {});
+  int last = -1;  // previous hole with a feasible node
+  bool all_connected = true;
+  for (size_t i = 0; i < n; ++i) {
+    const size_t K = nodes[i].size();
+    cost[i].assign(K, kInf);
+    from[i].assign(K, -1);
+    for (size_t k = 0; k < K; ++k) {
+      const Node& nd = nodes[i][k];
+      if (!nd.feasible) continue;
+      const double c0 = nodeCost(nd, mode);
+      if (last < 0) {
+        cost[i][k] = c0;
         continue;
       }
-      if (choice[ii] >= 0) continue;
+      const size_t l0 = static_cast<size_t>(last);
+      const bool limit_jumps = mode != OrientationMode::kKeep && sameFace(holes[l0], holes[i]);
+      for (size_t l = 0; l < nodes[l0].size(); ++l) {
+        const double cp = cost[l0][l];
+        if (!std::isfinite(cp) || (limit_jumps && !jumpOk(nodes[l0][l].q, nd.q, thr))) continue;
+        const double c = cp + c0 + transitionCost(nodes[l0][l], nd, mode);
+        if (c < cost[i][k]) {
+          cost[i][k] = c;
+          from[i][k] = static_cast<int>(l);
+        }
+      }
+    }
+    const bool any = std::any_of(cost[i].begin(), cost[i].end(), [](double c) { return std::isfinite(c); });
+    if (any) {
+      last = static_cast<int>(i);
+    } else if (std::any_of(nodes[i].begin(), nodes[i].end(), [](const Node& nd) { return nd.feasible; })) {
+      all_connected = false;  // reachable but not within the jump threshold
+    }
+  }
+  return all_connected;
+}
+
+/// Backtracking: the cheapest end node, then its predecessors; a hole that starts a new chain
+/// (after an unreachable one) takes its own cheapest node.
+std::vector<int> dpBacktrack(const std::vector<std::vector<double>>& cost, const std::vector<std::vector<int>>& from) {
+  const size_t n = cost.size();
+  std::vector<int> choice(n, -1);
+  int cur = -1;
+  for (size_t ii = n; ii-- > 0;) {
+    if (cur < 0) {
       double best = kInf;
       for (size_t k = 0; k < cost[ii].size(); ++k) {
         if (cost[ii][k] < best) {
@@ -246,220 +249,262 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m, const st
           cur = static_cast<int>(k);
         }
       }
-      if (cur >= 0) {
-        choice[ii] = cur;
-        cur = from[ii][static_cast<size_t>(cur)];
-      }
     }
-    return true;
-  };
-  double thr = o.jump_threshold;
-  while (!runDp(thr)) {
+    if (cur >= 0) {
+      choice[ii] = cur;
+      cur = from[ii][static_cast<size_t>(cur)];
+    }
+  }
+  return choice;
+}
+
+/// The chosen node per hole (−1: none); relaxes the jump threshold ×1.5 until every reachable
+/// hole connects. Returns the threshold used.
+std::vector<int> chooseSequence(const std::vector<std::vector<Node>>& nodes, const std::vector<HoleRequest>& holes,
+                                const CompensationOptions& o, CompensationStats& st, double& thr) {
+  std::vector<std::vector<double>> cost;
+  std::vector<std::vector<int>> from;
+  thr = o.jump_threshold;
+  while (!dpForward(nodes, holes, o.mode, thr, cost, from)) {
     st.relaxed_jumps = true;
     thr *= 1.5;
     if (thr > 4 * kPi) {
-      runDp(kInf);
+      dpForward(nodes, holes, o.mode, kInf, cost, from);
       break;
     }
   }
-
-  // stiffest: never worse than keep at a hole when ψ = 0 is admissible there
+  std::vector<int> choice = dpBacktrack(cost, from);
   if (o.mode == OrientationMode::kStiffest) {
-    for (size_t i = 0; i < n; ++i) {
+    // never worse than keep at a hole when ψ = 0 is admissible there
+    for (size_t i = 0; i < nodes.size(); ++i) {
       if (choice[i] < 0) continue;
-      const int k0 = grid / 2;  // ψ = 0
-      const Node& c = nodes[i][static_cast<size_t>(choice[i])];
-      const Node& z = nodes[i][static_cast<size_t>(k0)];
-      if (z.feasible && z.u_def < c.u_def) choice[i] = k0;
+      const size_t k0 = nodes[i].size() / 2;  // ψ = 0
+      const Node& z = nodes[i][k0];
+      if (z.feasible && z.u_def < nodes[i][static_cast<size_t>(choice[i])].u_def) choice[i] = static_cast<int>(k0);
     }
   }
+  return choice;
+}
 
-  // 4. NLopt refinement of each hole's ψ with its neighbours fixed.
+// ---- stage 4: NLopt refinement of each hole's ψ with its neighbours fixed
+
+/// The nearest chosen feasible node before (dir −1) or after (dir +1) hole i, and whether it is
+/// on the same face.
+std::pair<const Node*, bool> neighbour(const std::vector<Node>& chosen, const std::vector<HoleRequest>& holes,
+                                       size_t i, int dir) {
+  for (long k = static_cast<long>(i) + dir; k >= 0 && k < static_cast<long>(chosen.size()); k += dir) {
+    const size_t kk = static_cast<size_t>(k);
+    if (chosen[kk].feasible) return {&chosen[kk], sameFace(holes[kk], holes[i])};
+  }
+  return {nullptr, false};
+}
+
+/// COBYLA on ψ within ±1 grid step: cost = node + transitions to the neighbours, subject to
+/// |Δθ4|, |Δθ6| ≤ thr against same-face neighbours. Keeps the result only when feasible and better.
+void refineHole(Evaluator& ev, const std::vector<HoleRequest>& holes, std::vector<Node>& chosen, size_t i,
+                bool enforce_wrist, int grid, double thr, CompensationStats& st) {
+  const OrientationMode mode = ev.o.mode;
+  const auto [pn, pn_face] = neighbour(chosen, holes, i, -1);
+  const auto [nn, nn_face] = neighbour(chosen, holes, i, +1);
+  const int branch = chosen[i].branch;
+  const Vec6 seed_q = chosen[i].q;
+  // COBYLA asks for the objective and the four constraints at the same ψ: evaluate once.
+  double cached_psi = std::numeric_limits<double>::quiet_NaN();
+  Node cached;
+  auto evalAt = [&](double psi) {
+    if (psi != cached_psi) {
+      cached = ev.evaluate(holes[i], psi, branch, seed_q, enforce_wrist, true);
+      cached_psi = psi;
+    }
+    return cached;
+  };
+  auto total = [&](const Node& nd) {
+    double c = nodeCost(nd, mode);
+    if (pn) c += transitionCost(*pn, nd, mode);
+    if (nn) c += transitionCost(nd, *nn, mode);
+    return c;
+  };
+  const double step = 2.0 * kPi / grid;
+  NloptProblem prob(NLOPT_LN_COBYLA, 1);
+  prob.setBounds({chosen[i].psi - step}, {chosen[i].psi + step});
+  prob.setObjective([&](const std::vector<double>& x, std::vector<double>&) {
+    const Node nd = evalAt(x[0]);
+    return nd.feasible ? total(nd) : 1e9;
+  });
+  auto jumpConstraint = [&](const Node* other, int joint) {
+    return [&, other, joint](const std::vector<double>& x, std::vector<double>&) {
+      const Node nd = evalAt(x[0]);
+      if (!nd.feasible || !other) return nd.feasible ? -1.0 : 1.0;
+      return std::abs(nd.q[joint] - other->q[joint]) - thr;
+    };
+  };
+  const Node* pj = pn_face ? pn : nullptr;
+  const Node* nj = nn_face ? nn : nullptr;
+  prob.addInequality(jumpConstraint(pj, 3));
+  prob.addInequality(jumpConstraint(pj, 5));
+  prob.addInequality(jumpConstraint(nj, 3));
+  prob.addInequality(jumpConstraint(nj, 5));
+  prob.setInitialStep(0.25 * step);
+  prob.setXtolAbs(1e-4);
+  prob.setMaxEvaluations(30);
+  std::vector<double> x{chosen[i].psi};
+  const NloptProblem::Result r = prob.optimize(x);
+  st.nlopt_evaluations += r.evaluations;
+  if (!r.usable()) return;
+  const Node nd = evalAt(x[0]);
+  const bool ok_jumps = (!pj || jumpOk(pj->q, nd.q, thr)) && (!nj || jumpOk(nd.q, nj->q, thr));
+  const bool better = mode == OrientationMode::kStiffest ? nd.u_def <= chosen[i].u_def : total(nd) < total(chosen[i]);
+  if (nd.feasible && ok_jumps && better) {
+    chosen[i] = nd;
+    ++st.refined;
+  }
+}
+
+// ---- stage 5: exact compensation at the chosen ψ
+
+/// Positions only (orientation kept): the programmed position p is corrected until the predicted
+/// real TCP position is the nominal one: p ← p − (p_real(p) − p_nom) (∂p_real/∂p ≈ I: a few
+/// iterations). Returns the command, or nullopt when it does not converge.
+std::optional<Vec6> positionOnlyCommand(Evaluator& ev, const Pose& T_nominal, const Vec6& theta_d,
+                                        const nc::Loads& loads) {
+  const PredictionModel& m = ev.m;
+  Pose T = T_nominal;
+  Vec6 q = theta_d;
+  for (int it = 0; it < 30; ++it) {
+    const Pose T_flange = T * m.model.T_L6_tcp.inverse() * m.model.T_L6_flange;
+    const IkNearResult ik = solveIkNear(m.ik, T_flange, q);
+    if (!ik.converged) return std::nullopt;
+    q = ik.q;
+    const nc::Deflection df =
+        nc::predictDeflection(m.model, ev.d.nc, m.compliance, q, loads, {}, controllerOffset(m, ev.d.nc, q));
+    if (!df.converged) return std::nullopt;
+    const Vec3 err = df.T_real.translation() - T_nominal.translation();
+    if (err.norm() < 5e-10) return q;  // 0.0005 µm: the seeded IK stops at 1e-10
+    T.translation() -= err;
+  }
+  return std::nullopt;
+}
+
+/// Exact 6-DOF inverse θ_m = θ_d + K⁻¹τ(θ_d); a gravity-compensating controller adds its offset
+/// to the command, so θ_cmd solves θ_cmd + off(θ_cmd) = θ_m (fixed point).
+Vec6 exactCommand(Evaluator& ev, const Vec6& theta_d, const nc::Loads& loads) {
+  const PredictionModel& m = ev.m;
+  const Vec6 theta_m = nc::compensateCommand(m.model, ev.d.nc, m.compliance, theta_d, loads);
+  Vec6 cmd = theta_m;
+  for (int it = 0; it < 20 && m.controller_gravity; ++it) {
+    const Vec6 next = theta_m - controllerOffset(m, ev.d.nc, cmd);
+    const double step = (next - cmd).lpNorm<Eigen::Infinity>();
+    cmd = next;
+    if (step < 1e-14) break;
+  }
+  return cmd;
+}
+
+/// The programmed pose, flags, residual and re-predicted budget at the command c.theta_cmd.
+/// Sets c.reason and returns with c.ok false when something fails.
+void assemble(Evaluator& ev, const HoleRequest& h, const nc::Loads& loads, bool positions_only, HoleCompensation& c) {
+  const PredictionModel& m = ev.m;
+  PredictionData& d = ev.d;
+  const nc::PositionResult pr = nc::forwardKinematics(m.model, d.nc, c.theta_cmd);
+  if (!pr.converged) {
+    c.reason = "position problem did not converge at the compensated command";
+    return;
+  }
+  c.T_programmed = d.nc.T_W_tcp;
+  if (positions_only) c.T_programmed.linear() = c.T_nominal.linear();  // exact by construction
+  c.delta = c.T_programmed * c.T_nominal.inverse();
+  c.config = configurationOf(m.ik, m.robot.card, c.theta_cmd, m.config_options);
+  c.config_text = formatConfig(c.config);
+  if (!withinLimits(m.ik, c.theta_cmd)) {
+    c.reason = "the compensated command leaves the joint limits";
+    return;
+  }
+  const nc::Deflection def = nc::predictDeflection(m.model, d.nc, m.compliance, c.theta_cmd, loads, {},
+                                                   controllerOffset(m, d.nc, c.theta_cmd));
+  if (!def.converged) {
+    c.reason = "the compliance equilibrium did not converge at the compensated command";
+    return;
+  }
+  c.residual = def.T_real.translation() - c.T_nominal.translation();
+  c.residual_rot = smallRotationDifference(def.T_real.linear(), c.T_nominal.linear()).norm();
+  HoleRequest after = h;
+  after.T_W_tcp = c.T_programmed;
+  after.config = c.config;
+  after.nominal_axis.reset();
+  c.after = predictHole(m, d, after, &c.theta_cmd);
+  if (c.after.status != HoleStatus::kOk) {
+    c.reason = "re-prediction of the compensated target failed: " + c.after.reason;
+    return;
+  }
+  const Vec3 a = c.T_nominal.linear().col(2);
+  const double e = (c.residual - c.residual.dot(a) * a).norm();
+  c.after.verdict = verdictFor(e, c.after.U_work, c.after.tolerance);
+  c.ok = true;
+}
+
+/// Compensation of hole h at `node` (positions_only: keep the programmed orientation).
+HoleCompensation finalizeHole(Evaluator& ev, const HoleRequest& h, const HoleCompensation& original, const Node& node,
+                              bool positions_only) {
+  HoleCompensation c;
+  c.id = original.id;
+  c.before = original.before;
+  c.note = original.note;
+  c.psi = positions_only ? 0.0 : node.psi;
+  c.T_nominal = h.T_W_tcp * rotZ(c.psi);
+  c.theta_d = node.q;
+  c.branch = node.branch;
+  c.branch_changed = c.before.status == HoleStatus::kOk && c.branch != c.before.branch;
+  const nc::Loads loads = ev.loadsFor(ev.processFor(h.diameter));
+  if (positions_only) {
+    const std::optional<Vec6> q = positionOnlyCommand(ev, c.T_nominal, c.theta_d, loads);
+    if (!q) {
+      c.reason = "the position-only compensation did not converge";
+      return c;
+    }
+    c.theta_cmd = *q;
+  } else {
+    c.theta_cmd = exactCommand(ev, c.theta_d, loads);
+  }
+  assemble(ev, h, loads, positions_only, c);
+  return c;
+}
+
+}  // namespace
+
+std::vector<HoleCompensation> compensateHoles(const PredictionModel& m, const std::vector<HoleRequest>& holes,
+                                              const CompensationOptions& o, CompensationStats* stats) {
+  CompensationStats st;
+  PredictionData d(m);
+  Evaluator ev{m, d, o};
+  const size_t n = holes.size();
+  std::vector<HoleCompensation> out(n);
+  predictOriginal(m, d, holes, out);
+  const int grid = o.mode == OrientationMode::kKeep ? 1 : std::max(4, o.grid);
+  const std::vector<std::vector<Node>> nodes = candidateNodes(ev, holes, out, grid, st);
+  double thr = o.jump_threshold;
+  const std::vector<int> choice = chooseSequence(nodes, holes, o, st, thr);
   std::vector<Node> chosen(n);
   for (size_t i = 0; i < n; ++i) {
     if (choice[i] >= 0) chosen[i] = nodes[i][static_cast<size_t>(choice[i])];
   }
   if (o.mode != OrientationMode::kKeep && o.refine) {
     for (size_t i = 0; i < n; ++i) {
-      if (!chosen[i].feasible) continue;
-      const Node* pn = nullptr;
-      const Node* nn = nullptr;
-      bool pn_face = false;
-      bool nn_face = false;
-      for (size_t k = i; k-- > 0;) {
-        if (chosen[k].feasible) {
-          pn = &chosen[k];
-          pn_face = sameFace(holes[k], holes[i]);
-          break;
-        }
-      }
-      for (size_t k = i + 1; k < n; ++k) {
-        if (chosen[k].feasible) {
-          nn = &chosen[k];
-          nn_face = sameFace(holes[k], holes[i]);
-          break;
-        }
-      }
-      const int branch = chosen[i].branch;
-      const Vec6 seed_q = chosen[i].q;
-      const bool enforce_wrist = out[i].note.empty();
-      // COBYLA asks for the objective and the four constraints at the same ψ: evaluate once.
-      double cached_psi = std::numeric_limits<double>::quiet_NaN();
-      Node cached;
-      auto evalAt = [&](double psi) {
-        if (psi != cached_psi) {
-          cached = ev.evaluate(holes[i], psi, branch, seed_q, enforce_wrist, true);
-          cached_psi = psi;
-        }
-        return cached;
-      };
-      auto total = [&](const Node& nd) {
-        double c = nodeCost(nd, o.mode);
-        if (pn) c += transitionCost(*pn, nd, o.mode);
-        if (nn) c += transitionCost(nd, *nn, o.mode);
-        return c;
-      };
-      const double step = 2.0 * kPi / grid;
-      NloptProblem prob(NLOPT_LN_COBYLA, 1);
-      prob.setBounds({chosen[i].psi - step}, {chosen[i].psi + step});
-      prob.setObjective([&](const std::vector<double>& x, std::vector<double>&) {
-        const Node nd = evalAt(x[0]);
-        return nd.feasible ? total(nd) : 1e9;
-      });
-      auto jumpConstraint = [&](const Node* other, int joint) {
-        return [&, other, joint](const std::vector<double>& x, std::vector<double>&) {
-          const Node nd = evalAt(x[0]);
-          if (!nd.feasible || !other) return nd.feasible ? -1.0 : 1.0;
-          return std::abs(nd.q[joint] - other->q[joint]) - thr;
-        };
-      };
-      const Node* pj = pn_face ? pn : nullptr;
-      const Node* nj = nn_face ? nn : nullptr;
-      prob.addInequality(jumpConstraint(pj, 3));
-      prob.addInequality(jumpConstraint(pj, 5));
-      prob.addInequality(jumpConstraint(nj, 3));
-      prob.addInequality(jumpConstraint(nj, 5));
-      prob.setInitialStep(0.25 * step);
-      prob.setXtolAbs(1e-4);
-      prob.setMaxEvaluations(30);
-      std::vector<double> x{chosen[i].psi};
-      const NloptProblem::Result r = prob.optimize(x);
-      st.nlopt_evaluations += r.evaluations;
-      if (r.usable()) {
-        const Node nd = evalAt(x[0]);
-        const bool ok_jumps = (!pj || jumpOk(pj->q, nd.q, thr)) && (!nj || jumpOk(nd.q, nj->q, thr));
-        const bool better = o.mode == OrientationMode::kStiffest ? nd.u_def <= chosen[i].u_def : total(nd) < total(chosen[i]);
-        if (nd.feasible && ok_jumps && better) {
-          chosen[i] = nd;
-          ++st.refined;
-        }
-      }
+      if (chosen[i].feasible) refineHole(ev, holes, chosen, i, out[i].note.empty(), grid, thr, st);
     }
   }
-
-  // 5. Exact compensation at the chosen ψ.
-  // positions_only: keep the programmed orientation (iterate the position); else exact 6-DOF.
-  auto finalize = [&](size_t i, const Node& node, bool positions_only) {
-    HoleCompensation c;
-    c.id = out[i].id;
-    c.before = out[i].before;
-    c.note = out[i].note;
-    const HoleRequest& h = holes[i];
-    c.psi = positions_only ? 0.0 : node.psi;
-    c.T_nominal = h.T_W_tcp * rotZ(c.psi);
-    c.theta_d = node.q;
-    c.branch = node.branch;
-    c.branch_changed = c.before.status == HoleStatus::kOk && c.branch != c.before.branch;
-    const ProcessAtDiameter* proc = ev.processFor(h.diameter);
-    const nc::Loads loads = ev.loadsFor(proc);
-    if (positions_only) {
-      // The programmed position p is corrected until the predicted real TCP position is the
-      // nominal one: p ← p − (p_real(p) − p_nom) (∂p_real/∂p ≈ I: converges in a few iterations).
-      Pose T = c.T_nominal;
-      Vec6 q = c.theta_d;
-      bool conv = false;
-      for (int it = 0; it < 30; ++it) {
-        const Pose T_flange = T * m.model.T_L6_tcp.inverse() * m.model.T_L6_flange;
-        const IkNearResult ik = solveIkNear(m.ik, T_flange, q);
-        if (!ik.converged) break;
-        q = ik.q;
-        const nc::Deflection df =
-            nc::predictDeflection(m.model, d.nc, m.compliance, q, loads, {}, controllerOffset(m, d.nc, q));
-        if (!df.converged) break;
-        const Vec3 err = df.T_real.translation() - c.T_nominal.translation();
-        if (err.norm() < 5e-10) {  // 0.0005 µm: the seeded IK stops at 1e-10
-          conv = true;
-          break;
-        }
-        T.translation() -= err;
-      }
-      if (!conv) {
-        c.reason = "the position-only compensation did not converge";
-        return c;
-      }
-      c.theta_cmd = q;
-    } else {
-      const Vec6 theta_m = nc::compensateCommand(m.model, d.nc, m.compliance, c.theta_d, loads);
-      // a gravity-compensating controller adds its offset to the command: θ_cmd + off(θ_cmd) = θ_m
-      c.theta_cmd = theta_m;
-      for (int it = 0; it < 20 && m.controller_gravity; ++it) {
-        const Vec6 next = theta_m - controllerOffset(m, d.nc, c.theta_cmd);
-        const double step = (next - c.theta_cmd).lpNorm<Eigen::Infinity>();
-        c.theta_cmd = next;
-        if (step < 1e-14) break;
-      }
-    }
-    const nc::PositionResult pr = nc::forwardKinematics(m.model, d.nc, c.theta_cmd);
-    if (!pr.converged) {
-      c.reason = "position problem did not converge at the compensated command";
-      return c;
-    }
-    c.T_programmed = d.nc.T_W_tcp;
-    if (positions_only) c.T_programmed.linear() = c.T_nominal.linear();  // exact by construction
-    c.delta = c.T_programmed * c.T_nominal.inverse();
-    c.config = configurationOf(m.ik, m.robot.card, c.theta_cmd, m.config_options);
-    c.config_text = formatConfig(c.config);
-    if (!withinLimits(m.ik, c.theta_cmd)) {
-      c.reason = "the compensated command leaves the joint limits";
-      return c;
-    }
-    const nc::Deflection def = nc::predictDeflection(m.model, d.nc, m.compliance, c.theta_cmd, loads, {},
-                                                     controllerOffset(m, d.nc, c.theta_cmd));
-    if (!def.converged) {
-      c.reason = "the compliance equilibrium did not converge at the compensated command";
-      return c;
-    }
-    c.residual = def.T_real.translation() - c.T_nominal.translation();
-    c.residual_rot = smallRotationDifference(def.T_real.linear(), c.T_nominal.linear()).norm();
-    HoleRequest after = h;
-    after.T_W_tcp = c.T_programmed;
-    after.config = c.config;
-    after.nominal_axis.reset();
-    c.after = predictHole(m, d, after, &c.theta_cmd);
-    if (c.after.status != HoleStatus::kOk) {
-      c.reason = "re-prediction of the compensated target failed: " + c.after.reason;
-      return c;
-    }
-    const Vec3 a = c.T_nominal.linear().col(2);
-    const double e = (c.residual - c.residual.dot(a) * a).norm();
-    c.after.verdict = verdictFor(e, c.after.U_work, c.after.tolerance);
-    c.ok = true;
-    return c;
-  };
   for (size_t i = 0; i < n; ++i) {
     if (!chosen[i].feasible) {
-      out[i].ok = false;
       out[i].reason = out[i].before.status != HoleStatus::kOk
                           ? out[i].before.reason
                           : "no admissible orientation about the drill axis (limits, wrist margin)";
       continue;
     }
-    HoleCompensation c = finalize(i, chosen[i], o.mode == OrientationMode::kKeep);
-    if (o.mode == OrientationMode::kStiffest && !nodes[i].empty()) {
+    HoleCompensation c = finalizeHole(ev, holes[i], out[i], chosen[i], o.mode == OrientationMode::kKeep);
+    if (o.mode == OrientationMode::kStiffest) {
       // never stiffer-on-paper but worse than keep: compare with the keep result at this hole
       const Node& zero = nodes[i][static_cast<size_t>(grid / 2)];
       if (zero.feasible) {
-        HoleCompensation k = finalize(i, zero, true);
+        HoleCompensation k = finalizeHole(ev, holes[i], out[i], zero, true);
         if (k.ok && (!c.ok || k.after.U_work < c.after.U_work)) c = std::move(k);
       }
     }
