@@ -20,7 +20,8 @@ std::string binaryLike(std::string_view original, int value) {
 }
 
 void setInt(Program& p, NumberField& f, int value) {
-  const std::string_view orig = std::string_view(p.files[static_cast<std::size_t>(f.file)].bytes).substr(f.offset, f.length);
+  const std::string_view orig =
+      std::string_view(p.files[static_cast<std::size_t>(f.file)].bytes).substr(f.offset, f.length);
   if (f.value == static_cast<double>(value)) {
     p.edits.erase({f.file, f.offset});
     return;
@@ -100,7 +101,8 @@ EditResult writeTp(Program& p, Target& t, const Configuration& c) {
     return r;
   }
   const std::string_view orig =
-      std::string_view(p.files[static_cast<std::size_t>(t.fanuc_config.file)].bytes).substr(t.fanuc_config.offset, t.fanuc_config.length);
+      std::string_view(p.files[static_cast<std::size_t>(t.fanuc_config.file)].bytes)
+          .substr(t.fanuc_config.offset, t.fanuc_config.length);
   // keep the original separators: replace letters and digit groups in place
   std::string out;
   int letter = 0;
@@ -125,7 +127,8 @@ EditResult writeTp(Program& p, Target& t, const Configuration& c) {
     r.reason = "CONFIG string not understood: '" + std::string(orig) + "'";
     return r;
   }
-  if (out != orig) queueEdit(p, t.fanuc_config.file, t.fanuc_config.offset, t.fanuc_config.length, out);
+  if (out != orig)
+    queueEdit(p, t.fanuc_config.file, t.fanuc_config.offset, t.fanuc_config.length, out);
   t.config.flip = c.flip;
   t.config.elbow = c.elbow;
   t.config.front = c.front;
@@ -138,10 +141,14 @@ EditResult writeTp(Program& p, Target& t, const Configuration& c) {
 
 EditResult writeConfiguration(Program& p, Target& t, const Configuration& c) {
   switch (p.dialect) {
-    case Dialect::kKrl: return writeKrl(p, t, c);
-    case Dialect::kRapid: return writeRapid(p, t, c);
-    case Dialect::kTp: return writeTp(p, t, c);
-    default: break;
+    case Dialect::kKrl:
+      return writeKrl(p, t, c);
+    case Dialect::kRapid:
+      return writeRapid(p, t, c);
+    case Dialect::kTp:
+      return writeTp(p, t, c);
+    default:
+      break;
   }
   EditResult r;
   r.reason = "this dialect carries no configuration flags";

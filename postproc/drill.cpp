@@ -14,14 +14,15 @@ bool sameFrameIdx(const Program& p, int a, int b) {
   if (a < 0 || b < 0) return false;
   const Frame& fa = p.frames[static_cast<std::size_t>(a)];
   const Frame& fb = p.frames[static_cast<std::size_t>(b)];
-  return iequals(fa.ref, fb.ref) && fa.resolved == fb.resolved && fa.pose.matrix() == fb.pose.matrix();
+  return iequals(fa.ref, fb.ref) && fa.resolved == fb.resolved &&
+         fa.pose.matrix() == fb.pose.matrix();
 }
 
 bool drillMarker(const std::string& m) {
   const std::string u = upper(m);
-  return u.rfind("DWELL", 0) == 0 || u.find("SPINDLE") != std::string::npos || u.find("DRILL") != std::string::npos ||
-         u.find("PLUNGE") != std::string::npos || u.find("BOOR") != std::string::npos ||
-         u.find("BOHR") != std::string::npos;
+  return u.rfind("DWELL", 0) == 0 || u.find("SPINDLE") != std::string::npos ||
+         u.find("DRILL") != std::string::npos || u.find("PLUNGE") != std::string::npos ||
+         u.find("BOOR") != std::string::npos || u.find("BOHR") != std::string::npos;
 }
 
 }  // namespace
@@ -91,7 +92,8 @@ std::vector<Hole> recognizeHoles(const Program& p, const RecognitionOptions& o) 
         h.bottom_target = p.motions[bottom].target;
         for (std::size_t k = i; k < j; ++k) {
           const int t = p.motions[k].target;
-          if (std::find(h.targets.begin(), h.targets.end(), t) == h.targets.end()) h.targets.push_back(t);
+          if (std::find(h.targets.begin(), h.targets.end(), t) == h.targets.end())
+            h.targets.push_back(t);
           used[static_cast<std::size_t>(t)] = true;
         }
         h.position = motionPose(p, p.motions[bottom])->translation();
@@ -130,8 +132,8 @@ std::vector<Hole> recognizeHoles(const Program& p, const RecognitionOptions& o) 
   return holes;
 }
 
-std::vector<HoleMatch> matchHoles(const std::vector<Hole>& holes, const Program& p, const std::vector<HoleSpec>& specs,
-                                  double tol_mm) {
+std::vector<HoleMatch> matchHoles(const std::vector<Hole>& holes, const Program& p,
+                                  const std::vector<HoleSpec>& specs, double tol_mm) {
   std::vector<HoleMatch> out;
   std::set<int> taken;
   for (std::size_t h = 0; h < holes.size(); ++h) {
@@ -140,7 +142,8 @@ std::vector<HoleMatch> matchHoles(const std::vector<Hole>& holes, const Program&
     int by_id = -1;
     for (std::size_t s = 0; s < specs.size() && by_id < 0; ++s) {
       for (const int t : hole.targets) {
-        if (t >= 0 && iequals(p.target_list[static_cast<std::size_t>(t)].name, specs[s].id)) by_id = static_cast<int>(s);
+        if (t >= 0 && iequals(p.target_list[static_cast<std::size_t>(t)].name, specs[s].id))
+          by_id = static_cast<int>(s);
       }
     }
     if (by_id >= 0 && taken.count(by_id) == 0) {

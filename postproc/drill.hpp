@@ -29,16 +29,16 @@ struct RecognitionOptions {
 };
 
 struct Hole {
-  std::string id;            ///< `H1`, `H2`… in program order (or the matched hole-list id)
-  int entry_target{-1};      ///< first target of the cycle
-  int bottom_target{-1};     ///< deepest target (the drill point)
+  std::string id;         ///< `H1`, `H2`… in program order (or the matched hole-list id)
+  int entry_target{-1};   ///< first target of the cycle
+  int bottom_target{-1};  ///< deepest target (the drill point)
   int entry_motion{-1};
   int bottom_motion{-1};
-  std::vector<int> targets;  ///< every target of the cycle (distinct, program order)
+  std::vector<int> targets;     ///< every target of the cycle (distinct, program order)
   Vec3 position{Vec3::Zero()};  ///< bottom point in the base frame's coordinates of the program (m)
   Vec3 axis{Vec3::UnitZ()};     ///< drilling direction, same frame (unit)
   double depth{0.0};            ///< bottom depth below the entry target along axis (m)
-  int base{-1};              ///< index into Program::frames
+  int base{-1};                 ///< index into Program::frames
   int tool{-1};
   std::vector<std::string> evidence;
 };
@@ -62,8 +62,8 @@ std::vector<HoleSpec> readHoleList(const std::string& path);
 std::vector<HoleSpec> parseHoleList(const std::string& path, const std::string& bytes);
 
 struct HoleMatch {
-  int hole{-1};  ///< index into the recognised holes
-  int spec{-1};  ///< index into the hole list
+  int hole{-1};             ///< index into the recognised holes
+  int spec{-1};             ///< index into the hole list
   double distance_mm{0.0};  ///< distance of the hole-list point from the program's drill line
 };
 

@@ -51,31 +51,34 @@
 namespace roprec::postproc {
 
 struct DrillHole {
-  std::string id;                     ///< unique, non-empty, printable, no `"`, no leading/trailing blank
-  Pose T_frame_tcp{Pose::Identity()}; ///< TCP at the entry (surface) point, program frame (SI); z = drilling direction
-  double depth{0.0};                  ///< m, > 0
-  double diameter{0.0};               ///< m, informational (comments, hole list)
-  std::optional<std::string> config;  ///< vendor configuration text of the dialect (see the file comment)
+  std::string id;  ///< unique, non-empty, printable, no `"`, no leading/trailing blank
+  Pose T_frame_tcp{Pose::Identity()};  ///< TCP at the entry (surface) point, program frame (SI); z
+                                       ///< = drilling direction
+  double depth{0.0};                   ///< m, > 0
+  double diameter{0.0};                ///< m, informational (comments, hole list)
+  std::optional<std::string>
+      config;  ///< vendor configuration text of the dialect (see the file comment)
 };
 
 struct DrillProgramOptions {
-  std::string name{"drill"};          ///< program / module name (sanitised to the dialect's identifier rules)
+  std::string name{
+      "drill"};  ///< program / module name (sanitised to the dialect's identifier rules)
   Dialect dialect{Dialect::kKrl};
   Pose T_base_frame{Pose::Identity()};  ///< program frame (workobject) in the robot base frame (SI)
   Pose T_flange_tcp{Pose::Identity()};  ///< the tool (SI)
-  std::string frame_name{"wDrill"};   ///< RAPID wobjdata / CSV, JSON frame name (an identifier)
-  std::string tool_name{"tDrill"};    ///< RAPID tooldata / CSV, JSON tool name (an identifier)
-  int uframe{1};                      ///< FANUC UFRAME number (1..9)
-  int utool{1};                       ///< FANUC UTOOL number (1..10)
-  double tool_mass{-1.0};             ///< kg, RAPID tload; <= 0: placeholder 1 kg (listed in the notes)
-  Vec3 tool_cog{Vec3::Zero()};        ///< m, tool centre of gravity in the flange frame (RAPID tload)
-  double approach{0.05};              ///< m above the entry, > clearance
-  double clearance{0.002};            ///< m above the entry, >= 0
-  double feed{0.02};                  ///< m/s, > 0
-  double rapid{0.25};                 ///< m/s, > feed (the slower feed is how the cycle is recognised)
-  double dwell{0.5};                  ///< s at the bottom, >= 0 (0: no dwell instruction)
-  std::string comment;                ///< one line, written as a comment / header
-  bool crlf{false};                   ///< CR LF line ends (KRC and FANUC controller style) instead of LF
+  std::string frame_name{"wDrill"};     ///< RAPID wobjdata / CSV, JSON frame name (an identifier)
+  std::string tool_name{"tDrill"};      ///< RAPID tooldata / CSV, JSON tool name (an identifier)
+  int uframe{1};                        ///< FANUC UFRAME number (1..9)
+  int utool{1};                         ///< FANUC UTOOL number (1..10)
+  double tool_mass{-1.0};       ///< kg, RAPID tload; <= 0: placeholder 1 kg (listed in the notes)
+  Vec3 tool_cog{Vec3::Zero()};  ///< m, tool centre of gravity in the flange frame (RAPID tload)
+  double approach{0.05};        ///< m above the entry, > clearance
+  double clearance{0.002};      ///< m above the entry, >= 0
+  double feed{0.02};            ///< m/s, > 0
+  double rapid{0.25};           ///< m/s, > feed (the slower feed is how the cycle is recognised)
+  double dwell{0.5};            ///< s at the bottom, >= 0 (0: no dwell instruction)
+  std::string comment;          ///< one line, written as a comment / header
+  bool crlf{false};             ///< CR LF line ends (KRC and FANUC controller style) instead of LF
 };
 
 struct DrillProgramFile {
@@ -85,17 +88,20 @@ struct DrillProgramFile {
 
 struct DrillProgramText {
   Dialect dialect{Dialect::kKrl};
-  std::string name;                     ///< the program name as written (KRL: must be the file stem)
+  std::string name;  ///< the program name as written (KRL: must be the file stem)
   std::vector<DrillProgramFile> files;  ///< KRL: [.src, .dat]; others: one file
-  std::vector<std::string> notes;       ///< what the user must check (frames to set, placeholders, rounding)
+  std::vector<std::string>
+      notes;  ///< what the user must check (frames to set, placeholders, rounding)
 };
 
 /// The drilling program for `holes` (see the file comment). Throws std::invalid_argument on
 /// invalid holes or options.
-DrillProgramText writeDrillProgram(const std::vector<DrillHole>& holes, const DrillProgramOptions& o);
+DrillProgramText writeDrillProgram(const std::vector<DrillHole>& holes,
+                                   const DrillProgramOptions& o);
 
 /// The paths saveDrillProgram(t, out_path) writes: the main file at `out_path` (the suffix is
-/// appended when `out_path` has no extension), the others (KRL `.dat`) beside it with the same stem.
+/// appended when `out_path` has no extension), the others (KRL `.dat`) beside it with the same
+/// stem.
 std::vector<std::string> drillProgramPaths(const DrillProgramText& t, const std::string& out_path);
 /// Writes the files atomically; returns their paths. KRL: throws std::invalid_argument when the
 /// file stem differs (ignoring case) from the DEF name, which the controller requires.

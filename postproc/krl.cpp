@@ -73,7 +73,8 @@ class KrlReader {
     o.header_amp = true;
     o.single_quote_string = true;
     for (SourceFile& f : p_.files) lex(f, o);
-    const std::size_t expected = p_.files.back().bytes.size() / 128 + 16;  // ~1 declaration per 128 bytes
+    const std::size_t expected =
+        p_.files.back().bytes.size() / 128 + 16;  // ~1 declaration per 128 bytes
     targets_.reserve(expected);
     fdats_.reserve(expected);
     ldat_vel_.reserve(expected);
@@ -106,7 +107,9 @@ class KrlReader {
 
   const SourceFile& file() const { return p_.files[static_cast<std::size_t>(file_)]; }
 
-  [[noreturn]] void fail(std::size_t offset, const std::string& msg) const { failAt(file(), offset, msg); }
+  [[noreturn]] void fail(std::size_t offset, const std::string& msg) const {
+    failAt(file(), offset, msg);
+  }
 
   void unresolved(const std::string& ref, std::size_t offset, const std::string& what) {
     std::string key = upper(ref);
@@ -153,7 +156,8 @@ class KrlReader {
         continue;
       }
       Component comp;
-      if (!c.isKind(TokenKind::kIdentifier)) fail(c.peek().offset, "expected a component name in aggregate");
+      if (!c.isKind(TokenKind::kIdentifier))
+        fail(c.peek().offset, "expected a component name in aggregate");
       comp.name = upper(c.text());
       c.next();
       if (c.isPunct('[')) {  // POINT2[]
@@ -180,12 +184,16 @@ class KrlReader {
       const Token& tl = f.tokens[stop - 1];
       comp.begin = t0.offset;
       comp.end = tl.offset + tl.length;
-      const bool signed_start = t0.kind == TokenKind::kPunct && (f.bytes[t0.offset] == '-' || f.bytes[t0.offset] == '+');
+      const bool signed_start =
+          t0.kind == TokenKind::kPunct && (f.bytes[t0.offset] == '-' || f.bytes[t0.offset] == '+');
       if (t0.kind == TokenKind::kNumber || signed_start) {
-        const bool one = (stop - start == 1 && !signed_start) ||
-                         (stop - start == 2 && signed_start && f.tokens[start + 1].kind == TokenKind::kNumber);
-        const std::string_view txt = std::string_view(f.bytes).substr(comp.begin, comp.end - comp.begin);
-        if (!one) fail(comp.begin, "broken number '" + std::string(txt) + "' in component " + comp.name);
+        const bool one =
+            (stop - start == 1 && !signed_start) ||
+            (stop - start == 2 && signed_start && f.tokens[start + 1].kind == TokenKind::kNumber);
+        const std::string_view txt =
+            std::string_view(f.bytes).substr(comp.begin, comp.end - comp.begin);
+        if (!one)
+          fail(comp.begin, "broken number '" + std::string(txt) + "' in component " + comp.name);
         const auto v = parseNumber(txt);
         if (!v) fail(comp.begin, "broken number '" + std::string(txt) + "'");
         comp.kind = Component::kNumber;
@@ -222,28 +230,38 @@ class KrlReader {
     t.line = file().lineOf(a.open);
     t.aggregate_end = a.close;
     t.config.vendor = Vendor::kKuka;
-    const bool joint = type == "AXIS" || type == "E6AXIS" || (type.empty() && a.find("A1") != nullptr);
+    const bool joint =
+        type == "AXIS" || type == "E6AXIS" || (type.empty() && a.find("A1") != nullptr);
     t.kind = joint ? TargetKind::kJoint : TargetKind::kCartesian;
     t.orientation = joint ? Orientation::kNone : Orientation::kKukaAbc;
     for (const Component& c : a.comps) {
       const std::string& n = c.name;
       if (c.kind != Component::kNumber && c.kind != Component::kLiteral) {
-        if (n == "X" || n == "Y" || n == "Z" || n == "A" || n == "B" || n == "C" || n == "S" || n == "T" ||
+        if (n == "X" || n == "Y" || n == "Z" || n == "A" || n == "B" || n == "C" || n == "S" ||
+            n == "T" ||
             (n.size() == 2 && (n[0] == 'A' || n[0] == 'E') && n[1] >= '1' && n[1] <= '6')) {
           fail(c.begin, "component " + n + " is not a number");
         }
         continue;
       }
       const NumberField f = field(c);
-      if (c.kind == Component::kLiteral && n != "S" && n != "T") fail(c.begin, "component " + n + " is not a number");
-      if (n == "X") t.pos[0] = f;
-      else if (n == "Y") t.pos[1] = f;
-      else if (n == "Z") t.pos[2] = f;
-      else if (n == "A") t.rot[0] = f;
-      else if (n == "B") t.rot[1] = f;
-      else if (n == "C") t.rot[2] = f;
+      if (c.kind == Component::kLiteral && n != "S" && n != "T")
+        fail(c.begin, "component " + n + " is not a number");
+      if (n == "X")
+        t.pos[0] = f;
+      else if (n == "Y")
+        t.pos[1] = f;
+      else if (n == "Z")
+        t.pos[2] = f;
+      else if (n == "A")
+        t.rot[0] = f;
+      else if (n == "B")
+        t.rot[1] = f;
+      else if (n == "C")
+        t.rot[2] = f;
       else if (n == "S" || n == "T") {
-        if (c.value < 0 || c.value != std::floor(c.value) || c.value > 1e6) fail(c.begin, n + " must be a non-negative integer");
+        if (c.value < 0 || c.value != std::floor(c.value) || c.value > 1e6)
+          fail(c.begin, n + " must be a non-negative integer");
         if (n == "S") {
           t.status_field = f;
           t.config.status = toInt(c.value);
@@ -258,8 +276,10 @@ class KrlReader {
       }
     }
     if (!joint) {
-      for (const NumberField* f : {&t.pos[0], &t.pos[1], &t.pos[2], &t.rot[0], &t.rot[1], &t.rot[2]}) {
-        if (f->present() && sigDigits(std::string_view(file().bytes).substr(f->offset, f->length)) >= 9) {
+      for (const NumberField* f :
+           {&t.pos[0], &t.pos[1], &t.pos[2], &t.rot[0], &t.rot[1], &t.rot[2]}) {
+        if (f->present() &&
+            sigDigits(std::string_view(file().bytes).substr(f->offset, f->length)) >= 9) {
           p_.files[static_cast<std::size_t>(file_)].significant9 = true;
         }
       }
@@ -316,17 +336,22 @@ class KrlReader {
       named_frames_[upper(name)] = Frame{name, true, poseOf(a), file_, file().lineOf(name_off)};
     } else if (isPositionType(type)) {
       makeTarget(a, name, type);
-      if (type == "POS" || type == "E6POS") named_frames_[upper(name)] = Frame{name, true, poseOf(a), file_, file().lineOf(name_off)};
+      if (type == "POS" || type == "E6POS")
+        named_frames_[upper(name)] = Frame{name, true, poseOf(a), file_, file().lineOf(name_off)};
     } else if (type == "FDAT") {
       Fdat fd;
-      if (const Component* t = a.find("TOOL_NO"); t != nullptr && t->kind == Component::kNumber) fd.tool = toInt(t->value);
-      if (const Component* b = a.find("BASE_NO"); b != nullptr && b->kind == Component::kNumber) fd.base = toInt(b->value);
+      if (const Component* t = a.find("TOOL_NO"); t != nullptr && t->kind == Component::kNumber)
+        fd.tool = toInt(t->value);
+      if (const Component* b = a.find("BASE_NO"); b != nullptr && b->kind == Component::kNumber)
+        fd.base = toInt(b->value);
       if (const Component* ipo = a.find("IPO_FRAME")) {
-        fd.tcp = upper(std::string_view(file().bytes).substr(ipo->begin, ipo->end - ipo->begin)).find("TCP") != std::string::npos;
+        fd.tcp = upper(std::string_view(file().bytes).substr(ipo->begin, ipo->end - ipo->begin))
+                     .find("TCP") != std::string::npos;
       }
       fdats_[upper(name)] = fd;
     } else if (type == "LDAT") {
-      if (const Component* v = a.find("VEL"); v != nullptr && v->kind == Component::kNumber) ldat_vel_[upper(name)] = v->value;
+      if (const Component* v = a.find("VEL"); v != nullptr && v->kind == Component::kNumber)
+        ldat_vel_[upper(name)] = v->value;
     }
     return true;
   }
@@ -356,12 +381,15 @@ class KrlReader {
   }
 
   Frame tableFrame(bool base, int n, std::size_t offset) {
-    const std::string ref = std::string(base ? "BASE_DATA[" : "TOOL_DATA[") + std::to_string(n) + "]";
+    const std::string ref =
+        std::string(base ? "BASE_DATA[" : "TOOL_DATA[") + std::to_string(n) + "]";
     if (n == 0) return Frame{"$NULLFRAME", true, Pose::Identity(), -1, 0};
     auto& table = base ? base_data_ : tool_data_;
     const auto it = table.find(n);
     if (it != table.end()) return it->second;
-    unresolved(ref, offset, base ? "base frame defined outside the program ($config.dat)" : "tool defined outside the program ($config.dat)");
+    unresolved(ref, offset,
+               base ? "base frame defined outside the program ($config.dat)"
+                    : "tool defined outside the program ($config.dat)");
     return Frame{ref, false, Pose::Identity(), -1, 0};
   }
 
@@ -380,7 +408,8 @@ class KrlReader {
       } else if (c.isKind(TokenKind::kIdentifier)) {
         const std::string n = upper(c.text());
         c.next();
-        if ((n == "BASE_DATA" || n == "TOOL_DATA") && c.isPunct('[') && c.isKind(TokenKind::kNumber, 1) && c.isPunct(']', 2)) {
+        if ((n == "BASE_DATA" || n == "TOOL_DATA") && c.isPunct('[') &&
+            c.isKind(TokenKind::kNumber, 1) && c.isPunct(']', 2)) {
           c.next();  // '['
           const int idx = toInt(parseNumber(c.text()).value_or(0), 0);
           c.next();  // number
@@ -396,7 +425,8 @@ class KrlReader {
         } else if (named_frames_.count(n) != 0) {
           term = named_frames_[n];
         } else {
-          term = Frame{std::string(file().text(file().tokens[c.index() - 1])), false, Pose::Identity(), -1, 0};
+          term = Frame{std::string(file().text(file().tokens[c.index() - 1])), false,
+                       Pose::Identity(), -1, 0};
           unresolved(term.ref, off, "frame not defined in the program");
           while (!c.done() && !c.isPunct(':')) c.next();
         }
@@ -430,15 +460,18 @@ class KrlReader {
     if (fd.base >= 0) base_ = tableFrame(true, fd.base, offset);
     if (fd.tcp && !ext_tcp_) {
       ext_tcp_ = true;
-      p_.notes.push_back("IPO_FRAME #TCP (external TCP) at " + file().path + ":" + std::to_string(file().lineOf(offset)) +
+      p_.notes.push_back("IPO_FRAME #TCP (external TCP) at " + file().path + ":" +
+                         std::to_string(file().lineOf(offset)) +
                          ": the robot carries the part; base and tool swap roles");
     }
   }
 
   Fdat fdatFromAggregate(const Aggregate& a) const {
     Fdat fd;
-    if (const Component* t = a.find("TOOL_NO"); t != nullptr && t->kind == Component::kNumber) fd.tool = toInt(t->value);
-    if (const Component* b = a.find("BASE_NO"); b != nullptr && b->kind == Component::kNumber) fd.base = toInt(b->value);
+    if (const Component* t = a.find("TOOL_NO"); t != nullptr && t->kind == Component::kNumber)
+      fd.tool = toInt(t->value);
+    if (const Component* b = a.find("BASE_NO"); b != nullptr && b->kind == Component::kNumber)
+      fd.base = toInt(b->value);
     return fd;
   }
 
@@ -447,17 +480,20 @@ class KrlReader {
   }
 
   static bool isApprox(std::string_view w) {
-    return iequals(w, "C_DIS") || iequals(w, "C_PTP") || iequals(w, "C_VEL") || iequals(w, "C_ORI") || iequals(w, "C_SPL");
+    return iequals(w, "C_DIS") || iequals(w, "C_PTP") || iequals(w, "C_VEL") ||
+           iequals(w, "C_ORI") || iequals(w, "C_SPL");
   }
 
   // Resolves one target expression [b, e) of a motion; returns the target index or -1.
   int motionTarget(std::size_t b, std::size_t e, Motion& m, bool relative) {
     const SourceFile& f = file();
-    if (b >= e) fail(b < f.tokens.size() ? f.tokens[b].offset : f.bytes.size(), "motion without a target");
+    if (b >= e)
+      fail(b < f.tokens.size() ? f.tokens[b].offset : f.bytes.size(), "motion without a target");
     const std::uint32_t s = f.tokens[b].offset;
     const std::uint32_t en = f.tokens[e - 1].offset + f.tokens[e - 1].length;
     TokenCursor c(f, b, e);
-    if (!c.isPunct('{')) m.target_text = f.bytes.substr(s, en - s);  // literal targets: the target is the text
+    if (!c.isPunct('{'))
+      m.target_text = f.bytes.substr(s, en - s);  // literal targets: the target is the text
     if (c.isPunct('{')) {
       const Aggregate a = parseAggregate(c);
       if (!c.done() || relative) {
@@ -476,7 +512,8 @@ class KrlReader {
         return -1;
       }
       if (p_.files.size() < 2) {
-        fail(s, "missing .dat: target '" + std::string(c.text()) + "' is declared nowhere (expected " + p_.dat_path + ")");
+        fail(s, "missing .dat: target '" + std::string(c.text()) +
+                    "' is declared nowhere (expected " + p_.dat_path + ")");
       }
       unresolved(std::string(c.text()), s, "target not declared in the .src or .dat");
       m.derivation = "undeclared";
@@ -526,7 +563,9 @@ class KrlReader {
         start = k + 1;
         continue;
       }
-      if (t.kind == TokenKind::kIdentifier && (isApprox(tx) || iequals(tx, "WITH") || iequals(tx, "CA"))) break;
+      if (t.kind == TokenKind::kIdentifier &&
+          (isApprox(tx) || iequals(tx, "WITH") || iequals(tx, "CA")))
+        break;
       if (t.kind == TokenKind::kPunct && tx == "#") break;
     }
     exprs.emplace_back(start, k);
@@ -541,11 +580,13 @@ class KrlReader {
     for (std::size_t j = k; j < e; ++j) {
       const Token& t = f.tokens[j];
       const std::string_view tx = f.text(t);
-      if (t.kind == TokenKind::kIdentifier && isApprox(tx)) zone += (zone.empty() ? "" : " ") + std::string(tx);
+      if (t.kind == TokenKind::kIdentifier && isApprox(tx))
+        zone += (zone.empty() ? "" : " ") + std::string(tx);
       if (t.kind == TokenKind::kIdentifier && iequals(tx, "WITH")) {
         for (std::size_t q = j + 1; q + 2 < e; ++q) {
           const std::string_view w = f.text(f.tokens[q]);
-          if ((iequals(w, "STOOL2") || iequals(w, "SBASE") || iequals(w, "SFRAME")) && f.text(f.tokens[q + 1]) == "(") {
+          if ((iequals(w, "STOOL2") || iequals(w, "SBASE") || iequals(w, "SFRAME")) &&
+              f.text(f.tokens[q + 1]) == "(") {
             const auto it = fdats_.find(upper(f.text(f.tokens[q + 2])));
             if (it != fdats_.end()) {
               Fdat fd = it->second;
@@ -576,8 +617,9 @@ class KrlReader {
   }
 
   static bool isMotionKeyword(std::string_view w) {
-    static const char* const kw[] = {"PTP", "LIN", "CIRC", "SPTP", "SLIN", "SCIRC", "PTP_REL", "LIN_REL", "CIRC_REL",
-                                     "SPTP_REL", "SLIN_REL", "SCIRC_REL", "SPL"};
+    static const char* const kw[] = {"PTP",      "LIN",       "CIRC",    "SPTP",     "SLIN",
+                                     "SCIRC",    "PTP_REL",   "LIN_REL", "CIRC_REL", "SPTP_REL",
+                                     "SLIN_REL", "SCIRC_REL", "SPL"};
     for (const char* k : kw) {
       if (iequals(w, k)) return true;
     }
@@ -592,8 +634,8 @@ class KrlReader {
       motion(c, e);
       return;
     }
-    if (c.isIdent("DECL") || (c.isKind(TokenKind::kIdentifier) && c.isKind(TokenKind::kIdentifier, 1) &&
-                              isPositionType(upper(w)))) {
+    if (c.isIdent("DECL") || (c.isKind(TokenKind::kIdentifier) &&
+                              c.isKind(TokenKind::kIdentifier, 1) && isPositionType(upper(w)))) {
       tryDecl(c);
       return;
     }
@@ -615,7 +657,9 @@ class KrlReader {
       const std::string n = upper(w);
       // assignments
       std::size_t eq = b;
-      while (eq < e && !(f.tokens[eq].kind == TokenKind::kPunct && f.bytes[f.tokens[eq].offset] == '=')) ++eq;
+      while (eq < e &&
+             !(f.tokens[eq].kind == TokenKind::kPunct && f.bytes[f.tokens[eq].offset] == '='))
+        ++eq;
       if (eq < e && eq + 1 < e) {
         const std::size_t off = f.tokens[b].offset;
         if (n == "$BASE" && eq == b + 1) {
@@ -628,7 +672,8 @@ class KrlReader {
           if (tool_.ref.empty() || tool_.ref == "{...}") tool_.ref = "$TOOL";
           return;
         }
-        if ((n == "BASE_DATA" || n == "TOOL_DATA") && eq == b + 4 && c.isKind(TokenKind::kNumber, 2)) {
+        if ((n == "BASE_DATA" || n == "TOOL_DATA") && eq == b + 4 &&
+            c.isKind(TokenKind::kNumber, 2)) {
           const int idx = toInt(parseNumber(c.text(2)).value_or(-1));
           Frame fr = evalFrame(eq + 1, e);
           fr.ref = n + "[" + std::to_string(idx) + "]";
@@ -658,7 +703,9 @@ class KrlReader {
             if (it != ldat_vel_.end()) vel_cp_ = it->second;
           } else if (v.isPunct('{')) {
             const Aggregate a = parseAggregate(v);
-            if (const Component* vel = a.find("VEL"); vel != nullptr && vel->kind == Component::kNumber) vel_cp_ = vel->value;
+            if (const Component* vel = a.find("VEL");
+                vel != nullptr && vel->kind == Component::kNumber)
+              vel_cp_ = vel->value;
           }
           return;
         }
@@ -666,11 +713,14 @@ class KrlReader {
           TokenCursor v(f, eq + 1, e);
           const std::size_t vb = v.peek().offset;
           const Token& last = f.tokens[e - 1];
-          if (const auto val = parseNumber(std::string_view(f.bytes).substr(vb, last.offset + last.length - vb))) vel_cp_ = *val;
+          if (const auto val =
+                  parseNumber(std::string_view(f.bytes).substr(vb, last.offset + last.length - vb)))
+            vel_cp_ = *val;
           return;
         }
         if (eq == b + 1 || (c.isPunct('[', 1))) {
-          // Other assignments may still hold aggregates: validate them (unterminated / broken numbers).
+          // Other assignments may still hold aggregates: validate them (unterminated / broken
+          // numbers).
           TokenCursor v(f, eq + 1, e);
           if (v.isPunct('{')) parseAggregate(v);
           return;
@@ -678,7 +728,8 @@ class KrlReader {
       }
       if (c.isPunct('(', 1)) {
         const std::string name = upper(w);
-        if (name.find("SPINDLE") != std::string::npos || name.find("DRILL") != std::string::npos) addMarker("call " + std::string(w));
+        if (name.find("SPINDLE") != std::string::npos || name.find("DRILL") != std::string::npos)
+          addMarker("call " + std::string(w));
       }
     }
   }
@@ -694,7 +745,8 @@ class KrlReader {
         for (std::size_t k = b; k < j; ++k) {
           if (f.tokens[k].kind != TokenKind::kComment) continue;
           const std::string u = upper(f.text(f.tokens[k]));
-          if (u.rfind(";FOLD", 0) == 0 || u.rfind(";ENDFOLD", 0) == 0 || u.rfind("&", 0) == 0) continue;
+          if (u.rfind(";FOLD", 0) == 0 || u.rfind(";ENDFOLD", 0) == 0 || u.rfind("&", 0) == 0)
+            continue;
           if (u.find("PLUNGE") != std::string::npos || u.find("DRILL") != std::string::npos) {
             addMarker("comment " + std::string(f.text(f.tokens[k])));
           }

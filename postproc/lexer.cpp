@@ -5,7 +5,9 @@
 namespace roprec::postproc {
 
 namespace {
-inline char asciiUpper(char c) { return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c; }
+inline char asciiUpper(char c) {
+  return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c;
+}
 }  // namespace
 
 bool iequals(std::string_view a, std::string_view b) {
@@ -30,7 +32,8 @@ void lex(SourceFile& f, const LexOptions& o) {
   std::size_t i = f.bom ? 3 : 0;
   bool line_start = true;
   auto push = [&](std::size_t start, std::size_t end, TokenKind k) {
-    f.tokens.push_back(Token{static_cast<std::uint32_t>(start), static_cast<std::uint32_t>(end - start), k});
+    f.tokens.push_back(
+        Token{static_cast<std::uint32_t>(start), static_cast<std::uint32_t>(end - start), k});
   };
   while (i < n) {
     const char c = b[i];
@@ -55,7 +58,8 @@ void lex(SourceFile& f, const LexOptions& o) {
     const bool at_line_start = line_start;
     line_start = false;
     if ((o.header_amp && at_line_start && c == '&') ||
-        (o.percent_header && at_line_start && c == '%' && i + 2 < n && b[i + 1] == '%' && b[i + 2] == '%') ||
+        (o.percent_header && at_line_start && c == '%' && i + 2 < n && b[i + 1] == '%' &&
+         b[i + 2] == '%') ||
         (o.comment != 0 && c == o.comment)) {
       std::size_t j = i;
       while (j < n && b[j] != '\n' && b[j] != '\r') ++j;

@@ -10,11 +10,11 @@
 namespace roprec::postproc {
 
 struct LexOptions {
-  char comment{';'};          ///< comment to end of line (0: none)
-  bool header_amp{false};     ///< KRL: a line starting with `&` is one comment token
+  char comment{';'};                ///< comment to end of line (0: none)
+  bool header_amp{false};           ///< KRL: a line starting with `&` is one comment token
   bool single_quote_string{false};  ///< `'...'` is a string (KRL binary/char, TP CONFIG)
-  bool rapid_assign{false};   ///< `:=` is one token
-  bool percent_header{false}; ///< RAPID: `%%%` lines are one comment token
+  bool rapid_assign{false};         ///< `:=` is one token
+  bool percent_header{false};       ///< RAPID: `%%%` lines are one comment token
 };
 
 /// Tokenizes f.bytes into f.tokens. Newline tokens mark every line end.
@@ -34,7 +34,8 @@ std::string upper(std::string_view s);
 /// Cursor over a file's tokens with helpers for the recursive-descent readers.
 class TokenCursor {
  public:
-  TokenCursor(const SourceFile& f, std::size_t begin, std::size_t end) : f_(f), i_(begin), end_(end) {}
+  TokenCursor(const SourceFile& f, std::size_t begin, std::size_t end)
+      : f_(f), i_(begin), end_(end) {}
   [[nodiscard]] bool done() const { return i_ >= end_; }
   [[nodiscard]] std::size_t index() const { return i_; }
   void seek(std::size_t i) { i_ = i; }

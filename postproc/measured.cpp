@@ -14,9 +14,12 @@ namespace roprec::postproc {
 
 const char* measuredFormatName(MeasuredFormat f) {
   switch (f) {
-    case MeasuredFormat::kCsv: return "csv";
-    case MeasuredFormat::kPcDmis: return "pc-dmis";
-    case MeasuredFormat::kDmis: return "dmis";
+    case MeasuredFormat::kCsv:
+      return "csv";
+    case MeasuredFormat::kPcDmis:
+      return "pc-dmis";
+    case MeasuredFormat::kDmis:
+      return "dmis";
   }
   return "?";
 }
@@ -125,14 +128,36 @@ struct TableSpec {
 };
 
 const TableSpec& csvSpec() {
-  static const TableSpec s{"roprec CSV", "id,x,y,z[,i,j,k][,u]", true, {"ID"}, {"X"}, {"Y"}, {"Z"}, {"I"}, {"J"},
-                           {"K"}, {"U"}, {}, {}};
+  static const TableSpec s{"roprec CSV",
+                           "id,x,y,z[,i,j,k][,u]",
+                           true,
+                           {"ID"},
+                           {"X"},
+                           {"Y"},
+                           {"Z"},
+                           {"I"},
+                           {"J"},
+                           {"K"},
+                           {"U"},
+                           {},
+                           {}};
   return s;
 }
 
 const TableSpec& pcDmisSpec() {
-  static const TableSpec s{"PC-DMIS CSV", "TYPE,NAME,X,Y,Z[,I,J,K]", false, {"NAME"}, {"X"}, {"Y"}, {"Z"}, {"I"}, {"J"},
-                           {"K"}, {}, {"D", "DIAM", "DIAMETER"}, {"TYPE"}};
+  static const TableSpec s{"PC-DMIS CSV",
+                           "TYPE,NAME,X,Y,Z[,I,J,K]",
+                           false,
+                           {"NAME"},
+                           {"X"},
+                           {"Y"},
+                           {"Z"},
+                           {"I"},
+                           {"J"},
+                           {"K"},
+                           {},
+                           {"D", "DIAM", "DIAMETER"},
+                           {"TYPE"}};
   return s;
 }
 
@@ -141,7 +166,8 @@ std::string headerKey(const std::string& cell) {
   std::string k = upper(cell);
   for (const char* suf : {"_MM", "_UM"}) {
     const std::string s(suf);
-    if (k.size() > s.size() && k.compare(k.size() - s.size(), s.size(), s) == 0) k.erase(k.size() - s.size());
+    if (k.size() > s.size() && k.compare(k.size() - s.size(), s.size(), s) == 0)
+      k.erase(k.size() - s.size());
   }
   return k;
 }
@@ -159,8 +185,8 @@ int findColumn(const std::vector<std::string>& keys, const std::vector<std::stri
   return -1;
 }
 
-TableColumns tableColumns(const std::vector<std::string>& header, const TableSpec& spec, const std::string& path,
-                          int line) {
+TableColumns tableColumns(const std::vector<std::string>& header, const TableSpec& spec,
+                          const std::string& path, int line) {
   std::vector<std::string> keys;
   for (const std::string& h : header) keys.push_back(headerKey(h));
   for (std::size_t a = 0; a < keys.size(); ++a) {
@@ -181,13 +207,16 @@ TableColumns tableColumns(const std::vector<std::string>& header, const TableSpe
   c.u = findColumn(keys, spec.u);
   c.d = findColumn(keys, spec.d);
   c.type = findColumn(keys, spec.type);
-  const std::pair<int, const std::string*> required[] = {
-      {c.id, &spec.id.front()}, {c.x, &spec.x.front()}, {c.y, &spec.y.front()}, {c.z, &spec.z.front()}};
+  const std::pair<int, const std::string*> required[] = {{c.id, &spec.id.front()},
+                                                         {c.x, &spec.x.front()},
+                                                         {c.y, &spec.y.front()},
+                                                         {c.z, &spec.z.front()}};
   for (const auto& [col, name] : required) {
     if (col < 0) {
       const std::string shown = spec.lower_case_names ? lowerAscii(*name) : *name;
-      throw InputError(path, line, "missing column '" + shown + "' (a " + spec.format_label +
-                                       " header names " + spec.header_hint + ")");
+      throw InputError(path, line,
+                       "missing column '" + shown + "' (a " + spec.format_label + " header names " +
+                           spec.header_hint + ")");
     }
   }
   const int axis_given = (c.i >= 0) + (c.j >= 0) + (c.k >= 0);
@@ -199,20 +228,24 @@ TableColumns tableColumns(const std::vector<std::string>& header, const TableSpe
 
 /// The value of an optional cell ("" when the row is shorter or the column absent).
 std::string cellOf(const std::vector<std::string>& cells, int col) {
-  return col >= 0 && static_cast<std::size_t>(col) < cells.size() ? cells[static_cast<std::size_t>(col)] : std::string();
+  return col >= 0 && static_cast<std::size_t>(col) < cells.size()
+             ? cells[static_cast<std::size_t>(col)]
+             : std::string();
 }
 
-double requiredNumber(const std::vector<std::string>& cells, int col, const char* name, const std::string& path,
-                      int line) {
+double requiredNumber(const std::vector<std::string>& cells, int col, const char* name,
+                      const std::string& path, int line) {
   const std::string s = cellOf(cells, col);
-  if (s.empty()) throw InputError(path, line, std::string("missing value in column '") + name + "'");
+  if (s.empty())
+    throw InputError(path, line, std::string("missing value in column '") + name + "'");
   const auto v = parseFinite(s);
-  if (!v) throw InputError(path, line, "'" + s + "' in column '" + name + "' is not a finite number");
+  if (!v)
+    throw InputError(path, line, "'" + s + "' in column '" + name + "' is not a finite number");
   return *v;
 }
 
-std::optional<double> optionalNumber(const std::vector<std::string>& cells, int col, const char* name,
-                                     const std::string& path, int line) {
+std::optional<double> optionalNumber(const std::vector<std::string>& cells, int col,
+                                     const char* name, const std::string& path, int line) {
   if (cellOf(cells, col).empty()) return std::nullopt;
   return requiredNumber(cells, col, name, path, line);
 }
@@ -223,12 +256,15 @@ Vec3 unitAxis(const Vec3& a, const std::string& path, int line) {
   return a / n;
 }
 
-std::optional<Vec3> tableAxis(const std::vector<std::string>& cells, const TableColumns& c, const std::string& path,
-                              int line) {
-  const int empty = cellOf(cells, c.i).empty() + cellOf(cells, c.j).empty() + cellOf(cells, c.k).empty();
+std::optional<Vec3> tableAxis(const std::vector<std::string>& cells, const TableColumns& c,
+                              const std::string& path, int line) {
+  const int empty =
+      cellOf(cells, c.i).empty() + cellOf(cells, c.j).empty() + cellOf(cells, c.k).empty();
   if (empty == 3) return std::nullopt;
-  if (empty != 0) throw InputError(path, line, "the axis cells i, j, k must all be given, or all be empty");
-  const Vec3 a(requiredNumber(cells, c.i, "i", path, line), requiredNumber(cells, c.j, "j", path, line),
+  if (empty != 0)
+    throw InputError(path, line, "the axis cells i, j, k must all be given, or all be empty");
+  const Vec3 a(requiredNumber(cells, c.i, "i", path, line),
+               requiredNumber(cells, c.j, "j", path, line),
                requiredNumber(cells, c.k, "k", path, line));
   return unitAxis(a, path, line);
 }
@@ -243,17 +279,19 @@ bool holeType(const std::string& type) {
   return false;
 }
 
-MeasuredHole tableRow(const std::vector<std::string>& cells, const TableColumns& c, const std::string& path,
-                      int line) {
+MeasuredHole tableRow(const std::vector<std::string>& cells, const TableColumns& c,
+                      const std::string& path, int line) {
   MeasuredHole h;
   h.line = line;
   h.id = cellOf(cells, c.id);
   if (h.id.empty()) throw InputError(path, line, "empty hole id");
-  h.p_mm = Vec3(requiredNumber(cells, c.x, "x", path, line), requiredNumber(cells, c.y, "y", path, line),
-                requiredNumber(cells, c.z, "z", path, line));
+  h.p_mm =
+      Vec3(requiredNumber(cells, c.x, "x", path, line), requiredNumber(cells, c.y, "y", path, line),
+           requiredNumber(cells, c.z, "z", path, line));
   if (c.i >= 0) h.axis = tableAxis(cells, c, path, line);
   h.u_um = optionalNumber(cells, c.u, "u", path, line);
-  if (h.u_um && *h.u_um < 0) throw InputError(path, line, "the measurement uncertainty u must be >= 0 µm");
+  if (h.u_um && *h.u_um < 0)
+    throw InputError(path, line, "the measurement uncertainty u must be >= 0 µm");
   const auto d = optionalNumber(cells, c.d, "diameter", path, line);
   if (d && *d > 0) h.diameter_mm = d;
   return h;
@@ -273,10 +311,12 @@ std::size_t headerIndex(const std::vector<Line>& lines, MeasuredFormat f) {
   return lines.size();
 }
 
-std::vector<MeasuredHole> readTable(const std::vector<Line>& lines, MeasuredFormat f, const std::string& path) {
+std::vector<MeasuredHole> readTable(const std::vector<Line>& lines, MeasuredFormat f,
+                                    const std::string& path) {
   const TableSpec& spec = f == MeasuredFormat::kCsv ? csvSpec() : pcDmisSpec();
   const std::size_t h = headerIndex(lines, f);
-  if (h >= lines.size()) throw InputError(path, 1, std::string("no ") + spec.header_hint + " header");
+  if (h >= lines.size())
+    throw InputError(path, 1, std::string("no ") + spec.header_hint + " header");
   const TableColumns c = tableColumns(csvCells(lines[h].text), spec, path, lines[h].number);
   std::vector<MeasuredHole> holes;
   for (std::size_t n = h + 1; n < lines.size(); ++n) {
@@ -362,20 +402,28 @@ std::optional<double> dmisUnits(const std::string& s, const std::string& path, i
 }
 
 /// A hole from a feature statement, or nullopt for a feature that is not a hole.
-std::optional<MeasuredHole> dmisHole(const FeatureStatement& f, double unit_mm, const std::string& path, int line) {
+std::optional<MeasuredHole> dmisHole(const FeatureStatement& f, double unit_mm,
+                                     const std::string& path, int line) {
   std::vector<std::string> a = csvCells(f.body);
   for (std::string& s : a) s = std::string(trim(s));
   const std::string type = a.empty() ? std::string() : upper(a[0]);
   if (type != "CIRCLE" && type != "CYLNDR") return std::nullopt;
   if (a.size() < 3 || upper(a[1]) == "OUTER") return std::nullopt;
-  if (upper(a[1]) != "INNER") throw InputError(path, line, "F(" + f.label + "): expected INNER or OUTER, got '" + a[1] + "'");
-  if (upper(a[2]) != "CART") throw InputError(path, line, "F(" + f.label + "): only CART coordinates are read, got '" + a[2] + "'");
+  if (upper(a[1]) != "INNER")
+    throw InputError(path, line, "F(" + f.label + "): expected INNER or OUTER, got '" + a[1] + "'");
+  if (upper(a[2]) != "CART")
+    throw InputError(path, line,
+                     "F(" + f.label + "): only CART coordinates are read, got '" + a[2] + "'");
   static const char* names[] = {"x", "y", "z", "i", "j", "k", "diameter"};
-  if (a.size() < 9) throw InputError(path, line, "F(" + f.label + "): a hole needs x,y,z,i,j,k after CART");
+  if (a.size() < 9)
+    throw InputError(path, line, "F(" + f.label + "): a hole needs x,y,z,i,j,k after CART");
   double v[7] = {0, 0, 0, 0, 0, 0, 0};
   for (std::size_t n = 0; n < 7 && n + 3 < a.size(); ++n) {
     const auto x = parseFinite(a[n + 3]);
-    if (!x) throw InputError(path, line, "F(" + f.label + "): '" + a[n + 3] + "' (" + names[n] + ") is not a finite number");
+    if (!x)
+      throw InputError(
+          path, line,
+          "F(" + f.label + "): '" + a[n + 3] + "' (" + names[n] + ") is not a finite number");
     v[n] = *x;
   }
   MeasuredHole h;
@@ -409,7 +457,9 @@ void requireUniqueIds(const std::vector<MeasuredHole>& holes, const std::string&
   for (const MeasuredHole& h : holes) {
     const auto [it, inserted] = first.emplace(h.id, h.line);
     if (!inserted) {
-      throw InputError(path, h.line, "duplicate hole id '" + h.id + "' (first on line " + std::to_string(it->second) + ")");
+      throw InputError(
+          path, h.line,
+          "duplicate hole id '" + h.id + "' (first on line " + std::to_string(it->second) + ")");
     }
   }
 }
@@ -445,7 +495,8 @@ std::string axisCells(const MeasuredHole& h) {
 }
 
 std::string positionCells(const MeasuredHole& h, int decimals) {
-  return fixed(h.p_mm.x(), decimals) + "," + fixed(h.p_mm.y(), decimals) + "," + fixed(h.p_mm.z(), decimals);
+  return fixed(h.p_mm.x(), decimals) + "," + fixed(h.p_mm.y(), decimals) + "," +
+         fixed(h.p_mm.z(), decimals);
 }
 
 }  // namespace
@@ -478,21 +529,27 @@ MeasuredHoles parseMeasured(const std::string& text, const std::string& path) {
         break;
       }
     }
-    throw InputError(path, line,
-                     "not a measured-hole file: expected a CSV header id,x,y,z[,i,j,k][,u], a PC-DMIS CSV header "
-                     "TYPE,NAME,X,Y,Z,... or DMIS statements F(id)=FEAT/CIRCLE,INNER,CART,x,y,z,i,j,k,diam");
+    throw InputError(
+        path, line,
+        "not a measured-hole file: expected a CSV header id,x,y,z[,i,j,k][,u], a PC-DMIS CSV "
+        "header "
+        "TYPE,NAME,X,Y,Z,... or DMIS statements F(id)=FEAT/CIRCLE,INNER,CART,x,y,z,i,j,k,diam");
   }
   MeasuredHoles m;
   m.path = path;
   m.format = *format;
-  m.holes = *format == MeasuredFormat::kDmis ? readDmis(lines, path) : readTable(lines, *format, path);
+  m.holes =
+      *format == MeasuredFormat::kDmis ? readDmis(lines, path) : readTable(lines, *format, path);
   requireUniqueIds(m.holes, path);
   return m;
 }
 
-MeasuredHoles readMeasured(const std::string& path) { return parseMeasured(readFileBytes(path), path); }
+MeasuredHoles readMeasured(const std::string& path) {
+  return parseMeasured(readFileBytes(path), path);
+}
 
-std::string writeMeasuredCsv(const std::vector<MeasuredHole>& holes, const MeasuredWriteOptions& o) {
+std::string writeMeasuredCsv(const std::vector<MeasuredHole>& holes,
+                             const MeasuredWriteOptions& o) {
   const bool axis = anyAxis(holes);
   bool u = false;
   for (const MeasuredHole& h : holes) u = u || h.u_um.has_value();
@@ -512,7 +569,8 @@ std::string writeMeasuredCsv(const std::vector<MeasuredHole>& holes, const Measu
   return s;
 }
 
-std::string writeMeasuredPcDmis(const std::vector<MeasuredHole>& holes, const MeasuredWriteOptions& o) {
+std::string writeMeasuredPcDmis(const std::vector<MeasuredHole>& holes,
+                                const MeasuredWriteOptions& o) {
   std::string s = "TYPE,NAME,X,Y,Z,I,J,K,D\n";
   for (const MeasuredHole& h : holes) {
     s += "CIRCLE," + csvId(h.id) + "," + positionCells(h, o.decimals) + "," + axisCells(h) + "," +
@@ -521,24 +579,31 @@ std::string writeMeasuredPcDmis(const std::vector<MeasuredHole>& holes, const Me
   return s;
 }
 
-std::string writeMeasuredDmis(const std::vector<MeasuredHole>& holes, const MeasuredWriteOptions& o) {
+std::string writeMeasuredDmis(const std::vector<MeasuredHole>& holes,
+                              const MeasuredWriteOptions& o) {
   std::string s = "DMISMN/'roprec measured holes',05.3\nUNITS/MM,ANGDEC\n";
   for (const MeasuredHole& h : holes) {
-    if (!h.axis) throw std::invalid_argument("DMIS needs an axis for every hole: hole '" + h.id + "' has none");
+    if (!h.axis)
+      throw std::invalid_argument("DMIS needs an axis for every hole: hole '" + h.id +
+                                  "' has none");
     if (h.id.find_first_of(")\n\r") != std::string::npos) {
       throw std::invalid_argument("hole id '" + h.id + "' cannot be a DMIS label");
     }
-    s += "FA(" + h.id + ")=FEAT/CIRCLE,INNER,CART," + positionCells(h, o.decimals) + "," + axisCells(h) + "," +
-         fixed(h.diameter_mm.value_or(0.0), o.decimals) + "\n";
+    s += "FA(" + h.id + ")=FEAT/CIRCLE,INNER,CART," + positionCells(h, o.decimals) + "," +
+         axisCells(h) + "," + fixed(h.diameter_mm.value_or(0.0), o.decimals) + "\n";
   }
   return s + "ENDFIL\n";
 }
 
-std::string writeMeasured(const std::vector<MeasuredHole>& holes, MeasuredFormat format, const MeasuredWriteOptions& o) {
+std::string writeMeasured(const std::vector<MeasuredHole>& holes, MeasuredFormat format,
+                          const MeasuredWriteOptions& o) {
   switch (format) {
-    case MeasuredFormat::kCsv: return writeMeasuredCsv(holes, o);
-    case MeasuredFormat::kPcDmis: return writeMeasuredPcDmis(holes, o);
-    case MeasuredFormat::kDmis: return writeMeasuredDmis(holes, o);
+    case MeasuredFormat::kCsv:
+      return writeMeasuredCsv(holes, o);
+    case MeasuredFormat::kPcDmis:
+      return writeMeasuredPcDmis(holes, o);
+    case MeasuredFormat::kDmis:
+      return writeMeasuredDmis(holes, o);
   }
   return {};
 }
@@ -550,14 +615,16 @@ namespace {
 double maxProgramSpan(const std::vector<ProgramHoleRef>& program) {
   double span = 0;
   for (std::size_t a = 0; a < program.size(); ++a) {
-    for (std::size_t b = a + 1; b < program.size(); ++b) span = std::max(span, (program[a].p_mm - program[b].p_mm).norm());
+    for (std::size_t b = a + 1; b < program.size(); ++b)
+      span = std::max(span, (program[a].p_mm - program[b].p_mm).norm());
   }
   return span;
 }
 
 /// Every measured |coordinate| < 5 although the program spans ≥ 10 mm, and the matched holes read
 /// as mm are not near their nominal positions: the file is in metres.
-void refuseMetres(const MeasuredHoles& m, const std::vector<ProgramHoleRef>& program, const MeasuredMatch& match) {
+void refuseMetres(const MeasuredHoles& m, const std::vector<ProgramHoleRef>& program,
+                  const MeasuredMatch& match) {
   for (const MeasuredHole& h : m.holes) {
     if (h.p_mm.cwiseAbs().maxCoeff() >= 5.0) return;
   }
@@ -572,17 +639,22 @@ void refuseMetres(const MeasuredHoles& m, const std::vector<ProgramHoleRef>& pro
   char buf[32];
   const auto r = std::to_chars(buf, buf + sizeof buf, span, std::chars_format::fixed, 1);
   throw InputError(m.path, m.holes.empty() ? 0 : m.holes.front().line,
-                   "the measured positions look like metres (every |coordinate| < 5 while the program's holes are up "
-                   "to " + std::string(buf, r.ptr) + " mm apart): give them in mm, in the workobject frame");
+                   "the measured positions look like metres (every |coordinate| < 5 while the "
+                   "program's holes are up "
+                   "to " +
+                       std::string(buf, r.ptr) +
+                       " mm apart): give them in mm, in the workobject frame");
 }
 
 }  // namespace
 
-MeasuredMatch matchMeasured(const MeasuredHoles& measured, const std::vector<ProgramHoleRef>& program) {
+MeasuredMatch matchMeasured(const MeasuredHoles& measured,
+                            const std::vector<ProgramHoleRef>& program) {
   MeasuredMatch r;
   r.measured_of_program.assign(program.size(), -1);
   std::map<std::string, int> program_index;
-  for (std::size_t p = 0; p < program.size(); ++p) program_index.emplace(program[p].id, static_cast<int>(p));
+  for (std::size_t p = 0; p < program.size(); ++p)
+    program_index.emplace(program[p].id, static_cast<int>(p));
   for (std::size_t k = 0; k < measured.holes.size(); ++k) {
     const auto it = program_index.find(measured.holes[k].id);
     if (it == program_index.end()) {

@@ -53,9 +53,9 @@ struct MeasuredHole {
 };
 
 struct MeasuredHoles {
-  std::string path;                   ///< for messages
+  std::string path;  ///< for messages
   MeasuredFormat format{MeasuredFormat::kCsv};
-  std::vector<MeasuredHole> holes;    ///< in file order, ids unique
+  std::vector<MeasuredHole> holes;  ///< in file order, ids unique
 };
 
 /// Reads a measured-hole file (format by content). Throws InputError (see the file comment;
@@ -77,9 +77,12 @@ struct MeasuredWriteOptions {
 /// decimals), except what a format cannot carry: PC-DMIS and DMIS have no `u`, the roprec CSV
 /// has no diameter. DMIS writes `FA(id)=FEAT/CIRCLE,INNER,CART,…` statements and needs an axis
 /// for every hole: throws std::invalid_argument naming the first hole without one.
-std::string writeMeasuredCsv(const std::vector<MeasuredHole>& holes, const MeasuredWriteOptions& o = {});
-std::string writeMeasuredPcDmis(const std::vector<MeasuredHole>& holes, const MeasuredWriteOptions& o = {});
-std::string writeMeasuredDmis(const std::vector<MeasuredHole>& holes, const MeasuredWriteOptions& o = {});
+std::string writeMeasuredCsv(const std::vector<MeasuredHole>& holes,
+                             const MeasuredWriteOptions& o = {});
+std::string writeMeasuredPcDmis(const std::vector<MeasuredHole>& holes,
+                                const MeasuredWriteOptions& o = {});
+std::string writeMeasuredDmis(const std::vector<MeasuredHole>& holes,
+                              const MeasuredWriteOptions& o = {});
 std::string writeMeasured(const std::vector<MeasuredHole>& holes, MeasuredFormat format,
                           const MeasuredWriteOptions& o = {});
 
@@ -91,9 +94,10 @@ struct ProgramHoleRef {
 
 /// Measured holes matched to a program's holes by id.
 struct MeasuredMatch {
-  std::vector<int> measured_of_program;  ///< per program hole: index into MeasuredHoles::holes, or −1
-  std::vector<int> unknown;              ///< measured holes whose id no program hole has
-  std::vector<int> unmeasured;           ///< program holes never measured
+  std::vector<int>
+      measured_of_program;      ///< per program hole: index into MeasuredHoles::holes, or −1
+  std::vector<int> unknown;     ///< measured holes whose id no program hole has
+  std::vector<int> unmeasured;  ///< program holes never measured
   int matched{0};
 };
 
@@ -105,6 +109,7 @@ struct MeasuredMatch {
 /// nominal positions (which keeps a small part near the workobject origin legal). Throws
 /// InputError(measured.path, line of the first measured hole, reason) then, and also when no
 /// measured hole matches a program hole.
-MeasuredMatch matchMeasured(const MeasuredHoles& measured, const std::vector<ProgramHoleRef>& program);
+MeasuredMatch matchMeasured(const MeasuredHoles& measured,
+                            const std::vector<ProgramHoleRef>& program);
 
 }  // namespace roprec::postproc

@@ -18,12 +18,18 @@ namespace fs = std::filesystem;
 
 std::string dialectName(Dialect d) {
   switch (d) {
-    case Dialect::kKrl: return "krl";
-    case Dialect::kRapid: return "rapid";
-    case Dialect::kTp: return "tp";
-    case Dialect::kCsv: return "csv";
-    case Dialect::kJson: return "json";
-    case Dialect::kHoleCsv: return "holes";
+    case Dialect::kKrl:
+      return "krl";
+    case Dialect::kRapid:
+      return "rapid";
+    case Dialect::kTp:
+      return "tp";
+    case Dialect::kCsv:
+      return "csv";
+    case Dialect::kJson:
+      return "json";
+    case Dialect::kHoleCsv:
+      return "holes";
   }
   return "unknown";
 }
@@ -34,7 +40,8 @@ void SourceFile::indexLines() {
   const std::size_t n = bytes.size();
   line_starts.clear();
   line_ends.clear();
-  bom = n >= 3 && static_cast<unsigned char>(bytes[0]) == 0xEF && static_cast<unsigned char>(bytes[1]) == 0xBB &&
+  bom = n >= 3 && static_cast<unsigned char>(bytes[0]) == 0xEF &&
+        static_cast<unsigned char>(bytes[1]) == 0xBB &&
         static_cast<unsigned char>(bytes[2]) == 0xBF;
   line_starts.push_back(0);
   for (std::size_t i = 0; i < n; ++i) {
@@ -42,7 +49,8 @@ void SourceFile::indexLines() {
     if (c == '.' && i + 1 < n && isDigit(bytes[i + 1])) {
       if (i == 0 || (!isDigit(bytes[i - 1]) && !isIdentChar(bytes[i - 1]))) {
         bare_fractions = true;
-      } else if (bytes[i - 1] == '0' && (i < 2 || (!isDigit(bytes[i - 2]) && !isIdentChar(bytes[i - 2])))) {
+      } else if (bytes[i - 1] == '0' &&
+                 (i < 2 || (!isDigit(bytes[i - 2]) && !isIdentChar(bytes[i - 2])))) {
         // `0.044` is evidence of leading zeros; an exact `0.000` is not (FANUC prints zero so)
         for (std::size_t k = i + 1; k < n && isDigit(bytes[k]); ++k) {
           if (bytes[k] != '0') {
@@ -81,20 +89,26 @@ void SourceFile::indexLines() {
 }
 
 int SourceFile::lineOf(std::size_t offset) const {
-  const auto it = std::upper_bound(line_starts.begin(), line_starts.end(), static_cast<std::uint32_t>(offset));
+  const auto it =
+      std::upper_bound(line_starts.begin(), line_starts.end(), static_cast<std::uint32_t>(offset));
   return static_cast<int>(it - line_starts.begin());
 }
 
 std::string SourceFile::dominantLineEnd() const {
   std::array<std::size_t, 5> count{};
   for (const LineEnd e : line_ends) ++count[static_cast<std::size_t>(e)];
-  const std::size_t best = static_cast<std::size_t>(std::max_element(count.begin() + 1, count.end()) - count.begin());
+  const std::size_t best =
+      static_cast<std::size_t>(std::max_element(count.begin() + 1, count.end()) - count.begin());
   if (count[best] == 0) return "\n";
   switch (static_cast<LineEnd>(best)) {
-    case LineEnd::kCrLf: return "\r\n";
-    case LineEnd::kCr: return "\r";
-    case LineEnd::kCrCrLf: return "\r\r\n";
-    default: return "\n";
+    case LineEnd::kCrLf:
+      return "\r\n";
+    case LineEnd::kCr:
+      return "\r";
+    case LineEnd::kCrCrLf:
+      return "\r\r\n";
+    default:
+      return "\n";
   }
 }
 
@@ -153,7 +167,7 @@ namespace {
 struct NumStyle {
   bool neg{false};
   bool plus{false};
-  bool bare{false};        // `.5`
+  bool bare{false};  // `.5`
   bool has_point{false};
   int frac{0};
   int sig{0};
@@ -277,10 +291,14 @@ NumberHints hintsFor(const Program& p, const NumberField& f, bool quaternion) {
 
 bool Configuration::present() const {
   switch (vendor) {
-    case Vendor::kKuka: return status >= 0 || turn >= 0;
-    case Vendor::kAbb: return true;
-    case Vendor::kFanuc: return flip != 0;
-    case Vendor::kNone: return false;
+    case Vendor::kKuka:
+      return status >= 0 || turn >= 0;
+    case Vendor::kAbb:
+      return true;
+    case Vendor::kFanuc:
+      return flip != 0;
+    case Vendor::kNone:
+      return false;
   }
   return false;
 }
@@ -296,7 +314,8 @@ std::optional<int> Configuration::branch() const {
     case Vendor::kFanuc:
       if (flip == 0) return std::nullopt;
       return 4 * (front == 'B' ? 1 : 0) + 2 * (elbow == 'D' ? 1 : 0) + (flip == 'N' ? 1 : 0);
-    case Vendor::kNone: return std::nullopt;
+    case Vendor::kNone:
+      return std::nullopt;
   }
   return std::nullopt;
 }
@@ -310,13 +329,14 @@ std::string Configuration::text() const {
       return s;
     }
     case Vendor::kAbb:
-      return "[" + std::to_string(cf[0]) + "," + std::to_string(cf[1]) + "," + std::to_string(cf[2]) + "," +
-             std::to_string(cf[3]) + "]";
+      return "[" + std::to_string(cf[0]) + "," + std::to_string(cf[1]) + "," +
+             std::to_string(cf[2]) + "," + std::to_string(cf[3]) + "]";
     case Vendor::kFanuc:
       if (flip == 0) return "";
-      return std::string(1, flip) + " " + elbow + " " + front + ", " + std::to_string(turns[0]) + ", " +
-             std::to_string(turns[1]) + ", " + std::to_string(turns[2]);
-    case Vendor::kNone: return "";
+      return std::string(1, flip) + " " + elbow + " " + front + ", " + std::to_string(turns[0]) +
+             ", " + std::to_string(turns[1]) + ", " + std::to_string(turns[2]);
+    case Vendor::kNone:
+      return "";
   }
   return "";
 }
@@ -332,13 +352,16 @@ Configuration configurationFromBranch(Vendor v, int branch) {
       c.status = s | ((e == 0 ? 1 : 0) << 1) | (w << 2);
       c.turn = 0;
       break;
-    case Vendor::kAbb: c.cf = {0, 0, 0, branch & 7}; break;
+    case Vendor::kAbb:
+      c.cf = {0, 0, 0, branch & 7};
+      break;
     case Vendor::kFanuc:
       c.flip = w ? 'N' : 'F';
       c.elbow = e ? 'D' : 'U';
       c.front = s ? 'B' : 'T';
       break;
-    case Vendor::kNone: break;
+    case Vendor::kNone:
+      break;
   }
   return c;
 }
@@ -372,7 +395,8 @@ Configuration parseConfigurationText(const std::string& text) {
     c.elbow = letters[1];
     c.front = letters[2];
     for (std::size_t k = 0; k < 3; ++k) c.turns[k] = nums[k];
-    if ((c.flip != 'F' && c.flip != 'N') || (c.elbow != 'U' && c.elbow != 'D') || (c.front != 'T' && c.front != 'B')) {
+    if ((c.flip != 'F' && c.flip != 'N') || (c.elbow != 'U' && c.elbow != 'D') ||
+        (c.front != 'T' && c.front != 'B')) {
       return Configuration{};
     }
   }
@@ -415,10 +439,12 @@ Pose targetPose(const Program& /*p*/, const Target& t) {
   T.translation() = Vec3(t.pos[0].value, t.pos[1].value, t.pos[2].value) * 1e-3;
   switch (t.orientation) {
     case Orientation::kKukaAbc:
-      T.linear() = rotationFromZyx(t.rot[0].value * kDeg, t.rot[1].value * kDeg, t.rot[2].value * kDeg);
+      T.linear() =
+          rotationFromZyx(t.rot[0].value * kDeg, t.rot[1].value * kDeg, t.rot[2].value * kDeg);
       break;
     case Orientation::kFanucWpr:
-      T.linear() = rotationFromZyx(t.rot[2].value * kDeg, t.rot[1].value * kDeg, t.rot[0].value * kDeg);
+      T.linear() =
+          rotationFromZyx(t.rot[2].value * kDeg, t.rot[1].value * kDeg, t.rot[0].value * kDeg);
       break;
     case Orientation::kQuaternion: {
       Eigen::Quaterniond q(t.rot[0].value, t.rot[1].value, t.rot[2].value, t.rot[3].value);
@@ -435,7 +461,8 @@ Pose targetPose(const Program& /*p*/, const Target& t) {
     case Orientation::kAxis:
       T.linear() = axisFrame(Vec3(t.rot[0].value, t.rot[1].value, t.rot[2].value));
       break;
-    case Orientation::kNone: break;
+    case Orientation::kNone:
+      break;
   }
   return T;
 }
@@ -476,15 +503,20 @@ bool sameFrame(const Program& p, int a, int b) {
   if (a < 0 || b < 0) return false;
   const Frame& fa = p.frames[static_cast<std::size_t>(a)];
   const Frame& fb = p.frames[static_cast<std::size_t>(b)];
-  return iequals(fa.ref, fb.ref) && fa.resolved == fb.resolved && fa.pose.matrix() == fb.pose.matrix();
+  return iequals(fa.ref, fb.ref) && fa.resolved == fb.resolved &&
+         fa.pose.matrix() == fb.pose.matrix();
 }
 
 Vendor vendorOf(Dialect d) {
   switch (d) {
-    case Dialect::kKrl: return Vendor::kKuka;
-    case Dialect::kRapid: return Vendor::kAbb;
-    case Dialect::kTp: return Vendor::kFanuc;
-    default: return Vendor::kNone;
+    case Dialect::kKrl:
+      return Vendor::kKuka;
+    case Dialect::kRapid:
+      return Vendor::kAbb;
+    case Dialect::kTp:
+      return Vendor::kFanuc;
+    default:
+      return Vendor::kNone;
   }
 }
 
@@ -523,25 +555,29 @@ bool targetFramesConsistent(const Program& p, const Target& t) {
   return true;
 }
 
-EditResult replaceTargetPose(Program& p, int index, const Pose& T, const std::optional<Configuration>& config) {
+EditResult replaceTargetPose(Program& p, int index, const Pose& T,
+                             const std::optional<Configuration>& config) {
   EditResult r;
   if (index < 0 || static_cast<std::size_t>(index) >= p.target_list.size()) {
     r.reason = "no target with index " + std::to_string(index);
     return r;
   }
   Target& t = p.target_list[static_cast<std::size_t>(index)];
-  const std::string who = (t.name.empty() ? std::string("inline target") : "target " + t.name) + " (" +
-                          p.files[static_cast<std::size_t>(t.file)].path + ":" + std::to_string(t.line) + ")";
+  const std::string who = (t.name.empty() ? std::string("inline target") : "target " + t.name) +
+                          " (" + p.files[static_cast<std::size_t>(t.file)].path + ":" +
+                          std::to_string(t.line) + ")";
   if (t.kind != TargetKind::kCartesian) {
     r.reason = who + " is a joint target; only Cartesian targets can take a pose";
     return r;
   }
   if (!targetComplete(t)) {
-    r.reason = who + " omits pose components (the controller takes them from the start point); not edited";
+    r.reason =
+        who + " omits pose components (the controller takes them from the start point); not edited";
     return r;
   }
   if (!targetFramesConsistent(p, t)) {
-    r.reason = who + " is used by motions with different tools or frames; edit refused (clone it per use)";
+    r.reason =
+        who + " is used by motions with different tools or frames; edit refused (clone it per use)";
     return r;
   }
   if (config && config->vendor != Vendor::kNone) {
@@ -606,7 +642,8 @@ EditResult replaceTargetPose(Program& p, int index, const Pose& T, const std::op
       // R = Rx(a)Ry(b)Rz(c): r13 = sb, r23 = -sa cb, r33 = ca cb, r12 = -cb sc, r11 = cb cc
       const Vec3 old(t.rot[0].value * kDeg, t.rot[1].value * kDeg, t.rot[2].value * kDeg);
       const double cb = std::hypot(R(0, 0), R(0, 1));
-      Vec3 abc(std::atan2(-R(1, 2), R(2, 2)), std::atan2(R(0, 2), cb), std::atan2(-R(0, 1), R(0, 0)));
+      Vec3 abc(std::atan2(-R(1, 2), R(2, 2)), std::atan2(R(0, 2), cb),
+               std::atan2(-R(0, 1), R(0, 0)));
       if (cb < 1e-9) abc = Vec3(std::atan2(R(2, 1), R(1, 1)), std::atan2(R(0, 2), cb), 0.0);
       const Vec3 alt(abc[0] + kPi, kPi - abc[1], abc[2] + kPi);
       auto near = [&](const Vec3& v) {
@@ -616,7 +653,8 @@ EditResult replaceTargetPose(Program& p, int index, const Pose& T, const std::op
       };
       const Vec3 a1 = near(abc);
       const Vec3 a2 = near(alt);
-      const Vec3 best = (a2 - old).squaredNorm() + 1e-18 < (a1 - old).squaredNorm() && cb >= 1e-9 ? a2 : a1;
+      const Vec3 best =
+          (a2 - old).squaredNorm() + 1e-18 < (a1 - old).squaredNorm() && cb >= 1e-9 ? a2 : a1;
       for (int i = 0; i < 3; ++i) {
         NumberField& f = t.rot[static_cast<std::size_t>(i)];
         setNumber(p, f, best[i] / kDeg, hintsFor(p, f, false));
@@ -633,7 +671,8 @@ EditResult replaceTargetPose(Program& p, int index, const Pose& T, const std::op
       }
       break;
     }
-    case Orientation::kNone: break;
+    case Orientation::kNone:
+      break;
   }
   r.ok = true;
   r.reason.clear();
@@ -691,7 +730,8 @@ std::vector<std::string> outputPaths(const Program& p, const std::string& out_pa
     std::string stem = src_ext ? (o.parent_path() / o.stem()).string() : out_path;
     if (src_ext && o.parent_path().empty()) stem = o.stem().string();
     const bool upper_ext = src_ext && ext == ".SRC";
-    paths.push_back(stem + (dat_ext.empty() ? (upper_ext ? ".DAT" : ".dat") : (upper_ext ? ".DAT" : dat_ext)));
+    paths.push_back(
+        stem + (dat_ext.empty() ? (upper_ext ? ".DAT" : ".dat") : (upper_ext ? ".DAT" : dat_ext)));
   }
   return paths;
 }
@@ -699,7 +739,8 @@ std::vector<std::string> outputPaths(const Program& p, const std::string& out_pa
 void writeProgram(const Program& p, const std::string& out_path) {
   const std::vector<std::string> bytes = renderFiles(p);
   const std::vector<std::string> paths = outputPaths(p, out_path);
-  for (std::size_t i = 0; i < paths.size() && i < bytes.size(); ++i) writeFileAtomic(paths[i], bytes[i]);
+  for (std::size_t i = 0; i < paths.size() && i < bytes.size(); ++i)
+    writeFileAtomic(paths[i], bytes[i]);
 }
 
 // ---------------------------------------------------------------- reading
@@ -714,12 +755,14 @@ Dialect detectDialect(const std::string& path, const std::string& bytes) {
   const std::string head = upper(std::string_view(bytes).substr(0, 4096));
   if (head.find("/PROG") != std::string::npos) return Dialect::kTp;
   if (head.find("MODULE") != std::string::npos) return Dialect::kRapid;
-  if (head.find("DEF ") != std::string::npos || head.find("&ACCESS") != std::string::npos) return Dialect::kKrl;
-  throw InputError(path, 0, "unknown program dialect (expected .src, .mod/.prg/.sys, .ls, .csv or .json)");
+  if (head.find("DEF ") != std::string::npos || head.find("&ACCESS") != std::string::npos)
+    return Dialect::kKrl;
+  throw InputError(path, 0,
+                   "unknown program dialect (expected .src, .mod/.prg/.sys, .ls, .csv or .json)");
 }
 
-Program parseProgram(Dialect d, const std::string& path, std::string bytes, std::optional<std::string> dat_bytes,
-                     const std::string& dat_path) {
+Program parseProgram(Dialect d, const std::string& path, std::string bytes,
+                     std::optional<std::string> dat_bytes, const std::string& dat_path) {
   Program p;
   p.dialect = d;
   SourceFile f;
@@ -736,12 +779,22 @@ Program parseProgram(Dialect d, const std::string& path, std::string bytes, std:
     p.files.push_back(std::move(g));
   }
   switch (d) {
-    case Dialect::kKrl: parseKrl(p); break;
-    case Dialect::kRapid: parseRapid(p); break;
-    case Dialect::kTp: parseTp(p); break;
+    case Dialect::kKrl:
+      parseKrl(p);
+      break;
+    case Dialect::kRapid:
+      parseRapid(p);
+      break;
+    case Dialect::kTp:
+      parseTp(p);
+      break;
     case Dialect::kCsv:
-    case Dialect::kHoleCsv: parseCsv(p); break;
-    case Dialect::kJson: parseJson(p); break;
+    case Dialect::kHoleCsv:
+      parseCsv(p);
+      break;
+    case Dialect::kJson:
+      parseJson(p);
+      break;
   }
   return p;
 }

@@ -42,7 +42,15 @@ std::string dialectName(Dialect d);
 
 enum class LineEnd : std::uint8_t { kNone, kLf, kCrLf, kCr, kCrCrLf };
 
-enum class TokenKind : std::uint8_t { kNumber, kIdentifier, kString, kPunct, kComment, kNewline, kOther };
+enum class TokenKind : std::uint8_t {
+  kNumber,
+  kIdentifier,
+  kString,
+  kPunct,
+  kComment,
+  kNewline,
+  kOther
+};
 
 struct Token {
   std::uint32_t offset{0};
@@ -54,13 +62,13 @@ struct Token {
 struct SourceFile {
   std::string path;
   std::string bytes;
-  bool bom{false};                        ///< starts with a UTF-8 byte-order mark (kept)
-  std::vector<std::uint32_t> line_starts; ///< byte offset of every line
-  std::vector<LineEnd> line_ends;         ///< terminator of every line, as found
-  std::vector<Token> tokens;              ///< the reader's token index
-  bool bare_fractions{false};             ///< numbers such as `.044` occur (FANUC controller style)
-  bool zero_fractions{false};             ///< numbers such as `0.044` occur
-  bool significant9{false};               ///< KSS style: positions written with 9 significant digits
+  bool bom{false};                         ///< starts with a UTF-8 byte-order mark (kept)
+  std::vector<std::uint32_t> line_starts;  ///< byte offset of every line
+  std::vector<LineEnd> line_ends;          ///< terminator of every line, as found
+  std::vector<Token> tokens;               ///< the reader's token index
+  bool bare_fractions{false};  ///< numbers such as `.044` occur (FANUC controller style)
+  bool zero_fractions{false};  ///< numbers such as `0.044` occur
+  bool significant9{false};    ///< KSS style: positions written with 9 significant digits
 
   /// Builds line_starts/line_ends and the fraction-style flags.
   void indexLines();
@@ -89,12 +97,12 @@ enum class Vendor { kNone, kKuka, kAbb, kFanuc };
 /// Raw vendor configuration exactly as the program states it (docs/programs.md §2.4, §3.3, §4.5).
 struct Configuration {
   Vendor vendor{Vendor::kNone};
-  int status{-1};                 ///< KUKA S (-1 = absent)
-  int turn{-1};                   ///< KUKA T (-1 = absent)
+  int status{-1};                     ///< KUKA S (-1 = absent)
+  int turn{-1};                       ///< KUKA T (-1 = absent)
   std::array<int, 4> cf{0, 0, 0, 0};  ///< ABB cf1, cf4, cf6, cfx
-  char flip{0};                   ///< FANUC 'F'|'N'
-  char elbow{0};                  ///< FANUC 'U'|'D'
-  char front{0};                  ///< FANUC 'T'|'B'
+  char flip{0};                       ///< FANUC 'F'|'N'
+  char elbow{0};                      ///< FANUC 'U'|'D'
+  char front{0};                      ///< FANUC 'T'|'B'
   std::array<int, 3> turns{0, 0, 0};  ///< FANUC turn digits t1, t2, t3
 
   [[nodiscard]] bool present() const;
@@ -129,46 +137,49 @@ struct Target {
   std::array<NumberField, 6> joints;  ///< A1..A6 / J1..J6 (deg or mm)
   std::array<NumberField, 6> ext;     ///< E1..E6 / eax_a..eax_f
   Configuration config;
-  NumberField status_field, turn_field;   ///< KUKA S, T tokens (may be 'B...' literals)
-  std::array<NumberField, 4> cf_fields;   ///< ABB cf1, cf4, cf6, cfx
-  NumberField fanuc_config;               ///< FANUC span of the CONFIG string contents (value unused)
-  std::uint32_t aggregate_end{0};         ///< KRL: offset of the closing `}` (S/T insertion)
-  std::string frame_ref;                  ///< frame the target itself declares (FANUC `UF`, CSV `frame`)
-  std::string tool_ref;                   ///< tool the target itself declares (FANUC `UT`, CSV `tool`)
-  std::vector<int> uses;                  ///< indices of the motions that use this target
+  NumberField status_field, turn_field;  ///< KUKA S, T tokens (may be 'B...' literals)
+  std::array<NumberField, 4> cf_fields;  ///< ABB cf1, cf4, cf6, cfx
+  NumberField fanuc_config;        ///< FANUC span of the CONFIG string contents (value unused)
+  std::uint32_t aggregate_end{0};  ///< KRL: offset of the closing `}` (S/T insertion)
+  std::string frame_ref;           ///< frame the target itself declares (FANUC `UF`, CSV `frame`)
+  std::string tool_ref;            ///< tool the target itself declares (FANUC `UT`, CSV `tool`)
+  std::vector<int> uses;           ///< indices of the motions that use this target
 };
 
 enum class MotionType { kJoint, kLinear, kCircular };
 
 /// A resolved (or unresolved) frame: tool, base, work object, user frame.
 struct Frame {
-  std::string ref;       ///< as the program names it: `BASE_DATA[1]`, `$BASE`, `rdkWObj`, `UFRAME[1]`
+  std::string ref;  ///< as the program names it: `BASE_DATA[1]`, `$BASE`, `rdkWObj`, `UFRAME[1]`
   bool resolved{false};
   Pose pose{Pose::Identity()};  ///< SI; base: T_base_frame, tool: T_flange_tcp
   int file{-1};
-  int line{0};           ///< where its value was set (0 = predefined)
+  int line{0};  ///< where its value was set (0 = predefined)
 };
 
 struct Motion {
-  std::string instruction;   ///< as written: `LIN`, `MoveL`, `L`
+  std::string instruction;  ///< as written: `LIN`, `MoveL`, `L`
   MotionType type{MotionType::kLinear};
   int file{-1};
   int line{0};
-  int target{-1};            ///< index into targets (-1: runtime target, see target_text)
-  int aux{-1};               ///< CIRC/MoveC auxiliary point
-  std::string target_text;   ///< source text of the target expression
-  std::string derivation;    ///< "" plain; else `Offs`, `RelTool`, `LIN_REL`, `PR`, `:`, `Offset`, `Tool_Offset`...
-  int tool{-1};              ///< index into frames
-  int base{-1};              ///< index into frames
-  double speed_mm_s{-1.0};   ///< linear speed when known, else < 0
-  std::string speed_text;    ///< as written: `10mm/sec`, `rdkSpeed`, `0.01 m/s`
-  std::string zone_text;     ///< `FINE`, `CNT50`, `z1`, `C_DIS`...
-  bool fine{false};          ///< exact stop at the point
-  bool config_honoured{true};///< KUKA PTP / ABB ConfJ,ConfL \On / FANUC J: configuration is taken
-  std::vector<std::string> markers;  ///< dwell, spindle, drill-call, comment markers after this motion
-  bool has_offset{false};    ///< target = T_target · offset (tool frame) or offset · T_target (frame)
+  int target{-1};           ///< index into targets (-1: runtime target, see target_text)
+  int aux{-1};              ///< CIRC/MoveC auxiliary point
+  std::string target_text;  ///< source text of the target expression
+  std::string derivation;   ///< "" plain; else `Offs`, `RelTool`, `LIN_REL`, `PR`, `:`, `Offset`,
+                            ///< `Tool_Offset`...
+  int tool{-1};             ///< index into frames
+  int base{-1};             ///< index into frames
+  double speed_mm_s{-1.0};  ///< linear speed when known, else < 0
+  std::string speed_text;   ///< as written: `10mm/sec`, `rdkSpeed`, `0.01 m/s`
+  std::string zone_text;    ///< `FINE`, `CNT50`, `z1`, `C_DIS`...
+  bool fine{false};         ///< exact stop at the point
+  bool config_honoured{true};  ///< KUKA PTP / ABB ConfJ,ConfL \On / FANUC J: configuration is taken
+  std::vector<std::string>
+      markers;             ///< dwell, spindle, drill-call, comment markers after this motion
+  bool has_offset{false};  ///< target = T_target · offset (tool frame) or offset · T_target (frame)
   bool offset_in_tool{false};
-  Pose offset{Pose::Identity()};  ///< SI; RAPID Offs/RelTool, TP Offset/Tool_Offset with known values
+  Pose offset{
+      Pose::Identity()};  ///< SI; RAPID Offs/RelTool, TP Offset/Tool_Offset with known values
 };
 
 struct Unresolved {
@@ -195,7 +206,8 @@ struct Program {
   std::vector<Unresolved> unresolved;
   std::vector<std::string> notes;
   std::map<std::pair<int, std::uint32_t>, Edit> edits;  ///< pending edits by (file, offset)
-  /// FANUC `$SCR_GRP[1].$TURN_AXIS[1..3]` (1-based joint numbers) when known (docs/programs.md §9.1 item 1).
+  /// FANUC `$SCR_GRP[1].$TURN_AXIS[1..3]` (1-based joint numbers) when known (docs/programs.md §9.1
+  /// item 1).
   std::optional<std::array<int, 3>> fanuc_turn_axes;
   /// Fewest decimals (mm) a changed position is printed with. 3 keeps the usual OLP style (1 µm);
   /// `roprec compensate` raises it to 5 (0.01 µm) so the written target carries the compensation
@@ -210,7 +222,8 @@ struct Program {
 Program readProgram(const std::string& path);
 /// Same from bytes already in memory (`dat_bytes` only for KRL; nullopt = no .dat).
 Program parseProgram(Dialect d, const std::string& path, std::string bytes,
-                     std::optional<std::string> dat_bytes = std::nullopt, const std::string& dat_path = "");
+                     std::optional<std::string> dat_bytes = std::nullopt,
+                     const std::string& dat_path = "");
 /// Dialect from a path (extension, then content); throws InputError when unknown.
 Dialect detectDialect(const std::string& path, const std::string& bytes);
 
@@ -259,8 +272,8 @@ std::vector<std::string> outputPaths(const Program& p, const std::string& out_pa
 // ---- number style (docs/programs.md §2.9, §3.8, §4.8)
 
 struct NumberHints {
-  int min_decimals{3};       ///< absolute resolution kept for changed values (mm/deg: 3, quaternions: 9)
-  bool significant9{false};  ///< KSS style: 9 significant digits, trailing zeros kept
+  int min_decimals{3};  ///< absolute resolution kept for changed values (mm/deg: 3, quaternions: 9)
+  bool significant9{false};       ///< KSS style: 9 significant digits, trailing zeros kept
   bool drop_leading_zero{false};  ///< file writes `.044` (FANUC controller)
 };
 

@@ -47,7 +47,9 @@ class RapidReader {
     while (i < t.size() && t[i].kind == TokenKind::kNewline) ++i;
     if (i < t.size() && t[i].kind == TokenKind::kComment && f_.text(t[i]).rfind("%%%", 0) == 0) {
       ++i;
-      while (i < t.size() && !(t[i].kind == TokenKind::kComment && f_.text(t[i]).rfind("%%%", 0) == 0)) ++i;
+      while (i < t.size() &&
+             !(t[i].kind == TokenKind::kComment && f_.text(t[i]).rfind("%%%", 0) == 0))
+        ++i;
       if (i >= t.size()) failAt(f_, f_.bytes.size(), "truncated file: %%% header not closed");
       ++i;
     }
@@ -61,9 +63,10 @@ class RapidReader {
       std::size_t k = i;
       if (w == "LOCAL" || w == "TASK") ++k;
       const std::string w2 = k < t.size() ? upper(f_.text(t[k])) : "";
-      static const char* const kLineKw[] = {"MODULE", "ENDMODULE", "PROC", "FUNC", "TRAP", "ENDPROC", "ENDFUNC",
-                                            "ENDTRAP", "ENDIF", "ELSE", "ENDFOR", "ENDWHILE", "ENDTEST", "DEFAULT",
-                                            "ERROR", "UNDO", "BACKWARD", "CASE", "RECORD", "ENDRECORD", "TEST"};
+      static const char* const kLineKw[] = {
+          "MODULE",  "ENDMODULE", "PROC",     "FUNC",   "TRAP",     "ENDPROC",   "ENDFUNC",
+          "ENDTRAP", "ENDIF",     "ELSE",     "ENDFOR", "ENDWHILE", "ENDTEST",   "DEFAULT",
+          "ERROR",   "UNDO",      "BACKWARD", "CASE",   "RECORD",   "ENDRECORD", "TEST"};
       bool line_kw = false;
       for (const char* kw : kLineKw) line_kw = line_kw || w2 == kw;
       if (line_kw) {
@@ -83,7 +86,8 @@ class RapidReader {
       if (w == "IF" || w == "WHILE" || w == "FOR" || w == "ELSEIF") {
         std::size_t j = i;
         while (j < t.size() && !(t[j].kind == TokenKind::kPunct && f_.text(t[j]) == ";") &&
-               !(t[j].kind == TokenKind::kIdentifier && (iequals(f_.text(t[j]), "THEN") || iequals(f_.text(t[j]), "DO")))) {
+               !(t[j].kind == TokenKind::kIdentifier &&
+                 (iequals(f_.text(t[j]), "THEN") || iequals(f_.text(t[j]), "DO")))) {
           ++j;
         }
         i = j + 1;
@@ -125,14 +129,16 @@ class RapidReader {
 
   void unresolved(const std::string& ref, std::size_t off, const std::string& what) {
     if (reported_.count(upper(ref)) != 0) return;
-    if (reported_.emplace(upper(ref), true).second) p_.unresolved.push_back(Unresolved{ref, 0, f_.lineOf(off), what});
+    if (reported_.emplace(upper(ref), true).second)
+      p_.unresolved.push_back(Unresolved{ref, 0, f_.lineOf(off), what});
   }
 
   // Parses an expression element in [i, e); advances i.
   Node parseElement(std::size_t& i, std::size_t e) {
     const std::vector<Token>& t = f_.tokens;
     while (i < e && (t[i].kind == TokenKind::kNewline || t[i].kind == TokenKind::kComment)) ++i;
-    if (i >= e) fail(i < t.size() ? t[i].offset : f_.bytes.size(), "unterminated aggregate (missing ']')");
+    if (i >= e)
+      fail(i < t.size() ? t[i].offset : f_.bytes.size(), "unterminated aggregate (missing ']')");
     Node n;
     n.begin = t[i].offset;
     if (t[i].kind == TokenKind::kPunct && f_.text(t[i]) == "[") {
@@ -179,12 +185,15 @@ class RapidReader {
     }
     if (i == s) fail(t[s].offset, "empty element in aggregate");
     n.end = t[i - 1].offset + t[i - 1].length;
-    const bool sign = t[s].kind == TokenKind::kPunct && (f_.text(t[s]) == "-" || f_.text(t[s]) == "+");
+    const bool sign =
+        t[s].kind == TokenKind::kPunct && (f_.text(t[s]) == "-" || f_.text(t[s]) == "+");
     if (t[s].kind == TokenKind::kNumber || sign) {
       const std::string_view txt = std::string_view(f_.bytes).substr(n.begin, n.end - n.begin);
-      const bool one = (i - s == 1 && !sign) || (i - s == 2 && sign && t[s + 1].kind == TokenKind::kNumber);
+      const bool one =
+          (i - s == 1 && !sign) || (i - s == 2 && sign && t[s + 1].kind == TokenKind::kNumber);
       const std::size_t num = sign ? s + 1 : s;
-      if (sign && (num >= i || t[num].kind != TokenKind::kNumber)) fail(n.begin, "broken number '" + std::string(txt) + "'");
+      if (sign && (num >= i || t[num].kind != TokenKind::kNumber))
+        fail(n.begin, "broken number '" + std::string(txt) + "'");
       if (!one) {
         // an expression unless the number runs straight into more number/identifier characters
         const Token& a = t[num];
@@ -207,8 +216,12 @@ class RapidReader {
   Node parseValue(std::size_t b, std::size_t e) {
     std::size_t i = b;
     Node n = parseElement(i, e);
-    while (i < e && (f_.tokens[i].kind == TokenKind::kNewline || f_.tokens[i].kind == TokenKind::kComment)) ++i;
-    if (i < e && n.list) fail(f_.tokens[i].offset, "unexpected '" + std::string(f_.text(f_.tokens[i])) + "' after aggregate");
+    while (i < e &&
+           (f_.tokens[i].kind == TokenKind::kNewline || f_.tokens[i].kind == TokenKind::kComment))
+      ++i;
+    if (i < e && n.list)
+      fail(f_.tokens[i].offset,
+           "unexpected '" + std::string(f_.text(f_.tokens[i])) + "' after aggregate");
     return n;
   }
 
@@ -230,9 +243,11 @@ class RapidReader {
 
   static Pose poseOf(const Node& n) {
     Pose T = Pose::Identity();
-    T.translation() = Vec3(n.items[0].items[0].value, n.items[0].items[1].value, n.items[0].items[2].value) * 1e-3;
-    Eigen::Quaterniond q(n.items[1].items[0].value, n.items[1].items[1].value, n.items[1].items[2].value,
-                         n.items[1].items[3].value);
+    T.translation() =
+        Vec3(n.items[0].items[0].value, n.items[0].items[1].value, n.items[0].items[2].value) *
+        1e-3;
+    Eigen::Quaterniond q(n.items[1].items[0].value, n.items[1].items[1].value,
+                         n.items[1].items[2].value, n.items[1].items[3].value);
     if (q.norm() > 0) q.normalize();
     T.linear() = q.toRotationMatrix();
     return T;
@@ -278,7 +293,8 @@ class RapidReader {
     t.file = 0;
     t.line = f_.lineOf(n.begin);
     t.kind = TargetKind::kJoint;
-    for (std::size_t k = 0; k < 6; ++k) t.joints[k] = field(n.items[0].items[k], "jointtarget robax");
+    for (std::size_t k = 0; k < 6; ++k)
+      t.joints[k] = field(n.items[0].items[k], "jointtarget robax");
     for (std::size_t k = 0; k < 6; ++k) t.ext[k] = field(n.items[1].items[k], "jointtarget extax");
     return add(std::move(t));
   }
@@ -320,8 +336,10 @@ class RapidReader {
     if (i < e && f_.text(t[i]) == "{") return;  // arrays: runtime
     const std::string key = upper(name);
     if (i >= e || f_.text(t[i]) != ":=") {
-      if (type == "TOOLDATA") tools_[key] = ToolState{Pose::Identity(), false, false, f_.lineOf(name_off)};
-      if (type == "WOBJDATA") wobjs_[key] = ToolState{Pose::Identity(), false, false, f_.lineOf(name_off)};
+      if (type == "TOOLDATA")
+        tools_[key] = ToolState{Pose::Identity(), false, false, f_.lineOf(name_off)};
+      if (type == "WOBJDATA")
+        wobjs_[key] = ToolState{Pose::Identity(), false, false, f_.lineOf(name_off)};
       return;
     }
     ++i;
@@ -351,7 +369,8 @@ class RapidReader {
     if (member.empty()) {
       if (tools_.count(name) != 0) tools_[name] = toolFrom(v);
       if (wobjs_.count(name) != 0) wobjs_[name] = wobjFrom(v);
-      if (speeds_.count(name) != 0 && v.list && !v.items.empty() && v.items[0].number) speeds_[name] = v.items[0].value;
+      if (speeds_.count(name) != 0 && v.list && !v.items.empty() && v.items[0].number)
+        speeds_[name] = v.items[0].value;
       return;
     }
     if (member == ".TFRAME" && tools_.count(name) != 0) {
@@ -383,17 +402,24 @@ class RapidReader {
   };
   std::unordered_map<std::string, WobjParts> wobj_parts_;
 
-  Frame frameOf(const std::unordered_map<std::string, ToolState>& table, const std::string& ref, std::size_t off,
-                bool tool) {
+  Frame frameOf(const std::unordered_map<std::string, ToolState>& table, const std::string& ref,
+                std::size_t off, bool tool) {
     const auto it = table.find(upper(ref));
     if (it == table.end()) {
-      unresolved(ref, off, tool ? "tooldata not declared in the module" : "wobjdata not declared in the module");
+      unresolved(
+          ref, off,
+          tool ? "tooldata not declared in the module" : "wobjdata not declared in the module");
       return Frame{ref, false, Pose::Identity(), -1, 0};
     }
-    if (!it->second.resolved) unresolved(ref, off, tool ? "tooldata has no value in the module" : "wobjdata has no value in the module");
+    if (!it->second.resolved)
+      unresolved(
+          ref, off,
+          tool ? "tooldata has no value in the module" : "wobjdata has no value in the module");
     if (it->second.stationary && reported_.emplace("STATIONARY:" + upper(ref), true).second) {
-      p_.notes.push_back(ref + (tool ? ": stationary tool (robhold FALSE)" : ": robot-held or moving work object") +
-                         " — base and tool swap roles; poses reported as written");
+      p_.notes.push_back(
+          ref +
+          (tool ? ": stationary tool (robhold FALSE)" : ": robot-held or moving work object") +
+          " — base and tool swap roles; poses reported as written");
     }
     return Frame{ref, it->second.resolved, it->second.pose, 0, it->second.line};
   }
@@ -407,7 +433,8 @@ class RapidReader {
     const std::vector<Token>& t = f_.tokens;
     if (a.b >= a.e) fail(t[a.b > 0 ? a.b - 1 : 0].offset, "motion without a target");
     if (f_.text(t[a.b]) != "[") {  // literal targets: the target itself is the text
-      m.target_text = f_.bytes.substr(t[a.b].offset, t[a.e - 1].offset + t[a.e - 1].length - t[a.b].offset);
+      m.target_text =
+          f_.bytes.substr(t[a.b].offset, t[a.e - 1].offset + t[a.e - 1].length - t[a.b].offset);
     }
     if (f_.text(t[a.b]) == "[") {
       const Node n = parseValue(a.b, a.e);
@@ -426,7 +453,8 @@ class RapidReader {
       m.derivation = fn == "OFFS" ? "Offs" : "RelTool";
       const auto it = targets_.find(upper(f_.text(t[a.b + 2])));
       if (it == targets_.end()) {
-        unresolved(std::string(f_.text(t[a.b + 2])), t[a.b + 2].offset, "target not declared in the module");
+        unresolved(std::string(f_.text(t[a.b + 2])), t[a.b + 2].offset,
+                   "target not declared in the module");
         return -1;
       }
       // literal displacements dx, dy, dz [\Rx:=..][\Ry:=..][\Rz:=..]
@@ -443,8 +471,11 @@ class RapidReader {
           const std::string sw = upper(f_.text(t[k + 1]));
           std::size_t s = k + 3;
           std::size_t q = s;
-          while (q < a.e && f_.text(t[q]) != "," && f_.text(t[q]) != ")" && f_.text(t[q]) != "\\") ++q;
-          const auto v = q > s ? parseNumber(std::string_view(f_.bytes).substr(t[s].offset, t[q - 1].offset + t[q - 1].length - t[s].offset)) : std::nullopt;
+          while (q < a.e && f_.text(t[q]) != "," && f_.text(t[q]) != ")" && f_.text(t[q]) != "\\")
+            ++q;
+          const auto v = q > s ? parseNumber(std::string_view(f_.bytes).substr(
+                                     t[s].offset, t[q - 1].offset + t[q - 1].length - t[s].offset))
+                               : std::nullopt;
           if (!v) literal = false;
           if (v && sw == "RX") r[0] = *v;
           if (v && sw == "RY") r[1] = *v;
@@ -453,8 +484,11 @@ class RapidReader {
           continue;
         }
         std::size_t q = k;
-        while (q < a.e && f_.text(t[q]) != "," && f_.text(t[q]) != ")" && f_.text(t[q]) != "\\") ++q;
-        const auto v = q > k ? parseNumber(std::string_view(f_.bytes).substr(t[k].offset, t[q - 1].offset + t[q - 1].length - t[k].offset)) : std::nullopt;
+        while (q < a.e && f_.text(t[q]) != "," && f_.text(t[q]) != ")" && f_.text(t[q]) != "\\")
+          ++q;
+        const auto v = q > k ? parseNumber(std::string_view(f_.bytes).substr(
+                                   t[k].offset, t[q - 1].offset + t[q - 1].length - t[k].offset))
+                             : std::nullopt;
         if (!v) literal = false;
         if (v) d.push_back(*v);
         k = q;
@@ -464,7 +498,8 @@ class RapidReader {
         m.offset_in_tool = fn == "RELTOOL";
         m.offset.setIdentity();
         m.offset.translation() = Vec3(d[0], d[1], d[2]) * 1e-3;
-        m.offset.linear() = (Eigen::AngleAxisd(r[0] * kDeg, Vec3::UnitX()) * Eigen::AngleAxisd(r[1] * kDeg, Vec3::UnitY()) *
+        m.offset.linear() = (Eigen::AngleAxisd(r[0] * kDeg, Vec3::UnitX()) *
+                             Eigen::AngleAxisd(r[1] * kDeg, Vec3::UnitY()) *
                              Eigen::AngleAxisd(r[2] * kDeg, Vec3::UnitZ()))
                                 .toRotationMatrix();
       }
@@ -484,8 +519,8 @@ class RapidReader {
     const bool absj = kw.rfind("MOVEABSJ", 0) == 0;
     const bool circ = kw.rfind("MOVEC", 0) == 0 || kw == "TRIGGC";
     m.type = absj || kw.rfind("MOVEJ", 0) == 0 || kw == "TRIGGJ" ? MotionType::kJoint
-             : circ                                                ? MotionType::kCircular
-                                                                   : MotionType::kLinear;
+             : circ                                              ? MotionType::kCircular
+                                                                 : MotionType::kLinear;
     m.config_honoured = m.type == MotionType::kJoint ? conf_j_ : conf_l_;
     // split arguments
     std::vector<Arg> pos;
@@ -527,8 +562,12 @@ class RapidReader {
     close(e);
     // drop leading/trailing newline tokens inside args
     auto trim = [&](Arg a) {
-      while (a.b < a.e && (t[a.b].kind == TokenKind::kNewline || t[a.b].kind == TokenKind::kComment)) ++a.b;
-      while (a.e > a.b && (t[a.e - 1].kind == TokenKind::kNewline || t[a.e - 1].kind == TokenKind::kComment)) --a.e;
+      while (a.b < a.e &&
+             (t[a.b].kind == TokenKind::kNewline || t[a.b].kind == TokenKind::kComment))
+        ++a.b;
+      while (a.e > a.b &&
+             (t[a.e - 1].kind == TokenKind::kNewline || t[a.e - 1].kind == TokenKind::kComment))
+        --a.e;
       return a;
     };
     for (Arg& a : pos) a = trim(a);
@@ -554,7 +593,9 @@ class RapidReader {
     }
     m.target = targetArg(pos[ip], m, absj);
     auto argText = [&](const Arg& a) {
-      return a.b < a.e ? f_.bytes.substr(t[a.b].offset, t[a.e - 1].offset + t[a.e - 1].length - t[a.b].offset) : std::string();
+      return a.b < a.e ? f_.bytes.substr(t[a.b].offset,
+                                         t[a.e - 1].offset + t[a.e - 1].length - t[a.b].offset)
+                       : std::string();
     };
     if (speed_i < pos.size()) {
       m.speed_text = argText(pos[speed_i]);
@@ -595,7 +636,8 @@ class RapidReader {
       declaration(b, e);
       return;
     }
-    if (w.rfind("MOVE", 0) == 0 || w == "TRIGGL" || w == "TRIGGJ" || w == "TRIGGC" || w == "SEARCHL" || w == "SEARCHJ") {
+    if (w.rfind("MOVE", 0) == 0 || w == "TRIGGL" || w == "TRIGGJ" || w == "TRIGGC" ||
+        w == "SEARCHL" || w == "SEARCHJ") {
       if (w != "MOVEEXTJ") {
         motion(b, e);
         return;
@@ -607,7 +649,8 @@ class RapidReader {
       return;
     }
     if (w == "WAITTIME" && b + 1 < e) {
-      if (!p_.motions.empty()) p_.motions.back().markers.push_back("dwell " + std::string(f_.text(t[e - 1])) + " s");
+      if (!p_.motions.empty())
+        p_.motions.back().markers.push_back("dwell " + std::string(f_.text(t[e - 1])) + " s");
       return;
     }
     for (std::size_t k = b; k < e; ++k) {
@@ -616,8 +659,10 @@ class RapidReader {
         return;
       }
     }
-    if (t[b].kind == TokenKind::kIdentifier && (w.find("SPINDLE") != std::string::npos || w.find("DRILL") != std::string::npos)) {
-      if (!p_.motions.empty()) p_.motions.back().markers.push_back("call " + std::string(f_.text(t[b])));
+    if (t[b].kind == TokenKind::kIdentifier &&
+        (w.find("SPINDLE") != std::string::npos || w.find("DRILL") != std::string::npos)) {
+      if (!p_.motions.empty())
+        p_.motions.back().markers.push_back("call " + std::string(f_.text(t[b])));
     }
     // other statements: kept verbatim; aggregates in them still validated
     for (std::size_t k = b; k < e; ++k) {

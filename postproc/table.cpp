@@ -1,4 +1,5 @@
-/// CSV/JSON target lists and the contract's hole-list CSV (docs/programs.md §5, docs/contract.md §7).
+/// CSV/JSON target lists and the contract's hole-list CSV (docs/programs.md §5, docs/contract.md
+/// §7).
 ///
 /// CSV: a header row, then one target a row; `#` starts a comment line. Column names are matched
 /// case-insensitively after stripping `_mm`, `_deg`, `_frame` suffixes. Orientation columns and
@@ -37,7 +38,8 @@ std::string columnKey(std::string_view raw) {
   while (!k.empty() && (k.front() == ' ' || k.front() == '"')) k.erase(0, 1);
   for (const char* suf : {"_mm", "_deg", "_frame"}) {
     const std::string s(suf);
-    if (k.size() > s.size() && k.compare(k.size() - s.size(), s.size(), s) == 0) k.erase(k.size() - s.size());
+    if (k.size() > s.size() && k.compare(k.size() - s.size(), s.size(), s) == 0)
+      k.erase(k.size() - s.size());
   }
   return k;
 }
@@ -51,7 +53,9 @@ Pose poseFromText(const SourceFile& f, std::size_t off, std::string_view text) {
     while (j < text.size() && text[j] != ' ' && text[j] != '\t' && text[j] != ',') ++j;
     if (j > i) {
       const auto x = parseNumber(text.substr(i, j - i));
-      if (!x) failAt(f, off, "broken number '" + std::string(text.substr(i, j - i)) + "' in frame declaration");
+      if (!x)
+        failAt(f, off,
+               "broken number '" + std::string(text.substr(i, j - i)) + "' in frame declaration");
       v.push_back(*x);
     }
     i = j;
@@ -127,7 +131,8 @@ class CsvReader {
         std::string name(rest.substr(0, colon));
         name.erase(name.find_last_not_of(' ') + 1);
         const Pose T = poseFromText(f_, off, rest.substr(colon + 1));
-        (std::string(kw) == "frame " ? frames_ : tools_)[upper(name)] = Frame{name, true, T, 0, f_.lineOf(off)};
+        (std::string(kw) == "frame " ? frames_ : tools_)[upper(name)] =
+            Frame{name, true, T, 0, f_.lineOf(off)};
       }
     }
   }
@@ -163,12 +168,15 @@ class CsvReader {
   void header(std::size_t s, std::size_t e) {
     const std::string_view h = std::string_view(f_.bytes).substr(s, e - s);
     if (h.find(',') == std::string_view::npos) {
-      if (h.find(';') != std::string_view::npos) delim_ = ';';
-      else if (h.find('\t') != std::string_view::npos) delim_ = '\t';
+      if (h.find(';') != std::string_view::npos)
+        delim_ = ';';
+      else if (h.find('\t') != std::string_view::npos)
+        delim_ = '\t';
     }
     const std::vector<Cell> cells = split(s, e);
     for (std::size_t i = 0; i < cells.size(); ++i) {
-      const std::string k = columnKey(std::string_view(f_.bytes).substr(cells[i].begin, cells[i].end - cells[i].begin));
+      const std::string k = columnKey(
+          std::string_view(f_.bytes).substr(cells[i].begin, cells[i].end - cells[i].begin));
       if (!k.empty() && col_.count(k) == 0) col_[k] = static_cast<int>(i);
     }
     auto has = [&](std::initializer_list<const char*> ks) {
@@ -203,16 +211,21 @@ class CsvReader {
       } else if (euler_ == "XYZ_INTRINSIC" || euler_ == "TXYZRXYZ") {
         orient_ = Orientation::kXyzIntrinsic;
       } else {
-        fail(s, "columns rx,ry,rz need a declared convention: '# euler: ZYX | XYZ_fixed | XYZ_intrinsic'");
+        fail(s,
+             "columns rx,ry,rz need a declared convention: '# euler: ZYX | XYZ_fixed | "
+             "XYZ_intrinsic'");
       }
     } else if (!has({"j1", "j2", "j3", "j4", "j5", "j6"})) {
-      fail(s, "no orientation columns (a,b,c | w,p,r | qw,qx,qy,qz | rx,ry,rz with '# euler:' | i,j,k) and no j1..j6");
+      fail(s,
+           "no orientation columns (a,b,c | w,p,r | qw,qx,qy,qz | rx,ry,rz with '# euler:' | "
+           "i,j,k) and no j1..j6");
     }
   }
 
   std::optional<NumberField> num(const std::vector<Cell>& cells, const char* key) const {
     const auto it = col_.find(key);
-    if (it == col_.end() || static_cast<std::size_t>(it->second) >= cells.size()) return std::nullopt;
+    if (it == col_.end() || static_cast<std::size_t>(it->second) >= cells.size())
+      return std::nullopt;
     const Cell& c = cells[static_cast<std::size_t>(it->second)];
     if (c.begin == c.end) return std::nullopt;
     return numberField(p_, 0, c.begin, c.end);
@@ -247,12 +260,24 @@ class CsvReader {
     const char* const* keys = nullptr;
     int n = 3;
     switch (orient_) {
-      case Orientation::kKukaAbc: keys = kAbc; break;
-      case Orientation::kFanucWpr: keys = kWpr; break;
-      case Orientation::kQuaternion: keys = kQ; n = 4; break;
-      case Orientation::kXyzIntrinsic: keys = kRxyz; break;
-      case Orientation::kAxis: keys = kIjk; break;
-      case Orientation::kNone: break;
+      case Orientation::kKukaAbc:
+        keys = kAbc;
+        break;
+      case Orientation::kFanucWpr:
+        keys = kWpr;
+        break;
+      case Orientation::kQuaternion:
+        keys = kQ;
+        n = 4;
+        break;
+      case Orientation::kXyzIntrinsic:
+        keys = kRxyz;
+        break;
+      case Orientation::kAxis:
+        keys = kIjk;
+        break;
+      case Orientation::kNone:
+        break;
     }
     bool have_rot = keys != nullptr;
     for (int i = 0; keys != nullptr && i < n; ++i) {
@@ -277,7 +302,8 @@ class CsvReader {
     if (!cart && !joints) fail(s, "row has neither a complete pose nor joints j1..j6");
     t.kind = cart ? TargetKind::kCartesian : TargetKind::kJoint;
     if (!cart) t.orientation = Orientation::kNone;
-    t.config = parseConfigurationText(text(cells, "conf").empty() ? text(cells, "config") : text(cells, "conf"));
+    t.config = parseConfigurationText(text(cells, "conf").empty() ? text(cells, "config")
+                                                                  : text(cells, "conf"));
     t.frame_ref = text(cells, "frame");
     t.tool_ref = text(cells, "tool");
     if (holes_mode_) {
@@ -296,19 +322,24 @@ class CsvReader {
     }
     // one motion per row
     Motion m;
-    const std::string mv = upper(text(cells, "move").empty() ? text(cells, "motion") : text(cells, "move"));
+    const std::string mv =
+        upper(text(cells, "move").empty() ? text(cells, "motion") : text(cells, "move"));
     m.instruction = mv.empty() ? "row" : mv;
-    m.type = (mv == "J" || mv == "PTP" || mv == "MOVEJ" || mv == "MOVEABSJ") ? MotionType::kJoint : MotionType::kLinear;
+    m.type = (mv == "J" || mv == "PTP" || mv == "MOVEJ" || mv == "MOVEABSJ") ? MotionType::kJoint
+                                                                             : MotionType::kLinear;
     m.file = 0;
     m.line = t.line;
     if (const auto v = num(cells, "speed")) m.speed_mm_s = v->value;
     if (!t.frame_ref.empty()) {
       const auto it = frames_.find(upper(t.frame_ref));
-      m.base = internFrame(p_, it != frames_.end() ? it->second : Frame{t.frame_ref, false, Pose::Identity(), -1, 0});
+      m.base =
+          internFrame(p_, it != frames_.end() ? it->second
+                                              : Frame{t.frame_ref, false, Pose::Identity(), -1, 0});
     }
     if (!t.tool_ref.empty()) {
       const auto it = tools_.find(upper(t.tool_ref));
-      m.tool = internFrame(p_, it != tools_.end() ? it->second : Frame{t.tool_ref, false, Pose::Identity(), -1, 0});
+      m.tool = internFrame(
+          p_, it != tools_.end() ? it->second : Frame{t.tool_ref, false, Pose::Identity(), -1, 0});
     }
     p_.target_list.push_back(std::move(t));
     m.target = static_cast<int>(p_.target_list.size() - 1);
@@ -355,7 +386,8 @@ class JsonParser {
 
   [[noreturn]] void fail(const std::string& m) const { failAt(f_, std::min(i_, b_.size()), m); }
   void ws() {
-    while (i_ < b_.size() && (b_[i_] == ' ' || b_[i_] == '\t' || b_[i_] == '\n' || b_[i_] == '\r')) ++i_;
+    while (i_ < b_.size() && (b_[i_] == ' ' || b_[i_] == '\t' || b_[i_] == '\n' || b_[i_] == '\r'))
+      ++i_;
   }
   std::string string() {
     std::string s;
@@ -433,7 +465,9 @@ class JsonParser {
       v.str = string();
     } else if (c == '-' || isDigit(c)) {
       std::size_t j = i_ + 1;
-      while (j < b_.size() && (isDigit(b_[j]) || b_[j] == '.' || b_[j] == 'e' || b_[j] == 'E' || b_[j] == '+' || b_[j] == '-')) ++j;
+      while (j < b_.size() && (isDigit(b_[j]) || b_[j] == '.' || b_[j] == 'e' || b_[j] == 'E' ||
+                               b_[j] == '+' || b_[j] == '-'))
+        ++j;
       const auto x = parseNumber(std::string_view(b_).substr(i_, j - i_));
       if (!x) fail("broken number '" + b_.substr(i_, j - i_) + "'");
       v.kind = JValue::kNumber;
@@ -463,8 +497,10 @@ Frame jsonFrame(const SourceFile& f, const JValue& v) {
   fr.line = f.lineOf(v.begin);
   if (pos != nullptr && q != nullptr && pos->items.size() == 3 && q->items.size() == 4) {
     fr.resolved = true;
-    fr.pose.translation() = Vec3(pos->items[0].number, pos->items[1].number, pos->items[2].number) * 1e-3;
-    Eigen::Quaterniond qq(q->items[0].number, q->items[1].number, q->items[2].number, q->items[3].number);
+    fr.pose.translation() =
+        Vec3(pos->items[0].number, pos->items[1].number, pos->items[2].number) * 1e-3;
+    Eigen::Quaterniond qq(q->items[0].number, q->items[1].number, q->items[2].number,
+                          q->items[3].number);
     if (qq.norm() < 1e-9) failAt(f, v.begin, "zero quaternion");
     fr.pose.linear() = qq.normalized().toRotationMatrix();
   }
@@ -488,18 +524,22 @@ std::vector<HoleSpec> parseHoleList(const std::string& path, const std::string& 
   p.files.push_back(std::move(f));
   CsvReader r(p);
   r.run();
-  if (p.dialect != Dialect::kHoleCsv) throw InputError(path, 1, "not a hole list: the header needs id,x,y,z,i,j,k");
+  if (p.dialect != Dialect::kHoleCsv)
+    throw InputError(path, 1, "not a hole list: the header needs id,x,y,z,i,j,k");
   return r.holes;
 }
 
-std::vector<HoleSpec> readHoleList(const std::string& path) { return parseHoleList(path, readFileBytes(path)); }
+std::vector<HoleSpec> readHoleList(const std::string& path) {
+  return parseHoleList(path, readFileBytes(path));
+}
 
 void parseJson(Program& p) {
   const SourceFile& f = p.files[0];
   const JValue root = JsonParser(f).parse();
   if (root.kind != JValue::kObject) failAt(f, root.begin, "a target list must be a JSON object");
   const JValue* targets = root.get("targets");
-  if (targets == nullptr || targets->kind != JValue::kArray) failAt(f, root.begin, "a target list needs \"targets\": [...]");
+  if (targets == nullptr || targets->kind != JValue::kArray)
+    failAt(f, root.begin, "a target list needs \"targets\": [...]");
   std::unordered_map<std::string, Frame> frames;
   if (const JValue* fr = root.get("frames"); fr != nullptr && fr->kind == JValue::kArray) {
     for (const JValue& v : fr->items) {
@@ -557,7 +597,8 @@ void parseJson(Program& p) {
       } else if (euler == "XYZ_INTRINSIC") {
         t.orientation = Orientation::kXyzIntrinsic;
       } else {
-        failAt(f, o.begin, "rx,ry,rz need a declared \"euler\": \"ZYX\" | \"XYZ_fixed\" | \"XYZ_intrinsic\"");
+        failAt(f, o.begin,
+               "rx,ry,rz need a declared \"euler\": \"ZYX\" | \"XYZ_fixed\" | \"XYZ_intrinsic\"");
       }
     }
     if (const JValue* j = o.get("joints_deg"); j != nullptr) {
@@ -568,7 +609,8 @@ void parseJson(Program& p) {
       for (std::size_t k = 0; k < e->items.size() && k < 6; ++k) t.ext[k] = field(e->items[k]);
     }
     const bool cart = t.pos[0].present() && t.orientation != Orientation::kNone;
-    if (!cart && !t.joints[0].present()) failAt(f, o.begin, "target has neither a pose nor joints_deg");
+    if (!cart && !t.joints[0].present())
+      failAt(f, o.begin, "target has neither a pose nor joints_deg");
     t.kind = cart ? TargetKind::kCartesian : TargetKind::kJoint;
     if (const JValue* c = o.get("config")) t.config = parseConfigurationText(c->str);
     if (const JValue* fr = o.get("frame")) t.frame_ref = fr->str;
@@ -577,18 +619,23 @@ void parseJson(Program& p) {
     const JValue* mv = o.get("motion");
     m.instruction = mv != nullptr ? mv->str : "target";
     const std::string u = upper(m.instruction);
-    m.type = (u == "J" || u == "PTP" || u == "MOVEJ" || u == "MOVEABSJ") ? MotionType::kJoint : MotionType::kLinear;
+    m.type = (u == "J" || u == "PTP" || u == "MOVEJ" || u == "MOVEABSJ") ? MotionType::kJoint
+                                                                         : MotionType::kLinear;
     m.file = 0;
     m.line = t.line;
-    if (const JValue* s = o.get("speed_mm_s"); s != nullptr && s->kind == JValue::kNumber) m.speed_mm_s = s->number;
-    if (const JValue* s = o.get("fine"); s != nullptr) m.fine = f.bytes.compare(s->begin, 4, "true") == 0;
+    if (const JValue* s = o.get("speed_mm_s"); s != nullptr && s->kind == JValue::kNumber)
+      m.speed_mm_s = s->number;
+    if (const JValue* s = o.get("fine"); s != nullptr)
+      m.fine = f.bytes.compare(s->begin, 4, "true") == 0;
     if (!t.frame_ref.empty()) {
       const auto it = frames.find(upper(t.frame_ref));
-      m.base = internFrame(p, it != frames.end() ? it->second : Frame{t.frame_ref, false, Pose::Identity(), -1, 0});
+      m.base = internFrame(
+          p, it != frames.end() ? it->second : Frame{t.frame_ref, false, Pose::Identity(), -1, 0});
     }
     if (!t.tool_ref.empty()) {
       const auto it = frames.find(upper(t.tool_ref));
-      m.tool = internFrame(p, it != frames.end() ? it->second : Frame{t.tool_ref, false, Pose::Identity(), -1, 0});
+      m.tool = internFrame(
+          p, it != frames.end() ? it->second : Frame{t.tool_ref, false, Pose::Identity(), -1, 0});
     }
     p.target_list.push_back(std::move(t));
     m.target = static_cast<int>(p.target_list.size() - 1);

@@ -28,7 +28,8 @@ class TpReader {
       // line [i, j)
       if (j > i && t[i].kind == TokenKind::kPunct && f_.text(t[i]) == "/" && i + 1 < j &&
           t[i + 1].offset == t[i].offset + 1 && t[i + 1].kind == TokenKind::kIdentifier &&
-          f_.lineOf(t[i].offset) != 0 && f_.line_starts[static_cast<std::size_t>(f_.lineOf(t[i].offset) - 1)] == t[i].offset) {
+          f_.lineOf(t[i].offset) != 0 &&
+          f_.line_starts[static_cast<std::size_t>(f_.lineOf(t[i].offset) - 1)] == t[i].offset) {
         const std::string s = upper(f_.text(t[i + 1]));
         if (s == "PROG") {
           sec = Section::kProg;
@@ -83,7 +84,8 @@ class TpReader {
     number = -1;
     if (k + 1 >= e || !punct(k + 1, "[")) return k + 1;
     std::size_t q = k + 2;
-    if (q < e && f_.tokens[q].kind == TokenKind::kNumber) number = toInt(parseNumber(tx(q)).value_or(-1));
+    if (q < e && f_.tokens[q].kind == TokenKind::kNumber)
+      number = toInt(parseNumber(tx(q)).value_or(-1));
     int depth = 1;
     for (q = k + 2; q < e && depth > 0; ++q) {
       if (punct(q, "[")) ++depth;
@@ -102,7 +104,8 @@ class TpReader {
     const bool numbered = f_.tokens[k].kind == TokenKind::kNumber && k + 1 < e && punct(k + 1, ":");
     if (numbered) {
       k += 2;
-    } else if (punct(k, ":") && last_motion_line_ >= 0 && k + 1 < e && (iequals(tx(k + 1), "P") || iequals(tx(k + 1), "PR"))) {
+    } else if (punct(k, ":") && last_motion_line_ >= 0 && k + 1 < e &&
+               (iequals(tx(k + 1), "P") || iequals(tx(k + 1), "PR"))) {
       continuation(k + 1, e);
       return;
     } else if (punct(k, ":")) {
@@ -143,10 +146,13 @@ class TpReader {
       return;
     }
     if (punct(k, "!")) {
-      const std::string u = upper(std::string_view(f_.bytes).substr(f_.tokens[k].offset, f_.tokens[e - 1].offset - f_.tokens[k].offset));
+      const std::string u = upper(std::string_view(f_.bytes).substr(
+          f_.tokens[k].offset, f_.tokens[e - 1].offset - f_.tokens[k].offset));
       if (u.find("DRILL") != std::string::npos || u.find("PLUNGE") != std::string::npos) {
-        marker("comment " + std::string(std::string_view(f_.bytes).substr(f_.tokens[k].offset,
-                                                                           f_.tokens[e - 1].offset + f_.tokens[e - 1].length - f_.tokens[k].offset)));
+        marker("comment " +
+               std::string(std::string_view(f_.bytes).substr(
+                   f_.tokens[k].offset,
+                   f_.tokens[e - 1].offset + f_.tokens[e - 1].length - f_.tokens[k].offset)));
       }
     }
   }
@@ -192,14 +198,18 @@ class TpReader {
     m.file = 0;
     m.line = f_.lineOf(f_.tokens[k].offset);
     const char c = m.instruction[0];
-    m.type = c == 'J' ? MotionType::kJoint : (c == 'C' || c == 'A') ? MotionType::kCircular : MotionType::kLinear;
+    m.type = c == 'J'                 ? MotionType::kJoint
+             : (c == 'C' || c == 'A') ? MotionType::kCircular
+                                      : MotionType::kLinear;
     m.config_honoured = m.type == MotionType::kJoint;
     std::size_t q = k + 1;
     if (q >= e) fail(f_.tokens[k].offset, "motion without a target");
     const std::string ref = upper(tx(q));
     int number = -1;
     const std::size_t after = reference(q, e, number);
-    m.target_text = std::string(std::string_view(f_.bytes).substr(f_.tokens[q].offset, f_.tokens[after - 1].offset + f_.tokens[after - 1].length - f_.tokens[q].offset));
+    m.target_text = std::string(std::string_view(f_.bytes).substr(
+        f_.tokens[q].offset,
+        f_.tokens[after - 1].offset + f_.tokens[after - 1].length - f_.tokens[q].offset));
     int pnum = -1;
     if (ref == "P" && number >= 0) {
       pnum = number;
@@ -277,14 +287,19 @@ class TpReader {
       if (i >= t.size()) fail(t[rec].offset, "truncated position record");
       // skip to '{'
       while (i < t.size() && t[i].kind == TokenKind::kNewline) ++i;
-      if (i >= t.size() || !punct(i, "{")) fail(t[rec].offset, "expected '{' after P[" + std::to_string(number) + "]");
+      if (i >= t.size() || !punct(i, "{"))
+        fail(t[rec].offset, "expected '{' after P[" + std::to_string(number) + "]");
       // find the closing '};'
       std::size_t e = i + 1;
       while (e < t.size() && !punct(e, "}")) {
-        if (punct(e, "/") && e + 1 < t.size() && iequals(tx(e + 1), "END")) e = t.size();
-        else ++e;
+        if (punct(e, "/") && e + 1 < t.size() && iequals(tx(e + 1), "END"))
+          e = t.size();
+        else
+          ++e;
       }
-      if (e >= t.size()) fail(t[rec].offset, "unterminated position record P[" + std::to_string(number) + "] (missing '};')");
+      if (e >= t.size())
+        fail(t[rec].offset,
+             "unterminated position record P[" + std::to_string(number) + "] (missing '};')");
       record(rec, number, i + 1, e);
       i = e + 1;
       if (i < t.size() && punct(i, ";")) ++i;
@@ -323,11 +338,13 @@ class TpReader {
       if ((n == "UF" || n == "UT") && q + 2 < e && punct(q + 1, ":")) {
         std::size_t r = q + 2;
         const NumberField v = signedNumber(r, e, f_.tokens[q + 1].offset + 1);
-        (n == "UF" ? t.frame_ref : t.tool_ref) = (n == "UF" ? "UFRAME[" : "UTOOL[") + std::to_string(toInt(v.value)) + "]";
+        (n == "UF" ? t.frame_ref : t.tool_ref) =
+            (n == "UF" ? "UFRAME[" : "UTOOL[") + std::to_string(toInt(v.value)) + "]";
         q = r;
         continue;
       }
-      if (n == "CONFIG" && q + 2 < e && punct(q + 1, ":") && f_.tokens[q + 2].kind == TokenKind::kString) {
+      if (n == "CONFIG" && q + 2 < e && punct(q + 1, ":") &&
+          f_.tokens[q + 2].kind == TokenKind::kString) {
         const Token& s = f_.tokens[q + 2];
         const std::string_view sv = f_.text(s);
         if (sv.size() < 2 || sv.back() != '\'') fail(s.offset, "unterminated CONFIG string");
@@ -341,14 +358,22 @@ class TpReader {
       if (q + 1 < e && punct(q + 1, "=")) {
         std::size_t r = q + 2;
         const NumberField v = signedNumber(r, e, f_.tokens[q + 1].offset + 1);
-        if (n == "X") t.pos[0] = v, cart = true;
-        else if (n == "Y") t.pos[1] = v, cart = true;
-        else if (n == "Z") t.pos[2] = v, cart = true;
-        else if (n == "W") t.rot[0] = v;
-        else if (n == "P") t.rot[1] = v;
-        else if (n == "R") t.rot[2] = v;
-        else if (n.size() == 2 && n[0] == 'J' && n[1] >= '1' && n[1] <= '6') t.joints[static_cast<std::size_t>(n[1] - '1')] = v, joint = true;
-        else if (n.size() == 2 && n[0] == 'E' && n[1] >= '1' && n[1] <= '6') t.ext[static_cast<std::size_t>(n[1] - '1')] = v;
+        if (n == "X")
+          t.pos[0] = v, cart = true;
+        else if (n == "Y")
+          t.pos[1] = v, cart = true;
+        else if (n == "Z")
+          t.pos[2] = v, cart = true;
+        else if (n == "W")
+          t.rot[0] = v;
+        else if (n == "P")
+          t.rot[1] = v;
+        else if (n == "R")
+          t.rot[2] = v;
+        else if (n.size() == 2 && n[0] == 'J' && n[1] >= '1' && n[1] <= '6')
+          t.joints[static_cast<std::size_t>(n[1] - '1')] = v, joint = true;
+        else if (n.size() == 2 && n[0] == 'E' && n[1] >= '1' && n[1] <= '6')
+          t.ext[static_cast<std::size_t>(n[1] - '1')] = v;
         q = r;
         continue;
       }
@@ -357,7 +382,8 @@ class TpReader {
     if (!gp1) p_.notes.push_back(t.name + ": no GP1 group; kept verbatim");
     t.kind = joint && !cart ? TargetKind::kJoint : TargetKind::kCartesian;
     t.orientation = t.kind == TargetKind::kCartesian ? Orientation::kFanucWpr : Orientation::kNone;
-    if (by_number_.count(number) != 0) fail(f_.tokens[rec].offset, "position P[" + std::to_string(number) + "] defined twice");
+    if (by_number_.count(number) != 0)
+      fail(f_.tokens[rec].offset, "position P[" + std::to_string(number) + "] defined twice");
     p_.target_list.push_back(std::move(t));
     by_number_[number] = static_cast<int>(p_.target_list.size() - 1);
   }
@@ -366,9 +392,12 @@ class TpReader {
     int turn = 0;
     for (std::size_t i = 0; i < s.size(); ++i) {
       const char ch = static_cast<char>(std::toupper(static_cast<unsigned char>(s[i])));
-      if (ch == 'F' || ch == 'N') c.flip = ch;
-      else if (ch == 'U' || ch == 'D') c.elbow = ch;
-      else if (ch == 'T' || ch == 'B') c.front = ch;
+      if (ch == 'F' || ch == 'N')
+        c.flip = ch;
+      else if (ch == 'U' || ch == 'D')
+        c.elbow = ch;
+      else if (ch == 'T' || ch == 'B')
+        c.front = ch;
       else if (isDigit(ch) || ch == '-') {
         std::size_t j = i + 1;
         while (j < s.size() && isDigit(s[j])) ++j;
@@ -380,7 +409,8 @@ class TpReader {
         fail(off, "CONFIG string not understood: '" + std::string(s) + "'");
       }
     }
-    if (c.flip == 0 || c.elbow == 0 || c.front == 0) fail(off, "CONFIG string needs F|N U|D T|B: '" + std::string(s) + "'");
+    if (c.flip == 0 || c.elbow == 0 || c.front == 0)
+      fail(off, "CONFIG string needs F|N U|D T|B: '" + std::string(s) + "'");
   }
 
   Frame frameFor(const std::string& ref, bool tool) {
@@ -389,8 +419,9 @@ class TpReader {
     bool seen = false;
     for (const Unresolved& u : p_.unresolved) seen = seen || u.ref == ref;
     if (!seen) {
-      p_.unresolved.push_back(Unresolved{ref, 0, 0, tool ? "tool frame lives in the controller (UTOOL)"
-                                                         : "user frame lives in the controller (UFRAME)"});
+      p_.unresolved.push_back(Unresolved{ref, 0, 0,
+                                         tool ? "tool frame lives in the controller (UTOOL)"
+                                              : "user frame lives in the controller (UFRAME)"});
     }
     return Frame{ref, false, Pose::Identity(), -1, 0};
   }
@@ -402,7 +433,8 @@ class TpReader {
         if (number < 0) return -1;
         const auto it = by_number_.find(number);
         if (it == by_number_.end()) {
-          p_.unresolved.push_back(Unresolved{"P[" + std::to_string(number) + "]", 0, m.line, "position not in /POS"});
+          p_.unresolved.push_back(
+              Unresolved{"P[" + std::to_string(number) + "]", 0, m.line, "position not in /POS"});
           return -1;
         }
         return it->second;
@@ -415,7 +447,8 @@ class TpReader {
         if (!t.frame_ref.empty()) m.base = internFrame(p_, frameFor(t.frame_ref, false));
         if (!t.tool_ref.empty()) m.tool = internFrame(p_, frameFor(t.tool_ref, true));
       }
-      if (m.target >= 0) p_.target_list[static_cast<std::size_t>(m.target)].uses.push_back(pd.motion);
+      if (m.target >= 0)
+        p_.target_list[static_cast<std::size_t>(m.target)].uses.push_back(pd.motion);
       if (m.aux >= 0) p_.target_list[static_cast<std::size_t>(m.aux)].uses.push_back(pd.motion);
     }
   }

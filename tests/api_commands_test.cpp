@@ -41,12 +41,15 @@ TEST(ApiCommands, DeflectAtAPoseEqualsTheCliJson) {
   ASSERT_TRUE(r.deflection.converged);
 
   const auto cli = test::runRoprec(
-      "deflect --robot kuka-kr120-r2500-pro --joints \"0 -60 100 0 50 0\" --wrench \"0 0 800 0 0 0\"");
+      "deflect --robot kuka-kr120-r2500-pro --joints \"0 -60 100 0 50 0\" --wrench \"0 0 800 0 0 "
+      "0\"");
   ASSERT_EQ(cli.exit_code, 0) << cli.err;
   const json j = json::parse(cli.out);
   for (int i = 0; i < 3; ++i) {
-    EXPECT_NEAR(j["deviation"]["translation_um"][static_cast<size_t>(i)].get<double>(), r.deflection.dp[i] * 1e6, 1e-3);
-    EXPECT_NEAR(j["deviation"]["rotation_urad"][static_cast<size_t>(i)].get<double>(), r.deflection.drot[i] * 1e6, 1e-3);
+    EXPECT_NEAR(j["deviation"]["translation_um"][static_cast<size_t>(i)].get<double>(),
+                r.deflection.dp[i] * 1e6, 1e-3);
+    EXPECT_NEAR(j["deviation"]["rotation_urad"][static_cast<size_t>(i)].get<double>(),
+                r.deflection.drot[i] * 1e6, 1e-3);
   }
   for (int i = 0; i < 6; ++i) {
     EXPECT_NEAR(j["torques_Nm"][static_cast<size_t>(i)].get<double>(), r.deflection.tau[i], 1e-3);
@@ -54,7 +57,8 @@ TEST(ApiCommands, DeflectAtAPoseEqualsTheCliJson) {
   EXPECT_EQ(j["loads"]["force_N"][2].get<double>(), 800.0);
   // the JSON the API builds is the CLI's, except for the label the CLI gives its --wrench
   json api_json = json::parse(api::deflectJson(s, r).dump());
-  EXPECT_EQ(api_json["loads"]["wrench_source"].get<std::string>(), "given wrench (base frame, on the TCP)");
+  EXPECT_EQ(api_json["loads"]["wrench_source"].get<std::string>(),
+            "given wrench (base frame, on the TCP)");
   api_json["loads"]["wrench_source"] = j["loads"]["wrench_source"];
   EXPECT_EQ(api_json, j);
 }
@@ -67,7 +71,8 @@ TEST(ApiCommands, DeflectRefusesJointsOutsideTheLimitsAndABareUrdf) {
     api::deflectAt(s, req);
     FAIL() << "no error";
   } catch (const InputError& e) {
-    EXPECT_NE(e.message().find("joints outside the joint limits: joint_a2"), std::string::npos) << e.message();
+    EXPECT_NE(e.message().find("joints outside the joint limits: joint_a2"), std::string::npos)
+        << e.message();
   }
   api::RobotSetupRequest bare;
   bare.robot = test::sourceDir() + "/robots/kuka-kr120-r2500-pro/kr120r2500pro.urdf";
@@ -99,7 +104,8 @@ TEST(ApiCommands, FkAndIkEqualTheCli) {
   const api::RobotSetup s = api::loadRobotSetup(req);
   const nc::Vec6 q = degrees(10, -80, 100, 20, 40, -30);
   const api::FkResult fk = api::forwardKinematicsAt(s, q);
-  const auto cli = test::runRoprec("fk --cell '" + *req.cell + "' --joints \"10 -80 100 20 40 -30\"");
+  const auto cli =
+      test::runRoprec("fk --cell '" + *req.cell + "' --joints \"10 -80 100 20 40 -30\"");
   ASSERT_EQ(cli.exit_code, 0) << cli.err;
   EXPECT_EQ(api::fkJson(s, fk).dump(), cli.out);
 
@@ -109,7 +115,8 @@ TEST(ApiCommands, FkAndIkEqualTheCli) {
   const api::IkAnswer a = api::inverseKinematicsFor(s, ik);
   EXPECT_TRUE(a.unreachable.empty());
   double best = 1e9;
-  for (int k = 0; k < a.result->count; ++k) best = std::min(best, (a.result->solutions[static_cast<size_t>(k)].q - q).norm());
+  for (int k = 0; k < a.result->count; ++k)
+    best = std::min(best, (a.result->solutions[static_cast<size_t>(k)].q - q).norm());
   EXPECT_LT(best, 1e-9);
 
   api::IkRequest far;
@@ -118,7 +125,8 @@ TEST(ApiCommands, FkAndIkEqualTheCli) {
   const api::IkAnswer none = api::inverseKinematicsFor(kuka(), far);
   EXPECT_EQ(none.usable, 0);
   EXPECT_FALSE(none.unreachable.empty());
-  EXPECT_EQ(json::parse(api::ikJson(kuka(), none).dump())["unreachable"].get<std::string>(), none.unreachable);
+  EXPECT_EQ(json::parse(api::ikJson(kuka(), none).dump())["unreachable"].get<std::string>(),
+            none.unreachable);
 }
 
 TEST(ApiCommands, SimulateAHoleOfAHoleList) {
@@ -135,14 +143,16 @@ TEST(ApiCommands, SimulateAHoleOfAHoleList) {
   const api::SimulationResult r = api::simulateAt(s, at, opt);
   ASSERT_TRUE(r.transient.ok) << r.transient.message;
   const std::string dir = test::tempDir("api_simulate");
-  const auto cli = test::runRoprec("simulate --cell '" + *req.cell + "' --hole H2 '" + holes + "' --duration 0.05 -o '" +
-                                   dir + "/h.csv' --summary '" + dir + "/h.json'");
+  const auto cli =
+      test::runRoprec("simulate --cell '" + *req.cell + "' --hole H2 '" + holes +
+                      "' --duration 0.05 -o '" + dir + "/h.csv' --summary '" + dir + "/h.json'");
   ASSERT_EQ(cli.exit_code, 0) << cli.err;
   EXPECT_EQ(api::transientHistoryCsv(r.transient), test::readFile(dir + "/h.csv"));
   EXPECT_EQ(r.summary.dump(), test::readFile(dir + "/h.json"));
 
   // a hole out of reach is a per-hole failure, not bad input
-  test::writeFile(dir + "/far.csv", "id,x,y,z,i,j,k,diameter,depth,tolerance\nFAR,9000,0,0,0,0,-1,6.0,12,0.2\n");
+  test::writeFile(dir + "/far.csv",
+                  "id,x,y,z,i,j,k,diameter,depth,tolerance\nFAR,9000,0,0,0,0,-1,6.0,12,0.2\n");
   EXPECT_THROW(api::holeJoints(s, dir + "/far.csv", "FAR"), api::HoleUnreachable);
 }
 
@@ -154,8 +164,9 @@ TEST(ApiCommands, ForcesEqualTheCli) {
   const api::ForcesResult r = api::processForces(req);
   EXPECT_TRUE(r.converged);
   const std::string dir = test::tempDir("api_forces");
-  const auto cli = test::runRoprec("forces --cell '" + req.cell + "' --calibrate 'Fa_N=1466 M_Nm=4.04' --o '" + dir +
-                                   "/cal.xml' --csv '" + dir + "/d.csv'");
+  const auto cli =
+      test::runRoprec("forces --cell '" + req.cell + "' --calibrate 'Fa_N=1466 M_Nm=4.04' --o '" +
+                      dir + "/cal.xml' --csv '" + dir + "/d.csv'");
   ASSERT_EQ(cli.exit_code, 0) << cli.err;
   EXPECT_EQ(r.json.dump() + "\n", cli.out);
   EXPECT_EQ(r.curve_csv, test::readFile(dir + "/d.csv"));
@@ -188,7 +199,8 @@ TEST(ApiCommands, InspectConvertAndRobotsEqualTheCli) {
   EXPECT_TRUE(c.skipped.empty());
   EXPECT_EQ(test::readFile(dir + "/copy.src"), test::readFile(src));
 
-  EXPECT_EQ(api::groupNotes({"p1: no config", "p2: no config", "p3: no config", "p4: no config", "tool: mass"}),
+  EXPECT_EQ(api::groupNotes(
+                {"p1: no config", "p2: no config", "p3: no config", "p4: no config", "tool: mass"}),
             (std::vector<std::string>{"no config (4 items: p1, p2, p3, ...)", "tool: mass"}));
 
   const api::RobotList robots = api::bundledRobotList();

@@ -20,7 +20,8 @@ struct Job {
   std::string program;
 };
 
-json predictJson(const std::string& cell, const std::string& prog, const std::string& dir, const std::string& tag) {
+json predictJson(const std::string& cell, const std::string& prog, const std::string& dir,
+                 const std::string& tag) {
   const std::string holes = test::sourceDir() + "/samples/emotor-housing/holes.csv";
   const auto r = test::runRoprec("predict --cell '" + cell + "' '" + prog + "' --holes '" + holes +
                                  "' --match-tol 10 --quiet --json '" + dir + "/" + tag + ".json'");
@@ -30,9 +31,10 @@ json predictJson(const std::string& cell, const std::string& prog, const std::st
 
 TEST(CompensationCli, RepredictingTheCompensatedProgramLeavesAtMostATenthOfAMicrometre) {
   const std::string s = test::sourceDir() + "/samples/";
-  const std::vector<Job> jobs = {{s + "cells/housing-kr120.xml", s + "emotor-housing/housing_kr120.src"},
-                                 {s + "cells/housing-irb6640.xml", s + "emotor-housing/housing_irb6640.mod"},
-                                 {s + "cells/housing-r2000.xml", s + "emotor-housing/housing_r2000.ls"}};
+  const std::vector<Job> jobs = {
+      {s + "cells/housing-kr120.xml", s + "emotor-housing/housing_kr120.src"},
+      {s + "cells/housing-irb6640.xml", s + "emotor-housing/housing_irb6640.mod"},
+      {s + "cells/housing-r2000.xml", s + "emotor-housing/housing_r2000.ls"}};
   const std::string holes = s + "emotor-housing/holes.csv";
   for (const Job& job : jobs) {
     SCOPED_TRACE(job.program);
@@ -49,8 +51,9 @@ TEST(CompensationCli, RepredictingTheCompensatedProgramLeavesAtMostATenthOfAMicr
       SCOPED_TRACE(mode);
       const std::string ext = job.program.substr(job.program.find_last_of('.'));
       const std::string out = dir + "/comp_" + mode + ext;
-      const auto r = test::runRoprec("compensate --cell '" + job.cell + "' '" + job.program + "' --holes '" + holes +
-                                     "' --orientation " + mode + " --grid 12 -o '" + out + "'");
+      const auto r =
+          test::runRoprec("compensate --cell '" + job.cell + "' '" + job.program + "' --holes '" +
+                          holes + "' --orientation " + mode + " --grid 12 -o '" + out + "'");
       ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
       const json after = predictJson(job.cell, out, dir, std::string("after_") + mode);
       ASSERT_EQ(after["holes"].size(), before["holes"].size());

@@ -68,14 +68,17 @@ Vec3 kdlRealTcp(const api::PredictionContext& c, const nc::Vec6& theta_cmd, cons
   const Pose T_tcp_flange = t.T_flange_tcp.inverse();
   const Vec3 com = T_tcp_flange * t.com;
   const Mat3 I = T_tcp_flange.linear() * t.inertia * T_tcp_flange.linear().transpose();
-  kc.addSegment(KDL::Segment("tool", KDL::Joint(KDL::Joint::None), test::toKdl(t.T_flange_tcp),
-                             KDL::RigidBodyInertia(t.mass, KDL::Vector(com.x(), com.y(), com.z()),
-                                                   KDL::RotationalInertia(I(0, 0), I(1, 1), I(2, 2), I(0, 1), I(0, 2), I(1, 2)))));
+  kc.addSegment(KDL::Segment(
+      "tool", KDL::Joint(KDL::Joint::None), test::toKdl(t.T_flange_tcp),
+      KDL::RigidBodyInertia(
+          t.mass, KDL::Vector(com.x(), com.y(), com.z()),
+          KDL::RotationalInertia(I(0, 0), I(1, 1), I(2, 2), I(0, 1), I(0, 2), I(1, 2)))));
   KDL::ChainIdSolver_RNE rne(kc, KDL::Vector(0, 0, -9.80665));
   KDL::ChainFkSolverPos_recursive fk(kc);
   nc::Vec6 k;
   for (int i = 0; i < 6; ++i) k[i] = c.robot.card.joints[static_cast<size_t>(i)].stiffness;
-  auto tau = [&](const nc::Vec6& th, bool with_wrench, const KDL::Chain& chain, KDL::ChainIdSolver_RNE& solver) {
+  auto tau = [&](const nc::Vec6& th, bool with_wrench, const KDL::Chain& chain,
+                 KDL::ChainIdSolver_RNE& solver) {
     KDL::JntArray q(6);
     KDL::JntArray z(6);
     KDL::JntArray out(6);
@@ -91,7 +94,8 @@ Vec3 kdlRealTcp(const api::PredictionContext& c, const nc::Vec6& theta_cmd, cons
     return r;
   };
   nc::Vec6 off = nc::Vec6::Zero();
-  if (c.model.controller_gravity) off = tau(theta_cmd, false, kc, rne).cwiseQuotient(k);  // calibration load = tool
+  if (c.model.controller_gravity)
+    off = tau(theta_cmd, false, kc, rne).cwiseQuotient(k);  // calibration load = tool
   nc::Vec6 th = theta_cmd;
   for (int it = 0; it < 200; ++it) th = theta_cmd + off - tau(th, true, kc, rne).cwiseQuotient(k);
   KDL::JntArray q(6);
@@ -106,12 +110,13 @@ TEST(Compensation, EveryRobotEveryModeLandsOnTheNominalHoles) {
   const std::string holes = writeHoleSubset(dir);
   for (const RobotCase& rc : robots()) {
     SCOPED_TRACE(rc.robot);
-    const api::PredictionContext c =
-        api::loadPredictionContext(test::sourceDir() + "/samples/cells/" + rc.cell, holes, std::nullopt, "");
+    const api::PredictionContext c = api::loadPredictionContext(
+        test::sourceDir() + "/samples/cells/" + rc.cell, holes, std::nullopt, "");
     ASSERT_TRUE(c.model.has_process);
     const ToolWrench w = c.model.process_by_diameter.begin()->second.wrench;
     std::vector<HoleCompensation> keep;
-    for (const OrientationMode mode : {OrientationMode::kKeep, OrientationMode::kFlipFree, OrientationMode::kStiffest}) {
+    for (const OrientationMode mode :
+         {OrientationMode::kKeep, OrientationMode::kFlipFree, OrientationMode::kStiffest}) {
       SCOPED_TRACE(orientationModeName(mode));
       CompensationOptions o;
       o.mode = mode;
@@ -123,12 +128,15 @@ TEST(Compensation, EveryRobotEveryModeLandsOnTheNominalHoles) {
         ASSERT_TRUE(h.ok) << h.id << ": " << h.reason;
         EXPECT_LE(h.residual.norm(), 1e-7) << h.id;  // 0.1 µm, the library's own prediction
         if (mode == OrientationMode::kKeep) {
-          EXPECT_LE((h.T_programmed.linear() - c.job.requests[i].T_W_tcp.linear()).norm(), 1e-9) << h.id;
+          EXPECT_LE((h.T_programmed.linear() - c.job.requests[i].T_W_tcp.linear()).norm(), 1e-9)
+              << h.id;
         }
         // independent: KDL equilibrium at the compensated command lands on the nominal hole
-        const ToolWrench wd = c.model.process_by_diameter.count(std::lround(c.job.requests[i].diameter * 1e6))
-                                  ? c.model.process_by_diameter.at(std::lround(c.job.requests[i].diameter * 1e6)).wrench
-                                  : w;
+        const ToolWrench wd =
+            c.model.process_by_diameter.count(std::lround(c.job.requests[i].diameter * 1e6))
+                ? c.model.process_by_diameter.at(std::lround(c.job.requests[i].diameter * 1e6))
+                      .wrench
+                : w;
         const Vec3 real = kdlRealTcp(c, h.theta_cmd, wd);
         EXPECT_LE((real - h.T_nominal.translation()).norm(), 0.5e-6) << h.id << " (KDL)";
       }
@@ -176,7 +184,8 @@ TEST(Compensation, FlipFreeRemovesTheFlipsOfASampleBuiltToFlip) {
   EXPECT_FALSE(st.relaxed_jumps);
   for (size_t i = 0; i < f.size(); ++i) {
     ASSERT_TRUE(f[i].ok) << f[i].reason;
-    EXPECT_GE(ikBranch(c.model.ik, f[i].theta_cmd).wrist_margin_rad, std::sin(ff.wrist_margin) - 1e-9);
+    EXPECT_GE(ikBranch(c.model.ik, f[i].theta_cmd).wrist_margin_rad,
+              std::sin(ff.wrist_margin) - 1e-9);
     if (i > 0) {
       EXPECT_LE(std::abs(f[i].theta_cmd[3] - f[i - 1].theta_cmd[3]), ff.jump_threshold);
       EXPECT_LE(std::abs(f[i].theta_cmd[5] - f[i - 1].theta_cmd[5]), ff.jump_threshold);
@@ -193,14 +202,14 @@ TEST(CompensationCli, UnreachableHoleExitsOneAndWritesNothingUnlessPartialAllowe
   }
   const std::string cell = test::sourceDir() + "/samples/cells/housing-kr120.xml";
   const std::string out = dir + "/out.csv";
-  const auto r = test::runRoprec("compensate --cell '" + cell + "' '" + holes + "' -o '" + out + "' --targets '" +
-                                 dir + "/t.json'");
+  const auto r = test::runRoprec("compensate --cell '" + cell + "' '" + holes + "' -o '" + out +
+                                 "' --targets '" + dir + "/t.json'");
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_NE(r.err.find("FAR1"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(out));
   EXPECT_FALSE(fs::exists(dir + "/t.json"));
-  const auto p = test::runRoprec("compensate --cell '" + cell + "' '" + holes + "' -o '" + out + "' --targets '" +
-                                 dir + "/t.json' --allow-partial");
+  const auto p = test::runRoprec("compensate --cell '" + cell + "' '" + holes + "' -o '" + out +
+                                 "' --targets '" + dir + "/t.json' --allow-partial");
   EXPECT_EQ(p.exit_code, 1) << p.err;
   ASSERT_TRUE(fs::exists(out));
   const std::string t = test::readFile(dir + "/t.json");
@@ -216,8 +225,9 @@ TEST(CompensationCli, OutputsAreByteIdenticalForIdenticalInputs) {
   for (const char* run : {"a", "b"}) {
     const std::string d = dir + "/" + run;
     fs::create_directories(d);
-    const auto r = test::runRoprec("compensate --cell '" + cell + "' '" + prog + "' --orientation flip-free -o '" + d +
-                                   "/p.src' --targets '" + d + "/t.json' --report '" + d + "/r.html'");
+    const auto r = test::runRoprec("compensate --cell '" + cell + "' '" + prog +
+                                   "' --orientation flip-free -o '" + d + "/p.src' --targets '" +
+                                   d + "/t.json' --report '" + d + "/r.html'");
     ASSERT_EQ(r.exit_code, 0) << r.err;
   }
   for (const char* f : {"/p.src", "/t.json", "/r.html"}) {

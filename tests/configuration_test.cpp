@@ -1,5 +1,6 @@
-// Vendor configuration flags (compensator/robot/configuration.hpp): the §7.1 table, independent geometric
-// definitions of the branch bits, flags → solution → flags round trips, and the RoboDK corpus.
+// Vendor configuration flags (compensator/robot/configuration.hpp): the §7.1 table, independent
+// geometric definitions of the branch bits, flags → solution → flags round trips, and the RoboDK
+// corpus.
 #include "compensator/robot/configuration.hpp"
 
 #include <gtest/gtest.h>
@@ -76,7 +77,8 @@ TEST(Configuration, BranchBitsMatchTheDirectGeometricDefinition) {
       const DirectBranch d = direct(robot.chain, q);
       const IkBranch b = ikBranch(m, q);
       if (std::abs(d.shoulder_x) > 1e-9) EXPECT_EQ(b.shoulder, d.shoulder_x >= 0 ? 0 : 1);
-      if (std::abs(d.elbow_sign) > 1e-9) EXPECT_EQ(b.elbow, (d.elbow_sign > 0) == (dref.elbow_sign > 0) ? 0 : 1);
+      if (std::abs(d.elbow_sign) > 1e-9)
+        EXPECT_EQ(b.elbow, (d.elbow_sign > 0) == (dref.elbow_sign > 0) ? 0 : 1);
       const double t5 = toControllerJoints(robot.card, q)[4];
       EXPECT_EQ(b.wrist, t5 < 0 ? 1 : 0);
     }
@@ -162,7 +164,8 @@ TEST(Configuration, FlagsToSolutionToFlagsRoundTrip) {
     for (int n = 0; n < 300; ++n) {
       const Vec6 q = randomWithinLimits(robot.chain, rng);
       const IkBranch b = ikBranch(m, q);
-      if (b.wrist_margin_rad < 1e-6 || b.elbow_margin_rad < 1e-6 || b.shoulder_margin_m < 1e-6) continue;
+      if (b.wrist_margin_rad < 1e-6 || b.elbow_margin_rad < 1e-6 || b.shoulder_margin_m < 1e-6)
+        continue;
       const VendorConfig flags = configurationOf(m, robot.card, q);
       // Through the text form, as a program would carry it.
       const VendorConfig parsed = parseConfig(robot.card.vendor, formatConfig(flags));
@@ -254,7 +257,8 @@ TEST(Configuration, ReverseReportsMissingBranch) {
 
 // ---- RoboDK corpus: where the programs carry flags and the target lists carry joints ----
 
-std::vector<Vec6> readTargetJoints(const std::string& csv, std::vector<std::string>* moves = nullptr) {
+std::vector<Vec6> readTargetJoints(const std::string& csv,
+                                   std::vector<std::string>* moves = nullptr) {
   std::ifstream in(csv);
   std::string line;
   std::getline(in, line);
@@ -281,7 +285,8 @@ TEST(ConfigurationCorpus, AbbConfdataFromRoboDk) {
   const auto joints = readTargetJoints(corpus + "/robodk/DrillIRC5_targets.csv", &moves);
   const std::regex conf(R"(MoveL \[\[[^\]]*\],\[[^\]]*\],(\[-?\d+,-?\d+,-?\d+,-?\d+\]))");
   std::vector<std::string> confs;
-  for (std::sregex_iterator it(mod.begin(), mod.end(), conf), end; it != end; ++it) confs.push_back((*it)[1]);
+  for (std::sregex_iterator it(mod.begin(), mod.end(), conf), end; it != end; ++it)
+    confs.push_back((*it)[1]);
   const Robot robot = loadRobot({"abb-irb6640-185-280", "", ""});
   const IkModel m = buildIkModel(robot);
   size_t c = 0;
@@ -345,8 +350,9 @@ TEST(ConfigurationCorpus, KukaTargetsHaveNoStatusTurnButGetTheTaughtDefault) {
     int t = 0;
     for (int n = 0; n < 6; ++n) t |= (qc[n] < 0 ? 1 : 0) << n;
     EXPECT_EQ(*k.turn, t);
-    const ConfiguredSolution s = solveIkWithConfiguration(m, robot.card, chainForwardKinematics(robot.chain, q),
-                                                          VendorConfig{Vendor::kKuka, k, {}, {}, 0});
+    const ConfiguredSolution s =
+        solveIkWithConfiguration(m, robot.card, chainForwardKinematics(robot.chain, q),
+                                 VendorConfig{Vendor::kKuka, k, {}, {}, 0});
     ASSERT_TRUE(s.found);
     EXPECT_LE((s.solution.q - q).cwiseAbs().maxCoeff(), 1e-9);
   }

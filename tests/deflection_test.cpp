@@ -26,7 +26,8 @@ namespace {
 using nc::Vec6;
 
 TEST(Deflection, SingleLinkUnderGravityMatchesScalarEquation) {
-  const ChainDescription chain = loadUrdfChain(test::sourceDir() + "/tests/data/single_link_6r.urdf");
+  const ChainDescription chain =
+      loadUrdfChain(test::sourceDir() + "/tests/data/single_link_6r.urdf");
   const nc::Model model = nc::buildModel(chain);
   nc::Data data(model);
   nc::JointCompliance c;
@@ -122,7 +123,8 @@ TEST(Deflection, AgreesWithLinearAndNonlinearKdlCompliance) {
         const Vec3 f = Rt * loads.tcp.force;
         const Vec3 mm = Rt * loads.tcp.moment;
         KDL::Wrenches fext(kc.getNrOfSegments(), KDL::Wrench::Zero());
-        fext.back() = KDL::Wrench(KDL::Vector(f.x(), f.y(), f.z()), KDL::Vector(mm.x(), mm.y(), mm.z()));
+        fext.back() =
+            KDL::Wrench(KDL::Vector(f.x(), f.y(), f.z()), KDL::Vector(mm.x(), mm.y(), mm.z()));
         rne.CartToJnt(q, zero, zero, fext, t);
         Vec6 out;
         for (unsigned i = 0; i < 6; ++i) out[i] = t(i);
@@ -172,10 +174,12 @@ TEST(Deflection, AgreesWithLinearAndNonlinearKdlCompliance) {
 }
 
 TEST(Deflection, LinearEstimateWithinHalfPercentAtTheIssuePose) {
-  // roprec deflect --robot kuka-kr120-r2500-pro --joints "0 -60 100 0 50 0" --wrench "0 0 800 0 0 0"
+  // roprec deflect --robot kuka-kr120-r2500-pro --joints "0 -60 100 0 50 0" --wrench "0 0 800 0 0
+  // 0"
   const auto robots = bundled();
-  const auto it = std::find_if(robots.begin(), robots.end(),
-                               [](const RobotUnderTest& r) { return r.label == "kuka-kr120-r2500-pro"; });
+  const auto it = std::find_if(robots.begin(), robots.end(), [](const RobotUnderTest& r) {
+    return r.label == "kuka-kr120-r2500-pro";
+  });
   if (it == robots.end()) GTEST_SKIP();
   const nc::Model model = nc::buildModel(it->chain);
   nc::Data data(model);

@@ -14,8 +14,8 @@ DrillingModel model(double D_mm, double f_mm, const DrillingCoefficients& c) {
   return makeDrillingModel(g, c, AngleLaw::kGeometric, f_mm * 1e-3);
 }
 
-// Tungaloy technical reference (2020–21 catalogue p. L068, docs.steelcam.org copy; docs/process.md §3),
-// aluminium 250 MPa / 100 HB, K = 1.01; D mm, f mm/rev. Conventional point, chisel included.
+// Tungaloy technical reference (2020–21 catalogue p. L068, docs.steelcam.org copy; docs/process.md
+// §3), aluminium 250 MPa / 100 HB, K = 1.01; D mm, f mm/rev. Conventional point, chisel included.
 double tungaloyThrust(double D, double f) { return 570.0 * 1.01 * D * std::pow(f, 0.85); }
 double tungaloyTorque(double D, double f) { return 1.01 * D * D * (0.630 + 16.84 * f) / 100.0; }
 
@@ -42,7 +42,8 @@ TEST(DrillCalibration, RecoversKnownCoefficientsFromOneTest) {
   }
 }
 
-// The pressure chisel model (F_ch = c_p ksa0 a f) keeps the thrust linear in ksa0: exact recovery too.
+// The pressure chisel model (F_ch = c_p ksa0 a f) keeps the thrust linear in ksa0: exact recovery
+// too.
 TEST(DrillCalibration, PressureChiselModelIsCalibratedExactly) {
   DrillingCoefficients prior = findMaterial("AlSi9Cu3")->drilling;
   prior.chisel.kind = ChiselModelKind::kPressure;
@@ -52,7 +53,8 @@ TEST(DrillCalibration, PressureChiselModelIsCalibratedExactly) {
   truth.axial.k0 = 910e6;
   const DrillingForces meas = drillingForces(model(8, 0.15, truth), 0.15e-3);
   EXPECT_NEAR(meas.thrust_chisel, 5.0 * 910e6 * 0.08 * 8e-3 / std::sin(125 * kDeg) * 0.15e-3, 1e-6);
-  const DrillingCalibration cal = calibrateDrilling(model(8, 0.15, prior), 0.15e-3, meas.thrust, meas.torque);
+  const DrillingCalibration cal =
+      calibrateDrilling(model(8, 0.15, prior), 0.15e-3, meas.thrust, meas.torque);
   EXPECT_NEAR(cal.coeff.axial.k0 / 910e6, 1.0, 1e-12);
   EXPECT_NEAR(cal.coeff.tangential.k0 / 640e6, 1.0, 1e-12);
 }
@@ -84,8 +86,8 @@ TEST(DrillCalibration, PredictsCatalogueThrustAndTorqueWithinTheDocumentedBand) 
 }
 
 // The second published reference for torque: ISCAR's Mc = f kc D²/8 sin κ / 1000 with a Kienzle
-// kc(h) = kc1.1 h^−mc (docs/process.md §3, §7.5). After calibration on it at Dc 10 / f 0.2 the model
-// follows its feed and diameter trend within ±5 %.
+// kc(h) = kc1.1 h^−mc (docs/process.md §3, §7.5). After calibration on it at Dc 10 / f 0.2 the
+// model follows its feed and diameter trend within ±5 %.
 TEST(DrillCalibration, TorqueFollowsKienzleIscarTrend) {
   auto iscar = [](double D, double f) {
     const double s = std::sin(59 * kDeg);

@@ -27,9 +27,10 @@ TEST(DrillForces, MechanisticTableRegression) {
   struct Row {
     double D, f, M, Flips, Fz;
   };
-  const Row rows[] = {{8, 0.1, 1.13, 336, 740},   {8, 0.2, 1.89, 558, 1227},   {8, 0.3, 2.55, 745, 1639},
-                      {10, 0.1, 1.77, 421, 927},  {10, 0.2, 2.96, 701, 1542},  {10, 0.3, 4.00, 939, 2066},
-                      {12, 0.1, 2.54, 507, 1115}, {12, 0.2, 4.27, 844, 1857},  {12, 0.3, 5.77, 1134, 2494}};
+  const Row rows[] = {
+      {8, 0.1, 1.13, 336, 740},   {8, 0.2, 1.89, 558, 1227},  {8, 0.3, 2.55, 745, 1639},
+      {10, 0.1, 1.77, 421, 927},  {10, 0.2, 2.96, 701, 1542}, {10, 0.3, 4.00, 939, 2066},
+      {12, 0.1, 2.54, 507, 1115}, {12, 0.2, 4.27, 844, 1857}, {12, 0.3, 5.77, 1134, 2494}};
   for (const Row& r : rows) {
     const DrillingForces F = drillingForces(model(r.D, r.f), r.f * 1e-3);
     EXPECT_NEAR(F.torque / r.M, 1.0, 0.01) << r.D << " " << r.f;
@@ -60,8 +61,10 @@ TEST(DrillForces, GaussLegendreMatchesFineMidpointRuleOnClosedForms) {
     const double dr = (R - a) / n;
     const EdgeAngles e = closedFormEdgeAngles(g, r);
     const double h = 0.5 * f * std::sin(e.kappa_r);
-    const double kst = c.tangential.k0 * (c.tangential.a + c.tangential.b * e.gamma_n) * std::pow(h / 1e-3, -c.tangential.m);
-    const double ksa = c.axial.k0 * (c.axial.a + c.axial.b * e.gamma_n) * std::pow(h / 1e-3, -c.axial.m);
+    const double kst = c.tangential.k0 * (c.tangential.a + c.tangential.b * e.gamma_n) *
+                       std::pow(h / 1e-3, -c.tangential.m);
+    const double ksa =
+        c.axial.k0 * (c.axial.a + c.axial.b * e.gamma_n) * std::pow(h / 1e-3, -c.axial.m);
     const double db = dr / std::sin(e.kappa_r);
     Ft += kst * h * db;
     Fa += ksa * h * db;
@@ -233,10 +236,10 @@ TEST(DrillAxialCoupling, CompliantRobotAbsorbsFeedOnEntryAndLungesAtBreakthrough
     }
     prev_depth = x.depth;
   }
-  EXPECT_LT(s[0].feed, 0.7 * 0.2e-3);                         // entry: feed absorbed
-  EXPECT_NEAR(s[50].deflection, c * steady.thrust, 0.5e-6);   // steady cut
+  EXPECT_LT(s[0].feed, 0.7 * 0.2e-3);                        // entry: feed absorbed
+  EXPECT_NEAR(s[50].deflection, c * steady.thrust, 0.5e-6);  // steady cut
   EXPECT_NEAR(s[50].feed, 0.2e-3, 1e-7);
-  EXPECT_GT(max_feed, 2.0 * 0.2e-3);                          // breakthrough lunge
+  EXPECT_GT(max_feed, 2.0 * 0.2e-3);  // breakthrough lunge
 }
 
 }  // namespace

@@ -22,8 +22,8 @@ DrillGeometry workedExample() {
 // a spread of seeded random geometries: agreement to 1e-9 rad.
 TEST(DrillGeometry, QuaternionFrameMatchesClosedFormAlongTheWholeEdge) {
   std::mt19937 rng(7);
-  std::uniform_real_distribution<double> D(6e-3, 14e-3), pt(90 * kDeg, 150 * kDeg), hx(15 * kDeg, 40 * kDeg),
-      web(0.05, 0.25), psi(110 * kDeg, 135 * kDeg);
+  std::uniform_real_distribution<double> D(6e-3, 14e-3), pt(90 * kDeg, 150 * kDeg),
+      hx(15 * kDeg, 40 * kDeg), web(0.05, 0.25), psi(110 * kDeg, 135 * kDeg);
   double worst = 0;
   for (int k = 0; k < 40; ++k) {
     DrillGeometry g = k == 0 ? workedExample() : DrillGeometry{};
@@ -42,9 +42,11 @@ TEST(DrillGeometry, QuaternionFrameMatchesClosedFormAlongTheWholeEdge) {
       const EdgeAngles cf = closedFormEdgeAngles(g, r);
       for (int lip = 0; lip < 2; ++lip) {
         const EdgeFrame F = edgeFrame(g, r, lip);
-        worst = std::max({worst, std::abs(F.gamma_n - cf.gamma_n), std::abs(std::abs(F.lambda_s) - cf.lambda_s),
+        worst = std::max({worst, std::abs(F.gamma_n - cf.gamma_n),
+                          std::abs(std::abs(F.lambda_s) - cf.lambda_s),
                           std::abs(F.kappa_r - cf.kappa_r)});
-        EXPECT_LT(F.lambda_s, 0.0 + 1e-15) << "the edge trails the velocity going outward (§1.4 step 7)";
+        EXPECT_LT(F.lambda_s, 0.0 + 1e-15)
+            << "the edge trails the velocity going outward (§1.4 step 7)";
       }
     }
   }

@@ -33,7 +33,9 @@ Pose pose(const Vec3& p_mm, const Mat3& R) {
   return T;
 }
 
-Mat3 aa(double deg, const Vec3& axis) { return Eigen::AngleAxisd(deg * kDeg, axis.normalized()).toRotationMatrix(); }
+Mat3 aa(double deg, const Vec3& axis) {
+  return Eigen::AngleAxisd(deg * kDeg, axis.normalized()).toRotationMatrix();
+}
 
 // Holes on three faces: top (drilled -z), a 45° chamfer (drilled (1,0,-1)/√2), a side (drilled +y),
 // each with its own rotation about the drilling axis.
@@ -43,14 +45,19 @@ std::vector<DrillHole> holes(Dialect d) {
   const Mat3 chamfer = aa(135, Vec3::UnitY());
   const Mat3 side = aa(-90, Vec3::UnitX());
   h.push_back({"T001", pose({150.0, 0.0, 250.0}, top), 16.0 * kMm, 6.8 * kMm, std::nullopt});
-  h.push_back({"T002", pose({-12.3456789, 150.123456789, 250.0}, top * aa(37.5, Vec3::UnitZ())), 12.5 * kMm, 8.5 * kMm, std::nullopt});
-  h.push_back({"F-1", pose({-175.355339, -105.0, 154.644661}, chamfer * aa(-20, Vec3::UnitZ())), 24.0 * kMm, 12.0 * kMm, std::nullopt});
-  h.push_back({"F002", pose({-161.213203, -75.0, 168.786797}, chamfer), 24.0 * kMm, 0.0, std::nullopt});
-  h.push_back({"R1", pose({-105.0, -170.0, 40.0}, side * aa(90, Vec3::UnitZ())), 30.0 * kMm, 10.2 * kMm, std::nullopt});
+  h.push_back({"T002", pose({-12.3456789, 150.123456789, 250.0}, top * aa(37.5, Vec3::UnitZ())),
+               12.5 * kMm, 8.5 * kMm, std::nullopt});
+  h.push_back({"F-1", pose({-175.355339, -105.0, 154.644661}, chamfer * aa(-20, Vec3::UnitZ())),
+               24.0 * kMm, 12.0 * kMm, std::nullopt});
+  h.push_back(
+      {"F002", pose({-161.213203, -75.0, 168.786797}, chamfer), 24.0 * kMm, 0.0, std::nullopt});
+  h.push_back({"R1", pose({-105.0, -170.0, 40.0}, side * aa(90, Vec3::UnitZ())), 30.0 * kMm,
+               10.2 * kMm, std::nullopt});
   const std::map<Dialect, std::vector<std::optional<std::string>>> configs = {
       {Dialect::kKrl, {"S 2 T 35", std::nullopt, "S 'B110' T 'B100011'", "S 6", "T 3"}},
       {Dialect::kRapid, {"[0,-1,0,0]", std::nullopt, "[-1,0,-2,1]", " [0, 0, 0, 4] ", "[0,0,0,0]"}},
-      {Dialect::kTp, {"N U T, 0, 0, 0", std::nullopt, "F D B, 0, 1, -1", "N U T, 0, 0, 0", "F U T, 0, 0, 0"}},
+      {Dialect::kTp,
+       {"N U T, 0, 0, 0", std::nullopt, "F D B, 0, 1, -1", "N U T, 0, 0, 0", "F U T, 0, 0, 0"}},
       {Dialect::kCsv, {"N U T, 0, 0, 0", std::nullopt, "S 2 T 35", "[0,-1,0,0]", std::nullopt}},
       {Dialect::kJson, {"[0,-1,0,0]", std::nullopt, "N U T, 0, 0, 0", std::nullopt, "S 6"}},
   };
@@ -74,7 +81,8 @@ DrillProgramOptions options(Dialect d) {
 // The expected configuration text as roprec reads it back (Configuration::text()).
 std::string readBackConfig(Dialect d, const std::optional<std::string>& c) {
   if (!c) return d == Dialect::kTp ? "F U T, 0, 0, 0" : d == Dialect::kRapid ? "[0,0,0,0]" : "";
-  if (d == Dialect::kKrl && c->find('\'') != std::string::npos) return "S 6 T 35";  // 'B110', 'B100011'
+  if (d == Dialect::kKrl && c->find('\'') != std::string::npos)
+    return "S 6 T 35";  // 'B110', 'B100011'
   return postproc::parseConfigurationText(*c).text();
 }
 
@@ -115,7 +123,8 @@ void expectRoundTrip(Dialect d) {
     EXPECT_EQ(h.id, "H" + std::to_string(i + 1));
     EXPECT_LT((h.axis - z).norm(), rot_tol);
     EXPECT_LT((h.position - (entry + z * in[i].depth)).cwiseAbs().maxCoeff(), kPosTol);
-    // depth below the cycle's first target (the approach point); the entry is depth above the bottom
+    // depth below the cycle's first target (the approach point); the entry is depth above the
+    // bottom
     EXPECT_NEAR(h.depth, o.approach + in[i].depth, kPosTol);
     EXPECT_LT((h.position - h.axis * in[i].depth - entry).cwiseAbs().maxCoeff(), kPosTol);
     // the cycle: approach, clearance, bottom (+ the retract row of a table)
@@ -126,11 +135,14 @@ void expectRoundTrip(Dialect d) {
       const postproc::Target& tg = p.targets()[static_cast<std::size_t>(h.targets[k])];
       const Pose T = postproc::targetPose(p, tg);
       EXPECT_LT((T.translation() - (entry + z * along[k])).cwiseAbs().maxCoeff(), kPosTol) << k;
-      EXPECT_LT(smallRotationDifference(T.linear(), in[i].T_frame_tcp.linear()).norm(), rot_tol) << k;
+      EXPECT_LT(smallRotationDifference(T.linear(), in[i].T_frame_tcp.linear()).norm(), rot_tol)
+          << k;
       if (d != Dialect::kCsv && d != Dialect::kJson) {
         EXPECT_EQ(tg.config.text(), readBackConfig(d, in[i].config)) << k;
       } else {
-        EXPECT_EQ(tg.config.text(), in[i].config ? postproc::parseConfigurationText(*in[i].config).text() : "") << k;
+        EXPECT_EQ(tg.config.text(),
+                  in[i].config ? postproc::parseConfigurationText(*in[i].config).text() : "")
+            << k;
       }
     }
     EXPECT_EQ(h.entry_target, h.targets[0]);
@@ -168,7 +180,8 @@ TEST(DrillProgram, CsvRoundTrip) { expectRoundTrip(Dialect::kCsv); }
 TEST(DrillProgram, JsonRoundTrip) { expectRoundTrip(Dialect::kJson); }
 
 TEST(DrillProgram, KrlStatesFramesAndDatPoints) {
-  const DrillProgramText t = postproc::writeDrillProgram(holes(Dialect::kKrl), options(Dialect::kKrl));
+  const DrillProgramText t =
+      postproc::writeDrillProgram(holes(Dialect::kKrl), options(Dialect::kKrl));
   ASSERT_EQ(t.files.size(), 2U);
   EXPECT_EQ(t.files[0].suffix, ".src");
   EXPECT_EQ(t.files[1].suffix, ".dat");
@@ -176,15 +189,25 @@ TEST(DrillProgram, KrlStatesFramesAndDatPoints) {
   const std::string& src = t.files[0].text;
   const std::string& dat = t.files[1].text;
   EXPECT_NE(src.find("DEF plan_test( )"), std::string::npos);
-  EXPECT_NE(src.find("$BASE={FRAME: X 1350.000000,Y 100.000000,Z 300.000000,A 12.000000000,B -3.000000000,C 1.500000000}"),
-            std::string::npos) << src;
-  EXPECT_NE(src.find("$TOOL={FRAME: X 10.000000,Y -5.000000,Z 320.000000,A 0.000000000,B 30.000000000,C 0.000000000}"),
-            std::string::npos) << src;
-  EXPECT_NE(src.find("PTP T001_APP C_PTP\nLIN T001_CLR C_DIS\n$VEL.CP=0.020000\nLIN T001\nWAIT SEC 0.500\n"
-                     "$VEL.CP=0.250000\nLIN T001_APP C_DIS\n"), std::string::npos) << src;
+  EXPECT_NE(src.find("$BASE={FRAME: X 1350.000000,Y 100.000000,Z 300.000000,A 12.000000000,B "
+                     "-3.000000000,C 1.500000000}"),
+            std::string::npos)
+      << src;
+  EXPECT_NE(src.find("$TOOL={FRAME: X 10.000000,Y -5.000000,Z 320.000000,A 0.000000000,B "
+                     "30.000000000,C 0.000000000}"),
+            std::string::npos)
+      << src;
+  EXPECT_NE(
+      src.find(
+          "PTP T001_APP C_PTP\nLIN T001_CLR C_DIS\n$VEL.CP=0.020000\nLIN T001\nWAIT SEC 0.500\n"
+          "$VEL.CP=0.250000\nLIN T001_APP C_DIS\n"),
+      std::string::npos)
+      << src;
   EXPECT_NE(dat.find("DEFDAT plan_test\n"), std::string::npos);
-  EXPECT_NE(dat.find("DECL E6POS T001={X 150.000000,Y 0.000000,Z 234.000000,A 0.000000000,B 0.000000000,C 180.000000000,S 2,T 35}"),
-            std::string::npos) << dat;
+  EXPECT_NE(dat.find("DECL E6POS T001={X 150.000000,Y 0.000000,Z 234.000000,A 0.000000000,B "
+                     "0.000000000,C 180.000000000,S 2,T 35}"),
+            std::string::npos)
+      << dat;
   EXPECT_NE(dat.find(",S 'B110',T 'B100011'}"), std::string::npos);
   const std::size_t t002 = dat.find("DECL E6POS T002={");
   ASSERT_NE(t002, std::string::npos);
@@ -195,22 +218,35 @@ TEST(DrillProgram, KrlStatesFramesAndDatPoints) {
 }
 
 TEST(DrillProgram, RapidStatesWobjAndTool) {
-  const DrillProgramText t = postproc::writeDrillProgram(holes(Dialect::kRapid), options(Dialect::kRapid));
+  const DrillProgramText t =
+      postproc::writeDrillProgram(holes(Dialect::kRapid), options(Dialect::kRapid));
   ASSERT_EQ(t.files.size(), 1U);
   const std::string& s = t.files[0].text;
-  EXPECT_NE(s.find("PERS tooldata tDrill:=[TRUE,[[10.000000,-5.000000,320.000000],"), std::string::npos) << s;
+  EXPECT_NE(s.find("PERS tooldata tDrill:=[TRUE,[[10.000000,-5.000000,320.000000],"),
+            std::string::npos)
+      << s;
   EXPECT_NE(s.find("[25.800,[0.000,0.000,120.000],[1,0,0,0],0,0,0]];"), std::string::npos) << s;
-  EXPECT_NE(s.find("PERS wobjdata wDrill:=[FALSE,TRUE,\"\",[[1350.000000,100.000000,300.000000],"), std::string::npos);
-  EXPECT_NE(s.find("CONST robtarget T001:=[[150.000000,0.000000,234.000000],[0.000000000000,1.000000000000,0.000000000000,"
-                   "0.000000000000],[0,-1,0,0],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];"), std::string::npos) << s;
+  EXPECT_NE(s.find("PERS wobjdata wDrill:=[FALSE,TRUE,\"\",[[1350.000000,100.000000,300.000000],"),
+            std::string::npos);
+  EXPECT_NE(
+      s.find(
+          "CONST robtarget "
+          "T001:=[[150.000000,0.000000,234.000000],[0.000000000000,1.000000000000,0.000000000000,"
+          "0.000000000000],[0,-1,0,0],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]];"),
+      std::string::npos)
+      << s;
   EXPECT_NE(s.find("CONST robtarget H3:="), std::string::npos);  // 'F-1' is no RAPID identifier
   EXPECT_NE(s.find("! F-1 drill D12.000 depth 24.000"), std::string::npos);
-  EXPECT_NE(s.find("    ConfJ \\Off;\n    ! T002"), std::string::npos) << s;  // T002 has no configuration
-  EXPECT_NE(s.find("MoveL T001,vDrillFeed,fine,tDrill\\WObj:=wDrill;\n    WaitTime 0.500;\n"), std::string::npos) << s;
+  EXPECT_NE(s.find("    ConfJ \\Off;\n    ! T002"), std::string::npos)
+      << s;  // T002 has no configuration
+  EXPECT_NE(s.find("MoveL T001,vDrillFeed,fine,tDrill\\WObj:=wDrill;\n    WaitTime 0.500;\n"),
+            std::string::npos)
+      << s;
   const Program p = postproc::parseDrillProgram(t);
   bool off = false;
   for (const postproc::Motion& m : p.motions) {
-    if (m.type == postproc::MotionType::kJoint && p.targets()[static_cast<std::size_t>(m.target)].name == "T002_APP") {
+    if (m.type == postproc::MotionType::kJoint &&
+        p.targets()[static_cast<std::size_t>(m.target)].name == "T002_APP") {
       off = !m.config_honoured;
     }
   }
@@ -229,9 +265,14 @@ TEST(DrillProgram, TpRecordsAndFrameNumbers) {
   EXPECT_NE(s.find("UTOOL_NUM=2 ;"), std::string::npos);
   EXPECT_NE(s.find("P[3]{\n   GP1:\n\tUF : 3, UT : 2,\t\tCONFIG : 'N U T, 0, 0, 0',\n"
                    "\tX =   150.000000  mm,\tY =     0.000000  mm,\tZ =   234.000000  mm,\n"
-                   "\tW =   180.000000 deg,\tP =     0.000000 deg,\tR =     0.000000 deg\n};"), std::string::npos) << s;
-  EXPECT_NE(s.find("L P[3] 20mm/sec FINE ;\n  12:  WAIT .50(sec) ;\n  13:L P[1] 250mm/sec CNT50 ;"), std::string::npos) << s;
-  EXPECT_NE(s.find("CONFIG : 'F U T, 0, 0, 0'"), std::string::npos);  // T002: no configuration given
+                   "\tW =   180.000000 deg,\tP =     0.000000 deg,\tR =     0.000000 deg\n};"),
+            std::string::npos)
+      << s;
+  EXPECT_NE(s.find("L P[3] 20mm/sec FINE ;\n  12:  WAIT .50(sec) ;\n  13:L P[1] 250mm/sec CNT50 ;"),
+            std::string::npos)
+      << s;
+  EXPECT_NE(s.find("CONFIG : 'F U T, 0, 0, 0'"),
+            std::string::npos);  // T002: no configuration given
   bool noted = false;
   for (const std::string& n : t.notes) noted = noted || n.find("UFRAME[3]") != std::string::npos;
   EXPECT_TRUE(noted);
@@ -252,12 +293,14 @@ TEST(DrillProgram, HoleListRoundTrip) {
   const DrillProgramText t = postproc::writeDrillProgram(in, o);
   ASSERT_EQ(t.files.size(), 1U);
   EXPECT_EQ(t.files[0].suffix, ".csv");
-  const std::vector<postproc::HoleSpec> specs = postproc::parseHoleList("holes.csv", t.files[0].text);
+  const std::vector<postproc::HoleSpec> specs =
+      postproc::parseHoleList("holes.csv", t.files[0].text);
   ASSERT_EQ(specs.size(), in.size());
   for (std::size_t i = 0; i < in.size(); ++i) {
     SCOPED_TRACE(in[i].id);
     EXPECT_EQ(specs[i].id, in[i].id);
-    EXPECT_LT((specs[i].position_mm - in[i].T_frame_tcp.translation() * 1e3).cwiseAbs().maxCoeff(), 1e-6);
+    EXPECT_LT((specs[i].position_mm - in[i].T_frame_tcp.translation() * 1e3).cwiseAbs().maxCoeff(),
+              1e-6);
     EXPECT_LT((specs[i].direction - in[i].T_frame_tcp.linear().col(2)).norm(), 2e-9);
     ASSERT_TRUE(specs[i].depth_mm.has_value());
     EXPECT_NEAR(*specs[i].depth_mm, in[i].depth * 1e3, 1e-6);
@@ -276,7 +319,8 @@ TEST(DrillProgram, HoleListRoundTrip) {
     EXPECT_LT((T.linear().col(2) - in[i].T_frame_tcp.linear().col(2)).norm(), 2e-9);
   }
   // every program dialect matches the hole list hole for hole (by id, else by position)
-  for (const Dialect d : {Dialect::kKrl, Dialect::kRapid, Dialect::kTp, Dialect::kCsv, Dialect::kJson}) {
+  for (const Dialect d :
+       {Dialect::kKrl, Dialect::kRapid, Dialect::kTp, Dialect::kCsv, Dialect::kJson}) {
     SCOPED_TRACE(postproc::dialectName(d));
     Program q = postproc::parseDrillProgram(postproc::writeDrillProgram(holes(d), options(d)));
     const std::vector<postproc::Hole> rec = postproc::recognizeHoles(q);
@@ -290,7 +334,8 @@ TEST(DrillProgram, HoleListRoundTrip) {
 }
 
 TEST(DrillProgram, Deterministic) {
-  for (const Dialect d : {Dialect::kKrl, Dialect::kRapid, Dialect::kTp, Dialect::kCsv, Dialect::kJson, Dialect::kHoleCsv}) {
+  for (const Dialect d : {Dialect::kKrl, Dialect::kRapid, Dialect::kTp, Dialect::kCsv,
+                          Dialect::kJson, Dialect::kHoleCsv}) {
     SCOPED_TRACE(postproc::dialectName(d));
     const DrillProgramText a = postproc::writeDrillProgram(holes(d), options(d));
     const DrillProgramText b = postproc::writeDrillProgram(holes(d), options(d));
@@ -306,7 +351,8 @@ TEST(DrillProgram, Deterministic) {
     const DrillProgramText c = postproc::writeDrillProgram(holes(d), o);
     for (std::size_t k = 0; k < a.files.size(); ++k) {
       std::string lf = c.files[k].text;
-      for (std::size_t q = lf.find("\r\n"); q != std::string::npos; q = lf.find("\r\n", q)) lf.erase(q, 1);
+      for (std::size_t q = lf.find("\r\n"); q != std::string::npos; q = lf.find("\r\n", q))
+        lf.erase(q, 1);
       EXPECT_EQ(lf, a.files[k].text);
     }
     if (d != Dialect::kHoleCsv) {
@@ -320,8 +366,8 @@ TEST(DrillProgram, NamesAvoidClashesAndKeywords) {
   std::vector<DrillHole> in = holes(Dialect::kKrl);
   in.resize(3);
   in[0].id = "A";
-  in[1].id = "A_APP";   // another hole's approach name
-  in[2].id = "END";     // a KRL keyword
+  in[1].id = "A_APP";  // another hole's approach name
+  in[2].id = "END";    // a KRL keyword
   const DrillProgramText t = postproc::writeDrillProgram(in, o);
   const Program p = postproc::parseDrillProgram(t);
   const auto rec = postproc::recognizeHoles(p);
@@ -383,15 +429,18 @@ int count(const std::string& s, const std::string& what) {
 
 TEST(DrillProgram, InspectAcceptsTheWrittenPrograms) {
   const std::string dir = test::tempDir("drill-program-cli");
-  const DrillProgramText holes_csv = postproc::writeDrillProgram(holes(Dialect::kHoleCsv), options(Dialect::kHoleCsv));
+  const DrillProgramText holes_csv =
+      postproc::writeDrillProgram(holes(Dialect::kHoleCsv), options(Dialect::kHoleCsv));
   const std::vector<std::string> hl = postproc::saveDrillProgram(holes_csv, dir + "/holes");
   ASSERT_EQ(hl.size(), 1U);
-  for (const Dialect d : {Dialect::kKrl, Dialect::kRapid, Dialect::kTp, Dialect::kCsv, Dialect::kJson}) {
+  for (const Dialect d :
+       {Dialect::kKrl, Dialect::kRapid, Dialect::kTp, Dialect::kCsv, Dialect::kJson}) {
     SCOPED_TRACE(postproc::dialectName(d));
     const DrillProgramText t = postproc::writeDrillProgram(holes(d), options(d));
     const std::vector<std::string> paths = postproc::saveDrillProgram(t, dir + "/plan_test");
     ASSERT_EQ(paths.size(), t.files.size());
-    for (std::size_t k = 0; k < paths.size(); ++k) EXPECT_EQ(test::readFile(paths[k]), t.files[k].text);
+    for (std::size_t k = 0; k < paths.size(); ++k)
+      EXPECT_EQ(test::readFile(paths[k]), t.files[k].text);
     const auto r = test::runRoprec("inspect '" + paths[0] + "' --holes '" + hl[0] + "'");
     EXPECT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(count(r.out, "\"entry_target\""), 5) << r.out;

@@ -11,11 +11,14 @@ namespace {
 namespace fs = std::filesystem;
 using test::runRoprec;
 
-std::string sample(const std::string& name) { return "'" + test::sourceDir() + "/samples/cells/" + name + "'"; }
+std::string sample(const std::string& name) {
+  return "'" + test::sourceDir() + "/samples/cells/" + name + "'";
+}
 
 TEST(ForcesCli, DrillingSampleCellPrintsThrustTorqueAndFr) {
   const std::string dir = test::tempDir("forces");
-  const auto r = runRoprec("forces --cell " + sample("alu-drilling-6061.xml") + " --csv '" + dir + "/d.csv'");
+  const auto r =
+      runRoprec("forces --cell " + sample("alu-drilling-6061.xml") + " --csv '" + dir + "/d.csv'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["process"], "drilling");
@@ -38,7 +41,8 @@ TEST(ForcesCli, DrillingSampleCellPrintsThrustTorqueAndFr) {
 
 TEST(ForcesCli, MillingSampleCellWithCoupling) {
   const std::string dir = test::tempDir("forces");
-  const auto r = runRoprec("forces --cell " + sample("alu-milling-7075.xml") + " --csv '" + dir + "/m.csv'");
+  const auto r =
+      runRoprec("forces --cell " + sample("alu-milling-7075.xml") + " --csv '" + dir + "/m.csv'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["process"], "milling");
@@ -62,7 +66,8 @@ TEST(ForcesCli, CalibrateWritesACalibratedCellThatReproducesTheTest) {
   EXPECT_NEAR(j["steady"]["thrust_N"].get<double>(), 1466, 0.01);
   EXPECT_NEAR(j["steady"]["torque_Nm"].get<double>(), 4.04, 1e-4);
   ASSERT_TRUE(fs::exists(out));
-  // The calibrated copy sits in another folder: it refers to the bundled robot by name, so it loads.
+  // The calibrated copy sits in another folder: it refers to the bundled robot by name, so it
+  // loads.
   const auto r2 = runRoprec("forces --cell '" + out + "'");
   ASSERT_EQ(r2.exit_code, 0) << r2.err;
   const auto j2 = nlohmann::json::parse(r2.out);
@@ -86,9 +91,12 @@ std::string cellWith(const std::string& dir, const std::string& process) {
 void expectExit2AtLine(const std::string& process, int line, const std::string& what) {
   const std::string dir = test::tempDir("forces-bad");
   const std::string cell = cellWith(dir, process);
-  const auto r = runRoprec("forces --cell '" + cell + "' --csv '" + dir + "/out.csv' --json '" + dir + "/out.json'");
+  const auto r = runRoprec("forces --cell '" + cell + "' --csv '" + dir + "/out.csv' --json '" +
+                           dir + "/out.json'");
   EXPECT_EQ(r.exit_code, 2) << r.out;
-  EXPECT_NE(r.err.find("roprec: error: " + cell + ":" + std::to_string(line) + ":"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("roprec: error: " + cell + ":" + std::to_string(line) + ":"),
+            std::string::npos)
+      << r.err;
   EXPECT_NE(r.err.find(what), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir + "/out.csv"));
   EXPECT_FALSE(fs::exists(dir + "/out.json"));
@@ -100,35 +108,40 @@ const char* const kCut = "    <cut feed_mm_per_rev=\"0.2\"/>\n";
 const char* const kMat = "    <material name=\"Al 6061-T6\"/>\n";
 
 TEST(ForcesCli, NegativeFeedIsExit2WithFileAndLine) {
-  expectExit2AtLine(std::string(kDrill) + "    <cut feed_mm_per_rev=\"-0.1\"/>\n" + kMat, 5, "feed_mm_per_rev must be > 0");
+  expectExit2AtLine(std::string(kDrill) + "    <cut feed_mm_per_rev=\"-0.1\"/>\n" + kMat, 5,
+                    "feed_mm_per_rev must be > 0");
 }
 
 TEST(ForcesCli, PointAngleBelowRangeIsExit2WithFileAndLine) {
-  expectExit2AtLine(std::string("    <drill diameter_mm=\"10\" point_angle_deg=\"60\"/>\n") + kCut + kMat, 4,
-                    "point angle must lie in (60, 180)");
+  expectExit2AtLine(
+      std::string("    <drill diameter_mm=\"10\" point_angle_deg=\"60\"/>\n") + kCut + kMat, 4,
+      "point angle must lie in (60, 180)");
 }
 
 TEST(ForcesCli, PointAngleAboveRangeIsExit2WithFileAndLine) {
-  expectExit2AtLine(std::string("    <drill diameter_mm=\"10\" point_angle_deg=\"181\"/>\n") + kCut + kMat, 4,
-                    "point angle must lie in (60, 180)");
+  expectExit2AtLine(
+      std::string("    <drill diameter_mm=\"10\" point_angle_deg=\"181\"/>\n") + kCut + kMat, 4,
+      "point angle must lie in (60, 180)");
 }
 
 TEST(ForcesCli, WebWiderThanTheDrillIsExit2WithFileAndLine) {
-  expectExit2AtLine(std::string("    <drill diameter_mm=\"10\" web_mm=\"10.5\"/>\n") + kCut + kMat, 4,
-                    "web is wider than the drill");
+  expectExit2AtLine(std::string("    <drill diameter_mm=\"10\" web_mm=\"10.5\"/>\n") + kCut + kMat,
+                    4, "web is wider than the drill");
 }
 
 TEST(ForcesCli, UnknownMaterialIsExit2WithFileAndLine) {
-  expectExit2AtLine(std::string(kDrill) + kCut + "    <material name=\"Al 9999\"/>\n", 6, "unknown material 'Al 9999'");
+  expectExit2AtLine(std::string(kDrill) + kCut + "    <material name=\"Al 9999\"/>\n", 6,
+                    "unknown material 'Al 9999'");
 }
 
 TEST(ForcesCli, BadCalibrationArgumentWritesNothing) {
   const std::string dir = test::tempDir("forces-bad");
-  const auto r = runRoprec("forces --cell " + sample("alu-drilling-6061.xml") + " --calibrate 'Fa_N=-3 M_Nm=4' --o '" +
-                           dir + "/cal.xml'");
+  const auto r = runRoprec("forces --cell " + sample("alu-drilling-6061.xml") +
+                           " --calibrate 'Fa_N=-3 M_Nm=4' --o '" + dir + "/cal.xml'");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_FALSE(fs::exists(dir + "/cal.xml"));
-  const auto r2 = runRoprec("forces --cell " + sample("alu-milling-7075.xml") + " --calibrate 'Fa_N=3 M_Nm=4'");
+  const auto r2 =
+      runRoprec("forces --cell " + sample("alu-milling-7075.xml") + " --calibrate 'Fa_N=3 M_Nm=4'");
   EXPECT_EQ(r2.exit_code, 2);
   EXPECT_NE(r2.err.find("needs a <process type=\"drilling\">"), std::string::npos);
 }

@@ -102,7 +102,8 @@ const std::string& cellPath() {
 /// The sample cell with the chosen holes; `controller_gravity` as the controller is set up.
 api::PredictionContext loadJob(bool controller_gravity, const Faces& faces = kTwoFaces) {
   static const std::string dir = test::tempDir("ident");
-  api::PredictionContext c = api::loadPredictionContext(cellPath(), writeHoles(dir, faces), std::nullopt, "");
+  api::PredictionContext c =
+      api::loadPredictionContext(cellPath(), writeHoles(dir, faces), std::nullopt, "");
   c.model.controller_gravity = controller_gravity;
   return c;
 }
@@ -114,7 +115,8 @@ api::PredictionContext loadJob(bool controller_gravity, const Faces& faces = kTw
 /// with the truth's own stiffness when asked (the convention of roprec's model).
 class KdlTruth {
  public:
-  KdlTruth(const api::PredictionContext& c, const Vec6& k, bool controller_gravity, double extra_tool_mass = 0.0)
+  KdlTruth(const api::PredictionContext& c, const Vec6& k, bool controller_gravity,
+           double extra_tool_mass = 0.0)
       : k_(k), controller_gravity_(controller_gravity) {
     const ChainDescription& ch = c.robot.chain;
     chain_ = test::kdlChain(c.robot.card.urdf_path, ch.base_link, ch.tip_link);
@@ -125,8 +127,9 @@ class KdlTruth {
     const Mat3 I = T_tcp_flange.linear() * t.inertia * T_tcp_flange.linear().transpose();
     chain_.addSegment(KDL::Segment(
         "tool", KDL::Joint(KDL::Joint::None), test::toKdl(t.T_flange_tcp),
-        KDL::RigidBodyInertia(t.mass, KDL::Vector(com.x(), com.y(), com.z()),
-                              KDL::RotationalInertia(I(0, 0), I(1, 1), I(2, 2), I(0, 1), I(0, 2), I(1, 2)))));
+        KDL::RigidBodyInertia(
+            t.mass, KDL::Vector(com.x(), com.y(), com.z()),
+            KDL::RotationalInertia(I(0, 0), I(1, 1), I(2, 2), I(0, 1), I(0, 2), I(1, 2)))));
     rne_ = std::make_unique<KDL::ChainIdSolver_RNE>(chain_, KDL::Vector(0, 0, -9.80665));
     fk_ = std::make_unique<KDL::ChainFkSolverPos_recursive>(chain_);
     wrench_ = c.model.process_by_diameter.at(8500).wrench;
@@ -136,8 +139,8 @@ class KdlTruth {
 
   /// Real TCP position (base frame, m) for the command θ_cmd.
   Vec3 realTcp(const nc::Vec6& theta_cmd, double force_scale = 1.0) {
-    const nc::Vec6 off =
-        controller_gravity_ ? nc::Vec6(torques(theta_cmd, 0.0).cwiseQuotient(k_)) : nc::Vec6(nc::Vec6::Zero());
+    const nc::Vec6 off = controller_gravity_ ? nc::Vec6(torques(theta_cmd, 0.0).cwiseQuotient(k_))
+                                             : nc::Vec6(nc::Vec6::Zero());
     nc::Vec6 th = theta_cmd;
     for (int it = 0; it < 500; ++it) {
       const nc::Vec6 next = theta_cmd + off - torques(th, force_scale).cwiseQuotient(k_);
@@ -233,7 +236,8 @@ Measured measure(const api::PredictionContext& c, KdlTruth& truth, std::uint32_t
 }
 
 /// Compensates the program with `model` and executes the commands on the truth: ⊥ errors.
-std::vector<double> compensatedErrors(const api::PredictionContext& c, const PredictionModel& model, KdlTruth& truth) {
+std::vector<double> compensatedErrors(const api::PredictionContext& c, const PredictionModel& model,
+                                      KdlTruth& truth) {
   CompensationOptions o;
   o.mode = OrientationMode::kKeep;
   const std::vector<HoleCompensation> comp = compensateHoles(model, c.job.requests, o);
@@ -247,14 +251,17 @@ std::vector<double> compensatedErrors(const api::PredictionContext& c, const Pre
 }
 
 void print(const IdentificationResult& r, const Vec6& k_true) {
-  std::printf("converged %d, %d iterations, condition %.3g, rms %.2f -> %.2f um %s\n", r.converged, r.iterations,
-              r.condition_number, r.rms_prior * 1e6, r.rms_final * 1e6, r.message.c_str());
+  std::printf("converged %d, %d iterations, condition %.3g, rms %.2f -> %.2f um %s\n", r.converged,
+              r.iterations, r.condition_number, r.rms_prior * 1e6, r.rms_final * 1e6,
+              r.message.c_str());
   for (size_t k = 0; k < r.parameters.size(); ++k) {
     const IdentifiedParameter& q = r.parameters[k];
     const double truth = k < 6 ? 1.0 / k_true[static_cast<int>(k)] : 0.0;
-    std::printf("  %-10s prior %.4g ± %.2g  value %.4g ± %.2g  truth %.4g  ratio %.3f %s  (%.2f sigma)\n",
-                q.name.c_str(), q.prior, q.prior_sigma, q.value, q.sigma, truth, q.ratio,
-                q.identifiable ? "identifiable" : "NOT identifiable", k < 6 ? (q.value - truth) / q.sigma : 0.0);
+    std::printf(
+        "  %-10s prior %.4g ± %.2g  value %.4g ± %.2g  truth %.4g  ratio %.3f %s  (%.2f sigma)\n",
+        q.name.c_str(), q.prior, q.prior_sigma, q.value, q.sigma, truth, q.ratio,
+        q.identifiable ? "identifiable" : "NOT identifiable",
+        k < 6 ? (q.value - truth) / q.sigma : 0.0);
   }
 }
 
@@ -276,7 +283,8 @@ TEST(Identification, RecoversTheStiffnessAndTheCompensationRemovesTheError) {
     SCOPED_TRACE(controller_gravity ? "gravity-compensating controller" : "standard controller");
     const api::PredictionContext c = loadJob(controller_gravity);
     ASSERT_EQ(c.job.requests.size(), 36u);
-    ASSERT_TRUE(c.model.process_by_diameter.at(8500).mach.delta_tool.isZero()) << "the truth has no δmach term";
+    ASSERT_TRUE(c.model.process_by_diameter.at(8500).mach.delta_tool.isZero())
+        << "the truth has no δmach term";
     const Vec6 k_true = truthStiffness(c, 11);
     KdlTruth truth(c, k_true, controller_gravity);
     const Measured m = measure(c, truth, 5, 5e-6);
@@ -291,8 +299,9 @@ TEST(Identification, RecoversTheStiffnessAndTheCompensationRemovesTheError) {
     const std::string card = c.robot.card.file;
     fs::copy_file(fs::path(card).parent_path() / fs::path(c.robot.card.urdf_path).filename(),
                   fs::path(dir) / fs::path(c.robot.card.urdf_path).filename());
-    test::writeFile(dir + "/robot.xml",
-                    updateCardStiffness(test::readFile(card), card, cardUpdates(r), r.holes, "measured.csv"));
+    test::writeFile(
+        dir + "/robot.xml",
+        updateCardStiffness(test::readFile(card), card, cardUpdates(r), r.holes, "measured.csv"));
     PredictionModel calibrated = c.model;
     calibrated.compliance = nc::complianceFromCard(loadRobotCard(dir + "/robot.xml"));
     for (int j = 0; j < 6; ++j) {
@@ -301,8 +310,8 @@ TEST(Identification, RecoversTheStiffnessAndTheCompensationRemovesTheError) {
     }
     const std::vector<double> after = compensatedErrors(c, calibrated, truth);
     const double before = rms(m.error_uncompensated);
-    std::printf("uncompensated %.1f um, compensated with the new card %.2f um (%.2f %%)\n", before * 1e6,
-                rms(after) * 1e6, 100 * rms(after) / before);
+    std::printf("uncompensated %.1f um, compensated with the new card %.2f um (%.2f %%)\n",
+                before * 1e6, rms(after) * 1e6, 100 * rms(after) / before);
     EXPECT_LE(rms(after), 0.10 * before);
   }
 }
@@ -372,11 +381,13 @@ TEST(Identification, RigidFixtureOffsetIsRecoveredWithTheStiffness) {
     EXPECT_TRUE(r.converged) << r.message;
     const Vec3 dt = r.registration.translation - t;
     const Vec3 dw = r.registration.rotation - w;
-    std::printf("registration error %.2f um, %.4f mrad (sigma t %.1f %.1f %.1f um, w %.4f %.4f %.4f mrad)\n",
-                dt.norm() * 1e6, dw.norm() * 1e3, r.registration.translation_sigma.x() * 1e6,
-                r.registration.translation_sigma.y() * 1e6, r.registration.translation_sigma.z() * 1e6,
-                r.registration.rotation_sigma.x() * 1e3, r.registration.rotation_sigma.y() * 1e3,
-                r.registration.rotation_sigma.z() * 1e3);
+    std::printf(
+        "registration error %.2f um, %.4f mrad (sigma t %.1f %.1f %.1f um, w %.4f %.4f %.4f "
+        "mrad)\n",
+        dt.norm() * 1e6, dw.norm() * 1e3, r.registration.translation_sigma.x() * 1e6,
+        r.registration.translation_sigma.y() * 1e6, r.registration.translation_sigma.z() * 1e6,
+        r.registration.rotation_sigma.x() * 1e3, r.registration.rotation_sigma.y() * 1e3,
+        r.registration.rotation_sigma.z() * 1e3);
     if (controller_gravity) {
       EXPECT_LE(dt.norm(), 10e-6);
       EXPECT_LE(dw.norm(), 0.05e-3);
@@ -387,12 +398,14 @@ TEST(Identification, RigidFixtureOffsetIsRecoveredWithTheStiffness) {
     }
     expectWithin3Sigma(r, k_true, 3);
     const std::vector<double> after = compensatedErrors(c, withIdentification(c.model, r), truth);
-    std::printf("uncompensated %.1f um, compensated %.2f um\n", rms(m.error_uncompensated) * 1e6, rms(after) * 1e6);
+    std::printf("uncompensated %.1f um, compensated %.2f um\n", rms(m.error_uncompensated) * 1e6,
+                rms(after) * 1e6);
     EXPECT_LE(rms(after), 0.10 * rms(m.error_uncompensated));
     // the registration removed from a measured position leaves the robot's own position
     const Vec3 p = m.holes[0].p_W_measured;
     const Pose G = o.T_W_wobj * registrationPose(w, t) * o.T_W_wobj.inverse();
-    EXPECT_LE((r.registration.unregister(o.T_W_wobj, p) - G.inverse() * p).norm(), dt.norm() + 0.5 * dw.norm() + 1e-9);
+    EXPECT_LE((r.registration.unregister(o.T_W_wobj, p) - G.inverse() * p).norm(),
+              dt.norm() + 0.5 * dw.norm() + 1e-9);
     // without registration the offset goes into the joints: the fit is visibly worse
     o.registration = Registration::kNone;
     const IdentificationResult none = identifyStiffness(c.model, m.holes, o);
@@ -415,15 +428,19 @@ TEST(Identification, TranslationRegistrationOnTwoFacesAndTheRigidNullDirection) 
   EXPECT_TRUE(r.converged) << r.message;
   const Vec3 dt = r.registration.translation - t;
   std::printf("translation error %.2f um (sigma %.1f %.1f %.1f um)\n", dt.norm() * 1e6,
-              r.registration.translation_sigma.x() * 1e6, r.registration.translation_sigma.y() * 1e6,
+              r.registration.translation_sigma.x() * 1e6,
+              r.registration.translation_sigma.y() * 1e6,
               r.registration.translation_sigma.z() * 1e6);
-  for (int a = 0; a < 3; ++a) EXPECT_LE(std::abs(dt[a]), 3 * r.registration.translation_sigma[a]) << a;
+  for (int a = 0; a < 3; ++a)
+    EXPECT_LE(std::abs(dt[a]), 3 * r.registration.translation_sigma[a]) << a;
   expectWithin3Sigma(r, k_true, 3);
-  EXPECT_LE(rms(compensatedErrors(c, withIdentification(c.model, r), truth)), 0.10 * rms(m.error_uncompensated));
+  EXPECT_LE(rms(compensatedErrors(c, withIdentification(c.model, r), truth)),
+            0.10 * rms(m.error_uncompensated));
   // rigid on two faces: the rotation about x (top ⊥ z, side ⊥ y) is a translation in disguise
   o.registration = Registration::kRigid;
   const IdentificationResult rigid = identifyStiffness(c.model, m.holes, o);
-  std::printf("two faces, rigid: condition %.3g (translation only: %.3g)\n", rigid.condition_number, r.condition_number);
+  std::printf("two faces, rigid: condition %.3g (translation only: %.3g)\n", rigid.condition_number,
+              r.condition_number);
   EXPECT_GT(rigid.condition_number, 1e3 * r.condition_number);
 }
 
@@ -446,8 +463,10 @@ TEST(Identification, ToolMassIsIdentifiedOrKeepsItsPrior) {
   } else {
     EXPECT_EQ(*r.tool_mass, c.tool.mass);
   }
-  const std::vector<double> after = compensatedErrors(c, withIdentification(c.model, r, c.tool), truth);
-  std::printf("uncompensated %.1f um, compensated %.2f um\n", rms(m.error_uncompensated) * 1e6, rms(after) * 1e6);
+  const std::vector<double> after =
+      compensatedErrors(c, withIdentification(c.model, r, c.tool), truth);
+  std::printf("uncompensated %.1f um, compensated %.2f um\n", rms(m.error_uncompensated) * 1e6,
+              rms(after) * 1e6);
   EXPECT_LE(rms(after), 0.10 * rms(m.error_uncompensated));
 }
 
@@ -488,14 +507,16 @@ TEST(Identification, CoverageOfThePredictedRegionWithTheCorrectCardIs95Percent) 
       truth.setStiffness(k);
       const double force_scale = 1.0 + 0.15 * (2.0 * rng.uniform() - 1.0);
       const Pose& T_nom = c.job.requests[i].T_W_tcp;
-      const Vec3 mach = T_nom.linear() * Vec3(p.u_mach * rng.normal(), p.u_mach * rng.normal(), 0.0);
-      const Vec3 measured =
-          truth.realTcp(p.joints, force_scale) + u_rep * rng.normal3() + mach + u_meas * rng.normal3();
+      const Vec3 mach =
+          T_nom.linear() * Vec3(p.u_mach * rng.normal(), p.u_mach * rng.normal(), 0.0);
+      const Vec3 measured = truth.realTcp(p.joints, force_scale) + u_rep * rng.normal3() + mach +
+                            u_meas * rng.normal3();
       v.push_back(verifyHole(verificationInput(p, T_nom, measured, u_meas)));
     }
     const VerificationSummary sum = summarizeVerification(v);
-    std::printf("coverage %.1f %% (%d of %d), residual RMS %.1f um, U_work %.1f um\n", 100 * sum.coverage, sum.inside,
-                sum.holes, sum.residual.rms * 1e6, pred[0].U_work * 1e6);
+    std::printf("coverage %.1f %% (%d of %d), residual RMS %.1f um, U_work %.1f um\n",
+                100 * sum.coverage, sum.inside, sum.holes, sum.residual.rms * 1e6,
+                pred[0].U_work * 1e6);
     EXPECT_NEAR(sum.coverage, 0.95, 0.03);
   }
 }
@@ -518,9 +539,9 @@ TEST(Identification, VerificationStatisticsByHand) {
   EXPECT_NEAR(h.d_pred_norm, 45e-6, 1e-15);
   EXPECT_NEAR(h.r_norm, 5e-6, 1e-15);
   EXPECT_NEAR(h.U_region, 2.4477 * std::sqrt(5.0) * 1e-6, 1e-9);  // isotropic: Rayleigh
-  EXPECT_TRUE(h.inside);                                           // 5 ≤ 5.47 µm
+  EXPECT_TRUE(h.inside);                                          // 5 ≤ 5.47 µm
   EXPECT_NEAR(h.U_meas, 2.4477e-6, 1e-15);
-  EXPECT_EQ(h.decision, MeasuredDecision::kNoDecision);            // 50 ± 2.45 straddles 50
+  EXPECT_EQ(h.decision, MeasuredDecision::kNoDecision);  // 50 ± 2.45 straddles 50
   EXPECT_EQ(measuredDecision(40e-6, 2.4477e-6, 0.1e-3), MeasuredDecision::kConformanceProven);
   EXPECT_EQ(measuredDecision(60e-6, 2.4477e-6, 0.1e-3), MeasuredDecision::kNonConformanceProven);
   EXPECT_STREQ(measuredDecisionName(MeasuredDecision::kNoDecision), "no-decision");
@@ -547,7 +568,8 @@ TEST(Identification, NewCardChangesOnlyTheIdentifiedJoints) {
   const std::string card = bundledRobotsDir() + "/kuka-kr120-r2500-pro/robot.xml";
   const std::string text = test::readFile(card);
   EXPECT_EQ(updateCardStiffness(text, card, {}, 36, "m.csv"), text);
-  const std::vector<CardStiffnessUpdate> u = {{0, 7.012345e6, 4.1e5}, {1, 1.5e6, 2.34e4}, {3, 9.87e4, 1.2e3}};
+  const std::vector<CardStiffnessUpdate> u = {
+      {0, 7.012345e6, 4.1e5}, {1, 1.5e6, 2.34e4}, {3, 9.87e4, 1.2e3}};
   const std::string out = updateCardStiffness(text, card, u, 36, "run1/measured.csv");
   // line by line: only the stiffness line and the source line of the three joints differ
   auto lines = [](const std::string& s) {
@@ -563,17 +585,19 @@ TEST(Identification, NewCardChangesOnlyTheIdentifiedJoints) {
   for (size_t i = 0; i < a.size(); ++i) {
     if (a[i] == b[i]) continue;
     ++changed;
-    EXPECT_TRUE(b[i].find("stiffness=\"7.012e6\"") != std::string::npos ||
-                b[i].find("stiffness=\"1.5e6\"") != std::string::npos ||
-                b[i].find("stiffness=\"9.87e4\"") != std::string::npos ||
-                b[i].find("source=\"identified: 36 holes from run1/measured.csv by roprec verify (σ = ") !=
-                    std::string::npos)
+    EXPECT_TRUE(
+        b[i].find("stiffness=\"7.012e6\"") != std::string::npos ||
+        b[i].find("stiffness=\"1.5e6\"") != std::string::npos ||
+        b[i].find("stiffness=\"9.87e4\"") != std::string::npos ||
+        b[i].find("source=\"identified: 36 holes from run1/measured.csv by roprec verify (σ = ") !=
+            std::string::npos)
         << b[i];
   }
   EXPECT_EQ(changed, 6);
   // the new card is a valid card
   const std::string dir = test::tempDir("card");
-  fs::copy_file(bundledRobotsDir() + "/kuka-kr120-r2500-pro/kr120r2500pro.urdf", dir + "/kr120r2500pro.urdf");
+  fs::copy_file(bundledRobotsDir() + "/kuka-kr120-r2500-pro/kr120r2500pro.urdf",
+                dir + "/kr120r2500pro.urdf");
   test::writeFile(dir + "/robot.xml", out);
   const RobotCard rc = loadRobotCard(dir + "/robot.xml");
   EXPECT_EQ(rc.joints[0].stiffness, 7.012e6);
@@ -582,17 +606,26 @@ TEST(Identification, NewCardChangesOnlyTheIdentifiedJoints) {
   EXPECT_EQ(rc.joints[3].stiffness, 9.87e4);
   EXPECT_FALSE(rc.joints[0].estimated());
   EXPECT_TRUE(rc.joints[2].estimated());
-  EXPECT_EQ(rc.joints[0].source.rfind("identified: 36 holes from run1/measured.csv by roprec verify (σ = 4.1e5 N·m/rad); before: estimate: Jiao", 0), 0u)
+  EXPECT_EQ(rc.joints[0].source.rfind("identified: 36 holes from run1/measured.csv by roprec "
+                                      "verify (σ = 4.1e5 N·m/rad); before: estimate: Jiao",
+                                      0),
+            0u)
       << rc.joints[0].source;
   // calibrating again does not nest the provenance
-  const std::string again = updateCardStiffness(out, dir + "/robot.xml", {{0, 6.9e6, 3e5}}, 40, "run2.csv");
+  const std::string again =
+      updateCardStiffness(out, dir + "/robot.xml", {{0, 6.9e6, 3e5}}, 40, "run2.csv");
   test::writeFile(dir + "/robot.xml", again);
   const std::string src = loadRobotCard(dir + "/robot.xml").joints[0].source;
-  EXPECT_EQ(src.rfind("identified: 40 holes from run2.csv by roprec verify (σ = 3e5 N·m/rad); before: estimate: Jiao", 0), 0u) << src;
+  EXPECT_EQ(src.rfind("identified: 40 holes from run2.csv by roprec verify (σ = 3e5 N·m/rad); "
+                      "before: estimate: Jiao",
+                      0),
+            0u)
+      << src;
   // file names with XML specials are escaped
   const std::string esc = updateCardStiffness(text, card, {{5, 1e5, 1e3}}, 3, "a&b<\"c\".csv");
   EXPECT_NE(esc.find("from a&amp;b&lt;&quot;c&quot;.csv by"), std::string::npos);
-  EXPECT_THROW(updateCardStiffness("<robot><joint name='a'/></robot>", "x.xml", {}, 1, "m"), InputError);
+  EXPECT_THROW(updateCardStiffness("<robot><joint name='a'/></robot>", "x.xml", {}, 1, "m"),
+               InputError);
   EXPECT_EQ(formatCardNumber(6.23e6), "6.23e6");
   EXPECT_EQ(formatCardNumber(2413456.0), "2.413e6");
   EXPECT_EQ(formatCardNumber(8.38e4), "8.38e4");
@@ -602,10 +635,11 @@ TEST(Identification, NewCardChangesOnlyTheIdentifiedJoints) {
 
 /// Candidate holes on the housing's top face (drilled −z) and side face (drilled +y).
 std::vector<HoleRequest> housingCandidates(const Pose& T_W_wobj) {
-  std::vector<HoleRequest> c = planningCandidates(T_W_wobj, Vec3(-0.15, -0.15, 0.25), Vec3(0.15, 0.15, 0.25), 4,
-                                                  {Vec3(0, 0, -1)}, {0.0, 0.5 * kPi});
-  const std::vector<HoleRequest> side = planningCandidates(T_W_wobj, Vec3(-0.15, -0.17, 0.03), Vec3(0.15, -0.17, 0.2),
-                                                           4, {Vec3(0, 1, 0)}, {0.0});
+  std::vector<HoleRequest> c =
+      planningCandidates(T_W_wobj, Vec3(-0.15, -0.15, 0.25), Vec3(0.15, 0.15, 0.25), 4,
+                         {Vec3(0, 0, -1)}, {0.0, 0.5 * kPi});
+  const std::vector<HoleRequest> side = planningCandidates(
+      T_W_wobj, Vec3(-0.15, -0.17, 0.03), Vec3(0.15, -0.17, 0.2), 4, {Vec3(0, 1, 0)}, {0.0});
   c.insert(c.end(), side.begin(), side.end());
   for (size_t i = 0; i < c.size(); ++i) {
     char id[16];
@@ -630,8 +664,9 @@ TEST(Identification, DOptimalPlanBeatsANaiveProgramAndPredictsThePosterior) {
   std::printf("log det: D-optimal %.2f, naive %.2f\n", plan.log_det, naive_plan.log_det);
   EXPECT_GT(plan.log_det, naive_plan.log_det);
   for (int j = 0; j < 6; ++j) {
-    std::printf("  c%d expected σ/c: prior %.3f, plan %.4f, naive %.4f\n", j + 1, plan.prior_sigma_rel[j],
-                plan.expected_sigma_rel[j], naive_plan.expected_sigma_rel[j]);
+    std::printf("  c%d expected σ/c: prior %.3f, plan %.4f, naive %.4f\n", j + 1,
+                plan.prior_sigma_rel[j], plan.expected_sigma_rel[j],
+                naive_plan.expected_sigma_rel[j]);
     EXPECT_LE(plan.expected_sigma_rel[j], plan.prior_sigma_rel[j] + 1e-12);
   }
   // the identification from the planned holes reaches the planned σ (linearisations at the prior
@@ -648,7 +683,8 @@ TEST(Identification, DOptimalPlanBeatsANaiveProgramAndPredictsThePosterior) {
   o.identifiable_ratio = 2.0;  // keep every joint free: compare all six σ
   const IdentificationResult r = identifyStiffness(c.model, m.holes, o);
   for (int j = 0; j < 6; ++j) {
-    const double s = r.parameters[static_cast<size_t>(j)].sigma / r.parameters[static_cast<size_t>(j)].prior;
+    const double s =
+        r.parameters[static_cast<size_t>(j)].sigma / r.parameters[static_cast<size_t>(j)].prior;
     EXPECT_NEAR(s / plan.expected_sigma_rel[j], 1.0, 0.5) << "c" << j + 1;
   }
 }

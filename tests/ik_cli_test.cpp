@@ -1,5 +1,5 @@
-// `roprec ik` end to end: JSON solutions re-enter the chain's FK, flags as the library computes them,
-// exit codes 1 (unreachable) and 2 (bad input), --cell tool handling, determinism.
+// `roprec ik` end to end: JSON solutions re-enter the chain's FK, flags as the library computes
+// them, exit codes 1 (unreachable) and 2 (bad input), --cell tool handling, determinism.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -34,8 +34,9 @@ TEST(IkCli, BundledRobotsListSolutionsWithFlags) {
     const Eigen::Quaterniond qu(T.linear());
     std::ostringstream pose;
     pose.precision(17);
-    pose << T.translation().x() * 1e3 << " " << T.translation().y() * 1e3 << " " << T.translation().z() * 1e3
-         << " " << qu.w() << " " << qu.x() << " " << qu.y() << " " << qu.z();
+    pose << T.translation().x() * 1e3 << " " << T.translation().y() * 1e3 << " "
+         << T.translation().z() * 1e3 << " " << qu.w() << " " << qu.x() << " " << qu.y() << " "
+         << qu.z();
     const auto r = runRoprec("ik --robot " + name + " --pose '" + pose.str() + "'");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const auto j = nlohmann::json::parse(r.out);
@@ -48,7 +49,8 @@ TEST(IkCli, BundledRobotsListSolutionsWithFlags) {
       // joints printed with 6 decimals (1e-6° ≈ 1.7e-8 rad): ≤ 0.2 µm at 3 m reach.
       EXPECT_LE((Ts.translation() - T.translation()).norm(), 2e-7);
       EXPECT_TRUE(s.at("converged").get<bool>());
-      EXPECT_EQ(s.at("config").get<std::string>(), formatConfig(configurationOf(m, robot.card, qs)));
+      EXPECT_EQ(s.at("config").get<std::string>(),
+                formatConfig(configurationOf(m, robot.card, qs)));
       const int b = s.at("branch_index").get<int>();
       EXPECT_GT(b, prev);  // one per branch, ordered
       prev = b;
@@ -62,26 +64,30 @@ TEST(IkCli, BundledRobotsListSolutionsWithFlags) {
 
 TEST(IkCli, DeterministicAndAllTurns) {
   if (bundledRobotNames().empty()) GTEST_SKIP() << "no bundled robots";
-  const std::string args = "ik --robot kuka-kr120-r2500-pro --xyzabc '1600 200 1200 10 80 -20' --all-turns";
+  const std::string args =
+      "ik --robot kuka-kr120-r2500-pro --xyzabc '1600 200 1200 10 80 -20' --all-turns";
   const auto a = runRoprec(args);
   const auto b = runRoprec(args);
   ASSERT_EQ(a.exit_code, 0) << a.err;
   EXPECT_EQ(a.out, b.out);
   const auto primary = nlohmann::json::parse(runRoprec("ik --robot kuka-kr120-r2500-pro --xyzabc "
-                                                       "'1600 200 1200 10 80 -20'").out);
+                                                       "'1600 200 1200 10 80 -20'")
+                                                 .out);
   EXPECT_GT(nlohmann::json::parse(a.out).at("solutions").size(), primary.at("solutions").size());
 }
 
 TEST(IkCli, CellPoseIsTheTcp) {
   if (bundledRobotNames().empty()) GTEST_SKIP() << "no bundled robots";
   const std::string dir = test::tempDir("ikcell");
-  test::writeFile(dir + "/cell.xml",
-                  "<cell name=\"c\">\n  <robot ref=\"abb-irb6640-185-280\"/>\n"
-                  "  <tool name=\"spindle\" xyz=\"0 0 250\" rpy=\"0 0 0\" mass_kg=\"20\" com_mm=\"0 0 100\"/>\n"
-                  "</cell>\n");
+  test::writeFile(
+      dir + "/cell.xml",
+      "<cell name=\"c\">\n  <robot ref=\"abb-irb6640-185-280\"/>\n"
+      "  <tool name=\"spindle\" xyz=\"0 0 250\" rpy=\"0 0 0\" mass_kg=\"20\" com_mm=\"0 0 100\"/>\n"
+      "</cell>\n");
   const auto withCell = runRoprec("ik --robot abb-irb6640-185-280 --cell " + dir +
                                   "/cell.xml --pose '1800 0 1000 0 0 1 0'");
-  // Same flange pose without the cell: the TCP is 250 mm along the flange z, which points down here.
+  // Same flange pose without the cell: the TCP is 250 mm along the flange z, which points down
+  // here.
   const auto bare = runRoprec("ik --robot abb-irb6640-185-280 --pose '1800 0 1250 0 0 1 0'");
   ASSERT_EQ(withCell.exit_code, 0) << withCell.err;
   ASSERT_EQ(bare.exit_code, 0) << bare.err;
@@ -97,14 +103,16 @@ TEST(IkCli, UnreachableExitsOneWithReason) {
   EXPECT_EQ(r.exit_code, 1);
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j.at("solutions").size(), 0u);
-  EXPECT_NE(j.at("unreachable").get<std::string>().find("beyond the arm's reach"), std::string::npos);
+  EXPECT_NE(j.at("unreachable").get<std::string>().find("beyond the arm's reach"),
+            std::string::npos);
   EXPECT_NE(r.err.find("unreachable"), std::string::npos);
 }
 
 TEST(IkCli, BareUrdfWithSeed) {
   const std::string corpus = test::corpusDir();
   if (corpus.empty()) GTEST_SKIP() << "no corpus";
-  const auto r = runRoprec("ik --robot " + corpus + "/urdf/irb2400.urdf --tip tool0 --pose '900 0 1200 0 0 1 0'"
+  const auto r = runRoprec("ik --robot " + corpus +
+                           "/urdf/irb2400.urdf --tip tool0 --pose '900 0 1200 0 0 1 0'"
                            " --seed '0 0 0 30 0 0'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
@@ -122,10 +130,13 @@ TEST(IkCli, BadInputExitsTwo) {
            {"ik --robot kuka-kr120-r2500-pro --pose '1 2 3'", "needs 7 numbers"},
            {"ik --robot kuka-kr120-r2500-pro --pose '1000 0 1000 2 0 0 0'", "unit quaternion"},
            {"ik --robot kuka-kr120-r2500-pro", "--pose"},
-           {"ik --robot kuka-kr120-r2500-pro --pose '1000 0 1000 1 0 0 0' --xyzabc '1 2 3 0 0 0'", "exactly one"},
+           {"ik --robot kuka-kr120-r2500-pro --pose '1000 0 1000 1 0 0 0' --xyzabc '1 2 3 0 0 0'",
+            "exactly one"},
            {"ik --robot kuka-kr120-r2500-pro --xyzabc '1000 0 nan 0 0 0'", "not a finite number"},
-           {"ik --robot kuka-kr120-r2500-pro --xyzabc '1000 0 1000 0 0 0' --seed '1 2'", "needs 6 numbers"},
-           {"ik --robot fanuc-r2000ic-165f --xyzabc '1000 0 1000 0 0 0' --turn-axes '1 4 7'", "1..6"},
+           {"ik --robot kuka-kr120-r2500-pro --xyzabc '1000 0 1000 0 0 0' --seed '1 2'",
+            "needs 6 numbers"},
+           {"ik --robot fanuc-r2000ic-165f --xyzabc '1000 0 1000 0 0 0' --turn-axes '1 4 7'",
+            "1..6"},
            {"ik --robot no-such-robot --xyzabc '1000 0 1000 0 0 0'", "unknown robot"},
            {"ik --robot kuka-kr120-r2500-pro --xyzabc '1000 0 1000 0 0 0' --bogus", "--bogus"},
        }) {

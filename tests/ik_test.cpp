@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <random>
 
-#include "compensator/support/error.hpp"
 #include "compensator/robot/urdf_loader.hpp"
+#include "compensator/support/error.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace roprec {
@@ -32,8 +32,8 @@ std::vector<Case> allCases() {
   std::vector<Case> cases;
   const std::string corpus = test::corpusDir();
   if (!corpus.empty()) {
-    for (const char* f : {"kr120r2500pro.urdf", "kr16_2.urdf", "irb2400.urdf", "irb6640_185_280.urdf",
-                          "r2000ic165f.urdf", "m20ia.urdf"}) {
+    for (const char* f : {"kr120r2500pro.urdf", "kr16_2.urdf", "irb2400.urdf",
+                          "irb6640_185_280.urdf", "r2000ic165f.urdf", "m20ia.urdf"}) {
       const std::string path = corpus + "/urdf/" + f;
       if (!fs::exists(path)) continue;
       Case c;
@@ -81,7 +81,8 @@ TEST(Ik, RandomRoundTripAllRobots) {
       const Pose T = chainForwardKinematics(c.chain, q);
       IkOptions all;
       all.turns = IkTurns::kAll;
-      Eigen::internal::set_is_malloc_allowed(false);  // caller-owned storage: no allocation per call
+      Eigen::internal::set_is_malloc_allowed(
+          false);  // caller-owned storage: no allocation per call
       solveIk(c.model, T, all, *result);
       Eigen::internal::set_is_malloc_allowed(true);
       ASSERT_GT(result->count, 0) << describeIkFailure(*result);
@@ -100,9 +101,11 @@ TEST(Ik, RandomRoundTripAllRobots) {
         }
         best = std::min(best, jointDistance(s.q, q));
       }
-      EXPECT_LE(best, 1e-9) << "original joints not among the " << result->count << " solutions, n=" << n;
+      EXPECT_LE(best, 1e-9) << "original joints not among the " << result->count
+                            << " solutions, n=" << n;
 
-      // Primary mode: at most one solution per branch label away from singularities; joint vectors distinct.
+      // Primary mode: at most one solution per branch label away from singularities; joint vectors
+      // distinct.
       solveIk(c.model, T, IkOptions{}, *primary);
       std::array<int, 8> seen{};
       bool singular = false;
@@ -119,7 +122,8 @@ TEST(Ik, RandomRoundTripAllRobots) {
       }
       if (primary->count == 8 && !singular) ++full_branch_sets;
     }
-    EXPECT_GT(full_branch_sets, 100) << "all 8 distinct branches should appear for many random poses";
+    EXPECT_GT(full_branch_sets, 100)
+        << "all 8 distinct branches should appear for many random poses";
   }
 }
 
@@ -136,8 +140,9 @@ TEST(Ik, OpwParametersFromGeometry) {
   EXPECT_NEAR(abb.opw.c2, 0.705, 1e-12);
   EXPECT_NEAR(abb.opw.c3, 0.755, 1e-12);
   EXPECT_NEAR(abb.opw.c4, 0.085, 1e-12);
-  // KUKA KR 120 R2500 pro, from the URDF's joint origins: A2 350 mm ahead and 675 mm above the base,
-  // 1150 mm upper arm, 1000 mm forearm with the wrist 41 mm below the A3 line, 215 mm to the flange.
+  // KUKA KR 120 R2500 pro, from the URDF's joint origins: A2 350 mm ahead and 675 mm above the
+  // base, 1150 mm upper arm, 1000 mm forearm with the wrist 41 mm below the A3 line, 215 mm to the
+  // flange.
   const std::string kr = corpus + "/urdf/kr120r2500pro.urdf";
   IkModelOptions ko;
   ko.reference_q << 0, -kPi / 2, kPi / 2, 0, 0, 0;
@@ -237,14 +242,16 @@ TEST_F(IkSingular, WristAtAndNear) {
     double best = 1e9;
     for (int k = 0; k < result_->count; ++k) {
       const IkSolution& s = result_->solutions[static_cast<size_t>(k)];
-      if (std::abs(s.q[4] + model_.alpha) < 1e-3 || std::abs(std::abs(s.q[4] + model_.alpha) - kPi) < 1e-3) {
+      if (std::abs(s.q[4] + model_.alpha) < 1e-3 ||
+          std::abs(std::abs(s.q[4] + model_.alpha) - kPi) < 1e-3) {
         EXPECT_TRUE(s.singular_wrist);
         ++flagged;
       }
       best = std::min(best, jointDistance(s.q, q));
     }
     EXPECT_GE(flagged, 2);
-    // At the singularity only q4 + q6 is defined: q4 is taken from the seed, so the seed is recovered.
+    // At the singularity only q4 + q6 is defined: q4 is taken from the seed, so the seed is
+    // recovered.
     EXPECT_LE(best, q5 == 1e-7 ? 1e-8 : 1e-9) << "q5=" << q5;
   }
 }
@@ -297,15 +304,18 @@ TEST_F(IkSingular, ElbowStretched) {
   }
   // acos near 1 loses half the digits: sqrt(eps) ~ 1.5e-8 rad in q2/q3 while the pose is exact.
   EXPECT_LE(best, 1e-7);
-  // 1 mm beyond the stretched arm (along axis 2 → wrist centre): that shoulder branch has no solution.
-  const Pose T2 = robot_.chain.joints[0].origin * Eigen::AngleAxisd(q[0], robot_.chain.joints[0].axis) *
+  // 1 mm beyond the stretched arm (along axis 2 → wrist centre): that shoulder branch has no
+  // solution.
+  const Pose T2 = robot_.chain.joints[0].origin *
+                  Eigen::AngleAxisd(q[0], robot_.chain.joints[0].axis) *
                   robot_.chain.joints[1].origin;
   const Vec3 C = T * model_.c_tip;
   Pose far = T;
   far.translation() += (C - T2.translation()).normalized() * 1e-3;
   solveIk(model_, far, IkOptions{}, *result_);
   for (int k = 0; k < result_->count; ++k) {
-    EXPECT_NE(result_->solutions[static_cast<size_t>(k)].branch.shoulder, ikBranch(model_, q).shoulder);
+    EXPECT_NE(result_->solutions[static_cast<size_t>(k)].branch.shoulder,
+              ikBranch(model_, q).shoulder);
   }
 }
 
@@ -334,11 +344,14 @@ TEST(Ik, SeededNearSolutionNoAllocation) {
       const Vec6 q = randomWithinLimits(c.chain, rng);
       const IkBranch bq = ikBranch(c.model, q);
       // Away from singularities (there a 2 mm move may need large joint motion: tested separately).
-      if (bq.wrist_margin_rad < 0.1 || bq.elbow_margin_rad < 0.1 || bq.shoulder_margin_m < 0.1) continue;
+      if (bq.wrist_margin_rad < 0.1 || bq.elbow_margin_rad < 0.1 || bq.shoulder_margin_m < 0.1)
+        continue;
       Pose T = chainForwardKinematics(c.chain, q);
       // A hole correction: ≤ 2 mm and ≤ 0.5° away from the seed's pose.
       T.translation() += 2e-3 * Vec3(d(rng), d(rng), d(rng)) / std::sqrt(3.0);
-      T.linear() = Eigen::AngleAxisd(0.5 * kDeg * d(rng), Vec3(d(rng), d(rng), d(rng)).normalized()) * T.linear();
+      T.linear() =
+          Eigen::AngleAxisd(0.5 * kDeg * d(rng), Vec3(d(rng), d(rng), d(rng)).normalized()) *
+          T.linear();
       Eigen::internal::set_is_malloc_allowed(false);
       const IkNearResult r = solveIkNear(c.model, T, q);
       Eigen::internal::set_is_malloc_allowed(true);

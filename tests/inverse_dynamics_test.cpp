@@ -36,7 +36,8 @@ std::vector<DynCase> dynCases() {
     out.push_back({name, card.urdf_path, card.flange_link});
   }
   if (!test::corpusDir().empty()) {
-    out.push_back({"corpus kr120r2500pro", test::corpusDir() + "/urdf/kr120r2500pro.urdf", "flange"});
+    out.push_back(
+        {"corpus kr120r2500pro", test::corpusDir() + "/urdf/kr120r2500pro.urdf", "flange"});
   }
   return out;
 }
@@ -51,15 +52,18 @@ nc::ToolAttachment spindle() {
   return t;
 }
 
-KDL::Chain kdlWithTool(const DynCase& c, const ChainDescription& chain, const nc::ToolAttachment& t) {
+KDL::Chain kdlWithTool(const DynCase& c, const ChainDescription& chain,
+                       const nc::ToolAttachment& t) {
   KDL::Chain k = test::kdlChain(c.urdf, chain.base_link, chain.tip_link);
   // Tool segment: frame = TCP; its inertia about the COM, expressed in the TCP frame.
   const Pose T_tcp_flange = t.T_flange_tcp.inverse();
   const Vec3 com_tcp = T_tcp_flange * t.com;
   const Mat3 I_tcp = T_tcp_flange.linear() * t.inertia * T_tcp_flange.linear().transpose();
-  const KDL::RotationalInertia Ic(I_tcp(0, 0), I_tcp(1, 1), I_tcp(2, 2), I_tcp(0, 1), I_tcp(0, 2), I_tcp(1, 2));
-  k.addSegment(KDL::Segment("tool", KDL::Joint(KDL::Joint::None), test::toKdl(t.T_flange_tcp),
-                            KDL::RigidBodyInertia(t.mass, KDL::Vector(com_tcp.x(), com_tcp.y(), com_tcp.z()), Ic)));
+  const KDL::RotationalInertia Ic(I_tcp(0, 0), I_tcp(1, 1), I_tcp(2, 2), I_tcp(0, 1), I_tcp(0, 2),
+                                  I_tcp(1, 2));
+  k.addSegment(KDL::Segment(
+      "tool", KDL::Joint(KDL::Joint::None), test::toKdl(t.T_flange_tcp),
+      KDL::RigidBodyInertia(t.mass, KDL::Vector(com_tcp.x(), com_tcp.y(), com_tcp.z()), Ic)));
   return k;
 }
 

@@ -63,7 +63,8 @@ double defaultUmach(double D_mm, double f_mm) {
   g.diameter = D_mm * 1e-3;
   g.web_thickness = 0.16 * g.diameter;
   g.runout = p.runout;
-  const DrillingModel m = makeDrillingModel(g, findMaterial("Al 6061-T6")->drilling, AngleLaw::kGeometric, f_mm * 1e-3);
+  const DrillingModel m =
+      makeDrillingModel(g, findMaterial("Al 6061-T6")->drilling, AngleLaw::kGeometric, f_mm * 1e-3);
   return machiningDeviation(p, g, drillingForces(m, f_mm * 1e-3).residual).U;
 }
 

@@ -7,8 +7,8 @@
 
 #include <clocale>
 #include <cstdio>
-#include <locale>
 #include <functional>
+#include <locale>
 
 #include "compensator/support/error.hpp"
 #include "tests/support/test_support.hpp"
@@ -16,7 +16,9 @@
 namespace roprec::postproc {
 namespace {
 
-std::string dataFile(const std::string& name) { return test::sourceDir() + "/tests/data/measured/" + name; }
+std::string dataFile(const std::string& name) {
+  return test::sourceDir() + "/tests/data/measured/" + name;
+}
 
 /// Holes with every optional field, coordinates on the 4-decimal grid the writers print.
 std::vector<MeasuredHole> sampleHoles() {
@@ -24,7 +26,12 @@ std::vector<MeasuredHole> sampleHoles() {
   h[0] = {"T001", Vec3(150.0412, -0.0183, 250.0021), Vec3(0, 0, -1), 2.5, 6.8031, 0};
   h[1] = {"T002", Vec3(144.9301, 38.8049, 250.0011), Vec3(0, 0, -1), std::nullopt, 6.8027, 0};
   h[2] = {"R001", Vec3(-104.9682, -169.9853, 40.0147), Vec3(0, 1, 0), 3.0, std::nullopt, 0};
-  h[3] = {"F001", Vec3(-175.3553, -105.0001, 154.6449), Vec3(0.707106781, 0, -0.707106781), 1.25, 12.0012, 0};
+  h[3] = {"F001",
+          Vec3(-175.3553, -105.0001, 154.6449),
+          Vec3(0.707106781, 0, -0.707106781),
+          1.25,
+          12.0012,
+          0};
   return h;
 }
 
@@ -40,7 +47,8 @@ std::string errorOf(const std::function<void()>& f) {
 
 TEST(Measured, EveryFormatRoundTripsThroughItsWriter) {
   const std::vector<MeasuredHole> holes = sampleHoles();
-  for (const MeasuredFormat f : {MeasuredFormat::kCsv, MeasuredFormat::kPcDmis, MeasuredFormat::kDmis}) {
+  for (const MeasuredFormat f :
+       {MeasuredFormat::kCsv, MeasuredFormat::kPcDmis, MeasuredFormat::kDmis}) {
     SCOPED_TRACE(measuredFormatName(f));
     const std::string text = writeMeasured(holes, f);
     ASSERT_EQ(detectMeasuredFormat(text), f);
@@ -56,7 +64,7 @@ TEST(Measured, EveryFormatRoundTripsThroughItsWriter) {
       EXPECT_LE((*a.axis - *b.axis).norm(), 1e-8) << a.id;
       EXPECT_GT(b.line, 0);
       if (f == MeasuredFormat::kCsv) {
-        EXPECT_EQ(a.u_um, b.u_um) << a.id;                 // CSV carries u, not the diameter
+        EXPECT_EQ(a.u_um, b.u_um) << a.id;  // CSV carries u, not the diameter
         EXPECT_FALSE(b.diameter_mm.has_value());
       } else {
         EXPECT_FALSE(b.u_um.has_value());
@@ -87,7 +95,8 @@ TEST(Measured, TheBundledSamplesOfTheThreeFormatsReadTheSameHoles) {
   EXPECT_EQ(pc.format, MeasuredFormat::kPcDmis);
   EXPECT_EQ(dmo.format, MeasuredFormat::kDmis);
   for (const MeasuredHoles* m : {&pc, &dmo}) {
-    ASSERT_EQ(m->holes.size(), 3u) << measuredFormatName(m->format);  // datum plane / boss / nominals skipped
+    ASSERT_EQ(m->holes.size(), 3u)
+        << measuredFormatName(m->format);  // datum plane / boss / nominals skipped
     for (std::size_t k = 0; k < 3; ++k) {
       EXPECT_EQ(m->holes[k].id, csv.holes[k].id);
       EXPECT_LE((m->holes[k].p_mm - csv.holes[k].p_mm).norm(), 1e-12);
@@ -97,14 +106,15 @@ TEST(Measured, TheBundledSamplesOfTheThreeFormatsReadTheSameHoles) {
   EXPECT_EQ(csv.holes[0].u_um, 2.5);
   EXPECT_FALSE(csv.holes[2].u_um.has_value());
   EXPECT_EQ(pc.holes[0].line, 5);
-  EXPECT_EQ(dmo.holes[0].line, 8);   // the FA statement, not the nominal F
-  EXPECT_EQ(dmo.holes[1].line, 9);   // first line of a $-continued statement
+  EXPECT_EQ(dmo.holes[0].line, 8);  // the FA statement, not the nominal F
+  EXPECT_EQ(dmo.holes[1].line, 9);  // first line of a $-continued statement
   EXPECT_NEAR(*dmo.holes[1].diameter_mm, 6.8027, 1e-12);
 }
 
 TEST(Measured, FormatIsRecognisedByContentWithUnitsCommentsAndColumnOrder) {
   // columns in another order, upper case, _mm suffixes, extra column, CRLF, comments
-  const MeasuredHoles a = parseMeasured("# run 1\r\nZ_mm,ID,X_mm,Y_mm,note\r\n\r\n3.5,H1,1,2,ok\r\n", "a.dmo");
+  const MeasuredHoles a =
+      parseMeasured("# run 1\r\nZ_mm,ID,X_mm,Y_mm,note\r\n\r\n3.5,H1,1,2,ok\r\n", "a.dmo");
   ASSERT_EQ(a.format, MeasuredFormat::kCsv);
   ASSERT_EQ(a.holes.size(), 1u);
   EXPECT_EQ(a.holes[0].p_mm, Vec3(1, 2, 3.5));
@@ -133,7 +143,8 @@ struct CommaDecimal : std::numpunct<char> {
 
 TEST(Measured, NumbersAreReadTheSameUnderACommaDecimalLocale) {
   // the C++ global locale (iostreams) and, where one is installed, the C locale (strtod, printf)
-  const std::locale saved_cpp = std::locale::global(std::locale(std::locale::classic(), new CommaDecimal));
+  const std::locale saved_cpp =
+      std::locale::global(std::locale(std::locale::classic(), new CommaDecimal));
   const char* old = std::setlocale(LC_NUMERIC, nullptr);
   const std::string saved_c = old ? old : "C";
   const bool c_comma = std::setlocale(LC_NUMERIC, "de_DE.UTF-8") != nullptr ||
@@ -144,7 +155,8 @@ TEST(Measured, NumbersAreReadTheSameUnderACommaDecimalLocale) {
   std::locale::global(saved_cpp);
   EXPECT_EQ(m.holes[0].p_mm, Vec3(1.5, -2.25, 300));
   EXPECT_EQ(written, "id,x,y,z\nH1,1.5000,-2.2500,300.0000\n");
-  if (!c_comma) std::printf("(no comma-decimal C locale installed: checked under the C++ locale only)\n");
+  if (!c_comma)
+    std::printf("(no comma-decimal C locale installed: checked under the C++ locale only)\n");
 }
 
 TEST(Measured, BadFilesAreRefusedWithFileAndLine) {
@@ -159,7 +171,8 @@ TEST(Measured, BadFilesAreRefusedWithFileAndLine) {
       {"id,x,y,z\nH1,1,2,inf\n", "bad.csv:2: 'inf' in column 'z' is not a finite number"},
       {"id,x,y,z\nH1,1,2,nan\n", "bad.csv:2: 'nan'"},
       {"id,x,y,z\nH1,1,2,1e999\n", "bad.csv:2: '1e999'"},
-      {"id,x,y,z\nH1,1,2,3\nH2,4,5,6\nH1,7,8,9\n", "bad.csv:4: duplicate hole id 'H1' (first on line 2)"},
+      {"id,x,y,z\nH1,1,2,3\nH2,4,5,6\nH1,7,8,9\n",
+       "bad.csv:4: duplicate hole id 'H1' (first on line 2)"},
       {"id,x,y,z,i,j\nH1,1,2,3,0,0\n", "bad.csv:1: the axis columns i, j, k"},
       {"id,x,y,z,i,j,k\nH1,1,2,3,0,0,0\n", "bad.csv:2: the measured axis (i, j, k) is zero"},
       {"id,x,y,z,i,j,k\nH1,1,2,3,0,,1\n", "bad.csv:2: the axis cells"},
@@ -169,29 +182,38 @@ TEST(Measured, BadFilesAreRefusedWithFileAndLine) {
       {"", "bad.csv:1: not a measured-hole file"},
       {"TYPE,NAME,X,Y\nCIRCLE,H1,1,2\n", "bad.csv:1: missing column 'Z'"},
       {"TYPE,NAME,X,Y,Z\nCIRCLE,H1,1,2,3,\nCIRCLE,H1,1,2,3\n", "bad.csv:3: duplicate hole id 'H1'"},
-      {"UNITS/MM\nFA(H1)=FEAT/CIRCLE,INNER,CART,1,2,x,0,0,1,5\n", "bad.csv:2: F(H1): 'x' (z) is not a finite number"},
+      {"UNITS/MM\nFA(H1)=FEAT/CIRCLE,INNER,CART,1,2,x,0,0,1,5\n",
+       "bad.csv:2: F(H1): 'x' (z) is not a finite number"},
       {"FA(H1)=FEAT/CIRCLE,INNER,CART,1,2,3\n", "bad.csv:1: F(H1): a hole needs x,y,z,i,j,k"},
       {"FA(H1)=FEAT/CIRCLE,INNER,POL,1,2,3,0,0,1,5\n", "bad.csv:1: F(H1): only CART"},
       {"FA(H1)=FEAT/CIRCLE,INNER,CART,1,2,3,0,0,1,5\nFA(H1)=FEAT/CIRCLE,INNER,CART,1,2,3,0,0,1,5\n",
        "bad.csv:2: duplicate hole id 'H1' (first on line 1)"},
-      {"UNITS/FURLONG\nFA(H1)=FEAT/CIRCLE,INNER,CART,1,2,3,0,0,1,5\n", "bad.csv:1: unknown DMIS length unit"},
+      {"UNITS/FURLONG\nFA(H1)=FEAT/CIRCLE,INNER,CART,1,2,3,0,0,1,5\n",
+       "bad.csv:1: unknown DMIS length unit"},
   };
   for (const Case& c : cases) {
     const std::string e = errorOf([&] { (void)parseMeasured(c.text, "bad.csv"); });
     EXPECT_EQ(e.rfind(c.expect, 0), 0u) << "input:\n" << c.text << "\ngot: " << e;
   }
   // a file that does not exist
-  EXPECT_EQ(errorOf([] { (void)readMeasured("/nonexistent/m.csv"); }).rfind("/nonexistent/m.csv: cannot open", 0), 0u);
+  EXPECT_EQ(errorOf([] {
+              (void)readMeasured("/nonexistent/m.csv");
+            }).rfind("/nonexistent/m.csv: cannot open", 0),
+            0u);
 }
 
 std::vector<ProgramHoleRef> programHoles() {
-  return {{"T001", Vec3(150, 0, 250)}, {"T002", Vec3(144.889, 38.823, 250)}, {"R001", Vec3(-105, -170, 40)},
+  return {{"T001", Vec3(150, 0, 250)},
+          {"T002", Vec3(144.889, 38.823, 250)},
+          {"R001", Vec3(-105, -170, 40)},
           {"R002", Vec3(-75, -170, 40)}};
 }
 
 TEST(Measured, MatchingReportsUnknownAndUnmeasuredHoles) {
   const MeasuredHoles m = parseMeasured(
-      "id,x,y,z\nT001,150.04,0.01,250\nX999,0,0,0\nR001,-104.97,-169.98,40.01\nT002,144.9,38.8,250\n", "m.csv");
+      "id,x,y,z\nT001,150.04,0.01,250\nX999,0,0,0\nR001,-104.97,-169.98,40.01\nT002,144.9,38.8,"
+      "250\n",
+      "m.csv");
   const MeasuredMatch r = matchMeasured(m, programHoles());
   EXPECT_EQ(r.matched, 3);
   EXPECT_EQ(r.measured_of_program, (std::vector<int>{0, 3, 2, -1}));
@@ -199,12 +221,18 @@ TEST(Measured, MatchingReportsUnknownAndUnmeasuredHoles) {
   EXPECT_EQ(r.unmeasured, std::vector<int>{3});
   // nothing matches
   const MeasuredHoles none = parseMeasured("id,x,y,z\nA,1,2,3\n", "none.csv");
-  EXPECT_EQ(errorOf([&] { (void)matchMeasured(none, programHoles()); }).rfind("none.csv:2: no measured hole id", 0), 0u);
+  EXPECT_EQ(errorOf([&] {
+              (void)matchMeasured(none, programHoles());
+            }).rfind("none.csv:2: no measured hole id", 0),
+            0u);
 }
 
 TEST(Measured, AFileInMetresIsRefusedButASmallPartNearTheOriginIsNot) {
   const MeasuredHoles metres = parseMeasured(
-      "# CMM export\nid,x,y,z\nT001,0.15004,0.00001,0.25\nT002,0.1449,0.0388,0.25\nR001,-0.105,-0.17,0.04\n", "m.csv");
+      "# CMM "
+      "export\nid,x,y,z\nT001,0.15004,0.00001,0.25\nT002,0.1449,0.0388,0.25\nR001,-0.105,-0.17,0."
+      "04\n",
+      "m.csv");
   const std::string e = errorOf([&] { (void)matchMeasured(metres, programHoles()); });
   EXPECT_EQ(e.rfind("m.csv:3: the measured positions look like metres", 0), 0u) << e;
   EXPECT_NE(e.find("mm apart"), std::string::npos);

@@ -22,7 +22,8 @@ namespace {
 TEST(MillingCompensation, PathLandsOnTheNominalPathAgainstKdl) {
   const std::string cell = test::sourceDir() + "/samples/cells/alu-milling-7075.xml";
   const std::string prog = test::sourceDir() + "/samples/milling/wall_pass.src";
-  const api::PredictionContext c = api::loadPredictionContext(cell, prog, std::nullopt, "", 0.5, false);
+  const api::PredictionContext c =
+      api::loadPredictionContext(cell, prog, std::nullopt, "", 0.5, false);
   const postproc::Program& p = *c.job.program;
   std::vector<Pose> points;
   for (const postproc::Motion& m : p.motions) {
@@ -33,14 +34,15 @@ TEST(MillingCompensation, PathLandsOnTheNominalPathAgainstKdl) {
   }
   ASSERT_GE(points.size(), 25u);
   const auto comp = compensateMillingPath(c.model, points);
-  // KDL: chain + tool segment; the milling force acts on the tool in the TCP frame (X feed = tool x,
-  // Z = −tool z, Y = −tool y)
+  // KDL: chain + tool segment; the milling force acts on the tool in the TCP frame (X feed = tool
+  // x, Z = −tool z, Y = −tool y)
   const ChainDescription& ch = c.robot.chain;
   KDL::Chain kc = test::kdlChain(c.robot.card.urdf_path, ch.base_link, ch.tip_link);
   const Pose T_tcp_flange = c.tool.T_flange_tcp.inverse();
   const Vec3 com = T_tcp_flange * c.tool.com;
-  kc.addSegment(KDL::Segment("tool", KDL::Joint(KDL::Joint::None), test::toKdl(c.tool.T_flange_tcp),
-                             KDL::RigidBodyInertia(c.tool.mass, KDL::Vector(com.x(), com.y(), com.z()))));
+  kc.addSegment(
+      KDL::Segment("tool", KDL::Joint(KDL::Joint::None), test::toKdl(c.tool.T_flange_tcp),
+                   KDL::RigidBodyInertia(c.tool.mass, KDL::Vector(com.x(), com.y(), com.z()))));
   KDL::ChainIdSolver_RNE rne(kc, KDL::Vector(0, 0, -9.80665));
   KDL::ChainFkSolverPos_recursive fk(kc);
   for (size_t i = 0; i < comp.size(); ++i) {
@@ -57,21 +59,24 @@ TEST(MillingCompensation, PathLandsOnTheNominalPathAgainstKdl) {
       KDL::Wrenches f(kc.getNrOfSegments(), KDL::Wrench::Zero());
       f.back() = KDL::Wrench(KDL::Vector(Ft.x(), Ft.y(), Ft.z()), KDL::Vector::Zero());
       rne.CartToJnt(q, z, z, f, t);
-      for (int j = 0; j < 6; ++j) th[j] = comp[i].theta_cmd[j] - t(static_cast<unsigned>(j)) / c.model.compliance.k[j];
+      for (int j = 0; j < 6; ++j)
+        th[j] = comp[i].theta_cmd[j] - t(static_cast<unsigned>(j)) / c.model.compliance.k[j];
     }
     KDL::JntArray q(6);
     for (unsigned j = 0; j < 6; ++j) q(j) = th[j];
     KDL::Frame F;
     fk.JntToCart(q, F);
-    EXPECT_LE((Vec3(F.p.x(), F.p.y(), F.p.z()) - points[i].translation()).norm(), 0.5e-6) << "point " << i;
+    EXPECT_LE((Vec3(F.p.x(), F.p.y(), F.p.z()) - points[i].translation()).norm(), 0.5e-6)
+        << "point " << i;
   }
 }
 
 TEST(MillingCompensation, CliChangesOnlyThePathTargets) {
   const std::string dir = test::tempDir("mill");
   const std::string prog = test::sourceDir() + "/samples/milling/wall_pass.src";
-  const auto r = test::runRoprec("compensate --cell '" + test::sourceDir() + "/samples/cells/alu-milling-7075.xml' '" +
-                                 prog + "' -o '" + dir + "/out.src' --targets '" + dir + "/t.json'");
+  const auto r = test::runRoprec("compensate --cell '" + test::sourceDir() +
+                                 "/samples/cells/alu-milling-7075.xml' '" + prog + "' -o '" + dir +
+                                 "/out.src' --targets '" + dir + "/t.json'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   std::istringstream a(test::readFile(prog));
   std::istringstream b(test::readFile(dir + "/out.src"));
@@ -86,7 +91,8 @@ TEST(MillingCompensation, CliChangesOnlyThePathTargets) {
   }
   EXPECT_FALSE(std::getline(b, lb));
   EXPECT_EQ(changed, 27);
-  EXPECT_NE(test::readFile(dir + "/t.json").find("\"force_fixed_point_iterations\""), std::string::npos);
+  EXPECT_NE(test::readFile(dir + "/t.json").find("\"force_fixed_point_iterations\""),
+            std::string::npos);
 }
 
 }  // namespace

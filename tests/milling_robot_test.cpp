@@ -24,7 +24,8 @@ TEST(MillingRobot, ComplianceMatchesKdlLinearCompliance) {
   nc::Vec6 q;
   q << 0.2, -1.0, 1.6, 0.3, 0.8, -0.4;
   const ComplianceFunction f = robotMillingCompliance(model, c, q, false);
-  KDL::Chain kc = test::kdlChain(r.card.urdf_path, r.chain.base_link, r.chain.tip_link, tool.T_flange_tcp);
+  KDL::Chain kc =
+      test::kdlChain(r.card.urdf_path, r.chain.base_link, r.chain.tip_link, tool.T_flange_tcp);
   KDL::ChainJntToJacSolver jac(kc);
   KDL::JntArray kq(6);
   for (unsigned i = 0; i < 6; ++i) kq(i) = q[i];
@@ -59,13 +60,15 @@ TEST(MillingRobot, CoupledIterationWithTheRobot) {
   cut.fz = 0.05e-3;
   MillingCoefficients co;
   const MillingModel m = makeMillingModel(tool, cut, co);
-  const CouplingResult light = coupleMillingPoint(m, robotMillingCompliance(model, c, q), CouplingState{});
+  const CouplingResult light =
+      coupleMillingPoint(m, robotMillingCompliance(model, c, q), CouplingState{});
   EXPECT_TRUE(light.converged) << couplingStatusName(light.status);
   EXPECT_LE(light.iterations, 10);
   // a soft compliance (×50) makes the loop gain exceed 1: reported, not looped forever
   nc::JointCompliance soft = c;
   soft.k /= 50.0;
-  const CouplingResult heavy = coupleMillingPoint(m, robotMillingCompliance(model, soft, q), CouplingState{});
+  const CouplingResult heavy =
+      coupleMillingPoint(m, robotMillingCompliance(model, soft, q), CouplingState{});
   EXPECT_FALSE(heavy.converged);
   EXPECT_NE(heavy.status, CouplingStatus::kConverged) << couplingStatusName(heavy.status);
 }

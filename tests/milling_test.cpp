@@ -15,7 +15,8 @@ MillingCoefficients kienzle800() {
   return c;
 }
 
-MillingModel model(double ae_mm, double fz_mm, MillingMode mode, double runout_um = 0, int steps = 720) {
+MillingModel model(double ae_mm, double fz_mm, MillingMode mode, double runout_um = 0,
+                   int steps = 720) {
   MillingTool t;  // D 10, Nt 3, β 30°
   t.runout = runout_um * 1e-6;
   MillingCut c;
@@ -61,10 +62,13 @@ TEST(Milling, MeanChipThicknessFormulaAndLimits) {
       EXPECT_NEAR(meanChipThickness(fz, a), 2 * fz * ae / D / std::acos(1 - 2 * ae / D), 1e-15);
     }
   }
-  EXPECT_NEAR(meanChipThickness(fz, immersionAngles(D, D, MillingMode::kSlot)), 2 * fz / kPi, 1e-18);
+  EXPECT_NEAR(meanChipThickness(fz, immersionAngles(D, D, MillingMode::kSlot)), 2 * fz / kPi,
+              1e-18);
   // small-immersion limit fz √(ae/D)
   const double ae = 0.05e-3;
-  EXPECT_NEAR(meanChipThickness(fz, immersionAngles(D, ae, MillingMode::kUp)) / (fz * std::sqrt(ae / D)), 1.0, 0.01);
+  EXPECT_NEAR(
+      meanChipThickness(fz, immersionAngles(D, ae, MillingMode::kUp)) / (fz * std::sqrt(ae / D)),
+      1.0, 0.01);
 }
 
 // docs/process.md §7.6, Kienzle column: F̄x / F̄y / peak |F| (N), ±1 % (±1.5 N on small components).
@@ -73,9 +77,10 @@ TEST(Milling, Section42TableRegression) {
     MillingMode mode;
     double ae, fz, Fx, Fy, peak;
   };
-  const Row rows[] = {{MillingMode::kUp, 1, 0.05, -54, 4, 199},     {MillingMode::kUp, 2, 0.10, -162, 41, 500},
-                      {MillingMode::kUp, 5, 0.10, -292, 213, 714},  {MillingMode::kDown, 2, 0.10, 101, 133, 501},
-                      {MillingMode::kDown, 5, 0.10, 96, 349, 714},  {MillingMode::kSlot, 10, 0.10, -196, 561, 736}};
+  const Row rows[] = {
+      {MillingMode::kUp, 1, 0.05, -54, 4, 199},    {MillingMode::kUp, 2, 0.10, -162, 41, 500},
+      {MillingMode::kUp, 5, 0.10, -292, 213, 714}, {MillingMode::kDown, 2, 0.10, 101, 133, 501},
+      {MillingMode::kDown, 5, 0.10, 96, 349, 714}, {MillingMode::kSlot, 10, 0.10, -196, 561, 736}};
   for (const Row& r : rows) {
     const MillingProfile P = millingForceProfile(model(r.ae, r.fz, r.mode));
     EXPECT_NEAR(P.mean.x(), r.Fx, std::max(1.5, 0.01 * std::abs(r.Fx))) << r.ae;
@@ -108,7 +113,8 @@ TEST(Milling, MeanChipLawScaling) {
   EXPECT_NEAR(Ft_bar * vc / (kc * 5e-3 * 2e-3 * vf), 1.0, 1e-12);
   MillingModel small = model(0.1, 0.1, MillingMode::kUp);
   small.mean_law = MeanForceLaw::kMeanChip;
-  const double r = millingMeanForce(small, 0.1e-3, 0.11e-3).z() / millingMeanForce(small, 0.1e-3, 0.1e-3).z();
+  const double r =
+      millingMeanForce(small, 0.1e-3, 0.11e-3).z() / millingMeanForce(small, 0.1e-3, 0.1e-3).z();
   EXPECT_NEAR(r, std::pow(1.1, 0.875), 0.002);
 }
 
@@ -139,8 +145,9 @@ TEST(Milling, ChipThicknessRemembersWhatThePreviousEdgeDidNotCut) {
   const MillingProfile P = millingForceProfile(m);
   EXPECT_DOUBLE_EQ(P.max_chip[1], 0.0);
   // Deflection history: a tool that moved by δ along n(φ) since the last pass cuts δ more.
-  const Eigen::Vector2d hist[4] = {Eigen::Vector2d(std::sin(phi), std::cos(phi)) * 2e-6, Eigen::Vector2d::Zero(),
-                                   Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
+  const Eigen::Vector2d hist[4] = {Eigen::Vector2d(std::sin(phi), std::cos(phi)) * 2e-6,
+                                   Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero(),
+                                   Eigen::Vector2d::Zero()};
   EXPECT_NEAR(toothChipThickness(m, 0, phi, c.fz, hist), c.fz * s + R0 - R2 + 2e-6, 1e-15);
 }
 
@@ -160,7 +167,8 @@ TEST(Milling, SmallRunoutRedistributesTheChipsBetweenTeeth) {
   const MillingProfile P = millingForceProfile(m);
   double sum = 0;
   for (int j = 0; j < 4; ++j) {
-    const double expect = c.fz + m.tooth_radius[static_cast<size_t>(j)] - m.tooth_radius[static_cast<size_t>((j + 3) % 4)];
+    const double expect = c.fz + m.tooth_radius[static_cast<size_t>(j)] -
+                          m.tooth_radius[static_cast<size_t>((j + 3) % 4)];
     EXPECT_NEAR(P.max_chip[static_cast<size_t>(j)], expect, 1e-9) << j;
     sum += P.max_chip[static_cast<size_t>(j)];
   }
@@ -171,7 +179,8 @@ TEST(Milling, SmallRunoutRedistributesTheChipsBetweenTeeth) {
   EXPECT_GT(P.peak_xy, millingForceProfile(makeMillingModel(t0, c, kienzle800(), 3600, 1)).peak_xy);
 }
 
-CouplingResult steadyPoint(const MillingModel& m, const Mat3& C, const CouplingOptions& o, int points = 8) {
+CouplingResult steadyPoint(const MillingModel& m, const Mat3& C, const CouplingOptions& o,
+                           int points = 8) {
   const std::vector<ComplianceFunction> path(static_cast<size_t>(points), linearCompliance(C));
   return coupleMillingPath(m, path, o).back();
 }
@@ -194,7 +203,8 @@ TEST(Milling, CoupledIterationConvergesForTypicalCases) {
       // Fixed point: δ = C F(δ) at the converged point.
       const CouplingResult& last = res.back();
       EXPECT_LT((last.delta - C * last.force).norm(), 0.2e-6);
-      // The wall-normal loop gain alone is c · ∂F/∂ae ≈ c · F(1−mc/2)/ae (order of §4.4's 0.04–0.15).
+      // The wall-normal loop gain alone is c · ∂F/∂ae ≈ c · F(1−mc/2)/ae (order of §4.4's
+      // 0.04–0.15).
       EXPECT_GT(last.loop_gain, 0.01);
     }
   }
@@ -206,11 +216,14 @@ TEST(Milling, ReportsNonConvergenceWhenLoopGainReachesOne) {
   const MillingModel m = model(2, 0.1, MillingMode::kUp);
   // Sensitivity of F̄y to ae at the nominal point (finite difference), then a compliance along Y
   // that makes the loop gain 1.5.
-  const double dF = (millingMeanForce(m, 0.1e-3, 2.001e-3).y() - millingMeanForce(m, 0.1e-3, 1.999e-3).y()) / 2e-6;
+  const double dF =
+      (millingMeanForce(m, 0.1e-3, 2.001e-3).y() - millingMeanForce(m, 0.1e-3, 1.999e-3).y()) /
+      2e-6;
   ASSERT_GT(dF, 0.0);
   Mat3 C = Mat3::Zero();
   C(1, 1) = 1.5 / dF;
-  const CouplingResult r = coupleMillingPoint(m, linearCompliance(C), CouplingState{}, CouplingOptions{});
+  const CouplingResult r =
+      coupleMillingPoint(m, linearCompliance(C), CouplingState{}, CouplingOptions{});
   EXPECT_FALSE(r.converged);
   EXPECT_GE(r.loop_gain, 1.0);
   EXPECT_LE(r.iterations, 50);
@@ -227,10 +240,13 @@ TEST(Milling, ReportsNonConvergenceWhenLoopGainReachesOne) {
 // with under-relaxation ω = 0.3 to the same static equilibrium δ = C F(δ).
 TEST(Milling, UnderRelaxationHandlesAnOscillatingLoop) {
   const MillingModel m = model(2, 0.1, MillingMode::kDown);  // pushed away from the wall
-  const double dF = (millingMeanForce(m, 0.1e-3, 2.001e-3).y() - millingMeanForce(m, 0.1e-3, 1.999e-3).y()) / 2e-6;
+  const double dF =
+      (millingMeanForce(m, 0.1e-3, 2.001e-3).y() - millingMeanForce(m, 0.1e-3, 1.999e-3).y()) /
+      2e-6;
   Mat3 C = Mat3::Zero();
   C(1, 1) = 1.4 / std::abs(dF);
-  const CouplingResult plain = coupleMillingPoint(m, linearCompliance(C), CouplingState{}, CouplingOptions{});
+  const CouplingResult plain =
+      coupleMillingPoint(m, linearCompliance(C), CouplingState{}, CouplingOptions{});
   EXPECT_FALSE(plain.converged);
   CouplingOptions o;
   o.relaxation = 0.3;
@@ -244,7 +260,8 @@ TEST(Milling, UnderRelaxationHandlesAnOscillatingLoop) {
 TEST(Milling, DeflectionGrowsWithFeed) {
   double last = 0;
   for (double fz : {0.03, 0.05, 0.08, 0.1, 0.15}) {
-    const CouplingResult r = steadyPoint(model(2, fz, MillingMode::kUp), Mat3::Identity() * 1e-6, CouplingOptions{});
+    const CouplingResult r =
+        steadyPoint(model(2, fz, MillingMode::kUp), Mat3::Identity() * 1e-6, CouplingOptions{});
     ASSERT_TRUE(r.converged);
     EXPECT_GT(r.delta.norm(), last);
     last = r.delta.norm();

@@ -40,10 +40,12 @@ std::vector<Case> robotCases() {
   const std::string corpus = test::corpusDir();
   if (!corpus.empty()) {
     for (const auto& e : fs::directory_iterator(corpus + "/urdf")) {
-      if (e.path().extension() == ".urdf") cases.push_back({e.path().filename().string(), e.path().string(), "", ""});
+      if (e.path().extension() == ".urdf")
+        cases.push_back({e.path().filename().string(), e.path().string(), "", ""});
     }
   }
-  std::sort(cases.begin(), cases.end(), [](const Case& a, const Case& b) { return a.label < b.label; });
+  std::sort(cases.begin(), cases.end(),
+            [](const Case& a, const Case& b) { return a.label < b.label; });
   return cases;
 }
 
@@ -51,7 +53,8 @@ Vec6 randomJoints(const ChainDescription& c, std::mt19937& rng) {
   Vec6 q;
   for (int i = 0; i < 6; ++i) {
     const auto& j = c.joints[static_cast<size_t>(i)];
-    std::uniform_real_distribution<double> d(std::max(j.lower, -2 * kPi), std::min(j.upper, 2 * kPi));
+    std::uniform_real_distribution<double> d(std::max(j.lower, -2 * kPi),
+                                             std::min(j.upper, 2 * kPi));
     q[i] = d(rng);
   }
   return q;
@@ -94,10 +97,12 @@ TEST(NaturalModel, ForwardKinematicsAndJacobianMatchKdl) {
       ASSERT_GE(jac.JntToJac(kq, kJ), 0);
       const Pose T = test::fromKdl(F);
       worst_p = std::max(worst_p, (data.T_W_tcp.translation() - T.translation()).norm());
-      worst_r = std::max(worst_r, smallRotationDifference(data.T_W_tcp.linear(), T.linear()).norm());
+      worst_r =
+          std::max(worst_r, smallRotationDifference(data.T_W_tcp.linear(), T.linear()).norm());
       for (int r = 0; r < 6; ++r) {
         for (int c = 0; c < 6; ++c) {
-          worst_j = std::max(worst_j, std::abs(data.J_tcp(r, c) - kJ(static_cast<unsigned>(r), static_cast<unsigned>(c))));
+          worst_j = std::max(worst_j, std::abs(data.J_tcp(r, c) - kJ(static_cast<unsigned>(r),
+                                                                     static_cast<unsigned>(c))));
         }
       }
     }
@@ -202,7 +207,9 @@ TEST(NaturalModel, VelocityTransformAndScMatchFiniteDifferencesOfPositionProblem
     Eigen::MatrixXd J(nc::kNc, nc::kNq);
     nc::assemblePhiq(model, data, J);
     EXPECT_LE((J * R).lpNorm<Eigen::Infinity>(), 1e-12);
-    EXPECT_LE((R.bottomRows<6>() - Eigen::Matrix<double, 6, 6>::Identity()).lpNorm<Eigen::Infinity>(), 0.0);
+    EXPECT_LE(
+        (R.bottomRows<6>() - Eigen::Matrix<double, 6, 6>::Identity()).lpNorm<Eigen::Infinity>(),
+        0.0);
     const double h = 1e-6;
     for (int j = 0; j < 6; ++j) {
       Vec6 zp = z;
@@ -314,7 +321,8 @@ TEST(NaturalModel, KineticEnergyMatchesRigidBodyFormulas) {
       xd[2] = data.qd.segment<3>(nc::idxV(i));
       xd[3] = data.qd.segment<3>(nc::idxW(i));
       for (int k = 0; k < 4; ++k) {
-        for (int l = 0; l < 4; ++l) T_nc += 0.5 * b.K(k, l) * xd[static_cast<size_t>(k)].dot(xd[static_cast<size_t>(l)]);
+        for (int l = 0; l < 4; ++l)
+          T_nc += 0.5 * b.K(k, l) * xd[static_cast<size_t>(k)].dot(xd[static_cast<size_t>(l)]);
       }
       // reference: body twist from the chain's geometric Jacobian (finite rotation of frames)
       const double h = 1e-7;

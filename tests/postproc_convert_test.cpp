@@ -25,9 +25,12 @@ std::vector<Seen> cartesianMotions(const Program& p) {
   for (const Motion& m : p.motions) {
     const std::optional<Pose> T = motionPose(p, m);
     if (!T) continue;
-    Seen s{*T, std::nullopt, std::nullopt, p.targets()[static_cast<std::size_t>(m.target)].config.branch(), m.type};
-    if (m.base >= 0 && p.frames[static_cast<std::size_t>(m.base)].resolved) s.base = p.frames[static_cast<std::size_t>(m.base)].pose;
-    if (m.tool >= 0 && p.frames[static_cast<std::size_t>(m.tool)].resolved) s.tool = p.frames[static_cast<std::size_t>(m.tool)].pose;
+    Seen s{*T, std::nullopt, std::nullopt,
+           p.targets()[static_cast<std::size_t>(m.target)].config.branch(), m.type};
+    if (m.base >= 0 && p.frames[static_cast<std::size_t>(m.base)].resolved)
+      s.base = p.frames[static_cast<std::size_t>(m.base)].pose;
+    if (m.tool >= 0 && p.frames[static_cast<std::size_t>(m.tool)].resolved)
+      s.tool = p.frames[static_cast<std::size_t>(m.tool)].pose;
     out.push_back(s);
   }
   return out;
@@ -67,18 +70,27 @@ void expectSame(const std::vector<Seen>& a, const std::vector<Seen>& b, bool fra
 // A source program with random poses (incl. gimbal orientations), frames and all eight branches.
 std::string randomRapid(std::mt19937& rng) {
   std::uniform_real_distribution<double> u(-1, 1);
-  std::string s = "MODULE mRand\n  PERS tooldata tT:=[TRUE,[[1.5,-2.25,250.125],[0.9238795325,0,0.3826834324,0]],[5,[0,0,100],[1,0,0,0],0,0,0]];\n";
-  s += "  PERS wobjdata wW:=[FALSE,TRUE,\"\",[[1400.5,-12.75,400.25],[0.965925826289068,0,0,0.258819045102521]],[[10,0,0],[1,0,0,0]]];\n";
+  std::string s =
+      "MODULE mRand\n  PERS tooldata "
+      "tT:=[TRUE,[[1.5,-2.25,250.125],[0.9238795325,0,0.3826834324,0]],[5,[0,0,100],[1,0,0,0],0,0,"
+      "0]];\n";
+  s += "  PERS wobjdata "
+       "wW:=[FALSE,TRUE,\"\",[[1400.5,-12.75,400.25],[0.965925826289068,0,0,0.258819045102521]],[["
+       "10,0,0],[1,0,0,0]]];\n";
   s += "  PROC main()\n";
   for (int i = 0; i < 40; ++i) {
     Eigen::Quaterniond q(u(rng), u(rng), u(rng), u(rng));
-    if (i % 10 == 3) q = Eigen::Quaterniond(Eigen::AngleAxisd(kPi / 2, Vec3::UnitY()) * Eigen::AngleAxisd(u(rng), Vec3::UnitX()));
+    if (i % 10 == 3)
+      q = Eigen::Quaterniond(Eigen::AngleAxisd(kPi / 2, Vec3::UnitY()) *
+                             Eigen::AngleAxisd(u(rng), Vec3::UnitX()));
     q.normalize();
     char buf[512];
     std::snprintf(buf, sizeof buf,
-                  "    %s [[%.6f,%.6f,%.6f],[%.12f,%.12f,%.12f,%.12f],[0,-1,2,%d],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]],v100,%s,tT\\WObj:=wW;\n",
-                  i % 3 == 0 ? "MoveJ" : "MoveL", 500 * u(rng), 500 * u(rng), 500 * u(rng), q.w(), q.x(), q.y(), q.z(), i % 8,
-                  i % 2 ? "fine" : "z1");
+                  "    %s "
+                  "[[%.6f,%.6f,%.6f],[%.12f,%.12f,%.12f,%.12f],[0,-1,2,%d],[9E+09,9E+09,9E+09,9E+"
+                  "09,9E+09,9E+09]],v100,%s,tT\\WObj:=wW;\n",
+                  i % 3 == 0 ? "MoveJ" : "MoveL", 500 * u(rng), 500 * u(rng), 500 * u(rng), q.w(),
+                  q.x(), q.y(), q.z(), i % 8, i % 2 ? "fine" : "z1");
     s += buf;
   }
   s += "  ENDPROC\nENDMODULE\n";
@@ -92,7 +104,8 @@ TEST(PostprocConvert, EveryDialectPairKeepsPoseFramesAndBranch) {
   const Program src = readProgram(dir + "/rand.mod");
   const std::vector<Seen> ref = cartesianMotions(src);
   ASSERT_EQ(ref.size(), 40u);
-  for (const Dialect d : {Dialect::kKrl, Dialect::kRapid, Dialect::kTp, Dialect::kCsv, Dialect::kJson}) {
+  for (const Dialect d :
+       {Dialect::kKrl, Dialect::kRapid, Dialect::kTp, Dialect::kCsv, Dialect::kJson}) {
     SCOPED_TRACE(dialectName(d));
     ConversionReport rep;
     const auto files = convertProgram(src, d, dir + "/out_" + dialectName(d), rep);
@@ -108,7 +121,8 @@ TEST(PostprocConvert, EveryDialectPairKeepsPoseFramesAndBranch) {
     for (const Dialect e : {Dialect::kKrl, Dialect::kRapid, Dialect::kTp, Dialect::kJson}) {
       if (e == d) continue;
       ConversionReport rep2;
-      const auto files2 = convertProgram(back, e, dir + "/out_" + dialectName(d) + "_" + dialectName(e), rep2);
+      const auto files2 =
+          convertProgram(back, e, dir + "/out_" + dialectName(d) + "_" + dialectName(e), rep2);
       Program back2 = readBack(files2, e);
       if (e == Dialect::kTp) {
         resolveFrame(back2, "UFRAME[1]", *ref[0].base);
@@ -145,9 +159,11 @@ TEST(PostprocConvert, UnresolvedFrameNeedsAValue) {
   if (test::corpusDir().empty()) GTEST_SKIP() << "no corpus";
   const Program src = readProgram(test::corpusDir() + "/robodk/DRILLR30IA.LS");
   ConversionReport rep;
-  EXPECT_THROW(convertProgram(src, Dialect::kRapid, test::tempDir("cv") + "/x.mod", rep), InputError);
-  const auto r = test::runRoprec("convert '" + test::corpusDir() + "/robodk/DRILLR30IA.LS' --to rapid --o '" +
-                                 test::tempDir("cv2") + "/x.mod' --frame 'UFRAME[1]=1400 0 400 0 0 0;UTOOL[1]=0 0 250 0 0 0'");
+  EXPECT_THROW(convertProgram(src, Dialect::kRapid, test::tempDir("cv") + "/x.mod", rep),
+               InputError);
+  const auto r = test::runRoprec(
+      "convert '" + test::corpusDir() + "/robodk/DRILLR30IA.LS' --to rapid --o '" +
+      test::tempDir("cv2") + "/x.mod' --frame 'UFRAME[1]=1400 0 400 0 0 0;UTOOL[1]=0 0 250 0 0 0'");
   EXPECT_EQ(r.exit_code, 1) << r.err;  // joint targets listed
   EXPECT_NE(r.err.find("joint target"), std::string::npos);
 }

@@ -15,22 +15,22 @@ std::string fixtures() { return test::sourceDir() + "/tests/data/programs"; }
 
 TEST(PostprocNumberStyle, PrintsInTheStyleOfTheReplacedToken) {
   NumberHints kss{3, true, false};
-  EXPECT_EQ(formatLike("-31.6425190", -31.5, kss), "-31.5000000");         // KSS: 9 significant digits
+  EXPECT_EQ(formatLike("-31.6425190", -31.5, kss), "-31.5000000");  // KSS: 9 significant digits
   EXPECT_EQ(formatLike("0.266879767", 0.1234567891, kss), "0.123456789");
   EXPECT_EQ(formatLike("-3704.29346", 1234.5, kss), "1234.50000");
   const NumberHints mm{3, false, false};
-  EXPECT_EQ(formatLike("2.000", 2.0123456, mm), "2.012");                   // RoboDK %.3f
-  EXPECT_EQ(formatLike("-0.000", 1e-17, mm), "-0.000");                     // sign of zero kept
+  EXPECT_EQ(formatLike("2.000", 2.0123456, mm), "2.012");  // RoboDK %.3f
+  EXPECT_EQ(formatLike("-0.000", 1e-17, mm), "-0.000");    // sign of zero kept
   EXPECT_EQ(formatLike("0.000", -0.0004, mm), "0.000");
-  EXPECT_EQ(formatLike("0", 12.5, mm), "12.500");                           // integers gain µm resolution
+  EXPECT_EQ(formatLike("0", 12.5, mm), "12.500");  // integers gain µm resolution
   EXPECT_EQ(formatLike("1400.0", 1400.0234, mm), "1400.023");
   const NumberHints fanuc{3, false, true};
-  EXPECT_EQ(formatLike("-.242", -0.5, fanuc), "-.500");                     // FANUC: no leading zero
+  EXPECT_EQ(formatLike("-.242", -0.5, fanuc), "-.500");  // FANUC: no leading zero
   EXPECT_EQ(formatLike("1000.000", 0.25, fanuc), ".250");
   EXPECT_EQ(formatLike(".000", 0.0, fanuc), ".000");
   EXPECT_EQ(formatLike("0.000", 0.0, fanuc), "0.000");
   const NumberHints quat{9, false, false};
-  EXPECT_EQ(formatLike("9E+09", 9e9, mm), "9E+09");                         // RAPID controller %G
+  EXPECT_EQ(formatLike("9E+09", 9e9, mm), "9E+09");  // RAPID controller %G
   EXPECT_EQ(formatLike("-9.43398E-06", 1.2345678e-5, quat), "1.2345678E-05");
   EXPECT_EQ(formatLike("0.999998", 0.5, quat), "0.500000000");
   EXPECT_EQ(formatLike("+5.0", 6.0, mm), "+6.000");
@@ -52,14 +52,15 @@ void expectOnlyTargetChanges(const std::string& path, const std::string& name) {
   const Target before = p.targets()[static_cast<std::size_t>(idx)];
   Pose T = targetPose(p, before);
   T.translation() += Vec3(0.1234, -0.0567, 0.0891) * 1e-3;
-  T.linear() = T.linear() * Eigen::AngleAxisd(0.01 * kDeg, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  T.linear() =
+      T.linear() * Eigen::AngleAxisd(0.01 * kDeg, Vec3(1, 2, 3).normalized()).toRotationMatrix();
   const EditResult r = replaceTargetPose(p, idx, T);
   ASSERT_TRUE(r.ok) << r.reason;
   ASSERT_FALSE(p.edits.empty());
   std::uint32_t lo = UINT32_MAX;
   std::uint32_t hi = 0;
-  for (const NumberField* f : {&before.pos[0], &before.pos[1], &before.pos[2], &before.rot[0], &before.rot[1],
-                               &before.rot[2], &before.rot[3]}) {
+  for (const NumberField* f : {&before.pos[0], &before.pos[1], &before.pos[2], &before.rot[0],
+                               &before.rot[1], &before.rot[2], &before.rot[3]}) {
     if (!f->present()) continue;
     lo = std::min(lo, f->offset - f->pad);
     hi = std::max(hi, f->offset + f->length);
@@ -75,13 +76,16 @@ void expectOnlyTargetChanges(const std::string& path, const std::string& name) {
     std::size_t pre = 0;
     while (pre < a.size() && pre < b.size() && a[pre] == b[pre]) ++pre;
     std::size_t suf = 0;
-    while (suf < a.size() - pre && suf < b.size() - pre && a[a.size() - 1 - suf] == b[b.size() - 1 - suf]) ++suf;
+    while (suf < a.size() - pre && suf < b.size() - pre &&
+           a[a.size() - 1 - suf] == b[b.size() - 1 - suf])
+      ++suf;
     EXPECT_GE(pre, lo);
     EXPECT_GE(suf, a.size() - hi);
   }
   // the written file reads back to the new pose (within the token resolution)
   const std::string dir = test::tempDir("edit");
-  const std::string out_path = dir + "/" + std::filesystem::path(p.files[0].path).filename().string();
+  const std::string out_path =
+      dir + "/" + std::filesystem::path(p.files[0].path).filename().string();
   writeProgram(p, out_path);
   const Program q = readProgram(out_path);
   const Pose T2 = targetPose(q, q.targets()[static_cast<std::size_t>(idx)]);
@@ -119,7 +123,8 @@ TEST(PostprocEdit, FanucFieldsStayRightAligned) {
   EXPECT_EQ(out.size(), p.files[0].bytes.size());
 }
 
-Program fromText(Dialect d, const std::string& name, const std::string& text, std::optional<std::string> dat = std::nullopt) {
+Program fromText(Dialect d, const std::string& name, const std::string& text,
+                 std::optional<std::string> dat = std::nullopt) {
   return parseProgram(d, name, text, std::move(dat), "x.dat");
 }
 
@@ -136,7 +141,8 @@ TEST(PostprocEdit, KukaStatusTurnKeepTheirLiteralStyleAndAreInsertedWhenAbsent) 
   EXPECT_NE(dat.find("S 'B00000110',T 'B00000010',E1"), std::string::npos);
   // RoboDK writes E6POS without S/T: explicit flags are appended inside the aggregate
   Program q = fromText(Dialect::kKrl, "x.src", "DEF x( )\nLIN XP1\nEND\n",
-                       std::string("DEFDAT x\nDECL E6POS XP1={X 1.000,Y 2.000,Z 3.000,A 0.000,B 0.000,C 180.000}\nENDDAT\n"));
+                       std::string("DEFDAT x\nDECL E6POS XP1={X 1.000,Y 2.000,Z 3.000,A 0.000,B "
+                                   "0.000,C 180.000}\nENDDAT\n"));
   Configuration k;
   k.vendor = Vendor::kKuka;
   k.status = 2;
@@ -188,8 +194,10 @@ TEST(PostprocEdit, FanucTurnDigitsRefusedWhileTurnAxesUnknown) {
 
 TEST(PostprocEdit, RefusesSharedJointAndIncompleteTargets) {
   Program p = fromText(Dialect::kKrl, "x.src",
-                       "DEF x( )\n$TOOL=TOOL_DATA[1]\nLIN XP1\n$TOOL=TOOL_DATA[2]\nLIN XP1\nLIN {X 10}\nPTP XJ\nEND\n",
-                       std::string("DEFDAT x\nDECL E6POS XP1={X 1,Y 2,Z 3,A 0,B 0,C 0}\nDECL E6AXIS XJ={A1 0,A2 -90,A3 90,A4 0,A5 0,A6 0}\nENDDAT\n"));
+                       "DEF x( )\n$TOOL=TOOL_DATA[1]\nLIN XP1\n$TOOL=TOOL_DATA[2]\nLIN XP1\nLIN {X "
+                       "10}\nPTP XJ\nEND\n",
+                       std::string("DEFDAT x\nDECL E6POS XP1={X 1,Y 2,Z 3,A 0,B 0,C 0}\nDECL "
+                                   "E6AXIS XJ={A1 0,A2 -90,A3 90,A4 0,A5 0,A6 0}\nENDDAT\n"));
   ASSERT_EQ(p.targets().size(), 3u);
   const EditResult shared = replaceTargetPose(p, 0, Pose::Identity());
   EXPECT_FALSE(shared.ok);
@@ -209,7 +217,8 @@ TEST(PostprocDrill, KukaToolDirectionXIsAParameter) {
   EXPECT_EQ(p.targets()[static_cast<std::size_t>(holes[0].bottom_target)].name, "XP3");
   EXPECT_NEAR(holes[0].depth * 1e3, 20.0, 1e-9);
   EXPECT_LT((holes[0].axis - Vec3(0, 0, -1)).norm(), 1e-12);
-  EXPECT_FALSE(p.frames[static_cast<std::size_t>(holes[0].base)].resolved);  // BASE_DATA[3]: $config.dat
+  EXPECT_FALSE(
+      p.frames[static_cast<std::size_t>(holes[0].base)].resolved);  // BASE_DATA[3]: $config.dat
 }
 
 TEST(PostprocDrill, RapidRelToolCycleAndTpDrillMacro) {

@@ -83,7 +83,8 @@ TEST(PostprocRoundTrip, IdentityEditIsByteIdentical) {
     int edited = 0;
     for (std::size_t i = 0; i < p.targets().size(); ++i) {
       const Target& t = p.targets()[i];
-      if (t.kind != TargetKind::kCartesian || !targetComplete(t) || !targetFramesConsistent(p, t)) continue;
+      if (t.kind != TargetKind::kCartesian || !targetComplete(t) || !targetFramesConsistent(p, t))
+        continue;
       const std::optional<Configuration> c =
           t.config.present() ? std::optional<Configuration>(t.config) : std::nullopt;
       const EditResult r = replaceTargetPose(p, static_cast<int>(i), targetPose(p, t), c);
@@ -100,7 +101,8 @@ TEST(PostprocRoundTrip, IdentityEditIsByteIdentical) {
       EXPECT_LE(p.edits.size(), 4u);
       for (const auto& [key, e] : p.edits) {
         bool in_rot = false;
-        for (const NumberField& f : h1.rot) in_rot = in_rot || (e.offset == f.offset && e.length == f.length);
+        for (const NumberField& f : h1.rot)
+          in_rot = in_rot || (e.offset == f.offset && e.length == f.length);
         EXPECT_TRUE(in_rot);
       }
       continue;
@@ -130,7 +132,8 @@ std::vector<CsvRow> readTargetsCsv(const std::string& path) {
     CsvRow r;
     r.move = c[0];
     r.xyz = Vec3(std::stod(c[1]), std::stod(c[2]), std::stod(c[3]));
-    for (int k = 0; k < 6; ++k) r.joints[static_cast<std::size_t>(k)] = std::stod(c[static_cast<std::size_t>(4 + k)]);
+    for (int k = 0; k < 6; ++k)
+      r.joints[static_cast<std::size_t>(k)] = std::stod(c[static_cast<std::size_t>(4 + k)]);
     rows.push_back(r);
   }
   return rows;
@@ -188,14 +191,17 @@ TEST(PostprocCorpus, PosesEqualTheTargetsCsv) {
       ASSERT_NE(tl, nullptr);
       ASSERT_TRUE(b->resolved);
       ASSERT_TRUE(tl->resolved);
-      EXPECT_LT(((b->pose * T).translation() - (wobj.translation() + rows[k].xyz * 1e-3)).norm() * 1e3, 1e-6);
+      EXPECT_LT(
+          ((b->pose * T).translation() - (wobj.translation() + rows[k].xyz * 1e-3)).norm() * 1e3,
+          1e-6);
       EXPECT_LT((tl->pose.matrix() - tool.matrix()).norm(), 1e-12);
     }
     // three holes, 40 mm apart along +Y, bottoms at -12 mm
     const auto holes = recognizeHoles(p);
     ASSERT_EQ(holes.size(), 3u);
     for (std::size_t h = 0; h < 3; ++h) {
-      EXPECT_LT((holes[h].position * 1e3 - Vec3(0, 40.0 * static_cast<double>(h), -12)).norm(), 1e-6);
+      EXPECT_LT((holes[h].position * 1e3 - Vec3(0, 40.0 * static_cast<double>(h), -12)).norm(),
+                1e-6);
       EXPECT_LT((holes[h].axis - Vec3(0, 0, -1)).norm(), 1e-9);
       EXPECT_NEAR(holes[h].depth * 1e3, 14.0, 1e-9);
     }
@@ -226,8 +232,11 @@ TEST(PostprocCorpus, HolesMatchTheHoleList) {
 // or a program that writes back byte-identically.
 TEST(PostprocFuzzRegression, CrashCorpusIsHandled) {
   const std::string dir = test::sourceDir() + "/tests/fuzz/crashes";
-  const std::map<std::string, Dialect> dialects{{"krl", Dialect::kKrl}, {"rapid", Dialect::kRapid}, {"tp", Dialect::kTp},
-                                                {"csv", Dialect::kCsv}, {"json", Dialect::kJson}};
+  const std::map<std::string, Dialect> dialects{{"krl", Dialect::kKrl},
+                                                {"rapid", Dialect::kRapid},
+                                                {"tp", Dialect::kTp},
+                                                {"csv", Dialect::kCsv},
+                                                {"json", Dialect::kJson}};
   int n = 0;
   for (const auto& e : fs::directory_iterator(dir)) {
     const std::string name = e.path().filename().string();

@@ -39,14 +39,16 @@ TEST(Prediction, DeviationGrowsWithFeedAndWithArmExtension) {
   // gravity sag, so the total can fall while the process part grows).
   double prev = 0;
   for (const double f : {0.1, 0.2, 0.3}) {
-    api::PredictionContext c = api::loadPredictionContext(cellWithFeed(f), paper("holes.csv"), std::nullopt, "");
+    api::PredictionContext c =
+        api::loadPredictionContext(cellWithFeed(f), paper("holes.csv"), std::nullopt, "");
     c.model.gravity = false;
     const auto p = predictHoles(c.model, c.job.requests);
     const double e = byId(p, "X2").d_robot.norm();
     EXPECT_GT(e, prev) << "feed " << f;
     prev = e;
   }
-  api::PredictionContext c = api::loadPredictionContext(paper("cell.xml"), paper("holes.csv"), std::nullopt, "");
+  api::PredictionContext c =
+      api::loadPredictionContext(paper("cell.xml"), paper("holes.csv"), std::nullopt, "");
   c.model.gravity = false;
   const auto p = predictHoles(c.model, c.job.requests);
   EXPECT_LT(byId(p, "X1").d_robot.norm(), byId(p, "X2").d_robot.norm());
@@ -60,7 +62,8 @@ TEST(Prediction, WristConfigurationChangeIsAJumpOfTensOfMicrometres) {
   // mass off the drill axis (paper cell), other loads. A pure flip
   // (θ4 ± 180°, −θ5, θ6 ± 180°) moves nothing in a joint-compliance model (τ5 and φ5 both change
   // sign), which this test checks too.
-  const api::PredictionContext c = api::loadPredictionContext(paper("cell.xml"), paper("holes.csv"), std::nullopt, "");
+  const api::PredictionContext c =
+      api::loadPredictionContext(paper("cell.xml"), paper("holes.csv"), std::nullopt, "");
   PredictionData d(c.model);
   HoleRequest a = c.job.requests[1];
   HoleRequest b = a;
@@ -70,7 +73,8 @@ TEST(Prediction, WristConfigurationChangeIsAJumpOfTensOfMicrometres) {
   const HolePrediction pb = predictHole(c.model, d, b, &pa.joints);
   ASSERT_EQ(pa.status, HoleStatus::kOk) << pa.reason;
   ASSERT_EQ(pb.status, HoleStatus::kOk) << pb.reason;
-  EXPECT_GT(std::abs(pb.joints[3] - pa.joints[3]) + std::abs(pb.joints[5] - pa.joints[5]), 45 * kDeg);
+  EXPECT_GT(std::abs(pb.joints[3] - pa.joints[3]) + std::abs(pb.joints[5] - pa.joints[5]),
+            45 * kDeg);
   const double jump = (pa.d_work - pb.d_work).norm();
   EXPECT_GT(jump, 10e-6) << "jump " << jump * 1e6 << " µm";
   EXPECT_LT(jump, 1000e-6);
@@ -83,7 +87,8 @@ TEST(Prediction, WristConfigurationChangeIsAJumpOfTensOfMicrometres) {
 }
 
 TEST(Prediction, MachiningUncertaintyRisesFrom30To60MicrometresWithDiameter) {
-  const api::PredictionContext c = api::loadPredictionContext(paper("cell.xml"), paper("holes.csv"), std::nullopt, "");
+  const api::PredictionContext c =
+      api::loadPredictionContext(paper("cell.xml"), paper("holes.csv"), std::nullopt, "");
   const auto p = predictHoles(c.model, c.job.requests);
   // the study's ± band is per axis with k = 2 (U = 2 u); the report's U_mach is the 2-D radius
   const double u8 = 2.0 * byId(p, "D8").u_mach;
@@ -94,7 +99,8 @@ TEST(Prediction, MachiningUncertaintyRisesFrom30To60MicrometresWithDiameter) {
 }
 
 TEST(Prediction, ProcessShareIsReportedAndAtMostFortyPercentInThePaperLikeCell) {
-  const api::PredictionContext c = api::loadPredictionContext(paper("cell.xml"), paper("holes.csv"), std::nullopt, "");
+  const api::PredictionContext c =
+      api::loadPredictionContext(paper("cell.xml"), paper("holes.csv"), std::nullopt, "");
   const auto p = predictHoles(c.model, c.job.requests);
   for (const auto& h : p) {
     ASSERT_EQ(h.status, HoleStatus::kOk) << h.id;
@@ -104,12 +110,14 @@ TEST(Prediction, ProcessShareIsReportedAndAtMostFortyPercentInThePaperLikeCell) 
 }
 
 TEST(Prediction, BudgetRecomputedByHand) {
-  const api::PredictionContext c = api::loadPredictionContext(paper("cell.xml"), paper("holes.csv"), std::nullopt, "");
+  const api::PredictionContext c =
+      api::loadPredictionContext(paper("cell.xml"), paper("holes.csv"), std::nullopt, "");
   const auto p = predictHoles(c.model, c.job.requests);
   const HolePrediction& h = byId(p, "X2");
   double u2_robot = 0;
   double u2_mach = 0;
-  for (const BudgetTerm& t : h.budget) (std::string(t.name).rfind("mach", 0) == 0 ? u2_mach : u2_robot) += t.u * t.u;
+  for (const BudgetTerm& t : h.budget)
+    (std::string(t.name).rfind("mach", 0) == 0 ? u2_mach : u2_robot) += t.u * t.u;
   EXPECT_NEAR(h.u_robot, std::sqrt(u2_robot), 1e-15);
   EXPECT_NEAR(h.u_mach, std::sqrt(u2_mach), 1e-15);
   EXPECT_NEAR(h.U_work, std::sqrt(h.U_robot * h.U_robot + h.U_mach * h.U_mach), 1e-15);
@@ -120,12 +128,14 @@ TEST(Prediction, BudgetRecomputedByHand) {
 
 TEST(Prediction, MonteCarloAgreesWithLinearisationAtSmallInputUncertainty) {
   std::string xml = test::readFile(paper("cell.xml"));
-  xml = std::regex_replace(xml, std::regex("<tolerance"),
-                           "<uncertainty method=\"montecarlo\" stiffness_rel=\"0.02\" process_halfwidth=\"0.03\" "
-                           "samples=\"4000\" seed=\"7\"/>\n  <tolerance");
+  xml = std::regex_replace(
+      xml, std::regex("<tolerance"),
+      "<uncertainty method=\"montecarlo\" stiffness_rel=\"0.02\" process_halfwidth=\"0.03\" "
+      "samples=\"4000\" seed=\"7\"/>\n  <tolerance");
   const std::string dir = test::tempDir("mc");
   test::writeFile(dir + "/cell.xml", xml);
-  const api::PredictionContext mc = api::loadPredictionContext(dir + "/cell.xml", paper("holes.csv"), std::nullopt, "");
+  const api::PredictionContext mc =
+      api::loadPredictionContext(dir + "/cell.xml", paper("holes.csv"), std::nullopt, "");
   const api::PredictionContext lin =
       api::loadPredictionContext(dir + "/cell.xml", paper("holes.csv"), std::nullopt, "linear");
   const auto pm = predictHoles(mc.model, mc.job.requests);
@@ -142,8 +152,9 @@ TEST(PredictionCli, SameInputGivesByteIdenticalJsonAndHtml) {
   const std::string cell = test::sourceDir() + "/samples/cells/housing-kr120.xml";
   const std::string prog = test::sourceDir() + "/samples/emotor-housing/housing_kr120.src";
   for (const char* r : {"a", "b"}) {
-    const auto res = test::runRoprec("predict --cell '" + cell + "' '" + prog + "' --json '" + dir + "/" + r +
-                                     ".json' --report '" + dir + "/" + r + ".html' --quiet");
+    const auto res =
+        test::runRoprec("predict --cell '" + cell + "' '" + prog + "' --json '" + dir + "/" + r +
+                        ".json' --report '" + dir + "/" + r + ".html' --quiet");
     ASSERT_LE(res.exit_code, 1) << res.err;
   }
   EXPECT_EQ(test::readFile(dir + "/a.json"), test::readFile(dir + "/b.json"));
@@ -154,13 +165,14 @@ TEST(PredictionCli, SameInputGivesByteIdenticalJsonAndHtml) {
 TEST(PredictionCli, BadInputExitsTwoWithFileAndLine) {
   const std::string dir = test::tempDir("pbad");
   test::writeFile(dir + "/holes.csv", "id,x,y,z,i,j,k\nA,1,2,3,0,0,-1\nB,1,2,oops,0,0,-1\n");
-  const auto r = test::runRoprec("predict --cell '" + paper("cell.xml") + "' '" + dir + "/holes.csv' --json '" + dir +
-                                 "/o.json'");
+  const auto r = test::runRoprec("predict --cell '" + paper("cell.xml") + "' '" + dir +
+                                 "/holes.csv' --json '" + dir + "/o.json'");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("holes.csv:3"), std::string::npos) << r.err;
   EXPECT_FALSE(std::ifstream(dir + "/o.json").good());
   test::writeFile(dir + "/cell.xml", "<cell><robot ref=\"no-such-robot\"/></cell>\n");
-  const auto r2 = test::runRoprec("predict --cell '" + dir + "/cell.xml' '" + paper("holes.csv") + "'");
+  const auto r2 =
+      test::runRoprec("predict --cell '" + dir + "/cell.xml' '" + paper("holes.csv") + "'");
   EXPECT_EQ(r2.exit_code, 2);
   EXPECT_NE(r2.err.find("cell.xml:1"), std::string::npos) << r2.err;
 }

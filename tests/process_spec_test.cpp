@@ -53,9 +53,11 @@ TEST(ProcessSpec, CoefficientAndDeviationOverrides) {
       "  <drill diameter_mm=\"8\" runout_mm=\"0.01\" tool_material=\"hss\" angle_law=\"paper\"/>\n"
       "  <cut feed_mm_per_rev=\"0.1\" depth_mm=\"12\" through=\"true\"/>\n"
       "  <material name=\"A356\"/>\n"
-      "  <coefficients kst0_N_mm2=\"900\" ksa0_N_mm2=\"650\" bt_per_deg=\"-0.012\" chisel_model=\"pressure\"\n"
+      "  <coefficients kst0_N_mm2=\"900\" ksa0_N_mm2=\"650\" bt_per_deg=\"-0.012\" "
+      "chisel_model=\"pressure\"\n"
       "                chisel_pressure_ratio=\"4\" source=\"shop test 2026\"/>\n"
-      "  <machining_deviation axis_tilt_deg=\"0.05\" spindle_compliance_um_per_N=\"0.1\" k=\"3\"/>\n"
+      "  <machining_deviation axis_tilt_deg=\"0.05\" spindle_compliance_um_per_N=\"0.1\" "
+      "k=\"3\"/>\n"
       "</process>\n");
   const DrillingSpec& d = s.drilling;
   EXPECT_EQ(d.law, AngleLaw::kPaperProportional);
@@ -89,7 +91,8 @@ TEST(ProcessSpec, MillingAndWrench) {
   ASSERT_TRUE(m.milling.compliance.has_value());
   EXPECT_DOUBLE_EQ((*m.milling.compliance)(1, 1), 2e-6);
   EXPECT_DOUBLE_EQ(m.milling.coupling.relaxation, 0.5);
-  const ProcessSpec w = parse("<process type=\"wrench\" force_N=\"10 -20 -1500\" torque_Nm=\"0 0 -3\"/>");
+  const ProcessSpec w =
+      parse("<process type=\"wrench\" force_N=\"10 -20 -1500\" torque_Nm=\"0 0 -3\"/>");
   ASSERT_EQ(w.type, ProcessType::kWrench);
   EXPECT_EQ(w.wrench.force, Vec3(10, -20, -1500));
   EXPECT_EQ(w.wrench.torque, Vec3(0, 0, -3));
@@ -97,7 +100,8 @@ TEST(ProcessSpec, MillingAndWrench) {
 
 TEST(ProcessSpec, BadInputNamesTheLine) {
   auto with = [](const std::string& drill, const std::string& cut, const std::string& mat) {
-    return "<process type=\"drilling\">\n  " + drill + "\n  " + cut + "\n  " + mat + "\n</process>\n";
+    return "<process type=\"drilling\">\n  " + drill + "\n  " + cut + "\n  " + mat +
+           "\n</process>\n";
   };
   const std::string d = "<drill diameter_mm=\"10\"/>";
   const std::string c = "<cut feed_mm_per_rev=\"0.2\"/>";
@@ -107,20 +111,27 @@ TEST(ProcessSpec, BadInputNamesTheLine) {
   expectError(with("<drill diameter_mm=\"10\" point_angle_deg=\"180\"/>", c, m), 2, "point angle");
   expectError(with("<drill diameter_mm=\"10\" web_mm=\"12\"/>", c, m), 2, "wider than the drill");
   expectError(with(d, c, "<material name=\"unobtainium\"/>"), 4, "unknown material 'unobtainium'");
-  expectError(with("<drill diameter_mm=\"10\" diamter=\"3\"/>", c, m), 2, "unknown attribute 'diamter'");
+  expectError(with("<drill diameter_mm=\"10\" diamter=\"3\"/>", c, m), 2,
+              "unknown attribute 'diamter'");
   expectError(with("<drill diameter_mm=\"-10\"/>", c, m), 2, "diameter_mm must be > 0");
-  expectError("<process type=\"drilling\">\n  <cut feed_mm_per_rev=\"0.2\"/>\n</process>", 1, "<drill>");
-  expectError("<process type=\"milling\">\n <mill diameter_mm=\"10\"/>\n <cut ap_mm=\"5\" ae_mm=\"12\" fz_mm=\"0.1\"/>\n"
-              " <material name=\"Al 6061-T6\"/>\n</process>",
-              3, "ae_mm must be <= the cutter diameter");
-  expectError("<process type=\"milling\">\n <mill diameter_mm=\"10\"/>\n <cut ap_mm=\"5\" ae_mm=\"2\" fz_mm=\"0.1\" "
-              "mode=\"sideways\"/>\n <material name=\"Al 6061-T6\"/>\n</process>",
-              3, "mode must be");
+  expectError("<process type=\"drilling\">\n  <cut feed_mm_per_rev=\"0.2\"/>\n</process>", 1,
+              "<drill>");
+  expectError(
+      "<process type=\"milling\">\n <mill diameter_mm=\"10\"/>\n <cut ap_mm=\"5\" ae_mm=\"12\" "
+      "fz_mm=\"0.1\"/>\n"
+      " <material name=\"Al 6061-T6\"/>\n</process>",
+      3, "ae_mm must be <= the cutter diameter");
+  expectError(
+      "<process type=\"milling\">\n <mill diameter_mm=\"10\"/>\n <cut ap_mm=\"5\" ae_mm=\"2\" "
+      "fz_mm=\"0.1\" "
+      "mode=\"sideways\"/>\n <material name=\"Al 6061-T6\"/>\n</process>",
+      3, "mode must be");
   expectError("<process type=\"wrench\" force_N=\"1 2\"/>", 1, "needs 3 numbers");
 }
 
 TEST(ProcessSpec, SampleCellsParseWithoutLoadingTheRobot) {
-  for (const char* name : {"alu-drilling-6061.xml", "alu-drilling-7075-dc8.xml", "alu-milling-7075.xml"}) {
+  for (const char* name :
+       {"alu-drilling-6061.xml", "alu-drilling-7075-dc8.xml", "alu-milling-7075.xml"}) {
     const CellSpec cell = loadCell(test::sourceDir() + "/samples/cells/" + name);
     ASSERT_TRUE(cell.has_process) << name;
     EXPECT_EQ(cell.robot.robot, "kuka-kr120-r2500-pro");
@@ -129,7 +140,8 @@ TEST(ProcessSpec, SampleCellsParseWithoutLoadingTheRobot) {
 }
 
 TEST(ProcessSpec, CalibratedCopyKeepsTheRestOfTheCell) {
-  const std::string text = test::readFile(test::sourceDir() + "/samples/cells/alu-drilling-6061.xml");
+  const std::string text =
+      test::readFile(test::sourceDir() + "/samples/cells/alu-drilling-6061.xml");
   DrillingCoefficients c = findMaterial("Al 6061-T6")->drilling;
   c.tangential.k0 = 1091.25e6;
   c.axial.k0 = 760.5e6;

@@ -17,11 +17,13 @@ TEST(Quadrature, GaussLegendreIsExactToDegreeTwoNMinusOne) {
     ASSERT_EQ(static_cast<int>(x.size()), n);
     for (int d = 0; d <= 2 * n - 1 && d <= 60; ++d) {
       double q = 0;
-      for (int i = 0; i < n; ++i) q += w[static_cast<size_t>(i)] * std::pow(x[static_cast<size_t>(i)], d);
+      for (int i = 0; i < n; ++i)
+        q += w[static_cast<size_t>(i)] * std::pow(x[static_cast<size_t>(i)], d);
       const double exact = d % 2 ? 0.0 : 2.0 / (d + 1);
       EXPECT_NEAR(q, exact, 1e-13) << "n " << n << " degree " << d;
     }
-    for (int i = 0; i < n; ++i) EXPECT_NEAR(x[static_cast<size_t>(i)], -x[static_cast<size_t>(n - 1 - i)], 1e-15);
+    for (int i = 0; i < n; ++i)
+      EXPECT_NEAR(x[static_cast<size_t>(i)], -x[static_cast<size_t>(n - 1 - i)], 1e-15);
   }
   std::vector<double> x;
   std::vector<double> w;

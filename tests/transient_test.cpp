@@ -1,5 +1,5 @@
-// CVODE transient of the flexible-joint robot under its servo (compensator/robot/transient.hpp) against
-// independent references:
+// CVODE transient of the flexible-joint robot under its servo (compensator/robot/transient.hpp)
+// against independent references:
 //  * the steady state equals the static deviation of predictDeflection (fixed point/Newton on the
 //    static equations, no integration) to ≤ 0.01 µm, with integral action (ideal-servo statics)
 //    and without it (k_servo = Kv·Kω in series with k), and with a follower wrench against the
@@ -88,17 +88,18 @@ void checkSteadyState(bool integral) {
   nc::forwardKinematics(k.model, data, k.q);
   nc::Loads loads;
   loads.tcp = toBaseFrame(w, data.T_W_tcp.linear());
-  const nc::Deflection d = nc::predictDeflection(k.model, data, p.drive.staticCompliance(), k.q, loads);
+  const nc::Deflection d =
+      nc::predictDeflection(k.model, data, p.drive.staticCompliance(), k.q, loads);
   ASSERT_TRUE(d.converged);
   const nc::TransientSample& s = r.samples.back();
   EXPECT_GT(d.dp.norm(), 100e-6);  // a real deflection (gravity + 800 N)
-  EXPECT_LE((s.dp - d.dp).norm(), 0.01e-6) << "transient " << s.dp.transpose() * 1e6 << " um, static "
-                                          << d.dp.transpose() * 1e6 << " um";
+  EXPECT_LE((s.dp - d.dp).norm(), 0.01e-6) << "transient " << s.dp.transpose() * 1e6
+                                           << " um, static " << d.dp.transpose() * 1e6 << " um";
   EXPECT_LE((s.drot - d.drot).norm(), 0.01e-6 / 2.5);
   EXPECT_LE((s.theta - d.theta).lpNorm<Eigen::Infinity>(), 1e-9);
   std::printf("steady state (%s): |dp - static| = %.3e um of %.1f um, steps %ld, rhs %ld\n",
-              integral ? "integral" : "proportional", (s.dp - d.dp).norm() * 1e6, d.dp.norm() * 1e6, r.stats.steps,
-              r.stats.rhs_evals + r.stats.rhs_evals_jac);
+              integral ? "integral" : "proportional", (s.dp - d.dp).norm() * 1e6, d.dp.norm() * 1e6,
+              r.stats.steps, r.stats.rhs_evals + r.stats.rhs_evals_jac);
   // the transient really happened: the first sample is the rigid command
   EXPECT_LE(r.samples.front().dp.norm(), 1e-12);
 }
@@ -144,12 +145,14 @@ TEST(Transient, FollowerWrenchSteadyStateEqualsStaticWithLoadAtRealOrientation) 
   nc::Loads follower;
   follower.tcp_tool.force = w.force;
   follower.tcp_tool.moment = w.torque;
-  const nc::Deflection df = nc::predictDeflection(k.model, data, p.drive.staticCompliance(), k.q, follower);
+  const nc::Deflection df =
+      nc::predictDeflection(k.model, data, p.drive.staticCompliance(), k.q, follower);
   ASSERT_TRUE(df.converged);
   EXPECT_LE((df.dp - d.dp).norm(), 1e-12);
   nc::Loads fixed;
   fixed.tcp = toBaseFrame(w, d.T_nominal.linear());
-  const nc::Deflection d0 = nc::predictDeflection(k.model, data, p.drive.staticCompliance(), k.q, fixed);
+  const nc::Deflection d0 =
+      nc::predictDeflection(k.model, data, p.drive.staticCompliance(), k.q, fixed);
   EXPECT_LE((r.samples.back().dp - d.dp).norm(), 0.01e-6);
   // the follower effect is visible against the fixed-direction load
   EXPECT_GT((d0.dp - d.dp).norm(), 0.05e-6);
@@ -192,7 +195,8 @@ TEST(Transient, FreeMotionConservesEnergy) {
     return 0.5 * thd.dot(M * thd) + 0.5 * thmd.dot(p.drive.motor_inertia.cwiseProduct(thmd)) +
            0.5 * e.dot(p.drive.k.cwiseProduct(e));
   };
-  const double E0 = energy(y0.segment<6>(0), y0.segment<6>(6), y0.segment<6>(12), y0.segment<6>(18));
+  const double E0 =
+      energy(y0.segment<6>(0), y0.segment<6>(6), y0.segment<6>(12), y0.segment<6>(18));
   // state at the samples: re-run to each sample time is unnecessary; use y_final and the
   // sampled angles with rates from a second run segment by segment
   double worst = 0.0;
@@ -215,7 +219,8 @@ TEST(Transient, FreeMotionConservesEnergy) {
 /// locked, free motor, no gravity: the two-inertia oscillator. With e = θ_m − θ,
 ///   e'' + c e' + ω² e = 0,  ω² = k(1/J + 1/B),  c = d(1/J + 1/B),   J θ + B θ_m = const.
 void checkSingleLink(double damping) {
-  const ChainDescription chain = loadUrdfChain(test::sourceDir() + "/tests/data/single_link_6r.urdf");
+  const ChainDescription chain =
+      loadUrdfChain(test::sourceDir() + "/tests/data/single_link_6r.urdf");
   const nc::Model model = nc::buildModel(chain);
   const double J = 50.0 * 1.0 * 1.0;
   const double B = 20.0;
@@ -254,7 +259,8 @@ void checkSingleLink(double damping) {
   for (const nc::TransientSample& s : r.samples) {
     const double t = s.t;
     // e(t) = e0 exp(−ct/2)(cos ωd t + c/(2ωd) sin ωd t), e'(0) = 0
-    const double e = e0 * std::exp(-0.5 * c * t) * (std::cos(wd * t) + 0.5 * c / wd * std::sin(wd * t));
+    const double e =
+        e0 * std::exp(-0.5 * c * t) * (std::cos(wd * t) + 0.5 * c / wd * std::sin(wd * t));
     const double centre = (J * p.theta_cmd[1] + B * (p.theta_cmd[1] + e0)) / (J + B) + rate0 * t;
     const double th = centre - B / (J + B) * e;
     worst = std::max(worst, std::abs(s.theta[1] - th));
@@ -384,8 +390,10 @@ TEST(Transient, DrillingCyclePhasesAndLoads) {
   const double depth_full = 6e-3;  // beyond (R − a)/tan p for the 10 mm, 118° drill
   c.sample(tm.approach + depth_full / v, s);
   EXPECT_EQ(s.phase, nc::CyclePhase::kFull);
-  EXPECT_NEAR(s.wrench.force.z(), steady.wrench.force.z(), 1e-9 * std::abs(steady.wrench.force.z()));
-  EXPECT_NEAR(s.wrench.torque.z(), steady.wrench.torque.z(), 1e-9 * std::abs(steady.wrench.torque.z()));
+  EXPECT_NEAR(s.wrench.force.z(), steady.wrench.force.z(),
+              1e-9 * std::abs(steady.wrench.force.z()));
+  EXPECT_NEAR(s.wrench.torque.z(), steady.wrench.torque.z(),
+              1e-9 * std::abs(steady.wrench.torque.z()));
   EXPECT_NEAR(s.depth, depth_full, 1e-12);
   // entry: partial load, growing
   nc::ProcessSample s1, s2;

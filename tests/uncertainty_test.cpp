@@ -18,7 +18,8 @@ TEST(Uncertainty, RpToSigmaMatchesChiDistributionAndSimulation) {
   // closed form: l̄ = 2√(2/π) σ, S_l = √(3 − 8/π) σ
   EXPECT_NEAR(rpFromSigma(1.0), 2 * std::sqrt(2 / kPi) + 3 * std::sqrt(3 - 8 / kPi), 1e-15);
   EXPECT_NEAR(rpFromSigma(1.0), 3.6161, 1e-4);  // docs/process.md §5.2: RP = 3.616 σ
-  EXPECT_NEAR(sigmaFromRp(0.04e-3), 11.06e-6, 0.01e-6);  // docs/process.md §5.2: ±0.04 mm -> σ ≈ 11 µm
+  EXPECT_NEAR(sigmaFromRp(0.04e-3), 11.06e-6,
+              0.01e-6);  // docs/process.md §5.2: ±0.04 mm -> σ ≈ 11 µm
   // ISO 9283 test simulated: 30 cycles, RP = l̄ + 3 S_l about the barycentre; averaged over runs
   std::mt19937 rng(9283);
   std::normal_distribution<double> n(0.0, 1.0);
@@ -47,7 +48,8 @@ TEST(Uncertainty, RpToSigmaMatchesChiDistributionAndSimulation) {
 
 TEST(Uncertainty, RadialCoverageFactors) {
   EXPECT_NEAR(rayleighCoverageFactor(0.95), 2.4477, 1e-4);
-  EXPECT_NEAR(rayleighCoverageFactor(0.9973), 3.4393, 1e-3);  // docs/process.md §5.1: 99.73 % -> 3.439
+  EXPECT_NEAR(rayleighCoverageFactor(0.9973), 3.4393,
+              1e-3);  // docs/process.md §5.1: 99.73 % -> 3.439
   const Eigen::Matrix2d iso = Eigen::Matrix2d::Identity() * 1e-10;  // u = 10 µm
   EXPECT_NEAR(radialCoverage(iso), 2.4477e-5, 1e-9);
   EXPECT_NEAR(radialProbability(iso, 2.4477e-5), 0.95, 1e-4);
@@ -72,9 +74,10 @@ TEST(Uncertainty, Iso14253VerdictHandCases) {
   const double t = 0.2e-3;  // ⌀0.20 mm
   // docs/process.md §5.4 example: e = 40 µm, U = 30 µm -> 2(40 + 30) = 140 ≤ 200 µm: conforms
   EXPECT_EQ(verdictFor(40e-6, 30e-6, t), Verdict::kConforms);
-  EXPECT_EQ(verdictFor(80e-6, 30e-6, t), Verdict::kConformsAfterCompensation);  // 110 > 100, 30 ≤ 100
-  EXPECT_EQ(verdictFor(5e-6, 101e-6, t), Verdict::kDoesNotConform);            // scatter alone too large
-  EXPECT_EQ(verdictFor(70e-6, 30e-6, t), Verdict::kConforms);                  // exactly on the guard band
+  EXPECT_EQ(verdictFor(80e-6, 30e-6, t),
+            Verdict::kConformsAfterCompensation);                    // 110 > 100, 30 ≤ 100
+  EXPECT_EQ(verdictFor(5e-6, 101e-6, t), Verdict::kDoesNotConform);  // scatter alone too large
+  EXPECT_EQ(verdictFor(70e-6, 30e-6, t), Verdict::kConforms);        // exactly on the guard band
 }
 
 }  // namespace

@@ -11,9 +11,9 @@
 #include <random>
 
 #include "compensator/robot/chain.hpp"
-#include "compensator/support/error.hpp"
 #include "compensator/robot/robot_card.hpp"
 #include "compensator/robot/urdf_loader.hpp"
+#include "compensator/support/error.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace roprec {

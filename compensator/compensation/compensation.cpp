@@ -10,9 +10,12 @@ namespace roprec {
 
 const char* orientationModeName(OrientationMode m) {
   switch (m) {
-    case OrientationMode::kKeep: return "keep";
-    case OrientationMode::kFlipFree: return "flip-free";
-    case OrientationMode::kStiffest: return "stiffest";
+    case OrientationMode::kKeep:
+      return "keep";
+    case OrientationMode::kFlipFree:
+      return "flip-free";
+    case OrientationMode::kStiffest:
+      return "stiffest";
   }
   return "?";
 }
@@ -33,9 +36,9 @@ struct Node {
   double psi{0.0};
   Vec6 q{Vec6::Zero()};
   int branch{-1};
-  double u_def{0.0};      ///< m: linearised deflection-model uncertainty (stiffness proxy)
-  double penalty{0.0};    ///< limits + wrist proximity (dimensionless)
-  double wrist{0.0};      ///< |sin(θ5 + α)|
+  double u_def{0.0};    ///< m: linearised deflection-model uncertainty (stiffness proxy)
+  double penalty{0.0};  ///< limits + wrist proximity (dimensionless)
+  double wrist{0.0};    ///< |sin(θ5 + α)|
 };
 
 struct Evaluator {
@@ -45,7 +48,9 @@ struct Evaluator {
 
   nc::Loads loadsFor(const ProcessAtDiameter* proc) const { return processLoads(m, proc); }
 
-  const ProcessAtDiameter* processFor(double diameter) const { return roprec::processFor(m, diameter); }
+  const ProcessAtDiameter* processFor(double diameter) const {
+    return roprec::processFor(m, diameter);
+  }
 
   /// IK at T_W_tcp in `branch` (−1: any) nearest `seed`; `enforce_wrist`: |θ5| ≥ margin.
   Node evaluate(const HoleRequest& h, double psi, int branch, const Vec6& seed, bool enforce_wrist,
@@ -77,7 +82,8 @@ struct Evaluator {
     // penalties: joint-limit proximity and wrist proximity
     for (int j = 0; j < 6; ++j) {
       const double margin = std::min(n.q[j] - m.ik.lower[j], m.ik.upper[j] - n.q[j]);
-      if (margin < o.limit_margin) n.penalty += std::pow((o.limit_margin - margin) / o.limit_margin, 2);
+      if (margin < o.limit_margin)
+        n.penalty += std::pow((o.limit_margin - margin) / o.limit_margin, 2);
     }
     const double s2 = std::sin(2.0 * o.wrist_margin);
     if (n.wrist < s2) n.penalty += std::pow((s2 - n.wrist) / s2, 2);
@@ -131,8 +137,8 @@ double transitionCost(const Node& a, const Node& b, OrientationMode mode) {
 // ---- stage 1: the program as it is
 
 /// Predictions of the original targets (continuity seeds, like `roprec predict`).
-void predictOriginal(const PredictionModel& m, PredictionData& d, const std::vector<HoleRequest>& holes,
-                     std::vector<HoleCompensation>& out) {
+void predictOriginal(const PredictionModel& m, PredictionData& d,
+                     const std::vector<HoleRequest>& holes, std::vector<HoleCompensation>& out) {
   std::optional<Vec6> prev;
   for (size_t i = 0; i < holes.size(); ++i) {
     out[i].id = holes[i].id;
@@ -149,7 +155,8 @@ double gridPsi(int k, int grid) { return grid == 1 ? 0.0 : -kPi + 2.0 * kPi * k 
 /// solution unless a branch change is allowed. Where |θ5| ≥ margin fails for every ψ, the margin
 /// becomes a penalty and the hole is flagged.
 std::vector<std::vector<Node>> candidateNodes(Evaluator& ev, const std::vector<HoleRequest>& holes,
-                                              std::vector<HoleCompensation>& out, int grid, CompensationStats& st) {
+                                              std::vector<HoleCompensation>& out, int grid,
+                                              CompensationStats& st) {
   const CompensationOptions& o = ev.o;
   const bool choose = o.mode != OrientationMode::kKeep;
   std::vector<std::vector<Node>> nodes(holes.size());
@@ -169,7 +176,8 @@ std::vector<std::vector<Node>> candidateNodes(Evaluator& ev, const std::vector<H
       // With the drill on the flange axis, ψ turns axis 6 only: if |θ5| < margin for every ψ the
       // margin cannot be met here. Keep it as a penalty and say so, rather than drop the hole.
       for (int k = 0; k < grid; ++k) {
-        nodes[i][static_cast<size_t>(k)] = ev.evaluate(holes[i], gridPsi(k, grid), branch, s, false, true);
+        nodes[i][static_cast<size_t>(k)] =
+            ev.evaluate(holes[i], gridPsi(k, grid), branch, s, false, true);
         any |= nodes[i][static_cast<size_t>(k)].feasible;
       }
       if (any) {
@@ -224,10 +232,12 @@ bool dpForward(const std::vector<std::vector<Node>>& nodes, const std::vector<Ho
         }
       }
     }
-    const bool any = std::any_of(cost[i].begin(), cost[i].end(), [](double c) { return std::isfinite(c); });
+    const bool any =
+        std::any_of(cost[i].begin(), cost[i].end(), [](double c) { return std::isfinite(c); });
     if (any) {
       last = static_cast<int>(i);
-    } else if (std::any_of(nodes[i].begin(), nodes[i].end(), [](const Node& nd) { return nd.feasible; })) {
+    } else if (std::any_of(nodes[i].begin(), nodes[i].end(),
+                           [](const Node& nd) { return nd.feasible; })) {
       all_connected = false;  // reachable but not within the jump threshold
     }
   }
@@ -236,7 +246,8 @@ bool dpForward(const std::vector<std::vector<Node>>& nodes, const std::vector<Ho
 
 /// Backtracking: the cheapest end node, then its predecessors; a hole that starts a new chain
 /// (after an unreachable one) takes its own cheapest node.
-std::vector<int> dpBacktrack(const std::vector<std::vector<double>>& cost, const std::vector<std::vector<int>>& from) {
+std::vector<int> dpBacktrack(const std::vector<std::vector<double>>& cost,
+                             const std::vector<std::vector<int>>& from) {
   const size_t n = cost.size();
   std::vector<int> choice(n, -1);
   int cur = -1;
@@ -260,8 +271,9 @@ std::vector<int> dpBacktrack(const std::vector<std::vector<double>>& cost, const
 
 /// The chosen node per hole (−1: none); relaxes the jump threshold ×1.5 until every reachable
 /// hole connects. Returns the threshold used.
-std::vector<int> chooseSequence(const std::vector<std::vector<Node>>& nodes, const std::vector<HoleRequest>& holes,
-                                const CompensationOptions& o, CompensationStats& st, double& thr) {
+std::vector<int> chooseSequence(const std::vector<std::vector<Node>>& nodes,
+                                const std::vector<HoleRequest>& holes, const CompensationOptions& o,
+                                CompensationStats& st, double& thr) {
   std::vector<std::vector<double>> cost;
   std::vector<std::vector<int>> from;
   thr = o.jump_threshold;
@@ -280,7 +292,8 @@ std::vector<int> chooseSequence(const std::vector<std::vector<Node>>& nodes, con
       if (choice[i] < 0) continue;
       const size_t k0 = nodes[i].size() / 2;  // ψ = 0
       const Node& z = nodes[i][k0];
-      if (z.feasible && z.u_def < nodes[i][static_cast<size_t>(choice[i])].u_def) choice[i] = static_cast<int>(k0);
+      if (z.feasible && z.u_def < nodes[i][static_cast<size_t>(choice[i])].u_def)
+        choice[i] = static_cast<int>(k0);
     }
   }
   return choice;
@@ -290,9 +303,10 @@ std::vector<int> chooseSequence(const std::vector<std::vector<Node>>& nodes, con
 
 /// The nearest chosen feasible node before (dir −1) or after (dir +1) hole i, and whether it is
 /// on the same face.
-std::pair<const Node*, bool> neighbour(const std::vector<Node>& chosen, const std::vector<HoleRequest>& holes,
-                                       size_t i, int dir) {
-  for (long k = static_cast<long>(i) + dir; k >= 0 && k < static_cast<long>(chosen.size()); k += dir) {
+std::pair<const Node*, bool> neighbour(const std::vector<Node>& chosen,
+                                       const std::vector<HoleRequest>& holes, size_t i, int dir) {
+  for (long k = static_cast<long>(i) + dir; k >= 0 && k < static_cast<long>(chosen.size());
+       k += dir) {
     const size_t kk = static_cast<size_t>(k);
     if (chosen[kk].feasible) return {&chosen[kk], sameFace(holes[kk], holes[i])};
   }
@@ -301,8 +315,8 @@ std::pair<const Node*, bool> neighbour(const std::vector<Node>& chosen, const st
 
 /// COBYLA on ψ within ±1 grid step: cost = node + transitions to the neighbours, subject to
 /// |Δθ4|, |Δθ6| ≤ thr against same-face neighbours. Keeps the result only when feasible and better.
-void refineHole(Evaluator& ev, const std::vector<HoleRequest>& holes, std::vector<Node>& chosen, size_t i,
-                bool enforce_wrist, int grid, double thr, CompensationStats& st) {
+void refineHole(Evaluator& ev, const std::vector<HoleRequest>& holes, std::vector<Node>& chosen,
+                size_t i, bool enforce_wrist, int grid, double thr, CompensationStats& st) {
   const OrientationMode mode = ev.o.mode;
   const auto [pn, pn_face] = neighbour(chosen, holes, i, -1);
   const auto [nn, nn_face] = neighbour(chosen, holes, i, +1);
@@ -353,7 +367,8 @@ void refineHole(Evaluator& ev, const std::vector<HoleRequest>& holes, std::vecto
   if (!r.usable()) return;
   const Node nd = evalAt(x[0]);
   const bool ok_jumps = (!pj || jumpOk(pj->q, nd.q, thr)) && (!nj || jumpOk(nd.q, nj->q, thr));
-  const bool better = mode == OrientationMode::kStiffest ? nd.u_def <= chosen[i].u_def : total(nd) < total(chosen[i]);
+  const bool better = mode == OrientationMode::kStiffest ? nd.u_def <= chosen[i].u_def
+                                                         : total(nd) < total(chosen[i]);
   if (nd.feasible && ok_jumps && better) {
     chosen[i] = nd;
     ++st.refined;
@@ -375,8 +390,8 @@ std::optional<Vec6> positionOnlyCommand(Evaluator& ev, const Pose& T_nominal, co
     const IkNearResult ik = solveIkNear(m.ik, T_flange, q);
     if (!ik.converged) return std::nullopt;
     q = ik.q;
-    const nc::Deflection df =
-        nc::predictDeflection(m.model, ev.d.nc, m.compliance, q, loads, {}, controllerOffset(m, ev.d.nc, q));
+    const nc::Deflection df = nc::predictDeflection(m.model, ev.d.nc, m.compliance, q, loads, {},
+                                                    controllerOffset(m, ev.d.nc, q));
     if (!df.converged) return std::nullopt;
     const Vec3 err = df.T_real.translation() - T_nominal.translation();
     if (err.norm() < 5e-10) return q;  // 0.0005 µm: the seeded IK stops at 1e-10
@@ -402,7 +417,8 @@ Vec6 exactCommand(Evaluator& ev, const Vec6& theta_d, const nc::Loads& loads) {
 
 /// The programmed pose, flags, residual and re-predicted budget at the command c.theta_cmd.
 /// Sets c.reason and returns with c.ok false when something fails.
-void assemble(Evaluator& ev, const HoleRequest& h, const nc::Loads& loads, bool positions_only, HoleCompensation& c) {
+void assemble(Evaluator& ev, const HoleRequest& h, const nc::Loads& loads, bool positions_only,
+              HoleCompensation& c) {
   const PredictionModel& m = ev.m;
   PredictionData& d = ev.d;
   const nc::PositionResult pr = nc::forwardKinematics(m.model, d.nc, c.theta_cmd);
@@ -419,8 +435,8 @@ void assemble(Evaluator& ev, const HoleRequest& h, const nc::Loads& loads, bool 
     c.reason = "the compensated command leaves the joint limits";
     return;
   }
-  const nc::Deflection def = nc::predictDeflection(m.model, d.nc, m.compliance, c.theta_cmd, loads, {},
-                                                   controllerOffset(m, d.nc, c.theta_cmd));
+  const nc::Deflection def = nc::predictDeflection(m.model, d.nc, m.compliance, c.theta_cmd, loads,
+                                                   {}, controllerOffset(m, d.nc, c.theta_cmd));
   if (!def.converged) {
     c.reason = "the compliance equilibrium did not converge at the compensated command";
     return;
@@ -443,8 +459,8 @@ void assemble(Evaluator& ev, const HoleRequest& h, const nc::Loads& loads, bool 
 }
 
 /// Compensation of hole h at `node` (positions_only: keep the programmed orientation).
-HoleCompensation finalizeHole(Evaluator& ev, const HoleRequest& h, const HoleCompensation& original, const Node& node,
-                              bool positions_only) {
+HoleCompensation finalizeHole(Evaluator& ev, const HoleRequest& h, const HoleCompensation& original,
+                              const Node& node, bool positions_only) {
   HoleCompensation c;
   c.id = original.id;
   c.before = original.before;
@@ -471,8 +487,10 @@ HoleCompensation finalizeHole(Evaluator& ev, const HoleRequest& h, const HoleCom
 
 }  // namespace
 
-std::vector<HoleCompensation> compensateHoles(const PredictionModel& m, const std::vector<HoleRequest>& holes,
-                                              const CompensationOptions& o, CompensationStats* stats) {
+std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,
+                                              const std::vector<HoleRequest>& holes,
+                                              const CompensationOptions& o,
+                                              CompensationStats* stats) {
   CompensationStats st;
   PredictionData d(m);
   Evaluator ev{m, d, o};
@@ -499,7 +517,8 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m, const st
                           : "no admissible orientation about the drill axis (limits, wrist margin)";
       continue;
     }
-    HoleCompensation c = finalizeHole(ev, holes[i], out[i], chosen[i], o.mode == OrientationMode::kKeep);
+    HoleCompensation c =
+        finalizeHole(ev, holes[i], out[i], chosen[i], o.mode == OrientationMode::kKeep);
     if (o.mode == OrientationMode::kStiffest) {
       // never stiffer-on-paper but worse than keep: compare with the keep result at this hole
       const Node& zero = nodes[i][static_cast<size_t>(grid / 2)];

@@ -18,9 +18,9 @@
 ///              last bit; the programmed position is iterated until the predicted real TCP
 ///              position is the nominal one (the real drill axis keeps its small tilt);
 ///   flip-free  minimise joint travel between consecutive holes with penalties near joint limits
-///              and the wrist singularity, subject to |θ5| ≥ margin, |Δθ4|, |Δθ6| ≤ threshold between
-///              consecutive holes of one face (axes within 10°; a face change is a repositioning
-///              move) and the same IK branch (unless a change is allowed);
+///              and the wrist singularity, subject to |θ5| ≥ margin, |Δθ4|, |Δθ6| ≤ threshold
+///              between consecutive holes of one face (axes within 10°; a face change is a
+///              repositioning move) and the same IK branch (unless a change is allowed);
 ///   stiffest   minimise the predicted U_work (stiffness) under the same constraints.
 /// Sequence level: dynamic programming over a discretised ψ grid for the whole program (not hole
 /// by hole), then NLopt (COBYLA, 1-D, constraints as above) refines each hole's ψ with its
@@ -38,33 +38,33 @@ const char* orientationModeName(OrientationMode m);
 
 struct CompensationOptions {
   OrientationMode mode{OrientationMode::kKeep};
-  int grid{24};                         ///< ψ samples over [−180°, 180°) for the DP (NLopt refines ±1 step)
-  double wrist_margin{10.0 * kDeg};     ///< |θ5| ≥ margin (controller convention)
-  double jump_threshold{60.0 * kDeg};   ///< max |Δθ4|, |Δθ6| between consecutive holes
+  int grid{24};  ///< ψ samples over [−180°, 180°) for the DP (NLopt refines ±1 step)
+  double wrist_margin{10.0 * kDeg};    ///< |θ5| ≥ margin (controller convention)
+  double jump_threshold{60.0 * kDeg};  ///< max |Δθ4|, |Δθ6| between consecutive holes
   bool allow_branch_change{false};
-  double limit_margin{10.0 * kDeg};     ///< penalty zone near joint limits
-  bool refine{true};                    ///< NLopt refinement after the DP
+  double limit_margin{10.0 * kDeg};  ///< penalty zone near joint limits
+  bool refine{true};                 ///< NLopt refinement after the DP
 };
 
 struct HoleCompensation {
   std::string id;
   bool ok{false};
   std::string reason;
-  HolePrediction before;          ///< prediction of the original target
-  double psi{0.0};                ///< rotation about the drill axis, rad
-  Pose T_nominal{Pose::Identity()};    ///< T_nom · Rz(ψ), base frame
-  Pose T_programmed{Pose::Identity()}; ///< TCP pose to program, base frame
-  Pose delta{Pose::Identity()};        ///< ΔT = T_programmed · T_nominal⁻¹ (base frame)
-  Vec6 theta_d{Vec6::Zero()};     ///< link-side joints at the nominal hole
-  Vec6 theta_cmd{Vec6::Zero()};   ///< programmed joints (motor side, controller command)
+  HolePrediction before;                ///< prediction of the original target
+  double psi{0.0};                      ///< rotation about the drill axis, rad
+  Pose T_nominal{Pose::Identity()};     ///< T_nom · Rz(ψ), base frame
+  Pose T_programmed{Pose::Identity()};  ///< TCP pose to program, base frame
+  Pose delta{Pose::Identity()};         ///< ΔT = T_programmed · T_nominal⁻¹ (base frame)
+  Vec6 theta_d{Vec6::Zero()};           ///< link-side joints at the nominal hole
+  Vec6 theta_cmd{Vec6::Zero()};         ///< programmed joints (motor side, controller command)
   VendorConfig config;
   std::string config_text;
   int branch{0};
   bool branch_changed{false};
-  Vec3 residual{Vec3::Zero()};    ///< predicted real − nominal TCP position after compensation, m
-  double residual_rot{0.0};       ///< rad
-  HolePrediction after;           ///< budget at the compensated pose (U_work, verdict)
-  std::string note;               ///< e.g. the wrist margin could not be met at this hole
+  Vec3 residual{Vec3::Zero()};  ///< predicted real − nominal TCP position after compensation, m
+  double residual_rot{0.0};     ///< rad
+  HolePrediction after;         ///< budget at the compensated pose (U_work, verdict)
+  std::string note;             ///< e.g. the wrist margin could not be met at this hole
 };
 
 struct CompensationStats {
@@ -72,11 +72,13 @@ struct CompensationStats {
   int infeasible_nodes{0};
   int refined{0};
   int nlopt_evaluations{0};
-  bool relaxed_jumps{false};      ///< no path met the jump threshold; it was relaxed
-  int relaxed_wrist{0};           ///< holes where no rotation met |θ5| ≥ margin (kept as a penalty)
+  bool relaxed_jumps{false};  ///< no path met the jump threshold; it was relaxed
+  int relaxed_wrist{0};       ///< holes where no rotation met |θ5| ≥ margin (kept as a penalty)
 };
 
-std::vector<HoleCompensation> compensateHoles(const PredictionModel& m, const std::vector<HoleRequest>& holes,
-                                              const CompensationOptions& options, CompensationStats* stats = nullptr);
+std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,
+                                              const std::vector<HoleRequest>& holes,
+                                              const CompensationOptions& options,
+                                              CompensationStats* stats = nullptr);
 
 }  // namespace roprec

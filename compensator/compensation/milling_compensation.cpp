@@ -12,7 +12,8 @@ namespace {
 Vec3 millToTool(const Vec3& v) { return Vec3(v.x(), -v.y(), -v.z()); }
 }  // namespace
 
-std::vector<PathPointCompensation> compensateMillingPath(const PredictionModel& m, const std::vector<Pose>& points) {
+std::vector<PathPointCompensation> compensateMillingPath(const PredictionModel& m,
+                                                         const std::vector<Pose>& points) {
   if (!m.has_process || m.process.type != ProcessType::kMilling) {
     throw std::invalid_argument("compensateMillingPath needs a milling process");
   }
@@ -45,7 +46,8 @@ std::vector<PathPointCompensation> compensateMillingPath(const PredictionModel& 
       }
     }
     if (!found) {
-      p.reason = d.ik.count == 0 ? describeIkFailure(d.ik) : "no admissible IK solution (limits, singularity)";
+      p.reason = d.ik.count == 0 ? describeIkFailure(d.ik)
+                                 : "no admissible IK solution (limits, singularity)";
       continue;
     }
     prev = p.theta_d;
@@ -57,20 +59,24 @@ std::vector<PathPointCompensation> compensateMillingPath(const PredictionModel& 
       return l;
     };
     // uncompensated: the robot at θ_d under the coupled force
-    const CouplingResult cb = coupleMillingPoint(mm, robotMillingCompliance(m.model, m.compliance, p.theta_d, m.gravity),
-                                                 before_state, copt);
+    const CouplingResult cb =
+        coupleMillingPoint(mm, robotMillingCompliance(m.model, m.compliance, p.theta_d, m.gravity),
+                           before_state, copt);
     before_state = cb.next;
     {
-      const nc::Deflection db = nc::predictDeflection(m.model, d.nc, m.compliance, p.theta_d, loadsWith(cb.force), {},
-                                                      controllerOffset(m, d.nc, p.theta_d));
+      const nc::Deflection db =
+          nc::predictDeflection(m.model, d.nc, m.compliance, p.theta_d, loadsWith(cb.force), {},
+                                controllerOffset(m, d.nc, p.theta_d));
       p.deviation_before = db.dp;
     }
     // the controller command that puts the link side at θ_d under force G (exact inverse; a
     // gravity-compensating controller adds its own offset: θ_cmd + off(θ_cmd) = θ_m)
     auto commandFor = [&](const Vec3& G) {
-      const Vec6 theta_m = nc::compensateCommand(m.model, d.nc, m.compliance, p.theta_d, loadsWith(G));
+      const Vec6 theta_m =
+          nc::compensateCommand(m.model, d.nc, m.compliance, p.theta_d, loadsWith(G));
       Vec6 cmd = theta_m;
-      for (int it = 0; it < 20 && m.controller_gravity; ++it) cmd = theta_m - controllerOffset(m, d.nc, cmd);
+      for (int it = 0; it < 20 && m.controller_gravity; ++it)
+        cmd = theta_m - controllerOffset(m, d.nc, cmd);
       return cmd;
     };
     // 2. force fixed point with the exact inverse
@@ -79,10 +85,12 @@ std::vector<PathPointCompensation> compensateMillingPath(const PredictionModel& 
     CouplingResult ca;
     for (p.force_iterations = 1; p.force_iterations <= 20; ++p.force_iterations) {
       p.theta_cmd = commandFor(F);
-      // the compensated robot's deviation from the nominal tool position under a force G (milling frame)
+      // the compensated robot's deviation from the nominal tool position under a force G (milling
+      // frame)
       const ComplianceFunction residualCompliance = [&](const Vec3& G) -> Vec3 {
-        const nc::Deflection dg = nc::predictDeflection(m.model, d.nc, m.compliance, p.theta_cmd, loadsWith(G), {},
-                                                        controllerOffset(m, d.nc, p.theta_cmd));
+        const nc::Deflection dg =
+            nc::predictDeflection(m.model, d.nc, m.compliance, p.theta_cmd, loadsWith(G), {},
+                                  controllerOffset(m, d.nc, p.theta_cmd));
         if (!dg.converged) throw std::runtime_error("the compliance equilibrium did not converge");
         return millToTool(R.transpose() * (dg.T_real.translation() - points[i].translation()));
       };
@@ -112,10 +120,12 @@ std::vector<PathPointCompensation> compensateMillingPath(const PredictionModel& 
     }
     nc::forwardKinematics(m.model, d.nc, p.theta_cmd);
     p.T_programmed = d.nc.T_W_tcp;
-    const nc::Deflection da = nc::predictDeflection(m.model, d.nc, m.compliance, p.theta_cmd, loadsWith(F), {},
-                                                    controllerOffset(m, d.nc, p.theta_cmd));
+    const nc::Deflection da =
+        nc::predictDeflection(m.model, d.nc, m.compliance, p.theta_cmd, loadsWith(F), {},
+                              controllerOffset(m, d.nc, p.theta_cmd));
     p.residual = da.T_real.translation() - points[i].translation();
-    p.config_text = formatConfig(configurationOf(m.ik, m.robot.card, p.theta_cmd, m.config_options));
+    p.config_text =
+        formatConfig(configurationOf(m.ik, m.robot.card, p.theta_cmd, m.config_options));
     p.ok = da.converged;
     if (!p.ok) p.reason = "the compliance equilibrium did not converge at the compensated command";
   }

@@ -7,11 +7,14 @@ namespace roprec {
 
 NloptProblem::NloptProblem(nlopt_algorithm algorithm, unsigned dimension)
     : opt_(nlopt_create(algorithm, dimension), &nlopt_destroy), n_(dimension) {
-  if (!opt_) throw std::runtime_error("nlopt_create failed for " + std::string(nlopt_algorithm_name(algorithm)));
+  if (!opt_)
+    throw std::runtime_error("nlopt_create failed for " +
+                             std::string(nlopt_algorithm_name(algorithm)));
 }
 
 void NloptProblem::check(nlopt_result r, const std::string& what) const {
-  if (r < 0) throw std::runtime_error("NLopt: could not " + what + ": " + nlopt_result_to_string(r));
+  if (r < 0)
+    throw std::runtime_error("NLopt: could not " + what + ": " + nlopt_result_to_string(r));
 }
 
 double NloptProblem::trampoline(unsigned n, const double* x, double* grad, void* data) {
@@ -35,12 +38,14 @@ double NloptProblem::trampoline(unsigned n, const double* x, double* grad, void*
 
 void NloptProblem::setObjective(Function f) {
   objective_ = std::make_unique<Callback>(Callback{this, std::move(f)});
-  check(nlopt_set_min_objective(opt_.get(), &NloptProblem::trampoline, objective_.get()), "set the objective");
+  check(nlopt_set_min_objective(opt_.get(), &NloptProblem::trampoline, objective_.get()),
+        "set the objective");
 }
 
 void NloptProblem::addInequality(Function c, double tol) {
   constraints_.push_back(std::make_unique<Callback>(Callback{this, std::move(c)}));
-  check(nlopt_add_inequality_constraint(opt_.get(), &NloptProblem::trampoline, constraints_.back().get(), tol),
+  check(nlopt_add_inequality_constraint(opt_.get(), &NloptProblem::trampoline,
+                                        constraints_.back().get(), tol),
         "add an inequality constraint");
 }
 
@@ -49,10 +54,18 @@ void NloptProblem::setBounds(const std::vector<double>& lower, const std::vector
   check(nlopt_set_upper_bounds(opt_.get(), upper.data()), "set the upper bounds");
 }
 
-void NloptProblem::setXtolAbs(double tol) { check(nlopt_set_xtol_abs1(opt_.get(), tol), "set xtol_abs"); }
-void NloptProblem::setFtolAbs(double tol) { check(nlopt_set_ftol_abs(opt_.get(), tol), "set ftol_abs"); }
-void NloptProblem::setMaxEvaluations(int n) { check(nlopt_set_maxeval(opt_.get(), n), "set maxeval"); }
-void NloptProblem::setInitialStep(double dx) { check(nlopt_set_initial_step1(opt_.get(), dx), "set the initial step"); }
+void NloptProblem::setXtolAbs(double tol) {
+  check(nlopt_set_xtol_abs1(opt_.get(), tol), "set xtol_abs");
+}
+void NloptProblem::setFtolAbs(double tol) {
+  check(nlopt_set_ftol_abs(opt_.get(), tol), "set ftol_abs");
+}
+void NloptProblem::setMaxEvaluations(int n) {
+  check(nlopt_set_maxeval(opt_.get(), n), "set maxeval");
+}
+void NloptProblem::setInitialStep(double dx) {
+  check(nlopt_set_initial_step1(opt_.get(), dx), "set the initial step");
+}
 
 NloptProblem::Result NloptProblem::optimize(std::vector<double>& x) {
   if (x.size() != n_) throw std::invalid_argument("NloptProblem::optimize: wrong dimension");

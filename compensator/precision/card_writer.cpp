@@ -11,14 +11,16 @@ namespace roprec {
 std::vector<CardStiffnessUpdate> cardUpdates(const IdentificationResult& r) {
   std::vector<CardStiffnessUpdate> u;
   for (int j = 0; j < 6; ++j) {
-    if (r.joint_identified[static_cast<size_t>(j)]) u.push_back({j, r.compliance.k[j], r.k_sigma[j]});
+    if (r.joint_identified[static_cast<size_t>(j)])
+      u.push_back({j, r.compliance.k[j], r.k_sigma[j]});
   }
   return u;
 }
 
 std::string formatCardNumber(double v, int significant) {
   char buf[64];
-  const auto res = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::scientific, std::max(0, significant - 1));
+  const auto res = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::scientific,
+                                 std::max(0, significant - 1));
   std::string s(buf, res.ptr);  // e.g. 2.413e+06
   const std::size_t e = s.find('e');
   std::string mant = s.substr(0, e);
@@ -34,8 +36,8 @@ std::string formatCardNumber(double v, int significant) {
 }
 
 std::string identifiedSource(int holes, const std::string& measured_file, double sigma) {
-  return "identified: " + std::to_string(holes) + " holes from " + measured_file + " by roprec verify (σ = " +
-         formatCardNumber(sigma, 2) + " N·m/rad)";
+  return "identified: " + std::to_string(holes) + " holes from " + measured_file +
+         " by roprec verify (σ = " + formatCardNumber(sigma, 2) + " N·m/rad)";
 }
 
 namespace {
@@ -48,15 +50,16 @@ struct Attribute {
 };
 
 struct JointTag {
-  std::size_t begin{0};      ///< '<'
-  std::size_t end{0};        ///< one past the attributes (the position of '/>' or '>')
+  std::size_t begin{0};  ///< '<'
+  std::size_t end{0};    ///< one past the attributes (the position of '/>' or '>')
   int line{0};
-  char quote{'"'};           ///< the quote the tag's attributes use (for appended ones)
+  char quote{'"'};  ///< the quote the tag's attributes use (for appended ones)
   std::vector<Attribute> attributes;
 };
 
 int lineAt(const std::string& s, std::size_t pos) {
-  return 1 + static_cast<int>(std::count(s.begin(), s.begin() + static_cast<std::ptrdiff_t>(pos), '\n'));
+  return 1 + static_cast<int>(
+                 std::count(s.begin(), s.begin() + static_cast<std::ptrdiff_t>(pos), '\n'));
 }
 
 bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
@@ -80,7 +83,8 @@ JointTag parseTag(const std::string& s, std::size_t begin, const std::string& pa
     Attribute a;
     a.name = s.substr(name_begin, i - name_begin);
     while (i < s.size() && isSpace(s[i])) ++i;
-    if (i >= s.size() || s[i] != '=') throw InputError(path, lineAt(s, i), "malformed attribute '" + a.name + "'");
+    if (i >= s.size() || s[i] != '=')
+      throw InputError(path, lineAt(s, i), "malformed attribute '" + a.name + "'");
     ++i;
     while (i < s.size() && isSpace(s[i])) ++i;
     if (i >= s.size() || (s[i] != '"' && s[i] != '\'')) {
@@ -108,7 +112,8 @@ std::vector<JointTag> jointTags(const std::string& s, const std::string& path) {
       i = e + 3;
       continue;
     }
-    if (s.compare(i, 6, "<joint") == 0 && i + 6 < s.size() && (isSpace(s[i + 6]) || s[i + 6] == '/' || s[i + 6] == '>')) {
+    if (s.compare(i, 6, "<joint") == 0 && i + 6 < s.size() &&
+        (isSpace(s[i + 6]) || s[i + 6] == '/' || s[i + 6] == '>')) {
       tags.push_back(parseTag(s, i, path));
       i = tags.back().end;
       continue;
@@ -116,7 +121,8 @@ std::vector<JointTag> jointTags(const std::string& s, const std::string& path) {
     ++i;
   }
   if (tags.size() != 6) {
-    throw InputError(path, 0, "a robot card needs 6 <joint> elements, found " + std::to_string(tags.size()));
+    throw InputError(path, 0,
+                     "a robot card needs 6 <joint> elements, found " + std::to_string(tags.size()));
   }
   return tags;
 }
@@ -125,12 +131,23 @@ std::string escapeAttribute(const std::string& v, char quote) {
   std::string o;
   for (const char c : v) {
     switch (c) {
-      case '&': o += "&amp;"; break;
-      case '<': o += "&lt;"; break;
-      case '>': o += "&gt;"; break;
-      case '"': o += quote == '"' ? "&quot;" : "\""; break;
-      case '\'': o += quote == '\'' ? "&apos;" : "'"; break;
-      default: o += c;
+      case '&':
+        o += "&amp;";
+        break;
+      case '<':
+        o += "&lt;";
+        break;
+      case '>':
+        o += "&gt;";
+        break;
+      case '"':
+        o += quote == '"' ? "&quot;" : "\"";
+        break;
+      case '\'':
+        o += quote == '\'' ? "&apos;" : "'";
+        break;
+      default:
+        o += c;
     }
   }
   return o;
@@ -159,14 +176,17 @@ const Attribute* findAttribute(const JointTag& t, const std::string& name) {
 
 /// Replaces the value of `name`, or appends the attribute at the end of the tag.
 Edit setAttribute(const JointTag& t, const std::string& name, const std::string& escaped_value) {
-  if (const Attribute* a = findAttribute(t, name)) return {a->value_begin, a->value_end, escaped_value};
+  if (const Attribute* a = findAttribute(t, name))
+    return {a->value_begin, a->value_end, escaped_value};
   return {t.end, t.end, " " + name + "=" + t.quote + escaped_value + t.quote};
 }
 
 void checkUpdate(const CardStiffnessUpdate& u, const std::string& path) {
-  if (u.joint < 0 || u.joint > 5) throw InputError(path, 0, "joint index " + std::to_string(u.joint) + " is not 0..5");
+  if (u.joint < 0 || u.joint > 5)
+    throw InputError(path, 0, "joint index " + std::to_string(u.joint) + " is not 0..5");
   if (!(u.stiffness > 0) || !std::isfinite(u.stiffness)) {
-    throw InputError(path, 0, "joint " + std::to_string(u.joint + 1) + ": the identified stiffness must be > 0");
+    throw InputError(
+        path, 0, "joint " + std::to_string(u.joint + 1) + ": the identified stiffness must be > 0");
   }
 }
 
@@ -183,13 +203,16 @@ std::string updateCardStiffness(const std::string& card_text, const std::string&
     edits.push_back(setAttribute(t, "stiffness", formatCardNumber(u.stiffness)));
     const Attribute* old = findAttribute(t, "source");
     const std::string before =
-        old ? previousSource(card_text.substr(old->value_begin, old->value_end - old->value_begin)) : std::string();
-    const std::string source = escapeAttribute(identifiedSource(holes, measured_file, u.sigma), t.quote) +
-                               (before.empty() ? std::string() : "; before: " + before);
+        old ? previousSource(card_text.substr(old->value_begin, old->value_end - old->value_begin))
+            : std::string();
+    const std::string source =
+        escapeAttribute(identifiedSource(holes, measured_file, u.sigma), t.quote) +
+        (before.empty() ? std::string() : "; before: " + before);
     edits.push_back(setAttribute(t, "source", source));
   }
   // apply from the back so earlier offsets stay valid (appended attributes keep document order)
-  std::stable_sort(edits.begin(), edits.end(), [](const Edit& a, const Edit& b) { return a.begin > b.begin; });
+  std::stable_sort(edits.begin(), edits.end(),
+                   [](const Edit& a, const Edit& b) { return a.begin > b.begin; });
   std::string out = card_text;
   for (const Edit& e : edits) out.replace(e.begin, e.end - e.begin, e.text);
   return out;

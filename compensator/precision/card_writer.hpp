@@ -20,9 +20,9 @@
 namespace roprec {
 
 struct CardStiffnessUpdate {
-  int joint{0};            ///< 0..5, chain order (the card's <joint> elements in document order)
-  double stiffness{0};     ///< k_j, N m/rad (> 0)
-  double sigma{0};         ///< its standard uncertainty, N m/rad
+  int joint{0};         ///< 0..5, chain order (the card's <joint> elements in document order)
+  double stiffness{0};  ///< k_j, N m/rad (> 0)
+  double sigma{0};      ///< its standard uncertainty, N m/rad
 };
 
 /// The identified joints of a result (joint_identified), with k_j and σ_kj.

@@ -20,7 +20,8 @@ CellSpec loadCell(const std::string& path) {
   CellSpec cell;
   cell.root = loadXmlFile(path);
   const XmlNode& root = cell.root;
-  if (root.name != "cell") root.fail("a cell file's root element is <cell>, got <" + root.name + ">");
+  if (root.name != "cell")
+    root.fail("a cell file's root element is <cell>, got <" + root.name + ">");
   cell.file = path;
   cell.name = root.str("name", fs::path(path).stem().string());
   const fs::path dir = fs::path(path).parent_path();

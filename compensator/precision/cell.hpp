@@ -1,8 +1,8 @@
 #pragma once
 /// \file cell.hpp
-/// The cell file (docs/contract.md §6): robot reference, tool (TCP in the flange frame, mass, centre of
-/// mass), work object (hole frame in the base frame), process element and default position
-/// tolerance. Files use mm and degrees; everything here is SI.
+/// The cell file (docs/contract.md §6): robot reference, tool (TCP in the flange frame, mass,
+/// centre of mass), work object (hole frame in the base frame), process element and default
+/// position tolerance. Files use mm and degrees; everything here is SI.
 
 #include <string>
 
@@ -22,14 +22,14 @@ struct ToolSpec {
 struct CellSpec {
   std::string file;
   std::string name;
-  RobotRequest robot;   ///< resolved relative to the cell file's folder
+  RobotRequest robot;  ///< resolved relative to the cell file's folder
   int robot_line{0};
   ToolSpec tool;
   Pose T_base_wobj{Pose::Identity()};  ///< work object frame in the robot base frame
   bool has_process{false};
-  XmlNode process;                     ///< the <process> element (type="drilling|milling|wrench")
-  double tolerance_mm{0.2};            ///< default ⌀ position tolerance (ISO 1101)
-  XmlNode root;                        ///< the whole cell, for extensions (uncertainty, ...)
+  XmlNode process;           ///< the <process> element (type="drilling|milling|wrench")
+  double tolerance_mm{0.2};  ///< default ⌀ position tolerance (ISO 1101)
+  XmlNode root;              ///< the whole cell, for extensions (uncertainty, ...)
 };
 
 /// Pose from `xyz` (mm) and `rpy` (deg, URDF order) attributes of an element.

@@ -15,15 +15,19 @@ namespace roprec {
 
 const char* registrationName(Registration r) {
   switch (r) {
-    case Registration::kNone: return "none";
-    case Registration::kTranslation: return "translation";
-    case Registration::kRigid: return "rigid";
+    case Registration::kNone:
+      return "none";
+    case Registration::kTranslation:
+      return "translation";
+    case Registration::kRigid:
+      return "rigid";
   }
   return "?";
 }
 
 std::optional<Registration> registrationFromName(const std::string& name) {
-  for (const Registration r : {Registration::kNone, Registration::kTranslation, Registration::kRigid}) {
+  for (const Registration r :
+       {Registration::kNone, Registration::kTranslation, Registration::kRigid}) {
     if (name == registrationName(r)) return r;
   }
   return std::nullopt;
@@ -31,7 +35,8 @@ std::optional<Registration> registrationFromName(const std::string& name) {
 
 Vec6 compliancePriorSigma(const RobotCard& card, double estimate_rel, double known_rel) {
   Vec6 s;
-  for (int j = 0; j < 6; ++j) s[j] = card.joints[static_cast<size_t>(j)].estimated() ? estimate_rel : known_rel;
+  for (int j = 0; j < 6; ++j)
+    s[j] = card.joints[static_cast<size_t>(j)].estimated() ? estimate_rel : known_rel;
   return s;
 }
 
@@ -79,8 +84,8 @@ struct ParameterSpec {
   VectorXd scale;  ///< internal → reported units (c_j: c⁰_eff,j; others 1)
 };
 
-void addParameter(ParameterSpec& p, int k, const std::string& name, const std::string& unit, double x0, double s0,
-                  double step, double scale) {
+void addParameter(ParameterSpec& p, int k, const std::string& name, const std::string& unit,
+                  double x0, double s0, double step, double scale) {
   p.name[static_cast<size_t>(k)] = name;
   p.unit[static_cast<size_t>(k)] = unit;
   p.x0[k] = x0;
@@ -103,14 +108,16 @@ ParameterSpec parameterSpec(const Layout& l, const Vec6& c0, const Identificatio
     addParameter(p, l.tool, "tool_mass", "kg", 0.0, o.tool_mass_prior, o.mass_step, 1.0);
     const char* axes[] = {"x", "y", "z"};
     for (int a = 0; a < 3; ++a) {
-      addParameter(p, l.tool + 1 + a, std::string("tool_com_") + axes[a], "m", 0.0, o.tool_com_prior, o.com_step, 1.0);
+      addParameter(p, l.tool + 1 + a, std::string("tool_com_") + axes[a], "m", 0.0,
+                   o.tool_com_prior, o.com_step, 1.0);
     }
   }
   if (l.reg >= 0) {
     const char* names[] = {"reg_tx", "reg_ty", "reg_tz", "reg_rx", "reg_ry", "reg_rz"};
     for (int a = 0; a < l.n_reg; ++a) {
       const bool rot = a >= 3;
-      addParameter(p, l.reg + a, names[a], rot ? "rad" : "m", 0.0, rot ? o.rotation_prior : o.translation_prior,
+      addParameter(p, l.reg + a, names[a], rot ? "rad" : "m", 0.0,
+                   rot ? o.rotation_prior : o.translation_prior,
                    rot ? o.rotation_step : o.translation_step, 1.0);
     }
   }
@@ -125,21 +132,24 @@ struct Problem {
   const std::vector<IdentificationHole>& holes;
   Layout layout;
   ParameterSpec spec;
-  Vec6 c0{Vec6::Zero()};                 ///< prior effective compliance, rad/(N m)
+  Vec6 c0{Vec6::Zero()};  ///< prior effective compliance, rad/(N m)
   std::optional<nc::ToolAttachment> tool;
   Pose T_W_wobj{Pose::Identity()};
-  std::vector<nc::Loads> loads;          ///< per hole
-  std::vector<Vec3> d_mach_tool;         ///< δmach in the tool frame, per hole
+  std::vector<nc::Loads> loads;   ///< per hole
+  std::vector<Vec3> d_mach_tool;  ///< δmach in the tool frame, per hole
   nc::Data data;
 };
 
-Vec6 priorEffectiveCompliance(const PredictionModel& m) { return m.compliance.effective().cwiseInverse(); }
+Vec6 priorEffectiveCompliance(const PredictionModel& m) {
+  return m.compliance.effective().cwiseInverse();
+}
 
 void setUpHoles(Problem& P) {
   for (const IdentificationHole& h : P.holes) {
     const ProcessAtDiameter* proc = processFor(P.m, h.diameter);
     P.loads.push_back(processLoads(P.m, proc));
-    P.d_mach_tool.push_back(proc ? Vec3(proc->mach.delta_tool.x(), proc->mach.delta_tool.y(), 0.0) : Vec3::Zero());
+    P.d_mach_tool.push_back(proc ? Vec3(proc->mach.delta_tool.x(), proc->mach.delta_tool.y(), 0.0)
+                                 : Vec3::Zero());
   }
 }
 
@@ -177,8 +187,9 @@ int predictRobot(Problem& P, const VectorXd& x, std::vector<Vec3>& p) {
   p.resize(P.holes.size());
   for (size_t i = 0; i < P.holes.size(); ++i) {
     const Vec6& th = P.holes[i].theta_cmd;
-    const Vec6 offset = P.m.controller_gravity ? nc::gravityCommandOffset(P.m.calibration_model, P.data, c, th)
-                                               : Vec6::Zero();
+    const Vec6 offset = P.m.controller_gravity
+                            ? nc::gravityCommandOffset(P.m.calibration_model, P.data, c, th)
+                            : Vec6::Zero();
     const nc::Deflection d = nc::predictDeflection(model, P.data, c, th, P.loads[i], {}, offset);
     if (!d.converged || !d.position_converged) return static_cast<int>(i);
     p[i] = d.T_real.translation() + d.T_nominal.linear() * P.d_mach_tool[i];
@@ -206,7 +217,8 @@ Eigen::Vector2d inPlaneResidual(const Problem& P, const VectorXd& x, size_t i, c
 VectorXd dataResiduals(const Problem& P, const VectorXd& x, const std::vector<Vec3>& p) {
   VectorXd r(2 * static_cast<Eigen::Index>(P.holes.size()));
   for (size_t i = 0; i < P.holes.size(); ++i) {
-    r.segment<2>(2 * static_cast<Eigen::Index>(i)) = inPlaneResidual(P, x, i, p[i]) / P.holes[i].sigma;
+    r.segment<2>(2 * static_cast<Eigen::Index>(i)) =
+        inPlaneResidual(P, x, i, p[i]) / P.holes[i].sigma;
   }
   return r;
 }
@@ -217,8 +229,8 @@ double priorCost(const Problem& P, const VectorXd& x) {
 
 /// Central-difference J_d = ∂r/∂x for the columns `cols`; registration columns reuse p at x.
 /// Returns false when an equilibrium fails at a perturbed point.
-bool dataJacobian(Problem& P, const VectorXd& x, const std::vector<Vec3>& p_x, const std::vector<int>& cols,
-                  MatrixXd& J) {
+bool dataJacobian(Problem& P, const VectorXd& x, const std::vector<Vec3>& p_x,
+                  const std::vector<int>& cols, MatrixXd& J) {
   J.resize(2 * static_cast<Eigen::Index>(P.holes.size()), static_cast<Eigen::Index>(cols.size()));
   std::vector<Vec3> pp;
   std::vector<Vec3> pm;
@@ -231,9 +243,11 @@ bool dataJacobian(Problem& P, const VectorXd& x, const std::vector<Vec3>& p_x, c
     xm[k] -= h;
     if (robotParameter(P.layout, k)) {
       if (predictRobot(P, xp, pp) >= 0 || predictRobot(P, xm, pm) >= 0) return false;
-      J.col(static_cast<Eigen::Index>(c)) = (dataResiduals(P, xp, pp) - dataResiduals(P, xm, pm)) / (2 * h);
+      J.col(static_cast<Eigen::Index>(c)) =
+          (dataResiduals(P, xp, pp) - dataResiduals(P, xm, pm)) / (2 * h);
     } else {
-      J.col(static_cast<Eigen::Index>(c)) = (dataResiduals(P, xp, p_x) - dataResiduals(P, xm, p_x)) / (2 * h);
+      J.col(static_cast<Eigen::Index>(c)) =
+          (dataResiduals(P, xp, p_x) - dataResiduals(P, xm, p_x)) / (2 * h);
     }
   }
   return true;
@@ -278,7 +292,8 @@ bool evaluate(Problem& P, const VectorXd& x, LmState& s) {
 }
 
 /// The gradient J_wᵀ r_w restricted to `cols`.
-VectorXd gradient(const Problem& P, const MatrixXd& J, const LmState& s, const std::vector<int>& cols) {
+VectorXd gradient(const Problem& P, const MatrixXd& J, const LmState& s,
+                  const std::vector<int>& cols) {
   VectorXd g = J.transpose() * s.r;
   for (size_t c = 0; c < cols.size(); ++c) {
     const int k = cols[c];
@@ -288,7 +303,8 @@ VectorXd gradient(const Problem& P, const MatrixXd& J, const LmState& s, const s
 }
 
 /// The step on the free columns for damping λ, scattered into the full vector.
-VectorXd dampedStep(const MatrixXd& A, const VectorXd& g, double lambda, const std::vector<int>& cols, int n) {
+VectorXd dampedStep(const MatrixXd& A, const VectorXd& g, double lambda,
+                    const std::vector<int>& cols, int n) {
   MatrixXd Al = A;
   Al.diagonal() += lambda * A.diagonal();
   const VectorXd d = -Al.ldlt().solve(g);
@@ -297,15 +313,18 @@ VectorXd dampedStep(const MatrixXd& A, const VectorXd& g, double lambda, const s
   return dx;
 }
 
-double scaledSize(const Problem& P, const VectorXd& dx) { return dx.cwiseQuotient(P.spec.s0).cwiseAbs().maxCoeff(); }
+double scaledSize(const Problem& P, const VectorXd& dx) {
+  return dx.cwiseQuotient(P.spec.s0).cwiseAbs().maxCoeff();
+}
 
 /// Raises λ (×10) until a damped step does not increase F and takes it; false when none does
 /// below λ = 1e12. On success λ is lowered (÷10) for the next iteration.
-bool takeStep(Problem& P, const MatrixXd& A, const VectorXd& g, const std::vector<int>& cols, double& lambda,
-              LmState& state) {
+bool takeStep(Problem& P, const MatrixXd& A, const VectorXd& g, const std::vector<int>& cols,
+              double& lambda, LmState& state) {
   for (; lambda < 1e12; lambda *= 10) {
     LmState trial;
-    if (evaluate(P, state.x + dampedStep(A, g, lambda, cols, P.layout.n), trial) && trial.cost <= state.cost) {
+    if (evaluate(P, state.x + dampedStep(A, g, lambda, cols, P.layout.n), trial) &&
+        trial.cost <= state.cost) {
       state = std::move(trial);
       lambda = std::max(lambda / 10, 1e-12);
       return true;
@@ -314,8 +333,8 @@ bool takeStep(Problem& P, const MatrixXd& A, const VectorXd& g, const std::vecto
   return false;
 }
 
-LmOutcome levenbergMarquardt(Problem& P, const LmState& start, const std::vector<int>& cols, int max_iterations,
-                             double tol) {
+LmOutcome levenbergMarquardt(Problem& P, const LmState& start, const std::vector<int>& cols,
+                             int max_iterations, double tol) {
   LmOutcome out;
   out.state = start;
   double lambda = 1e-3;
@@ -331,12 +350,14 @@ LmOutcome levenbergMarquardt(Problem& P, const LmState& start, const std::vector
     const double step = scaledSize(P, dx);
     if (step <= tol) {  // the step is below the tolerance: converged
       LmState trial;
-      if (evaluate(P, out.state.x + dx, trial) && trial.cost <= out.state.cost) out.state = std::move(trial);
+      if (evaluate(P, out.state.x + dx, trial) && trial.cost <= out.state.cost)
+        out.state = std::move(trial);
       out.converged = true;
       ++out.iterations;
       return out;
     }
-    if (!takeStep(P, A, g, cols, lambda, out.state)) {  // at the evaluation's rounding floor if tiny
+    if (!takeStep(P, A, g, cols, lambda,
+                  out.state)) {  // at the evaluation's rounding floor if tiny
       out.converged = step <= 100 * tol;
       if (!out.converged) out.message = "no step lowers the cost";
       return out;
@@ -402,8 +423,9 @@ LmState priorState(Problem& P) {
   std::vector<Vec3> p;
   const int bad = predictRobot(P, P.spec.x0, p);
   if (bad >= 0) {
-    throw InputError("", 0, "hole '" + P.holes[static_cast<size_t>(bad)].id +
-                                "': the compliance equilibrium does not converge at the card's stiffness");
+    throw InputError("", 0,
+                     "hole '" + P.holes[static_cast<size_t>(bad)].id +
+                         "': the compliance equilibrium does not converge at the card's stiffness");
   }
   LmState s;
   evaluate(P, P.spec.x0, s);
@@ -416,7 +438,8 @@ struct Pass {
   std::vector<int> cols;
 };
 
-Pass estimate(Problem& P, const LmState& start, const std::vector<int>& cols, const IdentificationOptions& o) {
+Pass estimate(Problem& P, const LmState& start, const std::vector<int>& cols,
+              const IdentificationOptions& o) {
   Pass pass;
   pass.cols = cols;
   pass.lm = levenbergMarquardt(P, start, cols, o.max_iterations, o.step_tolerance);
@@ -429,9 +452,11 @@ MatrixXd passCovariance(Problem& P, const Pass& pass) {
   if (!pass.cols.empty() && dataJacobian(P, pass.lm.state.x, pass.lm.state.p, pass.cols, J)) {
     return posterior(P, J, pass.cols);
   }
-  MatrixXd C = MatrixXd::Zero(static_cast<Eigen::Index>(pass.cols.size()), static_cast<Eigen::Index>(pass.cols.size()));
+  MatrixXd C = MatrixXd::Zero(static_cast<Eigen::Index>(pass.cols.size()),
+                              static_cast<Eigen::Index>(pass.cols.size()));
   for (size_t c = 0; c < pass.cols.size(); ++c) {
-    C(static_cast<Eigen::Index>(c), static_cast<Eigen::Index>(c)) = P.spec.s0[pass.cols[c]] * P.spec.s0[pass.cols[c]];
+    C(static_cast<Eigen::Index>(c), static_cast<Eigen::Index>(c)) =
+        P.spec.s0[pass.cols[c]] * P.spec.s0[pass.cols[c]];
   }
   return C;
 }
@@ -450,14 +475,16 @@ MatrixXd considerCovariance(Problem& P, const LmState& s, const std::vector<int>
   for (const int k : fixed) C(k, k) = P.spec.s0[k] * P.spec.s0[k];
   MatrixXd Ja;
   MatrixXd Jf;
-  if (seen.empty() || !dataJacobian(P, s.x, s.p, seen, Ja) || !dataJacobian(P, s.x, s.p, fixed, Jf)) {
+  if (seen.empty() || !dataJacobian(P, s.x, s.p, seen, Ja) ||
+      !dataJacobian(P, s.x, s.p, fixed, Jf)) {
     for (const int k : seen) C(k, k) = P.spec.s0[k] * P.spec.s0[k];
     return C;
   }
   const MatrixXd Aa_inv = posterior(P, Ja, seen);
   const MatrixXd G = Aa_inv * (Ja.transpose() * Jf);
   VectorXd Sf(static_cast<Eigen::Index>(fixed.size()));
-  for (size_t f = 0; f < fixed.size(); ++f) Sf[static_cast<Eigen::Index>(f)] = P.spec.s0[fixed[f]] * P.spec.s0[fixed[f]];
+  for (size_t f = 0; f < fixed.size(); ++f)
+    Sf[static_cast<Eigen::Index>(f)] = P.spec.s0[fixed[f]] * P.spec.s0[fixed[f]];
   const MatrixXd Paa = Aa_inv + G * Sf.asDiagonal() * G.transpose();
   const MatrixXd Paf = -G * Sf.asDiagonal();
   for (size_t a = 0; a < seen.size(); ++a) {
@@ -465,14 +492,15 @@ MatrixXd considerCovariance(Problem& P, const LmState& s, const std::vector<int>
       C(seen[a], seen[b]) = Paa(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b));
     }
     for (size_t f = 0; f < fixed.size(); ++f) {
-      C(seen[a], fixed[f]) = C(fixed[f], seen[a]) = Paf(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(f));
+      C(seen[a], fixed[f]) = C(fixed[f], seen[a]) =
+          Paf(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(f));
     }
   }
   return C;
 }
 
-void fillParameters(const Problem& P, const MatrixXd& first_cov, const Pass& final_pass, const MatrixXd& C_internal,
-                    double ratio_limit, IdentificationResult& r) {
+void fillParameters(const Problem& P, const MatrixXd& first_cov, const Pass& final_pass,
+                    const MatrixXd& C_internal, double ratio_limit, IdentificationResult& r) {
   const int n = P.layout.n;
   r.covariance = C_internal;
   for (int i = 0; i < n; ++i) {
@@ -502,7 +530,8 @@ void fillCompliance(const PredictionModel& m, IdentificationResult& r) {
     r.joint_identified[static_cast<size_t>(j)] = q.identifiable && c_joint > 0;
     if (q.identifiable && !(c_joint > 0)) {
       r.message += (r.message.empty() ? "" : "; ") + std::string("joint ") + std::to_string(j + 1) +
-                   ": the identified compliance is not above the servo's (not physical); the card keeps its stiffness";
+                   ": the identified compliance is not above the servo's (not physical); the card "
+                   "keeps its stiffness";
     }
     if (r.joint_identified[static_cast<size_t>(j)]) r.compliance.k[j] = 1.0 / c_joint;
     const double k = r.compliance.k[j];
@@ -510,12 +539,14 @@ void fillCompliance(const PredictionModel& m, IdentificationResult& r) {
   }
 }
 
-void fillToolAndRegistration(const Problem& P, const IdentificationOptions& o, IdentificationResult& r) {
+void fillToolAndRegistration(const Problem& P, const IdentificationOptions& o,
+                             IdentificationResult& r) {
   const Layout& l = P.layout;
   if (l.tool >= 0) {
     r.tool_mass = o.tool->mass + r.parameters[static_cast<size_t>(l.tool)].value;
     if (!(*r.tool_mass > 0)) {
-      r.message += (r.message.empty() ? "" : "; ") + std::string("the identified tool mass is not positive (not physical)");
+      r.message += (r.message.empty() ? "" : "; ") +
+                   std::string("the identified tool mass is not positive (not physical)");
     }
     r.tool_com = o.tool->com + Vec3(r.parameters[static_cast<size_t>(l.tool + 1)].value,
                                     r.parameters[static_cast<size_t>(l.tool + 2)].value,
@@ -530,7 +561,8 @@ void fillToolAndRegistration(const Problem& P, const IdentificationOptions& o, I
 }
 
 /// The parameters whose posterior σ (all free) is at most ratio_limit × their prior σ.
-std::vector<int> identifiableColumns(const MatrixXd& first_cov, const Problem& P, double ratio_limit) {
+std::vector<int> identifiableColumns(const MatrixXd& first_cov, const Problem& P,
+                                     double ratio_limit) {
   std::vector<int> cols;
   for (int k = 0; k < P.layout.n; ++k) {
     if (std::sqrt(std::max(0.0, first_cov(k, k))) / P.spec.s0[k] <= ratio_limit) cols.push_back(k);
@@ -570,11 +602,20 @@ double conditionOf(Problem& P, const Pass& pass) {
 
 }  // namespace
 
-IdentificationResult identifyStiffness(const PredictionModel& m, const std::vector<IdentificationHole>& holes,
+IdentificationResult identifyStiffness(const PredictionModel& m,
+                                       const std::vector<IdentificationHole>& holes,
                                        const IdentificationOptions& o) {
   validateHoles(holes);
-  Problem P{m, holes, layoutOf(o.tool.has_value(), o.registration), {}, priorEffectiveCompliance(m), o.tool,
-            o.T_W_wobj, {}, {}, nc::Data(m.model)};
+  Problem P{m,
+            holes,
+            layoutOf(o.tool.has_value(), o.registration),
+            {},
+            priorEffectiveCompliance(m),
+            o.tool,
+            o.T_W_wobj,
+            {},
+            {},
+            nc::Data(m.model)};
   P.spec = parameterSpec(P.layout, P.c0, o);
   setUpHoles(P);
   const LmState prior = priorState(P);
@@ -593,7 +634,8 @@ IdentificationResult identifyStiffness(const PredictionModel& m, const std::vect
   r.iterations = first.lm.iterations + (refit ? final_pass.lm.iterations : 0);
   r.message = final_pass.lm.message.empty() ? first.lm.message : final_pass.lm.message;
   r.condition_number = conditionOf(P, final_pass);
-  fillParameters(P, first_cov, final_pass, considerCovariance(P, final_pass.lm.state, seen), o.identifiable_ratio, r);
+  fillParameters(P, first_cov, final_pass, considerCovariance(P, final_pass.lm.state, seen),
+                 o.identifiable_ratio, r);
   fillCompliance(m, r);
   fillToolAndRegistration(P, o, r);
   r.residuals = inPlaneResiduals(P, final_pass.lm.state);
@@ -618,14 +660,17 @@ PredictionModel withIdentification(const PredictionModel& m, const Identificatio
   return out;
 }
 
-Vec3 predictedHolePosition(const PredictionModel& m, nc::Data& data, const Vec6& theta_cmd, double diameter) {
+Vec3 predictedHolePosition(const PredictionModel& m, nc::Data& data, const Vec6& theta_cmd,
+                           double diameter) {
   const ProcessAtDiameter* proc = processFor(m, diameter);
   const Vec6 offset = controllerOffset(m, data, theta_cmd);
-  const nc::Deflection d = nc::predictDeflection(m.model, data, m.compliance, theta_cmd, processLoads(m, proc), {}, offset);
+  const nc::Deflection d = nc::predictDeflection(m.model, data, m.compliance, theta_cmd,
+                                                 processLoads(m, proc), {}, offset);
   if (!d.converged || !d.position_converged) {
     throw InputError("", 0, "the compliance equilibrium does not converge at these joints");
   }
-  const Vec3 mach = proc ? Vec3(proc->mach.delta_tool.x(), proc->mach.delta_tool.y(), 0.0) : Vec3::Zero();
+  const Vec3 mach =
+      proc ? Vec3(proc->mach.delta_tool.x(), proc->mach.delta_tool.y(), 0.0) : Vec3::Zero();
   return d.T_real.translation() + d.T_nominal.linear() * mach;
 }
 
@@ -633,9 +678,12 @@ Vec3 predictedHolePosition(const PredictionModel& m, nc::Data& data, const Vec6&
 
 const char* measuredDecisionName(MeasuredDecision d) {
   switch (d) {
-    case MeasuredDecision::kConformanceProven: return "conformance-proven";
-    case MeasuredDecision::kNonConformanceProven: return "non-conformance-proven";
-    case MeasuredDecision::kNoDecision: return "no-decision";
+    case MeasuredDecision::kConformanceProven:
+      return "conformance-proven";
+    case MeasuredDecision::kNonConformanceProven:
+      return "non-conformance-proven";
+    case MeasuredDecision::kNoDecision:
+      return "no-decision";
   }
   return "?";
 }
@@ -662,8 +710,8 @@ double residualSigma(const HolePrediction& p, double u_measurement) {
   return std::sqrt(u_measurement * u_measurement + u_rep * u_rep + p.u_mach * p.u_mach);
 }
 
-VerificationInput verificationInput(const HolePrediction& p, const Pose& T_W_hole, const Vec3& p_W_measured,
-                                    double u_measurement) {
+VerificationInput verificationInput(const HolePrediction& p, const Pose& T_W_hole,
+                                    const Vec3& p_W_measured, double u_measurement) {
   VerificationInput in;
   in.id = p.id;
   in.T_W_hole = T_W_hole;
@@ -745,7 +793,8 @@ double pearson(const std::vector<double>& a, const std::vector<double>& b) {
 
 }  // namespace
 
-VerificationSummary summarizeVerification(const std::vector<HoleVerification>& holes, const Mat3& R_W_frame) {
+VerificationSummary summarizeVerification(const std::vector<HoleVerification>& holes,
+                                          const Mat3& R_W_frame) {
   VerificationSummary s;
   s.holes = static_cast<int>(holes.size());
   std::vector<double> e;
@@ -796,8 +845,10 @@ double dsCriterion(const MatrixXd& M) {
 }
 
 /// The IdentificationHoles of the admissible candidates (their predicted joints).
-std::vector<IdentificationHole> plannedHoles(const PredictionModel& m, const std::vector<HoleRequest>& candidates,
-                                             double sigma, std::vector<int>& index, TestPlan& plan) {
+std::vector<IdentificationHole> plannedHoles(const PredictionModel& m,
+                                             const std::vector<HoleRequest>& candidates,
+                                             double sigma, std::vector<int>& index,
+                                             TestPlan& plan) {
   PredictionData d(m);
   std::vector<IdentificationHole> holes;
   for (size_t i = 0; i < candidates.size(); ++i) {
@@ -821,7 +872,8 @@ std::vector<IdentificationHole> plannedHoles(const PredictionModel& m, const std
 }
 
 /// Greedy selection on the per-hole information blocks J_i (2×n rows of J).
-std::vector<int> greedyDOptimal(const MatrixXd& J, const VectorXd& s0, int count, double& criterion) {
+std::vector<int> greedyDOptimal(const MatrixXd& J, const VectorXd& s0, int count,
+                                double& criterion) {
   const Eigen::Index n = J.cols();
   MatrixXd M = s0.cwiseInverse().cwiseAbs2().asDiagonal();
   std::vector<int> chosen;
@@ -832,7 +884,8 @@ std::vector<int> greedyDOptimal(const MatrixXd& J, const VectorXd& s0, int count
     for (Eigen::Index i = 0; i < J.rows() / 2; ++i) {
       if (used[static_cast<size_t>(i)]) continue;
       const MatrixXd Ji = J.middleRows(2 * i, 2);
-      const double v = n > 6 ? dsCriterion(M + Ji.transpose() * Ji) : logDet(M + Ji.transpose() * Ji);
+      const double v =
+          n > 6 ? dsCriterion(M + Ji.transpose() * Ji) : logDet(M + Ji.transpose() * Ji);
       if (v > best_value) {
         best_value = v;
         best = static_cast<int>(i);
@@ -856,8 +909,10 @@ TestPlan planTest(const PredictionModel& m, const std::vector<HoleRequest>& cand
   std::vector<int> index;
   const std::vector<IdentificationHole> holes = plannedHoles(m, candidates, o.sigma, index, plan);
   if (static_cast<int>(holes.size()) < count) {
-    throw InputError("", 0, "only " + std::to_string(holes.size()) + " of " + std::to_string(candidates.size()) +
-                                " candidate holes are reachable; " + std::to_string(count) + " wanted");
+    throw InputError("", 0,
+                     "only " + std::to_string(holes.size()) + " of " +
+                         std::to_string(candidates.size()) + " candidate holes are reachable; " +
+                         std::to_string(count) + " wanted");
   }
   IdentificationOptions io;
   io.compliance_prior_rel = o.compliance_prior_rel;
@@ -866,14 +921,23 @@ TestPlan planTest(const PredictionModel& m, const std::vector<HoleRequest>& cand
   io.translation_prior = o.translation_prior;
   io.rotation_prior = o.rotation_prior;
   io.relative_step = o.relative_step;
-  Problem P{m, holes, layoutOf(false, o.registration), {}, priorEffectiveCompliance(m), std::nullopt, o.T_W_wobj,
-            {}, {}, nc::Data(m.model)};
+  Problem P{m,
+            holes,
+            layoutOf(false, o.registration),
+            {},
+            priorEffectiveCompliance(m),
+            std::nullopt,
+            o.T_W_wobj,
+            {},
+            {},
+            nc::Data(m.model)};
   P.spec = parameterSpec(P.layout, P.c0, io);
   setUpHoles(P);
   const LmState prior = priorState(P);
   MatrixXd J;
   if (!dataJacobian(P, prior.x, prior.p, allColumns(P.layout.n), J)) {
-    throw InputError("", 0, "the compliance equilibrium fails near the card's stiffness at a candidate hole");
+    throw InputError(
+        "", 0, "the compliance equilibrium fails near the card's stiffness at a candidate hole");
   }
   const std::vector<int> chosen = greedyDOptimal(J, P.spec.s0, count, plan.log_det);
   MatrixXd M = P.spec.s0.cwiseInverse().cwiseAbs2().asDiagonal();
@@ -892,8 +956,9 @@ TestPlan planTest(const PredictionModel& m, const std::vector<HoleRequest>& cand
   return plan;
 }
 
-std::vector<HoleRequest> planningCandidates(const Pose& T_W_wobj, const Vec3& lo, const Vec3& hi, int per_axis,
-                                            const std::vector<Vec3>& directions, const std::vector<double>& psi) {
+std::vector<HoleRequest> planningCandidates(const Pose& T_W_wobj, const Vec3& lo, const Vec3& hi,
+                                            int per_axis, const std::vector<Vec3>& directions,
+                                            const std::vector<double>& psi) {
   std::vector<HoleRequest> out;
   const int n = std::max(1, per_axis);
   auto coord = [&](int a, int i) {

@@ -100,12 +100,13 @@ namespace roprec {
 /// One measured hole as the identification sees it.
 struct IdentificationHole {
   std::string id;
-  Vec6 theta_cmd{Vec6::Zero()};     ///< commanded (motor-side) joints, URDF convention, rad
-  Pose T_W_hole{Pose::Identity()};  ///< nominal hole: drill point, z = drilling direction; base frame
-  double diameter{0.0};             ///< m (0: the process drill): selects the process wrench and δmach
+  Vec6 theta_cmd{Vec6::Zero()};  ///< commanded (motor-side) joints, URDF convention, rad
+  Pose T_W_hole{
+      Pose::Identity()};  ///< nominal hole: drill point, z = drilling direction; base frame
+  double diameter{0.0};   ///< m (0: the process drill): selects the process wrench and δmach
   Vec3 p_W_measured{Vec3::Zero()};  ///< measured hole position, base frame (via the workobject), m
-  double sigma{5e-6};               ///< standard uncertainty per in-plane axis of measured − predicted, m
-                                    ///< (residualSigma: measurement, repeatability, machining)
+  double sigma{5e-6};  ///< standard uncertainty per in-plane axis of measured − predicted, m
+                       ///< (residualSigma: measurement, repeatability, machining)
 };
 
 enum class Registration { kNone, kTranslation, kRigid };
@@ -117,24 +118,24 @@ std::optional<Registration> registrationFromName(const std::string& name);
 struct IdentificationOptions {
   Vec6 compliance_prior_rel{Vec6::Constant(0.5)};  ///< s_j: relative σ of each prior c_eff,j
   Registration registration{Registration::kNone};
-  Pose T_W_wobj{Pose::Identity()};   ///< workobject frame (registration origin and axes), base frame
-  double translation_prior{5e-3};    ///< m, σ of each registration translation (weak)
-  double rotation_prior{10e-3};      ///< rad, σ of each registration rotation (weak)
+  Pose T_W_wobj{Pose::Identity()};  ///< workobject frame (registration origin and axes), base frame
+  double translation_prior{5e-3};   ///< m, σ of each registration translation (weak)
+  double rotation_prior{10e-3};     ///< rad, σ of each registration rotation (weak)
   /// Tool mass and centre of mass: identified when set — to the tool the PredictionModel was
   /// built with (the cell's). The model is rebuilt with the candidate tool at every evaluation; a
   /// gravity-compensating controller keeps the calibration load it was configured with.
   std::optional<nc::ToolAttachment> tool;
-  double tool_mass_prior{2.0};       ///< kg, σ of Δm_tool
-  double tool_com_prior{0.02};       ///< m, σ of each Δcom_tool component
+  double tool_mass_prior{2.0};  ///< kg, σ of Δm_tool
+  double tool_com_prior{0.02};  ///< m, σ of each Δcom_tool component
   // central-difference steps
-  double relative_step{1e-4};        ///< on x_j (relative compliance)
-  double translation_step{1e-6};     ///< m
-  double rotation_step{1e-6};        ///< rad
-  double mass_step{1e-3};            ///< kg
-  double com_step{1e-5};             ///< m
+  double relative_step{1e-4};     ///< on x_j (relative compliance)
+  double translation_step{1e-6};  ///< m
+  double rotation_step{1e-6};     ///< rad
+  double mass_step{1e-3};         ///< kg
+  double com_step{1e-5};          ///< m
   int max_iterations{30};
-  double step_tolerance{1e-6};       ///< on max |Δx_k| / σ⁰_k
-  double identifiable_ratio{0.9};    ///< ρ_k above this: not identifiable, keeps the prior
+  double step_tolerance{1e-6};     ///< on max |Δx_k| / σ⁰_k
+  double identifiable_ratio{0.9};  ///< ρ_k above this: not identifiable, keeps the prior
 };
 
 /// s_j per joint from the card's sources: `estimate_rel` for a joint whose source is an estimate
@@ -142,20 +143,20 @@ struct IdentificationOptions {
 Vec6 compliancePriorSigma(const RobotCard& card, double estimate_rel = 0.5, double known_rel = 0.1);
 
 struct IdentifiedParameter {
-  std::string name;        ///< c1..c6, tool_mass, tool_com_x/y/z, reg_tx/ty/tz, reg_rx/ry/rz
-  std::string unit;        ///< "rad/(N m)", "kg", "m", "rad"
-  double prior{0};         ///< prior value (for c_j: the card's c_eff,j; for Δ terms 0)
+  std::string name;  ///< c1..c6, tool_mass, tool_com_x/y/z, reg_tx/ty/tz, reg_rx/ry/rz
+  std::string unit;  ///< "rad/(N m)", "kg", "m", "rad"
+  double prior{0};   ///< prior value (for c_j: the card's c_eff,j; for Δ terms 0)
   double prior_sigma{0};
-  double value{0};         ///< estimate (the prior when not identifiable)
-  double sigma{0};         ///< posterior standard uncertainty
-  double ratio{1};         ///< ρ = σ_posterior / σ_prior from the estimate with every parameter free
+  double value{0};  ///< estimate (the prior when not identifiable)
+  double sigma{0};  ///< posterior standard uncertainty
+  double ratio{1};  ///< ρ = σ_posterior / σ_prior from the estimate with every parameter free
   bool identifiable{false};
 };
 
 struct RegistrationEstimate {
   Registration kind{Registration::kNone};
-  Vec3 translation{Vec3::Zero()};        ///< t, m, workobject axes
-  Vec3 rotation{Vec3::Zero()};           ///< ω, rad, rotation vector about the workobject origin
+  Vec3 translation{Vec3::Zero()};  ///< t, m, workobject axes
+  Vec3 rotation{Vec3::Zero()};     ///< ω, rad, rotation vector about the workobject origin
   Vec3 translation_sigma{Vec3::Zero()};
   Vec3 rotation_sigma{Vec3::Zero()};
   /// The model maps a robot position to the measured one: m = T_W_wobj (R(ω) T_W_wobj⁻¹ p + t).
@@ -164,22 +165,23 @@ struct RegistrationEstimate {
 };
 
 struct IdentificationResult {
-  bool converged{false};             ///< LM met the step tolerance (non-convergence is a value)
-  int iterations{0};                 ///< LM iterations, both passes
-  std::string message;               ///< why not converged / notes
+  bool converged{false};  ///< LM met the step tolerance (non-convergence is a value)
+  int iterations{0};      ///< LM iterations, both passes
+  std::string message;    ///< why not converged / notes
   int holes{0};
   std::vector<IdentifiedParameter> parameters;  ///< c1..c6 first, then tool, then registration
-  Eigen::MatrixXd covariance;        ///< posterior covariance in parameter units, order of `parameters`
-  double condition_number{0};        ///< scaled data-only normal matrix of the identifiable parameters
-  nc::JointCompliance compliance;    ///< the model's compliance with the identified joints
-  Vec6 k_sigma{Vec6::Zero()};        ///< σ of k_j (first order σ_c k²), N m/rad; prior σ if not identified
+  Eigen::MatrixXd covariance;  ///< posterior covariance in parameter units, order of `parameters`
+  double condition_number{0};  ///< scaled data-only normal matrix of the identifiable parameters
+  nc::JointCompliance compliance;  ///< the model's compliance with the identified joints
+  Vec6 k_sigma{
+      Vec6::Zero()};  ///< σ of k_j (first order σ_c k²), N m/rad; prior σ if not identified
   std::array<bool, 6> joint_identified{};
-  std::optional<double> tool_mass;   ///< kg (identified tool mass) when the tool was identified
-  std::optional<Vec3> tool_com;      ///< m, flange frame
+  std::optional<double> tool_mass;  ///< kg (identified tool mass) when the tool was identified
+  std::optional<Vec3> tool_com;     ///< m, flange frame
   RegistrationEstimate registration;
   std::vector<Eigen::Vector2d> residuals;  ///< final measured − predicted ⊥ axis (e₁, e₂), m
-  double rms_prior{0};               ///< RMS |measured − predicted| with the card (and no registration), m
-  double rms_final{0};               ///< the same at the estimate, m
+  double rms_prior{0};  ///< RMS |measured − predicted| with the card (and no registration), m
+  double rms_final{0};  ///< the same at the estimate, m
 };
 
 /// Identifies the effective joint compliances (and optionally the tool and the registration)
@@ -187,7 +189,8 @@ struct IdentificationResult {
 /// or a σ is not positive, and when the model cannot be evaluated at the card's values (the
 /// equilibrium or the position problem fails at a hole: its id is named). Non-convergence of
 /// the LM iteration is a value (IdentificationResult::converged).
-IdentificationResult identifyStiffness(const PredictionModel& m, const std::vector<IdentificationHole>& holes,
+IdentificationResult identifyStiffness(const PredictionModel& m,
+                                       const std::vector<IdentificationHole>& holes,
                                        const IdentificationOptions& options);
 
 /// The σ to give an IdentificationHole: the scatter of measured − predicted that the
@@ -203,7 +206,8 @@ PredictionModel withIdentification(const PredictionModel& m, const Identificatio
 /// Predicted real hole position p̂_W = FK_tcp(θ) + δmach (base frame, m) for the command θ_cmd
 /// under the model's compliance, loads and controller: the quantity the identification fits.
 /// Throws InputError("", 0, …) when the equilibrium does not converge.
-Vec3 predictedHolePosition(const PredictionModel& m, nc::Data& data, const Vec6& theta_cmd, double diameter);
+Vec3 predictedHolePosition(const PredictionModel& m, nc::Data& data, const Vec6& theta_cmd,
+                           double diameter);
 
 // ---------------------------------------------------------------- verification
 
@@ -211,7 +215,8 @@ Vec3 predictedHolePosition(const PredictionModel& m, nc::Data& data, const Vec6&
 enum class MeasuredDecision { kConformanceProven, kNonConformanceProven, kNoDecision };
 /// "conformance-proven", "non-conformance-proven", "no-decision".
 const char* measuredDecisionName(MeasuredDecision d);
-/// e: measured radial deviation (m), U_meas: expanded measurement uncertainty (m), t: ⌀ tolerance (m).
+/// e: measured radial deviation (m), U_meas: expanded measurement uncertainty (m), t: ⌀ tolerance
+/// (m).
 MeasuredDecision measuredDecision(double e, double U_meas, double t);
 
 /// 2-D radial coverage factor for 95 % (Rayleigh): U_meas = kRadial95 · u_meas.
@@ -219,35 +224,36 @@ constexpr double kRadial95 = 2.4477;
 
 struct VerificationInput {
   std::string id;
-  Pose T_W_hole{Pose::Identity()};      ///< nominal hole (base frame)
-  Vec3 p_W_measured{Vec3::Zero()};      ///< measured position (base frame, registration removed), m
-  double u_measurement{0};              ///< standard measurement uncertainty per axis, m
-  Vec3 p_W_predicted{Vec3::Zero()};     ///< predicted real hole p̂_W (real TCP + δmach), m
-  Eigen::Matrix2d cov_work{Eigen::Matrix2d::Zero()};  ///< predicted 2-D covariance of the real hole ⊥ axis, m²
-  double U_work{0};                     ///< the prediction's expanded uncertainty (reported), m
-  double tolerance{0};                  ///< ⌀ position tolerance, m
+  Pose T_W_hole{Pose::Identity()};   ///< nominal hole (base frame)
+  Vec3 p_W_measured{Vec3::Zero()};   ///< measured position (base frame, registration removed), m
+  double u_measurement{0};           ///< standard measurement uncertainty per axis, m
+  Vec3 p_W_predicted{Vec3::Zero()};  ///< predicted real hole p̂_W (real TCP + δmach), m
+  Eigen::Matrix2d cov_work{
+      Eigen::Matrix2d::Zero()};  ///< predicted 2-D covariance of the real hole ⊥ axis, m²
+  double U_work{0};              ///< the prediction's expanded uncertainty (reported), m
+  double tolerance{0};           ///< ⌀ position tolerance, m
 };
 
 /// From a hole's prediction (status kOk): p̂_W = deflection.T_real + δmach, Σ_work = robdef_cov +
 /// (u_robpos² + u_mach²) I, U_work and the tolerance as predicted.
-VerificationInput verificationInput(const HolePrediction& p, const Pose& T_W_hole, const Vec3& p_W_measured,
-                                    double u_measurement);
+VerificationInput verificationInput(const HolePrediction& p, const Pose& T_W_hole,
+                                    const Vec3& p_W_measured, double u_measurement);
 
 struct HoleVerification {
   std::string id;
   Eigen::Vector2d e_meas{Eigen::Vector2d::Zero()};  ///< measured deviation ⊥ axis (e₁, e₂), m
   double e_meas_norm{0};
-  double e_along{0};                                ///< along-axis measured deviation (reported only), m
+  double e_along{0};  ///< along-axis measured deviation (reported only), m
   Eigen::Vector2d d_pred{Eigen::Vector2d::Zero()};  ///< predicted δwork⊥, m
   double d_pred_norm{0};
-  Eigen::Vector2d r{Eigen::Vector2d::Zero()};       ///< residual e_meas − δ̂, m
+  Eigen::Vector2d r{Eigen::Vector2d::Zero()};  ///< residual e_meas − δ̂, m
   double r_norm{0};
-  Vec3 e_meas_W{Vec3::Zero()};                      ///< e_meas as a base-frame vector
-  Vec3 d_pred_W{Vec3::Zero()};                      ///< δ̂ as a base-frame vector
-  double U_work{0};                                 ///< as predicted, m
-  double U_region{0};                               ///< R₉₅(Σ_work + u² I): what |r| is checked against, m
+  Vec3 e_meas_W{Vec3::Zero()};  ///< e_meas as a base-frame vector
+  Vec3 d_pred_W{Vec3::Zero()};  ///< δ̂ as a base-frame vector
+  double U_work{0};             ///< as predicted, m
+  double U_region{0};           ///< R₉₅(Σ_work + u² I): what |r| is checked against, m
   bool inside{false};
-  double U_meas{0};                                 ///< kRadial95 · u, m
+  double U_meas{0};  ///< kRadial95 · u, m
   double tolerance{0};
   MeasuredDecision decision{MeasuredDecision::kNoDecision};
 };
@@ -255,15 +261,15 @@ struct HoleVerification {
 HoleVerification verifyHole(const VerificationInput& in);
 
 struct MagnitudeStats {
-  double rms{0}, mean{0}, max{0};   ///< of the norms, m
+  double rms{0}, mean{0}, max{0};  ///< of the norms, m
 };
 
 struct VerificationSummary {
   int holes{0};
   MagnitudeStats measured, predicted, residual;
-  double explained{0};              ///< 1 − RMS(r)/RMS(e_meas) (0 when RMS(e_meas) = 0)
+  double explained{0};  ///< 1 − RMS(r)/RMS(e_meas) (0 when RMS(e_meas) = 0)
   int inside{0};
-  double coverage{0};               ///< inside / holes
+  double coverage{0};  ///< inside / holes
   /// Pearson correlation of δ̂ and e_meas along each axis of the frame given to summarize
   /// (NaN when an axis has no variance).
   Vec3 correlation{Vec3::Zero()};
@@ -278,8 +284,9 @@ VerificationSummary summarizeVerification(const std::vector<HoleVerification>& h
 
 struct PlanOptions {
   Vec6 compliance_prior_rel{Vec6::Constant(0.5)};
-  double sigma{5e-6};               ///< expected σ per in-plane axis of a residual, m
-  Registration registration{Registration::kNone};  ///< nuisance parameters eliminated in the criterion
+  double sigma{5e-6};  ///< expected σ per in-plane axis of a residual, m
+  Registration registration{
+      Registration::kNone};  ///< nuisance parameters eliminated in the criterion
   Pose T_W_wobj{Pose::Identity()};
   double translation_prior{5e-3};
   double rotation_prior{10e-3};
@@ -287,13 +294,13 @@ struct PlanOptions {
 };
 
 struct TestPlan {
-  std::vector<int> chosen;                 ///< candidate indices, in selection order
-  std::vector<int> rejected;               ///< candidates without an admissible prediction
+  std::vector<int> chosen;    ///< candidate indices, in selection order
+  std::vector<int> rejected;  ///< candidates without an admissible prediction
   std::vector<std::string> rejected_reason;
-  Vec6 prior_sigma_rel{Vec6::Zero()};      ///< s_j
-  Vec6 expected_sigma_rel{Vec6::Zero()};   ///< expected posterior σ(c_j)/c_j with the chosen holes
-  Vec6 expected_sigma_k{Vec6::Zero()};     ///< the same as σ of k_j, N m/rad (first order)
-  double log_det{0};                       ///< final criterion value
+  Vec6 prior_sigma_rel{Vec6::Zero()};     ///< s_j
+  Vec6 expected_sigma_rel{Vec6::Zero()};  ///< expected posterior σ(c_j)/c_j with the chosen holes
+  Vec6 expected_sigma_k{Vec6::Zero()};    ///< the same as σ of k_j, N m/rad (first order)
+  double log_det{0};                      ///< final criterion value
 };
 
 /// Greedy D-optimal choice of `count` holes among `candidates` (each predicted with predictHole:
@@ -308,7 +315,8 @@ TestPlan planTest(const PredictionModel& m, const std::vector<HoleRequest>& cand
 /// workobject frame; an axis with lo = hi gets one point), each with every drilling direction
 /// (workobject frame, normalised) and every rotation ψ about it (rad). TCP x = the workobject x
 /// axis projected ⊥ the direction (y when within 26° of x), then rotated by ψ. Ids "C0001"….
-std::vector<HoleRequest> planningCandidates(const Pose& T_W_wobj, const Vec3& lo, const Vec3& hi, int per_axis,
-                                            const std::vector<Vec3>& directions, const std::vector<double>& psi);
+std::vector<HoleRequest> planningCandidates(const Pose& T_W_wobj, const Vec3& lo, const Vec3& hi,
+                                            int per_axis, const std::vector<Vec3>& directions,
+                                            const std::vector<double>& psi);
 
 }  // namespace roprec

@@ -10,21 +10,30 @@ namespace roprec {
 UncertaintyInputs defaultUncertaintyInputs() {
   UncertaintyInputs u;
   u.source =
-      "stiffness 10 % per joint (identification residuals; process.md §5.6: deflection-model error 10-20 % "
-      "of the predicted deflection [L]); servo stiffness 20 % (estimate: vendors publish no gains); "
-      "process force scale rectangular ±15 % (process.md §5.6: kc scatter ±10-15 % and the spread of "
+      "stiffness 10 % per joint (identification residuals; process.md §5.6: deflection-model error "
+      "10-20 % "
+      "of the predicted deflection [L]); servo stiffness 20 % (estimate: vendors publish no "
+      "gains); "
+      "process force scale rectangular ±15 % (process.md §5.6: kc scatter ±10-15 % and the spread "
+      "of "
       "coefficient sets, §4.2)";
   return u;
 }
 
 const char* verdictName(Verdict v) {
   switch (v) {
-    case Verdict::kConforms: return "conforms";
-    case Verdict::kConformsAfterCompensation: return "conforms-after-compensation";
-    case Verdict::kDoesNotConform: return "does-not-conform";
-    case Verdict::kUnreachable: return "unreachable";
-    case Verdict::kSingular: return "singular";
-    case Verdict::kNotConverged: return "not-converged";
+    case Verdict::kConforms:
+      return "conforms";
+    case Verdict::kConformsAfterCompensation:
+      return "conforms-after-compensation";
+    case Verdict::kDoesNotConform:
+      return "does-not-conform";
+    case Verdict::kUnreachable:
+      return "unreachable";
+    case Verdict::kSingular:
+      return "singular";
+    case Verdict::kNotConverged:
+      return "not-converged";
   }
   return "?";
 }
@@ -70,7 +79,8 @@ ProcessAtDiameter processAt(const ProcessSpec& spec, double diameter) {
     g.diameter = diameter > 0 ? diameter : 10e-3;
     const MachiningDeviationParams mp = defaultMachiningDeviation(g.diameter);
     g.runout = mp.runout;
-    p.mach = machiningDeviation(mp, g, 0.0, Eigen::Vector2d(l.wrench.force.x(), l.wrench.force.y()));
+    p.mach =
+        machiningDeviation(mp, g, 0.0, Eigen::Vector2d(l.wrench.force.x(), l.wrench.force.y()));
     p.feed_rate = 0.0;
   }
   return p;
@@ -92,7 +102,8 @@ PredictionModel buildPredictionModel(const PredictionSetup& setup) {
   m.compliance = nc::complianceFromCard(setup.robot.card);
   m.reference_pose = vendorReferencePose(setup.robot.card);
   m.controller_gravity = setup.controller_gravity;
-  if (m.controller_gravity) m.calibration_model = nc::buildModel(setup.robot.chain, setup.calibration_load);
+  if (m.controller_gravity)
+    m.calibration_model = nc::buildModel(setup.robot.chain, setup.calibration_load);
   m.uncertainty = setup.uncertainty;
   m.capability = setup.capability;
   m.default_tolerance = setup.default_tolerance;
@@ -100,7 +111,8 @@ PredictionModel buildPredictionModel(const PredictionSetup& setup) {
     m.has_process = true;
     m.process = *setup.process;
     std::vector<double> ds = setup.hole_diameters;
-    if (m.process.type == ProcessType::kDrilling) ds.push_back(m.process.drilling.geometry.diameter);
+    if (m.process.type == ProcessType::kDrilling)
+      ds.push_back(m.process.drilling.geometry.diameter);
     if (ds.empty()) ds.push_back(0.0);
     for (const double d : ds) {
       const long key = diameterKey(d);
@@ -149,14 +161,16 @@ double jointDistance(const Vec6& a, const Vec6& b) {
 
 }  // namespace
 
-HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const HoleRequest& h, const Vec6* seed) {
+HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
+                           const Vec6* seed) {
   HolePrediction p;
   p.id = h.id;
   p.tolerance = h.tolerance > 0 ? h.tolerance : m.default_tolerance;
   const ProcessAtDiameter* proc = processFor(m, h.diameter);
   p.diameter = h.diameter > 0 ? h.diameter : (proc ? proc->diameter : 0.0);
   p.depth = h.depth > 0 ? h.depth : (proc ? proc->default_depth : 0.0);
-  if (proc && proc->feed_rate > 0) p.mc_time = p.depth / proc->feed_rate + m.capability.mc_approach_s;
+  if (proc && proc->feed_rate > 0)
+    p.mc_time = p.depth / proc->feed_rate + m.capability.mc_approach_s;
 
   // 1. IK for the flange
   const Pose T_W_flange = h.T_W_tcp * m.model.T_L6_tcp.inverse() * m.model.T_L6_flange;
@@ -164,14 +178,16 @@ HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const Ho
   bool found = false;
   IkSolution sol;
   if (h.config) {
-    const ConfiguredSolution cs = solveIkWithConfiguration(m.ik, m.robot.card, T_W_flange, *h.config, m.config_options);
+    const ConfiguredSolution cs =
+        solveIkWithConfiguration(m.ik, m.robot.card, T_W_flange, *h.config, m.config_options);
     if (cs.found) {
       sol = cs.solution;
       found = true;
     } else {
       p.status = HoleStatus::kUnreachable;
       p.verdict = Verdict::kUnreachable;
-      p.reason = "no solution with the program's configuration " + formatConfig(*h.config) + ": " + cs.reason;
+      p.reason = "no solution with the program's configuration " + formatConfig(*h.config) + ": " +
+                 cs.reason;
       return p;
     }
   } else {
@@ -196,7 +212,8 @@ HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const Ho
         p.reason = describeIkFailure(d.ik);
       } else {
         bool any_in_limits = false;
-        for (int i = 0; i < d.ik.count; ++i) any_in_limits |= d.ik.solutions[static_cast<size_t>(i)].within_limits;
+        for (int i = 0; i < d.ik.count; ++i)
+          any_in_limits |= d.ik.solutions[static_cast<size_t>(i)].within_limits;
         if (any_in_limits) {
           p.status = HoleStatus::kSingular;
           p.verdict = Verdict::kSingular;
@@ -228,7 +245,8 @@ HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const Ho
   if (!p.deflection.converged || !p.deflection.position_converged) {
     p.status = HoleStatus::kNotConverged;
     p.verdict = Verdict::kNotConverged;
-    p.reason = "the compliance equilibrium did not converge (residual " + std::to_string(p.deflection.residual) + " rad)";
+    p.reason = "the compliance equilibrium did not converge (residual " +
+               std::to_string(p.deflection.residual) + " rad)";
     return p;
   }
   p.d_robot = p.deflection.dp;
@@ -299,7 +317,8 @@ HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const Ho
       nc::JointCompliance c = m.compliance;
       for (int i = 0; i < 6; ++i) {
         c.k[i] *= std::max(0.05, 1.0 + U.stiffness_rel * nd(rng));
-        if (c.k_servo[i] < 1e299) c.k_servo[i] *= std::max(0.05, 1.0 + U.position_gain_rel * nd(rng));
+        if (c.k_servo[i] < 1e299)
+          c.k_servo[i] *= std::max(0.05, 1.0 + U.position_gain_rel * nd(rng));
       }
       nc::Loads l = loads;
       const double scale = 1.0 + U.process_halfwidth * ud(rng);
@@ -307,7 +326,8 @@ HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const Ho
       l.tcp_tool.moment *= scale;
       // a gravity-compensating controller computes its offset with the same (uncertain) stiffness
       Vec6 off = offset;
-      if (m.controller_gravity) off = offset.cwiseProduct(m.compliance.effective()).cwiseQuotient(c.effective());
+      if (m.controller_gravity)
+        off = offset.cwiseProduct(m.compliance.effective()).cwiseQuotient(c.effective());
       const nc::Deflection dd = nc::predictDeflection(m.model, d.nc, c, sol.q, l, {}, off);
       samples.emplace_back(dd.dp.dot(e1), dd.dp.dot(e2));
     }
@@ -331,12 +351,16 @@ HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const Ho
   const double u_robdef = std::sqrt(0.5 * cov_def.trace());
   const double u_robdef_proc = std::sqrt(0.5 * cov_def_proc.trace());
   p.budget.push_back({"robot_repeatability", u_robpos, false});
-  p.budget.push_back({"robot_deflection_model", std::sqrt(std::max(0.0, u_robdef * u_robdef - u_robdef_proc * u_robdef_proc)), false});
+  p.budget.push_back({"robot_deflection_model",
+                      std::sqrt(std::max(0.0, u_robdef * u_robdef - u_robdef_proc * u_robdef_proc)),
+                      false});
   p.budget.push_back({"robot_deflection_process_force", u_robdef_proc, true});
   double u_mach2 = 0;
   if (proc) {
     for (const UncertaintyComponent& c : proc->mach.components) {
-      const char* name = c.name == "delta_axis" ? "mach_axis" : c.name == "delta_runout" ? "mach_runout" : "mach_tool_deflection";
+      const char* name = c.name == "delta_axis"     ? "mach_axis"
+                         : c.name == "delta_runout" ? "mach_runout"
+                                                    : "mach_tool_deflection";
       p.budget.push_back({name, c.standard, true});
       u_mach2 += c.standard * c.standard;
     }
@@ -352,7 +376,8 @@ HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const Ho
       cov_def + (u_robpos * u_robpos + u_mach2) * Eigen::Matrix2d::Identity();
   p.U_work_exact = radialCoverage(cov_total, U.coverage_probability);
   p.process_share = p.u_work > 0 ? u_mach2 / (p.u_work * p.u_work) : 0.0;
-  p.process_force_share = p.u_work > 0 ? u_robdef_proc * u_robdef_proc / (p.u_work * p.u_work) : 0.0;
+  p.process_force_share =
+      p.u_work > 0 ? u_robdef_proc * u_robdef_proc / (p.u_work * p.u_work) : 0.0;
 
   // 6. verdict
   // The hole's real position error: from the nominal hole axis when the nominal hole is known
@@ -361,7 +386,8 @@ HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const Ho
   return p;
 }
 
-std::vector<HolePrediction> predictHoles(const PredictionModel& m, const std::vector<HoleRequest>& holes) {
+std::vector<HolePrediction> predictHoles(const PredictionModel& m,
+                                         const std::vector<HoleRequest>& holes) {
   PredictionData d(m);
   std::vector<HolePrediction> out;
   out.reserve(holes.size());
@@ -381,12 +407,24 @@ CapabilitySummary summarize(const std::vector<HolePrediction>& p) {
   for (const HolePrediction& h : p) {
     s.mc_time_total += h.mc_time;
     switch (h.verdict) {
-      case Verdict::kConforms: ++s.conforms; break;
-      case Verdict::kConformsAfterCompensation: ++s.conforms_after_compensation; break;
-      case Verdict::kDoesNotConform: ++s.does_not_conform; break;
-      case Verdict::kUnreachable: ++s.unreachable; break;
-      case Verdict::kSingular: ++s.singular; break;
-      case Verdict::kNotConverged: ++s.not_converged; break;
+      case Verdict::kConforms:
+        ++s.conforms;
+        break;
+      case Verdict::kConformsAfterCompensation:
+        ++s.conforms_after_compensation;
+        break;
+      case Verdict::kDoesNotConform:
+        ++s.does_not_conform;
+        break;
+      case Verdict::kUnreachable:
+        ++s.unreachable;
+        break;
+      case Verdict::kSingular:
+        ++s.singular;
+        break;
+      case Verdict::kNotConverged:
+        ++s.not_converged;
+        break;
     }
     if (h.verdict == Verdict::kConforms || h.verdict == Verdict::kConformsAfterCompensation) {
       ++s.robot_can_take;

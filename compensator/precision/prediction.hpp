@@ -12,7 +12,8 @@
 ///  3. δmach: the systematic machining deviation (machining_deviation.hpp; zero-mean terms only
 ///     add uncertainty). δwork = δrobot + δmach.
 ///  4. Position error e = |δwork − (δwork·a)a| ⊥ the hole axis a, and the axis tilt |δrot × a|.
-///  5. Budget, per in-plane axis standard uncertainties combined by root-sum-square (GUM, independent
+///  5. Budget, per in-plane axis standard uncertainties combined by root-sum-square (GUM,
+///  independent
 ///     terms): u_robpos = RP/3.616 (ISO 9283, uncertainty.hpp); u_robdef propagated from the
 ///     joint-stiffness, servo-gain and process-coefficient uncertainties (linearised — the Jacobian
 ///     at the deflected pose times the joint deformations — or Monte Carlo with a fixed seed);
@@ -31,12 +32,12 @@
 #include <string>
 #include <vector>
 
-#include "compensator/robot/configuration.hpp"
-#include "compensator/robot/deflection.hpp"
-#include "compensator/robot/ik.hpp"
 #include "compensator/process/machining_deviation.hpp"
 #include "compensator/process/process_load.hpp"
 #include "compensator/process/process_spec.hpp"
+#include "compensator/robot/configuration.hpp"
+#include "compensator/robot/deflection.hpp"
+#include "compensator/robot/ik.hpp"
 
 namespace roprec {
 
@@ -62,12 +63,12 @@ struct CapabilityInputs {
 
 /// The process at one hole diameter: steady wrench on the TCP, rotating force, machining deviation.
 struct ProcessAtDiameter {
-  double diameter{0};          ///< m
-  ToolWrench wrench;           ///< tool frame
-  double rotating_force{0};    ///< N
+  double diameter{0};        ///< m
+  ToolWrench wrench;         ///< tool frame
+  double rotating_force{0};  ///< N
   MachiningDeviation mach;
-  double feed_rate{0};         ///< m/s (feed per rev × spindle speed)
-  double default_depth{0};     ///< m
+  double feed_rate{0};      ///< m/s (feed per rev × spindle speed)
+  double default_depth{0};  ///< m
 };
 
 struct PredictionModel {
@@ -85,8 +86,8 @@ struct PredictionModel {
   double default_tolerance{0.2e-3};  ///< m, ⌀
   bool gravity{true};
   /// The controller compensates gravity deflection itself for a calibration load (robot card
-  /// `<controller gravity_compensated>` or the cell's `<controller>`): it adds K_eff⁻¹ τ_g,cal(θ) to
-  /// its command, computed with `calibration_model` (links + calibration load); roprec then
+  /// `<controller gravity_compensated>` or the cell's `<controller>`): it adds K_eff⁻¹ τ_g,cal(θ)
+  /// to its command, computed with `calibration_model` (links + calibration load); roprec then
   /// predicts only the part beyond it.
   bool controller_gravity{false};
   nc::Model calibration_model;
@@ -108,9 +109,9 @@ struct PredictionSetup {
   UncertaintyInputs uncertainty = defaultUncertaintyInputs();
   CapabilityInputs capability;
   double default_tolerance{0.2e-3};
-  std::vector<double> hole_diameters;  ///< diameters the holes use (m); the process's is added
-  bool controller_gravity{false};      ///< see PredictionModel
-  nc::ToolAttachment calibration_load; ///< load the controller's gravity compensation assumes
+  std::vector<double> hole_diameters;   ///< diameters the holes use (m); the process's is added
+  bool controller_gravity{false};       ///< see PredictionModel
+  nc::ToolAttachment calibration_load;  ///< load the controller's gravity compensation assumes
 };
 
 /// Builds the model once (process evaluated per distinct diameter).
@@ -118,12 +119,12 @@ PredictionModel buildPredictionModel(const PredictionSetup& setup);
 
 struct HoleRequest {
   std::string id;
-  Pose T_W_tcp{Pose::Identity()};   ///< programmed TCP pose at the drill point, base frame
-  double tolerance{0.0};            ///< ⌀ position tolerance, m (0: the cell default)
-  double diameter{0.0};             ///< m (0: the process drill)
-  double depth{0.0};                ///< m (0: the process depth)
+  Pose T_W_tcp{Pose::Identity()};      ///< programmed TCP pose at the drill point, base frame
+  double tolerance{0.0};               ///< ⌀ position tolerance, m (0: the cell default)
+  double diameter{0.0};                ///< m (0: the process drill)
+  double depth{0.0};                   ///< m (0: the process depth)
   std::optional<VendorConfig> config;  ///< the program's configuration, if it states one
-  int line{0};                      ///< source line (messages)
+  int line{0};                         ///< source line (messages)
   /// The nominal hole (hole list): a point on its axis and the drilling direction, base frame.
   /// When given, the prediction also reports the real drill point's distance from that axis.
   std::optional<std::pair<Vec3, Vec3>> nominal_axis;
@@ -133,7 +134,14 @@ struct HoleRequest {
 };
 
 enum class HoleStatus { kOk, kUnreachable, kSingular, kNotConverged };
-enum class Verdict { kConforms, kConformsAfterCompensation, kDoesNotConform, kUnreachable, kSingular, kNotConverged };
+enum class Verdict {
+  kConforms,
+  kConformsAfterCompensation,
+  kDoesNotConform,
+  kUnreachable,
+  kSingular,
+  kNotConverged
+};
 const char* verdictName(Verdict v);
 
 /// ISO 14253-1 decision for a predicted position error e (m) with expanded radial uncertainty U
@@ -142,41 +150,44 @@ Verdict verdictFor(double e, double U, double t);
 
 struct BudgetTerm {
   const char* name;
-  double u{0};            ///< per-axis standard uncertainty, m
-  bool process{false};    ///< belongs to the process (for the process share)
+  double u{0};          ///< per-axis standard uncertainty, m
+  bool process{false};  ///< belongs to the process (for the process share)
 };
 
 struct HolePrediction {
   std::string id;
   HoleStatus status{HoleStatus::kOk};
   std::string reason;
-  Vec6 joints{Vec6::Zero()};        ///< motor-side command (rigid IK of the programmed pose), rad
-  std::string config;               ///< vendor flags
+  Vec6 joints{Vec6::Zero()};  ///< motor-side command (rigid IK of the programmed pose), rad
+  std::string config;         ///< vendor flags
   int branch{0};
-  double wrist_margin{0};           ///< |sin(θ5 + α)|
+  double wrist_margin{0};  ///< |sin(θ5 + α)|
   nc::Deflection deflection;
-  Vec3 d_robot{Vec3::Zero()};       ///< m, base frame
+  Vec3 d_robot{Vec3::Zero()};  ///< m, base frame
   Vec3 d_mach{Vec3::Zero()};
   Vec3 d_work{Vec3::Zero()};
-  Vec3 d_rot{Vec3::Zero()};         ///< rad, base frame
+  Vec3 d_rot{Vec3::Zero()};                         ///< rad, base frame
   Eigen::Vector2d e_tool{Eigen::Vector2d::Zero()};  ///< δwork in the tool XY plane (m)
-  double position_error{0};         ///< m, ⊥ hole axis
-  double axis_tilt{0};              ///< rad
-  std::optional<double> nominal_axis_error;  ///< m: real drill point ⊥ distance from the nominal axis
-  std::vector<BudgetTerm> budget;   ///< u per in-plane axis
+  double position_error{0};                         ///< m, ⊥ hole axis
+  double axis_tilt{0};                              ///< rad
+  std::optional<double>
+      nominal_axis_error;          ///< m: real drill point ⊥ distance from the nominal axis
+  std::vector<BudgetTerm> budget;  ///< u per in-plane axis
   Eigen::Matrix2d robdef_cov{Eigen::Matrix2d::Zero()};
   double u_robot{0}, u_mach{0}, u_work{0};
   double k{2.4477};
   double U_robot{0}, U_mach{0}, U_work{0};
-  double U_work_exact{0};           ///< 95 % radius of the anisotropic total (for information)
-  double process_share{0};          ///< machining-process variance share u_mach² / u_work² (the study's figure)
-  double process_force_share{0};    ///< share of the robot deflection caused by process-force uncertainty
-  double tolerance{0};              ///< ⌀, m
+  double U_work_exact{0};  ///< 95 % radius of the anisotropic total (for information)
+  double process_share{
+      0};  ///< machining-process variance share u_mach² / u_work² (the study's figure)
+  double process_force_share{
+      0};               ///< share of the robot deflection caused by process-force uncertainty
+  double tolerance{0};  ///< ⌀, m
   Verdict verdict{Verdict::kConforms};
-  double mc_time{0};                ///< machining-center time for this hole, s
+  double mc_time{0};  ///< machining-center time for this hole, s
   double diameter{0};
   double depth{0};
-  Vec3 force_base{Vec3::Zero()};    ///< process force on the TCP, base frame, N
+  Vec3 force_base{Vec3::Zero()};  ///< process force on the TCP, base frame, N
 };
 
 struct PredictionData {
@@ -187,17 +198,19 @@ struct PredictionData {
 };
 
 /// Predicts one hole. `seed` (rad) steers the default IK choice; nullptr: the reference pose.
-HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const HoleRequest& h, const Vec6* seed);
+HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
+                           const Vec6* seed);
 
 /// Predicts a sequence, each hole seeded with the previous admissible solution.
-std::vector<HolePrediction> predictHoles(const PredictionModel& m, const std::vector<HoleRequest>& holes);
+std::vector<HolePrediction> predictHoles(const PredictionModel& m,
+                                         const std::vector<HoleRequest>& holes);
 
 struct CapabilitySummary {
   int holes{0};
   int conforms{0}, conforms_after_compensation{0}, does_not_conform{0}, unreachable{0}, singular{0},
       not_converged{0};
-  int robot_can_take{0};            ///< conforms + conforms-after-compensation
-  double mc_time_taken{0};          ///< s of machining-center time the robot can take
+  int robot_can_take{0};    ///< conforms + conforms-after-compensation
+  double mc_time_taken{0};  ///< s of machining-center time the robot can take
   double mc_time_total{0};
   double max_process_share{0};
   double mean_process_share{0};

@@ -7,9 +7,9 @@
 ///   isotropic Gaussian scatter with σ per axis, l follows a chi distribution with 3 degrees of
 ///   freedom: l̄ = 2√(2/π) σ = 1.5958 σ, S_l = √(3 − 8/π) σ = 0.6734 σ, so RP = 3.6160 σ.
 /// * 2-D radial coverage: the radius r of a zero-mean bivariate normal with covariance Σ
-///   (eigenvalues λ₁, λ₂) satisfies P(r ≤ R) = (1/2π)∫₀^{2π} [1 − e^{−R² q(φ)/2}] / (√(λ₁λ₂) q(φ)) dφ,
-///   q(φ) = cos²φ/λ₁ + sin²φ/λ₂; for λ₁ = λ₂ = u² it is Rayleigh, R₉₅ = √(−2 ln 0.05) u = 2.4477 u.
-///   Do not use k = 2 on a radius (docs/process.md §5.1).
+///   (eigenvalues λ₁, λ₂) satisfies P(r ≤ R) = (1/2π)∫₀^{2π} [1 − e^{−R² q(φ)/2}] / (√(λ₁λ₂) q(φ))
+///   dφ, q(φ) = cos²φ/λ₁ + sin²φ/λ₂; for λ₁ = λ₂ = u² it is Rayleigh, R₉₅ = √(−2 ln 0.05) u
+///   = 2.4477 u. Do not use k = 2 on a radius (docs/process.md §5.1).
 
 #include <Eigen/Core>
 

@@ -19,7 +19,8 @@ double DrillGeometry::pointLength() const {
   const double R = radius();
   const double w = halfWeb();
   const double a = chiselHalfLength();
-  return (std::sqrt(R * R - w * w) - std::sqrt(std::max(0.0, a * a - w * w))) / std::tan(halfPoint());
+  return (std::sqrt(R * R - w * w) - std::sqrt(std::max(0.0, a * a - w * w))) /
+         std::tan(halfPoint());
 }
 
 std::string drillGeometryProblem(const DrillGeometry& g) {
@@ -27,7 +28,8 @@ std::string drillGeometryProblem(const DrillGeometry& g) {
   if (!(g.point_angle > 60 * kDeg && g.point_angle < 180 * kDeg)) {
     return "point angle must lie in (60, 180) degrees, got " + std::to_string(g.point_angle / kDeg);
   }
-  if (!(g.helix_angle >= 0 && g.helix_angle < 60 * kDeg)) return "helix angle must lie in [0, 60) degrees";
+  if (!(g.helix_angle >= 0 && g.helix_angle < 60 * kDeg))
+    return "helix angle must lie in [0, 60) degrees";
   if (!(g.web_thickness >= 0)) return "web thickness must be >= 0";
   if (!(g.web_thickness < g.diameter)) {
     return "web is wider than the drill: 2w = " + std::to_string(g.web_thickness * 1e3) +
@@ -40,8 +42,8 @@ std::string drillGeometryProblem(const DrillGeometry& g) {
   if (!(g.runout >= 0)) return "runout must be >= 0";
   if (!(g.chiselHalfLength() < 0.9 * g.radius())) {
     return "web is too wide for the drill: chisel half-length w/sin(psi) = " +
-           std::to_string(g.chiselHalfLength() * 1e3) + " mm must stay below 0.9 R = " +
-           std::to_string(0.9 * g.radius() * 1e3) + " mm";
+           std::to_string(g.chiselHalfLength() * 1e3) +
+           " mm must stay below 0.9 R = " + std::to_string(0.9 * g.radius() * 1e3) + " mm";
   }
   if (!(g.runout < 0.1 * g.radius())) return "runout must be < 0.1 R";
   return {};

@@ -13,8 +13,8 @@
 ///   sin ω = w/r,  tan δ(r) = (r/R) tan δ0,  sin λs = (w/r) sin p,  tan κr = tan p cos ω,
 ///   tan γn = tan δ(r) cos²λs / (sin p cos ω) − cos p tan ω,
 ///   h(r) = (f/2) sin κr  (per lip, two lips),  db = dr / sin κr  ⇒  h·db = (f/2)·dr.
-/// Working angles with feed f: the cutting velocity is v_e = normalize(2πr e_θ + f z) instead of e_θ
-/// (≈ γn + η_f sin κr / cos λs, η_f = atan(f / 2πr)).
+/// Working angles with feed f: the cutting velocity is v_e = normalize(2πr e_θ + f z) instead of
+/// e_θ (≈ γn + η_f sin κr / cos λs, η_f = atan(f / 2πr)).
 ///
 /// "Paper-compatibility" angle law (Ferreras-Higuero et al. 2020 [P], docs/process.md §1.3):
 ///   tan γn = (r/R) tan γn0,  tan λs = (r/R) tan λs0,  κr = p, with γn0, λs0 the geometric
@@ -73,25 +73,26 @@ EdgeAngles paperEdgeAngles(const DrillGeometry& g, double r);
 /// Edge frame at radius r on lip `lip` (0-based), built with quaternions exactly as §1.4.
 /// All vectors are unit vectors in the tool frame at spindle angle 0.
 struct EdgeFrame {
-  Vec3 position{Vec3::Zero()};  ///< point on the lip (z = 0 at the inner lip end) [m]
-  Vec3 t{Vec3::Zero()};         ///< edge tangent, outward
-  Vec3 e_r{Vec3::Zero()};       ///< radial direction
-  Vec3 e_theta{Vec3::Zero()};   ///< tangential direction (direction of rotation)
-  Vec3 v{Vec3::Zero()};         ///< cutting velocity direction (static e_θ, or working with feed)
-  Vec3 helix{Vec3::Zero()};     ///< flute helix tangent, pointing up the flute
-  Vec3 n_gamma{Vec3::Zero()};   ///< rake-face normal, n·v > 0
-  Vec3 v_n{Vec3::Zero()};       ///< velocity projected on the normal plane Pn
-  Vec3 c{Vec3::Zero()};         ///< chip-thickness direction in Pn, c·z < 0
-  Vec3 chip_flow{Vec3::Zero()}; ///< chip-flow direction on the rake face (Stabler ηc = λs)
-  double gamma_n{0};            ///< normal rake [rad]
-  double lambda_s{0};           ///< signed inclination, sin λs = t·v (negative on a standard drill)
-  double kappa_r{0};            ///< tool cutting-edge angle [rad]
+  Vec3 position{Vec3::Zero()};   ///< point on the lip (z = 0 at the inner lip end) [m]
+  Vec3 t{Vec3::Zero()};          ///< edge tangent, outward
+  Vec3 e_r{Vec3::Zero()};        ///< radial direction
+  Vec3 e_theta{Vec3::Zero()};    ///< tangential direction (direction of rotation)
+  Vec3 v{Vec3::Zero()};          ///< cutting velocity direction (static e_θ, or working with feed)
+  Vec3 helix{Vec3::Zero()};      ///< flute helix tangent, pointing up the flute
+  Vec3 n_gamma{Vec3::Zero()};    ///< rake-face normal, n·v > 0
+  Vec3 v_n{Vec3::Zero()};        ///< velocity projected on the normal plane Pn
+  Vec3 c{Vec3::Zero()};          ///< chip-thickness direction in Pn, c·z < 0
+  Vec3 chip_flow{Vec3::Zero()};  ///< chip-flow direction on the rake face (Stabler ηc = λs)
+  double gamma_n{0};             ///< normal rake [rad]
+  double lambda_s{0};  ///< signed inclination, sin λs = t·v (negative on a standard drill)
+  double kappa_r{0};   ///< tool cutting-edge angle [rad]
 };
 
 /// feed_per_rev = 0 gives the static frame; > 0 the working frame (v_e includes the feed) [m/rev].
 EdgeFrame edgeFrame(const DrillGeometry& g, double r, int lip, double feed_per_rev = 0.0);
 
-/// Edge angles under the chosen law; `feed_per_rev` > 0 selects working angles (geometric law only).
+/// Edge angles under the chosen law; `feed_per_rev` > 0 selects working angles (geometric law
+/// only).
 EdgeAngles edgeAngles(const DrillGeometry& g, AngleLaw law, double r, double feed_per_rev = 0.0);
 
 }  // namespace roprec

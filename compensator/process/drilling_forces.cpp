@@ -22,7 +22,8 @@ void fillNodes(const DrillingModel& m, double r_in, double r_out, EdgeNodes& N) 
     const double r = mid + half * m.gl_x[s];
     N.r[s] = r;
     N.weight[s] = half * m.gl_w[s];
-    const EdgeFrame F = edgeFrame(m.geometry, r, 0, m.law == AngleLaw::kGeometric ? m.angle_feed : 0.0);
+    const EdgeFrame F =
+        edgeFrame(m.geometry, r, 0, m.law == AngleLaw::kGeometric ? m.angle_feed : 0.0);
     EdgeAngles e;
     if (m.law == AngleLaw::kGeometric) {
       e.gamma_n = F.gamma_n;
@@ -147,8 +148,8 @@ DrillingForces evaluate(const DrillingModel& m, const EdgeNodes& N, double feed,
 
 void EdgeNodes::resize(int n) {
   const size_t s = static_cast<size_t>(n);
-  for (std::vector<double>* v : {&r, &weight, &g_t, &g_a, &sin_kappa, &cot_kappa, &sin_pow_t, &sin_pow_a, &vx,
-                                 &vy, &erx, &ery}) {
+  for (std::vector<double>* v : {&r, &weight, &g_t, &g_a, &sin_kappa, &cot_kappa, &sin_pow_t,
+                                 &sin_pow_a, &vx, &vy, &erx, &ery}) {
     v->assign(s, 0.0);
   }
 }
@@ -168,8 +169,9 @@ DrillingModel makeDrillingModel(const DrillGeometry& g, const DrillingCoefficien
   fillNodes(m, g.chiselHalfLength(), g.radius(), m.full);
   const double R = g.radius();
   const EdgeFrame Fc = edgeFrame(g, R, 0, law == AngleLaw::kGeometric ? working_feed : 0.0);
-  const EdgeAngles ec = law == AngleLaw::kGeometric ? EdgeAngles{Fc.gamma_n, std::abs(Fc.lambda_s), Fc.kappa_r, 0, 0}
-                                                    : paperEdgeAngles(g, R);
+  const EdgeAngles ec = law == AngleLaw::kGeometric
+                            ? EdgeAngles{Fc.gamma_n, std::abs(Fc.lambda_s), Fc.kappa_r, 0, 0}
+                            : paperEdgeAngles(g, R);
   m.corner_sin_kappa = std::sin(ec.kappa_r);
   m.corner_cot_kappa = 1.0 / std::tan(ec.kappa_r);
   m.corner_g_t = geometryFactor(c.tangential, ec.gamma_n, ec.lambda_s);
@@ -183,18 +185,19 @@ ToolWrench toolWrench(const DrillingForces& F, double spindle_angle) {
   const double c = std::cos(spindle_angle);
   const double s = std::sin(spindle_angle);
   ToolWrench w;
-  w.force = Vec3(c * F.residual_xy.x() - s * F.residual_xy.y(), s * F.residual_xy.x() + c * F.residual_xy.y(),
-                 -F.thrust);
+  w.force = Vec3(c * F.residual_xy.x() - s * F.residual_xy.y(),
+                 s * F.residual_xy.x() + c * F.residual_xy.y(), -F.thrust);
   w.torque = Vec3(0.0, 0.0, -F.torque);
   return w;
 }
 
 DrillingForces drillingForces(const DrillingModel& model, double feed) {
-  return evaluate(model, model.full, feed, true, true, model.geometry.chiselHalfLength(), model.geometry.radius());
+  return evaluate(model, model.full, feed, true, true, model.geometry.chiselHalfLength(),
+                  model.geometry.radius());
 }
 
-DrillingForces drillingForcesEngaged(const DrillingModel& model, DrillingData& data, double feed, double r_in,
-                                     double r_out, bool chisel_engaged) {
+DrillingForces drillingForcesEngaged(const DrillingModel& model, DrillingData& data, double feed,
+                                     double r_in, double r_out, bool chisel_engaged) {
   const double a = model.geometry.chiselHalfLength();
   const double R = model.geometry.radius();
   r_in = std::clamp(r_in, a, R);
@@ -210,7 +213,8 @@ DrillingForces drillingForcesEngaged(const DrillingModel& model, DrillingData& d
     }
     return F;
   }
-  if (r_in <= a && r_out >= R) return evaluate(model, model.full, feed, true, chisel_engaged, r_in, r_out);
+  if (r_in <= a && r_out >= R)
+    return evaluate(model, model.full, feed, true, chisel_engaged, r_in, r_out);
   fillNodes(model, r_in, r_out, data.partial);
   return evaluate(model, data.partial, feed, r_out >= R, chisel_engaged, r_in, r_out);
 }
@@ -237,14 +241,15 @@ Engagement engagementAtDepth(const DrillGeometry& g, double depth, double thickn
   return e;
 }
 
-DrillingForces drillingForcesAtDepth(const DrillingModel& model, DrillingData& data, double feed, double depth,
-                                     double thickness) {
+DrillingForces drillingForcesAtDepth(const DrillingModel& model, DrillingData& data, double feed,
+                                     double depth, double thickness) {
   const Engagement e = engagementAtDepth(model.geometry, depth, thickness);
   return drillingForcesEngaged(model, data, feed, e.r_in, e.r_out, e.chisel);
 }
 
-std::vector<DepthSample> drillingDepthProfile(const DrillingModel& model, DrillingData& data, double feed,
-                                              double hole_depth, bool through, double step) {
+std::vector<DepthSample> drillingDepthProfile(const DrillingModel& model, DrillingData& data,
+                                              double feed, double hole_depth, bool through,
+                                              double step) {
   const DrillGeometry& g = model.geometry;
   const double a = g.chiselHalfLength();
   const double exit_extra = through ? (g.radius() - a) / std::tan(g.halfPoint()) : 0.0;
@@ -259,11 +264,14 @@ std::vector<DepthSample> drillingDepthProfile(const DrillingModel& model, Drilli
   return out;
 }
 
-std::vector<AxialCouplingSample> drillingAxialCoupling(const DrillingModel& model, DrillingData& data, double feed,
-                                                       double hole_depth, bool through, double axial_compliance,
-                                                       double tolerance, int max_iterations) {
+std::vector<AxialCouplingSample> drillingAxialCoupling(const DrillingModel& model,
+                                                       DrillingData& data, double feed,
+                                                       double hole_depth, bool through,
+                                                       double axial_compliance, double tolerance,
+                                                       int max_iterations) {
   const DrillGeometry& g = model.geometry;
-  const double exit_extra = through ? (g.radius() - g.chiselHalfLength()) / std::tan(g.halfPoint()) : 0.0;
+  const double exit_extra =
+      through ? (g.radius() - g.chiselHalfLength()) / std::tan(g.halfPoint()) : 0.0;
   const double z_end = hole_depth + exit_extra;
   const double thickness = through ? hole_depth : 0.0;
   std::vector<AxialCouplingSample> out;
@@ -277,7 +285,8 @@ std::vector<AxialCouplingSample> drillingAxialCoupling(const DrillingModel& mode
     const double z0 = z;
     auto eval = [&](double d, DrillingForces& F) {
       const double fk = feed - (d - d_prev);
-      F = fk > 0 ? drillingForcesAtDepth(model, data, fk, std::min(z0 + fk, z_end), thickness) : DrillingForces{};
+      F = fk > 0 ? drillingForcesAtDepth(model, data, fk, std::min(z0 + fk, z_end), thickness)
+                 : DrillingForces{};
       return d - axial_compliance * F.thrust;
     };
     DrillingForces Flo, Fhi, Fm;
@@ -327,8 +336,8 @@ std::vector<AxialCouplingSample> drillingAxialCoupling(const DrillingModel& mode
   return out;
 }
 
-DrillingCalibration calibrateDrilling(const DrillingModel& model, double feed, double thrust_measured,
-                                      double torque_measured) {
+DrillingCalibration calibrateDrilling(const DrillingModel& model, double feed,
+                                      double thrust_measured, double torque_measured) {
   DrillingCalibration c;
   const DrillingForces before = drillingForces(model, feed);
   c.thrust_model_before = before.thrust;

@@ -35,28 +35,36 @@ double standardUncertainty(double half_width, Distribution d) {
 MachiningDeviationParams defaultMachiningDeviation(double diameter, bool carbide) {
   MachiningDeviationParams p;
   const char* band =
-      "chosen with the other machining-deviation defaults so that U_mach (k=2) is about +-30 um at Dc 8 mm and "
-      "+-60 um at Dc 12 mm (Ferreras-Higuero et al., RCIM 2020 [P, not confirmed against the paper text])";
+      "chosen with the other machining-deviation defaults so that U_mach (k=2) is about +-30 um at "
+      "Dc 8 mm and "
+      "+-60 um at Dc 12 mm (Ferreras-Higuero et al., RCIM 2020 [P, not confirmed against the paper "
+      "text])";
   p.axis_tilt = 0.03 * kDeg;
   p.axis_lever = diameter;
-  p.axis_source = std::string("estimate: tool-axis deviation 0.03 deg evaluated at a lever of 1 Dc (mid-depth of a "
-                              "2xDc hole); ") + band;
+  p.axis_source =
+      std::string(
+          "estimate: tool-axis deviation 0.03 deg evaluated at a lever of 1 Dc (mid-depth of a "
+          "2xDc hole); ") +
+      band;
   p.stickout = 3.0 * diameter;
   p.stickout_source = "estimate: stick-out 3 Dc (DIN 6537 short carbide drill, 3xD series)";
   p.runout = 0.25e-3 * p.stickout;
-  p.runout_source = std::string("estimate: 0.25 um per mm of stick-out (collet angular runout); ") + band;
+  p.runout_source =
+      std::string("estimate: 0.25 um per mm of stick-out (collet angular runout); ") + band;
   p.equivalent_diameter_ratio = 0.8;
   p.youngs_modulus = carbide ? 600e9 : 210e9;
   p.modulus_source = carbide ? "estimate: WC-Co carbide, E 580-630 GPa (handbook range), 600 GPa"
                              : "estimate: HSS, E 210 GPa (handbook value for tool steel)";
   p.spindle_compliance = 0.29e-6;
-  p.spindle_source = std::string("estimate: spindle + holder lateral compliance 0.29 um/N at the tip; ") + band;
+  p.spindle_source =
+      std::string("estimate: spindle + holder lateral compliance 0.29 um/N at the tip; ") + band;
   p.coverage_factor = 2.0;
   return p;
 }
 
 MachiningDeviation machiningDeviation(const MachiningDeviationParams& p, const DrillGeometry& g,
-                                      double rotating_force, const Eigen::Vector2d& static_force_xy) {
+                                      double rotating_force,
+                                      const Eigen::Vector2d& static_force_xy) {
   MachiningDeviation d;
   const double de = p.equivalent_diameter_ratio * g.diameter;
   const double I = kPi * std::pow(de, 4) / 64.0;
@@ -78,8 +86,9 @@ MachiningDeviation machiningDeviation(const MachiningDeviationParams& p, const D
   def.name = "delta_deftool";
   def.half_width = d.tool_compliance * rotating_force;
   def.distribution = Distribution::kArcsine;
-  def.source = "cantilever L^3/(3 E I_e) + spindle compliance, times the rotating runout force Fr; " +
-               p.stickout_source + "; " + p.modulus_source + "; " + p.spindle_source;
+  def.source =
+      "cantilever L^3/(3 E I_e) + spindle compliance, times the rotating runout force Fr; " +
+      p.stickout_source + "; " + p.modulus_source + "; " + p.spindle_source;
   double sum = 0.0;
   for (UncertaintyComponent* c : {&axis, &run, &def}) {
     c->standard = standardUncertainty(c->half_width, c->distribution);

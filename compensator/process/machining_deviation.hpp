@@ -4,7 +4,8 @@
 /// uncertainty components, for the budget δwork = δrobot + δmach (docs/process.md §5.7).
 ///
 /// Three terms, all half-widths `a` at the hole, in the tool's XY plane:
-///   δaxis    tool-axis deviation: the drill axis deviates from the programmed hole axis by up to θa;
+///   δaxis    tool-axis deviation: the drill axis deviates from the programmed hole axis by up to
+///   θa;
 ///            the hole axis, evaluated at the lever La (≈ mid-depth), is off by a = La tan θa.
 ///            Rectangular: u = a/√3 (GUM 4.3.7).
 ///   δρ       runout: the drill tip turns on a circle of radius ρ about the spindle axis; the hole
@@ -18,7 +19,8 @@
 /// (≈ 95 %, 1-D normal; for the 2-D radius use the factor 2.448 of docs/process.md §5.1).
 ///
 /// The three terms are zero-mean; the systematic part δmach = (L³/(3 E I_e) + c_s)·F_xy,static
-/// comes only from a static in-plane force on the tool (e.g. a `wrench` process), in the tool frame.
+/// comes only from a static in-plane force on the tool (e.g. a `wrench` process), in the tool
+/// frame.
 ///
 /// Defaults (defaultMachiningDeviation): θa = 0.03°, La = Dc, ρ = 0.25 µm/mm × L, L = 3·Dc,
 /// κ = 0.8, E = 600 GPa (carbide) / 210 GPa (HSS), c_s = 0.29 µm/N — estimates chosen together so
@@ -41,22 +43,22 @@ const char* distributionName(Distribution d);
 double standardUncertainty(double half_width, Distribution d);
 
 struct UncertaintyComponent {
-  std::string name;        ///< "delta_axis", "delta_runout", "delta_deftool"
-  double half_width{0};    ///< a [m]
+  std::string name;      ///< "delta_axis", "delta_runout", "delta_deftool"
+  double half_width{0};  ///< a [m]
   Distribution distribution{Distribution::kRectangular};
-  double standard{0};      ///< u [m]
+  double standard{0};  ///< u [m]
   std::string source;
 };
 
 struct MachiningDeviationParams {
-  double axis_tilt{0.03 * kDeg};    ///< θa [rad]
-  double axis_lever{8e-3};          ///< La [m]
-  double runout{6e-6};              ///< ρ at the tip [m]
-  double stickout{24e-3};           ///< L [m]
+  double axis_tilt{0.03 * kDeg};          ///< θa [rad]
+  double axis_lever{8e-3};                ///< La [m]
+  double runout{6e-6};                    ///< ρ at the tip [m]
+  double stickout{24e-3};                 ///< L [m]
   double equivalent_diameter_ratio{0.8};  ///< κ = d_e / Dc
-  double youngs_modulus{600e9};     ///< E [Pa]
-  double spindle_compliance{0.29e-6};  ///< c_s [m/N]
-  double coverage_factor{2.0};      ///< k
+  double youngs_modulus{600e9};           ///< E [Pa]
+  double spindle_compliance{0.29e-6};     ///< c_s [m/N]
+  double coverage_factor{2.0};            ///< k
   std::string axis_source, runout_source, stickout_source, modulus_source, spindle_source;
 };
 
@@ -64,19 +66,20 @@ struct MachiningDeviationParams {
 MachiningDeviationParams defaultMachiningDeviation(double diameter, bool carbide = true);
 
 struct MachiningDeviation {
-  Eigen::Vector2d delta_tool{Eigen::Vector2d::Zero()};  ///< systematic δmach in the tool XY plane [m]
-  std::vector<UncertaintyComponent> components;         ///< δaxis, δρ, δdeftool
-  double tool_compliance{0};   ///< L³/(3 E I_e) + c_s [m/N]
-  double lateral_force{0};     ///< Fr used for δdeftool [N]
-  double u_c{0};               ///< combined standard uncertainty [m]
+  Eigen::Vector2d delta_tool{
+      Eigen::Vector2d::Zero()};                  ///< systematic δmach in the tool XY plane [m]
+  std::vector<UncertaintyComponent> components;  ///< δaxis, δρ, δdeftool
+  double tool_compliance{0};                     ///< L³/(3 E I_e) + c_s [m/N]
+  double lateral_force{0};                       ///< Fr used for δdeftool [N]
+  double u_c{0};                                 ///< combined standard uncertainty [m]
   double k{2};
-  double U{0};                 ///< expanded, k·u_c [m]
+  double U{0};  ///< expanded, k·u_c [m]
 };
 
 /// `rotating_force` = |Fr| of the drilling model at the process feed; `static_force_xy` an optional
 /// steady in-plane force on the tool (tool frame) [N].
-MachiningDeviation machiningDeviation(const MachiningDeviationParams& p, const DrillGeometry& g,
-                                      double rotating_force,
-                                      const Eigen::Vector2d& static_force_xy = Eigen::Vector2d::Zero());
+MachiningDeviation machiningDeviation(
+    const MachiningDeviationParams& p, const DrillGeometry& g, double rotating_force,
+    const Eigen::Vector2d& static_force_xy = Eigen::Vector2d::Zero());
 
 }  // namespace roprec

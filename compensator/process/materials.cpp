@@ -14,23 +14,29 @@ const char* const kIscarGroup22 =
     "ISCAR catalogue material-group table (ISO 513 / VDI 3323), group 22 'Al wrought, hardenable': "
     "kc1.1 = 800 N/mm2, mc = 0.25, 100 HB (docs.steelcam.org copy)";
 const char* const kIscarGroup24 =
-    "ISCAR catalogue material-group table, group 24 'Al cast <= 12 % Si, hardenable': kc1.1 = 700 N/mm2, "
+    "ISCAR catalogue material-group table, group 24 'Al cast <= 12 % Si, hardenable': kc1.1 = 700 "
+    "N/mm2, "
     "mc = 0.25, 90 HB (docs.steelcam.org copy)";
 const char* const kIscarGroup23 =
-    "ISCAR catalogue material-group table, group 23 'Al cast <= 12 % Si, not hardenable': kc1.1 = 700 N/mm2, "
+    "ISCAR catalogue material-group table, group 23 'Al cast <= 12 % Si, not hardenable': kc1.1 = "
+    "700 N/mm2, "
     "mc = 0.25, 75 HB (docs.steelcam.org copy); AlSi9Cu3 (EN AC-46000) is normally used as-cast "
     "(estimate: mapping to group 23 by Si content and temper)";
 const char* const kDrillingSource =
     "process.md §2.3 illustrative calibration [D]: kst0 = ksa0 = kc1.1 of the group, m = mc; "
     "at = 1.0, bt = -0.010/deg (Sandvik 1 %/deg rake rule, sandvik.coromant.com), ct = 0; "
     "aa = 0.80, ba = -0.0185/deg, ca = 0 (Fa/Ft ~ 0.35 at +30 deg, ~0.8 at 0 deg; "
-    "estimate: Merchant tan(beta-alpha) with beta 35-40 deg plus ploughing). Re-fit with --calibrate.";
+    "estimate: Merchant tan(beta-alpha) with beta 35-40 deg plus ploughing). Re-fit with "
+    "--calibrate.";
 const char* const kChiselSource =
-    "process.md §1.5/§2.3: F_ch = 1.2 Fa_lips, a 55 % chisel share of the thrust for a conventional point "
-    "(chisel 50-60 % of thrust: Modern Machining Technology (Davim 2011) p. 145; 50-70 %: Mitsubishi "
+    "process.md §1.5/§2.3: F_ch = 1.2 Fa_lips, a 55 % chisel share of the thrust for a "
+    "conventional point "
+    "(chisel 50-60 % of thrust: Modern Machining Technology (Davim 2011) p. 145; 50-70 %: "
+    "Mitsubishi "
     "Materials drilling course)";
 const char* const kMillingRatioSource =
-    "Fr/Ft = 0.35: process.md §4.2 Kienzle column (Altintas Al7075 set gives 0.44-0.63 at h = 0.04-0.10 mm); "
+    "Fr/Ft = 0.35: process.md §4.2 Kienzle column (Altintas Al7075 set gives 0.44-0.63 at h = "
+    "0.04-0.10 mm); "
     "Fa/Ft = 0.2: process.md §4.2 '0.1-0.3 for a 30 deg helix' [L] (estimate: mid-range)";
 
 Material wroughtHardenable(std::string name, std::vector<std::string> aliases, double hb) {
@@ -58,9 +64,12 @@ void setDrilling(Material& m) {
 
 std::vector<Material> buildTable() {
   std::vector<Material> t;
-  t.push_back(wroughtHardenable("Al 6061-T6", {"6061-T6", "6061", "AlMg1SiCu", "EN AW-6061-T6", "3.3211"}, 95));
-  t.push_back(wroughtHardenable("Al 7075-T6", {"7075-T6", "7075", "AlZn5.5MgCu", "EN AW-7075-T6", "3.4365"}, 150));
-  t.push_back(wroughtHardenable("Al 2024-T3", {"2024-T3", "2024", "AlCu4Mg1", "EN AW-2024-T3"}, 120));
+  t.push_back(wroughtHardenable("Al 6061-T6",
+                                {"6061-T6", "6061", "AlMg1SiCu", "EN AW-6061-T6", "3.3211"}, 95));
+  t.push_back(wroughtHardenable(
+      "Al 7075-T6", {"7075-T6", "7075", "AlZn5.5MgCu", "EN AW-7075-T6", "3.4365"}, 150));
+  t.push_back(
+      wroughtHardenable("Al 2024-T3", {"2024-T3", "2024", "AlCu4Mg1", "EN AW-2024-T3"}, 120));
   {
     Material m;
     m.name = "AlSi7Mg (A356-T6)";
@@ -92,7 +101,8 @@ std::vector<Material> buildTable() {
     m.mc = 0.25;
     m.hardness_HB = 60;
     m.kienzle_source =
-        "ISCAR catalogue material-group table, group 21 'Al wrought, not hardenable': kc1.1 = 700 N/mm2, "
+        "ISCAR catalogue material-group table, group 21 'Al wrought, not hardenable': kc1.1 = 700 "
+        "N/mm2, "
         "mc = 0.25, 60 HB (docs.steelcam.org copy)";
     t.push_back(m);
   }

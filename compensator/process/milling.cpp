@@ -45,8 +45,8 @@ double meanChipThickness(double fz, const ImmersionAngles& a) {
   return fz * (std::cos(a.start) - std::cos(a.exit)) / span;
 }
 
-MillingModel makeMillingModel(const MillingTool& tool, const MillingCut& cut, const MillingCoefficients& c,
-                              int angle_steps, int slices) {
+MillingModel makeMillingModel(const MillingTool& tool, const MillingCut& cut,
+                              const MillingCoefficients& c, int angle_steps, int slices) {
   MillingModel m;
   m.tool = tool;
   m.cut = cut;
@@ -55,7 +55,8 @@ MillingModel makeMillingModel(const MillingTool& tool, const MillingCut& cut, co
   m.slices = slices;
   const double R = 0.5 * tool.diameter;
   for (int j = 0; j < tool.teeth; ++j) {
-    m.tooth_radius.push_back(R + tool.runout * std::cos(tool.runout_angle - j * 2 * kPi / tool.teeth));
+    m.tooth_radius.push_back(R +
+                             tool.runout * std::cos(tool.runout_angle - j * 2 * kPi / tool.teeth));
   }
   m.slice_height = cut.ap / slices;
   // Gauss–Legendre (Newton on P_n) for the arc average; 48 nodes keep the sin^0.75 end point
@@ -77,7 +78,8 @@ double toothChipThickness(const MillingModel& m, int tooth, double phi, double f
   double h = 1e300;
   for (int k = 1; k <= Nt; ++k) {
     const int prev = ((tooth - k) % Nt + Nt) % Nt;
-    double hk = k * fz * s + (m.tooth_radius[static_cast<size_t>(tooth)] - m.tooth_radius[static_cast<size_t>(prev)]);
+    double hk = k * fz * s + (m.tooth_radius[static_cast<size_t>(tooth)] -
+                              m.tooth_radius[static_cast<size_t>(prev)]);
     if (deflection_history != nullptr) hk += (deflection_history[0] - deflection_history[k]).dot(n);
     h = std::min(h, hk);
   }
@@ -173,9 +175,11 @@ struct CutAt {
   bool in_range{true};
 };
 
-CutAt cutAt(const MillingModel& m, const CouplingState& st, const CouplingOptions& o, const Vec3& d) {
+CutAt cutAt(const MillingModel& m, const CouplingState& st, const CouplingOptions& o,
+            const Vec3& d) {
   CutAt c;
-  c.fz = m.cut.fz + (d.x() - st.delta_prev.x()) / std::max(1, o.teeth_between_points) + st.uncut_prev;
+  c.fz =
+      m.cut.fz + (d.x() - st.delta_prev.x()) / std::max(1, o.teeth_between_points) + st.uncut_prev;
   const Vec3 n = wallNormal(m.cut.mode);
   c.ae = m.cut.mode == MillingMode::kSlot ? m.cut.ae : m.cut.ae + d.dot(n);
   if (c.ae > m.tool.diameter) {
@@ -197,7 +201,8 @@ double loopGain(const MillingModel& m, const ComplianceFunction& C, const Coupli
   for (int i = 0; i < 3; ++i) {
     Vec3 e = Vec3::Zero();
     e[i] = step;
-    G.col(i) = (C(forceAt(m, cutAt(m, st, o, d + e))) - C(forceAt(m, cutAt(m, st, o, d - e)))) / (2 * step);
+    G.col(i) = (C(forceAt(m, cutAt(m, st, o, d + e))) - C(forceAt(m, cutAt(m, st, o, d - e)))) /
+               (2 * step);
   }
   const Eigen::EigenSolver<Mat3> es(G, false);
   return es.eigenvalues().cwiseAbs().maxCoeff();
@@ -246,9 +251,9 @@ CouplingResult coupleMillingPoint(const MillingModel& m, const ComplianceFunctio
   return r;
 }
 
-std::vector<CouplingResult> coupleMillingPath(const MillingModel& m,
-                                              const std::vector<ComplianceFunction>& compliance_per_point,
-                                              const CouplingOptions& options) {
+std::vector<CouplingResult> coupleMillingPath(
+    const MillingModel& m, const std::vector<ComplianceFunction>& compliance_per_point,
+    const CouplingOptions& options) {
   std::vector<CouplingResult> out;
   out.reserve(compliance_per_point.size());
   CouplingState st;

@@ -25,7 +25,9 @@ ComplianceFunction robotMillingCompliance(const nc::Model& model, const nc::Join
   nc::Loads none;
   none.gravity = gravity;
   const nc::Deflection d0 = nc::predictDeflection(s->model, s->data, s->c, theta_m, none);
-  if (!d0.converged) throw std::runtime_error("robot compliance: the equilibrium without process load did not converge");
+  if (!d0.converged)
+    throw std::runtime_error(
+        "robot compliance: the equilibrium without process load did not converge");
   s->p0 = d0.T_real.translation();
   s->R_W_tcp = d0.T_nominal.linear();
   return [s](const Vec3& F_mill) -> Vec3 {
@@ -33,7 +35,8 @@ ComplianceFunction robotMillingCompliance(const nc::Model& model, const nc::Join
     l.gravity = s->gravity;
     l.tcp_tool.force = Vec3(F_mill.x(), -F_mill.y(), -F_mill.z());
     const nc::Deflection d = nc::predictDeflection(s->model, s->data, s->c, s->theta_m, l);
-    if (!d.converged) throw std::runtime_error("robot compliance: the equilibrium did not converge");
+    if (!d.converged)
+      throw std::runtime_error("robot compliance: the equilibrium did not converge");
     const Vec3 dt = s->R_W_tcp.transpose() * (d.T_real.translation() - s->p0);
     return Vec3(dt.x(), -dt.y(), -dt.z());
   };

@@ -10,8 +10,8 @@
 /// −tool y, and the force on the tool follows the real tool orientation (tool-frame load).
 /// Gravity (and the tool weight) is in both terms, so only the process part is returned.
 
-#include "compensator/robot/deflection.hpp"
 #include "compensator/process/milling.hpp"
+#include "compensator/robot/deflection.hpp"
 
 namespace roprec {
 

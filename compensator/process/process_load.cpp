@@ -23,7 +23,8 @@ SteadyProcessLoad steadyProcessLoad(const ProcessSpec& spec) {
       w.force.y() = 0.0;
       out.wrench = w;
       out.rotating_force = F.residual;
-      std::snprintf(buf, sizeof buf, "drilling Dc %.2f mm, f %.3f mm/rev, %s", d.geometry.diameter * 1e3, d.feed * 1e3,
+      std::snprintf(buf, sizeof buf, "drilling Dc %.2f mm, f %.3f mm/rev, %s",
+                    d.geometry.diameter * 1e3, d.feed * 1e3,
                     d.material ? d.material->name.c_str() : "calibrated coefficients");
       out.description = buf;
       break;
@@ -34,7 +35,8 @@ SteadyProcessLoad steadyProcessLoad(const ProcessSpec& spec) {
       const Vec3 Fm = millingMeanForce(m, s.cut.fz, s.cut.ae);
       // milling frame: X = feed = tool x, Z = tip → spindle = −tool z, Y = Z × X = −tool y
       out.wrench.force = Vec3(Fm.x(), -Fm.y(), -Fm.z());
-      std::snprintf(buf, sizeof buf, "milling D %.2f mm, ae %.2f mm, ap %.2f mm, fz %.3f mm (feed along tool x)",
+      std::snprintf(buf, sizeof buf,
+                    "milling D %.2f mm, ae %.2f mm, ap %.2f mm, fz %.3f mm (feed along tool x)",
                     s.tool.diameter * 1e3, s.cut.ae * 1e3, s.cut.ap * 1e3, s.cut.fz * 1e3);
       out.description = buf;
       break;

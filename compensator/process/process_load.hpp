@@ -8,15 +8,15 @@
 /// the uncertainty, not the steady load. Milling: the revolution-averaged force of the nominal
 /// cut (the coupled iteration refines it per path point). Wrench: as given.
 
-#include "compensator/robot/inverse_dynamics.hpp"
 #include "compensator/process/process_spec.hpp"
+#include "compensator/robot/inverse_dynamics.hpp"
 
 namespace roprec {
 
 struct SteadyProcessLoad {
-  ToolWrench wrench;          ///< on the TCP, tool frame
-  double rotating_force{0};   ///< amplitude of the rotating residual force Fr [N] (drilling)
-  std::string description;    ///< e.g. "drilling Dc 10 mm f 0.20 mm/rev Al 6061-T6"
+  ToolWrench wrench;         ///< on the TCP, tool frame
+  double rotating_force{0};  ///< amplitude of the rotating residual force Fr [N] (drilling)
+  std::string description;   ///< e.g. "drilling Dc 10 mm f 0.20 mm/rev Al 6061-T6"
 };
 
 SteadyProcessLoad steadyProcessLoad(const ProcessSpec& spec);

@@ -34,21 +34,24 @@ void allowChildren(const XmlNode& e, std::initializer_list<const char*> names) {
     if (!ok) {
       std::string list;
       for (const char* n : names) list += (list.empty() ? "<" : ">, <") + std::string(n);
-      c.fail("unknown element <" + c.name + "> in <process type=\"" + e.str("type", "") + "\"> (known: " + list +
-             ">)");
+      c.fail("unknown element <" + c.name + "> in <process type=\"" + e.str("type", "") +
+             "\"> (known: " + list + ">)");
     }
   }
 }
 
 const XmlNode& required(const XmlNode& parent, const std::string& name, const std::string& what) {
   const XmlNode* c = parent.child(name);
-  if (c == nullptr) parent.fail("<process type=\"" + parent.str("type", "") + "\"> needs a <" + name + "> element (" + what + ")");
+  if (c == nullptr)
+    parent.fail("<process type=\"" + parent.str("type", "") + "\"> needs a <" + name +
+                "> element (" + what + ")");
   return *c;
 }
 
 double positive(const XmlNode& e, const std::string& attr, double fallback, bool has_fallback) {
   const double v = has_fallback ? e.number(attr, fallback) : e.number(attr);
-  if (!(v > 0)) e.fail("<" + e.name + "> " + attr + " must be > 0, got " + e.str(attr, std::to_string(v)));
+  if (!(v > 0))
+    e.fail("<" + e.name + "> " + attr + " must be > 0, got " + e.str(attr, std::to_string(v)));
   return v;
 }
 
@@ -59,7 +62,8 @@ double nonNegative(const XmlNode& e, const std::string& attr, double fallback) {
 }
 
 const Material& material(const XmlNode& proc) {
-  const XmlNode& m = required(proc, "material", "workpiece material, e.g. <material name=\"Al 6061-T6\"/>");
+  const XmlNode& m =
+      required(proc, "material", "workpiece material, e.g. <material name=\"Al 6061-T6\"/>");
   allowOnly(m, {"name"});
   const std::string name = m.str("name");
   const Material* mat = findMaterial(name);
@@ -70,8 +74,9 @@ const Material& material(const XmlNode& proc) {
 void parseDrilling(const XmlNode& proc, DrillingSpec& s) {
   allowChildren(proc, {"drill", "cut", "material", "coefficients", "machining_deviation"});
   const XmlNode& d = required(proc, "drill", "drill geometry");
-  allowOnly(d, {"diameter_mm", "point_angle_deg", "helix_angle_deg", "web_mm", "chisel_angle_deg", "lips",
-                "runout_mm", "tool_material", "stickout_mm", "angle_law", "working_angles"});
+  allowOnly(
+      d, {"diameter_mm", "point_angle_deg", "helix_angle_deg", "web_mm", "chisel_angle_deg", "lips",
+          "runout_mm", "tool_material", "stickout_mm", "angle_law", "working_angles"});
   DrillGeometry& g = s.geometry;
   g.diameter = positive(d, "diameter_mm", 0, false) * kMm;
   g.point_angle = d.number("point_angle_deg", 118.0) * kDeg;
@@ -84,10 +89,12 @@ void parseDrilling(const XmlNode& proc, DrillingSpec& s) {
   s.runout_given = d.has("runout_mm");
   g.runout = nonNegative(d, "runout_mm", 0.0) * kMm;
   const std::string tm = d.str("tool_material", "carbide");
-  if (tm != "carbide" && tm != "hss") d.fail("<drill> tool_material must be 'carbide' or 'hss', got '" + tm + "'");
+  if (tm != "carbide" && tm != "hss")
+    d.fail("<drill> tool_material must be 'carbide' or 'hss', got '" + tm + "'");
   s.carbide = tm == "carbide";
   const std::string law = d.str("angle_law", "geometric");
-  if (law != "geometric" && law != "paper") d.fail("<drill> angle_law must be 'geometric' or 'paper', got '" + law + "'");
+  if (law != "geometric" && law != "paper")
+    d.fail("<drill> angle_law must be 'geometric' or 'paper', got '" + law + "'");
   s.law = law == "paper" ? AngleLaw::kPaperProportional : AngleLaw::kGeometric;
   s.working_angles = d.boolean("working_angles", true);
   if (const std::string problem = drillGeometryProblem(g); !problem.empty()) d.fail(problem);
@@ -111,7 +118,8 @@ void parseDrilling(const XmlNode& proc, DrillingSpec& s) {
   s.feed_line = c.line;
   const double f = c.number("feed_mm_per_rev");
   if (!(f > 0)) c.fail("<cut> feed_mm_per_rev must be > 0, got " + c.str("feed_mm_per_rev"));
-  if (f > 0.1 * g.diameter / kMm) c.fail("<cut> feed_mm_per_rev " + c.str("feed_mm_per_rev") + " is above 0.1 Dc");
+  if (f > 0.1 * g.diameter / kMm)
+    c.fail("<cut> feed_mm_per_rev " + c.str("feed_mm_per_rev") + " is above 0.1 Dc");
   s.feed = f * kMm;
   s.spindle_rpm = positive(c, "spindle_rpm", 3000.0, true);
   s.hole_depth = positive(c, "depth_mm", 2.0 * g.diameter / kMm, true) * kMm;
@@ -122,9 +130,9 @@ void parseDrilling(const XmlNode& proc, DrillingSpec& s) {
   s.coeff = mat.drilling;
   s.coeff_source = mat.drilling_source;
   if (const XmlNode* k = proc.child("coefficients")) {
-    allowOnly(*k, {"kst0_N_mm2", "at", "bt_per_deg", "ct_per_deg", "ksa0_N_mm2", "aa", "ba_per_deg", "ca_per_deg", "m",
-                   "h_min_mm", "chisel_model", "chisel_thrust_ratio", "chisel_pressure_ratio", "chisel_torque_ratio",
-                   "source"});
+    allowOnly(*k, {"kst0_N_mm2", "at", "bt_per_deg", "ct_per_deg", "ksa0_N_mm2", "aa", "ba_per_deg",
+                   "ca_per_deg", "m", "h_min_mm", "chisel_model", "chisel_thrust_ratio",
+                   "chisel_pressure_ratio", "chisel_torque_ratio", "source"});
     SpecificPressure& t = s.coeff.tangential;
     SpecificPressure& a = s.coeff.axial;
     t.k0 = positive(*k, "kst0_N_mm2", t.k0 / kMPa, true) * kMPa;
@@ -141,17 +149,22 @@ void parseDrilling(const XmlNode& proc, DrillingSpec& s) {
     const double hmin = positive(*k, "h_min_mm", t.h_min / kMm, true) * kMm;
     t.h_min = a.h_min = hmin;
     const std::string cm = k->str("chisel_model", "ratio");
-    if (cm != "ratio" && cm != "pressure") k->fail("<coefficients> chisel_model must be 'ratio' or 'pressure'");
+    if (cm != "ratio" && cm != "pressure")
+      k->fail("<coefficients> chisel_model must be 'ratio' or 'pressure'");
     s.coeff.chisel.kind = cm == "ratio" ? ChiselModelKind::kRatio : ChiselModelKind::kPressure;
-    s.coeff.chisel.thrust_ratio = nonNegative(*k, "chisel_thrust_ratio", s.coeff.chisel.thrust_ratio);
-    s.coeff.chisel.pressure_ratio = nonNegative(*k, "chisel_pressure_ratio", s.coeff.chisel.pressure_ratio);
-    s.coeff.chisel.torque_ratio = nonNegative(*k, "chisel_torque_ratio", s.coeff.chisel.torque_ratio);
+    s.coeff.chisel.thrust_ratio =
+        nonNegative(*k, "chisel_thrust_ratio", s.coeff.chisel.thrust_ratio);
+    s.coeff.chisel.pressure_ratio =
+        nonNegative(*k, "chisel_pressure_ratio", s.coeff.chisel.pressure_ratio);
+    s.coeff.chisel.torque_ratio =
+        nonNegative(*k, "chisel_torque_ratio", s.coeff.chisel.torque_ratio);
     s.coeff_source = k->str("source", "cell <coefficients> (no source given)");
   }
 
   if (const XmlNode* md = proc.child("machining_deviation")) {
-    allowOnly(*md, {"axis_tilt_deg", "axis_lever_mm", "runout_mm", "stickout_mm", "equivalent_diameter_ratio",
-                    "youngs_modulus_GPa", "spindle_compliance_um_per_N", "k"});
+    allowOnly(*md, {"axis_tilt_deg", "axis_lever_mm", "runout_mm", "stickout_mm",
+                    "equivalent_diameter_ratio", "youngs_modulus_GPa",
+                    "spindle_compliance_um_per_N", "k"});
     MachiningDeviationParams& p = s.deviation;
     const std::string here = "cell <machining_deviation>";
     if (md->has("axis_tilt_deg")) p.axis_source = here;
@@ -161,12 +174,15 @@ void parseDrilling(const XmlNode& proc, DrillingSpec& s) {
     p.runout = nonNegative(*md, "runout_mm", p.runout / kMm) * kMm;
     if (md->has("stickout_mm")) p.stickout_source = here;
     p.stickout = positive(*md, "stickout_mm", p.stickout / kMm, true) * kMm;
-    p.equivalent_diameter_ratio = positive(*md, "equivalent_diameter_ratio", p.equivalent_diameter_ratio, true);
-    if (p.equivalent_diameter_ratio > 1) md->fail("<machining_deviation> equivalent_diameter_ratio must be <= 1");
+    p.equivalent_diameter_ratio =
+        positive(*md, "equivalent_diameter_ratio", p.equivalent_diameter_ratio, true);
+    if (p.equivalent_diameter_ratio > 1)
+      md->fail("<machining_deviation> equivalent_diameter_ratio must be <= 1");
     if (md->has("youngs_modulus_GPa")) p.modulus_source = here;
     p.youngs_modulus = positive(*md, "youngs_modulus_GPa", p.youngs_modulus / 1e9, true) * 1e9;
     if (md->has("spindle_compliance_um_per_N")) p.spindle_source = here;
-    p.spindle_compliance = nonNegative(*md, "spindle_compliance_um_per_N", p.spindle_compliance * 1e6) * 1e-6;
+    p.spindle_compliance =
+        nonNegative(*md, "spindle_compliance_um_per_N", p.spindle_compliance * 1e6) * 1e-6;
     p.coverage_factor = positive(*md, "k", p.coverage_factor, true);
   }
 }
@@ -177,10 +193,12 @@ void parseMilling(const XmlNode& proc, MillingSpec& s) {
   allowOnly(t, {"diameter_mm", "teeth", "helix_angle_deg", "runout_mm", "runout_angle_deg"});
   s.tool.diameter = positive(t, "diameter_mm", 0, false) * kMm;
   const double teeth = t.number("teeth", 3.0);
-  if (!(teeth >= 1 && teeth <= 12 && teeth == std::floor(teeth))) t.fail("<mill> teeth must be an integer 1..12");
+  if (!(teeth >= 1 && teeth <= 12 && teeth == std::floor(teeth)))
+    t.fail("<mill> teeth must be an integer 1..12");
   s.tool.teeth = static_cast<int>(teeth);
   s.tool.helix_angle = t.number("helix_angle_deg", 30.0) * kDeg;
-  if (!(s.tool.helix_angle >= 0 && s.tool.helix_angle < 60 * kDeg)) t.fail("<mill> helix_angle_deg must lie in [0, 60)");
+  if (!(s.tool.helix_angle >= 0 && s.tool.helix_angle < 60 * kDeg))
+    t.fail("<mill> helix_angle_deg must lie in [0, 60)");
   s.tool.runout = nonNegative(t, "runout_mm", 0.0) * kMm;
   if (!(s.tool.runout < 0.05 * s.tool.diameter)) t.fail("<mill> runout_mm must be < 0.05 D");
   s.tool.runout_angle = t.number("runout_angle_deg", 0.0) * kDeg;
@@ -226,11 +244,12 @@ void parseMilling(const XmlNode& proc, MillingSpec& s) {
     s.coeff_source = k->str("source", "cell <coefficients> (no source given)");
   }
   if (const XmlNode* cp = proc.child("coupling")) {
-    allowOnly(*cp, {"tolerance_um", "max_iterations", "relaxation", "teeth_between_points", "point_spacing_mm",
-                    "compliance_um_per_N"});
+    allowOnly(*cp, {"tolerance_um", "max_iterations", "relaxation", "teeth_between_points",
+                    "point_spacing_mm", "compliance_um_per_N"});
     s.coupling.tolerance = positive(*cp, "tolerance_um", s.coupling.tolerance * 1e6, true) * 1e-6;
     const double it = cp->number("max_iterations", s.coupling.max_iterations);
-    if (!(it >= 1 && it <= 10000 && it == std::floor(it))) cp->fail("<coupling> max_iterations must be an integer 1..10000");
+    if (!(it >= 1 && it <= 10000 && it == std::floor(it)))
+      cp->fail("<coupling> max_iterations must be an integer 1..10000");
     s.coupling.max_iterations = static_cast<int>(it);
     s.coupling.relaxation = positive(*cp, "relaxation", 1.0, true);
     if (s.coupling.relaxation > 1) cp->fail("<coupling> relaxation must lie in (0, 1]");
@@ -238,11 +257,13 @@ void parseMilling(const XmlNode& proc, MillingSpec& s) {
       cp->fail("<coupling> give teeth_between_points or point_spacing_mm, not both");
     }
     const double tb = cp->number("teeth_between_points", s.coupling.teeth_between_points);
-    if (!(tb >= 1 && tb <= 1e6 && tb == std::floor(tb))) cp->fail("<coupling> teeth_between_points must be an integer >= 1");
+    if (!(tb >= 1 && tb <= 1e6 && tb == std::floor(tb)))
+      cp->fail("<coupling> teeth_between_points must be an integer >= 1");
     s.coupling.teeth_between_points = static_cast<int>(tb);
     if (cp->has("point_spacing_mm")) {
       const double spacing = positive(*cp, "point_spacing_mm", 0, false) * kMm;
-      s.coupling.teeth_between_points = std::max(1, static_cast<int>(std::lround(spacing / s.cut.fz)));
+      s.coupling.teeth_between_points =
+          std::max(1, static_cast<int>(std::lround(spacing / s.cut.fz)));
     }
     if (cp->has("compliance_um_per_N")) {
       const Eigen::VectorXd v = cp->numbers("compliance_um_per_N", 9);
@@ -276,7 +297,9 @@ ProcessSpec parseProcess(const XmlNode& proc) {
     allowChildren(proc, {});
     s.type = ProcessType::kWrench;
     if (!proc.has("force_N") && !proc.has("torque_Nm")) {
-      proc.fail("<process type=\"wrench\"> needs force_N=\"fx fy fz\" and/or torque_Nm=\"mx my mz\" (tool frame)");
+      proc.fail(
+          "<process type=\"wrench\"> needs force_N=\"fx fy fz\" and/or torque_Nm=\"mx my mz\" "
+          "(tool frame)");
     }
     s.wrench.force = proc.vec3("force_N", Vec3::Zero());
     s.wrench.torque = proc.vec3("torque_Nm", Vec3::Zero());

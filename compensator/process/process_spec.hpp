@@ -10,18 +10,21 @@
 ///            tool_material="carbide|hss" stickout_mm angle_law="geometric|paper" working_angles/>
 ///     <cut feed_mm_per_rev spindle_rpm depth_mm through/>
 ///     <material name/>
-///     <coefficients kst0_N_mm2 at bt_per_deg ct_per_deg ksa0_N_mm2 aa ba_per_deg ca_per_deg m h_min_mm
+///     <coefficients kst0_N_mm2 at bt_per_deg ct_per_deg ksa0_N_mm2 aa ba_per_deg ca_per_deg m
+///     h_min_mm
 ///                   chisel_model="ratio|pressure" chisel_thrust_ratio chisel_pressure_ratio
 ///                   chisel_torque_ratio source/>                                       (optional)
-///     <machining_deviation axis_tilt_deg axis_lever_mm runout_mm stickout_mm equivalent_diameter_ratio
+///     <machining_deviation axis_tilt_deg axis_lever_mm runout_mm stickout_mm
+///     equivalent_diameter_ratio
 ///                          youngs_modulus_GPa spindle_compliance_um_per_N k/>          (optional)
 ///   </process>
 ///   <process type="milling">
 ///     <mill diameter_mm teeth helix_angle_deg runout_mm runout_angle_deg/>
 ///     <cut ap_mm ae_mm fz_mm mode="up|down|slot" spindle_rpm/>
 ///     <material name/>
-///     <coefficients kc11_N_mm2 mc radial_ratio axial_ratio force_law="instantaneous|mean_chip" source/>
-///     <coupling tolerance_um max_iterations relaxation teeth_between_points compliance_um_per_N="9 numbers"/>
+///     <coefficients kc11_N_mm2 mc radial_ratio axial_ratio force_law="instantaneous|mean_chip"
+///     source/> <coupling tolerance_um max_iterations relaxation teeth_between_points
+///     compliance_um_per_N="9 numbers"/>
 ///   </process>
 ///   <process type="wrench" force_N="fx fy fz" torque_Nm="mx my mz"/>   (on the TCP, tool frame)
 
@@ -42,19 +45,19 @@ enum class ProcessType { kDrilling, kMilling, kWrench };
 struct DrillingSpec {
   DrillGeometry geometry;
   AngleLaw law{AngleLaw::kGeometric};
-  bool working_angles{true};       ///< build the edge angles with the feed (docs/process.md §1.2)
+  bool working_angles{true};  ///< build the edge angles with the feed (docs/process.md §1.2)
   bool carbide{true};
-  double feed{0.2e-3};             ///< f [m/rev]
+  double feed{0.2e-3};  ///< f [m/rev]
   double spindle_rpm{3000};
-  double hole_depth{0};            ///< [m]; 0 = 2·Dc
+  double hole_depth{0};  ///< [m]; 0 = 2·Dc
   bool through{false};
   const Material* material{nullptr};
-  DrillingCoefficients coeff;      ///< material values with the cell's overrides applied
-  std::string coeff_source;        ///< "material table" or the <coefficients source=...>
+  DrillingCoefficients coeff;  ///< material values with the cell's overrides applied
+  std::string coeff_source;    ///< "material table" or the <coefficients source=...>
   bool runout_given{false};
   MachiningDeviationParams deviation;
-  int line{0};                     ///< <process> line
-  int feed_line{0};                ///< <cut> line (for calibration messages)
+  int line{0};       ///< <process> line
+  int feed_line{0};  ///< <cut> line (for calibration messages)
 };
 
 struct MillingSpec {

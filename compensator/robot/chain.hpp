@@ -43,7 +43,7 @@ struct ChainJoint {
   double velocity{0.0};           ///< rad/s (0 = not given)
   double effort{0.0};             ///< N m (0 = not given)
   bool continuous{false};
-  int line{0};                    ///< line of the <joint> element in the URDF
+  int line{0};  ///< line of the <joint> element in the URDF
 };
 
 struct ChainDescription {

@@ -76,7 +76,8 @@ KukaConfig kukaConfig(const IkModel& model, const RobotCard& card, const Vec6& q
   const IkBranch b = ikBranch(model, q_urdf);
   const Vec6 c = toControllerJoints(card, q_urdf);
   KukaConfig k;
-  k.status = (options.kuka_status_high_bits & ~7) | b.shoulder | ((b.elbow == 0 ? 1 : 0) << 1) | (b.wrist << 2);
+  k.status = (options.kuka_status_high_bits & ~7) | b.shoulder | ((b.elbow == 0 ? 1 : 0) << 1) |
+             (b.wrist << 2);
   int t = 0;
   for (int n = 0; n < 6; ++n) t |= (c[n] < 0.0 ? 1 : 0) << n;
   k.turn = t;
@@ -111,10 +112,17 @@ VendorConfig configurationOf(const IkModel& model, const RobotCard& card, const 
   v.vendor = card.vendor;
   v.branch = ikBranch(model, q_urdf).index();
   switch (card.vendor) {
-    case Vendor::kKuka: v.kuka = kukaConfig(model, card, q_urdf, options); break;
-    case Vendor::kAbb: v.abb = abbConfig(model, card, q_urdf); break;
-    case Vendor::kFanuc: v.fanuc = fanucConfig(model, card, q_urdf, options); break;
-    case Vendor::kGeneric: break;
+    case Vendor::kKuka:
+      v.kuka = kukaConfig(model, card, q_urdf, options);
+      break;
+    case Vendor::kAbb:
+      v.abb = abbConfig(model, card, q_urdf);
+      break;
+    case Vendor::kFanuc:
+      v.fanuc = fanucConfig(model, card, q_urdf, options);
+      break;
+    case Vendor::kGeneric:
+      break;
   }
   return v;
 }
@@ -129,10 +137,12 @@ std::optional<int> branchOfConfig(const VendorConfig& c) {
       const int wrist = (s >> 2) & 1;
       return 4 * shoulder + 2 * elbow + wrist;
     }
-    case Vendor::kAbb: return c.abb.cfx;
+    case Vendor::kAbb:
+      return c.abb.cfx;
     case Vendor::kFanuc:
       return 4 * (c.fanuc.top ? 0 : 1) + 2 * (c.fanuc.up ? 0 : 1) + (c.fanuc.flip ? 0 : 1);
-    case Vendor::kGeneric: return c.branch;
+    case Vendor::kGeneric:
+      return c.branch;
   }
   return std::nullopt;
 }
@@ -145,8 +155,8 @@ std::string formatKuka(const KukaConfig& c) {
 }
 
 std::string formatAbb(const AbbConfig& c) {
-  return "[" + std::to_string(c.cf1) + "," + std::to_string(c.cf4) + "," + std::to_string(c.cf6) + "," +
-         std::to_string(c.cfx) + "]";
+  return "[" + std::to_string(c.cf1) + "," + std::to_string(c.cf4) + "," + std::to_string(c.cf6) +
+         "," + std::to_string(c.cfx) + "]";
 }
 
 std::string formatFanuc(const FanucConfig& c) {
@@ -162,10 +172,14 @@ std::string formatFanuc(const FanucConfig& c) {
 
 std::string formatConfig(const VendorConfig& c) {
   switch (c.vendor) {
-    case Vendor::kKuka: return formatKuka(c.kuka);
-    case Vendor::kAbb: return formatAbb(c.abb);
-    case Vendor::kFanuc: return formatFanuc(c.fanuc);
-    case Vendor::kGeneric: break;
+    case Vendor::kKuka:
+      return formatKuka(c.kuka);
+    case Vendor::kAbb:
+      return formatAbb(c.abb);
+    case Vendor::kFanuc:
+      return formatFanuc(c.fanuc);
+    case Vendor::kGeneric:
+      break;
   }
   return "branch " + std::to_string(c.branch);
 }
@@ -180,15 +194,17 @@ KukaConfig parseKuka(const std::string& text, const std::string& file, int line)
   for (std::string w; in >> w;) tok.push_back(w);
   KukaConfig k;
   auto bad = [&](const std::string& why) {
-    throw InputError(file, line, "KUKA configuration '" + text + "': " + why +
-                                     " (expected e.g. \"S 2 T 34\" or \"S 'B010' T 'B100010'\")");
+    throw InputError(file, line,
+                     "KUKA configuration '" + text + "': " + why +
+                         " (expected e.g. \"S 2 T 34\" or \"S 'B010' T 'B100010'\")");
   };
   if (tok.empty()) bad("empty");
   for (size_t i = 0; i < tok.size(); i += 2) {
     const std::string key = tok[i];
     if (i + 1 >= tok.size()) bad("'" + key + "' has no value");
     int v = 0;
-    if (!parseKrlInt(tok[i + 1], v) || v < 0) bad("'" + tok[i + 1] + "' is not a non-negative integer");
+    if (!parseKrlInt(tok[i + 1], v) || v < 0)
+      bad("'" + tok[i + 1] + "' is not a non-negative integer");
     if (key == "S" || key == "s") {
       if (k.status) bad("S given twice");
       k.status = v;
@@ -207,7 +223,8 @@ AbbConfig parseAbb(const std::string& text, const std::string& file, int line) {
   std::string t = trim(text);
   if (!t.empty() && t.front() == '[') {
     if (t.back() != ']') {
-      throw InputError(file, line, "ABB confdata '" + text + "': missing ']' (expected e.g. \"[0,-1,2,1]\")");
+      throw InputError(file, line,
+                       "ABB confdata '" + text + "': missing ']' (expected e.g. \"[0,-1,2,1]\")");
     }
     t = t.substr(1, t.size() - 2);
   }
@@ -219,16 +236,19 @@ AbbConfig parseAbb(const std::string& text, const std::string& file, int line) {
   for (std::string w; in >> w;) tok.push_back(w);
   std::array<int, 4> v{};
   if (tok.size() != 4) {
-    throw InputError(file, line, "ABB confdata '" + text + "': needs 4 integers [cf1,cf4,cf6,cfx], got " +
-                                     std::to_string(tok.size()));
+    throw InputError(file, line,
+                     "ABB confdata '" + text + "': needs 4 integers [cf1,cf4,cf6,cfx], got " +
+                         std::to_string(tok.size()));
   }
   for (size_t i = 0; i < 4; ++i) {
     if (!parseInt(tok[i], v[i])) {
-      throw InputError(file, line, "ABB confdata '" + text + "': '" + tok[i] + "' is not an integer");
+      throw InputError(file, line,
+                       "ABB confdata '" + text + "': '" + tok[i] + "' is not an integer");
     }
   }
   if (v[3] < 0 || v[3] > 7) {
-    throw InputError(file, line, "ABB confdata '" + text + "': cfx must be 0..7, got " + std::to_string(v[3]));
+    throw InputError(file, line,
+                     "ABB confdata '" + text + "': cfx must be 0..7, got " + std::to_string(v[3]));
   }
   return {v[0], v[1], v[2], v[3]};
 }
@@ -237,7 +257,8 @@ FanucConfig parseFanuc(const std::string& text, const std::string& file, int lin
   std::string t = trim(text);
   if (t.size() >= 2 && t.front() == '\'' && t.back() == '\'') t = t.substr(1, t.size() - 2);
   auto bad = [&](const std::string& why) {
-    throw InputError(file, line, "FANUC CONFIG '" + text + "': " + why + " (expected e.g. \"N U T, 0, 0, 0\")");
+    throw InputError(file, line,
+                     "FANUC CONFIG '" + text + "': " + why + " (expected e.g. \"N U T, 0, 0, 0\")");
   };
   std::vector<std::string> parts;
   {
@@ -255,37 +276,56 @@ FanucConfig parseFanuc(const std::string& text, const std::string& file, int lin
   if (parts.size() != 4) bad("needs the letters and three turn numbers separated by commas");
   std::string letters;
   for (char ch : parts[0]) {
-    if (!std::isspace(static_cast<unsigned char>(ch))) letters += static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+    if (!std::isspace(static_cast<unsigned char>(ch)))
+      letters += static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
   }
   if (letters.size() != 3) bad("needs three letters F|N U|D T|B");
   FanucConfig f;
-  if (letters[0] == 'F') f.flip = true;
-  else if (letters[0] == 'N') f.flip = false;
-  else bad(std::string("first letter must be F or N, got '") + letters[0] + "'");
-  if (letters[1] == 'U') f.up = true;
-  else if (letters[1] == 'D') f.up = false;
-  else bad(std::string("second letter must be U or D, got '") + letters[1] + "'");
-  if (letters[2] == 'T') f.top = true;
-  else if (letters[2] == 'B') f.top = false;
-  else bad(std::string("third letter must be T or B, got '") + letters[2] + "'");
+  if (letters[0] == 'F')
+    f.flip = true;
+  else if (letters[0] == 'N')
+    f.flip = false;
+  else
+    bad(std::string("first letter must be F or N, got '") + letters[0] + "'");
+  if (letters[1] == 'U')
+    f.up = true;
+  else if (letters[1] == 'D')
+    f.up = false;
+  else
+    bad(std::string("second letter must be U or D, got '") + letters[1] + "'");
+  if (letters[2] == 'T')
+    f.top = true;
+  else if (letters[2] == 'B')
+    f.top = false;
+  else
+    bad(std::string("third letter must be T or B, got '") + letters[2] + "'");
   for (size_t i = 0; i < 3; ++i) {
-    if (!parseInt(parts[i + 1], f.turns[i])) bad("'" + trim(parts[i + 1]) + "' is not an integer turn number");
+    if (!parseInt(parts[i + 1], f.turns[i]))
+      bad("'" + trim(parts[i + 1]) + "' is not an integer turn number");
   }
   return f;
 }
 
-VendorConfig parseConfig(Vendor vendor, const std::string& text, const std::string& file, int line) {
+VendorConfig parseConfig(Vendor vendor, const std::string& text, const std::string& file,
+                         int line) {
   VendorConfig v;
   v.vendor = vendor;
   switch (vendor) {
-    case Vendor::kKuka: v.kuka = parseKuka(text, file, line); break;
-    case Vendor::kAbb: v.abb = parseAbb(text, file, line); break;
-    case Vendor::kFanuc: v.fanuc = parseFanuc(text, file, line); break;
+    case Vendor::kKuka:
+      v.kuka = parseKuka(text, file, line);
+      break;
+    case Vendor::kAbb:
+      v.abb = parseAbb(text, file, line);
+      break;
+    case Vendor::kFanuc:
+      v.fanuc = parseFanuc(text, file, line);
+      break;
     case Vendor::kGeneric: {
       std::string t = trim(text);
       if (t.rfind("branch", 0) == 0) t = t.substr(6);
       if (!parseInt(t, v.branch) || v.branch < 0 || v.branch > 7) {
-        throw InputError(file, line, "configuration '" + text + "': expected \"branch N\" with N = 0..7");
+        throw InputError(file, line,
+                         "configuration '" + text + "': expected \"branch N\" with N = 0..7");
       }
       break;
     }
@@ -294,8 +334,9 @@ VendorConfig parseConfig(Vendor vendor, const std::string& text, const std::stri
   return v;
 }
 
-ConfiguredSolution solveIkWithConfiguration(const IkModel& model, const RobotCard& card, const Pose& target,
-                                            const VendorConfig& config, const ConfigurationOptions& options) {
+ConfiguredSolution solveIkWithConfiguration(const IkModel& model, const RobotCard& card,
+                                            const Pose& target, const VendorConfig& config,
+                                            const ConfigurationOptions& options) {
   ConfiguredSolution out;
   IkResult all;
   IkOptions o;
@@ -317,7 +358,9 @@ ConfiguredSolution solveIkWithConfiguration(const IkModel& model, const RobotCar
     branch_seen = true;
     int mismatch = 0;
     switch (config.vendor) {
-      case Vendor::kKuka: mismatch = mismatchKuka(config.kuka, kukaConfig(model, card, s.q, options)); break;
+      case Vendor::kKuka:
+        mismatch = mismatchKuka(config.kuka, kukaConfig(model, card, s.q, options));
+        break;
       case Vendor::kAbb: {
         const AbbConfig a = abbConfig(model, card, s.q);
         mismatch = std::abs(a.cf1 - config.abb.cf1) + std::abs(a.cf4 - config.abb.cf4) +
@@ -329,19 +372,23 @@ ConfiguredSolution solveIkWithConfiguration(const IkModel& model, const RobotCar
         for (size_t k = 0; k < 3; ++k) mismatch += std::abs(f.turns[k] - config.fanuc.turns[k]);
         break;
       }
-      case Vendor::kGeneric: break;
+      case Vendor::kGeneric:
+        break;
     }
     const double norm = s.q.cwiseAbs().sum();
-    if (!best || mismatch < best_mismatch || (mismatch == best_mismatch && norm < best_norm - 1e-12)) {
+    if (!best || mismatch < best_mismatch ||
+        (mismatch == best_mismatch && norm < best_norm - 1e-12)) {
       best = &s;
       best_mismatch = mismatch;
       best_norm = norm;
     }
   }
   if (!best) {
-    out.reason = branch_seen ? "no converged solution"
-                             : "no solution within the joint limits has the configuration's branch " +
-                                   std::to_string(want_branch.value_or(-1)) + " (" + formatConfig(config) + ")";
+    out.reason = branch_seen
+                     ? "no converged solution"
+                     : "no solution within the joint limits has the configuration's branch " +
+                           std::to_string(want_branch.value_or(-1)) + " (" + formatConfig(config) +
+                           ")";
     return out;
   }
   out.found = true;
@@ -349,8 +396,8 @@ ConfiguredSolution solveIkWithConfiguration(const IkModel& model, const RobotCar
   out.mismatch = best_mismatch;
   out.exact = best_mismatch == 0;
   if (!out.exact) {
-    out.reason = "no solution matches the turn flags of " + formatConfig(config) + "; nearest differs by " +
-                 std::to_string(best_mismatch);
+    out.reason = "no solution matches the turn flags of " + formatConfig(config) +
+                 "; nearest differs by " + std::to_string(best_mismatch);
   }
   return out;
 }

@@ -25,14 +25,17 @@ JointCompliance complianceFromCard(const RobotCard& card) {
 JointCompliance requireComplianceFromCard(const RobotCard& card) {
   for (const JointCard& j : card.joints) {
     if (!(j.stiffness > 0)) {
-      throw InputError(card.file, j.line,
-                       "joint '" + j.name + "' has no stiffness: give it in the robot card or with --stiffness \"k1 .. k6\"");
+      throw InputError(
+          card.file, j.line,
+          "joint '" + j.name +
+              "' has no stiffness: give it in the robot card or with --stiffness \"k1 .. k6\"");
     }
   }
   return complianceFromCard(card);
 }
 
-Vec6 gravityCommandOffset(const Model& calibration_model, Data& data, const JointCompliance& c, const Vec6& theta) {
+Vec6 gravityCommandOffset(const Model& calibration_model, Data& data, const JointCompliance& c,
+                          const Vec6& theta) {
   solvePosition(calibration_model, data, theta, Guess::kClosedForm);
   const Loads gravity_only;
   return staticTorques(calibration_model, data, gravity_only).cwiseQuotient(c.effective());
@@ -126,8 +129,8 @@ Deflection predictDeflection(const Model& model, Data& data, const JointComplian
   return d;
 }
 
-Vec6 compensateCommand(const Model& model, Data& data, const JointCompliance& c, const Vec6& theta_d,
-                       const Loads& loads) {
+Vec6 compensateCommand(const Model& model, Data& data, const JointCompliance& c,
+                       const Vec6& theta_d, const Loads& loads) {
   Vec6 tau;
   torquesAt(model, data, theta_d, loads, tau);
   return theta_d + tau.cwiseQuotient(c.effective());

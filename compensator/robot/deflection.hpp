@@ -39,24 +39,24 @@ struct JointCompliance {
 JointCompliance complianceFromCard(const RobotCard& card);
 
 struct DeflectionOptions {
-  double tol{1e-12};     ///< rad, ‖Δθ‖∞
+  double tol{1e-12};  ///< rad, ‖Δθ‖∞
   int max_iterations{60};
 };
 
 struct Deflection {
   bool converged{false};
   int iterations{0};
-  double residual{0.0};         ///< ‖θ − θ_m + τ(θ)/k_eff‖∞ at exit, rad
+  double residual{0.0};  ///< ‖θ − θ_m + τ(θ)/k_eff‖∞ at exit, rad
   bool position_converged{true};
-  Vec6 theta_m{Vec6::Zero()};   ///< command (rad)
-  Vec6 theta{Vec6::Zero()};     ///< real link angles (rad)
-  Vec6 tau{Vec6::Zero()};       ///< drive torques at θ (N m)
-  Vec6 phi{Vec6::Zero()};       ///< joint deformation −τ/k (rad)
-  Vec6 dpsi{Vec6::Zero()};      ///< servo correction −τ/k_servo (rad)
+  Vec6 theta_m{Vec6::Zero()};        ///< command (rad)
+  Vec6 theta{Vec6::Zero()};          ///< real link angles (rad)
+  Vec6 tau{Vec6::Zero()};            ///< drive torques at θ (N m)
+  Vec6 phi{Vec6::Zero()};            ///< joint deformation −τ/k (rad)
+  Vec6 dpsi{Vec6::Zero()};           ///< servo correction −τ/k_servo (rad)
   Pose T_nominal{Pose::Identity()};  ///< rigid FK(θ_m) of the TCP
   Pose T_real{Pose::Identity()};     ///< FK(θ) of the TCP
-  Vec3 dp{Vec3::Zero()};        ///< translation deviation, m, base frame
-  Vec3 drot{Vec3::Zero()};      ///< rotation deviation (rotation vector), rad, base frame
+  Vec3 dp{Vec3::Zero()};             ///< translation deviation, m, base frame
+  Vec3 drot{Vec3::Zero()};           ///< rotation deviation (rotation vector), rad, base frame
 };
 
 /// Predicts the real TCP for the command θ_m under `loads`. `command_offset` is added to the
@@ -75,12 +75,12 @@ Vec6 compensateCommand(const Model& model, Data& data, const JointCompliance& c,
 /// `calibration_model` (the links + the load the controller was calibrated for) at θ (rad).
 /// `data` may be the scratch of any model of the same chain. Non-convergence of the position
 /// problem is not expected here (closed form); the torques are then those of the last iterate.
-Vec6 gravityCommandOffset(const Model& calibration_model, Data& data, const JointCompliance& c, const Vec6& theta);
+Vec6 gravityCommandOffset(const Model& calibration_model, Data& data, const JointCompliance& c,
+                          const Vec6& theta);
 
 /// complianceFromCard, but every joint must have a stiffness: throws InputError naming the card
 /// line of the first joint without one.
 JointCompliance requireComplianceFromCard(const RobotCard& card);
-
 
 /// Joint-space stiffness term of the deflected configuration: ∂τ/∂θ by central differences
 /// (6 extra static evaluations). Used by the Newton fallback and by linearised uncertainty.

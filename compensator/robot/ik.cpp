@@ -12,12 +12,14 @@ namespace roprec {
 namespace {
 
 constexpr double kTwoPi = 2.0 * kPi;
-constexpr double kMaxDeviationRad = 0.02;  // estimate: beyond ~1° the ideal-model start may pick a wrong branch
-constexpr double kMaxDeviationM = 0.02;    // estimate: same reasoning for a 2 m class arm
+constexpr double kMaxDeviationRad =
+    0.02;  // estimate: beyond ~1° the ideal-model start may pick a wrong branch
+constexpr double kMaxDeviationM = 0.02;  // estimate: same reasoning for a 2 m class arm
 constexpr double kExactTol = 1e-12;
-constexpr double kConvergedTol = 1e-9;     // contract of this module: m and rad
-constexpr double kRefineTol = 1e-13;       // polish below this (m, rad)
-constexpr double kReachClamp = 1e-9;       // relative slack of cos ψ before a target counts as unreachable
+constexpr double kConvergedTol = 1e-9;  // contract of this module: m and rad
+constexpr double kRefineTol = 1e-13;    // polish below this (m, rad)
+constexpr double kReachClamp =
+    1e-9;  // relative slack of cos ψ before a target counts as unreachable
 
 Mat3 axisRotation(const Vec3& a, double q) {
   const double s = std::sin(q);
@@ -96,8 +98,8 @@ Vec3 rotationError(const Mat3& R_target, const Mat3& R, double& angle) {
 bool finitePose(const Pose& T) { return T.matrix().allFinite(); }
 
 /// Newton iterations on the exact chain; returns the steps taken and the residual at the final q.
-int refine(const IkModel& m, const Pose& target, Vec6& q, int max_iterations, double tol, double max_step,
-           IkResidual& residual) {
+int refine(const IkModel& m, const Pose& target, Vec6& q, int max_iterations, double tol,
+           double max_step, IkResidual& residual) {
   Pose T;
   Mat6 J;
   for (int it = 0;; ++it) {
@@ -266,9 +268,11 @@ IkModel buildIkModel(const ChainDescription& chain, const IkModelOptions& option
   const Vec3 p_tip0 = t + R * m.tip_p;
 
   auto fail = [&](int joint, const std::string& what) {
-    throw InputError(chain.file, chain.joints[static_cast<size_t>(joint)].line,
-                     "not a spherical-wrist ortho-parallel 6R robot (analytic IK needs axis 2 ∥ axis 3 ⊥ "
-                     "axis 1 and axes 4, 5, 6 meeting in one point): " + what);
+    throw InputError(
+        chain.file, chain.joints[static_cast<size_t>(joint)].line,
+        "not a spherical-wrist ortho-parallel 6R robot (analytic IK needs axis 2 ∥ axis 3 ⊥ "
+        "axis 1 and axes 4, 5, 6 meeting in one point): " +
+            what);
   };
 
   IkGeometryDeviation& dev = m.deviation;
@@ -289,21 +293,24 @@ IkModel buildIkModel(const ChainDescription& chain, const IkModelOptions& option
     const Vec3 d = (Mat3::Identity() - z[i] * z[i].transpose()) * (C0 - p[i]);
     dev.wrist_intersection_m = std::max(dev.wrist_intersection_m, d.norm());
   }
-  dev.wrist_orthogonality_rad = std::max(std::abs(std::asin(std::clamp(z[3].dot(z[4]), -1.0, 1.0))),
-                                         std::abs(std::asin(std::clamp(z[4].dot(z[5]), -1.0, 1.0))));
+  dev.wrist_orthogonality_rad =
+      std::max(std::abs(std::asin(std::clamp(z[3].dot(z[4]), -1.0, 1.0))),
+               std::abs(std::asin(std::clamp(z[4].dot(z[5]), -1.0, 1.0))));
   if (dev.axis12_rad > kMaxDeviationRad) {
-    fail(1, "axis 2 is not perpendicular to axis 1 (off by " + std::to_string(dev.axis12_rad / kDeg) + "°)");
+    fail(1, "axis 2 is not perpendicular to axis 1 (off by " +
+                std::to_string(dev.axis12_rad / kDeg) + "°)");
   }
   if (dev.axis23_rad > kMaxDeviationRad) {
-    fail(2, "axis 3 is not parallel to axis 2 (off by " + std::to_string(dev.axis23_rad / kDeg) + "°)");
+    fail(2, "axis 3 is not parallel to axis 2 (off by " + std::to_string(dev.axis23_rad / kDeg) +
+                "°)");
   }
   if (dev.wrist_intersection_m > kMaxDeviationM) {
     fail(3, "axes 4, 5, 6 do not intersect (" + std::to_string(dev.wrist_intersection_m * 1e3) +
                 " mm apart)");
   }
   if (dev.wrist_orthogonality_rad > kMaxDeviationRad) {
-    fail(4, "wrist axes are not orthogonal (off by " + std::to_string(dev.wrist_orthogonality_rad / kDeg) +
-                "°)");
+    fail(4, "wrist axes are not orthogonal (off by " +
+                std::to_string(dev.wrist_orthogonality_rad / kDeg) + "°)");
   }
   dev.exact = dev.axis12_rad <= kExactTol && dev.axis23_rad <= kExactTol &&
               dev.wrist_intersection_m <= kExactTol && dev.wrist_orthogonality_rad <= kExactTol;
@@ -325,14 +332,17 @@ IkModel buildIkModel(const ChainDescription& chain, const IkModelOptions& option
   m.b = Cf.y();
   m.L2 = m.u0.norm();
   m.L3 = m.v0.norm();
-  if (m.L2 < 1e-6 || m.L3 < 1e-6) fail(2, "axis 3 lies on axis 2 or the wrist centre lies on axis 3");
+  if (m.L2 < 1e-6 || m.L3 < 1e-6)
+    fail(2, "axis 3 lies on axis 2 or the wrist centre lies on axis 3");
   m.psi0 = ang(m.v0) - ang(m.u0);
   {
-    // Reach tolerance of the ideal model: a non-ideal arm may reach up to ~slack_m farther or nearer.
-    const double slack_m = dev.exact ? 0.0
-                                     : dev.wrist_intersection_m + std::abs(m.b) +
-                                           (dev.axis12_rad + dev.axis23_rad + dev.wrist_orthogonality_rad) *
-                                               (m.L2 + m.L3);
+    // Reach tolerance of the ideal model: a non-ideal arm may reach up to ~slack_m farther or
+    // nearer.
+    const double slack_m =
+        dev.exact
+            ? 0.0
+            : dev.wrist_intersection_m + std::abs(m.b) +
+                  (dev.axis12_rad + dev.axis23_rad + dev.wrist_orthogonality_rad) * (m.L2 + m.L3);
     m.reach_slack = kReachClamp + (m.L2 + m.L3) * slack_m / (m.L2 * m.L3);
   }
   m.sigma3 = z[2].dot(y0) >= 0.0 ? 1.0 : -1.0;
@@ -569,7 +579,8 @@ std::string describeIkFailure(const IkResult& r) {
     case IkFailure::kNone:
       return r.count > 0 ? "" : "no solution";
     case IkFailure::kOutOfReach:
-      s << "unreachable: the wrist centre is " << r.failure_value * 1e3 << " mm beyond the arm's reach";
+      s << "unreachable: the wrist centre is " << r.failure_value * 1e3
+        << " mm beyond the arm's reach";
       break;
     case IkFailure::kTooClose:
       s << "unreachable: the wrist centre is " << r.failure_value * 1e3
@@ -586,11 +597,13 @@ std::string describeIkFailure(const IkResult& r) {
   return s.str();
 }
 
-IkNearResult solveIkNear(const IkModel& m, const Pose& target, const Vec6& seed, const IkNearOptions& options) {
+IkNearResult solveIkNear(const IkModel& m, const Pose& target, const Vec6& seed,
+                         const IkNearOptions& options) {
   IkNearResult r;
   r.q = seed;
   if (!finitePose(target) || !seed.allFinite()) return r;
-  r.iterations = refine(m, target, r.q, options.max_iterations, options.tolerance, options.max_step, r.residual);
+  r.iterations = refine(m, target, r.q, options.max_iterations, options.tolerance, options.max_step,
+                        r.residual);
   r.converged = r.residual.position <= kConvergedTol && r.residual.rotation <= kConvergedTol;
   if (!r.converged || ikBranch(m, r.q).index() != ikBranch(m, seed).index()) {
     IkResult all;

@@ -1,7 +1,7 @@
 #pragma once
 /// \file ik.hpp
-/// Inverse kinematics of spherical-wrist 6R industrial robots: all analytic solutions (8 branches and
-/// the ±360° turns the joint limits allow) and a seeded Newton refinement for per-hole use.
+/// Inverse kinematics of spherical-wrist 6R industrial robots: all analytic solutions (8 branches
+/// and the ±360° turns the joint limits allow) and a seeded Newton refinement for per-hole use.
 ///
 /// Geometry (Brandstötter, Angerer, Hofbaur, "An analytical solution of the inverse kinematics
 /// problem of industrial serial manipulators with an ortho-parallel basis and a spherical wrist",
@@ -27,22 +27,26 @@
 /// w6 = Rot(w5, α) w4, R_w0 = rotation L3 → flange at q4 = q5 = q6 = 0):
 ///   Rx(q4) Ry(q5 + α) Rx(q6) = Eᵀ R_B_L3(q1..q3)ᵀ R_T R_w0ᵀ E Ry(α)      (X-Y-X Euler angles)
 /// Singularities (reported per solution, with margins):
-///   * wrist:    sin(q5 + α) = 0 — only q4 ± q6 is defined; q4 := seed q4 (or 0), flag singular_wrist;
+///   * wrist:    sin(q5 + α) = 0 — only q4 ± q6 is defined; q4 := seed q4 (or 0), flag
+///   singular_wrist;
 ///   * shoulder: C on axis 1 (x = 0) — q1 := seed q1 (or 0) when undefined, flag singular_shoulder;
 ///   * elbow:    sin ψ = 0 (arm stretched or folded) — the two elbow branches coincide, flag
 ///               singular_elbow; cos ψ is clamped when the target is within 1e-9 of the boundary.
-/// A URDF that deviates slightly from the ideal geometry (≤ 0.02 rad / 20 mm) is solved analytically
-/// on the ideal model and refined by Newton iterations on the exact chain; larger deviations are
-/// rejected at construction with an InputError naming the URDF joint.
+/// A URDF that deviates slightly from the ideal geometry (≤ 0.02 rad / 20 mm) is solved
+/// analytically on the ideal model and refined by Newton iterations on the exact chain; larger
+/// deviations are rejected at construction with an InputError naming the URDF joint.
 ///
 /// Every returned solution is checked against the exact chain (same product as
-/// chainForwardKinematics): `converged` ⇔ position residual ≤ 1e-9 m and rotation residual ≤ 1e-9 rad.
+/// chainForwardKinematics): `converged` ⇔ position residual ≤ 1e-9 m and rotation residual ≤ 1e-9
+/// rad.
 ///
 /// Branch labels (docs/programs.md §7.1), computed from the joint vector:
-///   shoulder s = 0 (front) / 1 (back): sign of the x-coordinate of C in the frame rotating with axis 1,
+///   shoulder s = 0 (front) / 1 (back): sign of the x-coordinate of C in the frame rotating with
+///   axis 1,
 ///                calibrated so that the vendor's reference pose is front;
 ///   elbow    e = 0 (up) / 1 (down): sign of ((P3 − P2) × (C − P3)) · axis2, calibrated so that the
-///                reference pose (KUKA {0,−90,90,0,0,0}, ABB and FANUC all-zero, controller joints) is up;
+///                reference pose (KUKA {0,−90,90,0,0,0}, ABB and FANUC all-zero, controller joints)
+///                is up;
 ///   wrist    w = 0 / 1: controller θ5 wrapped to [−180°, 180°) is ≥ 0 / < 0;
 ///   branch = 4 s + 2 e + w (equals ABB cfx).
 /// Units: SI (m, rad); poses are T_base_flange (the chain's base link to its tip link).
@@ -60,11 +64,11 @@ using Vec6 = Eigen::Matrix<double, 6, 1>;
 using Mat6 = Eigen::Matrix<double, 6, 6>;
 
 /// OPW parameters [S31] (m), read out of the geometry for reports:
-/// a1 radial offset of axis 2 from axis 1 (positive towards the front), c1 height of axis 2 above the
-/// base origin along axis 1, c2 = |P2P3|, c3 = component of P3→C along the forearm (axis 4), a2 = OPW
-/// sign convention: −(offset of C from the forearm line, positive on the side the upper arm points to
-/// in the elbow-up posture), b lateral offset of C from the arm plane through axis 1, c4 = distance
-/// from C to the flange along axis 6.
+/// a1 radial offset of axis 2 from axis 1 (positive towards the front), c1 height of axis 2 above
+/// the base origin along axis 1, c2 = |P2P3|, c3 = component of P3→C along the forearm (axis 4), a2
+/// = OPW sign convention: −(offset of C from the forearm line, positive on the side the upper arm
+/// points to in the elbow-up posture), b lateral offset of C from the arm plane through axis 1, c4
+/// = distance from C to the flange along axis 6.
 struct OpwParameters {
   double a1{0.0};
   double a2{0.0};
@@ -77,11 +81,11 @@ struct OpwParameters {
 
 /// How far the chain is from the ideal OPW geometry (all zero for an exact robot).
 struct IkGeometryDeviation {
-  double axis12_rad{0.0};        ///< |90° − angle(axis 1, axis 2)|
-  double axis23_rad{0.0};        ///< angle(axis 2, axis 3)
-  double wrist_intersection_m{0.0};  ///< max distance of C from axes 4, 5, 6
+  double axis12_rad{0.0};               ///< |90° − angle(axis 1, axis 2)|
+  double axis23_rad{0.0};               ///< angle(axis 2, axis 3)
+  double wrist_intersection_m{0.0};     ///< max distance of C from axes 4, 5, 6
   double wrist_orthogonality_rad{0.0};  ///< max |90° − angle| of (w4, w5), (w5, w6)
-  bool exact{true};              ///< all ≤ 1e-12: no refinement needed
+  bool exact{true};                     ///< all ≤ 1e-12: no refinement needed
 };
 
 /// Immutable IK model, built once from the chain (and the robot card for branch labels).
@@ -89,9 +93,10 @@ struct IkModel {
   // exact chain, for forward kinematics and refinement (same product as chainForwardKinematics)
   std::array<Mat3, 6> origin_R;
   std::array<Vec3, 6> origin_p;
-  std::array<Vec3, 6> axis;   ///< unit axis in the joint frame
-  std::array<int, 6> axis_kind{};        ///< 0/1/2: axis = ±x/±y/±z of the joint frame (fast path); -1 general
-  std::array<double, 6> axis_sign{};     ///< ±1 for the fast path
+  std::array<Vec3, 6> axis;  ///< unit axis in the joint frame
+  std::array<int, 6>
+      axis_kind{};  ///< 0/1/2: axis = ±x/±y/±z of the joint frame (fast path); -1 general
+  std::array<double, 6> axis_sign{};  ///< ±1 for the fast path
   std::array<bool, 6> origin_rotation_identity{};
   Mat3 tip_R{Mat3::Identity()};
   Vec3 tip_p{Vec3::Zero()};
@@ -99,33 +104,33 @@ struct IkModel {
   Vec6 upper{Vec6::Constant(kPi)};
 
   // position sub-problem (F0, see file comment)
-  Vec3 o{Vec3::Zero()};            ///< origin of F0 on axis 1, base frame
-  Mat3 F0{Mat3::Identity()};       ///< columns x0, y0, z0 in the base frame
-  double p2x{0.0};                 ///< x of P2 in F0 (its z is 0 by construction)
+  Vec3 o{Vec3::Zero()};                         ///< origin of F0 on axis 1, base frame
+  Mat3 F0{Mat3::Identity()};                    ///< columns x0, y0, z0 in the base frame
+  double p2x{0.0};                              ///< x of P2 in F0 (its z is 0 by construction)
   Eigen::Vector2d u0{Eigen::Vector2d::Zero()};  ///< (x, z) of P3 − P2 in F0 at q = 0
   Eigen::Vector2d v0{Eigen::Vector2d::Zero()};  ///< (x, z) of C − P3 in F0 at q = 0
-  double b{0.0};                   ///< y of C in F0
+  double b{0.0};                                ///< y of C in F0
   double L2{0.0};
   double L3{0.0};
-  double psi0{0.0};                ///< ang(v0) − ang(u0)
-  double sigma3{1.0};              ///< axis 3 · y0
-  double reach_slack{1e-9};        ///< |cos ψ| − 1 clamped to the boundary (larger for non-ideal chains)
-  Vec3 c_tip{Vec3::Zero()};        ///< wrist centre in the tip frame
+  double psi0{0.0};          ///< ang(v0) − ang(u0)
+  double sigma3{1.0};        ///< axis 3 · y0
+  double reach_slack{1e-9};  ///< |cos ψ| − 1 clamped to the boundary (larger for non-ideal chains)
+  Vec3 c_tip{Vec3::Zero()};  ///< wrist centre in the tip frame
 
   // orientation sub-problem
-  Mat3 E{Mat3::Identity()};        ///< [w4 w5 w4×w5] in the link-3 frame
-  Mat3 B{Mat3::Identity()};        ///< R_w0ᵀ E Ry(α)
-  double alpha{0.0};               ///< w6 = Rot(w5, α) w4
+  Mat3 E{Mat3::Identity()};  ///< [w4 w5 w4×w5] in the link-3 frame
+  Mat3 B{Mat3::Identity()};  ///< R_w0ᵀ E Ry(α)
+  double alpha{0.0};         ///< w6 = Rot(w5, α) w4
 
   // branch labels
-  double shoulder_sign{1.0};       ///< front ⇔ shoulder_sign · x ≥ 0
-  double elbow_sign{1.0};          ///< up ⇔ elbow_sign · sin ψ ≥ 0
-  double ctrl_sign5{1.0};          ///< controller θ5 = ctrl_sign5 · q5 + ctrl_offset5
+  double shoulder_sign{1.0};  ///< front ⇔ shoulder_sign · x ≥ 0
+  double elbow_sign{1.0};     ///< up ⇔ elbow_sign · sin ψ ≥ 0
+  double ctrl_sign5{1.0};     ///< controller θ5 = ctrl_sign5 · q5 + ctrl_offset5
   double ctrl_offset5{0.0};
 
   OpwParameters opw;
   IkGeometryDeviation deviation;
-  std::string file;                ///< URDF (for messages)
+  std::string file;  ///< URDF (for messages)
 };
 
 /// Options of the model construction.
@@ -139,8 +144,9 @@ struct IkModelOptions {
 /// spherical-wrist ortho-parallel 6R robot within the tolerated deviation, or when the reference
 /// pose is itself singular.
 IkModel buildIkModel(const ChainDescription& chain, const IkModelOptions& options = {});
-/// Reference pose and θ5 convention from the robot card (vendor reference pose in controller joints:
-/// KUKA {0,−90°,90°,0,0,0}, ABB / FANUC / generic all-zero; converted with fromControllerJoints).
+/// Reference pose and θ5 convention from the robot card (vendor reference pose in controller
+/// joints: KUKA {0,−90°,90°,0,0,0}, ABB / FANUC / generic all-zero; converted with
+/// fromControllerJoints).
 IkModel buildIkModel(const Robot& robot);
 /// The vendor's elbow-up reference pose in URDF joints.
 Vec6 vendorReferencePose(const RobotCard& card);
@@ -151,7 +157,8 @@ Pose ikForwardKinematics(const IkModel& model, const Vec6& q);
 /// column i = [z_i × (p_tip − o_i); z_i] (rows: linear m/rad, angular rad/rad).
 void ikForwardKinematicsJacobian(const IkModel& model, const Vec6& q, Pose& T, Mat6& J);
 
-/// Residual of q against a target: position error (m) and rotation angle (rad, exact for all angles).
+/// Residual of q against a target: position error (m) and rotation angle (rad, exact for all
+/// angles).
 struct IkResidual {
   double position{0.0};
   double rotation{0.0};
@@ -164,44 +171,45 @@ struct IkBranch {
   int elbow{0};     ///< 0 up, 1 down
   int wrist{0};     ///< 0: controller θ5 ≥ 0, 1: < 0
   [[nodiscard]] int index() const { return 4 * shoulder + 2 * elbow + wrist; }
-  double shoulder_margin_m{0.0};   ///< |x| of the wrist centre from axis 1 (lateral offset removed)
-  double elbow_margin_rad{0.0};    ///< |sin ψ|
-  double wrist_margin_rad{0.0};    ///< |sin(q5 + α)|
+  double shoulder_margin_m{0.0};  ///< |x| of the wrist centre from axis 1 (lateral offset removed)
+  double elbow_margin_rad{0.0};   ///< |sin ψ|
+  double wrist_margin_rad{0.0};   ///< |sin(q5 + α)|
 };
 IkBranch ikBranch(const IkModel& model, const Vec6& q);
 
 /// Failure reasons of a whole IK call.
 enum class IkFailure : std::uint8_t {
   kNone,
-  kOutOfReach,      ///< wrist centre farther than L2 + L3 from axis 2 (both shoulders)
-  kTooClose,        ///< wrist centre closer than |L2 − L3| to axis 2 (both shoulders)
-  kLateralOffset,   ///< wrist centre closer to axis 1 than the lateral offset b
-  kNotFinite,       ///< target pose contains NaN/Inf
+  kOutOfReach,     ///< wrist centre farther than L2 + L3 from axis 2 (both shoulders)
+  kTooClose,       ///< wrist centre closer than |L2 − L3| to axis 2 (both shoulders)
+  kLateralOffset,  ///< wrist centre closer to axis 1 than the lateral offset b
+  kNotFinite,      ///< target pose contains NaN/Inf
 };
 
 struct IkSolution {
-  Vec6 q{Vec6::Zero()};             ///< URDF joints (rad)
+  Vec6 q{Vec6::Zero()};  ///< URDF joints (rad)
   IkBranch branch;
   bool within_limits{true};
   bool singular_wrist{false};
   bool singular_shoulder{false};
   bool singular_elbow{false};
-  bool converged{false};            ///< residuals ≤ 1e-9 m / 1e-9 rad on the exact chain
-  int iterations{0};                ///< Newton refinement iterations used
+  bool converged{false};  ///< residuals ≤ 1e-9 m / 1e-9 rad on the exact chain
+  int iterations{0};      ///< Newton refinement iterations used
   IkResidual residual;
-  std::array<std::int8_t, 6> turn{}; ///< q_i = wrapped(q_i) + 2π · turn_i
+  std::array<std::int8_t, 6> turn{};  ///< q_i = wrapped(q_i) + 2π · turn_i
 };
 
 enum class IkTurns : std::uint8_t {
-  kPrimary,  ///< per branch one solution: per joint the in-limit representative nearest the seed (or 0)
+  kPrimary,  ///< per branch one solution: per joint the in-limit representative nearest the seed
+             ///< (or 0)
   kAll,      ///< per branch every in-limit combination of ±360° turns
 };
 
 struct IkOptions {
   IkTurns turns{IkTurns::kPrimary};
-  const Vec6* seed{nullptr};         ///< resolves singular joints and the primary turn choice
-  double singular_angle{1e-3};       ///< flag wrist/elbow singular when the margin (rad) is below
-  double singular_distance{1e-3};    ///< flag the shoulder singular when |x| (m) is below
+  const Vec6* seed{nullptr};       ///< resolves singular joints and the primary turn choice
+  double singular_angle{1e-3};     ///< flag wrist/elbow singular when the margin (rad) is below
+  double singular_distance{1e-3};  ///< flag the shoulder singular when |x| (m) is below
   int max_refine_iterations{20};
 };
 
@@ -238,8 +246,8 @@ struct IkNearResult {
 };
 struct IkNearOptions {
   int max_iterations{8};
-  double max_step{0.5};      ///< rad, largest joint step per iteration (scaled down to this)
-  double tolerance{1e-10};   ///< stop when both residuals (m, rad) are below (converged: ≤ 1e-9)
+  double max_step{0.5};     ///< rad, largest joint step per iteration (scaled down to this)
+  double tolerance{1e-10};  ///< stop when both residuals (m, rad) are below (converged: ≤ 1e-9)
 };
 IkNearResult solveIkNear(const IkModel& model, const Pose& target, const Vec6& seed,
                          const IkNearOptions& options = {});

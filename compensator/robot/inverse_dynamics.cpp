@@ -18,7 +18,8 @@ void addMassTimes(const Model& model, const VecQ& x, VecQ& y) {
       if (s[static_cast<size_t>(k)] < 0) continue;
       Vec3 acc = Vec3::Zero();
       for (int l = 0; l < 4; ++l) {
-        if (s[static_cast<size_t>(l)] >= 0) acc += K(k, l) * x.segment<3>(s[static_cast<size_t>(l)]);
+        if (s[static_cast<size_t>(l)] >= 0)
+          acc += K(k, l) * x.segment<3>(s[static_cast<size_t>(l)]);
       }
       y.segment<3>(s[static_cast<size_t>(k)]) += acc;
     }
@@ -33,7 +34,8 @@ void generalizedForces(const Model& model, const Data& data, const Loads& loads,
       if (K(0, 0) <= 0.0) continue;
       const auto s = slots(i);
       for (int k = 0; k < 4; ++k) {
-        if (s[static_cast<size_t>(k)] >= 0) Q.segment<3>(s[static_cast<size_t>(k)]) += K(0, k) * model.gravity;
+        if (s[static_cast<size_t>(k)] >= 0)
+          Q.segment<3>(s[static_cast<size_t>(k)]) += K(0, k) * model.gravity;
       }
     }
   }
@@ -41,7 +43,8 @@ void generalizedForces(const Model& model, const Data& data, const Loads& loads,
   Vec3 N = loads.tcp.moment;
   if (!loads.tcp_tool.force.isZero(0.0) || !loads.tcp_tool.moment.isZero(0.0)) {
     Mat3 X;
-    X << Vec3(data.q.segment<3>(idxUnext(4))), Vec3(data.q.segment<3>(idxV(5))), Vec3(data.q.segment<3>(idxW(5)));
+    X << Vec3(data.q.segment<3>(idxUnext(4))), Vec3(data.q.segment<3>(idxV(5))),
+        Vec3(data.q.segment<3>(idxW(5)));
     const Mat3 R_W_tcp = X * model.Rbar_tcp;
     F += R_W_tcp * loads.tcp_tool.force;
     N += R_W_tcp * loads.tcp_tool.moment;

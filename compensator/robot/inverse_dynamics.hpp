@@ -29,8 +29,8 @@ struct Wrench {
 };
 
 struct Loads {
-  bool gravity{true};   ///< include link, tool and spindle weight (model.gravity)
-  Wrench tcp;           ///< wrench on the TCP, fixed in the base frame
+  bool gravity{true};  ///< include link, tool and spindle weight (model.gravity)
+  Wrench tcp;          ///< wrench on the TCP, fixed in the base frame
   /// Wrench on the TCP given in the TCP frame and following the TCP's actual orientation
   /// (a process load: the thrust acts along the real drill axis). Added to `tcp` after
   /// rotation by R_W_tcp(q).

@@ -119,13 +119,15 @@ void evaluatePhi(const Model& model, Data& data, const VecQ& q) {
     Phi[r + 1] = v.dot(u);
     Phi.segment<3>(r + 2) = w - u.cross(v);
     if (i < 5) {
-      Phi.segment<3>(r + 5) = seg(q, idxPnext(i)) - p - (b.c_next.x() * u + b.c_next.y() * v + b.c_next.z() * w);
-      Phi.segment<3>(r + 8) = seg(q, idxUnext(i)) - (b.e_next.x() * u + b.e_next.y() * v + b.e_next.z() * w);
+      Phi.segment<3>(r + 5) =
+          seg(q, idxPnext(i)) - p - (b.c_next.x() * u + b.c_next.y() * v + b.c_next.z() * w);
+      Phi.segment<3>(r + 8) =
+          seg(q, idxUnext(i)) - (b.e_next.x() * u + b.e_next.y() * v + b.e_next.z() * w);
     }
     const Vec3 a = angleRef(model, q, i);
     const double th = q[idxTheta(i)];
     Phi[kAngleRow + i] = data.cross_form[static_cast<size_t>(i)] ? u.dot(a.cross(v)) - std::sin(th)
-                                                                : a.dot(v) - std::cos(th);
+                                                                 : a.dot(v) - std::cos(th);
   }
 }
 
@@ -177,7 +179,8 @@ void solveA(const Model& model, const Data& data, const VecQ& r, VecQ& x) {
     const int row = i < 5 ? rowBody(i) : 55;
     Vec3 da = Vec3::Zero();
     if (i > 0) {
-      da = b.alpha.x() * dup + b.alpha.y() * x.segment<3>(idxV(i - 1)) + b.alpha.z() * x.segment<3>(idxW(i - 1));
+      da = b.alpha.x() * dup + b.alpha.y() * x.segment<3>(idxV(i - 1)) +
+           b.alpha.z() * x.segment<3>(idxW(i - 1));
     }
     const Vec3 sv(r[row], r[row + 1] - bc.v.dot(du),
                   r[kAngleRow + i] - bc.g_du.dot(du) - bc.g_da.dot(da) - bc.g_th * x[idxTheta(i)]);
@@ -186,8 +189,10 @@ void solveA(const Model& model, const Data& data, const VecQ& r, VecQ& x) {
     x.segment<3>(idxV(i)) = dv;
     x.segment<3>(idxW(i)) = dw;
     if (i < 5) {
-      const Vec3 dpn = r.segment<3>(row + 5) + dp + b.c_next.x() * du + b.c_next.y() * dv + b.c_next.z() * dw;
-      const Vec3 dun = r.segment<3>(row + 8) + b.e_next.x() * du + b.e_next.y() * dv + b.e_next.z() * dw;
+      const Vec3 dpn =
+          r.segment<3>(row + 5) + dp + b.c_next.x() * du + b.c_next.y() * dv + b.c_next.z() * dw;
+      const Vec3 dun =
+          r.segment<3>(row + 8) + b.e_next.x() * du + b.e_next.y() * dv + b.e_next.z() * dw;
       x.segment<3>(idxPnext(i)) = dpn;
       x.segment<3>(idxUnext(i)) = dun;
       dup = du;
@@ -286,7 +291,8 @@ bool onCommandedBranch(const Model& model, const Data& data) {
 
 PositionResult solvePosition(const Model& model, Data& data, const Vec6& z, Guess guess) {
   // A warm start far from z (more than ~30° on a joint) is no better than the closed form.
-  if (guess == Guess::kWarmStart && (z - data.z).lpNorm<Eigen::Infinity>() > 0.5) guess = Guess::kClosedForm;
+  if (guess == Guess::kWarmStart && (z - data.z).lpNorm<Eigen::Infinity>() > 0.5)
+    guess = Guess::kClosedForm;
   data.z = z;
   if (guess == Guess::kClosedForm) {
     closedFormGuess(model, data, z);
@@ -295,7 +301,8 @@ PositionResult solvePosition(const Model& model, Data& data, const Vec6& z, Gues
   }
   PositionResult res;
   // Angle-row forms are chosen once per configuration (from θ = z), never inside Newton.
-  for (int i = 0; i < 6; ++i) data.cross_form[static_cast<size_t>(i)] = std::abs(std::sin(z[i])) <= std::sqrt(0.5);
+  for (int i = 0; i < 6; ++i)
+    data.cross_form[static_cast<size_t>(i)] = std::abs(std::sin(z[i])) <= std::sqrt(0.5);
   data.factorized = false;
   for (;;) {
     evaluatePhi(model, data, data.q);
@@ -404,7 +411,8 @@ const VecQ& accelerationTerm(const Model& model, Data& data, const Vec6& zd) {
     if (i > 0) {
       const Body& b = model.bodies[s];
       const Vec3 dup = i == 1 ? Vec3::Zero() : Vec3(seg(qd, idxUnext(i - 2)));
-      ad = b.alpha.x() * dup + b.alpha.y() * Vec3(seg(qd, idxV(i - 1))) + b.alpha.z() * Vec3(seg(qd, idxW(i - 1)));
+      ad = b.alpha.x() * dup + b.alpha.y() * Vec3(seg(qd, idxV(i - 1))) +
+           b.alpha.z() * Vec3(seg(qd, idxW(i - 1)));
     }
     const double th = q[idxTheta(i)];
     const double thd = zd[i];
@@ -479,7 +487,7 @@ void assemblePhiq(const Model& model, const Data& data, Eigen::Ref<Eigen::Matrix
     put(row + 1, idxV(i), u.transpose());
     put(row + 1, iu, v.transpose());
     putM(row + 2, idxW(i), Mat3::Identity());
-    putM(row + 2, iu, skew(v));     // ∂(−u×v)/∂u = v×· = [v]×
+    putM(row + 2, iu, skew(v));  // ∂(−u×v)/∂u = v×· = [v]×
     putM(row + 2, idxV(i), -skew(u));
     if (i < 5) {
       putM(row + 5, idxPnext(i), Mat3::Identity());

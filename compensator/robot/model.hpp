@@ -52,11 +52,11 @@
 
 namespace roprec::nc {
 
-constexpr int kNz = 6;          ///< independent coordinates (joint angles)
-constexpr int kNq = 72;         ///< natural + relative coordinates
-constexpr int kNc = 66;         ///< constraints
-constexpr int kAngleRow = 60;   ///< first angle-constraint row
-constexpr int kAngleCoord = 66; ///< first angle coordinate
+constexpr int kNz = 6;           ///< independent coordinates (joint angles)
+constexpr int kNq = 72;          ///< natural + relative coordinates
+constexpr int kNc = 66;          ///< constraints
+constexpr int kAngleRow = 60;    ///< first angle-constraint row
+constexpr int kAngleCoord = 66;  ///< first angle coordinate
 
 using VecQ = Eigen::Matrix<double, kNq, 1>;
 using VecC = Eigen::Matrix<double, kNc, 1>;
@@ -83,35 +83,35 @@ struct Body {
   Vec3 e_next{Vec3::Zero()};    ///< next joint axis: u_{i+1} = X e_next (i < 5)
   Vec3 alpha{Vec3::Zero()};     ///< a_i = X_{i-1} alpha (i > 0): parent-fixed angle reference
   Eigen::Matrix4d K{Eigen::Matrix4d::Zero()};  ///< M_B = K ⊗ I₃ over [p_i; u_i; v_i; w_i] (§4)
-  double mass{0.0};             ///< kg (link + rigidly attached links; body 5 + tool)
-  Vec3 com{Vec3::Zero()};       ///< m, in L_i
-  Mat3 inertia{Mat3::Zero()};   ///< kg m², about com, L_i axes
-  double lower{0.0};            ///< joint limits, rad
+  double mass{0.0};            ///< kg (link + rigidly attached links; body 5 + tool)
+  Vec3 com{Vec3::Zero()};      ///< m, in L_i
+  Mat3 inertia{Mat3::Zero()};  ///< kg m², about com, L_i axes
+  double lower{0.0};           ///< joint limits, rad
   double upper{0.0};
 };
 
 struct Model {
   std::array<Body, 6> bodies;
-  Vec3 p0{Vec3::Zero()};        ///< ground: joint 1 point (base frame)
-  Vec3 u0{Vec3::UnitZ()};       ///< ground: joint 1 axis
-  Vec3 a0{Vec3::UnitX()};       ///< ground: joint 1 angle reference (⊥ u0)
-  std::array<Pose, 6> origin;   ///< T_{L_{i-1}, J_i} from the chain (closed-form warm start)
-  std::array<Vec3, 6> axis;     ///< joint axes in the joint frames
+  Vec3 p0{Vec3::Zero()};               ///< ground: joint 1 point (base frame)
+  Vec3 u0{Vec3::UnitZ()};              ///< ground: joint 1 axis
+  Vec3 a0{Vec3::UnitX()};              ///< ground: joint 1 angle reference (⊥ u0)
+  std::array<Pose, 6> origin;          ///< T_{L_{i-1}, J_i} from the chain (closed-form warm start)
+  std::array<Vec3, 6> axis;            ///< joint axes in the joint frames
   Pose T_L6_flange{Pose::Identity()};  ///< tip link (flange) in L_5
   Pose T_L6_tcp{Pose::Identity()};     ///< TCP (flange × tool) in L_5
-  Vec3 c_tcp{Vec3::Zero()};     ///< p_tcp = p_5 + X_5 c_tcp
+  Vec3 c_tcp{Vec3::Zero()};            ///< p_tcp = p_5 + X_5 c_tcp
   Mat3 Rbar_tcp{Mat3::Identity()};     ///< R_W_tcp = X_5 Rbar_tcp  (= X̄ᵀ R_L6_tcp)
   Vec3 gravity{0.0, 0.0, -9.80665};    ///< m/s², base frame
-  double tol_phi{1e-12};        ///< Newton: ‖Φ‖∞ tolerance (m, m²)
+  double tol_phi{1e-12};               ///< Newton: ‖Φ‖∞ tolerance (m, m²)
   int max_iterations{25};
 };
 
 /// Tool (TCP and rigid mass) attached to the flange.
 struct ToolAttachment {
   Pose T_flange_tcp{Pose::Identity()};
-  double mass{0.0};             ///< kg
-  Vec3 com{Vec3::Zero()};       ///< m, flange frame
-  Mat3 inertia{Mat3::Zero()};   ///< kg m², about com, flange axes
+  double mass{0.0};            ///< kg
+  Vec3 com{Vec3::Zero()};      ///< m, flange frame
+  Mat3 inertia{Mat3::Zero()};  ///< kg m², about com, flange axes
 };
 
 /// Builds the model. Links without inertial data get zero mass (kinematics unaffected).
@@ -120,12 +120,12 @@ Model buildModel(const ChainDescription& chain, const ToolAttachment& tool = {})
 /// Per-evaluation scratch, sized once (no allocation afterwards).
 struct Data {
   explicit Data(const Model& model);
-  Vec6 z{Vec6::Zero()};         ///< joint angles the state belongs to (rad)
+  Vec6 z{Vec6::Zero()};  ///< joint angles the state belongs to (rad)
   VecQ q{VecQ::Zero()};
   VecQ qd{VecQ::Zero()};
   VecQ qdd{VecQ::Zero()};
   VecC Phi{VecC::Zero()};
-  std::array<bool, 6> cross_form{};    ///< angle-row form per joint (chosen per configuration)
+  std::array<bool, 6> cross_form{};  ///< angle-row form per joint (chosen per configuration)
   /// Per-body quantities at the factorised configuration: elements, angle reference, the
   /// inverse of the 3×3 pivot block G = [2vᵀ; uᵀ; ∂Φ_angle/∂v] and the angle row's partials.
   struct BodyCache {
@@ -133,24 +133,24 @@ struct Data {
     Vec3 v{Vec3::Zero()};
     Vec3 w{Vec3::Zero()};
     Vec3 a{Vec3::Zero()};
-    Vec3 g_du{Vec3::Zero()};   ///< ∂Φ_angle/∂u
-    Vec3 g_da{Vec3::Zero()};   ///< ∂Φ_angle/∂a
-    double g_th{0.0};          ///< ∂Φ_angle/∂θ
+    Vec3 g_du{Vec3::Zero()};  ///< ∂Φ_angle/∂u
+    Vec3 g_da{Vec3::Zero()};  ///< ∂Φ_angle/∂a
+    double g_th{0.0};         ///< ∂Φ_angle/∂θ
     Mat3 Ginv{Mat3::Identity()};
   };
   std::array<BodyCache, 6> body{};
-  bool factorized{false};              ///< body[] matches q
+  bool factorized{false};  ///< body[] matches q
   MatR R{MatR::Zero()};
   VecQ Sc{VecQ::Zero()};
-  VecC c{VecC::Zero()};                ///< −Φ̇_q q̇
+  VecC c{VecC::Zero()};  ///< −Φ̇_q q̇
   VecQ scratch{VecQ::Zero()};
   VecQ scratch2{VecQ::Zero()};
   Eigen::Matrix<double, kNq, 1> rhs{Eigen::Matrix<double, kNq, 1>::Zero()};
-  Vec6 tau{Vec6::Zero()};              ///< joint torques (N m), inverse dynamics
-  VecC lambda{VecC::Zero()};           ///< constraint multipliers (joint reactions)
+  Vec6 tau{Vec6::Zero()};     ///< joint torques (N m), inverse dynamics
+  VecC lambda{VecC::Zero()};  ///< constraint multipliers (joint reactions)
   Pose T_W_tcp{Pose::Identity()};
   Pose T_W_flange{Pose::Identity()};
-  Mat6 J_tcp{Mat6::Zero()};            ///< [v; ω] = J_tcp ż (base frame, at the TCP)
+  Mat6 J_tcp{Mat6::Zero()};  ///< [v; ω] = J_tcp ż (base frame, at the TCP)
 };
 
 /// Result of the Newton–Raphson position problem (non-convergence is a value).

@@ -7,8 +7,8 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "compensator/support/error.hpp"
 #include "compensator/robot/urdf_loader.hpp"
+#include "compensator/support/error.hpp"
 #include "compensator/support/xml_node.hpp"
 
 namespace fs = std::filesystem;
@@ -36,10 +36,14 @@ Vendor vendorFromString(const std::string& s) {
 
 std::string vendorName(Vendor v) {
   switch (v) {
-    case Vendor::kKuka: return "KUKA";
-    case Vendor::kAbb: return "ABB";
-    case Vendor::kFanuc: return "FANUC";
-    case Vendor::kGeneric: break;
+    case Vendor::kKuka:
+      return "KUKA";
+    case Vendor::kAbb:
+      return "ABB";
+    case Vendor::kFanuc:
+      return "FANUC";
+    case Vendor::kGeneric:
+      break;
   }
   return "generic";
 }
@@ -48,7 +52,8 @@ bool JointCard::estimated() const { return source.rfind("estimate:", 0) == 0 || 
 
 RobotCard loadRobotCard(const std::string& path) {
   const XmlNode root = loadXmlFile(path);
-  if (root.name != "robot") root.fail("a robot card's root element is <robot>, got <" + root.name + ">");
+  if (root.name != "robot")
+    root.fail("a robot card's root element is <robot>, got <" + root.name + ">");
   RobotCard card;
   card.file = path;
   card.name = root.str("name");
@@ -57,7 +62,8 @@ RobotCard loadRobotCard(const std::string& path) {
   card.model = root.str("model", "");
   const std::string urdf = root.str("urdf");
   const fs::path dir = fs::path(path).parent_path();
-  card.urdf_path = (fs::path(urdf).is_absolute() ? fs::path(urdf) : dir / urdf).lexically_normal().string();
+  card.urdf_path =
+      (fs::path(urdf).is_absolute() ? fs::path(urdf) : dir / urdf).lexically_normal().string();
   card.base_link = root.str("base_link", "");
   card.flange_link = root.str("flange_link", "");
   card.dimensions_source = root.str("dimensions_source", "");
@@ -83,7 +89,8 @@ RobotCard loadRobotCard(const std::string& path) {
     }
     if (j.has("position_gain")) {
       jc.position_gain = j.number("position_gain");
-      if (!(*jc.position_gain > 0)) j.fail("joint '" + jc.name + "': position_gain must be > 0 1/s");
+      if (!(*jc.position_gain > 0))
+        j.fail("joint '" + jc.name + "': position_gain must be > 0 1/s");
     }
     if (j.has("velocity_gain")) {
       jc.velocity_gain = j.number("velocity_gain");
@@ -112,23 +119,26 @@ RobotCard loadRobotCard(const std::string& path) {
   return card;
 }
 
-// The robots folder relative to the installed library's folder (set by CMake from the install dirs).
+// The robots folder relative to the installed library's folder (set by CMake from the install
+// dirs).
 #ifndef ROPREC_ROBOTS_RELDIR
 #define ROPREC_ROBOTS_RELDIR "../share/roprec/robots"
 #endif
 
 std::string bundledRobotsDir() {
-  if (const char* env = std::getenv("ROPREC_ROBOTS_DIR"); env != nullptr && *env != '\0') return env;
+  if (const char* env = std::getenv("ROPREC_ROBOTS_DIR"); env != nullptr && *env != '\0')
+    return env;
   // An installed library: the robots folder next to it (<prefix>/lib/../share/roprec/robots),
   // found from the path of the loaded shared object that holds this function.
   static const std::string installed = [] {
     Dl_info info{};
-    if (dladdr(reinterpret_cast<const void*>(&bundledRobotsDir), &info) == 0 || info.dli_fname == nullptr ||
-        *info.dli_fname == '\0') {
+    if (dladdr(reinterpret_cast<const void*>(&bundledRobotsDir), &info) == 0 ||
+        info.dli_fname == nullptr || *info.dli_fname == '\0') {
       return std::string();
     }
     std::error_code ec;
-    const fs::path dir = fs::absolute(fs::path(info.dli_fname), ec).parent_path() / ROPREC_ROBOTS_RELDIR;
+    const fs::path dir =
+        fs::absolute(fs::path(info.dli_fname), ec).parent_path() / ROPREC_ROBOTS_RELDIR;
     if (ec || !fs::is_directory(dir, ec)) return std::string();
     const fs::path real = fs::canonical(dir, ec);
     return (ec ? dir.lexically_normal() : real).string();
@@ -145,7 +155,8 @@ std::vector<std::string> bundledRobotNames() {
   std::vector<std::string> names;
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(bundledRobotsDir(), ec)) {
-    if (e.is_directory() && fs::exists(e.path() / "robot.xml")) names.push_back(e.path().filename().string());
+    if (e.is_directory() && fs::exists(e.path() / "robot.xml"))
+      names.push_back(e.path().filename().string());
   }
   std::sort(names.begin(), names.end());
   return names;
@@ -173,8 +184,9 @@ Robot loadRobot(const RobotRequest& request) {
     if (!fs::exists(card_path)) {
       std::string known;
       for (const auto& n : bundledRobotNames()) known += (known.empty() ? "" : ", ") + n;
-      throw InputError("", 0, "unknown robot '" + r + "' (bundled: " + known +
-                                  "; or give a robot.xml or .urdf path)");
+      throw InputError(
+          "", 0,
+          "unknown robot '" + r + "' (bundled: " + known + "; or give a robot.xml or .urdf path)");
     }
   }
   robot.card = loadRobotCard(card_path);
@@ -186,7 +198,8 @@ Robot loadRobot(const RobotRequest& request) {
     if (robot.card.joints[i].name != robot.chain.joints[i].name) {
       throw InputError(card_path, robot.card.joints[i].line,
                        "joint " + std::to_string(i + 1) + " is '" + robot.card.joints[i].name +
-                           "' in the card but '" + robot.chain.joints[i].name + "' in the URDF chain");
+                           "' in the card but '" + robot.chain.joints[i].name +
+                           "' in the URDF chain");
     }
   }
   robot.card.base_link = robot.chain.base_link;

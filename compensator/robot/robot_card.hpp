@@ -1,6 +1,6 @@
 #pragma once
 /// \file robot_card.hpp
-/// The robot card (`robots/<name>/robot.xml`, contract.md): which URDF and links, and the
+/// The robot card (`robots/<name>/robot.xml`, docs/contract.md §5): which URDF and links, and the
 /// numbers the kinematic description lacks — joint stiffness k (N m/rad), servo gains, ISO 9283
 /// pose repeatability RP, the controller's joint convention — each with its source. A source
 /// beginning with `estimate:` marks an estimated value.
@@ -26,34 +26,34 @@ std::string vendorName(Vendor v);
 
 struct JointCard {
   std::string name;
-  double stiffness{0.0};                 ///< k_i, N m/rad (0 = not given)
-  std::optional<double> position_gain;   ///< Kv, 1/s (position-loop gain); absent: ideal servo
-  std::optional<double> velocity_gain;   ///< N m s/rad, link side (velocity-loop gain)
-  double motor_inertia{0.0};             ///< reflected rotor inertia, kg m^2, link side
-  std::string source;                    ///< citation, or "estimate: reason"
+  double stiffness{0.0};                ///< k_i, N m/rad (0 = not given)
+  std::optional<double> position_gain;  ///< Kv, 1/s (position-loop gain); absent: ideal servo
+  std::optional<double> velocity_gain;  ///< N m s/rad, link side (velocity-loop gain)
+  double motor_inertia{0.0};            ///< reflected rotor inertia, kg m^2, link side
+  std::string source;                   ///< citation, or "estimate: reason"
   double controller_sign{1.0};
-  double controller_offset{0.0};         ///< rad
+  double controller_offset{0.0};  ///< rad
   int line{0};
   [[nodiscard]] bool estimated() const;
 };
 
 struct RobotCard {
-  std::string file;         ///< robot.xml path ("" for a bare URDF)
+  std::string file;  ///< robot.xml path ("" for a bare URDF)
   std::string name;
   Vendor vendor{Vendor::kGeneric};
-  std::string vendor_label; ///< as written
+  std::string vendor_label;  ///< as written
   std::string model;
-  std::string urdf_path;    ///< resolved path
+  std::string urdf_path;  ///< resolved path
   std::string base_link;
   std::string flange_link;
   std::array<JointCard, 6> joints;
   bool has_stiffness{false};
-  double rp_mm{0.0};                    ///< ISO 9283 pose repeatability RP, mm (0 = unknown)
+  double rp_mm{0.0};  ///< ISO 9283 pose repeatability RP, mm (0 = unknown)
   std::string rp_source;
-  bool gravity_compensated{false};      ///< controller already compensates gravity deflection
-  double calibration_load_kg{0.0};      ///< load the compensation was calibrated for
+  bool gravity_compensated{false};          ///< controller already compensates gravity deflection
+  double calibration_load_kg{0.0};          ///< load the compensation was calibrated for
   Vec3 calibration_load_com{Vec3::Zero()};  ///< m, flange frame
-  double j23_coupling{0.0};             ///< see file comment
+  double j23_coupling{0.0};                 ///< see file comment
   double rated_payload_kg{0.0};
   std::string dimensions_source;
   std::string inertial_source;

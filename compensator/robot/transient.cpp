@@ -2,9 +2,9 @@
 
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
-#include <sundials/sundials_context.hpp>
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
+#include <sundials/sundials_context.hpp>
 
 #include <Eigen/Cholesky>
 #include <algorithm>
@@ -12,8 +12,8 @@
 #include <limits>
 #include <stdexcept>
 
-#include "compensator/support/error.hpp"
 #include "compensator/process/process_load.hpp"
+#include "compensator/support/error.hpp"
 
 namespace roprec::nc {
 
@@ -27,10 +27,11 @@ JointCompliance DriveModel::staticCompliance() const {
   return c;
 }
 
-DriveModel driveModelFromCard(const RobotCard& card, const Model& model, Data& data, const Vec6& theta_ref,
-                              const DriveEstimateOptions& o) {
+DriveModel driveModelFromCard(const RobotCard& card, const Model& model, Data& data,
+                              const Vec6& theta_ref, const DriveEstimateOptions& o) {
   if (!solvePosition(model, data, theta_ref, Guess::kClosedForm).converged) {
-    throw std::invalid_argument("driveModelFromCard: the position problem did not converge at the reference pose");
+    throw std::invalid_argument(
+        "driveModelFromCard: the position problem did not converge at the reference pose");
   }
   const Mat6 Mbar = jointSpaceInertia(model, data);
   DriveModel d;
@@ -40,7 +41,9 @@ DriveModel driveModelFromCard(const RobotCard& card, const Model& model, Data& d
   for (int i = 0; i < 6; ++i) {
     const JointCard& j = card.joints[static_cast<size_t>(i)];
     if (!(j.stiffness > 0)) {
-      throw InputError(card.file, j.line, "joint '" + j.name + "' has no stiffness: give it in the robot card or with --stiffness");
+      throw InputError(
+          card.file, j.line,
+          "joint '" + j.name + "' has no stiffness: give it in the robot card or with --stiffness");
     }
     d.k[i] = j.stiffness;
     const double J = Mbar(i, i);
@@ -51,7 +54,8 @@ DriveModel driveModelFromCard(const RobotCard& card, const Model& model, Data& d
     if (j.position_gain) {
       no_gains = false;
       d.kv[i] = *j.position_gain;
-      d.kw[i] = j.velocity_gain ? *j.velocity_gain : o.velocity_bandwidth_factor * d.kv[i] * (B + J);
+      d.kw[i] =
+          j.velocity_gain ? *j.velocity_gain : o.velocity_bandwidth_factor * d.kv[i] * (B + J);
       d.wi[i] = o.integral_corner_factor * d.kv[i];
     } else {
       all_gains = false;
@@ -59,7 +63,8 @@ DriveModel driveModelFromCard(const RobotCard& card, const Model& model, Data& d
   }
   if (!all_gains && !no_gains) {
     const JointCard& j0 = card.joints[0];
-    throw InputError(card.file, j0.line, "position_gain must be given for all six joints or for none (ideal servo)");
+    throw InputError(card.file, j0.line,
+                     "position_gain must be given for all six joints or for none (ideal servo)");
   }
   d.servo = no_gains ? ServoMode::kIdeal : ServoMode::kCascade;
   return d;
@@ -70,12 +75,18 @@ DriveModel driveModelFromCard(const RobotCard& card, const Model& model, Data& d
 
 const char* phaseName(CyclePhase p) {
   switch (p) {
-    case CyclePhase::kApproach: return "approach";
-    case CyclePhase::kEntry: return "entry";
-    case CyclePhase::kFull: return "full";
-    case CyclePhase::kBreakthrough: return "breakthrough";
-    case CyclePhase::kDwell: return "dwell";
-    case CyclePhase::kRetract: return "retract";
+    case CyclePhase::kApproach:
+      return "approach";
+    case CyclePhase::kEntry:
+      return "entry";
+    case CyclePhase::kFull:
+      return "full";
+    case CyclePhase::kBreakthrough:
+      return "breakthrough";
+    case CyclePhase::kDwell:
+      return "dwell";
+    case CyclePhase::kRetract:
+      return "retract";
   }
   return "?";
 }
@@ -101,17 +112,21 @@ std::vector<double> cleanBreakpoints(std::vector<double> b, double end) {
 
 void NoProcess::sample(double /*t*/, ProcessSample& out) { out = ProcessSample{}; }
 
-StepWrenchCycle::StepWrenchCycle(const ToolWrench& w, const CycleTiming& timing) : w_(w), tm_(timing) {
+StepWrenchCycle::StepWrenchCycle(const ToolWrench& w, const CycleTiming& timing)
+    : w_(w), tm_(timing) {
   if (!(tm_.ramp >= 0) || !(tm_.hold >= 0) || !(tm_.approach >= 0) || !(tm_.retract >= 0)) {
     throw std::invalid_argument("StepWrenchCycle: negative duration in the cycle timing");
   }
 }
 
-double StepWrenchCycle::duration() const { return tm_.approach + 2 * tm_.ramp + tm_.hold + tm_.retract; }
+double StepWrenchCycle::duration() const {
+  return tm_.approach + 2 * tm_.ramp + tm_.hold + tm_.retract;
+}
 
 std::vector<double> StepWrenchCycle::breakpoints() const {
   const double t0 = tm_.approach;
-  return cleanBreakpoints({t0, t0 + tm_.ramp, t0 + tm_.ramp + tm_.hold, t0 + 2 * tm_.ramp + tm_.hold}, duration());
+  return cleanBreakpoints(
+      {t0, t0 + tm_.ramp, t0 + tm_.ramp + tm_.hold, t0 + 2 * tm_.ramp + tm_.hold}, duration());
 }
 
 void StepWrenchCycle::sample(double t, ProcessSample& out) {
@@ -143,7 +158,8 @@ void StepWrenchCycle::sample(double t, ProcessSample& out) {
   out.Fr = 0.0;
 }
 
-DrillingCycle::DrillingCycle(const DrillingSpec& spec, const CycleTiming& timing, bool rotating_runout)
+DrillingCycle::DrillingCycle(const DrillingSpec& spec, const CycleTiming& timing,
+                             bool rotating_runout)
     : model_(drillingModelOf(spec)),
       data_(model_),
       tm_(timing),
@@ -151,7 +167,8 @@ DrillingCycle::DrillingCycle(const DrillingSpec& spec, const CycleTiming& timing
       feed_(spec.feed),
       omega_s_(2.0 * kPi * spec.spindle_rpm / 60.0),
       v_f_(spec.feed * spec.spindle_rpm / 60.0) {
-  if (!(v_f_ > 0) || !(omega_s_ > 0)) throw std::invalid_argument("DrillingCycle: feed and spindle speed must be positive");
+  if (!(v_f_ > 0) || !(omega_s_ > 0))
+    throw std::invalid_argument("DrillingCycle: feed and spindle speed must be positive");
   if (!(tm_.dwell >= 0) || !(tm_.approach >= 0) || !(tm_.retract >= 0)) {
     throw std::invalid_argument("DrillingCycle: negative duration in the cycle timing");
   }
@@ -177,7 +194,8 @@ DrillingCycle::DrillingCycle(const DrillingSpec& spec, const CycleTiming& timing
 double DrillingCycle::duration() const { return t_end_; }
 
 std::vector<double> DrillingCycle::breakpoints() const {
-  return cleanBreakpoints({tm_.approach, t_full_, t_break_, t_feed_end_, t_decay_end_, t_dwell_end_}, t_end_);
+  return cleanBreakpoints(
+      {tm_.approach, t_full_, t_break_, t_feed_end_, t_decay_end_, t_dwell_end_}, t_end_);
 }
 
 double DrillingCycle::maxStepHint() const { return runout_ ? (2.0 * kPi / omega_s_) / 16.0 : 0.0; }
@@ -200,7 +218,8 @@ void DrillingCycle::sample(double t, ProcessSample& out) {
     scale = t < t_decay_end_ ? 1.0 - (t - t_feed_end_) / (t_decay_end_ - t_feed_end_) : 0.0;
   } else {
     out.phase = CyclePhase::kRetract;
-    out.depth = tm_.retract > 0 ? depth_end_ * std::max(0.0, 1.0 - (t - t_dwell_end_) / tm_.retract) : 0.0;
+    out.depth =
+        tm_.retract > 0 ? depth_end_ * std::max(0.0, 1.0 - (t - t_dwell_end_) / tm_.retract) : 0.0;
     return;
   }
   if (scale <= 0.0) return;
@@ -250,7 +269,9 @@ using LinSolPtr = std::unique_ptr<std::remove_pointer_t<SUNLinearSolver>, LinSol
 using CvodePtr = std::unique_ptr<void, CvodeDeleter>;
 
 void check(int flag, const char* what) {
-  if (flag < 0) throw std::runtime_error(std::string("CVODE: ") + what + " failed (flag " + std::to_string(flag) + ")");
+  if (flag < 0)
+    throw std::runtime_error(std::string("CVODE: ") + what + " failed (flag " +
+                             std::to_string(flag) + ")");
 }
 template <class T>
 T* checkPtr(T* p, const char* what) {
@@ -290,7 +311,12 @@ struct TransientSimulator::Impl {
   CvodePtr mem;
 
   Impl(const TransientProblem& p, ProcessCycle& proc, const TransientOptions& o)
-      : model(*p.model), problem(p), process(proc), options(o), data(*p.model), out_data(*p.model) {}
+      : model(*p.model),
+        problem(p),
+        process(proc),
+        options(o),
+        data(*p.model),
+        out_data(*p.model) {}
 
   [[nodiscard]] bool locked(int i) const { return problem.drive.locked[static_cast<size_t>(i)]; }
 
@@ -318,8 +344,9 @@ static void roprecTransientErr(int error_code, const char* module, const char* f
                                void* user_data) {
   auto* impl = static_cast<TransientSimulator::Impl*>(user_data);
   try {
-    impl->cvode_message = std::string(module ? module : "CVODE") + "::" + (function ? function : "?") + " (" +
-                          std::to_string(error_code) + "): " + (msg ? msg : "");
+    impl->cvode_message = std::string(module ? module : "CVODE") +
+                          "::" + (function ? function : "?") + " (" + std::to_string(error_code) +
+                          "): " + (msg ? msg : "");
   } catch (...) {
     if (!impl->eptr) impl->eptr = std::current_exception();
   }
@@ -350,8 +377,9 @@ int TransientSimulator::Impl::rhs(double t, const double* yp, double* ydp) {
     if (!data.q.allFinite()) last_position.converged = false;
   }
   if (!last_position.converged) {
-    rhs_failure = "position problem did not converge (residual " + std::to_string(last_position.residual) +
-                  " after " + std::to_string(last_position.iterations) + " iterations)";
+    rhs_failure = "position problem did not converge (residual " +
+                  std::to_string(last_position.residual) + " after " +
+                  std::to_string(last_position.iterations) + " iterations)";
     return 1;
   }
 
@@ -392,8 +420,9 @@ int TransientSimulator::Impl::rhs(double t, const double* yp, double* ydp) {
   }
   const Eigen::LLT<Mat6> llt(Mbar);
   if (llt.info() != Eigen::Success) {
-    throw std::runtime_error("transient: the joint-space inertia RᵀMR is not positive definite at t = " +
-                             std::to_string(t) + " s");
+    throw std::runtime_error(
+        "transient: the joint-space inertia RᵀMR is not positive definite at t = " +
+        std::to_string(t) + " s");
   }
   d_th = thd;
   d_thd = llt.solve(f);
@@ -438,18 +467,21 @@ void TransientSimulator::Impl::setup() {
   theta_c = problem.theta_cmd + problem.command_offset;
   for (int i = 0; i < 6; ++i) {
     const std::string j = "joint " + std::to_string(i + 1);
-    if (!(dm.k[i] > 0) || !std::isfinite(dm.k[i])) throw std::invalid_argument("transient: " + j + ": stiffness must be positive");
-    if (!(dm.damping[i] >= 0)) throw std::invalid_argument("transient: " + j + ": damping must be >= 0");
+    if (!(dm.k[i] > 0) || !std::isfinite(dm.k[i]))
+      throw std::invalid_argument("transient: " + j + ": stiffness must be positive");
+    if (!(dm.damping[i] >= 0))
+      throw std::invalid_argument("transient: " + j + ": damping must be >= 0");
     if (locked(i)) continue;
     if (dm.servo != ServoMode::kIdeal && !(dm.motor_inertia[i] > 0)) {
       throw std::invalid_argument("transient: " + j + ": motor inertia must be positive");
     }
-    if (dm.servo == ServoMode::kCascade && (!(dm.kv[i] >= 0) || !(dm.kw[i] >= 0) || !(dm.wi[i] >= 0))) {
+    if (dm.servo == ServoMode::kCascade &&
+        (!(dm.kv[i] >= 0) || !(dm.kw[i] >= 0) || !(dm.wi[i] >= 0))) {
       throw std::invalid_argument("transient: " + j + ": servo gains must be >= 0");
     }
   }
-  if (!(options.rtol > 0) || !(options.atol_angle > 0) || !(options.atol_rate > 0) || !(options.sample > 0) ||
-      !(options.max_step >= 0) || !(options.min_step >= 0)) {
+  if (!(options.rtol > 0) || !(options.atol_angle > 0) || !(options.atol_rate > 0) ||
+      !(options.sample > 0) || !(options.max_step >= 0) || !(options.min_step >= 0)) {
     throw std::invalid_argument("transient: tolerances and the sampling interval must be positive");
   }
   if (!solvePosition(model, out_data, problem.theta_cmd, Guess::kClosedForm).converged) {
@@ -479,7 +511,8 @@ void TransientSimulator::Impl::setup() {
   Eigen::Map<Eigen::VectorXd>(N_VGetArrayPointer(y.get()), n).setZero();
   A.reset(checkPtr(SUNDenseMatrix(n, n, ctx), "SUNDenseMatrix"));
   LS.reset(checkPtr(SUNLinSol_Dense(y.get(), A.get(), ctx), "SUNLinSol_Dense"));
-  mem.reset(checkPtr(CVodeCreate(options.method == Method::kAdams ? CV_ADAMS : CV_BDF, ctx), "CVodeCreate"));
+  mem.reset(checkPtr(CVodeCreate(options.method == Method::kAdams ? CV_ADAMS : CV_BDF, ctx),
+                     "CVodeCreate"));
   check(CVodeSetErrHandlerFn(mem.get(), roprecTransientErr, this), "CVodeSetErrHandlerFn");
   check(CVodeInit(mem.get(), roprecTransientRhs, 0.0, y.get()), "CVodeInit");
   check(CVodeSVtolerances(mem.get(), options.rtol, abstol.get()), "CVodeSVtolerances");
@@ -533,7 +566,9 @@ TransientSimulator::~TransientSimulator() = default;
 
 int TransientSimulator::stateSize() const { return impl_->n; }
 
-int TransientSimulator::rhs(double t, const double* y, double* ydot) { return impl_->rhs(t, y, ydot); }
+int TransientSimulator::rhs(double t, const double* y, double* ydot) {
+  return impl_->rhs(t, y, ydot);
+}
 
 Eigen::VectorXd TransientSimulator::commandState() const {
   Eigen::VectorXd y0 = Eigen::VectorXd::Zero(impl_->n);
@@ -560,7 +595,8 @@ Eigen::VectorXd TransientSimulator::equilibriumState(double t0) {
   for (int i = 0; i < 6; ++i) {
     if (m.locked(i)) c.k[i] = c.k_servo[i] = 1e300;
   }
-  const Deflection d = predictDeflection(m.model, m.out_data, c, m.problem.theta_cmd, loads, {}, m.problem.command_offset);
+  const Deflection d = predictDeflection(m.model, m.out_data, c, m.problem.theta_cmd, loads, {},
+                                         m.problem.command_offset);
   if (!d.converged) {
     throw std::runtime_error("transient: the static equilibrium at t0 did not converge (residual " +
                              std::to_string(d.residual) + " rad)");
@@ -583,8 +619,8 @@ Eigen::VectorXd TransientSimulator::equilibriumState(double t0) {
 TransientResult TransientSimulator::run(double t0, const Eigen::VectorXd& y0, double t_end) {
   Impl& m = *impl_;
   if (y0.size() != m.n) {
-    throw std::invalid_argument("transient: initial state: expected " + std::to_string(m.n) + " entries, got " +
-                                std::to_string(y0.size()));
+    throw std::invalid_argument("transient: initial state: expected " + std::to_string(m.n) +
+                                " entries, got " + std::to_string(y0.size()));
   }
   if (!(t_end > t0)) throw std::invalid_argument("transient: t_end must be after t0");
   TransientResult r;
@@ -623,8 +659,9 @@ TransientResult TransientSimulator::run(double t0, const Eigen::VectorXd& y0, do
       if (flag < 0) {
         r.ok = false;
         r.cvode_flag = flag;
-        r.message = m.cvode_message.empty() ? std::string("CVODE failed (flag ") + std::to_string(flag) + ")"
-                                            : m.cvode_message;
+        r.message = m.cvode_message.empty()
+                        ? std::string("CVODE failed (flag ") + std::to_string(flag) + ")"
+                        : m.cvode_message;
         if (!m.rhs_failure.empty()) r.message += "; right-hand side: " + m.rhs_failure;
         break;
       }
@@ -649,8 +686,8 @@ TransientResult TransientSimulator::run(double t0, const Eigen::VectorXd& y0, do
   return r;
 }
 
-TransientResult simulateCycle(const TransientProblem& problem, ProcessCycle& process, const TransientOptions& options,
-                              double duration) {
+TransientResult simulateCycle(const TransientProblem& problem, ProcessCycle& process,
+                              const TransientOptions& options, double duration) {
   TransientSimulator sim(problem, process, options);
   const Eigen::VectorXd y0 = sim.equilibriumState(0.0);
   const double t_end = duration > 0 ? duration : process.duration();

@@ -43,9 +43,9 @@
 ///  3. RᵀMR by the block mass products (jointSpaceInertia), Rᵀ(Q_ext − M Sc);
 ///  4. θ̈ by a 6×6 Cholesky, θ̈_m, ξ̇ explicitly.
 /// A position problem that does not converge (or a non-finite derivative) returns +1: CVODE
-/// retries with a smaller step; a non-finite process load returns −1 (a smaller step cannot help). Any exception is caught in the C trampoline, stored as
-/// std::exception_ptr, the trampoline returns −1 and the exception is rethrown after CVode
-/// returns (style.md §6–§7).
+/// retries with a smaller step; a non-finite process load returns −1 (a smaller step cannot help).
+/// Any exception is caught in the C trampoline, stored as std::exception_ptr, the trampoline
+/// returns −1 and the exception is rethrown after CVode returns (style.md §6–§7).
 ///
 /// ## Integrator
 /// CVODE with Adams–Moulton, variable order 1–12 (the analogue of MATLAB's ode113) by default,
@@ -84,8 +84,8 @@
 #include <string>
 #include <vector>
 
-#include "compensator/robot/deflection.hpp"
 #include "compensator/process/process_spec.hpp"
+#include "compensator/robot/deflection.hpp"
 #include "compensator/robot/robot_card.hpp"
 
 namespace roprec::nc {
@@ -98,15 +98,15 @@ enum class ServoMode {
 
 /// Drive parameters per joint, link side.
 struct DriveModel {
-  Vec6 k{Vec6::Constant(1e6)};              ///< joint stiffness K, N m/rad
-  Vec6 damping{Vec6::Zero()};               ///< joint damping D, N m s/rad
-  Vec6 motor_inertia{Vec6::Ones()};         ///< B_m, kg m² (reflected, link side)
+  Vec6 k{Vec6::Constant(1e6)};       ///< joint stiffness K, N m/rad
+  Vec6 damping{Vec6::Zero()};        ///< joint damping D, N m s/rad
+  Vec6 motor_inertia{Vec6::Ones()};  ///< B_m, kg m² (reflected, link side)
   ServoMode servo{ServoMode::kCascade};
-  Vec6 kv{Vec6::Constant(40.0)};            ///< position gain Kv, 1/s
-  Vec6 kw{Vec6::Ones()};                    ///< velocity gain Kω, N m s/rad
-  Vec6 wi{Vec6::Constant(40.0)};            ///< integral corner ω_i, 1/s (Ki = Kω ω_i)
-  bool integral{true};                      ///< velocity-loop integral action
-  std::array<bool, 6> locked{};             ///< rigid joints (θ = θ_m = θ_c)
+  Vec6 kv{Vec6::Constant(40.0)};  ///< position gain Kv, 1/s
+  Vec6 kw{Vec6::Ones()};          ///< velocity gain Kω, N m s/rad
+  Vec6 wi{Vec6::Constant(40.0)};  ///< integral corner ω_i, 1/s (Ki = Kω ω_i)
+  bool integral{true};            ///< velocity-loop integral action
+  std::array<bool, 6> locked{};   ///< rigid joints (θ = θ_m = θ_c)
   /// The static compliance this drive settles to: k and k_servo = Kv·Kω (proportional cascade)
   /// or ∞ (integral action, ideal servo). Not meaningful for kFree.
   [[nodiscard]] JointCompliance staticCompliance() const;
@@ -134,8 +134,8 @@ struct DriveEstimateOptions {
 /// Drive model of a card at the reference configuration θ_ref (link inertias (RᵀMR)_ii there).
 /// Card values win: stiffness (required), position_gain (absent → ServoMode::kIdeal),
 /// velocity_gain, motor_inertia. Throws InputError (card file, joint line) without stiffness.
-DriveModel driveModelFromCard(const RobotCard& card, const Model& model, Data& data, const Vec6& theta_ref,
-                              const DriveEstimateOptions& options = {});
+DriveModel driveModelFromCard(const RobotCard& card, const Model& model, Data& data,
+                              const Vec6& theta_ref, const DriveEstimateOptions& options = {});
 
 // ---------------------------------------------------------------------------------------------
 // Process law
@@ -239,13 +239,13 @@ enum class Method { kAdams, kBdf };
 
 struct TransientOptions {
   Method method{Method::kAdams};
-  double rtol{1e-8};           ///< CVODE relative tolerance
-  double atol_angle{1e-9};     ///< rad, absolute tolerance of θ, θ_m, ξ (2.5 nm at 2.5 m reach)
-  double atol_rate{1e-7};      ///< rad/s, absolute tolerance of θ̇, θ̇_m
-  double max_step{5e-3};       ///< s (0 = CVODE's default: none); also capped by the process
-  double min_step{1e-12};      ///< s: CVODE gives up below (a failure that smaller steps cannot cure)
-  double sample{1e-3};         ///< output sampling, s
-  long max_steps{2000000};     ///< CVODE steps in total
+  double rtol{1e-8};        ///< CVODE relative tolerance
+  double atol_angle{1e-9};  ///< rad, absolute tolerance of θ, θ_m, ξ (2.5 nm at 2.5 m reach)
+  double atol_rate{1e-7};   ///< rad/s, absolute tolerance of θ̇, θ̇_m
+  double max_step{5e-3};    ///< s (0 = CVODE's default: none); also capped by the process
+  double min_step{1e-12};   ///< s: CVODE gives up below (a failure that smaller steps cannot cure)
+  double sample{1e-3};      ///< output sampling, s
+  long max_steps{2000000};  ///< CVODE steps in total
   /// Position-problem start in the right-hand side. The exact forward recursion + one Φ check
   /// measured cheaper (3.8 µs per RHS) than the warm-started Newton (5.1 µs, it iterates and now
   /// checks the branch), so it is the default; kWarmStart remains selectable.
@@ -255,30 +255,30 @@ struct TransientOptions {
 struct TransientProblem {
   const Model* model{nullptr};
   DriveModel drive;
-  Vec6 theta_cmd{Vec6::Zero()};        ///< commanded (nominal) joints, rad
-  Vec6 command_offset{Vec6::Zero()};   ///< added by the controller, not part of the nominal
+  Vec6 theta_cmd{Vec6::Zero()};       ///< commanded (nominal) joints, rad
+  Vec6 command_offset{Vec6::Zero()};  ///< added by the controller, not part of the nominal
   bool gravity{true};
-  bool follower_wrench{true};          ///< process wrench turns with the real TCP
+  bool follower_wrench{true};  ///< process wrench turns with the real TCP
 };
 
 struct TransientSample {
   double t{0.0};
   ProcessSample process;
-  Vec6 theta{Vec6::Zero()};     ///< link angles, rad
-  Vec6 theta_m{Vec6::Zero()};   ///< motor angles (link side), rad
-  Vec3 dp{Vec3::Zero()};        ///< TCP translation deviation from FK(θ_cmd), m, base frame
-  Vec3 drot{Vec3::Zero()};      ///< TCP rotation deviation (rotation vector), rad, base frame
+  Vec6 theta{Vec6::Zero()};    ///< link angles, rad
+  Vec6 theta_m{Vec6::Zero()};  ///< motor angles (link side), rad
+  Vec3 dp{Vec3::Zero()};       ///< TCP translation deviation from FK(θ_cmd), m, base frame
+  Vec3 drot{Vec3::Zero()};     ///< TCP rotation deviation (rotation vector), rad, base frame
 };
 
 struct TransientStats {
   long steps{0};
-  long rhs_evals{0};        ///< by the integrator
-  long rhs_evals_jac{0};    ///< by the difference-quotient Jacobian
+  long rhs_evals{0};      ///< by the integrator
+  long rhs_evals_jac{0};  ///< by the difference-quotient Jacobian
   long jac_evals{0};
   long nonlinear_iterations{0};
   long error_test_failures{0};
   long convergence_failures{0};
-  int restarts{0};          ///< CVodeReInit at breakpoints
+  int restarts{0};  ///< CVodeReInit at breakpoints
 };
 
 /// Outcome of a run. Non-convergence is a value: ok = false with the CVODE message.
@@ -298,7 +298,8 @@ class TransientSimulator {
  public:
   /// `problem.model` and `process` must outlive the simulator. Throws std::invalid_argument for
   /// an inconsistent problem (non-positive k or B_m, a free joint without link inertia, …).
-  TransientSimulator(const TransientProblem& problem, ProcessCycle& process, const TransientOptions& options = {});
+  TransientSimulator(const TransientProblem& problem, ProcessCycle& process,
+                     const TransientOptions& options = {});
   ~TransientSimulator();
   TransientSimulator(const TransientSimulator&) = delete;
   TransientSimulator& operator=(const TransientSimulator&) = delete;

@@ -43,7 +43,8 @@ void checkOrigin(const XmlNode& parent) {
 UrdfIndex validate(const XmlNode& robot) {
   UrdfIndex idx;
   idx.robot_line = robot.line;
-  if (robot.name != "robot") robot.fail("root element is <" + robot.name + ">, a URDF needs <robot>");
+  if (robot.name != "robot")
+    robot.fail("root element is <" + robot.name + ">, a URDF needs <robot>");
   for (const XmlNode& e : robot.children) {
     if (e.name == "link") {
       const std::string name = e.str("name");
@@ -59,14 +60,16 @@ UrdfIndex validate(const XmlNode& robot) {
         const XmlNode* I = in->child("inertia");
         if (I == nullptr) in->fail("<inertial> of link '" + name + "' has no <inertia>");
         Mat3 T;
-        T << I->number("ixx"), I->number("ixy"), I->number("ixz"), I->number("ixy"), I->number("iyy"),
-            I->number("iyz"), I->number("ixz"), I->number("iyz"), I->number("izz");
+        T << I->number("ixx"), I->number("ixy"), I->number("ixz"), I->number("ixy"),
+            I->number("iyy"), I->number("iyz"), I->number("ixz"), I->number("iyz"),
+            I->number("izz");
         const Eigen::SelfAdjointEigenSolver<Mat3> es(T);
         const Vec3 ev = es.eigenvalues();
         const double tol = 1e-9 * std::max(1.0, ev.cwiseAbs().maxCoeff());
         if (ev.minCoeff() < -tol || ev[0] + ev[1] < ev[2] - tol) {
           I->fail("<inertia> of link '" + name +
-                  "' is not physically valid (principal moments must be >= 0 and satisfy the triangle inequality)");
+                  "' is not physically valid (principal moments must be >= 0 and satisfy the "
+                  "triangle inequality)");
         }
       }
     }
@@ -83,11 +86,13 @@ UrdfIndex validate(const XmlNode& robot) {
     if (c == nullptr) e.fail("joint '" + name + "' has no <child>");
     const std::string parent = p->str("link");
     const std::string child = c->str("link");
-    if (!idx.link_line.count(parent)) p->fail("joint '" + name + "': unknown parent link '" + parent + "'");
-    if (!idx.link_line.count(child)) c->fail("joint '" + name + "': unknown child link '" + child + "'");
+    if (!idx.link_line.count(parent))
+      p->fail("joint '" + name + "': unknown parent link '" + parent + "'");
+    if (!idx.link_line.count(child))
+      c->fail("joint '" + name + "': unknown child link '" + child + "'");
     if (auto it = idx.parent_joint_of_link.find(child); it != idx.parent_joint_of_link.end()) {
-      e.fail("joint '" + name + "' closes a loop: link '" + child + "' already has the parent joint '" +
-             it->second + "' (a URDF must be a tree)");
+      e.fail("joint '" + name + "' closes a loop: link '" + child +
+             "' already has the parent joint '" + it->second + "' (a URDF must be a tree)");
     }
     idx.parent_joint_of_link[child] = name;
     checkOrigin(e);
@@ -101,7 +106,8 @@ UrdfIndex validate(const XmlNode& robot) {
       }
       // urdfdom requires effort and velocity on every <limit>
       for (const char* k : {"effort", "velocity"}) {
-        if (!l->has(k)) l->fail("joint '" + name + "': <limit> is missing the attribute '" + k + "'");
+        if (!l->has(k))
+          l->fail("joint '" + name + "': <limit> is missing the attribute '" + k + "'");
       }
     } else if (type == "revolute" || type == "prismatic") {
       e.fail("joint '" + name + "' (" + type + ") has no <limit>");
@@ -198,7 +204,8 @@ ChainDescription loadUrdfChain(const std::string& path, const UrdfChainRequest& 
 
   console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
   const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(text);
-  if (!model) throw InputError(path, idx.robot_line, "urdfdom rejected the URDF (see its structure)");
+  if (!model)
+    throw InputError(path, idx.robot_line, "urdfdom rejected the URDF (see its structure)");
 
   const urdf::LinkConstSharedPtr root = model->getRoot();
   std::string base = request.base_link.empty() ? (root ? root->name : "") : request.base_link;
@@ -228,7 +235,8 @@ ChainDescription loadUrdfChain(const std::string& path, const UrdfChainRequest& 
         best = link->name;
       }
       for (auto it = link->child_joints.rbegin(); it != link->child_joints.rend(); ++it) {
-        stack.emplace_back(model->getLink((*it)->child_link_name), depth + (isMoving((*it)->type) ? 1 : 0));
+        stack.emplace_back(model->getLink((*it)->child_link_name),
+                           depth + (isMoving((*it)->type) ? 1 : 0));
       }
     }
     tip = best;
@@ -280,16 +288,18 @@ ChainDescription loadUrdfChain(const std::string& path, const UrdfChainRequest& 
       continue;
     }
     if (j->type == urdf::Joint::PRISMATIC) {
-      throw InputError(path, line, "joint '" + j->name +
-                                       "' is prismatic: roprec models 6R chains (revolute joints only)");
+      throw InputError(
+          path, line,
+          "joint '" + j->name + "' is prismatic: roprec models 6R chains (revolute joints only)");
     }
     if (j->type != urdf::Joint::REVOLUTE && j->type != urdf::Joint::CONTINUOUS) {
       throw InputError(path, line, "joint '" + j->name + "' is not revolute");
     }
     if (n >= 6) {
       throw InputError(path, line,
-                       "the chain " + base + " -> " + tip + " has more than 6 revolute joints (at '" +
-                           j->name + "'): roprec needs a 6R chain");
+                       "the chain " + base + " -> " + tip +
+                           " has more than 6 revolute joints (at '" + j->name +
+                           "'): roprec needs a 6R chain");
     }
     ChainJoint& cj = chain.joints[static_cast<size_t>(n)];
     cj.name = j->name;

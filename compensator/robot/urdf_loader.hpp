@@ -14,7 +14,8 @@ namespace roprec {
 
 struct UrdfChainRequest {
   std::string base_link;  ///< empty: the URDF root link
-  std::string tip_link;   ///< empty: `tool0`, else `flange`, else the child of the 6th revolute joint
+  std::string
+      tip_link;  ///< empty: `tool0`, else `flange`, else the child of the 6th revolute joint
 };
 
 /// Throws InputError (file, line, what is wrong) for malformed XML, NaN or missing attributes,

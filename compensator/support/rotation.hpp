@@ -5,9 +5,11 @@
 ///
 /// * URDF rpy (fixed axes X, Y, Z):             R = Rz(yaw) Ry(pitch) Rx(roll)
 /// * KUKA A,B,C (intrinsic Z-Y'-X''):           R = Rz(A) Ry(B) Rx(C)
-/// * FANUC W,P,R (fixed X, Y, Z):               R = Rz(R) Ry(P) Rx(W)   (same matrix, A=R, B=P, C=W)
+/// * FANUC W,P,R (fixed X, Y, Z):               R = Rz(R) Ry(P) Rx(W)   (same matrix, A=R, B=P,
+/// C=W)
 /// * ABB / contract quaternion [w, x, y, z]:    unit quaternion, scalar first.
-/// * rotation vector (axis * angle):            used for small rotation deviations (µrad in reports).
+/// * rotation vector (axis * angle):            used for small rotation deviations (µrad in
+/// reports).
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>

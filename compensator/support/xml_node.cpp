@@ -67,8 +67,9 @@ Eigen::VectorXd XmlNode::numbers(const std::string& attr, int n) const {
   std::string tok;
   while (in >> tok) {
     auto v = parseNumber(tok);
-    if (!v) fail("<" + name + "> attribute '" + attr + "' has a value that is not a finite number: '" +
-                 tok + "'");
+    if (!v)
+      fail("<" + name + "> attribute '" + attr + "' has a value that is not a finite number: '" +
+           tok + "'");
     vals.push_back(*v);
   }
   if (static_cast<int>(vals.size()) != n) {

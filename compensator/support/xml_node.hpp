@@ -13,12 +13,12 @@
 namespace roprec {
 
 struct XmlNode {
-  std::string file;   ///< source file (for messages)
-  std::string name;   ///< element name
-  int line{0};        ///< 1-based line of the element's start tag
+  std::string file;  ///< source file (for messages)
+  std::string name;  ///< element name
+  int line{0};       ///< 1-based line of the element's start tag
   std::vector<std::pair<std::string, std::string>> attributes;  ///< in document order
   std::vector<XmlNode> children;
-  std::string text;   ///< concatenated text content (trimmed)
+  std::string text;  ///< concatenated text content (trimmed)
 
   [[nodiscard]] bool has(const std::string& attr) const;
   [[nodiscard]] std::optional<std::string> get(const std::string& attr) const;
@@ -30,7 +30,8 @@ struct XmlNode {
   [[nodiscard]] double number(const std::string& attr, double fallback) const;
   /// Whitespace-separated list of exactly n finite doubles.
   [[nodiscard]] Eigen::VectorXd numbers(const std::string& attr, int n) const;
-  [[nodiscard]] Eigen::Vector3d vec3(const std::string& attr, const Eigen::Vector3d& fallback) const;
+  [[nodiscard]] Eigen::Vector3d vec3(const std::string& attr,
+                                     const Eigen::Vector3d& fallback) const;
   [[nodiscard]] bool boolean(const std::string& attr, bool fallback) const;
   /// First child with this element name, or nullptr.
   [[nodiscard]] const XmlNode* child(const std::string& element) const;

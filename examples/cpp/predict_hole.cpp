@@ -30,8 +30,8 @@ int main(int argc, char** argv) {
       }
       std::printf("  position error  %8.1f um\n", h.position_error * 1e6);
       std::printf("  U_work (95 %%)   %8.1f um\n", h.U_work * 1e6);
-      std::printf("  d_work (base)   %8.1f %8.1f %8.1f um\n", h.d_work.x() * 1e6, h.d_work.y() * 1e6,
-                  h.d_work.z() * 1e6);
+      std::printf("  d_work (base)   %8.1f %8.1f %8.1f um\n", h.d_work.x() * 1e6,
+                  h.d_work.y() * 1e6, h.d_work.z() * 1e6);
       return 0;
     }
     std::fprintf(stderr, "predict_hole: no hole %s\n", argc == 4 ? argv[3] : "in the program");

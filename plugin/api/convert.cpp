@@ -18,7 +18,8 @@ ConvertResult convertProgramFile(const ConvertRequest& request) {
     return r;
   }
   postproc::ConversionReport report;
-  const auto files = postproc::convertProgram(p, postproc::dialectFromName(*request.to), request.output, report);
+  const auto files =
+      postproc::convertProgram(p, postproc::dialectFromName(*request.to), request.output, report);
   for (const auto& [path, bytes] : files) {
     writeFileAtomic(path, bytes);
     r.written.push_back(path);
@@ -46,7 +47,8 @@ std::vector<std::string> groupNotes(const std::vector<std::string>& notes) {
       continue;
     }
     std::string line = key + " (" + std::to_string(names.size()) + " items: ";
-    for (size_t i = 0; i < std::min<size_t>(names.size(), 3); ++i) line += (i ? ", " : "") + names[i];
+    for (size_t i = 0; i < std::min<size_t>(names.size(), 3); ++i)
+      line += (i ? ", " : "") + names[i];
     line += names.size() > 3 ? ", ...)" : ")";
     out.push_back(line);
   }

@@ -18,15 +18,15 @@
 namespace roprec::api {
 
 struct ConvertRequest {
-  std::string program;                  ///< the source program (any dialect)
-  std::string output;                   ///< the output path (KRL: the .src; the .dat goes beside it)
-  std::optional<std::string> to;        ///< krl, rapid, tp, csv or json; none: the program's own writer
+  std::string program;            ///< the source program (any dialect)
+  std::string output;             ///< the output path (KRL: the .src; the .dat goes beside it)
+  std::optional<std::string> to;  ///< krl, rapid, tp, csv or json; none: the program's own writer
   std::vector<FrameDefinition> frames;  ///< frames the program uses but does not define
 };
 
 struct ConvertResult {
   std::vector<std::string> written;  ///< the paths written
-  std::vector<std::string> notes;    ///< what to check in the output, one line per kind (groupNotes)
+  std::vector<std::string> notes;  ///< what to check in the output, one line per kind (groupNotes)
   std::vector<std::string> skipped;  ///< items not converted
 };
 

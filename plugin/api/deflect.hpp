@@ -24,16 +24,18 @@ struct DeflectRequest {
   std::optional<nc::Wrench> wrench;   ///< on the TCP, base frame; replaces the cell's process
   bool process{true};                 ///< without `wrench`: the cell's steady process load, if any
   std::string joints_name{"joints"};  ///< names the joints in errors
-  std::string wrench_source{"given wrench (base frame, on the TCP)"};  ///< loads.wrench_source with `wrench`
+  std::string wrench_source{
+      "given wrench (base frame, on the TCP)"};  ///< loads.wrench_source with `wrench`
 };
 
 struct DeflectResult {
   nc::Vec6 joints{nc::Vec6::Zero()};  ///< θ_m, URDF, rad
   nc::Loads loads;
-  std::string load_source;            ///< "none", the request's wrench_source or the cell process
-  Mat3 R_W_tcp{Mat3::Identity()};     ///< nominal (rigid) TCP orientation, base frame
+  std::string load_source;         ///< "none", the request's wrench_source or the cell process
+  Mat3 R_W_tcp{Mat3::Identity()};  ///< nominal (rigid) TCP orientation, base frame
   nc::Deflection deflection;
-  /// The force (N) and moment (N·m) on the TCP in the base frame (tool-frame loads rotated by R_W_tcp).
+  /// The force (N) and moment (N·m) on the TCP in the base frame (tool-frame loads rotated by
+  /// R_W_tcp).
   [[nodiscard]] Vec3 force() const;
   [[nodiscard]] Vec3 moment() const;
 };

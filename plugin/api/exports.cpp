@@ -10,7 +10,9 @@ namespace roprec::api {
 
 namespace {
 
-std::string fileName(const std::string& path) { return std::filesystem::path(path).filename().string(); }
+std::string fileName(const std::string& path) {
+  return std::filesystem::path(path).filename().string();
+}
 
 Json poseJsonContract(const Pose& T) {
   Json j = Json::object();
@@ -66,8 +68,8 @@ const Pose& nominalOf(const CompensationResult& r, size_t i) {
 
 void csvQuaternion(std::ostringstream& s, const Mat3& R) {
   const Eigen::Quaterniond q = quaternionFromRotation(R);
-  s << "," << formatNumber(q.w(), 9) << "," << formatNumber(q.x(), 9) << "," << formatNumber(q.y(), 9) << ","
-    << formatNumber(q.z(), 9);
+  s << "," << formatNumber(q.w(), 9) << "," << formatNumber(q.x(), 9) << ","
+    << formatNumber(q.y(), 9) << "," << formatNumber(q.z(), 9);
 }
 
 void csvRow(std::ostringstream& s, const CompensationResult& r, size_t i) {
@@ -81,22 +83,26 @@ void csvRow(std::ostringstream& s, const CompensationResult& r, size_t i) {
   for (int k = 0; k < 3; ++k) s << "," << formatNumber(h.before.d_rot[k] * 1e6, 3);
   for (int k = 0; k < 3; ++k) s << "," << formatNumber(P.translation()[k] * 1e3, 6);
   csvQuaternion(s, P.linear());
-  for (int k = 0; k < 6; ++k) s << "," << formatNumber((h.ok ? h.theta_cmd[k] : h.before.joints[k]) / kDeg, 6);
+  for (int k = 0; k < 6; ++k)
+    s << "," << formatNumber((h.ok ? h.theta_cmd[k] : h.before.joints[k]) / kDeg, 6);
   s << ",\"" << (h.ok ? h.config_text : h.before.config) << "\"," << formatNumber(h.psi / kDeg, 4);
   const Vec3 a = N.linear().col(2);
   s << "," << formatNumber(h.ok ? perpNorm(h.residual, a) * 1e6 : h.before.position_error * 1e6, 4);
   const HolePrediction& u = h.ok ? h.after : h.before;
   s << "," << formatNumber(u.U_robot * 1e6, 3) << "," << formatNumber(u.U_mach * 1e6, 3) << ","
-    << formatNumber(u.U_work * 1e6, 3) << "," << formatNumber(u.k, 4) << "," << verdictName(u.verdict) << ",\""
-    << h.reason << "\"\n";
+    << formatNumber(u.U_work * 1e6, 3) << "," << formatNumber(u.k, 4) << ","
+    << verdictName(u.verdict) << ",\"" << h.reason << "\"\n";
 }
 
 std::string targetsCsv(const CompensationResult& r) {
   std::ostringstream s;
-  s << "id,status,nominal_x_mm,nominal_y_mm,nominal_z_mm,nominal_qw,nominal_qx,nominal_qy,nominal_qz,"
+  s << "id,status,nominal_x_mm,nominal_y_mm,nominal_z_mm,nominal_qw,nominal_qx,nominal_qy,nominal_"
+       "qz,"
        "before_dx_um,before_dy_um,before_dz_um,before_rx_urad,before_ry_urad,before_rz_urad,"
-       "programmed_x_mm,programmed_y_mm,programmed_z_mm,programmed_qw,programmed_qx,programmed_qy,programmed_qz,"
-       "j1_deg,j2_deg,j3_deg,j4_deg,j5_deg,j6_deg,config,rotation_about_axis_deg,residual_um,U_robot_um,U_mach_um,"
+       "programmed_x_mm,programmed_y_mm,programmed_z_mm,programmed_qw,programmed_qx,programmed_qy,"
+       "programmed_qz,"
+       "j1_deg,j2_deg,j3_deg,j4_deg,j5_deg,j6_deg,config,rotation_about_axis_deg,residual_um,U_"
+       "robot_um,U_mach_um,"
        "U_work_um,k,verdict,reason\n";
   for (size_t i = 0; i < r.holes.size(); ++i) csvRow(s, r, i);
   return s.str();
@@ -157,7 +163,8 @@ Json predictionJson(const PredictionResult& r) {
 std::string predictionReport(const PredictionResult& r) {
   const PredictionContext& c = r.context;
   ReportInput in = reportHeader(c, "roprec prediction — " + fileName(c.job.path));
-  if (!c.robot.card.model.empty()) in.robot += " (" + vendorName(c.robot.card.vendor) + " " + c.robot.card.model + ")";
+  if (!c.robot.card.model.empty())
+    in.robot += " (" + vendorName(c.robot.card.vendor) + " " + c.robot.card.model + ")";
   in.summary = r.summary;
   for (size_t i = 0; i < r.holes.size(); ++i) {
     ReportHole rh;
@@ -168,7 +175,8 @@ std::string predictionReport(const PredictionResult& r) {
   return renderReport(in);
 }
 
-std::string compensationTargets(const CompensationResult& r, const std::string& program_path, bool csv) {
+std::string compensationTargets(const CompensationResult& r, const std::string& program_path,
+                                bool csv) {
   if (csv) return targetsCsv(r);
   Json root = Json::object();
   root.set("robot", Json::str(r.context.robot.card.name));
@@ -183,7 +191,8 @@ std::string compensationTargets(const CompensationResult& r, const std::string& 
 
 std::string compensationReport(const CompensationResult& r, const std::string& program_path) {
   const PredictionContext& c = r.context;
-  ReportInput in = reportHeader(c, "roprec compensation — " + fileName(program_path) + " (" + r.orientation + ")");
+  ReportInput in = reportHeader(
+      c, "roprec compensation — " + fileName(program_path) + " (" + r.orientation + ")");
   in.program = program_path;
   in.compensation = true;
   std::vector<HolePrediction> after;
@@ -206,7 +215,8 @@ std::string compensationReport(const CompensationResult& r, const std::string& p
   return renderReport(in);
 }
 
-std::string millingTargetsJson(const MillingCompensationResult& r, const std::string& program_path) {
+std::string millingTargetsJson(const MillingCompensationResult& r,
+                               const std::string& program_path) {
   const PredictionContext& c = r.context;
   Json root = Json::object();
   root.set("robot", Json::str(c.robot.card.name));

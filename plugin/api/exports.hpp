@@ -16,7 +16,8 @@ Json predictionJson(const PredictionResult& r);
 std::string predictionReport(const PredictionResult& r);
 
 /// The corrected-target export: CSV when `csv`, else JSON (docs/contract.md "Corrected targets").
-std::string compensationTargets(const CompensationResult& r, const std::string& program_path, bool csv);
+std::string compensationTargets(const CompensationResult& r, const std::string& program_path,
+                                bool csv);
 /// The compensation report (before/after maps).
 std::string compensationReport(const CompensationResult& r, const std::string& program_path);
 

@@ -38,7 +38,8 @@ Json drillJson(const DrillingSpec& s) {
   drill.set("chisel_half_length_mm", Json::number(g.chiselHalfLength() / kMm, 4));
   drill.set("point_length_mm", Json::number(g.pointLength() / kMm, 4));
   drill.set("runout_mm", Json::number(g.runout / kMm, 5));
-  drill.set("runout_source", Json::str(s.runout_given ? "cell <drill runout_mm>" : s.deviation.runout_source));
+  drill.set("runout_source",
+            Json::str(s.runout_given ? "cell <drill runout_mm>" : s.deviation.runout_source));
   drill.set("angle_law", Json::str(s.law == AngleLaw::kGeometric ? "geometric" : "paper"));
   drill.set("working_angles", Json::boolean(s.working_angles));
   return drill;
@@ -73,8 +74,9 @@ Json coefficientsJson(const DrillingCoefficients& c, const std::string& source) 
 
 /// Calibrates kst0/ksa0 from one test: updates the spec and the model, sets "calibration" on
 /// `root`, and gives the calibrated cell's text when `want_cell`.
-void calibrate(const CellSpec& cell, DrillingSpec& s, DrillingModel& model, const DrillingMeasurement& meas,
-               bool want_cell, Json& root, std::string& cell_text) {
+void calibrate(const CellSpec& cell, DrillingSpec& s, DrillingModel& model,
+               const DrillingMeasurement& meas, bool want_cell, Json& root,
+               std::string& cell_text) {
   const DrillingCalibration cal = calibrateDrilling(model, s.feed, meas.thrust, meas.torque);
   Json c = Json::object();
   c.set("measured_thrust_N", Json::number(meas.thrust, 3));
@@ -89,13 +91,15 @@ void calibrate(const CellSpec& cell, DrillingSpec& s, DrillingModel& model, cons
   c.set("model_after_torque_Nm", Json::number(cal.torque_model_after, 4));
   root.set("calibration", c);
   std::ostringstream note;
-  note << "calibrated by roprec forces from one test: Fa=" << fixed(meas.thrust, 3) << " N, M=" << fixed(meas.torque, 4)
-       << " N m at Dc " << fixed(s.geometry.diameter / kMm, 3) << " mm, f " << fixed(s.feed / kMm, 4) << " mm/rev ("
-       << s.material->name << ")";
+  note << "calibrated by roprec forces from one test: Fa=" << fixed(meas.thrust, 3)
+       << " N, M=" << fixed(meas.torque, 4) << " N m at Dc " << fixed(s.geometry.diameter / kMm, 3)
+       << " mm, f " << fixed(s.feed / kMm, 4) << " mm/rev (" << s.material->name << ")";
   s.coeff = cal.coeff;
   s.coeff_source = note.str();
   model.coeff = cal.coeff;
-  if (want_cell) cell_text = cellWithCalibratedCoefficients(readFileBytes(cell.file), cell.file, cal.coeff, note.str());
+  if (want_cell)
+    cell_text =
+        cellWithCalibratedCoefficients(readFileBytes(cell.file), cell.file, cal.coeff, note.str());
 }
 
 Json lipJson(int index, const LipForces& l) {
@@ -129,8 +133,10 @@ Json drillingSteadyJson(const DrillingForces& F, double spindle_rpm) {
 Json drillingWrenchJson(const DrillingForces& F, double spindle_rpm) {
   const ToolWrench w = toolWrench(F, 0.0);
   Json wj = Json::object();
-  wj.set("frame", Json::str("tool: z = drill axis into the material; on the TCP; Fr rotates with the spindle "
-                            "(shown at spindle angle 0, lip 1 on +x)"));
+  wj.set(
+      "frame",
+      Json::str("tool: z = drill axis into the material; on the TCP; Fr rotates with the spindle "
+                "(shown at spindle angle 0, lip 1 on +x)"));
   wj.set("force_N", vec3(w.force, 2));
   wj.set("torque_Nm", vec3(w.torque, 4));
   wj.set("spindle_frequency_Hz", Json::number(spindle_rpm / 60.0, 4));
@@ -140,8 +146,10 @@ Json drillingWrenchJson(const DrillingForces& F, double spindle_rpm) {
 double engagedRadius(const DrillingForces& f) { return f.r_out > f.r_in ? f.r_out : 0.0; }
 
 /// The curve over depth (CSV) and its maxima ("max_over_depth").
-Json depthProfile(const DrillingModel& model, DrillingData& data, const DrillingSpec& s, double step, std::string& csv) {
-  const std::vector<DepthSample> prof = drillingDepthProfile(model, data, s.feed, s.hole_depth, s.through, step);
+Json depthProfile(const DrillingModel& model, DrillingData& data, const DrillingSpec& s,
+                  double step, std::string& csv) {
+  const std::vector<DepthSample> prof =
+      drillingDepthProfile(model, data, s.feed, s.hole_depth, s.through, step);
   std::ostringstream c;
   c << "depth_mm,engaged_radius_mm,Fa_N,Ft_N,M_Nm,Fr_N\n";
   double maxF = 0;
@@ -149,8 +157,9 @@ Json depthProfile(const DrillingModel& model, DrillingData& data, const Drilling
   double maxR = 0;
   for (const DepthSample& d : prof) {
     const DrillingForces& f = d.forces;
-    c << fixed(d.depth / kMm, 4) << ',' << fixed(engagedRadius(f) / kMm, 4) << ',' << fixed(f.thrust, 3) << ','
-      << fixed(f.tangential, 3) << ',' << fixed(f.torque, 5) << ',' << fixed(f.residual, 3) << '\n';
+    c << fixed(d.depth / kMm, 4) << ',' << fixed(engagedRadius(f) / kMm, 4) << ','
+      << fixed(f.thrust, 3) << ',' << fixed(f.tangential, 3) << ',' << fixed(f.torque, 5) << ','
+      << fixed(f.residual, 3) << '\n';
     maxF = std::max(maxF, f.thrust);
     maxM = std::max(maxM, f.torque);
     maxR = std::max(maxR, f.residual);
@@ -167,8 +176,8 @@ Json depthProfile(const DrillingModel& model, DrillingData& data, const Drilling
 
 /// The feed absorbed by an axial compliance, one step per revolution: the CSV per revolution and
 /// "axial_coupling"; `converged` false when some revolution did not converge.
-Json axialCoupling(const DrillingModel& model, DrillingData& data, const DrillingSpec& s, double compliance,
-                   std::string& csv, bool& converged) {
+Json axialCoupling(const DrillingModel& model, DrillingData& data, const DrillingSpec& s,
+                   double compliance, std::string& csv, bool& converged) {
   const std::vector<AxialCouplingSample> ac =
       drillingAxialCoupling(model, data, s.feed, s.hole_depth, s.through, compliance);
   std::ostringstream c2;
@@ -179,9 +188,10 @@ Json axialCoupling(const DrillingModel& model, DrillingData& data, const Drillin
   double max_f = 0;
   for (const AxialCouplingSample& x : ac) {
     const DrillingForces& f = x.forces;
-    c2 << x.revolution << ',' << fixed(x.depth / kMm, 5) << ',' << fixed(engagedRadius(f) / kMm, 4) << ','
-       << fixed(f.thrust, 3) << ',' << fixed(f.tangential, 3) << ',' << fixed(f.torque, 5) << ','
-       << fixed(f.residual, 3) << ',' << fixed(x.feed / kMm, 6) << ',' << fixed(x.deflection * 1e6, 3) << '\n';
+    c2 << x.revolution << ',' << fixed(x.depth / kMm, 5) << ',' << fixed(engagedRadius(f) / kMm, 4)
+       << ',' << fixed(f.thrust, 3) << ',' << fixed(f.tangential, 3) << ',' << fixed(f.torque, 5)
+       << ',' << fixed(f.residual, 3) << ',' << fixed(x.feed / kMm, 6) << ','
+       << fixed(x.deflection * 1e6, 3) << '\n';
     all = all && x.converged;
     max_dz = std::max(max_dz, x.deflection);
     min_f = std::min(min_f, x.feed);
@@ -221,7 +231,8 @@ Json machiningDeviationJson(const DrillingSpec& s, const DrillingForces& F) {
   return mj;
 }
 
-void drillingForcesOf(const CellSpec& cell, DrillingSpec& s, const ForcesRequest& req, ForcesResult& out) {
+void drillingForcesOf(const CellSpec& cell, DrillingSpec& s, const ForcesRequest& req,
+                      ForcesResult& out) {
   Json& root = out.json;
   root.set("process", Json::str("drilling"));
   root.set("material", Json::str(s.material->name));
@@ -229,7 +240,8 @@ void drillingForcesOf(const CellSpec& cell, DrillingSpec& s, const ForcesRequest
   root.set("drill", drillJson(s));
   root.set("cut", drillingCutJson(s));
   DrillingModel model = drillingModelOf(s);
-  if (req.calibrate) calibrate(cell, s, model, *req.calibrate, req.calibrated_cell, root, out.calibrated_cell);
+  if (req.calibrate)
+    calibrate(cell, s, model, *req.calibrate, req.calibrated_cell, root, out.calibrated_cell);
   root.set("coefficients", coefficientsJson(s.coeff, s.coeff_source));
   const DrillingForces F = drillingForces(model, s.feed);
   root.set("steady", drillingSteadyJson(F, s.spindle_rpm));
@@ -237,7 +249,8 @@ void drillingForcesOf(const CellSpec& cell, DrillingSpec& s, const ForcesRequest
   DrillingData data(model);
   const Json max_over_depth = depthProfile(model, data, s, req.step, out.curve_csv);
   if (req.axial_compliance) {
-    root.set("axial_coupling", axialCoupling(model, data, s, *req.axial_compliance, out.curve_csv, out.converged));
+    root.set("axial_coupling",
+             axialCoupling(model, data, s, *req.axial_compliance, out.curve_csv, out.converged));
   }
   root.set("max_over_depth", max_over_depth);
   root.set("machining_deviation", machiningDeviationJson(s, F));
@@ -260,7 +273,9 @@ Json millingCutJson(const MillingSpec& s) {
   cut.set("ap_mm", Json::number(s.cut.ap / kMm, 4));
   cut.set("ae_mm", Json::number(s.cut.ae / kMm, 4));
   cut.set("fz_mm", Json::number(s.cut.fz / kMm, 5));
-  cut.set("mode", Json::str(s.cut.mode == MillingMode::kUp ? "up" : s.cut.mode == MillingMode::kDown ? "down" : "slot"));
+  cut.set("mode", Json::str(s.cut.mode == MillingMode::kUp     ? "up"
+                            : s.cut.mode == MillingMode::kDown ? "down"
+                                                               : "slot"));
   cut.set("spindle_rpm", Json::number(s.cut.spindle_rpm, 1));
   return cut;
 }
@@ -271,7 +286,8 @@ Json millingCoefficientsJson(const MillingSpec& s) {
   co.set("mc", Json::number(s.coeff.mc, 4));
   co.set("radial_ratio", Json::number(s.coeff.radial_ratio, 4));
   co.set("axial_ratio", Json::number(s.coeff.axial_ratio, 4));
-  co.set("force_law", Json::str(s.mean_law == MeanForceLaw::kInstantaneous ? "instantaneous" : "mean_chip"));
+  co.set("force_law",
+         Json::str(s.mean_law == MeanForceLaw::kInstantaneous ? "instantaneous" : "mean_chip"));
   co.set("source", Json::str(s.coeff_source));
   return co;
 }
@@ -298,8 +314,9 @@ Json millingSteady(const MillingModel& m, const MillingSpec& s, std::string& csv
   std::ostringstream c;
   c << "angle_deg,Fx_N,Fy_N,Fz_N,Fxy_N\n";
   for (const MillingSample& smp : P.samples) {
-    c << fixed(smp.angle / kDeg, 3) << ',' << fixed(smp.force.x(), 3) << ',' << fixed(smp.force.y(), 3) << ','
-      << fixed(smp.force.z(), 3) << ',' << fixed(smp.force.head<2>().norm(), 3) << '\n';
+    c << fixed(smp.angle / kDeg, 3) << ',' << fixed(smp.force.x(), 3) << ','
+      << fixed(smp.force.y(), 3) << ',' << fixed(smp.force.z(), 3) << ','
+      << fixed(smp.force.head<2>().norm(), 3) << '\n';
   }
   csv = c.str();
   return st;
@@ -324,14 +341,17 @@ Json couplingPointJson(int index, const CouplingResult& r) {
 /// compliance or the robot's own (`robot`).
 Json millingCoupling(const MillingModel& m, const MillingSpec& s, int points,
                      const std::optional<ComplianceFunction>& robot, bool& converged) {
-  const std::vector<ComplianceFunction> path(static_cast<size_t>(points), robot ? *robot : linearCompliance(*s.compliance));
+  const std::vector<ComplianceFunction> path(static_cast<size_t>(points),
+                                             robot ? *robot : linearCompliance(*s.compliance));
   const std::vector<CouplingResult> res = coupleMillingPath(m, path, s.coupling);
   Json cp = Json::object();
   if (robot) {
-    cp.set("compliance", Json::str("robot model at --joints (nonlinear joint-compliance equilibrium)"));
+    cp.set("compliance",
+           Json::str("robot model at --joints (nonlinear joint-compliance equilibrium)"));
   } else {
     const Mat3 row_major = s.compliance->transpose();
-    cp.set("compliance_um_per_N", Json::vector(Eigen::Map<const Eigen::VectorXd>(row_major.data(), 9) * 1e6, 5));
+    cp.set("compliance_um_per_N",
+           Json::vector(Eigen::Map<const Eigen::VectorXd>(row_major.data(), 9) * 1e6, 5));
   }
   cp.set("tolerance_um", Json::number(s.coupling.tolerance * 1e6, 4));
   cp.set("relaxation", Json::number(s.coupling.relaxation, 3));
@@ -352,7 +372,8 @@ ComplianceFunction robotCompliance(const CellSpec& cell, const nc::Vec6& joints)
   return robotMillingCompliance(model, complianceOf(r.card), joints);
 }
 
-void millingForcesOf(const CellSpec& cell, const MillingSpec& s, const ForcesRequest& req, ForcesResult& out) {
+void millingForcesOf(const CellSpec& cell, const MillingSpec& s, const ForcesRequest& req,
+                     ForcesResult& out) {
   Json& root = out.json;
   std::optional<ComplianceFunction> robot;
   if (req.joints) {
@@ -361,37 +382,44 @@ void millingForcesOf(const CellSpec& cell, const MillingSpec& s, const ForcesReq
   }
   root.set("process", Json::str("milling"));
   root.set("material", Json::str(s.material->name));
-  root.set("frame", Json::str("milling: X = feed, phi clockwise from +Y, Z from the tool tip toward the spindle; "
-                              "forces on the tool"));
+  root.set(
+      "frame",
+      Json::str("milling: X = feed, phi clockwise from +Y, Z from the tool tip toward the spindle; "
+                "forces on the tool"));
   root.set("mill", millJson(s));
   root.set("cut", millingCutJson(s));
   root.set("coefficients", millingCoefficientsJson(s));
   const MillingModel m = millingModelOf(s);
   root.set("immersion", immersionJson(s));
   root.set("steady", millingSteady(m, s, out.curve_csv));
-  if (s.compliance || robot) root.set("coupling", millingCoupling(m, s, req.points, robot, out.converged));
+  if (s.compliance || robot)
+    root.set("coupling", millingCoupling(m, s, req.points, robot, out.converged));
 }
 
 // ---------------------------------------------------------------- wrench
 
-void wrenchForcesOf(const CellSpec& cell, const WrenchSpec& w, const ForcesRequest& req, ForcesResult& out) {
+void wrenchForcesOf(const CellSpec& cell, const WrenchSpec& w, const ForcesRequest& req,
+                    ForcesResult& out) {
   out.json.set("process", Json::str("wrench"));
   Json wj = Json::object();
   wj.set("frame", Json::str("tool; on the TCP"));
   wj.set("force_N", vec3(w.force, 3));
   wj.set("torque_Nm", vec3(w.torque, 4));
   out.json.set("wrench_tool", wj);
-  if (req.curve) throw InputError(cell.file, cell.process.line, "a wrench process has no curve: drop --csv");
+  if (req.curve)
+    throw InputError(cell.file, cell.process.line, "a wrench process has no curve: drop --csv");
 }
 
 }  // namespace
 
 ForcesResult processForces(const ForcesRequest& request) {
   const CellSpec cell = loadCell(request.cell);
-  if (!cell.has_process) throw InputError(cell.file, cell.root.line, "the cell has no <process> element");
+  if (!cell.has_process)
+    throw InputError(cell.file, cell.root.line, "the cell has no <process> element");
   ProcessSpec spec = parseProcess(cell.process);
   if (request.calibrate && spec.type != ProcessType::kDrilling) {
-    throw InputError(cell.file, cell.process.line, "--calibrate needs a <process type=\"drilling\">");
+    throw InputError(cell.file, cell.process.line,
+                     "--calibrate needs a <process type=\"drilling\">");
   }
   if (request.calibrated_cell && !request.calibrate) {
     throw UsageError("-o/--o writes the calibrated cell: use it with --calibrate");
@@ -400,9 +428,15 @@ ForcesResult processForces(const ForcesRequest& request) {
   out.json = Json::object();
   out.json.set("cell", Json::str(cell.name));
   switch (spec.type) {
-    case ProcessType::kDrilling: drillingForcesOf(cell, spec.drilling, request, out); break;
-    case ProcessType::kMilling: millingForcesOf(cell, spec.milling, request, out); break;
-    case ProcessType::kWrench: wrenchForcesOf(cell, spec.wrench, request, out); break;
+    case ProcessType::kDrilling:
+      drillingForcesOf(cell, spec.drilling, request, out);
+      break;
+    case ProcessType::kMilling:
+      millingForcesOf(cell, spec.milling, request, out);
+      break;
+    case ProcessType::kWrench:
+      wrenchForcesOf(cell, spec.wrench, request, out);
+      break;
   }
   return out;
 }

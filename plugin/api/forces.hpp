@@ -28,14 +28,17 @@ struct DrillingMeasurement {
 };
 
 struct ForcesRequest {
-  std::string cell;                        ///< CELL.xml with a <process>
-  double step{0.05e-3};                    ///< drilling: depth step of the curve, m
-  int points{10};                          ///< milling: path points of the coupled iteration
-  std::optional<double> axial_compliance;  ///< drilling: axial compliance at the TCP, m/N (curve per revolution)
-  std::optional<DrillingMeasurement> calibrate;  ///< drilling: identify kst0 and ksa0 from this test
-  bool calibrated_cell{false};             ///< also give the cell with the calibrated <coefficients>
-  bool curve{false};                       ///< the caller wants the curve (a wrench process has none)
-  std::optional<nc::Vec6> joints;          ///< milling: couple with the cell robot's compliance here (URDF, rad)
+  std::string cell;      ///< CELL.xml with a <process>
+  double step{0.05e-3};  ///< drilling: depth step of the curve, m
+  int points{10};        ///< milling: path points of the coupled iteration
+  std::optional<double>
+      axial_compliance;  ///< drilling: axial compliance at the TCP, m/N (curve per revolution)
+  std::optional<DrillingMeasurement>
+      calibrate;                ///< drilling: identify kst0 and ksa0 from this test
+  bool calibrated_cell{false};  ///< also give the cell with the calibrated <coefficients>
+  bool curve{false};            ///< the caller wants the curve (a wrench process has none)
+  std::optional<nc::Vec6>
+      joints;  ///< milling: couple with the cell robot's compliance here (URDF, rad)
 };
 
 struct ForcesResult {
@@ -43,9 +46,11 @@ struct ForcesResult {
   /// axial_coupling, max_over_depth, machining_deviation; milling: joints_deg, frame, mill, cut,
   /// coefficients, immersion, steady, coupling; wrench: wrench_tool.
   Json json;
-  std::string curve_csv;        ///< drilling: over depth (or per revolution); milling: over one revolution
-  std::string calibrated_cell;  ///< the cell's text with calibrated <coefficients> (calibrated_cell)
-  bool converged{true};         ///< every coupled point (axial or milling coupling) converged
+  std::string
+      curve_csv;  ///< drilling: over depth (or per revolution); milling: over one revolution
+  std::string
+      calibrated_cell;   ///< the cell's text with calibrated <coefficients> (calibrated_cell)
+  bool converged{true};  ///< every coupled point (axial or milling coupling) converged
 };
 
 /// Computes the forces of the cell's process; the robot is loaded only for `joints`.

@@ -39,7 +39,8 @@ std::optional<VendorConfig> programConfig(const postproc::Configuration& c, cons
                      (v == Vendor::kAbb && c.vendor == postproc::Vendor::kAbb) ||
                      (v == Vendor::kFanuc && c.vendor == postproc::Vendor::kFanuc);
   if (!match) return std::nullopt;
-  if (v == Vendor::kKuka && c.status < 0) return std::nullopt;  // S absent: nothing selects a branch
+  if (v == Vendor::kKuka && c.status < 0)
+    return std::nullopt;  // S absent: nothing selects a branch
   return parseConfig(v, c.text(), file, line);
 }
 
@@ -79,8 +80,9 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
       for (HoleRequest& r : job.requests) {
         for (const auto& s : ref) {
           if (s.id != r.id) continue;
-          r.nominal_axis = std::make_pair(Vec3(cell.T_base_wobj * (s.position_mm * 1e-3)),
-                                          Vec3(cell.T_base_wobj.linear() * s.direction.normalized()));
+          r.nominal_axis =
+              std::make_pair(Vec3(cell.T_base_wobj * (s.position_mm * 1e-3)),
+                             Vec3(cell.T_base_wobj.linear() * s.direction.normalized()));
           if (s.tolerance_mm) r.tolerance = *s.tolerance_mm * 1e-3;
           if (s.diameter_mm) r.diameter = *s.diameter_mm * 1e-3;
         }
@@ -93,7 +95,9 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
   const postproc::Program& p = *job.program;
   job.recognized = postproc::recognizeHoles(p);
   if (job.recognized.empty()) {
-    throw InputError(path, 0, "no drill cycle recognised in the program (approach -> feed along the tool z axis -> retract)");
+    throw InputError(path, 0,
+                     "no drill cycle recognised in the program (approach -> feed along the tool z "
+                     "axis -> retract)");
   }
   std::vector<postproc::HoleSpec> specs;
   std::vector<postproc::HoleMatch> matches;
@@ -117,13 +121,15 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
       src.T_W_frame = cell.T_base_wobj;
       src.frame_ref = base ? base->ref : "(none)";
       if (!noted_frame) {
-        job.notes.push_back("program base frame " + src.frame_ref +
-                            " is not defined in the program: the cell's <workobject> is used as that frame");
+        job.notes.push_back(
+            "program base frame " + src.frame_ref +
+            " is not defined in the program: the cell's <workobject> is used as that frame");
         noted_frame = true;
       }
     }
     const postproc::Target& t = p.targets()[static_cast<size_t>(h.bottom_target)];
-    const std::optional<Pose> T_frame_tcp = postproc::motionPose(p, p.motions[static_cast<size_t>(h.bottom_motion)]);
+    const std::optional<Pose> T_frame_tcp =
+        postproc::motionPose(p, p.motions[static_cast<size_t>(h.bottom_motion)]);
     if (!T_frame_tcp) {
       throw InputError(p.files[static_cast<size_t>(t.file)].path, t.line,
                        "hole " + h.id + ": the drill point is not a plain Cartesian target");
@@ -142,7 +148,8 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
       const postproc::Motion& mo = p.motions[static_cast<size_t>(mi)];
       if (!mo.config_honoured || mo.target < 0) continue;
       const postproc::Target& ct = p.targets()[static_cast<size_t>(mo.target)];
-      r.config = programConfig(ct.config, robot, p.files[static_cast<size_t>(ct.file)].path, ct.line);
+      r.config =
+          programConfig(ct.config, robot, p.files[static_cast<size_t>(ct.file)].path, ct.line);
     }
     for (const auto& m : matches) {
       if (m.hole != static_cast<int>(i)) continue;
@@ -159,7 +166,8 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
   }
   for (const auto& n : p.notes) job.notes.push_back(n);
   for (const auto& u : p.unresolved) {
-    job.notes.push_back("unresolved " + u.ref + " (" + p.files[static_cast<size_t>(std::max(0, u.file))].path + ":" +
+    job.notes.push_back("unresolved " + u.ref + " (" +
+                        p.files[static_cast<size_t>(std::max(0, u.file))].path + ":" +
                         std::to_string(u.line) + "): " + u.what);
   }
   return job;

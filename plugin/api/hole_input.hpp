@@ -24,8 +24,8 @@
 namespace roprec::api {
 
 struct HoleSource {
-  int hole{-1};                 ///< index into `recognized` (programs)
-  std::vector<int> targets;     ///< program targets of the cycle (all move together when compensated)
+  int hole{-1};              ///< index into `recognized` (programs)
+  std::vector<int> targets;  ///< program targets of the cycle (all move together when compensated)
   int bottom_target{-1};
   Pose T_W_frame{Pose::Identity()};  ///< base frame of the program frame the target is in
   bool frame_resolved{false};

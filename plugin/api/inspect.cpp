@@ -53,7 +53,8 @@ Json configJson(const postproc::Configuration& c) {
       j.set("turns", a);
       break;
     }
-    case postproc::Vendor::kNone: break;
+    case postproc::Vendor::kNone:
+      break;
   }
   j.set("text", Json::str(c.text()));
   if (const auto b = c.branch()) j.set("branch", Json::integer(*b));
@@ -69,23 +70,34 @@ Json nativeJson(const Target& t) {
   static const char* const kAxis[] = {"i", "j", "k"};
   const char* const xyz[] = {"x", "y", "z"};
   for (int i = 0; i < 3; ++i) {
-    if (t.pos[static_cast<std::size_t>(i)].present()) j.set(xyz[i], Json::number(t.pos[static_cast<std::size_t>(i)].value, -1));
+    if (t.pos[static_cast<std::size_t>(i)].present())
+      j.set(xyz[i], Json::number(t.pos[static_cast<std::size_t>(i)].value, -1));
   }
   const char* const* names = kKuka;
   int n = 3;
   switch (t.orientation) {
-    case postproc::Orientation::kFanucWpr: names = kFanuc; break;
-    case postproc::Orientation::kQuaternion: names = kQuat; n = 4; break;
-    case postproc::Orientation::kAxis: names = kAxis; break;
-    default: break;
+    case postproc::Orientation::kFanucWpr:
+      names = kFanuc;
+      break;
+    case postproc::Orientation::kQuaternion:
+      names = kQuat;
+      n = 4;
+      break;
+    case postproc::Orientation::kAxis:
+      names = kAxis;
+      break;
+    default:
+      break;
   }
   for (int i = 0; i < n; ++i) {
-    if (t.rot[static_cast<std::size_t>(i)].present()) j.set(names[i], Json::number(t.rot[static_cast<std::size_t>(i)].value, -1));
+    if (t.rot[static_cast<std::size_t>(i)].present())
+      j.set(names[i], Json::number(t.rot[static_cast<std::size_t>(i)].value, -1));
   }
   return j;
 }
 
-/// Pose keys of a target: native values, pose in its frame and, where the base resolves, in the base frame.
+/// Pose keys of a target: native values, pose in its frame and, where the base resolves, in the
+/// base frame.
 void setTargetPose(Json& j, const Program& p, const Target& t, const Frame* base) {
   if (t.kind != postproc::TargetKind::kCartesian) {
     Json jd = Json::array();
@@ -97,7 +109,8 @@ void setTargetPose(Json& j, const Program& p, const Target& t, const Frame* base
   j.set("complete", Json::boolean(postproc::targetComplete(t)));
   const Pose T = postproc::targetPose(p, t);
   j.set("in_frame", positionQuaternionJson(T));
-  if (base != nullptr && base->resolved && postproc::targetComplete(t)) setPositionQuaternion(j, base->pose * T);
+  if (base != nullptr && base->resolved && postproc::targetComplete(t))
+    setPositionQuaternion(j, base->pose * T);
 }
 
 Json targetJson(const Program& p, std::size_t i) {

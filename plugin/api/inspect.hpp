@@ -18,14 +18,15 @@
 namespace roprec::api {
 
 struct InspectRequest {
-  std::string program;                     ///< KRL .src, RAPID .mod/.prg/.sys, TP .ls, CSV/JSON targets, hole list
-  std::vector<FrameDefinition> frames;     ///< frames the program uses but does not define
-  std::optional<Vec3> tool_axis;           ///< drilling axis in the TCP frame (unit); default +z
-  std::optional<std::string> hole_list;    ///< hole-list CSV to match the recognised holes to
-  double match_tolerance_mm{1.0};          ///< position match of the hole list, mm
+  std::string program;  ///< KRL .src, RAPID .mod/.prg/.sys, TP .ls, CSV/JSON targets, hole list
+  std::vector<FrameDefinition> frames;   ///< frames the program uses but does not define
+  std::optional<Vec3> tool_axis;         ///< drilling axis in the TCP frame (unit); default +z
+  std::optional<std::string> hole_list;  ///< hole-list CSV to match the recognised holes to
+  double match_tolerance_mm{1.0};        ///< position match of the hole list, mm
 };
 
-/// program, dialect, files, drilling_axis_tcp, targets[], motions[], holes[], unresolved[], notes[].
+/// program, dialect, files, drilling_axis_tcp, targets[], motions[], holes[], unresolved[],
+/// notes[].
 Json inspectProgram(const InspectRequest& request);
 
 }  // namespace roprec::api

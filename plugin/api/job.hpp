@@ -32,17 +32,17 @@ using ProgressFn = std::function<void(size_t, size_t)>;
 
 /// How a job's holes are read.
 struct JobOptions {
-  std::optional<std::string> holes;   ///< hole-list CSV matched to the program's holes
-  double match_tol_mm{0.5};           ///< position match when ids differ, mm
-  std::string uncertainty;            ///< "" (the cell's), "linear" or "montecarlo"
+  std::optional<std::string> holes;  ///< hole-list CSV matched to the program's holes
+  double match_tol_mm{0.5};          ///< position match when ids differ, mm
+  std::string uncertainty;           ///< "" (the cell's), "linear" or "montecarlo"
   std::optional<std::array<int, 3>> fanuc_turn_axes;  ///< overrides the cell's <controller>
 };
 
 // ---------------------------------------------------------------- predict
 
 struct PredictionResult {
-  PredictionContext context;              ///< cell, robot, job holes, model
-  std::vector<HolePrediction> holes;      ///< one per context.job.requests entry
+  PredictionContext context;          ///< cell, robot, job holes, model
+  std::vector<HolePrediction> holes;  ///< one per context.job.requests entry
   CapabilitySummary summary;
   /// Holes whose status is not kOk.
   [[nodiscard]] int failed() const;
@@ -57,8 +57,8 @@ PredictionResult predictJob(const std::string& cell_path, const std::string& pro
 
 struct CompensationJob {
   JobOptions job;
-  CompensationOptions options;            ///< orientation mode, grid, wrist margin, jumps
-  bool allow_partial{false};              ///< keep the original targets of failed holes
+  CompensationOptions options;  ///< orientation mode, grid, wrist margin, jumps
+  bool allow_partial{false};    ///< keep the original targets of failed holes
 };
 
 /// Drilling-job compensation: per hole the compensated target; the edited program (every target
@@ -67,16 +67,16 @@ struct CompensationResult {
   PredictionContext context;
   std::vector<HoleCompensation> holes;
   CompensationStats stats;
-  std::string orientation;                ///< "keep", "flip-free" or "stiffest"
-  std::vector<std::string> refused;       ///< target edits the dialect writer refused
-  int failed{0};                          ///< holes not compensated
+  std::string orientation;           ///< "keep", "flip-free" or "stiffest"
+  std::vector<std::string> refused;  ///< target edits the dialect writer refused
+  int failed{0};                     ///< holes not compensated
   /// Statistics of the run (µm; counts) for a summary.
   struct Stats {
     std::vector<double> error_before_um;  ///< position error ⊥ axis of every predicted hole
     std::vector<double> residual_after_um;
     int conform_before{0};
     int conform_after{0};
-    int jumps_before{0};                  ///< axis-4/6 jumps > threshold between holes of a face
+    int jumps_before{0};  ///< axis-4/6 jumps > threshold between holes of a face
     int jumps_after{0};
   } summary;
   /// True when the program may be written: nothing failed (or allow_partial) and no edit refused
@@ -93,21 +93,23 @@ CompensationResult compensateJob(const std::string& cell_path, const std::string
 /// Milling path compensation (every linear path point, coupled force iteration).
 struct MillingCompensationResult {
   PredictionContext context;
-  std::vector<int> targets;               ///< program target per point
-  std::vector<Pose> points;               ///< nominal TCP, base frame
+  std::vector<int> targets;  ///< program target per point
+  std::vector<Pose> points;  ///< nominal TCP, base frame
   std::vector<PathPointCompensation> points_comp;
-  std::vector<std::string> failures;      ///< "path point N (FILE:LINE): not compensated: why"
+  std::vector<std::string> failures;  ///< "path point N (FILE:LINE): not compensated: why"
   std::vector<std::string> refused;
 };
-MillingCompensationResult compensateMillingJob(const std::string& cell_path, const std::string& program_path);
+MillingCompensationResult compensateMillingJob(const std::string& cell_path,
+                                               const std::string& program_path);
 
 /// True when the cell's process is milling (compensate then runs compensateMillingJob).
 bool cellIsMilling(const std::string& cell_path);
 
 /// Writes the outputs of a compensation all together: the program (and its .dat etc.) to
 /// `program_out`, and each (path, text) of `extra`. Returns the paths written.
-std::vector<std::string> writeCompensatedProgram(PredictionContext& context, const std::string& program_out,
-                                                 const std::vector<std::pair<std::string, std::string>>& extra);
+std::vector<std::string> writeCompensatedProgram(
+    PredictionContext& context, const std::string& program_out,
+    const std::vector<std::pair<std::string, std::string>>& extra);
 
 }  // namespace roprec::api
 

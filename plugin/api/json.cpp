@@ -70,15 +70,26 @@ std::string jsonEscape(const std::string& s) {
   o.reserve(s.size() + 2);
   for (const char c : s) {
     switch (c) {
-      case '"': o += "\\\""; break;
-      case '\\': o += "\\\\"; break;
-      case '\n': o += "\\n"; break;
-      case '\r': o += "\\r"; break;
-      case '\t': o += "\\t"; break;
+      case '"':
+        o += "\\\"";
+        break;
+      case '\\':
+        o += "\\\\";
+        break;
+      case '\n':
+        o += "\\n";
+        break;
+      case '\r':
+        o += "\\r";
+        break;
+      case '\t':
+        o += "\\t";
+        break;
       default:
         if (static_cast<unsigned char>(c) < 0x20) {
           char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
+          std::snprintf(buf, sizeof buf, "\\u%04x",
+                        static_cast<unsigned>(static_cast<unsigned char>(c)));
           o += buf;
         } else {
           o += c;
@@ -108,16 +119,24 @@ std::string formatNumber(double v, int decimals) {
 }
 
 void Json::write(std::string& out, int indent, int level) const {
-  const std::string pad = indent > 0 ? std::string(static_cast<size_t>(indent * (level + 1)), ' ') : "";
-  const std::string pad_end = indent > 0 ? std::string(static_cast<size_t>(indent * level), ' ') : "";
+  const std::string pad =
+      indent > 0 ? std::string(static_cast<size_t>(indent * (level + 1)), ' ') : "";
+  const std::string pad_end =
+      indent > 0 ? std::string(static_cast<size_t>(indent * level), ' ') : "";
   const char* nl = indent > 0 ? "\n" : "";
   switch (kind_) {
-    case Kind::kNull: out += "null"; break;
-    case Kind::kBool: out += bool_ ? "true" : "false"; break;
+    case Kind::kNull:
+      out += "null";
+      break;
+    case Kind::kBool:
+      out += bool_ ? "true" : "false";
+      break;
     case Kind::kNumber:
       out += is_integer_ ? std::to_string(integer_) : formatNumber(number_, decimals_);
       break;
-    case Kind::kString: out += "\"" + jsonEscape(string_) + "\""; break;
+    case Kind::kString:
+      out += "\"" + jsonEscape(string_) + "\"";
+      break;
     case Kind::kArray: {
       bool scalars = true;
       for (const auto& i : items_) {

@@ -15,7 +15,9 @@ FkResult forwardKinematicsAt(const RobotSetup& setup, const Vec6& joints) {
   r.joints = joints;
   r.position = nc::forwardKinematics(model, data, joints);
   if (!r.position.converged) {
-    throw InputError("", 0, "position problem did not converge (residual " + std::to_string(r.position.residual) + ")");
+    throw InputError(
+        "", 0,
+        "position problem did not converge (residual " + std::to_string(r.position.residual) + ")");
   }
   r.T_flange = data.T_W_flange;
   r.T_tcp = data.T_W_tcp;
@@ -29,7 +31,8 @@ Json fkJson(const RobotSetup& setup, const FkResult& r) {
   root.set("base_link", Json::str(setup.robot.chain.base_link));
   root.set("flange_link", Json::str(setup.robot.chain.tip_link));
   root.set("joints_deg", Json::vector(r.joints / kDeg, 6));
-  root.set("controller_joints_deg", Json::vector(toControllerJoints(setup.robot.card, r.joints) / kDeg, 6));
+  root.set("controller_joints_deg",
+           Json::vector(toControllerJoints(setup.robot.card, r.joints) / kDeg, 6));
   root.set("within_limits", Json::boolean(r.limit_violations.empty()));
   if (!r.limit_violations.empty()) {
     Json v = Json::array();
@@ -49,7 +52,8 @@ Json fkJson(const RobotSetup& setup, const FkResult& r) {
 IkAnswer inverseKinematicsFor(const RobotSetup& setup, const IkRequest& request) {
   IkAnswer a;
   a.T_target = request.target;
-  a.T_flange = setup.cell ? Pose(request.target * setup.cell->tool.T_flange_tcp.inverse()) : request.target;
+  a.T_flange =
+      setup.cell ? Pose(request.target * setup.cell->tool.T_flange_tcp.inverse()) : request.target;
   if (request.fanuc_turn_axes) a.config_options.fanuc_turn_axes = *request.fanuc_turn_axes;
   a.model = buildIkModel(setup.robot);
   a.result = std::make_unique<IkResult>();
@@ -98,8 +102,10 @@ Json singularJson(const IkSolution& sol) {
   sing.set("wrist", Json::boolean(sol.singular_wrist));
   sing.set("shoulder", Json::boolean(sol.singular_shoulder));
   sing.set("elbow", Json::boolean(sol.singular_elbow));
-  sing.set("wrist_margin_deg", Json::number(std::asin(std::min(1.0, sol.branch.wrist_margin_rad)) / kDeg, 6));
-  sing.set("elbow_margin_deg", Json::number(std::asin(std::min(1.0, sol.branch.elbow_margin_rad)) / kDeg, 6));
+  sing.set("wrist_margin_deg",
+           Json::number(std::asin(std::min(1.0, sol.branch.wrist_margin_rad)) / kDeg, 6));
+  sing.set("elbow_margin_deg",
+           Json::number(std::asin(std::min(1.0, sol.branch.elbow_margin_rad)) / kDeg, 6));
   sing.set("shoulder_margin_mm", Json::number(sol.branch.shoulder_margin_m * 1e3, 6));
   return sing;
 }
@@ -109,8 +115,11 @@ Json solutionJson(const RobotSetup& setup, const IkAnswer& a, const IkSolution& 
   j.set("branch_index", Json::integer(sol.branch.index()));
   j.set("branch", branchJson(sol.branch));
   j.set("joints_deg", Json::vector(sol.q / kDeg, 6));
-  j.set("controller_joints_deg", Json::vector(toControllerJoints(setup.robot.card, sol.q) / kDeg, 6));
-  j.set("config", Json::str(formatConfig(configurationOf(a.model, setup.robot.card, sol.q, a.config_options))));
+  j.set("controller_joints_deg",
+        Json::vector(toControllerJoints(setup.robot.card, sol.q) / kDeg, 6));
+  j.set(
+      "config",
+      Json::str(formatConfig(configurationOf(a.model, setup.robot.card, sol.q, a.config_options))));
   j.set("within_limits", Json::boolean(sol.within_limits));
   j.set("converged", Json::boolean(sol.converged));
   j.set("singular", singularJson(sol));
@@ -139,7 +148,8 @@ Json ikJson(const RobotSetup& setup, const IkAnswer& a) {
     root.set("fanuc_turn_axes", axes);
   }
   Json list = Json::array();
-  for (int k = 0; k < a.result->count; ++k) list.push(solutionJson(setup, a, a.result->solutions[static_cast<size_t>(k)]));
+  for (int k = 0; k < a.result->count; ++k)
+    list.push(solutionJson(setup, a, a.result->solutions[static_cast<size_t>(k)]));
   root.set("count", Json::integer(a.result->count));
   root.set("solutions", list);
   if (a.result->truncated) root.set("turns_truncated", Json::boolean(true));

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <ostream>
 
-#include "compensator/support/error.hpp"
 #include "compensator/process/process_load.hpp"
+#include "compensator/support/error.hpp"
 
 namespace roprec::api {
 
@@ -38,7 +38,9 @@ UncertaintyInputs uncertaintyFromCell(const CellSpec& cell) {
 
 CapabilityInputs capabilityFromCell(const CellSpec& cell) {
   CapabilityInputs c;
-  c.source = "estimate: machining-center positioning, approach and retract per hole (rapid ~40 m/min, ~2 s)";
+  c.source =
+      "estimate: machining-center positioning, approach and retract per hole (rapid ~40 m/min, ~2 "
+      "s)";
   if (const XmlNode* e = cell.root.child("capability")) {
     c.mc_approach_s = e->number("mc_approach_s", c.mc_approach_s);
     if (c.mc_approach_s < 0) e->fail("<capability> mc_approach_s must be >= 0");
@@ -51,8 +53,8 @@ CapabilityInputs capabilityFromCell(const CellSpec& cell) {
 
 PredictionContext loadPredictionContext(const std::string& cell_path, const std::string& job_path,
                                         const std::optional<std::string>& hole_list,
-                                        const std::string& uncertainty_override, double match_tol_mm,
-                                        bool load_holes) {
+                                        const std::string& uncertainty_override,
+                                        double match_tol_mm, bool load_holes) {
   PredictionContext c;
   c.cell = loadCell(cell_path);
   try {
@@ -88,8 +90,10 @@ PredictionContext loadPredictionContext(const std::string& cell_path, const std:
   s.process = c.process;
   s.uncertainty = uncertaintyFromCell(c.cell);
   if (uncertainty_override == "linear") s.uncertainty.method = UncertaintyInputs::Method::kLinear;
-  if (uncertainty_override == "montecarlo") s.uncertainty.method = UncertaintyInputs::Method::kMonteCarlo;
-  if (!uncertainty_override.empty() && uncertainty_override != "linear" && uncertainty_override != "montecarlo") {
+  if (uncertainty_override == "montecarlo")
+    s.uncertainty.method = UncertaintyInputs::Method::kMonteCarlo;
+  if (!uncertainty_override.empty() && uncertainty_override != "linear" &&
+      uncertainty_override != "montecarlo") {
     throw UsageError("--uncertainty must be linear or montecarlo");
   }
   s.capability = capabilityFromCell(c.cell);
@@ -103,7 +107,8 @@ PredictionContext loadPredictionContext(const std::string& cell_path, const std:
       const Eigen::VectorXd ax = e->numbers("fanuc_turn_axes", 3);
       std::array<int, 3> axes{};
       for (int i = 0; i < 3; ++i) {
-        if (ax[i] < 1 || ax[i] > 6 || ax[i] != std::floor(ax[i])) e->fail("fanuc_turn_axes: three joint numbers 1..6");
+        if (ax[i] < 1 || ax[i] > 6 || ax[i] != std::floor(ax[i]))
+          e->fail("fanuc_turn_axes: three joint numbers 1..6");
         axes[static_cast<size_t>(i)] = static_cast<int>(ax[i]);
       }
       c.fanuc_turn_axes = axes;
@@ -128,8 +133,10 @@ PredictionContext loadPredictionContext(const std::string& cell_path, const std:
 }
 
 std::string uncertaintyMethodText(const UncertaintyInputs& u) {
-  if (u.method == UncertaintyInputs::Method::kLinear) return "linearised (Jacobian at the deflected pose)";
-  return "Monte Carlo (" + std::to_string(u.samples) + " samples, seed " + std::to_string(u.seed) + ")";
+  if (u.method == UncertaintyInputs::Method::kLinear)
+    return "linearised (Jacobian at the deflected pose)";
+  return "Monte Carlo (" + std::to_string(u.samples) + " samples, seed " + std::to_string(u.seed) +
+         ")";
 }
 
 Json holeJson(const HolePrediction& h, const HoleRequest& r) {
@@ -146,7 +153,8 @@ Json holeJson(const HolePrediction& h, const HoleRequest& r) {
   }());
   j.set("diameter_mm", Json::number(h.diameter * 1e3, 3));
   j.set("depth_mm", Json::number(h.depth * 1e3, 3));
-  if (h.status == HoleStatus::kOk || h.status == HoleStatus::kNotConverged || h.status == HoleStatus::kSingular) {
+  if (h.status == HoleStatus::kOk || h.status == HoleStatus::kNotConverged ||
+      h.status == HoleStatus::kSingular) {
     j.set("joints_deg", Json::vector(h.joints / kDeg, 6));
     if (!h.config.empty()) j.set("config", Json::str(h.config));
     j.set("branch", Json::integer(h.branch));
@@ -160,7 +168,8 @@ Json holeJson(const HolePrediction& h, const HoleRequest& r) {
     d.set("work_tool_xy", Json::vector(h.e_tool * 1e6, 3));
     d.set("position_error", Json::number(h.position_error * 1e6, 3));
     d.set("axis_tilt_urad", Json::number(h.axis_tilt * 1e6, 3));
-    if (h.nominal_axis_error) d.set("from_nominal_axis", Json::number(*h.nominal_axis_error * 1e6, 4));
+    if (h.nominal_axis_error)
+      d.set("from_nominal_axis", Json::number(*h.nominal_axis_error * 1e6, 4));
     j.set("deviation_um", d);
     Json u = Json::object();
     u.set("U_robot", Json::number(h.U_robot * 1e6, 3));

@@ -34,8 +34,8 @@ struct PredictionContext {
 /// cell alone (per-target sessions).
 PredictionContext loadPredictionContext(const std::string& cell_path, const std::string& job_path,
                                         const std::optional<std::string>& hole_list,
-                                        const std::string& uncertainty_override, double match_tol_mm = 0.5,
-                                        bool load_holes = true);
+                                        const std::string& uncertainty_override,
+                                        double match_tol_mm = 0.5, bool load_holes = true);
 
 /// Per-hole JSON object (contract keys + details).
 Json holeJson(const HolePrediction& h, const HoleRequest& r);

@@ -3,7 +3,8 @@
 
 namespace roprec::api {
 
-postproc::Program readProgramWithFrames(const std::string& path, const std::vector<FrameDefinition>& frames) {
+postproc::Program readProgramWithFrames(const std::string& path,
+                                        const std::vector<FrameDefinition>& frames) {
   postproc::Program p = postproc::readProgram(path);
   for (const FrameDefinition& f : frames) postproc::resolveFrame(p, f.ref, f.pose);
   return p;

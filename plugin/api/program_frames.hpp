@@ -15,12 +15,13 @@
 namespace roprec::api {
 
 struct FrameDefinition {
-  std::string ref;                ///< the program's name for it, e.g. "UFRAME[1]", "UTOOL[1]"
-  Pose pose{Pose::Identity()};    ///< m
+  std::string ref;              ///< the program's name for it, e.g. "UFRAME[1]", "UTOOL[1]"
+  Pose pose{Pose::Identity()};  ///< m
 };
 
 /// Reads the program (any dialect) and defines `frames` in it (postproc::resolveFrame).
 /// Throws InputError for an unreadable or malformed program.
-postproc::Program readProgramWithFrames(const std::string& path, const std::vector<FrameDefinition>& frames);
+postproc::Program readProgramWithFrames(const std::string& path,
+                                        const std::vector<FrameDefinition>& frames);
 
 }  // namespace roprec::api

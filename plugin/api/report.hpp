@@ -16,26 +16,26 @@ namespace roprec::api {
 
 struct ReportHole {
   const HolePrediction* prediction{nullptr};
-  Pose T_W_tcp{Pose::Identity()};           ///< nominal TCP pose at the drill point, base frame
+  Pose T_W_tcp{Pose::Identity()};  ///< nominal TCP pose at the drill point, base frame
   /// compensate only: the residual predicted after compensation and the programmed pose
   std::optional<double> residual_um;
   std::optional<Pose> T_W_programmed;
   std::optional<double> rotation_about_axis_deg;
-  const HolePrediction* after{nullptr};     ///< compensate: prediction at the programmed pose
+  const HolePrediction* after{nullptr};  ///< compensate: prediction at the programmed pose
 };
 
 struct ReportInput {
-  std::string title;            ///< e.g. "roprec prediction — housing.src"
-  std::string robot;            ///< robot name + model
-  std::string cell;             ///< cell name and file
-  std::string program;          ///< program file
-  std::string process;          ///< process description
+  std::string title;               ///< e.g. "roprec prediction — housing.src"
+  std::string robot;               ///< robot name + model
+  std::string cell;                ///< cell name and file
+  std::string program;             ///< program file
+  std::string process;             ///< process description
   std::string uncertainty_method;  ///< "linearised" / "Monte Carlo (N, seed)"
   std::string uncertainty_source;
   double default_tolerance_mm{0.2};
   std::vector<ReportHole> holes;
   CapabilitySummary summary;
-  bool compensation{false};     ///< adds the before/after maps and residual columns
+  bool compensation{false};  ///< adds the before/after maps and residual columns
   std::string generator{"roprec 0.1.0"};
 };
 

@@ -2,9 +2,12 @@
 
 namespace roprec::api {
 
-nc::JointCompliance complianceOf(const RobotCard& card) { return nc::requireComplianceFromCard(card); }
+nc::JointCompliance complianceOf(const RobotCard& card) {
+  return nc::requireComplianceFromCard(card);
+}
 
-nc::Vec6 controllerGravityOffset(const Robot& robot, const nc::JointCompliance& c, const nc::Vec6& theta_m) {
+nc::Vec6 controllerGravityOffset(const Robot& robot, const nc::JointCompliance& c,
+                                 const nc::Vec6& theta_m) {
   if (!robot.card.gravity_compensated) return nc::Vec6::Zero();
   nc::ToolAttachment cal;
   cal.mass = robot.card.calibration_load_kg;

@@ -13,6 +13,7 @@ nc::JointCompliance complianceOf(const RobotCard& card);
 
 /// The command offset a gravity-compensating controller adds: K_eff⁻¹ τ_g,cal(θ_m) with the
 /// calibration load of the card (zero when the card says gravity_compensated="false").
-nc::Vec6 controllerGravityOffset(const Robot& robot, const nc::JointCompliance& c, const nc::Vec6& theta_m);
+nc::Vec6 controllerGravityOffset(const Robot& robot, const nc::JointCompliance& c,
+                                 const nc::Vec6& theta_m);
 
 }  // namespace roprec::api

@@ -40,10 +40,13 @@ RobotSetup loadRobotSetup(const RobotSetupRequest& request) {
   return s;
 }
 
-void overrideStiffness(RobotSetup& setup, const nc::Vec6& k, const std::string& name, const std::string& source) {
+void overrideStiffness(RobotSetup& setup, const nc::Vec6& k, const std::string& name,
+                       const std::string& source) {
   for (int i = 0; i < 6; ++i) {
     if (!(k[i] > 0)) {
-      throw InputError("", 0, name + ": k" + std::to_string(i + 1) + " must be > 0 N m/rad, got " + std::to_string(k[i]));
+      throw InputError("", 0,
+                       name + ": k" + std::to_string(i + 1) + " must be > 0 N m/rad, got " +
+                           std::to_string(k[i]));
     }
     setup.robot.card.joints[static_cast<size_t>(i)].stiffness = k[i];
     setup.robot.card.joints[static_cast<size_t>(i)].source = source;
@@ -57,15 +60,16 @@ std::vector<std::string> limitViolations(const ChainDescription& chain, const nc
     const ChainJoint& j = chain.joints[static_cast<size_t>(i)];
     if (q[i] < j.lower - 1e-12 || q[i] > j.upper + 1e-12) {
       char buf[200];
-      std::snprintf(buf, sizeof buf, "%s = %.3f deg (limits %.3f .. %.3f deg)", j.name.c_str(), q[i] / kDeg,
-                    j.lower / kDeg, j.upper / kDeg);
+      std::snprintf(buf, sizeof buf, "%s = %.3f deg (limits %.3f .. %.3f deg)", j.name.c_str(),
+                    q[i] / kDeg, j.lower / kDeg, j.upper / kDeg);
       out.emplace_back(buf);
     }
   }
   return out;
 }
 
-void requireWithinLimits(const ChainDescription& chain, const nc::Vec6& q, const std::string& what) {
+void requireWithinLimits(const ChainDescription& chain, const nc::Vec6& q,
+                         const std::string& what) {
   const std::vector<std::string> viol = limitViolations(chain, q);
   if (!viol.empty()) throw InputError("", 0, what + " outside the joint limits: " + viol.front());
 }

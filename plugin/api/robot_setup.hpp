@@ -24,11 +24,11 @@ namespace roprec::api {
 
 /// Which robot to load, as plain values (the CLI's --robot/--cell/--base/--tip/--stiffness).
 struct RobotSetupRequest {
-  std::optional<std::string> robot;      ///< bundled NAME, robot.xml or file.urdf; overrides the cell's
-  std::optional<std::string> cell;       ///< CELL.xml: its robot (unless `robot`) and its tool
+  std::optional<std::string> robot;  ///< bundled NAME, robot.xml or file.urdf; overrides the cell's
+  std::optional<std::string> cell;   ///< CELL.xml: its robot (unless `robot`) and its tool
   std::optional<std::string> base_link;  ///< overrides the base link (bare URDF)
   std::optional<std::string> tip_link;   ///< overrides the flange link
-  std::optional<nc::Vec6> stiffness;     ///< k1..k6 (N·m/rad), replaces the card's (overrideStiffness)
+  std::optional<nc::Vec6> stiffness;  ///< k1..k6 (N·m/rad), replaces the card's (overrideStiffness)
 };
 
 struct RobotSetup {

@@ -37,12 +37,16 @@ std::string robotCardText(const RobotCard& card) {
   for (const JointCard& j : card.joints) estimated += j.estimated() ? 1 : 0;
   std::ostringstream text;
   text << card.name << "  (" << vendorName(card.vendor) << " " << card.model << ")\n";
-  text << "  repeatability RP " << std::fixed << std::setprecision(3) << card.rp_mm << " mm (ISO 9283)  ["
-       << card.rp_source << "]\n";
+  text << "  repeatability RP " << std::fixed << std::setprecision(3) << card.rp_mm
+       << " mm (ISO 9283)  [" << card.rp_source << "]\n";
   text << "  stiffness k1..k6 [N m/rad]:";
-  for (const JointCard& j : card.joints) text << " " << std::scientific << std::setprecision(2) << j.stiffness;
+  for (const JointCard& j : card.joints)
+    text << " " << std::scientific << std::setprecision(2) << j.stiffness;
   text << std::fixed << "\n";
-  text << "  stiffness source: " << (estimated == 6 ? "ESTIMATE" : estimated ? "partly estimated" : "published")
+  text << "  stiffness source: "
+       << (estimated == 6 ? "ESTIMATE"
+           : estimated    ? "partly estimated"
+                          : "published")
        << " — " << card.joints[0].source << "\n";
   text << "  inertials: " << card.inertial_source << "\n";
   text << "  dimensions: " << card.dimensions_source << "\n\n";

@@ -67,7 +67,8 @@ Session::JointPrediction Session::predictJoints(const Vec6& joints_controller) {
     return p;
   }
   if ((p.prediction.joints - q).lpNorm<Eigen::Infinity>() > 1e-6) {
-    p.reason = "these joints are not an admissible solution (joint limits or a singular wrist/shoulder)";
+    p.reason =
+        "these joints are not an admissible solution (joint limits or a singular wrist/shoulder)";
     return p;
   }
   p.ok = true;

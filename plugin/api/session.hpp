@@ -22,12 +22,12 @@ class Session {
 
   struct Filtered {
     bool ok{false};
-    std::string reason;                   ///< why not, when !ok
-    Pose T_programmed{Pose::Identity()};  ///< TCP pose to program, base frame (m)
-    Vec6 joints_controller{Vec6::Zero()}; ///< programmed joints, controller convention, rad
-    std::string config;                   ///< vendor configuration flags of those joints
-    double residual{0};                   ///< |predicted real TCP − wanted|, m
-    HolePrediction before;                ///< prediction of the wanted pose programmed as is
+    std::string reason;                    ///< why not, when !ok
+    Pose T_programmed{Pose::Identity()};   ///< TCP pose to program, base frame (m)
+    Vec6 joints_controller{Vec6::Zero()};  ///< programmed joints, controller convention, rad
+    std::string config;                    ///< vendor configuration flags of those joints
+    double residual{0};                    ///< |predicted real TCP − wanted|, m
+    HolePrediction before;                 ///< prediction of the wanted pose programmed as is
   };
   /// The pose to program so that the predicted real TCP lands on `T_W_wanted` (base frame, m)
   /// under the cell's gravity, tool and process load; orientation kept. `seed_controller` (rad,
@@ -37,9 +37,9 @@ class Session {
   struct JointPrediction {
     bool ok{false};
     std::string reason;
-    Vec3 d_translation{Vec3::Zero()};     ///< δrobot of the TCP, base frame, m
-    Vec3 d_rotation{Vec3::Zero()};        ///< rotation vector, base frame, rad
-    double U_work{0};                     ///< expanded uncertainty (95 %), m
+    Vec3 d_translation{Vec3::Zero()};  ///< δrobot of the TCP, base frame, m
+    Vec3 d_rotation{Vec3::Zero()};     ///< rotation vector, base frame, rad
+    double U_work{0};                  ///< expanded uncertainty (95 %), m
     HolePrediction prediction;
   };
   /// The predicted TCP deviation at commanded joints (controller convention, rad).

@@ -21,8 +21,8 @@ namespace {
 
 /// Joints for a TCP pose in the base frame: the regular in-limit IK solution nearest the vendor
 /// reference pose. Throws HoleUnreachable at FILE:LINE when there is none.
-nc::Vec6 jointsNearReference(const RobotSetup& s, const Pose& T_base_tcp, const std::string& file, int line,
-                             const std::string& id) {
+nc::Vec6 jointsNearReference(const RobotSetup& s, const Pose& T_base_tcp, const std::string& file,
+                             int line, const std::string& id) {
   const Pose T_base_flange = T_base_tcp * s.tool.T_flange_tcp.inverse();
   const IkModel ik = buildIkModel(s.robot);
   const Vec6 ref = vendorReferencePose(s.robot.card);
@@ -34,7 +34,9 @@ nc::Vec6 jointsNearReference(const RobotSetup& s, const Pose& T_base_tcp, const 
   double best_d = std::numeric_limits<double>::infinity();
   for (int i = 0; i < res.count; ++i) {
     const IkSolution& sol = res.solutions[static_cast<size_t>(i)];
-    if (!sol.converged || !sol.within_limits || sol.singular_wrist || sol.singular_shoulder || sol.singular_elbow) continue;
+    if (!sol.converged || !sol.within_limits || sol.singular_wrist || sol.singular_shoulder ||
+        sol.singular_elbow)
+      continue;
     const double d = (sol.q - ref).norm();
     if (d < best_d) {
       best_d = d;
@@ -42,8 +44,10 @@ nc::Vec6 jointsNearReference(const RobotSetup& s, const Pose& T_base_tcp, const 
     }
   }
   if (best < 0) {
-    throw HoleUnreachable(file, line,
-                          "hole '" + id + "' is not reachable: " + (res.count == 0 ? describeIkFailure(res) : "no regular in-limit IK solution"));
+    throw HoleUnreachable(
+        file, line,
+        "hole '" + id + "' is not reachable: " +
+            (res.count == 0 ? describeIkFailure(res) : "no regular in-limit IK solution"));
   }
   return res.solutions[static_cast<size_t>(best)].q;
 }
@@ -61,13 +65,15 @@ HoleJoints holeListJoints(const RobotSetup& s, const std::string& path, const st
     T.translation() = s.cell->T_base_wobj * (h.position_mm * 1e-3);
     HoleJoints hc;
     hc.joints = jointsNearReference(s, T, path, h.line, id);
-    hc.source = "hole list row " + std::to_string(h.line) + " (cell workobject, IK solution nearest the reference pose)";
+    hc.source = "hole list row " + std::to_string(h.line) +
+                " (cell workobject, IK solution nearest the reference pose)";
     return hc;
   }
   throw InputError(path, 0, "no hole '" + id + "' in the hole list");
 }
 
-const postproc::Hole& findHole(const std::vector<postproc::Hole>& holes, const std::string& path, const std::string& id) {
+const postproc::Hole& findHole(const std::vector<postproc::Hole>& holes, const std::string& path,
+                               const std::string& id) {
   std::string names;
   const postproc::Hole* hole = nullptr;
   for (const postproc::Hole& h : holes) {
@@ -75,14 +81,18 @@ const postproc::Hole& findHole(const std::vector<postproc::Hole>& holes, const s
     if (h.id == id) hole = &h;
   }
   if (hole == nullptr) {
-    throw InputError(path, 0, "no recognised hole '" + id + "' (holes: " + (names.empty() ? "none" : names) + ")");
+    throw InputError(
+        path, 0,
+        "no recognised hole '" + id + "' (holes: " + (names.empty() ? "none" : names) + ")");
   }
   return *hole;
 }
 
-HoleJoints jointTargetJoints(const RobotSetup& s, const postproc::Target& t, const std::string& tfile, const std::string& id) {
+HoleJoints jointTargetJoints(const RobotSetup& s, const postproc::Target& t,
+                             const std::string& tfile, const std::string& id) {
   const std::vector<double> j = postproc::targetJointsDeg(t);
-  if (j.size() < 6) throw InputError(tfile, t.line, "joint target of hole '" + id + "' has fewer than 6 axes");
+  if (j.size() < 6)
+    throw InputError(tfile, t.line, "joint target of hole '" + id + "' has fewer than 6 axes");
   nc::Vec6 qc;
   for (int i = 0; i < 6; ++i) qc[i] = j[static_cast<size_t>(i)] * kDeg;
   return {fromControllerJoints(s.robot.card, qc), "joint target " + t.name};
@@ -90,11 +100,14 @@ HoleJoints jointTargetJoints(const RobotSetup& s, const postproc::Target& t, con
 
 /// A Cartesian drill point: in the program's frame when it resolves, else the cell's work object;
 /// IK with the target's configuration when it states one.
-HoleJoints cartesianTargetJoints(const RobotSetup& s, const postproc::Program& prog, const postproc::Hole& hole,
-                                 const std::string& tfile, const std::string& id) {
+HoleJoints cartesianTargetJoints(const RobotSetup& s, const postproc::Program& prog,
+                                 const postproc::Hole& hole, const std::string& tfile,
+                                 const std::string& id) {
   const postproc::Target& t = prog.targets()[static_cast<size_t>(hole.bottom_target)];
-  const std::optional<Pose> pose = postproc::motionPose(prog, prog.motions[static_cast<size_t>(hole.bottom_motion)]);
-  if (!pose) throw InputError(tfile, t.line, "the drill point of hole '" + id + "' has no Cartesian pose");
+  const std::optional<Pose> pose =
+      postproc::motionPose(prog, prog.motions[static_cast<size_t>(hole.bottom_motion)]);
+  if (!pose)
+    throw InputError(tfile, t.line, "the drill point of hole '" + id + "' has no Cartesian pose");
   Pose T_base_frame = s.cell->T_base_wobj;
   std::string frame = "cell workobject";
   if (hole.base >= 0 && prog.frames[static_cast<size_t>(hole.base)].resolved) {
@@ -111,21 +124,26 @@ HoleJoints cartesianTargetJoints(const RobotSetup& s, const postproc::Program& p
   const ConfiguredSolution cs = solveIkWithConfiguration(ik, s.robot.card, T_base_flange, vc);
   if (!cs.found) {
     throw HoleUnreachable(tfile, t.line,
-                          "hole '" + id + "' is not reachable with configuration " + t.config.text() + ": " + cs.reason);
+                          "hole '" + id + "' is not reachable with configuration " +
+                              t.config.text() + ": " + cs.reason);
   }
-  return {cs.solution.q, "target " + t.name + " (" + frame + ", configuration " + t.config.text() + ")"};
+  return {cs.solution.q,
+          "target " + t.name + " (" + frame + ", configuration " + t.config.text() + ")"};
 }
 
 }  // namespace
 
-HoleJoints holeJoints(const RobotSetup& setup, const std::string& program_path, const std::string& id) {
-  if (!setup.cell) throw UsageError("the joints of a program's hole need a cell (work object and tool)");
+HoleJoints holeJoints(const RobotSetup& setup, const std::string& program_path,
+                      const std::string& id) {
+  if (!setup.cell)
+    throw UsageError("the joints of a program's hole need a cell (work object and tool)");
   const postproc::Program prog = postproc::readProgram(program_path);
   if (prog.dialect == postproc::Dialect::kHoleCsv) return holeListJoints(setup, program_path, id);
   const std::vector<postproc::Hole> holes = postproc::recognizeHoles(prog);
   const postproc::Hole& hole = findHole(holes, program_path, id);
   const postproc::Target& t = prog.targets()[static_cast<size_t>(hole.bottom_target)];
-  const std::string tfile = t.file >= 0 ? prog.files[static_cast<size_t>(t.file)].path : program_path;
+  const std::string tfile =
+      t.file >= 0 ? prog.files[static_cast<size_t>(t.file)].path : program_path;
   if (t.kind == postproc::TargetKind::kJoint) return jointTargetJoints(setup, t, tfile, id);
   return cartesianTargetJoints(setup, prog, hole, tfile, id);
 }
@@ -134,8 +152,8 @@ HoleJoints holeJoints(const RobotSetup& setup, const std::string& program_path, 
 
 namespace {
 
-nc::TransientProblem transientProblem(const RobotSetup& s, const nc::Model& model, nc::Data& data, const nc::Vec6& q,
-                                      const SimulateOptions& o) {
+nc::TransientProblem transientProblem(const RobotSetup& s, const nc::Model& model, nc::Data& data,
+                                      const nc::Vec6& q, const SimulateOptions& o) {
   nc::DriveEstimateOptions est;
   est.integral = o.integral;
   nc::TransientProblem p;
@@ -143,7 +161,8 @@ nc::TransientProblem transientProblem(const RobotSetup& s, const nc::Model& mode
   p.drive = nc::driveModelFromCard(s.robot.card, model, data, q, est);
   p.theta_cmd = q;
   p.gravity = o.gravity;
-  p.command_offset = o.gravity ? controllerGravityOffset(s.robot, p.drive.staticCompliance(), q) : nc::Vec6::Zero();
+  p.command_offset = o.gravity ? controllerGravityOffset(s.robot, p.drive.staticCompliance(), q)
+                               : nc::Vec6::Zero();
   return p;
 }
 
@@ -153,19 +172,22 @@ struct StaticReference {
   nc::Deflection full_engagement;
 };
 
-StaticReference staticReference(const nc::Model& model, nc::Data& data, const nc::TransientProblem& p,
+StaticReference staticReference(const nc::Model& model, nc::Data& data,
+                                const nc::TransientProblem& p,
                                 const std::optional<ProcessSpec>& spec) {
   StaticReference ref;
   nc::Loads gl;
   gl.gravity = p.gravity;
-  ref.gravity_only = nc::predictDeflection(model, data, p.drive.staticCompliance(), p.theta_cmd, gl, {}, p.command_offset);
+  ref.gravity_only = nc::predictDeflection(model, data, p.drive.staticCompliance(), p.theta_cmd, gl,
+                                           {}, p.command_offset);
   nc::Loads fl = gl;
   if (spec) {
     const SteadyProcessLoad pl = steadyProcessLoad(*spec);
     fl.tcp_tool.force = pl.wrench.force;
     fl.tcp_tool.moment = pl.wrench.torque;
   }
-  ref.full_engagement = nc::predictDeflection(model, data, p.drive.staticCompliance(), p.theta_cmd, fl, {}, p.command_offset);
+  ref.full_engagement = nc::predictDeflection(model, data, p.drive.staticCompliance(), p.theta_cmd,
+                                              fl, {}, p.command_offset);
   return ref;
 }
 
@@ -196,8 +218,9 @@ HistoryStats historyStats(const nc::TransientResult& r) {
 
 Json driveJson(const nc::DriveModel& d) {
   Json drive = Json::object();
-  drive.set("servo", Json::str(d.servo == nc::ServoMode::kIdeal ? "ideal (no position_gain in the card)"
-                                                                : (d.integral ? "cascade P + PI" : "cascade P + P")));
+  drive.set("servo", Json::str(d.servo == nc::ServoMode::kIdeal
+                                   ? "ideal (no position_gain in the card)"
+                                   : (d.integral ? "cascade P + PI" : "cascade P + P")));
   drive.set("stiffness_Nm_per_rad", Json::vector(d.k, -1));
   drive.set("motor_inertia_kgm2", Json::vector(d.motor_inertia, 4));
   drive.set("damping_Nms_per_rad", Json::vector(d.damping, 3));
@@ -220,7 +243,8 @@ Json transientJson(const nc::TransientResult& r, const StaticReference& ref) {
   if (h.last_full != nullptr) {
     tr.set("end_of_full_engagement_t_s", Json::number(h.last_full->t, 6));
     tr.set("end_of_full_engagement_um", Json::vector(h.last_full->dp * 1e6, 4));
-    tr.set("difference_to_static_um", Json::number((h.last_full->dp - ref.full_engagement.dp).norm() * 1e6, 4));
+    tr.set("difference_to_static_um",
+           Json::number((h.last_full->dp - ref.full_engagement.dp).norm() * 1e6, 4));
   }
   tr.set("max_deviation_entry_um", Json::number(h.max_entry * 1e6, 4));
   tr.set("max_deviation_um", Json::number(h.max_dev * 1e6, 4));
@@ -248,7 +272,8 @@ Json cvodeJson(const nc::TransientResult& r, const nc::TransientOptions& opt, do
 
 }  // namespace
 
-SimulationResult simulateAt(const RobotSetup& setup, const HoleJoints& at, const SimulateOptions& options) {
+SimulationResult simulateAt(const RobotSetup& setup, const HoleJoints& at,
+                            const SimulateOptions& options) {
   if (!setup.cell) throw UsageError("a simulation needs a cell (robot, tool and process)");
   requireWithinLimits(setup.robot.chain, at.joints, "joints");
   const nc::Model model = nc::buildModel(setup.robot.chain, setup.tool);
@@ -278,7 +303,8 @@ SimulationResult simulateAt(const RobotSetup& setup, const HoleJoints& at, const
   root.set("cell", Json::str(setup.cell->name));
   root.set("joints_deg", Json::vector(at.joints / kDeg, 6));
   root.set("joints_source", Json::str(at.source));
-  root.set("process", Json::str(spec ? steadyProcessLoad(*spec).description : "none (gravity only)"));
+  root.set("process",
+           Json::str(spec ? steadyProcessLoad(*spec).description : "none (gravity only)"));
   root.set("drive", driveJson(p.drive));
   root.set("static", staticJson(ref));
   root.set("transient", transientJson(r.transient, ref));
@@ -303,8 +329,9 @@ std::string transientHistoryCsv(const nc::TransientResult& r) {
   out.reserve(r.samples.size() * 200 + out.size());
   const nc::Vec6 q0 = r.samples.empty() ? nc::Vec6::Zero() : nc::Vec6(r.samples.front().theta_m);
   for (const nc::TransientSample& s : r.samples) {
-    out += fmt("%.6f", s.t) + ',' + fmt("%.6f", s.process.depth * 1e3) + ',' + fmt("%.3f", s.process.Fa) + ',' +
-           fmt("%.3f", s.process.Ft) + ',' + fmt("%.4f", s.process.M) + ',' + fmt("%.3f", s.process.Fr);
+    out += fmt("%.6f", s.t) + ',' + fmt("%.6f", s.process.depth * 1e3) + ',' +
+           fmt("%.3f", s.process.Fa) + ',' + fmt("%.3f", s.process.Ft) + ',' +
+           fmt("%.4f", s.process.M) + ',' + fmt("%.3f", s.process.Fr);
     for (int i = 0; i < 3; ++i) out += ',' + fmt("%.4f", s.dp[i] * 1e6);
     for (int i = 0; i < 3; ++i) out += ',' + fmt("%.3f", s.drot[i] * 1e6);
     for (int i = 0; i < 6; ++i) out += ',' + fmt("%.3f", (s.theta[i] - q0[i]) * 1e6);

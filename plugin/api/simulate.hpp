@@ -22,10 +22,11 @@ namespace roprec::api {
 /// Joints at which a cycle is simulated, and how they were obtained.
 struct HoleJoints {
   nc::Vec6 joints{nc::Vec6::Zero()};  ///< URDF convention, rad
-  std::string source;                 ///< e.g. "--joints", "target P[3] (cell workobject, configuration ...)"
+  std::string source;  ///< e.g. "--joints", "target P[3] (cell workobject, configuration ...)"
 };
 
-/// The hole is in the program but cannot be reached (an item that cannot be handled, not bad input).
+/// The hole is in the program but cannot be reached (an item that cannot be handled, not bad
+/// input).
 class HoleUnreachable : public InputError {
  public:
   using InputError::InputError;
@@ -38,7 +39,8 @@ class HoleUnreachable : public InputError {
 /// nearest the vendor reference pose. A hole-list hole is drilled along its direction with tool x
 /// = base x projected ⊥ the axis (else base y). Throws InputError (no such hole, no pose) or
 /// HoleUnreachable.
-HoleJoints holeJoints(const RobotSetup& setup, const std::string& program_path, const std::string& id);
+HoleJoints holeJoints(const RobotSetup& setup, const std::string& program_path,
+                      const std::string& id);
 
 struct SimulateOptions {
   double duration{-1.0};  ///< s; ≤ 0: the process cycle's own duration
@@ -61,7 +63,8 @@ struct SimulationResult {
 /// Integrates the cell's process cycle (the setup needs a cell; no process: gravity only) with the
 /// arm holding `at`. Throws UsageError without a cell, InputError outside the joint limits or
 /// without stiffness.
-SimulationResult simulateAt(const RobotSetup& setup, const HoleJoints& at, const SimulateOptions& options);
+SimulationResult simulateAt(const RobotSetup& setup, const HoleJoints& at,
+                            const SimulateOptions& options);
 
 /// CSV: t_s, depth_mm, Fa_N, Ft_N, M_Nm, Fr_N, dx/dy/dz_um, rx/ry/rz_urad, dq1..dq6_urad (link
 /// angle − the first sample's command), phase.

@@ -10,7 +10,8 @@
 
 namespace roprec::cli {
 
-Args::Args(std::vector<std::string> tokens) : tokens_(std::move(tokens)), used_(tokens_.size(), false) {}
+Args::Args(std::vector<std::string> tokens)
+    : tokens_(std::move(tokens)), used_(tokens_.size(), false) {}
 
 std::optional<std::string> Args::option(const std::string& name) {
   std::optional<std::string> value;
@@ -76,8 +77,9 @@ Eigen::VectorXd parseNumberList(const std::string& text, int n, const std::strin
     }
   }
   if (static_cast<int>(v.size()) != n) {
-    throw InputError("", 0, what + " needs " + std::to_string(n) + " numbers, got " +
-                                std::to_string(v.size()) + ": \"" + text + "\"");
+    throw InputError("", 0,
+                     what + " needs " + std::to_string(n) + " numbers, got " +
+                         std::to_string(v.size()) + ": \"" + text + "\"");
   }
   Eigen::VectorXd out(n);
   for (int i = 0; i < n; ++i) out[i] = v[static_cast<size_t>(i)];
@@ -92,8 +94,9 @@ Pose parsePoseQuat(const std::string& text) {
   const Eigen::VectorXd v = parseNumberList(text, 7, "--pose (x y z qw qx qy qz)");
   Eigen::Quaterniond q(v[3], v[4], v[5], v[6]);
   if (std::abs(q.norm() - 1.0) > 1e-6) {
-    throw InputError("", 0, "--pose: the quaternion is not a unit quaternion (norm " +
-                                std::to_string(q.norm()) + ")");
+    throw InputError(
+        "", 0,
+        "--pose: the quaternion is not a unit quaternion (norm " + std::to_string(q.norm()) + ")");
   }
   Pose T = Pose::Identity();
   T.translation() = v.head<3>() * 1e-3;
@@ -136,7 +139,8 @@ void Progress::step(size_t done, size_t total) {
 }
 
 void Progress::finish() {
-  if (active_ && last_ > 0) ctx_.err << "\r" << std::string(what_.size() + 24, ' ') << "\r" << std::flush;
+  if (active_ && last_ > 0)
+    ctx_.err << "\r" << std::string(what_.size() + 24, ' ') << "\r" << std::flush;
 }
 
 }  // namespace roprec::cli

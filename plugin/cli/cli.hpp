@@ -19,7 +19,6 @@ namespace roprec::cli {
 // The CLI is parsing and printing over the host-facing job API.
 using namespace roprec::api;  // NOLINT(google-build-using-namespace)
 
-
 /// Options are consumed as commands ask for them; `finish()` rejects anything left over.
 class Args {
  public:

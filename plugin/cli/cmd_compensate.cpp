@@ -17,8 +17,8 @@ namespace {
 
 /// Milling: every linear path point of the program is compensated with the coupled force
 /// iteration (compensator/compensation/milling_compensation.hpp).
-int runMillingPath(CommandContext& ctx, const std::string& cell, const std::string& program, const std::string& out,
-                   const std::optional<std::string>& targets) {
+int runMillingPath(CommandContext& ctx, const std::string& cell, const std::string& program,
+                   const std::string& out, const std::optional<std::string>& targets) {
   MillingCompensationResult r = compensateMillingJob(cell, program);
   for (const auto& f : r.failures) ctx.err << "roprec: " << f << "\n";
   if (!r.failures.empty()) {
@@ -28,7 +28,8 @@ int runMillingPath(CommandContext& ctx, const std::string& cell, const std::stri
   }
   if (!r.refused.empty()) {
     for (const auto& x : r.refused) ctx.err << "roprec: " << x << "\n";
-    ctx.err << "roprec: the writer refused " << r.refused.size() << " target edits; nothing written\n";
+    ctx.err << "roprec: the writer refused " << r.refused.size()
+            << " target edits; nothing written\n";
     return 1;
   }
   std::vector<std::pair<std::string, std::string>> extra;
@@ -41,7 +42,8 @@ int runMillingPath(CommandContext& ctx, const std::string& cell, const std::stri
       before = std::max(before, p.deviation_before.norm());
       after = std::max(after, p.residual.norm());
     }
-    ctx.out << "roprec compensate (milling path): " << r.points_comp.size() << " path points compensated\n";
+    ctx.out << "roprec compensate (milling path): " << r.points_comp.size()
+            << " path points compensated\n";
     ctx.out << "  deviation before (coupled force) max " << formatNumber(before * 1e6, 3)
             << " µm; predicted residual max " << formatNumber(after * 1e6, 4) << " µm\n";
     for (const auto& pth : written) ctx.out << "  wrote " << pth << "\n";
@@ -61,7 +63,8 @@ CompensationOptions parseCompensationOptions(Args& args) {
   } else {
     throw UsageError("--orientation must be keep, flip-free or stiffest");
   }
-  if (const auto w = args.option("wrist-margin")) opt.wrist_margin = parseNumberList(*w, 1, "--wrist-margin (deg)")[0] * kDeg;
+  if (const auto w = args.option("wrist-margin"))
+    opt.wrist_margin = parseNumberList(*w, 1, "--wrist-margin (deg)")[0] * kDeg;
   if (const auto j = args.option("jump-threshold")) {
     opt.jump_threshold = parseNumberList(*j, 1, "--jump-threshold (deg)")[0] * kDeg;
   }
@@ -70,7 +73,8 @@ CompensationOptions parseCompensationOptions(Args& args) {
     if (g < 4 || g > 720) throw UsageError("--grid must lie in [4, 720]");
     opt.grid = static_cast<int>(g);
   }
-  if (!(opt.wrist_margin >= 0) || !(opt.jump_threshold > 0)) throw UsageError("--wrist-margin >= 0, --jump-threshold > 0");
+  if (!(opt.wrist_margin >= 0) || !(opt.jump_threshold > 0))
+    throw UsageError("--wrist-margin >= 0, --jump-threshold > 0");
   opt.allow_branch_change = args.flag("allow-branch-change");
   return opt;
 }
@@ -80,7 +84,8 @@ std::optional<std::array<int, 3>> parseTurnAxes(const std::optional<std::string>
   const Eigen::VectorXd ax = parseNumberList(*text, 3, "--turn-axes (three joint numbers)");
   std::array<int, 3> a{};
   for (int i = 0; i < 3; ++i) {
-    if (ax[i] < 1 || ax[i] > 6 || ax[i] != std::floor(ax[i])) throw UsageError("--turn-axes: joint numbers 1..6");
+    if (ax[i] < 1 || ax[i] > 6 || ax[i] != std::floor(ax[i]))
+      throw UsageError("--turn-axes: joint numbers 1..6");
     a[static_cast<size_t>(i)] = static_cast<int>(ax[i]);
   }
   return a;
@@ -104,12 +109,16 @@ void printSummary(CommandContext& ctx, const CompensationResult& r, const Compen
           << (r.holes.size() - static_cast<size_t>(r.failed)) << " compensated\n";
   ctx.out << "  position error ⊥ axis before [µm]: " << stat(s.error_before_um) << "\n";
   ctx.out << "  predicted residual after    [µm]: " << stat(s.residual_after_um) << "\n";
-  ctx.out << "  holes conforming (ISO 14253-1): before " << s.conform_before << ", after " << s.conform_after << "\n";
+  ctx.out << "  holes conforming (ISO 14253-1): before " << s.conform_before << ", after "
+          << s.conform_after << "\n";
   ctx.out << "  axis-4/6 jumps > " << formatNumber(opt.jump_threshold / kDeg, 0)
-          << " deg between holes of a face: before " << s.jumps_before << ", after " << s.jumps_after << "\n";
-  if (r.stats.relaxed_jumps) ctx.out << "  note: no orientation sequence met the jump threshold; it was relaxed\n";
+          << " deg between holes of a face: before " << s.jumps_before << ", after "
+          << s.jumps_after << "\n";
+  if (r.stats.relaxed_jumps)
+    ctx.out << "  note: no orientation sequence met the jump threshold; it was relaxed\n";
   if (r.stats.relaxed_wrist > 0) {
-    ctx.out << "  note: at " << r.stats.relaxed_wrist << " holes no rotation about the drill axis meets |θ5| ≥ "
+    ctx.out << "  note: at " << r.stats.relaxed_wrist
+            << " holes no rotation about the drill axis meets |θ5| ≥ "
             << formatNumber(opt.wrist_margin / kDeg, 0) << "° (flagged in the export)\n";
   }
   for (const auto& p : written) ctx.out << "  wrote " << p << "\n";
@@ -158,23 +167,28 @@ int run(Args& args, CommandContext& ctx) {
 
 const CommandRegistration reg{
     {"compensate", "pre-offset drill targets; corrected program, target export and report",
-     "usage: roprec compensate --cell CELL.xml PROGRAM -o OUT [--orientation keep|flip-free|stiffest]\n"
+     "usage: roprec compensate --cell CELL.xml PROGRAM -o OUT [--orientation "
+     "keep|flip-free|stiffest]\n"
      "                         [--targets F.csv|F.json] [--report F.html] [--holes HOLES.csv]\n"
      "                         [--allow-partial] [--allow-branch-change] [--wrist-margin DEG]\n"
      "                         [--jump-threshold DEG] [--grid N] [--turn-axes \"1 4 6\"]\n\n"
      "For every hole: the motor-side command θ_m = θ_d + K⁻¹τ(θ_d) (+ servo term) that makes the\n"
      "predicted real TCP land on the nominal hole, and the programmed target = the controller's\n"
      "rigid FK of θ_m with its configuration flags. Every target of a drill cycle moves with it.\n"
-     "--orientation: keep (positions only), flip-free (rotation about the drill axis chosen for the\n"
+     "--orientation: keep (positions only), flip-free (rotation about the drill axis chosen for "
+     "the\n"
      "whole program by dynamic programming + NLopt: no axis-4/6 jump > --jump-threshold (60°),\n"
      "|θ5| ≥ --wrist-margin (10°), same IK branch unless --allow-branch-change), stiffest (least\n"
      "predicted U_work under the same constraints).\n"
      "OUT is written in the program's dialect; only the compensated targets' bytes change.\n"
-     "FANUC: turn digits 1 and 2 are changed only when $SCR_GRP[1].$TURN_AXIS is known (--turn-axes or\n"
+     "FANUC: turn digits 1 and 2 are changed only when $SCR_GRP[1].$TURN_AXIS is known "
+     "(--turn-axes or\n"
      "the cell's <controller fanuc_turn_axes>); otherwise such edits are refused.\n"
      "With a milling cell every linear path point is compensated instead, with the coupled force\n"
-     "iteration (the force depends on the deviation); the export lists points, forces and iterations.\n"
-     "Unreachable, singular or non-converging holes are listed; without --allow-partial nothing is\n"
+     "iteration (the force depends on the deviation); the export lists points, forces and "
+     "iterations.\n"
+     "Unreachable, singular or non-converging holes are listed; without --allow-partial nothing "
+     "is\n"
      "written and the exit code is 1; with it they keep their original targets and are flagged.\n",
      50, run}};
 

@@ -31,13 +31,17 @@ int run(Args& args, CommandContext& ctx) {
 
 const CommandRegistration reg{
     {"convert", "a program through its own reader/writer, or its targets into another dialect",
-     "usage: roprec convert PROGRAM [--to krl|rapid|tp|csv|json] -o OUT [--frame 'REF=x y z a b c[;...]']\n\n"
-     "Without --to: PROGRAM is read and written back through its own reader and writer; the output\n"
+     "usage: roprec convert PROGRAM [--to krl|rapid|tp|csv|json] -o OUT [--frame 'REF=x y z a b "
+     "c[;...]']\n\n"
+     "Without --to: PROGRAM is read and written back through its own reader and writer; the "
+     "output\n"
      "is byte-identical to the input (KRL: OUT names the .src, the .dat is written beside it).\n"
      "With --to: the program's Cartesian targets are written as a new, minimal program in that\n"
      "dialect (KRL: OUT.src + OUT.dat). Configuration is carried at the branch level (shoulder,\n"
-     "elbow, wrist); joint targets go only into csv/json (joint conventions differ between vendors);\n"
-     "items that cannot be converted are listed and the exit code is 1. Frames that the output must\n"
+     "elbow, wrist); joint targets go only into csv/json (joint conventions differ between "
+     "vendors);\n"
+     "items that cannot be converted are listed and the exit code is 1. Frames that the output "
+     "must\n"
      "state by value but the program does not define are given with --frame (mm, deg, KUKA ABC).\n",
      61, run}};
 

@@ -23,8 +23,10 @@ const CommandRegistration reg{
      "usage: roprec fk --robot NAME|robot.xml|file.urdf --joints \"j1 .. j6\" [--cell CELL.xml]\n"
      "                 [--base LINK --tip LINK] [-o OUT.json]\n\n"
      "Solves the position problem of the mixed-natural-coordinate model (Newton-Raphson) for the\n"
-     "joint angles (deg, the robot's URDF joint convention) and prints JSON: `flange` (and `tcp` with a\n"
-     "cell) as position_mm and quaternion_wxyz in the robot base frame (plus abc_deg, KUKA Z-Y'-X''),\n"
+     "joint angles (deg, the robot's URDF joint convention) and prints JSON: `flange` (and `tcp` "
+     "with a\n"
+     "cell) as position_mm and quaternion_wxyz in the robot base frame (plus abc_deg, KUKA "
+     "Z-Y'-X''),\n"
      "controller_joints_deg (the vendor's joint convention), and within_limits.\n",
      20, run}};
 

@@ -23,10 +23,14 @@ DrillingMeasurement parseCalibration(const std::string& text) {
   std::string tok;
   while (in >> tok) {
     const auto eq = tok.find('=');
-    if (eq == std::string::npos) throw UsageError("--calibrate expects \"Fa_N=... M_Nm=...\", got '" + tok + "'");
+    if (eq == std::string::npos)
+      throw UsageError("--calibrate expects \"Fa_N=... M_Nm=...\", got '" + tok + "'");
     const std::string key = tok.substr(0, eq);
     const auto v = parseNumber(tok.substr(eq + 1));
-    if (!v || !(*v > 0)) throw InputError("", 0, "--calibrate: " + key + " must be a positive number, got '" + tok.substr(eq + 1) + "'");
+    if (!v || !(*v > 0))
+      throw InputError(
+          "", 0,
+          "--calibrate: " + key + " must be a positive number, got '" + tok.substr(eq + 1) + "'");
     if (key == "Fa_N" || key == "Fz_N") {
       m.thrust = *v;
       has_f = true;
@@ -42,7 +46,8 @@ DrillingMeasurement parseCalibration(const std::string& text) {
 }
 
 /// Reads the numeric options into the request (mm and µm/N on the command line).
-void parseNumbers(ForcesRequest& req, const std::optional<std::string>& step_mm, const std::optional<std::string>& points,
+void parseNumbers(ForcesRequest& req, const std::optional<std::string>& step_mm,
+                  const std::optional<std::string>& points,
                   const std::optional<std::string>& axial) {
   if (step_mm) {
     const auto v = parseNumber(*step_mm);
@@ -51,12 +56,14 @@ void parseNumbers(ForcesRequest& req, const std::optional<std::string>& step_mm,
   }
   if (points) {
     const auto v = parseNumber(*points);
-    if (!v || !(*v >= 1 && *v <= 100000) || *v != std::floor(*v)) throw InputError("", 0, "--points must be an integer >= 1");
+    if (!v || !(*v >= 1 && *v <= 100000) || *v != std::floor(*v))
+      throw InputError("", 0, "--points must be an integer >= 1");
     req.points = static_cast<int>(*v);
   }
   if (axial) {
     const auto v = parseNumber(*axial);
-    if (!v || !(*v >= 0)) throw InputError("", 0, "--axial-compliance-um-per-N must be a number >= 0");
+    if (!v || !(*v >= 0))
+      throw InputError("", 0, "--axial-compliance-um-per-N must be a number >= 0");
     req.axial_compliance = *v * 1e-6;
   }
 }
@@ -78,7 +85,8 @@ int run(Args& args, CommandContext& ctx) {
   req.cell = *cell_path;
   parseNumbers(req, step_mm, points, axial);
   if (calibrate) req.calibrate = parseCalibration(*calibrate);
-  if (joints && cellIsMilling(req.cell)) req.joints = parseJointsDeg(*joints);  // read for milling only
+  if (joints && cellIsMilling(req.cell))
+    req.joints = parseJointsDeg(*joints);  // read for milling only
   req.calibrated_cell = out_xml.has_value();
   req.curve = csv_path.has_value();
 
@@ -97,24 +105,37 @@ int run(Args& args, CommandContext& ctx) {
 const CommandRegistration reg{
     {"forces", "process forces of a cell (drilling, milling, wrench); single-test calibration",
      "usage: roprec forces --cell CELL.xml [--csv F.csv] [--json F.json] [--step-mm S]\n"
-     "                     [--calibrate \"Fa_N=... M_Nm=...\" [--o|--output OUT.xml]] [--points N]\n"
+     "                     [--calibrate \"Fa_N=... M_Nm=...\" [--o|--output OUT.xml]] [--points "
+     "N]\n"
      "                     [--axial-compliance-um-per-N C] [--joints \"j1 .. j6\"]\n\n"
-     "Computes the process forces of the cell's <process> (the robot is loaded only with --joints).\n"
-     "  drilling: steady thrust, torque, rotating runout force Fr, per-lip forces, chisel share, the wrench\n"
-     "            on the TCP in the tool frame (z into the material: force z = -thrust, torque z = -M), the\n"
-     "            machining-deviation budget (U_mach, k = 2); --csv writes depth_mm, engaged_radius_mm,\n"
+     "Computes the process forces of the cell's <process> (the robot is loaded only with "
+     "--joints).\n"
+     "  drilling: steady thrust, torque, rotating runout force Fr, per-lip forces, chisel share, "
+     "the wrench\n"
+     "            on the TCP in the tool frame (z into the material: force z = -thrust, torque z = "
+     "-M), the\n"
+     "            machining-deviation budget (U_mach, k = 2); --csv writes depth_mm, "
+     "engaged_radius_mm,\n"
      "            Fa_N, Ft_N, M_Nm, Fr_N through entry, steady cut and breakthrough.\n"
-     "  milling:  immersion, h_m, revolution-mean and peak forces; --csv writes angle_deg, Fx_N, Fy_N,\n"
-     "            Fz_N, Fxy_N over one revolution; with <coupling compliance_um_per_N=...> the coupled\n"
-     "            iteration over --points path points (default 10), per point converged/iterations;\n"
-     "            --joints (deg): the coupling's compliance is the cell robot's own deflection at that pose\n"
+     "  milling:  immersion, h_m, revolution-mean and peak forces; --csv writes angle_deg, Fx_N, "
+     "Fy_N,\n"
+     "            Fz_N, Fxy_N over one revolution; with <coupling compliance_um_per_N=...> the "
+     "coupled\n"
+     "            iteration over --points path points (default 10), per point "
+     "converged/iterations;\n"
+     "            --joints (deg): the coupling's compliance is the cell robot's own deflection at "
+     "that pose\n"
      "            (nonlinear joint-compliance equilibrium, feed along tool x).\n"
      "  wrench:   echoes the given tool-frame wrench.\n"
-     "--axial-compliance-um-per-N (drilling): the feed absorbed by an axial compliance C at the TCP, one\n"
-     "            quasi-static step per revolution (entry, steady cut, breakthrough lunge); the CSV is then\n"
+     "--axial-compliance-um-per-N (drilling): the feed absorbed by an axial compliance C at the "
+     "TCP, one\n"
+     "            quasi-static step per revolution (entry, steady cut, breakthrough lunge); the "
+     "CSV is then\n"
      "            per revolution with feed_mm and dz_um columns.\n"
-     "--calibrate identifies kst0 and ksa0 from one measured thrust and torque at the cell's diameter and\n"
-     "feed; --o OUT.xml writes a copy of the cell with the calibrated <coefficients> (atomically).\n"
+     "--calibrate identifies kst0 and ksa0 from one measured thrust and torque at the cell's "
+     "diameter and\n"
+     "feed; --o OUT.xml writes a copy of the cell with the calibrated <coefficients> "
+     "(atomically).\n"
      "Exit 0 done; 1 some coupled points did not converge; 2 bad input (nothing written).\n",
      40, run}};
 

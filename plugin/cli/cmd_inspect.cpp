@@ -1,4 +1,5 @@
-/// `roprec inspect PROGRAM`: what a robot program contains (docs/contract.md §11, docs/programs.md).
+/// `roprec inspect PROGRAM`: what a robot program contains (docs/contract.md §11,
+/// docs/programs.md).
 #include "compensator/support/error.hpp"
 #include "plugin/api/inspect.hpp"
 #include "plugin/cli/cli.hpp"
@@ -34,11 +35,15 @@ const CommandRegistration reg{
     {"inspect", "what a robot program contains: targets, frames, configurations, holes",
      "usage: roprec inspect PROGRAM [-o OUT.json] [--holes HOLES.csv [--match-tolerance MM]]\n"
      "                      [--tool-axis \"x y z\"] [--frame 'REF=x y z a b c[;REF=...]']\n\n"
-     "PROGRAM: KUKA .src (+ .dat beside it), ABB .mod/.prg/.sys, FANUC .ls, CSV/JSON target list or\n"
-     "hole list. JSON: targets (pose in their frame and, where the frame resolves, in the robot base\n"
-     "frame: position_mm, quaternion_wxyz; native values; configuration; external axes; tool/base),\n"
+     "PROGRAM: KUKA .src (+ .dat beside it), ABB .mod/.prg/.sys, FANUC .ls, CSV/JSON target list "
+     "or\n"
+     "hole list. JSON: targets (pose in their frame and, where the frame resolves, in the robot "
+     "base\n"
+     "frame: position_mm, quaternion_wxyz; native values; configuration; external axes; "
+     "tool/base),\n"
      "motions, recognised drill holes, unresolved references.\n"
-     "--frame defines frames the program uses but does not define (e.g. 'UFRAME[1]=1400 0 400 0 0 0').\n"
+     "--frame defines frames the program uses but does not define (e.g. 'UFRAME[1]=1400 0 400 0 0 "
+     "0').\n"
      "--tool-axis: drilling axis in the TCP frame (default +z).\n",
      60, run}};
 

@@ -4,9 +4,9 @@
 
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
-#include "plugin/cli/cli.hpp"
-#include "plugin/api/json.hpp"
 #include "plugin/api/job.hpp"
+#include "plugin/api/json.hpp"
+#include "plugin/cli/cli.hpp"
 
 namespace roprec::cli {
 namespace {
@@ -14,10 +14,12 @@ namespace {
 void printSummary(CommandContext& ctx, const PredictionResult& r) {
   const CapabilitySummary& sum = r.summary;
   ctx.err << "roprec predict: " << sum.holes << " holes: " << sum.conforms << " conform, "
-          << sum.conforms_after_compensation << " conform after compensation, " << sum.does_not_conform
-          << " do not conform, " << (sum.unreachable + sum.singular + sum.not_converged) << " not handled\n";
-  ctx.err << "  the robot can take " << sum.robot_can_take << " holes = " << formatNumber(sum.mc_time_taken, 0)
-          << " s of machining-center time (of " << formatNumber(sum.mc_time_total, 0) << " s)\n";
+          << sum.conforms_after_compensation << " conform after compensation, "
+          << sum.does_not_conform << " do not conform, "
+          << (sum.unreachable + sum.singular + sum.not_converged) << " not handled\n";
+  ctx.err << "  the robot can take " << sum.robot_can_take
+          << " holes = " << formatNumber(sum.mc_time_taken, 0) << " s of machining-center time (of "
+          << formatNumber(sum.mc_time_total, 0) << " s)\n";
   double mx = 0;
   double mean = 0;
   int n = 0;
@@ -28,8 +30,9 @@ void printSummary(CommandContext& ctx, const PredictionResult& r) {
     ++n;
   }
   if (n > 0) {
-    ctx.err << "  real drill points from the nominal hole axes: mean " << formatNumber(mean / n * 1e6, 3)
-            << " µm, max " << formatNumber(mx * 1e6, 3) << " µm (" << n << " holes)\n";
+    ctx.err << "  real drill points from the nominal hole axes: mean "
+            << formatNumber(mean / n * 1e6, 3) << " µm, max " << formatNumber(mx * 1e6, 3)
+            << " µm (" << n << " holes)\n";
   }
 }
 
@@ -50,7 +53,8 @@ int run(Args& args, CommandContext& ctx) {
   if (match_tol) opt.match_tol_mm = parseNumberList(*match_tol, 1, "--match-tol (mm)")[0];
 
   Progress progress(ctx, "predicting holes", 0);
-  const PredictionResult r = predictJob(*cell, pos[0], opt, [&](size_t done, size_t total) { progress.step(done, total); });
+  const PredictionResult r = predictJob(
+      *cell, pos[0], opt, [&](size_t done, size_t total) { progress.step(done, total); });
   progress.finish();
   const std::string json = predictionJson(r).dump();
   if (report_out) writeFileAtomic(*report_out, predictionReport(r));
@@ -70,17 +74,25 @@ int run(Args& args, CommandContext& ctx) {
 
 const CommandRegistration reg{
     {"predict", "per-hole deviation, uncertainty, tolerance verdict and capability",
-     "usage: roprec predict --cell CELL.xml PROGRAM_OR_HOLES [--json OUT.json] [--report OUT.html]\n"
+     "usage: roprec predict --cell CELL.xml PROGRAM_OR_HOLES [--json OUT.json] [--report "
+     "OUT.html]\n"
      "                      [--holes HOLES.csv] [--uncertainty linear|montecarlo] [--quiet]\n\n"
-     "For every hole of a drilling program (KUKA .src, ABB .mod/.prg, FANUC .ls, CSV/JSON targets) or a\n"
-     "hole-list CSV: the IK solution the program's configuration selects (hole lists: the admissible\n"
-     "solution nearest the previous hole's), δrobot under gravity, tool weight and the steady process\n"
-     "wrench, δmach, δwork = δrobot + δmach, the position error ⊥ the hole axis and the axis tilt, the\n"
-     "uncertainty budget U_robot, U_mach, U_work (2-D radial 95 %, k = 2.4477) and the ISO 14253-1\n"
+     "For every hole of a drilling program (KUKA .src, ABB .mod/.prg, FANUC .ls, CSV/JSON targets) "
+     "or a\n"
+     "hole-list CSV: the IK solution the program's configuration selects (hole lists: the "
+     "admissible\n"
+     "solution nearest the previous hole's), δrobot under gravity, tool weight and the steady "
+     "process\n"
+     "wrench, δmach, δwork = δrobot + δmach, the position error ⊥ the hole axis and the axis tilt, "
+     "the\n"
+     "uncertainty budget U_robot, U_mach, U_work (2-D radial 95 %, k = 2.4477) and the ISO "
+     "14253-1\n"
      "verdict against the hole's position tolerance (hole list, else the cell's <tolerance>):\n"
      "conforms | conforms-after-compensation | does-not-conform | unreachable | singular.\n"
-     "--holes: a hole list matched to the program's holes (ids, diameters, depths, tolerances) by id,\n"
-     "else by position within --match-tol mm (0.5); the JSON then reports from_nominal_axis, the real\n"
+     "--holes: a hole list matched to the program's holes (ids, diameters, depths, tolerances) by "
+     "id,\n"
+     "else by position within --match-tol mm (0.5); the JSON then reports from_nominal_axis, the "
+     "real\n"
      "drill point's distance from the nominal hole axis (the residual of a compensated program).\n"
      "JSON to stdout unless --json; --report writes one self-contained HTML file.\n"
      "Exit 1 if some holes could not be handled (listed on stderr), 2 for bad input.\n",

@@ -17,12 +17,13 @@ int run(Args& args, CommandContext& ctx) {
   return 0;
 }
 
-const CommandRegistration reg{{"robots", "list the bundled robots and the sources of their numbers",
-                               "usage: roprec robots [--json]\n\n"
-                               "Lists the bundled robots (robots/<name>/robot.xml): vendor, model, ISO 9283\n"
-                               "repeatability, joint stiffness and where every number comes from. Numbers whose\n"
-                               "source begins with 'estimate:' are estimates (marked ESTIMATE / \"estimate\": true).\n",
-                               10, run}};
+const CommandRegistration reg{
+    {"robots", "list the bundled robots and the sources of their numbers",
+     "usage: roprec robots [--json]\n\n"
+     "Lists the bundled robots (robots/<name>/robot.xml): vendor, model, ISO 9283\n"
+     "repeatability, joint stiffness and where every number comes from. Numbers whose\n"
+     "source begins with 'estimate:' are estimates (marked ESTIMATE / \"estimate\": true).\n",
+     10, run}};
 
 }  // namespace
 }  // namespace roprec::cli

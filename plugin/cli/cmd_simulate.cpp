@@ -1,5 +1,6 @@
-/// `roprec simulate`: transient of one drilling cycle at one hole (CVODE, compensator/robot/transient.hpp):
-/// CSV time history of the process forces and the TCP deviation, JSON summary.
+/// `roprec simulate`: transient of one drilling cycle at one hole (CVODE,
+/// compensator/robot/transient.hpp): CSV time history of the process forces and the TCP deviation,
+/// JSON summary.
 #include "compensator/support/error.hpp"
 #include "plugin/api/simulate.hpp"
 #include "plugin/cli/cli.hpp"
@@ -35,7 +36,8 @@ int run(Args& args, CommandContext& ctx) {
   if (joints && hole) throw UsageError("give either --joints or --hole ID PROGRAM, not both");
   if (!joints && !hole) throw UsageError("give --hole ID PROGRAM or --joints \"j1 .. j6\"");
   if (hole && pos.size() != 1) throw UsageError("--hole ID needs exactly one PROGRAM");
-  if (joints && !pos.empty()) throw UsageError("unexpected argument '" + pos.front() + "' with --joints");
+  if (joints && !pos.empty())
+    throw UsageError("unexpected argument '" + pos.front() + "' with --joints");
   opt.duration = positive(duration, "--duration (s)", -1.0);
   opt.sample = positive(sample, "--sample-ms", 1.0) * 1e-3;
   opt.rtol = positive(rtol, "--rtol", 1e-8);
@@ -59,7 +61,8 @@ int run(Args& args, CommandContext& ctx) {
     ctx.err << r.summary.dump();
   }
   if (!r.transient.ok) {
-    ctx.err << "roprec: the transient stopped at t = " << r.transient.t_reached << " s: " << r.transient.message << "\n";
+    ctx.err << "roprec: the transient stopped at t = " << r.transient.t_reached
+            << " s: " << r.transient.message << "\n";
     return 1;
   }
   return 0;
@@ -69,16 +72,23 @@ const CommandRegistration reg{
     {"simulate", "transient drilling cycle at one hole (flexible joints + servo, CVODE)",
      "usage: roprec simulate --cell CELL.xml (--hole ID PROGRAM | --joints \"j1 .. j6\")\n"
      "                       [-o OUT.csv] [--summary F.json] [--duration S] [--bdf] [--runout]\n"
-     "                       [--no-integral] [--no-gravity] [--sample-ms MS] [--rtol R] [--stiffness \"k1 .. k6\"]\n\n"
+     "                       [--no-integral] [--no-gravity] [--sample-ms MS] [--rtol R] "
+     "[--stiffness \"k1 .. k6\"]\n\n"
      "Integrates the flexible-joint robot under its cascade servo (position gain from the card,\n"
-     "velocity PI estimated when absent) along the cell's process cycle: approach, progressive entry,\n"
+     "velocity PI estimated when absent) along the cell's process cycle: approach, progressive "
+     "entry,\n"
      "full engagement, breakthrough, dwell, retract (drilling); a ramped step (wrench, milling).\n"
-     "The arm holds the hole pose; only the process load varies. CVODE Adams-Moulton (--bdf: BDF).\n"
-     "CSV (default stdout): t_s, depth_mm, Fa_N, Ft_N, M_Nm, Fr_N, dx_um, dy_um, dz_um (TCP deviation from\n"
-     "the nominal rigid TCP, base frame), rx/ry/rz_urad, dq1..dq6_urad (link angle − command), phase.\n"
-     "JSON summary (stderr or --summary): static deviation (as deflect), deviation at the end of full\n"
+     "The arm holds the hole pose; only the process load varies. CVODE Adams-Moulton (--bdf: "
+     "BDF).\n"
+     "CSV (default stdout): t_s, depth_mm, Fa_N, Ft_N, M_Nm, Fr_N, dx_um, dy_um, dz_um (TCP "
+     "deviation from\n"
+     "the nominal rigid TCP, base frame), rx/ry/rz_urad, dq1..dq6_urad (link angle − command), "
+     "phase.\n"
+     "JSON summary (stderr or --summary): static deviation (as deflect), deviation at the end of "
+     "full\n"
      "engagement, maximum during entry, CVODE statistics. docs/transient.md has the model.\n"
-     "--runout: apply the rotating residual force Fr at spindle frequency. --no-integral: velocity loop\n"
+     "--runout: apply the rotating residual force Fr at spindle frequency. --no-integral: velocity "
+     "loop\n"
      "without integral action (steady state = static model with k_servo = Kv·Kω).\n"
      "Exit 1 if the hole is unreachable or the integration fails, 2 for bad input.\n",
      35, run}};

@@ -20,8 +20,8 @@ void printHelp(std::ostream& out) {
          "usage: roprec COMMAND [options]   (roprec COMMAND --help for details)\n\n"
          "commands:\n";
   for (const auto& c : cmds) {
-    out << "  " << c.name << std::string(c.name.size() < 12 ? 12 - c.name.size() : 1, ' ') << c.summary
-        << "\n";
+    out << "  " << c.name << std::string(c.name.size() < 12 ? 12 - c.name.size() : 1, ' ')
+        << c.summary << "\n";
   }
   out << "\nUnits: mm and degrees in files and on the command line, SI inside, µm in reports.\n"
          "Exit codes: 0 done; 1 some items could not be handled (listed); 2 bad usage or input.\n";
@@ -42,7 +42,8 @@ int main(int argc, char** argv) {
   const std::string name = tokens[0];
   tokens.erase(tokens.begin());
   const auto& reg = roprec::cli::commandRegistry();
-  const auto it = std::find_if(reg.begin(), reg.end(), [&](const auto& c) { return c.name == name; });
+  const auto it =
+      std::find_if(reg.begin(), reg.end(), [&](const auto& c) { return c.name == name; });
   if (it == reg.end()) {
     std::cerr << "roprec: error: unknown command '" << name << "' (roprec --help lists them)\n";
     return 2;

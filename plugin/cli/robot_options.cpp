@@ -28,7 +28,9 @@ std::vector<FrameDefinition> parseFrames(const std::string& text) {
   while (std::getline(in, item, ';')) {
     const std::size_t eq = item.find('=');
     if (eq == std::string::npos) throw UsageError("--frame expects REF=\"x y z a b c\"[;REF=...]");
-    frames.push_back({item.substr(0, eq), parsePoseXyzAbc(item.substr(eq + 1), "--frame REF=\"x y z a b c\" (mm, deg, KUKA ABC)")});
+    frames.push_back(
+        {item.substr(0, eq),
+         parsePoseXyzAbc(item.substr(eq + 1), "--frame REF=\"x y z a b c\" (mm, deg, KUKA ABC)")});
   }
   return frames;
 }

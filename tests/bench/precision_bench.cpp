@@ -23,7 +23,8 @@ struct Fixture {
   std::vector<HoleRequest> thousand;
   Fixture()
       : c(api::loadPredictionContext(test::sourceDir() + "/samples/cells/housing-kr120.xml",
-                                     test::sourceDir() + "/samples/emotor-housing/holes.csv", std::nullopt, "")) {
+                                     test::sourceDir() + "/samples/emotor-housing/holes.csv",
+                                     std::nullopt, "")) {
     std::mt19937 rng(3);
     std::uniform_real_distribution<double> u(-0.3, 0.3);
     for (int i = 0; i < 64; ++i) {
@@ -55,7 +56,8 @@ void BM_Roprec_StaticDeviation(benchmark::State& st) {
   loads.tcp.force = Vec3(0, 0, 800);
   size_t i = 0;
   for (auto _ : st) {
-    const nc::Deflection r = nc::predictDeflection(f.c.model.model, d, f.c.model.compliance, f.poses[i++ & 63], loads);
+    const nc::Deflection r =
+        nc::predictDeflection(f.c.model.model, d, f.c.model.compliance, f.poses[i++ & 63], loads);
     benchmark::DoNotOptimize(r.dp);
   }
 }
@@ -64,7 +66,8 @@ BENCHMARK(BM_Roprec_StaticDeviation);
 void BM_KDL_LinearCompliance(benchmark::State& st) {
   Fixture& f = fx();
   const ChainDescription& ch = f.c.robot.chain;
-  KDL::Chain kc = test::kdlChain(f.c.robot.card.urdf_path, ch.base_link, ch.tip_link, f.c.tool.T_flange_tcp);
+  KDL::Chain kc =
+      test::kdlChain(f.c.robot.card.urdf_path, ch.base_link, ch.tip_link, f.c.tool.T_flange_tcp);
   KDL::ChainJntToJacSolver jac(kc);
   KDL::ChainIdSolver_RNE rne(kc, KDL::Vector(0, 0, -9.80665));
   KDL::JntArray q(6);
@@ -134,7 +137,8 @@ void BM_PredictCli1000(benchmark::State& st) {
   }
   test::writeFile(dir + "/h.csv", csv);
   for (auto _ : st) {
-    const auto r = test::runRoprec("predict --cell '" + test::sourceDir() + "/samples/cells/housing-kr120.xml' '" + dir +
+    const auto r = test::runRoprec("predict --cell '" + test::sourceDir() +
+                                   "/samples/cells/housing-kr120.xml' '" + dir +
                                    "/h.csv' --json '" + dir + "/o.json' --quiet");
     benchmark::DoNotOptimize(r.exit_code);
   }

@@ -41,7 +41,8 @@ BENCHMARK(BM_DrillingForcesAtEntryDepth);
 void BM_DrillingModelBuild(benchmark::State& state) {
   DrillGeometry g;
   for (auto _ : state) {
-    const DrillingModel m = makeDrillingModel(g, findMaterial("Al 6061-T6")->drilling, AngleLaw::kGeometric, 0.2e-3);
+    const DrillingModel m =
+        makeDrillingModel(g, findMaterial("Al 6061-T6")->drilling, AngleLaw::kGeometric, 0.2e-3);
     benchmark::DoNotOptimize(m.full.r.data());
   }
 }

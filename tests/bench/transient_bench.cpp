@@ -1,7 +1,8 @@
-// Transient of a drilling cycle (compensator/robot/transient.hpp) on the KUKA KR 120 R2500 pro with the
-// sample cell's spindle and Al 6061 drilling process: simulated-time / real-time ratio of the whole
-// cycle (goal ≥ 200×) and the cost of one right-hand-side evaluation. Counters: `sim_per_real`
-// (simulated s per wall s), `steps`, `rhs` (evaluations incl. the difference-quotient Jacobian).
+// Transient of a drilling cycle (compensator/robot/transient.hpp) on the KUKA KR 120 R2500 pro with
+// the sample cell's spindle and Al 6061 drilling process: simulated-time / real-time ratio of the
+// whole cycle (goal ≥ 200×) and the cost of one right-hand-side evaluation. Counters:
+// `sim_per_real` (simulated s per wall s), `steps`, `rhs` (evaluations incl. the
+// difference-quotient Jacobian).
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -47,7 +48,8 @@ Fixture& fixture() {
   return f;
 }
 
-void cycle(benchmark::State& st, nc::Method method, double rtol, bool runout, double sample = 1e-3) {
+void cycle(benchmark::State& st, nc::Method method, double rtol, bool runout,
+           double sample = 1e-3) {
   Fixture& f = fixture();
   nc::TransientOptions opt;
   opt.method = method;
@@ -72,17 +74,27 @@ void cycle(benchmark::State& st, nc::Method method, double rtol, bool runout, do
 
 void BM_DrillingCycle2s_Adams(benchmark::State& st) { cycle(st, nc::Method::kAdams, 1e-8, false); }
 BENCHMARK(BM_DrillingCycle2s_Adams)->Unit(benchmark::kMillisecond);
-void BM_DrillingCycle2s_Adams_rtol1e6(benchmark::State& st) { cycle(st, nc::Method::kAdams, 1e-6, false); }
+void BM_DrillingCycle2s_Adams_rtol1e6(benchmark::State& st) {
+  cycle(st, nc::Method::kAdams, 1e-6, false);
+}
 BENCHMARK(BM_DrillingCycle2s_Adams_rtol1e6)->Unit(benchmark::kMillisecond);
 void BM_DrillingCycle2s_Bdf(benchmark::State& st) { cycle(st, nc::Method::kBdf, 1e-8, false); }
 BENCHMARK(BM_DrillingCycle2s_Bdf)->Unit(benchmark::kMillisecond);
-void BM_DrillingCycle2s_Bdf_rtol1e6(benchmark::State& st) { cycle(st, nc::Method::kBdf, 1e-6, false); }
+void BM_DrillingCycle2s_Bdf_rtol1e6(benchmark::State& st) {
+  cycle(st, nc::Method::kBdf, 1e-6, false);
+}
 BENCHMARK(BM_DrillingCycle2s_Bdf_rtol1e6)->Unit(benchmark::kMillisecond);
-void BM_DrillingCycle2s_Adams_Sample10ms(benchmark::State& st) { cycle(st, nc::Method::kAdams, 1e-8, false, 1e-2); }
+void BM_DrillingCycle2s_Adams_Sample10ms(benchmark::State& st) {
+  cycle(st, nc::Method::kAdams, 1e-8, false, 1e-2);
+}
 BENCHMARK(BM_DrillingCycle2s_Adams_Sample10ms)->Unit(benchmark::kMillisecond);
-void BM_DrillingCycle2s_Bdf_Sample10ms(benchmark::State& st) { cycle(st, nc::Method::kBdf, 1e-8, false, 1e-2); }
+void BM_DrillingCycle2s_Bdf_Sample10ms(benchmark::State& st) {
+  cycle(st, nc::Method::kBdf, 1e-8, false, 1e-2);
+}
 BENCHMARK(BM_DrillingCycle2s_Bdf_Sample10ms)->Unit(benchmark::kMillisecond);
-void BM_DrillingCycle2s_Adams_Runout(benchmark::State& st) { cycle(st, nc::Method::kAdams, 1e-8, true); }
+void BM_DrillingCycle2s_Adams_Runout(benchmark::State& st) {
+  cycle(st, nc::Method::kAdams, 1e-8, true);
+}
 BENCHMARK(BM_DrillingCycle2s_Adams_Runout)->Unit(benchmark::kMillisecond);
 
 void rhsCost(benchmark::State& st, nc::Guess guess) {

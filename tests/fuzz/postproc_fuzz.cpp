@@ -36,7 +36,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const std::vector<std::string> out = renderFiles(p);
     if (out[0] != src || (dat && (out.size() < 2 || out[1] != *dat))) std::abort();
     (void)recognizeHoles(p);
-    for (Dialect to : {Dialect::kKrl, Dialect::kRapid, Dialect::kTp, Dialect::kCsv, Dialect::kJson}) {
+    for (Dialect to :
+         {Dialect::kKrl, Dialect::kRapid, Dialect::kTp, Dialect::kCsv, Dialect::kJson}) {
       ConversionReport rep;
       try {
         (void)convertProgram(p, to, "fuzz.out", rep);
@@ -48,7 +49,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       const Target& t = p.targets()[i];
       Pose T = targetPose(p, t);
       T.translation().x() += 1e-4;
-      (void)replaceTargetPose(p, static_cast<int>(i), T, t.config.present() ? std::optional<Configuration>(t.config) : std::nullopt);
+      (void)replaceTargetPose(
+          p, static_cast<int>(i), T,
+          t.config.present() ? std::optional<Configuration>(t.config) : std::nullopt);
     }
     (void)renderFiles(p);
   } catch (const InputError&) {

@@ -8,7 +8,8 @@ namespace roprec::test {
 
 KDL::Frame toKdl(const Pose& T) {
   const Mat3& R = T.linear();
-  return KDL::Frame(KDL::Rotation(R(0, 0), R(0, 1), R(0, 2), R(1, 0), R(1, 1), R(1, 2), R(2, 0), R(2, 1), R(2, 2)),
+  return KDL::Frame(KDL::Rotation(R(0, 0), R(0, 1), R(0, 2), R(1, 0), R(1, 1), R(1, 2), R(2, 0),
+                                  R(2, 1), R(2, 2)),
                     KDL::Vector(T.translation().x(), T.translation().y(), T.translation().z()));
 }
 

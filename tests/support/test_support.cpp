@@ -34,8 +34,8 @@ void writeFile(const std::string& path, const std::string& text) {
 
 std::string tempDir(const std::string& tag) {
   static int counter = 0;
-  const fs::path p = fs::temp_directory_path() /
-                     ("roprec-test-" + std::to_string(::getpid()) + "-" + tag + "-" + std::to_string(counter++));
+  const fs::path p = fs::temp_directory_path() / ("roprec-test-" + std::to_string(::getpid()) +
+                                                  "-" + tag + "-" + std::to_string(counter++));
   fs::remove_all(p);
   fs::create_directories(p);
   return p.string();
@@ -45,7 +45,8 @@ RunResult runRoprec(const std::string& args) {
   const std::string dir = tempDir("run");
   const std::string out = dir + "/stdout";
   const std::string err = dir + "/stderr";
-  const std::string cmd = "'" + roprecBin() + "' " + args + " >'" + out + "' 2>'" + err + "' </dev/null";
+  const std::string cmd =
+      "'" + roprecBin() + "' " + args + " >'" + out + "' 2>'" + err + "' </dev/null";
   const int status = std::system(cmd.c_str());
   RunResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128;
