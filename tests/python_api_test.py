@@ -222,7 +222,7 @@ class PythonApiTest(unittest.TestCase):
                                                         "process")]
         for obj in public:
             self.assertTrue((obj.__doc__ or "").strip(), obj)
-        self.assertEqual(sorted(roprec.__all__), sorted(["__version__", "Session", "predict", "compensate", "Prediction",
+        self.assertEqual(sorted(roprec.__all__), sorted(["__version__", "Session", "predict", "compensate", "verify", "plan_test", "Prediction",
                                                          "RoprecError", "InputError", "UsageError", "ItemError"]))
 
     def test_predict_gives_the_cli_and_c_numbers(self):

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -15,6 +16,7 @@
 #include "compensator/support/error.hpp"
 #include "compensator/support/rotation.hpp"
 #include "plugin/api/job.hpp"
+#include "plugin/api/verify.hpp"
 #include "postproc/program.hpp"
 
 namespace roprec::host {
@@ -215,6 +217,28 @@ inline api::Json millingSummary(const api::MillingCompensationResult& r,
   s.set("residual_after_um", meanMax(after));
   s.set("written", pathList(written));
   return s;
+}
+
+/// "none" (also empty), "translation", "rigid".
+inline Registration registration(const std::string& text) {
+  const std::string t = text.empty() ? "none" : text;
+  const std::optional<Registration> r = registrationFromName(t);
+  if (!r) throw UsageError("registration must be none, translation or rigid (got '" + t + "')");
+  return *r;
+}
+
+/// The texts `roprec verify` writes, rendered before anything is written: (path, text) for the
+/// JSON (when json_out is not empty) and the calibrated card (when card_out is not empty).
+inline std::vector<std::pair<std::string, std::string>> verifyOutputs(
+    const api::VerifyResult& r, const api::VerifyJob& job, const std::string& json_out,
+    const std::string& card_out) {
+  std::vector<std::pair<std::string, std::string>> out;
+  if (!json_out.empty()) out.emplace_back(json_out, api::verifyJson(r).dump());
+  if (!card_out.empty()) {
+    const std::string name = job.measured.substr(job.measured.find_last_of('/') + 1);
+    out.emplace_back(card_out, api::calibratedCardText(r, name, card_out));
+  }
+  return out;
 }
 
 }  // namespace roprec::host

@@ -72,8 +72,9 @@ extern "C" {
 #define ROPREC_ITEM_FAILED 1
 #define ROPREC_BAD_INPUT 2
 
-/* A buffer of this size always holds the summary JSON of roprec_predict_file and
- * roprec_compensate_file (apart from the paths it lists; see there). */
+/* A buffer of this size always holds the summary JSON of roprec_predict_file,
+ * roprec_compensate_file, roprec_verify_file and roprec_plan_test_file (apart from the paths and
+ * ids they list; see there). */
 #define ROPREC_SUMMARY_LEN 4096
 
 /* A cell (robot, tool, process load, controller) loaded once, for per-target calls. */
@@ -175,6 +176,50 @@ ROPREC_API int roprec_compensate_file(const char* cell_path, const char* program
                                       const char* orientation, const char* targets_out_path,
                                       char* summary_json, size_t summary_len, char* err,
                                       size_t err_len);
+
+/* `roprec verify --cell CELL PROGRAM --measured MEASURED [--holes HOLES] [--register REG]
+ *  [--json JSON_OUT] [--calibrate NEW_CARD_OUT]`: compares the holes a CMM measured on a part drilled
+ * with `program_path` against the prediction (issue 11).
+ *   measured_path     roprec CSV (id,x,y,z[,i,j,k][,u]), PC-DMIS CSV or DMIS output; positions in
+ *                     the cell's workobject frame, mm; u (µm) the standard measurement uncertainty
+ *                     per axis (5 µm when absent). Holes are matched by id.
+ *   holes_path        NULL, or a hole-list CSV matched to the program's holes (nominal holes).
+ *   registration      NULL or "none", "translation", "rigid": a part registration estimated jointly
+ *                     with the joint stiffness and removed before the comparison.
+ *   json_out_path     NULL, or the verification JSON — byte for byte `roprec verify ... --json`.
+ *   new_card_out_path NULL, or where the re-identified robot card is written (the identification
+ *                     then runs): `roprec verify ... --calibrate`.
+ *   summary_json      NULL (summary_len 0), or a buffer that receives (on 0; "" otherwise) a
+ *                     one-line JSON object: "holes", "matched", "failed", "rms_measured_um",
+ *                     "rms_predicted_um", "rms_residual_um", "explained", "coverage",
+ *                     "registration" {"kind"[, "frame", "translation_um", "translation_sigma_um",
+ *                     "rotation_urad", "rotation_sigma_urad"]}, "identification" (when run)
+ *                     {"converged", "condition_number", "rms_prior_um", "rms_final_um", "joints":
+ *                     [{"joint", "k_card", "k", "k_sigma", "identified"}]}, "written": [paths].
+ *                     ROPREC_SUMMARY_LEN bytes suffice unless the paths are long.
+ * Outputs are written together and only when every measured hole was predicted; otherwise 1 is
+ * returned (err lists the holes) and nothing is written. 2: bad input (a measured file with a
+ * missing column, a non-number, a duplicate id or in metres: `FILE:LINE: what`). */
+ROPREC_API int roprec_verify_file(const char* cell_path, const char* program_path,
+                                  const char* measured_path, const char* holes_path,
+                                  const char* registration, const char* json_out_path,
+                                  const char* new_card_out_path, char* summary_json,
+                                  size_t summary_len, char* err, size_t err_len);
+
+/* `roprec plan-test --cell CELL --region "x0 y0 z0 x1 y1 z1" --count N -o OUT_PATH`: a D-optimal
+ * drilling test program for re-identifying the joint stiffness. Candidate drill points on a 4 x 4 x 4
+ * grid over the region (workobject frame, mm; region_mm = {x0, y0, z0, x1, y1, z1}), drilled along
+ * -z of the workobject, rotations 0 and 90 deg about the drill axis; `count` holes are chosen.
+ * OUT_PATH is written in the cell robot's dialect (KRL .src + .dat, RAPID .mod, TP .ls) or as a
+ * hole list when it ends in ".csv".
+ *   summary_json      NULL (summary_len 0), or a buffer that receives (on 0) a one-line JSON object:
+ *                     "holes", "candidates", "rejected", "log_det", "joints": [{"joint", "k_card",
+ *                     "prior_sigma_rel", "expected_sigma_rel", "expected_sigma_k"}], "ids",
+ *                     "written".
+ * 2: bad input (region, count, fewer admissible candidates than count). */
+ROPREC_API int roprec_plan_test_file(const char* cell_path, const double region_mm[6], int count,
+                                     const char* out_path, char* summary_json, size_t summary_len,
+                                     char* err, size_t err_len);
 
 #ifdef __cplusplus
 } /* extern "C" */

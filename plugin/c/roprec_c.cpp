@@ -19,6 +19,8 @@
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
 #include "plugin/api/job.hpp"
+#include "plugin/api/plan_test.hpp"
+#include "plugin/api/verify.hpp"
 #include "plugin/c/host_common.hpp"
 
 struct roprec_session {
@@ -244,6 +246,58 @@ ROPREC_API int roprec_compensate_file(const char* cell_path, const char* program
         host::compensationSummary(r, host::compensationPaths(r.context, out, targets)).dump(0);
     checkFits(summary, summary_json, summary_len, "summary_json");
     roprec::api::writeCompensatedProgram(r.context, out, extra);
+    copyText(summary, summary_json);
+    return ROPREC_OK;
+  });
+}
+
+ROPREC_API int roprec_verify_file(const char* cell_path, const char* program_path,
+                                  const char* measured_path, const char* holes_path,
+                                  const char* registration, const char* json_out_path,
+                                  const char* new_card_out_path, char* summary_json,
+                                  size_t summary_len, char* err, size_t err_len) {
+  return guarded(err, err_len, [&] {
+    const std::string cell = pathArg(cell_path, "cell_path");
+    const std::string program = pathArg(program_path, "program_path");
+    roprec::api::VerifyJob job;
+    job.measured = pathArg(measured_path, "measured_path");
+    const std::string holes = optionalArg(holes_path);
+    const std::string json_out = optionalArg(json_out_path);
+    const std::string card_out = optionalArg(new_card_out_path);
+    checkTextBuffer(summary_json, summary_len, "summary_json");
+    if (!holes.empty()) job.job.holes = holes;
+    job.registration = host::registration(optionalArg(registration));
+    job.calibrate = !card_out.empty();
+    const roprec::api::VerifyResult r = roprec::api::verifyJob(cell, program, job);
+    std::vector<std::pair<std::string, std::string>> out = host::verifyOutputs(r, job, json_out, card_out);
+    if (!r.failed.empty())
+      throw ItemFailure{host::joinLines(r.failed) + "\nnothing written"};
+    std::vector<std::string> paths;
+    for (const auto& o : out) paths.push_back(o.first);
+    const std::string summary = roprec::api::verifySummaryJson(r, paths).dump(0);
+    checkFits(summary, summary_json, summary_len, "summary_json");
+    for (const auto& [path, text] : out) roprec::writeFileAtomic(path, text);
+    copyText(summary, summary_json);
+    return ROPREC_OK;
+  });
+}
+
+ROPREC_API int roprec_plan_test_file(const char* cell_path, const double region_mm[6], int count,
+                                     const char* out_path, char* summary_json, size_t summary_len,
+                                     char* err, size_t err_len) {
+  return guarded(err, err_len, [&] {
+    const std::string cell = pathArg(cell_path, "cell_path");
+    const std::string out = pathArg(out_path, "out_path");
+    if (region_mm == nullptr) throw roprec::UsageError("region_mm is NULL");
+    checkTextBuffer(summary_json, summary_len, "summary_json");
+    const roprec::Vec3 lo(region_mm[0], region_mm[1], region_mm[2]);
+    const roprec::Vec3 hi(region_mm[3], region_mm[4], region_mm[5]);
+    const roprec::api::PlanTestResult r = roprec::api::planTestJob(cell, lo, hi, count);
+    const roprec::postproc::DrillProgramText t = roprec::api::planTestProgram(r, out);
+    const std::string summary =
+        roprec::api::planTestSummaryJson(r, roprec::postproc::drillProgramPaths(t, out)).dump(0);
+    checkFits(summary, summary_json, summary_len, "summary_json");
+    roprec::postproc::saveDrillProgram(t, out);
     copyText(summary, summary_json);
     return ROPREC_OK;
   });

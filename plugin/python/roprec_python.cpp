@@ -20,6 +20,8 @@
 #include "compensator/support/error.hpp"
 #include "plugin/api/hole_input.hpp"
 #include "plugin/api/job.hpp"
+#include "plugin/api/plan_test.hpp"
+#include "plugin/api/verify.hpp"
 #include "plugin/c/host_common.hpp"
 
 namespace py = pybind11;
@@ -369,6 +371,59 @@ py::dict compensate(const std::string& cell, const std::string& program, const s
   return d;
 }
 
+py::dict verify(const std::string& cell, const std::string& program, const std::string& measured,
+                const std::optional<std::string>& holes, const std::string& registration,
+                const std::optional<std::string>& calibrate,
+                const std::optional<std::string>& json_out) {
+  api::VerifyJob job;
+  job.measured = measured;
+  job.job.holes = holes;
+  job.registration = host::registration(registration);
+  job.calibrate = calibrate.has_value();
+  std::string json;
+  std::string summary;
+  std::string problems;
+  {
+    py::gil_scoped_release release;
+    const api::VerifyResult r = api::verifyJob(cell, program, job);
+    json = api::verifyJson(r).dump();
+    const auto out = host::verifyOutputs(r, job, json_out.value_or(""), calibrate.value_or(""));
+    std::vector<std::string> paths;
+    for (const auto& o : out) paths.push_back(o.first);
+    if (!r.failed.empty()) {
+      problems = host::joinLines(r.failed) + "\nnothing written";
+      paths.clear();
+    }
+    summary = api::verifySummaryJson(r, paths).dump(0);
+    if (problems.empty()) {
+      for (const auto& [path, text] : out) writeFileAtomic(path, text);
+    }
+  }
+  py::dict d;
+  d["json"] = json;
+  d["summary_json"] = summary;
+  d["problems"] = problems;
+  return d;
+}
+
+py::dict planTest(const std::string& cell, const std::vector<double>& region, int count,
+                  const std::string& out) {
+  if (region.size() != 6) throw UsageError("region: give 6 numbers x0 y0 z0 x1 y1 z1 (mm)");
+  std::string summary;
+  {
+    py::gil_scoped_release release;
+    const api::PlanTestResult r =
+        api::planTestJob(cell, Vec3(region[0], region[1], region[2]),
+                         Vec3(region[3], region[4], region[5]), count);
+    const postproc::DrillProgramText t = api::planTestProgram(r, out);
+    summary = api::planTestSummaryJson(r, postproc::drillProgramPaths(t, out)).dump(0);
+    postproc::saveDrillProgram(t, out);
+  }
+  py::dict d;
+  d["summary_json"] = summary;
+  return d;
+}
+
 void raise(PyObject* cls, const char* what) { PyErr_SetString(cls, what); }
 
 PyObject* newError(py::module_& m, const char* name, const char* doc, PyObject* bases) {
@@ -499,4 +554,10 @@ PYBIND11_MODULE(_roprec, m) {
   m.def("_compensate", &compensate, py::arg("cell"), py::arg("program"), py::arg("out"),
         py::arg("orientation"), py::arg("targets") = py::none(), py::arg("holes") = py::none(),
         "Internal: see roprec.compensate.");
+  m.def("_verify", &verify, py::arg("cell"), py::arg("program"), py::arg("measured"),
+        py::arg("holes") = py::none(), py::arg("register") = "none",
+        py::arg("calibrate") = py::none(), py::arg("json_out") = py::none(),
+        "Internal: see roprec.verify.");
+  m.def("_plan_test", &planTest, py::arg("cell"), py::arg("region"), py::arg("count"),
+        py::arg("out"), "Internal: see roprec.plan_test.");
 }

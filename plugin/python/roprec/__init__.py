@@ -17,6 +17,9 @@ API
         ``.hole_pose(position_mm, direction) -> pose_mm``
     ``predict(cell, program, holes=None, json_out=None) -> Prediction``   (a list of per-hole dicts)
     ``compensate(cell, program, out, orientation="keep", targets=None, holes=None) -> dict``
+    ``verify(cell, program, measured, holes=None, register="none", calibrate=None, json_out=None)
+    -> dict``                                 measured holes (CMM) vs prediction; new robot card
+    ``plan_test(cell, region, count, out) -> dict``   D-optimal drilling test program
 
 Errors
     ``RoprecError`` (subclass of Exception) and its subclasses ``InputError`` (a bad file:
@@ -46,6 +49,8 @@ __all__ = [
     "Session",
     "predict",
     "compensate",
+    "verify",
+    "plan_test",
     "Prediction",
     "RoprecError",
     "InputError",
@@ -176,3 +181,70 @@ def compensate(cell, program, out, orientation="keep", targets=None, holes=None)
         e.result = result
         raise e
     return result
+
+
+def verify(cell, program, measured, holes=None, register="none", calibrate=None, json_out=None):
+    """Measured holes against the prediction: ``roprec verify --cell CELL PROGRAM --measured M ...``.
+
+    Args:
+        cell, program: as for :func:`predict` (the program the part was drilled with).
+        measured: the CMM file — roprec CSV (``id,x,y,z[,i,j,k][,u]``), PC-DMIS CSV or DMIS output;
+            hole positions in the cell's workobject frame, mm; ``u`` the standard measurement
+            uncertainty per axis in µm (5 µm when absent). Matched to the program's holes by id.
+        holes: optional hole-list CSV (the nominal holes) matched to the program's holes.
+        register: "none", "translation" or "rigid": a part registration estimated jointly with
+            the joint stiffness and removed from the measured positions before the comparison.
+        calibrate: optional path: the joint stiffness is re-identified and the new robot card is
+            written there (``--calibrate``); unidentifiable joints keep the card's value.
+        json_out: optional path: the verification JSON, byte for byte ``roprec verify --json``.
+
+    Returns:
+        dict: the verification JSON document (µm, µrad, mm) — ``measured`` (file, format, holes,
+        matched), ``registration``, ``summary`` (``measured_um``/``predicted_um``/``residual_um``
+        ``{"rms", "mean", "max"}``, ``explained``, ``inside``, ``coverage``,
+        ``correlation_workobject_xyz``, ``measured_decisions``), ``identification`` (when run:
+        ``parameters``, ``joints`` with ``k`` and ``k_sigma`` in N·m/rad, ``condition_number``,
+        ``not_identifiable``, ``covariance``), ``holes`` (per hole ``measured_um``,
+        ``predicted_um``, ``residual_um``, ``U_work_um``, ``inside``, ``decision`` …), ``failed``,
+        ``notes`` — plus ``written`` (the paths written).
+
+    Raises:
+        ItemError: some measured holes could not be predicted; nothing was written. ``e.result``
+            holds the dict above (``written`` empty).
+        InputError, UsageError: a bad file (``FILE:LINE: what``) or argument; nothing was written.
+    """
+    r = _roprec._verify(str(cell), str(program), str(measured),
+                        None if holes is None else str(holes), str(register),
+                        None if calibrate is None else str(calibrate),
+                        None if json_out is None else str(json_out))
+    result = _json.loads(r["json"])
+    result["written"] = _json.loads(r["summary_json"])["written"]
+    if r["problems"]:
+        e = ItemError(r["problems"])
+        e.result = result
+        raise e
+    return result
+
+
+def plan_test(cell, region, count, out):
+    """A D-optimal drilling test program: ``roprec plan-test --cell CELL --region R --count N -o OUT``.
+
+    Args:
+        cell: the cell XML.
+        region: 6 numbers ``(x0, y0, z0, x1, y1, z1)``: the box of candidate drill points (hole
+            bottoms) in the workobject frame, mm; a 4 x 4 x 4 grid, drilled along -z of the
+            workobject, rotated 0 and 90 deg about the drill axis.
+        count: how many holes to choose.
+        out: the program path, in the cell robot's dialect (``.src`` + ``.dat``, ``.mod``, ``.ls``),
+            or a hole list when it ends in ``.csv``.
+
+    Returns:
+        dict: ``holes``, ``candidates``, ``rejected``, ``log_det``, ``joints`` (per joint
+        ``k_card``, ``prior_sigma_rel``, ``expected_sigma_rel``, ``expected_sigma_k`` N·m/rad),
+        ``ids``, ``written``.
+
+    Raises:
+        InputError, UsageError: a bad cell, region or count (fewer admissible candidates).
+    """
+    r = _roprec._plan_test(str(cell), [float(v) for v in region], int(count), str(out))
+    return _json.loads(r["summary_json"])

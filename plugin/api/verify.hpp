@@ -1,0 +1,88 @@
+#pragma once
+/// \file verify.hpp
+/// `roprec verify` (issue 11) as a host-facing job: a cell + the drilled program + the CMM's
+/// measured holes in; per hole the measured deviation against the predicted one, the statistics,
+/// optionally the part registration and the re-identified joint stiffness, and the texts a host
+/// writes (JSON, HTML report, the calibrated robot card). No parsing of arguments, no printing.
+///
+/// Frames and units: SI inside every struct (m, rad, N·m/rad). The measured file holds hole
+/// positions in the cell's **workobject** frame in mm (postproc/measured.hpp); they are taken to
+/// the robot base frame with the cell's T_base_wobj. Per hole the in-plane axes (e₁, e₂) are those
+/// of the nominal hole pose (the hole list's when --holes is given, else the program's drill
+/// point), z = the drilling direction (compensator/precision/identification.hpp).
+/// The commanded joints of a hole are the prediction's (rigid IK of the programmed target).
+///
+/// Errors: bad input (cell, program, hole list, measured file: missing column, non-number,
+/// duplicate id, a file in metres, no hole matching) throws roprec::InputError (`FILE:LINE:
+/// what`); bad arguments throw UsageError. Measured ids the program does not have and program
+/// holes that were not measured are notes. A measured hole whose prediction failed (unreachable,
+/// singular) is listed in VerifyResult::failed (CLI exit 1). Deterministic: identical inputs give
+/// identical results and byte-identical texts.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "compensator/precision/identification.hpp"
+#include "plugin/api/job.hpp"
+#include "postproc/measured.hpp"
+
+namespace roprec::api {
+
+struct VerifyJob {
+  JobOptions job;            ///< hole list, match tolerance, uncertainty method
+  std::string measured;      ///< the CMM file (roprec CSV, PC-DMIS CSV or DMIS), workobject mm
+  Registration registration{Registration::kNone};  ///< part registration estimated jointly
+  bool calibrate{false};     ///< re-identify the joint stiffness (identification.hpp)
+  double u_measurement_um{5.0};  ///< σ per axis of a measured position when the file has no `u`
+};
+
+struct VerifyResult {
+  PredictionResult prediction;  ///< the program predicted with the cell's card
+  postproc::MeasuredHoles measured;
+  postproc::MeasuredMatch match;
+  Registration registration{Registration::kNone};
+  bool calibrate{false};
+  std::string cell_path, program_path;
+  std::vector<std::string> notes;   ///< unknown ids, unmeasured holes, job notes
+  std::vector<std::string> failed;  ///< "hole ID (FILE:LINE): verdict: reason" (measured, unpredicted)
+  /// Verified holes in program order: the request index and the measured index of each.
+  std::vector<int> request_of, measured_of;
+  std::vector<HoleVerification> holes;
+  std::vector<Pose> nominal;  ///< nominal hole pose of each verified hole (base frame)
+  VerificationSummary summary;  ///< correlations along the workobject axes
+  /// Run when calibrate or registration ≠ none.
+  std::optional<IdentificationResult> identification;
+  /// Per-hole residual |measured − predicted| ⊥ axis after identification (m), holes order.
+  std::vector<double> residual_identified;
+};
+
+/// Predicts the job, reads and matches the measured holes, identifies (when asked) and verifies
+/// every measured hole (registration removed from the measured positions when estimated).
+/// Throws InputError/UsageError (see the file comment).
+VerifyResult verifyJob(const std::string& cell_path, const std::string& program_path,
+                       const VerifyJob& job, const ProgressFn& progress = {});
+
+/// The verification JSON: measured file, registration, summary, identification (parameters,
+/// covariance, condition number, identifiability), per-hole records. µm, µrad, mm.
+Json verifyJson(const VerifyResult& r);
+
+/// The one-line summary host interfaces return (C ABI, Python): holes, matched, failed, RMS of
+/// measured/predicted/residual (µm), explained, coverage, registration, identified stiffness,
+/// condition number, and `written` (the paths given).
+Json verifySummaryJson(const VerifyResult& r, const std::vector<std::string>& written);
+
+/// The self-contained HTML report (inline SVG; deterministic bytes): measured vs predicted
+/// arrows per face, residual map, statistics, identified parameters with their uncertainties.
+std::string verifyReport(const VerifyResult& r);
+
+/// The new robot card (card_writer.hpp): the cell's card with each identified joint's stiffness
+/// and source replaced (`identified: N holes from MEASURED_FILE_NAME by roprec verify (σ = …)`);
+/// unidentifiable joints keep the prior. When `card_out_path` is given and the card's URDF is not
+/// next to it, the card's `urdf` attribute is rewritten to the URDF's path relative to the new
+/// card's folder, so the new card loads where it is written. Throws UsageError when the result
+/// has no identification (calibrate was not asked), InputError for a malformed card.
+std::string calibratedCardText(const VerifyResult& r, const std::string& measured_file_name,
+                               const std::string& card_out_path = "");
+
+}  // namespace roprec::api

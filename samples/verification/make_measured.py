@@ -1,0 +1,132 @@
+#!/usr/bin/env python3
+"""Makes samples/verification/measured.csv: the "CMM result" of the verification sample.
+
+Usage: samples/verification/make_measured.py build/bin/roprec
+       samples/verification/make_measured.py build/bin/roprec --drill PROGRAM OUT.csv
+
+The second form "drills" another program of the same holes (e.g. the compensated test program)
+with the truth robot and writes its CMM result the same way (same offset, noise and seed), for the
+second round of the loop in README.
+
+How the file is made (deterministic: running it again gives identical bytes):
+
+1. The test program ``test_kr120.src`` (+ ``.dat``) was planned by roprec itself for the sample cell
+   samples/cells/housing-kr120.xml (KUKA KR 120 R2500 pro, bundled card)::
+
+       roprec plan-test --cell samples/cells/housing-kr120.xml --region "-200 -200 100 200 200 230" \\
+              --directions "0 0 -1, 0 1 0, 0 -1 0, 1 0 0" --per-axis 3 --count 24 \\
+              -o samples/verification/test_kr120.src
+
+   This script re-runs that command first, so the files always belong together. roprec's KRL
+   reader names the recognised drill holes H1, H2, … in program order (the points are V01…).
+2. The part is "drilled" by a TRUTH ROBOT: ``truth-kr120.xml`` is the bundled KR 120 card with every
+   joint stiffness replaced by the published identified KUKA KR500 values (Jiao et al., Chinese J.
+   Mech. Eng. 35:115 (2022), Eq. (38): k1..k6 = 1.58e7, 6.12e6, 5.28e6, 4.66e5, 2.19e5, 3.49e5
+   N·m/rad) scaled to the KR 120 class by one rule, x the rated-payload ratio 120/500 = 0.24:
+   3.792e6, 1.469e6, 1.267e6, 1.118e5, 5.256e4, 8.376e4 N·m/rad. (The bundled card scales the main
+   axes by 0.394 instead, so the truth's main axes are ~40 % softer than the card says.)
+   ``truth-cell.xml`` is the sample cell with that card. ``roprec predict --cell truth-cell.xml
+   test_kr120.src`` gives the truth's real drill point of every hole: the programmed drill point
+   (base frame) + δwork (gravity, the 25.8 kg spindle, the drilling thrust, δmach, the
+   gravity-compensating controller of the cell — everything roprec models, with the truth's
+   stiffness).
+3. The real points are taken to the cell's workobject frame (xyz 1350 0 300 mm, rpy 0), the part is
+   assumed to sit on its fixture shifted by FIXTURE_OFFSET_MM (a small fixture offset, workobject
+   axes), and every coordinate gets Gaussian noise of NOISE_UM (5 µm) standard deviation from
+   Python's Mersenne Twister seeded with SEED (Box–Muller on random.random(), which is the same on
+   every Python 3). Positions are printed in mm with 4 decimals; u = 5 µm per axis.
+4. ``test_kr120_holes.csv`` is the hole list of the test program: the nominal holes (drill points
+   and drilling directions, workobject frame, ids H1… as roprec reads the program), for verifying
+   a compensated version of the program against the nominal holes (``roprec verify --holes``).
+"""
+
+import json
+import math
+import os
+import random
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+CELL = os.path.join(ROOT, "samples", "cells", "housing-kr120.xml")
+TRUTH_CELL = os.path.join(HERE, "truth-cell.xml")
+PROGRAM = os.path.join(HERE, "test_kr120.src")
+OUT = os.path.join(HERE, "measured.csv")
+HOLES = os.path.join(HERE, "test_kr120_holes.csv")
+WOBJ_MM = (1350.0, 0.0, 300.0)  # the cell's <workobject xyz>, rpy 0
+FIXTURE_OFFSET_MM = (0.040, -0.025, 0.030)
+NOISE_UM = 5.0
+SEED = 11
+PLAN = ["--cell", CELL, "--region", "-200 -200 100 200 200 230",
+        "--directions", "0 0 -1, 0 1 0, 0 -1 0, 1 0 0", "--per-axis", "3", "--count", "24"]
+
+
+def run(roprec, *args):
+    subprocess.run([roprec, *args], check=True, stdout=subprocess.DEVNULL)
+
+
+def gauss(rng):
+    u1 = rng.random()
+    u2 = rng.random()
+    return math.sqrt(-2.0 * math.log(1.0 - u1)) * math.cos(2.0 * math.pi * u2)
+
+
+def truth_holes(roprec, program):
+    with tempfile.TemporaryDirectory() as tmp:
+        js = os.path.join(tmp, "truth.json")
+        run(roprec, "predict", "--cell", TRUTH_CELL, program, "--json", js, "--quiet")
+        with open(js, encoding="utf-8") as f:
+            return json.load(f)["holes"]
+
+
+def write_measured(holes, out, program):
+    rng = random.Random(SEED)
+    lines = ["# CMM result of %s drilled by the truth robot truth-kr120.xml" % program,
+             "# made by samples/verification/make_measured.py (see its docstring): workobject frame, mm;",
+             "# fixture offset %.3f %.3f %.3f mm, Gaussian noise %.1f um per axis, seed %d; u in um"
+             % (*FIXTURE_OFFSET_MM, NOISE_UM, SEED),
+             "id,x,y,z,u"]
+    for h in holes:
+        p = h["nominal"]["position_mm"]
+        d = h["deviation_um"]["work"]
+        xyz = []
+        for k in range(3):
+            real = p[k] + d[k] * 1e-3 - WOBJ_MM[k]
+            xyz.append(real + FIXTURE_OFFSET_MM[k] + NOISE_UM * 1e-3 * gauss(rng))
+        lines.append("%s,%.4f,%.4f,%.4f,%.1f" % (h["id"], xyz[0], xyz[1], xyz[2], NOISE_UM))
+    with open(out, "w", encoding="utf-8", newline="\n") as f:
+        f.write("\n".join(lines) + "\n")
+
+
+def write_hole_list(holes):
+    lines = ["# nominal holes of samples/verification/test_kr120.src (drill points), workobject frame, mm;"
+             " made by make_measured.py",
+             "id,x,y,z,i,j,k,diameter,depth,tolerance"]
+    for h in holes:
+        p = [h["nominal"]["position_mm"][k] - WOBJ_MM[k] for k in range(3)]
+        a = h["nominal"]["axis"]
+        lines.append("%s,%.6f,%.6f,%.6f,%.9f,%.9f,%.9f,%.3f,%.3f,0.20"
+                     % (h["id"], *p, *a, h["diameter_mm"], 20.0))  # the cell's process depth
+    with open(HOLES, "w", encoding="utf-8", newline="\n") as f:
+        f.write("\n".join(lines) + "\n")
+
+
+def main():
+    roprec = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "build", "bin", "roprec"))
+    if len(sys.argv) == 5 and sys.argv[2] == "--drill":
+        program, out = os.path.abspath(sys.argv[3]), os.path.abspath(sys.argv[4])
+        write_measured(truth_holes(roprec, program), out, os.path.basename(program))
+        print("wrote", out)
+        return
+    os.chdir(ROOT)  # the programs name their files relative to the source tree
+    run(roprec, "plan-test", *PLAN, "-o", os.path.relpath(PROGRAM))
+    holes = truth_holes(roprec, PROGRAM)
+    write_measured(holes, OUT, "samples/verification/test_kr120.src")
+    write_hole_list(holes)
+    print("wrote", os.path.relpath(OUT, ROOT), "(%d holes) and" % len(holes), os.path.relpath(HOLES, ROOT))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,211 @@
+// Issue 11 through the CLI, on the shipped sample (samples/verification/): `roprec verify` prints
+// the statistics; `--calibrate` writes a card that loads in a cell and whose compensation, executed
+// by the truth robot (the truth card the sample was measured with), leaves a smaller residual than
+// the bundled card's; bad measured files exit 2 with FILE:LINE and write nothing; the JSON is
+// deterministic; `roprec plan-test` writes a program `roprec inspect` reads with N holes.
+#include <gtest/gtest.h>
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <regex>
+#include <sstream>
+
+#include "tests/support/test_support.hpp"
+
+namespace roprec {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+std::string s(const std::string& rel) { return test::sourceDir() + "/samples/" + rel; }
+std::string q(const std::string& p) { return "'" + p + "'"; }
+
+const std::string& cell() {
+  static const std::string c = s("cells/housing-kr120.xml");
+  return c;
+}
+const std::string& program() {
+  static const std::string p = s("verification/test_kr120.src");
+  return p;
+}
+const std::string& measured() {
+  static const std::string m = s("verification/measured.csv");
+  return m;
+}
+
+std::string verifyArgs(const std::string& extra) {
+  return "verify --cell " + q(cell()) + " " + q(program()) + " --measured " + q(measured()) + " " +
+         extra;
+}
+
+TEST(VerifyCli, SampleExitsZeroAndPrintsTheStatistics) {
+  const std::string dir = test::tempDir("verify");
+  const auto r = test::runRoprec(verifyArgs("--register translation --json " + q(dir + "/v.json") +
+                                            " --report " + q(dir + "/v.html")));
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  for (const char* what : {"measured", "predicted", "residual", "explained share", "coverage",
+                           "registration (translation", "condition number", "k1 = "})
+    EXPECT_NE(r.out.find(what), std::string::npos) << what << "\n" << r.out;
+  const json j = json::parse(test::readFile(dir + "/v.json"));
+  EXPECT_EQ(j["summary"]["holes"], 24);
+  EXPECT_GT(j["summary"]["measured_um"]["rms"].get<double>(), 0.0);
+  EXPECT_EQ(j["registration"]["kind"], "translation");
+  const std::string html = test::readFile(dir + "/v.html");
+  EXPECT_NE(html.find("<svg"), std::string::npos);
+  EXPECT_EQ(html.find("<script"), std::string::npos);
+}
+
+/// A cell like the sample's with `<robot file="CARD"/>`, written into `dir`.
+std::string cellWithCard(const std::string& dir, const std::string& card) {
+  std::string text = test::readFile(cell());
+  text = std::regex_replace(text, std::regex("<robot ref=\"[^\"]*\"/>"),
+                            "<robot file=\"" + card + "\"/>");
+  const std::string path = dir + "/cell-" + fs::path(card).stem().string() + ".xml";
+  test::writeFile(path, text);
+  return path;
+}
+
+/// The holes of `prog` predicted with the truth card (the robot the sample was measured with).
+json truthPrediction(const std::string& prog, const std::string& dir, const std::string& tag) {
+  const std::string out = dir + "/" + tag + ".json";
+  const auto r = test::runRoprec("predict --cell " + q(s("verification/truth-cell.xml")) + " " +
+                                 q(prog) + " --quiet --json " + q(out));
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  return json::parse(test::readFile(out))["holes"];
+}
+
+Eigen::Vector3d vec(const json& a) { return {a[0].get<double>(), a[1].get<double>(), a[2].get<double>()}; }
+
+/// RMS (µm) of the truth's real drill points of `prog` from the nominal hole axes (the drill
+/// points and axes of the uncompensated test program `nominal`), hole by hole in program order.
+double truthResidualRms(const json& nominal, const std::string& prog, const std::string& dir,
+                        const std::string& tag) {
+  const json holes = truthPrediction(prog, dir, tag);
+  EXPECT_EQ(holes.size(), nominal.size());
+  double sum = 0;
+  for (size_t i = 0; i < holes.size(); ++i) {
+    const Eigen::Vector3d real = vec(holes[i]["nominal"]["position_mm"]) +
+                                 vec(holes[i]["deviation_um"]["work"]) * 1e-3;
+    const Eigen::Vector3d p0 = vec(nominal[i]["nominal"]["position_mm"]);
+    const Eigen::Vector3d a0 = vec(nominal[i]["nominal"]["axis"]);
+    const Eigen::Vector3d d = real - p0;
+    sum += (d - d.dot(a0) * a0).squaredNorm() * 1e6;
+  }
+  return std::sqrt(sum / static_cast<double>(holes.size()));
+}
+
+TEST(VerifyCli, CalibratedCardCompensatesBetterOnTheTruthRobot) {
+  const std::string dir = test::tempDir("calibrate");
+  const std::string card = dir + "/kr120-calibrated.xml";
+  const auto v = test::runRoprec(verifyArgs("--register translation --calibrate " + q(card)));
+  ASSERT_EQ(v.exit_code, 0) << v.err << v.out;
+  const std::string text = test::readFile(card);
+  EXPECT_NE(text.find("identified: 24 holes from measured.csv by roprec verify"), std::string::npos);
+  // the card loads in a cell: roprec predict accepts it
+  const std::string cal_cell = cellWithCard(dir, card);
+  const auto p = test::runRoprec("predict --cell " + q(cal_cell) + " " + q(program()) + " --quiet");
+  ASSERT_EQ(p.exit_code, 0) << p.err;
+  // compensate with each card, execute on the truth robot
+  const std::string orig = dir + "/comp_orig.src";
+  const std::string cal = dir + "/comp_cal.src";
+  ASSERT_EQ(test::runRoprec("compensate --cell " + q(cell()) + " " + q(program()) + " -o " + q(orig))
+                .exit_code, 0);
+  ASSERT_EQ(test::runRoprec("compensate --cell " + q(cal_cell) + " " + q(program()) + " -o " + q(cal))
+                .exit_code, 0);
+  const json nominal = truthPrediction(program(), dir, "nominal");
+  const double before = truthResidualRms(nominal, program(), dir, "uncompensated");
+  const double with_card = truthResidualRms(nominal, orig, dir, "orig");
+  const double with_calibrated = truthResidualRms(nominal, cal, dir, "cal");
+  std::printf("truth residual RMS: uncompensated %.1f um, bundled card %.1f um, calibrated %.1f um\n",
+              before, with_card, with_calibrated);
+  EXPECT_LT(with_calibrated, with_card);
+  EXPECT_LT(with_calibrated, 0.5 * with_card);
+}
+
+TEST(VerifyCli, BadMeasuredFilesExitTwoWithFileLineAndWriteNothing) {
+  const std::string dir = test::tempDir("badmeasured");
+  const std::string good = test::readFile(measured());
+  // the first data row of the sample (after the comments and the header)
+  const size_t header = good.find("id,x,y,z,u\n");
+  ASSERT_NE(header, std::string::npos);
+  const std::string head = good.substr(0, header);
+  const std::string rows = good.substr(header + 11);
+  const std::string row1 = rows.substr(0, rows.find('\n') + 1);
+  std::string metres;
+  {
+    metres = head + "id,x,y,z,u\n";
+    std::stringstream in(rows);
+    for (std::string line; std::getline(in, line);) {
+      std::stringstream cells(line);
+      std::string id, x, y, z, u;
+      std::getline(cells, id, ',');
+      std::getline(cells, x, ',');
+      std::getline(cells, y, ',');
+      std::getline(cells, z, ',');
+      std::getline(cells, u, ',');
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "%s,%.7f,%.7f,%.7f,%s\n", id.c_str(), std::stod(x) * 1e-3,
+                    std::stod(y) * 1e-3, std::stod(z) * 1e-3, u.c_str());
+      metres += buf;
+    }
+  }
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {"missing_column", head + "id,x,y,u\nV01,1.0,2.0,5\n"},
+      {"not_a_number", head + "id,x,y,z,u\n" + row1 + "V02,12.5,abc,3.0,5\n"},
+      {"duplicate", head + "id,x,y,z,u\n" + row1 + row1},
+      {"metres", metres}};
+  for (const auto& [tag, text] : bad) {
+    SCOPED_TRACE(tag);
+    const std::string file = dir + "/" + tag + ".csv";
+    test::writeFile(file, text);
+    const std::string out = dir + "/out_" + tag;
+    const auto r = test::runRoprec("verify --cell " + q(cell()) + " " + q(program()) +
+                                   " --measured " + q(file) + " --json " + q(out + ".json") +
+                                   " --report " + q(out + ".html") + " --calibrate " +
+                                   q(out + ".xml"));
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_TRUE(std::regex_search(r.err, std::regex(tag + "\\.csv:[0-9]+: "))) << r.err;
+    for (const char* ext : {".json", ".html", ".xml"}) EXPECT_FALSE(fs::exists(out + ext)) << ext;
+  }
+}
+
+TEST(VerifyCli, JsonIsDeterministic) {
+  const std::string dir = test::tempDir("determinism");
+  for (const char* tag : {"a", "b"}) {
+    const auto r = test::runRoprec(verifyArgs("--register rigid --quiet --json " +
+                                              q(dir + "/" + tag + ".json") + " --calibrate " +
+                                              q(dir + "/" + tag + ".xml")));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  EXPECT_EQ(test::readFile(dir + "/a.json"), test::readFile(dir + "/b.json"));
+  EXPECT_EQ(test::readFile(dir + "/a.xml"), test::readFile(dir + "/b.xml"));
+}
+
+TEST(VerifyCli, PlanTestWritesAProgramInspectReadsWithNHoles) {
+  const std::string dir = test::tempDir("plantest");
+  const std::string out = dir + "/coupon.src";
+  const auto r = test::runRoprec("plan-test --cell " + q(cell()) +
+                                 " --region \"-150 -150 200 150 150 230\" --per-axis 3 --count 7 -o " +
+                                 q(out));
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  EXPECT_NE(r.out.find("expected joint stiffness uncertainty"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::exists(dir + "/coupon.dat"));
+  const auto i = test::runRoprec("inspect " + q(out) + " -o " + q(dir + "/inspect.json"));
+  ASSERT_EQ(i.exit_code, 0) << i.err;
+  const json j = json::parse(test::readFile(dir + "/inspect.json"));
+  ASSERT_TRUE(j.contains("holes")) << j.dump().substr(0, 400);
+  EXPECT_EQ(j["holes"].size(), 7u);
+  // bad region: exit 2, nothing written
+  const std::string bad = dir + "/bad.src";
+  EXPECT_EQ(test::runRoprec("plan-test --cell " + q(cell()) + " --region \"1 2 3\" --count 3 -o " +
+                            q(bad))
+                .exit_code,
+            2);
+  EXPECT_FALSE(fs::exists(bad));
+}
+
+}  // namespace
+}  // namespace roprec
