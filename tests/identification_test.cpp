@@ -658,8 +658,17 @@ TEST(Identification, DOptimalPlanBeatsANaiveProgramAndPredictsThePosterior) {
   const TestPlan plan = planTest(c.model, cand, 12, po);
   ASSERT_EQ(plan.chosen.size(), 12u);
   EXPECT_TRUE(plan.rejected.empty());
-  // a naive program: the first 12 candidates (top face only)
-  const std::vector<HoleRequest> naive(cand.begin(), cand.begin() + 12);
+  // one hole per place: no two chosen holes closer than the minimum spacing
+  for (size_t a = 0; a < plan.chosen.size(); ++a) {
+    for (size_t b = a + 1; b < plan.chosen.size(); ++b) {
+      const Vec3 d = cand[static_cast<size_t>(plan.chosen[a])].T_W_tcp.translation() -
+                     cand[static_cast<size_t>(plan.chosen[b])].T_W_tcp.translation();
+      EXPECT_GE(d.norm(), po.min_spacing);
+    }
+  }
+  // a naive program: 12 holes of the top face only (ψ = 0: one hole per place)
+  std::vector<HoleRequest> naive;
+  for (size_t i = 0; i < 24; i += 2) naive.push_back(cand[i]);
   const TestPlan naive_plan = planTest(c.model, naive, 12, po);
   std::printf("log det: D-optimal %.2f, naive %.2f\n", plan.log_det, naive_plan.log_det);
   EXPECT_GT(plan.log_det, naive_plan.log_det);

@@ -20,6 +20,7 @@ SRC = Path(__file__).resolve().parents[1]
 CELL = str(SRC / "samples" / "cells" / "housing-kr120.xml")
 PROGRAM = str(SRC / "samples" / "verification" / "test_kr120.src")
 MEASURED = str(SRC / "samples" / "verification" / "measured.csv")
+HOLES = str(SRC / "samples" / "verification" / "test_kr120_holes.csv")  # names the holes V01…
 REL = 1e-9
 
 
@@ -56,7 +57,7 @@ class C(object):
     def verify(self, measured, registration, json_out, card_out):
         b = lambda s: None if s is None else str(s).encode()
         summary, err = ctypes.create_string_buffer(4096), ctypes.create_string_buffer(4096)
-        rc = self.lib.roprec_verify_file(b(CELL), b(PROGRAM), b(measured), None, b(registration), b(json_out),
+        rc = self.lib.roprec_verify_file(b(CELL), b(PROGRAM), b(measured), b(HOLES), b(registration), b(json_out),
                                          b(card_out), summary, 4096, err, 4096)
         return rc, summary.value.decode(), err.value.decode()
 
@@ -77,12 +78,12 @@ class VerifyAcrossInterfaces(unittest.TestCase):
 
     def test_verify_cli_c_python_identical(self):
         t = self.tmp
-        r = cli("verify", "--cell", CELL, PROGRAM, "--measured", MEASURED, "--register", "translation",
+        r = cli("verify", "--cell", CELL, PROGRAM, "--holes", HOLES, "--measured", MEASURED, "--register", "translation",
                 "--json", t / "cli.json", "--calibrate", t / "cli.xml", "--quiet")
         self.assertEqual(r.returncode, 0, r.stderr)
         rc, summary, err = C().verify(MEASURED, "translation", t / "c.json", t / "c.xml")
         self.assertEqual(rc, 0, err)
-        py = roprec.verify(CELL, PROGRAM, MEASURED, register="translation", calibrate=t / "py.xml",
+        py = roprec.verify(CELL, PROGRAM, MEASURED, holes=HOLES, register="translation", calibrate=t / "py.xml",
                            json_out=t / "py.json")
         cli_json = (t / "cli.json").read_bytes()
         self.assertEqual(cli_json, (t / "c.json").read_bytes())
@@ -103,7 +104,7 @@ class VerifyAcrossInterfaces(unittest.TestCase):
         bad = self.tmp / "bad.csv"
         bad.write_text("id,x,y\nH1,1,2\n")
         with self.assertRaises(roprec.InputError) as e:
-            roprec.verify(CELL, PROGRAM, bad, json_out=self.tmp / "x.json")
+            roprec.verify(CELL, PROGRAM, bad, holes=HOLES, json_out=self.tmp / "x.json")
         self.assertIn("bad.csv:", str(e.exception))
         rc, _, err = C().verify(bad, None, self.tmp / "y.json", None)
         self.assertEqual(rc, 2)

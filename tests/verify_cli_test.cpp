@@ -36,8 +36,16 @@ const std::string& measured() {
   return m;
 }
 
+/// The nominal holes of the test program, named like its drill points (V01…) as in the
+/// measured file.
+const std::string& holes() {
+  static const std::string h = s("verification/test_kr120_holes.csv");
+  return h;
+}
+
 std::string verifyArgs(const std::string& extra) {
-  return "verify --cell " + q(cell()) + " " + q(program()) + " --measured " + q(measured()) + " " +
+  return "verify --cell " + q(cell()) + " " + q(program()) + " --holes " + q(holes()) +
+         " --measured " + q(measured()) + " " +
          extra;
 }
 
@@ -162,7 +170,8 @@ TEST(VerifyCli, BadMeasuredFilesExitTwoWithFileLineAndWriteNothing) {
     const std::string file = dir + "/" + tag + ".csv";
     test::writeFile(file, text);
     const std::string out = dir + "/out_" + tag;
-    const auto r = test::runRoprec("verify --cell " + q(cell()) + " " + q(program()) +
+    const auto r = test::runRoprec("verify --cell " + q(cell()) + " " + q(program()) + " --holes " +
+                                   q(holes()) +
                                    " --measured " + q(file) + " --json " + q(out + ".json") +
                                    " --report " + q(out + ".html") + " --calibrate " +
                                    q(out + ".xml"));

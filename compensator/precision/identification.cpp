@@ -872,7 +872,11 @@ std::vector<IdentificationHole> plannedHoles(const PredictionModel& m,
 }
 
 /// Greedy selection on the per-hole information blocks J_i (2×n rows of J).
+/// Greedy D-optimal selection of `count` holes; a candidate closer than `min_spacing` (m) to a
+/// chosen hole is not drillable any more (one hole per place). Returns fewer than `count` when
+/// the well-spaced candidates run out.
 std::vector<int> greedyDOptimal(const MatrixXd& J, const VectorXd& s0, int count,
+                                const std::vector<Vec3>& p_W, double min_spacing,
                                 double& criterion) {
   const Eigen::Index n = J.cols();
   MatrixXd M = s0.cwiseInverse().cwiseAbs2().asDiagonal();
@@ -890,6 +894,10 @@ std::vector<int> greedyDOptimal(const MatrixXd& J, const VectorXd& s0, int count
         best_value = v;
         best = static_cast<int>(i);
       }
+    }
+    if (best < 0) break;
+    for (size_t k = 0; k < used.size(); ++k) {
+      if ((p_W[k] - p_W[static_cast<size_t>(best)]).norm() < min_spacing) used[k] = true;
     }
     used[static_cast<size_t>(best)] = true;
     chosen.push_back(best);
@@ -939,7 +947,17 @@ TestPlan planTest(const PredictionModel& m, const std::vector<HoleRequest>& cand
     throw InputError(
         "", 0, "the compliance equilibrium fails near the card's stiffness at a candidate hole");
   }
-  const std::vector<int> chosen = greedyDOptimal(J, P.spec.s0, count, plan.log_det);
+  std::vector<Vec3> p_W;
+  for (const IdentificationHole& h : holes) p_W.push_back(h.T_W_hole.translation());
+  const std::vector<int> chosen =
+      greedyDOptimal(J, P.spec.s0, count, p_W, o.min_spacing, plan.log_det);
+  if (static_cast<int>(chosen.size()) < count) {
+    throw InputError("", 0,
+                     "only " + std::to_string(chosen.size()) + " candidate holes are at least " +
+                         std::to_string(std::lround(o.min_spacing * 1e3)) + " mm apart; " +
+                         std::to_string(count) +
+                         " wanted (enlarge the region or use fewer holes)");
+  }
   MatrixXd M = P.spec.s0.cwiseInverse().cwiseAbs2().asDiagonal();
   for (const int c : chosen) {
     plan.chosen.push_back(index[static_cast<size_t>(c)]);

@@ -291,6 +291,7 @@ struct PlanOptions {
   double translation_prior{5e-3};
   double rotation_prior{10e-3};
   double relative_step{1e-4};
+  double min_spacing{0.02};  ///< m: holes closer than this to a chosen one are not candidates
 };
 
 struct TestPlan {

@@ -18,7 +18,9 @@ How the file is made (deterministic: running it again gives identical bytes):
               -o samples/verification/test_kr120.src
 
    This script re-runs that command first, so the files always belong together. roprec's KRL
-   reader names the recognised drill holes H1, H2, … in program order (the points are V01…).
+   reader names the recognised drill holes H1, H2, … in program order; the drill points are named
+   V01, V02, … and the measured file and the hole list use those names (so ``roprec verify`` is
+   given the hole list: ``--holes test_kr120_holes.csv`` matches the holes by these names).
 2. The part is "drilled" by a TRUTH ROBOT: ``truth-kr120.xml`` is the bundled KR 120 card with every
    joint stiffness replaced by the published identified KUKA KR500 values (Jiao et al., Chinese J.
    Mech. Eng. 35:115 (2022), Eq. (38): k1..k6 = 1.58e7, 6.12e6, 5.28e6, 4.66e5, 2.19e5, 3.49e5
@@ -36,8 +38,8 @@ How the file is made (deterministic: running it again gives identical bytes):
    Python's Mersenne Twister seeded with SEED (Box–Muller on random.random(), which is the same on
    every Python 3). Positions are printed in mm with 4 decimals; u = 5 µm per axis.
 4. ``test_kr120_holes.csv`` is the hole list of the test program: the nominal holes (drill points
-   and drilling directions, workobject frame, ids H1… as roprec reads the program), for verifying
-   a compensated version of the program against the nominal holes (``roprec verify --holes``).
+   and drilling directions, workobject frame, ids V01…), for verifying the program, and a
+   compensated version of it, against the nominal holes (``roprec verify --holes``).
 """
 
 import json
@@ -73,10 +75,11 @@ def gauss(rng):
     return math.sqrt(-2.0 * math.log(1.0 - u1)) * math.cos(2.0 * math.pi * u2)
 
 
-def truth_holes(roprec, program):
+def truth_holes(roprec, program, hole_list=None):
     with tempfile.TemporaryDirectory() as tmp:
         js = os.path.join(tmp, "truth.json")
-        run(roprec, "predict", "--cell", TRUTH_CELL, program, "--json", js, "--quiet")
+        extra = ["--holes", hole_list] if hole_list else []
+        run(roprec, "predict", "--cell", TRUTH_CELL, program, *extra, "--json", js, "--quiet")
         with open(js, encoding="utf-8") as f:
             return json.load(f)["holes"]
 
@@ -117,12 +120,14 @@ def main():
     roprec = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "build", "bin", "roprec"))
     if len(sys.argv) == 5 and sys.argv[2] == "--drill":
         program, out = os.path.abspath(sys.argv[3]), os.path.abspath(sys.argv[4])
-        write_measured(truth_holes(roprec, program), out, os.path.basename(program))
+        write_measured(truth_holes(roprec, program, HOLES), out, os.path.basename(program))
         print("wrote", out)
         return
     os.chdir(ROOT)  # the programs name their files relative to the source tree
     run(roprec, "plan-test", *PLAN, "-o", os.path.relpath(PROGRAM))
     holes = truth_holes(roprec, PROGRAM)
+    for h in holes:  # the planned points are V01, V02, ... in program order (roprec reads H1, H2, ...)
+        h["id"] = "V%02d" % int(h["id"][1:])
     write_measured(holes, OUT, "samples/verification/test_kr120.src")
     write_hole_list(holes)
     print("wrote", os.path.relpath(OUT, ROOT), "(%d holes) and" % len(holes), os.path.relpath(HOLES, ROOT))
