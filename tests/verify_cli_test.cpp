@@ -45,8 +45,7 @@ const std::string& holes() {
 
 std::string verifyArgs(const std::string& extra) {
   return "verify --cell " + q(cell()) + " " + q(program()) + " --holes " + q(holes()) +
-         " --measured " + q(measured()) + " " +
-         extra;
+         " --measured " + q(measured()) + " " + extra;
 }
 
 TEST(VerifyCli, SampleExitsZeroAndPrintsTheStatistics) {
@@ -85,7 +84,9 @@ json truthPrediction(const std::string& prog, const std::string& dir, const std:
   return json::parse(test::readFile(out))["holes"];
 }
 
-Eigen::Vector3d vec(const json& a) { return {a[0].get<double>(), a[1].get<double>(), a[2].get<double>()}; }
+Eigen::Vector3d vec(const json& a) {
+  return {a[0].get<double>(), a[1].get<double>(), a[2].get<double>()};
+}
 
 /// RMS (µm) of the truth's real drill points of `prog` from the nominal hole axes (the drill
 /// points and axes of the uncompensated test program `nominal`), hole by hole in program order.
@@ -95,8 +96,8 @@ double truthResidualRms(const json& nominal, const std::string& prog, const std:
   EXPECT_EQ(holes.size(), nominal.size());
   double sum = 0;
   for (size_t i = 0; i < holes.size(); ++i) {
-    const Eigen::Vector3d real = vec(holes[i]["nominal"]["position_mm"]) +
-                                 vec(holes[i]["deviation_um"]["work"]) * 1e-3;
+    const Eigen::Vector3d real =
+        vec(holes[i]["nominal"]["position_mm"]) + vec(holes[i]["deviation_um"]["work"]) * 1e-3;
     const Eigen::Vector3d p0 = vec(nominal[i]["nominal"]["position_mm"]);
     const Eigen::Vector3d a0 = vec(nominal[i]["nominal"]["axis"]);
     const Eigen::Vector3d d = real - p0;
@@ -111,7 +112,8 @@ TEST(VerifyCli, CalibratedCardCompensatesBetterOnTheTruthRobot) {
   const auto v = test::runRoprec(verifyArgs("--register translation --calibrate " + q(card)));
   ASSERT_EQ(v.exit_code, 0) << v.err << v.out;
   const std::string text = test::readFile(card);
-  EXPECT_NE(text.find("identified: 24 holes from measured.csv by roprec verify"), std::string::npos);
+  EXPECT_NE(text.find("identified: 24 holes from measured.csv by roprec verify"),
+            std::string::npos);
   // the card loads in a cell: roprec predict accepts it
   const std::string cal_cell = cellWithCard(dir, card);
   const auto p = test::runRoprec("predict --cell " + q(cal_cell) + " " + q(program()) + " --quiet");
@@ -119,16 +121,21 @@ TEST(VerifyCli, CalibratedCardCompensatesBetterOnTheTruthRobot) {
   // compensate with each card, execute on the truth robot
   const std::string orig = dir + "/comp_orig.src";
   const std::string cal = dir + "/comp_cal.src";
-  ASSERT_EQ(test::runRoprec("compensate --cell " + q(cell()) + " " + q(program()) + " -o " + q(orig))
-                .exit_code, 0);
-  ASSERT_EQ(test::runRoprec("compensate --cell " + q(cal_cell) + " " + q(program()) + " -o " + q(cal))
-                .exit_code, 0);
+  ASSERT_EQ(
+      test::runRoprec("compensate --cell " + q(cell()) + " " + q(program()) + " -o " + q(orig))
+          .exit_code,
+      0);
+  ASSERT_EQ(
+      test::runRoprec("compensate --cell " + q(cal_cell) + " " + q(program()) + " -o " + q(cal))
+          .exit_code,
+      0);
   const json nominal = truthPrediction(program(), dir, "nominal");
   const double before = truthResidualRms(nominal, program(), dir, "uncompensated");
   const double with_card = truthResidualRms(nominal, orig, dir, "orig");
   const double with_calibrated = truthResidualRms(nominal, cal, dir, "cal");
-  std::printf("truth residual RMS: uncompensated %.1f um, bundled card %.1f um, calibrated %.1f um\n",
-              before, with_card, with_calibrated);
+  std::printf(
+      "truth residual RMS: uncompensated %.1f um, bundled card %.1f um, calibrated %.1f um\n",
+      before, with_card, with_calibrated);
   EXPECT_LT(with_calibrated, with_card);
   EXPECT_LT(with_calibrated, 0.5 * with_card);
 }
@@ -170,15 +177,26 @@ TEST(VerifyCli, BadMeasuredFilesExitTwoWithFileLineAndWriteNothing) {
     const std::string file = dir + "/" + tag + ".csv";
     test::writeFile(file, text);
     const std::string out = dir + "/out_" + tag;
-    const auto r = test::runRoprec("verify --cell " + q(cell()) + " " + q(program()) + " --holes " +
-                                   q(holes()) +
-                                   " --measured " + q(file) + " --json " + q(out + ".json") +
-                                   " --report " + q(out + ".html") + " --calibrate " +
-                                   q(out + ".xml"));
+    const auto r =
+        test::runRoprec("verify --cell " + q(cell()) + " " + q(program()) + " --holes " +
+                        q(holes()) + " --measured " + q(file) + " --json " + q(out + ".json") +
+                        " --report " + q(out + ".html") + " --calibrate " + q(out + ".xml"));
     EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_TRUE(std::regex_search(r.err, std::regex(tag + "\\.csv:[0-9]+: "))) << r.err;
     for (const char* ext : {".json", ".html", ".xml"}) EXPECT_FALSE(fs::exists(out + ext)) << ext;
   }
+}
+
+TEST(VerifyCli, IdentifyToolReportsTheToolWithinItsSigma) {
+  // The truth robot drilled with the cell's own tool: the identified changes of the tool mass and
+  // centre of mass must be consistent with zero (within 3σ).
+  const auto r = test::runRoprec(verifyArgs("--register translation --identify-tool"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::regex mass("tool_mass = (-?[0-9.]+) ± ([0-9.]+) kg change");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r.out, m, mass)) << r.out;
+  EXPECT_LE(std::abs(std::stod(m[1])), 3.0 * std::stod(m[2]));
+  EXPECT_NE(r.out.find("tool_com_z"), std::string::npos);
 }
 
 TEST(VerifyCli, JsonIsDeterministic) {
@@ -196,9 +214,9 @@ TEST(VerifyCli, JsonIsDeterministic) {
 TEST(VerifyCli, PlanTestWritesAProgramInspectReadsWithNHoles) {
   const std::string dir = test::tempDir("plantest");
   const std::string out = dir + "/coupon.src";
-  const auto r = test::runRoprec("plan-test --cell " + q(cell()) +
-                                 " --region \"-150 -150 200 150 150 230\" --per-axis 3 --count 7 -o " +
-                                 q(out));
+  const auto r = test::runRoprec(
+      "plan-test --cell " + q(cell()) +
+      " --region \"-150 -150 200 150 150 230\" --per-axis 3 --count 7 -o " + q(out));
   ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
   EXPECT_NE(r.out.find("expected joint stiffness uncertainty"), std::string::npos) << r.out;
   EXPECT_TRUE(fs::exists(dir + "/coupon.dat"));

@@ -22,7 +22,8 @@ std::string holeWhere(const std::string& id, int line, const std::string& progra
 /// The nominal hole of request i: the hole list's when one was matched (its point and axis; the
 /// program's rotation about the axis when the axes agree), else the program's drill point.
 Pose nominalHole(const PredictionContext& c, size_t i) {
-  if (i < c.job.sources.size() && c.job.sources[i].T_W_tcp_spec) return *c.job.sources[i].T_W_tcp_spec;
+  if (i < c.job.sources.size() && c.job.sources[i].T_W_tcp_spec)
+    return *c.job.sources[i].T_W_tcp_spec;
   const HoleRequest& q = c.job.requests[i];
   if (!q.nominal_axis) return q.T_W_tcp;
   Pose T = q.T_W_tcp;
@@ -47,7 +48,8 @@ void noteMatch(VerifyResult& r) {
                       " is not a hole of the program: ignored");
   }
   for (const int i : r.match.unmeasured) {
-    r.notes.push_back("program hole " + r.prediction.context.job.requests[static_cast<size_t>(i)].id +
+    r.notes.push_back("program hole " +
+                      r.prediction.context.job.requests[static_cast<size_t>(i)].id +
                       " was not measured");
   }
 }
@@ -91,15 +93,18 @@ void identify(VerifyResult& r, const VerifyJob& job) {
     h.T_W_hole = nominalHole(c, i);
     h.diameter = c.job.requests[i].diameter;
     h.p_W_measured = measuredW(r, r.measured_of[n]);
-    h.sigma = residualSigma(p, uMeasurement(r.measured.holes[static_cast<size_t>(r.measured_of[n])], job));
+    h.sigma = residualSigma(
+        p, uMeasurement(r.measured.holes[static_cast<size_t>(r.measured_of[n])], job));
     holes.push_back(h);
   }
   IdentificationOptions o;
   o.compliance_prior_rel = compliancePriorSigma(c.robot.card);
   o.registration = r.registration;
   o.T_W_wobj = c.cell.T_base_wobj;
+  if (job.identify_tool) o.tool = c.tool;
   r.identification = identifyStiffness(c.model, holes, o);
-  for (const Eigen::Vector2d& e : r.identification->residuals) r.residual_identified.push_back(e.norm());
+  for (const Eigen::Vector2d& e : r.identification->residuals)
+    r.residual_identified.push_back(e.norm());
 }
 
 void verifyHoles(VerifyResult& r, const VerifyJob& job) {
@@ -229,7 +234,8 @@ Json holeJsonOf(const VerifyResult& r, size_t n) {
   Json j = Json::object();
   j.set("id", Json::str(h.id));
   j.set("line", Json::integer(q.line));
-  j.set("measured_line", Json::integer(r.measured.holes[static_cast<size_t>(r.measured_of[n])].line));
+  j.set("measured_line",
+        Json::integer(r.measured.holes[static_cast<size_t>(r.measured_of[n])].line));
   j.set("measured_um", vecUm(h.e_meas));
   j.set("measured_norm_um", um(h.e_meas_norm));
   j.set("measured_along_um", um(h.e_along));
@@ -274,7 +280,8 @@ VerifyResult verifyJob(const std::string& cell_path, const std::string& program_
   selectHoles(r);
   if (r.request_of.empty())
     throw InputError(job.measured, 0, "no measured hole of the program could be predicted");
-  if (job.calibrate || job.registration != Registration::kNone) identify(r, job);
+  if (job.calibrate || job.identify_tool || job.registration != Registration::kNone)
+    identify(r, job);
   verifyHoles(r, job);
   return r;
 }
@@ -334,9 +341,9 @@ std::string calibratedCardText(const VerifyResult& r, const std::string& measure
                                const std::string& card_out_path) {
   if (!r.identification) throw UsageError("no identification: ask for calibration");
   const RobotCard& card = r.prediction.context.robot.card;
-  std::string text = updateCardStiffness(readFileBytes(card.file), card.file,
-                                         cardUpdates(*r.identification), r.identification->holes,
-                                         measured_file_name);
+  std::string text =
+      updateCardStiffness(readFileBytes(card.file), card.file, cardUpdates(*r.identification),
+                          r.identification->holes, measured_file_name);
   if (card_out_path.empty()) return text;
   const fs::path urdf(card.urdf_path);
   const fs::path out_dir = fs::absolute(fs::path(card_out_path)).parent_path();
@@ -344,7 +351,8 @@ std::string calibratedCardText(const VerifyResult& r, const std::string& measure
   const std::string attr = "urdf=\"" + urdf.filename().string() + "\"";
   const size_t at = text.find(attr);
   if (at == std::string::npos) return text;
-  const std::string rel = fs::absolute(urdf).lexically_normal().lexically_relative(out_dir).string();
+  const std::string rel =
+      fs::absolute(urdf).lexically_normal().lexically_relative(out_dir).string();
   return text.replace(at, attr.size(), "urdf=\"" + rel + "\"");
 }
 

@@ -30,10 +30,13 @@
 namespace roprec::api {
 
 struct VerifyJob {
-  JobOptions job;            ///< hole list, match tolerance, uncertainty method
-  std::string measured;      ///< the CMM file (roprec CSV, PC-DMIS CSV or DMIS), workobject mm
+  JobOptions job;        ///< hole list, match tolerance, uncertainty method
+  std::string measured;  ///< the CMM file (roprec CSV, PC-DMIS CSV or DMIS), workobject mm
   Registration registration{Registration::kNone};  ///< part registration estimated jointly
-  bool calibrate{false};     ///< re-identify the joint stiffness (identification.hpp)
+  bool calibrate{false};  ///< re-identify the joint stiffness (identification.hpp)
+  /// Also identify the tool's mass and centre of mass (prior: the cell's <tool>, σ 2 kg and
+  /// 20 mm); reported, the cell is not rewritten.
+  bool identify_tool{false};
   double u_measurement_um{5.0};  ///< σ per axis of a measured position when the file has no `u`
 };
 
@@ -44,12 +47,13 @@ struct VerifyResult {
   Registration registration{Registration::kNone};
   bool calibrate{false};
   std::string cell_path, program_path;
-  std::vector<std::string> notes;   ///< unknown ids, unmeasured holes, job notes
-  std::vector<std::string> failed;  ///< "hole ID (FILE:LINE): verdict: reason" (measured, unpredicted)
+  std::vector<std::string> notes;  ///< unknown ids, unmeasured holes, job notes
+  std::vector<std::string>
+      failed;  ///< "hole ID (FILE:LINE): verdict: reason" (measured, unpredicted)
   /// Verified holes in program order: the request index and the measured index of each.
   std::vector<int> request_of, measured_of;
   std::vector<HoleVerification> holes;
-  std::vector<Pose> nominal;  ///< nominal hole pose of each verified hole (base frame)
+  std::vector<Pose> nominal;    ///< nominal hole pose of each verified hole (base frame)
   VerificationSummary summary;  ///< correlations along the workobject axes
   /// Run when calibrate or registration ≠ none.
   std::optional<IdentificationResult> identification;

@@ -18,16 +18,17 @@ std::string vecUm(const Vec3& v) {
 
 void printStatistics(CommandContext& ctx, const VerifyResult& r) {
   const VerificationSummary& s = r.summary;
-  ctx.out << "roprec verify: " << r.measured.holes.size() << " measured holes, "
-          << r.match.matched << " matched, " << s.holes << " verified\n";
+  ctx.out << "roprec verify: " << r.measured.holes.size() << " measured holes, " << r.match.matched
+          << " matched, " << s.holes << " verified\n";
   ctx.out << "  |deviation ⊥ axis| RMS [µm]: measured " << um(s.measured.rms) << ", predicted "
-          << um(s.predicted.rms) << ", residual " << um(s.residual.rms) << " (max: "
-          << um(s.measured.max) << ", " << um(s.predicted.max) << ", " << um(s.residual.max)
-          << ")\n";
+          << um(s.predicted.rms) << ", residual " << um(s.residual.rms)
+          << " (max: " << um(s.measured.max) << ", " << um(s.predicted.max) << ", "
+          << um(s.residual.max) << ")\n";
   ctx.out << "  explained share " << formatNumber(s.explained, 3) << "; inside the predicted 95 % "
           << "region " << s.inside << "/" << s.holes << " (coverage " << formatNumber(s.coverage, 3)
           << "); correlation x y z " << formatNumber(s.correlation.x(), 3) << " "
-          << formatNumber(s.correlation.y(), 3) << " " << formatNumber(s.correlation.z(), 3) << "\n";
+          << formatNumber(s.correlation.y(), 3) << " " << formatNumber(s.correlation.z(), 3)
+          << "\n";
   ctx.out << "  measured values (ISO 14253-1): " << s.conformance_proven << " conformance proven, "
           << s.nonconformance_proven << " non-conformance proven, " << s.no_decision
           << " no decision\n";
@@ -37,9 +38,9 @@ void printIdentification(CommandContext& ctx, const VerifyResult& r) {
   if (!r.identification) return;
   const IdentificationResult& id = *r.identification;
   if (r.registration != Registration::kNone) {
-    ctx.out << "  registration (" << registrationName(r.registration) << ", workobject axes): t = "
-            << vecUm(id.registration.translation) << " ± " << vecUm(id.registration.translation_sigma)
-            << " µm";
+    ctx.out << "  registration (" << registrationName(r.registration)
+            << ", workobject axes): t = " << vecUm(id.registration.translation) << " ± "
+            << vecUm(id.registration.translation_sigma) << " µm";
     if (r.registration == Registration::kRigid)
       ctx.out << ", ω = " << vecUm(id.registration.rotation) << " ± "
               << vecUm(id.registration.rotation_sigma) << " µrad";
@@ -47,9 +48,8 @@ void printIdentification(CommandContext& ctx, const VerifyResult& r) {
   }
   ctx.out << "  identification: " << (id.converged ? "converged" : "NOT converged") << " in "
           << id.iterations << " iterations, condition number "
-          << formatNumber(id.condition_number, 1) << "; residual RMS "
-          << um(id.rms_prior) << " µm with the card -> " << um(id.rms_final)
-          << " µm identified\n";
+          << formatNumber(id.condition_number, 1) << "; residual RMS " << um(id.rms_prior)
+          << " µm with the card -> " << um(id.rms_final) << " µm identified\n";
   if (!id.message.empty()) ctx.out << "    " << id.message << "\n";
   for (int j = 0; j < 6; ++j) {
     const auto jj = static_cast<size_t>(j);
@@ -58,6 +58,15 @@ void printIdentification(CommandContext& ctx, const VerifyResult& r) {
             << (id.joint_identified[jj] ? "identified, ρ = " : "not identifiable, prior kept, ρ = ")
             << formatNumber(id.parameters[jj].ratio, 3) << "; card "
             << formatNumber(r.prediction.context.robot.card.joints[jj].stiffness, 0) << ")\n";
+  }
+  for (const IdentifiedParameter& q : id.parameters) {
+    if (q.name.rfind("tool_", 0) != 0) continue;
+    const bool mass = q.name == "tool_mass";
+    const double scale = mass ? 1.0 : 1e3;  // kg, mm
+    ctx.out << "    " << q.name << " = " << formatNumber(q.value * scale, 3) << " ± "
+            << formatNumber(q.sigma * scale, 3) << (mass ? " kg" : " mm") << " change ("
+            << (q.identifiable ? "identified" : "not identifiable, cell value kept")
+            << ", ρ = " << formatNumber(q.ratio, 3) << ")\n";
   }
 }
 
@@ -71,6 +80,7 @@ int run(Args& args, CommandContext& ctx) {
   const auto card_out = args.option("calibrate");
   const auto reg = args.option("register");
   const auto u = args.option("u-meas");
+  job.identify_tool = args.flag("identify-tool");
   const std::vector<std::string> pos = args.positionals();
   args.finish();
   if (!cell) throw UsageError("give --cell CELL.xml");
@@ -98,9 +108,9 @@ int run(Args& args, CommandContext& ctx) {
   if (json_out) out.emplace_back(*json_out, verifyJson(r).dump());
   if (report_out) out.emplace_back(*report_out, verifyReport(r));
   if (card_out)
-    out.emplace_back(*card_out,
-                     calibratedCardText(r, std::filesystem::path(*measured).filename().string(),
-                                        *card_out));
+    out.emplace_back(
+        *card_out,
+        calibratedCardText(r, std::filesystem::path(*measured).filename().string(), *card_out));
   if (!ctx.quiet) {
     printStatistics(ctx, r);
     printIdentification(ctx, r);
@@ -121,13 +131,19 @@ const CommandRegistration reg{
     {"verify", "measured holes (CMM) vs prediction; registration, re-identified robot card",
      "usage: roprec verify --cell CELL.xml PROGRAM --measured MEASURED [--holes HOLES.csv]\n"
      "                     [--json OUT.json] [--report OUT.html] [--calibrate NEW_CARD.xml]\n"
-     "                     [--register none|translation|rigid] [--u-meas UM] [--quiet]\n\n"
-     "Compares the holes a CMM measured on a part drilled with PROGRAM against roprec's prediction.\n"
-     "MEASURED: roprec CSV (id,x,y,z[,i,j,k][,u]), PC-DMIS CSV (TYPE,NAME,X,Y,Z,...) or DMIS output\n"
-     "(FA(id)=FEAT/CIRCLE,...), recognised by content; positions in the cell's workobject frame, mm;\n"
-     "u = standard measurement uncertainty per axis, µm (--u-meas, default 5, when the file has none).\n"
+     "                     [--register none|translation|rigid] [--identify-tool] [--u-meas UM]\n"
+     "                     [--quiet]\n\n"
+     "Compares the holes a CMM measured on a part drilled with PROGRAM against roprec's "
+     "prediction.\n"
+     "MEASURED: roprec CSV (id,x,y,z[,i,j,k][,u]), PC-DMIS CSV (TYPE,NAME,X,Y,Z,...) or DMIS "
+     "output\n"
+     "(FA(id)=FEAT/CIRCLE,...), recognised by content; positions in the cell's workobject frame, "
+     "mm;\n"
+     "u = standard measurement uncertainty per axis, µm (--u-meas, default 5, when the file has "
+     "none).\n"
      "Holes are matched by id; unknown ids and unmeasured holes are notes. --holes: the program's\n"
-     "hole list (ids, nominal positions and axes); give it to verify a compensated program against\n"
+     "hole list (ids, nominal positions and axes); give it to verify a compensated program "
+     "against\n"
      "the nominal holes, and to name the holes as the CMM does. The commanded joints of a\n"
      "hole are the prediction's (rigid IK of the programmed target).\n"
      "Per hole (⊥ the nominal hole axis): measured deviation e_meas, predicted δwork⊥, residual\n"
@@ -135,18 +151,23 @@ const CommandRegistration reg{
      "measurement), and the ISO 14253-1 decision on the measured value with U_meas = 2.4477 u.\n"
      "Statistics: RMS/mean/max of measured, predicted and residual; explained share\n"
      "1 − RMS(r)/RMS(e_meas); coverage of the 95 % region; correlation per workobject axis.\n"
-     "--register: a part registration (translation, or rigid = translation + small rotation about the\n"
+     "--register: a part registration (translation, or rigid = translation + small rotation about "
+     "the\n"
      "workobject origin) estimated jointly with the joint stiffness and removed from the measured\n"
      "positions before the comparison; printed with its σ.\n"
      "--calibrate NEW_CARD.xml: regularised Levenberg–Marquardt identification of the joint\n"
-     "compliances on the nonlinear model (priors: 50 % for estimated card values, 10 % otherwise);\n"
+     "compliances on the nonlinear model (priors: 50 % for estimated card values, 10 % "
+     "otherwise);\n"
      "writes the robot card with each identifiable joint's stiffness and source replaced\n"
      "(`identified: N holes from FILE by roprec verify (σ = …)`); unidentifiable joints keep the\n"
      "prior and are listed. Prints k ± σ, identifiability ρ = σ/σ_prior, the condition number.\n"
      "The new card's urdf attribute points to the original URDF when it is not beside the card.\n"
+     "--identify-tool: also identify the tool's mass and centre of mass (changes to the cell's\n"
+     "<tool>, prior σ 2 kg and 20 mm), reported with their σ; the cell file is not rewritten.\n"
      "--json: the verification JSON; --report: one self-contained HTML file (arrows per face,\n"
      "residual map, statistics, identified parameters).\n"
-     "Outputs are written only when every measured hole was predicted. Exit 1 if some measured holes\n"
+     "Outputs are written only when every measured hole was predicted. Exit 1 if some measured "
+     "holes\n"
      "could not be predicted (listed, nothing written), 2 for bad input (FILE:LINE: what).\n",
      55, run}};
 
