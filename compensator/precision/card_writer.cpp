@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "compensator/support/error.hpp"
+#include "compensator/support/xml_escape.hpp"
 
 namespace roprec {
 
@@ -127,32 +128,6 @@ std::vector<JointTag> jointTags(const std::string& s, const std::string& path) {
   return tags;
 }
 
-std::string escapeAttribute(const std::string& v, char quote) {
-  std::string o;
-  for (const char c : v) {
-    switch (c) {
-      case '&':
-        o += "&amp;";
-        break;
-      case '<':
-        o += "&lt;";
-        break;
-      case '>':
-        o += "&gt;";
-        break;
-      case '"':
-        o += quote == '"' ? "&quot;" : "\"";
-        break;
-      case '\'':
-        o += quote == '\'' ? "&apos;" : "'";
-        break;
-      default:
-        o += c;
-    }
-  }
-  return o;
-}
-
 /// The provenance kept after "; before: " (raw attribute text, already escaped).
 std::string previousSource(const std::string& old_raw) {
   if (old_raw.rfind("identified:", 0) != 0) return old_raw;
@@ -205,9 +180,8 @@ std::string updateCardStiffness(const std::string& card_text, const std::string&
     const std::string before =
         old ? previousSource(card_text.substr(old->value_begin, old->value_end - old->value_begin))
             : std::string();
-    const std::string source =
-        escapeAttribute(identifiedSource(holes, measured_file, u.sigma), t.quote) +
-        (before.empty() ? std::string() : "; before: " + before);
+    const std::string source = escapeXml(identifiedSource(holes, measured_file, u.sigma), t.quote) +
+                               (before.empty() ? std::string() : "; before: " + before);
     edits.push_back(setAttribute(t, "source", source));
   }
   // apply from the back so earlier offsets stay valid (appended attributes keep document order)

@@ -27,8 +27,12 @@
 #include <stdexcept>
 #include <string_view>
 
+#include "compensator/support/xml_escape.hpp"
+
 namespace roprec::api {
 namespace {
+
+std::string esc(std::string_view s) { return escapeXml(s); }
 
 // ------------------------------------------------------------------ formatting
 
@@ -44,37 +48,6 @@ std::string num(double v, int decimals) {
   std::string s(buf, r.ptr);
   if (!s.empty() && s[0] == '-' && s.find_first_not_of("-0.") == std::string::npos) s.erase(0, 1);
   return s;
-}
-
-std::string esc(std::string_view s) {
-  std::string o;
-  o.reserve(s.size() + 8);
-  for (const char c : s) {
-    switch (c) {
-      case '&':
-        o += "&amp;";
-        break;
-      case '<':
-        o += "&lt;";
-        break;
-      case '>':
-        o += "&gt;";
-        break;
-      case '"':
-        o += "&quot;";
-        break;
-      case '\'':
-        o += "&#39;";
-        break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20 && c != '\n' && c != '\t') {
-          o += ' ';
-        } else {
-          o += c;
-        }
-    }
-  }
-  return o;
 }
 
 std::string plural(long n, const char* one, const char* many) {

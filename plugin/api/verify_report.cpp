@@ -6,24 +6,13 @@
 #include <map>
 #include <sstream>
 
+#include "compensator/support/xml_escape.hpp"
 #include "plugin/api/verify.hpp"
 
 namespace roprec::api {
 namespace {
 
-std::string esc(const std::string& s) {
-  std::string o;
-  for (const char c : s) {
-    switch (c) {
-      case '<': o += "&lt;"; break;
-      case '>': o += "&gt;"; break;
-      case '&': o += "&amp;"; break;
-      case '"': o += "&quot;"; break;
-      default: o += c;
-    }
-  }
-  return o;
-}
+std::string esc(const std::string& s) { return escapeXml(s); }
 
 std::string f(double v, int decimals) { return esc(formatNumber(v, decimals)); }
 
@@ -75,9 +64,9 @@ Plot plotFor(const std::vector<Eigen::Vector2d>& pts) {
 
 std::string arrow(double x, double y, double dx, double dy, const char* colour) {
   std::ostringstream o;
-  o << "<line x1=\"" << f(x, 1) << "\" y1=\"" << f(y, 1) << "\" x2=\"" << f(x + dx, 1)
-    << "\" y2=\"" << f(y + dy, 1) << "\" stroke=\"" << colour
-    << "\" stroke-width=\"1.6\" marker-end=\"url(#a" << colour + 1 << ")\"/>\n";
+  o << "<line x1=\"" << f(x, 1) << "\" y1=\"" << f(y, 1) << "\" x2=\"" << f(x + dx, 1) << "\" y2=\""
+    << f(y + dy, 1) << "\" stroke=\"" << colour << "\" stroke-width=\"1.6\" marker-end=\"url(#a"
+    << colour + 1 << ")\"/>\n";
   return o.str();
 }
 
@@ -86,7 +75,8 @@ std::string markers() {
   for (const char* c : {"#1f5fbf", "#e07b00"}) {
     s += std::string("<marker id=\"a") + (c + 1) +
          "\" markerWidth=\"6\" markerHeight=\"6\" refX=\"5\" refY=\"3\" orient=\"auto\">"
-         "<path d=\"M0,0 L6,3 L0,6 z\" fill=\"" + c + "\"/></marker>";
+         "<path d=\"M0,0 L6,3 L0,6 z\" fill=\"" +
+         c + "\"/></marker>";
   }
   return s + "</defs>\n";
 }
@@ -107,17 +97,20 @@ std::string arrowMap(const VerifyResult& r, const Face& face, double scale_px_pe
   const Plot pl = plotFor(pts);
   std::ostringstream o;
   o << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << kW << "\" height=\"" << kH
-    << "\" viewBox=\"0 0 " << kW << " " << kH << "\">\n" << markers();
+    << "\" viewBox=\"0 0 " << kW << " " << kH << "\">\n"
+    << markers();
   o << "<rect width=\"" << kW << "\" height=\"" << kH << "\" fill=\"#fafafa\" stroke=\"#ccc\"/>\n";
   for (size_t m = 0; m < face.holes.size(); ++m) {
     const HoleVerification& h = r.holes[face.holes[m]];
     const double x = pl.px(pts[m].x()), y = pl.py(pts[m].y());
     o << "<circle cx=\"" << f(x, 1) << "\" cy=\"" << f(y, 1) << "\" r=\"2\" fill=\"#444\"><title>"
       << esc(h.id) << "</title></circle>\n";
-    const Vec3 em = face.R.transpose() * r.prediction.context.cell.T_base_wobj.linear().transpose() *
-                    h.e_meas_W * 1e6 * scale_px_per_um;
-    const Vec3 dp = face.R.transpose() * r.prediction.context.cell.T_base_wobj.linear().transpose() *
-                    h.d_pred_W * 1e6 * scale_px_per_um;
+    const Vec3 em = face.R.transpose() *
+                    r.prediction.context.cell.T_base_wobj.linear().transpose() * h.e_meas_W * 1e6 *
+                    scale_px_per_um;
+    const Vec3 dp = face.R.transpose() *
+                    r.prediction.context.cell.T_base_wobj.linear().transpose() * h.d_pred_W * 1e6 *
+                    scale_px_per_um;
     o << arrow(x, y, em.x(), -em.y(), "#1f5fbf") << arrow(x, y, dp.x(), -dp.y(), "#e07b00");
   }
   o << "</svg>\n";
@@ -140,8 +133,9 @@ std::string residualMap(const VerifyResult& r, const Face& face) {
     std::snprintf(col, sizeof col, "#%02x%02x40", red, green);
     o << "<circle cx=\"" << f(pl.px(pts[m].x()), 1) << "\" cy=\"" << f(pl.py(pts[m].y()), 1)
       << "\" r=\"" << f(4 + 6 * q, 1) << "\" fill=\"" << col << "\" stroke=\""
-      << (h.inside ? "none" : "#000") << "\"><title>" << esc(h.id) << ": |r| " << f(h.r_norm * 1e6, 1)
-      << " µm, region " << f(h.U_region * 1e6, 1) << " µm</title></circle>\n";
+      << (h.inside ? "none" : "#000") << "\"><title>" << esc(h.id) << ": |r| "
+      << f(h.r_norm * 1e6, 1) << " µm, region " << f(h.U_region * 1e6, 1)
+      << " µm</title></circle>\n";
   }
   o << "</svg>\n";
   return o.str();
@@ -158,8 +152,8 @@ std::string statistics(const VerifyResult& r) {
   o << "<h2>Statistics</h2>\n<table><tr><th>|deviation ⊥ axis| [µm]</th><th>RMS</th><th>mean</th>"
        "<th>max</th></tr>\n"
     << statsRow("measured e_meas", s.measured) << statsRow("predicted δwork⊥", s.predicted)
-    << statsRow("residual r = e_meas − δwork⊥", s.residual) << "</table>\n<p>"
-    << s.holes << " holes; explained share 1 − RMS(r)/RMS(e_meas) = " << f(s.explained, 3)
+    << statsRow("residual r = e_meas − δwork⊥", s.residual) << "</table>\n<p>" << s.holes
+    << " holes; explained share 1 − RMS(r)/RMS(e_meas) = " << f(s.explained, 3)
     << "; inside the predicted 95 % region: " << s.inside << " (coverage " << f(s.coverage, 3)
     << "); correlation predicted/measured along workobject x, y, z: " << f(s.correlation.x(), 3)
     << ", " << f(s.correlation.y(), 3) << ", " << f(s.correlation.z(), 3)
@@ -170,7 +164,8 @@ std::string statistics(const VerifyResult& r) {
 }
 
 std::string identification(const VerifyResult& r) {
-  if (!r.identification) return "<h2>Identification</h2>\n<p>Not run (no --calibrate, no --register).</p>\n";
+  if (!r.identification)
+    return "<h2>Identification</h2>\n<p>Not run (no --calibrate, no --register).</p>\n";
   const IdentificationResult& id = *r.identification;
   std::ostringstream o;
   o << "<h2>Identification</h2>\n<p>" << id.holes << " holes, registration "
@@ -201,7 +196,8 @@ std::string identification(const VerifyResult& r) {
 std::string holeTable(const VerifyResult& r) {
   std::ostringstream o;
   o << "<h2>Holes</h2>\n<table><tr><th>id</th><th>|e_meas| µm</th><th>|δwork⊥| µm</th>"
-       "<th>|r| µm</th><th>95 % region µm</th><th>inside</th><th>U_work µm</th><th>decision</th></tr>\n";
+       "<th>|r| µm</th><th>95 % region µm</th><th>inside</th><th>U_work "
+       "µm</th><th>decision</th></tr>\n";
   for (const HoleVerification& h : r.holes) {
     o << "<tr><td>" << esc(h.id) << "</td><td>" << f(h.e_meas_norm * 1e6, 1) << "</td><td>"
       << f(h.d_pred_norm * 1e6, 1) << "</td><td>" << f(h.r_norm * 1e6, 1) << "</td><td>"
@@ -220,7 +216,8 @@ std::string verifyReport(const VerifyResult& r) {
   const double scale = 60.0 / (mx * 1e6);  // px per µm: the largest arrow is 60 px
   std::ostringstream o;
   o << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>roprec verify — "
-    << esc(std::filesystem::path(r.program_path).filename().string()) << "</title>\n<style>"
+    << esc(std::filesystem::path(r.program_path).filename().string())
+    << "</title>\n<style>"
        "body{font-family:sans-serif;margin:20px}table{border-collapse:collapse;margin:8px 0}"
        "td,th{border:1px solid #bbb;padding:2px 6px;text-align:right}"
        "th{background:#eee}.maps{display:flex;flex-wrap:wrap;gap:12px}</style></head><body>\n";
@@ -229,8 +226,8 @@ std::string verifyReport(const VerifyResult& r) {
     << esc(std::filesystem::path(r.program_path).filename().string()) << ", measured "
     << esc(std::filesystem::path(r.measured.path).filename().string()) << " ("
     << postproc::measuredFormatName(r.measured.format) << ", " << r.measured.holes.size()
-    << " holes, " << r.match.matched << " matched). Registration: "
-    << registrationName(r.registration);
+    << " holes, " << r.match.matched
+    << " matched). Registration: " << registrationName(r.registration);
   if (r.identification && r.registration != Registration::kNone) {
     const Vec3 t = r.identification->registration.translation * 1e6;
     o << " t = (" << f(t.x(), 1) << ", " << f(t.y(), 1) << ", " << f(t.z(), 1) << ") µm";

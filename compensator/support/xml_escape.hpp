@@ -1,0 +1,16 @@
+#pragma once
+/// \file xml_escape.hpp
+/// Escaping text for XML and HTML output (robot cards, reports): one rule everywhere.
+
+#include <string>
+#include <string_view>
+
+namespace roprec {
+
+/// `&`, `<`, `>` become entities; quotes become `&quot;` / `&#39;` — both when `quote` is 0 (text
+/// and attributes of either kind), else only the quote that delimits the attribute (`"` or `'`;
+/// the other is kept as it is). Control characters other than `\n` and `\t` become spaces (they
+/// are not allowed in XML 1.0).
+std::string escapeXml(std::string_view s, char quote = 0);
+
+}  // namespace roprec
