@@ -6,6 +6,7 @@
 #include <map>
 
 #include "compensator/support/error.hpp"
+#include "postproc/dialects.hpp"
 #include "postproc/lexer.hpp"
 
 namespace roprec::postproc {
@@ -527,15 +528,6 @@ std::vector<std::pair<std::string, std::string>> toCsv(const Program& p,
     s += "\n";
   }
   return {{fs::path(out).extension().empty() ? out + ".csv" : out, s}};
-}
-
-std::string jsonStr(const std::string& s) {
-  std::string r = "\"";
-  for (const char c : s) {
-    if (c == '"' || c == '\\') r += '\\';
-    r += c;
-  }
-  return r + "\"";
 }
 
 std::vector<std::pair<std::string, std::string>> toJson(const Program& p,

@@ -25,6 +25,16 @@ inline int toInt(double v, int fallback = -1) {
   return (v == v && v > -1e9 && v < 1e9) ? static_cast<int>(v) : fallback;
 }
 
+/// A JSON string literal of `s` (quotes and backslashes escaped) for the target-list writers.
+inline std::string jsonStr(const std::string& s) {
+  std::string r = "\"";
+  for (const char c : s) {
+    if (c == '"' || c == '\\') r += '\\';
+    r += c;
+  }
+  return r + "\"";
+}
+
 /// Throws InputError at the token's line.
 [[noreturn]] void failAt(const SourceFile& f, std::size_t offset, const std::string& msg);
 

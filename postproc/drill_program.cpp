@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "compensator/support/atomic_file.hpp"
+#include "postproc/dialects.hpp"
 #include "postproc/lexer.hpp"
 
 namespace roprec::postproc {
@@ -526,15 +527,6 @@ DrillProgramText tp(const std::vector<DrillHole>& holes, const DrillProgramOptio
 
 std::string csvCell(const std::string& s) {
   return (s.find(',') != std::string::npos || (!s.empty() && s[0] == '#')) ? "\"" + s + "\"" : s;
-}
-
-std::string jsonStr(const std::string& s) {
-  std::string r = "\"";
-  for (const char c : s) {
-    if (c == '"' || c == '\\') r += '\\';
-    r += c;
-  }
-  return r + "\"";
 }
 
 struct Row {
