@@ -32,8 +32,13 @@ fi
 BUILD="${ROPREC_BUILD_DIR:-$ROOT/build}"
 GEN=()
 if command -v ninja >/dev/null 2>&1; then GEN=(-G Ninja); fi
+# ROPREC_CMAKE_ARGS is word-split; ROPREC_CMAKE_ARGV takes one argument per line (for values with
+# spaces, e.g. "-DCMAKE_CXX_FLAGS=-fsanitize=address -fno-omit-frame-pointer").
+EXTRA_ARGS=()
+if [[ -n "${ROPREC_CMAKE_ARGV:-}" ]]; then mapfile -t EXTRA_ARGS <<<"$ROPREC_CMAKE_ARGV"; fi
 if [[ ! -f "$BUILD/CMakeCache.txt" ]]; then
-  cmake -S "$ROOT" -B "$BUILD" "${GEN[@]}" -DCMAKE_BUILD_TYPE=Release ${ROPREC_CMAKE_ARGS:-} >/dev/null
+  cmake -S "$ROOT" -B "$BUILD" "${GEN[@]}" -DCMAKE_BUILD_TYPE=Release ${ROPREC_CMAKE_ARGS:-} \
+    "${EXTRA_ARGS[@]}" >/dev/null
 fi
 TARGETS=()
 for t in ${ROPREC_BUILD_TARGETS:-}; do TARGETS+=(--target "$t"); done

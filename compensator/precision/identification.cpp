@@ -955,8 +955,7 @@ TestPlan planTest(const PredictionModel& m, const std::vector<HoleRequest>& cand
     throw InputError("", 0,
                      "only " + std::to_string(chosen.size()) + " candidate holes are at least " +
                          std::to_string(std::lround(o.min_spacing * 1e3)) + " mm apart; " +
-                         std::to_string(count) +
-                         " wanted (enlarge the region or use fewer holes)");
+                         std::to_string(count) + " wanted (enlarge the region or use fewer holes)");
   }
   MatrixXd M = P.spec.s0.cwiseInverse().cwiseAbs2().asDiagonal();
   for (const int c : chosen) {

@@ -14,7 +14,8 @@ void checkOptions(const Vec3& lo, const Vec3& hi, int count, const PlanTestOptio
   if (!lo.allFinite() || !hi.allFinite()) throw UsageError("the region must be finite numbers");
   if ((hi - lo).minCoeff() < 0) throw UsageError("the region needs x0 <= x1, y0 <= y1, z0 <= z1");
   if (count < 1) throw UsageError("the hole count must be >= 1");
-  if (o.per_axis < 1 || o.per_axis > 50) throw UsageError("candidates per axis must lie in [1, 50]");
+  if (o.per_axis < 1 || o.per_axis > 50)
+    throw UsageError("candidates per axis must lie in [1, 50]");
   if (o.directions.empty() || o.psi_deg.empty())
     throw UsageError("give at least one drilling direction and one rotation");
   for (const Vec3& d : o.directions) {
@@ -79,9 +80,9 @@ PlanTestResult planTestJob(const std::string& cell_path, const Vec3& region_lo_m
   const double diameter = options.diameter_mm > 0 ? options.diameter_mm * 1e-3
                           : proc != nullptr       ? proc->diameter
                                                   : 0.0;
-  r.depth = options.depth_mm > 0                              ? options.depth_mm * 1e-3
+  r.depth = options.depth_mm > 0                         ? options.depth_mm * 1e-3
             : proc != nullptr && proc->default_depth > 0 ? proc->default_depth
-                                                              : 20e-3;
+                                                         : 20e-3;
   r.candidates = candidates(r.context, region_lo_mm, region_hi_mm, options, diameter);
   PlanOptions po;
   po.compliance_prior_rel = compliancePriorSigma(r.context.robot.card);
@@ -97,10 +98,14 @@ postproc::Dialect planTestDialect(const PlanTestResult& r, const std::string& ou
   const std::string ext = std::filesystem::path(out_path).extension().string();
   if (ext == ".csv") return postproc::Dialect::kHoleCsv;
   switch (r.context.robot.card.vendor) {
-    case Vendor::kKuka: return postproc::Dialect::kKrl;
-    case Vendor::kAbb: return postproc::Dialect::kRapid;
-    case Vendor::kFanuc: return postproc::Dialect::kTp;
-    default: throw UsageError("the cell's robot has no controller dialect: write a hole list (-o F.csv)");
+    case Vendor::kKuka:
+      return postproc::Dialect::kKrl;
+    case Vendor::kAbb:
+      return postproc::Dialect::kRapid;
+    case Vendor::kFanuc:
+      return postproc::Dialect::kTp;
+    default:
+      throw UsageError("the cell's robot has no controller dialect: write a hole list (-o F.csv)");
   }
 }
 
@@ -135,7 +140,8 @@ Json planTestSummaryJson(const PlanTestResult& r, const std::vector<std::string>
   for (int k = 0; k < 6; ++k) {
     Json o = Json::object();
     o.set("joint", Json::integer(k + 1));
-    o.set("k_card", Json::number(r.context.robot.card.joints[static_cast<size_t>(k)].stiffness, -1));
+    o.set("k_card",
+          Json::number(r.context.robot.card.joints[static_cast<size_t>(k)].stiffness, -1));
     o.set("prior_sigma_rel", Json::number(r.plan.prior_sigma_rel[k], 6));
     o.set("expected_sigma_rel", Json::number(r.plan.expected_sigma_rel[k], 6));
     o.set("expected_sigma_k", Json::number(r.plan.expected_sigma_k[k], 1));

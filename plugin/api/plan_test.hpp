@@ -25,16 +25,16 @@ namespace roprec::api {
 
 struct PlanTestOptions {
   int per_axis{4};  ///< candidate grid points per axis of the region (an axis with lo = hi: 1)
-  std::vector<Vec3> directions{Vec3(0, 0, -1)};  ///< drilling directions, workobject frame
-  std::vector<double> psi_deg{0.0, 90.0};        ///< rotations about the drilling axis, deg
+  std::vector<Vec3> directions{Vec3(0, 0, -1)};    ///< drilling directions, workobject frame
+  std::vector<double> psi_deg{0.0, 90.0};          ///< rotations about the drilling axis, deg
   Registration registration{Registration::kNone};  ///< nuisance parameters of the criterion
-  double sigma_um{5.0};  ///< expected σ per in-plane axis of a residual, µm
-  double depth_mm{0};    ///< hole depth, mm (0: the cell's process depth, else 20 mm)
+  double sigma_um{5.0};   ///< expected σ per in-plane axis of a residual, µm
+  double depth_mm{0};     ///< hole depth, mm (0: the cell's process depth, else 20 mm)
   double diameter_mm{0};  ///< drill, mm (0: the cell's process drill)
 };
 
 struct PlanTestResult {
-  PredictionContext context;           ///< the cell (no job)
+  PredictionContext context;            ///< the cell (no job)
   std::vector<HoleRequest> candidates;  ///< all candidates (ids C0001…)
   TestPlan plan;                        ///< chosen / rejected candidate indices, expected σ
   /// The chosen holes in program (candidate) order, ids V01…; TCP at the entry point,
@@ -45,7 +45,8 @@ struct PlanTestResult {
 
 /// Plans `count` test holes among the candidates of the region [lo, hi] (mm, workobject frame).
 PlanTestResult planTestJob(const std::string& cell_path, const Vec3& region_lo_mm,
-                           const Vec3& region_hi_mm, int count, const PlanTestOptions& options = {});
+                           const Vec3& region_hi_mm, int count,
+                           const PlanTestOptions& options = {});
 
 /// The dialect of the cell's robot (KUKA: KRL, ABB: RAPID, FANUC: TP), or a hole list when
 /// `out_path` ends in ".csv". UsageError for a generic robot without a hole-list output.

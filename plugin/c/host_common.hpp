@@ -229,9 +229,10 @@ inline Registration registration(const std::string& text) {
 
 /// The texts `roprec verify` writes, rendered before anything is written: (path, text) for the
 /// JSON (when json_out is not empty) and the calibrated card (when card_out is not empty).
-inline std::vector<std::pair<std::string, std::string>> verifyOutputs(
-    const api::VerifyResult& r, const api::VerifyJob& job, const std::string& json_out,
-    const std::string& card_out) {
+inline std::vector<std::pair<std::string, std::string>> verifyOutputs(const api::VerifyResult& r,
+                                                                      const api::VerifyJob& job,
+                                                                      const std::string& json_out,
+                                                                      const std::string& card_out) {
   std::vector<std::pair<std::string, std::string>> out;
   if (!json_out.empty()) out.emplace_back(json_out, api::verifyJson(r).dump());
   if (!card_out.empty()) {

@@ -178,11 +178,10 @@ ROPREC_API int roprec_compensate_file(const char* cell_path, const char* program
                                       size_t err_len);
 
 /* `roprec verify --cell CELL PROGRAM --measured MEASURED [--holes HOLES] [--register REG]
- *  [--json JSON_OUT] [--calibrate NEW_CARD_OUT]`: compares the holes a CMM measured on a part drilled
- * with `program_path` against the prediction (issue 11).
- *   measured_path     roprec CSV (id,x,y,z[,i,j,k][,u]), PC-DMIS CSV or DMIS output; positions in
- *                     the cell's workobject frame, mm; u (µm) the standard measurement uncertainty
- *                     per axis (5 µm when absent). Holes are matched by id.
+ *  [--json JSON_OUT] [--calibrate NEW_CARD_OUT]`: compares the holes a CMM measured on a part
+ * drilled with `program_path` against the prediction (issue 11). measured_path     roprec CSV
+ * (id,x,y,z[,i,j,k][,u]), PC-DMIS CSV or DMIS output; positions in the cell's workobject frame, mm;
+ * u (µm) the standard measurement uncertainty per axis (5 µm when absent). Holes are matched by id.
  *   holes_path        NULL, or a hole-list CSV matched to the program's holes (nominal holes).
  *   registration      NULL or "none", "translation", "rigid": a part registration estimated jointly
  *                     with the joint stiffness and removed before the comparison.
@@ -207,14 +206,13 @@ ROPREC_API int roprec_verify_file(const char* cell_path, const char* program_pat
                                   size_t summary_len, char* err, size_t err_len);
 
 /* `roprec plan-test --cell CELL --region "x0 y0 z0 x1 y1 z1" --count N -o OUT_PATH`: a D-optimal
- * drilling test program for re-identifying the joint stiffness. Candidate drill points on a 4 x 4 x 4
- * grid over the region (workobject frame, mm; region_mm = {x0, y0, z0, x1, y1, z1}), drilled along
- * -z of the workobject, rotations 0 and 90 deg about the drill axis; `count` holes are chosen.
- * OUT_PATH is written in the cell robot's dialect (KRL .src + .dat, RAPID .mod, TP .ls) or as a
- * hole list when it ends in ".csv".
- *   summary_json      NULL (summary_len 0), or a buffer that receives (on 0) a one-line JSON object:
- *                     "holes", "candidates", "rejected", "log_det", "joints": [{"joint", "k_card",
- *                     "prior_sigma_rel", "expected_sigma_rel", "expected_sigma_k"}], "ids",
+ * drilling test program for re-identifying the joint stiffness. Candidate drill points on a 4 x 4 x
+ * 4 grid over the region (workobject frame, mm; region_mm = {x0, y0, z0, x1, y1, z1}), drilled
+ * along -z of the workobject, rotations 0 and 90 deg about the drill axis; `count` holes are
+ * chosen. OUT_PATH is written in the cell robot's dialect (KRL .src + .dat, RAPID .mod, TP .ls) or
+ * as a hole list when it ends in ".csv". summary_json      NULL (summary_len 0), or a buffer that
+ * receives (on 0) a one-line JSON object: "holes", "candidates", "rejected", "log_det", "joints":
+ * [{"joint", "k_card", "prior_sigma_rel", "expected_sigma_rel", "expected_sigma_k"}], "ids",
  *                     "written".
  * 2: bad input (region, count, fewer admissible candidates than count). */
 ROPREC_API int roprec_plan_test_file(const char* cell_path, const double region_mm[6], int count,

@@ -269,9 +269,9 @@ ROPREC_API int roprec_verify_file(const char* cell_path, const char* program_pat
     job.registration = host::registration(optionalArg(registration));
     job.calibrate = !card_out.empty();
     const roprec::api::VerifyResult r = roprec::api::verifyJob(cell, program, job);
-    std::vector<std::pair<std::string, std::string>> out = host::verifyOutputs(r, job, json_out, card_out);
-    if (!r.failed.empty())
-      throw ItemFailure{host::joinLines(r.failed) + "\nnothing written"};
+    std::vector<std::pair<std::string, std::string>> out =
+        host::verifyOutputs(r, job, json_out, card_out);
+    if (!r.failed.empty()) throw ItemFailure{host::joinLines(r.failed) + "\nnothing written"};
     std::vector<std::string> paths;
     for (const auto& o : out) paths.push_back(o.first);
     const std::string summary = roprec::api::verifySummaryJson(r, paths).dump(0);

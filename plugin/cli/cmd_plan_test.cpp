@@ -14,7 +14,8 @@ namespace {
 std::vector<Eigen::VectorXd> parseGroups(const std::string& text, int n, const std::string& what) {
   std::vector<Eigen::VectorXd> out;
   std::stringstream ss(text);
-  for (std::string part; std::getline(ss, part, ',');) out.push_back(parseNumberList(part, n, what));
+  for (std::string part; std::getline(ss, part, ',');)
+    out.push_back(parseNumberList(part, n, what));
   if (out.empty()) throw UsageError(what + ": nothing given");
   return out;
 }
@@ -33,7 +34,8 @@ PlanTestOptions parseOptions(Args& args) {
   PlanTestOptions o;
   if (const auto d = args.option("directions")) {
     o.directions.clear();
-    for (const auto& v : parseGroups(*d, 3, "--directions (i j k, ...)")) o.directions.emplace_back(v[0], v[1], v[2]);
+    for (const auto& v : parseGroups(*d, 3, "--directions (i j k, ...)"))
+      o.directions.emplace_back(v[0], v[1], v[2]);
   }
   if (const auto p = args.option("psi")) o.psi_deg = parseList(*p, "--psi (deg ...)");
   if (const auto n = args.option("per-axis")) {
@@ -58,7 +60,8 @@ void printPlan(CommandContext& ctx, const PlanTestResult& r, const postproc::Dri
           << r.candidates.size() << " candidates (" << r.plan.rejected.size()
           << " not admissible), " << postproc::dialectName(t.dialect) << ", log det "
           << formatNumber(r.plan.log_det, 3) << "\n";
-  ctx.out << "  expected joint stiffness uncertainty after measuring them (σ/k, prior -> expected):\n";
+  ctx.out
+      << "  expected joint stiffness uncertainty after measuring them (σ/k, prior -> expected):\n";
   for (int j = 0; j < 6; ++j) {
     ctx.out << "    k" << j + 1 << " = "
             << formatNumber(r.context.robot.card.joints[static_cast<size_t>(j)].stiffness, 0)
@@ -84,7 +87,8 @@ int run(Args& args, CommandContext& ctx) {
   if (!pos.empty()) throw UsageError("unexpected argument '" + pos[0] + "'");
   const Eigen::VectorXd b = parseNumberList(*region, 6, "--region (x0 y0 z0 x1 y1 z1, mm)");
   const double n = parseNumberList(*count, 1, "--count")[0];
-  if (n != std::floor(n) || n < 1 || n > 10000) throw UsageError("--count must be a whole number >= 1");
+  if (n != std::floor(n) || n < 1 || n > 10000)
+    throw UsageError("--count must be a whole number >= 1");
 
   const PlanTestResult r = planTestJob(*cell, b.head<3>(), b.tail<3>(), static_cast<int>(n), opt);
   const postproc::DrillProgramText t = planTestProgram(r, *out);
@@ -102,10 +106,12 @@ const CommandRegistration reg{
      "                        [--directions \"i j k, i j k\"] [--psi \"0 90\"] [--per-axis 4]\n"
      "                        [--register none|translation|rigid] [--sigma UM] [--depth MM]\n"
      "                        [--diameter MM] [--quiet]\n\n"
-     "Candidate drill points (hole bottoms) on a grid of --per-axis points per axis over the region\n"
+     "Candidate drill points (hole bottoms) on a grid of --per-axis points per axis over the "
+     "region\n"
      "(workobject frame, mm; an axis with x0 = x1 gets one point), each with every drilling\n"
      "direction (--directions, workobject frame, default \"0 0 -1\") and every rotation about it\n"
-     "(--psi, deg, default \"0 90\"). Each candidate is predicted (IK nearest the reference pose);\n"
+     "(--psi, deg, default \"0 90\"). Each candidate is predicted (IK nearest the reference "
+     "pose);\n"
      "unreachable or singular ones are dropped. N holes are chosen greedily to maximise the\n"
      "information on the joint compliances (D-optimal: log det of the posterior information, the\n"
      "registration of --register eliminated as nuisance), assuming a residual σ of --sigma µm (5)\n"

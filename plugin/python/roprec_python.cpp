@@ -412,9 +412,8 @@ py::dict planTest(const std::string& cell, const std::vector<double>& region, in
   std::string summary;
   {
     py::gil_scoped_release release;
-    const api::PlanTestResult r =
-        api::planTestJob(cell, Vec3(region[0], region[1], region[2]),
-                         Vec3(region[3], region[4], region[5]), count);
+    const api::PlanTestResult r = api::planTestJob(cell, Vec3(region[0], region[1], region[2]),
+                                                   Vec3(region[3], region[4], region[5]), count);
     const postproc::DrillProgramText t = api::planTestProgram(r, out);
     summary = api::planTestSummaryJson(r, postproc::drillProgramPaths(t, out)).dump(0);
     postproc::saveDrillProgram(t, out);
