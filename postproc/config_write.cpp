@@ -97,7 +97,7 @@ EditResult writeTp(Program& p, Target& t, const Configuration& c) {
   if (!p.fanuc_turn_axes && (c.turns[0] != t.config.turns[0] || c.turns[1] != t.config.turns[1])) {
     r.reason =
         "turn digit 1 or 2 changes but $SCR_GRP[1].$TURN_AXIS is unknown (J1,J4,J6 vs J4,J5,J6, "
-        "robot-programs.md §9 item 1); refused";
+        "docs/programs.md §9 item 1); refused";
     return r;
   }
   const std::string_view orig =

@@ -1,6 +1,6 @@
 #pragma once
 /// \file nlopt_problem.hpp
-/// The one place that owns NLopt handles (style.md §7, the pagmo2 pattern): the C handle lives in
+/// The one place that owns NLopt handles: the C handle lives in
 /// a unique_ptr with nlopt_destroy as deleter; every setter is checked; objective and constraint
 /// trampolines are C callbacks that catch everything, store the exception, force-stop the run and
 /// return HUGE_VAL; the stored exception is rethrown after nlopt_optimize returns. The result

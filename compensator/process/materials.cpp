@@ -23,21 +23,21 @@ const char* const kIscarGroup23 =
     "mc = 0.25, 75 HB (docs.steelcam.org copy); AlSi9Cu3 (EN AC-46000) is normally used as-cast "
     "(estimate: mapping to group 23 by Si content and temper)";
 const char* const kDrillingSource =
-    "process.md §2.3 illustrative calibration [D]: kst0 = ksa0 = kc1.1 of the group, m = mc; "
+    "docs/process.md §2.3 illustrative calibration [D]: kst0 = ksa0 = kc1.1 of the group, m = mc; "
     "at = 1.0, bt = -0.010/deg (Sandvik 1 %/deg rake rule, sandvik.coromant.com), ct = 0; "
     "aa = 0.80, ba = -0.0185/deg, ca = 0 (Fa/Ft ~ 0.35 at +30 deg, ~0.8 at 0 deg; "
     "estimate: Merchant tan(beta-alpha) with beta 35-40 deg plus ploughing). Re-fit with "
     "--calibrate.";
 const char* const kChiselSource =
-    "process.md §1.5/§2.3: F_ch = 1.2 Fa_lips, a 55 % chisel share of the thrust for a "
+    "docs/process.md §1.5/§2.3: F_ch = 1.2 Fa_lips, a 55 % chisel share of the thrust for a "
     "conventional point "
     "(chisel 50-60 % of thrust: Modern Machining Technology (Davim 2011) p. 145; 50-70 %: "
     "Mitsubishi "
     "Materials drilling course)";
 const char* const kMillingRatioSource =
-    "Fr/Ft = 0.35: process.md §4.2 Kienzle column (Altintas Al7075 set gives 0.44-0.63 at h = "
+    "Fr/Ft = 0.35: docs/process.md §4.2 Kienzle column (Altintas Al7075 set gives 0.44-0.63 at h = "
     "0.04-0.10 mm); "
-    "Fa/Ft = 0.2: process.md §4.2 '0.1-0.3 for a 30 deg helix' [L] (estimate: mid-range)";
+    "Fa/Ft = 0.2: docs/process.md §4.2 '0.1-0.3 for a 30 deg helix' [L] (estimate: mid-range)";
 
 Material wroughtHardenable(std::string name, std::vector<std::string> aliases, double hb) {
   Material m;

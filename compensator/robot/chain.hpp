@@ -1,7 +1,7 @@
 #pragma once
 /// \file chain.hpp
 /// A serial 6R chain as plain data, extracted from a URDF between two named links.
-/// No urdfdom type appears here (style.md: parsing separate from modelling).
+/// No urdfdom type appears here (parsing is kept separate from modelling).
 ///
 /// Frames: every pose is a rigid transform in SI (m, rad).
 /// * `joints[i].origin` = T_{P_i, J_i}: from the frame of the previous moving body P_i

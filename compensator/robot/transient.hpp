@@ -45,7 +45,7 @@
 /// A position problem that does not converge (or a non-finite derivative) returns +1: CVODE
 /// retries with a smaller step; a non-finite process load returns −1 (a smaller step cannot help).
 /// Any exception is caught in the C trampoline, stored as std::exception_ptr, the trampoline
-/// returns −1 and the exception is rethrown after CVode returns (style.md §6–§7).
+/// returns −1 and the exception is rethrown after CVode returns.
 ///
 /// ## Integrator
 /// CVODE with Adams–Moulton, variable order 1–12 (the analogue of MATLAB's ode113) by default,

@@ -1062,7 +1062,7 @@ void renderBudget(std::string& o, const std::vector<HoleView>& hv) {
        "axis the radius is "
        "Rayleigh-distributed and P(r \u2264 k u) = 95 % needs k = \u221a(\u22122 ln 0.05) = 2.448 "
        "(k = 2 would "
-       "cover only 86 % of the radius; process.md \u00a75.1). U<sub>work</sub> = "
+       "cover only 86 % of the radius; docs/process.md \u00a75.1). U<sub>work</sub> = "
        "\u221a(U<sub>robot</sub>\u00b2 + "
        "U<sub>mach</sub>\u00b2) = k \u00b7 u<sub>work</sub>.</p>";
   o += "<p>Process share of the total uncertainty (variance share of the process terms in "

@@ -2,7 +2,7 @@
 // seeded Newton (per-hole use), vs Orocos KDL ChainIkSolverPos_NR_JL and ChainIkSolverPos_LMA on
 // the same URDF chain (KR 120 R2500 pro), for targets near a seed (joints perturbed by ≤ 0.01 rad,
 // i.e. a few mm / tenths of a degree). Counters: fraction converged (roprec: ≤ 1e-9 m / rad;
-// KDL: its own return code at its default tolerances, which are far looser, see measured-facts.md).
+// KDL: its own return code at its default tolerances, which are far looser).
 #include <benchmark/benchmark.h>
 #include <kdl/chainfksolverpos_recursive.hpp>
 #include <kdl/chainiksolverpos_lma.hpp>
