@@ -10,11 +10,13 @@ namespace roprec {
 UncertaintyInputs defaultUncertaintyInputs() {
   UncertaintyInputs u;
   u.source =
-      "stiffness 10 % per joint (identification residuals; docs/process.md §5.6: deflection-model error "
+      "stiffness 10 % per joint (identification residuals; docs/process.md §5.6: deflection-model "
+      "error "
       "10-20 % "
       "of the predicted deflection [L]); servo stiffness 20 % (estimate: vendors publish no "
       "gains); "
-      "process force scale rectangular ±15 % (docs/process.md §5.6: kc scatter ±10-15 % and the spread "
+      "process force scale rectangular ±15 % (docs/process.md §5.6: kc scatter ±10-15 % and the "
+      "spread "
       "of "
       "coefficient sets, §4.2)";
   return u;
