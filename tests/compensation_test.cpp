@@ -91,11 +91,15 @@ Vec3 kdlRealTcp(const api::PredictionContext& c, const nc::Vec6& theta_cmd, cons
     solver.CartToJnt(q, z, z, f, out);
     nc::Vec6 r;
     for (unsigned i = 0; i < 6; ++i) r[i] = out(i);
+    const Counterbalance& cb = c.robot.chain.counterbalance;  // the axis-2 balancer's share
+    if (cb.present()) r[cb.joint] -= balancerTorque(cb, th[cb.joint]);
     return r;
   };
   nc::Vec6 off = nc::Vec6::Zero();
-  if (c.model.controller_gravity)
+  if (c.model.controller.kind == nc::ControllerReference::Kind::kGravityCompensated)
     off = tau(theta_cmd, false, kc, rne).cwiseQuotient(k);  // calibration load = tool
+  else if (c.model.controller.kind == nc::ControllerReference::Kind::kMastering)
+    off = c.model.controller.calibration_pose_torque.cwiseQuotient(k);  // checked in gravity tests
   nc::Vec6 th = theta_cmd;
   for (int it = 0; it < 200; ++it) th = theta_cmd + off - tau(th, true, kc, rne).cwiseQuotient(k);
   KDL::JntArray q(6);

@@ -104,7 +104,8 @@ api::PredictionContext loadJob(bool controller_gravity, const Faces& faces = kTw
   static const std::string dir = test::tempDir("ident");
   api::PredictionContext c =
       api::loadPredictionContext(cellPath(), writeHoles(dir, faces), std::nullopt, "");
-  c.model.controller_gravity = controller_gravity;
+  c.model.controller =
+      nc::makeControllerReference(c.robot.chain, c.robot.card, true, controller_gravity, c.tool);
   return c;
 }
 
@@ -120,6 +121,23 @@ class KdlTruth {
       : k_(k), controller_gravity_(controller_gravity) {
     const ChainDescription& ch = c.robot.chain;
     chain_ = test::kdlChain(c.robot.card.urdf_path, ch.base_link, ch.tip_link);
+    // a standard controller is mastered at the calibration pose under the robot's own weight
+    // (docs/model.md §6.3): its offsets hold K⁻¹ τ_robot(θ_cal), the balancer included
+    balancer_ = ch.counterbalance;
+    {
+      const KDL::Chain robot_only = chain_;
+      KDL::ChainIdSolver_RNE rne(robot_only, KDL::Vector(0, 0, -9.80665));
+      KDL::JntArray q(6);
+      KDL::JntArray z(6);
+      KDL::JntArray out(6);
+      for (unsigned i = 0; i < 6; ++i) q(i) = c.robot.card.calibration_pose[i];
+      KDL::Wrenches f(robot_only.getNrOfSegments(), KDL::Wrench::Zero());
+      rne.CartToJnt(q, z, z, f, out);
+      for (unsigned i = 0; i < 6; ++i) tau_cal_[i] = out(i);
+      if (balancer_.present())
+        tau_cal_[balancer_.joint] -=
+            balancerTorque(balancer_, c.robot.card.calibration_pose[balancer_.joint]);
+    }
     nc::ToolAttachment t = c.tool;
     t.mass += extra_tool_mass;
     const Pose T_tcp_flange = t.T_flange_tcp.inverse();
@@ -140,7 +158,7 @@ class KdlTruth {
   /// Real TCP position (base frame, m) for the command θ_cmd.
   Vec3 realTcp(const nc::Vec6& theta_cmd, double force_scale = 1.0) {
     const nc::Vec6 off = controller_gravity_ ? nc::Vec6(torques(theta_cmd, 0.0).cwiseQuotient(k_))
-                                             : nc::Vec6(nc::Vec6::Zero());
+                                             : nc::Vec6(tau_cal_.cwiseQuotient(k_));
     nc::Vec6 th = theta_cmd;
     for (int it = 0; it < 500; ++it) {
       const nc::Vec6 next = theta_cmd + off - torques(th, force_scale).cwiseQuotient(k_);
@@ -168,6 +186,7 @@ class KdlTruth {
     rne_->CartToJnt(q, z, z, f, out);
     nc::Vec6 r;
     for (unsigned i = 0; i < 6; ++i) r[i] = out(i);
+    if (balancer_.present()) r[balancer_.joint] -= balancerTorque(balancer_, th[balancer_.joint]);
     return r;
   }
 
@@ -177,6 +196,8 @@ class KdlTruth {
   ToolWrench wrench_;
   nc::Vec6 k_;
   bool controller_gravity_{false};
+  Counterbalance balancer_;
+  nc::Vec6 tau_cal_{nc::Vec6::Zero()};
 };
 
 Vec6 cardStiffness(const api::PredictionContext& c) {

@@ -400,13 +400,13 @@ std::optional<Vec6> positionOnlyCommand(Evaluator& ev, const Pose& T_nominal, co
   return std::nullopt;
 }
 
-/// Exact 6-DOF inverse θ_m = θ_d + K⁻¹τ(θ_d); a gravity-compensating controller adds its offset
+/// Exact 6-DOF inverse θ_m = θ_d + K⁻¹τ(θ_d); the controller adds its reference offset
 /// to the command, so θ_cmd solves θ_cmd + off(θ_cmd) = θ_m (fixed point).
 Vec6 exactCommand(Evaluator& ev, const Vec6& theta_d, const nc::Loads& loads) {
   const PredictionModel& m = ev.m;
   const Vec6 theta_m = nc::compensateCommand(m.model, ev.d.nc, m.compliance, theta_d, loads);
   Vec6 cmd = theta_m;
-  for (int it = 0; it < 20 && m.controller_gravity; ++it) {
+  for (int it = 0; it < 20 && m.controller.kind != nc::ControllerReference::Kind::kNone; ++it) {
     const Vec6 next = theta_m - controllerOffset(m, ev.d.nc, cmd);
     const double step = (next - cmd).lpNorm<Eigen::Infinity>();
     cmd = next;

@@ -75,7 +75,7 @@ std::vector<PathPointCompensation> compensateMillingPath(const PredictionModel& 
       const Vec6 theta_m =
           nc::compensateCommand(m.model, d.nc, m.compliance, p.theta_d, loadsWith(G));
       Vec6 cmd = theta_m;
-      for (int it = 0; it < 20 && m.controller_gravity; ++it)
+      for (int it = 0; it < 20 && m.controller.kind != nc::ControllerReference::Kind::kNone; ++it)
         cmd = theta_m - controllerOffset(m, d.nc, cmd);
       return cmd;
     };

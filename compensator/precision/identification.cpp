@@ -187,9 +187,7 @@ int predictRobot(Problem& P, const VectorXd& x, std::vector<Vec3>& p) {
   p.resize(P.holes.size());
   for (size_t i = 0; i < P.holes.size(); ++i) {
     const Vec6& th = P.holes[i].theta_cmd;
-    const Vec6 offset = P.m.controller_gravity
-                            ? nc::gravityCommandOffset(P.m.calibration_model, P.data, c, th)
-                            : Vec6::Zero();
+    const Vec6 offset = controllerOffset(P.m, P.data, th, c);
     const nc::Deflection d = nc::predictDeflection(model, P.data, c, th, P.loads[i], {}, offset);
     if (!d.converged || !d.position_converged) return static_cast<int>(i);
     p[i] = d.T_real.translation() + d.T_nominal.linear() * P.d_mach_tool[i];

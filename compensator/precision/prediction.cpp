@@ -103,9 +103,8 @@ PredictionModel buildPredictionModel(const PredictionSetup& setup) {
   m.ik = buildIkModel(setup.robot);
   m.compliance = nc::complianceFromCard(setup.robot.card);
   m.reference_pose = vendorReferencePose(setup.robot.card);
-  m.controller_gravity = setup.controller_gravity;
-  if (m.controller_gravity)
-    m.calibration_model = nc::buildModel(setup.robot.chain, setup.calibration_load);
+  m.controller = nc::makeControllerReference(setup.robot.chain, setup.robot.card, m.gravity,
+                                             setup.controller_gravity, setup.calibration_load);
   m.uncertainty = setup.uncertainty;
   m.capability = setup.capability;
   m.default_tolerance = setup.default_tolerance;
@@ -127,9 +126,13 @@ PredictionModel buildPredictionModel(const PredictionSetup& setup) {
 PredictionData::PredictionData(const PredictionModel& m) : nc(m.model), rng(m.uncertainty.seed) {}
 
 Vec6 controllerOffset(const PredictionModel& m, nc::Data& data, const Vec6& theta) {
-  if (!m.controller_gravity) return Vec6::Zero();
+  return controllerOffset(m, data, theta, m.compliance);
+}
+
+Vec6 controllerOffset(const PredictionModel& m, nc::Data& data, const Vec6& theta,
+                      const nc::JointCompliance& c) {
   // The calibration model has the same chain (same coordinates), so the scratch can be shared.
-  return nc::gravityCommandOffset(m.calibration_model, data, m.compliance, theta);
+  return nc::controllerReferenceOffset(m.controller, data, c, theta);
 }
 
 const ProcessAtDiameter* processFor(const PredictionModel& m, double diameter) {
@@ -326,10 +329,9 @@ HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const Ho
       const double scale = 1.0 + U.process_halfwidth * ud(rng);
       l.tcp_tool.force *= scale;
       l.tcp_tool.moment *= scale;
-      // a gravity-compensating controller computes its offset with the same (uncertain) stiffness
-      Vec6 off = offset;
-      if (m.controller_gravity)
-        off = offset.cwiseProduct(m.compliance.effective()).cwiseQuotient(c.effective());
+      // the controller's offset (gravity compensation or mastering) was set up with the same
+      // (uncertain) stiffness: Δθ_c = K_eff⁻¹ τ_ref scales with it
+      const Vec6 off = offset.cwiseProduct(m.compliance.effective()).cwiseQuotient(c.effective());
       const nc::Deflection dd = nc::predictDeflection(m.model, d.nc, c, sol.q, l, {}, off);
       samples.emplace_back(dd.dp.dot(e1), dd.dp.dot(e2));
     }

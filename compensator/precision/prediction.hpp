@@ -85,12 +85,11 @@ struct PredictionModel {
   ConfigurationOptions config_options;
   double default_tolerance{0.2e-3};  ///< m, ⌀
   bool gravity{true};
-  /// The controller compensates gravity deflection itself for a calibration load (robot card
-  /// `<controller gravity_compensated>` or the cell's `<controller>`): it adds K_eff⁻¹ τ_g,cal(θ)
-  /// to its command, computed with `calibration_model` (links + calibration load); roprec then
-  /// predicts only the part beyond it.
-  bool controller_gravity{false};
-  nc::Model calibration_model;
+  /// How the controller's joint values relate to the loaded arm (nc::ControllerReference,
+  /// docs/model.md §6.3): the absolute-accuracy option's own gravity compensation (robot card
+  /// `<controller gravity_compensated>` or the cell's `<controller>`), else the mastering
+  /// reference at the card's calibration pose; roprec predicts only the part beyond it.
+  nc::ControllerReference controller;
 };
 
 /// The process at a hole diameter (m; ≤ 0: the cell's drill), nullptr without a process.
@@ -99,8 +98,11 @@ const ProcessAtDiameter* processFor(const PredictionModel& m, double diameter);
 /// Gravity (unless disabled) + the process wrench in the tool frame, following the real drill axis.
 nc::Loads processLoads(const PredictionModel& m, const ProcessAtDiameter* proc);
 
-/// The command offset of a gravity-compensating controller at command θ (zero when it does not).
+/// The controller's offset Δθ_c at command θ (nc::controllerReferenceOffset) with the model's
+/// compliance, or with `c` (identification candidates, Monte Carlo samples).
 Vec6 controllerOffset(const PredictionModel& m, nc::Data& data, const Vec6& theta);
+Vec6 controllerOffset(const PredictionModel& m, nc::Data& data, const Vec6& theta,
+                      const nc::JointCompliance& c);
 
 struct PredictionSetup {
   Robot robot;
@@ -110,7 +112,7 @@ struct PredictionSetup {
   CapabilityInputs capability;
   double default_tolerance{0.2e-3};
   std::vector<double> hole_diameters;   ///< diameters the holes use (m); the process's is added
-  bool controller_gravity{false};       ///< see PredictionModel
+  bool controller_gravity{false};       ///< absolute-accuracy option (api::controllerGravityOf)
   nc::ToolAttachment calibration_load;  ///< load the controller's gravity compensation assumes
 };
 

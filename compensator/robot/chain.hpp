@@ -15,6 +15,7 @@
 #include <array>
 #include <string>
 
+#include "compensator/robot/counterbalance.hpp"
 #include "compensator/support/rotation.hpp"
 
 namespace roprec {
@@ -55,6 +56,10 @@ struct ChainDescription {
   std::array<Inertial, 6> inertials;
   Pose tip{Pose::Identity()};  ///< T_{L_6, tip}
   bool has_inertials{false};   ///< true when every moving body has mass > 0
+  /// Weight handling from the robot card (robot_card.hpp): the axis-2 balancer (part of the
+  /// gravity loads) and whether gravity is modelled at all (`<gravity model="none"/>`: false).
+  Counterbalance counterbalance;
+  bool gravity_modelled{true};
 };
 
 /// Rigid forward kinematics by the product of exponentials of the description itself:

@@ -1,6 +1,8 @@
 #include "compensator/robot/deflection.hpp"
 
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "compensator/support/error.hpp"
 
@@ -39,6 +41,63 @@ Vec6 gravityCommandOffset(const Model& calibration_model, Data& data, const Join
   solvePosition(calibration_model, data, theta, Guess::kClosedForm);
   const Loads gravity_only;
   return staticTorques(calibration_model, data, gravity_only).cwiseQuotient(c.effective());
+}
+
+std::string ControllerReference::description() const {
+  switch (kind) {
+    case Kind::kGravityCompensated:
+      return "absolute-accuracy option: the controller compensates the gravity deflection of "
+             "the arm and its calibration load (offset K_eff^-1 tau_g,cal(theta_cmd))";
+    case Kind::kMastering: {
+      std::string s = "mastering reference: kinematics exact at the calibration pose (";
+      for (int i = 0; i < 6; ++i) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%s%.3f", i ? " " : "", calibration_pose[i] / kDeg);
+        s += buf;
+      }
+      return s +
+             " deg, URDF) under the robot's own weight (offset K_eff^-1 tau_g,robot(theta_cal))";
+    }
+    case Kind::kNone:
+      break;
+  }
+  return "none (gravity not modelled or switched off)";
+}
+
+ControllerReference makeControllerReference(const ChainDescription& chain, const RobotCard& card,
+                                            bool gravity, bool gravity_compensated,
+                                            const ToolAttachment& calibration_load) {
+  ControllerReference ref;
+  if (!gravity || !chain.gravity_modelled) return ref;
+  if (gravity_compensated) {
+    ToolAttachment load;
+    load.mass = calibration_load.mass;
+    load.com = calibration_load.com;
+    ref.kind = ControllerReference::Kind::kGravityCompensated;
+    ref.calibration_model = buildModel(chain, load);
+    return ref;
+  }
+  ref.kind = ControllerReference::Kind::kMastering;
+  ref.calibration_pose = card.calibration_pose;
+  const Model robot_only = buildModel(chain);
+  Data data(robot_only);
+  solvePosition(robot_only, data, ref.calibration_pose, Guess::kClosedForm);
+  const Loads gravity_only;
+  ref.calibration_pose_torque = staticTorques(robot_only, data, gravity_only);
+  return ref;
+}
+
+Vec6 controllerReferenceOffset(const ControllerReference& ref, Data& data, const JointCompliance& c,
+                               const Vec6& theta_cmd) {
+  switch (ref.kind) {
+    case ControllerReference::Kind::kGravityCompensated:
+      return gravityCommandOffset(ref.calibration_model, data, c, theta_cmd);
+    case ControllerReference::Kind::kMastering:
+      return ref.calibration_pose_torque.cwiseQuotient(c.effective());
+    case ControllerReference::Kind::kNone:
+      break;
+  }
+  return Vec6::Zero();
 }
 
 namespace {

@@ -78,6 +78,43 @@ Vec6 compensateCommand(const Model& model, Data& data, const JointCompliance& c,
 Vec6 gravityCommandOffset(const Model& calibration_model, Data& data, const JointCompliance& c,
                           const Vec6& theta);
 
+/// What the controller's joint values mean under the arm's own weight — the "controller
+/// reference" every prediction, identification, compensation, deflect and simulate uses
+/// (docs/model.md §6.3). Exactly one of:
+///   * absolute-accuracy option (gravity_compensated): the controller adds
+///     Δθ_c = K_eff⁻¹ τ_g,cal(θ_cmd) with τ_g,cal the gravity torques (links, balancer and the
+///     calibration load) at the command; its identified kinematics is the zero-gravity one, so
+///     its own mastering is part of that model and no other reference applies;
+///   * standard controller (mastering): the kinematics is exact at the mastering pose θ_cal under
+///     the robot's own weight (no tool): the mastering offsets absorb the joint deflection there,
+///     Δθ_c = K_eff⁻¹ τ_g,robot(θ_cal) (constant), so the predicted deflection is
+///     θ − θ_cmd = K_eff⁻¹ (τ_g,robot(θ_cal) − τ(θ)) and vanishes at θ_cal without a tool;
+///   * none (gravity not modelled, or gravity switched off for the call): Δθ_c = 0.
+/// In every case the controller adds Δθ_c to the command; the nominal TCP stays FK(θ_cmd).
+struct ControllerReference {
+  enum class Kind { kNone, kMastering, kGravityCompensated };
+  Kind kind{Kind::kNone};
+  Model calibration_model;  ///< kGravityCompensated: links + balancer + calibration load
+  Vec6 calibration_pose{Vec6::Zero()};         ///< kMastering: θ_cal (URDF, rad)
+  Vec6 calibration_pose_torque{Vec6::Zero()};  ///< kMastering: τ_g,robot(θ_cal), N m
+  /// One line for outputs (JSON "controller_reference", notes).
+  [[nodiscard]] std::string description() const;
+};
+
+/// The reference of a robot: gravity_compensated → the absolute-accuracy offset with
+/// `calibration_load` (tool attachment; its TCP is irrelevant); else the mastering reference at
+/// card.calibration_pose with the chain's own weight; kind kNone when `gravity` is false or the
+/// chain does not model gravity.
+ControllerReference makeControllerReference(const ChainDescription& chain, const RobotCard& card,
+                                            bool gravity, bool gravity_compensated,
+                                            const ToolAttachment& calibration_load);
+
+/// Δθ_c (rad) the controller adds to the command θ_cmd (rad), with the compliance c the offsets
+/// were set up with (identification and Monte Carlo vary it). `data` may be the scratch of any
+/// model of the same chain.
+Vec6 controllerReferenceOffset(const ControllerReference& ref, Data& data, const JointCompliance& c,
+                               const Vec6& theta_cmd);
+
 /// complianceFromCard, but every joint must have a stiffness: throws InputError naming the card
 /// line of the first joint without one.
 JointCompliance requireComplianceFromCard(const RobotCard& card);

@@ -38,6 +38,12 @@ void generalizedForces(const Model& model, const Data& data, const Loads& loads,
           Q.segment<3>(s[static_cast<size_t>(k)]) += K(0, k) * model.gravity;
       }
     }
+    // the axis-2 balancer belongs to the weight loads; it acts on the angle coordinate directly
+    // (virtual power τ_cb δθ_j), so τ_j = τ_g,j − τ_cb (counterbalance.hpp)
+    if (model.counterbalance.present() && !model.gravity.isZero(0.0)) {
+      const int j = model.counterbalance.joint;
+      Q[idxTheta(j)] += balancerTorque(model.counterbalance, data.q[idxTheta(j)]);
+    }
   }
   Vec3 F = loads.tcp.force;
   Vec3 N = loads.tcp.moment;

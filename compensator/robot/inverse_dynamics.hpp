@@ -11,6 +11,8 @@
 ///   * gravity            Q_g = m [1, a₁, a₂, a₃]ᵀ ⊗ g           (constant)
 ///   * a force F at the TCP   Q = N(c_tcp) ⊗ F                  (constant map)
 ///   * a couple N on body 6   Q_{d_k} = ½ N × d_k  (orthonormal triad u, v, w)
+///   * the axis-2 balancer    Q_{θ_j} = τ_cb(θ_j)   (counterbalance.hpp; with gravity only:
+///     it is part of the weight loads and absent when the model has no gravity)
 /// The tool/spindle mass and centre of mass are part of body 6 (buildModel's ToolAttachment).
 ///
 /// Sign convention: τ_i is the torque the drive of joint i applies to the distal chain about

@@ -101,6 +101,8 @@ Model buildModel(const ChainDescription& chain, const ToolAttachment& tool) {
     b.inertia = in.inertia;
     b.K = secondMoments(in.mass, in.com, in.inertia, b.Xbar);
   }
+  m.counterbalance = chain.counterbalance;
+  if (!chain.gravity_modelled) m.gravity.setZero();
   return m;
 }
 

@@ -101,8 +101,10 @@ struct Model {
   Pose T_L6_tcp{Pose::Identity()};     ///< TCP (flange × tool) in L_5
   Vec3 c_tcp{Vec3::Zero()};            ///< p_tcp = p_5 + X_5 c_tcp
   Mat3 Rbar_tcp{Mat3::Identity()};     ///< R_W_tcp = X_5 Rbar_tcp  (= X̄ᵀ R_L6_tcp)
-  Vec3 gravity{0.0, 0.0, -9.80665};    ///< m/s², base frame
-  double tol_phi{1e-12};               ///< Newton: ‖Φ‖∞ tolerance (m, m²)
+  Vec3 gravity{0.0, 0.0, -9.80665};    ///< m/s², base frame (zero: gravity not modelled)
+  /// Axis-2 balancer (counterbalance.hpp): its torque joins the gravity loads (inverse_dynamics).
+  Counterbalance counterbalance;
+  double tol_phi{1e-12};  ///< Newton: ‖Φ‖∞ tolerance (m, m²)
   int max_iterations{25};
 };
 
@@ -114,7 +116,8 @@ struct ToolAttachment {
   Mat3 inertia{Mat3::Zero()};  ///< kg m², about com, flange axes
 };
 
-/// Builds the model. Links without inertial data get zero mass (kinematics unaffected).
+/// Builds the model. Links without inertial data get zero mass (kinematics unaffected). The
+/// chain's counterbalance is copied; a chain with gravity_modelled false gets gravity = 0.
 Model buildModel(const ChainDescription& chain, const ToolAttachment& tool = {});
 
 /// Per-evaluation scratch, sized once (no allocation afterwards).

@@ -24,7 +24,125 @@ std::string lower(std::string s) {
 bool endsWith(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && lower(s.substr(s.size() - suffix.size())) == suffix;
 }
+
+/// Unknown attributes are errors (a misspelt parameter must not silently take a default).
+void requireKnownAttributes(const XmlNode& e, std::initializer_list<const char*> known) {
+  for (const auto& [name, value] : e.attributes) {
+    bool ok = false;
+    for (const char* k : known) ok = ok || name == k;
+    if (!ok) {
+      std::string list;
+      for (const char* k : known) list += (list.empty() ? "" : ", ") + std::string(k);
+      e.fail("<" + e.name + "> has no attribute '" + name + "' (known: " + list + ")");
+    }
+  }
+}
+
+std::string requireSource(const XmlNode& e) {
+  const std::string src = e.str("source", "");
+  if (src.empty()) e.fail("<" + e.name + "> needs a source= for its numbers");
+  return src;
+}
+
+int cardJointIndex(const RobotCard& card, const XmlNode& e, const std::string& name) {
+  for (int i = 0; i < 6; ++i)
+    if (card.joints[static_cast<size_t>(i)].name == name) return i;
+  e.fail("<" + e.name + "> joint '" + name + "' is not one of the card's joints");
+}
+
+Counterbalance parseCounterbalance(const RobotCard& card, const XmlNode& e) {
+  requireKnownAttributes(
+      e, {"joint", "law", "action", "r_mm", "d_mm", "psi0_deg", "sign", "length_ref_mm",
+          "preload_N", "rate_N_per_mm", "pressure_ref_MPa", "piston_area_mm2", "gas_volume_l",
+          "polytropic_n", "sizing_fraction", "sizing_pose_deg", "source"});
+  Counterbalance cb;
+  cb.line = e.line;
+  cb.joint = cardJointIndex(card, e, e.str("joint"));
+  const std::string law = e.str("law");
+  if (law != "spring" && law != "gas") e.fail("<counterbalance> law must be spring or gas");
+  cb.law = law == "spring" ? Counterbalance::Law::kSpring : Counterbalance::Law::kGas;
+  const std::string action = e.str("action");
+  if (action != "push" && action != "pull") e.fail("<counterbalance> action must be push or pull");
+  cb.action = action == "push" ? Counterbalance::Action::kPush : Counterbalance::Action::kPull;
+  cb.r = e.number("r_mm") * 1e-3;
+  cb.d = e.number("d_mm") * 1e-3;
+  cb.psi0 = e.number("psi0_deg") * kDeg;
+  cb.sign = e.number("sign", 1.0);
+  cb.length_ref = e.number("length_ref_mm") * 1e-3;
+  const auto need = [&](std::initializer_list<const char*> yes,
+                        std::initializer_list<const char*> no) {
+    for (const char* a : yes)
+      if (!e.has(a)) e.fail("<counterbalance law=\"" + law + "\"> needs " + a);
+    for (const char* a : no)
+      if (e.has(a)) e.fail("<counterbalance law=\"" + law + "\"> has no " + a);
+  };
+  if (cb.law == Counterbalance::Law::kSpring) {
+    need({"preload_N", "rate_N_per_mm"},
+         {"pressure_ref_MPa", "piston_area_mm2", "gas_volume_l", "polytropic_n"});
+    cb.force_ref = e.number("preload_N");
+    cb.stiffness = e.number("rate_N_per_mm") * 1e3;
+  } else {
+    need({"pressure_ref_MPa", "piston_area_mm2", "gas_volume_l"}, {"preload_N", "rate_N_per_mm"});
+    cb.pressure_ref = e.number("pressure_ref_MPa") * 1e6;
+    cb.area = e.number("piston_area_mm2") * 1e-6;
+    cb.volume_ref = e.number("gas_volume_l") * 1e-3;
+    cb.polytropic = e.number("polytropic_n", 1.0);
+  }
+  cb.source = requireSource(e);
+  return cb;
+}
+
+void parseWeightElements(const XmlNode& root, RobotCard& card) {
+  if (const XmlNode* e = root.child("counterbalance")) {
+    if (root.childrenNamed("counterbalance").size() > 1)
+      e->fail("a robot card has at most one <counterbalance>");
+    card.counterbalance = parseCounterbalance(card, *e);
+    if (e->has("sizing_fraction")) {
+      card.balancer_sizing_fraction = e->number("sizing_fraction");
+      if (!(card.balancer_sizing_fraction > 0 && card.balancer_sizing_fraction <= 1.5))
+        e->fail("sizing_fraction must lie in (0, 1.5]");
+      if (!e->has("sizing_pose_deg")) e->fail("sizing_fraction needs sizing_pose_deg");
+      card.balancer_sizing_pose =
+          fromControllerJoints(card, e->numbers("sizing_pose_deg", 6) * kDeg);
+    }
+  }
+  if (const XmlNode* g = root.child("gravity")) {
+    requireKnownAttributes(*g, {"model", "source"});
+    const std::string model = g->str("model");
+    if (model != "none" && model != "links")
+      g->fail("<gravity> model must be \"links\" (the default) or \"none\"");
+    card.gravity_modelled = model == "links";
+    card.gravity_source = g->str("source", "");
+  }
+  for (const XmlNode* l : root.childrenNamed("link")) {
+    requireKnownAttributes(*l, {"name", "mass_kg", "com_mm", "inertia_kgm2", "source"});
+    RobotCard::LinkInertial li;
+    li.name = l->str("name");
+    li.line = l->line;
+    li.mass = l->number("mass_kg");
+    if (!(li.mass > 0)) l->fail("<link> mass_kg must be > 0");
+    if (!l->has("com_mm")) l->fail("<link> needs com_mm=\"x y z\" (link frame)");
+    li.com = l->vec3("com_mm", Vec3::Zero()) * 1e-3;
+    if (l->has("inertia_kgm2")) {
+      const Eigen::VectorXd v = l->numbers("inertia_kgm2", 6);  // ixx ixy ixz iyy iyz izz
+      Mat3 I;
+      I << v[0], v[1], v[2], v[1], v[3], v[4], v[2], v[4], v[5];
+      li.inertia = I;
+    }
+    li.source = requireSource(*l);
+    card.links.push_back(li);
+  }
+}
 }  // namespace
+
+Eigen::Matrix<double, 6, 1> vendorCalibrationPoseDeg(Vendor v) {
+  Eigen::Matrix<double, 6, 1> q = Eigen::Matrix<double, 6, 1>::Zero();
+  if (v == Vendor::kKuka) {
+    q[1] = -90.0;
+    q[2] = 90.0;
+  }
+  return q;
+}
 
 Vendor vendorFromString(const std::string& s) {
   const std::string l = lower(s);
@@ -110,12 +228,29 @@ RobotCard loadRobotCard(const std::string& path) {
     if (!(card.rp_mm > 0)) rp->fail("rp_mm must be > 0");
     card.rp_source = rp->str("source", "");
   }
+  Eigen::Matrix<double, 6, 1> cal_deg = vendorCalibrationPoseDeg(card.vendor);
+  card.calibration_pose_source =
+      "vendor default (" + vendorName(card.vendor) + "; docs/model.md section 6.3)";
   if (const XmlNode* c = root.child("controller")) {
+    requireKnownAttributes(*c, {"gravity_compensated", "j23_coupling", "calibration_load_kg",
+                                "calibration_load_com_mm", "calibration_pose_deg",
+                                "calibration_pose_source", "source"});
+    card.controller_line = c->line;
     card.gravity_compensated = c->boolean("gravity_compensated", false);
     card.calibration_load_kg = c->number("calibration_load_kg", 0.0);
     card.calibration_load_com = c->vec3("calibration_load_com_mm", Vec3::Zero()) * 1e-3;
     card.j23_coupling = c->number("j23_coupling", 0.0);
+    if (c->has("calibration_pose_deg")) {
+      cal_deg = c->numbers("calibration_pose_deg", 6);
+      card.calibration_pose_source = c->str("calibration_pose_source", "");
+      if (card.calibration_pose_source.empty())
+        c->fail("calibration_pose_deg needs calibration_pose_source");
+    } else if (c->has("calibration_pose_source")) {
+      card.calibration_pose_source = c->str("calibration_pose_source");
+    }
   }
+  card.calibration_pose = fromControllerJoints(card, cal_deg * kDeg);
+  parseWeightElements(root, card);
   return card;
 }
 
@@ -162,6 +297,51 @@ std::vector<std::string> bundledRobotNames() {
   return names;
 }
 
+namespace {
+/// Card weight data into the chain: <link> overrides, the balancer, the gravity model; checks the
+/// balancer and the calibration pose against the joint ranges.
+void applyWeightCard(Robot& robot) {
+  RobotCard& card = robot.card;
+  ChainDescription& chain = robot.chain;
+  for (const RobotCard::LinkInertial& li : card.links) {
+    int body = -1;
+    for (int i = 0; i < 6; ++i)
+      if (chain.joints[static_cast<size_t>(i)].child_link == li.name) body = i;
+    if (body < 0) {
+      std::string names;
+      for (const ChainJoint& j : chain.joints) names += (names.empty() ? "" : ", ") + j.child_link;
+      throw InputError(card.file, li.line,
+                       "<link name=\"" + li.name +
+                           "\"> is not a moving body of the chain (child links: " + names + ")");
+    }
+    Inertial& in = chain.inertials[static_cast<size_t>(body)];
+    in.mass = li.mass;
+    in.com = li.com;
+    if (li.inertia) in.inertia = *li.inertia;
+    in.present = true;
+  }
+  bool all = true;
+  for (const Inertial& in : chain.inertials) all = all && in.mass > 0;
+  chain.has_inertials = all;
+  if (card.counterbalance.present()) {
+    const ChainJoint& j = chain.joints[static_cast<size_t>(card.counterbalance.joint)];
+    const std::string why = balancerProblem(card.counterbalance, j.lower, j.upper);
+    if (!why.empty())
+      throw InputError(card.file, card.counterbalance.line, "<counterbalance>: " + why);
+  }
+  for (int i = 0; i < 6; ++i) {
+    const ChainJoint& j = chain.joints[static_cast<size_t>(i)];
+    const double q = card.calibration_pose[i];
+    if (q < j.lower - 1e-9 || q > j.upper + 1e-9) {
+      throw InputError(card.file, card.controller_line,
+                       "the calibration pose puts joint '" + j.name + "' outside its limits");
+    }
+  }
+  chain.counterbalance = card.counterbalance;
+  chain.gravity_modelled = card.gravity_modelled;
+}
+}  // namespace
+
 Robot loadRobot(const RobotRequest& request) {
   Robot robot;
   const std::string& r = request.robot;
@@ -204,7 +384,42 @@ Robot loadRobot(const RobotRequest& request) {
   }
   robot.card.base_link = robot.chain.base_link;
   robot.card.flange_link = robot.chain.tip_link;
+  applyWeightCard(robot);
   return robot;
+}
+
+namespace {
+/// Line of `<link name="...">` in the URDF (the robot line if not found).
+int urdfLinkLine(const std::string& urdf, const std::string& link) {
+  const XmlNode root = loadXmlFile(urdf);
+  for (const XmlNode* l : root.childrenNamed("link"))
+    if (l->str("name", "") == link) return l->line;
+  return root.line;
+}
+}  // namespace
+
+void requireGravityModel(const Robot& robot) {
+  if (!robot.card.gravity_modelled) return;
+  for (int i = 0; i < 6; ++i) {
+    if (robot.chain.inertials[static_cast<size_t>(i)].mass > 0) continue;
+    const std::string& link = robot.chain.joints[static_cast<size_t>(i)].child_link;
+    const std::string where = robot.card.file.empty() ? "a robot card" : robot.card.file;
+    throw InputError(robot.chain.file, urdfLinkLine(robot.chain.file, link),
+                     "link '" + link + "' (moved by joint '" +
+                         robot.chain.joints[static_cast<size_t>(i)].name +
+                         "') has no <inertial> mass, so its weight cannot be modelled; hint: give "
+                         "<link name=\"" +
+                         link + "\" mass_kg=\"...\" com_mm=\"x y z\" source=\"...\"/> in " + where +
+                         ", or declare <gravity model=\"none\" source=\"...\"/> there");
+  }
+}
+
+std::string gravityNotModelledNote(const RobotCard& card) {
+  if (card.gravity_modelled) return "";
+  return "gravity is not modelled (robot card <gravity model=\"none\"/>" +
+         (card.gravity_source.empty() ? std::string() : ": " + card.gravity_source) +
+         "): link and tool weight, the balancer and the controller's gravity reference are "
+         "ignored; only process loads deflect the robot";
 }
 
 Eigen::Matrix<double, 6, 1> toControllerJoints(const RobotCard& card,

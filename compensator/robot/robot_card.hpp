@@ -8,6 +8,17 @@
 /// Controller joint convention (for configuration flags and program joint values):
 ///   theta_ctrl_i = sign_i * theta_urdf_i + offset_i  (+ j23_coupling * theta_urdf_2 for i = 3)
 /// e.g. FANUC, whose controller J3 is measured from the horizontal (J2/J3 coupled).
+///
+/// Weight handling (docs/model.md §6.3, §6.6; schema robots/README.md):
+///   <counterbalance joint law action r_mm d_mm psi0_deg sign length_ref_mm (spring: preload_N
+///                   rate_N_per_mm | gas: pressure_ref_MPa piston_area_mm2 gas_volume_l
+///                   polytropic_n) [sizing_fraction sizing_pose_deg] source/>
+///       the axis-2 balancer, counterbalance.hpp;
+///   <controller calibration_pose_deg="6 values, controller convention" calibration_pose_source>
+///       the mastering pose (default per vendor, vendorCalibrationPoseDeg);
+///   <gravity model="links|none" source/>   none: weight is not modelled at all;
+///   <link name mass_kg com_mm [inertia_kgm2] source/>   replaces a chain body's URDF inertial.
+/// Unknown attributes of these elements (and of <controller>) throw InputError.
 
 #include <array>
 #include <optional>
@@ -15,6 +26,7 @@
 #include <vector>
 
 #include "compensator/robot/chain.hpp"
+#include "compensator/robot/counterbalance.hpp"
 
 namespace roprec {
 
@@ -57,7 +69,31 @@ struct RobotCard {
   double rated_payload_kg{0.0};
   std::string dimensions_source;
   std::string inertial_source;
+  int controller_line{0};
+  /// Mastering (calibration) pose, URDF convention, rad; the card's calibration_pose_deg or the
+  /// vendor default (vendorCalibrationPoseDeg) converted with the joint convention.
+  Eigen::Matrix<double, 6, 1> calibration_pose{Eigen::Matrix<double, 6, 1>::Zero()};
+  std::string calibration_pose_source;
+  Counterbalance counterbalance;         ///< joint < 0: none
+  double balancer_sizing_fraction{0.0};  ///< stated share of τ_g,2 at the sizing pose (0: none)
+  Eigen::Matrix<double, 6, 1> balancer_sizing_pose{Eigen::Matrix<double, 6, 1>::Zero()};  ///< URDF
+  bool gravity_modelled{true};  ///< false: <gravity model="none"/>
+  std::string gravity_source;
+  struct LinkInertial {
+    std::string name;
+    double mass{0.0};             ///< kg
+    Vec3 com{Vec3::Zero()};       ///< m, link frame
+    std::optional<Mat3> inertia;  ///< kg m², about the com (absent: the URDF's, or zero)
+    std::string source;
+    int line{0};
+  };
+  std::vector<LinkInertial> links;  ///< <link> overrides of the URDF inertials
 };
+
+/// The vendor's mastering/calibration pose in the controller convention, degrees: KUKA
+/// {0, −90, 90, 0, 0, 0} (mastering position), ABB all 0 (calibration position), FANUC all 0
+/// (zero position, J3 from the horizontal), generic all 0.
+Eigen::Matrix<double, 6, 1> vendorCalibrationPoseDeg(Vendor v);
 
 /// Loads a robot card; the URDF path is resolved relative to the card's folder.
 RobotCard loadRobotCard(const std::string& path);
@@ -83,8 +119,21 @@ struct RobotRequest {
   std::string tip_link;
 };
 
-/// Resolves and loads a robot. Unknown names throw InputError naming the bundled robots.
+/// Resolves and loads a robot. Unknown names throw InputError naming the bundled robots. The
+/// card's <link> overrides replace the chain bodies' inertials (a name that is not the child link
+/// of a chain joint throws at the card line); the counterbalance and the gravity model go into
+/// the chain; a balancer that is not physical over its joint range, or a calibration pose
+/// outside the joint limits, throws InputError at the card line.
 Robot loadRobot(const RobotRequest& request);
+
+/// For the commands that model weight (predict, compensate, deflect, simulate, verify): throws
+/// InputError `URDF:LINE: link 'x' has no <inertial> ...` (with the hint to give
+/// `<link name mass_kg com_mm source>` in the card or declare `<gravity model="none"/>`) when a
+/// chain body has no mass and the card does not say gravity is not modelled.
+void requireGravityModel(const Robot& robot);
+
+/// "" when gravity is modelled, else the statement every output carries.
+std::string gravityNotModelledNote(const RobotCard& card);
 
 /// Controller joint values (rad) from URDF joint values (rad), and back.
 Eigen::Matrix<double, 6, 1> toControllerJoints(const RobotCard& card,

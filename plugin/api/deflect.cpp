@@ -41,8 +41,10 @@ DeflectResult deflectAt(const RobotSetup& setup, const DeflectRequest& request) 
   nc::forwardKinematics(model, data, r.joints);
   r.R_W_tcp = data.T_W_tcp.linear();
   r.loads = loadsOf(setup, request, r.load_source);
-  const nc::Vec6 offset =
-      request.gravity ? controllerGravityOffset(setup.robot, c, r.joints) : nc::Vec6::Zero();
+  if (request.gravity) requireGravityModel(setup.robot);
+  r.controller = controllerReferenceOf(setup.robot, setup.cell ? &*setup.cell : nullptr, setup.tool,
+                                       request.gravity);
+  const nc::Vec6 offset = nc::controllerReferenceOffset(r.controller, data, c, r.joints);
   r.deflection = nc::predictDeflection(model, data, c, r.joints, r.loads, {}, offset);
   if (!r.deflection.position_converged)
     throw InputError("", 0, "the position problem did not converge at this pose");
@@ -55,7 +57,8 @@ Json loadsJson(const RobotSetup& setup, const DeflectResult& r) {
   Json lj = Json::object();
   lj.set("gravity", Json::boolean(r.loads.gravity));
   lj.set("gravity_compensated_by_controller",
-         Json::boolean(setup.robot.card.gravity_compensated && r.loads.gravity));
+         Json::boolean(r.controller.kind == nc::ControllerReference::Kind::kGravityCompensated));
+  lj.set("gravity_handling", gravityHandlingJson(setup.robot, r.controller));
   lj.set("tool_mass_kg", Json::number(setup.tool.mass, 3));
   lj.set("wrench_source", Json::str(r.load_source));
   lj.set("force_N", Json::vector(r.force(), 3));

@@ -2,8 +2,9 @@
 /// \file deflect.hpp
 /// The static deviation of the TCP at one commanded pose under gravity, the tool's weight and a
 /// process wrench: flexible joints + servo stiffness, equilibrium in the deformed configuration
-/// (θ = θ_m − τ(θ)/k − τ(θ)/k_servo), and the controller's own gravity compensation when the
-/// robot card says the controller has one (plugin/api/robot_compliance.hpp).
+/// (θ = θ_m − τ(θ)/k − τ(θ)/k_servo), and the controller's gravity handling exactly as predict
+/// sees it: the card's and the cell's <controller gravity_compensated>, else the mastering
+/// reference at the calibration pose (plugin/api/robot_compliance.hpp, docs/model.md §6.3).
 ///
 /// Units: SI in the structs (rad, N, N·m, m); JSON in µm, µrad, mm, deg.
 /// Frames: the deviation δrobot = FK(θ) − FK(θ_m) is in the base frame; a given wrench is in the
@@ -34,19 +35,24 @@ struct DeflectResult {
   std::string load_source;         ///< "none", the request's wrench_source or the cell process
   Mat3 R_W_tcp{Mat3::Identity()};  ///< nominal (rigid) TCP orientation, base frame
   nc::Deflection deflection;
+  /// The controller's gravity handling (robot_compliance.hpp: card + cell <controller>; the
+  /// mastering reference otherwise; none without gravity).
+  nc::ControllerReference controller;
   /// The force (N) and moment (N·m) on the TCP in the base frame (tool-frame loads rotated by
   /// R_W_tcp).
   [[nodiscard]] Vec3 force() const;
   [[nodiscard]] Vec3 moment() const;
 };
 
-/// Solves the equilibrium. Throws InputError when the joints are outside the limits
+/// Solves the equilibrium. Throws InputError when the joints are outside the limits, when gravity
+/// is on and a chain link has no mass (requireGravityModel)
 /// ("<joints_name> outside the joint limits: ..."), when the card has no stiffness, and when the
 /// position problem does not converge at this pose. A non-converged compliance equilibrium is
 /// not an error: see deflection.converged and deflection.residual.
 DeflectResult deflectAt(const RobotSetup& setup, const DeflectRequest& request);
 
-/// robot, joints_deg, loads, torques_Nm, joint_deflection_urad, joint_deformation_urad,
+/// robot, joints_deg, loads (with gravity_handling: robot_compliance.hpp gravityHandlingJson),
+/// torques_Nm, joint_deflection_urad, joint_deformation_urad,
 /// servo_correction_urad, deviation {translation_um, rotation_urad, translation_norm_um},
 /// nominal_tcp, real_tcp, equilibrium.
 Json deflectJson(const RobotSetup& setup, const DeflectResult& r);

@@ -5,6 +5,7 @@
 
 #include "compensator/process/process_load.hpp"
 #include "compensator/support/error.hpp"
+#include "plugin/api/robot_compliance.hpp"
 
 namespace roprec::api {
 
@@ -67,6 +68,7 @@ PredictionContext loadPredictionContext(const std::string& cell_path, const std:
     throw InputError(c.cell.file, c.cell.robot_line,
                      "the robot has no joint stiffness (use a robot card with stiffness values)");
   }
+  requireGravityModel(c.robot);
   c.tool.T_flange_tcp = c.cell.tool.T_flange_tcp;
   c.tool.mass = c.cell.tool.mass;
   c.tool.com = c.cell.tool.com;
@@ -97,12 +99,13 @@ PredictionContext loadPredictionContext(const std::string& cell_path, const std:
     throw UsageError("--uncertainty must be linear or montecarlo");
   }
   s.capability = capabilityFromCell(c.cell);
-  // gravity compensation by the controller: robot card, overridden by the cell's <controller>
-  s.controller_gravity = c.robot.card.gravity_compensated;
-  s.calibration_load.mass = c.robot.card.calibration_load_kg;
-  s.calibration_load.com = c.robot.card.calibration_load_com;
+  // the controller's gravity handling: the one decision every command shares
+  const ControllerGravity cg = controllerGravityOf(c.robot.card, &c.cell, c.tool);
+  s.controller_gravity = cg.gravity_compensated;
+  s.calibration_load = cg.calibration_load;
+  if (const std::string note = gravityNotModelledNote(c.robot.card); !note.empty())
+    c.job.notes.push_back(note);
   if (const XmlNode* e = c.cell.root.child("controller")) {
-    s.controller_gravity = e->boolean("gravity_compensated", s.controller_gravity);
     if (e->has("fanuc_turn_axes")) {
       const Eigen::VectorXd ax = e->numbers("fanuc_turn_axes", 3);
       std::array<int, 3> axes{};
@@ -112,12 +115,6 @@ PredictionContext loadPredictionContext(const std::string& cell_path, const std:
         axes[static_cast<size_t>(i)] = static_cast<int>(ax[i]);
       }
       c.fanuc_turn_axes = axes;
-    }
-    const std::string load = e->str("calibration_load", "card");
-    if (load == "tool") {
-      s.calibration_load = c.tool;
-    } else if (load != "card") {
-      e->fail("<controller> calibration_load must be \"tool\" (the cell's tool) or \"card\"");
     }
   }
   s.default_tolerance = c.cell.tolerance_mm * 1e-3;

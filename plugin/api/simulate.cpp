@@ -161,8 +161,11 @@ nc::TransientProblem transientProblem(const RobotSetup& s, const nc::Model& mode
   p.drive = nc::driveModelFromCard(s.robot.card, model, data, q, est);
   p.theta_cmd = q;
   p.gravity = o.gravity;
-  p.command_offset = o.gravity ? controllerGravityOffset(s.robot, p.drive.staticCompliance(), q)
-                               : nc::Vec6::Zero();
+  // the controller's gravity handling exactly as predict and deflect see it (robot_compliance.hpp)
+  if (o.gravity) requireGravityModel(s.robot);
+  const nc::ControllerReference ref =
+      controllerReferenceOf(s.robot, s.cell ? &*s.cell : nullptr, s.tool, o.gravity);
+  p.command_offset = nc::controllerReferenceOffset(ref, data, p.drive.staticCompliance(), q);
   return p;
 }
 
@@ -305,6 +308,9 @@ SimulationResult simulateAt(const RobotSetup& setup, const HoleJoints& at,
   root.set("joints_source", Json::str(at.source));
   root.set("process",
            Json::str(spec ? steadyProcessLoad(*spec).description : "none (gravity only)"));
+  root.set("gravity_handling",
+           gravityHandlingJson(setup.robot, controllerReferenceOf(setup.robot, &*setup.cell,
+                                                                  setup.tool, options.gravity)));
   root.set("drive", driveJson(p.drive));
   root.set("static", staticJson(ref));
   root.set("transient", transientJson(r.transient, ref));
