@@ -154,6 +154,32 @@ TEST(Robots, LinkMassesAddUpToTheDatasheetMass) {
   }
 }
 
+TEST(Robots, WeightHandlingOfTheCards) {
+  // every bundled robot has an axis-2 balancer (the real ones do: KUKA hydropneumatic, ABB and
+  // FANUC springs), marked as an estimate with its sizing rule, physical over the whole A2
+  // range, and the vendor's mastering pose; gravity is modelled
+  for (const Datasheet& d : kRobots) {
+    SCOPED_TRACE(d.name);
+    const Robot r = loadRobot({d.name, "", ""});
+    const Counterbalance& cb = r.card.counterbalance;
+    ASSERT_TRUE(cb.present());
+    EXPECT_EQ(cb.joint, 1);
+    EXPECT_EQ(cb.source.rfind("estimate: rule:", 0), 0u) << cb.source;
+    EXPECT_EQ(cb.law, r.card.vendor == Vendor::kKuka ? Counterbalance::Law::kGas
+                                                     : Counterbalance::Law::kSpring);
+    const ChainJoint& j2 = r.chain.joints[1];
+    EXPECT_EQ(balancerProblem(cb, j2.lower, j2.upper), "");
+    // the balancer helps the drive: τ_cb has the sign of the holding torque at the sizing pose
+    // and vanishes where it is in line with the pivot (ψ = 0)
+    EXPECT_NEAR(balancerTorque(cb, -cb.psi0 / cb.sign), 0.0, 1e-9);
+    EXPECT_TRUE(r.card.gravity_modelled);
+    EXPECT_TRUE(r.chain.gravity_modelled);
+    EXPECT_FALSE(r.card.calibration_pose_source.empty());
+    EXPECT_EQ(toControllerJoints(r.card, r.card.calibration_pose) / kDeg,
+              vendorCalibrationPoseDeg(r.card.vendor));
+  }
+}
+
 Mat3 rotY(double a) { return Eigen::AngleAxisd(a, Vec3::UnitY()).toRotationMatrix(); }
 
 // Each vendor's tool-0 frame at its reference pose (robots/README.md):
