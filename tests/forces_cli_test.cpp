@@ -1,8 +1,12 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <sstream>
+#include <vector>
 
+#include "compensator/support/rotation.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace roprec {
@@ -48,12 +52,147 @@ TEST(ForcesCli, MillingSampleCellWithCoupling) {
   EXPECT_EQ(j["process"], "milling");
   EXPECT_NEAR(j["immersion"]["exit_deg"].get<double>(), 53.1301, 1e-3);
   ASSERT_TRUE(j.contains("coupling"));
+  EXPECT_EQ(j["coupling"]["solver"], "newton");
   for (const auto& p : j["coupling"]["points"]) {
     EXPECT_TRUE(p["converged"].get<bool>());
     EXPECT_LE(p["iterations"].get<int>(), 10);
+    EXPECT_LE(p["residual_um"].get<double>(), 0.1);
   }
   const std::string csv = test::readFile(dir + "/m.csv");
-  EXPECT_EQ(csv.substr(0, csv.find('\n')), "angle_deg,Fx_N,Fy_N,Fz_N,Fxy_N");
+  EXPECT_EQ(
+      csv.substr(0, csv.find('\n')),
+      "angle_deg,Fx_nom_N,Fy_nom_N,Fz_nom_N,Fxy_nom_N,Fx_N,Fy_N,Fz_N,Fxy_N,dx_um,dy_um,dz_um");
+}
+
+/// The CSV rows as numbers (header skipped); every value must parse and be finite.
+std::vector<std::vector<double>> csvRows(const std::string& csv) {
+  std::vector<std::vector<double>> rows;
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  while (std::getline(in, line)) {
+    std::vector<double> row;
+    std::istringstream ls(line);
+    std::string cell;
+    while (std::getline(ls, cell, ',')) {
+      const double v = std::stod(cell);
+      EXPECT_TRUE(std::isfinite(v)) << line;
+      row.push_back(v);
+    }
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+// The KR 120 at the pose: every point converges (|r| ≤ 0.1 µm) in a few Newton steps; the
+// CSV gives, over one revolution (720 angles), the nominal and the corrected force and the TCP
+// movement, whose means agree with the coupled point (±1 %: profile with runout vs arc average).
+TEST(ForcesCli, MillingWithTheRobotAtJointsConvergesAndWritesTheCorrectedRevolution) {
+  const std::string dir = test::tempDir("forces");
+  const auto r = runRoprec("forces --cell " + sample("alu-milling-7075.xml") +
+                           " --joints '0 -60 100 0 50 0' --csv '" + dir + "/rev.csv'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const auto& pts = j["coupling"]["points"];
+  ASSERT_EQ(pts.size(), 10u);
+  for (const auto& p : pts) {
+    EXPECT_EQ(p["status"], "converged");
+    EXPECT_LE(p["iterations"].get<int>(), 6);
+    EXPECT_LE(p["residual_um"].get<double>(), 0.1);
+  }
+  const auto rows = csvRows(test::readFile(dir + "/rev.csv"));
+  ASSERT_EQ(rows.size(), 720u);
+  Vec3 mean_nom = Vec3::Zero();
+  Vec3 mean_cor = Vec3::Zero();
+  Vec3 mean_mov = Vec3::Zero();
+  for (const auto& row : rows) {
+    ASSERT_EQ(row.size(), 12u);
+    mean_nom += Vec3(row[1], row[2], row[3]);
+    mean_cor += Vec3(row[5], row[6], row[7]);
+    mean_mov += Vec3(row[9], row[10], row[11]);
+  }
+  mean_nom /= 720.0;
+  mean_cor /= 720.0;
+  mean_mov /= 720.0;
+  const auto& last = pts.back();
+  const Vec3 F(last["force_N"][0], last["force_N"][1], last["force_N"][2]);
+  const Vec3 d(last["deflection_um"][0], last["deflection_um"][1], last["deflection_um"][2]);
+  EXPECT_LE((mean_cor - F).norm(), 0.01 * F.norm());
+  // the robot is nearly linear over the revolution: the mean movement is the coupled deflection
+  EXPECT_LE((mean_mov - d).norm(), 0.02 * d.norm());
+  const auto& cr = j["coupling"]["corrected_revolution"];
+  EXPECT_NEAR(cr["mean_nominal_N"][0].get<double>(), mean_nom.x(), 0.01);
+}
+
+/// The milling sample cell with `<coupling>` replaced.
+std::string millingCellWith(const std::string& dir, const std::string& coupling) {
+  std::string text = test::readFile(test::sourceDir() + "/samples/cells/alu-milling-7075.xml");
+  const auto a = text.find("<coupling");
+  const auto b = text.find("/>", a);
+  text = text.substr(0, a) + coupling + text.substr(b + 2);
+  const std::string path = dir + "/mill.xml";
+  test::writeFile(path, text);
+  return path;
+}
+
+// A robot 60 µm/N soft along the feed (up-milling, loop gain ≈ 4): the plain iteration fails
+// (exit 1, the points listed as not converged), Newton converges every point (exit 0).
+TEST(ForcesCli, SoftComplianceFixedPointFailsNewtonConverges) {
+  const std::string dir = test::tempDir("forces");
+  const std::string C = " compliance_um_per_N=\"60 0 0  0 3 0  0 0 1\"/>";
+  const auto plain = runRoprec("forces --cell '" +
+                               millingCellWith(dir, "<coupling solver=\"fixed_point\"" + C) + "'");
+  EXPECT_EQ(plain.exit_code, 1) << plain.err;
+  const auto jp = nlohmann::json::parse(plain.out);
+  EXPECT_FALSE(jp["coupling"]["points"][0]["converged"].get<bool>());
+  const auto newton =
+      runRoprec("forces --cell '" + millingCellWith(dir, "<coupling solver=\"newton\"" + C) + "'");
+  ASSERT_EQ(newton.exit_code, 0) << newton.err;
+  const auto jn = nlohmann::json::parse(newton.out);
+  for (const auto& p : jn["coupling"]["points"]) {
+    EXPECT_EQ(p["status"], "converged");
+    EXPECT_GT(p["loop_gain"].get<double>(), 1.0);
+    EXPECT_LE(p["residual_um"].get<double>(), 0.1);
+  }
+  // an unphysical cell (pulled 1 mm/N into the wall): reported per point, exit 1, no crash
+  const auto bad = runRoprec(
+      "forces --cell '" +
+      millingCellWith(dir, "<coupling compliance_um_per_N=\"1 0 0  0 1000 0  0 0 1\"/>") + "'");
+  EXPECT_EQ(bad.exit_code, 1) << bad.err;
+  const auto jb = nlohmann::json::parse(bad.out);
+  EXPECT_NE(jb["coupling"]["points"][0]["status"], "converged");
+  const auto bad_solver =
+      runRoprec("forces --cell '" + millingCellWith(dir, "<coupling solver=\"broyden\"/>") + "'");
+  EXPECT_EQ(bad_solver.exit_code, 2);
+  EXPECT_NE(bad_solver.err.find("solver must be 'newton' or 'fixed_point'"), std::string::npos);
+}
+
+// wall_pass.src with the KR 120 card: the approach (LIN at 250 mm/s) and the retract are not
+// cutting (zero force, reason given); every cutting point converges with |r| ≤ 0.1 µm.
+TEST(ForcesCli, MillingProgramPathCuttingDecisionAndConvergence) {
+  const auto r = runRoprec("forces --cell " + sample("alu-milling-7075.xml") + " --program '" +
+                           test::sourceDir() + "/samples/milling/wall_pass.src'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const auto& pts = j["path"]["points"];
+  ASSERT_EQ(pts.size(), 27u);
+  for (size_t i = 0; i < pts.size(); ++i) {
+    const auto& p = pts[i];
+    const bool edge = i == 0 || i + 1 == pts.size();
+    EXPECT_EQ(p["cutting"].get<bool>(), !edge) << i;
+    if (edge) {
+      EXPECT_NE(p["cutting_reason"].get<std::string>().find("rapid"), std::string::npos);
+      EXPECT_EQ(p["status"], "not_cutting");
+      for (int k = 0; k < 3; ++k) EXPECT_EQ(p["force_N"][k].get<double>(), 0.0);
+      continue;
+    }
+    EXPECT_NE(p["cutting_reason"].get<std::string>().find("depth 5.000 mm"), std::string::npos);
+    EXPECT_EQ(p["status"], "converged") << i;
+    EXPECT_GE(p["iterations"].get<int>(), 1);
+    EXPECT_LE(p["residual_um"].get<double>(), 0.1);
+    EXPECT_LT(p["force_N"][0].get<double>(), -100.0);
+    EXPECT_TRUE(p["compensated"]["ok"].get<bool>());
+  }
 }
 
 TEST(ForcesCli, CalibrateWritesACalibratedCellThatReproducesTheTest) {

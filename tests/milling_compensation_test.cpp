@@ -1,7 +1,8 @@
 // Milling path compensation (issue 7 item 5): every point of the sample wall pass is compensated
-// with the coupled force iteration; the commands, fed to an independent nonlinear joint-compliance
-// equilibrium computed here with KDL (FK + RNE, same stiffness, tool mass and converged milling
-// force on the tool), put the tool on the nominal path ≤ 0.5 µm; through the CLI only the path
+// with the coupled force solve; the commands, fed to an independent nonlinear joint-compliance
+// equilibrium computed here with KDL (FK + RNE, same stiffness, tool mass, axis-2 balancer,
+// mastering reference and converged milling force on the tool), put the tool on the nominal path
+// ≤ 0.5 µm; through the CLI only the path
 // targets' bytes change.
 #include "compensator/compensation/milling_compensation.hpp"
 
@@ -11,6 +12,8 @@
 
 #include <sstream>
 
+#include "compensator/robot/counterbalance.hpp"
+#include "plugin/api/job.hpp"
 #include "plugin/api/prediction_setup.hpp"
 #include "postproc/program.hpp"
 #include "tests/support/kdl_support.hpp"
@@ -45,6 +48,13 @@ TEST(MillingCompensation, PathLandsOnTheNominalPathAgainstKdl) {
                    KDL::RigidBodyInertia(c.tool.mass, KDL::Vector(com.x(), com.y(), com.z()))));
   KDL::ChainIdSolver_RNE rne(kc, KDL::Vector(0, 0, -9.80665));
   KDL::ChainFkSolverPos_recursive fk(kc);
+  // the controller's reference: mastering at the calibration pose (its gravity torque is in the
+  // joint zero; the value itself is checked in the gravity tests); the axis-2 balancer's torque
+  const Counterbalance& cb = c.robot.chain.counterbalance;
+  ASSERT_NE(c.model.controller.kind, nc::ControllerReference::Kind::kGravityCompensated);
+  nc::Vec6 off = nc::Vec6::Zero();
+  if (c.model.controller.kind == nc::ControllerReference::Kind::kMastering)
+    off = c.model.controller.calibration_pose_torque.cwiseQuotient(c.model.compliance.k);
   for (size_t i = 0; i < comp.size(); ++i) {
     ASSERT_TRUE(comp[i].ok) << i << ": " << comp[i].reason;
     EXPECT_TRUE(comp[i].coupling_converged);
@@ -59,8 +69,10 @@ TEST(MillingCompensation, PathLandsOnTheNominalPathAgainstKdl) {
       KDL::Wrenches f(kc.getNrOfSegments(), KDL::Wrench::Zero());
       f.back() = KDL::Wrench(KDL::Vector(Ft.x(), Ft.y(), Ft.z()), KDL::Vector::Zero());
       rne.CartToJnt(q, z, z, f, t);
+      if (cb.present()) t(static_cast<unsigned>(cb.joint)) -= balancerTorque(cb, th[cb.joint]);
       for (int j = 0; j < 6; ++j)
-        th[j] = comp[i].theta_cmd[j] - t(static_cast<unsigned>(j)) / c.model.compliance.k[j];
+        th[j] =
+            comp[i].theta_cmd[j] + off[j] - t(static_cast<unsigned>(j)) / c.model.compliance.k[j];
     }
     KDL::JntArray q(6);
     for (unsigned j = 0; j < 6; ++j) q(j) = th[j];
@@ -68,6 +80,65 @@ TEST(MillingCompensation, PathLandsOnTheNominalPathAgainstKdl) {
     fk.JntToCart(q, F);
     EXPECT_LE((Vec3(F.p.x(), F.p.y(), F.p.z()) - points[i].translation()).norm(), 0.5e-6)
         << "point " << i;
+  }
+}
+
+// The cutting decision (docs/process.md §4.5) on hand-made points: speed above 1.5 vf (vf = fz Nt
+// n/60 = 0.1 × 3 × 12000/60 = 60 mm/s) is rapid; with <stock top_z_mm="0"> the tool cuts at depth
+// ≥ ap − 0.1 mm; without a stock, at the depth of the first feed move ±0.1 mm.
+TEST(MillingCompensation, CuttingDecisionFromSpeedAndDepth) {
+  MillingSpec s;
+  s.cut.fz = 0.1e-3;
+  s.tool.teeth = 3;
+  s.cut.spindle_rpm = 12000;
+  s.cut.ap = 5e-3;
+  s.stock_top_z = 0.0;
+  Pose wobj = Pose::Identity();
+  wobj.translation() = Vec3(1.6, 0, 0.4);
+  const auto at = [&](double z_mm, double v_mm_s) {
+    Pose p = wobj;
+    p.translation() += Vec3(0.01, 0, z_mm * 1e-3);
+    return MillingPathPoint{p, v_mm_s * 1e-3};
+  };
+  const std::vector<MillingPathPoint> pts = {at(50, 250), at(-5, 250), at(-5, 60),
+                                             at(-5, 89),  at(-5, 91),  at(-4.95, 60),
+                                             at(-3, 60),  at(2, 60),   at(-5, -1)};
+  const std::vector<CuttingDecision> d = decideCutting(s, wobj, pts);
+  const bool expect[] = {false, false, true, true, false, true, false, false, true};
+  for (size_t i = 0; i < pts.size(); ++i) EXPECT_EQ(d[i].cutting, expect[i]) << i << d[i].reason;
+  EXPECT_NE(d[1].reason.find("rapid"), std::string::npos);
+  EXPECT_NE(d[6].reason.find("not at the cutting depth"), std::string::npos);
+  EXPECT_NE(d[7].reason.find("above the stock top by 2.000 mm"), std::string::npos);
+  // no stock: the first feed move (z −5) is the reference
+  s.stock_top_z.reset();
+  const std::vector<CuttingDecision> n = decideCutting(s, wobj, pts);
+  const bool expect_n[] = {false, false, true, true, false, true, false, false, true};
+  for (size_t i = 0; i < pts.size(); ++i) EXPECT_EQ(n[i].cutting, expect_n[i]) << i << n[i].reason;
+}
+
+// The sample job through the API: approach and retract recognised as non-cutting (zero force, no
+// coupling), every cutting point's uncompensated coupled solve converged with |r| ≤ 0.1 µm.
+TEST(MillingCompensation, WallPassCuttingPointsConverge) {
+  const api::MillingCompensationResult r =
+      api::compensateMillingJob(test::sourceDir() + "/samples/cells/alu-milling-7075.xml",
+                                test::sourceDir() + "/samples/milling/wall_pass.src");
+  ASSERT_EQ(r.points_comp.size(), 27u);
+  for (size_t i = 0; i < r.points_comp.size(); ++i) {
+    const PathPointCompensation& p = r.points_comp[i];
+    const bool edge = i == 0 || i + 1 == r.points_comp.size();
+    EXPECT_EQ(p.cutting, !edge) << i << " " << p.cutting_reason;
+    EXPECT_TRUE(p.ok) << i << " " << p.reason;
+    if (edge) {
+      EXPECT_EQ(p.force, Vec3::Zero());
+      EXPECT_EQ(p.before_force, Vec3::Zero());
+      EXPECT_EQ(p.before_status, "not_cutting");
+      continue;
+    }
+    EXPECT_EQ(p.before_status, "converged") << i;
+    EXPECT_LE(p.before_residual, 0.1e-6);
+    EXPECT_TRUE(p.coupling_converged);
+    EXPECT_LE(p.coupling_residual, 0.1e-6);
+    EXPECT_LT(p.before_force.x(), -100.0);
   }
 }
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 
 namespace roprec {
 namespace {
@@ -210,50 +211,256 @@ TEST(Milling, CoupledIterationConvergesForTypicalCases) {
   }
 }
 
-// Under-milling pulls the tool into the wall: the larger the compliance, the larger ae_eff; when
-// compliance × sensitivity ≥ 1 the point is reported as not converged (and the loop stops).
-TEST(Milling, ReportsNonConvergenceWhenLoopGainReachesOne) {
-  const MillingModel m = model(2, 0.1, MillingMode::kUp);
-  // Sensitivity of F̄y to ae at the nominal point (finite difference), then a compliance along Y
-  // that makes the loop gain 1.5.
-  const double dF =
-      (millingMeanForce(m, 0.1e-3, 2.001e-3).y() - millingMeanForce(m, 0.1e-3, 1.999e-3).y()) /
-      2e-6;
-  ASSERT_GT(dF, 0.0);
-  Mat3 C = Mat3::Zero();
-  C(1, 1) = 1.5 / dF;
-  const CouplingResult r =
-      coupleMillingPoint(m, linearCompliance(C), CouplingState{}, CouplingOptions{});
-  EXPECT_FALSE(r.converged);
-  EXPECT_GE(r.loop_gain, 1.0);
-  EXPECT_LE(r.iterations, 50);
-  // Just below one it converges (slowly).
-  C(1, 1) = 0.5 / dF;
+CouplingOptions fixedPoint(double relaxation = 1.0, int max_iterations = 50) {
   CouplingOptions o;
-  o.max_iterations = 200;
-  const CouplingResult ok = coupleMillingPoint(m, linearCompliance(C), CouplingState{}, o);
-  EXPECT_TRUE(ok.converged);
-  EXPECT_LT(ok.loop_gain, 1.0);
+  o.method = CouplingMethod::kFixedPoint;
+  o.relaxation = relaxation;
+  o.max_iterations = max_iterations;
+  return o;
 }
 
-// An oscillating loop (negative feedback, gain > 1) is reported without relaxation and converges
-// with under-relaxation ω = 0.3 to the same static equilibrium δ = C F(δ).
-TEST(Milling, UnderRelaxationHandlesAnOscillatingLoop) {
-  const MillingModel m = model(2, 0.1, MillingMode::kDown);  // pushed away from the wall
-  const double dF =
-      (millingMeanForce(m, 0.1e-3, 2.001e-3).y() - millingMeanForce(m, 0.1e-3, 1.999e-3).y()) /
-      2e-6;
+double dFyDae(const MillingModel& m) {
+  return (millingMeanForce(m, 0.1e-3, 2.001e-3).y() - millingMeanForce(m, 0.1e-3, 1.999e-3).y()) /
+         2e-6;
+}
+
+// Up-milling, compliance along Y with gain 0.5 (positive feedback): both solvers converge to the
+// same point; the plain iteration needs many more steps.
+TEST(Milling, NewtonAndPlainIterationAgreeBelowGainOne) {
+  const MillingModel m = model(2, 0.1, MillingMode::kUp);
   Mat3 C = Mat3::Zero();
-  C(1, 1) = 1.4 / std::abs(dF);
+  C(1, 1) = 0.5 / dFyDae(m);
   const CouplingResult plain =
-      coupleMillingPoint(m, linearCompliance(C), CouplingState{}, CouplingOptions{});
+      coupleMillingPoint(m, linearCompliance(C), CouplingState{}, fixedPoint(1.0, 200));
+  const CouplingResult newton = coupleMillingPoint(m, linearCompliance(C), CouplingState{});
+  ASSERT_TRUE(plain.converged);
+  ASSERT_TRUE(newton.converged);
+  EXPECT_LT(newton.loop_gain, 1.0);
+  EXPECT_LE(newton.residual, 0.1e-6);
+  EXPECT_LT(newton.iterations, plain.iterations);
+  EXPECT_LT((newton.delta - plain.delta).norm(), 0.5e-6);
+}
+
+// An oscillating loop (negative feedback, gain 1.4, down-milling pushed away from the wall): the
+// plain iteration fails, under-relaxation ω = 0.3 rescues it, Newton converges directly to the
+// same static equilibrium δ = C F(δ).
+TEST(Milling, OscillatingLoopPlainFailsNewtonConverges) {
+  const MillingModel m = model(2, 0.1, MillingMode::kDown);
+  Mat3 C = Mat3::Zero();
+  C(1, 1) = 1.4 / std::abs(dFyDae(m));
+  const CouplingResult plain =
+      coupleMillingPoint(m, linearCompliance(C), CouplingState{}, fixedPoint());
   EXPECT_FALSE(plain.converged);
-  CouplingOptions o;
-  o.relaxation = 0.3;
-  o.max_iterations = 300;
-  const CouplingResult relaxed = coupleMillingPoint(m, linearCompliance(C), CouplingState{}, o);
+  const CouplingResult relaxed =
+      coupleMillingPoint(m, linearCompliance(C), CouplingState{}, fixedPoint(0.3, 300));
   EXPECT_TRUE(relaxed.converged);
-  EXPECT_LT((relaxed.delta - C * relaxed.force).norm(), 1e-6);
+  const CouplingResult newton = coupleMillingPoint(m, linearCompliance(C), CouplingState{});
+  ASSERT_TRUE(newton.converged) << couplingStatusName(newton.status);
+  EXPECT_GT(newton.loop_gain, 1.0);
+  EXPECT_LE(newton.iterations, 10);
+  EXPECT_LT((newton.delta - C * newton.force).norm(), 0.1e-6);
+  EXPECT_LT((relaxed.delta - newton.delta).norm(), 1e-6);
+}
+
+// ---- independent reference: the revolution-mean Kienzle force by composite midpoint quadrature
+// of the instantaneous law (written here, not the library's Gauss–Legendre), and the fixed point
+// by nested bisection.
+
+/// Nt/(2π) ∫ over [φst, φex] of kc1.1 ap h0 (fz sin φ/h0)^(1−mc) (−cos φ − cr sin φ,
+/// sin φ − cr cos φ, −ca) dφ; chips below h_min are not cut.
+Vec3 referenceMeanForce(MillingMode mode, double fz, double ae) {
+  if (!(fz > 0) || !(ae > 0)) return Vec3::Zero();
+  const double D = 10e-3, ap = 5e-3, kc = 800e6, mc = 0.25, cr = 0.35, ca = 0.2, hmin = 2e-6;
+  const double arc = std::acos(1.0 - 2.0 * std::min(ae, D) / D);
+  const double a = mode == MillingMode::kUp ? 0.0 : kPi - arc;
+  const double b = mode == MillingMode::kUp ? arc : kPi;
+  const int n = 6000;
+  Vec3 F = Vec3::Zero();
+  for (int i = 0; i < n; ++i) {
+    const double phi = a + (b - a) * (i + 0.5) / n;
+    const double h = fz * std::sin(phi);
+    if (h < hmin) continue;
+    const double Ft = kc * ap * 1e-3 * std::pow(h / 1e-3, 1.0 - mc) * (b - a) / n;
+    F += Vec3(-Ft * std::cos(phi) - cr * Ft * std::sin(phi),
+              Ft * std::sin(phi) - cr * Ft * std::cos(phi), -ca * Ft);
+  }
+  return F * (3.0 / (2.0 * kPi));
+}
+
+/// Bisection for the root of an increasing function on [lo, hi].
+template <class G>
+double bisect(const G& g, double lo, double hi) {
+  for (int i = 0; i < 45; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (g(mid) > 0 ? hi : lo) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+/// δ = diag(c) F(fz + δx/n, ae + δ·n_wall) with δ_{i−1} = 0: outer bisection on δy, inner on δx
+/// (both residuals increase monotonically: the feedback is negative in X for Fx < 0, and in Y for
+/// down-milling; for up-milling the Y gain is kept below 1).
+Vec3 referenceFixedPoint(MillingMode mode, const Vec3& c, int n) {
+  const double wall = mode == MillingMode::kUp ? 1.0 : -1.0;
+  const auto deltaX = [&](double dy) {
+    return bisect(
+        [&](double dx) {
+          return dx - c.x() * referenceMeanForce(mode, 0.1e-3 + dx / n, 2e-3 + wall * dy).x();
+        },
+        -2e-3, 2e-3);
+  };
+  const double dy = bisect(
+      [&](double y) {
+        const double dx = deltaX(y);
+        return y - c.y() * referenceMeanForce(mode, 0.1e-3 + dx / n, 2e-3 + wall * y).y();
+      },
+      -1.9e-3, 1.9e-3);
+  const double dx = deltaX(dy);
+  const Vec3 F = referenceMeanForce(mode, 0.1e-3 + dx / n, 2e-3 + wall * dy);
+  return Vec3(dx, dy, c.z() * F.z());
+}
+
+// The coupled solve against the independent reference: δ and F within 0.5 % (of |δ|, |F|), for a
+// robot-like compliance (gain < 1) and soft ones with negative feedback (gain > 1, where the plain
+// iteration fails): up-milling soft along the feed (Fx < 0: the deflection lowers fz), down-milling
+// soft along the wall normal (the deflection lowers ae).
+TEST(Milling, FixedPointMatchesIndependentKienzleQuadrature) {
+  struct Case {
+    MillingMode mode;
+    Vec3 c_um_per_N;
+    bool soft;
+  };
+  const Case cases[] = {{MillingMode::kUp, {2, 1, 0.5}, false},
+                        {MillingMode::kDown, {2, 1, 0.5}, false},
+                        {MillingMode::kUp, {60, 3, 1}, true},
+                        {MillingMode::kDown, {2, 30, 1}, true}};
+  for (const Case& k : cases) {
+    const MillingModel m = model(2, 0.1, k.mode);
+    const Vec3 c = k.c_um_per_N * 1e-6;
+    const Mat3 C = c.asDiagonal();
+    CouplingOptions o;
+    o.teeth_between_points = 10;
+    const CouplingResult r = coupleMillingPoint(m, linearCompliance(C), CouplingState{}, o);
+    ASSERT_TRUE(r.converged) << couplingStatusName(r.status);
+    EXPECT_LE(r.residual, o.tolerance);
+    const Vec3 d_ref = referenceFixedPoint(k.mode, c, 10);
+    const Vec3 F_ref = referenceMeanForce(k.mode, 0.1e-3 + d_ref.x() / 10,
+                                          2e-3 + (k.mode == MillingMode::kUp ? 1 : -1) * d_ref.y());
+    EXPECT_LE((r.delta - d_ref).norm(), 0.005 * d_ref.norm())
+        << r.delta.transpose() << " | " << d_ref.transpose();
+    EXPECT_LE((r.force - F_ref).norm(), 0.005 * F_ref.norm())
+        << r.force.transpose() << " | " << F_ref.transpose();
+    if (k.soft) {
+      EXPECT_GT(r.loop_gain, 1.0);
+      const CouplingResult plain =
+          coupleMillingPoint(m, linearCompliance(C), CouplingState{}, fixedPoint());
+      EXPECT_FALSE(plain.converged) << "plain iteration at loop gain " << r.loop_gain;
+    }
+  }
+}
+
+// Genuinely non-convergent cases are values, never a throw, NaN or inf: (1) up-milling pulled into
+// the wall so hard that the only fixed point lies beyond ae = D; (2) a runaway feed (fz_eff > 0.2
+// D); (3) a compliance with a jump and no fixed point; (4) a compliance that fails (throws).
+TEST(Milling, NonConvergenceIsReportedAsAStatus) {
+  const MillingModel m = model(2, 0.1, MillingMode::kUp);
+  const auto finite = [](const CouplingResult& r) {
+    return r.delta.allFinite() && r.force.allFinite() && std::isfinite(r.residual) &&
+           std::isfinite(r.loop_gain) && std::isfinite(r.fz_effective) &&
+           std::isfinite(r.ae_effective);
+  };
+  Mat3 C = Mat3::Zero();
+  C(1, 1) = 5.0 / dFyDae(m);
+  const CouplingResult pulled = coupleMillingPoint(m, linearCompliance(C), CouplingState{});
+  EXPECT_FALSE(pulled.converged);
+  EXPECT_TRUE(pulled.status == CouplingStatus::kOutOfRange ||
+              pulled.status == CouplingStatus::kNoDescent)
+      << couplingStatusName(pulled.status);
+  EXPECT_TRUE(finite(pulled));
+  // down-milling (F̄x > 0) on a robot 60 µm/N soft along the feed: the deflection raises fz, which
+  // raises F̄x (positive feedback, gain ≈ 4): no physical fixed point (the model's one is a runaway
+  // fz_eff > 0.2 D); reported as out of range or no descent.
+  const MillingModel dm = model(2, 0.1, MillingMode::kDown);
+  const CouplingResult runaway = coupleMillingPoint(
+      dm, linearCompliance(Vec3(60e-6, 1e-6, 0.5e-6).asDiagonal()), CouplingState{});
+  EXPECT_FALSE(runaway.converged);
+  EXPECT_TRUE(runaway.status == CouplingStatus::kOutOfRange ||
+              runaway.status == CouplingStatus::kNoDescent)
+      << couplingStatusName(runaway.status);
+  EXPECT_TRUE(finite(runaway));
+  const ComplianceFunction jump = [](const Vec3& F) {
+    return Vec3(0, F.y() > 41.0 ? -20e-6 : 20e-6, 0);  // the wall-normal force crosses 41 N
+  };
+  const CouplingResult none = coupleMillingPoint(m, jump, CouplingState{});
+  EXPECT_FALSE(none.converged);
+  EXPECT_NE(none.status, CouplingStatus::kConverged);
+  EXPECT_GT(none.residual, 1e-6);
+  EXPECT_TRUE(finite(none));
+  const ComplianceFunction failing = [](const Vec3&) -> Vec3 {
+    throw std::runtime_error("equilibrium did not converge");
+  };
+  const CouplingResult failed = coupleMillingPoint(m, failing, CouplingState{});
+  EXPECT_EQ(failed.status, CouplingStatus::kComplianceFailed);
+  EXPECT_TRUE(finite(failed));
+}
+
+// Up- vs down-milling (docs/process.md §4.4): the mean wall-normal force F̄·n_wall is > 0 in
+// up-milling (F̄y > 0, n_wall = +Y) and < 0 in down-milling (F̄y > 0, n_wall = −Y), so with an
+// isotropic compliance c the deflection raises ae in up-milling (pulled into the wall) and lowers
+// it in down-milling (pushed away): Δae = c F̄y·(±1), the corrected force grows resp. shrinks,
+// and |Δae| grows with c.
+TEST(Milling, UpMillingPullsIntoTheWallDownMillingPushesAway) {
+  for (double ae : {1.0, 2.0, 4.0}) {
+    double last_up = 0;
+    double last_down = 0;
+    for (double c_um : {0.5, 1.0, 2.0, 4.0}) {
+      const Mat3 C = Mat3::Identity() * c_um * 1e-6;
+      const MillingModel up = model(ae, 0.1, MillingMode::kUp);
+      const MillingModel down = model(ae, 0.1, MillingMode::kDown);
+      ASSERT_GT(millingMeanForce(up, 0.1e-3, ae * 1e-3).y(), 0.0);
+      ASSERT_GT(millingMeanForce(down, 0.1e-3, ae * 1e-3).y(), 0.0);
+      const CouplingResult u = steadyPoint(up, C, CouplingOptions{});
+      const CouplingResult d = steadyPoint(down, C, CouplingOptions{});
+      ASSERT_TRUE(u.converged && d.converged);
+      const double dae_up = u.ae_effective - ae * 1e-3;
+      const double dae_down = d.ae_effective - ae * 1e-3;
+      EXPECT_GT(dae_up, 0.0) << ae << " " << c_um;
+      EXPECT_LT(dae_down, 0.0) << ae << " " << c_um;
+      EXPECT_NEAR(dae_up, u.delta.y(), 1e-12);
+      EXPECT_NEAR(dae_down, -d.delta.y(), 1e-12);
+      EXPECT_NEAR(u.delta.y(), c_um * 1e-6 * u.force.y(), 0.1e-6);
+      EXPECT_NEAR(d.delta.y(), c_um * 1e-6 * d.force.y(), 0.1e-6);
+      EXPECT_GT(u.force.norm(), u.force_nominal.norm());
+      EXPECT_LT(d.force.norm(), d.force_nominal.norm());
+      EXPECT_GT(dae_up, last_up);
+      EXPECT_LT(dae_down, last_down);
+      last_up = dae_up;
+      last_down = dae_down;
+    }
+  }
+}
+
+// The corrected revolution: the nominal column is the rigid profile, the corrected one the profile
+// at (fz_eff, ae_eff) whose mean is the coupled mean force (±0.4 %), and the TCP movement is C F(φ)
+// for a linear compliance.
+TEST(Milling, CorrectedRevolution) {
+  const MillingModel m = model(2, 0.1, MillingMode::kUp);
+  const Mat3 C = Vec3(2e-6, 1e-6, 0.5e-6).asDiagonal();
+  const CouplingResult r = steadyPoint(m, C, CouplingOptions{});
+  ASSERT_TRUE(r.converged);
+  const CorrectedRevolution rev = correctedRevolution(m, linearCompliance(C), r);
+  const MillingProfile P = millingForceProfile(m);
+  ASSERT_EQ(rev.samples.size(), P.samples.size());
+  Vec3 mean = Vec3::Zero();
+  for (size_t i = 0; i < P.samples.size(); ++i) {
+    EXPECT_EQ(rev.samples[i].nominal, P.samples[i].force);
+    EXPECT_LT((rev.samples[i].tcp_movement - C * rev.samples[i].corrected).norm(), 1e-15);
+    mean += rev.samples[i].corrected;
+  }
+  mean /= static_cast<double>(P.samples.size());
+  EXPECT_LT((mean - r.force).norm(), 4e-3 * r.force.norm());
+  EXPECT_GT(rev.movement_range, 0.0);
+  EXPECT_TRUE(rev.ok);
 }
 
 // Qualitative (paper): the deviation grows with the feed because the force does.

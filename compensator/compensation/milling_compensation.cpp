@@ -1,6 +1,8 @@
 #include "compensator/compensation/milling_compensation.hpp"
 
 #include <cmath>
+#include <cstdio>
+#include <optional>
 #include <stdexcept>
 
 #include "compensator/process/milling_robot.hpp"
@@ -10,10 +12,56 @@ namespace roprec {
 namespace {
 /// milling frame (X feed = tool x, Z = −tool z, Y = −tool y) ↔ tool frame
 Vec3 millToTool(const Vec3& v) { return Vec3(v.x(), -v.y(), -v.z()); }
+
+std::string fmt(double v, int decimals) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  return buf;
+}
+std::string mm(double v_m) { return fmt(v_m * 1e3, 3); }
 }  // namespace
 
-std::vector<PathPointCompensation> compensateMillingPath(const PredictionModel& m,
-                                                         const std::vector<Pose>& points) {
+std::vector<CuttingDecision> decideCutting(const MillingSpec& s, const Pose& T_W_wobj,
+                                           const std::vector<MillingPathPoint>& points) {
+  const double vf = s.cut.fz * s.tool.teeth * s.cut.spindle_rpm / 60.0;  // m/s
+  const double v_max = kRapidSpeedFactor * vf;
+  const Pose T_wobj_W = T_W_wobj.inverse();
+  std::optional<double> z_ref;  // tool height at the first non-rapid point (no <stock>)
+  std::vector<CuttingDecision> out(points.size());
+  for (size_t i = 0; i < points.size(); ++i) {
+    const MillingPathPoint& p = points[i];
+    CuttingDecision& c = out[i];
+    const double z = (T_wobj_W * p.T_W_tcp).translation().z();
+    if (p.speed > v_max) {
+      c = {false, "rapid: programmed " + fmt(p.speed * 1e3, 1) + " mm/s > " +
+                      fmt(kRapidSpeedFactor, 2) + " x feed speed " + fmt(vf * 1e3, 1) + " mm/s"};
+      continue;
+    }
+    if (s.stock_top_z) {
+      const double depth = *s.stock_top_z - z;
+      if (depth >= s.cut.ap - kDepthTolerance) {
+        c = {true, "feed move at depth " + mm(depth) + " mm below the stock top (ap " +
+                       mm(s.cut.ap) + " mm)"};
+      } else {
+        c = {false, depth <= 0 ? "above the stock top by " + mm(-depth) + " mm"
+                               : "depth " + mm(depth) + " mm < ap " + mm(s.cut.ap) +
+                                     " mm: not at the cutting depth"};
+      }
+      continue;
+    }
+    if (!z_ref) z_ref = z;
+    if (std::abs(z - *z_ref) <= kDepthTolerance) {
+      c = {true, "feed move at the depth of the first feed move"};
+    } else {
+      c = {false, "tool " + mm(z - *z_ref) + " mm from the depth of the first feed move"};
+    }
+  }
+  return out;
+}
+
+std::vector<PathPointCompensation> compensateMillingPath(
+    const PredictionModel& m, const std::vector<Pose>& points,
+    const std::vector<CuttingDecision>* cutting) {
   if (!m.has_process || m.process.type != ProcessType::kMilling) {
     throw std::invalid_argument("compensateMillingPath needs a milling process");
   }
@@ -27,6 +75,10 @@ std::vector<PathPointCompensation> compensateMillingPath(const PredictionModel& 
   CouplingState after_state;
   for (size_t i = 0; i < points.size(); ++i) {
     PathPointCompensation& p = out[i];
+    if (cutting != nullptr && i < cutting->size()) {
+      p.cutting = (*cutting)[i].cutting;
+      p.cutting_reason = (*cutting)[i].reason;
+    }
     // 1. IK with continuity
     const Pose T_flange = points[i] * m.model.T_L6_tcp.inverse() * m.model.T_L6_flange;
     const Vec6 seed = prev ? *prev : m.reference_pose;
@@ -59,13 +111,25 @@ std::vector<PathPointCompensation> compensateMillingPath(const PredictionModel& 
       return l;
     };
     // uncompensated: the robot at θ_d under the coupled force
-    const CouplingResult cb =
-        coupleMillingPoint(mm, robotMillingCompliance(m.model, m.compliance, p.theta_d, m.gravity),
-                           before_state, copt);
-    before_state = cb.next;
+    Vec3 F_before = Vec3::Zero();
+    if (p.cutting) {
+      const CouplingResult cb = coupleMillingPoint(
+          mm, robotMillingCompliance(m.model, m.compliance, p.theta_d, m.gravity), before_state,
+          copt);
+      before_state = cb.next;
+      F_before = cb.force;
+      p.before_status = couplingStatusName(cb.status);
+      p.before_iterations = cb.iterations;
+      p.before_residual = cb.residual;
+      p.before_loop_gain = cb.loop_gain;
+      p.before_force = cb.force;
+    } else {
+      before_state = CouplingState{};  // the tool left the material
+      p.before_status = "not_cutting";
+    }
     {
       const nc::Deflection db =
-          nc::predictDeflection(m.model, d.nc, m.compliance, p.theta_d, loadsWith(cb.force), {},
+          nc::predictDeflection(m.model, d.nc, m.compliance, p.theta_d, loadsWith(F_before), {},
                                 controllerOffset(m, d.nc, p.theta_d));
       p.deviation_before = db.dp;
     }
@@ -79,11 +143,13 @@ std::vector<PathPointCompensation> compensateMillingPath(const PredictionModel& 
         cmd = theta_m - controllerOffset(m, d.nc, cmd);
       return cmd;
     };
-    // 2. force fixed point with the exact inverse
-    Vec3 F = F_nom;
-    bool conv = false;
+    // 2. force fixed point with the exact inverse (no force at a point that does not cut)
+    Vec3 F = p.cutting ? F_nom : Vec3::Zero();
+    bool conv = !p.cutting;
     CouplingResult ca;
-    for (p.force_iterations = 1; p.force_iterations <= 20; ++p.force_iterations) {
+    ca.converged = true;
+    ca.status = CouplingStatus::kConverged;
+    for (p.force_iterations = 1; p.cutting && p.force_iterations <= 20; ++p.force_iterations) {
       p.theta_cmd = commandFor(F);
       // the compensated robot's deviation from the nominal tool position under a force G (milling
       // frame)
@@ -105,6 +171,10 @@ std::vector<PathPointCompensation> compensateMillingPath(const PredictionModel& 
     }
     p.coupling_converged = ca.converged;
     p.coupling_iterations = ca.iterations;
+    p.coupling_status = p.cutting ? couplingStatusName(ca.status) : "not_cutting";
+    p.coupling_residual = ca.residual;
+    p.loop_gain = ca.loop_gain;
+    if (!p.cutting) p.force_iterations = 0;
     p.force = F;
     if (!conv) {
       p.reason = ca.converged ? "the force fixed point did not converge"
@@ -112,7 +182,7 @@ std::vector<PathPointCompensation> compensateMillingPath(const PredictionModel& 
                                     couplingStatusName(ca.status) + ")";
       continue;
     }
-    after_state = ca.next;
+    after_state = p.cutting ? ca.next : CouplingState{};
     p.theta_cmd = commandFor(F);
     if (!withinLimits(m.ik, p.theta_cmd)) {
       p.reason = "the compensated command leaves the joint limits";

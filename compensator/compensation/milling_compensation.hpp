@@ -13,7 +13,15 @@
 ///      first check;
 ///   3. programmed target = rigid FK(θ_m); the residual is re-predicted with the converged force.
 /// Non-convergence (coupling or force fixed point) is reported per point, never silently emitted.
-
+///
+/// Cutting decision (docs/process.md §4.5): a point gets a milling force only if it cuts —
+///   1. its move is not rapid: programmed linear speed ≤ kRapidSpeedFactor · vf, vf = fz Nt n/60
+///      (unknown speed: not decided by speed);
+///   2. the tool is at the cutting depth: with <stock top_z_mm>, depth = top_z − z_tcp (workobject
+///      frame) ≥ ap − kDepthTolerance; without it, |z_tcp − z_ref| ≤ kDepthTolerance where z_ref is
+///      the tool height at the first non-rapid linear point.
+/// A non-cutting point is compensated for gravity and the tool weight only (force 0) and resets
+/// the coupling's memory (the tool left the material).
 #include <string>
 #include <vector>
 
@@ -21,9 +29,28 @@
 
 namespace roprec {
 
+/// A linear move faster than this × the feed speed vf is rapid (does not cut).
+constexpr double kRapidSpeedFactor = 1.5;
+/// "At the cutting depth" tolerance [m].
+constexpr double kDepthTolerance = 0.1e-3;
+
+struct MillingPathPoint {
+  Pose T_W_tcp{Pose::Identity()};  ///< nominal TCP, base frame
+  double speed{-1.0};              ///< programmed linear speed [m/s]; < 0 unknown
+};
+struct CuttingDecision {
+  bool cutting{true};
+  std::string reason;  ///< why (speeds in mm/s, depths in mm)
+};
+/// The cutting decision of every point (rules above). `T_W_wobj`: the cell's workobject.
+std::vector<CuttingDecision> decideCutting(const MillingSpec& s, const Pose& T_W_wobj,
+                                           const std::vector<MillingPathPoint>& points);
+
 struct PathPointCompensation {
   bool ok{false};
   std::string reason;
+  bool cutting{true};
+  std::string cutting_reason;
   Vec6 theta_d{Vec6::Zero()};
   Vec6 theta_cmd{Vec6::Zero()};
   Pose T_programmed{Pose::Identity()};
@@ -33,11 +60,22 @@ struct PathPointCompensation {
   int force_iterations{0};
   int coupling_iterations{0};
   bool coupling_converged{false};
+  /// The uncompensated robot's coupled solve (the "before" deviation): the real test of the solver.
+  std::string before_status;  ///< couplingStatusName, or "not_cutting"
+  int before_iterations{0};
+  double before_residual{0};  ///< |δ − C(F(δ))| [m]
+  double before_loop_gain{0};
+  Vec3 before_force{Vec3::Zero()};  ///< N, milling frame
+  std::string coupling_status;      ///< couplingStatusName, or "not_cutting"
+  double coupling_residual{0};      ///< |δ − C(F(δ))| of the final coupling [m]
+  double loop_gain{0};              ///< of the final coupling
   std::string config_text;
 };
 
-/// `m` must carry a milling process. Points are nominal TCP poses in the base frame (path order).
-std::vector<PathPointCompensation> compensateMillingPath(const PredictionModel& m,
-                                                         const std::vector<Pose>& points);
+/// `m` must carry a milling process. Points are nominal TCP poses in the base frame (path order);
+/// `cutting` (optional, one per point) says which points cut — all of them when absent.
+std::vector<PathPointCompensation> compensateMillingPath(
+    const PredictionModel& m, const std::vector<Pose>& points,
+    const std::vector<CuttingDecision>* cutting = nullptr);
 
 }  // namespace roprec

@@ -1,15 +1,18 @@
 #include "compensator/process/milling.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
+#include <exception>
 
 #include "compensator/support/quadrature.hpp"
 
 namespace roprec {
 namespace {
 
-constexpr double kH0 = 1e-3;  // Kienzle reference chip thickness
+constexpr double kH0 = 1e-3;                 // Kienzle reference chip thickness
+constexpr double kMaxFeedPerDiameter = 0.2;  // fz_eff above 0.2 D: out of the model's range
 
 bool inArc(double phi, const ImmersionAngles& a) {
   const double p = std::fmod(std::fmod(phi, 2 * kPi) + 2 * kPi, 2 * kPi);
@@ -124,15 +127,20 @@ Vec3 millingMeanForce(const MillingModel& m, double fz, double ae) {
   if (!(fz > 0) || !(ae > 0)) return Vec3::Zero();
   const ImmersionAngles a = immersionAngles(m.tool.diameter, ae, m.cut.mode);
   if (m.mean_law == MeanForceLaw::kInstantaneous) {
-    const double half = 0.5 * (a.exit - a.start);
-    const double mid = 0.5 * (a.exit + a.start);
+    // Chips thinner than h_min are not cut: integrate over the part of the arc where
+    // fz sin φ ≥ h_min exactly (continuous in fz, which the coupling's Newton solve needs).
+    const double cut = m.coeff.h_min > 0 ? std::asin(std::min(1.0, m.coeff.h_min / fz)) : 0.0;
+    const double lo = std::max(a.start, cut);
+    const double hi = std::min(a.exit, kPi - cut);
+    if (!(hi > lo)) return Vec3::Zero();
+    const double half = 0.5 * (hi - lo);
+    const double mid = 0.5 * (hi + lo);
     const double e = 1.0 - m.coeff.mc;
     const double cr = m.coeff.radial_ratio;
     Vec3 F = Vec3::Zero();
     for (size_t i = 0; i < m.gl_x.size(); ++i) {
       const double phi = mid + half * m.gl_x[i];
       const double h = fz * std::sin(phi);
-      if (h < m.coeff.h_min) continue;
       const double Ft = m.coeff.kc11 * m.cut.ap * kH0 * std::pow(h / kH0, e) * half * m.gl_w[i];
       const double c = std::cos(phi);
       const double sn = std::sin(phi);
@@ -164,8 +172,16 @@ const char* couplingStatusName(CouplingStatus s) {
       return "max_iterations";
     case CouplingStatus::kOutOfRange:
       return "out_of_range";
+    case CouplingStatus::kNoDescent:
+      return "no_descent";
+    case CouplingStatus::kComplianceFailed:
+      return "compliance_failed";
   }
   return "unknown";
+}
+
+const char* couplingMethodName(CouplingMethod m) {
+  return m == CouplingMethod::kNewton ? "newton" : "fixed_point";
 }
 
 namespace {
@@ -186,6 +202,7 @@ CutAt cutAt(const MillingModel& m, const CouplingState& st, const CouplingOption
     c.ae = m.tool.diameter;
     c.in_range = false;
   }
+  if (c.fz > kMaxFeedPerDiameter * m.tool.diameter) c.in_range = false;
   return c;
 }
 
@@ -194,18 +211,130 @@ Vec3 forceAt(const MillingModel& m, const CutAt& c) {
   return millingMeanForce(m, c.fz, c.ae);
 }
 
-double loopGain(const MillingModel& m, const ComplianceFunction& C, const CouplingState& st,
-                const CouplingOptions& o, const Vec3& d) {
-  const double step = 1e-6;
-  Mat3 G;
-  for (int i = 0; i < 3; ++i) {
-    Vec3 e = Vec3::Zero();
-    e[i] = step;
-    G.col(i) = (C(forceAt(m, cutAt(m, st, o, d + e))) - C(forceAt(m, cutAt(m, st, o, d - e)))) /
-               (2 * step);
+/// Thrown by the evaluator when the compliance fails or returns a non-finite value.
+struct ComplianceFailure {};
+
+/// The map δ ↦ C(F(δ)) of one path point, counting the compliance calls.
+class CoupledMap {
+ public:
+  CoupledMap(const MillingModel& m, const ComplianceFunction& C, const CouplingState& st,
+             const CouplingOptions& o)
+      : m_(m), C_(C), st_(st), o_(o) {}
+  Vec3 image(const Vec3& d) {
+    ++evaluations;
+    Vec3 out;
+    try {
+      out = C_(forceAt(m_, cutAt(m_, st_, o_, d)));
+    } catch (const std::exception&) {
+      throw ComplianceFailure{};
+    }
+    if (!out.allFinite()) throw ComplianceFailure{};
+    return out;
   }
+  Vec3 residual(const Vec3& d) { return d - image(d); }
+  /// G = ∂(C∘F)/∂δ by forward differences (step h) around d, whose image is `image_d`.
+  Mat3 gain(const Vec3& d, const Vec3& image_d) {
+    constexpr double h = 1e-6;
+    Mat3 G;
+    for (int i = 0; i < 3; ++i) {
+      Vec3 e = Vec3::Zero();
+      e[i] = h;
+      G.col(i) = (image(d + e) - image_d) / h;
+    }
+    return G;
+  }
+  int evaluations{0};
+
+ private:
+  const MillingModel& m_;
+  const ComplianceFunction& C_;
+  const CouplingState& st_;
+  const CouplingOptions& o_;
+};
+
+double spectralRadius(const Mat3& G) {
+  if (!G.allFinite()) return 0.0;
   const Eigen::EigenSolver<Mat3> es(G, false);
   return es.eigenvalues().cwiseAbs().maxCoeff();
+}
+
+/// The Newton direction −J⁻¹r (J = I − G); the plain fixed-point step −r when J is singular.
+Vec3 newtonDirection(const Mat3& G, const Vec3& r) {
+  const Mat3 J = Mat3::Identity() - G;
+  const Eigen::ColPivHouseholderQR<Mat3> qr(J);
+  if (qr.rank() == 3) {
+    const Vec3 p = -qr.solve(r);
+    if (p.allFinite()) return p;
+  }
+  return -r;
+}
+
+/// Newton with backtracking line search on |r|: converges whatever the loop gain.
+void solveNewton(CoupledMap& map, const CouplingOptions& o, Vec3& d, CouplingResult& res) {
+  Vec3 Cd = map.image(d);
+  Vec3 r = d - Cd;
+  double norm = r.norm();
+  res.status = CouplingStatus::kMaxIterations;
+  for (int k = 0;; ++k) {
+    if (norm <= o.tolerance) {
+      res.status = CouplingStatus::kConverged;
+      break;
+    }
+    if (k >= o.max_iterations) break;
+    res.iterations = k + 1;
+    // Newton direction first; if no step along it lowers |r| (a kink of F: the chip or the
+    // engagement reaching zero), the plain fixed-point direction −r.
+    const Vec3 directions[2] = {newtonDirection(map.gain(d, Cd), r), -r};
+    bool accepted = false;
+    for (const Vec3& p : directions) {
+      double alpha = 1.0;
+      for (int ls = 0; ls <= 30 && !accepted; ++ls, alpha *= 0.5) {
+        const Vec3 dt = d + alpha * p;
+        const Vec3 Ct = map.image(dt);
+        const double nt = (dt - Ct).norm();
+        if (nt <= (1.0 - 1e-4 * alpha) * norm) {
+          res.step = alpha * p.norm();
+          d = dt;
+          Cd = Ct;
+          r = d - Cd;
+          norm = nt;
+          accepted = true;
+        }
+      }
+      if (accepted) break;
+    }
+    if (!accepted) {
+      res.status = CouplingStatus::kNoDescent;
+      break;
+    }
+  }
+  res.residual = norm;
+}
+
+/// The plain (under-relaxed) iteration, kept for comparison: stops when |Δδ| ≤ tolerance, reports
+/// divergence when the step grows 3 times in a row.
+void solveFixedPoint(CoupledMap& map, const CouplingOptions& o, Vec3& d, CouplingResult& res) {
+  const double omega = std::clamp(o.relaxation, 1e-3, 1.0);
+  double last = 1e300;
+  int growing = 0;
+  res.status = CouplingStatus::kMaxIterations;
+  for (int k = 1; k <= o.max_iterations; ++k) {
+    const Vec3 d_new = (1.0 - omega) * d + omega * map.image(d);
+    res.step = (d_new - d).norm();
+    d = d_new;
+    res.iterations = k;
+    if (res.step <= o.tolerance) {
+      res.status = CouplingStatus::kConverged;
+      break;
+    }
+    growing = res.step >= last ? growing + 1 : 0;
+    last = res.step;
+    if (growing >= 3 || !d.allFinite() || d.norm() > 1.0) {
+      res.status = CouplingStatus::kDiverged;
+      break;
+    }
+  }
+  res.residual = d.allFinite() ? map.residual(d).norm() : 0.0;
 }
 
 }  // namespace
@@ -213,42 +342,77 @@ double loopGain(const MillingModel& m, const ComplianceFunction& C, const Coupli
 CouplingResult coupleMillingPoint(const MillingModel& m, const ComplianceFunction& compliance,
                                   const CouplingState& state, const CouplingOptions& o) {
   CouplingResult r;
-  const double omega = std::clamp(o.relaxation, 1e-3, 1.0);
-  CutAt c = cutAt(m, state, o, Vec3::Zero());
   r.force_nominal = forceAt(m, CutAt{m.cut.fz + state.uncut_prev, m.cut.ae, true});
-  Vec3 d = compliance(r.force_nominal);
-  const double gain_start = loopGain(m, compliance, state, o, d);
-  double last = 1e300;
-  int growing = 0;
-  r.status = CouplingStatus::kMaxIterations;
-  for (int k = 1; k <= o.max_iterations; ++k) {
-    c = cutAt(m, state, o, d);
-    const Vec3 d_new = (1.0 - omega) * d + omega * compliance(forceAt(m, c));
-    r.residual = (d_new - d).norm();
-    d = d_new;
-    r.iterations = k;
-    if (r.residual <= o.tolerance) {
-      r.status = CouplingStatus::kConverged;
-      break;
+  CoupledMap map(m, compliance, state, o);
+  Vec3 d = Vec3::Zero();
+  try {
+    d = map.image(Vec3::Zero());  // first iterate: the deflection under the nominal force
+    if (o.method == CouplingMethod::kNewton) {
+      solveNewton(map, o, d, r);
+    } else {
+      solveFixedPoint(map, o, d, r);
     }
-    growing = r.residual >= last ? growing + 1 : 0;
-    last = r.residual;
-    if (growing >= 3 || !std::isfinite(r.residual)) {
+    if (!d.allFinite()) {
+      d = Vec3::Zero();
       r.status = CouplingStatus::kDiverged;
-      break;
     }
+    const Vec3 Cd = map.image(d);
+    r.loop_gain = spectralRadius(map.gain(d, Cd));
+  } catch (const ComplianceFailure&) {
+    r.status = CouplingStatus::kComplianceFailed;
+    if (!d.allFinite()) d = Vec3::Zero();
   }
-  c = cutAt(m, state, o, d);
+  if (!std::isfinite(r.residual)) r.residual = 0.0;
+  if (!std::isfinite(r.step)) r.step = 0.0;
+  const CutAt c = cutAt(m, state, o, d);
   if (r.status == CouplingStatus::kConverged && !c.in_range) r.status = CouplingStatus::kOutOfRange;
   r.converged = r.status == CouplingStatus::kConverged;
+  r.evaluations = map.evaluations;
   r.delta = d;
   r.force = forceAt(m, c);
   r.fz_effective = c.fz;
   r.ae_effective = c.ae;
-  r.loop_gain = std::max(gain_start, loopGain(m, compliance, state, o, d));
   r.next.delta_prev = d;
   r.next.uncut_prev = c.fz < 0 ? c.fz : 0.0;
   return r;
+}
+
+CorrectedRevolution correctedRevolution(const MillingModel& m, const ComplianceFunction& compliance,
+                                        const CouplingResult& point) {
+  CorrectedRevolution out;
+  const MillingProfile nominal = millingForceProfile(m);
+  MillingModel mc = m;
+  mc.cut.fz = std::max(0.0, point.fz_effective);
+  mc.cut.ae = std::clamp(point.ae_effective, 0.0, m.tool.diameter);
+  const MillingProfile corrected =
+      mc.cut.fz > 0 && mc.cut.ae > 0 ? millingForceProfile(mc) : MillingProfile{};
+  double lo = 1e300;
+  double hi = 0;
+  for (size_t i = 0; i < nominal.samples.size(); ++i) {
+    CorrectedSample s;
+    s.angle = nominal.samples[i].angle;
+    s.nominal = nominal.samples[i].force;
+    if (i < corrected.samples.size()) s.corrected = corrected.samples[i].force;
+    try {
+      const Vec3 d = compliance(s.corrected);
+      if (d.allFinite()) {
+        s.tcp_movement = d;
+      } else {
+        out.ok = false;
+      }
+    } catch (const std::exception&) {
+      out.ok = false;
+    }
+    lo = std::min(lo, s.tcp_movement.norm());
+    hi = std::max(hi, s.tcp_movement.norm());
+    out.samples.push_back(s);
+  }
+  out.mean_nominal = nominal.mean;
+  out.mean_corrected = corrected.mean;
+  out.peak_nominal_xy = nominal.peak_xy;
+  out.peak_corrected_xy = corrected.peak_xy;
+  out.movement_range = out.samples.empty() ? 0.0 : hi - lo;
+  return out;
 }
 
 std::vector<CouplingResult> coupleMillingPath(

@@ -24,12 +24,20 @@
 ///   F̄y = Nt Ft,m/(2π) [(cos φst − cos φex) − cr (sin φex − sin φst)],  F̄z = −ca F̄t.
 ///
 /// Coupling per path point i (§4.3/§4.4): with tool deflection δ (milling frame, m),
-///   fz_i = fz + (δ_i − δ_{i−1})·X / n_teeth + δprev_i,   ae_i = ae + δ_i·n_wall
-/// (n_wall = +Y up-milling, −Y down-milling, 0 for a slot), F_i = F̄(fz_i, ae_i), δ_i = C_i(F_i),
-/// iterated until |δ^(k+1) − δ^(k)| ≤ tolerance (default 0.1 µm). δprev carries a negative chip
-/// (the tooth did not reach the surface) to the next point. The loop gain (spectral radius of
-/// ∂(C∘F)/∂δ) is reported; ≥ 1 means the plain iteration cannot converge (optional under-relaxation
-/// ω).
+///   fz_i(δ) = fz + (δ − δ_{i−1})·X / n_teeth + δprev_i,   ae_i(δ) = ae + δ·n_wall
+/// (n_wall = +Y up-milling, −Y down-milling, 0 for a slot), F_i(δ) = F̄(fz_i, ae_i), and the
+/// coupled residual
+///   r(δ) = δ − C_i(F_i(δ)),   solved for r(δ) = 0.
+/// Default solver (CouplingMethod::kNewton): Newton on r with a forward-difference Jacobian
+/// J = I − G, G = ∂(C∘F)/∂δ (step 1 µm), and a backtracking line search on |r| (Armijo, α halved
+/// down to 2⁻³⁰); it converges whatever the loop gain ρ(G). Convergence: |r(δ)| ≤ tolerance
+/// (default 0.1 µm) — the residual of the equation itself, not the last step. Not converged is a
+/// status (never a throw): no descent (|r| has no zero near: no fixed point), iteration limit,
+/// the fixed point leaves the cut's range (ae > D or fz_eff > 0.2 D), or the compliance failed (its
+/// equilibrium did not converge). CouplingMethod::kFixedPoint keeps the plain (optionally
+/// under-relaxed) iteration δ ← (1−ω)δ + ω C(F(δ)), which converges only for ρ(G) < 1 (for
+/// comparison). δprev carries a negative chip (the tooth did not reach the surface) to the next
+/// point. The loop gain ρ(G) at the solution is reported.
 
 #include <Eigen/Core>
 #include <functional>
@@ -69,8 +77,8 @@ double meanChipThickness(double fz, const ImmersionAngles& a);
 
 /// How the coupling recomputes the revolution-averaged force at (fz_i, ae_i):
 ///   kInstantaneous: exact average of the instantaneous Kienzle law, Nt/(2π)∫ Ft(fz sin φ)(…) dφ
-///                   (Gauss–Legendre over the arc; equals the mean of millingForceProfile without
-///                   runout);
+///                   (Gauss–Legendre over the part of the arc where fz sin φ ≥ h_min, so that it
+///                   is continuous in fz; equals the mean of millingForceProfile without runout);
 ///   kMeanChip:      the source paper's form with h_m (closed form in the file comment) [P].
 enum class MeanForceLaw { kInstantaneous, kMeanChip };
 
@@ -115,10 +123,17 @@ Vec3 millingMeanForce(const MillingModel& m, double fz, double ae);
 using ComplianceFunction = std::function<Vec3(const Vec3& force_N)>;
 ComplianceFunction linearCompliance(const Mat3& C_m_per_N);
 
+enum class CouplingMethod {
+  kNewton,      ///< Newton + line search on r(δ) = δ − C(F(δ)) (default)
+  kFixedPoint,  ///< plain iteration δ ← (1−ω)δ + ω C(F(δ)) (converges only for loop gain < 1)
+};
+const char* couplingMethodName(CouplingMethod m);
+
 struct CouplingOptions {
-  double tolerance{0.1e-6};  ///< stop when |δ^(k+1) − δ^(k)| ≤ this [m]
+  double tolerance{0.1e-6};  ///< converged when |r(δ)| ≤ this (fixed point: |Δδ| ≤ this) [m]
   int max_iterations{50};
-  double relaxation{1.0};  ///< ω in (0, 1]: δ ← (1−ω)δ + ω C(F)
+  double relaxation{1.0};  ///< fixed point only: ω in (0, 1], δ ← (1−ω)δ + ω C(F)
+  CouplingMethod method{CouplingMethod::kNewton};
   /// Tooth passes between successive path points: the feed-direction deflection change per
   /// tooth is (δ_i − δ_{i−1})·X / n. Default 10 (path points 1 mm apart at fz 0.1 mm).
   int teeth_between_points{10};
@@ -129,15 +144,28 @@ struct CouplingState {
   double uncut_prev{0.0};         ///< δprev: negative chip carried from the previous edge [m]
 };
 
-enum class CouplingStatus { kConverged, kDiverged, kMaxIterations, kOutOfRange };
+/// kNoDescent: the line search found no step that lowers |r| (no fixed point near: e.g. an
+/// unphysical compliance); kOutOfRange: the fixed point has ae > D or fz_eff > 0.2 D (a runaway
+/// positive feedback, e.g. down-milling on a feed-soft robot); kComplianceFailed: the
+/// compliance threw (robot equilibrium not converged).
+enum class CouplingStatus {
+  kConverged,
+  kDiverged,
+  kMaxIterations,
+  kOutOfRange,
+  kNoDescent,
+  kComplianceFailed
+};
 const char* couplingStatusName(CouplingStatus s);
 
 struct CouplingResult {
   bool converged{false};
   CouplingStatus status{CouplingStatus::kMaxIterations};
-  int iterations{0};
-  double residual{0};  ///< last |δ^(k+1) − δ^(k)| [m]
-  double loop_gain{0};  ///< spectral radius of ∂(C∘F)/∂δ, max of the first and the final iterate
+  int iterations{0};         ///< Newton (or fixed-point) iterations
+  int evaluations{0};        ///< calls of the compliance C
+  double residual{0};        ///< |r(δ)| = |δ − C(F(δ))| at the returned δ [m]
+  double step{0};            ///< last |Δδ| [m]
+  double loop_gain{0};       ///< spectral radius of G = ∂(C∘F)/∂δ at the returned δ
   Vec3 delta{Vec3::Zero()};  ///< converged tool deflection [m]
   Vec3 force{Vec3::Zero()};  ///< force on the tool at δ [N]
   Vec3 force_nominal{Vec3::Zero()};
@@ -146,7 +174,8 @@ struct CouplingResult {
   CouplingState next;      ///< state to pass to the next path point
 };
 
-/// One path point: fixed-point iteration of δ = C(F(fz_i(δ), ae_i(δ))).
+/// One path point: solves δ = C(F(fz_i(δ), ae_i(δ))) with options.method. Never throws for a
+/// failing compliance: the status says so.
 CouplingResult coupleMillingPoint(const MillingModel& m, const ComplianceFunction& compliance,
                                   const CouplingState& state, const CouplingOptions& options = {});
 
@@ -154,5 +183,25 @@ CouplingResult coupleMillingPoint(const MillingModel& m, const ComplianceFunctio
 std::vector<CouplingResult> coupleMillingPath(
     const MillingModel& m, const std::vector<ComplianceFunction>& compliance_per_point,
     const CouplingOptions& options = {});
+
+/// The corrected revolution at a coupled point (docs/process.md §4.5): per cutter angle of tooth 0,
+/// the nominal force (cut fz, ae), the corrected force (fz_eff, ae_eff of the coupled point: the
+/// robot's deflection and the previous edge's uncut chip δprev) and the TCP movement
+/// C(F_corrected(φ)) — the quasi-static deflection under the instantaneous corrected force.
+struct CorrectedSample {
+  double angle{0};                  ///< [rad]
+  Vec3 nominal{Vec3::Zero()};       ///< [N], milling frame
+  Vec3 corrected{Vec3::Zero()};     ///< [N]
+  Vec3 tcp_movement{Vec3::Zero()};  ///< [m]
+};
+struct CorrectedRevolution {
+  bool ok{true};  ///< false when the compliance failed at some angle (movement then zero there)
+  std::vector<CorrectedSample> samples;
+  Vec3 mean_nominal{Vec3::Zero()}, mean_corrected{Vec3::Zero()};
+  double peak_nominal_xy{0}, peak_corrected_xy{0};  ///< [N]
+  double movement_range{0};  ///< max − min of |TCP movement| over the revolution [m]
+};
+CorrectedRevolution correctedRevolution(const MillingModel& m, const ComplianceFunction& compliance,
+                                        const CouplingResult& point);
 
 }  // namespace roprec

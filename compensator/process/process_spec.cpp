@@ -188,7 +188,7 @@ void parseDrilling(const XmlNode& proc, DrillingSpec& s) {
 }
 
 void parseMilling(const XmlNode& proc, MillingSpec& s) {
-  allowChildren(proc, {"mill", "cut", "material", "coefficients", "coupling"});
+  allowChildren(proc, {"mill", "cut", "material", "coefficients", "coupling", "stock"});
   const XmlNode& t = required(proc, "mill", "cutter geometry");
   allowOnly(t, {"diameter_mm", "teeth", "helix_angle_deg", "runout_mm", "runout_angle_deg"});
   s.tool.diameter = positive(t, "diameter_mm", 0, false) * kMm;
@@ -245,7 +245,7 @@ void parseMilling(const XmlNode& proc, MillingSpec& s) {
   }
   if (const XmlNode* cp = proc.child("coupling")) {
     allowOnly(*cp, {"tolerance_um", "max_iterations", "relaxation", "teeth_between_points",
-                    "point_spacing_mm", "compliance_um_per_N"});
+                    "point_spacing_mm", "compliance_um_per_N", "solver"});
     s.coupling.tolerance = positive(*cp, "tolerance_um", s.coupling.tolerance * 1e6, true) * 1e-6;
     const double it = cp->number("max_iterations", s.coupling.max_iterations);
     if (!(it >= 1 && it <= 10000 && it == std::floor(it)))
@@ -253,6 +253,10 @@ void parseMilling(const XmlNode& proc, MillingSpec& s) {
     s.coupling.max_iterations = static_cast<int>(it);
     s.coupling.relaxation = positive(*cp, "relaxation", 1.0, true);
     if (s.coupling.relaxation > 1) cp->fail("<coupling> relaxation must lie in (0, 1]");
+    const std::string solver = cp->str("solver", "newton");
+    if (solver != "newton" && solver != "fixed_point")
+      cp->fail("<coupling> solver must be 'newton' or 'fixed_point', got '" + solver + "'");
+    s.coupling.method = solver == "newton" ? CouplingMethod::kNewton : CouplingMethod::kFixedPoint;
     if (cp->has("teeth_between_points") && cp->has("point_spacing_mm")) {
       cp->fail("<coupling> give teeth_between_points or point_spacing_mm, not both");
     }
@@ -271,6 +275,13 @@ void parseMilling(const XmlNode& proc, MillingSpec& s) {
       C << v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8];
       s.compliance = C * 1e-6;
     }
+  }
+  if (const XmlNode* st = proc.child("stock")) {
+    allowOnly(*st, {"top_z_mm"});
+    if (!st->has("top_z_mm")) st->fail("<stock> needs top_z_mm");
+    const double z = st->number("top_z_mm");
+    if (!std::isfinite(z)) st->fail("<stock> top_z_mm must be a number");
+    s.stock_top_z = z * kMm;
   }
 }
 

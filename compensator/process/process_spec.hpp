@@ -24,7 +24,9 @@
 ///     <material name/>
 ///     <coefficients kc11_N_mm2 mc radial_ratio axial_ratio force_law="instantaneous|mean_chip"
 ///     source/> <coupling tolerance_um max_iterations relaxation teeth_between_points
-///     compliance_um_per_N="9 numbers"/>
+///     compliance_um_per_N="9 numbers" solver="newton|fixed_point"/>
+///     <stock top_z_mm/>   (optional: the stock's top face z = top_z in the workobject frame;
+///                          the cutting decision of docs/process.md §4.5)
 ///   </process>
 ///   <process type="wrench" force_N="fx fy fz" torque_Nm="mx my mz"/>   (on the TCP, tool frame)
 
@@ -68,7 +70,8 @@ struct MillingSpec {
   MeanForceLaw mean_law{MeanForceLaw::kInstantaneous};
   std::string coeff_source;
   CouplingOptions coupling;
-  std::optional<Mat3> compliance;  ///< [m/N] milling frame, from <coupling compliance_um_per_N>
+  std::optional<Mat3> compliance;     ///< [m/N] milling frame, from <coupling compliance_um_per_N>
+  std::optional<double> stock_top_z;  ///< [m] workobject frame, from <stock top_z_mm>
   int line{0};
 };
 

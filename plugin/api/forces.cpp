@@ -11,6 +11,7 @@
 #include "compensator/process/process_spec.hpp"
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
+#include "plugin/api/job.hpp"
 #include "plugin/api/robot_compliance.hpp"
 #include "plugin/api/robot_setup.hpp"
 
@@ -328,21 +329,53 @@ Json couplingPointJson(int index, const CouplingResult& r) {
   p.set("converged", Json::boolean(r.converged));
   p.set("status", Json::str(couplingStatusName(r.status)));
   p.set("iterations", Json::integer(r.iterations));
+  p.set("compliance_evaluations", Json::integer(r.evaluations));
   p.set("residual_um", Json::number(r.residual * 1e6, 5));
+  p.set("last_step_um", Json::number(r.step * 1e6, 5));
   p.set("loop_gain", Json::number(r.loop_gain, 4));
   p.set("deflection_um", vec3(r.delta * 1e6, 3));
   p.set("force_N", vec3(r.force, 2));
+  p.set("force_nominal_N", vec3(r.force_nominal, 2));
   p.set("fz_effective_mm", Json::number(r.fz_effective / kMm, 6));
   p.set("ae_effective_mm", Json::number(r.ae_effective / kMm, 6));
+  p.set("uncut_carried_mm", Json::number(r.next.uncut_prev / kMm, 6));
   return p;
 }
 
-/// The coupled force/deflection iteration over `points` path points with the cell's linear
-/// compliance or the robot's own (`robot`).
+/// The corrected revolution of the last coupled point (steady state) as CSV, and its summary.
+Json correctedRevolutionOf(const MillingModel& m, const ComplianceFunction& C,
+                           const CouplingResult& last, int point, std::string& csv) {
+  const CorrectedRevolution cr = correctedRevolution(m, C, last);
+  std::ostringstream c;
+  c << "angle_deg,Fx_nom_N,Fy_nom_N,Fz_nom_N,Fxy_nom_N,Fx_N,Fy_N,Fz_N,Fxy_N,dx_um,dy_um,dz_um\n";
+  for (const CorrectedSample& s : cr.samples) {
+    c << fixed(s.angle / kDeg, 3) << ',' << fixed(s.nominal.x(), 3) << ','
+      << fixed(s.nominal.y(), 3) << ',' << fixed(s.nominal.z(), 3) << ','
+      << fixed(s.nominal.head<2>().norm(), 3) << ',' << fixed(s.corrected.x(), 3) << ','
+      << fixed(s.corrected.y(), 3) << ',' << fixed(s.corrected.z(), 3) << ','
+      << fixed(s.corrected.head<2>().norm(), 3) << ',' << fixed(s.tcp_movement.x() * 1e6, 4) << ','
+      << fixed(s.tcp_movement.y() * 1e6, 4) << ',' << fixed(s.tcp_movement.z() * 1e6, 4) << '\n';
+  }
+  csv = c.str();
+  Json j = Json::object();
+  j.set("point", Json::integer(point));
+  j.set("mean_nominal_N", vec3(cr.mean_nominal, 2));
+  j.set("mean_corrected_N", vec3(cr.mean_corrected, 2));
+  j.set("peak_xy_nominal_N", Json::number(cr.peak_nominal_xy, 2));
+  j.set("peak_xy_corrected_N", Json::number(cr.peak_corrected_xy, 2));
+  j.set("tcp_movement_range_um", Json::number(cr.movement_range * 1e6, 3));
+  j.set("compliance_ok", Json::boolean(cr.ok));
+  return j;
+}
+
+/// The coupled force/deflection solve over `points` path points with the cell's linear
+/// compliance or the robot's own (`robot`); the CSV becomes the corrected revolution of the last
+/// point.
 Json millingCoupling(const MillingModel& m, const MillingSpec& s, int points,
-                     const std::optional<ComplianceFunction>& robot, bool& converged) {
-  const std::vector<ComplianceFunction> path(static_cast<size_t>(points),
-                                             robot ? *robot : linearCompliance(*s.compliance));
+                     const std::optional<ComplianceFunction>& robot, bool& converged,
+                     std::string& csv) {
+  const ComplianceFunction C = robot ? *robot : linearCompliance(*s.compliance);
+  const std::vector<ComplianceFunction> path(static_cast<size_t>(points), C);
   const std::vector<CouplingResult> res = coupleMillingPath(m, path, s.coupling);
   Json cp = Json::object();
   if (robot) {
@@ -353,6 +386,7 @@ Json millingCoupling(const MillingModel& m, const MillingSpec& s, int points,
     cp.set("compliance_um_per_N",
            Json::vector(Eigen::Map<const Eigen::VectorXd>(row_major.data(), 9) * 1e6, 5));
   }
+  cp.set("solver", Json::str(couplingMethodName(s.coupling.method)));
   cp.set("tolerance_um", Json::number(s.coupling.tolerance * 1e6, 4));
   cp.set("relaxation", Json::number(s.coupling.relaxation, 3));
   Json pts = Json::array();
@@ -362,7 +396,48 @@ Json millingCoupling(const MillingModel& m, const MillingSpec& s, int points,
     if (!r.converged) converged = false;
   }
   cp.set("points", pts);
+  cp.set("corrected_revolution", correctedRevolutionOf(m, C, res.back(), idx - 1, csv));
   return cp;
+}
+
+/// `--program`: every linear point of the program, the cutting decision and the coupled solve
+/// with the robot's compliance at the point (uncompensated: status, iterations, residual_um,
+/// force_N, deviation_um), and the compensated point ("compensated").
+Json millingPath(const ForcesRequest& req, bool& converged) {
+  const MillingCompensationResult r = compensateMillingJob(req.cell, *req.program);
+  const postproc::Program& prog = *r.context.job.program;
+  Json pts = Json::array();
+  for (size_t i = 0; i < r.points_comp.size(); ++i) {
+    const PathPointCompensation& p = r.points_comp[i];
+    const postproc::Target& t = prog.targets()[static_cast<size_t>(r.targets[i])];
+    Json j = Json::object();
+    j.set("point", Json::integer(static_cast<std::int64_t>(i + 1)));
+    j.set("line", Json::integer(t.line));
+    j.set("cutting", Json::boolean(p.cutting));
+    j.set("cutting_reason", Json::str(p.cutting_reason));
+    const bool before_ok = !p.cutting || p.before_status == "converged";
+    j.set("status", Json::str(p.before_status));
+    j.set("iterations", Json::integer(p.before_iterations));
+    j.set("residual_um", Json::number(p.before_residual * 1e6, 5));
+    j.set("loop_gain", Json::number(p.before_loop_gain, 4));
+    j.set("force_N", vec3(p.before_force, 2));
+    j.set("deviation_um", vec3(p.deviation_before * 1e6, 3));
+    Json c = Json::object();
+    c.set("ok", Json::boolean(p.ok));
+    if (!p.ok) c.set("reason", Json::str(p.reason));
+    c.set("status", Json::str(p.coupling_status));
+    c.set("iterations", Json::integer(p.coupling_iterations));
+    c.set("residual_um", Json::number(p.coupling_residual * 1e6, 5));
+    c.set("force_N", vec3(p.force, 2));
+    c.set("predicted_residual_um", Json::number(p.residual.norm() * 1e6, 4));
+    j.set("compensated", c);
+    pts.push(j);
+    if (!before_ok || !p.ok) converged = false;
+  }
+  Json path = Json::object();
+  path.set("program", Json::str(*req.program));
+  path.set("points", pts);
+  return path;
 }
 
 /// The cell robot's own deflection at `joints` as the coupling's compliance.
@@ -393,7 +468,8 @@ void millingForcesOf(const CellSpec& cell, const MillingSpec& s, const ForcesReq
   root.set("immersion", immersionJson(s));
   root.set("steady", millingSteady(m, s, out.curve_csv));
   if (s.compliance || robot)
-    root.set("coupling", millingCoupling(m, s, req.points, robot, out.converged));
+    root.set("coupling", millingCoupling(m, s, req.points, robot, out.converged, out.curve_csv));
+  if (req.program) root.set("path", millingPath(req, out.converged));
 }
 
 // ---------------------------------------------------------------- wrench
@@ -420,6 +496,9 @@ ForcesResult processForces(const ForcesRequest& request) {
   if (request.calibrate && spec.type != ProcessType::kDrilling) {
     throw InputError(cell.file, cell.process.line,
                      "--calibrate needs a <process type=\"drilling\">");
+  }
+  if (request.program && spec.type != ProcessType::kMilling) {
+    throw InputError(cell.file, cell.process.line, "--program needs a <process type=\"milling\">");
   }
   if (request.calibrated_cell && !request.calibrate) {
     throw UsageError("-o/--o writes the calibrated cell: use it with --calibrate");

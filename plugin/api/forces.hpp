@@ -3,8 +3,10 @@
 /// The process forces of a cell alone (`roprec forces`): drilling (steady thrust, torque, runout
 /// force, per-lip forces, the wrench on the TCP, the machining-deviation budget, the curve over
 /// depth, the axial feed coupling, single-test calibration of kst0/ksa0), milling (immersion,
-/// mean and peak forces over a revolution, the coupled force/deflection iteration along a path,
-/// optionally with the robot's own compliance at a pose) or a given wrench.
+/// mean and peak forces over a revolution, the coupled force/deflection solve along a path,
+/// optionally with the robot's own compliance at a pose, the corrected revolution — nominal vs
+/// coupled force and TCP movement — and, with a program, the per-point cutting decision and coupled
+/// solve along the program's path; docs/process.md §4.4–4.5) or a given wrench.
 ///
 /// Units: SI in the structs (m, N, N·m, m/N); JSON and CSV in mm, µm, N, N·m, deg, N/mm², kW.
 /// Frames: drilling tool frame z = drill axis into the material, forces on the TCP; milling frame
@@ -39,6 +41,8 @@ struct ForcesRequest {
   bool curve{false};            ///< the caller wants the curve (a wrench process has none)
   std::optional<nc::Vec6>
       joints;  ///< milling: couple with the cell robot's compliance here (URDF, rad)
+  std::optional<std::string>
+      program;  ///< milling: every linear point of this program (cutting decision, coupled solve)
 };
 
 struct ForcesResult {
@@ -46,11 +50,12 @@ struct ForcesResult {
   /// axial_coupling, max_over_depth, machining_deviation; milling: joints_deg, frame, mill, cut,
   /// coefficients, immersion, steady, coupling; wrench: wrench_tool.
   Json json;
-  std::string
-      curve_csv;  ///< drilling: over depth (or per revolution); milling: over one revolution
+  std::string curve_csv;  ///< drilling: over depth (or per revolution); milling: over one
+                          ///< revolution (with a coupling: nominal and corrected, TCP movement)
   std::string
       calibrated_cell;   ///< the cell's text with calibrated <coefficients> (calibrated_cell)
-  bool converged{true};  ///< every coupled point (axial or milling coupling) converged
+  bool converged{true};  ///< every coupled point (axial or milling coupling, program path)
+                         ///< converged
 };
 
 /// Computes the forces of the cell's process; the robot is loaded only for `joints`.

@@ -146,6 +146,7 @@ MillingCompensationResult compensateMillingJob(const std::string& cell_path,
   postproc::Program& prog = *r.context.job.program;
   prog.position_min_decimals = 5;
   std::vector<Pose> frame;  // T_W_frame per point
+  std::vector<MillingPathPoint> path;
   std::vector<bool> seen(prog.targets().size(), false);
   for (const postproc::Motion& mo : prog.motions) {
     if (mo.type != postproc::MotionType::kLinear || mo.target < 0 || !mo.derivation.empty())
@@ -162,12 +163,14 @@ MillingCompensationResult compensateMillingJob(const std::string& cell_path,
     r.targets.push_back(mo.target);
     frame.push_back(T_W_frame);
     r.points.push_back(T_W_frame * postproc::targetPose(prog, t));
+    path.push_back({r.points.back(), mo.speed_mm_s >= 0 ? mo.speed_mm_s * 1e-3 : -1.0});
   }
   if (r.points.empty()) {
     throw InputError(program_path, 0,
                      "no linear path points (LIN/MoveL/L to Cartesian targets) in the program");
   }
-  r.points_comp = compensateMillingPath(r.context.model, r.points);
+  r.cutting = decideCutting(r.context.model.process.milling, r.context.cell.T_base_wobj, path);
+  r.points_comp = compensateMillingPath(r.context.model, r.points, &r.cutting);
   for (size_t i = 0; i < r.points_comp.size(); ++i) {
     const postproc::Target& t = prog.targets()[static_cast<size_t>(r.targets[i])];
     const PathPointCompensation& p = r.points_comp[i];

@@ -93,8 +93,9 @@ CompensationResult compensateJob(const std::string& cell_path, const std::string
 /// Milling path compensation (every linear path point, coupled force iteration).
 struct MillingCompensationResult {
   PredictionContext context;
-  std::vector<int> targets;  ///< program target per point
-  std::vector<Pose> points;  ///< nominal TCP, base frame
+  std::vector<int> targets;              ///< program target per point
+  std::vector<Pose> points;              ///< nominal TCP, base frame
+  std::vector<CuttingDecision> cutting;  ///< per point: cuts or not, and why (§4.5)
   std::vector<PathPointCompensation> points_comp;
   std::vector<std::string> failures;  ///< "path point N (FILE:LINE): not compensated: why"
   std::vector<std::string> refused;

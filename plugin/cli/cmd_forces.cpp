@@ -79,6 +79,7 @@ int run(Args& args, CommandContext& ctx) {
   const auto points = args.option("points");
   const auto axial = args.option("axial-compliance-um-per-N");
   const auto joints = args.option("joints");
+  const auto program = args.option("program");
   args.finish();
   if (!cell_path) throw UsageError("give --cell CELL.xml");
   ForcesRequest req;
@@ -87,6 +88,7 @@ int run(Args& args, CommandContext& ctx) {
   if (calibrate) req.calibrate = parseCalibration(*calibrate);
   if (joints && cellIsMilling(req.cell))
     req.joints = parseJointsDeg(*joints);  // read for milling only
+  req.program = program;
   req.calibrated_cell = out_xml.has_value();
   req.curve = csv_path.has_value();
 
@@ -107,7 +109,8 @@ const CommandRegistration reg{
      "usage: roprec forces --cell CELL.xml [--csv F.csv] [--json F.json] [--step-mm S]\n"
      "                     [--calibrate \"Fa_N=... M_Nm=...\" [--o|--output OUT.xml]] [--points "
      "N]\n"
-     "                     [--axial-compliance-um-per-N C] [--joints \"j1 .. j6\"]\n\n"
+     "                     [--axial-compliance-um-per-N C] [--joints \"j1 .. j6\"] [--program "
+     "P.src]\n\n"
      "Computes the process forces of the cell's <process> (the robot is loaded only with "
      "--joints).\n"
      "  drilling: steady thrust, torque, rotating runout force Fr, per-lip forces, chisel share, "
@@ -119,13 +122,20 @@ const CommandRegistration reg{
      "            Fa_N, Ft_N, M_Nm, Fr_N through entry, steady cut and breakthrough.\n"
      "  milling:  immersion, h_m, revolution-mean and peak forces; --csv writes angle_deg, Fx_N, "
      "Fy_N,\n"
-     "            Fz_N, Fxy_N over one revolution; with <coupling compliance_um_per_N=...> the "
-     "coupled\n"
-     "            iteration over --points path points (default 10), per point "
-     "converged/iterations;\n"
-     "            --joints (deg): the coupling's compliance is the cell robot's own deflection at "
-     "that pose\n"
-     "            (nonlinear joint-compliance equilibrium, feed along tool x).\n"
+     "            Fz_N, Fxy_N over one revolution. With <coupling compliance_um_per_N=...> or "
+     "--joints (deg:\n"
+     "            the cell robot's own deflection at that pose) the coupled force/deflection "
+     "solve (Newton on\n"
+     "            r = delta - C(F(delta)), line search) over --points path points (default 10): "
+     "per "
+     "point status,\n"
+     "            iterations, residual_um, loop_gain; --csv then writes vs the edge angle the "
+     "nominal and the\n"
+     "            corrected force (Fx/Fy/Fz/Fxy _nom_N and _N) and the TCP movement dx/dy/dz_um of "
+     "the last point.\n"
+     "            --program P.src: every linear point of the program: cutting true/false and why "
+     "(speed, depth\n"
+     "            vs <stock top_z_mm>), the coupled solve with the robot at the point.\n"
      "  wrench:   echoes the given tool-frame wrench.\n"
      "--axial-compliance-um-per-N (drilling): the feed absorbed by an axial compliance C at the "
      "TCP, one\n"
@@ -136,7 +146,9 @@ const CommandRegistration reg{
      "diameter and\n"
      "feed; --o OUT.xml writes a copy of the cell with the calibrated <coefficients> "
      "(atomically).\n"
-     "Exit 0 done; 1 some coupled points did not converge; 2 bad input (nothing written).\n",
+     "Exit 0 done; 1 some coupled points did not converge (listed with their status); 2 bad "
+     "input (nothing\n"
+     "written).\n",
      40, run}};
 
 }  // namespace
