@@ -14,11 +14,16 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <stdexcept>
 
 #include "compensator/precision/cell.hpp"
+#include "compensator/process/drilling_forces.hpp"
 #include "compensator/process/process_load.hpp"
+#include "compensator/process/process_spec.hpp"
 #include "compensator/robot/robot_card.hpp"
 #include "compensator/robot/urdf_loader.hpp"
 #include "tests/support/test_support.hpp"
@@ -80,7 +85,7 @@ void checkSteadyState(bool integral) {
   opt.rtol = 1e-9;
   opt.sample = 0.05;
   nc::TransientSimulator sim(p, cycle, opt);
-  EXPECT_EQ(sim.stateSize(), integral ? 30 : 24);
+  EXPECT_EQ(sim.stateSize(), integral ? 31 : 25);
   const nc::TransientResult r = sim.run(0.0, sim.commandState(), 4.0);
   ASSERT_TRUE(r.ok) << r.message;
 
@@ -282,7 +287,7 @@ struct InjectedFailure : std::runtime_error {
 class FailingProcess final : public nc::ProcessCycle {
  public:
   FailingProcess(double t_fail, bool throw_it) : t_fail_(t_fail), throw_(throw_it) {}
-  void sample(double t, nc::ProcessSample& out) override {
+  void sample(double t, const nc::TipState& /*x*/, nc::ProcessSample& out) override {
     out = nc::ProcessSample{};
     if (t < t_fail_) return;
     if (throw_) throw InjectedFailure("injected failure at t = " + std::to_string(t));
@@ -363,53 +368,463 @@ TEST(Transient, RightHandSideDoesNotAllocate) {
   const ProcessSpec ps = parseProcess(cell.process);
   auto cycle = nc::makeProcessCycle(ps, {}, true);
   nc::TransientSimulator sim(p, *cycle, {});
-  const Eigen::VectorXd y0 = sim.equilibriumState(0.0);
+  Eigen::VectorXd y0 = sim.equilibriumState(0.0);
+  const int contact[3] = {1, 0, 0};
+  cycle->onEvents(0.1, nc::TipState{}, contact);  // cutting mode (the run latches it at contact)
+  Eigen::VectorXd y1 = y0;
+  y0[y0.size() - 1] = 2e-3;  // D in the entry
+  y1[y1.size() - 1] = 8e-3;  // D in full engagement
   Eigen::VectorXd yd(y0.size());
   ASSERT_EQ(sim.rhs(0.3, y0.data(), yd.data()), 0);  // warm up (entry)
   Eigen::internal::set_is_malloc_allowed(false);
   const int a = sim.rhs(0.35, y0.data(), yd.data());
-  const int b = sim.rhs(0.9, y0.data(), yd.data());  // full engagement
+  const double entry_thrust_rate = yd[y0.size() - 1];
+  const int b = sim.rhs(0.9, y1.data(), yd.data());  // full engagement
   Eigen::internal::set_is_malloc_allowed(true);
   EXPECT_EQ(a, 0);
   EXPECT_EQ(b, 0);
   EXPECT_TRUE(yd.allFinite());
+  // at rest the tip advances at the feed rate: Ḋ = f n/60
+  EXPECT_NEAR(entry_thrust_rate, ps.drilling.feed * ps.drilling.spindle_rpm / 60.0, 1e-12);
 }
 
+/// The process law alone: with the arm rigid (u = u̇ = 0) and the tip at the bottom (D = s), the
+/// coupled law reduces to the kinematic one, h = f, the steady load of `roprec deflect`.
 TEST(Transient, DrillingCyclePhasesAndLoads) {
   const CellSpec cell = loadCell(test::sourceDir() + "/samples/cells/alu-drilling-6061.xml");
   const ProcessSpec ps = parseProcess(cell.process);
   nc::CycleTiming tm;
   nc::DrillingCycle c(ps.drilling, tm, false);
+  c.reset();
   const SteadyProcessLoad steady = steadyProcessLoad(ps);
+  const double v = c.feedRate();
   nc::ProcessSample s;
-  c.sample(0.05, s);
+  nc::TipState x;
+  c.sample(0.05, x, s);
   EXPECT_EQ(s.phase, nc::CyclePhase::kApproach);
   EXPECT_EQ(s.wrench.force.norm(), 0.0);
-  // full engagement: the steady load of `roprec deflect`
-  const double v = c.feedRate();
+  EXPECT_NEAR(s.tip, v * (0.05 - tm.approach), 1e-15);
+  // contact: g0 = s − D rises through 0 at t_c
+  double g[3];
+  c.eventFunctions(tm.approach - 1e-3, x, g);
+  EXPECT_LT(g[0], 0.0);
+  c.eventFunctions(tm.approach + 1e-3, x, g);
+  EXPECT_GT(g[0], 0.0);
+  const int contact[3] = {1, 0, 0};
+  c.onEvents(tm.approach, x, contact);
+  EXPECT_DOUBLE_EQ(c.firstContact(), tm.approach);
+  // full engagement at the programmed feed
   const double depth_full = 6e-3;  // beyond (R − a)/tan p for the 10 mm, 118° drill
-  c.sample(tm.approach + depth_full / v, s);
+  x.depth = depth_full;
+  c.sample(tm.approach + depth_full / v, x, s);
   EXPECT_EQ(s.phase, nc::CyclePhase::kFull);
+  EXPECT_TRUE(s.cutting);
+  EXPECT_NEAR(s.feed_per_rev, ps.drilling.feed, 1e-15);
+  EXPECT_NEAR(s.depth_rate, v, 1e-15);
   EXPECT_NEAR(s.wrench.force.z(), steady.wrench.force.z(),
               1e-9 * std::abs(steady.wrench.force.z()));
   EXPECT_NEAR(s.wrench.torque.z(), steady.wrench.torque.z(),
               1e-9 * std::abs(steady.wrench.torque.z()));
-  EXPECT_NEAR(s.depth, depth_full, 1e-12);
-  // entry: partial load, growing
+  // the arm pushed back at half the feed rate: half the feed per rev, less thrust (∝ h^(1−m))
+  nc::TipState back = x;
+  back.axial_rate = -0.5 * v;
+  nc::ProcessSample half;
+  c.sample(tm.approach + depth_full / v, back, half);
+  EXPECT_NEAR(half.feed_per_rev, 0.5 * ps.drilling.feed, 1e-15);
+  EXPECT_LT(half.Fa, s.Fa);
+  EXPECT_GT(half.Fa, 0.5 * s.Fa);  // the size effect: kc grows as h falls
+  // pushed back faster than the feed: no advance, no force (the tip does not cut backwards)
+  back.axial_rate = -1.5 * v;
+  c.sample(tm.approach + depth_full / v, back, half);
+  EXPECT_EQ(half.depth_rate, 0.0);
+  EXPECT_EQ(half.Fa, 0.0);
+  // entry: partial load, growing with the cut depth D
   nc::ProcessSample s1, s2;
-  c.sample(tm.approach + 1e-3 / v, s1);
-  c.sample(tm.approach + 2e-3 / v, s2);
+  x.depth = 1e-3;
+  c.sample(tm.approach + 1e-3 / v, x, s1);
+  x.depth = 2e-3;
+  c.sample(tm.approach + 2e-3 / v, x, s2);
   EXPECT_EQ(s1.phase, nc::CyclePhase::kEntry);
   EXPECT_GT(s1.Fa, 0.0);
   EXPECT_LT(s1.Fa, s2.Fa);
   EXPECT_LT(s2.Fa, s.Fa);
-  // through hole: the load has vanished before the end of the feed, retract is unloaded
-  c.sample(c.duration() - 1e-3, s);
+  // through hole: the exit event ends the cut, then the retract is unloaded
+  x.depth = c.endDepth();
+  c.eventFunctions(c.feedEndTime() - 1e-3, x, g);
+  EXPECT_GT(g[2], 0.0);
+  const int exit[3] = {0, 0, 1};
+  c.onEvents(c.feedEndTime() - 1e-3, x, exit);
+  c.sample(c.feedEndTime(), x, s);
   EXPECT_EQ(s.phase, nc::CyclePhase::kRetract);
   EXPECT_EQ(s.wrench.force.norm(), 0.0);
+  EXPECT_NEAR(c.endTime(), c.feedEndTime() - 1e-3 + tm.retract, 1e-12);
   const auto bp = c.breakpoints();
   EXPECT_TRUE(std::is_sorted(bp.begin(), bp.end()));
-  EXPECT_GE(bp.size(), 4u);
+  EXPECT_GE(bp.size(), 3u);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The drilling cycle coupled to the real penetration
+
+/// With the load held constant the transient settles onto the static deflection of
+/// predictDeflection (same compliance, follower load, gravity) within 0.1 µm, with the card's
+/// estimated damping (5 %); `settling` reports the time after which every sample stays in the
+/// 0.1 µm band, checked here sample by sample.
+TEST(Transient, HeldLoadSettlesToStaticDeflectionAndSettlingTimeMatchesSamples) {
+  const Kuka& k = kuka();
+  nc::TransientProblem p;
+  p.model = &k.model;
+  p.drive = kukaDrive(true, nc::DriveEstimateOptions{}.damping_ratio);
+  p.theta_cmd = k.q;
+  nc::CycleTiming tm;
+  tm.approach = 0.05;
+  tm.ramp = 0.02;
+  tm.hold = 6.0;
+  tm.retract = 0.0;
+  ToolWrench w;
+  w.force = Vec3(30.0, -20.0, -1500.0);
+  w.torque = Vec3(0.0, 0.0, -3.0);
+  nc::StepWrenchCycle cycle(w, tm);
+  nc::TransientOptions opt;
+  opt.sample = 2e-3;
+  nc::TransientSimulator sim(p, cycle, opt);
+  const nc::TransientResult r = sim.run(0.0, sim.equilibriumState(0.0), cycle.holdEnd());
+  ASSERT_TRUE(r.ok) << r.message;
+  nc::Data data(k.model);
+  nc::Loads loads;
+  loads.tcp_tool.force = w.force;
+  loads.tcp_tool.moment = w.torque;
+  const nc::Deflection d =
+      nc::predictDeflection(k.model, data, p.drive.staticCompliance(), k.q, loads);
+  ASSERT_TRUE(d.converged);
+  EXPECT_LE((r.samples.back().dp - d.dp).norm(), 0.1e-6);
+  const double tol = 0.1e-6;
+  const nc::Settling st = nc::settling(r.samples, d.dp, cycle.holdStart(), cycle.holdEnd(), tol);
+  ASSERT_TRUE(st.settled);
+  // independent scan: every sample from t_s on is in the band, the one before is not
+  bool before_outside = false;
+  for (size_t i = 0; i < r.samples.size(); ++i) {
+    const nc::TransientSample& smp = r.samples[i];
+    if (smp.t >= st.at - 1e-12) {
+      EXPECT_LE((smp.dp - d.dp).norm(), tol) << "t = " << smp.t;
+    } else if (i + 1 < r.samples.size() && r.samples[i + 1].t >= st.at - 1e-12) {
+      before_outside = (smp.dp - d.dp).norm() > tol;
+    }
+  }
+  EXPECT_TRUE(before_outside);
+  EXPECT_NEAR(st.time, st.at - cycle.holdStart(), 1e-12);
+  EXPECT_GT(st.time, 0.05);  // a real transient (the load moved the TCP by > 1 mm)
+  EXPECT_GT(st.initial_error, 100e-6);
+  // the equivalent damping reproduces the settling time: A0 e^{−ζωT} = tol
+  ASSERT_GT(st.frequency_hz, 0.0);
+  const double omega = 2 * kPi * st.frequency_hz;
+  EXPECT_NEAR(st.initial_error * std::exp(-st.damping_ratio * omega * st.time), tol, 1e-12);
+  std::printf(
+      "held load: settled to 0.1 um in %.3f s (A0 %.1f um, %.2f Hz, equivalent zeta %.4f, "
+      "joint zeta estimate %.2f)\n",
+      st.time, st.initial_error * 1e6, st.frequency_hz, st.damping_ratio,
+      nc::DriveEstimateOptions{}.damping_ratio);
+}
+
+ProcessSpec sampleDrilling() {
+  const CellSpec cell = loadCell(test::sourceDir() + "/samples/cells/alu-drilling-6061.xml");
+  return parseProcess(cell.process);
+}
+
+/// Checks every sample of a coupled drilling run: the tip never goes back while thrust acts,
+/// never goes below the cut depth, and cuts at the real feed (h = Ḋ/n, D = s while cutting).
+void checkPenetration(const nc::TransientResult& r, const nc::DrillingCycle& c) {
+  ASSERT_TRUE(r.ok) << r.message << " at t = " << r.t_reached;
+  int cutting = 0;
+  for (size_t i = 0; i < r.samples.size(); ++i) {
+    const nc::ProcessSample& s = r.samples[i].process;
+    EXPECT_LE(s.tip, s.depth + 1e-9)
+        << "the tip is below the material removed, t = " << r.samples[i].t;
+    EXPECT_GE(s.depth_rate, 0.0);
+    if (s.Fa > 0.0) {
+      ++cutting;
+      EXPECT_TRUE(s.cutting);
+      EXPECT_GT(s.depth_rate, 0.0);
+      EXPECT_NEAR(s.tip, s.depth, 1e-9) << "cutting with the tip off the bottom";
+      EXPECT_NEAR(s.feed_per_rev, s.depth_rate / c.revolutionsPerSecond(), 1e-15);
+      EXPECT_NEAR(s.depth_rate,
+                  c.feedRate() * (r.samples[i].t < c.feedEndTime() ? 1.0 : 0.0) + s.axial_rate,
+                  1e-12);
+      if (i > 0 && r.samples[i - 1].process.Fa > 0.0) {
+        EXPECT_GE(s.tip - r.samples[i - 1].process.tip, -1e-12)
+            << "the tip moved back under thrust at t = " << r.samples[i].t;
+      }
+    }
+  }
+  EXPECT_GT(cutting, 100);
+}
+
+/// Through hole of the sample cell on the KR 120: the thrust builds with the penetration, reaches
+/// the steady value at the programmed feed once the deflection stops growing, collapses at the
+/// breakthrough; the cut ends when the corner leaves the plate.
+TEST(Transient, DrillingTipNeverRetreatsUnderThrustThroughHole) {
+  const Kuka& k = kuka();
+  nc::TransientProblem p;
+  p.model = &k.model;
+  p.drive = kukaDrive(true, 0.05);
+  p.theta_cmd = k.q;
+  const ProcessSpec ps = sampleDrilling();
+  nc::DrillingCycle c(ps.drilling, {}, false);
+  nc::TransientOptions opt;
+  opt.stop_at_cycle_end = true;
+  const nc::TransientResult r = nc::simulateCycle(p, c, opt);
+  checkPenetration(r, c);
+  EXPECT_NEAR(c.firstContact(), c.contactTime(), 1e-6);  // at rest the tip touches at t_c
+  ASSERT_GT(c.cutEnd(), c.firstContact());
+  EXPECT_LT(c.cutEnd(), c.feedEndTime());  // the corner left before the feed stopped
+  EXPECT_NEAR(r.samples.back().process.depth,
+              ps.drilling.hole_depth +
+                  (ps.drilling.geometry.radius() - ps.drilling.geometry.chiselHalfLength()) /
+                      std::tan(ps.drilling.geometry.halfPoint()),
+              1e-9);
+  const double steady = steadyProcessLoad(ps).wrench.force.z();  // −thrust
+  double fa_max = 0.0;
+  double lag_max = 0.0;
+  const nc::ProcessSample* last_full = nullptr;
+  for (const nc::TransientSample& smp : r.samples) {
+    fa_max = std::max(fa_max, smp.process.Fa);
+    if (smp.process.phase == nc::CyclePhase::kFull) last_full = &smp.process;
+    if (smp.process.cutting)
+      lag_max = std::max(lag_max, smp.process.feed_position - smp.process.depth);
+    if (smp.t > c.cutEnd() + 1e-9) EXPECT_EQ(smp.process.Fa, 0.0);
+  }
+  ASSERT_NE(last_full, nullptr);
+  // steady state: the deflection is constant, so the tip advances at the feed and the thrust is
+  // the one of the programmed feed (the static model's load)
+  EXPECT_NEAR(last_full->Fa, -steady, 1e-3 * -steady);
+  EXPECT_NEAR(last_full->feed_per_rev, ps.drilling.feed, 1e-3 * ps.drilling.feed);
+  // the lag of the tip behind the spindle is the axial deflection (hundreds of µm at 1.5 kN)
+  EXPECT_NEAR(last_full->feed_position - last_full->depth, -last_full->axial, 1e-9);
+  EXPECT_GT(lag_max, 100e-6);
+  EXPECT_LT(fa_max, 1.05 * -steady);  // no impact peak: the cut builds with the penetration
+  std::printf("through hole: max thrust %.1f N (steady %.1f N), max lag %.1f um, cut end %.4f s\n",
+              fa_max, -steady, lag_max * 1e6, c.cutEnd());
+}
+
+/// Blind hole: after the feed stops the recovering arm keeps cutting; the thrust decays with the
+/// real advance (monotonically once the arm has taken over the feed) until the feed per rev falls
+/// below 1 % of f; then the retract.
+TEST(Transient, DrillingDwellThrustDecaysWithTheRealAdvanceBlindHole) {
+  const Kuka& k = kuka();
+  nc::TransientProblem p;
+  p.model = &k.model;
+  p.drive = kukaDrive(true, 0.05);
+  p.theta_cmd = k.q;
+  ProcessSpec ps = sampleDrilling();
+  ps.drilling.through = false;
+  ps.drilling.hole_depth = 6e-3;
+  nc::DrillingCycle c(ps.drilling, {}, false);
+  nc::TransientOptions opt;
+  opt.stop_at_cycle_end = true;
+  const nc::TransientResult r = nc::simulateCycle(p, c, opt);
+  checkPenetration(r, c);
+  ASSERT_GT(c.cutEnd(), c.feedEndTime());
+  const double t_check = c.feedEndTime() + 0.1;
+  double prev = std::numeric_limits<double>::infinity();
+  double d_prev = 0.0;
+  int decaying = 0;
+  const nc::ProcessSample* at_end = nullptr;
+  for (const nc::TransientSample& smp : r.samples) {
+    if (smp.t < t_check || smp.t > c.cutEnd()) continue;
+    EXPECT_LE(smp.process.Fa, prev + 1e-6) << "t = " << smp.t;
+    EXPECT_GE(smp.process.depth, d_prev);
+    prev = smp.process.Fa;
+    d_prev = smp.process.depth;
+    at_end = &smp.process;
+    ++decaying;
+  }
+  EXPECT_GT(decaying, 50);
+  ASSERT_NE(at_end, nullptr);
+  // the cut ended at the stated threshold: h ≈ 1 % of f (1 ms before the event)
+  EXPECT_LT(at_end->feed_per_rev, 0.02 * ps.drilling.feed);
+  EXPECT_GT(at_end->feed_per_rev, c.cutEndFeed());
+  // the material removed is the commanded depth to within the deflection left at the end of the
+  // cut (the PI servo lags the decaying load: the arm may overshoot the command by some µm)
+  EXPECT_NEAR(r.samples.back().process.depth, ps.drilling.hole_depth, 50e-6);
+  std::printf("blind hole: dwell %.3f s until h < %.4f mm/rev, depth %+.2f um from the command\n",
+              c.cutEnd() - c.feedEndTime(), c.cutEndFeed() * 1e3,
+              (r.samples.back().process.depth - ps.drilling.hole_depth) * 1e6);
+}
+
+/// One axial degree of freedom: the single massive link (50 kg at 1 m) on joint 2, the other
+/// joints locked, motor held (ideal servo), no damping, no gravity; the drill axis along the TCP's
+/// path. Axially: m ü + k u = −F_a with m = J/L², k = k_2/L² (L: TCP lever). A cutting law linear
+/// in the feed (size-effect exponents m_t = m_a = 0: Fz = C h, h = ṡ/n) makes the thrust a damper
+/// F = c ṡ, c = C/n. In the dwell (ṗ_c = 0, ṡ = u̇): m ü + c u̇ + k u = 0, overdamped; after the
+/// fast mode (rate c/m) the thrust F = c u̇ decays as e^{λt}, λ = (−c + √(c² − 4mk))/(2m)
+/// (≈ −k/c: time constant τ = c/k = C/(k n), cutting "stiffness" per rev vs the spring).
+struct OneDof {
+  ChainDescription chain;
+  nc::Model model;
+  nc::TransientProblem p;
+  double L{0.0}, J{0.0}, m{0.0}, k_ax{0.0};
+  OneDof() : chain(loadUrdfChain(test::sourceDir() + "/tests/data/single_link_6r.urdf")) {
+    Vec6 q;
+    q << 0.2, 0.3, -0.4, 0.1, 0.5, -0.2;
+    const nc::Model bare = nc::buildModel(chain);
+    nc::Data d(bare);
+    nc::forwardKinematics(bare, d, q);
+    const Vec3 v = nc::tcpJacobian(bare, d).block<3, 1>(0, 1);  // TCP velocity per rad of joint 2
+    L = v.norm();
+    const Vec3 z = v / L;
+    Vec3 x = Vec3::UnitX() - Vec3::UnitX().dot(z) * z;
+    x.normalize();
+    Mat3 Rt;
+    Rt << x, z.cross(x), z;
+    nc::ToolAttachment tool;
+    tool.T_flange_tcp.linear() = d.T_W_flange.linear().transpose() * Rt;
+    model = nc::buildModel(chain, tool);
+    nc::Data d2(model);
+    nc::solvePosition(model, d2, q);
+    J = nc::jointSpaceInertia(model, d2)(1, 1);
+    const double k2 = 4e6;
+    m = J / (L * L);
+    k_ax = k2 / (L * L);
+    p.model = &model;
+    p.drive.servo = nc::ServoMode::kIdeal;
+    p.drive.k = Vec6::Constant(1e6);
+    p.drive.k[1] = k2;
+    p.drive.damping.setZero();
+    p.drive.locked = {true, false, true, true, true, true};
+    p.gravity = false;
+    p.theta_cmd = q;
+  }
+};
+
+DrillingSpec linearDrill() {
+  DrillingSpec d = sampleDrilling().drilling;
+  d.coeff.tangential.m = 0.0;
+  d.coeff.axial.m = 0.0;
+  d.geometry.runout = 0.0;
+  d.through = false;
+  d.hole_depth = 5e-3;
+  return d;
+}
+
+TEST(Transient, DwellThrustDecayMatchesOneDofClosedForm) {
+  const OneDof sys;
+  const DrillingSpec spec = linearDrill();
+  nc::DrillingCycle c(spec, {}, false);
+  // cutting constant from the force law alone (linear: F(h) = C h)
+  const DrillingModel dm = drillingModelOf(spec);
+  const double C = drillingForces(dm, spec.feed).thrust / spec.feed;
+  EXPECT_NEAR(drillingForces(dm, 0.3 * spec.feed).thrust, 0.3 * C * spec.feed,
+              1e-9 * C * spec.feed);
+  const double cd = C / c.revolutionsPerSecond();  // N s/m
+  const double lambda = (-cd + std::sqrt(cd * cd - 4.0 * sys.m * sys.k_ax)) / (2.0 * sys.m);
+  nc::TransientOptions opt;
+  opt.method = nc::Method::kBdf;  // the cutting damper makes a fast mode c/m
+  opt.rtol = 1e-10;
+  opt.atol_angle = 1e-13;
+  opt.atol_rate = 1e-11;
+  opt.atol_depth = 1e-13;
+  opt.sample = 2e-4;
+  opt.stop_at_cycle_end = true;
+  const nc::TransientResult r = nc::simulateCycle(sys.p, c, opt);
+  checkPenetration(r, c);
+  ASSERT_GT(c.cutEnd(), c.feedEndTime());
+  // fit window: from 10 fast time constants after the feed stop to the end of the cut
+  const double t_a = c.feedEndTime() + 10.0 * sys.m / cd + 0.01;
+  const nc::TransientSample* a = nullptr;
+  double worst = 0.0;
+  int n = 0;
+  for (const nc::TransientSample& smp : r.samples) {
+    if (smp.t < t_a || smp.t >= c.cutEnd()) continue;
+    if (a == nullptr) {
+      a = &smp;
+      continue;
+    }
+    const double expected = a->process.Fa * std::exp(lambda * (smp.t - a->t));
+    worst = std::max(worst, std::abs(smp.process.Fa - expected) / expected);
+    ++n;
+  }
+  ASSERT_NE(a, nullptr);
+  EXPECT_GT(n, 500);
+  EXPECT_LE(worst, 1e-4);
+  // the massless limit τ = c/k = C/(k n) is within m k/c² of it
+  const double tau = cd / sys.k_ax;
+  EXPECT_NEAR(-1.0 / lambda, tau, 2.0 * sys.m * sys.k_ax / (cd * cd) * tau);
+  // the cut ends when h < 1 % f: F = C h_stop, the quasi-static decay reaches it after
+  // τ ln(F(t_a)/(C h_stop)) (to within the sampling step)
+  const double t_end = a->t + std::log(a->process.Fa / (C * c.cutEndFeed())) / -lambda;
+  EXPECT_NEAR(c.cutEnd(), t_end, 1e-3);
+  std::printf("1-DOF dwell: tau = %.4f s (c/k = %.4f s), fit error %.2e over %d samples\n",
+              -1.0 / lambda, tau, worst, n);
+}
+
+/// Energy of the 1-DOF drilling run (conservative without the cut: ideal servo, no damping):
+/// E = ½ J θ̇² + ½ k₂ (θ − θ_c)². Over the cut the process does the work ∫ −F_a u̇ dt (the
+/// torque M is about the drill axis ⊥ the joint axis: no power); after the release (end of cut,
+/// load removed) E is constant and the free oscillation has the amplitude √(u_e² + (u̇_e/ω)²),
+/// ω² = k/m, of the spring energy left at the release.
+TEST(Transient, DrillingEnergyBalanceAndReleaseOneDof) {
+  const OneDof sys;
+  const DrillingSpec spec = linearDrill();
+  nc::CycleTiming tm;
+  tm.retract = 0.2;
+  nc::DrillingCycle c(spec, tm, false);
+  nc::TransientOptions opt;
+  opt.method = nc::Method::kAdams;  // BDF damps the free oscillation numerically
+  opt.rtol = 1e-11;
+  opt.atol_angle = 1e-13;
+  opt.atol_rate = 1e-11;
+  opt.atol_depth = 1e-13;
+  opt.sample = 5e-5;
+  opt.stop_at_cycle_end = true;
+  const nc::TransientResult r = nc::simulateCycle(sys.p, c, opt);
+  ASSERT_TRUE(r.ok) << r.message;
+  ASSERT_GT(c.cutEnd(), 0.0);
+  const double k2 = sys.p.drive.k[1];
+  const double thc = sys.p.theta_cmd[1];
+  auto energy = [&](const nc::TransientSample& s) {
+    const double e = s.theta[1] - thc;
+    return 0.5 * sys.J * s.theta_d[1] * s.theta_d[1] + 0.5 * k2 * e * e;
+  };
+  // work of the thrust up to the last sample before the release (trapezoid on 50 µs samples)
+  double work = 0.0;
+  double gross = 0.0;  // ∫ |F_a u̇| dt: the scale of the balance (the net is a small difference)
+  size_t last_cut = 0;
+  for (size_t i = 1; i < r.samples.size(); ++i) {
+    if (r.samples[i].t > c.cutEnd()) break;
+    const nc::ProcessSample& a = r.samples[i - 1].process;
+    const nc::ProcessSample& b = r.samples[i].process;
+    const double dt = r.samples[i].t - r.samples[i - 1].t;
+    work += -0.5 * (a.Fa * a.axial_rate + b.Fa * b.axial_rate) * dt;
+    gross += 0.5 * (std::abs(a.Fa * a.axial_rate) + std::abs(b.Fa * b.axial_rate)) * dt;
+    last_cut = i;
+  }
+  const double E_cut = energy(r.samples[last_cut]);
+  // trapezoid on 50 µs samples across the jumps of F at the contact and the feed stop
+  EXPECT_NEAR(E_cut - energy(r.samples.front()), work, 1e-4 * gross);
+  // after the release: constant energy, and the oscillation amplitude of the spring energy left
+  const nc::TransientSample* e0 = nullptr;
+  double amp = 0.0;
+  double Emin = std::numeric_limits<double>::infinity(), Emax = 0.0;
+  for (const nc::TransientSample& s : r.samples) {
+    if (s.t <= c.cutEnd()) continue;
+    if (e0 == nullptr) e0 = &s;
+    EXPECT_EQ(s.process.Fa, 0.0);
+    amp = std::max(amp, std::abs(s.process.axial));
+    Emin = std::min(Emin, energy(s));
+    Emax = std::max(Emax, energy(s));
+  }
+  ASSERT_NE(e0, nullptr);
+  const double omega = std::sqrt(sys.k_ax / sys.m);
+  const double A = std::hypot(e0->process.axial, e0->process.axial_rate / omega);
+  // θ is integrated to rtol·|θ| ≈ 3e-12 rad, ~1e-6 of the 4 µrad left at the release: the
+  // energy of that small oscillation is conserved to a few 1e-6
+  EXPECT_LE((Emax - Emin) / Emax, 2e-5);
+  EXPECT_NEAR(amp, A, 2e-3 * A);  // sampled peaks (50 µs at ω/2π ≈ 45 Hz)
+  EXPECT_NEAR(0.5 * sys.k_ax * A * A, energy(*e0), 1e-3 * energy(*e0));
+  std::printf(
+      "1-DOF energy: work of the thrust %.4e J (gross %.4e J), dE %.4e J; release "
+      "amplitude %.3f um, energy variation after release %.2e\n",
+      work, gross, E_cut - energy(r.samples.front()), A * 1e6, (Emax - Emin) / Emax);
 }
 
 }  // namespace

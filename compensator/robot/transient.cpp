@@ -110,7 +110,20 @@ std::vector<double> cleanBreakpoints(std::vector<double> b, double end) {
 }
 }  // namespace
 
-void NoProcess::sample(double /*t*/, ProcessSample& out) { out = ProcessSample{}; }
+namespace {
+/// Copies the tip state into a sample (constant processes: no feed, tip = u).
+void copyTip(const TipState& x, ProcessSample& out) {
+  out.axial = x.axial;
+  out.axial_rate = x.axial_rate;
+  out.tip = x.axial;
+  out.depth = x.depth;
+}
+}  // namespace
+
+void NoProcess::sample(double /*t*/, const TipState& x, ProcessSample& out) {
+  out = ProcessSample{};
+  copyTip(x, out);
+}
 
 StepWrenchCycle::StepWrenchCycle(const ToolWrench& w, const CycleTiming& timing)
     : w_(w), tm_(timing) {
@@ -129,12 +142,14 @@ std::vector<double> StepWrenchCycle::breakpoints() const {
       {t0, t0 + tm_.ramp, t0 + tm_.ramp + tm_.hold, t0 + 2 * tm_.ramp + tm_.hold}, duration());
 }
 
-void StepWrenchCycle::sample(double t, ProcessSample& out) {
+void StepWrenchCycle::sample(double t, const TipState& x, ProcessSample& out) {
   const double t0 = tm_.approach;
   const double t1 = t0 + tm_.ramp;
   const double t2 = t1 + tm_.hold;
   const double t3 = t2 + tm_.ramp;
   double s = 0.0;
+  out = ProcessSample{};
+  copyTip(x, out);
   if (t < t0) {
     out.phase = CyclePhase::kApproach;
   } else if (t < t1) {
@@ -149,7 +164,6 @@ void StepWrenchCycle::sample(double t, ProcessSample& out) {
   } else {
     out.phase = CyclePhase::kRetract;
   }
-  out.depth = 0.0;
   out.wrench.force = s * w_.force;
   out.wrench.torque = s * w_.torque;
   out.Fa = -out.wrench.force.z();
@@ -166,11 +180,13 @@ DrillingCycle::DrillingCycle(const DrillingSpec& spec, const CycleTiming& timing
       runout_(rotating_runout),
       feed_(spec.feed),
       omega_s_(2.0 * kPi * spec.spindle_rpm / 60.0),
+      n_rps_(spec.spindle_rpm / 60.0),
       v_f_(spec.feed * spec.spindle_rpm / 60.0) {
   if (!(v_f_ > 0) || !(omega_s_ > 0))
     throw std::invalid_argument("DrillingCycle: feed and spindle speed must be positive");
-  if (!(tm_.dwell >= 0) || !(tm_.approach >= 0) || !(tm_.retract >= 0)) {
-    throw std::invalid_argument("DrillingCycle: negative duration in the cycle timing");
+  if (!(tm_.dwell >= 0) || !(tm_.approach >= 0) || !(tm_.retract >= 0) || !(tm_.overtravel >= 0) ||
+      !(tm_.cut_end_feed_fraction > 0)) {
+    throw std::invalid_argument("DrillingCycle: negative duration or threshold in the timing");
   }
   const DrillGeometry& g = model_.geometry;
   const double a = g.chiselHalfLength();
@@ -179,63 +195,117 @@ DrillingCycle::DrillingCycle(const DrillingSpec& spec, const CycleTiming& timing
   const double hole = spec.hole_depth > 0 ? spec.hole_depth : 2.0 * g.diameter;
   thickness_ = spec.through ? hole : 0.0;
   depth_full_ = (R - a) / tp;
-  depth_end_ = spec.through ? hole + depth_full_ : hole;
+  depth_exit_ = spec.through ? hole + depth_full_ : std::numeric_limits<double>::infinity();
+  depth_end_ = spec.through ? depth_exit_ + tm_.overtravel : hole;
+  h_stop_ = tm_.cut_end_feed_fraction * feed_;
   const double tc = tm_.approach;
-  t_full_ = tc + std::min(depth_full_, depth_end_) / v_f_;
-  t_break_ = spec.through ? tc + thickness_ / v_f_ : tc + depth_end_ / v_f_;
   t_feed_end_ = tc + depth_end_ / v_f_;
-  // after the feed stops the next lip reaches the stop surface within 1/lips of a revolution
-  const double t_decay = spec.through ? 0.0 : 2.0 * kPi / omega_s_ / std::max(1, g.lips);
-  t_decay_end_ = t_feed_end_ + std::min(t_decay, tm_.dwell);
+  // the end of the cut is checked from one lip pitch after the feed stops: the chip of the last
+  // lip is still being removed, and the arm needs that long to take over the feed
+  t_check_ = t_feed_end_ + std::min(1.0 / (n_rps_ * std::max(1, g.lips)), tm_.dwell);
   t_dwell_end_ = t_feed_end_ + tm_.dwell;
   t_end_ = t_dwell_end_ + tm_.retract;
 }
 
 double DrillingCycle::duration() const { return t_end_; }
 
+double DrillingCycle::endTime() const {
+  return ended_ ? std::min(t_end_, t_cut_end_ + tm_.retract) : t_end_;
+}
+
 std::vector<double> DrillingCycle::breakpoints() const {
-  return cleanBreakpoints(
-      {tm_.approach, t_full_, t_break_, t_feed_end_, t_decay_end_, t_dwell_end_}, t_end_);
+  return cleanBreakpoints({t_feed_end_, t_check_, t_dwell_end_}, t_end_);
 }
 
 double DrillingCycle::maxStepHint() const { return runout_ ? (2.0 * kPi / omega_s_) / 16.0 : 0.0; }
 
-void DrillingCycle::sample(double t, ProcessSample& out) {
+void DrillingCycle::reset() {
+  cutting_ = false;
+  ended_ = false;
+  lift_offset_ = 0.0;
+  t_first_contact_ = -1.0;
+  t_cut_end_ = -1.0;
+  depth_at_end_ = 0.0;
+}
+
+double DrillingCycle::feedPosition(double t) const {
   const double tc = tm_.approach;
+  if (ended_ && t >= t_cut_end_) {  // retract from where the feed was, at the end depth's pace
+    const double back = tm_.retract > 0 ? depth_end_ * (t - t_cut_end_) / tm_.retract : depth_end_;
+    return depth_at_end_ - back;
+  }
+  return v_f_ * (std::min(t, t_feed_end_) - tc);
+}
+
+double DrillingCycle::feedVelocity(double t) const {
+  if (ended_ && t >= t_cut_end_) return tm_.retract > 0 ? -depth_end_ / tm_.retract : 0.0;
+  return t < t_feed_end_ ? v_f_ : 0.0;
+}
+
+void DrillingCycle::eventFunctions(double t, const TipState& x, double* g) {
+  const double s = feedPosition(t) + x.axial;
+  const double sd = feedVelocity(t) + x.axial_rate;
+  if (ended_ || t >= t_dwell_end_) {
+    g[0] = g[1] = g[2] = -1.0;
+    return;
+  }
+  g[0] = cutting_ ? -sd : s - x.depth - lift_offset_;
+  g[1] = cutting_ && t >= t_check_ ? h_stop_ - std::max(sd, 0.0) / n_rps_ : -1.0;
+  g[2] = std::isfinite(depth_exit_) ? x.depth - depth_exit_ : -1.0;
+}
+
+void DrillingCycle::onEvents(double t, const TipState& x, const int* fired) {
+  if (ended_) return;
+  const double s = feedPosition(t) + x.axial;
+  if (fired[1] != 0 || fired[2] != 0) {
+    ended_ = true;
+    cutting_ = false;
+    t_cut_end_ = t;
+    depth_at_end_ = feedPosition(t);
+    return;
+  }
+  if (fired[0] != 0) {
+    cutting_ = !cutting_;
+    if (cutting_ && t_first_contact_ < 0) t_first_contact_ = t;
+    if (!cutting_) lift_offset_ = s - x.depth;
+  }
+}
+
+void DrillingCycle::sample(double t, const TipState& x, ProcessSample& out) {
   out = ProcessSample{};
-  double scale = 1.0;
-  if (t < tc) {
-    out.phase = CyclePhase::kApproach;
-    return;
-  }
-  if (t < t_feed_end_) {
-    out.depth = v_f_ * (t - tc);
-    out.phase = out.depth < depth_full_ ? CyclePhase::kEntry : CyclePhase::kFull;
-    if (thickness_ > 0 && out.depth > thickness_) out.phase = CyclePhase::kBreakthrough;
-  } else if (t < t_dwell_end_) {
-    out.depth = depth_end_;
-    out.phase = CyclePhase::kDwell;
-    scale = t < t_decay_end_ ? 1.0 - (t - t_feed_end_) / (t_decay_end_ - t_feed_end_) : 0.0;
-  } else {
+  out.axial = x.axial;
+  out.axial_rate = x.axial_rate;
+  out.depth = x.depth;
+  out.feed_position = feedPosition(t);
+  out.tip = out.feed_position + x.axial;
+  if (ended_ || t >= t_dwell_end_) {
     out.phase = CyclePhase::kRetract;
-    out.depth =
-        tm_.retract > 0 ? depth_end_ * std::max(0.0, 1.0 - (t - t_dwell_end_) / tm_.retract) : 0.0;
     return;
   }
-  if (scale <= 0.0) return;
-  const DrillingForces F = drillingForcesAtDepth(model_, data_, feed_, out.depth, thickness_);
+  const bool dwell = t >= t_feed_end_;
+  if (x.depth <= 0.0 && !cutting_) {
+    out.phase = dwell ? CyclePhase::kDwell : CyclePhase::kApproach;
+  } else if (dwell) {
+    out.phase = CyclePhase::kDwell;
+  } else if (thickness_ > 0 && x.depth > thickness_) {
+    out.phase = CyclePhase::kBreakthrough;
+  } else {
+    out.phase = x.depth < depth_full_ ? CyclePhase::kEntry : CyclePhase::kFull;
+  }
+  if (!cutting_) return;
+  const double sd = feedVelocity(t) + x.axial_rate;
+  out.depth_rate = std::max(sd, 0.0);
+  out.feed_per_rev = out.depth_rate / n_rps_;
+  out.cutting = out.depth_rate > 0.0;
+  if (!out.cutting) return;
+  const DrillingForces F =
+      drillingForcesAtDepth(model_, data_, out.feed_per_rev, std::max(x.depth, 0.0), thickness_);
   out.Fa = F.thrust;
   out.Ft = F.tangential;
   out.M = F.torque;
   out.Fr = F.residual;
   out.wrench = toolWrench(F, omega_s_ * t);
   if (!runout_) out.wrench.force.head<2>().setZero();
-  out.wrench.force *= scale;
-  out.wrench.torque *= scale;
-  out.Fa *= scale;
-  out.Ft *= scale;
-  out.M *= scale;
-  out.Fr *= scale;
 }
 
 std::unique_ptr<ProcessCycle> makeProcessCycle(const ProcessSpec& spec, const CycleTiming& timing,
@@ -287,17 +357,25 @@ struct TransientSimulator::Impl {
   TransientProblem problem;
   ProcessCycle& process;
   TransientOptions options;
-  int n{24};
+  int n{25};
+  int idx_depth{24};  ///< index of D in y
   bool with_integral{false};
   Vec6 theta_c{Vec6::Zero()};
   Pose T_nominal{Pose::Identity()};
+  Vec3 z_n{Vec3::UnitZ()};   ///< nominal drill axis (tool z of FK(θ_cmd)), base frame
+  Vec3 p_ref{Vec3::Zero()};  ///< TCP at the gravity-only static equilibrium, base frame
+  int n_events{0};
+  std::array<int, 8> fired{};  ///< CVodeGetRootInfo
+  std::array<double, 8> g_now{};
   // right-hand-side workspace (sized once)
   Data data;
   Data out_data;
+  Data root_data;
   VecQ Q{VecQ::Zero()};
   VecQ tmp{VecQ::Zero()};
   ProcessSample ps;
   double ps_time{std::numeric_limits<double>::quiet_NaN()};  ///< t of ps (cache)
+  TipState ps_tip;                                           ///< tip state of ps (cache)
   PositionResult last_position;
   std::exception_ptr eptr;
   std::string cvode_message;
@@ -316,12 +394,24 @@ struct TransientSimulator::Impl {
         process(proc),
         options(o),
         data(*p.model),
-        out_data(*p.model) {}
+        out_data(*p.model),
+        root_data(*p.model) {}
 
   [[nodiscard]] bool locked(int i) const { return problem.drive.locked[static_cast<size_t>(i)]; }
 
   int rhs(double t, const double* yp, double* ydp);
+  int roots(double t, const double* yp, double* g);
+  /// u, u̇ from data.q, data.qd (after the position and velocity problems), D from y.
+  void tipFromData(const Data& d, double depth, TipState& x) const;
+  /// Position + velocity problem on `d`, then tipFromData. False if the position fails.
+  bool tipFromState(const double* yp, Data& d, TipState& x);
+  void sampleProcess(double t, const TipState& x);
+  /// Fires the events whose g is already > 0 at a restart (a jump of g at a breakpoint).
+  bool eventsAtRestart(double t, const double* yp);
   void setup();
+  /// Static equilibrium (predictDeflection, the drive's static compliance) under gravity and the
+  /// process wrench `w` (follower or fixed as the problem says). Throws if it does not converge.
+  Deflection staticDeflection(const ToolWrench& w);
   void accumulate(TransientStats& s) const;
   void record(double t, const double* yp, TransientResult& r);
 };
@@ -333,6 +423,17 @@ static int roprecTransientRhs(sunrealtype t, N_Vector y, N_Vector ydot, void* us
   auto* impl = static_cast<TransientSimulator::Impl*>(user_data);
   try {
     return impl->rhs(t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
+  } catch (...) {
+    impl->eptr = std::current_exception();
+    return -1;
+  }
+}
+
+/// CVODE root functions (process events): the same firewall.
+static int roprecTransientRoots(sunrealtype t, N_Vector y, sunrealtype* g, void* user_data) {
+  auto* impl = static_cast<TransientSimulator::Impl*>(user_data);
+  try {
+    return impl->roots(t, N_VGetArrayPointer(y), g);
   } catch (...) {
     impl->eptr = std::current_exception();
     return -1;
@@ -353,6 +454,63 @@ static void roprecTransientErr(int error_code, const char* module, const char* f
 }
 }  // extern "C"
 }  // namespace
+
+void TransientSimulator::Impl::tipFromData(const Data& d, double depth, TipState& x) const {
+  // p_tcp = p_5 + X_5 c_tcp with X_5 = [u_5 v_6 w_6] (model.hpp framePoses), linear in q
+  const Vec3& c = model.c_tcp;
+  const auto tcp = [&](const VecQ& q) -> Vec3 {
+    return q.segment<3>(idxPnext(4)) + c.x() * q.segment<3>(idxUnext(4)) +
+           c.y() * q.segment<3>(idxV(5)) + c.z() * q.segment<3>(idxW(5));
+  };
+  x.axial = z_n.dot(tcp(d.q) - p_ref);
+  x.axial_rate = z_n.dot(tcp(d.qd));
+  x.depth = depth;
+}
+
+bool TransientSimulator::Impl::tipFromState(const double* yp, Data& d, TipState& x) {
+  const Eigen::Map<const Vec6> th(yp);
+  if (!th.allFinite() || !solvePosition(model, d, th, Guess::kClosedForm).converged) return false;
+  velocities(model, d, Eigen::Map<const Vec6>(yp + 6));
+  tipFromData(d, yp[idx_depth], x);
+  return true;
+}
+
+void TransientSimulator::Impl::sampleProcess(double t, const TipState& x) {
+  // Newton iterations and the difference-quotient Jacobian reuse one (t, x)
+  if (t == ps_time && x.axial == ps_tip.axial && x.axial_rate == ps_tip.axial_rate &&
+      x.depth == ps_tip.depth)
+    return;
+  process.sample(t, x, ps);
+  ps_time = t;
+  ps_tip = x;
+}
+
+int TransientSimulator::Impl::roots(double t, const double* yp, double* g) {
+  TipState x;
+  if (!tipFromState(yp, root_data, x)) {
+    for (int i = 0; i < n_events; ++i) g[i] = -1.0;  // the RHS reports the failure
+    return 0;
+  }
+  process.eventFunctions(t, x, g);
+  return 0;
+}
+
+bool TransientSimulator::Impl::eventsAtRestart(double t, const double* yp) {
+  if (n_events == 0) return false;
+  TipState x;
+  if (!tipFromState(yp, root_data, x)) return false;
+  process.eventFunctions(t, x, g_now.data());
+  bool any = false;
+  for (int i = 0; i < n_events; ++i) {
+    fired[static_cast<size_t>(i)] = g_now[static_cast<size_t>(i)] > 0.0 ? 1 : 0;
+    any = any || fired[static_cast<size_t>(i)] != 0;
+  }
+  if (any) {
+    process.onEvents(t, x, fired.data());
+    ps_time = std::numeric_limits<double>::quiet_NaN();
+  }
+  return any;
+}
 
 int TransientSimulator::Impl::rhs(double t, const double* yp, double* ydp) {
   const DriveModel& dm = problem.drive;
@@ -383,12 +541,14 @@ int TransientSimulator::Impl::rhs(double t, const double* yp, double* ydp) {
     return 1;
   }
 
-  // 2. loads: gravity + process wrench at the current (or nominal) TCP orientation
-  if (t != ps_time) {  // Newton iterations and the difference-quotient Jacobian reuse one t
-    process.sample(t, ps);
-    ps_time = t;
-  }
-  if (!ps.wrench.force.allFinite() || !ps.wrench.torque.allFinite()) {
+  // 2. RᵀMR (builds data.R), q̇ = R θ̇, the tip state, the process at (t, tip)
+  Mat6 Mbar = jointSpaceInertia(model, data);
+  data.qd.noalias() = data.R * thd;
+  TipState tip;
+  tipFromData(data, yp[idx_depth], tip);
+  sampleProcess(t, tip);
+  if (!ps.wrench.force.allFinite() || !ps.wrench.torque.allFinite() ||
+      !std::isfinite(ps.depth_rate)) {
     rhs_failure = "non-finite process load at t = " + std::to_string(t) + " s";
     return -1;  // a smaller step cannot help
   }
@@ -401,9 +561,7 @@ int TransientSimulator::Impl::rhs(double t, const double* yp, double* ydp) {
     loads.tcp = toBaseFrame(ps.wrench, T_nominal.linear());
   }
 
-  // 3. RᵀMR (builds data.R), q̇ = R θ̇, c and Sc, Rᵀ(Q − M Sc)
-  Mat6 Mbar = jointSpaceInertia(model, data);
-  data.qd.noalias() = data.R * thd;
+  // 3. c and Sc, Rᵀ(Q − M Sc)
   accelerationTerm(model, data, thd);
   generalizedForces(model, data, loads, Q);
   tmp = -data.Sc;
@@ -451,6 +609,7 @@ int TransientSimulator::Impl::rhs(double t, const double* yp, double* ydp) {
     verr[i] = 0.0;
   }
   if (with_integral) Eigen::Map<Vec6>(ydp + 24) = verr;
+  ydp[idx_depth] = ps.depth_rate;
   for (int i = 0; i < n; ++i) {
     if (!std::isfinite(ydp[i])) {
       rhs_failure = "non-finite derivative at t = " + std::to_string(t) + " s";
@@ -463,7 +622,11 @@ int TransientSimulator::Impl::rhs(double t, const double* yp, double* ydp) {
 void TransientSimulator::Impl::setup() {
   const DriveModel& dm = problem.drive;
   with_integral = dm.servo == ServoMode::kCascade && dm.integral;
-  n = with_integral ? 30 : 24;
+  n = with_integral ? 31 : 25;
+  idx_depth = n - 1;
+  n_events = process.eventCount();
+  if (n_events < 0 || n_events > static_cast<int>(fired.size()))
+    throw std::invalid_argument("transient: the process has too many event functions");
   theta_c = problem.theta_cmd + problem.command_offset;
   for (int i = 0; i < 6; ++i) {
     const std::string j = "joint " + std::to_string(i + 1);
@@ -489,6 +652,8 @@ void TransientSimulator::Impl::setup() {
   }
   framePoses(model, out_data);
   T_nominal = out_data.T_W_tcp;
+  z_n = T_nominal.linear().col(2);
+  p_ref = staticDeflection(ToolWrench{}).T_real.translation();
   if (!solvePosition(model, data, theta_c, Guess::kClosedForm).converged) {
     throw std::invalid_argument("transient: the position problem does not converge at the command");
   }
@@ -508,6 +673,7 @@ void TransientSimulator::Impl::setup() {
   at.segment<6>(12).setConstant(options.atol_angle);
   at.segment<6>(18).setConstant(options.atol_rate);
   if (with_integral) at.segment<6>(24).setConstant(options.atol_angle);
+  at[idx_depth] = options.atol_depth;
   Eigen::Map<Eigen::VectorXd>(N_VGetArrayPointer(y.get()), n).setZero();
   A.reset(checkPtr(SUNDenseMatrix(n, n, ctx), "SUNDenseMatrix"));
   LS.reset(checkPtr(SUNLinSol_Dense(y.get(), A.get(), ctx), "SUNLinSol_Dense"));
@@ -524,6 +690,12 @@ void TransientSimulator::Impl::setup() {
   if (hint > 0) hmax = hmax > 0 ? std::min(hmax, hint) : hint;
   if (hmax > 0) check(CVodeSetMaxStep(mem.get(), hmax), "CVodeSetMaxStep");
   check(CVodeSetMinStep(mem.get(), options.min_step), "CVodeSetMinStep");
+  if (n_events > 0) {
+    check(CVodeRootInit(mem.get(), n_events, roprecTransientRoots), "CVodeRootInit");
+    std::array<int, 8> dir{};
+    dir.fill(1);  // an event is g rising through 0
+    check(CVodeSetRootDirection(mem.get(), dir.data()), "CVodeSetRootDirection");
+  }
 }
 
 void TransientSimulator::Impl::accumulate(TransientStats& s) const {
@@ -541,14 +713,18 @@ void TransientSimulator::Impl::accumulate(TransientStats& s) const {
 void TransientSimulator::Impl::record(double t, const double* yp, TransientResult& r) {
   TransientSample s;
   s.t = t;
-  process.sample(t, s.process);
   s.theta = Eigen::Map<const Vec6>(yp);
+  s.theta_d = Eigen::Map<const Vec6>(yp + 6);
   s.theta_m = Eigen::Map<const Vec6>(yp + 12);
-  if (solvePosition(model, out_data, s.theta, Guess::kClosedForm).converged) {
+  TipState x;
+  x.depth = yp[idx_depth];
+  if (tipFromState(yp, out_data, x)) {
+    process.sample(t, x, s.process);
     framePoses(model, out_data);
     s.dp = out_data.T_W_tcp.translation() - T_nominal.translation();
     s.drot = smallRotationDifference(out_data.T_W_tcp.linear(), T_nominal.linear());
   } else {
+    process.sample(t, x, s.process);
     s.dp.setConstant(std::numeric_limits<double>::quiet_NaN());
     s.drot.setConstant(std::numeric_limits<double>::quiet_NaN());
   }
@@ -577,30 +753,38 @@ Eigen::VectorXd TransientSimulator::commandState() const {
   return y0;
 }
 
-Eigen::VectorXd TransientSimulator::equilibriumState(double t0) {
-  Impl& m = *impl_;
-  const DriveModel& dm = m.problem.drive;
-  m.process.sample(t0, m.ps);
-  m.ps_time = t0;
+Deflection TransientSimulator::Impl::staticDeflection(const ToolWrench& w) {
+  const DriveModel& dm = problem.drive;
   Loads loads;
-  loads.gravity = m.problem.gravity;
-  if (m.problem.follower_wrench) {
-    loads.tcp_tool.force = m.ps.wrench.force;
-    loads.tcp_tool.moment = m.ps.wrench.torque;
+  loads.gravity = problem.gravity;
+  if (problem.follower_wrench) {
+    loads.tcp_tool.force = w.force;
+    loads.tcp_tool.moment = w.torque;
   } else {
-    loads.tcp = toBaseFrame(m.ps.wrench, m.T_nominal.linear());
+    loads.tcp = toBaseFrame(w, T_nominal.linear());
   }
   JointCompliance c = dm.staticCompliance();
   if (dm.servo != ServoMode::kCascade) c.k_servo.setConstant(1e300);
   for (int i = 0; i < 6; ++i) {
-    if (m.locked(i)) c.k[i] = c.k_servo[i] = 1e300;
+    if (locked(i)) c.k[i] = c.k_servo[i] = 1e300;
   }
-  const Deflection d = predictDeflection(m.model, m.out_data, c, m.problem.theta_cmd, loads, {},
-                                         m.problem.command_offset);
+  const Deflection d =
+      predictDeflection(model, out_data, c, problem.theta_cmd, loads, {}, problem.command_offset);
   if (!d.converged) {
-    throw std::runtime_error("transient: the static equilibrium at t0 did not converge (residual " +
+    throw std::runtime_error("transient: the static equilibrium did not converge (residual " +
                              std::to_string(d.residual) + " rad)");
   }
+  return d;
+}
+
+Eigen::VectorXd TransientSimulator::equilibriumState(double t0) {
+  Impl& m = *impl_;
+  const DriveModel& dm = m.problem.drive;
+  // the load at t0 with the tip at the reference (u = u̇ = 0, nothing cut yet)
+  m.process.reset();
+  m.process.sample(t0, TipState{}, m.ps);
+  m.ps_time = std::numeric_limits<double>::quiet_NaN();
+  const Deflection d = m.staticDeflection(m.ps.wrench);
   Eigen::VectorXd y0 = Eigen::VectorXd::Zero(m.n);
   y0.segment<6>(0) = d.theta;
   y0.segment<6>(12) = m.theta_c + d.dpsi;
@@ -616,6 +800,14 @@ Eigen::VectorXd TransientSimulator::equilibriumState(double t0) {
   return y0;
 }
 
+bool TransientSimulator::tipState(const Eigen::VectorXd& y, TipState& x) {
+  if (y.size() != impl_->n) throw std::invalid_argument("transient: tipState: wrong state size");
+  return impl_->tipFromState(y.data(), impl_->out_data, x);
+}
+
+Vec3 TransientSimulator::referenceTcp() const { return impl_->p_ref; }
+Vec3 TransientSimulator::drillAxis() const { return impl_->z_n; }
+
 TransientResult TransientSimulator::run(double t0, const Eigen::VectorXd& y0, double t_end) {
   Impl& m = *impl_;
   if (y0.size() != m.n) {
@@ -629,8 +821,10 @@ TransientResult TransientSimulator::run(double t0, const Eigen::VectorXd& y0, do
   m.cvode_message.clear();
   m.rhs_failure.clear();
   m.ps_time = std::numeric_limits<double>::quiet_NaN();
+  m.process.reset();
   Eigen::Map<Eigen::VectorXd> y(N_VGetArrayPointer(m.y.get()), m.n);
   y = y0;
+  if (m.eventsAtRestart(t0, y.data())) ++r.stats.events;
   check(CVodeReInit(m.mem.get(), t0, m.y.get()), "CVodeReInit");
 
   std::vector<double> bp;
@@ -647,6 +841,11 @@ TransientResult TransientSimulator::run(double t0, const Eigen::VectorXd& y0, do
   check(CVodeSetStopTime(m.mem.get(), bp[ib]), "CVodeSetStopTime");
   double tret = t0;
   r.ok = true;
+  const auto restart = [&](double t) {
+    m.accumulate(r.stats);
+    check(CVodeReInit(m.mem.get(), t, m.y.get()), "CVodeReInit");
+    ++r.stats.restarts;
+  };
   for (long k = 1; k <= n_out && r.ok; ++k) {
     const double tout = std::min(t0 + static_cast<double>(k) * dt, t_end);
     for (;;) {
@@ -665,20 +864,39 @@ TransientResult TransientSimulator::run(double t0, const Eigen::VectorXd& y0, do
         if (!m.rhs_failure.empty()) r.message += "; right-hand side: " + m.rhs_failure;
         break;
       }
+      const bool at_tout = tret >= tout - 1e-12 * std::max(1.0, std::abs(tout));
+      if (flag == CV_ROOT_RETURN) {
+        // a process event: latch the new mode, restart the multistep method there
+        check(CVodeGetRootInfo(m.mem.get(), m.fired.data()), "CVodeGetRootInfo");
+        TipState x;
+        if (m.tipFromState(y.data(), m.root_data, x)) m.process.onEvents(tret, x, m.fired.data());
+        m.ps_time = std::numeric_limits<double>::quiet_NaN();
+        ++r.stats.events;
+        restart(tret);
+        // an event on a breakpoint (a jump of g there) passes that breakpoint too
+        const double eps = 1e-12 * std::max(1.0, std::abs(tret));
+        while (ib + 1 < bp.size() && bp[ib] <= tret + eps) ++ib;
+        if (bp[ib] > tret + eps) check(CVodeSetStopTime(m.mem.get(), bp[ib]), "CVodeSetStopTime");
+        if (at_tout) break;
+        continue;
+      }
       const double tstop = bp[ib];
       if (ib + 1 < bp.size() && tret >= tstop - 1e-12 * std::max(1.0, std::abs(tstop))) {
         // a kink of the load: restart the multistep method there
-        m.accumulate(r.stats);
-        check(CVodeReInit(m.mem.get(), tret, m.y.get()), "CVodeReInit");
-        ++r.stats.restarts;
+        if (m.eventsAtRestart(tret, y.data())) ++r.stats.events;
+        restart(tret);
         ++ib;
         check(CVodeSetStopTime(m.mem.get(), bp[ib]), "CVodeSetStopTime");
-        if (tret >= tout - 1e-12 * std::max(1.0, std::abs(tout))) break;
+        if (at_tout) break;
         continue;
       }
       break;
     }
     if (r.ok) m.record(tout, y.data(), r);
+    if (r.ok && m.options.stop_at_cycle_end &&
+        tout >= m.process.endTime() - 1e-12 * std::max(1.0, std::abs(tout))) {
+      break;
+    }
   }
   m.accumulate(r.stats);
   r.t_reached = tret;
@@ -692,6 +910,59 @@ TransientResult simulateCycle(const TransientProblem& problem, ProcessCycle& pro
   const Eigen::VectorXd y0 = sim.equilibriumState(0.0);
   const double t_end = duration > 0 ? duration : process.duration();
   return sim.run(0.0, y0, t_end);
+}
+
+Settling settling(const std::vector<TransientSample>& samples, const Vec3& dp_ref, double t_from,
+                  double t_to, double tol) {
+  Settling st;
+  // the window, the largest error and its direction
+  size_t first = samples.size();
+  size_t last = 0;
+  Vec3 dir = Vec3::Zero();
+  for (size_t i = 0; i < samples.size(); ++i) {
+    const TransientSample& s = samples[i];
+    if (s.t < t_from - 1e-12 || s.t > t_to + 1e-12 || !s.dp.allFinite()) continue;
+    first = std::min(first, i);
+    last = i;
+    const Vec3 e = s.dp - dp_ref;
+    if (e.norm() > st.initial_error) {
+      st.initial_error = e.norm();
+      dir = e;
+    }
+  }
+  if (first >= samples.size()) return st;
+  st.final_error = (samples[last].dp - dp_ref).norm();
+  st.settled = st.final_error <= tol;
+  if (!st.settled) return st;
+  size_t k = last;  // the band is left for the last time before samples[k]
+  while (k > first && (samples[k - 1].dp - dp_ref).norm() <= tol) --k;
+  st.at = samples[k].t;
+  st.time = st.at - t_from;
+  // oscillation frequency from the zero crossings of the projected error
+  if (dir.norm() > 0) dir.normalize();
+  double t_prev = -1.0;
+  double spacing = 0.0;
+  int crossings = 0;
+  for (size_t i = first + 1; i <= last; ++i) {
+    const double a = (samples[i - 1].dp - dp_ref).dot(dir);
+    const double b = (samples[i].dp - dp_ref).dot(dir);
+    if ((a < 0) == (b < 0) || a == b) continue;
+    const double tz = samples[i - 1].t + (samples[i].t - samples[i - 1].t) * a / (a - b);
+    if (t_prev >= 0) {
+      spacing += tz - t_prev;
+      ++crossings;
+    }
+    t_prev = tz;
+  }
+  if (crossings >= 2 && spacing > 0) {
+    const double half_period = spacing / crossings;
+    st.frequency_hz = 0.5 / half_period;
+    const double omega = 2.0 * kPi * st.frequency_hz;
+    if (st.time > 0 && st.initial_error > tol) {
+      st.damping_ratio = std::log(st.initial_error / tol) / (omega * st.time);
+    }
+  }
+  return st;
 }
 
 }  // namespace roprec::nc

@@ -31,7 +31,8 @@
 /// `ServoMode::kIdeal` holds θ_m ≡ θ_c (infinitely stiff motor side); `kFree` sets τ_m = 0
 /// (free motors: the conservative system used by the energy and closed-form tests).
 ///
-/// State y = [θ, θ̇, θ_m, θ̇_m (, ξ)] — 24 entries, 30 with integral action. Locked joints
+/// State y = [θ, θ̇, θ_m, θ̇_m (, ξ), D] — 25 entries, 31 with integral action (D: the cut depth
+/// of the drilling cycle, see "Decision"; Ḋ = 0 for processes that do not penetrate). Locked joints
 /// (`DriveModel::locked`) are rigid at θ = θ_m = θ_c: their rows of RᵀMR are replaced by the
 /// identity and their derivatives are zero (a chain whose distal links carry no mass has a
 /// singular RᵀMR otherwise).
@@ -54,29 +55,52 @@
 /// (contact, full engagement, breakthrough, end of feed, …): CVODE stops there (CVodeSetStopTime)
 /// and restarts (CVodeReInit) so that no step straddles a kink of the load.
 ///
-/// ## Decision: the arm holds the hole pose, only the process load varies
+/// ## Decision: the arm holds the hole pose; the depth follows the real penetration
 /// Robotic drilling end effectors feed the spindle with their own axis behind a pressure foot, so
 /// the arm is commanded to one pose during the cut; when the arm itself feeds, it moves at
 /// f·n ≈ 10 mm/s, whose inertial loads are negligible against the process forces, and a moving
 /// command would only add the servo's following error v/Kv — which controllers cancel with
-/// velocity feed-forward. So θ_cmd(t) ≡ θ_cmd (the static command of the hole), the depth is
-/// kinematic, depth = f·n·(t − t_contact) (the axial deviation does not feed back into the chip
-/// thickness), and the deviation is measured from the nominal rigid TCP FK(θ_cmd).
+/// velocity feed-forward. So θ_cmd(t) ≡ θ_cmd (the static command of the hole) and the feed is
+/// the commanded spindle position p_c(t) along the nominal drill axis z_n (tool z of FK(θ_cmd)).
+/// The arm's compliance feeds back into the chip (docs/transient.md "Decision"):
+///
+///   u   = z_nᵀ (p_tcp(θ) − p_ref)          axial TCP deviation, + into the material [m]
+///                                          (p_ref: TCP at the gravity-only static equilibrium,
+///                                          i.e. the pose in which the tip touches at t_c)
+///   u̇   = z_nᵀ ṗ_tcp = z_nᵀ J_v(θ) θ̇        [m/s]
+///   s   = p_c(t) + u                       tip position below the entry surface [m]
+///   p_c = f n/60 (t − t_c) during the feed, constant at the end depth once the feed stops
+///   D   = max_{τ ≤ t} s(τ)                 cut depth (material removed), an extra CVODE state
+///   Ḋ   = ṡ⁺ while cutting (tip at the bottom, s = D, and advancing), 0 when lifted (s < D)
+///   h   = Ḋ · 60/n                         real feed per revolution [m/rev]
+///   (Fz, M, Ft, Fr) = drillingForcesAtDepth(h, D)   engaged lips from D (drilling_forces.hpp)
+///
+/// The forces are a function of the state (through D and ṡ), not of t alone. The thrust
+/// acts like a non-linear damper on the tip (Fz ∝ ṡ^{1−m}, no force at ṡ = 0), so the tip
+/// never moves back while thrust is applied. Cutting/lifted and the end of the cut are modes
+/// latched by CVODE root finding (`ProcessCycle::eventFunctions`, restarts at each event):
+///   lifted → cutting   s − D rises through 0 (contact; first at t ≈ t_c)
+///   cutting → lifted   ṡ falls through 0 (the tip leaves the bottom; D stays)
+///   end of cut         dwell: h falls below `CycleTiming::cut_end_feed_fraction`·f (checked
+///                      from one lip pitch after the feed stops); through hole: D reaches the
+///                      exit depth T + (R − a)/tan p. The spindle then retracts (no load).
+/// The deviation is measured from the nominal rigid TCP FK(θ_cmd).
 ///
 /// ## Drilling cycle (DrillingCycle), tool frame, drill axis +z into the material
-///   approach  t < t_c                         no load
-///   entry     0 < depth < (R − a)/tan p       thrust and torque ramp with the engaged lip length
-///   full      lips engaged on [a, R]          steady forces (drilling_forces.hpp)
-///   breakthrough (through holes) depth > T    chisel out, lips leave the plate
-///   dwell     feed stopped at the end depth   chip thickness decays to zero over 1/2 revolution
-///                                             (the next lip reaches the stop surface; forces
-///                                             scaled linearly), then no load
+///   approach  s < 0                           no load, p_c = v_f (t − t_c)
+///   entry     0 < D < (R − a)/tan p           thrust and torque grow with the engaged lip length
+///   full      lips engaged on [a, R]          steady forces at the real feed h
+///   breakthrough (through holes) D > T        chisel out, lips leave the plate
+///   dwell     feed stopped at the end depth   the recovering arm keeps cutting: thrust decays
+///                                             with the real advance until the end of cut
+///                                             (at most `CycleTiming::dwell` s)
 ///   retract   no load
 /// drillingForcesAtDepth gives Fz (thrust), M, Σ Ft and the rotating residual Fr; the wrench on
 /// the TCP is toolWrench(F, φ) with φ = 2π n t/60 when the rotating runout force is enabled,
 /// else its in-plane part is dropped (its mean over a revolution is zero).
 /// Constant processes (cell `wrench`, and milling's revolution-averaged force) act as a step
-/// with a ½(1 − cos) ramp of `CycleTiming::ramp` s, held `CycleTiming::hold` s.
+/// with a ½(1 − cos) ramp of `CycleTiming::ramp` s, held `CycleTiming::hold` s; they ignore the
+/// tip state.
 
 #include <array>
 #include <exception>
@@ -144,44 +168,79 @@ enum class CyclePhase { kApproach, kEntry, kFull, kBreakthrough, kDwell, kRetrac
 /// "approach", "entry", "full", "breakthrough", "dwell", "retract".
 const char* phaseName(CyclePhase p);
 
+/// What the simulator passes to the process: the drill tip's axial state (see "Decision").
+struct TipState {
+  double axial{0.0};       ///< u = z_nᵀ(p_tcp − p_ref), m, + into the material
+  double axial_rate{0.0};  ///< u̇, m/s
+  double depth{0.0};       ///< D, cut depth state, m
+};
+
 /// The process at one instant.
 struct ProcessSample {
   CyclePhase phase{CyclePhase::kApproach};
-  double depth{0.0};  ///< tip depth below the entry surface, m (0 for constant processes)
-  double Fa{0.0};     ///< thrust (axial force pushing the tool back, +), N
-  double Ft{0.0};     ///< tangential cutting force Σ Ft,k (constant processes: |F_xy|), N
-  double M{0.0};      ///< drilling torque (constant processes: −M_z), N m
-  double Fr{0.0};     ///< amplitude of the rotating residual force, N
-  ToolWrench wrench;  ///< applied wrench on the TCP, tool frame
+  bool cutting{false};        ///< tip at the bottom and advancing (drilling)
+  double feed_position{0.0};  ///< p_c, commanded spindle position below the entry surface, m
+  double axial{0.0};          ///< u, m (copied from the TipState)
+  double axial_rate{0.0};     ///< u̇, m/s
+  double tip{0.0};            ///< s = p_c + u, m
+  double depth{0.0};          ///< D, cut depth, m (0 for constant processes)
+  double depth_rate{0.0};     ///< Ḋ, m/s (the state derivative)
+  double feed_per_rev{0.0};   ///< h = Ḋ·60/n, real feed per revolution, m/rev
+  double Fa{0.0};             ///< thrust (axial force pushing the tool back, +), N
+  double Ft{0.0};             ///< tangential cutting force Σ Ft,k (constant processes: |F_xy|), N
+  double M{0.0};              ///< drilling torque (constant processes: −M_z), N m
+  double Fr{0.0};             ///< amplitude of the rotating residual force, N
+  ToolWrench wrench;          ///< applied wrench on the TCP, tool frame
 };
 
-/// Process load as a function of time. `sample` may use internal scratch (not thread-safe) and
-/// must not allocate; it must be a pure function of t (the simulator caches the last sample).
+/// Process load as a function of time and of the tip state. `sample` may use internal scratch
+/// (not thread-safe) and must not allocate; between two events it must be a pure function of
+/// (t, x) (the simulator caches the last sample). Events: the simulator finds the roots of
+/// `eventFunctions` (each g_i rising through 0) with CVODE, calls `onEvents` there (the process
+/// latches a mode) and restarts the integrator.
 class ProcessCycle {
  public:
   virtual ~ProcessCycle() = default;
-  virtual void sample(double t, ProcessSample& out) = 0;
-  /// End of the natural cycle, s.
+  virtual void sample(double t, const TipState& x, ProcessSample& out) = 0;
+  /// End of the natural cycle (upper bound), s.
   [[nodiscard]] virtual double duration() const = 0;
   /// Times where the load has a kink or a jump (sorted, inside (0, duration)).
   [[nodiscard]] virtual std::vector<double> breakpoints() const = 0;
   /// Largest step that resolves the load (0 = no limit), s.
   [[nodiscard]] virtual double maxStepHint() const { return 0.0; }
+  /// Clears the latched modes (called at the start of every run).
+  virtual void reset() {}
+  /// Number of event functions (fixed for the object).
+  [[nodiscard]] virtual int eventCount() const { return 0; }
+  /// g(t, x) into g[0 .. eventCount()); an event is g_i rising through 0. No allocation.
+  virtual void eventFunctions(double /*t*/, const TipState& /*x*/, double* /*g*/) {}
+  /// Called at an event (fired[i] ≠ 0 for the roots found).
+  virtual void onEvents(double /*t*/, const TipState& /*x*/, const int* /*fired*/) {}
+  /// End of the cycle as known now (≤ duration(); earlier once the cut has ended), s.
+  [[nodiscard]] virtual double endTime() const { return duration(); }
 };
 
 struct CycleTiming {
   double approach{0.1};  ///< s before contact
-  double dwell{0.1};     ///< s at the end depth (feed stopped)
-  double retract{0.1};   ///< s of retract, no load
-  double ramp{0.02};     ///< s, ½(1 − cos) ramp of a constant process (estimate: smooth step)
-  double hold{1.0};      ///< s at the full constant load
+  /// Maximum s at the end depth (feed stopped); the cut normally ends earlier (end-of-cut event).
+  double dwell{2.0};
+  double retract{0.1};  ///< s of retract, no load
+  /// The cut ends (dwell) when the real feed per revolution falls below this fraction of the
+  /// programmed feed. estimate: 1 % (2 µm/rev at 0.2 mm/rev) is below the edge-radius floor h_min
+  /// (5 µm) under which no chip is formed.
+  double cut_end_feed_fraction{0.01};
+  /// Feed travel beyond the exit of the corner for through holes (estimate: 1 mm breakthrough
+  /// allowance), m.
+  double overtravel{1e-3};
+  double ramp{0.02};  ///< s, ½(1 − cos) ramp of a constant process (estimate: smooth step)
+  double hold{1.0};   ///< s at the full constant load
 };
 
 /// No process: gravity only.
 class NoProcess final : public ProcessCycle {
  public:
   explicit NoProcess(double duration = 1.0) : duration_(duration) {}
-  void sample(double t, ProcessSample& out) override;
+  void sample(double t, const TipState& x, ProcessSample& out) override;
   [[nodiscard]] double duration() const override { return duration_; }
   [[nodiscard]] std::vector<double> breakpoints() const override { return {}; }
 
@@ -193,38 +252,70 @@ class NoProcess final : public ProcessCycle {
 class StepWrenchCycle final : public ProcessCycle {
  public:
   StepWrenchCycle(const ToolWrench& w, const CycleTiming& timing);
-  void sample(double t, ProcessSample& out) override;
+  void sample(double t, const TipState& x, ProcessSample& out) override;
   [[nodiscard]] double duration() const override;
   [[nodiscard]] std::vector<double> breakpoints() const override;
+  /// Start of the constant (held) load, s.
+  [[nodiscard]] double holdStart() const { return tm_.approach + tm_.ramp; }
+  /// End of the held load, s.
+  [[nodiscard]] double holdEnd() const { return tm_.approach + tm_.ramp + tm_.hold; }
 
  private:
   ToolWrench w_;
   CycleTiming tm_;
 };
 
-/// The drilling cycle of a DrillingSpec (see file comment).
+/// The drilling cycle of a DrillingSpec, coupled to the real penetration (see file comment).
 class DrillingCycle final : public ProcessCycle {
  public:
   DrillingCycle(const DrillingSpec& spec, const CycleTiming& timing, bool rotating_runout);
-  void sample(double t, ProcessSample& out) override;
+  void sample(double t, const TipState& x, ProcessSample& out) override;
   [[nodiscard]] double duration() const override;
   [[nodiscard]] std::vector<double> breakpoints() const override;
   [[nodiscard]] double maxStepHint() const override;
-  [[nodiscard]] double feedRate() const { return v_f_; }  ///< m/s
-  [[nodiscard]] double contactTime() const { return tm_.approach; }
+  void reset() override;
+  [[nodiscard]] int eventCount() const override { return 3; }
+  /// g0: lifted s − D (contact) / cutting −ṡ (lift); g1: end of cut in dwell (h_stop − h);
+  /// g2: through hole, D − D_exit.
+  void eventFunctions(double t, const TipState& x, double* g) override;
+  void onEvents(double t, const TipState& x, const int* fired) override;
+  [[nodiscard]] double endTime() const override;
+
+  [[nodiscard]] double feedRate() const { return v_f_; }             ///< m/s
+  [[nodiscard]] double contactTime() const { return tm_.approach; }  ///< nominal t_c, s
+  [[nodiscard]] double feedEndTime() const { return t_feed_end_; }   ///< s
+  [[nodiscard]] double endDepth() const { return depth_end_; }       ///< commanded, m
+  [[nodiscard]] double cutEndFeed() const { return h_stop_; }        ///< h_stop, m/rev
+  [[nodiscard]] double revolutionsPerSecond() const { return n_rps_; }
+  /// Time of the first contact and of the end of the cut (negative: not yet).
+  [[nodiscard]] double firstContact() const { return t_first_contact_; }
+  [[nodiscard]] double cutEnd() const { return t_cut_end_; }
 
  private:
+  [[nodiscard]] double feedPosition(double t) const;  ///< p_c(t)
+  [[nodiscard]] double feedVelocity(double t) const;  ///< ṗ_c(t)
+
   DrillingModel model_;
   DrillingData data_;
   CycleTiming tm_;
   bool runout_;
   double feed_;        ///< m/rev
   double omega_s_;     ///< spindle rad/s
+  double n_rps_;       ///< spindle rev/s
   double v_f_;         ///< m/s
   double thickness_;   ///< plate thickness for through holes (0 = blind)
   double depth_full_;  ///< depth where the corner enters
-  double depth_end_;   ///< depth where the feed stops
-  double t_full_, t_break_, t_feed_end_, t_decay_end_, t_dwell_end_, t_end_;
+  double depth_exit_;  ///< through holes: depth where the corner leaves the plate (else ∞)
+  double depth_end_;   ///< commanded depth where the feed stops
+  double h_stop_;      ///< end-of-cut feed per revolution, m/rev
+  double t_feed_end_, t_check_, t_dwell_end_, t_end_;
+  // latched modes (reset() clears them)
+  bool cutting_{false};
+  bool ended_{false};
+  double lift_offset_{0.0};  ///< s − D at the last lift (integration drift), m
+  double t_first_contact_{-1.0};
+  double t_cut_end_{-1.0};
+  double depth_at_end_{0.0};  ///< p_c when the cut ended (start of the retract), m
 };
 
 /// The cycle of a cell's process (drilling → DrillingCycle; wrench and milling → StepWrenchCycle
@@ -250,6 +341,10 @@ struct TransientOptions {
   /// measured cheaper (3.8 µs per RHS) than the warm-started Newton (5.1 µs, it iterates and now
   /// checks the branch), so it is the default; kWarmStart remains selectable.
   Guess guess{Guess::kClosedForm};
+  double atol_depth{1e-10};  ///< m, absolute tolerance of the cut depth D
+  /// Stop at the first output sample at or after ProcessCycle::endTime() (the drilling cycle ends
+  /// early when the cut ends before the maximum dwell).
+  bool stop_at_cycle_end{false};
 };
 
 struct TransientProblem {
@@ -265,6 +360,7 @@ struct TransientSample {
   double t{0.0};
   ProcessSample process;
   Vec6 theta{Vec6::Zero()};    ///< link angles, rad
+  Vec6 theta_d{Vec6::Zero()};  ///< link rates, rad/s
   Vec6 theta_m{Vec6::Zero()};  ///< motor angles (link side), rad
   Vec3 dp{Vec3::Zero()};       ///< TCP translation deviation from FK(θ_cmd), m, base frame
   Vec3 drot{Vec3::Zero()};     ///< TCP rotation deviation (rotation vector), rad, base frame
@@ -278,7 +374,8 @@ struct TransientStats {
   long nonlinear_iterations{0};
   long error_test_failures{0};
   long convergence_failures{0};
-  int restarts{0};  ///< CVodeReInit at breakpoints
+  int restarts{0};  ///< CVodeReInit at breakpoints and events
+  int events{0};    ///< process events (contact, lift, end of cut)
 };
 
 /// Outcome of a run. Non-convergence is a value: ok = false with the CVODE message.
@@ -304,12 +401,12 @@ class TransientSimulator {
   TransientSimulator(const TransientSimulator&) = delete;
   TransientSimulator& operator=(const TransientSimulator&) = delete;
 
-  /// 24, or 30 with integral action.
+  /// 25, or 31 with integral action (the last entry is the cut depth D).
   [[nodiscard]] int stateSize() const;
   /// Rest state at the static equilibrium under gravity and the process load at t0 (follower or
-  /// fixed as the problem says): θ from predictDeflection, θ_m, ξ consistent with the servo.
+  /// fixed as the problem says): θ from predictDeflection, θ_m, ξ consistent with the servo, D = 0.
   [[nodiscard]] Eigen::VectorXd equilibriumState(double t0);
-  /// Rest state at the command, undeflected: θ = θ_m = θ_c, rates and ξ zero.
+  /// Rest state at the command, undeflected: θ = θ_m = θ_c, rates, ξ and D zero.
   [[nodiscard]] Eigen::VectorXd commandState() const;
   /// The right-hand side ẏ = f(t, y) (dim stateSize). Returns 0; 1 when the position problem
   /// does not converge or ẏ is not finite; −1 for a non-finite process load. Exceptions propagate
@@ -318,6 +415,12 @@ class TransientSimulator {
   /// Integrates from (t0, y0) to t_end, sampling every options.sample (and at t_end).
   /// Rethrows an exception raised inside the right-hand side; CVODE failures are a value.
   TransientResult run(double t0, const Eigen::VectorXd& y0, double t_end);
+  /// The tip state of y (u, u̇ from the FK of θ and θ̇, D from the state). False when the position
+  /// problem does not converge.
+  bool tipState(const Eigen::VectorXd& y, TipState& x);
+  /// The reference TCP position p_ref (gravity-only equilibrium) and the nominal drill axis z_n.
+  [[nodiscard]] Vec3 referenceTcp() const;
+  [[nodiscard]] Vec3 drillAxis() const;
 
   struct Impl;
 
@@ -328,5 +431,24 @@ class TransientSimulator {
 /// Convenience: equilibrium at t = 0, then the whole cycle (or `duration` s when > 0).
 TransientResult simulateCycle(const TransientProblem& problem, ProcessCycle& process,
                               const TransientOptions& options = {}, double duration = 0.0);
+
+/// Settling of a sampled history onto a static deviation `dp_ref` (base frame, m): the first
+/// sample time t_s ≥ t_from after which every sample up to `t_to` has |dp − dp_ref| ≤ tol.
+/// `settled` is false when the last sample in [t_from, t_to] is outside the band. The equivalent
+/// damping ratio is the one of a single mode whose envelope A0 e^{−ζωt} falls from the largest
+/// error A0 after t_from to tol in t_s − t_from: ζ = ln(A0/tol)/(ω (t_s − t_from)), with ω from
+/// the mean zero-crossing spacing of the error projected on its largest excursion (0 when the
+/// error does not oscillate; then only t_s is meaningful).
+struct Settling {
+  bool settled{false};
+  double time{0.0};           ///< t_s − t_from, s
+  double at{0.0};             ///< t_s, s
+  double initial_error{0.0};  ///< A0, m
+  double final_error{0.0};    ///< |dp − dp_ref| at the last sample in the window, m
+  double frequency_hz{0.0};   ///< ω/2π of the projected error (0: no oscillation)
+  double damping_ratio{0.0};  ///< equivalent ζ (0 when not settled or no oscillation)
+};
+Settling settling(const std::vector<TransientSample>& samples, const Vec3& dp_ref, double t_from,
+                  double t_to, double tol);
 
 }  // namespace roprec::nc

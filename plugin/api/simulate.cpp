@@ -1,6 +1,8 @@
 /// Transient of one process cycle at one pose (plugin/api/simulate.hpp).
 #include "plugin/api/simulate.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <memory>
@@ -240,7 +242,98 @@ Json staticJson(const StaticReference& ref) {
   return st;
 }
 
-Json transientJson(const nc::TransientResult& r, const StaticReference& ref) {
+/// Band of the settling time (the static model's resolution goal), m.
+constexpr double kSettlingTolerance = 0.1e-6;
+
+/// Settling onto the static deviation of the constant load that ends the run: the held load of a
+/// constant process (from the end of its ramp), gravity alone after the end of a drilling cut,
+/// gravity alone for no process.
+Json settlingJson(const nc::TransientResult& r, const StaticReference& ref,
+                  const nc::ProcessCycle& cycle) {
+  const double t_last = r.samples.empty() ? 0.0 : r.samples.back().t;
+  Vec3 dp_ref = ref.gravity_only.dp;
+  double t_from = 0.0;
+  double t_to = t_last;
+  std::string reference = "static deviation under gravity alone";
+  if (const auto* step = dynamic_cast<const nc::StepWrenchCycle*>(&cycle)) {
+    dp_ref = ref.full_engagement.dp;
+    t_from = step->holdStart();
+    t_to = std::min(t_last, step->holdEnd());
+    reference = "static deviation under the held load (deflect model, same compliance)";
+  } else if (const auto* drill = dynamic_cast<const nc::DrillingCycle*>(&cycle)) {
+    t_from = drill->cutEnd() >= 0 ? drill->cutEnd() : t_last;
+    reference += " after the end of the cut";
+  }
+  const nc::Settling st = nc::settling(r.samples, dp_ref, t_from, t_to, kSettlingTolerance);
+  Json j = Json::object();
+  j.set("reference", Json::str(reference));
+  j.set("tolerance_um", Json::number(kSettlingTolerance * 1e6, 3));
+  j.set("from_t_s", Json::number(t_from, 6));
+  j.set("settled", Json::boolean(st.settled));
+  if (st.settled) {
+    j.set("settling_time_s", Json::number(st.time, 6));
+  } else {
+    j.set("settling_time_s", Json::str("not settled within the run (extend --duration)"));
+  }
+  j.set("initial_error_um", Json::number(st.initial_error * 1e6, 4));
+  j.set("final_error_um", Json::number(st.final_error * 1e6, 4));
+  j.set("frequency_hz", Json::number(st.frequency_hz, 3));
+  j.set("equivalent_damping_ratio", Json::number(st.damping_ratio, 4));
+  return j;
+}
+
+/// The damping the run used: an estimate, not a card value.
+Json dampingJson() {
+  Json j = Json::object();
+  j.set("joint_damping_ratio", Json::number(nc::DriveEstimateOptions{}.damping_ratio, 4));
+  j.set("source",
+        Json::str("estimate (not in the robot card): D = 2 zeta sqrt(k J_eff) per joint, "
+                  "docs/transient.md; the equivalent damping ratio of the settling is what this "
+                  "estimate produces, not a measurement"));
+  return j;
+}
+
+/// What the drilling cycle did with the real penetration.
+void drillingJson(const nc::TransientResult& r, const nc::DrillingCycle& c, Json& tr) {
+  double fa_max = 0.0;
+  double t_fa = 0.0;
+  double h_min_cut = std::numeric_limits<double>::infinity();
+  double last_cut = -1.0;
+  for (const nc::TransientSample& smp : r.samples) {
+    if (smp.process.Fa > fa_max) {
+      fa_max = smp.process.Fa;
+      t_fa = smp.t;
+    }
+    if (smp.process.cutting) {
+      last_cut = smp.t;
+      if (smp.t > c.feedEndTime()) h_min_cut = std::min(h_min_cut, smp.process.feed_per_rev);
+    }
+  }
+  tr.set("first_contact_t_s", Json::number(c.firstContact(), 6));
+  tr.set("feed_end_t_s", Json::number(c.feedEndTime(), 6));
+  if (c.cutEnd() >= 0) {
+    tr.set("end_of_cut_t_s", Json::number(c.cutEnd(), 6));
+  } else {
+    tr.set("end_of_cut_t_s", Json::str(last_cut >= 0 ? "still cutting at the end of the run"
+                                                     : "no cut within the run"));
+  }
+  char rule[200];
+  std::snprintf(rule, sizeof rule,
+                "through hole: the corner leaves the plate; blind: the real feed per rev falls "
+                "below %.4f mm/rev (cut_end_feed_fraction of the feed) during the dwell",
+                c.cutEndFeed() * 1e3);
+  tr.set("end_of_cut_rule", Json::str(rule));
+  tr.set("max_thrust_N", Json::number(fa_max, 3));
+  tr.set("max_thrust_t_s", Json::number(t_fa, 6));
+  const double depth = r.samples.empty() ? 0.0 : r.samples.back().process.depth;
+  tr.set("cut_depth_mm", Json::number(depth * 1e3, 4));
+  tr.set("commanded_end_depth_mm", Json::number(c.endDepth() * 1e3, 4));
+  if (std::isfinite(h_min_cut))
+    tr.set("dwell_min_feed_mm_per_rev", Json::number(h_min_cut * 1e3, 5));
+}
+
+Json transientJson(const nc::TransientResult& r, const StaticReference& ref,
+                   const nc::ProcessCycle& cycle) {
   const HistoryStats h = historyStats(r);
   Json tr = Json::object();
   if (h.last_full != nullptr) {
@@ -253,6 +346,11 @@ Json transientJson(const nc::TransientResult& r, const StaticReference& ref) {
   tr.set("max_deviation_um", Json::number(h.max_dev * 1e6, 4));
   tr.set("max_deviation_t_s", Json::number(h.t_max, 6));
   tr.set("max_change_from_start_um", Json::number(h.max_change * 1e6, 4));
+  if (const auto* drill = dynamic_cast<const nc::DrillingCycle*>(&cycle)) {
+    drillingJson(r, *drill, tr);
+  }
+  tr.set("settling", settlingJson(r, ref, cycle));
+  tr.set("damping", dampingJson());
   return tr;
 }
 
@@ -263,6 +361,7 @@ Json cvodeJson(const nc::TransientResult& r, const nc::TransientOptions& opt, do
   cv.set("method", Json::str(opt.method == nc::Method::kBdf ? "BDF" : "Adams-Moulton"));
   cv.set("rtol", Json::number(opt.rtol, -1));
   cv.set("t_end_s", Json::number(t_end, 6));
+  cv.set("stopped_at_cycle_end", Json::boolean(opt.stop_at_cycle_end && r.t_reached < t_end));
   cv.set("t_reached_s", Json::number(r.t_reached, 6));
   cv.set("steps", Json::integer(r.stats.steps));
   cv.set("rhs_evaluations", Json::integer(r.stats.rhs_evals + r.stats.rhs_evals_jac));
@@ -270,6 +369,7 @@ Json cvodeJson(const nc::TransientResult& r, const nc::TransientOptions& opt, do
   cv.set("jacobian_evaluations", Json::integer(r.stats.jac_evals));
   cv.set("error_test_failures", Json::integer(r.stats.error_test_failures));
   cv.set("restarts", Json::integer(r.stats.restarts));
+  cv.set("events", Json::integer(r.stats.events));
   return cv;
 }
 
@@ -295,6 +395,7 @@ SimulationResult simulateAt(const RobotSetup& setup, const HoleJoints& at,
   opt.method = options.bdf ? nc::Method::kBdf : nc::Method::kAdams;
   opt.rtol = options.rtol;
   opt.sample = options.sample;
+  opt.stop_at_cycle_end = !(options.duration > 0);  // the cycle ends with the cut + retract
   const double t_end = options.duration > 0 ? options.duration : cycle->duration();
 
   SimulationResult r;
@@ -313,7 +414,7 @@ SimulationResult simulateAt(const RobotSetup& setup, const HoleJoints& at,
                                                                   setup.tool, options.gravity)));
   root.set("drive", driveJson(p.drive));
   root.set("static", staticJson(ref));
-  root.set("transient", transientJson(r.transient, ref));
+  root.set("transient", transientJson(r.transient, ref, *cycle));
   root.set("cvode", cvodeJson(r.transient, opt, t_end));
   return r;
 }
@@ -331,16 +432,20 @@ std::string fmt(const char* f, double v) {
 std::string transientHistoryCsv(const nc::TransientResult& r) {
   std::string out =
       "t_s,depth_mm,Fa_N,Ft_N,M_Nm,Fr_N,dx_um,dy_um,dz_um,rx_urad,ry_urad,rz_urad,"
-      "dq1_urad,dq2_urad,dq3_urad,dq4_urad,dq5_urad,dq6_urad,phase\n";
+      "dq1_urad,dq2_urad,dq3_urad,dq4_urad,dq5_urad,dq6_urad,tip_mm,cut_depth_mm,"
+      "feed_per_rev_mm,axial_um,phase\n";
   out.reserve(r.samples.size() * 200 + out.size());
   const nc::Vec6 q0 = r.samples.empty() ? nc::Vec6::Zero() : nc::Vec6(r.samples.front().theta_m);
   for (const nc::TransientSample& s : r.samples) {
-    out += fmt("%.6f", s.t) + ',' + fmt("%.6f", s.process.depth * 1e3) + ',' +
-           fmt("%.3f", s.process.Fa) + ',' + fmt("%.3f", s.process.Ft) + ',' +
-           fmt("%.4f", s.process.M) + ',' + fmt("%.3f", s.process.Fr);
+    const double commanded = std::max(0.0, s.process.feed_position);
+    out += fmt("%.6f", s.t) + ',' + fmt("%.6f", commanded * 1e3) + ',' + fmt("%.3f", s.process.Fa) +
+           ',' + fmt("%.3f", s.process.Ft) + ',' + fmt("%.4f", s.process.M) + ',' +
+           fmt("%.3f", s.process.Fr);
     for (int i = 0; i < 3; ++i) out += ',' + fmt("%.4f", s.dp[i] * 1e6);
     for (int i = 0; i < 3; ++i) out += ',' + fmt("%.3f", s.drot[i] * 1e6);
     for (int i = 0; i < 6; ++i) out += ',' + fmt("%.3f", (s.theta[i] - q0[i]) * 1e6);
+    out += ',' + fmt("%.6f", s.process.tip * 1e3) + ',' + fmt("%.6f", s.process.depth * 1e3) + ',' +
+           fmt("%.6f", s.process.feed_per_rev * 1e3) + ',' + fmt("%.4f", s.process.axial * 1e6);
     out += ',';
     out += nc::phaseName(s.process.phase);
     out += '\n';
