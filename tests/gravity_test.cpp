@@ -153,6 +153,39 @@ TEST(Counterbalance, ModelTorquesAreKdlGravityMinusTheBalancer) {
   }
 }
 
+TEST(Counterbalance, InverseDynamicsCarriesTheBalancerToo) {
+  // the transient's path (inverseDynamics → generalizedForces): τ(q, q̇, q̈) against KDL RNE
+  // with the same motion minus the balancer law (1e-6 N m)
+  for (const char* name : kRobots) {
+    SCOPED_TRACE(name);
+    const Robot r = loadRobot({name, "", ""});
+    const KDL::Chain kc = kdlOf(r);
+    KDL::ChainIdSolver_RNE rne(kc, KDL::Vector(0, 0, -9.80665));
+    const nc::Model m = nc::buildModel(r.chain);
+    nc::Data d(m);
+    const nc::Vec6 q(0.2, -0.4, 0.6, -0.3, 0.5, 0.1);
+    const nc::Vec6 qd(0.3, -0.2, 0.4, 0.5, -0.6, 0.7);
+    const nc::Vec6 qdd(-1.0, 0.8, 0.5, -0.4, 1.2, -0.9);
+    nc::solvePosition(m, d, q);
+    const nc::Vec6 tau = nc::inverseDynamics(m, d, qd, qdd, nc::Loads{});
+    KDL::JntArray jq(6);
+    KDL::JntArray jqd(6);
+    KDL::JntArray jqdd(6);
+    KDL::JntArray out(6);
+    for (unsigned i = 0; i < 6; ++i) {
+      jq(i) = q[i];
+      jqd(i) = qd[i];
+      jqdd(i) = qdd[i];
+    }
+    KDL::Wrenches f(kc.getNrOfSegments(), KDL::Wrench::Zero());
+    rne.CartToJnt(jq, jqd, jqdd, f, out);
+    nc::Vec6 ref;
+    for (unsigned i = 0; i < 6; ++i) ref[i] = out(i);
+    ref[1] -= balancerTorque(r.card.counterbalance, q[1]);
+    EXPECT_LT((tau - ref).cwiseAbs().maxCoeff(), 1e-6) << (tau - ref).transpose();
+  }
+}
+
 TEST(Counterbalance, BundledBalancersCarryTheStatedShareAtTheSizingPose) {
   // card rule: τ_cb(sizing pose) = sizing_fraction × τ_g,2 of the links (KDL), to the card's
   // rounding of preload/pressure (0.2 %)
