@@ -123,7 +123,12 @@ TEST(Prediction, BudgetRecomputedByHand) {
   EXPECT_NEAR(h.U_work, std::sqrt(h.U_robot * h.U_robot + h.U_mach * h.U_mach), 1e-15);
   EXPECT_NEAR(h.budget[0].u, 0.06e-3 / 3.6161, 1e-8);  // KR 120 RP 0.06 mm
   EXPECT_NEAR(h.k, 2.4477, 1e-4);
-  EXPECT_EQ(h.verdict, verdictFor(h.position_error, h.U_work, 0.2e-3));
+  // the verdict uses the anisotropic 95 % radius of Σ_def + (u_robpos² + u_mach²) I, ≥ U_work
+  const double iso2 = h.budget[0].u * h.budget[0].u + u2_mach;
+  const Eigen::Matrix2d S = h.robdef_cov + iso2 * Eigen::Matrix2d::Identity();
+  EXPECT_NEAR(h.U_work_exact, radialCoverage(S), 1e-12);
+  EXPECT_GE(h.U_work_exact, h.U_work * (1 - 1e-12));
+  EXPECT_EQ(h.verdict, verdictFor(h.position_error, h.U_work_exact, 0.2e-3));
 }
 
 TEST(Prediction, MonteCarloAgreesWithLinearisationAtSmallInputUncertainty) {

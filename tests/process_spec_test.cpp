@@ -56,8 +56,7 @@ TEST(ProcessSpec, CoefficientAndDeviationOverrides) {
       "  <coefficients kst0_N_mm2=\"900\" ksa0_N_mm2=\"650\" bt_per_deg=\"-0.012\" "
       "chisel_model=\"pressure\"\n"
       "                chisel_pressure_ratio=\"4\" source=\"shop test 2026\"/>\n"
-      "  <machining_deviation axis_tilt_deg=\"0.05\" spindle_compliance_um_per_N=\"0.1\" "
-      "k=\"3\"/>\n"
+      "  <machining_deviation axis_tilt_deg=\"0.05\" spindle_compliance_um_per_N=\"0.1\"/>\n"
       "</process>\n");
   const DrillingSpec& d = s.drilling;
   EXPECT_EQ(d.law, AngleLaw::kPaperProportional);
@@ -73,7 +72,55 @@ TEST(ProcessSpec, CoefficientAndDeviationOverrides) {
   EXPECT_EQ(d.coeff_source, "shop test 2026");
   EXPECT_NEAR(d.deviation.axis_tilt, 0.05 * kDeg, 1e-15);
   EXPECT_NEAR(d.deviation.spindle_compliance, 0.1e-6, 1e-18);
-  EXPECT_DOUBLE_EQ(d.deviation.coverage_factor, 3.0);
+}
+
+// Overrides apply per diameter (docs/process.md §5.7): the drill's own stick-out only at its
+// diameter, a general <machining_deviation> at every diameter, a diameter_mm list only at the
+// diameters it names (and over the general one); the runout default follows the stick-out.
+TEST(ProcessSpec, MachiningDeviationOverridesApplyToTheDiametersTheyName) {
+  const ProcessSpec s = parse(
+      "<process type=\"drilling\">\n"
+      "  <drill diameter_mm=\"10\" stickout_mm=\"50\"/>\n"
+      "  <cut feed_mm_per_rev=\"0.2\"/>\n"
+      "  <material name=\"Al 6061-T6\"/>\n"
+      "  <machining_deviation spindle_compliance_um_per_N=\"0.2\"/>\n"
+      "  <machining_deviation diameter_mm=\"8 12\" stickout_mm=\"40\" "
+      "spindle_compliance_um_per_N=\"0.1\"/>\n"
+      "</process>\n");
+  const DrillingSpec& d = s.drilling;
+  EXPECT_DOUBLE_EQ(d.deviation.stickout, 50e-3);  // <drill stickout_mm> at Dc 10
+  EXPECT_NEAR(d.deviation.runout, 0.25e-3 * 50e-3, 1e-15);
+  EXPECT_NEAR(d.deviation.spindle_compliance, 0.2e-6, 1e-18);
+  for (double D : {8e-3, 12e-3}) {
+    const MachiningDeviationParams p = machiningDeviationAt(d, D);
+    EXPECT_DOUBLE_EQ(p.stickout, 40e-3) << D;
+    EXPECT_NEAR(p.runout, 0.25e-3 * 40e-3, 1e-15) << D;
+    EXPECT_NEAR(p.spindle_compliance, 0.1e-6, 1e-18) << D;
+    EXPECT_NE(p.stickout_source.find("line 6"), std::string::npos) << p.stickout_source;
+  }
+  const MachiningDeviationParams p6 = machiningDeviationAt(d, 6e-3);  // named by none
+  EXPECT_NEAR(p6.stickout, 18e-3, 1e-15);                             // default 3 Dc
+  EXPECT_NEAR(p6.spindle_compliance, 0.2e-6, 1e-18);                  // the general override
+  EXPECT_NEAR(p6.axis_lever, 6e-3, 1e-15);
+}
+
+TEST(ProcessSpec, MachiningDeviationCoverageFactorIsRefused) {
+  expectError(
+      "<process type=\"drilling\">\n"
+      "  <drill diameter_mm=\"10\"/>\n"
+      "  <cut feed_mm_per_rev=\"0.2\"/>\n"
+      "  <material name=\"Al 6061-T6\"/>\n"
+      "  <machining_deviation k=\"2\"/>\n"
+      "</process>\n",
+      5, "2-D radial");
+  expectError(
+      "<process type=\"drilling\">\n"
+      "  <drill diameter_mm=\"10\"/>\n"
+      "  <cut feed_mm_per_rev=\"0.2\"/>\n"
+      "  <material name=\"Al 6061-T6\"/>\n"
+      "  <machining_deviation diameter_mm=\"8 x\"/>\n"
+      "</process>\n",
+      5, "diameter_mm");
 }
 
 TEST(ProcessSpec, MillingAndWrench) {

@@ -135,7 +135,7 @@ Synthetic makeSynthetic(unsigned seed) {
         p.U_work_exact = p.U_work;
         p.process_share = proc2 / (p.u_work * p.u_work);
         const double half = 0.5 * p.tolerance;
-        p.verdict = p.U_work > half                      ? Verdict::kDoesNotConform
+        p.verdict = p.U_work > half                      ? Verdict::kNotCapable
                     : p.position_error + p.U_work > half ? Verdict::kConformsAfterCompensation
                                                          : Verdict::kConforms;
         s.preds.push_back(p);
@@ -225,7 +225,7 @@ TEST(Report, MapsTablesBudgetAndVerdicts) {
   EXPECT_EQ(countOf(html, "drilling direction \u2212Z"), 1u);
   EXPECT_EQ(countOf(html, "<figcaption>|\u03b4robot|"), 2u);
   EXPECT_EQ(countOf(html, "<figcaption>Position error"), 2u);
-  EXPECT_EQ(countOf(html, "<figcaption>U<sub>work</sub>"), 2u);
+  EXPECT_EQ(countOf(html, "<figcaption>U<sub>95</sub>"), 2u);
   // every predicted hole is one marker per map; rings mark each configuration change in each map
   const size_t ok = s.preds.size() - static_cast<size_t>(s.not_ok);
   EXPECT_EQ(countOf(html, "class=\"mk\""), 3 * ok);
@@ -253,12 +253,12 @@ TEST(Report, MapsTablesBudgetAndVerdicts) {
             static_cast<size_t>(sum.conforms));
   EXPECT_EQ(countOf(html, "class=\"badge b-comp\""),
             static_cast<size_t>(sum.conforms_after_compensation));
-  EXPECT_EQ(countOf(html, "class=\"badge b-nc\""), static_cast<size_t>(sum.does_not_conform));
+  EXPECT_EQ(countOf(html, "class=\"badge b-nc\""), static_cast<size_t>(sum.not_capable));
   EXPECT_EQ(countOf(html, "class=\"badge b-unr\""), 1u);
   EXPECT_EQ(countOf(html, "class=\"badge b-sing\""), 1u);
   EXPECT_GT(sum.conforms, 0);
   EXPECT_GT(sum.conforms_after_compensation, 0);
-  EXPECT_GT(sum.does_not_conform, 0);
+  EXPECT_GT(sum.not_capable, 0);
   // the summary sentence and the budget (six terms, k explained)
   EXPECT_NE(html.find("<strong>" + std::to_string(sum.robot_can_take) +
                       " of 60 holes can be taken by the robot"),

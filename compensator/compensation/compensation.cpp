@@ -454,7 +454,7 @@ void assemble(Evaluator& ev, const HoleRequest& h, const nc::Loads& loads, bool 
   }
   const Vec3 a = c.T_nominal.linear().col(2);
   const double e = (c.residual - c.residual.dot(a) * a).norm();
-  c.after.verdict = verdictFor(e, c.after.U_work, c.after.tolerance);
+  c.after.verdict = verdictFor(e, c.after.U_work_exact, c.after.tolerance);
   c.ok = true;
 }
 
@@ -524,7 +524,7 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,
       const Node& zero = nodes[i][static_cast<size_t>(grid / 2)];
       if (zero.feasible) {
         HoleCompensation k = finalizeHole(ev, holes[i], out[i], zero, true);
-        if (k.ok && (!c.ok || k.after.U_work < c.after.U_work)) c = std::move(k);
+        if (k.ok && (!c.ok || k.after.U_work_exact < c.after.U_work_exact)) c = std::move(k);
       }
     }
     out[i] = std::move(c);

@@ -28,8 +28,8 @@ const char* verdictName(Verdict v) {
       return "conforms";
     case Verdict::kConformsAfterCompensation:
       return "conforms-after-compensation";
-    case Verdict::kDoesNotConform:
-      return "does-not-conform";
+    case Verdict::kNotCapable:
+      return "not-capable";
     case Verdict::kUnreachable:
       return "unreachable";
     case Verdict::kSingular:
@@ -42,7 +42,7 @@ const char* verdictName(Verdict v) {
 
 Verdict verdictFor(double e, double U, double t) {
   const double half = 0.5 * t;
-  if (U > half) return Verdict::kDoesNotConform;
+  if (U > half) return Verdict::kNotCapable;
   if (e + U > half) return Verdict::kConformsAfterCompensation;
   return Verdict::kConforms;
 }
@@ -61,7 +61,7 @@ ProcessAtDiameter processAt(const ProcessSpec& spec, double diameter) {
       const double scale = diameter / s.geometry.diameter;
       s.geometry.web_thickness *= scale;
       s.geometry.diameter = diameter;
-      s.deviation = defaultMachiningDeviation(diameter, s.carbide);
+      s.deviation = machiningDeviationAt(spec.drilling, diameter);
       s.geometry.runout = s.deviation.runout;
     }
     const DrillingModel dm = drillingModelOf(s);
@@ -386,7 +386,8 @@ HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const Ho
   // 6. verdict
   // The hole's real position error: from the nominal hole axis when the nominal hole is known
   // (e.g. a compensated program checked against its hole list), else from the programmed pose.
-  p.verdict = verdictFor(p.nominal_axis_error.value_or(p.position_error), p.U_work, p.tolerance);
+  p.verdict =
+      verdictFor(p.nominal_axis_error.value_or(p.position_error), p.U_work_exact, p.tolerance);
   return p;
 }
 
@@ -417,8 +418,8 @@ CapabilitySummary summarize(const std::vector<HolePrediction>& p) {
       case Verdict::kConformsAfterCompensation:
         ++s.conforms_after_compensation;
         break;
-      case Verdict::kDoesNotConform:
-        ++s.does_not_conform;
+      case Verdict::kNotCapable:
+        ++s.not_capable;
         break;
       case Verdict::kUnreachable:
         ++s.unreachable;

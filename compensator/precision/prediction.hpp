@@ -20,10 +20,13 @@
 ///     u_axis, u_runout, u_deftool from the process. u_robot² = u_robpos² + u_robdef²,
 ///     u_mach² = Σ process terms, u_work² = u_robot² + u_mach². Expanded with the 2-D radial
 ///     coverage factor k = 2.4477 (95 %, Rayleigh): U_work = √(U_robot² + U_mach²).
-///  6. Verdict (ISO 14253-1 guard band, position ⌀t, docs/process.md §5.4):
-///       conforms                     e + U_work ≤ t/2
-///       conforms-after-compensation  U_work ≤ t/2 < e + U_work  (systematic part too large)
-///       does-not-conform             U_work > t/2                (scatter alone too large)
+///  6. Verdict (ISO 14253-1 guard band, position ⌀t, docs/process.md §5.4) with U = U₉₅, the
+///     exact 95 % radius of the anisotropic in-plane total Σ = Σ_def + (u_robpos² + u_mach²)·I
+///     (radialCoverage; U₉₅ ≥ U_work, equality for an isotropic Σ — the RSS U_work would
+///     under-cover an elongated scatter by up to ~11 %). The limits are inclusive (ISO 1101):
+///       conforms                     e + U ≤ t/2
+///       conforms-after-compensation  U ≤ t/2 < e + U   (the systematic part is too large)
+///       not-capable                  U > t/2           (the scatter alone exceeds t/2)
 ///       unreachable / singular       no admissible IK solution / wrist or shoulder singular
 
 #include <map>
@@ -139,7 +142,7 @@ enum class HoleStatus { kOk, kUnreachable, kSingular, kNotConverged };
 enum class Verdict {
   kConforms,
   kConformsAfterCompensation,
-  kDoesNotConform,
+  kNotCapable,
   kUnreachable,
   kSingular,
   kNotConverged
@@ -179,7 +182,9 @@ struct HolePrediction {
   double u_robot{0}, u_mach{0}, u_work{0};
   double k{2.4477};
   double U_robot{0}, U_mach{0}, U_work{0};
-  double U_work_exact{0};  ///< 95 % radius of the anisotropic total (for information)
+  /// The exact 95 % radius of the anisotropic in-plane total (JSON `U_work_anisotropic`): the U
+  /// of the verdict. ≥ U_work (equal only for an isotropic total), see the file comment.
+  double U_work_exact{0};
   double process_share{
       0};  ///< machining-process variance share u_mach² / u_work² (the study's figure)
   double process_force_share{
@@ -209,7 +214,7 @@ std::vector<HolePrediction> predictHoles(const PredictionModel& m,
 
 struct CapabilitySummary {
   int holes{0};
-  int conforms{0}, conforms_after_compensation{0}, does_not_conform{0}, unreachable{0}, singular{0},
+  int conforms{0}, conforms_after_compensation{0}, not_capable{0}, unreachable{0}, singular{0},
       not_converged{0};
   int robot_can_take{0};    ///< conforms + conforms-after-compensation
   double mc_time_taken{0};  ///< s of machining-center time the robot can take

@@ -7,9 +7,11 @@
 ///   isotropic Gaussian scatter with σ per axis, l follows a chi distribution with 3 degrees of
 ///   freedom: l̄ = 2√(2/π) σ = 1.5958 σ, S_l = √(3 − 8/π) σ = 0.6734 σ, so RP = 3.6160 σ.
 /// * 2-D radial coverage: the radius r of a zero-mean bivariate normal with covariance Σ
-///   (eigenvalues λ₁, λ₂) satisfies P(r ≤ R) = (1/2π)∫₀^{2π} [1 − e^{−R² q(φ)/2}] / (√(λ₁λ₂) q(φ))
-///   dφ, q(φ) = cos²φ/λ₁ + sin²φ/λ₂; for λ₁ = λ₂ = u² it is Rayleigh, R₉₅ = √(−2 ln 0.05) u
-///   = 2.4477 u. Do not use k = 2 on a radius (docs/process.md §5.1).
+///   (eigenvalues λ₁ ≤ λ₂) satisfies, with the major coordinate z₂ = (R/√λ₂) sin t,
+///   P(r ≤ R) = 2∫₀^{π/2} φ(R sin t/√λ₂) erf(R cos t/√(2λ₁)) (R/√λ₂) cos t dt (φ the standard
+///   normal density) — smooth for any aspect ratio, 48-point Gauss–Legendre; for λ₁ = λ₂ = u² it
+///   is Rayleigh, R₉₅ = √(−2 ln 0.05) u = 2.4477 u; for λ₁ → 0 the 1-D quantile 1.960 √λ₂. Do not
+///   use k = 2 on a radius (docs/process.md §5.1).
 
 #include <Eigen/Core>
 
@@ -23,7 +25,8 @@ double rpFromSigma(double sigma);
 double rayleighCoverageFactor(double p = 0.95);
 /// P(r ≤ R) for a zero-mean 2-D normal with covariance Σ (2×2, SPSD).
 double radialProbability(const Eigen::Matrix2d& Sigma, double R);
-/// The radius R with P(r ≤ R) = p (bisection on radialProbability).
+/// The radius R with P(r ≤ R) = p: regula falsi (Illinois) between the 1-D and the Rayleigh
+/// quantile of the major axis, which bracket it. Relative accuracy 1e-13.
 double radialCoverage(const Eigen::Matrix2d& Sigma, double p = 0.95);
 
 }  // namespace roprec

@@ -110,7 +110,7 @@ DrillingForces evaluate(const DrillingModel& m, const EdgeNodes& N, double feed,
   const DrillGeometry& g = m.geometry;
   const double rho = g.runout;
   const double dz = 2.0 * rho / std::tan(g.halfPoint());
-  const double q1 = std::max(0.0, 0.5 * feed + dz);
+  const double q1 = std::min(feed, 0.5 * feed + dz);  // alone (q2 = 0) lip 1 cuts the whole feed
   const double q2 = std::max(0.0, 0.5 * feed - dz);
   LipSums l1 = integrateLip(m, N, q1);
   LipSums l2 = integrateLip(m, N, q2);

@@ -35,7 +35,7 @@ double standardUncertainty(double half_width, Distribution d) {
 MachiningDeviationParams defaultMachiningDeviation(double diameter, bool carbide) {
   MachiningDeviationParams p;
   const char* band =
-      "chosen with the other machining-deviation defaults so that U_mach (k=2) is about +-30 um at "
+      "chosen with the other machining-deviation defaults so that 2 u_c is about +-30 um at "
       "Dc 8 mm and "
       "+-60 um at Dc 12 mm (Ferreras-Higuero et al., RCIM 2020 [P, not confirmed against the paper "
       "text])";
@@ -58,7 +58,6 @@ MachiningDeviationParams defaultMachiningDeviation(double diameter, bool carbide
   p.spindle_compliance = 0.29e-6;
   p.spindle_source =
       std::string("estimate: spindle + holder lateral compliance 0.29 um/N at the tip; ") + band;
-  p.coverage_factor = 2.0;
   return p;
 }
 
@@ -96,7 +95,7 @@ MachiningDeviation machiningDeviation(const MachiningDeviationParams& p, const D
     d.components.push_back(*c);
   }
   d.u_c = std::sqrt(sum);
-  d.k = p.coverage_factor;
+  d.k = std::sqrt(-2.0 * std::log(0.05));
   d.U = d.k * d.u_c;
   return d;
 }

@@ -15,8 +15,10 @@
 ///            d_e = κ·Dc (fluted section), in series with the spindle/holder compliance c_s:
 ///              a = Fr · (L³ / (3 E I_e) + c_s),  I_e = π d_e⁴ / 64.
 ///            The force rotates with the spindle: arcsine, u = a/√2.
-/// Combined (independent, unit sensitivity): u_c = √(Σ u_i²); expanded U = k u_c with k = 2
-/// (≈ 95 %, 1-D normal; for the 2-D radius use the factor 2.448 of docs/process.md §5.1).
+/// Combined (independent, unit sensitivity): u_c = √(Σ u_i²) per in-plane axis; expanded
+/// U = k u_c with the 2-D radial coverage factor k = √(−2 ln 0.05) = 2.4477 (95 % of an isotropic
+/// in-plane scatter lies within U; docs/process.md §5.1) — the same U_mach `forces` and `predict`
+/// report. (The ±30/±60 µm band below is a 1-D "±2σ" figure: 2 u_c.)
 ///
 /// The three terms are zero-mean; the systematic part δmach = (L³/(3 E I_e) + c_s)·F_xy,static
 /// comes only from a static in-plane force on the tool (e.g. a `wrench` process), in the tool
@@ -24,7 +26,7 @@
 ///
 /// Defaults (defaultMachiningDeviation): θa = 0.03°, La = Dc, ρ = 0.25 µm/mm × L, L = 3·Dc,
 /// κ = 0.8, E = 600 GPa (carbide) / 210 GPa (HSS), c_s = 0.29 µm/N — estimates chosen together so
-/// that, for Al 6061-T6 at f = 0.2 mm/rev, U_mach (k = 2) is ≈ ±30 µm at Dc 8 mm and ≈ ±60 µm at
+/// that, for Al 6061-T6 at f = 0.2 mm/rev, 2·u_c is ≈ ±30 µm at Dc 8 mm and ≈ ±60 µm at
 /// Dc 12 mm, the band Ferreras-Higuero et al. (RCIM 2020) report [P, not confirmed against the
 /// paper text]. Every value can be overridden from the cell (<machining_deviation .../>).
 
@@ -58,7 +60,6 @@ struct MachiningDeviationParams {
   double equivalent_diameter_ratio{0.8};  ///< κ = d_e / Dc
   double youngs_modulus{600e9};           ///< E [Pa]
   double spindle_compliance{0.29e-6};     ///< c_s [m/N]
-  double coverage_factor{2.0};            ///< k
   std::string axis_source, runout_source, stickout_source, modulus_source, spindle_source;
 };
 
@@ -72,8 +73,8 @@ struct MachiningDeviation {
   double tool_compliance{0};                     ///< L³/(3 E I_e) + c_s [m/N]
   double lateral_force{0};                       ///< Fr used for δdeftool [N]
   double u_c{0};                                 ///< combined standard uncertainty [m]
-  double k{2};
-  double U{0};  ///< expanded, k·u_c [m]
+  double k{2.4477};  ///< 2-D radial 95 % coverage factor √(−2 ln 0.05)
+  double U{0};       ///< expanded, k·u_c [m] (radius)
 };
 
 /// `rotating_force` = |Fr| of the drilling model at the process feed; `static_force_xy` an optional

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdio>
 #include <initializer_list>
+#include <optional>
+#include <sstream>
 
 #include "compensator/support/error.hpp"
 
@@ -71,6 +73,79 @@ const Material& material(const XmlNode& proc) {
   return *mat;
 }
 
+std::optional<double> optionalAt(const XmlNode& e, const std::string& attr, double scale,
+                                 bool strictly_positive) {
+  if (!e.has(attr)) return std::nullopt;
+  return (strictly_positive ? positive(e, attr, 0, false) : nonNegative(e, attr, 0)) * scale;
+}
+
+MachiningDeviationOverride parseDeviationOverride(const XmlNode& md) {
+  if (md.has("k")) {
+    md.fail(
+        "<machining_deviation> k is not used: U_mach is expanded with the budget's 2-D radial "
+        "coverage factor (k = 2.4477 for 95 %) in every command; remove the attribute");
+  }
+  allowOnly(md, {"diameter_mm", "axis_tilt_deg", "axis_lever_mm", "runout_mm", "stickout_mm",
+                 "equivalent_diameter_ratio", "youngs_modulus_GPa", "spindle_compliance_um_per_N"});
+  MachiningDeviationOverride o;
+  o.source = "cell <machining_deviation> line " + std::to_string(md.line);
+  if (md.has("diameter_mm")) {
+    std::istringstream in(md.str("diameter_mm"));
+    std::string tok;
+    while (in >> tok) {
+      const std::optional<double> v = parseNumber(tok);
+      if (!v || !(*v > 0) || *v > 1000)
+        md.fail("<machining_deviation> diameter_mm must list diameters in mm, got '" + tok + "'");
+      o.diameters.push_back(*v * kMm);
+    }
+    if (o.diameters.empty()) md.fail("<machining_deviation> diameter_mm is empty");
+  }
+  o.axis_tilt = optionalAt(md, "axis_tilt_deg", kDeg, false);
+  o.axis_lever = optionalAt(md, "axis_lever_mm", kMm, false);
+  o.runout = optionalAt(md, "runout_mm", kMm, false);
+  o.stickout = optionalAt(md, "stickout_mm", kMm, true);
+  o.equivalent_diameter_ratio = optionalAt(md, "equivalent_diameter_ratio", 1.0, true);
+  if (o.equivalent_diameter_ratio && *o.equivalent_diameter_ratio > 1)
+    md.fail("<machining_deviation> equivalent_diameter_ratio must be <= 1");
+  o.youngs_modulus = optionalAt(md, "youngs_modulus_GPa", 1e9, true);
+  o.spindle_compliance = optionalAt(md, "spindle_compliance_um_per_N", 1e-6, false);
+  return o;
+}
+
+bool namesDiameter(const MachiningDeviationOverride& o, double diameter) {
+  for (const double d : o.diameters)
+    if (std::abs(d - diameter) < 1e-6) return true;
+  return false;
+}
+
+/// Applies the values `o` states; `runout_set` tracks whether a runout was stated explicitly.
+void applyOverride(const MachiningDeviationOverride& o, MachiningDeviationParams& p,
+                   bool& runout_set) {
+  if (o.axis_tilt) {
+    p.axis_tilt = *o.axis_tilt;
+    p.axis_source = o.source;
+  }
+  if (o.axis_lever) p.axis_lever = *o.axis_lever;
+  if (o.stickout) {
+    p.stickout = *o.stickout;
+    p.stickout_source = o.source;
+  }
+  if (o.runout) {
+    p.runout = *o.runout;
+    p.runout_source = o.source;
+    runout_set = true;
+  }
+  if (o.equivalent_diameter_ratio) p.equivalent_diameter_ratio = *o.equivalent_diameter_ratio;
+  if (o.youngs_modulus) {
+    p.youngs_modulus = *o.youngs_modulus;
+    p.modulus_source = o.source;
+  }
+  if (o.spindle_compliance) {
+    p.spindle_compliance = *o.spindle_compliance;
+    p.spindle_source = o.source;
+  }
+}
+
 void parseDrilling(const XmlNode& proc, DrillingSpec& s) {
   allowChildren(proc, {"drill", "cut", "material", "coefficients", "machining_deviation"});
   const XmlNode& d = required(proc, "drill", "drill geometry");
@@ -99,19 +174,7 @@ void parseDrilling(const XmlNode& proc, DrillingSpec& s) {
   s.working_angles = d.boolean("working_angles", true);
   if (const std::string problem = drillGeometryProblem(g); !problem.empty()) d.fail(problem);
 
-  s.deviation = defaultMachiningDeviation(g.diameter, s.carbide);
-  if (d.has("stickout_mm")) {
-    s.deviation.stickout = positive(d, "stickout_mm", 0, false) * kMm;
-    s.deviation.stickout_source = "cell <drill stickout_mm>";
-    s.deviation.runout = 0.25e-3 * s.deviation.stickout;
-  }
-  if (s.runout_given) {
-    s.deviation.runout = g.runout;
-    s.deviation.runout_source = "cell <drill runout_mm>";
-  } else {
-    g.runout = s.deviation.runout;
-  }
-  if (const std::string problem = drillGeometryProblem(g); !problem.empty()) d.fail(problem);
+  if (d.has("stickout_mm")) s.drill_stickout = positive(d, "stickout_mm", 0, false) * kMm;
 
   const XmlNode& c = required(proc, "cut", "feed and speed");
   allowOnly(c, {"feed_mm_per_rev", "spindle_rpm", "depth_mm", "through"});
@@ -161,31 +224,38 @@ void parseDrilling(const XmlNode& proc, DrillingSpec& s) {
     s.coeff_source = k->str("source", "cell <coefficients> (no source given)");
   }
 
-  if (const XmlNode* md = proc.child("machining_deviation")) {
-    allowOnly(*md, {"axis_tilt_deg", "axis_lever_mm", "runout_mm", "stickout_mm",
-                    "equivalent_diameter_ratio", "youngs_modulus_GPa",
-                    "spindle_compliance_um_per_N", "k"});
-    MachiningDeviationParams& p = s.deviation;
-    const std::string here = "cell <machining_deviation>";
-    if (md->has("axis_tilt_deg")) p.axis_source = here;
-    p.axis_tilt = nonNegative(*md, "axis_tilt_deg", p.axis_tilt / kDeg) * kDeg;
-    p.axis_lever = nonNegative(*md, "axis_lever_mm", p.axis_lever / kMm) * kMm;
-    if (md->has("runout_mm")) p.runout_source = here;
-    p.runout = nonNegative(*md, "runout_mm", p.runout / kMm) * kMm;
-    if (md->has("stickout_mm")) p.stickout_source = here;
-    p.stickout = positive(*md, "stickout_mm", p.stickout / kMm, true) * kMm;
-    p.equivalent_diameter_ratio =
-        positive(*md, "equivalent_diameter_ratio", p.equivalent_diameter_ratio, true);
-    if (p.equivalent_diameter_ratio > 1)
-      md->fail("<machining_deviation> equivalent_diameter_ratio must be <= 1");
-    if (md->has("youngs_modulus_GPa")) p.modulus_source = here;
-    p.youngs_modulus = positive(*md, "youngs_modulus_GPa", p.youngs_modulus / 1e9, true) * 1e9;
-    if (md->has("spindle_compliance_um_per_N")) p.spindle_source = here;
-    p.spindle_compliance =
-        nonNegative(*md, "spindle_compliance_um_per_N", p.spindle_compliance * 1e6) * 1e-6;
-    p.coverage_factor = positive(*md, "k", p.coverage_factor, true);
-  }
+  for (const XmlNode* md : proc.childrenNamed("machining_deviation"))
+    s.deviation_overrides.push_back(parseDeviationOverride(*md));
+  s.deviation = machiningDeviationAt(s, g.diameter);
+  if (!s.runout_given) g.runout = s.deviation.runout;
+  if (const std::string problem = drillGeometryProblem(g); !problem.empty()) d.fail(problem);
 }
+
+}  // namespace
+
+MachiningDeviationParams machiningDeviationAt(const DrillingSpec& s, double diameter) {
+  MachiningDeviationParams p = defaultMachiningDeviation(diameter, s.carbide);
+  bool runout_set = false;
+  if (std::abs(diameter - s.geometry.diameter) < 1e-6) {
+    if (s.drill_stickout) {
+      p.stickout = *s.drill_stickout;
+      p.stickout_source = "cell <drill stickout_mm>";
+    }
+    if (s.runout_given) {
+      p.runout = s.geometry.runout;
+      p.runout_source = "cell <drill runout_mm>";
+      runout_set = true;
+    }
+  }
+  for (const MachiningDeviationOverride& o : s.deviation_overrides)
+    if (o.diameters.empty()) applyOverride(o, p, runout_set);
+  for (const MachiningDeviationOverride& o : s.deviation_overrides)
+    if (namesDiameter(o, diameter)) applyOverride(o, p, runout_set);
+  if (!runout_set) p.runout = 0.25e-3 * p.stickout;  // the default law follows the stick-out
+  return p;
+}
+
+namespace {
 
 void parseMilling(const XmlNode& proc, MillingSpec& s) {
   allowChildren(proc, {"mill", "cut", "material", "coefficients", "coupling", "stock"});

@@ -44,6 +44,16 @@ namespace roprec {
 
 enum class ProcessType { kDrilling, kMilling, kWrench };
 
+/// One cell `<machining_deviation>` element: only the values it states (docs/process.md §5.7).
+/// Without `diameter_mm` it applies to every hole diameter; with `diameter_mm="8 12"` only to the
+/// diameters it names (matched to 1 µm), and then wins over the general elements.
+struct MachiningDeviationOverride {
+  std::vector<double> diameters;  ///< [m]; empty = every diameter
+  std::optional<double> axis_tilt, axis_lever, runout, stickout, equivalent_diameter_ratio,
+      youngs_modulus, spindle_compliance;  ///< SI
+  std::string source;                      ///< "cell <machining_deviation> line N"
+};
+
 struct DrillingSpec {
   DrillGeometry geometry;
   AngleLaw law{AngleLaw::kGeometric};
@@ -57,9 +67,11 @@ struct DrillingSpec {
   DrillingCoefficients coeff;  ///< material values with the cell's overrides applied
   std::string coeff_source;    ///< "material table" or the <coefficients source=...>
   bool runout_given{false};
-  MachiningDeviationParams deviation;
-  int line{0};       ///< <process> line
-  int feed_line{0};  ///< <cut> line (for calibration messages)
+  std::optional<double> drill_stickout;  ///< <drill stickout_mm> [m] (the drill's diameter only)
+  std::vector<MachiningDeviationOverride> deviation_overrides;  ///< in document order
+  MachiningDeviationParams deviation;  ///< machiningDeviationAt(*this, geometry.diameter)
+  int line{0};                         ///< <process> line
+  int feed_line{0};                    ///< <cut> line (for calibration messages)
 };
 
 struct MillingSpec {
@@ -79,6 +91,12 @@ struct WrenchSpec {
   Vec3 force{Vec3::Zero()};   ///< on the TCP, tool frame [N]
   Vec3 torque{Vec3::Zero()};  ///< [N m]
 };
+
+/// δmach parameters of a hole of diameter D (m) drilled under this spec: the per-diameter
+/// defaults (defaultMachiningDeviation), then — when D is the drill's diameter — the `<drill>`
+/// stick-out and runout, then every `<machining_deviation>` without diameters, then those naming D.
+/// A stick-out without an explicit runout moves the runout default with it (0.25 µm/mm).
+MachiningDeviationParams machiningDeviationAt(const DrillingSpec& s, double diameter);
 
 struct ProcessSpec {
   ProcessType type{ProcessType::kDrilling};

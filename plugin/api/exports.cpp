@@ -40,6 +40,7 @@ Json uncertaintyJson(const HolePrediction& u) {
   un.set("U_robot", Json::number(u.U_robot * 1e6, 3));
   un.set("U_mach", Json::number(u.U_mach * 1e6, 3));
   un.set("U_work", Json::number(u.U_work * 1e6, 3));
+  un.set("U_work_anisotropic", Json::number(u.U_work_exact * 1e6, 3));
   un.set("k", Json::number(u.k, 4));
   return un;
 }

@@ -200,7 +200,7 @@ Json summaryJson(const CapabilitySummary& s) {
   Json v = Json::object();
   v.set("conforms", Json::integer(s.conforms));
   v.set("conforms-after-compensation", Json::integer(s.conforms_after_compensation));
-  v.set("does-not-conform", Json::integer(s.does_not_conform));
+  v.set("not-capable", Json::integer(s.not_capable));
   v.set("unreachable", Json::integer(s.unreachable));
   v.set("singular", Json::integer(s.singular));
   v.set("not-converged", Json::integer(s.not_converged));

@@ -106,7 +106,7 @@ constexpr std::array<VerdictStyle, 6> kVerdicts{{
     {Verdict::kConforms, "conforms", "ok", "conforms", "#2da44e"},
     {Verdict::kConformsAfterCompensation, "conforms after compensation", "comp", "after comp.",
      "#d4a72c"},
-    {Verdict::kDoesNotConform, "does not conform", "nc", "does not conform", "#cf222e"},
+    {Verdict::kNotCapable, "not capable", "nc", "not capable", "#cf222e"},
     {Verdict::kUnreachable, "unreachable", "unr", "unreachable", "#57606a"},
     {Verdict::kSingular, "singular", "sing", "singular", "#8250df"},
     {Verdict::kNotConverged, "not converged", "nconv", "not converged", "#bc4c00"},
@@ -747,10 +747,9 @@ void renderHeader(std::string& o, const ReportInput& in, const std::vector<HoleV
                     num(pct(s.mc_time_taken, s.mc_time_total), 1) + " % of the " +
                     num(s.mc_time_total, 1) + " s these holes take on the machining center).";
   std::vector<std::string> rest;
-  if (s.does_not_conform) {
-    rest.push_back(
-        plural(s.does_not_conform, "hole does", "holes do") +
-        " not conform even after compensation (the scatter alone exceeds the tolerance)");
+  if (s.not_capable) {
+    rest.push_back(plural(s.not_capable, "hole is", "holes are") +
+                   " not capable: even after compensation the scatter alone exceeds the tolerance");
   }
   if (s.unreachable) rest.push_back(plural(s.unreachable, "hole is", "holes are") + " unreachable");
   if (s.singular) rest.push_back(plural(s.singular, "hole is", "holes are") + " at a singularity");
@@ -782,8 +781,8 @@ void renderHeader(std::string& o, const ReportInput& in, const std::vector<HoleV
   kpi(std::to_string(s.conforms), "conform", styleOf(Verdict::kConforms).bar);
   kpi(std::to_string(s.conforms_after_compensation), "conform after compensation",
       styleOf(Verdict::kConformsAfterCompensation).bar);
-  kpi(std::to_string(s.does_not_conform + s.unreachable + s.singular + s.not_converged),
-      "stay on the machining center", styleOf(Verdict::kDoesNotConform).bar);
+  kpi(std::to_string(s.not_capable + s.unreachable + s.singular + s.not_converged),
+      "stay on the machining center", styleOf(Verdict::kNotCapable).bar);
   kpi(num(s.mc_time_taken, 1) + " s", "machining-center time the robot takes", "#0b5cad");
   o += "</div></header>";
 }
@@ -796,7 +795,7 @@ void renderMaps(std::string& o, const ReportInput& in, const std::vector<HoleVie
     const HolePrediction& p = *hv[i].p;
     q_robot[i] = p.d_robot.norm() * 1e6;
     q_err[i] = p.position_error * 1e6;
-    q_U[i] = p.U_work * 1e6;
+    q_U[i] = p.U_work_exact * 1e6;
     if (hv[i].rh->residual_um) {
       q_res[i] = *hv[i].rh->residual_um;
     } else if (hv[i].rh->after != nullptr && hv[i].rh->after->status == HoleStatus::kOk) {
@@ -810,8 +809,8 @@ void renderMaps(std::string& o, const ReportInput& in, const std::vector<HoleVie
   std::vector<Panel> panels;
   const Panel robot{"|\u03b4robot| \u2014 robot deviation under load", "|\u03b4robot|", &q_robot,
                     &s_robot, ArrowOf::kRobot};
-  const Panel U{"U<sub>work</sub> \u2014 expanded uncertainty (95 %)", "U_work", &q_U, &s_U,
-                ArrowOf::kNone};
+  const Panel U{"U<sub>95</sub> \u2014 95 % radius of the work deviation (anisotropic)", "U95",
+                &q_U, &s_U, ArrowOf::kNone};
   if (in.compensation) {
     panels.push_back({"Position error \u22a5 axis \u2014 before compensation", "e\u22a5 before",
                       &q_err, &s_err, ArrowOf::kWork});
@@ -900,9 +899,9 @@ void renderMaps(std::string& o, const ReportInput& in, const std::vector<HoleVie
 
 void renderVerdicts(std::string& o, const ReportInput& in) {
   const CapabilitySummary& s = in.summary;
-  const std::array<int, 6> counts{s.conforms,         s.conforms_after_compensation,
-                                  s.does_not_conform, s.unreachable,
-                                  s.singular,         s.not_converged};
+  const std::array<int, 6> counts{s.conforms,    s.conforms_after_compensation,
+                                  s.not_capable, s.unreachable,
+                                  s.singular,    s.not_converged};
   const int cmax = std::max(1, *std::max_element(counts.begin(), counts.end()));
   o += "<section id=\"verdicts\"><h2>Verdicts and capability</h2><div class=\"two\">";
   o += "<div class=\"card vbars\"><h3>Verdict per hole (ISO 14253-1 guard band)</h3>";
@@ -928,11 +927,12 @@ void renderVerdicts(std::string& o, const ReportInput& in) {
   o += "</svg>";
   o += "<p class=\"note\">t = position tolerance \u2300, e\u22a5 = predicted position error \u22a5 "
        "the hole axis, "
-       "U = U<sub>work</sub>. <b>conforms</b>: e\u22a5 + U \u2264 t/2; <b>conforms after "
+       "U = U<sub>95</sub>, the 95 % radius of the anisotropic in-plane distribution (\u2265 "
+       "U<sub>work</sub>). "
+       "<b>conforms</b>: e\u22a5 + U \u2264 t/2; <b>conforms after "
        "compensation</b>: "
        "U \u2264 t/2 &lt; e\u22a5 + U (the systematic part is too large but can be compensated); "
-       "<b>does not "
-       "conform</b>: U &gt; t/2 (the scatter alone is too large).</p></div>";
+       "<b>not capable</b>: U &gt; t/2 (the scatter alone is too large).</p></div>";
 
   const double share_taken = pct(s.mc_time_taken, s.mc_time_total);
   o += "<div class=\"card\"><h3>Capability \u2014 what the robot can take from the machining "
@@ -1064,7 +1064,10 @@ void renderBudget(std::string& o, const std::vector<HoleView>& hv) {
        "(k = 2 would "
        "cover only 86 % of the radius; docs/process.md \u00a75.1). U<sub>work</sub> = "
        "\u221a(U<sub>robot</sub>\u00b2 + "
-       "U<sub>mach</sub>\u00b2) = k \u00b7 u<sub>work</sub>.</p>";
+       "U<sub>mach</sub>\u00b2) = k \u00b7 u<sub>work</sub> is the isotropic equivalent; the "
+       "verdict uses "
+       "U<sub>95</sub>, the exact 95 % radius of the anisotropic in-plane distribution (\u2265 "
+       "U<sub>work</sub>).</p>";
   o += "<p>Process share of the total uncertainty (variance share of the process terms in "
        "u<sub>work</sub>\u00b2): "
        "<strong>mean " +
@@ -1098,7 +1101,7 @@ void renderTable(std::string& o, const ReportInput& in, const std::vector<HoleVi
        "z<br><small>\u00b5m</small></th><th>e\u22a5<br><small>\u00b5m</small></th><th>tilt<br>"
        "<small>\u00b5rad</small></th><th>U<sub>robot</sub><br><small>\u00b5m</small></"
        "th><th>U<sub>mach</sub><br><small>"
-       "\u00b5m</small></th><th>U<sub>work</sub><br><small>\u00b5m</small></th><th>Tol. "
+       "\u00b5m</small></th><th>U<sub>95</sub><br><small>\u00b5m</small></th><th>Tol. "
        "\u2300<br><small>mm</small></th>"
        "<th class=\"l\">Verdict</th><th>MC<br><small>s</small></th>";
   if (in.compensation) {
@@ -1132,7 +1135,7 @@ void renderTable(std::string& o, const ReportInput& in, const std::vector<HoleVi
       o += vec3Cell(p.d_robot * 1e6) + vec3Cell(p.d_mach * 1e6) + vec3Cell(p.d_work * 1e6);
       o += "<td><strong>" + num(p.position_error * 1e6, 1) + "</strong></td><td>" +
            num(p.axis_tilt * 1e6, 1) + "</td><td>" + num(p.U_robot * 1e6, 1) + "</td><td>" +
-           num(p.U_mach * 1e6, 1) + "</td><td>" + num(p.U_work * 1e6, 1) + "</td>";
+           num(p.U_mach * 1e6, 1) + "</td><td>" + num(p.U_work_exact * 1e6, 1) + "</td>";
     } else {
       o += "<td class=\"reason\" colspan=\"8\">" +
            (p.reason.empty() ? std::string(verdictName(p.verdict)) : esc(p.reason)) + "</td>";

@@ -74,7 +74,7 @@ Session::JointPrediction Session::predictJoints(const Vec6& joints_controller) {
   p.ok = true;
   p.d_translation = p.prediction.d_robot;
   p.d_rotation = p.prediction.d_rot;
-  p.U_work = p.prediction.U_work;
+  p.U_work = p.prediction.U_work_exact;
   return p;
 }
 

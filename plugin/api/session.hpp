@@ -39,7 +39,7 @@ class Session {
     std::string reason;
     Vec3 d_translation{Vec3::Zero()};  ///< δrobot of the TCP, base frame, m
     Vec3 d_rotation{Vec3::Zero()};     ///< rotation vector, base frame, rad
-    double U_work{0};                  ///< expanded uncertainty (95 %), m
+    double U_work{0};  ///< 95 % radius of the anisotropic in-plane distribution (the verdict's), m
     HolePrediction prediction;
   };
   /// The predicted TCP deviation at commanded joints (controller convention, rad).

@@ -115,7 +115,8 @@ ROPREC_API int roprec_filter_target(roprec_session* s, const double pose_mm[16],
  *   deviation[3..5]  real TCP rotation relative to the commanded one (rotation vector), µrad,
  *                    base frame.
  * The predicted real TCP position is FK(joints) + deviation[0..2]. U_work_um (may be NULL)
- * receives the expanded uncertainty U_work (95 %, 2-D radial) of a hole drilled there, µm.
+ * receives the expanded uncertainty of a hole drilled there: the exact 95 % radius of the
+ * anisotropic in-plane distribution (U_work_anisotropic, the radius the verdict uses), µm.
  * 1: no prediction at these joints (singular, not converged; reason in err); outputs unchanged.
  */
 ROPREC_API int roprec_predict_joints(roprec_session* s, const double joints_deg[6],
@@ -134,7 +135,7 @@ ROPREC_API int roprec_predict_joints(roprec_session* s, const double joints_deg[
  *   summary_json      NULL (then summary_len must be 0), or a buffer that receives (on 0 and 1;
  *                     "" on 2) a one-line JSON object: the "summary" object of the prediction JSON
  *                     ("holes", "verdicts" {conforms, conforms-after-compensation,
- *                     does-not-conform, unreachable, singular, not-converged}, "robot_can_take",
+ *                     not-capable, unreachable, singular, not-converged}, "robot_can_take",
  *                     "mc_time_taken_s", "mc_time_total_s", "process_share_mean",
  *                     "process_share_max") plus "failed" (holes not predicted).
  *                     ROPREC_SUMMARY_LEN bytes suffice; a smaller buffer that cannot hold it gives

@@ -14,9 +14,9 @@ namespace {
 void printSummary(CommandContext& ctx, const PredictionResult& r) {
   const CapabilitySummary& sum = r.summary;
   ctx.err << "roprec predict: " << sum.holes << " holes: " << sum.conforms << " conform, "
-          << sum.conforms_after_compensation << " conform after compensation, "
-          << sum.does_not_conform << " do not conform, "
-          << (sum.unreachable + sum.singular + sum.not_converged) << " not handled\n";
+          << sum.conforms_after_compensation << " conform after compensation, " << sum.not_capable
+          << " not capable, " << (sum.unreachable + sum.singular + sum.not_converged)
+          << " not handled\n";
   ctx.err << "  the robot can take " << sum.robot_can_take
           << " holes = " << formatNumber(sum.mc_time_taken, 0) << " s of machining-center time (of "
           << formatNumber(sum.mc_time_total, 0) << " s)\n";
@@ -88,7 +88,7 @@ const CommandRegistration reg{
      "uncertainty budget U_robot, U_mach, U_work (2-D radial 95 %, k = 2.4477) and the ISO "
      "14253-1\n"
      "verdict against the hole's position tolerance (hole list, else the cell's <tolerance>):\n"
-     "conforms | conforms-after-compensation | does-not-conform | unreachable | singular.\n"
+     "conforms | conforms-after-compensation | not-capable | unreachable | singular.\n"
      "--holes: a hole list matched to the program's holes (ids, diameters, depths, tolerances) by "
      "id,\n"
      "else by position within --match-tol mm (0.5); the JSON then reports from_nominal_axis, the "

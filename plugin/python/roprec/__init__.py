@@ -102,7 +102,7 @@ def predict(cell, program, holes=None, json_out=None):
         A :class:`Prediction` (a list) of per-hole dicts, at full precision (the JSON rounds):
         ``id``, ``line``, ``status`` ("ok", "unreachable", "singular", "not-converged"),
         ``verdict`` (ISO 14253-1: "conforms", "conforms-after-compensation",
-        "does-not-conform", "unreachable", "singular", "not-converged"), ``reason``;
+        "not-capable", "unreachable", "singular", "not-converged"), ``reason``;
         the nominal TCP: ``nominal_pose_mm`` (4x4), ``nominal_position_mm``,
         ``nominal_quaternion_wxyz``, ``axis`` (drilling direction); ``diameter_mm``,
         ``depth_mm``, ``tolerance_mm``, ``mc_time_s``;
