@@ -78,12 +78,35 @@ TEST(Prediction, WristConfigurationChangeIsAJumpOfTensOfMicrometres) {
   const double jump = (pa.d_work - pb.d_work).norm();
   EXPECT_GT(jump, 10e-6) << "jump " << jump * 1e6 << " µm";
   EXPECT_LT(jump, 1000e-6);
+  // The flip invariance is a property of the loads (gravity, tool, process) only: without the
+  // controller's constant mastering offset the flipped wrist lands where the other does. With
+  // it, the offset Δθ_c (constant in joint space) does not change sign with the flip, so the
+  // jump is J(θ_flip) Δθ_c − J(θ) Δθ_c — checked against that linear estimate.
+  PredictionModel m_loads = c.model;
+  m_loads.controller = nc::ControllerReference{};
+  PredictionData dl(m_loads);
   HoleRequest f = a;
   f.config = parseConfig(Vendor::kKuka, "S 6");  // θ5 < 0: the flipped wrist
+  const HolePrediction pal = predictHole(m_loads, dl, a, nullptr);
+  const HolePrediction pfl = predictHole(m_loads, dl, f, nullptr);
+  ASSERT_EQ(pfl.status, HoleStatus::kOk) << pfl.reason;
+  EXPECT_NE(pfl.branch, pal.branch);
+  EXPECT_LT((pfl.d_work - pal.d_work).norm(), 5e-6);
+  ASSERT_EQ(c.model.controller.kind, nc::ControllerReference::Kind::kMastering);
   const HolePrediction pf = predictHole(c.model, d, f, nullptr);
   ASSERT_EQ(pf.status, HoleStatus::kOk) << pf.reason;
-  EXPECT_NE(pf.branch, pa.branch);
-  EXPECT_LT((pf.d_work - pa.d_work).norm(), 5e-6);
+  const Vec6 off = controllerOffset(c.model, d.nc, pa.joints);
+  nc::Data s(c.model.model);
+  auto tcpAt = [&](const Vec6& q) {
+    nc::forwardKinematics(c.model.model, s, q);
+    return Vec3(s.T_W_tcp.translation());
+  };
+  auto tcpShift = [&](const Vec6& q) { return Vec3(tcpAt(q + off) - tcpAt(q)); };
+  const Vec3 expected = tcpShift(pf.joints) - tcpShift(pa.joints);
+  const Vec3 jump_off = (pf.d_work - pa.d_work) - (pfl.d_work - pal.d_work);
+  EXPECT_LT((jump_off - expected).norm(), 0.05 * expected.norm() + 1e-6)
+      << "jump " << jump_off.transpose() * 1e6 << " µm, offset estimate "
+      << expected.transpose() * 1e6 << " µm";
 }
 
 TEST(Prediction, MachiningUncertaintyRisesFrom30To60MicrometresWithDiameter) {
