@@ -3,7 +3,10 @@
 // summary, hole lookup in a hole-list CSV, and bad input → exit 2 with nothing written.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -31,7 +34,10 @@ TEST(SimulateCli, CsvHeaderDeterminismAndSummary) {
   std::istringstream in(csv);
   std::string header;
   std::getline(in, header);
-  EXPECT_EQ(header.rfind("t_s,depth_mm,Fa_N,Ft_N,M_Nm,Fr_N,dx_um,dy_um,dz_um", 0), 0u) << header;
+  EXPECT_EQ(header,
+            "t_s,depth_mm,Fa_N,Ft_N,M_Nm,Fr_N,dx_um,dy_um,dz_um,rx_urad,ry_urad,rz_urad,"
+            "dq1_urad,dq2_urad,dq3_urad,dq4_urad,dq5_urad,dq6_urad,tip_mm,cut_depth_mm,"
+            "feed_per_rev_mm,axial_um,phase");
   int rows = 0;
   std::string line;
   double fa_max = 0.0;
@@ -66,6 +72,123 @@ TEST(SimulateCli, CsvHeaderDeterminismAndSummary) {
   ASSERT_EQ(c.exit_code, 0) << c.err;
   EXPECT_EQ(c.out, csv);
   EXPECT_NE(c.err.find("\"cvode\""), std::string::npos);
+}
+
+std::vector<std::vector<std::string>> csvRows(const std::string& csv) {
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::vector<std::string>> rows;
+  while (std::getline(in, line)) {
+    std::istringstream ls(line);
+    std::string v;
+    std::vector<std::string> f;
+    while (std::getline(ls, v, ',')) f.push_back(v);
+    rows.push_back(f);
+  }
+  return rows;
+}
+
+/// The whole cycle of the sample through hole, coupled to the penetration: in every row with
+/// thrust the tip is at the bottom (tip = cut depth) and never moves back; the cut depth lags the
+/// commanded depth by the axial deflection; the summary reports the end of the cut, the maximum
+/// thrust (the CSV's) and the settling/damping (an estimate).
+TEST(SimulateCli, DrillingCycleFollowsTheRealPenetration) {
+  const std::string dir = test::tempDir("simulate_cut");
+  const auto r = runRoprec("simulate --cell " + cell() + " --joints \"0 -60 100 0 50 0\" -o '" +
+                           dir + "/c.csv' --summary '" + dir + "/c.json'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto rows = csvRows(test::readFile(dir + "/c.csv"));
+  const auto j = nlohmann::json::parse(test::readFile(dir + "/c.json"));
+  const auto& tr = j["transient"];
+  double fa_max = 0.0;
+  double prev_tip = -1e9;
+  double prev_fa = 0.0;
+  double max_lag = 0.0;
+  int cutting = 0;
+  for (const auto& f : rows) {
+    ASSERT_EQ(f.size(), 23u);
+    const double fa = std::stod(f[2]);
+    const double tip = std::stod(f[18]);
+    const double cut = std::stod(f[19]);
+    // the tip is never below the material removed (mm; the CSV's 1 nm digits round both)
+    EXPECT_LE(tip, cut + 2e-6);
+    if (fa > 0.0) {
+      ++cutting;
+      EXPECT_NEAR(tip, cut, 2e-6);
+      EXPECT_GT(std::stod(f[20]), 0.0);  // real feed per rev
+      if (prev_fa > 0.0) EXPECT_GE(tip, prev_tip - 2e-6) << "t = " << f[0];
+      max_lag = std::max(max_lag, std::stod(f[1]) - cut);
+    }
+    fa_max = std::max(fa_max, fa);
+    prev_tip = tip;
+    prev_fa = fa;
+  }
+  EXPECT_GT(cutting, 1000);
+  EXPECT_GT(max_lag, 0.1);  // mm: the tip lags the spindle by the axial deflection
+  EXPECT_NEAR(tr["max_thrust_N"].get<double>(), fa_max, 1e-3);
+  EXPECT_NEAR(tr["first_contact_t_s"].get<double>(), 0.1, 1e-4);
+  const double t_cut = tr["end_of_cut_t_s"].get<double>();
+  EXPECT_GT(t_cut, 1.0);
+  for (const auto& f : rows) {
+    if (std::stod(f[0]) > t_cut + 1e-6) EXPECT_EQ(std::stod(f[2]), 0.0);
+  }
+  // without --duration the run ends with the retract, 0.1 s after the end of the cut
+  EXPECT_NEAR(std::stod(rows.back()[0]), t_cut + 0.1, 1.5e-3);
+  EXPECT_TRUE(j["cvode"]["stopped_at_cycle_end"].get<bool>());
+  EXPECT_EQ(j["cvode"]["events"].get<long>(), 2);  // contact, exit of the corner
+  EXPECT_NE(tr["damping"]["source"].get<std::string>().find("estimate"), std::string::npos);
+  EXPECT_EQ(tr["settling"]["tolerance_um"].get<double>(), 0.1);
+}
+
+/// A held constant load (cell <process type="wrench">): the reported settling time is the first
+/// row after which every row stays within 0.1 µm of the static deviation (the deflect model).
+TEST(SimulateCli, HeldLoadSettlingTimeMatchesTheRows) {
+  const std::string dir = test::tempDir("simulate_hold");
+  const std::string cell_path = dir + "/wrench.xml";
+  {
+    std::ofstream c(cell_path);
+    c << "<cell name=\"held-load\">\n"
+         "  <robot ref=\"kuka-kr120-r2500-pro\"/>\n"
+         "  <tool name=\"spindle\" xyz=\"0 0 350\" rpy=\"0 0 0\" mass_kg=\"25\" "
+         "com_mm=\"0 0 150\"/>\n"
+         "  <workobject xyz=\"1600 0 400\" rpy=\"0 0 0\"/>\n"
+         "  <process type=\"wrench\" force_N=\"0 0 -1500\" torque_Nm=\"0 0 -3\"/>\n"
+         "</cell>\n";
+  }
+  const auto r =
+      runRoprec("simulate --cell '" + cell_path + "' --joints \"0 -60 100 0 50 0\" -o '" + dir +
+                "/h.csv' --summary '" + dir + "/h.json'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(test::readFile(dir + "/h.json"));
+  const auto& st = j["transient"]["settling"];
+  ASSERT_TRUE(st["settled"].get<bool>()) << st.dump();
+  const double t_s = st["from_t_s"].get<double>() + st["settling_time_s"].get<double>();
+  const double hold_end = st["from_t_s"].get<double>() + 1.0;
+  std::vector<double> ref;
+  for (const auto& v : j["static"]["full_engagement_um"]) ref.push_back(v.get<double>());
+  bool before_outside = false;
+  int inside = 0;
+  for (const auto& f : csvRows(test::readFile(dir + "/h.csv"))) {
+    const double t = std::stod(f[0]);
+    if (t > hold_end + 1e-9) break;
+    double e2 = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      const double d = std::stod(f[6 + static_cast<size_t>(i)]) - ref[static_cast<size_t>(i)];
+      e2 += d * d;
+    }
+    const double e = std::sqrt(e2);
+    if (t >= t_s - 1e-9) {
+      EXPECT_LE(e, 0.1 + 2e-4) << "t = " << t;  // µm, CSV rounding 1e-4 µm
+      ++inside;
+    } else if (t >= t_s - 1.5e-3) {
+      before_outside = e > 0.1 - 2e-4;
+    }
+  }
+  EXPECT_GT(inside, 10);
+  EXPECT_TRUE(before_outside);
+  EXPECT_GT(st["equivalent_damping_ratio"].get<double>(), 0.0);
+  EXPECT_EQ(j["transient"]["damping"]["joint_damping_ratio"].get<double>(), 0.05);
 }
 
 TEST(SimulateCli, HoleFromHoleList) {

@@ -56,18 +56,21 @@ struct SimulationResult {
   nc::TransientResult transient;  ///< samples; ok/message/t_reached of the integration
   /// robot, cell, joints_deg, joints_source, process, drive (servo, k, B_m, D, Kv, Kω), static
   /// (gravity-only and full-engagement deviation, as deflect), transient (end of full engagement,
-  /// maxima), cvode (ok, method, tolerances, statistics).
+  /// maxima; drilling: first contact, end of cut, max thrust, cut depth; settling to 0.1 µm with
+  /// the equivalent damping ratio; damping: the joint damping ratio, an estimate), cvode (ok,
+  /// method, tolerances, statistics, events).
   Json summary;
 };
 
 /// Integrates the cell's process cycle (the setup needs a cell; no process: gravity only) with the
-/// arm holding `at`. Throws UsageError without a cell, InputError outside the joint limits or
-/// without stiffness.
+/// arm holding `at`; without `duration` the run stops at the end of the cycle (after the retract).
+/// Throws UsageError without a cell, InputError outside the joint limits or without stiffness.
 SimulationResult simulateAt(const RobotSetup& setup, const HoleJoints& at,
                             const SimulateOptions& options);
 
-/// CSV: t_s, depth_mm, Fa_N, Ft_N, M_Nm, Fr_N, dx/dy/dz_um, rx/ry/rz_urad, dq1..dq6_urad (link
-/// angle − the first sample's command), phase.
+/// CSV: t_s, depth_mm (commanded spindle depth p_c ≥ 0), Fa_N, Ft_N, M_Nm, Fr_N, dx/dy/dz_um,
+/// rx/ry/rz_urad, dq1..dq6_urad (link angle − the first sample's command), tip_mm (s = p_c + u),
+/// cut_depth_mm (D), feed_per_rev_mm (h = Ḋ·60/n), axial_um (u), phase (docs/transient.md).
 std::string transientHistoryCsv(const nc::TransientResult& r);
 
 }  // namespace roprec::api
