@@ -350,6 +350,9 @@ CouplingResult coupleMillingPoint(const MillingModel& m, const ComplianceFunctio
     if (o.method == CouplingMethod::kNewton) {
       solveNewton(map, o, d, r);
     } else {
+      // a diverged plain iteration ends where the tool left the cut (G = 0): the gain at the
+      // nominal cut (δ = 0) is the informative one
+      r.loop_gain = spectralRadius(map.gain(Vec3::Zero(), d));
       solveFixedPoint(map, o, d, r);
     }
     if (!d.allFinite()) {
@@ -357,7 +360,7 @@ CouplingResult coupleMillingPoint(const MillingModel& m, const ComplianceFunctio
       r.status = CouplingStatus::kDiverged;
     }
     const Vec3 Cd = map.image(d);
-    r.loop_gain = spectralRadius(map.gain(d, Cd));
+    r.loop_gain = std::max(r.loop_gain, spectralRadius(map.gain(d, Cd)));
   } catch (const ComplianceFailure&) {
     r.status = CouplingStatus::kComplianceFailed;
     if (!d.allFinite()) d = Vec3::Zero();

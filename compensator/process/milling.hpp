@@ -165,7 +165,8 @@ struct CouplingResult {
   int evaluations{0};        ///< calls of the compliance C
   double residual{0};        ///< |r(δ)| = |δ − C(F(δ))| at the returned δ [m]
   double step{0};            ///< last |Δδ| [m]
-  double loop_gain{0};       ///< spectral radius of G = ∂(C∘F)/∂δ at the returned δ
+  double loop_gain{0};       ///< spectral radius of G = ∂(C∘F)/∂δ at the returned δ (fixed
+                             ///< point: the larger of that and the gain at δ = 0)
   Vec3 delta{Vec3::Zero()};  ///< converged tool deflection [m]
   Vec3 force{Vec3::Zero()};  ///< force on the tool at δ [N]
   Vec3 force_nominal{Vec3::Zero()};
