@@ -21,12 +21,12 @@ How the file is made (deterministic: running it again gives identical bytes):
    reader names the recognised drill holes H1, H2, … in program order; the drill points are named
    V01, V02, … and the measured file and the hole list use those names (so ``roprec verify`` is
    given the hole list: ``--holes test_kr120_holes.csv`` matches the holes by these names).
-2. The part is "drilled" by a TRUTH ROBOT: ``truth-kr120.xml`` is the bundled KR 120 card with every
-   joint stiffness replaced by the published identified KUKA KR500 values (Jiao et al., Chinese J.
-   Mech. Eng. 35:115 (2022), Eq. (38): k1..k6 = 1.58e7, 6.12e6, 5.28e6, 4.66e5, 2.19e5, 3.49e5
-   N·m/rad) scaled to the KR 120 class by one rule, x the rated-payload ratio 120/500 = 0.24:
-   3.792e6, 1.469e6, 1.267e6, 1.118e5, 5.256e4, 8.376e4 N·m/rad. (The bundled card scales the main
-   axes by 0.394 instead, so the truth's main axes are ~40 % softer than the card says.)
+2. The part is "drilled" by a TRUTH ROBOT: ``truth-kr120.xml`` is the bundled KR 120 card (same
+   URDF, inertials, balancer and mastering pose) with other joint stiffness: the main axes 0.6 x
+   the card's class value (Jiao et al., Chinese J. Mech. Eng. 35:115 (2022), Eq. (38), KUKA KR500)
+   and the wrist from the same paper's grid-cell-1 set (Eq. (39)): k1..k6 = 9.48e6, 3.672e6,
+   3.168e6, 3.38e5, 1.2e5, 2.17e5 N·m/rad, against the card's 1.58e7, 6.12e6, 5.28e6, 4.66e5,
+   2.19e5, 3.49e5.
    ``truth-cell.xml`` is the sample cell with that card. ``roprec predict --cell truth-cell.xml
    test_kr120.src`` gives the truth's real drill point of every hole: the programmed drill point
    (base frame) + δwork (gravity, the 25.8 kg spindle, the drilling thrust, δmach, the
