@@ -309,7 +309,11 @@ void drillingJson(const nc::TransientResult& r, const nc::DrillingCycle& c, Json
       if (smp.t > c.feedEndTime()) h_min_cut = std::min(h_min_cut, smp.process.feed_per_rev);
     }
   }
-  tr.set("first_contact_t_s", Json::number(c.firstContact(), 6));
+  if (c.firstContact() >= 0) {
+    tr.set("first_contact_t_s", Json::number(c.firstContact(), 6));
+  } else {
+    tr.set("first_contact_t_s", Json::str("no contact within the run"));
+  }
   tr.set("feed_end_t_s", Json::number(c.feedEndTime(), 6));
   if (c.cutEnd() >= 0) {
     tr.set("end_of_cut_t_s", Json::number(c.cutEnd(), 6));
