@@ -1,43 +1,91 @@
 #!/usr/bin/env bash
-# Builds a libFuzzer harness per robot-program reader (clang, ASan + UBSan) and runs each one.
-# Not part of CI. FUZZ_SECONDS (default 600 = 10 min) per reader; FUZZ_JOBS parallel workers
-# (default 1). Seeds: tests/fuzz/seeds/<dialect>/; crashes are copied to tests/fuzz/crashes/.
-# Usage: scripts/fuzz.sh [krl|rapid|tp|csv|json ...]
+# The libFuzzer campaign: one harness per reader (tests/fuzz/<reader>_fuzz.cpp; the program
+# dialects share tests/fuzz/postproc_fuzz.cpp), built through CMake with clang and ROPREC_FUZZ=ON
+# in build-fuzz/ (every object with -fsanitize=fuzzer-no-link,address,undefined, the harnesses
+# linked with -fsanitize=fuzzer), then each one run for FUZZ_SECONDS.
+#
+#   scripts/fuzz.sh [READER...]   readers: hole_list measured cell robot_card urdf krl rapid tp csv json
+#
+# FUZZ_SECONDS   seconds per harness (default 60)
+# FUZZ_JOBS      parallel libFuzzer workers per harness (default 1)
+# FUZZ_BUILD     build folder (default build-fuzz/)
+# FUZZ_BUILD_JOBS  compile jobs (default nproc)
+# FUZZ_NO_BUILD=1  run the binaries already in FUZZ_BUILD (no configure, no build)
+#
+# Inputs: tests/fuzz/seeds/<reader>/ (read only) plus the growing corpus build-fuzz/corpus/<reader>/.
+# A crash, sanitizer report, undocumented exception, timeout (> 10 s per input) or out-of-memory
+# is copied to tests/fuzz/crashes/<reader>/; replay it with build-fuzz/bin/fuzz_<reader> FILE
+# (or the ctest build's bin/fuzz_seed_<reader> FILE). Exit 1 when any harness found something.
+# Not part of CI (.ci/run); CI replays the seeds as the ctests fuzz_seed_<reader>.
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-SECONDS_PER="${FUZZ_SECONDS:-600}"
+SECONDS_PER="${FUZZ_SECONDS:-60}"
 JOBS="${FUZZ_JOBS:-1}"
-CXX="${FUZZ_CXX:-clang++}"
-OUT="${FUZZ_BUILD:-$ROOT/build-fuzz}"
-mkdir -p "$OUT" "$ROOT/tests/fuzz/crashes"
+BUILD="${FUZZ_BUILD:-$ROOT/build-fuzz}"
+ALL=(hole_list measured cell robot_card urdf krl rapid tp csv json)
 readers=("$@")
-[ ${#readers[@]} -eq 0 ] && readers=(krl rapid tp csv json)
-SRC=("$ROOT"/postproc/*.cpp "$ROOT/compensator/support/rotation.cpp" "$ROOT/compensator/support/error.cpp" "$ROOT/compensator/support/atomic_file.cpp")
-FLAGS=(-std=c++20 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined
-       -I"$ROOT" -I/usr/include/eigen3)
-declare -A NUM=([krl]=0 [rapid]=1 [tp]=2 [csv]=3 [json]=4)
+[ ${#readers[@]} -eq 0 ] && readers=("${ALL[@]}")
 for r in "${readers[@]}"; do
-  n="${NUM[$r]:?unknown reader $r}"
-  bin="$OUT/fuzz_$r"
-  echo "== building $bin"
-  "$CXX" "${FLAGS[@]}" -DROPREC_FUZZ_DIALECT="$n" "${SRC[@]}" "$ROOT/tests/fuzz/postproc_fuzz.cpp" -o "$bin"
-  corpus="$OUT/corpus_$r"
-  mkdir -p "$corpus"
-  rm -f "$OUT"/artifact_"${r}"_*
-  echo "== fuzzing $r for ${SECONDS_PER}s"
-  set +e
-  work="$OUT/work_$r"  # libFuzzer's -jobs writes fuzz-N.log into the cwd: one folder per reader
-  mkdir -p "$work"
-  rm -f "$work"/fuzz-*.log
-  (cd "$work" && "$bin" "$corpus" "$ROOT/tests/fuzz/seeds/$r" -max_total_time="$SECONDS_PER" -max_len=16384 \
-     -timeout=10 -rss_limit_mb=2048 -jobs="$JOBS" -workers="$JOBS" -artifact_prefix="$OUT/artifact_${r}_" \
-     -print_final_stats=1 2>&1 | tail -n 25)
-  rc=${PIPESTATUS[0]}
-  set -e
-  if ls "$OUT"/artifact_"${r}"_* >/dev/null 2>&1; then
-    for a in "$OUT"/artifact_"${r}"_*; do cp "$a" "$ROOT/tests/fuzz/crashes/$r-$(basename "$a" | sed "s/^artifact_${r}_//")"; done
-    echo "== $r: crash/timeout artifacts copied to tests/fuzz/crashes/"
-    exit 1
-  fi
-  echo "== $r: no crash (libFuzzer exit $rc)"
+  [[ " ${ALL[*]} " == *" $r "* ]] || { echo "fuzz: unknown reader '$r' (readers: ${ALL[*]})" >&2; exit 2; }
 done
+command -v clang++ >/dev/null || { echo "fuzz: clang++ not found (apt-get install clang)" >&2; exit 2; }
+
+ARGS=(
+  -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang -DROPREC_FUZZ=ON
+  -DCMAKE_BUILD_TYPE=RelWithDebInfo
+  # -O1 with line tables and assertions (Eigen's bounds checks are on): fast enough to fuzz,
+  # useful stacks.
+  "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1" "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O1 -g1"
+  -DROPREC_BUILD_BENCH=OFF -DROPREC_BUILD_PYTHON=OFF
+)
+if command -v ccache >/dev/null 2>&1; then
+  ARGS+=(-DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+fi
+if [ -z "${FUZZ_NO_BUILD:-}" ]; then
+  cmake -S "$ROOT" -B "$BUILD" "${ARGS[@]}" >/dev/null
+  targets=()
+  for r in "${readers[@]}"; do targets+=("fuzz_$r"); done
+  cmake --build "$BUILD" --parallel "${FUZZ_BUILD_JOBS:-$(nproc)}" --target "${targets[@]}"
+fi
+
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+found=()
+summary=()
+for r in "${readers[@]}"; do
+  bin="$BUILD/bin/fuzz_$r"
+  corpus="$BUILD/corpus/$r"
+  art="$BUILD/artifacts/$r"
+  work="$BUILD/work/$r"  # libFuzzer's -jobs writes fuzz-N.log into the cwd
+  log="$BUILD/logs/$r.log"
+  mkdir -p "$corpus" "$art" "$work" "$(dirname "$log")"
+  rm -f "$art"/* "$work"/fuzz-*.log
+  par=()
+  [ "$JOBS" -gt 1 ] && par=(-jobs="$JOBS" -workers="$JOBS")
+  echo "== fuzzing $r for ${SECONDS_PER}s ($bin)"
+  set +e
+  (cd "$work" && "$bin" "$corpus" "$ROOT/tests/fuzz/seeds/$r" -max_total_time="$SECONDS_PER" \
+     -max_len=16384 -timeout=10 -rss_limit_mb=2048 -artifact_prefix="$art/" -print_final_stats=1 \
+     "${par[@]}" >"$log" 2>&1)
+  rc=$?
+  set -e
+  [ "$JOBS" -gt 1 ] && cat "$work"/fuzz-*.log >>"$log" 2>/dev/null
+  execs=$(grep -h 'stat::number_of_executed_units' "$log" | awk '{s += $2} END {print s + 0}')
+  ncorp=$(find "$corpus" -type f | wc -l)
+  if compgen -G "$art/*" >/dev/null; then
+    mkdir -p "$ROOT/tests/fuzz/crashes/$r"
+    cp "$art"/* "$ROOT/tests/fuzz/crashes/$r/"
+    grep -hE 'ERROR: |runtime error|==[0-9]+==|^    #[0-9] ' "$log" | head -n 20 || true
+    echo "== $r: FOUND ($(ls "$art" | tr '\n' ' ')) -> tests/fuzz/crashes/$r/ (log $log)"
+    found+=("$r")
+    summary+=("$(printf '%-11s %5ss %10s execs %6s corpus  FOUND: %s' "$r" "$SECONDS_PER" "$execs" "$ncorp" "$(ls "$art" | tr '\n' ' ')")")
+  else
+    echo "== $r: no finding (libFuzzer exit $rc, $execs executions, corpus $ncorp files)"
+    summary+=("$(printf '%-11s %5ss %10s execs %6s corpus  no finding' "$r" "$SECONDS_PER" "$execs" "$ncorp")")
+  fi
+done
+echo "== summary"
+printf '%s\n' "${summary[@]}"
+if [ ${#found[@]} -gt 0 ]; then
+  echo "fuzz: findings in: ${found[*]}" >&2
+  exit 1
+fi

@@ -11,6 +11,7 @@
 #include "postproc/convert.hpp"
 #include "postproc/drill.hpp"
 #include "postproc/program.hpp"
+#include "tests/fuzz/fuzz_support.hpp"
 
 #ifndef ROPREC_FUZZ_DIALECT
 #define ROPREC_FUZZ_DIALECT 0
@@ -41,8 +42,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       ConversionReport rep;
       try {
         (void)convertProgram(p, to, "fuzz.out", rep);
-      } catch (const InputError&) {
+      } catch (const InputError& e) {
         // unresolved frame: a reported refusal
+        roprec::fuzz::rejected(e);
       }
     }
     for (std::size_t i = 0; i < p.targets().size() && i < 64; ++i) {
@@ -54,7 +56,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
           t.config.present() ? std::optional<Configuration>(t.config) : std::nullopt);
     }
     (void)renderFiles(p);
-  } catch (const InputError&) {
+  } catch (const InputError& e) {
+    roprec::fuzz::rejected(e);
     return 0;
   }
   return 0;

@@ -7,7 +7,8 @@
 namespace roprec::test {
 
 std::string sourceDir();
-/// ../shared/corpus next to the source tree, or "" when absent (tests then GTEST_SKIP()).
+/// ../shared/corpus next to the source tree, or "" when absent (tests then GTEST_SKIP()). With
+/// CI=true a missing corpus also records a test failure, so the test fails instead of skipping.
 std::string corpusDir();
 std::string roprecBin();
 
