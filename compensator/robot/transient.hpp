@@ -40,9 +40,14 @@
 /// ## Right-hand side (no allocation, no dense 72×72 factorisation)
 ///  1. q(θ) by the position problem (exact forward recursion + Newton check by default, or a
 ///     warm-started Newton; `TransientOptions::guess`);
-///  2. R (6 structured sweeps, model.hpp), q̇ = R θ̇, c and Sc (one structured solve);
-///  3. RᵀMR by the block mass products (jointSpaceInertia), Rᵀ(Q_ext − M Sc);
-///  4. θ̈ by a 6×6 Cholesky, θ̈_m, ξ̇ explicitly.
+///  2. R (6 structured sweeps, model.hpp), q̇ = R θ̇; the tip state u = z_nᵀ(p_tcp − p_ref),
+///     u̇ = z_nᵀ ṗ_tcp (p_tcp linear in q and q̇) and D = y[n−1]; the process at (t, u, u̇, D)
+///     (cached: the Jacobian's perturbations of θ_m, θ̇_m, ξ reuse it);
+///  3. c and Sc (one structured solve), RᵀMR by the block mass products (jointSpaceInertia),
+///     Rᵀ(Q_ext − M Sc);
+///  4. θ̈ by a 6×6 Cholesky, θ̈_m, ξ̇ explicitly, Ḋ from the process.
+/// The root functions (process events) solve the position and velocity problems on their own
+/// workspace and call ProcessCycle::eventFunctions; they go through the same C firewall.
 /// A position problem that does not converge (or a non-finite derivative) returns +1: CVODE
 /// retries with a smaller step; a non-finite process load returns −1 (a smaller step cannot help).
 /// Any exception is caught in the C trampoline, stored as std::exception_ptr, the trampoline
