@@ -11,6 +11,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   liborocos-kdl-dev libkdl-parser-dev
   pybind11-dev python3-pybind11 python3-dev python3-numpy
+  locales  # tests/locale_test.cpp compiles a comma-decimal de_DE locale with localedef
 )
 if [[ "${ROPREC_WITH_CHROMIUM:-0}" == "1" ]]; then PACKAGES+=(chromium); fi
 

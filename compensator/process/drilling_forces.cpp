@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "compensator/support/error.hpp"
 #include "compensator/support/quadrature.hpp"
 
 namespace roprec {
@@ -247,12 +248,57 @@ DrillingForces drillingForcesAtDepth(const DrillingModel& model, DrillingData& d
   return drillingForcesEngaged(model, data, feed, e.r_in, e.r_out, e.chisel);
 }
 
+namespace {
+double exitExtra(const DrillGeometry& g, bool through) {
+  return through ? (g.radius() - g.chiselHalfLength()) / std::tan(g.halfPoint()) : 0.0;
+}
+std::string holeDepthProblem(double hole_depth) {
+  if (!std::isfinite(hole_depth) || hole_depth < 0 || hole_depth > kMaxHoleDepth) {
+    return "the hole depth " + numberText(hole_depth * 1e3) + " mm is out of range (0 to " +
+           numberText(kMaxHoleDepth * 1e3) + " mm)";
+  }
+  return "";
+}
+}  // namespace
+
+std::string depthProfileProblem(const DrillingModel& model, double hole_depth, bool through,
+                                double step) {
+  if (std::string p = holeDepthProblem(hole_depth); !p.empty()) return p;
+  if (!std::isfinite(step) || !(step > 0)) {
+    return "the depth step " + numberText(step * 1e3) + " mm must be a positive finite number";
+  }
+  const double z_end = hole_depth + exitExtra(model.geometry, through);
+  const double rows = std::ceil(z_end / step - 1e-9) + 1;
+  if (!(rows <= kMaxDepthSamples)) {
+    return "a depth step of " + numberText(step * 1e3) + " mm over " + numberText(z_end * 1e3) +
+           " mm gives " + numberText(rows, 3) + " rows (at most " + numberText(kMaxDepthSamples) +
+           "; use a step of at least " + numberText(z_end / (kMaxDepthSamples - 1) * 1e3, 3) +
+           " mm)";
+  }
+  return "";
+}
+
+std::string axialCouplingProblem(const DrillingModel& model, double feed, double hole_depth,
+                                 bool through) {
+  if (std::string p = holeDepthProblem(hole_depth); !p.empty()) return p;
+  if (!std::isfinite(feed) || !(feed > 0)) return "";  // no revolutions at all
+  const double z_end = hole_depth + exitExtra(model.geometry, through);
+  const double revs = std::ceil(100.0 * z_end / feed) + 10;
+  if (!(revs <= kMaxCouplingRevolutions)) {
+    return "the axial coupling over " + numberText(z_end * 1e3) + " mm at " +
+           numberText(feed * 1e3) + " mm per revolution needs more than " +
+           numberText(kMaxCouplingRevolutions) + " revolutions";
+  }
+  return "";
+}
+
 std::vector<DepthSample> drillingDepthProfile(const DrillingModel& model, DrillingData& data,
                                               double feed, double hole_depth, bool through,
                                               double step) {
+  if (std::string p = depthProfileProblem(model, hole_depth, through, step); !p.empty())
+    throw InputError("", 0, p);
   const DrillGeometry& g = model.geometry;
-  const double a = g.chiselHalfLength();
-  const double exit_extra = through ? (g.radius() - a) / std::tan(g.halfPoint()) : 0.0;
+  const double exit_extra = exitExtra(g, through);
   const double z_end = hole_depth + exit_extra;
   const int n = std::max(1, static_cast<int>(std::ceil(z_end / step - 1e-9)));
   std::vector<DepthSample> out;
@@ -269,9 +315,10 @@ std::vector<AxialCouplingSample> drillingAxialCoupling(const DrillingModel& mode
                                                        double hole_depth, bool through,
                                                        double axial_compliance, double tolerance,
                                                        int max_iterations) {
+  if (std::string p = axialCouplingProblem(model, feed, hole_depth, through); !p.empty())
+    throw InputError("", 0, p);
   const DrillGeometry& g = model.geometry;
-  const double exit_extra =
-      through ? (g.radius() - g.chiselHalfLength()) / std::tan(g.halfPoint()) : 0.0;
+  const double exit_extra = exitExtra(g, through);
   const double z_end = hole_depth + exit_extra;
   const double thickness = through ? hole_depth : 0.0;
   std::vector<AxialCouplingSample> out;

@@ -24,6 +24,7 @@
 /// without allocation.
 
 #include <Eigen/Core>
+#include <string>
 #include <vector>
 
 #include "compensator/process/drill_geometry.hpp"
@@ -119,8 +120,23 @@ struct DepthSample {
   double depth{0};  ///< tip depth below the entry surface [m]
   DrillingForces forces;
 };
+/// Range limits (issue 13: a depth of 1e300 mm or a step of 1e-12 mm overflowed the sample
+/// count): hole depth at most 2 m, a depth profile or an axial coupling at most 1e6 rows.
+inline constexpr double kMaxHoleDepth = 2.0;              ///< [m]
+inline constexpr double kMaxDepthSamples = 1.0e6;         ///< rows of a depth profile
+inline constexpr double kMaxCouplingRevolutions = 1.0e6;  ///< rows of an axial coupling
+
+/// "" when a depth profile of `hole_depth` every `step` is within range, else what is wrong
+/// (numbers in mm, bounded %g).
+std::string depthProfileProblem(const DrillingModel& model, double hole_depth, bool through,
+                                double step);
+/// "" when an axial coupling of `hole_depth` at `feed` per revolution is within range.
+std::string axialCouplingProblem(const DrillingModel& model, double feed, double hole_depth,
+                                 bool through);
+
 /// Samples from z = 0 to the hole depth (blind) or through the breakthrough (thickness > 0:
-/// until the corner has left the plate), every `step` metres.
+/// until the corner has left the plate), every `step` metres. Throws InputError when
+/// depthProfileProblem() is not empty.
 std::vector<DepthSample> drillingDepthProfile(const DrillingModel& model, DrillingData& data,
                                               double feed, double hole_depth, bool through,
                                               double step);
@@ -143,6 +159,7 @@ struct AxialCouplingSample {
   double residual{0};  ///< |g(δ_k)| [m]
   DrillingForces forces;
 };
+/// Throws InputError when axialCouplingProblem() is not empty.
 std::vector<AxialCouplingSample> drillingAxialCoupling(
     const DrillingModel& model, DrillingData& data, double feed, double hole_depth, bool through,
     double axial_compliance, double tolerance = 0.1e-6, int max_iterations = 100);

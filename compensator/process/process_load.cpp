@@ -1,12 +1,13 @@
 #include "compensator/process/process_load.hpp"
 
-#include <cstdio>
+#include <string>
+
+#include "compensator/support/c_format.hpp"
 
 namespace roprec {
 
 SteadyProcessLoad steadyProcessLoad(const ProcessSpec& spec) {
   SteadyProcessLoad out;
-  char buf[256];
   switch (spec.type) {
     case ProcessType::kWrench:
       out.wrench.force = spec.wrench.force;
@@ -23,10 +24,10 @@ SteadyProcessLoad steadyProcessLoad(const ProcessSpec& spec) {
       w.force.y() = 0.0;
       out.wrench = w;
       out.rotating_force = F.residual;
-      std::snprintf(buf, sizeof buf, "drilling Dc %.2f mm, f %.3f mm/rev, %s",
-                    d.geometry.diameter * 1e3, d.feed * 1e3,
-                    d.material ? d.material->name.c_str() : "calibrated coefficients");
-      out.description = buf;
+      // "C" format whatever the host's locale (compensator/support/c_format.hpp)
+      out.description = "drilling Dc " + cFixed(d.geometry.diameter * 1e3, 2) + " mm, f " +
+                        cFixed(d.feed * 1e3, 3) + " mm/rev, " +
+                        (d.material ? d.material->name : std::string("calibrated coefficients"));
       break;
     }
     case ProcessType::kMilling: {
@@ -35,10 +36,9 @@ SteadyProcessLoad steadyProcessLoad(const ProcessSpec& spec) {
       const Vec3 Fm = millingMeanForce(m, s.cut.fz, s.cut.ae);
       // milling frame: X = feed = tool x, Z = tip → spindle = −tool z, Y = Z × X = −tool y
       out.wrench.force = Vec3(Fm.x(), -Fm.y(), -Fm.z());
-      std::snprintf(buf, sizeof buf,
-                    "milling D %.2f mm, ae %.2f mm, ap %.2f mm, fz %.3f mm (feed along tool x)",
-                    s.tool.diameter * 1e3, s.cut.ae * 1e3, s.cut.ap * 1e3, s.cut.fz * 1e3);
-      out.description = buf;
+      out.description = "milling D " + cFixed(s.tool.diameter * 1e3, 2) + " mm, ae " +
+                        cFixed(s.cut.ae * 1e3, 2) + " mm, ap " + cFixed(s.cut.ap * 1e3, 2) +
+                        " mm, fz " + cFixed(s.cut.fz * 1e3, 3) + " mm (feed along tool x)";
       break;
     }
   }

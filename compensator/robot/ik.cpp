@@ -145,6 +145,10 @@ bool solutionLess(const IkSolution& a, const IkSolution& b) {
   return false;
 }
 
+/// Turn indices beyond ±kMaxTurnIndex are never enumerated (the loaders refuse joint limits
+/// beyond ±10 turns; this keeps the enumeration bounded whatever an IkModel holds).
+constexpr double kMaxTurnIndex = 16.0;
+
 /// Appends the turn representatives of a wrapped solution.
 void expandTurns(const IkModel& m, const IkSolution& base, const IkOptions& opt, IkResult& result) {
   std::array<int, 6> kmin{};
@@ -153,8 +157,16 @@ void expandTurns(const IkModel& m, const IkSolution& base, const IkOptions& opt,
   for (int i = 0; i < 6; ++i) {
     const size_t u = static_cast<size_t>(i);
     const double qw = base.q[i];
-    const int lo = static_cast<int>(std::ceil((m.lower[i] - qw - kExactTol) / kTwoPi));
-    const int hi = static_cast<int>(std::floor((m.upper[i] - qw + kExactTol) / kTwoPi));
+    // Turn counts in double, clamped before the conversion: absurd (or non-finite) limits must
+    // neither overflow an int nor make the loops below run 2^31 times.
+    const double lo_d = std::ceil((m.lower[i] - qw - kExactTol) / kTwoPi);
+    const double hi_d = std::floor((m.upper[i] - qw + kExactTol) / kTwoPi);
+    if (!(lo_d <= hi_d)) {  // also NaN limits
+      inside = false;
+      break;
+    }
+    const int lo = static_cast<int>(std::clamp(lo_d, -kMaxTurnIndex, kMaxTurnIndex));
+    const int hi = static_cast<int>(std::clamp(hi_d, -kMaxTurnIndex, kMaxTurnIndex));
     if (hi < lo) {
       inside = false;
       break;
@@ -297,20 +309,19 @@ IkModel buildIkModel(const ChainDescription& chain, const IkModelOptions& option
       std::max(std::abs(std::asin(std::clamp(z[3].dot(z[4]), -1.0, 1.0))),
                std::abs(std::asin(std::clamp(z[4].dot(z[5]), -1.0, 1.0))));
   if (dev.axis12_rad > kMaxDeviationRad) {
-    fail(1, "axis 2 is not perpendicular to axis 1 (off by " +
-                std::to_string(dev.axis12_rad / kDeg) + "°)");
-  }
-  if (dev.axis23_rad > kMaxDeviationRad) {
-    fail(2, "axis 3 is not parallel to axis 2 (off by " + std::to_string(dev.axis23_rad / kDeg) +
+    fail(1, "axis 2 is not perpendicular to axis 1 (off by " + numberText(dev.axis12_rad / kDeg) +
                 "°)");
   }
+  if (dev.axis23_rad > kMaxDeviationRad) {
+    fail(2, "axis 3 is not parallel to axis 2 (off by " + numberText(dev.axis23_rad / kDeg) + "°)");
+  }
   if (dev.wrist_intersection_m > kMaxDeviationM) {
-    fail(3, "axes 4, 5, 6 do not intersect (" + std::to_string(dev.wrist_intersection_m * 1e3) +
+    fail(3, "axes 4, 5, 6 do not intersect (" + numberText(dev.wrist_intersection_m * 1e3) +
                 " mm apart)");
   }
   if (dev.wrist_orthogonality_rad > kMaxDeviationRad) {
     fail(4, "wrist axes are not orthogonal (off by " +
-                std::to_string(dev.wrist_orthogonality_rad / kDeg) + "°)");
+                numberText(dev.wrist_orthogonality_rad / kDeg) + "°)");
   }
   dev.exact = dev.axis12_rad <= kExactTol && dev.axis23_rad <= kExactTol &&
               dev.wrist_intersection_m <= kExactTol && dev.wrist_orthogonality_rad <= kExactTol;
@@ -579,15 +590,15 @@ std::string describeIkFailure(const IkResult& r) {
     case IkFailure::kNone:
       return r.count > 0 ? "" : "no solution";
     case IkFailure::kOutOfReach:
-      s << "unreachable: the wrist centre is " << r.failure_value * 1e3
+      s << "unreachable: the wrist centre is " << numberText(r.failure_value * 1e3)
         << " mm beyond the arm's reach";
       break;
     case IkFailure::kTooClose:
-      s << "unreachable: the wrist centre is " << r.failure_value * 1e3
+      s << "unreachable: the wrist centre is " << numberText(r.failure_value * 1e3)
         << " mm inside the arm's inner workspace boundary";
       break;
     case IkFailure::kLateralOffset:
-      s << "unreachable: the wrist centre is " << r.failure_value * 1e3
+      s << "unreachable: the wrist centre is " << numberText(r.failure_value * 1e3)
         << " mm closer to axis 1 than the arm's lateral offset";
       break;
     case IkFailure::kNotFinite:

@@ -5,6 +5,9 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -16,9 +19,18 @@ namespace roprec {
 
 namespace {
 
+/// Joint limits beyond ten turns either way are refused at load (issue 13: a limit of -1e300
+/// made the IK's turn enumeration loop 2^31 times).
+constexpr double kMaxJointLimitRad = 10.0 * 2.0 * 3.14159265358979323846;
+
 std::string readFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, 0, "cannot open URDF file");
+  if (!in) {
+    const int e = errno;
+    throw InputError(
+        path, 0,
+        std::string("cannot open URDF file") + (e ? ": " + std::string(std::strerror(e)) : ""));
+  }
   std::ostringstream ss;
   ss << in.rdbuf();
   return ss.str();
@@ -313,6 +325,18 @@ ChainDescription loadUrdfChain(const std::string& path, const UrdfChainRequest& 
       cj.upper = j->limits->upper;
       cj.velocity = j->limits->velocity;
       cj.effort = j->limits->effort;
+      // Range check (numbers are finite here: the reader refuses nan/inf): a revolute joint
+      // turning more than ten turns either way is a unit or typing error (radians expected).
+      for (const auto& [what, v] : {std::pair<const char*, double>{"lower", cj.lower},
+                                    std::pair<const char*, double>{"upper", cj.upper}}) {
+        if (!std::isfinite(v) || std::abs(v) > kMaxJointLimitRad) {
+          throw InputError(
+              path, line,
+              "joint '" + j->name + "': <limit " + what + "=\"" + numberText(v) +
+                  "\"> is out of range (|limit| <= " + numberText(kMaxJointLimitRad, 4) +
+                  " rad = 10 turns; URDF limits are in radians)");
+        }
+      }
       if (!(cj.lower < cj.upper)) {
         throw InputError(path, line, "joint '" + j->name + "' has lower limit >= upper limit");
       }

@@ -1,16 +1,77 @@
 #pragma once
 /// \file atomic_file.hpp
-/// Outputs are written atomically: a temporary file beside the target, then rename(2), so a
-/// failed run never leaves a partial output (docs/contract.md §4).
+/// Outputs are written all-or-nothing (docs/contract.md §4). Every output of a command is staged
+/// to a temporary file in its target folder (`.NAME.roprec-tmp.PID`, shortened with a hash when
+/// the name would exceed NAME_MAX), fsynced, and renamed onto its target only when every output
+/// of the command was staged; on any error the temporaries are removed. Temporaries left by a
+/// killed run are recognised by their name and removed by the next run that writes to the folder.
+/// A target that is a symbolic link, a FIFO, a device or a folder is refused, never replaced.
 
 #include <string>
+#include <vector>
 
 namespace roprec {
 
-/// Writes `bytes` to `path` through `path.tmp.<pid>` + rename. Throws InputError on failure.
+/// A set of output files written all-or-nothing: stage() each, then commit() (rename all) or
+/// rollback() (remove the temporaries; also done by the destructor when not committed).
+class OutputSet {
+ public:
+  OutputSet() = default;
+  ~OutputSet();
+  OutputSet(const OutputSet&) = delete;
+  OutputSet& operator=(const OutputSet&) = delete;
+
+  /// Writes `bytes` to a temporary file beside `path` and fsyncs it. Staging the same path again
+  /// replaces the earlier bytes. Throws InputError(path, 0, "cannot write output file: <why>").
+  void stage(const std::string& path, const std::string& bytes);
+  /// Renames every staged temporary onto its target (then fsyncs the folders); returns the paths
+  /// in staging order. Throws InputError when a rename fails (the remaining temporaries are
+  /// removed).
+  std::vector<std::string> commit();
+  /// Removes every staged temporary; the targets keep their old contents.
+  void rollback() noexcept;
+
+  [[nodiscard]] const std::vector<std::string>& paths() const { return paths_; }
+  [[nodiscard]] bool empty() const { return paths_.empty(); }
+
+ private:
+  std::vector<std::string> paths_;
+  std::vector<std::string> temps_;
+  std::vector<std::string> cleaned_dirs_;
+};
+
+/// While alive, writeFileAtomic() stages into `set` instead of writing at once, so code that
+/// writes several files through writeFileAtomic (program + .dat, JSON + HTML + targets) becomes
+/// all-or-nothing when its caller wraps it in a scope and commits the set afterwards. Scopes nest
+/// (the innermost wins); one per thread.
+class ScopedOutputSet {
+ public:
+  explicit ScopedOutputSet(OutputSet& set);
+  ~ScopedOutputSet();
+  ScopedOutputSet(const ScopedOutputSet&) = delete;
+  ScopedOutputSet& operator=(const ScopedOutputSet&) = delete;
+
+ private:
+  OutputSet* previous_;
+};
+
+/// Writes one output: staged into the active ScopedOutputSet if there is one, else written
+/// at once (temporary + fsync + rename). Throws InputError on failure.
 void writeFileAtomic(const std::string& path, const std::string& bytes);
 
-/// Reads a whole file as bytes. Throws InputError(path, 0, "cannot open file").
+/// Reads a whole file as bytes. Throws InputError(path, 0, "cannot open file: <why>").
 std::string readFileBytes(const std::string& path);
+
+/// The temporary file name used for `path` by process `pid` (same folder; the file name part is
+/// at most NAME_MAX bytes).
+std::string outputTemporaryPath(const std::string& path, long pid);
+/// True when `file_name` (no folder) is an output temporary; sets *pid to its writer's process.
+bool isOutputTemporaryName(const std::string& file_name, long* pid = nullptr);
+/// Removes the output temporaries in `dir` whose writing process no longer exists.
+void removeStaleOutputTemporaries(const std::string& dir);
+
+/// Test hook: called by OutputSet::commit() after every output was staged and before the first
+/// rename (the tests kill the process there). nullptr disables it.
+void setOutputCommitHookForTesting(void (*hook)());
 
 }  // namespace roprec

@@ -1,5 +1,7 @@
 #include "compensator/support/error.hpp"
 
+#include <charconv>
+#include <cmath>
 #include <utility>
 
 namespace roprec {
@@ -28,5 +30,15 @@ InputError::InputError(std::string file, int line, std::string message, int colu
       message_(std::move(message)) {}
 
 std::string formatInputError(const InputError& e) { return e.what(); }
+
+std::string numberText(double v, int significant) {
+  if (std::isnan(v)) return "not a number";
+  if (std::isinf(v)) return v > 0 ? "infinite" : "-infinite";
+  if (v == 0.0) return "0";
+  char buf[64];
+  const int p = significant < 1 ? 1 : (significant > 17 ? 17 : significant);
+  const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, p);
+  return std::string(buf, r.ptr);
+}
 
 }  // namespace roprec

@@ -32,7 +32,19 @@ class UsageError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// A bug in roprec caught before it could write a wrong answer (e.g. a non-finite number reaching
+/// an output). The CLI prints `roprec: internal error: ...` and exits with code 2.
+class InternalError : public std::logic_error {
+ public:
+  explicit InternalError(const std::string& what) : std::logic_error(what) {}
+};
+
 /// Formats `FILE:LINE[:COL]: message` (the part after `roprec: error: `).
 std::string formatInputError(const InputError& e);
+
+/// A number for a message: at most `significant` significant digits (%g style, "C" locale, so
+/// never 300 digits), and words instead of "nan"/"inf" ("not a number", "infinite",
+/// "-infinite").
+std::string numberText(double v, int significant = 6);
 
 }  // namespace roprec

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -19,11 +20,14 @@ std::optional<double> parseNumber(const std::string& s) {
   while (b < e && std::isspace(static_cast<unsigned char>(s[b]))) ++b;
   while (e > b && std::isspace(static_cast<unsigned char>(s[e - 1]))) --e;
   if (b == e) return std::nullopt;
-  const std::string t = s.substr(b, e - b);
-  char* end = nullptr;
-  errno = 0;
-  const double v = std::strtod(t.c_str(), &end);
-  if (end != t.c_str() + t.size() || errno == ERANGE || !std::isfinite(v)) return std::nullopt;
+  // std::from_chars: the "C" format whatever the host process's locale (a host that set a
+  // comma-decimal locale must not change a number). A leading '+' is accepted as strtod did.
+  const char* first = s.data() + b;
+  const char* last = s.data() + e;
+  if (*first == '+' && last - first > 1 && first[1] != '-' && first[1] != '+') ++first;
+  double v = 0.0;
+  const auto r = std::from_chars(first, last, v, std::chars_format::general);
+  if (r.ec != std::errc() || r.ptr != last || !std::isfinite(v)) return std::nullopt;
   return v;
 }
 

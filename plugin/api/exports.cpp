@@ -109,6 +109,19 @@ std::string targetsCsv(const CompensationResult& r) {
   return s.str();
 }
 
+/// One item whose numbers are not all finite (a bug or an input that escaped the range checks)
+/// is reported as failed on its own instead of poisoning the whole output (issue 13).
+Json finiteOrFailed(Json item, const std::string& id, int line) {
+  if (item.finite()) return item;
+  Json j = Json::object();
+  j.set("id", Json::str(id));
+  if (line > 0) j.set("line", Json::integer(line));
+  j.set("status", Json::str("failed"));
+  j.set("reason", Json::str("internal error: the result of this hole is not a finite number, so "
+                            "it is not reported (please report this input)"));
+  return j;
+}
+
 Json targetJson(const CompensationResult& r, size_t i) {
   const HoleCompensation& h = r.holes[i];
   Json j = Json::object();
@@ -155,7 +168,10 @@ Json predictionJson(const PredictionResult& r) {
   for (const auto& n : c.job.notes) notes.push(Json::str(n));
   root.set("notes", notes);
   Json hs = Json::array();
-  for (size_t i = 0; i < r.holes.size(); ++i) hs.push(holeJson(r.holes[i], c.job.requests[i]));
+  for (size_t i = 0; i < r.holes.size(); ++i) {
+    hs.push(finiteOrFailed(holeJson(r.holes[i], c.job.requests[i]), r.holes[i].id,
+                           c.job.requests[i].line));
+  }
   root.set("holes", hs);
   root.set("summary", summaryJson(r.summary));
   return root;
@@ -185,7 +201,9 @@ std::string compensationTargets(const CompensationResult& r, const std::string& 
   root.set("program", Json::str(fileName(program_path)));
   root.set("orientation", Json::str(r.orientation));
   Json hs = Json::array();
-  for (size_t i = 0; i < r.holes.size(); ++i) hs.push(targetJson(r, i));
+  for (size_t i = 0; i < r.holes.size(); ++i) {
+    hs.push(finiteOrFailed(targetJson(r, i), r.holes[i].id, r.context.job.requests[i].line));
+  }
   root.set("holes", hs);
   return root.dump();
 }

@@ -247,6 +247,17 @@ void drillingForcesOf(const CellSpec& cell, DrillingSpec& s, const ForcesRequest
   const DrillingForces F = drillingForces(model, s.feed);
   root.set("steady", drillingSteadyJson(F, s.spindle_rpm));
   root.set("wrench_tool", drillingWrenchJson(F, s.spindle_rpm));
+  // Range checks before any sampling, located at the cell's <cut> (depth_mm) when the depth is
+  // the problem, on the command line (--step-mm) otherwise.
+  if (std::string p = depthProfileProblem(model, s.hole_depth, s.through, req.step); !p.empty()) {
+    const bool depth = depthProfileProblem(model, s.hole_depth, s.through, 1e-3).size() > 0;
+    if (depth) throw InputError(cell.file, s.feed_line, "<cut> depth_mm: " + p);
+    throw InputError("", 0, "--step-mm: " + p);
+  }
+  if (req.axial_compliance) {
+    if (std::string p = axialCouplingProblem(model, s.feed, s.hole_depth, s.through); !p.empty())
+      throw InputError(cell.file, s.feed_line, "<cut>: " + p);
+  }
   DrillingData data(model);
   const Json max_over_depth = depthProfile(model, data, s, req.step, out.curve_csv);
   if (req.axial_compliance) {

@@ -1,8 +1,11 @@
 #include "plugin/api/json.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+
+#include "compensator/support/error.hpp"
 
 namespace roprec::api {
 
@@ -65,6 +68,14 @@ Json& Json::push(Json value) {
   return items_.back();
 }
 
+bool Json::finite() const {
+  if (kind_ == Kind::kNumber) return is_integer_ || std::isfinite(number_);
+  for (const Json& i : items_) {
+    if (!i.finite()) return false;
+  }
+  return true;
+}
+
 std::string jsonEscape(const std::string& s) {
   std::string o;
   o.reserve(s.size() + 2);
@@ -100,11 +111,15 @@ std::string jsonEscape(const std::string& s) {
 }
 
 std::string formatNumber(double v, int decimals) {
-  if (!std::isfinite(v)) return "null";
-  char buf[64];
+  if (!std::isfinite(v)) return numberText(v);  // never "nan"/"inf"/"null" (Json::dump throws)
+  // std::to_chars: the "C" format whatever the host's locale (a comma-decimal LC_NUMERIC must
+  // not change a byte of the output).
+  char buf[400];
   if (decimals >= 0) {
-    std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-    std::string s = buf;
+    const auto r =
+        std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, std::min(decimals, 60));
+    if (r.ec != std::errc()) return numberText(v);
+    std::string s(buf, r.ptr);
     // "-0.000" -> "0.000"
     bool all_zero = true;
     for (char c : s) {
@@ -117,6 +132,13 @@ std::string formatNumber(double v, int decimals) {
   const auto r = std::to_chars(buf, buf + sizeof buf, v);
   return std::string(buf, r.ptr);
 }
+
+namespace {
+/// Thrown inside Json::write for a non-finite number; every level adds its key or index.
+struct NonFiniteAt {
+  std::string where;
+};
+}  // namespace
 
 void Json::write(std::string& out, int indent, int level) const {
   const std::string pad =
@@ -132,6 +154,7 @@ void Json::write(std::string& out, int indent, int level) const {
       out += bool_ ? "true" : "false";
       break;
     case Kind::kNumber:
+      if (!is_integer_ && !std::isfinite(number_)) throw NonFiniteAt{""};
       out += is_integer_ ? std::to_string(integer_) : formatNumber(number_, decimals_);
       break;
     case Kind::kString:
@@ -150,7 +173,12 @@ void Json::write(std::string& out, int indent, int level) const {
         out += "[";
         for (size_t i = 0; i < items_.size(); ++i) {
           if (i) out += ", ";
-          items_[i].write(out, indent, level + 1);
+          try {
+            items_[i].write(out, indent, level + 1);
+          } catch (NonFiniteAt& e) {
+            e.where = "[" + std::to_string(i) + "]" + e.where;
+            throw;
+          }
         }
         out += "]";
         break;
@@ -159,7 +187,12 @@ void Json::write(std::string& out, int indent, int level) const {
       out += nl;
       for (size_t i = 0; i < items_.size(); ++i) {
         out += pad;
-        items_[i].write(out, indent, level + 1);
+        try {
+          items_[i].write(out, indent, level + 1);
+        } catch (NonFiniteAt& e) {
+          e.where = "[" + std::to_string(i) + "]" + e.where;
+          throw;
+        }
         if (i + 1 < items_.size()) out += ",";
         out += nl;
       }
@@ -175,7 +208,12 @@ void Json::write(std::string& out, int indent, int level) const {
       out += nl;
       for (size_t i = 0; i < items_.size(); ++i) {
         out += pad + "\"" + jsonEscape(keys_[i]) + "\":" + (indent > 0 ? " " : "");
-        items_[i].write(out, indent, level + 1);
+        try {
+          items_[i].write(out, indent, level + 1);
+        } catch (NonFiniteAt& e) {
+          e.where = "." + keys_[i] + e.where;
+          throw;
+        }
         if (i + 1 < items_.size()) out += ",";
         out += nl;
       }
@@ -187,7 +225,12 @@ void Json::write(std::string& out, int indent, int level) const {
 
 std::string Json::dump(int indent) const {
   std::string out;
-  write(out, indent, 0);
+  try {
+    write(out, indent, 0);
+  } catch (const NonFiniteAt& e) {
+    throw InternalError("a non-finite number reached the JSON output at $" + e.where +
+                        " (it is never written as null; please report this input)");
+  }
   if (indent > 0) out += "\n";
   return out;
 }

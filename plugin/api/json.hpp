@@ -2,7 +2,8 @@
 /// \file json.hpp
 /// A small ordered JSON value for the CLI's reports. Keys keep insertion order and numbers are
 /// printed with a fixed number of decimals (or shortest round-trip), so identical inputs give
-/// byte-identical output. -0 is printed as 0; non-finite numbers are printed as null.
+/// byte-identical output. -0 is printed as 0. A non-finite number is never written: dump() throws
+/// InternalError naming its place ($.holes[3].x), so producers must report such an item instead.
 
 #include <Eigen/Core>
 #include <cstdint>
@@ -33,6 +34,9 @@ class Json {
   Json& push(Json value);
 
   [[nodiscard]] Kind kind() const { return kind_; }
+  /// False when a non-finite number is anywhere inside (dump() would throw).
+  [[nodiscard]] bool finite() const;
+  /// Throws InternalError when the value holds a non-finite number.
   [[nodiscard]] std::string dump(int indent = 2) const;
 
  private:
@@ -50,7 +54,8 @@ class Json {
 
 /// Escapes a string for JSON (UTF-8 passes through; control characters are escaped).
 std::string jsonEscape(const std::string& s);
-/// Formats a double with fixed decimals (or shortest round-trip when decimals < 0), -0 -> 0.
+/// Formats a double with fixed decimals (or shortest round-trip when decimals < 0), -0 -> 0, in
+/// the "C" format whatever the locale. Non-finite values give numberText()'s words.
 std::string formatNumber(double v, int decimals);
 
 }  // namespace roprec::api

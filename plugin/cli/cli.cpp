@@ -96,7 +96,7 @@ Pose parsePoseQuat(const std::string& text) {
   if (std::abs(q.norm() - 1.0) > 1e-6) {
     throw InputError(
         "", 0,
-        "--pose: the quaternion is not a unit quaternion (norm " + std::to_string(q.norm()) + ")");
+        "--pose: the quaternion is not a unit quaternion (norm " + numberText(q.norm(), 9) + ")");
   }
   Pose T = Pose::Identity();
   T.translation() = v.head<3>() * 1e-3;

@@ -2,10 +2,15 @@
 /// drills. This is the command dispatcher; every command lives in plugin/cmd_*.cpp.
 #include <unistd.h>
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <exception>
 #include <iostream>
+#include <new>
+#include <sstream>
 
+#include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
 #include "plugin/cli/cli.hpp"
 
@@ -25,6 +30,23 @@ void printHelp(std::ostream& out) {
   }
   out << "\nUnits: mm and degrees in files and on the command line, SI inside, µm in reports.\n"
          "Exit codes: 0 done; 1 some items could not be handled (listed); 2 bad usage or input.\n";
+}
+
+/// The command's input files (arguments naming existing regular files), for "input too large".
+std::string inputFiles(const std::vector<std::string>& tokens) {
+  static const std::vector<std::string> outputs{"-o",       "--o",       "--json",
+                                                "--csv",    "--report",  "--targets",
+                                                "--output", "--summary", "--calibrate"};
+  std::string s;
+  for (size_t i = 0; i < tokens.size(); ++i) {
+    const std::string& t = tokens[i];
+    if (i > 0 && std::find(outputs.begin(), outputs.end(), tokens[i - 1]) != outputs.end())
+      continue;  // an output file, not an input
+    struct stat st {};
+    if (t.empty() || t[0] == '-' || ::stat(t.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) continue;
+    s += (s.empty() ? "" : ", ") + t;
+  }
+  return s;
 }
 
 }  // namespace
@@ -53,10 +75,30 @@ int main(int argc, char** argv) {
     return 0;
   }
   roprec::cli::Args args(tokens);
-  roprec::cli::CommandContext ctx{std::cout, std::cerr, false, ::isatty(2) != 0};
+  // stdout is held back until the outputs are committed, so "wrote X" is never printed for a
+  // file that was not written.
+  std::ostringstream out;
+  roprec::cli::CommandContext ctx{out, std::cerr, false, ::isatty(2) != 0};
   ctx.quiet = args.flag("quiet");
   try {
-    return it->run(args, ctx);
+    // Every file the command writes is staged and renamed only when the command succeeded:
+    // all outputs or none (compensator/support/atomic_file.hpp).
+    roprec::OutputSet outputs;
+    const roprec::ScopedOutputSet scope(outputs);
+    const int rc = it->run(args, ctx);
+    outputs.commit();
+    std::cout << out.str() << std::flush;
+    return rc;
+  } catch (const std::bad_alloc&) {
+    const std::string files = inputFiles(tokens);
+    std::cerr << "roprec: error: input too large: out of memory while running '" << name << "'"
+              << (files.empty() ? std::string(" (check the numbers given on the command line)")
+                                : " on " + files)
+              << "; nothing written\n";
+    return 2;
+  } catch (const roprec::InternalError& e) {
+    std::cerr << "roprec: internal error: " << e.what() << "; nothing written\n";
+    return 2;
   } catch (const roprec::InputError& e) {
     std::cerr << "roprec: error: " << e.what() << "\n";
     return 2;

@@ -1,0 +1,42 @@
+#include "compensator/support/c_format.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+
+namespace roprec {
+
+namespace {
+std::string nonFinite(double v) {
+  if (std::isnan(v)) return "nan";
+  return v > 0 ? "inf" : "-inf";
+}
+}  // namespace
+
+std::string cFixed(double v, int decimals) {
+  if (!std::isfinite(v)) return nonFinite(v);
+  char buf[400];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed,
+                               std::clamp(decimals, 0, 60));
+  if (r.ec != std::errc()) return cGeneral(v, 17);
+  return std::string(buf, r.ptr);
+}
+
+std::string cGeneral(double v, int precision) {
+  if (!std::isfinite(v)) return nonFinite(v);
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general,
+                               std::clamp(precision, 1, 17));
+  return std::string(buf, r.ptr);
+}
+
+ClassicLocaleScope::ClassicLocaleScope() {
+  static const locale_t c_locale = ::newlocale(LC_ALL_MASK, "C", static_cast<locale_t>(nullptr));
+  if (c_locale != static_cast<locale_t>(nullptr)) previous_ = ::uselocale(c_locale);
+}
+
+ClassicLocaleScope::~ClassicLocaleScope() {
+  if (previous_ != static_cast<locale_t>(nullptr)) ::uselocale(previous_);
+}
+
+}  // namespace roprec

@@ -1,0 +1,240 @@
+/// All-or-nothing outputs (issue 13 item 3): OutputSet stages every output to a temporary file
+/// in its target folder and renames all of them only when all were staged.
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "compensator/support/atomic_file.hpp"
+#include "compensator/support/error.hpp"
+#include "tests/support/test_support.hpp"
+
+namespace roprec {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<std::string> listDir(const std::string& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+int temporariesIn(const std::string& dir) {
+  int n = 0;
+  for (const auto& name : listDir(dir)) n += isOutputTemporaryName(name) ? 1 : 0;
+  return n;
+}
+
+void killSelf() { ::raise(SIGKILL); }
+
+TEST(OutputSet, CommitWritesAllAndLeavesNoTemporaries) {
+  const std::string dir = test::tempDir("outset-commit");
+  OutputSet set;
+  set.stage(dir + "/a.src", "A");
+  set.stage(dir + "/a.dat", "D");
+  set.stage(dir + "/r.html", "R");
+  EXPECT_FALSE(fs::exists(dir + "/a.src"));  // nothing visible before commit
+  EXPECT_EQ(temporariesIn(dir), 3);
+  const auto written = set.commit();
+  EXPECT_EQ(written.size(), 3u);
+  EXPECT_EQ(test::readFile(dir + "/a.src"), "A");
+  EXPECT_EQ(test::readFile(dir + "/a.dat"), "D");
+  EXPECT_EQ(test::readFile(dir + "/r.html"), "R");
+  EXPECT_EQ(temporariesIn(dir), 0);
+}
+
+TEST(OutputSet, ErrorInTheMiddleLeavesOldSetAndNoTemporaries) {
+  const std::string dir = test::tempDir("outset-rollback");
+  test::writeFile(dir + "/a.src", "old A");
+  {
+    OutputSet set;
+    set.stage(dir + "/a.src", "new A");
+    EXPECT_THROW(set.stage(dir + "/missing-folder/b.dat", "x"), InputError);
+  }  // destructor rolls back
+  EXPECT_EQ(test::readFile(dir + "/a.src"), "old A");
+  EXPECT_EQ(temporariesIn(dir), 0);
+}
+
+TEST(OutputSet, ScopedSetMakesWriteFileAtomicAllOrNothing) {
+  const std::string dir = test::tempDir("outset-scope");
+  try {
+    OutputSet set;
+    const ScopedOutputSet scope(set);
+    writeFileAtomic(dir + "/one.json", "1");
+    writeFileAtomic(dir + "/two.html", "2");
+    throw std::runtime_error("the command failed after writing two outputs");
+  } catch (const std::runtime_error&) {
+  }
+  EXPECT_TRUE(listDir(dir).empty());
+}
+
+TEST(OutputSet, CannotWriteSaysWhy) {
+  try {
+    writeFileAtomic("/nonexistent-folder-roprec/x.json", "x");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot write output file: No such file or directory"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(OutputSet, SymlinkAndFifoTargetsAreRefusedNotReplaced) {
+  const std::string dir = test::tempDir("outset-special");
+  test::writeFile(dir + "/real.txt", "real");
+  ASSERT_EQ(::symlink("real.txt", (dir + "/link.txt").c_str()), 0);
+  ASSERT_EQ(::mkfifo((dir + "/fifo.txt").c_str(), 0644), 0);
+  try {
+    writeFileAtomic(dir + "/link.txt", "new");
+    FAIL() << "symlink replaced";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("symbolic link"), std::string::npos) << e.what();
+  }
+  try {
+    writeFileAtomic(dir + "/fifo.txt", "new");
+    FAIL() << "FIFO replaced";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("FIFO"), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(fs::is_symlink(dir + "/link.txt"));
+  EXPECT_TRUE(fs::is_fifo(dir + "/fifo.txt"));
+  EXPECT_EQ(test::readFile(dir + "/real.txt"), "real");
+  EXPECT_EQ(temporariesIn(dir), 0);
+}
+
+TEST(OutputSet, NamesNearTheNameMaxLimitWork) {
+  const std::string dir = test::tempDir("outset-long");
+  for (const size_t len : {200u, 240u, 250u, 255u}) {
+    const std::string name = std::string(len - 5, 'h') + ".json";
+    ASSERT_EQ(name.size(), len);
+    const std::string tmp = outputTemporaryPath(dir + "/" + name, 4194304);
+    EXPECT_LE(fs::path(tmp).filename().string().size(), 255u);
+    EXPECT_TRUE(isOutputTemporaryName(fs::path(tmp).filename().string()));
+    OutputSet set;
+    set.stage(dir + "/" + name, "long " + std::to_string(len));
+    set.stage(dir + "/" + std::string(len - 5, 'h') + ".html", "html");
+    set.commit();
+    EXPECT_EQ(test::readFile(dir + "/" + name), "long " + std::to_string(len));
+  }
+  EXPECT_EQ(temporariesIn(dir), 0);
+}
+
+TEST(OutputSet, KillBetweenStagingAndCommitLeavesOldSetAndNextRunCleansUp) {
+  const std::string dir = test::tempDir("outset-kill");
+  test::writeFile(dir + "/p.src", "old src");
+  test::writeFile(dir + "/p.dat", "old dat");
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    setOutputCommitHookForTesting(&killSelf);  // SIGKILL after staging, before the renames
+    OutputSet set;
+    set.stage(dir + "/p.src", "new src");
+    set.stage(dir + "/p.dat", "new dat");
+    set.stage(dir + "/p.json", "new json");
+    set.commit();
+    ::_exit(0);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFSIGNALED(status));
+  EXPECT_EQ(WTERMSIG(status), SIGKILL);
+  // the old set, untouched; the killed run's temporaries are recognisable
+  EXPECT_EQ(test::readFile(dir + "/p.src"), "old src");
+  EXPECT_EQ(test::readFile(dir + "/p.dat"), "old dat");
+  EXPECT_FALSE(fs::exists(dir + "/p.json"));
+  EXPECT_EQ(temporariesIn(dir), 3);
+  // the next run writing to the folder removes them
+  OutputSet next;
+  next.stage(dir + "/q.txt", "q");
+  next.commit();
+  EXPECT_EQ(temporariesIn(dir), 0);
+  EXPECT_EQ(listDir(dir), (std::vector<std::string>{"p.dat", "p.src", "q.txt"}));
+}
+
+TEST(OutputSet, KillAfterCommitLeavesTheNewSet) {
+  const std::string dir = test::tempDir("outset-kill-after");
+  test::writeFile(dir + "/p.src", "old src");
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    OutputSet set;
+    set.stage(dir + "/p.src", "new src");
+    set.stage(dir + "/p.dat", "new dat");
+    set.commit();
+    ::raise(SIGKILL);
+    ::_exit(0);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  EXPECT_EQ(test::readFile(dir + "/p.src"), "new src");
+  EXPECT_EQ(test::readFile(dir + "/p.dat"), "new dat");
+  EXPECT_EQ(temporariesIn(dir), 0);
+}
+
+TEST(OutputSet, FullDiskLeavesNothingNew) {
+  // RLIMIT_FSIZE in a forked child: the second output does not fit (EFBIG), so the first one is
+  // not published either and no temporary is left.
+  const std::string dir = test::tempDir("outset-full");
+  test::writeFile(dir + "/big.src", "old");
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    ::signal(SIGXFSZ, SIG_IGN);
+    struct rlimit rl {};
+    rl.rlim_cur = rl.rlim_max = 4096;
+    if (::setrlimit(RLIMIT_FSIZE, &rl) != 0) ::_exit(3);
+    try {
+      OutputSet set;
+      set.stage(dir + "/big.src", "small new program");
+      set.stage(dir + "/big.dat", std::string(100000, 'x'));
+      set.commit();
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      ::_exit(what.find("File too large") != std::string::npos ? 42 : 4);
+    }
+    ::_exit(0);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 42);
+  EXPECT_EQ(test::readFile(dir + "/big.src"), "old");
+  EXPECT_EQ(listDir(dir), (std::vector<std::string>{"big.src"}));
+}
+
+TEST(OutputSet, CliMultiOutputCommandWritesNothingWhenOneOutputFails) {
+  // roprec forces --csv OK --json into a missing folder: exit 2, the CSV is not written either.
+  const std::string dir = test::tempDir("outset-cli");
+  const auto r = test::runRoprec("forces --cell '" + test::sourceDir() +
+                                 "/samples/cells/alu-drilling-6061.xml' --csv '" + dir +
+                                 "/d.csv' --json '" + dir + "/missing/f.json'");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("cannot write output file: No such file or directory"), std::string::npos)
+      << r.err;
+  EXPECT_TRUE(listDir(dir).empty());
+}
+
+TEST(OutputSet, CliRefusesASymlinkOutput) {
+  const std::string dir = test::tempDir("outset-cli-link");
+  test::writeFile(dir + "/target.json", "keep");
+  ASSERT_EQ(::symlink("target.json", (dir + "/out.json").c_str()), 0);
+  const auto r = test::runRoprec(
+      "fk --robot kuka-kr120-r2500-pro --joints \"0 -90 90 0 0 0\" -o '" + dir + "/out.json'");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("symbolic link"), std::string::npos) << r.err;
+  EXPECT_EQ(test::readFile(dir + "/target.json"), "keep");
+  EXPECT_TRUE(fs::is_symlink(dir + "/out.json"));
+}
+
+}  // namespace
+}  // namespace roprec
