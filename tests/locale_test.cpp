@@ -1,6 +1,8 @@
 /// Locale independence (issue 13 item 8): a host process that sets a comma-decimal locale (the C
 /// locale through setlocale and the global C++ locale) must not change a byte of roprec's results,
 /// and numbers must still parse.
+#include <unistd.h>
+
 #include <clocale>
 #include <cstdlib>
 #include <filesystem>
@@ -35,13 +37,18 @@ bool setCommaCLocale() {
   for (const char* name : {"de_DE.UTF-8", "de_DE.utf8", "fr_FR.UTF-8"}) {
     if (std::setlocale(LC_ALL, name) != nullptr) return true;
   }
-  const std::string dir = fs::path(test::tempDir("locale")).parent_path().string() + "/locales";
+  const std::string dir =
+      fs::path(test::tempDir("locale")).parent_path().string() + "/roprec-test-locales";
   const std::string loc = dir + "/de_DE.UTF-8";
   if (!fs::exists(loc + "/LC_NUMERIC")) {
+    // compiled beside, then renamed: tests running in parallel never see a half-written locale
     fs::create_directories(dir);
-    const std::string cmd = "localedef -i de_DE -f UTF-8 '" + loc +
-                            "' >/dev/null 2>&1 || test -f '" + loc + "/LC_NUMERIC'";
-    if (std::system(cmd.c_str()) != 0) return false;
+    const std::string part = loc + ".part." + std::to_string(::getpid());
+    const std::string cmd = "localedef -i de_DE -f UTF-8 '" + part + "' >/dev/null 2>&1";
+    if (std::system(cmd.c_str()) != 0 || !fs::exists(part + "/LC_NUMERIC")) return false;
+    std::error_code ec;
+    fs::rename(part, loc, ec);  // fails when another test was faster: its copy is used
+    fs::remove_all(part, ec);
   }
   ::setenv("LOCPATH", dir.c_str(), 1);
   const bool ok = std::setlocale(LC_ALL, "de_DE.UTF-8") != nullptr;
