@@ -190,3 +190,22 @@ TEST(NumericRange, OutOfMemoryIsReportedAsInputTooLargeNamingTheInput) {
 
 }  // namespace
 }  // namespace roprec
+
+namespace roprec {
+namespace {
+
+TEST(NumericRange, DrillGeometryMessagesUseBoundedNumbers) {
+  DrillGeometry g;
+  g.point_angle = 1e300;
+  std::string why = drillGeometryProblem(g);
+  EXPECT_NE(why.find("5.72958e+301"), std::string::npos) << why;  // not 300 digits
+  EXPECT_LT(why.size(), 120u) << why;
+  g = DrillGeometry{};
+  g.web_thickness = 1e300;
+  why = drillGeometryProblem(g);
+  EXPECT_LT(why.size(), 120u) << why;
+  EXPECT_EQ(why.find("nan"), std::string::npos) << why;
+}
+
+}  // namespace
+}  // namespace roprec

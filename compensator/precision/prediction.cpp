@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "compensator/precision/uncertainty.hpp"
+#include "compensator/support/error.hpp"
 
 namespace roprec {
 
@@ -251,7 +252,7 @@ HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const Ho
     p.status = HoleStatus::kNotConverged;
     p.verdict = Verdict::kNotConverged;
     p.reason = "the compliance equilibrium did not converge (residual " +
-               std::to_string(p.deflection.residual) + " rad)";
+               numberText(p.deflection.residual) + " rad)";
     return p;
   }
   p.d_robot = p.deflection.dp;

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <string>
 
+#include "compensator/support/error.hpp"
+
 namespace roprec {
 namespace {
 
@@ -26,14 +28,14 @@ double DrillGeometry::pointLength() const {
 std::string drillGeometryProblem(const DrillGeometry& g) {
   if (!(g.diameter > 0)) return "drill diameter must be > 0";
   if (!(g.point_angle > 60 * kDeg && g.point_angle < 180 * kDeg)) {
-    return "point angle must lie in (60, 180) degrees, got " + std::to_string(g.point_angle / kDeg);
+    return "point angle must lie in (60, 180) degrees, got " + numberText(g.point_angle / kDeg);
   }
   if (!(g.helix_angle >= 0 && g.helix_angle < 60 * kDeg))
     return "helix angle must lie in [0, 60) degrees";
   if (!(g.web_thickness >= 0)) return "web thickness must be >= 0";
   if (!(g.web_thickness < g.diameter)) {
-    return "web is wider than the drill: 2w = " + std::to_string(g.web_thickness * 1e3) +
-           " mm >= Dc = " + std::to_string(g.diameter * 1e3) + " mm";
+    return "web is wider than the drill: 2w = " + numberText(g.web_thickness * 1e3) +
+           " mm >= Dc = " + numberText(g.diameter * 1e3) + " mm";
   }
   if (!(g.chisel_angle > 90 * kDeg && g.chisel_angle < 180 * kDeg)) {
     return "chisel-edge angle must lie in (90, 180) degrees (obtuse end-view angle)";
@@ -42,8 +44,8 @@ std::string drillGeometryProblem(const DrillGeometry& g) {
   if (!(g.runout >= 0)) return "runout must be >= 0";
   if (!(g.chiselHalfLength() < 0.9 * g.radius())) {
     return "web is too wide for the drill: chisel half-length w/sin(psi) = " +
-           std::to_string(g.chiselHalfLength() * 1e3) +
-           " mm must stay below 0.9 R = " + std::to_string(0.9 * g.radius() * 1e3) + " mm";
+           numberText(g.chiselHalfLength() * 1e3) +
+           " mm must stay below 0.9 R = " + numberText(0.9 * g.radius() * 1e3) + " mm";
   }
   if (!(g.runout < 0.1 * g.radius())) return "runout must be < 0.1 R";
   return {};

@@ -536,7 +536,7 @@ int TransientSimulator::Impl::rhs(double t, const double* yp, double* ydp) {
   }
   if (!last_position.converged) {
     rhs_failure = "position problem did not converge (residual " +
-                  std::to_string(last_position.residual) + " after " +
+                  numberText(last_position.residual) + " after " +
                   std::to_string(last_position.iterations) + " iterations)";
     return 1;
   }
@@ -772,7 +772,7 @@ Deflection TransientSimulator::Impl::staticDeflection(const ToolWrench& w) {
       predictDeflection(model, out_data, c, problem.theta_cmd, loads, {}, problem.command_offset);
   if (!d.converged) {
     throw std::runtime_error("transient: the static equilibrium did not converge (residual " +
-                             std::to_string(d.residual) + " rad)");
+                             numberText(d.residual) + " rad)");
   }
   return d;
 }

@@ -17,7 +17,7 @@ FkResult forwardKinematicsAt(const RobotSetup& setup, const Vec6& joints) {
   if (!r.position.converged) {
     throw InputError(
         "", 0,
-        "position problem did not converge (residual " + std::to_string(r.position.residual) + ")");
+        "position problem did not converge (residual " + numberText(r.position.residual) + ")");
   }
   r.T_flange = data.T_W_flange;
   r.T_tcp = data.T_W_tcp;
