@@ -11,10 +11,12 @@
 # FUZZ_BUILD     build folder (default build-fuzz/)
 # FUZZ_BUILD_JOBS  compile jobs (default nproc)
 # FUZZ_NO_BUILD=1  run the binaries already in FUZZ_BUILD (no configure, no build)
+# FUZZ_KEEP_GOING=1  do not stop at the first finding (libFuzzer -fork=JOBS -ignore_crashes=1 ...):
+#                  collects every distinct finding of the FUZZ_SECONDS
 #
 # Inputs: tests/fuzz/seeds/<reader>/ (read only) plus the growing corpus build-fuzz/corpus/<reader>/.
 # A crash, sanitizer report, undocumented exception, timeout (> 10 s per input) or out-of-memory
-# is copied to tests/fuzz/crashes/<reader>/; replay it with build-fuzz/bin/fuzz_<reader> FILE
+# is copied to tests/fuzz/crashes/<reader>/ (the three smallest; all stay in build-fuzz/artifacts/); replay it with build-fuzz/bin/fuzz_<reader> FILE
 # (or the ctest build's bin/fuzz_seed_<reader> FILE). Exit 1 when any harness found something.
 # Not part of CI (.ci/run); CI replays the seeds as the ctests fuzz_seed_<reader>.
 set -euo pipefail
@@ -60,7 +62,11 @@ for r in "${readers[@]}"; do
   mkdir -p "$corpus" "$art" "$work" "$(dirname "$log")"
   rm -f "$art"/* "$work"/fuzz-*.log
   par=()
-  [ "$JOBS" -gt 1 ] && par=(-jobs="$JOBS" -workers="$JOBS")
+  if [ -n "${FUZZ_KEEP_GOING:-}" ]; then
+    par=(-fork="$JOBS" -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1)
+  elif [ "$JOBS" -gt 1 ]; then
+    par=(-jobs="$JOBS" -workers="$JOBS")
+  fi
   echo "== fuzzing $r for ${SECONDS_PER}s ($bin)"
   set +e
   (cd "$work" && "$bin" "$corpus" "$ROOT/tests/fuzz/seeds/$r" -max_total_time="$SECONDS_PER" \
@@ -68,16 +74,22 @@ for r in "${readers[@]}"; do
      "${par[@]}" >"$log" 2>&1)
   rc=$?
   set -e
-  [ "$JOBS" -gt 1 ] && cat "$work"/fuzz-*.log >>"$log" 2>/dev/null
-  execs=$(grep -h 'stat::number_of_executed_units' "$log" | awk '{s += $2} END {print s + 0}')
+  if [ "$JOBS" -gt 1 ]; then cat "$work"/fuzz-*.log >>"$log" 2>/dev/null || true; fi
+  execs=$( (grep -h 'stat::number_of_executed_units' "$log" || true) | awk '{s += $2} END {print s + 0}')
+  if [ "$execs" = 0 ]; then  # fork mode prints no final stats: the last "#N" progress line
+    execs=$( (grep -oE '^#[0-9]+' "$log" || true) | tail -n 1 | tr -d '#')
+    execs=${execs:-0}
+  fi
   ncorp=$(find "$corpus" -type f | wc -l)
   if compgen -G "$art/*" >/dev/null; then
     mkdir -p "$ROOT/tests/fuzz/crashes/$r"
-    cp "$art"/* "$ROOT/tests/fuzz/crashes/$r/"
+    # the three smallest reproducers (FUZZ_KEEP_GOING can collect many of the same finding)
+    ls -S -r "$art"/* | head -n 3 | xargs -I{} cp {} "$ROOT/tests/fuzz/crashes/$r/"
     grep -hE 'ERROR: |runtime error|==[0-9]+==|^    #[0-9] ' "$log" | head -n 20 || true
-    echo "== $r: FOUND ($(ls "$art" | tr '\n' ' ')) -> tests/fuzz/crashes/$r/ (log $log)"
+    nart=$(ls "$art" | wc -l)
+    echo "== $r: FOUND $nart reproducer(s) in $art -> tests/fuzz/crashes/$r/ (log $log)"
     found+=("$r")
-    summary+=("$(printf '%-11s %5ss %10s execs %6s corpus  FOUND: %s' "$r" "$SECONDS_PER" "$execs" "$ncorp" "$(ls "$art" | tr '\n' ' ')")")
+    summary+=("$(printf '%-11s %5ss %10s execs %6s corpus  FOUND: %s reproducer(s)' "$r" "$SECONDS_PER" "$execs" "$ncorp" "$nart")")
   else
     echo "== $r: no finding (libFuzzer exit $rc, $execs executions, corpus $ncorp files)"
     summary+=("$(printf '%-11s %5ss %10s execs %6s corpus  no finding' "$r" "$SECONDS_PER" "$execs" "$ncorp")")
