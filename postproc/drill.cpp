@@ -68,11 +68,29 @@ std::vector<Hole> recognizeHoles(const Program& p, const RecognitionOptions& o) 
       }
       Hole h;
       bool slower = false;
+      std::size_t surface = i;
+      double surface_d = 0;
+      double feed = vmax;  // the slowest move into the material is the drilling feed
       for (std::size_t k = i + 1; k < j; ++k) {
         const double prev = (motionPose(p, p.motions[k - 1])->translation() - p0).dot(a);
         const double cur = (motionPose(p, p.motions[k])->translation() - p0).dot(a);
         const double v = p.motions[k].speed_mm_s;
-        if (cur > prev + line_tol && v > 0 && v < vmax) slower = true;
+        if (cur > prev + line_tol && v > 0 && v < vmax) {
+          slower = true;
+          feed = std::min(feed, v);
+        }
+      }
+      if (slower) {  // the first move into the material at the feed starts at the surface
+        for (std::size_t k = i + 1; k < j; ++k) {
+          const double prev = (motionPose(p, p.motions[k - 1])->translation() - p0).dot(a);
+          const double cur = (motionPose(p, p.motions[k])->translation() - p0).dot(a);
+          const double v = p.motions[k].speed_mm_s;
+          if (cur > prev + line_tol && v > 0 && v <= feed * (1 + 1e-9)) {
+            surface = k - 1;
+            surface_d = prev;
+            break;
+          }
+        }
       }
       if (slower) h.evidence.push_back("feed slower than approach/retract");
       bool marker = false;
@@ -98,7 +116,16 @@ std::vector<Hole> recognizeHoles(const Program& p, const RecognitionOptions& o) 
         }
         h.position = motionPose(p, p.motions[bottom])->translation();
         h.axis = a;
-        h.depth = dmax;
+        if (slower && surface_d < dmax - line_tol) {
+          h.surface = motionPose(p, p.motions[surface])->translation();
+          h.surface_motion = static_cast<int>(surface);
+          h.depth = dmax - surface_d;
+        } else {
+          // no feed change: the program does not say where the material starts
+          h.surface = p0;
+          h.depth = 0.0;
+          h.evidence.push_back("no feed change: surface and depth not known from the program");
+        }
         h.base = m0.base;
         h.tool = m0.tool;
         h.id = "H" + std::to_string(holes.size() + 1);
@@ -119,6 +146,7 @@ std::vector<Hole> recognizeHoles(const Program& p, const RecognitionOptions& o) 
       h.entry_target = h.bottom_target = m0.target;
       h.targets = {m0.target};
       h.position = p0;
+      h.surface = p0;
       h.axis = a;
       h.base = m0.base;
       h.tool = m0.tool;

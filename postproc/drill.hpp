@@ -8,7 +8,9 @@
 /// after the first being linear moves, that goes into the material (some target deeper than the
 /// first along +a) and carries evidence of drilling: a feed slower than the run's fastest move,
 /// a dwell, a spindle/drill call or a drilling comment. The drill point ("bottom") is the deepest
-/// target along +a; every target of the run moves together when compensated. A TP/KRL call of a
+/// target along +a; the surface is the point the first feed move into the material starts from
+/// (approach and clearance moves run at the faster approach speed); depth = bottom − surface.
+/// Every target of the run moves together when compensated. A TP/KRL call of a
 /// drilling macro after a single target also makes a hole (entry = bottom = that target).
 ///
 /// Convention: roprec's drilling axis is the TCP +z axis (into the material) for every vendor;
@@ -37,8 +39,15 @@ struct Hole {
   std::vector<int> targets;     ///< every target of the cycle (distinct, program order)
   Vec3 position{Vec3::Zero()};  ///< bottom point in the base frame's coordinates of the program (m)
   Vec3 axis{Vec3::UnitZ()};     ///< drilling direction, same frame (unit)
-  double depth{0.0};            ///< bottom depth below the entry target along axis (m)
-  int base{-1};                 ///< index into Program::frames
+  /// Where the hole starts: the point the feed starts from (the first move into the material at
+  /// a speed slower than the cycle's approach/retract speed), on the axis, same frame (m). The
+  /// approach point above it is not the surface (docs/programs.md §8.2).
+  Vec3 surface{Vec3::Zero()};
+  int surface_motion{-1};  ///< motion whose target is the surface point (-1: not recognised)
+  /// Bottom depth below the surface along axis (m); 0 when the cycle shows no feed change (then
+  /// the surface is not known from the program and the cell's declared depth applies).
+  double depth{0.0};
+  int base{-1};  ///< index into Program::frames
   int tool{-1};
   std::vector<std::string> evidence;
 };

@@ -408,11 +408,11 @@ Configuration parseConfigurationText(const std::string& text) {
 bool targetComplete(const Target& t) {
   if (t.kind != TargetKind::kCartesian) return false;
   for (const NumberField& f : t.pos) {
-    if (!f.present()) return false;
+    if (!f.known()) return false;
   }
   const int n = t.orientation == Orientation::kQuaternion ? 4 : 3;
   for (int i = 0; i < n; ++i) {
-    if (!t.rot[static_cast<std::size_t>(i)].present()) return false;
+    if (!t.rot[static_cast<std::size_t>(i)].known()) return false;
   }
   return t.orientation != Orientation::kNone;
 }
@@ -479,7 +479,7 @@ std::optional<Pose> motionPose(const Program& p, const Motion& m) {
 std::vector<double> targetJointsDeg(const Target& t) {
   std::vector<double> j;
   for (const NumberField& f : t.joints) {
-    if (f.present()) j.push_back(f.value);
+    if (f.known()) j.push_back(f.value);
   }
   return j;
 }
@@ -569,6 +569,21 @@ EditResult replaceTargetPose(Program& p, int index, const Pose& T,
   if (t.kind != TargetKind::kCartesian) {
     r.reason = who + " is a joint target; only Cartesian targets can take a pose";
     return r;
+  }
+  {
+    std::string named;
+    for (const NumberField& f : t.pos)
+      if (!f.expr.empty()) named += (named.empty() ? "" : ", ") + f.expr;
+    for (const NumberField& f : t.rot)
+      if (!f.expr.empty()) named += (named.empty() ? "" : ", ") + f.expr;
+    if (config)
+      for (const NumberField& f : t.cf_fields)
+        if (!f.expr.empty()) named += (named.empty() ? "" : ", ") + f.expr;
+    if (!named.empty()) {
+      r.reason = who + " states components by name or expression (" + named +
+                 "); they are not rewritten: not edited";
+      return r;
+    }
   }
   if (!targetComplete(t)) {
     r.reason =

@@ -89,7 +89,13 @@ struct NumberField {
   std::uint32_t length{0};
   std::uint32_t pad{0};
   double value{0.0};
+  /// RAPID: the component is a named constant or an expression (`Shift_Track`, `-d/2`), kept
+  /// verbatim and never re-printed (file = -1). `value` holds its value when `expr_known`.
+  std::string expr;
+  bool expr_known{false};
   [[nodiscard]] bool present() const { return file >= 0; }
+  /// A value is known: a numeric token, or an expression roprec could evaluate.
+  [[nodiscard]] bool known() const { return file >= 0 || expr_known; }
 };
 
 enum class Vendor { kNone, kKuka, kAbb, kFanuc };
@@ -260,6 +266,20 @@ EditResult replaceTargetPose(Program& p, int index, const Pose& T_frame_tcp,
 /// Defines a frame the program refers to but does not define (e.g. `UFRAME[1]` of a TP
 /// program, `BASE_DATA[3]` of a KRL program from $config.dat). Returns how many uses resolved.
 int resolveFrame(Program& p, const std::string& ref, const Pose& pose);
+
+/// The "roprec compensated" marker (docs/programs.md §15) found in a program's files.
+struct MarkerLocation {
+  int file{-1};
+  int line{0};       ///< 1-based
+  std::string text;  ///< from "roprec compensated" to the end of its line
+};
+/// The first marker line in the program, nullopt when it has none.
+std::optional<MarkerLocation> findCompensationMarker(const Program& p);
+/// Queues the marker line "roprec compensated: `what`" in the dialect's comment syntax: KRL `;`
+/// after the `DEF` line, RAPID `!` after the `MODULE` line, FANUC TP a `!` remark as /MN line 1
+/// (the lines after it renumbered, `LINE_COUNT` + 1), CSV `#` as the first line. Returns false
+/// when the dialect has no comment syntax (JSON) or the anchor line is missing.
+bool markCompensated(Program& p, const std::string& what);
 
 /// The program's files after the pending edits: (path suffix role, bytes). KRL: [.src, .dat].
 std::vector<std::string> renderFiles(const Program& p);

@@ -1,5 +1,7 @@
 /// ABB RAPID reader (`.mod`, `.prg`, `.sys`), docs/programs.md §3.
 #include <cmath>
+#include <functional>
+#include <optional>
 #include <unordered_map>
 
 #include "compensator/support/error.hpp"
@@ -17,6 +19,8 @@ struct Node {
   bool number{false};
   double value{0};
   std::string ident;  // upper case, for identifier leaves
+  std::size_t tb{0};  // scalar leaves: token range [tb, te)
+  std::size_t te{0};
 };
 
 struct ToolState {
@@ -96,6 +100,7 @@ class RapidReader {
       // statement up to ';'
       std::size_t j = i;
       int depth = 0;
+      std::size_t last = b;  // last significant token of the statement so far
       while (j < t.size()) {
         const std::string_view x = f_.text(t[j]);
         if (t[j].kind == TokenKind::kPunct) {
@@ -103,6 +108,8 @@ class RapidReader {
           if (x == "]" || x == ")") --depth;
           if (x == ";") break;
         }
+        if (t[j].kind == TokenKind::kNewline && depth == 0) missingSemicolon(last, j);
+        if (t[j].kind != TokenKind::kNewline && t[j].kind != TokenKind::kComment) last = j;
         ++j;
       }
       if (j >= t.size()) failAt(f_, t[b].offset, "truncated file: statement without ';'");
@@ -121,11 +128,42 @@ class RapidReader {
   std::unordered_map<std::string, ToolState> tools_;
   std::unordered_map<std::string, ToolState> wobjs_;
   std::unordered_map<std::string, double> speeds_;
+  std::unordered_map<std::string, double> nums_;  // num constants/variables of known value
   std::unordered_map<std::string, bool> reported_;
   bool conf_l_{true};
   bool conf_j_{true};
 
   [[noreturn]] void fail(std::size_t off, const std::string& m) const { failAt(f_, off, m); }
+
+  /// A statement continues on the next line only after an operator, a comma, `:=` or inside
+  /// brackets, or when the next line starts with an operator or an optional argument (`\WObj`).
+  /// A line that ends in a complete argument and is followed by a line starting with a name is a
+  /// missing `;` (it would otherwise swallow the next instruction, e.g. a hole's drill point).
+  void missingSemicolon(std::size_t last, std::size_t nl) const {
+    const std::vector<Token>& t = f_.tokens;
+    const Token& lt = t[last];
+    if (lt.kind == TokenKind::kPunct) {
+      const std::string_view x = f_.text(lt);
+      if (x != "]" && x != ")") return;  // `,` `:=` `\` `+` ... continue the statement
+    } else if (lt.kind != TokenKind::kIdentifier && lt.kind != TokenKind::kNumber &&
+               lt.kind != TokenKind::kString) {
+      return;
+    }
+    if (lt.kind == TokenKind::kIdentifier) {
+      const std::string u = upper(f_.text(lt));
+      for (const char* op : {"AND", "OR", "XOR", "NOT", "DIV", "MOD"})
+        if (u == op) return;
+    }
+    std::size_t k = nl;
+    while (k < t.size() && (t[k].kind == TokenKind::kNewline || t[k].kind == TokenKind::kComment))
+      ++k;
+    if (k >= t.size() || t[k].kind != TokenKind::kIdentifier) return;
+    const std::string u = upper(f_.text(t[k]));
+    for (const char* op : {"AND", "OR", "XOR", "NOT", "DIV", "MOD"})
+      if (u == op) return;
+    fail(lt.offset, "missing ';' at the end of the line (the next line, '" +
+                        std::string(f_.text(t[k])) + "', would become part of this statement)");
+  }
 
   void unresolved(const std::string& ref, std::size_t off, const std::string& what) {
     if (reported_.count(upper(ref)) != 0) return;
@@ -185,6 +223,8 @@ class RapidReader {
     }
     if (i == s) fail(t[s].offset, "empty element in aggregate");
     n.end = t[i - 1].offset + t[i - 1].length;
+    n.tb = s;
+    n.te = i;
     const bool sign =
         t[s].kind == TokenKind::kPunct && (f_.text(t[s]) == "-" || f_.text(t[s]) == "+");
     if (t[s].kind == TokenKind::kNumber || sign) {
@@ -192,6 +232,11 @@ class RapidReader {
       const bool one =
           (i - s == 1 && !sign) || (i - s == 2 && sign && t[s + 1].kind == TokenKind::kNumber);
       const std::size_t num = sign ? s + 1 : s;
+      if (sign && num < i &&
+          (t[num].kind == TokenKind::kIdentifier ||
+           (t[num].kind == TokenKind::kPunct && f_.text(t[num]) == "("))) {
+        return n;  // a signed expression (`-Shift`, `-(a+5)`): evaluated where it is used
+      }
       if (sign && (num >= i || t[num].kind != TokenKind::kNumber))
         fail(n.begin, "broken number '" + std::string(txt) + "'");
       if (!one) {
@@ -223,6 +268,97 @@ class RapidReader {
       fail(f_.tokens[i].offset,
            "unexpected '" + std::string(f_.text(f_.tokens[i])) + "' after aggregate");
     return n;
+  }
+
+  /// Value of the expression in tokens [b, e): numbers, `num` constants declared above, + - * /
+  /// and parentheses; nullopt when anything else (a variable set at run time, a function call).
+  std::optional<double> evaluate(std::size_t b, std::size_t e) const {
+    std::vector<std::size_t> tk;
+    for (std::size_t k = b; k < e; ++k) {
+      const TokenKind kind = f_.tokens[k].kind;
+      if (kind != TokenKind::kNewline && kind != TokenKind::kComment) tk.push_back(k);
+    }
+    std::size_t pos = 0;
+    bool ok = true;
+    std::function<double()> expr;
+    auto peek = [&]() -> std::string_view {
+      return pos < tk.size() ? f_.text(f_.tokens[tk[pos]]) : std::string_view();
+    };
+    std::function<double()> factor = [&]() -> double {
+      if (pos >= tk.size()) {
+        ok = false;
+        return 0;
+      }
+      const Token& x = f_.tokens[tk[pos]];
+      const std::string_view s = f_.text(x);
+      if (x.kind == TokenKind::kPunct && (s == "-" || s == "+")) {
+        ++pos;
+        const double v = factor();
+        return s == "-" ? -v : v;
+      }
+      if (x.kind == TokenKind::kPunct && s == "(") {
+        ++pos;
+        const double v = expr();
+        if (peek() != ")") ok = false;
+        ++pos;
+        return v;
+      }
+      ++pos;
+      if (x.kind == TokenKind::kNumber) {
+        const auto v = parseNumber(s);
+        if (!v) ok = false;
+        return v.value_or(0);
+      }
+      if (x.kind == TokenKind::kIdentifier) {
+        const auto it = nums_.find(upper(s));
+        if (it != nums_.end()) return it->second;
+      }
+      ok = false;
+      return 0;
+    };
+    auto term = [&]() -> double {
+      double v = factor();
+      while (ok && (peek() == "*" || peek() == "/")) {
+        const bool mul = peek() == "*";
+        ++pos;
+        const double w = factor();
+        if (!mul && w == 0) ok = false;
+        v = mul ? v * w : (w != 0 ? v / w : 0);
+      }
+      return v;
+    };
+    expr = [&]() -> double {
+      double v = term();
+      while (ok && (peek() == "+" || peek() == "-")) {
+        const bool add = peek() == "+";
+        ++pos;
+        const double w = term();
+        v = add ? v + w : v - w;
+      }
+      return v;
+    };
+    if (tk.empty()) return std::nullopt;
+    const double v = expr();
+    if (!ok || pos != tk.size() || !std::isfinite(v)) return std::nullopt;
+    return v;
+  }
+
+  /// A target component: a number, or (RAPID allows it) a named constant or expression, kept
+  /// verbatim; its value when roprec can evaluate it, else reported as unresolved.
+  NumberField component(const Node& n, const char* what) {
+    if (n.number || n.list) return field(n, what);
+    NumberField f;
+    f.expr = std::string(std::string_view(f_.bytes).substr(n.begin, n.end - n.begin));
+    if (const auto v = evaluate(n.tb, n.te)) {
+      f.value = *v;
+      f.expr_known = true;
+    } else {
+      unresolved(f.expr, n.begin,
+                 std::string(what) + " component '" + f.expr +
+                     "' is not a constant roprec can evaluate (set at run time); its value is "
+                     "unknown");
+    }
+    return f;
   }
 
   NumberField field(const Node& n, const char* what) const {
@@ -274,13 +410,15 @@ class RapidReader {
     t.kind = TargetKind::kCartesian;
     t.orientation = Orientation::kQuaternion;
     t.config.vendor = Vendor::kAbb;
-    for (std::size_t k = 0; k < 3; ++k) t.pos[k] = field(n.items[0].items[k], "robtarget trans");
-    for (std::size_t k = 0; k < 4; ++k) t.rot[k] = field(n.items[1].items[k], "robtarget rot");
+    for (std::size_t k = 0; k < 3; ++k)
+      t.pos[k] = component(n.items[0].items[k], "robtarget trans");
+    for (std::size_t k = 0; k < 4; ++k) t.rot[k] = component(n.items[1].items[k], "robtarget rot");
     for (std::size_t k = 0; k < 4; ++k) {
-      t.cf_fields[k] = field(n.items[2].items[k], "robtarget robconf");
+      t.cf_fields[k] = component(n.items[2].items[k], "robtarget robconf");
       t.config.cf[k] = toInt(std::round(t.cf_fields[k].value), 0);
     }
-    for (std::size_t k = 0; k < 6; ++k) t.ext[k] = field(n.items[3].items[k], "robtarget extax");
+    for (std::size_t k = 0; k < 6; ++k)
+      t.ext[k] = component(n.items[3].items[k], "robtarget extax");
     return add(std::move(t));
   }
 
@@ -294,8 +432,9 @@ class RapidReader {
     t.line = f_.lineOf(n.begin);
     t.kind = TargetKind::kJoint;
     for (std::size_t k = 0; k < 6; ++k)
-      t.joints[k] = field(n.items[0].items[k], "jointtarget robax");
-    for (std::size_t k = 0; k < 6; ++k) t.ext[k] = field(n.items[1].items[k], "jointtarget extax");
+      t.joints[k] = component(n.items[0].items[k], "jointtarget robax");
+    for (std::size_t k = 0; k < 6; ++k)
+      t.ext[k] = component(n.items[1].items[k], "jointtarget extax");
     return add(std::move(t));
   }
 
@@ -344,6 +483,14 @@ class RapidReader {
     }
     ++i;
     if (i >= e) fail(t[i - 1].offset, "declaration without a value");
+    if (type == "NUM" || type == "DNUM") {
+      if (const auto v = evaluate(i, e)) {
+        nums_[key] = *v;
+      } else {
+        nums_.erase(key);
+      }
+      return;
+    }
     if (f_.text(t[i]) != "[") return;  // expressions: runtime
     const Node v = parseValue(i, e);
     if (type == "ROBTARGET") {
@@ -364,6 +511,15 @@ class RapidReader {
     const std::string name = upper(f_.text(t[b]));
     std::string member;
     for (std::size_t k = b + 1; k < eq; ++k) member += upper(f_.text(t[k]));
+    if (member.empty() && nums_.count(name) != 0) {
+      // a num variable set in the program flow: its value below is the assigned one when known
+      if (const auto v = evaluate(eq + 1, e)) {
+        nums_[name] = *v;
+      } else {
+        nums_.erase(name);
+      }
+      return;
+    }
     if (eq + 1 >= e || f_.text(t[eq + 1]) != "[") return;
     const Node v = parseValue(eq + 1, e);
     if (member.empty()) {

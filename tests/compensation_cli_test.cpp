@@ -18,13 +18,15 @@ using nlohmann::json;
 struct Job {
   std::string cell;
   std::string program;
+  std::string frames;  ///< --frame/--tool for frames only the controller defines
 };
 
 json predictJson(const std::string& cell, const std::string& prog, const std::string& dir,
-                 const std::string& tag) {
+                 const std::string& tag, const std::string& frames) {
   const std::string holes = test::sourceDir() + "/samples/emotor-housing/holes.csv";
-  const auto r = test::runRoprec("predict --cell '" + cell + "' '" + prog + "' --holes '" + holes +
-                                 "' --match-tol 10 --quiet --json '" + dir + "/" + tag + ".json'");
+  const auto r =
+      test::runRoprec("predict --cell '" + cell + "' '" + prog + "' --holes '" + holes +
+                      "' --match-tol 10 --quiet --json '" + dir + "/" + tag + ".json' " + frames);
   EXPECT_LE(r.exit_code, 1) << r.err;
   return json::parse(test::readFile(dir + "/" + tag + ".json"));
 }
@@ -34,12 +36,14 @@ TEST(CompensationCli, RepredictingTheCompensatedProgramLeavesAtMostATenthOfAMicr
   const std::vector<Job> jobs = {
       {s + "cells/housing-kr120.xml", s + "emotor-housing/housing_kr120.src"},
       {s + "cells/housing-irb6640.xml", s + "emotor-housing/housing_irb6640.mod"},
-      {s + "cells/housing-r2000.xml", s + "emotor-housing/housing_r2000.ls"}};
+      // UFRAME[1]/UTOOL[1] live in the controller: the cell's workobject and tool are them
+      {s + "cells/housing-r2000.xml", s + "emotor-housing/housing_r2000.ls",
+       "--frame cell --tool cell"}};
   const std::string holes = s + "emotor-housing/holes.csv";
   for (const Job& job : jobs) {
     SCOPED_TRACE(job.program);
     const std::string dir = test::tempDir("rep");
-    const json before = predictJson(job.cell, job.program, dir, "before");
+    const json before = predictJson(job.cell, job.program, dir, "before", job.frames);
     // the original drill points and axes, by hole id
     std::map<std::string, std::pair<Eigen::Vector3d, Eigen::Vector3d>> nominal;
     for (const auto& h : before["holes"]) {
@@ -51,11 +55,11 @@ TEST(CompensationCli, RepredictingTheCompensatedProgramLeavesAtMostATenthOfAMicr
       SCOPED_TRACE(mode);
       const std::string ext = job.program.substr(job.program.find_last_of('.'));
       const std::string out = dir + "/comp_" + mode + ext;
-      const auto r =
-          test::runRoprec("compensate --cell '" + job.cell + "' '" + job.program + "' --holes '" +
-                          holes + "' --orientation " + mode + " --grid 12 -o '" + out + "'");
+      const auto r = test::runRoprec("compensate --cell '" + job.cell + "' '" + job.program +
+                                     "' --holes '" + holes + "' --orientation " + mode +
+                                     " --grid 12 -o '" + out + "' " + job.frames);
       ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
-      const json after = predictJson(job.cell, out, dir, std::string("after_") + mode);
+      const json after = predictJson(job.cell, out, dir, std::string("after_") + mode, job.frames);
       ASSERT_EQ(after["holes"].size(), before["holes"].size());
       double worst = 0;
       for (const auto& h : after["holes"]) {

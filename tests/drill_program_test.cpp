@@ -123,9 +123,10 @@ void expectRoundTrip(Dialect d) {
     EXPECT_EQ(h.id, "H" + std::to_string(i + 1));
     EXPECT_LT((h.axis - z).norm(), rot_tol);
     EXPECT_LT((h.position - (entry + z * in[i].depth)).cwiseAbs().maxCoeff(), kPosTol);
-    // depth below the cycle's first target (the approach point); the entry is depth above the
-    // bottom
-    EXPECT_NEAR(h.depth, o.approach + in[i].depth, kPosTol);
+    // depth below the surface = where the feed starts (the clearance point, crossed at feed), not
+    // below the cycle's first target (the approach point)
+    EXPECT_NEAR(h.depth, o.clearance + in[i].depth, kPosTol);
+    EXPECT_LT((h.surface - (entry - z * o.clearance)).cwiseAbs().maxCoeff(), kPosTol);
     EXPECT_LT((h.position - h.axis * in[i].depth - entry).cwiseAbs().maxCoeff(), kPosTol);
     // the cycle: approach, clearance, bottom (+ the retract row of a table)
     const std::size_t n_targets = (d == Dialect::kCsv || d == Dialect::kJson) ? 4 : 3;

@@ -226,7 +226,8 @@ TEST(PostprocDrill, RapidRelToolCycleAndTpDrillMacro) {
   const auto hr = recognizeHoles(r);
   ASSERT_GE(hr.size(), 1u);
   EXPECT_EQ(r.targets()[static_cast<std::size_t>(hr[0].bottom_target)].name, "pH1");
-  EXPECT_NEAR(hr[0].depth * 1e3, 62.0, 1e-6);  // RelTool -50 .. +12
+  // the feed (vDrill) starts at RelTool -5: depth -5 .. +12, not from the -50 approach
+  EXPECT_NEAR(hr[0].depth * 1e3, 17.0, 1e-6);
   const Program t = readProgram(fixtures() + "/tp_controller.ls");
   const auto ht = recognizeHoles(t);
   ASSERT_EQ(ht.size(), 1u);

@@ -511,6 +511,15 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,
     }
   }
   for (size_t i = 0; i < n; ++i) {
+    if (out[i].before.status != HoleStatus::kOk) {
+      // No arm posture to keep: the controller cannot reach the programmed target as written, and
+      // any "compensated" target would put the arm into a posture the program never asked for.
+      out[i].reason = std::string("the programmed target is ") +
+                      (out[i].before.status == HoleStatus::kSingular ? "singular" : "unreachable") +
+                      " before compensation (" + out[i].before.reason +
+                      "); compensating it would move the arm into another posture";
+      continue;
+    }
     if (!chosen[i].feasible) {
       out[i].reason = out[i].before.status != HoleStatus::kOk
                           ? out[i].before.reason

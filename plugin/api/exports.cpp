@@ -53,6 +53,10 @@ ReportInput reportHeader(const PredictionContext& c, const std::string& title) {
   in.cell = c.cell.name + " (" + c.cell.file + ")";
   in.program = c.job.path;
   in.process = c.process_description;
+  for (const std::string& n : c.job.notes) {
+    const std::string prefix = kResolutionPrefix;
+    if (n.rfind(prefix, 0) == 0) in.resolutions.push_back(n.substr(prefix.size()));
+  }
   in.uncertainty_method = uncertaintyMethodText(c.model.uncertainty);
   in.uncertainty_source = c.model.uncertainty.source;
   in.default_tolerance_mm = c.cell.tolerance_mm;

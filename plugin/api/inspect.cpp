@@ -184,13 +184,18 @@ Json recognisedHoleJson(const Program& p, const std::vector<postproc::Hole>& hol
   Json ts = Json::array();
   for (const int t : hole.targets) ts.push(Json::integer(t));
   j.set("targets", ts);
-  j.set("position_in_frame_mm", Json::vector(hole.position * 1e3, 6));
+  // the hole is where it starts (the surface); the drill point is its bottom
+  const bool surface = hole.surface_motion >= 0;
+  if (surface) j.set("position_in_frame_mm", Json::vector(hole.surface * 1e3, 6));
+  j.set("bottom_in_frame_mm", Json::vector(hole.position * 1e3, 6));
   j.set("axis_in_frame", Json::vector(hole.axis, 9));
-  j.set("depth_mm", Json::number(hole.depth * 1e3, 6));
+  if (surface) j.set("depth_mm", Json::number(hole.depth * 1e3, 6));
+  j.set("surface", Json::str(surface ? "start of the feed move" : "not known (no feed change)"));
   const Frame* base = hole.base >= 0 ? &p.frames[static_cast<std::size_t>(hole.base)] : nullptr;
   const Frame* tool = hole.tool >= 0 ? &p.frames[static_cast<std::size_t>(hole.tool)] : nullptr;
   if (base != nullptr && base->resolved) {
-    j.set("position_mm", Json::vector(base->pose * hole.position * 1e3, 6));
+    if (surface) j.set("position_mm", Json::vector(base->pose * hole.surface * 1e3, 6));
+    j.set("bottom_mm", Json::vector(base->pose * hole.position * 1e3, 6));
     j.set("axis", Json::vector(base->pose.linear() * hole.axis, 9));
   }
   j.set("base", frameJson(base));

@@ -1,10 +1,14 @@
 #include "plugin/api/job.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <filesystem>
+#include <system_error>
 
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
+#include "plugin/api/robot_compliance.hpp"
 
 namespace roprec::api {
 
@@ -18,14 +22,183 @@ int PredictionResult::failed() const {
 
 namespace {
 
+std::string mm(double v_m) { return formatNumber(v_m * 1e3, 3); }
+
+std::string poseText(const Pose& T) {
+  const Vec3 t = T.translation();
+  const double ang = Eigen::AngleAxisd(T.linear()).angle() / kDeg;
+  return "xyz " + mm(t.x()) + " " + mm(t.y()) + " " + mm(t.z()) + " mm, rotated " +
+         formatNumber(ang, 3) + " deg";
+}
+
+bool sameIequal(const std::string& a, const std::string& b) {
+  if (a.size() != b.size()) return false;
+  for (size_t i = 0; i < a.size(); ++i) {
+    if (std::tolower(static_cast<unsigned char>(a[i])) !=
+        std::tolower(static_cast<unsigned char>(b[i])))
+      return false;
+  }
+  return true;
+}
+
+std::optional<Pose> givenFrame(const JobOptions& o, const std::string& ref) {
+  for (const FrameDefinition& f : o.frames) {
+    if (sameIequal(f.ref, ref)) return f.pose;
+  }
+  return std::nullopt;
+}
+
+/// Rebuilds the prediction model with the program's TCP (--tool program); the cell's tool mass,
+/// centre of mass and inertia are kept.
+void useProgramTool(PredictionContext& c, const Pose& T_flange_tcp) {
+  c.tool.T_flange_tcp = T_flange_tcp;
+  c.cell.tool.T_flange_tcp = T_flange_tcp;
+  PredictionSetup s;
+  s.robot = c.robot;
+  s.tool = c.tool;
+  s.process = c.process;
+  s.uncertainty = c.model.uncertainty;
+  s.capability = c.model.capability;
+  const ControllerGravity cg = controllerGravityOf(c.robot.card, &c.cell, c.tool);
+  s.controller_gravity = cg.gravity_compensated;
+  s.calibration_load = cg.calibration_load;
+  s.default_tolerance = c.model.default_tolerance;
+  for (const HoleRequest& r : c.job.requests) {
+    if (r.diameter > 0) s.hole_diameters.push_back(r.diameter);
+  }
+  const ConfigurationOptions cfg = c.model.config_options;
+  c.model = buildPredictionModel(s);
+  c.model.config_options = cfg;
+}
+
+/// Program frames and tool against the cell (docs/programs.md §15): a base frame or tool that
+/// only the controller defines, or a program tool that differs from the cell's, is an error
+/// unless the options say how to resolve it; every resolution is stated in the job's notes.
+void resolveFramesAndTool(PredictionContext& c, const JobOptions& o) {
+  if (!c.job.program || c.job.is_hole_list) return;
+  const postproc::Program& p = *c.job.program;
+  auto where = [&](int file, int line, const postproc::Motion& mo) {
+    if (line > 0 && file >= 0) return std::make_pair(p.files[static_cast<size_t>(file)].path, line);
+    return std::make_pair(p.files[static_cast<size_t>(std::max(0, mo.file))].path, mo.line);
+  };
+  std::vector<std::string> stated;
+  auto state = [&](const std::string& key, const std::string& text) {
+    if (std::find(stated.begin(), stated.end(), key) != stated.end()) return;
+    stated.push_back(key);
+    c.job.notes.push_back(kResolutionPrefix + text);
+  };
+  bool base_explicit = false;
+  // ---- base frames
+  for (size_t i = 0; i < c.job.sources.size(); ++i) {
+    HoleSource& src = c.job.sources[i];
+    HoleRequest& r = c.job.requests[i];
+    if (src.hole < 0 || src.frame_resolved) continue;
+    const postproc::Hole& h = c.job.recognized[static_cast<size_t>(src.hole)];
+    if (h.base < 0) continue;  // no frame named: the cell's workobject (noted by hole_input)
+    const postproc::Frame& f = p.frames[static_cast<size_t>(h.base)];
+    const postproc::Motion& mo = p.motions[static_cast<size_t>(h.bottom_motion)];
+    std::optional<Pose> T = givenFrame(o, f.ref);
+    std::string how = "--frame '" + f.ref + "=...'";
+    if (!T && o.frame_pose) {
+      T = *o.frame_pose;
+      how = "--frame";
+    }
+    if (!T && o.frame_cell) {
+      T = c.cell.T_base_wobj;
+      how = "the cell's <workobject> (--frame cell)";
+    }
+    if (!T) {
+      const auto [file, line] = where(-1, 0, mo);
+      throw InputError(file, line,
+                       "hole " + h.id + " uses the base frame " + f.ref +
+                           ", which only the controller defines (not the program, the cell or "
+                           "--frame). Give --frame \"x y z a b c\" (its pose in the robot base "
+                           "frame, mm and deg, KUKA A-B-C) or --frame cell (the cell's "
+                           "<workobject> is that frame)");
+    }
+    r.T_W_tcp = *T * src.T_W_frame.inverse() * r.T_W_tcp;
+    src.T_W_frame = *T;
+    src.frame_resolved = true;
+    base_explicit = true;
+    state("base " + f.ref, "base frame " + f.ref + " (defined only on the controller) = " + how +
+                               ": " + poseText(*T));
+  }
+  if (base_explicit) {
+    c.job.notes.erase(
+        std::remove_if(c.job.notes.begin(), c.job.notes.end(),
+                       [](const std::string& n) { return n.rfind("program base frame ", 0) == 0; }),
+        c.job.notes.end());
+  }
+  // ---- tool
+  const Pose& T_cell = c.cell.tool.T_flange_tcp;
+  const std::string cell_tool = "'" + (c.cell.tool.name.empty() ? "tool" : c.cell.tool.name) + "'";
+  std::optional<std::pair<std::string, Pose>> program_tool;
+  for (size_t i = 0; i < c.job.sources.size(); ++i) {
+    const HoleSource& src = c.job.sources[i];
+    if (src.hole < 0) continue;
+    const postproc::Hole& h = c.job.recognized[static_cast<size_t>(src.hole)];
+    const postproc::Motion& mo = p.motions[static_cast<size_t>(h.bottom_motion)];
+    if (mo.tool < 0) continue;  // the program names no tool
+    const postproc::Frame& tf = p.frames[static_cast<size_t>(mo.tool)];
+    std::optional<Pose> Tt = tf.resolved ? std::optional<Pose>(tf.pose) : givenFrame(o, tf.ref);
+    const auto [file, line] = where(tf.file, tf.line, mo);
+    if (!Tt) {
+      if (o.tool == "cell") {
+        state("tool " + tf.ref, "tool " + tf.ref +
+                                    " (defined only on the controller) = the cell's tool " +
+                                    cell_tool + " (--tool cell): TCP " + poseText(T_cell));
+        continue;
+      }
+      throw InputError(mo.file >= 0 ? p.files[static_cast<size_t>(mo.file)].path : file, mo.line,
+                       "hole " + h.id + " uses the tool " + tf.ref +
+                           ", which only the controller defines. Give --tool cell (the cell's "
+                           "tool " +
+                           cell_tool + " is that tool) or --frame '" + tf.ref +
+                           "=x y z a b c' (its TCP in the flange frame, mm and deg)");
+    }
+    const double dt = (Tt->translation() - T_cell.translation()).norm();
+    const double dr = Eigen::AngleAxisd(Tt->linear().transpose() * T_cell.linear()).angle();
+    if (dt <= 1e-5 && dr <= 1e-4) continue;  // 0.01 mm, 0.006 deg: the same tool
+    const std::string diff = "the program's tool " + tf.ref + " (TCP " + poseText(*Tt) +
+                             ") differs from the cell's tool " + cell_tool + " (TCP " +
+                             poseText(T_cell) + ") by " + mm(dt) + " mm and " +
+                             formatNumber(dr / kDeg, 3) + " deg";
+    if (o.tool == "cell") {
+      state("tool " + tf.ref, diff +
+                                  ": --tool cell: the cell's TCP is used; the program's "
+                                  "targets are taken as TCP poses of the cell's tool");
+    } else if (o.tool == "program") {
+      if (program_tool && !program_tool->second.isApprox(*Tt, 1e-9)) {
+        throw UsageError("--tool program: the program drills with more than one tool (" +
+                         program_tool->first + ", " + tf.ref +
+                         "); the model takes one tool per job: give --tool cell or split the "
+                         "program");
+      }
+      program_tool = std::make_pair(tf.ref, *Tt);
+      state("tool " + tf.ref, diff +
+                                  ": --tool program: the program's TCP is used (mass data "
+                                  "from the cell)");
+    } else {
+      throw InputError(file, line,
+                       diff +
+                           ". Give --tool program (the program's TCP is the real one) or --tool "
+                           "cell (the cell's TCP is the real one)");
+    }
+  }
+  if (program_tool) useProgramTool(c, program_tool->second);
+}
+
 PredictionContext loadContext(const std::string& cell_path, const std::string& program_path,
                               const JobOptions& o, bool load_holes = true) {
+  if (!o.tool.empty() && o.tool != "program" && o.tool != "cell")
+    throw UsageError("--tool must be program or cell");
   PredictionContext c = loadPredictionContext(cell_path, program_path, o.holes, o.uncertainty,
                                               o.match_tol_mm, load_holes);
   if (o.fanuc_turn_axes) {
     c.model.config_options.fanuc_turn_axes = *o.fanuc_turn_axes;
     if (c.job.program) c.job.program->fanuc_turn_axes = *o.fanuc_turn_axes;
   }
+  if (load_holes) resolveFramesAndTool(c, o);
   return c;
 }
 
@@ -61,6 +234,29 @@ std::vector<std::string> editProgram(CompensationResult& r) {
 
 bool wristJump(const Vec6& a, const Vec6& b, double threshold) {
   return std::abs(a[3] - b[3]) > threshold || std::abs(a[5] - b[5]) > threshold;
+}
+
+/// The marker line written into every compensated program.
+std::string markerText(const CellSpec& cell, const std::string& mode) {
+  std::string name = cell.name.empty() ? std::string("(unnamed)") : cell.name;
+  const std::string file = std::filesystem::path(cell.file).filename().string();
+  return "cell " + name + " (" + file + "), roprec " + std::string(ROPREC_VERSION_STRING) + ", " +
+         mode + "; do not compensate again";
+}
+
+bool sameFile(const std::string& a, const std::string& b) {
+  namespace fs = std::filesystem;
+  std::error_code e1;
+  std::error_code e2;
+  if (fs::exists(a, e1) && fs::exists(b, e2)) {
+    std::error_code e;
+    const bool eq = fs::equivalent(a, b, e);
+    if (!e) return eq;
+  }
+  std::error_code e;
+  const fs::path ca = fs::weakly_canonical(a, e);
+  const fs::path cb = fs::weakly_canonical(b, e);
+  return !e && ca == cb;
 }
 
 /// Before/after statistics: errors ⊥ axis, conforming holes, axis-4/6 jumps within a face.
@@ -112,12 +308,15 @@ CompensationResult compensateJob(const std::string& cell_path, const std::string
   CompensationResult r;
   r.context = loadContext(cell_path, program_path, job.job);
   if (!r.context.job.program) throw InputError(program_path, 0, "not a program roprec can rewrite");
+  if (const auto note = checkNotCompensated(*r.context.job.program, job.force))
+    r.context.job.notes.push_back(*note);
   r.orientation = orientationModeName(job.options.mode);
   r.holes = compensateHoles(r.context.model, r.context.job.requests, job.options, &r.stats);
   if (progress) progress(r.holes.size(), r.holes.size());
   r.failed = static_cast<int>(
       std::count_if(r.holes.begin(), r.holes.end(), [](const auto& h) { return !h.ok; }));
   r.refused = editProgram(r);
+  postproc::markCompensated(*r.context.job.program, markerText(r.context.cell, r.orientation));
   r.summary = compensationStats(r, job.options.jump_threshold);
   r.writable = true;
   if (r.failed && !job.allow_partial) {
@@ -140,10 +339,12 @@ bool cellIsMilling(const std::string& cell_path) {
 }
 
 MillingCompensationResult compensateMillingJob(const std::string& cell_path,
-                                               const std::string& program_path) {
+                                               const std::string& program_path, bool force) {
   MillingCompensationResult r;
   r.context = loadContext(cell_path, program_path, {}, false);
   postproc::Program& prog = *r.context.job.program;
+  if (const auto note = checkNotCompensated(prog, force)) r.context.job.notes.push_back(*note);
+  postproc::markCompensated(prog, markerText(r.context.cell, "milling path"));
   prog.position_min_decimals = 5;
   std::vector<Pose> frame;  // T_W_frame per point
   std::vector<MillingPathPoint> path;
@@ -189,11 +390,43 @@ MillingCompensationResult compensateMillingJob(const std::string& cell_path,
   return r;
 }
 
+std::optional<std::string> checkNotCompensated(const postproc::Program& program, bool force) {
+  const std::optional<postproc::MarkerLocation> m = postproc::findCompensationMarker(program);
+  if (!m) return std::nullopt;
+  const std::string& file = program.files[static_cast<size_t>(m->file)].path;
+  if (!force) {
+    throw InputError(file, m->line,
+                     "the program was already compensated by roprec (\"" + m->text +
+                         "\"); compensating it again would apply the correction twice. "
+                         "Compensate the original program, or give --force to do it anyway");
+  }
+  return "--force: the program was already compensated by roprec (" + file + ":" +
+         std::to_string(m->line) + "); the correction is applied again on top of it";
+}
+
+void refuseOverwritingInput(const postproc::Program& program,
+                            const std::vector<std::string>& outs) {
+  std::vector<std::string> inputs;
+  for (const auto& f : program.files) inputs.push_back(f.path);
+  if (!program.dat_path.empty()) inputs.push_back(program.dat_path);
+  for (const std::string& o : outs) {
+    for (const std::string& in : inputs) {
+      if (sameFile(o, in)) {
+        throw UsageError("output " + o + " is the input file " + in +
+                         ": write the compensated program to another file (nothing written)");
+      }
+    }
+  }
+}
+
 std::vector<std::string> writeCompensatedProgram(
     PredictionContext& context, const std::string& program_out,
     const std::vector<std::pair<std::string, std::string>>& extra) {
   if (!context.job.program)
     throw InputError(context.job.path, 0, "not a program roprec can rewrite");
+  std::vector<std::string> outs = postproc::outputPaths(*context.job.program, program_out);
+  for (const auto& e : extra) outs.push_back(e.first);
+  refuseOverwritingInput(*context.job.program, outs);
   postproc::writeProgram(*context.job.program, program_out);
   std::vector<std::string> written = postproc::outputPaths(*context.job.program, program_out);
   for (const auto& [path, text] : extra) {

@@ -21,6 +21,7 @@
 #include "compensator/precision/prediction.hpp"
 #include "plugin/api/json.hpp"
 #include "plugin/api/prediction_setup.hpp"
+#include "plugin/api/program_frames.hpp"
 
 namespace roprec::api {
 
@@ -36,7 +37,22 @@ struct JobOptions {
   double match_tol_mm{0.5};          ///< position match when ids differ, mm
   std::string uncertainty;           ///< "" (the cell's), "linear" or "montecarlo"
   std::optional<std::array<int, 3>> fanuc_turn_axes;  ///< overrides the cell's <controller>
+  /// How a program's base frame that only the controller defines (FANUC `UFRAME[n]`, KUKA
+  /// `BASE_DATA[n]`, an ABB wobjdata declared without value) is resolved. Without any of these
+  /// such a frame is an error (docs/programs.md §15):
+  bool frame_cell{false};          ///< --frame cell: the cell's <workobject> is that frame
+  std::optional<Pose> frame_pose;  ///< --frame "x y z a b c": every such base frame, robot base
+  std::vector<FrameDefinition> frames;  ///< --frame 'REF=x y z a b c;...': by name (base or tool)
+  /// How the program's tool is reconciled with the cell's when they differ (or when the program's
+  /// tool is defined only on the controller: FANUC `UTOOL[n]`, KUKA `TOOL_DATA[n]`): "" = error,
+  /// "program" = the program's TCP is the real one (the cell's mass data kept), "cell" = the
+  /// cell's TCP is the real one (the program's targets are taken as TCP poses of it).
+  std::string tool;
 };
+
+/// Notes of a job that state how frames and the tool were resolved start with this prefix; the
+/// CLI prints them on stderr and the reports show them in their header.
+inline constexpr const char* kResolutionPrefix = "resolution: ";
 
 // ---------------------------------------------------------------- predict
 
@@ -59,6 +75,9 @@ struct CompensationJob {
   JobOptions job;
   CompensationOptions options;  ///< orientation mode, grid, wrist margin, jumps
   bool allow_partial{false};    ///< keep the original targets of failed holes
+  /// Compensate a program that carries roprec's "compensated" marker anyway (the correction is
+  /// then applied a second time on top of the first).
+  bool force{false};
 };
 
 /// Drilling-job compensation: per hole the compensated target; the edited program (every target
@@ -101,13 +120,22 @@ struct MillingCompensationResult {
   std::vector<std::string> refused;
 };
 MillingCompensationResult compensateMillingJob(const std::string& cell_path,
-                                               const std::string& program_path);
+                                               const std::string& program_path, bool force = false);
+
+/// Throws InputError (the marker's FILE:LINE) when the program carries roprec's "compensated"
+/// marker and `force` is false; with `force` returns a note saying it was compensated again.
+std::optional<std::string> checkNotCompensated(const postproc::Program& program, bool force);
+
+/// Throws UsageError when an output path (the program's, its `.dat`, or an extra one) is one of
+/// the program's input files (same path or same file by inode).
+void refuseOverwritingInput(const postproc::Program& program, const std::vector<std::string>& outs);
 
 /// True when the cell's process is milling (compensate then runs compensateMillingJob).
 bool cellIsMilling(const std::string& cell_path);
 
 /// Writes the outputs of a compensation all together: the program (and its .dat etc.) to
-/// `program_out`, and each (path, text) of `extra`. Returns the paths written.
+/// `program_out`, and each (path, text) of `extra`. Returns the paths written. Refuses (UsageError)
+/// an output that is one of the input program's files; nothing is written then.
 std::vector<std::string> writeCompensatedProgram(
     PredictionContext& context, const std::string& program_out,
     const std::vector<std::pair<std::string, std::string>>& extra);

@@ -728,6 +728,7 @@ void renderHeader(std::string& o, const ReportInput& in, const std::vector<HoleV
   item("Cell", esc(in.cell));
   item("Program", esc(in.program));
   item("Process", esc(in.process));
+  for (const std::string& res : in.resolutions) item("Frame/tool resolution", esc(res), true);
   item("Default position tolerance", "\u2300 " + num(in.default_tolerance_mm, 3) + " mm");
   item("Uncertainty method", esc(in.uncertainty_method));
   if (!in.uncertainty_source.empty()) {

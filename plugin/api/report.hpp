@@ -33,6 +33,8 @@ struct ReportInput {
   std::string uncertainty_method;  ///< "linearised" / "Monte Carlo (N, seed)"
   std::string uncertainty_source;
   double default_tolerance_mm{0.2};
+  /// How program frames and the tool were resolved (--frame/--tool), stated in the header.
+  std::vector<std::string> resolutions;
   std::vector<ReportHole> holes;
   CapabilitySummary summary;
   bool compensation{false};  ///< adds the before/after maps and residual columns

@@ -11,15 +11,44 @@
 #include "compensator/support/error.hpp"
 #include "plugin/api/job.hpp"
 #include "plugin/cli/cli.hpp"
+#include "plugin/cli/robot_options.hpp"
 
 namespace roprec::cli {
 namespace {
 
+/// --frame cell | "x y z a b c" | 'REF=x y z a b c[;REF=...]' and --tool program|cell.
+void parseFrameTool(Args& args, JobOptions& opt) {
+  if (const auto f = args.option("frame")) {
+    if (*f == "cell") {
+      opt.frame_cell = true;
+    } else if (f->find('=') != std::string::npos) {
+      opt.frames = parseFrames(*f);
+    } else {
+      opt.frame_pose = parsePoseXyzAbc(*f, "--frame \"x y z a b c\" (mm, deg, KUKA ABC) or cell");
+    }
+  }
+  if (const auto t = args.option("tool")) {
+    if (*t != "program" && *t != "cell") throw UsageError("--tool must be program or cell");
+    opt.tool = *t;
+  }
+}
+
+/// The frame/tool resolutions of the job, on stderr (they are in the JSON notes and the report).
+void printResolutions(CommandContext& ctx, const std::vector<std::string>& notes) {
+  const std::string prefix = kResolutionPrefix;
+  for (const auto& n : notes) {
+    if (n.rfind(prefix, 0) == 0) ctx.err << "roprec: note: " << n.substr(prefix.size()) << "\n";
+  }
+}
+
 /// Milling: every linear path point of the program is compensated with the coupled force
 /// iteration (compensator/compensation/milling_compensation.hpp).
 int runMillingPath(CommandContext& ctx, const std::string& cell, const std::string& program,
-                   const std::string& out, const std::optional<std::string>& targets) {
-  MillingCompensationResult r = compensateMillingJob(cell, program);
+                   const std::string& out, const std::optional<std::string>& targets, bool force) {
+  MillingCompensationResult r = compensateMillingJob(cell, program, force);
+  for (const auto& n : r.context.job.notes) {
+    if (n.rfind("--force", 0) == 0) ctx.err << "roprec: note: " << n << "\n";
+  }
   for (const auto& f : r.failures) ctx.err << "roprec: " << f << "\n";
   if (!r.failures.empty()) {
     ctx.err << "roprec: " << r.failures.size() << " of " << r.points_comp.size()
@@ -132,16 +161,22 @@ int run(Args& args, CommandContext& ctx) {
   CompensationJob job;
   job.job.holes = args.option("holes");
   job.job.fanuc_turn_axes = parseTurnAxes(args.option("turn-axes"));
+  parseFrameTool(args, job.job);
   job.options = parseCompensationOptions(args);
   job.allow_partial = args.flag("allow-partial");
+  job.force = args.flag("force");
   const std::vector<std::string> pos = args.positionals();
   args.finish();
   if (!cell) throw UsageError("give --cell CELL.xml");
   if (!out) throw UsageError("give -o OUT (the corrected program)");
   if (pos.size() != 1) throw UsageError("give exactly one PROGRAM file");
-  if (cellIsMilling(*cell)) return runMillingPath(ctx, *cell, pos[0], *out, targets);
+  if (cellIsMilling(*cell)) return runMillingPath(ctx, *cell, pos[0], *out, targets, job.force);
 
   CompensationResult r = compensateJob(*cell, pos[0], job);
+  printResolutions(ctx, r.context.job.notes);
+  for (const auto& n : r.context.job.notes) {
+    if (n.rfind("--force", 0) == 0) ctx.err << "roprec: note: " << n << "\n";
+  }
   for (size_t i = 0; i < r.holes.size(); ++i) {
     if (r.holes[i].ok) continue;
     const HoleRequest& q = r.context.job.requests[i];
@@ -171,7 +206,10 @@ const CommandRegistration reg{
      "keep|flip-free|stiffest]\n"
      "                         [--targets F.csv|F.json] [--report F.html] [--holes HOLES.csv]\n"
      "                         [--allow-partial] [--allow-branch-change] [--wrist-margin DEG]\n"
-     "                         [--jump-threshold DEG] [--grid N] [--turn-axes \"1 4 6\"]\n\n"
+     "                         [--jump-threshold DEG] [--grid N] [--turn-axes \"1 4 6\"] "
+     "[--force]\n"
+     "                         [--frame cell|\"x y z a b c\"|'REF=x y z a b c;...'] [--tool "
+     "program|cell]\n\n"
      "For every hole: the motor-side command θ_m = θ_d + K⁻¹τ(θ_d) (+ servo term) that makes the\n"
      "predicted real TCP land on the nominal hole, and the programmed target = the controller's\n"
      "rigid FK of θ_m with its configuration flags. Every target of a drill cycle moves with it.\n"
@@ -189,7 +227,12 @@ const CommandRegistration reg{
      "iterations.\n"
      "Unreachable, singular or non-converging holes are listed; without --allow-partial nothing "
      "is\n"
-     "written and the exit code is 1; with it they keep their original targets and are flagged.\n",
+     "written and the exit code is 1; with it they keep their original targets and are flagged.\n"
+     "A hole that is singular or unreachable at its programmed target is never compensated (it\n"
+     "would change the arm posture). OUT gets a comment line \"roprec compensated: cell ...\";\n"
+     "a program carrying it is refused (exit 2) unless --force. OUT (or its .dat) equal to the\n"
+     "input is refused. --frame and --tool: as for roprec predict (controller-only frames and a\n"
+     "program tool that differs from the cell's are errors unless resolved).\n",
      50, run}};
 
 }  // namespace

@@ -7,9 +7,35 @@
 #include "plugin/api/job.hpp"
 #include "plugin/api/json.hpp"
 #include "plugin/cli/cli.hpp"
+#include "plugin/cli/robot_options.hpp"
 
 namespace roprec::cli {
 namespace {
+
+/// --frame cell | "x y z a b c" | 'REF=x y z a b c[;REF=...]' and --tool program|cell.
+void parseFrameTool(Args& args, JobOptions& opt) {
+  if (const auto f = args.option("frame")) {
+    if (*f == "cell") {
+      opt.frame_cell = true;
+    } else if (f->find('=') != std::string::npos) {
+      opt.frames = parseFrames(*f);
+    } else {
+      opt.frame_pose = parsePoseXyzAbc(*f, "--frame \"x y z a b c\" (mm, deg, KUKA ABC) or cell");
+    }
+  }
+  if (const auto t = args.option("tool")) {
+    if (*t != "program" && *t != "cell") throw UsageError("--tool must be program or cell");
+    opt.tool = *t;
+  }
+}
+
+/// The frame/tool resolutions of the job, on stderr (they are in the JSON notes and the report).
+void printResolutions(CommandContext& ctx, const std::vector<std::string>& notes) {
+  const std::string prefix = kResolutionPrefix;
+  for (const auto& n : notes) {
+    if (n.rfind(prefix, 0) == 0) ctx.err << "roprec: note: " << n.substr(prefix.size()) << "\n";
+  }
+}
 
 void printSummary(CommandContext& ctx, const PredictionResult& r) {
   const CapabilitySummary& sum = r.summary;
@@ -43,11 +69,12 @@ int run(Args& args, CommandContext& ctx) {
   const auto holes = args.option("holes");
   const auto uncertainty = args.option("uncertainty");
   const auto match_tol = args.option("match-tol");
+  JobOptions opt;
+  parseFrameTool(args, opt);
   const std::vector<std::string> pos = args.positionals();
   args.finish();
   if (!cell) throw UsageError("give --cell CELL.xml");
   if (pos.size() != 1) throw UsageError("give exactly one PROGRAM_OR_HOLES file");
-  JobOptions opt;
   opt.holes = holes;
   opt.uncertainty = uncertainty.value_or("");
   if (match_tol) opt.match_tol_mm = parseNumberList(*match_tol, 1, "--match-tol (mm)")[0];
@@ -56,6 +83,7 @@ int run(Args& args, CommandContext& ctx) {
   const PredictionResult r = predictJob(
       *cell, pos[0], opt, [&](size_t done, size_t total) { progress.step(done, total); });
   progress.finish();
+  printResolutions(ctx, r.context.job.notes);
   const std::string json = predictionJson(r).dump();
   if (report_out) writeFileAtomic(*report_out, predictionReport(r));
   emit(ctx, json_out.value_or(""), json);
@@ -76,7 +104,9 @@ const CommandRegistration reg{
     {"predict", "per-hole deviation, uncertainty, tolerance verdict and capability",
      "usage: roprec predict --cell CELL.xml PROGRAM_OR_HOLES [--json OUT.json] [--report "
      "OUT.html]\n"
-     "                      [--holes HOLES.csv] [--uncertainty linear|montecarlo] [--quiet]\n\n"
+     "                      [--holes HOLES.csv] [--uncertainty linear|montecarlo] [--quiet]\n"
+     "                      [--frame cell|\"x y z a b c\"|'REF=x y z a b c;...'] [--tool "
+     "program|cell]\n\n"
      "For every hole of a drilling program (KUKA .src, ABB .mod/.prg, FANUC .ls, CSV/JSON targets) "
      "or a\n"
      "hole-list CSV: the IK solution the program's configuration selects (hole lists: the "
@@ -95,6 +125,11 @@ const CommandRegistration reg{
      "real\n"
      "drill point's distance from the nominal hole axis (the residual of a compensated program).\n"
      "JSON to stdout unless --json; --report writes one self-contained HTML file.\n"
+     "A base frame only the controller defines (FANUC UFRAME[n], KUKA BASE_DATA[n]) needs --frame\n"
+     "(its pose in the robot base frame, mm/deg KUKA A-B-C; REF=... by name; cell = the cell's\n"
+     "<workobject>); a program tool that differs from the cell's, or is defined only on the\n"
+     "controller (UTOOL[n], TOOL_DATA[n]), needs --tool program|cell. Without them: exit 2.\n"
+     "The resolution is printed on stderr and stated in the JSON notes and the report header.\n"
      "Exit 1 if some holes could not be handled (listed on stderr), 2 for bad input.\n",
      40, run}};
 

@@ -1,0 +1,167 @@
+/// The "compensated by roprec" marker (docs/programs.md §15): a comment line in the dialect's own
+/// comment syntax that `roprec compensate` adds to every program it writes, and the check that
+/// refuses to compensate a marked program again.
+#include <cctype>
+#include <cstdio>
+#include <string_view>
+
+#include "postproc/program.hpp"
+
+namespace roprec::postproc {
+
+namespace {
+
+constexpr std::string_view kMarker = "roprec compensated";
+
+std::string upperCopy(std::string_view s) {
+  std::string u(s);
+  for (char& c : u) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return u;
+}
+
+std::string_view lineText(const SourceFile& f, std::size_t line) {  // 0-based, without terminator
+  const std::size_t a = f.line_starts[line];
+  std::size_t b = line + 1 < f.line_starts.size() ? f.line_starts[line + 1] : f.bytes.size();
+  while (b > a && (f.bytes[b - 1] == '\n' || f.bytes[b - 1] == '\r')) --b;
+  return std::string_view(f.bytes).substr(a, b - a);
+}
+
+std::string_view trimLeft(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  return s;
+}
+
+/// Offset of the start of the line after the first line whose upper-cased, left-trimmed text
+/// starts with one of `keys`; nullopt when there is none.
+std::optional<std::uint32_t> afterLineStarting(const SourceFile& f,
+                                               std::initializer_list<std::string_view> keys,
+                                               std::size_t* found_line = nullptr) {
+  for (std::size_t l = 0; l < f.line_starts.size(); ++l) {
+    const std::string u = upperCopy(trimLeft(lineText(f, l)));
+    for (const std::string_view k : keys) {
+      if (u.rfind(k, 0) == 0 &&
+          (u.size() == k.size() || !std::isalnum(static_cast<unsigned char>(u[k.size()])))) {
+        if (found_line) *found_line = l;
+        if (l + 1 < f.line_starts.size()) return f.line_starts[l + 1];
+        return static_cast<std::uint32_t>(f.bytes.size());
+      }
+    }
+  }
+  return std::nullopt;
+}
+
+std::string terminatorOf(const SourceFile& f, std::size_t line) {
+  const std::string_view t = lineText(f, line);
+  const std::size_t a = f.line_starts[line] + t.size();
+  const std::size_t b = line + 1 < f.line_starts.size() ? f.line_starts[line + 1] : f.bytes.size();
+  std::string e = f.bytes.substr(a, b - a);
+  return e.empty() ? f.dominantLineEnd() : e;
+}
+
+/// FANUC TP: a remark as the new line 1 of /MN, every /MN line renumbered, LINE_COUNT + 1.
+bool markTp(Program& p, const std::string& text) {
+  const int fi = 0;
+  const SourceFile& f = p.files[0];
+  std::size_t mn = 0;
+  if (!afterLineStarting(f, {"/MN"}, &mn)) return false;
+  const std::string eol = f.dominantLineEnd();
+  bool first = true;
+  int count = 0;
+  for (std::size_t l = mn + 1; l < f.line_starts.size(); ++l) {
+    const std::string_view t = lineText(f, l);
+    if (!t.empty() && t.front() == '/') break;
+    std::size_t k = 0;
+    while (k < t.size() && t[k] == ' ') ++k;
+    std::size_t d = k;
+    while (d < t.size() && std::isdigit(static_cast<unsigned char>(t[d]))) ++d;
+    if (d == k || d >= t.size() || t[d] != ':') continue;  // a C-motion continuation line
+    const int n = std::stoi(std::string(t.substr(k, d - k)));
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%*d", static_cast<int>(d), n + 1);
+    std::string repl = buf;
+    if (first) {
+      char one[32];
+      std::snprintf(one, sizeof one, "%*d", static_cast<int>(d), 1);
+      repl = std::string(one) + ":  !" + text + " ;" + eol + repl;
+      first = false;
+    }
+    queueEdit(p, fi, f.line_starts[l], static_cast<std::uint32_t>(d), repl);
+    ++count;
+  }
+  if (first) {  // empty /MN: the remark is the only line
+    const std::uint32_t at = mn + 1 < f.line_starts.size()
+                                 ? f.line_starts[mn + 1]
+                                 : static_cast<std::uint32_t>(f.bytes.size());
+    queueEdit(p, fi, at, 0, "   1:  !" + text + " ;" + eol);
+  }
+  // LINE_COUNT = n;
+  for (std::size_t l = 0; l < mn; ++l) {
+    const std::string_view t = lineText(f, l);
+    if (upperCopy(trimLeft(t)).rfind("LINE_COUNT", 0) != 0) continue;
+    const std::size_t eq = t.find('=');
+    if (eq == std::string_view::npos) break;
+    std::size_t a = eq + 1;
+    while (a < t.size() && (t[a] == ' ' || t[a] == '\t')) ++a;
+    std::size_t b = a;
+    while (b < t.size() && std::isdigit(static_cast<unsigned char>(t[b]))) ++b;
+    if (b == a) break;
+    queueEdit(p, fi, static_cast<std::uint32_t>(f.line_starts[l] + a),
+              static_cast<std::uint32_t>(b - a),
+              std::to_string(std::stoi(std::string(t.substr(a, b - a))) + 1));
+    break;
+  }
+  (void)count;
+  return true;
+}
+
+}  // namespace
+
+std::optional<MarkerLocation> findCompensationMarker(const Program& p) {
+  for (std::size_t fi = 0; fi < p.files.size(); ++fi) {
+    const SourceFile& f = p.files[fi];
+    const std::size_t at = f.bytes.find(kMarker);
+    if (at == std::string::npos) continue;
+    MarkerLocation m;
+    m.file = static_cast<int>(fi);
+    m.line = f.lineOf(at);
+    std::size_t e = f.bytes.find_first_of("\r\n", at);
+    if (e == std::string::npos) e = f.bytes.size();
+    m.text = f.bytes.substr(at, e - at);
+    return m;
+  }
+  return std::nullopt;
+}
+
+bool markCompensated(Program& p, const std::string& what) {
+  if (p.files.empty()) return false;
+  const std::string text = std::string(kMarker) + ": " + what;
+  const SourceFile& f = p.files[0];
+  std::size_t line = 0;
+  switch (p.dialect) {
+    case Dialect::kKrl: {
+      const auto at = afterLineStarting(f, {"DEF", "GLOBAL DEF"}, &line);
+      if (!at) return false;
+      queueEdit(p, 0, *at, 0, ";" + text + terminatorOf(f, line));
+      return true;
+    }
+    case Dialect::kRapid: {
+      const auto at = afterLineStarting(f, {"MODULE"}, &line);
+      if (!at) return false;
+      queueEdit(p, 0, *at, 0, "! " + text + terminatorOf(f, line));
+      return true;
+    }
+    case Dialect::kTp:
+      return markTp(p, text);
+    case Dialect::kCsv:
+    case Dialect::kHoleCsv: {
+      const std::uint32_t at = f.bom ? 3U : 0U;
+      queueEdit(p, 0, at, 0, "# " + text + f.dominantLineEnd());
+      return true;
+    }
+    case Dialect::kJson:
+      return false;
+  }
+  return false;
+}
+
+}  // namespace roprec::postproc

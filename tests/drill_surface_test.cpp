@@ -1,0 +1,80 @@
+// Issue 13 (programs): a drill cycle's hole starts at the surface — the point the feed move into
+// the material starts from — not at the approach point above it. A hand-written cycle with the
+// approach 50 mm above the surface and a 20 mm hole reported depth 70 mm (and the machining-
+// centre time of 70 mm) before; the surface point is reported with the bottom.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "postproc/drill.hpp"
+#include "tests/support/test_support.hpp"
+
+namespace roprec {
+namespace {
+
+using nlohmann::json;
+
+// KR 120 sample cell: $BASE = its workobject, $TOOL = its spindle. Surface at Z 234, bottom 20 mm
+// below; approach 50 mm above the surface at the approach speed, drilling at 2 mm/s.
+const char* kHandWritten =
+    "DEF hand( )\n"
+    "$BASE = {FRAME: X 1350.000,Y 0.000,Z 300.000,A 0.000,B 0.000,C 0.000}\n"
+    "$TOOL = {FRAME: X 0.000,Y 0.000,Z 320.000,A 0.000,B 0.000,C 0.000}\n"
+    "SPINDLE_ON()\n"
+    "$VEL.CP = 0.25\n"
+    "PTP {X 150.000,Y 0.000,Z 284.000,A 0.000,B 0.000,C 180.000}\n"
+    "LIN {X 150.000,Y 0.000,Z 234.000,A 0.000,B 0.000,C 180.000}\n"
+    "$VEL.CP = 0.002\n"
+    "LIN {X 150.000,Y 0.000,Z 214.000,A 0.000,B 0.000,C 180.000}\n"
+    "$VEL.CP = 0.25\n"
+    "LIN {X 150.000,Y 0.000,Z 284.000,A 0.000,B 0.000,C 180.000}\n"
+    "END\n";
+
+TEST(DrillSurface, HoleStartsWhereTheFeedStartsNotAtTheApproachPoint) {
+  const postproc::Program p =
+      postproc::parseProgram(postproc::Dialect::kKrl, "hand.src", kHandWritten);
+  const std::vector<postproc::Hole> holes = postproc::recognizeHoles(p);
+  ASSERT_EQ(holes.size(), 1U);
+  const postproc::Hole& h = holes[0];
+  EXPECT_NEAR(h.depth * 1e3, 20.0, 1e-9);
+  EXPECT_LT((h.surface * 1e3 - Eigen::Vector3d(150, 0, 234)).norm(), 1e-9);
+  EXPECT_LT((h.position * 1e3 - Eigen::Vector3d(150, 0, 214)).norm(), 1e-9);
+  EXPECT_GE(h.surface_motion, 0);
+  EXPECT_EQ(h.targets.size(), 4U);  // approach, surface, bottom, retract (inline targets)
+}
+
+TEST(DrillSurface, NoFeedChangeLeavesTheDepthToTheCell) {
+  // every move at the same speed: the program does not say where the material starts
+  std::string text = kHandWritten;
+  text.replace(text.find("$VEL.CP = 0.002"), 15, "WAIT SEC 0.3\n$VEL.CP = 0.250");
+  const postproc::Program p = postproc::parseProgram(postproc::Dialect::kKrl, "hand.src", text);
+  const std::vector<postproc::Hole> holes = postproc::recognizeHoles(p);
+  ASSERT_EQ(holes.size(), 1U);
+  EXPECT_EQ(holes[0].depth, 0.0);
+  EXPECT_EQ(holes[0].surface_motion, -1);
+}
+
+TEST(DrillSurface, PredictAndInspectReportTheSurfaceAndTheBottom) {
+  const std::string dir = test::tempDir("drill_surface");
+  test::writeFile(dir + "/hand.src", kHandWritten);
+  const std::string cell = test::sourceDir() + "/samples/cells/housing-kr120.xml";
+  const auto r = test::runRoprec("predict --cell '" + cell + "' '" + dir + "/hand.src' --json '" +
+                                 dir + "/p.json' --quiet");
+  ASSERT_LE(r.exit_code, 1) << r.err;
+  const json j = json::parse(test::readFile(dir + "/p.json"));
+  ASSERT_EQ(j["holes"].size(), 1U);
+  EXPECT_NEAR(j["holes"][0]["depth_mm"].get<double>(), 20.0, 1e-9);
+  // the cell drills at 0.2 mm/rev x 6000 rpm = 20 mm/s, plus 2 s approach: 3 s, not 5.5 s
+  EXPECT_NEAR(j["summary"]["mc_time_total_s"].get<double>(), 3.0, 1e-6) << j["summary"].dump();
+  const auto i = test::runRoprec("inspect '" + dir + "/hand.src'");
+  ASSERT_EQ(i.exit_code, 0) << i.err;
+  const json ins = json::parse(i.out);
+  const json& h = ins["holes"][0];
+  EXPECT_NEAR(h["depth_mm"].get<double>(), 20.0, 1e-9);
+  EXPECT_NEAR(h["position_in_frame_mm"][2].get<double>(), 234.0, 1e-9);
+  EXPECT_NEAR(h["bottom_in_frame_mm"][2].get<double>(), 214.0, 1e-9);
+  EXPECT_NEAR(h["position_mm"][2].get<double>(), 534.0, 1e-9);
+  EXPECT_NEAR(h["bottom_mm"][2].get<double>(), 514.0, 1e-9);
+}
+
+}  // namespace
+}  // namespace roprec
