@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <map>
 
+#include "compensator/support/c_format.hpp"
 #include "compensator/support/error.hpp"
 #include "postproc/dialects.hpp"
 #include "postproc/lexer.hpp"
@@ -15,21 +16,14 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string fmt(double v, int decimals) {
-  const int n = std::snprintf(nullptr, 0, "%.*f", decimals, v);
-  std::string s(static_cast<std::size_t>(std::max(n, 0)) + 1, '\0');
-  std::snprintf(s.data(), s.size(), "%.*f", decimals, v);
-  s.pop_back();
+  std::string s = cFixed(v, decimals);  // "C" format whatever the locale
   bool zero = true;
   for (const char c : s) zero = zero && (c == '-' || c == '0' || c == '.');
   if (zero && !s.empty() && s[0] == '-') s.erase(0, 1);
   return s;
 }
 
-std::string fmtG(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.10g", v);
-  return buf;
-}
+std::string fmtG(double v) { return cGeneral(v, 10); }
 
 std::string sanitize(const std::string& s, const std::string& fallback) {
   std::string r;

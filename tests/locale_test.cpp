@@ -12,10 +12,13 @@
 
 #include <gtest/gtest.h>
 
+#include "compensator/robot/robot_card.hpp"
 #include "compensator/support/xml_node.hpp"
 #include "plugin/api/exports.hpp"
 #include "plugin/api/job.hpp"
 #include "plugin/api/json.hpp"
+#include "plugin/api/robot_setup.hpp"
+#include "plugin/api/robots.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace roprec {
@@ -125,6 +128,19 @@ TEST(Locale, NumbersParseAndFormatInTheCFormatWhateverTheLocale) {
   EXPECT_EQ(api::formatNumber(1234567.5, 3), "1234567.500");
   EXPECT_EQ(api::formatNumber(-0.0001, 2), "0.00");
   EXPECT_EQ(api::formatNumber(0.1, -1), "0.1");
+}
+
+TEST(Locale, RobotListingAndLimitMessagesAreLocaleFree) {
+  const Robot robot = loadRobot({"kuka-kr120-r2500-pro", "", ""});
+  nc::Vec6 q = nc::Vec6::Zero();
+  q[0] = 4.0;  // beyond A1's limit
+  const std::string text = api::robotCardText(robot.card);
+  const std::vector<std::string> limits = api::limitViolations(robot.chain, q);
+  ASSERT_EQ(limits.size(), 1u);
+  const HostLocale host;
+  EXPECT_EQ(api::robotCardText(robot.card), text);
+  EXPECT_EQ(api::limitViolations(robot.chain, q), limits);
+  EXPECT_NE(limits[0].find("229.183 deg"), std::string::npos) << limits[0];
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "compensator/process/milling_robot.hpp"
+#include "compensator/support/c_format.hpp"
 
 namespace roprec {
 
@@ -13,11 +14,7 @@ namespace {
 /// milling frame (X feed = tool x, Z = −tool z, Y = −tool y) ↔ tool frame
 Vec3 millToTool(const Vec3& v) { return Vec3(v.x(), -v.y(), -v.z()); }
 
-std::string fmt(double v, int decimals) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-  return buf;
-}
+std::string fmt(double v, int decimals) { return cFixed(v, decimals); }
 std::string mm(double v_m) { return fmt(v_m * 1e3, 3); }
 }  // namespace
 

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <string>
 
+#include "compensator/support/c_format.hpp"
 #include "compensator/support/error.hpp"
 
 namespace roprec::nc {
@@ -51,9 +52,7 @@ std::string ControllerReference::description() const {
     case Kind::kMastering: {
       std::string s = "mastering reference: kinematics exact at the calibration pose (";
       for (int i = 0; i < 6; ++i) {
-        char buf[32];
-        std::snprintf(buf, sizeof buf, "%s%.3f", i ? " " : "", calibration_pose[i] / kDeg);
-        s += buf;
+        s += (i ? " " : "") + cFixed(calibration_pose[i] / kDeg, 3);
       }
       return s +
              " deg, URDF) under the robot's own weight (offset K_eff^-1 tau_g,robot(theta_cal))";

@@ -3,6 +3,7 @@
 
 #include <cstdio>
 
+#include "compensator/support/c_format.hpp"
 #include "compensator/support/error.hpp"
 
 namespace roprec::api {
@@ -59,10 +60,8 @@ std::vector<std::string> limitViolations(const ChainDescription& chain, const nc
   for (int i = 0; i < 6; ++i) {
     const ChainJoint& j = chain.joints[static_cast<size_t>(i)];
     if (q[i] < j.lower - 1e-12 || q[i] > j.upper + 1e-12) {
-      char buf[200];
-      std::snprintf(buf, sizeof buf, "%s = %.3f deg (limits %.3f .. %.3f deg)", j.name.c_str(),
-                    q[i] / kDeg, j.lower / kDeg, j.upper / kDeg);
-      out.emplace_back(buf);
+      out.push_back(j.name + " = " + cFixed(q[i] / kDeg, 3) + " deg (limits " +
+                    cFixed(j.lower / kDeg, 3) + " .. " + cFixed(j.upper / kDeg, 3) + " deg)");
     }
   }
   return out;

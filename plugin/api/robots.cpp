@@ -2,6 +2,7 @@
 #include "plugin/api/robots.hpp"
 
 #include <iomanip>
+#include <locale>
 #include <sstream>
 
 namespace roprec::api {
@@ -36,6 +37,7 @@ std::string robotCardText(const RobotCard& card) {
   int estimated = 0;
   for (const JointCard& j : card.joints) estimated += j.estimated() ? 1 : 0;
   std::ostringstream text;
+  text.imbue(std::locale::classic());  // "C" numbers whatever the host's global locale
   text << card.name << "  (" << vendorName(card.vendor) << " " << card.model << ")\n";
   text << "  repeatability RP " << std::fixed << std::setprecision(3) << card.rp_mm
        << " mm (ISO 9283)  [" << card.rp_source << "]\n";

@@ -6,6 +6,7 @@
 #include <map>
 #include <sstream>
 
+#include "compensator/support/c_format.hpp"
 #include "compensator/support/xml_escape.hpp"
 #include "plugin/api/verify.hpp"
 
@@ -30,9 +31,8 @@ std::vector<Face> faces(const VerifyResult& r) {
   for (size_t n = 0; n < r.holes.size(); ++n) {
     const Mat3 R = R_wobj_W * r.nominal[n].linear();
     const Vec3 d = R.col(2);
-    char key[96];
-    std::snprintf(key, sizeof key, "drilled (%.2f, %.2f, %.2f)", d.x() + 0.0, d.y() + 0.0,
-                  d.z() + 0.0);
+    const std::string key = "drilled (" + cFixed(d.x() + 0.0, 2) + ", " + cFixed(d.y() + 0.0, 2) +
+                            ", " + cFixed(d.z() + 0.0, 2) + ")";
     auto it = index.find(key);
     if (it == index.end()) {
       it = index.emplace(key, out.size()).first;
