@@ -170,6 +170,12 @@ int run(Args& args, CommandContext& ctx) {
   if (!cell) throw UsageError("give --cell CELL.xml");
   if (!out) throw UsageError("give -o OUT (the corrected program)");
   if (pos.size() != 1) throw UsageError("give exactly one PROGRAM file");
+  {  // cheap early check (writeCompensatedProgram checks every output against every input file)
+    std::error_code ec;
+    if (std::filesystem::exists(*out, ec) && std::filesystem::equivalent(*out, pos[0], ec))
+      throw UsageError("output " + *out + " is the input file " + pos[0] +
+                       ": write the compensated program to another file (nothing written)");
+  }
   if (cellIsMilling(*cell)) return runMillingPath(ctx, *cell, pos[0], *out, targets, job.force);
 
   CompensationResult r = compensateJob(*cell, pos[0], job);
