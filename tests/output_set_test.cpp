@@ -15,6 +15,7 @@
 
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
+#include "plugin/c/roprec.h"
 #include "tests/support/test_support.hpp"
 
 namespace roprec {
@@ -234,6 +235,22 @@ TEST(OutputSet, CliRefusesASymlinkOutput) {
   EXPECT_NE(r.err.find("symbolic link"), std::string::npos) << r.err;
   EXPECT_EQ(test::readFile(dir + "/target.json"), "keep");
   EXPECT_TRUE(fs::is_symlink(dir + "/out.json"));
+}
+
+TEST(OutputSet, CApiCompensateWritesNothingWhenTheTargetsExportFails) {
+  // program + .dat + targets through the C ABI: the targets' folder does not exist, so neither
+  // the corrected program nor its .dat may appear.
+  const std::string dir = test::tempDir("outset-capi");
+  const std::string src = test::sourceDir();
+  char err[4096];
+  const int rc =
+      roprec_compensate_file((src + "/samples/cells/housing-kr120.xml").c_str(),
+                             (src + "/samples/emotor-housing/housing_kr120.src").c_str(), nullptr,
+                             (dir + "/c.src").c_str(), "keep", (dir + "/missing/t.json").c_str(),
+                             nullptr, 0, err, sizeof err);
+  EXPECT_EQ(rc, ROPREC_BAD_INPUT);
+  EXPECT_NE(std::string(err).find("No such file or directory"), std::string::npos) << err;
+  EXPECT_TRUE(listDir(dir).empty());
 }
 
 }  // namespace

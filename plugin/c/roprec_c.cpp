@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "compensator/support/atomic_file.hpp"
+#include "compensator/support/c_format.hpp"
 #include "compensator/support/error.hpp"
 #include "plugin/api/job.hpp"
 #include "plugin/api/plan_test.hpp"
@@ -71,7 +72,21 @@ template <class F>
 int guarded(char* err, size_t err_len, F&& f) noexcept {
   copyError(err, err_len, "");
   try {
-    return f();
+    // The C library functions see the "C" locale whatever the host set, and the outputs of one
+    // call are written all or none (compensator/support/atomic_file.hpp): committed when the call
+    // returns or reports failed items (whose outputs were complete), removed on any error.
+    const roprec::ClassicLocaleScope c_locale;
+    roprec::OutputSet outputs;
+    const roprec::ScopedOutputSet scope(outputs);
+    int status = ROPREC_OK;
+    try {
+      status = f();
+    } catch (const ItemFailure&) {
+      outputs.commit();
+      throw;
+    }
+    outputs.commit();
+    return status;
   } catch (const ItemFailure& e) {
     copyError(err, err_len, e.message.c_str());
     return ROPREC_ITEM_FAILED;
