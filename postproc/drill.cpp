@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <set>
+#include <cstdint>
+#include <optional>
+#include <unordered_map>
 
 #include "postproc/lexer.hpp"
 
@@ -160,46 +162,157 @@ std::vector<Hole> recognizeHoles(const Program& p, const RecognitionOptions& o) 
   return holes;
 }
 
-std::vector<HoleMatch> matchHoles(const std::vector<Hole>& holes, const Program& p,
-                                  const std::vector<HoleSpec>& specs, double tol_mm) {
-  std::vector<HoleMatch> out;
-  std::set<int> taken;
-  for (std::size_t h = 0; h < holes.size(); ++h) {
-    const Hole& hole = holes[h];
-    // by id: a hole-list id equal to the name of one of the cycle's targets
-    int by_id = -1;
-    for (std::size_t s = 0; s < specs.size() && by_id < 0; ++s) {
-      for (const int t : hole.targets) {
-        if (t >= 0 && iequals(p.target_list[static_cast<std::size_t>(t)].name, specs[s].id))
-          by_id = static_cast<int>(s);
+namespace {
+
+/// Hole-list points for the position match, by direction then by position across it: the
+/// directions are bucketed in cubes of edge 0.005 (every member within 0.25 deg of its bucket's
+/// axis c); inside a bucket the points are projected on the plane perpendicular to c and hashed
+/// in a 2-D grid. A query walks the hole's segment projected on that plane (projection never
+/// lengthens a distance, so nothing within reach is missed): cost ~ buckets + points near the
+/// axis, not the list's length.
+class SpecIndex {
+ public:
+  SpecIndex(const std::vector<HoleSpec>& specs, double reach) : cell_(std::max(2.0 * reach, 2.0)) {
+    for (std::size_t s = 0; s < specs.size(); ++s) {
+      const Vec3& d = specs[s].direction;
+      const Key k{index(d.x(), kDirCell), index(d.y(), kDirCell), index(d.z(), kDirCell)};
+      auto [it, fresh] = bucket_of_.emplace(k, buckets_.size());
+      if (fresh) {
+        Bucket b;
+        b.axis = Vec3((k.x + 0.5) * kDirCell, (k.y + 0.5) * kDirCell, (k.z + 0.5) * kDirCell);
+        b.axis = b.axis.norm() > 0 ? Vec3(b.axis.normalized()) : Vec3::UnitZ();
+        b.e1 = b.axis.unitOrthogonal();
+        b.e2 = b.axis.cross(b.e1);
+        buckets_.push_back(std::move(b));
+      }
+      Bucket& b = buckets_[it->second];
+      const Vec3& q = specs[s].position_mm;
+      b.cells[key2(q.dot(b.e1), q.dot(b.e2))].push_back(static_cast<int>(s));
+    }
+  }
+
+  /// Calls f(spec) for every spec within `reach` of the segment a..b whose direction may be
+  /// within `max_angle` (rad) of `axis`.
+  template <class F>
+  void near(const Vec3& axis, double max_angle, const Vec3& a, const Vec3& b, F&& f) const {
+    const double cos_limit = std::cos(std::min(max_angle + kBucketRadius, kPi));
+    for (const Bucket& bk : buckets_) {
+      if (bk.axis.dot(axis) < cos_limit) continue;
+      const Eigen::Vector2d pa(a.dot(bk.e1), a.dot(bk.e2));
+      const Eigen::Vector2d pb(b.dot(bk.e1), b.dot(bk.e2));
+      const double len = (pb - pa).norm();
+      if (!std::isfinite(len)) continue;
+      const int steps = static_cast<int>(std::min(1e6, std::ceil(2.0 * len / cell_)));
+      visited_.clear();
+      for (int i = 0; i <= steps; ++i) {
+        const Eigen::Vector2d p =
+            steps == 0 ? pa : Eigen::Vector2d(pa + (pb - pa) * (1.0 * i / steps));
+        const Key c = key2(p.x(), p.y());
+        for (std::int64_t dx = -1; dx <= 1; ++dx) {
+          for (std::int64_t dy = -1; dy <= 1; ++dy) {
+            const Key k{c.x + dx, c.y + dy, 0};
+            if (std::find(visited_.begin(), visited_.end(), k) != visited_.end()) continue;
+            visited_.push_back(k);
+            const auto it = bk.cells.find(k);
+            if (it == bk.cells.end()) continue;
+            for (const int s : it->second) f(s);
+          }
+        }
       }
     }
-    if (by_id >= 0 && taken.count(by_id) == 0) {
-      taken.insert(by_id);
+  }
+
+ private:
+  static constexpr double kDirCell = 0.005;
+  static constexpr double kBucketRadius = 0.005;  // > 0.005 * sqrt(3) / 2: member to axis, rad
+  static constexpr double kPi = 3.14159265358979323846;
+  struct Key {
+    std::int64_t x, y, z;
+    bool operator==(const Key& o) const { return x == o.x && y == o.y && z == o.z; }
+  };
+  struct Hash {
+    std::size_t operator()(const Key& k) const {
+      const auto u = [](std::int64_t v) { return static_cast<std::uint64_t>(v); };
+      return static_cast<std::size_t>(u(k.x) * 73856093U ^ u(k.y) * 19349663U ^ u(k.z) * 83492791U);
+    }
+  };
+  struct Bucket {
+    Vec3 axis, e1, e2;
+    std::unordered_map<Key, std::vector<int>, Hash> cells;
+  };
+  /// Clamped cell index: no UB for absurd or non-finite coordinates.
+  static std::int64_t index(double v, double cell) {
+    const double i = std::floor(v / cell);
+    return static_cast<std::int64_t>(std::isfinite(i) ? std::clamp(i, -1e15, 1e15) : 0.0);
+  }
+  [[nodiscard]] Key key2(double u, double v) const {
+    return Key{index(u, cell_), index(v, cell_), 0};
+  }
+
+  double cell_;
+  std::vector<Bucket> buckets_;
+  std::unordered_map<Key, std::size_t, Hash> bucket_of_;
+  mutable std::vector<Key> visited_;
+};
+
+/// Distance (mm) of hole-list point `spec` from the drill segment of `hole`, extended by the
+/// hole-list depth + 50 mm each way; nullopt when the axes are not parallel (1 deg).
+std::optional<double> segmentDistance(const Hole& hole, const HoleSpec& spec) {
+  if (spec.direction.dot(hole.axis) < std::cos(1.0 * kDeg)) return std::nullopt;
+  const Vec3 bottom = hole.position * 1e3;
+  const Vec3 entry = bottom - hole.axis * hole.depth * 1e3;
+  const Vec3& q = spec.position_mm;
+  const double depth = spec.depth_mm.value_or(0.0);
+  const double t =
+      std::clamp((q - entry).dot(hole.axis), -depth - 50.0, hole.depth * 1e3 + depth + 50.0);
+  return (entry + hole.axis * t - q).norm();
+}
+
+}  // namespace
+
+std::vector<HoleMatch> matchHoles(const std::vector<Hole>& holes, const Program& p,
+                                  const std::vector<HoleSpec>& specs, double tol_mm) {
+  // ids through a hash map, positions through SpecIndex (was O(H * S) scans)
+  std::unordered_map<std::string, int> by_name;  // upper-case id -> first spec with it
+  double max_depth = 0;
+  for (std::size_t s = 0; s < specs.size(); ++s) {
+    by_name.emplace(upper(specs[s].id), static_cast<int>(s));
+    max_depth = std::max(max_depth, specs[s].depth_mm.value_or(0.0));
+  }
+  const SpecIndex index(specs, std::max(tol_mm, 0.0));
+  std::vector<HoleMatch> out;
+  std::vector<bool> taken(specs.size(), false);
+  for (std::size_t h = 0; h < holes.size(); ++h) {
+    const Hole& hole = holes[h];
+    // by id: a hole-list id equal to the name of one of the cycle's targets (the first in the list)
+    int by_id = -1;
+    for (const int t : hole.targets) {
+      if (t < 0) continue;
+      const auto it = by_name.find(upper(p.target_list[static_cast<std::size_t>(t)].name));
+      if (it != by_name.end() && (by_id < 0 || it->second < by_id)) by_id = it->second;
+    }
+    if (by_id >= 0 && !taken[static_cast<std::size_t>(by_id)]) {
+      taken[static_cast<std::size_t>(by_id)] = true;
       out.push_back(HoleMatch{static_cast<int>(h), by_id, 0.0});
       continue;
     }
+    // by position: the nearest free point within tol (on a tie the later list row, as before)
     const Vec3 bottom = hole.position * 1e3;
     const Vec3 entry = bottom - hole.axis * hole.depth * 1e3;
     int best = -1;
     double best_d = tol_mm;
-    for (std::size_t s = 0; s < specs.size(); ++s) {
-      if (taken.count(static_cast<int>(s)) != 0) continue;
-      if (specs[s].direction.dot(hole.axis) < std::cos(1.0 * kDeg)) continue;
-      const Vec3 q = specs[s].position_mm;
-      // distance to the line through the drill axis, limited to the segment extended by depth
-      const double depth = specs[s].depth_mm.value_or(0.0);
-      const double tlo = -depth - 50.0;
-      const double thi = hole.depth * 1e3 + depth + 50.0;
-      const double t = std::clamp((q - entry).dot(hole.axis), tlo, thi);
-      const double d = (entry + hole.axis * t - q).norm();
-      if (d <= best_d) {
-        best_d = d;
-        best = static_cast<int>(s);
-      }
-    }
+    index.near(hole.axis, 1.0 * kDeg, entry - hole.axis * (max_depth + 50.0 + tol_mm),
+               bottom + hole.axis * (max_depth + 50.0 + tol_mm), [&](int s) {
+                 if (taken[static_cast<std::size_t>(s)]) return;
+                 const std::optional<double> d =
+                     segmentDistance(hole, specs[static_cast<std::size_t>(s)]);
+                 if (d && (*d < best_d || (*d == best_d && s > best))) {
+                   best_d = *d;
+                   best = s;
+                 }
+               });
     if (best >= 0) {
-      taken.insert(best);
+      taken[static_cast<std::size_t>(best)] = true;
       out.push_back(HoleMatch{static_cast<int>(h), best, best_d});
     }
   }

@@ -9,11 +9,13 @@
 /// RoboDK's TxyzRxyz); `i,j,k` makes the file a hole list (drilling direction = TCP +z). Frames
 /// may be declared by comments `# frame NAME: x y z qw qx qy qz` / `# tool NAME: ...` (mm) and
 /// referenced by the `frame`/`tool` columns. `j1..j6` rows without a pose are joint targets.
+#include <algorithm>
 #include <cmath>
 #include <unordered_map>
 
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
+#include "compensator/support/xml_node.hpp"
 #include "postproc/dialects.hpp"
 #include "postproc/drill.hpp"
 #include "postproc/lexer.hpp"
@@ -41,6 +43,26 @@ std::string columnKey(std::string_view raw) {
     if (k.size() > s.size() && k.compare(k.size() - s.size(), s.size(), s) == 0)
       k.erase(k.size() - s.size());
   }
+  return k;
+}
+
+// Hole-list bounds (docs/contract.md §7): values outside are typing or unit mistakes.
+constexpr double kMinDiameterMm = 0.1;
+constexpr double kMaxDiameterMm = 200.0;
+constexpr double kMaxDepthMm = 2000.0;
+constexpr double kMinToleranceMm = 0.001;
+constexpr double kMaxToleranceMm = 50.0;
+constexpr double kMaxCoordinateMm = 1e5;    // 100 m from the workobject origin
+constexpr double kDirectionNormTol = 1e-3;  // |n| within 1 ± this is normalised, else refused
+// A file that looks like metres: every coordinate below this (mm) ...
+constexpr double kMetresMaxCoordinateMm = 5.0;
+// ... while distinct holes are closer than this (mm).
+constexpr double kMetresSpacingMm = 1.0;
+
+/// The columns a hole list may have (after columnKey).
+const std::vector<std::string>& holeListColumns() {
+  static const std::vector<std::string> k = {"id", "x",        "y",     "z",         "i",      "j",
+                                             "k",  "diameter", "depth", "tolerance", "comment"};
   return k;
 }
 
@@ -96,6 +118,7 @@ class CsvReader {
       row(s, e);
     }
     if (!have_header) failAt(f_, 0, "empty CSV: a header row is required");
+    if (holes_mode_) checkNotMetres();
   }
 
   std::vector<HoleSpec> holes;
@@ -110,6 +133,7 @@ class CsvReader {
   std::unordered_map<std::string, Frame> tools_;
   Orientation orient_{Orientation::kNone};
   bool holes_mode_{false};
+  std::unordered_map<std::string, int> hole_id_line_;  ///< upper-case id -> line of its row
 
   [[noreturn]] void fail(std::size_t off, const std::string& m) const { failAt(f_, off, m); }
 
@@ -190,6 +214,7 @@ class CsvReader {
       holes_mode_ = true;
       p_.dialect = Dialect::kHoleCsv;
       if (!has({"id", "x", "y", "z"})) fail(s, "hole list needs the columns id,x,y,z,i,j,k");
+      checkHoleColumns(cells);
     } else if (has({"a", "b", "c"})) {
       orient_ = Orientation::kKukaAbc;
     } else if (has({"w", "p", "r"})) {
@@ -220,6 +245,95 @@ class CsvReader {
            "no orientation columns (a,b,c | w,p,r | qw,qx,qy,qz | rx,ry,rz with '# euler:' | "
            "i,j,k) and no j1..j6");
     }
+  }
+
+  /// Hole lists: every column is known and named once (a misspelt `dia` would silently drop
+  /// every diameter).
+  void checkHoleColumns(const std::vector<Cell>& cells) const {
+    std::unordered_map<std::string, std::size_t> seen;
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+      const std::string_view raw =
+          std::string_view(f_.bytes).substr(cells[i].begin, cells[i].end - cells[i].begin);
+      const std::string k = columnKey(raw);
+      if (k.empty()) continue;
+      const auto& known = holeListColumns();
+      if (std::find(known.begin(), known.end(), k) == known.end()) {
+        std::string hint = didYouMean(k, known);
+        if (hint.empty()) {
+          std::string list;
+          for (const std::string& n : known) list += (list.empty() ? "" : ",") + n;
+          hint = " (a hole list has the columns " + list + ")";
+        }
+        fail(cells[i].begin, "unknown column '" + std::string(raw) + "' in the hole list" + hint);
+      }
+      if (const auto it = seen.find(k); it != seen.end()) {
+        fail(cells[i].begin, "column '" + k + "' is given twice (columns " +
+                                 std::to_string(it->second + 1) + " and " + std::to_string(i + 1) +
+                                 ")");
+      }
+      seen[k] = i;
+    }
+  }
+
+  /// Position of the named cell of a row (for messages), else the row start.
+  std::size_t cellOffset(const std::vector<Cell>& cells, const char* key, std::size_t row) const {
+    const auto it = col_.find(key);
+    if (it == col_.end() || static_cast<std::size_t>(it->second) >= cells.size()) return row;
+    return cells[static_cast<std::size_t>(it->second)].begin;
+  }
+
+  /// An optional positive size column within [lo, hi] mm.
+  std::optional<double> sizeMm(const std::vector<Cell>& cells, const char* key, double lo,
+                               double hi, const std::string& id, std::size_t row) const {
+    const auto v = num(cells, key);
+    if (!v) return std::nullopt;
+    if (!(v->value >= lo && v->value <= hi) || !(v->value > 0)) {
+      const std::string range = lo > 0 ? "outside " + numberText(lo) + ".." + numberText(hi) + " mm"
+                                       : "not in (0, " + numberText(hi) + "] mm";
+      fail(cellOffset(cells, key, row), "hole " + id + ": " + key + " " + numberText(v->value) +
+                                            " mm is " + range + " (hole lists are in mm)");
+    }
+    return v->value;
+  }
+
+  /// Unit drilling direction: refused when zero or when |n| is off 1 by more than 1e-3.
+  Vec3 unitDirection(const Vec3& d, const std::vector<Cell>& cells, const std::string& id,
+                     std::size_t row) const {
+    const double n = d.norm();
+    const std::size_t at = cellOffset(cells, "i", row);
+    if (n < 1e-9) fail(at, "hole " + id + ": drilling direction i,j,k is zero");
+    if (std::abs(n - 1.0) > kDirectionNormTol) {
+      fail(at, "hole " + id + ": drilling direction i,j,k has length " + numberText(n) +
+                   ", not 1 (give a unit vector; lengths within 1e-3 of 1 are normalised)");
+    }
+    return d / n;
+  }
+
+  /// All coordinates tiny while distinct holes are sub-mm apart: the file is in metres.
+  void checkNotMetres() const {
+    if (holes.size() < 2) return;
+    double max_abs = 0;
+    for (const HoleSpec& h : holes)
+      max_abs = std::max(max_abs, h.position_mm.cwiseAbs().maxCoeff());
+    if (!(max_abs < kMetresMaxCoordinateMm)) return;
+    std::vector<Vec3> p;
+    p.reserve(holes.size());
+    for (const HoleSpec& h : holes) p.push_back(h.position_mm);
+    std::sort(p.begin(), p.end(), [](const Vec3& a, const Vec3& b) { return a.x() < b.x(); });
+    double closest = kMetresSpacingMm;
+    for (std::size_t a = 0; a < p.size(); ++a) {
+      for (std::size_t b = a + 1; b < p.size() && p[b].x() - p[a].x() < closest; ++b) {
+        const double d = (p[b] - p[a]).norm();
+        if (d > 1e-9 && d < closest) closest = d;
+      }
+    }
+    if (closest >= kMetresSpacingMm) return;
+    const HoleSpec& first = holes.front();
+    failAt(f_, f_.line_starts[static_cast<std::size_t>(std::max(1, first.line) - 1)],
+           "the hole list looks like metres: all " + std::to_string(holes.size()) +
+               " holes lie within " + numberText(max_abs) +
+               " mm of the workobject origin and some are only " + numberText(closest) +
+               " mm apart; hole lists are in mm (multiply by 1000)");
   }
 
   std::optional<NumberField> num(const std::vector<Cell>& cells, const char* key) const {
@@ -310,14 +424,22 @@ class CsvReader {
       HoleSpec h;
       h.id = t.name;
       h.line = t.line;
-      h.position_mm = Vec3(t.pos[0].value, t.pos[1].value, t.pos[2].value);
-      const Vec3 d(t.rot[0].value, t.rot[1].value, t.rot[2].value);
-      if (d.norm() < 1e-9) fail(s, "hole " + h.id + ": drilling direction i,j,k is zero");
-      h.direction = d.normalized();
-      if (const auto v = num(cells, "diameter")) h.diameter_mm = v->value;
-      if (const auto v = num(cells, "depth")) h.depth_mm = v->value;
-      if (const auto v = num(cells, "tolerance")) h.tolerance_mm = v->value;
       if (h.id.empty()) fail(s, "hole without an id");
+      const auto [dup, fresh] = hole_id_line_.emplace(upper(h.id), h.line);
+      if (!fresh) {
+        fail(s, "duplicate hole id '" + h.id + "' (first at line " + std::to_string(dup->second) +
+                    "; ids are compared without regard to case)");
+      }
+      h.position_mm = Vec3(t.pos[0].value, t.pos[1].value, t.pos[2].value);
+      if (!(h.position_mm.cwiseAbs().maxCoeff() <= kMaxCoordinateMm)) {
+        fail(s, "hole " + h.id + ": a coordinate is beyond " + numberText(kMaxCoordinateMm) +
+                    " mm from the workobject origin");
+      }
+      h.direction =
+          unitDirection(Vec3(t.rot[0].value, t.rot[1].value, t.rot[2].value), cells, h.id, s);
+      h.diameter_mm = sizeMm(cells, "diameter", kMinDiameterMm, kMaxDiameterMm, h.id, s);
+      h.depth_mm = sizeMm(cells, "depth", 0.0, kMaxDepthMm, h.id, s);
+      h.tolerance_mm = sizeMm(cells, "tolerance", kMinToleranceMm, kMaxToleranceMm, h.id, s);
       holes.push_back(h);
     }
     // one motion per row

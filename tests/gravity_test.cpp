@@ -488,12 +488,12 @@ TEST(CardWeight, UnknownAttributesAndBadElementsAreErrors) {
     std::string expect;
   } cases[] = {
       {"  <link name=\"link_3\" mass_kg=\"30\" com_mm=\"0 0 0\" source=\"x\" colour=\"red\"/>",
-       "has no attribute 'colour'"},
+       "unknown attribute 'colour' on <link>"},
       {"  <link name=\"link_3\" mass_kg=\"30\" com_mm=\"0 0 0\"/>", "needs a source"},
       {"  <link name=\"flange\" mass_kg=\"30\" com_mm=\"0 0 0\" source=\"x\"/>",
        "is not a moving body"},
       {"  <gravity model=\"off\"/>", "model must be"},
-      {"  <gravity model=\"none\" reason=\"x\"/>", "has no attribute 'reason'"},
+      {"  <gravity model=\"none\" reason=\"x\"/>", "unknown attribute 'reason' on <gravity>"},
   };
   for (const auto& k : cases) {
     const CardCopy c = cardCopy(

@@ -2,6 +2,8 @@
 
 #include <filesystem>
 
+#include "compensator/process/process_spec.hpp"
+#include "compensator/robot/urdf_loader.hpp"
 #include "compensator/support/error.hpp"
 
 namespace fs = std::filesystem;
@@ -16,12 +18,44 @@ Pose poseFromXyzRpyMm(const XmlNode& e) {
   return T;
 }
 
+namespace {
+
+/// Tool + spindle mass above this is not a tool (kg; the heaviest robots carry 2.3 t).
+constexpr double kMaxToolMassKg = 5000.0;
+
+ToolSpec parseTool(const XmlNode& t) {
+  allowOnly(t, {"name", "xyz", "rpy", "mass_kg", "com_mm", "inertia_kgm2"});
+  ToolSpec tool;
+  tool.name = t.str("name", "tool");
+  tool.T_flange_tcp = poseFromXyzRpyMm(t);
+  tool.mass = t.number("mass_kg", 0.0);
+  if (!(tool.mass >= 0 && tool.mass <= kMaxToolMassKg)) {
+    t.fail("<tool> mass_kg must lie in [0, " + std::to_string(static_cast<int>(kMaxToolMassKg)) +
+           "] kg, got " + t.str("mass_kg"));
+  }
+  tool.com = t.vec3("com_mm", Vec3::Zero()) * 1e-3;
+  if (t.has("inertia_kgm2")) {
+    const Eigen::VectorXd I = t.numbers("inertia_kgm2", 6);  // ixx ixy ixz iyy iyz izz
+    tool.inertia << I[0], I[1], I[2], I[1], I[3], I[4], I[2], I[4], I[5];
+    if (const std::string why = inertiaProblem(tool.inertia); !why.empty())
+      t.fail("<tool> inertia_kgm2: " + why);
+  }
+  return tool;
+}
+
+}  // namespace
+
 CellSpec loadCell(const std::string& path) {
   CellSpec cell;
   cell.root = loadXmlFile(path);
   const XmlNode& root = cell.root;
   if (root.name != "cell")
     root.fail("a cell file's root element is <cell>, got <" + root.name + ">");
+  allowOnly(root, {"name"});
+  allowChildren(root, {"robot", "tool", "workobject", "process", "tolerance", "controller",
+                       "uncertainty", "capability"});
+  allowAtMostOnce(root, {"robot", "tool", "workobject", "process", "tolerance", "controller",
+                         "uncertainty", "capability"});
   cell.file = path;
   cell.name = root.str("name", fs::path(path).stem().string());
   const fs::path dir = fs::path(path).parent_path();
@@ -32,6 +66,11 @@ CellSpec loadCell(const std::string& path) {
   const XmlNode* r = root.child("robot");
   if (r == nullptr) root.fail("the cell has no <robot ref|file|urdf=...> element");
   cell.robot_line = r->line;
+  allowOnly(*r, {"ref", "file", "urdf", "base_link", "flange_link"});
+  if (static_cast<int>(r->has("ref")) + static_cast<int>(r->has("file")) +
+          static_cast<int>(r->has("urdf")) >
+      1)
+    r->fail("<robot> takes one of ref=, file= or urdf=, not several");
   if (r->has("ref")) {
     cell.robot.robot = r->str("ref");
   } else if (r->has("file")) {
@@ -44,30 +83,28 @@ CellSpec loadCell(const std::string& path) {
   cell.robot.base_link = r->str("base_link", "");
   cell.robot.tip_link = r->str("flange_link", "");
 
-  if (const XmlNode* t = root.child("tool")) {
-    cell.tool.name = t->str("name", "tool");
-    cell.tool.T_flange_tcp = poseFromXyzRpyMm(*t);
-    cell.tool.mass = t->number("mass_kg", 0.0);
-    if (cell.tool.mass < 0) t->fail("mass_kg must be >= 0");
-    cell.tool.com = t->vec3("com_mm", Vec3::Zero()) * 1e-3;
-    if (t->has("inertia_kgm2")) {
-      const Eigen::VectorXd I = t->numbers("inertia_kgm2", 6);  // ixx ixy ixz iyy iyz izz
-      cell.tool.inertia << I[0], I[1], I[2], I[1], I[3], I[4], I[2], I[4], I[5];
-    }
+  if (const XmlNode* t = root.child("tool")) cell.tool = parseTool(*t);
+  if (const XmlNode* w = root.child("workobject")) {
+    allowOnly(*w, {"name", "xyz", "rpy"});
+    cell.T_base_wobj = poseFromXyzRpyMm(*w);
   }
-  if (const XmlNode* w = root.child("workobject")) cell.T_base_wobj = poseFromXyzRpyMm(*w);
   if (const XmlNode* p = root.child("process")) {
     cell.has_process = true;
     cell.process = *p;
-    const std::string type = p->str("type");
-    if (type != "drilling" && type != "milling" && type != "wrench") {
-      p->fail("unknown process type '" + type + "' (drilling, milling or wrench)");
-    }
+    (void)parseProcess(*p);  // validates the whole element (unknown names, ranges) up front
   }
   if (const XmlNode* tol = root.child("tolerance")) {
+    allowOnly(*tol, {"position_mm"});
     cell.tolerance_mm = tol->number("position_mm");
-    if (!(cell.tolerance_mm > 0)) tol->fail("position_mm must be > 0");
+    if (!(cell.tolerance_mm > 0))
+      tol->fail("position_mm must be > 0, got " + tol->str("position_mm"));
   }
+  if (const XmlNode* c = root.child("controller"))
+    allowOnly(*c, {"gravity_compensated", "calibration_load", "fanuc_turn_axes"});
+  if (const XmlNode* u = root.child("uncertainty"))
+    allowOnly(*u, {"method", "stiffness_rel", "position_gain_rel", "process_halfwidth", "samples",
+                   "seed", "source"});
+  if (const XmlNode* c = root.child("capability")) allowOnly(*c, {"mc_approach_s", "source"});
   return cell;
 }
 

@@ -35,6 +35,11 @@ struct CellSpec {
 /// Pose from `xyz` (mm) and `rpy` (deg, URDF order) attributes of an element.
 Pose poseFromXyzRpyMm(const XmlNode& e);
 
+/// Loads and validates a cell file. Throws InputError `FILE:LINE: what` for malformed XML, an
+/// unknown element or attribute anywhere (with a "did you mean" hint for a near-miss name, e.g.
+/// `unknown attribute 'mas_kg' on <tool> (did you mean 'mass_kg'?)`), an element given twice, a
+/// tool mass outside [0, 5000] kg or a non-physical tool inertia, a tolerance <= 0, and any error
+/// of the <process> element (parseProcess).
 CellSpec loadCell(const std::string& path);
 
 }  // namespace roprec

@@ -17,31 +17,6 @@ namespace {
 constexpr double kMm = 1e-3;
 constexpr double kMPa = 1e6;
 
-void allowOnly(const XmlNode& e, std::initializer_list<const char*> names) {
-  for (const auto& [k, v] : e.attributes) {
-    bool ok = false;
-    for (const char* n : names) ok = ok || k == n;
-    if (!ok) {
-      std::string list;
-      for (const char* n : names) list += (list.empty() ? "" : ", ") + std::string(n);
-      e.fail("<" + e.name + "> has an unknown attribute '" + k + "' (known: " + list + ")");
-    }
-  }
-}
-
-void allowChildren(const XmlNode& e, std::initializer_list<const char*> names) {
-  for (const XmlNode& c : e.children) {
-    bool ok = false;
-    for (const char* n : names) ok = ok || c.name == n;
-    if (!ok) {
-      std::string list;
-      for (const char* n : names) list += (list.empty() ? "<" : ">, <") + std::string(n);
-      c.fail("unknown element <" + c.name + "> in <process type=\"" + e.str("type", "") +
-             "\"> (known: " + list + ">)");
-    }
-  }
-}
-
 const XmlNode& required(const XmlNode& parent, const std::string& name, const std::string& what) {
   const XmlNode* c = parent.child(name);
   if (c == nullptr)

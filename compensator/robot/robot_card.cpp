@@ -25,19 +25,6 @@ bool endsWith(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && lower(s.substr(s.size() - suffix.size())) == suffix;
 }
 
-/// Unknown attributes are errors (a misspelt parameter must not silently take a default).
-void requireKnownAttributes(const XmlNode& e, std::initializer_list<const char*> known) {
-  for (const auto& [name, value] : e.attributes) {
-    bool ok = false;
-    for (const char* k : known) ok = ok || name == k;
-    if (!ok) {
-      std::string list;
-      for (const char* k : known) list += (list.empty() ? "" : ", ") + std::string(k);
-      e.fail("<" + e.name + "> has no attribute '" + name + "' (known: " + list + ")");
-    }
-  }
-}
-
 std::string requireSource(const XmlNode& e) {
   const std::string src = e.str("source", "");
   if (src.empty()) e.fail("<" + e.name + "> needs a source= for its numbers");
@@ -51,10 +38,9 @@ int cardJointIndex(const RobotCard& card, const XmlNode& e, const std::string& n
 }
 
 Counterbalance parseCounterbalance(const RobotCard& card, const XmlNode& e) {
-  requireKnownAttributes(
-      e, {"joint", "law", "action", "r_mm", "d_mm", "psi0_deg", "sign", "length_ref_mm",
-          "preload_N", "rate_N_per_mm", "pressure_ref_MPa", "piston_area_mm2", "gas_volume_l",
-          "polytropic_n", "sizing_fraction", "sizing_pose_deg", "source"});
+  allowOnly(e, {"joint", "law", "action", "r_mm", "d_mm", "psi0_deg", "sign", "length_ref_mm",
+                "preload_N", "rate_N_per_mm", "pressure_ref_MPa", "piston_area_mm2", "gas_volume_l",
+                "polytropic_n", "sizing_fraction", "sizing_pose_deg", "source"});
   Counterbalance cb;
   cb.line = e.line;
   cb.joint = cardJointIndex(card, e, e.str("joint"));
@@ -107,7 +93,7 @@ void parseWeightElements(const XmlNode& root, RobotCard& card) {
     }
   }
   if (const XmlNode* g = root.child("gravity")) {
-    requireKnownAttributes(*g, {"model", "source"});
+    allowOnly(*g, {"model", "source"});
     const std::string model = g->str("model");
     if (model != "none" && model != "links")
       g->fail("<gravity> model must be \"links\" (the default) or \"none\"");
@@ -115,18 +101,20 @@ void parseWeightElements(const XmlNode& root, RobotCard& card) {
     card.gravity_source = g->str("source", "");
   }
   for (const XmlNode* l : root.childrenNamed("link")) {
-    requireKnownAttributes(*l, {"name", "mass_kg", "com_mm", "inertia_kgm2", "source"});
+    allowOnly(*l, {"name", "mass_kg", "com_mm", "inertia_kgm2", "source"});
     RobotCard::LinkInertial li;
     li.name = l->str("name");
     li.line = l->line;
     li.mass = l->number("mass_kg");
-    if (!(li.mass > 0)) l->fail("<link> mass_kg must be > 0");
+    if (!(li.mass > 0)) l->fail("<link> mass_kg must be > 0, got " + l->str("mass_kg"));
     if (!l->has("com_mm")) l->fail("<link> needs com_mm=\"x y z\" (link frame)");
     li.com = l->vec3("com_mm", Vec3::Zero()) * 1e-3;
     if (l->has("inertia_kgm2")) {
       const Eigen::VectorXd v = l->numbers("inertia_kgm2", 6);  // ixx ixy ixz iyy iyz izz
       Mat3 I;
       I << v[0], v[1], v[2], v[1], v[3], v[4], v[2], v[4], v[5];
+      if (const std::string why = inertiaProblem(I); !why.empty())
+        l->fail("<link name=\"" + li.name + "\"> inertia_kgm2: " + why);
       li.inertia = I;
     }
     li.source = requireSource(*l);
@@ -172,6 +160,11 @@ RobotCard loadRobotCard(const std::string& path) {
   const XmlNode root = loadXmlFile(path);
   if (root.name != "robot")
     root.fail("a robot card's root element is <robot>, got <" + root.name + ">");
+  allowOnly(root, {"name", "vendor", "model", "urdf", "base_link", "flange_link",
+                   "rated_payload_kg", "dimensions_source", "inertial_source"});
+  allowChildren(root,
+                {"joint", "repeatability", "controller", "counterbalance", "gravity", "link"});
+  allowAtMostOnce(root, {"repeatability", "controller", "counterbalance", "gravity"});
   RobotCard card;
   card.file = path;
   card.name = root.str("name");
@@ -187,6 +180,8 @@ RobotCard loadRobotCard(const std::string& path) {
   card.dimensions_source = root.str("dimensions_source", "");
   card.inertial_source = root.str("inertial_source", "");
   card.rated_payload_kg = root.number("rated_payload_kg", 0.0);
+  if (card.rated_payload_kg < 0)
+    root.fail("rated_payload_kg must be >= 0, got " + root.str("rated_payload_kg"));
 
   const auto joints = root.childrenNamed("joint");
   if (joints.size() != 6) {
@@ -196,6 +191,8 @@ RobotCard loadRobotCard(const std::string& path) {
   for (size_t i = 0; i < 6; ++i) {
     const XmlNode& j = *joints[i];
     JointCard& jc = card.joints[i];
+    allowOnly(j, {"name", "stiffness", "position_gain", "velocity_gain", "motor_inertia",
+                  "controller_sign", "controller_offset_deg", "source"});
     jc.name = j.str("name");
     jc.line = j.line;
     jc.source = j.str("source", "");
@@ -223,21 +220,29 @@ RobotCard loadRobotCard(const std::string& path) {
     jc.controller_offset = j.number("controller_offset_deg", 0.0) * kDeg;
   }
   card.has_stiffness = all_k;
-  if (const XmlNode* rp = root.child("repeatability")) {
-    card.rp_mm = rp->number("rp_mm");
-    if (!(card.rp_mm > 0)) rp->fail("rp_mm must be > 0");
-    card.rp_source = rp->str("source", "");
+  const XmlNode* rp = root.child("repeatability");
+  if (rp == nullptr) {
+    root.fail(
+        "the robot card has no <repeatability rp_mm=\"...\" source=\"...\"/> (ISO 9283 pose "
+        "repeatability RP, from the datasheet): without it the repeatability term of U_robot "
+        "would silently be 0");
   }
+  allowOnly(*rp, {"rp_mm", "standard", "source"});
+  card.rp_mm = rp->number("rp_mm");
+  if (!(card.rp_mm > 0)) rp->fail("rp_mm must be > 0, got " + rp->str("rp_mm"));
+  card.rp_source = rp->str("source", "");
   Eigen::Matrix<double, 6, 1> cal_deg = vendorCalibrationPoseDeg(card.vendor);
   card.calibration_pose_source =
       "vendor default (" + vendorName(card.vendor) + "; docs/model.md section 6.3)";
   if (const XmlNode* c = root.child("controller")) {
-    requireKnownAttributes(*c, {"gravity_compensated", "j23_coupling", "calibration_load_kg",
-                                "calibration_load_com_mm", "calibration_pose_deg",
-                                "calibration_pose_source", "source"});
+    allowOnly(*c, {"gravity_compensated", "j23_coupling", "calibration_load_kg",
+                   "calibration_load_com_mm", "calibration_pose_deg", "calibration_pose_source",
+                   "source"});
     card.controller_line = c->line;
     card.gravity_compensated = c->boolean("gravity_compensated", false);
     card.calibration_load_kg = c->number("calibration_load_kg", 0.0);
+    if (card.calibration_load_kg < 0)
+      c->fail("calibration_load_kg must be >= 0, got " + c->str("calibration_load_kg"));
     card.calibration_load_com = c->vec3("calibration_load_com_mm", Vec3::Zero()) * 1e-3;
     card.j23_coupling = c->number("j23_coupling", 0.0);
     if (c->has("calibration_pose_deg")) {

@@ -17,6 +17,17 @@
 
 namespace roprec {
 
+std::string inertiaProblem(const Mat3& I) {
+  if (!I.allFinite()) return "the inertia has a value that is not a finite number";
+  const Eigen::SelfAdjointEigenSolver<Mat3> es(I);
+  const Vec3 ev = es.eigenvalues();  // ascending
+  const double tol = 1e-9 * std::max(1.0, ev.cwiseAbs().maxCoeff());
+  if (ev.minCoeff() < -tol || ev[0] + ev[1] < ev[2] - tol) {
+    return "principal moments must be >= 0 and satisfy the triangle inequality";
+  }
+  return "";
+}
+
 namespace {
 
 /// Joint limits beyond ten turns either way are refused at load (issue 13: a limit of -1e300
@@ -75,14 +86,8 @@ UrdfIndex validate(const XmlNode& robot) {
         T << I->number("ixx"), I->number("ixy"), I->number("ixz"), I->number("ixy"),
             I->number("iyy"), I->number("iyz"), I->number("ixz"), I->number("iyz"),
             I->number("izz");
-        const Eigen::SelfAdjointEigenSolver<Mat3> es(T);
-        const Vec3 ev = es.eigenvalues();
-        const double tol = 1e-9 * std::max(1.0, ev.cwiseAbs().maxCoeff());
-        if (ev.minCoeff() < -tol || ev[0] + ev[1] < ev[2] - tol) {
-          I->fail("<inertia> of link '" + name +
-                  "' is not physically valid (principal moments must be >= 0 and satisfy the "
-                  "triangle inequality)");
-        }
+        if (const std::string why = inertiaProblem(T); !why.empty())
+          I->fail("<inertia> of link '" + name + "' is not physically valid: " + why);
       }
     }
   }

@@ -22,6 +22,10 @@ struct UrdfChainRequest {
 /// loops, unknown link names, prismatic joints, or a chain that is not 6R.
 ChainDescription loadUrdfChain(const std::string& path, const UrdfChainRequest& request = {});
 
+/// "" when `I` (kg m², about the centre of mass) is a physical inertia tensor: finite, principal
+/// moments >= 0 and satisfying the triangle inequality; else what is wrong (for a message).
+std::string inertiaProblem(const Mat3& I);
+
 /// Link names of a URDF in document order (for messages and tools).
 std::vector<std::string> urdfLinkNames(const std::string& path);
 

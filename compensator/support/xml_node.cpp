@@ -3,6 +3,7 @@
 #include <tinyxml2.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -111,6 +112,108 @@ std::vector<const XmlNode*> XmlNode::childrenNamed(const std::string& element) c
     if (c.name == element) out.push_back(&c);
   }
   return out;
+}
+
+namespace {
+
+std::string lowerAscii(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+/// Edit distance with adjacent transpositions (optimal string alignment): 'xzy' -> 'xyz' is 1.
+std::size_t editDistance(const std::string& a, const std::string& b) {
+  const std::size_t n = a.size();
+  const std::size_t m = b.size();
+  std::vector<std::vector<std::size_t>> d(n + 1, std::vector<std::size_t>(m + 1));
+  for (std::size_t i = 0; i <= n; ++i) d[i][0] = i;
+  for (std::size_t j = 0; j <= m; ++j) d[0][j] = j;
+  for (std::size_t i = 1; i <= n; ++i) {
+    for (std::size_t j = 1; j <= m; ++j) {
+      const std::size_t cost = a[i - 1] == b[j - 1] ? 0 : 1;
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+    }
+  }
+  return d[n][m];
+}
+
+/// How near `name` is to `known` (lower is nearer); nullopt when it is not a near miss.
+std::optional<std::size_t> nearness(const std::string& name, const std::string& known) {
+  const std::string a = lowerAscii(name);
+  const std::string b = lowerAscii(known);
+  if (a == b) return 0;
+  const std::size_t limit = a.size() <= 2 ? 0 : a.size() <= 4 ? 1 : 2;
+  if (const std::size_t d = editDistance(a, b); d <= limit) return d;
+  // an abbreviation: 'dia' for 'diameter'
+  if (a.size() >= 3 && b.rfind(a, 0) == 0) return 3;
+  return std::nullopt;
+}
+
+std::vector<std::string> toStrings(std::initializer_list<const char*> names) {
+  std::vector<std::string> out;
+  for (const char* n : names) out.emplace_back(n);
+  return out;
+}
+
+bool contains(std::initializer_list<const char*> names, const std::string& s) {
+  return std::any_of(names.begin(), names.end(), [&](const char* n) { return s == n; });
+}
+
+std::string knownList(const std::vector<std::string>& known, const std::string& open,
+                      const std::string& close) {
+  if (known.empty()) return " (it takes none)";
+  std::string list;
+  for (const std::string& k : known) list += (list.empty() ? "" : ", ") + open + k + close;
+  return " (known: " + list + ")";
+}
+
+}  // namespace
+
+std::string didYouMean(const std::string& name, const std::vector<std::string>& known,
+                       const std::string& quote_open, const std::string& quote_close) {
+  const std::string* best = nullptr;
+  std::size_t best_d = 0;
+  for (const std::string& k : known) {
+    const std::optional<std::size_t> d = nearness(name, k);
+    if (d && (best == nullptr || *d < best_d)) {
+      best = &k;
+      best_d = *d;
+    }
+  }
+  if (best == nullptr) return "";
+  return " (did you mean " + quote_open + *best + quote_close + "?)";
+}
+
+void allowOnly(const XmlNode& e, std::initializer_list<const char*> names) {
+  for (const auto& [k, v] : e.attributes) {
+    if (contains(names, k)) continue;
+    const std::vector<std::string> known = toStrings(names);
+    std::string hint = didYouMean(k, known);
+    if (hint.empty()) hint = knownList(known, "", "");
+    e.fail("unknown attribute '" + k + "' on <" + e.name + ">" + hint);
+  }
+}
+
+void allowChildren(const XmlNode& e, std::initializer_list<const char*> names) {
+  for (const XmlNode& c : e.children) {
+    if (contains(names, c.name)) continue;
+    const std::vector<std::string> known = toStrings(names);
+    std::string hint = didYouMean(c.name, known, "<", ">");
+    if (hint.empty()) hint = knownList(known, "<", ">");
+    c.fail("unknown element <" + c.name + "> in <" + e.name + ">" + hint);
+  }
+}
+
+void allowAtMostOnce(const XmlNode& e, std::initializer_list<const char*> names) {
+  for (const char* n : names) {
+    const std::vector<const XmlNode*> all = e.childrenNamed(n);
+    if (all.size() > 1) {
+      all[1]->fail("<" + std::string(n) + "> is given twice in <" + e.name + "> (first at line " +
+                   std::to_string(all[0]->line) + ")");
+    }
+  }
 }
 
 namespace {

@@ -5,6 +5,7 @@
 /// file and the line of the element.
 
 #include <Eigen/Core>
+#include <initializer_list>
 #include <optional>
 #include <string>
 #include <utility>
@@ -45,6 +46,27 @@ struct XmlNode {
 XmlNode loadXmlFile(const std::string& path);
 /// Parses XML text (`file` is used in messages only).
 XmlNode parseXmlText(const std::string& text, const std::string& file);
+
+/// " (did you mean 'x'?)" for the known name nearest to `name` when it is a near miss: the same
+/// name in another case, an edit distance (adjacent swaps count 1) <= 2 (<= 1 for names of 3-4
+/// characters), or an abbreviation of at least 3 characters ('dia' -> 'diameter'); else "".
+/// `quote_open`/`quote_close` wrap the suggestion ("'" and "'" for attributes, "<" and ">" for
+/// elements).
+std::string didYouMean(const std::string& name, const std::vector<std::string>& known,
+                       const std::string& quote_open = "'", const std::string& quote_close = "'");
+
+/// Unknown attributes are errors (a misspelt parameter must not silently take its default).
+/// Throws InputError at `e`'s line: `unknown attribute 'mas_kg' on <tool> (did you mean
+/// 'mass_kg'?)`, or `... on <tool> (known: name, xyz, ...)` when no known name is near.
+void allowOnly(const XmlNode& e, std::initializer_list<const char*> names);
+
+/// Unknown child elements are errors. Throws InputError at the child's line: `unknown element
+/// <tolerence> in <cell> (did you mean <tolerance>?)`, or `(known: <a>, <b>)`.
+void allowChildren(const XmlNode& e, std::initializer_list<const char*> names);
+
+/// Each named child element at most once: throws InputError at the second one's line
+/// `<tool> is given twice in <cell> (first at line N)`.
+void allowAtMostOnce(const XmlNode& e, std::initializer_list<const char*> names);
 
 /// Strictly parses a finite double from the whole string (no trailing garbage).
 std::optional<double> parseNumber(const std::string& s);

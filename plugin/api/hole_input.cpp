@@ -1,5 +1,9 @@
 #include "plugin/api/hole_input.hpp"
 
+#include <algorithm>
+#include <cstdio>
+#include <unordered_map>
+
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
 
@@ -44,6 +48,66 @@ std::optional<VendorConfig> programConfig(const postproc::Configuration& c, cons
   return parseConfig(v, c.text(), file, line);
 }
 
+/// At most this many ids are listed in a note about unmatched holes.
+constexpr std::size_t kListedIds = 20;
+
+std::string idList(const std::vector<std::string>& ids) {
+  std::string out;
+  for (std::size_t i = 0; i < ids.size() && i < kListedIds; ++i) out += (i ? ", " : "") + ids[i];
+  if (ids.size() > kListedIds) out += " and " + std::to_string(ids.size() - kListedIds) + " more";
+  return out;
+}
+
+std::string fileName(const std::string& path) {
+  const auto slash = path.find_last_of('/');
+  return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+/// Throws when the hole list matches no job hole; notes which holes and entries stay unmatched.
+/// `spec_of_hole[i]` is the list entry of job hole i (-1: none).
+void reportMatching(JobHoles& job, const std::string& list_path,
+                    const std::vector<postproc::HoleSpec>& specs,
+                    const std::vector<int>& spec_of_hole, const std::string& how) {
+  const std::string name = fileName(list_path);
+  const std::size_t matched = static_cast<std::size_t>(
+      std::count_if(spec_of_hole.begin(), spec_of_hole.end(), [](int s) { return s >= 0; }));
+  if (matched == 0) {
+    throw InputError(list_path, specs.empty() ? 1 : specs.front().line,
+                     "--holes: none of the " + std::to_string(specs.size()) +
+                         " entries of the hole list matches one of the " +
+                         std::to_string(spec_of_hole.size()) + " holes of " + fileName(job.path) +
+                         " (" + how +
+                         "); is it the list of this program, in the cell's workobject frame?");
+  }
+  std::vector<std::string> lonely_holes;
+  for (std::size_t i = 0; i < spec_of_hole.size(); ++i) {
+    if (spec_of_hole[i] < 0) {
+      const HoleRequest& r = job.requests[i];
+      lonely_holes.push_back(r.line > 0 ? r.id + " (line " + std::to_string(r.line) + ")" : r.id);
+    }
+  }
+  std::vector<bool> used(specs.size(), false);
+  for (const int s : spec_of_hole)
+    if (s >= 0) used[static_cast<std::size_t>(s)] = true;
+  std::vector<std::string> lonely_specs;
+  for (std::size_t s = 0; s < specs.size(); ++s) {
+    if (!used[s])
+      lonely_specs.push_back(specs[s].id + " (line " + std::to_string(specs[s].line) + ")");
+  }
+  if (!lonely_holes.empty()) {
+    job.notes.push_back(
+        "--holes: " + std::to_string(lonely_holes.size()) + " of " +
+        std::to_string(spec_of_hole.size()) + " holes of " + fileName(job.path) +
+        " have no entry in " + name + " (" + how +
+        "; they keep the program's values and the cell's tolerance): " + idList(lonely_holes));
+  }
+  if (!lonely_specs.empty()) {
+    job.notes.push_back("--holes: " + std::to_string(lonely_specs.size()) + " of " +
+                        std::to_string(specs.size()) + " entries of " + name +
+                        " match no hole of " + fileName(job.path) + ": " + idList(lonely_specs));
+  }
+}
+
 }  // namespace
 
 JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot& robot,
@@ -77,16 +141,21 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
     }
     if (hole_list) {
       const std::vector<postproc::HoleSpec> ref = postproc::readHoleList(*hole_list);
-      for (HoleRequest& r : job.requests) {
-        for (const auto& s : ref) {
-          if (s.id != r.id) continue;
-          r.nominal_axis =
-              std::make_pair(Vec3(cell.T_base_wobj * (s.position_mm * 1e-3)),
-                             Vec3(cell.T_base_wobj.linear() * s.direction.normalized()));
-          if (s.tolerance_mm) r.tolerance = *s.tolerance_mm * 1e-3;
-          if (s.diameter_mm) r.diameter = *s.diameter_mm * 1e-3;
-        }
+      std::unordered_map<std::string, int> by_id;  // ids are unique in a hole list
+      for (std::size_t s = 0; s < ref.size(); ++s) by_id.emplace(ref[s].id, static_cast<int>(s));
+      std::vector<int> spec_of_hole(job.requests.size(), -1);
+      for (std::size_t i = 0; i < job.requests.size(); ++i) {
+        HoleRequest& r = job.requests[i];
+        const auto it = by_id.find(r.id);
+        if (it == by_id.end()) continue;
+        const auto& s = ref[static_cast<std::size_t>(it->second)];
+        spec_of_hole[i] = it->second;
+        r.nominal_axis = std::make_pair(Vec3(cell.T_base_wobj * (s.position_mm * 1e-3)),
+                                        Vec3(cell.T_base_wobj.linear() * s.direction.normalized()));
+        if (s.tolerance_mm) r.tolerance = *s.tolerance_mm * 1e-3;
+        if (s.diameter_mm) r.diameter = *s.diameter_mm * 1e-3;
       }
+      reportMatching(job, *hole_list, ref, spec_of_hole, "matched by id");
     }
     job.program = std::move(parsed);
     return job;
@@ -100,10 +169,12 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
                      "axis -> retract)");
   }
   std::vector<postproc::HoleSpec> specs;
-  std::vector<postproc::HoleMatch> matches;
+  std::vector<int> spec_of_hole(job.recognized.size(), -1);
   if (hole_list) {
     specs = postproc::readHoleList(*hole_list);
-    matches = postproc::matchHoles(job.recognized, p, specs, match_tol_mm);
+    for (const postproc::HoleMatch& m :
+         postproc::matchHoles(job.recognized, p, specs, match_tol_mm))
+      spec_of_hole[static_cast<std::size_t>(m.hole)] = m.spec;
   }
   bool noted_frame = false;
   for (size_t i = 0; i < job.recognized.size(); ++i) {
@@ -151,9 +222,8 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
       r.config =
           programConfig(ct.config, robot, p.files[static_cast<size_t>(ct.file)].path, ct.line);
     }
-    for (const auto& m : matches) {
-      if (m.hole != static_cast<int>(i)) continue;
-      const postproc::HoleSpec& s = specs[static_cast<size_t>(m.spec)];
+    if (const int si = spec_of_hole[i]; si >= 0) {
+      const postproc::HoleSpec& s = specs[static_cast<size_t>(si)];
       r.id = s.id;
       r.nominal_axis = std::make_pair(Vec3(cell.T_base_wobj * (s.position_mm * 1e-3)),
                                       Vec3(cell.T_base_wobj.linear() * s.direction.normalized()));
@@ -163,6 +233,13 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
     }
     job.requests.push_back(r);
     job.sources.push_back(src);
+  }
+  if (hole_list) {
+    char tol[32];
+    std::snprintf(tol, sizeof tol, "%g", match_tol_mm);
+    reportMatching(job, *hole_list, specs, spec_of_hole,
+                   std::string("matched by id, else by position within --match-tol ") + tol +
+                       " mm on a parallel axis");
   }
   for (const auto& n : p.notes) job.notes.push_back(n);
   for (const auto& u : p.unresolved) {

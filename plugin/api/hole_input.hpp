@@ -47,7 +47,11 @@ struct JobHoles {
 Mat3 holeFrame(const Vec3& direction);
 
 /// Reads the job. `hole_list` (optional CSV) supplies ids, diameters and tolerances for the holes
-/// of a program (matched by id, else by position within `match_tol_mm`).
+/// of a program (matched by id, else by position within `match_tol_mm`; O((n + m) log) through
+/// a hash of the ids and a grid of the positions). Throws InputError (the hole list's first row)
+/// when the list matches none of the job's holes; a partial match adds two notes starting
+/// "--holes:" listing the job holes without a list entry and the entries without a hole. Bad
+/// hole lists throw InputError `FILE:LINE: what` (postproc::parseHoleList).
 JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot& robot,
                       const std::optional<std::string>& hole_list, double match_tol_mm = 0.5);
 

@@ -29,9 +29,13 @@ UncertaintyInputs uncertaintyFromCell(const CellSpec& cell) {
       if (v < 0 || v > 1) e->fail("<uncertainty> relative values must lie in [0, 1]");
     }
     const double samples = e->number("samples", u.samples);
-    if (samples < 10 || samples > 1e6) e->fail("<uncertainty> samples must lie in [10, 1e6]");
+    if (!(samples >= 10 && samples <= 1e6 && samples == std::floor(samples)))
+      e->fail("<uncertainty> samples must be an integer in [10, 1e6], got " + e->str("samples"));
     u.samples = static_cast<int>(samples);
-    u.seed = static_cast<unsigned>(e->number("seed", u.seed));
+    const double seed = e->number("seed", u.seed);
+    if (!(seed >= 0 && seed <= 4294967295.0 && seed == std::floor(seed)))
+      e->fail("<uncertainty> seed must be an integer in [0, 4294967295], got " + e->str("seed"));
+    u.seed = static_cast<unsigned>(seed);
     if (e->has("source")) u.source = e->str("source");
   }
   return u;
@@ -44,7 +48,8 @@ CapabilityInputs capabilityFromCell(const CellSpec& cell) {
       "s)";
   if (const XmlNode* e = cell.root.child("capability")) {
     c.mc_approach_s = e->number("mc_approach_s", c.mc_approach_s);
-    if (c.mc_approach_s < 0) e->fail("<capability> mc_approach_s must be >= 0");
+    if (!(c.mc_approach_s >= 0 && c.mc_approach_s <= 3600))
+      e->fail("<capability> mc_approach_s must lie in [0, 3600] s, got " + e->str("mc_approach_s"));
     if (e->has("source")) c.source = e->str("source");
   }
   return c;
