@@ -282,6 +282,17 @@ TEST(ProgramFrames, ControllerOnlyFramesAreErrorsUnlessResolved) {
   const std::string hj = test::readFile(dir + "/h.json");
   EXPECT_NE(hj.find("resolution: base frame UFRAME[1]"), std::string::npos);
   EXPECT_NE(hj.find("resolution: tool UTOOL[1]"), std::string::npos);
+  // TP UTOOL values when given: compared with the cell's tool like any program tool
+  const std::string uf = "UFRAME[1]=1400 0 -370 0 0 0";
+  const auto u = test::runRoprec("predict --cell '" + cell + "' '" + ls + "' --frame '" + uf +
+                                 ";UTOOL[1]=0 0 300 0 0 0' --json '" + dir + "/u.json'");
+  EXPECT_EQ(u.exit_code, 2) << u.err;
+  EXPECT_NE(u.err.find("the program's tool UTOOL[1]"), std::string::npos) << u.err;
+  EXPECT_FALSE(fs::exists(dir + "/u.json"));
+  const auto v = test::runRoprec("predict --cell '" + cell + "' '" + ls + "' --frame '" + uf +
+                                 ";UTOOL[1]=0 0 320 0 0 0' --json '" + dir + "/v.json' --quiet");
+  ASSERT_LE(v.exit_code, 1) << v.err;
+  EXPECT_EQ(dev(test::readFile(dir + "/v.json")), dev(hj));
 }
 
 }  // namespace
