@@ -29,6 +29,18 @@ namespace py = pybind11;
 namespace roprec::python {
 namespace {
 
+/// Runs `write` (which writes through writeFileAtomic) so that its outputs appear all or none
+/// (compensator/support/atomic_file.hpp).
+template <class F>
+void writeAllOrNone(F&& write) {
+  OutputSet outputs;
+  {
+    const ScopedOutputSet scope(outputs);
+    write();
+  }
+  outputs.commit();
+}
+
 using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
 /// A target or hole that could not be handled (raised as roprec.ItemError).
@@ -341,7 +353,7 @@ py::dict compensate(const std::string& cell, const std::string& program, const s
     if (write) {
       std::vector<std::pair<std::string, std::string>> extra;
       if (targets) extra.emplace_back(*targets, api::millingTargetsJson(r, program));
-      api::writeCompensatedProgram(r.context, out, extra);
+      writeAllOrNone([&] { api::writeCompensatedProgram(r.context, out, extra); });
     }
   } else {
     std::optional<api::CompensationResult> r;
@@ -359,7 +371,7 @@ py::dict compensate(const std::string& cell, const std::string& program, const s
         if (targets)
           extra.emplace_back(*targets,
                              api::compensationTargets(*r, program, host::isCsvPath(*targets)));
-        api::writeCompensatedProgram(r->context, out, extra);
+        writeAllOrNone([&] { api::writeCompensatedProgram(r->context, out, extra); });
       }
     }
     py::list results;
@@ -396,7 +408,9 @@ py::dict verify(const std::string& cell, const std::string& program, const std::
     }
     summary = api::verifySummaryJson(r, paths).dump(0);
     if (problems.empty()) {
-      for (const auto& [path, text] : out) writeFileAtomic(path, text);
+      writeAllOrNone([&] {
+        for (const auto& [path, text] : out) writeFileAtomic(path, text);
+      });
     }
   }
   py::dict d;
