@@ -2,6 +2,7 @@
 #include <cmath>
 #include <unordered_map>
 
+#include "compensator/support/c_format.hpp"
 #include "compensator/support/error.hpp"
 #include "postproc/dialects.hpp"
 #include "postproc/lexer.hpp"
@@ -603,9 +604,7 @@ class KrlReader {
     m.fine = zone.empty();
     if (m.type != MotionType::kJoint && vel_cp_ > 0) {
       m.speed_mm_s = vel_cp_ * 1000.0;
-      char buf[48];
-      std::snprintf(buf, sizeof buf, "%g m/s", vel_cp_);
-      m.speed_text = buf;
+      m.speed_text = cGeneral(vel_cp_, 6) + " m/s";
     }
     m.tool = internFrame(p_, tool_);
     m.base = internFrame(p_, base_);

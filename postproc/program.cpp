@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "compensator/support/atomic_file.hpp"
+#include "compensator/support/c_format.hpp"
 #include "compensator/support/error.hpp"
 #include "postproc/dialects.hpp"
 #include "postproc/lexer.hpp"
@@ -215,18 +216,17 @@ bool allZeroDigits(const std::string& t) {
 
 std::string formatLike(std::string_view original, double value, const NumberHints& h) {
   const NumStyle st = styleOf(original);
-  auto print = [](const char* f, int prec, double v) {
-    const int n = std::snprintf(nullptr, 0, f, prec, v);
-    std::string s(static_cast<std::size_t>(std::max(n, 0)) + 1, '\0');
-    std::snprintf(s.data(), s.size(), f, prec, v);
-    s.pop_back();
+  // printf's %.*f / %.*g / %.*G in the "C" locale whatever the host's locale (std::to_chars)
+  auto print = [](char kind, int prec, double v) {
+    std::string s = kind == 'f' ? cFixed(v, prec) : cGeneral(v, prec);
+    if (kind == 'G') std::replace(s.begin(), s.end(), 'e', 'E');
     return s;
   };
   std::string t;
   if (st.exp) {
     int prec = std::clamp(st.sig, 6, 17);
     if (h.min_decimals >= 9) prec = std::max(prec, 9);
-    t = print(st.exp_lower ? "%.*g" : "%.*G", prec, value);
+    t = print(st.exp_lower ? 'g' : 'G', prec, value);
   } else {
     int d = st.has_point ? st.frac : 0;
     if (h.significant9) {
@@ -235,7 +235,7 @@ std::string formatLike(std::string_view original, double value, const NumberHint
       d = std::clamp(9 - int_digits, 1, 9);
     }
     d = std::clamp(std::max(d, h.min_decimals), 0, 20);
-    t = print("%.*f", d, value);
+    t = print('f', d, value);
   }
   if (allZeroDigits(t)) {
     if (!t.empty() && t[0] == '-') t.erase(0, 1);

@@ -9,6 +9,8 @@
 #include <locale>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -19,6 +21,7 @@
 #include "plugin/api/json.hpp"
 #include "plugin/api/robot_setup.hpp"
 #include "plugin/api/robots.hpp"
+#include "postproc/program.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace roprec {
@@ -128,6 +131,24 @@ TEST(Locale, NumbersParseAndFormatInTheCFormatWhateverTheLocale) {
   EXPECT_EQ(api::formatNumber(1234567.5, 3), "1234567.500");
   EXPECT_EQ(api::formatNumber(-0.0001, 2), "0.00");
   EXPECT_EQ(api::formatNumber(0.1, -1), "0.1");
+}
+
+// The program writer keeps each number's written style with printf semantics, but in the "C"
+// format: a comma-decimal host must not turn a compensated `X 1234.5` into `X 1234,500`.
+TEST(Locale, ProgramNumbersAreWrittenWithADecimalPointWhateverTheLocale) {
+  const postproc::NumberHints h{};
+  const std::vector<std::pair<std::string, double>> cases{
+      {"1200.000", 1234.5}, {"-5.2", -19.10055}, {"1.5E+03", 1234.5e3}, {"1.5e-3", 0.00125}};
+  std::vector<std::string> classic;
+  for (const auto& [text, v] : cases) classic.push_back(postproc::formatLike(text, v, h));
+  EXPECT_EQ(classic[0], "1234.500");
+  const HostLocale host;
+  if (!host.cComma()) GTEST_SKIP() << "no comma-decimal C locale could be set up";
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const std::string t = postproc::formatLike(cases[i].first, cases[i].second, h);
+    EXPECT_EQ(t, classic[i]);
+    EXPECT_EQ(t.find(','), std::string::npos) << t;
+  }
 }
 
 TEST(Locale, RobotListingAndLimitMessagesAreLocaleFree) {

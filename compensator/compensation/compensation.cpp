@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <limits>
+#include <string>
 
 #include "compensator/compensation/nlopt_problem.hpp"
 
@@ -103,6 +105,9 @@ struct Evaluator {
       var += 0.5 * (std::pow(v.dot(e1), 2) + std::pow(v.dot(e2), 2));
     }
     n.u_def = std::sqrt(var);
+    // one bad hole (e.g. a non-finite load) must not poison the sequence's DP: it has no
+    // admissible candidate, and the hole is reported as not compensated
+    if (!std::isfinite(n.u_def) || !std::isfinite(n.penalty)) n.feasible = false;
     return n;
   }
 };
@@ -142,7 +147,17 @@ void predictOriginal(const PredictionModel& m, PredictionData& d,
   std::optional<Vec6> prev;
   for (size_t i = 0; i < holes.size(); ++i) {
     out[i].id = holes[i].id;
-    out[i].before = predictHole(m, d, holes[i], prev ? &*prev : nullptr);
+    try {
+      out[i].before = predictHole(m, d, holes[i], prev ? &*prev : nullptr);
+    } catch (const std::exception& e) {
+      // isolated per hole: the others are predicted and compensated as usual
+      out[i].before = HolePrediction{};
+      out[i].before.id = holes[i].id;
+      out[i].before.status = HoleStatus::kNotConverged;
+      out[i].before.verdict = Verdict::kNotConverged;
+      out[i].before.reason = std::string("prediction failed: ") + e.what();
+      continue;
+    }
     if (out[i].before.status == HoleStatus::kOk) prev = out[i].before.joints;
   }
 }
@@ -318,8 +333,13 @@ std::pair<const Node*, bool> neighbour(const std::vector<Node>& chosen,
 void refineHole(Evaluator& ev, const std::vector<HoleRequest>& holes, std::vector<Node>& chosen,
                 size_t i, bool enforce_wrist, int grid, double thr, CompensationStats& st) {
   const OrientationMode mode = ev.o.mode;
-  const auto [pn, pn_face] = neighbour(chosen, holes, i, -1);
-  const auto [nn, nn_face] = neighbour(chosen, holes, i, +1);
+  // plain variables, not structured bindings: clang < 16 cannot capture those in the lambdas
+  const std::pair<const Node*, bool> prev_nb = neighbour(chosen, holes, i, -1);
+  const std::pair<const Node*, bool> next_nb = neighbour(chosen, holes, i, +1);
+  const Node* const pn = prev_nb.first;
+  const bool pn_face = prev_nb.second;
+  const Node* const nn = next_nb.first;
+  const bool nn_face = next_nb.second;
   const int branch = chosen[i].branch;
   const Vec6 seed_q = chosen[i].q;
   // COBYLA asks for the objective and the four constraints at the same ψ: evaluate once.
@@ -511,6 +531,10 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,
     }
   }
   for (size_t i = 0; i < n; ++i) {
+    if (out[i].before.status == HoleStatus::kNotConverged) {
+      out[i].reason = "not compensated: " + out[i].before.reason;
+      continue;
+    }
     if (out[i].before.status != HoleStatus::kOk) {
       // No arm posture to keep: the controller cannot reach the programmed target as written, and
       // any "compensated" target would put the arm into a posture the program never asked for.

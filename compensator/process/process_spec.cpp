@@ -9,6 +9,7 @@
 #include <optional>
 #include <sstream>
 
+#include "compensator/support/c_format.hpp"
 #include "compensator/support/error.hpp"
 
 namespace roprec {
@@ -389,11 +390,8 @@ std::string cellWithCalibratedCoefficients(const std::string& cell_text, const s
     k = doc.NewElement("coefficients");
     proc->InsertEndChild(k);
   }
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.6g", c.tangential.k0 / kMPa);
-  k->SetAttribute("kst0_N_mm2", buf);
-  std::snprintf(buf, sizeof buf, "%.6g", c.axial.k0 / kMPa);
-  k->SetAttribute("ksa0_N_mm2", buf);
+  k->SetAttribute("kst0_N_mm2", cGeneral(c.tangential.k0 / kMPa, 6).c_str());
+  k->SetAttribute("ksa0_N_mm2", cGeneral(c.axial.k0 / kMPa, 6).c_str());
   k->SetAttribute("source", note.c_str());
   tinyxml2::XMLPrinter printer;
   doc.Print(&printer);

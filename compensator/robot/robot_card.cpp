@@ -172,6 +172,7 @@ RobotCard loadRobotCard(const std::string& path) {
   card.vendor = vendorFromString(card.vendor_label);
   card.model = root.str("model", "");
   const std::string urdf = root.str("urdf");
+  card.urdf_line = root.line;
   const fs::path dir = fs::path(path).parent_path();
   card.urdf_path =
       (fs::path(urdf).is_absolute() ? fs::path(urdf) : dir / urdf).lexically_normal().string();
@@ -378,7 +379,14 @@ Robot loadRobot(const RobotRequest& request) {
   UrdfChainRequest req{robot.card.base_link, robot.card.flange_link};
   if (!request.base_link.empty()) req.base_link = request.base_link;
   if (!request.tip_link.empty()) req.tip_link = request.tip_link;
-  robot.chain = loadUrdfChain(robot.card.urdf_path, req);
+  try {
+    robot.chain = loadUrdfChain(robot.card.urdf_path, req);
+  } catch (const InputError& e) {
+    if (e.line() > 0 || e.file() != robot.card.urdf_path) throw;
+    // an error about the URDF as a whole (cannot open it, no chain): point at the card's line
+    // that names it
+    throw InputError(card_path, robot.card.urdf_line, e.message() + " (URDF " + e.file() + ")");
+  }
   for (size_t i = 0; i < 6; ++i) {
     if (robot.card.joints[i].name != robot.chain.joints[i].name) {
       throw InputError(card_path, robot.card.joints[i].line,

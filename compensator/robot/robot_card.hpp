@@ -56,6 +56,7 @@ struct RobotCard {
   std::string vendor_label;  ///< as written
   std::string model;
   std::string urdf_path;  ///< resolved path
+  int urdf_line{0};       ///< line of the card's <robot urdf=…> (for errors about the URDF)
   std::string base_link;
   std::string flange_link;
   std::array<JointCard, 6> joints;

@@ -13,6 +13,7 @@
 #include <stdexcept>
 
 #include "compensator/process/process_load.hpp"
+#include "compensator/support/c_format.hpp"
 #include "compensator/support/error.hpp"
 
 namespace roprec::nc {
@@ -549,7 +550,7 @@ int TransientSimulator::Impl::rhs(double t, const double* yp, double* ydp) {
   sampleProcess(t, tip);
   if (!ps.wrench.force.allFinite() || !ps.wrench.torque.allFinite() ||
       !std::isfinite(ps.depth_rate)) {
-    rhs_failure = "non-finite process load at t = " + std::to_string(t) + " s";
+    rhs_failure = "non-finite process load at t = " + cGeneral(t, 6) + " s";
     return -1;  // a smaller step cannot help
   }
   Loads loads;
@@ -580,7 +581,7 @@ int TransientSimulator::Impl::rhs(double t, const double* yp, double* ydp) {
   if (llt.info() != Eigen::Success) {
     throw std::runtime_error(
         "transient: the joint-space inertia RᵀMR is not positive definite at t = " +
-        std::to_string(t) + " s");
+        cGeneral(t, 6) + " s");
   }
   d_th = thd;
   d_thd = llt.solve(f);
@@ -612,7 +613,7 @@ int TransientSimulator::Impl::rhs(double t, const double* yp, double* ydp) {
   ydp[idx_depth] = ps.depth_rate;
   for (int i = 0; i < n; ++i) {
     if (!std::isfinite(ydp[i])) {
-      rhs_failure = "non-finite derivative at t = " + std::to_string(t) + " s";
+      rhs_failure = "non-finite derivative at t = " + cGeneral(t, 6) + " s";
       return 1;
     }
   }

@@ -82,10 +82,12 @@ UrdfIndex validate(const XmlNode& robot) {
         if (mass < 0) m->fail("negative mass " + m->str("value"));
         const XmlNode* I = in->child("inertia");
         if (I == nullptr) in->fail("<inertial> of link '" + name + "' has no <inertia>");
+        // read every number before building the matrix: a throw inside Eigen's comma
+        // initializer aborts (its destructor asserts the count)
+        const double ixx = I->number("ixx"), ixy = I->number("ixy"), ixz = I->number("ixz");
+        const double iyy = I->number("iyy"), iyz = I->number("iyz"), izz = I->number("izz");
         Mat3 T;
-        T << I->number("ixx"), I->number("ixy"), I->number("ixz"), I->number("ixy"),
-            I->number("iyy"), I->number("iyz"), I->number("ixz"), I->number("iyz"),
-            I->number("izz");
+        T << ixx, ixy, ixz, ixy, iyy, iyz, ixz, iyz, izz;
         if (const std::string why = inertiaProblem(T); !why.empty())
           I->fail("<inertia> of link '" + name + "' is not physically valid: " + why);
       }

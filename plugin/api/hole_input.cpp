@@ -164,9 +164,20 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
   const postproc::Program& p = *job.program;
   job.recognized = postproc::recognizeHoles(p);
   if (job.recognized.empty()) {
-    throw InputError(path, 0,
-                     "no drill cycle recognised in the program (approach -> feed along the tool z "
-                     "axis -> retract)");
+    // point at the program's first motion (or its first line when it has none)
+    std::string where = path;
+    int line = 1;
+    if (!p.motions.empty()) {
+      const postproc::Motion& m0 = p.motions.front();
+      if (m0.file >= 0 && static_cast<std::size_t>(m0.file) < p.files.size())
+        where = p.files[static_cast<std::size_t>(m0.file)].path;
+      line = std::max(1, m0.line);
+    }
+    throw InputError(where, line,
+                     "no drill cycle recognised in the program's " +
+                         std::to_string(p.motions.size()) +
+                         " motions (approach -> feed along the tool z axis -> retract); hint: a "
+                         "hole list (.csv) or --holes gives the holes directly");
   }
   std::vector<postproc::HoleSpec> specs;
   std::vector<int> spec_of_hole(job.recognized.size(), -1);

@@ -11,6 +11,7 @@
 #include "compensator/process/process_load.hpp"
 #include "compensator/robot/configuration.hpp"
 #include "compensator/robot/ik.hpp"
+#include "compensator/support/c_format.hpp"
 #include "plugin/api/robot_compliance.hpp"
 #include "postproc/drill.hpp"
 #include "postproc/program.hpp"
@@ -321,12 +322,11 @@ void drillingJson(const nc::TransientResult& r, const nc::DrillingCycle& c, Json
     tr.set("end_of_cut_t_s", Json::str(last_cut >= 0 ? "still cutting at the end of the run"
                                                      : "no cut within the run"));
   }
-  char rule[200];
-  std::snprintf(rule, sizeof rule,
-                "through hole: the corner leaves the plate; blind: the real feed per rev falls "
-                "below %.4f mm/rev (cut_end_feed_fraction of the feed) during the dwell",
-                c.cutEndFeed() * 1e3);
-  tr.set("end_of_cut_rule", Json::str(rule));
+  tr.set("end_of_cut_rule",
+         Json::str("through hole: the corner leaves the plate; blind: the real feed per rev falls "
+                   "below " +
+                   cFixed(c.cutEndFeed() * 1e3, 4) +
+                   " mm/rev (cut_end_feed_fraction of the feed) during the dwell"));
   tr.set("max_thrust_N", Json::number(fa_max, 3));
   tr.set("max_thrust_t_s", Json::number(t_fa, 6));
   const double depth = r.samples.empty() ? 0.0 : r.samples.back().process.depth;
@@ -425,10 +425,11 @@ SimulationResult simulateAt(const RobotSetup& setup, const HoleJoints& at,
 
 namespace {
 
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v == 0.0 ? 0.0 : v);  // no "-0"
-  return buf;
+/// Fixed-point text with `decimals` decimals in the "C" locale; no "-0".
+std::string fmt(int decimals, double v) {
+  std::string s = cFixed(v, decimals);
+  if (s[0] == '-' && s.find_first_not_of("-0.") == std::string::npos) s.erase(0, 1);
+  return s;
 }
 
 }  // namespace
@@ -442,14 +443,13 @@ std::string transientHistoryCsv(const nc::TransientResult& r) {
   const nc::Vec6 q0 = r.samples.empty() ? nc::Vec6::Zero() : nc::Vec6(r.samples.front().theta_m);
   for (const nc::TransientSample& s : r.samples) {
     const double commanded = std::max(0.0, s.process.feed_position);
-    out += fmt("%.6f", s.t) + ',' + fmt("%.6f", commanded * 1e3) + ',' + fmt("%.3f", s.process.Fa) +
-           ',' + fmt("%.3f", s.process.Ft) + ',' + fmt("%.4f", s.process.M) + ',' +
-           fmt("%.3f", s.process.Fr);
-    for (int i = 0; i < 3; ++i) out += ',' + fmt("%.4f", s.dp[i] * 1e6);
-    for (int i = 0; i < 3; ++i) out += ',' + fmt("%.3f", s.drot[i] * 1e6);
-    for (int i = 0; i < 6; ++i) out += ',' + fmt("%.3f", (s.theta[i] - q0[i]) * 1e6);
-    out += ',' + fmt("%.6f", s.process.tip * 1e3) + ',' + fmt("%.6f", s.process.depth * 1e3) + ',' +
-           fmt("%.6f", s.process.feed_per_rev * 1e3) + ',' + fmt("%.4f", s.process.axial * 1e6);
+    out += fmt(6, s.t) + ',' + fmt(6, commanded * 1e3) + ',' + fmt(3, s.process.Fa) + ',' +
+           fmt(3, s.process.Ft) + ',' + fmt(4, s.process.M) + ',' + fmt(3, s.process.Fr);
+    for (int i = 0; i < 3; ++i) out += ',' + fmt(4, s.dp[i] * 1e6);
+    for (int i = 0; i < 3; ++i) out += ',' + fmt(3, s.drot[i] * 1e6);
+    for (int i = 0; i < 6; ++i) out += ',' + fmt(3, (s.theta[i] - q0[i]) * 1e6);
+    out += ',' + fmt(6, s.process.tip * 1e3) + ',' + fmt(6, s.process.depth * 1e3) + ',' +
+           fmt(6, s.process.feed_per_rev * 1e3) + ',' + fmt(4, s.process.axial * 1e6);
     out += ',';
     out += nc::phaseName(s.process.phase);
     out += '\n';

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "compensator/support/c_format.hpp"
 #include "compensator/support/error.hpp"
 #include "plugin/api/job.hpp"
 #include "plugin/cli/cli.hpp"
@@ -126,9 +127,7 @@ std::string stat(std::vector<double> v) {
   double mean = 0;
   for (double x : v) mean += x;
   mean /= static_cast<double>(v.size());
-  char buf[128];
-  std::snprintf(buf, sizeof buf, "mean %.3f, max %.3f", mean, v.back());
-  return buf;
+  return "mean " + cFixed(mean, 3) + ", max " + cFixed(v.back(), 3);
 }
 
 void printSummary(CommandContext& ctx, const CompensationResult& r, const CompensationOptions& opt,
