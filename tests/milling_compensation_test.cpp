@@ -7,8 +7,10 @@
 #include "compensator/compensation/milling_compensation.hpp"
 
 #include <gtest/gtest.h>
+
 #include <kdl/chainfksolverpos_recursive.hpp>
 #include <kdl/chainidsolver_recursive_newton_euler.hpp>
+#include <nlohmann/json.hpp>
 
 #include <sstream>
 
@@ -167,8 +169,27 @@ TEST(MillingCompensation, CliChangesOnlyThePathTargets) {
   }
   EXPECT_FALSE(std::getline(b, lb));
   EXPECT_EQ(changed, 27);
-  EXPECT_NE(test::readFile(dir + "/t.json").find("\"force_fixed_point_iterations\""),
-            std::string::npos);
+  // the export says which points cut and how each coupled solve ended
+  const auto t = nlohmann::json::parse(test::readFile(dir + "/t.json"));
+  ASSERT_EQ(t["points"].size(), 27u);
+  int cutting = 0;
+  for (const auto& p : t["points"]) {
+    EXPECT_TRUE(p["ok"].get<bool>());
+    EXPECT_TRUE(p.contains("force_fixed_point_iterations") ||
+                p["coupling"].contains("force_fixed_point_iterations"));
+    if (!p["cutting"].get<bool>()) {
+      EXPECT_FALSE(p["cutting_reason"].get<std::string>().empty());
+      EXPECT_EQ(p["before"]["coupling_status"], "not_cutting");
+      continue;
+    }
+    ++cutting;
+    EXPECT_EQ(p["before"]["coupling_status"], "converged");
+    EXPECT_LE(p["before"]["coupling_residual_um"].get<double>(), 0.1);
+    EXPECT_LE(p["coupling"]["residual_um"].get<double>(), 0.1);
+  }
+  EXPECT_EQ(cutting, 25);  // approach and retract do not cut
+  EXPECT_FALSE(t["points"][0]["cutting"].get<bool>());
+  EXPECT_FALSE(t["points"][26]["cutting"].get<bool>());
 }
 
 }  // namespace
