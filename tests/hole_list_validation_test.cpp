@@ -207,6 +207,11 @@ TEST(HolesMatching, PartialMatchesAreListedInTheNotes) {
                        "housing_kr120.src: X900 (line 205)"),
             std::string::npos)
       << notes;
+  // and on stderr, where the user running the command sees them (also with --quiet: they say
+  // which holes the numbers are about)
+  EXPECT_NE(r.err.find("roprec: note: --holes: 2 of 204 holes of housing_kr120.src have no entry"),
+            std::string::npos)
+      << r.err;
 }
 
 /// The matcher before the grid (O(H S)): the reference the new one must agree with.

@@ -17,39 +17,12 @@
 namespace roprec::cli {
 namespace {
 
-/// --frame cell | "x y z a b c" | 'REF=x y z a b c[;REF=...]' and --tool program|cell.
-void parseFrameTool(Args& args, JobOptions& opt) {
-  if (const auto f = args.option("frame")) {
-    if (*f == "cell") {
-      opt.frame_cell = true;
-    } else if (f->find('=') != std::string::npos) {
-      opt.frames = parseFrames(*f);
-    } else {
-      opt.frame_pose = parsePoseXyzAbc(*f, "--frame \"x y z a b c\" (mm, deg, KUKA ABC) or cell");
-    }
-  }
-  if (const auto t = args.option("tool")) {
-    if (*t != "program" && *t != "cell") throw UsageError("--tool must be program or cell");
-    opt.tool = *t;
-  }
-}
-
-/// The frame/tool resolutions of the job, on stderr (they are in the JSON notes and the report).
-void printResolutions(CommandContext& ctx, const std::vector<std::string>& notes) {
-  const std::string prefix = kResolutionPrefix;
-  for (const auto& n : notes) {
-    if (n.rfind(prefix, 0) == 0) ctx.err << "roprec: note: " << n.substr(prefix.size()) << "\n";
-  }
-}
-
 /// Milling: every linear path point of the program is compensated with the coupled force
 /// iteration (compensator/compensation/milling_compensation.hpp).
 int runMillingPath(CommandContext& ctx, const std::string& cell, const std::string& program,
                    const std::string& out, const std::optional<std::string>& targets, bool force) {
   MillingCompensationResult r = compensateMillingJob(cell, program, force);
-  for (const auto& n : r.context.job.notes) {
-    if (n.rfind("--force", 0) == 0) ctx.err << "roprec: note: " << n << "\n";
-  }
+  printJobNotes(ctx, r.context.job.notes);
   for (const auto& f : r.failures) ctx.err << "roprec: " << f << "\n";
   if (!r.failures.empty()) {
     ctx.err << "roprec: " << r.failures.size() << " of " << r.points_comp.size()
@@ -178,10 +151,7 @@ int run(Args& args, CommandContext& ctx) {
   if (cellIsMilling(*cell)) return runMillingPath(ctx, *cell, pos[0], *out, targets, job.force);
 
   CompensationResult r = compensateJob(*cell, pos[0], job);
-  printResolutions(ctx, r.context.job.notes);
-  for (const auto& n : r.context.job.notes) {
-    if (n.rfind("--force", 0) == 0) ctx.err << "roprec: note: " << n << "\n";
-  }
+  printJobNotes(ctx, r.context.job.notes);
   for (size_t i = 0; i < r.holes.size(); ++i) {
     if (r.holes[i].ok) continue;
     const HoleRequest& q = r.context.job.requests[i];

@@ -12,31 +12,6 @@
 namespace roprec::cli {
 namespace {
 
-/// --frame cell | "x y z a b c" | 'REF=x y z a b c[;REF=...]' and --tool program|cell.
-void parseFrameTool(Args& args, JobOptions& opt) {
-  if (const auto f = args.option("frame")) {
-    if (*f == "cell") {
-      opt.frame_cell = true;
-    } else if (f->find('=') != std::string::npos) {
-      opt.frames = parseFrames(*f);
-    } else {
-      opt.frame_pose = parsePoseXyzAbc(*f, "--frame \"x y z a b c\" (mm, deg, KUKA ABC) or cell");
-    }
-  }
-  if (const auto t = args.option("tool")) {
-    if (*t != "program" && *t != "cell") throw UsageError("--tool must be program or cell");
-    opt.tool = *t;
-  }
-}
-
-/// The frame/tool resolutions of the job, on stderr (they are in the JSON notes and the report).
-void printResolutions(CommandContext& ctx, const std::vector<std::string>& notes) {
-  const std::string prefix = kResolutionPrefix;
-  for (const auto& n : notes) {
-    if (n.rfind(prefix, 0) == 0) ctx.err << "roprec: note: " << n.substr(prefix.size()) << "\n";
-  }
-}
-
 void printSummary(CommandContext& ctx, const PredictionResult& r) {
   const CapabilitySummary& sum = r.summary;
   ctx.err << "roprec predict: " << sum.holes << " holes: " << sum.conforms << " conform, "
@@ -83,7 +58,7 @@ int run(Args& args, CommandContext& ctx) {
   const PredictionResult r = predictJob(
       *cell, pos[0], opt, [&](size_t done, size_t total) { progress.step(done, total); });
   progress.finish();
-  printResolutions(ctx, r.context.job.notes);
+  printJobNotes(ctx, r.context.job.notes);
   const std::string json = predictionJson(r).dump();
   if (report_out) writeFileAtomic(*report_out, predictionReport(r));
   emit(ctx, json_out.value_or(""), json);

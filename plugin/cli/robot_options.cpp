@@ -35,4 +35,31 @@ std::vector<FrameDefinition> parseFrames(const std::string& text) {
   return frames;
 }
 
+void parseFrameTool(Args& args, JobOptions& opt) {
+  if (const auto f = args.option("frame")) {
+    if (*f == "cell") {
+      opt.frame_cell = true;
+    } else if (f->find('=') != std::string::npos) {
+      opt.frames = parseFrames(*f);
+    } else {
+      opt.frame_pose = parsePoseXyzAbc(*f, "--frame \"x y z a b c\" (mm, deg, KUKA ABC) or cell");
+    }
+  }
+  if (const auto t = args.option("tool")) {
+    if (*t != "program" && *t != "cell") throw UsageError("--tool must be program or cell");
+    opt.tool = *t;
+  }
+}
+
+void printJobNotes(CommandContext& ctx, const std::vector<std::string>& notes) {
+  const std::string resolution = kResolutionPrefix;
+  for (const auto& n : notes) {
+    if (n.rfind(resolution, 0) == 0) {
+      ctx.err << "roprec: note: " << n.substr(resolution.size()) << "\n";
+    } else if (n.rfind("--holes:", 0) == 0 || n.rfind("--force", 0) == 0) {
+      ctx.err << "roprec: note: " << n << "\n";
+    }
+  }
+}
+
 }  // namespace roprec::cli

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "plugin/api/job.hpp"
 #include "plugin/api/program_frames.hpp"
 #include "plugin/api/robot_setup.hpp"
 #include "plugin/cli/cli.hpp"
@@ -20,5 +21,13 @@ RobotSetup loadRobotFromArgs(Args& args);
 
 /// `--frame 'REF=x y z a b c[;REF=...]'` (mm, deg, KUKA ABC) -> frame definitions (SI).
 std::vector<FrameDefinition> parseFrames(const std::string& text);
+
+/// predict/compensate: `--frame cell | "x y z a b c" | 'REF=x y z a b c[;REF=...]'` and
+/// `--tool program|cell` into `opt`. Throws UsageError for a bad value.
+void parseFrameTool(Args& args, JobOptions& opt);
+
+/// The job notes a user must see on stderr, not only in the JSON: the frame/tool resolutions,
+/// the `--holes` partial matches and `--force`.
+void printJobNotes(CommandContext& ctx, const std::vector<std::string>& notes);
 
 }  // namespace roprec::cli
