@@ -65,6 +65,11 @@ TEST(DrillSurface, PredictAndInspectReportTheSurfaceAndTheBottom) {
   EXPECT_NEAR(j["holes"][0]["depth_mm"].get<double>(), 20.0, 1e-9);
   // the cell drills at 0.2 mm/rev x 6000 rpm = 20 mm/s, plus 2 s approach: 3 s, not 5.5 s
   EXPECT_NEAR(j["summary"]["mc_time_total_s"].get<double>(), 3.0, 1e-6) << j["summary"].dump();
+  // predict states where the hole starts and ends (base frame: workobject z 300 + 234 / 214)
+  const json& nom = j["holes"][0]["nominal"];
+  EXPECT_NEAR(nom["surface_mm"][2].get<double>(), 534.0, 1e-6) << nom.dump();
+  EXPECT_NEAR(nom["bottom_mm"][2].get<double>(), 514.0, 1e-6) << nom.dump();
+  EXPECT_NEAR(nom["surface_mm"][0].get<double>(), 1500.0, 1e-6) << nom.dump();
   const auto i = test::runRoprec("inspect '" + dir + "/hand.src'");
   ASSERT_EQ(i.exit_code, 0) << i.err;
   const json ins = json::parse(i.out);

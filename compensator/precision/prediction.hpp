@@ -130,6 +130,9 @@ struct HoleRequest {
   double depth{0.0};                   ///< m (0: the process depth)
   std::optional<VendorConfig> config;  ///< the program's configuration, if it states one
   int line{0};                         ///< source line (messages)
+  /// Where the hole starts: the surface point on the drill axis (base frame, m), when the
+  /// program's cycle shows it (the feed starts there); T_W_tcp is the bottom (drill point).
+  std::optional<Vec3> surface_W;
   /// The nominal hole (hole list): a point on its axis and the drilling direction, base frame.
   /// When given, the prediction also reports the real drill point's distance from that axis.
   std::optional<std::pair<Vec3, Vec3>> nominal_axis;

@@ -221,6 +221,7 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
     r.T_W_tcp = src.T_W_frame * *T_frame_tcp;
     r.line = t.line;
     r.depth = h.depth;
+    if (h.surface_motion >= 0) r.surface_W = Vec3(src.T_W_frame * h.surface);
     // The drill point is reached by linear moves, which keep the arm configuration the robot had:
     // the configuration that selects the IK branch is the one of the cycle's approach when the
     // controller honours it there (KUKA PTP, ABB MoveJ with ConfJ\On, FANUC J), else the bottom

@@ -148,6 +148,9 @@ Json holeJson(const HolePrediction& h, const HoleRequest& r) {
   j.set("nominal", [&] {
     Json n = Json::object();
     n.set("position_mm", Json::vector(r.T_W_tcp.translation() * 1e3, 6));
+    // where the hole starts (the feed's first point on the axis) and where it ends
+    if (r.surface_W) n.set("surface_mm", Json::vector(*r.surface_W * 1e3, 6));
+    n.set("bottom_mm", Json::vector(r.T_W_tcp.translation() * 1e3, 6));
     const Eigen::Quaterniond q = quaternionFromRotation(r.T_W_tcp.linear());
     n.set("quaternion_wxyz", Json::vector(Eigen::Vector4d(q.w(), q.x(), q.y(), q.z()), 9));
     n.set("axis", Json::vector(r.T_W_tcp.linear().col(2), 9));
