@@ -28,6 +28,7 @@
 #include <string_view>
 
 #include "compensator/support/xml_escape.hpp"
+#include "plugin/api/prediction_setup.hpp"
 
 namespace roprec::api {
 namespace {
@@ -179,8 +180,8 @@ ColourScale makeScale(const std::vector<const std::vector<std::optional<double>>
 struct HoleView {
   const ReportHole* rh{nullptr};
   const HolePrediction* p{nullptr};
-  Vec3 pos_mm{Vec3::Zero()};
-  Vec3 axis{Vec3::UnitZ()};
+  Vec3 pos_mm{Vec3::Zero()};  ///< part frame
+  Vec3 axis{Vec3::UnitZ()};   ///< part frame
   bool ok{false};
   bool config_change{false};
   int prev_branch{-1};
@@ -190,14 +191,15 @@ std::vector<HoleView> holeViews(const ReportInput& in) {
   std::vector<HoleView> hv;
   hv.reserve(in.holes.size());
   int prev_branch = -1;
+  const Pose T_part_W = in.T_W_part.inverse();
   for (const ReportHole& rh : in.holes) {
     if (rh.prediction == nullptr)
       throw std::invalid_argument("renderReport: a hole without a prediction");
     HoleView h;
     h.rh = &rh;
     h.p = rh.prediction;
-    h.pos_mm = rh.T_W_tcp.translation() * 1e3;
-    const Vec3 a = rh.T_W_tcp.linear().col(2);
+    h.pos_mm = (T_part_W * rh.T_W_tcp.translation()) * 1e3;
+    const Vec3 a = T_part_W.linear() * rh.T_W_tcp.linear().col(2);
     h.axis = a.norm() > 0 ? Vec3(a.normalized()) : Vec3(Vec3::UnitZ());
     h.ok = h.p->status == HoleStatus::kOk;
     if (h.ok) {
@@ -219,8 +221,9 @@ std::string dirLabel(const Vec3& d) {
   return "(" + num(d.x(), 3) + ", " + num(d.y(), 3) + ", " + num(d.z(), 3) + ")";
 }
 
-/// Screen-axis labelling: a direction along ±X/±Y/±Z of the base is labelled with that base
-/// coordinate (tick values then read base mm: sign = the direction's sign); otherwise "u = (…)".
+/// Screen-axis labelling: a direction along ±X/±Y/±Z of the part frame is labelled with that
+/// part coordinate (tick values then read part mm: sign = the direction's sign); otherwise
+/// "u = (…)" in part coordinates.
 struct AxisLabel {
   std::string text;
   double sign{1};
@@ -230,11 +233,11 @@ AxisLabel axisLabel(const char* name, const Vec3& d) {
   static constexpr std::array<const char*, 3> kAxis{"X", "Y", "Z"};
   for (int i = 0; i < 3; ++i) {
     if (std::abs(d[i]) > 0.9995) {
-      return {std::string("base ") + kAxis[static_cast<size_t>(i)] + " [mm]",
+      return {std::string("part ") + kAxis[static_cast<size_t>(i)] + " [mm]",
               d[i] > 0 ? 1.0 : -1.0};
     }
   }
-  return {std::string(name) + " = " + dirLabel(d) + " [mm]", 1.0};
+  return {std::string(name) + " = " + dirLabel(d) + " (part) [mm]", 1.0};
 }
 
 struct FaceGroup {
@@ -246,6 +249,7 @@ struct FaceGroup {
   double x0{0}, y1{0}, s{1};  ///< visible left, visible top (mm), px per mm
   double plot_w{368}, plot_h{260};
   double marker_r{5};
+  Mat3 R_part_W{Mat3::Identity()};  ///< base-frame vectors (δ) into the part frame
 };
 
 std::vector<FaceGroup> groupFaces(const std::vector<HoleView>& hv, double dot_min) {
@@ -282,7 +286,10 @@ void layoutFace(FaceGroup& f, const std::vector<HoleView>& hv) {
   }
   Vec3 u;
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(C);
-  if (std::abs(f.axis.z()) < 0.9) {
+  if (std::abs(f.axis.z()) > 0.9995) {
+    // a top or bottom face of the part: its own X axis to the right (never a rotated view)
+    u = Vec3::UnitX();
+  } else if (std::abs(f.axis.z()) < 0.9) {
     // a wall (not a top or bottom face): drawn upright, base +z up, v = +z projected on the face
     const Vec3 up = (P * Vec3::UnitZ()).normalized();
     u = f.axis.cross(up);
@@ -406,14 +413,121 @@ struct Panel {
   const std::vector<std::optional<double>>* values{nullptr};
   const ColourScale* scale{nullptr};
   ArrowOf arrows{ArrowOf::kNone};
+  bool after{false};     ///< outline by the verdict after compensation
+  bool tol_mark{false};  ///< mark t/2 on the colour bar
 };
+
+/// The verdict a marker shows: before, or after compensation when the panel is an "after" one
+/// and the hole was compensated.
+Verdict verdictOf(const HoleView& h, bool after) {
+  if (after && h.rh->after != nullptr) return h.rh->after->verdict;
+  return h.p->verdict;
+}
+
+/// Severity for aggregation and label priority (higher = worse).
+int severity(Verdict v) {
+  switch (v) {
+    case Verdict::kConforms:
+      return 0;
+    case Verdict::kConformsAfterCompensation:
+      return 1;
+    case Verdict::kNotCapable:
+      return 3;
+    default:
+      return 2;
+  }
+}
+
+constexpr size_t kMaxFailLabels = 24;  ///< per panel; the rest are in the table
+
+/// The tolerance t/2 (µm) of the face's holes on a colour bar: a red mark and label where it lies
+/// on the scale, an arrow at the end when the scale ends below it (all values are then below t/2).
+void renderToleranceMarks(std::string& o, const FaceGroup& f, const std::vector<HoleView>& hv,
+                          const ColourScale& sc, double bx, double bw, double bar_y) {
+  std::vector<double> halves;
+  for (const size_t i : f.members) {
+    const double t2 = 0.5 * hv[i].p->tolerance * 1e6;
+    if (t2 > 0 && std::find(halves.begin(), halves.end(), t2) == halves.end()) halves.push_back(t2);
+  }
+  std::sort(halves.begin(), halves.end());
+  if (halves.size() > 3) halves.erase(halves.begin() + 1, halves.end() - 1);
+  for (size_t n = 0; n < halves.size(); ++n) {
+    const double t2 = halves[n];
+    const std::string label = "t/2 = " + num(t2, 0);
+    if (t2 <= sc.hi && t2 >= sc.lo) {
+      const double x = bx + bw * sc.t(t2);
+      o += "<g class=\"tol\"><line x1=\"" + num(x, 1) + "\" y1=\"" + num(bar_y - 4, 1) +
+           "\" x2=\"" + num(x, 1) + "\" y2=\"" + num(bar_y + 16, 1) + "\"/><text x=\"" + num(x, 1) +
+           "\" y=\"" + num(bar_y + 39 + 10.0 * static_cast<double>(n), 1) +
+           "\" text-anchor=\"middle\">" + label + "</text></g>";
+    } else if (t2 > sc.hi) {
+      o += "<g class=\"tol\"><text x=\"" + num(bx + bw, 1) + "\" y=\"" +
+           num(bar_y + 39 + 10.0 * static_cast<double>(n), 1) + "\" text-anchor=\"end\">" + label +
+           " \u00b5m \u25b6 (above the scale: every value is below t/2)</text></g>";
+    } else {
+      o += "<g class=\"tol\"><text x=\"" + num(bx, 1) + "\" y=\"" +
+           num(bar_y + 39 + 10.0 * static_cast<double>(n), 1) + "\" text-anchor=\"start\">\u25c0 " +
+           label + " \u00b5m (below the scale: every value exceeds t/2)</text></g>";
+    }
+  }
+}
+
+/// Large jobs: holes binned on a square screen grid (7 px); each bin is filled with its largest
+/// value and outlined by its worst verdict, its tooltip gives the count, the maximum and up to
+/// three ids of its worst holes.
+template <class Px, class Py>
+void renderBins(std::string& o, const FaceGroup& f, const std::vector<HoleView>& hv,
+                const Panel& pn, const Px& px, const Py& py) {
+  constexpr double kBin = 7.0;
+  const int nx = std::max(1, static_cast<int>(std::ceil(f.plot_w / kBin)));
+  const int ny = std::max(1, static_cast<int>(std::ceil(f.plot_h / kBin)));
+  struct Bin {
+    int count{0}, worst{-1};
+    std::optional<double> max;
+    std::vector<size_t> ids;  ///< members, worst verdict first (≤ 3)
+  };
+  std::vector<Bin> bins(static_cast<size_t>(nx) * static_cast<size_t>(ny));
+  for (size_t k = 0; k < f.members.size(); ++k) {
+    const HoleView& h = hv[f.members[k]];
+    const int bx = std::clamp(static_cast<int>((px(f.xy[k].x()) - kMarginL) / kBin), 0, nx - 1);
+    const int by = std::clamp(static_cast<int>((py(f.xy[k].y()) - kMarginT) / kBin), 0, ny - 1);
+    Bin& b = bins[static_cast<size_t>(by) * static_cast<size_t>(nx) + static_cast<size_t>(bx)];
+    ++b.count;
+    const int sev = severity(verdictOf(h, pn.after));
+    if (sev > b.worst) {
+      b.worst = sev;
+      b.ids.clear();
+    }
+    if (sev == b.worst && b.ids.size() < 3) b.ids.push_back(k);
+    const std::optional<double> v = (*pn.values)[f.members[k]];
+    if (h.ok && v && (!b.max || *v > *b.max)) b.max = v;
+  }
+  const ColourScale& sc = *pn.scale;
+  for (int by = 0; by < ny; ++by) {
+    for (int bx = 0; bx < nx; ++bx) {
+      const Bin& b =
+          bins[static_cast<size_t>(by) * static_cast<size_t>(nx) + static_cast<size_t>(bx)];
+      if (b.count == 0) continue;
+      const Verdict v = verdictOf(hv[f.members[b.ids.front()]], pn.after);
+      o += "<rect class=\"bin v-" + std::string(styleOf(v).cls) + "\" x=\"" +
+           num(kMarginL + bx * kBin, 1) + "\" y=\"" + num(kMarginT + by * kBin, 1) +
+           "\" width=\"7\" height=\"7\" fill=\"" +
+           (b.max ? hex(viridis(sc.t(*b.max))) : std::string("#d0d7de")) + "\"><title>" +
+           plural(b.count, "hole", "holes") + " \u00b7 max " +
+           (b.max ? num(*b.max, 1) + " \u00b5m" : std::string("n/a")) + " \u00b7 worst " +
+           verdictName(v);
+      for (const size_t k : b.ids) o += " \u00b7 " + esc(hv[f.members[k]].p->id);
+      o += "</title></rect>";
+    }
+  }
+}
 
 void renderPanel(std::string& o, const FaceGroup& f, const std::vector<HoleView>& hv,
                  const Panel& pn) {
   const double W = kPanelW;
   const double plot_bottom = kMarginT + f.plot_h;
   const double bar_y = plot_bottom + 58;
-  const double H = bar_y + 40;
+  const double H = bar_y + (pn.tol_mark ? 66 : 40);
   const ColourScale& sc = *pn.scale;
   auto px = [&](double x) { return kMarginL + (x - f.x0) * f.s; };
   auto py = [&](double y) { return kMarginT + (f.y1 - y) * f.s; };
@@ -453,8 +567,9 @@ void renderPanel(std::string& o, const FaceGroup& f, const std::vector<HoleView>
   o += "<text class=\"axis\" transform=\"translate(14 " + num(kMarginT + 0.5 * f.plot_h, 1) +
        ") rotate(-90)\" text-anchor=\"middle\">" + esc(ly.text) + "</text>";
 
-  // program order path
-  if (f.members.size() > 1) {
+  const bool aggregate = hv.size() > kReportAggregateAbove;
+  // program order path (not when aggregated: it would only be a smear)
+  if (!aggregate && f.members.size() > 1) {
     o += "<polyline class=\"path\" points=\"";
     for (size_t k = 0; k < f.members.size(); ++k) {
       if (k) o += ' ';
@@ -464,32 +579,69 @@ void renderPanel(std::string& o, const FaceGroup& f, const std::vector<HoleView>
   }
 
   const double r = f.marker_r;
-  // markers
   size_t worst = f.members.size();
   for (size_t k = 0; k < f.members.size(); ++k) {
     const HoleView& h = hv[f.members[k]];
-    const double x = px(f.xy[k].x()), y = py(f.xy[k].y());
     const std::optional<double> v = (*pn.values)[f.members[k]];
-    std::string tip = esc(h.p->id);
-    o += "<g>";
-    if (!h.ok) {
-      tip += " \u00b7 " + std::string(verdictName(h.p->verdict));
-      if (!h.p->reason.empty()) tip += ": " + esc(h.p->reason);
-      o += crossPath(x, y, r, styleOf(h.p->verdict).bar) + "/>";
-    } else {
-      tip += " \u00b7 " + (v ? num(*v, 1) + " \u00b5m" : std::string("n/a")) + " \u00b7 branch " +
-             std::to_string(h.p->branch);
-      if (!h.p->config.empty()) tip += " (" + esc(h.p->config) + ")";
-      const std::string fill = v ? hex(viridis(sc.t(*v))) : std::string("#ffffff");
-      o += shapePath(h.p->branch, x, y, r) + " fill=\"" + fill + "\" class=\"mk\"/>";
-      if (h.config_change) {
-        tip += " \u00b7 configuration change from branch " + std::to_string(h.prev_branch);
-        o += "<circle class=\"chg\" cx=\"" + num(x, 2) + "\" cy=\"" + num(y, 2) + "\" r=\"" +
-             num(r + 3.2, 2) + "\"/>";
+    if (h.ok && v && (worst == f.members.size() || *v > *(*pn.values)[f.members[worst]])) worst = k;
+  }
+  if (aggregate) {
+    renderBins(o, f, hv, pn, px, py);
+  } else {
+    for (size_t k = 0; k < f.members.size(); ++k) {
+      const HoleView& h = hv[f.members[k]];
+      const double x = px(f.xy[k].x()), y = py(f.xy[k].y());
+      const std::optional<double> v = (*pn.values)[f.members[k]];
+      const Verdict verdict = verdictOf(h, pn.after);
+      std::string tip = esc(h.p->id);
+      o += "<g>";
+      if (!h.ok) {
+        tip += " \u00b7 " + std::string(verdictName(h.p->verdict));
+        if (!h.p->reason.empty()) tip += ": " + esc(h.p->reason);
+        o += crossPath(x, y, r, styleOf(h.p->verdict).bar) + "/>";
+      } else {
+        tip += " \u00b7 " + (v ? num(*v, 1) + " \u00b5m" : std::string("n/a")) + " \u00b7 " +
+               verdictName(verdict) + " \u00b7 branch " + std::to_string(h.p->branch);
+        if (!h.p->config.empty()) tip += " (" + esc(h.p->config) + ")";
+        const std::string fill = v ? hex(viridis(sc.t(*v))) : std::string("#ffffff");
+        o += shapePath(h.p->branch, x, y, r) + " fill=\"" + fill + "\" class=\"mk v-" +
+             styleOf(verdict).cls + "\"/>";
+        if (h.config_change) {
+          tip += " \u00b7 configuration change from branch " + std::to_string(h.prev_branch);
+          o += "<circle class=\"chg\" cx=\"" + num(x, 2) + "\" cy=\"" + num(y, 2) + "\" r=\"" +
+               num(r + 3.2, 2) + "\"/>";
+        }
       }
-      if (v && (worst == f.members.size() || *v > *(*pn.values)[f.members[worst]])) worst = k;
+      o += "<title>" + tip + "</title></g>";
     }
-    o += "<title>" + tip + "</title></g>";
+  }
+
+  // ids of the holes that do not conform, visible without hovering (worst first, capped)
+  std::vector<size_t> failing;
+  for (size_t k = 0; k < f.members.size(); ++k) {
+    if (severity(verdictOf(hv[f.members[k]], pn.after)) > 0) failing.push_back(k);
+  }
+  std::stable_sort(failing.begin(), failing.end(), [&](size_t a, size_t b) {
+    const int sa = severity(verdictOf(hv[f.members[a]], pn.after));
+    const int sb = severity(verdictOf(hv[f.members[b]], pn.after));
+    if (sa != sb) return sa > sb;
+    const auto va = (*pn.values)[f.members[a]], vb = (*pn.values)[f.members[b]];
+    return va.value_or(-1.0) > vb.value_or(-1.0);
+  });
+  for (size_t n = 0; n < failing.size() && n < kMaxFailLabels; ++n) {
+    const size_t k = failing[n];
+    const HoleView& h = hv[f.members[k]];
+    const double x = px(f.xy[k].x()), y = py(f.xy[k].y());
+    const bool right = x + r + 4 + 6.2 * static_cast<double>(h.p->id.size()) < kMarginL + f.plot_w;
+    o += "<text class=\"flabel f-" + std::string(styleOf(verdictOf(h, pn.after)).cls) + "\" x=\"" +
+         num(right ? x + r + 3 : x - r - 3, 1) + "\" y=\"" + num(y + 3.5, 1) + "\" text-anchor=\"" +
+         (right ? "start" : "end") + "\">" + esc(h.p->id) + "</text>";
+  }
+  if (failing.size() > kMaxFailLabels) {
+    o += "<text class=\"tick\" x=\"" + num(kMarginL + 4, 1) + "\" y=\"" +
+         num(kMarginT + f.plot_h - 5, 1) + "\">+" +
+         std::to_string(failing.size() - kMaxFailLabels) +
+         " more not conforming: see the table</text>";
   }
 
   // δ direction of the three largest values (direction only, not to scale)
@@ -504,7 +656,7 @@ void renderPanel(std::string& o, const FaceGroup& f, const std::vector<HoleView>
     if (order.size() > 3) order.resize(3);
     for (const size_t k : order) {
       const HolePrediction& p = *hv[f.members[k]].p;
-      const Vec3 d = pn.arrows == ArrowOf::kRobot ? p.d_robot : p.d_work;
+      const Vec3 d = f.R_part_W * (pn.arrows == ArrowOf::kRobot ? p.d_robot : p.d_work);
       const Eigen::Vector2d q(d.dot(f.u), -d.dot(f.v));
       if (q.norm() < 1e-3 * std::max(d.norm(), 1e-15) || q.norm() <= 0) continue;
       const Eigen::Vector2d e = q.normalized();
@@ -559,6 +711,7 @@ void renderPanel(std::string& o, const FaceGroup& f, const std::vector<HoleView>
            "\"/><text class=\"tick\" x=\"" + num(x, 1) + "\" y=\"" + num(bar_y + 28, 1) +
            "\" text-anchor=\"middle\">" + num(t, bdec) + "</text>";
     }
+    if (pn.tol_mark) renderToleranceMarks(o, f, hv, sc, bx, bw, bar_y);
   } else {
     o += "<text class=\"tick\" x=\"" + num(bx, 1) + "\" y=\"" + num(bar_y + 12, 1) +
          "\">no value to show</text>";
@@ -650,6 +803,19 @@ svg .grid line{stroke:#eaeef2;stroke-width:1}
 svg .path{fill:none;stroke:#afb8c1;stroke-width:.8;stroke-dasharray:3 2}
 svg .mk{stroke:#24292f;stroke-width:.7}
 svg .chg{fill:none;stroke:#e3120b;stroke-width:1.9}
+svg .v-ok{stroke:#24292f;stroke-width:.7}
+svg .v-comp{stroke:#b07d00;stroke-width:2.4}
+svg .v-nc{stroke:#cf222e;stroke-width:2.8}
+svg .v-unr,svg .v-sing,svg .v-nconv{stroke:#57606a;stroke-width:2.4}
+svg .bin{stroke-width:0}
+svg .bin.v-comp{stroke-width:1.2}
+svg .bin.v-nc{stroke-width:1.6}
+svg .flabel{font-size:10.5px;font-weight:650;paint-order:stroke;stroke:#fff;stroke-width:3px;stroke-linejoin:round}
+svg .f-nc{fill:#a40e26}
+svg .f-comp{fill:#7d4e00}
+svg .f-unr,svg .f-sing,svg .f-nconv{fill:#424a53}
+svg .tol line{stroke:#cf222e;stroke-width:2}
+svg .tol text{fill:#a40e26;font-size:10.5px;font-weight:600}
 svg .arrow line{stroke:#1f2328;stroke-width:1.5}
 svg .arrow polygon{fill:#1f2328}
 svg .maxlabel{font-size:11px;font-weight:600;fill:#1f2328;paint-order:stroke;stroke:#fff;stroke-width:3px;stroke-linejoin:round}
@@ -693,6 +859,12 @@ tbody tr:hover td{background:#eef5ff}
 .holes .c1{left:34px;box-shadow:inset -1px 0 0 var(--line)}
 .holes thead .c0,.holes thead .c1{z-index:3;background:#f0f3f6}
 .holes td.id{font-weight:600;text-align:left}
+.holes thead th{cursor:pointer;user-select:none}
+.holes th[aria-sort=ascending]::after{content:" \25b2"}
+.holes th[aria-sort=descending]::after{content:" \25bc"}
+.holes.fonly tr.pass{display:none}
+.holes td.cfgchg{color:#a40e26;font-weight:600}
+.filter{display:inline-block;margin:4px 0 8px;font-size:13px}
 .holes td.v span{display:inline-block;min-width:3em}
 .holes td.j span{display:inline-block;min-width:3.1em}
 .holes td.reason{text-align:left;color:#57606a;font-style:italic}
@@ -709,6 +881,29 @@ footer p{margin:4px 0}
 @media (max-width:1100px){.maps,.maps.four{grid-template-columns:minmax(0,1fr)}.kpis{grid-template-columns:repeat(3,minmax(0,1fr))}.two,.meta{grid-template-columns:minmax(0,1fr)}}
 @media print{@page{size:A4 landscape;margin:10mm}body{font-size:10pt}main{max-width:none;padding:0}.scroll{max-height:none;overflow:visible;border:0}.holes thead th{position:static}table{font-size:8pt}.holes{font-size:6.4pt}th,td,.holes th,.holes td{padding:1px 3px}.holes .c0,.holes .c1{position:static}h2{break-after:avoid}.card,.panel,.kpi{break-inside:avoid}tbody tr:hover td{background:inherit}}
 )CSS";
+
+// ------------------------------------------------------------------ table script
+
+/// Sorting (click a head; again to reverse; numbers numerically, an em dash last) and the
+/// "not conforming only" filter. Inline, no network; the page reads fully without it.
+constexpr const char* kTableScript = R"JS(
+(function(){
+var t=document.getElementById('holetable');if(!t)return;
+var cb=document.getElementById('failonly');
+cb.addEventListener('change',function(){t.classList.toggle('fonly',cb.checked);});
+var ths=t.tHead.rows[0].cells,dir={};
+function key(r,i,txt){var c=r.cells[i];if(!c)return txt?'':Infinity;var s=c.textContent;
+ if(txt)return s;var v=parseFloat(s);return isNaN(v)?Infinity:v;}
+for(var i=0;i<ths.length;i++)(function(i){ths[i].addEventListener('click',function(){
+ var txt=ths[i].getAttribute('data-t')==='1',b=t.tBodies[0],rows=Array.prototype.slice.call(b.rows);
+ var d=dir[i]=-(dir[i]||-1);
+ var k=rows.map(function(r,n){return [key(r,i,txt),n,r];});
+ k.sort(function(a,c){if(a[0]<c[0])return -d;if(a[0]>c[0])return d;return a[1]-c[1];});
+ var f=document.createDocumentFragment();k.forEach(function(x){f.appendChild(x[2]);});b.appendChild(f);
+ for(var j=0;j<ths.length;j++)ths[j].removeAttribute('aria-sort');
+ ths[i].setAttribute('aria-sort',d>0?'ascending':'descending');});})(i);
+})();
+)JS";
 
 // ------------------------------------------------------------------ sections
 
@@ -810,31 +1005,43 @@ void renderMaps(std::string& o, const ReportInput& in, const std::vector<HoleVie
   std::vector<Panel> panels;
   const Panel robot{"|\u03b4robot| \u2014 robot deviation under load", "|\u03b4robot|", &q_robot,
                     &s_robot, ArrowOf::kRobot};
-  const Panel U{"U<sub>95</sub> \u2014 95 % radius of the work deviation (anisotropic)", "U95",
-                &q_U, &s_U, ArrowOf::kNone};
+  const Panel U{"U<sub>95</sub> \u2014 95 % radius of the work deviation (anisotropic)",
+                "U95",
+                &q_U,
+                &s_U,
+                ArrowOf::kNone,
+                false,
+                true};
   if (in.compensation) {
     panels.push_back({"Position error \u22a5 axis \u2014 before compensation", "e\u22a5 before",
-                      &q_err, &s_err, ArrowOf::kWork});
-    panels.push_back(
-        {"Residual \u2014 after compensation", "residual after", &q_res, &s_err, ArrowOf::kNone});
+                      &q_err, &s_err, ArrowOf::kWork, false, true});
+    panels.push_back({"Residual \u2014 after compensation", "residual after", &q_res, &s_err,
+                      ArrowOf::kNone, true, true});
     panels.push_back(robot);
     panels.push_back(U);
   } else {
     panels.push_back(robot);
     panels.push_back({"Position error \u22a5 axis |\u03b4work\u22a5|", "e\u22a5", &q_err, &s_err,
-                      ArrowOf::kWork});
+                      ArrowOf::kWork, false, true});
     panels.push_back(U);
   }
 
   o += "<section id=\"maps\"><h2>Deviation maps over the work area</h2>";
   o += "<p class=\"note\">Each face is drawn as seen along its drilling direction (into the "
-       "material), walls "
-       "upright (base +Z up); holes at their nominal positions, coordinates in mm along the "
-       "directions u and v of "
-       "the robot base frame. Colours "
-       "share one scale per quantity across all faces" +
+       "material), walls upright (part +Z up), top and bottom faces with the part X axis to the "
+       "right; holes at their nominal positions, coordinates in mm in the part frame (<b>" +
+       esc(in.part_frame) + "</b>). Colours share one scale per quantity across all faces" +
        std::string(in.compensation ? " (before and after use the same scale)" : "") +
-       ". Hover a marker for the hole id and value.</p>";
+       "; the marker outline shows the verdict" +
+       std::string(in.compensation ? " (after compensation on the residual map)" : "") +
+       ", the ids of the holes that do not conform are written next to them, and t/2 is "
+       "marked on the colour bars of e\u22a5 and U. " +
+       (hv.size() > kReportAggregateAbove
+            ? "This job has " + std::to_string(hv.size()) +
+                  " holes: each square is a bin of holes, filled with its largest value and "
+                  "outlined by its worst verdict (hover for the count and the worst ids)."
+            : std::string("Hover a marker for the hole id and value.")) +
+       "</p>";
 
   // legend: shapes by branch (those present), configuration change, non-reachable
   std::vector<int> branches;
@@ -864,6 +1071,15 @@ void renderMaps(std::string& o, const ReportInput& in, const std::vector<HoleVie
            "cx=\"11\" "
            "cy=\"11\" r=\"8.5\" fill=\"none\" stroke=\"#e3120b\" stroke-width=\"2\"/>") +
        "configuration change from the previous hole</span>";
+  for (const VerdictStyle& vs : kVerdicts) {
+    if (vs.verdict == Verdict::kUnreachable || vs.verdict == Verdict::kSingular ||
+        vs.verdict == Verdict::kNotConverged)
+      continue;
+    o += "<span>" +
+         legendIcon("<circle cx=\"11\" cy=\"11\" r=\"6\" fill=\"#8fbbe6\" class=\"lg v-" +
+                    std::string(vs.cls) + "\"/>") +
+         "outline: " + vs.label + "</span>";
+  }
   o += "<span>" + legendIcon(crossPath(11, 11, 6, "#57606a") + "/>") +
        "unreachable / singular / not converged</span>";
   o += "<span>" +
@@ -880,7 +1096,10 @@ void renderMaps(std::string& o, const ReportInput& in, const std::vector<HoleVie
 
   std::vector<FaceGroup> faces = groupFaces(hv, 0.99);
   if (faces.size() > 8) faces = groupFaces(hv, 0.9);
-  for (FaceGroup& f : faces) layoutFace(f, hv);
+  for (FaceGroup& f : faces) {
+    f.R_part_W = in.T_W_part.linear().transpose();
+    layoutFace(f, hv);
+  }
   for (size_t g = 0; g < faces.size(); ++g) {
     const FaceGroup& f = faces[g];
     int reach = 0;
@@ -888,7 +1107,7 @@ void renderMaps(std::string& o, const ReportInput& in, const std::vector<HoleVie
     const std::string name =
         faces.size() <= 26 ? std::string(1, static_cast<char>('A' + g)) : std::to_string(g + 1);
     o += "<h3 class=\"face\">Face " + name + " <small>\u00b7 drilling direction " +
-         esc(dirLabel(f.axis)) + " (base) \u00b7 " +
+         esc(dirLabel(f.axis)) + " (part frame) \u00b7 " +
          plural(static_cast<long>(f.members.size()), "hole", "holes") + ", " +
          std::to_string(reach) + " reachable</small></h3>";
     o += std::string("<div class=\"maps") + (panels.size() == 4 ? " four" : "") + "\">";
@@ -1078,44 +1297,196 @@ void renderBudget(std::string& o, const std::vector<HoleView>& hv) {
   o += "</section>";
 }
 
-std::string vec3Cell(const Vec3& v_um) {
-  return "<td class=\"v\"><span>" + num(v_um.x(), 1) + "</span><span>" + num(v_um.y(), 1) +
-         "</span><span>" + num(v_um.z(), 1) + "</span></td>";
+/// One numeric cell; non-finite / absent → an em dash (sorts last).
+std::string numCell(double v, int decimals) { return "<td>" + num(v, decimals) + "</td>"; }
+std::string dashCells(int n) {
+  std::string s;
+  for (int i = 0; i < n; ++i) s += "<td>" + std::string(kDash) + "</td>";
+  return s;
 }
 
+struct Column {
+  std::string head;  ///< HTML
+  std::string unit;  ///< shown under the head
+  bool text{false};  ///< sorts as text, left-aligned
+};
+
+/// The budget terms in first-seen order over the predicted holes.
+std::vector<std::string> budgetNames(const std::vector<HoleView>& hv) {
+  std::vector<std::string> names;
+  for (const HoleView& h : hv) {
+    if (!h.ok) continue;
+    for (const BudgetTerm& b : h.p->budget) {
+      const std::string n = b.name ? b.name : "";
+      if (std::find(names.begin(), names.end(), n) == names.end()) names.push_back(n);
+    }
+  }
+  return names;
+}
+
+const char* shortTerm(const std::string& name) {
+  static constexpr std::array<std::array<const char*, 2>, 6> kShort{{
+      {"robot_repeatability", "u repeat."},
+      {"robot_deflection_model", "u defl. model"},
+      {"robot_deflection_process_force", "u defl. force"},
+      {"mach_axis", "u axis"},
+      {"mach_runout", "u runout"},
+      {"mach_tool_deflection", "u tool defl."},
+  }};
+  for (const auto& s : kShort) {
+    if (name == s[0]) return s[1];
+  }
+  return nullptr;
+}
+
+/// Offset applied to a target: programmed − original position (mm, base frame) and the angle of
+/// the rotation between them (deg).
+struct Offset {
+  Vec3 dp_mm{Vec3::Zero()};
+  double angle_deg{0};
+};
+Offset offsetOf(const ReportHole& rh) {
+  Offset off;
+  if (!rh.T_W_programmed) return off;
+  off.dp_mm = (rh.T_W_programmed->translation() - rh.T_W_tcp.translation()) * 1e3;
+  const Eigen::AngleAxisd aa(rh.T_W_tcp.linear().transpose() * rh.T_W_programmed->linear());
+  off.angle_deg = std::abs(aa.angle()) * 180.0 / kPi;
+  return off;
+}
+
+bool passes(const HoleView& h) {
+  const Verdict v = h.rh->after != nullptr ? h.rh->after->verdict : h.p->verdict;
+  return v == Verdict::kConforms;
+}
+
+constexpr size_t kTableRowsWhenLarge = 500;  ///< passing holes listed in a large job's table
+
 void renderTable(std::string& o, const ReportInput& in, const std::vector<HoleView>& hv) {
-  o += "<section id=\"holes\"><h2>Per-hole results</h2>";
-  o += "<p class=\"note\">In program order. Joints: motor-side command in degrees (URDF "
-       "convention). Deviations in "
-       "the robot base frame (x, y, z) in \u00b5m; e\u22a5 = |\u03b4work \u22a5 hole axis|; tilt = "
-       "hole-axis tilt "
-       "in \u00b5rad; U expanded (k as above). A ringed branch marks a configuration change from "
-       "the previous "
-       "hole. Verdict \u201cafter comp.\u201d = conforms-after-compensation.</p>";
-  o += "<div class=\"scroll\"><table class=\"holes\"><thead><tr><th class=\"c0\">#</th><th "
-       "class=\"l c1\">Hole</th>"
-       "<th>\u2300<br><small>mm</small></th><th class=\"l\">Config</th><th>Br.</th><th>Joints "
-       "J1\u2026J6<br><small>deg"
-       "</small></th><th>\u03b4robot x y z<br><small>\u00b5m</small></th><th>\u03b4mach x y "
-       "z<br><small>\u00b5m</small>"
-       "</th><th>\u03b4work x y "
-       "z<br><small>\u00b5m</small></th><th>e\u22a5<br><small>\u00b5m</small></th><th>tilt<br>"
-       "<small>\u00b5rad</small></th><th>U<sub>robot</sub><br><small>\u00b5m</small></"
-       "th><th>U<sub>mach</sub><br><small>"
-       "\u00b5m</small></th><th>U<sub>95</sub><br><small>\u00b5m</small></th><th>Tol. "
-       "\u2300<br><small>mm</small></th>"
-       "<th class=\"l\">Verdict</th><th>MC<br><small>s</small></th>";
+  const std::vector<std::string> terms = budgetNames(hv);
+  const bool has_split =
+      std::any_of(hv.begin(), hv.end(), [](const HoleView& h) { return h.rh->split.has_value(); });
+  std::vector<Column> cols{{"#", "", false},
+                           {"Hole", "", true},
+                           {in.compensation ? "Verdict before" : "Verdict", "", true},
+                           {"e\u22a5", "\u00b5m"},
+                           {"U<sub>95</sub>", "\u00b5m"},
+                           {"e\u22a5 + U", "\u00b5m"},
+                           {"t/2", "\u00b5m"},
+                           {"|\u03b4robot|", "\u00b5m"}};
+  if (has_split) {
+    for (const char* part : {"gravity", "tool weight", "process", "controller"})
+      cols.push_back({std::string("\u2192 ") + part, "\u00b5m"});
+  }
+  for (const char* c : {"\u03b4robot x", "\u03b4robot y", "\u03b4robot z", "\u03b4mach x",
+                        "\u03b4mach y", "\u03b4mach z"})
+    cols.push_back({c, "\u00b5m"});
+  cols.push_back({"tilt", "\u00b5rad"});
+  for (const std::string& t : terms) {
+    const char* sh = shortTerm(t);
+    cols.push_back({sh ? std::string(sh) : esc(t), "\u00b5m"});
+  }
+  cols.push_back({"U<sub>robot</sub>", "\u00b5m"});
+  cols.push_back({"U<sub>mach</sub>", "\u00b5m"});
+  cols.push_back({"\u2300", "mm"});
+  cols.push_back({"Config", "", true});
+  cols.push_back({"Br.", ""});
+  for (int j = 1; j <= 6; ++j) cols.push_back({"J" + std::to_string(j), "deg"});
+  cols.push_back({"MC", "s"});
   if (in.compensation) {
-    o +=
-        "<th>Residual<br><small>\u00b5m</small></th><th>Rot. about axis<br><small>deg</small></th>";
+    for (const char* c : {"\u0394x", "\u0394y", "\u0394z", "|\u0394p|"}) cols.push_back({c, "mm"});
+    cols.push_back({"\u0394rot", "deg"});
+    cols.push_back({"rot. about axis", "deg"});
+    cols.push_back({"Config before \u2192 after", "", true});
+    cols.push_back({"Verdict after", "", true});
+    cols.push_back({"Residual", "\u00b5m"});
+  }
+
+  const bool large = hv.size() > kReportAggregateAbove;
+  size_t n_fail = 0;
+  for (const HoleView& h : hv) n_fail += passes(h) ? 0 : 1;
+  o += "<section id=\"holes\"><h2>Per-hole results</h2>";
+  o += "<p class=\"note\">In program order; click a column head to sort, tick \u201cnot "
+       "conforming only\u201d to filter. e\u22a5 = |\u03b4work \u22a5 hole axis|, U = "
+       "U<sub>95</sub> "
+       "(k as above): the hole conforms when e\u22a5 + U \u2264 t/2. Deviations in the robot base "
+       "frame. ";
+  if (has_split) {
+    o += "Why: the \u2192 columns split |\u03b4robot| into the parts caused by the arm's own "
+         "weight, the tool weight, the process load and the controller reference (its gravity "
+         "compensation or mastering offset), each part's component along \u03b4robot, so the four "
+         "add up to |\u03b4robot| (hover for the part's vector; docs/reports.md \u00a73). ";
+  }
+  o += "u = per-axis standard uncertainty of each budget term. Joints: motor-side command (URDF "
+       "convention). A ringed branch marks a configuration change from the previous hole.";
+  if (in.compensation) {
+    o += " \u0394 = the offset applied to the target (programmed \u2212 original, base frame).";
+  }
+  o += "</p>";
+  if (large) {
+    o += "<p><strong>" + std::to_string(hv.size()) +
+         " holes: the table lists every hole that does not conform (" + std::to_string(n_fail) +
+         ") and the first " + std::to_string(kTableRowsWhenLarge) +
+         " that do; the JSON output (--json) has every hole.</strong></p>";
+  }
+  o += "<label class=\"filter\"><input type=\"checkbox\" id=\"failonly\"> not conforming only (" +
+       std::to_string(n_fail) + ")</label>";
+  o += "<div class=\"scroll\"><table class=\"holes\" id=\"holetable\"><thead><tr>";
+  for (size_t c = 0; c < cols.size(); ++c) {
+    o += "<th" +
+         std::string(c == 0         ? " class=\"c0\""
+                     : c == 1       ? " class=\"l c1\""
+                     : cols[c].text ? " class=\"l\""
+                                    : "") +
+         (cols[c].text ? " data-t=\"1\"" : "") + ">" + cols[c].head;
+    if (!cols[c].unit.empty()) o += "<br><small>" + cols[c].unit + "</small>";
+    o += "</th>";
   }
   o += "</tr></thead><tbody>";
+  size_t passing_shown = 0;
   for (size_t i = 0; i < hv.size(); ++i) {
     const HoleView& h = hv[i];
     const HolePrediction& p = *h.p;
+    const bool pass = passes(h);
+    if (large && pass && passing_shown++ >= kTableRowsWhenLarge) continue;
     const VerdictStyle& vs = styleOf(p.verdict);
-    o += "<tr><td class=\"c0\">" + std::to_string(i + 1) + "</td><td class=\"id c1\">" + esc(p.id) +
-         "</td><td>" + num(p.diameter * 1e3, 2) + "</td><td class=\"l\">" +
+    o += std::string("<tr") + (pass ? " class=\"pass\"" : "") + "><td class=\"c0\">" +
+         std::to_string(i + 1) + "</td><td class=\"id c1\">" + esc(p.id) +
+         "</td><td class=\"l\"><span class=\"badge b-" + vs.cls + "\" title=\"" +
+         verdictName(p.verdict) + "\">" + vs.badge + "</span></td>";
+    const double t2 = 0.5 * p.tolerance * 1e6;
+    if (h.ok) {
+      const double e = p.position_error * 1e6, U = p.U_work_exact * 1e6;
+      o += "<td><strong>" + num(e, 1) + "</strong></td>" + numCell(U, 1) + numCell(e + U, 1) +
+           numCell(t2, 1) + numCell(p.d_robot.norm() * 1e6, 1);
+      if (has_split) {
+        if (h.rh->split) {
+          const DeviationSplit& s = *h.rh->split;
+          const double n = p.d_robot.norm();
+          const Vec3 u = n > 0 ? Vec3(p.d_robot / n) : Vec3::Zero();
+          for (const Vec3* part : {&s.gravity, &s.tool, &s.process, &s.controller}) {
+            const Vec3 um = *part * 1e6;
+            o += "<td title=\"(" + num(um.x(), 1) + ", " + num(um.y(), 1) + ", " + num(um.z(), 1) +
+                 ") \u00b5m\">" + num(part->dot(u) * 1e6, 1) + "</td>";
+          }
+        } else {
+          o += dashCells(4);
+        }
+      }
+      for (int k = 0; k < 3; ++k) o += numCell(p.d_robot[k] * 1e6, 1);
+      for (int k = 0; k < 3; ++k) o += numCell(p.d_mach[k] * 1e6, 1);
+      o += numCell(p.axis_tilt * 1e6, 1);
+      for (const std::string& t : terms) {
+        auto it = std::find_if(p.budget.begin(), p.budget.end(),
+                               [&](const BudgetTerm& b) { return t == (b.name ? b.name : ""); });
+        o += it == p.budget.end() ? dashCells(1) : numCell(it->u * 1e6, 2);
+      }
+      o += numCell(p.U_robot * 1e6, 1) + numCell(p.U_mach * 1e6, 1);
+    } else {
+      const int span = 14 + (has_split ? 4 : 0) + static_cast<int>(terms.size());
+      o += "<td class=\"reason\" colspan=\"" + std::to_string(span) + "\">" +
+           (p.reason.empty() ? std::string(verdictName(p.verdict)) : esc(p.reason)) + "</td>";
+    }
+    o += numCell(p.diameter * 1e3, 2) + "<td class=\"l\">" +
          (p.config.empty() ? kDash : esc(p.config)) + "</td>";
     const bool has_joints = h.ok || !p.config.empty();
     if (h.config_change) {
@@ -1125,40 +1496,41 @@ void renderTable(std::string& o, const ReportInput& in, const std::vector<HoleVi
     } else {
       o += "<td>" + (has_joints ? std::to_string(p.branch) : std::string(kDash)) + "</td>";
     }
-    if (has_joints) {
-      o += "<td class=\"j\">";
-      for (int j = 0; j < 6; ++j) o += "<span>" + num(p.joints[j] * 180.0 / kPi, 1) + "</span>";
-      o += "</td>";
-    } else {
-      o += "<td>" + std::string(kDash) + "</td>";
-    }
-    if (h.ok) {
-      o += vec3Cell(p.d_robot * 1e6) + vec3Cell(p.d_mach * 1e6) + vec3Cell(p.d_work * 1e6);
-      o += "<td><strong>" + num(p.position_error * 1e6, 1) + "</strong></td><td>" +
-           num(p.axis_tilt * 1e6, 1) + "</td><td>" + num(p.U_robot * 1e6, 1) + "</td><td>" +
-           num(p.U_mach * 1e6, 1) + "</td><td>" + num(p.U_work_exact * 1e6, 1) + "</td>";
-    } else {
-      o += "<td class=\"reason\" colspan=\"8\">" +
-           (p.reason.empty() ? std::string(verdictName(p.verdict)) : esc(p.reason)) + "</td>";
-    }
-    o += "<td>" + num(p.tolerance * 1e3, 3) + "</td><td class=\"l\"><span class=\"badge b-" +
-         vs.cls + "\" title=\"" + verdictName(p.verdict) + "\">" + vs.badge + "</span></td><td>" +
-         num(p.mc_time, 2) + "</td>";
+    for (int j = 0; j < 6; ++j)
+      o += has_joints ? numCell(p.joints[j] * 180.0 / kPi, 1) : dashCells(1);
+    o += numCell(p.mc_time, 2);
     if (in.compensation) {
-      o += "<td>" + (h.rh->residual_um ? num(*h.rh->residual_um, 1) : std::string(kDash)) +
-           "</td><td>" +
-           (h.rh->rotation_about_axis_deg ? num(*h.rh->rotation_about_axis_deg, 2)
-                                          : std::string(kDash)) +
-           "</td>";
+      const ReportHole& rh = *h.rh;
+      if (rh.T_W_programmed) {
+        const Offset off = offsetOf(rh);
+        for (int k = 0; k < 3; ++k) o += numCell(off.dp_mm[k], 3);
+        o += numCell(off.dp_mm.norm(), 3) + numCell(off.angle_deg, 3) +
+             (rh.rotation_about_axis_deg ? numCell(*rh.rotation_about_axis_deg, 2) : dashCells(1));
+        const std::string before = p.config.empty() ? std::string(kDash) : esc(p.config);
+        const std::string after = rh.config_after ? esc(*rh.config_after) : before;
+        o += std::string("<td class=\"l") + (after != before ? " cfgchg" : "") + "\">" + before +
+             " \u2192 " + after + "</td>";
+      } else {
+        o += dashCells(6) + "<td class=\"l\">" + std::string(kDash) + "</td>";
+      }
+      const Verdict va = rh.after != nullptr ? rh.after->verdict : p.verdict;
+      const VerdictStyle& vsa = styleOf(va);
+      o += "<td class=\"l\"><span class=\"badge b-" + std::string(vsa.cls) + "\" title=\"" +
+           verdictName(va) + "\">" + vsa.badge + "</span></td>" +
+           (rh.residual_um ? numCell(*rh.residual_um, 1) : dashCells(1));
     }
     o += "</tr>";
   }
   o += "</tbody></table></div></section>";
+  o += "<script>";
+  o += kTableScript;
+  o += "</script>";
 }
 
 void renderFooter(std::string& o, const ReportInput& in) {
   o += "<footer><p>Generated by " + esc(in.generator) +
-       ". Self-contained document: no scripts, no network resources.</p>"
+       ". Self-contained document: no network resources; one inline script sorts and filters the "
+       "table.</p>"
        "<p>Conventions: SI inside; positions in mm and joints in degrees; deviations and "
        "uncertainties in "
        "\u00b5m, tilts in \u00b5rad; the robot base frame (URDF root link) for all vectors; TCP = "
@@ -1178,6 +1550,33 @@ void renderFooter(std::string& o, const ReportInput& in) {
 }
 
 }  // namespace
+
+std::string viridisHex(double t) { return hex(viridis(t)); }
+
+void addPartFrameAndSplit(ReportInput& in, const PredictionContext& c) {
+  const JobHoles& job = c.job;
+  if (in.holes.size() != job.requests.size())
+    throw std::invalid_argument("addPartFrameAndSplit: one report hole per request expected");
+  // the part frame: the frame all holes' targets are given in, if they share one
+  in.T_W_part = c.cell.T_base_wobj;
+  in.part_frame = "cell workobject";
+  if (!job.sources.empty()) {
+    const HoleSource& s0 = job.sources.front();
+    const bool shared =
+        std::all_of(job.sources.begin(), job.sources.end(), [&](const HoleSource& s) {
+          return s.frame_ref == s0.frame_ref && s.T_W_frame.isApprox(s0.T_W_frame, 1e-12);
+        });
+    if (shared) {
+      in.T_W_part = s0.T_W_frame;
+      if (!s0.frame_ref.empty()) in.part_frame = s0.frame_ref;
+    }
+  }
+  std::vector<const HolePrediction*> preds;
+  preds.reserve(in.holes.size());
+  for (const ReportHole& h : in.holes) preds.push_back(h.prediction);
+  const auto splits = splitRobotDeviations(c.model, c.tool, job.requests, preds);
+  for (size_t i = 0; i < in.holes.size(); ++i) in.holes[i].split = splits[i];
+}
 
 std::string renderReport(const ReportInput& in) {
   const std::vector<HoleView> hv = holeViews(in);

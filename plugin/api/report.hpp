@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "compensator/precision/prediction.hpp"
+#include "plugin/api/deviation_split.hpp"
 
 namespace roprec::api {
 
@@ -22,6 +23,10 @@ struct ReportHole {
   std::optional<Pose> T_W_programmed;
   std::optional<double> rotation_about_axis_deg;
   const HolePrediction* after{nullptr};  ///< compensate: prediction at the programmed pose
+  /// compensate: the configuration flags of the programmed (compensated) target
+  std::optional<std::string> config_after;
+  /// Why: δrobot split into gravity, tool weight, process load and controller reference.
+  std::optional<DeviationSplit> split;
 };
 
 struct ReportInput {
@@ -36,10 +41,30 @@ struct ReportInput {
   /// How program frames and the tool were resolved (--frame/--tool), stated in the header.
   std::vector<std::string> resolutions;
   std::vector<ReportHole> holes;
+  /// The part (workobject) frame the maps are drawn in, and its name ("cell workobject",
+  /// "BASE_DATA[2]", ...): hole positions and directions are expressed in it, axes named after it.
+  Pose T_W_part{Pose::Identity()};
+  std::string part_frame{"robot base"};
   CapabilitySummary summary;
   bool compensation{false};  ///< adds the before/after maps and residual columns
   std::string generator{"roprec 0.1.0"};
 };
+
+/// Above this many holes the maps aggregate holes into bins (the worst value and verdict of each
+/// bin) and the per-hole table lists the holes that do not conform plus the first ones, so a
+/// 20,000-hole report stays small and opens quickly (docs/reports.md §4).
+inline constexpr size_t kReportAggregateAbove = 2000;
+
+struct PredictionContext;
+
+/// The reports' colour map (viridis, see report.cpp) at t ∈ [0, 1] (clamped; NaN → 0) as "#rrggbb".
+std::string viridisHex(double t);
+
+/// Fills what the report derives from the job: the part frame (the program frame every hole
+/// shares, else the cell's <workobject>, named after it) and each predicted hole's δrobot split
+/// (splitRobotDeviations with the context's model and tool). Call after `in.holes` has one entry
+/// per context.job.requests entry, in that order. Throws std::invalid_argument otherwise.
+void addPartFrameAndSplit(ReportInput& in, const PredictionContext& c);
 
 /// The whole HTML document.
 std::string renderReport(const ReportInput& in);

@@ -1,0 +1,81 @@
+/// \file deviation_split.cpp
+/// δrobot split by sequential re-evaluation (see deviation_split.hpp).
+#include "plugin/api/deviation_split.hpp"
+
+namespace roprec::api {
+namespace {
+
+/// `m` with the process wrench removed (the rotating force and δmach do not enter δrobot).
+void dropProcessLoad(PredictionModel& m) {
+  for (auto& [key, proc] : m.process_by_diameter) {
+    proc.wrench.force.setZero();
+    proc.wrench.torque.setZero();
+  }
+}
+
+struct Variant {
+  PredictionModel model;
+  PredictionData data;
+  explicit Variant(PredictionModel m) : model(std::move(m)), data(model) {}
+};
+
+PredictionModel base(const PredictionModel& m) {
+  PredictionModel v = m;
+  v.controller = nc::ControllerReference{};  // kNone: no reference offset
+  v.uncertainty.method = UncertaintyInputs::Method::kLinear;
+  return v;
+}
+
+/// δ of hole `r` with the IK solution of `p` (the nearest solution to p's joints is p's own).
+std::optional<Vec3> deviationOf(Variant& v, const HoleRequest& r, const HolePrediction& p) {
+  HoleRequest q = r;
+  q.config.reset();
+  q.ik_seed = p.joints;
+  q.nominal_axis.reset();
+  const HolePrediction e = predictHole(v.model, v.data, q, nullptr);
+  if (e.status != HoleStatus::kOk) return std::nullopt;
+  if ((e.joints - p.joints).cwiseAbs().maxCoeff() > 1e-9) return std::nullopt;
+  return e.d_robot;
+}
+
+}  // namespace
+
+std::vector<std::optional<DeviationSplit>> splitRobotDeviations(
+    const PredictionModel& m, const nc::ToolAttachment& tool,
+    const std::vector<HoleRequest>& requests, const std::vector<const HolePrediction*>& preds) {
+  // δ₁: links only (tool massless, its TCP kept), no process, no reference
+  PredictionModel links = base(m);
+  nc::ToolAttachment massless;
+  massless.T_flange_tcp = tool.T_flange_tcp;
+  links.model = nc::buildModel(m.robot.chain, massless);
+  dropProcessLoad(links);
+  // δ₂: links + tool
+  PredictionModel weight = base(m);
+  dropProcessLoad(weight);
+  // δ₃: everything but the reference; the process alone: no weight at all
+  PredictionModel loaded = base(m);
+  PredictionModel alone = base(m);
+  alone.gravity = false;
+
+  Variant v1(std::move(links)), v2(std::move(weight)), v3(std::move(loaded)), v4(std::move(alone));
+  std::vector<std::optional<DeviationSplit>> out(preds.size());
+  for (size_t i = 0; i < preds.size() && i < requests.size(); ++i) {
+    const HolePrediction* p = preds[i];
+    if (p == nullptr || p->status != HoleStatus::kOk) continue;
+    const auto d1 = deviationOf(v1, requests[i], *p);
+    const auto d2 = deviationOf(v2, requests[i], *p);
+    const auto d3 = deviationOf(v3, requests[i], *p);
+    const auto d4 = deviationOf(v4, requests[i], *p);
+    if (!d1 || !d2 || !d3 || !d4) continue;
+    DeviationSplit s;
+    s.gravity = *d1;
+    s.tool = *d2 - *d1;
+    s.process = *d3 - *d2;
+    s.controller = p->d_robot - *d3;
+    s.process_alone = *d4;
+    out[i] = s;
+  }
+  return out;
+}
+
+}  // namespace roprec::api
