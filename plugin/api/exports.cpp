@@ -193,6 +193,7 @@ std::string predictionReport(const PredictionResult& r) {
     rh.T_W_tcp = c.job.requests[i].T_W_tcp;
     in.holes.push_back(rh);
   }
+  addPartFrameAndSplit(in, c);  // report.hpp: part frame and the δrobot split (issue 14)
   return renderReport(in);
 }
 
@@ -232,9 +233,11 @@ std::string compensationReport(const CompensationResult& r, const std::string& p
       rh.T_W_programmed = h.T_programmed;
       rh.rotation_about_axis_deg = h.psi / kDeg;
       rh.after = &h.after;
+      rh.config_after = h.config_text;  // issue 14: flags before → after
     }
     in.holes.push_back(rh);
   }
+  addPartFrameAndSplit(in, c);  // report.hpp: part frame and the δrobot split (issue 14)
   return renderReport(in);
 }
 
