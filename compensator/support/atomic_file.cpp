@@ -75,38 +75,66 @@ void fsyncDir(const std::string& dir) {
   ::close(fd);
 }
 
-void writeAll(const std::string& path, const std::string& tmp, const std::string& bytes) {
-  int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
-  if (fd < 0 && errno == EEXIST) {  // our own earlier staging of the same path, or a reused pid
-    ::unlink(tmp.c_str());
-    fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
-  }
-  if (fd < 0) fail(path, errnoText(errno));
-  const char* p = bytes.data();
-  std::size_t left = bytes.size();
-  while (left > 0) {
-    const ssize_t n = ::write(fd, p, left);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      const int e = errno;
-      ::close(fd);
+/// An open temporary: written, fsynced and closed, or removed on any failure.
+class TempFile {
+ public:
+  TempFile(const std::string& path, const std::string& tmp) : path_(path), tmp_(tmp) {
+    fd_ = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+    if (fd_ < 0 && errno == EEXIST) {  // our own earlier staging of the same path, or a reused pid
       ::unlink(tmp.c_str());
-      fail(path, errnoText(e));
+      fd_ = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
     }
-    p += n;
-    left -= static_cast<std::size_t>(n);
+    if (fd_ < 0) fail(path, errnoText(errno));
   }
-  if (::fsync(fd) != 0) {
-    const int e = errno;
-    ::close(fd);
-    ::unlink(tmp.c_str());
-    fail(path, errnoText(e));
+  TempFile(const TempFile&) = delete;
+  TempFile& operator=(const TempFile&) = delete;
+  ~TempFile() {
+    if (fd_ >= 0) {
+      ::close(fd_);
+      ::unlink(tmp_.c_str());
+    }
   }
-  if (::close(fd) != 0) {
-    const int e = errno;
-    ::unlink(tmp.c_str());
-    fail(path, errnoText(e));
+  void write(std::string_view bytes) {
+    const char* p = bytes.data();
+    std::size_t left = bytes.size();
+    while (left > 0) {
+      const ssize_t n = ::write(fd_, p, left);
+      if (n < 0) {
+        if (errno == EINTR) continue;
+        failAndRemove(errno);
+      }
+      p += n;
+      left -= static_cast<std::size_t>(n);
+    }
   }
+  void close() {
+    if (::fsync(fd_) != 0) failAndRemove(errno);
+    const int fd = fd_;
+    fd_ = -1;
+    if (::close(fd) != 0) {
+      const int e = errno;
+      ::unlink(tmp_.c_str());
+      fail(path_, errnoText(e));
+    }
+  }
+
+ private:
+  [[noreturn]] void failAndRemove(int e) {
+    ::close(fd_);
+    fd_ = -1;
+    ::unlink(tmp_.c_str());
+    fail(path_, errnoText(e));
+  }
+  std::string path_;
+  std::string tmp_;
+  int fd_{-1};
+};
+
+void writeAll(const std::string& path, const std::string& tmp,
+              const std::function<void(const ByteWriter&)>& produce) {
+  TempFile f(path, tmp);
+  produce([&](std::string_view bytes) { f.write(bytes); });
+  f.close();
 }
 
 }  // namespace
@@ -162,6 +190,11 @@ void removeStaleOutputTemporaries(const std::string& dir) {
 OutputSet::~OutputSet() { rollback(); }
 
 void OutputSet::stage(const std::string& path, const std::string& bytes) {
+  stageStream(path, [&](const ByteWriter& write) { write(bytes); });
+}
+
+void OutputSet::stageStream(const std::string& path,
+                            const std::function<void(const ByteWriter&)>& produce) {
   if (path.empty()) fail(path, "empty output path");
   if (nameOf(path).empty() || nameOf(path) == "." || nameOf(path) == "..")
     fail(path, "the path names a folder, not a file");
@@ -179,7 +212,7 @@ void OutputSet::stage(const std::string& path, const std::string& bytes) {
     paths_.erase(it);
     temps_.erase(temps_.begin() + static_cast<std::ptrdiff_t>(i));
   }
-  writeAll(path, tmp, bytes);
+  writeAll(path, tmp, produce);
   paths_.push_back(path);
   temps_.push_back(tmp);
 }
@@ -229,6 +262,17 @@ void writeFileAtomic(const std::string& path, const std::string& bytes) {
   }
   OutputSet one;
   one.stage(path, bytes);
+  one.commit();
+}
+
+void writeFileAtomicStream(const std::string& path,
+                           const std::function<void(const ByteWriter&)>& produce) {
+  if (g_active != nullptr) {
+    g_active->stageStream(path, produce);
+    return;
+  }
+  OutputSet one;
+  one.stageStream(path, produce);
   one.commit();
 }
 

@@ -7,10 +7,15 @@
 /// killed run are recognised by their name and removed by the next run that writes to the folder.
 /// A target that is a symbolic link, a FIFO, a device or a folder is refused, never replaced.
 
+#include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace roprec {
+
+/// Appends bytes to a streamed output (see OutputSet::stageStream).
+using ByteWriter = std::function<void(std::string_view)>;
 
 /// A set of output files written all-or-nothing: stage() each, then commit() (rename all) or
 /// rollback() (remove the temporaries; also done by the destructor when not committed).
@@ -24,6 +29,10 @@ class OutputSet {
   /// Writes `bytes` to a temporary file beside `path` and fsyncs it. Staging the same path again
   /// replaces the earlier bytes. Throws InputError(path, 0, "cannot write output file: <why>").
   void stage(const std::string& path, const std::string& bytes);
+  /// Like stage(), with the bytes given piece by piece: `produce` is called once with a writer
+  /// that appends to the temporary (constant memory for large outputs). If `produce` throws, the
+  /// temporary is removed and the exception passes on (the target is untouched).
+  void stageStream(const std::string& path, const std::function<void(const ByteWriter&)>& produce);
   /// Renames every staged temporary onto its target (then fsyncs the folders); returns the paths
   /// in staging order. Throws InputError when a rename fails (the remaining temporaries are
   /// removed).
@@ -58,6 +67,9 @@ class ScopedOutputSet {
 /// Writes one output: staged into the active ScopedOutputSet if there is one, else written
 /// at once (temporary + fsync + rename). Throws InputError on failure.
 void writeFileAtomic(const std::string& path, const std::string& bytes);
+/// writeFileAtomic with the bytes produced piece by piece (OutputSet::stageStream).
+void writeFileAtomicStream(const std::string& path,
+                           const std::function<void(const ByteWriter&)>& produce);
 
 /// Reads a whole file as bytes. Throws InputError(path, 0, "cannot open file: <why>").
 std::string readFileBytes(const std::string& path);

@@ -1,7 +1,8 @@
 /// The texts a job writes: prediction JSON and report, corrected-target exports (CSV/JSON),
 /// compensation report, milling path export (docs/contract.md).
+#include <cmath>
 #include <filesystem>
-#include <sstream>
+#include <string_view>
 
 #include "plugin/api/job.hpp"
 #include "plugin/api/report.hpp"
@@ -35,16 +36,6 @@ Json uncertaintyInputsJson(const UncertaintyInputs& in) {
   return u;
 }
 
-Json uncertaintyJson(const HolePrediction& u) {
-  Json un = Json::object();
-  un.set("U_robot", Json::number(u.U_robot * 1e6, 3));
-  un.set("U_mach", Json::number(u.U_mach * 1e6, 3));
-  un.set("U_work", Json::number(u.U_work * 1e6, 3));
-  un.set("U_work_anisotropic", Json::number(u.U_work_exact * 1e6, 3));
-  un.set("k", Json::number(u.k, 4));
-  return un;
-}
-
 /// The report header every report shares.
 ReportInput reportHeader(const PredictionContext& c, const std::string& title) {
   ReportInput in;
@@ -71,46 +62,75 @@ const Pose& nominalOf(const CompensationResult& r, size_t i) {
   return r.holes[i].ok ? r.holes[i].T_nominal : r.context.job.requests[i].T_W_tcp;
 }
 
-void csvQuaternion(std::ostringstream& s, const Mat3& R) {
-  const Eigen::Quaterniond q = quaternionFromRotation(R);
-  s << "," << formatNumber(q.w(), 9) << "," << formatNumber(q.x(), 9) << ","
-    << formatNumber(q.y(), 9) << "," << formatNumber(q.z(), 9);
+void csvNumber(std::string& s, double v, int decimals) {
+  s += ',';
+  if (std::isfinite(v)) {
+    appendNumber(s, v, decimals);
+  } else {
+    s += numberText(v);  // formatNumber's words, as before
+  }
 }
 
-void csvRow(std::ostringstream& s, const CompensationResult& r, size_t i) {
+void csvQuaternion(std::string& s, const Mat3& R) {
+  const Eigen::Quaterniond q = quaternionFromRotation(R);
+  csvNumber(s, q.w(), 9);
+  csvNumber(s, q.x(), 9);
+  csvNumber(s, q.y(), 9);
+  csvNumber(s, q.z(), 9);
+}
+
+void csvRow(std::string& s, const CompensationResult& r, size_t i) {
   const HoleCompensation& h = r.holes[i];
   const Pose& N = nominalOf(r, i);
   const Pose& P = h.ok ? h.T_programmed : N;
-  s << h.id << "," << (h.ok ? "compensated" : "original-kept");
-  for (int k = 0; k < 3; ++k) s << "," << formatNumber(N.translation()[k] * 1e3, 6);
+  s += h.id;
+  s += h.ok ? ",compensated" : ",original-kept";
+  for (int k = 0; k < 3; ++k) csvNumber(s, N.translation()[k] * 1e3, 6);
   csvQuaternion(s, N.linear());
-  for (int k = 0; k < 3; ++k) s << "," << formatNumber(h.before.d_work[k] * 1e6, 3);
-  for (int k = 0; k < 3; ++k) s << "," << formatNumber(h.before.d_rot[k] * 1e6, 3);
-  for (int k = 0; k < 3; ++k) s << "," << formatNumber(P.translation()[k] * 1e3, 6);
+  for (int k = 0; k < 3; ++k) csvNumber(s, h.before.d_work[k] * 1e6, 3);
+  for (int k = 0; k < 3; ++k) csvNumber(s, h.before.d_rot[k] * 1e6, 3);
+  for (int k = 0; k < 3; ++k) csvNumber(s, P.translation()[k] * 1e3, 6);
   csvQuaternion(s, P.linear());
-  for (int k = 0; k < 6; ++k)
-    s << "," << formatNumber((h.ok ? h.theta_cmd[k] : h.before.joints[k]) / kDeg, 6);
-  s << ",\"" << (h.ok ? h.config_text : h.before.config) << "\"," << formatNumber(h.psi / kDeg, 4);
+  for (int k = 0; k < 6; ++k) csvNumber(s, (h.ok ? h.theta_cmd[k] : h.before.joints[k]) / kDeg, 6);
+  s += ",\"";
+  s += h.ok ? h.config_text : h.before.config;
+  s += '"';
+  csvNumber(s, h.psi / kDeg, 4);
   const Vec3 a = N.linear().col(2);
-  s << "," << formatNumber(h.ok ? perpNorm(h.residual, a) * 1e6 : h.before.position_error * 1e6, 4);
+  csvNumber(s, h.ok ? perpNorm(h.residual, a) * 1e6 : h.before.position_error * 1e6, 4);
   const HolePrediction& u = h.ok ? h.after : h.before;
-  s << "," << formatNumber(u.U_robot * 1e6, 3) << "," << formatNumber(u.U_mach * 1e6, 3) << ","
-    << formatNumber(u.U_work * 1e6, 3) << "," << formatNumber(u.k, 4) << ","
-    << verdictName(u.verdict) << ",\"" << h.reason << "\"\n";
+  csvNumber(s, u.U_robot * 1e6, 3);
+  csvNumber(s, u.U_mach * 1e6, 3);
+  csvNumber(s, u.U_work * 1e6, 3);
+  csvNumber(s, u.k, 4);
+  s += ',';
+  s += verdictName(u.verdict);
+  s += ",\"";
+  s += h.reason;
+  s += "\"\n";
 }
 
-std::string targetsCsv(const CompensationResult& r) {
-  std::ostringstream s;
-  s << "id,status,nominal_x_mm,nominal_y_mm,nominal_z_mm,nominal_qw,nominal_qx,nominal_qy,nominal_"
-       "qz,"
-       "before_dx_um,before_dy_um,before_dz_um,before_rx_urad,before_ry_urad,before_rz_urad,"
-       "programmed_x_mm,programmed_y_mm,programmed_z_mm,programmed_qw,programmed_qx,programmed_qy,"
-       "programmed_qz,"
-       "j1_deg,j2_deg,j3_deg,j4_deg,j5_deg,j6_deg,config,rotation_about_axis_deg,residual_um,U_"
-       "robot_um,U_mach_um,"
-       "U_work_um,k,verdict,reason\n";
-  for (size_t i = 0; i < r.holes.size(); ++i) csvRow(s, r, i);
-  return s.str();
+constexpr size_t kChunk = 64 * 1024;  ///< bytes handed to a ByteSink at a time
+
+void targetsCsv(const CompensationResult& r, const ByteSink& sink) {
+  std::string s =
+      "id,status,nominal_x_mm,nominal_y_mm,nominal_z_mm,nominal_qw,nominal_qx,nominal_qy,nominal_"
+      "qz,"
+      "before_dx_um,before_dy_um,before_dz_um,before_rx_urad,before_ry_urad,before_rz_urad,"
+      "programmed_x_mm,programmed_y_mm,programmed_z_mm,programmed_qw,programmed_qx,programmed_qy,"
+      "programmed_qz,"
+      "j1_deg,j2_deg,j3_deg,j4_deg,j5_deg,j6_deg,config,rotation_about_axis_deg,residual_um,U_"
+      "robot_um,U_mach_um,"
+      "U_work_um,k,verdict,reason\n";
+  s.reserve(kChunk + 4096);
+  for (size_t i = 0; i < r.holes.size(); ++i) {
+    csvRow(s, r, i);
+    if (s.size() >= kChunk) {
+      sink(s);
+      s.clear();
+    }
+  }
+  if (!s.empty()) sink(s);
 }
 
 /// One item whose numbers are not all finite (a bug or an input that escaped the range checks)
@@ -126,36 +146,259 @@ Json finiteOrFailed(Json item, const std::string& id, int line) {
   return j;
 }
 
-Json targetJson(const CompensationResult& r, size_t i) {
+/// The item written instead of one whose numbers are not all finite (a bug or an input that
+/// escaped the range checks): it is reported as failed on its own instead of poisoning the whole
+/// output (issue 13). The same members as finiteOrFailed().
+void failedItem(JsonWriter& w, const std::string& id, int line) {
+  w.beginObject();
+  w.key("id");
+  w.str(id);
+  if (line > 0) {
+    w.key("line");
+    w.integer(line);
+  }
+  w.key("status");
+  w.str("failed");
+  w.key("reason");
+  w.str(
+      "internal error: the result of this hole is not a finite number, so it is not reported "
+      "(please report this input)");
+  w.endObject();
+}
+
+/// Writes one array item with `write`; a non-finite number in it replaces it by failedItem().
+template <class F>
+void itemOrFailed(JsonWriter& w, const std::string& id, int line, F&& write) {
+  const JsonWriter::Mark m = w.mark();
+  try {
+    write();
+  } catch (const JsonNonFinite&) {
+    w.rewind(m);
+    failedItem(w, id, line);
+  }
+}
+
+void poseContract(JsonWriter& w, const Pose& T) {
+  w.key("position_mm");
+  w.numbers(T.translation() * 1e3, 6);
+  const Eigen::Quaterniond q = quaternionFromRotation(T.linear());
+  w.key("quaternion_wxyz");
+  w.numbers(Eigen::Vector4d(q.w(), q.x(), q.y(), q.z()), 9);
+}
+
+void uncertaintyTarget(JsonWriter& w, const HolePrediction& u) {
+  w.beginObject();
+  w.key("U_robot");
+  w.number(u.U_robot * 1e6, 3);
+  w.key("U_mach");
+  w.number(u.U_mach * 1e6, 3);
+  w.key("U_work");
+  w.number(u.U_work * 1e6, 3);
+  w.key("U_work_anisotropic");
+  w.number(u.U_work_exact * 1e6, 3);
+  w.key("k");
+  w.number(u.k, 4);
+  w.endObject();
+}
+
+void targetJson(JsonWriter& w, const CompensationResult& r, size_t i) {
   const HoleCompensation& h = r.holes[i];
-  Json j = Json::object();
-  j.set("id", Json::str(h.id));
-  j.set("status", Json::str(h.ok ? "compensated" : "original-kept"));
-  if (!h.ok) j.set("reason", Json::str(h.reason));
+  w.beginObject();
+  w.key("id");
+  w.str(h.id);
+  w.key("status");
+  w.str(h.ok ? "compensated" : "original-kept");
+  if (!h.ok) {
+    w.key("reason");
+    w.str(h.reason);
+  }
   const Pose& N = nominalOf(r, i);
-  j.set("nominal", poseJsonContract(N));
-  Json b = Json::object();
-  Json dev = Json::object();
-  dev.set("translation", Json::vector(h.before.d_work * 1e6, 3));
-  dev.set("rotation_urad", Json::vector(h.before.d_rot * 1e6, 3));
-  b.set("deviation_um", dev);
-  b.set("verdict", Json::str(verdictName(h.before.verdict)));
-  j.set("before", b);
+  w.key("nominal");
+  w.beginObject();
+  poseContract(w, N);
+  w.endObject();
+  w.key("before");
+  w.beginObject();
+  w.key("deviation_um");
+  w.beginObject();
+  w.key("translation");
+  w.numbers(h.before.d_work * 1e6, 3);
+  w.key("rotation_urad");
+  w.numbers(h.before.d_rot * 1e6, 3);
+  w.endObject();
+  w.key("verdict");
+  w.str(verdictName(h.before.verdict));
+  w.endObject();
   if (h.ok) {
-    Json p = poseJsonContract(h.T_programmed);
-    p.set("joints_deg", Json::vector(h.theta_cmd / kDeg, 6));
-    p.set("config", Json::str(h.config_text));
-    j.set("programmed", p);
-    j.set("rotation_about_axis_deg", Json::number(h.psi / kDeg, 4));
-    j.set("residual_um", Json::number(perpNorm(h.residual, N.linear().col(2)) * 1e6, 4));
-    j.set("residual_vector_um", Json::vector(h.residual * 1e6, 4));
-    j.set("branch_changed", Json::boolean(h.branch_changed));
-    if (!h.note.empty()) j.set("note", Json::str(h.note));
+    w.key("programmed");
+    w.beginObject();
+    poseContract(w, h.T_programmed);
+    w.key("joints_deg");
+    w.numbers(h.theta_cmd / kDeg, 6);
+    w.key("config");
+    w.str(h.config_text);
+    w.endObject();
+    w.key("rotation_about_axis_deg");
+    w.number(h.psi / kDeg, 4);
+    w.key("residual_um");
+    w.number(perpNorm(h.residual, N.linear().col(2)) * 1e6, 4);
+    w.key("residual_vector_um");
+    w.numbers(h.residual * 1e6, 4);
+    w.key("branch_changed");
+    w.boolean(h.branch_changed);
+    if (!h.note.empty()) {
+      w.key("note");
+      w.str(h.note);
+    }
   }
   const HolePrediction& u = h.ok ? h.after : h.before;
-  j.set("uncertainty_um", uncertaintyJson(u));
-  j.set("verdict", Json::str(verdictName(u.verdict)));
-  return j;
+  w.key("uncertainty_um");
+  uncertaintyTarget(w, u);
+  w.key("verdict");
+  w.str(verdictName(u.verdict));
+  w.endObject();
+}
+
+void targetsJson(const CompensationResult& r, const std::string& program_path,
+                 const ByteSink& sink) {
+  JsonWriter w;
+  w.out().reserve(kChunk + 8192);
+  w.beginObject();
+  w.key("robot");
+  w.str(r.context.robot.card.name);
+  w.key("cell");
+  w.str(r.context.cell.name);
+  const std::string program = fileName(program_path);
+  w.key("program");
+  w.str(program);
+  w.key("orientation");
+  w.str(r.orientation);
+  w.key("holes");
+  w.beginArray();
+  for (size_t i = 0; i < r.holes.size(); ++i) {
+    itemOrFailed(w, r.holes[i].id, r.context.job.requests[i].line, [&] { targetJson(w, r, i); });
+    if (w.out().size() >= kChunk) {
+      sink(w.out());
+      w.out().clear();
+    }
+  }
+  w.endArray();
+  w.endObject();
+  w.finish();
+  sink(w.out());
+}
+
+/// One hole of the prediction JSON: the same members, in the same order, as holeJson()
+/// (prediction_setup.cpp, the tree the C and Python hosts build; tests/streaming_output_test.cpp
+/// compares the two byte for byte).
+void predictionHole(JsonWriter& w, const HolePrediction& h, const HoleRequest& r) {
+  w.beginObject();
+  w.key("id");
+  w.str(h.id);
+  if (r.line > 0) {
+    w.key("line");
+    w.integer(r.line);
+  }
+  w.key("nominal");
+  w.beginObject();
+  w.key("position_mm");
+  w.numbers(r.T_W_tcp.translation() * 1e3, 6);
+  if (r.surface_W) {
+    w.key("surface_mm");
+    w.numbers(*r.surface_W * 1e3, 6);
+  }
+  w.key("bottom_mm");
+  w.numbers(r.T_W_tcp.translation() * 1e3, 6);
+  const Eigen::Quaterniond q = quaternionFromRotation(r.T_W_tcp.linear());
+  w.key("quaternion_wxyz");
+  w.numbers(Eigen::Vector4d(q.w(), q.x(), q.y(), q.z()), 9);
+  w.key("axis");
+  w.numbers(r.T_W_tcp.linear().col(2), 9);
+  w.endObject();
+  w.key("diameter_mm");
+  w.number(h.diameter * 1e3, 3);
+  w.key("depth_mm");
+  w.number(h.depth * 1e3, 3);
+  if (h.status == HoleStatus::kOk || h.status == HoleStatus::kNotConverged ||
+      h.status == HoleStatus::kSingular) {
+    w.key("joints_deg");
+    w.numbers(h.joints / kDeg, 6);
+    if (!h.config.empty()) {
+      w.key("config");
+      w.str(h.config);
+    }
+    w.key("branch");
+    w.integer(h.branch);
+  }
+  if (h.status == HoleStatus::kOk) {
+    w.key("deviation_um");
+    w.beginObject();
+    w.key("robot");
+    w.numbers(h.d_robot * 1e6, 3);
+    w.key("mach");
+    w.numbers(h.d_mach * 1e6, 3);
+    w.key("work");
+    w.numbers(h.d_work * 1e6, 3);
+    w.key("robot_rotation_urad");
+    w.numbers(h.d_rot * 1e6, 3);
+    w.key("work_tool_xy");
+    w.numbers(h.e_tool * 1e6, 3);
+    w.key("position_error");
+    w.number(h.position_error * 1e6, 3);
+    w.key("axis_tilt_urad");
+    w.number(h.axis_tilt * 1e6, 3);
+    if (h.nominal_axis_error) {
+      w.key("from_nominal_axis");
+      w.number(*h.nominal_axis_error * 1e6, 4);
+    }
+    w.endObject();
+    w.key("uncertainty_um");
+    w.beginObject();
+    w.key("U_robot");
+    w.number(h.U_robot * 1e6, 3);
+    w.key("U_mach");
+    w.number(h.U_mach * 1e6, 3);
+    w.key("U_work");
+    w.number(h.U_work * 1e6, 3);
+    w.key("k");
+    w.number(h.k, 4);
+    w.key("coverage");
+    w.str("2-D radial 95 % (Rayleigh)");
+    w.key("U_work_anisotropic");
+    w.number(h.U_work_exact * 1e6, 3);
+    w.key("standard_per_axis");
+    w.beginObject();
+    for (const BudgetTerm& t : h.budget) {
+      w.key(t.name);
+      w.number(t.u * 1e6, 3);
+    }
+    w.endObject();
+    w.key("process_share");
+    w.number(h.process_share, 4);
+    w.key("process_force_share");
+    w.number(h.process_force_share, 4);
+    w.endObject();
+    w.key("process_force_N");
+    w.numbers(h.force_base, 2);
+    w.key("equilibrium");
+    w.beginObject();
+    w.key("converged");
+    w.boolean(h.deflection.converged);
+    w.key("iterations");
+    w.integer(h.deflection.iterations);
+    w.endObject();
+  }
+  w.key("tolerance_mm");
+  w.number(h.tolerance * 1e3, 4);
+  w.key("verdict");
+  w.str(verdictName(h.verdict));
+  if (!h.reason.empty()) {
+    w.key("reason");
+    w.str(h.reason);
+  }
+  w.key("mc_time_s");
+  w.number(h.mc_time, 3);
+  w.endObject();
 }
 
 }  // namespace
@@ -199,18 +442,61 @@ std::string predictionReport(const PredictionResult& r) {
 
 std::string compensationTargets(const CompensationResult& r, const std::string& program_path,
                                 bool csv) {
-  if (csv) return targetsCsv(r);
-  Json root = Json::object();
-  root.set("robot", Json::str(r.context.robot.card.name));
-  root.set("cell", Json::str(r.context.cell.name));
-  root.set("program", Json::str(fileName(program_path)));
-  root.set("orientation", Json::str(r.orientation));
-  Json hs = Json::array();
-  for (size_t i = 0; i < r.holes.size(); ++i) {
-    hs.push(finiteOrFailed(targetJson(r, i), r.holes[i].id, r.context.job.requests[i].line));
+  std::string out;
+  writeCompensationTargets(r, program_path, csv, [&](std::string_view b) { out += b; });
+  return out;
+}
+
+void writeCompensationTargets(const CompensationResult& r, const std::string& program_path,
+                              bool csv, const ByteSink& sink) {
+  if (csv) {
+    targetsCsv(r, sink);
+  } else {
+    targetsJson(r, program_path, sink);
   }
-  root.set("holes", hs);
-  return root.dump();
+}
+
+// ---- streamed prediction JSON
+
+PredictionJsonStream::PredictionJsonStream(const PredictionContext& c, ByteSink sink)
+    : sink_(std::move(sink)) {
+  w_.out().reserve(kChunk + 8192);
+  w_.beginObject();
+  w_.key("robot");
+  w_.str(c.robot.card.name);
+  w_.key("cell");
+  w_.str(c.cell.name);
+  const std::string program = fileName(c.job.path);
+  w_.key("program");
+  w_.str(program);
+  w_.key("process");
+  w_.str(c.process_description);
+  w_.key("uncertainty_inputs");
+  w_.value(uncertaintyInputsJson(c.model.uncertainty));
+  w_.key("notes");
+  w_.strings(c.job.notes);
+  w_.key("holes");
+  w_.beginArray();
+}
+
+void PredictionJsonStream::hole(const HolePrediction& h, const HoleRequest& r) {
+  itemOrFailed(w_, h.id, r.line, [&] { predictionHole(w_, h, r); });
+  drain(false);
+}
+
+void PredictionJsonStream::finish(const CapabilitySummary& s) {
+  w_.endArray();
+  w_.key("summary");
+  w_.value(summaryJson(s));
+  w_.endObject();
+  w_.finish();
+  drain(true);
+}
+
+void PredictionJsonStream::drain(bool all) {
+  if (w_.out().empty() || (!all && w_.out().size() < kChunk)) return;
+  sink_(w_.out());
+  w_.out().clear();
 }
 
 std::string compensationReport(const CompensationResult& r, const std::string& program_path) {

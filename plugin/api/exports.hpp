@@ -4,11 +4,33 @@
 /// corrected-target export (CSV or JSON), the compensation report, the milling path export.
 /// Pure functions of a job result; deterministic bytes for identical inputs.
 
+#include <functional>
 #include <string>
+#include <string_view>
 
 #include "plugin/api/job.hpp"
 
 namespace roprec::api {
+
+/// Receives an export's bytes piece by piece, in order (a staged output file, a string).
+using ByteSink = std::function<void(std::string_view)>;
+
+/// Streams the prediction JSON hole by hole in constant memory: the same bytes as
+/// predictionJson(r).dump() (docs/contract.md "Prediction output"). The header is written by the
+/// constructor, each hole() writes one hole (a hole with a non-finite number is written as
+/// "failed", like predictionJson), finish() the summary. Bytes go to `sink` in pieces of about
+/// 64 KiB. Throws what `sink` throws.
+class PredictionJsonStream {
+ public:
+  PredictionJsonStream(const PredictionContext& c, ByteSink sink);
+  void hole(const HolePrediction& h, const HoleRequest& r);
+  void finish(const CapabilitySummary& s);
+
+ private:
+  void drain(bool all);
+  JsonWriter w_;
+  ByteSink sink_;
+};
 
 /// The prediction JSON of the file contract (docs/contract.md "Prediction output").
 Json predictionJson(const PredictionResult& r);
@@ -18,6 +40,9 @@ std::string predictionReport(const PredictionResult& r);
 /// The corrected-target export: CSV when `csv`, else JSON (docs/contract.md "Corrected targets").
 std::string compensationTargets(const CompensationResult& r, const std::string& program_path,
                                 bool csv);
+/// The same bytes, written hole by hole to `sink` (no whole-document tree or string).
+void writeCompensationTargets(const CompensationResult& r, const std::string& program_path,
+                              bool csv, const ByteSink& sink);
 /// The compensation report (before/after maps).
 std::string compensationReport(const CompensationResult& r, const std::string& program_path);
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <system_error>
+#include <thread>
 
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
@@ -13,6 +14,12 @@
 namespace roprec::api {
 
 const char* version() { return ROPREC_VERSION_STRING; }
+
+int resolvedThreads(int threads) {
+  if (threads < 0) throw UsageError("--threads must be 0 (every core) or a positive count");
+  if (threads == 0) return static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));
+  return threads;
+}
 
 int PredictionResult::failed() const {
   return static_cast<int>(std::count_if(holes.begin(), holes.end(), [](const HolePrediction& h) {
@@ -286,20 +293,120 @@ CompensationResult::Stats compensationStats(const CompensationResult& r, double 
 
 }  // namespace
 
+namespace {
+
+/// summarize() over holes given one at a time: the same operations in the same order, so the
+/// same bits (tests/streaming_output_test.cpp compares the streamed JSON with the in-memory one).
+class SummaryAccumulator {
+ public:
+  void add(const HolePrediction& h) {
+    ++s_.holes;
+    s_.mc_time_total += h.mc_time;
+    switch (h.verdict) {
+      case Verdict::kConforms:
+        ++s_.conforms;
+        break;
+      case Verdict::kConformsAfterCompensation:
+        ++s_.conforms_after_compensation;
+        break;
+      case Verdict::kNotCapable:
+        ++s_.not_capable;
+        break;
+      case Verdict::kUnreachable:
+        ++s_.unreachable;
+        break;
+      case Verdict::kSingular:
+        ++s_.singular;
+        break;
+      case Verdict::kNotConverged:
+        ++s_.not_converged;
+        break;
+    }
+    if (h.verdict == Verdict::kConforms || h.verdict == Verdict::kConformsAfterCompensation) {
+      ++s_.robot_can_take;
+      s_.mc_time_taken += h.mc_time;
+    }
+    if (h.status == HoleStatus::kOk) {
+      s_.max_process_share = std::max(s_.max_process_share, h.process_share);
+      share_sum_ += h.process_share;
+      ++share_n_;
+    }
+  }
+  [[nodiscard]] CapabilitySummary summary() const {
+    CapabilitySummary s = s_;
+    s.mean_process_share = share_n_ ? share_sum_ / share_n_ : 0.0;
+    return s;
+  }
+
+ private:
+  CapabilitySummary s_;
+  double share_sum_{0};
+  int share_n_{0};
+};
+
+/// Holes predicted per block of the streaming predict (bounded memory, whatever the job's size).
+constexpr size_t kPredictBlock = 2048;
+
+/// Predicts requests [begin, end) into `out` (cleared), each seeded with the previous admissible
+/// solution; `prev` carries it from block to block. `threads` is the worker count the per-hole
+/// work may use (resolvedThreads); the result does not depend on it.
+void predictRange(const PredictionModel& m, PredictionData& data,
+                  const std::vector<HoleRequest>& req, size_t begin, size_t end,
+                  std::optional<Vec6>& prev, int threads, std::vector<HolePrediction>& out) {
+  (void)threads;  // the prediction kernel runs on one thread (see README, performance)
+  out.clear();
+  for (size_t i = begin; i < end; ++i) {
+    out.push_back(predictHole(m, data, req[i], prev ? &*prev : nullptr));
+    if (out.back().status == HoleStatus::kOk) prev = out.back().joints;
+  }
+}
+
+}  // namespace
+
 PredictionResult predictJob(const std::string& cell_path, const std::string& program_path,
                             const JobOptions& options, const ProgressFn& progress) {
   PredictionResult r;
   r.context = loadContext(cell_path, program_path, options);
+  const int threads = resolvedThreads(options.threads);
   const auto& req = r.context.job.requests;
   PredictionData data(r.context.model);
   r.holes.reserve(req.size());
   std::optional<Vec6> prev;
-  for (size_t i = 0; i < req.size(); ++i) {
-    r.holes.push_back(predictHole(r.context.model, data, req[i], prev ? &*prev : nullptr));
-    if (r.holes.back().status == HoleStatus::kOk) prev = r.holes.back().joints;
-    if (progress) progress(i + 1, req.size());
+  std::vector<HolePrediction> block;
+  for (size_t b = 0; b < req.size(); b += kPredictBlock) {
+    const size_t e = std::min(req.size(), b + kPredictBlock);
+    predictRange(r.context.model, data, req, b, e, prev, threads, block);
+    for (HolePrediction& h : block) r.holes.push_back(std::move(h));
+    if (progress) progress(e, req.size());
   }
   r.summary = summarize(r.holes);
+  return r;
+}
+
+PredictionResult predictJobStreaming(
+    const std::string& cell_path, const std::string& program_path, const JobOptions& options,
+    const HoleSink& sink, const std::function<void(const PredictionContext&)>& on_context,
+    const ProgressFn& progress) {
+  PredictionResult r;
+  r.context = loadContext(cell_path, program_path, options);
+  const int threads = resolvedThreads(options.threads);
+  if (on_context) on_context(r.context);
+  const auto& req = r.context.job.requests;
+  PredictionData data(r.context.model);
+  SummaryAccumulator sum;
+  std::optional<Vec6> prev;
+  std::vector<HolePrediction> block;
+  block.reserve(std::min(req.size(), kPredictBlock));
+  for (size_t b = 0; b < req.size(); b += kPredictBlock) {
+    const size_t e = std::min(req.size(), b + kPredictBlock);
+    predictRange(r.context.model, data, req, b, e, prev, threads, block);
+    for (size_t i = b; i < e; ++i) {
+      sum.add(block[i - b]);
+      if (sink) sink(i, block[i - b], req[i]);
+    }
+    if (progress) progress(e, req.size());
+  }
+  r.summary = sum.summary();
   return r;
 }
 

@@ -48,7 +48,15 @@ struct JobOptions {
   /// "program" = the program's TCP is the real one (the cell's mass data kept), "cell" = the
   /// cell's TCP is the real one (the program's targets are taken as TCP poses of it).
   std::string tool;
+  /// Worker threads for the per-hole work (`--threads`): 1 (the default) runs on the calling
+  /// thread, 0 takes every core (std::thread::hardware_concurrency). Outputs are byte-identical
+  /// whatever the count (the sequential parts — IK seeds, the orientation sequence — are fixed
+  /// before the per-hole work is shared out).
+  int threads{1};
 };
+
+/// `threads` with 0 resolved to the number of cores (at least 1). Throws UsageError when < 0.
+int resolvedThreads(int threads);
 
 /// Notes of a job that state how frames and the tool were resolved start with this prefix; the
 /// CLI prints them on stderr and the reports show them in their header.
@@ -68,6 +76,19 @@ struct PredictionResult {
 /// the request's own `ik_seed`). Throws InputError/UsageError on bad input.
 PredictionResult predictJob(const std::string& cell_path, const std::string& program_path,
                             const JobOptions& options = {}, const ProgressFn& progress = {});
+
+/// Receives each predicted hole once, in hole order (index into context.job.requests).
+using HoleSink =
+    std::function<void(size_t index, const HolePrediction& hole, const HoleRequest& request)>;
+
+/// predictJob in constant memory: the holes are predicted in blocks and handed to `sink` in
+/// order, then dropped; the result's `holes` stays empty and its `summary` is the one
+/// summarize() gives over every hole. `on_context` (may be empty) is called once the job is
+/// loaded, before the first hole (a writer's header). Same predictions, same order as predictJob.
+PredictionResult predictJobStreaming(
+    const std::string& cell_path, const std::string& program_path, const JobOptions& options,
+    const HoleSink& sink, const std::function<void(const PredictionContext&)>& on_context,
+    const ProgressFn& progress = {});
 
 // ---------------------------------------------------------------- compensate
 

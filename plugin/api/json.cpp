@@ -76,9 +76,7 @@ bool Json::finite() const {
   return true;
 }
 
-std::string jsonEscape(const std::string& s) {
-  std::string o;
-  o.reserve(s.size() + 2);
+void appendJsonEscaped(std::string& o, std::string_view s) {
   for (const char c : s) {
     switch (c) {
       case '"':
@@ -107,30 +105,46 @@ std::string jsonEscape(const std::string& s) {
         }
     }
   }
+}
+
+std::string jsonEscape(const std::string& s) {
+  std::string o;
+  o.reserve(s.size() + 2);
+  appendJsonEscaped(o, s);
   return o;
 }
 
-std::string formatNumber(double v, int decimals) {
-  if (!std::isfinite(v)) return numberText(v);  // never "nan"/"inf"/"null" (Json::dump throws)
+void appendNumber(std::string& out, double v, int decimals) {
   // std::to_chars: the "C" format whatever the host's locale (a comma-decimal LC_NUMERIC must
   // not change a byte of the output).
   char buf[400];
   if (decimals >= 0) {
     const auto r =
         std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, std::min(decimals, 60));
-    if (r.ec != std::errc()) return numberText(v);
-    std::string s(buf, r.ptr);
-    // "-0.000" -> "0.000"
-    bool all_zero = true;
-    for (char c : s) {
-      if (c != '-' && c != '0' && c != '.') all_zero = false;
+    if (r.ec != std::errc()) {
+      out += numberText(v);
+      return;
     }
-    if (all_zero && !s.empty() && s[0] == '-') s.erase(0, 1);
-    return s;
+    // "-0.000" -> "0.000"
+    const char* b = buf;
+    if (buf[0] == '-' && std::all_of(buf + 1, r.ptr, [](char c) { return c == '0' || c == '.'; }))
+      ++b;
+    out.append(b, static_cast<size_t>(r.ptr - b));
+    return;
   }
-  if (v == 0.0) return "0";
+  if (v == 0.0) {
+    out += '0';
+    return;
+  }
   const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, r.ptr);
+  out.append(buf, static_cast<size_t>(r.ptr - buf));
+}
+
+std::string formatNumber(double v, int decimals) {
+  if (!std::isfinite(v)) return numberText(v);  // never "nan"/"inf"/"null" (Json::dump throws)
+  std::string s;
+  appendNumber(s, v, decimals);
+  return s;
 }
 
 namespace {
@@ -233,6 +247,164 @@ std::string Json::dump(int indent) const {
   }
   if (indent > 0) out += "\n";
   return out;
+}
+
+// ---- JsonWriter (the bytes of Json::dump(2), streamed)
+
+JsonNonFinite::JsonNonFinite(const std::string& w)
+    : InternalError("a non-finite number reached the JSON output at " + w +
+                    " (it is never written as null; please report this input)"),
+      where(w) {}
+
+void JsonWriter::pad(size_t n) { out_.append(2 * n, ' '); }
+
+std::string JsonWriter::where(std::string_view tail) const {
+  std::string w = "$";
+  for (const Frame& f : stack_) {
+    if (f.object) {
+      w += ".";
+      w += f.key;
+    } else if (f.count > 0) {
+      w += "[" + std::to_string(f.count - 1) + "]";
+    }
+  }
+  w += tail;
+  return w;
+}
+
+void JsonWriter::beforeValue() {
+  if (stack_.empty() || stack_.back().object) return;  // top level, or after key()
+  Frame& f = stack_.back();
+  out_ += f.count ? ",\n" : "\n";
+  pad(stack_.size());
+  ++f.count;
+}
+
+void JsonWriter::key(std::string_view k) {
+  Frame& f = stack_.back();
+  out_ += f.count ? ",\n" : "\n";
+  pad(stack_.size());
+  out_ += '"';
+  appendJsonEscaped(out_, k);
+  out_ += "\": ";
+  f.key = k;
+  ++f.count;
+}
+
+void JsonWriter::beginObject() {
+  beforeValue();
+  out_ += '{';
+  stack_.push_back({true, 0, {}});
+}
+
+void JsonWriter::beginArray() {
+  beforeValue();
+  out_ += '[';
+  stack_.push_back({false, 0, {}});
+}
+
+void JsonWriter::endObject() {
+  const size_t n = stack_.back().count;
+  stack_.pop_back();
+  if (n) {
+    out_ += '\n';
+    pad(stack_.size());
+  }
+  out_ += '}';
+}
+
+void JsonWriter::endArray() {
+  const size_t n = stack_.back().count;
+  stack_.pop_back();
+  if (n) {
+    out_ += '\n';
+    pad(stack_.size());
+  }
+  out_ += ']';
+}
+
+void JsonWriter::str(std::string_view s) {
+  beforeValue();
+  out_ += '"';
+  appendJsonEscaped(out_, s);
+  out_ += '"';
+}
+
+void JsonWriter::number(double v, int decimals) {
+  if (!std::isfinite(v)) throw JsonNonFinite(where());
+  beforeValue();
+  appendNumber(out_, v, decimals);
+}
+
+void JsonWriter::integer(std::int64_t v) {
+  beforeValue();
+  char buf[24];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  out_.append(buf, r.ptr);
+}
+
+void JsonWriter::boolean(bool b) {
+  beforeValue();
+  out_ += b ? "true" : "false";
+}
+
+void JsonWriter::null() {
+  beforeValue();
+  out_ += "null";
+}
+
+void JsonWriter::numbers(const Eigen::Ref<const Eigen::VectorXd>& v, int decimals) {
+  for (Eigen::Index i = 0; i < v.size(); ++i) {
+    if (!std::isfinite(v[i])) throw JsonNonFinite(where("[" + std::to_string(i) + "]"));
+  }
+  beforeValue();
+  out_ += '[';
+  for (Eigen::Index i = 0; i < v.size(); ++i) {
+    if (i) out_ += ", ";
+    appendNumber(out_, v[i], decimals);
+  }
+  out_ += ']';
+}
+
+void JsonWriter::strings(const std::vector<std::string>& v) {
+  beforeValue();
+  out_ += '[';
+  for (size_t i = 0; i < v.size(); ++i) {
+    if (i) out_ += ", ";
+    out_ += '"';
+    appendJsonEscaped(out_, v[i]);
+    out_ += '"';
+  }
+  out_ += ']';
+}
+
+void JsonWriter::value(const Json& j) {
+  const Mark m = mark();
+  beforeValue();
+  try {
+    j.write(out_, 2, static_cast<int>(stack_.size()));
+  } catch (const NonFiniteAt& e) {
+    const std::string w = where(e.where);
+    rewind(m);
+    throw JsonNonFinite(w);
+  }
+}
+
+void JsonWriter::finish() { out_ += '\n'; }
+
+JsonWriter::Mark JsonWriter::mark() const {
+  return {out_.size(), stack_.size(), stack_.empty() ? 0 : stack_.back().count};
+}
+
+void JsonWriter::rewind(const Mark& m) {
+  out_.resize(m.size);
+  stack_.resize(m.depth);
+  if (!stack_.empty()) stack_.back().count = m.count;
+}
+
+void JsonWriter::take(std::string& to) {
+  to.swap(out_);
+  out_.clear();
 }
 
 }  // namespace roprec::api

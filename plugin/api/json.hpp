@@ -8,8 +8,11 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
+
+#include "compensator/support/error.hpp"
 
 namespace roprec::api {
 
@@ -40,6 +43,7 @@ class Json {
   [[nodiscard]] std::string dump(int indent = 2) const;
 
  private:
+  friend class JsonWriter;
   void write(std::string& out, int indent, int level) const;
   Kind kind_{Kind::kNull};
   bool bool_{false};
@@ -52,8 +56,77 @@ class Json {
   std::vector<std::string> keys_;
 };
 
+/// Writes the bytes Json::dump(2) would give for the same values, in order, without building a
+/// tree (the prediction and target exports stream hole by hole in constant memory). Objects and
+/// arrays of containers are opened and closed around their members; arrays of scalars are given
+/// whole (numbers(), strings()) and written on one line, like Json::dump. Output is appended to
+/// `out()`, which the caller may drain at any point between two values (`take()`).
+/// Non-finite numbers are never written: number()/numbers() throw JsonNonFinite naming the place
+/// ($.holes[3].deviation_um.robot[1]); an item producer can catch it, cut the item off with
+/// mark()/rewind() and write a "failed" item instead (see exports.cpp).
+class JsonNonFinite : public InternalError {
+ public:
+  explicit JsonNonFinite(const std::string& where);
+  std::string where;  ///< "$.holes[3].x"
+};
+
+class JsonWriter {
+ public:
+  void beginObject();
+  void endObject();
+  /// An array of objects/arrays, one item per line (arrays of scalars: numbers()/strings()).
+  void beginArray();
+  void endArray();
+  /// Object member name; the value follows. `k` must stay alive until the value is written.
+  void key(std::string_view k);
+  void str(std::string_view s);
+  /// decimals < 0: shortest round-trip. Throws JsonNonFinite for NaN/inf (nothing appended).
+  void number(double v, int decimals = -1);
+  void integer(std::int64_t v);
+  void boolean(bool b);
+  void null();
+  /// A one-line array of numbers (Json::vector). Throws JsonNonFinite before appending anything.
+  void numbers(const Eigen::Ref<const Eigen::VectorXd>& v, int decimals = -1);
+  /// A one-line array of strings.
+  void strings(const std::vector<std::string>& v);
+  /// A whole tree value at the current place (same bytes as inside Json::dump).
+  void value(const Json& j);
+  /// Ends the document (the final newline of Json::dump); the writer must be back at the top.
+  void finish();
+
+  /// Position to rewind to: the output size and the open containers.
+  struct Mark {
+    size_t size;
+    size_t depth;
+    size_t count;
+  };
+  [[nodiscard]] Mark mark() const;
+  /// Drops everything written since `m` (which must not have been drained by take()).
+  void rewind(const Mark& m);
+
+  [[nodiscard]] std::string& out() { return out_; }
+  /// Moves the text written so far out (the writer keeps its state).
+  void take(std::string& to);
+
+ private:
+  struct Frame {
+    bool object;
+    size_t count;
+    std::string_view key;  ///< last key (objects), for messages
+  };
+  void beforeValue();
+  void pad(size_t n);
+  [[nodiscard]] std::string where(std::string_view tail = {}) const;
+  std::string out_;
+  std::vector<Frame> stack_;
+};
+
 /// Escapes a string for JSON (UTF-8 passes through; control characters are escaped).
 std::string jsonEscape(const std::string& s);
+/// Appends jsonEscape(s) to `out`.
+void appendJsonEscaped(std::string& out, std::string_view s);
+/// Appends formatNumber(v, decimals) to `out` (v finite).
+void appendNumber(std::string& out, double v, int decimals);
 /// Formats a double with fixed decimals (or shortest round-trip when decimals < 0), -0 -> 0, in
 /// the "C" format whatever the locale. Non-finite values give numberText()'s words.
 std::string formatNumber(double v, int decimals);

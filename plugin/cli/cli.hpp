@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "compensator/support/error.hpp"
 #include "compensator/support/rotation.hpp"
 
 namespace roprec::api {}
@@ -84,6 +85,18 @@ std::vector<Command>& commandRegistry();
 struct CommandRegistration {
   explicit CommandRegistration(Command c);
 };
+
+/// `--threads N` of predict and compensate: worker threads for the per-hole work, 0 = every core,
+/// default 1 (JobOptions::threads; outputs are byte-identical for any N). Throws UsageError
+/// unless N is a whole number in [0, 1024].
+inline int parseThreadsOption(Args& args) {
+  const std::optional<std::string> t = args.option("threads");
+  if (!t) return 1;
+  const double n = parseNumberList(*t, 1, "--threads")[0];
+  if (!(n >= 0 && n <= 1024 && n == static_cast<double>(static_cast<int>(n))))
+    throw UsageError("--threads must be a whole number: 0 (every core) or 1..1024, not " + *t);
+  return static_cast<int>(n);
+}
 
 /// Writes `text` to `path` atomically, or to ctx.out when path is "-" or empty.
 void emit(CommandContext& ctx, const std::string& path, const std::string& text);

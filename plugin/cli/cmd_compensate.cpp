@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "compensator/support/atomic_file.hpp"
 #include "compensator/support/c_format.hpp"
 #include "compensator/support/error.hpp"
 #include "plugin/api/job.hpp"
@@ -137,6 +138,7 @@ int run(Args& args, CommandContext& ctx) {
   job.options = parseCompensationOptions(args);
   job.allow_partial = args.flag("allow-partial");
   job.force = args.flag("force");
+  job.job.threads = parseThreadsOption(args);
   const std::vector<std::string> pos = args.positionals();
   args.finish();
   if (!cell) throw UsageError("give --cell CELL.xml");
@@ -164,13 +166,22 @@ int run(Args& args, CommandContext& ctx) {
     ctx.err << "roprec: " << r.why_not_writable << "\n";
     return 1;
   }
-  std::vector<std::pair<std::string, std::string>> extra;
-  if (targets) {
+  std::vector<std::string> extra;  // checked against the inputs before anything is staged
+  if (targets) extra.push_back(*targets);
+  if (report) extra.push_back(*report);
+  refuseOverwritingInput(*r.context.job.program, extra);
+  std::vector<std::string> written = writeCompensatedProgram(r.context, *out, {});
+  if (targets) {  // written hole by hole into its staged file
     const bool csv = targets->size() > 4 && targets->substr(targets->size() - 4) == ".csv";
-    extra.emplace_back(*targets, compensationTargets(r, pos[0], csv));
+    writeFileAtomicStream(*targets, [&](const ByteWriter& write) {
+      writeCompensationTargets(r, pos[0], csv, write);
+    });
+    written.push_back(*targets);
   }
-  if (report) extra.emplace_back(*report, compensationReport(r, pos[0]));
-  const std::vector<std::string> written = writeCompensatedProgram(r.context, *out, extra);
+  if (report) {
+    writeFileAtomic(*report, compensationReport(r, pos[0]));
+    written.push_back(*report);
+  }
   if (!ctx.quiet) printSummary(ctx, r, job.options, written);
   return r.failed ? 1 : 0;
 }
@@ -184,7 +195,8 @@ const CommandRegistration reg{
      "                         [--jump-threshold DEG] [--grid N] [--turn-axes \"1 4 6\"] "
      "[--force]\n"
      "                         [--frame cell|\"x y z a b c\"|'REF=x y z a b c;...'] [--tool "
-     "program|cell]\n\n"
+     "program|cell]\n"
+     "                         [--threads N]\n\n"
      "For every hole: the motor-side command θ_m = θ_d + K⁻¹τ(θ_d) (+ servo term) that makes the\n"
      "predicted real TCP land on the nominal hole, and the programmed target = the controller's\n"
      "rigid FK of θ_m with its configuration flags. Every target of a drill cycle moves with it.\n"
@@ -207,7 +219,9 @@ const CommandRegistration reg{
      "would change the arm posture). OUT gets a comment line \"roprec compensated: cell ...\";\n"
      "a program carrying it is refused (exit 2) unless --force. OUT (or its .dat) equal to the\n"
      "input is refused. --frame and --tool: as for roprec predict (controller-only frames and a\n"
-     "program tool that differs from the cell's are errors unless resolved).\n",
+     "program tool that differs from the cell's are errors unless resolved).\n"
+     "--threads N: worker threads for the per-hole work (0 = every core; default 1); the outputs\n"
+     "are byte-identical for any N. The --targets export is written hole by hole.\n",
      50, run}};
 
 }  // namespace

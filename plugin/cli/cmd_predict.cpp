@@ -1,6 +1,8 @@
 /// `roprec predict`: per-hole deviation, uncertainty budget, tolerance verdict and capability.
 #include <algorithm>
 #include <filesystem>
+#include <optional>
+#include <string_view>
 
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
@@ -12,8 +14,27 @@
 namespace roprec::cli {
 namespace {
 
-void printSummary(CommandContext& ctx, const PredictionResult& r) {
-  const CapabilitySummary& sum = r.summary;
+/// What the summary and the failure list need of the holes, gathered while they stream past.
+struct HoleDigest {
+  double axis_max{0};
+  double axis_sum{0};
+  int axis_n{0};
+  std::vector<std::string> failures;  ///< "hole ID (FILE:LINE): verdict: reason"
+
+  void add(const HolePrediction& h, const HoleRequest& q, const std::string& program) {
+    if (h.nominal_axis_error) {
+      axis_max = std::max(axis_max, *h.nominal_axis_error);
+      axis_sum += *h.nominal_axis_error;
+      ++axis_n;
+    }
+    if (h.status == HoleStatus::kOk) return;
+    std::string f = "hole " + h.id;
+    if (q.line > 0) f += " (" + program + ":" + std::to_string(q.line) + ")";
+    failures.push_back(f + ": " + verdictName(h.verdict) + ": " + h.reason);
+  }
+};
+
+void printSummary(CommandContext& ctx, const CapabilitySummary& sum, const HoleDigest& d) {
   ctx.err << "roprec predict: " << sum.holes << " holes: " << sum.conforms << " conform, "
           << sum.conforms_after_compensation << " conform after compensation, " << sum.not_capable
           << " not capable, " << (sum.unreachable + sum.singular + sum.not_converged)
@@ -21,19 +42,10 @@ void printSummary(CommandContext& ctx, const PredictionResult& r) {
   ctx.err << "  the robot can take " << sum.robot_can_take
           << " holes = " << formatNumber(sum.mc_time_taken, 0) << " s of machining-center time (of "
           << formatNumber(sum.mc_time_total, 0) << " s)\n";
-  double mx = 0;
-  double mean = 0;
-  int n = 0;
-  for (const HolePrediction& h : r.holes) {
-    if (!h.nominal_axis_error) continue;
-    mx = std::max(mx, *h.nominal_axis_error);
-    mean += *h.nominal_axis_error;
-    ++n;
-  }
-  if (n > 0) {
+  if (d.axis_n > 0) {
     ctx.err << "  real drill points from the nominal hole axes: mean "
-            << formatNumber(mean / n * 1e6, 3) << " µm, max " << formatNumber(mx * 1e6, 3)
-            << " µm (" << n << " holes)\n";
+            << formatNumber(d.axis_sum / d.axis_n * 1e6, 3) << " µm, max "
+            << formatNumber(d.axis_max * 1e6, 3) << " µm (" << d.axis_n << " holes)\n";
   }
 }
 
@@ -46,33 +58,66 @@ int run(Args& args, CommandContext& ctx) {
   const auto match_tol = args.option("match-tol");
   JobOptions opt;
   parseFrameTool(args, opt);
+  opt.threads = parseThreadsOption(args);
   const std::vector<std::string> pos = args.positionals();
   args.finish();
   if (!cell) throw UsageError("give --cell CELL.xml");
   if (pos.size() != 1) throw UsageError("give exactly one PROGRAM_OR_HOLES file");
+  if (json_out && report_out && *json_out == *report_out)
+    throw UsageError("--json and --report name the same file " + *json_out);
   opt.holes = holes;
   opt.uncertainty = uncertainty.value_or("");
   if (match_tol) opt.match_tol_mm = parseNumberList(*match_tol, 1, "--match-tol (mm)")[0];
 
   Progress progress(ctx, "predicting holes", 0);
-  const PredictionResult r = predictJob(
-      *cell, pos[0], opt, [&](size_t done, size_t total) { progress.step(done, total); });
-  progress.finish();
-  printJobNotes(ctx, r.context.job.notes);
-  const std::string json = predictionJson(r).dump();
-  if (report_out) writeFileAtomic(*report_out, predictionReport(r));
-  emit(ctx, json_out.value_or(""), json);
-
-  for (size_t i = 0; i < r.holes.size(); ++i) {
-    const HolePrediction& h = r.holes[i];
-    if (h.status == HoleStatus::kOk || ctx.quiet) continue;
-    const HoleRequest& q = r.context.job.requests[i];
-    ctx.err << "roprec: hole " << h.id;
-    if (q.line > 0) ctx.err << " (" << pos[0] << ":" << q.line << ")";
-    ctx.err << ": " << verdictName(h.verdict) << ": " << h.reason << "\n";
+  const ProgressFn step = [&](size_t done, size_t total) { progress.step(done, total); };
+  HoleDigest digest;
+  std::vector<std::string> notes;
+  CapabilitySummary summary;
+  const bool to_file = json_out && *json_out != "-";
+  std::string json;  // stdout only
+  // The JSON is written hole by hole: to the staged output file (constant memory) or, for stdout,
+  // to a string printed after the outputs are committed.
+  auto produce = [&](const ByteWriter& write) {
+    if (report_out) {  // the report needs every hole at once
+      const PredictionResult r = predictJob(*cell, pos[0], opt, step);
+      PredictionJsonStream js(r.context, write);
+      for (size_t i = 0; i < r.holes.size(); ++i) {
+        js.hole(r.holes[i], r.context.job.requests[i]);
+        digest.add(r.holes[i], r.context.job.requests[i], pos[0]);
+      }
+      js.finish(r.summary);
+      writeFileAtomic(*report_out, predictionReport(r));
+      notes = r.context.job.notes;
+      summary = r.summary;
+      return;
+    }
+    std::optional<PredictionJsonStream> js;
+    const PredictionResult r = predictJobStreaming(
+        *cell, pos[0], opt,
+        [&](size_t, const HolePrediction& h, const HoleRequest& q) {
+          js->hole(h, q);
+          digest.add(h, q, pos[0]);
+        },
+        [&](const PredictionContext& c) { js.emplace(c, write); }, step);
+    js->finish(r.summary);
+    notes = r.context.job.notes;
+    summary = r.summary;
+  };
+  if (to_file) {
+    writeFileAtomicStream(*json_out, produce);
+  } else {
+    produce([&](std::string_view b) { json += b; });
   }
-  if (!ctx.quiet && json_out) printSummary(ctx, r);
-  return r.failed() ? 1 : 0;
+  progress.finish();
+  printJobNotes(ctx, notes);
+  if (!to_file) emit(ctx, "", json);
+
+  if (!ctx.quiet) {
+    for (const std::string& f : digest.failures) ctx.err << "roprec: " << f << "\n";
+  }
+  if (!ctx.quiet && json_out) printSummary(ctx, summary, digest);
+  return digest.failures.empty() ? 0 : 1;
 }
 
 const CommandRegistration reg{
@@ -81,7 +126,8 @@ const CommandRegistration reg{
      "OUT.html]\n"
      "                      [--holes HOLES.csv] [--uncertainty linear|montecarlo] [--quiet]\n"
      "                      [--frame cell|\"x y z a b c\"|'REF=x y z a b c;...'] [--tool "
-     "program|cell]\n\n"
+     "program|cell]\n"
+     "                      [--threads N]\n\n"
      "For every hole of a drilling program (KUKA .src, ABB .mod/.prg, FANUC .ls, CSV/JSON targets) "
      "or a\n"
      "hole-list CSV: the IK solution the program's configuration selects (hole lists: the "
@@ -99,7 +145,12 @@ const CommandRegistration reg{
      "else by position within --match-tol mm (0.5); the JSON then reports from_nominal_axis, the "
      "real\n"
      "drill point's distance from the nominal hole axis (the residual of a compensated program).\n"
-     "JSON to stdout unless --json; --report writes one self-contained HTML file.\n"
+     "JSON to stdout unless --json; --report writes one self-contained HTML file. The JSON file "
+     "is\n"
+     "written hole by hole (constant memory; the report keeps every hole in memory).\n"
+     "--threads N: worker threads for the per-hole work (0 = every core; default 1); the output "
+     "is\n"
+     "byte-identical for any N.\n"
      "A base frame only the controller defines (FANUC UFRAME[n], KUKA BASE_DATA[n]) needs --frame\n"
      "(its pose in the robot base frame, mm/deg KUKA A-B-C; REF=... by name; cell = the cell's\n"
      "<workobject>); a program tool that differs from the cell's, or is defined only on the\n"

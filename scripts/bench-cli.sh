@@ -1,0 +1,112 @@
+#!/usr/bin/env bash
+# CLI scaling bench (issue 15; a script, not a timed test): generates 1,000 / 10,000 / 100,000-hole
+# KUKA KRL drilling programs for the KR 120 sample cell (samples/cells/housing-kr120.xml: the
+# top face of the e-motor housing, a 1.2 mm grid of OLP-style drill cycles like
+# samples/emotor-housing/housing_kr120.src), then runs
+#   roprec predict    --cell CELL JOB.src --json OUT.json --threads T
+#   roprec compensate --cell CELL JOB.src -o OUT.src --targets OUT.csv --orientation flip-free
+#                     --threads T                                   (1k and 10k holes)
+# with T = 1 and 2, and prints wall time and peak RSS (GNU time -v) of each run, the 2-vs-1
+# speed-up, and whether the outputs of T = 1 and T = 2 are byte-identical (cmp).
+#
+#   scripts/bench-cli.sh [ROPREC_BINARY]     (default build/bin/roprec)
+#
+# BENCH_SIZES  hole counts (default "1000 10000 100000")
+# BENCH_COMPENSATE_MAX  largest job that is also compensated (default 10000)
+# BENCH_DIR    work folder (default a fresh mktemp -d, removed at the end)
+# Exit 1 when a run fails or two outputs differ.
+set -euo pipefail
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+BIN="${1:-$ROOT/build/bin/roprec}"
+SIZES="${BENCH_SIZES:-1000 10000 100000}"
+COMP_MAX="${BENCH_COMPENSATE_MAX:-10000}"
+[ -x "$BIN" ] || { echo "bench-cli: $BIN is not an executable (build roprec first)" >&2; exit 2; }
+[ -x /usr/bin/time ] || { echo "bench-cli: needs GNU time (/usr/bin/time; scripts/setup.sh installs it)" >&2; exit 2; }
+DIR="${BENCH_DIR:-$(mktemp -d)}"
+[ -n "${BENCH_DIR:-}" ] || trap 'rm -rf "$DIR"' EXIT
+mkdir -p "$DIR"
+CELL="$ROOT/samples/cells/housing-kr120.xml"
+
+gen() {  # gen N FILE: a KRL program with N drill cycles on the housing's top face
+  python3 - "$1" "$2" <<'EOF'
+import math, sys
+n, path = int(sys.argv[1]), sys.argv[2]
+cols = int(math.ceil(math.sqrt(n * 1.2)))  # a 1.2 mm grid centred on the top face (z = 250)
+x0, y0 = -0.6 * (cols - 1), -0.6 * (int(math.ceil(n / cols)) - 1)
+name = "bench_%d" % n
+with open(path, "w") as f:
+    f.write("&ACCESS RVP\n&REL 1\n&COMMENT roprec bench-cli job\nDEF %s ( )\n" % name)
+    f.write(";FOLD INI\nBAS (#INITMOV,0 )\n;ENDFOLD (INI)\n\n")
+    f.write("$BASE = {FRAME: X 1350.000,Y 0.000,Z 300.000,A 0.000,B 0.000,C 0.000}\n")
+    f.write("$TOOL = {FRAME: X 0.000,Y 0.000,Z 320.000,A 0.000,B 0.000,C 0.000}\n")
+    f.write("SPINDLE_ON()\n")
+    for k in range(n):
+        x = x0 + 1.2 * (k % cols)
+        y = y0 + 1.2 * (k // cols)
+        p = "X %.3f,Y %.3f,Z %%.3f,A 0.000,B 0.000,C 180.000" % (x, y)
+        f.write("; B%06d drill D6.8 depth 16.0\n$VEL.CP = 0.25000\n" % (k + 1))
+        f.write("PTP {" + p % 300.0 + "} C_PTP\n")
+        f.write("LIN {" + p % 252.0 + "} C_DIS\n$VEL.CP = 0.02000\n")
+        f.write("LIN {" + p % 234.0 + "}\nWAIT SEC 0.3\n$VEL.CP = 0.25000\n")
+        f.write("LIN {" + p % 300.0 + "} C_DIS\n")
+    f.write("SPINDLE_OFF()\nEND\n")
+EOF
+}
+
+FAILED=0
+declare -A WALL
+run() {  # run KEY ARGS...: one roprec run under GNU time; prints wall s and peak RSS MB
+  local key="$1"
+  shift
+  local rc=0
+  /usr/bin/time -v -o "$DIR/time.txt" "$BIN" "$@" >"$DIR/out.txt" 2>"$DIR/err.txt" || rc=$?
+  if [ "$rc" -gt 1 ]; then
+    echo "bench-cli: $key failed (exit $rc):" >&2
+    tail -3 "$DIR/err.txt" >&2
+    FAILED=1
+    return
+  fi
+  local wall rss
+  wall=$(awk -F': ' '/Elapsed \(wall clock\)/ { n = split($2, t, ":"); s = 0;
+                      for (i = 1; i <= n; i++) s = s * 60 + t[i]; print s }' "$DIR/time.txt")
+  rss=$(awk -F': ' '/Maximum resident set size/ { printf "%.0f", $2 / 1024 }' "$DIR/time.txt")
+  WALL[$key]=$wall
+  printf '%-40s %8.2f s %8s MB\n' "$key" "$wall" "$rss"
+}
+
+same() {  # same LABEL A B: byte-identity of two outputs
+  if cmp -s "$2" "$3"; then
+    printf '%-40s %s\n' "$1" "byte-identical"
+  else
+    printf '%-40s %s\n' "$1" "DIFFERENT"
+    FAILED=1
+  fi
+}
+
+speedup() {  # speedup LABEL KEY1 KEY2
+  [ -n "${WALL[$2]:-}" ] && [ -n "${WALL[$3]:-}" ] || return 0
+  printf '%-40s %8.2fx\n' "$1" "$(awk "BEGIN { print ${WALL[$2]} / ${WALL[$3]} }")"
+}
+
+echo "bench-cli: $("$BIN" --version 2>/dev/null | head -1 || echo roprec), $(nproc) cores"
+for n in $SIZES; do
+  gen "$n" "$DIR/job$n.src"
+  for t in 1 2; do
+    run "predict $n holes, --threads $t" predict --cell "$CELL" "$DIR/job$n.src" --quiet \
+      --json "$DIR/p$n-t$t.json" --threads "$t"
+  done
+  speedup "predict $n: 2 vs 1 threads" "predict $n holes, --threads 1" "predict $n holes, --threads 2"
+  same "predict $n: JSON 1 vs 2 threads" "$DIR/p$n-t1.json" "$DIR/p$n-t2.json"
+  if [ "$n" -le "$COMP_MAX" ]; then
+    for t in 1 2; do
+      run "compensate $n flip-free, --threads $t" compensate --cell "$CELL" "$DIR/job$n.src" \
+        --quiet --orientation flip-free -o "$DIR/c$n-t$t.src" --targets "$DIR/c$n-t$t.csv" \
+        --threads "$t"
+    done
+    speedup "compensate $n: 2 vs 1 threads" "compensate $n flip-free, --threads 1" \
+      "compensate $n flip-free, --threads 2"
+    same "compensate $n: program 1 vs 2 threads" "$DIR/c$n-t1.src" "$DIR/c$n-t2.src"
+    same "compensate $n: targets 1 vs 2 threads" "$DIR/c$n-t1.csv" "$DIR/c$n-t2.csv"
+  fi
+done
+exit "$FAILED"

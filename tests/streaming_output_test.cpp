@@ -1,0 +1,441 @@
+// Issue 15 streaming writers: the prediction JSON and the corrected-target exports are written
+// hole by hole (JsonWriter, PredictionJsonStream, writeCompensationTargets) and must give the very
+// bytes of the in-memory writers they replace: the Json tree of predictionJson()/holeJson() (kept
+// for the C and Python hosts) and, for the target exports, the tree/ostringstream writers of the
+// previous release, kept below as the reference. Non-finite numbers are still never written (one
+// bad hole is reported as failed), the writer's buffer stays bounded, and a streamed output file
+// is all-or-nothing like any other (OutputSet::stageStream).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <sstream>
+
+#include <unistd.h>
+
+#include "compensator/support/atomic_file.hpp"
+#include "compensator/support/error.hpp"
+#include "plugin/api/job.hpp"
+#include "tests/support/test_support.hpp"
+
+namespace roprec {
+namespace {
+
+using api::Json;
+using api::JsonWriter;
+
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::string cellPath() { return test::sourceDir() + "/samples/cells/housing-kr120.xml"; }
+std::string samplePath(const std::string& f) {
+  return test::sourceDir() + "/samples/emotor-housing/" + f;
+}
+
+std::string streamed(const api::PredictionResult& r) {
+  std::string out;
+  api::PredictionJsonStream js(r.context, [&](std::string_view b) { out += b; });
+  for (size_t i = 0; i < r.holes.size(); ++i) js.hole(r.holes[i], r.context.job.requests[i]);
+  js.finish(r.summary);
+  return out;
+}
+
+// ---------------------------------------------------------------- JsonWriter vs Json::dump
+
+TEST(JsonWriter, GivesTheBytesOfJsonDumpForEveryShape) {
+  Json t = Json::object();
+  t.set("empty_object", Json::object());
+  t.set("empty_array", Json::array());
+  t.set("empty_numbers", Json::vector(Eigen::VectorXd(0)));
+  t.set("s", Json::str("quote \" backslash \\ tab \t nl \n ctl \x01 µm"));
+  t.set("minus_zero", Json::number(-0.0, 3));
+  t.set("small_negative_rounds_to_zero", Json::number(-0.0004, 3));
+  t.set("shortest", Json::number(0.1 + 0.2));
+  t.set("int", Json::integer(-1234567890123LL));
+  t.set("yes", Json::boolean(true));
+  t.set("nothing", Json());
+  t.set("v", Json::vector(Eigen::Vector3d(1.5, -0.0, 1e-7), 6));
+  Json strings = Json::array();
+  strings.push(Json::str("a"));
+  strings.push(Json::str("b\"c"));
+  t.set("strings", strings);
+  Json items = Json::array();
+  Json inner = Json::object();
+  inner.set("x", Json::number(2.25, 2));
+  Json deep = Json::array();
+  deep.push(Json::object());
+  deep.push(Json::vector(Eigen::Vector2d(1, 2), 1));
+  inner.set("deep", deep);
+  items.push(inner);
+  items.push(Json::object());
+  t.set("items", items);
+
+  JsonWriter w;
+  w.beginObject();
+  w.key("empty_object");
+  w.beginObject();
+  w.endObject();
+  w.key("empty_array");
+  w.beginArray();
+  w.endArray();
+  w.key("empty_numbers");
+  w.numbers(Eigen::VectorXd(0));
+  w.key("s");
+  w.str("quote \" backslash \\ tab \t nl \n ctl \x01 µm");
+  w.key("minus_zero");
+  w.number(-0.0, 3);
+  w.key("small_negative_rounds_to_zero");
+  w.number(-0.0004, 3);
+  w.key("shortest");
+  w.number(0.1 + 0.2);
+  w.key("int");
+  w.integer(-1234567890123LL);
+  w.key("yes");
+  w.boolean(true);
+  w.key("nothing");
+  w.null();
+  w.key("v");
+  w.numbers(Eigen::Vector3d(1.5, -0.0, 1e-7), 6);
+  w.key("strings");
+  w.strings({"a", "b\"c"});
+  w.key("items");
+  w.beginArray();
+  w.beginObject();
+  w.key("x");
+  w.number(2.25, 2);
+  w.key("deep");
+  w.beginArray();
+  w.beginObject();
+  w.endObject();
+  w.value(Json::vector(Eigen::Vector2d(1, 2), 1));
+  w.endArray();
+  w.endObject();
+  w.value(Json::object());
+  w.endArray();
+  w.endObject();
+  w.finish();
+  EXPECT_EQ(w.out(), t.dump());
+  EXPECT_NE(w.out().find("\"minus_zero\": 0.000"), std::string::npos);
+}
+
+TEST(JsonWriter, RefusesNonFiniteNumbersNamingThePlace) {
+  JsonWriter w;
+  w.beginObject();
+  w.key("holes");
+  w.beginArray();
+  w.beginObject();
+  w.endObject();
+  w.beginObject();
+  w.key("d");
+  const size_t before = w.out().size();
+  try {
+    w.numbers(Eigen::Vector3d(1, kNaN, 3), 3);
+    FAIL() << "a NaN was written";
+  } catch (const api::JsonNonFinite& e) {
+    EXPECT_EQ(e.where, "$.holes[1].d[1]");
+    EXPECT_NE(std::string(e.what()).find("never written"), std::string::npos);
+  }
+  EXPECT_EQ(w.out().size(), before);  // nothing of the array was written
+  EXPECT_THROW(w.number(std::numeric_limits<double>::infinity()), InternalError);
+  Json bad = Json::object();
+  bad.set("u", Json::number(-kNaN));
+  EXPECT_THROW(w.value(bad), api::JsonNonFinite);
+  EXPECT_EQ(w.out().size(), before);
+}
+
+// ---------------------------------------------------------------- prediction JSON
+
+TEST(StreamingOutput, PredictionJsonIsByteIdenticalToTheInMemoryTree) {
+  struct Case {
+    std::string program;
+    std::optional<std::string> holes;
+  };
+  // a program with its hole list (from_nominal_axis, surface points), a hole-list job, and a
+  // hole list with unreachable and far-away holes (other statuses, reasons)
+  const std::string dir = test::tempDir("stream_pred");
+  test::writeFile(dir + "/mixed.csv",
+                  "id,x,y,z,i,j,k,diameter,depth,tolerance\n"
+                  "A1,0,0,250,0,0,-1,6.8,16,0.2\n"
+                  "FAR,90000,0,250,0,0,-1,6.8,16,0.2\n"
+                  "A2,30,-20,250,0,0,-1,8.5,20,0.05\n"
+                  "UP,0,0,250,0,0,1,6.8,16,0.2\n"
+                  "A3,-40,10,250,0,0,-1,10.2,30,0.2\n");
+  const std::vector<Case> cases = {{samplePath("housing_kr120.src"), samplePath("holes.csv")},
+                                   {samplePath("holes.csv"), std::nullopt},
+                                   {dir + "/mixed.csv", std::nullopt}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.program);
+    api::JobOptions opt;
+    opt.holes = c.holes;
+    opt.match_tol_mm = 10;
+    const api::PredictionResult r = api::predictJob(cellPath(), c.program, opt);
+    ASSERT_FALSE(r.holes.empty());
+    if (c.program == dir + "/mixed.csv") EXPECT_GE(r.failed(), 2);  // unreachable holes too
+    const std::string tree = api::predictionJson(r).dump();
+    EXPECT_EQ(streamed(r), tree);
+
+    // predictJobStreaming: the same holes in the same order, the same summary, none kept
+    std::string out;
+    std::optional<api::PredictionJsonStream> js;
+    size_t next = 0;
+    const api::PredictionResult s = api::predictJobStreaming(
+        cellPath(), c.program, opt,
+        [&](size_t i, const HolePrediction& h, const HoleRequest& q) {
+          EXPECT_EQ(i, next++);
+          js->hole(h, q);
+        },
+        [&](const api::PredictionContext& ctx) {
+          js.emplace(ctx, [&](std::string_view b) { out += b; });
+        });
+    js->finish(s.summary);
+    EXPECT_TRUE(s.holes.empty());
+    EXPECT_EQ(next, r.holes.size());
+    EXPECT_EQ(out, tree);
+  }
+}
+
+TEST(StreamingOutput, AHoleWithANonFiniteNumberIsWrittenAsFailedLikeTheTree) {
+  api::JobOptions opt;
+  api::PredictionResult r = api::predictJob(cellPath(), samplePath("holes.csv"), opt);
+  ASSERT_GE(r.holes.size(), 10U);
+  ASSERT_EQ(r.holes[3].status, HoleStatus::kOk);
+  r.holes[3].d_robot.y() = kNaN;                                        // in a vector
+  r.holes[7].budget.at(0).u = std::numeric_limits<double>::infinity();  // in the budget object
+  const std::string tree = api::predictionJson(r).dump();
+  const std::string s = streamed(r);
+  EXPECT_EQ(s, tree);
+  EXPECT_EQ(s.find("nan"), std::string::npos);
+  EXPECT_EQ(s.find("inf"), std::string::npos);
+  const std::string failed = "\"id\": \"" + r.holes[3].id + "\",\n";
+  const size_t at = s.find(failed);
+  ASSERT_NE(at, std::string::npos);
+  EXPECT_EQ(s.compare(s.find("\"status\": ", at), 20, "\"status\": \"failed\",\n"), 0);
+  // a non-finite number outside the per-hole array (the summary) is an internal error
+  api::PredictionResult bad = r;
+  bad.summary.mc_time_total = kNaN;
+  EXPECT_THROW(streamed(bad), InternalError);
+}
+
+TEST(StreamingOutput, ThePredictionWriterHoldsAboutOneChunkWhateverTheJobSize) {
+  // 1,500 holes (~2.5 MB of JSON): the sink never receives (so the writer never held) more than
+  // its 64 KiB chunk plus one hole
+  const std::string dir = test::tempDir("stream_chunks");
+  std::ostringstream csv;
+  csv << "id,x,y,z,i,j,k,diameter,depth,tolerance\n";
+  for (int k = 0; k < 1500; ++k)
+    csv << "H" << k << "," << -30 + 1.2 * (k % 50) << "," << -20 + 1.2 * (k / 50)
+        << ",250,0,0,-1,6.8,16,0.2\n";
+  test::writeFile(dir + "/job.csv", csv.str());
+  size_t total = 0;
+  size_t largest = 0;
+  std::optional<api::PredictionJsonStream> js;
+  const api::PredictionResult s = api::predictJobStreaming(
+      cellPath(), dir + "/job.csv", {},
+      [&](size_t, const HolePrediction& h, const HoleRequest& q) { js->hole(h, q); },
+      [&](const api::PredictionContext& c) {
+        js.emplace(c, [&](std::string_view b) {
+          total += b.size();
+          largest = std::max(largest, b.size());
+        });
+      });
+  js->finish(s.summary);
+  EXPECT_EQ(s.summary.holes, 1500);
+  EXPECT_GT(total, 2'000'000U);
+  EXPECT_LT(largest, 64U * 1024U + 4096U);
+}
+
+// ---------------------------------------------------------------- corrected-target exports
+
+// The previous release's writers (Json tree / ostringstream), the reference for the streamed ones.
+namespace reference {
+
+double perpNorm(const Vec3& v, const Vec3& a) { return (v - v.dot(a) * a).norm(); }
+
+const Pose& nominalOf(const api::CompensationResult& r, size_t i) {
+  return r.holes[i].ok ? r.holes[i].T_nominal : r.context.job.requests[i].T_W_tcp;
+}
+
+Json poseJsonContract(const Pose& T) {
+  Json j = Json::object();
+  j.set("position_mm", Json::vector(T.translation() * 1e3, 6));
+  const Eigen::Quaterniond q = quaternionFromRotation(T.linear());
+  j.set("quaternion_wxyz", Json::vector(Eigen::Vector4d(q.w(), q.x(), q.y(), q.z()), 9));
+  return j;
+}
+
+Json uncertaintyJson(const HolePrediction& u) {
+  Json un = Json::object();
+  un.set("U_robot", Json::number(u.U_robot * 1e6, 3));
+  un.set("U_mach", Json::number(u.U_mach * 1e6, 3));
+  un.set("U_work", Json::number(u.U_work * 1e6, 3));
+  un.set("U_work_anisotropic", Json::number(u.U_work_exact * 1e6, 3));
+  un.set("k", Json::number(u.k, 4));
+  return un;
+}
+
+void csvQuaternion(std::ostringstream& s, const Mat3& R) {
+  const Eigen::Quaterniond q = quaternionFromRotation(R);
+  s << "," << api::formatNumber(q.w(), 9) << "," << api::formatNumber(q.x(), 9) << ","
+    << api::formatNumber(q.y(), 9) << "," << api::formatNumber(q.z(), 9);
+}
+
+std::string targetsCsv(const api::CompensationResult& r) {
+  std::ostringstream s;
+  s << "id,status,nominal_x_mm,nominal_y_mm,nominal_z_mm,nominal_qw,nominal_qx,nominal_qy,"
+       "nominal_qz,before_dx_um,before_dy_um,before_dz_um,before_rx_urad,before_ry_urad,"
+       "before_rz_urad,programmed_x_mm,programmed_y_mm,programmed_z_mm,programmed_qw,"
+       "programmed_qx,programmed_qy,programmed_qz,j1_deg,j2_deg,j3_deg,j4_deg,j5_deg,j6_deg,"
+       "config,rotation_about_axis_deg,residual_um,U_robot_um,U_mach_um,U_work_um,k,verdict,"
+       "reason\n";
+  for (size_t i = 0; i < r.holes.size(); ++i) {
+    const HoleCompensation& h = r.holes[i];
+    const Pose& N = nominalOf(r, i);
+    const Pose& P = h.ok ? h.T_programmed : N;
+    s << h.id << "," << (h.ok ? "compensated" : "original-kept");
+    for (int k = 0; k < 3; ++k) s << "," << api::formatNumber(N.translation()[k] * 1e3, 6);
+    csvQuaternion(s, N.linear());
+    for (int k = 0; k < 3; ++k) s << "," << api::formatNumber(h.before.d_work[k] * 1e6, 3);
+    for (int k = 0; k < 3; ++k) s << "," << api::formatNumber(h.before.d_rot[k] * 1e6, 3);
+    for (int k = 0; k < 3; ++k) s << "," << api::formatNumber(P.translation()[k] * 1e3, 6);
+    csvQuaternion(s, P.linear());
+    for (int k = 0; k < 6; ++k)
+      s << "," << api::formatNumber((h.ok ? h.theta_cmd[k] : h.before.joints[k]) / kDeg, 6);
+    s << ",\"" << (h.ok ? h.config_text : h.before.config) << "\","
+      << api::formatNumber(h.psi / kDeg, 4);
+    const Vec3 a = N.linear().col(2);
+    s << ","
+      << api::formatNumber(h.ok ? perpNorm(h.residual, a) * 1e6 : h.before.position_error * 1e6, 4);
+    const HolePrediction& u = h.ok ? h.after : h.before;
+    s << "," << api::formatNumber(u.U_robot * 1e6, 3) << "," << api::formatNumber(u.U_mach * 1e6, 3)
+      << "," << api::formatNumber(u.U_work * 1e6, 3) << "," << api::formatNumber(u.k, 4) << ","
+      << verdictName(u.verdict) << ",\"" << h.reason << "\"\n";
+  }
+  return s.str();
+}
+
+Json finiteOrFailed(Json item, const std::string& id, int line) {
+  if (item.finite()) return item;
+  Json j = Json::object();
+  j.set("id", Json::str(id));
+  if (line > 0) j.set("line", Json::integer(line));
+  j.set("status", Json::str("failed"));
+  j.set("reason", Json::str("internal error: the result of this hole is not a finite number, so "
+                            "it is not reported (please report this input)"));
+  return j;
+}
+
+Json targetJson(const api::CompensationResult& r, size_t i) {
+  const HoleCompensation& h = r.holes[i];
+  Json j = Json::object();
+  j.set("id", Json::str(h.id));
+  j.set("status", Json::str(h.ok ? "compensated" : "original-kept"));
+  if (!h.ok) j.set("reason", Json::str(h.reason));
+  const Pose& N = nominalOf(r, i);
+  j.set("nominal", poseJsonContract(N));
+  Json b = Json::object();
+  Json dev = Json::object();
+  dev.set("translation", Json::vector(h.before.d_work * 1e6, 3));
+  dev.set("rotation_urad", Json::vector(h.before.d_rot * 1e6, 3));
+  b.set("deviation_um", dev);
+  b.set("verdict", Json::str(verdictName(h.before.verdict)));
+  j.set("before", b);
+  if (h.ok) {
+    Json p = poseJsonContract(h.T_programmed);
+    p.set("joints_deg", Json::vector(h.theta_cmd / kDeg, 6));
+    p.set("config", Json::str(h.config_text));
+    j.set("programmed", p);
+    j.set("rotation_about_axis_deg", Json::number(h.psi / kDeg, 4));
+    j.set("residual_um", Json::number(perpNorm(h.residual, N.linear().col(2)) * 1e6, 4));
+    j.set("residual_vector_um", Json::vector(h.residual * 1e6, 4));
+    j.set("branch_changed", Json::boolean(h.branch_changed));
+    if (!h.note.empty()) j.set("note", Json::str(h.note));
+  }
+  const HolePrediction& u = h.ok ? h.after : h.before;
+  j.set("uncertainty_um", uncertaintyJson(u));
+  j.set("verdict", Json::str(verdictName(u.verdict)));
+  return j;
+}
+
+std::string targetsJson(const api::CompensationResult& r, const std::string& program_path) {
+  Json root = Json::object();
+  root.set("robot", Json::str(r.context.robot.card.name));
+  root.set("cell", Json::str(r.context.cell.name));
+  root.set("program", Json::str(std::filesystem::path(program_path).filename().string()));
+  root.set("orientation", Json::str(r.orientation));
+  Json hs = Json::array();
+  for (size_t i = 0; i < r.holes.size(); ++i) {
+    hs.push(finiteOrFailed(targetJson(r, i), r.holes[i].id, r.context.job.requests[i].line));
+  }
+  root.set("holes", hs);
+  return root.dump();
+}
+
+}  // namespace reference
+
+TEST(StreamingOutput, TargetExportsAreByteIdenticalToThePreviousWriters) {
+  const std::string program = samplePath("housing_kr120.src");
+  api::CompensationJob job;
+  job.allow_partial = true;
+  for (const OrientationMode mode : {OrientationMode::kKeep, OrientationMode::kFlipFree}) {
+    job.options.mode = mode;
+    job.options.grid = 12;
+    api::CompensationResult r = api::compensateJob(cellPath(), program, job);
+    ASSERT_FALSE(r.holes.empty());
+    // one hole kept original (the other branch of every column), one with a note
+    r.holes[1].ok = false;
+    r.holes[1].reason = "kept for the test, \"quoted\"";
+    r.holes[2].note = "a note";
+    EXPECT_EQ(api::compensationTargets(r, program, true), reference::targetsCsv(r));
+    EXPECT_EQ(api::compensationTargets(r, program, false), reference::targetsJson(r, program));
+    // streamed in pieces: the same bytes
+    std::string pieces;
+    api::writeCompensationTargets(r, program, false, [&](std::string_view b) { pieces += b; });
+    EXPECT_EQ(pieces, reference::targetsJson(r, program));
+    // a non-finite number in one hole: that hole is written as failed, like before
+    r.holes[4].residual.x() = kNaN;
+    EXPECT_EQ(api::compensationTargets(r, program, false), reference::targetsJson(r, program));
+    EXPECT_NE(api::compensationTargets(r, program, false).find("\"failed\""), std::string::npos);
+  }
+}
+
+// ---------------------------------------------------------------- streamed output files
+
+TEST(StreamingOutput, AStreamedOutputIsAllOrNothing) {
+  const std::string dir = test::tempDir("stream_files");
+  const std::string a = dir + "/a.json";
+  const std::string b = dir + "/b.json";
+  test::writeFile(a, "old a");
+  {
+    OutputSet set;
+    set.stageStream(a, [](const ByteWriter& w) {
+      for (int i = 0; i < 1000; ++i) w("0123456789");
+    });
+    // the producer of the second output fails half-way: its temporary is removed at once
+    EXPECT_THROW(set.stageStream(b,
+                                 [](const ByteWriter& w) {
+                                   w("half");
+                                   throw InputError("x.src", 3, "bad");
+                                 }),
+                 InputError);
+    EXPECT_FALSE(std::filesystem::exists(outputTemporaryPath(b, static_cast<long>(::getpid()))));
+    set.rollback();
+  }
+  EXPECT_EQ(test::readFile(a), "old a");
+  EXPECT_FALSE(std::filesystem::exists(b));
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    EXPECT_FALSE(isOutputTemporaryName(e.path().filename().string())) << e.path();
+  {
+    OutputSet set;
+    const ScopedOutputSet scope(set);
+    writeFileAtomicStream(a, [](const ByteWriter& w) {
+      w("new ");
+      w("a");
+    });
+    EXPECT_EQ(test::readFile(a), "old a");  // staged, not yet committed
+    set.commit();
+  }
+  EXPECT_EQ(test::readFile(a), "new a");
+}
+
+}  // namespace
+}  // namespace roprec
