@@ -1,4 +1,5 @@
 /// KUKA KRL reader (`.src` + `.dat`), docs/programs.md §2.
+#include <algorithm>
 #include <cmath>
 #include <unordered_map>
 
@@ -80,7 +81,12 @@ class KrlReader {
     fdats_.reserve(expected);
     ldat_vel_.reserve(expected);
     named_frames_.reserve(expected);
-    p_.target_list.reserve(expected);
+    // every target is an aggregate: '{' bounds their count (no regrowth of the large Target
+    // vector, whose copy would double the peak memory of a 100,000-hole program)
+    std::size_t aggregates = 16;
+    for (const SourceFile& f : p_.files)
+      aggregates += static_cast<std::size_t>(std::count(f.bytes.begin(), f.bytes.end(), '{'));
+    p_.target_list.reserve(aggregates);
     if (p_.files.size() > 1) readDat();
     readSrc();
   }
