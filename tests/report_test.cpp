@@ -5,17 +5,22 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <regex>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "compensator/precision/prediction.hpp"
+#include "plugin/api/deviation_split.hpp"
+#include "plugin/api/exports.hpp"
+#include "plugin/api/job.hpp"
 #include "plugin/api/report.hpp"
 #include "support/test_support.hpp"
 
@@ -23,6 +28,7 @@ namespace roprec {
 namespace {
 
 namespace fs = std::filesystem;
+constexpr double kPi = 3.14159265358979323846;
 
 // ------------------------------------------------------------------ synthetic input
 
@@ -198,14 +204,16 @@ TEST(Report, DeterministicAndSelfContained) {
   EXPECT_EQ(stripped.find("url("), std::string::npos);
   EXPECT_EQ(stripped.find("@import"), std::string::npos);
   EXPECT_EQ(stripped.find(" src="), std::string::npos);
-  EXPECT_EQ(stripped.find("<script"), std::string::npos);
+  // one inline script (table sorting and filtering), nothing loaded
+  EXPECT_EQ(countOf(stripped, "<script"), 1u);
+  EXPECT_EQ(countOf(stripped, "<script>"), 1u);
   EXPECT_EQ(stripped.find("<link"), std::string::npos);
 }
 
 TEST(Report, EscapesEveryInputString) {
   const Synthetic s = makeSynthetic(20201);
   const std::string html = api::renderReport(makeInput(s, false));
-  EXPECT_EQ(html.find("<script"), std::string::npos);
+  EXPECT_EQ(html.find("<script>&"), std::string::npos);
   EXPECT_EQ(html.find("<B>"), std::string::npos);
   EXPECT_NE(html.find("&lt;script&gt;&amp;&quot;"), std::string::npos);
   EXPECT_NE(html.find("housing_&lt;B&gt;.src"), std::string::npos);
@@ -228,7 +236,13 @@ TEST(Report, MapsTablesBudgetAndVerdicts) {
   EXPECT_EQ(countOf(html, "<figcaption>U<sub>95</sub>"), 2u);
   // every predicted hole is one marker per map; rings mark each configuration change in each map
   const size_t ok = s.preds.size() - static_cast<size_t>(s.not_ok);
-  EXPECT_EQ(countOf(html, "class=\"mk\""), 3 * ok);
+  EXPECT_EQ(countOf(html, "class=\"mk v-"), 3 * ok);
+  // the verdict outline of every marker matches the hole's verdict
+  const CapabilitySummary& vs = in.summary;
+  EXPECT_EQ(countOf(html, "class=\"mk v-ok\""), 3u * static_cast<size_t>(vs.conforms));
+  EXPECT_EQ(countOf(html, "class=\"mk v-comp\""),
+            3u * static_cast<size_t>(vs.conforms_after_compensation));
+  EXPECT_EQ(countOf(html, "class=\"mk v-nc\""), 3u * static_cast<size_t>(vs.not_capable));
   EXPECT_EQ(s.branch_changes, 3);  // 0 → 4 → 0 on face A, 0 → 2 at face B
   EXPECT_EQ(countOf(html, "<circle class=\"chg\""), 3u * static_cast<size_t>(s.branch_changes));
   EXPECT_EQ(countOf(html, "<td class=\"chg\""), static_cast<size_t>(s.branch_changes));
@@ -244,9 +258,11 @@ TEST(Report, MapsTablesBudgetAndVerdicts) {
     EXPECT_GT(at, last) << p.id;
     last = at;
   }
-  const size_t tbody = html.find("<table class=\"holes\">");
+  const size_t tbody = html.find("<table class=\"holes\"");
   ASSERT_NE(tbody, std::string::npos);
-  EXPECT_EQ(countOf(html.substr(tbody), "<tr><td class=\"c0\">"), s.preds.size());
+  EXPECT_EQ(countOf(html.substr(tbody), "<td class=\"c0\">"), s.preds.size());
+  EXPECT_EQ(countOf(html.substr(tbody), "<tr class=\"pass\"><td class=\"c0\">"),
+            static_cast<size_t>(in.summary.conforms));
   // verdict badges match the predictions
   const CapabilitySummary& sum = in.summary;
   EXPECT_EQ(countOf(html, "class=\"badge b-ok\" title=\"conforms\">conforms<"),
@@ -683,7 +699,12 @@ double viridisDistance(int r, int g, int b) {
 
 TEST(ReportChromium, HeadlessScreenshotShowsTheMaps) {
   const std::string chromium = "/usr/bin/chromium";
-  if (!fs::exists(chromium)) GTEST_SKIP() << "no " << chromium << " (scripts/test.sh installs it)";
+  if (!fs::exists(chromium)) {
+    const char* ci = std::getenv("CI");
+    if (ci != nullptr && std::string(ci) == "true")
+      FAIL() << "no " << chromium << " (scripts/setup.sh installs it)";
+    GTEST_SKIP() << "no " << chromium << " (scripts/setup.sh installs it)";
+  }
   const Synthetic s = makeSynthetic(20201);
   const std::string html = api::renderReport(makeInput(s, false));
   const std::string dir = test::tempDir("report-chromium");
@@ -753,6 +774,303 @@ TEST(ReportChromium, HeadlessScreenshotShowsTheMaps) {
     EXPECT_GT(marker_px[third], 1000u) << "third " << third << " " << png;
   EXPECT_GT(bar_px, 3000u) << png;  // colour bars
   EXPECT_GT(ring_px, 40u) << png;   // configuration-change rings
+  if (!HasFailure()) fs::remove_all(dir);
+}
+
+// ------------------------------------------------------------------ the sample job (issue 14)
+
+std::string sample(const std::string& rel) { return test::sourceDir() + "/samples/" + rel; }
+
+/// The cells of the per-hole table's body rows, tags stripped (one vector per row).
+std::vector<std::vector<std::string>> tableRows(const std::string& html) {
+  const size_t t0 = html.find("<table class=\"holes\"");
+  const size_t b0 = html.find("<tbody>", t0), b1 = html.find("</tbody>", b0);
+  std::vector<std::vector<std::string>> rows;
+  const std::string body = html.substr(b0, b1 - b0);
+  const std::regex tag("<[^>]*>");
+  for (size_t r = body.find("<tr"); r != std::string::npos; r = body.find("<tr", r + 3)) {
+    const size_t e = body.find("</tr>", r);
+    std::vector<std::string> cells;
+    for (size_t c = body.find("<td", r); c != std::string::npos && c < e;
+         c = body.find("<td", c + 3)) {
+      const size_t ce = body.find("</td>", c);
+      const std::string open = body.substr(c, body.find('>', c) - c);
+      std::string text = std::regex_replace(body.substr(c, ce - c), tag, "");
+      cells.push_back(text);
+      const size_t cs = open.find("colspan=\"");
+      if (cs != std::string::npos) {
+        for (int k = 1; k < std::stoi(open.substr(cs + 9)); ++k) cells.emplace_back("");
+      }
+    }
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+std::vector<std::string> tableHeads(const std::string& html) {
+  const size_t t0 = html.find("<table class=\"holes\"");
+  const size_t h0 = html.find("<thead>", t0), h1 = html.find("</thead>", h0);
+  std::vector<std::string> heads;
+  const std::string head = html.substr(h0, h1 - h0);
+  for (size_t c = head.find("<th"); c != std::string::npos; c = head.find("<th", c + 3)) {
+    if (head[c + 3] != '>' && head[c + 3] != ' ') continue;  // <thead>
+    heads.push_back(head.substr(c, head.find("</th>", c) - c));
+  }
+  return heads;
+}
+
+size_t columnOf(const std::vector<std::string>& heads, const std::string& what) {
+  for (size_t i = 0; i < heads.size(); ++i) {
+    if (heads[i].find(what) != std::string::npos) return i;
+  }
+  ADD_FAILURE() << "no column " << what;
+  return 0;
+}
+
+TEST(ReportSample, VerdictsPartFrameAlignedTableAndTheWhy) {
+  const api::PredictionResult r = api::predictJob(sample("cells/housing-kr120.xml"),
+                                                  sample("emotor-housing/housing_kr120.src"));
+  const std::string html = api::predictionReport(r);
+  const CapabilitySummary& sum = r.summary;
+  ASSERT_EQ(sum.holes, 204);
+  // every marker carries its verdict (3 maps per face)
+  EXPECT_EQ(countOf(html, "class=\"mk v-"), 3u * 204u);
+  EXPECT_EQ(countOf(html, "class=\"mk v-comp\""),
+            3u * static_cast<size_t>(sum.conforms_after_compensation));
+  // failing ids written on the maps without hovering (capped per map), t/2 on the bars
+  if (sum.conforms < sum.holes) {
+    EXPECT_GT(countOf(html, "<text class=\"flabel f-"), 0u);
+  }
+  EXPECT_GE(countOf(html, "<g class=\"tol\">"), 2u * 4u);  // e⊥ and U of four faces
+  EXPECT_NE(html.find("t/2 = 100"), std::string::npos);
+  // maps in the part frame: the top face on part X/Y, the walls with part Z up; no rotated axes
+  EXPECT_NE(html.find(">part X [mm]</text>"), std::string::npos);
+  EXPECT_NE(html.find(">part Y [mm]</text>"), std::string::npos);
+  EXPECT_NE(html.find(">part Z [mm]</text>"), std::string::npos);
+  EXPECT_EQ(html.find("(0.707, 0.707, 0.000)"), std::string::npos);
+  EXPECT_EQ(html.find("base X [mm]"), std::string::npos);
+
+  // the table: one cell per column in every row, units in the heads, one number per cell
+  const std::vector<std::string> heads = tableHeads(html);
+  const auto rows = tableRows(html);
+  ASSERT_EQ(rows.size(), 204u);
+  for (const auto& row : rows) ASSERT_EQ(row.size(), heads.size());
+  std::string all_heads;
+  for (const std::string& h : heads) all_heads += h;
+  for (const char* unit : {"<small>\u00b5m</small>", "<small>mm</small>", "<small>deg</small>",
+                           "<small>\u00b5rad</small>", "<small>s</small>"}) {
+    EXPECT_NE(all_heads.find(unit), std::string::npos) << unit;
+  }
+  const std::regex number("^-?[0-9]+(\\.[0-9]+)?$");
+  const size_t c_e = columnOf(heads, ">e\u22a5<br>");
+  const size_t c_d = columnOf(heads, "|\u03b4robot|");
+  const size_t c_g = columnOf(heads, "\u2192 gravity"), c_t = columnOf(heads, "\u2192 tool weight");
+  const size_t c_p = columnOf(heads, "\u2192 process"), c_c = columnOf(heads, "\u2192 controller");
+  const size_t c_j1 = columnOf(heads, ">J1<");
+  EXPECT_NE(heads[c_e].find("<small>\u00b5m</small>"), std::string::npos);
+  EXPECT_NE(heads[c_j1].find("<small>deg</small>"), std::string::npos);
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const auto& row = rows[i];
+    for (const size_t c : {c_e, c_d, c_g, c_t, c_p, c_c, c_j1})
+      ASSERT_TRUE(std::regex_match(row[c], number))
+          << "row " << i << " col " << c << " '" << row[c] << "'";
+    // the why: the four parts along δrobot add up to |δrobot| (each printed to 0.1 µm)
+    const double parts =
+        std::stod(row[c_g]) + std::stod(row[c_t]) + std::stod(row[c_p]) + std::stod(row[c_c]);
+    EXPECT_NEAR(parts, std::stod(row[c_d]), 0.26) << "row " << i;
+    // the printed |δrobot| is the prediction's
+    EXPECT_NEAR(std::stod(row[c_d]), r.holes[i].d_robot.norm() * 1e6, 0.051) << "row " << i;
+  }
+}
+
+TEST(ReportSample, SplitIsNearlyAdditiveAndIndependentOfTheProgram) {
+  const api::PredictionResult r = api::predictJob(sample("cells/housing-kr120.xml"),
+                                                  sample("emotor-housing/housing_kr120.src"));
+  std::vector<const HolePrediction*> preds;
+  for (const HolePrediction& p : r.holes) preds.push_back(&p);
+  const auto split =
+      api::splitRobotDeviations(r.context.model, r.context.tool, r.context.job.requests, preds);
+  ASSERT_EQ(split.size(), r.holes.size());
+  double worst = 0;
+  for (size_t i = 0; i < split.size(); ++i) {
+    ASSERT_TRUE(split[i].has_value()) << r.holes[i].id;
+    const api::DeviationSplit& s = *split[i];
+    // exact by construction: the parts sum to δrobot
+    EXPECT_LT((s.gravity + s.tool + s.process + s.controller - r.holes[i].d_robot).norm(), 1e-12);
+    // the deflection is nonlinear: the process part on the loaded arm vs the process load on the
+    // unloaded arm differs by the second-order coupling only (< 2 % of the part + 0.05 µm)
+    const double diff = (s.process - s.process_alone).norm();
+    EXPECT_LT(diff, 0.02 * s.process.norm() + 0.05e-6) << r.holes[i].id;
+    worst = std::max(worst, diff / std::max(1e-12, s.process.norm()));
+    // the KR 120 cell's controller compensates gravity with this tool: weight + reference ≈ 0
+    // within the compensation's own linearisation (≤ 5 µm), so δrobot is mostly the process part
+    EXPECT_LT((s.gravity + s.tool + s.controller).norm(), 5e-6) << r.holes[i].id;
+  }
+  RecordProperty("worst_relative_non_additivity", std::to_string(worst));
+}
+
+/// Compensation: the offset per target (mm, deg), flags before → after, verdict before → after.
+TEST(Report, CompensationShowsOffsetsFlagsAndVerdictsBeforeAfter) {
+  const Synthetic s = makeSynthetic(20201);
+  api::ReportInput in = makeInput(s, true);
+  std::vector<HolePrediction> after(s.preds.size());
+  for (size_t i = 0; i < in.holes.size(); ++i) {
+    if (s.preds[i].status != HoleStatus::kOk) continue;
+    Pose P = s.poses[i];
+    P.translation() += Vec3(0.1e-3, -0.2e-3, 0.05e-3);
+    P.linear() =
+        P.linear() * Eigen::AngleAxisd(0.5 * kPi / 180.0, Vec3::UnitX()).toRotationMatrix();
+    in.holes[i].T_W_programmed = P;
+    in.holes[i].config_after = i == 3 ? std::string("S 010 T 000011") : s.preds[i].config;
+    after[i] = s.preds[i];
+    after[i].verdict = Verdict::kConforms;
+    in.holes[i].after = &after[i];
+  }
+  const std::string html = api::renderReport(in);
+  const std::vector<std::string> heads = tableHeads(html);
+  const auto rows = tableRows(html);
+  ASSERT_EQ(rows.size(), s.preds.size());
+  const size_t cx = columnOf(heads, ">\u0394x<"), cy = columnOf(heads, ">\u0394y<");
+  const size_t cz = columnOf(heads, ">\u0394z<"), cn = columnOf(heads, "|\u0394p|");
+  const size_t cr = columnOf(heads, ">\u0394rot<"), cf = columnOf(heads, "Config before");
+  const size_t cvb = columnOf(heads, "Verdict before"), cva = columnOf(heads, "Verdict after");
+  EXPECT_NE(heads[cx].find("<small>mm</small>"), std::string::npos);
+  EXPECT_NE(heads[cr].find("<small>deg</small>"), std::string::npos);
+  for (size_t i = 0; i < rows.size(); ++i) {
+    ASSERT_EQ(rows[i].size(), heads.size()) << i;
+    if (s.preds[i].status != HoleStatus::kOk) continue;
+    EXPECT_EQ(rows[i][cx], "0.100");
+    EXPECT_EQ(rows[i][cy], "-0.200");
+    EXPECT_EQ(rows[i][cz], "0.050");
+    EXPECT_EQ(rows[i][cn], "0.229");
+    EXPECT_EQ(rows[i][cr], "0.500");
+    EXPECT_EQ(rows[i][cva], "conforms");
+    const std::string badge = s.preds[i].verdict == Verdict::kConforms     ? "conforms"
+                              : s.preds[i].verdict == Verdict::kNotCapable ? "not capable"
+                                                                           : "after comp.";
+    EXPECT_EQ(rows[i][cvb], badge);
+    const std::string flags = s.preds[i].config + " \u2192 " +
+                              (i == 3 ? std::string("S 010 T 000011") : s.preds[i].config);
+    EXPECT_EQ(rows[i][cf], flags) << i;
+  }
+  EXPECT_EQ(countOf(html, "class=\"l cfgchg\""), 1u);
+}
+
+TEST(ReportSample, CompensationReportOfTheSample) {
+  const std::string dir = test::tempDir("report-compensate");
+  api::CompensationJob job;
+  const api::CompensationResult r = api::compensateJob(
+      sample("cells/housing-kr120.xml"), sample("emotor-housing/housing_kr120.src"), job);
+  const std::string html = api::compensationReport(r, "housing_kr120.src");
+  const std::vector<std::string> heads = tableHeads(html);
+  const auto rows = tableRows(html);
+  ASSERT_EQ(rows.size(), r.holes.size());
+  const size_t cn = columnOf(heads, "|\u0394p|"), cf = columnOf(heads, "Config before");
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const HoleCompensation& h = r.holes[i];
+    ASSERT_TRUE(h.ok) << h.id;
+    const double dp =
+        (h.T_programmed.translation() - r.context.job.requests[i].T_W_tcp.translation()).norm();
+    EXPECT_NEAR(std::stod(rows[i][cn]), dp * 1e3, 0.0006) << h.id;
+    EXPECT_EQ(rows[i][cf], h.before.config + " \u2192 " + h.config_text) << h.id;
+  }
+}
+
+// ------------------------------------------------------------------ large jobs in Chromium
+
+/// 20,000 holes on a plate (top face, part frame rotated 30° about z in the base), 2 % not
+/// conforming, 0.5 % unreachable.
+Synthetic makeLarge(size_t n) {
+  Synthetic s;
+  std::mt19937 rng(14);
+  std::uniform_real_distribution<double> U01(0.0, 1.0);
+  const int cols = 200;
+  for (size_t i = 0; i < n; ++i) {
+    HolePrediction p;
+    p.id = "L" + std::to_string(i + 1);
+    const double x = 0.004 * static_cast<double>(i % cols),
+                 y = 0.004 * static_cast<double>(i / cols);
+    s.poses.push_back(toolPose(Vec3(1.0 + x, -0.2 + y, 0.5), -Vec3::UnitZ()));
+    p.tolerance = 0.2e-3;
+    p.diameter = 8e-3;
+    p.config = "S 2 T 2";
+    if (i % 200 == 199) {
+      p.status = HoleStatus::kUnreachable;
+      p.verdict = Verdict::kUnreachable;
+      p.reason = "no IK solution within the joint limits";
+      s.preds.push_back(p);
+      continue;
+    }
+    p.d_robot = Vec3(20e-6 + 40e-6 * x, 10e-6 * U01(rng), -30e-6);
+    p.d_work = p.d_robot;
+    p.position_error = p.d_robot.head<2>().norm();
+    p.U_work = p.U_work_exact = 40e-6 + 20e-6 * U01(rng);
+    p.budget = {{"robot_repeatability", 16.6e-6, false}};
+    p.verdict = i % 50 == 7 ? Verdict::kNotCapable : verdictFor(p.position_error, p.U_work, 0.2e-3);
+    s.preds.push_back(p);
+  }
+  return s;
+}
+
+/// Wall time of one headless Chromium screenshot of `page` (s), or a negative value on failure.
+double chromiumSeconds(const std::string& chromium, const std::string& dir, const std::string& page,
+                       const std::string& png) {
+  const std::string cmd =
+      "timeout 120 '" + chromium +
+      "' --headless --no-sandbox --disable-gpu --disable-quic --no-first-run "
+      "--disable-background-networking --disable-component-update --disable-sync "
+      "--hide-scrollbars --user-data-dir='" +
+      dir + "/profile' --window-size=1400,1600 --screenshot='" + png + "' 'file://" + page +
+      "' >'" + dir + "/chromium.log' 2>&1 </dev/null";
+  const auto t0 = std::chrono::steady_clock::now();
+  const int rc = std::system(cmd.c_str());
+  const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return rc == 0 && fs::exists(png) ? t : -1.0;
+}
+
+TEST(ReportChromium, TwentyThousandHolesOpenQuickly) {
+  const std::string chromium = "/usr/bin/chromium";
+  if (!fs::exists(chromium)) {
+    const char* ci = std::getenv("CI");
+    if (ci != nullptr && std::string(ci) == "true")
+      FAIL() << "no " << chromium << " (scripts/setup.sh installs it)";
+    GTEST_SKIP() << "no " << chromium << " (scripts/setup.sh installs it)";
+  }
+  const Synthetic s = makeLarge(20000);
+  api::ReportInput in = makeInput(s, false);
+  Pose T_W_part = Pose::Identity();
+  T_W_part.linear() = Eigen::AngleAxisd(kPi / 6, Vec3::UnitZ()).toRotationMatrix();
+  in.T_W_part = T_W_part;
+  in.part_frame = "plate";
+  const std::string html = api::renderReport(in);
+  // aggregated: bins instead of 60,000 markers; every row in the script's array, a page in the DOM
+  EXPECT_EQ(countOf(html, "class=\"mk "), 0u);
+  EXPECT_GT(countOf(html, "<rect class=\"bin "), 300u);
+  EXPECT_EQ(countOf(html, "<td class=\"c0\">"), 0u);
+  EXPECT_EQ(countOf(html, "<td class=\\\"c0\\\">"), 20000u);
+  const size_t failing = s.preds.size() - static_cast<size_t>(in.summary.conforms);
+  EXPECT_EQ(countOf(html, "<tr class=\\\"pass\\\">"), 20000u - failing);
+  EXPECT_EQ(html.find("</script>"), html.rfind("</script>"));  // no row ends the script
+  EXPECT_LT(html.size(), 12u << 20) << "bytes";
+
+  const std::string dir = test::tempDir("report-chromium-large");
+  const std::string page = dir + "/large.html", blank = dir + "/blank.html";
+  test::writeFile(page, html);
+  test::writeFile(blank, "<!DOCTYPE html><html><body><p>blank</p></body></html>");
+  // Chromium's own start-up is measured on a blank page and subtracted
+  const double t_blank = chromiumSeconds(chromium, dir, blank, dir + "/blank.png");
+  const double t_page = chromiumSeconds(chromium, dir, page, dir + "/large.png");
+  ASSERT_GT(t_blank, 0) << test::readFile(dir + "/chromium.log");
+  ASSERT_GT(t_page, 0) << test::readFile(dir + "/chromium.log");
+  const double load = t_page - t_blank;
+  RecordProperty("chromium_blank_s", std::to_string(t_blank));
+  RecordProperty("chromium_report_s", std::to_string(t_page));
+  std::printf("20,000-hole report: %.2f MB, Chromium %.2f s (blank page %.2f s) -> %.2f s\n",
+              static_cast<double>(html.size()) / 1e6, t_page, t_blank, load);
+  // the budget is 3 s on a desktop; this shared 2-core machine gets a generous 3x
+  EXPECT_LT(load, 9.0);
+  const Image img = decodePng(readBytes(dir + "/large.png"));
+  EXPECT_EQ(img.w, 1400);
   if (!HasFailure()) fs::remove_all(dir);
 }
 

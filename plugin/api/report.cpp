@@ -865,6 +865,7 @@ tbody tr:hover td{background:#eef5ff}
 .holes.fonly tr.pass{display:none}
 .holes td.cfgchg{color:#a40e26;font-weight:600}
 .filter{display:inline-block;margin:4px 0 8px;font-size:13px}
+.pager{margin:8px 0;font-size:13px}
 .holes td.v span{display:inline-block;min-width:3em}
 .holes td.j span{display:inline-block;min-width:3.1em}
 .holes td.reason{text-align:left;color:#57606a;font-style:italic}
@@ -902,6 +903,34 @@ for(var i=0;i<ths.length;i++)(function(i){ths[i].addEventListener('click',functi
  var f=document.createDocumentFragment();k.forEach(function(x){f.appendChild(x[2]);});b.appendChild(f);
  for(var j=0;j<ths.length;j++)ths[j].removeAttribute('aria-sort');
  ths[i].setAttribute('aria-sort',d>0?'ascending':'descending');});})(i);
+})();
+)JS";
+
+/// Large jobs: the rows live in ROPREC_ROWS (one "<tr>…</tr>" string each); the DOM holds one
+/// page. Sorting (by the clicked column's text, numbers numerically) and the filter act on all.
+constexpr const char* kPagedTableScript = R"JS(
+(function(){
+var R=window.ROPREC_ROWS,t=document.getElementById('holetable');if(!t||!R)return;
+var b=t.tBodies[0],cb=document.getElementById('failonly'),pg=document.getElementById('pager');
+var P=200,page=0,order=R.map(function(_,i){return i;}),dir={},keys={};
+function cell(s,i){var p=s.split('</td>')[i]||'';return p.replace(/<[^>]*>/g,'');}
+function rows(){return cb.checked?order.filter(function(i){return R[i].lastIndexOf('<tr class="pass"',0)!==0;}):order;}
+function draw(){var r=rows(),n=Math.max(1,Math.ceil(r.length/P));if(page>=n)page=n-1;if(page<0)page=0;
+ b.innerHTML=r.slice(page*P,page*P+P).map(function(i){return R[i];}).join('');
+ pg.querySelector('span').textContent='rows '+(r.length?page*P+1:0)+'\u2013'+Math.min(r.length,page*P+P)+' of '+r.length;}
+pg.querySelector('.prev').addEventListener('click',function(){page--;draw();});
+pg.querySelector('.next').addEventListener('click',function(){page++;draw();});
+cb.addEventListener('change',function(){page=0;draw();});
+var ths=t.tHead.rows[0].cells;
+for(var i=0;i<ths.length;i++)(function(i){ths[i].addEventListener('click',function(){
+ var txt=ths[i].getAttribute('data-t')==='1';
+ if(!keys[i])keys[i]=R.map(function(s){var c=cell(s,i);if(txt)return c;var v=parseFloat(c);return isNaN(v)?Infinity:v;});
+ var k=keys[i],d=dir[i]=-(dir[i]||-1);
+ order=R.map(function(_,n){return n;});
+ order.sort(function(a,c){if(k[a]<k[c])return -d;if(k[a]>k[c])return d;return a-c;});
+ for(var j=0;j<ths.length;j++)ths[j].removeAttribute('aria-sort');
+ ths[i].setAttribute('aria-sort',d>0?'ascending':'descending');page=0;draw();});})(i);
+draw();
 })();
 )JS";
 
@@ -1359,7 +1388,23 @@ bool passes(const HoleView& h) {
   return v == Verdict::kConforms;
 }
 
-constexpr size_t kTableRowsWhenLarge = 500;  ///< passing holes listed in a large job's table
+constexpr size_t kTableRowsPerPage = 200;  ///< rows a page of a large job's table
+
+/// A string as a JavaScript string literal (no "</" so it cannot end the script element).
+std::string jsString(std::string_view v) {
+  std::string s = "\"";
+  for (size_t i = 0; i < v.size(); ++i) {
+    const char c = v[i];
+    if (c == '\\' || c == '"') s += '\\';
+    if (c == '/' && i > 0 && v[i - 1] == '<') s += '\\';
+    if (c == '\n') {
+      s += "\\n";
+      continue;
+    }
+    s += c;
+  }
+  return s + "\"";
+}
 
 void renderTable(std::string& o, const ReportInput& in, const std::vector<HoleView>& hv) {
   const std::vector<std::string> terms = budgetNames(hv);
@@ -1423,10 +1468,9 @@ void renderTable(std::string& o, const ReportInput& in, const std::vector<HoleVi
   }
   o += "</p>";
   if (large) {
-    o += "<p><strong>" + std::to_string(hv.size()) +
-         " holes: the table lists every hole that does not conform (" + std::to_string(n_fail) +
-         ") and the first " + std::to_string(kTableRowsWhenLarge) +
-         " that do; the JSON output (--json) has every hole.</strong></p>";
+    o += "<p><strong>" + std::to_string(hv.size()) + " holes: the table shows " +
+         std::to_string(kTableRowsPerPage) +
+         " rows a page (sorting and filtering act on every hole).</strong></p>";
   }
   o += "<label class=\"filter\"><input type=\"checkbox\" id=\"failonly\"> not conforming only (" +
        std::to_string(n_fail) + ")</label>";
@@ -1442,12 +1486,12 @@ void renderTable(std::string& o, const ReportInput& in, const std::vector<HoleVi
     o += "</th>";
   }
   o += "</tr></thead><tbody>";
-  size_t passing_shown = 0;
+  std::string rows_js;  // large jobs: the rows as a script array, a page at a time in the DOM
   for (size_t i = 0; i < hv.size(); ++i) {
     const HoleView& h = hv[i];
     const HolePrediction& p = *h.p;
     const bool pass = passes(h);
-    if (large && pass && passing_shown++ >= kTableRowsWhenLarge) continue;
+    const size_t row_start = o.size();
     const VerdictStyle& vs = styleOf(p.verdict);
     o += std::string("<tr") + (pass ? " class=\"pass\"" : "") + "><td class=\"c0\">" +
          std::to_string(i + 1) + "</td><td class=\"id c1\">" + esc(p.id) +
@@ -1504,14 +1548,16 @@ void renderTable(std::string& o, const ReportInput& in, const std::vector<HoleVi
       if (rh.T_W_programmed) {
         const Offset off = offsetOf(rh);
         for (int k = 0; k < 3; ++k) o += numCell(off.dp_mm[k], 3);
-        o += numCell(off.dp_mm.norm(), 3) + numCell(off.angle_deg, 3) +
-             (rh.rotation_about_axis_deg ? numCell(*rh.rotation_about_axis_deg, 2) : dashCells(1));
+        o += numCell(off.dp_mm.norm(), 3) + numCell(off.angle_deg, 3);
         const std::string before = p.config.empty() ? std::string(kDash) : esc(p.config);
         const std::string after = rh.config_after ? esc(*rh.config_after) : before;
+        o += rh.rotation_about_axis_deg ? numCell(*rh.rotation_about_axis_deg, 2) : dashCells(1);
         o += std::string("<td class=\"l") + (after != before ? " cfgchg" : "") + "\">" + before +
              " \u2192 " + after + "</td>";
       } else {
-        o += dashCells(6) + "<td class=\"l\">" + std::string(kDash) + "</td>";
+        o += dashCells(5);
+        o += rh.rotation_about_axis_deg ? numCell(*rh.rotation_about_axis_deg, 2) : dashCells(1);
+        o += "<td class=\"l\">" + std::string(kDash) + "</td>";
       }
       const Verdict va = rh.after != nullptr ? rh.after->verdict : p.verdict;
       const VerdictStyle& vsa = styleOf(va);
@@ -1520,10 +1566,24 @@ void renderTable(std::string& o, const ReportInput& in, const std::vector<HoleVi
            (rh.residual_um ? numCell(*rh.residual_um, 1) : dashCells(1));
     }
     o += "</tr>";
+    if (large) {
+      rows_js += (rows_js.empty() ? "" : ",\n") + jsString(std::string_view(o).substr(row_start));
+      o.resize(row_start);
+    }
   }
-  o += "</tbody></table></div></section>";
+  o += "</tbody></table></div>";
+  if (large) {
+    o += "<div class=\"pager\" id=\"pager\"><button class=\"prev\">\u25c0 previous</button> "
+         "<span></span> <button class=\"next\">next \u25b6</button></div>";
+  }
+  o += "</section>";
   o += "<script>";
-  o += kTableScript;
+  if (large) {
+    o += "var ROPREC_ROWS=[" + rows_js + "];";
+    o += kPagedTableScript;
+  } else {
+    o += kTableScript;
+  }
   o += "</script>";
 }
 
