@@ -6,6 +6,11 @@
 //  * keep changes positions only (orientation within 1e-9 rad); stiffest never predicts a larger
 //    U_work than keep; flip-free removes the axis-4/6 flips of a sample built to flip under keep
 //    and keeps |θ5| ≥ the margin;
+//  * orientation choices (issue 14): on the 204-hole demo flip-free turns no hole that keep could
+//    drill without a jump, limit or wrist-margin violation, and every turned hole has its reason;
+//    stiffest makes no axis-4/6 jump over the threshold and reports its U_work gain over keep;
+//    flags stay as programmed at a sign boundary (A4 = 0 on the x axis) and a hole that really
+//    needs other flags gets them with the reason;
 //  * CLI: unreachable holes -> exit 1 and nothing written; --allow-partial flags them; outputs
 //    are byte-identical for identical inputs.
 #include "compensator/compensation/compensation.hpp"
@@ -14,6 +19,8 @@
 #include <kdl/chainfksolverpos_recursive.hpp>
 #include <kdl/chainidsolver_recursive_newton_euler.hpp>
 
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
@@ -195,6 +202,199 @@ TEST(Compensation, FlipFreeRemovesTheFlipsOfASampleBuiltToFlip) {
       EXPECT_LE(std::abs(f[i].theta_cmd[5] - f[i - 1].theta_cmd[5]), ff.jump_threshold);
     }
   }
+}
+
+/// The demo job (samples/emotor-housing, KR 120, KRL) through the library.
+api::PredictionContext demoContext() {
+  return api::loadPredictionContext(test::sourceDir() + "/samples/cells/housing-kr120.xml",
+                                    test::sourceDir() + "/samples/emotor-housing/housing_kr120.src",
+                                    test::sourceDir() + "/samples/emotor-housing/holes.csv", "");
+}
+
+bool sameFaceAxis(const HoleRequest& a, const HoleRequest& b) {
+  return a.T_W_tcp.linear().col(2).dot(b.T_W_tcp.linear().col(2)) > std::cos(10.0 * kDeg);
+}
+
+double wristJump(const Vec6& a, const Vec6& b) {
+  return std::max(std::abs(a[3] - b[3]), std::abs(a[5] - b[5]));
+}
+
+TEST(CompensationOrientation, FlipFreeOnTheDemoTurnsOnlyHolesWithAReason) {
+  const api::PredictionContext c = demoContext();
+  const auto& req = c.job.requests;
+  ASSERT_EQ(req.size(), 204u);
+  CompensationOptions keep;
+  keep.mode = OrientationMode::kKeep;
+  const auto k = compensateHoles(c.model, req, keep);
+  CompensationOptions ff;
+  ff.mode = OrientationMode::kFlipFree;
+  CompensationStats st;
+  const auto f = compensateHoles(c.model, req, ff, &st);
+  // Holes with a real reason to turn, judged on the keep result (ψ = 0): a jump > threshold to a
+  // same-face neighbour, |θ5| below the margin, or no keep result at all.
+  std::vector<bool> reason(req.size(), false);
+  for (size_t i = 0; i < req.size(); ++i) {
+    if (!k[i].ok) {
+      reason[i] = true;
+      continue;
+    }
+    if (std::abs(std::sin(k[i].theta_cmd[4])) < std::sin(ff.wrist_margin)) reason[i] = true;
+    for (const size_t j : {i - 1, i + 1}) {
+      if (j >= req.size() || !k[j].ok || !sameFaceAxis(req[i], req[j])) continue;
+      if (wristJump(k[i].theta_cmd, k[j].theta_cmd) > ff.jump_threshold) reason[i] = true;
+    }
+  }
+  int turned = 0;
+  int with_reason = 0;
+  for (size_t i = 0; i < f.size(); ++i) {
+    ASSERT_TRUE(f[i].ok) << f[i].id << ": " << f[i].reason;
+    with_reason += reason[i] ? 1 : 0;
+    if (std::abs(f[i].psi) > 1e-9) {
+      ++turned;
+      EXPECT_FALSE(f[i].psi_reason.empty()) << f[i].id;
+      // a hole is turned only next to or at a hole with a reason
+      const bool near =
+          reason[i] || (i > 0 && reason[i - 1]) || (i + 1 < f.size() && reason[i + 1]);
+      EXPECT_TRUE(near) << f[i].id << " turned by " << f[i].psi / kDeg
+                        << " deg: " << f[i].psi_reason;
+    } else {
+      EXPECT_TRUE(f[i].psi_reason.empty()) << f[i].id;
+    }
+  }
+  EXPECT_LE(turned, with_reason);
+  EXPECT_EQ(st.psi_changed, turned);
+  EXPECT_EQ(st.psi_for_limits + st.psi_for_wrist + st.psi_for_jumps + st.psi_for_stiffness, turned);
+  // the demo program has no flags: the written (posture) flags do not change either
+  for (const auto& h : f)
+    EXPECT_EQ(h.config_text, h.config_before) << h.id << ": " << h.config_reason;
+}
+
+TEST(CompensationOrientation, StiffestObeysTheJumpLimitAndReportsItsGain) {
+  const api::PredictionContext c = demoContext();
+  const auto& req = c.job.requests;
+  CompensationOptions o;
+  o.mode = OrientationMode::kStiffest;
+  CompensationStats st;
+  const auto s = compensateHoles(c.model, req, o, &st);
+  EXPECT_FALSE(st.relaxed_jumps);
+  int jumps = 0;
+  for (size_t i = 0; i < s.size(); ++i) {
+    ASSERT_TRUE(s[i].ok) << s[i].id << ": " << s[i].reason;
+    EXPECT_GE(std::abs(std::sin(s[i].theta_cmd[4])), std::sin(o.wrist_margin) - 1e-6) << s[i].id;
+    if (i > 0 && sameFaceAxis(req[i], req[i - 1]) &&
+        wristJump(s[i].theta_cmd, s[i - 1].theta_cmd) > o.jump_threshold) {
+      ++jumps;
+    }
+    ASSERT_TRUE(std::isfinite(s[i].U_work_keep)) << s[i].id;
+    if (std::abs(s[i].psi) > 1e-9) EXPECT_FALSE(s[i].psi_reason.empty()) << s[i].id;
+  }
+  EXPECT_EQ(jumps, 0);
+  // the gain over keep, summed: stiffest is not worse on the whole job
+  EXPECT_EQ(st.stiffness_compared, static_cast<int>(req.size()));
+  EXPECT_LE(st.U_work_sum, st.U_work_keep_sum + 1e-12);
+  std::printf(
+      "stiffest on the demo: mean U_work %.3f um (keep %.3f um), largest gain %.3f um, "
+      "%d holes turned\n",
+      st.U_work_sum / st.stiffness_compared * 1e6, st.U_work_keep_sum / st.stiffness_compared * 1e6,
+      st.U_work_gain_max * 1e6, st.psi_changed);
+}
+
+TEST(CompensationFlags, ASignBoundaryKeepsTheProgrammedKukaTurn) {
+  // Hand-written KRL: PTP approaches with S 2 T 2 to holes on the robot's x axis (A1 = A4 = 0
+  // exactly). The compensation moves A4 by ~1e-4 deg to the negative side; T stays 2.
+  const std::string dir = test::tempDir("flagsT");
+  std::string prog =
+      "DEF handwritten( )\n$BASE = {FRAME: X 1350.000,Y 0.000,Z 300.000,A 0.000,B 0.000,C "
+      "0.000}\n$TOOL = {FRAME: X 0.000,Y 0.000,Z 320.000,A 0.000,B 0.000,C 0.000}\n";
+  for (const double x : {150.0, 120.0, 90.0}) {
+    char b[512];
+    std::snprintf(b, sizeof b,
+                  "PTP {X %.3f,Y 0.000,Z 300.000,A 0.000,B 0.000,C 180.000,S 2,T 2} C_PTP\n"
+                  "$VEL.CP = 0.25\nLIN {X %.3f,Y 0.000,Z 252.000,A 0.000,B 0.000,C 180.000}\n"
+                  "$VEL.CP = 0.02\nLIN {X %.3f,Y 0.000,Z 234.000,A 0.000,B 0.000,C 180.000}\n"
+                  "$VEL.CP = 0.25\nLIN {X %.3f,Y 0.000,Z 300.000,A 0.000,B 0.000,C 180.000}\n",
+                  x, x, x, x);
+    prog += b;
+  }
+  prog += "END\n";
+  test::writeFile(dir + "/hand.src", prog);
+  const std::string cell = test::sourceDir() + "/samples/cells/housing-kr120.xml";
+  const api::PredictionContext c =
+      api::loadPredictionContext(cell, dir + "/hand.src", std::nullopt, "");
+  ASSERT_EQ(c.job.requests.size(), 3u);
+  for (const OrientationMode mode : {OrientationMode::kKeep, OrientationMode::kFlipFree}) {
+    CompensationOptions o;
+    o.mode = mode;
+    const auto r = compensateHoles(c.model, c.job.requests, o);
+    bool boundary_crossed = false;
+    for (const auto& h : r) {
+      ASSERT_TRUE(h.ok) << h.reason;
+      EXPECT_TRUE(h.config_in_program);
+      EXPECT_EQ(h.config_before, "S 2 T 2");
+      EXPECT_EQ(h.config_text, "S 2 T 2") << h.id << ": " << h.config_reason;
+      EXPECT_FALSE(h.config_changed);
+      // not vacuous: the command's own sign bits differ (A4 just below 0)
+      const KukaConfig own = kukaConfig(c.model.ik, c.model.robot.card, h.theta_cmd);
+      boundary_crossed |= *own.turn != 2;
+      EXPECT_LE(std::abs(h.theta_cmd[0]), 1e-4) << h.id;  // A1 ≈ 0
+    }
+    EXPECT_TRUE(boundary_crossed);
+  }
+  const auto run = test::runRoprec("compensate --cell '" + cell + "' '" + dir + "/hand.src' -o '" +
+                                   dir + "/out.src' --orientation keep");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::string out = test::readFile(dir + "/out.src");
+  size_t n = 0;
+  for (size_t p = out.find("S 2,T 2}"); p != std::string::npos; p = out.find("S 2,T 2}", p + 1))
+    ++n;
+  EXPECT_EQ(n, 3u) << out;
+}
+
+TEST(CompensationFlags, AHoleThatNeedsOtherFlagsGetsThemWithTheReason) {
+  // ABB: every other top-face hole of the sample turned by 180° and programmed with the flags of
+  // its own posture. Flip-free turns those holes back (a 180° axis-6 jump otherwise), which moves
+  // axis 6 two quadrants: cf6 must change, and the change is listed with its reason. The holes
+  // that are not turned keep their flags.
+  const std::string dir = test::tempDir("flagsABB");
+  const std::string holes = writeHoleSubset(dir);
+  const api::PredictionContext c = api::loadPredictionContext(
+      test::sourceDir() + "/samples/cells/housing-irb6640.xml", holes, std::nullopt, "");
+  std::vector<HoleRequest> row;
+  PredictionData d(c.model);
+  for (int k = 0; k < 8; ++k) {
+    HoleRequest r = c.job.requests[static_cast<size_t>(k)];
+    if (r.T_W_tcp.linear().col(2).z() > -0.99) continue;
+    if (k % 2) r.T_W_tcp.rotate(Eigen::AngleAxisd(kPi, Vec3::UnitZ()));
+    const HolePrediction p = predictHole(c.model, d, r, nullptr);
+    ASSERT_EQ(p.status, HoleStatus::kOk);
+    r.config = configurationOf(c.model.ik, c.model.robot.card, p.joints);
+    row.push_back(r);
+  }
+  ASSERT_GE(row.size(), 6u);
+  CompensationOptions ff;
+  ff.mode = OrientationMode::kFlipFree;
+  CompensationStats st;
+  const auto f = compensateHoles(c.model, row, ff, &st);
+  int changed = 0;
+  for (size_t i = 0; i < f.size(); ++i) {
+    ASSERT_TRUE(f[i].ok) << f[i].reason;
+    const std::string programmed = formatConfig(*row[i].config);
+    EXPECT_EQ(f[i].config_before, programmed);
+    if (std::abs(f[i].psi) < 1e-9) {
+      EXPECT_EQ(f[i].config_text, programmed) << f[i].id << ": " << f[i].config_reason;
+      continue;
+    }
+    EXPECT_NE(f[i].psi_reason.find("jump"), std::string::npos) << f[i].psi_reason;
+    // the flags written are those of the command, and they differ from the program's
+    EXPECT_EQ(f[i].config_text,
+              formatConfig(configurationOf(c.model.ik, c.model.robot.card, f[i].theta_cmd)));
+    EXPECT_TRUE(f[i].config_changed);
+    EXPECT_NE(f[i].config_reason.find("cf6"), std::string::npos) << f[i].config_reason;
+    EXPECT_NE(f[i].config_reason.find("rotation"), std::string::npos) << f[i].config_reason;
+    ++changed;
+  }
+  EXPECT_GE(changed, 3);
+  EXPECT_EQ(st.config_changed, changed);
 }
 
 TEST(CompensationCli, UnreachableHoleExitsOneAndWritesNothingUnlessPartialAllowed) {

@@ -307,6 +307,61 @@ TEST(ConfigurationCorpus, AbbConfdataFromRoboDk) {
   EXPECT_EQ(c, 15u);
 }
 
+TEST(ConfigurationCorpus, CompensatingRoboDkRapidKeepsTheProgrammedConfdata) {
+  // RoboDK's IRB 6640 drilling program: MoveAbsJ approaches (J6 = +180°, −178.36°, −176.73°), then
+  // MoveL targets with confdata [0,0,-2,0] under ConfL\Off. The compensated program must keep
+  // cf6 = −2 on all 15 MoveL (the offset is a few µm) and choose the joints the program's own
+  // MoveAbsJ starts from (J6 = −178.4° for the second hole, not +181.6°).
+  const std::string corpus = test::corpusDir();
+  if (corpus.empty() || bundledRobotNames().empty()) GTEST_SKIP() << "no corpus or bundled robots";
+  const std::string dir = test::tempDir("irc5");
+  test::writeFile(dir + "/cell.xml", R"(<?xml version="1.0" encoding="UTF-8"?>
+<cell name="robodk-irc5">
+  <robot ref="abb-irb6640-185-280"/>
+  <tool name="spindle" xyz="0 0 250" rpy="0 0 0" mass_kg="25.8" com_mm="0 0 120" inertia_kgm2="0.35 0 0 0.33 0 0.08"/>
+  <workobject xyz="1400 0 400" rpy="0 0 0"/>
+  <process type="drilling">
+    <drill diameter_mm="8.5" point_angle_deg="140" helix_angle_deg="30" web_mm="1.2" chisel_angle_deg="125" tool_material="carbide" stickout_mm="34"/>
+    <cut feed_mm_per_rev="0.2" spindle_rpm="6000" depth_mm="20"/>
+    <material name="AlSi9Cu3"/>
+  </process>
+  <tolerance position_mm="0.2"/>
+  <uncertainty method="linear" stiffness_rel="0.10" position_gain_rel="0.20" process_halfwidth="0.15"/>
+</cell>
+)");
+  const std::string mod = corpus + "/robodk/DrillIRC5.mod";
+  // (flip-free: the 358° axis-6 turn between the first two MoveAbsJ is the program's own joint
+  // move, not a jump the rotation about the drill axis could remove)
+  for (const char* mode : {"keep", "flip-free"}) {
+    SCOPED_TRACE(mode);
+    const auto r =
+        test::runRoprec("compensate --cell '" + dir + "/cell.xml' '" + mod + "' -o '" + dir +
+                        "/out.mod' --targets '" + dir + "/t.json' --orientation " + mode);
+    ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+    const std::string out = test::readFile(dir + "/out.mod");
+    const std::regex conf(R"(MoveL \[\[[^\]]*\],\[[^\]]*\],(\[-?\d+,-?\d+,-?\d+,-?\d+\]))");
+    int n = 0;
+    for (std::sregex_iterator it(out.begin(), out.end(), conf), end; it != end; ++it) {
+      EXPECT_EQ((*it)[1], "[0,0,-2,0]");
+      ++n;
+    }
+    EXPECT_EQ(n, 15);
+    // the joints: J6 of holes 2 and 3 as the program's MoveAbsJ (−178.36°, −176.73°), within the
+    // compensation's few millidegrees
+    const std::string t = test::readFile(dir + "/t.json");
+    const std::regex j6(R"re("joints_deg":\[[^\]]*,(-?[0-9.]+)\],"config":"([^"]*)")re");
+    std::vector<double> q6;
+    for (std::sregex_iterator it(t.begin(), t.end(), j6), end; it != end; ++it) {
+      q6.push_back(std::stod((*it)[1]));
+      EXPECT_EQ((*it)[2], "[0,0,-2,0]");
+    }
+    ASSERT_EQ(q6.size(), 3u) << t;
+    EXPECT_NEAR(std::abs(q6[0]), 180.0, 0.01);
+    EXPECT_NEAR(q6[1], -178.363, 0.01);
+    EXPECT_NEAR(q6[2], -176.730, 0.01);
+  }
+}
+
 TEST(ConfigurationCorpus, FanucConfigFromRoboDk) {
   const std::string corpus = test::corpusDir();
   if (corpus.empty() || bundledRobotNames().empty()) GTEST_SKIP() << "no corpus or bundled robots";

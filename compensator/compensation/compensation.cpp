@@ -32,6 +32,9 @@ Pose rotZ(double psi) {
   return T;
 }
 
+/// Why a candidate rotation is not admissible.
+enum class Why { kNone, kUnreachable, kLimits, kSingular, kWrist };
+
 /// One candidate: the IK solution for the hole at ψ and its costs.
 struct Node {
   bool feasible{false};
@@ -41,6 +44,8 @@ struct Node {
   double u_def{0.0};    ///< m: linearised deflection-model uncertainty (stiffness proxy)
   double penalty{0.0};  ///< limits + wrist proximity (dimensionless)
   double wrist{0.0};    ///< |sin(θ5 + α)|
+  Why why{Why::kNone};  ///< when not feasible
+  int limit_joint{-1};  ///< kLimits: a joint (0-based) outside its limits
 };
 
 struct Evaluator {
@@ -65,12 +70,30 @@ struct Evaluator {
     opt.seed = &seed;
     solveIk(m.ik, T_flange, opt, d.ik);
     double best = kInf;
+    n.why = Why::kUnreachable;
+    auto worse = [&](Why w) {
+      if (static_cast<int>(w) > static_cast<int>(n.why)) n.why = w;
+    };
     for (int i = 0; i < d.ik.count; ++i) {
       const IkSolution& s = d.ik.solutions[static_cast<size_t>(i)];
-      if (!s.converged || !s.within_limits || s.singular_shoulder || s.singular_wrist) continue;
       const int b = s.branch.index();
-      if (branch >= 0 && b != branch) continue;
-      if (enforce_wrist && s.branch.wrist_margin_rad < std::sin(o.wrist_margin)) continue;
+      if (!s.converged || (branch >= 0 && b != branch)) continue;
+      if (!s.within_limits) {
+        worse(Why::kLimits);
+        for (int j = 0; j < 6 && n.limit_joint < 0; ++j) {
+          if (s.q[j] < m.ik.lower[j] - 1e-12 || s.q[j] > m.ik.upper[j] + 1e-12) n.limit_joint = j;
+        }
+        continue;
+      }
+      if (s.singular_shoulder || s.singular_wrist) {
+        worse(Why::kSingular);
+        continue;
+      }
+      if (enforce_wrist && s.branch.wrist_margin_rad < std::sin(o.wrist_margin)) {
+        worse(Why::kWrist);
+        n.wrist = s.branch.wrist_margin_rad;
+        continue;
+      }
       const double dist = (s.q - seed).squaredNorm();
       if (dist < best) {
         best = dist;
@@ -80,6 +103,7 @@ struct Evaluator {
         n.feasible = true;
       }
     }
+    if (n.feasible) n.why = Why::kNone;
     if (!n.feasible || !with_cost) return n;
     // penalties: joint-limit proximity and wrist proximity
     for (int j = 0; j < 6; ++j) {
@@ -107,7 +131,10 @@ struct Evaluator {
     n.u_def = std::sqrt(var);
     // one bad hole (e.g. a non-finite load) must not poison the sequence's DP: it has no
     // admissible candidate, and the hole is reported as not compensated
-    if (!std::isfinite(n.u_def) || !std::isfinite(n.penalty)) n.feasible = false;
+    if (!std::isfinite(n.u_def) || !std::isfinite(n.penalty)) {
+      n.feasible = false;
+      n.why = Why::kUnreachable;
+    }
     return n;
   }
 };
@@ -129,14 +156,46 @@ bool sameFace(const HoleRequest& a, const HoleRequest& b) {
   return a.T_W_tcp.linear().col(2).dot(b.T_W_tcp.linear().col(2)) > std::cos(10.0 * kDeg);
 }
 
-double nodeCost(const Node& n, OrientationMode mode) {
-  if (mode == OrientationMode::kStiffest) return n.u_def * 1e6 + 0.1 * n.penalty;
-  return 0.1 * n.penalty + 1e-3 * n.u_def * 1e6;
+/// Whether the jump limit applies from hole a to the next hole b: same face, and b's posture is
+/// not set by a joint target the program moves to before it (`ik_seed`: MoveAbsJ, PTP to axis
+/// values) — that joint move is the program's own, the compensation does not change it.
+bool jumpLimited(const HoleRequest& a, const HoleRequest& b) {
+  return sameFace(a, b) && !b.ik_seed;
 }
 
-double transitionCost(const Node& a, const Node& b, OrientationMode mode) {
-  if (mode == OrientationMode::kStiffest) return 1e-3 * travel(a.q, b.q);
-  return travel(a.q, b.q);
+/// Sequence cost, compared lexicographically: holes with ψ ≠ 0, then Σ|ψ| (rad), then the rest
+/// (travel and proximity penalties; stiffest: the stiffness proxy first). Stiffest counts no
+/// changes: its objective is the stiffness.
+struct Cost {
+  int changes{0};
+  double dpsi{0.0};
+  double rest{0.0};
+  Cost operator+(const Cost& o) const {
+    return {changes + o.changes, dpsi + o.dpsi, rest + o.rest};
+  }
+  bool operator<(const Cost& o) const {
+    if (changes != o.changes) return changes < o.changes;
+    if (std::abs(dpsi - o.dpsi) > 1e-9) return dpsi < o.dpsi;
+    return rest < o.rest;
+  }
+};
+
+const Cost kInfCost{std::numeric_limits<int>::max() / 2, kInf, kInf};
+
+bool isFinite(const Cost& c) { return std::isfinite(c.rest); }
+
+/// ψ values closer than this to 0 count as the programmed rotation.
+constexpr double kPsiKept = 1e-9;
+
+Cost nodeCost(const Node& n, OrientationMode mode) {
+  if (mode == OrientationMode::kStiffest) return {0, 0.0, n.u_def * 1e6 + 0.1 * n.penalty};
+  const bool changed = std::abs(n.psi) > kPsiKept;
+  return {changed ? 1 : 0, std::abs(n.psi), 0.1 * n.penalty};
+}
+
+Cost transitionCost(const Node& a, const Node& b, OrientationMode mode) {
+  if (mode == OrientationMode::kStiffest) return {0, 0.0, 1e-3 * travel(a.q, b.q)};
+  return {0, 0.0, travel(a.q, b.q)};
 }
 
 // ---- stage 1: the program as it is
@@ -164,7 +223,11 @@ void predictOriginal(const PredictionModel& m, PredictionData& d,
 
 // ---- stage 2: candidate rotations about each drill axis
 
-double gridPsi(int k, int grid) { return grid == 1 ? 0.0 : -kPi + 2.0 * kPi * k / grid; }
+/// ψ_k = 2πk/grid wrapped to (−π, π]: node 0 is the programmed rotation ψ = 0.
+double gridPsi(int k, int grid) {
+  const double psi = 2.0 * kPi * k / grid;
+  return psi > kPi + 1e-12 ? psi - 2.0 * kPi : psi;
+}
 
 /// The ψ grid of every hole (keep: the single ψ = 0 candidate), in the branch of the original
 /// solution unless a branch change is allowed. Where |θ5| ≥ margin fails for every ψ, the margin
@@ -216,7 +279,7 @@ std::vector<std::vector<Node>> candidateNodes(Evaluator& ev, const std::vector<H
 /// ≤ thr between holes of one face) and its predecessor. Returns false when a reachable hole
 /// cannot be connected within the threshold.
 bool dpForward(const std::vector<std::vector<Node>>& nodes, const std::vector<HoleRequest>& holes,
-               OrientationMode mode, double thr, std::vector<std::vector<double>>& cost,
+               OrientationMode mode, double thr, std::vector<std::vector<Cost>>& cost,
                std::vector<std::vector<int>>& from) {
   const size_t n = nodes.size();
   cost.assign(n, {});
@@ -225,30 +288,29 @@ bool dpForward(const std::vector<std::vector<Node>>& nodes, const std::vector<Ho
   bool all_connected = true;
   for (size_t i = 0; i < n; ++i) {
     const size_t K = nodes[i].size();
-    cost[i].assign(K, kInf);
+    cost[i].assign(K, kInfCost);
     from[i].assign(K, -1);
     for (size_t k = 0; k < K; ++k) {
       const Node& nd = nodes[i][k];
       if (!nd.feasible) continue;
-      const double c0 = nodeCost(nd, mode);
+      const Cost c0 = nodeCost(nd, mode);
       if (last < 0) {
         cost[i][k] = c0;
         continue;
       }
       const size_t l0 = static_cast<size_t>(last);
-      const bool limit_jumps = mode != OrientationMode::kKeep && sameFace(holes[l0], holes[i]);
+      const bool limit_jumps = mode != OrientationMode::kKeep && jumpLimited(holes[l0], holes[i]);
       for (size_t l = 0; l < nodes[l0].size(); ++l) {
-        const double cp = cost[l0][l];
-        if (!std::isfinite(cp) || (limit_jumps && !jumpOk(nodes[l0][l].q, nd.q, thr))) continue;
-        const double c = cp + c0 + transitionCost(nodes[l0][l], nd, mode);
+        const Cost& cp = cost[l0][l];
+        if (!isFinite(cp) || (limit_jumps && !jumpOk(nodes[l0][l].q, nd.q, thr))) continue;
+        const Cost c = cp + c0 + transitionCost(nodes[l0][l], nd, mode);
         if (c < cost[i][k]) {
           cost[i][k] = c;
           from[i][k] = static_cast<int>(l);
         }
       }
     }
-    const bool any =
-        std::any_of(cost[i].begin(), cost[i].end(), [](double c) { return std::isfinite(c); });
+    const bool any = std::any_of(cost[i].begin(), cost[i].end(), isFinite);
     if (any) {
       last = static_cast<int>(i);
     } else if (std::any_of(nodes[i].begin(), nodes[i].end(),
@@ -261,16 +323,16 @@ bool dpForward(const std::vector<std::vector<Node>>& nodes, const std::vector<Ho
 
 /// Backtracking: the cheapest end node, then its predecessors; a hole that starts a new chain
 /// (after an unreachable one) takes its own cheapest node.
-std::vector<int> dpBacktrack(const std::vector<std::vector<double>>& cost,
+std::vector<int> dpBacktrack(const std::vector<std::vector<Cost>>& cost,
                              const std::vector<std::vector<int>>& from) {
   const size_t n = cost.size();
   std::vector<int> choice(n, -1);
   int cur = -1;
   for (size_t ii = n; ii-- > 0;) {
     if (cur < 0) {
-      double best = kInf;
+      Cost best = kInfCost;
       for (size_t k = 0; k < cost[ii].size(); ++k) {
-        if (cost[ii][k] < best) {
+        if (isFinite(cost[ii][k]) && cost[ii][k] < best) {
           best = cost[ii][k];
           cur = static_cast<int>(k);
         }
@@ -289,7 +351,7 @@ std::vector<int> dpBacktrack(const std::vector<std::vector<double>>& cost,
 std::vector<int> chooseSequence(const std::vector<std::vector<Node>>& nodes,
                                 const std::vector<HoleRequest>& holes, const CompensationOptions& o,
                                 CompensationStats& st, double& thr) {
-  std::vector<std::vector<double>> cost;
+  std::vector<std::vector<Cost>> cost;
   std::vector<std::vector<int>> from;
   thr = o.jump_threshold;
   while (!dpForward(nodes, holes, o.mode, thr, cost, from)) {
@@ -300,36 +362,34 @@ std::vector<int> chooseSequence(const std::vector<std::vector<Node>>& nodes,
       break;
     }
   }
-  std::vector<int> choice = dpBacktrack(cost, from);
-  if (o.mode == OrientationMode::kStiffest) {
-    // never worse than keep at a hole when ψ = 0 is admissible there
-    for (size_t i = 0; i < nodes.size(); ++i) {
-      if (choice[i] < 0) continue;
-      const size_t k0 = nodes[i].size() / 2;  // ψ = 0
-      const Node& z = nodes[i][k0];
-      if (z.feasible && z.u_def < nodes[i][static_cast<size_t>(choice[i])].u_def)
-        choice[i] = static_cast<int>(k0);
-    }
-  }
-  return choice;
+  return dpBacktrack(cost, from);
 }
 
 // ---- stage 4: NLopt refinement of each hole's ψ with its neighbours fixed
 
-/// The nearest chosen feasible node before (dir −1) or after (dir +1) hole i, and whether it is
-/// on the same face.
+/// The nearest chosen feasible node before (dir −1) or after (dir +1) hole i, and whether the
+/// jump limit applies between them (jumpLimited).
 std::pair<const Node*, bool> neighbour(const std::vector<Node>& chosen,
                                        const std::vector<HoleRequest>& holes, size_t i, int dir) {
   for (long k = static_cast<long>(i) + dir; k >= 0 && k < static_cast<long>(chosen.size());
        k += dir) {
     const size_t kk = static_cast<size_t>(k);
-    if (chosen[kk].feasible) return {&chosen[kk], sameFace(holes[kk], holes[i])};
+    if (chosen[kk].feasible)
+      return {&chosen[kk],
+              dir < 0 ? jumpLimited(holes[kk], holes[i]) : jumpLimited(holes[i], holes[kk])};
   }
   return {nullptr, false};
 }
 
-/// COBYLA on ψ within ±1 grid step: cost = node + transitions to the neighbours, subject to
-/// |Δθ4|, |Δθ6| ≤ thr against same-face neighbours. Keeps the result only when feasible and better.
+/// ψ wrapped to (−π, π].
+double wrapPsi(double psi) {
+  const double w = std::remainder(psi, 2.0 * kPi);
+  return w <= -kPi ? w + 2.0 * kPi : w;
+}
+
+/// COBYLA on ψ within ±1 grid step, subject to |Δθ4|, |Δθ6| ≤ thr against same-face neighbours;
+/// flip-free: the smallest |ψ| (with a small limit/wrist-proximity term), stiffest: node cost
+/// + transitions. Keeps the result only when feasible and better.
 void refineHole(Evaluator& ev, const std::vector<HoleRequest>& holes, std::vector<Node>& chosen,
                 size_t i, bool enforce_wrist, int grid, double thr, CompensationStats& st) {
   const OrientationMode mode = ev.o.mode;
@@ -353,9 +413,10 @@ void refineHole(Evaluator& ev, const std::vector<HoleRequest>& holes, std::vecto
     return cached;
   };
   auto total = [&](const Node& nd) {
-    double c = nodeCost(nd, mode);
-    if (pn) c += transitionCost(*pn, nd, mode);
-    if (nn) c += transitionCost(nd, *nn, mode);
+    if (mode == OrientationMode::kFlipFree) return std::abs(wrapPsi(nd.psi)) + 0.05 * nd.penalty;
+    double c = nodeCost(nd, mode).rest;
+    if (pn) c += transitionCost(*pn, nd, mode).rest;
+    if (nn) c += transitionCost(nd, *nn, mode).rest;
     return c;
   };
   const double step = 2.0 * kPi / grid;
@@ -385,11 +446,12 @@ void refineHole(Evaluator& ev, const std::vector<HoleRequest>& holes, std::vecto
   const NloptProblem::Result r = prob.optimize(x);
   st.nlopt_evaluations += r.evaluations;
   if (!r.usable()) return;
-  const Node nd = evalAt(x[0]);
+  Node nd = evalAt(x[0]);
   const bool ok_jumps = (!pj || jumpOk(pj->q, nd.q, thr)) && (!nj || jumpOk(nd.q, nj->q, thr));
   const bool better = mode == OrientationMode::kStiffest ? nd.u_def <= chosen[i].u_def
                                                          : total(nd) < total(chosen[i]);
   if (nd.feasible && ok_jumps && better) {
+    nd.psi = wrapPsi(nd.psi);
     chosen[i] = nd;
     ++st.refined;
   }
@@ -435,6 +497,78 @@ Vec6 exactCommand(Evaluator& ev, const Vec6& theta_d, const nc::Loads& loads) {
   return cmd;
 }
 
+std::string degText(double rad, int decimals = 1) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, rad / kDeg);
+  return buf;
+}
+
+/// True when a and b are the same posture: every joint equal up to whole turns (1e-6 rad).
+bool samePostureUpToTurns(const Vec6& a, const Vec6& b) {
+  for (int j = 0; j < 6; ++j) {
+    if (std::abs(std::remainder(a[j] - b[j], 2.0 * kPi)) > 1e-6) return false;
+  }
+  return true;
+}
+
+/// The flags written for the command c.theta_cmd at the pose T_flange: the program's own flags
+/// (h.config — honoured by the controller — else h.written_config) when the target is reached with
+/// them in the same posture (a joint within kFlagBoundaryTolerance of a flag boundary matches
+/// either side); else the command's own flags, with the reason. With honoured flags whose solution
+/// is the command up to whole turns, the command takes the controller's representative.
+void settleFlags(Evaluator& ev, const HoleRequest& h, const Pose& T_flange, HoleCompensation& c) {
+  const PredictionModel& m = ev.m;
+  const VendorConfig own = configurationOf(m.ik, m.robot.card, c.theta_cmd, m.config_options);
+  const std::optional<VendorConfig>& stated = h.config ? h.config : h.written_config;
+  c.config_in_program = stated.has_value();
+  // without flags in the program: those of the programmed posture (what the report compares)
+  const VendorConfig want =
+      stated ? *stated : configurationOf(m.ik, m.robot.card, c.before.joints, m.config_options);
+  c.config_before = formatConfig(want);
+  c.config = own;
+  ConfigurationMatch match;
+  match.seed = &c.theta_cmd;
+  match.boundary_tolerance = kFlagBoundaryTolerance;
+  const ConfiguredSolution cs =
+      solveIkWithConfiguration(m.ik, m.robot.card, T_flange, want, m.config_options, match);
+  if (cs.found && cs.exact && samePostureUpToTurns(cs.solution.q, c.theta_cmd)) {
+    c.config = want;
+    c.config_text = c.config_before;
+    if (h.config) {
+      const Vec6 shift = cs.solution.q - c.theta_cmd;  // whole turns only
+      c.theta_cmd += shift;
+      c.theta_d += shift;
+    }
+    c.config_changed = false;
+    return;
+  }
+  if (m.robot.card.vendor == Vendor::kKuka && want.kuka.status && c.config.kuka.status)
+    c.config.kuka.status = (*want.kuka.status & ~7) | (*c.config.kuka.status & 7);
+  c.config_text = formatConfig(c.config);
+  c.config_changed = c.config_text != c.config_before;
+  if (!c.config_changed) return;
+  // why: the branch, or the turn flags the command does not meet
+  std::string why;
+  const std::optional<int> want_branch = branchOfConfig(want);
+  if (!cs.found) {
+    why = "no solution within the joint limits (" + cs.reason + ")";
+  } else if (want_branch && *want_branch != c.config.branch) {
+    why = "the IK branch " + std::to_string(c.config.branch) + " instead of " +
+          std::to_string(*want_branch) + " (--allow-branch-change)";
+  } else {
+    why = turnFlagMismatch(m.ik, m.robot.card, c.theta_cmd, want, m.config_options,
+                           kFlagBoundaryTolerance);
+    if (why.empty()) why = "another solution than the flags select";
+  }
+  const std::string cause = std::abs(c.psi) > kPsiKept
+                                ? "the rotation of " + degText(c.psi) + " deg about the drill axis"
+                                : std::string("the compensation offset");
+  c.config_reason = (stated ? "the compensated target cannot be reached with " + c.config_before +
+                                  " in the planned posture: "
+                            : "") +
+                    cause + " gives " + why;
+}
+
 /// The programmed pose, flags, residual and re-predicted budget at the command c.theta_cmd.
 /// Sets c.reason and returns with c.ok false when something fails.
 void assemble(Evaluator& ev, const HoleRequest& h, const nc::Loads& loads, bool positions_only,
@@ -449,8 +583,7 @@ void assemble(Evaluator& ev, const HoleRequest& h, const nc::Loads& loads, bool 
   c.T_programmed = d.nc.T_W_tcp;
   if (positions_only) c.T_programmed.linear() = c.T_nominal.linear();  // exact by construction
   c.delta = c.T_programmed * c.T_nominal.inverse();
-  c.config = configurationOf(m.ik, m.robot.card, c.theta_cmd, m.config_options);
-  c.config_text = formatConfig(c.config);
+  settleFlags(ev, h, c.T_programmed * m.model.T_L6_tcp.inverse() * m.model.T_L6_flange, c);
   if (!withinLimits(m.ik, c.theta_cmd)) {
     c.reason = "the compensated command leaves the joint limits";
     return;
@@ -505,6 +638,90 @@ HoleCompensation finalizeHole(Evaluator& ev, const HoleRequest& h, const HoleCom
   return c;
 }
 
+/// Largest |Δθ4|, |Δθ6| between a and b (rad) and the axis (4 or 6) it is on.
+std::pair<double, int> largestWristJump(const Vec6& a, const Vec6& b) {
+  const double d4 = std::abs(a[3] - b[3]);
+  const double d6 = std::abs(a[5] - b[5]);
+  return d4 >= d6 ? std::make_pair(d4, 4) : std::make_pair(d6, 6);
+}
+
+/// Why hole i does not keep ψ = 0 (`zero`: its ψ = 0 candidate); counts the reason in `st`.
+std::string psiReason(const Evaluator& ev, const std::vector<HoleRequest>& holes,
+                      const std::vector<Node>& chosen, const std::vector<HoleCompensation>& out,
+                      const Node& zero, size_t i, double thr, CompensationStats& st) {
+  const CompensationOptions& o = ev.o;
+  if (!zero.feasible) {
+    switch (zero.why) {
+      case Why::kWrist:
+        ++st.psi_for_wrist;
+        return "the programmed rotation puts |axis 5| at " + degText(std::asin(zero.wrist)) +
+               " deg, inside the wrist margin of " + degText(o.wrist_margin) + " deg";
+      case Why::kSingular:
+        ++st.psi_for_limits;
+        return "the programmed rotation is at a wrist or shoulder singularity";
+      case Why::kLimits:
+        ++st.psi_for_limits;
+        return "the programmed rotation leaves the joint limits" +
+               (zero.limit_joint >= 0 ? " (axis " + std::to_string(zero.limit_joint + 1) + ")"
+                                      : std::string());
+      default:
+        ++st.psi_for_limits;
+        return "the programmed rotation has no solution in the programmed IK branch";
+    }
+  }
+  // ψ = 0 is admissible on its own: a neighbour's chosen posture makes it jump
+  std::string worst;
+  double worst_jump = thr;
+  for (const int dir : {-1, +1}) {
+    const std::pair<const Node*, bool> nb = neighbour(chosen, holes, i, dir);
+    if (!nb.first || !nb.second) continue;
+    const std::pair<double, int> j = largestWristJump(zero.q, nb.first->q);
+    if (j.first > worst_jump) {
+      worst_jump = j.first;
+      const size_t k = static_cast<size_t>(nb.first - chosen.data());
+      worst = "keeping the programmed rotation would turn axis " + std::to_string(j.second) +
+              " by " + degText(j.first) + " deg " + (dir < 0 ? "after" : "before") + " hole " +
+              out[k].id + " (jump threshold " + degText(thr) + " deg)";
+    }
+  }
+  if (!worst.empty()) {
+    ++st.psi_for_jumps;
+    return worst;
+  }
+  if (o.mode == OrientationMode::kStiffest) {
+    ++st.psi_for_stiffness;
+    return "stiffer than the programmed rotation (predicted U_work)";
+  }
+  ++st.psi_for_jumps;
+  return "the sequence's jump limit cannot be met with the programmed rotation here";
+}
+
+/// Stiffest: the keep result (ψ = 0, positions only) of every hole with a ψ = 0 posture; a hole
+/// goes back to it when it is stiffer and the jump constraints with the final neighbours allow
+/// it. Records U_work(keep) for the gain.
+void stiffestAgainstKeep(Evaluator& ev, const std::vector<HoleRequest>& holes,
+                         const std::vector<HoleCompensation>& original,
+                         const std::vector<Node>& programmed, std::vector<Node>& chosen, double thr,
+                         std::vector<HoleCompensation>& out) {
+  for (size_t i = 0; i < out.size(); ++i) {
+    if (!out[i].ok || !programmed[i].feasible) continue;
+    HoleCompensation k = finalizeHole(ev, holes[i], original[i], programmed[i], true);
+    if (!k.ok) continue;
+    out[i].U_work_keep = k.after.U_work_exact;
+    if (std::abs(out[i].psi) <= kPsiKept || k.after.U_work_exact >= out[i].after.U_work_exact)
+      continue;
+    bool ok = true;
+    for (const int dir : {-1, +1}) {
+      const std::pair<const Node*, bool> nb = neighbour(chosen, holes, i, dir);
+      if (nb.first && nb.second && !jumpOk(programmed[i].q, nb.first->q, thr)) ok = false;
+    }
+    if (!ok) continue;
+    chosen[i] = programmed[i];
+    k.U_work_keep = k.after.U_work_exact;
+    out[i] = std::move(k);
+  }
+}
+
 }  // namespace
 
 std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,
@@ -521,15 +738,30 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,
   const std::vector<std::vector<Node>> nodes = candidateNodes(ev, holes, out, grid, st);
   double thr = o.jump_threshold;
   const std::vector<int> choice = chooseSequence(nodes, holes, o, st, thr);
+  st.jump_threshold_used = thr;
   std::vector<Node> chosen(n);
   for (size_t i = 0; i < n; ++i) {
     if (choice[i] >= 0) chosen[i] = nodes[i][static_cast<size_t>(choice[i])];
   }
   if (o.mode != OrientationMode::kKeep && o.refine) {
     for (size_t i = 0; i < n; ++i) {
-      if (chosen[i].feasible) refineHole(ev, holes, chosen, i, out[i].note.empty(), grid, thr, st);
+      // flip-free refines only the holes that must turn (towards the smallest change)
+      if (!chosen[i].feasible ||
+          (o.mode == OrientationMode::kFlipFree && std::abs(chosen[i].psi) <= kPsiKept))
+        continue;
+      refineHole(ev, holes, chosen, i, out[i].note.empty(), grid, thr, st);
     }
   }
+  // the programmed posture (ψ = 0, no wrist requirement) of each hole: stiffest's reference
+  std::vector<Node> programmed(n);
+  if (o.mode == OrientationMode::kStiffest) {
+    for (size_t i = 0; i < n; ++i) {
+      const HolePrediction& b = out[i].before;
+      if (b.status == HoleStatus::kOk)
+        programmed[i] = ev.evaluate(holes[i], 0.0, b.branch, b.joints, false, true);
+    }
+  }
+  const std::vector<HoleCompensation> original = out;
   for (size_t i = 0; i < n; ++i) {
     if (out[i].before.status == HoleStatus::kNotConverged) {
       out[i].reason = "not compensated: " + out[i].before.reason;
@@ -545,22 +777,27 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,
       continue;
     }
     if (!chosen[i].feasible) {
-      out[i].reason = out[i].before.status != HoleStatus::kOk
-                          ? out[i].before.reason
-                          : "no admissible orientation about the drill axis (limits, wrist margin)";
+      out[i].reason = "no admissible orientation about the drill axis (limits, wrist margin)";
       continue;
     }
-    HoleCompensation c =
-        finalizeHole(ev, holes[i], out[i], chosen[i], o.mode == OrientationMode::kKeep);
-    if (o.mode == OrientationMode::kStiffest) {
-      // never stiffer-on-paper but worse than keep: compare with the keep result at this hole
-      const Node& zero = nodes[i][static_cast<size_t>(grid / 2)];
-      if (zero.feasible) {
-        HoleCompensation k = finalizeHole(ev, holes[i], out[i], zero, true);
-        if (k.ok && (!c.ok || k.after.U_work_exact < c.after.U_work_exact)) c = std::move(k);
-      }
+    out[i] = finalizeHole(ev, holes[i], original[i], chosen[i], o.mode == OrientationMode::kKeep);
+  }
+  if (o.mode == OrientationMode::kStiffest)
+    stiffestAgainstKeep(ev, holes, original, programmed, chosen, thr, out);
+  for (size_t i = 0; i < n; ++i) {
+    HoleCompensation& c = out[i];
+    if (!c.ok) continue;
+    if (std::abs(c.psi) > kPsiKept) {
+      ++st.psi_changed;
+      c.psi_reason = psiReason(ev, holes, chosen, out, nodes[i][0], i, thr, st);
     }
-    out[i] = std::move(c);
+    if (c.config_changed && c.config_in_program) ++st.config_changed;
+    if (std::isfinite(c.U_work_keep)) {
+      ++st.stiffness_compared;
+      st.U_work_keep_sum += c.U_work_keep;
+      st.U_work_sum += c.after.U_work_exact;
+      st.U_work_gain_max = std::max(st.U_work_gain_max, c.U_work_keep - c.after.U_work_exact);
+    }
   }
   if (stats) *stats = st;
   return out;

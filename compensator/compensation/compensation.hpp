@@ -13,19 +13,30 @@
 /// so the drilling axis stays straight. Re-predicting the programmed pose gives θ = θ_d exactly
 /// (to the equilibrium tolerance), hence a systematic residual at solver precision.
 ///
-/// Orientation modes (`--orientation`):
+/// Orientation modes (`--orientation`, docs/configuration.md §6):
 ///   keep       ψ = 0 and positions only: the programmed orientation is the original one to the
 ///              last bit; the programmed position is iterated until the predicted real TCP
 ///              position is the nominal one (the real drill axis keeps its small tilt);
-///   flip-free  minimise joint travel between consecutive holes with penalties near joint limits
-///              and the wrist singularity, subject to |θ5| ≥ margin, |Δθ4|, |Δθ6| ≤ threshold
-///              between consecutive holes of one face (axes within 10°; a face change is a
-///              repositioning move) and the same IK branch (unless a change is allowed);
-///   stiffest   minimise the predicted U_work (stiffness) under the same constraints.
-/// Sequence level: dynamic programming over a discretised ψ grid for the whole program (not hole
-/// by hole), then NLopt (COBYLA, 1-D, constraints as above) refines each hole's ψ with its
-/// neighbours fixed.
-
+///   flip-free  keeps the programmed rotation (ψ = 0) unless it is not admissible: the constraints
+///              are the joint limits, |θ5| ≥ margin, |Δθ4|, |Δθ6| ≤ threshold between consecutive
+///              holes of one face (axes within 10°; a face change is a repositioning move) and the
+///              programmed IK branch (unless a change is allowed). Among admissible sequences the
+///              objective is lexicographic: (1) fewest holes with ψ ≠ 0, (2) smallest Σ|ψ| (ties
+///              go to the smallest change), (3) joint travel and limit/wrist proximity. Every hole
+///              with ψ ≠ 0 carries its reason (limit, wrist margin, or the jump ψ = 0 would make);
+///   stiffest   minimise the predicted U_work (stiffness proxy) under the same constraints; a hole
+///              whose keep result is stiffer goes back to ψ = 0 when the constraints allow it; the
+///              gain U_work(keep) − U_work per hole and in the summary.
+/// Sequence level: dynamic programming over a ψ grid (ψ = 0 is always node 0) for the whole
+/// program (not hole by hole), then NLopt (COBYLA, 1-D, constraints as above) refines each changed
+/// hole's ψ with its neighbours fixed (flip-free: smallest |ψ|; stiffest: smallest U).
+///
+/// Configuration flags: the program's flags (`HoleRequest::config`, else `written_config`) are
+/// kept when the compensated target is reached with them in the planned posture (same branch,
+/// same joints up to whole turns; a joint within kFlagBoundaryTolerance of a flag boundary
+/// matches either side); otherwise the flags of the command are written and the change is
+/// listed with its reason (`config_changed`, `config_reason`).
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -57,10 +68,18 @@ struct HoleCompensation {
   Pose delta{Pose::Identity()};         ///< ΔT = T_programmed · T_nominal⁻¹ (base frame)
   Vec6 theta_d{Vec6::Zero()};           ///< link-side joints at the nominal hole
   Vec6 theta_cmd{Vec6::Zero()};         ///< programmed joints (motor side, controller command)
-  VendorConfig config;
-  std::string config_text;
+  VendorConfig config;                  ///< flags written for the compensated target
+  std::string config_text;              ///< formatConfig(config)
+  std::string config_before;      ///< the program's flags (else those of the programmed posture)
+  bool config_in_program{false};  ///< the program states flags at this hole (the writer edits them)
+  bool config_changed{false};     ///< config_text ≠ config_before
+  std::string config_reason;      ///< why the flags changed ("" when kept)
   int branch{0};
   bool branch_changed{false};
+  std::string psi_reason;  ///< why ψ ≠ 0 ("" when the programmed rotation is kept)
+  /// stiffest: U_work (exact, m) of the keep compensation at this hole, NaN when not computed;
+  /// the gain is U_work_keep − after.U_work_exact.
+  double U_work_keep{std::numeric_limits<double>::quiet_NaN()};
   Vec3 residual{Vec3::Zero()};  ///< predicted real − nominal TCP position after compensation, m
   double residual_rot{0.0};     ///< rad
   HolePrediction after;         ///< budget at the compensated pose (U_work, verdict)
@@ -72,8 +91,21 @@ struct CompensationStats {
   int infeasible_nodes{0};
   int refined{0};
   int nlopt_evaluations{0};
-  bool relaxed_jumps{false};  ///< no path met the jump threshold; it was relaxed
-  int relaxed_wrist{0};       ///< holes where no rotation met |θ5| ≥ margin (kept as a penalty)
+  bool relaxed_jumps{false};        ///< no path met the jump threshold; it was relaxed
+  double jump_threshold_used{0.0};  ///< rad, the threshold the sequence meets
+  int relaxed_wrist{0};  ///< holes where no rotation met |θ5| ≥ margin (kept as a penalty)
+  // rotations about the drill axis (ψ ≠ 0) by reason
+  int psi_changed{0};
+  int psi_for_limits{0};     ///< ψ = 0 leaves the joint limits (or is singular / unreachable)
+  int psi_for_wrist{0};      ///< ψ = 0 violates |θ5| ≥ margin
+  int psi_for_jumps{0};      ///< ψ = 0 would make an axis-4/6 jump over the threshold
+  int psi_for_stiffness{0};  ///< stiffest: ψ ≠ 0 is stiffer
+  int config_changed{0};     ///< holes whose written flags change (program states flags)
+  // stiffest: U_work gained over keep (holes where both were computed)
+  int stiffness_compared{0};
+  double U_work_keep_sum{0.0};  ///< m
+  double U_work_sum{0.0};       ///< m
+  double U_work_gain_max{0.0};  ///< m (largest per-hole gain)
 };
 
 std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,

@@ -129,6 +129,10 @@ struct HoleRequest {
   double diameter{0.0};                ///< m (0: the process drill)
   double depth{0.0};                   ///< m (0: the process depth)
   std::optional<VendorConfig> config;  ///< the program's configuration, if it states one
+  /// The flags written at the hole's targets even where the controller ignores them (linear
+  /// moves): the compensation keeps them unless its target cannot be reached with them
+  /// (docs/configuration.md §6). Does not steer the prediction's IK choice.
+  std::optional<VendorConfig> written_config;
   int line{0};                         ///< source line (messages)
   /// Where the hole starts: the surface point on the drill axis (base frame, m), when the
   /// program's cycle shows it (the feed starts there); T_W_tcp is the bottom (drill point).

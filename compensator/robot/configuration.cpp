@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <sstream>
 #include <vector>
@@ -49,13 +50,6 @@ bool parseKrlInt(const std::string& s, int& out) {
     return true;
   }
   return parseInt(t, out);
-}
-
-int mismatchKuka(const KukaConfig& want, const KukaConfig& have) {
-  if (!want.turn) return 0;
-  int d = 0;
-  for (int n = 0; n < 6; ++n) d += (((*want.turn >> n) & 1) != ((*have.turn >> n) & 1)) ? 1 : 0;
-  return d;
 }
 
 }  // namespace
@@ -334,13 +328,113 @@ VendorConfig parseConfig(Vendor vendor, const std::string& text, const std::stri
   return v;
 }
 
+namespace {
+
+std::string degText(double rad) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f", rad / kDeg);
+  return std::string(buf) == "-0.0" ? "0.0" : buf;
+}
+
+/// ABB: does quadrant `have` of angle θ meet `want` (equal, or adjacent with θ within tol of the
+/// shared boundary)?
+bool quadrantMeets(double theta, int want, int have, double tol) {
+  if (want == have) return true;
+  if (std::abs(want - have) != 1) return false;
+  const double boundary = 0.5 * kPi * std::max(want, have);
+  return std::abs(theta - boundary) <= tol;
+}
+
+/// FANUC: turn `have` of θ meets `want` (equal, or adjacent with θ within tol of ±180° + k·360°).
+bool turnMeets(double theta, int want, int have, double tol) {
+  if (want == have) return true;
+  if (std::abs(want - have) != 1) return false;
+  const double boundary = want + have > 0 ? kPi + 2.0 * kPi * std::min(want, have)
+                                          : -kPi + 2.0 * kPi * std::max(want, have);
+  return std::abs(theta - boundary) <= tol;
+}
+
+/// Mismatch count (KUKA: T bits; ABB: Σ|Δcf|; FANUC: Σ|Δturn|) of q against the turn flags of
+/// `config`, flags met within `tol` of their boundary counting as matched; `why` lists them.
+int turnMismatch(const IkModel& model, const RobotCard& card, const Vec6& q,
+                 const VendorConfig& config, const ConfigurationOptions& options, double tol,
+                 std::string* why) {
+  const Vec6 c = toControllerJoints(card, q);
+  int d = 0;
+  auto note = [&](const std::string& s) {
+    if (why) *why += (why->empty() ? "" : ", ") + s;
+  };
+  switch (config.vendor) {
+    case Vendor::kKuka: {
+      if (!config.kuka.turn) return 0;
+      for (int n = 0; n < 6; ++n) {
+        const bool want_neg = ((*config.kuka.turn >> n) & 1) != 0;
+        if (want_neg == (c[n] < 0.0) || std::abs(c[n]) <= tol) continue;
+        ++d;
+        note("T bit " + std::to_string(n) + " (A" + std::to_string(n + 1) + " at " + degText(c[n]) +
+             " deg, the flag says " + (want_neg ? "< 0" : ">= 0") + ")");
+      }
+      return d;
+    }
+    case Vendor::kAbb: {
+      const AbbConfig a = abbConfig(model, card, q);
+      const std::array<int, 3> want{config.abb.cf1, config.abb.cf4, config.abb.cf6};
+      const std::array<int, 3> have{a.cf1, a.cf4, a.cf6};
+      const std::array<int, 3> axis{1, 4, 6};
+      for (size_t k = 0; k < 3; ++k) {
+        const double th = c[axis[k] - 1];
+        if (quadrantMeets(th, want[k], have[k], tol)) continue;
+        d += std::abs(want[k] - have[k]);
+        note("cf" + std::to_string(axis[k]) + " " + std::to_string(want[k]) + " -> " +
+             std::to_string(have[k]) + " (axis " + std::to_string(axis[k]) + " at " + degText(th) +
+             " deg)");
+      }
+      return d;
+    }
+    case Vendor::kFanuc: {
+      const FanucConfig f = fanucConfig(model, card, q, options);
+      for (size_t k = 0; k < 3; ++k) {
+        const int ax = options.fanuc_turn_axes[k];
+        const double th = c[ax - 1];
+        if (turnMeets(th, config.fanuc.turns[k], f.turns[k], tol)) continue;
+        d += std::abs(f.turns[k] - config.fanuc.turns[k]);
+        note("turn " + std::to_string(k + 1) + " " + std::to_string(config.fanuc.turns[k]) +
+             " -> " + std::to_string(f.turns[k]) + " (J" + std::to_string(ax) + " at " +
+             degText(th) + " deg)");
+      }
+      return d;
+    }
+    case Vendor::kGeneric:
+      break;
+  }
+  return 0;
+}
+
+}  // namespace
+
+std::string turnFlagMismatch(const IkModel& model, const RobotCard& card, const Vec6& q,
+                             const VendorConfig& config, const ConfigurationOptions& options,
+                             double tolerance) {
+  std::string why;
+  turnMismatch(model, card, q, config, options, tolerance, &why);
+  return why;
+}
+
 ConfiguredSolution solveIkWithConfiguration(const IkModel& model, const RobotCard& card,
                                             const Pose& target, const VendorConfig& config,
                                             const ConfigurationOptions& options) {
+  return solveIkWithConfiguration(model, card, target, config, options, ConfigurationMatch{});
+}
+
+ConfiguredSolution solveIkWithConfiguration(const IkModel& model, const RobotCard& card,
+                                            const Pose& target, const VendorConfig& config,
+                                            const ConfigurationOptions& options,
+                                            const ConfigurationMatch& match) {
   ConfiguredSolution out;
   IkResult all;
   IkOptions o;
   o.turns = IkTurns::kAll;
+  o.seed = match.seed;
   solveIk(model, target, o, all);
   if (all.count == 0) {
     out.reason = describeIkFailure(all);
@@ -356,26 +450,10 @@ ConfiguredSolution solveIkWithConfiguration(const IkModel& model, const RobotCar
     if (!s.converged || !s.within_limits) continue;
     if (want_branch && s.branch.index() != *want_branch) continue;
     branch_seen = true;
-    int mismatch = 0;
-    switch (config.vendor) {
-      case Vendor::kKuka:
-        mismatch = mismatchKuka(config.kuka, kukaConfig(model, card, s.q, options));
-        break;
-      case Vendor::kAbb: {
-        const AbbConfig a = abbConfig(model, card, s.q);
-        mismatch = std::abs(a.cf1 - config.abb.cf1) + std::abs(a.cf4 - config.abb.cf4) +
-                   std::abs(a.cf6 - config.abb.cf6);
-        break;
-      }
-      case Vendor::kFanuc: {
-        const FanucConfig f = fanucConfig(model, card, s.q, options);
-        for (size_t k = 0; k < 3; ++k) mismatch += std::abs(f.turns[k] - config.fanuc.turns[k]);
-        break;
-      }
-      case Vendor::kGeneric:
-        break;
-    }
-    const double norm = s.q.cwiseAbs().sum();
+    const int mismatch =
+        turnMismatch(model, card, s.q, config, options, match.boundary_tolerance, nullptr);
+    // ties: nearest the seed, else the smallest Σ|θ| (deterministic)
+    const double norm = match.seed ? (s.q - *match.seed).squaredNorm() : s.q.cwiseAbs().sum();
     if (!best || mismatch < best_mismatch ||
         (mismatch == best_mismatch && norm < best_norm - 1e-12)) {
       best = &s;

@@ -120,4 +120,33 @@ ConfiguredSolution solveIkWithConfiguration(const IkModel& model, const RobotCar
                                             const Pose& target, const VendorConfig& config,
                                             const ConfigurationOptions& options = {});
 
+/// Joints this close to the boundary of a flag (KUKA T: 0°; ABB cfN: multiples of 90°; FANUC
+/// turn: ±180° + k·360°) match the flag on either side (docs/configuration.md §5): an angle at the
+/// boundary — a hand-written A1 = 0 that a compensation offset of a few µrad moves to −0.0001° —
+/// keeps the programmed flag instead of flipping it. 0.5° exceeds every joint offset the
+/// compensation applies on the bundled sample jobs (≤ 0.04°, 0.21° on the FANUC wrist axes 4/6
+/// near θ5 = 0) and is far below any posture change.
+constexpr double kFlagBoundaryTolerance = 0.5 * kDeg;
+
+/// How the seeded overload resolves what the flags leave open.
+struct ConfigurationMatch {
+  const Vec6* seed{nullptr};       ///< among matching solutions the one nearest this (URDF, rad)
+  double boundary_tolerance{0.0};  ///< rad, see kFlagBoundaryTolerance
+};
+/// Flags + pose → the solution nearest `match.seed` (Σ (θ − seed)²) among those of the flags'
+/// branch whose turn flags match (joints within `boundary_tolerance` of a flag boundary match
+/// either side); without a seed as the overload above. Same result fields.
+ConfiguredSolution solveIkWithConfiguration(const IkModel& model, const RobotCard& card,
+                                            const Pose& target, const VendorConfig& config,
+                                            const ConfigurationOptions& options,
+                                            const ConfigurationMatch& match);
+
+/// The turn flags of `config` that the joint vector q (URDF, rad) does not meet, e.g.
+/// "cf6 -2 -> 2 (axis 6 at 181.6 deg)" or "T bit 0 (A1 at -3.2 deg)"; joints within `tolerance`
+/// (rad) of the flag's boundary meet it. Empty when every turn flag matches. The branch is not
+/// compared (see branchOfConfig).
+std::string turnFlagMismatch(const IkModel& model, const RobotCard& card, const Vec6& q,
+                             const VendorConfig& config, const ConfigurationOptions& options,
+                             double tolerance);
+
 }  // namespace roprec

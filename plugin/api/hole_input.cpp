@@ -48,6 +48,26 @@ std::optional<VendorConfig> programConfig(const postproc::Configuration& c, cons
   return parseConfig(v, c.text(), file, line);
 }
 
+/// The joints (URDF, rad) of the nearest joint target (MoveAbsJ, PTP to an axis target, FANUC
+/// joint position) programmed before motion `until` and after motion `after`: the arm posture the
+/// linear moves of a cycle start from (docs/configuration.md §6).
+std::optional<Vec6> programmedJointsBefore(const postproc::Program& p, const Robot& robot,
+                                           int after, int until) {
+  for (int mi = until - 1; mi > after && mi >= 0; --mi) {
+    const postproc::Motion& mo = p.motions[static_cast<size_t>(mi)];
+    if (mo.target < 0) continue;
+    const postproc::Target& t = p.targets()[static_cast<size_t>(mo.target)];
+    if (t.kind != postproc::TargetKind::kJoint) continue;
+    Vec6 qc;
+    for (size_t k = 0; k < 6; ++k) {
+      if (!t.joints[k].known()) return std::nullopt;
+      qc[static_cast<Eigen::Index>(k)] = t.joints[k].value * kDeg;
+    }
+    return fromControllerJoints(robot.card, qc);
+  }
+  return std::nullopt;
+}
+
 /// At most this many ids are listed in a note about unmatched holes.
 constexpr std::size_t kListedIds = 20;
 
@@ -234,6 +254,13 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
       r.config =
           programConfig(ct.config, robot, p.files[static_cast<size_t>(ct.file)].path, ct.line);
     }
+    // The flags written at the drill point (honoured or not: the compensation keeps them), and the
+    // posture the cycle starts from: the joint target programmed since the previous hole.
+    r.written_config = r.config ? r.config
+                                : programConfig(t.config, robot,
+                                                p.files[static_cast<size_t>(t.file)].path, t.line);
+    r.ik_seed = programmedJointsBefore(p, robot, i > 0 ? job.recognized[i - 1].bottom_motion : -1,
+                                       h.bottom_motion);
     if (const int si = spec_of_hole[i]; si >= 0) {
       const postproc::HoleSpec& s = specs[static_cast<size_t>(si)];
       r.id = s.id;
