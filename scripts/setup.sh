@@ -12,6 +12,7 @@ PACKAGES=(
   liborocos-kdl-dev libkdl-parser-dev
   pybind11-dev python3-pybind11 python3-dev python3-numpy
   locales  # tests/locale_test.cpp compiles a comma-decimal de_DE locale with localedef
+  time     # scripts/bench-cli.sh: wall time and peak RSS (GNU time -v)
 )
 # chromium: tests/report_test.cpp renders the reports headless (a failure under CI=true without it);
 # ROPREC_WITH_CHROMIUM=0 leaves it out on a machine that only builds
