@@ -1074,5 +1074,40 @@ TEST(ReportChromium, TwentyThousandHolesOpenQuickly) {
   if (!HasFailure()) fs::remove_all(dir);
 }
 
+/// verify's report: faces in the workobject frame with named axes, the decision on every residual
+/// marker, the ids of failing holes written, a table with units and a "failing only" filter.
+TEST(ReportSample, VerifyReportNamesAxesDecisionsAndFailingHoles) {
+  const std::string dir = test::tempDir("report-verify");
+  const std::string v = sample("verification/");
+  const test::RunResult r = test::runRoprec(
+      "verify --cell " + sample("cells/housing-kr120.xml") + " " + v + "test_kr120.src --holes " +
+      v + "test_kr120_holes.csv --measured " + v + "measured.csv --register translation --report " +
+      dir + "/v.html --json " + dir + "/v.json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string html = test::readFile(dir + "/v.html");
+  const std::string json = test::readFile(dir + "/v.json");
+  // three faces (no duplicate from a −0.00 direction component), each drawn twice
+  EXPECT_EQ(countOf(html, "<h3>drilled ("), 6u);
+  EXPECT_EQ(html.find("-0.00"), std::string::npos);
+  EXPECT_NE(html.find("workobject X [mm]"), std::string::npos);
+  EXPECT_NE(html.find("workobject Y [mm]"), std::string::npos);
+  EXPECT_NE(html.find("workobject Z [mm]"), std::string::npos);
+  // one residual marker per hole with its decision; failing holes (outside the region or
+  // non-conformance proven) labelled and left visible by the filter
+  EXPECT_EQ(countOf(html, "class=\"vmk\""), 24u);
+  size_t failing = 0;
+  for (size_t at = html.find("<tr><td class=\"l\">"); at != std::string::npos;
+       at = html.find("<tr><td class=\"l\">", at + 5))
+    ++failing;
+  EXPECT_EQ(countOf(html, "<tr class=\"pass\">") + failing, 24u);
+  EXPECT_EQ(countOf(html, "class=\"flabel\""), failing);
+  EXPECT_GT(failing, 0u);
+  EXPECT_NE(html.find("id=\"failonly\""), std::string::npos);
+  EXPECT_NE(html.find("|r|<br><small>\u00b5m</small>"), std::string::npos);
+  EXPECT_EQ(html.find("<script"), std::string::npos);
+  EXPECT_EQ(countOf(json, "\"non-conformance-proven\"") > 0,
+            html.find("#cf222e") != std::string::npos);
+}
+
 }  // namespace
 }  // namespace roprec

@@ -20,9 +20,45 @@ std::string f(double v, int decimals) { return esc(formatNumber(v, decimals)); }
 /// Holes of one face: the same drilling direction (workobject frame, rounded to 0.01).
 struct Face {
   std::string name;
-  Mat3 R;  ///< plot axes: x = e₁, y = e₂ of the face's first hole (workobject frame)
+  /// Plot axes in the workobject (part) frame, as in the prediction report (docs/reports.md §2):
+  /// a face drilled along ±Z: x = workobject X; a wall: y = workobject +Z projected on the face;
+  /// otherwise e₁, e₂ of the face's first hole. Column 2 = the drilling direction.
+  Mat3 R;
+  std::string x_label, y_label;
   std::vector<size_t> holes;
 };
+
+/// "workobject X [mm]" when `d` is along a workobject axis (sign in `sign`), else its direction.
+std::string axisName(const Vec3& d, double& sign) {
+  for (int i = 0; i < 3; ++i) {
+    if (std::abs(d[i]) > 0.9995) {
+      sign = d[i] > 0 ? 1.0 : -1.0;
+      return std::string("workobject ") + "XYZ"[i] + " [mm]";
+    }
+  }
+  sign = 1.0;
+  return "(" + cFixed(d.x() + 0.0, 3) + ", " + cFixed(d.y() + 0.0, 3) + ", " +
+         cFixed(d.z() + 0.0, 3) + ") [mm]";
+}
+
+Mat3 faceAxes(const Mat3& R_first) {
+  const Vec3 a = R_first.col(2);
+  Vec3 u, v;
+  if (std::abs(a.z()) > 0.9995) {
+    u = Vec3::UnitX();
+    v = u.cross(a).normalized();
+  } else if (std::abs(a.z()) < 0.9) {
+    v = (Vec3::UnitZ() - a.z() * a).normalized();
+    u = v.cross(a).normalized();
+  } else {
+    return R_first;
+  }
+  Mat3 R;
+  R.col(0) = u;
+  R.col(1) = v;
+  R.col(2) = a;
+  return R;
+}
 
 std::vector<Face> faces(const VerifyResult& r) {
   const Mat3 R_wobj_W = r.prediction.context.cell.T_base_wobj.linear().transpose();
@@ -31,12 +67,17 @@ std::vector<Face> faces(const VerifyResult& r) {
   for (size_t n = 0; n < r.holes.size(); ++n) {
     const Mat3 R = R_wobj_W * r.nominal[n].linear();
     const Vec3 d = R.col(2);
-    const std::string key = "drilled (" + cFixed(d.x() + 0.0, 2) + ", " + cFixed(d.y() + 0.0, 2) +
-                            ", " + cFixed(d.z() + 0.0, 2) + ")";
+    // rounded first, so that −0.001 and 0.001 are the same face (no "-0.00")
+    auto r2 = [](double x) { return std::round(x * 100.0) / 100.0 + 0.0; };
+    const std::string key = "drilled (" + cFixed(r2(d.x()), 2) + ", " + cFixed(r2(d.y()), 2) +
+                            ", " + cFixed(r2(d.z()), 2) + ")";
     auto it = index.find(key);
     if (it == index.end()) {
       it = index.emplace(key, out.size()).first;
-      out.push_back({key, R, {}});
+      const Mat3 axes = faceAxes(R);
+      double sx = 1, sy = 1;
+      const std::string lx = axisName(axes.col(0), sx), ly = axisName(axes.col(1), sy);
+      out.push_back({key, axes, lx, ly, {}});
     }
     out[it->second].holes.push_back(n);
   }
@@ -92,6 +133,17 @@ std::vector<Eigen::Vector2d> facePoints(const VerifyResult& r, const Face& face)
   return pts;
 }
 
+/// The face's axis names along the bottom and left edges (the part frame, docs/reports.md §2).
+std::string axisLabels(const Face& face) {
+  std::ostringstream o;
+  o << "<text x=\"" << f(kW / 2, 1) << "\" y=\"" << f(kH - 8, 1)
+    << "\" text-anchor=\"middle\" font-size=\"11\">" << esc(face.x_label) << " \u2192</text>\n"
+    << "<text transform=\"translate(12 " << f(kH / 2, 1)
+    << ") rotate(-90)\" text-anchor=\"middle\" font-size=\"11\">" << esc(face.y_label)
+    << " \u2192</text>\n";
+  return o.str();
+}
+
 std::string arrowMap(const VerifyResult& r, const Face& face, double scale_px_per_um) {
   const std::vector<Eigen::Vector2d> pts = facePoints(r, face);
   const Plot pl = plotFor(pts);
@@ -113,6 +165,7 @@ std::string arrowMap(const VerifyResult& r, const Face& face, double scale_px_pe
                     scale_px_per_um;
     o << arrow(x, y, em.x(), -em.y(), "#1f5fbf") << arrow(x, y, dp.x(), -dp.y(), "#e07b00");
   }
+  o << axisLabels(face);
   o << "</svg>\n";
   return o.str();
 }
@@ -131,12 +184,26 @@ std::string residualMap(const VerifyResult& r, const Face& face) {
     const int green = static_cast<int>(std::lround(180 * (1 - std::min(q, 1.0))));
     char col[16];
     std::snprintf(col, sizeof col, "#%02x%02x40", red, green);
-    o << "<circle cx=\"" << f(pl.px(pts[m].x()), 1) << "\" cy=\"" << f(pl.py(pts[m].y()), 1)
-      << "\" r=\"" << f(4 + 6 * q, 1) << "\" fill=\"" << col << "\" stroke=\""
-      << (h.inside ? "none" : "#000") << "\"><title>" << esc(h.id) << ": |r| "
-      << f(h.r_norm * 1e6, 1) << " µm, region " << f(h.U_region * 1e6, 1)
-      << " µm</title></circle>\n";
+    const bool nc = h.decision == MeasuredDecision::kNonConformanceProven;
+    const char* outline = nc                                                   ? "#cf222e"
+                          : h.decision == MeasuredDecision::kConformanceProven ? "#2da44e"
+                                                                               : "#b07d00";
+    const double x = pl.px(pts[m].x()), y = pl.py(pts[m].y()), rad = 4 + 6 * q;
+    o << "<circle class=\"vmk\" cx=\"" << f(x, 1) << "\" cy=\"" << f(y, 1) << "\" r=\"" << f(rad, 1)
+      << "\" fill=\"" << col << "\" stroke=\"" << outline << "\" stroke-width=\""
+      << (nc ? "2.6" : "1.6") << "\"><title>" << esc(h.id) << ": |r| " << f(h.r_norm * 1e6, 1)
+      << " µm, region " << f(h.U_region * 1e6, 1) << " µm, " << measuredDecisionName(h.decision)
+      << "</title></circle>\n";
+    if (!h.inside) {
+      o << "<circle cx=\"" << f(x, 1) << "\" cy=\"" << f(y, 1) << "\" r=\"" << f(rad + 3, 1)
+        << "\" fill=\"none\" stroke=\"#000\"/>\n";
+    }
+    if (nc || !h.inside) {
+      o << "<text class=\"flabel\" x=\"" << f(x + rad + 3, 1) << "\" y=\"" << f(y + 4, 1)
+        << "\" font-size=\"11\" font-weight=\"600\" fill=\"#a40e26\">" << esc(h.id) << "</text>\n";
+    }
   }
+  o << axisLabels(face);
   o << "</svg>\n";
   return o.str();
 }
@@ -195,14 +262,25 @@ std::string identification(const VerifyResult& r) {
 
 std::string holeTable(const VerifyResult& r) {
   std::ostringstream o;
-  o << "<h2>Holes</h2>\n<table><tr><th>id</th><th>|e_meas| µm</th><th>|δwork⊥| µm</th>"
-       "<th>|r| µm</th><th>95 % region µm</th><th>inside</th><th>U_work "
-       "µm</th><th>decision</th></tr>\n";
+  size_t failing = 0;
+  for (const HoleVerification& h : r.holes)
+    failing += (!h.inside || h.decision == MeasuredDecision::kNonConformanceProven) ? 1 : 0;
+  o << "<h2>Holes</h2>\n<input type=\"checkbox\" id=\"failonly\"><label for=\"failonly\"> "
+       "outside the predicted region or non-conformance proven only ("
+    << failing
+    << ")</label>\n<table class=\"holes\"><tr><th "
+       "class=\"l\">id</th><th>|e_meas|<br><small>µm</small></th>"
+       "<th>|δwork⊥|<br><small>µm</small></th><th>|r|<br><small>µm</small></th><th>95 % "
+       "region<br><small>µm</small></th><th "
+       "class=\"l\">inside</th><th>U_work<br><small>µm</small></th>"
+       "<th class=\"l\">decision</th></tr>\n";
   for (const HoleVerification& h : r.holes) {
-    o << "<tr><td>" << esc(h.id) << "</td><td>" << f(h.e_meas_norm * 1e6, 1) << "</td><td>"
-      << f(h.d_pred_norm * 1e6, 1) << "</td><td>" << f(h.r_norm * 1e6, 1) << "</td><td>"
-      << f(h.U_region * 1e6, 1) << "</td><td>" << (h.inside ? "yes" : "NO") << "</td><td>"
-      << f(h.U_work * 1e6, 1) << "</td><td>" << measuredDecisionName(h.decision) << "</td></tr>\n";
+    const bool pass = h.inside && h.decision != MeasuredDecision::kNonConformanceProven;
+    o << "<tr" << (pass ? " class=\"pass\"" : "") << "><td class=\"l\">" << esc(h.id) << "</td><td>"
+      << f(h.e_meas_norm * 1e6, 1) << "</td><td>" << f(h.d_pred_norm * 1e6, 1) << "</td><td>"
+      << f(h.r_norm * 1e6, 1) << "</td><td>" << f(h.U_region * 1e6, 1) << "</td><td class=\"l\">"
+      << (h.inside ? "yes" : "NO") << "</td><td>" << f(h.U_work * 1e6, 1) << "</td><td class=\"l\">"
+      << measuredDecisionName(h.decision) << "</td></tr>\n";
   }
   return o.str() + "</table>\n";
 }
@@ -220,7 +298,10 @@ std::string verifyReport(const VerifyResult& r) {
     << "</title>\n<style>"
        "body{font-family:sans-serif;margin:20px}table{border-collapse:collapse;margin:8px 0}"
        "td,th{border:1px solid #bbb;padding:2px 6px;text-align:right}"
-       "th{background:#eee}.maps{display:flex;flex-wrap:wrap;gap:12px}</style></head><body>\n";
+       "th{background:#eee}.maps{display:flex;flex-wrap:wrap;gap:12px}"
+       "body{font-variant-numeric:tabular-nums}td.l,th.l{text-align:left}th small{font-weight:400}"
+       "#failonly:checked~table.holes tr.pass{display:none}"
+       ".flabel{paint-order:stroke;stroke:#fff;stroke-width:3px}</style></head><body>\n";
   o << "<h1>roprec verify — measured vs predicted</h1>\n<p>robot " << esc(c.robot.card.name)
     << ", cell " << esc(c.cell.name) << ", program "
     << esc(std::filesystem::path(r.program_path).filename().string()) << ", measured "
@@ -234,12 +315,17 @@ std::string verifyReport(const VerifyResult& r) {
   }
   o << ".</p>\n" << statistics(r);
   o << "<h2>Measured (blue) and predicted (orange) deviation ⊥ axis, per face</h2>\n<p>Arrows: "
-    << f(scale, 3) << " px per µm; positions in the face's plane (mm).</p>\n<div class=\"maps\">\n";
+    << f(scale, 3)
+    << " px per µm; positions in the face's plane, workobject (part) frame, mm.</p>\n<div "
+       "class=\"maps\">\n";
   const std::vector<Face> fs = faces(r);
   for (const Face& face : fs)
     o << "<div><h3>" << esc(face.name) << "</h3>\n" << arrowMap(r, face, scale) << "</div>\n";
   o << "</div>\n<h2>Residual map</h2>\n<p>Colour and size: |r| / the predicted 95 % region; a "
-       "black ring marks a hole outside it.</p>\n<div class=\"maps\">\n";
+       "black ring marks a hole outside it. Outline: the ISO 14253-1 decision on the measured "
+       "value (green conformance proven, amber no decision, red non-conformance proven); the ids "
+       "of holes outside the region or proven non-conforming are written next to them. Faces in "
+       "the workobject (part) frame.</p>\n<div class=\"maps\">\n";
   for (const Face& face : fs)
     o << "<div><h3>" << esc(face.name) << "</h3>\n" << residualMap(r, face) << "</div>\n";
   o << "</div>\n" << identification(r) << holeTable(r);
