@@ -76,8 +76,16 @@ bool Json::finite() const {
   return true;
 }
 
+namespace {
+bool needsEscape(char c) { return c == '"' || c == '\\' || static_cast<unsigned char>(c) < 0x20; }
+}  // namespace
+
 void appendJsonEscaped(std::string& o, std::string_view s) {
-  for (const char c : s) {
+  // runs without a character to escape are appended whole (ids, keys, notes: nearly everything)
+  size_t run = 0;
+  while (run < s.size() && !needsEscape(s[run])) ++run;
+  o.append(s.data(), run);
+  for (const char c : s.substr(run)) {
     switch (c) {
       case '"':
         o += "\\\"";
