@@ -913,10 +913,10 @@ constexpr const char* kPagedTableScript = R"JS(
 var R=window.ROPREC_ROWS,t=document.getElementById('holetable');if(!t||!R)return;
 var b=t.tBodies[0],cb=document.getElementById('failonly'),pg=document.getElementById('pager');
 var P=200,page=0,order=R.map(function(_,i){return i;}),dir={},keys={};
-function cell(s,i){var p=s.split('</td>')[i]||'';return p.replace(/<[^>]*>/g,'');}
+function cell(s,i){var p=s.split('\x1f')[i]||'';if(i>0)p=p.slice(p.indexOf('>')+1);return p.replace(/<[^>]*>/g,'');}
 function rows(){return cb.checked?order.filter(function(i){return R[i].lastIndexOf('<tr class="pass"',0)!==0;}):order;}
 function draw(){var r=rows(),n=Math.max(1,Math.ceil(r.length/P));if(page>=n)page=n-1;if(page<0)page=0;
- b.innerHTML=r.slice(page*P,page*P+P).map(function(i){return R[i];}).join('');
+ b.innerHTML=r.slice(page*P,page*P+P).map(function(i){return R[i].split('\x1f').join('</td><td');}).join('');
  pg.querySelector('span').textContent='rows '+(r.length?page*P+1:0)+'\u2013'+Math.min(r.length,page*P+P)+' of '+r.length;}
 pg.querySelector('.prev').addEventListener('click',function(){page--;draw();});
 pg.querySelector('.next').addEventListener('click',function(){page++;draw();});
@@ -1401,6 +1401,10 @@ std::string jsString(std::string_view v) {
       s += "\\n";
       continue;
     }
+    if (c == '\x1f') {
+      s += "\\x1f";
+      continue;
+    }
     s += c;
   }
   return s + "\"";
@@ -1509,8 +1513,12 @@ void renderTable(std::string& o, const ReportInput& in, const std::vector<HoleVi
           const Vec3 u = n > 0 ? Vec3(p.d_robot / n) : Vec3::Zero();
           for (const Vec3* part : {&s.gravity, &s.tool, &s.process, &s.controller}) {
             const Vec3 um = *part * 1e6;
-            o += "<td title=\"(" + num(um.x(), 1) + ", " + num(um.y(), 1) + ", " + num(um.z(), 1) +
-                 ") \u00b5m\">" + num(part->dot(u) * 1e6, 1) + "</td>";
+            if (large) {  // the vectors only where the table is small (bytes, load time)
+              o += numCell(part->dot(u) * 1e6, 1);
+            } else {
+              o += "<td title=\"(" + num(um.x(), 1) + ", " + num(um.y(), 1) + ", " +
+                   num(um.z(), 1) + ") \u00b5m\">" + num(part->dot(u) * 1e6, 1) + "</td>";
+            }
           }
         } else {
           o += dashCells(4);
@@ -1567,7 +1575,20 @@ void renderTable(std::string& o, const ReportInput& in, const std::vector<HoleVi
     }
     o += "</tr>";
     if (large) {
-      rows_js += (rows_js.empty() ? "" : ",\n") + jsString(std::string_view(o).substr(row_start));
+      // "</td><td" → the unit separator (JS "\x1f"): the rows are half the bytes; the script
+      // joins them back for the page it shows
+      std::string row = o.substr(row_start);
+      std::string packed;
+      packed.reserve(row.size());
+      for (size_t k = 0; k < row.size();) {
+        if (row.compare(k, 8, "</td><td") == 0) {
+          packed += '\x1f';
+          k += 8;
+        } else {
+          packed += row[k++];
+        }
+      }
+      rows_js += (rows_js.empty() ? "" : ",\n") + jsString(packed);
       o.resize(row_start);
     }
   }
