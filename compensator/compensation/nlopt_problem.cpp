@@ -21,11 +21,11 @@ double NloptProblem::trampoline(unsigned n, const double* x, double* grad, void*
   auto* cb = static_cast<Callback*>(data);
   try {
     ++cb->self->evaluations_;
-    const std::vector<double> xv(x, x + n);
-    std::vector<double> g(grad ? n : 0);
-    const double v = cb->f(xv, g);
+    cb->x.assign(x, x + n);  // capacity reserved at registration: no allocation
+    cb->grad.resize(grad ? n : 0);
+    const double v = cb->f(cb->x, cb->grad);
     if (grad) {
-      for (unsigned i = 0; i < n; ++i) grad[i] = g[i];
+      for (unsigned i = 0; i < n; ++i) grad[i] = cb->grad[i];
     }
     return v;
   } catch (...) {
@@ -37,13 +37,17 @@ double NloptProblem::trampoline(unsigned n, const double* x, double* grad, void*
 }
 
 void NloptProblem::setObjective(Function f) {
-  objective_ = std::make_unique<Callback>(Callback{this, std::move(f)});
+  objective_ = std::make_unique<Callback>(Callback{this, std::move(f), {}, {}});
+  objective_->x.reserve(n_);
+  objective_->grad.reserve(n_);
   check(nlopt_set_min_objective(opt_.get(), &NloptProblem::trampoline, objective_.get()),
         "set the objective");
 }
 
 void NloptProblem::addInequality(Function c, double tol) {
-  constraints_.push_back(std::make_unique<Callback>(Callback{this, std::move(c)}));
+  constraints_.push_back(std::make_unique<Callback>(Callback{this, std::move(c), {}, {}}));
+  constraints_.back()->x.reserve(n_);
+  constraints_.back()->grad.reserve(n_);
   check(nlopt_add_inequality_constraint(opt_.get(), &NloptProblem::trampoline,
                                         constraints_.back().get(), tol),
         "add an inequality constraint");

@@ -5,6 +5,7 @@
 /// trampolines are C callbacks that catch everything, store the exception, force-stop the run and
 /// return HUGE_VAL; the stored exception is rethrown after nlopt_optimize returns. The result
 /// (code, value, evaluations) is a value; roundoff-limited runs are usable results, not errors.
+/// Evaluations allocate nothing: x and the gradient live in per-callback buffers.
 
 #include <nlopt.h>
 
@@ -42,9 +43,13 @@ class NloptProblem {
   Result optimize(std::vector<double>& x);
 
  private:
+  /// x and the gradient are handed to `f` in buffers owned here, sized once (no allocation per
+  /// evaluation).
   struct Callback {
     NloptProblem* self{nullptr};
     Function f;
+    std::vector<double> x;
+    std::vector<double> grad;
   };
   static double trampoline(unsigned n, const double* x, double* grad, void* data);
   void check(nlopt_result r, const std::string& what) const;

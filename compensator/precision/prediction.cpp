@@ -1,9 +1,13 @@
 #include "compensator/precision/prediction.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <exception>
+#include <thread>
 
 #include "compensator/precision/uncertainty.hpp"
+#include "compensator/robot/fast_equilibrium.hpp"
 #include "compensator/support/error.hpp"
 
 namespace roprec {
@@ -167,70 +171,113 @@ double jointDistance(const Vec6& a, const Vec6& b) {
 
 }  // namespace
 
+namespace {
+
+/// Step 1 (IK): the solution the hole's configuration selects, else the admissible one nearest
+/// `ref`. On failure p.status/verdict/reason say why and false is returned.
+bool chooseSolution(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
+                    const Pose& T_W_flange, const Vec6& ref, HolePrediction& p, IkSolution& sol) {
+  bool found = false;
+  if (h.config) {
+    const ConfiguredSolution cs =
+        solveIkWithConfiguration(m.ik, m.robot.card, T_W_flange, *h.config, m.config_options);
+    if (cs.found) {
+      sol = cs.solution;
+      return true;
+    }
+    p.status = HoleStatus::kUnreachable;
+    p.verdict = Verdict::kUnreachable;
+    p.reason = "no solution with the program's configuration " + formatConfig(*h.config) + ": " +
+               cs.reason;
+    return false;
+  }
+  IkOptions opt;
+  opt.seed = &ref;
+  solveIk(m.ik, T_W_flange, opt, d.ik);
+  double best = 1e300;
+  for (int i = 0; i < d.ik.count; ++i) {
+    const IkSolution& s = d.ik.solutions[static_cast<size_t>(i)];
+    if (!s.within_limits || !s.converged || s.singular_wrist || s.singular_shoulder) continue;
+    const double dist = jointDistance(s.q, ref);
+    if (dist < best) {
+      best = dist;
+      sol = s;
+      found = true;
+    }
+  }
+  if (found) return true;
+  p.status = HoleStatus::kUnreachable;
+  p.verdict = Verdict::kUnreachable;
+  if (d.ik.count == 0) {
+    p.reason = describeIkFailure(d.ik);
+  } else {
+    bool any_in_limits = false;
+    for (int i = 0; i < d.ik.count; ++i)
+      any_in_limits |= d.ik.solutions[static_cast<size_t>(i)].within_limits;
+    if (any_in_limits) {
+      p.status = HoleStatus::kSingular;
+      p.verdict = Verdict::kSingular;
+      p.reason = "every in-limit solution is at a wrist or shoulder singularity";
+    } else {
+      p.reason = "no IK solution within the joint limits";
+    }
+  }
+  return false;
+}
+
+Pose flangeTarget(const PredictionModel& m, const HoleRequest& h) {
+  return h.T_W_tcp * m.model.T_L6_tcp.inverse() * m.model.T_L6_flange;
+}
+
+/// The IK seed of a hole: its own, else the sequence's, else the vendor's reference pose.
+const Vec6& seedOf(const PredictionModel& m, const HoleRequest& h, const Vec6* seed) {
+  return h.ik_seed ? *h.ik_seed : seed ? *seed : m.reference_pose;
+}
+
+void predictAtSolution(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
+                       const IkSolution& sol, HolePrediction& p);
+
+}  // namespace
+
 HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
                            const Vec6* seed) {
   HolePrediction p;
-  p.id = h.id;
+  predictHole(m, d, h, seed, p);
+  return p;
+}
+
+void predictHole(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
+                 const Vec6* seed, HolePrediction& p) {
+  // reset every field, keeping the capacity of the strings and the budget (no allocation)
+  std::string id = std::move(p.id);
+  std::string reason = std::move(p.reason);
+  std::string config = std::move(p.config);
+  std::vector<BudgetTerm> budget = std::move(p.budget);
+  p = HolePrediction{};
+  id.assign(h.id);
+  reason.clear();
+  config.clear();
+  budget.clear();
+  p.id = std::move(id);
+  p.reason = std::move(reason);
+  p.config = std::move(config);
+  p.budget = std::move(budget);
+  IkSolution sol;
+  chooseSolution(m, d, h, flangeTarget(m, h), seedOf(m, h, seed), p, sol);
+  predictAtSolution(m, d, h, sol, p);  // without a solution: the per-hole process figures only
+}
+
+namespace {
+
+void predictAtSolution(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
+                       const IkSolution& sol, HolePrediction& p) {
   p.tolerance = h.tolerance > 0 ? h.tolerance : m.default_tolerance;
   const ProcessAtDiameter* proc = processFor(m, h.diameter);
   p.diameter = h.diameter > 0 ? h.diameter : (proc ? proc->diameter : 0.0);
   p.depth = h.depth > 0 ? h.depth : (proc ? proc->default_depth : 0.0);
   if (proc && proc->feed_rate > 0)
     p.mc_time = p.depth / proc->feed_rate + m.capability.mc_approach_s;
-
-  // 1. IK for the flange
-  const Pose T_W_flange = h.T_W_tcp * m.model.T_L6_tcp.inverse() * m.model.T_L6_flange;
-  const Vec6 ref = h.ik_seed ? *h.ik_seed : seed ? *seed : m.reference_pose;
-  bool found = false;
-  IkSolution sol;
-  if (h.config) {
-    const ConfiguredSolution cs =
-        solveIkWithConfiguration(m.ik, m.robot.card, T_W_flange, *h.config, m.config_options);
-    if (cs.found) {
-      sol = cs.solution;
-      found = true;
-    } else {
-      p.status = HoleStatus::kUnreachable;
-      p.verdict = Verdict::kUnreachable;
-      p.reason = "no solution with the program's configuration " + formatConfig(*h.config) + ": " +
-                 cs.reason;
-      return p;
-    }
-  } else {
-    IkOptions opt;
-    opt.seed = &ref;
-    solveIk(m.ik, T_W_flange, opt, d.ik);
-    double best = 1e300;
-    for (int i = 0; i < d.ik.count; ++i) {
-      const IkSolution& s = d.ik.solutions[static_cast<size_t>(i)];
-      if (!s.within_limits || !s.converged || s.singular_wrist || s.singular_shoulder) continue;
-      const double dist = jointDistance(s.q, ref);
-      if (dist < best) {
-        best = dist;
-        sol = s;
-        found = true;
-      }
-    }
-    if (!found) {
-      p.status = HoleStatus::kUnreachable;
-      p.verdict = Verdict::kUnreachable;
-      if (d.ik.count == 0) {
-        p.reason = describeIkFailure(d.ik);
-      } else {
-        bool any_in_limits = false;
-        for (int i = 0; i < d.ik.count; ++i)
-          any_in_limits |= d.ik.solutions[static_cast<size_t>(i)].within_limits;
-        if (any_in_limits) {
-          p.status = HoleStatus::kSingular;
-          p.verdict = Verdict::kSingular;
-          p.reason = "every in-limit solution is at a wrist or shoulder singularity";
-        } else {
-          p.reason = "no IK solution within the joint limits";
-        }
-      }
-      return p;
-    }
-  }
+  if (p.status != HoleStatus::kOk) return;
   p.joints = sol.q;
   p.branch = 4 * sol.branch.shoulder + 2 * sol.branch.elbow + sol.branch.wrist;
   p.wrist_margin = sol.branch.wrist_margin_rad;
@@ -239,7 +286,7 @@ HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const Ho
     p.status = HoleStatus::kSingular;
     p.verdict = Verdict::kSingular;
     p.reason = sol.singular_wrist ? "wrist singularity (axis 5 near 0)" : "shoulder singularity";
-    return p;
+    return;
   }
 
   // 2. δrobot
@@ -253,7 +300,7 @@ HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const Ho
     p.verdict = Verdict::kNotConverged;
     p.reason = "the compliance equilibrium did not converge (residual " +
                numberText(p.deflection.residual) + " rad)";
-    return p;
+    return;
   }
   p.d_robot = p.deflection.dp;
   p.d_rot = p.deflection.drot;
@@ -284,8 +331,8 @@ HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const Ho
   Eigen::Matrix2d cov_def_proc = Eigen::Matrix2d::Zero();
   const double u_proc_scale = U.process_halfwidth / std::sqrt(3.0);
   if (U.method == UncertaintyInputs::Method::kLinear) {
-    // Jacobian at the deflected configuration (data holds it after predictDeflection).
-    const nc::Mat6& J = nc::tcpJacobian(m.model, d.nc);
+    // Jacobian at the deflected configuration (data.frames hold it after predictDeflection).
+    const nc::Mat6& J = nc::tcpJacobianFromFrames(m.model, d.nc);
     auto inPlane = [&](const Vec3& v) { return Eigen::Vector2d(v.dot(e1), v.dot(e2)); };
     // Sensitivity to k_i of the part of the deflection roprec predicts (beyond a controller's own
     // gravity compensation): net joint deformation Δθ_i = θ_i − θ_m,i − offset_i, first order.
@@ -389,18 +436,93 @@ HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const Ho
   // (e.g. a compensated program checked against its hole list), else from the programmed pose.
   p.verdict =
       verdictFor(p.nominal_axis_error.value_or(p.position_error), p.U_work_exact, p.tolerance);
-  return p;
 }
+
+}  // namespace
 
 std::vector<HolePrediction> predictHoles(const PredictionModel& m,
                                          const std::vector<HoleRequest>& holes) {
-  PredictionData d(m);
-  std::vector<HolePrediction> out;
-  out.reserve(holes.size());
-  std::optional<Vec6> prev;
-  for (const HoleRequest& h : holes) {
-    out.push_back(predictHole(m, d, h, prev ? &*prev : nullptr));
-    if (out.back().status == HoleStatus::kOk) prev = out.back().joints;
+  return predictHoles(m, holes, PredictOptions{});
+}
+
+namespace {
+
+/// Runs work(worker, i) for i in [0, n) on `threads` workers (the caller is worker 0), in chunks
+/// taken from a shared counter. Rethrows the first exception of a worker after all joined.
+template <class Work>
+void parallelFor(size_t n, int threads, const Work& work) {
+  const int t = static_cast<int>(std::min<size_t>(static_cast<size_t>(std::max(1, threads)), n));
+  if (t <= 1) {
+    for (size_t i = 0; i < n; ++i) work(0, i);
+    return;
+  }
+  constexpr size_t kChunk = 16;
+  std::atomic<size_t> next{0};
+  std::vector<std::exception_ptr> errors(static_cast<size_t>(t));
+  auto run = [&](int w) {
+    try {
+      for (size_t b = next.fetch_add(kChunk); b < n; b = next.fetch_add(kChunk)) {
+        for (size_t i = b; i < std::min(n, b + kChunk); ++i) work(w, i);
+      }
+    } catch (...) {
+      errors[static_cast<size_t>(w)] = std::current_exception();
+      next.store(n);
+    }
+  };
+  std::vector<std::thread> pool;
+  pool.reserve(static_cast<size_t>(t - 1));
+  for (int w = 1; w < t; ++w) pool.emplace_back(run, w);
+  run(0);
+  for (std::thread& th : pool) th.join();
+  for (const std::exception_ptr& e : errors) {
+    if (e) std::rethrow_exception(e);
+  }
+}
+
+}  // namespace
+
+std::vector<HolePrediction> predictHoles(const PredictionModel& m,
+                                         const std::vector<HoleRequest>& holes,
+                                         const PredictOptions& options) {
+  const size_t n = holes.size();
+  std::vector<HolePrediction> out(n);
+  const int threads = std::max(1, options.threads);
+  std::vector<PredictionData> scratch;
+  scratch.reserve(static_cast<size_t>(threads));
+  for (int w = 0; w < threads; ++w) scratch.emplace_back(m);
+  // 1. sequential pass: the IK choice of every hole, which seeds the next one (continuity)
+  std::vector<IkSolution> sol(n);
+  std::vector<char> chosen(n, 0);
+  std::vector<std::optional<Vec6>> seed(n);
+  {
+    std::optional<Vec6> prev = options.seed;
+    HolePrediction probe;
+    for (size_t i = 0; i < n; ++i) {
+      seed[i] = prev;
+      probe.status = HoleStatus::kOk;
+      chosen[i] = chooseSolution(m, scratch[0], holes[i], flangeTarget(m, holes[i]),
+                                 seedOf(m, holes[i], prev ? &*prev : nullptr), probe, sol[i]);
+      if (chosen[i] && !sol[i].singular_wrist && !sol[i].singular_shoulder) prev = sol[i].q;
+    }
+  }
+  // 2. the rest of every hole, in parallel (per-worker scratch; each hole depends only on its
+  //    request, its seed and the model, so the output does not depend on the thread count)
+  parallelFor(n, threads, [&](int w, size_t i) {
+    HolePrediction& p = out[i];
+    p.id = holes[i].id;
+    if (chosen[i]) {
+      predictAtSolution(m, scratch[static_cast<size_t>(w)], holes[i], sol[i], p);
+    } else {
+      predictHole(m, scratch[static_cast<size_t>(w)], holes[i], seed[i] ? &*seed[i] : nullptr, p);
+    }
+  });
+  // 3. the rare hole whose full prediction failed after an admissible IK (equilibrium not
+  //    converged) seeds its successor differently: redo the sequence from there, sequentially
+  std::optional<Vec6> prev = options.seed;
+  for (size_t i = 0; i < n; ++i) {
+    const bool same = prev.has_value() == seed[i].has_value() && (!prev || *prev == *seed[i]);
+    if (!same) predictHole(m, scratch[0], holes[i], prev ? &*prev : nullptr, out[i]);
+    if (out[i].status == HoleStatus::kOk) prev = out[i].joints;
   }
   return out;
 }

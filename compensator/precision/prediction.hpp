@@ -133,7 +133,7 @@ struct HoleRequest {
   /// moves): the compensation keeps them unless its target cannot be reached with them
   /// (docs/configuration.md §6). Does not steer the prediction's IK choice.
   std::optional<VendorConfig> written_config;
-  int line{0};                         ///< source line (messages)
+  int line{0};  ///< source line (messages)
   /// Where the hole starts: the surface point on the drill axis (base frame, m), when the
   /// program's cycle shows it (the feed starts there); T_W_tcp is the bottom (drill point).
   std::optional<Vec3> surface_W;
@@ -214,10 +214,27 @@ struct PredictionData {
 /// Predicts one hole. `seed` (rad) steers the default IK choice; nullptr: the reference pose.
 HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
                            const Vec6* seed);
+/// The same into `out`, reusing its strings' and budget's storage: no heap allocation per hole
+/// once `out` has held a prediction (linear budget; the Monte Carlo budget allocates its samples).
+void predictHole(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
+                 const Vec6* seed, HolePrediction& out);
+
+struct PredictOptions {
+  /// Worker threads over holes (≥ 1; 1: the calling thread only). The output is byte-identical
+  /// for every count: a sequential pass fixes the IK choice that seeds each next hole, the rest
+  /// of each hole runs on the workers with per-thread scratch.
+  int threads{1};
+  /// Continuity seed before the first hole (the last admissible joints of a previous block, rad):
+  /// predicting a sequence block by block with it gives the same result as in one call.
+  std::optional<Vec6> seed;
+};
 
 /// Predicts a sequence, each hole seeded with the previous admissible solution.
 std::vector<HolePrediction> predictHoles(const PredictionModel& m,
                                          const std::vector<HoleRequest>& holes);
+std::vector<HolePrediction> predictHoles(const PredictionModel& m,
+                                         const std::vector<HoleRequest>& holes,
+                                         const PredictOptions& options);
 
 struct CapabilitySummary {
   int holes{0};

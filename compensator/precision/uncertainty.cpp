@@ -76,47 +76,81 @@ double normalTwoSided(double p) {
 }
 }  // namespace
 
+namespace {
+/// Eigenvalues l1 ≤ l2 of a symmetric 2×2 matrix in closed form, clamped at 0.
+void eigenvalues2(const Eigen::Matrix2d& S, double& l1, double& l2) {
+  const double m = 0.5 * (S(0, 0) + S(1, 1));
+  const double h = 0.5 * (S(0, 0) - S(1, 1));
+  const double o = 0.5 * (S(0, 1) + S(1, 0));
+  const double r = std::hypot(h, o);
+  l2 = std::max(m + r, 0.0);
+  l1 = std::max(m - r, 0.0);
+}
+
+/// P(R) − p and dP/dR in one pass over the nodes (the derivative shares the node's exp):
+///   dP/dR = 2/√(2π) Σ wᵢ cᵢ [ e^{−a²sᵢ²/2}(1 − a²sᵢ²) erf(b cᵢ)/√l2
+///                           + a e^{−a²sᵢ²/2} (2/√π) e^{−b²cᵢ²} cᵢ/√(2 l1) ].
+double radialPAndSlope(double l1, double l2, double R, double& slope) {
+  const QuarterNodes& q = quarterNodes();
+  const double s2 = std::sqrt(l2);
+  const double s1 = std::sqrt(2.0 * l1);
+  const double a = R / s2;
+  const double b = R / s1;
+  double acc = 0.0;
+  double dacc = 0.0;
+  for (int i = 0; i < QuarterNodes::kN; ++i) {
+    const double z = a * q.sin_t[i];
+    const double e = std::exp(-0.5 * z * z);
+    const double bc = b * q.cos_t[i];
+    const double er = std::erf(bc);
+    acc += q.w[i] * e * er * q.cos_t[i];
+    dacc += q.w[i] * q.cos_t[i] * e *
+            ((1.0 - z * z) * er / s2 +
+             a * (2.0 / std::sqrt(kPi)) * std::exp(-bc * bc) * q.cos_t[i] / s1);
+  }
+  const double k = 2.0 / std::sqrt(2.0 * kPi);
+  slope = k * dacc;
+  return k * a * acc;
+}
+}  // namespace
+
 double radialProbability(const Eigen::Matrix2d& Sigma, double R) {
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(Sigma);
-  const double l1 = std::max(es.eigenvalues()[0], 0.0);
-  const double l2 = std::max(es.eigenvalues()[1], 0.0);
+  double l1 = 0.0;
+  double l2 = 0.0;
+  eigenvalues2(Sigma, l1, l2);
   if (l2 <= 0.0) return R > 0 ? 1.0 : 0.0;
   if (l1 <= 1e-14 * l2) return std::erf(R / std::sqrt(2.0 * l2));  // degenerate: 1-D normal
   return radialP(l1, l2, R);
 }
 
 double radialCoverage(const Eigen::Matrix2d& Sigma, double p) {
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(Sigma);
-  const double l1 = std::max(es.eigenvalues()[0], 0.0);
-  const double l2 = std::max(es.eigenvalues()[1], 0.0);
+  double l1 = 0.0;
+  double l2 = 0.0;
+  eigenvalues2(Sigma, l1, l2);
   if (l2 <= 0.0) return 0.0;
   const double s2 = std::sqrt(l2);
-  if (l1 <= 1e-14 * l2) return normalTwoSided(p) * s2;
+  // the 1-D quantile is a constant of p: computed once for the default p
+  static const double kTwoSided95 = normalTwoSided(0.95);
+  static const double kRayleigh95 = rayleighCoverageFactor(0.95);
+  const double z1 = p == 0.95 ? kTwoSided95 : normalTwoSided(p);
+  const double zr = p == 0.95 ? kRayleigh95 : rayleighCoverageFactor(p);
+  if (l1 <= 1e-14 * l2) return z1 * s2;
   // r ≥ √l2 |z2| and r ≤ √l2 |z|: the radius lies between the 1-D and the Rayleigh quantile of
-  // the major axis. Regula falsi (Illinois) on that bracket; P is increasing in R.
-  double lo = normalTwoSided(p) * s2;
-  double hi = rayleighCoverageFactor(p) * s2;
-  double flo = radialP(l1, l2, lo) - p;
-  double fhi = radialP(l1, l2, hi) - p;
-  if (flo >= 0) return lo;
-  if (fhi <= 0) return hi;
-  double R = hi;
-  int side = 0;
-  for (int it = 0; it < 100 && hi - lo > 1e-13 * hi; ++it) {
-    R = (lo * fhi - hi * flo) / (fhi - flo);
-    const double f = radialP(l1, l2, R) - p;
+  // the major axis. Newton from the interpolation in √(l1/l2) (exact at both ends), kept inside
+  // that bracket (bisection when a step leaves it); P is increasing in R.
+  double lo = z1 * s2;
+  double hi = zr * s2;
+  double R = lo + (hi - lo) * std::sqrt(l1 / l2);
+  for (int it = 0; it < 60; ++it) {
+    double slope = 0.0;
+    const double f = radialPAndSlope(l1, l2, R, slope) - p;
     if (f == 0) return R;
-    if (f < 0) {
-      lo = R;
-      flo = f;
-      if (side == -1) fhi *= 0.5;
-      side = -1;
-    } else {
-      hi = R;
-      fhi = f;
-      if (side == 1) flo *= 0.5;
-      side = 1;
-    }
+    (f < 0 ? lo : hi) = R;
+    double next = slope > 0 ? R - f / slope : 0.5 * (lo + hi);
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    const double step = std::abs(next - R);
+    R = next;
+    if (step <= 1e-14 * R || hi - lo <= 1e-13 * hi) break;
   }
   return R;
 }

@@ -25,8 +25,9 @@ double rpFromSigma(double sigma);
 double rayleighCoverageFactor(double p = 0.95);
 /// P(r ≤ R) for a zero-mean 2-D normal with covariance Σ (2×2, SPSD).
 double radialProbability(const Eigen::Matrix2d& Sigma, double R);
-/// The radius R with P(r ≤ R) = p: regula falsi (Illinois) between the 1-D and the Rayleigh
-/// quantile of the major axis, which bracket it. Relative accuracy 1e-13.
+/// The radius R with P(r ≤ R) = p: safeguarded Newton (P and dP/dR share the precomputed nodes'
+/// exponentials) inside the bracket of the 1-D and the Rayleigh quantile of the major axis,
+/// from their interpolation in √(l1/l2); closed-form 2×2 eigenvalues. Relative accuracy ~1e-13.
 double radialCoverage(const Eigen::Matrix2d& Sigma, double p = 0.95);
 
 }  // namespace roprec

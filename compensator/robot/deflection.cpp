@@ -1,9 +1,12 @@
 #include "compensator/robot/deflection.hpp"
 
+#include <Eigen/LU>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 
+#include "compensator/robot/fast_equilibrium.hpp"
 #include "compensator/support/c_format.hpp"
 #include "compensator/support/error.hpp"
 
@@ -39,9 +42,12 @@ JointCompliance requireComplianceFromCard(const RobotCard& card) {
 
 Vec6 gravityCommandOffset(const Model& calibration_model, Data& data, const JointCompliance& c,
                           const Vec6& theta) {
-  solvePosition(calibration_model, data, theta, Guess::kClosedForm);
+  chainFrames(calibration_model, data, theta);
   const Loads gravity_only;
-  return staticTorques(calibration_model, data, gravity_only).cwiseQuotient(c.effective());
+  Vec6 tau;
+  StaticLoadSums sums;
+  staticTorquesFromFrames(calibration_model, data, gravity_only, tau, sums);
+  return tau.cwiseQuotient(c.effective());
 }
 
 std::string ControllerReference::description() const {
@@ -100,28 +106,30 @@ Vec6 controllerReferenceOffset(const ControllerReference& ref, Data& data, const
 }
 
 namespace {
-/// τ(θ): position problem + static torques. The closed-form recursion is exact, so Newton only
-/// verifies it (cheaper than a warm-started Newton step). Returns false if it did not converge.
-bool torquesAt(const Model& model, Data& data, const Vec6& theta, const Loads& loads, Vec6& tau) {
-  if (!solvePosition(model, data, theta, Guess::kClosedForm).converged) return false;
-  tau = staticTorques(model, data, loads);
-  return true;
+/// τ(θ) by the frame recursion (fast_equilibrium.hpp); data is left a natural-coordinate state
+/// at θ with data.tau = τ.
+void torquesAt(const Model& model, Data& data, const Vec6& theta, const Loads& loads, Vec6& tau,
+               StaticLoadSums& sums) {
+  chainFrames(model, data, theta);
+  staticTorquesFromFrames(model, data, loads, tau, sums);
+}
+
+/// Leaves data as after solvePosition at data.frames, with the torques τ.
+void finishState(const Model& model, Data& data, const Vec6& tau) {
+  syncNaturalCoordinates(model, data);
+  data.tau = tau;
+  data.qd.setZero();
+  data.qdd.setZero();
 }
 }  // namespace
 
 Mat6 torqueSensitivity(const Model& model, Data& data, const Vec6& theta, const Loads& loads) {
+  Vec6 tau;
+  StaticLoadSums sums;
+  torquesAt(model, data, theta, loads, tau, sums);
   Mat6 D;
-  const double h = 1e-6;
-  Vec6 tp;
-  Vec6 tm;
-  for (int j = 0; j < 6; ++j) {
-    Vec6 th = theta;
-    th[j] += h;
-    torquesAt(model, data, th, loads, tp);
-    th[j] -= 2 * h;
-    torquesAt(model, data, th, loads, tm);
-    D.col(j) = (tp - tm) / (2 * h);
-  }
+  staticSensitivity(model, data, sums, D);
+  finishState(model, data, tau);
   return D;
 }
 
@@ -130,53 +138,59 @@ Deflection predictDeflection(const Model& model, Data& data, const JointComplian
                              const Vec6& command_offset) {
   Deflection d;
   d.theta_m = theta_m;
-  const Vec6 keff = c.effective();
   const Vec6 cmd = theta_m + command_offset;
-  // nominal (rigid) TCP
-  if (!solvePosition(model, data, theta_m, Guess::kClosedForm).converged) {
+  if (!cmd.allFinite() || !theta_m.allFinite()) {
     d.position_converged = false;
     return d;
   }
-  framePoses(model, data);
-  d.T_nominal = data.T_W_tcp;
+  Vec6 kinv;  // 1/k_eff
+  for (int i = 0; i < 6; ++i) kinv[i] = 1.0 / c.k[i] + 1.0 / c.k_servo[i];
+  // nominal (rigid) TCP
+  chainFrames(model, data, theta_m);
+  d.T_nominal.linear() = data.frames.R_tcp;
+  d.T_nominal.translation() = data.frames.p_tcp;
 
+  // Newton on G(θ) = θ − θ_cmd + K_eff⁻¹ τ(θ) = 0 with ∂G/∂θ = I + K_eff⁻¹ ∂τ/∂θ (analytic)
   Vec6 theta = cmd;
   Vec6 tau;
+  StaticLoadSums sums;
+  Mat6 D;
+  Eigen::PartialPivLU<Mat6> lu;
+  bool have_jacobian = false;
   double prev = std::numeric_limits<double>::infinity();
-  bool newton = false;
-  const bool at_nominal = command_offset.isZero(0.0);  // data already holds the position at θ_m
+  const bool at_nominal = command_offset.isZero(0.0);  // the frames already belong to θ_m
   for (d.iterations = 0; d.iterations < opt.max_iterations; ++d.iterations) {
-    if (d.iterations == 0 && at_nominal) {
-      tau = staticTorques(model, data, loads);
-    } else if (!torquesAt(model, data, theta, loads, tau)) {
-      d.position_converged = false;
-      return d;
-    }
-    const Vec6 G = theta - cmd + tau.cwiseQuotient(keff);
+    if (d.iterations > 0 || !at_nominal) chainFrames(model, data, theta);
+    staticTorquesFromFrames(model, data, loads, tau, sums);
+    const Vec6 G = theta - cmd + tau.cwiseProduct(kinv);
     d.residual = G.lpNorm<Eigen::Infinity>();
     if (!std::isfinite(d.residual)) break;
     if (d.residual <= opt.tol) {
       d.converged = true;
       break;
     }
-    if (!newton && d.iterations > 3 && d.residual > 0.5 * prev) newton = true;  // slow contraction
-    prev = d.residual;
-    if (newton) {
-      const Mat6 D = torqueSensitivity(model, data, theta, loads);
-      Mat6 Jg = Mat6::Identity();
-      for (int i = 0; i < 6; ++i) Jg.row(i) += D.row(i) / keff[i];
-      theta -= Jg.partialPivLu().solve(G);
-    } else {
-      theta = cmd - tau.cwiseQuotient(keff);
+    // ∂G/∂θ is re-formed only when the previous step contracted poorly: it changes by O(Δθ)
+    // relative, so one factorisation usually serves every step (simplified Newton)
+    if (!have_jacobian || d.residual > 1e-3 * prev) {
+      staticSensitivity(model, data, sums, D);
+      Mat6 Jg = kinv.asDiagonal() * D;
+      Jg.diagonal().array() += 1.0;
+      lu.compute(Jg);
+      have_jacobian = true;
     }
+    prev = d.residual;
+    theta -= lu.solve(G);
   }
   // State at the final θ (torques and poses consistent with the reported angles): after
-  // convergence data and τ already belong to θ; otherwise evaluate once more.
-  if (!d.converged && !torquesAt(model, data, theta, loads, tau)) {
-    d.position_converged = false;
-    return d;
+  // convergence the frames and τ already belong to θ; otherwise evaluate once more.
+  if (!d.converged) {
+    if (!theta.allFinite()) {
+      d.position_converged = false;
+      return d;
+    }
+    torquesAt(model, data, theta, loads, tau, sums);
   }
-  framePoses(model, data);
+  finishState(model, data, tau);
   d.theta = theta;
   d.tau = tau;
   d.phi = -tau.cwiseQuotient(c.k);
@@ -190,7 +204,9 @@ Deflection predictDeflection(const Model& model, Data& data, const JointComplian
 Vec6 compensateCommand(const Model& model, Data& data, const JointCompliance& c,
                        const Vec6& theta_d, const Loads& loads) {
   Vec6 tau;
-  torquesAt(model, data, theta_d, loads, tau);
+  StaticLoadSums sums;
+  torquesAt(model, data, theta_d, loads, tau, sums);
+  finishState(model, data, tau);
   return theta_d + tau.cwiseQuotient(c.effective());
 }
 

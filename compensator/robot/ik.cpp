@@ -578,7 +578,10 @@ void solveIk(const IkModel& m, const Pose& target, const IkOptions& opt, IkResul
   }
   for (int k = 0; k < nraw; ++k) {
     IkSolution& sol = raw[static_cast<size_t>(k)];
+    // an exact chain's refinement leaves q as it is: its branch is known before finishing
+    if (opt.branch >= 0 && m.deviation.exact && ikBranch(m, sol.q).index() != opt.branch) continue;
     finishSolution(m, target, opt, sol);
+    if (opt.branch >= 0 && sol.branch.index() != opt.branch) continue;
     expandTurns(m, sol, opt, result);
   }
   std::sort(result.solutions.begin(), result.solutions.begin() + result.count, solutionLess);

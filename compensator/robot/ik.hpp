@@ -211,6 +211,10 @@ struct IkOptions {
   double singular_angle{1e-3};     ///< flag wrist/elbow singular when the margin (rad) is below
   double singular_distance{1e-3};  ///< flag the shoulder singular when |x| (m) is below
   int max_refine_iterations{20};
+  /// Only this branch (0..7, branch = 4 s + 2 e + w) when ≥ 0: a known configuration needs one
+  /// branch, not eight (its raw solution is finished and expanded alone; an exact chain skips the
+  /// other branches' refinement too). −1: every branch.
+  int branch{-1};
 };
 
 constexpr int kIkMaxTurnsPerBranch = 16;

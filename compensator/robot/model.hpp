@@ -154,6 +154,18 @@ struct Data {
   Pose T_W_tcp{Pose::Identity()};
   Pose T_W_flange{Pose::Identity()};
   Mat6 J_tcp{Mat6::Zero()};  ///< [v; ω] = J_tcp ż (base frame, at the TCP)
+  /// Link frames of the serial recursion (fast_equilibrium.hpp) at `theta`, base frame W:
+  /// joint point p_W_Ji (= origin of L_i), unit axis u_i, R_W_Li, and the TCP.
+  struct ChainFrames {
+    Vec6 theta{Vec6::Zero()};
+    Vec6 sin_theta{Vec6::Zero()};
+    std::array<Vec3, 6> p{};
+    std::array<Vec3, 6> u{};
+    std::array<Mat3, 6> R{};
+    Vec3 p_tcp{Vec3::Zero()};
+    Mat3 R_tcp{Mat3::Identity()};
+  };
+  ChainFrames frames;
 };
 
 /// Result of the Newton–Raphson position problem (non-convergence is a value).

@@ -27,6 +27,7 @@ Vec3 zyxFromRotation(const Mat3& R) {
 }
 
 double wrapAngle(double a) {
+  if (a > -kPi && a <= kPi) return a;  // already wrapped (the common case): no remainder
   double w = std::remainder(a, 2.0 * kPi);
   if (w <= -kPi) w += 2.0 * kPi;
   return w;

@@ -105,6 +105,19 @@ void BM_PredictHole(benchmark::State& st) {
 }
 BENCHMARK(BM_PredictHole);
 
+void BM_PredictHoles1000(benchmark::State& st) {
+  // 1,000 holes through predictHoles with `threads` workers (wall time: UseRealTime)
+  Fixture& f = fx();
+  PredictOptions o;
+  o.threads = static_cast<int>(st.range(0));
+  for (auto _ : st) {
+    const auto r = predictHoles(f.c.model, f.thousand, o);
+    benchmark::DoNotOptimize(r.size());
+  }
+  st.SetLabel(std::to_string(o.threads) + " thread(s)");
+}
+BENCHMARK(BM_PredictHoles1000)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 void BM_Compensate1000(benchmark::State& st) {
   Fixture& f = fx();
   CompensationOptions o;
