@@ -347,17 +347,21 @@ class SummaryAccumulator {
 /// Holes predicted per block of the streaming predict (bounded memory, whatever the job's size).
 constexpr size_t kPredictBlock = 2048;
 
-/// Predicts requests [begin, end) into `out` (cleared), each seeded with the previous admissible
-/// solution; `prev` carries it from block to block. `threads` is the worker count the per-hole
-/// work may use (resolvedThreads); the result does not depend on it.
-void predictRange(const PredictionModel& m, PredictionData& data,
-                  const std::vector<HoleRequest>& req, size_t begin, size_t end,
-                  std::optional<Vec6>& prev, int threads, std::vector<HolePrediction>& out) {
-  (void)threads;  // the prediction kernel runs on one thread (see README, performance)
-  out.clear();
-  for (size_t i = begin; i < end; ++i) {
-    out.push_back(predictHole(m, data, req[i], prev ? &*prev : nullptr));
-    if (out.back().status == HoleStatus::kOk) prev = out.back().joints;
+/// Predicts requests [begin, end) into `out`, each seeded with the previous admissible solution;
+/// `prev` carries it from block to block (PredictOptions::seed), so block by block gives the same
+/// bytes as one call. The per-hole work runs on `threads` workers (resolvedThreads); the result
+/// does not depend on the count (predictHoles fixes the IK seeds in a sequential pass first).
+void predictRange(const PredictionModel& m, const std::vector<HoleRequest>& req, size_t begin,
+                  size_t end, std::optional<Vec6>& prev, int threads,
+                  std::vector<HolePrediction>& out) {
+  const std::vector<HoleRequest> part(req.begin() + static_cast<std::ptrdiff_t>(begin),
+                                      req.begin() + static_cast<std::ptrdiff_t>(end));
+  PredictOptions o;
+  o.threads = threads;
+  o.seed = prev;
+  out = predictHoles(m, part, o);
+  for (const HolePrediction& h : out) {
+    if (h.status == HoleStatus::kOk) prev = h.joints;
   }
 }
 
@@ -369,13 +373,12 @@ PredictionResult predictJob(const std::string& cell_path, const std::string& pro
   r.context = loadContext(cell_path, program_path, options);
   const int threads = resolvedThreads(options.threads);
   const auto& req = r.context.job.requests;
-  PredictionData data(r.context.model);
   r.holes.reserve(req.size());
   std::optional<Vec6> prev;
   std::vector<HolePrediction> block;
   for (size_t b = 0; b < req.size(); b += kPredictBlock) {
     const size_t e = std::min(req.size(), b + kPredictBlock);
-    predictRange(r.context.model, data, req, b, e, prev, threads, block);
+    predictRange(r.context.model, req, b, e, prev, threads, block);
     for (HolePrediction& h : block) r.holes.push_back(std::move(h));
     if (progress) progress(e, req.size());
   }
@@ -392,14 +395,13 @@ PredictionResult predictJobStreaming(
   const int threads = resolvedThreads(options.threads);
   if (on_context) on_context(r.context);
   const auto& req = r.context.job.requests;
-  PredictionData data(r.context.model);
   SummaryAccumulator sum;
   std::optional<Vec6> prev;
   std::vector<HolePrediction> block;
   block.reserve(std::min(req.size(), kPredictBlock));
   for (size_t b = 0; b < req.size(); b += kPredictBlock) {
     const size_t e = std::min(req.size(), b + kPredictBlock);
-    predictRange(r.context.model, data, req, b, e, prev, threads, block);
+    predictRange(r.context.model, req, b, e, prev, threads, block);
     for (size_t i = b; i < e; ++i) {
       sum.add(block[i - b]);
       if (sink) sink(i, block[i - b], req[i]);
