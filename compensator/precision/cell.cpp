@@ -76,9 +76,14 @@ CellSpec loadCell(const std::string& path) {
   } else if (r->has("file")) {
     cell.robot.robot = rel(r->str("file"));
   } else if (r->has("urdf")) {
-    cell.robot.robot = rel(r->str("urdf"));
+    // a bare URDF has no joint stiffness, repeatability or controller convention
+    r->fail(
+        "<robot urdf=...> names a bare URDF, which has no joint stiffness, repeatability or "
+        "controller convention; make a card with `roprec card new --urdf " +
+        rel(r->str("urdf")) +
+        " ... -o robot.xml` and reference it with <robot file=\"robot.xml\"/>");
   } else {
-    r->fail("<robot> needs ref=\"bundled-name\", file=\"robot.xml\" or urdf=\"file.urdf\"");
+    r->fail("<robot> needs ref=\"bundled-name\" or file=\"robot.xml\"");
   }
   cell.robot.base_link = r->str("base_link", "");
   cell.robot.tip_link = r->str("flange_link", "");

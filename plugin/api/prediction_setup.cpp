@@ -5,6 +5,7 @@
 
 #include "compensator/process/process_load.hpp"
 #include "compensator/support/error.hpp"
+#include "plugin/api/card_tools.hpp"
 #include "plugin/api/robot_compliance.hpp"
 
 namespace roprec::api {
@@ -110,6 +111,7 @@ PredictionContext loadPredictionContext(const std::string& cell_path, const std:
   s.calibration_load = cg.calibration_load;
   if (const std::string note = gravityNotModelledNote(c.robot.card); !note.empty())
     c.job.notes.push_back(note);
+  for (std::string& note : cardCheckOnLoad(c.robot)) c.job.notes.push_back(std::move(note));
   if (const XmlNode* e = c.cell.root.child("controller")) {
     if (e->has("fanuc_turn_axes")) {
       const Eigen::VectorXd ax = e->numbers("fanuc_turn_axes", 3);

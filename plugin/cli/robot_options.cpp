@@ -56,6 +56,8 @@ void printJobNotes(CommandContext& ctx, const std::vector<std::string>& notes) {
   for (const auto& n : notes) {
     if (n.rfind(resolution, 0) == 0) {
       ctx.err << "roprec: note: " << n.substr(resolution.size()) << "\n";
+    } else if (n.rfind("robot card: ", 0) == 0) {
+      ctx.err << "roprec: warning: " << n.substr(12) << "\n";
     } else if (n.rfind("--holes:", 0) == 0 || n.rfind("--force", 0) == 0) {
       ctx.err << "roprec: note: " << n << "\n";
     }
