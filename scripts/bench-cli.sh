@@ -11,12 +11,15 @@
 #
 #   scripts/bench-cli.sh [ROPREC_BINARY]     (default build/bin/roprec)
 #
-# Measured 2026-11-24 on the shared 2-core machine (load average 9-11 from other builds, so the
-# wall times are noisy; peak RSS is not), predict --json, before -> after the streaming writers:
-#   10,000 holes   1.51 s / 382 MB  ->  0.9-1.8 s / 138-149 MB
-#   100,000 holes 11.7 s / 3.74 GB  -> 11.9 s / 1.33 GB (the JSON tree is gone; what remains is the
-#                                      program as read: ~1.6 kB per postproc::Target, 4 per hole)
-# The byte-identity checks pass for 1 vs 2 threads.
+# Measured 2026-11-24 on the shared 2-core machine (load average 8-11 from other builds, so wall
+# times are noisy and the second core is not free; peak RSS is reliable). Before -> after the
+# streaming writers (predict --json, one thread):
+#   10,000 holes   1.51 s / 382 MB  ->  0.87 s / 138 MB
+#   100,000 holes 11.7 s / 3.74 GB  -> 11.3 s / 1.30 GB (no JSON tree any more; what remains is the
+#                                      program as read: ~1.6 kB per postproc::Target, 4 per hole,
+#                                      and its parse dominates the wall time)
+# 2 vs 1 threads under that load: predict 0.94-1.00x, compensate flip-free 1.02-1.10x (compensate
+# takes --threads but its kernel runs on one thread); every output byte-identical.
 #
 # BENCH_SIZES  hole counts (default "1000 10000 100000")
 # BENCH_COMPENSATE_MAX  largest job that is also compensated (default 10000)
