@@ -187,8 +187,16 @@ bool isFinite(const Cost& c) { return std::isfinite(c.rest); }
 /// ψ values closer than this to 0 count as the programmed rotation.
 constexpr double kPsiKept = 1e-9;
 
+/// Stiffest turns a hole only for a gain of at least this share of its U_work: a rotation that
+/// gains less is not worth changing the programmed orientation (with the drill on the flange
+/// axis ψ turns axis 6 only, and the stiffness hardly changes).
+constexpr double kStiffnessGainMin = 0.01;
+
 Cost nodeCost(const Node& n, OrientationMode mode) {
-  if (mode == OrientationMode::kStiffest) return {0, 0.0, n.u_def * 1e6 + 0.1 * n.penalty};
+  if (mode == OrientationMode::kStiffest) {
+    const bool changed = std::abs(n.psi) > kPsiKept;
+    return {0, 0.0, n.u_def * 1e6 * (changed ? 1.0 + kStiffnessGainMin : 1.0) + 0.1 * n.penalty};
+  }
   const bool changed = std::abs(n.psi) > kPsiKept;
   return {changed ? 1 : 0, std::abs(n.psi), 0.1 * n.penalty};
 }
@@ -696,9 +704,10 @@ std::string psiReason(const Evaluator& ev, const std::vector<HoleRequest>& holes
   return "the sequence's jump limit cannot be met with the programmed rotation here";
 }
 
-/// Stiffest: the keep result (ψ = 0, positions only) of every hole with a ψ = 0 posture; a hole
-/// goes back to it when it is stiffer and the jump constraints with the final neighbours allow
-/// it. Records U_work(keep) for the gain.
+/// Stiffest: the keep result (ψ = 0, positions only) of every hole with a ψ = 0 posture. A hole
+/// at ψ = 0 takes it; a turned hole goes back to it unless the turn gains at least
+/// kStiffnessGainMin of U_work, when the jump constraints with the final neighbours allow it.
+/// Records U_work(keep) for the gain.
 void stiffestAgainstKeep(Evaluator& ev, const std::vector<HoleRequest>& holes,
                          const std::vector<HoleCompensation>& original,
                          const std::vector<Node>& programmed, std::vector<Node>& chosen, double thr,
@@ -708,14 +717,16 @@ void stiffestAgainstKeep(Evaluator& ev, const std::vector<HoleRequest>& holes,
     HoleCompensation k = finalizeHole(ev, holes[i], original[i], programmed[i], true);
     if (!k.ok) continue;
     out[i].U_work_keep = k.after.U_work_exact;
-    if (std::abs(out[i].psi) <= kPsiKept || k.after.U_work_exact >= out[i].after.U_work_exact)
-      continue;
+    const bool turned = std::abs(out[i].psi) > kPsiKept;
+    if (turned && k.after.U_work_exact * (1.0 - kStiffnessGainMin) >= out[i].after.U_work_exact)
+      continue;  // turned, and stiffer by the minimum gain
+    // ψ = 0 is the keep result itself; a turned hole goes back when the jump limit allows
     bool ok = true;
     for (const int dir : {-1, +1}) {
       const std::pair<const Node*, bool> nb = neighbour(chosen, holes, i, dir);
       if (nb.first && nb.second && !jumpOk(programmed[i].q, nb.first->q, thr)) ok = false;
     }
-    if (!ok) continue;
+    if (turned && !ok) continue;
     chosen[i] = programmed[i];
     k.U_work_keep = k.after.U_work_exact;
     out[i] = std::move(k);
@@ -745,10 +756,8 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,
   }
   if (o.mode != OrientationMode::kKeep && o.refine) {
     for (size_t i = 0; i < n; ++i) {
-      // flip-free refines only the holes that must turn (towards the smallest change)
-      if (!chosen[i].feasible ||
-          (o.mode == OrientationMode::kFlipFree && std::abs(chosen[i].psi) <= kPsiKept))
-        continue;
+      // only the turned holes (flip-free: towards the smallest change; stiffest: the stiffest)
+      if (!chosen[i].feasible || std::abs(chosen[i].psi) <= kPsiKept) continue;
       refineHole(ev, holes, chosen, i, out[i].note.empty(), grid, thr, st);
     }
   }
