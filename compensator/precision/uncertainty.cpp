@@ -123,11 +123,49 @@ double radialProbability(const Eigen::Matrix2d& Sigma, double R) {
   return radialP(l1, l2, R);
 }
 
+namespace {
+double solveCoverage(double l1, double l2, double p);
+
+/// g(t) = R₉₅/√l2 at t = √(l1/l2) ∈ [0, 1], tabulated once at 1,025 points by the Newton
+/// solver below and read by 4-point cubic (Lagrange) interpolation, used for t ≥ 0.0316
+/// (l1/l2 ≥ 1e-3) where it is within 1e-10 of the solver (tests/coverage_table_test.cpp).
+struct CoverageTable95 {
+  static constexpr int kN = 1024;
+  std::array<double, kN + 1> g{};
+  CoverageTable95() {
+    for (int i = 0; i <= kN; ++i) {
+      const double t = static_cast<double>(i) / kN;
+      g[static_cast<size_t>(i)] = solveCoverage(t * t, 1.0, 0.95);
+    }
+  }
+  [[nodiscard]] double at(double t) const {
+    const double x = t * kN;
+    int i = static_cast<int>(x);
+    i = std::min(std::max(i - 1, 0), kN - 3);  // stencil i .. i+3 around x
+    const double u = x - i;                    // in [0, 3]
+    const double* y = &g[static_cast<size_t>(i)];
+    const double a = u * (u - 1) * (u - 2);
+    return -y[0] * (u - 1) * (u - 2) * (u - 3) / 6.0 + y[1] * u * (u - 2) * (u - 3) / 2.0 -
+           y[2] * u * (u - 1) * (u - 3) / 2.0 + y[3] * a / 6.0;
+  }
+};
+}  // namespace
+
 double radialCoverage(const Eigen::Matrix2d& Sigma, double p) {
   double l1 = 0.0;
   double l2 = 0.0;
   eigenvalues2(Sigma, l1, l2);
   if (l2 <= 0.0) return 0.0;
+  // below l1/l2 = 1e-3, g(t) bends too sharply for the table (the 1-D limit): solve there
+  if (p == 0.95 && l1 >= 1e-3 * l2) {
+    static const CoverageTable95 table;
+    return std::sqrt(l2) * table.at(std::sqrt(std::min(1.0, l1 / l2)));
+  }
+  return solveCoverage(l1, l2, p);
+}
+
+namespace {
+double solveCoverage(double l1, double l2, double p) {
   const double s2 = std::sqrt(l2);
   // the 1-D quantile is a constant of p: computed once for the default p
   static const double kTwoSided95 = normalTwoSided(0.95);
@@ -154,5 +192,6 @@ double radialCoverage(const Eigen::Matrix2d& Sigma, double p) {
   }
   return R;
 }
+}  // namespace
 
 }  // namespace roprec
