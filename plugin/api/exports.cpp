@@ -246,6 +246,25 @@ void targetJson(JsonWriter& w, const CompensationResult& r, size_t i) {
     w.numbers(h.residual * 1e6, 4);
     w.key("branch_changed");
     w.boolean(h.branch_changed);
+    // issue 14: why the rotation about the drill axis / the flags changed, stiffest's gain
+    if (!h.psi_reason.empty()) {
+      w.key("rotation_reason");
+      w.str(h.psi_reason);
+    }
+    w.key("config_before");
+    w.str(h.config_before);
+    w.key("config_changed");
+    w.boolean(h.config_changed);
+    if (!h.config_reason.empty()) {
+      w.key("config_reason");
+      w.str(h.config_reason);
+    }
+    if (std::isfinite(h.U_work_keep)) {
+      w.key("U_work_keep_um");
+      w.number(h.U_work_keep * 1e6, 3);
+      w.key("U_work_gain_um");
+      w.number((h.U_work_keep - h.after.U_work_exact) * 1e6, 3);
+    }
     if (!h.note.empty()) {
       w.key("note");
       w.str(h.note);

@@ -227,7 +227,9 @@ std::vector<std::string> editProgram(CompensationResult& r) {
       const Pose T_W_t = src.T_W_frame * postproc::targetPose(prog, tg);
       const Pose T_W_new = h.delta * T_W_t * Pose(Eigen::AngleAxisd(h.psi, Vec3::UnitZ()));
       std::optional<postproc::Configuration> cfg;
-      if (tg.config.present()) cfg = postproc::parseConfigurationText(h.config_text);
+      // the program's own flag bytes stay unless the compensated target needs others
+      if (tg.config.present() && h.config_changed)
+        cfg = postproc::parseConfigurationText(h.config_text);
       const postproc::EditResult er =
           postproc::replaceTargetPose(prog, t, src.T_W_frame.inverse() * T_W_new, cfg);
       if (!er.ok) {

@@ -116,6 +116,20 @@ void printSummary(CommandContext& ctx, const CompensationResult& r, const Compen
   ctx.out << "  axis-4/6 jumps > " << formatNumber(opt.jump_threshold / kDeg, 0)
           << " deg between holes of a face: before " << s.jumps_before << ", after "
           << s.jumps_after << "\n";
+  ctx.out << "  rotation about the drill axis changed at " << r.stats.psi_changed << " holes";
+  if (r.stats.psi_changed > 0) {
+    ctx.out << " (joint limits " << r.stats.psi_for_limits << ", wrist margin "
+            << r.stats.psi_for_wrist << ", jumps " << r.stats.psi_for_jumps << ", stiffness "
+            << r.stats.psi_for_stiffness << "; reasons in the export)";
+  }
+  ctx.out << "\n  configuration flags changed at " << r.stats.config_changed
+          << " holes (reasons in the export)\n";
+  if (r.stats.stiffness_compared > 0) {
+    const double n = r.stats.stiffness_compared;
+    ctx.out << "  U_work [µm]: mean " << cFixed(r.stats.U_work_sum / n * 1e6, 3) << " (keep "
+            << cFixed(r.stats.U_work_keep_sum / n * 1e6, 3) << "), largest gain at a hole "
+            << cFixed(r.stats.U_work_gain_max * 1e6, 3) << "\n";
+  }
   if (r.stats.relaxed_jumps)
     ctx.out << "  note: no orientation sequence met the jump threshold; it was relaxed\n";
   if (r.stats.relaxed_wrist > 0) {
