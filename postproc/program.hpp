@@ -202,6 +202,10 @@ struct Edit {
   std::string text;
 };
 
+/// Notes of a Program that say how a file was read (a guess the user must be able to check)
+/// start with this prefix; hosts show them (the CLI on stderr).
+inline constexpr const char* kReadingNotePrefix = "reading: ";
+
 struct Program {
   Dialect dialect{Dialect::kKrl};
   std::vector<SourceFile> files;  ///< KRL: [src, dat] (dat may be absent); others: one

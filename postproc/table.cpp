@@ -66,6 +66,43 @@ const std::vector<std::string>& holeListColumns() {
   return k;
 }
 
+/// The columns a CSV target list may have (after columnKey, docs/programs.md §5).
+const std::vector<std::string>& targetListColumns() {
+  static const std::vector<std::string> k = {
+      "id", "name", "x",      "y",     "z",    "a",    "b",      "c",     "w",      "p",  "r",
+      "qw", "qx",   "qy",     "qz",    "q1",   "q2",   "q3",     "q4",    "rx",     "ry", "rz",
+      "j1", "j2",   "j3",     "j4",    "j5",   "j6",   "e1",     "e2",    "e3",     "e4", "e5",
+      "e6", "conf", "config", "frame", "tool", "move", "motion", "speed", "comment"};
+  return k;
+}
+
+/// The members a JSON target list may have: the document, each target, each frame.
+const std::vector<std::string>& jsonRootMembers() {
+  static const std::vector<std::string> k = {"format", "source",  "units",
+                                             "frames", "targets", "euler"};
+  return k;
+}
+const std::vector<std::string>& jsonTargetMembers() {
+  static const std::vector<std::string> k = {"id",          "name",
+                                             "position_mm", "quaternion_wxyz",
+                                             "x",           "y",
+                                             "z",           "a",
+                                             "b",           "c",
+                                             "w",           "p",
+                                             "r",           "rx",
+                                             "ry",          "rz",
+                                             "joints_deg",  "external_axes",
+                                             "config",      "frame",
+                                             "tool",        "motion",
+                                             "speed_mm_s",  "fine",
+                                             "comment"};
+  return k;
+}
+const std::vector<std::string>& jsonFrameMembers() {
+  static const std::vector<std::string> k = {"name", "position_mm", "quaternion_wxyz", "comment"};
+  return k;
+}
+
 Pose poseFromText(const SourceFile& f, std::size_t off, std::string_view text) {
   std::vector<double> v;
   std::size_t i = 0;
@@ -111,9 +148,11 @@ class CsvReader {
         continue;
       }
       if (!have_header) {
-        header(s, e);
         have_header = true;
-        continue;
+        if (!robodkExport(s, e)) {
+          header(s, e);
+          continue;
+        }
       }
       row(s, e);
     }
@@ -134,6 +173,63 @@ class CsvReader {
   Orientation orient_{Orientation::kNone};
   bool holes_mode_{false};
   std::unordered_map<std::string, int> hole_id_line_;  ///< upper-case id -> line of its row
+  bool robodk_{false};  ///< a header-less RoboDK target export (robodkExport)
+  int data_rows_{0};
+
+  /// RoboDK's target export has no header: rows `x,y,z,rx,ry,rz` or `name,x,y,z,rx,ry,rz` (mm,
+  /// deg, RoboDK's TxyzRxyz pose R = Rx(rx) Ry(ry) Rz(rz)). A first line of that shape makes the
+  /// file a hole list: each row one hole at (x, y, z) drilled along the pose's +z (the TCP's
+  /// drilling direction), its id the name or R<n> for the n-th row; the reading is stated in
+  /// the notes. Returns false (a header follows) for any other first line.
+  bool robodkExport(std::size_t s, std::size_t e) {
+    const std::vector<Cell> cells = split(s, e);
+    if (cells.size() != 6 && cells.size() != 7) return false;
+    const std::size_t first = cells.size() - 6;
+    for (std::size_t i = first; i < cells.size(); ++i) {
+      const std::string_view v =
+          std::string_view(f_.bytes).substr(cells[i].begin, cells[i].end - cells[i].begin);
+      if (!parseNumber(v)) return false;
+    }
+    if (first == 1 && parseNumber(std::string_view(f_.bytes).substr(cells[0].begin,
+                                                                    cells[0].end - cells[0].begin)))
+      return false;
+    robodk_ = true;
+    holes_mode_ = true;
+    orient_ = Orientation::kAxis;
+    p_.dialect = Dialect::kHoleCsv;
+    if (first == 1) col_["id"] = 0;
+    const char* const keys[] = {"x", "y", "z", "rx", "ry", "rz"};
+    for (std::size_t i = 0; i < 6; ++i) col_[keys[i]] = static_cast<int>(first + i);
+    p_.notes.push_back(
+        kReadingNotePrefix + f_.path + " has no header: read as RoboDK's target export, columns " +
+        std::string(first == 1 ? "name," : "") +
+        "x,y,z (mm, work object) and rx,ry,rz (deg, R = Rx(rx) Ry(ry) Rz(rz)); each row is a "
+        "hole drilled along the pose's +z" +
+        (first == 1 ? "" : ", ids R1..Rn in row order") +
+        "; diameter, depth and tolerance come from the cell");
+    return true;
+  }
+
+  /// The drilling direction of a RoboDK row: +z of R = Rx(rx) Ry(ry) Rz(rz) (deg).
+  void robodkAxis(const std::vector<Cell>& cells, std::size_t row, Target& t) {
+    double a[3];
+    const char* const keys[] = {"rx", "ry", "rz"};
+    for (std::size_t i = 0; i < 3; ++i) {
+      const auto v = num(cells, keys[i]);
+      if (!v) fail(row, std::string("RoboDK row without ") + keys[i]);
+      a[i] = v->value * kDeg;
+    }
+    const Vec3 z = (Eigen::AngleAxisd(a[0], Vec3::UnitX()) *
+                    Eigen::AngleAxisd(a[1], Vec3::UnitY()) * Eigen::AngleAxisd(a[2], Vec3::UnitZ()))
+                       .toRotationMatrix()
+                       .col(2);
+    for (std::size_t i = 0; i < 3; ++i) {
+      NumberField f;  // derived, not a field of the file: never rewritten
+      f.value = z[static_cast<Eigen::Index>(i)];
+      t.rot[i] = f;
+    }
+    if (t.name.empty()) t.name = "R" + std::to_string(data_rows_);
+  }
 
   [[noreturn]] void fail(std::size_t off, const std::string& m) const { failAt(f_, off, m); }
 
@@ -214,8 +310,11 @@ class CsvReader {
       holes_mode_ = true;
       p_.dialect = Dialect::kHoleCsv;
       if (!has({"id", "x", "y", "z"})) fail(s, "hole list needs the columns id,x,y,z,i,j,k");
-      checkHoleColumns(cells);
-    } else if (has({"a", "b", "c"})) {
+      checkColumns(cells, holeListColumns(), "hole list");
+      return;
+    }
+    checkColumns(cells, targetListColumns(), "target list");
+    if (has({"a", "b", "c"})) {
       orient_ = Orientation::kKukaAbc;
     } else if (has({"w", "p", "r"})) {
       orient_ = Orientation::kFanucWpr;
@@ -247,24 +346,24 @@ class CsvReader {
     }
   }
 
-  /// Hole lists: every column is known and named once (a misspelt `dia` would silently drop
-  /// every diameter).
-  void checkHoleColumns(const std::vector<Cell>& cells) const {
+  /// Every column is known and named once (a misspelt `dia` would silently drop every diameter,
+  /// a misspelt `conf` every configuration).
+  void checkColumns(const std::vector<Cell>& cells, const std::vector<std::string>& known,
+                    const std::string& what) const {
     std::unordered_map<std::string, std::size_t> seen;
     for (std::size_t i = 0; i < cells.size(); ++i) {
       const std::string_view raw =
           std::string_view(f_.bytes).substr(cells[i].begin, cells[i].end - cells[i].begin);
       const std::string k = columnKey(raw);
       if (k.empty()) continue;
-      const auto& known = holeListColumns();
       if (std::find(known.begin(), known.end(), k) == known.end()) {
         std::string hint = didYouMean(k, known);
         if (hint.empty()) {
           std::string list;
           for (const std::string& n : known) list += (list.empty() ? "" : ",") + n;
-          hint = " (a hole list has the columns " + list + ")";
+          hint = " (a " + what + " has the columns " + list + ")";
         }
-        fail(cells[i].begin, "unknown column '" + std::string(raw) + "' in the hole list" + hint);
+        fail(cells[i].begin, "unknown column '" + std::string(raw) + "' in the " + what + hint);
       }
       if (const auto it = seen.find(k); it != seen.end()) {
         fail(cells[i].begin, "column '" + k + "' is given twice (columns " +
@@ -366,6 +465,8 @@ class CsvReader {
     if (y) t.pos[1] = *y;
     if (z) t.pos[2] = *z;
     t.orientation = orient_;
+    ++data_rows_;
+    if (robodk_) robodkAxis(cells, s, t);
     static const char* const kAbc[] = {"a", "b", "c"};
     static const char* const kWpr[] = {"w", "p", "r"};
     static const char* const kQ[] = {"qw", "qx", "qy", "qz"};
@@ -393,7 +494,8 @@ class CsvReader {
       case Orientation::kNone:
         break;
     }
-    bool have_rot = keys != nullptr;
+    if (robodk_) keys = nullptr;  // the axis came from rx,ry,rz
+    bool have_rot = keys != nullptr || robodk_;
     for (int i = 0; keys != nullptr && i < n; ++i) {
       const auto v = num(cells, keys[i]);
       if (v) t.rot[static_cast<std::size_t>(i)] = *v;
@@ -609,7 +711,25 @@ class JsonParser {
   }
 };
 
+/// Every member of a JSON object is one `known` name (a misspelt "quaternion_xyzw" would be
+/// ignored and the target read without its orientation).
+void checkMembers(const SourceFile& f, const JValue& o, const std::vector<std::string>& known,
+                  const std::string& what) {
+  for (std::size_t i = 0; i < o.keys.size(); ++i) {
+    const std::string& k = o.keys[i];
+    if (std::find(known.begin(), known.end(), k) != known.end()) continue;
+    std::string hint = didYouMean(k, known);
+    if (hint.empty()) {
+      std::string list;
+      for (const std::string& n : known) list += (list.empty() ? "" : ", ") + n;
+      hint = " (" + what + " has the members " + list + ")";
+    }
+    failAt(f, o.items[i].begin, "unknown member \"" + k + "\" in " + what + hint);
+  }
+}
+
 Frame jsonFrame(const SourceFile& f, const JValue& v) {
+  if (v.kind == JValue::kObject) checkMembers(f, v, jsonFrameMembers(), "a frame");
   const JValue* name = v.get("name");
   const JValue* pos = v.get("position_mm");
   const JValue* q = v.get("quaternion_wxyz");
@@ -659,6 +779,7 @@ void parseJson(Program& p) {
   const SourceFile& f = p.files[0];
   const JValue root = JsonParser(f).parse();
   if (root.kind != JValue::kObject) failAt(f, root.begin, "a target list must be a JSON object");
+  checkMembers(f, root, jsonRootMembers(), "a JSON target list");
   const JValue* targets = root.get("targets");
   if (targets == nullptr || targets->kind != JValue::kArray)
     failAt(f, root.begin, "a target list needs \"targets\": [...]");
@@ -682,6 +803,7 @@ void parseJson(Program& p) {
   };
   for (const JValue& o : targets->items) {
     if (o.kind != JValue::kObject) failAt(f, o.begin, "each target must be an object");
+    checkMembers(f, o, jsonTargetMembers(), "a target");
     Target t;
     t.file = 0;
     t.line = f.lineOf(o.begin);

@@ -144,7 +144,7 @@ TEST(CApi, ExportsExactlyTheHeadersFunctions) {
        it != std::sregex_iterator(); ++it) {
     declared.insert((*it)[1]);
   }
-  EXPECT_EQ(declared.size(), 9U);
+  EXPECT_EQ(declared.size(), 14U);
   // nm -D --defined-only: every dynamic symbol libroprec_c defines.
   FILE* p = ::popen(("nm -D --defined-only '" + std::string(ROPREC_C_LIB) + "'").c_str(), "r");
   ASSERT_NE(p, nullptr);
@@ -548,4 +548,113 @@ TEST(CApi, DistinctSessionsRunOnThreads) {
 }
 
 }  // namespace
+
+// ---------------------------------------------------------------- job options (issue 13)
+
+namespace {
+
+const std::string kFanucCell = sourceDir() + "/samples/cells/housing-r2000.xml";
+const std::string kFanucProgram = sourceDir() + "/samples/emotor-housing/housing_r2000.ls";
+
+struct Options {
+  Options() { EXPECT_EQ(roprec_options_new(&o, err, sizeof err), ROPREC_OK) << err; }
+  ~Options() { roprec_options_free(o); }
+  Options(const Options&) = delete;
+  Options& operator=(const Options&) = delete;
+  int set(const char* key, const char* value) {
+    return roprec_options_set(o, key, value, err, sizeof err);
+  }
+  roprec_options* o{nullptr};
+  char err[1024]{};
+};
+
+}  // namespace
+
+TEST(CApi, OptionsRefuseUnknownKeysAndBadValuesAndStayUnchanged) {
+  Options opt;
+  EXPECT_EQ(opt.set("frme", "cell"), ROPREC_BAD_INPUT);
+  EXPECT_NE(std::string(opt.err).find("unknown option 'frme'"), std::string::npos) << opt.err;
+  EXPECT_EQ(opt.set("tool", "flange"), ROPREC_BAD_INPUT);
+  EXPECT_STREQ(opt.err, "--tool must be program or cell");
+  EXPECT_EQ(opt.set("frame", "1 2 3"), ROPREC_BAD_INPUT);
+  EXPECT_NE(std::string(opt.err).find("needs 6 numbers"), std::string::npos) << opt.err;
+  EXPECT_EQ(opt.set("force", "yes"), ROPREC_BAD_INPUT);
+  EXPECT_EQ(opt.set("orientation", "stiff"), ROPREC_BAD_INPUT);
+  EXPECT_EQ(opt.set("match_tol_mm", "-1"), ROPREC_BAD_INPUT);
+  EXPECT_EQ(opt.set("threads", "1.5"), ROPREC_BAD_INPUT);
+  EXPECT_EQ(opt.set("threads", "-1"), ROPREC_BAD_INPUT);
+  EXPECT_EQ(opt.set("frame", nullptr), ROPREC_BAD_INPUT);
+  EXPECT_STREQ(opt.err, "value is NULL");
+  EXPECT_EQ(roprec_options_new(nullptr, opt.err, sizeof opt.err), ROPREC_BAD_INPUT);
+  roprec_options_free(nullptr);
+  // The refused values left the defaults: the FANUC sample's controller frames are unresolved.
+  char summary[ROPREC_SUMMARY_LEN];
+  EXPECT_EQ(roprec_predict_file_ex(kFanucCell.c_str(), kFanucProgram.c_str(), opt.o, nullptr,
+                                   summary, sizeof summary, opt.err, sizeof opt.err),
+            ROPREC_BAD_INPUT);
+  const test::RunResult cli =
+      runRoprec("predict --cell '" + kFanucCell + "' '" + kFanucProgram + "'");
+  EXPECT_EQ(cli.exit_code, 2);
+  EXPECT_EQ(std::string(opt.err), cliErrorText(cli));
+}
+
+TEST(CApi, PredictFileExResolvesFramesAndToolAsTheCli) {
+  const std::string dir = tempDir("capi-frame");
+  const test::RunResult cli =
+      runRoprec("predict --cell '" + kFanucCell + "' '" + kFanucProgram +
+                "' --frame cell --tool cell --quiet --json '" + dir + "/cli.json'");
+  ASSERT_LE(cli.exit_code, 1) << cli.err;
+  Options opt;
+  ASSERT_EQ(opt.set("frame", "cell"), ROPREC_OK) << opt.err;
+  ASSERT_EQ(opt.set("tool", "cell"), ROPREC_OK) << opt.err;
+  ASSERT_EQ(opt.set("threads", "2"), ROPREC_OK) << opt.err;  // the same bytes as 1 thread
+  char summary[ROPREC_SUMMARY_LEN];
+  const std::string out = dir + "/c.json";
+  EXPECT_EQ(roprec_predict_file_ex(kFanucCell.c_str(), kFanucProgram.c_str(), opt.o, out.c_str(),
+                                   summary, sizeof summary, opt.err, sizeof opt.err),
+            cli.exit_code)
+      << opt.err;
+  EXPECT_EQ(readFile(out), readFile(dir + "/cli.json"));
+  const auto j = nlohmann::json::parse(readFile(out));
+  bool stated = false;
+  for (const auto& n : j.at("notes"))
+    stated = stated || n.get<std::string>().rfind("resolution: ", 0) == 0;
+  EXPECT_TRUE(stated) << j.at("notes").dump();
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CApi, CompensateFileExForceAndFrameOptions) {
+  const std::string dir = tempDir("capi-force");
+  Options opt;
+  ASSERT_EQ(opt.set("frame", "cell"), ROPREC_OK) << opt.err;
+  ASSERT_EQ(opt.set("tool", "cell"), ROPREC_OK) << opt.err;
+  ASSERT_EQ(opt.set("orientation", "keep"), ROPREC_OK) << opt.err;
+  char summary[ROPREC_SUMMARY_LEN];
+  const std::string once = dir + "/once.ls";
+  ASSERT_EQ(
+      roprec_compensate_file_ex(kFanucCell.c_str(), kFanucProgram.c_str(), opt.o, once.c_str(),
+                                nullptr, summary, sizeof summary, opt.err, sizeof opt.err),
+      ROPREC_OK)
+      << opt.err;
+  const test::RunResult cli =
+      runRoprec("compensate --cell '" + kFanucCell + "' '" + kFanucProgram +
+                "' --frame cell --tool cell -o '" + dir + "/cli.ls' --quiet");
+  ASSERT_EQ(cli.exit_code, 0) << cli.err;
+  EXPECT_EQ(readFile(once), readFile(dir + "/cli.ls"));
+  // Compensating the compensated program again is refused, unless force.
+  const std::string twice = dir + "/twice.ls";
+  EXPECT_EQ(roprec_compensate_file_ex(kFanucCell.c_str(), once.c_str(), opt.o, twice.c_str(),
+                                      nullptr, summary, sizeof summary, opt.err, sizeof opt.err),
+            ROPREC_BAD_INPUT);
+  EXPECT_NE(std::string(opt.err).find("--force"), std::string::npos) << opt.err;
+  EXPECT_FALSE(std::filesystem::exists(twice));
+  ASSERT_EQ(opt.set("force", "1"), ROPREC_OK) << opt.err;
+  EXPECT_EQ(roprec_compensate_file_ex(kFanucCell.c_str(), once.c_str(), opt.o, twice.c_str(),
+                                      nullptr, summary, sizeof summary, opt.err, sizeof opt.err),
+            ROPREC_OK)
+      << opt.err;
+  EXPECT_TRUE(std::filesystem::exists(twice));
+  std::filesystem::remove_all(dir);
+}
+
 }  // namespace roprec

@@ -35,7 +35,10 @@ std::vector<Case> allCases() {
     for (const char* f : {"kr120r2500pro.urdf", "kr16_2.urdf", "irb2400.urdf",
                           "irb6640_185_280.urdf", "r2000ic165f.urdf", "m20ia.urdf"}) {
       const std::string path = corpus + "/urdf/" + f;
-      if (!fs::exists(path)) continue;
+      if (!fs::exists(path)) {  // the corpus is there but incomplete: a failure, not a skip
+        ADD_FAILURE() << path << " is missing from the corpus";
+        continue;
+      }
       Case c;
       c.name = f;
       c.chain = loadUrdfChain(path);

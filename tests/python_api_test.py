@@ -356,6 +356,32 @@ class PythonApiTest(unittest.TestCase):
             s.filter_target(far)
         self.assertIn("target not filtered", str(e.exception))
 
+    def test_frame_tool_and_force_as_the_cli(self):
+        fcell = str(SRC / "samples" / "cells" / "housing-r2000.xml")
+        fprog = str(SRC / "samples" / "emotor-housing" / "housing_r2000.ls")
+        # Controller-only UFRAME/UTOOL: an error without frame/tool, with the CLI's text.
+        with self.assertRaises(roprec.InputError) as e:
+            roprec.predict(fcell, fprog)
+        self.assertEqual(str(e.exception), cli_error_text(cli("predict", "--cell", fcell, fprog)))
+        with self.assertRaises(roprec.UsageError):
+            roprec.predict(fcell, fprog, frame="cell", tool="flange")
+        r = cli("predict", "--cell", fcell, fprog, "--frame", "cell", "--tool", "cell", "--json",
+                self.tmp / "cli.json", "--quiet")
+        self.assertLessEqual(r.returncode, 1, r.stderr)
+        p = roprec.predict(fcell, fprog, json_out=self.tmp / "py.json", frame="cell", tool="cell")
+        self.assertEqual((self.tmp / "py.json").read_bytes(), (self.tmp / "cli.json").read_bytes())
+        self.assertTrue(any(n.startswith("resolution: ") for n in p.notes), p.notes)
+        # force: a compensated program is refused again unless force=True.
+        once = self.tmp / "once.ls"
+        roprec.compensate(fcell, fprog, once, frame="cell", tool="cell")
+        twice = self.tmp / "twice.ls"
+        with self.assertRaises(roprec.InputError) as e:
+            roprec.compensate(fcell, once, twice, frame="cell", tool="cell")
+        self.assertIn("--force", str(e.exception))
+        self.assertFalse(twice.exists())
+        roprec.compensate(fcell, once, twice, frame="cell", tool="cell", force=True)
+        self.assertTrue(twice.exists())
+
     def test_compensate_with_a_failed_hole_writes_nothing(self):
         s = roprec.Session(CELL)
         wobj = s.workobject_pose_mm

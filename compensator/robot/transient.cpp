@@ -908,7 +908,14 @@ TransientResult TransientSimulator::run(double t0, const Eigen::VectorXd& y0, do
 TransientResult simulateCycle(const TransientProblem& problem, ProcessCycle& process,
                               const TransientOptions& options, double duration) {
   TransientSimulator sim(problem, process, options);
-  const Eigen::VectorXd y0 = sim.equilibriumState(0.0);
+  Eigen::VectorXd y0;
+  try {
+    y0 = sim.equilibriumState(0.0);
+  } catch (const std::runtime_error& e) {  // no start equilibrium: a result, not a crash
+    TransientResult r;
+    r.message = e.what();
+    return r;
+  }
   const double t_end = duration > 0 ? duration : process.duration();
   return sim.run(0.0, y0, t_end);
 }

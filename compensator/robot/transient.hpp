@@ -433,7 +433,9 @@ class TransientSimulator {
   std::unique_ptr<Impl> impl_;
 };
 
-/// Convenience: equilibrium at t = 0, then the whole cycle (or `duration` s when > 0).
+/// Convenience: equilibrium at t = 0, then the whole cycle (or `duration` s when > 0). A start
+/// equilibrium that does not converge is a result with `ok` false and the reason in `message`
+/// (t_reached 0, no samples); an inconsistent problem still throws std::invalid_argument.
 TransientResult simulateCycle(const TransientProblem& problem, ProcessCycle& process,
                               const TransientOptions& options = {}, double duration = 0.0);
 

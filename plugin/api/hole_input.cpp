@@ -145,6 +145,8 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
     job.is_hole_list = true;
     const std::vector<postproc::HoleSpec> specs = postproc::parseHoleList(path, bytes);
     if (specs.empty()) throw InputError(path, 1, "the hole list has no holes");
+    if (parsed)
+      for (const auto& n : parsed->notes) job.notes.push_back(n);  // e.g. how it was read
     for (size_t i = 0; i < specs.size(); ++i) {
       const auto& s = specs[i];
       job.requests.push_back(fromSpec(s, cell));

@@ -39,7 +39,8 @@
  *
  * Memory and ownership
  *   All output buffers are owned by the caller. The library allocates only the session
- *   (roprec_open), which the caller releases with roprec_close. roprec_version returns a static
+ *   (roprec_open), which the caller releases with roprec_close, and the job options
+ *   (roprec_options_new), released with roprec_options_free. roprec_version returns a static
  *   string.
  *
  * Thread safety
@@ -177,6 +178,56 @@ ROPREC_API int roprec_compensate_file(const char* cell_path, const char* program
                                       const char* orientation, const char* targets_out_path,
                                       char* summary_json, size_t summary_len, char* err,
                                       size_t err_len);
+
+/* ---------------------------------------------------------------- job options */
+
+/* Job options for roprec_predict_file_ex and roprec_compensate_file_ex: what the CLI's predict and
+ * compensate options say, for hosts that need more than the plain calls above (a program whose
+ * frames or tool only the controller defines, a program compensated before).
+ * A new options object holds the defaults of the plain calls; release it with
+ * roprec_options_free. One options object may be shared by calls on several threads once it is
+ * no longer being set. */
+typedef struct roprec_options roprec_options;
+
+/* *out receives a new options object (0), or NULL (2: out of memory, out NULL). */
+ROPREC_API int roprec_options_new(roprec_options** out, char* err, size_t err_len);
+
+/* Releases an options object. NULL is allowed (no-op). */
+ROPREC_API void roprec_options_free(roprec_options* options);
+
+/* Sets one option from its text (UTF-8); on 2 (unknown key, bad value) the object is unchanged.
+ *   "holes"         hole-list CSV matched to the program's holes ("" = none)     --holes
+ *   "match_tol_mm"  position match when ids differ, mm (> 0; default 0.5)        --match-tol
+ *   "uncertainty"   "linear" or "montecarlo" ("" = the cell's)                   --uncertainty
+ *   "frame"         how base frames only the controller defines are resolved:    --frame
+ *                   "cell" (the cell's <workobject>), "x y z a b c" (mm, deg, KUKA ABC, robot
+ *                   base frame: every such frame) or "REF=x y z a b c[;REF=...]" (by name)
+ *   "tool"          a program tool that differs from the cell's, or only the      --tool
+ *                   controller defines: "program" (the program's TCP is the real one) or "cell"
+ *   "threads"       worker threads for the per-hole work: "0" (every core) or    --threads
+ *                   "1".."1024" (default "1"); the outputs are the same bytes whatever the count
+ *   "orientation"   "keep" (default), "flip-free" or "stiffest" (compensate only) --orientation
+ *   "force"         "1": compensate a program that carries roprec's compensation   --force
+ *                   marker again (with a note); "0" (default): such a program is refused (2)
+ * Without "frame"/"tool", a controller-only frame or a differing tool is an error (2) naming the
+ * frame or tool and these options. How they were resolved is stated in the prediction JSON's
+ * notes and in the report header. */
+ROPREC_API int roprec_options_set(roprec_options* options, const char* key, const char* value,
+                                  char* err, size_t err_len);
+
+/* roprec_predict_file with the job options (the holes list comes from "holes"). */
+ROPREC_API int roprec_predict_file_ex(const char* cell_path, const char* program_path,
+                                      const roprec_options* options, const char* json_out_path,
+                                      char* summary_json, size_t summary_len, char* err,
+                                      size_t err_len);
+
+/* roprec_compensate_file with the job options ("holes", "orientation", "force", "frame", "tool").
+ */
+ROPREC_API int roprec_compensate_file_ex(const char* cell_path, const char* program_path,
+                                         const roprec_options* options,
+                                         const char* out_program_path, const char* targets_out_path,
+                                         char* summary_json, size_t summary_len, char* err,
+                                         size_t err_len);
 
 /* `roprec verify --cell CELL PROGRAM --measured MEASURED [--holes HOLES] [--register REG]
  *  [--json JSON_OUT] [--calibrate NEW_CARD_OUT]`: compares the holes a CMM measured on a part

@@ -20,6 +20,7 @@
 #include "compensator/support/c_format.hpp"
 #include "compensator/support/error.hpp"
 #include "plugin/api/job.hpp"
+#include "plugin/api/job_options.hpp"
 #include "plugin/api/plan_test.hpp"
 #include "plugin/api/verify.hpp"
 #include "plugin/c/host_common.hpp"
@@ -27,6 +28,11 @@
 struct roprec_session {
   explicit roprec_session(const std::string& cell_path) : session(cell_path) {}
   roprec::api::Session session;
+};
+
+/// The job options of roprec_predict_file_ex / roprec_compensate_file_ex (roprec_options_set).
+struct roprec_options {
+  roprec::api::CompensationJob job;  ///< job.job: the prediction options; mode, force
 };
 
 namespace {
@@ -142,8 +148,9 @@ void copyText(const std::string& text, char* buf) {
 }
 
 int compensateMilling(const std::string& cell, const std::string& program, const std::string& out,
-                      const std::string& targets, char* summary, size_t summary_len) {
-  roprec::api::MillingCompensationResult r = roprec::api::compensateMillingJob(cell, program);
+                      const std::string& targets, bool force, char* summary, size_t summary_len) {
+  roprec::api::MillingCompensationResult r =
+      roprec::api::compensateMillingJob(cell, program, force);
   if (const std::string why = host::millingProblems(r); !why.empty()) throw ItemFailure{why};
   std::vector<std::pair<std::string, std::string>> extra;
   if (!targets.empty()) extra.emplace_back(targets, roprec::api::millingTargetsJson(r, program));
@@ -153,6 +160,80 @@ int compensateMilling(const std::string& cell, const std::string& program, const
   roprec::api::writeCompensatedProgram(r.context, out, extra);
   copyText(text, summary);
   return ROPREC_OK;
+}
+
+/// The whole prediction job of roprec_predict_file(_ex).
+int predictFile(const char* cell_path, const char* program_path,
+                const roprec::api::JobOptions& options, const char* json_out_path,
+                char* summary_json, size_t summary_len) {
+  const std::string cell = pathArg(cell_path, "cell_path");
+  const std::string program = pathArg(program_path, "program_path");
+  const std::string json_out = optionalArg(json_out_path);
+  checkTextBuffer(summary_json, summary_len, "summary_json");
+  const roprec::api::PredictionResult r = roprec::api::predictJob(cell, program, options);
+  const std::string summary = host::predictionSummary(r).dump(0);
+  checkFits(summary, summary_json, summary_len, "summary_json");
+  if (!json_out.empty()) roprec::writeFileAtomic(json_out, roprec::api::predictionJson(r).dump());
+  copyText(summary, summary_json);
+  const std::vector<std::string> failures = host::predictionFailures(r, program);
+  if (!failures.empty()) throw ItemFailure{host::joinLines(failures)};
+  return ROPREC_OK;
+}
+
+/// The whole compensation job of roprec_compensate_file(_ex).
+int compensateFile(const char* cell_path, const char* program_path,
+                   const roprec::api::CompensationJob& job, const char* out_program_path,
+                   const char* targets_out_path, char* summary_json, size_t summary_len) {
+  const std::string cell = pathArg(cell_path, "cell_path");
+  const std::string program = pathArg(program_path, "program_path");
+  const std::string out = pathArg(out_program_path, "out_program_path");
+  const std::string targets = optionalArg(targets_out_path);
+  checkTextBuffer(summary_json, summary_len, "summary_json");
+  if (roprec::api::cellIsMilling(cell))
+    return compensateMilling(cell, program, out, targets, job.force, summary_json, summary_len);
+
+  roprec::api::CompensationResult r = roprec::api::compensateJob(cell, program, job);
+  if (const std::string why = host::compensationProblems(r, program); !why.empty())
+    throw ItemFailure{why};
+  std::vector<std::pair<std::string, std::string>> extra;
+  if (!targets.empty())
+    extra.emplace_back(targets,
+                       roprec::api::compensationTargets(r, program, host::isCsvPath(targets)));
+  const std::string summary =
+      host::compensationSummary(r, host::compensationPaths(r.context, out, targets)).dump(0);
+  checkFits(summary, summary_json, summary_len, "summary_json");
+  roprec::api::writeCompensatedProgram(r.context, out, extra);
+  copyText(summary, summary_json);
+  return ROPREC_OK;
+}
+
+/// One roprec_options_set key (see roprec.h). Throws UsageError/InputError on a bad key or value.
+void setOption(roprec::api::CompensationJob& job, const std::string& key, const std::string& v) {
+  if (key == "holes") {
+    job.job.holes = v.empty() ? std::nullopt : std::optional<std::string>(v);
+  } else if (key == "match_tol_mm") {
+    job.job.match_tol_mm = roprec::api::numbersFromText(v, 1, "match_tol_mm")[0];
+    if (!(job.job.match_tol_mm > 0.0)) throw roprec::UsageError("match_tol_mm must be > 0");
+  } else if (key == "uncertainty") {
+    if (v != "linear" && v != "montecarlo" && !v.empty())
+      throw roprec::UsageError("uncertainty must be linear or montecarlo");
+    job.job.uncertainty = v;
+  } else if (key == "frame") {
+    roprec::api::applyFrameOption(job.job, v);
+  } else if (key == "tool") {
+    roprec::api::applyToolOption(job.job, v);
+  } else if (key == "threads") {
+    roprec::api::applyThreadsOption(job.job, v);
+  } else if (key == "orientation") {
+    job.options.mode = host::orientationMode(v);
+  } else if (key == "force") {
+    if (v != "0" && v != "1") throw roprec::UsageError("force must be 0 or 1");
+    job.force = v == "1";
+  } else {
+    throw roprec::UsageError(
+        "unknown option '" + key +
+        "' (holes, match_tol_mm, uncertainty, frame, tool, threads, orientation, force)");
+  }
 }
 
 }  // namespace
@@ -214,21 +295,20 @@ ROPREC_API int roprec_predict_file(const char* cell_path, const char* program_pa
                                    char* summary_json, size_t summary_len, char* err,
                                    size_t err_len) {
   return guarded(err, err_len, [&] {
-    const std::string cell = pathArg(cell_path, "cell_path");
-    const std::string program = pathArg(program_path, "program_path");
-    const std::string holes = optionalArg(holes_path);
-    const std::string json_out = optionalArg(json_out_path);
-    checkTextBuffer(summary_json, summary_len, "summary_json");
     roprec::api::JobOptions options;
-    if (!holes.empty()) options.holes = holes;
-    const roprec::api::PredictionResult r = roprec::api::predictJob(cell, program, options);
-    const std::string summary = host::predictionSummary(r).dump(0);
-    checkFits(summary, summary_json, summary_len, "summary_json");
-    if (!json_out.empty()) roprec::writeFileAtomic(json_out, roprec::api::predictionJson(r).dump());
-    copyText(summary, summary_json);
-    const std::vector<std::string> failures = host::predictionFailures(r, program);
-    if (!failures.empty()) throw ItemFailure{host::joinLines(failures)};
-    return ROPREC_OK;
+    if (const std::string holes = optionalArg(holes_path); !holes.empty()) options.holes = holes;
+    return predictFile(cell_path, program_path, options, json_out_path, summary_json, summary_len);
+  });
+}
+
+ROPREC_API int roprec_predict_file_ex(const char* cell_path, const char* program_path,
+                                      const roprec_options* options, const char* json_out_path,
+                                      char* summary_json, size_t summary_len, char* err,
+                                      size_t err_len) {
+  return guarded(err, err_len, [&] {
+    require(options, "options");
+    return predictFile(cell_path, program_path, options->job.job, json_out_path, summary_json,
+                       summary_len);
   });
 }
 
@@ -238,30 +318,46 @@ ROPREC_API int roprec_compensate_file(const char* cell_path, const char* program
                                       char* summary_json, size_t summary_len, char* err,
                                       size_t err_len) {
   return guarded(err, err_len, [&] {
-    const std::string cell = pathArg(cell_path, "cell_path");
-    const std::string program = pathArg(program_path, "program_path");
-    const std::string out = pathArg(out_program_path, "out_program_path");
-    const std::string holes = optionalArg(holes_path);
-    const std::string targets = optionalArg(targets_out_path);
-    checkTextBuffer(summary_json, summary_len, "summary_json");
     roprec::api::CompensationJob job;
     job.options.mode = host::orientationMode(optionalArg(orientation));
-    if (!holes.empty()) job.job.holes = holes;
-    if (roprec::api::cellIsMilling(cell))
-      return compensateMilling(cell, program, out, targets, summary_json, summary_len);
+    if (const std::string holes = optionalArg(holes_path); !holes.empty()) job.job.holes = holes;
+    return compensateFile(cell_path, program_path, job, out_program_path, targets_out_path,
+                          summary_json, summary_len);
+  });
+}
 
-    roprec::api::CompensationResult r = roprec::api::compensateJob(cell, program, job);
-    if (const std::string why = host::compensationProblems(r, program); !why.empty())
-      throw ItemFailure{why};
-    std::vector<std::pair<std::string, std::string>> extra;
-    if (!targets.empty())
-      extra.emplace_back(targets,
-                         roprec::api::compensationTargets(r, program, host::isCsvPath(targets)));
-    const std::string summary =
-        host::compensationSummary(r, host::compensationPaths(r.context, out, targets)).dump(0);
-    checkFits(summary, summary_json, summary_len, "summary_json");
-    roprec::api::writeCompensatedProgram(r.context, out, extra);
-    copyText(summary, summary_json);
+ROPREC_API int roprec_compensate_file_ex(const char* cell_path, const char* program_path,
+                                         const roprec_options* options,
+                                         const char* out_program_path, const char* targets_out_path,
+                                         char* summary_json, size_t summary_len, char* err,
+                                         size_t err_len) {
+  return guarded(err, err_len, [&] {
+    require(options, "options");
+    return compensateFile(cell_path, program_path, options->job, out_program_path, targets_out_path,
+                          summary_json, summary_len);
+  });
+}
+
+ROPREC_API int roprec_options_new(roprec_options** out, char* err, size_t err_len) {
+  if (out != nullptr) *out = nullptr;
+  return guarded(err, err_len, [&] {
+    require(out, "out");
+    *out = new roprec_options();
+    return ROPREC_OK;
+  });
+}
+
+ROPREC_API void roprec_options_free(roprec_options* options) { delete options; }
+
+ROPREC_API int roprec_options_set(roprec_options* options, const char* key, const char* value,
+                                  char* err, size_t err_len) {
+  return guarded(err, err_len, [&] {
+    require(options, "options");
+    require(key, "key");
+    require(value, "value");
+    roprec_options next = *options;  // unchanged on a refused value
+    setOption(next.job, key, value);
+    *options = std::move(next);
     return ROPREC_OK;
   });
 }

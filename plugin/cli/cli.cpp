@@ -7,6 +7,7 @@
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
 #include "compensator/support/xml_node.hpp"
+#include "plugin/api/job_options.hpp"
 
 namespace roprec::cli {
 
@@ -61,29 +62,7 @@ void Args::finish() {
 }
 
 Eigen::VectorXd parseNumberList(const std::string& text, int n, const std::string& what) {
-  std::istringstream in(text);
-  std::vector<double> v;
-  std::string tok;
-  while (in >> tok) {
-    // allow comma separators
-    std::string t;
-    for (char c : tok) t += (c == ',' ? ' ' : c);
-    std::istringstream in2(t);
-    std::string part;
-    while (in2 >> part) {
-      auto x = parseNumber(part);
-      if (!x) throw InputError("", 0, what + ": '" + part + "' is not a finite number");
-      v.push_back(*x);
-    }
-  }
-  if (static_cast<int>(v.size()) != n) {
-    throw InputError("", 0,
-                     what + " needs " + std::to_string(n) + " numbers, got " +
-                         std::to_string(v.size()) + ": \"" + text + "\"");
-  }
-  Eigen::VectorXd out(n);
-  for (int i = 0; i < n; ++i) out[i] = v[static_cast<size_t>(i)];
-  return out;
+  return api::numbersFromText(text, n, what);
 }
 
 Eigen::Matrix<double, 6, 1> parseJointsDeg(const std::string& text) {
@@ -105,11 +84,7 @@ Pose parsePoseQuat(const std::string& text) {
 }
 
 Pose parsePoseXyzAbc(const std::string& text, const std::string& what) {
-  const Eigen::VectorXd v = parseNumberList(text, 6, what);
-  Pose T = Pose::Identity();
-  T.translation() = v.head<3>() * 1e-3;
-  T.linear() = rotationFromZyx(v[3] * kDeg, v[4] * kDeg, v[5] * kDeg);
-  return T;
+  return api::poseFromXyzAbcText(text, what);
 }
 
 std::vector<Command>& commandRegistry() {

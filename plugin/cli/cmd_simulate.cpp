@@ -61,7 +61,9 @@ int run(Args& args, CommandContext& ctx) {
     ctx.err << r.summary.dump();
   }
   if (!r.transient.ok) {
-    ctx.err << "roprec: the transient stopped at t = " << r.transient.t_reached
+    const std::string where =
+        hole ? "hole " + *hole + " of " + pos[0] + ", " + at.source : at.source;
+    ctx.err << "roprec: " << where << ": the transient stopped at t = " << r.transient.t_reached
             << " s: " << r.transient.message << "\n";
     return 1;
   }

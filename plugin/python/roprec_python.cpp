@@ -17,9 +17,11 @@
 #include <vector>
 
 #include "compensator/support/atomic_file.hpp"
+#include "compensator/support/c_format.hpp"
 #include "compensator/support/error.hpp"
 #include "plugin/api/hole_input.hpp"
 #include "plugin/api/job.hpp"
+#include "plugin/api/job_options.hpp"
 #include "plugin/api/plan_test.hpp"
 #include "plugin/api/verify.hpp"
 #include "plugin/c/host_common.hpp"
@@ -237,6 +239,7 @@ class PySession {
  public:
   explicit PySession(std::string cell_path) : cell_path_(std::move(cell_path)) {
     py::gil_scoped_release release;
+    const ClassicLocaleScope c_locale;  // the "C" locale whatever the host set
     session_ = std::make_unique<api::Session>(cell_path_);
   }
 
@@ -247,6 +250,7 @@ class PySession {
     api::Session::Filtered f;
     {
       py::gil_scoped_release release;
+      const ClassicLocaleScope c_locale;  // the "C" locale whatever the host set
       const std::lock_guard<std::mutex> lock(mutex_);
       f = session_->filterTarget(T, q ? &*q : nullptr);
     }
@@ -259,6 +263,7 @@ class PySession {
     api::Session::JointPrediction p;
     {
       py::gil_scoped_release release;
+      const ClassicLocaleScope c_locale;  // the "C" locale whatever the host set
       const std::lock_guard<std::mutex> lock(mutex_);
       p = session_->predictJoints(q);
     }
@@ -303,15 +308,25 @@ class PySession {
 
 // ---------------------------------------------------------------- whole jobs
 
+/// The frame and tool resolution of a job (docs/programs.md §15), as the CLI's --frame/--tool.
+void applyFrameTool(api::JobOptions& options, const std::optional<std::string>& frame,
+                    const std::optional<std::string>& tool) {
+  if (frame) api::applyFrameOption(options, *frame);
+  if (tool) api::applyToolOption(options, *tool);
+}
+
 py::dict predict(const std::string& cell, const std::string& program,
                  const std::optional<std::string>& holes,
-                 const std::optional<std::string>& json_out) {
+                 const std::optional<std::string>& json_out,
+                 const std::optional<std::string>& frame, const std::optional<std::string>& tool) {
   api::JobOptions options;
   options.holes = holes;
+  applyFrameTool(options, frame, tool);
   std::optional<api::PredictionResult> r;
   std::string summary;
   {
     py::gil_scoped_release release;
+    const ClassicLocaleScope c_locale;  // the "C" locale whatever the host set
     r = api::predictJob(cell, program, options);
     summary = host::predictionSummary(*r).dump(0);
     if (json_out) writeFileAtomic(*json_out, api::predictionJson(*r).dump());
@@ -334,17 +349,22 @@ py::dict predict(const std::string& cell, const std::string& program,
 
 py::dict compensate(const std::string& cell, const std::string& program, const std::string& out,
                     const std::string& orientation, const std::optional<std::string>& targets,
-                    const std::optional<std::string>& holes) {
+                    const std::optional<std::string>& holes,
+                    const std::optional<std::string>& frame, const std::optional<std::string>& tool,
+                    bool force) {
   api::CompensationJob job;
   job.options.mode = host::orientationMode(orientation);
   job.job.holes = holes;
+  job.force = force;
+  applyFrameTool(job.job, frame, tool);
   const std::string targets_path = targets.value_or("");
   py::dict d;
   std::string problems;
   std::string summary;
   if (api::cellIsMilling(cell)) {
     py::gil_scoped_release release;
-    api::MillingCompensationResult r = api::compensateMillingJob(cell, program);
+    const ClassicLocaleScope c_locale;  // the "C" locale whatever the host set
+    api::MillingCompensationResult r = api::compensateMillingJob(cell, program, force);
     problems = host::millingProblems(r);
     const bool write = problems.empty();
     summary = host::millingSummary(r, write ? host::compensationPaths(r.context, out, targets_path)
@@ -359,6 +379,7 @@ py::dict compensate(const std::string& cell, const std::string& program, const s
     std::optional<api::CompensationResult> r;
     {
       py::gil_scoped_release release;
+      const ClassicLocaleScope c_locale;  // the "C" locale whatever the host set
       r = api::compensateJob(cell, program, job);
       problems = host::compensationProblems(*r, program);
       const bool write = problems.empty();
@@ -397,6 +418,7 @@ py::dict verify(const std::string& cell, const std::string& program, const std::
   std::string problems;
   {
     py::gil_scoped_release release;
+    const ClassicLocaleScope c_locale;  // the "C" locale whatever the host set
     const api::VerifyResult r = api::verifyJob(cell, program, job);
     json = api::verifyJson(r).dump();
     const auto out = host::verifyOutputs(r, job, json_out.value_or(""), calibrate.value_or(""));
@@ -426,6 +448,7 @@ py::dict planTest(const std::string& cell, const std::vector<double>& region, in
   std::string summary;
   {
     py::gil_scoped_release release;
+    const ClassicLocaleScope c_locale;  // the "C" locale whatever the host set
     const api::PlanTestResult r = api::planTestJob(cell, Vec3(region[0], region[1], region[2]),
                                                    Vec3(region[3], region[4], region[5]), count);
     const postproc::DrillProgramText t = api::planTestProgram(r, out);
@@ -563,9 +586,11 @@ PYBIND11_MODULE(_roprec, m) {
           "The cell's process, as the prediction JSON describes it.");
 
   m.def("_predict", &predict, py::arg("cell"), py::arg("program"), py::arg("holes") = py::none(),
-        py::arg("json_out") = py::none(), "Internal: see roprec.predict.");
+        py::arg("json_out") = py::none(), py::arg("frame") = py::none(),
+        py::arg("tool") = py::none(), "Internal: see roprec.predict.");
   m.def("_compensate", &compensate, py::arg("cell"), py::arg("program"), py::arg("out"),
         py::arg("orientation"), py::arg("targets") = py::none(), py::arg("holes") = py::none(),
+        py::arg("frame") = py::none(), py::arg("tool") = py::none(), py::arg("force") = false,
         "Internal: see roprec.compensate.");
   m.def("_verify", &verify, py::arg("cell"), py::arg("program"), py::arg("measured"),
         py::arg("holes") = py::none(), py::arg("register") = "none",

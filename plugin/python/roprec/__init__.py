@@ -86,7 +86,11 @@ class Prediction(list):
         return [h for h in self if h["status"] != "ok"]
 
 
-def predict(cell, program, holes=None, json_out=None):
+def _opt(x):
+    return None if x is None else str(x)
+
+
+def predict(cell, program, holes=None, json_out=None, frame=None, tool=None):
     """Predicts every hole of a program: ``roprec predict --cell CELL PROGRAM [--holes H] [--json J]``.
 
     Args:
@@ -97,6 +101,13 @@ def predict(cell, program, holes=None, json_out=None):
             the program's holes (by id, else by position within 0.5 mm).
         json_out: optional path: the full prediction JSON is written there, byte for byte the
             document of ``roprec predict ... --json``.
+        frame: how base frames that only the controller defines (FANUC ``UFRAME[n]``, KUKA
+            ``BASE_DATA[n]``) are resolved, as ``--frame``: "cell" (the cell's workobject),
+            "x y z a b c" (mm, deg, KUKA ABC, robot base frame) or "REF=x y z a b c[;REF=...]".
+            Without it such a frame is an InputError.
+        tool: a program tool that differs from the cell's (or only the controller defines), as
+            ``--tool``: "program" (the program's TCP is the real one) or "cell". Without it a
+            differing tool is an InputError. The resolution is listed in ``.notes``.
 
     Returns:
         A :class:`Prediction` (a list) of per-hole dicts, at full precision (the JSON rounds):
@@ -121,8 +132,8 @@ def predict(cell, program, holes=None, json_out=None):
     Raises:
         InputError: a bad cell, program or hole list.
     """
-    r = _roprec._predict(str(cell), str(program), None if holes is None else str(holes),
-                         None if json_out is None else str(json_out))
+    r = _roprec._predict(str(cell), str(program), _opt(holes), _opt(json_out), _opt(frame),
+                         _opt(tool))
     p = Prediction(r["holes"])
     p.summary = _json.loads(r["summary_json"])
     p.failures = r["failures"]
@@ -133,7 +144,8 @@ def predict(cell, program, holes=None, json_out=None):
     return p
 
 
-def compensate(cell, program, out, orientation="keep", targets=None, holes=None):
+def compensate(cell, program, out, orientation="keep", targets=None, holes=None, frame=None,
+               tool=None, force=False):
     """Pre-offsets a drilling program: ``roprec compensate --cell CELL PROGRAM -o OUT ...``.
 
     Every hole's targets are moved so that the predicted real hole lands on the nominal one (every
@@ -149,6 +161,9 @@ def compensate(cell, program, out, orientation="keep", targets=None, holes=None)
         targets: optional corrected-target export: CSV when the name ends in ".csv", else JSON —
             the document of ``roprec compensate ... --targets``.
         holes: optional hole-list CSV matched to the program's holes.
+        frame, tool: as for :func:`predict`.
+        force: compensate a program that already carries roprec's compensation marker (it is
+            refused otherwise: InputError), as ``--force``.
 
     Returns:
         dict: ``orientation``, ``holes``, ``compensated``, ``failed``, ``error_before_um`` and
@@ -170,9 +185,8 @@ def compensate(cell, program, out, orientation="keep", targets=None, holes=None)
             written. ``e.result`` holds the dict above (``written`` empty).
         InputError, UsageError: bad input or arguments; nothing was written.
     """
-    r = _roprec._compensate(str(cell), str(program), str(out), str(orientation),
-                            None if targets is None else str(targets),
-                            None if holes is None else str(holes))
+    r = _roprec._compensate(str(cell), str(program), str(out), str(orientation), _opt(targets),
+                            _opt(holes), _opt(frame), _opt(tool), bool(force))
     result = _json.loads(r["summary_json"])
     if "results" in r:
         result["results"] = r["results"]
