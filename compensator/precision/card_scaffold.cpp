@@ -103,6 +103,11 @@ JointSigns jointSigns(const ChainDescription& chain, const VendorConvention& con
     }
     s.sign[i] = d > 0 ? 1.0 : -1.0;
   }
+  if (const std::string arm = lowerArmProblem(chain, Eigen::Matrix<double, 6, 1>::Zero(), conv);
+      !arm.empty()) {
+    throw InputError(chain.file, chain.joints[1].line,
+                     arm + "; hint: check --vendor, or give the card's joint offsets by hand");
+  }
   s.j23 = conv.j23_coupled ? -s.sign[1] : 0.0;
   return s;
 }

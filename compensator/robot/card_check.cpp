@@ -304,6 +304,7 @@ std::optional<VendorConvention> vendorConvention(Vendor v) {
     c.home_deg[2] = 90;
     c.home_text = "HOME {0, -90, 90, 0, 0, 0}";
     c.home_orientation = "A 0, B 90, C 0";
+    c.lower_arm_vertical = false;
   } else if (v == Vendor::kAbb) {
     c.axes = {Z, Y, Y, X, Y, X};
     c.home_text = "calibration position (all axes 0)";
@@ -353,6 +354,29 @@ double flangeZOutCosine(const ChainDescription& chain, bool* known) {
   return chain.tip.linear().col(2).dot(out);
 }
 
+std::string lowerArmProblem(const ChainDescription& chain,
+                            const Eigen::Matrix<double, 6, 1>& q_urdf, const VendorConvention& v) {
+  Pose T = Pose::Identity();
+  std::array<Vec3, 3> p;
+  for (size_t i = 0; i < 3; ++i) {
+    T = T * chain.joints[i].origin;
+    p[i] = T.translation();
+    T.linear() = T.linear() *
+                 Eigen::AngleAxisd(q_urdf[static_cast<int>(i)], chain.joints[i].axis.normalized())
+                     .toRotationMatrix();
+  }
+  const Vec3 d = p[2] - p[1];
+  const double tol = 1e-3 * d.norm();
+  const bool ok = v.lower_arm_vertical ? (std::abs(d.x()) + std::abs(d.y()) <= tol && d.z() > 0)
+                                       : (std::abs(d.z()) + std::abs(d.y()) <= tol && d.x() > 0);
+  if (ok) return "";
+  return "at the controller's zero pose the lower arm (" + chain.joints[1].name + " -> " +
+         chain.joints[2].name + ") points (" + cFixed(d.x() * 1e3, 1) + ", " +
+         cFixed(d.y() * 1e3, 1) + ", " + cFixed(d.z() * 1e3, 1) +
+         ") mm, the vendor's zero pose has it " +
+         (v.lower_arm_vertical ? "vertical (J3 above J2)" : "horizontal (J3 in front of J2)");
+}
+
 std::array<bool, 6> placeholderInertials(const ChainDescription& urdf_chain) {
   std::array<bool, 6> out{};
   for (size_t i = 0; i < 6; ++i) {
@@ -384,6 +408,15 @@ CardCheckReport checkRobotCard(const Robot& robot) {
   if (c.conv) {
     checkBase(c);
     checkAxes(c);
+    const std::string arm =
+        lowerArmProblem(robot.chain, fromControllerJoints(robot.card, Vec6d::Zero()), *c.conv);
+    c.add("lower arm at the controller's zero", arm.empty() ? "as the vendor's" : "differs",
+          c.conv->lower_arm_vertical ? "vertical" : "horizontal", arm.empty() ? "ok" : "ERROR");
+    if (!arm.empty()) {
+      c.find(true, robot.card.joints[1].line, arm,
+             "the URDF's zero pose is not the " + vendorName(robot.card.vendor) +
+                 " one: check the vendor, or set controller_offset_deg on joints 2 and 3");
+    }
     if (flange_ok) checkHome(c);
   } else {
     c.find(false, robot.card.urdf_line,

@@ -46,6 +46,7 @@ struct VendorConvention {
   std::string home_orientation;          ///< e.g. "A 0, B 90, C 0"
   bool world_at_j2{false};               ///< FANUC: B at J2 height
   bool j23_coupled{false};               ///< FANUC: J3 from the horizontal
+  bool lower_arm_vertical{true};  ///< at the controller zero: J2->J3 vertical (KUKA: horizontal)
 };
 
 /// The convention of KUKA, ABB or FANUC; nullopt for a generic vendor.
@@ -77,6 +78,13 @@ ChainZeroGeometry zeroGeometry(const ChainDescription& chain);
 /// away from the joint-5 origin); `known` false when the tip lies on the wrist centre (then +axis
 /// is assumed).
 double flangeZOutCosine(const ChainDescription& chain, bool* known = nullptr);
+
+/// "" when the lower arm (joint-2 origin -> joint-3 origin, in B) at the URDF joint values
+/// `q_urdf` of the controller's zero pose lies as the vendor's zero pose has it (ABB, FANUC:
+/// vertical, J3 above J2; KUKA: horizontal, J3 in front of J2; within 1e-3 of its length), else
+/// what is wrong.
+std::string lowerArmProblem(const ChainDescription& chain,
+                            const Eigen::Matrix<double, 6, 1>& q_urdf, const VendorConvention& v);
 
 /// Bodies (0..5) whose URDF inertial is a placeholder (see file comment).
 std::array<bool, 6> placeholderInertials(const ChainDescription& urdf_chain);
