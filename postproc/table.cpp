@@ -69,17 +69,17 @@ const std::vector<std::string>& holeListColumns() {
 /// The columns a CSV target list may have (after columnKey, docs/programs.md §5).
 const std::vector<std::string>& targetListColumns() {
   static const std::vector<std::string> k = {
-      "id", "name", "x",      "y",     "z",    "a",    "b",      "c",     "w",      "p",  "r",
-      "qw", "qx",   "qy",     "qz",    "q1",   "q2",   "q3",     "q4",    "rx",     "ry", "rz",
-      "j1", "j2",   "j3",     "j4",    "j5",   "j6",   "e1",     "e2",    "e3",     "e4", "e5",
-      "e6", "conf", "config", "frame", "tool", "move", "motion", "speed", "comment"};
+      "id", "name", "x",      "y",     "z",    "a",    "b",      "c",     "w",     "p",      "r",
+      "qw", "qx",   "qy",     "qz",    "q1",   "q2",   "q3",     "q4",    "rx",    "ry",     "rz",
+      "j1", "j2",   "j3",     "j4",    "j5",   "j6",   "e1",     "e2",    "e3",    "e4",     "e5",
+      "e6", "conf", "config", "frame", "tool", "move", "motion", "speed", "dwell", "comment"};
   return k;
 }
 
 /// The members a JSON target list may have: the document, each target, each frame.
 const std::vector<std::string>& jsonRootMembers() {
-  static const std::vector<std::string> k = {"format", "source",  "units",
-                                             "frames", "targets", "euler"};
+  static const std::vector<std::string> k = {"format",  "source", "units",   "frames",
+                                             "targets", "euler",  "comment", "cycle"};
   return k;
 }
 const std::vector<std::string>& jsonTargetMembers() {
@@ -95,6 +95,7 @@ const std::vector<std::string>& jsonTargetMembers() {
                                              "config",      "frame",
                                              "tool",        "motion",
                                              "speed_mm_s",  "fine",
+                                             "dwell_s",     "hole",
                                              "comment"};
   return k;
 }

@@ -153,7 +153,8 @@ TEST(Transient, FollowerWrenchSteadyStateEqualsStaticWithLoadAtRealOrientation) 
   const nc::Deflection df =
       nc::predictDeflection(k.model, data, p.drive.staticCompliance(), k.q, follower);
   ASSERT_TRUE(df.converged);
-  EXPECT_LE((df.dp - d.dp).norm(), 1e-12);
+  // two equilibria, each solved to ‖G‖∞ ≤ 1e-12 rad: their TCPs agree to a few 1e-12 m
+  EXPECT_LE((df.dp - d.dp).norm(), 3e-12);
   nc::Loads fixed;
   fixed.tcp = toBaseFrame(w, d.T_nominal.linear());
   const nc::Deflection d0 =
@@ -534,18 +535,21 @@ ProcessSpec sampleDrilling() {
 /// Checks every sample of a coupled drilling run: the tip never goes back while thrust acts,
 /// never goes below the cut depth, and cuts at the real feed (h = Ḋ/n, D = s while cutting).
 void checkPenetration(const nc::TransientResult& r, const nc::DrillingCycle& c) {
+  // The contact is a CVODE root located to its time tolerance, so D starts within a few nm of
+  // the tip; 3 nm bounds that offset (it stays constant while cutting, Ḋ = ṡ).
+  constexpr double kContactTol = 3e-9;
   ASSERT_TRUE(r.ok) << r.message << " at t = " << r.t_reached;
   int cutting = 0;
   for (size_t i = 0; i < r.samples.size(); ++i) {
     const nc::ProcessSample& s = r.samples[i].process;
-    EXPECT_LE(s.tip, s.depth + 1e-9)
+    EXPECT_LE(s.tip, s.depth + kContactTol)
         << "the tip is below the material removed, t = " << r.samples[i].t;
     EXPECT_GE(s.depth_rate, 0.0);
     if (s.Fa > 0.0) {
       ++cutting;
       EXPECT_TRUE(s.cutting);
       EXPECT_GT(s.depth_rate, 0.0);
-      EXPECT_NEAR(s.tip, s.depth, 1e-9) << "cutting with the tip off the bottom";
+      EXPECT_NEAR(s.tip, s.depth, kContactTol) << "cutting with the tip off the bottom";
       EXPECT_NEAR(s.feed_per_rev, s.depth_rate / c.revolutionsPerSecond(), 1e-15);
       EXPECT_NEAR(s.depth_rate,
                   c.feedRate() * (r.samples[i].t < c.feedEndTime() ? 1.0 : 0.0) + s.axial_rate,

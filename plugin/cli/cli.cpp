@@ -1,10 +1,12 @@
 #include "plugin/cli/cli.hpp"
 
 #include <cmath>
+#include <cstdlib>
 #include <ostream>
 #include <sstream>
 
 #include "compensator/support/atomic_file.hpp"
+#include "compensator/support/c_format.hpp"
 #include "compensator/support/error.hpp"
 #include "compensator/support/xml_node.hpp"
 #include "plugin/api/job_options.hpp"
@@ -18,9 +20,10 @@ std::optional<std::string> Args::option(const std::string& name) {
   std::optional<std::string> value;
   const std::string key = "--" + name;
   const std::string short_key = name.size() == 1 ? "-" + name : key;  // -o as well as --o
+  const std::string long_key = name == "o" ? "--output" : key;        // -o is also --output
   for (size_t i = 0; i < tokens_.size(); ++i) {
     if (used_[i]) continue;
-    if (tokens_[i] == key || tokens_[i] == short_key) {
+    if (tokens_[i] == key || tokens_[i] == short_key || tokens_[i] == long_key) {
       if (i + 1 >= tokens_.size()) throw UsageError("option " + key + " needs a value");
       used_[i] = used_[i + 1] = true;
       value = tokens_[i + 1];
@@ -28,6 +31,9 @@ std::optional<std::string> Args::option(const std::string& name) {
     } else if (tokens_[i].rfind(key + "=", 0) == 0) {
       used_[i] = true;
       value = tokens_[i].substr(key.size() + 1);
+    } else if (tokens_[i].rfind(long_key + "=", 0) == 0) {
+      used_[i] = true;
+      value = tokens_[i].substr(long_key.size() + 1);
     }
   }
   return value;
@@ -104,18 +110,38 @@ void emit(CommandContext& ctx, const std::string& path, const std::string& text)
 }
 
 Progress::Progress(CommandContext& ctx, const std::string& what, size_t total)
-    : ctx_(ctx), what_(what), total_(total), active_(ctx.stderr_is_tty && !ctx.quiet) {}
+    : ctx_(ctx),
+      what_(what),
+      total_(total),
+      active_(ctx.stderr_is_tty && !ctx.quiet),
+      start_(std::chrono::steady_clock::now()) {
+  if (const char* a = std::getenv("ROPREC_PROGRESS_AFTER_S")) {
+    if (const auto v = parseNumber(a); v && *v >= 0) after_s_ = *v;
+  }
+}
 
 void Progress::step(size_t done, size_t total) {
   if (total > 0) total_ = total;
-  if (!active_ || total_ < 50 || (done - last_ < total_ / 50 && done != total_)) return;
-  last_ = done;
-  ctx_.err << "\r" << what_ << " " << done << "/" << total_ << std::flush;
+  if (!active_ || total_ == 0) return;
+  const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  if (t < after_s_ || (last_print_s_ >= 0 && t - last_print_s_ < 0.2 && done < total_)) return;
+  last_print_s_ = t;
+  std::string line = what_ + " " + std::to_string(done) + "/" + std::to_string(total_);
+  if (done > 0 && t > 0) {
+    const double rate = static_cast<double>(done) / t;
+    line += " (" + cFixed(rate, 0) + "/s";
+    if (done < total_)
+      line += ", ETA " + cFixed(static_cast<double>(total_ - done) / rate, 0) + " s";
+    line += ")";
+  }
+  const size_t pad = width_ > line.size() ? width_ - line.size() : 0;
+  ctx_.err << "\r" << line << std::string(pad, ' ') << std::flush;
+  width_ = line.size();
 }
 
 void Progress::finish() {
-  if (active_ && last_ > 0)
-    ctx_.err << "\r" << std::string(what_.size() + 24, ' ') << "\r" << std::flush;
+  if (active_ && width_ > 0) ctx_.err << "\r" << std::string(width_, ' ') << "\r" << std::flush;
+  width_ = 0;
 }
 
 }  // namespace roprec::cli

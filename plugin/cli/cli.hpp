@@ -5,6 +5,7 @@
 /// touching a shared table.
 
 #include <Eigen/Core>
+#include <chrono>
 #include <functional>
 #include <iosfwd>
 #include <optional>
@@ -67,7 +68,9 @@ struct Command {
 /// Writes a progress line to stderr when it is a terminal and not --quiet.
 class Progress {
  public:
-  /// `total` 0: given with each step.
+  /// `total` 0: given with each step. The line appears once the run has taken `after_s`
+  /// (default 1 s; the environment variable ROPREC_PROGRESS_AFTER_S overrides it) and is
+  /// refreshed at most 5 times a second: "what done/total (rate/s, ETA n s)".
   Progress(CommandContext& ctx, const std::string& what, size_t total);
   void step(size_t done, size_t total = 0);
   void finish();
@@ -77,7 +80,10 @@ class Progress {
   std::string what_;
   size_t total_;
   bool active_;
-  size_t last_{0};
+  double after_s_{1.0};
+  std::chrono::steady_clock::time_point start_;
+  double last_print_s_{-1.0};
+  size_t width_{0};  ///< length of the last line written (0: none)
 };
 
 std::vector<Command>& commandRegistry();

@@ -10,7 +10,6 @@ namespace {
 
 int run(Args& args, CommandContext& ctx) {
   std::optional<std::string> out = args.option("o");
-  if (!out) out = args.option("output");
   const std::optional<std::string> to = args.option("to");
   const std::optional<std::string> frames = args.option("frame");
   const std::vector<std::string> pos = args.positionals();

@@ -73,8 +73,7 @@ int run(Args& args, CommandContext& ctx) {
   const auto csv_path = args.option("csv");
   const auto json_path = args.option("json");
   const auto calibrate = args.option("calibrate");
-  auto out_xml = args.option("o");
-  if (const auto alt = args.option("output")) out_xml = alt;
+  const auto out_xml = args.option("o");
   const auto step_mm = args.option("step-mm");
   const auto points = args.option("points");
   const auto axial = args.option("axial-compliance-um-per-N");

@@ -9,9 +9,11 @@ namespace roprec::cli {
 namespace {
 
 int run(Args& args, CommandContext& ctx) {
-  const std::string out = args.option("o").value_or(args.option("output").value_or("-"));
+  const std::string out = args.option("o").value_or("-");
   const std::optional<std::string> holes = args.option("holes");
-  const std::optional<std::string> tol = args.option("match-tolerance");
+  const std::optional<std::string> tol = args.option("match-tol");
+  if (args.option("match-tolerance"))
+    throw UsageError("--match-tolerance is called --match-tol (as in predict and compensate)");
   const std::optional<std::string> axis = args.option("tool-axis");
   const std::optional<std::string> frames = args.option("frame");
   const std::vector<std::string> pos = args.positionals();
@@ -26,14 +28,14 @@ int run(Args& args, CommandContext& ctx) {
     req.tool_axis = a.normalized();
   }
   req.hole_list = holes;
-  if (holes && tol) req.match_tolerance_mm = parseNumberList(*tol, 1, "--match-tolerance")[0];
+  if (holes && tol) req.match_tolerance_mm = parseNumberList(*tol, 1, "--match-tol (mm)")[0];
   emit(ctx, out, inspectProgram(req).dump() + "\n");
   return 0;
 }
 
 const CommandRegistration reg{
     {"inspect", "what a robot program contains: targets, frames, configurations, holes",
-     "usage: roprec inspect PROGRAM [-o OUT.json] [--holes HOLES.csv [--match-tolerance MM]]\n"
+     "usage: roprec inspect PROGRAM [-o OUT.json] [--holes HOLES.csv [--match-tol MM]]\n"
      "                      [--tool-axis \"x y z\"] [--frame 'REF=x y z a b c[;REF=...]']\n\n"
      "PROGRAM: KUKA .src (+ .dat beside it), ABB .mod/.prg/.sys, FANUC .ls, CSV/JSON target list "
      "or\n"

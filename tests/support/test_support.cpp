@@ -52,12 +52,13 @@ std::string tempDir(const std::string& tag) {
   return p.string();
 }
 
-RunResult runRoprec(const std::string& args) {
+RunResult runRoprec(const std::string& args) { return runCommand("'" + roprecBin() + "' " + args); }
+
+RunResult runCommand(const std::string& command) {
   const std::string dir = tempDir("run");
   const std::string out = dir + "/stdout";
   const std::string err = dir + "/stderr";
-  const std::string cmd =
-      "'" + roprecBin() + "' " + args + " >'" + out + "' 2>'" + err + "' </dev/null";
+  const std::string cmd = "{ " + command + "; } >'" + out + "' 2>'" + err + "' </dev/null";
   const int status = std::system(cmd.c_str());
   RunResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128;

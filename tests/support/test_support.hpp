@@ -19,6 +19,8 @@ struct RunResult {
 };
 /// Runs `roprec ARGS` (ARGS is passed to /bin/sh, quote as needed) and captures stdout/stderr.
 RunResult runRoprec(const std::string& args);
+/// Runs a /bin/sh command line (stdin /dev/null) and captures stdout/stderr.
+RunResult runCommand(const std::string& command);
 /// A fresh temporary directory under the build tree.
 std::string tempDir(const std::string& tag);
 std::string readFile(const std::string& path);
