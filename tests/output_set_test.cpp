@@ -84,8 +84,20 @@ TEST(OutputSet, CannotWriteSaysWhy) {
     writeFileAtomic("/nonexistent-folder-roprec/x.json", "x");
     FAIL() << "no error";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("cannot write output file: No such file or directory"),
+    EXPECT_NE(std::string(e.what()).find(
+                  "cannot write output file: the folder /nonexistent-folder-roprec does not "
+                  "exist (roprec does not create folders)"),
               std::string::npos)
+        << e.what();
+  }
+  // A file where the folder should be.
+  const std::string dir = test::tempDir("outset-notdir");
+  test::writeFile(dir + "/f", "x");
+  try {
+    writeFileAtomic(dir + "/f/x.json", "x");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(dir + "/f is not a folder"), std::string::npos)
         << e.what();
   }
 }
@@ -220,7 +232,8 @@ TEST(OutputSet, CliMultiOutputCommandWritesNothingWhenOneOutputFails) {
                                  "/samples/cells/alu-drilling-6061.xml' --csv '" + dir +
                                  "/d.csv' --json '" + dir + "/missing/f.json'");
   EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_NE(r.err.find("cannot write output file: No such file or directory"), std::string::npos)
+  EXPECT_NE(r.err.find("cannot write output file: the folder " + dir + "/missing does not exist"),
+            std::string::npos)
       << r.err;
   EXPECT_TRUE(listDir(dir).empty());
 }
@@ -249,7 +262,9 @@ TEST(OutputSet, CApiCompensateWritesNothingWhenTheTargetsExportFails) {
                              (dir + "/c.src").c_str(), "keep", (dir + "/missing/t.json").c_str(),
                              nullptr, 0, err, sizeof err);
   EXPECT_EQ(rc, ROPREC_BAD_INPUT);
-  EXPECT_NE(std::string(err).find("No such file or directory"), std::string::npos) << err;
+  EXPECT_NE(std::string(err).find("the folder " + dir + "/missing does not exist"),
+            std::string::npos)
+      << err;
   EXPECT_TRUE(listDir(dir).empty());
 }
 

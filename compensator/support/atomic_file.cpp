@@ -57,8 +57,16 @@ std::uint64_t fnv1a(const std::string& s) {
 void checkTarget(const std::string& path) {
   struct stat st {};
   if (::lstat(path.c_str(), &st) != 0) {
-    if (errno == ENOENT) return;
-    fail(path, errnoText(errno));
+    const int e = errno;
+    if (e != ENOENT && e != ENOTDIR) fail(path, errnoText(e));
+    const std::string dir = dirOf(path);
+    struct stat ds {};
+    if (::stat(dir.c_str(), &ds) != 0) {
+      fail(path, "the folder " + dir + " does not exist (roprec does not create folders)");
+    }
+    if (!S_ISDIR(ds.st_mode)) fail(path, dir + " is not a folder");
+    if (e == ENOTDIR) fail(path, errnoText(e));
+    return;
   }
   if (S_ISLNK(st.st_mode)) {
     fail(path, "it is a symbolic link; roprec does not replace links (give the real path)");

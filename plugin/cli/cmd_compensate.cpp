@@ -12,6 +12,7 @@
 #include "compensator/support/c_format.hpp"
 #include "compensator/support/error.hpp"
 #include "plugin/api/job.hpp"
+#include "plugin/api/milling_report.hpp"
 #include "plugin/cli/cli.hpp"
 #include "plugin/cli/robot_options.hpp"
 
@@ -21,7 +22,8 @@ namespace {
 /// Milling: every linear path point of the program is compensated with the coupled force
 /// iteration (compensator/compensation/milling_compensation.hpp).
 int runMillingPath(CommandContext& ctx, const std::string& cell, const std::string& program,
-                   const std::string& out, const std::optional<std::string>& targets, bool force) {
+                   const std::string& out, const std::optional<std::string>& targets,
+                   const std::optional<std::string>& report, bool force) {
   MillingCompensationResult r = compensateMillingJob(cell, program, force);
   printJobNotes(ctx, r.context.job.notes);
   for (const auto& f : r.failures) ctx.err << "roprec: " << f << "\n";
@@ -38,6 +40,7 @@ int runMillingPath(CommandContext& ctx, const std::string& cell, const std::stri
   }
   std::vector<std::pair<std::string, std::string>> extra;
   if (targets) extra.emplace_back(*targets, millingTargetsJson(r, program));
+  if (report) extra.emplace_back(*report, millingCompensationReport(r, program));
   const std::vector<std::string> written = writeCompensatedProgram(r.context, out, extra);
   if (!ctx.quiet) {
     double before = 0;
@@ -164,7 +167,8 @@ int run(Args& args, CommandContext& ctx) {
       throw UsageError("output " + *out + " is the input file " + pos[0] +
                        ": write the compensated program to another file (nothing written)");
   }
-  if (cellIsMilling(*cell)) return runMillingPath(ctx, *cell, pos[0], *out, targets, job.force);
+  if (cellIsMilling(*cell))
+    return runMillingPath(ctx, *cell, pos[0], *out, targets, report, job.force);
 
   CompensationResult r = compensateJob(*cell, pos[0], job);
   printJobNotes(ctx, r.context.job.notes);
@@ -227,7 +231,9 @@ const CommandRegistration reg{
      "the cell's <controller fanuc_turn_axes>); otherwise such edits are refused.\n"
      "With a milling cell every linear path point is compensated instead, with the coupled force\n"
      "iteration (the force depends on the deviation); the export lists points, forces and "
-     "iterations.\n"
+     "iterations,\n"
+     "the report draws the deviation before and the residual after along the path, a row per "
+     "point.\n"
      "Unreachable, singular or non-converging holes are listed; without --allow-partial nothing "
      "is\n"
      "written and the exit code is 1; with it they keep their original targets and are flagged.\n"

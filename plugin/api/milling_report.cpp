@@ -1,0 +1,127 @@
+#include "plugin/api/milling_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+#include "compensator/support/c_format.hpp"
+#include "compensator/support/error.hpp"
+#include "compensator/support/xml_escape.hpp"
+
+namespace roprec::api {
+namespace {
+
+/// A shown number: fixed decimals in the C locale; a non-finite value is refused.
+std::string num(double v, int decimals, const char* what) {
+  if (!std::isfinite(v))
+    throw InputError("", 0, std::string("milling report: ") + what + " is not finite");
+  return cFixed(v, decimals);
+}
+
+std::string esc(const std::string& s) { return escapeXml(s); }
+
+/// |deviation before| and |residual after| (µm) along the path as two polylines.
+std::string pathPlot(const MillingCompensationResult& r) {
+  const std::size_t n = r.points_comp.size();
+  double top = 1.0;
+  for (const auto& p : r.points_comp) top = std::max(top, p.deviation_before.norm() * 1e6);
+  const double w = 760;
+  const double h = 220;
+  const double x0 = 60;
+  const double y0 = 20;
+  auto px = [&](std::size_t i) {
+    return x0 + (n > 1 ? w * static_cast<double>(i) / static_cast<double>(n - 1) : w / 2);
+  };
+  auto py = [&](double um) { return y0 + h - h * um / top; };
+  std::string before;
+  std::string after;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& p = r.points_comp[i];
+    before +=
+        num(px(i), 1, "x") + "," + num(py(p.deviation_before.norm() * 1e6), 1, "deviation") + " ";
+    after += num(px(i), 1, "x") + "," + num(py(p.residual.norm() * 1e6), 1, "residual") + " ";
+  }
+  std::string s =
+      "<svg width=\"860\" height=\"280\" role=\"img\" aria-label=\"deviation along the path\">\n";
+  s += "<line x1=\"" + num(x0, 0, "") + "\" y1=\"" + num(y0 + h, 0, "") + "\" x2=\"" +
+       num(x0 + w, 0, "") + "\" y2=\"" + num(y0 + h, 0, "") + "\" stroke=\"#444\"/>\n";
+  s += "<line x1=\"" + num(x0, 0, "") + "\" y1=\"" + num(y0, 0, "") + "\" x2=\"" + num(x0, 0, "") +
+       "\" y2=\"" + num(y0 + h, 0, "") + "\" stroke=\"#444\"/>\n";
+  s += "<text x=\"4\" y=\"" + num(y0 + 4, 0, "") + "\" font-size=\"11\">" + num(top, 1, "scale") +
+       " µm</text>\n<text x=\"40\" y=\"" + num(y0 + h + 4, 0, "") +
+       "\" font-size=\"11\">0</text>\n";
+  s += "<text x=\"" + num(x0 + w / 2 - 60, 0, "") + "\" y=\"" + num(y0 + h + 30, 0, "") +
+       "\" font-size=\"12\">path point (program order)</text>\n";
+  s += "<polyline fill=\"none\" stroke=\"#c0392b\" stroke-width=\"1.5\" points=\"" + before +
+       "\"/>\n";
+  s += "<polyline fill=\"none\" stroke=\"#1e7b34\" stroke-width=\"1.5\" points=\"" + after +
+       "\"/>\n";
+  s += "<text x=\"" + num(x0 + 10, 0, "") + "\" y=\"" + num(y0 + 14, 0, "") +
+       "\" font-size=\"12\" fill=\"#c0392b\">|deviation| before (coupled force)</text>\n";
+  s += "<text x=\"" + num(x0 + 260, 0, "") + "\" y=\"" + num(y0 + 14, 0, "") +
+       "\" font-size=\"12\" fill=\"#1e7b34\">|residual| after compensation</text>\n</svg>\n";
+  return s;
+}
+
+std::string pointRow(const MillingCompensationResult& r, std::size_t i) {
+  const PathPointCompensation& p = r.points_comp[i];
+  const postproc::Target& t =
+      r.context.job.program->targets()[static_cast<std::size_t>(r.targets[i])];
+  const Vec3 b = p.deviation_before * 1e6;
+  const Vec3 a = p.residual * 1e6;
+  std::string s = "<tr" + std::string(p.ok ? "" : " class=\"bad\"") + "><td>" +
+                  std::to_string(i + 1) + "</td><td>" + esc(t.name) + "</td><td>" +
+                  std::to_string(t.line) + "</td><td>" + (p.cutting ? "yes" : "no") + "</td><td>" +
+                  esc(p.cutting_reason) + "</td><td>" + num(p.force.norm(), 1, "force") + "</td>";
+  for (int k = 0; k < 3; ++k) s += "<td>" + num(b[k], 2, "deviation") + "</td>";
+  s += "<td>" + num(b.norm(), 2, "deviation") + "</td><td>" + num(a.norm(), 4, "residual") +
+       "</td><td>" + esc(p.coupling_status) + "</td><td>" + std::to_string(p.coupling_iterations) +
+       "</td><td>" + num(p.loop_gain, 3, "loop gain") + "</td><td>" + esc(p.config_text) +
+       "</td><td>" + esc(p.ok ? "compensated" : p.reason) + "</td></tr>\n";
+  return s;
+}
+
+}  // namespace
+
+std::string millingCompensationReport(const MillingCompensationResult& r,
+                                      const std::string& program_path) {
+  const PredictionContext& c = r.context;
+  double before = 0;
+  double after = 0;
+  int cutting = 0;
+  for (const auto& p : r.points_comp) {
+    before = std::max(before, p.deviation_before.norm());
+    after = std::max(after, p.residual.norm());
+    cutting += p.cutting ? 1 : 0;
+  }
+  std::string s =
+      "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>roprec milling "
+      "compensation — " +
+      esc(program_path) +
+      "</title>\n<style>body{font-family:sans-serif;margin:1.5em}"
+      "table{border-collapse:collapse;font-size:12px}td,th{border:1px solid #ccc;padding:2px 6px;"
+      "text-align:right}td:nth-child(2),td:nth-child(5),td:nth-child(13),td:nth-child(16){text-"
+      "align:left}"
+      "th{background:#eee}tr.bad td{background:#fde2e2}</style></head><body>\n";
+  s += "<h1>Milling path compensation</h1>\n<p>program <b>" + esc(program_path) + "</b>, cell <b>" +
+       esc(c.cell.name) + "</b>, robot <b>" + esc(c.robot.card.name) +
+       "</b><br>process: " + esc(c.process_description) + "</p>\n";
+  s += "<p>" + std::to_string(r.points_comp.size()) + " linear path points, " +
+       std::to_string(cutting) + " cutting; deviation before (coupled force) max <b>" +
+       num(before * 1e6, 2, "deviation") + " µm</b>; predicted residual after max <b>" +
+       num(after * 1e6, 4, "residual") + " µm</b>.</p>\n";
+  for (const auto& n : c.job.notes) s += "<p class=\"note\">note: " + esc(n) + "</p>\n";
+  s += pathPlot(r);
+  s += "<table>\n<tr><th>point</th><th>target</th><th>line</th><th>cuts</th><th>why</th>"
+       "<th>|F| [N]</th><th>δx before [µm]</th><th>δy before [µm]</th><th>δz before [µm]</th>"
+       "<th>|δ| before [µm]</th><th>|residual| after [µm]</th><th>coupling</th><th>iterations</th>"
+       "<th>loop gain</th><th>configuration</th><th>status</th></tr>\n";
+  for (std::size_t i = 0; i < r.points_comp.size(); ++i) s += pointRow(r, i);
+  s += "</table>\n<p>Deviations in the robot base frame; the force in the milling frame. "
+       "roprec " +
+       std::string(version()) + "</p>\n</body></html>\n";
+  return s;
+}
+
+}  // namespace roprec::api
