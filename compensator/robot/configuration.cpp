@@ -435,12 +435,28 @@ ConfiguredSolution solveIkWithConfiguration(const IkModel& model, const RobotCar
   IkOptions o;
   o.turns = IkTurns::kAll;
   o.seed = match.seed;
-  solveIk(model, target, o, all);
+  const std::optional<int> want_branch = branchOfConfig(config);
+  // A known branch needs one of the eight (ik.hpp, IkOptions::branch); when it gives nothing
+  // usable, every branch is solved again so the reason names what the target allows.
+  if (want_branch) {
+    o.branch = *want_branch;
+    solveIk(model, target, o, all);
+    bool usable = false;
+    for (int i = 0; i < all.count && !usable; ++i) {
+      const IkSolution& s = all.solutions[static_cast<size_t>(i)];
+      usable = s.converged && s.within_limits;
+    }
+    if (!usable) {
+      o.branch = -1;
+      solveIk(model, target, o, all);
+    }
+  } else {
+    solveIk(model, target, o, all);
+  }
   if (all.count == 0) {
     out.reason = describeIkFailure(all);
     return out;
   }
-  const std::optional<int> want_branch = branchOfConfig(config);
   const IkSolution* best = nullptr;
   int best_mismatch = 0;
   double best_norm = 0.0;
