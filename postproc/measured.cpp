@@ -464,6 +464,26 @@ void requireUniqueIds(const std::vector<MeasuredHole>& holes, const std::string&
   }
 }
 
+/// Measured values a CMM can produce: every |coordinate| ≤ 100 m (1e5 mm) from the workobject
+/// origin, u ≤ 10 mm (1e4 µm), a diameter ≤ 2 m. A value beyond is a corrupted or mis-scaled file
+/// (1e300 would overflow the statistics). Throws InputError at the hole's line.
+void requirePlausible(const std::vector<MeasuredHole>& holes, const std::string& path) {
+  for (const MeasuredHole& h : holes) {
+    if (h.p_mm.cwiseAbs().maxCoeff() > 1e5)
+      throw InputError(path, h.line,
+                       "hole '" + h.id +
+                           "': a coordinate lies more than 100 m from the workobject origin "
+                           "(positions are in mm, in the workobject frame)");
+    if (h.u_um && *h.u_um > 1e4)
+      throw InputError(path, h.line,
+                       "hole '" + h.id +
+                           "': the measurement uncertainty u is over 10 mm "
+                           "(u is a standard uncertainty per axis in µm)");
+    if (h.diameter_mm && *h.diameter_mm > 2000)
+      throw InputError(path, h.line, "hole '" + h.id + "': the diameter is over 2 m (mm expected)");
+  }
+}
+
 // ---------------------------------------------------------------- writers
 
 /// Fixed notation, locale-independent; "-0.000" printed as "0.000".
@@ -541,6 +561,7 @@ MeasuredHoles parseMeasured(const std::string& text, const std::string& path) {
   m.holes =
       *format == MeasuredFormat::kDmis ? readDmis(lines, path) : readTable(lines, *format, path);
   requireUniqueIds(m.holes, path);
+  requirePlausible(m.holes, path);
   return m;
 }
 

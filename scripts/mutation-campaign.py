@@ -126,7 +126,7 @@ def scenarios():
         cmd(["inspect", src, "-o", "{O}/i.json"], [src], ["i.json"], echo=True),
         cmd(["inspect", holes, "-o", "{O}/i.json"], [holes], ["i.json"], echo=True),
         cmd(["convert", src, "-o", "{O}/c.src"], [src], ["c.src"], echo=True),
-        cmd(["convert", src, "--to", "rapid", "-o", "{O}/c.mod"], [src], ["c.mod"]),
+        cmd(["convert", src, "--to", "rapid", "-o", "{O}/c.mod"], [src], ["c.mod"], echo=True),
         forces_cmd(cell),
     ] + robot_cmds(cell, rob)})
 
@@ -142,7 +142,7 @@ def scenarios():
              "--allow-partial"], [cell, mod] + rd, ["out.mod", "t.json"]),
         cmd(["inspect", mod, "-o", "{O}/i.json"], [mod], ["i.json"], echo=True),
         cmd(["convert", mod, "-o", "{O}/c.mod"], [mod], ["c.mod"], echo=True),
-        cmd(["convert", mod, "--to", "csv", "-o", "{O}/c.csv"], [mod], ["c.csv"]),
+        cmd(["convert", mod, "--to", "csv", "-o", "{O}/c.csv"], [mod], ["c.csv"], echo=True),
         forces_cmd(cell),
     ] + robot_cmds(cell, rob)})
 
@@ -159,7 +159,7 @@ def scenarios():
             ["out.ls", "t.csv"]),
         cmd(["inspect", ls, "-o", "{O}/i.json"], [ls], ["i.json"], echo=True),
         cmd(["convert", ls, "-o", "{O}/c.ls"], [ls], ["c.ls"], echo=True),
-        cmd(["convert", ls, "--to", "json", "-o", "{O}/c.json"], [ls], ["c.json"]),
+        cmd(["convert", ls, "--to", "json", "-o", "{O}/c.json"], [ls], ["c.json"], echo=True),
         forces_cmd(cell),
     ] + robot_cmds(cell, rob)})
 
@@ -211,7 +211,7 @@ def scenarios():
 NUM_RE = re.compile(r"(?<![A-Za-z_\d.])[-+]?(?:\d+\.\d*|\.\d+|\d+)(?:[eE][-+]?\d+)?")
 # Fields that must be > 0 (0, a negative value or 1e-300 is absurd) and fields that must be >= 0
 # (a negative value is absurd; 0 is a valid massless tool or uncertainty-free input).
-POSITIVE_RE = re.compile(r"diam|depth|toleran|stiff|rp_mm|feed|rpm|stickout|web|width|radius|"
+POSITIVE_RE = re.compile(r"diam|depth|toleran|stiff|rp_mm|feed|rpm|stickout|web|(?<!half)width|radius|"
                          r"position_gain$", re.I)
 NONNEG_RE = re.compile(r"mass|^value$|^i[xyz][xyz]$|effort|velocity|_rel$|halfwidth", re.I)
 # Elements a file cannot do without (the contract's optional ones, e.g. the cell's <tool> and
@@ -573,9 +573,14 @@ def csv_bad_numbers(text):
     return bad
 
 
+PROGRAM_EXT = (".src", ".dat", ".mod", ".prg", ".ls", ".html")
+
+
 def comparable(run):
-    """The run's numbers as they matter: stdout and every non-HTML output file."""
-    return (run["stdout"], {k: v for k, v in run["files"].items() if not k.endswith(".html")})
+    """The run's numbers as they matter: stdout and every output file but programs (a written
+    program carries every input line it does not compensate as it is: the targets export has
+    the numbers) and HTML reports."""
+    return (run["stdout"], {k: v for k, v in run["files"].items() if not k.endswith(PROGRAM_EXT)})
 
 
 def classify(run, command, mutation, baseline):

@@ -199,14 +199,18 @@ RobotCard loadRobotCard(const std::string& path) {
     jc.source = j.str("source", "");
     if (j.has("stiffness")) {
       jc.stiffness = j.number("stiffness");
-      if (!(jc.stiffness > 0)) j.fail("joint '" + jc.name + "': stiffness must be > 0 N m/rad");
+      // 1e12 N m/rad is rigid for any robot (identified joints: 1e4-1e8); beyond is a typo.
+      if (!(jc.stiffness > 0 && jc.stiffness <= 1e12))
+        j.fail("joint '" + jc.name + "': stiffness must be in (0, 1e12] N m/rad, got " +
+               j.str("stiffness"));
     } else {
       all_k = false;
     }
     if (j.has("position_gain")) {
       jc.position_gain = j.number("position_gain");
-      if (!(*jc.position_gain > 0))
-        j.fail("joint '" + jc.name + "': position_gain must be > 0 1/s");
+      if (!(*jc.position_gain > 0 && *jc.position_gain <= 1e4))
+        j.fail("joint '" + jc.name + "': position_gain must be in (0, 1e4] 1/s, got " +
+               j.str("position_gain"));
     }
     if (j.has("velocity_gain")) {
       jc.velocity_gain = j.number("velocity_gain");

@@ -56,10 +56,16 @@ struct UrdfIndex {
   int robot_line{1};
 };
 
+/// An <origin>: only xyz (m) and rpy (rad), each |value| <= 100 (a misspelt attribute would
+/// silently be 0; 1e300 would overflow the kinematics). Throws InputError at its line.
 void checkOrigin(const XmlNode& parent) {
   if (const XmlNode* o = parent.child("origin")) {
-    if (o->has("xyz")) (void)o->numbers("xyz", 3);
-    if (o->has("rpy")) (void)o->numbers("rpy", 3);
+    allowOnly(*o, {"xyz", "rpy"});
+    for (const char* k : {"xyz", "rpy"}) {
+      if (o->has(k) && !(o->numbers(k, 3).cwiseAbs().maxCoeff() <= 100.0))
+        o->fail(std::string("<origin> ") + k + " '" + o->str(k) + "' is beyond 100 " +
+                (k[0] == 'x' ? "m" : "rad") + " (URDF lengths are in metres, angles in radians)");
+    }
   }
 }
 
@@ -74,14 +80,21 @@ UrdfIndex validate(const XmlNode& robot) {
       if (idx.link_line.count(name)) e.fail("link '" + name + "' is defined twice");
       idx.link_line[name] = e.line;
       idx.link_order.push_back(name);
+      // The URDF elements roprec reads or knows: a misspelt one (<inertail>, <axsi>) would
+      // silently take urdfdom's default (no mass, the x axis).
+      allowOnly(e, {"name"});
+      allowChildren(e, {"inertial", "visual", "collision"});
       if (const XmlNode* in = e.child("inertial")) {
+        allowChildren(*in, {"origin", "mass", "inertia"});
         checkOrigin(*in);
         const XmlNode* m = in->child("mass");
         if (m == nullptr) in->fail("<inertial> has no <mass>");
+        allowOnly(*m, {"value"});
         const double mass = m->number("value");
         if (mass < 0) m->fail("negative mass " + m->str("value"));
         const XmlNode* I = in->child("inertia");
         if (I == nullptr) in->fail("<inertial> of link '" + name + "' has no <inertia>");
+        allowOnly(*I, {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"});
         // read every number before building the matrix: a throw inside Eigen's comma
         // initializer aborts (its destructor asserts the count)
         const double ixx = I->number("ixx"), ixy = I->number("ixy"), ixz = I->number("ixz");
@@ -98,11 +111,16 @@ UrdfIndex validate(const XmlNode& robot) {
     const std::string name = e.str("name");
     const std::string type = e.str("type");
     if (idx.joint_line.count(name)) e.fail("joint '" + name + "' is defined twice");
+    allowOnly(e, {"name", "type"});
+    allowChildren(e, {"parent", "child", "origin", "axis", "limit", "dynamics", "safety_controller",
+                      "calibration", "mimic"});
     idx.joint_line[name] = e.line;
     const XmlNode* p = e.child("parent");
     const XmlNode* c = e.child("child");
     if (p == nullptr) e.fail("joint '" + name + "' has no <parent>");
     if (c == nullptr) e.fail("joint '" + name + "' has no <child>");
+    allowOnly(*p, {"link"});
+    allowOnly(*c, {"link"});
     const std::string parent = p->str("link");
     const std::string child = c->str("link");
     if (!idx.link_line.count(parent))
@@ -116,10 +134,12 @@ UrdfIndex validate(const XmlNode& robot) {
     idx.parent_joint_of_link[child] = name;
     checkOrigin(e);
     if (const XmlNode* a = e.child("axis")) {
+      allowOnly(*a, {"xyz"});
       const Eigen::Vector3d ax = a->numbers("xyz", 3);
       if (ax.norm() < 1e-12 && type != "fixed") a->fail("joint '" + name + "' has a zero axis");
     }
     if (const XmlNode* l = e.child("limit")) {
+      allowOnly(*l, {"lower", "upper", "velocity", "effort"});
       for (const char* k : {"lower", "upper", "velocity", "effort"}) {
         if (l->has(k)) (void)l->number(k);
       }

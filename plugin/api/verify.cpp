@@ -161,7 +161,10 @@ Json summaryJsonOf(const VerificationSummary& s) {
   j.set("explained", Json::number(s.explained, 4));
   j.set("inside", Json::integer(s.inside));
   j.set("coverage", Json::number(s.coverage, 4));
-  j.set("correlation_workobject_xyz", Json::vector(s.correlation, 4));
+  // A correlation is undefined (NaN) with fewer than two holes or no spread along an axis: the
+  // key is then left out (JSON has no NaN).
+  if (s.correlation.allFinite())
+    j.set("correlation_workobject_xyz", Json::vector(s.correlation, 4));
   Json d = Json::object();
   d.set("conformance-proven", Json::integer(s.conformance_proven));
   d.set("non-conformance-proven", Json::integer(s.nonconformance_proven));

@@ -16,6 +16,8 @@ namespace {
 std::string esc(const std::string& s) { return escapeXml(s); }
 
 std::string f(double v, int decimals) { return esc(formatNumber(v, decimals)); }
+/// A correlation, "undefined" when it is (fewer than two holes, no spread along the axis).
+std::string corr(double v) { return std::isfinite(v) ? f(v, 3) : std::string("undefined"); }
 
 /// Holes of one face: the same drilling direction (workobject frame, rounded to 0.01).
 struct Face {
@@ -222,8 +224,8 @@ std::string statistics(const VerifyResult& r) {
     << statsRow("residual r = e_meas − δwork⊥", s.residual) << "</table>\n<p>" << s.holes
     << " holes; explained share 1 − RMS(r)/RMS(e_meas) = " << f(s.explained, 3)
     << "; inside the predicted 95 % region: " << s.inside << " (coverage " << f(s.coverage, 3)
-    << "); correlation predicted/measured along workobject x, y, z: " << f(s.correlation.x(), 3)
-    << ", " << f(s.correlation.y(), 3) << ", " << f(s.correlation.z(), 3)
+    << "); correlation predicted/measured along workobject x, y, z: " << corr(s.correlation.x())
+    << ", " << corr(s.correlation.y()) << ", " << corr(s.correlation.z())
     << ". ISO 14253-1 on the measured values: " << s.conformance_proven << " conformance proven, "
     << s.nonconformance_proven << " non-conformance proven, " << s.no_decision
     << " no decision.</p>\n";

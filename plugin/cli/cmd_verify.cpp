@@ -1,5 +1,6 @@
 /// `roprec verify`: measured holes (CMM) against the prediction; optional registration and
 /// re-identification of the joint stiffness with a new robot card (issue 11).
+#include <cmath>
 #include <filesystem>
 
 #include "compensator/support/atomic_file.hpp"
@@ -24,11 +25,14 @@ void printStatistics(CommandContext& ctx, const VerifyResult& r) {
           << um(s.predicted.rms) << ", residual " << um(s.residual.rms)
           << " (max: " << um(s.measured.max) << ", " << um(s.predicted.max) << ", "
           << um(s.residual.max) << ")\n";
+  // A correlation is undefined (NaN) with fewer than two holes or no spread along an axis.
+  const auto corr = [](double v) {
+    return std::isfinite(v) ? formatNumber(v, 3) : std::string("undefined");
+  };
   ctx.out << "  explained share " << formatNumber(s.explained, 3) << "; inside the predicted 95 % "
           << "region " << s.inside << "/" << s.holes << " (coverage " << formatNumber(s.coverage, 3)
-          << "); correlation x y z " << formatNumber(s.correlation.x(), 3) << " "
-          << formatNumber(s.correlation.y(), 3) << " " << formatNumber(s.correlation.z(), 3)
-          << "\n";
+          << "); correlation x y z " << corr(s.correlation.x()) << " " << corr(s.correlation.y())
+          << " " << corr(s.correlation.z()) << "\n";
   ctx.out << "  measured values (ISO 14253-1): " << s.conformance_proven << " conformance proven, "
           << s.nonconformance_proven << " non-conformance proven, " << s.no_decision
           << " no decision\n";

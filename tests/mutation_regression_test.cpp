@@ -1,0 +1,169 @@
+// Findings of scripts/mutation-campaign.py (issue 13), each with the corrupted input that showed
+// it:
+// * measured.csv with a coordinate of 1e300 reached the verification statistics (RMS overflowed to
+//   inf) and `roprec verify` ended in "internal error: a non-finite number reached the JSON";
+//   measured positions, u and diameters are now range-checked at their line;
+// * URDF: a misspelt attribute or element (`<origin ryz=...>`, `<axns>`, `<mass valeu=...>`) was
+//   ignored by urdfdom and took its default (origin 0, axis x, mass 0), and an origin of 1e300 was
+//   accepted: now errors at their line;
+// * robot card: a stiffness of 1e300 N m/rad was accepted (now (0, 1e12]);
+// * measured.csv truncated to two holes: the correlation per workobject axis is undefined (no
+//   spread) and was NaN in the JSON ("internal error") and "nan" on stdout; now the JSON key is
+//   left out and the text says "undefined".
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <string>
+
+#include "compensator/robot/robot_card.hpp"
+#include "compensator/robot/urdf_loader.hpp"
+#include "compensator/support/error.hpp"
+#include "postproc/measured.hpp"
+#include "tests/support/test_support.hpp"
+
+namespace roprec {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+std::string q(const std::string& p) { return "'" + p + "'"; }
+std::string sample(const std::string& rel) { return test::sourceDir() + "/samples/" + rel; }
+
+std::string errorOf(const std::string& text) {
+  try {
+    (void)postproc::parseMeasured(text, "m.csv");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
+TEST(MutationRegression, AbsurdMeasuredValuesAreRefusedAtTheirLine) {
+  EXPECT_EQ(errorOf("id,x,y,z\nV01,1,2,3\nV02,1,1e300,3\n")
+                .rfind("m.csv:3: hole 'V02': a "
+                       "coordinate lies more than 100 m",
+                       0),
+            0u)
+      << errorOf("id,x,y,z\nV01,1,2,3\nV02,1,1e300,3\n");
+  EXPECT_EQ(errorOf("id,x,y,z,u\nV01,1,2,3,1e300\n")
+                .rfind("m.csv:2: hole 'V01': the measurement "
+                       "uncertainty u is over 10 mm",
+                       0),
+            0u);
+  EXPECT_EQ(errorOf("TYPE,NAME,X,Y,Z,D\nCIRCLE,V01,1,2,3,1e300\n")
+                .rfind("m.csv:2: hole 'V01': the diameter is over 2 m", 0),
+            0u);
+  // The limits leave real files alone: 100 m and 10 mm are accepted.
+  EXPECT_EQ(errorOf("id,x,y,z,u\nV01,100000,-100000,0,10000\n"), "(accepted)");
+}
+
+/// The bundled KR 120 folder copied with `from` replaced by `to` (once, after `anchor`) in `file`.
+std::string mutatedKr120(const std::string& file, const std::string& anchor,
+                         const std::string& from, const std::string& to) {
+  const std::string src = test::sourceDir() + "/robots/kuka-kr120-r2500-pro";
+  const std::string dir = test::tempDir("mutation-kr120") + "/kuka-kr120-r2500-pro";
+  fs::create_directories(dir);
+  for (const char* f : {"robot.xml", "kr120r2500pro.urdf"}) {
+    std::string text = test::readFile(src + "/" + f);
+    if (file == f) {
+      const std::size_t a = text.find(anchor);
+      const std::size_t at = a == std::string::npos ? a : text.find(from, a);
+      EXPECT_NE(at, std::string::npos) << anchor << " / " << from;
+      if (at != std::string::npos) text.replace(at, from.size(), to);
+    }
+    test::writeFile(dir + "/" + f, text);
+  }
+  return dir;
+}
+
+std::string urdfError(const std::string& anchor, const std::string& from, const std::string& to) {
+  const std::string dir = mutatedKr120("kr120r2500pro.urdf", anchor, from, to);
+  try {
+    (void)loadUrdfChain(dir + "/kr120r2500pro.urdf");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
+TEST(MutationRegression, UrdfNearMissNamesAndAbsurdOriginsAreErrors) {
+  const std::string j2 = "<joint name=\"joint_a2\"";
+  EXPECT_NE(urdfError(j2, "<origin xyz=", "<origin ryz=")
+                .find(":122: unknown attribute 'ryz' on "
+                      "<origin> (did you mean 'xyz'?)"),
+            std::string::npos)
+      << urdfError(j2, "<origin xyz=", "<origin ryz=");
+  EXPECT_NE(urdfError(j2, "<axis xyz", "<axns xyz")
+                .find(":123: unknown element <axns> in <joint> "
+                      "(did you mean <axis>?)"),
+            std::string::npos)
+      << urdfError(j2, "<axis xyz", "<axns xyz");
+  EXPECT_NE(urdfError(j2, "rpy=\"0 0 0\"", "rpy=\"1e300 0 0\"")
+                .find(":122: <origin> rpy '1e300 0 0' is beyond 100 rad"),
+            std::string::npos);
+  EXPECT_NE(urdfError(j2, "xyz=\"0.350 0 0.675\"", "xyz=\"0.350 0 1e300\"")
+                .find(":122: <origin> xyz '0.350 0 1e300' is beyond 100 m"),
+            std::string::npos);
+  EXPECT_NE(urdfError(j2, "<limit lower", "<limit lowr").find(":125: unknown attribute 'lowr'"),
+            std::string::npos);
+  EXPECT_NE(urdfError("<link", "<mass value=", "<mass valeu=")
+                .find("unknown attribute 'valeu' on <mass> (did you mean 'value'?)"),
+            std::string::npos);
+  EXPECT_NE(urdfError("<link", "<inertial>", "<inertial><centre/>")
+                .find("unknown element <centre> in <inertial>"),
+            std::string::npos);
+  // The unmutated copy loads (the checks accept the bundled URDF).
+  EXPECT_EQ(urdfError(j2, "<origin", "<origin"), "(accepted)");
+}
+
+TEST(MutationRegression, CardStiffnessOf1e300IsAnError) {
+  const std::string dir = mutatedKr120("robot.xml", "<joint name=\"joint_a1\"",
+                                       "stiffness=\"1.58e7\"", "stiffness=\"1e300\"");
+  std::string what = "(accepted)";
+  try {
+    (void)loadRobotCard(dir + "/robot.xml");
+  } catch (const InputError& e) {
+    what = e.what();
+  }
+  EXPECT_NE(what.find("robot.xml:9: joint 'joint_a1': stiffness must be in (0, 1e12] N m/rad, got "
+                      "1e300"),
+            std::string::npos)
+      << what;
+}
+
+TEST(MutationRegression, VerifyWithTwoMeasuredHolesHasNoUndefinedCorrelationInItsOutputs) {
+  const std::string dir = test::tempDir("mutation-verify");
+  // The sample's measured file cut after its second hole (what the campaign's truncation did).
+  const std::string full = test::readFile(sample("verification/measured.csv"));
+  std::string cut;
+  int holes = 0;
+  for (std::size_t at = 0; at < full.size();) {
+    const std::size_t end = full.find('\n', at);
+    const std::string line = full.substr(at, end == std::string::npos ? end : end - at + 1);
+    at = end == std::string::npos ? full.size() : end + 1;
+    if (line.rfind("V", 0) == 0 && ++holes > 2) break;
+    cut += line;
+  }
+  ASSERT_EQ(holes, 3);
+  test::writeFile(dir + "/m.csv", cut);
+  const auto r = test::runRoprec("verify --cell " + q(sample("cells/housing-kr120.xml")) + " " +
+                                 q(sample("verification/test_kr120.src")) + " --holes " +
+                                 q(sample("verification/test_kr120_holes.csv")) + " --measured " +
+                                 q(dir + "/m.csv") + " --json " + q(dir + "/v.json") +
+                                 " --report " + q(dir + "/v.html"));
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+  EXPECT_EQ(r.out.find("nan"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("correlation x y z undefined"), std::string::npos) << r.out;
+  const json j = json::parse(test::readFile(dir + "/v.json"));
+  EXPECT_EQ(j["summary"]["holes"], 2);
+  EXPECT_FALSE(j["summary"].contains("correlation_workobject_xyz"));
+  const std::string html = test::readFile(dir + "/v.html");
+  EXPECT_EQ(html.find(">nan"), std::string::npos);
+  EXPECT_NE(html.find("undefined"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace roprec
