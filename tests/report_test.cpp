@@ -18,10 +18,12 @@
 #include <vector>
 
 #include "compensator/precision/prediction.hpp"
+#include "compensator/robot/robot_card.hpp"
 #include "plugin/api/deviation_split.hpp"
 #include "plugin/api/exports.hpp"
 #include "plugin/api/job.hpp"
 #include "plugin/api/report.hpp"
+#include "plugin/api/robots.hpp"
 #include "support/test_support.hpp"
 
 namespace roprec {
@@ -1107,6 +1109,29 @@ TEST(ReportSample, VerifyReportNamesAxesDecisionsAndFailingHoles) {
   EXPECT_EQ(html.find("<script"), std::string::npos);
   EXPECT_EQ(countOf(json, "\"non-conformance-proven\"") > 0,
             html.find("#cf222e") != std::string::npos);
+}
+
+TEST(ReportSample, StatesTheRobotCardsEstimates) {
+  // Every guess is visible in the report: the bundled KR 120's stiffness, balancer and
+  // inertials are estimates; a card without an estimate shows none.
+  const std::string dir = test::tempDir("report-estimates");
+  const std::string src = test::sourceDir();
+  const test::RunResult r = test::runRoprec(
+      "predict --cell '" + src + "/samples/cells/housing-kr120.xml' '" + src +
+      "/samples/emotor-housing/housing_kr120.src' --report '" + dir + "/p.html' --quiet");
+  ASSERT_LE(r.exit_code, 1) << r.err;
+  const std::string html = test::readFile(dir + "/p.html");
+  EXPECT_NE(html.find("<dt>Robot card estimates</dt>"), std::string::npos);
+  EXPECT_NE(html.find("joint stiffness and servo gain k1, k2, k3, k4, k5, k6: estimate"),
+            std::string::npos);
+  EXPECT_NE(html.find("axis balancer: estimate"), std::string::npos);
+  RobotCard card = loadRobotCard(src + "/robots/kuka-kr120-r2500-pro/robot.xml");
+  EXPECT_FALSE(api::cardEstimates(card).empty());
+  for (auto& j : card.joints) j.source = "identified (test)";
+  card.rp_source = card.inertial_source = card.dimensions_source = card.counterbalance.source =
+      "data sheet";
+  for (auto& l : card.links) l.source = "measured";
+  EXPECT_TRUE(api::cardEstimates(card).empty());
 }
 
 }  // namespace

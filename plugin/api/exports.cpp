@@ -6,6 +6,7 @@
 
 #include "plugin/api/job.hpp"
 #include "plugin/api/report.hpp"
+#include "plugin/api/robots.hpp"
 
 namespace roprec::api {
 
@@ -48,6 +49,7 @@ ReportInput reportHeader(const PredictionContext& c, const std::string& title) {
     const std::string prefix = kResolutionPrefix;
     if (n.rfind(prefix, 0) == 0) in.resolutions.push_back(n.substr(prefix.size()));
   }
+  in.card_estimates = cardEstimates(c.robot.card);
   in.uncertainty_method = uncertaintyMethodText(c.model.uncertainty);
   in.uncertainty_source = c.model.uncertainty.source;
   in.default_tolerance_mm = c.cell.tolerance_mm;

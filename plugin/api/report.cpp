@@ -953,6 +953,11 @@ void renderHeader(std::string& o, const ReportInput& in, const std::vector<HoleV
   item("Program", esc(in.program));
   item("Process", esc(in.process));
   for (const std::string& res : in.resolutions) item("Frame/tool resolution", esc(res), true);
+  if (!in.card_estimates.empty()) {
+    std::string e;
+    for (const std::string& x : in.card_estimates) e += (e.empty() ? "" : "<br>") + esc(x);
+    item("Robot card estimates", "<span class=\"src\">" + e + "</span>", true);
+  }
   item("Default position tolerance", "\u2300 " + num(in.default_tolerance_mm, 3) + " mm");
   item("Uncertainty method", esc(in.uncertainty_method));
   if (!in.uncertainty_source.empty()) {

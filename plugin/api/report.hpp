@@ -40,6 +40,8 @@ struct ReportInput {
   double default_tolerance_mm{0.2};
   /// How program frames and the tool were resolved (--frame/--tool), stated in the header.
   std::vector<std::string> resolutions;
+  /// The robot card's estimated numbers (cardEstimates), stated in the header.
+  std::vector<std::string> card_estimates;
   std::vector<ReportHole> holes;
   /// The part (workobject) frame the maps are drawn in, and its name ("cell workobject",
   /// "BASE_DATA[2]", ...): hole positions and directions are expressed in it, axes named after it.

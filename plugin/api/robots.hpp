@@ -8,6 +8,7 @@
 /// Errors: InputError for a broken card.
 
 #include <string>
+#include <vector>
 
 #include "compensator/robot/robot_card.hpp"
 #include "plugin/api/json.hpp"
@@ -21,6 +22,10 @@ Json robotCardJson(const RobotCard& card);
 /// The text block of one card: name, repeatability, stiffness k1..k6 and whether it is estimated,
 /// the inertial and dimension sources; ends with a blank line.
 std::string robotCardText(const RobotCard& card);
+
+/// The card's guesses, one line each ("joint stiffness k1..k6: estimate: ..."): every number
+/// whose source starts with `estimate:` (docs/cards.md), for reports to show next to the results.
+std::vector<std::string> cardEstimates(const RobotCard& card);
 
 struct RobotList {
   Json json;         ///< {"robots": [robotCardJson, ...]}
