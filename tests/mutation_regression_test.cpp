@@ -6,6 +6,8 @@
 // * URDF: a misspelt attribute or element (`<origin ryz=...>`, `<axns>`, `<mass valeu=...>`) was
 //   ignored by urdfdom and took its default (origin 0, axis x, mass 0), and an origin of 1e300 was
 //   accepted: now errors at their line;
+// * cell: a tool xyz of 1e300 mm was refused with a 300-digit number in the message, a workobject
+//   rpy of 1e300 deg was accepted: xyz, rpy and com_mm are now bounded (100 m, 3600 deg);
 // * robot card: a stiffness of 1e300 N m/rad was accepted (now (0, 1e12]);
 // * measured.csv truncated to two holes: the correlation per workobject axis is undefined (no
 //   spread) and was NaN in the JSON ("internal error") and "nan" on stdout; now the JSON key is
@@ -16,6 +18,7 @@
 #include <filesystem>
 #include <string>
 
+#include "compensator/precision/cell.hpp"
 #include "compensator/robot/robot_card.hpp"
 #include "compensator/robot/urdf_loader.hpp"
 #include "compensator/support/error.hpp"
@@ -131,6 +134,37 @@ TEST(MutationRegression, CardStiffnessOf1e300IsAnError) {
                       "1e300"),
             std::string::npos)
       << what;
+}
+
+std::string cellError(const std::string& from, const std::string& to) {
+  std::string text = test::readFile(sample("cells/housing-kr120.xml"));
+  const std::size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  const std::string path = test::tempDir("mutation-cell") + "/cell.xml";
+  test::writeFile(path, text);
+  try {
+    (void)loadCell(path);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
+TEST(MutationRegression, CellPosesAndCentreOfMassAreBounded) {
+  const std::string tool = cellError("xyz=\"0 0 320\"", "xyz=\"0 0 1e300\"");
+  EXPECT_NE(tool.find("cell.xml:9: <tool> xyz '0 0 1e300' is beyond 100 m (mm expected)"),
+            std::string::npos)
+      << tool;
+  EXPECT_EQ(tool.find("00000000"), std::string::npos) << tool;
+  EXPECT_NE(cellError("<workobject xyz=\"1350 0 300\" rpy=\"0 0 0\"",
+                      "<workobject xyz=\"1350 0 300\" rpy=\"0 1e300 0\"")
+                .find("cell.xml:13: <workobject> rpy '0 1e300 0' is beyond 3600 deg"),
+            std::string::npos);
+  EXPECT_NE(cellError("com_mm=\"0 0 120\"", "com_mm=\"0 0 -1e300\"")
+                .find("cell.xml:9: <tool> com_mm '0 0 -1e300' is beyond 100 m"),
+            std::string::npos);
+  EXPECT_EQ(cellError("xyz=\"0 0 320\"", "xyz=\"0 0 320\""), "(accepted)");
 }
 
 TEST(MutationRegression, VerifyWithTwoMeasuredHolesHasNoUndefinedCorrelationInItsOutputs) {

@@ -10,10 +10,21 @@ namespace fs = std::filesystem;
 
 namespace roprec {
 
+namespace {
+/// A vec3 attribute whose every |component| <= limit (e.g. 1e300 in a cell is a typo, and it
+/// would overflow the kinematics and print 300 digits in messages).
+Vec3 boundedVec3(const XmlNode& e, const char* name, double limit, const char* what) {
+  const Vec3 v = e.vec3(name, Vec3::Zero());
+  if (!(v.cwiseAbs().maxCoeff() <= limit))
+    e.fail("<" + e.name + "> " + name + " '" + e.str(name) + "' is beyond " + what);
+  return v;
+}
+}  // namespace
+
 Pose poseFromXyzRpyMm(const XmlNode& e) {
   Pose T = Pose::Identity();
-  T.translation() = e.vec3("xyz", Vec3::Zero()) * 1e-3;
-  const Vec3 rpy = e.vec3("rpy", Vec3::Zero()) * kDeg;
+  T.translation() = boundedVec3(e, "xyz", 1e5, "100 m (mm expected)") * 1e-3;
+  const Vec3 rpy = boundedVec3(e, "rpy", 3600.0, "3600 deg (degrees expected)") * kDeg;
   T.linear() = rotationFromRpy(rpy.x(), rpy.y(), rpy.z());
   return T;
 }
@@ -33,7 +44,7 @@ ToolSpec parseTool(const XmlNode& t) {
     t.fail("<tool> mass_kg must lie in [0, " + std::to_string(static_cast<int>(kMaxToolMassKg)) +
            "] kg, got " + t.str("mass_kg"));
   }
-  tool.com = t.vec3("com_mm", Vec3::Zero()) * 1e-3;
+  tool.com = boundedVec3(t, "com_mm", 1e5, "100 m (mm expected)") * 1e-3;
   if (t.has("inertia_kgm2")) {
     const Eigen::VectorXd I = t.numbers("inertia_kgm2", 6);  // ixx ixy ixz iyy iyz izz
     tool.inertia << I[0], I[1], I[2], I[1], I[3], I[4], I[2], I[4], I[5];

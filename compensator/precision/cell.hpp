@@ -32,7 +32,8 @@ struct CellSpec {
   XmlNode root;              ///< the whole cell, for extensions (uncertainty, ...)
 };
 
-/// Pose from `xyz` (mm) and `rpy` (deg, URDF order) attributes of an element.
+/// Pose from `xyz` (mm) and `rpy` (deg, URDF order) attributes of an element. Throws InputError
+/// at the element's line when a value is not finite or beyond ±1e5 mm (100 m) / ±3600 deg.
 Pose poseFromXyzRpyMm(const XmlNode& e);
 
 /// Loads and validates a cell file. Throws InputError `FILE:LINE: what` for malformed XML, an
