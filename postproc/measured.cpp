@@ -317,11 +317,20 @@ std::vector<MeasuredHole> readTable(const std::vector<Line>& lines, MeasuredForm
   const std::size_t h = headerIndex(lines, f);
   if (h >= lines.size())
     throw InputError(path, 1, std::string("no ") + spec.header_hint + " header");
+  const std::size_t header_cells = csvCells(lines[h].text).size();
   const TableColumns c = tableColumns(csvCells(lines[h].text), spec, path, lines[h].number);
   std::vector<MeasuredHole> holes;
   for (std::size_t n = h + 1; n < lines.size(); ++n) {
     if (isSkippable(lines[n].text)) continue;
     const std::vector<std::string> cells = csvCells(lines[n].text);
+    // roprec CSV: a row longer than its header shifts the values (a decimal comma: "-200,28").
+    std::size_t used = cells.size();  // trailing empty cells ("1,2,3,") are harmless
+    while (used > header_cells && trim(cells[used - 1]).empty()) --used;
+    if (f == MeasuredFormat::kCsv && used > header_cells)
+      throw InputError(path, lines[n].number,
+                       std::to_string(used) + " cells but the header has " +
+                           std::to_string(header_cells) +
+                           " (decimal commas? numbers use a point: -200.28)");
     if (c.type >= 0 && !holeType(cellOf(cells, c.type))) continue;
     holes.push_back(tableRow(cells, c, path, lines[n].number));
   }

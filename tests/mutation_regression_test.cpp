@@ -2,7 +2,9 @@
 // it:
 // * measured.csv with a coordinate of 1e300 reached the verification statistics (RMS overflowed to
 //   inf) and `roprec verify` ended in "internal error: a non-finite number reached the JSON";
-//   measured positions, u and diameters are now range-checked at their line;
+//   measured positions, u and diameters are now range-checked at their line; a decimal comma
+//   (`-200,2796`) shifted a row's values and was accepted: a row longer than its header is an
+//   error;
 // * URDF: a misspelt attribute or element (`<origin ryz=...>`, `<axns>`, `<mass valeu=...>`) was
 //   ignored by urdfdom and took its default (origin 0, axis x, mass 0), and an origin of 1e300 was
 //   accepted: now errors at their line;
@@ -57,6 +59,10 @@ TEST(MutationRegression, AbsurdMeasuredValuesAreRefusedAtTheirLine) {
             0u);
   EXPECT_EQ(errorOf("TYPE,NAME,X,Y,Z,D\nCIRCLE,V01,1,2,3,1e300\n")
                 .rfind("m.csv:2: hole 'V01': the diameter is over 2 m", 0),
+            0u);
+  // A decimal comma shifted the row's values (x = -200, y = 2796, z = -199.9, u = 164.7).
+  EXPECT_EQ(errorOf("id,x,y,z,u\nV02,-200,2796,-199.9475,164.7312,5.0\n")
+                .rfind("m.csv:2: 6 cells but the header has 5 (decimal commas?", 0),
             0u);
   // The limits leave real files alone: 100 m and 10 mm are accepted.
   EXPECT_EQ(errorOf("id,x,y,z,u\nV01,100000,-100000,0,10000\n"), "(accepted)");
