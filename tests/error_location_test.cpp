@@ -69,5 +69,19 @@ TEST(ErrorLocation, NoDrillCyclePointsAtTheFirstMotion) {
   EXPECT_NE(r.err.find("no drill cycle"), std::string::npos) << r.err;
 }
 
+TEST(ErrorLocation, AnUnreachableHoleIsNamedOnceWithItsLineAndVerdict) {
+  const std::string dir = test::tempDir("err-unreachable");
+  test::writeFile(dir + "/far.csv", "id,x,y,z,i,j,k\nF1,9000,0,0,0,0,-1\nF2,100,0,150,0,0,-1\n");
+  const test::RunResult r =
+      test::runRoprec("predict --cell '" + test::sourceDir() +
+                      "/samples/cells/housing-kr120.xml' '" + dir + "/far.csv'");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(
+      r.err.find("roprec: hole F1 (" + dir + "/far.csv:2): unreachable: the wrist centre is "),
+      std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("unreachable: unreachable"), std::string::npos) << r.err;
+}
+
 }  // namespace
 }  // namespace roprec

@@ -45,6 +45,12 @@ const char* verdictName(Verdict v) {
   return "?";
 }
 
+std::string verdictAndReason(Verdict v, const std::string& reason) {
+  const std::string name = verdictName(v);
+  if (reason.rfind(name + ":", 0) == 0 || reason == name) return reason;
+  return reason.empty() ? name : name + ": " + reason;
+}
+
 Verdict verdictFor(double e, double U, double t) {
   const double half = 0.5 * t;
   if (U > half) return Verdict::kNotCapable;

@@ -155,6 +155,9 @@ enum class Verdict {
   kNotConverged
 };
 const char* verdictName(Verdict v);
+/// "verdict: reason" for messages, without saying the verdict twice when the reason already
+/// starts with it ("unreachable: the wrist centre is …").
+std::string verdictAndReason(Verdict v, const std::string& reason);
 
 /// ISO 14253-1 decision for a predicted position error e (m) with expanded radial uncertainty U
 /// (m) against a ⌀t position tolerance (m): see the file comment.

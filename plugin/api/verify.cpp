@@ -73,7 +73,7 @@ void selectHoles(VerifyResult& r) {
     const HolePrediction& h = r.prediction.holes[i];
     if (h.status != HoleStatus::kOk) {
       r.failed.push_back(holeWhere(h.id, c.job.requests[i].line, r.program_path) + ": " +
-                         verdictName(h.verdict) + ": " + h.reason);
+                         verdictAndReason(h.verdict, h.reason));
       continue;
     }
     r.request_of.push_back(static_cast<int>(i));

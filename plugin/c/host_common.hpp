@@ -113,7 +113,7 @@ inline std::vector<std::string> predictionFailures(const api::PredictionResult& 
     const HolePrediction& h = r.holes[i];
     if (h.status == HoleStatus::kOk) continue;
     out.push_back(holeWhere(h.id, r.context.job.requests[i].line, program) + ": " +
-                  verdictName(h.verdict) + ": " + h.reason);
+                  verdictAndReason(h.verdict, h.reason));
   }
   return out;
 }

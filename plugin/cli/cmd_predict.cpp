@@ -30,7 +30,7 @@ struct HoleDigest {
     if (h.status == HoleStatus::kOk) return;
     std::string f = "hole " + h.id;
     if (q.line > 0) f += " (" + program + ":" + std::to_string(q.line) + ")";
-    failures.push_back(f + ": " + verdictName(h.verdict) + ": " + h.reason);
+    failures.push_back(f + ": " + verdictAndReason(h.verdict, h.reason));
   }
 };
 
