@@ -63,8 +63,8 @@ std::vector<Item> collect(const Program& p, bool joints_ok, ConversionReport& re
   std::vector<Item> items;
   for (std::size_t i = 0; i < p.motions.size(); ++i) {
     const Motion& m = p.motions[i];
-    const std::string where =
-        p.files[static_cast<std::size_t>(m.file)].path + ":" + std::to_string(m.line);
+    const std::string& path = p.files[static_cast<std::size_t>(m.file)].path;
+    const std::string where = m.line > 0 ? path + ":" + std::to_string(m.line) : path;
     if (m.target < 0) {
       rep.skipped.push_back(where + ": " + m.instruction + " " + m.target_text +
                             " (target built at run time" +

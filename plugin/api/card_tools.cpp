@@ -31,9 +31,14 @@ std::string tableText(const std::vector<CardCheckRow>& rows) {
   return t;
 }
 
+/// FILE:LINE, or FILE when the finding has no line (never "FILE:0").
+std::string findingPlace(const CardFinding& f) {
+  return f.line > 0 ? f.file + ":" + std::to_string(f.line) : f.file;
+}
+
 std::string findingText(const CardFinding& f) {
-  return f.file + ":" + std::to_string(f.line) + ": " + (f.error ? "error" : "warning") + ": " +
-         f.message + "\n  hint: " + f.hint + "\n";
+  return findingPlace(f) + ": " + (f.error ? "error" : "warning") + ": " + f.message +
+         "\n  hint: " + f.hint + "\n";
 }
 
 /// The cell's tool against the card's rated payload.
@@ -91,8 +96,8 @@ std::vector<std::string> cardCheckOnLoad(const Robot& robot) {
   const CardCheckReport report = checkRobotCard(robot);
   throwFirstCardError(report, robot.card);
   for (const CardFinding& f : report.findings) {
-    notes.push_back("robot card: " + f.file + ":" + std::to_string(f.line) + ": " + f.message +
-                    " (hint: " + f.hint + ")");
+    notes.push_back("robot card: " + findingPlace(f) + ": " + f.message + " (hint: " + f.hint +
+                    ")");
   }
   return notes;
 }
