@@ -27,8 +27,10 @@ numbers in a message (unless the mutant itself put nan/inf there); and a "silent
 exit 0 on a mutant whose mutation is strict (a misspelled name, a removed required element or
 column, a non-finite or absurd value, a zero or negative size/mass/diameter/stiffness, a comma
 decimal, a hole list in metres, a duplicated hole row) while the outputs differ from the
-unmutated baseline's and no new warning/note line on stderr says so. Other mutations that make a
-valid different input (a changed digit in a coordinate) may exit 0.
+unmutated baseline's (stdout and outputs other than programs and HTML: a written program carries
+its uncompensated lines as they are) and no new warning/note line on stderr says so; value
+mutations through inspect and convert, which report values as they are, are not judged so.
+Other mutations that make a valid different input (a changed digit in a coordinate) may exit 0.
 
 Prints a summary (mutants, runs, per-category counts, every failing case with a reproduction
 command), writes DIR/log.json (DIR defaults to mutation/ beside the binary's bin/ folder) and
@@ -75,8 +77,8 @@ def robot_files(name):
 
 
 def cmd(args, reads, outputs, echo=False):
-    """echo: the command reports the input as it is (inspect, a byte-faithful convert), so a
-    changed value in its output is no wrong answer."""
+    """echo: the command reports the input's values as they are (inspect, convert), so a changed
+    value in its output is no wrong answer."""
     return {"args": args, "reads": reads, "outputs": outputs, "echo": echo}
 
 
