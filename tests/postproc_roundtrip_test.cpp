@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include "compensator/support/error.hpp"
@@ -228,35 +229,47 @@ TEST(PostprocCorpus, HolesMatchTheHoleList) {
   EXPECT_TRUE(matchHoles(holes, p, off, 0.1).empty());
 }
 
-// Inputs that once crashed a fuzzer (tests/fuzz/crashes/<dialect>-crash-*): now an InputError
-// or a program that writes back byte-identically.
+// Inputs that once crashed a fuzzer, kept as regression seeds
+// (tests/fuzz/seeds/<dialect>/regression-*; KRL: .src and .dat split at a 0x01 byte, as the
+// harness reads them): now an InputError naming the file, or a program that writes back
+// byte-identically and takes an edit of every target.
 TEST(PostprocFuzzRegression, CrashCorpusIsHandled) {
-  const std::string dir = test::sourceDir() + "/tests/fuzz/crashes";
+  const std::string dir = test::sourceDir() + "/tests/fuzz/seeds";
   const std::map<std::string, Dialect> dialects{{"krl", Dialect::kKrl},
                                                 {"rapid", Dialect::kRapid},
                                                 {"tp", Dialect::kTp},
                                                 {"csv", Dialect::kCsv},
                                                 {"json", Dialect::kJson}};
   int n = 0;
-  for (const auto& e : fs::directory_iterator(dir)) {
-    const std::string name = e.path().filename().string();
-    const auto it = dialects.find(name.substr(0, name.find('-')));
-    if (it == dialects.end()) continue;
-    SCOPED_TRACE(name);
-    const std::string bytes = test::readFile(e.path().string());
-    try {
-      Program p = parseProgram(it->second, name, bytes);
-      EXPECT_TRUE(renderFiles(p)[0] == bytes);
-      for (std::size_t i = 0; i < p.targets().size(); ++i) {
-        (void)replaceTargetPose(p, static_cast<int>(i), targetPose(p, p.targets()[i]));
+  for (const auto& [folder, dialect] : dialects) {
+    if (!fs::exists(dir + "/" + folder)) continue;
+    for (const auto& e : fs::directory_iterator(dir + "/" + folder)) {
+      const std::string name = e.path().filename().string();
+      if (name.rfind("regression-", 0) != 0) continue;
+      SCOPED_TRACE(folder + "/" + name);
+      const std::string in = test::readFile(e.path().string());
+      std::string src = in;
+      std::optional<std::string> dat;
+      if (dialect == Dialect::kKrl && in.find('\x01') != std::string::npos) {
+        src = in.substr(0, in.find('\x01'));
+        dat = in.substr(in.find('\x01') + 1);
       }
-      (void)recognizeHoles(p);
-    } catch (const InputError& err) {
-      EXPECT_NE(std::string(err.what()).find(name), std::string::npos);  // names the file
+      try {
+        Program p = parseProgram(dialect, name, src, dat, name + ".dat");
+        const std::vector<std::string> out = renderFiles(p);
+        EXPECT_TRUE(out[0] == src);
+        for (std::size_t i = 0; i < p.targets().size(); ++i) {
+          (void)replaceTargetPose(p, static_cast<int>(i), targetPose(p, p.targets()[i]));
+        }
+        (void)renderFiles(p);
+        (void)recognizeHoles(p);
+      } catch (const InputError& err) {
+        EXPECT_NE(std::string(err.what()).find(name), std::string::npos);  // names the file
+      }
+      ++n;
     }
-    ++n;
   }
-  EXPECT_GE(n, 1);
+  EXPECT_GE(n, 3);  // the KRL and TP findings
 }
 
 }  // namespace
