@@ -147,6 +147,17 @@ void copyText(const std::string& text, char* buf) {
   if (buf != nullptr) std::memcpy(buf, text.c_str(), text.size() + 1);
 }
 
+/// The common end of a compensation call: the summary must fit its buffer before anything is
+/// written; then the corrected program and its extra outputs, then the summary is copied.
+int writeCompensation(roprec::api::PredictionContext& context, const std::string& out,
+                      const std::vector<std::pair<std::string, std::string>>& extra,
+                      const std::string& summary, char* summary_json, size_t summary_len) {
+  checkFits(summary, summary_json, summary_len, "summary_json");
+  roprec::api::writeCompensatedProgram(context, out, extra);
+  copyText(summary, summary_json);
+  return ROPREC_OK;
+}
+
 int compensateMilling(const std::string& cell, const std::string& program, const std::string& out,
                       const std::string& targets, bool force, char* summary, size_t summary_len) {
   roprec::api::MillingCompensationResult r =
@@ -156,10 +167,7 @@ int compensateMilling(const std::string& cell, const std::string& program, const
   if (!targets.empty()) extra.emplace_back(targets, roprec::api::millingTargetsJson(r, program));
   const std::string text =
       host::millingSummary(r, host::compensationPaths(r.context, out, targets)).dump(0);
-  checkFits(text, summary, summary_len, "summary_json");
-  roprec::api::writeCompensatedProgram(r.context, out, extra);
-  copyText(text, summary);
-  return ROPREC_OK;
+  return writeCompensation(r.context, out, extra, text, summary, summary_len);
 }
 
 /// The whole prediction job of roprec_predict_file(_ex).
@@ -201,10 +209,7 @@ int compensateFile(const char* cell_path, const char* program_path,
                        roprec::api::compensationTargets(r, program, host::isCsvPath(targets)));
   const std::string summary =
       host::compensationSummary(r, host::compensationPaths(r.context, out, targets)).dump(0);
-  checkFits(summary, summary_json, summary_len, "summary_json");
-  roprec::api::writeCompensatedProgram(r.context, out, extra);
-  copyText(summary, summary_json);
-  return ROPREC_OK;
+  return writeCompensation(r.context, out, extra, summary, summary_json, summary_len);
 }
 
 /// One roprec_options_set key (see roprec.h). Throws UsageError/InputError on a bad key or value.
