@@ -7,7 +7,11 @@
 //    (h = 1e-6 rad: truncation + round-off ≤ 1e-6 relative);
 //  * predictDeflection (Newton on the fast kernel) reaches the equilibrium of the model of record:
 //    a fixed-point iteration θ = θ_cmd − K⁻¹ τ_NC(θ) written here with solvePosition +
-//    staticTorques, θ to 1e-11 rad and δp to 1e-9 relative.
+//    staticTorques, θ to 1e-11 rad and δp to 1e-9 relative;
+//  * the balancer's analytic slope agrees with central differences of counterbalance.hpp's
+//    balancerTorque (spring and gas, push and pull, isothermal and adiabatic), its torque with
+//    balancerTorque to 1e-14 relative;
+//  * DeflectionOptions::natural_state = false gives the same deflection bit for bit.
 #include "compensator/robot/fast_equilibrium.hpp"
 
 #include <gtest/gtest.h>
@@ -199,6 +203,77 @@ TEST(FastEquilibrium, DeflectionReachesTheModelOfRecordEquilibrium) {
       const nc::Mat6 J = nc::tcpJacobian(model, data);
       nc::solvePosition(model, ref, d.theta);
       EXPECT_LE(relErr(J, nc::tcpJacobian(model, ref)), 1e-9);
+    }
+  }
+}
+
+TEST(FastEquilibrium, BalancerSlopeMatchesCentralDifferences) {
+  for (const bool gas : {false, true}) {
+    for (const bool push : {false, true}) {
+      for (const double n : {1.0, 1.4}) {
+        Counterbalance cb;
+        cb.joint = 1;
+        cb.law = gas ? Counterbalance::Law::kGas : Counterbalance::Law::kSpring;
+        cb.action = push ? Counterbalance::Action::kPush : Counterbalance::Action::kPull;
+        cb.r = 0.25;
+        cb.d = 0.45;
+        cb.psi0 = 0.5 * kPi;
+        cb.sign = push ? -1.0 : 1.0;
+        cb.length_ref = std::sqrt(cb.r * cb.r + cb.d * cb.d);
+        cb.force_ref = 9000.0;
+        cb.stiffness = 4e4;
+        cb.pressure_ref = 15e6;
+        cb.area = 1.26e-3;
+        cb.volume_ref = 0.36e-3;
+        cb.polytropic = n;
+        SCOPED_TRACE(std::string(gas ? "gas" : "spring") + (push ? " push" : " pull") +
+                     " n=" + std::to_string(n));
+        for (double q = -1.2; q <= 0.6; q += 0.15) {
+          const nc::BalancerTorque b = nc::balancerTorqueAndSlope(cb, q);
+          const double t = balancerTorque(cb, q);
+          EXPECT_NEAR(b.torque, t, 1e-14 * std::abs(t));
+          const double h = 1e-6;
+          const double fd = (balancerTorque(cb, q + h) - balancerTorque(cb, q - h)) / (2 * h);
+          EXPECT_NEAR(b.slope, fd, 1e-6 * std::max(1.0, std::abs(fd))) << "q " << q;
+          EXPECT_NE(b.slope, 0.0);
+        }
+      }
+    }
+  }
+  const nc::BalancerTorque none = nc::balancerTorqueAndSlope(Counterbalance{}, 0.3);
+  EXPECT_EQ(none.torque, 0.0);
+  EXPECT_EQ(none.slope, 0.0);
+}
+
+TEST(FastEquilibrium, FramesOnlyDeflectionIsTheSame) {
+  const auto all = cases();
+  ASSERT_FALSE(all.empty());
+  const nc::Loads l = loads();
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(-1.5, 1.5);
+  for (const Case& c : all) {
+    SCOPED_TRACE(c.label);
+    const nc::Model model = nc::buildModel(c.chain, tool());
+    nc::Data full(model);
+    nc::Data frames(model);
+    nc::JointCompliance comp;
+    comp.k << 8e6, 9e6, 5e6, 1.2e6, 1.1e6, 0.9e6;
+    nc::DeflectionOptions fo;
+    fo.natural_state = false;
+    for (int n = 0; n < 5; ++n) {
+      Vec6 th_m;
+      for (int i = 0; i < 6; ++i) th_m[i] = u(rng);
+      const Vec6 offset = Vec6::Constant(1e-4 * n);
+      const nc::Deflection a = nc::predictDeflection(model, full, comp, th_m, l, {}, offset);
+      const nc::Deflection b = nc::predictDeflection(model, frames, comp, th_m, l, fo, offset);
+      ASSERT_TRUE(a.converged);
+      EXPECT_EQ(a.iterations, b.iterations);
+      EXPECT_TRUE(a.theta == b.theta && a.tau == b.tau && a.dp == b.dp && a.drot == b.drot);
+      EXPECT_TRUE(a.T_real.matrix() == b.T_real.matrix());
+      EXPECT_TRUE(full.frames.p_tcp == frames.frames.p_tcp &&
+                  full.frames.R_tcp == frames.frames.R_tcp);
+      // the full state's pose is the frames' pose
+      EXPECT_LE(relErr(full.T_W_tcp.matrix(), a.T_real.matrix()), 1e-15);
     }
   }
 }

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "compensator/compensation/nlopt_problem.hpp"
+#include "compensator/robot/fast_equilibrium.hpp"
 
 namespace roprec {
 
@@ -25,6 +26,13 @@ const char* orientationModeName(OrientationMode m) {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// Equilibrium options of the compensation's checks: only T_real and data.frames are read after.
+nc::DeflectionOptions framesOnly() {
+  nc::DeflectionOptions o;
+  o.natural_state = false;
+  return o;
+}
 
 Pose rotZ(double psi) {
   Pose T = Pose::Identity();
@@ -68,6 +76,7 @@ struct Evaluator {
     const Pose T_flange = T * m.model.T_L6_tcp.inverse() * m.model.T_L6_flange;
     IkOptions opt;
     opt.seed = &seed;
+    opt.branch = branch;  // the other branches are never candidates: not solved
     solveIk(m.ik, T_flange, opt, d.ik);
     double best = kInf;
     n.why = Why::kUnreachable;
@@ -116,9 +125,12 @@ struct Evaluator {
     // stiffness proxy: linearised deflection-model uncertainty ⊥ the axis
     const ProcessAtDiameter* proc = processFor(h.diameter);
     const nc::Loads loads = loadsFor(proc);
-    nc::solvePosition(m.model, d.nc, n.q);
-    const nc::Vec6 tau = nc::staticTorques(m.model, d.nc, loads);
-    const nc::Mat6& J = nc::tcpJacobian(m.model, d.nc);
+    // frame recursion (fast_equilibrium.hpp; the model of record's τ and J to 1e-9 relative)
+    nc::chainFrames(m.model, d.nc, n.q);
+    nc::Vec6 tau;
+    nc::StaticLoadSums sums;
+    nc::staticTorquesFromFrames(m.model, d.nc, loads, tau, sums);
+    const nc::Mat6& J = nc::tcpJacobianFromFrames(m.model, d.nc);
     const Mat3 R = T.linear();
     const Vec3 e1 = R.col(0);
     const Vec3 e2 = R.col(1);
@@ -480,8 +492,8 @@ std::optional<Vec6> positionOnlyCommand(Evaluator& ev, const Pose& T_nominal, co
     const IkNearResult ik = solveIkNear(m.ik, T_flange, q);
     if (!ik.converged) return std::nullopt;
     q = ik.q;
-    const nc::Deflection df = nc::predictDeflection(m.model, ev.d.nc, m.compliance, q, loads, {},
-                                                    controllerOffset(m, ev.d.nc, q));
+    const nc::Deflection df = nc::predictDeflection(m.model, ev.d.nc, m.compliance, q, loads,
+                                                    framesOnly(), controllerOffset(m, ev.d.nc, q));
     if (!df.converged) return std::nullopt;
     const Vec3 err = df.T_real.translation() - T_nominal.translation();
     if (err.norm() < 5e-10) return q;  // 0.0005 µm: the seeded IK stops at 1e-10
@@ -583,12 +595,13 @@ void assemble(Evaluator& ev, const HoleRequest& h, const nc::Loads& loads, bool 
               HoleCompensation& c) {
   const PredictionModel& m = ev.m;
   PredictionData& d = ev.d;
-  const nc::PositionResult pr = nc::forwardKinematics(m.model, d.nc, c.theta_cmd);
-  if (!pr.converged) {
-    c.reason = "position problem did not converge at the compensated command";
+  nc::chainFrames(m.model, d.nc, c.theta_cmd);  // rigid FK (frame recursion, closed form)
+  if (!d.nc.frames.p_tcp.allFinite() || !d.nc.frames.R_tcp.allFinite()) {
+    c.reason = "the rigid forward kinematics of the compensated command is not finite";
     return;
   }
-  c.T_programmed = d.nc.T_W_tcp;
+  c.T_programmed.linear() = d.nc.frames.R_tcp;
+  c.T_programmed.translation() = d.nc.frames.p_tcp;
   if (positions_only) c.T_programmed.linear() = c.T_nominal.linear();  // exact by construction
   c.delta = c.T_programmed * c.T_nominal.inverse();
   settleFlags(ev, h, c.T_programmed * m.model.T_L6_tcp.inverse() * m.model.T_L6_flange, c);
@@ -596,8 +609,9 @@ void assemble(Evaluator& ev, const HoleRequest& h, const nc::Loads& loads, bool 
     c.reason = "the compensated command leaves the joint limits";
     return;
   }
-  const nc::Deflection def = nc::predictDeflection(m.model, d.nc, m.compliance, c.theta_cmd, loads,
-                                                   {}, controllerOffset(m, d.nc, c.theta_cmd));
+  const nc::Deflection def =
+      nc::predictDeflection(m.model, d.nc, m.compliance, c.theta_cmd, loads, framesOnly(),
+                            controllerOffset(m, d.nc, c.theta_cmd));
   if (!def.converged) {
     c.reason = "the compliance equilibrium did not converge at the compensated command";
     return;

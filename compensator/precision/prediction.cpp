@@ -167,23 +167,10 @@ nc::Loads processLoads(const PredictionModel& m, const ProcessAtDiameter* proc) 
 
 namespace {
 
-double jointDistance(const Vec6& a, const Vec6& b) {
-  // wrist joints weigh less: they move faster and matter less for the arm posture
-  static const double w[6] = {1.0, 1.0, 1.0, 0.5, 0.5, 0.3};
-  double s = 0;
-  for (int i = 0; i < 6; ++i) s += w[i] * (a[i] - b[i]) * (a[i] - b[i]);
-  return s;
-}
-
-}  // namespace
-
-namespace {
-
 /// Step 1 (IK): the solution the hole's configuration selects, else the admissible one nearest
 /// `ref`. On failure p.status/verdict/reason say why and false is returned.
 bool chooseSolution(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
                     const Pose& T_W_flange, const Vec6& ref, HolePrediction& p, IkSolution& sol) {
-  bool found = false;
   if (h.config) {
     const ConfiguredSolution cs =
         solveIkWithConfiguration(m.ik, m.robot.card, T_W_flange, *h.config, m.config_options);
@@ -197,21 +184,10 @@ bool chooseSolution(const PredictionModel& m, PredictionData& d, const HoleReque
                cs.reason;
     return false;
   }
-  IkOptions opt;
-  opt.seed = &ref;
-  solveIk(m.ik, T_W_flange, opt, d.ik);
-  double best = 1e300;
-  for (int i = 0; i < d.ik.count; ++i) {
-    const IkSolution& s = d.ik.solutions[static_cast<size_t>(i)];
-    if (!s.within_limits || !s.converged || s.singular_wrist || s.singular_shoulder) continue;
-    const double dist = jointDistance(s.q, ref);
-    if (dist < best) {
-      best = dist;
-      sol = s;
-      found = true;
-    }
-  }
-  if (found) return true;
+  // the admissible solution nearest ref; wrist joints weigh less: they move faster and matter
+  // less for the arm posture
+  static constexpr std::array<double, 6> kWeights{1.0, 1.0, 1.0, 0.5, 0.5, 0.3};
+  if (solveIkNearest(m.ik, T_W_flange, ref, kWeights, d.ik, sol)) return true;
   p.status = HoleStatus::kUnreachable;
   p.verdict = Verdict::kUnreachable;
   if (d.ik.count == 0) {
@@ -300,7 +276,10 @@ void predictAtSolution(const PredictionModel& m, PredictionData& d, const HoleRe
   const Mat3& R = h.T_W_tcp.linear();
   p.force_base = R * loads.tcp_tool.force;
   const Vec6 offset = controllerOffset(m, d.nc, sol.q);
-  p.deflection = nc::predictDeflection(m.model, d.nc, m.compliance, sol.q, loads, {}, offset);
+  nc::DeflectionOptions dopt;
+  // the linear budget reads data.frames only; Monte Carlo's share uses the full state
+  dopt.natural_state = m.uncertainty.method != UncertaintyInputs::Method::kLinear;
+  p.deflection = nc::predictDeflection(m.model, d.nc, m.compliance, sol.q, loads, dopt, offset);
   if (!p.deflection.converged || !p.deflection.position_converged) {
     p.status = HoleStatus::kNotConverged;
     p.verdict = Verdict::kNotConverged;

@@ -114,6 +114,47 @@ void torquesAt(const Model& model, Data& data, const Vec6& theta, const Loads& l
   staticTorquesFromFrames(model, data, loads, tau, sums);
 }
 
+/// LU of ∂G/∂θ = I + K_eff⁻¹ ∂τ/∂θ without pivoting (Doolittle, in place): the matrix is the
+/// identity plus a small compliance term on industrial robots, so the pivots stay near 1. When a
+/// pivot falls below 0.25 (a very soft joint), partial pivoting (Eigen) takes over.
+class EquilibriumLu {
+ public:
+  void compute(const Mat6& A) {
+    lu_ = A;
+    pivoted_ = false;
+    for (int k = 0; k < 6; ++k) {
+      const double pk = lu_(k, k);
+      if (!(std::abs(pk) >= 0.25)) {
+        pivoted_ = true;
+        plu_.compute(A);
+        return;
+      }
+      for (int i = k + 1; i < 6; ++i) {
+        const double l = lu_(i, k) / pk;
+        lu_(i, k) = l;
+        for (int j = k + 1; j < 6; ++j) lu_(i, j) -= l * lu_(k, j);
+      }
+    }
+  }
+  [[nodiscard]] Vec6 solve(const Vec6& b) const {
+    if (pivoted_) return plu_.solve(b);
+    Vec6 x = b;
+    for (int i = 1; i < 6; ++i) {
+      for (int j = 0; j < i; ++j) x[i] -= lu_(i, j) * x[j];
+    }
+    for (int i = 5; i >= 0; --i) {
+      for (int j = i + 1; j < 6; ++j) x[i] -= lu_(i, j) * x[j];
+      x[i] /= lu_(i, i);
+    }
+    return x;
+  }
+
+ private:
+  Mat6 lu_;
+  bool pivoted_{false};
+  Eigen::PartialPivLU<Mat6> plu_;
+};
+
 /// Leaves data as after solvePosition at data.frames, with the torques τ.
 void finishState(const Model& model, Data& data, const Vec6& tau) {
   syncNaturalCoordinates(model, data);
@@ -146,21 +187,32 @@ Deflection predictDeflection(const Model& model, Data& data, const JointComplian
   Vec6 kinv;  // 1/k_eff
   for (int i = 0; i < 6; ++i) kinv[i] = 1.0 / c.k[i] + 1.0 / c.k_servo[i];
   // nominal (rigid) TCP
-  chainFrames(model, data, theta_m);
+  JointTrig trig;
+  for (int i = 0; i < 6; ++i) {
+    trig.sn[i] = std::sin(theta_m[i]);
+    trig.cs[i] = std::cos(theta_m[i]);
+  }
+  chainFrames(model, data, theta_m, trig);
   d.T_nominal.linear() = data.frames.R_tcp;
   d.T_nominal.translation() = data.frames.p_tcp;
 
-  // Newton on G(θ) = θ − θ_cmd + K_eff⁻¹ τ(θ) = 0 with ∂G/∂θ = I + K_eff⁻¹ ∂τ/∂θ (analytic)
+  // Newton on G(θ) = θ − θ_cmd + K_eff⁻¹ τ(θ) = 0 with ∂G/∂θ = I + K_eff⁻¹ ∂τ/∂θ (analytic);
+  // the joints' sin/cos follow the small steps by angle addition (shiftTrig)
   Vec6 theta = cmd;
+  Vec6 trig_at = theta_m;  // the configuration `trig` belongs to
   Vec6 tau;
   StaticLoadSums sums;
   Mat6 D;
-  Eigen::PartialPivLU<Mat6> lu;
+  EquilibriumLu lu;
   bool have_jacobian = false;
   double prev = std::numeric_limits<double>::infinity();
   const bool at_nominal = command_offset.isZero(0.0);  // the frames already belong to θ_m
   for (d.iterations = 0; d.iterations < opt.max_iterations; ++d.iterations) {
-    if (d.iterations > 0 || !at_nominal) chainFrames(model, data, theta);
+    if (d.iterations > 0 || !at_nominal) {
+      shiftTrig(trig, trig_at, theta);
+      trig_at = theta;
+      chainFrames(model, data, theta, trig);
+    }
     staticTorquesFromFrames(model, data, loads, tau, sums);
     const Vec6 G = theta - cmd + tau.cwiseProduct(kinv);
     d.residual = G.lpNorm<Eigen::Infinity>();
@@ -190,12 +242,17 @@ Deflection predictDeflection(const Model& model, Data& data, const JointComplian
     }
     torquesAt(model, data, theta, loads, tau, sums);
   }
-  finishState(model, data, tau);
+  if (opt.natural_state) {
+    finishState(model, data, tau);
+  } else {
+    data.tau = tau;
+  }
   d.theta = theta;
   d.tau = tau;
   d.phi = -tau.cwiseQuotient(c.k);
   d.dpsi = -tau.cwiseQuotient(c.k_servo);
-  d.T_real = data.T_W_tcp;
+  d.T_real.linear() = data.frames.R_tcp;
+  d.T_real.translation() = data.frames.p_tcp;
   d.dp = d.T_real.translation() - d.T_nominal.translation();
   d.drot = smallRotationDifference(d.T_real.linear(), d.T_nominal.linear());
   return d;

@@ -22,7 +22,8 @@
 /// 1000 or more (simplified Newton; it changes by O(Δθ) ≈ 1e-3 relative), re-formed otherwise:
 /// two or three iterations on industrial robots. Convergence is reported as a value.
 /// On return `data` is the natural-coordinate state at the deflected θ (as after solvePosition:
-/// tcpJacobian, staticTorques work on it) with data.tau = τ(θ) and data.frames at θ.
+/// tcpJacobian, staticTorques work on it) with data.tau = τ(θ) and data.frames at θ; with
+/// DeflectionOptions::natural_state false only data.frames and data.tau.
 /// δrobot = FK(θ) − FK(θ_m): translation (m) and rotation vector of R_real R_nomᵀ (rad), base
 /// frame; it includes the configuration-change ("complementary stiffness") effect.
 ///
@@ -47,6 +48,10 @@ JointCompliance complianceFromCard(const RobotCard& card);
 struct DeflectionOptions {
   double tol{1e-12};  ///< rad, ‖Δθ‖∞
   int max_iterations{60};
+  /// Leave `data` the natural-coordinate state at the deflected θ (see predictDeflection). When
+  /// false only data.frames (and data.tau) are made to hold it — what the per-hole paths read
+  /// (tcpJacobianFromFrames) — and the rest of `data` is stale: cheaper by the 72-coordinate sync.
+  bool natural_state{true};
 };
 
 struct Deflection {

@@ -1,6 +1,7 @@
 #include "compensator/robot/fast_equilibrium.hpp"
 
 #include <cmath>
+#include <limits>
 
 namespace roprec::nc {
 
@@ -26,29 +27,98 @@ void rotateAbout(const Mat3& RJ, const Vec3& a, double sn, double cs, Mat3& R) {
       t * a.z() * a.x() - sn * a.y(), t * a.z() * a.y() + sn * a.x(), cs + t * a.z() * a.z();
   R.noalias() = RJ * Rot;
 }
+/// True when R is exactly the identity (URDF joint origins without rpy: the common case).
+bool isIdentity(const Mat3& R) {
+  for (int c = 0; c < 3; ++c) {
+    for (int r = 0; r < 3; ++r) {
+      if (R(r, c) != (r == c ? 1.0 : 0.0)) return false;
+    }
+  }
+  return true;
+}
 }  // namespace
 
+BalancerTorque balancerTorqueAndSlope(const Counterbalance& cb, double q) {
+  BalancerTorque b;
+  if (!cb.present()) return b;
+  const double psi = cb.psi0 + cb.sign * q;
+  const double sp = std::sin(psi);
+  const double cp = std::cos(psi);
+  const double rd = cb.r * cb.d;
+  const double l = std::sqrt(cb.r * cb.r + cb.d * cb.d - 2.0 * rd * cp);  // balancerLength
+  const bool push = cb.action == Counterbalance::Action::kPush;
+  const double stroke = push ? cb.length_ref - l : l - cb.length_ref;
+  double f = 0.0;      // load magnitude f(σ), N
+  double df_ds = 0.0;  // df/dσ, N/m
+  if (cb.law == Counterbalance::Law::kSpring) {
+    f = cb.force_ref + cb.stiffness * stroke;
+    df_ds = cb.stiffness;
+  } else {
+    const double v = cb.volume_ref - cb.area * stroke;
+    if (!(v > 0)) {  // exhausted gas volume: infinite load, as balancerForce
+      f = df_ds = std::numeric_limits<double>::infinity();
+    } else {
+      const double ratio = cb.volume_ref / v;
+      f = cb.pressure_ref * cb.area *
+          (cb.polytropic == 1.0 ? ratio : std::pow(ratio, cb.polytropic));
+      df_ds = f * cb.polytropic * cb.area / v;
+    }
+  }
+  const double F = push ? f : -f;  // balancerForce
+  b.torque = cb.sign * F * cb.r * cb.d * sp / l;
+  // dF/dℓ = −df/dσ for both actions; dℓ/dq = sign r d sin ψ / ℓ
+  const double dl_dq = cb.sign * rd * sp / l;
+  b.slope =
+      cb.sign * rd * ((-df_ds * dl_dq * sp + F * cb.sign * cp) / l - F * sp * dl_dq / (l * l));
+  return b;
+}
+
 void chainFrames(const Model& model, Data& data, const Vec6& theta) {
+  JointTrig t;
+  for (int i = 0; i < 6; ++i) {
+    t.sn[i] = std::sin(theta[i]);
+    t.cs[i] = std::cos(theta[i]);
+  }
+  chainFrames(model, data, theta, t);
+}
+
+void chainFrames(const Model& model, Data& data, const Vec6& theta, const JointTrig& trig) {
   Data::ChainFrames& f = data.frames;
   f.theta = theta;
+  f.sin_theta = trig.sn;
   Mat3 R = Mat3::Identity();
   Vec3 p = Vec3::Zero();
   for (int i = 0; i < 6; ++i) {
     const size_t s = static_cast<size_t>(i);
     const Pose& O = model.origin[s];
-    const Mat3 RJ = R * O.linear();
     p += R * O.translation();
+    const Mat3 RJ = isIdentity(O.linear()) ? R : Mat3(R * O.linear());
     const Vec3& a = model.bodies[s].ubar;
-    const double sn = std::sin(theta[i]);
-    const double cs = std::cos(theta[i]);
-    f.sin_theta[i] = sn;
     f.u[s] = RJ * a;
-    rotateAbout(RJ, a, sn, cs, R);
+    rotateAbout(RJ, a, trig.sn[i], trig.cs[i], R);
     f.p[s] = p;
     f.R[s] = R;
   }
   f.R_tcp.noalias() = R * model.T_L6_tcp.linear();
   f.p_tcp = p + R * model.T_L6_tcp.translation();
+}
+
+void shiftTrig(JointTrig& trig, const Vec6& from, const Vec6& to) {
+  for (int i = 0; i < 6; ++i) {
+    const double d = to[i] - from[i];
+    if (!(std::abs(d) <= 1e-2)) {  // far (or not finite): evaluate
+      trig.sn[i] = std::sin(to[i]);
+      trig.cs[i] = std::cos(to[i]);
+      continue;
+    }
+    const double d2 = d * d;
+    const double sd = d * (1.0 - d2 / 6.0 * (1.0 - d2 / 20.0 * (1.0 - d2 / 42.0)));
+    const double cd = 1.0 - d2 / 2.0 * (1.0 - d2 / 12.0 * (1.0 - d2 / 30.0 * (1.0 - d2 / 56.0)));
+    const double sn = trig.sn[i] * cd + trig.cs[i] * sd;
+    const double cs = trig.cs[i] * cd - trig.sn[i] * sd;
+    trig.sn[i] = sn;
+    trig.cs[i] = cs;
+  }
 }
 
 void staticTorquesFromFrames(const Model& model, const Data& data, const Loads& loads, Vec6& tau,
@@ -80,54 +150,53 @@ void staticTorquesFromFrames(const Model& model, const Data& data, const Loads& 
   sums.balancer = gravity && model.counterbalance.present();
   if (sums.balancer) {
     const int j = model.counterbalance.joint;
-    tau[j] -= balancerTorque(model.counterbalance, f.theta[j]);
+    const BalancerTorque b = balancerTorqueAndSlope(model.counterbalance, f.theta[j]);
+    tau[j] -= b.torque;
+    sums.balancer_slope = b.slope;
   }
 }
 
 void staticSensitivity(const Model& model, const Data& data, const StaticLoadSums& sums, Mat6& D) {
   const Data::ChainFrames& f = data.frames;
-  // W_j = A_j − F_j p_jᵀ with the suffix sums A_j = Σ_{k≥j} f_k r_kᵀ, F_j = Σ_{k≥j} f_k of the
-  // base-fixed forces (weights and F_W at the TCP)
-  std::array<Mat3, 6> Wj{};
-  {
-    Mat3 A = sums.F_all_w * f.p_tcp.transpose();
-    Vec3 Fw = sums.F_all_w;
-    for (int j = 5; j >= 0; --j) {
-      const size_t s = static_cast<size_t>(j);
-      A.noalias() += sums.f[s] * sums.r[s].transpose();
-      Fw += sums.f[s];
-      Wj[s] = A - Fw * f.p[s].transpose();
-    }
-  }
-  std::array<Vec3, 6> distal{};   // (W_iᵀ − tr W_i) u_i + u_i × M_t,i
-  std::array<Vec3, 6> turn_Ft{};  // u_i × F_t
-  for (int i = 0; i < 6; ++i) {
-    const size_t s = static_cast<size_t>(i);
+  // One backward pass: W_j = A_j − F_j p_jᵀ with the suffix sums A_j = Σ_{k≥j} f_k r_kᵀ,
+  // F_j = Σ_{k≥j} f_k of the base-fixed forces (weights and F_W at the TCP); per joint
+  //   row_j = (tr W_j) u_j − W_jᵀ u_j + N_W × u_j           (D_ji = row_j · u_i, i ≤ j)
+  //   a_i   = W_iᵀ u_i − (tr W_i) u_i + u_i × M_t,i + p_i × (u_i × F_t)
+  //   b_j   = u_j × p_j                                      (D_ji = −u_j · a_i + t_i · b_j, i > j)
+  // with t_i = u_i × F_t: −u_j · ((p_i − p_j) × t_i) = −u_j · (p_i × t_i) + t_i · (u_j × p_j).
+  std::array<Vec3, 6> row{};
+  std::array<Vec3, 6> a{};
+  std::array<Vec3, 6> b{};
+  std::array<Vec3, 6> t{};
+  Mat3 A = sums.F_all_w * f.p_tcp.transpose();
+  Vec3 Fw = sums.F_all_w;
+  for (int j = 5; j >= 0; --j) {
+    const size_t s = static_cast<size_t>(j);
+    A.noalias() += sums.f[s] * sums.r[s].transpose();
+    Fw += sums.f[s];
     const Vec3& u = f.u[s];
-    const Mat3& W = Wj[s];
-    const Vec3 M_t = (f.p_tcp - f.p[s]).cross(sums.F_t) + sums.N_t;
-    distal[s] = W.transpose() * u - W.trace() * u + u.cross(M_t);
-    turn_Ft[s] = u.cross(sums.F_t);
+    const Vec3& p = f.p[s];
+    // W_jᵀ u = A_jᵀ u − p (F_j · u), tr W_j = tr A_j − F_j · p
+    const Vec3 Wtu = A.transpose() * u - p * Fw.dot(u);
+    const double tr = A.trace() - Fw.dot(p);
+    const Vec3 twist = tr * u - Wtu;
+    row[s] = twist + sums.N_w.cross(u);
+    t[s] = u.cross(sums.F_t);
+    const Vec3 M_t = (f.p_tcp - p).cross(sums.F_t) + sums.N_t;
+    a[s] = -twist + u.cross(M_t) + p.cross(t[s]);
+    b[s] = u.cross(p);
   }
   for (int j = 0; j < 6; ++j) {
     const size_t sj = static_cast<size_t>(j);
     const Vec3& uj = f.u[sj];
-    const Mat3& W = Wj[sj];
-    // row u_jᵀ (tr W_j I − W_j − [N_W]×)
-    const Vec3 row = W.trace() * uj - W.transpose() * uj + sums.N_w.cross(uj);
-    for (int i = 0; i <= j; ++i) D(j, i) = row.dot(f.u[static_cast<size_t>(i)]);
+    for (int i = 0; i <= j; ++i) D(j, i) = row[sj].dot(f.u[static_cast<size_t>(i)]);
     for (int i = j + 1; i < 6; ++i) {
       const size_t si = static_cast<size_t>(i);
-      D(j, i) = -uj.dot(distal[si] + (f.p[si] - f.p[sj]).cross(turn_Ft[si]));
+      D(j, i) = t[si].dot(b[sj]) - uj.dot(a[si]);
     }
   }
-  if (sums.balancer) {
-    const Counterbalance& cb = model.counterbalance;
-    const int j = cb.joint;
-    const double h = 1e-6;
-    const double th = f.theta[j];
-    D(j, j) -= (balancerTorque(cb, th + h) - balancerTorque(cb, th - h)) / (2.0 * h);
-  }
+  if (sums.balancer)
+    D(model.counterbalance.joint, model.counterbalance.joint) -= sums.balancer_slope;
 }
 
 const Mat6& tcpJacobianFromFrames(const Model& /*model*/, Data& data) {

@@ -27,7 +27,7 @@
 /// + N_t about p_i:
 ///   i ≤ j:  D_ji = u_jᵀ (tr(W_j) I − W_j − [N_W]×) u_i     (the tool-fixed wrench turns along)
 ///   i > j:  D_ji = −u_j · ((W_iᵀ − tr(W_i) I) u_i + u_i × M_t,i + (p_i − p_j) × (u_i × F_t))
-/// plus −dτ_cb/dθ_j on the balancer joint's diagonal (central difference of the scalar law).
+/// plus −dτ_cb/dθ_j on the balancer joint's diagonal (balancerTorqueAndSlope, analytic).
 ///
 /// Everything is allocation-free and writes only into `Data` or the caller's objects.
 
@@ -38,6 +38,19 @@ namespace roprec::nc {
 /// Link frames and TCP at θ (rad) into data.frames.
 void chainFrames(const Model& model, Data& data, const Vec6& theta);
 
+/// sin θᵢ and cos θᵢ of a configuration.
+struct JointTrig {
+  Vec6 sn{Vec6::Zero()};
+  Vec6 cs{Vec6::Constant(1.0)};
+};
+/// chainFrames with the joints' sines and cosines given (trig must belong to theta).
+void chainFrames(const Model& model, Data& data, const Vec6& theta, const JointTrig& trig);
+/// trig of `from` → trig of `to` without sin/cos where |δ| = |toᵢ − fromᵢ| ≤ 0.01 rad (a Newton
+/// step of the equilibrium): angle addition with the Taylor series of sin δ (to δ⁷) and cos δ
+/// (to δ⁸), truncation < 1e-20 — the result differs from std::sin/std::cos by round-off
+/// (≤ 4e-16 absolute); larger or non-finite steps call std::sin/std::cos.
+void shiftTrig(JointTrig& trig, const Vec6& from, const Vec6& to);
+
 /// Load sums of one configuration (data.frames) and loads: what τ and ∂τ/∂θ are made of.
 struct StaticLoadSums {
   std::array<Vec3, 6> f{};     ///< weight of body k (0 without gravity or mass), N
@@ -47,7 +60,21 @@ struct StaticLoadSums {
   Vec3 F_t{Vec3::Zero()};      ///< tool-fixed force in W, N
   Vec3 N_t{Vec3::Zero()};      ///< tool-fixed couple in W, N m
   bool balancer{false};        ///< the balancer acts (gravity on, present)
+  double balancer_slope{0.0};  ///< dτ_cb/dθ at the balancer joint, N m/rad
 };
+
+/// τ_cb(q) (N m, equal to counterbalance.hpp's balancerTorque) and its slope dτ_cb/dq (N m/rad),
+/// analytic, with one sin/cos pair and at most one pow. With ψ = ψ₀ + s q, ℓ² = r² + d² − 2rd cos
+/// ψ, the stroke σ = ±(ℓ − ℓ_ref), the load f(σ) (spring f_ref + kσ; gas p_ref A (V₀/(V₀ − Aσ))ⁿ,
+/// df/dσ = n A f/(V₀ − Aσ)) and F = ±f (push +, pull −), so dF/dℓ = −df/dσ:
+///   τ = s F r d sin ψ/ℓ,   dℓ/dq = s r d sin ψ/ℓ,
+///   dτ/dq = s r d [(dF/dℓ dℓ/dq sin ψ + s F cos ψ)/ℓ − F sin ψ dℓ/dq/ℓ²].
+/// Non-finite when the gas volume is exhausted (as balancerTorque); both 0 without a balancer.
+struct BalancerTorque {
+  double torque{0.0};
+  double slope{0.0};
+};
+BalancerTorque balancerTorqueAndSlope(const Counterbalance& cb, double q);
 
 /// τ (N m) at data.frames for `loads`; `sums` receives what staticSensitivity needs.
 void staticTorquesFromFrames(const Model& model, const Data& data, const Loads& loads, Vec6& tau,

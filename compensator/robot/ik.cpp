@@ -472,14 +472,18 @@ bool withinLimits(const IkModel& m, const Vec6& q) {
   return true;
 }
 
-void solveIk(const IkModel& m, const Pose& target, const IkOptions& opt, IkResult& result) {
+namespace {
+/// The analytic solutions of the ideal model before refinement and turn expansion (wrapped q, at
+/// most 8, in branch-construction order). Sets result's failure fields (count 0) when none.
+int rawSolutions(const IkModel& m, const Pose& target, const IkOptions& opt,
+                 std::array<IkSolution, 8>& raw, IkResult& result) {
   result.count = 0;
   result.failure = IkFailure::kNone;
   result.failure_value = 0.0;
   result.truncated = false;
   if (!finitePose(target)) {
     result.failure = IkFailure::kNotFinite;
-    return;
+    return 0;
   }
   const Vec3 C = target * m.c_tip;
   const Vec3 c = m.F0.transpose() * (C - m.o);
@@ -491,14 +495,13 @@ void solveIk(const IkModel& m, const Pose& target, const IkOptions& opt, IkResul
     } else {
       result.failure = IkFailure::kLateralOffset;
       result.failure_value = std::abs(m.b) - std::sqrt(r2);
-      return;
+      return 0;
     }
   }
   const double xabs = std::sqrt(x2);
   const bool on_axis = r2 < 1e-24;
   const Mat3 R_T = target.linear();
 
-  std::array<IkSolution, 8> raw;
   int nraw = 0;
   double far_excess = -1.0;
   double near_excess = -1.0;
@@ -574,8 +577,49 @@ void solveIk(const IkModel& m, const Pose& target, const IkOptions& opt, IkResul
       result.failure = IkFailure::kTooClose;
       result.failure_value = near_excess;
     }
-    return;
   }
+  return nraw;
+}
+
+/// The primary-turn representative of a wrapped q (what expandTurns keeps in kPrimary mode: per
+/// joint the in-limit turn nearest the seed, ties to the larger); false when a joint has none.
+bool primaryRepresentative(const IkModel& m, const Vec6& qw, const Vec6* seed, Vec6& q) {
+  for (int i = 0; i < 6; ++i) {
+    const double lo_d = std::ceil((m.lower[i] - qw[i] - kExactTol) / kTwoPi);
+    const double hi_d = std::floor((m.upper[i] - qw[i] + kExactTol) / kTwoPi);
+    if (!(lo_d <= hi_d)) return false;
+    const int lo = static_cast<int>(std::clamp(lo_d, -kMaxTurnIndex, kMaxTurnIndex));
+    const int hi = static_cast<int>(std::clamp(hi_d, -kMaxTurnIndex, kMaxTurnIndex));
+    if (hi < lo) return false;
+    const double ref = seed ? (*seed)[i] : 0.0;
+    int best = lo;
+    double best_d = std::abs(qw[i] + kTwoPi * lo - ref);
+    for (int k = lo + 1; k <= hi; ++k) {
+      const double d = std::abs(qw[i] + kTwoPi * k - ref);
+      if (d < best_d - 1e-9 || (d <= best_d + 1e-9 && k > best)) {
+        best = k;
+        best_d = d;
+      }
+    }
+    q[i] = qw[i] + kTwoPi * best;
+  }
+  return true;
+}
+
+double weightedDistance(const Vec6& a, const Vec6& b, const std::array<double, 6>& w) {
+  double s = 0;
+  for (int i = 0; i < 6; ++i) s += w[static_cast<size_t>(i)] * (a[i] - b[i]) * (a[i] - b[i]);
+  return s;
+}
+
+bool admissible(const IkSolution& s) {
+  return s.within_limits && s.converged && !s.singular_wrist && !s.singular_shoulder;
+}
+}  // namespace
+
+void solveIk(const IkModel& m, const Pose& target, const IkOptions& opt, IkResult& result) {
+  std::array<IkSolution, 8> raw;
+  const int nraw = rawSolutions(m, target, opt, raw, result);
   for (int k = 0; k < nraw; ++k) {
     IkSolution& sol = raw[static_cast<size_t>(k)];
     // an exact chain's refinement leaves q as it is: its branch is known before finishing
@@ -585,6 +629,65 @@ void solveIk(const IkModel& m, const Pose& target, const IkOptions& opt, IkResul
     expandTurns(m, sol, opt, result);
   }
   std::sort(result.solutions.begin(), result.solutions.begin() + result.count, solutionLess);
+}
+
+bool solveIkNearest(const IkModel& m, const Pose& target, const Vec6& ref,
+                    const std::array<double, 6>& weights, IkResult& result, IkSolution& best) {
+  IkOptions opt;
+  opt.seed = &ref;
+  auto full = [&] {  // every branch finished, then the nearest admissible (the reference path)
+    solveIk(m, target, opt, result);
+    const IkSolution* b = nullptr;
+    double bd = 1e300;
+    for (int i = 0; i < result.count; ++i) {
+      const IkSolution& s = result.solutions[static_cast<size_t>(i)];
+      if (!admissible(s)) continue;
+      const double d = weightedDistance(s.q, ref, weights);
+      if (d < bd) {
+        b = &s;
+        bd = d;
+      }
+    }
+    if (b) best = *b;
+    return b != nullptr;
+  };
+  if (!m.deviation.exact) return full();  // refinement moves q: distances unknown beforehand
+  std::array<IkSolution, 8> raw;
+  const int nraw = rawSolutions(m, target, opt, raw, result);
+  if (nraw == 0) return false;
+  // candidates by their distance before finishing (an exact chain's finishing keeps q)
+  std::array<std::pair<double, int>, 8> order;
+  int n = 0;
+  for (int k = 0; k < nraw; ++k) {
+    Vec6 q;
+    if (!primaryRepresentative(m, raw[static_cast<size_t>(k)].q, &ref, q)) continue;
+    order[static_cast<size_t>(n++)] = {weightedDistance(q, ref, weights), k};
+  }
+  std::sort(order.begin(), order.begin() + n);
+  bool found = false;
+  double best_d = 0.0;
+  for (int c = 0; c < n; ++c) {
+    const double d0 = order[static_cast<size_t>(c)].first;
+    if (found && d0 > best_d) break;  // every later candidate is farther
+    IkSolution sol = raw[static_cast<size_t>(order[static_cast<size_t>(c)].second)];
+    finishSolution(m, target, opt, sol);
+    result.count = 0;
+    expandTurns(m, sol, opt, result);
+    if (result.count != 1 || sol.iterations != 0) return full();  // not the predicted case
+    const IkSolution& s = result.solutions[0];
+    const double d = weightedDistance(s.q, ref, weights);
+    if (d != d0) return full();
+    if (!admissible(s)) continue;
+    // equal distances: the first in solveIk's order wins, as in the full path
+    if (!found || d < best_d || (d == best_d && solutionLess(s, best))) {
+      best = s;
+      best_d = d;
+      found = true;
+    }
+  }
+  if (!found) return full();  // the caller's reasons read every solution
+  result.count = 0;
+  return true;
 }
 
 std::string describeIkFailure(const IkResult& r) {

@@ -234,6 +234,17 @@ struct IkResult {
 /// in kAll mode such a branch contributes its wrapped representative only).
 void solveIk(const IkModel& model, const Pose& target, const IkOptions& options, IkResult& result);
 
+/// The admissible solution (converged, within the limits, neither wrist- nor shoulder-singular)
+/// nearest `ref` in the weighted distance Σ wᵢ (qᵢ − refᵢ)², of solveIk with seed = &ref and
+/// primary turns: the same solution solveIk's list gives (ties: the first in its order). On an
+/// exact chain only the candidates nearer than the best admissible one are finished (refinement
+/// check, branch labels, turns): their distance is known before, since finishing keeps q there;
+/// otherwise, or when finishing moved q, every branch is solved. Returns false when none is
+/// admissible; `result` then holds solveIk's full list (for the reason). On success `result` is
+/// scratch (count 0).
+bool solveIkNearest(const IkModel& model, const Pose& target, const Vec6& ref,
+                    const std::array<double, 6>& weights, IkResult& result, IkSolution& best);
+
 /// Human-readable reason for an empty result.
 std::string describeIkFailure(const IkResult& result);
 
