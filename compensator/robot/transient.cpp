@@ -4,6 +4,7 @@
 #include <nvector/nvector_serial.h>
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
+#include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 #include <sundials/sundials_context.hpp>
 
 #include <Eigen/Cholesky>
@@ -13,6 +14,7 @@
 #include <stdexcept>
 
 #include "compensator/process/process_load.hpp"
+#include "compensator/robot/fast_equilibrium.hpp"
 #include "compensator/support/c_format.hpp"
 #include "compensator/support/error.hpp"
 
@@ -173,16 +175,26 @@ void StepWrenchCycle::sample(double t, const TipState& x, ProcessSample& out) {
   out.Fr = 0.0;
 }
 
+namespace {
+/// Plate thickness of a through hole (0: blind), as DrillingCycle uses it.
+double plateThickness(const DrillingSpec& spec, const DrillGeometry& g) {
+  if (!spec.through) return 0.0;
+  return spec.hole_depth > 0 ? spec.hole_depth : 2.0 * g.diameter;
+}
+}  // namespace
+
 DrillingCycle::DrillingCycle(const DrillingSpec& spec, const CycleTiming& timing,
-                             bool rotating_runout)
+                             bool rotating_runout, ForceEvaluation forces)
     : model_(drillingModelOf(spec)),
       data_(model_),
+      evaluation_(forces),
       tm_(timing),
       runout_(rotating_runout),
       feed_(spec.feed),
       omega_s_(2.0 * kPi * spec.spindle_rpm / 60.0),
       n_rps_(spec.spindle_rpm / 60.0),
-      v_f_(spec.feed * spec.spindle_rpm / 60.0) {
+      v_f_(spec.feed * spec.spindle_rpm / 60.0),
+      table_(model_, plateThickness(spec, model_.geometry)) {
   if (!(v_f_ > 0) || !(omega_s_ > 0))
     throw std::invalid_argument("DrillingCycle: feed and spindle speed must be positive");
   if (!(tm_.dwell >= 0) || !(tm_.approach >= 0) || !(tm_.retract >= 0) || !(tm_.overtravel >= 0) ||
@@ -299,8 +311,11 @@ void DrillingCycle::sample(double t, const TipState& x, ProcessSample& out) {
   out.feed_per_rev = out.depth_rate / n_rps_;
   out.cutting = out.depth_rate > 0.0;
   if (!out.cutting) return;
+  const double depth = std::max(x.depth, 0.0);
   const DrillingForces F =
-      drillingForcesAtDepth(model_, data_, out.feed_per_rev, std::max(x.depth, 0.0), thickness_);
+      evaluation_ == ForceEvaluation::kTabulated
+          ? table_.forces(out.feed_per_rev, depth)
+          : drillingForcesAtDepth(model_, data_, out.feed_per_rev, depth, thickness_);
   out.Fa = F.thrust;
   out.Ft = F.tangential;
   out.M = F.torque;
@@ -331,12 +346,16 @@ struct MatrixDeleter {
 struct LinSolDeleter {
   void operator()(SUNLinearSolver s) const { SUNLinSolFree(s); }
 };
+struct NonlinSolDeleter {
+  void operator()(SUNNonlinearSolver s) const { SUNNonlinSolFree(s); }
+};
 struct CvodeDeleter {
   void operator()(void* mem) const { CVodeFree(&mem); }
 };
 using NVectorPtr = std::unique_ptr<std::remove_pointer_t<N_Vector>, NVectorDeleter>;
 using MatrixPtr = std::unique_ptr<std::remove_pointer_t<SUNMatrix>, MatrixDeleter>;
 using LinSolPtr = std::unique_ptr<std::remove_pointer_t<SUNLinearSolver>, LinSolDeleter>;
+using NonlinSolPtr = std::unique_ptr<std::remove_pointer_t<SUNNonlinearSolver>, NonlinSolDeleter>;
 using CvodePtr = std::unique_ptr<void, CvodeDeleter>;
 
 void check(int flag, const char* what) {
@@ -387,6 +406,7 @@ struct TransientSimulator::Impl {
   NVectorPtr abstol;
   MatrixPtr A;
   LinSolPtr LS;
+  NonlinSolPtr NLS;
   CvodePtr mem;
 
   Impl(const TransientProblem& p, ProcessCycle& proc, const TransientOptions& o)
@@ -404,7 +424,7 @@ struct TransientSimulator::Impl {
   int roots(double t, const double* yp, double* g);
   /// u, u̇ from data.q, data.qd (after the position and velocity problems), D from y.
   void tipFromData(const Data& d, double depth, TipState& x) const;
-  /// Position + velocity problem on `d`, then tipFromData. False if the position fails.
+  /// u, u̇ by the frame recursion on `d` (d.frames, J_tcp), D from y. False for non-finite θ, θ̇.
   bool tipFromState(const double* yp, Data& d, TipState& x);
   void sampleProcess(double t, const TipState& x);
   /// Fires the events whose g is already > 0 at a restart (a jump of g at a breakpoint).
@@ -469,10 +489,16 @@ void TransientSimulator::Impl::tipFromData(const Data& d, double depth, TipState
 }
 
 bool TransientSimulator::Impl::tipFromState(const double* yp, Data& d, TipState& x) {
+  // the frame recursion (fast_equilibrium.hpp): the same TCP as the natural coordinates, without
+  // the position problem; ṗ_tcp = J_v θ̇
   const Eigen::Map<const Vec6> th(yp);
-  if (!th.allFinite() || !solvePosition(model, d, th, Guess::kClosedForm).converged) return false;
-  velocities(model, d, Eigen::Map<const Vec6>(yp + 6));
-  tipFromData(d, yp[idx_depth], x);
+  const Eigen::Map<const Vec6> thd(yp + 6);
+  if (!th.allFinite() || !thd.allFinite()) return false;
+  chainFrames(model, d, th);
+  const Mat6& J = tcpJacobianFromFrames(model, d);
+  x.axial = z_n.dot(d.frames.p_tcp - p_ref);
+  x.axial_rate = z_n.dot(J.topRows<3>() * thd);
+  x.depth = yp[idx_depth];
   return true;
 }
 
@@ -676,14 +702,19 @@ void TransientSimulator::Impl::setup() {
   if (with_integral) at.segment<6>(24).setConstant(options.atol_angle);
   at[idx_depth] = options.atol_depth;
   Eigen::Map<Eigen::VectorXd>(N_VGetArrayPointer(y.get()), n).setZero();
-  A.reset(checkPtr(SUNDenseMatrix(n, n, ctx), "SUNDenseMatrix"));
-  LS.reset(checkPtr(SUNLinSol_Dense(y.get(), A.get(), ctx), "SUNLinSol_Dense"));
   mem.reset(checkPtr(CVodeCreate(options.method == Method::kAdams ? CV_ADAMS : CV_BDF, ctx),
                      "CVodeCreate"));
   check(CVodeSetErrHandlerFn(mem.get(), roprecTransientErr, this), "CVodeSetErrHandlerFn");
   check(CVodeInit(mem.get(), roprecTransientRhs, 0.0, y.get()), "CVodeInit");
   check(CVodeSVtolerances(mem.get(), options.rtol, abstol.get()), "CVodeSVtolerances");
-  check(CVodeSetLinearSolver(mem.get(), LS.get(), A.get()), "CVodeSetLinearSolver");
+  if (options.iteration == Iteration::kFixedPoint) {
+    NLS.reset(checkPtr(SUNNonlinSol_FixedPoint(y.get(), 0, ctx), "SUNNonlinSol_FixedPoint"));
+    check(CVodeSetNonlinearSolver(mem.get(), NLS.get()), "CVodeSetNonlinearSolver");
+  } else {
+    A.reset(checkPtr(SUNDenseMatrix(n, n, ctx), "SUNDenseMatrix"));
+    LS.reset(checkPtr(SUNLinSol_Dense(y.get(), A.get(), ctx), "SUNLinSol_Dense"));
+    check(CVodeSetLinearSolver(mem.get(), LS.get(), A.get()), "CVodeSetLinearSolver");
+  }
   check(CVodeSetUserData(mem.get(), this), "CVodeSetUserData");
   check(CVodeSetMaxNumSteps(mem.get(), options.max_steps), "CVodeSetMaxNumSteps");
   double hmax = options.max_step;
@@ -704,8 +735,8 @@ void TransientSimulator::Impl::accumulate(TransientStats& s) const {
   void* m = mem.get();
   if (CVodeGetNumSteps(m, &v) == CV_SUCCESS) s.steps += v;
   if (CVodeGetNumRhsEvals(m, &v) == CV_SUCCESS) s.rhs_evals += v;
-  if (CVodeGetNumLinRhsEvals(m, &v) == CV_SUCCESS) s.rhs_evals_jac += v;
-  if (CVodeGetNumJacEvals(m, &v) == CV_SUCCESS) s.jac_evals += v;
+  if (LS && CVodeGetNumLinRhsEvals(m, &v) == CV_SUCCESS) s.rhs_evals_jac += v;
+  if (LS && CVodeGetNumJacEvals(m, &v) == CV_SUCCESS) s.jac_evals += v;
   if (CVodeGetNumNonlinSolvIters(m, &v) == CV_SUCCESS) s.nonlinear_iterations += v;
   if (CVodeGetNumErrTestFails(m, &v) == CV_SUCCESS) s.error_test_failures += v;
   if (CVodeGetNumNonlinSolvConvFails(m, &v) == CV_SUCCESS) s.convergence_failures += v;
@@ -721,9 +752,8 @@ void TransientSimulator::Impl::record(double t, const double* yp, TransientResul
   x.depth = yp[idx_depth];
   if (tipFromState(yp, out_data, x)) {
     process.sample(t, x, s.process);
-    framePoses(model, out_data);
-    s.dp = out_data.T_W_tcp.translation() - T_nominal.translation();
-    s.drot = smallRotationDifference(out_data.T_W_tcp.linear(), T_nominal.linear());
+    s.dp = out_data.frames.p_tcp - T_nominal.translation();
+    s.drot = smallRotationDifference(out_data.frames.R_tcp, T_nominal.linear());
   } else {
     process.sample(t, x, s.process);
     s.dp.setConstant(std::numeric_limits<double>::quiet_NaN());

@@ -116,6 +116,7 @@
 #include "compensator/process/process_spec.hpp"
 #include "compensator/robot/deflection.hpp"
 #include "compensator/robot/robot_card.hpp"
+#include "compensator/robot/transient_forces.hpp"
 
 namespace roprec::nc {
 
@@ -273,7 +274,9 @@ class StepWrenchCycle final : public ProcessCycle {
 /// The drilling cycle of a DrillingSpec, coupled to the real penetration (see file comment).
 class DrillingCycle final : public ProcessCycle {
  public:
-  DrillingCycle(const DrillingSpec& spec, const CycleTiming& timing, bool rotating_runout);
+  /// `forces`: the tabulated law (transient_forces.hpp, default) or the exact evaluator.
+  DrillingCycle(const DrillingSpec& spec, const CycleTiming& timing, bool rotating_runout,
+                ForceEvaluation forces = ForceEvaluation::kTabulated);
   void sample(double t, const TipState& x, ProcessSample& out) override;
   [[nodiscard]] double duration() const override;
   [[nodiscard]] std::vector<double> breakpoints() const override;
@@ -302,6 +305,7 @@ class DrillingCycle final : public ProcessCycle {
 
   DrillingModel model_;
   DrillingData data_;
+  ForceEvaluation evaluation_;
   CycleTiming tm_;
   bool runout_;
   double feed_;        ///< m/rev
@@ -321,6 +325,7 @@ class DrillingCycle final : public ProcessCycle {
   double t_first_contact_{-1.0};
   double t_cut_end_{-1.0};
   double depth_at_end_{0.0};  ///< p_c when the cut ended (start of the retract), m
+  DrillingForceTable table_;  ///< built after thickness_ (declaration order)
 };
 
 /// The cycle of a cell's process (drilling → DrillingCycle; wrench and milling → StepWrenchCycle
@@ -332,9 +337,13 @@ std::unique_ptr<ProcessCycle> makeProcessCycle(const ProcessSpec& spec, const Cy
 // Integrator
 
 enum class Method { kAdams, kBdf };
+/// Corrector iteration: Newton with the dense difference-quotient Jacobian, or fixed point
+/// (functional iteration, no Jacobian and no linear algebra).
+enum class Iteration { kNewton, kFixedPoint };
 
 struct TransientOptions {
   Method method{Method::kAdams};
+  Iteration iteration{Iteration::kNewton};
   double rtol{1e-8};        ///< CVODE relative tolerance
   double atol_angle{1e-9};  ///< rad, absolute tolerance of θ, θ_m, ξ (2.5 nm at 2.5 m reach)
   double atol_rate{1e-7};   ///< rad/s, absolute tolerance of θ̇, θ̇_m
