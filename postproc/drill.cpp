@@ -20,6 +20,16 @@ bool sameFrameIdx(const Program& p, int a, int b) {
          fa.pose.matrix() == fb.pose.matrix();
 }
 
+/// The motion goes to a Cartesian target with a component roprec could not evaluate.
+bool statesUnknownValues(const Program& p, const Motion& m) {
+  if (m.target < 0) return false;
+  const Target& t = p.targets()[static_cast<std::size_t>(m.target)];
+  if (t.kind != TargetKind::kCartesian) return false;
+  const auto unknown = [](const NumberField& f) { return !f.expr.empty() && !f.expr_known; };
+  return std::any_of(t.pos.begin(), t.pos.end(), unknown) ||
+         std::any_of(t.rot.begin(), t.rot.end(), unknown);
+}
+
 bool drillMarker(const std::string& m) {
   const std::string u = upper(m);
   return u.rfind("DWELL", 0) == 0 || u.find("SPINDLE") != std::string::npos ||
@@ -47,11 +57,15 @@ std::vector<Hole> recognizeHoles(const Program& p, const RecognitionOptions& o) 
     const Vec3 a = T0->linear() * tool_axis;
     const Vec3 p0 = T0->translation();
     std::size_t j = i + 1;
+    bool cut_by_unknown = false;  // the line goes on to a point whose value roprec cannot know
     for (; j < M; ++j) {
       const Motion& mj = p.motions[j];
       if (mj.type != MotionType::kLinear) break;
       const std::optional<Pose> Tj = motionPose(p, mj);
-      if (!Tj) break;
+      if (!Tj) {
+        cut_by_unknown = statesUnknownValues(p, mj);
+        break;
+      }
       if (!sameFrameIdx(p, mj.base, m0.base) || !sameFrameIdx(p, mj.tool, m0.tool)) break;
       if (smallRotationDifference(Tj->linear(), T0->linear()).norm() > ori_tol) break;
       if ((Tj->translation() - p0).cross(a).norm() > line_tol) break;
@@ -105,7 +119,10 @@ std::vector<Hole> recognizeHoles(const Program& p, const RecognitionOptions& o) 
         }
       }
       if (p.motions[bottom].fine) h.evidence.push_back("exact stop at the bottom");
-      if (dmax > line_tol && (slower || marker)) {
+      // A cycle whose next point is stated by values roprec cannot evaluate (a RAPID component
+      // set at run time) may end deeper than the points it knows: its bottom is unknown, so it
+      // is not taken as a hole (the unresolved value is reported with its line).
+      if (dmax > line_tol && (slower || marker) && !cut_by_unknown) {
         h.entry_motion = static_cast<int>(i);
         h.bottom_motion = static_cast<int>(bottom);
         h.entry_target = m0.target;

@@ -12,6 +12,7 @@
 #include "compensator/support/error.hpp"
 #include "postproc/dialects.hpp"
 #include "postproc/lexer.hpp"
+#include "postproc/value_ranges.hpp"
 
 namespace roprec::postproc {
 
@@ -811,6 +812,7 @@ Program parseProgram(Dialect d, const std::string& path, std::string bytes,
       parseJson(p);
       break;
   }
+  checkValueRanges(p);
   return p;
 }
 

@@ -417,6 +417,10 @@ class RapidReader {
       t.cf_fields[k] = component(n.items[2].items[k], "robtarget robconf");
       t.config.cf[k] = toInt(std::round(t.cf_fields[k].value), 0);
     }
+    // A robconf roprec cannot evaluate states no configuration: the branch is then chosen as
+    // for a program without one, never from a placeholder 0.
+    for (const NumberField& f : t.cf_fields)
+      if (!f.known()) t.config.vendor = Vendor::kNone;
     for (std::size_t k = 0; k < 6; ++k)
       t.ext[k] = component(n.items[3].items[k], "robtarget extax");
     return add(std::move(t));

@@ -55,6 +55,28 @@ std::optional<double> optionalAt(const XmlNode& e, const std::string& attr, doub
   return (strictly_positive ? positive(e, attr, 0, false) : nonNegative(e, attr, 0)) * scale;
 }
 
+/// Refuses a value (in the file's unit) outside the plausible [lo, hi]: a corrupted number such
+/// as stickout_mm="1e-300" would otherwise silently remove the tool's compliance.
+void plausible(const XmlNode& e, const std::string& attr, double lo, double hi,
+               const std::string& why) {
+  if (!e.has(attr)) return;
+  const double v = e.number(attr);
+  if (v >= lo && v <= hi) return;
+  e.fail("<" + e.name + "> " + attr + " = " + numberText(v) + " is outside the plausible range " +
+         numberText(lo) + " .. " + numberText(hi) + " (" + why + ")");
+}
+
+/// Plausible ranges of the tool-side machining-deviation inputs (docs/process.md).
+void plausibleToolInputs(const XmlNode& e) {
+  plausible(e, "stickout_mm", 1.0, 1000.0, "tool length out of the holder, mm");
+  plausible(e, "axis_tilt_deg", 0.0, 5.0, "spindle axis tilt, deg");
+  plausible(e, "axis_lever_mm", 0.0, 2000.0, "lever of the tilt, mm");
+  plausible(e, "runout_mm", 0.0, 1.0, "radial runout, mm");
+  plausible(e, "youngs_modulus_GPa", 10.0, 1000.0, "tool material modulus, GPa");
+  plausible(e, "equivalent_diameter_ratio", 0.3, 1.0, "fluted section / nominal diameter");
+  plausible(e, "spindle_compliance_um_per_N", 0.0, 100.0, "spindle compliance, um/N");
+}
+
 MachiningDeviationOverride parseDeviationOverride(const XmlNode& md) {
   if (md.has("k")) {
     md.fail(
@@ -76,6 +98,7 @@ MachiningDeviationOverride parseDeviationOverride(const XmlNode& md) {
     }
     if (o.diameters.empty()) md.fail("<machining_deviation> diameter_mm is empty");
   }
+  plausibleToolInputs(md);
   o.axis_tilt = optionalAt(md, "axis_tilt_deg", kDeg, false);
   o.axis_lever = optionalAt(md, "axis_lever_mm", kMm, false);
   o.runout = optionalAt(md, "runout_mm", kMm, false);
@@ -150,7 +173,11 @@ void parseDrilling(const XmlNode& proc, DrillingSpec& s) {
   s.working_angles = d.boolean("working_angles", true);
   if (const std::string problem = drillGeometryProblem(g); !problem.empty()) d.fail(problem);
 
-  if (d.has("stickout_mm")) s.drill_stickout = positive(d, "stickout_mm", 0, false) * kMm;
+  if (d.has("stickout_mm")) {
+    s.drill_stickout = positive(d, "stickout_mm", 0, false) * kMm;
+    plausible(d, "stickout_mm", g.diameter / kMm, 1000.0,
+              "tool length out of the holder, mm: at least the drill diameter");
+  }
 
   const XmlNode& c = required(proc, "cut", "feed and speed");
   allowOnly(c, {"feed_mm_per_rev", "spindle_rpm", "depth_mm", "through"});

@@ -195,11 +195,18 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
         where = p.files[static_cast<std::size_t>(m0.file)].path;
       line = std::max(1, m0.line);
     }
+    std::string unknown;  // values roprec cannot evaluate cut cycles short
+    if (!p.unresolved.empty()) {
+      const postproc::Unresolved& u = p.unresolved.front();
+      unknown = "; " + std::to_string(p.unresolved.size()) +
+                " reference(s) roprec cannot resolve, the first '" + u.ref + "' at line " +
+                std::to_string(u.line) + " (" + u.what + ")";
+    }
     throw InputError(where, line,
                      "no drill cycle recognised in the program's " +
                          std::to_string(p.motions.size()) +
-                         " motions (approach -> feed along the tool z axis -> retract); hint: a "
-                         "hole list (.csv) or --holes gives the holes directly");
+                         " motions (approach -> feed along the tool z axis -> retract)" + unknown +
+                         "; hint: a hole list (.csv) or --holes gives the holes directly");
   }
   std::vector<postproc::HoleSpec> specs;
   std::vector<int> spec_of_hole(job.recognized.size(), -1);
@@ -284,7 +291,7 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
   }
   for (const auto& n : p.notes) job.notes.push_back(n);
   for (const auto& u : p.unresolved) {
-    job.notes.push_back("unresolved " + u.ref + " (" +
+    job.notes.push_back(kUnresolvedPrefix + u.ref + " (" +
                         p.files[static_cast<size_t>(std::max(0, u.file))].path + ":" +
                         std::to_string(u.line) + "): " + u.what);
   }

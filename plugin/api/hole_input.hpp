@@ -23,6 +23,10 @@
 
 namespace roprec::api {
 
+/// Job notes about a value or frame the program refers to but roprec could not resolve start
+/// with this prefix; the CLI prints them as warnings.
+inline constexpr const char* kUnresolvedPrefix = "unresolved ";
+
 struct HoleSource {
   int hole{-1};              ///< index into `recognized` (programs)
   std::vector<int> targets;  ///< program targets of the cycle (all move together when compensated)

@@ -31,6 +31,8 @@ void parseFrameTool(Args& args, JobOptions& opt) {
 void printJobNotes(CommandContext& ctx, const std::vector<std::string>& notes) {
   const std::string resolution = kResolutionPrefix;
   const std::string reading = postproc::kReadingNotePrefix;
+  constexpr int kListedUnresolved = 20;
+  int unresolved = 0;
   for (const auto& n : notes) {
     if (n.rfind(resolution, 0) == 0) {
       ctx.err << "roprec: note: " << n.substr(resolution.size()) << "\n";
@@ -40,7 +42,13 @@ void printJobNotes(CommandContext& ctx, const std::vector<std::string>& notes) {
       ctx.err << "roprec: warning: " << n.substr(12) << "\n";
     } else if (n.rfind("--holes:", 0) == 0 || n.rfind("--force", 0) == 0) {
       ctx.err << "roprec: note: " << n << "\n";
+    } else if (n.rfind(kUnresolvedPrefix, 0) == 0) {
+      if (unresolved++ < kListedUnresolved) ctx.err << "roprec: warning: " << n << "\n";
     }
+  }
+  if (unresolved > kListedUnresolved) {
+    ctx.err << "roprec: warning: and " << (unresolved - kListedUnresolved)
+            << " more unresolved references (all in the JSON notes)\n";
   }
 }
 

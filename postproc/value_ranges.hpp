@@ -1,0 +1,25 @@
+#pragma once
+/// Plausibility ranges for the numbers a robot program states (docs/programs.md §10).
+///
+/// A reader accepts any number the dialect's syntax allows; a corrupted or mistyped value
+/// (`Z 1e300`, `B 1e300`, a zero quaternion) would then move a hole, a retract or a frame by an
+/// absurd amount without a word. `checkValueRanges` runs after every reader and refuses, with the
+/// file and line of the number:
+///   - positions (targets, frames, offsets): |x| ≤ 100 m (100,000 mm);
+///   - Euler angles (KUKA A,B,C; FANUC W,P,R; RoboDK rx,ry,rz): |a| ≤ 720 deg;
+///   - quaternions: norm within [0.9, 1.1] (RAPID itself refuses a quaternion that is not
+///     normalised; roprec normalises the small rounding of exported programs);
+///   - joint values (deg, or mm for a linear axis): |q| ≤ 100,000;
+///   - external axes: |e| ≤ 100,000, or exactly 9E+09 (RAPID's "axis not used");
+///   - configuration numbers (ABB cf1/cf4/cf6/cfx): |cf| ≤ 1000.
+/// Values a program states by name or expression are checked when roprec could evaluate them.
+
+#include "postproc/program.hpp"
+
+namespace roprec::postproc {
+
+/// Throws InputError(file, line, what is out of range + the accepted range) at the first value
+/// outside its range.
+void checkValueRanges(const Program& p);
+
+}  // namespace roprec::postproc
