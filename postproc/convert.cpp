@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <map>
 
@@ -39,6 +40,8 @@ std::string programName(const std::string& out_path, std::size_t max_len) {
   if (r.size() > max_len) r.resize(max_len);
   return r;
 }
+
+constexpr double kUnusedExt = 9e9;  ///< RAPID's "no external axis" value (9E+09)
 
 struct Item {
   int motion{-1};
@@ -82,9 +85,7 @@ std::vector<Item> collect(const Program& p, bool joints_ok, ConversionReport& re
     it.config = t.config;
     it.speed = m.speed_mm_s;
     it.fine = m.fine;
-    for (const NumberField& e : t.ext) {
-      if (e.present()) it.ext.push_back(e.value);
-    }
+    for (const NumberField& e : t.ext) it.ext.push_back(e.present() ? e.value : kUnusedExt);
     if (t.kind == TargetKind::kJoint) {
       if (!joints_ok) {
         rep.skipped.push_back(
@@ -120,6 +121,32 @@ std::vector<Item> collect(const Program& p, bool joints_ok, ConversionReport& re
   return items;
 }
 
+/// KRL states E1..E6 in every E6POS, 0 for axes the cell does not have: an external axis that is
+/// 0 in every Cartesian target of a KRL source is taken as unused (RAPID 9E+09, not written in
+/// KRL/TP), and said in a note. Other dialects state only the axes they have.
+void markUnusedKrlExternalAxes(const Program& p, std::vector<Item>& items, ConversionReport& rep) {
+  if (p.dialect != Dialect::kKrl) return;
+  std::string zero_axes;
+  for (std::size_t k = 0; k < 6; ++k) {
+    bool seen = false;
+    bool zero = true;
+    for (const Item& it : items) {
+      if (!it.cartesian || k >= it.ext.size() || std::fabs(it.ext[k]) >= 8e9) continue;
+      seen = true;
+      zero = zero && it.ext[k] == 0.0;
+    }
+    if (!seen || !zero) continue;
+    for (Item& it : items) {
+      if (k < it.ext.size()) it.ext[k] = kUnusedExt;
+    }
+    zero_axes += (zero_axes.empty() ? "E" : ", E") + std::to_string(k + 1);
+  }
+  if (!zero_axes.empty())
+    rep.notes.push_back(zero_axes +
+                        " = 0 in every target of the KRL source: taken as unused "
+                        "external axes (RAPID 9E+09)");
+}
+
 bool hasExt(const Item& it, std::size_t k) {
   return k < it.ext.size() && std::fabs(it.ext[k]) < 8e9;
 }
@@ -147,6 +174,222 @@ void requireResolved(const Frame* f, const std::string& path, const char* what) 
                      std::string(what) + " '" + f->ref +
                          "' is not defined in the program; give its value with --frame '" + f->ref +
                          "=x y z a b c'");
+  }
+}
+
+// ---------------------------------------------------------------- what the new program drops
+
+/// Line `l` (0-based) of `f` without its terminator.
+std::string lineAt(const SourceFile& f, std::size_t l) {
+  const std::size_t a = f.line_starts[l];
+  std::size_t b = l + 1 < f.line_starts.size() ? f.line_starts[l + 1] : f.bytes.size();
+  while (b > a && (f.bytes[b - 1] == '\n' || f.bytes[b - 1] == '\r')) --b;
+  return f.bytes.substr(a, b - a);
+}
+
+/// `s` up to its comment (`comment` outside double quotes), trimmed.
+std::string codeOf(const std::string& s, const char* comment) {
+  bool in_string = false;
+  std::size_t end = s.size();
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (s[i] == '"') in_string = !in_string;
+    if (!in_string && s.compare(i, std::strlen(comment), comment) == 0) {
+      end = i;
+      break;
+    }
+  }
+  std::size_t a = 0;
+  while (a < end && (s[a] == ' ' || s[a] == '\t')) ++a;
+  while (end > a && (s[end - 1] == ' ' || s[end - 1] == '\t')) --end;
+  return s.substr(a, end - a);
+}
+
+/// The first word of `u` (upper case): identifier characters up to the first other character.
+std::string firstWord(const std::string& u) {
+  std::size_t n = 0;
+  while (n < u.size() && isIdentChar(u[n])) ++n;
+  return u.substr(0, n);
+}
+
+bool oneOf(const std::string& w, std::initializer_list<const char*> words) {
+  for (const char* x : words) {
+    if (w == x) return true;
+  }
+  return false;
+}
+
+bool startsWith(const std::string& u, std::initializer_list<const char*> prefixes) {
+  for (const char* x : prefixes) {
+    if (u.rfind(x, 0) == 0) return true;
+  }
+  return false;
+}
+
+/// KRL: the kind of a code line the minimal program does not carry; "" when it is carried or
+/// structure (declarations, frames and speeds carried by value, inline-form motion parameters).
+std::string krlKind(const std::string& u) {
+  const std::string w = firstWord(u);
+  if (u.empty() || u[0] == '&' ||
+      oneOf(w, {"DEF",  "END",      "DEFDAT",   "ENDDAT",    "DEFFCT",    "ENDFCT",  "DECL",
+                "EXT",  "EXTFCT",   "SIGNAL",   "STRUC",     "ENUM",      "PTP",     "LIN",
+                "CIRC", "SPTP",     "SLIN",     "SCIRC",     "PTP_REL",   "LIN_REL", "BAS",
+                "INI",  "PDAT_ACT", "LDAT_ACT", "FDAT_ACT",  "$BWDSTART", "$H_POS",  "$VEL",
+                "$ACC", "$BASE",    "$TOOL",    "BASE_DATA", "TOOL_DATA"}))
+    return "";
+  if (w == "GLOBAL") return u.find("INTERRUPT") != std::string::npos ? "interrupt" : "";
+  if (w == "WAIT") return "wait";
+  if (w == "$APO") return "approximation parameter";
+  if (oneOf(w, {"$OUT", "$ANOUT", "ANOUT", "PULSE", "$OUT_C"})) return "I/O";
+  if (w == "INTERRUPT") return "interrupt";
+  if (oneOf(w, {"IF",        "ELSE",    "ENDIF",  "FOR",   "ENDFOR", "WHILE",   "ENDWHILE",
+                "LOOP",      "ENDLOOP", "REPEAT", "UNTIL", "SWITCH", "CASE",    "DEFAULT",
+                "ENDSWITCH", "GOTO",    "EXIT",   "HALT",  "RETURN", "CONTINUE"}))
+    return "control flow";
+  if (!w.empty() && u.size() > w.size() &&
+      u.find_first_not_of(" \t", w.size()) != std::string::npos &&
+      u[u.find_first_not_of(" \t", w.size())] == '(')
+    return "call";
+  return u.find('=') != std::string::npos ? "assignment" : "other";
+}
+
+/// RAPID: as krlKind. ConfJ/ConfL are written \Off (the header says so).
+std::string rapidKind(const std::string& u) {
+  const std::string w = firstWord(u);
+  if (oneOf(w,
+            {"MODULE", "ENDMODULE", "PROC",  "ENDPROC", "FUNC",  "ENDFUNC", "TRAP",     "ENDTRAP",
+             "LOCAL",  "TASK",      "PERS",  "VAR",     "CONST", "ERROR",   "BACKWARD", "UNDO",
+             "CONFJ",  "CONFL",     "MOVEL", "MOVEJ",   "MOVEC", "MOVEABSJ"}))
+    return "";
+  if (w.rfind("WAIT", 0) == 0) return "wait";
+  if (oneOf(w, {"SETDO", "SET", "RESET", "PULSEDO", "SETAO", "SETGO", "INVERTDO", "SETDO"}))
+    return "I/O";
+  if (oneOf(w, {"IF",       "ELSEIF", "ELSE",  "ENDIF",   "FOR",     "ENDFOR", "WHILE",
+                "ENDWHILE", "TEST",   "CASE",  "DEFAULT", "ENDTEST", "GOTO",   "RETURN",
+                "EXIT",     "STOP",   "BREAK", "RAISE",   "RETRY",   "TRYNEXT"}))
+    return "control flow";
+  const std::size_t k = u.find_first_not_of(" \t", w.size());
+  if (k != std::string::npos && (u.compare(k, 2, ":=") == 0 || u[k] == '{' || u[k] == '.'))
+    return "assignment";
+  return w.empty() ? "other" : "call";
+}
+
+/// A RAPID line that opens or closes a block (no `;` ends it).
+bool rapidBlockLine(const std::string& u) {
+  return oneOf(firstWord(u),
+               {"MODULE",   "ENDMODULE", "PROC",   "ENDPROC", "FUNC",    "ENDFUNC", "TRAP",
+                "ENDTRAP",  "IF",        "ELSEIF", "ELSE",    "ENDIF",   "FOR",     "ENDFOR",
+                "WHILE",    "ENDWHILE",  "TEST",   "CASE",    "DEFAULT", "ENDTEST", "ERROR",
+                "BACKWARD", "UNDO",      "LOCAL",  "TASK"}) &&
+         u.find(";") == std::string::npos;
+}
+
+/// FANUC TP (a /MN line without its number and `;`): as krlKind.
+std::string tpKind(const std::string& u) {
+  const std::string w = firstWord(u);
+  if (u.empty() || u[0] == '!' || u.rfind("//", 0) == 0 || u[0] == ':' ||
+      oneOf(w, {"J", "L", "C", "A", "UFRAME_NUM", "UTOOL_NUM", "OFFSET", "TOOL_OFFSET"}))
+    return "";
+  if (w == "WAIT") return "wait";
+  if (startsWith(u, {"DO[", "RO[", "AO[", "GO[", "SDO[", "F[", "PULSE"})) return "I/O";
+  if (oneOf(w, {"CALL", "RUN"})) return "call";
+  if (oneOf(w, {"LBL", "JMP", "IF", "SELECT", "ELSE", "ENDIF", "FOR", "ENDFOR", "END", "ABORT",
+                "PAUSE"}))
+    return "control flow";
+  if (startsWith(u, {"R[", "PR[", "AR["})) return "register";
+  return "other";
+}
+
+/// Every instruction of the source that the new program does not carry, as
+/// "FILE:LINE: text (kind)", in source order (docs/programs.md §7).
+void listNotCarried(const Program& p, ConversionReport& rep) {
+  if (p.files.empty() ||
+      (p.dialect != Dialect::kKrl && p.dialect != Dialect::kRapid && p.dialect != Dialect::kTp))
+    return;  // a target list has nothing but targets
+  const SourceFile& f = p.files[0];
+  std::vector<bool> motion_line(f.line_starts.size() + 2, false);
+  for (const Motion& m : p.motions) {
+    if (m.file == 0 && m.line > 0 && static_cast<std::size_t>(m.line) < motion_line.size())
+      motion_line[static_cast<std::size_t>(m.line)] = true;
+  }
+  bool in_mn = p.dialect != Dialect::kTp;
+  bool open = false;  // RAPID: a statement continues on the next line
+  for (std::size_t l = 0; l < f.line_starts.size(); ++l) {
+    const std::string raw = lineAt(f, l);
+    std::string code;
+    std::string kind;
+    if (p.dialect == Dialect::kTp) {
+      if (raw.rfind("/MN", 0) == 0) in_mn = true;
+      if (!raw.empty() && raw[0] == '/') {
+        if (raw.rfind("/MN", 0) != 0) in_mn = false;
+        continue;
+      }
+      if (!in_mn) continue;
+      const std::size_t colon = raw.find(':');
+      code = codeOf(colon == std::string::npos ? raw : raw.substr(colon + 1), "\x01");
+      while (!code.empty() && (code.back() == ';' || code.back() == ' ' || code.back() == '\t'))
+        code.pop_back();
+      if (raw.find_first_not_of(" ") != std::string::npos && raw[raw.find_first_not_of(" ")] == ':')
+        continue;  // the second line of a C motion
+      kind = tpKind(upper(code));
+    } else if (p.dialect == Dialect::kRapid) {
+      code = codeOf(raw, "!");
+      if (code.empty()) continue;
+      const std::string u = upper(code);
+      const bool continued = open;
+      open = !rapidBlockLine(u) && code.back() != ';';
+      if (continued) continue;
+      kind = rapidKind(u);
+    } else {
+      code = codeOf(raw, ";");
+      kind = krlKind(upper(code));
+    }
+    if (kind.empty() || motion_line[l + 1]) continue;
+    if (code.size() > 60) code = code.substr(0, 57) + "...";
+    rep.not_carried.push_back(f.path + ":" + std::to_string(l + 1) + ": " + code + " (" + kind +
+                              ")");
+  }
+}
+
+/// The zone the writer of `to` gives a motion (fine: exact stop).
+std::string writtenZone(Dialect to, const Item& it) {
+  if (to == Dialect::kKrl)
+    return it.fine ? "exact stop" : it.type == MotionType::kJoint ? "C_PTP" : "C_DIS";
+  if (to == Dialect::kRapid) return it.fine ? "fine" : "z1";
+  return it.fine ? "FINE" : "CNT100";
+}
+
+/// One line per zone mapping that changes what the source says ("z10 -> C_DIS"), with the
+/// source lines of the motions it concerns: "zone z10 -> C_DIS at FILE:12,14,20 (3 motions)".
+void listZoneMappings(const Program& p, Dialect to, const std::vector<Item>& items,
+                      ConversionReport& rep) {
+  std::vector<std::string> order;
+  std::map<std::string, std::pair<std::string, std::vector<int>>> seen;  // mapping -> file, lines
+  for (const Item& it : items) {
+    const Motion& m = p.motions[static_cast<std::size_t>(it.motion)];
+    if (it.fine) continue;  // exact stop in, exact stop out
+    const std::string from = m.zone_text.empty() ? std::string("approximated") : m.zone_text;
+    const std::string into = writtenZone(to, it);
+    bool same = true;  // KRL may repeat the word: `C_DIS C_DIS`
+    for (std::size_t a = 0; a < from.size();) {
+      const std::size_t b = std::min(from.find(' ', a), from.size());
+      same = same && iequals(from.substr(a, b - a), into);
+      a = b + 1;
+    }
+    if (same) continue;
+    const std::string key = from + " -> " + into;
+    if (!seen.count(key)) {
+      order.push_back(key);
+      seen[key].first = p.files[static_cast<std::size_t>(m.file)].path;
+    }
+    seen[key].second.push_back(m.line);
+  }
+  for (const std::string& key : order) {
+    const auto& [file, lines] = seen[key];
+    std::string s = "zone " + key + " at " + file + ":";
+    for (std::size_t i = 0; i < lines.size(); ++i) s += (i ? "," : "") + std::to_string(lines[i]);
+    s += " (" + std::to_string(lines.size()) + (lines.size() == 1 ? " motion" : " motions") +
+         "; the approximation size is not carried)";
+    rep.not_carried.push_back(s);
   }
 }
 
@@ -585,7 +828,12 @@ std::vector<std::pair<std::string, std::string>> convertProgram(const Program& p
                                                                 const std::string& out_path,
                                                                 ConversionReport& report) {
   const bool table = to == Dialect::kCsv || to == Dialect::kJson;
-  const std::vector<Item> items = collect(p, table, report);
+  std::vector<Item> items = collect(p, table, report);
+  if (!table) {  // a program: say what of the source it does not carry (issue 14)
+    markUnusedKrlExternalAxes(p, items, report);
+    listNotCarried(p, report);
+    listZoneMappings(p, to, items, report);
+  }
   switch (to) {
     case Dialect::kKrl:
       return toKrl(p, items, out_path, report);

@@ -8,7 +8,12 @@
 /// elbow up (§9 item 2 reading), ABB cfx, FANUC F/N U/D T/B).
 ///
 /// Not carried (reported per item, exit code 1): joint targets into another vendor's dialect
-/// (joint sign conventions and zeros differ per vendor), targets built at run time. Turn
+/// (joint sign conventions and zeros differ per vendor), targets built at run time.
+/// Not carried and listed with their source line (ConversionReport::not_carried, exit code 0):
+/// every other instruction (WAIT/WaitTime, I/O, spindle and other calls, control flow) and the
+/// zones, which map to one approximation per dialect (KRL C_DIS/C_PTP, RAPID z1, TP CNT100).
+/// External axes: RAPID writes 9E+09 for an axis the source does not state (a KRL source's axes
+/// that are 0 in every target count as not stated: KRL writes E1..E6 = 0 for absent axes). Turn
 /// information is vendor- and joint-convention specific: KUKA T is omitted, ABB cf1/cf4/cf6 are
 /// written 0 under `ConfJ\Off`/`ConfL\Off`, FANUC turn digits are written 0 and listed as notes.
 /// CSV/JSON keep the source's configuration text and joint values verbatim.
@@ -26,6 +31,11 @@ namespace roprec::postproc {
 struct ConversionReport {
   std::vector<std::string> skipped;  ///< items not converted (exit code 1)
   std::vector<std::string> notes;    ///< what the user must check in the output
+  /// Into krl/rapid/tp: every source instruction the new program does not carry (waits, I/O,
+  /// spindle and other calls, control flow, assignments, interrupts), as "FILE:LINE: text
+  /// (kind)", and every zone mapping that changes the source's zone, as "zone z10 -> C_DIS at
+  /// FILE:12,14 (2 motions; ...)". Not an error (exit code 0): the motions are all there.
+  std::vector<std::string> not_carried;
 };
 
 /// The files of the converted program: (path, bytes). KRL: OUT.src and OUT.dat. Throws

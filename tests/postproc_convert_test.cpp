@@ -2,7 +2,10 @@
 // branch (docs/programs.md §7.1).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
+#include <regex>
+#include <sstream>
 
 #include "compensator/support/error.hpp"
 #include "postproc/convert.hpp"
@@ -166,6 +169,125 @@ TEST(PostprocConvert, UnresolvedFrameNeedsAValue) {
       test::tempDir("cv2") + "/x.mod' --frame 'UFRAME[1]=1400 0 400 0 0 0;UTOOL[1]=0 0 250 0 0 0'");
   EXPECT_EQ(r.exit_code, 1) << r.err;  // joint targets listed
   EXPECT_NE(r.err.find("joint target"), std::string::npos);
+}
+
+// ------------------------------------------------------------------ what is not carried (issue 14)
+
+std::string dataProgram(const std::string& name) {
+  return test::sourceDir() + "/tests/data/programs/" + name;
+}
+
+/// Line `n` (1-based) of a file, read independently of the program reader.
+std::string fileLine(const std::string& path, int n) {
+  std::istringstream in(test::readFile(path));
+  std::string line;
+  for (int i = 0; i < n && std::getline(in, line); ++i) {
+  }
+  return line;
+}
+
+bool listed(const std::vector<std::string>& v, const std::string& what) {
+  return std::any_of(v.begin(), v.end(),
+                     [&](const std::string& s) { return s.find(what) != std::string::npos; });
+}
+
+/// Every "FILE:LINE: text (kind)" entry names a line whose text holds `text` and no motion.
+void expectLinesTrue(const Program& src, const std::vector<std::string>& not_carried) {
+  const std::string& path = src.files[0].path;
+  for (const std::string& s : not_carried) {
+    if (s.rfind("zone ", 0) == 0) continue;
+    SCOPED_TRACE(s);
+    ASSERT_EQ(s.rfind(path + ":", 0), 0u);
+    const int line = std::stoi(s.substr(path.size() + 1));
+    const size_t t0 = s.find(": ", path.size()) + 2, t1 = s.rfind(" (");
+    std::string text = s.substr(t0, t1 - t0);
+    if (text.size() > 3 && text.compare(text.size() - 3, 3, "...") == 0)
+      text.resize(text.size() - 3);
+    EXPECT_NE(fileLine(path, line).find(text), std::string::npos);
+    for (const Motion& m : src.motions) EXPECT_NE(m.line, line);
+  }
+}
+
+TEST(PostprocConvert, ListsWaitsCallsAndZoneMappingsItDoesNotCarry) {
+  const std::string dir = test::tempDir("convert-carry");
+  struct Case {
+    const char* file;
+    Dialect to;
+    std::vector<std::string> expect;
+  };
+  const std::vector<Case> cases{
+      {"rapid_drill.mod",
+       Dialect::kKrl,
+       {"rapid_drill.mod:23: WaitTime 0.5; (wait)", "rapid_drill.mod:20: SpindleOn 12000; (call)",
+        "rapid_drill.mod:31: nCount := nCount + 1; (assignment)",
+        "zone z10 -> C_DIS at " + dataProgram("rapid_drill.mod") + ":24,25 (2 motions",
+        "zone z10 -> C_PTP at " + dataProgram("rapid_drill.mod") + ":18 (1 motion"}},
+      {"rapid_drill.mod",
+       Dialect::kTp,
+       {"rapid_drill.mod:23: WaitTime 0.5; (wait)",
+        "zone z10 -> CNT100 at " + dataProgram("rapid_drill.mod") + ":18,24,25 (3 motions"}},
+      {"tp_controller.ls",
+       Dialect::kRapid,
+       {"tp_controller.ls:32: WAIT    .25(sec) (wait)",
+        "tp_controller.ls:35: CALL DRILL_20_3 (call)",
+        "zone CNT50 -> z1 at " + dataProgram("tp_controller.ls") + ":29 (1 motion"}},
+      {"kss_drill.src",
+       Dialect::kTp,
+       {"kss_drill.src:46: WAIT SEC 0.5 (wait)", "kss_drill.src:61: MyCustomMacro(1, 2) (call)",
+        "kss_drill.src:62: IF $IN[5] THEN (control flow)"}},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(std::string(c.file) + " -> " + dialectName(c.to));
+    Program src = readProgram(dataProgram(c.file));
+    for (const char* f : {"UFRAME[9]", "UTOOL[1]", "wUnknown", "TOOL_DATA[2]", "BASE_DATA[3]"})
+      resolveFrame(src, f, Pose::Identity());
+    ConversionReport rep;
+    convertProgram(src, c.to, dir + "/o_" + dialectName(c.to), rep);
+    for (const std::string& e : c.expect) EXPECT_TRUE(listed(rep.not_carried, e)) << e;
+    expectLinesTrue(src, rep.not_carried);
+    // the motions' zones that a dialect keeps are not listed
+    EXPECT_FALSE(listed(rep.not_carried, "FINE ->"));
+    EXPECT_FALSE(listed(rep.not_carried, "fine ->"));
+  }
+  // the CLI says it on stderr (also with --quiet), exit code as before (joint targets skipped)
+  const auto r = test::runRoprec("convert '" + dataProgram("rapid_drill.mod") + "' --to krl -o '" +
+                                 dir + "/cli.src' --quiet --frame 'wUnknown=0 0 0 0 0 0'");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("roprec: not carried: " + dataProgram("rapid_drill.mod") +
+                       ":23: WaitTime 0.5; (wait)"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("zone z1 -> C_DIS at "), std::string::npos) << r.err;
+}
+
+/// A KRL source states E1..E6 = 0 for axes the cell does not have: RAPID gets 9E+09 for them and
+/// the used axis (E1 = 1545 mm on one target) keeps its value.
+TEST(PostprocConvert, KrlSourceUnusedExternalAxesBecome9E09InRapid) {
+  Program src = readProgram(dataProgram("kss_drill.src"));
+  resolveFrame(src, "TOOL_DATA[2]", Pose::Identity());
+  resolveFrame(src, "BASE_DATA[3]", Pose::Identity());
+  ConversionReport rep;
+  const auto files = convertProgram(src, Dialect::kRapid, test::tempDir("cv-ext") + "/x.mod", rep);
+  const std::regex ext("robtarget [^:]+:=\\[.*\\],\\[([^\\]]*)\\]\\];");
+  int n = 0;
+  bool e1_kept = false;
+  const std::string& mod = files[0].second;
+  for (std::sregex_iterator it(mod.begin(), mod.end(), ext), end; it != end; ++it, ++n) {
+    std::vector<std::string> v;
+    std::stringstream ss((*it)[1].str());
+    for (std::string x; std::getline(ss, x, ',');) v.push_back(x);
+    ASSERT_EQ(v.size(), 6u) << (*it)[0];
+    for (size_t k = 1; k < 6; ++k) EXPECT_EQ(v[k], "9E+09") << (*it)[0];
+    e1_kept = e1_kept || v[0] == "1545.000000";
+  }
+  EXPECT_GE(n, 3);
+  EXPECT_TRUE(e1_kept);
+  EXPECT_TRUE(listed(rep.notes, "E2, E3, E4, E5, E6 = 0 in every target")) << rep.notes.size();
+  // and the KRL/TP writers do not invent the unused axes either
+  ConversionReport rep2;
+  const auto krl = convertProgram(src, Dialect::kKrl, test::tempDir("cv-ext2") + "/x.src", rep2);
+  EXPECT_EQ(krl[1].second.find(",E2 "), std::string::npos);
+  EXPECT_NE(krl[1].second.find(",E1 1545.000000"), std::string::npos);
 }
 
 }  // namespace

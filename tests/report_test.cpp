@@ -4,6 +4,7 @@
 // stream) and checked for a drawn map.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -13,6 +14,7 @@
 #include <fstream>
 #include <random>
 #include <regex>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -783,6 +785,26 @@ TEST(ReportChromium, HeadlessScreenshotShowsTheMaps) {
 
 std::string sample(const std::string& rel) { return test::sourceDir() + "/samples/" + rel; }
 
+/// The fields of one CSV line (RFC 4180: quoted fields, "" inside quotes).
+std::vector<std::string> csvFields(const std::string& line) {
+  std::vector<std::string> f(1);
+  bool quoted = false;
+  for (size_t i = 0; i < line.size(); ++i) {
+    const char ch = line[i];
+    if (quoted && ch == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+      f.back() += '"';
+      ++i;
+    } else if (ch == '"') {
+      quoted = !quoted;
+    } else if (ch == ',' && !quoted) {
+      f.emplace_back();
+    } else {
+      f.back() += ch;
+    }
+  }
+  return f;
+}
+
 /// The cells of the per-hole table's body rows, tags stripped (one vector per row).
 std::vector<std::vector<std::string>> tableRows(const std::string& html) {
   const size_t t0 = html.find("<table class=\"holes\"");
@@ -859,8 +881,9 @@ TEST(ReportSample, VerdictsPartFrameAlignedTableAndTheWhy) {
   for (const auto& row : rows) ASSERT_EQ(row.size(), heads.size());
   std::string all_heads;
   for (const std::string& h : heads) all_heads += h;
-  for (const char* unit : {"<small>\u00b5m</small>", "<small>mm</small>", "<small>deg</small>",
-                           "<small>\u00b5rad</small>", "<small>s</small>"}) {
+  for (const char* unit :
+       {"<small>\u00b5m</small>", "<small>mm</small>", "<small>deg, ctrl</small>",
+        "<small>\u00b5rad</small>", "<small>s</small>"}) {
     EXPECT_NE(all_heads.find(unit), std::string::npos) << unit;
   }
   const std::regex number("^-?[0-9]+(\\.[0-9]+)?$");
@@ -870,7 +893,7 @@ TEST(ReportSample, VerdictsPartFrameAlignedTableAndTheWhy) {
   const size_t c_p = columnOf(heads, "\u2192 process"), c_c = columnOf(heads, "\u2192 controller");
   const size_t c_j1 = columnOf(heads, ">J1<");
   EXPECT_NE(heads[c_e].find("<small>\u00b5m</small>"), std::string::npos);
-  EXPECT_NE(heads[c_j1].find("<small>deg</small>"), std::string::npos);
+  EXPECT_NE(heads[c_j1].find("<small>deg, ctrl</small>"), std::string::npos);
   for (size_t i = 0; i < rows.size(); ++i) {
     const auto& row = rows[i];
     for (const size_t c : {c_e, c_d, c_g, c_t, c_p, c_c, c_j1})
@@ -974,8 +997,105 @@ TEST(ReportSample, CompensationReportOfTheSample) {
     const double dp =
         (h.T_programmed.translation() - r.context.job.requests[i].T_W_tcp.translation()).norm();
     EXPECT_NEAR(std::stod(rows[i][cn]), dp * 1e3, 0.0006) << h.id;
-    EXPECT_EQ(rows[i][cf], h.before.config + " \u2192 " + h.config_text) << h.id;
+    EXPECT_EQ(rows[i][cf], h.config_before + " \u2192 " + h.config_text) << h.id;
   }
+}
+
+/// Why: per hole the rotation about the drill axis with its reason and the flag change with its
+/// reason, in the report and in the CSV export (flip-free on the sample).
+TEST(ReportSample, CompensationReasonsInTheReportAndTheCsv) {
+  api::CompensationJob job;
+  job.options.mode = OrientationMode::kFlipFree;
+  const api::CompensationResult r = api::compensateJob(
+      sample("cells/housing-kr120.xml"), sample("emotor-housing/housing_kr120.src"), job);
+  const std::string html = api::compensationReport(r, "housing_kr120.src");
+  const std::vector<std::string> heads = tableHeads(html);
+  const auto rows = tableRows(html);
+  ASSERT_EQ(rows.size(), r.holes.size());
+  const size_t crot = columnOf(heads, "rot. about axis"), cwr = columnOf(heads, "Why rotated");
+  const size_t cwc = columnOf(heads, "Why config changed");
+  const std::string csv = api::compensationTargets(r, "housing_kr120.src", true);
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  const std::vector<std::string> names = csvFields(line);
+  const auto col = [&](const std::string& n) {
+    const auto it = std::find(names.begin(), names.end(), n);
+    EXPECT_NE(it, names.end()) << n;
+    return static_cast<size_t>(it - names.begin());
+  };
+  const size_t k_rot = col("rotation_about_axis_deg"), k_rr = col("rotation_reason");
+  const size_t k_cb = col("config_before"), k_cc = col("config_changed");
+  const size_t k_cr = col("config_reason"), k_cfg = col("config");
+  int rotated = 0;
+  for (size_t i = 0; i < rows.size(); ++i) {
+    const HoleCompensation& h = r.holes[i];
+    ASSERT_TRUE(h.ok) << h.id;
+    EXPECT_NEAR(std::stod(rows[i][crot]), h.psi / kDeg, 0.006) << h.id;
+    const std::string dash = "\u2014";
+    EXPECT_EQ(rows[i][cwr], h.psi_reason.empty() ? dash : h.psi_reason) << h.id;
+    EXPECT_EQ(rows[i][cwc], h.config_reason.empty() ? dash : h.config_reason) << h.id;
+    // a rotation without a reason would be a change nobody asked for
+    if (std::fabs(h.psi) > 1e-9) {
+      ++rotated;
+      EXPECT_NE(rows[i][cwr], dash) << h.id;
+    }
+    ASSERT_TRUE(std::getline(in, line));
+    const std::vector<std::string> f = csvFields(line);
+    ASSERT_EQ(f.size(), names.size()) << line;
+    EXPECT_NEAR(std::stod(f[k_rot]), h.psi / kDeg, 1e-4) << h.id;
+    EXPECT_EQ(f[k_rr], h.psi_reason) << h.id;
+    EXPECT_EQ(f[k_cb], h.config_before) << h.id;
+    EXPECT_EQ(f[k_cc], f[k_cb] != f[k_cfg] ? "1" : "0") << h.id;
+    EXPECT_EQ(f[k_cr], h.config_reason) << h.id;
+  }
+  RecordProperty("rotated_holes", rotated);
+}
+
+/// FANUC: the report's J1..J6 are the controller's (J3_ctrl = J3_urdf - J2_urdf, the card's
+/// j23_coupling = -1, signs +1, offsets 0), and the JSON adds controller_joints_deg.
+TEST(ReportSample, FanucJointsAsTheControllerShowsThem) {
+  const std::string dir = test::tempDir("report-fanuc");
+  const test::RunResult run = test::runRoprec(
+      "predict --cell '" + sample("cells/housing-r2000.xml") + "' '" +
+      sample("emotor-housing/housing_r2000.ls") + "' --frame cell --tool cell --json '" + dir +
+      "/p.json' --report '" + dir + "/p.html'");
+  ASSERT_LE(run.exit_code, 1) << run.err;
+  const std::string html = test::readFile(dir + "/p.html");
+  const std::string json = test::readFile(dir + "/p.json");
+  const std::vector<std::string> heads = tableHeads(html);
+  const auto rows = tableRows(html);
+  const size_t c1 = columnOf(heads, ">J1<");
+  for (int j = 0; j < 6; ++j)
+    EXPECT_NE(heads[c1 + j].find("<small>deg, ctrl</small>"), std::string::npos) << j;
+  EXPECT_NE(html.find("as the FANUC controller shows it"), std::string::npos);
+  EXPECT_NE(html.find("J3<sub>ctrl</sub> = J3<sub>URDF</sub> \u2212 J2<sub>URDF</sub>"),
+            std::string::npos);
+  // the JSON's URDF joints, hole by hole, in table order
+  const std::regex urdf(
+      "\"joints_deg\": *\\[([^\\]]*)\\],\\s*\"controller_joints_deg\": *\\[([^\\]]*)\\]");
+  size_t n = 0;
+  double max_j3_gap = 0;
+  for (std::sregex_iterator it(json.begin(), json.end(), urdf), end; it != end; ++it, ++n) {
+    ASSERT_LT(n, rows.size());
+    std::vector<double> q, qc;
+    for (const auto& [text, out] : {std::pair{(*it)[1].str(), &q}, {(*it)[2].str(), &qc}}) {
+      std::stringstream ss(text);
+      for (std::string x; std::getline(ss, x, ',');) out->push_back(std::stod(x));
+    }
+    ASSERT_EQ(q.size(), 6u);
+    const double j3_ctrl = q[2] - q[1];  // FANUC: J3 from the horizontal
+    EXPECT_NEAR(qc[2], j3_ctrl, 1e-5) << n;
+    EXPECT_NEAR(std::stod(rows[n][c1 + 2]), j3_ctrl, 0.051) << n;
+    for (int j : {0, 1, 3, 4, 5}) {
+      EXPECT_NEAR(std::stod(rows[n][c1 + j]), q[static_cast<size_t>(j)], 0.051) << n;
+      EXPECT_NEAR(qc[static_cast<size_t>(j)], q[static_cast<size_t>(j)], 1e-9) << n;
+    }
+    max_j3_gap = std::max(max_j3_gap, std::fabs(q[1]));
+  }
+  EXPECT_EQ(n, rows.size());
+  EXPECT_GT(n, 100u);
+  EXPECT_GT(max_j3_gap, 5.0);  // J2 ≠ 0 somewhere: the two conventions differ on this job
 }
 
 // ------------------------------------------------------------------ large jobs in Chromium
@@ -1097,16 +1217,25 @@ TEST(ReportSample, VerifyReportNamesAxesDecisionsAndFailingHoles) {
   // one residual marker per hole with its decision; failing holes (outside the region or
   // non-conformance proven) labelled and left visible by the filter
   EXPECT_EQ(countOf(html, "class=\"vmk\""), 24u);
-  size_t failing = 0;
-  for (size_t at = html.find("<tr><td class=\"l\">"); at != std::string::npos;
-       at = html.find("<tr><td class=\"l\">", at + 5))
-    ++failing;
-  EXPECT_EQ(countOf(html, "<tr class=\"pass\">") + failing, 24u);
+  const size_t t0 = html.find("<table class=\"holes\" id=\"holetable\">");
+  ASSERT_NE(t0, std::string::npos);
+  const std::string table = html.substr(t0, html.find("</table>", t0) - t0);
+  const size_t failing = countOf(table, "<tr><td>");
+  EXPECT_EQ(countOf(table, "<tr class=\"pass\">") + failing, 24u);
   EXPECT_EQ(countOf(html, "class=\"flabel\""), failing);
   EXPECT_GT(failing, 0u);
   EXPECT_NE(html.find("id=\"failonly\""), std::string::npos);
   EXPECT_NE(html.find("|r|<br><small>\u00b5m</small>"), std::string::npos);
-  EXPECT_EQ(html.find("<script"), std::string::npos);
+  // sortable like the prediction report: the same inline script, heads in a <thead>, text columns
+  // marked; self-contained: that one inline script and nothing loaded
+  EXPECT_EQ(countOf(html, "<script"), 1u);
+  EXPECT_NE(html.find(std::string("<script>") + api::reportTableScript() + "</script>"),
+            std::string::npos);
+  EXPECT_EQ(html.find(" src="), std::string::npos);
+  EXPECT_NE(table.find("<thead><tr><th>#</th><th class=\"l\" data-t=\"1\">id</th>"),
+            std::string::npos);
+  EXPECT_EQ(countOf(table, "<tbody>"), 1u);
+  EXPECT_NE(html.find(".holes.fonly tr.pass{display:none}"), std::string::npos);
   EXPECT_EQ(countOf(json, "\"non-conformance-proven\"") > 0,
             html.find("#cf222e") != std::string::npos);
 }

@@ -309,7 +309,9 @@ std::string targetsCsv(const api::CompensationResult& r) {
     const HolePrediction& u = h.ok ? h.after : h.before;
     s << "," << api::formatNumber(u.U_robot * 1e6, 3) << "," << api::formatNumber(u.U_mach * 1e6, 3)
       << "," << api::formatNumber(u.U_work * 1e6, 3) << "," << api::formatNumber(u.k, 4) << ","
-      << verdictName(u.verdict) << ",\"" << h.reason << "\"\n";
+      << verdictName(u.verdict) << ",\"";
+    for (const char ch : h.reason) s << (ch == '"' ? "\"\"" : std::string(1, ch));  // RFC 4180
+    s << "\"\n";
   }
   return s.str();
 }
@@ -412,7 +414,19 @@ TEST(StreamingOutput, TargetExportsKeepEveryByteOfThePreviousWriters) {
     r.holes[1].ok = false;
     r.holes[1].reason = "kept for the test, \"quoted\"";
     r.holes[2].note = "a note";
-    EXPECT_EQ(api::compensationTargets(r, program, true), reference::targetsCsv(r));
+    // CSV: every row starts with the previous writer's row (issue 14 appended the controller
+    // joints and the rotation/flag reasons as further columns)
+    {
+      std::istringstream now(api::compensationTargets(r, program, true));
+      std::istringstream before(reference::targetsCsv(r));
+      size_t rows = 0;
+      for (std::string a, b; std::getline(before, b); ++rows) {
+        ASSERT_TRUE(std::getline(now, a)) << "row " << rows;
+        EXPECT_EQ(a.substr(0, b.size()), b) << "row " << rows;
+        EXPECT_TRUE(a.size() == b.size() || a[b.size()] == ',') << "row " << rows;
+      }
+      EXPECT_EQ(rows, r.holes.size() + 1);
+    }
     const std::string json = api::compensationTargets(r, program, false);
     EXPECT_TRUE(keepsEveryLineInOrder(json, reference::targetsJson(r, program)));
     // streamed in pieces: the same bytes as the whole string

@@ -26,6 +26,7 @@ ConvertResult convertProgramFile(const ConvertRequest& request) {
   }
   r.notes = groupNotes(report.notes);
   r.skipped = report.skipped;
+  r.not_carried = report.not_carried;
   return r;
 }
 

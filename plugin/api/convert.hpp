@@ -28,6 +28,9 @@ struct ConvertResult {
   std::vector<std::string> written;  ///< the paths written
   std::vector<std::string> notes;  ///< what to check in the output, one line per kind (groupNotes)
   std::vector<std::string> skipped;  ///< items not converted
+  /// source instructions and zones the new program does not carry ("FILE:LINE: text (kind)",
+  /// "zone z10 -> C_DIS at FILE:12,14 (...)"); postproc::ConversionReport::not_carried
+  std::vector<std::string> not_carried;
 };
 
 /// Reads, converts and writes (atomically) the program.

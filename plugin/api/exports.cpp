@@ -53,6 +53,7 @@ ReportInput reportHeader(const PredictionContext& c, const std::string& title) {
   in.uncertainty_method = uncertaintyMethodText(c.model.uncertainty);
   in.uncertainty_source = c.model.uncertainty.source;
   in.default_tolerance_mm = c.cell.tolerance_mm;
+  in.card = &c.robot.card;  // joints in the controller's convention (issue 14)
   in.generator = std::string("roprec ") + version();
   return in;
 }
@@ -81,6 +82,16 @@ void csvQuaternion(std::string& s, const Mat3& R) {
   csvNumber(s, q.z(), 9);
 }
 
+/// ,"text" with the text's double quotes doubled (RFC 4180).
+void csvQuoted(std::string& s, const std::string& text) {
+  s += ",\"";
+  for (const char c : text) {
+    if (c == '"') s += '"';
+    s += c;
+  }
+  s += '"';
+}
+
 void csvRow(std::string& s, const CompensationResult& r, size_t i) {
   const HoleCompensation& h = r.holes[i];
   const Pose& N = nominalOf(r, i);
@@ -107,9 +118,16 @@ void csvRow(std::string& s, const CompensationResult& r, size_t i) {
   csvNumber(s, u.k, 4);
   s += ',';
   s += verdictName(u.verdict);
-  s += ",\"";
-  s += h.reason;
-  s += "\"\n";
+  csvQuoted(s, h.reason);
+  // issue 14: the joints as the controller shows them, why the rotation and the flags changed
+  const Vec6 q_ctrl =
+      toControllerJoints(r.context.robot.card, h.ok ? h.theta_cmd : h.before.joints);
+  for (int k = 0; k < 6; ++k) csvNumber(s, q_ctrl[k] / kDeg, 6);
+  csvQuoted(s, h.ok ? h.psi_reason : std::string());
+  csvQuoted(s, h.config_before);
+  s += h.ok && h.config_changed ? ",1" : ",0";
+  csvQuoted(s, h.ok ? h.config_reason : std::string());
+  s += '\n';
 }
 
 constexpr size_t kChunk = 64 * 1024;  ///< bytes handed to a ByteSink at a time
@@ -123,7 +141,8 @@ void targetsCsv(const CompensationResult& r, const ByteSink& sink) {
       "programmed_qz,"
       "j1_deg,j2_deg,j3_deg,j4_deg,j5_deg,j6_deg,config,rotation_about_axis_deg,residual_um,U_"
       "robot_um,U_mach_um,"
-      "U_work_um,k,verdict,reason\n";
+      "U_work_um,k,verdict,reason,j1_ctrl_deg,j2_ctrl_deg,j3_ctrl_deg,j4_ctrl_deg,j5_ctrl_deg,"
+      "j6_ctrl_deg,rotation_reason,config_before,config_changed,config_reason\n";
   s.reserve(kChunk + 4096);
   for (size_t i = 0; i < r.holes.size(); ++i) {
     csvRow(s, r, i);
@@ -237,6 +256,8 @@ void targetJson(JsonWriter& w, const CompensationResult& r, size_t i) {
     poseContract(w, h.T_programmed);
     w.key("joints_deg");
     w.numbers(h.theta_cmd / kDeg, 6);
+    w.key("controller_joints_deg");
+    w.numbers(toControllerJoints(r.context.robot.card, h.theta_cmd) / kDeg, 6);
     w.key("config");
     w.str(h.config_text);
     w.endObject();
@@ -312,7 +333,8 @@ void targetsJson(const CompensationResult& r, const std::string& program_path,
 /// One hole of the prediction JSON: the same members, in the same order, as holeJson()
 /// (prediction_setup.cpp, the tree the C and Python hosts build; tests/streaming_output_test.cpp
 /// compares the two byte for byte).
-void predictionHole(JsonWriter& w, const HolePrediction& h, const HoleRequest& r) {
+void predictionHole(JsonWriter& w, const HolePrediction& h, const HoleRequest& r,
+                    const RobotCard& card) {
   w.beginObject();
   w.key("id");
   w.str(h.id);
@@ -344,6 +366,8 @@ void predictionHole(JsonWriter& w, const HolePrediction& h, const HoleRequest& r
       h.status == HoleStatus::kSingular) {
     w.key("joints_deg");
     w.numbers(h.joints / kDeg, 6);
+    w.key("controller_joints_deg");
+    w.numbers(toControllerJoints(card, h.joints) / kDeg, 6);
     if (!h.config.empty()) {
       w.key("config");
       w.str(h.config);
@@ -437,7 +461,7 @@ Json predictionJson(const PredictionResult& r) {
   root.set("notes", notes);
   Json hs = Json::array();
   for (size_t i = 0; i < r.holes.size(); ++i) {
-    hs.push(finiteOrFailed(holeJson(r.holes[i], c.job.requests[i]), r.holes[i].id,
+    hs.push(finiteOrFailed(holeJson(r.holes[i], c.job.requests[i], &c.robot.card), r.holes[i].id,
                            c.job.requests[i].line));
   }
   root.set("holes", hs);
@@ -480,7 +504,7 @@ void writeCompensationTargets(const CompensationResult& r, const std::string& pr
 // ---- streamed prediction JSON
 
 PredictionJsonStream::PredictionJsonStream(const PredictionContext& c, ByteSink sink)
-    : sink_(std::move(sink)) {
+    : sink_(std::move(sink)), card_(c.robot.card) {
   w_.out().reserve(kChunk + 8192);
   w_.beginObject();
   w_.key("robot");
@@ -501,7 +525,7 @@ PredictionJsonStream::PredictionJsonStream(const PredictionContext& c, ByteSink 
 }
 
 void PredictionJsonStream::hole(const HolePrediction& h, const HoleRequest& r) {
-  itemOrFailed(w_, h.id, r.line, [&] { predictionHole(w_, h, r); });
+  itemOrFailed(w_, h.id, r.line, [&] { predictionHole(w_, h, r, card_); });
   drain(false);
 }
 
@@ -540,7 +564,10 @@ std::string compensationReport(const CompensationResult& r, const std::string& p
       rh.T_W_programmed = h.T_programmed;
       rh.rotation_about_axis_deg = h.psi / kDeg;
       rh.after = &h.after;
-      rh.config_after = h.config_text;  // issue 14: flags before → after
+      rh.config_after = h.config_text;  // issue 14: flags before → after, and why
+      rh.config_before = h.config_before;
+      rh.rotation_reason = h.psi_reason;
+      rh.config_reason = h.config_reason;
     }
     in.holes.push_back(rh);
   }

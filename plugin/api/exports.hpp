@@ -30,6 +30,7 @@ class PredictionJsonStream {
   void drain(bool all);
   JsonWriter w_;
   ByteSink sink_;
+  RobotCard card_;  ///< for the joints in the controller's convention
 };
 
 /// The prediction JSON of the file contract (docs/contract.md "Prediction output").

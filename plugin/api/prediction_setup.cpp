@@ -143,7 +143,7 @@ std::string uncertaintyMethodText(const UncertaintyInputs& u) {
          ")";
 }
 
-Json holeJson(const HolePrediction& h, const HoleRequest& r) {
+Json holeJson(const HolePrediction& h, const HoleRequest& r, const RobotCard* card) {
   Json j = Json::object();
   j.set("id", Json::str(h.id));
   if (r.line > 0) j.set("line", Json::integer(r.line));
@@ -163,6 +163,8 @@ Json holeJson(const HolePrediction& h, const HoleRequest& r) {
   if (h.status == HoleStatus::kOk || h.status == HoleStatus::kNotConverged ||
       h.status == HoleStatus::kSingular) {
     j.set("joints_deg", Json::vector(h.joints / kDeg, 6));
+    if (card != nullptr)
+      j.set("controller_joints_deg", Json::vector(toControllerJoints(*card, h.joints) / kDeg, 6));
     if (!h.config.empty()) j.set("config", Json::str(h.config));
     j.set("branch", Json::integer(h.branch));
   }

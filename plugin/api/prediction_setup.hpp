@@ -37,8 +37,9 @@ PredictionContext loadPredictionContext(const std::string& cell_path, const std:
                                         const std::string& uncertainty_override,
                                         double match_tol_mm = 0.5, bool load_holes = true);
 
-/// Per-hole JSON object (contract keys + details).
-Json holeJson(const HolePrediction& h, const HoleRequest& r);
+/// Per-hole JSON object (contract keys + details). With `card`, the joints are also given in the
+/// controller's convention (`controller_joints_deg`, toControllerJoints; issue 14).
+Json holeJson(const HolePrediction& h, const HoleRequest& r, const RobotCard* card = nullptr);
 Json summaryJson(const CapabilitySummary& s);
 std::string uncertaintyMethodText(const UncertaintyInputs& u);
 

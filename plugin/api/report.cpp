@@ -27,6 +27,7 @@
 #include <stdexcept>
 #include <string_view>
 
+#include "compensator/robot/robot_card.hpp"
 #include "compensator/support/xml_escape.hpp"
 #include "plugin/api/prediction_setup.hpp"
 
@@ -869,6 +870,7 @@ tbody tr:hover td{background:#eef5ff}
 .holes td.v span{display:inline-block;min-width:3em}
 .holes td.j span{display:inline-block;min-width:3.1em}
 .holes td.reason{text-align:left;color:#57606a;font-style:italic}
+.holes td.why{min-width:14em;max-width:26em;white-space:normal;font-size:12px;color:#57606a}
 .holes td.chg b{display:inline-block;min-width:1.7em;border:2px solid #e3120b;border-radius:999px;text-align:center;line-height:1.2}
 .badge{display:inline-block;padding:0 7px;border-radius:999px;font-size:11px;font-weight:600;border:1px solid}
 .b-ok{color:#116329;background:#dafbe1;border-color:#aceebb}
@@ -1415,6 +1417,34 @@ std::string jsString(std::string_view v) {
   return s + "\"";
 }
 
+/// The joints as the table shows them: the controller's convention when the card is known.
+Vec6 shownJoints(const ReportInput& in, const Vec6& q_urdf) {
+  return in.card != nullptr ? toControllerJoints(*in.card, q_urdf) : q_urdf;
+}
+
+/// The table note on the joint convention (the J columns' unit line says "ctrl" or "URDF").
+std::string jointConventionText(const ReportInput& in) {
+  if (in.card == nullptr) return "Joints J1\u2013J6: motor-side command, URDF convention.";
+  std::string s = "Joints J1\u2013J6: motor-side command as the " +
+                  esc(vendorName(in.card->vendor)) +
+                  " controller shows it (\u03b8<sub>ctrl</sub> = sign\u00b7\u03b8<sub>URDF</sub> "
+                  "+ offset";
+  if (in.card->j23_coupling != 0.0) {
+    s += "; J3<sub>ctrl</sub> = J3<sub>URDF</sub> " +
+         std::string(in.card->j23_coupling < 0 ? "\u2212 " : "+ ") +
+         (std::fabs(in.card->j23_coupling) == 1.0
+              ? ""
+              : num(std::fabs(in.card->j23_coupling), 3) + "\u00b7") +
+         "J2<sub>URDF</sub>";
+  }
+  return s + ").";
+}
+
+/// A text cell with a reason (dash when there is none).
+std::string reasonCell(const std::string& reason) {
+  return "<td class=\"l why\">" + (reason.empty() ? std::string(kDash) : esc(reason)) + "</td>";
+}
+
 void renderTable(std::string& o, const ReportInput& in, const std::vector<HoleView>& hv) {
   const std::vector<std::string> terms = budgetNames(hv);
   const bool has_split =
@@ -1444,13 +1474,16 @@ void renderTable(std::string& o, const ReportInput& in, const std::vector<HoleVi
   cols.push_back({"\u2300", "mm"});
   cols.push_back({"Config", "", true});
   cols.push_back({"Br.", ""});
-  for (int j = 1; j <= 6; ++j) cols.push_back({"J" + std::to_string(j), "deg"});
+  const std::string jconv = in.card != nullptr ? "deg, ctrl" : "deg, URDF";
+  for (int j = 1; j <= 6; ++j) cols.push_back({"J" + std::to_string(j), jconv});
   cols.push_back({"MC", "s"});
   if (in.compensation) {
     for (const char* c : {"\u0394x", "\u0394y", "\u0394z", "|\u0394p|"}) cols.push_back({c, "mm"});
     cols.push_back({"\u0394rot", "deg"});
     cols.push_back({"rot. about axis", "deg"});
+    cols.push_back({"Why rotated", "", true});
     cols.push_back({"Config before \u2192 after", "", true});
+    cols.push_back({"Why config changed", "", true});
     cols.push_back({"Verdict after", "", true});
     cols.push_back({"Residual", "\u00b5m"});
   }
@@ -1470,8 +1503,8 @@ void renderTable(std::string& o, const ReportInput& in, const std::vector<HoleVi
          "compensation or mastering offset), each part's component along \u03b4robot, so the four "
          "add up to |\u03b4robot| (hover for the part's vector; docs/reports.md \u00a73). ";
   }
-  o += "u = per-axis standard uncertainty of each budget term. Joints: motor-side command (URDF "
-       "convention). A ringed branch marks a configuration change from the previous hole.";
+  o += "u = per-axis standard uncertainty of each budget term. " + jointConventionText(in) +
+       " A ringed branch marks a configuration change from the previous hole.";
   if (in.compensation) {
     o += " \u0394 = the offset applied to the target (programmed \u2212 original, base frame).";
   }
@@ -1553,8 +1586,8 @@ void renderTable(std::string& o, const ReportInput& in, const std::vector<HoleVi
     } else {
       o += "<td>" + (has_joints ? std::to_string(p.branch) : std::string(kDash)) + "</td>";
     }
-    for (int j = 0; j < 6; ++j)
-      o += has_joints ? numCell(p.joints[j] * 180.0 / kPi, 1) : dashCells(1);
+    const Vec6 q = shownJoints(in, p.joints);
+    for (int j = 0; j < 6; ++j) o += has_joints ? numCell(q[j] * 180.0 / kPi, 1) : dashCells(1);
     o += numCell(p.mc_time, 2);
     if (in.compensation) {
       const ReportHole& rh = *h.rh;
@@ -1562,15 +1595,19 @@ void renderTable(std::string& o, const ReportInput& in, const std::vector<HoleVi
         const Offset off = offsetOf(rh);
         for (int k = 0; k < 3; ++k) o += numCell(off.dp_mm[k], 3);
         o += numCell(off.dp_mm.norm(), 3) + numCell(off.angle_deg, 3);
-        const std::string before = p.config.empty() ? std::string(kDash) : esc(p.config);
+        const std::string& cb = rh.config_before.empty() ? p.config : rh.config_before;
+        const std::string before = cb.empty() ? std::string(kDash) : esc(cb);
         const std::string after = rh.config_after ? esc(*rh.config_after) : before;
         o += rh.rotation_about_axis_deg ? numCell(*rh.rotation_about_axis_deg, 2) : dashCells(1);
+        o += reasonCell(rh.rotation_reason);
         o += std::string("<td class=\"l") + (after != before ? " cfgchg" : "") + "\">" + before +
              " \u2192 " + after + "</td>";
+        o += reasonCell(rh.config_reason);
       } else {
         o += dashCells(5);
         o += rh.rotation_about_axis_deg ? numCell(*rh.rotation_about_axis_deg, 2) : dashCells(1);
-        o += "<td class=\"l\">" + std::string(kDash) + "</td>";
+        o += reasonCell(rh.rotation_reason) + "<td class=\"l\">" + std::string(kDash) + "</td>" +
+             reasonCell(rh.config_reason);
       }
       const Verdict va = rh.after != nullptr ? rh.after->verdict : p.verdict;
       const VerdictStyle& vsa = styleOf(va);
@@ -1638,6 +1675,8 @@ void renderFooter(std::string& o, const ReportInput& in) {
 }  // namespace
 
 std::string viridisHex(double t) { return hex(viridis(t)); }
+
+const char* reportTableScript() { return kTableScript; }
 
 void addPartFrameAndSplit(ReportInput& in, const PredictionContext& c) {
   const JobHoles& job = c.job;

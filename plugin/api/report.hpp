@@ -13,6 +13,10 @@
 #include "compensator/precision/prediction.hpp"
 #include "plugin/api/deviation_split.hpp"
 
+namespace roprec {
+struct RobotCard;
+}
+
 namespace roprec::api {
 
 struct ReportHole {
@@ -25,11 +29,22 @@ struct ReportHole {
   const HolePrediction* after{nullptr};  ///< compensate: prediction at the programmed pose
   /// compensate: the configuration flags of the programmed (compensated) target
   std::optional<std::string> config_after;
+  /// compensate: the program's flags at the hole (HoleCompensation::config_before; empty: the
+  /// flags of the predicted posture are shown as "before")
+  std::string config_before;
+  /// compensate: why the programmed rotation about the drill axis was not kept ("" when kept)
+  std::string rotation_reason;
+  /// compensate: why the written flags differ from the program's ("" when kept)
+  std::string config_reason;
   /// Why: δrobot split into gravity, tool weight, process load and controller reference.
   std::optional<DeviationSplit> split;
 };
 
 struct ReportInput {
+  /// The joints of the table are shown as the controller shows them (toControllerJoints of this
+  /// card: θ_ctrl,i = sign_i·θ_urdf,i + offset_i, J3 += j23_coupling·θ_urdf,2, e.g. FANUC J3 =
+  /// J3_urdf − J2_urdf); nullptr: the URDF convention. The table head says which.
+  const RobotCard* card{nullptr};
   std::string title;               ///< e.g. "roprec prediction — housing.src"
   std::string robot;               ///< robot name + model
   std::string cell;                ///< cell name and file
@@ -70,5 +85,11 @@ void addPartFrameAndSplit(ReportInput& in, const PredictionContext& c);
 
 /// The whole HTML document.
 std::string renderReport(const ReportInput& in);
+
+/// The reports' inline table script (no network, no library): a click on a head of the table
+/// `#holetable` sorts its body by that column (numbers numerically, `data-t="1"` heads as text;
+/// again: the other way; ties keep program order) and marks the head `aria-sort`; the checkbox
+/// `#failonly` toggles the class `fonly` on the table (CSS hides `tr.pass` under it).
+const char* reportTableScript();
 
 }  // namespace roprec::api

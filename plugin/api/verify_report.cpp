@@ -8,6 +8,7 @@
 
 #include "compensator/support/c_format.hpp"
 #include "compensator/support/xml_escape.hpp"
+#include "plugin/api/report.hpp"
 #include "plugin/api/verify.hpp"
 
 namespace roprec::api {
@@ -267,24 +268,29 @@ std::string holeTable(const VerifyResult& r) {
   size_t failing = 0;
   for (const HoleVerification& h : r.holes)
     failing += (!h.inside || h.decision == MeasuredDecision::kNonConformanceProven) ? 1 : 0;
-  o << "<h2>Holes</h2>\n<input type=\"checkbox\" id=\"failonly\"><label for=\"failonly\"> "
+  o << "<h2>Holes</h2>\n<p>In program order; click a column head to sort (again: the other "
+       "way), tick the box to show only the holes outside the predicted region or proven "
+       "non-conforming.</p>\n<input type=\"checkbox\" id=\"failonly\"><label for=\"failonly\"> "
        "outside the predicted region or non-conformance proven only ("
     << failing
-    << ")</label>\n<table class=\"holes\"><tr><th "
-       "class=\"l\">id</th><th>|e_meas|<br><small>µm</small></th>"
+    << ")</label>\n<table class=\"holes\" id=\"holetable\"><thead><tr><th>#</th><th "
+       "class=\"l\" data-t=\"1\">id</th><th>|e_meas|<br><small>µm</small></th>"
        "<th>|δwork⊥|<br><small>µm</small></th><th>|r|<br><small>µm</small></th><th>95 % "
        "region<br><small>µm</small></th><th "
-       "class=\"l\">inside</th><th>U_work<br><small>µm</small></th>"
-       "<th class=\"l\">decision</th></tr>\n";
-  for (const HoleVerification& h : r.holes) {
+       "class=\"l\" data-t=\"1\">inside</th><th>U_work<br><small>µm</small></th>"
+       "<th class=\"l\" data-t=\"1\">decision</th></tr></thead>\n<tbody>\n";
+  for (size_t n = 0; n < r.holes.size(); ++n) {
+    const HoleVerification& h = r.holes[n];
     const bool pass = h.inside && h.decision != MeasuredDecision::kNonConformanceProven;
-    o << "<tr" << (pass ? " class=\"pass\"" : "") << "><td class=\"l\">" << esc(h.id) << "</td><td>"
-      << f(h.e_meas_norm * 1e6, 1) << "</td><td>" << f(h.d_pred_norm * 1e6, 1) << "</td><td>"
-      << f(h.r_norm * 1e6, 1) << "</td><td>" << f(h.U_region * 1e6, 1) << "</td><td class=\"l\">"
-      << (h.inside ? "yes" : "NO") << "</td><td>" << f(h.U_work * 1e6, 1) << "</td><td class=\"l\">"
+    o << "<tr" << (pass ? " class=\"pass\"" : "") << "><td>" << n + 1 << "</td><td class=\"l\">"
+      << esc(h.id) << "</td><td>" << f(h.e_meas_norm * 1e6, 1) << "</td><td>"
+      << f(h.d_pred_norm * 1e6, 1) << "</td><td>" << f(h.r_norm * 1e6, 1) << "</td><td>"
+      << f(h.U_region * 1e6, 1) << "</td><td class=\"l\">" << (h.inside ? "yes" : "NO")
+      << "</td><td>" << f(h.U_work * 1e6, 1) << "</td><td class=\"l\">"
       << measuredDecisionName(h.decision) << "</td></tr>\n";
   }
-  return o.str() + "</table>\n";
+  // the prediction report's sort and filter script, inline: the file stays self-contained
+  return o.str() + "</tbody></table>\n<script>" + reportTableScript() + "</script>\n";
 }
 
 }  // namespace
@@ -302,7 +308,10 @@ std::string verifyReport(const VerifyResult& r) {
        "td,th{border:1px solid #bbb;padding:2px 6px;text-align:right}"
        "th{background:#eee}.maps{display:flex;flex-wrap:wrap;gap:12px}"
        "body{font-variant-numeric:tabular-nums}td.l,th.l{text-align:left}th small{font-weight:400}"
-       "#failonly:checked~table.holes tr.pass{display:none}"
+       "#failonly:checked~table.holes tr.pass{display:none}.holes.fonly tr.pass{display:none}"
+       ".holes thead th{cursor:pointer;user-select:none}"
+       ".holes th[aria-sort=ascending]::after{content:\" \\25b2\"}"
+       ".holes th[aria-sort=descending]::after{content:\" \\25bc\"}"
        ".flabel{paint-order:stroke;stroke:#fff;stroke-width:3px}</style></head><body>\n";
   o << "<h1>roprec verify — measured vs predicted</h1>\n<p>robot " << esc(c.robot.card.name)
     << ", cell " << esc(c.cell.name) << ", program "

@@ -24,6 +24,7 @@ int run(Args& args, CommandContext& ctx) {
   if (!ctx.quiet) {
     for (const std::string& n : r.notes) ctx.err << "roprec: note: " << n << "\n";
   }
+  for (const std::string& s : r.not_carried) ctx.err << "roprec: not carried: " << s << "\n";
   for (const std::string& s : r.skipped) ctx.err << "roprec: not converted: " << s << "\n";
   return r.skipped.empty() ? 0 : 1;
 }
@@ -39,8 +40,12 @@ const CommandRegistration reg{
      "dialect (KRL: OUT.src + OUT.dat). Configuration is carried at the branch level (shoulder,\n"
      "elbow, wrist); joint targets go only into csv/json (joint conventions differ between "
      "vendors);\n"
-     "items that cannot be converted are listed and the exit code is 1. Frames that the output "
-     "must\n"
+     "items that cannot be converted are listed and the exit code is 1. Every other instruction "
+     "the\n"
+     "new program does not carry (WAIT/WaitTime, I/O, spindle and other calls, control flow) is\n"
+     "listed on stderr as 'not carried: FILE:LINE: text (kind)', and so is each zone mapping\n"
+     "('zone z10 -> C_DIS at FILE:LINES'); unused external axes are written 9E+09 in RAPID.\n"
+     "Frames that the output must\n"
      "state by value but the program does not define are given with --frame (mm, deg, KUKA ABC).\n",
      61, run}};
 
