@@ -11,7 +11,9 @@
 //  * the balancer's analytic slope agrees with central differences of counterbalance.hpp's
 //    balancerTorque (spring and gas, push and pull, isothermal and adiabatic), its torque with
 //    balancerTorque to 1e-14 relative;
-//  * DeflectionOptions::natural_state = false gives the same deflection bit for bit.
+//  * DeflectionOptions::natural_state = false gives the same deflection bit for bit;
+//  * soft joints (K⁻¹ ∂τ/∂θ of order 1: the Newton matrix's pivots leave the unpivoted range):
+//    a converged equilibrium satisfies the model of record's G(θ) = 0 to 1e-10 rad.
 #include "compensator/robot/fast_equilibrium.hpp"
 
 #include <gtest/gtest.h>
@@ -276,6 +278,38 @@ TEST(FastEquilibrium, FramesOnlyDeflectionIsTheSame) {
       EXPECT_LE(relErr(full.T_W_tcp.matrix(), a.T_real.matrix()), 1e-15);
     }
   }
+}
+
+TEST(FastEquilibrium, SoftJointsStillSolveTheModelOfRecordEquilibrium) {
+  const auto all = cases();
+  ASSERT_FALSE(all.empty());
+  const nc::Loads l = loads();
+  std::mt19937 rng(10);
+  std::uniform_real_distribution<double> u(-1.2, 1.2);
+  int converged = 0;
+  for (const Case& c : all) {
+    SCOPED_TRACE(c.label);
+    const nc::Model model = nc::buildModel(c.chain, tool());
+    nc::Data data(model);
+    nc::Data ref(model);
+    for (const double scale : {1e-1, 1e-2, 3e-3}) {
+      nc::JointCompliance comp;
+      comp.k << 8e6, 9e6, 5e6, 1.2e6, 1.1e6, 0.9e6;
+      comp.k *= scale;
+      const Vec6 keff = comp.effective();
+      for (int n = 0; n < 4; ++n) {
+        Vec6 th_m;
+        for (int i = 0; i < 6; ++i) th_m[i] = u(rng);
+        const nc::Deflection d = nc::predictDeflection(model, data, comp, th_m, l);
+        if (!d.converged) continue;  // a value, not a wrong answer
+        ++converged;
+        nc::solvePosition(model, ref, d.theta);
+        const Vec6 G = d.theta - th_m + nc::staticTorques(model, ref, l).cwiseQuotient(keff);
+        EXPECT_LE(G.lpNorm<Eigen::Infinity>(), 1e-10) << "scale " << scale;
+      }
+    }
+  }
+  EXPECT_GT(converged, 20);
 }
 
 }  // namespace

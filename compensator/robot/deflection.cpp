@@ -129,8 +129,9 @@ class EquilibriumLu {
         plu_.compute(A);
         return;
       }
+      inv_pivot_[k] = 1.0 / pk;
       for (int i = k + 1; i < 6; ++i) {
-        const double l = lu_(i, k) / pk;
+        const double l = lu_(i, k) * inv_pivot_[k];
         lu_(i, k) = l;
         for (int j = k + 1; j < 6; ++j) lu_(i, j) -= l * lu_(k, j);
       }
@@ -144,13 +145,14 @@ class EquilibriumLu {
     }
     for (int i = 5; i >= 0; --i) {
       for (int j = i + 1; j < 6; ++j) x[i] -= lu_(i, j) * x[j];
-      x[i] /= lu_(i, i);
+      x[i] *= inv_pivot_[i];
     }
     return x;
   }
 
  private:
   Mat6 lu_;
+  Vec6 inv_pivot_;
   bool pivoted_{false};
   Eigen::PartialPivLU<Mat6> plu_;
 };
@@ -187,11 +189,7 @@ Deflection predictDeflection(const Model& model, Data& data, const JointComplian
   Vec6 kinv;  // 1/k_eff
   for (int i = 0; i < 6; ++i) kinv[i] = 1.0 / c.k[i] + 1.0 / c.k_servo[i];
   // nominal (rigid) TCP
-  JointTrig trig;
-  for (int i = 0; i < 6; ++i) {
-    trig.sn[i] = std::sin(theta_m[i]);
-    trig.cs[i] = std::cos(theta_m[i]);
-  }
+  JointTrig trig = jointTrig(theta_m);
   chainFrames(model, data, theta_m, trig);
   d.T_nominal.linear() = data.frames.R_tcp;
   d.T_nominal.translation() = data.frames.p_tcp;

@@ -6,26 +6,65 @@
 namespace roprec::nc {
 
 namespace {
-/// R_W_Li = R_W_Ji Rot(ū, θ) (Rodrigues), with the product by columns when ū is a coordinate axis
-/// (±x, ±y, ±z: the common URDF case): 12 products instead of 27.
-void rotateAbout(const Mat3& RJ, const Vec3& a, double sn, double cs, Mat3& R) {
+/// sin x and cos x in one call where the C library has it (glibc's sincos: the same values).
+void sinCos(double x, double& s, double& c) {
+#if defined(__GLIBC__)
+  ::sincos(x, &s, &c);
+#else
+  s = std::sin(x);
+  c = std::cos(x);
+#endif
+}
+
+/// (sn, cs) = (sin, cos)(from) → (sin, cos)(to): angle addition with the Taylor series of sin δ
+/// and cos δ when |δ| ≤ 0.01 rad (Horner forms, reciprocals as constants), else sincos.
+void shiftSinCos(double from, double to, double& sn, double& cs) {
+  const double d = to - from;
+  if (!(std::abs(d) <= 1e-2)) {  // far (or not finite): evaluate
+    sinCos(to, sn, cs);
+    return;
+  }
+  constexpr double k6 = 1.0 / 6.0, k20 = 1.0 / 20.0, k42 = 1.0 / 42.0;
+  constexpr double k12 = 1.0 / 12.0, k30 = 1.0 / 30.0, k56 = 1.0 / 56.0;
+  const double d2 = d * d;
+  const double sd = d * (1.0 - d2 * k6 * (1.0 - d2 * k20 * (1.0 - d2 * k42)));
+  const double cd = 1.0 - 0.5 * d2 * (1.0 - d2 * k12 * (1.0 - d2 * k30 * (1.0 - d2 * k56)));
+  const double s = sn * cd + cs * sd;
+  const double c = cs * cd - sn * sd;
+  sn = s;
+  cs = c;
+}
+
+/// k when ū = ±e_k (the common URDF case), else −1.
+int coordinateAxis(const Vec3& a) {
   for (int k = 0; k < 3; ++k) {
+    if (a[(k + 1) % 3] == 0.0 && a[(k + 2) % 3] == 0.0 && std::abs(a[k]) == 1.0) return k;
+  }
+  return -1;
+}
+
+/// R ← R Rot(ū, θ) (Rodrigues) in place, and u = R ū before the rotation; by columns when ū is a
+/// coordinate axis (12 products instead of 27).
+void rotateAbout(Mat3& R, const Vec3& a, double sn, double cs, Vec3& u) {
+  const int k = coordinateAxis(a);
+  if (k >= 0) {
     const int k1 = (k + 1) % 3;
     const int k2 = (k + 2) % 3;
-    if (a[k1] == 0.0 && a[k2] == 0.0 && std::abs(a[k]) == 1.0) {
-      const double ss = a[k] * sn;  // rotation about ±e_k
-      R.col(k) = RJ.col(k);
-      R.col(k1) = cs * RJ.col(k1) + ss * RJ.col(k2);
-      R.col(k2) = cs * RJ.col(k2) - ss * RJ.col(k1);
-      return;
-    }
+    const double ss = a[k] * sn;  // rotation about ±e_k
+    u = a[k] * R.col(k);
+    const Vec3 c1 = R.col(k1);
+    const Vec3 c2 = R.col(k2);
+    R.col(k1) = cs * c1 + ss * c2;
+    R.col(k2) = cs * c2 - ss * c1;
+    return;
   }
+  u = R * a;
   const double t = 1.0 - cs;
   Mat3 Rot;
   Rot << cs + t * a.x() * a.x(), t * a.x() * a.y() - sn * a.z(), t * a.x() * a.z() + sn * a.y(),
       t * a.y() * a.x() + sn * a.z(), cs + t * a.y() * a.y(), t * a.y() * a.z() - sn * a.x(),
       t * a.z() * a.x() - sn * a.y(), t * a.z() * a.y() + sn * a.x(), cs + t * a.z() * a.z();
-  R.noalias() = RJ * Rot;
+  R = R * Rot;
 }
 /// True when R is exactly the identity (URDF joint origins without rpy: the common case).
 bool isIdentity(const Mat3& R) {
@@ -39,11 +78,16 @@ bool isIdentity(const Mat3& R) {
 }  // namespace
 
 BalancerTorque balancerTorqueAndSlope(const Counterbalance& cb, double q) {
+  if (!cb.present()) return {};
+  double sp = 0.0;
+  double cp = 0.0;
+  sinCos(cb.psi0 + cb.sign * q, sp, cp);
+  return balancerTorqueAndSlope(cb, sp, cp);
+}
+
+BalancerTorque balancerTorqueAndSlope(const Counterbalance& cb, double sp, double cp) {
   BalancerTorque b;
   if (!cb.present()) return b;
-  const double psi = cb.psi0 + cb.sign * q;
-  const double sp = std::sin(psi);
-  const double cp = std::cos(psi);
   const double rd = cb.r * cb.d;
   const double l = std::sqrt(cb.r * cb.r + cb.d * cb.d - 2.0 * rd * cp);  // balancerLength
   const bool push = cb.action == Counterbalance::Action::kPush;
@@ -74,12 +118,13 @@ BalancerTorque balancerTorqueAndSlope(const Counterbalance& cb, double q) {
 }
 
 void chainFrames(const Model& model, Data& data, const Vec6& theta) {
+  chainFrames(model, data, theta, jointTrig(theta));
+}
+
+JointTrig jointTrig(const Vec6& theta) {
   JointTrig t;
-  for (int i = 0; i < 6; ++i) {
-    t.sn[i] = std::sin(theta[i]);
-    t.cs[i] = std::cos(theta[i]);
-  }
-  chainFrames(model, data, theta, t);
+  for (int i = 0; i < 6; ++i) sinCos(theta[i], t.sn[i], t.cs[i]);
+  return t;
 }
 
 void chainFrames(const Model& model, Data& data, const Vec6& theta, const JointTrig& trig) {
@@ -92,10 +137,8 @@ void chainFrames(const Model& model, Data& data, const Vec6& theta, const JointT
     const size_t s = static_cast<size_t>(i);
     const Pose& O = model.origin[s];
     p += R * O.translation();
-    const Mat3 RJ = isIdentity(O.linear()) ? R : Mat3(R * O.linear());
-    const Vec3& a = model.bodies[s].ubar;
-    f.u[s] = RJ * a;
-    rotateAbout(RJ, a, trig.sn[i], trig.cs[i], R);
+    if (!isIdentity(O.linear())) R = R * O.linear();  // R_W_Ji
+    rotateAbout(R, model.bodies[s].ubar, trig.sn[i], trig.cs[i], f.u[s]);
     f.p[s] = p;
     f.R[s] = R;
   }
@@ -104,21 +147,7 @@ void chainFrames(const Model& model, Data& data, const Vec6& theta, const JointT
 }
 
 void shiftTrig(JointTrig& trig, const Vec6& from, const Vec6& to) {
-  for (int i = 0; i < 6; ++i) {
-    const double d = to[i] - from[i];
-    if (!(std::abs(d) <= 1e-2)) {  // far (or not finite): evaluate
-      trig.sn[i] = std::sin(to[i]);
-      trig.cs[i] = std::cos(to[i]);
-      continue;
-    }
-    const double d2 = d * d;
-    const double sd = d * (1.0 - d2 / 6.0 * (1.0 - d2 / 20.0 * (1.0 - d2 / 42.0)));
-    const double cd = 1.0 - d2 / 2.0 * (1.0 - d2 / 12.0 * (1.0 - d2 / 30.0 * (1.0 - d2 / 56.0)));
-    const double sn = trig.sn[i] * cd + trig.cs[i] * sd;
-    const double cs = trig.cs[i] * cd - trig.sn[i] * sd;
-    trig.sn[i] = sn;
-    trig.cs[i] = cs;
-  }
+  for (int i = 0; i < 6; ++i) shiftSinCos(from[i], to[i], trig.sn[i], trig.cs[i]);
 }
 
 void staticTorquesFromFrames(const Model& model, const Data& data, const Loads& loads, Vec6& tau,
@@ -149,8 +178,13 @@ void staticTorquesFromFrames(const Model& model, const Data& data, const Loads& 
   }
   sums.balancer = gravity && model.counterbalance.present();
   if (sums.balancer) {
-    const int j = model.counterbalance.joint;
-    const BalancerTorque b = balancerTorqueAndSlope(model.counterbalance, f.theta[j]);
+    const Counterbalance& cb = model.counterbalance;
+    // sin/cos of ψ = ψ₀ + s θ_j follow the previous evaluation's (small Newton steps)
+    const double psi = cb.psi0 + cb.sign * f.theta[cb.joint];
+    shiftSinCos(sums.balancer_psi, psi, sums.balancer_sin, sums.balancer_cos);
+    sums.balancer_psi = psi;
+    const int j = cb.joint;
+    const BalancerTorque b = balancerTorqueAndSlope(cb, sums.balancer_sin, sums.balancer_cos);
     tau[j] -= b.torque;
     sums.balancer_slope = b.slope;
   }
@@ -164,10 +198,10 @@ void staticSensitivity(const Model& model, const Data& data, const StaticLoadSum
   //   a_i   = W_iᵀ u_i − (tr W_i) u_i + u_i × M_t,i + p_i × (u_i × F_t)
   //   b_j   = u_j × p_j                                      (D_ji = −u_j · a_i + t_i · b_j, i > j)
   // with t_i = u_i × F_t: −u_j · ((p_i − p_j) × t_i) = −u_j · (p_i × t_i) + t_i · (u_j × p_j).
-  std::array<Vec3, 6> row{};
-  std::array<Vec3, 6> a{};
-  std::array<Vec3, 6> b{};
-  std::array<Vec3, 6> t{};
+  std::array<Vec3, 6> row;  // every entry is set in the pass below
+  std::array<Vec3, 6> a;
+  std::array<Vec3, 6> b;
+  std::array<Vec3, 6> t;
   Mat3 A = sums.F_all_w * f.p_tcp.transpose();
   Vec3 Fw = sums.F_all_w;
   for (int j = 5; j >= 0; --j) {

@@ -31,6 +31,8 @@
 ///
 /// Everything is allocation-free and writes only into `Data` or the caller's objects.
 
+#include <limits>
+
 #include "compensator/robot/inverse_dynamics.hpp"
 
 namespace roprec::nc {
@@ -43,6 +45,8 @@ struct JointTrig {
   Vec6 sn{Vec6::Zero()};
   Vec6 cs{Vec6::Constant(1.0)};
 };
+/// sin θᵢ, cos θᵢ (one sincos per joint).
+JointTrig jointTrig(const Vec6& theta);
 /// chainFrames with the joints' sines and cosines given (trig must belong to theta).
 void chainFrames(const Model& model, Data& data, const Vec6& theta, const JointTrig& trig);
 /// trig of `from` → trig of `to` without sin/cos where |δ| = |toᵢ − fromᵢ| ≤ 0.01 rad (a Newton
@@ -61,6 +65,11 @@ struct StaticLoadSums {
   Vec3 N_t{Vec3::Zero()};      ///< tool-fixed couple in W, N m
   bool balancer{false};        ///< the balancer acts (gravity on, present)
   double balancer_slope{0.0};  ///< dτ_cb/dθ at the balancer joint, N m/rad
+  /// ψ of the last balancer evaluation (NaN: none yet) and its sin/cos: the next evaluation
+  /// shifts them by angle addition when ψ moved by ≤ 0.01 rad (as shiftTrig), else evaluates.
+  double balancer_psi{std::numeric_limits<double>::quiet_NaN()};
+  double balancer_sin{0.0};
+  double balancer_cos{1.0};
 };
 
 /// τ_cb(q) (N m, equal to counterbalance.hpp's balancerTorque) and its slope dτ_cb/dq (N m/rad),
@@ -75,6 +84,8 @@ struct BalancerTorque {
   double slope{0.0};
 };
 BalancerTorque balancerTorqueAndSlope(const Counterbalance& cb, double q);
+/// The same from sin ψ and cos ψ.
+BalancerTorque balancerTorqueAndSlope(const Counterbalance& cb, double sin_psi, double cos_psi);
 
 /// τ (N m) at data.frames for `loads`; `sums` receives what staticSensitivity needs.
 void staticTorquesFromFrames(const Model& model, const Data& data, const Loads& loads, Vec6& tau,
