@@ -300,7 +300,8 @@ std::string tpKind(const std::string& u) {
 }
 
 /// Every instruction of the source that the new program does not carry, as
-/// "FILE:LINE: text (kind)", in source order (docs/programs.md §7).
+/// "FILE:LINE: text (kind)", in source order; an instruction written several times (a WAIT per
+/// hole) once, at its first line: "FILE:19: WAIT SEC 0.3 (wait; 204 in all, lines 19,28,...)".
 void listNotCarried(const Program& p, ConversionReport& rep) {
   if (p.files.empty() ||
       (p.dialect != Dialect::kKrl && p.dialect != Dialect::kRapid && p.dialect != Dialect::kTp))
@@ -311,6 +312,8 @@ void listNotCarried(const Program& p, ConversionReport& rep) {
     if (m.file == 0 && m.line > 0 && static_cast<std::size_t>(m.line) < motion_line.size())
       motion_line[static_cast<std::size_t>(m.line)] = true;
   }
+  std::vector<std::string> order;                 // "text (kind" in first-seen order
+  std::map<std::string, std::vector<int>> lines;  // its lines
   bool in_mn = p.dialect != Dialect::kTp;
   bool open = false;  // RAPID: a statement continues on the next line
   for (std::size_t l = 0; l < f.line_starts.size(); ++l) {
@@ -345,8 +348,19 @@ void listNotCarried(const Program& p, ConversionReport& rep) {
     }
     if (kind.empty() || motion_line[l + 1]) continue;
     if (code.size() > 60) code = code.substr(0, 57) + "...";
-    rep.not_carried.push_back(f.path + ":" + std::to_string(l + 1) + ": " + code + " (" + kind +
-                              ")");
+    const std::string key = code + " (" + kind;
+    if (!lines.count(key)) order.push_back(key);
+    lines[key].push_back(static_cast<int>(l + 1));
+  }
+  // one entry per distinct instruction, at its first line; the others listed after it
+  for (const std::string& key : order) {
+    const std::vector<int>& at = lines[key];
+    std::string s = f.path + ":" + std::to_string(at[0]) + ": " + key;
+    if (at.size() > 1) {
+      s += "; " + std::to_string(at.size()) + " in all, lines ";
+      for (std::size_t i = 0; i < at.size(); ++i) s += (i ? "," : "") + std::to_string(at[i]);
+    }
+    rep.not_carried.push_back(s + ")");
   }
 }
 

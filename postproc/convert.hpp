@@ -33,7 +33,8 @@ struct ConversionReport {
   std::vector<std::string> notes;    ///< what the user must check in the output
   /// Into krl/rapid/tp: every source instruction the new program does not carry (waits, I/O,
   /// spindle and other calls, control flow, assignments, interrupts), as "FILE:LINE: text
-  /// (kind)", and every zone mapping that changes the source's zone, as "zone z10 -> C_DIS at
+  /// (kind)" (a repeated instruction once: "(wait; 204 in all, lines 19,28,...)"), and every
+  /// zone mapping that changes the source's zone, as "zone z10 -> C_DIS at
   /// FILE:12,14 (2 motions; ...)". Not an error (exit code 0): the motions are all there.
   std::vector<std::string> not_carried;
 };

@@ -203,8 +203,20 @@ void expectLinesTrue(const Program& src, const std::vector<std::string>& not_car
     std::string text = s.substr(t0, t1 - t0);
     if (text.size() > 3 && text.compare(text.size() - 3, 3, "...") == 0)
       text.resize(text.size() - 3);
-    EXPECT_NE(fileLine(path, line).find(text), std::string::npos);
-    for (const Motion& m : src.motions) EXPECT_NE(m.line, line);
+    std::vector<int> at{line};
+    const size_t more = s.find(" in all, lines ", t1);
+    if (more != std::string::npos) {  // a repeated instruction: every line it is on
+      at.clear();
+      std::stringstream ss(s.substr(more + 15));
+      for (std::string n; std::getline(ss, n, ',');) at.push_back(std::stoi(n));
+      EXPECT_EQ(at.front(), line);
+      EXPECT_EQ(std::to_string(at.size()),
+                s.substr(s.rfind("; ", more) + 2, more - s.rfind("; ", more) - 2));
+    }
+    for (const int l : at) {
+      EXPECT_NE(fileLine(path, l).find(text), std::string::npos) << l;
+      for (const Motion& m : src.motions) EXPECT_NE(m.line, l);
+    }
   }
 }
 
@@ -231,6 +243,10 @@ TEST(PostprocConvert, ListsWaitsCallsAndZoneMappingsItDoesNotCarry) {
        {"tp_controller.ls:32: WAIT    .25(sec) (wait)",
         "tp_controller.ls:35: CALL DRILL_20_3 (call)",
         "zone CNT50 -> z1 at " + dataProgram("tp_controller.ls") + ":29 (1 motion"}},
+      {"../../../samples/emotor-housing/housing_kr120.src",
+       Dialect::kRapid,
+       {"housing_kr120.src:12: SPINDLE_ON() (call)",
+        "housing_kr120.src:19: WAIT SEC 0.3 (wait; 204 in all, lines 19,28,37,"}},
       {"kss_drill.src",
        Dialect::kTp,
        {"kss_drill.src:46: WAIT SEC 0.5 (wait)", "kss_drill.src:61: MyCustomMacro(1, 2) (call)",

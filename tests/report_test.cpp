@@ -1096,6 +1096,31 @@ TEST(ReportSample, FanucJointsAsTheControllerShowsThem) {
   EXPECT_EQ(n, rows.size());
   EXPECT_GT(n, 100u);
   EXPECT_GT(max_j3_gap, 5.0);  // J2 ≠ 0 somewhere: the two conventions differ on this job
+
+  // the corrected-target CSV: j*_ctrl_deg next to the URDF j*_deg, the same rule
+  const test::RunResult comp = test::runRoprec(
+      "compensate --cell '" + sample("cells/housing-r2000.xml") + "' '" +
+      sample("emotor-housing/housing_r2000.ls") + "' --frame cell --tool cell --quiet -o '" + dir +
+      "/c.ls' --targets '" + dir + "/t.csv'");
+  ASSERT_EQ(comp.exit_code, 0) << comp.err;
+  std::istringstream csv(test::readFile(dir + "/t.csv"));
+  std::string line;
+  std::getline(csv, line);
+  const std::vector<std::string> names = csvFields(line);
+  const auto col = [&](const std::string& name) {
+    return static_cast<size_t>(std::find(names.begin(), names.end(), name) - names.begin());
+  };
+  ASSERT_LT(col("j6_ctrl_deg"), names.size());
+  size_t targets = 0;
+  for (; std::getline(csv, line); ++targets) {
+    const std::vector<std::string> f = csvFields(line);
+    ASSERT_EQ(f.size(), names.size());
+    const double j2 = std::stod(f[col("j2_deg")]), j3 = std::stod(f[col("j3_deg")]);
+    EXPECT_NEAR(std::stod(f[col("j3_ctrl_deg")]), j3 - j2, 2e-6) << f[0];
+    for (const char* j : {"j1", "j2", "j4", "j5", "j6"})
+      EXPECT_EQ(f[col(std::string(j) + "_ctrl_deg")], f[col(std::string(j) + "_deg")]) << f[0];
+  }
+  EXPECT_EQ(targets, rows.size());
 }
 
 // ------------------------------------------------------------------ large jobs in Chromium

@@ -604,6 +604,8 @@ std::string millingTargetsJson(const MillingCompensationResult& r,
     j.set("before", b);
     Json pr = poseJsonContract(p.T_programmed);
     pr.set("joints_deg", Json::vector(p.theta_cmd / kDeg, 6));
+    pr.set("controller_joints_deg",
+           Json::vector(toControllerJoints(c.robot.card, p.theta_cmd) / kDeg, 6));
     pr.set("config", Json::str(p.config_text));
     j.set("programmed", pr);
     j.set("residual_um", Json::number(p.residual.norm() * 1e6, 4));
