@@ -7,7 +7,8 @@
 //    overlap; the stated table tolerance is 1e-5);
 //  * the tabulated sums at the end of the entry give the evaluator's full-engagement thrust and
 //    torque, written out from the Kienzle law, to 1e-12;
-//  * the exact fallbacks: chips under the floor h_min, runout with the corner engaged;
+//  * runout 10 µm (unequal lip chips, corner strips in the breakthrough) within the same bound;
+//  * the exact fallback for chips under the floor h_min;
 //  * table accuracy converges like Δ⁴ (local cubic): 24 → 48 cells gains ≥ 8×.
 #include "compensator/robot/transient_forces.hpp"
 
@@ -78,7 +79,7 @@ TEST(TransientForces, TableMatchesExactEvaluatorBlindHoleAndThinPlate) {
   EXPECT_LT(worstRelativeError(thin, 0.2e-3, 48), 1e-5);
 }
 
-TEST(TransientForces, TableWithRunoutUsesExactCornerAndMatches) {
+TEST(TransientForces, TableWithRunoutCornerStripMatches) {
   DrillingSpec s = sampleSpec();
   s.geometry.runout = 10e-6;
   EXPECT_LT(worstRelativeError(s, 0.2e-3, 48), 1e-6);

@@ -4,7 +4,6 @@
 #include <nvector/nvector_serial.h>
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
-#include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 #include <sundials/sundials_context.hpp>
 
 #include <Eigen/Cholesky>
@@ -346,16 +345,12 @@ struct MatrixDeleter {
 struct LinSolDeleter {
   void operator()(SUNLinearSolver s) const { SUNLinSolFree(s); }
 };
-struct NonlinSolDeleter {
-  void operator()(SUNNonlinearSolver s) const { SUNNonlinSolFree(s); }
-};
 struct CvodeDeleter {
   void operator()(void* mem) const { CVodeFree(&mem); }
 };
 using NVectorPtr = std::unique_ptr<std::remove_pointer_t<N_Vector>, NVectorDeleter>;
 using MatrixPtr = std::unique_ptr<std::remove_pointer_t<SUNMatrix>, MatrixDeleter>;
 using LinSolPtr = std::unique_ptr<std::remove_pointer_t<SUNLinearSolver>, LinSolDeleter>;
-using NonlinSolPtr = std::unique_ptr<std::remove_pointer_t<SUNNonlinearSolver>, NonlinSolDeleter>;
 using CvodePtr = std::unique_ptr<void, CvodeDeleter>;
 
 void check(int flag, const char* what) {
@@ -397,6 +392,9 @@ struct TransientSimulator::Impl {
   double ps_time{std::numeric_limits<double>::quiet_NaN()};  ///< t of ps (cache)
   TipState ps_tip;                                           ///< tip state of ps (cache)
   PositionResult last_position;
+  Eigen::LLT<Mat6> llt;             ///< of RᵀMR at cached_theta (locked rows: identity)
+  Vec6 cached_theta{Vec6::Zero()};  ///< θ of data's position, R and llt
+  bool theta_cached{false};
   std::exception_ptr eptr;
   std::string cvode_message;
   std::string rhs_failure;  ///< why the right-hand side refused (no allocation unless it fails)
@@ -406,7 +404,6 @@ struct TransientSimulator::Impl {
   NVectorPtr abstol;
   MatrixPtr A;
   LinSolPtr LS;
-  NonlinSolPtr NLS;
   CvodePtr mem;
 
   Impl(const TransientProblem& p, ProcessCycle& proc, const TransientOptions& o)
@@ -421,6 +418,9 @@ struct TransientSimulator::Impl {
   [[nodiscard]] bool locked(int i) const { return problem.drive.locked[static_cast<size_t>(i)]; }
 
   int rhs(double t, const double* yp, double* ydp);
+  /// Position problem, R and the Cholesky factor of RᵀMR at θ into data/llt. False (with
+  /// rhs_failure) when the position problem does not converge.
+  bool positionAndInertia(double t, const Eigen::Map<const Vec6>& th);
   int roots(double t, const double* yp, double* g);
   /// u, u̇ from data.q, data.qd (after the position and velocity problems), D from y.
   void tipFromData(const Data& d, double depth, TipState& x) const;
@@ -539,18 +539,7 @@ bool TransientSimulator::Impl::eventsAtRestart(double t, const double* yp) {
   return any;
 }
 
-int TransientSimulator::Impl::rhs(double t, const double* yp, double* ydp) {
-  const DriveModel& dm = problem.drive;
-  const Eigen::Map<const Vec6> th(yp);
-  const Eigen::Map<const Vec6> thd(yp + 6);
-  const Eigen::Map<const Vec6> thm(yp + 12);
-  const Eigen::Map<const Vec6> thmd(yp + 18);
-  Eigen::Map<Vec6> d_th(ydp);
-  Eigen::Map<Vec6> d_thd(ydp + 6);
-  Eigen::Map<Vec6> d_thm(ydp + 12);
-  Eigen::Map<Vec6> d_thmd(ydp + 18);
-
-  // 1. position problem (warm start; the closed-form guess as a fallback)
+bool TransientSimulator::Impl::positionAndInertia(double t, const Eigen::Map<const Vec6>& th) {
   // (‖Φ‖∞ of a NaN vector need not be NaN: check the angles and the solution explicitly)
   if (!th.allFinite()) {
     last_position = PositionResult{false, 0, std::numeric_limits<double>::quiet_NaN()};
@@ -565,11 +554,45 @@ int TransientSimulator::Impl::rhs(double t, const double* yp, double* ydp) {
     rhs_failure = "position problem did not converge (residual " +
                   numberText(last_position.residual) + " after " +
                   std::to_string(last_position.iterations) + " iterations)";
-    return 1;
+    return false;
+  }
+  Mat6 Mbar = jointSpaceInertia(model, data);  // builds data.R
+  for (int i = 0; i < 6; ++i) {
+    if (!locked(i)) continue;
+    Mbar.row(i).setZero();
+    Mbar.col(i).setZero();
+    Mbar(i, i) = 1.0;
+  }
+  llt.compute(Mbar);
+  if (llt.info() != Eigen::Success) {
+    throw std::runtime_error(
+        "transient: the joint-space inertia RᵀMR is not positive definite at t = " +
+        cGeneral(t, 6) + " s");
+  }
+  return true;
+}
+
+int TransientSimulator::Impl::rhs(double t, const double* yp, double* ydp) {
+  const DriveModel& dm = problem.drive;
+  const Eigen::Map<const Vec6> th(yp);
+  const Eigen::Map<const Vec6> thd(yp + 6);
+  const Eigen::Map<const Vec6> thm(yp + 12);
+  const Eigen::Map<const Vec6> thmd(yp + 18);
+  Eigen::Map<Vec6> d_th(ydp);
+  Eigen::Map<Vec6> d_thd(ydp + 6);
+  Eigen::Map<Vec6> d_thm(ydp + 12);
+  Eigen::Map<Vec6> d_thmd(ydp + 18);
+
+  // 1. position problem, R and RᵀMR: functions of θ alone, kept while θ does not change (the
+  // difference-quotient Jacobian perturbs θ̇, θ_m, θ̇_m, ξ and D with θ fixed)
+  if (!(theta_cached && th == cached_theta)) {
+    theta_cached = false;
+    if (!positionAndInertia(t, th)) return 1;
+    cached_theta = th;
+    theta_cached = true;
   }
 
-  // 2. RᵀMR (builds data.R), q̇ = R θ̇, the tip state, the process at (t, tip)
-  Mat6 Mbar = jointSpaceInertia(model, data);
+  // 2. q̇ = R θ̇, the tip state, the process at (t, tip)
   data.qd.noalias() = data.R * thd;
   TipState tip;
   tipFromData(data, yp[idx_depth], tip);
@@ -597,17 +620,7 @@ int TransientSimulator::Impl::rhs(double t, const double* yp, double* ydp) {
   const Vec6 spring = dm.k.cwiseProduct(thm - th) + dm.damping.cwiseProduct(thmd - thd);
   f += spring;
   for (int i = 0; i < 6; ++i) {
-    if (!locked(i)) continue;
-    Mbar.row(i).setZero();
-    Mbar.col(i).setZero();
-    Mbar(i, i) = 1.0;
-    f[i] = 0.0;
-  }
-  const Eigen::LLT<Mat6> llt(Mbar);
-  if (llt.info() != Eigen::Success) {
-    throw std::runtime_error(
-        "transient: the joint-space inertia RᵀMR is not positive definite at t = " +
-        cGeneral(t, 6) + " s");
+    if (locked(i)) f[i] = 0.0;
   }
   d_th = thd;
   d_thd = llt.solve(f);
@@ -707,14 +720,9 @@ void TransientSimulator::Impl::setup() {
   check(CVodeSetErrHandlerFn(mem.get(), roprecTransientErr, this), "CVodeSetErrHandlerFn");
   check(CVodeInit(mem.get(), roprecTransientRhs, 0.0, y.get()), "CVodeInit");
   check(CVodeSVtolerances(mem.get(), options.rtol, abstol.get()), "CVodeSVtolerances");
-  if (options.iteration == Iteration::kFixedPoint) {
-    NLS.reset(checkPtr(SUNNonlinSol_FixedPoint(y.get(), 0, ctx), "SUNNonlinSol_FixedPoint"));
-    check(CVodeSetNonlinearSolver(mem.get(), NLS.get()), "CVodeSetNonlinearSolver");
-  } else {
-    A.reset(checkPtr(SUNDenseMatrix(n, n, ctx), "SUNDenseMatrix"));
-    LS.reset(checkPtr(SUNLinSol_Dense(y.get(), A.get(), ctx), "SUNLinSol_Dense"));
-    check(CVodeSetLinearSolver(mem.get(), LS.get(), A.get()), "CVodeSetLinearSolver");
-  }
+  A.reset(checkPtr(SUNDenseMatrix(n, n, ctx), "SUNDenseMatrix"));
+  LS.reset(checkPtr(SUNLinSol_Dense(y.get(), A.get(), ctx), "SUNLinSol_Dense"));
+  check(CVodeSetLinearSolver(mem.get(), LS.get(), A.get()), "CVodeSetLinearSolver");
   check(CVodeSetUserData(mem.get(), this), "CVodeSetUserData");
   check(CVodeSetMaxNumSteps(mem.get(), options.max_steps), "CVodeSetMaxNumSteps");
   double hmax = options.max_step;
@@ -735,8 +743,8 @@ void TransientSimulator::Impl::accumulate(TransientStats& s) const {
   void* m = mem.get();
   if (CVodeGetNumSteps(m, &v) == CV_SUCCESS) s.steps += v;
   if (CVodeGetNumRhsEvals(m, &v) == CV_SUCCESS) s.rhs_evals += v;
-  if (LS && CVodeGetNumLinRhsEvals(m, &v) == CV_SUCCESS) s.rhs_evals_jac += v;
-  if (LS && CVodeGetNumJacEvals(m, &v) == CV_SUCCESS) s.jac_evals += v;
+  if (CVodeGetNumLinRhsEvals(m, &v) == CV_SUCCESS) s.rhs_evals_jac += v;
+  if (CVodeGetNumJacEvals(m, &v) == CV_SUCCESS) s.jac_evals += v;
   if (CVodeGetNumNonlinSolvIters(m, &v) == CV_SUCCESS) s.nonlinear_iterations += v;
   if (CVodeGetNumErrTestFails(m, &v) == CV_SUCCESS) s.error_test_failures += v;
   if (CVodeGetNumNonlinSolvConvFails(m, &v) == CV_SUCCESS) s.convergence_failures += v;
@@ -852,6 +860,7 @@ TransientResult TransientSimulator::run(double t0, const Eigen::VectorXd& y0, do
   m.cvode_message.clear();
   m.rhs_failure.clear();
   m.ps_time = std::numeric_limits<double>::quiet_NaN();
+  m.theta_cached = false;
   m.process.reset();
   Eigen::Map<Eigen::VectorXd> y(N_VGetArrayPointer(m.y.get()), m.n);
   y = y0;

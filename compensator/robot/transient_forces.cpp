@@ -61,6 +61,29 @@ void splineSlopes(const DrillingForceTable::Sums* v, DrillingForceTable::Sums* m
   }
 }
 
+/// One lip's forces and in-plane force (lip-1 orientation).
+struct Lip {
+  LipForces F;
+  Eigen::Vector2d inplane{Eigen::Vector2d::Zero()};
+};
+
+/// Adds sign × the corner element of width dr cut with chip factor q (drilling_forces.hpp: the
+/// runout annulus [R − ρ, R + ρ] that lip 1 alone cuts at the full feed).
+void addCornerStrip(const DrillingModel& m, double q, double dr, double sign, Lip& lip) {
+  if (!(q > 0) || !(dr > 0)) return;
+  const SpecificPressure& kt = m.coeff.tangential;
+  const SpecificPressure& ka = m.coeff.axial;
+  const double h = std::max(q * m.corner_sin_kappa, 0.0);
+  const double Ft = kt.k0 * m.corner_g_t * std::pow(std::max(h, kt.h_min) / kHRef, -kt.m) * q * dr;
+  const double Fa = ka.k0 * m.corner_g_a * std::pow(std::max(h, ka.h_min) / kHRef, -ka.m) * q * dr;
+  const double Frad = Fa * m.corner_cot_kappa;
+  lip.F.Ft += sign * Ft;
+  lip.F.Fa += sign * Fa;
+  lip.F.Frad += sign * Frad;
+  lip.F.M += sign * Ft * m.geometry.radius();
+  lip.inplane -= sign * (Ft * m.corner_v + Frad * m.corner_er);
+}
+
 }  // namespace
 
 DrillingForceTable::DrillingForceTable(const DrillingModel& model, double thickness, int cells)
@@ -135,10 +158,8 @@ DrillingForces DrillingForceTable::forces(double feed, double depth) {
   const double dz = 2.0 * g.runout / std::tan(g.halfPoint());
   const double q1 = std::min(feed, 0.5 * feed + dz);
   const double q2 = std::max(0.0, 0.5 * feed - dz);
-  const bool corner_strip = r_out >= R_ && g.runout > 0;
   Sums S;
-  if (corner_strip || r_out - r_in <= 1e-12 || !separable(q1) || !separable(q2) ||
-      !sums(depth, S)) {
+  if (r_out - r_in <= 1e-12 || !separable(q1) || !separable(q2) || !sums(depth, S)) {
     ++exact_calls_;
     return drillingForcesEngaged(model_, data_, feed, r_in, r_out, e.chisel);
   }
@@ -149,14 +170,21 @@ DrillingForces DrillingForceTable::forces(double feed, double depth) {
   F.r_in = r_in;
   F.r_out = r_out;
   F.chisel_engaged = e.chisel;
-  Eigen::Vector2d inplane[2];
+  Lip lip[2];
   const double q[2] = {q1, q2};
   for (int k = 0; k < 2; ++k) {
     const double ct = feedFactor(kt, q[k]);
     const double ca = feedFactor(ka, q[k]);
-    F.lip[k] = LipForces{ct * S[0], ca * S[1], ca * S[2], ct * S[3]};
-    inplane[k] = -(ct * S.segment<2>(4) + ca * S.segment<2>(6));
+    lip[k].F = LipForces{ct * S[0], ca * S[1], ca * S[2], ct * S[3]};
+    lip[k].inplane = -(ct * S.segment<2>(4) + ca * S.segment<2>(6));
   }
+  if (r_out >= R_ && g.runout > 0) {  // corner engaged (breakthrough): the runout annulus
+    addCornerStrip(model_, feed, 2.0 * g.runout, +1.0, lip[0]);
+    addCornerStrip(model_, q1, g.runout, -1.0, lip[0]);
+    addCornerStrip(model_, q2, g.runout, -1.0, lip[1]);
+  }
+  F.lip[0] = lip[0].F;
+  F.lip[1] = lip[1].F;
   F.thrust_lips = F.lip[0].Fa + F.lip[1].Fa;
   F.tangential = F.lip[0].Ft + F.lip[1].Ft;
   const double M_lips = F.lip[0].M + F.lip[1].M;
@@ -168,7 +196,7 @@ DrillingForces DrillingForceTable::forces(double feed, double depth) {
   }
   F.thrust = F.thrust_lips + F.thrust_chisel;
   F.torque = M_lips + F.torque_chisel;
-  F.residual_xy = inplane[0] - inplane[1];  // lip 2 at 180°
+  F.residual_xy = lip[0].inplane - lip[1].inplane;  // lip 2 at 180°
   F.residual = F.residual_xy.norm();
   return F;
 }

@@ -8,8 +8,9 @@
 /// With the lips engaged on [r_in, r_out] and a chip factor q_k per lip (q₁ = min(f, f/2 + Δz),
 /// q₂ = max(0, f/2 − Δz), Δz = 2ρ/tan p), every node of a lip whose chip h = q_k sin κr is at or
 /// above the floor h_min contributes
-///   dFt = kst0 g_t (q/1 mm)^−m_t (sin κr)^−m_t q w,   dFa = ksa0 g_a (q/1 mm)^−m_a (sin κr)^−m_a q
-///   w, dFrad = dFa cot κr,   dM = dFt r,   in-plane −(dFt v + dFrad e_r).
+///   dFt = kst0 g_t (q/1 mm)^−m_t (sin κr)^−m_t q w,
+///   dFa = ksa0 g_a (q/1 mm)^−m_a (sin κr)^−m_a q w,
+///   dFrad = dFa cot κr,   dM = dFt r,   in-plane −(dFt v + dFrad e_r).
 /// The feed enters through c_t(q) = kst0 (q/1 mm)^−m_t q and c_a(q) alone, so each lip is
 ///   Ft = c_t S_t,  Fa = c_a S_a,  Frad = c_a S_rad,  M = c_t S_M,
 ///   F_inplane = −(c_t (S_tvx, S_tvy) + c_a (S_rex, S_rey)),
@@ -17,6 +18,9 @@
 ///   s(r) = (g_t σ_t, g_a σ_a, g_a σ_a cot κr, g_t σ_t r, g_t σ_t v_x, g_t σ_t v_y,
 ///           g_a σ_a cot κr e_rx, g_a σ_a cot κr e_ry),   σ = (sin κr)^−m.
 /// S depends on the depth D alone (r_in, r_out are piecewise linear in D, engagementAtDepth).
+/// Chisel (kRatio: F_ch = ratio·ΣFa, M_ch = ratio·ΣM; kPressure: p a f) and, with runout ρ > 0
+/// and the corner engaged (r_out = R), the corner strips of the annulus [R − ρ, R + ρ] (lip 1
+/// alone at the full feed) as drilling_forces.hpp.
 ///
 /// ## Table (the only approximation)
 /// S(D) = the evaluator's own 24-node Gauss–Legendre sums on [r_in(D), r_out(D)], tabulated
@@ -40,9 +44,7 @@
 ///  * full engagement (lips on [a, R]): drillingForces, which needs no node rebuild;
 ///  * no engagement (D ≤ 0, or the lips have left a through plate);
 ///  * any node chip below its floor (q_k·min sin κr < h_min, e.g. the end of a dwell): the floor
-///    makes the integrand depend on q node by node;
-///  * runout ρ > 0 with the corner engaged (r_out = R) and the lips partial (breakthrough): the
-///    corner strip of drilling_forces.hpp.
+///    makes the integrand depend on q node by node.
 /// Units SI: m, m/rev, N, N m.
 
 #include <Eigen/Core>
