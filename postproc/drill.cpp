@@ -25,7 +25,7 @@ bool statesUnknownValues(const Program& p, const Motion& m) {
   if (m.target < 0) return false;
   const Target& t = p.targets()[static_cast<std::size_t>(m.target)];
   if (t.kind != TargetKind::kCartesian) return false;
-  const auto unknown = [](const NumberField& f) { return !f.expr.empty() && !f.expr_known; };
+  const auto unknown = [](const NumberField& f) { return f.named() && !f.expr_known; };
   return std::any_of(t.pos.begin(), t.pos.end(), unknown) ||
          std::any_of(t.rot.begin(), t.rot.end(), unknown);
 }

@@ -574,12 +574,12 @@ EditResult replaceTargetPose(Program& p, int index, const Pose& T,
   {
     std::string named;
     for (const NumberField& f : t.pos)
-      if (!f.expr.empty()) named += (named.empty() ? "" : ", ") + f.expr;
+      if (f.named()) named += (named.empty() ? "" : ", ") + p.exprText(f);
     for (const NumberField& f : t.rot)
-      if (!f.expr.empty()) named += (named.empty() ? "" : ", ") + f.expr;
+      if (f.named()) named += (named.empty() ? "" : ", ") + p.exprText(f);
     if (config)
       for (const NumberField& f : t.cf_fields)
-        if (!f.expr.empty()) named += (named.empty() ? "" : ", ") + f.expr;
+        if (f.named()) named += (named.empty() ? "" : ", ") + p.exprText(f);
     if (!named.empty()) {
       r.reason = who + " states components by name or expression (" + named +
                  "); they are not rewritten: not edited";
@@ -794,6 +794,12 @@ Program parseProgram(Dialect d, const std::string& path, std::string bytes,
     g.indexLines();
     p.files.push_back(std::move(g));
   }
+  // Upper bound of targets and motions in the line-based dialects: one array of each, built in
+  // place (pages never written are never resident).
+  std::size_t lines = 0;
+  for (const SourceFile& sf : p.files) lines += sf.line_starts.size();
+  p.target_list.reserve(lines + 16);
+  p.motions.reserve(lines + 16);
   switch (d) {
     case Dialect::kKrl:
       parseKrl(p);
@@ -813,6 +819,7 @@ Program parseProgram(Dialect d, const std::string& path, std::string bytes,
       break;
   }
   checkValueRanges(p);
+  for (SourceFile& sf : p.files) std::vector<Token>().swap(sf.tokens);  // the readers' index only
   return p;
 }
 

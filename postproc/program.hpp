@@ -84,19 +84,23 @@ struct SourceFile {
 /// A number in a file: value plus the span of its token (sign included). `pad` counts the
 /// whitespace bytes before `offset` that belong to a right-aligned field (FANUC `%9.3f`).
 struct NumberField {
-  int file{-1};
+  std::int8_t file{-1};  ///< index into Program::files (-1: no token of its own)
+  bool expr_known{false};
+  std::uint16_t pad{0};  ///< right-alignment whitespace before `offset` (at most 65535)
   std::uint32_t offset{0};
   std::uint32_t length{0};
-  std::uint32_t pad{0};
-  double value{0.0};
   /// RAPID: the component is a named constant or an expression (`Shift_Track`, `-d/2`), kept
-  /// verbatim and never re-printed (file = -1). `value` holds its value when `expr_known`.
-  std::string expr;
-  bool expr_known{false};
+  /// verbatim and never re-printed (file = -1): its text is Program::expressions[expr - 1]; 0 for
+  /// a number. `value` holds its value when `expr_known`.
+  std::uint32_t expr{0};
+  double value{0.0};
   [[nodiscard]] bool present() const { return file >= 0; }
   /// A value is known: a numeric token, or an expression roprec could evaluate.
   [[nodiscard]] bool known() const { return file >= 0 || expr_known; }
+  /// Stated by a name or expression (known or not).
+  [[nodiscard]] bool named() const { return expr != 0; }
 };
+static_assert(sizeof(NumberField) == 24, "a program holds ~25 NumberFields per target");
 
 enum class Vendor { kNone, kKuka, kAbb, kFanuc };
 
@@ -215,6 +219,8 @@ struct Program {
   std::vector<Frame> frames;
   std::vector<Unresolved> unresolved;
   std::vector<std::string> notes;
+  /// Texts of the target components stated by name or expression (NumberField::expr).
+  std::vector<std::string> expressions;
   std::map<std::pair<int, std::uint32_t>, Edit> edits;  ///< pending edits by (file, offset)
   /// FANUC `$SCR_GRP[1].$TURN_AXIS[1..3]` (1-based joint numbers) when known (docs/programs.md §9.1
   /// item 1).
@@ -225,6 +231,11 @@ struct Program {
   int position_min_decimals{3};
 
   [[nodiscard]] const std::vector<Target>& targets() const { return target_list; }
+  /// The name or expression a component states ("" for a number).
+  [[nodiscard]] const std::string& exprText(const NumberField& f) const {
+    static const std::string kNone;
+    return f.expr == 0 ? kNone : expressions[f.expr - 1];
+  }
 };
 
 /// Reads a program; the dialect comes from the extension and the content. KRL: `x.src` reads

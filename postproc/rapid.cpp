@@ -348,13 +348,15 @@ class RapidReader {
   NumberField component(const Node& n, const char* what) {
     if (n.number || n.list) return field(n, what);
     NumberField f;
-    f.expr = std::string(std::string_view(f_.bytes).substr(n.begin, n.end - n.begin));
+    p_.expressions.emplace_back(std::string_view(f_.bytes).substr(n.begin, n.end - n.begin));
+    f.expr = static_cast<std::uint32_t>(p_.expressions.size());
+    const std::string& text = p_.expressions.back();
     if (const auto v = evaluate(n.tb, n.te)) {
       f.value = *v;
       f.expr_known = true;
     } else {
-      unresolved(f.expr, n.begin,
-                 std::string(what) + " component '" + f.expr +
+      unresolved(text, n.begin,
+                 std::string(what) + " component '" + text +
                      "' is not a constant roprec can evaluate (set at run time); its value is "
                      "unknown");
     }

@@ -263,7 +263,7 @@ class TpReader {
       --o;
       ++pad;
     }
-    if (o == eq_end) f.pad = pad;
+    if (o == eq_end) f.pad = static_cast<std::uint16_t>(std::min<std::uint32_t>(pad, 65535));
     ++q;
     return f;
   }

@@ -30,7 +30,7 @@ std::string targetName(const Target& t) {
 }
 
 void refuse(const Program& p, const Target& t, const NumberField& f, const std::string& what,
-            const std::string& range) {
+            const char* range) {
   const auto [file, line] = whereOf(p, t, f);
   throw InputError(file, line,
                    targetName(t) + ": " + what + " = " + numberText(f.value) +
@@ -38,10 +38,12 @@ void refuse(const Program& p, const Target& t, const NumberField& f, const std::
                        "); a corrupted or mistyped number would move the robot by that much");
 }
 
-void checkBound(const Program& p, const Target& t, const NumberField& f, const std::string& what,
-                double bound, const std::string& range) {
+/// `what(k)` names the value; it is only built for the message.
+template <class What>
+void checkBound(const Program& p, const Target& t, const NumberField& f, const What& what,
+                double bound, const char* range) {
   if (!f.known()) return;
-  if (!(std::fabs(f.value) <= bound)) refuse(p, t, f, what, range);
+  if (!(std::fabs(f.value) <= bound)) refuse(p, t, f, what(), range);
 }
 
 const char* eulerName(Orientation o, std::size_t k) {
@@ -57,8 +59,9 @@ void checkOrientation(const Program& p, const Target& t) {
   if (t.orientation == Orientation::kKukaAbc || t.orientation == Orientation::kFanucWpr ||
       t.orientation == Orientation::kXyzIntrinsic) {
     for (std::size_t k = 0; k < 3; ++k) {
-      checkBound(p, t, t.rot[k], std::string("angle ") + eulerName(t.orientation, k), kMaxEulerDeg,
-                 "|angle| <= 720 deg");
+      checkBound(
+          p, t, t.rot[k], [&] { return std::string("angle ") + eulerName(t.orientation, k); },
+          kMaxEulerDeg, "|angle| <= 720 deg");
     }
     return;
   }
@@ -83,25 +86,29 @@ void checkTarget(const Program& p, const Target& t) {
   static const char* const kXyz[] = {"x", "y", "z"};
   if (t.kind == TargetKind::kCartesian) {
     for (std::size_t k = 0; k < 3; ++k) {
-      checkBound(p, t, t.pos[k], std::string("position ") + kXyz[k] + " (mm)", kMaxPositionMm,
-                 "|x| <= 100000 mm");
+      checkBound(
+          p, t, t.pos[k], [&] { return std::string("position ") + kXyz[k] + " (mm)"; },
+          kMaxPositionMm, "|x| <= 100000 mm");
     }
     checkOrientation(p, t);
   } else {
     for (std::size_t k = 0; k < 6; ++k) {
-      checkBound(p, t, t.joints[k], "joint " + std::to_string(k + 1), kMaxJoint,
-                 "|q| <= 100000 deg or mm");
+      checkBound(
+          p, t, t.joints[k], [&] { return "joint " + std::to_string(k + 1); }, kMaxJoint,
+          "|q| <= 100000 deg or mm");
     }
   }
   for (std::size_t k = 0; k < 6; ++k) {
     const NumberField& e = t.ext[k];
     if (!e.known() || e.value == kRapidUnusedAxis) continue;
-    checkBound(p, t, e, "external axis " + std::to_string(k + 1), kMaxJoint,
-               "|e| <= 100000 deg or mm, or 9E+09 for an axis not used");
+    checkBound(
+        p, t, e, [&] { return "external axis " + std::to_string(k + 1); }, kMaxJoint,
+        "|e| <= 100000 deg or mm, or 9E+09 for an axis not used");
   }
   for (std::size_t k = 0; k < 4; ++k) {
-    checkBound(p, t, t.cf_fields[k], "configuration number " + std::to_string(k + 1),
-               kMaxConfiguration, "|cf| <= 1000");
+    checkBound(
+        p, t, t.cf_fields[k], [&] { return "configuration number " + std::to_string(k + 1); },
+        kMaxConfiguration, "|cf| <= 1000");
   }
 }
 

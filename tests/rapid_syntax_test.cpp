@@ -117,7 +117,7 @@ TEST(RapidSyntax, InlineTargetsWithNamedConstantsRoundTripAndResolve) {
   EXPECT_EQ(postproc::renderFiles(p)[0], kNamedModule);
   ASSERT_EQ(p.targets().size(), 3U);
   const postproc::Target& j1 = p.targets()[0];
-  EXPECT_EQ(j1.ext[0].expr, "Shift_Track");
+  EXPECT_EQ(p.exprText(j1.ext[0]), "Shift_Track");
   EXPECT_TRUE(j1.ext[0].expr_known);
   EXPECT_DOUBLE_EQ(j1.ext[0].value, 250.0);
   const postproc::Target& j2 = p.targets()[1];
