@@ -264,6 +264,7 @@ std::vector<std::vector<Node>> candidateNodes(Evaluator& ev, const std::vector<H
     const Vec6 s = b.status == HoleStatus::kOk ? b.joints : seed;
     const int branch = (b.status == HoleStatus::kOk && !o.allow_branch_change) ? b.branch : -1;
     bool any = false;
+    nodes[i].reserve(static_cast<size_t>(grid));
     for (int k = 0; k < grid; ++k) {
       nodes[i].push_back(ev.evaluate(holes[i], gridPsi(k, grid), branch, s, choose, choose));
       ++st.dp_nodes;

@@ -387,6 +387,8 @@ void predictAtSolution(const PredictionModel& m, PredictionData& d, const HoleRe
   p.robdef_cov = cov_def;
   const double u_robdef = std::sqrt(0.5 * cov_def.trace());
   const double u_robdef_proc = std::sqrt(0.5 * cov_def_proc.trace());
+  // one allocation for a fresh prediction (none for a reused one), not one per growth step
+  p.budget.reserve(3 + (proc ? proc->mach.components.size() : 0));
   p.budget.push_back({"robot_repeatability", u_robpos, false});
   p.budget.push_back({"robot_deflection_model",
                       std::sqrt(std::max(0.0, u_robdef * u_robdef - u_robdef_proc * u_robdef_proc)),

@@ -361,8 +361,9 @@ int turnMismatch(const IkModel& model, const RobotCard& card, const Vec6& q,
                  std::string* why) {
   const Vec6 c = toControllerJoints(card, q);
   int d = 0;
-  auto note = [&](const std::string& s) {
-    if (why) *why += (why->empty() ? "" : ", ") + s;
+  // the text is made only when asked for (the IK choice calls this per candidate, why = nullptr)
+  auto note = [&](const auto& text) {
+    if (why) *why += (why->empty() ? "" : ", ") + text();
   };
   switch (config.vendor) {
     case Vendor::kKuka: {
@@ -371,8 +372,10 @@ int turnMismatch(const IkModel& model, const RobotCard& card, const Vec6& q,
         const bool want_neg = ((*config.kuka.turn >> n) & 1) != 0;
         if (want_neg == (c[n] < 0.0) || std::abs(c[n]) <= tol) continue;
         ++d;
-        note("T bit " + std::to_string(n) + " (A" + std::to_string(n + 1) + " at " + degText(c[n]) +
-             " deg, the flag says " + (want_neg ? "< 0" : ">= 0") + ")");
+        note([&] {
+          return "T bit " + std::to_string(n) + " (A" + std::to_string(n + 1) + " at " +
+                 degText(c[n]) + " deg, the flag says " + (want_neg ? "< 0" : ">= 0") + ")";
+        });
       }
       return d;
     }
@@ -385,9 +388,11 @@ int turnMismatch(const IkModel& model, const RobotCard& card, const Vec6& q,
         const double th = c[axis[k] - 1];
         if (quadrantMeets(th, want[k], have[k], tol)) continue;
         d += std::abs(want[k] - have[k]);
-        note("cf" + std::to_string(axis[k]) + " " + std::to_string(want[k]) + " -> " +
-             std::to_string(have[k]) + " (axis " + std::to_string(axis[k]) + " at " + degText(th) +
-             " deg)");
+        note([&] {
+          return "cf" + std::to_string(axis[k]) + " " + std::to_string(want[k]) + " -> " +
+                 std::to_string(have[k]) + " (axis " + std::to_string(axis[k]) + " at " +
+                 degText(th) + " deg)";
+        });
       }
       return d;
     }
@@ -398,9 +403,11 @@ int turnMismatch(const IkModel& model, const RobotCard& card, const Vec6& q,
         const double th = c[ax - 1];
         if (turnMeets(th, config.fanuc.turns[k], f.turns[k], tol)) continue;
         d += std::abs(f.turns[k] - config.fanuc.turns[k]);
-        note("turn " + std::to_string(k + 1) + " " + std::to_string(config.fanuc.turns[k]) +
-             " -> " + std::to_string(f.turns[k]) + " (J" + std::to_string(ax) + " at " +
-             degText(th) + " deg)");
+        note([&] {
+          return "turn " + std::to_string(k + 1) + " " + std::to_string(config.fanuc.turns[k]) +
+                 " -> " + std::to_string(f.turns[k]) + " (J" + std::to_string(ax) + " at " +
+                 degText(th) + " deg)";
+        });
       }
       return d;
     }
