@@ -45,7 +45,8 @@ fi
 #    wrapper page so that a fragment (#maps: the prediction report's maps, below its header)
 #    scrolls it; the report itself is not changed.
 shot() {  # shot PAGE.html[#fragment] OUT.png
-  local frame="$WORK/frame-$(basename "$2" .png).html"
+  local frame
+  frame="$WORK/frame-$(basename "$2" .png).html"
   printf '%s\n' '<!DOCTYPE html><html><head><meta charset="utf-8"><style>html,body{margin:0;overflow:hidden}' \
     'iframe{border:0;width:1400px;height:1000px;display:block}</style></head><body>' \
     "<iframe src=\"file://$1\"></iframe></body></html>" >"$frame"

@@ -1265,6 +1265,51 @@ TEST(ReportSample, VerifyReportNamesAxesDecisionsAndFailingHoles) {
             html.find("#cf222e") != std::string::npos);
 }
 
+/// The verify report's table in a real browser: a click on the |r| head sorts the rows by |r|
+/// (ascending, aria-sort set), the box hides the passing rows (class fonly on the table).
+TEST(ReportChromium, VerifyTableSortsAndFilters) {
+  const std::string chromium = "/usr/bin/chromium";
+  if (!fs::exists(chromium)) GTEST_SKIP() << "no " << chromium << " (scripts/setup.sh installs it)";
+  const std::string dir = test::tempDir("report-verify-sort");
+  const std::string v = sample("verification/");
+  const test::RunResult r = test::runRoprec(
+      "verify --cell " + sample("cells/housing-kr120.xml") + " " + v + "test_kr120.src --holes " +
+      v + "test_kr120_holes.csv --measured " + v + "measured.csv --report " + dir + "/v.html");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::string html = test::readFile(dir + "/v.html");
+  const size_t body_end = html.rfind("</body>");
+  ASSERT_NE(body_end, std::string::npos);
+  // the user's two clicks, after the report's own script has run
+  html.insert(body_end,
+              "<script>document.querySelectorAll('#holetable th')[4].click();"
+              "document.getElementById('failonly').click();</script>");
+  test::writeFile(dir + "/clicked.html", html);
+  const test::RunResult dom = test::runCommand(
+      "timeout 60 '" + chromium +
+      "' --headless --no-sandbox --disable-gpu --no-first-run --disable-background-networking "
+      "--user-data-dir='" +
+      dir + "/profile' --dump-dom 'file://" + dir + "/clicked.html' 2>/dev/null");
+  const size_t t0 = dom.out.find("id=\"holetable\"");
+  ASSERT_NE(t0, std::string::npos) << dom.out.substr(0, 400);
+  const std::string table = dom.out.substr(t0, dom.out.find("</table>", t0) - t0);
+  EXPECT_NE(dom.out.find("<table class=\"holes fonly\" id=\"holetable\">"), std::string::npos);
+  EXPECT_EQ(countOf(table, "aria-sort=\"ascending\""), 1u);
+  const std::regex row(
+      "<tr(?: class=\"pass\")?><td>\\d+</td><td class=\"l\">[^<]*</td><td>[^<]*"
+      "</td><td>[^<]*</td><td>([^<]*)</td>");
+  const auto column = [&](const std::string& text) {
+    std::vector<double> v;
+    for (std::sregex_iterator it(text.begin(), text.end(), row), end; it != end; ++it)
+      v.push_back(std::stod((*it)[1].str()));
+    return v;
+  };
+  const std::vector<double> before = column(html), after = column(table);
+  ASSERT_EQ(before.size(), 24u);
+  ASSERT_FALSE(std::is_sorted(before.begin(), before.end()));  // program order is not by |r|
+  ASSERT_EQ(after.size(), 24u);
+  EXPECT_TRUE(std::is_sorted(after.begin(), after.end()));
+}
+
 TEST(ReportSample, StatesTheRobotCardsEstimates) {
   // Every guess is visible in the report: the bundled KR 120's stiffness, balancer and
   // inertials are estimates; a card without an estimate shows none.
