@@ -14,11 +14,6 @@ namespace fs = std::filesystem;
 
 std::string baseName(const std::string& path) { return fs::path(path).filename().string(); }
 
-/// `hole ID (PROGRAM:LINE)` as the CLI names a hole.
-std::string holeWhere(const std::string& id, int line, const std::string& program) {
-  return line > 0 ? "hole " + id + " (" + program + ":" + std::to_string(line) + ")" : "hole " + id;
-}
-
 /// The nominal hole of request i: the hole list's when one was matched (its point and axis; the
 /// program's rotation about the axis when the axes agree), else the program's drill point.
 Pose nominalHole(const PredictionContext& c, size_t i) {
@@ -265,6 +260,10 @@ Json strings(const std::vector<std::string>& v) {
 }
 
 }  // namespace
+
+std::string holeWhere(const std::string& id, int line, const std::string& program) {
+  return line > 0 ? "hole " + id + " (" + program + ":" + std::to_string(line) + ")" : "hole " + id;
+}
 
 VerifyResult verifyJob(const std::string& cell_path, const std::string& program_path,
                        const VerifyJob& job, const ProgressFn& progress) {

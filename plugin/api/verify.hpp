@@ -29,6 +29,10 @@
 
 namespace roprec::api {
 
+/// `hole ID (PROGRAM:LINE)` (`hole ID` when the line is not known): how every host names a hole
+/// in messages.
+std::string holeWhere(const std::string& id, int line, const std::string& program);
+
 struct VerifyJob {
   JobOptions job;        ///< hole list, match tolerance, uncertainty method
   std::string measured;  ///< the CMM file (roprec CSV, PC-DMIS CSV or DMIS), workobject mm

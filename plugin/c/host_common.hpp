@@ -86,13 +86,6 @@ inline bool isCsvPath(const std::string& path) {
   return path.size() > 4 && path.compare(path.size() - 4, 4, ".csv") == 0;
 }
 
-/// `hole ID (PROGRAM:LINE)` as the CLI names a hole.
-inline std::string holeWhere(const std::string& id, int line, const std::string& program) {
-  std::string s = "hole " + id;
-  if (line > 0) s += " (" + program + ":" + std::to_string(line) + ")";
-  return s;
-}
-
 /// One line per problem, at most `max_lines` of them.
 inline std::string joinLines(const std::vector<std::string>& lines, size_t max_lines = 50) {
   std::string s;
@@ -112,7 +105,7 @@ inline std::vector<std::string> predictionFailures(const api::PredictionResult& 
   for (size_t i = 0; i < r.holes.size(); ++i) {
     const HolePrediction& h = r.holes[i];
     if (h.status == HoleStatus::kOk) continue;
-    out.push_back(holeWhere(h.id, r.context.job.requests[i].line, program) + ": " +
+    out.push_back(api::holeWhere(h.id, r.context.job.requests[i].line, program) + ": " +
                   verdictAndReason(h.verdict, h.reason));
   }
   return out;
@@ -126,7 +119,7 @@ inline std::string compensationProblems(const api::CompensationResult& r,
   for (size_t i = 0; i < r.holes.size(); ++i) {
     const HoleCompensation& h = r.holes[i];
     if (h.ok) continue;
-    problems.push_back(holeWhere(h.id, r.context.job.requests[i].line, program) +
+    problems.push_back(api::holeWhere(h.id, r.context.job.requests[i].line, program) +
                        ": not compensated: " + h.reason);
   }
   problems.insert(problems.end(), r.refused.begin(), r.refused.end());

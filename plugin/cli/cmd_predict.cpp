@@ -8,6 +8,7 @@
 #include "compensator/support/error.hpp"
 #include "plugin/api/job.hpp"
 #include "plugin/api/json.hpp"
+#include "plugin/api/verify.hpp"
 #include "plugin/cli/cli.hpp"
 #include "plugin/cli/robot_options.hpp"
 
@@ -28,9 +29,8 @@ struct HoleDigest {
       ++axis_n;
     }
     if (h.status == HoleStatus::kOk) return;
-    std::string f = "hole " + h.id;
-    if (q.line > 0) f += " (" + program + ":" + std::to_string(q.line) + ")";
-    failures.push_back(f + ": " + verdictAndReason(h.verdict, h.reason));
+    failures.push_back(api::holeWhere(h.id, q.line, program) + ": " +
+                       verdictAndReason(h.verdict, h.reason));
   }
 };
 
