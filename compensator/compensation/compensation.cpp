@@ -635,12 +635,13 @@ void assemble(Evaluator& ev, const HoleRequest& h, const nc::Loads& loads, bool 
 }
 
 /// Compensation of hole h at `node` (positions_only: keep the programmed orientation).
-HoleCompensation finalizeHole(Evaluator& ev, const HoleRequest& h, const HoleCompensation& original,
+/// `original` (the stage-1 result of the hole: id, prediction, note) is taken over.
+HoleCompensation finalizeHole(Evaluator& ev, const HoleRequest& h, HoleCompensation original,
                               const Node& node, bool positions_only) {
   HoleCompensation c;
-  c.id = original.id;
-  c.before = original.before;
-  c.note = original.note;
+  c.id = std::move(original.id);
+  c.before = std::move(original.before);
+  c.note = std::move(original.note);
   c.psi = positions_only ? 0.0 : node.psi;
   c.T_nominal = h.T_W_tcp * rotZ(c.psi);
   c.theta_d = node.q;
@@ -785,7 +786,11 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,
         programmed[i] = ev.evaluate(holes[i], 0.0, b.branch, b.joints, false, true);
     }
   }
-  const std::vector<HoleCompensation> original = out;
+  // stiffest compares with the keep result later and needs the stage-1 results again; the other
+  // modes hand each hole's over (no copy)
+  const bool stiffest = o.mode == OrientationMode::kStiffest;
+  std::vector<HoleCompensation> original;
+  if (stiffest) original = out;
   for (size_t i = 0; i < n; ++i) {
     if (out[i].before.status == HoleStatus::kNotConverged) {
       out[i].reason = "not compensated: " + out[i].before.reason;
@@ -804,7 +809,8 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,
       out[i].reason = "no admissible orientation about the drill axis (limits, wrist margin)";
       continue;
     }
-    out[i] = finalizeHole(ev, holes[i], original[i], chosen[i], o.mode == OrientationMode::kKeep);
+    out[i] = finalizeHole(ev, holes[i], stiffest ? original[i] : std::move(out[i]), chosen[i],
+                          o.mode == OrientationMode::kKeep);
   }
   if (o.mode == OrientationMode::kStiffest)
     stiffestAgainstKeep(ev, holes, original, programmed, chosen, thr, out);

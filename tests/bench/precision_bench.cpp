@@ -13,6 +13,10 @@
 #include "tests/support/kdl_support.hpp"
 #include "tests/support/test_support.hpp"
 
+namespace roprec::bench {
+long threadAllocations();  // alloc_counter_bench.cpp
+}  // namespace roprec::bench
+
 namespace {
 
 using namespace roprec;
@@ -122,13 +126,20 @@ void BM_PredictHoles1000(benchmark::State& st) {
 BENCHMARK(BM_PredictHoles1000)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_Compensate1000(benchmark::State& st) {
+  // also reports the heap allocations per hole of the call (alloc_counter_bench.cpp: every
+  // operator new of this thread, the returned per-hole results included)
   Fixture& f = fx();
   CompensationOptions o;
   o.mode = st.range(0) == 0 ? OrientationMode::kKeep : OrientationMode::kFlipFree;
+  long allocations = 0;
   for (auto _ : st) {
+    const long before = bench::threadAllocations();
     const auto r = compensateHoles(f.c.model, f.thousand, o);
+    allocations = bench::threadAllocations() - before;
     benchmark::DoNotOptimize(r.size());
   }
+  st.counters["allocs_per_hole"] =
+      static_cast<double>(allocations) / static_cast<double>(f.thousand.size());
   st.SetLabel(st.range(0) == 0 ? "keep" : "flip-free");
 }
 BENCHMARK(BM_Compensate1000)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(1);
