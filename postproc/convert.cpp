@@ -5,6 +5,7 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <set>
 
 #include "compensator/support/c_format.hpp"
 #include "compensator/support/error.hpp"
@@ -315,6 +316,14 @@ void listNotCarried(const Program& p, ConversionReport& rep) {
   std::vector<std::string> order;                 // "text (kind" in first-seen order
   std::map<std::string, std::vector<int>> lines;  // its lines
   bool in_mn = p.dialect != Dialect::kTp;
+  bool in_header = false;
+  std::set<std::string> carried_vars;  // upper case
+  for (const Frame& fr : p.frames) {
+    if (fr.resolved) carried_vars.insert(upper(fr.ref));
+  }
+  for (const Motion& m : p.motions) {
+    if (m.speed_mm_s > 0) carried_vars.insert(upper(m.speed_text));
+  }
   bool open = false;  // RAPID: a statement continues on the next line
   for (std::size_t l = 0; l < f.line_starts.size(); ++l) {
     const std::string raw = lineAt(f, l);
@@ -336,12 +345,16 @@ void listNotCarried(const Program& p, ConversionReport& rep) {
       kind = tpKind(upper(code));
     } else if (p.dialect == Dialect::kRapid) {
       code = codeOf(raw, "!");
-      if (code.empty()) continue;
+      if (code == "%%%") in_header = !in_header;  // the module header: VERSION, LANGUAGE
+      if (code.empty() || code == "%%%" || in_header) continue;
       const std::string u = upper(code);
       const bool continued = open;
       open = !rapidBlockLine(u) && code.back() != ';';
       if (continued) continue;
       kind = rapidKind(u);
+      // `rdkWObj.uframe := ...`, `rdkSpeed := ...`: frames and speeds the new program states
+      // by value (the reader resolved them)
+      if (kind == "assignment" && carried_vars.count(firstWord(u))) kind.clear();
     } else {
       code = codeOf(raw, ";");
       kind = krlKind(upper(code));

@@ -306,5 +306,22 @@ TEST(PostprocConvert, KrlSourceUnusedExternalAxesBecome9E09InRapid) {
   EXPECT_NE(krl[1].second.find(",E1 1545.000000"), std::string::npos);
 }
 
+/// RoboDK's RAPID: the %%% header and the frame/speed assignments the new program states by
+/// value are not listed; the spindle calls and the waits are.
+TEST(PostprocConvert, RoboDkRapidListsOnlyWhatIsLost) {
+  if (test::corpusDir().empty()) GTEST_SKIP() << "no corpus";
+  const Program src = readProgram(test::corpusDir() + "/robodk/DrillIRC5.mod");
+  ConversionReport rep;
+  convertProgram(src, Dialect::kKrl, test::tempDir("cv-rdk") + "/x.src", rep);
+  EXPECT_TRUE(listed(rep.not_carried, "DrillIRC5.mod:28: SPINDLE_ON; (call)"));
+  EXPECT_TRUE(listed(rep.not_carried, "DrillIRC5.mod:39: WaitTime 0.500; (wait; 3 in all"));
+  EXPECT_TRUE(listed(rep.not_carried, "SPINDLE_OFF; (call)"));
+  EXPECT_FALSE(listed(rep.not_carried, "%%%"));
+  EXPECT_FALSE(listed(rep.not_carried, "VERSION"));
+  EXPECT_FALSE(listed(rep.not_carried, "rdkWObj.uframe"));
+  EXPECT_FALSE(listed(rep.not_carried, "rdkSpeed"));
+  expectLinesTrue(src, rep.not_carried);
+}
+
 }  // namespace
 }  // namespace roprec::postproc
