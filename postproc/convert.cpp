@@ -300,6 +300,63 @@ std::string tpKind(const std::string& u) {
   return "other";
 }
 
+/// Reads a program's main file line by line and names the kind of each instruction the new
+/// program does not carry (`kind` empty: carried, structure, comment or a motion).
+class LineScanner {
+ public:
+  explicit LineScanner(const Program& p) : p_(p) {
+    for (const Frame& fr : p.frames) {
+      if (fr.resolved) carried_vars_.insert(upper(fr.ref));
+    }
+    for (const Motion& m : p.motions) {
+      if (m.speed_mm_s > 0) carried_vars_.insert(upper(m.speed_text));
+    }
+  }
+  /// The code of `raw` (comment stripped) in `code` and its kind ("" when nothing is lost).
+  std::string kind(const std::string& raw, std::string& code) {
+    if (p_.dialect == Dialect::kTp) return tp(raw, code);
+    if (p_.dialect == Dialect::kRapid) return rapid(raw, code);
+    code = codeOf(raw, ";");
+    return krlKind(upper(code));
+  }
+
+ private:
+  std::string tp(const std::string& raw, std::string& code) {
+    if (!raw.empty() && raw[0] == '/') {  // a section: only /MN holds instructions
+      in_mn_ = raw.rfind("/MN", 0) == 0;
+      return "";
+    }
+    const std::size_t first = raw.find_first_not_of(' ');
+    if (!in_mn_ || first == std::string::npos || raw[first] == ':')
+      return "";  // outside /MN, blank, or the second line of a C motion
+    const std::size_t colon = raw.find(':');
+    code = codeOf(colon == std::string::npos ? raw : raw.substr(colon + 1), "\x01");
+    while (!code.empty() && (code.back() == ';' || code.back() == ' ' || code.back() == '\t'))
+      code.pop_back();
+    return tpKind(upper(code));
+  }
+
+  std::string rapid(const std::string& raw, std::string& code) {
+    code = codeOf(raw, "!");
+    if (code == "%%%") in_header_ = !in_header_;  // the module header: VERSION, LANGUAGE
+    if (code.empty() || code == "%%%" || in_header_) return "";
+    const std::string u = upper(code);
+    const bool continued = open_;
+    open_ = !rapidBlockLine(u) && code.back() != ';';
+    if (continued) return "";
+    const std::string k = rapidKind(u);
+    // `rdkWObj.uframe := ...`, `rdkSpeed := ...`: frames and speeds the new program states by
+    // value (the reader resolved them)
+    return k == "assignment" && carried_vars_.count(firstWord(u)) ? "" : k;
+  }
+
+  const Program& p_;
+  std::set<std::string> carried_vars_;  ///< upper case
+  bool in_mn_{false};                   ///< TP: inside /MN
+  bool in_header_{false};               ///< RAPID: inside the %%% header
+  bool open_{false};                    ///< RAPID: a statement continues on the next line
+};
+
 /// Every instruction of the source that the new program does not carry, as
 /// "FILE:LINE: text (kind)", in source order; an instruction written several times (a WAIT per
 /// hole) once, at its first line: "FILE:19: WAIT SEC 0.3 (wait; 204 in all, lines 19,28,...)".
@@ -308,64 +365,22 @@ void listNotCarried(const Program& p, ConversionReport& rep) {
       (p.dialect != Dialect::kKrl && p.dialect != Dialect::kRapid && p.dialect != Dialect::kTp))
     return;  // a target list has nothing but targets
   const SourceFile& f = p.files[0];
-  std::vector<bool> motion_line(f.line_starts.size() + 2, false);
+  std::set<int> motion_lines;
   for (const Motion& m : p.motions) {
-    if (m.file == 0 && m.line > 0 && static_cast<std::size_t>(m.line) < motion_line.size())
-      motion_line[static_cast<std::size_t>(m.line)] = true;
+    if (m.file == 0) motion_lines.insert(m.line);
   }
   std::vector<std::string> order;                 // "text (kind" in first-seen order
   std::map<std::string, std::vector<int>> lines;  // its lines
-  bool in_mn = p.dialect != Dialect::kTp;
-  bool in_header = false;
-  std::set<std::string> carried_vars;  // upper case
-  for (const Frame& fr : p.frames) {
-    if (fr.resolved) carried_vars.insert(upper(fr.ref));
-  }
-  for (const Motion& m : p.motions) {
-    if (m.speed_mm_s > 0) carried_vars.insert(upper(m.speed_text));
-  }
-  bool open = false;  // RAPID: a statement continues on the next line
+  LineScanner scan(p);
   for (std::size_t l = 0; l < f.line_starts.size(); ++l) {
-    const std::string raw = lineAt(f, l);
     std::string code;
-    std::string kind;
-    if (p.dialect == Dialect::kTp) {
-      if (raw.rfind("/MN", 0) == 0) in_mn = true;
-      if (!raw.empty() && raw[0] == '/') {
-        if (raw.rfind("/MN", 0) != 0) in_mn = false;
-        continue;
-      }
-      if (!in_mn) continue;
-      const std::size_t colon = raw.find(':');
-      code = codeOf(colon == std::string::npos ? raw : raw.substr(colon + 1), "\x01");
-      while (!code.empty() && (code.back() == ';' || code.back() == ' ' || code.back() == '\t'))
-        code.pop_back();
-      if (raw.find_first_not_of(" ") != std::string::npos && raw[raw.find_first_not_of(" ")] == ':')
-        continue;  // the second line of a C motion
-      kind = tpKind(upper(code));
-    } else if (p.dialect == Dialect::kRapid) {
-      code = codeOf(raw, "!");
-      if (code == "%%%") in_header = !in_header;  // the module header: VERSION, LANGUAGE
-      if (code.empty() || code == "%%%" || in_header) continue;
-      const std::string u = upper(code);
-      const bool continued = open;
-      open = !rapidBlockLine(u) && code.back() != ';';
-      if (continued) continue;
-      kind = rapidKind(u);
-      // `rdkWObj.uframe := ...`, `rdkSpeed := ...`: frames and speeds the new program states
-      // by value (the reader resolved them)
-      if (kind == "assignment" && carried_vars.count(firstWord(u))) kind.clear();
-    } else {
-      code = codeOf(raw, ";");
-      kind = krlKind(upper(code));
-    }
-    if (kind.empty() || motion_line[l + 1]) continue;
+    const std::string kind = scan.kind(lineAt(f, l), code);
+    if (kind.empty() || motion_lines.count(static_cast<int>(l + 1))) continue;
     if (code.size() > 60) code = code.substr(0, 57) + "...";
     const std::string key = code + " (" + kind;
     if (!lines.count(key)) order.push_back(key);
     lines[key].push_back(static_cast<int>(l + 1));
   }
-  // one entry per distinct instruction, at its first line; the others listed after it
   for (const std::string& key : order) {
     const std::vector<int>& at = lines[key];
     std::string s = f.path + ":" + std::to_string(at[0]) + ": " + key;
