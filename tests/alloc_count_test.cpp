@@ -7,6 +7,8 @@
 //    model-of-record staticTorques): 0 per call;
 //  * predictHole into a reused HolePrediction over the 204 holes of the housing sample: 0;
 //  * an NLopt evaluation (the trampoline hands x and the gradient over in owned buffers): 0;
+//  * the drilling transient's right-hand side (entry on the force table, full engagement,
+//    breakthrough, each at a new θ and again at the same θ): 0 per call;
 //  * the counter itself: a deliberate std::vector allocation is counted (the test can fail).
 #include <gtest/gtest.h>
 
@@ -14,8 +16,10 @@
 #include <new>
 
 #include "compensator/compensation/nlopt_problem.hpp"
+#include "compensator/precision/cell.hpp"
 #include "compensator/robot/deflection.hpp"
 #include "compensator/robot/fast_equilibrium.hpp"
+#include "compensator/robot/transient.hpp"
 #include "plugin/api/prediction_setup.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -168,6 +172,45 @@ TEST(AllocCount, NloptEvaluationAllocatesNothing) {
   EXPECT_NEAR(x[0], 0.3, 1e-6);
   EXPECT_GT(calls, 10);
   EXPECT_EQ(in_callback, 0);
+}
+
+TEST(AllocCount, TransientRightHandSideAllocatesNothing) {
+  const CellSpec cell = loadCell(test::sourceDir() + "/samples/cells/alu-drilling-6061.xml");
+  const Robot robot = loadRobot(cell.robot);
+  nc::ToolAttachment tool;
+  tool.T_flange_tcp = cell.tool.T_flange_tcp;
+  tool.mass = cell.tool.mass;
+  tool.com = cell.tool.com;
+  const nc::Model model = nc::buildModel(robot.chain, tool);
+  Vec6 q;
+  q << 0, -60, 100, 0, 50, 0;
+  q *= kDeg;
+  nc::Data data(model);
+  nc::TransientProblem p;
+  p.model = &model;
+  p.drive = nc::driveModelFromCard(robot.card, model, data, q);
+  p.theta_cmd = q;
+  nc::DrillingCycle cycle(parseProcess(cell.process).drilling, {}, true);
+  nc::TransientSimulator sim(p, cycle);
+  Eigen::VectorXd y = sim.equilibriumState(0.0);
+  const int contact[3] = {1, 0, 0};
+  cycle.onEvents(0.1, nc::TipState{}, contact);  // cutting (the run latches it at contact)
+  Eigen::VectorXd yd(y.size());
+  const long depth = y.size() - 1;
+  ASSERT_EQ(sim.rhs(0.3, y.data(), yd.data()), 0);  // warm-up
+  int failures = 0;
+  const long n = allocationsOf([&] {
+    for (const double D : {1e-3, 8e-3, 13e-3}) {  // entry, full engagement, breakthrough
+      y[depth] = D;
+      y[1] += 1e-7;  // a new θ: position problem and RᵀMR
+      failures += sim.rhs(0.5, y.data(), yd.data()) != 0;
+      y[7] += 1e-5;  // same θ: the cached position
+      failures += sim.rhs(0.5, y.data(), yd.data()) != 0;
+    }
+  });
+  EXPECT_EQ(failures, 0);
+  EXPECT_TRUE(yd.allFinite());
+  EXPECT_EQ(n, 0);
 }
 
 }  // namespace

@@ -739,6 +739,9 @@ void TransientSimulator::Impl::setup() {
       throw std::invalid_argument("transient: " + j + ": servo gains must be >= 0");
     }
   }
+  if (options.bdf_max_order < 0 || options.bdf_max_order > 5) {
+    throw std::invalid_argument("transient: bdf_max_order must be 0 (CVODE's 5) or 1 to 5");
+  }
   if (!(options.rtol > 0) || !(options.atol_angle > 0) || !(options.atol_rate > 0) ||
       !(options.sample > 0) || !(options.max_step >= 0) || !(options.min_step >= 0)) {
     throw std::invalid_argument("transient: tolerances and the sampling interval must be positive");
@@ -786,6 +789,9 @@ void TransientSimulator::Impl::setup() {
   if (hint > 0) hmax = hmax > 0 ? std::min(hmax, hint) : hint;
   if (hmax > 0) check(CVodeSetMaxStep(mem.get(), hmax), "CVodeSetMaxStep");
   check(CVodeSetMinStep(mem.get(), options.min_step), "CVodeSetMinStep");
+  if (options.method == Method::kBdf && options.bdf_max_order > 0) {
+    check(CVodeSetMaxOrd(mem.get(), options.bdf_max_order), "CVodeSetMaxOrd");
+  }
   if (n_events > 0) {
     check(CVodeRootInit(mem.get(), n_events, roprecTransientRoots), "CVodeRootInit");
     std::array<int, 8> dir{};
