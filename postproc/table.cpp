@@ -174,7 +174,21 @@ class CsvReader {
   Orientation orient_{Orientation::kNone};
   bool holes_mode_{false};
   std::unordered_map<std::string, int> hole_id_line_;  ///< upper-case id -> line of its row
-  bool robodk_{false};  ///< a header-less RoboDK target export (robodkExport)
+  bool robodk_{false};           ///< a header-less RoboDK target export (robodkExport)
+  std::size_t header_cells_{0};  ///< cells of the header row (0: no header)
+
+  /// A row with a non-empty cell past the header's last column shifted its values (typically a
+  /// decimal comma, `8,5`): refused, never read with the columns moved.
+  void refuseExtraCells(const std::vector<Cell>& cells) const {
+    if (header_cells_ == 0) return;
+    for (std::size_t i = header_cells_; i < cells.size(); ++i) {
+      if (cells[i].begin == cells[i].end) continue;
+      failAt(f_, cells[i].begin,
+             "this row has " + std::to_string(cells.size()) + " cells but the header has " +
+                 std::to_string(header_cells_) +
+                 " columns; hint: a decimal comma (8,5) splits a number in two: write 8.5");
+    }
+  }
   int data_rows_{0};
 
   /// RoboDK's target export has no header: rows `x,y,z,rx,ry,rz` or `name,x,y,z,rx,ry,rz` (mm,
@@ -295,6 +309,7 @@ class CsvReader {
         delim_ = '\t';
     }
     const std::vector<Cell> cells = split(s, e);
+    header_cells_ = cells.size();
     for (std::size_t i = 0; i < cells.size(); ++i) {
       const std::string k = columnKey(
           std::string_view(f_.bytes).substr(cells[i].begin, cells[i].end - cells[i].begin));
@@ -454,6 +469,7 @@ class CsvReader {
 
   void row(std::size_t s, std::size_t e) {
     const std::vector<Cell> cells = split(s, e);
+    refuseExtraCells(cells);
     Target t;
     t.file = 0;
     t.line = f_.lineOf(s);

@@ -14,6 +14,14 @@
 // * measured.csv truncated to two holes: the correlation per workobject axis is undefined (no
 //   spread) and was NaN in the JSON ("internal error") and "nan" on stdout; now the JSON key is
 //   left out and the text says "undefined".
+// Seed 14 (second campaign):
+// * cell: `<cut depth_mm="1e-300">`, `<drill web_mm="1e-300">` and `<tolerance
+//   position_mm="1e300">` were accepted (every hole "conforms");
+// * hole list: a decimal comma (`8,5`) split the diameter in two and shifted the columns;
+// * measured.csv with the y and z columns swapped reached the identification (an infinite
+//   condition number: "internal error"); such a hole lies 300 mm from its nominal one;
+// * a cell without its <workobject> with a program that states its own base frame and a hole
+//   list: every hole 1.3 m off its hole-list axis, matched by id without a word.
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -203,6 +211,69 @@ TEST(MutationRegression, VerifyWithTwoMeasuredHolesHasNoUndefinedCorrelationInIt
   const std::string html = test::readFile(dir + "/v.html");
   EXPECT_EQ(html.find(">nan"), std::string::npos);
   EXPECT_NE(html.find("undefined"), std::string::npos);
+}
+
+TEST(MutationRegression, AbsurdDepthWebAndToleranceAreRefusedAtTheirLine) {
+  EXPECT_NE(cellError("depth_mm=\"20\"", "depth_mm=\"1e-300\"")
+                .find("cell.xml:17: <cut> depth_mm = 1e-300 is outside the plausible range"),
+            std::string::npos);
+  EXPECT_NE(cellError("web_mm=\"1.2\"", "web_mm=\"1e-300\"")
+                .find("cell.xml:15: <drill> web_mm = 1e-300 is below 0.02 Dc"),
+            std::string::npos);
+  const std::string tol = cellError("position_mm=\"0.2\"", "position_mm=\"1e300\"");
+  EXPECT_NE(tol.find("position_mm must lie in (0, 10] mm"), std::string::npos) << tol;
+}
+
+TEST(MutationRegression, ADecimalCommaInAHoleListIsAnErrorAtItsCell) {
+  const std::string dir = test::tempDir("mutation-comma");
+  std::string text = test::readFile(sample("emotor-housing/holes.csv"));
+  const std::size_t at = text.find(",6.8,16.0,0.20");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 4, ",6,8");
+  test::writeFile(dir + "/holes.csv", text);
+  const auto r = test::runRoprec("predict --cell " + q(sample("cells/housing-kr120.xml")) + " " +
+                                 q(dir + "/holes.csv") + " --json " + q(dir + "/p.json"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("holes.csv:3: this row has 11 cells but the header has 10 columns"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(dir + "/p.json"));
+}
+
+TEST(MutationRegression, MeasuredColumnsSwappedAreRefusedBeforeTheIdentification) {
+  const std::string dir = test::tempDir("mutation-swap");
+  std::string text = test::readFile(sample("verification/measured.csv"));
+  text.replace(text.find("V01,-200.2937,-199.9566,99.7145"), 31, "V01,-200.2937,99.7145,-199.9566");
+  test::writeFile(dir + "/m.csv", text);
+  const auto r = test::runRoprec("verify --cell " + q(sample("cells/housing-kr120.xml")) + " " +
+                                 q(sample("verification/test_kr120.src")) + " --holes " +
+                                 q(sample("verification/test_kr120_holes.csv")) + " --measured " +
+                                 q(dir + "/m.csv") + " --register rigid --calibrate " +
+                                 q(dir + "/card.xml") + " --json " + q(dir + "/v.json"));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("m.csv:5: measured hole V01 lies "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("more than any drilling deviation"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+}
+
+TEST(MutationRegression, HolesOffTheirHoleListAxisAreAWarning) {
+  std::string text = test::readFile(sample("cells/housing-kr120.xml"));
+  const std::size_t b = text.find("<workobject");
+  const std::size_t e = text.find("/>", b) + 2;
+  text.erase(b, e - b);
+  const std::string dir = test::tempDir("mutation-wobj");
+  test::writeFile(dir + "/cell.xml", text);
+  const std::string args = " " + q(sample("emotor-housing/housing_kr120.src")) + " --holes " +
+                           q(sample("emotor-housing/holes.csv")) + " --json " + q(dir + "/p.json");
+  const auto bad = test::runRoprec("predict --cell " + q(dir + "/cell.xml") + args);
+  EXPECT_NE(bad.err.find("warning: 204 of 204 drill points of the program lie off their "
+                         "hole-list axis by more than --match-tol 0.5 mm"),
+            std::string::npos)
+      << bad.err;
+  const auto good =
+      test::runRoprec("predict --cell " + q(sample("cells/housing-kr120.xml")) + args);
+  EXPECT_EQ(good.exit_code, 0) << good.err;
+  EXPECT_EQ(good.err.find("off their hole-list axis"), std::string::npos) << good.err;
 }
 
 }  // namespace

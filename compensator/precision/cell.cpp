@@ -112,8 +112,12 @@ CellSpec loadCell(const std::string& path) {
   if (const XmlNode* tol = root.child("tolerance")) {
     allowOnly(*tol, {"position_mm"});
     cell.tolerance_mm = tol->number("position_mm");
-    if (!(cell.tolerance_mm > 0))
-      tol->fail("position_mm must be > 0, got " + tol->str("position_mm"));
+    if (!(cell.tolerance_mm > 0 && cell.tolerance_mm <= 10.0)) {
+      tol->fail(
+          "position_mm must lie in (0, 10] mm (a position tolerance of a drilled hole), "
+          "got " +
+          tol->str("position_mm"));
+    }
   }
   if (const XmlNode* c = root.child("controller"))
     allowOnly(*c, {"gravity_compensated", "calibration_load", "fanuc_turn_axes"});

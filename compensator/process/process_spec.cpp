@@ -156,6 +156,11 @@ void parseDrilling(const XmlNode& proc, DrillingSpec& s) {
   g.point_angle = d.number("point_angle_deg", 118.0) * kDeg;
   g.helix_angle = d.number("helix_angle_deg", 30.0) * kDeg;
   g.web_thickness = d.number("web_mm", 0.16 * g.diameter / kMm) * kMm;
+  if (d.has("web_mm") && g.web_thickness >= 0 && g.web_thickness < 0.02 * g.diameter) {
+    d.fail("<drill> web_mm = " + numberText(g.web_thickness / kMm) +
+           " is below 0.02 Dc = " + numberText(0.02 * g.diameter / kMm) +
+           " mm: not a twist drill's web (about 0.1 .. 0.25 Dc)");
+  }
   g.chisel_angle = d.number("chisel_angle_deg", 125.0) * kDeg;
   const double lips = d.number("lips", 2.0);
   if (lips != std::floor(lips)) d.fail("<drill> lips must be an integer");
@@ -189,6 +194,7 @@ void parseDrilling(const XmlNode& proc, DrillingSpec& s) {
   s.feed = f * kMm;
   s.spindle_rpm = positive(c, "spindle_rpm", 3000.0, true);
   s.hole_depth = positive(c, "depth_mm", 2.0 * g.diameter / kMm, true) * kMm;
+  plausible(c, "depth_mm", 0.1, 1000.0, "hole depth, mm");
   s.through = c.boolean("through", false);
 
   const Material& mat = material(proc);

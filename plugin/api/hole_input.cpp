@@ -85,6 +85,40 @@ std::string fileName(const std::string& path) {
 
 /// Throws when the hole list matches no job hole; notes which holes and entries stay unmatched.
 /// `spec_of_hole[i]` is the list entry of job hole i (-1: none).
+/// Holes whose program drill point lies off their hole-list axis by more than --match-tol, in
+/// the world frame (an id match does not compare positions; a program frame and a cell
+/// workobject that disagree move every hole by the same offset).
+struct FarFromTheList {
+  int count{0};
+  double max_m{0};
+  std::string worst;
+
+  void add(const HoleRequest& r, double tol_mm) {
+    if (!r.nominal_axis) return;
+    const auto& [p0, a] = *r.nominal_axis;
+    const Vec3 d = r.T_W_tcp.translation() - p0;
+    const double off = (d - a * a.dot(d)).norm();
+    if (!(off * 1e3 > tol_mm)) return;
+    ++count;
+    if (off > max_m) {
+      max_m = off;
+      worst = r.id;
+    }
+  }
+
+  void note(JobHoles& job, double tol_mm) const {
+    if (count == 0) return;
+    job.notes.push_back("--holes: warning: " + std::to_string(count) + " of " +
+                        std::to_string(job.requests.size()) +
+                        " drill points of the program lie off their hole-list axis by more than "
+                        "--match-tol " +
+                        numberText(tol_mm) + " mm (up to " + numberText(max_m * 1e3, 4) +
+                        " mm, hole " + worst +
+                        "); check that the program's base frame and the cell's <workobject> "
+                        "are the same frame");
+  }
+};
+
 void reportMatching(JobHoles& job, const std::string& list_path,
                     const std::vector<postproc::HoleSpec>& specs,
                     const std::vector<int>& spec_of_hole, const std::string& how) {
@@ -217,6 +251,7 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
       spec_of_hole[static_cast<std::size_t>(m.hole)] = m.spec;
   }
   bool noted_frame = false;
+  FarFromTheList far;
   for (size_t i = 0; i < job.recognized.size(); ++i) {
     const postproc::Hole& h = job.recognized[i];
     HoleSource src;
@@ -278,6 +313,7 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
       if (s.tolerance_mm) r.tolerance = *s.tolerance_mm * 1e-3;
       if (s.diameter_mm) r.diameter = *s.diameter_mm * 1e-3;
       if (s.depth_mm) r.depth = *s.depth_mm * 1e-3;
+      far.add(r, match_tol_mm);
     }
     job.requests.push_back(r);
     job.sources.push_back(src);
@@ -288,6 +324,7 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
     reportMatching(job, *hole_list, specs, spec_of_hole,
                    std::string("matched by id, else by position within --match-tol ") + tol +
                        " mm on a parallel axis");
+    far.note(job, match_tol_mm);
   }
   for (const auto& n : p.notes) job.notes.push_back(n);
   for (const auto& u : p.unresolved) {

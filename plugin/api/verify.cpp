@@ -76,6 +76,29 @@ void selectHoles(VerifyResult& r) {
   }
 }
 
+/// A measured hole farther than this from its nominal position is not a drilling deviation.
+constexpr double kMaxMeasuredDeviation = 25e-3;  // m
+
+/// Refuses a measured hole that lies farther from its nominal hole than any drilling deviation
+/// (swapped columns, another frame, metres for mm, another hole's id) before it reaches the
+/// statistics or the identification.
+void checkPlausibleDeviations(const VerifyResult& r) {
+  const PredictionContext& c = r.prediction.context;
+  for (size_t n = 0; n < r.request_of.size(); ++n) {
+    const auto i = static_cast<size_t>(r.request_of[n]);
+    const postproc::MeasuredHole& m = r.measured.holes[static_cast<size_t>(r.measured_of[n])];
+    const double d = (measuredW(r, r.measured_of[n]) - nominalHole(c, i).translation()).norm();
+    if (d <= kMaxMeasuredDeviation) continue;
+    throw InputError(
+        r.measured.path, m.line,
+        "measured hole " + m.id + " lies " + numberText(d * 1e3, 4) +
+            " mm from its nominal position (" +
+            holeWhere(r.prediction.holes[i].id, c.job.requests[i].line, r.program_path) +
+            "), more than any drilling deviation (25 mm); hint: check the column "
+            "order, the frame (workobject, mm) and the hole ids");
+  }
+}
+
 void identify(VerifyResult& r, const VerifyJob& job) {
   const PredictionContext& c = r.prediction.context;
   std::vector<IdentificationHole> holes;
@@ -210,7 +233,9 @@ Json identificationJson(const VerifyResult& r) {
   j.set("iterations", Json::integer(id.iterations));
   j.set("message", Json::str(id.message));
   j.set("holes", Json::integer(id.holes));
-  j.set("condition_number", Json::number(id.condition_number, -1));
+  // undefined (no column the data can see, or no Jacobian): the key is left out, never inf
+  if (std::isfinite(id.condition_number))
+    j.set("condition_number", Json::number(id.condition_number, -1));
   j.set("rms_prior_um", um(id.rms_prior));
   j.set("rms_final_um", um(id.rms_final));
   Json ps = Json::array();
@@ -282,6 +307,7 @@ VerifyResult verifyJob(const std::string& cell_path, const std::string& program_
   selectHoles(r);
   if (r.request_of.empty())
     throw InputError(job.measured, 0, "no measured hole of the program could be predicted");
+  checkPlausibleDeviations(r);
   if (job.calibrate || job.identify_tool || job.registration != Registration::kNone)
     identify(r, job);
   verifyHoles(r, job);
@@ -329,7 +355,8 @@ Json verifySummaryJson(const VerifyResult& r, const std::vector<std::string>& wr
     const IdentificationResult& id = *r.identification;
     Json o = Json::object();
     o.set("converged", Json::boolean(id.converged));
-    o.set("condition_number", Json::number(id.condition_number, -1));
+    if (std::isfinite(id.condition_number))
+      o.set("condition_number", Json::number(id.condition_number, -1));
     o.set("rms_prior_um", um(id.rms_prior));
     o.set("rms_final_um", um(id.rms_final));
     o.set("joints", jointsJson(r));

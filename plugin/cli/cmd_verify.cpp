@@ -52,8 +52,11 @@ void printIdentification(CommandContext& ctx, const VerifyResult& r) {
   }
   ctx.out << "  identification: " << (id.converged ? "converged" : "NOT converged") << " in "
           << id.iterations << " iterations, condition number "
-          << formatNumber(id.condition_number, 1) << "; residual RMS " << um(id.rms_prior)
-          << " µm with the card -> " << um(id.rms_final) << " µm identified\n";
+          << (std::isfinite(id.condition_number)
+                  ? formatNumber(id.condition_number, 1)
+                  : std::string("undefined (the measured holes identify no parameter)"))
+          << "; residual RMS " << um(id.rms_prior) << " µm with the card -> " << um(id.rms_final)
+          << " µm identified\n";
   if (!id.message.empty()) ctx.out << "    " << id.message << "\n";
   for (int j = 0; j < 6; ++j) {
     const auto jj = static_cast<size_t>(j);
