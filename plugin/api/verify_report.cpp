@@ -240,7 +240,10 @@ std::string identification(const VerifyResult& r) {
   std::ostringstream o;
   o << "<h2>Identification</h2>\n<p>" << id.holes << " holes, registration "
     << registrationName(r.registration) << "; " << (id.converged ? "converged" : "NOT converged")
-    << " in " << id.iterations << " iterations; condition number " << f(id.condition_number, -1)
+    << " in " << id.iterations << " iterations; condition number "
+    << (std::isfinite(id.condition_number)
+            ? f(id.condition_number, -1)
+            : std::string("undefined (the holes identify no parameter)"))
     << "; residual RMS " << f(id.rms_prior * 1e6, 1) << " µm with the card → "
     << f(id.rms_final * 1e6, 1) << " µm at the estimate. " << esc(id.message) << "</p>\n";
   o << "<table><tr><th>parameter</th><th>unit</th><th>prior</th><th>σ prior</th><th>estimate</th>"
