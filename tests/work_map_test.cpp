@@ -195,5 +195,37 @@ TEST(WorkMap, BadRequestsExitTwoWithAMessage) {
     EXPECT_NE((h.out + h.err).find(o), std::string::npos) << o;
 }
 
+TEST(WorkMap, CsvCarriesTheJointsAsTheFanucControllerShowsThem) {
+  // R-2000iC card: controller J3 = q3_urdf - q2_urdf (j23_coupling -1), no sign or offset on the
+  // other joints (robots/fanuc-r2000ic-165f/robot.xml)
+  const std::string dir = test::tempDir("work-map-fanuc");
+  const std::string csv = dir + "/map.csv";
+  const test::RunResult m = test::runRoprec(
+      "map --cell " + test::sourceDir() +
+      "/samples/cells/housing-r2000.xml --region \"-200 -100 250 200 100 250\" --direction "
+      "\"0 0 -1\" --step 200 --report " +
+      dir + "/map.html --csv " + csv);
+  ASSERT_EQ(m.exit_code, 0) << m.err;
+  const std::vector<std::string> rows = lines(test::readFile(csv));
+  const std::vector<std::string> head = fields(rows.at(0));
+  std::map<std::string, size_t> col;
+  for (size_t i = 0; i < head.size(); ++i) col[head[i]] = i;
+  ASSERT_TRUE(col.count("j3_ctrl_deg"));
+  size_t checked = 0;
+  bool coupled = false;
+  for (size_t r = 1; r < rows.size(); ++r) {
+    const std::vector<std::string> f = fields(rows[r]);
+    if (f[col["status"]] != "ok") continue;
+    const auto v = [&](const std::string& k) { return std::stod(f[col[k]]); };
+    EXPECT_NEAR(v("j3_ctrl_deg"), v("j3_deg") - v("j2_deg"), 1.5e-3) << rows[r];
+    for (const char* j : {"1", "2", "4", "5", "6"})
+      EXPECT_NEAR(v(std::string("j") + j + "_ctrl_deg"), v(std::string("j") + j + "_deg"), 1e-9);
+    coupled = coupled || std::fabs(v("j2_deg")) > 1.0;
+    ++checked;
+  }
+  EXPECT_GE(checked, 3u);
+  EXPECT_TRUE(coupled) << "J2 near 0 everywhere: the test would not see the coupling";
+}
+
 }  // namespace
 }  // namespace roprec

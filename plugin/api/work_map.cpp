@@ -179,7 +179,7 @@ std::string workMapCsv(const WorkMap& map) {
   std::ostringstream s;
   s << "feed_mm_per_rev,x_mm,y_mm,z_mm,status,verdict,branch,config,config_change,j1_deg,j2_deg,"
        "j3_deg,j4_deg,j5_deg,j6_deg,d_robot_um,position_error_um,U_work_um,U95_um,tolerance_mm,"
-       "reason\n";
+       "reason,j1_ctrl_deg,j2_ctrl_deg,j3_ctrl_deg,j4_ctrl_deg,j5_ctrl_deg,j6_ctrl_deg\n";
   for (const WorkMapLayer& l : map.layers) {
     for (const WorkMapPoint& pt : l.points) {
       const HolePrediction& p = pt.prediction;
@@ -201,7 +201,11 @@ std::string workMapCsv(const WorkMap& map) {
       }
       std::string reason = p.reason;
       std::replace(reason.begin(), reason.end(), '"', '\'');
-      s << "," << formatNumber(p.tolerance * 1e3, 4) << ",\"" << reason << "\"\n";
+      s << "," << formatNumber(p.tolerance * 1e3, 4) << ",\"" << reason << "\"";
+      // the joints as the controller shows them (FANUC J3 relative to J2; docs/reports.md)
+      const Vec6 q_ctrl = toControllerJoints(map.context.robot.card, p.joints);
+      for (int j = 0; j < 6; ++j) s << "," << (has_joints ? formatNumber(q_ctrl[j] / kDeg, 3) : "");
+      s << "\n";
     }
   }
   return s.str();
