@@ -159,7 +159,7 @@ BENCHMARK(BM_DrillingCycleConstruction)->Unit(benchmark::kMicrosecond);
 // ending in the dwell (blind = 1). Counters: bottom_um = |dp − dp_ref| at the reference's last
 // sample of the cut, cut_um = the largest over the cut, depth_um = final cut depth difference,
 // steps. Args: method (0 BDF, 1 Adams), −log10 atol_angle (atol_rate = 100×, atol_depth =
-// 0.1× in m), −log10 rtol, blind.
+// 0.1× in m), −log10 rtol, blind, BDF maximum order (3: the default cap, 5: CVODE's).
 struct Study {
   nc::TransientResult ref;
   double cut_end{0.0};
@@ -200,6 +200,7 @@ void BM_TransientToleranceStudy(benchmark::State& st) {
   o.atol_rate = 100.0 * o.atol_angle;
   o.atol_depth = 0.1 * o.atol_angle;
   o.rtol = std::pow(10.0, -static_cast<double>(st.range(2)));
+  o.bdf_max_order = static_cast<int>(st.range(4));
   nc::TransientResult r;
   for (auto _ : st) {
     nc::DrillingCycle c(spec, {}, false);
@@ -223,7 +224,8 @@ void BM_TransientToleranceStudy(benchmark::State& st) {
   st.counters["steps_ref"] = static_cast<double>(ref.ref.stats.steps);
 }
 BENCHMARK(BM_TransientToleranceStudy)
-    ->ArgsProduct({{0, 1}, {6, 7, 8}, {4, 5, 6}, {0, 1}})
+    ->ArgsProduct({{0}, {6, 7, 8}, {4, 5, 6}, {0, 1}, {3, 5}})
+    ->ArgsProduct({{1}, {6, 7, 8}, {4, 5, 6}, {0, 1}, {0}})
     ->Iterations(3)
     ->Unit(benchmark::kMillisecond);
 
