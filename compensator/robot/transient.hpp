@@ -85,7 +85,8 @@
 ///   D   = max_{τ ≤ t} s(τ)                 cut depth (material removed), an extra CVODE state
 ///   Ḋ   = ṡ⁺ while cutting (tip at the bottom, s = D, and advancing), 0 when lifted (s < D)
 ///   h   = Ḋ · 60/n                         real feed per revolution [m/rev]
-///   (Fz, M, Ft, Fr) = drillingForcesAtDepth(h, D)   engaged lips from D (drilling_forces.hpp)
+///   (Fz, M, Ft, Fr) = drillingForcesAtDepth(h, D)   engaged lips from D (drilling_forces.hpp;
+///                                          evaluated by the table of transient_forces.hpp)
 ///
 /// The forces are a function of the state (through D and ṡ), not of t alone. The thrust
 /// acts like a non-linear damper on the tip (Fz ∝ ṡ^{1−m}, no force at ṡ = 0), so the tip
