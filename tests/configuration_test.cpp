@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "compensator/support/error.hpp"
+#include "postproc/program.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace roprec {
@@ -411,6 +412,63 @@ TEST(ConfigurationCorpus, KukaTargetsHaveNoStatusTurnButGetTheTaughtDefault) {
                                  VendorConfig{Vendor::kKuka, k, {}, {}, 0});
     ASSERT_TRUE(s.found);
     EXPECT_LE((s.solution.q - q).cwiseAbs().maxCoeff(), 1e-9);
+  }
+}
+
+TEST(ConfigurationCorpus, CompensatedKukaAndFanucCorpusProgramsKeepTheirFlagsAndRotations) {
+  // RoboDK's KRC4, KRC2 (.src + .dat) and R-30iA drilling programs, compensated in every
+  // orientation mode: no target's configuration (KUKA S/T, FANUC CONFIG and turns) and no
+  // rotation about a drill axis changes (the summary says "0 holes"); the programs' targets are
+  // compared one by one, original against written.
+  const std::string corpus = test::corpusDir();
+  if (corpus.empty() || bundledRobotNames().empty()) GTEST_SKIP() << "no corpus or bundled robots";
+  const std::string cells = test::sourceDir() + "/samples/cells/";
+  struct Case {
+    const char* program;
+    const char* out;
+    std::string cell;
+    const char* options;
+  };
+  const Case cases[] = {
+      {"DrillKRC4.src", "k4.src", cells + "housing-kr120.xml", "--tool program"},
+      {"DrillKRC2DAT.src", "k2.src", cells + "housing-kr120.xml", "--tool program"},
+      {"DRILLR30IA.LS", "f.ls", cells + "housing-r2000.xml", "--frame cell --tool cell"},
+  };
+  const std::string dir = test::tempDir("corpus-flags");
+  for (const Case& c : cases) {
+    const std::string in = corpus + "/robodk/" + c.program;
+    const postproc::Program before = postproc::readProgram(in);
+    for (const char* mode : {"keep", "flip-free", "stiffest"}) {
+      SCOPED_TRACE(std::string(c.program) + " " + mode);
+      const std::string out = dir + "/" + mode + "-" + c.out;
+      const auto r = test::runRoprec("compensate --cell '" + c.cell + "' '" + in + "' -o '" + out +
+                                     "' " + c.options + " --orientation " + mode);
+      ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+      const std::string said = r.out + r.err;
+      EXPECT_NE(said.find("rotation about the drill axis changed at 0 holes"), std::string::npos)
+          << said;
+      EXPECT_NE(said.find("configuration flags changed at 0 holes"), std::string::npos) << said;
+      const postproc::Program after = postproc::readProgram(out);
+      ASSERT_EQ(after.targets().size(), before.targets().size());
+      int moved = 0;
+      for (size_t t = 0; t < before.targets().size(); ++t) {
+        const postproc::Target& a = before.targets()[t];
+        const postproc::Target& b = after.targets()[t];
+        EXPECT_EQ(b.config.text(), a.config.text()) << "target " << t << " line " << a.line;
+        // the compensation tilts the tool axis by its small correction; the rotation about the
+        // drill (tool z) axis stays as programmed
+        if (a.kind == postproc::TargetKind::kCartesian && postproc::targetComplete(a)) {
+          const Pose Ta = postproc::targetPose(before, a);
+          const Pose Tb = postproc::targetPose(after, b);
+          const Eigen::AngleAxisd d(Mat3(Ta.linear().transpose() * Tb.linear()));
+          const Eigen::Vector3d w = d.angle() * d.axis();
+          EXPECT_LT(std::abs(w.z()), 1e-3 * kDeg) << "target " << t << " line " << a.line;
+          EXPECT_LT(w.norm(), 0.5 * kDeg) << "target " << t << " line " << a.line;
+        }
+        moved += b.pos[0].value != a.pos[0].value || b.pos[2].value != a.pos[2].value;
+      }
+      EXPECT_GT(moved, 0);  // the compensation did write something
+    }
   }
 }
 

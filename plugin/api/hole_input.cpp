@@ -328,9 +328,14 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
   }
   for (const auto& n : p.notes) job.notes.push_back(n);
   for (const auto& u : p.unresolved) {
-    job.notes.push_back(kUnresolvedPrefix + u.ref + " (" +
-                        p.files[static_cast<size_t>(std::max(0, u.file))].path + ":" +
-                        std::to_string(u.line) + "): " + u.what);
+    const std::string& file = p.files[static_cast<size_t>(std::max(0, u.file))].path;
+    const std::string where = u.line > 0 ? file + ":" + std::to_string(u.line) : file;
+    // a frame the program names but does not define is resolved (or refused) by the job's
+    // frame and tool resolution, which states it; a value roprec cannot know is a warning
+    const bool frame = std::any_of(p.frames.begin(), p.frames.end(),
+                                   [&](const postproc::Frame& f) { return f.ref == u.ref; });
+    job.notes.push_back((frame ? "program frame " : kUnresolvedPrefix) + u.ref + " (" + where +
+                        "): " + u.what);
   }
   return job;
 }
