@@ -49,6 +49,7 @@ std::string columnKey(std::string_view raw) {
 // Hole-list bounds (docs/contract.md §7): values outside are typing or unit mistakes.
 constexpr double kMinDiameterMm = 0.1;
 constexpr double kMaxDiameterMm = 200.0;
+constexpr double kMinDepthMm = 0.05;  // a spot drill's shallowest cone
 constexpr double kMaxDepthMm = 2000.0;
 constexpr double kMinToleranceMm = 0.001;
 constexpr double kMaxToleranceMm = 50.0;
@@ -557,7 +558,7 @@ class CsvReader {
       h.direction =
           unitDirection(Vec3(t.rot[0].value, t.rot[1].value, t.rot[2].value), cells, h.id, s);
       h.diameter_mm = sizeMm(cells, "diameter", kMinDiameterMm, kMaxDiameterMm, h.id, s);
-      h.depth_mm = sizeMm(cells, "depth", 0.0, kMaxDepthMm, h.id, s);
+      h.depth_mm = sizeMm(cells, "depth", kMinDepthMm, kMaxDepthMm, h.id, s);
       h.tolerance_mm = sizeMm(cells, "tolerance", kMinToleranceMm, kMaxToleranceMm, h.id, s);
       holes.push_back(h);
     }

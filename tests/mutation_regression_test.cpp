@@ -10,7 +10,8 @@
 //   accepted: now errors at their line;
 // * cell: a tool xyz of 1e300 mm was refused with a 300-digit number in the message, a workobject
 //   rpy of 1e300 deg was accepted: xyz, rpy and com_mm are now bounded (100 m, 3600 deg);
-// * robot card: a stiffness of 1e300 N m/rad was accepted (now (0, 1e12]);
+// * robot card: a stiffness of 1e300 N m/rad was accepted (now [100, 1e12]; 1e-300 ended in an
+// "internal error");
 // * measured.csv truncated to two holes: the correlation per workobject axis is undefined (no
 //   spread) and was NaN in the JSON ("internal error") and "nan" on stdout; now the JSON key is
 //   left out and the text says "undefined".
@@ -131,6 +132,11 @@ TEST(MutationRegression, UrdfNearMissNamesAndAbsurdOriginsAreErrors) {
   EXPECT_NE(urdfError("<link", "<inertial>", "<inertial><centre/>")
                 .find("unknown element <centre> in <inertial>"),
             std::string::npos);
+  // seed 15: an axis component of 1e300 was normalised into another axis ("internal error")
+  EXPECT_NE(urdfError(j2, "<axis xyz=\"0 1 0\"", "<axis xyz=\"0 1 1e300\"")
+                .find(":123: joint 'joint_a2' axis xyz '0 1 1e300' is not a direction"),
+            std::string::npos)
+      << urdfError(j2, "<axis xyz=\"0 1 0\"", "<axis xyz=\"0 1 1e300\"");
   // The unmutated copy loads (the checks accept the bundled URDF).
   EXPECT_EQ(urdfError(j2, "<origin", "<origin"), "(accepted)");
 }
@@ -144,10 +150,20 @@ TEST(MutationRegression, CardStiffnessOf1e300IsAnError) {
   } catch (const InputError& e) {
     what = e.what();
   }
-  EXPECT_NE(what.find("robot.xml:9: joint 'joint_a1': stiffness must be in (0, 1e12] N m/rad, got "
-                      "1e300"),
-            std::string::npos)
+  EXPECT_NE(
+      what.find("robot.xml:9: joint 'joint_a1': stiffness must be in [100, 1e12] N m/rad, got "
+                "1e300"),
+      std::string::npos)
       << what;
+  // seed 15: 1e-300 made the compliance infinite ("internal error" in deflect)
+  const std::string soft = mutatedKr120("robot.xml", "<joint name=\"joint_a1\"",
+                                        "stiffness=\"1.58e7\"", "stiffness=\"1e-300\"");
+  const auto r = test::runRoprec("deflect --robot " + q(soft + "/robot.xml") +
+                                 " --joints \"0 -60 100 0 50 0\" -o " + q(soft + "/d.json"));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("stiffness must be in [100, 1e12] N m/rad, got 1e-300"), std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
 }
 
 std::string cellError(const std::string& from, const std::string& to) {
@@ -220,6 +236,7 @@ TEST(MutationRegression, AbsurdDepthWebAndToleranceAreRefusedAtTheirLine) {
   EXPECT_NE(cellError("web_mm=\"1.2\"", "web_mm=\"1e-300\"")
                 .find("cell.xml:15: <drill> web_mm = 1e-300 is below 0.02 Dc"),
             std::string::npos);
+  EXPECT_NE(cellError("web_mm=\"1.2\"", "web_mm=\"1.2\"").find("(accepted)"), std::string::npos);
   const std::string tol = cellError("position_mm=\"0.2\"", "position_mm=\"1e300\"");
   EXPECT_NE(tol.find("position_mm must lie in (0, 10] mm"), std::string::npos) << tol;
 }

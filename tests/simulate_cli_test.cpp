@@ -111,13 +111,16 @@ TEST(SimulateCli, DrillingCycleFollowsTheRealPenetration) {
     const double fa = std::stod(f[2]);
     const double tip = std::stod(f[18]);
     const double cut = std::stod(f[19]);
-    // the tip is never below the material removed (mm; the CSV's 1 nm digits round both)
-    EXPECT_LE(tip, cut + 2e-6);
+    // the tip is never below the material removed (mm): within the cut depth's absolute
+    // tolerance of the default integration (1e-8 m = 1e-5 mm, docs/transient.md) plus the CSV's
+    // 1 nm digits
+    constexpr double kDepthTolMm = 1.1e-5;
+    EXPECT_LE(tip, cut + kDepthTolMm);
     if (fa > 0.0) {
       ++cutting;
-      EXPECT_NEAR(tip, cut, 2e-6);
+      EXPECT_NEAR(tip, cut, kDepthTolMm);
       EXPECT_GT(std::stod(f[20]), 0.0);  // real feed per rev
-      if (prev_fa > 0.0) EXPECT_GE(tip, prev_tip - 2e-6) << "t = " << f[0];
+      if (prev_fa > 0.0) EXPECT_GE(tip, prev_tip - kDepthTolMm) << "t = " << f[0];
       max_lag = std::max(max_lag, std::stod(f[1]) - cut);
     }
     fa_max = std::max(fa_max, fa);

@@ -326,12 +326,14 @@ void parseMilling(const XmlNode& proc, MillingSpec& s) {
     allowOnly(*cp, {"tolerance_um", "max_iterations", "relaxation", "teeth_between_points",
                     "point_spacing_mm", "compliance_um_per_N", "solver"});
     s.coupling.tolerance = positive(*cp, "tolerance_um", s.coupling.tolerance * 1e6, true) * 1e-6;
+    plausible(*cp, "tolerance_um", 1e-4, 100.0, "deflection fixed-point tolerance, um");
     const double it = cp->number("max_iterations", s.coupling.max_iterations);
     if (!(it >= 1 && it <= 10000 && it == std::floor(it)))
       cp->fail("<coupling> max_iterations must be an integer 1..10000");
     s.coupling.max_iterations = static_cast<int>(it);
     s.coupling.relaxation = positive(*cp, "relaxation", 1.0, true);
     if (s.coupling.relaxation > 1) cp->fail("<coupling> relaxation must lie in (0, 1]");
+    plausible(*cp, "relaxation", 0.01, 1.0, "under-relaxation of the fixed point");
     const std::string solver = cp->str("solver", "newton");
     if (solver != "newton" && solver != "fixed_point")
       cp->fail("<coupling> solver must be 'newton' or 'fixed_point', got '" + solver + "'");

@@ -199,9 +199,10 @@ RobotCard loadRobotCard(const std::string& path) {
     jc.source = j.str("source", "");
     if (j.has("stiffness")) {
       jc.stiffness = j.number("stiffness");
-      // 1e12 N m/rad is rigid for any robot (identified joints: 1e4-1e8); beyond is a typo.
-      if (!(jc.stiffness > 0 && jc.stiffness <= 1e12))
-        j.fail("joint '" + jc.name + "': stiffness must be in (0, 1e12] N m/rad, got " +
+      // 1e12 N m/rad is rigid for any robot (identified joints: 1e4-1e8), below 100 N m/rad a
+      // joint could not hold its own link: beyond either is a typo or a unit error.
+      if (!(jc.stiffness >= 100 && jc.stiffness <= 1e12))
+        j.fail("joint '" + jc.name + "': stiffness must be in [100, 1e12] N m/rad, got " +
                j.str("stiffness"));
     } else {
       all_k = false;

@@ -137,6 +137,12 @@ UrdfIndex validate(const XmlNode& robot) {
       allowOnly(*a, {"xyz"});
       const Eigen::Vector3d ax = a->numbers("xyz", 3);
       if (ax.norm() < 1e-12 && type != "fixed") a->fail("joint '" + name + "' has a zero axis");
+      // a unit vector as written (URDF normalises it): a component beyond 10 is a corrupted
+      // number, and normalising it would silently turn the axis
+      if (!(ax.cwiseAbs().maxCoeff() <= 10.0)) {
+        a->fail("joint '" + name + "' axis xyz '" + a->str("xyz") +
+                "' is not a direction (components within -10 .. 10 expected, e.g. '0 0 1')");
+      }
     }
     if (const XmlNode* l = e.child("limit")) {
       allowOnly(*l, {"lower", "upper", "velocity", "effort"});

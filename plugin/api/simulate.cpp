@@ -396,8 +396,8 @@ SimulationResult simulateAt(const RobotSetup& setup, const HoleJoints& at,
     cycle = std::make_unique<nc::NoProcess>(0.5);
   }
   nc::TransientOptions opt;
-  opt.method = options.bdf ? nc::Method::kBdf : nc::Method::kAdams;
-  opt.rtol = options.rtol;
+  if (options.adams) opt.method = nc::Method::kAdams;
+  if (options.rtol > 0) opt.rtol = options.rtol;
   opt.sample = options.sample;
   opt.stop_at_cycle_end = !(options.duration > 0);  // the cycle ends with the cut + retract
   const double t_end = options.duration > 0 ? options.duration : cycle->duration();

@@ -45,11 +45,13 @@ HoleJoints holeJoints(const RobotSetup& setup, const std::string& program_path,
 struct SimulateOptions {
   double duration{-1.0};  ///< s; ≤ 0: the process cycle's own duration
   double sample{1e-3};    ///< output sampling, s
-  double rtol{1e-8};      ///< CVODE relative tolerance
-  bool bdf{false};        ///< BDF instead of Adams-Moulton
-  bool runout{false};     ///< the rotating residual force Fr at spindle frequency
-  bool integral{true};    ///< velocity-loop integral action
-  bool gravity{true};     ///< link and tool weight (and the controller's gravity compensation)
+  /// CVODE relative tolerance; ≤ 0: the convergence study's default (nc::TransientOptions,
+  /// docs/transient.md)
+  double rtol{-1.0};
+  bool adams{false};    ///< Adams-Moulton instead of the study's BDF (order ≤ 3)
+  bool runout{false};   ///< the rotating residual force Fr at spindle frequency
+  bool integral{true};  ///< velocity-loop integral action
+  bool gravity{true};   ///< link and tool weight (and the controller's gravity compensation)
 };
 
 struct SimulationResult {

@@ -26,7 +26,7 @@ int run(Args& args, CommandContext& ctx) {
   const auto sample = args.option("sample-ms");
   const auto rtol = args.option("rtol");
   SimulateOptions opt;
-  opt.bdf = args.flag("bdf");
+  const auto method = args.option("method");
   opt.runout = args.flag("runout");
   opt.integral = !args.flag("no-integral");
   opt.gravity = !args.flag("no-gravity");
@@ -40,7 +40,10 @@ int run(Args& args, CommandContext& ctx) {
     throw UsageError("unexpected argument '" + pos.front() + "' with --joints");
   opt.duration = positive(duration, "--duration (s)", -1.0);
   opt.sample = positive(sample, "--sample-ms", 1.0) * 1e-3;
-  opt.rtol = positive(rtol, "--rtol", 1e-8);
+  opt.rtol = positive(rtol, "--rtol", -1.0);
+  if (method && *method != "bdf" && *method != "adams")
+    throw UsageError("--method must be 'bdf' (default) or 'adams', not '" + *method + "'");
+  opt.adams = method && *method == "adams";
 
   HoleJoints at;
   if (joints) {
@@ -74,7 +77,8 @@ const CommandRegistration reg{
     {"simulate",
      "transient drilling cycle at one hole (flexible joints + servo + real penetration)",
      "usage: roprec simulate --cell CELL.xml (--hole ID PROGRAM | --joints \"j1 .. j6\")\n"
-     "                       [-o OUT.csv] [--summary F.json] [--duration S] [--bdf] [--runout]\n"
+     "                       [-o OUT.csv] [--summary F.json] [--duration S] [--method bdf|adams] "
+     "[--runout]\n"
      "                       [--no-integral] [--no-gravity] [--sample-ms MS] [--rtol R] "
      "[--stiffness \"k1 .. k6\"]\n\n"
      "Integrates the flexible-joint robot under its cascade servo (position gain from the card,\n"
@@ -89,7 +93,11 @@ const CommandRegistration reg{
      "h = dD/dt·60/n set the forces; in the dwell the recovering arm keeps cutting until h < 1 % "
      "of "
      "f.\n"
-     "CVODE Adams-Moulton (--bdf: BDF). Without --duration the run ends with the retract.\n"
+     "CVODE BDF of order <= 3 at rtol 1e-4 (the convergence study of docs/transient.md: <= 0.5 um "
+     "at\n"
+     "the hole bottom against a tight reference); --method adams: Adams-Moulton; --rtol R: "
+     "another\n"
+     "relative tolerance. Without --duration the run ends with the retract.\n"
      "CSV (default stdout): t_s, depth_mm (commanded), Fa_N, Ft_N, M_Nm, Fr_N, dx_um, dy_um, dz_um "
      "(TCP\n"
      "deviation from the nominal rigid TCP, base frame), rx/ry/rz_urad, dq1..dq6_urad (link angle "
