@@ -1,8 +1,6 @@
-// Heap allocations per hole, counted by a replacement of the global operator new (all forms) in
-// this test binary. Counting is off by default and per thread (a thread_local switch), so the
-// other tests are unaffected; unlike Eigen's EIGEN_RUNTIME_NO_MALLOC assert it works in Release
-// (-DNDEBUG) and sees every allocation (std::vector, std::string, std::function, ...), not only
-// Eigen's. Checked, after one warm-up call that sizes the caller-owned scratch:
+// Heap allocations per hole, counted by the replacement of the global operator new in the test
+// binary (tests/support/counting_new.hpp; per thread, Release too, every allocation, not only
+// Eigen's). Checked, after one warm-up call that sizes the caller-owned scratch:
 //  * the static deviation kernels (fast_equilibrium, predictDeflection, compensateCommand, the
 //    model-of-record staticTorques): 0 per call;
 //  * predictHole into a reused HolePrediction over the 204 holes of the housing sample: 0;
@@ -12,73 +10,19 @@
 //  * the counter itself: a deliberate std::vector allocation is counted (the test can fail).
 #include <gtest/gtest.h>
 
-#include <cstdlib>
-#include <new>
-
 #include "compensator/compensation/nlopt_problem.hpp"
 #include "compensator/precision/cell.hpp"
 #include "compensator/robot/deflection.hpp"
 #include "compensator/robot/fast_equilibrium.hpp"
 #include "compensator/robot/transient.hpp"
 #include "plugin/api/prediction_setup.hpp"
+#include "tests/support/counting_new.hpp"
 #include "tests/support/test_support.hpp"
-
-namespace {
-thread_local bool t_counting = false;
-thread_local long t_allocations = 0;
-
-void* countedAlloc(std::size_t n) {
-  if (t_counting) ++t_allocations;
-  if (void* p = std::malloc(n ? n : 1)) return p;
-  throw std::bad_alloc();
-}
-void* countedAlignedAlloc(std::size_t n, std::align_val_t a) {
-  if (t_counting) ++t_allocations;
-  const std::size_t al = static_cast<std::size_t>(a);
-  if (void* p = std::aligned_alloc(al, (n + al - 1) / al * al)) return p;
-  throw std::bad_alloc();
-}
-}  // namespace
-
-void* operator new(std::size_t n) { return countedAlloc(n); }
-void* operator new[](std::size_t n) { return countedAlloc(n); }
-void* operator new(std::size_t n, const std::nothrow_t&) noexcept {
-  try {
-    return countedAlloc(n);
-  } catch (...) {
-    return nullptr;
-  }
-}
-void* operator new[](std::size_t n, const std::nothrow_t&) noexcept {
-  try {
-    return countedAlloc(n);
-  } catch (...) {
-    return nullptr;
-  }
-}
-void* operator new(std::size_t n, std::align_val_t a) { return countedAlignedAlloc(n, a); }
-void* operator new[](std::size_t n, std::align_val_t a) { return countedAlignedAlloc(n, a); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
-void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
 
 namespace roprec {
 namespace {
 
-/// Allocations made by f() on this thread.
-template <class F>
-long allocationsOf(const F& f) {
-  t_allocations = 0;
-  t_counting = true;
-  f();
-  t_counting = false;
-  return t_allocations;
-}
+using test::allocationsOf;
 
 api::PredictionContext& housing() {
   static api::PredictionContext c = api::loadPredictionContext(

@@ -10,12 +10,9 @@
 
 #include "compensator/compensation/compensation.hpp"
 #include "plugin/api/prediction_setup.hpp"
+#include "tests/support/counting_new.hpp"
 #include "tests/support/kdl_support.hpp"
 #include "tests/support/test_support.hpp"
-
-namespace roprec::bench {
-long threadAllocations();  // alloc_counter_bench.cpp
-}  // namespace roprec::bench
 
 namespace {
 
@@ -133,9 +130,9 @@ void BM_Compensate1000(benchmark::State& st) {
   o.mode = st.range(0) == 0 ? OrientationMode::kKeep : OrientationMode::kFlipFree;
   long allocations = 0;
   for (auto _ : st) {
-    const long before = bench::threadAllocations();
+    const long before = test::threadAllocations();
     const auto r = compensateHoles(f.c.model, f.thousand, o);
-    allocations = bench::threadAllocations() - before;
+    allocations = test::threadAllocations() - before;
     benchmark::DoNotOptimize(r.size());
   }
   st.counters["allocs_per_hole"] =

@@ -1,11 +1,11 @@
-// Heap allocations of the calling thread, counted by a replacement of the global operator new in
-// the benchmark binary (every form; libroprec's allocations come here too), for the benchmarks
-// that report allocations per hole (precision_bench.cpp: BM_Compensate1000). One thread_local
-// increment per allocation: no effect on the timings worth measuring.
+// The counting global operator new of tests/support/counting_new.hpp, linked into roprec_tests and
+// roprec_bench.
+#include "tests/support/counting_new.hpp"
+
 #include <cstdlib>
 #include <new>
 
-namespace roprec::bench {
+namespace roprec::test {
 namespace {
 thread_local long t_allocations = 0;
 
@@ -22,31 +22,28 @@ void* countedAligned(std::size_t n, std::align_val_t a) {
 }
 }  // namespace
 
-/// Allocations made by this thread so far.
 long threadAllocations() { return t_allocations; }
-}  // namespace roprec::bench
+}  // namespace roprec::test
 
-void* operator new(std::size_t n) { return roprec::bench::counted(n); }
-void* operator new[](std::size_t n) { return roprec::bench::counted(n); }
+void* operator new(std::size_t n) { return roprec::test::counted(n); }
+void* operator new[](std::size_t n) { return roprec::test::counted(n); }
 void* operator new(std::size_t n, const std::nothrow_t&) noexcept {
   try {
-    return roprec::bench::counted(n);
+    return roprec::test::counted(n);
   } catch (...) {
     return nullptr;
   }
 }
 void* operator new[](std::size_t n, const std::nothrow_t&) noexcept {
   try {
-    return roprec::bench::counted(n);
+    return roprec::test::counted(n);
   } catch (...) {
     return nullptr;
   }
 }
-void* operator new(std::size_t n, std::align_val_t a) {
-  return roprec::bench::countedAligned(n, a);
-}
+void* operator new(std::size_t n, std::align_val_t a) { return roprec::test::countedAligned(n, a); }
 void* operator new[](std::size_t n, std::align_val_t a) {
-  return roprec::bench::countedAligned(n, a);
+  return roprec::test::countedAligned(n, a);
 }
 void operator delete(void* p) noexcept { std::free(p); }
 void operator delete[](void* p) noexcept { std::free(p); }
