@@ -338,6 +338,11 @@ class TpReader {
       if ((n == "UF" || n == "UT") && q + 2 < e && punct(q + 1, ":")) {
         std::size_t r = q + 2;
         const NumberField v = signedNumber(r, e, f_.tokens[q + 1].offset + 1);
+        // frame numbers are small integers (UF 0..61, UT 1..61 on current controllers)
+        if (!(v.value >= 0 && v.value <= 99 && v.value == std::floor(v.value))) {
+          fail(f_.tokens[q].offset,
+               n + " : " + numberText(v.value) + " is not a frame number (an integer 0 .. 99)");
+        }
         (n == "UF" ? t.frame_ref : t.tool_ref) =
             (n == "UF" ? "UFRAME[" : "UTOOL[") + std::to_string(toInt(v.value)) + "]";
         q = r;

@@ -183,5 +183,21 @@ TEST(ValueRanges, DrillStickoutMustBeAtLeastTheDiameter) {
   }
 }
 
+TEST(ValueRanges, FanucFrameNumbersAreSmallIntegers) {
+  const std::string path = test::sourceDir() + "/samples/emotor-housing/housing_r2000.ls";
+  const std::string good = test::readFile(path);
+  EXPECT_EQ(errorOf(Dialect::kTp, "r.ls", good), "(accepted)");
+  for (const char* bad : {"UT : 1e300", "UT : 1.5", "UT : -1"}) {
+    std::string text = good;
+    const std::size_t at = text.find("UT : 1,");
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, 6, bad);
+    int line = 0;
+    const std::string e = errorOf(Dialect::kTp, "r.ls", text, std::nullopt, &line);
+    EXPECT_NE(e.find("is not a frame number (an integer 0 .. 99)"), std::string::npos) << e;
+    EXPECT_GT(line, 0);
+  }
+}
+
 }  // namespace
 }  // namespace roprec
