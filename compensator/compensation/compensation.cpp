@@ -7,6 +7,7 @@
 #include <string>
 
 #include "compensator/compensation/nlopt_problem.hpp"
+#include "compensator/precision/parallel.hpp"
 #include "compensator/robot/fast_equilibrium.hpp"
 
 namespace roprec {
@@ -249,41 +250,72 @@ double gridPsi(int k, int grid) {
   return psi > kPi + 1e-12 ? psi - 2.0 * kPi : psi;
 }
 
-/// The ψ grid of every hole (keep: the single ψ = 0 candidate), in the branch of the original
-/// solution unless a branch change is allowed. Where |θ5| ≥ margin fails for every ψ, the margin
-/// becomes a penalty and the hole is flagged.
-std::vector<std::vector<Node>> candidateNodes(Evaluator& ev, const std::vector<HoleRequest>& holes,
+/// Counters of one hole's candidates (summed into CompensationStats in hole order).
+struct NodeCount {
+  int nodes{0};
+  int infeasible{0};
+  bool relaxed_wrist{false};
+};
+
+/// The ψ grid of hole h seeded with s (keep: the single ψ = 0 candidate). Where |θ5| ≥ margin
+/// fails for every ψ, the margin becomes a penalty and `note` says so.
+NodeCount holeNodes(Evaluator& ev, const HoleRequest& h, const Vec6& s, int branch, int grid,
+                    std::vector<Node>& nodes, std::string& note) {
+  const bool choose = ev.o.mode != OrientationMode::kKeep;
+  NodeCount count;
+  bool any = false;
+  nodes.clear();
+  nodes.reserve(static_cast<size_t>(grid));
+  for (int k = 0; k < grid; ++k) {
+    nodes.push_back(ev.evaluate(h, gridPsi(k, grid), branch, s, choose, choose));
+    ++count.nodes;
+    if (!nodes.back().feasible) ++count.infeasible;
+    any |= nodes.back().feasible;
+  }
+  if (!any && choose) {
+    // With the drill on the flange axis, ψ turns axis 6 only: if |θ5| < margin for every ψ the
+    // margin cannot be met here. Keep it as a penalty and say so, rather than drop the hole.
+    for (int k = 0; k < grid; ++k) {
+      nodes[static_cast<size_t>(k)] = ev.evaluate(h, gridPsi(k, grid), branch, s, false, true);
+      any |= nodes[static_cast<size_t>(k)].feasible;
+    }
+    if (any) {
+      count.relaxed_wrist = true;
+      note = "no rotation about the drill axis meets |θ5| ≥ the wrist margin at this hole";
+    }
+  }
+  return count;
+}
+
+/// The ψ grid of every hole, in the branch of the original solution unless a branch change is
+/// allowed. A hole with an admissible original prediction is seeded with its joints (holes in
+/// parallel); the others, in hole order afterwards, with the first admissible candidate of the
+/// latest hole before them that has one (else the reference pose).
+std::vector<std::vector<Node>> candidateNodes(std::vector<Evaluator>& evs,
+                                              const std::vector<HoleRequest>& holes,
                                               std::vector<HoleCompensation>& out, int grid,
                                               CompensationStats& st) {
-  const CompensationOptions& o = ev.o;
-  const bool choose = o.mode != OrientationMode::kKeep;
-  std::vector<std::vector<Node>> nodes(holes.size());
-  Vec6 seed = ev.m.reference_pose;
-  for (size_t i = 0; i < holes.size(); ++i) {
+  const CompensationOptions& o = evs[0].o;
+  const size_t n = holes.size();
+  std::vector<std::vector<Node>> nodes(n);
+  std::vector<NodeCount> counts(n);
+  auto branchOf = [&](const HolePrediction& b) {
+    return (b.status == HoleStatus::kOk && !o.allow_branch_change) ? b.branch : -1;
+  };
+  parallelFor(n, static_cast<int>(evs.size()), [&](int w, size_t i) {
     const HolePrediction& b = out[i].before;
-    const Vec6 s = b.status == HoleStatus::kOk ? b.joints : seed;
-    const int branch = (b.status == HoleStatus::kOk && !o.allow_branch_change) ? b.branch : -1;
-    bool any = false;
-    nodes[i].reserve(static_cast<size_t>(grid));
-    for (int k = 0; k < grid; ++k) {
-      nodes[i].push_back(ev.evaluate(holes[i], gridPsi(k, grid), branch, s, choose, choose));
-      ++st.dp_nodes;
-      if (!nodes[i].back().feasible) ++st.infeasible_nodes;
-      any |= nodes[i].back().feasible;
-    }
-    if (!any && choose) {
-      // With the drill on the flange axis, ψ turns axis 6 only: if |θ5| < margin for every ψ the
-      // margin cannot be met here. Keep it as a penalty and say so, rather than drop the hole.
-      for (int k = 0; k < grid; ++k) {
-        nodes[i][static_cast<size_t>(k)] =
-            ev.evaluate(holes[i], gridPsi(k, grid), branch, s, false, true);
-        any |= nodes[i][static_cast<size_t>(k)].feasible;
-      }
-      if (any) {
-        ++st.relaxed_wrist;
-        out[i].note = "no rotation about the drill axis meets |θ5| ≥ the wrist margin at this hole";
-      }
-    }
+    if (b.status != HoleStatus::kOk) return;
+    counts[i] = holeNodes(evs[static_cast<size_t>(w)], holes[i], b.joints, branchOf(b), grid,
+                          nodes[i], out[i].note);
+  });
+  Vec6 seed = evs[0].m.reference_pose;
+  for (size_t i = 0; i < n; ++i) {
+    const HolePrediction& b = out[i].before;
+    if (b.status != HoleStatus::kOk)
+      counts[i] = holeNodes(evs[0], holes[i], seed, branchOf(b), grid, nodes[i], out[i].note);
+    st.dp_nodes += counts[i].nodes;
+    st.infeasible_nodes += counts[i].infeasible;
+    if (counts[i].relaxed_wrist) ++st.relaxed_wrist;
     for (const Node& nd : nodes[i]) {
       if (nd.feasible) {
         seed = nd.q;
@@ -408,11 +440,20 @@ double wrapPsi(double psi) {
   return w <= -kPi ? w + 2.0 * kPi : w;
 }
 
+/// The outcome of one hole's refinement.
+struct Refined {
+  bool changed{false};  ///< `node` replaces the chosen one
+  Node node;
+  int evaluations{0};
+};
+
 /// COBYLA on ψ within ±1 grid step, subject to |Δθ4|, |Δθ6| ≤ thr against same-face neighbours;
 /// flip-free: the smallest |ψ| (with a small limit/wrist-proximity term), stiffest: node cost
-/// + transitions. Keeps the result only when feasible and better.
-void refineHole(Evaluator& ev, const std::vector<HoleRequest>& holes, std::vector<Node>& chosen,
-                size_t i, bool enforce_wrist, int grid, double thr, CompensationStats& st) {
+/// + transitions. The result replaces chosen[i] only when feasible and better. Reads chosen[i]
+/// and its two neighbours (neighbour()) only.
+Refined refineHole(Evaluator& ev, const std::vector<HoleRequest>& holes,
+                   const std::vector<Node>& chosen, size_t i, bool enforce_wrist, int grid,
+                   double thr) {
   const OrientationMode mode = ev.o.mode;
   // plain variables, not structured bindings: clang < 16 cannot capture those in the lambdas
   const std::pair<const Node*, bool> prev_nb = neighbour(chosen, holes, i, -1);
@@ -465,15 +506,56 @@ void refineHole(Evaluator& ev, const std::vector<HoleRequest>& holes, std::vecto
   prob.setMaxEvaluations(30);
   std::vector<double> x{chosen[i].psi};
   const NloptProblem::Result r = prob.optimize(x);
-  st.nlopt_evaluations += r.evaluations;
-  if (!r.usable()) return;
+  Refined out;
+  out.evaluations = r.evaluations;
+  if (!r.usable()) return out;
   Node nd = evalAt(x[0]);
   const bool ok_jumps = (!pj || jumpOk(pj->q, nd.q, thr)) && (!nj || jumpOk(nd.q, nj->q, thr));
   const bool better = mode == OrientationMode::kStiffest ? nd.u_def <= chosen[i].u_def
                                                          : total(nd) < total(chosen[i]);
   if (nd.feasible && ok_jumps && better) {
     nd.psi = wrapPsi(nd.psi);
-    chosen[i] = nd;
+    out.node = nd;
+    out.changed = true;
+  }
+  return out;
+}
+
+/// Index of the nearest chosen feasible node before hole i, or n when there is none.
+size_t previousFeasible(const std::vector<Node>& chosen, size_t i) {
+  for (size_t k = i; k-- > 0;) {
+    if (chosen[k].feasible) return k;
+  }
+  return chosen.size();
+}
+
+/// Refines every turned hole (flip-free: towards the smallest change; stiffest: the stiffest), in
+/// hole order, each against its already refined predecessor and its not yet refined successor.
+/// All are first refined in parallel against the unrefined sequence; in hole order, a hole whose
+/// predecessor changed is refined again (the only input that differs), so the result is the
+/// sequential one for any thread count.
+void refineTurned(std::vector<Evaluator>& evs, const std::vector<HoleRequest>& holes,
+                  const std::vector<HoleCompensation>& out, std::vector<Node>& chosen, int grid,
+                  double thr, CompensationStats& st) {
+  const size_t n = chosen.size();
+  auto turned = [&](size_t i) { return chosen[i].feasible && std::abs(chosen[i].psi) > kPsiKept; };
+  std::vector<Refined> spec(n);
+  parallelFor(n, static_cast<int>(evs.size()), [&](int w, size_t i) {
+    if (turned(i))
+      spec[i] =
+          refineHole(evs[static_cast<size_t>(w)], holes, chosen, i, out[i].note.empty(), grid, thr);
+  });
+  std::vector<char> changed(n, 0);
+  for (size_t i = 0; i < n; ++i) {
+    if (!turned(i)) continue;
+    const size_t p = previousFeasible(chosen, i);
+    const Refined r = p < n && changed[p]
+                          ? refineHole(evs[0], holes, chosen, i, out[i].note.empty(), grid, thr)
+                          : std::move(spec[i]);
+    st.nlopt_evaluations += r.evaluations;
+    if (!r.changed) continue;
+    chosen[i] = r.node;
+    changed[i] = 1;
     ++st.refined;
   }
 }
@@ -720,18 +802,24 @@ std::string psiReason(const Evaluator& ev, const std::vector<HoleRequest>& holes
   return "the sequence's jump limit cannot be met with the programmed rotation here";
 }
 
-/// Stiffest: the keep result (ψ = 0, positions only) of every hole with a ψ = 0 posture. A hole
-/// at ψ = 0 takes it; a turned hole goes back to it unless the turn gains at least
-/// kStiffnessGainMin of U_work, when the jump constraints with the final neighbours allow it.
-/// Records U_work(keep) for the gain.
-void stiffestAgainstKeep(Evaluator& ev, const std::vector<HoleRequest>& holes,
+/// Stiffest: the keep result (ψ = 0, positions only) of every hole with a ψ = 0 posture (holes in
+/// parallel). Then, in hole order: a hole at ψ = 0 takes it; a turned hole goes back to it unless
+/// the turn gains at least kStiffnessGainMin of U_work, when the jump constraints with the final
+/// neighbours allow it. Records U_work(keep) for the gain.
+void stiffestAgainstKeep(std::vector<Evaluator>& evs, const std::vector<HoleRequest>& holes,
                          const std::vector<HoleCompensation>& original,
                          const std::vector<Node>& programmed, std::vector<Node>& chosen, double thr,
                          std::vector<HoleCompensation>& out) {
-  for (size_t i = 0; i < out.size(); ++i) {
-    if (!out[i].ok || !programmed[i].feasible) continue;
-    HoleCompensation k = finalizeHole(ev, holes[i], original[i], programmed[i], true);
-    if (!k.ok) continue;
+  const size_t n = out.size();
+  std::vector<HoleCompensation> keep(n);
+  parallelFor(n, static_cast<int>(evs.size()), [&](int w, size_t i) {
+    if (out[i].ok && programmed[i].feasible)
+      keep[i] =
+          finalizeHole(evs[static_cast<size_t>(w)], holes[i], original[i], programmed[i], true);
+  });
+  for (size_t i = 0; i < n; ++i) {
+    HoleCompensation& k = keep[i];
+    if (!out[i].ok || !programmed[i].feasible || !k.ok) continue;
     out[i].U_work_keep = k.after.U_work_exact;
     const bool turned = std::abs(out[i].psi) > kPsiKept;
     if (turned && k.after.U_work_exact * (1.0 - kStiffnessGainMin) >= out[i].after.U_work_exact)
@@ -749,6 +837,42 @@ void stiffestAgainstKeep(Evaluator& ev, const std::vector<HoleRequest>& holes,
   }
 }
 
+/// Why hole i is not compensated before its stage 5 ("" when it is to be finalized).
+std::string notCompensatedReason(const HoleCompensation& c, const Node& chosen) {
+  if (c.before.status == HoleStatus::kNotConverged) return "not compensated: " + c.before.reason;
+  if (c.before.status != HoleStatus::kOk) {
+    // No arm posture to keep: the controller cannot reach the programmed target as written, and
+    // any "compensated" target would put the arm into a posture the program never asked for.
+    return std::string("the programmed target is ") +
+           (c.before.status == HoleStatus::kSingular ? "singular" : "unreachable") +
+           " before compensation (" + c.before.reason +
+           "); compensating it would move the arm into another posture";
+  }
+  if (!chosen.feasible)
+    return "no admissible orientation about the drill axis (limits, wrist margin)";
+  return "";
+}
+
+/// Stage 1 with the continuity seeds of `roprec predict` (predictHoles on `threads` workers); a
+/// hole whose prediction throws makes it fall back to the sequential loop, which isolates it.
+void predictOriginalThreads(const PredictionModel& m, PredictionData& d,
+                            const std::vector<HoleRequest>& holes, int threads,
+                            std::vector<HoleCompensation>& out) {
+  try {
+    PredictOptions po;
+    po.threads = threads;
+    std::vector<HolePrediction> before = predictHoles(m, holes, po);
+    for (size_t i = 0; i < holes.size(); ++i) {
+      out[i].id = holes[i].id;
+      out[i].before = std::move(before[i]);
+    }
+    return;
+  } catch (const std::exception&) {
+    // the sequential loop below reports the failing hole as not converged
+  }
+  predictOriginal(m, d, holes, out);
+}
+
 }  // namespace
 
 std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,
@@ -756,13 +880,21 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,
                                               const CompensationOptions& o,
                                               CompensationStats* stats) {
   CompensationStats st;
-  PredictionData d(m);
-  Evaluator ev{m, d, o};
   const size_t n = holes.size();
+  const int threads = static_cast<int>(
+      std::clamp<size_t>(static_cast<size_t>(std::max(1, o.threads)), 1, std::max<size_t>(1, n)));
+  std::vector<PredictionData> scratch;
+  scratch.reserve(static_cast<size_t>(threads));
+  std::vector<Evaluator> evs;
+  evs.reserve(static_cast<size_t>(threads));
+  for (int w = 0; w < threads; ++w) {
+    scratch.emplace_back(m);
+    evs.push_back(Evaluator{m, scratch.back(), o});
+  }
   std::vector<HoleCompensation> out(n);
-  predictOriginal(m, d, holes, out);
+  predictOriginalThreads(m, scratch[0], holes, threads, out);
   const int grid = o.mode == OrientationMode::kKeep ? 1 : std::max(4, o.grid);
-  const std::vector<std::vector<Node>> nodes = candidateNodes(ev, holes, out, grid, st);
+  const std::vector<std::vector<Node>> nodes = candidateNodes(evs, holes, out, grid, st);
   double thr = o.jump_threshold;
   const std::vector<int> choice = chooseSequence(nodes, holes, o, st, thr);
   st.jump_threshold_used = thr;
@@ -770,50 +902,35 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,
   for (size_t i = 0; i < n; ++i) {
     if (choice[i] >= 0) chosen[i] = nodes[i][static_cast<size_t>(choice[i])];
   }
-  if (o.mode != OrientationMode::kKeep && o.refine) {
-    for (size_t i = 0; i < n; ++i) {
-      // only the turned holes (flip-free: towards the smallest change; stiffest: the stiffest)
-      if (!chosen[i].feasible || std::abs(chosen[i].psi) <= kPsiKept) continue;
-      refineHole(ev, holes, chosen, i, out[i].note.empty(), grid, thr, st);
-    }
-  }
+  if (o.mode != OrientationMode::kKeep && o.refine)
+    refineTurned(evs, holes, out, chosen, grid, thr, st);
+  const bool stiffest = o.mode == OrientationMode::kStiffest;
   // the programmed posture (ψ = 0, no wrist requirement) of each hole: stiffest's reference
   std::vector<Node> programmed(n);
-  if (o.mode == OrientationMode::kStiffest) {
-    for (size_t i = 0; i < n; ++i) {
+  if (stiffest) {
+    parallelFor(n, threads, [&](int w, size_t i) {
       const HolePrediction& b = out[i].before;
       if (b.status == HoleStatus::kOk)
-        programmed[i] = ev.evaluate(holes[i], 0.0, b.branch, b.joints, false, true);
-    }
+        programmed[i] =
+            evs[static_cast<size_t>(w)].evaluate(holes[i], 0.0, b.branch, b.joints, false, true);
+    });
   }
   // stiffest compares with the keep result later and needs the stage-1 results again; the other
   // modes hand each hole's over (no copy)
-  const bool stiffest = o.mode == OrientationMode::kStiffest;
   std::vector<HoleCompensation> original;
   if (stiffest) original = out;
-  for (size_t i = 0; i < n; ++i) {
-    if (out[i].before.status == HoleStatus::kNotConverged) {
-      out[i].reason = "not compensated: " + out[i].before.reason;
-      continue;
+  parallelFor(n, threads, [&](int w, size_t i) {
+    std::string why = notCompensatedReason(out[i], chosen[i]);
+    if (!why.empty()) {
+      out[i].reason = std::move(why);
+      return;
     }
-    if (out[i].before.status != HoleStatus::kOk) {
-      // No arm posture to keep: the controller cannot reach the programmed target as written, and
-      // any "compensated" target would put the arm into a posture the program never asked for.
-      out[i].reason = std::string("the programmed target is ") +
-                      (out[i].before.status == HoleStatus::kSingular ? "singular" : "unreachable") +
-                      " before compensation (" + out[i].before.reason +
-                      "); compensating it would move the arm into another posture";
-      continue;
-    }
-    if (!chosen[i].feasible) {
-      out[i].reason = "no admissible orientation about the drill axis (limits, wrist margin)";
-      continue;
-    }
-    out[i] = finalizeHole(ev, holes[i], stiffest ? original[i] : std::move(out[i]), chosen[i],
+    out[i] = finalizeHole(evs[static_cast<size_t>(w)], holes[i],
+                          stiffest ? original[i] : std::move(out[i]), chosen[i],
                           o.mode == OrientationMode::kKeep);
-  }
-  if (o.mode == OrientationMode::kStiffest)
-    stiffestAgainstKeep(ev, holes, original, programmed, chosen, thr, out);
+  });
+  if (stiffest) stiffestAgainstKeep(evs, holes, original, programmed, chosen, thr, out);
+  const Evaluator& ev = evs[0];
   for (size_t i = 0; i < n; ++i) {
     HoleCompensation& c = out[i];
     if (!c.ok) continue;

@@ -55,6 +55,11 @@ struct CompensationOptions {
   bool allow_branch_change{false};
   double limit_margin{10.0 * kDeg};  ///< penalty zone near joint limits
   bool refine{true};                 ///< NLopt refinement after the DP
+  /// Worker threads over holes (≥ 1). The result is byte-identical for every count: sequential
+  /// passes fix what carries from hole to hole (the IK seeds, the ψ sequence of the DP, each
+  /// refinement against its refined predecessor), the per-hole work (candidate IK, NLopt, exact
+  /// command, re-prediction) runs on the workers with per-thread scratch.
+  int threads{1};
 };
 
 struct HoleCompensation {

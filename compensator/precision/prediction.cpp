@@ -1,11 +1,9 @@
 #include "compensator/precision/prediction.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <exception>
-#include <thread>
 
+#include "compensator/precision/parallel.hpp"
 #include "compensator/precision/uncertainty.hpp"
 #include "compensator/robot/fast_equilibrium.hpp"
 #include "compensator/support/error.hpp"
@@ -431,42 +429,6 @@ std::vector<HolePrediction> predictHoles(const PredictionModel& m,
                                          const std::vector<HoleRequest>& holes) {
   return predictHoles(m, holes, PredictOptions{});
 }
-
-namespace {
-
-/// Runs work(worker, i) for i in [0, n) on `threads` workers (the caller is worker 0), in chunks
-/// taken from a shared counter. Rethrows the first exception of a worker after all joined.
-template <class Work>
-void parallelFor(size_t n, int threads, const Work& work) {
-  const int t = static_cast<int>(std::min<size_t>(static_cast<size_t>(std::max(1, threads)), n));
-  if (t <= 1) {
-    for (size_t i = 0; i < n; ++i) work(0, i);
-    return;
-  }
-  constexpr size_t kChunk = 16;
-  std::atomic<size_t> next{0};
-  std::vector<std::exception_ptr> errors(static_cast<size_t>(t));
-  auto run = [&](int w) {
-    try {
-      for (size_t b = next.fetch_add(kChunk); b < n; b = next.fetch_add(kChunk)) {
-        for (size_t i = b; i < std::min(n, b + kChunk); ++i) work(w, i);
-      }
-    } catch (...) {
-      errors[static_cast<size_t>(w)] = std::current_exception();
-      next.store(n);
-    }
-  };
-  std::vector<std::thread> pool;
-  pool.reserve(static_cast<size_t>(t - 1));
-  for (int w = 1; w < t; ++w) pool.emplace_back(run, w);
-  run(0);
-  for (std::thread& th : pool) th.join();
-  for (const std::exception_ptr& e : errors) {
-    if (e) std::rethrow_exception(e);
-  }
-}
-
-}  // namespace
 
 std::vector<HolePrediction> predictHoles(const PredictionModel& m,
                                          const std::vector<HoleRequest>& holes,

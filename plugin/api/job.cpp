@@ -422,7 +422,9 @@ CompensationResult compensateJob(const std::string& cell_path, const std::string
   if (const auto note = checkNotCompensated(*r.context.job.program, job.force))
     r.context.job.notes.push_back(*note);
   r.orientation = orientationModeName(job.options.mode);
-  r.holes = compensateHoles(r.context.model, r.context.job.requests, job.options, &r.stats);
+  CompensationOptions options = job.options;
+  options.threads = resolvedThreads(job.job.threads);  // the same bytes for any count
+  r.holes = compensateHoles(r.context.model, r.context.job.requests, options, &r.stats);
   if (progress) progress(r.holes.size(), r.holes.size());
   r.failed = static_cast<int>(
       std::count_if(r.holes.begin(), r.holes.end(), [](const auto& h) { return !h.ok; }));
