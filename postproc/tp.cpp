@@ -115,7 +115,11 @@ class TpReader {
       continuation(k, e);
       return;
     } else {
-      return;
+      // a program line starts with its number (`12:`): anything else is a damaged line, never
+      // dropped in silence (it may be a motion)
+      fail(f_.tokens[k].offset,
+           "a /MN line starts with its line number ('12:  L P[3] ...'), got '" +
+               std::string(tx(k).substr(0, 40)) + "'");
     }
     if (k >= e) return;
     last_motion_line_ = -1;

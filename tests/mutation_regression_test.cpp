@@ -34,6 +34,7 @@
 #include "compensator/robot/urdf_loader.hpp"
 #include "compensator/support/error.hpp"
 #include "postproc/measured.hpp"
+#include "postproc/program.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace roprec {
@@ -291,6 +292,49 @@ TEST(MutationRegression, HolesOffTheirHoleListAxisAreAWarning) {
       test::runRoprec("predict --cell " + q(sample("cells/housing-kr120.xml")) + args);
   EXPECT_EQ(good.exit_code, 0) << good.err;
   EXPECT_EQ(good.err.find("off their hole-list axis"), std::string::npos) << good.err;
+}
+
+TEST(MutationRegression, SpeedsFeedsAndBalancerSizesArePlausible) {
+  // seeds 16 and 17: spindle_rpm 1e300 / 1e-300 and feed 1e-300 were accepted (the machining-
+  // centre time then printed as a 300-digit number); a gas volume of 1e300 l changed every
+  // gravity torque
+  EXPECT_NE(cellError("spindle_rpm=\"6000\"", "spindle_rpm=\"1e-300\"")
+                .find("cell.xml:17: <cut> spindle_rpm = 1e-300 is outside the plausible range"),
+            std::string::npos);
+  EXPECT_NE(cellError("spindle_rpm=\"6000\"", "spindle_rpm=\"1e300\"")
+                .find("spindle_rpm = 1e+300 is outside the plausible range 10 .. 100000"),
+            std::string::npos);
+  EXPECT_NE(cellError("feed_mm_per_rev=\"0.2\"", "feed_mm_per_rev=\"1e-300\"")
+                .find("feed_mm_per_rev = 1e-300 is outside the plausible range"),
+            std::string::npos);
+  const std::string dir = mutatedKr120("robot.xml", "<counterbalance", "gas_volume_l=\"0.36\"",
+                                       "gas_volume_l=\"1e300\"");
+  std::string what = "(accepted)";
+  try {
+    (void)loadRobotCard(dir + "/robot.xml");
+  } catch (const InputError& e) {
+    what = e.what();
+  }
+  EXPECT_NE(what.find("<counterbalance> gas_volume_l = 1e+300 is outside the plausible range"),
+            std::string::npos)
+      << what;
+}
+
+TEST(MutationRegression, ATpLineWithoutItsNumberIsAnError) {
+  // seed 16: `inf:L P[591] ...` (line number damaged) was skipped: a motion dropped in silence
+  std::string text = test::readFile(sample("emotor-housing/housing_r2000.ls"));
+  const std::size_t at = text.find("1182:L P[591]");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 4, "inf");
+  try {
+    (void)postproc::parseProgram(postproc::Dialect::kTp, "r.ls", text);
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("a /MN line starts with its line number"),
+              std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("got 'inf'"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -193,6 +193,8 @@ void parseDrilling(const XmlNode& proc, DrillingSpec& s) {
     c.fail("<cut> feed_mm_per_rev " + c.str("feed_mm_per_rev") + " is above 0.1 Dc");
   s.feed = f * kMm;
   s.spindle_rpm = positive(c, "spindle_rpm", 3000.0, true);
+  plausible(c, "spindle_rpm", 10.0, 100000.0, "spindle speed, 1/min");
+  plausible(c, "feed_mm_per_rev", 0.001, 10.0, "feed per revolution, mm");
   s.hole_depth = positive(c, "depth_mm", 2.0 * g.diameter / kMm, true) * kMm;
   plausible(c, "depth_mm", 0.1, 1000.0, "hole depth, mm");
   s.through = c.boolean("through", false);
@@ -303,6 +305,10 @@ void parseMilling(const XmlNode& proc, MillingSpec& s) {
     c.fail("<cut> mode must be 'up', 'down' or 'slot', got '" + mode + "'");
   }
   s.cut.spindle_rpm = positive(c, "spindle_rpm", 10000.0, true);
+  plausible(c, "spindle_rpm", 10.0, 100000.0, "spindle speed, 1/min");
+  plausible(c, "ap_mm", 0.001, 200.0, "axial depth of cut, mm");
+  plausible(c, "ae_mm", 0.001, 200.0, "radial depth of cut, mm");
+  plausible(c, "fz_mm", 1e-4, 10.0, "feed per tooth, mm");
 
   const Material& mat = material(proc);
   s.material = &mat;

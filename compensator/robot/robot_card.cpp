@@ -4,8 +4,11 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <initializer_list>
+#include <tuple>
 
 #include "compensator/robot/urdf_loader.hpp"
 #include "compensator/support/error.hpp"
@@ -50,6 +53,22 @@ Counterbalance parseCounterbalance(const RobotCard& card, const XmlNode& e) {
   const std::string action = e.str("action");
   if (action != "push" && action != "pull") e.fail("<counterbalance> action must be push or pull");
   cb.action = action == "push" ? Counterbalance::Action::kPush : Counterbalance::Action::kPull;
+  // plausible sizes (a corrupted number would silently move every gravity torque)
+  for (const auto& [a, lo, hi] : std::initializer_list<std::tuple<const char*, double, double>>{
+           {"r_mm", 0.0, 5000.0},
+           {"d_mm", 0.0, 5000.0},
+           {"length_ref_mm", 0.0, 10000.0},
+           {"psi0_deg", -720.0, 720.0},
+           {"preload_N", 0.0, 1e6},
+           {"rate_N_per_mm", 0.0, 1e6},
+           {"pressure_ref_MPa", 0.0, 100.0},
+           {"piston_area_mm2", 0.0, 1e6},
+           {"gas_volume_l", 0.0, 1000.0}}) {
+    if (e.has(a) && !(std::fabs(e.number(a)) <= hi && e.number(a) >= lo)) {
+      e.fail(std::string("<counterbalance> ") + a + " = " + numberText(e.number(a)) +
+             " is outside the plausible range " + numberText(lo) + " .. " + numberText(hi));
+    }
+  }
   cb.r = e.number("r_mm") * 1e-3;
   cb.d = e.number("d_mm") * 1e-3;
   cb.psi0 = e.number("psi0_deg") * kDeg;
