@@ -7,6 +7,7 @@
 
 #include <cstring>
 
+#include "plugin/api/job.hpp"
 #include "plugin/api/prediction_setup.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -98,6 +99,44 @@ TEST(PredictThreads, BlocksWithTheContinuitySeedEqualOneCall) {
     blocks.insert(blocks.end(), got.begin(), got.end());
   }
   expectIdentical(blocks, ref, req);
+}
+
+/// The prediction JSON predictJobStreaming writes for `csv` with `threads` workers (blocks of holes
+/// written on a task of their own while the next block is predicted when threads > 1).
+std::string streamedJson(const std::string& csv, int threads) {
+  api::JobOptions o;
+  o.threads = threads;
+  std::string out;
+  std::optional<api::PredictionJsonStream> js;
+  const api::PredictionResult r = api::predictJobStreaming(
+      test::sourceDir() + "/samples/cells/housing-kr120.xml", csv, o,
+      [&](size_t, const HolePrediction& h, const HoleRequest& q) { js->hole(h, q); },
+      [&](const api::PredictionContext& c) {
+        js.emplace(c, [&](std::string_view b) { out += b; });
+      });
+  js->finish(r.summary);
+  return out;
+}
+
+TEST(PredictThreads, StreamedJsonOfSeveralBlocksIsTheSameBytes) {
+  // the housing's hole list 25 times (5,100 holes: three blocks of the streaming predict)
+  const std::string src = test::readFile(test::sourceDir() + "/samples/emotor-housing/holes.csv");
+  const size_t header_end = src.find("\nid,") + 1;
+  const size_t rows = src.find('\n', header_end) + 1;
+  std::string csv = src.substr(0, rows);
+  for (int k = 0; k < 25; ++k) {
+    // every row's id prefixed (ids stay unique)
+    for (size_t at = rows; at < src.size();) {
+      const size_t end = std::min(src.size(), src.find('\n', at) + 1);
+      csv += "K" + std::to_string(k) + "_" + src.substr(at, end - at);
+      at = end;
+    }
+  }
+  const std::string path = test::tempDir("predict_threads") + "/holes.csv";
+  test::writeFile(path, csv);
+  const std::string ref = streamedJson(path, 1);
+  ASSERT_NE(ref.find("\"K24_L048\""), std::string::npos);
+  for (const int threads : {2, 3}) EXPECT_TRUE(streamedJson(path, threads) == ref) << threads;
 }
 
 }  // namespace

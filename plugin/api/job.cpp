@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <future>
 #include <system_error>
 #include <thread>
 
@@ -398,18 +399,31 @@ PredictionResult predictJobStreaming(
   if (on_context) on_context(r.context);
   const auto& req = r.context.job.requests;
   SummaryAccumulator sum;
+  // With more than one thread, block k goes to the sink (JSON formatting and writing) on a task
+  // of its own while block k + 1 is predicted: the sink still sees every hole once, in order, on
+  // one thread at a time, so the bytes are those of one thread.
+  auto drain = [&](const std::vector<HolePrediction>& block, size_t b) {
+    for (size_t i = 0; i < block.size(); ++i) {
+      sum.add(block[i]);
+      if (sink) sink(b + i, block[i], req[b + i]);
+    }
+  };
   std::optional<Vec6> prev;
-  std::vector<HolePrediction> block;
-  block.reserve(std::min(req.size(), kPredictBlock));
-  for (size_t b = 0; b < req.size(); b += kPredictBlock) {
+  std::vector<HolePrediction> blocks[2];
+  std::future<void> draining;
+  int k = 0;
+  for (size_t b = 0; b < req.size(); b += kPredictBlock, k ^= 1) {
     const size_t e = std::min(req.size(), b + kPredictBlock);
-    predictRange(r.context.model, req, b, e, prev, threads, block);
-    for (size_t i = b; i < e; ++i) {
-      sum.add(block[i - b]);
-      if (sink) sink(i, block[i - b], req[i]);
+    predictRange(r.context.model, req, b, e, prev, threads, blocks[k]);
+    if (draining.valid()) draining.get();  // the previous block is written (or its error thrown)
+    if (threads > 1) {
+      draining = std::async(std::launch::async, drain, std::cref(blocks[k]), b);
+    } else {
+      drain(blocks[k], b);
     }
     if (progress) progress(e, req.size());
   }
+  if (draining.valid()) draining.get();
   r.summary = sum.summary();
   return r;
 }

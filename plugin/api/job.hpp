@@ -77,7 +77,9 @@ struct PredictionResult {
 PredictionResult predictJob(const std::string& cell_path, const std::string& program_path,
                             const JobOptions& options = {}, const ProgressFn& progress = {});
 
-/// Receives each predicted hole once, in hole order (index into context.job.requests).
+/// Receives each predicted hole once, in hole order (index into context.job.requests). With
+/// options.threads > 1 the calls come from a task of their own (one call at a time, all done
+/// before predictJobStreaming returns) while the next block of holes is predicted.
 using HoleSink =
     std::function<void(size_t index, const HolePrediction& hole, const HoleRequest& request)>;
 
