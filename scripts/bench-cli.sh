@@ -19,7 +19,14 @@
 #                                      program as read: ~1.6 kB per postproc::Target, 4 per hole,
 #                                      and its parse dominates the wall time)
 # 2 vs 1 threads under that load: predict 0.94-1.00x, compensate flip-free 1.02-1.10x (compensate
-# takes --threads but its kernel runs on one thread); every output byte-identical.
+# took --threads but its kernel ran on one thread); every output byte-identical.
+# After compensateHoles runs on the workers and predict writes block k while block k+1 is
+# predicted (load average 7-8): compensate 10,000 flip-free 1.81 s -> 1.50 s wall (1.21x), predict
+# 0.32 s -> 0.39 s (0.82x: most of its 0.3 s CPU is the program's parse, one thread). Where the CPU
+# goes with --threads 2 (`perf record -F 2000` then `perf report --sort pid`: the main thread vs
+# the workers; a worker does as much parallel work as the main thread): compensate 18 % serial /
+# 82 % parallel (Amdahl bound on 2 free cores 1.69x), predict 51 % / 49 % (bound 1.32x).
+# The last column is user + system CPU: it stays the same for 1 and 2 threads (no extra work).
 #
 # BENCH_SIZES  hole counts (default "1000 10000 100000")
 # BENCH_COMPENSATE_MAX  largest job that is also compensated (default 10000)
@@ -76,12 +83,13 @@ run() {  # run KEY ARGS...: one roprec run under GNU time; prints wall s and pea
     FAILED=1
     return
   fi
-  local wall rss
+  local wall rss cpu
   wall=$(awk -F': ' '/Elapsed \(wall clock\)/ { n = split($2, t, ":"); s = 0;
                       for (i = 1; i <= n; i++) s = s * 60 + t[i]; print s }' "$DIR/time.txt")
   rss=$(awk -F': ' '/Maximum resident set size/ { printf "%.0f", $2 / 1024 }' "$DIR/time.txt")
+  cpu=$(awk -F': ' '/(User|System) time \(seconds\)/ { s += $2 } END { print s }' "$DIR/time.txt")
   WALL[$key]=$wall
-  printf '%-44s %8.2f s %8s MB\n' "$key" "$wall" "$rss"
+  printf '%-44s %8.2f s %8s MB %8.2f s CPU\n' "$key" "$wall" "$rss" "$cpu"
 }
 
 same() {  # same LABEL A B: byte-identity of two outputs
