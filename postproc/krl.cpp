@@ -52,6 +52,18 @@ std::optional<int> parseKrlLiteralInt(std::string_view s) {
   return v;
 }
 
+// ASCII case-insensitive prefix / substring tests (upper(s) and then rfind/find, no copy).
+bool istartsWith(std::string_view s, std::string_view w) {
+  return s.size() >= w.size() && iequals(s.substr(0, w.size()), w);
+}
+
+bool icontains(std::string_view s, std::string_view w) {
+  for (std::size_t i = 0; i + w.size() <= s.size(); ++i) {
+    if (iequals(s.substr(i, w.size()), w)) return true;
+  }
+  return false;
+}
+
 int sigDigits(std::string_view s) {
   int n = 0;
   bool nz = false;
@@ -70,11 +82,9 @@ class KrlReader {
   explicit KrlReader(Program& p) : p_(p) {}
 
   void run() {
-    LexOptions o;
-    o.comment = ';';
-    o.header_amp = true;
-    o.single_quote_string = true;
-    for (SourceFile& f : p_.files) lex(f, o);
+    lex_.comment = ';';
+    lex_.header_amp = true;
+    lex_.single_quote_string = true;
     const std::size_t expected =
         p_.files.back().bytes.size() / 128 + 16;  // ~1 declaration per 128 bytes
     targets_.reserve(expected);
@@ -93,6 +103,7 @@ class KrlReader {
 
  private:
   Program& p_;
+  LexOptions lex_;
   int file_{0};
   std::unordered_map<std::string, int> targets_;  // upper name -> index
   struct Fdat {
@@ -102,14 +113,21 @@ class KrlReader {
   };
   std::unordered_map<std::string, Fdat> fdats_;
   std::unordered_map<std::string, double> ldat_vel_;  // m/s
-  std::unordered_map<std::string, Frame> named_frames_;
+  // Frames declared by name (upper case): FRAME declarations live in frame_decls_ (value
+  // -1 - index); POS/E6POS declarations are targets too and are read back from the target (value
+  // = target index), so a 100,000-point .dat keeps no second copy of its poses.
+  std::unordered_map<std::string, int> named_frames_;
+  std::vector<Frame> frame_decls_;
   std::unordered_map<int, Frame> base_data_;
   std::unordered_map<int, Frame> tool_data_;
   std::unordered_map<std::string, bool> reported_;
+  std::vector<std::pair<std::size_t, std::size_t>> exprs_;  // motion(): target expressions
   Frame tool_{"$TOOL", false, Pose::Identity(), -1, 0};
   Frame base_{"$BASE", false, Pose::Identity(), -1, 0};
   Fdat fdat_;
   double vel_cp_{-1};
+  double speed_text_vel_{-1};  // $VEL.CP of speed_text_
+  std::string speed_text_;
   bool ext_tcp_{false};
 
   const SourceFile& file() const { return p_.files[static_cast<std::size_t>(file_)]; }
@@ -126,23 +144,28 @@ class KrlReader {
     }
   }
 
-  // Logical line [b, e): token indices, comment and newline tokens excluded at the end.
+  // Lexes the current file line by line (file().tokens holds one line's tokens at a time, so the
+  // reader never keeps an index of the whole file) and calls fn(b, e, j) per line: [b, e) the
+  // logical line, comment tokens excluded at the end; j the newline token (or the line's end).
   template <class F>
   void forEachLine(F&& fn) {
-    const std::vector<Token>& t = file().tokens;
-    std::size_t i = 0;
-    while (i < t.size()) {
-      std::size_t j = i;
-      while (j < t.size() && t[j].kind != TokenKind::kNewline) ++j;
+    SourceFile& f = p_.files[static_cast<std::size_t>(file_)];
+    std::size_t pos = 0;
+    while (pos < f.bytes.size()) {
+      f.tokens.clear();
+      pos = lexLine(f, lex_, pos, f.tokens);
+      std::size_t j = f.tokens.size();
+      if (j > 0 && f.tokens[j - 1].kind == TokenKind::kNewline) --j;
       std::size_t e = j;
-      while (e > i && t[e - 1].kind == TokenKind::kComment) --e;
-      fn(i, e, j);
-      i = j + 1;
+      while (e > 0 && f.tokens[e - 1].kind == TokenKind::kComment) --e;
+      fn(std::size_t{0}, e, j);
     }
+    f.tokens.clear();
   }
 
   Aggregate parseAggregate(TokenCursor& c) {
     Aggregate a;
+    a.comps.reserve(12);           // E6POS: X..C, S, T, E1..E6 in one allocation
     const Token& open = c.next();  // '{'
     a.open = open.offset;
     if (c.isKind(TokenKind::kIdentifier) && c.isPunct(':', 1)) {
@@ -297,6 +320,18 @@ class KrlReader {
     return idx;
   }
 
+  // The frame a name declared (see named_frames_): a POS/E6POS target's pose is poseOf() of its
+  // aggregate (X, Y, Z, A, B, C; absent components 0), declared on the target's line.
+  Frame namedFrame(int v) const {
+    if (v < 0) return frame_decls_[static_cast<std::size_t>(-v - 1)];
+    const Target& t = p_.target_list[static_cast<std::size_t>(v)];
+    Pose T = Pose::Identity();
+    T.translation() = Vec3(t.pos[0].value, t.pos[1].value, t.pos[2].value) * 1e-3;
+    T.linear() =
+        rotationFromZyx(t.rot[0].value * kDeg, t.rot[1].value * kDeg, t.rot[2].value * kDeg);
+    return Frame{t.name, true, T, t.file, t.line};
+  }
+
   static Pose poseOf(const Aggregate& a) {
     auto v = [&](const char* n) {
       const Component* c = a.find(n);
@@ -340,11 +375,11 @@ class KrlReader {
     if (!c.isPunct('{')) return true;
     const Aggregate a = parseAggregate(c);
     if (type == "FRAME") {
-      named_frames_[upper(name)] = Frame{name, true, poseOf(a), file_, file().lineOf(name_off)};
+      frame_decls_.push_back(Frame{name, true, poseOf(a), file_, file().lineOf(name_off)});
+      named_frames_[upper(name)] = -static_cast<int>(frame_decls_.size());
     } else if (isPositionType(type)) {
-      makeTarget(a, name, type);
-      if (type == "POS" || type == "E6POS")
-        named_frames_[upper(name)] = Frame{name, true, poseOf(a), file_, file().lineOf(name_off)};
+      const int idx = makeTarget(a, name, type);
+      if (type == "POS" || type == "E6POS") named_frames_[upper(name)] = idx;
     } else if (type == "FDAT") {
       Fdat fd;
       if (const Component* t = a.find("TOOL_NO"); t != nullptr && t->kind == Component::kNumber)
@@ -429,8 +464,8 @@ class KrlReader {
           term = base_;
         } else if (n == "$TOOL") {
           term = tool_;
-        } else if (named_frames_.count(n) != 0) {
-          term = named_frames_[n];
+        } else if (const auto nf = named_frames_.find(n); nf != named_frames_.end()) {
+          term = namedFrame(nf->second);
         } else {
           term = Frame{std::string(file().text(file().tokens[c.index() - 1])), false,
                        Pose::Identity(), -1, 0};
@@ -555,17 +590,18 @@ class KrlReader {
     }
     m.config_honoured = m.type == MotionType::kJoint;
     // split target expressions at top-level ',' until an approximation/WITH/CA/# keyword
-    std::vector<std::pair<std::size_t, std::size_t>> exprs;
+    std::vector<std::pair<std::size_t, std::size_t>>& exprs = exprs_;
+    exprs.clear();
     std::size_t start = c.index();
     int depth = 0;
     std::size_t k = c.index();
     for (; k < e; ++k) {
       const Token& t = f.tokens[k];
       const std::string_view tx = f.text(t);
-      if (t.kind == TokenKind::kPunct && (tx == "{" || tx == "(" || tx == "[")) ++depth;
-      if (t.kind == TokenKind::kPunct && (tx == "}" || tx == ")" || tx == "]")) --depth;
+      if (t.kind == TokenKind::kPunct && (is1(tx, '{') || is1(tx, '(') || is1(tx, '['))) ++depth;
+      if (t.kind == TokenKind::kPunct && (is1(tx, '}') || is1(tx, ')') || is1(tx, ']'))) --depth;
       if (depth > 0) continue;
-      if (t.kind == TokenKind::kPunct && tx == ",") {
+      if (t.kind == TokenKind::kPunct && is1(tx, ',')) {
         exprs.emplace_back(start, k);
         start = k + 1;
         continue;
@@ -573,7 +609,7 @@ class KrlReader {
       if (t.kind == TokenKind::kIdentifier &&
           (isApprox(tx) || iequals(tx, "WITH") || iequals(tx, "CA")))
         break;
-      if (t.kind == TokenKind::kPunct && tx == "#") break;
+      if (t.kind == TokenKind::kPunct && is1(tx, '#')) break;
     }
     exprs.emplace_back(start, k);
     if (m.type == MotionType::kCircular && exprs.size() >= 2) {
@@ -593,7 +629,7 @@ class KrlReader {
         for (std::size_t q = j + 1; q + 2 < e; ++q) {
           const std::string_view w = f.text(f.tokens[q]);
           if ((iequals(w, "STOOL2") || iequals(w, "SBASE") || iequals(w, "SFRAME")) &&
-              f.text(f.tokens[q + 1]) == "(") {
+              is1(f.text(f.tokens[q + 1]), '(')) {
             const auto it = fdats_.find(upper(f.text(f.tokens[q + 2])));
             if (it != fdats_.end()) {
               Fdat fd = it->second;
@@ -610,7 +646,11 @@ class KrlReader {
     m.fine = zone.empty();
     if (m.type != MotionType::kJoint && vel_cp_ > 0) {
       m.speed_mm_s = vel_cp_ * 1000.0;
-      m.speed_text = cGeneral(vel_cp_, 6) + " m/s";
+      if (vel_cp_ != speed_text_vel_) {  // one text per $VEL.CP value, not one printf per motion
+        speed_text_vel_ = vel_cp_;
+        speed_text_ = cGeneral(vel_cp_, 6) + " m/s";
+      }
+      m.speed_text = speed_text_;
     }
     m.tool = internFrame(p_, tool_);
     m.base = internFrame(p_, base_);
@@ -749,10 +789,10 @@ class KrlReader {
       if (b == e) {
         for (std::size_t k = b; k < j; ++k) {
           if (f.tokens[k].kind != TokenKind::kComment) continue;
-          const std::string u = upper(f.text(f.tokens[k]));
-          if (u.rfind(";FOLD", 0) == 0 || u.rfind(";ENDFOLD", 0) == 0 || u.rfind("&", 0) == 0)
+          const std::string_view u = f.text(f.tokens[k]);
+          if (istartsWith(u, ";FOLD") || istartsWith(u, ";ENDFOLD") || istartsWith(u, "&"))
             continue;
-          if (u.find("PLUNGE") != std::string::npos || u.find("DRILL") != std::string::npos) {
+          if (icontains(u, "PLUNGE") || icontains(u, "DRILL")) {
             addMarker("comment " + std::string(f.text(f.tokens[k])));
           }
         }

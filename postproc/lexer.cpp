@@ -25,14 +25,20 @@ std::string upper(std::string_view s) {
 }
 
 void lex(SourceFile& f, const LexOptions& o) {
+  f.tokens.clear();
+  f.tokens.reserve(f.bytes.size() / 4 + 16);
+  std::size_t i = f.bom ? 3 : 0;
+  while (i < f.bytes.size()) i = lexLine(f, o, i, f.tokens);
+}
+
+std::size_t lexLine(const SourceFile& f, const LexOptions& o, std::size_t from,
+                    std::vector<Token>& out) {
   const std::string& b = f.bytes;
   const std::size_t n = b.size();
-  f.tokens.clear();
-  f.tokens.reserve(n / 4 + 16);
-  std::size_t i = f.bom ? 3 : 0;
+  std::size_t i = from == 0 && f.bom ? 3 : from;
   bool line_start = true;
   auto push = [&](std::size_t start, std::size_t end, TokenKind k) {
-    f.tokens.push_back(
+    out.push_back(
         Token{static_cast<std::uint32_t>(start), static_cast<std::uint32_t>(end - start), k});
   };
   while (i < n) {
@@ -47,9 +53,7 @@ void lex(SourceFile& f, const LexOptions& o) {
       }
       if (j == i) j = i + 1;
       push(i, j, TokenKind::kNewline);
-      i = j;
-      line_start = true;
-      continue;
+      return j;
     }
     if (c == ' ' || c == '\t' || c == '\f' || c == '\v') {
       ++i;
@@ -116,6 +120,7 @@ void lex(SourceFile& f, const LexOptions& o) {
     push(i, i + 1, TokenKind::kPunct);
     ++i;
   }
+  return n;
 }
 
 const Token& TokenCursor::peek(std::size_t k) const {

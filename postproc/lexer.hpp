@@ -4,6 +4,7 @@
 /// the verbatim file; nothing is copied or transcoded (non-ASCII bytes become kOther tokens).
 
 #include <string_view>
+#include <vector>
 
 #include "postproc/program.hpp"
 
@@ -19,12 +20,20 @@ struct LexOptions {
 
 /// Tokenizes f.bytes into f.tokens. Newline tokens mark every line end.
 void lex(SourceFile& f, const LexOptions& o);
+/// Appends to `out` the tokens of the line of f.bytes that starts at byte `from` (a line start),
+/// its newline token included; returns the offset of the next line (f.bytes.size() at the end).
+/// No token spans lines, so lexing line by line gives the tokens of lex() (one pass, no index of
+/// the whole file).
+std::size_t lexLine(const SourceFile& f, const LexOptions& o, std::size_t from,
+                    std::vector<Token>& out);
 
 inline bool isIdentStart(char c) {
   return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_' || c == '$';
 }
 inline bool isDigit(char c) { return c >= '0' && c <= '9'; }
 inline bool isIdentChar(char c) { return isIdentStart(c) || isDigit(c); }
+/// `s == std::string_view(&c, 1)` without a length-generic compare (readers' punctuation tests).
+inline bool is1(std::string_view s, char c) { return s.size() == 1 && s[0] == c; }
 
 /// ASCII case-insensitive equality.
 bool iequals(std::string_view a, std::string_view b);

@@ -434,6 +434,11 @@ Mat3 axisFrame(const Vec3& z_in) {
 
 }  // namespace
 
+const Pose& SparsePose::get() const {
+  static const Pose kIdentity = Pose::Identity();
+  return p_ ? *p_ : kIdentity;
+}
+
 Pose targetPose(const Program& /*p*/, const Target& t) {
   Pose T = Pose::Identity();
   if (t.kind != TargetKind::kCartesian) return T;
@@ -474,7 +479,7 @@ std::optional<Pose> motionPose(const Program& p, const Motion& m) {
   if (!targetComplete(t)) return std::nullopt;
   const Pose T = targetPose(p, t);
   if (!m.has_offset) return T;
-  return m.offset_in_tool ? Pose(T * m.offset) : Pose(m.offset * T);
+  return m.offset_in_tool ? Pose(T * m.offset.get()) : Pose(m.offset.get() * T);
 }
 
 std::vector<double> targetJointsDeg(const Target& t) {

@@ -27,6 +27,7 @@
 #include <array>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -102,6 +103,97 @@ struct NumberField {
 };
 static_assert(sizeof(NumberField) == 24, "a program holds ~25 NumberFields per target");
 
+/// N fields most targets leave empty (the joints of a Cartesian target, external axes, ABB cf
+/// digits): 8 bytes while empty, the N fields on the heap from the first write. Element access as
+/// std::array: reading an empty block sees N absent fields; the non-const operator[] allocates
+/// (read through a const reference where nothing is written).
+template <std::size_t N>
+class FieldBlock {
+ public:
+  FieldBlock() = default;
+  FieldBlock(const FieldBlock& o) : p_(o.p_ ? std::make_unique<Fields>(*o.p_) : nullptr) {}
+  FieldBlock(FieldBlock&&) noexcept = default;
+  FieldBlock& operator=(const FieldBlock& o) {
+    if (this != &o) p_ = o.p_ ? std::make_unique<Fields>(*o.p_) : nullptr;
+    return *this;
+  }
+  FieldBlock& operator=(FieldBlock&&) noexcept = default;
+  ~FieldBlock() = default;
+
+  [[nodiscard]] const NumberField& operator[](std::size_t i) const { return all()[i]; }
+  NumberField& operator[](std::size_t i) {
+    if (!p_) p_ = std::make_unique<Fields>();
+    return (*p_)[i];
+  }
+  [[nodiscard]] const NumberField* begin() const { return all().data(); }
+  [[nodiscard]] const NumberField* end() const { return all().data() + N; }
+  [[nodiscard]] static constexpr std::size_t size() { return N; }
+  /// Whether any field was written.
+  [[nodiscard]] bool stored() const { return p_ != nullptr; }
+
+ private:
+  using Fields = std::array<NumberField, N>;
+  [[nodiscard]] const Fields& all() const {
+    static const Fields kEmpty{};
+    return p_ ? *p_ : kEmpty;
+  }
+  std::unique_ptr<Fields> p_;
+};
+
+/// Indices in insertion order with the interface of a read-only std::vector<int> plus push_back:
+/// the first kept inline (most targets are used by one motion), the others on the heap. 16 bytes
+/// and no allocation for a single index.
+class IndexList {
+ public:
+  class const_iterator {
+   public:
+    const_iterator(const IndexList* l, std::size_t k) : l_(l), k_(k) {}
+    int operator*() const { return (*l_)[k_]; }
+    const_iterator& operator++() {
+      ++k_;
+      return *this;
+    }
+    bool operator!=(const const_iterator& o) const { return k_ != o.k_; }
+    bool operator==(const const_iterator& o) const { return k_ == o.k_; }
+
+   private:
+    const IndexList* l_;
+    std::size_t k_;
+  };
+
+  IndexList() = default;
+  IndexList(const IndexList& o)
+      : first_(o.first_), more_(o.more_ ? std::make_unique<std::vector<int>>(*o.more_) : nullptr) {}
+  IndexList(IndexList&&) noexcept = default;
+  IndexList& operator=(const IndexList& o) {
+    if (this != &o) *this = IndexList(o);
+    return *this;
+  }
+  IndexList& operator=(IndexList&&) noexcept = default;
+  ~IndexList() = default;
+
+  void push_back(int v) {
+    if (first_ < 0) {
+      first_ = v;
+      return;
+    }
+    if (!more_) more_ = std::make_unique<std::vector<int>>();
+    more_->push_back(v);
+  }
+  [[nodiscard]] bool empty() const { return first_ < 0; }
+  [[nodiscard]] std::size_t size() const {
+    return first_ < 0 ? 0 : 1 + (more_ ? more_->size() : 0);
+  }
+  [[nodiscard]] int front() const { return first_; }
+  [[nodiscard]] int operator[](std::size_t k) const { return k == 0 ? first_ : (*more_)[k - 1]; }
+  [[nodiscard]] const_iterator begin() const { return {this, 0}; }
+  [[nodiscard]] const_iterator end() const { return {this, size()}; }
+
+ private:
+  int first_{-1};  ///< -1: empty (indices are >= 0)
+  std::unique_ptr<std::vector<int>> more_;
+};
+
 enum class Vendor { kNone, kKuka, kAbb, kFanuc };
 
 /// Raw vendor configuration exactly as the program states it (docs/programs.md §2.4, §3.3, §4.5).
@@ -142,18 +234,18 @@ struct Target {
   Orientation orientation{Orientation::kNone};
   int file{-1};
   int line{0};
-  std::array<NumberField, 3> pos;     ///< x, y, z mm
-  std::array<NumberField, 4> rot;     ///< A,B,C deg | q1..q4 | W,P,R deg | i,j,k
-  std::array<NumberField, 6> joints;  ///< A1..A6 / J1..J6 (deg or mm)
-  std::array<NumberField, 6> ext;     ///< E1..E6 / eax_a..eax_f
+  std::array<NumberField, 3> pos;  ///< x, y, z mm
+  std::array<NumberField, 4> rot;  ///< A,B,C deg | q1..q4 | W,P,R deg | i,j,k
+  FieldBlock<6> joints;            ///< A1..A6 / J1..J6 (deg or mm)
+  FieldBlock<6> ext;               ///< E1..E6 / eax_a..eax_f
   Configuration config;
   NumberField status_field, turn_field;  ///< KUKA S, T tokens (may be 'B...' literals)
-  std::array<NumberField, 4> cf_fields;  ///< ABB cf1, cf4, cf6, cfx
+  FieldBlock<4> cf_fields;               ///< ABB cf1, cf4, cf6, cfx
   NumberField fanuc_config;        ///< FANUC span of the CONFIG string contents (value unused)
   std::uint32_t aggregate_end{0};  ///< KRL: offset of the closing `}` (S/T insertion)
   std::string frame_ref;           ///< frame the target itself declares (FANUC `UF`, CSV `frame`)
   std::string tool_ref;            ///< tool the target itself declares (FANUC `UT`, CSV `tool`)
-  std::vector<int> uses;           ///< indices of the motions that use this target
+  IndexList uses;                  ///< indices of the motions that use this target
 };
 
 enum class MotionType { kJoint, kLinear, kCircular };
@@ -165,6 +257,27 @@ struct Frame {
   Pose pose{Pose::Identity()};  ///< SI; base: T_base_frame, tool: T_flange_tcp
   int file{-1};
   int line{0};  ///< where its value was set (0 = predefined)
+};
+
+/// A pose kept on the heap only when set (most motions have no offset): 8 bytes instead of 128;
+/// reads identity until set.
+class SparsePose {
+ public:
+  SparsePose() = default;
+  SparsePose(const SparsePose& o) : p_(o.p_ ? std::make_unique<Pose>(*o.p_) : nullptr) {}
+  SparsePose(SparsePose&&) noexcept = default;
+  SparsePose& operator=(const SparsePose& o) {
+    if (this != &o) p_ = o.p_ ? std::make_unique<Pose>(*o.p_) : nullptr;
+    return *this;
+  }
+  SparsePose& operator=(SparsePose&&) noexcept = default;
+  ~SparsePose() = default;
+  [[nodiscard]] const Pose& get() const;
+  /// Stores `pose`.
+  void set(const Pose& pose) { p_ = std::make_unique<Pose>(pose); }
+
+ private:
+  std::unique_ptr<Pose> p_;
 };
 
 struct Motion {
@@ -188,8 +301,7 @@ struct Motion {
       markers;             ///< dwell, spindle, drill-call, comment markers after this motion
   bool has_offset{false};  ///< target = T_target · offset (tool frame) or offset · T_target (frame)
   bool offset_in_tool{false};
-  Pose offset{
-      Pose::Identity()};  ///< SI; RAPID Offs/RelTool, TP Offset/Tool_Offset with known values
+  SparsePose offset;  ///< SI; RAPID Offs/RelTool, TP Offset/Tool_Offset with known values
 };
 
 struct Unresolved {

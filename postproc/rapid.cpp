@@ -89,7 +89,7 @@ class RapidReader {
       }
       if (w == "IF" || w == "WHILE" || w == "FOR" || w == "ELSEIF") {
         std::size_t j = i;
-        while (j < t.size() && !(t[j].kind == TokenKind::kPunct && f_.text(t[j]) == ";") &&
+        while (j < t.size() && !(t[j].kind == TokenKind::kPunct && is1(f_.text(t[j]), ';')) &&
                !(t[j].kind == TokenKind::kIdentifier &&
                  (iequals(f_.text(t[j]), "THEN") || iequals(f_.text(t[j]), "DO")))) {
           ++j;
@@ -104,9 +104,9 @@ class RapidReader {
       while (j < t.size()) {
         const std::string_view x = f_.text(t[j]);
         if (t[j].kind == TokenKind::kPunct) {
-          if (x == "[" || x == "(") ++depth;
-          if (x == "]" || x == ")") --depth;
-          if (x == ";") break;
+          if (is1(x, '[') || is1(x, '(')) ++depth;
+          if (is1(x, ']') || is1(x, ')')) --depth;
+          if (is1(x, ';')) break;
         }
         if (t[j].kind == TokenKind::kNewline && depth == 0) missingSemicolon(last, j);
         if (t[j].kind != TokenKind::kNewline && t[j].kind != TokenKind::kComment) last = j;
@@ -179,23 +179,23 @@ class RapidReader {
       fail(i < t.size() ? t[i].offset : f_.bytes.size(), "unterminated aggregate (missing ']')");
     Node n;
     n.begin = t[i].offset;
-    if (t[i].kind == TokenKind::kPunct && f_.text(t[i]) == "[") {
+    if (t[i].kind == TokenKind::kPunct && is1(f_.text(t[i]), '[')) {
       const std::uint32_t open = t[i].offset;
       n.list = true;
       ++i;
       while (true) {
         while (i < e && (t[i].kind == TokenKind::kNewline || t[i].kind == TokenKind::kComment)) ++i;
         if (i >= e) fail(open, "unterminated aggregate (missing ']')");
-        if (t[i].kind == TokenKind::kPunct && f_.text(t[i]) == "]") {
+        if (t[i].kind == TokenKind::kPunct && is1(f_.text(t[i]), ']')) {
           n.end = t[i].offset + 1;
           ++i;
           return n;
         }
         n.items.push_back(parseElement(i, e));
         while (i < e && (t[i].kind == TokenKind::kNewline || t[i].kind == TokenKind::kComment)) ++i;
-        if (i < e && t[i].kind == TokenKind::kPunct && f_.text(t[i]) == ",") {
+        if (i < e && t[i].kind == TokenKind::kPunct && is1(f_.text(t[i]), ',')) {
           ++i;
-        } else if (!(i < e && t[i].kind == TokenKind::kPunct && f_.text(t[i]) == "]")) {
+        } else if (!(i < e && t[i].kind == TokenKind::kPunct && is1(f_.text(t[i]), ']'))) {
           if (i >= e) fail(open, "unterminated aggregate (missing ']')");
           fail(t[i].offset, "unexpected '" + std::string(f_.text(t[i])) + "' in aggregate");
         }
@@ -207,10 +207,10 @@ class RapidReader {
     while (i < e) {
       const std::string_view x = f_.text(t[i]);
       if (t[i].kind == TokenKind::kPunct) {
-        if (x == "(" || x == "[") ++depth;
-        if ((x == ")" || x == "]") && depth == 0) break;
-        if (x == ")" || x == "]") --depth;
-        if (x == "," && depth == 0) break;
+        if (is1(x, '(') || is1(x, '[')) ++depth;
+        if ((is1(x, ')') || is1(x, ']')) && depth == 0) break;
+        if (is1(x, ')') || is1(x, ']')) --depth;
+        if (is1(x, ',') && depth == 0) break;
       }
       if (t[i].kind == TokenKind::kNewline || t[i].kind == TokenKind::kComment) {
         if (i == s) {
@@ -226,7 +226,7 @@ class RapidReader {
     n.tb = s;
     n.te = i;
     const bool sign =
-        t[s].kind == TokenKind::kPunct && (f_.text(t[s]) == "-" || f_.text(t[s]) == "+");
+        t[s].kind == TokenKind::kPunct && (is1(f_.text(t[s]), '-') || is1(f_.text(t[s]), '+'));
     if (t[s].kind == TokenKind::kNumber || sign) {
       const std::string_view txt = std::string_view(f_.bytes).substr(n.begin, n.end - n.begin);
       const bool one =
@@ -234,7 +234,7 @@ class RapidReader {
       const std::size_t num = sign ? s + 1 : s;
       if (sign && num < i &&
           (t[num].kind == TokenKind::kIdentifier ||
-           (t[num].kind == TokenKind::kPunct && f_.text(t[num]) == "("))) {
+           (t[num].kind == TokenKind::kPunct && is1(f_.text(t[num]), '(')))) {
         return n;  // a signed expression (`-Shift`, `-(a+5)`): evaluated where it is used
       }
       if (sign && (num >= i || t[num].kind != TokenKind::kNumber))
@@ -478,7 +478,7 @@ class RapidReader {
     const std::string name(f_.text(t[i + 1]));
     const std::size_t name_off = t[i + 1].offset;
     i += 2;
-    if (i < e && f_.text(t[i]) == "{") return;  // arrays: runtime
+    if (i < e && is1(f_.text(t[i]), '{')) return;  // arrays: runtime
     const std::string key = upper(name);
     if (i >= e || f_.text(t[i]) != ":=") {
       if (type == "TOOLDATA")
@@ -598,7 +598,7 @@ class RapidReader {
       m.target_text =
           f_.bytes.substr(t[a.b].offset, t[a.e - 1].offset + t[a.e - 1].length - t[a.b].offset);
     }
-    if (f_.text(t[a.b]) == "[") {
+    if (is1(f_.text(t[a.b]), '[')) {
       const Node n = parseValue(a.b, a.e);
       return joint ? makeJointtarget(n, "") : makeRobtarget(n, "");
     }
@@ -610,7 +610,7 @@ class RapidReader {
       return -1;
     }
     const std::string fn = upper(f_.text(t[a.b]));
-    if ((fn == "OFFS" || fn == "RELTOOL") && a.e - a.b > 3 && f_.text(t[a.b + 1]) == "(" &&
+    if ((fn == "OFFS" || fn == "RELTOOL") && a.e - a.b > 3 && is1(f_.text(t[a.b + 1]), '(') &&
         t[a.b + 2].kind == TokenKind::kIdentifier) {
       m.derivation = fn == "OFFS" ? "Offs" : "RelTool";
       const auto it = targets_.find(upper(f_.text(t[a.b + 2])));
@@ -625,7 +625,7 @@ class RapidReader {
       bool literal = true;
       std::size_t k = a.b + 3;
       while (k < a.e && literal) {
-        if (f_.text(t[k]) == "," || f_.text(t[k]) == ")") {
+        if (is1(f_.text(t[k]), ',') || is1(f_.text(t[k]), ')')) {
           ++k;
           continue;
         }
@@ -658,12 +658,13 @@ class RapidReader {
       if (literal && d.size() == 3) {
         m.has_offset = true;
         m.offset_in_tool = fn == "RELTOOL";
-        m.offset.setIdentity();
-        m.offset.translation() = Vec3(d[0], d[1], d[2]) * 1e-3;
-        m.offset.linear() = (Eigen::AngleAxisd(r[0] * kDeg, Vec3::UnitX()) *
-                             Eigen::AngleAxisd(r[1] * kDeg, Vec3::UnitY()) *
-                             Eigen::AngleAxisd(r[2] * kDeg, Vec3::UnitZ()))
-                                .toRotationMatrix();
+        Pose offset = Pose::Identity();
+        offset.translation() = Vec3(d[0], d[1], d[2]) * 1e-3;
+        offset.linear() = (Eigen::AngleAxisd(r[0] * kDeg, Vec3::UnitX()) *
+                           Eigen::AngleAxisd(r[1] * kDeg, Vec3::UnitY()) *
+                           Eigen::AngleAxisd(r[2] * kDeg, Vec3::UnitZ()))
+                              .toRotationMatrix();
+        m.offset.set(offset);
       }
       return it->second;
     }
@@ -706,11 +707,11 @@ class RapidReader {
       const std::string_view x = f_.text(t[i]);
       if (t[i].kind == TokenKind::kNewline || t[i].kind == TokenKind::kComment) continue;
       if (t[i].kind == TokenKind::kPunct) {
-        if (x == "[" || x == "(") ++depth;
-        if (x == "]" || x == ")") --depth;
+        if (is1(x, '[') || is1(x, '(')) ++depth;
+        if (is1(x, ']') || is1(x, ')')) --depth;
       }
       if (depth != 0) continue;
-      if (x == ",") {
+      if (is1(x, ',')) {
         close(i);
         s = i + 1;
       } else if (x == "\\" && t[i].kind == TokenKind::kPunct) {
@@ -828,7 +829,7 @@ class RapidReader {
     }
     // other statements: kept verbatim; aggregates in them still validated
     for (std::size_t k = b; k < e; ++k) {
-      if (f_.text(t[k]) == "[" && t[k].kind == TokenKind::kPunct) {
+      if (is1(f_.text(t[k]), '[') && t[k].kind == TokenKind::kPunct) {
         std::size_t q = k;
         parseElement(q, e);
         k = q > k ? q - 1 : k;

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <unordered_map>
+#include <utility>
 
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
@@ -871,7 +872,7 @@ void parseJson(Program& p) {
       for (std::size_t k = 0; k < e->items.size() && k < 6; ++k) t.ext[k] = field(e->items[k]);
     }
     const bool cart = t.pos[0].present() && t.orientation != Orientation::kNone;
-    if (!cart && !t.joints[0].present())
+    if (!cart && !std::as_const(t).joints[0].present())
       failAt(f, o.begin, "target has neither a pose nor joints_deg");
     t.kind = cart ? TargetKind::kCartesian : TargetKind::kJoint;
     if (const JValue* c = o.get("config")) t.config = parseConfigurationText(c->str);

@@ -127,8 +127,8 @@ void checkFrame(const Program& p, const Frame& f) {
 
 void checkMotion(const Program& p, const Motion& m) {
   if (!m.has_offset) return;
-  const double d_mm = m.offset.translation().norm() * 1e3;
-  if (d_mm <= kMaxPositionMm && m.offset.matrix().allFinite()) return;
+  const double d_mm = m.offset.get().translation().norm() * 1e3;
+  if (d_mm <= kMaxPositionMm && m.offset.get().matrix().allFinite()) return;
   const std::string file = m.file >= 0 && m.file < static_cast<int>(p.files.size())
                                ? p.files[static_cast<std::size_t>(m.file)].path
                                : (p.files.empty() ? std::string() : p.files.front().path);
