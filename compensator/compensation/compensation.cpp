@@ -4,6 +4,7 @@
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <span>
 #include <string>
 
 #include "compensator/compensation/nlopt_problem.hpp"
@@ -55,6 +56,23 @@ struct Node {
   double wrist{0.0};    ///< |sin(θ5 + α)|
   Why why{Why::kNone};  ///< when not feasible
   int limit_joint{-1};  ///< kLimits: a joint (0-based) outside its limits
+};
+
+/// n rows of K values in one block (the per-hole candidate grids and DP tables: no allocation per
+/// hole); row i is a span of K.
+template <class T>
+class Grid {
+ public:
+  Grid() = default;
+  Grid(size_t n, size_t K, const T& fill) : K_(K), v_(n * K, fill) {}
+  [[nodiscard]] size_t size() const { return K_ ? v_.size() / K_ : 0; }
+  [[nodiscard]] size_t width() const { return K_; }
+  std::span<T> operator[](size_t i) { return {v_.data() + i * K_, K_}; }
+  std::span<const T> operator[](size_t i) const { return {v_.data() + i * K_, K_}; }
+
+ private:
+  size_t K_{0};
+  std::vector<T> v_;
 };
 
 struct Evaluator {
@@ -260,17 +278,16 @@ struct NodeCount {
 /// The ψ grid of hole h seeded with s (keep: the single ψ = 0 candidate). Where |θ5| ≥ margin
 /// fails for every ψ, the margin becomes a penalty and `note` says so.
 NodeCount holeNodes(Evaluator& ev, const HoleRequest& h, const Vec6& s, int branch, int grid,
-                    std::vector<Node>& nodes, std::string& note) {
+                    std::span<Node> nodes, std::string& note) {
   const bool choose = ev.o.mode != OrientationMode::kKeep;
   NodeCount count;
   bool any = false;
-  nodes.clear();
-  nodes.reserve(static_cast<size_t>(grid));
   for (int k = 0; k < grid; ++k) {
-    nodes.push_back(ev.evaluate(h, gridPsi(k, grid), branch, s, choose, choose));
+    Node& nd = nodes[static_cast<size_t>(k)];
+    nd = ev.evaluate(h, gridPsi(k, grid), branch, s, choose, choose);
     ++count.nodes;
-    if (!nodes.back().feasible) ++count.infeasible;
-    any |= nodes.back().feasible;
+    if (!nd.feasible) ++count.infeasible;
+    any |= nd.feasible;
   }
   if (!any && choose) {
     // With the drill on the flange axis, ψ turns axis 6 only: if |θ5| < margin for every ψ the
@@ -291,13 +308,11 @@ NodeCount holeNodes(Evaluator& ev, const HoleRequest& h, const Vec6& s, int bran
 /// allowed. A hole with an admissible original prediction is seeded with its joints (holes in
 /// parallel); the others, in hole order afterwards, with the first admissible candidate of the
 /// latest hole before them that has one (else the reference pose).
-std::vector<std::vector<Node>> candidateNodes(std::vector<Evaluator>& evs,
-                                              const std::vector<HoleRequest>& holes,
-                                              std::vector<HoleCompensation>& out, int grid,
-                                              CompensationStats& st) {
+Grid<Node> candidateNodes(std::vector<Evaluator>& evs, const std::vector<HoleRequest>& holes,
+                          std::vector<HoleCompensation>& out, int grid, CompensationStats& st) {
   const CompensationOptions& o = evs[0].o;
   const size_t n = holes.size();
-  std::vector<std::vector<Node>> nodes(n);
+  Grid<Node> nodes(n, static_cast<size_t>(grid), Node{});
   std::vector<NodeCount> counts(n);
   auto branchOf = [&](const HolePrediction& b) {
     return (b.status == HoleStatus::kOk && !o.allow_branch_change) ? b.branch : -1;
@@ -331,18 +346,15 @@ std::vector<std::vector<Node>> candidateNodes(std::vector<Evaluator>& evs,
 /// Forward pass: cost[i][k] of the cheapest admissible path ending at node k of hole i (jumps
 /// ≤ thr between holes of one face) and its predecessor. Returns false when a reachable hole
 /// cannot be connected within the threshold.
-bool dpForward(const std::vector<std::vector<Node>>& nodes, const std::vector<HoleRequest>& holes,
-               OrientationMode mode, double thr, std::vector<std::vector<Cost>>& cost,
-               std::vector<std::vector<int>>& from) {
+bool dpForward(const Grid<Node>& nodes, const std::vector<HoleRequest>& holes, OrientationMode mode,
+               double thr, Grid<Cost>& cost, Grid<int>& from) {
   const size_t n = nodes.size();
-  cost.assign(n, {});
-  from.assign(n, {});
+  cost = Grid<Cost>(n, nodes.width(), kInfCost);
+  from = Grid<int>(n, nodes.width(), -1);
   int last = -1;  // previous hole with a feasible node
   bool all_connected = true;
   for (size_t i = 0; i < n; ++i) {
     const size_t K = nodes[i].size();
-    cost[i].assign(K, kInfCost);
-    from[i].assign(K, -1);
     for (size_t k = 0; k < K; ++k) {
       const Node& nd = nodes[i][k];
       if (!nd.feasible) continue;
@@ -376,8 +388,7 @@ bool dpForward(const std::vector<std::vector<Node>>& nodes, const std::vector<Ho
 
 /// Backtracking: the cheapest end node, then its predecessors; a hole that starts a new chain
 /// (after an unreachable one) takes its own cheapest node.
-std::vector<int> dpBacktrack(const std::vector<std::vector<Cost>>& cost,
-                             const std::vector<std::vector<int>>& from) {
+std::vector<int> dpBacktrack(const Grid<Cost>& cost, const Grid<int>& from) {
   const size_t n = cost.size();
   std::vector<int> choice(n, -1);
   int cur = -1;
@@ -401,11 +412,10 @@ std::vector<int> dpBacktrack(const std::vector<std::vector<Cost>>& cost,
 
 /// The chosen node per hole (−1: none); relaxes the jump threshold ×1.5 until every reachable
 /// hole connects. Returns the threshold used.
-std::vector<int> chooseSequence(const std::vector<std::vector<Node>>& nodes,
-                                const std::vector<HoleRequest>& holes, const CompensationOptions& o,
-                                CompensationStats& st, double& thr) {
-  std::vector<std::vector<Cost>> cost;
-  std::vector<std::vector<int>> from;
+std::vector<int> chooseSequence(const Grid<Node>& nodes, const std::vector<HoleRequest>& holes,
+                                const CompensationOptions& o, CompensationStats& st, double& thr) {
+  Grid<Cost> cost;
+  Grid<int> from;
   thr = o.jump_threshold;
   while (!dpForward(nodes, holes, o.mode, thr, cost, from)) {
     st.relaxed_jumps = true;
@@ -894,7 +904,7 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,
   std::vector<HoleCompensation> out(n);
   predictOriginalThreads(m, scratch[0], holes, threads, out);
   const int grid = o.mode == OrientationMode::kKeep ? 1 : std::max(4, o.grid);
-  const std::vector<std::vector<Node>> nodes = candidateNodes(evs, holes, out, grid, st);
+  const Grid<Node> nodes = candidateNodes(evs, holes, out, grid, st);
   double thr = o.jump_threshold;
   const std::vector<int> choice = chooseSequence(nodes, holes, o, st, thr);
   st.jump_threshold_used = thr;
