@@ -21,8 +21,9 @@
 # 2 vs 1 threads under that load: predict 0.94-1.00x, compensate flip-free 1.02-1.10x (compensate
 # took --threads but its kernel ran on one thread); every output byte-identical.
 # After compensateHoles runs on the workers and predict writes block k while block k+1 is
-# predicted (load average 7-8): compensate 10,000 flip-free 1.81 s -> 1.50 s wall (1.21x), predict
-# 0.32 s -> 0.39 s (0.82x: most of its 0.3 s CPU is the program's parse, one thread). Where the CPU
+# predicted: at load average 2.2 compensate 10,000 flip-free 1.11 s -> 0.74 s wall (1.50x), predict
+# 0.27 s -> 0.24 s (1.12x: most of its 0.26 s CPU is the program's parse, one thread); at load
+# average 7-8 compensate 1.06-1.21x, predict 0.82-1.16x. Where the CPU
 # goes with --threads 2 (`perf record -F 2000` then `perf report --sort pid`: the main thread vs
 # the workers; a worker does as much parallel work as the main thread): compensate 18 % serial /
 # 82 % parallel (Amdahl bound on 2 free cores 1.69x), predict 51 % / 49 % (bound 1.32x).
