@@ -177,6 +177,17 @@ class TpReader {
       return n > 0 ? parseNumber(speed.substr(0, n)) : std::nullopt;
     }();
     const std::string su = upper(speed);
+    const bool linear_unit = su.find("MM/SEC") != std::string::npos ||
+                             su.find("CM/MIN") != std::string::npos ||
+                             su.find("INCH/MIN") != std::string::npos;
+    const bool by_register = su.rfind("R[", 0) == 0 || su.rfind("AR[", 0) == 0;
+    if (linear_unit && !num && !by_register) {
+      // a damaged number (`nanmm/sec`) would leave the move without a speed: the drill feed
+      // is recognised from it
+      fail(f_.tokens[k].offset,
+           "speed '" + speed.substr(0, 40) +
+               "' is not a number with its unit (e.g. 20mm/sec) or a register");
+    }
     if (num) {
       if (su.find("MM/SEC") != std::string::npos) m.speed_mm_s = *num;
       if (su.find("CM/MIN") != std::string::npos) m.speed_mm_s = *num * 10.0 / 60.0;

@@ -337,5 +337,31 @@ TEST(MutationRegression, ATpLineWithoutItsNumberIsAnError) {
   }
 }
 
+TEST(MutationRegression, ATpSpeedWithoutItsNumberAndAZeroBudgetTermAreErrors) {
+  // seed 19: `nanmm/sec` left the move without a speed (the drill feed is recognised from it);
+  // <uncertainty stiffness_rel="0"> silently dropped the stiffness term of U_robot
+  std::string text = test::readFile(sample("emotor-housing/housing_r2000.ls"));
+  const std::size_t at = text.find("L P[306] 20mm/sec");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at + 9, 2, "nan");
+  try {
+    (void)postproc::parseProgram(postproc::Dialect::kTp, "r.ls", text);
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("speed 'nanmm/sec' is not a number with its unit"),
+              std::string::npos)
+        << e.what();
+  }
+  const std::string dir = test::tempDir("mutation-budget");
+  std::string cell = test::readFile(sample("cells/housing-kr120.xml"));
+  cell.replace(cell.find("stiffness_rel=\"0.10\""), 20, "stiffness_rel=\"0\"");
+  test::writeFile(dir + "/cell.xml", cell);
+  const auto r =
+      test::runRoprec("predict --cell " + q(dir + "/cell.xml") + " " +
+                      q(sample("emotor-housing/holes.csv")) + " --json " + q(dir + "/p.json"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("stiffness_rel = 0 must lie in [0.01, 1]"), std::string::npos) << r.err;
+}
+
 }  // namespace
 }  // namespace roprec

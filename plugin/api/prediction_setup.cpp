@@ -26,8 +26,15 @@ UncertaintyInputs uncertaintyFromCell(const CellSpec& cell) {
     u.stiffness_rel = e->number("stiffness_rel", u.stiffness_rel);
     u.position_gain_rel = e->number("position_gain_rel", u.position_gain_rel);
     u.process_halfwidth = e->number("process_halfwidth", u.process_halfwidth);
-    for (const double v : {u.stiffness_rel, u.position_gain_rel, u.process_halfwidth}) {
-      if (v < 0 || v > 1) e->fail("<uncertainty> relative values must lie in [0, 1]");
+    // below 1 % a budget term claims a model known better than any identification gives it
+    // (and 0 would silently drop the term)
+    for (const char* a : {"stiffness_rel", "position_gain_rel", "process_halfwidth"}) {
+      const double v = e->number(a, 0.1);
+      if (!(v >= 0.01 && v <= 1)) {
+        e->fail(std::string("<uncertainty> ") + a + " = " + numberText(v) +
+                " must lie in [0.01, 1] (a relative standard uncertainty; below 1 % no robot "
+                "model is known)");
+      }
     }
     const double samples = e->number("samples", u.samples);
     if (!(samples >= 10 && samples <= 1e6 && samples == std::floor(samples)))
