@@ -106,7 +106,7 @@ int run(Args& args, CommandContext& ctx) {
 const CommandRegistration reg{
     {"forces", "process forces of a cell (drilling, milling, wrench); single-test calibration",
      "usage: roprec forces --cell CELL.xml [--csv F.csv] [--json F.json] [--step-mm S]\n"
-     "                     [--calibrate \"Fa_N=... M_Nm=...\" [--o|--output OUT.xml]] [--points "
+     "                     [--calibrate \"Fa_N=... M_Nm=...\" [-o|--output OUT.xml]] [--points "
      "N]\n"
      "                     [--axial-compliance-um-per-N C] [--joints \"j1 .. j6\"] [--program "
      "P.src]\n\n"
@@ -143,7 +143,7 @@ const CommandRegistration reg{
      "            per revolution with feed_mm and dz_um columns.\n"
      "--calibrate identifies kst0 and ksa0 from one measured thrust and torque at the cell's "
      "diameter and\n"
-     "feed; --o OUT.xml writes a copy of the cell with the calibrated <coefficients> "
+     "feed; -o OUT.xml writes a copy of the cell with the calibrated <coefficients> "
      "(atomically).\n"
      "Exit 0 done; 1 some coupled points did not converge (listed with their status); 2 bad "
      "input (nothing\n"
