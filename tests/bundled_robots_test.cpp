@@ -143,19 +143,6 @@ Vec6 randomJoints(const ChainDescription& chain, std::mt19937& rng) {
   return q;
 }
 
-Vec6 kdlGravity(const KDL::Chain& chain, const Vec6& q) {
-  KDL::ChainIdSolver_RNE rne(chain, KDL::Vector(0, 0, -9.80665));
-  KDL::JntArray jq(6);
-  KDL::JntArray z(6);
-  KDL::JntArray out(6);
-  for (unsigned i = 0; i < 6; ++i) jq(i) = q[i];
-  KDL::Wrenches f(chain.getNrOfSegments(), KDL::Wrench::Zero());
-  EXPECT_GE(rne.CartToJnt(jq, z, z, f, out), 0);
-  Vec6 t;
-  for (unsigned i = 0; i < 6; ++i) t[i] = out(i);
-  return t;
-}
-
 TEST(BundledRobots, ListedByRoprecRobots) {
   const test::RunResult r = test::runRoprec("robots");
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -404,7 +391,7 @@ TEST(BundledRobots, GravityTorquesAreKdlsAndPlausible) {
     const KDL::Chain kc = test::kdlChain(r.card.urdf_path, r.chain.base_link, r.chain.tip_link);
     const Vec6 q = fromControllerJoints(r.card, c.horizontal_ctrl_deg * kDeg);
     EXPECT_LT((q - r.card.balancer_sizing_pose).norm(), 1e-12);
-    const Vec6 tau_g = kdlGravity(kc, q);
+    const Vec6 tau_g = test::kdlGravity(kc, q);
 
     const nc::Model m = nc::buildModel(r.chain);
     nc::Data d(m);

@@ -101,23 +101,9 @@ TEST(Counterbalance, TorqueIsMinusTheGradientOfItsPotential) {
 
 // ---------------------------------------------------------------- KDL references
 
-/// Static gravity torques of the URDF chain (no tool) by KDL's recursive Newton–Euler.
-nc::Vec6 kdlGravity(const KDL::Chain& chain, const nc::Vec6& q) {
-  KDL::ChainIdSolver_RNE rne(chain, KDL::Vector(0, 0, -9.80665));
-  KDL::JntArray jq(6);
-  KDL::JntArray z(6);
-  KDL::JntArray out(6);
-  for (unsigned i = 0; i < 6; ++i) jq(i) = q[i];
-  KDL::Wrenches f(chain.getNrOfSegments(), KDL::Wrench::Zero());
-  rne.CartToJnt(jq, z, z, f, out);
-  nc::Vec6 t;
-  for (unsigned i = 0; i < 6; ++i) t[i] = out(i);
-  return t;
-}
-
 /// Drive torques with the card's balancer: τ = τ_g,KDL − τ_cb on the balanced joint.
 nc::Vec6 kdlDriveTorques(const KDL::Chain& chain, const Robot& r, const nc::Vec6& q) {
-  nc::Vec6 t = kdlGravity(chain, q);
+  nc::Vec6 t = test::kdlGravity(chain, q);
   const Counterbalance& cb = r.card.counterbalance;
   if (cb.present()) t[cb.joint] -= balancerTorque(cb, q[cb.joint]);
   return t;
@@ -197,7 +183,7 @@ TEST(Counterbalance, BundledBalancersCarryTheStatedShareAtTheSizingPose) {
     EXPECT_EQ(cb.joint, 1);
     EXPECT_EQ(cb.source.rfind("estimate:", 0), 0u);
     const nc::Vec6 q = r.card.balancer_sizing_pose;
-    const double tau_g = kdlGravity(kdlOf(r), q)[1];
+    const double tau_g = test::kdlGravity(kdlOf(r), q)[1];
     const double share = balancerTorque(cb, q[1]) / tau_g;
     EXPECT_NEAR(share, r.card.balancer_sizing_fraction, 0.002 * r.card.balancer_sizing_fraction);
     EXPECT_NEAR(r.card.balancer_sizing_fraction, 0.70, 1e-12);

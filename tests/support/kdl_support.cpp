@@ -1,6 +1,7 @@
 #include "tests/support/kdl_support.hpp"
 
 #include <gtest/gtest.h>
+#include <kdl/chainidsolver_recursive_newton_euler.hpp>
 #include <kdl/tree.hpp>
 #include <kdl_parser/kdl_parser.hpp>
 
@@ -38,6 +39,20 @@ KDL::Chain kdlChain(const std::string& urdf, const std::string& base, const std:
     chain.addSegment(KDL::Segment("roprec_extra", KDL::Joint(KDL::Joint::None), toKdl(extra)));
   }
   return chain;
+}
+
+Eigen::Matrix<double, 6, 1> kdlGravity(const KDL::Chain& chain,
+                                       const Eigen::Matrix<double, 6, 1>& q) {
+  KDL::ChainIdSolver_RNE rne(chain, KDL::Vector(0, 0, -9.80665));
+  KDL::JntArray jq(6);
+  KDL::JntArray z(6);
+  KDL::JntArray out(6);
+  for (unsigned i = 0; i < 6; ++i) jq(i) = q[i];
+  KDL::Wrenches f(chain.getNrOfSegments(), KDL::Wrench::Zero());
+  EXPECT_GE(rne.CartToJnt(jq, z, z, f, out), 0);
+  Eigen::Matrix<double, 6, 1> t;
+  for (unsigned i = 0; i < 6; ++i) t[i] = out(i);
+  return t;
 }
 
 }  // namespace roprec::test

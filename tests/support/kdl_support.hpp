@@ -13,6 +13,12 @@ namespace roprec::test {
 KDL::Chain kdlChain(const std::string& urdf, const std::string& base, const std::string& tip,
                     const Pose& extra = Pose::Identity());
 
+/// Static gravity torques (N m, g = 9.80665 m/s² along −z of the chain base) of the chain at the
+/// joint values q (rad) by KDL's recursive Newton–Euler (ChainIdSolver_RNE, zero velocity and
+/// acceleration, no external wrench). Fails the current test when the solver reports an error.
+Eigen::Matrix<double, 6, 1> kdlGravity(const KDL::Chain& chain,
+                                       const Eigen::Matrix<double, 6, 1>& q);
+
 KDL::Frame toKdl(const Pose& T);
 Pose fromKdl(const KDL::Frame& F);
 
