@@ -142,15 +142,37 @@ TEST(MutationRegression, UrdfNearMissNamesAndAbsurdOriginsAreErrors) {
   EXPECT_EQ(urdfError(j2, "<origin", "<origin"), "(accepted)");
 }
 
+/// The InputError text of loading a card (or "(accepted)").
+std::string cardError(const std::string& card) {
+  try {
+    (void)loadRobotCard(card);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
+/// The sample R-2000iC program with `from` (at `at` characters past the first `anchor`)
+/// replaced by `to`, parsed: its InputError text (or "(accepted)").
+std::string tpError(const std::string& anchor, std::size_t at, std::size_t from,
+                    const std::string& to) {
+  std::string text = test::readFile(sample("emotor-housing/housing_r2000.ls"));
+  const std::size_t a = text.find(anchor);
+  EXPECT_NE(a, std::string::npos) << anchor;
+  if (a == std::string::npos) return "(anchor not found)";
+  text.replace(a + at, from, to);
+  try {
+    (void)postproc::parseProgram(postproc::Dialect::kTp, "r.ls", text);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
 TEST(MutationRegression, CardStiffnessOf1e300IsAnError) {
   const std::string dir = mutatedKr120("robot.xml", "<joint name=\"joint_a1\"",
                                        "stiffness=\"1.58e7\"", "stiffness=\"1e300\"");
-  std::string what = "(accepted)";
-  try {
-    (void)loadRobotCard(dir + "/robot.xml");
-  } catch (const InputError& e) {
-    what = e.what();
-  }
+  const std::string what = cardError(dir + "/robot.xml");
   EXPECT_NE(
       what.find("robot.xml:9: joint 'joint_a1': stiffness must be in [100, 1e12] N m/rad, got "
                 "1e300"),
@@ -309,12 +331,7 @@ TEST(MutationRegression, SpeedsFeedsAndBalancerSizesArePlausible) {
             std::string::npos);
   const std::string dir = mutatedKr120("robot.xml", "<counterbalance", "gas_volume_l=\"0.36\"",
                                        "gas_volume_l=\"1e300\"");
-  std::string what = "(accepted)";
-  try {
-    (void)loadRobotCard(dir + "/robot.xml");
-  } catch (const InputError& e) {
-    what = e.what();
-  }
+  const std::string what = cardError(dir + "/robot.xml");
   EXPECT_NE(what.find("<counterbalance> gas_volume_l = 1e+300 is outside the plausible range"),
             std::string::npos)
       << what;
@@ -322,36 +339,16 @@ TEST(MutationRegression, SpeedsFeedsAndBalancerSizesArePlausible) {
 
 TEST(MutationRegression, ATpLineWithoutItsNumberIsAnError) {
   // seed 16: `inf:L P[591] ...` (line number damaged) was skipped: a motion dropped in silence
-  std::string text = test::readFile(sample("emotor-housing/housing_r2000.ls"));
-  const std::size_t at = text.find("1182:L P[591]");
-  ASSERT_NE(at, std::string::npos);
-  text.replace(at, 4, "inf");
-  try {
-    (void)postproc::parseProgram(postproc::Dialect::kTp, "r.ls", text);
-    ADD_FAILURE() << "accepted";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("a /MN line starts with its line number"),
-              std::string::npos)
-        << e.what();
-    EXPECT_NE(std::string(e.what()).find("got 'inf'"), std::string::npos) << e.what();
-  }
+  const std::string e = tpError("1182:L P[591]", 0, 4, "inf");
+  EXPECT_NE(e.find("a /MN line starts with its line number"), std::string::npos) << e;
+  EXPECT_NE(e.find("got 'inf'"), std::string::npos) << e;
 }
 
 TEST(MutationRegression, ATpSpeedWithoutItsNumberAndAZeroBudgetTermAreErrors) {
   // seed 19: `nanmm/sec` left the move without a speed (the drill feed is recognised from it);
   // <uncertainty stiffness_rel="0"> silently dropped the stiffness term of U_robot
-  std::string text = test::readFile(sample("emotor-housing/housing_r2000.ls"));
-  const std::size_t at = text.find("L P[306] 20mm/sec");
-  ASSERT_NE(at, std::string::npos);
-  text.replace(at + 9, 2, "nan");
-  try {
-    (void)postproc::parseProgram(postproc::Dialect::kTp, "r.ls", text);
-    ADD_FAILURE() << "accepted";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("speed 'nanmm/sec' is not a number with its unit"),
-              std::string::npos)
-        << e.what();
-  }
+  const std::string e = tpError("L P[306] 20mm/sec", 9, 2, "nan");
+  EXPECT_NE(e.find("speed 'nanmm/sec' is not a number with its unit"), std::string::npos) << e;
   const std::string dir = test::tempDir("mutation-budget");
   std::string cell = test::readFile(sample("cells/housing-kr120.xml"));
   cell.replace(cell.find("stiffness_rel=\"0.10\""), 20, "stiffness_rel=\"0\"");
