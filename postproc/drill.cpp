@@ -30,14 +30,50 @@ bool statesUnknownValues(const Program& p, const Motion& m) {
          std::any_of(t.rot.begin(), t.rot.end(), unknown);
 }
 
-bool drillMarker(const std::string& m) {
-  const std::string u = upper(m);
-  return u.rfind("DWELL", 0) == 0 || u.find("SPINDLE") != std::string::npos ||
-         u.find("DRILL") != std::string::npos || u.find("PLUNGE") != std::string::npos ||
-         u.find("BOOR") != std::string::npos || u.find("BOHR") != std::string::npos;
+/// `s` contains `w` (upper-case ASCII), ignoring the case of `s`.
+bool containsUpper(std::string_view s, std::string_view w, bool at_start) {
+  const auto up = [](char c) { return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 32) : c; };
+  if (w.size() > s.size()) return false;
+  const std::size_t last = at_start ? 0 : s.size() - w.size();
+  for (std::size_t i = 0; i <= last; ++i) {
+    std::size_t k = 0;
+    while (k < w.size() && up(s[i + k]) == w[k]) ++k;
+    if (k == w.size()) return true;
+  }
+  return false;
 }
 
+/// Poses of the motions around the cycle being read, each computed once (motionPose builds a
+/// rotation from the target's angles): a ring of the last kSize motion indices.
+class PoseCache {
+ public:
+  explicit PoseCache(const Program& p) : p_(p), slots_(kSize) {}
+  const std::optional<Pose>& operator()(std::size_t k) {
+    Slot& s = slots_[k % kSize];
+    if (s.k != k) {
+      s.k = k;
+      s.pose = motionPose(p_, p_.motions[k]);
+    }
+    return s.pose;
+  }
+
+ private:
+  static constexpr std::size_t kSize = 64;
+  struct Slot {
+    std::size_t k{static_cast<std::size_t>(-1)};
+    std::optional<Pose> pose;
+  };
+  const Program& p_;
+  std::vector<Slot> slots_;
+};
+
 }  // namespace
+
+bool drillMarker(std::string_view m) {
+  return containsUpper(m, "DWELL", true) || containsUpper(m, "SPINDLE", false) ||
+         containsUpper(m, "DRILL", false) || containsUpper(m, "PLUNGE", false) ||
+         containsUpper(m, "BOOR", false) || containsUpper(m, "BOHR", false);
+}
 
 std::vector<Hole> recognizeHoles(const Program& p, const RecognitionOptions& o) {
   std::vector<Hole> holes;
@@ -46,10 +82,11 @@ std::vector<Hole> recognizeHoles(const Program& p, const RecognitionOptions& o) 
   const double ori_tol = o.ori_tol_deg * kDeg;
   const Vec3 tool_axis = o.tool_axis.normalized();
   std::vector<bool> used(p.target_list.size(), false);
+  PoseCache pose(p);
   std::size_t i = 0;
   while (i < M) {
     const Motion& m0 = p.motions[i];
-    const std::optional<Pose> T0 = motionPose(p, m0);
+    const std::optional<Pose> T0 = pose(i);
     if (!T0) {
       ++i;
       continue;
@@ -61,7 +98,7 @@ std::vector<Hole> recognizeHoles(const Program& p, const RecognitionOptions& o) 
     for (; j < M; ++j) {
       const Motion& mj = p.motions[j];
       if (mj.type != MotionType::kLinear) break;
-      const std::optional<Pose> Tj = motionPose(p, mj);
+      const std::optional<Pose>& Tj = pose(j);
       if (!Tj) {
         cut_by_unknown = statesUnknownValues(p, mj);
         break;
@@ -75,7 +112,7 @@ std::vector<Hole> recognizeHoles(const Program& p, const RecognitionOptions& o) 
       double dmax = 0;
       double vmax = 0;
       for (std::size_t k = i; k < j; ++k) {
-        const double d = (motionPose(p, p.motions[k])->translation() - p0).dot(a);
+        const double d = (pose(k)->translation() - p0).dot(a);
         if (d > dmax + 1e-12) {
           dmax = d;
           bottom = k;
@@ -88,8 +125,8 @@ std::vector<Hole> recognizeHoles(const Program& p, const RecognitionOptions& o) 
       double surface_d = 0;
       double feed = vmax;  // the slowest move into the material is the drilling feed
       for (std::size_t k = i + 1; k < j; ++k) {
-        const double prev = (motionPose(p, p.motions[k - 1])->translation() - p0).dot(a);
-        const double cur = (motionPose(p, p.motions[k])->translation() - p0).dot(a);
+        const double prev = (pose(k - 1)->translation() - p0).dot(a);
+        const double cur = (pose(k)->translation() - p0).dot(a);
         const double v = p.motions[k].speed_mm_s;
         if (cur > prev + line_tol && v > 0 && v < vmax) {
           slower = true;
@@ -98,8 +135,8 @@ std::vector<Hole> recognizeHoles(const Program& p, const RecognitionOptions& o) 
       }
       if (slower) {  // the first move into the material at the feed starts at the surface
         for (std::size_t k = i + 1; k < j; ++k) {
-          const double prev = (motionPose(p, p.motions[k - 1])->translation() - p0).dot(a);
-          const double cur = (motionPose(p, p.motions[k])->translation() - p0).dot(a);
+          const double prev = (pose(k - 1)->translation() - p0).dot(a);
+          const double cur = (pose(k)->translation() - p0).dot(a);
           const double v = p.motions[k].speed_mm_s;
           if (cur > prev + line_tol && v > 0 && v <= feed * (1 + 1e-9)) {
             surface = k - 1;
@@ -108,17 +145,14 @@ std::vector<Hole> recognizeHoles(const Program& p, const RecognitionOptions& o) 
           }
         }
       }
-      if (slower) h.evidence.push_back("feed slower than approach/retract");
+      h.slower_feed = slower;
       bool marker = false;
+      h.marker_begin = static_cast<int>(i > 0 ? i - 1 : i);
+      h.marker_end = static_cast<int>(j);
       for (std::size_t k = (i > 0 ? i - 1 : i); k < j; ++k) {
-        for (const std::string& mk : p.motions[k].markers) {
-          if (drillMarker(mk)) {
-            marker = true;
-            h.evidence.push_back(mk);
-          }
-        }
+        for (const std::string& mk : p.motions[k].markers) marker = marker || drillMarker(mk);
       }
-      if (p.motions[bottom].fine) h.evidence.push_back("exact stop at the bottom");
+      h.fine_bottom = p.motions[bottom].fine;
       // A cycle whose next point is stated by values roprec cannot evaluate (a RAPID component
       // set at run time) may end deeper than the points it knows: its bottom is unknown, so it
       // is not taken as a hole (the unresolved value is reported with its line).
@@ -133,17 +167,17 @@ std::vector<Hole> recognizeHoles(const Program& p, const RecognitionOptions& o) 
             h.targets.push_back(t);
           used[static_cast<std::size_t>(t)] = true;
         }
-        h.position = motionPose(p, p.motions[bottom])->translation();
+        h.position = pose(bottom)->translation();
         h.axis = a;
         if (slower && surface_d < dmax - line_tol) {
-          h.surface = motionPose(p, p.motions[surface])->translation();
+          h.surface = pose(surface)->translation();
           h.surface_motion = static_cast<int>(surface);
           h.depth = dmax - surface_d;
         } else {
           // no feed change: the program does not say where the material starts
           h.surface = p0;
           h.depth = 0.0;
-          h.evidence.push_back("no feed change: surface and depth not known from the program");
+          h.no_feed_change = true;
         }
         h.base = m0.base;
         h.tool = m0.tool;
@@ -156,8 +190,7 @@ std::vector<Hole> recognizeHoles(const Program& p, const RecognitionOptions& o) 
     // a drilling macro call right after a single target
     bool call = false;
     for (const std::string& mk : m0.markers) {
-      const std::string u = upper(mk);
-      if (u.rfind("CALL", 0) == 0 && u.find("DRILL") != std::string::npos) call = true;
+      if (containsUpper(mk, "CALL", true) && containsUpper(mk, "DRILL", false)) call = true;
     }
     if (call && m0.target >= 0 && !used[static_cast<std::size_t>(m0.target)]) {
       Hole h;
@@ -169,7 +202,9 @@ std::vector<Hole> recognizeHoles(const Program& p, const RecognitionOptions& o) 
       h.axis = a;
       h.base = m0.base;
       h.tool = m0.tool;
-      h.evidence = m0.markers;
+      h.all_markers = true;
+      h.marker_begin = static_cast<int>(i);
+      h.marker_end = static_cast<int>(i + 1);
       h.id = "H" + std::to_string(holes.size() + 1);
       used[static_cast<std::size_t>(m0.target)] = true;
       holes.push_back(std::move(h));
@@ -177,6 +212,21 @@ std::vector<Hole> recognizeHoles(const Program& p, const RecognitionOptions& o) 
     ++i;
   }
   return holes;
+}
+
+std::vector<std::string> holeEvidence(const Program& p, const Hole& h) {
+  std::vector<std::string> e;
+  if (h.slower_feed) e.emplace_back("feed slower than approach/retract");
+  for (int k = std::max(0, h.marker_begin);
+       k < h.marker_end && static_cast<std::size_t>(k) < p.motions.size(); ++k) {
+    for (const std::string& mk : p.motions[static_cast<std::size_t>(k)].markers) {
+      if (h.all_markers || drillMarker(mk)) e.push_back(mk);
+    }
+  }
+  if (h.fine_bottom) e.emplace_back("exact stop at the bottom");
+  if (h.no_feed_change)
+    e.emplace_back("no feed change: surface and depth not known from the program");
+  return e;
 }
 
 namespace {

@@ -18,6 +18,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "postproc/program.hpp"
@@ -49,10 +50,29 @@ struct Hole {
   double depth{0.0};
   int base{-1};  ///< index into Program::frames
   int tool{-1};
-  std::vector<std::string> evidence;
+  /// The evidence of drilling, kept as where to find it (no text per hole; holeEvidence renders
+  /// it): a feed slower than approach/retract, the drilling markers of motions
+  /// [marker_begin, marker_end) (all markers of that range when `all_markers`: a macro call), an
+  /// exact stop at the bottom, no feed change.
+  bool slower_feed{false};
+  bool fine_bottom{false};
+  bool no_feed_change{false};
+  bool all_markers{false};
+  int marker_begin{0};
+  int marker_end{0};
 };
 
 std::vector<Hole> recognizeHoles(const Program& p, const RecognitionOptions& o = {});
+
+/// The evidence of a recognised hole of `p` as text, in the order it was found: "feed slower
+/// than approach/retract", the drilling markers (dwell, spindle, drill call or comment, as the
+/// program writes them), "exact stop at the bottom", "no feed change: surface and depth not known
+/// from the program".
+std::vector<std::string> holeEvidence(const Program& p, const Hole& h);
+
+/// A motion marker that says drilling: starts with DWELL, or contains SPINDLE, DRILL, PLUNGE,
+/// BOOR or BOHR (any case).
+bool drillMarker(std::string_view marker);
 
 /// One row of the contract's hole list: `id,x,y,z,i,j,k[,diameter,depth,tolerance]` (mm,
 /// workobject frame, i,j,k = drilling direction into the material).

@@ -40,6 +40,10 @@ TEST(DrillSurface, HoleStartsWhereTheFeedStartsNotAtTheApproachPoint) {
   EXPECT_LT((h.position * 1e3 - Eigen::Vector3d(150, 0, 214)).norm(), 1e-9);
   EXPECT_GE(h.surface_motion, 0);
   EXPECT_EQ(h.targets.size(), 4U);  // approach, surface, bottom, retract (inline targets)
+  // the evidence, in the order it is found (the bottom LIN has no approximation: exact stop)
+  EXPECT_EQ(
+      postproc::holeEvidence(p, h),
+      (std::vector<std::string>{"feed slower than approach/retract", "exact stop at the bottom"}));
 }
 
 TEST(DrillSurface, NoFeedChangeLeavesTheDepthToTheCell) {
@@ -51,6 +55,18 @@ TEST(DrillSurface, NoFeedChangeLeavesTheDepthToTheCell) {
   ASSERT_EQ(holes.size(), 1U);
   EXPECT_EQ(holes[0].depth, 0.0);
   EXPECT_EQ(holes[0].surface_motion, -1);
+  EXPECT_EQ(postproc::holeEvidence(p, holes[0]),
+            (std::vector<std::string>{"dwell 0.3 s", "exact stop at the bottom",
+                                      "no feed change: surface and depth not known from the "
+                                      "program"}));
+}
+
+TEST(DrillSurface, DrillMarkersAreRecognisedInAnyCase) {
+  for (const char* m : {"dwell 0.3 s", "DWELL", "SPINDLE_ON()", "call Drill_Cycle", "plunge",
+                        "; Bohrung 12", "boor"})
+    EXPECT_TRUE(postproc::drillMarker(m)) << m;
+  for (const char* m : {"", "wait for part", "; a dwelling", "SPIN", "WAIT SEC 0.3"})
+    EXPECT_FALSE(postproc::drillMarker(m)) << m;
 }
 
 TEST(DrillSurface, PredictAndInspectReportTheSurfaceAndTheBottom) {

@@ -168,7 +168,7 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
                       const std::optional<std::string>& hole_list, double match_tol_mm) {
   JobHoles job;
   job.path = path;
-  const std::string bytes = readFileBytes(path);
+  std::string bytes = readFileBytes(path);
   postproc::Dialect dialect = postproc::detectDialect(path, bytes);
   std::optional<postproc::Program> parsed;
   if (dialect == postproc::Dialect::kCsv) {
@@ -181,6 +181,8 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
     if (specs.empty()) throw InputError(path, 1, "the hole list has no holes");
     if (parsed)
       for (const auto& n : parsed->notes) job.notes.push_back(n);  // e.g. how it was read
+    job.requests.reserve(specs.size());
+    job.sources.reserve(specs.size());
     for (size_t i = 0; i < specs.size(); ++i) {
       const auto& s = specs[i];
       job.requests.push_back(fromSpec(s, cell));
@@ -216,6 +218,7 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
     job.program = std::move(parsed);
     return job;
   }
+  if (!parsed) std::string().swap(bytes);  // readProgram reads the file (and its .dat) itself
   job.program = parsed ? std::move(*parsed) : postproc::readProgram(path);
   const postproc::Program& p = *job.program;
   job.recognized = postproc::recognizeHoles(p);
@@ -252,6 +255,8 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
   }
   bool noted_frame = false;
   FarFromTheList far;
+  job.requests.reserve(job.recognized.size());
+  job.sources.reserve(job.recognized.size());
   for (size_t i = 0; i < job.recognized.size(); ++i) {
     const postproc::Hole& h = job.recognized[i];
     HoleSource src;

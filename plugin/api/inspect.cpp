@@ -201,7 +201,7 @@ Json recognisedHoleJson(const Program& p, const std::vector<postproc::Hole>& hol
   j.set("base", frameJson(base));
   j.set("tool", frameJson(tool));
   Json ev = Json::array();
-  for (const auto& e : hole.evidence) ev.push(Json::str(e));
+  for (const auto& e : holeEvidence(p, hole)) ev.push(Json::str(e));
   j.set("evidence", ev);
   return j;
 }
