@@ -10,6 +10,7 @@
 /// may be declared by comments `# frame NAME: x y z qw qx qy qz` / `# tool NAME: ...` (mm) and
 /// referenced by the `frame`/`tool` columns. `j1..j6` rows without a pose are joint targets.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <unordered_map>
 #include <utility>
@@ -131,6 +132,60 @@ Pose poseFromText(const SourceFile& f, std::size_t off, std::string_view text) {
   return T;
 }
 
+/// Columns the row reader looks up (resolved once from the header, not per row).
+enum Col : std::uint8_t {
+  kId,
+  kName,
+  kX,
+  kY,
+  kZ,
+  kA,
+  kB,
+  kC,
+  kW,
+  kP,
+  kR,
+  kQw,
+  kQx,
+  kQy,
+  kQz,
+  kRx,
+  kRy,
+  kRz,
+  kI,
+  kJ,
+  kK,
+  kJ1,
+  kJ2,
+  kJ3,
+  kJ4,
+  kJ5,
+  kJ6,
+  kE1,
+  kE2,
+  kE3,
+  kE4,
+  kE5,
+  kE6,
+  kConf,
+  kConfig,
+  kFrame,
+  kTool,
+  kMove,
+  kMotion,
+  kSpeed,
+  kDiameter,
+  kDepth,
+  kTolerance,
+  kColCount
+};
+constexpr const char* kColName[kColCount] = {
+    "id",   "name", "x",      "y",     "z",        "a",     "b",        "c",      "w",
+    "p",    "r",    "qw",     "qx",    "qy",       "qz",    "rx",       "ry",     "rz",
+    "i",    "j",    "k",      "j1",    "j2",       "j3",    "j4",       "j5",     "j6",
+    "e1",   "e2",   "e3",     "e4",    "e5",       "e6",    "conf",     "config", "frame",
+    "tool", "move", "motion", "speed", "diameter", "depth", "tolerance"};
+
 class CsvReader {
  public:
   explicit CsvReader(Program& p) : p_(p), f_(p.files[0]) {}
@@ -152,12 +207,12 @@ class CsvReader {
       }
       if (!have_header) {
         have_header = true;
-        if (!robodkExport(s, e)) {
-          header(s, e);
-          continue;
-        }
+        const bool robodk = robodkExport(s, e);
+        if (!robodk) header(s, e);
+        resolveColumns();
+        if (!robodk) continue;
       }
-      row(s, e);
+      row(s, e, static_cast<int>(line + 1));
     }
     if (!have_header) failAt(f_, 0, "empty CSV: a header row is required");
     if (holes_mode_) checkNotMetres();
@@ -170,6 +225,17 @@ class CsvReader {
   const SourceFile& f_;
   char delim_{','};
   std::unordered_map<std::string, int> col_;
+  std::array<int, kColCount> idx_{};  ///< cell index of each Col (-1: no such column)
+  std::vector<Cell> cells_;           ///< the current row's cells (reused)
+  std::string conf_text_;             ///< last row's configuration text and its parse
+  Configuration conf_;
+  struct FrameMemo {
+    bool valid{false};
+    std::size_t frames{0};  ///< p_.frames.size() when `index` was found
+    int index{-1};
+    std::string ref;
+  };
+  FrameMemo base_memo_, tool_memo_;  ///< invalidated when a comment declares a frame or tool
   std::string euler_;
   std::unordered_map<std::string, Frame> frames_;
   std::unordered_map<std::string, Frame> tools_;
@@ -230,10 +296,10 @@ class CsvReader {
   /// The drilling direction of a RoboDK row: +z of R = Rx(rx) Ry(ry) Rz(rz) (deg).
   void robodkAxis(const std::vector<Cell>& cells, std::size_t row, Target& t) {
     double a[3];
-    const char* const keys[] = {"rx", "ry", "rz"};
+    const Col keys[] = {kRx, kRy, kRz};
     for (std::size_t i = 0; i < 3; ++i) {
       const auto v = num(cells, keys[i]);
-      if (!v) fail(row, std::string("RoboDK row without ") + keys[i]);
+      if (!v) fail(row, std::string("RoboDK row without ") + kColName[keys[i]]);
       a[i] = v->value * kDeg;
     }
     const Vec3 z = (Eigen::AngleAxisd(a[0], Vec3::UnitX()) *
@@ -249,6 +315,13 @@ class CsvReader {
   }
 
   [[noreturn]] void fail(std::size_t off, const std::string& m) const { failAt(f_, off, m); }
+
+  void resolveColumns() {
+    for (std::size_t c = 0; c < kColCount; ++c) {
+      const auto it = col_.find(kColName[c]);
+      idx_[c] = it == col_.end() ? -1 : it->second;
+    }
+  }
 
   void comment(std::size_t off, std::string_view c) {
     std::string t = lower(c);
@@ -270,12 +343,20 @@ class CsvReader {
         const Pose T = poseFromText(f_, off, rest.substr(colon + 1));
         (std::string(kw) == "frame " ? frames_ : tools_)[upper(name)] =
             Frame{name, true, T, 0, f_.lineOf(off)};
+        base_memo_.valid = tool_memo_.valid = false;
       }
     }
   }
 
   std::vector<Cell> split(std::size_t s, std::size_t e) const {
     std::vector<Cell> cells;
+    splitInto(s, e, cells);
+    return cells;
+  }
+
+  /// The cells of the line [s, e) into `cells` (cleared first).
+  void splitInto(std::size_t s, std::size_t e, std::vector<Cell>& cells) const {
+    cells.clear();
     const std::string& b = f_.bytes;
     std::size_t i = s;
     while (true) {
@@ -299,7 +380,6 @@ class CsvReader {
       if (i >= e) break;
       ++i;
     }
-    return cells;
   }
 
   void header(std::size_t s, std::size_t e) {
@@ -393,22 +473,22 @@ class CsvReader {
   }
 
   /// Position of the named cell of a row (for messages), else the row start.
-  std::size_t cellOffset(const std::vector<Cell>& cells, const char* key, std::size_t row) const {
-    const auto it = col_.find(key);
-    if (it == col_.end() || static_cast<std::size_t>(it->second) >= cells.size()) return row;
-    return cells[static_cast<std::size_t>(it->second)].begin;
+  std::size_t cellOffset(const std::vector<Cell>& cells, Col key, std::size_t row) const {
+    const Cell* c = cell(cells, key);
+    return c != nullptr ? c->begin : row;
   }
 
   /// An optional positive size column within [lo, hi] mm.
-  std::optional<double> sizeMm(const std::vector<Cell>& cells, const char* key, double lo,
-                               double hi, const std::string& id, std::size_t row) const {
+  std::optional<double> sizeMm(const std::vector<Cell>& cells, Col key, double lo, double hi,
+                               const std::string& id, std::size_t row) const {
     const auto v = num(cells, key);
     if (!v) return std::nullopt;
     if (!(v->value >= lo && v->value <= hi) || !(v->value > 0)) {
       const std::string range = lo > 0 ? "outside " + numberText(lo) + ".." + numberText(hi) + " mm"
                                        : "not in (0, " + numberText(hi) + "] mm";
-      fail(cellOffset(cells, key, row), "hole " + id + ": " + key + " " + numberText(v->value) +
-                                            " mm is " + range + " (hole lists are in mm)");
+      fail(cellOffset(cells, key, row), "hole " + id + ": " + kColName[key] + " " +
+                                            numberText(v->value) + " mm is " + range +
+                                            " (hole lists are in mm)");
     }
     return v->value;
   }
@@ -417,7 +497,7 @@ class CsvReader {
   Vec3 unitDirection(const Vec3& d, const std::vector<Cell>& cells, const std::string& id,
                      std::size_t row) const {
     const double n = d.norm();
-    const std::size_t at = cellOffset(cells, "i", row);
+    const std::size_t at = cellOffset(cells, kI, row);
     if (n < 1e-9) fail(at, "hole " + id + ": drilling direction i,j,k is zero");
     if (std::abs(n - 1.0) > kDirectionNormTol) {
       fail(at, "hole " + id + ": drilling direction i,j,k has length " + numberText(n) +
@@ -453,141 +533,173 @@ class CsvReader {
                " mm apart; hole lists are in mm (multiply by 1000)");
   }
 
-  std::optional<NumberField> num(const std::vector<Cell>& cells, const char* key) const {
-    const auto it = col_.find(key);
-    if (it == col_.end() || static_cast<std::size_t>(it->second) >= cells.size())
-      return std::nullopt;
-    const Cell& c = cells[static_cast<std::size_t>(it->second)];
-    if (c.begin == c.end) return std::nullopt;
-    return numberField(p_, 0, c.begin, c.end);
+  /// The row's cell of column `key`; nullptr when the file has no such column or the row is short.
+  const Cell* cell(const std::vector<Cell>& cells, Col key) const {
+    const int i = idx_[key];
+    return i >= 0 && static_cast<std::size_t>(i) < cells.size()
+               ? &cells[static_cast<std::size_t>(i)]
+               : nullptr;
   }
 
-  std::string text(const std::vector<Cell>& cells, const char* key) const {
-    const auto it = col_.find(key);
-    if (it == col_.end() || static_cast<std::size_t>(it->second) >= cells.size()) return "";
-    const Cell& c = cells[static_cast<std::size_t>(it->second)];
-    return f_.bytes.substr(c.begin, c.end - c.begin);
+  std::optional<NumberField> num(const std::vector<Cell>& cells, Col key) const {
+    const Cell* c = cell(cells, key);
+    if (c == nullptr || c->begin == c->end) return std::nullopt;
+    return numberField(p_, 0, c->begin, c->end);
   }
 
-  void row(std::size_t s, std::size_t e) {
-    const std::vector<Cell> cells = split(s, e);
+  std::string_view text(const std::vector<Cell>& cells, Col key) const {
+    const Cell* c = cell(cells, key);
+    return c == nullptr ? std::string_view()
+                        : std::string_view(f_.bytes).substr(c->begin, c->end - c->begin);
+  }
+
+  /// parseConfigurationText, once per distinct text in a run of equal rows.
+  const Configuration& configuration(std::string_view text) {
+    if (text != conf_text_ || conf_text_.empty()) {
+      conf_text_ = text;
+      conf_ = parseConfigurationText(conf_text_);
+    }
+    return conf_;
+  }
+
+  /// A motion's frame: the declared one or an unresolved reference, interned. `memo` skips the
+  /// lookup and the intern for a run of rows naming the same frame while nothing was added.
+  int frameIndex(const std::unordered_map<std::string, Frame>& table, const std::string& ref,
+                 FrameMemo& memo) {
+    if (memo.valid && memo.frames == p_.frames.size() && memo.ref == ref) return memo.index;
+    const auto it = table.find(upper(ref));
+    const int index = internFrame(
+        p_, it != table.end() ? it->second : Frame{ref, false, Pose::Identity(), -1, 0});
+    memo = FrameMemo{true, p_.frames.size(), index, ref};
+    return index;
+  }
+
+  /// The orientation columns of the file's convention (count 0: none).
+  struct RotColumns {
+    std::array<Col, 4> col;
+    int count;
+  };
+  RotColumns rotColumns() const {
+    if (robodk_) return {{kRx, kRy, kRz, kRz}, 0};  // the axis came from rx,ry,rz
+    switch (orient_) {
+      case Orientation::kKukaAbc:
+        return {{kA, kB, kC, kC}, 3};
+      case Orientation::kFanucWpr:
+        return {{kW, kP, kR, kR}, 3};
+      case Orientation::kQuaternion:
+        return {{kQw, kQx, kQy, kQz}, 4};
+      case Orientation::kXyzIntrinsic:
+        return {{kRx, kRy, kRz, kRz}, 3};
+      case Orientation::kAxis:
+        return {{kI, kJ, kK, kK}, 3};
+      case Orientation::kNone:
+        break;
+    }
+    return {{kA, kB, kC, kC}, -1};
+  }
+
+  /// Rotation fields of the row; false when one is missing.
+  bool readRotation(const std::vector<Cell>& cells, Target& t) const {
+    const RotColumns rc = rotColumns();
+    if (rc.count < 0) return false;
+    bool all = true;
+    for (int i = 0; i < rc.count; ++i) {
+      const auto v = num(cells, rc.col[static_cast<std::size_t>(i)]);
+      if (v) t.rot[static_cast<std::size_t>(i)] = *v;
+      all = all && v.has_value();
+    }
+    return all;
+  }
+
+  /// Joints j1..j6 (true when any) and external axes e1..e6 of the row.
+  bool readAxes(const std::vector<Cell>& cells, Target& t) const {
+    bool joints = false;
+    for (std::size_t i = 0; i < 6; ++i) {
+      if (const auto v = num(cells, static_cast<Col>(kJ1 + i))) {
+        t.joints[i] = *v;
+        joints = true;
+      }
+    }
+    for (std::size_t i = 0; i < 6; ++i) {
+      if (const auto v = num(cells, static_cast<Col>(kE1 + i))) t.ext[i] = *v;
+    }
+    return joints;
+  }
+
+  void hole(const std::vector<Cell>& cells, const Target& t, std::size_t s) {
+    HoleSpec h;
+    h.id = t.name;
+    h.line = t.line;
+    if (h.id.empty()) fail(s, "hole without an id");
+    const auto [dup, fresh] = hole_id_line_.emplace(upper(h.id), h.line);
+    if (!fresh) {
+      fail(s, "duplicate hole id '" + h.id + "' (first at line " + std::to_string(dup->second) +
+                  "; ids are compared without regard to case)");
+    }
+    h.position_mm = Vec3(t.pos[0].value, t.pos[1].value, t.pos[2].value);
+    if (!(h.position_mm.cwiseAbs().maxCoeff() <= kMaxCoordinateMm)) {
+      fail(s, "hole " + h.id + ": a coordinate is beyond " + numberText(kMaxCoordinateMm) +
+                  " mm from the workobject origin");
+    }
+    h.direction =
+        unitDirection(Vec3(t.rot[0].value, t.rot[1].value, t.rot[2].value), cells, h.id, s);
+    h.diameter_mm = sizeMm(cells, kDiameter, kMinDiameterMm, kMaxDiameterMm, h.id, s);
+    h.depth_mm = sizeMm(cells, kDepth, kMinDepthMm, kMaxDepthMm, h.id, s);
+    h.tolerance_mm = sizeMm(cells, kTolerance, kMinToleranceMm, kMaxToleranceMm, h.id, s);
+    holes.push_back(h);
+  }
+
+  /// The row's motion to target `target` (one motion per row).
+  void rowMotion(const std::vector<Cell>& cells, int target) {
+    Motion m;
+    const std::string_view move = text(cells, kMove);
+    const std::string mv = upper(move.empty() ? text(cells, kMotion) : move);
+    m.instruction = mv.empty() ? "row" : mv;
+    m.type = (mv == "J" || mv == "PTP" || mv == "MOVEJ" || mv == "MOVEABSJ") ? MotionType::kJoint
+                                                                             : MotionType::kLinear;
+    m.file = 0;
+    const Target& t = p_.target_list[static_cast<std::size_t>(target)];
+    m.line = t.line;
+    if (const auto v = num(cells, kSpeed)) m.speed_mm_s = v->value;
+    if (!t.frame_ref.empty()) m.base = frameIndex(frames_, t.frame_ref, base_memo_);
+    if (!t.tool_ref.empty()) m.tool = frameIndex(tools_, t.tool_ref, tool_memo_);
+    m.target = target;
+    p_.target_list[static_cast<std::size_t>(target)].uses.push_back(
+        static_cast<int>(p_.motions.size()));
+    p_.motions.push_back(std::move(m));
+  }
+
+  void row(std::size_t s, std::size_t e, int line) {
+    splitInto(s, e, cells_);
+    const std::vector<Cell>& cells = cells_;
     refuseExtraCells(cells);
     Target t;
     t.file = 0;
-    t.line = f_.lineOf(s);
-    t.name = text(cells, "id");
-    if (t.name.empty()) t.name = text(cells, "name");
-    const auto x = num(cells, "x");
-    const auto y = num(cells, "y");
-    const auto z = num(cells, "z");
+    t.line = line;
+    const std::string_view id = text(cells, kId);
+    t.name = id.empty() ? text(cells, kName) : id;
+    const auto x = num(cells, kX);
+    const auto y = num(cells, kY);
+    const auto z = num(cells, kZ);
     if (x) t.pos[0] = *x;
     if (y) t.pos[1] = *y;
     if (z) t.pos[2] = *z;
     t.orientation = orient_;
     ++data_rows_;
     if (robodk_) robodkAxis(cells, s, t);
-    static const char* const kAbc[] = {"a", "b", "c"};
-    static const char* const kWpr[] = {"w", "p", "r"};
-    static const char* const kQ[] = {"qw", "qx", "qy", "qz"};
-    static const char* const kRxyz[] = {"rx", "ry", "rz"};
-    static const char* const kIjk[] = {"i", "j", "k"};
-    const char* const* keys = nullptr;
-    int n = 3;
-    switch (orient_) {
-      case Orientation::kKukaAbc:
-        keys = kAbc;
-        break;
-      case Orientation::kFanucWpr:
-        keys = kWpr;
-        break;
-      case Orientation::kQuaternion:
-        keys = kQ;
-        n = 4;
-        break;
-      case Orientation::kXyzIntrinsic:
-        keys = kRxyz;
-        break;
-      case Orientation::kAxis:
-        keys = kIjk;
-        break;
-      case Orientation::kNone:
-        break;
-    }
-    if (robodk_) keys = nullptr;  // the axis came from rx,ry,rz
-    bool have_rot = keys != nullptr || robodk_;
-    for (int i = 0; keys != nullptr && i < n; ++i) {
-      const auto v = num(cells, keys[i]);
-      if (v) t.rot[static_cast<std::size_t>(i)] = *v;
-      have_rot = have_rot && v.has_value();
-    }
-    bool joints = false;
-    static const char* const kJ[] = {"j1", "j2", "j3", "j4", "j5", "j6"};
-    for (int i = 0; i < 6; ++i) {
-      const auto v = num(cells, kJ[i]);
-      if (v) {
-        t.joints[static_cast<std::size_t>(i)] = *v;
-        joints = true;
-      }
-    }
-    static const char* const kE[] = {"e1", "e2", "e3", "e4", "e5", "e6"};
-    for (int i = 0; i < 6; ++i) {
-      if (const auto v = num(cells, kE[i])) t.ext[static_cast<std::size_t>(i)] = *v;
-    }
+    const bool have_rot = robodk_ || readRotation(cells, t);
+    const bool joints = readAxes(cells, t);
     const bool cart = x && y && z && have_rot;
     if (!cart && !joints) fail(s, "row has neither a complete pose nor joints j1..j6");
     t.kind = cart ? TargetKind::kCartesian : TargetKind::kJoint;
     if (!cart) t.orientation = Orientation::kNone;
-    t.config = parseConfigurationText(text(cells, "conf").empty() ? text(cells, "config")
-                                                                  : text(cells, "conf"));
-    t.frame_ref = text(cells, "frame");
-    t.tool_ref = text(cells, "tool");
-    if (holes_mode_) {
-      HoleSpec h;
-      h.id = t.name;
-      h.line = t.line;
-      if (h.id.empty()) fail(s, "hole without an id");
-      const auto [dup, fresh] = hole_id_line_.emplace(upper(h.id), h.line);
-      if (!fresh) {
-        fail(s, "duplicate hole id '" + h.id + "' (first at line " + std::to_string(dup->second) +
-                    "; ids are compared without regard to case)");
-      }
-      h.position_mm = Vec3(t.pos[0].value, t.pos[1].value, t.pos[2].value);
-      if (!(h.position_mm.cwiseAbs().maxCoeff() <= kMaxCoordinateMm)) {
-        fail(s, "hole " + h.id + ": a coordinate is beyond " + numberText(kMaxCoordinateMm) +
-                    " mm from the workobject origin");
-      }
-      h.direction =
-          unitDirection(Vec3(t.rot[0].value, t.rot[1].value, t.rot[2].value), cells, h.id, s);
-      h.diameter_mm = sizeMm(cells, "diameter", kMinDiameterMm, kMaxDiameterMm, h.id, s);
-      h.depth_mm = sizeMm(cells, "depth", kMinDepthMm, kMaxDepthMm, h.id, s);
-      h.tolerance_mm = sizeMm(cells, "tolerance", kMinToleranceMm, kMaxToleranceMm, h.id, s);
-      holes.push_back(h);
-    }
-    // one motion per row
-    Motion m;
-    const std::string mv =
-        upper(text(cells, "move").empty() ? text(cells, "motion") : text(cells, "move"));
-    m.instruction = mv.empty() ? "row" : mv;
-    m.type = (mv == "J" || mv == "PTP" || mv == "MOVEJ" || mv == "MOVEABSJ") ? MotionType::kJoint
-                                                                             : MotionType::kLinear;
-    m.file = 0;
-    m.line = t.line;
-    if (const auto v = num(cells, "speed")) m.speed_mm_s = v->value;
-    if (!t.frame_ref.empty()) {
-      const auto it = frames_.find(upper(t.frame_ref));
-      m.base =
-          internFrame(p_, it != frames_.end() ? it->second
-                                              : Frame{t.frame_ref, false, Pose::Identity(), -1, 0});
-    }
-    if (!t.tool_ref.empty()) {
-      const auto it = tools_.find(upper(t.tool_ref));
-      m.tool = internFrame(
-          p_, it != tools_.end() ? it->second : Frame{t.tool_ref, false, Pose::Identity(), -1, 0});
-    }
+    const std::string_view conf = text(cells, kConf);
+    t.config = configuration(conf.empty() ? text(cells, kConfig) : conf);
+    t.frame_ref = text(cells, kFrame);
+    t.tool_ref = text(cells, kTool);
+    if (holes_mode_) hole(cells, t, s);
     p_.target_list.push_back(std::move(t));
-    m.target = static_cast<int>(p_.target_list.size() - 1);
-    p_.target_list.back().uses.push_back(static_cast<int>(p_.motions.size()));
-    p_.motions.push_back(std::move(m));
+    rowMotion(cells, static_cast<int>(p_.target_list.size() - 1));
   }
 };
 
