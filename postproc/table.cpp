@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <unordered_map>
 #include <utility>
 
@@ -713,10 +714,10 @@ struct JValue {
   std::string str;
   std::vector<std::string> keys;  // object members: keys[i] -> items[i]
   std::vector<JValue> items;      // array elements or object member values
-  [[nodiscard]] const JValue* get(const std::string& k) const;
+  [[nodiscard]] const JValue* get(std::string_view k) const;
 };
 
-const JValue* JValue::get(const std::string& k) const {
+const JValue* JValue::get(std::string_view k) const {
   if (kind != kObject) return nullptr;
   for (std::size_t i = 0; i < keys.size(); ++i) {
     if (keys[i] == k) return &items[i];
@@ -724,11 +725,17 @@ const JValue* JValue::get(const std::string& k) const {
   return nullptr;
 }
 
+/// JSON reader that keeps byte spans. The elements of the root object's first "targets" array
+/// go to a sink one at a time as they are parsed (that array stays empty in the tree), in one
+/// reused value: a 100,000-target list never exists as a tree.
 class JsonParser {
  public:
-  explicit JsonParser(const SourceFile& f) : f_(f), b_(f.bytes), i_(f.bom ? 3 : 0) {}
+  using Sink = std::function<void(const JValue&)>;
+  JsonParser(const SourceFile& f, Sink sink)
+      : f_(f), b_(f.bytes), i_(f.bom ? 3 : 0), sink_(std::move(sink)) {}
   JValue parse() {
-    JValue v = value(0);
+    JValue v;
+    valueInto(v, 0);
     ws();
     if (i_ != b_.size()) fail("trailing characters after the JSON document");
     return v;
@@ -738,96 +745,159 @@ class JsonParser {
   const SourceFile& f_;
   const std::string& b_;
   std::size_t i_;
+  Sink sink_;
+  bool streamed_{false};
+  JValue element_;  ///< the streamed target (its buffers reused)
 
   [[noreturn]] void fail(const std::string& m) const { failAt(f_, std::min(i_, b_.size()), m); }
   void ws() {
     while (i_ < b_.size() && (b_[i_] == ' ' || b_[i_] == '\t' || b_[i_] == '\n' || b_[i_] == '\r'))
       ++i_;
   }
-  std::string string() {
-    std::string s;
+  /// The string at i_ (a `\` keeps the next byte as it is).
+  void stringInto(std::string& s) {
+    s.clear();
     ++i_;
-    while (i_ < b_.size() && b_[i_] != '"') {
-      if (b_[i_] == '\\') {
-        ++i_;
-        if (i_ >= b_.size()) break;
-      }
+    const std::size_t n = b_.size();
+    while (true) {
+      std::size_t j = i_;
+      while (j < n && b_[j] != '"' && b_[j] != '\\') ++j;
+      s.append(b_, i_, j - i_);
+      i_ = j;
+      if (i_ >= n) fail("unterminated string");
+      if (b_[i_] == '"') break;
+      ++i_;  // backslash
+      if (i_ >= n) fail("unterminated string");
       s += b_[i_++];
     }
-    if (i_ >= b_.size()) fail("unterminated string");
     ++i_;
-    return s;
   }
-  JValue value(int depth) {
+  /// Slot `n` of a container being refilled (buffers of earlier contents reused).
+  template <class T>
+  static T& slot(std::vector<T>& v, std::size_t n) {
+    if (n == v.size()) v.emplace_back();
+    return v[n];
+  }
+  void object(JValue& v, int depth) {
+    ++i_;
+    ws();
+    std::size_t n = 0;
+    if (i_ < b_.size() && b_[i_] == '}') {
+      ++i_;
+    } else {
+      while (true) {
+        ws();
+        if (i_ >= b_.size()) fail("unterminated object (missing '}')");
+        if (b_[i_] != '"') fail("expected a key string");
+        std::string& k = slot(v.keys, n);
+        stringInto(k);
+        ws();
+        if (i_ >= b_.size() || b_[i_] != ':') fail("expected ':'");
+        ++i_;
+        JValue& item = slot(v.items, n);
+        ++n;
+        ws();
+        if (depth == 0 && sink_ && !streamed_ && k == "targets" && i_ < b_.size() &&
+            b_[i_] == '[') {
+          streamed_ = true;
+          streamTargets(item, depth + 1);
+        } else {
+          valueInto(item, depth + 1);
+        }
+        ws();
+        if (i_ < b_.size() && b_[i_] == ',') {
+          ++i_;
+          continue;
+        }
+        if (i_ < b_.size() && b_[i_] == '}') {
+          ++i_;
+          break;
+        }
+        fail("unterminated object (missing '}')");
+      }
+    }
+    v.keys.resize(n);
+    v.items.resize(n);
+  }
+  /// The elements of `[...]` at i_: into v.items, or (stream) each to the sink.
+  void array(JValue& v, int depth, bool stream) {
+    ++i_;
+    ws();
+    std::size_t n = 0;
+    if (i_ < b_.size() && b_[i_] == ']') {
+      ++i_;
+    } else {
+      while (true) {
+        if (stream) {
+          valueInto(element_, depth + 1);
+          sink_(element_);
+        } else {
+          valueInto(slot(v.items, n++), depth + 1);
+        }
+        ws();
+        if (i_ < b_.size() && b_[i_] == ',') {
+          ++i_;
+          continue;
+        }
+        if (i_ < b_.size() && b_[i_] == ']') {
+          ++i_;
+          break;
+        }
+        fail("unterminated array (missing ']')");
+      }
+    }
+    v.keys.clear();
+    v.items.resize(n);
+  }
+  void streamTargets(JValue& v, int depth) {
+    v.kind = JValue::kArray;
+    v.begin = static_cast<std::uint32_t>(i_);
+    array(v, depth, true);
+    v.end = static_cast<std::uint32_t>(i_);
+  }
+  void number(JValue& v) {
+    std::size_t j = i_ + 1;
+    while (j < b_.size() && (isDigit(b_[j]) || b_[j] == '.' || b_[j] == 'e' || b_[j] == 'E' ||
+                             b_[j] == '+' || b_[j] == '-'))
+      ++j;
+    const auto x = parseNumber(std::string_view(b_).substr(i_, j - i_));
+    if (!x) fail("broken number '" + b_.substr(i_, j - i_) + "'");
+    v.kind = JValue::kNumber;
+    v.number = *x;
+    i_ = j;
+  }
+  /// Parses the value at i_ into v (reusing v's buffers).
+  void valueInto(JValue& v, int depth) {
     if (depth > 64) fail("JSON nested too deeply");
     ws();
     if (i_ >= b_.size()) fail("truncated JSON");
-    JValue v;
     v.begin = static_cast<std::uint32_t>(i_);
+    v.number = 0;
     const char c = b_[i_];
     if (c == '{') {
       v.kind = JValue::kObject;
-      ++i_;
-      ws();
-      if (i_ < b_.size() && b_[i_] == '}') {
-        ++i_;
-      } else {
-        while (true) {
-          ws();
-          if (i_ >= b_.size()) fail("unterminated object (missing '}')");
-          if (b_[i_] != '"') fail("expected a key string");
-          std::string k = string();
-          ws();
-          if (i_ >= b_.size() || b_[i_] != ':') fail("expected ':'");
-          ++i_;
-          v.keys.push_back(std::move(k));
-          v.items.push_back(value(depth + 1));
-          ws();
-          if (i_ < b_.size() && b_[i_] == ',') {
-            ++i_;
-            continue;
-          }
-          if (i_ < b_.size() && b_[i_] == '}') {
-            ++i_;
-            break;
-          }
-          fail("unterminated object (missing '}')");
-        }
-      }
+      v.str.clear();
+      object(v, depth);
     } else if (c == '[') {
       v.kind = JValue::kArray;
-      ++i_;
-      ws();
-      if (i_ < b_.size() && b_[i_] == ']') {
-        ++i_;
+      v.str.clear();
+      array(v, depth, false);
+    } else {
+      v.keys.clear();
+      v.items.clear();
+      if (c == '"') {
+        v.kind = JValue::kString;
+        stringInto(v.str);
       } else {
-        while (true) {
-          v.items.push_back(value(depth + 1));
-          ws();
-          if (i_ < b_.size() && b_[i_] == ',') {
-            ++i_;
-            continue;
-          }
-          if (i_ < b_.size() && b_[i_] == ']') {
-            ++i_;
-            break;
-          }
-          fail("unterminated array (missing ']')");
-        }
+        v.str.clear();
+        scalar(v, c);
       }
-    } else if (c == '"') {
-      v.kind = JValue::kString;
-      v.str = string();
-    } else if (c == '-' || isDigit(c)) {
-      std::size_t j = i_ + 1;
-      while (j < b_.size() && (isDigit(b_[j]) || b_[j] == '.' || b_[j] == 'e' || b_[j] == 'E' ||
-                               b_[j] == '+' || b_[j] == '-'))
-        ++j;
-      const auto x = parseNumber(std::string_view(b_).substr(i_, j - i_));
-      if (!x) fail("broken number '" + b_.substr(i_, j - i_) + "'");
-      v.kind = JValue::kNumber;
-      v.number = *x;
-      i_ = j;
+    }
+    v.end = static_cast<std::uint32_t>(i_);
+  }
+  void scalar(JValue& v, char c) {
+    if (c == '-' || isDigit(c)) {
+      number(v);
     } else if (b_.compare(i_, 4, "true") == 0 || b_.compare(i_, 4, "null") == 0) {
       v.kind = b_[i_] == 't' ? JValue::kBool : JValue::kNull;
       i_ += 4;
@@ -837,8 +907,6 @@ class JsonParser {
     } else {
       fail(std::string("unexpected character '") + c + "'");
     }
-    v.end = static_cast<std::uint32_t>(i_);
-    return v;
   }
 };
 
@@ -906,13 +974,214 @@ std::vector<HoleSpec> readHoleList(const std::string& path) {
   return parseHoleList(path, readFileBytes(path));
 }
 
+namespace {
+
+/// Members of a JSON target, in the order of jsonTargetMembers().
+enum JMember : std::uint8_t {
+  kJId,
+  kJName,
+  kJPosition,
+  kJQuaternion,
+  kJX,
+  kJY,
+  kJZ,
+  kJA,
+  kJB,
+  kJC,
+  kJW,
+  kJP,
+  kJR,
+  kJRx,
+  kJRy,
+  kJRz,
+  kJJoints,
+  kJExternal,
+  kJConfig,
+  kJFrame,
+  kJTool,
+  kJMotion,
+  kJSpeed,
+  kJFine,
+  kJDwell,
+  kJHole,
+  kJComment,
+  kJMemberCount
+};
+
+/// Converts the JSON targets one at a time as the parser streams them. Frames and the Euler
+/// convention may come after "targets" in the document: frame references are interned and rx,ry,rz
+/// targets given their convention in finish(), in target order.
+class JsonTargets {
+ public:
+  explicit JsonTargets(Program& p) : p_(p), f_(p.files[0]) {}
+
+  void target(const JValue& o) {
+    if (o.kind != JValue::kObject) failAt(f_, o.begin, "each target must be an object");
+    const Members m = members(o);
+    Target t;
+    t.file = 0;
+    t.line = f_.lineOf(o.begin);
+    if (m[kJId] != nullptr) t.name = m[kJId]->str;
+    position(m, t);
+    rotation(m, t, o.begin);
+    axes(m, t);
+    const bool cart = t.pos[0].present() && t.orientation != Orientation::kNone;
+    if (!cart && !std::as_const(t).joints[0].present())
+      failAt(f_, o.begin, "target has neither a pose nor joints_deg");
+    t.kind = cart ? TargetKind::kCartesian : TargetKind::kJoint;
+    if (m[kJConfig] != nullptr) t.config = configuration(m[kJConfig]->str);
+    if (m[kJFrame] != nullptr) t.frame_ref = m[kJFrame]->str;
+    if (m[kJTool] != nullptr) t.tool_ref = m[kJTool]->str;
+    const int line = t.line;
+    p_.target_list.push_back(std::move(t));
+    motion(m, line);
+  }
+
+  /// Interns the motions' frames (declared in `frames` or unresolved) and resolves rx,ry,rz
+  /// targets by the document's "euler"; throws at the first such target when it has none.
+  void finish(const std::unordered_map<std::string, Frame>& frames, const std::string& euler) {
+    if (!rxyz_.empty()) {
+      Orientation o = Orientation::kNone;
+      if (euler == "ZYX" || euler == "XYZ_FIXED") o = Orientation::kFanucWpr;
+      if (euler == "XYZ_INTRINSIC") o = Orientation::kXyzIntrinsic;
+      if (o == Orientation::kNone)
+        failAt(f_, rxyz_.front().second,
+               "rx,ry,rz need a declared \"euler\": \"ZYX\" | \"XYZ_fixed\" | \"XYZ_intrinsic\"");
+      for (const auto& r : rxyz_) p_.target_list[static_cast<std::size_t>(r.first)].orientation = o;
+    }
+    for (std::size_t k = 0; k < p_.motions.size(); ++k) {
+      const Target& t = p_.target_list[static_cast<std::size_t>(p_.motions[k].target)];
+      if (!t.frame_ref.empty()) p_.motions[k].base = frameIndex(frames, t.frame_ref);
+      if (!t.tool_ref.empty()) p_.motions[k].tool = frameIndex(frames, t.tool_ref);
+    }
+  }
+
+ private:
+  using Members = std::array<const JValue*, kJMemberCount>;
+  Program& p_;
+  const SourceFile& f_;
+  std::vector<std::pair<int, std::uint32_t>> rxyz_;  ///< rx,ry,rz targets and their offsets
+  std::string conf_text_;                            ///< last configuration text and its parse
+  Configuration conf_;
+  std::string memo_ref_;  ///< last frame reference, its index and p_.frames.size() then
+  int memo_index_{-1};
+  std::size_t memo_frames_{0};
+
+  /// The members of a target by JMember (the first of repeated keys); unknown keys refused.
+  Members members(const JValue& o) const {
+    Members m{};
+    const std::vector<std::string>& known = jsonTargetMembers();
+    for (std::size_t i = 0; i < o.keys.size(); ++i) {
+      const auto it = std::find(known.begin(), known.end(), o.keys[i]);
+      if (it == known.end()) checkMembers(f_, o, known, "a target");
+      const auto k = static_cast<std::size_t>(it - known.begin());
+      if (m[k] == nullptr) m[k] = &o.items[i];
+    }
+    return m;
+  }
+
+  NumberField field(const JValue& v) const {
+    if (v.kind != JValue::kNumber) failAt(f_, v.begin, "expected a number");
+    NumberField nf;
+    nf.file = 0;
+    nf.offset = v.begin;
+    nf.length = v.end - v.begin;
+    nf.value = v.number;
+    return nf;
+  }
+
+  /// Fields a..c of `m` into out[0..2] when all three are given.
+  bool triple(const Members& m, JMember a, std::array<NumberField, 4>& out) const {
+    if (m[a] == nullptr || m[a + 1] == nullptr || m[a + 2] == nullptr) return false;
+    for (std::size_t k = 0; k < 3; ++k) out[k] = field(*m[a + k]);
+    return true;
+  }
+
+  void position(const Members& m, Target& t) const {
+    if (const JValue* pos = m[kJPosition]) {
+      if (pos->items.size() != 3) failAt(f_, pos->begin, "position_mm needs 3 numbers");
+      for (std::size_t k = 0; k < 3; ++k) t.pos[k] = field(pos->items[k]);
+    } else if (m[kJX] != nullptr && m[kJY] != nullptr && m[kJZ] != nullptr) {
+      t.pos[0] = field(*m[kJX]);
+      t.pos[1] = field(*m[kJY]);
+      t.pos[2] = field(*m[kJZ]);
+    }
+  }
+
+  void rotation(const Members& m, Target& t, std::uint32_t begin) {
+    if (const JValue* q = m[kJQuaternion]) {
+      if (q->items.size() != 4) failAt(f_, q->begin, "quaternion_wxyz needs 4 numbers");
+      for (std::size_t k = 0; k < 4; ++k) t.rot[k] = field(q->items[k]);
+      t.orientation = Orientation::kQuaternion;
+    } else if (triple(m, kJA, t.rot)) {
+      t.orientation = Orientation::kKukaAbc;
+    } else if (triple(m, kJW, t.rot)) {
+      t.orientation = Orientation::kFanucWpr;
+    } else if (triple(m, kJRx, t.rot)) {
+      t.orientation = Orientation::kXyzIntrinsic;  // convention set in finish()
+      rxyz_.emplace_back(static_cast<int>(p_.target_list.size()), begin);
+    }
+  }
+
+  void axes(const Members& m, Target& t) const {
+    if (const JValue* j = m[kJJoints]) {
+      if (j->items.size() > 6) failAt(f_, j->begin, "joints_deg holds at most 6 values");
+      for (std::size_t k = 0; k < j->items.size(); ++k) t.joints[k] = field(j->items[k]);
+    }
+    if (const JValue* e = m[kJExternal]) {
+      for (std::size_t k = 0; k < e->items.size() && k < 6; ++k) t.ext[k] = field(e->items[k]);
+    }
+  }
+
+  const Configuration& configuration(const std::string& text) {
+    if (text != conf_text_ || conf_text_.empty()) {
+      conf_text_ = text;
+      conf_ = parseConfigurationText(conf_text_);
+    }
+    return conf_;
+  }
+
+  /// The motion of the target appended last (its frames come in finish()).
+  void motion(const Members& m, int line) {
+    Motion mo;
+    mo.instruction = m[kJMotion] != nullptr ? m[kJMotion]->str : "target";
+    const std::string u = upper(mo.instruction);
+    mo.type = (u == "J" || u == "PTP" || u == "MOVEJ" || u == "MOVEABSJ") ? MotionType::kJoint
+                                                                          : MotionType::kLinear;
+    mo.file = 0;
+    mo.line = line;
+    if (const JValue* s = m[kJSpeed]; s != nullptr && s->kind == JValue::kNumber)
+      mo.speed_mm_s = s->number;
+    if (const JValue* s = m[kJFine]; s != nullptr)
+      mo.fine = f_.bytes.compare(s->begin, 4, "true") == 0;
+    mo.target = static_cast<int>(p_.target_list.size() - 1);
+    p_.target_list.back().uses.push_back(static_cast<int>(p_.motions.size()));
+    p_.motions.push_back(std::move(mo));
+  }
+
+  /// internFrame of the frame `ref` names; the last answer reused while no frame was added.
+  int frameIndex(const std::unordered_map<std::string, Frame>& frames, const std::string& ref) {
+    if (memo_index_ >= 0 && memo_frames_ == p_.frames.size() && memo_ref_ == ref)
+      return memo_index_;
+    const auto it = frames.find(upper(ref));
+    memo_index_ = internFrame(
+        p_, it != frames.end() ? it->second : Frame{ref, false, Pose::Identity(), -1, 0});
+    memo_ref_ = ref;
+    memo_frames_ = p_.frames.size();
+    return memo_index_;
+  }
+};
+
+}  // namespace
+
 void parseJson(Program& p) {
   const SourceFile& f = p.files[0];
-  const JValue root = JsonParser(f).parse();
+  JsonTargets targets(p);
+  const JValue root = JsonParser(f, [&targets](const JValue& o) { targets.target(o); }).parse();
   if (root.kind != JValue::kObject) failAt(f, root.begin, "a target list must be a JSON object");
   checkMembers(f, root, jsonRootMembers(), "a JSON target list");
-  const JValue* targets = root.get("targets");
-  if (targets == nullptr || targets->kind != JValue::kArray)
+  const JValue* list = root.get("targets");
+  if (list == nullptr || list->kind != JValue::kArray)
     failAt(f, root.begin, "a target list needs \"targets\": [...]");
   std::unordered_map<std::string, Frame> frames;
   if (const JValue* fr = root.get("frames"); fr != nullptr && fr->kind == JValue::kArray) {
@@ -923,100 +1192,7 @@ void parseJson(Program& p) {
   }
   std::string euler;
   if (const JValue* e = root.get("euler"); e != nullptr) euler = upper(e->str);
-  auto field = [&](const JValue& v) {
-    if (v.kind != JValue::kNumber) failAt(f, v.begin, "expected a number");
-    NumberField nf;
-    nf.file = 0;
-    nf.offset = v.begin;
-    nf.length = v.end - v.begin;
-    nf.value = v.number;
-    return nf;
-  };
-  for (const JValue& o : targets->items) {
-    if (o.kind != JValue::kObject) failAt(f, o.begin, "each target must be an object");
-    checkMembers(f, o, jsonTargetMembers(), "a target");
-    Target t;
-    t.file = 0;
-    t.line = f.lineOf(o.begin);
-    if (const JValue* id = o.get("id")) t.name = id->str;
-    const JValue* pos = o.get("position_mm");
-    const JValue* q = o.get("quaternion_wxyz");
-    if (pos != nullptr) {
-      if (pos->items.size() != 3) failAt(f, pos->begin, "position_mm needs 3 numbers");
-      for (std::size_t k = 0; k < 3; ++k) t.pos[k] = field(pos->items[k]);
-    } else if (o.get("x") != nullptr && o.get("y") != nullptr && o.get("z") != nullptr) {
-      t.pos[0] = field(*o.get("x"));
-      t.pos[1] = field(*o.get("y"));
-      t.pos[2] = field(*o.get("z"));
-    }
-    if (q != nullptr) {
-      if (q->items.size() != 4) failAt(f, q->begin, "quaternion_wxyz needs 4 numbers");
-      for (std::size_t k = 0; k < 4; ++k) t.rot[k] = field(q->items[k]);
-      t.orientation = Orientation::kQuaternion;
-    } else if (o.get("a") != nullptr && o.get("b") != nullptr && o.get("c") != nullptr) {
-      t.rot[0] = field(*o.get("a"));
-      t.rot[1] = field(*o.get("b"));
-      t.rot[2] = field(*o.get("c"));
-      t.orientation = Orientation::kKukaAbc;
-    } else if (o.get("w") != nullptr && o.get("p") != nullptr && o.get("r") != nullptr) {
-      t.rot[0] = field(*o.get("w"));
-      t.rot[1] = field(*o.get("p"));
-      t.rot[2] = field(*o.get("r"));
-      t.orientation = Orientation::kFanucWpr;
-    } else if (o.get("rx") != nullptr && o.get("ry") != nullptr && o.get("rz") != nullptr) {
-      t.rot[0] = field(*o.get("rx"));
-      t.rot[1] = field(*o.get("ry"));
-      t.rot[2] = field(*o.get("rz"));
-      if (euler == "ZYX" || euler == "XYZ_FIXED") {
-        t.orientation = Orientation::kFanucWpr;
-      } else if (euler == "XYZ_INTRINSIC") {
-        t.orientation = Orientation::kXyzIntrinsic;
-      } else {
-        failAt(f, o.begin,
-               "rx,ry,rz need a declared \"euler\": \"ZYX\" | \"XYZ_fixed\" | \"XYZ_intrinsic\"");
-      }
-    }
-    if (const JValue* j = o.get("joints_deg"); j != nullptr) {
-      if (j->items.size() > 6) failAt(f, j->begin, "joints_deg holds at most 6 values");
-      for (std::size_t k = 0; k < j->items.size(); ++k) t.joints[k] = field(j->items[k]);
-    }
-    if (const JValue* e = o.get("external_axes"); e != nullptr) {
-      for (std::size_t k = 0; k < e->items.size() && k < 6; ++k) t.ext[k] = field(e->items[k]);
-    }
-    const bool cart = t.pos[0].present() && t.orientation != Orientation::kNone;
-    if (!cart && !std::as_const(t).joints[0].present())
-      failAt(f, o.begin, "target has neither a pose nor joints_deg");
-    t.kind = cart ? TargetKind::kCartesian : TargetKind::kJoint;
-    if (const JValue* c = o.get("config")) t.config = parseConfigurationText(c->str);
-    if (const JValue* fr = o.get("frame")) t.frame_ref = fr->str;
-    if (const JValue* tl = o.get("tool")) t.tool_ref = tl->str;
-    Motion m;
-    const JValue* mv = o.get("motion");
-    m.instruction = mv != nullptr ? mv->str : "target";
-    const std::string u = upper(m.instruction);
-    m.type = (u == "J" || u == "PTP" || u == "MOVEJ" || u == "MOVEABSJ") ? MotionType::kJoint
-                                                                         : MotionType::kLinear;
-    m.file = 0;
-    m.line = t.line;
-    if (const JValue* s = o.get("speed_mm_s"); s != nullptr && s->kind == JValue::kNumber)
-      m.speed_mm_s = s->number;
-    if (const JValue* s = o.get("fine"); s != nullptr)
-      m.fine = f.bytes.compare(s->begin, 4, "true") == 0;
-    if (!t.frame_ref.empty()) {
-      const auto it = frames.find(upper(t.frame_ref));
-      m.base = internFrame(
-          p, it != frames.end() ? it->second : Frame{t.frame_ref, false, Pose::Identity(), -1, 0});
-    }
-    if (!t.tool_ref.empty()) {
-      const auto it = frames.find(upper(t.tool_ref));
-      m.tool = internFrame(
-          p, it != frames.end() ? it->second : Frame{t.tool_ref, false, Pose::Identity(), -1, 0});
-    }
-    p.target_list.push_back(std::move(t));
-    m.target = static_cast<int>(p.target_list.size() - 1);
-    p.target_list.back().uses.push_back(static_cast<int>(p.motions.size()));
-    p.motions.push_back(std::move(m));
-  }
+  targets.finish(frames, euler);
 }
 
 }  // namespace roprec::postproc

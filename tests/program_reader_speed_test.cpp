@@ -1,0 +1,145 @@
+// The fast paths of the CSV/JSON/RAPID/TP readers (issue 15: program read + write >= 100 MB/s):
+// JSON targets streamed before the document's "frames"/"euler" are known, CSV lookups memoised
+// over runs of equal rows. Expectations are hand-written closed forms, not the code's output.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <optional>
+#include <string>
+
+#include "compensator/support/error.hpp"
+#include "postproc/program.hpp"
+
+namespace {
+
+using namespace roprec::postproc;
+using roprec::InputError;
+
+std::optional<InputError> readError(Dialect d, const std::string& text) {
+  try {
+    (void)parseProgram(d, "t.in", text, std::nullopt, "");
+  } catch (const InputError& e) {
+    return e;
+  }
+  return std::nullopt;
+}
+
+// Rz(r) Ry(p) Rx(w) for w = 90°, p = r = 0: x stays, y -> z, z -> -y.
+void expectRx90(const roprec::Pose& T) {
+  const roprec::Mat3 R = T.linear();
+  EXPECT_NEAR(R(0, 0), 1.0, 1e-12);
+  EXPECT_NEAR(R(2, 1), 1.0, 1e-12);
+  EXPECT_NEAR(R(1, 2), -1.0, 1e-12);
+  EXPECT_NEAR(R(1, 1), 0.0, 1e-12);
+}
+
+TEST(ProgramReaderSpeed, JsonFramesAndEulerAfterTheTargetsStillApply) {
+  const std::string after =
+      "{\"targets\": [\n"
+      "  {\"id\": \"P1\", \"position_mm\": [1, 2, 3], \"rx\": 90, \"ry\": 0, \"rz\": 0,"
+      " \"frame\": \"fx\", \"tool\": \"spindle\"},\n"
+      "  {\"id\": \"P2\", \"position_mm\": [4, 5, 6], \"quaternion_wxyz\": [1, 0, 0, 0],"
+      " \"frame\": \"FX\"}\n"
+      "],\n"
+      " \"frames\": [{\"name\": \"fx\", \"position_mm\": [10, 20, 30],"
+      " \"quaternion_wxyz\": [0.7071067811865476, 0, 0, 0.7071067811865476]}],\n"
+      " \"euler\": \"ZYX\"}\n";
+  const Program p = parseProgram(Dialect::kJson, "t.json", after, std::nullopt, "");
+  ASSERT_EQ(p.targets().size(), 2u);
+  ASSERT_EQ(p.motions.size(), 2u);
+  const Target& t1 = p.targets()[0];
+  EXPECT_EQ(t1.orientation, Orientation::kFanucWpr);
+  expectRx90(targetPose(p, t1));
+  EXPECT_NEAR(targetPose(p, t1).translation().y(), 0.002, 1e-15);
+  for (const Target& t : p.targets()) {
+    const Frame* base = targetBase(p, t);
+    ASSERT_NE(base, nullptr) << t.name;
+    EXPECT_TRUE(base->resolved) << t.name;
+    EXPECT_NEAR(base->pose.translation().z(), 0.030, 1e-15);
+    EXPECT_NEAR(base->pose.linear()(1, 0), 1.0, 1e-12);  // Rz(90°): x -> y
+  }
+  const Frame* tool = targetTool(p, t1);
+  ASSERT_NE(tool, nullptr);
+  EXPECT_FALSE(tool->resolved);  // "spindle" is not declared
+  EXPECT_EQ(tool->ref, "spindle");
+  EXPECT_EQ(renderFiles(p)[0], after);
+}
+
+TEST(ProgramReaderSpeed, JsonRxyzWithoutEulerFailsAtTheFirstSuchTarget) {
+  const auto e = readError(Dialect::kJson,
+                           "{\"targets\": [\n"
+                           "  {\"id\": \"P1\", \"joints_deg\": [0, 0, 0, 0, 0, 0]},\n"
+                           "  {\"id\": \"P2\", \"position_mm\": [1, 2, 3], \"rx\": 1, \"ry\": 2,"
+                           " \"rz\": 3},\n"
+                           "  {\"id\": \"P3\", \"position_mm\": [1, 2, 3], \"rx\": 1, \"ry\": 2,"
+                           " \"rz\": 3}\n"
+                           "]}\n");
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->line(), 3);
+  EXPECT_NE(e->message().find("need a declared \"euler\""), std::string::npos) << e->what();
+}
+
+TEST(ProgramReaderSpeed, JsonTargetsOfDifferentShapesInOneListKeepTheirOwnMembers) {
+  // The streamed element's buffers are reused: a short target after a long one must not see the
+  // long one's members.
+  const std::string text =
+      "{\"targets\": [\n"
+      "  {\"id\": \"A\", \"position_mm\": [1, 2, 3], \"quaternion_wxyz\": [1, 0, 0, 0],"
+      " \"joints_deg\": [1, 2, 3, 4, 5, 6], \"config\": \"S 2 T 35\", \"motion\": \"J\"},\n"
+      "  {\"id\": \"B\", \"joints_deg\": [7, 8]},\n"
+      "  {\"id\": \"C\", \"x\": 9, \"y\": 8, \"z\": 7, \"a\": 90, \"b\": 0, \"c\": 0}\n"
+      "]}\n";
+  const Program p = parseProgram(Dialect::kJson, "t.json", text, std::nullopt, "");
+  ASSERT_EQ(p.targets().size(), 3u);
+  const Target& b = p.targets()[1];
+  EXPECT_EQ(b.kind, TargetKind::kJoint);
+  EXPECT_DOUBLE_EQ(std::as_const(b).joints[1].value, 8.0);
+  EXPECT_FALSE(std::as_const(b).joints[2].present());
+  EXPECT_FALSE(b.config.present());
+  EXPECT_EQ(p.motions[0].type, MotionType::kJoint);
+  EXPECT_EQ(p.motions[1].type, MotionType::kLinear);
+  const Target& c = p.targets()[2];
+  EXPECT_EQ(c.orientation, Orientation::kKukaAbc);
+  EXPECT_DOUBLE_EQ(c.pos[2].value, 7.0);
+  // Rz(90°): x -> y
+  EXPECT_NEAR(targetPose(p, c).linear()(1, 0), 1.0, 1e-12);
+  EXPECT_EQ(p.files[0].bytes.substr(c.pos[0].offset, c.pos[0].length), "9");
+}
+
+TEST(ProgramReaderSpeed, CsvFrameRedeclaredMidFileAppliesToTheRowsAfterIt) {
+  const std::string text =
+      "# frame F: 0 0 0 1 0 0 0\n"
+      "id,x,y,z,a,b,c,frame,conf\n"
+      "T1,1,2,3,0,0,0,F,S 2 T 35\n"
+      "T2,1,2,3,0,0,0,F,S 2 T 35\n"
+      "# frame F: 100 0 0 1 0 0 0\n"
+      "T3,1,2,3,0,0,0,F,S 6 T 1\n"
+      "T4,1,2,3,0,0,0,F,S 2 T 35\n";
+  const Program p = parseProgram(Dialect::kCsv, "t.csv", text, std::nullopt, "");
+  ASSERT_EQ(p.targets().size(), 4u);
+  const double expect_x[] = {0.0, 0.0, 0.1, 0.1};
+  const int expect_s[] = {2, 2, 6, 2};
+  const int expect_t[] = {35, 35, 1, 35};
+  for (std::size_t i = 0; i < 4; ++i) {
+    const Target& t = p.targets()[i];
+    const Frame* base = targetBase(p, t);
+    ASSERT_NE(base, nullptr);
+    EXPECT_TRUE(base->resolved);
+    EXPECT_NEAR(base->pose.translation().x(), expect_x[i], 1e-15) << t.name;
+    EXPECT_EQ(t.config.status, expect_s[i]) << t.name;
+    EXPECT_EQ(t.config.turn, expect_t[i]) << t.name;
+    EXPECT_EQ(t.line, static_cast<int>(i < 2 ? i + 3 : i + 4)) << t.name;
+  }
+  EXPECT_EQ(renderFiles(p)[0], text);
+}
+
+TEST(ProgramReaderSpeed, CsvEditedPositionKeepsItsNeighboursBytes) {
+  const std::string text = "id,x,y,z,a,b,c\nT1,1.500,2,3,0,0,0\nT2,4,5,6,0,0,0\n";
+  Program p = parseProgram(Dialect::kCsv, "t.csv", text, std::nullopt, "");
+  roprec::Pose T = targetPose(p, p.targets()[0]);
+  T.translation().x() = 0.0025;  // 2.5 mm
+  ASSERT_TRUE(replaceTargetPose(p, 0, T).ok);
+  EXPECT_EQ(renderFiles(p)[0], "id,x,y,z,a,b,c\nT1,2.500,2,3,0,0,0\nT2,4,5,6,0,0,0\n");
+}
+
+}  // namespace
