@@ -1,6 +1,7 @@
 /// KUKA KRL reader (`.src` + `.dat`), docs/programs.md §2.
 #include <algorithm>
 #include <cmath>
+#include <span>
 #include <unordered_map>
 
 #include "compensator/support/c_format.hpp"
@@ -12,21 +13,23 @@ namespace roprec::postproc {
 namespace {
 
 struct Component {
-  std::string name;  // upper case
+  std::string_view name;  // as written (compare with iequals)
   std::uint32_t begin{0};
   std::uint32_t end{0};
   enum Kind { kNumber, kLiteral, kString, kOther, kNested } kind{kOther};
   double value{0};
 };
 
+// An aggregate's components live in the reader's scratch vector (no allocation per aggregate):
+// `comps` is valid until the next parseAggregate() call.
 struct Aggregate {
-  std::string type;  // upper case, "" when untyped
-  std::vector<Component> comps;
+  std::string_view type;  // as written, "" when untyped
+  std::span<const Component> comps;
   std::uint32_t open{0};
   std::uint32_t close{0};
   [[nodiscard]] const Component* find(std::string_view n) const {
     for (const Component& c : comps) {
-      if (c.name == n) return &c;
+      if (iequals(c.name, n)) return &c;
     }
     return nullptr;
   }
@@ -105,18 +108,20 @@ class KrlReader {
   Program& p_;
   LexOptions lex_;
   int file_{0};
-  std::unordered_map<std::string, int> targets_;  // upper name -> index
+  NameMap<int> targets_;  // name -> index
   struct Fdat {
     int tool{-1};
     int base{-1};
     bool tcp{false};
   };
-  std::unordered_map<std::string, Fdat> fdats_;
-  std::unordered_map<std::string, double> ldat_vel_;  // m/s
-  // Frames declared by name (upper case): FRAME declarations live in frame_decls_ (value
+  NameMap<Fdat> fdats_;
+  NameMap<double> ldat_vel_;  // m/s
+  // Frames declared by name: FRAME declarations live in frame_decls_ (value
   // -1 - index); POS/E6POS declarations are targets too and are read back from the target (value
   // = target index), so a 100,000-point .dat keeps no second copy of its poses.
-  std::unordered_map<std::string, int> named_frames_;
+  NameMap<int> named_frames_;
+  std::vector<Component> comps_;  // parseAggregate's scratch (see Aggregate)
+  int aggregate_depth_{0};
   std::vector<Frame> frame_decls_;
   std::unordered_map<int, Frame> base_data_;
   std::unordered_map<int, Frame> tool_data_;
@@ -164,12 +169,22 @@ class KrlReader {
   }
 
   Aggregate parseAggregate(TokenCursor& c) {
+    if (aggregate_depth_ == 0) comps_.clear();
+    ++aggregate_depth_;
+    const std::size_t first = comps_.size();
+    Aggregate a = parseComponents(c);
+    --aggregate_depth_;
+    a.comps = std::span<const Component>(comps_).subspan(first);
+    return a;
+  }
+
+  // Components into comps_ (a nested aggregate's own components are dropped again).
+  Aggregate parseComponents(TokenCursor& c) {
     Aggregate a;
-    a.comps.reserve(12);           // E6POS: X..C, S, T, E1..E6 in one allocation
     const Token& open = c.next();  // '{'
     a.open = open.offset;
     if (c.isKind(TokenKind::kIdentifier) && c.isPunct(':', 1)) {
-      a.type = upper(c.text());
+      a.type = c.text();
       c.next();
       c.next();
     }
@@ -188,18 +203,20 @@ class KrlReader {
       Component comp;
       if (!c.isKind(TokenKind::kIdentifier))
         fail(c.peek().offset, "expected a component name in aggregate");
-      comp.name = upper(c.text());
+      comp.name = c.text();
       c.next();
       if (c.isPunct('[')) {  // POINT2[]
         while (!c.done() && !c.isPunct(']') && !c.isKind(TokenKind::kNewline)) c.next();
         if (c.isPunct(']')) c.next();
       }
       if (c.isPunct('{')) {
+        const std::size_t mark = comps_.size();
         const Aggregate nested = parseAggregate(c);
+        comps_.resize(mark);
         comp.kind = Component::kNested;
         comp.begin = nested.open;
         comp.end = nested.close + 1;
-        a.comps.push_back(comp);
+        comps_.push_back(comp);
         continue;
       }
       const std::size_t start = c.index();
@@ -208,7 +225,7 @@ class KrlReader {
         c.next();
       }
       const std::size_t stop = c.index();
-      if (stop == start) fail(c.peek().offset, "component " + comp.name + " has no value");
+      if (stop == start) fail(c.peek().offset, "component " + upper(comp.name) + " has no value");
       const SourceFile& f = file();
       const Token& t0 = f.tokens[start];
       const Token& tl = f.tokens[stop - 1];
@@ -223,7 +240,8 @@ class KrlReader {
         const std::string_view txt =
             std::string_view(f.bytes).substr(comp.begin, comp.end - comp.begin);
         if (!one)
-          fail(comp.begin, "broken number '" + std::string(txt) + "' in component " + comp.name);
+          fail(comp.begin,
+               "broken number '" + std::string(txt) + "' in component " + upper(comp.name));
         const auto v = parseNumber(txt);
         if (!v) fail(comp.begin, "broken number '" + std::string(txt) + "'");
         comp.kind = Component::kNumber;
@@ -239,7 +257,7 @@ class KrlReader {
       } else {
         comp.kind = Component::kOther;
       }
-      a.comps.push_back(comp);
+      comps_.push_back(comp);
     }
   }
 
@@ -252,60 +270,79 @@ class KrlReader {
     return f;
   }
 
+  // Slot of a position component in a target: X Y Z A B C, S T, A1..A6, E1..E6 (kNone: other).
+  enum class Slot { kNone, kPos, kRot, kStatus, kTurn, kJoint, kExt };
+  struct SlotIndex {
+    Slot slot{Slot::kNone};
+    std::size_t k{0};
+  };
+  static SlotIndex slotOf(std::string_view n) {
+    if (n.size() == 1) {
+      const char c = asciiUpper(n[0]);
+      if (c >= 'X' && c <= 'Z') return {Slot::kPos, static_cast<std::size_t>(c - 'X')};
+      if (c >= 'A' && c <= 'C') return {Slot::kRot, static_cast<std::size_t>(c - 'A')};
+      if (c == 'S') return {Slot::kStatus, 0};
+      if (c == 'T') return {Slot::kTurn, 0};
+    } else if (n.size() == 2 && n[1] >= '1' && n[1] <= '6') {
+      const char c = asciiUpper(n[0]);
+      const auto k = static_cast<std::size_t>(n[1] - '1');
+      if (c == 'A') return {Slot::kJoint, k};
+      if (c == 'E') return {Slot::kExt, k};
+    }
+    return {};
+  }
+
+  // Stores component c (a number or a KRL literal) in its slot of t.
+  void setComponent(Target& t, const Component& c, SlotIndex s) {
+    if (c.kind == Component::kLiteral && s.slot != Slot::kStatus && s.slot != Slot::kTurn)
+      fail(c.begin, "component " + upper(c.name) + " is not a number");
+    const NumberField f = field(c);
+    switch (s.slot) {
+      case Slot::kPos:
+        t.pos[s.k] = f;
+        break;
+      case Slot::kRot:
+        t.rot[s.k] = f;
+        break;
+      case Slot::kStatus:
+      case Slot::kTurn:
+        if (c.value < 0 || c.value != std::floor(c.value) || c.value > 1e6)
+          fail(c.begin, upper(c.name) + " must be a non-negative integer");
+        (s.slot == Slot::kStatus ? t.status_field : t.turn_field) = f;
+        (s.slot == Slot::kStatus ? t.config.status : t.config.turn) = toInt(c.value);
+        break;
+      case Slot::kJoint:
+        t.joints[s.k] = f;
+        break;
+      case Slot::kExt:
+        t.ext[s.k] = f;
+        break;
+      case Slot::kNone:
+        break;
+    }
+  }
+
   // Builds a target from a position aggregate; returns its index.
-  int makeTarget(const Aggregate& a, const std::string& name, const std::string& type) {
-    Target t;
-    t.name = name;
+  int makeTarget(const Aggregate& a, std::string_view name, std::string_view type) {
+    Target& t = p_.target_list.emplace_back();
+    t.name = std::string(name);
     t.file = file_;
     t.line = file().lineOf(a.open);
     t.aggregate_end = a.close;
     t.config.vendor = Vendor::kKuka;
-    const bool joint =
-        type == "AXIS" || type == "E6AXIS" || (type.empty() && a.find("A1") != nullptr);
+    const bool joint = iequals(type, "AXIS") || iequals(type, "E6AXIS") ||
+                       (type.empty() && a.find("A1") != nullptr);
     t.kind = joint ? TargetKind::kJoint : TargetKind::kCartesian;
     t.orientation = joint ? Orientation::kNone : Orientation::kKukaAbc;
     for (const Component& c : a.comps) {
-      const std::string& n = c.name;
+      const SlotIndex s = slotOf(c.name);
       if (c.kind != Component::kNumber && c.kind != Component::kLiteral) {
-        if (n == "X" || n == "Y" || n == "Z" || n == "A" || n == "B" || n == "C" || n == "S" ||
-            n == "T" ||
-            (n.size() == 2 && (n[0] == 'A' || n[0] == 'E') && n[1] >= '1' && n[1] <= '6')) {
-          fail(c.begin, "component " + n + " is not a number");
-        }
+        if (s.slot != Slot::kNone) fail(c.begin, "component " + upper(c.name) + " is not a number");
         continue;
       }
-      const NumberField f = field(c);
-      if (c.kind == Component::kLiteral && n != "S" && n != "T")
-        fail(c.begin, "component " + n + " is not a number");
-      if (n == "X")
-        t.pos[0] = f;
-      else if (n == "Y")
-        t.pos[1] = f;
-      else if (n == "Z")
-        t.pos[2] = f;
-      else if (n == "A")
-        t.rot[0] = f;
-      else if (n == "B")
-        t.rot[1] = f;
-      else if (n == "C")
-        t.rot[2] = f;
-      else if (n == "S" || n == "T") {
-        if (c.value < 0 || c.value != std::floor(c.value) || c.value > 1e6)
-          fail(c.begin, n + " must be a non-negative integer");
-        if (n == "S") {
-          t.status_field = f;
-          t.config.status = toInt(c.value);
-        } else {
-          t.turn_field = f;
-          t.config.turn = toInt(c.value);
-        }
-      } else if (n.size() == 2 && n[1] >= '1' && n[1] <= '6') {
-        const auto k = static_cast<std::size_t>(n[1] - '1');
-        if (n[0] == 'A') t.joints[k] = f;
-        if (n[0] == 'E') t.ext[k] = f;
-      }
+      setComponent(t, c, s);
     }
-    if (!joint) {
+    if (!joint && !file().significant9) {
       for (const NumberField* f :
            {&t.pos[0], &t.pos[1], &t.pos[2], &t.rot[0], &t.rot[1], &t.rot[2]}) {
         if (f->present() &&
@@ -314,9 +351,8 @@ class KrlReader {
         }
       }
     }
-    p_.target_list.push_back(std::move(t));
     const int idx = static_cast<int>(p_.target_list.size() - 1);
-    if (!name.empty()) targets_[upper(name)] = idx;
+    if (!name.empty()) targets_[name] = idx;
     return idx;
   }
 
@@ -343,8 +379,9 @@ class KrlReader {
     return T;
   }
 
-  static bool isPositionType(const std::string& t) {
-    return t == "E6POS" || t == "POS" || t == "FRAME" || t == "E6AXIS" || t == "AXIS";
+  static bool isPositionType(std::string_view t) {
+    return iequals(t, "E6POS") || iequals(t, "POS") || iequals(t, "FRAME") ||
+           iequals(t, "E6AXIS") || iequals(t, "AXIS");
   }
 
   // DECL [GLOBAL] [CONST] TYPE NAME[...] [= value]  (DECL optional for predefined types)
@@ -360,13 +397,14 @@ class KrlReader {
       c.seek(save);
       return decl;
     }
-    const std::string type = upper(c.text());
-    if (!decl && !isPositionType(type) && type != "FDAT" && type != "LDAT" && type != "PDAT") {
+    const std::string_view type = c.text();
+    if (!decl && !isPositionType(type) && !iequals(type, "FDAT") && !iequals(type, "LDAT") &&
+        !iequals(type, "PDAT")) {
       c.seek(save);
       return false;
     }
     c.next();
-    const std::string name(c.text());
+    const std::string_view name = c.text();
     const std::size_t name_off = c.peek().offset;
     c.next();
     if (c.isPunct('[')) return true;  // arrays: runtime values
@@ -374,26 +412,27 @@ class KrlReader {
     c.next();
     if (!c.isPunct('{')) return true;
     const Aggregate a = parseAggregate(c);
-    if (type == "FRAME") {
-      frame_decls_.push_back(Frame{name, true, poseOf(a), file_, file().lineOf(name_off)});
-      named_frames_[upper(name)] = -static_cast<int>(frame_decls_.size());
+    if (iequals(type, "FRAME")) {
+      frame_decls_.push_back(
+          Frame{std::string(name), true, poseOf(a), file_, file().lineOf(name_off)});
+      named_frames_[name] = -static_cast<int>(frame_decls_.size());
     } else if (isPositionType(type)) {
       const int idx = makeTarget(a, name, type);
-      if (type == "POS" || type == "E6POS") named_frames_[upper(name)] = idx;
-    } else if (type == "FDAT") {
+      if (iequals(type, "POS") || iequals(type, "E6POS")) named_frames_[name] = idx;
+    } else if (iequals(type, "FDAT")) {
       Fdat fd;
       if (const Component* t = a.find("TOOL_NO"); t != nullptr && t->kind == Component::kNumber)
         fd.tool = toInt(t->value);
       if (const Component* b = a.find("BASE_NO"); b != nullptr && b->kind == Component::kNumber)
         fd.base = toInt(b->value);
       if (const Component* ipo = a.find("IPO_FRAME")) {
-        fd.tcp = upper(std::string_view(file().bytes).substr(ipo->begin, ipo->end - ipo->begin))
-                     .find("TCP") != std::string::npos;
+        fd.tcp = icontains(std::string_view(file().bytes).substr(ipo->begin, ipo->end - ipo->begin),
+                           "TCP");
       }
-      fdats_[upper(name)] = fd;
-    } else if (type == "LDAT") {
+      fdats_[name] = fd;
+    } else if (iequals(type, "LDAT")) {
       if (const Component* v = a.find("VEL"); v != nullptr && v->kind == Component::kNumber)
-        ldat_vel_[upper(name)] = v->value;
+        ldat_vel_[name] = v->value;
     }
     return true;
   }
@@ -464,8 +503,8 @@ class KrlReader {
           term = base_;
         } else if (n == "$TOOL") {
           term = tool_;
-        } else if (const auto nf = named_frames_.find(n); nf != named_frames_.end()) {
-          term = namedFrame(nf->second);
+        } else if (const int* nf = named_frames_.find(n)) {
+          term = namedFrame(*nf);
         } else {
           term = Frame{std::string(file().text(file().tokens[c.index() - 1])), false,
                        Pose::Identity(), -1, 0};
@@ -546,9 +585,8 @@ class KrlReader {
       return makeTarget(a, "", a.type);
     }
     if (e - b == 1 && c.isKind(TokenKind::kIdentifier)) {
-      const std::string n = upper(c.text());
-      const auto it = targets_.find(n);
-      if (it != targets_.end()) return it->second;
+      const std::string_view n = c.text();
+      if (const int* it = targets_.find(n)) return *it;
       if (n[0] == '$') {
         m.derivation = "system variable";
         return -1;
@@ -630,9 +668,8 @@ class KrlReader {
           const std::string_view w = f.text(f.tokens[q]);
           if ((iequals(w, "STOOL2") || iequals(w, "SBASE") || iequals(w, "SFRAME")) &&
               is1(f.text(f.tokens[q + 1]), '(')) {
-            const auto it = fdats_.find(upper(f.text(f.tokens[q + 2])));
-            if (it != fdats_.end()) {
-              Fdat fd = it->second;
+            if (const Fdat* it = fdats_.find(f.text(f.tokens[q + 2]))) {
+              Fdat fd = *it;
               if (iequals(w, "SBASE")) fd.tool = -1;
               if (iequals(w, "STOOL2")) fd.base = -1;
               applyFdat(fd, t.offset);
@@ -680,7 +717,7 @@ class KrlReader {
       return;
     }
     if (c.isIdent("DECL") || (c.isKind(TokenKind::kIdentifier) &&
-                              c.isKind(TokenKind::kIdentifier, 1) && isPositionType(upper(w)))) {
+                              c.isKind(TokenKind::kIdentifier, 1) && isPositionType(w))) {
       tryDecl(c);
       return;
     }
@@ -731,9 +768,8 @@ class KrlReader {
           if (v.isPunct('{')) {
             fdat_ = fdatFromAggregate(parseAggregate(v));
           } else if (v.isKind(TokenKind::kIdentifier)) {
-            const auto it = fdats_.find(upper(v.text()));
-            if (it != fdats_.end()) {
-              fdat_ = it->second;
+            if (const Fdat* it = fdats_.find(v.text())) {
+              fdat_ = *it;
             } else {
               fdat_ = Fdat{};
               unresolved(std::string(v.text()), off, "frame data set not declared");
@@ -744,8 +780,7 @@ class KrlReader {
         if (n == "LDAT_ACT" && eq == b + 1) {
           TokenCursor v(f, eq + 1, e);
           if (v.isKind(TokenKind::kIdentifier)) {
-            const auto it = ldat_vel_.find(upper(v.text()));
-            if (it != ldat_vel_.end()) vel_cp_ = it->second;
+            if (const double* it = ldat_vel_.find(v.text())) vel_cp_ = *it;
           } else if (v.isPunct('{')) {
             const Aggregate a = parseAggregate(v);
             if (const Component* vel = a.find("VEL");

@@ -3,6 +3,8 @@
 /// Byte-level tokenizer shared by the KRL, RAPID and TP readers. Tokens keep byte offsets into
 /// the verbatim file; nothing is copied or transcoded (non-ASCII bytes become kOther tokens).
 
+#include <algorithm>
+#include <cstdint>
 #include <string_view>
 #include <vector>
 
@@ -27,20 +29,94 @@ void lex(SourceFile& f, const LexOptions& o);
 std::size_t lexLine(const SourceFile& f, const LexOptions& o, std::size_t from,
                     std::vector<Token>& out);
 
-inline bool isIdentStart(char c) {
+constexpr bool isIdentStart(char c) {
   return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_' || c == '$';
 }
-inline bool isDigit(char c) { return c >= '0' && c <= '9'; }
-inline bool isIdentChar(char c) { return isIdentStart(c) || isDigit(c); }
+constexpr bool isDigit(char c) { return c >= '0' && c <= '9'; }
+constexpr bool isIdentChar(char c) { return isIdentStart(c) || isDigit(c); }
 /// `s == std::string_view(&c, 1)` without a length-generic compare (readers' punctuation tests).
 inline bool is1(std::string_view s, char c) { return s.size() == 1 && s[0] == c; }
 
+constexpr char asciiUpper(char c) {
+  return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c;
+}
 /// ASCII case-insensitive equality.
-bool iequals(std::string_view a, std::string_view b);
+inline bool iequals(std::string_view a, std::string_view b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (asciiUpper(a[i]) != asciiUpper(b[i])) return false;
+  }
+  return true;
+}
 /// ASCII upper case copy.
 std::string upper(std::string_view s);
+/// ASCII case-insensitive hash: FNV-1a (64 bit) over the upper-cased bytes; no allocation.
+inline std::uint64_t ihash(std::string_view s) {
+  std::uint64_t h = 1469598103934665603ULL;
+  for (const char c : s) h = (h ^ static_cast<unsigned char>(asciiUpper(c))) * 1099511628211ULL;
+  return h;
+}
 
-/// Cursor over a file's tokens with helpers for the recursive-descent readers.
+/// Map from names to V, ASCII case-insensitive, for the readers' symbol tables (100,000
+/// declarations: no node and no string allocated per name). Keys are views into bytes that
+/// outlive the map (the program's files). Open addressing, linear probing, load <= 1/2.
+template <class V>
+class NameMap {
+ public:
+  /// Room for n names without rehashing.
+  void reserve(std::size_t n) {
+    if (2 * n > slots_.size()) rehash(2 * n);
+  }
+  /// The value of `key`, V{} inserted when absent.
+  V& operator[](std::string_view key) {
+    if (2 * (size_ + 1) > slots_.size()) rehash(std::max<std::size_t>(16, 2 * slots_.size()));
+    const std::uint64_t h = ihash(key);
+    Slot& s = slots_[probe(key, h)];
+    if (!s.used) {
+      s = Slot{key, h, V{}, true};
+      ++size_;
+    }
+    return s.value;
+  }
+  /// The value of `key`; nullptr when absent.
+  [[nodiscard]] const V* find(std::string_view key) const {
+    if (slots_.empty()) return nullptr;
+    const Slot& s = slots_[probe(key, ihash(key))];
+    return s.used ? &s.value : nullptr;
+  }
+  [[nodiscard]] std::size_t size() const { return size_; }
+
+ private:
+  struct Slot {
+    std::string_view key;
+    std::uint64_t hash{0};
+    V value{};
+    bool used{false};
+  };
+  // The slot holding `key`, or the empty slot where it goes (slots_.size() is a power of two).
+  [[nodiscard]] std::size_t probe(std::string_view key, std::uint64_t h) const {
+    const std::size_t mask = slots_.size() - 1;
+    std::size_t i = static_cast<std::size_t>(h) & mask;
+    while (slots_[i].used && !(slots_[i].hash == h && iequals(slots_[i].key, key))) {
+      i = (i + 1) & mask;
+    }
+    return i;
+  }
+  void rehash(std::size_t want) {
+    std::size_t n = 16;
+    while (n < want) n *= 2;
+    std::vector<Slot> old(n);
+    old.swap(slots_);
+    for (Slot& s : old) {
+      if (s.used) slots_[probe(s.key, s.hash)] = std::move(s);
+    }
+  }
+  std::vector<Slot> slots_;
+  std::size_t size_{0};
+};
+
+/// Cursor over a file's tokens with helpers for the recursive-descent readers (inline: they run
+/// several times per token).
 class TokenCursor {
  public:
   TokenCursor(const SourceFile& f, std::size_t begin, std::size_t end)
@@ -48,12 +124,32 @@ class TokenCursor {
   [[nodiscard]] bool done() const { return i_ >= end_; }
   [[nodiscard]] std::size_t index() const { return i_; }
   void seek(std::size_t i) { i_ = i; }
-  [[nodiscard]] const Token& peek(std::size_t k = 0) const;
-  [[nodiscard]] std::string_view text(std::size_t k = 0) const;
-  [[nodiscard]] bool isPunct(char c, std::size_t k = 0) const;
-  [[nodiscard]] bool isIdent(std::string_view word, std::size_t k = 0) const;
-  [[nodiscard]] bool isKind(TokenKind kind, std::size_t k = 0) const;
-  const Token& next();
+  /// Token k ahead (a newline token past the end).
+  [[nodiscard]] const Token& peek(std::size_t k = 0) const {
+    static const Token kEnd{0, 0, TokenKind::kNewline};
+    return i_ + k < end_ ? f_.tokens[i_ + k] : kEnd;
+  }
+  [[nodiscard]] std::string_view text(std::size_t k = 0) const {
+    return i_ + k < end_ ? f_.text(f_.tokens[i_ + k]) : std::string_view();
+  }
+  [[nodiscard]] bool isPunct(char c, std::size_t k = 0) const {
+    if (i_ + k >= end_) return false;
+    const Token& t = f_.tokens[i_ + k];
+    return t.kind == TokenKind::kPunct && t.length == 1 && f_.bytes[t.offset] == c;
+  }
+  [[nodiscard]] bool isIdent(std::string_view word, std::size_t k = 0) const {
+    if (i_ + k >= end_) return false;
+    const Token& t = f_.tokens[i_ + k];
+    return t.kind == TokenKind::kIdentifier && iequals(f_.text(t), word);
+  }
+  [[nodiscard]] bool isKind(TokenKind kind, std::size_t k = 0) const {
+    return i_ + k < end_ && f_.tokens[i_ + k].kind == kind;
+  }
+  const Token& next() {
+    const Token& t = peek();
+    if (i_ < end_) ++i_;
+    return t;
+  }
   [[nodiscard]] int line() const;
   [[nodiscard]] const SourceFile& file() const { return f_; }
 

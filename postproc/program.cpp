@@ -38,6 +38,49 @@ std::string dialectName(Dialect d) {
 
 // ---------------------------------------------------------------- source files
 
+namespace {
+
+// Bytes indexLines() stops at: line terminators and '.' (fraction style).
+constexpr std::array<bool, 256> kLineScanStops = [] {
+  std::array<bool, 256> t{};
+  t['\n'] = t['\r'] = t['.'] = true;
+  return t;
+}();
+
+// Records the fraction style of the '.' at bytes[i] (followed by a digit) in f's flags.
+void noteFraction(SourceFile& f, std::size_t i) {
+  const std::string& b = f.bytes;
+  const std::size_t n = b.size();
+  if (i == 0 || (!isDigit(b[i - 1]) && !isIdentChar(b[i - 1]))) {
+    f.bare_fractions = true;
+  } else if (b[i - 1] == '0' && (i < 2 || (!isDigit(b[i - 2]) && !isIdentChar(b[i - 2])))) {
+    // `0.044` is evidence of leading zeros; an exact `0.000` is not (FANUC prints zero so)
+    for (std::size_t k = i + 1; k < n && isDigit(b[k]); ++k) {
+      if (b[k] != '0') {
+        f.zero_fractions = true;
+        break;
+      }
+    }
+  }
+}
+
+// Terminator of the line end at bytes[i] ('\n' or '\r'); j moves to its last byte.
+LineEnd lineEndAt(const std::string& b, std::size_t& j) {
+  if (b[j] != '\r') return LineEnd::kLf;
+  const std::size_t n = b.size();
+  if (j + 1 < n && b[j + 1] == '\n') {
+    j += 1;
+    return LineEnd::kCrLf;
+  }
+  if (j + 2 < n && b[j + 1] == '\r' && b[j + 2] == '\n') {
+    j += 2;
+    return LineEnd::kCrCrLf;
+  }
+  return LineEnd::kCr;
+}
+
+}  // namespace
+
 void SourceFile::indexLines() {
   const std::size_t n = bytes.size();
   line_starts.clear();
@@ -46,38 +89,17 @@ void SourceFile::indexLines() {
         static_cast<unsigned char>(bytes[1]) == 0xBB &&
         static_cast<unsigned char>(bytes[2]) == 0xBF;
   line_starts.push_back(0);
+  const char* const data = bytes.data();
   for (std::size_t i = 0; i < n; ++i) {
-    const char c = bytes[i];
-    if (c == '.' && i + 1 < n && isDigit(bytes[i + 1])) {
-      if (i == 0 || (!isDigit(bytes[i - 1]) && !isIdentChar(bytes[i - 1]))) {
-        bare_fractions = true;
-      } else if (bytes[i - 1] == '0' &&
-                 (i < 2 || (!isDigit(bytes[i - 2]) && !isIdentChar(bytes[i - 2])))) {
-        // `0.044` is evidence of leading zeros; an exact `0.000` is not (FANUC prints zero so)
-        for (std::size_t k = i + 1; k < n && isDigit(bytes[k]); ++k) {
-          if (bytes[k] != '0') {
-            zero_fractions = true;
-            break;
-          }
-        }
-      }
+    while (i < n && !kLineScanStops[static_cast<unsigned char>(data[i])]) ++i;
+    if (i >= n) break;
+    if (data[i] == '.') {
+      if (i + 1 < n && isDigit(data[i + 1]) && !(bare_fractions && zero_fractions))
+        noteFraction(*this, i);
       continue;
     }
-    if (c != '\n' && c != '\r') continue;
-    LineEnd e = LineEnd::kLf;
     std::size_t j = i;
-    if (c == '\r') {
-      if (j + 1 < n && bytes[j + 1] == '\n') {
-        e = LineEnd::kCrLf;
-        j += 1;
-      } else if (j + 2 < n && bytes[j + 1] == '\r' && bytes[j + 2] == '\n') {
-        e = LineEnd::kCrCrLf;
-        j += 2;
-      } else {
-        e = LineEnd::kCr;
-      }
-    }
-    line_ends.push_back(e);
+    line_ends.push_back(lineEndAt(bytes, j));
     i = j;
     if (i + 1 <= n) line_starts.push_back(static_cast<std::uint32_t>(i + 1));
   }
@@ -132,6 +154,38 @@ int internFrame(Program& p, const Frame& f) {
 
 // ---------------------------------------------------------------- numbers
 
+namespace {
+
+// `digits[.digits]` with at most 15 significant digits and 22 decimals, exactly as
+// std::from_chars rounds it: the mantissa m < 10^15 < 2^53 and 10^d (d <= 22) are exact doubles,
+// so m / 10^d is one correctly rounded operation (Clinger's fast path). nullopt for any other form
+// (exponent, more digits), which from_chars then reads.
+std::optional<double> parseDecimalExact(std::string_view s) {
+  static constexpr double kPow10[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                      1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                      1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+  std::uint64_t m = 0;
+  int digits = 0;  // significant (after leading zeros)
+  int decimals = -1;
+  bool any = false;
+  for (const char c : s) {
+    if (c == '.' && decimals < 0) {
+      decimals = 0;
+      continue;
+    }
+    if (!isDigit(c)) return std::nullopt;
+    any = true;
+    if (decimals >= 0) ++decimals;
+    if (m == 0 && c == '0') continue;
+    if (++digits > 15) return std::nullopt;
+    m = m * 10 + static_cast<std::uint64_t>(c - '0');
+  }
+  if (!any || decimals > 22) return std::nullopt;
+  return static_cast<double>(m) / kPow10[std::max(decimals, 0)];
+}
+
+}  // namespace
+
 std::optional<double> parseNumber(std::string_view s) {
   std::size_t k = 0;
   bool neg = false;
@@ -142,6 +196,7 @@ std::optional<double> parseNumber(std::string_view s) {
   }
   if (k >= s.size()) return std::nullopt;
   if (!isDigit(s[k]) && s[k] != '.') return std::nullopt;
+  if (const auto fast = parseDecimalExact(s.substr(k))) return neg ? -*fast : *fast;
   double v = 0;
   const char* b = s.data() + k;
   const char* e = s.data() + s.size();
