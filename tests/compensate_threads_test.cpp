@@ -7,7 +7,9 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <filesystem>
 
+#include "compensator/support/atomic_file.hpp"
 #include "plugin/api/job.hpp"
 #include "plugin/api/prediction_setup.hpp"
 #include "tests/support/test_support.hpp"
@@ -128,6 +130,50 @@ TEST(CompensateThreads, JobOutputsAreTheSameBytes) {
       }
     }
   }
+}
+
+}  // namespace
+}  // namespace roprec
+
+namespace roprec {
+namespace {
+
+// Through the CLI, --threads 2 writes the corrected program, the targets CSV and the report at the
+// same time: the same files and bytes as one thread, and still all or nothing (a failing output
+// leaves every other one unwritten, whichever thread wrote it).
+TEST(CompensateThreads, CliWritesTheOutputsTogetherAllOrNothing) {
+  const std::string dir = test::tempDir("compensate_threads_cli");
+  const std::string src = test::sourceDir() + "/samples/emotor-housing/housing_kr120.src";
+  const std::string cell = test::sourceDir() + "/samples/cells/housing-kr120.xml";
+  auto run = [&](const std::string& out, const std::string& targets, const std::string& report,
+                 int threads) {
+    return test::runRoprec("compensate --cell '" + cell + "' '" + src + "' --quiet -o '" + out +
+                           "' --targets '" + targets + "' --report '" + report +
+                           "' --orientation flip-free --threads " + std::to_string(threads));
+  };
+  for (const int t : {1, 2}) {
+    const std::string k = dir + "/t" + std::to_string(t);
+    ASSERT_EQ(run(k + ".src", k + ".csv", k + ".html", t).exit_code, 0) << t;
+  }
+  for (const char* ext : {".src", ".csv", ".html"}) {
+    SCOPED_TRACE(ext);
+    const std::string one = test::readFile(dir + "/t1" + ext);
+    EXPECT_GT(one.size(), 1000U);
+    EXPECT_TRUE(one == test::readFile(dir + "/t2" + ext));
+  }
+  // the program's folder is missing: the targets and the report (other threads) are not written
+  const auto bad_program = run(dir + "/none/o.src", dir + "/f1.csv", dir + "/f1.html", 2);
+  EXPECT_EQ(bad_program.exit_code, 2);
+  EXPECT_NE(bad_program.err.find("none"), std::string::npos) << bad_program.err;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/f1.csv"));
+  EXPECT_FALSE(std::filesystem::exists(dir + "/f1.html"));
+  // the targets' folder is missing: the program and the report are not written
+  const auto bad_targets = run(dir + "/f2.src", dir + "/none/t.csv", dir + "/f2.html", 2);
+  EXPECT_EQ(bad_targets.exit_code, 2);
+  EXPECT_FALSE(std::filesystem::exists(dir + "/f2.src"));
+  EXPECT_FALSE(std::filesystem::exists(dir + "/f2.html"));
+  for (const auto& e : std::filesystem::directory_iterator(dir))  // no temporaries left
+    EXPECT_FALSE(isOutputTemporaryName(e.path().filename().string(), nullptr)) << e.path();
 }
 
 }  // namespace

@@ -260,6 +260,19 @@ void OutputSet::rollback() noexcept {
   paths_.clear();
 }
 
+void OutputSet::adopt(OutputSet&& other) {
+  paths_.insert(paths_.end(), other.paths_.begin(), other.paths_.end());
+  temps_.insert(temps_.end(), other.temps_.begin(), other.temps_.end());
+  for (const std::string& d : other.cleaned_dirs_) {
+    if (std::find(cleaned_dirs_.begin(), cleaned_dirs_.end(), d) == cleaned_dirs_.end())
+      cleaned_dirs_.push_back(d);
+  }
+  other.paths_.clear();
+  other.temps_.clear();
+}
+
+OutputSet* activeOutputSet() { return g_active; }
+
 ScopedOutputSet::ScopedOutputSet(OutputSet& set) : previous_(g_active) { g_active = &set; }
 ScopedOutputSet::~ScopedOutputSet() { g_active = previous_; }
 

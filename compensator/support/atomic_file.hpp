@@ -39,6 +39,9 @@ class OutputSet {
   std::vector<std::string> commit();
   /// Removes every staged temporary; the targets keep their old contents.
   void rollback() noexcept;
+  /// Takes over the staged temporaries of `other` (e.g. staged on another thread) after this
+  /// set's own: commit() renames them too, in that order; `other` is left empty.
+  void adopt(OutputSet&& other);
 
   [[nodiscard]] const std::vector<std::string>& paths() const { return paths_; }
   [[nodiscard]] bool empty() const { return paths_.empty(); }
@@ -63,6 +66,9 @@ class ScopedOutputSet {
  private:
   OutputSet* previous_;
 };
+
+/// The set writeFileAtomic() stages into on the calling thread (nullptr: none).
+OutputSet* activeOutputSet();
 
 /// Writes one output: staged into the active ScopedOutputSet if there is one, else written
 /// at once (temporary + fsync + rename). Throws InputError on failure.

@@ -5,7 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
+#include <functional>
+#include <future>
+#include <memory>
 #include <sstream>
 
 #include "compensator/support/atomic_file.hpp"
@@ -15,6 +19,7 @@
 #include "plugin/api/milling_report.hpp"
 #include "plugin/cli/cli.hpp"
 #include "plugin/cli/robot_options.hpp"
+#include "postproc/program.hpp"
 
 namespace roprec::cli {
 namespace {
@@ -96,6 +101,58 @@ std::optional<std::array<int, 3>> parseTurnAxes(const std::optional<std::string>
     a[static_cast<size_t>(i)] = static_cast<int>(ax[i]);
   }
   return a;
+}
+
+/// Runs `program` (which returns the paths it wrote) and the optional `targets` and `report`
+/// writers: one after the other with one thread (or when two outputs share a path), else at the
+/// same time — they only read the result. A writer on another thread stages into a set of its
+/// own, handed to the caller's set (ScopedOutputSet, the CLI's all-or-nothing commit) after the
+/// program's outputs, so the files, their bytes and the commit order are those of one thread.
+/// Waits for every writer before rethrowing the first error (program, targets, report).
+std::vector<std::string> writeOutputsTogether(
+    int threads, bool distinct_paths, const std::function<std::vector<std::string>()>& program,
+    const std::function<void()>& targets, const std::function<void()>& report) {
+  if (threads <= 1 || !distinct_paths || (!targets && !report)) {
+    std::vector<std::string> written = program();
+    if (targets) targets();
+    if (report) report();
+    return written;
+  }
+  auto staged = [](const std::function<void()>& write) {
+    return std::async(std::launch::async, [write] {
+      auto set = std::make_unique<OutputSet>();
+      const ScopedOutputSet scope(*set);
+      write();
+      return set;
+    });
+  };
+  std::future<std::unique_ptr<OutputSet>> t;
+  std::future<std::unique_ptr<OutputSet>> rep;
+  if (targets) t = staged(targets);
+  if (report) rep = staged(report);
+  std::vector<std::string> written;
+  std::exception_ptr first;
+  try {
+    written = program();
+  } catch (...) {
+    first = std::current_exception();
+  }
+  for (std::future<std::unique_ptr<OutputSet>>* f : {&t, &rep}) {
+    if (!f->valid()) continue;
+    try {
+      std::unique_ptr<OutputSet> set = f->get();
+      if (first) continue;  // its temporaries are removed with it
+      if (OutputSet* active = activeOutputSet()) {
+        active->adopt(std::move(*set));
+      } else {
+        set->commit();
+      }
+    } catch (...) {
+      if (!first) first = std::current_exception();
+    }
+  }
+  if (first) std::rethrow_exception(first);
+  return written;
 }
 
 std::string stat(std::vector<double> v) {
@@ -188,18 +245,24 @@ int run(Args& args, CommandContext& ctx) {
   if (targets) extra.push_back(*targets);
   if (report) extra.push_back(*report);
   refuseOverwritingInput(*r.context.job.program, extra);
-  std::vector<std::string> written = writeCompensatedProgram(r.context, *out, {});
-  if (targets) {  // written hole by hole into its staged file
-    const bool csv = targets->size() > 4 && targets->substr(targets->size() - 4) == ".csv";
+  const bool csv = targets && targets->size() > 4 && targets->substr(targets->size() - 4) == ".csv";
+  auto writeTargets = [&] {  // written hole by hole into its staged file
     writeFileAtomicStream(*targets, [&](const ByteWriter& write) {
       writeCompensationTargets(r, pos[0], csv, write);
     });
-    written.push_back(*targets);
-  }
-  if (report) {
-    writeFileAtomic(*report, compensationReport(r, pos[0]));
-    written.push_back(*report);
-  }
+  };
+  auto writeReport = [&] { writeFileAtomic(*report, compensationReport(r, pos[0])); };
+  std::vector<std::string> outs = postproc::outputPaths(*r.context.job.program, *out);
+  outs.insert(outs.end(), extra.begin(), extra.end());
+  std::sort(outs.begin(), outs.end());
+  const bool distinct = std::adjacent_find(outs.begin(), outs.end()) == outs.end();
+  std::vector<std::string> written = writeOutputsTogether(
+      resolvedThreads(job.job.threads), distinct,
+      [&] { return writeCompensatedProgram(r.context, *out, {}); },
+      targets ? std::function<void()>(writeTargets) : nullptr,
+      report ? std::function<void()>(writeReport) : nullptr);
+  if (targets) written.push_back(*targets);
+  if (report) written.push_back(*report);
   if (!ctx.quiet) printSummary(ctx, r, job.options, written);
   return r.failed ? 1 : 0;
 }
