@@ -70,9 +70,9 @@ std::vector<Item> collect(const Program& p, bool joints_ok, ConversionReport& re
     const std::string& path = p.files[static_cast<std::size_t>(m.file)].path;
     const std::string where = m.line > 0 ? path + ":" + std::to_string(m.line) : path;
     if (m.target < 0) {
-      rep.skipped.push_back(where + ": " + m.instruction + " " + m.target_text +
+      rep.skipped.push_back(where + ": " + p.text(m.instruction) + " " + p.text(m.target_text) +
                             " (target built at run time" +
-                            (m.derivation.empty() ? "" : ": " + m.derivation) + ")");
+                            (m.derivation.empty() ? "" : ": " + p.text(m.derivation)) + ")");
       continue;
     }
     const Target& t = p.targets()[static_cast<std::size_t>(m.target)];
@@ -101,7 +101,8 @@ std::vector<Item> collect(const Program& p, bool joints_ok, ConversionReport& re
     }
     const std::optional<Pose> T = motionPose(p, m);
     if (!T) {
-      rep.skipped.push_back(where + ": " + m.target_text + " (incomplete pose or unknown offset)");
+      rep.skipped.push_back(where + ": " + p.text(m.target_text) +
+                            " (incomplete pose or unknown offset)");
       continue;
     }
     it.T = *T;
@@ -309,7 +310,7 @@ class LineScanner {
       if (fr.resolved) carried_vars_.insert(upper(fr.ref));
     }
     for (const Motion& m : p.motions) {
-      if (m.speed_mm_s > 0) carried_vars_.insert(upper(m.speed_text));
+      if (m.speed_mm_s > 0) carried_vars_.insert(upper(p.text(m.speed_text)));
     }
   }
   /// The code of `raw` (comment stripped) in `code` and its kind ("" when nothing is lost).
@@ -409,7 +410,8 @@ void listZoneMappings(const Program& p, Dialect to, const std::vector<Item>& ite
   for (const Item& it : items) {
     const Motion& m = p.motions[static_cast<std::size_t>(it.motion)];
     if (it.fine) continue;  // exact stop in, exact stop out
-    const std::string from = m.zone_text.empty() ? std::string("approximated") : m.zone_text;
+    const std::string from =
+        m.zone_text.empty() ? std::string("approximated") : p.text(m.zone_text);
     const std::string into = writtenZone(to, it);
     bool same = true;  // KRL may repeat the word: `C_DIS C_DIS`
     for (std::size_t a = 0; a < from.size();) {

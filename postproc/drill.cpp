@@ -150,7 +150,7 @@ std::vector<Hole> recognizeHoles(const Program& p, const RecognitionOptions& o) 
       h.marker_begin = static_cast<int>(i > 0 ? i - 1 : i);
       h.marker_end = static_cast<int>(j);
       for (std::size_t k = (i > 0 ? i - 1 : i); k < j; ++k) {
-        for (const std::string& mk : p.motions[k].markers) marker = marker || drillMarker(mk);
+        for (const std::string& mk : p.markers(p.motions[k])) marker = marker || drillMarker(mk);
       }
       h.fine_bottom = p.motions[bottom].fine;
       // A cycle whose next point is stated by values roprec cannot evaluate (a RAPID component
@@ -189,7 +189,7 @@ std::vector<Hole> recognizeHoles(const Program& p, const RecognitionOptions& o) 
     }
     // a drilling macro call right after a single target
     bool call = false;
-    for (const std::string& mk : m0.markers) {
+    for (const std::string& mk : p.markers(m0)) {
       if (containsUpper(mk, "CALL", true) && containsUpper(mk, "DRILL", false)) call = true;
     }
     if (call && m0.target >= 0 && !used[static_cast<std::size_t>(m0.target)]) {
@@ -219,7 +219,7 @@ std::vector<std::string> holeEvidence(const Program& p, const Hole& h) {
   if (h.slower_feed) e.emplace_back("feed slower than approach/retract");
   for (int k = std::max(0, h.marker_begin);
        k < h.marker_end && static_cast<std::size_t>(k) < p.motions.size(); ++k) {
-    for (const std::string& mk : p.motions[static_cast<std::size_t>(k)].markers) {
+    for (const std::string& mk : p.markers(p.motions[static_cast<std::size_t>(k)])) {
       if (h.all_markers || drillMarker(mk)) e.push_back(mk);
     }
   }

@@ -88,12 +88,8 @@ class KrlReader {
     lex_.comment = ';';
     lex_.header_amp = true;
     lex_.single_quote_string = true;
-    const std::size_t expected =
-        p_.files.back().bytes.size() / 128 + 16;  // ~1 declaration per 128 bytes
-    targets_.reserve(expected);
-    fdats_.reserve(expected);
-    ldat_vel_.reserve(expected);
-    named_frames_.reserve(expected);
+    // the name tables grow by doubling: a reserve from the file size would touch (and keep
+    // resident) tens of MB a .src without declarations never uses
     // every target is an aggregate: '{' bounds their count (no regrowth of the large Target
     // vector, whose copy would double the peak memory of a 100,000-hole program)
     std::size_t aggregates = 16;
@@ -132,7 +128,7 @@ class KrlReader {
   Fdat fdat_;
   double vel_cp_{-1};
   double speed_text_vel_{-1};  // $VEL.CP of speed_text_
-  std::string speed_text_;
+  TextId speed_text_;
   bool ext_tcp_{false};
 
   const SourceFile& file() const { return p_.files[static_cast<std::size_t>(file_)]; }
@@ -556,9 +552,7 @@ class KrlReader {
     return fd;
   }
 
-  void addMarker(const std::string& m) {
-    if (!p_.motions.empty()) p_.motions.back().markers.push_back(m);
-  }
+  void addMarker(const std::string& m) { p_.addMarker(m); }
 
   static bool isApprox(std::string_view w) {
     return iequals(w, "C_DIS") || iequals(w, "C_PTP") || iequals(w, "C_VEL") ||
@@ -573,13 +567,13 @@ class KrlReader {
     const std::uint32_t s = f.tokens[b].offset;
     const std::uint32_t en = f.tokens[e - 1].offset + f.tokens[e - 1].length;
     TokenCursor c(f, b, e);
-    if (!c.isPunct('{'))
-      m.target_text = f.bytes.substr(s, en - s);  // literal targets: the target is the text
+    const std::string_view text = std::string_view(f.bytes).substr(s, en - s);
+    if (!c.isPunct('{')) m.target_text = p_.addText(text);  // literal targets: the text
     if (c.isPunct('{')) {
       const Aggregate a = parseAggregate(c);
       if (!c.done() || relative) {
-        m.derivation = relative ? m.instruction : ":";
-        m.target_text = f.bytes.substr(s, en - s);
+        m.derivation = relative ? m.instruction : p_.addText(":");
+        m.target_text = p_.addText(text);
         return -1;
       }
       return makeTarget(a, "", a.type);
@@ -588,7 +582,7 @@ class KrlReader {
       const std::string_view n = c.text();
       if (const int* it = targets_.find(n)) return *it;
       if (n[0] == '$') {
-        m.derivation = "system variable";
+        m.derivation = p_.addText("system variable");
         return -1;
       }
       if (p_.files.size() < 2) {
@@ -596,32 +590,32 @@ class KrlReader {
                     "' is declared nowhere (expected " + p_.dat_path + ")");
       }
       unresolved(std::string(c.text()), s, "target not declared in the .src or .dat");
-      m.derivation = "undeclared";
+      m.derivation = p_.addText("undeclared");
       return -1;
     }
     for (std::size_t k = b; k < e; ++k) {
       if (f.tokens[k].kind == TokenKind::kPunct && f.bytes[f.tokens[k].offset] == ':') {
-        m.derivation = ":";
+        m.derivation = p_.addText(":");
         return -1;
       }
     }
-    m.derivation = "runtime";
+    m.derivation = p_.addText("runtime");
     return -1;
   }
 
   void motion(TokenCursor& c, std::size_t e) {
     const SourceFile& f = file();
     Motion m;
-    m.instruction = std::string(c.text());
-    const std::string kw = upper(m.instruction);
+    const std::string_view kw = c.text();
+    m.instruction = p_.addText(kw);
     const std::size_t kw_off = c.peek().offset;
     c.next();
     m.file = file_;
     m.line = f.lineOf(kw_off);
-    const bool relative = kw.find("_REL") != std::string::npos;
-    if (kw.rfind("PTP", 0) == 0 || kw == "SPTP") {
+    const bool relative = icontains(kw, "_REL");
+    if (istartsWith(kw, "PTP") || iequals(kw, "SPTP")) {
       m.type = MotionType::kJoint;
-    } else if (kw.find("CIRC") != std::string::npos) {
+    } else if (icontains(kw, "CIRC")) {
       m.type = MotionType::kCircular;
     } else {
       m.type = MotionType::kLinear;
@@ -679,13 +673,13 @@ class KrlReader {
         break;
       }
     }
-    m.zone_text = zone;
+    m.zone_text = p_.addText(zone);
     m.fine = zone.empty();
     if (m.type != MotionType::kJoint && vel_cp_ > 0) {
       m.speed_mm_s = vel_cp_ * 1000.0;
       if (vel_cp_ != speed_text_vel_) {  // one text per $VEL.CP value, not one printf per motion
         speed_text_vel_ = vel_cp_;
-        speed_text_ = cGeneral(vel_cp_, 6) + " m/s";
+        speed_text_ = p_.addText(cGeneral(vel_cp_, 6) + " m/s");
       }
       m.speed_text = speed_text_;
     }

@@ -136,6 +136,36 @@ std::string SourceFile::dominantLineEnd() const {
   }
 }
 
+// ---------------------------------------------------------------- texts
+
+TextId TextTable::add(std::string_view s) {
+  if (s.empty()) return TextId{};
+  const bool shared = s.size() <= kSharedMax;
+  if (shared) {
+    if (const auto it = index_.find(s); it != index_.end()) return TextId{it->second};
+  }
+  const auto id = static_cast<std::uint32_t>(texts_.size());
+  const std::string& t = texts_.emplace_back(s);
+  if (shared) index_.emplace(std::string_view(t), id);
+  return TextId{id};
+}
+
+void TextTable::reindex() {
+  index_.clear();
+  for (std::size_t i = texts_.size(); i-- > 1;) {  // the first of equal texts wins
+    const std::string& t = texts_[i];
+    if (t.size() <= kSharedMax) index_[std::string_view(t)] = static_cast<std::uint32_t>(i);
+  }
+}
+
+void Program::addMarker(std::string_view marker) {
+  if (motions.empty()) return;
+  Motion& m = motions.back();
+  if (m.marker_count == 0) m.marker_begin = static_cast<std::uint32_t>(marker_texts.size());
+  marker_texts.push_back(texts.add(marker));
+  ++m.marker_count;
+}
+
 void failAt(const SourceFile& f, std::size_t offset, const std::string& msg) {
   throw InputError(f.path, f.lineOf(offset), msg);
 }

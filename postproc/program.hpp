@@ -26,11 +26,13 @@
 
 #include <array>
 #include <cstdint>
+#include <deque>
 #include <map>
 #include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 #include "compensator/support/rotation.hpp"
@@ -194,7 +196,7 @@ class IndexList {
   std::unique_ptr<std::vector<int>> more_;
 };
 
-enum class Vendor { kNone, kKuka, kAbb, kFanuc };
+enum class Vendor : std::uint8_t { kNone, kKuka, kAbb, kFanuc };
 
 /// Raw vendor configuration exactly as the program states it (docs/programs.md §2.4, §3.3, §4.5).
 struct Configuration {
@@ -222,11 +224,57 @@ Configuration configurationFromBranch(Vendor v, int branch);
 /// when empty or not understood.
 Configuration parseConfigurationText(const std::string& text);
 
-enum class TargetKind { kCartesian, kJoint };
+enum class TargetKind : std::uint8_t { kCartesian, kJoint };
 /// kKukaAbc: R = Rz(A)Ry(B)Rx(C); kFanucWpr: R = Rz(R)Ry(P)Rx(W); kQuaternion: [w,x,y,z];
 /// kXyzIntrinsic: R = Rx(rx)Ry(ry)Rz(rz) (RoboDK TxyzRxyz); kAxis: hole-list drilling direction
 /// i,j,k = TCP z (the rotation about it is free, built deterministically).
-enum class Orientation { kNone, kKukaAbc, kQuaternion, kFanucWpr, kXyzIntrinsic, kAxis };
+enum class Orientation : std::uint8_t {
+  kNone,
+  kKukaAbc,
+  kQuaternion,
+  kFanucWpr,
+  kXyzIntrinsic,
+  kAxis
+};
+
+/// A text of a program stored once in its TextTable (Program::text(id)); 0 is "". Not a number:
+/// motions and targets hold 4 bytes per text instead of a std::string each.
+struct TextId {
+  std::uint32_t index{0};
+  [[nodiscard]] bool empty() const { return index == 0; }
+};
+
+/// The texts of a program's motions and targets (instructions, speeds, zones, derivations,
+/// markers, frame names), each stored once. A 100,000-hole program repeats a handful of them
+/// (`LIN`, `C_DIS`, `0.25 m/s`): 4 bytes per use instead of a 32-byte std::string. Texts of up
+/// to kSharedMax bytes are looked up and shared; longer ones (comment markers, target
+/// expressions: unique in practice) are appended without a look-up. Ids are stable; text(0) = "".
+class TextTable {
+ public:
+  static constexpr std::size_t kSharedMax = 24;
+  TextTable() { texts_.emplace_back(); }
+  TextTable(const TextTable& o) : texts_(o.texts_) { reindex(); }
+  TextTable(TextTable&&) noexcept = default;
+  TextTable& operator=(const TextTable& o) {
+    if (this != &o) {
+      texts_ = o.texts_;
+      reindex();
+    }
+    return *this;
+  }
+  TextTable& operator=(TextTable&&) noexcept = default;
+  ~TextTable() = default;
+
+  /// The id of `s` (0 for ""), stored when new.
+  TextId add(std::string_view s);
+  [[nodiscard]] const std::string& operator[](TextId id) const { return texts_[id.index]; }
+  [[nodiscard]] std::size_t size() const { return texts_.size(); }
+
+ private:
+  void reindex();
+  std::deque<std::string> texts_;  ///< a deque: the index's views stay valid as it grows
+  std::unordered_map<std::string_view, std::uint32_t> index_;  ///< shared texts -> index
+};
 
 struct Target {
   std::string name;  ///< as declared (`XP2`, `pHole1`, `P[2]`, hole id); empty for inline targets
@@ -243,12 +291,12 @@ struct Target {
   FieldBlock<4> cf_fields;               ///< ABB cf1, cf4, cf6, cfx
   NumberField fanuc_config;        ///< FANUC span of the CONFIG string contents (value unused)
   std::uint32_t aggregate_end{0};  ///< KRL: offset of the closing `}` (S/T insertion)
-  std::string frame_ref;           ///< frame the target itself declares (FANUC `UF`, CSV `frame`)
-  std::string tool_ref;            ///< tool the target itself declares (FANUC `UT`, CSV `tool`)
-  IndexList uses;                  ///< indices of the motions that use this target
+  TextId frame_ref;  ///< frame the target itself declares (FANUC `UF`, CSV `frame`): Program::text
+  TextId tool_ref;   ///< tool the target itself declares (FANUC `UT`, CSV `tool`): Program::text
+  IndexList uses;    ///< indices of the motions that use this target
 };
 
-enum class MotionType { kJoint, kLinear, kCircular };
+enum class MotionType : std::uint8_t { kJoint, kLinear, kCircular };
 
 /// A resolved (or unresolved) frame: tool, base, work object, user frame.
 struct Frame {
@@ -280,28 +328,63 @@ class SparsePose {
   std::unique_ptr<Pose> p_;
 };
 
+/// One motion instruction. Its texts are TextIds into Program::texts (read them with
+/// Program::text); its markers are Program::markers(m). 96 bytes (a 100,000-hole KRL job holds
+/// 400,000).
 struct Motion {
-  std::string instruction;  ///< as written: `LIN`, `MoveL`, `L`
+  TextId instruction;  ///< as written: `LIN`, `MoveL`, `L`
   MotionType type{MotionType::kLinear};
+  bool fine{false};            ///< exact stop at the point
+  bool config_honoured{true};  ///< KUKA PTP / ABB ConfJ,ConfL \On / FANUC J: configuration taken
+  bool has_offset{false};      ///< target = T_target · offset (tool) or offset · T_target (frame)
+  bool offset_in_tool{false};
   int file{-1};
   int line{0};
   int target{-1};           ///< index into targets (-1: runtime target, see target_text)
   int aux{-1};              ///< CIRC/MoveC auxiliary point
-  std::string target_text;  ///< source text of the target expression
-  std::string derivation;   ///< "" plain; else `Offs`, `RelTool`, `LIN_REL`, `PR`, `:`, `Offset`,
+  TextId target_text;       ///< source text of the target expression
+  TextId derivation;        ///< "" plain; else `Offs`, `RelTool`, `LIN_REL`, `PR`, `:`, `Offset`,
                             ///< `Tool_Offset`...
   int tool{-1};             ///< index into frames
   int base{-1};             ///< index into frames
   double speed_mm_s{-1.0};  ///< linear speed when known, else < 0
-  std::string speed_text;   ///< as written: `10mm/sec`, `rdkSpeed`, `0.01 m/s`
-  std::string zone_text;    ///< `FINE`, `CNT50`, `z1`, `C_DIS`...
-  bool fine{false};         ///< exact stop at the point
-  bool config_honoured{true};  ///< KUKA PTP / ABB ConfJ,ConfL \On / FANUC J: configuration is taken
-  std::vector<std::string>
-      markers;             ///< dwell, spindle, drill-call, comment markers after this motion
-  bool has_offset{false};  ///< target = T_target · offset (tool frame) or offset · T_target (frame)
-  bool offset_in_tool{false};
+  TextId speed_text;        ///< as written: `10mm/sec`, `rdkSpeed`, `0.01 m/s`
+  TextId zone_text;         ///< `FINE`, `CNT50`, `z1`, `C_DIS`...
+  /// Dwell, spindle, drill-call, comment markers after this motion: Program::marker_texts
+  /// [marker_begin, marker_begin + marker_count) (see Program::markers / addMarker).
+  std::uint32_t marker_begin{0};
+  std::uint32_t marker_count{0};
   SparsePose offset;  ///< SI; RAPID Offs/RelTool, TP Offset/Tool_Offset with known values
+};
+
+/// The marker texts of one motion, iterated as `const std::string&`.
+class MarkerRange {
+ public:
+  class const_iterator {
+   public:
+    const_iterator(const TextTable* t, const TextId* p) : t_(t), p_(p) {}
+    const std::string& operator*() const { return (*t_)[*p_]; }
+    const_iterator& operator++() {
+      ++p_;
+      return *this;
+    }
+    bool operator!=(const const_iterator& o) const { return p_ != o.p_; }
+    bool operator==(const const_iterator& o) const { return p_ == o.p_; }
+
+   private:
+    const TextTable* t_;
+    const TextId* p_;
+  };
+  MarkerRange(const TextTable& t, const TextId* b, const TextId* e) : t_(&t), b_(b), e_(e) {}
+  [[nodiscard]] const_iterator begin() const { return {t_, b_}; }
+  [[nodiscard]] const_iterator end() const { return {t_, e_}; }
+  [[nodiscard]] bool empty() const { return b_ == e_; }
+  [[nodiscard]] std::size_t size() const { return static_cast<std::size_t>(e_ - b_); }
+
+ private:
+  const TextTable* t_;
+  const TextId* b_;
+  const TextId* e_;
 };
 
 struct Unresolved {
@@ -333,6 +416,8 @@ struct Program {
   std::vector<std::string> notes;
   /// Texts of the target components stated by name or expression (NumberField::expr).
   std::vector<std::string> expressions;
+  TextTable texts;                   ///< the motions' and targets' texts (TextId)
+  std::vector<TextId> marker_texts;  ///< the motions' markers, motion after motion
   std::map<std::pair<int, std::uint32_t>, Edit> edits;  ///< pending edits by (file, offset)
   /// FANUC `$SCR_GRP[1].$TURN_AXIS[1..3]` (1-based joint numbers) when known (docs/programs.md §9.1
   /// item 1).
@@ -343,6 +428,18 @@ struct Program {
   int position_min_decimals{3};
 
   [[nodiscard]] const std::vector<Target>& targets() const { return target_list; }
+  /// A motion's or target's text.
+  [[nodiscard]] const std::string& text(TextId id) const { return texts[id]; }
+  /// The id of `s` in texts (stored when new).
+  TextId addText(std::string_view s) { return texts.add(s); }
+  /// The markers of motion m.
+  [[nodiscard]] MarkerRange markers(const Motion& m) const {
+    const TextId* b = marker_texts.data() + m.marker_begin;
+    return {texts, b, b + m.marker_count};
+  }
+  /// Appends a marker to the last motion (none: ignored). Markers go to the last motion only, so
+  /// each motion's markers are one run of marker_texts.
+  void addMarker(std::string_view marker);
   /// The name or expression a component states ("" for a number).
   [[nodiscard]] const std::string& exprText(const NumberField& f) const {
     static const std::string kNone;

@@ -595,8 +595,8 @@ class RapidReader {
     const std::vector<Token>& t = f_.tokens;
     if (a.b >= a.e) fail(t[a.b > 0 ? a.b - 1 : 0].offset, "motion without a target");
     if (f_.text(t[a.b]) != "[") {  // literal targets: the target itself is the text
-      m.target_text =
-          f_.bytes.substr(t[a.b].offset, t[a.e - 1].offset + t[a.e - 1].length - t[a.b].offset);
+      m.target_text = p_.addText(std::string_view(f_.bytes).substr(
+          t[a.b].offset, t[a.e - 1].offset + t[a.e - 1].length - t[a.b].offset));
     }
     if (is1(f_.text(t[a.b]), '[')) {
       const Node n = parseValue(a.b, a.e);
@@ -606,13 +606,13 @@ class RapidReader {
       const auto it = targets_.find(upper(f_.text(t[a.b])));
       if (it != targets_.end()) return it->second;
       unresolved(std::string(f_.text(t[a.b])), t[a.b].offset, "target not declared in the module");
-      m.derivation = "undeclared";
+      m.derivation = p_.addText("undeclared");
       return -1;
     }
     const std::string fn = upper(f_.text(t[a.b]));
     if ((fn == "OFFS" || fn == "RELTOOL") && a.e - a.b > 3 && is1(f_.text(t[a.b + 1]), '(') &&
         t[a.b + 2].kind == TokenKind::kIdentifier) {
-      m.derivation = fn == "OFFS" ? "Offs" : "RelTool";
+      m.derivation = p_.addText(fn == "OFFS" ? "Offs" : "RelTool");
       const auto it = targets_.find(upper(f_.text(t[a.b + 2])));
       if (it == targets_.end()) {
         unresolved(std::string(f_.text(t[a.b + 2])), t[a.b + 2].offset,
@@ -668,15 +668,15 @@ class RapidReader {
       }
       return it->second;
     }
-    m.derivation = "runtime";
+    m.derivation = p_.addText("runtime");
     return -1;
   }
 
   void motion(std::size_t b, std::size_t e) {
     const std::vector<Token>& t = f_.tokens;
     Motion m;
-    m.instruction = std::string(f_.text(t[b]));
-    const std::string kw = upper(m.instruction);
+    m.instruction = p_.addText(f_.text(t[b]));
+    const std::string kw = upper(f_.text(t[b]));
     m.file = 0;
     m.line = f_.lineOf(t[b].offset);
     const bool absj = kw.rfind("MOVEABSJ", 0) == 0;
@@ -749,7 +749,7 @@ class RapidReader {
       zone_i = 99;
       tool_i = 4;
     }
-    if (pos.size() <= ip) fail(t[b].offset, m.instruction + " without a target");
+    if (pos.size() <= ip) fail(t[b].offset, std::string(f_.text(t[b])) + " without a target");
     if (circ) {
       Motion aux = m;
       m.aux = targetArg(pos[0], aux, false);
@@ -761,8 +761,9 @@ class RapidReader {
                        : std::string();
     };
     if (speed_i < pos.size()) {
-      m.speed_text = argText(pos[speed_i]);
-      const std::string u = upper(m.speed_text);
+      const std::string speed = argText(pos[speed_i]);
+      m.speed_text = p_.addText(speed);
+      const std::string u = upper(speed);
       if (u.size() > 1 && u[0] == 'V' && isDigit(u[1])) {
         m.speed_mm_s = parseNumber(u.substr(1)).value_or(-1.0);
       } else if (speeds_.count(u) != 0) {
@@ -773,8 +774,9 @@ class RapidReader {
       }
     }
     if (zone_i < pos.size()) {
-      m.zone_text = argText(pos[zone_i]);
-      m.fine = iequals(m.zone_text, "fine");
+      const std::string zone = argText(pos[zone_i]);
+      m.zone_text = p_.addText(zone);
+      m.fine = iequals(zone, "fine");
     }
     std::string tool = tool_i < pos.size() ? argText(pos[tool_i]) : "tool0";
     std::string wobj = "wobj0";
@@ -812,8 +814,7 @@ class RapidReader {
       return;
     }
     if (w == "WAITTIME" && b + 1 < e) {
-      if (!p_.motions.empty())
-        p_.motions.back().markers.push_back("dwell " + std::string(f_.text(t[e - 1])) + " s");
+      p_.addMarker("dwell " + std::string(f_.text(t[e - 1])) + " s");
       return;
     }
     for (std::size_t k = b; k < e; ++k) {
@@ -824,8 +825,7 @@ class RapidReader {
     }
     if (t[b].kind == TokenKind::kIdentifier &&
         (w.find("SPINDLE") != std::string::npos || w.find("DRILL") != std::string::npos)) {
-      if (!p_.motions.empty())
-        p_.motions.back().markers.push_back("call " + std::string(f_.text(t[b])));
+      p_.addMarker("call " + std::string(f_.text(t[b])));
     }
     // other statements: kept verbatim; aggregates in them still validated
     for (std::size_t k = b; k < e; ++k) {

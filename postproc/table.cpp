@@ -655,15 +655,15 @@ class CsvReader {
     Motion m;
     const std::string_view move = text(cells, kMove);
     const std::string mv = upper(move.empty() ? text(cells, kMotion) : move);
-    m.instruction = mv.empty() ? "row" : mv;
+    m.instruction = p_.addText(mv.empty() ? "row" : mv);
     m.type = (mv == "J" || mv == "PTP" || mv == "MOVEJ" || mv == "MOVEABSJ") ? MotionType::kJoint
                                                                              : MotionType::kLinear;
     m.file = 0;
     const Target& t = p_.target_list[static_cast<std::size_t>(target)];
     m.line = t.line;
     if (const auto v = num(cells, kSpeed)) m.speed_mm_s = v->value;
-    if (!t.frame_ref.empty()) m.base = frameIndex(frames_, t.frame_ref, base_memo_);
-    if (!t.tool_ref.empty()) m.tool = frameIndex(tools_, t.tool_ref, tool_memo_);
+    if (!t.frame_ref.empty()) m.base = frameIndex(frames_, p_.text(t.frame_ref), base_memo_);
+    if (!t.tool_ref.empty()) m.tool = frameIndex(tools_, p_.text(t.tool_ref), tool_memo_);
     m.target = target;
     p_.target_list[static_cast<std::size_t>(target)].uses.push_back(
         static_cast<int>(p_.motions.size()));
@@ -696,8 +696,8 @@ class CsvReader {
     if (!cart) t.orientation = Orientation::kNone;
     const std::string_view conf = text(cells, kConf);
     t.config = configuration(conf.empty() ? text(cells, kConfig) : conf);
-    t.frame_ref = text(cells, kFrame);
-    t.tool_ref = text(cells, kTool);
+    t.frame_ref = p_.addText(text(cells, kFrame));
+    t.tool_ref = p_.addText(text(cells, kTool));
     if (holes_mode_) hole(cells, t, s);
     p_.target_list.push_back(std::move(t));
     rowMotion(cells, static_cast<int>(p_.target_list.size() - 1));
@@ -1030,8 +1030,8 @@ class JsonTargets {
       failAt(f_, o.begin, "target has neither a pose nor joints_deg");
     t.kind = cart ? TargetKind::kCartesian : TargetKind::kJoint;
     if (m[kJConfig] != nullptr) t.config = configuration(m[kJConfig]->str);
-    if (m[kJFrame] != nullptr) t.frame_ref = m[kJFrame]->str;
-    if (m[kJTool] != nullptr) t.tool_ref = m[kJTool]->str;
+    if (m[kJFrame] != nullptr) t.frame_ref = p_.addText(m[kJFrame]->str);
+    if (m[kJTool] != nullptr) t.tool_ref = p_.addText(m[kJTool]->str);
     const int line = t.line;
     p_.target_list.push_back(std::move(t));
     motion(m, line);
@@ -1051,8 +1051,8 @@ class JsonTargets {
     }
     for (std::size_t k = 0; k < p_.motions.size(); ++k) {
       const Target& t = p_.target_list[static_cast<std::size_t>(p_.motions[k].target)];
-      if (!t.frame_ref.empty()) p_.motions[k].base = frameIndex(frames, t.frame_ref);
-      if (!t.tool_ref.empty()) p_.motions[k].tool = frameIndex(frames, t.tool_ref);
+      if (!t.frame_ref.empty()) p_.motions[k].base = frameIndex(frames, p_.text(t.frame_ref));
+      if (!t.tool_ref.empty()) p_.motions[k].tool = frameIndex(frames, p_.text(t.tool_ref));
     }
   }
 
@@ -1144,8 +1144,9 @@ class JsonTargets {
   /// The motion of the target appended last (its frames come in finish()).
   void motion(const Members& m, int line) {
     Motion mo;
-    mo.instruction = m[kJMotion] != nullptr ? m[kJMotion]->str : "target";
-    const std::string u = upper(mo.instruction);
+    const std::string& instruction = m[kJMotion] != nullptr ? m[kJMotion]->str : "target";
+    mo.instruction = p_.addText(instruction);
+    const std::string u = upper(instruction);
     mo.type = (u == "J" || u == "PTP" || u == "MOVEJ" || u == "MOVEABSJ") ? MotionType::kJoint
                                                                           : MotionType::kLinear;
     mo.file = 0;

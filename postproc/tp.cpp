@@ -95,9 +95,7 @@ class TpReader {
     return q;
   }
 
-  void marker(const std::string& m) {
-    if (!p_.motions.empty()) p_.motions.back().markers.push_back(m);
-  }
+  void marker(const std::string& m) { p_.addMarker(m); }
 
   void mnLine(std::size_t b, std::size_t e) {
     std::size_t k = b;
@@ -170,7 +168,7 @@ class TpReader {
       if (u == "FINE" || u.rfind("CNT", 0) == 0 || punct(q, ";")) break;
       speed += tx(q);
     }
-    m.speed_text = speed;
+    m.speed_text = p_.addText(speed);
     const auto num = [&]() -> std::optional<double> {
       std::size_t n = 0;
       while (n < speed.size() && (isDigit(speed[n]) || speed[n] == '.')) ++n;
@@ -194,25 +192,26 @@ class TpReader {
       if (su.find("INCH/MIN") != std::string::npos) m.speed_mm_s = *num * 25.4 / 60.0;
     }
     if (q < e && !punct(q, ";")) {
-      m.zone_text = std::string(tx(q));
-      if (iequals(m.zone_text, "CNT") && q + 1 < e) m.zone_text += std::string(tx(q + 1));
-      m.fine = iequals(m.zone_text, "FINE");
+      std::string zone(tx(q));
+      if (iequals(zone, "CNT") && q + 1 < e) zone += std::string(tx(q + 1));
+      m.fine = iequals(zone, "FINE");
+      m.zone_text = p_.addText(zone);
     }
     for (std::size_t r = q; r < e; ++r) {
       const std::string u = upper(tx(r));
       if (u == "OFFSET" || u == "TOOL_OFFSET") {
-        m.derivation = u == "OFFSET" ? "Offset" : "Tool_Offset";
+        m.derivation = p_.addText(u == "OFFSET" ? "Offset" : "Tool_Offset");
       }
-      if (u == "INC") m.derivation = "INC";
+      if (u == "INC") m.derivation = p_.addText("INC");
     }
   }
 
   void motion(std::size_t k, std::size_t e) {
     Motion m;
-    m.instruction = std::string(tx(k));
+    m.instruction = p_.addText(tx(k));
     m.file = 0;
     m.line = f_.lineOf(f_.tokens[k].offset);
-    const char c = m.instruction[0];
+    const char c = tx(k)[0];
     m.type = c == 'J'                 ? MotionType::kJoint
              : (c == 'C' || c == 'A') ? MotionType::kCircular
                                       : MotionType::kLinear;
@@ -222,16 +221,16 @@ class TpReader {
     const std::string ref = upper(tx(q));
     int number = -1;
     const std::size_t after = reference(q, e, number);
-    m.target_text = std::string(std::string_view(f_.bytes).substr(
+    m.target_text = p_.addText(std::string_view(f_.bytes).substr(
         f_.tokens[q].offset,
         f_.tokens[after - 1].offset + f_.tokens[after - 1].length - f_.tokens[q].offset));
     int pnum = -1;
     if (ref == "P" && number >= 0) {
       pnum = number;
     } else if (ref == "PR") {
-      m.derivation = "PR";
+      m.derivation = p_.addText("PR");
     } else {
-      m.derivation = "runtime";
+      m.derivation = p_.addText("runtime");
     }
     m.base = -1;
     m.tool = -1;
@@ -255,7 +254,7 @@ class TpReader {
     const std::size_t after = reference(k, e, number);
     tail(m, after, e);
     if (ref == "P" && number >= 0) pending_.back().number = number;
-    if (ref == "PR") m.derivation = "PR";
+    if (ref == "PR") m.derivation = p_.addText("PR");
     last_motion_line_ = -1;
   }
 
@@ -359,7 +358,7 @@ class TpReader {
                n + " : " + numberText(v.value) + " is not a frame number (an integer 0 .. 99)");
         }
         (n == "UF" ? t.frame_ref : t.tool_ref) =
-            (n == "UF" ? "UFRAME[" : "UTOOL[") + std::to_string(toInt(v.value)) + "]";
+            p_.addText((n == "UF" ? "UFRAME[" : "UTOOL[") + std::to_string(toInt(v.value)) + "]");
         q = r;
         continue;
       }
@@ -464,8 +463,8 @@ class TpReader {
       const int ti = m.target >= 0 ? m.target : m.aux;
       if (ti >= 0) {
         const Target& t = p_.target_list[static_cast<std::size_t>(ti)];
-        if (!t.frame_ref.empty()) m.base = internFrame(p_, frameFor(t.frame_ref, false));
-        if (!t.tool_ref.empty()) m.tool = internFrame(p_, frameFor(t.tool_ref, true));
+        if (!t.frame_ref.empty()) m.base = internFrame(p_, frameFor(p_.text(t.frame_ref), false));
+        if (!t.tool_ref.empty()) m.tool = internFrame(p_, frameFor(p_.text(t.tool_ref), true));
       }
       if (m.target >= 0)
         p_.target_list[static_cast<std::size_t>(m.target)].uses.push_back(pd.motion);

@@ -133,7 +133,7 @@ void checkMotion(const Program& p, const Motion& m) {
                                ? p.files[static_cast<std::size_t>(m.file)].path
                                : (p.files.empty() ? std::string() : p.files.front().path);
   throw InputError(file, m.line,
-                   m.instruction + ": offset of " + numberText(d_mm) +
+                   p.text(m.instruction) + ": offset of " + numberText(d_mm) +
                        " mm is out of range (<= 100000 mm): a corrupted or mistyped number");
 }
 

@@ -233,7 +233,8 @@ TEST(PostprocDrill, RapidRelToolCycleAndTpDrillMacro) {
   ASSERT_EQ(ht.size(), 1u);
   EXPECT_EQ(t.targets()[static_cast<std::size_t>(ht[0].bottom_target)].name, "P[3]");
   bool pr_reported = false;
-  for (const Motion& m : t.motions) pr_reported = pr_reported || m.derivation == "Tool_Offset";
+  for (const Motion& m : t.motions)
+    pr_reported = pr_reported || t.text(m.derivation) == "Tool_Offset";
   EXPECT_TRUE(pr_reported);
 }
 

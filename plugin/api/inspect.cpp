@@ -130,8 +130,8 @@ Json targetJson(const Program& p, std::size_t i) {
     if (e.present()) ext.push(Json::number(e.value, -1));
   }
   j.set("external_axes", ext);
-  if (!t.frame_ref.empty()) j.set("declared_frame", Json::str(t.frame_ref));
-  if (!t.tool_ref.empty()) j.set("declared_tool", Json::str(t.tool_ref));
+  if (!t.frame_ref.empty()) j.set("declared_frame", Json::str(p.text(t.frame_ref)));
+  if (!t.tool_ref.empty()) j.set("declared_tool", Json::str(p.text(t.tool_ref)));
   j.set("base", frameJson(base));
   j.set("tool", frameJson(tool));
   Json uses = Json::array();
@@ -141,22 +141,22 @@ Json targetJson(const Program& p, std::size_t i) {
   return j;
 }
 
-Json motionJson(const postproc::Motion& m) {
+Json motionJson(const Program& p, const postproc::Motion& m) {
   Json j = Json::object();
-  j.set("instruction", Json::str(m.instruction));
+  j.set("instruction", Json::str(p.text(m.instruction)));
   j.set("line", Json::integer(m.line));
   j.set("target", Json::integer(m.target));
   if (m.aux >= 0) j.set("aux_target", Json::integer(m.aux));
-  if (m.target < 0) j.set("target_text", Json::str(m.target_text));
-  if (!m.derivation.empty()) j.set("derivation", Json::str(m.derivation));
+  if (m.target < 0) j.set("target_text", Json::str(p.text(m.target_text)));
+  if (!m.derivation.empty()) j.set("derivation", Json::str(p.text(m.derivation)));
   if (m.speed_mm_s >= 0) j.set("speed_mm_s", Json::number(m.speed_mm_s, 6));
-  if (!m.speed_text.empty()) j.set("speed", Json::str(m.speed_text));
-  j.set("zone", Json::str(m.zone_text));
+  if (!m.speed_text.empty()) j.set("speed", Json::str(p.text(m.speed_text)));
+  j.set("zone", Json::str(p.text(m.zone_text)));
   j.set("fine", Json::boolean(m.fine));
   j.set("config_honoured", Json::boolean(m.config_honoured));
-  if (!m.markers.empty()) {
+  if (m.marker_count > 0) {
     Json mk = Json::array();
-    for (const auto& s : m.markers) mk.push(Json::str(s));
+    for (const auto& s : p.markers(m)) mk.push(Json::str(s));
     j.set("markers", mk);
   }
   return j;
@@ -238,7 +238,7 @@ Json inspectProgram(const InspectRequest& request) {
   for (std::size_t i = 0; i < p.targets().size(); ++i) targets.push(targetJson(p, i));
   root.set("targets", targets);
   Json motions = Json::array();
-  for (const auto& m : p.motions) motions.push(motionJson(m));
+  for (const auto& m : p.motions) motions.push(motionJson(p, m));
   root.set("motions", motions);
   HoleListMatch list;
   if (request.hole_list) {
