@@ -7,9 +7,14 @@
 //  * an NLopt evaluation (the trampoline hands x and the gradient over in owned buffers): 0;
 //  * the drilling transient's right-hand side (entry on the force table, full engagement,
 //    breakthrough, each at a new θ and again at the same θ): 0 per call;
+//  * compensateHoles, keep and flip-free, on N and 2N holes: the same count (a fixed number per
+//    call: result vector, per-thread scratch, DP tables; none per hole);
 //  * the counter itself: a deliberate std::vector allocation is counted (the test can fail).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
+#include "compensator/compensation/compensation.hpp"
 #include "compensator/compensation/nlopt_problem.hpp"
 #include "compensator/precision/cell.hpp"
 #include "compensator/robot/deflection.hpp"
@@ -95,6 +100,58 @@ TEST(AllocCount, PredictHoleAllocatesNothingPerHole) {
   EXPECT_EQ(fresh.U_work_exact, p.U_work_exact);
   EXPECT_EQ(fresh.config, p.config);
   EXPECT_EQ(fresh.budget.size(), p.budget.size());
+}
+
+/// The housing's holes `copies` times, copy k shifted by 2 mm · k along y (ids "<id>_k"); every
+/// other top-face hole turned by 180° about its axis, so that flip-free turns holes back (jump
+/// reasons, NLopt refinement) as in compensation_test's flag test.
+std::vector<HoleRequest> housingCopies(int copies) {
+  std::vector<HoleRequest> out;
+  for (int k = 0; k < copies; ++k) {
+    const std::vector<HoleRequest>& req = housing().job.requests;
+    for (size_t i = 0; i < req.size(); ++i) {
+      HoleRequest r = req[i];
+      r.id = r.id + "_" + std::to_string(k);
+      r.T_W_tcp.translation().y() += 2e-3 * k;
+      if (i % 2 && r.T_W_tcp.linear().col(2).z() < -0.99)
+        r.T_W_tcp.rotate(Eigen::AngleAxisd(kPi, Vec3::UnitZ()));
+      out.push_back(r);
+    }
+  }
+  return out;
+}
+
+/// Allocations of compensateHoles (one thread: all on this one) on 1 and 2 copies of the housing.
+void expectNoAllocationPerHole(OrientationMode mode) {
+  CompensationOptions o;
+  o.mode = mode;
+  const std::vector<HoleRequest> one = housingCopies(1), two = housingCopies(2);
+  const PredictionModel& m = housing().model;
+  compensateHoles(m, one, o);  // warm-up: lazily built tables, if any
+  std::vector<HoleCompensation> r1, r2;
+  CompensationStats s1, s2;
+  const long n1 = allocationsOf([&] { r1 = compensateHoles(m, one, o, &s1); });
+  const long n2 = allocationsOf([&] { r2 = compensateHoles(m, two, o, &s2); });
+  const auto ok = [](const std::vector<HoleCompensation>& r) {
+    return std::count_if(r.begin(), r.end(), [](const HoleCompensation& c) { return c.ok; });
+  };
+  EXPECT_GT(ok(r1), 150);
+  EXPECT_EQ(ok(r2), 2 * ok(r1));
+  if (mode == OrientationMode::kFlipFree) {  // holes turned, with reasons, after a refinement
+    EXPECT_GT(s1.psi_changed, 10);
+    EXPECT_EQ(s2.psi_changed, 2 * s1.psi_changed);
+    EXPECT_GT(s1.nlopt_evaluations, 0);
+  }
+  EXPECT_EQ(n2, n1) << orientationModeName(mode) << ": " << n1 << " allocations for " << one.size()
+                    << " holes, " << n2 << " for " << two.size();
+}
+
+TEST(AllocCount, CompensateKeepAllocatesNothingPerHole) {
+  expectNoAllocationPerHole(OrientationMode::kKeep);
+}
+
+TEST(AllocCount, CompensateFlipFreeAllocatesNothingPerHole) {
+  expectNoAllocationPerHole(OrientationMode::kFlipFree);
 }
 
 TEST(AllocCount, NloptEvaluationAllocatesNothing) {

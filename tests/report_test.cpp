@@ -1055,8 +1055,9 @@ TEST(ReportSample, CompensationReasonsInTheReportAndTheCsv) {
       }
       return s;
     };
-    EXPECT_EQ(unescaped(rows[i][cwr]), h.psi_reason.empty() ? dash : h.psi_reason) << h.id;
-    EXPECT_EQ(unescaped(rows[i][cwc]), h.config_reason.empty() ? dash : h.config_reason) << h.id;
+    EXPECT_EQ(unescaped(rows[i][cwr]), h.psi_reason.empty() ? dash : h.psi_reason.str()) << h.id;
+    EXPECT_EQ(unescaped(rows[i][cwc]), h.config_reason.empty() ? dash : h.config_reason.str())
+        << h.id;
     // a rotation without a reason would be a change nobody asked for
     if (std::fabs(h.psi) > 1e-9) {
       ++rotated;

@@ -351,7 +351,7 @@ Json targetJson(const api::CompensationResult& r, size_t i) {
     j.set("residual_um", Json::number(perpNorm(h.residual, N.linear().col(2)) * 1e6, 4));
     j.set("residual_vector_um", Json::vector(h.residual * 1e6, 4));
     j.set("branch_changed", Json::boolean(h.branch_changed));
-    if (!h.note.empty()) j.set("note", Json::str(h.note));
+    if (!h.note.empty()) j.set("note", Json::str(h.note.str()));
   }
   const HolePrediction& u = h.ok ? h.after : h.before;
   j.set("uncertainty_um", uncertaintyJson(u));

@@ -4,8 +4,10 @@
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <memory>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "compensator/compensation/nlopt_problem.hpp"
 #include "compensator/precision/parallel.hpp"
@@ -278,7 +280,7 @@ struct NodeCount {
 /// The ψ grid of hole h seeded with s (keep: the single ψ = 0 candidate). Where |θ5| ≥ margin
 /// fails for every ψ, the margin becomes a penalty and `note` says so.
 NodeCount holeNodes(Evaluator& ev, const HoleRequest& h, const Vec6& s, int branch, int grid,
-                    std::span<Node> nodes, std::string& note) {
+                    std::span<Node> nodes, ReasonText& note) {
   const bool choose = ev.o.mode != OrientationMode::kKeep;
   NodeCount count;
   bool any = false;
@@ -460,76 +462,116 @@ struct Refined {
 /// COBYLA on ψ within ±1 grid step, subject to |Δθ4|, |Δθ6| ≤ thr against same-face neighbours;
 /// flip-free: the smallest |ψ| (with a small limit/wrist-proximity term), stiffest: node cost
 /// + transitions. The result replaces chosen[i] only when feasible and better. Reads chosen[i]
-/// and its two neighbours (neighbour()) only.
-Refined refineHole(Evaluator& ev, const std::vector<HoleRequest>& holes,
-                   const std::vector<Node>& chosen, size_t i, bool enforce_wrist, int grid,
-                   double thr) {
-  const OrientationMode mode = ev.o.mode;
-  // plain variables, not structured bindings: clang < 16 cannot capture those in the lambdas
-  const std::pair<const Node*, bool> prev_nb = neighbour(chosen, holes, i, -1);
-  const std::pair<const Node*, bool> next_nb = neighbour(chosen, holes, i, +1);
-  const Node* const pn = prev_nb.first;
-  const bool pn_face = prev_nb.second;
-  const Node* const nn = next_nb.first;
-  const bool nn_face = next_nb.second;
-  const int branch = chosen[i].branch;
-  const Vec6 seed_q = chosen[i].q;
-  // COBYLA asks for the objective and the four constraints at the same ψ: evaluate once.
-  double cached_psi = std::numeric_limits<double>::quiet_NaN();
-  Node cached;
-  auto evalAt = [&](double psi) {
-    if (psi != cached_psi) {
-      cached = ev.evaluate(holes[i], psi, branch, seed_q, enforce_wrist, true);
-      cached_psi = psi;
+/// and its two neighbours (neighbour()) only. One Refiner per thread: its NLopt problem and
+/// callbacks are built once (they read the current hole's data), so refining a hole allocates
+/// nothing (NLopt's own C workspace uses malloc).
+class Refiner {
+ public:
+  explicit Refiner(Evaluator& ev) : ev_(ev) {
+    prob_.setObjective([this](const std::vector<double>& x, std::vector<double>&) {
+      const Node nd = evalAt(x[0]);
+      return nd.feasible ? total(nd) : 1e9;
+    });
+    prob_.addInequality(jumpConstraint(true, 3));
+    prob_.addInequality(jumpConstraint(true, 5));
+    prob_.addInequality(jumpConstraint(false, 3));
+    prob_.addInequality(jumpConstraint(false, 5));
+    prob_.setXtolAbs(1e-4);
+    prob_.setMaxEvaluations(30);
+  }
+  Refiner(const Refiner&) = delete;
+  Refiner& operator=(const Refiner&) = delete;
+
+  Refined refine(const std::vector<HoleRequest>& holes, const std::vector<Node>& chosen, size_t i,
+                 bool enforce_wrist, int grid, double thr) {
+    setHole(holes, chosen, i, enforce_wrist, thr);
+    const double step = 2.0 * kPi / grid;
+    const double lower = chosen[i].psi - step, upper = chosen[i].psi + step;
+    prob_.setBounds(&lower, &upper);
+    prob_.setInitialStep(0.25 * step);
+    x_[0] = chosen[i].psi;
+    const NloptProblem::Result r = prob_.optimize(x_);
+    Refined out;
+    out.evaluations = r.evaluations;
+    if (!r.usable()) return out;
+    Node nd = evalAt(x_[0]);
+    const bool ok_jumps =
+        (!h_.pj || jumpOk(h_.pj->q, nd.q, thr)) && (!h_.nj || jumpOk(nd.q, h_.nj->q, thr));
+    const bool better = ev_.o.mode == OrientationMode::kStiffest ? nd.u_def <= chosen[i].u_def
+                                                                 : total(nd) < total(chosen[i]);
+    if (nd.feasible && ok_jumps && better) {
+      nd.psi = wrapPsi(nd.psi);
+      out.node = nd;
+      out.changed = true;
     }
-    return cached;
+    return out;
+  }
+
+ private:
+  /// The hole being refined: its neighbours (pj, nj: those the jump limit applies to).
+  struct Hole {
+    const HoleRequest* hole{nullptr};
+    const Node* pn{nullptr};
+    const Node* nn{nullptr};
+    const Node* pj{nullptr};
+    const Node* nj{nullptr};
+    int branch{-1};
+    Vec6 seed_q{Vec6::Zero()};
+    bool enforce_wrist{false};
+    double thr{0.0};
   };
-  auto total = [&](const Node& nd) {
+
+  void setHole(const std::vector<HoleRequest>& holes, const std::vector<Node>& chosen, size_t i,
+               bool enforce_wrist, double thr) {
+    const std::pair<const Node*, bool> prev_nb = neighbour(chosen, holes, i, -1);
+    const std::pair<const Node*, bool> next_nb = neighbour(chosen, holes, i, +1);
+    h_.hole = &holes[i];
+    h_.pn = prev_nb.first;
+    h_.nn = next_nb.first;
+    h_.pj = prev_nb.second ? prev_nb.first : nullptr;
+    h_.nj = next_nb.second ? next_nb.first : nullptr;
+    h_.branch = chosen[i].branch;
+    h_.seed_q = chosen[i].q;
+    h_.enforce_wrist = enforce_wrist;
+    h_.thr = thr;
+    cached_psi_ = std::numeric_limits<double>::quiet_NaN();
+  }
+
+  /// COBYLA asks for the objective and the four constraints at the same ψ: evaluated once.
+  const Node& evalAt(double psi) {
+    if (psi != cached_psi_) {
+      cached_ = ev_.evaluate(*h_.hole, psi, h_.branch, h_.seed_q, h_.enforce_wrist, true);
+      cached_psi_ = psi;
+    }
+    return cached_;
+  }
+
+  double total(const Node& nd) const {
+    const OrientationMode mode = ev_.o.mode;
     if (mode == OrientationMode::kFlipFree) return std::abs(wrapPsi(nd.psi)) + 0.05 * nd.penalty;
     double c = nodeCost(nd, mode).rest;
-    if (pn) c += transitionCost(*pn, nd, mode).rest;
-    if (nn) c += transitionCost(nd, *nn, mode).rest;
+    if (h_.pn) c += transitionCost(*h_.pn, nd, mode).rest;
+    if (h_.nn) c += transitionCost(nd, *h_.nn, mode).rest;
     return c;
-  };
-  const double step = 2.0 * kPi / grid;
-  NloptProblem prob(NLOPT_LN_COBYLA, 1);
-  prob.setBounds({chosen[i].psi - step}, {chosen[i].psi + step});
-  prob.setObjective([&](const std::vector<double>& x, std::vector<double>&) {
-    const Node nd = evalAt(x[0]);
-    return nd.feasible ? total(nd) : 1e9;
-  });
-  auto jumpConstraint = [&](const Node* other, int joint) {
-    return [&, other, joint](const std::vector<double>& x, std::vector<double>&) {
-      const Node nd = evalAt(x[0]);
-      if (!nd.feasible || !other) return nd.feasible ? -1.0 : 1.0;
-      return std::abs(nd.q[joint] - other->q[joint]) - thr;
-    };
-  };
-  const Node* pj = pn_face ? pn : nullptr;
-  const Node* nj = nn_face ? nn : nullptr;
-  prob.addInequality(jumpConstraint(pj, 3));
-  prob.addInequality(jumpConstraint(pj, 5));
-  prob.addInequality(jumpConstraint(nj, 3));
-  prob.addInequality(jumpConstraint(nj, 5));
-  prob.setInitialStep(0.25 * step);
-  prob.setXtolAbs(1e-4);
-  prob.setMaxEvaluations(30);
-  std::vector<double> x{chosen[i].psi};
-  const NloptProblem::Result r = prob.optimize(x);
-  Refined out;
-  out.evaluations = r.evaluations;
-  if (!r.usable()) return out;
-  Node nd = evalAt(x[0]);
-  const bool ok_jumps = (!pj || jumpOk(pj->q, nd.q, thr)) && (!nj || jumpOk(nd.q, nj->q, thr));
-  const bool better = mode == OrientationMode::kStiffest ? nd.u_def <= chosen[i].u_def
-                                                         : total(nd) < total(chosen[i]);
-  if (nd.feasible && ok_jumps && better) {
-    nd.psi = wrapPsi(nd.psi);
-    out.node = nd;
-    out.changed = true;
   }
-  return out;
-}
+
+  /// |θ_joint − θ_joint(neighbour)| − thr ≤ 0 against the previous (or next) limited neighbour.
+  NloptProblem::Function jumpConstraint(bool previous, int joint) {
+    return [this, previous, joint](const std::vector<double>& x, std::vector<double>&) {
+      const Node nd = evalAt(x[0]);
+      const Node* other = previous ? h_.pj : h_.nj;
+      if (!nd.feasible || !other) return nd.feasible ? -1.0 : 1.0;
+      return std::abs(nd.q[joint] - other->q[joint]) - h_.thr;
+    };
+  }
+
+  Evaluator& ev_;
+  NloptProblem prob_{NLOPT_LN_COBYLA, 1};
+  std::vector<double> x_{0.0};
+  Hole h_;
+  double cached_psi_{std::numeric_limits<double>::quiet_NaN()};
+  Node cached_;
+};
 
 /// Index of the nearest chosen feasible node before hole i, or n when there is none.
 size_t previousFeasible(const std::vector<Node>& chosen, size_t i) {
@@ -549,18 +591,21 @@ void refineTurned(std::vector<Evaluator>& evs, const std::vector<HoleRequest>& h
                   double thr, CompensationStats& st) {
   const size_t n = chosen.size();
   auto turned = [&](size_t i) { return chosen[i].feasible && std::abs(chosen[i].psi) > kPsiKept; };
+  std::vector<std::unique_ptr<Refiner>> refiners;  // one per thread
+  refiners.reserve(evs.size());
+  for (Evaluator& ev : evs) refiners.push_back(std::make_unique<Refiner>(ev));
   std::vector<Refined> spec(n);
   parallelFor(n, static_cast<int>(evs.size()), [&](int w, size_t i) {
     if (turned(i))
-      spec[i] =
-          refineHole(evs[static_cast<size_t>(w)], holes, chosen, i, out[i].note.empty(), grid, thr);
+      spec[i] = refiners[static_cast<size_t>(w)]->refine(holes, chosen, i, out[i].note.empty(),
+                                                         grid, thr);
   });
   std::vector<char> changed(n, 0);
   for (size_t i = 0; i < n; ++i) {
     if (!turned(i)) continue;
     const size_t p = previousFeasible(chosen, i);
     const Refined r = p < n && changed[p]
-                          ? refineHole(evs[0], holes, chosen, i, out[i].note.empty(), grid, thr)
+                          ? refiners[0]->refine(holes, chosen, i, out[i].note.empty(), grid, thr)
                           : std::move(spec[i]);
     st.nlopt_evaluations += r.evaluations;
     if (!r.changed) continue;
@@ -610,18 +655,43 @@ Vec6 exactCommand(Evaluator& ev, const Vec6& theta_d, const nc::Loads& loads) {
   return cmd;
 }
 
-std::string degText(double rad, int decimals = 1) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, rad / kDeg);
-  return buf;
-}
-
 /// True when a and b are the same posture: every joint equal up to whole turns (1e-6 rad).
 bool samePostureUpToTurns(const Vec6& a, const Vec6& b) {
   for (int j = 0; j < 6; ++j) {
     if (std::abs(std::remainder(a[j] - b[j], 2.0 * kPi)) > 1e-6) return false;
   }
   return true;
+}
+
+/// Why the written flags differ from `want` (the program's, else the planned posture's): the
+/// cause (ψ or the offset), then the branch or the turn flags the command does not meet. Built in
+/// place (c.config_reason, inline: no allocation for the phrases).
+void configReason(const Evaluator& ev, const ConfiguredSolution& cs, const VendorConfig& want,
+                  bool stated, HoleCompensation& c) {
+  const PredictionModel& m = ev.m;
+  ReasonText& r = c.config_reason;
+  r.clear();
+  if (stated) {
+    r.append("the compensated target cannot be reached with ")
+        .append(c.config_before)
+        .append(" in the planned posture: ");
+  }
+  if (std::abs(c.psi) > kPsiKept)
+    r.appendf("the rotation of %.1f deg about the drill axis", c.psi / kDeg);
+  else
+    r.append("the compensation offset");
+  r.append(" gives ");
+  const std::optional<int> want_branch = branchOfConfig(want);
+  if (!cs.found) {
+    r.append("no solution within the joint limits (").append(cs.reason).append(")");
+  } else if (want_branch && *want_branch != c.config.branch) {
+    r.appendf("the IK branch %d instead of %d (--allow-branch-change)", c.config.branch,
+              *want_branch);
+  } else {
+    const std::string why = turnFlagMismatch(m.ik, m.robot.card, c.theta_cmd, want,
+                                             m.config_options, kFlagBoundaryTolerance);
+    r.append(why.empty() ? std::string_view("another solution than the flags select") : why);
+  }
 }
 
 /// The flags written for the command c.theta_cmd at the pose T_flange: the program's own flags
@@ -660,26 +730,7 @@ void settleFlags(Evaluator& ev, const HoleRequest& h, const Pose& T_flange, Hole
   c.config_text = formatConfig(c.config);
   c.config_changed = c.config_text != c.config_before;
   if (!c.config_changed) return;
-  // why: the branch, or the turn flags the command does not meet
-  std::string why;
-  const std::optional<int> want_branch = branchOfConfig(want);
-  if (!cs.found) {
-    why = "no solution within the joint limits (" + cs.reason + ")";
-  } else if (want_branch && *want_branch != c.config.branch) {
-    why = "the IK branch " + std::to_string(c.config.branch) + " instead of " +
-          std::to_string(*want_branch) + " (--allow-branch-change)";
-  } else {
-    why = turnFlagMismatch(m.ik, m.robot.card, c.theta_cmd, want, m.config_options,
-                           kFlagBoundaryTolerance);
-    if (why.empty()) why = "another solution than the flags select";
-  }
-  const std::string cause = std::abs(c.psi) > kPsiKept
-                                ? "the rotation of " + degText(c.psi) + " deg about the drill axis"
-                                : std::string("the compensation offset");
-  c.config_reason = (stated ? "the compensated target cannot be reached with " + c.config_before +
-                                  " in the planned posture: "
-                            : "") +
-                    cause + " gives " + why;
+  configReason(ev, cs, want, stated.has_value(), c);
 }
 
 /// The programmed pose, flags, residual and re-predicted budget at the command c.theta_cmd.
@@ -761,32 +812,45 @@ std::pair<double, int> largestWristJump(const Vec6& a, const Vec6& b) {
   return d4 >= d6 ? std::make_pair(d4, 4) : std::make_pair(d6, 6);
 }
 
+/// Why the ψ = 0 candidate `zero` is not admissible on its own (limits, wrist, singularity).
+void infeasibleZeroReason(const Node& zero, const CompensationOptions& o, CompensationStats& st,
+                          ReasonText& r) {
+  switch (zero.why) {
+    case Why::kWrist:
+      ++st.psi_for_wrist;
+      r.appendf(
+          "the programmed rotation puts |axis 5| at %.1f deg, inside the wrist margin of "
+          "%.1f deg",
+          std::asin(zero.wrist) / kDeg, o.wrist_margin / kDeg);
+      return;
+    case Why::kSingular:
+      ++st.psi_for_limits;
+      r = "the programmed rotation is at a wrist or shoulder singularity";
+      return;
+    case Why::kLimits:
+      ++st.psi_for_limits;
+      r = "the programmed rotation leaves the joint limits";
+      if (zero.limit_joint >= 0) r.appendf(" (axis %d)", zero.limit_joint + 1);
+      return;
+    default:
+      ++st.psi_for_limits;
+      r = "the programmed rotation has no solution in the programmed IK branch";
+      return;
+  }
+}
+
 /// Why hole i does not keep ψ = 0 (`zero`: its ψ = 0 candidate); counts the reason in `st`.
-std::string psiReason(const Evaluator& ev, const std::vector<HoleRequest>& holes,
-                      const std::vector<Node>& chosen, const std::vector<HoleCompensation>& out,
-                      const Node& zero, size_t i, double thr, CompensationStats& st) {
+/// Written into `r` (inline: no allocation).
+void psiReason(const Evaluator& ev, const std::vector<HoleRequest>& holes,
+               const std::vector<Node>& chosen, const std::vector<HoleCompensation>& out,
+               const Node& zero, size_t i, double thr, CompensationStats& st, ReasonText& r) {
   const CompensationOptions& o = ev.o;
+  r.clear();
   if (!zero.feasible) {
-    switch (zero.why) {
-      case Why::kWrist:
-        ++st.psi_for_wrist;
-        return "the programmed rotation puts |axis 5| at " + degText(std::asin(zero.wrist)) +
-               " deg, inside the wrist margin of " + degText(o.wrist_margin) + " deg";
-      case Why::kSingular:
-        ++st.psi_for_limits;
-        return "the programmed rotation is at a wrist or shoulder singularity";
-      case Why::kLimits:
-        ++st.psi_for_limits;
-        return "the programmed rotation leaves the joint limits" +
-               (zero.limit_joint >= 0 ? " (axis " + std::to_string(zero.limit_joint + 1) + ")"
-                                      : std::string());
-      default:
-        ++st.psi_for_limits;
-        return "the programmed rotation has no solution in the programmed IK branch";
-    }
+    infeasibleZeroReason(zero, o, st, r);
+    return;
   }
   // ψ = 0 is admissible on its own: a neighbour's chosen posture makes it jump
-  std::string worst;
   double worst_jump = thr;
   for (const int dir : {-1, +1}) {
     const std::pair<const Node*, bool> nb = neighbour(chosen, holes, i, dir);
@@ -795,21 +859,23 @@ std::string psiReason(const Evaluator& ev, const std::vector<HoleRequest>& holes
     if (j.first > worst_jump) {
       worst_jump = j.first;
       const size_t k = static_cast<size_t>(nb.first - chosen.data());
-      worst = "keeping the programmed rotation would turn axis " + std::to_string(j.second) +
-              " by " + degText(j.first) + " deg " + (dir < 0 ? "after" : "before") + " hole " +
-              out[k].id + " (jump threshold " + degText(thr) + " deg)";
+      r.clear();
+      r.appendf("keeping the programmed rotation would turn axis %d by %.1f deg %s hole ", j.second,
+                j.first / kDeg, dir < 0 ? "after" : "before");
+      r.append(out[k].id).appendf(" (jump threshold %.1f deg)", thr / kDeg);
     }
   }
-  if (!worst.empty()) {
+  if (!r.empty()) {
     ++st.psi_for_jumps;
-    return worst;
+    return;
   }
   if (o.mode == OrientationMode::kStiffest) {
     ++st.psi_for_stiffness;
-    return "stiffer than the programmed rotation (predicted U_work)";
+    r = "stiffer than the programmed rotation (predicted U_work)";
+    return;
   }
   ++st.psi_for_jumps;
-  return "the sequence's jump limit cannot be met with the programmed rotation here";
+  r = "the sequence's jump limit cannot be met with the programmed rotation here";
 }
 
 /// Stiffest: the keep result (ψ = 0, positions only) of every hole with a ψ = 0 posture (holes in
@@ -946,7 +1012,7 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,
     if (!c.ok) continue;
     if (std::abs(c.psi) > kPsiKept) {
       ++st.psi_changed;
-      c.psi_reason = psiReason(ev, holes, chosen, out, nodes[i][0], i, thr, st);
+      psiReason(ev, holes, chosen, out, nodes[i][0], i, thr, st, c.psi_reason);
     }
     if (c.config_changed && c.config_in_program) ++st.config_changed;
     if (std::isfinite(c.U_work_keep)) {

@@ -41,6 +41,7 @@
 #include <vector>
 
 #include "compensator/precision/prediction.hpp"
+#include "compensator/support/inline_text.hpp"
 
 namespace roprec {
 
@@ -62,6 +63,11 @@ struct CompensationOptions {
   int threads{1};
 };
 
+/// One hole's result. Building it allocates nothing per hole (issue 15): the messages are inline
+/// ReasonText (inline_text.hpp: 512 bytes, a longer one ends in "..."), the budgets inline
+/// (kMaxBudgetTerms); id, reason and the flag texts are std::string, within the short-string
+/// buffer (15 bytes) for ids like the samples' and every vendor's flag text; reason is set only
+/// for a hole that is not compensated.
 struct HoleCompensation {
   std::string id;
   bool ok{false};
@@ -78,17 +84,17 @@ struct HoleCompensation {
   std::string config_before;      ///< the program's flags (else those of the programmed posture)
   bool config_in_program{false};  ///< the program states flags at this hole (the writer edits them)
   bool config_changed{false};     ///< config_text ≠ config_before
-  std::string config_reason;      ///< why the flags changed ("" when kept)
+  ReasonText config_reason;       ///< why the flags changed ("" when kept)
   int branch{0};
   bool branch_changed{false};
-  std::string psi_reason;  ///< why ψ ≠ 0 ("" when the programmed rotation is kept)
+  ReasonText psi_reason;  ///< why ψ ≠ 0 ("" when the programmed rotation is kept)
   /// stiffest: U_work (exact, m) of the keep compensation at this hole, NaN when not computed;
   /// the gain is U_work_keep − after.U_work_exact.
   double U_work_keep{std::numeric_limits<double>::quiet_NaN()};
   Vec3 residual{Vec3::Zero()};  ///< predicted real − nominal TCP position after compensation, m
   double residual_rot{0.0};     ///< rad
   HolePrediction after;         ///< budget at the compensated pose (U_work, verdict)
-  std::string note;             ///< e.g. the wrist margin could not be met at this hole
+  ReasonText note;              ///< e.g. the wrist margin could not be met at this hole
 };
 
 struct CompensationStats {

@@ -54,8 +54,14 @@ void NloptProblem::addInequality(Function c, double tol) {
 }
 
 void NloptProblem::setBounds(const std::vector<double>& lower, const std::vector<double>& upper) {
-  check(nlopt_set_lower_bounds(opt_.get(), lower.data()), "set the lower bounds");
-  check(nlopt_set_upper_bounds(opt_.get(), upper.data()), "set the upper bounds");
+  if (lower.size() != n_ || upper.size() != n_)
+    throw std::invalid_argument("NloptProblem::setBounds: wrong dimension");
+  setBounds(lower.data(), upper.data());
+}
+
+void NloptProblem::setBounds(const double* lower, const double* upper) {
+  check(nlopt_set_lower_bounds(opt_.get(), lower), "set the lower bounds");
+  check(nlopt_set_upper_bounds(opt_.get(), upper), "set the upper bounds");
 }
 
 void NloptProblem::setXtolAbs(double tol) {

@@ -5,7 +5,9 @@
 /// trampolines are C callbacks that catch everything, store the exception, force-stop the run and
 /// return HUGE_VAL; the stored exception is rethrown after nlopt_optimize returns. The result
 /// (code, value, evaluations) is a value; roundoff-limited runs are usable results, not errors.
-/// Evaluations allocate nothing: x and the gradient live in per-callback buffers.
+/// Evaluations allocate nothing: x and the gradient live in per-callback buffers. A problem may be
+/// run again with new bounds, initial step and start (compensation.cpp's Refiner): nlopt_optimize
+/// resets its stop flag and evaluation count, so a rerun is the same as a fresh problem.
 
 #include <nlopt.h>
 
@@ -28,6 +30,8 @@ class NloptProblem {
   /// Inequality constraint c(x) ≤ 0.
   void addInequality(Function c, double tol = 1e-9);
   void setBounds(const std::vector<double>& lower, const std::vector<double>& upper);
+  /// The same from `dimension` values each (no allocation: NLopt copies them into its arrays).
+  void setBounds(const double* lower, const double* upper);
   void setXtolAbs(double tol);
   void setFtolAbs(double tol);
   void setMaxEvaluations(int n);

@@ -228,20 +228,17 @@ HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const Ho
 
 void predictHole(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
                  const Vec6* seed, HolePrediction& p) {
-  // reset every field, keeping the capacity of the strings and the budget (no allocation)
+  // reset every field, keeping the capacity of the strings (no allocation; the budget is inline)
   std::string id = std::move(p.id);
   std::string reason = std::move(p.reason);
   std::string config = std::move(p.config);
-  std::vector<BudgetTerm> budget = std::move(p.budget);
   p = HolePrediction{};
   id.assign(h.id);
   reason.clear();
   config.clear();
-  budget.clear();
   p.id = std::move(id);
   p.reason = std::move(reason);
   p.config = std::move(config);
-  p.budget = std::move(budget);
   IkSolution sol;
   chooseSolution(m, d, h, flangeTarget(m, h), seedOf(m, h, seed), p, sol);
   predictAtSolution(m, d, h, sol, p);  // without a solution: the per-hole process figures only
@@ -385,8 +382,7 @@ void predictAtSolution(const PredictionModel& m, PredictionData& d, const HoleRe
   p.robdef_cov = cov_def;
   const double u_robdef = std::sqrt(0.5 * cov_def.trace());
   const double u_robdef_proc = std::sqrt(0.5 * cov_def_proc.trace());
-  // one allocation for a fresh prediction (none for a reused one), not one per growth step
-  p.budget.reserve(3 + (proc ? proc->mach.components.size() : 0));
+  p.budget.reserve(3 + (proc ? proc->mach.components.size() : 0));  // within kMaxBudgetTerms
   p.budget.push_back({"robot_repeatability", u_robpos, false});
   p.budget.push_back({"robot_deflection_model",
                       std::sqrt(std::max(0.0, u_robdef * u_robdef - u_robdef_proc * u_robdef_proc)),

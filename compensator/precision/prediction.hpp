@@ -41,6 +41,7 @@
 #include "compensator/robot/configuration.hpp"
 #include "compensator/robot/deflection.hpp"
 #include "compensator/robot/ik.hpp"
+#include "compensator/support/inline_vector.hpp"
 
 namespace roprec {
 
@@ -163,6 +164,9 @@ std::string verdictAndReason(Verdict v, const std::string& reason);
 /// (m) against a ⌀t position tolerance (m): see the file comment.
 Verdict verdictFor(double e, double U, double t);
 
+/// Terms of a hole's uncertainty budget: 3 robot terms + the 3 machining components.
+inline constexpr std::size_t kMaxBudgetTerms = 6;
+
 struct BudgetTerm {
   const char* name;
   double u{0};          ///< per-axis standard uncertainty, m
@@ -186,8 +190,11 @@ struct HolePrediction {
   double position_error{0};                         ///< m, ⊥ hole axis
   double axis_tilt{0};                              ///< rad
   std::optional<double>
-      nominal_axis_error;          ///< m: real drill point ⊥ distance from the nominal axis
-  std::vector<BudgetTerm> budget;  ///< u per in-plane axis
+      nominal_axis_error;  ///< m: real drill point ⊥ distance from the nominal axis
+  /// u per in-plane axis: robot repeatability, deflection model, deflection from the process
+  /// force, then the machining model's components (machining_deviation.hpp: axis, runout, tool
+  /// deflection) — at most kMaxBudgetTerms, stored inline (no allocation per hole).
+  InlineVector<BudgetTerm, kMaxBudgetTerms> budget;
   Eigen::Matrix2d robdef_cov{Eigen::Matrix2d::Zero()};
   double u_robot{0}, u_mach{0}, u_work{0};
   double k{2.4477};
@@ -217,8 +224,9 @@ struct PredictionData {
 /// Predicts one hole. `seed` (rad) steers the default IK choice; nullptr: the reference pose.
 HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
                            const Vec6* seed);
-/// The same into `out`, reusing its strings' and budget's storage: no heap allocation per hole
-/// once `out` has held a prediction (linear budget; the Monte Carlo budget allocates its samples).
+/// The same into `out`, reusing its strings' storage (the budget is inline): no heap allocation
+/// per hole once `out` has held a prediction (linear budget; the Monte Carlo budget allocates its
+/// samples). A fresh prediction allocates only for strings beyond the short-string buffer.
 void predictHole(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
                  const Vec6* seed, HolePrediction& out);
 

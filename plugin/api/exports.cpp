@@ -83,7 +83,7 @@ void csvQuaternion(std::string& s, const Mat3& R) {
 }
 
 /// ,"text" with the text's double quotes doubled (RFC 4180).
-void csvQuoted(std::string& s, const std::string& text) {
+void csvQuoted(std::string& s, std::string_view text) {
   s += ",\"";
   for (const char c : text) {
     if (c == '"') s += '"';
@@ -123,10 +123,10 @@ void csvRow(std::string& s, const CompensationResult& r, size_t i) {
   const Vec6 q_ctrl =
       toControllerJoints(r.context.robot.card, h.ok ? h.theta_cmd : h.before.joints);
   for (int k = 0; k < 6; ++k) csvNumber(s, q_ctrl[k] / kDeg, 6);
-  csvQuoted(s, h.ok ? h.psi_reason : std::string());
+  csvQuoted(s, h.ok ? h.psi_reason.view() : std::string_view());
   csvQuoted(s, h.config_before);
   s += h.ok && h.config_changed ? ",1" : ",0";
-  csvQuoted(s, h.ok ? h.config_reason : std::string());
+  csvQuoted(s, h.ok ? h.config_reason.view() : std::string_view());
   s += '\n';
 }
 
@@ -566,8 +566,8 @@ std::string compensationReport(const CompensationResult& r, const std::string& p
       rh.after = &h.after;
       rh.config_after = h.config_text;  // issue 14: flags before → after, and why
       rh.config_before = h.config_before;
-      rh.rotation_reason = h.psi_reason;
-      rh.config_reason = h.config_reason;
+      rh.rotation_reason = h.psi_reason.str();
+      rh.config_reason = h.config_reason.str();
     }
     in.holes.push_back(rh);
   }

@@ -13,6 +13,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -130,8 +131,8 @@ const char* statusName(HoleStatus s) {
   return "?";
 }
 
-py::object textOrNone(const std::string& s) {
-  return s.empty() ? py::object(py::none()) : py::object(py::str(s));
+py::object textOrNone(std::string_view s) {
+  return s.empty() ? py::object(py::none()) : py::object(py::str(s.data(), s.size()));
 }
 
 // ---------------------------------------------------------------- result dictionaries
