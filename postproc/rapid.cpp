@@ -35,95 +35,137 @@ class RapidReader {
   explicit RapidReader(Program& p) : p_(p), f_(p.files[0]) {}
 
   void run() {
-    LexOptions o;
-    o.comment = '!';
-    o.rapid_assign = true;
-    o.percent_header = true;
-    lex(p_.files[0], o);
+    opt_.comment = '!';
+    opt_.rapid_assign = true;
+    opt_.percent_header = true;
     tools_["TOOL0"] = ToolState{Pose::Identity(), true, false, 0};
     wobjs_["WOBJ0"] = ToolState{Pose::Identity(), true, false, 0};
-    const std::vector<Token>& t = f_.tokens;
-    std::size_t i = 0;
-    int modules = 0;
-    int routines = 0;
-    bool any_module = false;
-    // S4-era header: %%% / VERSION:1 / LANGUAGE:ENGLISH / %%%
-    while (i < t.size() && t[i].kind == TokenKind::kNewline) ++i;
-    if (i < t.size() && t[i].kind == TokenKind::kComment && f_.text(t[i]).rfind("%%%", 0) == 0) {
-      ++i;
-      while (i < t.size() &&
-             !(t[i].kind == TokenKind::kComment && f_.text(t[i]).rfind("%%%", 0) == 0))
-        ++i;
-      if (i >= t.size()) failAt(f_, f_.bytes.size(), "truncated file: %%% header not closed");
-      ++i;
-    }
-    while (i < t.size()) {
-      if (t[i].kind == TokenKind::kNewline || t[i].kind == TokenKind::kComment) {
+    std::size_t i = skipHeader();
+    Nesting n;
+    while (has(i)) {
+      if (tok_[i].kind == TokenKind::kNewline || tok_[i].kind == TokenKind::kComment) {
         ++i;
         continue;
       }
-      std::size_t b = i;
-      const std::string w = upper(f_.text(t[i]));
-      std::size_t k = i;
-      if (w == "LOCAL" || w == "TASK") ++k;
-      const std::string w2 = k < t.size() ? upper(f_.text(t[k])) : "";
-      static const char* const kLineKw[] = {
-          "MODULE",  "ENDMODULE", "PROC",     "FUNC",   "TRAP",     "ENDPROC",   "ENDFUNC",
-          "ENDTRAP", "ENDIF",     "ELSE",     "ENDFOR", "ENDWHILE", "ENDTEST",   "DEFAULT",
-          "ERROR",   "UNDO",      "BACKWARD", "CASE",   "RECORD",   "ENDRECORD", "TEST"};
-      bool line_kw = false;
-      for (const char* kw : kLineKw) line_kw = line_kw || w2 == kw;
-      if (line_kw) {
-        while (i < t.size() && t[i].kind != TokenKind::kNewline) ++i;
-        if (w2 == "MODULE") {
-          ++modules;
-          any_module = true;
-        } else if (w2 == "ENDMODULE") {
-          --modules;
-        } else if (w2 == "PROC" || w2 == "FUNC" || w2 == "TRAP") {
-          ++routines;
-        } else if (w2 == "ENDPROC" || w2 == "ENDFUNC" || w2 == "ENDTRAP") {
-          --routines;
-        }
-        continue;
-      }
-      if (w == "IF" || w == "WHILE" || w == "FOR" || w == "ELSEIF") {
-        std::size_t j = i;
-        while (j < t.size() && !(t[j].kind == TokenKind::kPunct && is1(f_.text(t[j]), ';')) &&
-               !(t[j].kind == TokenKind::kIdentifier &&
-                 (iequals(f_.text(t[j]), "THEN") || iequals(f_.text(t[j]), "DO")))) {
-          ++j;
-        }
-        i = j + 1;
-        continue;
-      }
-      // statement up to ';'
-      std::size_t j = i;
-      int depth = 0;
-      std::size_t last = b;  // last significant token of the statement so far
-      while (j < t.size()) {
-        const std::string_view x = f_.text(t[j]);
-        if (t[j].kind == TokenKind::kPunct) {
-          if (is1(x, '[') || is1(x, '(')) ++depth;
-          if (is1(x, ']') || is1(x, ')')) --depth;
-          if (is1(x, ';')) break;
-        }
-        if (t[j].kind == TokenKind::kNewline && depth == 0) missingSemicolon(last, j);
-        if (t[j].kind != TokenKind::kNewline && t[j].kind != TokenKind::kComment) last = j;
-        ++j;
-      }
-      if (j >= t.size()) failAt(f_, t[b].offset, "truncated file: statement without ';'");
-      statement(b, j);
-      i = j + 1;
+      tok_.erase(tok_.begin(), tok_.begin() + static_cast<std::ptrdiff_t>(i));
+      i = topLevel(n);
     }
-    if (!any_module) failAt(f_, 0, "no MODULE found: not a RAPID module");
-    if (modules != 0) failAt(f_, f_.bytes.size(), "truncated file: MODULE without ENDMODULE");
-    if (routines != 0) failAt(f_, f_.bytes.size(), "truncated file: routine without its END");
+    if (!n.any_module) failAt(f_, 0, "no MODULE found: not a RAPID module");
+    if (n.modules != 0) failAt(f_, f_.bytes.size(), "truncated file: MODULE without ENDMODULE");
+    if (n.routines != 0) failAt(f_, f_.bytes.size(), "truncated file: routine without its END");
   }
 
  private:
   Program& p_;
   const SourceFile& f_;
+  LexOptions opt_;
+  /// Tokens from the current top-level construct on, lexed line by line as the reader needs them
+  /// (the file never has a whole-file token index).
+  std::vector<Token> tok_;
+  std::size_t next_line_{0};  ///< byte offset of the first line not lexed yet
+
+  struct Nesting {
+    int modules{0};
+    int routines{0};
+    bool any_module{false};
+  };
+
+  /// Whether tok_[k] exists, lexing further lines as needed.
+  bool has(std::size_t k) {
+    while (k >= tok_.size()) {
+      if (next_line_ >= f_.bytes.size()) return false;
+      next_line_ = lexLine(f_, opt_, next_line_, tok_);
+    }
+    return true;
+  }
+
+  bool isComment3(std::size_t k) const {
+    return tok_[k].kind == TokenKind::kComment && f_.text(tok_[k]).rfind("%%%", 0) == 0;
+  }
+
+  /// S4-era header: %%% / VERSION:1 / LANGUAGE:ENGLISH / %%%. Returns the index after it.
+  std::size_t skipHeader() {
+    std::size_t i = 0;
+    while (has(i) && tok_[i].kind == TokenKind::kNewline) ++i;
+    if (has(i) && isComment3(i)) {
+      ++i;
+      while (has(i) && !isComment3(i)) ++i;
+      if (!has(i)) failAt(f_, f_.bytes.size(), "truncated file: %%% header not closed");
+      ++i;
+    }
+    return i;
+  }
+
+  /// Keywords whose whole line is skipped (module and routine structure, block ends).
+  static bool lineKeyword(std::string_view w) {
+    static const char* const kLineKw[] = {
+        "MODULE",  "ENDMODULE", "PROC",     "FUNC",   "TRAP",     "ENDPROC",   "ENDFUNC",
+        "ENDTRAP", "ENDIF",     "ELSE",     "ENDFOR", "ENDWHILE", "ENDTEST",   "DEFAULT",
+        "ERROR",   "UNDO",      "BACKWARD", "CASE",   "RECORD",   "ENDRECORD", "TEST"};
+    for (const char* kw : kLineKw)
+      if (iequals(w, kw)) return true;
+    return false;
+  }
+
+  static void count(Nesting& n, std::string_view w2) {
+    if (iequals(w2, "MODULE")) {
+      ++n.modules;
+      n.any_module = true;
+    } else if (iequals(w2, "ENDMODULE")) {
+      --n.modules;
+    } else if (iequals(w2, "PROC") || iequals(w2, "FUNC") || iequals(w2, "TRAP")) {
+      ++n.routines;
+    } else if (iequals(w2, "ENDPROC") || iequals(w2, "ENDFUNC") || iequals(w2, "ENDTRAP")) {
+      --n.routines;
+    }
+  }
+
+  /// The construct starting at tok_[0]: a structure line, a condition head or a statement.
+  /// Returns the index after it.
+  std::size_t topLevel(Nesting& n) {
+    const std::string_view w = f_.text(tok_[0]);
+    const std::size_t k = iequals(w, "LOCAL") || iequals(w, "TASK") ? 1 : 0;
+    const std::string_view w2 = has(k) ? f_.text(tok_[k]) : std::string_view();
+    if (lineKeyword(w2)) {
+      std::size_t i = 0;
+      while (has(i) && tok_[i].kind != TokenKind::kNewline) ++i;
+      count(n, w2);
+      return i;
+    }
+    if (iequals(w, "IF") || iequals(w, "WHILE") || iequals(w, "FOR") || iequals(w, "ELSEIF")) {
+      std::size_t j = 0;
+      while (has(j) && !(tok_[j].kind == TokenKind::kPunct && is1(f_.text(tok_[j]), ';')) &&
+             !(tok_[j].kind == TokenKind::kIdentifier &&
+               (iequals(f_.text(tok_[j]), "THEN") || iequals(f_.text(tok_[j]), "DO")))) {
+        ++j;
+      }
+      return j + 1;
+    }
+    return statementAt();
+  }
+
+  /// The statement at tok_[0] up to its ';'; returns the index after the ';'.
+  std::size_t statementAt() {
+    std::size_t j = 0;
+    int depth = 0;
+    std::size_t last = 0;  // last significant token of the statement so far
+    while (has(j)) {
+      const Token x = tok_[j];
+      if (x.kind == TokenKind::kPunct && x.length == 1) {
+        const char c = f_.bytes[x.offset];
+        if (c == '[' || c == '(') ++depth;
+        if (c == ']' || c == ')') --depth;
+        if (c == ';') break;
+      }
+      if (x.kind == TokenKind::kNewline && depth == 0) missingSemicolon(last, j);
+      if (x.kind != TokenKind::kNewline && x.kind != TokenKind::kComment) last = j;
+      ++j;
+    }
+    if (!has(j)) failAt(f_, tok_[0].offset, "truncated file: statement without ';'");
+    statement(0, j);
+    return j + 1;
+  }
+
   std::unordered_map<std::string, int> targets_;
   std::unordered_map<std::string, ToolState> tools_;
   std::unordered_map<std::string, ToolState> wobjs_;
@@ -139,9 +181,14 @@ class RapidReader {
   /// brackets, or when the next line starts with an operator or an optional argument (`\WObj`).
   /// A line that ends in a complete argument and is followed by a line starting with a name is a
   /// missing `;` (it would otherwise swallow the next instruction, e.g. a hole's drill point).
-  void missingSemicolon(std::size_t last, std::size_t nl) const {
-    const std::vector<Token>& t = f_.tokens;
-    const Token& lt = t[last];
+  static bool isOperatorWord(std::string_view w) {
+    for (const char* op : {"AND", "OR", "XOR", "NOT", "DIV", "MOD"})
+      if (iequals(w, op)) return true;
+    return false;
+  }
+
+  void missingSemicolon(std::size_t last, std::size_t nl) {
+    const Token lt = tok_[last];
     if (lt.kind == TokenKind::kPunct) {
       const std::string_view x = f_.text(lt);
       if (x != "]" && x != ")") return;  // `,` `:=` `\` `+` ... continue the statement
@@ -149,20 +196,14 @@ class RapidReader {
                lt.kind != TokenKind::kString) {
       return;
     }
-    if (lt.kind == TokenKind::kIdentifier) {
-      const std::string u = upper(f_.text(lt));
-      for (const char* op : {"AND", "OR", "XOR", "NOT", "DIV", "MOD"})
-        if (u == op) return;
-    }
+    if (lt.kind == TokenKind::kIdentifier && isOperatorWord(f_.text(lt))) return;
     std::size_t k = nl;
-    while (k < t.size() && (t[k].kind == TokenKind::kNewline || t[k].kind == TokenKind::kComment))
+    while (has(k) && (tok_[k].kind == TokenKind::kNewline || tok_[k].kind == TokenKind::kComment))
       ++k;
-    if (k >= t.size() || t[k].kind != TokenKind::kIdentifier) return;
-    const std::string u = upper(f_.text(t[k]));
-    for (const char* op : {"AND", "OR", "XOR", "NOT", "DIV", "MOD"})
-      if (u == op) return;
+    if (!has(k) || tok_[k].kind != TokenKind::kIdentifier) return;
+    if (isOperatorWord(f_.text(tok_[k]))) return;
     fail(lt.offset, "missing ';' at the end of the line (the next line, '" +
-                        std::string(f_.text(t[k])) + "', would become part of this statement)");
+                        std::string(f_.text(tok_[k])) + "', would become part of this statement)");
   }
 
   void unresolved(const std::string& ref, std::size_t off, const std::string& what) {
@@ -173,7 +214,7 @@ class RapidReader {
 
   // Parses an expression element in [i, e); advances i.
   Node parseElement(std::size_t& i, std::size_t e) {
-    const std::vector<Token>& t = f_.tokens;
+    const std::vector<Token>& t = tok_;
     while (i < e && (t[i].kind == TokenKind::kNewline || t[i].kind == TokenKind::kComment)) ++i;
     if (i >= e)
       fail(i < t.size() ? t[i].offset : f_.bytes.size(), "unterminated aggregate (missing ']')");
@@ -261,12 +302,10 @@ class RapidReader {
   Node parseValue(std::size_t b, std::size_t e) {
     std::size_t i = b;
     Node n = parseElement(i, e);
-    while (i < e &&
-           (f_.tokens[i].kind == TokenKind::kNewline || f_.tokens[i].kind == TokenKind::kComment))
+    while (i < e && (tok_[i].kind == TokenKind::kNewline || tok_[i].kind == TokenKind::kComment))
       ++i;
     if (i < e && n.list)
-      fail(f_.tokens[i].offset,
-           "unexpected '" + std::string(f_.text(f_.tokens[i])) + "' after aggregate");
+      fail(tok_[i].offset, "unexpected '" + std::string(f_.text(tok_[i])) + "' after aggregate");
     return n;
   }
 
@@ -275,21 +314,21 @@ class RapidReader {
   std::optional<double> evaluate(std::size_t b, std::size_t e) const {
     std::vector<std::size_t> tk;
     for (std::size_t k = b; k < e; ++k) {
-      const TokenKind kind = f_.tokens[k].kind;
+      const TokenKind kind = tok_[k].kind;
       if (kind != TokenKind::kNewline && kind != TokenKind::kComment) tk.push_back(k);
     }
     std::size_t pos = 0;
     bool ok = true;
     std::function<double()> expr;
     auto peek = [&]() -> std::string_view {
-      return pos < tk.size() ? f_.text(f_.tokens[tk[pos]]) : std::string_view();
+      return pos < tk.size() ? f_.text(tok_[tk[pos]]) : std::string_view();
     };
     std::function<double()> factor = [&]() -> double {
       if (pos >= tk.size()) {
         ok = false;
         return 0;
       }
-      const Token& x = f_.tokens[tk[pos]];
+      const Token& x = tok_[tk[pos]];
       const std::string_view s = f_.text(x);
       if (x.kind == TokenKind::kPunct && (s == "-" || s == "+")) {
         ++pos;
@@ -469,7 +508,7 @@ class RapidReader {
   }
 
   void declaration(std::size_t b, std::size_t e) {
-    const std::vector<Token>& t = f_.tokens;
+    const std::vector<Token>& t = tok_;
     std::size_t i = b;
     while (i < e && (iequals(f_.text(t[i]), "LOCAL") || iequals(f_.text(t[i]), "TASK"))) ++i;
     ++i;  // CONST/VAR/PERS
@@ -513,7 +552,7 @@ class RapidReader {
   }
 
   void assignment(std::size_t b, std::size_t eq, std::size_t e) {
-    const std::vector<Token>& t = f_.tokens;
+    const std::vector<Token>& t = tok_;
     const std::string name = upper(f_.text(t[b]));
     std::string member;
     for (std::size_t k = b + 1; k < eq; ++k) member += upper(f_.text(t[k]));
@@ -592,7 +631,7 @@ class RapidReader {
   };
 
   int targetArg(const Arg& a, Motion& m, bool joint) {
-    const std::vector<Token>& t = f_.tokens;
+    const std::vector<Token>& t = tok_;
     if (a.b >= a.e) fail(t[a.b > 0 ? a.b - 1 : 0].offset, "motion without a target");
     if (f_.text(t[a.b]) != "[") {  // literal targets: the target itself is the text
       m.target_text = p_.addText(std::string_view(f_.bytes).substr(
@@ -673,7 +712,7 @@ class RapidReader {
   }
 
   void motion(std::size_t b, std::size_t e) {
-    const std::vector<Token>& t = f_.tokens;
+    const std::vector<Token>& t = tok_;
     Motion m;
     m.instruction = p_.addText(f_.text(t[b]));
     const std::string kw = upper(f_.text(t[b]));
@@ -795,7 +834,7 @@ class RapidReader {
   }
 
   void statement(std::size_t b, std::size_t e) {
-    const std::vector<Token>& t = f_.tokens;
+    const std::vector<Token>& t = tok_;
     const std::string w = upper(f_.text(t[b]));
     if (w == "LOCAL" || w == "TASK" || w == "CONST" || w == "VAR" || w == "PERS") {
       declaration(b, e);

@@ -14,45 +14,45 @@ class TpReader {
   explicit TpReader(Program& p) : p_(p), f_(p.files[0]) {}
 
   void run() {
-    LexOptions o;
-    o.comment = 0;
-    o.single_quote_string = true;
-    lex(p_.files[0], o);
-    const std::vector<Token>& t = f_.tokens;
+    opt_.comment = 0;
+    opt_.single_quote_string = true;
     enum class Section { kNone, kProg, kAttr, kAppl, kMn, kPos, kEnd } sec = Section::kNone;
     bool seen_prog = false;
-    std::size_t i = 0;
-    while (i < t.size()) {
-      std::size_t j = i;
-      while (j < t.size() && t[j].kind != TokenKind::kNewline) ++j;
-      // line [i, j)
-      if (j > i && t[i].kind == TokenKind::kPunct && f_.text(t[i]) == "/" && i + 1 < j &&
-          t[i + 1].offset == t[i].offset + 1 && t[i + 1].kind == TokenKind::kIdentifier &&
-          f_.lineOf(t[i].offset) != 0 &&
-          f_.line_starts[static_cast<std::size_t>(f_.lineOf(t[i].offset) - 1)] == t[i].offset) {
-        const std::string s = upper(f_.text(t[i + 1]));
-        if (s == "PROG") {
+    bool pending = false;  // tok_ holds the rest of the line where /POS stopped
+    while (true) {
+      if (!pending) {
+        tok_.clear();
+        if (!lexMore()) break;
+      }
+      pending = false;
+      std::size_t j = 0;
+      while (j < tok_.size() && tok_[j].kind != TokenKind::kNewline) ++j;
+      // line [0, j)
+      if (j > 0 && punct(0, '/') && 1 < j && tok_[1].offset == tok_[0].offset + 1 &&
+          tok_[1].kind == TokenKind::kIdentifier && atLineStart(tok_[0].offset)) {
+        const std::string_view s = tx(1);
+        if (iequals(s, "PROG")) {
           sec = Section::kProg;
           seen_prog = true;
-        } else if (s == "ATTR") {
+        } else if (iequals(s, "ATTR")) {
           sec = Section::kAttr;
-        } else if (s == "APPL") {
+        } else if (iequals(s, "APPL")) {
           sec = Section::kAppl;
-        } else if (s == "MN") {
+        } else if (iequals(s, "MN")) {
           sec = Section::kMn;
-        } else if (s == "POS") {
+        } else if (iequals(s, "POS")) {
           sec = Section::kPos;
-        } else if (s == "END") {
+        } else if (iequals(s, "END")) {
           sec = Section::kEnd;
         }
-        i = j + 1;
         if (sec == Section::kPos) {
-          i = positions(i);
+          tok_.clear();
+          pending = positions();
+          if (!pending) break;
         }
         continue;
       }
-      if (sec == Section::kMn && j > i) mnLine(i, j);
-      i = j + 1;
+      if (sec == Section::kMn && j > 0) mnLine(0, j);
     }
     if (!seen_prog) failAt(f_, 0, "no /PROG header: not a FANUC TP .ls file");
     if (sec != Section::kEnd) failAt(f_, f_.bytes.size(), "truncated file: no /END");
@@ -62,6 +62,20 @@ class TpReader {
  private:
   Program& p_;
   const SourceFile& f_;
+  LexOptions opt_;
+  std::vector<Token> tok_;    ///< tokens of the current line (/MN) or position record (/POS)
+  std::size_t next_line_{0};  ///< byte offset of the first line not lexed yet
+
+  /// Appends the next line's tokens to tok_; false at the end of the file.
+  bool lexMore() {
+    if (next_line_ >= f_.bytes.size()) return false;
+    next_line_ = lexLine(f_, opt_, next_line_, tok_);
+    return true;
+  }
+  bool atLineStart(std::uint32_t offset) const {
+    const int line = f_.lineOf(offset);
+    return line != 0 && f_.line_starts[static_cast<std::size_t>(line - 1)] == offset;
+  }
   std::unordered_map<int, int> by_number_;  // P number -> target
   struct Pending {
     int motion;
@@ -74,24 +88,25 @@ class TpReader {
   int last_motion_line_{-1};
 
   [[noreturn]] void fail(std::size_t off, const std::string& m) const { failAt(f_, off, m); }
-  std::string_view tx(std::size_t k) const { return f_.text(f_.tokens[k]); }
-  bool punct(std::size_t k, std::string_view c) const {
-    return f_.tokens[k].kind == TokenKind::kPunct && tx(k) == c;
+  std::string_view tx(std::size_t k) const { return f_.text(tok_[k]); }
+  bool punct(std::size_t k, char c) const {
+    return tok_[k].kind == TokenKind::kPunct && tok_[k].length == 1 &&
+           f_.bytes[tok_[k].offset] == c;
   }
 
   // P[n(:comment)] / PR[n(:comment)] at k; returns index after ']' and the number (-1 indirect).
   std::size_t reference(std::size_t k, std::size_t e, int& number) const {
     number = -1;
-    if (k + 1 >= e || !punct(k + 1, "[")) return k + 1;
+    if (k + 1 >= e || !punct(k + 1, '[')) return k + 1;
     std::size_t q = k + 2;
-    if (q < e && f_.tokens[q].kind == TokenKind::kNumber)
+    if (q < e && tok_[q].kind == TokenKind::kNumber)
       number = toInt(parseNumber(tx(q)).value_or(-1));
     int depth = 1;
     for (q = k + 2; q < e && depth > 0; ++q) {
-      if (punct(q, "[")) ++depth;
-      if (punct(q, "]")) --depth;
+      if (punct(q, '[')) ++depth;
+      if (punct(q, ']')) --depth;
     }
-    if (depth != 0) fail(f_.tokens[k].offset, "unterminated position reference '['");
+    if (depth != 0) fail(tok_[k].offset, "unterminated position reference '['");
     return q;
   }
 
@@ -99,14 +114,14 @@ class TpReader {
 
   void mnLine(std::size_t b, std::size_t e) {
     std::size_t k = b;
-    const bool numbered = f_.tokens[k].kind == TokenKind::kNumber && k + 1 < e && punct(k + 1, ":");
+    const bool numbered = tok_[k].kind == TokenKind::kNumber && k + 1 < e && punct(k + 1, ':');
     if (numbered) {
       k += 2;
-    } else if (punct(k, ":") && last_motion_line_ >= 0 && k + 1 < e &&
+    } else if (punct(k, ':') && last_motion_line_ >= 0 && k + 1 < e &&
                (iequals(tx(k + 1), "P") || iequals(tx(k + 1), "PR"))) {
       continuation(k + 1, e);
       return;
-    } else if (punct(k, ":")) {
+    } else if (punct(k, ':')) {
       k += 1;
     } else if (last_motion_line_ >= 0 && (iequals(tx(k), "P") || iequals(tx(k), "PR"))) {
       // continuation line of a C/A motion: the end point
@@ -115,16 +130,15 @@ class TpReader {
     } else {
       // a program line starts with its number (`12:`): anything else is a damaged line, never
       // dropped in silence (it may be a motion)
-      fail(f_.tokens[k].offset,
-           "a /MN line starts with its line number ('12:  L P[3] ...'), got '" +
-               std::string(tx(k).substr(0, 40)) + "'");
+      fail(tok_[k].offset, "a /MN line starts with its line number ('12:  L P[3] ...'), got '" +
+                               std::string(tx(k).substr(0, 40)) + "'");
     }
     if (k >= e) return;
     last_motion_line_ = -1;
     // motion letter directly after ':'
-    const Token& lt = f_.tokens[k];
+    const Token& lt = tok_[k];
     const std::string_view letter = tx(k);
-    const bool attached = lt.offset == f_.tokens[k - 1].offset + 1;
+    const bool attached = lt.offset == tok_[k - 1].offset + 1;
     if (attached && lt.kind == TokenKind::kIdentifier && letter.size() == 1 &&
         (letter == "J" || letter == "L" || letter == "C" || letter == "A" || letter == "S")) {
       motion(k, e);
@@ -132,14 +146,14 @@ class TpReader {
     }
     const std::string w = upper(letter);
     if (w == "UFRAME_NUM" || w == "UTOOL_NUM") {
-      if (k + 2 < e && punct(k + 1, "=") && f_.tokens[k + 2].kind == TokenKind::kNumber) {
+      if (k + 2 < e && punct(k + 1, '=') && tok_[k + 2].kind == TokenKind::kNumber) {
         (w == "UFRAME_NUM" ? uframe_ : utool_) = toInt(parseNumber(tx(k + 2)).value_or(-1));
       } else {
         (w == "UFRAME_NUM" ? uframe_ : utool_) = -2;  // register: runtime
       }
       return;
     }
-    if (w == "WAIT" && k + 1 < e && f_.tokens[k + 1].kind == TokenKind::kNumber) {
+    if (w == "WAIT" && k + 1 < e && tok_[k + 1].kind == TokenKind::kNumber) {
       marker("dwell " + std::string(tx(k + 1)) + " s");
       return;
     }
@@ -147,14 +161,13 @@ class TpReader {
       marker("call " + std::string(tx(k + 1)));
       return;
     }
-    if (punct(k, "!")) {
-      const std::string u = upper(std::string_view(f_.bytes).substr(
-          f_.tokens[k].offset, f_.tokens[e - 1].offset - f_.tokens[k].offset));
+    if (punct(k, '!')) {
+      const std::string u = upper(
+          std::string_view(f_.bytes).substr(tok_[k].offset, tok_[e - 1].offset - tok_[k].offset));
       if (u.find("DRILL") != std::string::npos || u.find("PLUNGE") != std::string::npos) {
         marker("comment " +
                std::string(std::string_view(f_.bytes).substr(
-                   f_.tokens[k].offset,
-                   f_.tokens[e - 1].offset + f_.tokens[e - 1].length - f_.tokens[k].offset)));
+                   tok_[k].offset, tok_[e - 1].offset + tok_[e - 1].length - tok_[k].offset)));
       }
     }
   }
@@ -165,7 +178,7 @@ class TpReader {
     std::size_t q = k;
     for (; q < e; ++q) {
       const std::string u = upper(tx(q));
-      if (u == "FINE" || u.rfind("CNT", 0) == 0 || punct(q, ";")) break;
+      if (u == "FINE" || u.rfind("CNT", 0) == 0 || punct(q, ';')) break;
       speed += tx(q);
     }
     m.speed_text = p_.addText(speed);
@@ -182,16 +195,15 @@ class TpReader {
     if (linear_unit && !num && !by_register) {
       // a damaged number (`nanmm/sec`) would leave the move without a speed: the drill feed
       // is recognised from it
-      fail(f_.tokens[k].offset,
-           "speed '" + speed.substr(0, 40) +
-               "' is not a number with its unit (e.g. 20mm/sec) or a register");
+      fail(tok_[k].offset, "speed '" + speed.substr(0, 40) +
+                               "' is not a number with its unit (e.g. 20mm/sec) or a register");
     }
     if (num) {
       if (su.find("MM/SEC") != std::string::npos) m.speed_mm_s = *num;
       if (su.find("CM/MIN") != std::string::npos) m.speed_mm_s = *num * 10.0 / 60.0;
       if (su.find("INCH/MIN") != std::string::npos) m.speed_mm_s = *num * 25.4 / 60.0;
     }
-    if (q < e && !punct(q, ";")) {
+    if (q < e && !punct(q, ';')) {
       std::string zone(tx(q));
       if (iequals(zone, "CNT") && q + 1 < e) zone += std::string(tx(q + 1));
       m.fine = iequals(zone, "FINE");
@@ -210,20 +222,19 @@ class TpReader {
     Motion m;
     m.instruction = p_.addText(tx(k));
     m.file = 0;
-    m.line = f_.lineOf(f_.tokens[k].offset);
+    m.line = f_.lineOf(tok_[k].offset);
     const char c = tx(k)[0];
     m.type = c == 'J'                 ? MotionType::kJoint
              : (c == 'C' || c == 'A') ? MotionType::kCircular
                                       : MotionType::kLinear;
     m.config_honoured = m.type == MotionType::kJoint;
     std::size_t q = k + 1;
-    if (q >= e) fail(f_.tokens[k].offset, "motion without a target");
+    if (q >= e) fail(tok_[k].offset, "motion without a target");
     const std::string ref = upper(tx(q));
     int number = -1;
     const std::size_t after = reference(q, e, number);
     m.target_text = p_.addText(std::string_view(f_.bytes).substr(
-        f_.tokens[q].offset,
-        f_.tokens[after - 1].offset + f_.tokens[after - 1].length - f_.tokens[q].offset));
+        tok_[q].offset, tok_[after - 1].offset + tok_[after - 1].length - tok_[q].offset));
     int pnum = -1;
     if (ref == "P" && number >= 0) {
       pnum = number;
@@ -260,16 +271,16 @@ class TpReader {
 
   NumberField signedNumber(std::size_t& q, std::size_t e, std::size_t eq_end) {
     const std::size_t s = q;
-    if (q < e && (punct(q, "-") || punct(q, "+"))) ++q;
-    if (q >= e || f_.tokens[q].kind != TokenKind::kNumber) {
-      fail(f_.tokens[std::min(q, e - 1)].offset, "broken number in position record");
+    if (q < e && (punct(q, '-') || punct(q, '+'))) ++q;
+    if (q >= e || tok_[q].kind != TokenKind::kNumber) {
+      fail(tok_[std::min(q, e - 1)].offset, "broken number in position record");
     }
-    const Token& nt = f_.tokens[q];
-    if (q + 1 < e && f_.tokens[q + 1].offset == nt.offset + nt.length &&
-        (f_.tokens[q + 1].kind == TokenKind::kNumber || punct(q + 1, "."))) {
+    const Token& nt = tok_[q];
+    if (q + 1 < e && tok_[q + 1].offset == nt.offset + nt.length &&
+        (tok_[q + 1].kind == TokenKind::kNumber || punct(q + 1, '.'))) {
       fail(nt.offset, "broken number '" + std::string(tx(q)) + std::string(tx(q + 1)) + "'");
     }
-    NumberField f = numberField(p_, 0, f_.tokens[s].offset, nt.offset + nt.length);
+    NumberField f = numberField(p_, 0, tok_[s].offset, nt.offset + nt.length);
     // right-aligned field: the spaces between '=' and the number belong to it
     std::uint32_t pad = 0;
     std::uint32_t o = f.offset;
@@ -282,42 +293,72 @@ class TpReader {
     return f;
   }
 
-  std::size_t positions(std::size_t i) {
-    const std::vector<Token>& t = f_.tokens;
-    while (i < t.size()) {
-      if (t[i].kind == TokenKind::kNewline) {
+  /// Lexes lines onto tok_ until it holds a `}` or a `/END` (or the file ends).
+  void bufferRecord() {
+    std::size_t k = 0;
+    while (true) {
+      for (; k < tok_.size(); ++k) {
+        if (punct(k, '}')) return;
+        if (punct(k, '/') && k + 1 < tok_.size() && iequals(tx(k + 1), "END")) return;
+      }
+      if (!lexMore()) return;
+      if (k > 0 && punct(k - 1, '/')) --k;  // `/` was the last token: look at it again
+    }
+  }
+
+  /// Reads the /POS records, lexing one record at a time. Returns true when it stopped at a
+  /// `/END` (tok_ then holds the rest of that line, from the `/`), false at the end of the file.
+  bool positions() {
+    std::size_t i = 0;
+    while (true) {
+      if (i >= tok_.size()) {
+        tok_.clear();
+        i = 0;
+        if (!lexMore()) return false;
+        continue;
+      }
+      if (tok_[i].kind == TokenKind::kNewline) {
         ++i;
         continue;
       }
+      tok_.erase(tok_.begin(), tok_.begin() + static_cast<std::ptrdiff_t>(i));
+      bufferRecord();
       // '/END' ends the section
-      if (punct(i, "/") && i + 1 < t.size() && iequals(tx(i + 1), "END")) return i;
-      if (!iequals(tx(i), "P") || i + 1 >= t.size() || !punct(i + 1, "[")) {
-        fail(t[i].offset, "expected a position record P[n]{...}; in /POS");
-      }
-      const std::size_t rec = i;
-      int number = -1;
-      i = reference(i, t.size(), number);
-      if (number < 0) fail(t[rec].offset, "position record without a number");
-      if (i >= t.size()) fail(t[rec].offset, "truncated position record");
-      // skip to '{'
-      while (i < t.size() && t[i].kind == TokenKind::kNewline) ++i;
-      if (i >= t.size() || !punct(i, "{"))
-        fail(t[rec].offset, "expected '{' after P[" + std::to_string(number) + "]");
-      // find the closing '};'
-      std::size_t e = i + 1;
-      while (e < t.size() && !punct(e, "}")) {
-        if (punct(e, "/") && e + 1 < t.size() && iequals(tx(e + 1), "END"))
-          e = t.size();
-        else
-          ++e;
-      }
-      if (e >= t.size())
-        fail(t[rec].offset,
-             "unterminated position record P[" + std::to_string(number) + "] (missing '};')");
-      record(rec, number, i + 1, e);
-      i = e + 1;
-      if (i < t.size() && punct(i, ";")) ++i;
+      if (punct(0, '/') && 1 < tok_.size() && iequals(tx(1), "END")) return true;
+      i = positionRecord();
     }
+  }
+
+  /// The position record at tok_[0]; returns the index after it.
+  std::size_t positionRecord() {
+    const std::vector<Token>& t = tok_;
+    std::size_t i = 0;
+    if (!iequals(tx(i), "P") || i + 1 >= t.size() || !punct(i + 1, '[')) {
+      fail(t[i].offset, "expected a position record P[n]{...}; in /POS");
+    }
+    const std::size_t rec = i;
+    int number = -1;
+    i = reference(i, t.size(), number);
+    if (number < 0) fail(t[rec].offset, "position record without a number");
+    if (i >= t.size()) fail(t[rec].offset, "truncated position record");
+    // skip to '{'
+    while (i < t.size() && t[i].kind == TokenKind::kNewline) ++i;
+    if (i >= t.size() || !punct(i, '{'))
+      fail(t[rec].offset, "expected '{' after P[" + std::to_string(number) + "]");
+    // find the closing '};'
+    std::size_t e = i + 1;
+    while (e < t.size() && !punct(e, '}')) {
+      if (punct(e, '/') && e + 1 < t.size() && iequals(tx(e + 1), "END"))
+        e = t.size();
+      else
+        ++e;
+    }
+    if (e >= t.size())
+      fail(t[rec].offset,
+           "unterminated position record P[" + std::to_string(number) + "] (missing '};')");
+    record(rec, number, i + 1, e);
+    i = e + 1;
+    if (i < t.size() && punct(i, ';')) ++i;
     return i;
   }
 
@@ -325,7 +366,7 @@ class TpReader {
     Target t;
     t.name = "P[" + std::to_string(number) + "]";
     t.file = 0;
-    t.line = f_.lineOf(f_.tokens[rec].offset);
+    t.line = f_.lineOf(tok_[rec].offset);
     t.config.vendor = Vendor::kFanuc;
     bool gp1 = false;
     bool cart = false;
@@ -333,13 +374,13 @@ class TpReader {
     int group = 0;
     std::size_t q = b;
     while (q < e) {
-      const Token& tk = f_.tokens[q];
+      const Token& tk = tok_[q];
       if (tk.kind != TokenKind::kIdentifier) {
         ++q;
         continue;
       }
       const std::string n = upper(tx(q));
-      if (n.size() >= 3 && n.rfind("GP", 0) == 0 && q + 1 < e && punct(q + 1, ":")) {
+      if (n.size() >= 3 && n.rfind("GP", 0) == 0 && q + 1 < e && punct(q + 1, ':')) {
         group = toInt(parseNumber(n.substr(2)).value_or(0), 0);
         gp1 = gp1 || group == 1;
         q += 2;
@@ -349,12 +390,12 @@ class TpReader {
         ++q;
         continue;
       }
-      if ((n == "UF" || n == "UT") && q + 2 < e && punct(q + 1, ":")) {
+      if ((n == "UF" || n == "UT") && q + 2 < e && punct(q + 1, ':')) {
         std::size_t r = q + 2;
-        const NumberField v = signedNumber(r, e, f_.tokens[q + 1].offset + 1);
+        const NumberField v = signedNumber(r, e, tok_[q + 1].offset + 1);
         // frame numbers are small integers (UF 0..61, UT 1..61 on current controllers)
         if (!(v.value >= 0 && v.value <= 99 && v.value == std::floor(v.value))) {
-          fail(f_.tokens[q].offset,
+          fail(tok_[q].offset,
                n + " : " + numberText(v.value) + " is not a frame number (an integer 0 .. 99)");
         }
         (n == "UF" ? t.frame_ref : t.tool_ref) =
@@ -362,9 +403,9 @@ class TpReader {
         q = r;
         continue;
       }
-      if (n == "CONFIG" && q + 2 < e && punct(q + 1, ":") &&
-          f_.tokens[q + 2].kind == TokenKind::kString) {
-        const Token& s = f_.tokens[q + 2];
+      if (n == "CONFIG" && q + 2 < e && punct(q + 1, ':') &&
+          tok_[q + 2].kind == TokenKind::kString) {
+        const Token& s = tok_[q + 2];
         const std::string_view sv = f_.text(s);
         if (sv.size() < 2 || sv.back() != '\'') fail(s.offset, "unterminated CONFIG string");
         t.fanuc_config.file = 0;
@@ -374,9 +415,9 @@ class TpReader {
         q += 3;
         continue;
       }
-      if (q + 1 < e && punct(q + 1, "=")) {
+      if (q + 1 < e && punct(q + 1, '=')) {
         std::size_t r = q + 2;
-        const NumberField v = signedNumber(r, e, f_.tokens[q + 1].offset + 1);
+        const NumberField v = signedNumber(r, e, tok_[q + 1].offset + 1);
         if (n == "X")
           t.pos[0] = v, cart = true;
         else if (n == "Y")
@@ -402,7 +443,7 @@ class TpReader {
     t.kind = joint && !cart ? TargetKind::kJoint : TargetKind::kCartesian;
     t.orientation = t.kind == TargetKind::kCartesian ? Orientation::kFanucWpr : Orientation::kNone;
     if (by_number_.count(number) != 0)
-      fail(f_.tokens[rec].offset, "position P[" + std::to_string(number) + "] defined twice");
+      fail(tok_[rec].offset, "position P[" + std::to_string(number) + "] defined twice");
     p_.target_list.push_back(std::move(t));
     by_number_[number] = static_cast<int>(p_.target_list.size() - 1);
   }
