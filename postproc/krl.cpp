@@ -1,6 +1,7 @@
 /// KUKA KRL reader (`.src` + `.dat`), docs/programs.md §2.
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <span>
 #include <unordered_map>
 
@@ -112,9 +113,9 @@ class KrlReader {
   };
   NameMap<Fdat> fdats_;
   NameMap<double> ldat_vel_;  // m/s
-  // Frames declared by name: FRAME declarations live in frame_decls_ (value
-  // -1 - index); POS/E6POS declarations are targets too and are read back from the target (value
-  // = target index), so a 100,000-point .dat keeps no second copy of its poses.
+  // FRAME declarations by name (value -1 - index into frame_decls_). POS/E6POS declarations are
+  // named frames too: found in targets_ and read back from the target (namedFrameIndex), so a
+  // 100,000-point .dat keeps no second copy of its poses and no second table entry.
   NameMap<int> named_frames_;
   std::vector<Component> comps_;  // parseAggregate's scratch (see Aggregate)
   int aggregate_depth_{0};
@@ -122,6 +123,8 @@ class KrlReader {
   std::unordered_map<int, Frame> base_data_;
   std::unordered_map<int, Frame> tool_data_;
   std::unordered_map<std::string, bool> reported_;
+  std::set<std::pair<bool, int>> missing_tables_;  // (base?, number) already passed to unresolved
+  std::size_t line_index_{0};                      // lineAt(): line_starts index of the last line
   std::vector<std::pair<std::size_t, std::size_t>> exprs_;  // motion(): target expressions
   Frame tool_{"$TOOL", false, Pose::Identity(), -1, 0};
   Frame base_{"$BASE", false, Pose::Identity(), -1, 0};
@@ -152,6 +155,7 @@ class KrlReader {
   void forEachLine(F&& fn) {
     SourceFile& f = p_.files[static_cast<std::size_t>(file_)];
     std::size_t pos = 0;
+    line_index_ = 0;
     while (pos < f.bytes.size()) {
       f.tokens.clear();
       pos = lexLine(f, lex_, pos, f.tokens);
@@ -162,6 +166,15 @@ class KrlReader {
       fn(std::size_t{0}, e, j);
     }
     f.tokens.clear();
+  }
+
+  // file().lineOf(offset) for offsets met in file order: the line cursor moves forward from the
+  // last answer (no binary search over 100,000s of lines per target).
+  int lineAt(std::size_t offset) {
+    const std::vector<std::uint32_t>& s = file().line_starts;
+    if (line_index_ >= s.size() || s[line_index_] > offset) return file().lineOf(offset);
+    while (line_index_ + 1 < s.size() && s[line_index_ + 1] <= offset) ++line_index_;
+    return static_cast<int>(line_index_ + 1);
   }
 
   Aggregate parseAggregate(TokenCursor& c) {
@@ -323,7 +336,7 @@ class KrlReader {
     Target& t = p_.target_list.emplace_back();
     t.name = std::string(name);
     t.file = file_;
-    t.line = file().lineOf(a.open);
+    t.line = lineAt(a.open);
     t.aggregate_end = a.close;
     t.config.vendor = Vendor::kKuka;
     const bool joint = iequals(type, "AXIS") || iequals(type, "E6AXIS") ||
@@ -341,7 +354,7 @@ class KrlReader {
     if (!joint && !file().significant9) {
       for (const NumberField* f :
            {&t.pos[0], &t.pos[1], &t.pos[2], &t.rot[0], &t.rot[1], &t.rot[2]}) {
-        if (f->present() &&
+        if (f->present() && f->length >= 9 &&
             sigDigits(std::string_view(file().bytes).substr(f->offset, f->length)) >= 9) {
           p_.files[static_cast<std::size_t>(file_)].significant9 = true;
         }
@@ -350,6 +363,16 @@ class KrlReader {
     const int idx = static_cast<int>(p_.target_list.size() - 1);
     if (!name.empty()) targets_[name] = idx;
     return idx;
+  }
+
+  // named_frames_ value of a declared name: a FRAME declaration, else a Cartesian target
+  // declared by name (POS/E6POS: the named targets that are not AXIS/E6AXIS).
+  std::optional<int> namedFrameIndex(std::string_view n) const {
+    if (const int* v = named_frames_.find(n)) return *v;
+    const int* t = targets_.find(n);
+    if (t != nullptr && p_.target_list[static_cast<std::size_t>(*t)].kind == TargetKind::kCartesian)
+      return *t;
+    return std::nullopt;
   }
 
   // The frame a name declared (see named_frames_): a POS/E6POS target's pose is poseOf() of its
@@ -413,8 +436,7 @@ class KrlReader {
           Frame{std::string(name), true, poseOf(a), file_, file().lineOf(name_off)});
       named_frames_[name] = -static_cast<int>(frame_decls_.size());
     } else if (isPositionType(type)) {
-      const int idx = makeTarget(a, name, type);
-      if (iequals(type, "POS") || iequals(type, "E6POS")) named_frames_[name] = idx;
+      makeTarget(a, name, type);  // POS/E6POS: a named frame too (namedFrameIndex)
     } else if (iequals(type, "FDAT")) {
       Fdat fd;
       if (const Component* t = a.find("TOOL_NO"); t != nullptr && t->kind == Component::kNumber)
@@ -458,16 +480,18 @@ class KrlReader {
   }
 
   Frame tableFrame(bool base, int n, std::size_t offset) {
-    const std::string ref =
-        std::string(base ? "BASE_DATA[" : "TOOL_DATA[") + std::to_string(n) + "]";
     if (n == 0) return Frame{"$NULLFRAME", true, Pose::Identity(), -1, 0};
     auto& table = base ? base_data_ : tool_data_;
     const auto it = table.find(n);
     if (it != table.end()) return it->second;
-    unresolved(ref, offset,
-               base ? "base frame defined outside the program ($config.dat)"
-                    : "tool defined outside the program ($config.dat)");
-    return Frame{ref, false, Pose::Identity(), -1, 0};
+    std::string ref = std::string(base ? "BASE_DATA[" : "TOOL_DATA[") + std::to_string(n) + "]";
+    // reported once (a table entry assigned later is found above from then on)
+    if (missing_tables_.insert({base, n}).second) {
+      unresolved(ref, offset,
+                 base ? "base frame defined outside the program ($config.dat)"
+                      : "tool defined outside the program ($config.dat)");
+    }
+    return Frame{std::move(ref), false, Pose::Identity(), -1, 0};
   }
 
   // Evaluates a frame expression over tokens [b, e): terms joined by ':'.
@@ -499,7 +523,7 @@ class KrlReader {
           term = base_;
         } else if (n == "$TOOL") {
           term = tool_;
-        } else if (const int* nf = named_frames_.find(n)) {
+        } else if (const std::optional<int> nf = namedFrameIndex(n)) {
           term = namedFrame(*nf);
         } else {
           term = Frame{std::string(file().text(file().tokens[c.index() - 1])), false,
@@ -568,12 +592,12 @@ class KrlReader {
     const std::uint32_t en = f.tokens[e - 1].offset + f.tokens[e - 1].length;
     TokenCursor c(f, b, e);
     const std::string_view text = std::string_view(f.bytes).substr(s, en - s);
-    if (!c.isPunct('{')) m.target_text = p_.addText(text);  // literal targets: the text
+    if (!c.isPunct('{')) m.target_text = p_.addUniqueText(text);  // literal targets: the text
     if (c.isPunct('{')) {
       const Aggregate a = parseAggregate(c);
       if (!c.done() || relative) {
         m.derivation = relative ? m.instruction : p_.addText(":");
-        m.target_text = p_.addText(text);
+        m.target_text = p_.addUniqueText(text);
         return -1;
       }
       return makeTarget(a, "", a.type);
@@ -611,7 +635,7 @@ class KrlReader {
     const std::size_t kw_off = c.peek().offset;
     c.next();
     m.file = file_;
-    m.line = f.lineOf(kw_off);
+    m.line = lineAt(kw_off);
     const bool relative = icontains(kw, "_REL");
     if (istartsWith(kw, "PTP") || iequals(kw, "SPTP")) {
       m.type = MotionType::kJoint;
@@ -693,10 +717,10 @@ class KrlReader {
   }
 
   static bool isMotionKeyword(std::string_view w) {
-    static const char* const kw[] = {"PTP",      "LIN",       "CIRC",    "SPTP",     "SLIN",
-                                     "SCIRC",    "PTP_REL",   "LIN_REL", "CIRC_REL", "SPTP_REL",
-                                     "SLIN_REL", "SCIRC_REL", "SPL"};
-    for (const char* k : kw) {
+    static constexpr std::string_view kw[] = {
+        "PTP",     "LIN",      "CIRC",     "SPTP",     "SLIN",      "SCIRC", "PTP_REL",
+        "LIN_REL", "CIRC_REL", "SPTP_REL", "SLIN_REL", "SCIRC_REL", "SPL"};
+    for (const std::string_view k : kw) {
       if (iequals(w, k)) return true;
     }
     return false;

@@ -59,45 +59,50 @@ inline std::uint64_t ihash(std::string_view s) {
 
 /// Map from names to V, ASCII case-insensitive, for the readers' symbol tables (100,000
 /// declarations: no node and no string allocated per name). Keys are views into bytes that
-/// outlive the map (the program's files). Open addressing, linear probing, load <= 1/2.
+/// outlive the map (the program's files). Entries stay in insertion order; the hash index holds
+/// 4-byte entry numbers only (open addressing, linear probing, load <= 1/2), so it stays in cache
+/// and look-ups in declaration order read the entries sequentially.
 template <class V>
 class NameMap {
  public:
   /// Room for n names without rehashing.
   void reserve(std::size_t n) {
-    if (2 * n > slots_.size()) rehash(2 * n);
+    entries_.reserve(n);
+    if (2 * n > index_.size()) rehash(2 * n);
   }
   /// The value of `key`, V{} inserted when absent.
   V& operator[](std::string_view key) {
-    if (2 * (size_ + 1) > slots_.size()) rehash(std::max<std::size_t>(16, 2 * slots_.size()));
-    const std::uint64_t h = ihash(key);
-    Slot& s = slots_[probe(key, h)];
-    if (!s.used) {
-      s = Slot{key, h, V{}, true};
-      ++size_;
+    if (2 * (entries_.size() + 1) > index_.size())
+      rehash(std::max<std::size_t>(16, 2 * index_.size()));
+    const auto h = static_cast<std::uint32_t>(ihash(key));
+    std::uint32_t& slot = index_[probe(key, h)];
+    if (slot == 0) {
+      entries_.push_back(Entry{key, h, V{}});
+      slot = static_cast<std::uint32_t>(entries_.size());
     }
-    return s.value;
+    return entries_[slot - 1].value;
   }
   /// The value of `key`; nullptr when absent.
   [[nodiscard]] const V* find(std::string_view key) const {
-    if (slots_.empty()) return nullptr;
-    const Slot& s = slots_[probe(key, ihash(key))];
-    return s.used ? &s.value : nullptr;
+    if (index_.empty()) return nullptr;
+    const std::uint32_t slot = index_[probe(key, static_cast<std::uint32_t>(ihash(key)))];
+    return slot != 0 ? &entries_[slot - 1].value : nullptr;
   }
-  [[nodiscard]] std::size_t size() const { return size_; }
+  [[nodiscard]] std::size_t size() const { return entries_.size(); }
 
  private:
-  struct Slot {
+  struct Entry {
     std::string_view key;
-    std::uint64_t hash{0};
+    std::uint32_t hash{0};
     V value{};
-    bool used{false};
   };
-  // The slot holding `key`, or the empty slot where it goes (slots_.size() is a power of two).
-  [[nodiscard]] std::size_t probe(std::string_view key, std::uint64_t h) const {
-    const std::size_t mask = slots_.size() - 1;
-    std::size_t i = static_cast<std::size_t>(h) & mask;
-    while (slots_[i].used && !(slots_[i].hash == h && iequals(slots_[i].key, key))) {
+  // The index slot holding `key`, or the empty slot where it goes (size a power of two).
+  [[nodiscard]] std::size_t probe(std::string_view key, std::uint32_t h) const {
+    const std::size_t mask = index_.size() - 1;
+    std::size_t i = h & mask;
+    while (index_[i] != 0) {
+      const Entry& e = entries_[index_[i] - 1];
+      if (e.hash == h && iequals(e.key, key)) break;
       i = (i + 1) & mask;
     }
     return i;
@@ -105,14 +110,15 @@ class NameMap {
   void rehash(std::size_t want) {
     std::size_t n = 16;
     while (n < want) n *= 2;
-    std::vector<Slot> old(n);
-    old.swap(slots_);
-    for (Slot& s : old) {
-      if (s.used) slots_[probe(s.key, s.hash)] = std::move(s);
+    index_.assign(n, 0);
+    for (std::size_t k = 0; k < entries_.size(); ++k) {
+      std::size_t i = entries_[k].hash & (n - 1);
+      while (index_[i] != 0) i = (i + 1) & (n - 1);
+      index_[i] = static_cast<std::uint32_t>(k + 1);
     }
   }
-  std::vector<Slot> slots_;
-  std::size_t size_{0};
+  std::vector<Entry> entries_;
+  std::vector<std::uint32_t> index_;  ///< entry number + 1; 0: empty
 };
 
 /// Cursor over a file's tokens with helpers for the recursive-descent readers (inline: they run
@@ -125,24 +131,25 @@ class TokenCursor {
   [[nodiscard]] std::size_t index() const { return i_; }
   void seek(std::size_t i) { i_ = i; }
   /// Token k ahead (a newline token past the end).
-  [[nodiscard]] const Token& peek(std::size_t k = 0) const {
+  [[gnu::always_inline]] [[nodiscard]] const Token& peek(std::size_t k = 0) const {
     static const Token kEnd{0, 0, TokenKind::kNewline};
     return i_ + k < end_ ? f_.tokens[i_ + k] : kEnd;
   }
-  [[nodiscard]] std::string_view text(std::size_t k = 0) const {
+  [[gnu::always_inline]] [[nodiscard]] std::string_view text(std::size_t k = 0) const {
     return i_ + k < end_ ? f_.text(f_.tokens[i_ + k]) : std::string_view();
   }
-  [[nodiscard]] bool isPunct(char c, std::size_t k = 0) const {
+  [[gnu::always_inline]] [[nodiscard]] bool isPunct(char c, std::size_t k = 0) const {
     if (i_ + k >= end_) return false;
     const Token& t = f_.tokens[i_ + k];
     return t.kind == TokenKind::kPunct && t.length == 1 && f_.bytes[t.offset] == c;
   }
-  [[nodiscard]] bool isIdent(std::string_view word, std::size_t k = 0) const {
+  [[gnu::always_inline]] [[nodiscard]] bool isIdent(std::string_view word,
+                                                    std::size_t k = 0) const {
     if (i_ + k >= end_) return false;
     const Token& t = f_.tokens[i_ + k];
     return t.kind == TokenKind::kIdentifier && iequals(f_.text(t), word);
   }
-  [[nodiscard]] bool isKind(TokenKind kind, std::size_t k = 0) const {
+  [[gnu::always_inline]] [[nodiscard]] bool isKind(TokenKind kind, std::size_t k = 0) const {
     return i_ + k < end_ && f_.tokens[i_ + k].kind == kind;
   }
   const Token& next() {

@@ -140,14 +140,22 @@ std::string SourceFile::dominantLineEnd() const {
 
 TextId TextTable::add(std::string_view s) {
   if (s.empty()) return TextId{};
-  const bool shared = s.size() <= kSharedMax;
-  if (shared) {
-    if (const auto it = index_.find(s); it != index_.end()) return TextId{it->second};
+  if (s.size() > kSharedMax) return append(s);
+  std::uint32_t& recent = recent_[recentSlot(s)];
+  if (recent != 0 && texts_[recent] == s) return TextId{recent};
+  if (const auto it = index_.find(s); it != index_.end()) {
+    recent = it->second;
+    return TextId{recent};
   }
-  const auto id = static_cast<std::uint32_t>(texts_.size());
-  const std::string& t = texts_.emplace_back(s);
-  if (shared) index_.emplace(std::string_view(t), id);
-  return TextId{id};
+  recent = static_cast<std::uint32_t>(texts_.size());
+  index_.emplace(std::string_view(texts_.emplace_back(s)), recent);
+  return TextId{recent};
+}
+
+TextId TextTable::append(std::string_view s) {
+  if (s.empty()) return TextId{};
+  texts_.emplace_back(s);
+  return TextId{static_cast<std::uint32_t>(texts_.size() - 1)};
 }
 
 void TextTable::reindex() {

@@ -78,7 +78,7 @@ struct SourceFile {
   /// 1-based line of a byte offset.
   [[nodiscard]] int lineOf(std::size_t offset) const;
   [[nodiscard]] std::string_view text(const Token& t) const {
-    return std::string_view(bytes).substr(t.offset, t.length);
+    return std::string_view(bytes.data() + t.offset, t.length);  // tokens lie inside bytes
   }
   /// The most frequent line terminator ("\n" when the file has none).
   [[nodiscard]] std::string dominantLineEnd() const;
@@ -253,10 +253,11 @@ class TextTable {
  public:
   static constexpr std::size_t kSharedMax = 24;
   TextTable() { texts_.emplace_back(); }
-  TextTable(const TextTable& o) : texts_(o.texts_) { reindex(); }
+  TextTable(const TextTable& o) : recent_(o.recent_), texts_(o.texts_) { reindex(); }
   TextTable(TextTable&&) noexcept = default;
   TextTable& operator=(const TextTable& o) {
     if (this != &o) {
+      recent_ = o.recent_;
       texts_ = o.texts_;
       reindex();
     }
@@ -267,11 +268,22 @@ class TextTable {
 
   /// The id of `s` (0 for ""), stored when new.
   TextId add(std::string_view s);
+  /// Stores `s` without looking it up (texts unique in practice: a motion's target expression).
+  TextId append(std::string_view s);
   [[nodiscard]] const std::string& operator[](TextId id) const { return texts_[id.index]; }
   [[nodiscard]] std::size_t size() const { return texts_.size(); }
 
  private:
   void reindex();
+  /// Slot of `s` in recent_: a cheap hash of its size and end bytes.
+  static std::size_t recentSlot(std::string_view s) {
+    return (s.size() * 31 + static_cast<unsigned char>(s.front()) * 7 +
+            static_cast<unsigned char>(s.back())) &
+           (kRecent - 1);
+  }
+  static constexpr std::size_t kRecent = 64;
+  std::array<std::uint32_t, kRecent> recent_{};  ///< last shared id per slot (0: none): most
+                                                 ///< look-ups repeat a recent text
   std::deque<std::string> texts_;  ///< a deque: the index's views stay valid as it grows
   std::unordered_map<std::string_view, std::uint32_t> index_;  ///< shared texts -> index
 };
@@ -432,6 +444,8 @@ struct Program {
   [[nodiscard]] const std::string& text(TextId id) const { return texts[id]; }
   /// The id of `s` in texts (stored when new).
   TextId addText(std::string_view s) { return texts.add(s); }
+  /// Same without the look-up, for texts that rarely repeat (TextTable::append).
+  TextId addUniqueText(std::string_view s) { return texts.append(s); }
   /// The markers of motion m.
   [[nodiscard]] MarkerRange markers(const Motion& m) const {
     const TextId* b = marker_texts.data() + m.marker_begin;

@@ -85,6 +85,50 @@ TEST(NameMap, CaseInsensitiveLikeStdMapOnUpperKeys) {
   EXPECT_EQ(NameMap<int>().find("X"), nullptr);
 }
 
+TEST(TextTable, SharesShortTextsKeepsIdsAcrossCopies) {
+  roprec::postproc::TextTable t;
+  EXPECT_EQ(t.add("").index, 0u);
+  EXPECT_EQ(t[roprec::postproc::TextId{}], "");
+  std::vector<roprec::postproc::TextId> ids;
+  for (int i = 0; i < 5000; ++i) ids.push_back(t.add("T" + std::to_string(i % 700)));
+  for (int i = 0; i < 5000; ++i) {
+    EXPECT_EQ(t[ids[static_cast<std::size_t>(i)]], "T" + std::to_string(i % 700));
+    EXPECT_EQ(ids[static_cast<std::size_t>(i)].index, ids[static_cast<std::size_t>(i % 700)].index);
+  }
+  EXPECT_EQ(t.size(), 701u);  // "" and the 700 distinct texts
+  const std::string longer(40, 'x');
+  const auto a = t.add(longer);
+  const auto b = t.add(longer);  // long texts are appended, not looked up
+  EXPECT_NE(a.index, b.index);
+  EXPECT_EQ(t[a], longer);
+  EXPECT_GT(t.append("T5").index, ids[5].index);  // append: a new entry even for a known text
+  const roprec::postproc::TextTable copy = t;     // the copy's index points into its own texts
+  EXPECT_EQ(copy[ids[42]], "T42");
+  roprec::postproc::TextTable c2 = copy;
+  EXPECT_EQ(c2.add("T42").index, ids[42].index);
+  EXPECT_EQ(c2[c2.add("new")], "new");
+}
+
+TEST(Program, MarkersAreOneRunPerMotion) {
+  roprec::postproc::Program p;
+  p.addMarker("before any motion");  // ignored: no motion to attach it to
+  p.motions.emplace_back();
+  p.motions.emplace_back();
+  p.addMarker("dwell 0.3 s");
+  p.addMarker("call DRILL()");
+  p.motions.emplace_back();
+  p.motions.emplace_back();
+  p.addMarker("dwell 0.3 s");
+  const std::vector<std::vector<std::string>> want{
+      {}, {"dwell 0.3 s", "call DRILL()"}, {}, {"dwell 0.3 s"}};
+  for (std::size_t k = 0; k < p.motions.size(); ++k) {
+    std::vector<std::string> got;
+    for (const std::string& m : p.markers(p.motions[k])) got.push_back(m);
+    EXPECT_EQ(got, want[k]) << k;
+  }
+  EXPECT_EQ(p.marker_texts.size(), 3u);
+}
+
 TEST(IndexLines, TerminatorsAndFractionStyle) {
   SourceFile f;
   f.bytes = "a\nb\r\nc\r\r\nd\re x .5";
