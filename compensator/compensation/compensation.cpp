@@ -712,6 +712,7 @@ void settleFlags(Evaluator& ev, const HoleRequest& h, const Pose& T_flange, Hole
   ConfigurationMatch match;
   match.seed = &c.theta_cmd;
   match.boundary_tolerance = kFlagBoundaryTolerance;
+  match.explain_inexact = false;  // configReason reads cs.reason only when nothing is found
   const ConfiguredSolution cs =
       solveIkWithConfiguration(m.ik, m.robot.card, T_flange, want, m.config_options, match);
   if (cs.found && cs.exact && samePostureUpToTurns(cs.solution.q, c.theta_cmd)) {

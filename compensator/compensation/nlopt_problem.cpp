@@ -12,9 +12,11 @@ NloptProblem::NloptProblem(nlopt_algorithm algorithm, unsigned dimension)
                              std::string(nlopt_algorithm_name(algorithm)));
 }
 
-void NloptProblem::check(nlopt_result r, const std::string& what) const {
+/// `what` is a literal: checking a setter allocates nothing (the Refiner sets bounds per hole).
+void NloptProblem::check(nlopt_result r, const char* what) const {
   if (r < 0)
-    throw std::runtime_error("NLopt: could not " + what + ": " + nlopt_result_to_string(r));
+    throw std::runtime_error(std::string("NLopt: could not ") + what + ": " +
+                             nlopt_result_to_string(r));
 }
 
 double NloptProblem::trampoline(unsigned n, const double* x, double* grad, void* data) {

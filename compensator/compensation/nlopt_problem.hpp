@@ -56,7 +56,7 @@ class NloptProblem {
     std::vector<double> grad;
   };
   static double trampoline(unsigned n, const double* x, double* grad, void* data);
-  void check(nlopt_result r, const std::string& what) const;
+  void check(nlopt_result r, const char* what) const;
 
   std::unique_ptr<std::remove_pointer_t<nlopt_opt>, decltype(&nlopt_destroy)> opt_;
   unsigned n_;

@@ -170,8 +170,10 @@ namespace {
 bool chooseSolution(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
                     const Pose& T_W_flange, const Vec6& ref, HolePrediction& p, IkSolution& sol) {
   if (h.config) {
-    const ConfiguredSolution cs =
-        solveIkWithConfiguration(m.ik, m.robot.card, T_W_flange, *h.config, m.config_options);
+    ConfigurationMatch match;
+    match.explain_inexact = false;  // reason read only when nothing is found (no allocation)
+    const ConfiguredSolution cs = solveIkWithConfiguration(m.ik, m.robot.card, T_W_flange,
+                                                           *h.config, m.config_options, match);
     if (cs.found) {
       sol = cs.solution;
       return true;

@@ -496,7 +496,7 @@ ConfiguredSolution solveIkWithConfiguration(const IkModel& model, const RobotCar
   out.solution = *best;
   out.mismatch = best_mismatch;
   out.exact = best_mismatch == 0;
-  if (!out.exact) {
+  if (!out.exact && match.explain_inexact) {
     out.reason = "no solution matches the turn flags of " + formatConfig(config) +
                  "; nearest differs by " + std::to_string(best_mismatch);
   }

@@ -132,6 +132,9 @@ constexpr double kFlagBoundaryTolerance = 0.5 * kDeg;
 struct ConfigurationMatch {
   const Vec6* seed{nullptr};       ///< among matching solutions the one nearest this (URDF, rad)
   double boundary_tolerance{0.0};  ///< rad, see kFlagBoundaryTolerance
+  /// Describe a found but inexact solution in `reason` (false: left empty, no allocation; the
+  /// prediction and the compensation read `reason` only when nothing is found).
+  bool explain_inexact{true};
 };
 /// Flags + pose → the solution nearest `match.seed` (Σ (θ − seed)²) among those of the flags'
 /// branch whose turn flags match (joints within `boundary_tolerance` of a flag boundary match
