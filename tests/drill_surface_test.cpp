@@ -3,6 +3,8 @@
 // approach 50 mm above the surface and a 20 mm hole reported depth 70 mm (and the machining-
 // centre time of 70 mm) before; the surface point is reported with the bottom.
 #include <gtest/gtest.h>
+
+#include <cstdio>
 #include <nlohmann/json.hpp>
 
 #include "postproc/drill.hpp"
@@ -59,6 +61,38 @@ TEST(DrillSurface, NoFeedChangeLeavesTheDepthToTheCell) {
             (std::vector<std::string>{"dwell 0.3 s", "exact stop at the bottom",
                                       "no feed change: surface and depth not known from the "
                                       "program"}));
+}
+
+TEST(DrillSurface, PeckCycleLongerThanThePoseCacheKeepsItsSurfaceAndBottom) {
+  // 100 pecks of 0.2 mm (feed in, rapid back 0.1 mm): 300 motions on one line, more than the
+  // 64 poses recognizeHoles keeps at once; the surface is where the first feed starts and the
+  // bottom the deepest point, 20 mm below it (closed form: 100 x 0.2 mm)
+  std::string text =
+      "DEF peck( )\n"
+      "$BASE = {FRAME: X 1350.000,Y 0.000,Z 300.000,A 0.000,B 0.000,C 0.000}\n"
+      "$TOOL = {FRAME: X 0.000,Y 0.000,Z 320.000,A 0.000,B 0.000,C 0.000}\n"
+      "$VEL.CP = 0.25\n"
+      "PTP {X 150.000,Y 0.000,Z 284.000,A 0.000,B 0.000,C 180.000}\n"
+      "LIN {X 150.000,Y 0.000,Z 234.000,A 0.000,B 0.000,C 180.000}\n";
+  char line[256];
+  for (int k = 1; k <= 100; ++k) {
+    std::snprintf(line, sizeof line,
+                  "$VEL.CP = 0.002\nLIN {X 150.000,Y 0.000,Z %.3f,A 0.000,B 0.000,C 180.000}\n"
+                  "$VEL.CP = 0.25\nLIN {X 150.000,Y 0.000,Z %.3f,A 0.000,B 0.000,C 180.000}\n",
+                  234.0 - 0.2 * k, 234.0 - 0.2 * k + 0.1);
+    text += line;
+  }
+  text += "LIN {X 150.000,Y 0.000,Z 284.000,A 0.000,B 0.000,C 180.000}\nEND\n";
+  const postproc::Program p = postproc::parseProgram(postproc::Dialect::kKrl, "peck.src", text);
+  ASSERT_EQ(p.motions.size(), 203U);
+  const std::vector<postproc::Hole> holes = postproc::recognizeHoles(p);
+  ASSERT_EQ(holes.size(), 1U);
+  const postproc::Hole& h = holes[0];
+  EXPECT_NEAR(h.depth * 1e3, 20.0, 1e-9);
+  EXPECT_LT((h.surface * 1e3 - Eigen::Vector3d(150, 0, 234)).norm(), 1e-9);
+  EXPECT_LT((h.position * 1e3 - Eigen::Vector3d(150, 0, 214)).norm(), 1e-9);
+  EXPECT_EQ(h.bottom_motion, 200);  // the last feed move: motion 2 x 100
+  EXPECT_EQ(h.targets.size(), 203U);
 }
 
 TEST(DrillSurface, DrillMarkersAreRecognisedInAnyCase) {
