@@ -18,8 +18,8 @@ struct Node {
   std::uint32_t end{0};
   bool number{false};
   double value{0};
-  std::string ident;  // upper case, for identifier leaves
-  std::size_t tb{0};  // scalar leaves: token range [tb, te)
+  std::string_view ident;  // identifier leaves: the name as written (a view of the file)
+  std::size_t tb{0};       // scalar leaves: token range [tb, te)
   std::size_t te{0};
 };
 
@@ -223,6 +223,7 @@ class RapidReader {
     if (t[i].kind == TokenKind::kPunct && is1(f_.text(t[i]), '[')) {
       const std::uint32_t open = t[i].offset;
       n.list = true;
+      n.items.reserve(6);  // robtarget extax, jointtarget robax: one allocation per aggregate
       ++i;
       while (true) {
         while (i < e && (t[i].kind == TokenKind::kNewline || t[i].kind == TokenKind::kComment)) ++i;
@@ -294,7 +295,7 @@ class RapidReader {
       n.number = true;
       n.value = *v;
     } else if (i - s == 1 && t[s].kind == TokenKind::kIdentifier) {
-      n.ident = upper(f_.text(t[s]));
+      n.ident = f_.text(t[s]);
     }
     return n;
   }
@@ -495,7 +496,8 @@ class RapidReader {
     // [robhold, [[x,y,z],[q]], loaddata]
     if (!n.list || n.items.size() < 2) fail(n.begin, "tooldata needs [robhold, tframe, tload]");
     checkPose(n.items[1], "tooldata tframe");
-    return ToolState{poseOf(n.items[1]), true, n.items[0].ident == "FALSE", f_.lineOf(n.begin)};
+    return ToolState{poseOf(n.items[1]), true, iequals(n.items[0].ident, "FALSE"),
+                     f_.lineOf(n.begin)};
   }
 
   ToolState wobjFrom(const Node& n) {
@@ -503,11 +505,12 @@ class RapidReader {
     if (!n.list || n.items.size() != 5) fail(n.begin, "wobjdata needs 5 elements");
     checkPose(n.items[3], "wobjdata uframe");
     checkPose(n.items[4], "wobjdata oframe");
-    const bool moving = n.items[0].ident == "TRUE" || n.items[1].ident == "FALSE";
+    const bool moving = iequals(n.items[0].ident, "TRUE") || iequals(n.items[1].ident, "FALSE");
     return ToolState{poseOf(n.items[3]) * poseOf(n.items[4]), true, moving, f_.lineOf(n.begin)};
   }
 
   void declaration(std::size_t b, std::size_t e) {
+    ++tables_version_;
     const std::vector<Token>& t = tok_;
     std::size_t i = b;
     while (i < e && (iequals(f_.text(t[i]), "LOCAL") || iequals(f_.text(t[i]), "TASK"))) ++i;
@@ -552,6 +555,7 @@ class RapidReader {
   }
 
   void assignment(std::size_t b, std::size_t eq, std::size_t e) {
+    ++tables_version_;
     const std::vector<Token>& t = tok_;
     const std::string name = upper(f_.text(t[b]));
     std::string member;
@@ -629,6 +633,31 @@ class RapidReader {
     std::size_t b{0};
     std::size_t e{0};
   };
+  std::vector<Arg> pos_;                         ///< motion(): positional arguments (reused)
+  std::vector<std::pair<std::string, Arg>> sw_;  ///< motion(): `\switch` arguments (reused)
+
+  /// internFrame(frameOf(...)) with the last answer per role reused while the tool/wobj tables
+  /// and p_.frames are unchanged (frameOf's reports are made once per name, so none is skipped).
+  struct FrameMemo {
+    std::string ref;
+    std::uint64_t version{0};
+    std::size_t frames{0};
+    int index{-1};
+  };
+  FrameMemo tool_memo_, wobj_memo_;
+  std::uint64_t tables_version_{1};  ///< bumped by every declaration and assignment
+
+  int frameIndex(bool tool, const std::string& ref, std::size_t off) {
+    FrameMemo& m = tool ? tool_memo_ : wobj_memo_;
+    if (m.index >= 0 && m.version == tables_version_ && m.frames == p_.frames.size() &&
+        m.ref == ref)
+      return m.index;
+    m.index = internFrame(p_, frameOf(tool ? tools_ : wobjs_, ref, off, tool));
+    m.ref = ref;
+    m.version = tables_version_;
+    m.frames = p_.frames.size();
+    return m.index;
+  }
 
   int targetArg(const Arg& a, Motion& m, bool joint) {
     const std::vector<Token>& t = tok_;
@@ -725,8 +754,10 @@ class RapidReader {
                                                                  : MotionType::kLinear;
     m.config_honoured = m.type == MotionType::kJoint ? conf_j_ : conf_l_;
     // split arguments
-    std::vector<Arg> pos;
-    std::vector<std::pair<std::string, Arg>> sw;
+    std::vector<Arg>& pos = pos_;
+    std::vector<std::pair<std::string, Arg>>& sw = sw_;
+    pos.clear();
+    sw.clear();
     std::size_t i = b + 1;
     int depth = 0;
     std::size_t s = i;
@@ -824,8 +855,8 @@ class RapidReader {
       if (name == "V") m.speed_mm_s = parseNumber(argText(trim(a))).value_or(m.speed_mm_s);
     }
     const std::size_t off = t[b].offset;
-    m.tool = internFrame(p_, frameOf(tools_, tool, off, true));
-    m.base = internFrame(p_, frameOf(wobjs_, wobj, off, false));
+    m.tool = frameIndex(true, tool, off);
+    m.base = frameIndex(false, wobj, off);
     p_.motions.push_back(std::move(m));
     const int mi = static_cast<int>(p_.motions.size() - 1);
     const Motion& mm = p_.motions.back();

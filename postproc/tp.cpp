@@ -1,5 +1,7 @@
 /// FANUC TP ASCII reader (`.ls`), docs/programs.md §4.
+#include <array>
 #include <cmath>
+#include <cstring>
 #include <unordered_map>
 
 #include "compensator/support/error.hpp"
@@ -86,6 +88,13 @@ class TpReader {
   int uframe_{-1};
   int utool_{-1};
   int last_motion_line_{-1};
+  std::array<TextId, 100> uframe_names_{}, utool_names_{};  ///< UF/UT number -> its text
+  struct Memo {
+    TextId ref;
+    std::size_t frames{0};  ///< p_.frames.size() when `index` was found
+    int index{-1};
+  };
+  Memo base_memo_, tool_memo_;
 
   [[noreturn]] void fail(std::size_t off, const std::string& m) const { failAt(f_, off, m); }
   std::string_view tx(std::size_t k) const { return f_.text(tok_[k]); }
@@ -177,8 +186,8 @@ class TpReader {
     std::string speed;
     std::size_t q = k;
     for (; q < e; ++q) {
-      const std::string u = upper(tx(q));
-      if (u == "FINE" || u.rfind("CNT", 0) == 0 || punct(q, ';')) break;
+      const std::string_view u = tx(q);
+      if (iequals(u, "FINE") || iequals(u.substr(0, 3), "CNT") || punct(q, ';')) break;
       speed += tx(q);
     }
     m.speed_text = p_.addText(speed);
@@ -210,11 +219,11 @@ class TpReader {
       m.zone_text = p_.addText(zone);
     }
     for (std::size_t r = q; r < e; ++r) {
-      const std::string u = upper(tx(r));
-      if (u == "OFFSET" || u == "TOOL_OFFSET") {
-        m.derivation = p_.addText(u == "OFFSET" ? "Offset" : "Tool_Offset");
+      const std::string_view u = tx(r);
+      if (iequals(u, "OFFSET") || iequals(u, "TOOL_OFFSET")) {
+        m.derivation = p_.addText(iequals(u, "OFFSET") ? "Offset" : "Tool_Offset");
       }
-      if (u == "INC") m.derivation = p_.addText("INC");
+      if (iequals(u, "INC")) m.derivation = p_.addText("INC");
     }
   }
 
@@ -230,15 +239,15 @@ class TpReader {
     m.config_honoured = m.type == MotionType::kJoint;
     std::size_t q = k + 1;
     if (q >= e) fail(tok_[k].offset, "motion without a target");
-    const std::string ref = upper(tx(q));
+    const std::string_view ref = tx(q);
     int number = -1;
     const std::size_t after = reference(q, e, number);
-    m.target_text = p_.addText(std::string_view(f_.bytes).substr(
+    m.target_text = p_.addUniqueText(std::string_view(f_.bytes).substr(
         tok_[q].offset, tok_[after - 1].offset + tok_[after - 1].length - tok_[q].offset));
     int pnum = -1;
-    if (ref == "P" && number >= 0) {
+    if (iequals(ref, "P") && number >= 0) {
       pnum = number;
-    } else if (ref == "PR") {
+    } else if (iequals(ref, "PR")) {
       m.derivation = p_.addText("PR");
     } else {
       m.derivation = p_.addText("runtime");
@@ -261,11 +270,11 @@ class TpReader {
   void continuation(std::size_t k, std::size_t e) {
     Motion& m = p_.motions[static_cast<std::size_t>(last_motion_line_)];
     int number = -1;
-    const std::string ref = upper(tx(k));
+    const std::string_view ref = tx(k);
     const std::size_t after = reference(k, e, number);
     tail(m, after, e);
-    if (ref == "P" && number >= 0) pending_.back().number = number;
-    if (ref == "PR") m.derivation = p_.addText("PR");
+    if (iequals(ref, "P") && number >= 0) pending_.back().number = number;
+    if (iequals(ref, "PR")) m.derivation = p_.addText("PR");
     last_motion_line_ = -1;
   }
 
@@ -379,8 +388,8 @@ class TpReader {
         ++q;
         continue;
       }
-      const std::string n = upper(tx(q));
-      if (n.size() >= 3 && n.rfind("GP", 0) == 0 && q + 1 < e && punct(q + 1, ':')) {
+      const std::string_view n = tx(q);
+      if (n.size() >= 3 && iequals(n.substr(0, 2), "GP") && q + 1 < e && punct(q + 1, ':')) {
         group = toInt(parseNumber(n.substr(2)).value_or(0), 0);
         gp1 = gp1 || group == 1;
         q += 2;
@@ -390,27 +399,28 @@ class TpReader {
         ++q;
         continue;
       }
-      if ((n == "UF" || n == "UT") && q + 2 < e && punct(q + 1, ':')) {
+      const bool uf = iequals(n, "UF");
+      if ((uf || iequals(n, "UT")) && q + 2 < e && punct(q + 1, ':')) {
         std::size_t r = q + 2;
         const NumberField v = signedNumber(r, e, tok_[q + 1].offset + 1);
         // frame numbers are small integers (UF 0..61, UT 1..61 on current controllers)
         if (!(v.value >= 0 && v.value <= 99 && v.value == std::floor(v.value))) {
-          fail(tok_[q].offset,
-               n + " : " + numberText(v.value) + " is not a frame number (an integer 0 .. 99)");
+          fail(tok_[q].offset, upper(n) + " : " + numberText(v.value) +
+                                   " is not a frame number (an integer 0 .. 99)");
         }
-        (n == "UF" ? t.frame_ref : t.tool_ref) =
-            p_.addText((n == "UF" ? "UFRAME[" : "UTOOL[") + std::to_string(toInt(v.value)) + "]");
+        (uf ? t.frame_ref : t.tool_ref) = frameName(uf, toInt(v.value));
         q = r;
         continue;
       }
-      if (n == "CONFIG" && q + 2 < e && punct(q + 1, ':') &&
+      if (iequals(n, "CONFIG") && q + 2 < e && punct(q + 1, ':') &&
           tok_[q + 2].kind == TokenKind::kString) {
         const Token& s = tok_[q + 2];
         const std::string_view sv = f_.text(s);
         if (sv.size() < 2 || sv.back() != '\'') fail(s.offset, "unterminated CONFIG string");
-        t.fanuc_config.file = 0;
-        t.fanuc_config.offset = s.offset + 1;
-        t.fanuc_config.length = s.length - 2;
+        NumberField& config = t.fanucConfig();
+        config.file = 0;
+        config.offset = s.offset + 1;
+        config.length = s.length - 2;
         parseConfig(sv.substr(1, sv.size() - 2), t.config, s.offset);
         q += 3;
         continue;
@@ -418,22 +428,7 @@ class TpReader {
       if (q + 1 < e && punct(q + 1, '=')) {
         std::size_t r = q + 2;
         const NumberField v = signedNumber(r, e, tok_[q + 1].offset + 1);
-        if (n == "X")
-          t.pos[0] = v, cart = true;
-        else if (n == "Y")
-          t.pos[1] = v, cart = true;
-        else if (n == "Z")
-          t.pos[2] = v, cart = true;
-        else if (n == "W")
-          t.rot[0] = v;
-        else if (n == "P")
-          t.rot[1] = v;
-        else if (n == "R")
-          t.rot[2] = v;
-        else if (n.size() == 2 && n[0] == 'J' && n[1] >= '1' && n[1] <= '6')
-          t.joints[static_cast<std::size_t>(n[1] - '1')] = v, joint = true;
-        else if (n.size() == 2 && n[0] == 'E' && n[1] >= '1' && n[1] <= '6')
-          t.ext[static_cast<std::size_t>(n[1] - '1')] = v;
+        positionField(n, v, t, cart, joint);
         q = r;
         continue;
       }
@@ -473,6 +468,43 @@ class TpReader {
       fail(off, "CONFIG string needs F|N U|D T|B: '" + std::string(s) + "'");
   }
 
+  /// X Y Z W P R J1..J6 E1..E6 of a position record into the target.
+  static void positionField(std::string_view n, const NumberField& v, Target& t, bool& cart,
+                            bool& joint) {
+    const char c =
+        n.size() <= 2 ? static_cast<char>(std::toupper(static_cast<unsigned char>(n[0]))) : '\0';
+    if (n.size() == 1) {
+      const char* const kPose = "XYZWPR";
+      const char* const at = std::strchr(kPose, c);
+      if (c == 0 || at == nullptr) return;
+      const auto k = static_cast<std::size_t>(at - kPose);
+      (k < 3 ? t.pos[k] : t.rot[k - 3]) = v;
+      cart = cart || k < 3;
+    } else if (n.size() == 2 && n[1] >= '1' && n[1] <= '6' && (c == 'J' || c == 'E')) {
+      const auto k = static_cast<std::size_t>(n[1] - '1');
+      (c == 'J' ? t.joints[k] : t.ext[k]) = v;
+      joint = joint || c == 'J';
+    }
+  }
+
+  /// The text id of `UFRAME[n]` / `UTOOL[n]` (n in 0..99, checked), made once per number.
+  TextId frameName(bool uframe, int n) {
+    TextId& id = (uframe ? uframe_names_ : utool_names_)[static_cast<std::size_t>(n)];
+    if (id.empty()) id = p_.addText((uframe ? "UFRAME[" : "UTOOL[") + std::to_string(n) + "]");
+    return id;
+  }
+
+  /// internFrame(frameFor(ref)); the last answer for the same text reused while no frame was
+  /// added (frameFor's unresolved entry exists by then, so nothing is skipped).
+  int frameIndex(TextId ref, bool tool) {
+    Memo& m = tool ? tool_memo_ : base_memo_;
+    if (m.index >= 0 && m.ref.index == ref.index && m.frames == p_.frames.size()) return m.index;
+    m.index = internFrame(p_, frameFor(p_.text(ref), tool));
+    m.ref = ref;
+    m.frames = p_.frames.size();
+    return m.index;
+  }
+
   Frame frameFor(const std::string& ref, bool tool) {
     const bool zero = ref == "UFRAME[0]" || ref == "UTOOL[0]";
     if (zero) return Frame{ref, true, Pose::Identity(), -1, 0};
@@ -504,8 +536,8 @@ class TpReader {
       const int ti = m.target >= 0 ? m.target : m.aux;
       if (ti >= 0) {
         const Target& t = p_.target_list[static_cast<std::size_t>(ti)];
-        if (!t.frame_ref.empty()) m.base = internFrame(p_, frameFor(p_.text(t.frame_ref), false));
-        if (!t.tool_ref.empty()) m.tool = internFrame(p_, frameFor(p_.text(t.tool_ref), true));
+        if (!t.frame_ref.empty()) m.base = frameIndex(t.frame_ref, false);
+        if (!t.tool_ref.empty()) m.tool = frameIndex(t.tool_ref, true);
       }
       if (m.target >= 0)
         p_.target_list[static_cast<std::size_t>(m.target)].uses.push_back(pd.motion);
