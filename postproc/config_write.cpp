@@ -1,5 +1,6 @@
 /// Writing configuration flags into targets (docs/programs.md §7.4, §9).
 #include <cmath>
+#include <utility>
 
 #include "postproc/dialects.hpp"
 #include "postproc/lexer.hpp"
@@ -48,16 +49,16 @@ EditResult writeKrl(Program& p, Target& t, const Configuration& c) {
   }
   std::string insert;
   if (c.status >= 0) {
-    if (t.status_field.present()) {
-      setInt(p, t.status_field, c.status);
+    if (std::as_const(t).statusField().present()) {
+      setInt(p, t.statusField(), c.status);
     } else {
       insert += ",S " + std::to_string(c.status);
     }
     t.config.status = c.status;
   }
   if (c.turn >= 0) {
-    if (t.turn_field.present()) {
-      setInt(p, t.turn_field, c.turn);
+    if (std::as_const(t).turnField().present()) {
+      setInt(p, t.turnField(), c.turn);
     } else {
       insert += ",T " + std::to_string(c.turn);
     }
@@ -84,7 +85,8 @@ EditResult writeRapid(Program& p, Target& t, const Configuration& c) {
 
 EditResult writeTp(Program& p, Target& t, const Configuration& c) {
   EditResult r;
-  if (!t.fanuc_config.present()) {
+  const NumberField& config_span = std::as_const(t).fanucConfig();
+  if (!config_span.present()) {
     r.reason = "position has no CONFIG string";
     return r;
   }
@@ -101,8 +103,8 @@ EditResult writeTp(Program& p, Target& t, const Configuration& c) {
     return r;
   }
   const std::string_view orig =
-      std::string_view(p.files[static_cast<std::size_t>(t.fanuc_config.file)].bytes)
-          .substr(t.fanuc_config.offset, t.fanuc_config.length);
+      std::string_view(p.files[static_cast<std::size_t>(config_span.file)].bytes)
+          .substr(config_span.offset, config_span.length);
   // keep the original separators: replace letters and digit groups in place
   std::string out;
   int letter = 0;
@@ -127,8 +129,7 @@ EditResult writeTp(Program& p, Target& t, const Configuration& c) {
     r.reason = "CONFIG string not understood: '" + std::string(orig) + "'";
     return r;
   }
-  if (out != orig)
-    queueEdit(p, t.fanuc_config.file, t.fanuc_config.offset, t.fanuc_config.length, out);
+  if (out != orig) queueEdit(p, config_span.file, config_span.offset, config_span.length, out);
   t.config.flip = c.flip;
   t.config.elbow = c.elbow;
   t.config.front = c.front;

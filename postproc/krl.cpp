@@ -317,7 +317,7 @@ class KrlReader {
       case Slot::kTurn:
         if (c.value < 0 || c.value != std::floor(c.value) || c.value > 1e6)
           fail(c.begin, upper(c.name) + " must be a non-negative integer");
-        (s.slot == Slot::kStatus ? t.status_field : t.turn_field) = f;
+        (s.slot == Slot::kStatus ? t.statusField() : t.turnField()) = f;
         (s.slot == Slot::kStatus ? t.config.status : t.config.turn) = toInt(c.value);
         break;
       case Slot::kJoint:

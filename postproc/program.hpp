@@ -299,13 +299,22 @@ struct Target {
   FieldBlock<6> joints;            ///< A1..A6 / J1..J6 (deg or mm)
   FieldBlock<6> ext;               ///< E1..E6 / eax_a..eax_f
   Configuration config;
-  NumberField status_field, turn_field;  ///< KUKA S, T tokens (may be 'B...' literals)
-  FieldBlock<4> cf_fields;               ///< ABB cf1, cf4, cf6, cfx
-  NumberField fanuc_config;        ///< FANUC span of the CONFIG string contents (value unused)
+  FieldBlock<4> cf_fields;         ///< ABB cf1, cf4, cf6, cfx
   std::uint32_t aggregate_end{0};  ///< KRL: offset of the closing `}` (S/T insertion)
   TextId frame_ref;  ///< frame the target itself declares (FANUC `UF`, CSV `frame`): Program::text
   TextId tool_ref;   ///< tool the target itself declares (FANUC `UT`, CSV `tool`): Program::text
   IndexList uses;    ///< indices of the motions that use this target
+  /// KUKA S and T tokens (may be 'B...' literals) and the FANUC span of the CONFIG string's
+  /// contents (value unused): 8 bytes while the target states none of them (inline targets).
+  FieldBlock<3> config_fields;
+
+  [[nodiscard]] const NumberField& statusField() const { return config_fields[0]; }
+  [[nodiscard]] const NumberField& turnField() const { return config_fields[1]; }
+  [[nodiscard]] const NumberField& fanucConfig() const { return config_fields[2]; }
+  /// Writable fields (allocate the block: read through a const Target where nothing is written).
+  NumberField& statusField() { return config_fields[0]; }
+  NumberField& turnField() { return config_fields[1]; }
+  NumberField& fanucConfig() { return config_fields[2]; }
 };
 
 enum class MotionType : std::uint8_t { kJoint, kLinear, kCircular };
