@@ -134,7 +134,7 @@ class RapidReader {
     }
     if (iequals(w, "IF") || iequals(w, "WHILE") || iequals(w, "FOR") || iequals(w, "ELSEIF")) {
       std::size_t j = 0;
-      while (has(j) && !(tok_[j].kind == TokenKind::kPunct && is1(f_.text(tok_[j]), ';')) &&
+      while (has(j) && !(pc(j) == ';') &&
              !(tok_[j].kind == TokenKind::kIdentifier &&
                (iequals(f_.text(tok_[j]), "THEN") || iequals(f_.text(tok_[j]), "DO")))) {
         ++j;
@@ -181,6 +181,12 @@ class RapidReader {
   /// brackets, or when the next line starts with an operator or an optional argument (`\WObj`).
   /// A line that ends in a complete argument and is followed by a line starting with a name is a
   /// missing `;` (it would otherwise swallow the next instruction, e.g. a hole's drill point).
+  /// The punctuation character of tok_[k] (0 for any other token).
+  char pc(std::size_t k) const {
+    const Token& x = tok_[k];
+    return x.kind == TokenKind::kPunct && x.length == 1 ? f_.bytes[x.offset] : '\0';
+  }
+
   static bool isOperatorWord(std::string_view w) {
     for (const char* op : {"AND", "OR", "XOR", "NOT", "DIV", "MOD"})
       if (iequals(w, op)) return true;
@@ -220,7 +226,7 @@ class RapidReader {
       fail(i < t.size() ? t[i].offset : f_.bytes.size(), "unterminated aggregate (missing ']')");
     Node n;
     n.begin = t[i].offset;
-    if (t[i].kind == TokenKind::kPunct && is1(f_.text(t[i]), '[')) {
+    if (pc(i) == '[') {
       const std::uint32_t open = t[i].offset;
       n.list = true;
       n.items.reserve(6);  // robtarget extax, jointtarget robax: one allocation per aggregate
@@ -228,16 +234,16 @@ class RapidReader {
       while (true) {
         while (i < e && (t[i].kind == TokenKind::kNewline || t[i].kind == TokenKind::kComment)) ++i;
         if (i >= e) fail(open, "unterminated aggregate (missing ']')");
-        if (t[i].kind == TokenKind::kPunct && is1(f_.text(t[i]), ']')) {
+        if (pc(i) == ']') {
           n.end = t[i].offset + 1;
           ++i;
           return n;
         }
         n.items.push_back(parseElement(i, e));
         while (i < e && (t[i].kind == TokenKind::kNewline || t[i].kind == TokenKind::kComment)) ++i;
-        if (i < e && t[i].kind == TokenKind::kPunct && is1(f_.text(t[i]), ',')) {
+        if (i < e && pc(i) == ',') {
           ++i;
-        } else if (!(i < e && t[i].kind == TokenKind::kPunct && is1(f_.text(t[i]), ']'))) {
+        } else if (!(i < e && pc(i) == ']')) {
           if (i >= e) fail(open, "unterminated aggregate (missing ']')");
           fail(t[i].offset, "unexpected '" + std::string(f_.text(t[i])) + "' in aggregate");
         }
@@ -247,13 +253,11 @@ class RapidReader {
     const std::size_t s = i;
     int depth = 0;
     while (i < e) {
-      const std::string_view x = f_.text(t[i]);
-      if (t[i].kind == TokenKind::kPunct) {
-        if (is1(x, '(') || is1(x, '[')) ++depth;
-        if ((is1(x, ')') || is1(x, ']')) && depth == 0) break;
-        if (is1(x, ')') || is1(x, ']')) --depth;
-        if (is1(x, ',') && depth == 0) break;
-      }
+      const char x = pc(i);
+      if (x == '(' || x == '[') ++depth;
+      if ((x == ')' || x == ']') && depth == 0) break;
+      if (x == ')' || x == ']') --depth;
+      if (x == ',' && depth == 0) break;
       if (t[i].kind == TokenKind::kNewline || t[i].kind == TokenKind::kComment) {
         if (i == s) {
           ++i;
@@ -267,16 +271,13 @@ class RapidReader {
     n.end = t[i - 1].offset + t[i - 1].length;
     n.tb = s;
     n.te = i;
-    const bool sign =
-        t[s].kind == TokenKind::kPunct && (is1(f_.text(t[s]), '-') || is1(f_.text(t[s]), '+'));
+    const bool sign = pc(s) == '-' || pc(s) == '+';
     if (t[s].kind == TokenKind::kNumber || sign) {
       const std::string_view txt = std::string_view(f_.bytes).substr(n.begin, n.end - n.begin);
       const bool one =
           (i - s == 1 && !sign) || (i - s == 2 && sign && t[s + 1].kind == TokenKind::kNumber);
       const std::size_t num = sign ? s + 1 : s;
-      if (sign && num < i &&
-          (t[num].kind == TokenKind::kIdentifier ||
-           (t[num].kind == TokenKind::kPunct && is1(f_.text(t[num]), '(')))) {
+      if (sign && num < i && (t[num].kind == TokenKind::kIdentifier || (pc(num) == '('))) {
         return n;  // a signed expression (`-Shift`, `-(a+5)`): evaluated where it is used
       }
       if (sign && (num >= i || t[num].kind != TokenKind::kNumber))
@@ -774,17 +775,14 @@ class RapidReader {
       in_switch = false;
     };
     for (; i < e; ++i) {
-      const std::string_view x = f_.text(t[i]);
-      if (t[i].kind == TokenKind::kNewline || t[i].kind == TokenKind::kComment) continue;
-      if (t[i].kind == TokenKind::kPunct) {
-        if (is1(x, '[') || is1(x, '(')) ++depth;
-        if (is1(x, ']') || is1(x, ')')) --depth;
-      }
+      const char x = pc(i);
+      if (x == '[' || x == '(') ++depth;
+      if (x == ']' || x == ')') --depth;
       if (depth != 0) continue;
-      if (is1(x, ',')) {
+      if (x == ',') {
         close(i);
         s = i + 1;
-      } else if (x == "\\" && t[i].kind == TokenKind::kPunct) {
+      } else if (x == '\\') {
         close(i);
         in_switch = true;
         sw_name = i + 1 < e ? upper(f_.text(t[i + 1])) : "";
@@ -866,24 +864,25 @@ class RapidReader {
 
   void statement(std::size_t b, std::size_t e) {
     const std::vector<Token>& t = tok_;
-    const std::string w = upper(f_.text(t[b]));
-    if (w == "LOCAL" || w == "TASK" || w == "CONST" || w == "VAR" || w == "PERS") {
+    const std::string_view w = f_.text(t[b]);
+    if (iequals(w, "LOCAL") || iequals(w, "TASK") || iequals(w, "CONST") || iequals(w, "VAR") ||
+        iequals(w, "PERS")) {
       declaration(b, e);
       return;
     }
-    if (w.rfind("MOVE", 0) == 0 || w == "TRIGGL" || w == "TRIGGJ" || w == "TRIGGC" ||
-        w == "SEARCHL" || w == "SEARCHJ") {
-      if (w != "MOVEEXTJ") {
+    if (iequals(w.substr(0, 4), "MOVE") || iequals(w, "TRIGGL") || iequals(w, "TRIGGJ") ||
+        iequals(w, "TRIGGC") || iequals(w, "SEARCHL") || iequals(w, "SEARCHJ")) {
+      if (!iequals(w, "MOVEEXTJ")) {
         motion(b, e);
         return;
       }
     }
-    if ((w == "CONFL" || w == "CONFJ") && b + 2 < e) {
+    if ((iequals(w, "CONFL") || iequals(w, "CONFJ")) && b + 2 < e) {
       const bool on = iequals(f_.text(t[b + 2]), "On");
-      (w == "CONFL" ? conf_l_ : conf_j_) = on;
+      (iequals(w, "CONFL") ? conf_l_ : conf_j_) = on;
       return;
     }
-    if (w == "WAITTIME" && b + 1 < e) {
+    if (iequals(w, "WAITTIME") && b + 1 < e) {
       p_.addMarker("dwell " + std::string(f_.text(t[e - 1])) + " s");
       return;
     }
@@ -893,8 +892,9 @@ class RapidReader {
         return;
       }
     }
+    const std::string uw = upper(w);
     if (t[b].kind == TokenKind::kIdentifier &&
-        (w.find("SPINDLE") != std::string::npos || w.find("DRILL") != std::string::npos)) {
+        (uw.find("SPINDLE") != std::string::npos || uw.find("DRILL") != std::string::npos)) {
       p_.addMarker("call " + std::string(f_.text(t[b])));
     }
     // other statements: kept verbatim; aggregates in them still validated
