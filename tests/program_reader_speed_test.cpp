@@ -142,4 +142,67 @@ TEST(ProgramReaderSpeed, CsvEditedPositionKeepsItsNeighboursBytes) {
   EXPECT_EQ(renderFiles(p)[0], "id,x,y,z,a,b,c\nT1,2.500,2,3,0,0,0\nT2,4,5,6,0,0,0\n");
 }
 
+TEST(ProgramReaderSpeed, RapidToolRedefinedBetweenMotionsMovesTheLaterMotionsTcp) {
+  const std::string text =
+      "MODULE m\n"
+      "  PERS tooldata t1 := [TRUE,[[0,0,100],[1,0,0,0]],[1,[0,0,1],[1,0,0,0],0,0,0]];\n"
+      "  PROC main()\n"
+      "    MoveL "
+      "[[1,2,3],[1,0,0,0],[0,0,0,0],[9E9,9E9,9E9,9E9,9E9,9E9]],v100,fine,t1\\WObj:=wobj0;\n"
+      "    MoveL "
+      "[[4,5,6],[1,0,0,0],[0,0,0,0],[9E9,9E9,9E9,9E9,9E9,9E9]],v100,fine,t1\\WObj:=wobj0;\n"
+      "    t1.tframe := [[0,0,200],[1,0,0,0]];\n"
+      "    MoveL [[1,2,3],[1,0,0,0],[0,0,0,0],\n"
+      "           [9E9,9E9,9E9,9E9,9E9,9E9]],v100,fine,t1\\WObj:=wobj0;\n"
+      "    MoveL [[1,2,3],[1,0,0,0],[0,0,0,0],[9E9,9E9,9E9,9E9,9E9,9E9]],v100,fine,t1;\n"
+      "  ENDPROC\n"
+      "ENDMODULE\n";
+  const Program p = parseProgram(Dialect::kRapid, "t.mod", text, std::nullopt, "");
+  // The second motion leaves the frame table as the third finds it: only the redefinition
+  // tells the third that t1 moved.
+  ASSERT_EQ(p.motions.size(), 4u);
+  const double expect_z[] = {0.100, 0.100, 0.200, 0.200};
+  const int expect_line[] = {4, 5, 7, 9};
+  for (std::size_t i = 0; i < 4; ++i) {
+    const Motion& m = p.motions[i];
+    ASSERT_GE(m.tool, 0);
+    EXPECT_NEAR(p.frames[static_cast<std::size_t>(m.tool)].pose.translation().z(), expect_z[i],
+                1e-15)
+        << i;
+    EXPECT_EQ(m.line, expect_line[i]);
+  }
+  EXPECT_EQ(renderFiles(p)[0], text);
+}
+
+TEST(ProgramReaderSpeed, TpRecordsSplitOverLinesAndAlternatingFramesBindToTheirOwnFrames) {
+  const std::string text =
+      "/PROG  T\n/MN\n"
+      "   1:L P[1] 100mm/sec FINE ;\n"
+      "   2:L P[2] 100mm/sec CNT50 ;\n"
+      "   3:L P[1] 100mm/sec FINE ;\n"
+      "/POS\n"
+      "P[1]{\n   GP1:\n\tUF : 1, UT : 2,\t\tCONFIG : 'N U T, 0, 0, 0',\n"
+      "\tX = 1.000 mm, Y = 2.000 mm, Z = 3.000 mm,\n\tW = 0.000 deg, P = 0.000 deg, R = 0.000 deg\n"
+      "};\n"
+      "P[2]{\n   GP1:\n\tUF : 3, UT : 2,\t\tCONFIG : 'F D B, 1, 0, -1',\n"
+      "\tX = 4.000 mm, Y = 5.000 mm, Z = 6.000 mm,\n\tW = 0.000 deg, P = 0.000 deg, R = 0.000 deg\n"
+      "};\n/END\n";
+  const Program p = parseProgram(Dialect::kTp, "t.ls", text, std::nullopt, "");
+  ASSERT_EQ(p.targets().size(), 2u);
+  ASSERT_EQ(p.motions.size(), 3u);
+  const char* const bases[] = {"UFRAME[1]", "UFRAME[3]", "UFRAME[1]"};
+  for (std::size_t i = 0; i < 3; ++i) {
+    const Motion& m = p.motions[i];
+    ASSERT_GE(m.base, 0);
+    ASSERT_GE(m.tool, 0);
+    EXPECT_EQ(p.frames[static_cast<std::size_t>(m.base)].ref, bases[i]) << i;
+    EXPECT_EQ(p.frames[static_cast<std::size_t>(m.tool)].ref, "UTOOL[2]") << i;
+  }
+  EXPECT_EQ(p.motions[2].target, 0);
+  EXPECT_DOUBLE_EQ(p.targets()[1].pos[2].value, 6.0);
+  EXPECT_EQ(p.targets()[1].config.flip, 'F');
+  EXPECT_EQ(p.targets()[1].config.turns[2], -1);
+  EXPECT_EQ(renderFiles(p)[0], text);
+}
+
 }  // namespace
