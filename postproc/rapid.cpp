@@ -1,4 +1,5 @@
 /// ABB RAPID reader (`.mod`, `.prg`, `.sys`), docs/programs.md §3.
+#include <array>
 #include <cmath>
 #include <functional>
 #include <optional>
@@ -440,6 +441,64 @@ class RapidReader {
     for (const Node& a : n.items[1].items) field(a, what);
   }
 
+  /// pc(k) for k < e, else 0.
+  char pcIn(std::size_t k, std::size_t e) const { return k < e ? pc(k) : '\0'; }
+
+  /// `[sign] number` at tok_[i] (i < e) as a field; advances i. False for anything else or a
+  /// number parseNumber refuses.
+  bool plainNumber(std::size_t& i, std::size_t e, NumberField& f) const {
+    const std::size_t s = i;
+    if (pcIn(i, e) == '-' || pcIn(i, e) == '+') ++i;
+    if (i >= e || tok_[i].kind != TokenKind::kNumber) return false;
+    const std::uint32_t end = tok_[i].offset + tok_[i].length;
+    const auto v =
+        parseNumber(std::string_view(f_.bytes).substr(tok_[s].offset, end - tok_[s].offset));
+    if (!v) return false;
+    f.file = 0;
+    f.offset = tok_[s].offset;
+    f.length = end - tok_[s].offset;
+    f.value = *v;
+    ++i;
+    return true;
+  }
+
+  /// An inline robtarget written in plain numbers on one line, the OLP form
+  /// `[[x,y,z],[q1,q2,q3,q4],[cf1,cf4,cf6,cfx],[eax_a,..,eax_f]]`, in tokens [b, e): the target
+  /// makeRobtarget(parseValue(b, e), "") makes, without building the tree. -1 for any other
+  /// text (names, expressions, comments, line breaks, malformed numbers): the general path then
+  /// reads it and reports its errors.
+  int plainRobtarget(std::size_t b, std::size_t e) {
+    static constexpr std::size_t kCount[4] = {3, 4, 4, 6};
+    std::array<NumberField, 17> v;
+    std::size_t i = b;
+    if (pcIn(i++, e) != '[') return -1;
+    std::size_t n = 0;
+    for (std::size_t g = 0; g < 4; ++g) {
+      if (g > 0 && pcIn(i++, e) != ',') return -1;
+      if (pcIn(i++, e) != '[') return -1;
+      for (std::size_t k = 0; k < kCount[g]; ++k) {
+        if (k > 0 && pcIn(i++, e) != ',') return -1;
+        if (!plainNumber(i, e, v[n++])) return -1;
+      }
+      if (pcIn(i++, e) != ']') return -1;
+    }
+    if (i + 1 != e || pcIn(i, e) != ']') return -1;
+    Target t;
+    t.file = 0;
+    t.line = f_.lineOf(tok_[b].offset);
+    t.kind = TargetKind::kCartesian;
+    t.orientation = Orientation::kQuaternion;
+    t.config.vendor = Vendor::kAbb;
+    for (std::size_t k = 0; k < 3; ++k) t.pos[k] = v[k];
+    for (std::size_t k = 0; k < 4; ++k) t.rot[k] = v[3 + k];
+    for (std::size_t k = 0; k < 4; ++k) {
+      t.cf_fields[k] = v[7 + k];
+      t.config.cf[k] = toInt(std::round(v[7 + k].value), 0);
+    }
+    for (std::size_t k = 0; k < 6; ++k) t.ext[k] = v[11 + k];
+    return add(std::move(t));
+  }
+
   int makeRobtarget(const Node& n, const std::string& name) {
     shape(n, 4, "robtarget");
     shape(n.items[0], 3, "robtarget trans");
@@ -668,6 +727,10 @@ class RapidReader {
           t[a.b].offset, t[a.e - 1].offset + t[a.e - 1].length - t[a.b].offset));
     }
     if (is1(f_.text(t[a.b]), '[')) {
+      if (!joint) {
+        const int plain = plainRobtarget(a.b, a.e);
+        if (plain >= 0) return plain;
+      }
       const Node n = parseValue(a.b, a.e);
       return joint ? makeJointtarget(n, "") : makeRobtarget(n, "");
     }

@@ -205,4 +205,48 @@ TEST(ProgramReaderSpeed, TpRecordsSplitOverLinesAndAlternatingFramesBindToTheirO
   EXPECT_EQ(renderFiles(p)[0], text);
 }
 
+TEST(ProgramReaderSpeed, RapidPlainInlineRobtargetReadsAsTheGeneralForm) {
+  // One line of plain numbers takes the reader's fast path; the same target broken over two
+  // lines takes the general aggregate parser. Both give the hand-written values below.
+  const std::string plain =
+      "MODULE m\n  PROC main()\n"
+      "    MoveL [[1.5,-2,+3],[0.5,0.5,-0.5,0.5],[-1,0,2,0],[9E+09,1,2,3,4,-5.25]],v100,z1,tool0;\n"
+      "  ENDPROC\nENDMODULE\n";
+  const std::string broken =
+      "MODULE m\n  PROC main()\n"
+      "    MoveL [[1.5,-2,+3],[0.5,0.5,-0.5,0.5],[-1,0,2,0],\n"
+      "           [9E+09,1,2,3,4,-5.25]],v100,z1,tool0;\n"
+      "  ENDPROC\nENDMODULE\n";
+  const double pos[] = {1.5, -2.0, 3.0};
+  const double rot[] = {0.5, 0.5, -0.5, 0.5};
+  const int cf[] = {-1, 0, 2, 0};
+  const double ext[] = {9e9, 1, 2, 3, 4, -5.25};
+  for (const std::string* text : {&plain, &broken}) {
+    const Program p = parseProgram(Dialect::kRapid, "t.mod", *text, std::nullopt, "");
+    ASSERT_EQ(p.targets().size(), 1u);
+    const Target& t = p.targets()[0];
+    EXPECT_EQ(t.line, 3);
+    EXPECT_EQ(t.orientation, Orientation::kQuaternion);
+    EXPECT_EQ(t.config.vendor, Vendor::kAbb);
+    for (std::size_t k = 0; k < 3; ++k) EXPECT_DOUBLE_EQ(t.pos[k].value, pos[k]);
+    for (std::size_t k = 0; k < 4; ++k) EXPECT_DOUBLE_EQ(t.rot[k].value, rot[k]);
+    for (std::size_t k = 0; k < 4; ++k) EXPECT_EQ(t.config.cf[k], cf[k]);
+    for (std::size_t k = 0; k < 6; ++k) EXPECT_DOUBLE_EQ(t.ext[k].value, ext[k]);
+    EXPECT_EQ(p.files[0].bytes.substr(t.pos[1].offset, t.pos[1].length), "-2");
+    EXPECT_EQ(p.files[0].bytes.substr(t.pos[2].offset, t.pos[2].length), "+3");
+    EXPECT_EQ(p.files[0].bytes.substr(t.ext[5].offset, t.ext[5].length), "-5.25");
+    ASSERT_EQ(p.motions.size(), 1u);
+    EXPECT_EQ(p.motions[0].target, 0);
+    EXPECT_DOUBLE_EQ(p.motions[0].speed_mm_s, 100.0);
+    EXPECT_EQ(renderFiles(p)[0], *text);
+  }
+  // a broken number is still an error with its line, whichever path sees it first
+  std::string bad = plain;
+  bad.replace(bad.find("1.5"), 3, "1.5.3");
+  const auto e = readError(Dialect::kRapid, bad);
+  ASSERT_TRUE(e);
+  EXPECT_EQ(e->line(), 3);
+  EXPECT_NE(e->message().find("broken number"), std::string::npos) << e->what();
+}
+
 }  // namespace
