@@ -1,4 +1,4 @@
-// Inline per-hole storage (issue 15): ReasonText/InlineText (fixed bytes, clipped visibly at a
+// Inline per-hole storage (issue 15): InlineText (fixed bytes, clipped visibly at a
 // UTF-8 boundary, never silently) and InlineVector (fixed capacity, overflow is an error).
 // Expected values are written out by hand from the stated rule, not produced by the code.
 #include <gtest/gtest.h>
@@ -53,7 +53,7 @@ TEST(InlineText, ClipsVisiblyAtACharacterBoundary) {
 }
 
 TEST(InlineText, AllocatesNothing) {
-  ReasonText r;
+  InlineText<256> r;
   const long n = test::allocationsOf([&] {
     for (int k = 0; k < 100; ++k) {
       r.clear();

@@ -280,7 +280,7 @@ struct NodeCount {
 /// The ψ grid of hole h seeded with s (keep: the single ψ = 0 candidate). Where |θ5| ≥ margin
 /// fails for every ψ, the margin becomes a penalty and `note` says so.
 NodeCount holeNodes(Evaluator& ev, const HoleRequest& h, const Vec6& s, int branch, int grid,
-                    std::span<Node> nodes, ReasonText& note) {
+                    std::span<Node> nodes, NoteText& note) {
   const bool choose = ev.o.mode != OrientationMode::kKeep;
   NodeCount count;
   bool any = false;
@@ -669,7 +669,7 @@ bool samePostureUpToTurns(const Vec6& a, const Vec6& b) {
 void configReason(const Evaluator& ev, const ConfiguredSolution& cs, const VendorConfig& want,
                   bool stated, HoleCompensation& c) {
   const PredictionModel& m = ev.m;
-  ReasonText& r = c.config_reason;
+  ConfigReasonText& r = c.config_reason;
   r.clear();
   if (stated) {
     r.append("the compensated target cannot be reached with ")
@@ -815,7 +815,7 @@ std::pair<double, int> largestWristJump(const Vec6& a, const Vec6& b) {
 
 /// Why the ψ = 0 candidate `zero` is not admissible on its own (limits, wrist, singularity).
 void infeasibleZeroReason(const Node& zero, const CompensationOptions& o, CompensationStats& st,
-                          ReasonText& r) {
+                          PsiReasonText& r) {
   switch (zero.why) {
     case Why::kWrist:
       ++st.psi_for_wrist;
@@ -844,7 +844,7 @@ void infeasibleZeroReason(const Node& zero, const CompensationOptions& o, Compen
 /// Written into `r` (inline: no allocation).
 void psiReason(const Evaluator& ev, const std::vector<HoleRequest>& holes,
                const std::vector<Node>& chosen, const std::vector<HoleCompensation>& out,
-               const Node& zero, size_t i, double thr, CompensationStats& st, ReasonText& r) {
+               const Node& zero, size_t i, double thr, CompensationStats& st, PsiReasonText& r) {
   const CompensationOptions& o = ev.o;
   r.clear();
   if (!zero.feasible) {

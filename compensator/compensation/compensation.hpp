@@ -63,8 +63,19 @@ struct CompensationOptions {
   int threads{1};
 };
 
+/// Inline message capacities (bytes; inline_text.hpp: a longer text ends in "..."). The note is one
+/// fixed 78-byte phrase; a ψ reason ≤ 110 bytes of phrase + one hole id (ids up to 146 bytes fit);
+/// a flag reason ≤ 125 bytes of phrase + the program's flags + the mismatch of ≤ 6 turn flags
+/// (≤ 50 bytes each) or the IK failure.
+inline constexpr std::size_t kNoteChars = 128;
+inline constexpr std::size_t kPsiReasonChars = 256;
+inline constexpr std::size_t kConfigReasonChars = 512;
+using NoteText = InlineText<kNoteChars>;
+using PsiReasonText = InlineText<kPsiReasonChars>;
+using ConfigReasonText = InlineText<kConfigReasonChars>;
+
 /// One hole's result. Building it allocates nothing per hole (issue 15): the messages are inline
-/// ReasonText (inline_text.hpp: 512 bytes, a longer one ends in "..."), the budgets inline
+/// texts (the capacities above), the budgets inline
 /// (kMaxBudgetTerms); id, reason and the flag texts are std::string, within the short-string
 /// buffer (15 bytes) for ids like the samples' and every vendor's flag text; reason is set only
 /// for a hole that is not compensated.
@@ -84,17 +95,17 @@ struct HoleCompensation {
   std::string config_before;      ///< the program's flags (else those of the programmed posture)
   bool config_in_program{false};  ///< the program states flags at this hole (the writer edits them)
   bool config_changed{false};     ///< config_text ≠ config_before
-  ReasonText config_reason;       ///< why the flags changed ("" when kept)
+  ConfigReasonText config_reason;  ///< why the flags changed ("" when kept)
   int branch{0};
   bool branch_changed{false};
-  ReasonText psi_reason;  ///< why ψ ≠ 0 ("" when the programmed rotation is kept)
+  PsiReasonText psi_reason;  ///< why ψ ≠ 0 ("" when the programmed rotation is kept)
   /// stiffest: U_work (exact, m) of the keep compensation at this hole, NaN when not computed;
   /// the gain is U_work_keep − after.U_work_exact.
   double U_work_keep{std::numeric_limits<double>::quiet_NaN()};
   Vec3 residual{Vec3::Zero()};  ///< predicted real − nominal TCP position after compensation, m
   double residual_rot{0.0};     ///< rad
   HolePrediction after;         ///< budget at the compensated pose (U_work, verdict)
-  ReasonText note;              ///< e.g. the wrist margin could not be met at this hole
+  NoteText note;                ///< e.g. the wrist margin could not be met at this hole
 };
 
 struct CompensationStats {

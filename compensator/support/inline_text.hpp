@@ -1,14 +1,11 @@
 #pragma once
 /// \file inline_text.hpp
 /// Text of at most N bytes stored inline (no heap), for the per-hole messages of a compensation
-/// result (HoleCompensation::psi_reason, config_reason, note): building and keeping them
-/// allocates nothing (issue 15: zero heap allocations per hole).
-///
-/// Capacity rule: the messages the compensation builds are fixed phrases (≤ 160 bytes) plus at
-/// most one hole id and the program's flag texts, so N = kReasonChars (512) holds every message
-/// with ids up to ~300 bytes. A text that would exceed N is never cut silently: it is clipped to
-/// N − 3 bytes at a UTF-8 character boundary and ends with "..." (visible in every output);
-/// `clipped()` tells. UTF-8 is kept valid.
+/// result (HoleCompensation::psi_reason, config_reason, note: their capacities and bounds are
+/// stated there): building and keeping them allocates nothing (issue 15: zero heap allocations
+/// per hole). A text that would exceed N is never cut silently: it is clipped to N − 3 bytes at a
+/// UTF-8 character boundary and ends with "..." (visible in every output); `clipped()` tells.
+/// UTF-8 is kept valid.
 
 #include <algorithm>
 #include <array>
@@ -104,9 +101,5 @@ class InlineText {
   std::size_t n_{0};
   bool clipped_{false};
 };
-
-/// Capacity of the per-hole messages (see the capacity rule above).
-inline constexpr std::size_t kReasonChars = 512;
-using ReasonText = InlineText<kReasonChars>;
 
 }  // namespace roprec
