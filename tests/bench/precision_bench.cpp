@@ -115,13 +115,30 @@ void BM_PredictHole(benchmark::State& st) {
 BENCHMARK(BM_PredictHole);
 
 void BM_PredictHoles1000(benchmark::State& st) {
-  // 1,000 holes through predictHoles with `threads` workers (wall time: UseRealTime)
+  // 1,000 holes through predictHoles with `threads` workers (wall time: UseRealTime). With one
+  // thread it also reports the heap allocations as BM_Compensate1000 does: allocs_per_hole is the
+  // slope between 1,000 and 2,000 holes (the returned predictions included), allocs_per_call the
+  // fixed rest (with workers, their allocations are on other threads and not counted)
   Fixture& f = fx();
   PredictOptions o;
   o.threads = static_cast<int>(st.range(0));
+  long allocations = 0;
   for (auto _ : st) {
+    const long before = test::threadAllocations();
     const auto r = predictHoles(f.c.model, f.thousand, o);
+    allocations = test::threadAllocations() - before;
     benchmark::DoNotOptimize(r.size());
+  }
+  if (o.threads == 1) {
+    const std::vector<HoleRequest> twice = f.copies(2000);
+    const long before = test::threadAllocations();
+    benchmark::DoNotOptimize(predictHoles(f.c.model, twice, o).size());
+    const long allocations2 = test::threadAllocations() - before;
+    const double extra = static_cast<double>(twice.size() - f.thousand.size());
+    const double slope = static_cast<double>(allocations2 - allocations) / extra;
+    st.counters["allocs_per_hole"] = slope;
+    st.counters["allocs_per_call"] =
+        static_cast<double>(allocations) - slope * static_cast<double>(f.thousand.size());
   }
   st.SetLabel(std::to_string(o.threads) + " thread(s)");
 }
