@@ -11,22 +11,13 @@
 #
 #   scripts/bench-cli.sh [ROPREC_BINARY]     (default build/bin/roprec)
 #
-# Measured 2026-11-24 on the shared 2-core machine (load average 8-11 from other builds, so wall
-# times are noisy and the second core is not free; peak RSS is reliable). Before -> after the
-# streaming writers (predict --json, one thread):
-#   10,000 holes   1.51 s / 382 MB  ->  0.87 s / 138 MB
-#   100,000 holes 11.7 s / 3.74 GB  -> 11.3 s / 1.30 GB (no JSON tree any more; what remains is the
-#                                      program as read: ~1.6 kB per postproc::Target, 4 per hole,
-#                                      and its parse dominates the wall time)
-# 2 vs 1 threads under that load: predict 0.94-1.00x, compensate flip-free 1.02-1.10x (compensate
-# took --threads but its kernel ran on one thread); every output byte-identical.
-# After compensateHoles runs on the workers and predict writes block k while block k+1 is
-# predicted: at load average 2.2 compensate 10,000 flip-free 1.11 s -> 0.74 s wall (1.50x), predict
-# 0.27 s -> 0.24 s (1.12x: most of its 0.26 s CPU is the program's parse, one thread); at load
-# average 7-8 compensate 1.06-1.21x, predict 0.82-1.16x. Where the CPU
-# goes with --threads 2 (`perf record -F 2000` then `perf report --sort pid`: the main thread vs
-# the workers; a worker does as much parallel work as the main thread): compensate 18 % serial /
-# 82 % parallel (Amdahl bound on 2 free cores 1.69x), predict 51 % / 49 % (bound 1.32x).
+# Measured 2026-11-24 ~10:00 on the 2-core machine with no other build running (through
+# scripts/bench-table.sh; README "Performance" has the history):
+#   predict 10,000 holes      0.18 s / 48 MB (1 thread), 0.17 s (2): 1.06x
+#   compensate 10,000 holes   1.06 s / 111 MB (1 thread), 0.68 s (2): 1.56x
+#   predict 100,000 holes     1.71 s / 331 MB (1 thread), 1.56 s (2)
+# every output byte-identical for 1 and 2 threads. Wall times of a 2-thread run depend on the
+# second core being free: with other builds running, the speed-ups drop to ~1.0x.
 # The last column is user + system CPU: it stays the same for 1 and 2 threads (no extra work).
 #
 # BENCH_SIZES  hole counts (default "1000 10000 100000")
