@@ -811,9 +811,20 @@ class KrlReader {
           TokenCursor v(f, eq + 1, e);
           const std::size_t vb = v.peek().offset;
           const Token& last = f.tokens[e - 1];
-          if (const auto val =
-                  parseNumber(std::string_view(f.bytes).substr(vb, last.offset + last.length - vb)))
+          const std::string_view text =
+              std::string_view(f.bytes).substr(vb, last.offset + last.length - vb);
+          if (const auto val = parseNumber(text)) {
             vel_cp_ = *val;
+          } else {
+            // a variable, an expression or `inf`/`nan` (identifiers to KRL): the path velocity
+            // is known only at run time, so the speeds of the motions after it are unknown (not
+            // the previous value: a feed move would pass for an approach)
+            vel_cp_ = -1;
+            unresolved("$VEL.CP", vb,
+                       "the path velocity '" + std::string(text) +
+                           "' is not a number roprec can evaluate: the speeds after it are "
+                           "unknown (a drill feed there is not recognised by its speed)");
+          }
           return;
         }
         if (eq == b + 1 || (c.isPunct('[', 1))) {

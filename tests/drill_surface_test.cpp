@@ -95,6 +95,22 @@ TEST(DrillSurface, PeckCycleLongerThanThePoseCacheKeepsItsSurfaceAndBottom) {
   EXPECT_EQ(h.targets.size(), 203U);
 }
 
+TEST(DrillSurface, PathVelocityThatIsNotANumberMakesTheSpeedsUnknownAndIsReported) {
+  // `$VEL.CP = inf` (an identifier to KRL, like a variable): the feed move's speed is not known;
+  // before, it silently kept the approach speed of 0.25 m/s (a feed passing for an approach)
+  std::string text = kHandWritten;
+  text.replace(text.find("$VEL.CP = 0.002"), 15, "$VEL.CP = inf");
+  const postproc::Program p = postproc::parseProgram(postproc::Dialect::kKrl, "hand.src", text);
+  ASSERT_EQ(p.unresolved.size(), 1U);
+  EXPECT_EQ(p.unresolved[0].ref, "$VEL.CP");
+  EXPECT_EQ(p.unresolved[0].line, 8);
+  EXPECT_NE(p.unresolved[0].what.find("'inf'"), std::string::npos) << p.unresolved[0].what;
+  ASSERT_EQ(p.motions.size(), 4U);
+  EXPECT_NEAR(p.motions[1].speed_mm_s, 250.0, 1e-9);  // before the unknown value
+  EXPECT_LT(p.motions[2].speed_mm_s, 0.0);            // the feed move: unknown
+  EXPECT_NEAR(p.motions[3].speed_mm_s, 250.0, 1e-9);  // $VEL.CP = 0.25 again
+}
+
 TEST(DrillSurface, DrillMarkersAreRecognisedInAnyCase) {
   for (const char* m : {"dwell 0.3 s", "DWELL", "SPINDLE_ON()", "call Drill_Cycle", "plunge",
                         "; Bohrung 12", "boor"})
