@@ -114,6 +114,21 @@ void BM_PredictHole(benchmark::State& st) {
 }
 BENCHMARK(BM_PredictHole);
 
+/// Reports allocs_per_hole (the slope between the timed 1,000-hole call, which made
+/// `allocations`, and one untimed 2,000-hole call of `run`) and allocs_per_call (the fixed rest).
+template <class Run>
+void reportAllocationSlope(benchmark::State& st, Fixture& f, long allocations, const Run& run) {
+  const std::vector<HoleRequest> twice = f.copies(2000);
+  const long before = test::threadAllocations();
+  run(twice);
+  const long allocations2 = test::threadAllocations() - before;
+  const double extra = static_cast<double>(twice.size() - f.thousand.size());
+  const double slope = static_cast<double>(allocations2 - allocations) / extra;
+  st.counters["allocs_per_hole"] = slope;
+  st.counters["allocs_per_call"] =
+      static_cast<double>(allocations) - slope * static_cast<double>(f.thousand.size());
+}
+
 void BM_PredictHoles1000(benchmark::State& st) {
   // 1,000 holes through predictHoles with `threads` workers (wall time: UseRealTime). With one
   // thread it also reports the heap allocations as BM_Compensate1000 does: allocs_per_hole is the
@@ -130,15 +145,9 @@ void BM_PredictHoles1000(benchmark::State& st) {
     benchmark::DoNotOptimize(r.size());
   }
   if (o.threads == 1) {
-    const std::vector<HoleRequest> twice = f.copies(2000);
-    const long before = test::threadAllocations();
-    benchmark::DoNotOptimize(predictHoles(f.c.model, twice, o).size());
-    const long allocations2 = test::threadAllocations() - before;
-    const double extra = static_cast<double>(twice.size() - f.thousand.size());
-    const double slope = static_cast<double>(allocations2 - allocations) / extra;
-    st.counters["allocs_per_hole"] = slope;
-    st.counters["allocs_per_call"] =
-        static_cast<double>(allocations) - slope * static_cast<double>(f.thousand.size());
+    reportAllocationSlope(st, f, allocations, [&](const std::vector<HoleRequest>& holes) {
+      benchmark::DoNotOptimize(predictHoles(f.c.model, holes, o).size());
+    });
   }
   st.SetLabel(std::to_string(o.threads) + " thread(s)");
 }
@@ -159,15 +168,9 @@ void BM_Compensate1000(benchmark::State& st) {
     allocations = test::threadAllocations() - before;
     benchmark::DoNotOptimize(r.size());
   }
-  const std::vector<HoleRequest> twice = f.copies(2000);
-  const long before = test::threadAllocations();
-  benchmark::DoNotOptimize(compensateHoles(f.c.model, twice, o).size());
-  const long allocations2 = test::threadAllocations() - before;
-  const double extra = static_cast<double>(twice.size() - f.thousand.size());
-  const double slope = static_cast<double>(allocations2 - allocations) / extra;
-  st.counters["allocs_per_hole"] = slope;
-  st.counters["allocs_per_call"] =
-      static_cast<double>(allocations) - slope * static_cast<double>(f.thousand.size());
+  reportAllocationSlope(st, f, allocations, [&](const std::vector<HoleRequest>& holes) {
+    benchmark::DoNotOptimize(compensateHoles(f.c.model, holes, o).size());
+  });
   st.SetLabel(st.range(0) == 0 ? "keep" : "flip-free");
 }
 BENCHMARK(BM_Compensate1000)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(1);
