@@ -20,11 +20,11 @@ std::string binaryLike(std::string_view original, int value) {
   return std::string("'") + original[1] + bits + "'";
 }
 
-void setInt(Program& p, NumberField& f, int value) {
+void setInt(const Program& p, EditQueue& q, NumberField& f, int value) {
   const std::string_view orig =
       std::string_view(p.files[static_cast<std::size_t>(f.file)].bytes).substr(f.offset, f.length);
   if (f.value == static_cast<double>(value)) {
-    p.edits.erase({f.file, f.offset});
+    q.erase(f.file, f.offset);
     return;
   }
   f.value = value;
@@ -32,16 +32,16 @@ void setInt(Program& p, NumberField& f, int value) {
     if (orig.size() >= 2 && (orig[1] == 'H' || orig[1] == 'h')) {
       char buf[32];
       std::snprintf(buf, sizeof buf, "'%c%X'", orig[1], static_cast<unsigned>(value));
-      queueEdit(p, f.file, f.offset, f.length, buf);
+      q.put(f.file, f.offset, f.length, buf);
     } else {
-      queueEdit(p, f.file, f.offset, f.length, binaryLike(orig, value));
+      q.put(f.file, f.offset, f.length, binaryLike(orig, value));
     }
     return;
   }
-  queueEdit(p, f.file, f.offset, f.length, formatLike(orig, value, kInteger));
+  q.put(f.file, f.offset, f.length, formatLike(orig, value, kInteger));
 }
 
-EditResult writeKrl(Program& p, Target& t, const Configuration& c) {
+EditResult writeKrl(const Program& p, EditQueue& q, Target& t, const Configuration& c) {
   EditResult r;
   if (c.status > 255 || c.turn > 63) {
     r.reason = "S/T out of range";
@@ -50,7 +50,7 @@ EditResult writeKrl(Program& p, Target& t, const Configuration& c) {
   std::string insert;
   if (c.status >= 0) {
     if (std::as_const(t).statusField().present()) {
-      setInt(p, t.statusField(), c.status);
+      setInt(p, q, t.statusField(), c.status);
     } else {
       insert += ",S " + std::to_string(c.status);
     }
@@ -58,18 +58,18 @@ EditResult writeKrl(Program& p, Target& t, const Configuration& c) {
   }
   if (c.turn >= 0) {
     if (std::as_const(t).turnField().present()) {
-      setInt(p, t.turnField(), c.turn);
+      setInt(p, q, t.turnField(), c.turn);
     } else {
       insert += ",T " + std::to_string(c.turn);
     }
     t.config.turn = c.turn;
   }
-  if (!insert.empty()) queueEdit(p, t.file, t.aggregate_end, 0, insert);
+  if (!insert.empty()) q.put(t.file, t.aggregate_end, 0, insert);
   r.ok = true;
   return r;
 }
 
-EditResult writeRapid(Program& p, Target& t, const Configuration& c) {
+EditResult writeRapid(const Program& p, EditQueue& q, Target& t, const Configuration& c) {
   EditResult r;
   for (const NumberField& f : t.cf_fields) {
     if (!f.present()) {
@@ -77,13 +77,13 @@ EditResult writeRapid(Program& p, Target& t, const Configuration& c) {
       return r;
     }
   }
-  for (std::size_t i = 0; i < 4; ++i) setInt(p, t.cf_fields[i], c.cf[i]);
+  for (std::size_t i = 0; i < 4; ++i) setInt(p, q, t.cf_fields[i], c.cf[i]);
   t.config.cf = c.cf;
   r.ok = true;
   return r;
 }
 
-EditResult writeTp(Program& p, Target& t, const Configuration& c) {
+EditResult writeTp(const Program& p, EditQueue& q, Target& t, const Configuration& c) {
   EditResult r;
   const NumberField& config_span = std::as_const(t).fanucConfig();
   if (!config_span.present()) {
@@ -129,7 +129,7 @@ EditResult writeTp(Program& p, Target& t, const Configuration& c) {
     r.reason = "CONFIG string not understood: '" + std::string(orig) + "'";
     return r;
   }
-  if (out != orig) queueEdit(p, config_span.file, config_span.offset, config_span.length, out);
+  if (out != orig) q.put(config_span.file, config_span.offset, config_span.length, out);
   t.config.flip = c.flip;
   t.config.elbow = c.elbow;
   t.config.front = c.front;
@@ -140,14 +140,14 @@ EditResult writeTp(Program& p, Target& t, const Configuration& c) {
 
 }  // namespace
 
-EditResult writeConfiguration(Program& p, Target& t, const Configuration& c) {
+EditResult writeConfiguration(const Program& p, EditQueue& q, Target& t, const Configuration& c) {
   switch (p.dialect) {
     case Dialect::kKrl:
-      return writeKrl(p, t, c);
+      return writeKrl(p, q, t, c);
     case Dialect::kRapid:
-      return writeRapid(p, t, c);
+      return writeRapid(p, q, t, c);
     case Dialect::kTp:
-      return writeTp(p, t, c);
+      return writeTp(p, q, t, c);
     default:
       break;
   }

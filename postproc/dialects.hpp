@@ -14,8 +14,26 @@ void parseTp(Program& p);
 void parseCsv(Program& p);
 void parseJson(Program& p);
 
-/// Writes a configuration change into the target's tokens (dialect specific).
-EditResult writeConfiguration(Program& p, Target& t, const Configuration& c);
+/// Where the edit functions queue their edits: Program::edits, or an EditLog replayed later.
+class EditQueue {
+ public:
+  explicit EditQueue(Program& p) : map_(&p.edits) {}
+  explicit EditQueue(EditLog& log) : log_(&log) {}
+  /// Replaces the pending edit at (file, offset).
+  void put(int file, std::uint32_t offset, std::uint32_t length, std::string text);
+  /// Drops the pending edit at (file, offset), if any.
+  void erase(int file, std::uint32_t offset);
+
+ private:
+  std::map<std::pair<int, std::uint32_t>, Edit>* map_{nullptr};
+  EditLog* log_{nullptr};
+};
+
+/// setNumber with its edit queued into `q`; reads `p` (the token's text and the file's style).
+void setNumber(const Program& p, EditQueue& q, NumberField& f, double value, const NumberHints& h);
+
+/// Writes a configuration change into the target's tokens (dialect specific), queued into `q`.
+EditResult writeConfiguration(const Program& p, EditQueue& q, Target& t, const Configuration& c);
 
 /// Number-style hints for a field of a program (file-level style detection).
 NumberHints hintsFor(const Program& p, const NumberField& f, bool quaternion);

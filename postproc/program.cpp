@@ -349,11 +349,45 @@ std::string formatLike(std::string_view original, double value, const NumberHint
   return t;
 }
 
+void EditQueue::put(int file, std::uint32_t offset, std::uint32_t length, std::string text) {
+  Edit e{file, offset, length, std::move(text)};
+  if (map_) {
+    (*map_)[{file, offset}] = std::move(e);
+  } else {
+    log_->ops.push_back(EditLog::Op{false, std::move(e)});
+  }
+}
+
+void EditQueue::erase(int file, std::uint32_t offset) {
+  if (map_) {
+    map_->erase({file, offset});
+  } else {
+    log_->ops.push_back(EditLog::Op{true, Edit{file, offset, 0, {}}});
+  }
+}
+
+void applyEdits(Program& p, const EditLog& log) {
+  EditQueue q(p);
+  for (const EditLog::Op& op : log.ops) {
+    if (op.erase) {
+      q.erase(op.edit.file, op.edit.offset);
+    } else {
+      q.put(op.edit.file, op.edit.offset, op.edit.length, op.edit.text);
+    }
+  }
+}
+
 void queueEdit(Program& p, int file, std::uint32_t offset, std::uint32_t length, std::string text) {
-  p.edits[{file, offset}] = Edit{file, offset, length, std::move(text)};
+  EditQueue(p).put(file, offset, length, std::move(text));
 }
 
 void setNumber(Program& p, NumberField& f, double value, const NumberHints& h) {
+  EditQueue q(p);
+  setNumber(p, q, f, value, h);
+}
+
+void setNumber(const Program& p, EditQueue& q, NumberField& f, double value,
+               const NumberHints& h) {
   const SourceFile& sf = p.files[static_cast<std::size_t>(f.file)];
   const std::string_view orig = std::string_view(sf.bytes).substr(f.offset, f.length);
   const double orig_value = parseNumber(orig).value_or(0.0);
@@ -362,14 +396,14 @@ void setNumber(Program& p, NumberField& f, double value, const NumberHints& h) {
   f.value = value;
   const std::uint32_t start = f.offset - f.pad;
   if (a == b) {
-    p.edits.erase({f.file, start});
+    q.erase(f.file, start);
     return;
   }
   if (f.pad > 0) {
     const std::size_t width = f.pad + f.length;
     b = b.size() < width ? std::string(width - b.size(), ' ') + b : " " + b;
   }
-  queueEdit(p, f.file, start, f.pad + f.length, std::move(b));
+  q.put(f.file, start, f.pad + f.length, std::move(b));
 }
 
 NumberHints hintsFor(const Program& p, const NumberField& f, bool quaternion) {
@@ -654,14 +688,12 @@ bool targetFramesConsistent(const Program& p, const Target& t) {
   return true;
 }
 
-EditResult replaceTargetPose(Program& p, int index, const Pose& T,
-                             const std::optional<Configuration>& config) {
+namespace {
+
+/// replaceTargetPose of target `t` of `p`, its edits queued into `q`.
+EditResult replaceTarget(const Program& p, EditQueue& queue, Target& t, const Pose& T,
+                         const std::optional<Configuration>& config) {
   EditResult r;
-  if (index < 0 || static_cast<std::size_t>(index) >= p.target_list.size()) {
-    r.reason = "no target with index " + std::to_string(index);
-    return r;
-  }
-  Target& t = p.target_list[static_cast<std::size_t>(index)];
   const std::string who = (t.name.empty() ? std::string("inline target") : "target " + t.name) +
                           " (" + p.files[static_cast<std::size_t>(t.file)].path + ":" +
                           std::to_string(t.line) + ")";
@@ -705,7 +737,7 @@ EditResult replaceTargetPose(Program& p, int index, const Pose& T,
       r.reason = who + ": configuration of another vendor given";
       return r;
     } else {
-      r = writeConfiguration(p, t, *config);
+      r = writeConfiguration(p, queue, t, *config);
       if (!r.ok) {
         r.reason = who + ": " + r.reason;
         return r;
@@ -717,7 +749,7 @@ EditResult replaceTargetPose(Program& p, int index, const Pose& T,
     NumberField& f = t.pos[static_cast<std::size_t>(i)];
     NumberHints h = hintsFor(p, f, false);
     h.min_decimals = std::max(h.min_decimals, p.position_min_decimals);
-    setNumber(p, f, xyz[i], h);
+    setNumber(p, queue, f, xyz[i], h);
   }
   const Mat3 R = T.linear();
   switch (t.orientation) {
@@ -726,7 +758,7 @@ EditResult replaceTargetPose(Program& p, int index, const Pose& T,
       const Vec3 abc = nearAbc(R, old) / kDeg;
       for (int i = 0; i < 3; ++i) {
         NumberField& f = t.rot[static_cast<std::size_t>(i)];
-        setNumber(p, f, abc[i], hintsFor(p, f, false));
+        setNumber(p, queue, f, abc[i], hintsFor(p, f, false));
       }
       break;
     }
@@ -736,7 +768,7 @@ EditResult replaceTargetPose(Program& p, int index, const Pose& T,
       const std::array<double, 3> wpr{abc[2], abc[1], abc[0]};
       for (int i = 0; i < 3; ++i) {
         NumberField& f = t.rot[static_cast<std::size_t>(i)];
-        setNumber(p, f, wpr[static_cast<std::size_t>(i)], hintsFor(p, f, false));
+        setNumber(p, queue, f, wpr[static_cast<std::size_t>(i)], hintsFor(p, f, false));
       }
       break;
     }
@@ -748,7 +780,7 @@ EditResult replaceTargetPose(Program& p, int index, const Pose& T,
       const std::array<double, 4> v{q.w(), q.x(), q.y(), q.z()};
       for (int i = 0; i < 4; ++i) {
         NumberField& f = t.rot[static_cast<std::size_t>(i)];
-        setNumber(p, f, v[static_cast<std::size_t>(i)], hintsFor(p, f, true));
+        setNumber(p, queue, f, v[static_cast<std::size_t>(i)], hintsFor(p, f, true));
       }
       break;
     }
@@ -771,7 +803,7 @@ EditResult replaceTargetPose(Program& p, int index, const Pose& T,
           (a2 - old).squaredNorm() + 1e-18 < (a1 - old).squaredNorm() && cb >= 1e-9 ? a2 : a1;
       for (int i = 0; i < 3; ++i) {
         NumberField& f = t.rot[static_cast<std::size_t>(i)];
-        setNumber(p, f, best[i] / kDeg, hintsFor(p, f, false));
+        setNumber(p, queue, f, best[i] / kDeg, hintsFor(p, f, false));
       }
       break;
     }
@@ -781,7 +813,7 @@ EditResult replaceTargetPose(Program& p, int index, const Pose& T,
         NumberField& f = t.rot[static_cast<std::size_t>(i)];
         NumberHints h = hintsFor(p, f, false);
         h.min_decimals = 6;
-        setNumber(p, f, z[i], h);
+        setNumber(p, queue, f, z[i], h);
       }
       break;
     }
@@ -791,6 +823,34 @@ EditResult replaceTargetPose(Program& p, int index, const Pose& T,
   r.ok = true;
   r.reason.clear();
   return r;
+}
+
+/// The target `index` of `p`, or the reason there is none.
+Target* targetAt(Program& p, int index, EditResult& r) {
+  if (index >= 0 && static_cast<std::size_t>(index) < p.target_list.size())
+    return &p.target_list[static_cast<std::size_t>(index)];
+  r.reason = "no target with index " + std::to_string(index);
+  return nullptr;
+}
+
+}  // namespace
+
+EditResult replaceTargetPose(Program& p, int index, const Pose& T,
+                             const std::optional<Configuration>& config) {
+  EditResult r;
+  Target* t = targetAt(p, index, r);
+  if (!t) return r;
+  EditQueue q(p);
+  return replaceTarget(p, q, *t, T, config);
+}
+
+EditResult replaceTargetPose(Program& p, int index, const Pose& T,
+                             const std::optional<Configuration>& config, EditLog& log) {
+  EditResult r;
+  Target* t = targetAt(p, index, r);
+  if (!t) return r;
+  EditQueue q(log);
+  return replaceTarget(p, q, *t, T, config);
 }
 
 int resolveFrame(Program& p, const std::string& ref, const Pose& pose) {

@@ -510,6 +510,26 @@ struct EditResult {
 EditResult replaceTargetPose(Program& p, int index, const Pose& T_frame_tcp,
                              const std::optional<Configuration>& config = std::nullopt);
 
+/// Edits queued away from Program::edits, in the order they were made: a put replaces the
+/// pending edit at (edit.file, edit.offset), an erase drops it (edit.text unused).
+struct EditLog {
+  struct Op {
+    bool erase{false};
+    Edit edit;
+  };
+  std::vector<Op> ops;
+};
+
+/// replaceTargetPose with its edits queued into `log` instead of p.edits; applyEdits(p, log)
+/// queues them later. It reads `p` and writes only target `index` (its values and flags), so
+/// several threads may prepare the targets of one program at once as long as no two of them
+/// touch the same target (roprec compensate --threads, issue 15). Applying the logs in the order
+/// the calls would have run gives the bytes of the direct calls.
+EditResult replaceTargetPose(Program& p, int index, const Pose& T_frame_tcp,
+                             const std::optional<Configuration>& config, EditLog& log);
+/// Replays `log` into p.edits, in order.
+void applyEdits(Program& p, const EditLog& log);
+
 /// Defines a frame the program refers to but does not define (e.g. `UFRAME[1]` of a TP
 /// program, `BASE_DATA[3]` of a KRL program from $config.dat). Returns how many uses resolved.
 int resolveFrame(Program& p, const std::string& ref, const Pose& pose);

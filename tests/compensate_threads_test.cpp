@@ -6,12 +6,15 @@
 // below have unreachable holes and turned holes next to each other.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 
 #include "compensator/support/atomic_file.hpp"
+#include "plugin/api/hole_input.hpp"
 #include "plugin/api/job.hpp"
 #include "plugin/api/prediction_setup.hpp"
+#include "postproc/program.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace roprec {
@@ -174,6 +177,94 @@ TEST(CompensateThreads, CliWritesTheOutputsTogetherAllOrNothing) {
   EXPECT_FALSE(std::filesystem::exists(dir + "/f2.html"));
   for (const auto& e : std::filesystem::directory_iterator(dir))  // no temporaries left
     EXPECT_FALSE(isOutputTemporaryName(e.path().filename().string(), nullptr)) << e.path();
+}
+
+}  // namespace
+}  // namespace roprec
+
+namespace roprec {
+namespace {
+
+/// A KRL job of 43 holes with named targets: every cycle goes in and out through its approach
+/// point (a target one hole uses twice), and after 40 holes with targets of their own, holes 3,
+/// 20 and 7 are drilled a second time with the same targets (targets two holes use).
+std::string sharedTargetJob(const std::string& dir) {
+  std::string src =
+      "DEF shared ( )\n$BASE = {FRAME: X 1350.000,Y 0.000,Z 300.000,A 0.000,B 0.000,C 0.000}\n"
+      "$TOOL = {FRAME: X 0.000,Y 0.000,Z 320.000,A 0.000,B 0.000,C 0.000}\n";
+  std::string dat = "DEFDAT shared\n";
+  auto cycle = [&](int k) {
+    const std::string n = std::to_string(k);
+    src += "; H" + n + " drill D6.8 depth 16.0\n$VEL.CP = 0.25\nPTP XA" + n +
+           " C_PTP\nLIN XS" + n + " C_DIS\n$VEL.CP = 0.02\nLIN XB" + n +
+           "\nWAIT SEC 0.3\n$VEL.CP = 0.25\nLIN XA" + n + " C_DIS\n";
+  };
+  for (int k = 0; k < 40; ++k) {
+    const double x = 60.0 + 2.5 * k;
+    const double y = -30.0 + 1.5 * k;
+    char buf[160];
+    for (const auto& [name, z] : {std::pair{"XA", 300.0}, {"XS", 252.0}, {"XB", 234.0}}) {
+      std::snprintf(buf, sizeof buf,
+                    "DECL E6POS %s%d={X %.3f,Y %.3f,Z %.3f,A 0.000,B 0.000,C 180.000}\n", name, k,
+                    x, y, z);
+      dat += buf;
+    }
+    cycle(k);
+  }
+  for (const int k : {3, 20, 7}) cycle(k);  // drilled again: their targets move twice
+  src += "END\n";
+  dat += "ENDDAT\n";
+  test::writeFile(dir + "/shared.src", src);
+  test::writeFile(dir + "/shared.dat", dat);
+  return dir + "/shared.src";
+}
+
+// Holes that share targets are edited in hole order (each reads what the one before wrote),
+// the others on the workers: the program is the one of the plain sequential edit, target after
+// target in hole order, for 1, 2 and 3 threads.
+TEST(CompensateThreads, SharedTargetsAreEditedInHoleOrder) {
+  const std::string dir = test::tempDir("compensate_threads_shared");
+  const std::string program = sharedTargetJob(dir);
+  const std::string cell = test::sourceDir() + "/samples/cells/housing-kr120.xml";
+  std::vector<std::string> ref;
+  for (const int threads : {1, 2, 3}) {
+    SCOPED_TRACE(threads);
+    api::CompensationJob job;
+    job.options.mode = OrientationMode::kFlipFree;
+    job.job.threads = threads;
+    const api::CompensationResult r = api::compensateJob(cell, program, job);
+    ASSERT_EQ(r.holes.size(), 43U);
+    ASSERT_EQ(r.failed, 0);
+    EXPECT_TRUE(r.refused.empty());
+    const std::vector<char> shared = api::holesSharingTargets(
+        r.context.job.sources, std::vector<char>(43, 1), r.context.job.program->targets().size());
+    for (size_t i = 0; i < 43; ++i) {
+      const bool again = i == 3 || i == 7 || i == 20 || i >= 40;
+      EXPECT_EQ(shared[i] != 0, again) << i;
+    }
+    const std::vector<std::string> got = postproc::renderFiles(*r.context.job.program);
+    if (ref.empty()) {
+      // the reference: the program read again, every target of every hole replaced directly
+      postproc::Program p = postproc::readProgram(program);
+      p.position_min_decimals = 5;
+      for (size_t i = 0; i < r.holes.size(); ++i) {
+        const HoleCompensation& h = r.holes[i];
+        const api::HoleSource& s = r.context.job.sources[i];
+        for (const int t : s.targets) {
+          const Pose T_W_t = s.T_W_frame * postproc::targetPose(p, p.targets()[size_t(t)]);
+          const Pose T_new = h.delta * T_W_t * Pose(Eigen::AngleAxisd(h.psi, Vec3::UnitZ()));
+          ASSERT_TRUE(postproc::replaceTargetPose(p, t, s.T_W_frame.inverse() * T_new).ok);
+        }
+      }
+      postproc::markCompensated(p, "x");
+      ref = postproc::renderFiles(p);
+      ASSERT_EQ(ref.size(), 2U);
+      EXPECT_NE(ref[1], test::readFile(dir + "/shared.dat"));
+    }
+    ASSERT_EQ(got.size(), ref.size());
+    // the marker line differs (cell name, version): compare the .dat, where the targets are
+    EXPECT_TRUE(got[1] == ref[1]);
+  }
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <utility>
 
 #include "compensator/support/error.hpp"
 #include "postproc/drill.hpp"
@@ -205,6 +206,70 @@ TEST(PostprocEdit, RefusesSharedJointAndIncompleteTargets) {
   EXPECT_FALSE(replaceTargetPose(p, 1, Pose::Identity()).ok);  // {X 10}: components omitted
   EXPECT_FALSE(replaceTargetPose(p, 2, Pose::Identity()).ok);  // joint target
   EXPECT_TRUE(p.edits.empty());
+}
+
+// replaceTargetPose into an EditLog replayed by applyEdits (compensate --threads prepares the
+// targets of a program on several threads so) gives the edits, the target values and the bytes
+// of the direct calls: every Cartesian target of every fixture dialect moved and turned, its
+// flags changed where the dialect writes them, then moved back (the log's erase path: the tokens
+// print as before, so no edit stays).
+void expectLogEqualsDirect(const std::string& path) {
+  SCOPED_TRACE(path);
+  Program direct = readProgram(path);
+  Program logged = readProgram(path);
+  const Vendor v = direct.dialect == Dialect::kKrl     ? Vendor::kKuka
+                   : direct.dialect == Dialect::kRapid ? Vendor::kAbb
+                   : direct.dialect == Dialect::kTp    ? Vendor::kFanuc
+                                                       : Vendor::kNone;
+  int moved = 0;
+  for (const bool back : {false, true}) {
+    for (std::size_t i = 0; i < direct.targets().size(); ++i) {
+      const Target& t = std::as_const(direct).targets()[i];
+      if (t.kind != TargetKind::kCartesian) continue;
+      Pose T = targetPose(direct, t);
+      std::optional<Configuration> c;
+      const double s = back ? -1.0 : 1.0;
+      T.translation() += s * Vec3(0.1234, -0.0567, 0.0891) * 1e-3;
+      T.linear() = T.linear() *
+                   Eigen::AngleAxisd(s * 0.01 * kDeg, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+      if (!back && v != Vendor::kNone && t.config.vendor == v) {
+        c = t.config;
+        c->status = c->status >= 0 ? (c->status ^ 2) : 2;
+        c->cf[1] = c->cf[1] - 1;
+        c->flip = c->flip == 'N' ? 'F' : 'N';
+      }
+      const int k = static_cast<int>(i);
+      const EditResult a = replaceTargetPose(direct, k, T, c);
+      EditLog log;
+      const EditResult b = replaceTargetPose(logged, k, T, c, log);
+      EXPECT_EQ(a.ok, b.ok);
+      EXPECT_EQ(a.reason, b.reason);
+      applyEdits(logged, log);
+      moved += a.ok ? 1 : 0;
+    }
+    ASSERT_EQ(direct.edits.size(), logged.edits.size());
+    for (auto it = direct.edits.begin(), jt = logged.edits.begin(); it != direct.edits.end();
+         ++it, ++jt) {
+      EXPECT_EQ(it->first, jt->first);
+      EXPECT_EQ(it->second.length, jt->second.length);
+      EXPECT_EQ(it->second.text, jt->second.text);
+    }
+    for (std::size_t i = 0; i < direct.targets().size(); ++i) {
+      const Target& a = std::as_const(direct).targets()[i];
+      const Target& b = std::as_const(logged).targets()[i];
+      for (std::size_t j = 0; j < 3; ++j) EXPECT_EQ(a.pos[j].value, b.pos[j].value);
+      for (std::size_t j = 0; j < 4; ++j) EXPECT_EQ(a.rot[j].value, b.rot[j].value);
+      EXPECT_EQ(a.config.text(), b.config.text());
+    }
+    EXPECT_EQ(renderFiles(direct), renderFiles(logged));
+  }
+  EXPECT_GT(moved, 1);
+}
+
+TEST(PostprocEdit, EditLogReplayedGivesTheDirectEdits) {
+  for (const char* f : {"kss_drill.src", "rapid_drill.mod", "tp_controller.ls", "targets.json",
+                        "targets_rxyz.csv"})
+    expectLogEqualsDirect(fixtures() + "/" + f);
 }
 
 TEST(PostprocDrill, KukaToolDirectionXIsAParameter) {

@@ -9,6 +9,28 @@
 
 namespace roprec::api {
 
+std::vector<char> holesSharingTargets(const std::vector<HoleSource>& sources,
+                                      const std::vector<char>& included, std::size_t targets) {
+  std::vector<int> users(targets, 0);
+  std::vector<int> last(targets, -1);  // the last hole that counted as a user
+  auto eachTarget = [&](auto&& f) {
+    for (std::size_t i = 0; i < sources.size(); ++i) {
+      if (!included[i]) continue;
+      for (const int t : sources[i].targets) f(i, static_cast<std::size_t>(t));
+    }
+  };
+  eachTarget([&](std::size_t i, std::size_t t) {
+    if (last[t] == static_cast<int>(i)) return;
+    last[t] = static_cast<int>(i);
+    ++users[t];
+  });
+  std::vector<char> shared(sources.size(), 0);
+  eachTarget([&](std::size_t i, std::size_t t) {
+    if (users[t] > 1) shared[i] = 1;
+  });
+  return shared;
+}
+
 Mat3 holeFrame(const Vec3& direction) {
   const Vec3 z = direction.normalized();
   const Vec3 ref = std::abs(z.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();

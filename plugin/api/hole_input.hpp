@@ -47,6 +47,13 @@ struct JobHoles {
   std::vector<std::string> notes;
 };
 
+/// Per hole, whether it shares a program target with another hole: over the holes with
+/// `included[i]` != 0, of a program with `targets` targets. A target a hole lists twice (in and
+/// out through one approach point) is not shared. Holes that share targets must be edited in
+/// hole order, the others may be edited at the same time.
+std::vector<char> holesSharingTargets(const std::vector<HoleSource>& sources,
+                                      const std::vector<char>& included, std::size_t targets);
+
 /// TCP rotation for a drilling direction (see the file comment), in the frame of `direction`.
 Mat3 holeFrame(const Vec3& direction);
 

@@ -8,6 +8,7 @@
 #include <system_error>
 #include <thread>
 
+#include "compensator/precision/parallel.hpp"
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
 #include "plugin/api/robot_compliance.hpp"
@@ -214,29 +215,59 @@ double perpNorm(const Vec3& v, const Vec3& a) { return (v - v.dot(a) * a).norm()
 
 // ---- compensation stages after compensateHoles
 
-/// Every target of a drill cycle moves with its drill point: T_new = ΔT · T · Rz(ψ).
-std::vector<std::string> editProgram(CompensationResult& r) {
-  std::vector<std::string> refused;
+/// The edits of hole i's targets (T_new = ΔT · T · Rz(ψ)) queued into `log`, its refusals
+/// appended to `refused`. Writes only the hole's own targets.
+void editHoleTargets(CompensationResult& r, size_t i, postproc::EditLog& log,
+                     std::vector<std::string>& refused) {
+  postproc::Program& prog = *r.context.job.program;
+  const HoleCompensation& h = r.holes[i];
+  const HoleSource& src = r.context.job.sources[i];
+  for (const int t : src.targets) {
+    const postproc::Target& tg = prog.targets()[static_cast<size_t>(t)];
+    const Pose T_W_t = src.T_W_frame * postproc::targetPose(prog, tg);
+    const Pose T_W_new = h.delta * T_W_t * Pose(Eigen::AngleAxisd(h.psi, Vec3::UnitZ()));
+    std::optional<postproc::Configuration> cfg;
+    // the program's own flag bytes stay unless the compensated target needs others
+    if (tg.config.present() && h.config_changed)
+      cfg = postproc::parseConfigurationText(h.config_text);
+    const postproc::EditResult er =
+        postproc::replaceTargetPose(prog, t, src.T_W_frame.inverse() * T_W_new, cfg, log);
+    if (!er.ok) {
+      refused.push_back("hole " + h.id + " target " +
+                        (tg.name.empty() ? std::to_string(t) : tg.name) + ": " + er.reason);
+    }
+  }
+}
+
+/// Every target of a drill cycle moves with its drill point. Block by block, the edits of the
+/// holes whose targets are their own are prepared on `threads` workers (number formatting is
+/// most of the work); the holes that share a target with another hole are edited in hole order
+/// (each reads what the one before wrote), and every hole's edits and refusals are queued in hole
+/// order: the program's bytes and the refusals are those of one thread.
+std::vector<std::string> editProgram(CompensationResult& r, int threads) {
+  constexpr size_t kBlock = 2048;  // holes whose edits are held at once
   postproc::Program& prog = *r.context.job.program;
   prog.position_min_decimals = 5;  // 0.01 µm: the written target carries the compensation
-  for (size_t i = 0; i < r.holes.size(); ++i) {
-    const HoleCompensation& h = r.holes[i];
-    if (!h.ok) continue;
-    const HoleSource& src = r.context.job.sources[i];
-    for (const int t : src.targets) {
-      const postproc::Target& tg = prog.targets()[static_cast<size_t>(t)];
-      const Pose T_W_t = src.T_W_frame * postproc::targetPose(prog, tg);
-      const Pose T_W_new = h.delta * T_W_t * Pose(Eigen::AngleAxisd(h.psi, Vec3::UnitZ()));
-      std::optional<postproc::Configuration> cfg;
-      // the program's own flag bytes stay unless the compensated target needs others
-      if (tg.config.present() && h.config_changed)
-        cfg = postproc::parseConfigurationText(h.config_text);
-      const postproc::EditResult er =
-          postproc::replaceTargetPose(prog, t, src.T_W_frame.inverse() * T_W_new, cfg);
-      if (!er.ok) {
-        refused.push_back("hole " + h.id + " target " +
-                          (tg.name.empty() ? std::to_string(t) : tg.name) + ": " + er.reason);
-      }
+  const size_t n = r.holes.size();
+  std::vector<char> edited(n);
+  for (size_t i = 0; i < n; ++i) edited[i] = r.holes[i].ok ? 1 : 0;
+  const std::vector<char> shared =
+      holesSharingTargets(r.context.job.sources, edited, prog.targets().size());
+  std::vector<postproc::EditLog> logs(std::min(n, kBlock));
+  std::vector<std::vector<std::string>> refusals(logs.size());
+  std::vector<std::string> refused;
+  for (size_t b = 0; b < n; b += kBlock) {
+    const size_t m = std::min(kBlock, n - b);
+    parallelFor(m, threads, [&](int, size_t k) {
+      logs[k].ops.clear();
+      refusals[k].clear();
+      if (edited[b + k] && !shared[b + k]) editHoleTargets(r, b + k, logs[k], refusals[k]);
+    });
+    for (size_t k = 0; k < m; ++k) {
+      if (!edited[b + k]) continue;
+      if (shared[b + k]) editHoleTargets(r, b + k, logs[k], refusals[k]);
+      postproc::applyEdits(prog, logs[k]);
+      for (std::string& s : refusals[k]) refused.push_back(std::move(s));
     }
   }
   return refused;
@@ -442,7 +473,7 @@ CompensationResult compensateJob(const std::string& cell_path, const std::string
   if (progress) progress(r.holes.size(), r.holes.size());
   r.failed = static_cast<int>(
       std::count_if(r.holes.begin(), r.holes.end(), [](const auto& h) { return !h.ok; }));
-  r.refused = editProgram(r);
+  r.refused = editProgram(r, options.threads);
   postproc::markCompensated(*r.context.job.program, markerText(r.context.cell, r.orientation));
   r.summary = compensationStats(r, job.options.jump_threshold);
   r.writable = true;
