@@ -352,7 +352,8 @@ std::string formatLike(std::string_view original, double value, const NumberHint
 void EditQueue::put(int file, std::uint32_t offset, std::uint32_t length, std::string text) {
   Edit e{file, offset, length, std::move(text)};
   if (map_) {
-    (*map_)[{file, offset}] = std::move(e);
+    // edits come in file order mostly (target after target): the hint makes those O(1)
+    map_->insert_or_assign(map_->end(), {file, offset}, std::move(e));
   } else {
     log_->ops.push_back(EditLog::Op{false, std::move(e)});
   }
@@ -386,8 +387,7 @@ void setNumber(Program& p, NumberField& f, double value, const NumberHints& h) {
   setNumber(p, q, f, value, h);
 }
 
-void setNumber(const Program& p, EditQueue& q, NumberField& f, double value,
-               const NumberHints& h) {
+void setNumber(const Program& p, EditQueue& q, NumberField& f, double value, const NumberHints& h) {
   const SourceFile& sf = p.files[static_cast<std::size_t>(f.file)];
   const std::string_view orig = std::string_view(sf.bytes).substr(f.offset, f.length);
   const double orig_value = parseNumber(orig).value_or(0.0);
@@ -694,11 +694,12 @@ namespace {
 EditResult replaceTarget(const Program& p, EditQueue& queue, Target& t, const Pose& T,
                          const std::optional<Configuration>& config) {
   EditResult r;
-  const std::string who = (t.name.empty() ? std::string("inline target") : "target " + t.name) +
-                          " (" + p.files[static_cast<std::size_t>(t.file)].path + ":" +
-                          std::to_string(t.line) + ")";
+  auto who = [&] {  // built only for a refusal
+    return (t.name.empty() ? std::string("inline target") : "target " + t.name) + " (" +
+           p.files[static_cast<std::size_t>(t.file)].path + ":" + std::to_string(t.line) + ")";
+  };
   if (t.kind != TargetKind::kCartesian) {
-    r.reason = who + " is a joint target; only Cartesian targets can take a pose";
+    r.reason = who() + " is a joint target; only Cartesian targets can take a pose";
     return r;
   }
   {
@@ -711,19 +712,21 @@ EditResult replaceTarget(const Program& p, EditQueue& queue, Target& t, const Po
       for (const NumberField& f : t.cf_fields)
         if (f.named()) named += (named.empty() ? "" : ", ") + p.exprText(f);
     if (!named.empty()) {
-      r.reason = who + " states components by name or expression (" + named +
+      r.reason = who() + " states components by name or expression (" + named +
                  "); they are not rewritten: not edited";
       return r;
     }
   }
   if (!targetComplete(t)) {
     r.reason =
-        who + " omits pose components (the controller takes them from the start point); not edited";
+        who() +
+        " omits pose components (the controller takes them from the start point); not edited";
     return r;
   }
   if (!targetFramesConsistent(p, t)) {
     r.reason =
-        who + " is used by motions with different tools or frames; edit refused (clone it per use)";
+        who() +
+        " is used by motions with different tools or frames; edit refused (clone it per use)";
     return r;
   }
   if (config && config->vendor != Vendor::kNone) {
@@ -731,15 +734,15 @@ EditResult replaceTarget(const Program& p, EditQueue& queue, Target& t, const Po
     if (table && config->text() == t.config.text() && config->vendor == t.config.vendor) {
       // unchanged configuration cell of a target list
     } else if (table) {
-      r.reason = who + ": rewriting the configuration cell of a target list is not supported";
+      r.reason = who() + ": rewriting the configuration cell of a target list is not supported";
       return r;
     } else if (config->vendor != vendorOf(p.dialect)) {
-      r.reason = who + ": configuration of another vendor given";
+      r.reason = who() + ": configuration of another vendor given";
       return r;
     } else {
       r = writeConfiguration(p, queue, t, *config);
       if (!r.ok) {
-        r.reason = who + ": " + r.reason;
+        r.reason = who() + ": " + r.reason;
         return r;
       }
     }

@@ -195,9 +195,9 @@ std::string sharedTargetJob(const std::string& dir) {
   std::string dat = "DEFDAT shared\n";
   auto cycle = [&](int k) {
     const std::string n = std::to_string(k);
-    src += "; H" + n + " drill D6.8 depth 16.0\n$VEL.CP = 0.25\nPTP XA" + n +
-           " C_PTP\nLIN XS" + n + " C_DIS\n$VEL.CP = 0.02\nLIN XB" + n +
-           "\nWAIT SEC 0.3\n$VEL.CP = 0.25\nLIN XA" + n + " C_DIS\n";
+    src += "; H" + n + " drill D6.8 depth 16.0\n$VEL.CP = 0.25\nPTP XA" + n + " C_PTP\nLIN XS" + n +
+           " C_DIS\n$VEL.CP = 0.02\nLIN XB" + n + "\nWAIT SEC 0.3\n$VEL.CP = 0.25\nLIN XA" + n +
+           " C_DIS\n";
   };
   for (int k = 0; k < 40; ++k) {
     const double x = 60.0 + 2.5 * k;

@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -266,6 +267,38 @@ TEST(OutputSet, CApiCompensateWritesNothingWhenTheTargetsExportFails) {
             std::string::npos)
       << err;
   EXPECT_TRUE(listDir(dir).empty());
+}
+
+}  // namespace
+}  // namespace roprec
+
+namespace roprec {
+namespace {
+
+// readFileBytes reads every byte as it is (NUL, CR LF, no newline at the end), for an empty file,
+// a small one and one of several read buffers; a pipe (no size known beforehand) too; a missing
+// file is an InputError naming it.
+TEST(ReadFileBytes, EveryByteOfFilesOfAnySizeAndOfAPipe) {
+  const std::string dir = test::tempDir("read_file_bytes");
+  std::string big;
+  for (long i = 0; i < 300000; ++i) big += static_cast<char>((i * 7919) % 251);
+  for (const std::string& text : {std::string(), std::string("a\0b\r\nc", 6), big}) {
+    const std::string path = dir + "/f" + std::to_string(text.size());
+    test::writeFile(path, text);
+    EXPECT_TRUE(readFileBytes(path) == text) << text.size();
+  }
+  const std::string fifo = dir + "/pipe";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  std::thread writer([&] { test::writeFile(fifo, big); });
+  const std::string got = readFileBytes(fifo);
+  writer.join();
+  EXPECT_TRUE(got == big);
+  try {
+    readFileBytes(dir + "/missing.src");
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("missing.src"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -230,8 +230,9 @@ void expectLogEqualsDirect(const std::string& path) {
       std::optional<Configuration> c;
       const double s = back ? -1.0 : 1.0;
       T.translation() += s * Vec3(0.1234, -0.0567, 0.0891) * 1e-3;
-      T.linear() = T.linear() *
-                   Eigen::AngleAxisd(s * 0.01 * kDeg, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+      T.linear() =
+          T.linear() *
+          Eigen::AngleAxisd(s * 0.01 * kDeg, Vec3(1, 2, 3).normalized()).toRotationMatrix();
       if (!back && v != Vendor::kNone && t.config.vendor == v) {
         c = t.config;
         c->status = c->status >= 0 ? (c->status ^ 2) : 2;
@@ -267,8 +268,8 @@ void expectLogEqualsDirect(const std::string& path) {
 }
 
 TEST(PostprocEdit, EditLogReplayedGivesTheDirectEdits) {
-  for (const char* f : {"kss_drill.src", "rapid_drill.mod", "tp_controller.ls", "targets.json",
-                        "targets_rxyz.csv"})
+  for (const char* f :
+       {"kss_drill.src", "rapid_drill.mod", "tp_controller.ls", "targets.json", "targets_rxyz.csv"})
     expectLogEqualsDirect(fixtures() + "/" + f);
 }
 
