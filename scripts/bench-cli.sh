@@ -22,6 +22,9 @@
 #
 # BENCH_SIZES  hole counts (default "1000 10000 100000")
 # BENCH_COMPENSATE_MAX  largest job that is also compensated (default 10000)
+# BENCH_REPEAT runs of each command (default 3; 1 and 2 threads alternate): each row shows the
+#              least wall time (the CPU time of that run) and the largest peak RSS. On a shared
+#              virtual machine one run's speed varies by up to ~30 % from run to run.
 # BENCH_DIR    work folder (default a fresh mktemp -d, removed at the end)
 # Exit 1 when a run fails or two outputs differ.
 set -euo pipefail
@@ -29,6 +32,7 @@ ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BIN="${1:-$ROOT/build/bin/roprec}"
 SIZES="${BENCH_SIZES:-1000 10000 100000}"
 COMP_MAX="${BENCH_COMPENSATE_MAX:-10000}"
+REPEAT="${BENCH_REPEAT:-3}"
 [ -x "$BIN" ] || { echo "bench-cli: $BIN is not an executable (build roprec first)" >&2; exit 2; }
 [ -x /usr/bin/time ] || { echo "bench-cli: needs GNU time (/usr/bin/time; scripts/setup.sh installs it)" >&2; exit 2; }
 DIR="${BENCH_DIR:-$(mktemp -d)}"
@@ -63,8 +67,9 @@ EOF
 }
 
 FAILED=0
-declare -A WALL
-run() {  # run KEY ARGS...: one roprec run under GNU time; prints wall s and peak RSS MB
+declare -A WALL RSS CPU
+run() {  # run KEY ARGS...: one roprec run under GNU time; keeps the key's least wall time (and the
+  # CPU time of that run) and its largest peak RSS over the repetitions
   local key="$1"
   shift
   local rc=0
@@ -80,8 +85,16 @@ run() {  # run KEY ARGS...: one roprec run under GNU time; prints wall s and pea
                       for (i = 1; i <= n; i++) s = s * 60 + t[i]; print s }' "$DIR/time.txt")
   rss=$(awk -F': ' '/Maximum resident set size/ { printf "%.0f", $2 / 1024 }' "$DIR/time.txt")
   cpu=$(awk -F': ' '/(User|System) time \(seconds\)/ { s += $2 } END { print s }' "$DIR/time.txt")
-  WALL[$key]=$wall
-  printf '%-44s %8.2f s %8s MB %8.2f s CPU\n' "$key" "$wall" "$rss" "$cpu"
+  if [ -z "${WALL[$key]:-}" ] || awk "BEGIN { exit !($wall < ${WALL[$key]}) }"; then
+    WALL[$key]=$wall
+    CPU[$key]=$cpu
+  fi
+  if [ -z "${RSS[$key]:-}" ] || [ "$rss" -gt "${RSS[$key]}" ]; then RSS[$key]=$rss; fi
+}
+
+show() {  # show KEY: the key's best wall time, peak RSS and CPU time
+  [ -n "${WALL[$1]:-}" ] || return 0
+  printf '%-44s %8.2f s %8s MB %8.2f s CPU\n' "$1" "${WALL[$1]}" "${RSS[$1]}" "${CPU[$1]}"
 }
 
 same() {  # same LABEL A B: byte-identity of two outputs
@@ -98,21 +111,30 @@ speedup() {  # speedup LABEL KEY1 KEY2
   printf '%-44s %8.2fx\n' "$1" "$(awk "BEGIN { print ${WALL[$2]} / ${WALL[$3]} }")"
 }
 
-echo "bench-cli: $("$BIN" --version 2>/dev/null | head -1 || echo roprec), $(nproc) cores"
+echo "bench-cli: $("$BIN" --version 2>/dev/null | head -1 || echo roprec), $(nproc) cores," \
+  "best of $REPEAT runs, 1 and 2 threads alternating"
 for n in $SIZES; do
   gen "$n" "$DIR/job$n.src"
-  for t in 1 2; do
-    run "predict $n holes, --threads $t" predict --cell "$CELL" "$DIR/job$n.src" --quiet \
-      --json "$DIR/p$n-t$t.json" --threads "$t"
+  for r in $(seq "$REPEAT"); do
+    for t in 1 2; do
+      run "predict $n holes, --threads $t" predict --cell "$CELL" "$DIR/job$n.src" --quiet \
+        --json "$DIR/p$n-t$t.json" --threads "$t"
+    done
   done
+  show "predict $n holes, --threads 1"
+  show "predict $n holes, --threads 2"
   speedup "predict $n: 2 vs 1 threads" "predict $n holes, --threads 1" "predict $n holes, --threads 2"
   same "predict $n: JSON 1 vs 2 threads" "$DIR/p$n-t1.json" "$DIR/p$n-t2.json"
   if [ "$n" -le "$COMP_MAX" ]; then
-    for t in 1 2; do
-      run "compensate $n flip-free, --threads $t" compensate --cell "$CELL" "$DIR/job$n.src" \
-        --quiet --orientation flip-free -o "$DIR/c$n-t$t.src" --targets "$DIR/c$n-t$t.csv" \
-        --threads "$t"
+    for r in $(seq "$REPEAT"); do
+      for t in 1 2; do
+        run "compensate $n flip-free, --threads $t" compensate --cell "$CELL" "$DIR/job$n.src" \
+          --quiet --orientation flip-free -o "$DIR/c$n-t$t.src" --targets "$DIR/c$n-t$t.csv" \
+          --threads "$t"
+      done
     done
+    show "compensate $n flip-free, --threads 1"
+    show "compensate $n flip-free, --threads 2"
     speedup "compensate $n: 2 vs 1 threads" "compensate $n flip-free, --threads 1" \
       "compensate $n flip-free, --threads 2"
     same "compensate $n: program 1 vs 2 threads" "$DIR/c$n-t1.src" "$DIR/c$n-t2.src"
