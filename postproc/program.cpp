@@ -249,12 +249,7 @@ NumberField numberField(const Program& p, int file, std::uint32_t begin, std::ui
   const std::string_view t = std::string_view(f.bytes).substr(begin, end - begin);
   const auto v = parseNumber(t);
   if (!v) failAt(f, begin, "broken number '" + std::string(t) + "'");
-  NumberField nf;
-  nf.file = file;
-  nf.offset = begin;
-  nf.length = end - begin;
-  nf.value = *v;
-  return nf;
+  return tokenField(file, begin, end, *v);
 }
 
 namespace {

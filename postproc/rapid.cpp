@@ -407,12 +407,7 @@ class RapidReader {
 
   NumberField field(const Node& n, const char* what) const {
     if (!n.number) fail(n.begin, std::string(what) + " is not a number");
-    NumberField f;
-    f.file = 0;
-    f.offset = n.begin;
-    f.length = n.end - n.begin;
-    f.value = n.value;
-    return f;
+    return tokenField(0, n.begin, n.end, n.value);
   }
 
   void shape(const Node& n, std::size_t count, const char* what) const {

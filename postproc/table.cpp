@@ -1082,12 +1082,7 @@ class JsonTargets {
 
   NumberField field(const JValue& v) const {
     if (v.kind != JValue::kNumber) failAt(f_, v.begin, "expected a number");
-    NumberField nf;
-    nf.file = 0;
-    nf.offset = v.begin;
-    nf.length = v.end - v.begin;
-    nf.value = v.number;
-    return nf;
+    return tokenField(0, v.begin, v.end, v.number);
   }
 
   /// Fields a..c of `m` into out[0..2] when all three are given.

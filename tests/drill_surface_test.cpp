@@ -31,15 +31,23 @@ const char* kHandWritten =
     "LIN {X 150.000,Y 0.000,Z 284.000,A 0.000,B 0.000,C 180.000}\n"
     "END\n";
 
-TEST(DrillSurface, HoleStartsWhereTheFeedStartsNotAtTheApproachPoint) {
-  const postproc::Program p =
-      postproc::parseProgram(postproc::Dialect::kKrl, "hand.src", kHandWritten);
+/// The one hole of `p`, checked to start at the surface z = 234 mm (where the feed starts) and to
+/// end 20 mm below it (x = 150 mm, y = 0, in the base frame).
+postproc::Hole oneHoleFromSurfaceToBottom(const postproc::Program& p) {
   const std::vector<postproc::Hole> holes = postproc::recognizeHoles(p);
-  ASSERT_EQ(holes.size(), 1U);
+  EXPECT_EQ(holes.size(), 1U);
+  if (holes.empty()) return {};
   const postproc::Hole& h = holes[0];
   EXPECT_NEAR(h.depth * 1e3, 20.0, 1e-9);
   EXPECT_LT((h.surface * 1e3 - Eigen::Vector3d(150, 0, 234)).norm(), 1e-9);
   EXPECT_LT((h.position * 1e3 - Eigen::Vector3d(150, 0, 214)).norm(), 1e-9);
+  return h;
+}
+
+TEST(DrillSurface, HoleStartsWhereTheFeedStartsNotAtTheApproachPoint) {
+  const postproc::Program p =
+      postproc::parseProgram(postproc::Dialect::kKrl, "hand.src", kHandWritten);
+  const postproc::Hole h = oneHoleFromSurfaceToBottom(p);
   EXPECT_GE(h.surface_motion, 0);
   EXPECT_EQ(h.targets.size(), 4U);  // approach, surface, bottom, retract (inline targets)
   // the evidence, in the order it is found (the bottom LIN has no approximation: exact stop)
@@ -85,12 +93,7 @@ TEST(DrillSurface, PeckCycleLongerThanThePoseCacheKeepsItsSurfaceAndBottom) {
   text += "LIN {X 150.000,Y 0.000,Z 284.000,A 0.000,B 0.000,C 180.000}\nEND\n";
   const postproc::Program p = postproc::parseProgram(postproc::Dialect::kKrl, "peck.src", text);
   ASSERT_EQ(p.motions.size(), 203U);
-  const std::vector<postproc::Hole> holes = postproc::recognizeHoles(p);
-  ASSERT_EQ(holes.size(), 1U);
-  const postproc::Hole& h = holes[0];
-  EXPECT_NEAR(h.depth * 1e3, 20.0, 1e-9);
-  EXPECT_LT((h.surface * 1e3 - Eigen::Vector3d(150, 0, 234)).norm(), 1e-9);
-  EXPECT_LT((h.position * 1e3 - Eigen::Vector3d(150, 0, 214)).norm(), 1e-9);
+  const postproc::Hole h = oneHoleFromSurfaceToBottom(p);
   EXPECT_EQ(h.bottom_motion, 200);  // the last feed move: motion 2 x 100
   EXPECT_EQ(h.targets.size(), 203U);
 }
