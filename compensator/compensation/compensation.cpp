@@ -938,11 +938,8 @@ void predictOriginalThreads(const PredictionModel& m, PredictionData& d,
   try {
     PredictOptions po;
     po.threads = threads;
-    std::vector<HolePrediction> before = predictHoles(m, holes, po);
-    for (size_t i = 0; i < holes.size(); ++i) {
-      out[i].id = holes[i].id;
-      out[i].before = std::move(before[i]);
-    }
+    predictHoles(m, holes, po, [&](size_t i) -> HolePrediction& { return out[i].before; });
+    for (size_t i = 0; i < holes.size(); ++i) out[i].id = holes[i].id;
     return;
   } catch (const std::exception&) {
     // the sequential loop below reports the failing hole as not converged

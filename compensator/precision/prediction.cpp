@@ -431,8 +431,14 @@ std::vector<HolePrediction> predictHoles(const PredictionModel& m,
 std::vector<HolePrediction> predictHoles(const PredictionModel& m,
                                          const std::vector<HoleRequest>& holes,
                                          const PredictOptions& options) {
+  std::vector<HolePrediction> out(holes.size());
+  predictHoles(m, holes, options, [&](size_t i) -> HolePrediction& { return out[i]; });
+  return out;
+}
+
+void predictHoles(const PredictionModel& m, const std::vector<HoleRequest>& holes,
+                  const PredictOptions& options, const std::function<HolePrediction&(size_t)>& at) {
   const size_t n = holes.size();
-  std::vector<HolePrediction> out(n);
   const int threads = std::max(1, options.threads);
   std::vector<PredictionData> scratch;
   scratch.reserve(static_cast<size_t>(threads));
@@ -455,7 +461,7 @@ std::vector<HolePrediction> predictHoles(const PredictionModel& m,
   // 2. the rest of every hole, in parallel (per-worker scratch; each hole depends only on its
   //    request, its seed and the model, so the output does not depend on the thread count)
   parallelFor(n, threads, [&](int w, size_t i) {
-    HolePrediction& p = out[i];
+    HolePrediction& p = at(i);
     p.id = holes[i].id;
     if (chosen[i]) {
       predictAtSolution(m, scratch[static_cast<size_t>(w)], holes[i], sol[i], p);
@@ -468,10 +474,10 @@ std::vector<HolePrediction> predictHoles(const PredictionModel& m,
   std::optional<Vec6> prev = options.seed;
   for (size_t i = 0; i < n; ++i) {
     const bool same = prev.has_value() == seed[i].has_value() && (!prev || *prev == *seed[i]);
-    if (!same) predictHole(m, scratch[0], holes[i], prev ? &*prev : nullptr, out[i]);
-    if (out[i].status == HoleStatus::kOk) prev = out[i].joints;
+    HolePrediction& p = at(i);
+    if (!same) predictHole(m, scratch[0], holes[i], prev ? &*prev : nullptr, p);
+    if (p.status == HoleStatus::kOk) prev = p.joints;
   }
-  return out;
 }
 
 CapabilitySummary summarize(const std::vector<HolePrediction>& p) {

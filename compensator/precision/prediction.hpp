@@ -29,6 +29,7 @@
 ///       not-capable                  U > t/2           (the scatter alone exceeds t/2)
 ///       unreachable / singular       no admissible IK solution / wrist or shoulder singular
 
+#include <functional>
 #include <map>
 #include <optional>
 #include <random>
@@ -246,6 +247,12 @@ std::vector<HolePrediction> predictHoles(const PredictionModel& m,
 std::vector<HolePrediction> predictHoles(const PredictionModel& m,
                                          const std::vector<HoleRequest>& holes,
                                          const PredictOptions& options);
+/// The same into storage the caller owns: hole i's prediction is written into at(i), a
+/// default-constructed HolePrediction (compensateHoles: each hole's `before`, no second array of
+/// predictions to fill and move). at(i) is called from the workers when options.threads > 1: it
+/// must give distinct objects for distinct i and be safe to call at once.
+void predictHoles(const PredictionModel& m, const std::vector<HoleRequest>& holes,
+                  const PredictOptions& options, const std::function<HolePrediction&(size_t)>& at);
 
 struct CapabilitySummary {
   int holes{0};
