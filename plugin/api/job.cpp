@@ -1,6 +1,7 @@
 #include "plugin/api/job.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -241,11 +242,12 @@ void editHoleTargets(CompensationResult& r, size_t i, postproc::EditLog& log,
 
 /// Every target of a drill cycle moves with its drill point. Block by block, the edits of the
 /// holes whose targets are their own are prepared on `threads` workers (number formatting is
-/// most of the work); the holes that share a target with another hole are edited in hole order
-/// (each reads what the one before wrote), and every hole's edits and refusals are queued in hole
-/// order: the program's bytes and the refusals are those of one thread.
+/// most of the work) while the block before is queued on a task of its own: there, in hole
+/// order, the holes that share a target with another hole are edited (each reads what the one
+/// before wrote) and every hole's edits and refusals are queued. The program's bytes and the
+/// refusals are those of one thread.
 std::vector<std::string> editProgram(CompensationResult& r, int threads) {
-  constexpr size_t kBlock = 2048;  // holes whose edits are held at once
+  constexpr size_t kBlock = 2048;  // holes whose edits are held at once (two blocks)
   postproc::Program& prog = *r.context.job.program;
   prog.position_min_decimals = 5;  // 0.01 µm: the written target carries the compensation
   const size_t n = r.holes.size();
@@ -253,23 +255,39 @@ std::vector<std::string> editProgram(CompensationResult& r, int threads) {
   for (size_t i = 0; i < n; ++i) edited[i] = r.holes[i].ok ? 1 : 0;
   const std::vector<char> shared =
       holesSharingTargets(r.context.job.sources, edited, prog.targets().size());
-  std::vector<postproc::EditLog> logs(std::min(n, kBlock));
-  std::vector<std::vector<std::string>> refusals(logs.size());
+  struct Block {
+    std::vector<postproc::EditLog> logs;
+    std::vector<std::vector<std::string>> refusals;
+  };
+  std::array<Block, 2> blocks;
   std::vector<std::string> refused;
-  for (size_t b = 0; b < n; b += kBlock) {
-    const size_t m = std::min(kBlock, n - b);
-    parallelFor(m, threads, [&](int, size_t k) {
-      logs[k].ops.clear();
-      refusals[k].clear();
-      if (edited[b + k] && !shared[b + k]) editHoleTargets(r, b + k, logs[k], refusals[k]);
-    });
-    for (size_t k = 0; k < m; ++k) {
+  auto queue = [&](size_t b, Block& blk) {
+    for (size_t k = 0; k < blk.logs.size(); ++k) {
       if (!edited[b + k]) continue;
-      if (shared[b + k]) editHoleTargets(r, b + k, logs[k], refusals[k]);
-      postproc::applyEdits(prog, logs[k]);
-      for (std::string& s : refusals[k]) refused.push_back(std::move(s));
+      if (shared[b + k]) editHoleTargets(r, b + k, blk.logs[k], blk.refusals[k]);
+      postproc::applyEdits(prog, blk.logs[k]);
+      for (std::string& s : blk.refusals[k]) refused.push_back(std::move(s));
+    }
+  };
+  std::future<void> queuing;
+  for (size_t b = 0, s = 0; b < n; b += kBlock, s ^= 1) {
+    Block& blk = blocks[s];
+    const size_t m = std::min(kBlock, n - b);
+    blk.logs.resize(m);
+    blk.refusals.resize(m);
+    parallelFor(m, threads, [&](int, size_t k) {
+      blk.logs[k].ops.clear();
+      blk.refusals[k].clear();
+      if (edited[b + k] && !shared[b + k]) editHoleTargets(r, b + k, blk.logs[k], blk.refusals[k]);
+    });
+    if (queuing.valid()) queuing.get();  // the block before is queued (or its error thrown)
+    if (threads > 1) {
+      queuing = std::async(std::launch::async, queue, b, std::ref(blk));
+    } else {
+      queue(b, blk);
     }
   }
+  if (queuing.valid()) queuing.get();
   return refused;
 }
 
