@@ -5,8 +5,10 @@
 #include <exception>
 #include <limits>
 #include <memory>
+#include <new>
 #include <span>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "compensator/compensation/nlopt_problem.hpp"
@@ -61,20 +63,32 @@ struct Node {
 };
 
 /// n rows of K values in one block (the per-hole candidate grids and DP tables: no allocation per
-/// hole); row i is a span of K.
+/// hole); row i is a span of K. The rows are first written by `threads` workers: a 10,000-hole
+/// candidate grid is ~25 MB, whose pages fault in on one thread in ~10 ms otherwise.
 template <class T>
 class Grid {
+  static_assert(std::is_trivially_destructible_v<T>, "rows are filled in place, never destroyed");
+
  public:
   Grid() = default;
-  Grid(size_t n, size_t K, const T& fill) : K_(K), v_(n * K, fill) {}
-  [[nodiscard]] size_t size() const { return K_ ? v_.size() / K_ : 0; }
+  Grid(size_t n, size_t K, const T& fill, int threads = 1)
+      : n_(n), K_(K), v_(static_cast<T*>(::operator new(n * K * sizeof(T), kAlign))) {
+    parallelFor(n, threads, [&](int, size_t i) { std::uninitialized_fill_n(row(i), K_, fill); });
+  }
+  [[nodiscard]] size_t size() const { return n_; }
   [[nodiscard]] size_t width() const { return K_; }
-  std::span<T> operator[](size_t i) { return {v_.data() + i * K_, K_}; }
-  std::span<const T> operator[](size_t i) const { return {v_.data() + i * K_, K_}; }
+  std::span<T> operator[](size_t i) { return {row(i), K_}; }
+  std::span<const T> operator[](size_t i) const { return {v_.get() + i * K_, K_}; }
 
  private:
+  static constexpr std::align_val_t kAlign{alignof(T)};
+  struct Free {
+    void operator()(T* p) const { ::operator delete(p, kAlign); }
+  };
+  T* row(size_t i) { return v_.get() + i * K_; }
+  size_t n_{0};
   size_t K_{0};
-  std::vector<T> v_;
+  std::unique_ptr<T, Free> v_;
 };
 
 struct Evaluator {
@@ -314,7 +328,7 @@ Grid<Node> candidateNodes(std::vector<Evaluator>& evs, const std::vector<HoleReq
                           std::vector<HoleCompensation>& out, int grid, CompensationStats& st) {
   const CompensationOptions& o = evs[0].o;
   const size_t n = holes.size();
-  Grid<Node> nodes(n, static_cast<size_t>(grid), Node{});
+  Grid<Node> nodes(n, static_cast<size_t>(grid), Node{}, static_cast<int>(evs.size()));
   std::vector<NodeCount> counts(n);
   auto branchOf = [&](const HolePrediction& b) {
     return (b.status == HoleStatus::kOk && !o.allow_branch_change) ? b.branch : -1;
@@ -349,10 +363,10 @@ Grid<Node> candidateNodes(std::vector<Evaluator>& evs, const std::vector<HoleReq
 /// ≤ thr between holes of one face) and its predecessor. Returns false when a reachable hole
 /// cannot be connected within the threshold.
 bool dpForward(const Grid<Node>& nodes, const std::vector<HoleRequest>& holes, OrientationMode mode,
-               double thr, Grid<Cost>& cost, Grid<int>& from) {
+               double thr, int threads, Grid<Cost>& cost, Grid<int>& from) {
   const size_t n = nodes.size();
-  cost = Grid<Cost>(n, nodes.width(), kInfCost);
-  from = Grid<int>(n, nodes.width(), -1);
+  cost = Grid<Cost>(n, nodes.width(), kInfCost, threads);
+  from = Grid<int>(n, nodes.width(), -1, threads);
   int last = -1;  // previous hole with a feasible node
   bool all_connected = true;
   for (size_t i = 0; i < n; ++i) {
@@ -419,11 +433,12 @@ std::vector<int> chooseSequence(const Grid<Node>& nodes, const std::vector<HoleR
   Grid<Cost> cost;
   Grid<int> from;
   thr = o.jump_threshold;
-  while (!dpForward(nodes, holes, o.mode, thr, cost, from)) {
+  const int threads = std::max(1, o.threads);
+  while (!dpForward(nodes, holes, o.mode, thr, threads, cost, from)) {
     st.relaxed_jumps = true;
     thr *= 1.5;
     if (thr > 4 * kPi) {
-      dpForward(nodes, holes, o.mode, kInf, cost, from);
+      dpForward(nodes, holes, o.mode, kInf, threads, cost, from);
       break;
     }
   }
