@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <string_view>
 
+#include "compensator/precision/parallel.hpp"
 #include "plugin/api/job.hpp"
 #include "plugin/api/report.hpp"
 #include "plugin/api/robots.hpp"
@@ -132,7 +133,7 @@ void csvRow(std::string& s, const CompensationResult& r, size_t i) {
 
 constexpr size_t kChunk = 64 * 1024;  ///< bytes handed to a ByteSink at a time
 
-void targetsCsv(const CompensationResult& r, const ByteSink& sink) {
+void targetsCsv(const CompensationResult& r, const ByteSink& sink, int threads) {
   std::string s =
       "id,status,nominal_x_mm,nominal_y_mm,nominal_z_mm,nominal_qw,nominal_qx,nominal_qy,nominal_"
       "qz,"
@@ -144,14 +145,33 @@ void targetsCsv(const CompensationResult& r, const ByteSink& sink) {
       "U_work_um,k,verdict,reason,j1_ctrl_deg,j2_ctrl_deg,j3_ctrl_deg,j4_ctrl_deg,j5_ctrl_deg,"
       "j6_ctrl_deg,rotation_reason,config_before,config_changed,config_reason\n";
   s.reserve(kChunk + 4096);
-  for (size_t i = 0; i < r.holes.size(); ++i) {
-    csvRow(s, r, i);
-    if (s.size() >= kChunk) {
-      sink(s);
-      s.clear();
+  const size_t n = r.holes.size();
+  if (threads <= 1) {
+    for (size_t i = 0; i < n; ++i) {
+      csvRow(s, r, i);
+      if (s.size() >= kChunk) {
+        sink(s);
+        s.clear();
+      }
     }
+    if (!s.empty()) sink(s);
+    return;
   }
-  if (!s.empty()) sink(s);
+  // blocks of rows formatted on the workers, a round of them at a time, written in order
+  constexpr size_t kRows = 128;
+  const size_t blocks = (n + kRows - 1) / kRows;
+  const size_t round = 8 * static_cast<size_t>(threads);
+  std::vector<std::string> text(std::min(blocks, round));
+  sink(s);
+  for (size_t b0 = 0; b0 < blocks; b0 += round) {
+    const size_t m = std::min(round, blocks - b0);
+    parallelFor(m, threads, [&](int, size_t k) {
+      text[k].clear();
+      const size_t first = (b0 + k) * kRows;
+      for (size_t i = first; i < std::min(n, first + kRows); ++i) csvRow(text[k], r, i);
+    });
+    for (size_t k = 0; k < m; ++k) sink(text[k]);
+  }
 }
 
 /// One item whose numbers are not all finite (a bug or an input that escaped the range checks)
@@ -493,9 +513,9 @@ std::string compensationTargets(const CompensationResult& r, const std::string& 
 }
 
 void writeCompensationTargets(const CompensationResult& r, const std::string& program_path,
-                              bool csv, const ByteSink& sink) {
+                              bool csv, const ByteSink& sink, int threads) {
   if (csv) {
-    targetsCsv(r, sink);
+    targetsCsv(r, sink, threads);
   } else {
     targetsJson(r, program_path, sink);
   }

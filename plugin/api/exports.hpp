@@ -41,9 +41,10 @@ std::string predictionReport(const PredictionResult& r);
 /// The corrected-target export: CSV when `csv`, else JSON (docs/contract.md "Corrected targets").
 std::string compensationTargets(const CompensationResult& r, const std::string& program_path,
                                 bool csv);
-/// The same bytes, written hole by hole to `sink` (no whole-document tree or string).
+/// The same bytes, written hole by hole to `sink` (no whole-document tree or string). With
+/// `threads` > 1 the CSV rows are formatted by blocks on that many workers (the same bytes).
 void writeCompensationTargets(const CompensationResult& r, const std::string& program_path,
-                              bool csv, const ByteSink& sink);
+                              bool csv, const ByteSink& sink, int threads = 1);
 /// The compensation report (before/after maps).
 std::string compensationReport(const CompensationResult& r, const std::string& program_path);
 

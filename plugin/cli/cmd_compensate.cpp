@@ -248,7 +248,7 @@ int run(Args& args, CommandContext& ctx) {
   const bool csv = targets && targets->size() > 4 && targets->substr(targets->size() - 4) == ".csv";
   auto writeTargets = [&] {  // written hole by hole into its staged file
     writeFileAtomicStream(*targets, [&](const ByteWriter& write) {
-      writeCompensationTargets(r, pos[0], csv, write);
+      writeCompensationTargets(r, pos[0], csv, write, resolvedThreads(job.job.threads));
     });
   };
   auto writeReport = [&] { writeFileAtomic(*report, compensationReport(r, pos[0])); };
