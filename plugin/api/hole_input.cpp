@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <exception>
 #include <unordered_map>
 
+#include "compensator/precision/parallel.hpp"
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
 
@@ -186,8 +188,73 @@ void reportMatching(JobHoles& job, const std::string& list_path,
 
 }  // namespace
 
+namespace {
+
+/// Hole i's request and its place in the program (`spec`: its hole-list entry, -1 for none).
+/// Reads only: the holes are set up on several threads. Throws InputError when the drill point
+/// is not a plain Cartesian target or a target's configuration flags are not the robot's.
+void setUpHole(const JobHoles& job, const postproc::Program& p, const CellSpec& cell,
+               const Robot& robot, const std::vector<postproc::HoleSpec>& specs, int spec, size_t i,
+               HoleRequest& r, HoleSource& src) {
+  const postproc::Hole& h = job.recognized[i];
+  src.hole = static_cast<int>(i);
+  src.targets = h.targets;
+  src.bottom_target = h.bottom_target;
+  const postproc::Frame* base = h.base >= 0 ? &p.frames[static_cast<size_t>(h.base)] : nullptr;
+  if (base && base->resolved) {
+    src.T_W_frame = base->pose;
+    src.frame_resolved = true;
+    src.frame_ref = base->ref;
+  } else {
+    src.T_W_frame = cell.T_base_wobj;
+    src.frame_ref = base ? base->ref : "(none)";
+  }
+  const postproc::Target& t = p.targets()[static_cast<size_t>(h.bottom_target)];
+  const std::optional<Pose> T_frame_tcp =
+      postproc::motionPose(p, p.motions[static_cast<size_t>(h.bottom_motion)]);
+  if (!T_frame_tcp) {
+    throw InputError(p.files[static_cast<size_t>(t.file)].path, t.line,
+                     "hole " + h.id + ": the drill point is not a plain Cartesian target");
+  }
+  r.id = h.id;
+  r.T_W_tcp = src.T_W_frame * *T_frame_tcp;
+  r.line = t.line;
+  r.depth = h.depth;
+  if (h.surface_motion >= 0) r.surface_W = Vec3(src.T_W_frame * h.surface);
+  // The drill point is reached by linear moves, which keep the arm configuration the robot had:
+  // the configuration that selects the IK branch is the one of the cycle's approach when the
+  // controller honours it there (KUKA PTP, ABB MoveJ with ConfJ\On, FANUC J), else the bottom
+  // target's when honoured; otherwise none (continuity from the previous hole).
+  for (const int mi : {h.entry_motion, h.bottom_motion}) {
+    if (mi < 0 || r.config) continue;
+    const postproc::Motion& mo = p.motions[static_cast<size_t>(mi)];
+    if (!mo.config_honoured || mo.target < 0) continue;
+    const postproc::Target& ct = p.targets()[static_cast<size_t>(mo.target)];
+    r.config = programConfig(ct.config, robot, p.files[static_cast<size_t>(ct.file)].path, ct.line);
+  }
+  // The flags written at the drill point (honoured or not: the compensation keeps them), and the
+  // posture the cycle starts from: the joint target programmed since the previous hole.
+  r.written_config =
+      r.config ? r.config
+               : programConfig(t.config, robot, p.files[static_cast<size_t>(t.file)].path, t.line);
+  r.ik_seed = programmedJointsBefore(p, robot, i > 0 ? job.recognized[i - 1].bottom_motion : -1,
+                                     h.bottom_motion);
+  if (spec >= 0) {
+    const postproc::HoleSpec& s = specs[static_cast<size_t>(spec)];
+    r.id = s.id;
+    r.nominal_axis = std::make_pair(Vec3(cell.T_base_wobj * (s.position_mm * 1e-3)),
+                                    Vec3(cell.T_base_wobj.linear() * s.direction.normalized()));
+    if (s.tolerance_mm) r.tolerance = *s.tolerance_mm * 1e-3;
+    if (s.diameter_mm) r.diameter = *s.diameter_mm * 1e-3;
+    if (s.depth_mm) r.depth = *s.depth_mm * 1e-3;
+  }
+}
+
+}  // namespace
+
 JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot& robot,
-                      const std::optional<std::string>& hole_list, double match_tol_mm) {
+                      const std::optional<std::string>& hole_list, double match_tol_mm,
+                      int threads) {
   JobHoles job;
   job.path = path;
   std::string bytes = readFileBytes(path);
@@ -275,75 +342,34 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
          postproc::matchHoles(job.recognized, p, specs, match_tol_mm))
       spec_of_hole[static_cast<std::size_t>(m.hole)] = m.spec;
   }
-  bool noted_frame = false;
+  const size_t n = job.recognized.size();
+  job.requests.resize(n);
+  job.sources.resize(n);
+  // on the workers; the error of the first failing hole (in hole order) is the one thrown
+  const int workers = std::max(1, threads);
+  std::vector<std::pair<size_t, std::exception_ptr>> failed(static_cast<size_t>(workers),
+                                                            {n, nullptr});
+  parallelFor(n, workers, [&](int w, size_t i) {
+    try {
+      setUpHole(job, p, cell, robot, specs, spec_of_hole[i], i, job.requests[i], job.sources[i]);
+    } catch (...) {
+      auto& f = failed[static_cast<size_t>(w)];
+      if (i < f.first) f = {i, std::current_exception()};
+    }
+  });
+  const auto first = std::min_element(
+      failed.begin(), failed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  if (first->second) std::rethrow_exception(first->second);
+  for (const HoleSource& src : job.sources) {
+    if (src.frame_resolved) continue;
+    job.notes.push_back("program base frame " + src.frame_ref +
+                        " is not defined in the program: the cell's <workobject> is used as that "
+                        "frame");
+    break;
+  }
   FarFromTheList far;
-  job.requests.reserve(job.recognized.size());
-  job.sources.reserve(job.recognized.size());
-  for (size_t i = 0; i < job.recognized.size(); ++i) {
-    const postproc::Hole& h = job.recognized[i];
-    HoleSource src;
-    src.hole = static_cast<int>(i);
-    src.targets = h.targets;
-    src.bottom_target = h.bottom_target;
-    const postproc::Frame* base = h.base >= 0 ? &p.frames[static_cast<size_t>(h.base)] : nullptr;
-    if (base && base->resolved) {
-      src.T_W_frame = base->pose;
-      src.frame_resolved = true;
-      src.frame_ref = base->ref;
-    } else {
-      src.T_W_frame = cell.T_base_wobj;
-      src.frame_ref = base ? base->ref : "(none)";
-      if (!noted_frame) {
-        job.notes.push_back(
-            "program base frame " + src.frame_ref +
-            " is not defined in the program: the cell's <workobject> is used as that frame");
-        noted_frame = true;
-      }
-    }
-    const postproc::Target& t = p.targets()[static_cast<size_t>(h.bottom_target)];
-    const std::optional<Pose> T_frame_tcp =
-        postproc::motionPose(p, p.motions[static_cast<size_t>(h.bottom_motion)]);
-    if (!T_frame_tcp) {
-      throw InputError(p.files[static_cast<size_t>(t.file)].path, t.line,
-                       "hole " + h.id + ": the drill point is not a plain Cartesian target");
-    }
-    HoleRequest r;
-    r.id = h.id;
-    r.T_W_tcp = src.T_W_frame * *T_frame_tcp;
-    r.line = t.line;
-    r.depth = h.depth;
-    if (h.surface_motion >= 0) r.surface_W = Vec3(src.T_W_frame * h.surface);
-    // The drill point is reached by linear moves, which keep the arm configuration the robot had:
-    // the configuration that selects the IK branch is the one of the cycle's approach when the
-    // controller honours it there (KUKA PTP, ABB MoveJ with ConfJ\On, FANUC J), else the bottom
-    // target's when honoured; otherwise none (continuity from the previous hole).
-    for (const int mi : {h.entry_motion, h.bottom_motion}) {
-      if (mi < 0 || r.config) continue;
-      const postproc::Motion& mo = p.motions[static_cast<size_t>(mi)];
-      if (!mo.config_honoured || mo.target < 0) continue;
-      const postproc::Target& ct = p.targets()[static_cast<size_t>(mo.target)];
-      r.config =
-          programConfig(ct.config, robot, p.files[static_cast<size_t>(ct.file)].path, ct.line);
-    }
-    // The flags written at the drill point (honoured or not: the compensation keeps them), and the
-    // posture the cycle starts from: the joint target programmed since the previous hole.
-    r.written_config = r.config ? r.config
-                                : programConfig(t.config, robot,
-                                                p.files[static_cast<size_t>(t.file)].path, t.line);
-    r.ik_seed = programmedJointsBefore(p, robot, i > 0 ? job.recognized[i - 1].bottom_motion : -1,
-                                       h.bottom_motion);
-    if (const int si = spec_of_hole[i]; si >= 0) {
-      const postproc::HoleSpec& s = specs[static_cast<size_t>(si)];
-      r.id = s.id;
-      r.nominal_axis = std::make_pair(Vec3(cell.T_base_wobj * (s.position_mm * 1e-3)),
-                                      Vec3(cell.T_base_wobj.linear() * s.direction.normalized()));
-      if (s.tolerance_mm) r.tolerance = *s.tolerance_mm * 1e-3;
-      if (s.diameter_mm) r.diameter = *s.diameter_mm * 1e-3;
-      if (s.depth_mm) r.depth = *s.depth_mm * 1e-3;
-      far.add(r, match_tol_mm);
-    }
-    job.requests.push_back(r);
-    job.sources.push_back(src);
+  for (size_t i = 0; i < n; ++i) {
+    if (spec_of_hole[i] >= 0) far.add(job.requests[i], match_tol_mm);
   }
   if (hole_list) {
     char tol[32];

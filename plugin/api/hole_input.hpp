@@ -63,7 +63,9 @@ Mat3 holeFrame(const Vec3& direction);
 /// when the list matches none of the job's holes; a partial match adds two notes starting
 /// "--holes:" listing the job holes without a list entry and the entries without a hole. Bad
 /// hole lists throw InputError `FILE:LINE: what` (postproc::parseHoleList).
+/// The holes' requests are set up on `threads` workers (the same requests, notes and errors).
 JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot& robot,
-                      const std::optional<std::string>& hole_list, double match_tol_mm = 0.5);
+                      const std::optional<std::string>& hole_list, double match_tol_mm = 0.5,
+                      int threads = 1);
 
 }  // namespace roprec::api

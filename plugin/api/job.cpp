@@ -202,8 +202,9 @@ PredictionContext loadContext(const std::string& cell_path, const std::string& p
                               const JobOptions& o, bool load_holes = true) {
   if (!o.tool.empty() && o.tool != "program" && o.tool != "cell")
     throw UsageError("--tool must be program or cell");
-  PredictionContext c = loadPredictionContext(cell_path, program_path, o.holes, o.uncertainty,
-                                              o.match_tol_mm, load_holes);
+  PredictionContext c =
+      loadPredictionContext(cell_path, program_path, o.holes, o.uncertainty, o.match_tol_mm,
+                            load_holes, resolvedThreads(o.threads));
   if (o.fanuc_turn_axes) {
     c.model.config_options.fanuc_turn_axes = *o.fanuc_turn_axes;
     if (c.job.program) c.job.program->fanuc_turn_axes = *o.fanuc_turn_axes;
