@@ -72,7 +72,7 @@ class Grid {
  public:
   Grid() = default;
   Grid(size_t n, size_t K, const T& fill, int threads = 1)
-      : n_(n), K_(K), v_(static_cast<T*>(::operator new(n* K * sizeof(T), kAlign))) {
+      : n_(n), K_(K), v_(static_cast<T*>(::operator new(n * K * sizeof(T), kAlign))) {
     parallelFor(n, threads, [&](int, size_t i) { std::uninitialized_fill_n(row(i), K_, fill); });
   }
   [[nodiscard]] size_t size() const { return n_; }

@@ -168,8 +168,7 @@ namespace {
 /// Step 1 (IK): the solution the hole's configuration selects, else the admissible one nearest
 /// `ref`. On failure p.status/verdict/reason say why and false is returned.
 bool chooseSolution(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
-                    const Pose& T_W_flange, const Vec6& ref, HolePrediction& p, IkSolution& sol,
-                    const IkRaw* raw = nullptr) {
+                    const Pose& T_W_flange, const Vec6& ref, HolePrediction& p, IkSolution& sol) {
   if (h.config) {
     ConfigurationMatch match;
     match.explain_inexact = false;  // reason read only when nothing is found (no allocation)
@@ -188,7 +187,7 @@ bool chooseSolution(const PredictionModel& m, PredictionData& d, const HoleReque
   // the admissible solution nearest ref; wrist joints weigh less: they move faster and matter
   // less for the arm posture
   static constexpr std::array<double, 6> kWeights{1.0, 1.0, 1.0, 0.5, 0.5, 0.3};
-  if (solveIkNearest(m.ik, T_W_flange, ref, kWeights, d.ik, sol, raw)) return true;
+  if (solveIkNearest(m.ik, T_W_flange, ref, kWeights, d.ik, sol)) return true;
   p.status = HoleStatus::kUnreachable;
   p.verdict = Verdict::kUnreachable;
   if (d.ik.count == 0) {
@@ -444,11 +443,6 @@ void predictHoles(const PredictionModel& m, const std::vector<HoleRequest>& hole
   std::vector<PredictionData> scratch;
   scratch.reserve(static_cast<size_t>(threads));
   for (int w = 0; w < threads; ++w) scratch.emplace_back(m);
-  // 0. with workers: the analytic IK solutions of every hole, which do not depend on the seed
-  std::vector<IkRaw> raw(threads > 1 ? n : 0);
-  parallelFor(raw.size(), threads, [&](int, size_t i) {
-    if (!holes[i].config) solveIkRaw(m.ik, flangeTarget(m, holes[i]), raw[i]);
-  });
   // 1. sequential pass: the IK choice of every hole, which seeds the next one (continuity)
   std::vector<IkSolution> sol(n);
   std::vector<char> chosen(n, 0);
@@ -460,8 +454,7 @@ void predictHoles(const PredictionModel& m, const std::vector<HoleRequest>& hole
       seed[i] = prev;
       probe.status = HoleStatus::kOk;
       chosen[i] = chooseSolution(m, scratch[0], holes[i], flangeTarget(m, holes[i]),
-                                 seedOf(m, holes[i], prev ? &*prev : nullptr), probe, sol[i],
-                                 raw.empty() ? nullptr : &raw[i]);
+                                 seedOf(m, holes[i], prev ? &*prev : nullptr), probe, sol[i]);
       if (chosen[i] && !sol[i].singular_wrist && !sol[i].singular_shoulder) prev = sol[i].q;
     }
   }

@@ -476,7 +476,7 @@ namespace {
 /// The analytic solutions of the ideal model before refinement and turn expansion (wrapped q, at
 /// most 8, in branch-construction order). Sets result's failure fields (count 0) when none.
 int rawSolutions(const IkModel& m, const Pose& target, const IkOptions& opt,
-                 std::array<IkSolution, 8>& raw, IkResult& result, bool* seed_used = nullptr) {
+                 std::array<IkSolution, 8>& raw, IkResult& result) {
   result.count = 0;
   result.failure = IkFailure::kNone;
   result.failure_value = 0.0;
@@ -509,7 +509,6 @@ int rawSolutions(const IkModel& m, const Pose& target, const IkOptions& opt,
     const double x = (s == 0 ? 1.0 : -1.0) * m.shoulder_sign * xabs;
     double q1 = 0.0;
     if (on_axis) {
-      if (seed_used) *seed_used = true;
       q1 = (opt.seed ? (*opt.seed)[0] : 0.0) + (s == 0 ? 0.0 : kPi);
     } else {
       q1 = std::atan2(c.y(), c.x()) - std::atan2(m.b, x);
@@ -552,7 +551,6 @@ int rawSolutions(const IkModel& m, const Pose& target, const IkOptions& opt,
           q6 = std::atan2(sg * N(0, 1), sg * N(0, 2));
         } else {
           // Wrist singularity: only q4 + q6 (q5' = 0) or q4 − q6 (q5' = π) is defined.
-          if (seed_used) *seed_used = true;
           const double q4ref = (opt.seed ? (*opt.seed)[3] : 0.0) + (ws == 0 ? 0.0 : kPi);
           const double rot = std::atan2(N(2, 1), N(1, 1));
           q4 = q4ref;
@@ -633,20 +631,8 @@ void solveIk(const IkModel& m, const Pose& target, const IkOptions& opt, IkResul
   std::sort(result.solutions.begin(), result.solutions.begin() + result.count, solutionLess);
 }
 
-void solveIkRaw(const IkModel& m, const Pose& target, IkRaw& out) {
-  std::array<IkSolution, 8> raw;
-  IkResult result;
-  bool seed_used = false;
-  out.count = rawSolutions(m, target, IkOptions{}, raw, result, &seed_used);
-  for (int k = 0; k < out.count; ++k) out.q[static_cast<size_t>(k)] = raw[static_cast<size_t>(k)].q;
-  out.failure = result.failure;
-  out.failure_value = result.failure_value;
-  out.needs_seed = seed_used;
-}
-
 bool solveIkNearest(const IkModel& m, const Pose& target, const Vec6& ref,
-                    const std::array<double, 6>& weights, IkResult& result, IkSolution& best,
-                    const IkRaw* pre) {
+                    const std::array<double, 6>& weights, IkResult& result, IkSolution& best) {
   IkOptions opt;
   opt.seed = &ref;
   auto full = [&] {  // every branch finished, then the nearest admissible (the reference path)
@@ -667,20 +653,7 @@ bool solveIkNearest(const IkModel& m, const Pose& target, const Vec6& ref,
   };
   if (!m.deviation.exact) return full();  // refinement moves q: distances unknown beforehand
   std::array<IkSolution, 8> raw;
-  int nraw = 0;
-  if (pre && !pre->needs_seed) {  // what rawSolutions gives here: the seed is not used
-    result.count = 0;
-    result.failure = pre->failure;
-    result.failure_value = pre->failure_value;
-    result.truncated = false;
-    nraw = pre->count;
-    for (int k = 0; k < nraw; ++k) {
-      raw[static_cast<size_t>(k)] = IkSolution{};
-      raw[static_cast<size_t>(k)].q = pre->q[static_cast<size_t>(k)];
-    }
-  } else {
-    nraw = rawSolutions(m, target, opt, raw, result);
-  }
+  const int nraw = rawSolutions(m, target, opt, raw, result);
   if (nraw == 0) return false;
   // candidates by their distance before finishing (an exact chain's finishing keeps q)
   std::array<std::pair<double, int>, 8> order;

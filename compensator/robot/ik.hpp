@@ -234,20 +234,6 @@ struct IkResult {
 /// in kAll mode such a branch contributes its wrapped representative only).
 void solveIk(const IkModel& model, const Pose& target, const IkOptions& options, IkResult& result);
 
-/// The analytic solutions (wrapped joints, before refinement and turns) of a target, found before
-/// its seed is known: the first step of solveIkNearest, for a pass that solves many targets at
-/// once and chooses among them in sequence afterwards (predictHoles). `needs_seed` when a
-/// shoulder or wrist singularity takes joints from the seed: solveIkNearest then solves the
-/// target itself.
-struct IkRaw {
-  std::array<Vec6, 8> q;
-  int count{0};
-  IkFailure failure{IkFailure::kNone};
-  double failure_value{0.0};
-  bool needs_seed{false};
-};
-void solveIkRaw(const IkModel& model, const Pose& target, IkRaw& out);
-
 /// The admissible solution (converged, within the limits, neither wrist- nor shoulder-singular)
 /// nearest `ref` in the weighted distance Σ wᵢ (qᵢ − refᵢ)², of solveIk with seed = &ref and
 /// primary turns: the same solution solveIk's list gives (ties: the first in its order). On an
@@ -255,11 +241,9 @@ void solveIkRaw(const IkModel& model, const Pose& target, IkRaw& out);
 /// check, branch labels, turns): their distance is known before, since finishing keeps q there;
 /// otherwise, or when finishing moved q, every branch is solved. Returns false when none is
 /// admissible; `result` then holds solveIk's full list (for the reason). On success `result` is
-/// scratch (count 0). `raw` (may be null): solveIkRaw of the same model and target, the same
-/// result without solving the analytic step again.
+/// scratch (count 0).
 bool solveIkNearest(const IkModel& model, const Pose& target, const Vec6& ref,
-                    const std::array<double, 6>& weights, IkResult& result, IkSolution& best,
-                    const IkRaw* raw = nullptr);
+                    const std::array<double, 6>& weights, IkResult& result, IkSolution& best);
 
 /// Human-readable reason for an empty result.
 std::string describeIkFailure(const IkResult& result);
