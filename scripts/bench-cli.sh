@@ -28,6 +28,7 @@
 # BENCH_DIR    work folder (default a fresh mktemp -d, removed at the end)
 # Exit 1 when a run fails or two outputs differ.
 set -euo pipefail
+export LC_ALL=C  # EPOCHREALTIME and awk with a decimal point
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BIN="${1:-$ROOT/build/bin/roprec}"
 SIZES="${BENCH_SIZES:-1000 10000 100000}"
@@ -73,7 +74,9 @@ run() {  # run KEY ARGS...: one roprec run under GNU time; keeps the key's least
   local key="$1"
   shift
   local rc=0
+  local t0=$EPOCHREALTIME
   /usr/bin/time -v -o "$DIR/time.txt" "$BIN" "$@" >"$DIR/out.txt" 2>"$DIR/err.txt" || rc=$?
+  local t1=$EPOCHREALTIME
   if [ "$rc" -gt 1 ]; then
     echo "bench-cli: $key failed (exit $rc):" >&2
     tail -3 "$DIR/err.txt" >&2
@@ -81,8 +84,7 @@ run() {  # run KEY ARGS...: one roprec run under GNU time; keeps the key's least
     return
   fi
   local wall rss cpu
-  wall=$(awk -F': ' '/Elapsed \(wall clock\)/ { n = split($2, t, ":"); s = 0;
-                      for (i = 1; i <= n; i++) s = s * 60 + t[i]; print s }' "$DIR/time.txt")
+  wall=$(awk "BEGIN { printf \"%.4f\", $t1 - $t0 }")  # µs clock (GNU time's is 10 ms)
   rss=$(awk -F': ' '/Maximum resident set size/ { printf "%.0f", $2 / 1024 }' "$DIR/time.txt")
   cpu=$(awk -F': ' '/(User|System) time \(seconds\)/ { s += $2 } END { print s }' "$DIR/time.txt")
   if [ -z "${WALL[$key]:-}" ] || awk "BEGIN { exit !($wall < ${WALL[$key]}) }"; then
@@ -94,7 +96,7 @@ run() {  # run KEY ARGS...: one roprec run under GNU time; keeps the key's least
 
 show() {  # show KEY: the key's best wall time, peak RSS and CPU time
   [ -n "${WALL[$1]:-}" ] || return 0
-  printf '%-44s %8.2f s %8s MB %8.2f s CPU\n' "$1" "${WALL[$1]}" "${RSS[$1]}" "${CPU[$1]}"
+  printf '%-44s %8.3f s %8s MB %8.2f s CPU\n' "$1" "${WALL[$1]}" "${RSS[$1]}" "${CPU[$1]}"
 }
 
 same() {  # same LABEL A B: byte-identity of two outputs
