@@ -7,8 +7,9 @@
 #                            the 2 s drilling-cycle transient)
 #   scripts/bench-cli.sh    (10,000 holes 1 vs 2 threads, 100,000-hole predict wall and RSS)
 # and prints every row with its goal and whether it is met. Benchmark times are CPU medians of
-# BENCH_REPS repetitions (default 3); CLI rows are wall times of one run each, so a machine busy
-# with other work lowers the 2-vs-1 speed-up and raises the wall times (say so when quoting).
+# BENCH_REPS repetitions (default 3); CLI rows are the least wall time of BENCH_REPEAT runs
+# (bench-cli.sh, default 3, 1 and 2 threads alternating), so a machine busy with other work lowers
+# the 2-vs-1 speed-up and raises the wall times (say so when quoting).
 #
 #   scripts/bench-table.sh [BUILD_DIR]      (default build; needs -DROPREC_BUILD_BENCH=ON)
 #
