@@ -6,16 +6,17 @@
 #   roprec predict    --cell CELL JOB.src --json OUT.json --threads T
 #   roprec compensate --cell CELL JOB.src -o OUT.src --targets OUT.csv --orientation flip-free
 #                     --threads T                                   (1k and 10k holes)
-# with T = 1 and 2, and prints wall time and peak RSS (GNU time -v) of each run, the 2-vs-1
-# speed-up, and whether the outputs of T = 1 and T = 2 are byte-identical (cmp).
+# with T = 1 and 2 (BENCH_REPEAT times each, alternating), and prints the best wall time (bash's
+# µs clock), the peak RSS and CPU time (GNU time -v) of each command, the 2-vs-1 speed-up, and
+# whether the outputs of T = 1 and T = 2 are byte-identical (cmp).
 #
 #   scripts/bench-cli.sh [ROPREC_BINARY]     (default build/bin/roprec)
 #
-# Measured 2026-11-24 ~10:00 on the 2-core machine with no other build running (through
-# scripts/bench-table.sh; README "Performance" has the history):
-#   predict 10,000 holes      0.18 s / 48 MB (1 thread), 0.17 s (2): 1.06x
-#   compensate 10,000 holes   1.06 s / 111 MB (1 thread), 0.68 s (2): 1.56x
-#   predict 100,000 holes     1.71 s / 331 MB (1 thread), 1.56 s (2)
+# Measured 2026-11-24 13:35-13:50 on the 2-core machine with no other build running (best of 5
+# and of 9 runs, three runs; README "Performance" has the history):
+#   predict 10,000 holes      0.185 s / 48 MB (1 thread), 0.148-0.186 s (2): 1.01-1.29x
+#   compensate 10,000 holes   0.96-0.975 s / 111 MB (1 thread), 0.583-0.618 s (2): 1.57-1.66x
+#   predict 100,000 holes     1.61-1.65 s / 323 MB (1 thread), 1.30-1.47 s (2)
 # every output byte-identical for 1 and 2 threads. Wall times of a 2-thread run depend on the
 # second core being free: with other builds running, the speed-ups drop to ~1.0x.
 # The last column is user + system CPU: it stays the same for 1 and 2 threads (no extra work).
