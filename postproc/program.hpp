@@ -277,7 +277,7 @@ class TextTable {
   void reindex();
   /// Slot of `s` in recent_: a cheap hash of its size and end bytes.
   static std::size_t recentSlot(std::string_view s) {
-    return (s.size() * 31 + static_cast<unsigned char>(s.front()) * 7 +
+    return (s.size() * 31 + static_cast<std::size_t>(static_cast<unsigned char>(s.front())) * 7 +
             static_cast<unsigned char>(s.back())) &
            (kRecent - 1);
   }

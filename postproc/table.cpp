@@ -458,11 +458,14 @@ class CsvReader {
       if (std::find(known.begin(), known.end(), k) == known.end()) {
         std::string hint = didYouMean(k, known);
         if (hint.empty()) {
-          std::string list;
-          for (const std::string& n : known) list += (list.empty() ? "" : ",") + n;
-          hint = " (a " + what + " has the columns " + list + ")";
+          hint = " (a " + what;
+          hint += " has the columns ";
+          for (std::size_t j = 0; j < known.size(); ++j) (hint += j ? "," : "") += known[j];
+          hint += ")";
         }
-        fail(cells[i].begin, "unknown column '" + std::string(raw) + "' in the " + what + hint);
+        std::string msg = "unknown column '" + std::string(raw);
+        msg += "' in the " + what;
+        fail(cells[i].begin, msg + hint);
       }
       if (const auto it = seen.find(k); it != seen.end()) {
         fail(cells[i].begin, "column '" + k + "' is given twice (columns " +
@@ -919,11 +922,14 @@ void checkMembers(const SourceFile& f, const JValue& o, const std::vector<std::s
     if (std::find(known.begin(), known.end(), k) != known.end()) continue;
     std::string hint = didYouMean(k, known);
     if (hint.empty()) {
-      std::string list;
-      for (const std::string& n : known) list += (list.empty() ? "" : ", ") + n;
-      hint = " (" + what + " has the members " + list + ")";
+      hint = " (" + what;
+      hint += " has the members ";
+      for (std::size_t j = 0; j < known.size(); ++j) (hint += j ? ", " : "") += known[j];
+      hint += ")";
     }
-    failAt(f, o.items[i].begin, "unknown member \"" + k + "\" in " + what + hint);
+    std::string msg = "unknown member \"" + k;
+    msg += "\" in " + what;
+    failAt(f, o.items[i].begin, msg + hint);
   }
 }
 

@@ -803,7 +803,7 @@ HoleCompensation finalizeHole(Evaluator& ev, const HoleRequest& h, HoleCompensat
   HoleCompensation c;
   c.id = std::move(original.id);
   c.before = std::move(original.before);
-  c.note = std::move(original.note);
+  c.note = original.note;
   c.psi = positions_only ? 0.0 : node.psi;
   c.T_nominal = h.T_W_tcp * rotZ(c.psi);
   c.theta_d = node.q;

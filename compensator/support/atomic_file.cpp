@@ -188,7 +188,8 @@ void removeStaleOutputTemporaries(const std::string& dir) {
     const std::string name = e->d_name;
     if (!isOutputTemporaryName(name, &pid) || pid == self || pid <= 0) continue;
     if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;  // still running
-    const std::string full = (dir == "/" ? "/" : dir + "/") + name;
+    std::string full = dir == "/" ? "/" : dir + "/";
+    full += name;
     struct stat st {};
     if (::lstat(full.c_str(), &st) == 0 && S_ISREG(st.st_mode)) ::unlink(full.c_str());
   }

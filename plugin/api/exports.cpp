@@ -131,7 +131,7 @@ void csvRow(std::string& s, const CompensationResult& r, size_t i) {
   s += '\n';
 }
 
-constexpr size_t kChunk = 64 * 1024;  ///< bytes handed to a ByteSink at a time
+constexpr size_t kChunk = size_t{64} * 1024;  ///< bytes handed to a ByteSink at a time
 
 void targetsCsv(const CompensationResult& r, const ByteSink& sink, int threads) {
   std::string s =

@@ -589,8 +589,10 @@ void refuseOverwritingInput(const postproc::Program& program,
   for (const std::string& o : outs) {
     for (const std::string& in : inputs) {
       if (sameFile(o, in)) {
-        throw UsageError("output " + o + " is the input file " + in +
-                         ": write the compensated program to another file (nothing written)");
+        std::string msg = "output " + o;
+        msg += " is the input file " + in;
+        msg += ": write the compensated program to another file (nothing written)";
+        throw UsageError(msg);
       }
     }
   }
