@@ -247,10 +247,9 @@ class TpReader {
     int pnum = -1;
     if (iequals(ref, "P") && number >= 0) {
       pnum = number;
-    } else if (iequals(ref, "PR")) {
-      m.derivation = p_.addText("PR");
     } else {
-      m.derivation = p_.addText("runtime");
+      m.derivation = p_.addText(iequals(ref, "PR") ? "PR" : "runtime");
+      runtimePosition(q, after, m.line);
     }
     m.base = -1;
     m.tool = -1;
@@ -273,9 +272,28 @@ class TpReader {
     const std::string_view ref = tx(k);
     const std::size_t after = reference(k, e, number);
     tail(m, after, e);
-    if (iequals(ref, "P") && number >= 0) pending_.back().number = number;
-    if (iequals(ref, "PR")) m.derivation = p_.addText("PR");
+    if (iequals(ref, "P") && number >= 0) {
+      pending_.back().number = number;
+    } else {
+      if (iequals(ref, "PR")) m.derivation = p_.addText("PR");
+      runtimePosition(k, after, f_.lineOf(tok_[k].offset));
+    }
     last_motion_line_ = -1;
+  }
+
+  /// A motion to a position roprec cannot know (tokens [k, after)): a position register `PR[i]`,
+  /// or `P[...]` whose index is not a number (`P[R[4]]`, a typo): reported as unresolved, with
+  /// its line, so the holes it belongs to are not dropped without a word.
+  void runtimePosition(std::size_t k, std::size_t after, int line) {
+    const std::string ref(std::string_view(f_.bytes).substr(
+        tok_[k].offset, tok_[after - 1].offset + tok_[after - 1].length - tok_[k].offset));
+    p_.unresolved.push_back(Unresolved{
+        ref, 0, line,
+        iequals(tx(k), "PR")
+            ? "a position register: its value lives in the controller, so the motion's pose is "
+              "not known (not predicted, not compensated)"
+            : "the position's index is not a number (a register or an expression): the pose is "
+              "known only at run time (not predicted, not compensated)"});
   }
 
   NumberField signedNumber(std::size_t& q, std::size_t e, std::size_t eq_end) {

@@ -23,6 +23,8 @@
 //   condition number: "internal error"); such a hole lies 300 mm from its nominal one;
 // * a cell without its <workobject> with a program that states its own base frame and a hole
 //   list: every hole 1.3 m off its hole-list axis, matched by id without a word.
+// Seed 24: a TP motion to `P[inf]` (and so to `P[R[4]]` or `PR[3]`) went to no position without a
+// word, and the hole it approached dropped out of the job.
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -358,6 +360,45 @@ TEST(MutationRegression, ATpSpeedWithoutItsNumberAndAZeroBudgetTermAreErrors) {
                       q(sample("emotor-housing/holes.csv")) + " --json " + q(dir + "/p.json"));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("stiffness_rel = 0 must lie in [0.01, 1]"), std::string::npos) << r.err;
+}
+
+/// The unresolved references of `p` that are positions (not the controller's frames).
+std::vector<postproc::Unresolved> positionsUnresolved(const postproc::Program& p) {
+  std::vector<postproc::Unresolved> out;
+  for (const postproc::Unresolved& u : p.unresolved)
+    if (u.ref.rfind("UFRAME", 0) != 0 && u.ref.rfind("UTOOL", 0) != 0) out.push_back(u);
+  return out;
+}
+
+TEST(MutationRegression, ATpMotionToAPositionRoprecCannotKnowIsReportedAtItsLine) {
+  // seed 24: `L P[inf] ...` (the index damaged) went to no position without a word: the hole it
+  // approaches dropped out of the job (204 -> 203 holes) and compensate exited 0. The same for a
+  // register-indexed position `P[R[4]]` and a position register `PR[3]`, whose values live in the
+  // controller: each is now an unresolved reference with its line.
+  const std::string text = test::readFile(sample("emotor-housing/housing_r2000.ls"));
+  const std::string anchor = " 113:L P[56] 250mm/sec CNT10 ;";
+  ASSERT_NE(text.find(anchor), std::string::npos);
+  const std::string dir = test::tempDir("mutation-tp-runtime");
+  for (const std::string ref : {"P[inf]", "P[R[4]]", "PR[3]"}) {
+    SCOPED_TRACE(ref);
+    std::string t = text;
+    t.replace(t.find(anchor), anchor.size(), " 113:L " + ref + " 250mm/sec CNT10 ;");
+    const postproc::Program p = postproc::parseProgram(postproc::Dialect::kTp, "r.ls", t);
+    ASSERT_EQ(positionsUnresolved(p).size(), 1U);
+    EXPECT_EQ(positionsUnresolved(p)[0].ref, ref);
+    EXPECT_EQ(positionsUnresolved(p)[0].line, 132);
+    test::writeFile(dir + "/r.ls", t);
+    const auto r = test::runRoprec("predict --cell " + q(sample("cells/housing-r2000.xml")) + " " +
+                                   q(dir + "/r.ls") + " --frame cell --tool cell --json " +
+                                   q(dir + "/p.json"));
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("roprec: warning: unresolved " + ref + " (" + dir + "/r.ls:132): "),
+              std::string::npos)
+        << r.err;
+  }
+  // the sample itself has none (only its controller frames UFRAME[1] and UTOOL[1])
+  EXPECT_TRUE(
+      positionsUnresolved(postproc::parseProgram(postproc::Dialect::kTp, "r.ls", text)).empty());
 }
 
 }  // namespace
