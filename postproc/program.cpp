@@ -823,32 +823,27 @@ EditResult replaceTarget(const Program& p, EditQueue& queue, Target& t, const Po
   return r;
 }
 
-/// The target `index` of `p`, or the reason there is none.
-Target* targetAt(Program& p, int index, EditResult& r) {
-  if (index >= 0 && static_cast<std::size_t>(index) < p.target_list.size())
-    return &p.target_list[static_cast<std::size_t>(index)];
-  r.reason = "no target with index " + std::to_string(index);
-  return nullptr;
+/// replaceTarget of target `index` of `p`, or the reason there is none.
+EditResult replaceAt(Program& p, int index, const Pose& T,
+                     const std::optional<Configuration>& config, EditQueue queue) {
+  if (index < 0 || static_cast<std::size_t>(index) >= p.target_list.size()) {
+    EditResult r;
+    r.reason = "no target with index " + std::to_string(index);
+    return r;
+  }
+  return replaceTarget(p, queue, p.target_list[static_cast<std::size_t>(index)], T, config);
 }
 
 }  // namespace
 
 EditResult replaceTargetPose(Program& p, int index, const Pose& T,
                              const std::optional<Configuration>& config) {
-  EditResult r;
-  Target* t = targetAt(p, index, r);
-  if (!t) return r;
-  EditQueue q(p);
-  return replaceTarget(p, q, *t, T, config);
+  return replaceAt(p, index, T, config, EditQueue(p));
 }
 
 EditResult replaceTargetPose(Program& p, int index, const Pose& T,
                              const std::optional<Configuration>& config, EditLog& log) {
-  EditResult r;
-  Target* t = targetAt(p, index, r);
-  if (!t) return r;
-  EditQueue q(log);
-  return replaceTarget(p, q, *t, T, config);
+  return replaceAt(p, index, T, config, EditQueue(log));
 }
 
 int resolveFrame(Program& p, const std::string& ref, const Pose& pose) {

@@ -98,6 +98,11 @@ class TpReader {
 
   [[noreturn]] void fail(std::size_t off, const std::string& m) const { failAt(f_, off, m); }
   std::string_view tx(std::size_t k) const { return f_.text(tok_[k]); }
+  /// The source text of tokens [k, after).
+  std::string_view spanText(std::size_t k, std::size_t after) const {
+    return std::string_view(f_.bytes).substr(
+        tok_[k].offset, tok_[after - 1].offset + tok_[after - 1].length - tok_[k].offset);
+  }
   bool punct(std::size_t k, char c) const {
     return tok_[k].kind == TokenKind::kPunct && tok_[k].length == 1 &&
            f_.bytes[tok_[k].offset] == c;
@@ -242,8 +247,7 @@ class TpReader {
     const std::string_view ref = tx(q);
     int number = -1;
     const std::size_t after = reference(q, e, number);
-    m.target_text = p_.addUniqueText(std::string_view(f_.bytes).substr(
-        tok_[q].offset, tok_[after - 1].offset + tok_[after - 1].length - tok_[q].offset));
+    m.target_text = p_.addUniqueText(spanText(q, after));
     int pnum = -1;
     if (iequals(ref, "P") && number >= 0) {
       pnum = number;
@@ -285,8 +289,7 @@ class TpReader {
   /// or `P[...]` whose index is not a number (`P[R[4]]`, a typo): reported as unresolved, with
   /// its line, so the holes it belongs to are not dropped without a word.
   void runtimePosition(std::size_t k, std::size_t after, int line) {
-    const std::string ref(std::string_view(f_.bytes).substr(
-        tok_[k].offset, tok_[after - 1].offset + tok_[after - 1].length - tok_[k].offset));
+    const std::string ref(spanText(k, after));
     p_.unresolved.push_back(Unresolved{
         ref, 0, line,
         iequals(tx(k), "PR")

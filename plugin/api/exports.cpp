@@ -144,23 +144,12 @@ void targetsCsv(const CompensationResult& r, const ByteSink& sink, int threads) 
       "robot_um,U_mach_um,"
       "U_work_um,k,verdict,reason,j1_ctrl_deg,j2_ctrl_deg,j3_ctrl_deg,j4_ctrl_deg,j5_ctrl_deg,"
       "j6_ctrl_deg,rotation_reason,config_before,config_changed,config_reason\n";
-  s.reserve(kChunk + 4096);
+  // blocks of rows formatted on the workers (the calling thread alone for threads <= 1), a round
+  // of them at a time, written in order
   const size_t n = r.holes.size();
-  if (threads <= 1) {
-    for (size_t i = 0; i < n; ++i) {
-      csvRow(s, r, i);
-      if (s.size() >= kChunk) {
-        sink(s);
-        s.clear();
-      }
-    }
-    if (!s.empty()) sink(s);
-    return;
-  }
-  // blocks of rows formatted on the workers, a round of them at a time, written in order
   constexpr size_t kRows = 128;
   const size_t blocks = (n + kRows - 1) / kRows;
-  const size_t round = 8 * static_cast<size_t>(threads);
+  const size_t round = 8 * static_cast<size_t>(std::max(1, threads));
   std::vector<std::string> text(std::min(blocks, round));
   sink(s);
   for (size_t b0 = 0; b0 < blocks; b0 += round) {
