@@ -362,15 +362,16 @@ void EditQueue::erase(int file, std::uint32_t offset) {
   }
 }
 
-void applyEdits(Program& p, const EditLog& log) {
+void applyEdits(Program& p, EditLog&& log) {
   EditQueue q(p);
-  for (const EditLog::Op& op : log.ops) {
+  for (EditLog::Op& op : log.ops) {
     if (op.erase) {
       q.erase(op.edit.file, op.edit.offset);
     } else {
-      q.put(op.edit.file, op.edit.offset, op.edit.length, op.edit.text);
+      q.put(op.edit.file, op.edit.offset, op.edit.length, std::move(op.edit.text));
     }
   }
+  log.ops.clear();
 }
 
 void queueEdit(Program& p, int file, std::uint32_t offset, std::uint32_t length, std::string text) {

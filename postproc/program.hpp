@@ -527,8 +527,8 @@ struct EditLog {
 /// the calls would have run gives the bytes of the direct calls.
 EditResult replaceTargetPose(Program& p, int index, const Pose& T_frame_tcp,
                              const std::optional<Configuration>& config, EditLog& log);
-/// Replays `log` into p.edits, in order.
-void applyEdits(Program& p, const EditLog& log);
+/// Replays `log` into p.edits, in order (the edits' texts are moved out of it).
+void applyEdits(Program& p, EditLog&& log);
 
 /// Defines a frame the program refers to but does not define (e.g. `UFRAME[1]` of a TP
 /// program, `BASE_DATA[3]` of a KRL program from $config.dat). Returns how many uses resolved.

@@ -61,15 +61,19 @@ TEST(CompensateThreads, HolesAreBitIdenticalForOneTwoThreeThreads) {
   api::PredictionContext c = api::loadPredictionContext(
       test::sourceDir() + "/samples/cells/housing-kr120.xml",
       test::sourceDir() + "/samples/emotor-housing/holes.csv", std::nullopt, "");
-  // the housing twice, every 9th hole of the second copy shifted out of reach (the holes after it
-  // are seeded in the sequential pass), and every hole of a band turned by 170° about its axis so
-  // that flip-free turns consecutive holes and refines each against its turned predecessor
+  // the housing six times (1,200+ holes: stages 2 and 3 run in pipelined blocks of 1,024 holes,
+  // and the sequence carries across the block boundary), every 9th hole of the odd copies and
+  // the first hole of the second block shifted out of reach (the holes after them are seeded in
+  // the sequential pass), and every hole of a band of copies 0 and 4 (which ends just before the
+  // boundary) turned by 170° about its axis so that flip-free turns consecutive holes and refines
+  // each against its turned predecessor
   std::vector<HoleRequest> req;
-  for (int k = 0; k < 2; ++k) {
+  for (int k = 0; k < 6; ++k) {
     for (HoleRequest h : c.job.requests) {
-      h.id += "_" + std::to_string(k);
-      if (k == 1 && req.size() % 9 == 0) h.T_W_tcp.translation().x() += 3.0;
-      if (k == 0 && req.size() % 40 < 12)
+      h.id.append("_").append(std::to_string(k));
+      if ((k % 2 == 1 && req.size() % 9 == 0) || req.size() == 1024)
+        h.T_W_tcp.translation().x() += 3.0;
+      if ((k == 0 || k == 4) && req.size() % 40 < 12)
         h.T_W_tcp.linear() =
             h.T_W_tcp.linear() * Eigen::AngleAxisd(170.0 * kDeg, Vec3::UnitZ()).toRotationMatrix();
       req.push_back(h);

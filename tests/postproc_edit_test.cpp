@@ -245,7 +245,7 @@ void expectLogEqualsDirect(const std::string& path) {
       const EditResult b = replaceTargetPose(logged, k, T, c, log);
       EXPECT_EQ(a.ok, b.ok);
       EXPECT_EQ(a.reason, b.reason);
-      applyEdits(logged, log);
+      applyEdits(logged, std::move(log));
       moved += a.ok ? 1 : 0;
     }
     ASSERT_EQ(direct.edits.size(), logged.edits.size());

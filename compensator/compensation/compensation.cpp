@@ -323,66 +323,32 @@ NodeCount holeNodes(Evaluator& ev, const HoleRequest& h, const Vec6& s, int bran
   return count;
 }
 
-/// The ψ grid of every hole, in the branch of the original solution unless a branch change is
-/// allowed. A hole with an admissible original prediction is seeded with its joints (holes in
-/// parallel); the others, in hole order afterwards, with the first admissible candidate of the
-/// latest hole before them that has one (else the reference pose).
-Grid<Node> candidateNodes(std::vector<Evaluator>& evs, const std::vector<HoleRequest>& holes,
-                          std::vector<HoleCompensation>& out, int grid, CompensationStats& st) {
-  const CompensationOptions& o = evs[0].o;
-  const size_t n = holes.size();
-  Grid<Node> nodes(n, static_cast<size_t>(grid), Node{}, static_cast<int>(evs.size()));
-  std::vector<NodeCount> counts(n);
-  auto branchOf = [&](const HolePrediction& b) {
-    return (b.status == HoleStatus::kOk && !o.allow_branch_change) ? b.branch : -1;
-  };
-  parallelFor(n, static_cast<int>(evs.size()), [&](int w, size_t i) {
-    const HolePrediction& b = out[i].before;
-    if (b.status != HoleStatus::kOk) return;
-    counts[i] = holeNodes(evs[static_cast<size_t>(w)], holes[i], b.joints, branchOf(b), grid,
-                          nodes[i], out[i].note);
-  });
-  Vec6 seed = evs[0].m.reference_pose;
-  for (size_t i = 0; i < n; ++i) {
-    const HolePrediction& b = out[i].before;
-    if (b.status != HoleStatus::kOk)
-      counts[i] = holeNodes(evs[0], holes[i], seed, branchOf(b), grid, nodes[i], out[i].note);
-    st.dp_nodes += counts[i].nodes;
-    st.infeasible_nodes += counts[i].infeasible;
-    if (counts[i].relaxed_wrist) ++st.relaxed_wrist;
-    for (const Node& nd : nodes[i]) {
-      if (nd.feasible) {
-        seed = nd.q;
-        break;
-      }
-    }
-  }
-  return nodes;
-}
-
 // ---- stage 3: dynamic programming over the whole sequence
 
-/// Forward pass: cost[i][k] of the cheapest admissible path ending at node k of hole i (jumps
-/// ≤ thr between holes of one face) and its predecessor. Returns false when a reachable hole
-/// cannot be connected within the threshold.
-bool dpForward(const Grid<Node>& nodes, const std::vector<HoleRequest>& holes, OrientationMode mode,
-               double thr, int threads, Grid<Cost>& cost, Grid<int>& from) {
-  const size_t n = nodes.size();
-  cost = Grid<Cost>(n, nodes.width(), kInfCost, threads);
-  from = Grid<int>(n, nodes.width(), -1, threads);
-  int last = -1;  // previous hole with a feasible node
-  bool all_connected = true;
-  for (size_t i = 0; i < n; ++i) {
+/// Where dpForwardRange left the forward pass: the latest hole with a reachable node, and
+/// whether every reachable hole so far connected within the threshold.
+struct DpChain {
+  int last{-1};
+  bool all_connected{true};
+};
+
+/// Forward pass over holes [b, e) after those before b: cost[i][k] of the cheapest admissible
+/// path ending at node k of hole i (jumps ≤ thr between holes of one face) and its predecessor.
+/// `chain.all_connected` turns false when a reachable hole cannot be connected within thr.
+void dpForwardRange(const Grid<Node>& nodes, const std::vector<HoleRequest>& holes,
+                    OrientationMode mode, double thr, Grid<Cost>& cost, Grid<int>& from, size_t b,
+                    size_t e, DpChain& chain) {
+  for (size_t i = b; i < e; ++i) {
     const size_t K = nodes[i].size();
     for (size_t k = 0; k < K; ++k) {
       const Node& nd = nodes[i][k];
       if (!nd.feasible) continue;
       const Cost c0 = nodeCost(nd, mode);
-      if (last < 0) {
+      if (chain.last < 0) {
         cost[i][k] = c0;
         continue;
       }
-      const size_t l0 = static_cast<size_t>(last);
+      const size_t l0 = static_cast<size_t>(chain.last);
       const bool limit_jumps = mode != OrientationMode::kKeep && jumpLimited(holes[l0], holes[i]);
       for (size_t l = 0; l < nodes[l0].size(); ++l) {
         const Cost& cp = cost[l0][l];
@@ -396,13 +362,24 @@ bool dpForward(const Grid<Node>& nodes, const std::vector<HoleRequest>& holes, O
     }
     const bool any = std::any_of(cost[i].begin(), cost[i].end(), isFinite);
     if (any) {
-      last = static_cast<int>(i);
+      chain.last = static_cast<int>(i);
     } else if (std::any_of(nodes[i].begin(), nodes[i].end(),
                            [](const Node& nd) { return nd.feasible; })) {
-      all_connected = false;  // reachable but not within the jump threshold
+      chain.all_connected = false;  // reachable but not within the jump threshold
     }
   }
-  return all_connected;
+}
+
+/// The whole forward pass at threshold thr into fresh tables; false when a reachable hole
+/// cannot be connected within thr.
+bool dpForward(const Grid<Node>& nodes, const std::vector<HoleRequest>& holes, OrientationMode mode,
+               double thr, int threads, Grid<Cost>& cost, Grid<int>& from) {
+  const size_t n = nodes.size();
+  cost = Grid<Cost>(n, nodes.width(), kInfCost, threads);
+  from = Grid<int>(n, nodes.width(), -1, threads);
+  DpChain chain;
+  dpForwardRange(nodes, holes, mode, thr, cost, from, 0, n, chain);
+  return chain.all_connected;
 }
 
 /// Backtracking: the cheapest end node, then its predecessors; a hole that starts a new chain
@@ -429,21 +406,69 @@ std::vector<int> dpBacktrack(const Grid<Cost>& cost, const Grid<int>& from) {
   return choice;
 }
 
-/// The chosen node per hole (−1: none); relaxes the jump threshold ×1.5 until every reachable
-/// hole connects. Returns the threshold used.
-std::vector<int> chooseSequence(const Grid<Node>& nodes, const std::vector<HoleRequest>& holes,
-                                const CompensationOptions& o, CompensationStats& st, double& thr) {
-  Grid<Cost> cost;
-  Grid<int> from;
+/// Stages 2 and 3: every hole's ψ grid (holeNodes) and the cheapest admissible path through
+/// them, block by block (pipelinedFor): the workers evaluate the grids of one block of holes
+/// while the block before is finished in hole order on a task of its own.
+///  - Grids are in the branch of the original solution unless a branch change is allowed. A hole
+///    with an admissible original prediction is seeded with its joints (on the workers); the
+///    others, in hole order, with the first admissible candidate of the latest hole before them
+///    that has one (else the reference pose), on `serial`, the ordered pass's own evaluator.
+///  - The DP's forward pass runs over each finished block at the requested jump threshold. When
+///    a reachable hole does not connect, the threshold is relaxed ×1.5 and the whole pass
+///    repeated until every reachable hole connects (`thr` returns the threshold used).
+/// Returns the chosen node per hole (−1: none); `nodes` receives the grids.
+std::vector<int> chooseSequence(std::vector<Evaluator>& evs, Evaluator& serial,
+                                const std::vector<HoleRequest>& holes,
+                                std::vector<HoleCompensation>& out, int grid, Grid<Node>& nodes,
+                                CompensationStats& st, double& thr) {
+  constexpr size_t kBlock = 1024;  // holes per block of the pipeline (a block boundary costs
+                                   // a wait for its slowest worker)
+  const CompensationOptions& o = evs[0].o;
+  const size_t n = holes.size();
+  const int threads = static_cast<int>(evs.size());
+  nodes = Grid<Node>(n, static_cast<size_t>(grid), Node{}, threads);
+  Grid<Cost> cost(n, static_cast<size_t>(grid), kInfCost, threads);
+  Grid<int> from(n, static_cast<size_t>(grid), -1, threads);
+  std::vector<NodeCount> counts(n);
+  auto branchOf = [&](const HolePrediction& b) {
+    return (b.status == HoleStatus::kOk && !o.allow_branch_change) ? b.branch : -1;
+  };
+  Vec6 seed = serial.m.reference_pose;
+  DpChain chain;
   thr = o.jump_threshold;
-  const int threads = std::max(1, o.threads);
-  while (!dpForward(nodes, holes, o.mode, thr, threads, cost, from)) {
+  auto onWorker = [&](int w, size_t i) {
+    const HolePrediction& b = out[i].before;
+    if (b.status != HoleStatus::kOk) return;
+    counts[i] = holeNodes(evs[static_cast<size_t>(w)], holes[i], b.joints, branchOf(b), grid,
+                          nodes[i], out[i].note);
+  };
+  auto inOrder = [&](size_t b, size_t e) {
+    for (size_t i = b; i < e; ++i) {
+      const HolePrediction& h = out[i].before;
+      if (h.status != HoleStatus::kOk)
+        counts[i] = holeNodes(serial, holes[i], seed, branchOf(h), grid, nodes[i], out[i].note);
+      st.dp_nodes += counts[i].nodes;
+      st.infeasible_nodes += counts[i].infeasible;
+      if (counts[i].relaxed_wrist) ++st.relaxed_wrist;
+      for (const Node& nd : nodes[i]) {
+        if (nd.feasible) {
+          seed = nd.q;
+          break;
+        }
+      }
+    }
+    dpForwardRange(nodes, holes, o.mode, thr, cost, from, b, e, chain);
+  };
+  pipelinedFor(n, kBlock, threads, onWorker, inOrder);
+  bool connected = chain.all_connected;
+  while (!connected) {
     st.relaxed_jumps = true;
     thr *= 1.5;
     if (thr > 4 * kPi) {
       dpForward(nodes, holes, o.mode, kInf, threads, cost, from);
       break;
     }
+    connected = dpForward(nodes, holes, o.mode, thr, threads, cost, from);
   }
   return dpBacktrack(cost, from);
 }
@@ -1003,9 +1028,11 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,
   }
   std::vector<HoleCompensation> out = predictOriginalThreads(m, scratch[0], holes, threads);
   const int grid = o.mode == OrientationMode::kKeep ? 1 : std::max(4, o.grid);
-  const Grid<Node> nodes = candidateNodes(evs, holes, out, grid, st);
-  double thr = o.jump_threshold;
-  const std::vector<int> choice = chooseSequence(nodes, holes, o, st, thr);
+  Grid<Node> nodes;
+  double thr = 0;
+  PredictionData serial_scratch(m);
+  Evaluator serial{m, serial_scratch, o};
+  const std::vector<int> choice = chooseSequence(evs, serial, holes, out, grid, nodes, st, thr);
   st.jump_threshold_used = thr;
   std::vector<Node> chosen(n);
   for (size_t i = 0; i < n; ++i) {

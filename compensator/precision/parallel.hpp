@@ -7,10 +7,19 @@
 /// which indices run is not fixed, so work(w, i) must write only to slot i (and to scratch w):
 /// then the result does not depend on the thread count. The first exception of a worker (lowest
 /// worker index) is rethrown after every worker joined.
+///
+/// `pipelinedFor(n, block, threads, work, then)` adds an ordered pass: work over block k of
+/// `block` indices as above, then `then(b, e)` over that block [b, e), in block order, on a task
+/// of its own while the workers run block k + 1 (inline with one thread). `then` carries what
+/// goes from index to index (a seed, a dynamic program's last row); it runs on one thread at a
+/// time, so it needs no lock, but work(·, i) of the next block runs meanwhile: the two must not
+/// write the same data. Errors: the first exception of a block's workers or of a `then` is
+/// rethrown once nothing runs any more.
 #include <algorithm>
 #include <atomic>
 #include <cstddef>
 #include <exception>
+#include <future>
 #include <thread>
 #include <vector>
 
@@ -47,6 +56,28 @@ void parallelFor(std::size_t n, int threads, const Work& work) {
   for (const std::exception_ptr& e : errors) {
     if (e) std::rethrow_exception(e);
   }
+}
+
+template <class Work, class Then>
+void pipelinedFor(std::size_t n, std::size_t block, int threads, const Work& work,
+                  const Then& then) {
+  std::future<void> pending;  // `then` of the block before
+  for (std::size_t b = 0; b < n; b += block) {
+    const std::size_t e = std::min(n, b + block);
+    try {
+      parallelFor(e - b, threads, [&](int w, std::size_t k) { work(w, b + k); });
+    } catch (...) {
+      if (pending.valid()) pending.wait();
+      throw;
+    }
+    if (pending.valid()) pending.get();
+    if (threads > 1) {
+      pending = std::async(std::launch::async, [&then, b, e] { then(b, e); });
+    } else {
+      then(b, e);
+    }
+  }
+  if (pending.valid()) pending.get();
 }
 
 }  // namespace roprec

@@ -379,7 +379,7 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
                        " mm on a parallel axis");
     far.note(job, match_tol_mm);
   }
-  for (const auto& n : p.notes) job.notes.push_back(n);
+  for (const auto& note : p.notes) job.notes.push_back(note);
   for (const auto& u : p.unresolved) {
     const std::string& file = p.files[static_cast<size_t>(std::max(0, u.file))].path;
     const std::string where = u.line > 0 ? file + ":" + std::to_string(u.line) : file;

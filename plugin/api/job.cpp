@@ -256,39 +256,33 @@ std::vector<std::string> editProgram(CompensationResult& r, int threads) {
   for (size_t i = 0; i < n; ++i) edited[i] = r.holes[i].ok ? 1 : 0;
   const std::vector<char> shared =
       holesSharingTargets(r.context.job.sources, edited, prog.targets().size());
+  // block k's edits are held in blocks[k % 2]: prepared while block k - 1 is queued
   struct Block {
-    std::vector<postproc::EditLog> logs;
-    std::vector<std::vector<std::string>> refusals;
+    std::vector<postproc::EditLog> logs = std::vector<postproc::EditLog>(kBlock);
+    std::vector<std::vector<std::string>> refusals = std::vector<std::vector<std::string>>(kBlock);
   };
   std::array<Block, 2> blocks;
+  auto blockOf = [&](size_t i) -> Block& { return blocks[(i / kBlock) % 2]; };
   std::vector<std::string> refused;
-  auto queue = [&](size_t b, Block& blk) {
-    for (size_t k = 0; k < blk.logs.size(); ++k) {
-      if (!edited[b + k]) continue;
-      if (shared[b + k]) editHoleTargets(r, b + k, blk.logs[k], blk.refusals[k]);
-      postproc::applyEdits(prog, blk.logs[k]);
-      for (std::string& s : blk.refusals[k]) refused.push_back(std::move(s));
-    }
-  };
-  std::future<void> queuing;
-  for (size_t b = 0, s = 0; b < n; b += kBlock, s ^= 1) {
-    Block& blk = blocks[s];
-    const size_t m = std::min(kBlock, n - b);
-    blk.logs.resize(m);
-    blk.refusals.resize(m);
-    parallelFor(m, threads, [&](int, size_t k) {
-      blk.logs[k].ops.clear();
-      blk.refusals[k].clear();
-      if (edited[b + k] && !shared[b + k]) editHoleTargets(r, b + k, blk.logs[k], blk.refusals[k]);
-    });
-    if (queuing.valid()) queuing.get();  // the block before is queued (or its error thrown)
-    if (threads > 1) {
-      queuing = std::async(std::launch::async, queue, b, std::ref(blk));
-    } else {
-      queue(b, blk);
-    }
-  }
-  if (queuing.valid()) queuing.get();
+  pipelinedFor(
+      n, kBlock, threads,
+      [&](int, size_t i) {
+        Block& blk = blockOf(i);
+        const size_t k = i % kBlock;
+        blk.logs[k].ops.clear();
+        blk.refusals[k].clear();
+        if (edited[i] && !shared[i]) editHoleTargets(r, i, blk.logs[k], blk.refusals[k]);
+      },
+      [&](size_t b, size_t e) {
+        Block& blk = blockOf(b);
+        for (size_t i = b; i < e; ++i) {
+          if (!edited[i]) continue;
+          const size_t k = i - b;
+          if (shared[i]) editHoleTargets(r, i, blk.logs[k], blk.refusals[k]);
+          postproc::applyEdits(prog, std::move(blk.logs[k]));
+          for (std::string& x : blk.refusals[k]) refused.push_back(std::move(x));
+        }
+      });
   return refused;
 }
 
