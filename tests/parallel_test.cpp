@@ -16,7 +16,8 @@ namespace {
 
 TEST(ParallelFor, EveryIndexRunsOnceOnAWorkerOfItsOwn) {
   for (const int threads : {1, 2, 3}) {
-    for (const std::size_t n : {std::size_t{0}, std::size_t{1}, std::size_t{17}, std::size_t{1000}}) {
+    for (const std::size_t n :
+         {std::size_t{0}, std::size_t{1}, std::size_t{17}, std::size_t{1000}}) {
       SCOPED_TRACE(std::to_string(threads) + " threads, n = " + std::to_string(n));
       std::vector<std::atomic<int>> runs(n);
       std::atomic<int> bad_worker{0};

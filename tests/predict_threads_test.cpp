@@ -102,19 +102,35 @@ TEST(PredictThreads, BlocksWithTheContinuitySeedEqualOneCall) {
 }
 
 /// The prediction JSON predictJobStreaming writes for `csv` with `threads` workers (blocks of holes
-/// written on a task of their own while the next block is predicted when threads > 1).
-std::string streamedJson(const std::string& csv, int threads) {
+/// written on a task of their own while the next block is predicted when threads > 1): hole by
+/// hole, or (`blocks`) a block at a time formatted on the workers, as `roprec predict` does.
+std::string streamedJson(const std::string& csv, int threads, bool blocks) {
   api::JobOptions o;
   o.threads = threads;
   std::string out;
   std::optional<api::PredictionJsonStream> js;
-  const api::PredictionResult r = api::predictJobStreaming(
-      test::sourceDir() + "/samples/cells/housing-kr120.xml", csv, o,
-      [&](size_t, const HolePrediction& h, const HoleRequest& q) { js->hole(h, q); },
-      [&](const api::PredictionContext& c) {
-        js.emplace(c, [&](std::string_view b) { out += b; });
-      });
+  auto header = [&](const api::PredictionContext& c) {
+    js.emplace(c, [&](std::string_view b) { out += b; });
+  };
+  const std::string cell = test::sourceDir() + "/samples/cells/housing-kr120.xml";
+  size_t next = 0;  // the blocks come in order, each once
+  const api::PredictionResult r =
+      blocks ? api::predictJobStreaming(
+                   cell, csv, o,
+                   [&](size_t first, std::span<const HolePrediction> h,
+                       std::span<const HoleRequest> q, int t) {
+                     EXPECT_EQ(first, next);
+                     EXPECT_EQ(t, threads);
+                     next += h.size();
+                     js->holes(h, q, t);
+                   },
+                   header)
+             : api::predictJobStreaming(
+                   cell, csv, o,
+                   [&](size_t, const HolePrediction& h, const HoleRequest& q) { js->hole(h, q); },
+                   header);
   js->finish(r.summary);
+  if (blocks) EXPECT_EQ(next, static_cast<size_t>(r.summary.holes));
   return out;
 }
 
@@ -134,9 +150,12 @@ TEST(PredictThreads, StreamedJsonOfSeveralBlocksIsTheSameBytes) {
   }
   const std::string path = test::tempDir("predict_threads") + "/holes.csv";
   test::writeFile(path, csv);
-  const std::string ref = streamedJson(path, 1);
+  const std::string ref = streamedJson(path, 1, false);
   ASSERT_NE(ref.find("\"K24_L048\""), std::string::npos);
-  for (const int threads : {2, 3}) EXPECT_TRUE(streamedJson(path, threads) == ref) << threads;
+  for (const int threads : {2, 3})
+    EXPECT_TRUE(streamedJson(path, threads, false) == ref) << threads;
+  for (const int threads : {1, 2, 3})
+    EXPECT_TRUE(streamedJson(path, threads, true) == ref) << threads << " threads, by blocks";
 }
 
 }  // namespace

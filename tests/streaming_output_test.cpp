@@ -8,9 +8,12 @@
 // file is all-or-nothing like any other (OutputSet::stageStream).
 #include <gtest/gtest.h>
 
+#include <span>
+
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <span>
 #include <sstream>
 
 #include <unistd.h>
@@ -37,6 +40,21 @@ std::string streamed(const api::PredictionResult& r) {
   std::string out;
   api::PredictionJsonStream js(r.context, [&](std::string_view b) { out += b; });
   for (size_t i = 0; i < r.holes.size(); ++i) js.hole(r.holes[i], r.context.job.requests[i]);
+  js.finish(r.summary);
+  return out;
+}
+
+/// The same through PredictionJsonStream::holes(): blocks of `block` holes formatted on `threads`
+/// workers.
+std::string streamedInBlocks(const api::PredictionResult& r, size_t block, int threads) {
+  std::string out;
+  api::PredictionJsonStream js(r.context, [&](std::string_view b) { out += b; });
+  const std::span<const HolePrediction> holes(r.holes);
+  const std::span<const HoleRequest> requests(r.context.job.requests);
+  for (size_t b = 0; b < holes.size(); b += block) {
+    const size_t n = std::min(block, holes.size() - b);
+    js.holes(holes.subspan(b, n), requests.subspan(b, n), threads);
+  }
   js.finish(r.summary);
   return out;
 }
@@ -144,6 +162,59 @@ TEST(JsonWriter, RefusesNonFiniteNumbersNamingThePlace) {
   EXPECT_EQ(w.out().size(), before);
 }
 
+TEST(JsonWriter, ItemsWrittenApartAndAppendedGiveTheSameBytes) {
+  auto item = [](JsonWriter& w, int k) {
+    w.beginObject();
+    w.key("k");
+    w.integer(k);
+    w.key("v");
+    w.numbers(Eigen::Vector2d(k, -k), 1);
+    w.endObject();
+  };
+  auto open = [](JsonWriter& w) {
+    w.beginObject();
+    w.key("holes");
+    w.beginArray();
+  };
+  JsonWriter one;
+  open(one);
+  for (int k = 0; k < 7; ++k) item(one, k);
+  one.endArray();
+  one.endObject();
+  one.finish();
+  // runs [0, 3) and [3, 7) written by forks, appended in order
+  JsonWriter w;
+  open(w);
+  JsonWriter a = w.itemWriter(0);
+  JsonWriter b = w.itemWriter(3);
+  for (int k = 3; k < 7; ++k) item(b, k);
+  for (int k = 0; k < 3; ++k) item(a, k);
+  w.appendItems(a.out(), 3);
+  w.appendItems(b.out(), 4);
+  w.endArray();
+  w.endObject();
+  w.finish();
+  EXPECT_EQ(w.out(), one.out());
+  // a fork names its items' own indices; outside an array there is nothing to fork
+  JsonWriter open_w;
+  open(open_w);
+  open_w.beginObject();
+  open_w.endObject();
+  JsonWriter d = open_w.itemWriter(4);
+  d.beginObject();
+  d.key("d");
+  try {
+    d.numbers(Eigen::Vector2d(1, kNaN), 3);
+    FAIL() << "a NaN was written";
+  } catch (const api::JsonNonFinite& e) {
+    EXPECT_EQ(e.where, "$.holes[5].d[1]");
+  }
+  JsonWriter top;
+  top.beginObject();
+  EXPECT_THROW((void)top.itemWriter(0), InternalError);
+  EXPECT_THROW(top.appendItems("x", 1), InternalError);
+}
+
 // ---------------------------------------------------------------- prediction JSON
 
 TEST(StreamingOutput, PredictionJsonIsByteIdenticalToTheInMemoryTree) {
@@ -205,6 +276,11 @@ TEST(StreamingOutput, AHoleWithANonFiniteNumberIsWrittenAsFailedLikeTheTree) {
   const std::string tree = api::predictionJson(r).dump();
   const std::string s = streamed(r);
   EXPECT_EQ(s, tree);
+  // formatted apart on the workers, in runs of holes (the failed ones in two different blocks)
+  for (const int threads : {1, 2, 3}) {
+    for (const size_t block : {size_t{5}, size_t{64}, r.holes.size()})
+      EXPECT_TRUE(streamedInBlocks(r, block, threads) == tree) << threads << " threads, " << block;
+  }
   EXPECT_EQ(s.find("nan"), std::string::npos);
   EXPECT_EQ(s.find("inf"), std::string::npos);
   const std::string failed = "\"id\": \"" + r.holes[3].id + "\",\n";

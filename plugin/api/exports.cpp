@@ -538,6 +538,25 @@ void PredictionJsonStream::hole(const HolePrediction& h, const HoleRequest& r) {
   drain(false);
 }
 
+void PredictionJsonStream::holes(std::span<const HolePrediction> h, std::span<const HoleRequest> r,
+                                 int threads) {
+  constexpr size_t kRun = 32;  // holes per text (about 60 kB)
+  const size_t runs = (h.size() + kRun - 1) / kRun;
+  texts_.resize(runs);
+  parallelFor(runs, threads, [&](int, size_t k) {
+    JsonWriter w = w_.itemWriter(k * kRun);
+    w.out().swap(texts_[k]);  // the run's buffer of the block before, reused
+    w.out().clear();
+    for (size_t i = k * kRun; i < std::min(h.size(), (k + 1) * kRun); ++i)
+      itemOrFailed(w, h[i].id, r[i].line, [&] { predictionHole(w, h[i], r[i], card_); });
+    w.out().swap(texts_[k]);
+  });
+  for (size_t k = 0; k < runs; ++k) {
+    w_.appendItems(texts_[k], std::min(kRun, h.size() - k * kRun));
+    drain(false);
+  }
+}
+
 void PredictionJsonStream::finish(const CapabilitySummary& s) {
   w_.endArray();
   w_.key("summary");

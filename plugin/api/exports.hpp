@@ -5,8 +5,10 @@
 /// Pure functions of a job result; deterministic bytes for identical inputs.
 
 #include <functional>
+#include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "plugin/api/job.hpp"
 
@@ -24,11 +26,15 @@ class PredictionJsonStream {
  public:
   PredictionJsonStream(const PredictionContext& c, ByteSink sink);
   void hole(const HolePrediction& h, const HoleRequest& r);
+  /// The next holes, in order (request k of hole k), formatted on `threads` workers: the bytes of
+  /// hole() called for each one after the other.
+  void holes(std::span<const HolePrediction> h, std::span<const HoleRequest> r, int threads);
   void finish(const CapabilitySummary& s);
 
  private:
   void drain(bool all);
   JsonWriter w_;
+  std::vector<std::string> texts_;  ///< holes(): each hole's text
   ByteSink sink_;
   RobotCard card_;  ///< for the joints in the controller's convention
 };

@@ -437,6 +437,18 @@ PredictionResult predictJobStreaming(
     const std::string& cell_path, const std::string& program_path, const JobOptions& options,
     const HoleSink& sink, const std::function<void(const PredictionContext&)>& on_context,
     const ProgressFn& progress) {
+  const BlockSink each = [&sink](size_t first, std::span<const HolePrediction> holes,
+                                 std::span<const HoleRequest> requests, int) {
+    for (size_t k = 0; k < holes.size(); ++k) sink(first + k, holes[k], requests[k]);
+  };
+  return predictJobStreaming(cell_path, program_path, options, sink ? each : BlockSink(),
+                             on_context, progress);
+}
+
+PredictionResult predictJobStreaming(
+    const std::string& cell_path, const std::string& program_path, const JobOptions& options,
+    const BlockSink& sink, const std::function<void(const PredictionContext&)>& on_context,
+    const ProgressFn& progress) {
   PredictionResult r;
   r.context = loadContext(cell_path, program_path, options);
   const int threads = resolvedThreads(options.threads);
@@ -447,10 +459,8 @@ PredictionResult predictJobStreaming(
   // of its own while block k + 1 is predicted: the sink still sees every hole once, in order, on
   // one thread at a time, so the bytes are those of one thread.
   auto drain = [&](const std::vector<HolePrediction>& block, size_t b) {
-    for (size_t i = 0; i < block.size(); ++i) {
-      sum.add(block[i]);
-      if (sink) sink(b + i, block[i], req[b + i]);
-    }
+    for (const HolePrediction& h : block) sum.add(h);
+    if (sink) sink(b, block, std::span<const HoleRequest>(req).subspan(b, block.size()), threads);
   };
   std::optional<Vec6> prev;
   std::vector<HolePrediction> blocks[2];

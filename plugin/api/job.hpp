@@ -13,6 +13,7 @@
 #include <array>
 #include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -83,10 +84,22 @@ PredictionResult predictJob(const std::string& cell_path, const std::string& pro
 using HoleSink =
     std::function<void(size_t index, const HolePrediction& hole, const HoleRequest& request)>;
 
+/// Receives the predicted holes a block at a time, in hole order: `holes[k]` is the hole of
+/// `requests[k]` = context.job.requests[first + k]. The calls come as a HoleSink's do (one at a
+/// time; with threads > 1 from a task of their own while the next block is predicted);
+/// `threads` is the job's thread count, for a sink that formats a block on several workers.
+using BlockSink = std::function<void(size_t first, std::span<const HolePrediction> holes,
+                                     std::span<const HoleRequest> requests, int threads)>;
+
 /// predictJob in constant memory: the holes are predicted in blocks and handed to `sink` in
 /// order, then dropped; the result's `holes` stays empty and its `summary` is the one
 /// summarize() gives over every hole. `on_context` (may be empty) is called once the job is
 /// loaded, before the first hole (a writer's header). Same predictions, same order as predictJob.
+PredictionResult predictJobStreaming(
+    const std::string& cell_path, const std::string& program_path, const JobOptions& options,
+    const BlockSink& sink, const std::function<void(const PredictionContext&)>& on_context,
+    const ProgressFn& progress = {});
+/// The same with the holes handed over one by one.
 PredictionResult predictJobStreaming(
     const std::string& cell_path, const std::string& program_path, const JobOptions& options,
     const HoleSink& sink, const std::function<void(const PredictionContext&)>& on_context,

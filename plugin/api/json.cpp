@@ -180,7 +180,9 @@ void Json::write(std::string& out, int indent, int level) const {
       out += is_integer_ ? std::to_string(integer_) : formatNumber(number_, decimals_);
       break;
     case Kind::kString:
-      out += "\"" + jsonEscape(string_) + "\"";
+      out += '"';
+      appendJsonEscaped(out, string_);
+      out += '"';
       break;
     case Kind::kArray: {
       bool scalars = true;
@@ -273,7 +275,9 @@ std::string JsonWriter::where(std::string_view tail) const {
       w += ".";
       w += f.key;
     } else if (f.count > 0) {
-      w += "[" + std::to_string(f.count - 1) + "]";
+      w += '[';
+      w += std::to_string(f.count - 1);
+      w += ']';
     }
   }
   w += tail;
@@ -408,6 +412,22 @@ void JsonWriter::rewind(const Mark& m) {
   out_.resize(m.size);
   stack_.resize(m.depth);
   if (!stack_.empty()) stack_.back().count = m.count;
+}
+
+JsonWriter JsonWriter::itemWriter(size_t k) const {
+  if (stack_.empty() || stack_.back().object)
+    throw InternalError("JsonWriter::itemWriter outside an array at " + where());
+  JsonWriter w;
+  w.stack_ = stack_;
+  w.stack_.back().count += k;
+  return w;
+}
+
+void JsonWriter::appendItems(std::string_view text, size_t n) {
+  if (stack_.empty() || stack_.back().object)
+    throw InternalError("JsonWriter::appendItems outside an array at " + where());
+  out_ += text;
+  stack_.back().count += n;
 }
 
 void JsonWriter::take(std::string& to) {

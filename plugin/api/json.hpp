@@ -104,6 +104,14 @@ class JsonWriter {
   /// Drops everything written since `m` (which must not have been drained by take()).
   void rewind(const Mark& m);
 
+  /// A writer positioned at item k after the items written so far of the array open here, its
+  /// output empty. Runs of items written apart (on several threads) and appended in order with
+  /// appendItems() give the bytes of writing them here one after the other; a JsonNonFinite
+  /// names the item's own index. Throws InternalError when no array is open here.
+  [[nodiscard]] JsonWriter itemWriter(size_t k) const;
+  /// Appends the text of the next `n` items of the open array (written by an itemWriter()).
+  void appendItems(std::string_view text, size_t n);
+
   [[nodiscard]] std::string& out() { return out_; }
   /// Moves the text written so far out (the writer keeps its state).
   void take(std::string& to);

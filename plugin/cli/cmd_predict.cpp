@@ -95,9 +95,10 @@ int run(Args& args, CommandContext& ctx) {
     std::optional<PredictionJsonStream> js;
     const PredictionResult r = predictJobStreaming(
         *cell, pos[0], opt,
-        [&](size_t, const HolePrediction& h, const HoleRequest& q) {
-          js->hole(h, q);
-          digest.add(h, q, pos[0]);
+        [&](size_t, std::span<const HolePrediction> block, std::span<const HoleRequest> reqs,
+            int threads) {
+          js->holes(block, reqs, threads);  // formatted on the workers
+          for (size_t k = 0; k < block.size(); ++k) digest.add(block[k], reqs[k], pos[0]);
         },
         [&](const PredictionContext& c) { js.emplace(c, write); }, step);
     js->finish(r.summary);
