@@ -8,8 +8,11 @@
 #include <chrono>
 #include <functional>
 #include <iosfwd>
+#include <memory>
 #include <optional>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "compensator/support/error.hpp"
@@ -49,6 +52,17 @@ Eigen::Matrix<double, 6, 1> parseJointsDeg(const std::string& text);
 Pose parsePoseQuat(const std::string& text);
 /// `--xyzabc "x y z a b c"` (mm, deg, KUKA Z-Y'-X'') -> SI pose; `what` names the option in errors.
 Pose parsePoseXyzAbc(const std::string& text, const std::string& what = "--xyzabc (x y z a b c)");
+
+/// Keeps `value` until the process exits and never destroys it: a command's job result (100,000
+/// holes: ~10^6 heap blocks and ~0.1 s of frees) goes back to the operating system with the whole
+/// process instead of block by block (issue 15). It stays reachable from a static, so leak
+/// checkers do not report it. For the CLI's commands only (one job per process).
+template <class T>
+void keepUntilExit(T&& value) {
+  // never deleted, on purpose (see above)
+  static auto* const kept = new std::vector<std::shared_ptr<void>>();  // NOLINT
+  kept->push_back(std::make_shared<std::decay_t<T>>(std::forward<T>(value)));
+}
 
 struct CommandContext {
   std::ostream& out;

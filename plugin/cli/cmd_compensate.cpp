@@ -264,7 +264,9 @@ int run(Args& args, CommandContext& ctx) {
   if (targets) written.push_back(*targets);
   if (report) written.push_back(*report);
   if (!ctx.quiet) printSummary(ctx, r, job.options, written);
-  return r.failed ? 1 : 0;
+  const int rc = r.failed ? 1 : 0;
+  keepUntilExit(std::move(r));
+  return rc;
 }
 
 const CommandRegistration reg{

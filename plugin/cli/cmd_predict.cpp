@@ -80,7 +80,7 @@ int run(Args& args, CommandContext& ctx) {
   // to a string printed after the outputs are committed.
   auto produce = [&](const ByteWriter& write) {
     if (report_out) {  // the report needs every hole at once
-      const PredictionResult r = predictJob(*cell, pos[0], opt, step);
+      PredictionResult r = predictJob(*cell, pos[0], opt, step);
       PredictionJsonStream js(r.context, write);
       for (size_t i = 0; i < r.holes.size(); ++i) {
         js.hole(r.holes[i], r.context.job.requests[i]);
@@ -90,10 +90,11 @@ int run(Args& args, CommandContext& ctx) {
       writeFileAtomic(*report_out, predictionReport(r));
       notes = r.context.job.notes;
       summary = r.summary;
+      keepUntilExit(std::move(r));
       return;
     }
     std::optional<PredictionJsonStream> js;
-    const PredictionResult r = predictJobStreaming(
+    PredictionResult r = predictJobStreaming(
         *cell, pos[0], opt,
         [&](size_t, std::span<const HolePrediction> block, std::span<const HoleRequest> reqs,
             int threads) {
@@ -104,6 +105,7 @@ int run(Args& args, CommandContext& ctx) {
     js->finish(r.summary);
     notes = r.context.job.notes;
     summary = r.summary;
+    keepUntilExit(std::move(r));
   };
   if (to_file) {
     writeFileAtomicStream(*json_out, produce);
