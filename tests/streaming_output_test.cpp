@@ -11,6 +11,7 @@
 #include <span>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <span>
@@ -263,6 +264,78 @@ TEST(StreamingOutput, PredictionJsonIsByteIdenticalToTheInMemoryTree) {
     EXPECT_TRUE(s.holes.empty());
     EXPECT_EQ(next, r.holes.size());
     EXPECT_EQ(out, tree);
+  }
+}
+
+// predictJobStreaming sets a program's holes up block by block (JobHoles::deferred) and releases
+// the program's bytes once it is read: its JSON is the bytes of predictJob's tree for programs
+// whose base frame and tool the options resolve, and for more than one block of holes.
+TEST(StreamingOutput, AProgramSetUpBlockByBlockGivesTheBytesOfTheWholeJob) {
+  const std::string dir = test::tempDir("stream_deferred");
+  // KUKA: the base frame lives in $config.dat (BASE_DATA[1]), given by name
+  std::string krl = test::readFile(samplePath("housing_kr120.src"));
+  const std::string base = "$BASE = {FRAME: X 1350.000,Y 0.000,Z 300.000,A 0.000,B 0.000,C 0.000}";
+  ASSERT_NE(krl.find(base), std::string::npos);
+  krl.replace(krl.find(base), base.size(), "$BASE = BASE_DATA[1]");
+  test::writeFile(dir + "/bd.src", krl);
+  // 2,100 drill cycles (two blocks of the streaming predict) on the housing's top face
+  std::ostringstream big;
+  big << "DEF big ( )\n$BASE = {FRAME: X 1350.000,Y 0.000,Z 300.000,A 0.000,B 0.000,C 0.000}\n"
+      << "$TOOL = {FRAME: X 0.000,Y 0.000,Z 320.000,A 0.000,B 0.000,C 0.000}\n";
+  for (int k = 0; k < 2100; ++k) {
+    char p[96];
+    std::snprintf(p, sizeof p, "X %.3f,Y %.3f,Z %%.1f,A 0.000,B 0.000,C 180.000",
+                  -30 + 1.2 * (k % 50), -25 + 1.2 * (k / 50));
+    char a[128];
+    char f[128];
+    std::snprintf(a, sizeof a, p, 300.0);
+    std::snprintf(f, sizeof f, p, 234.0);
+    big << "$VEL.CP = 0.25\nPTP {" << a << "}\n$VEL.CP = 0.02\nLIN {" << f
+        << "}\n$VEL.CP = 0.25\nLIN {" << a << "}\n";
+  }
+  big << "END\n";
+  test::writeFile(dir + "/big.src", big.str());
+  struct Case {
+    std::string cell;
+    std::string program;
+    api::JobOptions opt;
+  };
+  std::vector<Case> cases(4);
+  cases[0] = {cellPath(), samplePath("housing_kr120.src"), {}};
+  cases[1] = {cellPath(), dir + "/bd.src", {}};
+  cases[1].opt.frames.push_back({"BASE_DATA[1]", Pose(Eigen::Translation3d(1.35, 0, 0.3))});
+  cases[2] = {test::sourceDir() + "/samples/cells/housing-r2000.xml",
+              test::sourceDir() + "/samples/emotor-housing/housing_r2000.ls",
+              {}};
+  cases[2].opt.frame_cell = true;  // UFRAME[1] and UTOOL[1] are controller data
+  cases[2].opt.tool = "cell";
+  cases[3] = {cellPath(), dir + "/big.src", {}};
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.program);
+    for (const int threads : {1, 2}) {
+      api::JobOptions opt = c.opt;
+      opt.threads = threads;
+      const api::PredictionResult r = api::predictJob(c.cell, c.program, opt);
+      ASSERT_FALSE(r.holes.empty());
+      if (c.program == dir + "/big.src") EXPECT_EQ(r.holes.size(), 2100U);
+      std::string out;
+      std::optional<api::PredictionJsonStream> js;
+      const api::PredictionResult s = api::predictJobStreaming(
+          c.cell, c.program, opt,
+          [&](size_t, std::span<const HolePrediction> h, std::span<const HoleRequest> q, int t) {
+            js->holes(h, q, t);
+          },
+          [&](const api::PredictionContext& ctx) {
+            js.emplace(ctx, [&](std::string_view b) { out += b; });
+          });
+      js->finish(s.summary);
+      EXPECT_TRUE(out == api::predictionJson(r).dump()) << threads << " threads";
+      EXPECT_EQ(s.context.job.notes, r.context.job.notes);
+      EXPECT_TRUE(s.context.job.deferred);
+      EXPECT_TRUE(s.context.job.requests.empty());
+      EXPECT_TRUE(s.context.job.program->files.front().bytes.empty());
+      EXPECT_EQ(s.summary.holes, static_cast<int>(r.holes.size()));
+    }
   }
 }
 

@@ -250,11 +250,62 @@ void setUpHole(const JobHoles& job, const postproc::Program& p, const CellSpec& 
   }
 }
 
+/// setUpHole over holes [begin, end) on `threads` workers, hole i into requests[i - begin] and
+/// sources[i - begin]; with null arrays into a scratch pair per worker (a check that every hole
+/// can be set up). The error of the first failing hole (in hole order) is rethrown.
+void setUpRange(const JobHoles& job, const CellSpec& cell, const Robot& robot,
+                const std::vector<postproc::HoleSpec>& specs, const std::vector<int>& spec_of_hole,
+                size_t begin, size_t end, int threads, HoleRequest* requests, HoleSource* sources) {
+  const postproc::Program& p = *job.program;
+  const int workers = std::max(1, threads);
+  std::vector<std::pair<size_t, std::exception_ptr>> failed(static_cast<size_t>(workers),
+                                                            {end, nullptr});
+  std::vector<HoleRequest> scratch_r(requests ? 0 : static_cast<size_t>(workers));
+  std::vector<HoleSource> scratch_s(sources ? 0 : static_cast<size_t>(workers));
+  parallelFor(end - begin, workers, [&](int w, size_t k) {
+    const size_t i = begin + k;
+    const auto wi = static_cast<size_t>(w);
+    try {
+      HoleRequest& r = requests ? requests[k] : (scratch_r[wi] = HoleRequest{});
+      HoleSource& src = sources ? sources[k] : (scratch_s[wi] = HoleSource{});
+      setUpHole(job, p, cell, robot, specs, spec_of_hole.empty() ? -1 : spec_of_hole[i], i, r, src);
+    } catch (...) {
+      auto& f = failed[wi];
+      if (i < f.first) f = {i, std::current_exception()};
+    }
+  });
+  const auto first = std::min_element(
+      failed.begin(), failed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  if (first->second) std::rethrow_exception(first->second);
+}
+
 }  // namespace
 
+void applyBaseFrame(const JobHoles& job, HoleRequest& r, HoleSource& src) {
+  if (src.hole < 0 || src.frame_resolved) return;
+  const int base = job.recognized[static_cast<size_t>(src.hole)].base;
+  if (base < 0 || static_cast<size_t>(base) >= job.base_frames.size()) return;
+  const std::optional<Pose>& T = job.base_frames[static_cast<size_t>(base)];
+  if (!T) return;
+  r.T_W_tcp = *T * src.T_W_frame.inverse() * r.T_W_tcp;
+  src.T_W_frame = *T;
+  src.frame_resolved = true;
+}
+
+void setUpHoles(const JobHoles& job, const CellSpec& cell, const Robot& robot, size_t begin,
+                size_t end, int threads, std::vector<HoleRequest>& requests,
+                std::vector<HoleSource>& sources) {
+  if (!job.deferred || !job.program || end > job.recognized.size() || begin > end)
+    throw InternalError("setUpHoles: not a deferred job or holes out of range");
+  requests.assign(end - begin, HoleRequest{});
+  sources.assign(end - begin, HoleSource{});
+  setUpRange(job, cell, robot, {}, {}, begin, end, threads, requests.data(), sources.data());
+  for (size_t k = 0; k < requests.size(); ++k) applyBaseFrame(job, requests[k], sources[k]);
+}
+
 JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot& robot,
-                      const std::optional<std::string>& hole_list, double match_tol_mm,
-                      int threads) {
+                      const std::optional<std::string>& hole_list, double match_tol_mm, int threads,
+                      bool defer_setup) {
   JobHoles job;
   job.path = path;
   std::string bytes = readFileBytes(path);
@@ -309,6 +360,10 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
   }
   if (!parsed) std::string().swap(bytes);  // readProgram reads the file (and its .dat) itself
   job.program = parsed ? std::move(*parsed) : postproc::readProgram(path);
+  job.deferred = defer_setup && !hole_list;
+  if (job.deferred) {  // a job that writes no program: its bytes are not read again
+    for (postproc::SourceFile& f : job.program->files) std::string().swap(f.bytes);
+  }
   const postproc::Program& p = *job.program;
   job.recognized = postproc::recognizeHoles(p);
   if (job.recognized.empty()) {
@@ -343,26 +398,20 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
       spec_of_hole[static_cast<std::size_t>(m.hole)] = m.spec;
   }
   const size_t n = job.recognized.size();
-  job.requests.resize(n);
-  job.sources.resize(n);
   // on the workers; the error of the first failing hole (in hole order) is the one thrown
-  const int workers = std::max(1, threads);
-  std::vector<std::pair<size_t, std::exception_ptr>> failed(static_cast<size_t>(workers),
-                                                            {n, nullptr});
-  parallelFor(n, workers, [&](int w, size_t i) {
-    try {
-      setUpHole(job, p, cell, robot, specs, spec_of_hole[i], i, job.requests[i], job.sources[i]);
-    } catch (...) {
-      auto& f = failed[static_cast<size_t>(w)];
-      if (i < f.first) f = {i, std::current_exception()};
-    }
-  });
-  const auto first = std::min_element(
-      failed.begin(), failed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  if (first->second) std::rethrow_exception(first->second);
-  for (const HoleSource& src : job.sources) {
-    if (src.frame_resolved) continue;
-    job.notes.push_back("program base frame " + src.frame_ref +
+  if (job.deferred) {
+    setUpRange(job, cell, robot, specs, spec_of_hole, 0, n, threads, nullptr, nullptr);
+  } else {
+    job.requests.resize(n);
+    job.sources.resize(n);
+    setUpRange(job, cell, robot, specs, spec_of_hole, 0, n, threads, job.requests.data(),
+               job.sources.data());
+  }
+  // the first hole whose base frame the program does not define (setUpHole: frame_resolved)
+  for (const postproc::Hole& h : job.recognized) {
+    const postproc::Frame* base = h.base >= 0 ? &p.frames[static_cast<size_t>(h.base)] : nullptr;
+    if (base && base->resolved) continue;
+    job.notes.push_back("program base frame " + (base ? base->ref : std::string("(none)")) +
                         " is not defined in the program: the cell's <workobject> is used as that "
                         "frame");
     break;

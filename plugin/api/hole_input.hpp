@@ -45,7 +45,26 @@ struct JobHoles {
   std::vector<HoleRequest> requests;
   std::vector<HoleSource> sources;
   std::vector<std::string> notes;
+  /// Set up on demand (loadJobHoles with `defer_setup`): `requests` and `sources` stay empty and
+  /// setUpHoles() builds those of a range of holes (predictJobStreaming holds one block's).
+  bool deferred{false};
+  /// Per program frame (index into program->frames): the pose the job gives a base frame the
+  /// program does not define (--frame, --frame cell: see resolveFramesAndTool in job.cpp), for
+  /// the holes drilled in that frame (applyBaseFrame).
+  std::vector<std::optional<Pose>> base_frames;
 };
+
+/// Moves a hole's request and source into the pose JobHoles::base_frames gives its program base
+/// frame, when it has one and the program does not define that frame:
+/// T_W_tcp ← T · T_W_frame⁻¹ · T_W_tcp, T_W_frame ← T.
+void applyBaseFrame(const JobHoles& job, HoleRequest& r, HoleSource& src);
+
+/// The requests and sources of holes [begin, end) of a deferred job (JobHoles::deferred), set up
+/// on `threads` workers with the job's base frames applied: the values loadJobHoles gives when
+/// it does not defer. Throws InputError as loadJobHoles does (the first failing hole in order).
+void setUpHoles(const JobHoles& job, const CellSpec& cell, const Robot& robot, size_t begin,
+                size_t end, int threads, std::vector<HoleRequest>& requests,
+                std::vector<HoleSource>& sources);
 
 /// Per hole, whether it shares a program target with another hole: over the holes with
 /// `included[i]` != 0, of a program with `targets` targets. A target a hole lists twice (in and
@@ -64,8 +83,12 @@ Mat3 holeFrame(const Vec3& direction);
 /// "--holes:" listing the job holes without a list entry and the entries without a hole. Bad
 /// hole lists throw InputError `FILE:LINE: what` (postproc::parseHoleList).
 /// The holes' requests are set up on `threads` workers (the same requests, notes and errors).
+/// `defer_setup` (a job that writes no program; a program without a hole list): every hole is
+/// checked (the same errors) but the requests are not kept: setUpHoles() builds them block by
+/// block (JobHoles::deferred); the program's files' bytes are released once it is read (its
+/// targets, motions and frames stay; its files keep their paths and lines).
 JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot& robot,
                       const std::optional<std::string>& hole_list, double match_tol_mm = 0.5,
-                      int threads = 1);
+                      int threads = 1, bool defer_setup = false);
 
 }  // namespace roprec::api

@@ -98,14 +98,14 @@ void resolveFramesAndTool(PredictionContext& c, const JobOptions& o) {
     c.job.notes.push_back(kResolutionPrefix + text);
   };
   bool base_explicit = false;
-  // ---- base frames
-  for (size_t i = 0; i < c.job.sources.size(); ++i) {
-    HoleSource& src = c.job.sources[i];
-    HoleRequest& r = c.job.requests[i];
-    if (src.hole < 0 || src.frame_resolved) continue;
-    const postproc::Hole& h = c.job.recognized[static_cast<size_t>(src.hole)];
+  // ---- base frames: decided per program frame, in hole order (the first hole in a frame no one
+  // defines is the one an error names), then applied to the holes set up so far (a deferred
+  // job's holes get it when they are set up: setUpHoles)
+  c.job.base_frames.assign(p.frames.size(), std::nullopt);
+  for (const postproc::Hole& h : c.job.recognized) {
     if (h.base < 0) continue;  // no frame named: the cell's workobject (noted by hole_input)
     const postproc::Frame& f = p.frames[static_cast<size_t>(h.base)];
+    if (f.resolved || c.job.base_frames[static_cast<size_t>(h.base)]) continue;
     const postproc::Motion& mo = p.motions[static_cast<size_t>(h.bottom_motion)];
     std::optional<Pose> T = givenFrame(o, f.ref);
     std::string how = "--frame '" + f.ref + "=...'";
@@ -126,13 +126,13 @@ void resolveFramesAndTool(PredictionContext& c, const JobOptions& o) {
                            "frame, mm and deg, KUKA A-B-C) or --frame cell (the cell's "
                            "<workobject> is that frame)");
     }
-    r.T_W_tcp = *T * src.T_W_frame.inverse() * r.T_W_tcp;
-    src.T_W_frame = *T;
-    src.frame_resolved = true;
+    c.job.base_frames[static_cast<size_t>(h.base)] = *T;
     base_explicit = true;
     state("base " + f.ref, "base frame " + f.ref + " (defined only on the controller) = " + how +
                                ": " + poseText(*T));
   }
+  for (size_t i = 0; i < c.job.sources.size(); ++i)
+    applyBaseFrame(c.job, c.job.requests[i], c.job.sources[i]);
   if (base_explicit) {
     c.job.notes.erase(
         std::remove_if(c.job.notes.begin(), c.job.notes.end(),
@@ -143,10 +143,7 @@ void resolveFramesAndTool(PredictionContext& c, const JobOptions& o) {
   const Pose& T_cell = c.cell.tool.T_flange_tcp;
   const std::string cell_tool = "'" + (c.cell.tool.name.empty() ? "tool" : c.cell.tool.name) + "'";
   std::optional<std::pair<std::string, Pose>> program_tool;
-  for (size_t i = 0; i < c.job.sources.size(); ++i) {
-    const HoleSource& src = c.job.sources[i];
-    if (src.hole < 0) continue;
-    const postproc::Hole& h = c.job.recognized[static_cast<size_t>(src.hole)];
+  for (const postproc::Hole& h : c.job.recognized) {
     const postproc::Motion& mo = p.motions[static_cast<size_t>(h.bottom_motion)];
     if (mo.tool < 0) continue;  // the program names no tool
     const postproc::Frame& tf = p.frames[static_cast<size_t>(mo.tool)];
@@ -199,12 +196,13 @@ void resolveFramesAndTool(PredictionContext& c, const JobOptions& o) {
 }
 
 PredictionContext loadContext(const std::string& cell_path, const std::string& program_path,
-                              const JobOptions& o, bool load_holes = true) {
+                              const JobOptions& o, bool load_holes = true,
+                              bool defer_setup = false) {
   if (!o.tool.empty() && o.tool != "program" && o.tool != "cell")
     throw UsageError("--tool must be program or cell");
   PredictionContext c =
       loadPredictionContext(cell_path, program_path, o.holes, o.uncertainty, o.match_tol_mm,
-                            load_holes, resolvedThreads(o.threads));
+                            load_holes, resolvedThreads(o.threads), defer_setup);
   if (o.fanuc_turn_axes) {
     c.model.config_options.fanuc_turn_axes = *o.fanuc_turn_axes;
     if (c.job.program) c.job.program->fanuc_turn_axes = *o.fanuc_turn_axes;
@@ -450,32 +448,49 @@ PredictionResult predictJobStreaming(
     const BlockSink& sink, const std::function<void(const PredictionContext&)>& on_context,
     const ProgressFn& progress) {
   PredictionResult r;
-  r.context = loadContext(cell_path, program_path, options);
+  // a program's holes are set up block by block as they are predicted (the memory of a block)
+  r.context = loadContext(cell_path, program_path, options, true, true);
   const int threads = resolvedThreads(options.threads);
   if (on_context) on_context(r.context);
-  const auto& req = r.context.job.requests;
+  const JobHoles& job = r.context.job;
+  const size_t n = job.deferred ? job.recognized.size() : job.requests.size();
   SummaryAccumulator sum;
+  struct Block {
+    std::vector<HoleRequest> requests;  // deferred job: the block's own
+    std::vector<HoleSource> sources;
+    std::vector<HolePrediction> holes;
+  };
+  auto requestsOf = [&](const Block& blk, size_t b) {
+    return job.deferred ? std::span<const HoleRequest>(blk.requests)
+                        : std::span<const HoleRequest>(job.requests).subspan(b, blk.holes.size());
+  };
   // With more than one thread, block k goes to the sink (JSON formatting and writing) on a task
   // of its own while block k + 1 is predicted: the sink still sees every hole once, in order, on
   // one thread at a time, so the bytes are those of one thread.
-  auto drain = [&](const std::vector<HolePrediction>& block, size_t b) {
-    for (const HolePrediction& h : block) sum.add(h);
-    if (sink) sink(b, block, std::span<const HoleRequest>(req).subspan(b, block.size()), threads);
+  auto drain = [&](const Block& blk, size_t b) {
+    for (const HolePrediction& h : blk.holes) sum.add(h);
+    if (sink) sink(b, blk.holes, requestsOf(blk, b), threads);
   };
   std::optional<Vec6> prev;
-  std::vector<HolePrediction> blocks[2];
+  std::array<Block, 2> blocks;
   std::future<void> draining;
   int k = 0;
-  for (size_t b = 0; b < req.size(); b += kPredictBlock, k ^= 1) {
-    const size_t e = std::min(req.size(), b + kPredictBlock);
-    predictRange(r.context.model, req, b, e, prev, threads, blocks[k]);
+  for (size_t b = 0; b < n; b += kPredictBlock, k ^= 1) {
+    const size_t e = std::min(n, b + kPredictBlock);
+    Block& blk = blocks[static_cast<size_t>(k)];
+    if (job.deferred) {
+      setUpHoles(job, r.context.cell, r.context.robot, b, e, threads, blk.requests, blk.sources);
+      predictRange(r.context.model, blk.requests, 0, e - b, prev, threads, blk.holes);
+    } else {
+      predictRange(r.context.model, job.requests, b, e, prev, threads, blk.holes);
+    }
     if (draining.valid()) draining.get();  // the previous block is written (or its error thrown)
     if (threads > 1) {
-      draining = std::async(std::launch::async, drain, std::cref(blocks[k]), b);
+      draining = std::async(std::launch::async, drain, std::cref(blk), b);
     } else {
-      drain(blocks[k], b);
+      drain(blk, b);
     }
-    if (progress) progress(e, req.size());
+    if (progress) progress(e, n);
   }
   if (draining.valid()) draining.get();
   r.summary = sum.summary();

@@ -95,6 +95,9 @@ using BlockSink = std::function<void(size_t first, std::span<const HolePredictio
 /// order, then dropped; the result's `holes` stays empty and its `summary` is the one
 /// summarize() gives over every hole. `on_context` (may be empty) is called once the job is
 /// loaded, before the first hole (a writer's header). Same predictions, same order as predictJob.
+/// A program's holes are set up block by block and its files' bytes released once it is read (a
+/// predict writes no program): see loadJobHoles' `defer_setup`; the result's context.job.requests
+/// and sources then stay empty (a hole list's are kept).
 PredictionResult predictJobStreaming(
     const std::string& cell_path, const std::string& program_path, const JobOptions& options,
     const BlockSink& sink, const std::function<void(const PredictionContext&)>& on_context,

@@ -32,11 +32,12 @@ struct PredictionContext {
 /// `uncertainty_override`: "linear" / "montecarlo" from the command line (empty: the cell's).
 /// `load_holes` false: the program is read (not its holes); an empty `job_path` then loads the
 /// cell alone (per-target sessions). `threads`: workers for setting up the holes.
+/// `defer_setup`: see loadJobHoles (the holes' requests are set up later, block by block).
 PredictionContext loadPredictionContext(const std::string& cell_path, const std::string& job_path,
                                         const std::optional<std::string>& hole_list,
                                         const std::string& uncertainty_override,
                                         double match_tol_mm = 0.5, bool load_holes = true,
-                                        int threads = 1);
+                                        int threads = 1, bool defer_setup = false);
 
 /// Per-hole JSON object (contract keys + details). With `card`, the joints are also given in the
 /// controller's convention (`controller_joints_deg`, toControllerJoints; issue 14).
