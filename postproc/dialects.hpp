@@ -59,16 +59,11 @@ inline std::string jsonStr(const std::string& s) {
 /// Adds a frame snapshot unless identical to the last one; returns its index.
 int internFrame(Program& p, const Frame& f);
 
-/// Number field of the token [begin, end) of file `file` (index into p.files) whose value the
-/// reader has already parsed.
-inline NumberField tokenField(int file, std::uint32_t begin, std::uint32_t end, double value) {
-  NumberField f;
-  f.file = static_cast<std::int8_t>(file);
-  f.offset = begin;
-  f.length = end - begin;
-  f.value = value;
-  return f;
-}
+/// Number field of the token [begin, end) of `sf`, file `file` (index into p.files), whose value
+/// the reader has already parsed. Throws InputError for a number longer than
+/// NumberField::kMaxLength bytes.
+NumberField tokenField(const SourceFile& sf, int file, std::uint32_t begin, std::uint32_t end,
+                       double value);
 
 /// Number field from a token span [begin, end) whose text parses as a number; throws a
 /// "broken number" InputError otherwise. `file` is the index into p.files.

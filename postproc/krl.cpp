@@ -270,7 +270,9 @@ class KrlReader {
     }
   }
 
-  NumberField field(const Component& c) const { return tokenField(file_, c.begin, c.end, c.value); }
+  NumberField field(const Component& c) const {
+    return tokenField(file(), file_, c.begin, c.end, c.value);
+  }
 
   // Slot of a position component in a target: X Y Z A B C, S T, A1..A6, E1..E6 (kNone: other).
   enum class Slot { kNone, kPos, kRot, kStatus, kTurn, kJoint, kExt };

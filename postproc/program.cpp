@@ -244,12 +244,27 @@ std::optional<double> parseNumber(std::string_view s) {
   return neg ? -v : v;
 }
 
+NumberField tokenField(const SourceFile& sf, int file, std::uint32_t begin, std::uint32_t end,
+                       double value) {
+  if (end - begin > NumberField::kMaxLength) {
+    failAt(sf, begin,
+           "a number of " + std::to_string(end - begin) + " characters (at most " +
+               std::to_string(NumberField::kMaxLength) + ")");
+  }
+  NumberField f;
+  f.file = static_cast<std::int8_t>(file);
+  f.offset = begin;
+  f.length = static_cast<std::uint16_t>(end - begin);
+  f.value = value;
+  return f;
+}
+
 NumberField numberField(const Program& p, int file, std::uint32_t begin, std::uint32_t end) {
   const SourceFile& f = p.files[static_cast<std::size_t>(file)];
   const std::string_view t = std::string_view(f.bytes).substr(begin, end - begin);
   const auto v = parseNumber(t);
   if (!v) failAt(f, begin, "broken number '" + std::string(t) + "'");
-  return tokenField(file, begin, end, *v);
+  return tokenField(f, file, begin, end, *v);
 }
 
 namespace {

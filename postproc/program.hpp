@@ -86,24 +86,33 @@ struct SourceFile {
 
 /// A number in a file: value plus the span of its token (sign included). `pad` counts the
 /// whitespace bytes before `offset` that belong to a right-aligned field (FANUC `%9.3f`).
+/// 16 bytes (a 100,000-hole program holds millions of them): a token is at most kMaxLength bytes
+/// (the readers refuse a longer number) and its padding at most 255 bytes.
 struct NumberField {
-  std::int8_t file{-1};  ///< index into Program::files (-1: no token of its own)
-  bool expr_known{false};
-  std::uint16_t pad{0};  ///< right-alignment whitespace before `offset` (at most 65535)
-  std::uint32_t offset{0};
-  std::uint32_t length{0};
-  /// RAPID: the component is a named constant or an expression (`Shift_Track`, `-d/2`), kept
-  /// verbatim and never re-printed (file = -1): its text is Program::expressions[expr - 1]; 0 for
-  /// a number. `value` holds its value when `expr_known`.
-  std::uint32_t expr{0};
+  static constexpr std::uint32_t kMaxLength = 65535;
   double value{0.0};
+  /// Byte offset of the token in its file. A component stated by a name or an expression (RAPID
+  /// `Shift_Track`, `-d/2`: no token of its own, file = -1, kept verbatim and never re-printed)
+  /// keeps its text's number here instead: Program::expressions[offset - 1] (setExpression()).
+  std::uint32_t offset{0};
+  std::uint16_t length{0};
+  std::uint8_t pad{0};          ///< right-alignment whitespace before `offset`
+  std::int8_t file : 6 {-1};    ///< index into Program::files (-1: no token of its own)
+  bool expr_known : 1 {false};  ///< named(): `value` holds the expression's value
+  bool named_ : 1 {false};
   [[nodiscard]] bool present() const { return file >= 0; }
   /// A value is known: a numeric token, or an expression roprec could evaluate.
   [[nodiscard]] bool known() const { return file >= 0 || expr_known; }
   /// Stated by a name or expression (known or not).
-  [[nodiscard]] bool named() const { return expr != 0; }
+  [[nodiscard]] bool named() const { return named_; }
+  /// States the component by expression number `index` (1-based into Program::expressions).
+  void setExpression(std::uint32_t index) {
+    file = -1;
+    named_ = true;
+    offset = index;
+  }
 };
-static_assert(sizeof(NumberField) == 24, "a program holds ~25 NumberFields per target");
+static_assert(sizeof(NumberField) == 16, "a program holds ~25 NumberFields per target");
 
 /// N fields most targets leave empty (the joints of a Cartesian target, external axes, ABB cf
 /// digits): 8 bytes while empty, the N fields on the heap from the first write. Element access as
@@ -435,7 +444,7 @@ struct Program {
   std::vector<Frame> frames;
   std::vector<Unresolved> unresolved;
   std::vector<std::string> notes;
-  /// Texts of the target components stated by name or expression (NumberField::expr).
+  /// Texts of the target components stated by name or expression (NumberField::setExpression).
   std::vector<std::string> expressions;
   TextTable texts;                   ///< the motions' and targets' texts (TextId)
   std::vector<TextId> marker_texts;  ///< the motions' markers, motion after motion
@@ -466,7 +475,7 @@ struct Program {
   /// The name or expression a component states ("" for a number).
   [[nodiscard]] const std::string& exprText(const NumberField& f) const {
     static const std::string kNone;
-    return f.expr == 0 ? kNone : expressions[f.expr - 1];
+    return f.named() ? expressions[f.offset - 1] : kNone;
   }
 };
 

@@ -391,7 +391,7 @@ class RapidReader {
     if (n.number || n.list) return field(n, what);
     NumberField f;
     p_.expressions.emplace_back(std::string_view(f_.bytes).substr(n.begin, n.end - n.begin));
-    f.expr = static_cast<std::uint32_t>(p_.expressions.size());
+    f.setExpression(static_cast<std::uint32_t>(p_.expressions.size()));
     const std::string& text = p_.expressions.back();
     if (const auto v = evaluate(n.tb, n.te)) {
       f.value = *v;
@@ -407,7 +407,7 @@ class RapidReader {
 
   NumberField field(const Node& n, const char* what) const {
     if (!n.number) fail(n.begin, std::string(what) + " is not a number");
-    return tokenField(0, n.begin, n.end, n.value);
+    return tokenField(f_, 0, n.begin, n.end, n.value);
   }
 
   void shape(const Node& n, std::size_t count, const char* what) const {

@@ -1088,7 +1088,7 @@ class JsonTargets {
 
   NumberField field(const JValue& v) const {
     if (v.kind != JValue::kNumber) failAt(f_, v.begin, "expected a number");
-    return tokenField(0, v.begin, v.end, v.number);
+    return tokenField(f_, 0, v.begin, v.end, v.number);
   }
 
   /// Fields a..c of `m` into out[0..2] when all three are given.

@@ -318,7 +318,7 @@ class TpReader {
       --o;
       ++pad;
     }
-    if (o == eq_end) f.pad = static_cast<std::uint16_t>(std::min<std::uint32_t>(pad, 65535));
+    if (o == eq_end) f.pad = static_cast<std::uint8_t>(std::min<std::uint32_t>(pad, 255));
     ++q;
     return f;
   }
@@ -438,10 +438,11 @@ class TpReader {
         const Token& s = tok_[q + 2];
         const std::string_view sv = f_.text(s);
         if (sv.size() < 2 || sv.back() != '\'') fail(s.offset, "unterminated CONFIG string");
+        if (s.length - 2 > NumberField::kMaxLength) fail(s.offset, "CONFIG string too long");
         NumberField& config = t.fanucConfig();
         config.file = 0;
         config.offset = s.offset + 1;
-        config.length = s.length - 2;
+        config.length = static_cast<std::uint16_t>(s.length - 2);
         parseConfig(sv.substr(1, sv.size() - 2), t.config, s.offset);
         q += 3;
         continue;

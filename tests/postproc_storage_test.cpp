@@ -3,9 +3,11 @@
 // against hand-written expectations and std containers, not against the code itself.
 #include <gtest/gtest.h>
 
+#include <string>
 #include <utility>
 #include <vector>
 
+#include "compensator/support/error.hpp"
 #include "postproc/lexer.hpp"
 #include "postproc/program.hpp"
 
@@ -72,9 +74,41 @@ TEST(PostprocStorage, SparsePoseIsIdentityUntilSet) {
 }
 
 TEST(PostprocStorage, ProgramRecordsStayCompact) {
-  // ~4 targets + 4 motions per drilled hole: 100,000 holes must fit in well under 1 GB.
-  EXPECT_LE(sizeof(Target), 448u);
-  EXPECT_LE(sizeof(Motion), 248u);
+  // ~4 targets + 4 motions per drilled hole: a 100,000-hole predict within 200 MB (issue 15)
+  EXPECT_LE(sizeof(NumberField), 16u);
+  EXPECT_LE(sizeof(Target), 272u);
+  EXPECT_LE(sizeof(Motion), 80u);
+}
+
+TEST(PostprocStorage, ANumberLongerThanAFieldHoldsIsRefusedAtItsLine) {
+  // a field keeps 16 bits of token length: a longer number is an input error, never a cut span
+  const std::string digits = std::string(70000, '0') + "1.5";
+  const std::vector<std::pair<Dialect, std::string>> cases = {
+      {Dialect::kKrl, "DEF t ( )\n$BASE = {FRAME: X 0,Y 0,Z 0,A 0,B 0,C 0}\nLIN {X " + digits +
+                          ",Y 0,Z 0,A 0,B 0,C 0}\nEND\n"},
+      {Dialect::kCsv, "name,x,y,z,a,b,c\nP0,1,0,0,0,0,0\nP1," + digits + ",0,0,0,0,0\n"},
+      {Dialect::kRapid,
+       "MODULE m\nCONST robtarget p:=[[1,2,3],[1,0,0,0],[0,0,0,0],[9E9,9E9,9E9,"
+       "9E9,9E9,9E9]];\nCONST robtarget q:=[[" +
+           digits + ",2,3],[1,0,0,0],[0,0,0,0],[9E9,9E9,9E9,9E9,9E9,9E9]];\nENDMODULE\n"}};
+  for (const auto& [dialect, text] : cases) {
+    SCOPED_TRACE(dialectName(dialect));
+    try {
+      (void)parseProgram(dialect, "long.txt", text);
+      ADD_FAILURE() << "a 70,003-character number was read";
+    } catch (const roprec::InputError& e) {
+      EXPECT_EQ(e.line(), 3);
+      EXPECT_NE(e.message().find("a number of 70003 characters (at most 65535)"), std::string::npos)
+          << e.what();
+    }
+  }
+  // the longest number a field holds is read
+  const Program p =
+      parseProgram(Dialect::kCsv, "ok.csv",
+                   "name,x,y,z,a,b,c\nP1," + std::string(65532, '0') + "1.5,0,0,0,0,0\n");
+  ASSERT_EQ(p.targets().size(), 1u);
+  EXPECT_EQ(p.targets()[0].pos[0].length, 65535u);
+  EXPECT_DOUBLE_EQ(p.targets()[0].pos[0].value, 1.5);
 }
 
 struct Expected {
