@@ -12,11 +12,11 @@
 #
 #   scripts/bench-cli.sh [ROPREC_BINARY]     (default build/bin/roprec)
 #
-# Measured 2026-11-24 13:35-13:50 on the 2-core machine with no other build running (best of 5
-# and of 9 runs, three runs; README "Performance" has the history):
-#   predict 10,000 holes      0.185 s / 48 MB (1 thread), 0.148-0.186 s (2): 1.01-1.29x
-#   compensate 10,000 holes   0.96-0.975 s / 111 MB (1 thread), 0.583-0.618 s (2): 1.57-1.66x
-#   predict 100,000 holes     1.61-1.65 s / 323 MB (1 thread), 1.30-1.47 s (2)
+# Measured 2026-11-24 16:15-17:10 on the 2-core machine with no other build running (best of 5
+# to 9 runs, four runs; README "Performance" has the history):
+#   predict 10,000 holes      0.177-0.19 s / 40 MB (1 thread), 0.140-0.164 s (2): 1.11-1.26x
+#   compensate 10,000 holes   0.95-0.97 s / 109 MB (1 thread), 0.557-0.565 s (2): 1.69-1.74x
+#   predict 100,000 holes     1.60 s / 192 MB (1 thread), 1.31 s / 192 MB (2)
 # every output byte-identical for 1 and 2 threads. Wall times of a 2-thread run depend on the
 # second core being free: with other builds running, the speed-ups drop to ~1.0x.
 # The last column is user + system CPU: it stays the same for 1 and 2 threads (no extra work).

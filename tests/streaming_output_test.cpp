@@ -285,7 +285,7 @@ TEST(StreamingOutput, AProgramSetUpBlockByBlockGivesTheBytesOfTheWholeJob) {
   for (int k = 0; k < 2100; ++k) {
     char p[96];
     std::snprintf(p, sizeof p, "X %.3f,Y %.3f,Z %%.1f,A 0.000,B 0.000,C 180.000",
-                  -30 + 1.2 * (k % 50), -25 + 1.2 * (k / 50));
+                  -30 + 1.2 * (k % 50), -25 + 1.2 * static_cast<double>(k / 50));
     char a[128];
     char f[128];
     std::snprintf(a, sizeof a, p, 300.0);
@@ -373,7 +373,7 @@ TEST(StreamingOutput, ThePredictionWriterHoldsAboutOneChunkWhateverTheJobSize) {
   std::ostringstream csv;
   csv << "id,x,y,z,i,j,k,diameter,depth,tolerance\n";
   for (int k = 0; k < 1500; ++k)
-    csv << "H" << k << "," << -30 + 1.2 * (k % 50) << "," << -20 + 1.2 * (k / 50)
+    csv << "H" << k << "," << -30 + 1.2 * (k % 50) << "," << -20 + 1.2 * static_cast<double>(k / 50)
         << ",250,0,0,-1,6.8,16,0.2\n";
   test::writeFile(dir + "/job.csv", csv.str());
   size_t total = 0;
