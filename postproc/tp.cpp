@@ -196,17 +196,19 @@ class TpReader {
       speed += tx(q);
     }
     m.speed_text = p_.addText(speed);
-    const auto num = [&]() -> std::optional<double> {
-      std::size_t n = 0;
-      while (n < speed.size() && (isDigit(speed[n]) || speed[n] == '.')) ++n;
-      return n > 0 ? parseNumber(speed.substr(0, n)) : std::nullopt;
-    }();
+    std::size_t digits = 0;  // the number the speed starts with
+    while (digits < speed.size() && (isDigit(speed[digits]) || speed[digits] == '.')) ++digits;
+    const std::optional<double> num =
+        digits > 0 ? parseNumber(speed.substr(0, digits)) : std::nullopt;
     const std::string su = upper(speed);
     const bool linear_unit = su.find("MM/SEC") != std::string::npos ||
                              su.find("CM/MIN") != std::string::npos ||
                              su.find("INCH/MIN") != std::string::npos;
     const bool by_register = su.rfind("R[", 0) == 0 || su.rfind("AR[", 0) == 0;
-    if (linear_unit && !num && !by_register) {
+    // the unit right after the number: `1e300mm/sec` is not 1 mm/sec
+    const std::string unit = su.substr(digits);
+    const bool unit_follows = unit == "MM/SEC" || unit == "CM/MIN" || unit == "INCH/MIN";
+    if (linear_unit && !by_register && (!num || !unit_follows)) {
       // a damaged number (`nanmm/sec`) would leave the move without a speed: the drill feed
       // is recognised from it
       fail(tok_[k].offset, "speed '" + speed.substr(0, 40) +

@@ -14,6 +14,7 @@ constexpr double kMaxEulerDeg = 720.0;
 constexpr double kMaxJoint = 1e5;
 constexpr double kRapidUnusedAxis = 9e9;
 constexpr double kMaxConfiguration = 1000.0;
+constexpr double kMaxSpeedMmS = 10000.0;  // 10 m/s: beyond every industrial arm's TCP speed
 
 /// Where a number was written: its own token when it has one, else the target's line.
 std::pair<std::string, int> whereOf(const Program& p, const Target& t, const NumberField& f) {
@@ -126,12 +127,20 @@ void checkFrame(const Program& p, const Frame& f) {
 }
 
 void checkMotion(const Program& p, const Motion& m) {
-  if (!m.has_offset) return;
-  const double d_mm = m.offset.get().translation().norm() * 1e3;
-  if (d_mm <= kMaxPositionMm && m.offset.get().matrix().allFinite()) return;
   const std::string file = m.file >= 0 && m.file < static_cast<int>(p.files.size())
                                ? p.files[static_cast<std::size_t>(m.file)].path
                                : (p.files.empty() ? std::string() : p.files.front().path);
+  // a known linear speed (speed_mm_s < 0: not stated or not known) drives the hole recognition's
+  // feed and the machining times
+  if (m.speed_mm_s >= 0 && !(m.speed_mm_s <= kMaxSpeedMmS)) {
+    throw InputError(file, m.line,
+                     p.text(m.instruction) + ": speed " + numberText(m.speed_mm_s) +
+                         " mm/s is out of range (<= 10000 mm/s; set by the motion's speed or "
+                         "the program's speed variable): a corrupted or mistyped number");
+  }
+  if (!m.has_offset) return;
+  const double d_mm = m.offset.get().translation().norm() * 1e3;
+  if (d_mm <= kMaxPositionMm && m.offset.get().matrix().allFinite()) return;
   throw InputError(file, m.line,
                    p.text(m.instruction) + ": offset of " + numberText(d_mm) +
                        " mm is out of range (<= 100000 mm): a corrupted or mistyped number");

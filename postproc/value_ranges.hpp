@@ -11,7 +11,8 @@
 ///     normalised; roprec normalises the small rounding of exported programs);
 ///   - joint values (deg, or mm for a linear axis): |q| ≤ 100,000;
 ///   - external axes: |e| ≤ 100,000, or exactly 9E+09 (RAPID's "axis not used");
-///   - configuration numbers (ABB cf1/cf4/cf6/cfx): |cf| ≤ 1000.
+///   - configuration numbers (ABB cf1/cf4/cf6/cfx): |cf| ≤ 1000;
+///   - linear motion speeds: ≤ 10,000 mm/s (10 m/s, beyond every industrial arm's TCP speed).
 /// Values a program states by name or expression are checked when roprec could evaluate them.
 
 #include "postproc/program.hpp"

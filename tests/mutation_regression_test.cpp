@@ -362,6 +362,34 @@ TEST(MutationRegression, ATpSpeedWithoutItsNumberAndAZeroBudgetTermAreErrors) {
   EXPECT_NE(r.err.find("stiffness_rel = 0 must lie in [0.01, 1]"), std::string::npos) << r.err;
 }
 
+TEST(MutationRegression, ATpSpeedWithAnExponentAndAnAbsurdSpeedAreErrors) {
+  // seed 26: `L P[374] 1e300mm/sec` was read as 1 mm/sec (the number's leading digit; the rest
+  // taken for the unit): the approach became the slowest move, the hole's depth 32 -> 80 mm and
+  // predict exited 0. The unit must follow the number, and a linear speed is at most 10 m/s.
+  EXPECT_NE(tpError("L P[374] 250mm/sec", 9, 3, "1e300")
+                .find("speed '1e300mm/sec' is not a number with its unit"),
+            std::string::npos);
+  EXPECT_NE(tpError("L P[374] 250mm/sec", 9, 3, "25x0").find("speed '25x0mm/sec' is not a number"),
+            std::string::npos);
+  const std::string fast = tpError("L P[374] 250mm/sec", 9, 3, "25000");
+  EXPECT_NE(fast.find("r.ls:768: L: speed 25000 mm/s is out of range (<= 10000 mm/s"),
+            std::string::npos)
+      << fast;
+  EXPECT_EQ(tpError("L P[374] 250mm/sec", 9, 3, "9000"), "(accepted)");  // fast, but a speed
+  EXPECT_EQ(tpError("L P[374] 250mm/sec", 9, 9, "1500cm/min"), "(accepted)");
+  // KUKA: $VEL.CP is in m/s
+  std::string krl = test::readFile(sample("emotor-housing/housing_kr120.src"));
+  const std::string vel = "$VEL.CP = 0.25000";
+  ASSERT_NE(krl.find(vel), std::string::npos);
+  krl.replace(krl.find(vel), vel.size(), "$VEL.CP = 250");
+  try {
+    (void)postproc::parseProgram(postproc::Dialect::kKrl, "k.src", krl);
+    ADD_FAILURE() << "a 250 m/s speed was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(e.message().find("speed 250000 mm/s is out of range"), std::string::npos) << e.what();
+  }
+}
+
 /// The unresolved references of `p` that are positions (not the controller's frames).
 std::vector<postproc::Unresolved> positionsUnresolved(const postproc::Program& p) {
   std::vector<postproc::Unresolved> out;
