@@ -424,19 +424,19 @@ void predictAtSolution(const PredictionModel& m, PredictionData& d, const HoleRe
 }  // namespace
 
 std::vector<HolePrediction> predictHoles(const PredictionModel& m,
-                                         const std::vector<HoleRequest>& holes) {
+                                         std::span<const HoleRequest> holes) {
   return predictHoles(m, holes, PredictOptions{});
 }
 
 std::vector<HolePrediction> predictHoles(const PredictionModel& m,
-                                         const std::vector<HoleRequest>& holes,
+                                         std::span<const HoleRequest> holes,
                                          const PredictOptions& options) {
   std::vector<HolePrediction> out(holes.size());
   predictHoles(m, holes, options, [&](size_t i) -> HolePrediction& { return out[i]; });
   return out;
 }
 
-void predictHoles(const PredictionModel& m, const std::vector<HoleRequest>& holes,
+void predictHoles(const PredictionModel& m, std::span<const HoleRequest> holes,
                   const PredictOptions& options, const std::function<HolePrediction&(size_t)>& at) {
   const size_t n = holes.size();
   const int threads = std::max(1, options.threads);

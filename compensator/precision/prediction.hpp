@@ -33,6 +33,7 @@
 #include <map>
 #include <optional>
 #include <random>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -243,15 +244,15 @@ struct PredictOptions {
 
 /// Predicts a sequence, each hole seeded with the previous admissible solution.
 std::vector<HolePrediction> predictHoles(const PredictionModel& m,
-                                         const std::vector<HoleRequest>& holes);
+                                         std::span<const HoleRequest> holes);
 std::vector<HolePrediction> predictHoles(const PredictionModel& m,
-                                         const std::vector<HoleRequest>& holes,
+                                         std::span<const HoleRequest> holes,
                                          const PredictOptions& options);
 /// The same into storage the caller owns: hole i's prediction is written into at(i), a
 /// default-constructed HolePrediction (compensateHoles: each hole's `before`, no second array of
 /// predictions to fill and move). at(i) is called from the workers when options.threads > 1: it
 /// must give distinct objects for distinct i and be safe to call at once.
-void predictHoles(const PredictionModel& m, const std::vector<HoleRequest>& holes,
+void predictHoles(const PredictionModel& m, std::span<const HoleRequest> holes,
                   const PredictOptions& options, const std::function<HolePrediction&(size_t)>& at);
 
 struct CapabilitySummary {

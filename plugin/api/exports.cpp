@@ -533,8 +533,13 @@ PredictionJsonStream::PredictionJsonStream(const PredictionContext& c, ByteSink 
   w_.beginArray();
 }
 
+void PredictionJsonStream::item(JsonWriter& w, const HolePrediction& h,
+                                const HoleRequest& r) const {
+  itemOrFailed(w, h.id, r.line, [&] { predictionHole(w, h, r, card_); });
+}
+
 void PredictionJsonStream::hole(const HolePrediction& h, const HoleRequest& r) {
-  itemOrFailed(w_, h.id, r.line, [&] { predictionHole(w_, h, r, card_); });
+  item(w_, h, r);
   drain(false);
 }
 
@@ -547,8 +552,7 @@ void PredictionJsonStream::holes(std::span<const HolePrediction> h, std::span<co
     JsonWriter w = w_.itemWriter(k * kRun);
     w.out().swap(texts_[k]);  // the run's buffer of the block before, reused
     w.out().clear();
-    for (size_t i = k * kRun; i < std::min(h.size(), (k + 1) * kRun); ++i)
-      itemOrFailed(w, h[i].id, r[i].line, [&] { predictionHole(w, h[i], r[i], card_); });
+    for (size_t i = k * kRun; i < std::min(h.size(), (k + 1) * kRun); ++i) item(w, h[i], r[i]);
     w.out().swap(texts_[k]);
   });
   for (size_t k = 0; k < runs; ++k) {

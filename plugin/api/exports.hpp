@@ -32,6 +32,9 @@ class PredictionJsonStream {
   void finish(const CapabilitySummary& s);
 
  private:
+  /// One hole as an item of the "holes" array of `w` (a hole with a non-finite number as
+  /// "failed").
+  void item(JsonWriter& w, const HolePrediction& h, const HoleRequest& r) const;
   void drain(bool all);
   JsonWriter w_;
   std::vector<std::string> texts_;  ///< holes(): each hole's text

@@ -396,15 +396,13 @@ constexpr size_t kPredictBlock = 2048;
 /// `prev` carries it from block to block (PredictOptions::seed), so block by block gives the same
 /// bytes as one call. The per-hole work runs on `threads` workers (resolvedThreads); the result
 /// does not depend on the count (predictHoles fixes the IK seeds in a sequential pass first).
-void predictRange(const PredictionModel& m, const std::vector<HoleRequest>& req, size_t begin,
+void predictRange(const PredictionModel& m, std::span<const HoleRequest> req, size_t begin,
                   size_t end, std::optional<Vec6>& prev, int threads,
                   std::vector<HolePrediction>& out) {
-  const std::vector<HoleRequest> part(req.begin() + static_cast<std::ptrdiff_t>(begin),
-                                      req.begin() + static_cast<std::ptrdiff_t>(end));
   PredictOptions o;
   o.threads = threads;
   o.seed = prev;
-  out = predictHoles(m, part, o);
+  out = predictHoles(m, req.subspan(begin, end - begin), o);
   for (const HolePrediction& h : out) {
     if (h.status == HoleStatus::kOk) prev = h.joints;
   }
