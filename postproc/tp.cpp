@@ -1,7 +1,9 @@
 /// FANUC TP ASCII reader (`.ls`), docs/programs.md §4.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <iterator>
 #include <unordered_map>
 
 #include "compensator/support/error.hpp"
@@ -200,25 +202,31 @@ class TpReader {
     while (digits < speed.size() && (isDigit(speed[digits]) || speed[digits] == '.')) ++digits;
     const std::optional<double> num =
         digits > 0 ? parseNumber(speed.substr(0, digits)) : std::nullopt;
+    // the linear units, mm/s = number · mul / div
+    struct LinearUnit {
+      const char* name;
+      double mul;
+      double div;
+    };
+    static constexpr LinearUnit kUnits[] = {
+        {"MM/SEC", 1.0, 1.0}, {"CM/MIN", 10.0, 60.0}, {"INCH/MIN", 25.4, 60.0}};
     const std::string su = upper(speed);
-    const bool linear_unit = su.find("MM/SEC") != std::string::npos ||
-                             su.find("CM/MIN") != std::string::npos ||
-                             su.find("INCH/MIN") != std::string::npos;
+    const bool linear_unit = std::any_of(std::begin(kUnits), std::end(kUnits), [&](const auto& u) {
+      return su.find(u.name) != std::string::npos;
+    });
     const bool by_register = su.rfind("R[", 0) == 0 || su.rfind("AR[", 0) == 0;
     // the unit right after the number: `1e300mm/sec` is not 1 mm/sec
     const std::string unit = su.substr(digits);
-    const bool unit_follows = unit == "MM/SEC" || unit == "CM/MIN" || unit == "INCH/MIN";
+    const auto* const follows = std::find_if(std::begin(kUnits), std::end(kUnits),
+                                             [&](const auto& u) { return unit == u.name; });
+    const bool unit_follows = follows != std::end(kUnits);
     if (linear_unit && !by_register && (!num || !unit_follows)) {
       // a damaged number (`nanmm/sec`) would leave the move without a speed: the drill feed
       // is recognised from it
       fail(tok_[k].offset, "speed '" + speed.substr(0, 40) +
                                "' is not a number with its unit (e.g. 20mm/sec) or a register");
     }
-    if (num) {
-      if (su.find("MM/SEC") != std::string::npos) m.speed_mm_s = *num;
-      if (su.find("CM/MIN") != std::string::npos) m.speed_mm_s = *num * 10.0 / 60.0;
-      if (su.find("INCH/MIN") != std::string::npos) m.speed_mm_s = *num * 25.4 / 60.0;
-    }
+    if (num && unit_follows) m.speed_mm_s = *num * follows->mul / follows->div;
     if (q < e && !punct(q, ';')) {
       std::string zone(tx(q));
       if (iequals(zone, "CNT") && q + 1 < e) zone += std::string(tx(q + 1));
