@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <unordered_map>
 
@@ -43,16 +44,18 @@ bool containsUpper(std::string_view s, std::string_view w, bool at_start) {
   return false;
 }
 
+}  // namespace
+
 /// Poses of the motions around the cycle being read, each computed once (motionPose builds a
 /// rotation from the target's angles): a ring of the last kSize motion indices.
-class PoseCache {
+class HoleRecognizer::PoseCache {
  public:
-  explicit PoseCache(const Program& p) : p_(p), slots_(kSize) {}
-  const std::optional<Pose>& operator()(std::size_t k) {
+  PoseCache() : slots_(kSize) {}
+  const std::optional<Pose>& operator()(const Program& p, std::size_t k) {
     Slot& s = slots_[k % kSize];
     if (s.k != k) {
       s.k = k;
-      s.pose = motionPose(p_, p_.motions[k]);
+      s.pose = motionPose(p, p.motions[k]);
     }
     return s.pose;
   }
@@ -63,11 +66,8 @@ class PoseCache {
     std::size_t k{static_cast<std::size_t>(-1)};
     std::optional<Pose> pose;
   };
-  const Program& p_;
   std::vector<Slot> slots_;
 };
-
-}  // namespace
 
 bool drillMarker(std::string_view m) {
   return containsUpper(m, "DWELL", true) || containsUpper(m, "SPINDLE", false) ||
@@ -75,15 +75,27 @@ bool drillMarker(std::string_view m) {
          containsUpper(m, "BOOR", false) || containsUpper(m, "BOHR", false);
 }
 
+HoleRecognizer::HoleRecognizer(const RecognitionOptions& o)
+    : o_(o), cache_(std::make_unique<PoseCache>()) {}
+HoleRecognizer::~HoleRecognizer() = default;
+HoleRecognizer::HoleRecognizer(HoleRecognizer&&) noexcept = default;
+
 std::vector<Hole> recognizeHoles(const Program& p, const RecognitionOptions& o) {
-  std::vector<Hole> holes;
+  HoleRecognizer r(o);
+  r.advance(p, true);
+  return r.take();
+}
+
+void HoleRecognizer::advance(const Program& p, bool final) {
+  std::vector<Hole>& holes = holes_;
   const std::size_t M = p.motions.size();
-  const double line_tol = o.line_tol_mm * 1e-3;
-  const double ori_tol = o.ori_tol_deg * kDeg;
-  const Vec3 tool_axis = o.tool_axis.normalized();
-  std::vector<bool> used(p.target_list.size(), false);
-  PoseCache pose(p);
-  std::size_t i = 0;
+  const double line_tol = o_.line_tol_mm * 1e-3;
+  const double ori_tol = o_.ori_tol_deg * kDeg;
+  const Vec3 tool_axis = o_.tool_axis.normalized();
+  std::vector<bool>& used = used_;
+  used.resize(p.target_list.size(), false);
+  auto pose = [&](std::size_t k) -> const std::optional<Pose>& { return (*cache_)(p, k); };
+  std::size_t& i = next_;
   while (i < M) {
     const Motion& m0 = p.motions[i];
     const std::optional<Pose> T0 = pose(i);
@@ -107,6 +119,9 @@ std::vector<Hole> recognizeHoles(const Program& p, const RecognitionOptions& o) 
       if (smallRotationDifference(Tj->linear(), T0->linear()).norm() > ori_tol) break;
       if ((Tj->translation() - p0).cross(a).norm() > line_tol) break;
     }
+    // the cycle may go on past the last motion read, and the last motion's markers may still
+    // grow (a marker belongs to the motion before it): wait for the motion after the cycle
+    if (j >= M && !final) return;
     if (j - i >= 2) {
       std::size_t bottom = i;
       double dmax = 0;
@@ -211,7 +226,6 @@ std::vector<Hole> recognizeHoles(const Program& p, const RecognitionOptions& o) 
     }
     ++i;
   }
-  return holes;
 }
 
 std::vector<std::string> holeEvidence(const Program& p, const Hole& h) {

@@ -16,6 +16,7 @@
 /// Convention: roprec's drilling axis is the TCP +z axis (into the material) for every vendor;
 /// `RecognitionOptions::tool_axis` changes it (e.g. +x for a KUKA tool with X tool direction).
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -63,6 +64,34 @@ struct Hole {
 };
 
 std::vector<Hole> recognizeHoles(const Program& p, const RecognitionOptions& o = {});
+
+/// recognizeHoles while a program is still being read (postproc::ReadProgress): advance(p,
+/// false) recognises the cycles of the motions read so far that are complete (the motion after
+/// the cycle is read, so the cycle and its markers can no longer change) and keeps its place;
+/// advance(p, true) at the end of the program recognises the rest. The same Program, grown by
+/// reading, must be passed each time; the holes are then those recognizeHoles gives for the
+/// whole program (recognizeHoles is this with one final advance).
+class HoleRecognizer {
+ public:
+  explicit HoleRecognizer(const RecognitionOptions& o = {});
+  ~HoleRecognizer();
+  HoleRecognizer(HoleRecognizer&&) noexcept;
+  HoleRecognizer(const HoleRecognizer&) = delete;
+  HoleRecognizer& operator=(const HoleRecognizer&) = delete;
+  HoleRecognizer& operator=(HoleRecognizer&&) = delete;
+
+  void advance(const Program& p, bool final);
+  [[nodiscard]] const std::vector<Hole>& holes() const { return holes_; }
+  std::vector<Hole> take() { return std::move(holes_); }
+
+ private:
+  class PoseCache;  // poses of the motions around the cycle being read, each computed once
+  RecognitionOptions o_;
+  std::unique_ptr<PoseCache> cache_;
+  std::vector<Hole> holes_;
+  std::vector<bool> used_;  // targets of recognised cycles
+  std::size_t next_{0};     // the motion the next cycle may start at
+};
 
 /// The evidence of a recognised hole of `p` as text, in the order it was found: "feed slower
 /// than approach/retract", the drilling markers (dwell, spindle, drill call or comment, as the

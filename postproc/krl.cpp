@@ -83,7 +83,7 @@ int sigDigits(std::string_view s) {
 
 class KrlReader {
  public:
-  explicit KrlReader(Program& p) : p_(p) {}
+  KrlReader(Program& p, const ReadProgress& progress) : p_(p), progress_(progress) {}
 
   void run() {
     lex_.comment = ';';
@@ -103,6 +103,7 @@ class KrlReader {
 
  private:
   Program& p_;
+  const ReadProgress& progress_;
   LexOptions lex_;
   int file_{0};
   NameMap<int> targets_;  // name -> index
@@ -842,7 +843,9 @@ class KrlReader {
     file_ = 0;
     int depth = 0;
     bool any_def = false;
+    std::size_t lines = 0;
     forEachLine([&](std::size_t b, std::size_t e, std::size_t j) {
+      if (progress_ && ++lines % kReadProgressLines == 0) progress_(p_);
       const SourceFile& f = file();
       // comment markers on comment-only lines
       if (b == e) {
@@ -878,6 +881,6 @@ class KrlReader {
 
 }  // namespace
 
-void parseKrl(Program& p) { KrlReader(p).run(); }
+void parseKrl(Program& p, const ReadProgress& progress) { KrlReader(p, progress).run(); }
 
 }  // namespace roprec::postproc

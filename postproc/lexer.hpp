@@ -126,14 +126,18 @@ class NameMap {
 class TokenCursor {
  public:
   TokenCursor(const SourceFile& f, std::size_t begin, std::size_t end)
-      : f_(f), i_(begin), end_(end) {}
+      : f_(f), i_(begin), end_(end) {
+    // past the end: a newline token where the statement's last token ends, so that an error
+    // at the end of a statement names the statement's line
+    if (end > begin && end <= f.tokens.size())
+      end_token_.offset = f.tokens[end - 1].offset + f.tokens[end - 1].length;
+  }
   [[nodiscard]] bool done() const { return i_ >= end_; }
   [[nodiscard]] std::size_t index() const { return i_; }
   void seek(std::size_t i) { i_ = i; }
-  /// Token k ahead (a newline token past the end).
+  /// Token k ahead (past the end: a newline token at the end of the statement's last token).
   [[gnu::always_inline]] [[nodiscard]] const Token& peek(std::size_t k = 0) const {
-    static const Token kEnd{0, 0, TokenKind::kNewline};
-    return i_ + k < end_ ? f_.tokens[i_ + k] : kEnd;
+    return i_ + k < end_ ? f_.tokens[i_ + k] : end_token_;
   }
   [[gnu::always_inline]] [[nodiscard]] std::string_view text(std::size_t k = 0) const {
     return i_ + k < end_ ? f_.text(f_.tokens[i_ + k]) : std::string_view();
@@ -164,6 +168,7 @@ class TokenCursor {
   const SourceFile& f_;
   std::size_t i_;
   std::size_t end_;
+  Token end_token_{0, 0, TokenKind::kNewline};
 };
 
 }  // namespace roprec::postproc

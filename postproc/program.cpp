@@ -945,7 +945,8 @@ Dialect detectDialect(const std::string& path, const std::string& bytes) {
 }
 
 Program parseProgram(Dialect d, const std::string& path, std::string bytes,
-                     std::optional<std::string> dat_bytes, const std::string& dat_path) {
+                     std::optional<std::string> dat_bytes, const std::string& dat_path,
+                     const ReadProgress& progress) {
   Program p;
   p.dialect = d;
   SourceFile f;
@@ -969,7 +970,7 @@ Program parseProgram(Dialect d, const std::string& path, std::string bytes,
   p.motions.reserve(lines + 16);
   switch (d) {
     case Dialect::kKrl:
-      parseKrl(p);
+      parseKrl(p, progress);
       break;
     case Dialect::kRapid:
       parseRapid(p);
@@ -990,12 +991,13 @@ Program parseProgram(Dialect d, const std::string& path, std::string bytes,
   return p;
 }
 
-Program readProgram(const std::string& path) {
+Program readProgram(const std::string& path, const ReadProgress& progress) {
   if (!fs::exists(path)) throw InputError(path, 0, "cannot open file");
   std::string src_path = path;
   std::string bytes = readFileBytes(path);
   const Dialect d = detectDialect(path, bytes);
-  if (d != Dialect::kKrl) return parseProgram(d, path, std::move(bytes));
+  if (d != Dialect::kKrl)
+    return parseProgram(d, path, std::move(bytes), std::nullopt, "", progress);
   const fs::path pp(path);
   if (iequals(pp.extension().string(), ".dat")) {
     for (const char* e : {".src", ".SRC", ".Src"}) {
@@ -1019,7 +1021,8 @@ Program readProgram(const std::string& path) {
     }
   }
   if (dat_path.empty()) dat_path = fs::path(src_path).replace_extension(".dat").string();
-  return parseProgram(Dialect::kKrl, src_path, std::move(bytes), std::move(dat), dat_path);
+  return parseProgram(Dialect::kKrl, src_path, std::move(bytes), std::move(dat), dat_path,
+                      progress);
 }
 
 }  // namespace roprec::postproc

@@ -10,6 +10,7 @@
 #include <csignal>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -114,6 +115,8 @@ class TempFile {
       p += n;
       left -= static_cast<std::size_t>(n);
     }
+    written_ += bytes.size();
+    writeBehind();
   }
   void close() {
     if (::fsync(fd_) != 0) failAndRemove(errno);
@@ -133,9 +136,23 @@ class TempFile {
     ::unlink(tmp_.c_str());
     fail(path_, errnoText(e));
   }
+  /// Starts the disk write of every kWriteBehind bytes written (Linux: sync_file_range, which
+  /// does not wait), so that close()'s fsync waits for the last part only, not for an 18 MB
+  /// file written in one go at the end. Durability is fsync's, as before.
+  void writeBehind() {
+#ifdef __linux__
+    constexpr std::size_t kWriteBehind = std::size_t{4} << 20U;
+    if (written_ - started_ < kWriteBehind) return;
+    (void)::sync_file_range(fd_, static_cast<off_t>(started_),
+                            static_cast<off_t>(written_ - started_), SYNC_FILE_RANGE_WRITE);
+    started_ = written_;
+#endif
+  }
   std::string path_;
   std::string tmp_;
   int fd_{-1};
+  std::size_t written_{0};  ///< bytes written
+  std::size_t started_{0};  ///< bytes whose disk write writeBehind() started
 };
 
 void writeAll(const std::string& path, const std::string& tmp,

@@ -292,6 +292,11 @@ void applyBaseFrame(const JobHoles& job, HoleRequest& r, HoleSource& src) {
   src.frame_resolved = true;
 }
 
+void setUpRecognizedHole(const JobHoles& job, const postproc::Program& p, const CellSpec& cell,
+                         const Robot& robot, size_t i, HoleRequest& r, HoleSource& src) {
+  setUpHole(job, p, cell, robot, {}, -1, i, r, src);
+}
+
 void setUpHoles(const JobHoles& job, const CellSpec& cell, const Robot& robot, size_t begin,
                 size_t end, int threads, std::vector<HoleRequest>& requests,
                 std::vector<HoleSource>& sources) {
@@ -305,7 +310,8 @@ void setUpHoles(const JobHoles& job, const CellSpec& cell, const Robot& robot, s
 
 JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot& robot,
                       const std::optional<std::string>& hole_list, double match_tol_mm, int threads,
-                      bool defer_setup) {
+                      bool defer_setup, const postproc::ReadProgress& progress,
+                      const std::function<postproc::HoleRecognizer*()>& recognizer) {
   JobHoles job;
   job.path = path;
   std::string bytes = readFileBytes(path);
@@ -359,13 +365,19 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
     return job;
   }
   if (!parsed) std::string().swap(bytes);  // readProgram reads the file (and its .dat) itself
-  job.program = parsed ? std::move(*parsed) : postproc::readProgram(path);
+  job.program = parsed ? std::move(*parsed) : postproc::readProgram(path, progress);
   job.deferred = defer_setup && !hole_list;
   if (job.deferred) {  // a job that writes no program: its bytes are not read again
     for (postproc::SourceFile& f : job.program->files) std::string().swap(f.bytes);
   }
   const postproc::Program& p = *job.program;
-  job.recognized = postproc::recognizeHoles(p);
+  postproc::HoleRecognizer* read_along = recognizer ? recognizer() : nullptr;
+  if (read_along) {
+    read_along->advance(p, true);
+    job.recognized = read_along->take();
+  } else {
+    job.recognized = postproc::recognizeHoles(p);
+  }
   if (job.recognized.empty()) {
     // point at the program's first motion (or its first line when it has none)
     std::string where = path;

@@ -12,6 +12,7 @@
 /// workobject y axis when the direction is within 26° of x) — the rotation about the drill axis is
 /// free and `roprec compensate --orientation` may change it.
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -66,6 +67,12 @@ void setUpHoles(const JobHoles& job, const CellSpec& cell, const Robot& robot, s
                 size_t end, int threads, std::vector<HoleRequest>& requests,
                 std::vector<HoleSource>& sources);
 
+/// Hole i of `job.recognized`, a cycle of `p`, set up as setUpHoles does but without the job's
+/// base frames (JobHoles::base_frames) and without `job.program`: `p` may be a program still
+/// being read (HoleLookahead). Throws InputError as setUpHoles does.
+void setUpRecognizedHole(const JobHoles& job, const postproc::Program& p, const CellSpec& cell,
+                         const Robot& robot, size_t i, HoleRequest& r, HoleSource& src);
+
 /// Per hole, whether it shares a program target with another hole: over the holes with
 /// `included[i]` != 0, of a program with `targets` targets. A target a hole lists twice (in and
 /// out through one approach point) is not shared. Holes that share targets must be edited in
@@ -87,8 +94,13 @@ Mat3 holeFrame(const Vec3& direction);
 /// checked (the same errors) but the requests are not kept: setUpHoles() builds them block by
 /// block (JobHoles::deferred); the program's files' bytes are released once it is read (its
 /// targets, motions and frames stay; its files keep their paths and lines).
+/// `progress` is passed to postproc::readProgram (a program's read only); `recognizer`, when
+/// given, is one `progress` advanced over the program as it was read: it is finished instead of
+/// recognising the program's holes from the start (the same holes).
 JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot& robot,
                       const std::optional<std::string>& hole_list, double match_tol_mm = 0.5,
-                      int threads = 1, bool defer_setup = false);
+                      int threads = 1, bool defer_setup = false,
+                      const postproc::ReadProgress& progress = {},
+                      const std::function<postproc::HoleRecognizer*()>& recognizer = {});
 
 }  // namespace roprec::api

@@ -12,6 +12,7 @@
 #include "compensator/precision/parallel.hpp"
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
+#include "plugin/api/lookahead.hpp"
 #include "plugin/api/robot_compliance.hpp"
 
 namespace roprec::api {
@@ -196,13 +197,13 @@ void resolveFramesAndTool(PredictionContext& c, const JobOptions& o) {
 }
 
 PredictionContext loadContext(const std::string& cell_path, const std::string& program_path,
-                              const JobOptions& o, bool load_holes = true,
-                              bool defer_setup = false) {
+                              const JobOptions& o, bool load_holes = true, bool defer_setup = false,
+                              std::unique_ptr<HoleLookahead>* lookahead = nullptr) {
   if (!o.tool.empty() && o.tool != "program" && o.tool != "cell")
     throw UsageError("--tool must be program or cell");
   PredictionContext c =
       loadPredictionContext(cell_path, program_path, o.holes, o.uncertainty, o.match_tol_mm,
-                            load_holes, resolvedThreads(o.threads), defer_setup);
+                            load_holes, resolvedThreads(o.threads), defer_setup, lookahead);
   if (o.fanuc_turn_axes) {
     c.model.config_options.fanuc_turn_axes = *o.fanuc_turn_axes;
     if (c.job.program) c.job.program->fanuc_turn_axes = *o.fanuc_turn_axes;
@@ -408,6 +409,22 @@ void predictRange(const PredictionModel& m, std::span<const HoleRequest> req, si
   }
 }
 
+/// The predictions of block [b, b + requests.size()) the lookahead made while the program was
+/// read, into holes[0, taken) (holes sized to the block); `prev` carries the continuity seed on.
+/// Stops the lookahead at the first block (it predicts until then).
+size_t takeAhead(HoleLookahead* ahead, const JobOptions& o, size_t b,
+                 const std::vector<HoleRequest>& requests, std::optional<Vec6>& prev,
+                 std::vector<HolePrediction>& holes) {
+  holes.resize(requests.size());
+  if (ahead == nullptr) return 0;
+  if (b == 0) ahead->stop(o.lookahead == JobOptions::Lookahead::kComplete);
+  size_t k = 0;
+  for (; k < requests.size() && ahead->take(b + k, requests[k], holes[k]); ++k) {
+    if (holes[k].status == HoleStatus::kOk) prev = holes[k].joints;
+  }
+  return k;
+}
+
 }  // namespace
 
 PredictionResult predictJob(const std::string& cell_path, const std::string& program_path,
@@ -446,9 +463,15 @@ PredictionResult predictJobStreaming(
     const BlockSink& sink, const std::function<void(const PredictionContext&)>& on_context,
     const ProgressFn& progress) {
   PredictionResult r;
-  // a program's holes are set up block by block as they are predicted (the memory of a block)
-  r.context = loadContext(cell_path, program_path, options, true, true);
   const int threads = resolvedThreads(options.threads);
+  // The lookahead predicts with the model the cell gives; options that change the model after
+  // the program is read (--tool program, --fanuc-turn-axes) go without it.
+  std::unique_ptr<HoleLookahead> ahead;
+  const bool look_ahead = threads > 1 && options.lookahead != JobOptions::Lookahead::kOff &&
+                          options.tool != "program" && !options.fanuc_turn_axes;
+  // a program's holes are set up block by block as they are predicted (the memory of a block)
+  r.context =
+      loadContext(cell_path, program_path, options, true, true, look_ahead ? &ahead : nullptr);
   if (on_context) on_context(r.context);
   const JobHoles& job = r.context.job;
   const size_t n = job.deferred ? job.recognized.size() : job.requests.size();
@@ -471,6 +494,7 @@ PredictionResult predictJobStreaming(
   };
   std::optional<Vec6> prev;
   std::array<Block, 2> blocks;
+  std::vector<HolePrediction> rest;  // a block's holes not predicted ahead
   std::future<void> draining;
   int k = 0;
   for (size_t b = 0; b < n; b += kPredictBlock, k ^= 1) {
@@ -478,7 +502,12 @@ PredictionResult predictJobStreaming(
     Block& blk = blocks[static_cast<size_t>(k)];
     if (job.deferred) {
       setUpHoles(job, r.context.cell, r.context.robot, b, e, threads, blk.requests, blk.sources);
-      predictRange(r.context.model, blk.requests, 0, e - b, prev, threads, blk.holes);
+      const size_t taken = takeAhead(ahead.get(), options, b, blk.requests, prev, blk.holes);
+      r.predicted_ahead += taken;
+      if (taken < e - b) {
+        predictRange(r.context.model, blk.requests, taken, e - b, prev, threads, rest);
+        std::move(rest.begin(), rest.end(), blk.holes.begin() + static_cast<std::ptrdiff_t>(taken));
+      }
     } else {
       predictRange(r.context.model, job.requests, b, e, prev, threads, blk.holes);
     }

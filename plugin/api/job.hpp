@@ -54,6 +54,12 @@ struct JobOptions {
   /// whatever the count (the sequential parts — IK seeds, the orientation sequence — are fixed
   /// before the per-hole work is shared out).
   int threads{1};
+  /// predictJobStreaming with more than one thread: predict a program's first holes while it is
+  /// still being read (lookahead.hpp; the same bytes). kOff: not; kComplete (tests): the job
+  /// waits until every hole handed ahead is predicted, so that what is taken does not depend on
+  /// timing.
+  enum class Lookahead { kAuto, kOff, kComplete };
+  Lookahead lookahead{Lookahead::kAuto};
 };
 
 /// `threads` with 0 resolved to the number of cores (at least 1). Throws UsageError when < 0.
@@ -69,6 +75,9 @@ struct PredictionResult {
   PredictionContext context;          ///< cell, robot, job holes, model
   std::vector<HolePrediction> holes;  ///< one per context.job.requests entry
   CapabilitySummary summary;
+  /// predictJobStreaming: holes whose prediction was made while the program was read
+  /// (JobOptions::lookahead).
+  std::size_t predicted_ahead{0};
   /// Holes whose status is not kOk.
   [[nodiscard]] int failed() const;
 };

@@ -6,6 +6,7 @@
 #include "compensator/process/process_load.hpp"
 #include "compensator/support/error.hpp"
 #include "plugin/api/card_tools.hpp"
+#include "plugin/api/lookahead.hpp"
 #include "plugin/api/robot_compliance.hpp"
 
 namespace roprec::api {
@@ -63,13 +64,65 @@ CapabilityInputs capabilityFromCell(const CellSpec& cell) {
   return c;
 }
 
+/// Everything of the prediction model's setup that comes from the cell and the command line
+/// (not the holes' diameters): throws as the cell's elements are read.
+PredictionSetup setupFromCell(const PredictionContext& c, const std::string& uncertainty_override) {
+  PredictionSetup s;
+  s.robot = c.robot;
+  s.tool = c.tool;
+  s.process = c.process;
+  s.uncertainty = uncertaintyFromCell(c.cell);
+  if (uncertainty_override == "linear") s.uncertainty.method = UncertaintyInputs::Method::kLinear;
+  if (uncertainty_override == "montecarlo")
+    s.uncertainty.method = UncertaintyInputs::Method::kMonteCarlo;
+  if (!uncertainty_override.empty() && uncertainty_override != "linear" &&
+      uncertainty_override != "montecarlo") {
+    throw UsageError("--uncertainty must be linear or montecarlo");
+  }
+  s.capability = capabilityFromCell(c.cell);
+  // the controller's gravity handling: the one decision every command shares
+  const ControllerGravity cg = controllerGravityOf(c.robot.card, &c.cell, c.tool);
+  s.controller_gravity = cg.gravity_compensated;
+  s.calibration_load = cg.calibration_load;
+  s.default_tolerance = c.cell.tolerance_mm * 1e-3;
+  return s;
+}
+
+std::optional<std::array<int, 3>> fanucTurnAxesFromCell(const CellSpec& cell) {
+  const XmlNode* e = cell.root.child("controller");
+  if (e == nullptr || !e->has("fanuc_turn_axes")) return std::nullopt;
+  const Eigen::VectorXd ax = e->numbers("fanuc_turn_axes", 3);
+  std::array<int, 3> axes{};
+  for (int i = 0; i < 3; ++i) {
+    if (ax[i] < 1 || ax[i] > 6 || ax[i] != std::floor(ax[i]))
+      e->fail("fanuc_turn_axes: three joint numbers 1..6");
+    axes[static_cast<size_t>(i)] = static_cast<int>(ax[i]);
+  }
+  return axes;
+}
+
+/// The lookahead of a job that sets its holes up block by block: the model the job will build
+/// once its program is read (a deferred job's holes add no diameters to it). Null when the cell
+/// has an error: the job reports it after reading its program, as without a lookahead.
+std::unique_ptr<HoleLookahead> startLookahead(const PredictionContext& c,
+                                              const std::string& uncertainty_override) {
+  try {
+    PredictionModel m = buildPredictionModel(setupFromCell(c, uncertainty_override));
+    if (const auto axes = fanucTurnAxesFromCell(c.cell)) m.config_options.fanuc_turn_axes = *axes;
+    return std::make_unique<HoleLookahead>(std::move(m), c.cell, c.robot, kLookaheadHoles);
+  } catch (...) {
+    return nullptr;
+  }
+}
+
 }  // namespace
 
 PredictionContext loadPredictionContext(const std::string& cell_path, const std::string& job_path,
                                         const std::optional<std::string>& hole_list,
                                         const std::string& uncertainty_override,
                                         double match_tol_mm, bool load_holes, int threads,
-                                        bool defer_setup) {
+                                        bool defer_setup,
+                                        std::unique_ptr<HoleLookahead>* lookahead) {
   PredictionContext c;
   c.cell = loadCell(cell_path);
   try {
@@ -93,46 +146,24 @@ PredictionContext loadPredictionContext(const std::string& cell_path, const std:
   } else {
     c.process_description = "no process (gravity and tool weight only)";
   }
+  if (lookahead && load_holes && defer_setup && !hole_list && threads > 1)
+    *lookahead = startLookahead(c, uncertainty_override);
   if (load_holes) {
-    c.job = loadJobHoles(job_path, c.cell, c.robot, hole_list, match_tol_mm, threads, defer_setup);
+    HoleLookahead* ahead = lookahead ? lookahead->get() : nullptr;
+    c.job = loadJobHoles(job_path, c.cell, c.robot, hole_list, match_tol_mm, threads, defer_setup,
+                         ahead ? ahead->hook() : postproc::ReadProgress(),
+                         [ahead] { return ahead ? ahead->recognizer() : nullptr; });
+    if (ahead) ahead->endOfRead();
   } else if (!job_path.empty()) {
     c.job.path = job_path;
     c.job.program = postproc::readProgram(job_path);
   }
 
-  PredictionSetup s;
-  s.robot = c.robot;
-  s.tool = c.tool;
-  s.process = c.process;
-  s.uncertainty = uncertaintyFromCell(c.cell);
-  if (uncertainty_override == "linear") s.uncertainty.method = UncertaintyInputs::Method::kLinear;
-  if (uncertainty_override == "montecarlo")
-    s.uncertainty.method = UncertaintyInputs::Method::kMonteCarlo;
-  if (!uncertainty_override.empty() && uncertainty_override != "linear" &&
-      uncertainty_override != "montecarlo") {
-    throw UsageError("--uncertainty must be linear or montecarlo");
-  }
-  s.capability = capabilityFromCell(c.cell);
-  // the controller's gravity handling: the one decision every command shares
-  const ControllerGravity cg = controllerGravityOf(c.robot.card, &c.cell, c.tool);
-  s.controller_gravity = cg.gravity_compensated;
-  s.calibration_load = cg.calibration_load;
+  PredictionSetup s = setupFromCell(c, uncertainty_override);
   if (const std::string note = gravityNotModelledNote(c.robot.card); !note.empty())
     c.job.notes.push_back(note);
   for (std::string& note : cardCheckOnLoad(c.robot)) c.job.notes.push_back(std::move(note));
-  if (const XmlNode* e = c.cell.root.child("controller")) {
-    if (e->has("fanuc_turn_axes")) {
-      const Eigen::VectorXd ax = e->numbers("fanuc_turn_axes", 3);
-      std::array<int, 3> axes{};
-      for (int i = 0; i < 3; ++i) {
-        if (ax[i] < 1 || ax[i] > 6 || ax[i] != std::floor(ax[i]))
-          e->fail("fanuc_turn_axes: three joint numbers 1..6");
-        axes[static_cast<size_t>(i)] = static_cast<int>(ax[i]);
-      }
-      c.fanuc_turn_axes = axes;
-    }
-  }
-  s.default_tolerance = c.cell.tolerance_mm * 1e-3;
+  c.fanuc_turn_axes = fanucTurnAxesFromCell(c.cell);
   for (const HoleRequest& r : c.job.requests) {
     if (r.diameter > 0) s.hole_diameters.push_back(r.diameter);
   }

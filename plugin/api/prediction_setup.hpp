@@ -9,6 +9,8 @@
 ///                process_halfwidth="0.15" samples="400" seed="20201" source="..."/>
 ///   <capability mc_approach_s="2.0" source="..."/>
 
+#include <cstddef>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -17,6 +19,10 @@
 #include "plugin/api/json.hpp"
 
 namespace roprec::api {
+
+class HoleLookahead;
+/// Holes a lookahead predicts at most (about 10 MB of requests and predictions held).
+inline constexpr std::size_t kLookaheadHoles = 8192;
 
 struct PredictionContext {
   CellSpec cell;
@@ -33,11 +39,15 @@ struct PredictionContext {
 /// `load_holes` false: the program is read (not its holes); an empty `job_path` then loads the
 /// cell alone (per-target sessions). `threads`: workers for setting up the holes.
 /// `defer_setup`: see loadJobHoles (the holes' requests are set up later, block by block).
+/// `lookahead` (with `defer_setup`, no hole list and more than one thread): receives a
+/// HoleLookahead that predicted the program's first holes (at most kLookaheadHoles) while it was
+/// read (lookahead.hpp), or null (a cell the job then reports as wrong).
 PredictionContext loadPredictionContext(const std::string& cell_path, const std::string& job_path,
                                         const std::optional<std::string>& hole_list,
                                         const std::string& uncertainty_override,
                                         double match_tol_mm = 0.5, bool load_holes = true,
-                                        int threads = 1, bool defer_setup = false);
+                                        int threads = 1, bool defer_setup = false,
+                                        std::unique_ptr<HoleLookahead>* lookahead = nullptr);
 
 /// Per-hole JSON object (contract keys + details). With `card`, the joints are also given in the
 /// controller's convention (`controller_joints_deg`, toControllerJoints; issue 14).

@@ -1,0 +1,147 @@
+#include "plugin/api/lookahead.hpp"
+
+#include <bit>
+#include <cstdint>
+
+namespace roprec::api {
+
+namespace {
+
+bool sameBits(double a, double b) {
+  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
+}
+
+template <class M>
+bool sameBits(const M& a, const M& b) {
+  for (Eigen::Index k = 0; k < a.size(); ++k) {
+    if (!sameBits(a.data()[k], b.data()[k])) return false;
+  }
+  return true;
+}
+
+bool sameConfig(const VendorConfig& a, const VendorConfig& b) {
+  return a.vendor == b.vendor && a.kuka.status == b.kuka.status && a.kuka.turn == b.kuka.turn &&
+         a.abb.cf1 == b.abb.cf1 && a.abb.cf4 == b.abb.cf4 && a.abb.cf6 == b.abb.cf6 &&
+         a.abb.cfx == b.abb.cfx && a.fanuc.flip == b.fanuc.flip && a.fanuc.up == b.fanuc.up &&
+         a.fanuc.top == b.fanuc.top && a.fanuc.turns == b.fanuc.turns && a.branch == b.branch;
+}
+
+template <class T, class Same>
+bool sameOptional(const std::optional<T>& a, const std::optional<T>& b, const Same& same) {
+  if (a.has_value() != b.has_value()) return false;
+  return !a || same(*a, *b);
+}
+
+}  // namespace
+
+bool sameRequest(const HoleRequest& a, const HoleRequest& b) {
+  const auto cfg = [](const VendorConfig& x, const VendorConfig& y) { return sameConfig(x, y); };
+  const auto vec = [](const auto& x, const auto& y) { return sameBits(x, y); };
+  const auto axis = [](const std::pair<Vec3, Vec3>& x, const std::pair<Vec3, Vec3>& y) {
+    return sameBits(x.first, y.first) && sameBits(x.second, y.second);
+  };
+  return a.id == b.id && sameBits(a.T_W_tcp.matrix(), b.T_W_tcp.matrix()) &&
+         sameBits(a.tolerance, b.tolerance) && sameBits(a.diameter, b.diameter) &&
+         sameBits(a.depth, b.depth) && sameOptional(a.config, b.config, cfg) &&
+         sameOptional(a.written_config, b.written_config, cfg) && a.line == b.line &&
+         sameOptional(a.surface_W, b.surface_W, vec) &&
+         sameOptional(a.nominal_axis, b.nominal_axis, axis) &&
+         sameOptional(a.ik_seed, b.ik_seed, vec);
+}
+
+HoleLookahead::HoleLookahead(PredictionModel model, const CellSpec& cell, const Robot& robot,
+                             std::size_t cap)
+    : model_(std::move(model)), cell_(cell), robot_(robot), cap_(cap) {
+  req_.reserve(cap_);
+  pred_.reserve(cap_);
+  worker_ = std::thread([this] { work(); });
+}
+
+HoleLookahead::~HoleLookahead() { stop(); }
+
+postproc::ReadProgress HoleLookahead::hook() {
+  return [this](const postproc::Program& p) { onRead(p); };
+}
+
+postproc::HoleRecognizer* HoleLookahead::recognizer() { return failed_ ? nullptr : &recognizer_; }
+
+void HoleLookahead::onRead(const postproc::Program& p) {
+  if (!reading_ || failed_) return;
+  std::vector<HoleRequest> batch;
+  try {
+    recognizer_.advance(p, false);
+    if (handed_ >= cap_) return;
+    const std::vector<postproc::Hole>& rec = recognizer_.holes();
+    while (holes_.recognized.size() < rec.size())
+      holes_.recognized.push_back(rec[holes_.recognized.size()]);
+    for (; handed_ < rec.size() && handed_ < cap_; ++handed_) {
+      HoleRequest r;
+      HoleSource src;
+      setUpRecognizedHole(holes_, p, cell_, robot_, handed_, r, src);
+      batch.push_back(std::move(r));
+    }
+  } catch (...) {
+    // what is wrong is the job's own to say; the lookahead ends here (and so does its
+    // recognizer: the job recognises the program's holes itself)
+    failed_ = true;
+  }
+  if (batch.empty()) return;
+  {
+    const std::lock_guard<std::mutex> lock(m_);
+    for (HoleRequest& r : batch) pending_.push_back(std::move(r));
+  }
+  cv_.notify_one();
+}
+
+void HoleLookahead::work() {
+  PredictionData d(model_);
+  std::optional<Vec6> prev;
+  std::vector<HoleRequest> batch;
+  for (;;) {
+    {
+      std::unique_lock<std::mutex> lock(m_);
+      cv_.wait(lock, [&] { return stopping_ || !pending_.empty(); });
+      if (pending_.empty() || (stopping_ && !finish_handed_)) return;
+      batch.swap(pending_);
+    }
+    for (HoleRequest& r : batch) {
+      if (halt_.load(std::memory_order_relaxed)) return;
+      HolePrediction h;
+      try {
+        predictHole(model_, d, r, prev ? &*prev : nullptr, h);
+      } catch (...) {
+        halt_ = true;  // the job's own prediction of this hole meets (and reports) the same
+        return;
+      }
+      if (h.status == HoleStatus::kOk) prev = h.joints;
+      pred_.push_back(std::move(h));
+      req_.push_back(std::move(r));
+    }
+    batch.clear();
+  }
+}
+
+void HoleLookahead::stop(bool finish_handed) {
+  if (!worker_.joinable()) return;
+  {
+    const std::lock_guard<std::mutex> lock(m_);
+    stopping_ = true;
+    finish_handed_ = finish_handed;
+  }
+  if (!finish_handed) halt_ = true;
+  cv_.notify_one();
+  worker_.join();
+}
+
+bool HoleLookahead::take(std::size_t k, const HoleRequest& job_request, HolePrediction& out) {
+  if (worker_.joinable() || !taking_ || k != next_take_ || k >= pred_.size() ||
+      !sameRequest(req_[k], job_request)) {
+    taking_ = false;
+    return false;
+  }
+  out = std::move(pred_[k]);
+  ++next_take_;
+  return true;
+}
+
+}  // namespace roprec::api
