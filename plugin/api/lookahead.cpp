@@ -1,5 +1,6 @@
 #include "plugin/api/lookahead.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cstdint>
 
@@ -72,7 +73,8 @@ void HoleLookahead::onRead(const postproc::Program& p) {
     recognizer_.advance(p, false);
     if (handed_ >= cap_) return;
     const std::vector<postproc::Hole>& rec = recognizer_.holes();
-    while (holes_.recognized.size() < rec.size())
+    const size_t want = std::min(rec.size(), cap_);  // the holes it sets up, no more
+    while (holes_.recognized.size() < want)
       holes_.recognized.push_back(rec[holes_.recognized.size()]);
     for (; handed_ < rec.size() && handed_ < cap_; ++handed_) {
       HoleRequest r;

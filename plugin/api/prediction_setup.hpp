@@ -21,8 +21,8 @@
 namespace roprec::api {
 
 class HoleLookahead;
-/// Holes a lookahead predicts at most (about 10 MB of requests and predictions held).
-inline constexpr std::size_t kLookaheadHoles = 8192;
+/// Holes a lookahead predicts at most (about 7 MB of requests and predictions held).
+inline constexpr std::size_t kLookaheadHoles = 4096;
 
 struct PredictionContext {
   CellSpec cell;
