@@ -68,58 +68,60 @@ postproc::HoleRecognizer* HoleLookahead::recognizer() { return failed_ ? nullptr
 
 void HoleLookahead::onRead(const postproc::Program& p) {
   if (!reading_ || failed_) return;
-  std::vector<HoleRequest> batch;
+  size_t handed = 0;
   try {
-    recognizer_.advance(p, false);
-    if (handed_ >= cap_) return;
+    // the cycles are recognised while the program is read as long as they are few (their
+    // memory would add to the read's peak); the job recognises the rest once the program's
+    // bytes are released
+    if (recognizer_.holes().size() >= kRecognizeAhead) {
+      if (handed_ >= cap_) return;
+    } else {
+      recognizer_.advance(p, false);
+    }
     const std::vector<postproc::Hole>& rec = recognizer_.holes();
     const size_t want = std::min(rec.size(), cap_);  // the holes it sets up, no more
     while (holes_.recognized.size() < want)
       holes_.recognized.push_back(rec[holes_.recognized.size()]);
-    for (; handed_ < rec.size() && handed_ < cap_; ++handed_) {
+    for (size_t i = handed_; i < want; ++i) {
       HoleRequest r;
       HoleSource src;
-      setUpRecognizedHole(holes_, p, cell_, robot_, handed_, r, src);
-      batch.push_back(std::move(r));
+      setUpRecognizedHole(holes_, p, cell_, robot_, i, r, src);
+      const std::lock_guard<std::mutex> lock(m_);
+      req_.push_back(std::move(r));  // within the capacity reserved: no element moves
+      handed = ++handed_;
     }
   } catch (...) {
     // what is wrong is the job's own to say; the lookahead ends here (and so does its
     // recognizer: the job recognises the program's holes itself)
     failed_ = true;
   }
-  if (batch.empty()) return;
-  {
-    const std::lock_guard<std::mutex> lock(m_);
-    for (HoleRequest& r : batch) pending_.push_back(std::move(r));
-  }
-  cv_.notify_one();
+  if (handed > 0) cv_.notify_one();
 }
 
 void HoleLookahead::work() {
   PredictionData d(model_);
   std::optional<Vec6> prev;
-  std::vector<HoleRequest> batch;
   for (;;) {
+    size_t handed = 0;
     {
       std::unique_lock<std::mutex> lock(m_);
-      cv_.wait(lock, [&] { return stopping_ || !pending_.empty(); });
-      if (pending_.empty() || (stopping_ && !finish_handed_)) return;
-      batch.swap(pending_);
+      cv_.wait(lock, [&] { return stopping_ || req_.size() > pred_.size(); });
+      handed = req_.size();
+      if (handed == pred_.size() || (stopping_ && !finish_handed_)) return;
     }
-    for (HoleRequest& r : batch) {
+    // requests below `handed` are complete and never written again
+    while (pred_.size() < handed) {
       if (halt_.load(std::memory_order_relaxed)) return;
       HolePrediction h;
       try {
-        predictHole(model_, d, r, prev ? &*prev : nullptr, h);
+        predictHole(model_, d, req_[pred_.size()], prev ? &*prev : nullptr, h);
       } catch (...) {
         halt_ = true;  // the job's own prediction of this hole meets (and reports) the same
         return;
       }
       if (h.status == HoleStatus::kOk) prev = h.joints;
       pred_.push_back(std::move(h));
-      req_.push_back(std::move(r));
     }
-    batch.clear();
   }
 }
 

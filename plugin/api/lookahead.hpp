@@ -43,6 +43,9 @@ bool sameRequest(const HoleRequest& a, const HoleRequest& b);
 
 class HoleLookahead {
  public:
+  /// Cycles the hook recognises at most (~250 B each; the job recognises the rest after the
+  /// read, when the program's bytes are released).
+  static constexpr std::size_t kRecognizeAhead = 16384;
   /// `model`: the model the job predicts with (a copy: the job may go on changing its own);
   /// `cell`, `robot`: the job's (referenced, must outlive the lookahead). Starts the worker.
   HoleLookahead(PredictionModel model, const CellSpec& cell, const Robot& robot, std::size_t cap);
@@ -86,15 +89,18 @@ class HoleLookahead {
   std::size_t handed_{0};
   bool failed_{false};
   bool reading_{true};
-  // shared
+  // shared. The requests and predictions are reserved for `cap` at the start and never
+  // reallocated (no large block freed while the program is read, which would make the
+  // allocator keep the program's growing tables in memory it cannot give back): the reading
+  // thread appends set-up requests under m_, the worker predicts those below the count it read
+  // under m_ (complete, never written again).
   std::mutex m_;
   std::condition_variable cv_;
-  std::vector<HoleRequest> pending_;  // handed, not yet taken by the worker
+  std::vector<HoleRequest> req_;
   bool stopping_{false};
   bool finish_handed_{false};
   std::atomic<bool> halt_{false};  // stop after the current hole
   // worker (read by the job after stop())
-  std::vector<HoleRequest> req_;
   std::vector<HolePrediction> pred_;
   std::size_t next_take_{0};
   bool taking_{true};
