@@ -98,7 +98,8 @@ void HoleRecognizer::advance(const Program& p, bool final) {
   std::size_t& i = next_;
   while (i < M) {
     const Motion& m0 = p.motions[i];
-    const std::optional<Pose> T0 = pose(i);
+    // a copy: the scan below reuses the cache's slots
+    const std::optional<Pose> T0 = pose(i);  // NOLINT(performance-unnecessary-copy-initialization)
     if (!T0) {
       ++i;
       continue;

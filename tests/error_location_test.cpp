@@ -83,5 +83,15 @@ TEST(ErrorLocation, AnUnreachableHoleIsNamedOnceWithItsLineAndVerdict) {
   EXPECT_EQ(r.err.find("unreachable: unreachable"), std::string::npos) << r.err;
 }
 
+TEST(ErrorLocation, AStatementCutShortIsReportedAtItsOwnLine) {
+  // an aggregate that ends at the line's end: the reader looks one token past the statement,
+  // which used to carry offset 0 and named line 1
+  const std::string dir = test::tempDir("errloc_cut");
+  test::writeFile(dir + "/cut.src", "DEF cut ( )\n$VEL.CP = 0.2\n\nLIN {X 1.0,Y\nEND\n");
+  const auto r = test::runRoprec("convert '" + dir + "/cut.src' --to csv -o '" + dir + "/out.csv'");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("cut.src:4: component Y has no value"), std::string::npos) << r.err;
+}
+
 }  // namespace
 }  // namespace roprec

@@ -9,6 +9,7 @@
 //  - sameRequest tells apart requests that differ in any field.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -32,7 +33,7 @@ std::string drillProgram(int n, const std::string& base, const std::string& tail
   for (int k = 0; k < n; ++k) {
     char p[96];
     std::snprintf(p, sizeof p, "X %.3f,Y %.3f,Z %%.1f,A 0.000,B 0.000,C 180.000",
-                  -30 + 1.2 * (k % 50), -25 + 1.2 * static_cast<double>(k / 50));
+                  -30 + 1.2 * (k % 50), -25 + 1.2 * std::floor(k / 50.0));
     char a[128];
     char f[128];
     std::snprintf(a, sizeof a, p, 300.0);
@@ -125,7 +126,7 @@ struct Streamed {
   size_t ahead{0};
 };
 
-Streamed streamed(const std::string& program, api::JobOptions opt) {
+Streamed streamed(const std::string& program, const api::JobOptions& opt) {
   Streamed s;
   std::optional<api::PredictionJsonStream> js;
   const api::PredictionResult r = api::predictJobStreaming(
@@ -152,16 +153,16 @@ TEST(Lookahead, HolesPredictedWhileTheProgramIsReadGiveTheBytesOfTheJob) {
   test::writeFile(dir + "/bd.src", drillProgram(2100, "$BASE = BASE_DATA[1]"));
   for (const std::string name : {"big.src", "bd.src"}) {
     SCOPED_TRACE(name);
+    const std::string path = (dir + "/").append(name);
     api::JobOptions opt;
     if (name == "bd.src")
       opt.frames.push_back({"BASE_DATA[1]", Pose(Eigen::Translation3d(1.35, 0.002, 0.3))});
     opt.threads = 1;
-    const std::string one =
-        api::predictionJson(api::predictJob(cellPath(), dir + "/" + name, opt)).dump();
+    const std::string one = api::predictionJson(api::predictJob(cellPath(), path, opt)).dump();
     for (const int threads : {2, 3}) {
       opt.threads = threads;
       opt.lookahead = api::JobOptions::Lookahead::kComplete;
-      const Streamed s = streamed(dir + "/" + name, opt);
+      const Streamed s = streamed(path, opt);
       EXPECT_TRUE(s.json == one) << threads << " threads";
       if (name == "big.src") {
         EXPECT_GT(s.ahead, 1900U);
@@ -170,7 +171,7 @@ TEST(Lookahead, HolesPredictedWhileTheProgramIsReadGiveTheBytesOfTheJob) {
         EXPECT_EQ(s.ahead, 0U);
       }
       opt.lookahead = api::JobOptions::Lookahead::kOff;
-      const Streamed off = streamed(dir + "/" + name, opt);
+      const Streamed off = streamed(path, opt);
       EXPECT_TRUE(off.json == one);
       EXPECT_EQ(off.ahead, 0U);
     }
