@@ -1,6 +1,9 @@
 #include "plugin/api/prediction_setup.hpp"
 
 #include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <limits>
 #include <ostream>
 
 #include "compensator/process/process_load.hpp"
@@ -101,6 +104,13 @@ std::optional<std::array<int, 3>> fanucTurnAxesFromCell(const CellSpec& cell) {
   return axes;
 }
 
+/// The size of a job's file (its .src for KRL); unknown sizes count as large.
+std::uintmax_t programBytes(const std::string& path) {
+  std::error_code ec;
+  const std::uintmax_t n = std::filesystem::file_size(path, ec);
+  return ec ? std::numeric_limits<std::uintmax_t>::max() : n;
+}
+
 /// The lookahead of a job that sets its holes up block by block: the model the job will build
 /// once its program is read (a deferred job's holes add no diameters to it). Null when the cell
 /// has an error: the job reports it after reading its program, as without a lookahead.
@@ -146,7 +156,8 @@ PredictionContext loadPredictionContext(const std::string& cell_path, const std:
   } else {
     c.process_description = "no process (gravity and tool weight only)";
   }
-  if (lookahead && load_holes && defer_setup && !hole_list && threads > 1)
+  if (lookahead && load_holes && defer_setup && !hole_list && threads > 1 &&
+      programBytes(job_path) <= kLookaheadProgramBytes)
     *lookahead = startLookahead(c, uncertainty_override);
   if (load_holes) {
     HoleLookahead* ahead = lookahead ? lookahead->get() : nullptr;

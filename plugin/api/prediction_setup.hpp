@@ -10,6 +10,7 @@
 ///   <capability mc_approach_s="2.0" source="..."/>
 
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -23,6 +24,10 @@ namespace roprec::api {
 class HoleLookahead;
 /// Holes a lookahead predicts at most (about 7 MB of requests and predictions held).
 inline constexpr std::size_t kLookaheadHoles = 4096;
+/// Programs larger than this (~45,000 drill cycles of 7 lines) are read without a lookahead:
+/// its memory would add to the read's peak (a 36 MB program: ~190 MB) for a few per cent of
+/// the holes.
+inline constexpr std::uintmax_t kLookaheadProgramBytes = std::uintmax_t{16} << 20U;
 
 struct PredictionContext {
   CellSpec cell;
@@ -41,7 +46,8 @@ struct PredictionContext {
 /// `defer_setup`: see loadJobHoles (the holes' requests are set up later, block by block).
 /// `lookahead` (with `defer_setup`, no hole list and more than one thread): receives a
 /// HoleLookahead that predicted the program's first holes (at most kLookaheadHoles) while it was
-/// read (lookahead.hpp), or null (a cell the job then reports as wrong).
+/// read (lookahead.hpp), or null (a cell the job then reports as wrong, a program larger than
+/// kLookaheadProgramBytes).
 PredictionContext loadPredictionContext(const std::string& cell_path, const std::string& job_path,
                                         const std::optional<std::string>& hole_list,
                                         const std::string& uncertainty_override,
