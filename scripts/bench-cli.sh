@@ -12,14 +12,15 @@
 #
 #   scripts/bench-cli.sh [ROPREC_BINARY]     (default build/bin/roprec)
 #
-# Measured 2026-11-24 16:15-17:10 on the 2-core machine with no other build running (best of 5
-# to 9 runs, four runs; README "Performance" has the history):
-#   predict 10,000 holes      0.177-0.19 s / 40 MB (1 thread), 0.140-0.164 s (2): 1.11-1.26x
-#   compensate 10,000 holes   0.95-0.97 s / 109 MB (1 thread), 0.557-0.565 s (2): 1.69-1.74x
-#   predict 100,000 holes     1.60 s / 192 MB (1 thread), 1.31 s / 192 MB (2)
+# Measured 2026-11-24 20:32 on the 2-core machine with no other build running
+# (scripts/bench-table.sh, best of 5; README "Performance" has the history):
+#   predict 10,000 holes      0.176 s / 42 MB (1 thread), 0.129 s / 46 MB (2): 1.37x
+#   compensate 10,000 holes   0.981 s / 109 MB (1 thread), 0.570 s (2): 1.72x
+#   predict 100,000 holes     1.57 s / 193 MB (1 thread), 1.25 s / 193 MB (2)
 # every output byte-identical for 1 and 2 threads. Wall times of a 2-thread run depend on the
 # second core being free: with other builds running, the speed-ups drop to ~1.0x.
-# The last column is user + system CPU: it stays the same for 1 and 2 threads (no extra work).
+# The last column is user + system CPU: about the same for 1 and 2 threads (predict with 2
+# threads also sets up the first 4,096 holes while the program is read: a few ms more).
 #
 # BENCH_SIZES  hole counts (default "1000 10000 100000")
 # BENCH_COMPENSATE_MAX  largest job that is also compensated (default 10000)
