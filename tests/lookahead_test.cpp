@@ -9,9 +9,7 @@
 //  - sameRequest tells apart requests that differ in any field.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <cstdio>
-#include <sstream>
 
 #include "plugin/api/job.hpp"
 #include "plugin/api/lookahead.hpp"
@@ -24,28 +22,10 @@ namespace {
 
 std::string cellPath() { return test::sourceDir() + "/samples/cells/housing-kr120.xml"; }
 
-/// A KRL program of `n` drill cycles on the housing's top face; `base` is its $BASE line, `tail`
-/// comes before END.
+/// `n` drill cycles with a drilling marker each (7 lines a cycle after 3 header lines).
 std::string drillProgram(int n, const std::string& base, const std::string& tail = "") {
-  std::ostringstream s;
-  s << "DEF big ( )\n"
-    << base << "\n$TOOL = {FRAME: X 0.000,Y 0.000,Z 320.000,A 0.000,B 0.000,C 0.000}\n";
-  for (int k = 0; k < n; ++k) {
-    char p[96];
-    std::snprintf(p, sizeof p, "X %.3f,Y %.3f,Z %%.1f,A 0.000,B 0.000,C 180.000",
-                  -30 + 1.2 * (k % 50), -25 + 1.2 * std::floor(k / 50.0));
-    char a[128];
-    char f[128];
-    std::snprintf(a, sizeof a, p, 300.0);
-    std::snprintf(f, sizeof f, p, 234.0);
-    s << "$VEL.CP = 0.25\nPTP {" << a << "}\n$VEL.CP = 0.02\nLIN {" << f
-      << "}\n; spindle drill\n$VEL.CP = 0.25\nLIN {" << a << "}\n";
-  }
-  s << tail << "END\n";
-  return s.str();
+  return test::krlDrillCycles(n, base, true, tail);
 }
-
-const char* kBase = "$BASE = {FRAME: X 1350.000,Y 0.000,Z 300.000,A 0.000,B 0.000,C 0.000}";
 
 void expectSameHoles(const std::vector<postproc::Hole>& a, const std::vector<postproc::Hole>& b) {
   ASSERT_EQ(a.size(), b.size());
@@ -74,7 +54,7 @@ TEST(Lookahead, RecognisingAsTheProgramGrowsGivesTheHolesOfTheWholeProgram) {
   for (const char* f : {"housing_kr120.src", "housing_irb6640.mod", "housing_r2000.ls"})
     programs.push_back(test::sourceDir() + "/samples/emotor-housing/" + f);
   const std::string dir = test::tempDir("lookahead_recognise");
-  test::writeFile(dir + "/big.src", drillProgram(120, kBase));
+  test::writeFile(dir + "/big.src", drillProgram(120, test::kHousingBase));
   programs.push_back(dir + "/big.src");
   if (const std::string corpus = test::corpusDir(); !corpus.empty()) {
     for (const char* f : {"DRILLR30IA.LS", "DrillIRC5.mod", "DrillKRC2DAT.src", "DrillKRC4.src"})
@@ -103,7 +83,7 @@ TEST(Lookahead, RecognisingAsTheProgramGrowsGivesTheHolesOfTheWholeProgram) {
 
 TEST(Lookahead, TheReadCallsItsHookEveryBlockOfLinesAndRecognisesAlong) {
   const std::string dir = test::tempDir("lookahead_hook");
-  test::writeFile(dir + "/big.src", drillProgram(800, kBase));  // 5,603 lines
+  test::writeFile(dir + "/big.src", drillProgram(800, test::kHousingBase));  // 5,603 lines
   postproc::HoleRecognizer r;
   int calls = 0;
   size_t holes_at_last_call = 0;
@@ -146,7 +126,7 @@ TEST(Lookahead, HolesPredictedWhileTheProgramIsReadGiveTheBytesOfTheJob) {
   const std::string dir = test::tempDir("lookahead_job");
   // 2,100 cycles, 14,703 lines: the hook sees about 2,000 of them before the read ends; the job
   // predicts them in two blocks
-  test::writeFile(dir + "/big.src", drillProgram(2100, kBase));
+  test::writeFile(dir + "/big.src", drillProgram(2100, test::kHousingBase));
   // the same with its base frame in the controller (BASE_DATA[1], given by --frame 2 mm off the
   // cell's workobject, which the read takes for it): the job moves each request into that frame
   // after the read, so none predicted ahead is the job's
@@ -180,7 +160,7 @@ TEST(Lookahead, HolesPredictedWhileTheProgramIsReadGiveTheBytesOfTheJob) {
 
 TEST(Lookahead, AProgramBrokenAfterTheHolesPredictedAheadGivesItsOwnError) {
   const std::string dir = test::tempDir("lookahead_error");
-  test::writeFile(dir + "/bad.src", drillProgram(2100, kBase, "LIN {X 1.0,Y\n"));
+  test::writeFile(dir + "/bad.src", drillProgram(2100, test::kHousingBase, "LIN {X 1.0,Y\n"));
   std::string expected;
   try {
     api::JobOptions opt;

@@ -279,22 +279,7 @@ TEST(StreamingOutput, AProgramSetUpBlockByBlockGivesTheBytesOfTheWholeJob) {
   krl.replace(krl.find(base), base.size(), "$BASE = BASE_DATA[1]");
   test::writeFile(dir + "/bd.src", krl);
   // 2,100 drill cycles (two blocks of the streaming predict) on the housing's top face
-  std::ostringstream big;
-  big << "DEF big ( )\n$BASE = {FRAME: X 1350.000,Y 0.000,Z 300.000,A 0.000,B 0.000,C 0.000}\n"
-      << "$TOOL = {FRAME: X 0.000,Y 0.000,Z 320.000,A 0.000,B 0.000,C 0.000}\n";
-  for (int k = 0; k < 2100; ++k) {
-    char p[96];
-    std::snprintf(p, sizeof p, "X %.3f,Y %.3f,Z %%.1f,A 0.000,B 0.000,C 180.000",
-                  -30 + 1.2 * (k % 50), -25 + 1.2 * static_cast<double>(k / 50));
-    char a[128];
-    char f[128];
-    std::snprintf(a, sizeof a, p, 300.0);
-    std::snprintf(f, sizeof f, p, 234.0);
-    big << "$VEL.CP = 0.25\nPTP {" << a << "}\n$VEL.CP = 0.02\nLIN {" << f
-        << "}\n$VEL.CP = 0.25\nLIN {" << a << "}\n";
-  }
-  big << "END\n";
-  test::writeFile(dir + "/big.src", big.str());
+  test::writeFile(dir + "/big.src", test::krlDrillCycles(2100));
   struct Case {
     std::string cell;
     std::string program;

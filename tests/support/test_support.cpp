@@ -2,6 +2,7 @@
 
 #include <sys/wait.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -41,6 +42,26 @@ std::string readFile(const std::string& path) {
 void writeFile(const std::string& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   out << text;
+}
+
+std::string krlDrillCycles(int n, const std::string& base, bool drill_comment,
+                           const std::string& tail) {
+  std::ostringstream s;
+  s << "DEF big ( )\n"
+    << base << "\n$TOOL = {FRAME: X 0.000,Y 0.000,Z 320.000,A 0.000,B 0.000,C 0.000}\n";
+  for (int k = 0; k < n; ++k) {
+    char p[96];
+    std::snprintf(p, sizeof p, "X %.3f,Y %.3f,Z %%.1f,A 0.000,B 0.000,C 180.000",
+                  -30 + 1.2 * (k % 50), -25 + 1.2 * std::floor(k / 50.0));
+    char a[128];
+    char f[128];
+    std::snprintf(a, sizeof a, p, 300.0);
+    std::snprintf(f, sizeof f, p, 234.0);
+    s << "$VEL.CP = 0.25\nPTP {" << a << "}\n$VEL.CP = 0.02\nLIN {" << f << "}\n"
+      << (drill_comment ? "; spindle drill\n" : "") << "$VEL.CP = 0.25\nLIN {" << a << "}\n";
+  }
+  s << tail << "END\n";
+  return s.str();
 }
 
 std::string tempDir(const std::string& tag) {

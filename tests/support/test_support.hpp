@@ -26,4 +26,14 @@ std::string tempDir(const std::string& tag);
 std::string readFile(const std::string& path);
 void writeFile(const std::string& path, const std::string& text);
 
+/// The $BASE line of krlDrillCycles: the housing's top face in the KR 120 sample cell.
+inline constexpr const char* kHousingBase =
+    "$BASE = {FRAME: X 1350.000,Y 0.000,Z 300.000,A 0.000,B 0.000,C 0.000}";
+/// A KRL .src of `n` drill cycles (PTP approach at z 300, feed to z 234 at a slower $VEL.CP,
+/// retract) on a 1.2 mm grid of the housing's top face, 7 lines a cycle with `drill_comment`
+/// (a "; spindle drill" marker after the feed), else 6, after three header lines (DEF, `base`,
+/// $TOOL); `tail` goes before END.
+std::string krlDrillCycles(int n, const std::string& base = kHousingBase,
+                           bool drill_comment = false, const std::string& tail = "");
+
 }  // namespace roprec::test
