@@ -193,10 +193,11 @@ namespace {
 /// Hole i's request and its place in the program (`spec`: its hole-list entry, -1 for none).
 /// Reads only: the holes are set up on several threads. Throws InputError when the drill point
 /// is not a plain Cartesian target or a target's configuration flags are not the robot's.
-void setUpHole(const JobHoles& job, const postproc::Program& p, const CellSpec& cell,
-               const Robot& robot, const std::vector<postproc::HoleSpec>& specs, int spec, size_t i,
-               HoleRequest& r, HoleSource& src) {
-  const postproc::Hole& h = job.recognized[i];
+void setUpHole(const std::vector<postproc::Hole>& recognized, const postproc::Program& p,
+               const CellSpec& cell, const Robot& robot,
+               const std::vector<postproc::HoleSpec>& specs, int spec, size_t i, HoleRequest& r,
+               HoleSource& src) {
+  const postproc::Hole& h = recognized[i];
   src.hole = static_cast<int>(i);
   src.targets = h.targets;
   src.bottom_target = h.bottom_target;
@@ -237,7 +238,7 @@ void setUpHole(const JobHoles& job, const postproc::Program& p, const CellSpec& 
   r.written_config =
       r.config ? r.config
                : programConfig(t.config, robot, p.files[static_cast<size_t>(t.file)].path, t.line);
-  r.ik_seed = programmedJointsBefore(p, robot, i > 0 ? job.recognized[i - 1].bottom_motion : -1,
+  r.ik_seed = programmedJointsBefore(p, robot, i > 0 ? recognized[i - 1].bottom_motion : -1,
                                      h.bottom_motion);
   if (spec >= 0) {
     const postproc::HoleSpec& s = specs[static_cast<size_t>(spec)];
@@ -268,7 +269,8 @@ void setUpRange(const JobHoles& job, const CellSpec& cell, const Robot& robot,
     try {
       HoleRequest& r = requests ? requests[k] : (scratch_r[wi] = HoleRequest{});
       HoleSource& src = sources ? sources[k] : (scratch_s[wi] = HoleSource{});
-      setUpHole(job, p, cell, robot, specs, spec_of_hole.empty() ? -1 : spec_of_hole[i], i, r, src);
+      setUpHole(job.recognized, p, cell, robot, specs, spec_of_hole.empty() ? -1 : spec_of_hole[i],
+                i, r, src);
     } catch (...) {
       auto& f = failed[wi];
       if (i < f.first) f = {i, std::current_exception()};
@@ -292,9 +294,10 @@ void applyBaseFrame(const JobHoles& job, HoleRequest& r, HoleSource& src) {
   src.frame_resolved = true;
 }
 
-void setUpRecognizedHole(const JobHoles& job, const postproc::Program& p, const CellSpec& cell,
-                         const Robot& robot, size_t i, HoleRequest& r, HoleSource& src) {
-  setUpHole(job, p, cell, robot, {}, -1, i, r, src);
+void setUpRecognizedHole(const std::vector<postproc::Hole>& recognized, const postproc::Program& p,
+                         const CellSpec& cell, const Robot& robot, size_t i, HoleRequest& r,
+                         HoleSource& src) {
+  setUpHole(recognized, p, cell, robot, {}, -1, i, r, src);
 }
 
 void setUpHoles(const JobHoles& job, const CellSpec& cell, const Robot& robot, size_t begin,

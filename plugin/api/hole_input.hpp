@@ -67,11 +67,12 @@ void setUpHoles(const JobHoles& job, const CellSpec& cell, const Robot& robot, s
                 size_t end, int threads, std::vector<HoleRequest>& requests,
                 std::vector<HoleSource>& sources);
 
-/// Hole i of `job.recognized`, a cycle of `p`, set up as setUpHoles does but without the job's
-/// base frames (JobHoles::base_frames) and without `job.program`: `p` may be a program still
-/// being read (HoleLookahead). Throws InputError as setUpHoles does.
-void setUpRecognizedHole(const JobHoles& job, const postproc::Program& p, const CellSpec& cell,
-                         const Robot& robot, size_t i, HoleRequest& r, HoleSource& src);
+/// Hole i of `recognized`, the cycles recognised in `p` (holes 0..i at least), set up as
+/// setUpHoles does but without a job's base frames (JobHoles::base_frames): `p` may be a program
+/// still being read (HoleLookahead). Throws InputError as setUpHoles does.
+void setUpRecognizedHole(const std::vector<postproc::Hole>& recognized, const postproc::Program& p,
+                         const CellSpec& cell, const Robot& robot, size_t i, HoleRequest& r,
+                         HoleSource& src);
 
 /// Per hole, whether it shares a program target with another hole: over the holes with
 /// `included[i]` != 0, of a program with `targets` targets. A target a hole lists twice (in and

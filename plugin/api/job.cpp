@@ -504,8 +504,8 @@ PredictionResult predictJobStreaming(
       setUpHoles(job, r.context.cell, r.context.robot, b, e, threads, blk.requests, blk.sources);
       const size_t taken = takeAhead(ahead.get(), options, b, blk.requests, prev, blk.holes);
       r.predicted_ahead += taken;
-      if (ahead && taken < e - b) ahead.reset();  // nothing more to take: its memory goes
       if (taken < e - b) {
+        ahead.reset();  // nothing more to take: its memory goes
         predictRange(r.context.model, blk.requests, taken, e - b, prev, threads, rest);
         std::move(rest.begin(), rest.end(), blk.holes.begin() + static_cast<std::ptrdiff_t>(taken));
       }

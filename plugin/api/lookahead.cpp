@@ -73,19 +73,12 @@ void HoleLookahead::onRead(const postproc::Program& p) {
     // the cycles are recognised while the program is read as long as they are few (their
     // memory would add to the read's peak); the job recognises the rest once the program's
     // bytes are released
-    if (recognizer_.holes().size() >= kRecognizeAhead) {
-      if (handed_ >= cap_) return;
-    } else {
-      recognizer_.advance(p, false);
-    }
+    if (recognizer_.holes().size() < kRecognizeAhead) recognizer_.advance(p, false);
     const std::vector<postproc::Hole>& rec = recognizer_.holes();
-    const size_t want = std::min(rec.size(), cap_);  // the holes it sets up, no more
-    while (holes_.recognized.size() < want)
-      holes_.recognized.push_back(rec[holes_.recognized.size()]);
-    for (size_t i = handed_; i < want; ++i) {
+    for (size_t i = handed_; i < std::min(rec.size(), cap_); ++i) {
       HoleRequest r;
       HoleSource src;
-      setUpRecognizedHole(holes_, p, cell_, robot_, i, r, src);
+      setUpRecognizedHole(rec, p, cell_, robot_, i, r, src);
       const std::lock_guard<std::mutex> lock(m_);
       req_.push_back(std::move(r));  // within the capacity reserved: no element moves
       handed = ++handed_;

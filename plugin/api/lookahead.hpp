@@ -84,8 +84,7 @@ class HoleLookahead {
   const Robot& robot_;
   const std::size_t cap_;
   // reading thread
-  postproc::HoleRecognizer recognizer_;
-  JobHoles holes_;  // the cycles recognised so far (setUpRecognizedHole reads them)
+  postproc::HoleRecognizer recognizer_;  // the cycles recognised so far
   std::size_t handed_{0};
   bool failed_{false};
   bool reading_{true};
