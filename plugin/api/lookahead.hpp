@@ -10,7 +10,10 @@
 /// each seeded with the previous admissible solution, as predictJobStreaming does.
 ///
 /// The job itself is then loaded, checked and set up exactly as without it (the same errors,
-/// notes, frames and requests). What was predicted ahead is only a guess of the job's first
+/// notes, frames and requests); it finishes the hook's recognizer instead of recognising the
+/// whole program again (the same holes: HoleRecognizer only takes a cycle once the motion after
+/// it is read, and a KRL reader never changes a motion once the next one exists). What was
+/// predicted ahead is only a guess of the job's first
 /// predictions: take(k, request) hands hole k's prediction over only when the job's request k
 /// equals, bit for bit, the one it was predicted from, and every hole before it was handed over
 /// the same way. A prediction depends only on the model, the request and the seed (the previous
@@ -18,8 +21,9 @@
 /// set up differently once the whole program is known (a base frame the job resolves after the
 /// read, say) ends the lookahead there; the rest is predicted as usual.
 ///
-/// Memory: at most `cap` requests and predictions are held (a 100,000-hole job predicts only its
-/// first `cap` holes ahead).
+/// Memory: at most `cap` requests and predictions (~1.7 kB a hole) and kRecognizeAhead
+/// recognised cycles (~250 B each) are held while the program is read, on top of the read's own
+/// peak; loadPredictionContext starts no lookahead for programs over kLookaheadProgramBytes.
 
 #include <atomic>
 #include <condition_variable>
