@@ -96,18 +96,21 @@ void HoleLookahead::work() {
   std::optional<Vec6> prev;
   for (;;) {
     size_t handed = 0;
+    const HoleRequest* req = nullptr;
     {
       std::unique_lock<std::mutex> lock(m_);
       cv_.wait(lock, [&] { return stopping_ || req_.size() > pred_.size(); });
       handed = req_.size();
+      req = req_.data();  // the reserved array: it does not move while the reader appends
       if (handed == pred_.size() || (stopping_ && !finish_handed_)) return;
     }
-    // requests below `handed` are complete and never written again
+    // requests below `handed` are complete and never written again (read through `req`: the
+    // vector's size is the reader's to change meanwhile)
     while (pred_.size() < handed) {
       if (halt_.load(std::memory_order_relaxed)) return;
       HolePrediction h;
       try {
-        predictHole(model_, d, req_[pred_.size()], prev ? &*prev : nullptr, h);
+        predictHole(model_, d, req[pred_.size()], prev ? &*prev : nullptr, h);
       } catch (...) {
         halt_ = true;  // the job's own prediction of this hole meets (and reports) the same
         return;
