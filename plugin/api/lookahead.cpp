@@ -67,7 +67,7 @@ postproc::ReadProgress HoleLookahead::hook() {
 postproc::HoleRecognizer* HoleLookahead::recognizer() { return failed_ ? nullptr : &recognizer_; }
 
 void HoleLookahead::onRead(const postproc::Program& p) {
-  if (!reading_ || failed_) return;
+  if (failed_) return;
   size_t handed = 0;
   try {
     // the cycles are recognised while the program is read as long as they are few (their

@@ -51,7 +51,8 @@ class HoleLookahead {
   /// read, when the program's bytes are released).
   static constexpr std::size_t kRecognizeAhead = 16384;
   /// `model`: the model the job predicts with (a copy: the job may go on changing its own);
-  /// `cell`, `robot`: the job's (referenced, must outlive the lookahead). Starts the worker.
+  /// `cell`, `robot`: the job's, referenced by the hook only (while the program is read). Starts
+  /// the worker.
   HoleLookahead(PredictionModel model, const CellSpec& cell, const Robot& robot, std::size_t cap);
   ~HoleLookahead();  ///< stops and joins the worker
   HoleLookahead(const HoleLookahead&) = delete;
@@ -66,9 +67,6 @@ class HoleLookahead {
   /// job to finish (HoleRecognizer::advance(p, true)) instead of recognising the whole program
   /// again; null when the hook failed.
   postproc::HoleRecognizer* recognizer();
-  /// The program is read: the hook does nothing any more (the cell and robot it set holes up
-  /// with may go).
-  void endOfRead() { reading_ = false; }
   /// Stops the worker and joins it: after the hole it is predicting, or (`finish_handed`, for
   /// tests) after every hole handed to it.
   void stop(bool finish_handed = false);
@@ -76,8 +74,6 @@ class HoleLookahead {
   /// predicted from a request equal to `job_request` (sameRequest) and every hole before it was
   /// taken; false from the first hole that was not (and for every hole after it).
   bool take(std::size_t k, const HoleRequest& job_request, HolePrediction& out);
-  /// Holes predicted ahead (after stop()).
-  [[nodiscard]] std::size_t predicted() const { return pred_.size(); }
 
  private:
   void onRead(const postproc::Program& p);
@@ -91,7 +87,6 @@ class HoleLookahead {
   postproc::HoleRecognizer recognizer_;  // the cycles recognised so far
   std::size_t handed_{0};
   bool failed_{false};
-  bool reading_{true};
   // shared. The requests and predictions are reserved for `cap` at the start and never
   // reallocated (no large block freed while the program is read, which would make the
   // allocator keep the program's growing tables in memory it cannot give back): the reading

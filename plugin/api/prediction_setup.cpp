@@ -164,7 +164,6 @@ PredictionContext loadPredictionContext(const std::string& cell_path, const std:
     c.job = loadJobHoles(job_path, c.cell, c.robot, hole_list, match_tol_mm, threads, defer_setup,
                          ahead ? ahead->hook() : postproc::ReadProgress(),
                          [ahead] { return ahead ? ahead->recognizer() : nullptr; });
-    if (ahead) ahead->endOfRead();
   } else if (!job_path.empty()) {
     c.job.path = job_path;
     c.job.program = postproc::readProgram(job_path);
