@@ -993,8 +993,11 @@ Program parseProgram(Dialect d, const std::string& path, std::string bytes,
 
 Program readProgram(const std::string& path, const ReadProgress& progress) {
   if (!fs::exists(path)) throw InputError(path, 0, "cannot open file");
+  return readProgram(path, readFileBytes(path), progress);
+}
+
+Program readProgram(const std::string& path, std::string bytes, const ReadProgress& progress) {
   std::string src_path = path;
-  std::string bytes = readFileBytes(path);
   const Dialect d = detectDialect(path, bytes);
   if (d != Dialect::kKrl)
     return parseProgram(d, path, std::move(bytes), std::nullopt, "", progress);

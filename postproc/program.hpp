@@ -491,6 +491,9 @@ inline constexpr std::size_t kReadProgressLines = 2048;
 /// Reads a program; the dialect comes from the extension and the content. KRL: `x.src` reads
 /// `x.dat` beside it when present. Throws InputError(file, line, message) on real errors.
 Program readProgram(const std::string& path, const ReadProgress& progress = {});
+/// The same with `path`'s bytes already read (`bytes`: what readFileBytes(path) gives; a KRL
+/// .src's .dat is still read from beside it).
+Program readProgram(const std::string& path, std::string bytes, const ReadProgress& progress);
 /// Same from bytes already in memory (`dat_bytes` only for KRL; nullopt = no .dat).
 Program parseProgram(Dialect d, const std::string& path, std::string bytes,
                      std::optional<std::string> dat_bytes = std::nullopt,

@@ -100,23 +100,30 @@ TEST(Lookahead, TheReadCallsItsHookEveryBlockOfLinesAndRecognisesAlong) {
   EXPECT_EQ(r.holes().size(), 800U);
 }
 
-/// predictJobStreaming's JSON and what it predicted ahead.
+/// predictJobStreaming's JSON, what it predicted ahead and how many texts of holes it handed to
+/// the sink.
 struct Streamed {
   std::string json;
   size_t ahead{0};
+  size_t texts{0};
 };
 
-Streamed streamed(const std::string& program, const api::JobOptions& opt) {
+/// `format_ahead`: the lookahead also formats the holes it predicts (as `roprec predict` has it).
+Streamed streamed(const std::string& program, const api::JobOptions& opt,
+                  bool format_ahead = true) {
   Streamed s;
   std::optional<api::PredictionJsonStream> js;
   const api::PredictionResult r = api::predictJobStreaming(
       cellPath(), program, opt,
-      [&](size_t, std::span<const HolePrediction> h, std::span<const HoleRequest> q, int t) {
-        js->holes(h, q, t);
+      [&](size_t, std::span<const HolePrediction> h, std::span<const HoleRequest> q,
+          std::span<const std::string> x, int t) {
+        s.texts += x.size();
+        js->holes(h, q, t, x);
       },
       [&](const api::PredictionContext& c) {
         js.emplace(c, [&](std::string_view b) { s.json += b; });
-      });
+      },
+      {}, format_ahead ? &api::PredictionJsonStream::itemFormat : api::HoleFormatFactory());
   js->finish(r.summary);
   s.ahead = r.predicted_ahead;
   return s;
@@ -142,13 +149,16 @@ TEST(Lookahead, HolesPredictedWhileTheProgramIsReadGiveTheBytesOfTheJob) {
     for (const int threads : {2, 3}) {
       opt.threads = threads;
       opt.lookahead = api::JobOptions::Lookahead::kComplete;
-      const Streamed s = streamed(path, opt);
-      EXPECT_TRUE(s.json == one) << threads << " threads";
-      if (name == "big.src") {
-        EXPECT_GT(s.ahead, 1900U);
-        EXPECT_LT(s.ahead, 2100U);
-      } else {
-        EXPECT_EQ(s.ahead, 0U);
+      for (const bool format_ahead : {true, false}) {
+        const Streamed s = streamed(path, opt, format_ahead);
+        EXPECT_TRUE(s.json == one) << threads << " threads, format ahead " << format_ahead;
+        EXPECT_EQ(s.texts, format_ahead ? s.ahead : 0U);
+        if (name == "big.src") {
+          EXPECT_GT(s.ahead, 1900U);
+          EXPECT_LT(s.ahead, 2100U);
+        } else {
+          EXPECT_EQ(s.ahead, 0U);
+        }
       }
       opt.lookahead = api::JobOptions::Lookahead::kOff;
       const Streamed off = streamed(path, opt);

@@ -126,6 +126,30 @@ TEST(OutputSet, SymlinkAndFifoTargetsAreRefusedNotReplaced) {
   EXPECT_EQ(temporariesIn(dir), 0);
 }
 
+TEST(OutputSet, TheNullDeviceDiscardsAndOtherDevicesAreRefused) {
+  // /dev/null: produced (the producer's error still counts) and discarded, nothing staged
+  OutputSet set;
+  bool produced = false;
+  set.stageStream("/dev/null", [&](const ByteWriter& w) {
+    w("bytes");
+    produced = true;
+  });
+  EXPECT_TRUE(produced);
+  EXPECT_TRUE(set.empty());
+  EXPECT_TRUE(set.commit().empty());
+  EXPECT_THROW(
+      set.stageStream("/dev/null", [](const ByteWriter&) { throw InputError("x", 1, "y"); }),
+      InputError);
+  EXPECT_TRUE(fs::is_character_file("/dev/null"));
+  // another character device is refused, not written
+  try {
+    writeFileAtomic("/dev/zero", "new");
+    FAIL() << "device written";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("not a regular file"), std::string::npos) << e.what();
+  }
+}
+
 TEST(OutputSet, NamesNearTheNameMaxLimitWork) {
   const std::string dir = test::tempDir("outset-long");
   for (const size_t len : {200u, 240u, 250u, 255u}) {

@@ -104,7 +104,8 @@ TEST(PredictThreads, BlocksWithTheContinuitySeedEqualOneCall) {
 /// The prediction JSON predictJobStreaming writes for `csv` with `threads` workers (blocks of holes
 /// written on a task of their own while the next block is predicted when threads > 1): hole by
 /// hole, or (`blocks`) a block at a time formatted on the workers, as `roprec predict` does.
-std::string streamedJson(const std::string& csv, int threads, bool blocks) {
+std::string streamedJson(const std::string& csv, int threads, bool blocks,
+                         std::vector<size_t>* sizes = nullptr) {
   api::JobOptions o;
   o.threads = threads;
   std::string out;
@@ -118,11 +119,13 @@ std::string streamedJson(const std::string& csv, int threads, bool blocks) {
       blocks ? api::predictJobStreaming(
                    cell, csv, o,
                    [&](size_t first, std::span<const HolePrediction> h,
-                       std::span<const HoleRequest> q, int t) {
+                       std::span<const HoleRequest> q, std::span<const std::string> x, int t) {
                      EXPECT_EQ(first, next);
                      EXPECT_EQ(t, threads);
+                     EXPECT_TRUE(x.empty());  // a hole list: nothing predicted ahead
                      next += h.size();
-                     js->holes(h, q, t);
+                     if (sizes) sizes->push_back(h.size());
+                     js->holes(h, q, t, x);
                    },
                    header)
              : api::predictJobStreaming(
@@ -135,7 +138,9 @@ std::string streamedJson(const std::string& csv, int threads, bool blocks) {
 }
 
 TEST(PredictThreads, StreamedJsonOfSeveralBlocksIsTheSameBytes) {
-  // the housing's hole list 25 times (5,100 holes: three blocks of the streaming predict)
+  // the housing's hole list 25 times (5,100 holes: six blocks of the streaming predict, 2,048
+  // holes, then the last 3,052 in halves down to 256, so the last block's formatting, which
+  // nothing overlaps, is short)
   const std::string src = test::readFile(test::sourceDir() + "/samples/emotor-housing/holes.csv");
   const size_t header_end = src.find("\nid,") + 1;
   const size_t rows = src.find('\n', header_end) + 1;
@@ -154,8 +159,12 @@ TEST(PredictThreads, StreamedJsonOfSeveralBlocksIsTheSameBytes) {
   ASSERT_NE(ref.find("\"K24_L048\""), std::string::npos);
   for (const int threads : {2, 3})
     EXPECT_TRUE(streamedJson(path, threads, false) == ref) << threads;
-  for (const int threads : {1, 2, 3})
-    EXPECT_TRUE(streamedJson(path, threads, true) == ref) << threads << " threads, by blocks";
+  for (const int threads : {1, 2, 3}) {
+    std::vector<size_t> sizes;
+    EXPECT_TRUE(streamedJson(path, threads, true, &sizes) == ref)
+        << threads << " threads, by blocks";
+    EXPECT_EQ(sizes, (std::vector<size_t>{2048, 1526, 763, 382, 256, 125}));
+  }
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <dirent.h>
 #include <fcntl.h>
 #include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -51,6 +52,19 @@ std::uint64_t fnv1a(const std::string& s) {
 
 [[noreturn]] void fail(const std::string& path, const std::string& why) {
   throw InputError(path, 0, "cannot write output file: " + why);
+}
+
+/// The null device (/dev/null, or any name for character device 1:3): what is written to it is
+/// discarded, so nothing is staged or replaced.
+bool isNullDevice(const std::string& path) {
+#ifdef __linux__
+  struct stat st {};
+  return ::lstat(path.c_str(), &st) == 0 && S_ISCHR(st.st_mode) && major(st.st_rdev) == 1 &&
+         minor(st.st_rdev) == 3;
+#else
+  (void)path;
+  return false;
+#endif
 }
 
 /// Refuses targets that are not regular files (symbolic links, FIFOs, devices, folders).
@@ -140,7 +154,7 @@ class TempFile {
   /// file written in one go at the end. Durability is fsync's, as before.
   void writeBehind() {
 #ifdef __linux__
-    constexpr std::size_t kWriteBehind = std::size_t{4} << 20U;
+    constexpr std::size_t kWriteBehind = std::size_t{1} << 20U;
     if (written_ - started_ < kWriteBehind) return;
     (void)::sync_file_range(fd_, static_cast<off_t>(started_),
                             static_cast<off_t>(written_ - started_), SYNC_FILE_RANGE_WRITE);
@@ -223,6 +237,10 @@ void OutputSet::stageStream(const std::string& path,
   if (path.empty()) fail(path, "empty output path");
   if (nameOf(path).empty() || nameOf(path) == "." || nameOf(path) == "..")
     fail(path, "the path names a folder, not a file");
+  if (isNullDevice(path)) {  // discarded: the bytes are still produced (and their errors thrown)
+    produce([](std::string_view) {});
+    return;
+  }
   checkTarget(path);
   const std::string dir = dirOf(path);
   if (std::find(cleaned_dirs_.begin(), cleaned_dirs_.end(), dir) == cleaned_dirs_.end()) {

@@ -5,7 +5,8 @@
 /// the name would exceed NAME_MAX), fsynced, and renamed onto its target only when every output
 /// of the command was staged; on any error the temporaries are removed. Temporaries left by a
 /// killed run are recognised by their name and removed by the next run that writes to the folder.
-/// A target that is a symbolic link, a FIFO, a device or a folder is refused, never replaced.
+/// A target that is a symbolic link, a FIFO, a device or a folder is refused, never replaced;
+/// the null device (/dev/null) is accepted and its output discarded (produced, not staged).
 
 #include <functional>
 #include <string>

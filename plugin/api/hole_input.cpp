@@ -367,8 +367,8 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
     job.program = std::move(parsed);
     return job;
   }
-  if (!parsed) std::string().swap(bytes);  // readProgram reads the file (and its .dat) itself
-  job.program = parsed ? std::move(*parsed) : postproc::readProgram(path, progress);
+  job.program =
+      parsed ? std::move(*parsed) : postproc::readProgram(path, std::move(bytes), progress);
   job.deferred = defer_setup && !hole_list;
   if (job.deferred) {  // a job that writes no program: its bytes are not read again
     for (postproc::SourceFile& f : job.program->files) std::string().swap(f.bytes);

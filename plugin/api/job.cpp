@@ -198,12 +198,13 @@ void resolveFramesAndTool(PredictionContext& c, const JobOptions& o) {
 
 PredictionContext loadContext(const std::string& cell_path, const std::string& program_path,
                               const JobOptions& o, bool load_holes = true, bool defer_setup = false,
-                              std::unique_ptr<HoleLookahead>* lookahead = nullptr) {
+                              std::unique_ptr<HoleLookahead>* lookahead = nullptr,
+                              const HoleFormatFactory& format_ahead = {}) {
   if (!o.tool.empty() && o.tool != "program" && o.tool != "cell")
     throw UsageError("--tool must be program or cell");
-  PredictionContext c =
-      loadPredictionContext(cell_path, program_path, o.holes, o.uncertainty, o.match_tol_mm,
-                            load_holes, resolvedThreads(o.threads), defer_setup, lookahead);
+  PredictionContext c = loadPredictionContext(
+      cell_path, program_path, o.holes, o.uncertainty, o.match_tol_mm, load_holes,
+      resolvedThreads(o.threads), defer_setup, lookahead, format_ahead);
   if (o.fanuc_turn_axes) {
     c.model.config_options.fanuc_turn_axes = *o.fanuc_turn_axes;
     if (c.job.program) c.job.program->fanuc_turn_axes = *o.fanuc_turn_axes;
@@ -392,6 +393,18 @@ class SummaryAccumulator {
 
 /// Holes predicted per block of the streaming predict (bounded memory, whatever the job's size).
 constexpr size_t kPredictBlock = 2048;
+/// The smallest block: the last blocks halve down to it.
+constexpr size_t kLastBlock = 256;
+
+/// The end of the streaming predict's block that starts at hole b of n: kPredictBlock holes,
+/// but the last 2 × kPredictBlock in halves down to kLastBlock. With threads > 1, a block goes to
+/// the sink while the next one is predicted; the last block's formatting is the one nothing
+/// overlaps, so it is kept short.
+size_t blockEnd(size_t b, size_t n) {
+  const size_t left = n - b;
+  if (left > 2 * kPredictBlock) return b + kPredictBlock;
+  return b + std::min(left, std::max(kLastBlock, (left + 1) / 2));
+}
 
 /// Predicts requests [begin, end) into `out`, each seeded with the previous admissible solution;
 /// `prev` carries it from block to block (PredictOptions::seed), so block by block gives the same
@@ -410,17 +423,21 @@ void predictRange(const PredictionModel& m, std::span<const HoleRequest> req, si
 }
 
 /// The predictions of block [b, b + requests.size()) the lookahead made while the program was
-/// read, into holes[0, taken) (holes sized to the block); `prev` carries the continuity seed on.
-/// Stops the lookahead at the first block (it predicts until then).
+/// read, into holes[0, taken) (holes sized to the block), and their texts into texts[0, taken)
+/// when it formatted them (texts empty otherwise); `prev` carries the continuity seed on. Stops
+/// the lookahead at the first block (it predicts until then).
 size_t takeAhead(HoleLookahead* ahead, const JobOptions& o, size_t b,
                  const std::vector<HoleRequest>& requests, std::optional<Vec6>& prev,
-                 std::vector<HolePrediction>& holes) {
+                 std::vector<HolePrediction>& holes, std::vector<std::string>& texts) {
   holes.resize(requests.size());
+  texts.clear();
   if (ahead == nullptr) return 0;
   if (b == 0) ahead->stop(o.lookahead == JobOptions::Lookahead::kComplete);
   size_t k = 0;
-  for (; k < requests.size() && ahead->take(b + k, requests[k], holes[k]); ++k) {
+  std::string text;
+  for (; k < requests.size() && ahead->take(b + k, requests[k], holes[k], text); ++k) {
     if (holes[k].status == HoleStatus::kOk) prev = holes[k].joints;
+    if (ahead->formats()) texts.push_back(std::move(text));
   }
   return k;
 }
@@ -451,7 +468,8 @@ PredictionResult predictJobStreaming(
     const HoleSink& sink, const std::function<void(const PredictionContext&)>& on_context,
     const ProgressFn& progress) {
   const BlockSink each = [&sink](size_t first, std::span<const HolePrediction> holes,
-                                 std::span<const HoleRequest> requests, int) {
+                                 std::span<const HoleRequest> requests,
+                                 std::span<const std::string>, int) {
     for (size_t k = 0; k < holes.size(); ++k) sink(first + k, holes[k], requests[k]);
   };
   return predictJobStreaming(cell_path, program_path, options, sink ? each : BlockSink(),
@@ -461,7 +479,7 @@ PredictionResult predictJobStreaming(
 PredictionResult predictJobStreaming(
     const std::string& cell_path, const std::string& program_path, const JobOptions& options,
     const BlockSink& sink, const std::function<void(const PredictionContext&)>& on_context,
-    const ProgressFn& progress) {
+    const ProgressFn& progress, const HoleFormatFactory& format_ahead) {
   PredictionResult r;
   const int threads = resolvedThreads(options.threads);
   // The lookahead predicts with the model the cell gives; options that change the model after
@@ -470,8 +488,8 @@ PredictionResult predictJobStreaming(
   const bool look_ahead = threads > 1 && options.lookahead != JobOptions::Lookahead::kOff &&
                           options.tool != "program" && !options.fanuc_turn_axes;
   // a program's holes are set up block by block as they are predicted (the memory of a block)
-  r.context =
-      loadContext(cell_path, program_path, options, true, true, look_ahead ? &ahead : nullptr);
+  r.context = loadContext(cell_path, program_path, options, true, true,
+                          look_ahead ? &ahead : nullptr, format_ahead);
   if (on_context) on_context(r.context);
   const JobHoles& job = r.context.job;
   const size_t n = job.deferred ? job.recognized.size() : job.requests.size();
@@ -480,6 +498,7 @@ PredictionResult predictJobStreaming(
     std::vector<HoleRequest> requests;  // deferred job: the block's own
     std::vector<HoleSource> sources;
     std::vector<HolePrediction> holes;
+    std::vector<std::string> texts;  // holes[0, texts.size()): formatted ahead
   };
   auto requestsOf = [&](const Block& blk, size_t b) {
     return job.deferred ? std::span<const HoleRequest>(blk.requests)
@@ -490,19 +509,20 @@ PredictionResult predictJobStreaming(
   // one thread at a time, so the bytes are those of one thread.
   auto drain = [&](const Block& blk, size_t b) {
     for (const HolePrediction& h : blk.holes) sum.add(h);
-    if (sink) sink(b, blk.holes, requestsOf(blk, b), threads);
+    if (sink) sink(b, blk.holes, requestsOf(blk, b), blk.texts, threads);
   };
   std::optional<Vec6> prev;
   std::array<Block, 2> blocks;
   std::vector<HolePrediction> rest;  // a block's holes not predicted ahead
   std::future<void> draining;
   int k = 0;
-  for (size_t b = 0; b < n; b += kPredictBlock, k ^= 1) {
-    const size_t e = std::min(n, b + kPredictBlock);
+  for (size_t b = 0, e = 0; b < n; b = e, k ^= 1) {
+    e = blockEnd(b, n);
     Block& blk = blocks[static_cast<size_t>(k)];
     if (job.deferred) {
       setUpHoles(job, r.context.cell, r.context.robot, b, e, threads, blk.requests, blk.sources);
-      const size_t taken = takeAhead(ahead.get(), options, b, blk.requests, prev, blk.holes);
+      const size_t taken =
+          takeAhead(ahead.get(), options, b, blk.requests, prev, blk.holes, blk.texts);
       r.predicted_ahead += taken;
       if (taken < e - b) {
         ahead.reset();  // nothing more to take: its memory goes

@@ -97,8 +97,11 @@ using HoleSink =
 /// `requests[k]` = context.job.requests[first + k]. The calls come as a HoleSink's do (one at a
 /// time; with threads > 1 from a task of their own while the next block is predicted);
 /// `threads` is the job's thread count, for a sink that formats a block on several workers.
+/// `texts[k]` (k < texts.size(), often none) is hole first + k's text made ahead by the job's
+/// `format_ahead` (see predictJobStreaming), for the sink to write instead of formatting it.
 using BlockSink = std::function<void(size_t first, std::span<const HolePrediction> holes,
-                                     std::span<const HoleRequest> requests, int threads)>;
+                                     std::span<const HoleRequest> requests,
+                                     std::span<const std::string> texts, int threads)>;
 
 /// predictJob in constant memory: the holes are predicted in blocks and handed to `sink` in
 /// order, then dropped; the result's `holes` stays empty and its `summary` is the one
@@ -107,10 +110,13 @@ using BlockSink = std::function<void(size_t first, std::span<const HolePredictio
 /// A program's holes are set up block by block and its files' bytes released once it is read (a
 /// predict writes no program): see loadJobHoles' `defer_setup`; the result's context.job.requests
 /// and sources then stay empty (a hole list's are kept).
+/// `format_ahead` (may be empty): the sink's own formatting of a hole (e.g.
+/// PredictionJsonStream::itemFormat); the holes predicted while the program is read (the
+/// lookahead, threads > 1) are also formatted then, and their texts handed to the sink.
 PredictionResult predictJobStreaming(
     const std::string& cell_path, const std::string& program_path, const JobOptions& options,
     const BlockSink& sink, const std::function<void(const PredictionContext&)>& on_context,
-    const ProgressFn& progress = {});
+    const ProgressFn& progress = {}, const HoleFormatFactory& format_ahead = {});
 /// The same with the holes handed over one by one.
 PredictionResult predictJobStreaming(
     const std::string& cell_path, const std::string& program_path, const JobOptions& options,

@@ -51,10 +51,11 @@ bool sameRequest(const HoleRequest& a, const HoleRequest& b) {
 }
 
 HoleLookahead::HoleLookahead(PredictionModel model, const CellSpec& cell, const Robot& robot,
-                             std::size_t cap)
-    : model_(std::move(model)), cell_(cell), robot_(robot), cap_(cap) {
+                             std::size_t cap, HoleFormat format)
+    : model_(std::move(model)), cell_(cell), robot_(robot), cap_(cap), format_(std::move(format)) {
   req_.reserve(cap_);
   pred_.reserve(cap_);
+  if (format_) text_.reserve(cap_);
   worker_ = std::thread([this] { work(); });
 }
 
@@ -94,6 +95,7 @@ void HoleLookahead::onRead(const postproc::Program& p) {
 void HoleLookahead::work() {
   PredictionData d(model_);
   std::optional<Vec6> prev;
+  std::string text;  // the format's scratch: each hole keeps a copy of its own size
   for (;;) {
     size_t handed = 0;
     const HoleRequest* req = nullptr;
@@ -108,14 +110,17 @@ void HoleLookahead::work() {
     // vector's size is the reader's to change meanwhile)
     while (pred_.size() < handed) {
       if (halt_.load(std::memory_order_relaxed)) return;
+      const std::size_t k = pred_.size();
       HolePrediction h;
       try {
-        predictHole(model_, d, req[pred_.size()], prev ? &*prev : nullptr, h);
+        predictHole(model_, d, req[k], prev ? &*prev : nullptr, h);
+        if (format_) format_(k, h, req[k], text);
       } catch (...) {
         halt_ = true;  // the job's own prediction of this hole meets (and reports) the same
         return;
       }
       if (h.status == HoleStatus::kOk) prev = h.joints;
+      if (format_) text_.emplace_back(text);
       pred_.push_back(std::move(h));
     }
   }
@@ -133,13 +138,15 @@ void HoleLookahead::stop(bool finish_handed) {
   worker_.join();
 }
 
-bool HoleLookahead::take(std::size_t k, const HoleRequest& job_request, HolePrediction& out) {
+bool HoleLookahead::take(std::size_t k, const HoleRequest& job_request, HolePrediction& out,
+                         std::string& text) {
   if (worker_.joinable() || !taking_ || k != next_take_ || k >= pred_.size() ||
       !sameRequest(req_[k], job_request)) {
     taking_ = false;
     return false;
   }
   out = std::move(pred_[k]);
+  if (format_) text = std::move(text_[k]);
   ++next_take_;
   return true;
 }

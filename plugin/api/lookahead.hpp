@@ -7,7 +7,9 @@
 /// that time: postproc::readProgram calls its hook every kReadProgressLines lines (on the
 /// reading thread), the hook recognises the cycles complete so far (postproc::HoleRecognizer)
 /// and sets up their requests (setUpRecognizedHole), and a worker thread predicts them in order,
-/// each seeded with the previous admissible solution, as predictJobStreaming does.
+/// each seeded with the previous admissible solution, as predictJobStreaming does, and (given a
+/// HoleFormat) formats each one as the job's output will (the prediction JSON's item: as much
+/// work again as the prediction, done while the reading thread is the one the job waits for).
 ///
 /// The job itself is then loaded, checked and set up exactly as without it (the same errors,
 /// notes, frames and requests); it finishes the hook's recognizer instead of recognising the
@@ -17,11 +19,12 @@
 /// predictions: take(k, request) hands hole k's prediction over only when the job's request k
 /// equals, bit for bit, the one it was predicted from, and every hole before it was handed over
 /// the same way. A prediction depends only on the model, the request and the seed (the previous
-/// admissible solution), so the bytes are those of a job predicted without a lookahead. A hole
+/// admissible solution), and its text only on the prediction, the request and its index, so the
+/// bytes are those of a job predicted without a lookahead. A hole
 /// set up differently once the whole program is known (a base frame the job resolves after the
 /// read, say) ends the lookahead there; the rest is predicted as usual.
 ///
-/// Memory: at most `cap` requests and predictions (~1.7 kB a hole) and kRecognizeAhead
+/// Memory: at most `cap` requests, predictions and texts (~4 kB a hole) and kRecognizeAhead
 /// recognised cycles (~250 B each) are held while the program is read, on top of the read's own
 /// peak; loadPredictionContext starts no lookahead for programs over kLookaheadProgramBytes.
 
@@ -30,12 +33,14 @@
 #include <cstddef>
 #include <mutex>
 #include <optional>
+#include <string>
 #include <thread>
 #include <vector>
 
 #include "compensator/precision/cell.hpp"
 #include "compensator/precision/prediction.hpp"
 #include "plugin/api/hole_input.hpp"
+#include "plugin/api/prediction_setup.hpp"
 #include "postproc/drill.hpp"
 #include "postproc/program.hpp"
 
@@ -51,9 +56,10 @@ class HoleLookahead {
   /// read, when the program's bytes are released).
   static constexpr std::size_t kRecognizeAhead = 16384;
   /// `model`: the model the job predicts with (a copy: the job may go on changing its own);
-  /// `cell`, `robot`: the job's, referenced by the hook only (while the program is read). Starts
-  /// the worker.
-  HoleLookahead(PredictionModel model, const CellSpec& cell, const Robot& robot, std::size_t cap);
+  /// `cell`, `robot`: the job's, referenced by the hook only (while the program is read);
+  /// `format` (may be empty): what the worker makes of each hole it predicts. Starts the worker.
+  HoleLookahead(PredictionModel model, const CellSpec& cell, const Robot& robot, std::size_t cap,
+                HoleFormat format = {});
   ~HoleLookahead();  ///< stops and joins the worker
   HoleLookahead(const HoleLookahead&) = delete;
   HoleLookahead& operator=(const HoleLookahead&) = delete;
@@ -70,10 +76,13 @@ class HoleLookahead {
   /// Stops the worker and joins it: after the hole it is predicting, or (`finish_handed`, for
   /// tests) after every hole handed to it.
   void stop(bool finish_handed = false);
-  /// After stop(), for k = 0, 1, … in order: moves hole k's prediction into `out` when it was
-  /// predicted from a request equal to `job_request` (sameRequest) and every hole before it was
-  /// taken; false from the first hole that was not (and for every hole after it).
-  bool take(std::size_t k, const HoleRequest& job_request, HolePrediction& out);
+  /// After stop(), for k = 0, 1, … in order: moves hole k's prediction into `out` (and, with a
+  /// HoleFormat, its text into `text`) when it was predicted from a request equal to
+  /// `job_request` (sameRequest) and every hole before it was taken; false from the first hole
+  /// that was not (and for every hole after it).
+  bool take(std::size_t k, const HoleRequest& job_request, HolePrediction& out, std::string& text);
+  /// Whether the holes taken come with their text (a HoleFormat was given).
+  [[nodiscard]] bool formats() const { return static_cast<bool>(format_); }
 
  private:
   void onRead(const postproc::Program& p);
@@ -83,6 +92,7 @@ class HoleLookahead {
   const CellSpec& cell_;
   const Robot& robot_;
   const std::size_t cap_;
+  const HoleFormat format_;
   // reading thread
   postproc::HoleRecognizer recognizer_;  // the cycles recognised so far
   std::size_t handed_{0};
@@ -100,6 +110,7 @@ class HoleLookahead {
   std::atomic<bool> halt_{false};  // stop after the current hole
   // worker (read by the job after stop())
   std::vector<HolePrediction> pred_;
+  std::vector<std::string> text_;  // with format_: pred_[k]'s text
   std::size_t next_take_{0};
   bool taking_{true};
   std::thread worker_;

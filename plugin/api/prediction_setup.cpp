@@ -115,11 +115,13 @@ std::uintmax_t programBytes(const std::string& path) {
 /// once its program is read (a deferred job's holes add no diameters to it). Null when the cell
 /// has an error: the job reports it after reading its program, as without a lookahead.
 std::unique_ptr<HoleLookahead> startLookahead(const PredictionContext& c,
-                                              const std::string& uncertainty_override) {
+                                              const std::string& uncertainty_override,
+                                              const HoleFormatFactory& format_ahead) {
   try {
     PredictionModel m = buildPredictionModel(setupFromCell(c, uncertainty_override));
     if (const auto axes = fanucTurnAxesFromCell(c.cell)) m.config_options.fanuc_turn_axes = *axes;
-    return std::make_unique<HoleLookahead>(std::move(m), c.cell, c.robot, kLookaheadHoles);
+    return std::make_unique<HoleLookahead>(std::move(m), c.cell, c.robot, kLookaheadHoles,
+                                           format_ahead ? format_ahead(c) : HoleFormat());
   } catch (...) {
     return nullptr;
   }
@@ -131,8 +133,8 @@ PredictionContext loadPredictionContext(const std::string& cell_path, const std:
                                         const std::optional<std::string>& hole_list,
                                         const std::string& uncertainty_override,
                                         double match_tol_mm, bool load_holes, int threads,
-                                        bool defer_setup,
-                                        std::unique_ptr<HoleLookahead>* lookahead) {
+                                        bool defer_setup, std::unique_ptr<HoleLookahead>* lookahead,
+                                        const HoleFormatFactory& format_ahead) {
   PredictionContext c;
   c.cell = loadCell(cell_path);
   try {
@@ -158,7 +160,7 @@ PredictionContext loadPredictionContext(const std::string& cell_path, const std:
   }
   if (lookahead && load_holes && defer_setup && !hole_list && threads > 1 &&
       programBytes(job_path) <= kLookaheadProgramBytes)
-    *lookahead = startLookahead(c, uncertainty_override);
+    *lookahead = startLookahead(c, uncertainty_override, format_ahead);
   if (load_holes) {
     HoleLookahead* ahead = lookahead ? lookahead->get() : nullptr;
     c.job = loadJobHoles(job_path, c.cell, c.robot, hole_list, match_tol_mm, threads, defer_setup,
