@@ -23,6 +23,7 @@
 //   condition number: "internal error"); such a hole lies 300 mm from its nominal one;
 // * a cell without its <workobject> with a program that states its own base frame and a hole
 //   list: every hole 1.3 m off its hole-list axis, matched by id without a word.
+// Seed 31: a robot card's j23_coupling of 1e300; a milling cell's coupling compliance of 1e300.
 // Seed 24: a TP motion to `P[inf]` (and so to `P[R[4]]` or `PR[3]`) went to no position without a
 // word, and the hole it approached dropped out of the job.
 #include <gtest/gtest.h>
@@ -189,6 +190,40 @@ TEST(MutationRegression, CardStiffnessOf1e300IsAnError) {
   EXPECT_NE(r.err.find("stiffness must be in [100, 1e12] N m/rad, got 1e-300"), std::string::npos)
       << r.err;
   EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+}
+
+// Seed 31: a robot card's j23_coupling of 1e300 was accepted (every controller J3 of `fk` and of
+// the outputs 1e300 × J2), and a milling cell's <coupling compliance_um_per_N> of 1e300 overflowed
+// the coupling to inf ("internal error" in `forces`).
+TEST(MutationRegression, AJ23CouplingOtherThanOneToOneAndAnAbsurdCouplingComplianceAreErrors) {
+  for (const char* bad : {"1e300", "0.5", "-2"}) {
+    const std::string dir = mutatedKr120("robot.xml", "<controller", "j23_coupling=\"0\"",
+                                         std::string("j23_coupling=\"") + bad + "\"");
+    const std::string what = cardError(dir + "/robot.xml");
+    EXPECT_NE(what.find("robot.xml:"), std::string::npos) << what;
+    EXPECT_NE(what.find("j23_coupling must be -1, 0 or 1"), std::string::npos) << what;
+  }
+  for (const char* good : {"-1", "1"}) {
+    const std::string dir = mutatedKr120("robot.xml", "<controller", "j23_coupling=\"0\"",
+                                         std::string("j23_coupling=\"") + good + "\"");
+    EXPECT_EQ(cardError(dir + "/robot.xml"), "(accepted)") << good;
+  }
+  std::string cell = test::readFile(sample("cells/alu-milling-7075.xml"));
+  const std::string from = "compliance_um_per_N=\"1 0 0  0 1 0  0 0 0.5\"";
+  const std::size_t at = cell.find(from);
+  ASSERT_NE(at, std::string::npos);
+  cell.replace(at, from.size(), "compliance_um_per_N=\"1e300 0 0  0 1 0  0 0 0.5\"");
+  const std::string dir = test::tempDir("mutation-coupling");
+  test::writeFile(dir + "/cell.xml", cell);
+  const auto r =
+      test::runRoprec("forces --cell " + q(dir + "/cell.xml") + " --json " + q(dir + "/f.json"));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("cell.xml:16: <coupling> compliance_um_per_N entry 1 = 1e+300 is outside "
+                       "the plausible range"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir + "/f.json"));
 }
 
 std::string cellError(const std::string& from, const std::string& to) {

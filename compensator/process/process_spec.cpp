@@ -55,6 +55,11 @@ std::optional<double> optionalAt(const XmlNode& e, const std::string& attr, doub
   return (strictly_positive ? positive(e, attr, 0, false) : nonNegative(e, attr, 0)) * scale;
 }
 
+/// Largest plausible entry of <coupling compliance_um_per_N> (um/N): 1 mm/N. A robot at the
+/// tool is ~0.1-10 um/N; the bound still admits unphysical cells whose coupling diverges (reported
+/// per point), not numbers that overflow.
+constexpr double kMaxCouplingCompliance = 1000.0;
+
 /// Refuses a value (in the file's unit) outside the plausible [lo, hi]: a corrupted number such
 /// as stickout_mm="1e-300" would otherwise silently remove the tool's compliance.
 void plausible(const XmlNode& e, const std::string& attr, double lo, double hi,
@@ -358,6 +363,15 @@ void parseMilling(const XmlNode& proc, MillingSpec& s) {
     }
     if (cp->has("compliance_um_per_N")) {
       const Eigen::VectorXd v = cp->numbers("compliance_um_per_N", 9);
+      for (Eigen::Index k = 0; k < v.size(); ++k) {
+        if (!(std::abs(v[k]) <= kMaxCouplingCompliance)) {
+          cp->fail("<coupling> compliance_um_per_N entry " + std::to_string(k + 1) + " = " +
+                   numberText(v[k]) + " is outside the plausible range -" +
+                   numberText(kMaxCouplingCompliance) + " .. " +
+                   numberText(kMaxCouplingCompliance) +
+                   " um/N (1 mm/N is softer than any machining set-up)");
+        }
+      }
       Mat3 C;
       C << v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8];
       s.compliance = C * 1e-6;

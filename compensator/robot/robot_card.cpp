@@ -270,6 +270,12 @@ RobotCard loadRobotCard(const std::string& path) {
       c->fail("calibration_load_kg must be >= 0, got " + c->str("calibration_load_kg"));
     card.calibration_load_com = c->vec3("calibration_load_com_mm", Vec3::Zero()) * 1e-3;
     card.j23_coupling = c->number("j23_coupling", 0.0);
+    if (card.j23_coupling != 0.0 && card.j23_coupling != 1.0 && card.j23_coupling != -1.0) {
+      c->fail(
+          "j23_coupling must be -1, 0 or 1 (a parallel linkage couples J3 to J2 one to one; "
+          "FANUC: -controller_sign of J2, every other vendor 0), got " +
+          c->str("j23_coupling"));
+    }
     if (c->has("calibration_pose_deg")) {
       cal_deg = c->numbers("calibration_pose_deg", 6);
       card.calibration_pose_source = c->str("calibration_pose_source", "");
