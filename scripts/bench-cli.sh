@@ -12,15 +12,16 @@
 #
 #   scripts/bench-cli.sh [ROPREC_BINARY]     (default build/bin/roprec)
 #
-# Measured 2026-11-24 20:32 on the 2-core machine with no other build running
+# Measured 2026-11-24 23:05 on the 2-core machine with no other build running
 # (scripts/bench-table.sh, best of 5; README "Performance" has the history):
-#   predict 10,000 holes      0.176 s / 42 MB (1 thread), 0.129 s / 46 MB (2): 1.37x
-#   compensate 10,000 holes   0.981 s / 109 MB (1 thread), 0.570 s (2): 1.72x
-#   predict 100,000 holes     1.57 s / 193 MB (1 thread), 1.25 s / 193 MB (2)
+#   predict 10,000 holes      0.138 s / 42 MB (1 thread), 0.096 s / 47 MB (2): 1.44x
+#   compensate 10,000 holes   0.712 s / 109 MB (1 thread), 0.418 s (2): 1.70x
+#   predict 100,000 holes     1.23 s / 193 MB (1 thread), 0.98 s / 193 MB (2)
 # every output byte-identical for 1 and 2 threads. Wall times of a 2-thread run depend on the
 # second core being free: with other builds running, the speed-ups drop to ~1.0x.
 # The last column is user + system CPU: about the same for 1 and 2 threads (predict with 2
-# threads also sets up the first 4,096 holes while the program is read: a few ms more).
+# threads also sets up the first 4,096 holes while the program is read and copies their JSON
+# texts: ~10 ms more).
 #
 # BENCH_SIZES  hole counts (default "1000 10000 100000")
 # BENCH_COMPENSATE_MAX  largest job that is also compensated (default 10000)

@@ -24,6 +24,7 @@
 // * a cell without its <workobject> with a program that states its own base frame and a hole
 //   list: every hole 1.3 m off its hole-list axis, matched by id without a word.
 // Seed 31: a robot card's j23_coupling of 1e300; a milling cell's coupling compliance of 1e300.
+// Seed 34: a milling cutter's diameter of 1e300 mm (forces wrote it, exit 0).
 // Seed 24: a TP motion to `P[inf]` (and so to `P[R[4]]` or `PR[3]`) went to no position without a
 // word, and the hole it approached dropped out of the job.
 #include <gtest/gtest.h>
@@ -224,6 +225,28 @@ TEST(MutationRegression, AJ23CouplingOtherThanOneToOneAndAnAbsurdCouplingComplia
       << r.err;
   EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir + "/f.json"));
+  // seed 34: a milling cutter of 1e300 mm was accepted (forces wrote its 300-digit diameter and
+  // the forces of that cutter, exit 0); the drill's diameter had no bound either
+  std::string mill = test::readFile(sample("cells/alu-milling-7075.xml"));
+  mill.replace(mill.find("<mill diameter_mm=\"10\""), 22, "<mill diameter_mm=\"1e300\"");
+  test::writeFile(dir + "/mill.xml", mill);
+  const auto m = test::runRoprec("forces --cell " + q(dir + "/mill.xml"));
+  EXPECT_EQ(m.exit_code, 2) << m.err;
+  EXPECT_NE(m.err.find("mill.xml:13: <mill> diameter_mm = 1e+300 is outside the plausible range "
+                       "0.1 .. 200 (cutter diameter, mm)"),
+            std::string::npos)
+      << m.err;
+  std::string drill = test::readFile(sample("cells/alu-drilling-7075-dc8.xml"));
+  const std::string from_d = "<drill diameter_mm=\"8\"";
+  ASSERT_NE(drill.find(from_d), std::string::npos);
+  drill.replace(drill.find(from_d), from_d.size(), "<drill diameter_mm=\"1e300\"");
+  test::writeFile(dir + "/drill.xml", drill);
+  const auto d = test::runRoprec("forces --cell " + q(dir + "/drill.xml"));
+  EXPECT_EQ(d.exit_code, 2) << d.err;
+  EXPECT_NE(d.err.find("drill.xml:9: <drill> diameter_mm = 1e+300 is outside the plausible range "
+                       "0.1 .. 100 (twist drill diameter, mm)"),
+            std::string::npos)
+      << d.err;
 }
 
 std::string cellError(const std::string& from, const std::string& to) {

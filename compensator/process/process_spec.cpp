@@ -158,6 +158,7 @@ void parseDrilling(const XmlNode& proc, DrillingSpec& s) {
           "runout_mm", "tool_material", "stickout_mm", "angle_law", "working_angles"});
   DrillGeometry& g = s.geometry;
   g.diameter = positive(d, "diameter_mm", 0, false) * kMm;
+  plausible(d, "diameter_mm", 0.1, 100.0, "twist drill diameter, mm");
   g.point_angle = d.number("point_angle_deg", 118.0) * kDeg;
   g.helix_angle = d.number("helix_angle_deg", 30.0) * kDeg;
   g.web_thickness = d.number("web_mm", 0.16 * g.diameter / kMm) * kMm;
@@ -278,6 +279,7 @@ void parseMilling(const XmlNode& proc, MillingSpec& s) {
   const XmlNode& t = required(proc, "mill", "cutter geometry");
   allowOnly(t, {"diameter_mm", "teeth", "helix_angle_deg", "runout_mm", "runout_angle_deg"});
   s.tool.diameter = positive(t, "diameter_mm", 0, false) * kMm;
+  plausible(t, "diameter_mm", 0.1, 200.0, "cutter diameter, mm");
   const double teeth = t.number("teeth", 3.0);
   if (!(teeth >= 1 && teeth <= 12 && teeth == std::floor(teeth)))
     t.fail("<mill> teeth must be an integer 1..12");

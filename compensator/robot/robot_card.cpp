@@ -29,7 +29,7 @@ bool endsWith(const std::string& s, const std::string& suffix) {
 }
 
 std::string requireSource(const XmlNode& e) {
-  const std::string src = e.str("source", "");
+  std::string src = e.str("source", "");
   if (src.empty()) e.fail("<" + e.name + "> needs a source= for its numbers");
   return src;
 }
@@ -447,13 +447,14 @@ void requireGravityModel(const Robot& robot) {
     if (robot.chain.inertials[static_cast<size_t>(i)].mass > 0) continue;
     const std::string& link = robot.chain.joints[static_cast<size_t>(i)].child_link;
     const std::string where = robot.card.file.empty() ? "a robot card" : robot.card.file;
-    throw InputError(robot.chain.file, urdfLinkLine(robot.chain.file, link),
-                     "link '" + link + "' (moved by joint '" +
-                         robot.chain.joints[static_cast<size_t>(i)].name +
-                         "') has no <inertial> mass, so its weight cannot be modelled; hint: give "
-                         "<link name=\"" +
-                         link + "\" mass_kg=\"...\" com_mm=\"x y z\" source=\"...\"/> in " + where +
-                         ", or declare <gravity model=\"none\" source=\"...\"/> there");
+    std::string msg = "link '" + link + "' (moved by joint '";
+    msg += robot.chain.joints[static_cast<size_t>(i)].name;
+    msg += "') has no <inertial> mass, so its weight cannot be modelled; hint: give <link name=\"";
+    msg += link;
+    msg += "\" mass_kg=\"...\" com_mm=\"x y z\" source=\"...\"/> in ";
+    msg += where;
+    msg += ", or declare <gravity model=\"none\" source=\"...\"/> there";
+    throw InputError(robot.chain.file, urdfLinkLine(robot.chain.file, link), msg);
   }
 }
 

@@ -23,7 +23,7 @@
 namespace roprec::api {
 
 class HoleLookahead;
-/// Holes a lookahead predicts at most (about 7 MB of requests and predictions held).
+/// Holes a lookahead predicts at most (about 16 MB of requests, predictions and JSON texts held).
 inline constexpr std::size_t kLookaheadHoles = 4096;
 /// Programs larger than this (~45,000 drill cycles of 7 lines) are read without a lookahead:
 /// its memory would add to the read's peak (a 36 MB program: ~190 MB) for a few per cent of
