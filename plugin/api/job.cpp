@@ -547,6 +547,13 @@ PredictionResult predictJobStreaming(
 
 CompensationResult compensateJob(const std::string& cell_path, const std::string& program_path,
                                  const CompensationJob& job, const ProgressFn& progress) {
+  CompensationResult r = compensateJobHoles(cell_path, program_path, job, progress);
+  editCompensatedProgram(r, job);
+  return r;
+}
+
+CompensationResult compensateJobHoles(const std::string& cell_path, const std::string& program_path,
+                                      const CompensationJob& job, const ProgressFn& progress) {
   CompensationResult r;
   r.context = loadContext(cell_path, program_path, job.job);
   if (!r.context.job.program) throw InputError(program_path, 0, "not a program roprec can rewrite");
@@ -559,7 +566,11 @@ CompensationResult compensateJob(const std::string& cell_path, const std::string
   if (progress) progress(r.holes.size(), r.holes.size());
   r.failed = static_cast<int>(
       std::count_if(r.holes.begin(), r.holes.end(), [](const auto& h) { return !h.ok; }));
-  r.refused = editProgram(r, options.threads);
+  return r;
+}
+
+void editCompensatedProgram(CompensationResult& r, const CompensationJob& job) {
+  r.refused = editProgram(r, resolvedThreads(job.job.threads));
   postproc::markCompensated(*r.context.job.program, markerText(r.context.cell, r.orientation));
   r.summary = compensationStats(r, job.options.jump_threshold);
   r.writable = true;
@@ -574,7 +585,6 @@ CompensationResult compensateJob(const std::string& cell_path, const std::string
     r.why_not_writable =
         "the writer refused " + std::to_string(r.refused.size()) + " target edits; nothing written";
   }
-  return r;
 }
 
 bool cellIsMilling(const std::string& cell_path) {

@@ -160,8 +160,19 @@ struct CompensationResult {
 
 /// Compensates every hole of a drilling program (a milling cell: see compensateMillingJob).
 /// Throws InputError/UsageError on bad input (a hole list is not a program to rewrite).
+/// compensateJobHoles then editCompensatedProgram.
 CompensationResult compensateJob(const std::string& cell_path, const std::string& program_path,
                                  const CompensationJob& job = {}, const ProgressFn& progress = {});
+/// compensateJob's first stage: the job loaded and its holes compensated (`holes`, `failed`,
+/// `orientation`, `stats` final; the program not yet edited). What depends on the holes alone
+/// (the targets export) can be written from here on, on another thread, while the second stage
+/// edits the program: that stage writes only the program, `refused`, `summary`, `writable` and
+/// `why_not_writable`.
+CompensationResult compensateJobHoles(const std::string& cell_path, const std::string& program_path,
+                                      const CompensationJob& job, const ProgressFn& progress = {});
+/// compensateJob's second stage: every compensated hole's targets edited in the program, the
+/// compensation marker, the before/after summary and whether the program may be written.
+void editCompensatedProgram(CompensationResult& r, const CompensationJob& job);
 
 /// Milling path compensation (every linear path point, coupled force iteration).
 struct MillingCompensationResult {

@@ -109,27 +109,34 @@ std::optional<std::array<int, 3>> parseTurnAxes(const std::optional<std::string>
 /// own, handed to the caller's set (ScopedOutputSet, the CLI's all-or-nothing commit) after the
 /// program's outputs, so the files, their bytes and the commit order are those of one thread.
 /// Waits for every writer before rethrowing the first error (program, targets, report).
+/// `targets_started`: the targets writer already started by stagedApart (then `targets` is not
+/// run again).
+using StagedOutputs = std::future<std::unique_ptr<OutputSet>>;
+
+/// Runs `write` on a task of its own, staging into a set of its own (see writeOutputsTogether).
+StagedOutputs stagedApart(const std::function<void()>& write) {
+  return std::async(std::launch::async, [write] {
+    auto set = std::make_unique<OutputSet>();
+    const ScopedOutputSet scope(*set);
+    write();
+    return set;
+  });
+}
+
 std::vector<std::string> writeOutputsTogether(
     int threads, bool distinct_paths, const std::function<std::vector<std::string>()>& program,
-    const std::function<void()>& targets, const std::function<void()>& report) {
-  if (threads <= 1 || !distinct_paths || (!targets && !report)) {
+    const std::function<void()>& targets, const std::function<void()>& report,
+    StagedOutputs targets_started = {}) {
+  if (!targets_started.valid() && (threads <= 1 || !distinct_paths || (!targets && !report))) {
     std::vector<std::string> written = program();
     if (targets) targets();
     if (report) report();
     return written;
   }
-  auto staged = [](const std::function<void()>& write) {
-    return std::async(std::launch::async, [write] {
-      auto set = std::make_unique<OutputSet>();
-      const ScopedOutputSet scope(*set);
-      write();
-      return set;
-    });
-  };
-  std::future<std::unique_ptr<OutputSet>> t;
-  std::future<std::unique_ptr<OutputSet>> rep;
-  if (targets) t = staged(targets);
-  if (report) rep = staged(report);
+  StagedOutputs t = std::move(targets_started);
+  StagedOutputs rep;
+  if (targets && !t.valid()) t = stagedApart(targets);
+  if (report) rep = stagedApart(report);
   std::vector<std::string> written;
   std::exception_ptr first;
   try {
@@ -137,7 +144,7 @@ std::vector<std::string> writeOutputsTogether(
   } catch (...) {
     first = std::current_exception();
   }
-  for (std::future<std::unique_ptr<OutputSet>>* f : {&t, &rep}) {
+  for (StagedOutputs* f : {&t, &rep}) {
     if (!f->valid()) continue;
     try {
       std::unique_ptr<OutputSet> set = f->get();
@@ -227,7 +234,36 @@ int run(Args& args, CommandContext& ctx) {
   if (cellIsMilling(*cell))
     return runMillingPath(ctx, *cell, pos[0], *out, targets, report, job.force);
 
-  CompensationResult r = compensateJob(*cell, pos[0], job);
+  const int threads = resolvedThreads(job.job.threads);
+  CompensationResult r = compensateJobHoles(*cell, pos[0], job);
+  std::vector<std::string> extra;  // checked against the inputs before anything is staged
+  if (targets) extra.push_back(*targets);
+  if (report) extra.push_back(*report);
+  const bool csv = targets && targets->size() > 4 && targets->substr(targets->size() - 4) == ".csv";
+  auto writeTargets = [&] {  // written hole by hole into its staged file
+    writeFileAtomicStream(*targets, [&](const ByteWriter& write) {
+      writeCompensationTargets(r, pos[0], csv, write, threads);
+    });
+  };
+  std::vector<std::string> outs = postproc::outputPaths(*r.context.job.program, *out);
+  outs.insert(outs.end(), extra.begin(), extra.end());
+  std::sort(outs.begin(), outs.end());
+  const bool distinct = std::adjacent_find(outs.begin(), outs.end()) == outs.end();
+  // With more than one thread the targets export (the holes' results alone) is written while
+  // the program is edited, into a set of its own taken over only when the program may be written
+  // (the same files, bytes and commit order). An output that would overwrite an input is left to
+  // the checks below (their errors in their order).
+  StagedOutputs targets_started;
+  if (threads > 1 && targets && distinct) {
+    bool safe = true;
+    try {
+      refuseOverwritingInput(*r.context.job.program, extra);
+    } catch (const UsageError&) {
+      safe = false;
+    }
+    if (safe) targets_started = stagedApart(writeTargets);
+  }
+  editCompensatedProgram(r, job);
   printJobNotes(ctx, r.context.job.notes);
   for (size_t i = 0; i < r.holes.size(); ++i) {
     if (r.holes[i].ok) continue;
@@ -238,29 +274,22 @@ int run(Args& args, CommandContext& ctx) {
   }
   for (const auto& x : r.refused) ctx.err << "roprec: " << x << "\n";
   if (!r.writable) {
+    if (targets_started.valid()) {
+      try {
+        (void)targets_started.get();  // its temporaries are removed with its set
+      } catch (...) {
+        // nothing is written: a targets export that could not be staged either says no more
+      }
+    }
     ctx.err << "roprec: " << r.why_not_writable << "\n";
     return 1;
   }
-  std::vector<std::string> extra;  // checked against the inputs before anything is staged
-  if (targets) extra.push_back(*targets);
-  if (report) extra.push_back(*report);
   refuseOverwritingInput(*r.context.job.program, extra);
-  const bool csv = targets && targets->size() > 4 && targets->substr(targets->size() - 4) == ".csv";
-  auto writeTargets = [&] {  // written hole by hole into its staged file
-    writeFileAtomicStream(*targets, [&](const ByteWriter& write) {
-      writeCompensationTargets(r, pos[0], csv, write, resolvedThreads(job.job.threads));
-    });
-  };
   auto writeReport = [&] { writeFileAtomic(*report, compensationReport(r, pos[0])); };
-  std::vector<std::string> outs = postproc::outputPaths(*r.context.job.program, *out);
-  outs.insert(outs.end(), extra.begin(), extra.end());
-  std::sort(outs.begin(), outs.end());
-  const bool distinct = std::adjacent_find(outs.begin(), outs.end()) == outs.end();
   std::vector<std::string> written = writeOutputsTogether(
-      resolvedThreads(job.job.threads), distinct,
-      [&] { return writeCompensatedProgram(r.context, *out, {}); },
+      threads, distinct, [&] { return writeCompensatedProgram(r.context, *out, {}); },
       targets ? std::function<void()>(writeTargets) : nullptr,
-      report ? std::function<void()>(writeReport) : nullptr);
+      report ? std::function<void()>(writeReport) : nullptr, std::move(targets_started));
   if (targets) written.push_back(*targets);
   if (report) written.push_back(*report);
   if (!ctx.quiet) printSummary(ctx, r, job.options, written);
