@@ -209,44 +209,36 @@ TEST(MutationRegression, AJ23CouplingOtherThanOneToOneAndAnAbsurdCouplingComplia
                                          std::string("j23_coupling=\"") + good + "\"");
     EXPECT_EQ(cardError(dir + "/robot.xml"), "(accepted)") << good;
   }
-  std::string cell = test::readFile(sample("cells/alu-milling-7075.xml"));
-  const std::string from = "compliance_um_per_N=\"1 0 0  0 1 0  0 0 0.5\"";
-  const std::size_t at = cell.find(from);
-  ASSERT_NE(at, std::string::npos);
-  cell.replace(at, from.size(), "compliance_um_per_N=\"1e300 0 0  0 1 0  0 0 0.5\"");
-  const std::string dir = test::tempDir("mutation-coupling");
-  test::writeFile(dir + "/cell.xml", cell);
-  const auto r =
-      test::runRoprec("forces --cell " + q(dir + "/cell.xml") + " --json " + q(dir + "/f.json"));
-  EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_NE(r.err.find("cell.xml:16: <coupling> compliance_um_per_N entry 1 = 1e+300 is outside "
-                       "the plausible range"),
-            std::string::npos)
-      << r.err;
-  EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
-  EXPECT_FALSE(fs::exists(dir + "/f.json"));
+  // the milling and drilling samples with one number corrupted, through `forces`: exit 2 at the
+  // number's line, no "internal error", nothing written
+  const std::string dir = test::tempDir("mutation-process");
+  auto forcesWith = [&](const std::string& cell, const std::string& from, const std::string& to,
+                        const std::string& expected) {
+    std::string text = test::readFile(sample("cells/" + cell));
+    const std::size_t at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+    test::writeFile(dir + "/cell.xml", text);
+    const auto r =
+        test::runRoprec("forces --cell " + q(dir + "/cell.xml") + " --json " + q(dir + "/f.json"));
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find(expected), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir + "/f.json"));
+  };
+  forcesWith("alu-milling-7075.xml", "compliance_um_per_N=\"1 0 0",
+             "compliance_um_per_N=\"1e300 0 0",
+             "cell.xml:16: <coupling> compliance_um_per_N entry 1 = 1e+300 is outside the "
+             "plausible range");
   // seed 34: a milling cutter of 1e300 mm was accepted (forces wrote its 300-digit diameter and
   // the forces of that cutter, exit 0); the drill's diameter had no bound either
-  std::string mill = test::readFile(sample("cells/alu-milling-7075.xml"));
-  mill.replace(mill.find("<mill diameter_mm=\"10\""), 22, "<mill diameter_mm=\"1e300\"");
-  test::writeFile(dir + "/mill.xml", mill);
-  const auto m = test::runRoprec("forces --cell " + q(dir + "/mill.xml"));
-  EXPECT_EQ(m.exit_code, 2) << m.err;
-  EXPECT_NE(m.err.find("mill.xml:13: <mill> diameter_mm = 1e+300 is outside the plausible range "
-                       "0.1 .. 200 (cutter diameter, mm)"),
-            std::string::npos)
-      << m.err;
-  std::string drill = test::readFile(sample("cells/alu-drilling-7075-dc8.xml"));
-  const std::string from_d = "<drill diameter_mm=\"8\"";
-  ASSERT_NE(drill.find(from_d), std::string::npos);
-  drill.replace(drill.find(from_d), from_d.size(), "<drill diameter_mm=\"1e300\"");
-  test::writeFile(dir + "/drill.xml", drill);
-  const auto d = test::runRoprec("forces --cell " + q(dir + "/drill.xml"));
-  EXPECT_EQ(d.exit_code, 2) << d.err;
-  EXPECT_NE(d.err.find("drill.xml:9: <drill> diameter_mm = 1e+300 is outside the plausible range "
-                       "0.1 .. 100 (twist drill diameter, mm)"),
-            std::string::npos)
-      << d.err;
+  forcesWith("alu-milling-7075.xml", "<mill diameter_mm=\"10\"", "<mill diameter_mm=\"1e300\"",
+             "cell.xml:13: <mill> diameter_mm = 1e+300 is outside the plausible range 0.1 .. 200 "
+             "(cutter diameter, mm)");
+  forcesWith("alu-drilling-7075-dc8.xml", "<drill diameter_mm=\"8\"",
+             "<drill diameter_mm=\"1e300\"",
+             "cell.xml:9: <drill> diameter_mm = 1e+300 is outside the plausible range 0.1 .. 100 "
+             "(twist drill diameter, mm)");
 }
 
 std::string cellError(const std::string& from, const std::string& to) {
