@@ -12,11 +12,11 @@
 #
 #   scripts/bench-cli.sh [ROPREC_BINARY]     (default build/bin/roprec)
 #
-# Measured 2026-11-24 23:05 on the 2-core machine with no other build running
+# Measured 2026-11-24 23:38 on the 2-core machine with no other build running
 # (scripts/bench-table.sh, best of 5; README "Performance" has the history):
-#   predict 10,000 holes      0.138 s / 42 MB (1 thread), 0.096 s / 47 MB (2): 1.44x
-#   compensate 10,000 holes   0.712 s / 109 MB (1 thread), 0.418 s (2): 1.70x
-#   predict 100,000 holes     1.23 s / 193 MB (1 thread), 0.98 s / 193 MB (2)
+#   predict 10,000 holes      0.135 s / 42 MB (1 thread), 0.093 s / 48 MB (2): 1.45x
+#   compensate 10,000 holes   0.704 s / 109 MB (1 thread), 0.409 s (2): 1.72x
+#   predict 100,000 holes     1.22 s / 193 MB (1 thread), 0.96 s / 193 MB (2)
 # every output byte-identical for 1 and 2 threads. Wall times of a 2-thread run depend on the
 # second core being free: with other builds running, the speed-ups drop to ~1.0x.
 # The last column is user + system CPU: about the same for 1 and 2 threads (predict with 2
