@@ -168,6 +168,23 @@ TEST(CompensationGuard, OutputEqualToTheInputIsRefused) {
   EXPECT_EQ(d.exit_code, 2) << d.err;
   EXPECT_FALSE(fs::exists(dir + "/ok.src"));
   EXPECT_EQ(test::readFile(in), before);
+  // with two threads (the targets export is staged while the program is edited): the same
+  // refusals, nothing written
+  const auto b2 = test::runRoprec("compensate --cell '" + kr120Cell() + "' '" + in + "' -o '" +
+                                  dir + "/link.src' --targets '" + dir + "/t.json' --threads 2");
+  EXPECT_EQ(b2.exit_code, 2) << b2.err;
+  EXPECT_NE(b2.err.find("is the input file"), std::string::npos) << b2.err;
+  EXPECT_FALSE(fs::exists(dir + "/t.json"));
+  const auto d2 =
+      test::runRoprec("compensate --cell '" + kr120Cell() + "' '" + in + "' -o '" + dir +
+                      "/ok.src' --targets '" + dir + "/t.json' --report '" + in + "' --threads 2");
+  EXPECT_EQ(d2.exit_code, 2) << d2.err;
+  EXPECT_NE(d2.err.find("is the input file"), std::string::npos) << d2.err;
+  EXPECT_FALSE(fs::exists(dir + "/ok.src"));
+  EXPECT_FALSE(fs::exists(dir + "/t.json"));
+  EXPECT_EQ(test::readFile(in), before);
+  for (const auto& e : fs::directory_iterator(dir))
+    EXPECT_EQ(e.path().filename().string().find(".roprec-tmp."), std::string::npos) << e.path();
 }
 
 // ---- frames and tools the program and the cell disagree on, or only the controller knows

@@ -103,14 +103,7 @@ std::optional<std::array<int, 3>> parseTurnAxes(const std::optional<std::string>
   return a;
 }
 
-/// Runs `program` (which returns the paths it wrote) and the optional `targets` and `report`
-/// writers: one after the other with one thread (or when two outputs share a path), else at the
-/// same time — they only read the result. A writer on another thread stages into a set of its
-/// own, handed to the caller's set (ScopedOutputSet, the CLI's all-or-nothing commit) after the
-/// program's outputs, so the files, their bytes and the commit order are those of one thread.
-/// Waits for every writer before rethrowing the first error (program, targets, report).
-/// `targets_started`: the targets writer already started by stagedApart (then `targets` is not
-/// run again).
+/// What a writer on a task of its own staged (stagedApart).
 using StagedOutputs = std::future<std::unique_ptr<OutputSet>>;
 
 /// Runs `write` on a task of its own, staging into a set of its own (see writeOutputsTogether).
@@ -123,6 +116,14 @@ StagedOutputs stagedApart(const std::function<void()>& write) {
   });
 }
 
+/// Runs `program` (which returns the paths it wrote) and the optional `targets` and `report`
+/// writers: one after the other with one thread (or when two outputs share a path), else at the
+/// same time — they only read the result. A writer on another thread stages into a set of its
+/// own, handed to the caller's set (ScopedOutputSet, the CLI's all-or-nothing commit) after the
+/// program's outputs, so the files, their bytes and the commit order are those of one thread.
+/// Waits for every writer before rethrowing the first error (program, targets, report).
+/// `targets_started`: the targets writer already started by stagedApart (then `targets` is not
+/// run again).
 std::vector<std::string> writeOutputsTogether(
     int threads, bool distinct_paths, const std::function<std::vector<std::string>()>& program,
     const std::function<void()>& targets, const std::function<void()>& report,
@@ -251,18 +252,16 @@ int run(Args& args, CommandContext& ctx) {
   const bool distinct = std::adjacent_find(outs.begin(), outs.end()) == outs.end();
   // With more than one thread the targets export (the holes' results alone) is written while
   // the program is edited, into a set of its own taken over only when the program may be written
-  // (the same files, bytes and commit order). An output that would overwrite an input is left to
-  // the checks below (their errors in their order).
-  StagedOutputs targets_started;
-  if (threads > 1 && targets && distinct) {
-    bool safe = true;
-    try {
-      refuseOverwritingInput(*r.context.job.program, extra);
-    } catch (const UsageError&) {
-      safe = false;
-    }
-    if (safe) targets_started = stagedApart(writeTargets);
+  // (the same files, bytes and commit order).
+  std::exception_ptr overwrites_input;  // thrown where it was before: after the job's messages
+  try {
+    refuseOverwritingInput(*r.context.job.program, extra);
+  } catch (const UsageError&) {
+    overwrites_input = std::current_exception();
   }
+  StagedOutputs targets_started;  // dropped with its set (no file) unless taken over below
+  if (threads > 1 && targets && distinct && !overwrites_input)
+    targets_started = stagedApart(writeTargets);
   editCompensatedProgram(r, job);
   printJobNotes(ctx, r.context.job.notes);
   for (size_t i = 0; i < r.holes.size(); ++i) {
@@ -274,17 +273,10 @@ int run(Args& args, CommandContext& ctx) {
   }
   for (const auto& x : r.refused) ctx.err << "roprec: " << x << "\n";
   if (!r.writable) {
-    if (targets_started.valid()) {
-      try {
-        (void)targets_started.get();  // its temporaries are removed with its set
-      } catch (...) {
-        // nothing is written: a targets export that could not be staged either says no more
-      }
-    }
     ctx.err << "roprec: " << r.why_not_writable << "\n";
     return 1;
   }
-  refuseOverwritingInput(*r.context.job.program, extra);
+  if (overwrites_input) std::rethrow_exception(overwrites_input);
   auto writeReport = [&] { writeFileAtomic(*report, compensationReport(r, pos[0])); };
   std::vector<std::string> written = writeOutputsTogether(
       threads, distinct, [&] { return writeCompensatedProgram(r.context, *out, {}); },
