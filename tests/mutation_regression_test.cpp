@@ -24,7 +24,8 @@
 // * a cell without its <workobject> with a program that states its own base frame and a hole
 //   list: every hole 1.3 m off its hole-list axis, matched by id without a word.
 // Seed 31: a robot card's j23_coupling of 1e300; a milling cell's coupling compliance of 1e300.
-// Seed 34: a milling cutter's diameter of 1e300 mm (forces wrote it, exit 0).
+// Seed 34: a milling cutter's diameter of 1e300 mm (forces wrote it, exit 0). Seeds 44 and 45: a
+// milling cutter's runout angle of 1e300 deg.
 // Seed 24: a TP motion to `P[inf]` (and so to `P[R[4]]` or `PR[3]`) went to no position without a
 // word, and the hole it approached dropped out of the job.
 #include <gtest/gtest.h>
@@ -235,6 +236,11 @@ TEST(MutationRegression, AJ23CouplingOtherThanOneToOneAndAnAbsurdCouplingComplia
   forcesWith("alu-milling-7075.xml", "<mill diameter_mm=\"10\"", "<mill diameter_mm=\"1e300\"",
              "cell.xml:13: <mill> diameter_mm = 1e+300 is outside the plausible range 0.1 .. 200 "
              "(cutter diameter, mm)");
+  // seeds 44 and 45: a runout angle of 1e300 deg was accepted (its cosine is whatever the
+  // reduction of 1e300 gives)
+  forcesWith("alu-milling-7075.xml", "runout_angle_deg=\"0\"", "runout_angle_deg=\"1e300\"",
+             "cell.xml:13: <mill> runout_angle_deg = 1e+300 is outside the plausible range -360 .. "
+             "360 (angle of the runout, deg)");
   forcesWith("alu-drilling-7075-dc8.xml", "<drill diameter_mm=\"8\"",
              "<drill diameter_mm=\"1e300\"",
              "cell.xml:9: <drill> diameter_mm = 1e+300 is outside the plausible range 0.1 .. 100 "

@@ -289,6 +289,7 @@ void parseMilling(const XmlNode& proc, MillingSpec& s) {
     t.fail("<mill> helix_angle_deg must lie in [0, 60)");
   s.tool.runout = nonNegative(t, "runout_mm", 0.0) * kMm;
   if (!(s.tool.runout < 0.05 * s.tool.diameter)) t.fail("<mill> runout_mm must be < 0.05 D");
+  plausible(t, "runout_angle_deg", -360.0, 360.0, "angle of the runout, deg");
   s.tool.runout_angle = t.number("runout_angle_deg", 0.0) * kDeg;
 
   const XmlNode& c = required(proc, "cut", "ap, ae, fz and mode");
