@@ -19,8 +19,8 @@
 /// predictions: take(k, request) hands hole k's prediction over only when the job's request k
 /// equals, bit for bit, the one it was predicted from, and every hole before it was handed over
 /// the same way. A prediction depends only on the model, the request and the seed (the previous
-/// admissible solution), and its text only on the prediction, the request and its index, so the
-/// bytes are those of a job predicted without a lookahead. A hole
+/// admissible solution), and its text only on the prediction, the request, its index and the
+/// job's robot card, so the bytes are those of a job predicted without a lookahead. A hole
 /// set up differently once the whole program is known (a base frame the job resolves after the
 /// read, say) ends the lookahead there; the rest is predicted as usual.
 ///
