@@ -2,9 +2,13 @@
 // solution (converged, in limits, not wrist/shoulder singular) with the smallest weighted joint
 // distance, ties to the first in the list. Every bundled robot and corpus URDF, random in-limit
 // targets with seeds near and far (other branches nearer, wrist flips, near-singular wrists,
-// seeds a turn away), a perturbed (non-exact) chain, and unreachable targets.
+// seeds a turn away), a perturbed (non-exact) chain, and unreachable targets; and with the
+// candidates computed ahead (ikCandidates, predictHoles' parallel stage): the same solution, bit
+// for bit, and candidates marked not valid where the reference chooses a joint (a singular wrist).
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <random>
@@ -131,6 +135,64 @@ TEST(IkNearest, SameChoiceAsTheFullListOnEveryRobot) {
   }
   EXPECT_GT(compared, 2000);
   RecordProperty("without_admissible", none);
+}
+
+TEST(IkNearest, CandidatesComputedAheadGiveTheSameSolutionBitForBit) {
+  const std::array<double, 6> w{1.0, 1.0, 1.0, 0.5, 0.5, 0.3};
+  auto r1 = std::make_unique<IkResult>();
+  auto r2 = std::make_unique<IkResult>();
+  auto cand = std::make_unique<IkCandidates>();
+  std::mt19937 rng(1515);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int compared = 0;
+  int singular = 0;
+  for (const Case& c : cases()) {
+    SCOPED_TRACE(c.name);
+    for (int n = 0; n < 200; ++n) {
+      Vec6 q;
+      for (int i = 0; i < 6; ++i) {
+        const ChainJoint& j = c.chain.joints[static_cast<size_t>(i)];
+        const double lo = std::max(j.lower, -2.0 * kPi);
+        const double hi = std::min(j.upper, 2.0 * kPi);
+        q[i] = lo + (hi - lo) * 0.5 * (1.0 + unit(rng));
+      }
+      if (n % 10 == 0) q[4] = 0.0;  // on the wrist singularity: the reference picks q4
+      if (n % 10 == 1) q[4] = 1e-6 * unit(rng);
+      Pose T = ikForwardKinematics(c.model, q);
+      if (n % 50 == 7) T.translation() *= 10.0;  // out of reach
+      Vec6 ref = q;
+      for (int i = 0; i < 6; ++i) ref[i] += (n % 2 ? 3.0 : 0.05) * unit(rng);
+      ikCandidates(c.model, T, *cand);
+      EXPECT_EQ(cand->valid && !c.model.deviation.exact, false);
+      singular += c.model.deviation.exact && !cand->valid ? 1 : 0;
+      IkSolution a;
+      IkSolution b;
+      const bool fa = solveIkNearest(c.model, T, ref, w, *r1, a);
+      const bool fb = solveIkNearest(c.model, T, ref, w, cand.get(), *r2, b);
+      ASSERT_EQ(fa, fb) << "n " << n;
+      if (!fa) {
+        EXPECT_EQ(r1->count, r2->count);
+        EXPECT_EQ(r1->failure, r2->failure);
+        EXPECT_EQ(std::bit_cast<std::uint64_t>(r1->failure_value),
+                  std::bit_cast<std::uint64_t>(r2->failure_value));
+        continue;
+      }
+      ++compared;
+      for (int i = 0; i < 6; ++i) {
+        EXPECT_EQ(std::bit_cast<std::uint64_t>(a.q[i]), std::bit_cast<std::uint64_t>(b.q[i]))
+            << "n " << n << " joint " << i;
+      }
+      EXPECT_EQ(a.branch.index(), b.branch.index());
+      EXPECT_EQ(a.turn, b.turn);
+      EXPECT_EQ(a.iterations, b.iterations);
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(a.residual.position),
+                std::bit_cast<std::uint64_t>(b.residual.position));
+      EXPECT_EQ(a.singular_wrist, b.singular_wrist);
+      EXPECT_EQ(a.singular_shoulder, b.singular_shoulder);
+    }
+  }
+  EXPECT_GT(compared, 1000);
+  EXPECT_GT(singular, 10);  // the fallback (candidates that depend on the reference) was taken
 }
 
 TEST(IkNearest, UnreachableTargetGivesTheFailure) {

@@ -166,9 +166,11 @@ nc::Loads processLoads(const PredictionModel& m, const ProcessAtDiameter* proc) 
 namespace {
 
 /// Step 1 (IK): the solution the hole's configuration selects, else the admissible one nearest
-/// `ref`. On failure p.status/verdict/reason say why and false is returned.
+/// `ref` (from `ahead`, the hole's IK candidates computed beforehand, when given). On failure
+/// p.status/verdict/reason say why and false is returned.
 bool chooseSolution(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
-                    const Pose& T_W_flange, const Vec6& ref, HolePrediction& p, IkSolution& sol) {
+                    const Pose& T_W_flange, const Vec6& ref, HolePrediction& p, IkSolution& sol,
+                    const IkCandidates* ahead = nullptr) {
   if (h.config) {
     ConfigurationMatch match;
     match.explain_inexact = false;  // reason read only when nothing is found (no allocation)
@@ -187,7 +189,7 @@ bool chooseSolution(const PredictionModel& m, PredictionData& d, const HoleReque
   // the admissible solution nearest ref; wrist joints weigh less: they move faster and matter
   // less for the arm posture
   static constexpr std::array<double, 6> kWeights{1.0, 1.0, 1.0, 0.5, 0.5, 0.3};
-  if (solveIkNearest(m.ik, T_W_flange, ref, kWeights, d.ik, sol)) return true;
+  if (solveIkNearest(m.ik, T_W_flange, ref, kWeights, ahead, d.ik, sol)) return true;
   p.status = HoleStatus::kUnreachable;
   p.verdict = Verdict::kUnreachable;
   if (d.ik.count == 0) {
@@ -436,6 +438,11 @@ std::vector<HolePrediction> predictHoles(const PredictionModel& m,
   return out;
 }
 
+namespace {
+/// Holes whose IK candidates predictHoles computes ahead at a time (~0.4 kB each).
+constexpr size_t kIkCandidateChunk = 4096;
+}  // namespace
+
 void predictHoles(const PredictionModel& m, std::span<const HoleRequest> holes,
                   const PredictOptions& options, const std::function<HolePrediction&(size_t)>& at) {
   const size_t n = holes.size();
@@ -443,19 +450,33 @@ void predictHoles(const PredictionModel& m, std::span<const HoleRequest> holes,
   std::vector<PredictionData> scratch;
   scratch.reserve(static_cast<size_t>(threads));
   for (int w = 0; w < threads; ++w) scratch.emplace_back(m);
-  // 1. sequential pass: the IK choice of every hole, which seeds the next one (continuity)
+  // 1. the IK choice of every hole, which seeds the next one (continuity), in order. With more
+  //    than one thread, the analytic candidates of a chunk of holes (most of the IK's cost; they
+  //    do not depend on the seed, ikCandidates) are computed on the workers first.
   std::vector<IkSolution> sol(n);
   std::vector<char> chosen(n, 0);
   std::vector<std::optional<Vec6>> seed(n);
   {
+    std::vector<IkCandidates> ahead(threads > 1 ? std::min(n, kIkCandidateChunk) : 0);
     std::optional<Vec6> prev = options.seed;
     HolePrediction probe;
-    for (size_t i = 0; i < n; ++i) {
-      seed[i] = prev;
-      probe.status = HoleStatus::kOk;
-      chosen[i] = chooseSolution(m, scratch[0], holes[i], flangeTarget(m, holes[i]),
-                                 seedOf(m, holes[i], prev ? &*prev : nullptr), probe, sol[i]);
-      if (chosen[i] && !sol[i].singular_wrist && !sol[i].singular_shoulder) prev = sol[i].q;
+    for (size_t c0 = 0; c0 < n; c0 += kIkCandidateChunk) {
+      const size_t c1 = std::min(n, c0 + kIkCandidateChunk);
+      if (!ahead.empty()) {
+        parallelFor(c1 - c0, threads, [&](int, size_t k) {
+          const HoleRequest& h = holes[c0 + k];
+          ahead[k].valid = false;
+          if (!h.config) ikCandidates(m.ik, flangeTarget(m, h), ahead[k]);
+        });
+      }
+      for (size_t i = c0; i < c1; ++i) {
+        seed[i] = prev;
+        probe.status = HoleStatus::kOk;
+        chosen[i] = chooseSolution(m, scratch[0], holes[i], flangeTarget(m, holes[i]),
+                                   seedOf(m, holes[i], prev ? &*prev : nullptr), probe, sol[i],
+                                   ahead.empty() ? nullptr : &ahead[i - c0]);
+        if (chosen[i] && !sol[i].singular_wrist && !sol[i].singular_shoulder) prev = sol[i].q;
+      }
     }
   }
   // 2. the rest of every hole, in parallel (per-worker scratch; each hole depends only on its

@@ -234,8 +234,10 @@ void predictHole(const PredictionModel& m, PredictionData& d, const HoleRequest&
 
 struct PredictOptions {
   /// Worker threads over holes (≥ 1; 1: the calling thread only). The output is byte-identical
-  /// for every count: a sequential pass fixes the IK choice that seeds each next hole, the rest
-  /// of each hole runs on the workers with per-thread scratch.
+  /// for every count: a sequential pass fixes the IK choice that seeds each next hole (the
+  /// analytic IK candidates it chooses from, which do not depend on the seed, computed on the
+  /// workers first: ikCandidates), the rest of each hole runs on the workers with per-thread
+  /// scratch.
   int threads{1};
   /// Continuity seed before the first hole (the last admissible joints of a previous block, rad):
   /// predicting a sequence block by block with it gives the same result as in one call.

@@ -1,5 +1,7 @@
 #include "compensator/precision/uncertainty.hpp"
 
+#include "compensator/precision/coverage_table95.hpp"
+
 #include <Eigen/Eigenvalues>
 #include <array>
 #include <cmath>
@@ -126,29 +128,20 @@ double radialProbability(const Eigen::Matrix2d& Sigma, double R) {
 namespace {
 double solveCoverage(double l1, double l2, double p);
 
-/// g(t) = R₉₅/√l2 at t = √(l1/l2) ∈ [0, 1], tabulated once at 1,025 points by the Newton
-/// solver below and read by 4-point cubic (Lagrange) interpolation, used for t ≥ 0.0316
-/// (l1/l2 ≥ 1e-3) where it is within 1e-10 of the solver (tests/coverage_table_test.cpp).
-struct CoverageTable95 {
-  static constexpr int kN = 1024;
-  std::array<double, kN + 1> g{};
-  CoverageTable95() {
-    for (int i = 0; i <= kN; ++i) {
-      const double t = static_cast<double>(i) / kN;
-      g[static_cast<size_t>(i)] = solveCoverage(t * t, 1.0, 0.95);
-    }
-  }
-  [[nodiscard]] double at(double t) const {
-    const double x = t * kN;
-    int i = static_cast<int>(x);
-    i = std::min(std::max(i - 1, 0), kN - 3);  // stencil i .. i+3 around x
-    const double u = x - i;                    // in [0, 3]
-    const double* y = &g[static_cast<size_t>(i)];
-    const double a = u * (u - 1) * (u - 2);
-    return -y[0] * (u - 1) * (u - 2) * (u - 3) / 6.0 + y[1] * u * (u - 2) * (u - 3) / 2.0 -
-           y[2] * u * (u - 1) * (u - 3) / 2.0 + y[3] * a / 6.0;
-  }
-};
+/// g(t) = R₉₅/√l2 at t = √(l1/l2) ∈ [0, 1] (kCoverageTable95, made by the Newton solver below),
+/// read by 4-point cubic (Lagrange) interpolation, used for t ≥ 0.0316 (l1/l2 ≥ 1e-3) where it
+/// is within 1e-10 of the solver (tests/coverage_table_test.cpp).
+double coverageTable95At(double t) {
+  constexpr int kN = kCoverageTable95Intervals;
+  const double x = t * kN;
+  int i = static_cast<int>(x);
+  i = std::min(std::max(i - 1, 0), kN - 3);  // stencil i .. i+3 around x
+  const double u = x - i;                    // in [0, 3]
+  const double* y = &kCoverageTable95[static_cast<size_t>(i)];
+  const double a = u * (u - 1) * (u - 2);
+  return -y[0] * (u - 1) * (u - 2) * (u - 3) / 6.0 + y[1] * u * (u - 2) * (u - 3) / 2.0 -
+         y[2] * u * (u - 1) * (u - 3) / 2.0 + y[3] * a / 6.0;
+}
 }  // namespace
 
 double radialCoverage(const Eigen::Matrix2d& Sigma, double p) {
@@ -157,12 +150,12 @@ double radialCoverage(const Eigen::Matrix2d& Sigma, double p) {
   eigenvalues2(Sigma, l1, l2);
   if (l2 <= 0.0) return 0.0;
   // below l1/l2 = 1e-3, g(t) bends too sharply for the table (the 1-D limit): solve there
-  if (p == 0.95 && l1 >= 1e-3 * l2) {
-    static const CoverageTable95 table;
-    return std::sqrt(l2) * table.at(std::sqrt(std::min(1.0, l1 / l2)));
-  }
+  if (p == 0.95 && l1 >= 1e-3 * l2)
+    return std::sqrt(l2) * coverageTable95At(std::sqrt(std::min(1.0, l1 / l2)));
   return solveCoverage(l1, l2, p);
 }
+
+double radialCoverageSolved(double l1, double l2, double p) { return solveCoverage(l1, l2, p); }
 
 namespace {
 double solveCoverage(double l1, double l2, double p) {

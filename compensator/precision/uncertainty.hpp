@@ -28,8 +28,12 @@ double radialProbability(const Eigen::Matrix2d& Sigma, double R);
 /// The radius R with P(r ≤ R) = p: safeguarded Newton (P and dP/dR share the precomputed nodes'
 /// exponentials) inside the bracket of the 1-D and the Rayleigh quantile of the major axis,
 /// from their interpolation in √(l1/l2); closed-form 2×2 eigenvalues. Relative accuracy ~1e-13.
-/// For p = 0.95 (every prediction) R/√l2 is a function of √(l1/l2) alone: it is tabulated once
-/// by that solver (1,025 points) and interpolated (cubic, ≤ 1e-9 relative) for l1/l2 ≥ 1e-3.
+/// For p = 0.95 (every prediction) R/√l2 is a function of √(l1/l2) alone: it is tabulated by
+/// that solver (1,025 points, compiled in: coverage_table95.hpp) and interpolated (cubic,
+/// ≤ 1e-9 relative) for l1/l2 ≥ 1e-3.
 double radialCoverage(const Eigen::Matrix2d& Sigma, double p = 0.95);
+/// The solver alone (eigenvalues 0 ≤ l1 ≤ l2 given, no table): what the table holds at
+/// l1 = t², l2 = 1, p = 0.95 (tests/coverage_table_test.cpp checks and can rewrite it).
+double radialCoverageSolved(double l1, double l2, double p);
 
 }  // namespace roprec

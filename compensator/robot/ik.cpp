@@ -474,15 +474,16 @@ bool withinLimits(const IkModel& m, const Vec6& q) {
 
 namespace {
 /// The analytic solutions of the ideal model before refinement and turn expansion (wrapped q, at
-/// most 8, in branch-construction order). Sets result's failure fields (count 0) when none.
+/// most 8, in branch-construction order). Sets `failure` and `failure_value` when none.
+/// `seed_used` (may be null) is set when opt.seed chose a joint (wrist centre on axis 1, or a
+/// wrist-singular branch).
 int rawSolutions(const IkModel& m, const Pose& target, const IkOptions& opt,
-                 std::array<IkSolution, 8>& raw, IkResult& result) {
-  result.count = 0;
-  result.failure = IkFailure::kNone;
-  result.failure_value = 0.0;
-  result.truncated = false;
+                 std::array<IkSolution, 8>& raw, IkFailure& failure, double& failure_value,
+                 bool* seed_used) {
+  failure = IkFailure::kNone;
+  failure_value = 0.0;
   if (!finitePose(target)) {
-    result.failure = IkFailure::kNotFinite;
+    failure = IkFailure::kNotFinite;
     return 0;
   }
   const Vec3 C = target * m.c_tip;
@@ -493,8 +494,8 @@ int rawSolutions(const IkModel& m, const Pose& target, const IkOptions& opt,
     if (x2 > -2.0 * std::abs(m.b) * 1e-9 - 1e-18) {
       x2 = 0.0;
     } else {
-      result.failure = IkFailure::kLateralOffset;
-      result.failure_value = std::abs(m.b) - std::sqrt(r2);
+      failure = IkFailure::kLateralOffset;
+      failure_value = std::abs(m.b) - std::sqrt(r2);
       return 0;
     }
   }
@@ -509,6 +510,7 @@ int rawSolutions(const IkModel& m, const Pose& target, const IkOptions& opt,
     const double x = (s == 0 ? 1.0 : -1.0) * m.shoulder_sign * xabs;
     double q1 = 0.0;
     if (on_axis) {
+      if (seed_used) *seed_used = true;
       q1 = (opt.seed ? (*opt.seed)[0] : 0.0) + (s == 0 ? 0.0 : kPi);
     } else {
       q1 = std::atan2(c.y(), c.x()) - std::atan2(m.b, x);
@@ -551,6 +553,7 @@ int rawSolutions(const IkModel& m, const Pose& target, const IkOptions& opt,
           q6 = std::atan2(sg * N(0, 1), sg * N(0, 2));
         } else {
           // Wrist singularity: only q4 + q6 (q5' = 0) or q4 − q6 (q5' = π) is defined.
+          if (seed_used) *seed_used = true;
           const double q4ref = (opt.seed ? (*opt.seed)[3] : 0.0) + (ws == 0 ? 0.0 : kPi);
           const double rot = std::atan2(N(2, 1), N(1, 1));
           q4 = q4ref;
@@ -571,14 +574,21 @@ int rawSolutions(const IkModel& m, const Pose& target, const IkOptions& opt,
   }
   if (nraw == 0) {
     if (far_excess >= 0.0) {
-      result.failure = IkFailure::kOutOfReach;
-      result.failure_value = far_excess;
+      failure = IkFailure::kOutOfReach;
+      failure_value = far_excess;
     } else {
-      result.failure = IkFailure::kTooClose;
-      result.failure_value = near_excess;
+      failure = IkFailure::kTooClose;
+      failure_value = near_excess;
     }
   }
   return nraw;
+}
+
+int rawSolutions(const IkModel& m, const Pose& target, const IkOptions& opt,
+                 std::array<IkSolution, 8>& raw, IkResult& result) {
+  result.count = 0;
+  result.truncated = false;
+  return rawSolutions(m, target, opt, raw, result.failure, result.failure_value, nullptr);
 }
 
 /// The primary-turn representative of a wrapped q (what expandTurns keeps in kPrimary mode: per
@@ -631,8 +641,25 @@ void solveIk(const IkModel& m, const Pose& target, const IkOptions& opt, IkResul
   std::sort(result.solutions.begin(), result.solutions.begin() + result.count, solutionLess);
 }
 
+void ikCandidates(const IkModel& m, const Pose& target, IkCandidates& c) {
+  c.count = 0;
+  c.valid = false;
+  if (!m.deviation.exact) return;  // solveIkNearest solves every branch there
+  std::array<IkSolution, 8> raw;
+  bool seed_used = false;
+  c.count = rawSolutions(m, target, IkOptions{}, raw, c.failure, c.failure_value, &seed_used);
+  for (int k = 0; k < c.count; ++k) c.q[static_cast<size_t>(k)] = raw[static_cast<size_t>(k)].q;
+  c.valid = !seed_used;
+}
+
 bool solveIkNearest(const IkModel& m, const Pose& target, const Vec6& ref,
                     const std::array<double, 6>& weights, IkResult& result, IkSolution& best) {
+  return solveIkNearest(m, target, ref, weights, nullptr, result, best);
+}
+
+bool solveIkNearest(const IkModel& m, const Pose& target, const Vec6& ref,
+                    const std::array<double, 6>& weights, const IkCandidates* ahead,
+                    IkResult& result, IkSolution& best) {
   IkOptions opt;
   opt.seed = &ref;
   auto full = [&] {  // every branch finished, then the nearest admissible (the reference path)
@@ -653,7 +680,20 @@ bool solveIkNearest(const IkModel& m, const Pose& target, const Vec6& ref,
   };
   if (!m.deviation.exact) return full();  // refinement moves q: distances unknown beforehand
   std::array<IkSolution, 8> raw;
-  const int nraw = rawSolutions(m, target, opt, raw, result);
+  int nraw = 0;
+  if (ahead != nullptr && ahead->valid) {  // the same raw solutions, computed without the seed
+    result.count = 0;
+    result.failure = ahead->failure;
+    result.failure_value = ahead->failure_value;
+    result.truncated = false;
+    nraw = ahead->count;
+    for (int k = 0; k < nraw; ++k) {
+      raw[static_cast<size_t>(k)] = IkSolution{};
+      raw[static_cast<size_t>(k)].q = ahead->q[static_cast<size_t>(k)];
+    }
+  } else {
+    nraw = rawSolutions(m, target, opt, raw, result);
+  }
   if (nraw == 0) return false;
   // candidates by their distance before finishing (an exact chain's finishing keeps q)
   std::array<std::pair<double, int>, 8> order;

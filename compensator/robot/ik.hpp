@@ -245,6 +245,27 @@ void solveIk(const IkModel& model, const Pose& target, const IkOptions& options,
 bool solveIkNearest(const IkModel& model, const Pose& target, const Vec6& ref,
                     const std::array<double, 6>& weights, IkResult& result, IkSolution& best);
 
+/// The analytic solutions of a target before the choice (the larger part of solveIkNearest's
+/// cost), computed ahead without the reference: for a sequence of targets each solved nearest
+/// the previous solution, these run in parallel and only the choice runs in order. `valid` is
+/// false when they depend on the reference (the wrist-centre on axis 1 or a wrist-singular
+/// branch: the reference picks q1 or q4 there) or when the chain is not exact (solveIkNearest
+/// then solves every branch anyway): solveIkNearest then solves from the start. A few hundred
+/// bytes, no allocation.
+struct IkCandidates {
+  std::array<Vec6, 8> q;  ///< wrapped raw solutions, in branch-construction order
+  int count{0};
+  IkFailure failure{IkFailure::kNone};
+  double failure_value{0.0};
+  bool valid{false};
+};
+void ikCandidates(const IkModel& model, const Pose& target, IkCandidates& candidates);
+/// solveIkNearest with the candidates of the same target and model computed ahead (ikCandidates;
+/// null or not valid: computed here): the same result, bit for bit.
+bool solveIkNearest(const IkModel& model, const Pose& target, const Vec6& ref,
+                    const std::array<double, 6>& weights, const IkCandidates* ahead,
+                    IkResult& result, IkSolution& best);
+
 /// Human-readable reason for an empty result.
 std::string describeIkFailure(const IkResult& result);
 

@@ -23,8 +23,10 @@
 namespace roprec::api {
 
 class HoleLookahead;
-/// Holes a lookahead predicts at most (about 16 MB of requests, predictions and JSON texts held).
-inline constexpr std::size_t kLookaheadHoles = 4096;
+/// Holes a lookahead predicts at most (about 24 MB of requests, predictions and JSON texts held).
+/// On a KRL drill program with two threads, about as many as the worker predicts and formats
+/// while the program is read.
+inline constexpr std::size_t kLookaheadHoles = 6144;
 /// Programs larger than this (~45,000 drill cycles of 7 lines) are read without a lookahead:
 /// its memory would add to the read's peak (a 36 MB program: ~190 MB) for a few per cent of
 /// the holes.
