@@ -12,15 +12,15 @@
 #
 #   scripts/bench-cli.sh [ROPREC_BINARY]     (default build/bin/roprec)
 #
-# Measured 2026-11-24 23:38 on the 2-core machine with no other build running
+# Measured 2026-11-25 02:12 on the 2-core machine with no other build running
 # (scripts/bench-table.sh, best of 5; README "Performance" has the history):
-#   predict 10,000 holes      0.135 s / 42 MB (1 thread), 0.093 s / 48 MB (2): 1.45x
-#   compensate 10,000 holes   0.704 s / 109 MB (1 thread), 0.409 s (2): 1.72x
-#   predict 100,000 holes     1.22 s / 193 MB (1 thread), 0.96 s / 193 MB (2)
+#   predict 10,000 holes      0.136 s / 42 MB (1 thread), 0.090 s / 53 MB (2): 1.51x
+#   compensate 10,000 holes   0.719 s / 109 MB (1 thread), 0.420 s (2): 1.71x
+#   predict 100,000 holes     1.25 s / 193 MB (1 thread), 1.00 s / 194 MB (2)
 # every output byte-identical for 1 and 2 threads. Wall times of a 2-thread run depend on the
 # second core being free: with other builds running, the speed-ups drop to ~1.0x.
 # The last column is user + system CPU: about the same for 1 and 2 threads (predict with 2
-# threads also sets up the first 4,096 holes while the program is read and copies their JSON
+# threads also sets up the first 6,144 holes while the program is read and copies their JSON
 # texts: ~10 ms more).
 #
 # BENCH_SIZES  hole counts (default "1000 10000 100000")
