@@ -3,7 +3,8 @@
 // covariances of every aspect ratio and orientation (P by the 48-point quadrature of
 // radialProbability), and the tabulated and the solved radius (p = 0.95 vs p = 0.95 + 1e-15,
 // which takes the solver) agree to 1e-9 relative; the compiled-in table is the solver's, entry by
-// entry, to the last bit (and this test rewrites its source on request: coverage_table95.hpp).
+// entry, to the solver's accuracy (and this test rewrites its source on request:
+// coverage_table95.hpp).
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -58,7 +59,7 @@ std::string coverageTableSource(const std::array<double, kCoverageTable95Interva
   return s;
 }
 
-TEST(CoverageTable, TheCompiledTableIsTheSolversToTheLastBit) {
+TEST(CoverageTable, TheCompiledTableIsTheSolvers) {
   std::array<double, kCoverageTable95Intervals + 1> solved{};
   for (int i = 0; i <= kCoverageTable95Intervals; ++i) {
     const double t = static_cast<double>(i) / kCoverageTable95Intervals;
@@ -68,12 +69,17 @@ TEST(CoverageTable, TheCompiledTableIsTheSolversToTheLastBit) {
     std::ofstream(path, std::ios::binary) << coverageTableSource(solved);
     GTEST_SKIP() << "wrote " << path << ": rebuild and run again";
   }
+  // bit for bit on the machine that wrote it; another libm (exp, erf) may move the solver's last
+  // digits within its accuracy, 1e-13 relative
+  int differing_bits = 0;
   for (size_t i = 0; i < solved.size(); ++i) {
-    EXPECT_EQ(std::bit_cast<std::uint64_t>(kCoverageTable95[i]),
-              std::bit_cast<std::uint64_t>(solved[i]))
+    EXPECT_NEAR(kCoverageTable95[i] / solved[i], 1.0, 1e-13)
         << "entry " << i << ": " << kCoverageTable95[i] << " vs the solver's " << solved[i]
         << " (regenerate it: compensator/precision/coverage_table95.hpp)";
+    differing_bits += std::bit_cast<std::uint64_t>(kCoverageTable95[i]) !=
+                      std::bit_cast<std::uint64_t>(solved[i]);
   }
+  RecordProperty("entries_not_bit_identical", differing_bits);
 }
 
 }  // namespace
