@@ -54,6 +54,19 @@ std::vector<Case> cases() {
   return out;
 }
 
+/// Joints within the chain's limits (clipped to ±2π), one draw of `unit` (−1..1) per joint.
+Vec6 randomJoints(const ChainDescription& chain, std::mt19937& rng,
+                  std::uniform_real_distribution<double>& unit) {
+  Vec6 q;
+  for (int i = 0; i < 6; ++i) {
+    const ChainJoint& j = chain.joints[static_cast<size_t>(i)];
+    const double lo = std::max(j.lower, -2.0 * kPi);
+    const double hi = std::min(j.upper, 2.0 * kPi);
+    q[i] = lo + (hi - lo) * 0.5 * (1.0 + unit(rng));
+  }
+  return q;
+}
+
 /// The reference: solveIk's list, then the first admissible solution of smallest distance.
 bool referenceNearest(const IkModel& m, const Pose& T, const Vec6& ref,
                       const std::array<double, 6>& w, IkResult& all, IkSolution& best) {
@@ -88,13 +101,7 @@ TEST(IkNearest, SameChoiceAsTheFullListOnEveryRobot) {
   for (const Case& c : cases()) {
     SCOPED_TRACE(c.name);
     for (int n = 0; n < 300; ++n) {
-      Vec6 q;
-      for (int i = 0; i < 6; ++i) {
-        const ChainJoint& j = c.chain.joints[static_cast<size_t>(i)];
-        const double lo = std::max(j.lower, -2.0 * kPi);
-        const double hi = std::min(j.upper, 2.0 * kPi);
-        q[i] = lo + (hi - lo) * 0.5 * (1.0 + unit(rng));
-      }
+      Vec6 q = randomJoints(c.chain, rng, unit);
       if (n % 10 == 0) q[4] = 1e-4 * unit(rng);  // near the wrist singularity
       const Pose T = ikForwardKinematics(c.model, q);
       Vec6 ref = q;
@@ -149,13 +156,7 @@ TEST(IkNearest, CandidatesComputedAheadGiveTheSameSolutionBitForBit) {
   for (const Case& c : cases()) {
     SCOPED_TRACE(c.name);
     for (int n = 0; n < 200; ++n) {
-      Vec6 q;
-      for (int i = 0; i < 6; ++i) {
-        const ChainJoint& j = c.chain.joints[static_cast<size_t>(i)];
-        const double lo = std::max(j.lower, -2.0 * kPi);
-        const double hi = std::min(j.upper, 2.0 * kPi);
-        q[i] = lo + (hi - lo) * 0.5 * (1.0 + unit(rng));
-      }
+      Vec6 q = randomJoints(c.chain, rng, unit);
       if (n % 10 == 0) q[4] = 0.0;  // on the wrist singularity: the reference picks q4
       if (n % 10 == 1) q[4] = 1e-6 * unit(rng);
       Pose T = ikForwardKinematics(c.model, q);
