@@ -441,6 +441,40 @@ std::vector<HolePrediction> predictHoles(const PredictionModel& m,
 namespace {
 /// Holes whose IK candidates predictHoles computes ahead at a time (~0.4 kB each).
 constexpr size_t kIkCandidateChunk = 4096;
+
+/// predictHoles' first stage: the IK choice of every hole in order, each seeded with the previous
+/// admissible solution (continuity; `first` before the first hole): sol[i], chosen[i] and the
+/// seed[i] it was chosen with. With more than one thread, the analytic candidates of a chunk of
+/// holes (most of the IK's cost; they do not depend on the seed: ikCandidates) are computed on
+/// the workers first and only the choice runs in order. An inexact chain's IK finishes every
+/// branch from the start: nothing to compute ahead there.
+void chooseInOrder(const PredictionModel& m, PredictionData& d, std::span<const HoleRequest> holes,
+                   const std::optional<Vec6>& first, int threads, std::vector<IkSolution>& sol,
+                   std::vector<char>& chosen, std::vector<std::optional<Vec6>>& seed) {
+  const size_t n = holes.size();
+  const bool compute_ahead = threads > 1 && m.ik.deviation.exact;
+  std::vector<IkCandidates> ahead(compute_ahead ? std::min(n, kIkCandidateChunk) : 0);
+  std::optional<Vec6> prev = first;
+  HolePrediction probe;
+  for (size_t c0 = 0; c0 < n; c0 += kIkCandidateChunk) {
+    const size_t c1 = std::min(n, c0 + kIkCandidateChunk);
+    if (compute_ahead) {
+      parallelFor(c1 - c0, threads, [&](int, size_t k) {
+        const HoleRequest& h = holes[c0 + k];
+        ahead[k].valid = false;
+        if (!h.config) ikCandidates(m.ik, flangeTarget(m, h), ahead[k]);
+      });
+    }
+    for (size_t i = c0; i < c1; ++i) {
+      seed[i] = prev;
+      probe.status = HoleStatus::kOk;
+      chosen[i] = chooseSolution(m, d, holes[i], flangeTarget(m, holes[i]),
+                                 seedOf(m, holes[i], prev ? &*prev : nullptr), probe, sol[i],
+                                 compute_ahead ? &ahead[i - c0] : nullptr);
+      if (chosen[i] && !sol[i].singular_wrist && !sol[i].singular_shoulder) prev = sol[i].q;
+    }
+  }
+}
 }  // namespace
 
 void predictHoles(const PredictionModel& m, std::span<const HoleRequest> holes,
@@ -450,35 +484,11 @@ void predictHoles(const PredictionModel& m, std::span<const HoleRequest> holes,
   std::vector<PredictionData> scratch;
   scratch.reserve(static_cast<size_t>(threads));
   for (int w = 0; w < threads; ++w) scratch.emplace_back(m);
-  // 1. the IK choice of every hole, which seeds the next one (continuity), in order. With more
-  //    than one thread, the analytic candidates of a chunk of holes (most of the IK's cost; they
-  //    do not depend on the seed, ikCandidates) are computed on the workers first.
+  // 1. the IK choice of every hole, in order (each seeds the next)
   std::vector<IkSolution> sol(n);
   std::vector<char> chosen(n, 0);
   std::vector<std::optional<Vec6>> seed(n);
-  {
-    std::vector<IkCandidates> ahead(threads > 1 ? std::min(n, kIkCandidateChunk) : 0);
-    std::optional<Vec6> prev = options.seed;
-    HolePrediction probe;
-    for (size_t c0 = 0; c0 < n; c0 += kIkCandidateChunk) {
-      const size_t c1 = std::min(n, c0 + kIkCandidateChunk);
-      if (!ahead.empty()) {
-        parallelFor(c1 - c0, threads, [&](int, size_t k) {
-          const HoleRequest& h = holes[c0 + k];
-          ahead[k].valid = false;
-          if (!h.config) ikCandidates(m.ik, flangeTarget(m, h), ahead[k]);
-        });
-      }
-      for (size_t i = c0; i < c1; ++i) {
-        seed[i] = prev;
-        probe.status = HoleStatus::kOk;
-        chosen[i] = chooseSolution(m, scratch[0], holes[i], flangeTarget(m, holes[i]),
-                                   seedOf(m, holes[i], prev ? &*prev : nullptr), probe, sol[i],
-                                   ahead.empty() ? nullptr : &ahead[i - c0]);
-        if (chosen[i] && !sol[i].singular_wrist && !sol[i].singular_shoulder) prev = sol[i].q;
-      }
-    }
-  }
+  chooseInOrder(m, scratch[0], holes, options.seed, threads, sol, chosen, seed);
   // 2. the rest of every hole, in parallel (per-worker scratch; each hole depends only on its
   //    request, its seed and the model, so the output does not depend on the thread count)
   parallelFor(n, threads, [&](int w, size_t i) {

@@ -248,7 +248,7 @@ bool solveIkNearest(const IkModel& model, const Pose& target, const Vec6& ref,
 /// The analytic solutions of a target before the choice (the larger part of solveIkNearest's
 /// cost), computed ahead without the reference: for a sequence of targets each solved nearest
 /// the previous solution, these run in parallel and only the choice runs in order. `valid` is
-/// false when they depend on the reference (the wrist-centre on axis 1 or a wrist-singular
+/// false when they depend on the reference (the wrist centre on axis 1 or a wrist-singular
 /// branch: the reference picks q1 or q4 there) or when the chain is not exact (solveIkNearest
 /// then solves every branch anyway): solveIkNearest then solves from the start. A few hundred
 /// bytes, no allocation.
