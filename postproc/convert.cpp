@@ -9,6 +9,7 @@
 
 #include "compensator/support/c_format.hpp"
 #include "compensator/support/error.hpp"
+#include "compensator/support/str_cat.hpp"
 #include "postproc/dialects.hpp"
 #include "postproc/lexer.hpp"
 
@@ -282,7 +283,7 @@ bool rapidBlockLine(const std::string& u) {
                 "ENDTRAP",  "IF",        "ELSEIF", "ELSE",    "ENDIF",   "FOR",     "ENDFOR",
                 "WHILE",    "ENDWHILE",  "TEST",   "CASE",    "DEFAULT", "ENDTEST", "ERROR",
                 "BACKWARD", "UNDO",      "LOCAL",  "TASK"}) &&
-         u.find(";") == std::string::npos;
+         u.find(';') == std::string::npos;
 }
 
 /// FANUC TP (a /MN line without its number and `;`): as krlKind.
@@ -378,7 +379,7 @@ void listNotCarried(const Program& p, ConversionReport& rep) {
     const std::string kind = scan.kind(lineAt(f, l), code);
     if (kind.empty() || motion_lines.count(static_cast<int>(l + 1))) continue;
     if (code.size() > 60) code = code.substr(0, 57) + "...";
-    const std::string key = code + " (" + kind;
+    const std::string key = strCat(code, " (", kind);
     if (!lines.count(key)) order.push_back(key);
     lines[key].push_back(static_cast<int>(l + 1));
   }
@@ -420,7 +421,7 @@ void listZoneMappings(const Program& p, Dialect to, const std::vector<Item>& ite
       a = b + 1;
     }
     if (same) continue;
-    const std::string key = from + " -> " + into;
+    const std::string key = strCat(from, " -> ", into);
     if (!seen.count(key)) {
       order.push_back(key);
       seen[key].first = p.files[static_cast<std::size_t>(m.file)].path;
@@ -429,7 +430,7 @@ void listZoneMappings(const Program& p, Dialect to, const std::vector<Item>& ite
   }
   for (const std::string& key : order) {
     const auto& [file, lines] = seen[key];
-    std::string s = "zone " + key + " at " + file + ":";
+    std::string s = strCat("zone ", key, " at ", file, ":");
     for (std::size_t i = 0; i < lines.size(); ++i) s += (i ? "," : "") + std::to_string(lines[i]);
     s += " (" + std::to_string(lines.size()) + (lines.size() == 1 ? " motion" : " motions") +
          "; the approximation size is not carried)";
@@ -455,7 +456,7 @@ std::vector<std::pair<std::string, std::string>> toKrl(const Program& p,
   auto decl = [&](int target, const Pose& T, const Configuration& c, const Item& it) {
     const auto f = names.find(target);
     if (f != names.end()) return f->second;
-    const std::string n = "XP" + std::to_string(names.size() + 1);
+    std::string n = "XP" + std::to_string(names.size() + 1);
     names[target] = n;
     std::string d = "DECL E6POS " + n + "={" + abcText(T);
     if (const auto b = c.branch())
@@ -506,7 +507,7 @@ std::vector<std::pair<std::string, std::string>> toKrl(const Program& p,
     } else if (it.type == MotionType::kCircular) {
       const std::string a =
           decl(it.aux, it.Taux, p.targets()[static_cast<std::size_t>(it.aux)].config, it);
-      src += "CIRC " + a + ", " + n + (it.fine ? "" : " C_DIS") + "\n";
+      strAppend(src, "CIRC ", a, ", ", n, it.fine ? "" : " C_DIS", "\n");
     } else {
       src += "LIN " + n + (it.fine ? "" : " C_DIS") + "\n";
     }
@@ -551,7 +552,7 @@ std::vector<std::pair<std::string, std::string>> toRapid(const Program& p,
     const auto it = tools.find(f);
     if (it != tools.end()) return it->second;
     requireResolved(f, p.files[0].path, "tool");
-    const std::string n = "tTool" + std::to_string(tools.size() + 1);
+    std::string n = "tTool" + std::to_string(tools.size() + 1);
     tools[f] = n;
     decls += "  ! " + f->ref + "; tool load not carried: set " + n + ".tload\n";
     decls += "  PERS tooldata " + n + ":=[TRUE," + poseRapid(f->pose) +
@@ -565,7 +566,7 @@ std::vector<std::pair<std::string, std::string>> toRapid(const Program& p,
     const auto it = wobjs.find(f);
     if (it != wobjs.end()) return it->second;
     requireResolved(f, p.files[0].path, "base frame");
-    const std::string n = "wObj" + std::to_string(wobjs.size() + 1);
+    std::string n = "wObj" + std::to_string(wobjs.size() + 1);
     wobjs[f] = n;
     decls += "  ! " + f->ref + "\n";
     decls += "  PERS wobjdata " + n + ":=[FALSE,TRUE,\"\"," + poseRapid(f->pose) +
@@ -575,7 +576,7 @@ std::vector<std::pair<std::string, std::string>> toRapid(const Program& p,
   auto target = [&](int key, const Pose& T, const Configuration& c, const Item& it) {
     const auto f = names.find(key);
     if (f != names.end()) return f->second;
-    const std::string n = "p" + std::to_string(names.size() + 1);
+    std::string n = "p" + std::to_string(names.size() + 1);
     names[key] = n;
     const int cfx = c.branch().value_or(0);
     if (!c.branch()) rep.notes.push_back(n + ": no configuration in the source; cfx written 0");
@@ -595,14 +596,14 @@ std::vector<std::pair<std::string, std::string>> toRapid(const Program& p,
     const std::string zone = it.fine ? "fine" : "z1";
     const std::string speed = it.speed > 0 ? "[" + fmtG(it.speed) + ",500,5000,1000]" : "v1000";
     if (it.type == MotionType::kJoint) {
-      body += "    MoveJ " + n + "," + speed + "," + zone + "," + tool + "\\WObj:=" + wobj + ";\n";
+      strAppend(body, "    MoveJ ", n, ",", speed, ",", zone, ",", tool, "\\WObj:=", wobj, ";\n");
     } else if (it.type == MotionType::kCircular) {
       const std::string a =
           target(it.aux, it.Taux, p.targets()[static_cast<std::size_t>(it.aux)].config, it);
-      body += "    MoveC " + a + "," + n + "," + speed + "," + zone + "," + tool +
-              "\\WObj:=" + wobj + ";\n";
+      strAppend(body, "    MoveC ", a, ",", n, ",", speed, ",", zone, ",", tool, "\\WObj:=", wobj,
+                ";\n");
     } else {
-      body += "    MoveL " + n + "," + speed + "," + zone + "," + tool + "\\WObj:=" + wobj + ";\n";
+      strAppend(body, "    MoveL ", n, ",", speed, ",", zone, ",", tool, "\\WObj:=", wobj, ";\n");
     }
   }
   body += "  ENDPROC\nENDMODULE\n";
@@ -705,14 +706,14 @@ std::vector<std::pair<std::string, std::string>> toTp(const Program& p,
     const std::string speed =
         it.type == MotionType::kJoint ? "100%" : (it.speed > 0 ? fmtG(it.speed) : "250") + "mm/sec";
     if (it.type == MotionType::kJoint) {
-      mn.push_back("J P[" + std::to_string(n) + "] " + speed + " " + term + " ;");
+      mn.push_back(strCat("J P[", std::to_string(n), "] ", speed, " ", term, " ;"));
     } else if (it.type == MotionType::kCircular) {
       const int a = record(it.aux, it.Taux, p.targets()[static_cast<std::size_t>(it.aux)].config,
                            it, ufn, utn);
       mn.push_back("C P[" + std::to_string(a) + "] ");
-      mn.push_back(":  P[" + std::to_string(n) + "] " + speed + " " + term + " ;");
+      mn.push_back(strCat(":  P[", std::to_string(n), "] ", speed, " ", term, " ;"));
     } else {
-      mn.push_back("L P[" + std::to_string(n) + "] " + speed + " " + term + " ;");
+      mn.push_back(strCat("L P[", std::to_string(n), "] ", speed, " ", term, " ;"));
     }
   }
   std::string s =

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "compensator/support/atomic_file.hpp"
+#include "compensator/support/str_cat.hpp"
 #include "postproc/dialects.hpp"
 #include "postproc/lexer.hpp"
 
@@ -212,7 +213,7 @@ std::optional<std::string> krlConfig(const std::string& text, Configuration& c) 
     } else {
       return std::nullopt;
     }
-    s += "," + key + " " + v;
+    strAppend(s, ",", key, " ", v);
   }
   return s;
 }
@@ -249,22 +250,24 @@ std::vector<Cycle> buildCycles(const std::vector<DrillHole>& holes, const DrillP
       case Dialect::kKrl: {
         const auto s = krlConfig(text, c.config);
         if (!s)
-          invalid(where +
-                  ": KUKA configuration expected ('S 2 T 35' or \"S 'B010' T 'B100011'\"), got '" +
-                  text + "'");
+          invalid(strCat(where,
+                         ": KUKA configuration expected ('S 2 T 35' or \"S 'B010' T 'B100011'\"), "
+                         "got '",
+                         text, "'"));
         c.config_text = *s;
         break;
       }
       case Dialect::kRapid:
         c.config = parseConfigurationText(text);
         if (c.config.vendor != Vendor::kAbb)
-          invalid(where + ": ABB configuration expected ('[0,-1,0,0]'), got '" + text + "'");
+          invalid(strCat(where, ": ABB configuration expected ('[0,-1,0,0]'), got '", text, "'"));
         c.config_text = c.config.text();
         break;
       case Dialect::kTp:
         c.config = parseConfigurationText(text);
         if (c.config.vendor != Vendor::kFanuc)
-          invalid(where + ": FANUC configuration expected ('N U T, 0, 0, 0'), got '" + text + "'");
+          invalid(
+              strCat(where, ": FANUC configuration expected ('N U T, 0, 0, 0'), got '", text, "'"));
         c.config_text = c.config.text();
         break;
       case Dialect::kCsv:
@@ -404,7 +407,8 @@ DrillProgramText rapid(const std::vector<DrillHole>& holes, const DrillProgramOp
     const std::string cf = c.config_given ? c.config_text : "[0,0,0,0]";
     for (const Point& q : points(c)) {
       const std::string pr = rapidPose(*q.T);
-      s += "  CONST robtarget " + *q.name + ":=[" + pr.substr(1, pr.size() - 2) + "," + cf + ext;
+      strAppend(s, "  CONST robtarget ", *q.name, ":=[",
+                std::string_view(pr).substr(1, pr.size() - 2), ",", cf, ext);
     }
     const int want = c.config_given ? 1 : 0;
     if (want != conf_j) body += want ? "    ConfJ \\On;\n" : "    ConfJ \\Off;\n";
@@ -713,7 +717,7 @@ std::vector<std::string> drillProgramPaths(const DrillProgramText& t, const std:
 }
 
 std::vector<std::string> saveDrillProgram(const DrillProgramText& t, const std::string& out_path) {
-  const std::vector<std::string> paths = drillProgramPaths(t, out_path);
+  std::vector<std::string> paths = drillProgramPaths(t, out_path);
   if (t.dialect == Dialect::kKrl && !paths.empty() &&
       !iequals(fs::path(paths[0]).stem().string(), t.name)) {
     invalid("a KRL program must be saved as " + t.name + ".src (the DEF name), not " +

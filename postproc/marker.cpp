@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <string_view>
 
+#include "compensator/support/str_cat.hpp"
 #include "postproc/program.hpp"
 
 namespace roprec::postproc {
@@ -82,7 +83,7 @@ bool markTp(Program& p, const std::string& text) {
     if (first) {
       char one[32];
       std::snprintf(one, sizeof one, "%*d", static_cast<int>(d), 1);
-      repl = std::string(one) + ":  !" + text + " ;" + eol + repl;
+      repl = strCat(one, ":  !", text, " ;", eol, repl);
       first = false;
     }
     queueEdit(p, fi, f.line_starts[l], static_cast<std::uint32_t>(d), repl);

@@ -9,6 +9,7 @@
 
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
+#include "compensator/support/str_cat.hpp"
 
 namespace roprec::postproc {
 
@@ -188,6 +189,7 @@ int findColumn(const std::vector<std::string>& keys, const std::vector<std::stri
 TableColumns tableColumns(const std::vector<std::string>& header, const TableSpec& spec,
                           const std::string& path, int line) {
   std::vector<std::string> keys;
+  keys.reserve(header.size());
   for (const std::string& h : header) keys.push_back(headerKey(h));
   for (std::size_t a = 0; a < keys.size(); ++a) {
     for (std::size_t b = a + 1; b < keys.size(); ++b) {
@@ -305,6 +307,7 @@ std::size_t headerIndex(const std::vector<Line>& lines, MeasuredFormat f) {
     if (f == MeasuredFormat::kCsv) return n;
     const std::vector<std::string> cells = csvCells(lines[n].text);
     std::vector<std::string> keys;
+    keys.reserve(cells.size());
     for (const std::string& s : cells) keys.push_back(headerKey(s));
     if (findColumn(keys, {"TYPE"}) >= 0 && findColumn(keys, {"NAME"}) >= 0) return n;
   }

@@ -14,7 +14,7 @@ namespace {
 /// A vec3 attribute whose every |component| <= limit (e.g. 1e300 in a cell is a typo, and it
 /// would overflow the kinematics and print 300 digits in messages).
 Vec3 boundedVec3(const XmlNode& e, const char* name, double limit, const char* what) {
-  const Vec3 v = e.vec3(name, Vec3::Zero());
+  Vec3 v = e.vec3(name, Vec3::Zero());
   if (!(v.cwiseAbs().maxCoeff() <= limit))
     e.fail("<" + e.name + "> " + name + " '" + e.str(name) + "' is beyond " + what);
   return v;

@@ -546,13 +546,14 @@ void fillToolAndRegistration(const Problem& P, const IdentificationOptions& o,
       r.message += (r.message.empty() ? "" : "; ") +
                    std::string("the identified tool mass is not positive (not physical)");
     }
-    r.tool_com = o.tool->com + Vec3(r.parameters[static_cast<size_t>(l.tool + 1)].value,
-                                    r.parameters[static_cast<size_t>(l.tool + 2)].value,
-                                    r.parameters[static_cast<size_t>(l.tool + 3)].value);
+    const auto t = static_cast<size_t>(l.tool);
+    r.tool_com = o.tool->com + Vec3(r.parameters[t + 1].value, r.parameters[t + 2].value,
+                                    r.parameters[t + 3].value);
   }
   r.registration.kind = o.registration;
   for (int a = 0; a < l.n_reg; ++a) {
-    const IdentifiedParameter& q = r.parameters[static_cast<size_t>(l.reg + a)];
+    const IdentifiedParameter& q =
+        r.parameters[static_cast<size_t>(l.reg) + static_cast<size_t>(a)];
     (a < 3 ? r.registration.translation : r.registration.rotation)[a % 3] = q.value;
     (a < 3 ? r.registration.translation_sigma : r.registration.rotation_sigma)[a % 3] = q.sigma;
   }
@@ -899,7 +900,7 @@ std::vector<int> greedyDOptimal(const MatrixXd& J, const VectorXd& s0, int count
     }
     used[static_cast<size_t>(best)] = true;
     chosen.push_back(best);
-    const MatrixXd Jb = J.middleRows(2 * best, 2);
+    const MatrixXd Jb = J.middleRows(2 * static_cast<Eigen::Index>(best), 2);
     M += Jb.transpose() * Jb;
     criterion = best_value;
   }
@@ -946,6 +947,7 @@ TestPlan planTest(const PredictionModel& m, const std::vector<HoleRequest>& cand
         "", 0, "the compliance equilibrium fails near the card's stiffness at a candidate hole");
   }
   std::vector<Vec3> p_W;
+  p_W.reserve(holes.size());
   for (const IdentificationHole& h : holes) p_W.push_back(h.T_W_hole.translation());
   const std::vector<int> chosen =
       greedyDOptimal(J, P.spec.s0, count, p_W, o.min_spacing, plan.log_det);
@@ -958,7 +960,7 @@ TestPlan planTest(const PredictionModel& m, const std::vector<HoleRequest>& cand
   MatrixXd M = P.spec.s0.cwiseInverse().cwiseAbs2().asDiagonal();
   for (const int c : chosen) {
     plan.chosen.push_back(index[static_cast<size_t>(c)]);
-    const MatrixXd Jc = J.middleRows(2 * c, 2);
+    const MatrixXd Jc = J.middleRows(2 * static_cast<Eigen::Index>(c), 2);
     M += Jc.transpose() * Jc;
   }
   const MatrixXd C = M.ldlt().solve(MatrixXd::Identity(M.rows(), M.cols()));

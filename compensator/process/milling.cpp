@@ -263,7 +263,7 @@ Vec3 newtonDirection(const Mat3& G, const Vec3& r) {
   const Mat3 J = Mat3::Identity() - G;
   const Eigen::ColPivHouseholderQR<Mat3> qr(J);
   if (qr.rank() == 3) {
-    const Vec3 p = -qr.solve(r);
+    Vec3 p = -qr.solve(r);
     if (p.allFinite()) return p;
   }
   return -r;

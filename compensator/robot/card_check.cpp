@@ -7,6 +7,7 @@
 #include "compensator/robot/urdf_loader.hpp"
 #include "compensator/support/c_format.hpp"
 #include "compensator/support/error.hpp"
+#include "compensator/support/str_cat.hpp"
 
 namespace roprec {
 
@@ -193,7 +194,7 @@ void checkLimits(Checker& c) {
           home ? "holds home, <= 900 deg span" : "<= 900 deg span",
           problem.empty() ? "ok" : "WARNING");
     if (!problem.empty()) {
-      c.find(false, jc.line, "joint '" + j.name + "' " + problem + " (" + value + " deg)",
+      c.find(false, jc.line, strCat("joint '", j.name, "' ", problem, " (", value, " deg)"),
              "compare with the data sheet's axis ranges and the joint's controller_sign / "
              "controller_offset_deg");
     }

@@ -87,7 +87,7 @@ Mat3 linkThreeRotation(const IkModel& m, double q1, double q2, double q3) {
 /// Rotation error ω with R_target = Exp(ω) R and its exact angle.
 Vec3 rotationError(const Mat3& R_target, const Mat3& R, double& angle) {
   const Mat3 Re = R_target * R.transpose();
-  const Vec3 v = 0.5 * Vec3(Re(2, 1) - Re(1, 2), Re(0, 2) - Re(2, 0), Re(1, 0) - Re(0, 1));
+  Vec3 v = 0.5 * Vec3(Re(2, 1) - Re(1, 2), Re(0, 2) - Re(2, 0), Re(1, 0) - Re(0, 1));
   const double s = v.norm();
   const double c = 0.5 * (Re.trace() - 1.0);
   angle = std::atan2(s, c);

@@ -869,7 +869,7 @@ Deflection TransientSimulator::Impl::staticDeflection(const ToolWrench& w) {
   for (int i = 0; i < 6; ++i) {
     if (locked(i)) c.k[i] = c.k_servo[i] = 1e300;
   }
-  const Deflection d =
+  Deflection d =
       predictDeflection(model, out_data, c, problem.theta_cmd, loads, {}, problem.command_offset);
   if (!d.converged) {
     throw std::runtime_error("transient: the static equilibrium did not converge (residual " +

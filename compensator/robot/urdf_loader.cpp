@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "compensator/support/error.hpp"
+#include "compensator/support/str_cat.hpp"
 #include "compensator/support/xml_node.hpp"
 
 namespace roprec {
@@ -20,7 +21,7 @@ namespace roprec {
 std::string inertiaProblem(const Mat3& I) {
   if (!I.allFinite()) return "the inertia has a value that is not a finite number";
   const Eigen::SelfAdjointEigenSolver<Mat3> es(I);
-  const Vec3 ev = es.eigenvalues();  // ascending
+  const Vec3& ev = es.eigenvalues();  // ascending
   const double tol = 1e-9 * std::max(1.0, ev.cwiseAbs().maxCoeff());
   if (ev.minCoeff() < -tol || ev[0] + ev[1] < ev[2] - tol) {
     return "principal moments must be >= 0 and satisfy the triangle inequality";
@@ -102,7 +103,7 @@ UrdfIndex validate(const XmlNode& robot) {
         Mat3 T;
         T << ixx, ixy, ixz, ixy, iyy, iyz, ixz, iyz, izz;
         if (const std::string why = inertiaProblem(T); !why.empty())
-          I->fail("<inertia> of link '" + name + "' is not physically valid: " + why);
+          I->fail(strCat("<inertia> of link '", name, "' is not physically valid: ", why));
       }
     }
   }
@@ -124,12 +125,12 @@ UrdfIndex validate(const XmlNode& robot) {
     const std::string parent = p->str("link");
     const std::string child = c->str("link");
     if (!idx.link_line.count(parent))
-      p->fail("joint '" + name + "': unknown parent link '" + parent + "'");
+      p->fail(strCat("joint '", name, "': unknown parent link '", parent, "'"));
     if (!idx.link_line.count(child))
-      c->fail("joint '" + name + "': unknown child link '" + child + "'");
+      c->fail(strCat("joint '", name, "': unknown child link '", child, "'"));
     if (auto it = idx.parent_joint_of_link.find(child); it != idx.parent_joint_of_link.end()) {
-      e.fail("joint '" + name + "' closes a loop: link '" + child +
-             "' already has the parent joint '" + it->second + "' (a URDF must be a tree)");
+      e.fail(strCat("joint '", name, "' closes a loop: link '", child,
+                    "' already has the parent joint '", it->second, "' (a URDF must be a tree)"));
     }
     idx.parent_joint_of_link[child] = name;
     checkOrigin(e);
@@ -155,11 +156,11 @@ UrdfIndex validate(const XmlNode& robot) {
           l->fail("joint '" + name + "': <limit> is missing the attribute '" + k + "'");
       }
     } else if (type == "revolute" || type == "prismatic") {
-      e.fail("joint '" + name + "' (" + type + ") has no <limit>");
+      e.fail(strCat("joint '", name, "' (", type, ") has no <limit>"));
     }
     if (type != "revolute" && type != "continuous" && type != "fixed" && type != "prismatic" &&
         type != "floating" && type != "planar") {
-      e.fail("joint '" + name + "' has an unknown type '" + type + "'");
+      e.fail(strCat("joint '", name, "' has an unknown type '", type, "'"));
     }
   }
   if (idx.link_line.empty()) robot.fail("the URDF has no <link>");
@@ -310,7 +311,7 @@ ChainDescription loadUrdfChain(const std::string& path, const UrdfChainRequest& 
     const urdf::JointConstSharedPtr pj = cur->parent_joint;
     if (!pj) {
       throw InputError(path, idx.link_line.at(tip),
-                       "link '" + tip + "' is not below the base link '" + base + "'");
+                       strCat("link '", tip, "' is not below the base link '", base, "'"));
     }
     path_joints.push_back(pj);
     cur = model->getLink(pj->parent_link_name);
@@ -341,10 +342,10 @@ ChainDescription loadUrdfChain(const std::string& path, const UrdfChainRequest& 
       throw InputError(path, line, "joint '" + j->name + "' is not revolute");
     }
     if (n >= 6) {
-      throw InputError(path, line,
-                       "the chain " + base + " -> " + tip +
-                           " has more than 6 revolute joints (at '" + j->name +
-                           "'): roprec needs a 6R chain");
+      throw InputError(
+          path, line,
+          strCat("the chain ", base, " -> ", tip, " has more than 6 revolute joints (at '", j->name,
+                 "'): roprec needs a 6R chain"));
     }
     ChainJoint& cj = chain.joints[static_cast<size_t>(n)];
     cj.name = j->name;

@@ -41,8 +41,8 @@ Vec3 zyxFromRotationNear(const Mat3& R, const Vec3& reference) {
     for (int i = 0; i < 3; ++i) out[i] = reference[i] + wrapAngle(v[i] - reference[i]);
     return out;
   };
-  const Vec3 a = near(p);
-  const Vec3 b = near(alt);
+  Vec3 a = near(p);
+  Vec3 b = near(alt);
   // Keep B in [-pi/2, pi/2] unless the alternative is clearly closer to the reference.
   if ((b - reference).squaredNorm() + 1e-18 < (a - reference).squaredNorm() &&
       std::abs(p.y()) > 1e-12) {

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "compensator/support/error.hpp"
+#include "compensator/support/str_cat.hpp"
 
 namespace roprec {
 
@@ -73,8 +74,8 @@ Eigen::VectorXd XmlNode::numbers(const std::string& attr, int n) const {
   while (in >> tok) {
     auto v = parseNumber(tok);
     if (!v)
-      fail("<" + name + "> attribute '" + attr + "' has a value that is not a finite number: '" +
-           tok + "'");
+      fail(strCat("<", name, "> attribute '", attr, "' has a value that is not a finite number: '",
+                  tok, "'"));
     vals.push_back(*v);
   }
   if (static_cast<int>(vals.size()) != n) {
@@ -165,7 +166,7 @@ std::string knownList(const std::vector<std::string>& known, const std::string& 
                       const std::string& close) {
   if (known.empty()) return " (it takes none)";
   std::string list;
-  for (const std::string& k : known) list += (list.empty() ? "" : ", ") + open + k + close;
+  for (const std::string& k : known) strAppend(list, list.empty() ? "" : ", ", open, k, close);
   return " (known: " + list + ")";
 }
 
@@ -192,7 +193,7 @@ void allowOnly(const XmlNode& e, std::initializer_list<const char*> names) {
     const std::vector<std::string> known = toStrings(names);
     std::string hint = didYouMean(k, known);
     if (hint.empty()) hint = knownList(known, "", "");
-    e.fail("unknown attribute '" + k + "' on <" + e.name + ">" + hint);
+    e.fail(strCat("unknown attribute '", k, "' on <", e.name, ">", hint));
   }
 }
 

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "compensator/support/error.hpp"
+#include "compensator/support/str_cat.hpp"
 #include "compensator/support/xml_node.hpp"
 
 namespace roprec::api {
@@ -16,7 +17,7 @@ Eigen::VectorXd numbersFromText(const std::string& text, int n, const std::strin
   std::string part;
   while (in >> part) {
     const auto x = parseNumber(part);
-    if (!x) throw InputError("", 0, what + ": '" + part + "' is not a finite number");
+    if (!x) throw InputError("", 0, strCat(what, ": '", part, "' is not a finite number"));
     v.push_back(*x);
   }
   if (static_cast<int>(v.size()) != n) {

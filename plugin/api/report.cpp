@@ -28,6 +28,7 @@
 #include <string_view>
 
 #include "compensator/robot/robot_card.hpp"
+#include "compensator/support/str_cat.hpp"
 #include "compensator/support/xml_escape.hpp"
 #include "plugin/api/prediction_setup.hpp"
 
@@ -1258,6 +1259,7 @@ void renderBudget(std::string& o, const std::vector<HoleView>& hv) {
   }
   // colours: robot terms blue, process terms orange, in order of appearance
   std::vector<std::string> colours;
+  colours.reserve(terms.size());
   size_t nr = 0, np = 0;
   for (const TermStats& t : terms) {
     colours.emplace_back(t.process ? kProcessColours[np++ % kProcessColours.size()]
@@ -1600,8 +1602,8 @@ void renderTable(std::string& o, const ReportInput& in, const std::vector<HoleVi
         const std::string after = rh.config_after ? esc(*rh.config_after) : before;
         o += rh.rotation_about_axis_deg ? numCell(*rh.rotation_about_axis_deg, 2) : dashCells(1);
         o += reasonCell(rh.rotation_reason);
-        o += std::string("<td class=\"l") + (after != before ? " cfgchg" : "") + "\">" + before +
-             " \u2192 " + after + "</td>";
+        strAppend(o, "<td class=\"l", after != before ? " cfgchg" : "", "\">", before, " \u2192 ",
+                  after, "</td>");
         o += reasonCell(rh.config_reason);
       } else {
         o += dashCells(5);

@@ -270,7 +270,8 @@ void renderHeat(std::string& o, const WorkMap& map, const WorkMapLayer& layer, i
     idx[static_cast<size_t>(ax[0])] = i;
     idx[static_cast<size_t>(ax[1])] = j;
     idx[static_cast<size_t>(ax[2])] = slice;
-    return layer.points[static_cast<size_t>(idx[0] + n[0] * (idx[1] + n[1] * idx[2]))];
+    const auto u = [](int v) { return static_cast<size_t>(v); };  // indices and counts are >= 0
+    return layer.points[u(idx[0]) + u(n[0]) * (u(idx[1]) + u(n[1]) * u(idx[2]))];
   };
   o += "<figure class=\"panel\"><figcaption>" + title +
        "</figcaption><svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 " + n1(W) + " " +

@@ -389,6 +389,7 @@ ROPREC_API int roprec_verify_file(const char* cell_path, const char* program_pat
         host::verifyOutputs(r, job, json_out, card_out);
     if (!r.failed.empty()) throw ItemFailure{host::joinLines(r.failed) + "\nnothing written"};
     std::vector<std::string> paths;
+    paths.reserve(out.size());
     for (const auto& o : out) paths.push_back(o.first);
     const std::string summary = roprec::api::verifySummaryJson(r, paths).dump(0);
     checkFits(summary, summary_json, summary_len, "summary_json");
