@@ -90,8 +90,9 @@ std::string joined(const std::vector<std::string>& v) {
 std::array<double, 16> rowMajorMm(const Pose& T) {
   std::array<double, 16> m{};
   for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) m[static_cast<size_t>(4 * r + c)] = T.linear()(r, c);
-    m[static_cast<size_t>(4 * r + 3)] = T.translation()[r] * 1e3;
+    const auto row = 4 * static_cast<size_t>(r);
+    for (int c = 0; c < 3; ++c) m[row + static_cast<size_t>(c)] = T.linear()(r, c);
+    m[row + 3] = T.translation()[r] * 1e3;
   }
   m[15] = 1.0;
   return m;
@@ -100,7 +101,7 @@ std::array<double, 16> rowMajorMm(const Pose& T) {
 Mat3 rotationOf(const std::array<double, 16>& m) {
   Mat3 R;
   for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) R(r, c) = m[static_cast<size_t>(4 * r + c)];
+    for (int c = 0; c < 3; ++c) R(r, c) = m[4 * static_cast<size_t>(r) + static_cast<size_t>(c)];
   }
   return R;
 }

@@ -7,7 +7,6 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 
 #include "compensator/support/atomic_file.hpp"
@@ -20,10 +19,7 @@
 namespace roprec {
 namespace {
 
-template <class T>
-bool sameBits(const T& a, const T& b) {
-  return std::memcmp(&a, &b, sizeof(T)) == 0;
-}
+bool sameBits(double a, double b) { return test::sameBits(&a, &b); }
 
 void expectSameHole(const HoleCompensation& a, const HoleCompensation& b) {
   SCOPED_TRACE(a.id);
@@ -31,11 +27,11 @@ void expectSameHole(const HoleCompensation& a, const HoleCompensation& b) {
   EXPECT_EQ(a.ok, b.ok);
   EXPECT_EQ(a.reason, b.reason);
   EXPECT_TRUE(sameBits(a.psi, b.psi));
-  EXPECT_EQ(std::memcmp(a.T_programmed.data(), b.T_programmed.data(), sizeof(double) * 16), 0);
-  EXPECT_EQ(std::memcmp(a.theta_cmd.data(), b.theta_cmd.data(), sizeof(double) * 6), 0);
-  EXPECT_EQ(std::memcmp(a.theta_d.data(), b.theta_d.data(), sizeof(double) * 6), 0);
-  EXPECT_EQ(std::memcmp(a.residual.data(), b.residual.data(), sizeof(double) * 3), 0);
-  EXPECT_EQ(std::memcmp(a.before.joints.data(), b.before.joints.data(), sizeof(double) * 6), 0);
+  EXPECT_TRUE(test::sameBits(a.T_programmed.data(), b.T_programmed.data(), 16));
+  EXPECT_TRUE(test::sameBits(a.theta_cmd.data(), b.theta_cmd.data(), 6));
+  EXPECT_TRUE(test::sameBits(a.theta_d.data(), b.theta_d.data(), 6));
+  EXPECT_TRUE(test::sameBits(a.residual.data(), b.residual.data(), 3));
+  EXPECT_TRUE(test::sameBits(a.before.joints.data(), b.before.joints.data(), 6));
   EXPECT_TRUE(sameBits(a.after.U_work_exact, b.after.U_work_exact));
   EXPECT_TRUE(sameBits(a.U_work_keep, b.U_work_keep));
   EXPECT_EQ(a.config_text, b.config_text);

@@ -273,7 +273,7 @@ std::vector<Vec6> readTargetJoints(const std::string& csv,
     if (cells.size() < 10) continue;
     if (moves) moves->push_back(cells[0]);
     Vec6 q;
-    for (int i = 0; i < 6; ++i) q[i] = std::stod(cells[static_cast<size_t>(4 + i)]) * kDeg;
+    for (int i = 0; i < 6; ++i) q[i] = std::stod(cells[4 + static_cast<size_t>(i)]) * kDeg;
     out.push_back(q);
   }
   return out;

@@ -3,9 +3,10 @@
 // SourceFile::indexLines against line ends counted by hand.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
-#include <cstring>
 #include <map>
 #include <random>
 #include <string>
@@ -22,7 +23,9 @@ using roprec::postproc::SourceFile;
 
 double strtodRef(const std::string& s) { return std::strtod(s.c_str(), nullptr); }
 
-bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+bool sameBits(double a, double b) {
+  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
+}
 
 TEST(ParseNumber, DecimalsMatchStrtodBitForBit) {
   std::mt19937_64 rng(7);

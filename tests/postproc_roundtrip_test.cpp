@@ -134,7 +134,7 @@ std::vector<CsvRow> readTargetsCsv(const std::string& path) {
     r.move = c[0];
     r.xyz = Vec3(std::stod(c[1]), std::stod(c[2]), std::stod(c[3]));
     for (int k = 0; k < 6; ++k)
-      r.joints[static_cast<std::size_t>(k)] = std::stod(c[static_cast<std::size_t>(4 + k)]);
+      r.joints[static_cast<std::size_t>(k)] = std::stod(c[4 + static_cast<std::size_t>(k)]);
     rows.push_back(r);
   }
   return rows;

@@ -5,8 +5,6 @@
 // admissible joints), not predictHoles itself.
 #include <gtest/gtest.h>
 
-#include <cstring>
-
 #include "plugin/api/job.hpp"
 #include "plugin/api/prediction_setup.hpp"
 #include "tests/support/test_support.hpp"
@@ -38,9 +36,9 @@ void expectIdentical(const std::vector<HolePrediction>& a, const std::vector<Hol
   for (size_t i = 0; i < a.size(); ++i) {
     SCOPED_TRACE(req[i].id);
     EXPECT_EQ(api::holeJson(a[i], req[i]).dump(), api::holeJson(b[i], req[i]).dump());
-    EXPECT_EQ(std::memcmp(a[i].joints.data(), b[i].joints.data(), sizeof(double) * 6), 0);
-    EXPECT_EQ(std::memcmp(a[i].d_work.data(), b[i].d_work.data(), sizeof(double) * 3), 0);
-    EXPECT_EQ(std::memcmp(&a[i].U_work_exact, &b[i].U_work_exact, sizeof(double)), 0);
+    EXPECT_TRUE(test::sameBits(a[i].joints.data(), b[i].joints.data(), 6));
+    EXPECT_TRUE(test::sameBits(a[i].d_work.data(), b[i].d_work.data(), 3));
+    EXPECT_TRUE(test::sameBits(&a[i].U_work_exact, &b[i].U_work_exact));
     EXPECT_EQ(a[i].status, b[i].status);
     EXPECT_EQ(a[i].reason, b[i].reason);
   }

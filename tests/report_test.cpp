@@ -411,7 +411,10 @@ class Inflate {
     for (int len = 1; len <= 15; ++len) {
       code |= bits(1);
       const int count = h.count[static_cast<size_t>(len)];
-      if (code - count < first) return h.symbol[static_cast<size_t>(index + (code - first))];
+      if (code - count < first) {
+        const int at = index + (code - first);
+        return h.symbol[static_cast<size_t>(at)];
+      }
       index += count;
       first += count;
       first <<= 1;
@@ -426,7 +429,7 @@ class Inflate {
     for (int s = 0; s < n; ++s) h.count[static_cast<size_t>(length[s])]++;
     std::array<short, 16> offs{};
     for (int len = 1; len < 15; ++len) {
-      offs[static_cast<size_t>(len + 1)] =
+      offs[static_cast<size_t>(len) + 1] =
           static_cast<short>(offs[static_cast<size_t>(len)] + h.count[static_cast<size_t>(len)]);
     }
     for (int s = 0; s < n; ++s) {
@@ -458,12 +461,12 @@ class Inflate {
       } else {
         sym -= 257;
         if (sym >= 29) throw std::runtime_error("inflate: bad length symbol");
-        const size_t len = static_cast<size_t>(kLBase[static_cast<size_t>(sym)] +
-                                               bits(kLExt[static_cast<size_t>(sym)]));
+        const size_t len = static_cast<size_t>(kLBase[static_cast<size_t>(sym)]) +
+                           static_cast<size_t>(bits(kLExt[static_cast<size_t>(sym)]));
         const int dsym = decode(distcode);
         if (dsym >= 30) throw std::runtime_error("inflate: bad distance symbol");
-        const size_t dist = static_cast<size_t>(kDBase[static_cast<size_t>(dsym)] +
-                                                bits(kDExt[static_cast<size_t>(dsym)]));
+        const size_t dist = static_cast<size_t>(kDBase[static_cast<size_t>(dsym)]) +
+                            static_cast<size_t>(bits(kDExt[static_cast<size_t>(dsym)]));
         if (dist > out_.size()) throw std::runtime_error("inflate: distance too far back");
         for (size_t i = 0; i < len; ++i) out_.push_back(out_[out_.size() - dist]);
       }
@@ -1160,7 +1163,8 @@ Synthetic makeLarge(size_t n) {
     HolePrediction p;
     p.id = "L" + std::to_string(i + 1);
     const double x = 0.004 * static_cast<double>(i % cols),
-                 y = 0.004 * static_cast<double>(i / cols);
+                 y = 0.004 *
+                     static_cast<double>(i / cols);  // NOLINT(bugprone-integer-division): the row
     s.poses.push_back(toolPose(Vec3(1.0 + x, -0.2 + y, 0.5), -Vec3::UnitZ()));
     p.tolerance = 0.2e-3;
     p.diameter = 8e-3;

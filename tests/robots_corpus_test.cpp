@@ -49,7 +49,7 @@ std::vector<TargetRow> readTargets(const std::string& path) {
     TargetRow r;
     r.line = n;
     r.target_mm = Vec3(1400.0 + v[0], v[1], 400.0 + v[2]);  // workpiece frame in the base frame
-    for (int i = 0; i < 6; ++i) r.joints_deg[i] = v[static_cast<size_t>(3 + i)];
+    for (int i = 0; i < 6; ++i) r.joints_deg[i] = v[3 + static_cast<size_t>(i)];
     rows.push_back(r);
   }
   return rows;

@@ -1,10 +1,22 @@
 #pragma once
 /// Helpers shared by the tests: paths, running the CLI, KDL chains from the same URDF.
+#include <bit>
+#include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace roprec::test {
+
+/// Whether a[0, n) and b[0, n) have the same bits (what byte-identical means for numbers: -0 is
+/// not 0, a NaN equals the same NaN).
+inline bool sameBits(const double* a, const double* b, std::size_t n = 1) {
+  for (std::size_t i = 0; i < n; ++i) {
+    if (std::bit_cast<std::uint64_t>(a[i]) != std::bit_cast<std::uint64_t>(b[i])) return false;
+  }
+  return true;
+}
 
 std::string sourceDir();
 /// ../shared/corpus next to the source tree, or "" when absent (tests then GTEST_SKIP()). With
