@@ -3,7 +3,7 @@
 # configured build (build/ unless ROPREC_BUILD_DIR says otherwise: run scripts/demo.sh or
 # scripts/test.sh first) and exits 1 when it reports anything, listing each warning once.
 # Arguments: the files to check (default: every .cpp of compensator/, postproc/, plugin/ and
-# tests/; ~15 minutes on 2 cores).
+# tests/; ~10 minutes on 2 cores).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$ROOT"
