@@ -19,7 +19,7 @@
 namespace roprec {
 namespace {
 
-bool sameBits(double a, double b) { return test::sameBits(&a, &b); }
+using test::sameBits;
 
 void expectSameHole(const HoleCompensation& a, const HoleCompensation& b) {
   SCOPED_TRACE(a.id);
@@ -27,11 +27,11 @@ void expectSameHole(const HoleCompensation& a, const HoleCompensation& b) {
   EXPECT_EQ(a.ok, b.ok);
   EXPECT_EQ(a.reason, b.reason);
   EXPECT_TRUE(sameBits(a.psi, b.psi));
-  EXPECT_TRUE(test::sameBits(a.T_programmed.data(), b.T_programmed.data(), 16));
-  EXPECT_TRUE(test::sameBits(a.theta_cmd.data(), b.theta_cmd.data(), 6));
-  EXPECT_TRUE(test::sameBits(a.theta_d.data(), b.theta_d.data(), 6));
-  EXPECT_TRUE(test::sameBits(a.residual.data(), b.residual.data(), 3));
-  EXPECT_TRUE(test::sameBits(a.before.joints.data(), b.before.joints.data(), 6));
+  EXPECT_TRUE(sameBits(a.T_programmed.data(), b.T_programmed.data(), 16));
+  EXPECT_TRUE(sameBits(a.theta_cmd.data(), b.theta_cmd.data(), 6));
+  EXPECT_TRUE(sameBits(a.theta_d.data(), b.theta_d.data(), 6));
+  EXPECT_TRUE(sameBits(a.residual.data(), b.residual.data(), 3));
+  EXPECT_TRUE(sameBits(a.before.joints.data(), b.before.joints.data(), 6));
   EXPECT_TRUE(sameBits(a.after.U_work_exact, b.after.U_work_exact));
   EXPECT_TRUE(sameBits(a.U_work_keep, b.U_work_keep));
   EXPECT_EQ(a.config_text, b.config_text);

@@ -3,9 +3,7 @@
 // SourceFile::indexLines against line ends counted by hand.
 #include <gtest/gtest.h>
 
-#include <bit>
 #include <cmath>
-#include <cstdint>
 #include <cstdlib>
 #include <map>
 #include <random>
@@ -13,6 +11,7 @@
 
 #include "postproc/lexer.hpp"
 #include "postproc/program.hpp"
+#include "tests/support/test_support.hpp"
 
 namespace {
 
@@ -23,9 +22,7 @@ using roprec::postproc::SourceFile;
 
 double strtodRef(const std::string& s) { return std::strtod(s.c_str(), nullptr); }
 
-bool sameBits(double a, double b) {
-  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
-}
+using roprec::test::sameBits;
 
 TEST(ParseNumber, DecimalsMatchStrtodBitForBit) {
   std::mt19937_64 rng(7);

@@ -502,28 +502,28 @@ PYBIND11_MODULE(_roprec, m) {
       "A target or hole that could not be handled (unreachable, singular, not converged), or a "
       "compensation that was not written because some holes failed.",
       e.base);
-  // pybind11 takes a plain function pointer of this signature (by value)
-  py::register_exception_translator(
-      [](std::exception_ptr p) {  // NOLINT(performance-unnecessary-value-param)
-        const ErrorClasses& c = errorClasses();
-        try {
-          if (p) std::rethrow_exception(p);
-        } catch (const py::error_already_set&) {
-          throw;
-        } catch (const py::builtin_exception&) {
-          throw;
-        } catch (const roprec::InputError& x) {
-          raise(c.input, x.what());
-        } catch (const roprec::UsageError& x) {
-          raise(c.usage, x.what());
-        } catch (const ItemFailure& x) {
-          raise(c.item, x.what());
-        } catch (const std::bad_alloc&) {
-          throw;  // MemoryError
-        } catch (const std::exception& x) {
-          raise(c.base, (std::string("internal error: ") + x.what()).c_str());
-        }
-      });
+  // pybind11 takes a plain function pointer, void(*)(std::exception_ptr)
+  // NOLINTNEXTLINE(performance-unnecessary-value-param)
+  py::register_exception_translator([](std::exception_ptr p) {
+    const ErrorClasses& c = errorClasses();
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const py::error_already_set&) {
+      throw;
+    } catch (const py::builtin_exception&) {
+      throw;
+    } catch (const roprec::InputError& x) {
+      raise(c.input, x.what());
+    } catch (const roprec::UsageError& x) {
+      raise(c.usage, x.what());
+    } catch (const ItemFailure& x) {
+      raise(c.item, x.what());
+    } catch (const std::bad_alloc&) {
+      throw;  // MemoryError
+    } catch (const std::exception& x) {
+      raise(c.base, (std::string("internal error: ") + x.what()).c_str());
+    }
+  });
 
   m.def(
       "version", [] { return std::string(roprec::api::version()); },

@@ -17,6 +17,7 @@ inline bool sameBits(const double* a, const double* b, std::size_t n = 1) {
   }
   return true;
 }
+inline bool sameBits(double a, double b) { return sameBits(&a, &b); }
 
 std::string sourceDir();
 /// ../shared/corpus next to the source tree, or "" when absent (tests then GTEST_SKIP()). With
