@@ -1162,9 +1162,8 @@ Synthetic makeLarge(size_t n) {
   for (size_t i = 0; i < n; ++i) {
     HolePrediction p;
     p.id = "L" + std::to_string(i + 1);
-    const double x = 0.004 * static_cast<double>(i % cols),
-                 y = 0.004 *
-                     static_cast<double>(i / cols);  // NOLINT(bugprone-integer-division): the row
+    const size_t row = i / cols;
+    const double x = 0.004 * static_cast<double>(i % cols), y = 0.004 * static_cast<double>(row);
     s.poses.push_back(toolPose(Vec3(1.0 + x, -0.2 + y, 0.5), -Vec3::UnitZ()));
     p.tolerance = 0.2e-3;
     p.diameter = 8e-3;

@@ -369,10 +369,11 @@ TEST(StreamingOutput, ThePredictionWriterHoldsAboutOneChunkWhateverTheJobSize) {
   const std::string dir = test::tempDir("stream_chunks");
   std::ostringstream csv;
   csv << "id,x,y,z,i,j,k,diameter,depth,tolerance\n";
-  for (int k = 0; k < 1500; ++k)
-    csv << "H" << k << "," << -30 + 1.2 * (k % 50) << ","
-        << -20 + 1.2 * static_cast<double>(k / 50)  // NOLINT(bugprone-integer-division): the row
+  for (int k = 0; k < 1500; ++k) {
+    const int row = k / 50;
+    csv << "H" << k << "," << -30 + 1.2 * (k % 50) << "," << -20 + 1.2 * row
         << ",250,0,0,-1,6.8,16,0.2\n";
+  }
   test::writeFile(dir + "/job.csv", csv.str());
   size_t total = 0;
   size_t largest = 0;

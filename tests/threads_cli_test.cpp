@@ -24,7 +24,8 @@ std::string generatedProgram(const std::string& dir, int n) {
   s.precision(3);
   for (int k = 0; k < n; ++k) {
     const double x = -30.0 + 1.2 * (k % 40);
-    const double y = -20.0 + 1.2 * (k / 40);  // NOLINT(bugprone-integer-division): the row
+    const int row = k / 40;
+    const double y = -20.0 + 1.2 * row;
     auto at = [&](double z) {
       std::ostringstream p;
       p.setf(std::ios::fixed);
