@@ -9,6 +9,7 @@
 
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
+#include "compensator/support/fixed_chars.hpp"
 #include "compensator/support/str_cat.hpp"
 
 namespace roprec::postproc {
@@ -500,10 +501,8 @@ void requirePlausible(const std::vector<MeasuredHole>& holes, const std::string&
 
 /// Fixed notation, locale-independent; "-0.000" printed as "0.000".
 std::string fixed(double v, int decimals) {
-  char buf[64];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, decimals);
-  std::string s(buf, r.ptr);
-  if (s.front() == '-' && s.find_first_not_of("-0.") == std::string::npos) s.erase(0, 1);
+  std::string s;
+  appendFixed(s, v, decimals);
   return s;
 }
 

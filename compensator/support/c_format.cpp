@@ -1,4 +1,5 @@
 #include "compensator/support/c_format.hpp"
+#include "compensator/support/fixed_chars.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -15,9 +16,8 @@ std::string nonFinite(double v) {
 
 std::string cFixed(double v, int decimals) {
   if (!std::isfinite(v)) return nonFinite(v);
-  char buf[400];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed,
-                               std::clamp(decimals, 0, 60));
+  char buf[400];  // DBL_MAX with 60 places fits
+  const auto r = toFixedChars(buf, buf + sizeof buf, v, std::clamp(decimals, 0, 60));
   if (r.ec != std::errc()) return cGeneral(v, 17);
   return std::string(buf, r.ptr);
 }

@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "compensator/support/error.hpp"
+#include "compensator/support/fixed_chars.hpp"
 
 namespace roprec::api {
 
@@ -125,21 +126,15 @@ std::string jsonEscape(const std::string& s) {
 void appendNumber(std::string& out, double v, int decimals) {
   // std::to_chars: the "C" format whatever the host's locale (a comma-decimal LC_NUMERIC must
   // not change a byte of the output).
-  char buf[400];
   if (decimals >= 0) {
-    const auto r =
-        std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, std::min(decimals, 60));
-    if (r.ec != std::errc()) {
+    if (!std::isfinite(v)) {
       out += numberText(v);
       return;
     }
-    // "-0.000" -> "0.000"
-    const char* b = buf;
-    if (buf[0] == '-' && std::all_of(buf + 1, r.ptr, [](char c) { return c == '0' || c == '.'; }))
-      ++b;
-    out.append(b, static_cast<size_t>(r.ptr - b));
+    appendFixed(out, v, decimals);  // "-0.000" -> "0.000"
     return;
   }
+  char buf[400];
   if (v == 0.0) {
     out += '0';
     return;

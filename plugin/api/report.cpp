@@ -28,6 +28,7 @@
 #include <string_view>
 
 #include "compensator/robot/robot_card.hpp"
+#include "compensator/support/fixed_chars.hpp"
 #include "compensator/support/str_cat.hpp"
 #include "compensator/support/xml_escape.hpp"
 #include "plugin/api/prediction_setup.hpp"
@@ -45,11 +46,8 @@ constexpr double kPi = std::numbers::pi;
 /// Fixed decimals, locale-independent; "-0.0" → "0.0"; non-finite → an em dash.
 std::string num(double v, int decimals) {
   if (!std::isfinite(v)) return kDash;
-  char buf[512];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed, decimals);
-  if (r.ec != std::errc()) return kDash;
-  std::string s(buf, r.ptr);
-  if (!s.empty() && s[0] == '-' && s.find_first_not_of("-0.") == std::string::npos) s.erase(0, 1);
+  std::string s;
+  appendFixed(s, v, decimals);
   return s;
 }
 
