@@ -13,6 +13,7 @@
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
 #include "plugin/cli/cli.hpp"
+#include "plugin/api/job.hpp"
 
 namespace {
 
@@ -58,7 +59,7 @@ int main(int argc, char** argv) {
     return tokens.empty() ? 2 : 0;
   }
   if (tokens[0] == "--version") {
-    std::cout << "roprec 0.1.0\n";
+    std::cout << "roprec " << roprec::api::version() << "\n";
     return 0;
   }
   const std::string name = tokens[0];
