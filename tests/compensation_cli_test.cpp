@@ -34,8 +34,8 @@ json predictJson(const std::string& cell, const std::string& prog, const std::st
 TEST(CompensationCli, RepredictingTheCompensatedProgramLeavesAtMostATenthOfAMicrometre) {
   const std::string s = test::sourceDir() + "/samples/";
   const std::vector<Job> jobs = {
-      {s + "cells/housing-kr120.xml", s + "emotor-housing/housing_kr120.src"},
-      {s + "cells/housing-irb6640.xml", s + "emotor-housing/housing_irb6640.mod"},
+      {s + "cells/housing-kr120.xml", s + "emotor-housing/housing_kr120.src", ""},
+      {s + "cells/housing-irb6640.xml", s + "emotor-housing/housing_irb6640.mod", ""},
       // UFRAME[1]/UTOOL[1] live in the controller: the cell's workobject and tool are them
       {s + "cells/housing-r2000.xml", s + "emotor-housing/housing_r2000.ls",
        "--frame cell --tool cell"}};

@@ -286,7 +286,9 @@ TEST(CompensationOrientation, StiffestObeysTheJumpLimitAndReportsItsGain) {
       ++jumps;
     }
     ASSERT_TRUE(std::isfinite(s[i].U_work_keep)) << s[i].id;
-    if (std::abs(s[i].psi) > 1e-9) EXPECT_FALSE(s[i].psi_reason.empty()) << s[i].id;
+    if (std::abs(s[i].psi) > 1e-9) {
+      EXPECT_FALSE(s[i].psi_reason.empty()) << s[i].id;
+    }
   }
   EXPECT_EQ(jumps, 0);
   // the gain over keep, summed: stiffest is not worse on the whole job

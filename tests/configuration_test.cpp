@@ -78,9 +78,12 @@ TEST(Configuration, BranchBitsMatchTheDirectGeometricDefinition) {
       const Vec6 q = randomWithinLimits(robot.chain, rng);
       const DirectBranch d = direct(robot.chain, q);
       const IkBranch b = ikBranch(m, q);
-      if (std::abs(d.shoulder_x) > 1e-9) EXPECT_EQ(b.shoulder, d.shoulder_x >= 0 ? 0 : 1);
-      if (std::abs(d.elbow_sign) > 1e-9)
+      if (std::abs(d.shoulder_x) > 1e-9) {
+        EXPECT_EQ(b.shoulder, d.shoulder_x >= 0 ? 0 : 1);
+      }
+      if (std::abs(d.elbow_sign) > 1e-9) {
         EXPECT_EQ(b.elbow, (d.elbow_sign > 0) == (dref.elbow_sign > 0) ? 0 : 1);
+      }
       const double t5 = toControllerJoints(robot.card, q)[4];
       EXPECT_EQ(b.wrist, t5 < 0 ? 1 : 0);
     }

@@ -4,9 +4,9 @@
 
 #include <array>
 #include <charconv>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <cmath>
 #include <limits>
 #include <random>
 #include <string>
@@ -18,8 +18,8 @@ namespace {
 /// fast path under test.
 std::string reference(double v, int decimals) {
   std::array<char, 512> buf{};
-  const auto r = std::to_chars(buf.data(), buf.data() + buf.size(), v, std::chars_format::fixed,
-                               decimals);
+  const auto r =
+      std::to_chars(buf.data(), buf.data() + buf.size(), v, std::chars_format::fixed, decimals);
   EXPECT_EQ(r.ec, std::errc());
   return {buf.data(), r.ptr};
 }
@@ -53,8 +53,8 @@ TEST(FixedChars, ExactTiesRoundHalfToEvenAsToChars) {
 
 TEST(FixedChars, DecimalLookingTiesFollowTheBinaryValue) {
   // 0.0005, 1.0005, 2.675: not ties in binary; the exact value decides
-  for (const double v : {0.0005, 1.0005, 2.675, 1.005, 0.045, 1e-3, 123.4565, 0.1, 0.7, 9.995,
-                         0.05, 0.35}) {
+  for (const double v :
+       {0.0005, 1.0005, 2.675, 1.005, 0.045, 1e-3, 123.4565, 0.1, 0.7, 9.995, 0.05, 0.35}) {
     for (int d = 0; d <= 17; ++d) {
       expectSame(v, d);
       expectSame(-v, d);
@@ -66,7 +66,7 @@ TEST(FixedChars, SignsZerosAndCarries) {
   for (int d = 0; d <= 9; ++d) {
     expectSame(0.0, d);
     expectSame(-0.0, d);
-    expectSame(-1e-12, d);  // rounds to "-0.000…" as std::to_chars writes it
+    expectSame(-1e-12, d);        // rounds to "-0.000…" as std::to_chars writes it
     expectSame(9.9999999999, d);  // the carry adds a digit
     expectSame(-99.99999999, d);
     expectSame(0.999999999999, d);

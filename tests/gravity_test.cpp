@@ -123,8 +123,8 @@ TEST(Counterbalance, ModelTorquesAreKdlGravityMinusTheBalancer) {
     const KDL::Chain kc = kdlOf(r);
     const nc::Model m = nc::buildModel(r.chain);
     nc::Data d(m);
-    for (const nc::Vec6 q : {nc::Vec6(0.1, -0.5, 0.7, 0.2, 0.4, -0.3),
-                             nc::Vec6(-0.4, 0.3, -0.2, 1.0, -0.6, 0.5), r.card.calibration_pose}) {
+    for (const nc::Vec6& q : {nc::Vec6(0.1, -0.5, 0.7, 0.2, 0.4, -0.3),
+                              nc::Vec6(-0.4, 0.3, -0.2, 1.0, -0.6, 0.5), r.card.calibration_pose}) {
       nc::solvePosition(m, d, q);
       const nc::Vec6 tau = nc::staticTorques(m, d, nc::Loads{});
       const nc::Vec6 ref = kdlDriveTorques(kc, r, q);
@@ -311,7 +311,7 @@ TEST(GravityHandling, PredictDeflectAndSimulateAgree) {
   // the same cell, both controller settings: predict's δrobot, deflect's deviation and simulate's
   // static gravity_only_um at the hole's joints agree to the JSON rounding (0.002 µm)
   std::vector<double> sag_of;
-  for (const std::string controller :
+  for (const std::string& controller :
        {std::string("<controller gravity_compensated=\"true\" calibration_load=\"tool\"/>"),
         std::string("<controller gravity_compensated=\"false\"/>")}) {
     SCOPED_TRACE(controller);
@@ -458,7 +458,7 @@ TEST(CardWeight, LinkOverrideChangesTheGravityTorqueAsKdlSays) {
   const Robot bundled = loadRobot({"kuka-kr120-r2500-pro", "", ""});
   const nc::Model mb = nc::buildModel(bundled.chain);
   nc::Data db(mb);
-  for (const nc::Vec6 q :
+  for (const nc::Vec6& q :
        {nc::Vec6(0.1, -0.5, 0.7, 0.2, 0.4, -0.3), nc::Vec6(-0.4, 0.3, -0.2, 1.0, -0.6, 0.5)}) {
     nc::solvePosition(m, d, q);
     const nc::Vec6 tau = nc::staticTorques(m, d, nc::Loads{});

@@ -181,11 +181,12 @@ TEST(NaturalModel, PhiqMatchesCentralDifferencesAndSolvesMatchDenseLu) {
     for (int k = 0; k < nc::kNq; ++k) r[k] = nd(rng) * 1e3;
     nc::VecQ x;
     nc::solveA(model, data, r, x);
-    const Eigen::VectorXd xr = lu.solve(Eigen::VectorXd(r));
+    const Eigen::VectorXd r_dense = r;
+    const Eigen::VectorXd xr = lu.solve(r_dense);
     EXPECT_LE((x - xr).norm(), 1e-10 * (1.0 + xr.norm()));
     nc::VecQ y;
     nc::solveAT(model, data, r, y);
-    const Eigen::VectorXd yr = lu.transpose().solve(Eigen::VectorXd(r));
+    const Eigen::VectorXd yr = lu.transpose().solve(r_dense);
     EXPECT_LE((y - yr).norm(), 1e-10 * (1.0 + yr.norm()));
   }
 }

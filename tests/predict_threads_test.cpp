@@ -131,7 +131,9 @@ std::string streamedJson(const std::string& csv, int threads, bool blocks,
                    [&](size_t, const HolePrediction& h, const HoleRequest& q) { js->hole(h, q); },
                    header);
   js->finish(r.summary);
-  if (blocks) EXPECT_EQ(next, static_cast<size_t>(r.summary.holes));
+  if (blocks) {
+    EXPECT_EQ(next, static_cast<size_t>(r.summary.holes));
+  }
   return out;
 }
 

@@ -168,14 +168,13 @@ api::ReportInput makeInput(const Synthetic& s, bool compensation) {
   in.default_tolerance_mm = 0.2;
   in.compensation = compensation;
   for (size_t i = 0; i < s.preds.size(); ++i) {
-    api::ReportHole h;
+    api::ReportHole& h = in.holes.emplace_back();  // filled in place (no copy of its optionals)
     h.prediction = &s.preds[i];
     h.T_W_tcp = s.poses[i];
     if (compensation && s.preds[i].status == HoleStatus::kOk) {
       h.residual_um = 0.02 * s.preds[i].position_error * 1e6 + 0.3;
       h.rotation_about_axis_deg = (i % 5 == 0) ? 12.5 : 0.0;
     }
-    in.holes.push_back(h);
   }
   in.summary = summarize(s.preds);
   return in;
@@ -1325,10 +1324,10 @@ TEST(ReportChromium, VerifyTableSortsAndFilters) {
       "<tr(?: class=\"pass\")?><td>\\d+</td><td class=\"l\">[^<]*</td><td>[^<]*"
       "</td><td>[^<]*</td><td>([^<]*)</td>");
   const auto column = [&](const std::string& text) {
-    std::vector<double> v;
+    std::vector<double> values;
     for (std::sregex_iterator it(text.begin(), text.end(), row), end; it != end; ++it)
-      v.push_back(std::stod((*it)[1].str()));
-    return v;
+      values.push_back(std::stod((*it)[1].str()));
+    return values;
   };
   const std::vector<double> before = column(html), after = column(table);
   ASSERT_EQ(before.size(), 24u);

@@ -120,7 +120,9 @@ TEST(SimulateCli, DrillingCycleFollowsTheRealPenetration) {
       ++cutting;
       EXPECT_NEAR(tip, cut, kDepthTolMm);
       EXPECT_GT(std::stod(f[20]), 0.0);  // real feed per rev
-      if (prev_fa > 0.0) EXPECT_GE(tip, prev_tip - kDepthTolMm) << "t = " << f[0];
+      if (prev_fa > 0.0) {
+        EXPECT_GE(tip, prev_tip - kDepthTolMm) << "t = " << f[0];
+      }
       max_lag = std::max(max_lag, std::stod(f[1]) - cut);
     }
     fa_max = std::max(fa_max, fa);
@@ -134,7 +136,9 @@ TEST(SimulateCli, DrillingCycleFollowsTheRealPenetration) {
   const double t_cut = tr["end_of_cut_t_s"].get<double>();
   EXPECT_GT(t_cut, 1.0);
   for (const auto& f : rows) {
-    if (std::stod(f[0]) > t_cut + 1e-6) EXPECT_EQ(std::stod(f[2]), 0.0);
+    if (std::stod(f[0]) > t_cut + 1e-6) {
+      EXPECT_EQ(std::stod(f[2]), 0.0);
+    }
   }
   // without --duration the run ends with the retract, 0.1 s after the end of the cut
   EXPECT_NEAR(std::stod(rows.back()[0]), t_cut + 0.1, 1.5e-3);

@@ -249,7 +249,9 @@ TEST(StreamingOutput, PredictionJsonIsByteIdenticalToTheInMemoryTree) {
     opt.match_tol_mm = 10;
     const api::PredictionResult r = api::predictJob(cellPath(), c.program, opt);
     ASSERT_FALSE(r.holes.empty());
-    if (c.program == dir + "/mixed.csv") EXPECT_GE(r.failed(), 2);  // unreachable holes too
+    if (c.program == dir + "/mixed.csv") {  // unreachable holes too
+      EXPECT_GE(r.failed(), 2);
+    }
     const std::string tree = api::predictionJson(r).dump();
     EXPECT_EQ(streamed(r), tree);
 
@@ -308,7 +310,9 @@ TEST(StreamingOutput, AProgramSetUpBlockByBlockGivesTheBytesOfTheWholeJob) {
       opt.threads = threads;
       const api::PredictionResult r = api::predictJob(c.cell, c.program, opt);
       ASSERT_FALSE(r.holes.empty());
-      if (c.program == dir + "/big.src") EXPECT_EQ(r.holes.size(), 2100U);
+      if (c.program == dir + "/big.src") {
+        EXPECT_EQ(r.holes.size(), 2100U);
+      }
       std::string out;
       std::optional<api::PredictionJsonStream> js;
       const api::PredictionResult s = api::predictJobStreaming(

@@ -153,8 +153,8 @@ TEST(StrictCell, CliRefusesAMisspeltCellWithExit2AndWritesNothing) {
 TEST(StrictCell, UncertaintySeedAndSamplesMustBeIntegersInRange) {
   const std::string dir = test::tempDir("strict-seed");
   const std::string src = test::sourceDir() + "/samples/emotor-housing/housing_kr120.src";
-  for (const std::string& bad : {"seed=\"-1\"", "seed=\"1e300\"", "seed=\"2.5\"",
-                                 "samples=\"1e300\"", "samples=\"100.5\""}) {
+  for (const std::string bad : {"seed=\"-1\"", "seed=\"1e300\"", "seed=\"2.5\"",
+                                "samples=\"1e300\"", "samples=\"100.5\""}) {
     SCOPED_TRACE(bad);
     const std::string text =
         replaced(sampleCell(), "<uncertainty method=", "<uncertainty " + bad + " method=");
@@ -268,7 +268,7 @@ TEST(StrictCard, UrdfInertialsMustBePhysical) {
   std::smatch m;
   ASSERT_TRUE(std::regex_search(urdf, m, mass));
   const std::string dir = test::tempDir("strict-urdf");
-  for (const std::string& bad : {"-12", "nan"}) {
+  for (const char* bad : {"-12", "nan"}) {
     SCOPED_TRACE(bad);
     std::string text = urdf;
     text.replace(static_cast<std::size_t>(m.position(1)), static_cast<std::size_t>(m.length(1)),

@@ -608,7 +608,9 @@ TEST(Transient, DrillingTipNeverRetreatsUnderThrustThroughHole) {
     if (smp.process.phase == nc::CyclePhase::kFull) last_full = &smp.process;
     if (smp.process.cutting)
       lag_max = std::max(lag_max, smp.process.feed_position - smp.process.depth);
-    if (smp.t > c.cutEnd() + 1e-9) EXPECT_EQ(smp.process.Fa, 0.0);
+    if (smp.t > c.cutEnd() + 1e-9) {
+      EXPECT_EQ(smp.process.Fa, 0.0);
+    }
   }
   ASSERT_NE(last_full, nullptr);
   // steady state: the deflection is constant, so the tip advances at the feed and the thrust is

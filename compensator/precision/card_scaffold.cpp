@@ -275,7 +275,7 @@ double classRobotMassKg(double payload_kg) { return 34.0 * std::pow(payload_kg, 
 CardScaffold scaffoldCard(const CardScaffoldRequest& req) {
   const ChainDescription root_chain = loadUrdfChain(req.urdf, {});
   const std::string root = root_chain.base_link;
-  Ctx c{req, {}, {}, {}, req.model.empty() ? root_chain.robot_name : req.model};
+  Ctx c{req, {}, {}, {}, req.model.empty() ? root_chain.robot_name : req.model, 0.0, {}, false};
   if (req.vendor) {
     c.out.vendor = *req.vendor;
   } else if (const auto v = vendorFromName(root_chain.robot_name)) {

@@ -703,7 +703,12 @@ bool solveIkNearest(const IkModel& m, const Pose& target, const Vec6& ref,
     if (!primaryRepresentative(m, raw[static_cast<size_t>(k)].q, &ref, q)) continue;
     order[static_cast<size_t>(n++)] = {weightedDistance(q, ref, weights), k};
   }
-  std::sort(order.begin(), order.begin() + n);
+  // insertion sort: at most 8 candidates (std::sort's 16-element insertion stage, which GCC 12
+  // warns about on an 8-element array, never runs for them either)
+  for (int i = 1; i < n; ++i) {
+    for (int j = i; j > 0 && order[static_cast<size_t>(j)] < order[static_cast<size_t>(j - 1)]; --j)
+      std::swap(order[static_cast<size_t>(j)], order[static_cast<size_t>(j - 1)]);
+  }
   bool found = false;
   double best_d = 0.0;
   for (int c = 0; c < n; ++c) {

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <bit>
-#include <cstddef>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 
@@ -15,9 +15,9 @@ namespace {
 constexpr int kMaxFastDecimals = 17;
 
 /// 10^d for d = 0 … kMaxFastDecimals, each exact in a double (10^d is exact up to d = 22).
-constexpr std::array<double, kMaxFastDecimals + 1> kPow10 = {
-    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
-    1e17};
+constexpr std::array<double, kMaxFastDecimals + 1> kPow10 = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,
+                                                             1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
+                                                             1e12, 1e13, 1e14, 1e15, 1e16, 1e17};
 
 /// 10^d as integers, d = 0 … 19.
 constexpr std::array<std::uint64_t, 20> kPow10Int = [] {
@@ -77,8 +77,7 @@ std::to_chars_result toFixedChars(char* first, char* last, double v, int decimal
   // [-]integer digits[.decimals digits]
   const bool negative = std::signbit(v);
   const int int_digits = std::max(digitCount(m) - decimals, 1);
-  const std::ptrdiff_t size =
-      (negative ? 1 : 0) + int_digits + (decimals > 0 ? decimals + 1 : 0);
+  const std::ptrdiff_t size = (negative ? 1 : 0) + int_digits + (decimals > 0 ? decimals + 1 : 0);
   if (last - first < size) return {last, std::errc::value_too_large};
   char* p = first + size;
   if (decimals > 0) {

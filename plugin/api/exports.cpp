@@ -489,7 +489,7 @@ std::string predictionReport(const PredictionResult& r) {
     ReportHole rh;
     rh.prediction = &r.holes[i];
     rh.T_W_tcp = c.job.requests[i].T_W_tcp;
-    in.holes.push_back(rh);
+    in.holes.push_back(std::move(rh));
   }
   addPartFrameAndSplit(in, c);  // report.hpp: part frame and the δrobot split (issue 14)
   return renderReport(in);

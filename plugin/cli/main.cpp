@@ -12,8 +12,8 @@
 
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
-#include "plugin/cli/cli.hpp"
 #include "plugin/api/job.hpp"
+#include "plugin/cli/cli.hpp"
 
 namespace {
 
