@@ -703,8 +703,8 @@ bool solveIkNearest(const IkModel& m, const Pose& target, const Vec6& ref,
     if (!primaryRepresentative(m, raw[static_cast<size_t>(k)].q, &ref, q)) continue;
     order[static_cast<size_t>(n++)] = {weightedDistance(q, ref, weights), k};
   }
-  // insertion sort: at most 8 candidates (std::sort's 16-element insertion stage, which GCC 12
-  // warns about on an 8-element array, never runs for them either)
+  // by distance, an insertion sort of the ≤ 8 candidates (std::sort drew a false -Warray-bounds
+  // from GCC 12 here: its 16-element stage on an 8-element array)
   for (int i = 1; i < n; ++i) {
     for (int j = i; j > 0 && order[static_cast<size_t>(j)] < order[static_cast<size_t>(j - 1)]; --j)
       std::swap(order[static_cast<size_t>(j)], order[static_cast<size_t>(j - 1)]);

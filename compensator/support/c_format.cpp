@@ -1,9 +1,10 @@
 #include "compensator/support/c_format.hpp"
-#include "compensator/support/fixed_chars.hpp"
 
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+
+#include "compensator/support/fixed_chars.hpp"
 
 namespace roprec {
 

@@ -124,8 +124,8 @@ std::string jsonEscape(const std::string& s) {
 }
 
 void appendNumber(std::string& out, double v, int decimals) {
-  // std::to_chars: the "C" format whatever the host's locale (a comma-decimal LC_NUMERIC must
-  // not change a byte of the output).
+  // toFixedChars / std::to_chars: the "C" format whatever the host's locale (a comma-decimal
+  // LC_NUMERIC must not change a byte of the output).
   if (decimals >= 0) {
     if (!std::isfinite(v)) {
       out += numberText(v);
