@@ -2,12 +2,12 @@
 
 #include <cctype>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <sstream>
 #include <vector>
 
 #include "compensator/support/error.hpp"
+#include "compensator/support/fixed_chars.hpp"
 
 namespace roprec {
 
@@ -331,9 +331,9 @@ VendorConfig parseConfig(Vendor vendor, const std::string& text, const std::stri
 namespace {
 
 std::string degText(double rad) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.1f", rad / kDeg);
-  return std::string(buf) == "-0.0" ? "0.0" : buf;
+  std::string s;
+  appendFixed(s, rad / kDeg, 1);  // "C" format, "-0.0" written "0.0"
+  return s;
 }
 
 /// ABB: does quadrant `have` of angle θ meet `want` (equal, or adjacent with θ within tol of the

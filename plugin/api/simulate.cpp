@@ -12,6 +12,7 @@
 #include "compensator/robot/configuration.hpp"
 #include "compensator/robot/ik.hpp"
 #include "compensator/support/c_format.hpp"
+#include "compensator/support/fixed_chars.hpp"
 #include "plugin/api/robot_compliance.hpp"
 #include "postproc/drill.hpp"
 #include "postproc/program.hpp"
@@ -425,10 +426,11 @@ SimulationResult simulateAt(const RobotSetup& setup, const HoleJoints& at,
 
 namespace {
 
-/// Fixed-point text with `decimals` decimals in the "C" locale; no "-0".
+/// Fixed-point text with `decimals` decimals in the "C" locale; no "-0" ("nan"/"inf" as cFixed).
 std::string fmt(int decimals, double v) {
-  std::string s = cFixed(v, decimals);
-  if (s[0] == '-' && s.find_first_not_of("-0.") == std::string::npos) s.erase(0, 1);
+  if (!std::isfinite(v)) return cFixed(v, decimals);
+  std::string s;
+  appendFixed(s, v, decimals);
   return s;
 }
 
