@@ -24,6 +24,7 @@ TEST(CliMain, HelpListsTheCommandsAndAnUnknownCommandExitsTwo) {
   ASSERT_EQ(help.exit_code, 0) << help.err;
   EXPECT_NE(help.out.find("predict"), std::string::npos) << help.out;
   EXPECT_NE(help.out.find("compensate"), std::string::npos) << help.out;
+  EXPECT_NE(help.out.find("roprec --version"), std::string::npos) << help.out;
   const test::RunResult bad = test::runCommand("'" + test::roprecBin() + "' drill-faster");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find("unknown command 'drill-faster'"), std::string::npos) << bad.err;

@@ -23,7 +23,8 @@ void printHelp(std::ostream& out) {
     return a.order != b.order ? a.order < b.order : a.name < b.name;
   });
   out << "roprec — predict and compensate where an industrial robot really drills and mills.\n\n"
-         "usage: roprec COMMAND [options]   (roprec COMMAND --help for details)\n\n"
+         "usage: roprec COMMAND [options]   (roprec COMMAND --help for details)\n"
+         "       roprec --version\n\n"
          "commands:\n";
   for (const auto& c : cmds) {
     out << "  " << c.name << std::string(c.name.size() < 12 ? 12 - c.name.size() : 1, ' ')
