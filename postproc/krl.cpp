@@ -1,5 +1,6 @@
 /// KUKA KRL reader (`.src` + `.dat`), docs/programs.md §2.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <set>
 #include <span>
@@ -131,8 +132,10 @@ class KrlReader {
   Frame base_{"$BASE", false, Pose::Identity(), -1, 0};
   Fdat fdat_;
   double vel_cp_{-1};
-  double speed_text_vel_{-1};  // $VEL.CP of speed_text_
-  TextId speed_text_;
+  // the texts of the last few $VEL.CP values (a drill cycle alternates a rapid and a feed speed):
+  // one printf per value, not one per motion; round robin, `next_speed_text_` the next to replace
+  std::array<std::pair<double, TextId>, 4> speed_texts_{{{-1, {}}, {-1, {}}, {-1, {}}, {-1, {}}}};
+  std::size_t next_speed_text_{0};
   bool ext_tcp_{false};
 
   const SourceFile& file() const { return p_.files[static_cast<std::size_t>(file_)]; }
@@ -623,6 +626,17 @@ class KrlReader {
     return -1;
   }
 
+  // The motion's speed text for $VEL.CP = vel (m/s, > 0): "0.25 m/s", interned.
+  TextId speedText(double vel) {
+    for (const auto& [v, id] : speed_texts_) {
+      if (v == vel) return id;
+    }
+    auto& slot = speed_texts_[next_speed_text_];
+    next_speed_text_ = (next_speed_text_ + 1) % speed_texts_.size();
+    slot = {vel, p_.addText(cGeneral(vel, 6) + " m/s")};
+    return slot.second;
+  }
+
   void motion(TokenCursor& c, std::size_t e) {
     const SourceFile& f = file();
     Motion m;
@@ -697,11 +711,7 @@ class KrlReader {
     m.fine = zone.empty();
     if (m.type != MotionType::kJoint && vel_cp_ > 0) {
       m.speed_mm_s = vel_cp_ * 1000.0;
-      if (vel_cp_ != speed_text_vel_) {  // one text per $VEL.CP value, not one printf per motion
-        speed_text_vel_ = vel_cp_;
-        speed_text_ = p_.addText(cGeneral(vel_cp_, 6) + " m/s");
-      }
-      m.speed_text = speed_text_;
+      m.speed_text = speedText(vel_cp_);
     }
     m.tool = internFrame(p_, tool_);
     m.base = internFrame(p_, base_);
