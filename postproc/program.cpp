@@ -371,7 +371,10 @@ void EditQueue::put(int file, std::uint32_t offset, std::uint32_t length, std::s
 
 void EditQueue::erase(int file, std::uint32_t offset) {
   if (map_) {
-    map_->erase({file, offset});
+    // a key past the last pending edit has none to drop (no tree search): edits come in file
+    // order mostly, and most erases are of numbers an edit leaves as they were written
+    const std::pair<int, std::uint32_t> key{file, offset};
+    if (!map_->empty() && !(map_->rbegin()->first < key)) map_->erase(key);
   } else {
     log_->ops.push_back(EditLog::Op{true, Edit{file, offset, 0, {}}});
   }

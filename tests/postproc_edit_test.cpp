@@ -2,7 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <tuple>
 #include <utility>
+#include <vector>
 
 #include "compensator/support/error.hpp"
 #include "postproc/drill.hpp"
@@ -271,6 +273,37 @@ TEST(PostprocEdit, EditLogReplayedGivesTheDirectEdits) {
   for (const char* f :
        {"kss_drill.src", "rapid_drill.mod", "tp_controller.ls", "targets.json", "targets_rxyz.csv"})
     expectLogEqualsDirect(fixtures() + "/" + f);
+}
+
+// The pending edits after puts and erases in and out of file order: an erase drops the edit at
+// its key only (before, at and past the last pending key; in the other file; on no edits).
+TEST(PostprocEdit, EraseDropsThePendingEditAtItsKeyOnly) {
+  Program p;
+  const auto keys = [&p] {
+    std::vector<std::pair<int, std::uint32_t>> k;
+    for (const auto& [key, e] : p.edits) k.push_back(key);
+    return k;
+  };
+  using Keys = std::vector<std::pair<int, std::uint32_t>>;
+  const auto replay = [&p](std::initializer_list<std::tuple<bool, int, std::uint32_t>> ops) {
+    EditLog log;
+    for (const auto& [erase, file, offset] : ops)
+      log.ops.push_back({erase, Edit{file, offset, 1, erase ? "" : "9"}});
+    applyEdits(p, std::move(log));
+  };
+  replay({{true, 0, 7}});  // nothing pending
+  EXPECT_TRUE(p.edits.empty());
+  replay({{false, 0, 10}, {false, 0, 20}, {false, 0, 30}});
+  replay({{true, 0, 30}});  // the last
+  EXPECT_EQ(keys(), (Keys{{0, 10}, {0, 20}}));
+  replay({{true, 0, 40}, {true, 0, 5}, {true, 0, 15}, {true, 1, 0}});  // none of them pending
+  EXPECT_EQ(keys(), (Keys{{0, 10}, {0, 20}}));
+  replay({{false, 1, 3}, {true, 0, 10}});  // before the last, in the other file
+  EXPECT_EQ(keys(), (Keys{{0, 20}, {1, 3}}));
+  replay({{true, 1, 3}, {false, 0, 25}, {true, 0, 20}});
+  EXPECT_EQ(keys(), (Keys{{0, 25}}));
+  replay({{true, 0, 25}});
+  EXPECT_TRUE(p.edits.empty());
 }
 
 TEST(PostprocDrill, KukaToolDirectionXIsAParameter) {
