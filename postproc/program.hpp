@@ -210,13 +210,14 @@ enum class Vendor : std::uint8_t { kNone, kKuka, kAbb, kFanuc };
 
 /// Raw vendor configuration exactly as the program states it (docs/programs.md §2.4, §3.3, §4.5).
 struct Configuration {
+  // the four bytes first: 40 bytes, no padding (a program holds one per target)
   Vendor vendor{Vendor::kNone};
-  int status{-1};                     ///< KUKA S (-1 = absent)
-  int turn{-1};                       ///< KUKA T (-1 = absent)
-  std::array<int, 4> cf{0, 0, 0, 0};  ///< ABB cf1, cf4, cf6, cfx
   char flip{0};                       ///< FANUC 'F'|'N'
   char elbow{0};                      ///< FANUC 'U'|'D'
   char front{0};                      ///< FANUC 'T'|'B'
+  int status{-1};                     ///< KUKA S (-1 = absent)
+  int turn{-1};                       ///< KUKA T (-1 = absent)
+  std::array<int, 4> cf{0, 0, 0, 0};  ///< ABB cf1, cf4, cf6, cfx
   std::array<int, 3> turns{0, 0, 0};  ///< FANUC turn digits t1, t2, t3
 
   [[nodiscard]] bool present() const;
@@ -299,24 +300,26 @@ class TextTable {
 };
 
 struct Target {
+  // the 8-byte members first, then the 4-byte ones, then the bytes: 256 bytes, no padding
+  // between members (a 100,000-hole program holds ~400,000 targets)
   std::string name;  ///< as declared (`XP2`, `pHole1`, `P[2]`, hole id); empty for inline targets
-  TargetKind kind{TargetKind::kCartesian};
-  Orientation orientation{Orientation::kNone};
-  int file{-1};
-  int line{0};
   std::array<NumberField, 3> pos;  ///< x, y, z mm
   std::array<NumberField, 4> rot;  ///< A,B,C deg | q1..q4 | W,P,R deg | i,j,k
   FieldBlock<6> joints;            ///< A1..A6 / J1..J6 (deg or mm)
   FieldBlock<6> ext;               ///< E1..E6 / eax_a..eax_f
-  Configuration config;
   FieldBlock<4> cf_fields;         ///< ABB cf1, cf4, cf6, cfx
-  std::uint32_t aggregate_end{0};  ///< KRL: offset of the closing `}` (S/T insertion)
-  TextId frame_ref;  ///< frame the target itself declares (FANUC `UF`, CSV `frame`): Program::text
-  TextId tool_ref;   ///< tool the target itself declares (FANUC `UT`, CSV `tool`): Program::text
-  IndexList uses;    ///< indices of the motions that use this target
+  IndexList uses;                  ///< indices of the motions that use this target
   /// KUKA S and T tokens (may be 'B...' literals) and the FANUC span of the CONFIG string's
   /// contents (value unused): 8 bytes while the target states none of them (inline targets).
   FieldBlock<3> config_fields;
+  int file{-1};
+  int line{0};
+  Configuration config;
+  std::uint32_t aggregate_end{0};  ///< KRL: offset of the closing `}` (S/T insertion)
+  TextId frame_ref;  ///< frame the target itself declares (FANUC `UF`, CSV `frame`): Program::text
+  TextId tool_ref;   ///< tool the target itself declares (FANUC `UT`, CSV `tool`): Program::text
+  TargetKind kind{TargetKind::kCartesian};
+  Orientation orientation{Orientation::kNone};
 
   [[nodiscard]] const NumberField& statusField() const { return config_fields[0]; }
   [[nodiscard]] const NumberField& turnField() const { return config_fields[1]; }

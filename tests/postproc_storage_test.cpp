@@ -76,7 +76,8 @@ TEST(PostprocStorage, SparsePoseIsIdentityUntilSet) {
 TEST(PostprocStorage, ProgramRecordsStayCompact) {
   // ~4 targets + 4 motions per drilled hole: a 100,000-hole predict within 200 MB (issue 15)
   EXPECT_LE(sizeof(NumberField), 16u);
-  EXPECT_LE(sizeof(Target), 272u);
+  EXPECT_LE(sizeof(Target), 256u);
+  EXPECT_LE(sizeof(Configuration), 40u);
   EXPECT_LE(sizeof(Motion), 80u);
 }
 
