@@ -12,11 +12,11 @@
 #
 #   scripts/bench-cli.sh [ROPREC_BINARY]     (default build/bin/roprec)
 #
-# Measured 2026-11-25 02:12 on the 2-core machine with no other build running
+# Measured 2026-11-25 09:01 on the 2-core machine with no other build running
 # (scripts/bench-table.sh, best of 5; README "Performance" has the history):
-#   predict 10,000 holes      0.136 s / 42 MB (1 thread), 0.090 s / 53 MB (2): 1.51x
-#   compensate 10,000 holes   0.719 s / 109 MB (1 thread), 0.420 s (2): 1.71x
-#   predict 100,000 holes     1.25 s / 193 MB (1 thread), 1.00 s / 194 MB (2)
+#   predict 10,000 holes      0.113 s / 41 MiB (1 thread), 0.077 s / 53 MiB (2): 1.46x
+#   compensate 10,000 holes   0.663 s / 108 MiB (1 thread), 0.385 s (2): 1.72x
+#   predict 100,000 holes     1.01 s / 187 MiB (1 thread), 0.84 s / 188 MiB (2)
 # every output byte-identical for 1 and 2 threads. Wall times of a 2-thread run depend on the
 # second core being free: with other builds running, the speed-ups drop to ~1.0x.
 # The last column is user + system CPU: about the same for 1 and 2 threads (predict with 2
@@ -88,6 +88,7 @@ run() {  # run KEY ARGS...: one roprec run under GNU time; keeps the key's least
   fi
   local wall rss cpu
   wall=$(awk "BEGIN { printf \"%.4f\", $t1 - $t0 }")  # µs clock (GNU time's is 10 ms)
+  # GNU time's "Maximum resident set size" is in KiB: the peak in MiB (1 MiB = 1.048576 MB)
   rss=$(awk -F': ' '/Maximum resident set size/ { printf "%.0f", $2 / 1024 }' "$DIR/time.txt")
   cpu=$(awk -F': ' '/(User|System) time \(seconds\)/ { s += $2 } END { print s }' "$DIR/time.txt")
   if [ -z "${WALL[$key]:-}" ] || awk "BEGIN { exit !($wall < ${WALL[$key]}) }"; then
@@ -99,7 +100,7 @@ run() {  # run KEY ARGS...: one roprec run under GNU time; keeps the key's least
 
 show() {  # show KEY: the key's best wall time, peak RSS and CPU time
   [ -n "${WALL[$1]:-}" ] || return 0
-  printf '%-44s %8.3f s %8s MB %8.2f s CPU\n' "$1" "${WALL[$1]}" "${RSS[$1]}" "${CPU[$1]}"
+  printf '%-44s %8.3f s %8s MiB %8.2f s CPU\n' "$1" "${WALL[$1]}" "${RSS[$1]}" "${CPU[$1]}"
 }
 
 same() {  # same LABEL A B: byte-identity of two outputs
