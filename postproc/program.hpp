@@ -210,7 +210,7 @@ enum class Vendor : std::uint8_t { kNone, kKuka, kAbb, kFanuc };
 
 /// Raw vendor configuration exactly as the program states it (docs/programs.md §2.4, §3.3, §4.5).
 struct Configuration {
-  // the four bytes first: 40 bytes, no padding (a program holds one per target)
+  // the one-byte members first: 40 bytes, no padding (a program holds one per target)
   Vendor vendor{Vendor::kNone};
   char flip{0};                       ///< FANUC 'F'|'N'
   char elbow{0};                      ///< FANUC 'U'|'D'

@@ -278,13 +278,13 @@ TEST(PostprocEdit, EditLogReplayedGivesTheDirectEdits) {
 // The pending edits after puts and erases in and out of file order: an erase drops the edit at
 // its key only (before, at and past the last pending key; in the other file; on no edits).
 TEST(PostprocEdit, EraseDropsThePendingEditAtItsKeyOnly) {
+  using Keys = std::vector<std::pair<int, std::uint32_t>>;
   Program p;
   const auto keys = [&p] {
-    std::vector<std::pair<int, std::uint32_t>> k;
+    Keys k;
     for (const auto& [key, e] : p.edits) k.push_back(key);
     return k;
   };
-  using Keys = std::vector<std::pair<int, std::uint32_t>>;
   const auto replay = [&p](std::initializer_list<std::tuple<bool, int, std::uint32_t>> ops) {
     EditLog log;
     for (const auto& [erase, file, offset] : ops)
