@@ -39,7 +39,10 @@ if [[ -f "$BUILD/CMakeCache.txt" ]] && ! grep -q '^CMAKE_CXX_FLAGS:.*-fsanitize=
   exit 1
 fi
 
-ROPREC_BUILD_DIR="$BUILD" ROPREC_CMAKE_ARGV="$(printf '%s\n' "${ARGS[@]}")" "$ROOT/scripts/setup.sh"
+# a compiler warning fails the job, as in scripts/test.sh (CMakeLists.txt turns off the one that
+# only the sanitizers make GCC report falsely)
+ROPREC_WARNINGS_FAIL=1 ROPREC_BUILD_DIR="$BUILD" ROPREC_CMAKE_ARGV="$(printf '%s\n' "${ARGS[@]}")" \
+  "$ROOT/scripts/setup.sh"
 if ! grep -q '^CMAKE_CXX_FLAGS:.*-fsanitize=address' "$BUILD/CMakeCache.txt"; then
   echo "sanitize: setup.sh did not configure $BUILD with the sanitizer flags (ROPREC_CMAKE_ARGV)" >&2
   exit 1

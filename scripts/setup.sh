@@ -53,8 +53,9 @@ if ! cmake --build "$BUILD" --parallel "$(nproc)" "${TARGETS[@]}" >"$LOG" 2>&1; 
   exit 1
 fi
 # The tree builds without a compiler warning (GCC 12, -Wall -Wextra -Wpedantic -Wshadow ...):
-# a warning is shown here, and is an error where ROPREC_WARNINGS_FAIL=1 (scripts/test.sh, so CI's
-# clean build keeps it at none). Only the files compiled by this run are seen.
+# a warning is shown here, and is an error where ROPREC_WARNINGS_FAIL=1 (scripts/test.sh and
+# scripts/sanitize.sh, so CI's clean builds keep it at none). Only the files compiled by this run
+# are seen.
 if grep -q "warning:" "$LOG"; then
   grep -E "warning:" "$LOG" | sort -u | head -40 >&2
   echo "setup: the build printed $(grep -c "warning:" "$LOG") compiler warning(s) (full log: $LOG)" >&2
