@@ -13,7 +13,7 @@
 #   scripts/bench-cli.sh [ROPREC_BINARY]     (default build/bin/roprec)
 #
 # Measured 2026-11-25 09:01 on the 2-core machine with no other build running
-# (scripts/bench-table.sh, best of 5; README "Performance" has the history):
+# (scripts/bench-table.sh, best of 5; CHANGELOG.md has the history):
 #   predict 10,000 holes      0.113 s / 41 MiB (1 thread), 0.077 s / 53 MiB (2): 1.46x
 #   compensate 10,000 holes   0.663 s / 108 MiB (1 thread), 0.385 s (2): 1.72x
 #   predict 100,000 holes     1.01 s / 187 MiB (1 thread), 0.84 s / 188 MiB (2)
