@@ -457,6 +457,37 @@ TEST(OutputSet, ConcurrentSetsAreCommittedWhole) {
   EXPECT_EQ(temporariesIn(dir), 0);
 }
 
+// Two spellings of one folder ("d" and "d/sub/..") are locked once: the commit neither waits for
+// itself nor fails (run in a child that the test kills after 10 s).
+TEST(OutputSet, OneFolderSpelledTwoWaysIsLockedOnce) {
+  const std::string dir = test::tempDir("outset-two-spellings");
+  fs::create_directories(dir + "/sub");
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    OutputSet set;
+    set.stage(dir + "/a.json", "a");
+    set.stage(dir + "/sub/../b.json", "b");
+    set.commit();
+    ::_exit(0);
+  }
+  int status = 0;
+  pid_t done = 0;
+  for (int i = 0; i < 1000 && done == 0; ++i) {
+    done = ::waitpid(child, &status, WNOHANG);
+    if (done == 0) ::usleep(10000);
+  }
+  if (done == 0) {
+    ::kill(child, SIGKILL);
+    ::waitpid(child, &status, 0);
+    FAIL() << "the commit did not finish within 10 s";
+  }
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  EXPECT_EQ(test::readFile(dir + "/a.json"), "a");
+  EXPECT_EQ(test::readFile(dir + "/b.json"), "b");
+}
+
 // A run killed between the renames of its set (fault injection: ROPREC_FAULT_KILL_AFTER_RENAMES)
 // leaves a mixed set and its commit journal; the next run writing to the folder finishes the
 // renames, says so, and removes the journal.

@@ -18,6 +18,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <tuple>
 
 #include "compensator/support/error.hpp"
 
@@ -163,6 +164,27 @@ class FolderLocks {
  private:
   std::vector<int> fds_;
 };
+
+/// `dirs` once each by identity (device and inode: "out" and "./out" are one folder, and a
+/// second flock on it from this thread would wait for ever), in one order for every run (device,
+/// inode), so that runs locking several folders never wait for each other in a cycle. A folder
+/// that cannot be stat'ed is left out (its staging or rename reports the error).
+std::vector<std::string> uniqueFolders(const std::vector<std::string>& dirs) {
+  std::vector<std::tuple<dev_t, ino_t, std::string>> ids;
+  for (const std::string& d : dirs) {
+    struct stat st {};
+    if (::stat(d.c_str(), &st) != 0) continue;
+    const bool seen = std::any_of(ids.begin(), ids.end(), [&](const auto& x) {
+      return std::get<0>(x) == st.st_dev && std::get<1>(x) == st.st_ino;
+    });
+    if (!seen) ids.emplace_back(st.st_dev, st.st_ino, d);
+  }
+  std::sort(ids.begin(), ids.end());
+  std::vector<std::string> out;
+  out.reserve(ids.size());
+  for (auto& x : ids) out.push_back(std::move(std::get<2>(x)));
+  return out;
+}
 
 bool processGone(long pid) {
   return pid > 0 && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
@@ -466,9 +488,11 @@ void OutputSet::recoverFolder(const std::string& dir) {
     if (j.complete) {
       // the other folders of that set are locked too (skipped if a live run holds one now)
       FolderLocks others;
+      std::vector<std::string> folders{dir};
+      for (const auto& r : j.renames) folders.push_back(dirOf(r.second));
+      folders = uniqueFolders(folders);
       bool all = true;
-      for (const auto& r : j.renames) {
-        const std::string od = dirOf(r.second);
+      for (const std::string& od : folders) {
         std::error_code e;
         if (!std::filesystem::equivalent(od, dir, e)) all = all && others.tryLock(od);
       }
@@ -506,12 +530,12 @@ std::vector<std::string> OutputSet::commit() {
     const std::string dir = dirOf(p);
     if (std::find(dirs.begin(), dirs.end(), dir) == dirs.end()) dirs.push_back(dir);
   }
-  std::vector<std::string> lock_order = dirs;  // one order for every run: no deadlock
-  std::sort(lock_order.begin(), lock_order.end());
+  const std::vector<std::string> lock_order = uniqueFolders(dirs);
   FolderLocks locks;
   for (const std::string& d : lock_order) locks.lock(d);
-  const std::string journal =
-      paths_.size() > 1 ? writeJournal(lock_order.front(), temps_, paths_) : std::string();
+  const std::string journal = paths_.size() > 1 && !lock_order.empty()
+                                  ? writeJournal(lock_order.front(), temps_, paths_)
+                                  : std::string();
   long kill_after = -1;
   if (const char* k = std::getenv(kFaultKillAfterRenamesEnv)) kill_after = std::atol(k);
   for (std::size_t i = 0; i < paths_.size(); ++i) {
