@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include "compensator/support/error.hpp"
+#include "compensator/support/long_words.hpp"
 #include "compensator/support/utf8.hpp"
 #include "plugin/c/roprec.h"
 #include "tests/support/test_support.hpp"
@@ -175,6 +176,33 @@ TEST(InputFile, LongNamesAreClippedForMessages) {
   // never cuts a UTF-8 sequence: 79 ASCII bytes then 'ä' (2 bytes) at the cut
   const std::string u = std::string(79, 'a') + "\xC3\xA4" + std::string(100, 'b');
   EXPECT_EQ(clipForMessage(u), std::string(79, 'a') + "… (181 bytes)");
+}
+
+// Any message that echoes a 1 MB value (an attribute value, a link name, a program statement) is
+// cut to a readable length, in the library's errors and on the CLI's stderr.
+TEST(InputFile, MessagesNeverEchoAHugeWordWhole) {
+  const std::string huge(1'000'000, 'q');
+  EXPECT_EQ(clipLongWords("got '" + huge + "' here"),
+            "got '" + std::string(199, 'q') + "… (1000002 bytes) here");
+  const std::string list = "lines " + std::string(900, '1');  // 900 bytes: kept
+  EXPECT_EQ(clipLongWords(list), list);
+  EXPECT_LT(InputError("f", 1, "value '" + huge + "'").message().size(), 300u);
+  const std::string dir = test::tempDir("input-huge-word");
+  std::string cell = test::readFile(test::sourceDir() + "/samples/cells/alu-drilling-6061.xml");
+  const std::string at = "tool_material=\"carbide\"";
+  ASSERT_NE(cell.find(at), std::string::npos);
+  cell.replace(cell.find(at), at.size(), "tool_material=\"" + huge + "carbide\"");
+  test::writeFile(dir + "/cell.xml", cell);
+  const auto r = test::runRoprec("forces --cell '" + dir + "/cell.xml' --csv /dev/null");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_LT(r.err.size(), 2000u) << r.err.substr(0, 300);
+  std::string src = test::readFile(test::sourceDir() + "/samples/emotor-housing/housing_kr120.src");
+  src.replace(src.find("SPINDLE_ON()"), 12, huge + "_ON()");
+  test::writeFile(dir + "/p.src", src);
+  const auto c = test::runRoprec("convert '" + dir + "/p.src' --to rapid -o '" + dir + "/p.mod'");
+  EXPECT_LE(c.exit_code, 1) << c.err.substr(0, 300);
+  EXPECT_LT(c.err.size(), 20000u) << c.err.substr(0, 300);
+  EXPECT_NE(c.err.find("… (1000005 bytes)"), std::string::npos) << c.err.substr(0, 600);
 }
 
 }  // namespace

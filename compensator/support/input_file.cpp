@@ -10,6 +10,7 @@
 
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
+#include "compensator/support/long_words.hpp"
 
 namespace roprec {
 
@@ -175,6 +176,25 @@ std::string readInputFile(const std::string& path, InputKind kind) {
   checkInputText(bytes, path);
   noteInputFile(path);
   return bytes;
+}
+
+std::string clipLongWords(std::string_view message) {
+  constexpr std::size_t kLongWord = 1000;
+  std::string out;
+  std::size_t i = 0;
+  while (i < message.size()) {
+    std::size_t j = i;
+    while (j < message.size() && message[j] != ' ' && message[j] != '\n' && message[j] != '\t') ++j;
+    const std::string_view word = message.substr(i, j - i);
+    if (word.size() > kLongWord) {
+      out += clipForMessage(word, 200);
+    } else {
+      out += word;
+    }
+    if (j < message.size()) out += message[j++];
+    i = j;
+  }
+  return out;
 }
 
 std::string clipForMessage(std::string_view name, std::size_t max_bytes) {

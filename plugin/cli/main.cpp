@@ -12,9 +12,12 @@
 #include <iostream>
 #include <new>
 #include <sstream>
+#include <streambuf>
+#include <string>
 
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
+#include "compensator/support/long_words.hpp"
 #include "plugin/api/job.hpp"
 #include "plugin/cli/cli.hpp"
 
@@ -54,6 +57,39 @@ std::string inputFiles(const std::vector<std::string>& tokens) {
   return s;
 }
 
+/// stderr a line at a time through clipLongWords: no message or note echoes a 1 MB name whole,
+/// whichever command prints it. A partial line is passed on at each flush (progress lines).
+class ClippedLines : public std::streambuf {
+ public:
+  explicit ClippedLines(std::streambuf* to) : to_(to) {}
+
+ protected:
+  int_type overflow(int_type c) override {
+    if (traits_type::eq_int_type(c, traits_type::eof())) return traits_type::not_eof(c);
+    line_ += traits_type::to_char_type(c);
+    if (traits_type::to_char_type(c) == '\n') passOn();
+    return c;
+  }
+  std::streamsize xsputn(const char* s, std::streamsize n) override {
+    for (std::streamsize i = 0; i < n; ++i) overflow(traits_type::to_int_type(s[i]));
+    return n;
+  }
+  int sync() override {
+    passOn();
+    return to_->pubsync();
+  }
+
+ private:
+  void passOn() {
+    if (line_.empty()) return;
+    const std::string c = roprec::clipLongWords(line_);
+    to_->sputn(c.data(), static_cast<std::streamsize>(c.size()));
+    line_.clear();
+  }
+  std::streambuf* to_;
+  std::string line_;
+};
+
 /// Writes all of `text` to standard output (file descriptor 1); 0, or the errno of a failed
 /// write (a full disk, a closed pipe: SIGPIPE is ignored so that it is reported, not fatal).
 int writeStdout(std::string_view text) {
@@ -88,6 +124,9 @@ int printAndReturn(const std::string& text, int rc) {
 
 int main(int argc, char** argv) {
   std::signal(SIGPIPE, SIG_IGN);
+  // never destroyed: std::cerr writes through it until the process ends
+  static auto* const clipped = new ClippedLines(std::cerr.rdbuf());  // NOLINT
+  std::cerr.rdbuf(clipped);
   std::vector<std::string> tokens(argv + 1, argv + argc);
   if (tokens.empty() || tokens[0] == "--help" || tokens[0] == "-h" || tokens[0] == "help") {
     std::ostringstream help;
