@@ -37,7 +37,8 @@ Other mutations that make a valid different input (a changed digit in a coordina
 the file re-encoded as UTF-16/32 or given a NUL byte must be refused (exit 2, else FAIL
 "not_refused"); a byte that is not UTF-8 put into a name must leave every JSON and HTML output
 valid UTF-8 (else "invalid_utf8_output"); a name grown to 1 MB must end within the timeout with
-at most 20 kB on stderr (else "timeout" / "huge_message"). These checks apply to every run.
+no stderr line longer than 5000 bytes (else "timeout" / "huge_message"). These checks apply to
+every run.
 
 Prints a summary (mutants, runs, per-category counts, every failing case with a reproduction
 command), writes DIR/log.json (DIR defaults to mutation/ beside the binary's bin/ folder) and
@@ -592,7 +593,8 @@ def run_one(binary, tree, command, timeout):
     if so.lstrip().startswith(b"{") and not_utf8(so):
         bad_utf8.append("stdout")
     return {"args": args, "rc": rc, "timeout": timed_out, "seconds": round(dt, 3),
-            "stdout": norm(so), "stderr": norm(se), "stderr_bytes": len(se),
+            "stdout": norm(so), "stderr": norm(se),
+            "stderr_longest_line": max((len(l) for l in se.split(b"\n")), default=0),
             "bad_utf8": bad_utf8, "files": {k: norm(v) for k, v in files.items()}}
 
 
@@ -695,7 +697,7 @@ def classify(run, command, mutation, baseline):
         fails.append("invalid_utf8_output")
     if mutation["operator"] in ("utf16", "utf32", "nul") and rc != 2:
         fails.append("not_refused")
-    if run.get("stderr_bytes", 0) > 20000:
+    if run.get("stderr_longest_line", 0) > 5000:
         fails.append("huge_message")
     echo_ok = command["echo"] and mutation["operator"].startswith("value_")
     if rc == 0 and mutation["strict"] and not echo_ok and baseline is not None and \
