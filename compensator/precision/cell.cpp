@@ -58,7 +58,7 @@ ToolSpec parseTool(const XmlNode& t) {
 
 CellSpec loadCell(const std::string& path) {
   CellSpec cell;
-  cell.root = loadXmlFile(path);
+  cell.root = loadXmlFile(path, InputKind::kCell);
   const XmlNode& root = cell.root;
   if (root.name != "cell")
     root.fail("a cell file's root element is <cell>, got <" + root.name + ">");

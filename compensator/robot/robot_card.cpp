@@ -176,7 +176,7 @@ std::string vendorName(Vendor v) {
 bool JointCard::estimated() const { return source.rfind("estimate:", 0) == 0 || source.empty(); }
 
 RobotCard loadRobotCard(const std::string& path) {
-  const XmlNode root = loadXmlFile(path);
+  const XmlNode root = loadXmlFile(path, InputKind::kRobotCard);
   if (root.name != "robot")
     root.fail("a robot card's root element is <robot>, got <" + root.name + ">");
   allowOnly(root, {"name", "vendor", "model", "urdf", "base_link", "flange_link",
@@ -434,7 +434,7 @@ Robot loadRobot(const RobotRequest& request) {
 namespace {
 /// Line of `<link name="...">` in the URDF (the robot line if not found).
 int urdfLinkLine(const std::string& urdf, const std::string& link) {
-  const XmlNode root = loadXmlFile(urdf);
+  const XmlNode root = loadXmlFile(urdf, InputKind::kUrdf);
   for (const XmlNode* l : root.childrenNamed("link"))
     if (l->str("name", "") == link) return l->line;
   return root.line;

@@ -8,6 +8,7 @@
 
 #include "compensator/process/process_load.hpp"
 #include "compensator/support/error.hpp"
+#include "compensator/support/input_file.hpp"
 #include "plugin/api/card_tools.hpp"
 #include "plugin/api/lookahead.hpp"
 #include "plugin/api/robot_compliance.hpp"
@@ -127,6 +128,23 @@ std::unique_ptr<HoleLookahead> startLookahead(const PredictionContext& c,
   }
 }
 
+/// The cell's rule feed <= 0.1 Dc (process_spec.cpp) applies to a diameter from the hole list too:
+/// a hole the cell's feed cannot drill is an error at its line (the force model would give 0 N
+/// and "conforms").
+void requireDrillableDiameters(const PredictionContext& c) {
+  if (!c.process || c.process->type != ProcessType::kDrilling) return;
+  const double feed = c.process->drilling.feed;
+  for (const HoleRequest& r : c.job.requests) {
+    if (!(r.diameter > 0) || feed <= 0.1 * r.diameter * (1 + 1e-12)) continue;
+    throw InputError(c.job.path, r.line,
+                     "hole " + clipForMessage(r.id) + ": diameter " + numberText(r.diameter * 1e3) +
+                         " mm is too small for the cell's feed " + numberText(feed * 1e3) +
+                         " mm/rev (feed <= 0.1 Dc: a diameter of at least " +
+                         numberText(feed * 1e4) +
+                         " mm); drill it with another cell (feed) or correct the diameter");
+  }
+}
+
 }  // namespace
 
 PredictionContext loadPredictionContext(const std::string& cell_path, const std::string& job_path,
@@ -179,6 +197,7 @@ PredictionContext loadPredictionContext(const std::string& cell_path, const std:
   for (const HoleRequest& r : c.job.requests) {
     if (r.diameter > 0) s.hole_diameters.push_back(r.diameter);
   }
+  requireDrillableDiameters(c);
   c.model = buildPredictionModel(s);
   if (c.fanuc_turn_axes) {
     c.model.config_options.fanuc_turn_axes = *c.fanuc_turn_axes;
