@@ -18,6 +18,9 @@
 ///       the mastering pose (default per vendor, vendorCalibrationPoseDeg);
 ///   <gravity model="links|none" source/>   none: weight is not modelled at all;
 ///   <link name mass_kg com_mm [inertia_kgm2] source/>   replaces a chain body's URDF inertial.
+///   <calibration source [date measurements residual_mm]> <base|joint_origin joint|tool xyz_mm
+///                rpy_mrad [sigma_xyz_mm sigma_rpy_mrad]/> </calibration>   the measured
+///       geometric errors (geometry_calibration.hpp, docs/cards.md §5).
 /// Unknown attributes of these elements (and of <controller>) throw InputError.
 
 #include <array>
@@ -27,6 +30,7 @@
 
 #include "compensator/robot/chain.hpp"
 #include "compensator/robot/counterbalance.hpp"
+#include "compensator/robot/geometry_calibration.hpp"
 
 namespace roprec {
 
@@ -89,6 +93,9 @@ struct RobotCard {
     int line{0};
   };
   std::vector<LinkInertial> links;  ///< <link> overrides of the URDF inertials
+  /// The measured geometric errors relative to the URDF (<calibration>, docs/cards.md §5);
+  /// absent: the robot is taken to be its nominal URDF.
+  std::optional<GeometryCalibration> calibration;
 };
 
 /// The vendor's mastering/calibration pose in the controller convention, degrees: KUKA
@@ -109,9 +116,14 @@ std::string bundledRobotsDir();
 std::vector<std::string> bundledRobotNames();
 
 /// A loaded robot: its card and its kinematic chain base_link -> flange_link.
+/// `chain` is the NOMINAL chain of the URDF: the controller's model (inverse kinematics of
+/// programmed targets, FK_nom). `real_chain` is the robot as it is: calibratedChain(chain,
+/// *card.calibration), or a copy of `chain` when the card has no <calibration> (FK_real; every real
+/// TCP, deflection and equilibrium is computed on it).
 struct Robot {
   RobotCard card;
   ChainDescription chain;
+  ChainDescription real_chain;
 };
 
 struct RobotRequest {

@@ -1,9 +1,13 @@
 #include "tests/support/kdl_support.hpp"
 
 #include <gtest/gtest.h>
+#include <tinyxml2.h>
 #include <kdl/chainidsolver_recursive_newton_euler.hpp>
 #include <kdl/tree.hpp>
 #include <kdl_parser/kdl_parser.hpp>
+
+#include <cstdio>
+#include <sstream>
 
 namespace roprec::test {
 
@@ -39,6 +43,50 @@ KDL::Chain kdlChain(const std::string& urdf, const std::string& base, const std:
     chain.addSegment(KDL::Segment("roprec_extra", KDL::Joint(KDL::Joint::None), toKdl(extra)));
   }
   return chain;
+}
+
+namespace {
+KDL::Vector kdlVector(const char* text) {
+  double x = 0, y = 0, z = 0;
+  if (text != nullptr) std::istringstream(text) >> x >> y >> z;
+  return {x, y, z};
+}
+std::string text3(double a, double b, double c) {
+  char buf[128];
+  std::snprintf(buf, sizeof buf, "%.17g %.17g %.17g", a, b, c);
+  return buf;
+}
+}  // namespace
+
+std::string perturbedUrdf(const std::string& urdf_path,
+                          const std::vector<std::pair<std::string, Pose>>& joint_errors) {
+  tinyxml2::XMLDocument doc;
+  if (doc.LoadFile(urdf_path.c_str()) != tinyxml2::XML_SUCCESS) {
+    ADD_FAILURE() << "cannot read " << urdf_path;
+    return "";
+  }
+  for (const auto& [name, E] : joint_errors) {
+    tinyxml2::XMLElement* joint = doc.RootElement()->FirstChildElement("joint");
+    while (joint != nullptr && name != joint->Attribute("name"))
+      joint = joint->NextSiblingElement("joint");
+    if (joint == nullptr) {
+      ADD_FAILURE() << "no joint " << name << " in " << urdf_path;
+      continue;
+    }
+    tinyxml2::XMLElement* origin = joint->FirstChildElement("origin");
+    if (origin == nullptr) origin = joint->InsertNewChildElement("origin");
+    const KDL::Vector rpy = kdlVector(origin->Attribute("rpy"));
+    const KDL::Frame O(KDL::Rotation::RPY(rpy.x(), rpy.y(), rpy.z()),
+                       kdlVector(origin->Attribute("xyz")));
+    const KDL::Frame P = O * toKdl(E);
+    double r = 0, p = 0, y = 0;
+    P.M.GetRPY(r, p, y);
+    origin->SetAttribute("xyz", text3(P.p.x(), P.p.y(), P.p.z()).c_str());
+    origin->SetAttribute("rpy", text3(r, p, y).c_str());
+  }
+  tinyxml2::XMLPrinter printer;
+  doc.Print(&printer);
+  return printer.CStr();
 }
 
 Eigen::Matrix<double, 6, 1> kdlGravity(const KDL::Chain& chain,

@@ -3,6 +3,8 @@
 #include <kdl/chain.hpp>
 #include <kdl/frames.hpp>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "compensator/support/rotation.hpp"
 
@@ -18,6 +20,13 @@ KDL::Chain kdlChain(const std::string& urdf, const std::string& base, const std:
 /// acceleration, no external wrench). Fails the current test when the solver reports an error.
 Eigen::Matrix<double, 6, 1> kdlGravity(const KDL::Chain& chain,
                                        const Eigen::Matrix<double, 6, 1>& q);
+
+/// URDF text of `urdf_path` with the <origin> of each named joint right-multiplied by its error:
+/// origin' = origin · E (composed with KDL frames and KDL's RPY, independent of roprec's
+/// rotation code; written with 17 significant digits). A joint without <origin> gets one. Fails
+/// the current test when a named joint is not in the URDF.
+std::string perturbedUrdf(const std::string& urdf_path,
+                          const std::vector<std::pair<std::string, Pose>>& joint_errors);
 
 KDL::Frame toKdl(const Pose& T);
 Pose fromKdl(const KDL::Frame& F);
