@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 #include <random>
 #include <regex>
@@ -148,8 +149,14 @@ TEST(Prediction, BudgetRecomputedByHand) {
   EXPECT_NEAR(h.U_work, std::sqrt(h.U_robot * h.U_robot + h.U_mach * h.U_mach), 1e-15);
   EXPECT_NEAR(h.budget[0].u, 0.06e-3 / 3.6161, 1e-8);  // KR 120 RP 0.06 mm
   EXPECT_NEAR(h.k, 2.4477, 1e-4);
-  // the verdict uses the anisotropic 95 % radius of Σ_def + (u_robpos² + u_mach²) I, ≥ U_work
-  const double iso2 = h.budget[0].u * h.budget[0].u + u2_mach;
+  // the verdict uses the anisotropic 95 % radius of Σ_def + (u_robpos² + u_acc² + u_mach²) I
+  // (the card's uncalibrated absolute accuracy is isotropic), ≥ U_work
+  const BudgetTerm* acc = nullptr;
+  for (const BudgetTerm& t : h.budget)
+    if (std::string(t.name) == "robot_absolute_accuracy") acc = &t;
+  ASSERT_NE(acc, nullptr);
+  EXPECT_NEAR(acc->u, 1.0e-3 / 2.7955, 1e-15);  // KR 120 card: AP 1.0 mm (estimate)
+  const double iso2 = h.budget[0].u * h.budget[0].u + acc->u * acc->u + u2_mach;
   const Eigen::Matrix2d S = h.robdef_cov + iso2 * Eigen::Matrix2d::Identity();
   EXPECT_NEAR(h.U_work_exact, radialCoverage(S), 1e-12);
   EXPECT_GE(h.U_work_exact, h.U_work * (1 - 1e-12));
@@ -198,15 +205,25 @@ const BudgetTerm* termNamed(const HolePrediction& h, const std::string& name) {
   return nullptr;
 }
 
+/// The card of a paperCellWith cell with its <accuracy> element replaced by `accuracy`.
+void replaceCardAccuracy(const std::string& cell, const std::string& accuracy) {
+  const std::string card = std::filesystem::path(cell).parent_path().string() + "/robot.xml";
+  test::writeFile(card, std::regex_replace(test::readFile(card),
+                                           std::regex("  <accuracy [^>]*/>\n"), accuracy));
+}
+
 TEST(Prediction, AbsoluteAccuracyTermFromTheCardTheOptionAndTheRegistration) {
+  const std::string none = paperCellWith("", "", "acc-none");
+  replaceCardAccuracy(none, "");
   const api::PredictionContext plain =
-      api::loadPredictionContext(paper("cell.xml"), paper("holes.csv"), std::nullopt, "");
+      api::loadPredictionContext(none, paper("holes.csv"), std::nullopt, "");
   const HolePrediction h0 = byId(predictHoles(plain.model, plain.job.requests), "X2");
   EXPECT_EQ(termNamed(h0, "robot_absolute_accuracy"), nullptr);  // nothing stated: no term
   // the card's AP (uncalibrated): AP / 2.7955 per axis, in u_robot, with its source
-  const std::string accuracy = "  <accuracy ap_mm=\"0.8\" source=\"test: AP\"/>\n";
-  api::PredictionContext c = api::loadPredictionContext(paperCellWith(accuracy, "", "acc-card"),
-                                                        paper("holes.csv"), std::nullopt, "");
+  const std::string with_ap = paperCellWith("", "", "acc-card");
+  replaceCardAccuracy(with_ap, "  <accuracy ap_mm=\"0.8\" source=\"test: AP\"/>\n");
+  api::PredictionContext c =
+      api::loadPredictionContext(with_ap, paper("holes.csv"), std::nullopt, "");
   HolePrediction h = byId(predictHoles(c.model, c.job.requests), "X2");
   const BudgetTerm* t = termNamed(h, "robot_absolute_accuracy");
   ASSERT_NE(t, nullptr);
@@ -216,8 +233,8 @@ TEST(Prediction, AbsoluteAccuracyTermFromTheCardTheOptionAndTheRegistration) {
   EXPECT_NEAR(h.u_robot, std::sqrt(h0.u_robot * h0.u_robot + t->u * t->u), 1e-12);
   EXPECT_GT(h.U_work_exact, h0.U_work_exact);
   // the controller's option replaces it; the registration σ adds in quadrature
-  const std::string option = paperCellWith(
-      accuracy, "<absolute_accuracy ap_mm=\"0.2\" source=\"test: option\"/>", "acc-option");
+  const std::string option =
+      paperCellWith("", "<absolute_accuracy ap_mm=\"0.2\" source=\"test: option\"/>", "acc-option");
   test::writeFile(option, std::regex_replace(test::readFile(option), std::regex("rpy=\"0 0 0\"/>"),
                                              "rpy=\"0 0 0\" sigma_mm=\"0.01\"/>"));
   c = api::loadPredictionContext(option, paper("holes.csv"), std::nullopt, "");
