@@ -299,6 +299,63 @@ TEST(Prediction, CalibratedAccuracyTermMatchesAMonteCarloOfTheCalibration) {
   EXPECT_GT(t->u, 1e-5);
 }
 
+TEST(Prediction, CalibratedAccuracyTermCoversTruthRobotsDrawnFromTheCalibration) {
+  // truth robots: the calibration's values plus seeded draws of its stated σ (each component
+  // independent, normal), FK by calibratedChain at the predicted equilibrium; the in-plane miss
+  // of the predicted real drill point lies inside k·u_acc (k = 2.4477, the 2-D 95 % factor) for
+  // 95 ± 3 % of (robot, hole) pairs over the paper cell's holes
+  GeometryCalibration cal = test::seededGeometryErrors(5, 0.3, 0.4);
+  const auto setSigma = [](FrameError& e) {
+    e.sigma_xyz = Vec3(0.015e-3, 0.015e-3, 0.015e-3);
+    e.sigma_rpy = Vec3(0.015e-3, 0.015e-3, 0.015e-3);
+  };
+  for (FrameError& j : cal.joints) setSigma(j);
+  setSigma(cal.base);
+  setSigma(cal.tool);
+  const Robot robot = loadRobot({"kuka-kr120-r2500-pro", "", ""});
+  std::array<std::string, 6> names;
+  for (size_t i = 0; i < 6; ++i) names[i] = robot.card.joints[i].name;
+  const api::PredictionContext c =
+      api::loadPredictionContext(paperCellWith(calibrationXml(cal, names), "", "acc-cover"),
+                                 paper("holes.csv"), std::nullopt, "");
+  const std::vector<HolePrediction> p = predictHoles(c.model, c.job.requests);
+  std::mt19937 rng(29);
+  std::normal_distribution<double> n(0.0, 1.0);
+  const auto draw = [&](const FrameError& e) {
+    FrameError d = e;
+    for (int k = 0; k < 3; ++k) {
+      d.dxyz[k] += e.sigma_xyz[k] * n(rng);
+      d.drpy[k] += e.sigma_rpy[k] * n(rng);
+    }
+    return d;
+  };
+  const Pose tool = c.tool.T_flange_tcp;
+  const ChainDescription real = calibratedChain(robot.chain, cal);
+  int inside = 0;
+  int total = 0;
+  for (int s = 0; s < 500; ++s) {
+    GeometryCalibration d = cal;
+    for (FrameError& j : d.joints) j = draw(j);
+    d.base = draw(cal.base);
+    d.tool = draw(cal.tool);
+    const ChainDescription truth = calibratedChain(robot.chain, d);
+    for (size_t i = 0; i < p.size(); ++i) {
+      const BudgetTerm* t = termNamed(p[i], "robot_absolute_accuracy");
+      ASSERT_NE(t, nullptr);
+      const Vec6& th = p[i].deflection.theta;
+      const Vec3 e = (chainForwardKinematics(truth, th) * tool).translation() -
+                     (chainForwardKinematics(real, th) * tool).translation();
+      const Mat3 R = c.job.requests[i].T_W_tcp.linear();
+      const double miss = std::hypot(e.dot(R.col(0)), e.dot(R.col(1)));
+      inside += miss <= p[i].k * t->u ? 1 : 0;
+      ++total;
+    }
+  }
+  const double coverage = static_cast<double>(inside) / total;
+  RecordProperty("coverage", std::to_string(coverage));
+  EXPECT_NEAR(coverage, 0.95, 0.03) << inside << " of " << total;
+}
+
 TEST(PredictionCli, SameInputGivesByteIdenticalJsonAndHtml) {
   const std::string dir = test::tempDir("pdet");
   const std::string cell = test::sourceDir() + "/samples/cells/housing-kr120.xml";
