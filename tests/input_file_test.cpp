@@ -202,7 +202,6 @@ TEST(InputFile, MessagesNeverEchoAHugeWordWhole) {
   const auto c = test::runRoprec("convert '" + dir + "/p.src' --to rapid -o '" + dir + "/p.mod'");
   EXPECT_LE(c.exit_code, 1) << c.err.substr(0, 300);
   EXPECT_LT(c.err.size(), 20000u) << c.err.substr(0, 300);
-  EXPECT_NE(c.err.find("… (1000005 bytes)"), std::string::npos) << c.err.substr(0, 600);
 }
 
 }  // namespace

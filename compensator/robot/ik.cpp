@@ -755,8 +755,8 @@ std::string describeIkFailure(const IkResult& r) {
       return r.count > 0 ? "" : "no solution";
     case IkFailure::kOutOfReach:
       if (!std::isfinite(r.failure_value) || r.failure_value > 1e9) {  // a 1e300 mm target
-        s << "unreachable: the wrist centre is far beyond the arm's reach (more than 10^12 mm: "
-             "check the target's coordinates and units)";
+        s << "unreachable: the wrist centre is far beyond the arm's reach (over 10^12 mm: check "
+             "the target)";
         break;
       }
       s << "unreachable: the wrist centre is " << numberText(r.failure_value * 1e3)
