@@ -222,6 +222,87 @@ TEST(VerifyCli, JsonIsDeterministic) {
   EXPECT_EQ(test::readFile(dir + "/a.xml"), test::readFile(dir + "/b.xml"));
 }
 
+/// The three numbers of attribute `name` of the first `<tag .../>` in an XML text.
+Eigen::Vector3d attributeTriple(const std::string& xml, const std::string& tag,
+                                const std::string& name) {
+  std::smatch m;
+  const std::regex re("<" + tag + "[^>]*\\s" + name + "=\"([^\"]*)\"");
+  EXPECT_TRUE(std::regex_search(xml, m, re)) << tag << " " << name;
+  std::istringstream in(m.size() > 1 ? m.str(1) : "0 0 0");
+  Eigen::Vector3d v;
+  in >> v.x() >> v.y() >> v.z();
+  return v;
+}
+
+TEST(VerifyCli, WriteCellMovesTheWorkobjectToThePartAndUsesTheNewCard) {
+  const std::string dir = test::tempDir("writecell");
+  const std::string card = dir + "/kr120-cal.xml";
+  const std::string new_cell = dir + "/cell-cal.xml";
+  const auto v = test::runRoprec(verifyArgs("--register translation --identify stiffness --json " +
+                                            q(dir + "/v.json") + " --calibrate " + q(card) +
+                                            " --write-cell " + q(new_cell)));
+  ASSERT_EQ(v.exit_code, 0) << v.err << v.out;
+  EXPECT_NE(v.out.find("held-out validation (5-fold)"), std::string::npos) << v.out;
+  EXPECT_NE(v.out.find("fit check"), std::string::npos) << v.out;
+  const std::string text = test::readFile(new_cell);
+  EXPECT_NE(text.find("<robot file=\"kr120-cal.xml\"/>"), std::string::npos) << text;
+  // the part frame: T_W_part = T_W_wobj · Transl(t)⁻¹ (translation registration, mm)
+  const json j = json::parse(test::readFile(dir + "/v.json"));
+  const Eigen::Vector3d t_um = vec(j["registration"]["translation_um"]);
+  const Eigen::Vector3d old_xyz = attributeTriple(test::readFile(cell()), "workobject", "xyz");
+  const Eigen::Vector3d new_xyz = attributeTriple(text, "workobject", "xyz");
+  EXPECT_LE((new_xyz - (old_xyz - t_um * 1e-3)).cwiseAbs().maxCoeff(), 1e-4);
+  // the sample's fixture offset (make_measured.py: 40, -25, 30 µm) within 3σ of the estimate
+  const Eigen::Vector3d sigma = vec(j["registration"]["translation_sigma_um"]);
+  const Eigen::Vector3d truth(40, -25, 30);
+  for (int a = 0; a < 3; ++a) EXPECT_LE(std::abs(t_um[a] - truth[a]), 3 * sigma[a] + 1.0) << a;
+  // the next job uses both: compensate with the new cell runs on the new card
+  const auto c = test::runRoprec("compensate --cell " + q(new_cell) + " " + q(program()) + " -o " +
+                                 q(dir + "/comp.src"));
+  EXPECT_EQ(c.exit_code, 0) << c.err;
+  EXPECT_TRUE(j["identification"].contains("validation"));
+  EXPECT_EQ(j["identification"]["card_refused"], "");
+}
+
+TEST(VerifyCli, PosesAloneCalibrateAndRecoverATrackerOffset) {
+  // tracker poses = the sample program's commanded joints, measured at the programmed TCP (the
+  // cell's controller compensates gravity with this tool, and a tracker pose has no process
+  // load: the real TCP is the programmed one to second order) shifted by a known
+  // tracker-alignment offset (workobject frame): the registration recovers it
+  const std::string dir = test::tempDir("poses");
+  const auto p = test::runRoprec("predict --cell " + q(cell()) + " " + q(program()) +
+                                 " --quiet --json " + q(dir + "/p.json"));
+  ASSERT_EQ(p.exit_code, 0) << p.err;
+  const json holes = json::parse(test::readFile(dir + "/p.json"))["holes"];
+  const Eigen::Vector3d wobj = attributeTriple(test::readFile(cell()), "workobject", "xyz");
+  const Eigen::Vector3d offset(120, -80, 60);  // µm
+  std::string csv = "id,j1,j2,j3,j4,j5,j6,x,y,z\n";
+  for (const auto& h : holes) {
+    const Eigen::Vector3d real = vec(h["nominal"]["position_mm"]);
+    const Eigen::Vector3d m = real - wobj + offset * 1e-3;  // workobject axes = base axes here
+    csv += h["id"].get<std::string>();
+    for (const auto& q : h["controller_joints_deg"]) csv += "," + std::to_string(q.get<double>());
+    char buf[128];
+    std::snprintf(buf, sizeof buf, ",%.4f,%.4f,%.4f\n", m.x(), m.y(), m.z());
+    csv += buf;
+  }
+  test::writeFile(dir + "/poses.csv", csv);
+  const auto v =
+      test::runRoprec("verify --cell " + q(cell()) + " --poses " + q(dir + "/poses.csv") +
+                      " --register translation --identify stiffness --json " + q(dir + "/v.json"));
+  ASSERT_EQ(v.exit_code, 0) << v.err << v.out;
+  EXPECT_NE(v.out.find("measured poses"), std::string::npos) << v.out;
+  const json j = json::parse(test::readFile(dir + "/v.json"));
+  EXPECT_EQ(j["poses"]["count"], holes.size());
+  const Eigen::Vector3d t = vec(j["registration"]["translation_um"]);
+  EXPECT_LE((t - offset).norm(), 5.0) << t.transpose();
+  // a bad pose file: exit 2 at its line
+  test::writeFile(dir + "/bad.csv", "id,j1,j2,j3,j4,j5,j6,x,y,z\nA,1,2,3,4,5,6,7,8\n");
+  const auto b = test::runRoprec("verify --cell " + q(cell()) + " --poses " + q(dir + "/bad.csv"));
+  EXPECT_EQ(b.exit_code, 2);
+  EXPECT_NE(b.err.find("bad.csv:2:"), std::string::npos) << b.err;
+}
+
 TEST(VerifyCli, PlanTestWritesAProgramInspectReadsWithNHoles) {
   const std::string dir = test::tempDir("plantest");
   const std::string out = dir + "/coupon.src";

@@ -49,6 +49,12 @@ std::pair<VectorXd, double> fitEffect(const IdentificationResult& r,
     b.segment(at, w[i].size()) = w[i];
     at += blocks[i].rows();
   }
+  // what the fit could have absorbed is not the effect's: only the part of each candidate column
+  // outside the span of the fit's Jacobian can explain the residual
+  if (r.jacobian.rows() == rows && r.jacobian.cols() > 0) {
+    const Eigen::ColPivHouseholderQR<MatrixXd> qr(r.jacobian);
+    A -= r.jacobian * qr.solve(A);
+  }
   const VectorXd beta = A.colPivHouseholderQr().solve(b);
   const double total = b.squaredNorm();
   const double share = total > 0 ? 1.0 - (b - A * beta).squaredNorm() / total : 0.0;

@@ -6,12 +6,14 @@
 /// ## Goodness of fit (χ²)
 ///   χ² = Σ_i Σ_rows (r_i / σ_i)²  at the estimate (IdentificationResult::chi2), dof = equations −
 ///   estimated parameters. With a model that explains the measurements up to their σ, χ²/dof ≈ 1.
-///   The fit is flagged **inconsistent** when √(χ²/dof) > `rms_limit` (default 3: the residual is
-///   more than three times the measurement σ — far beyond any χ² quantile at dof ≥ 2, and a
-///   plain-language rule a metrologist can check). Its 99.9 % χ² quantile (Wilson–Hilferty) is
-///   reported alongside.
+///   The fit is flagged **inconsistent** when √(χ²/dof) > `rms_limit` (default 2: the residual is
+///   more than twice the measurement σ — beyond the 99.9 % χ² quantile for every dof ≥ 5, whose
+///   √(χ²₀.₉₉₉/dof) is 2.03 at dof 5 and falls towards 1 — a plain-language rule a metrologist can
+///   check). The 99.9 % χ² quantile itself (Wilson–Hilferty) is reported alongside.
 ///   What the model cannot explain is named by fitting the residuals (weighted by 1/σ) with the
-///   usual unmodelled effects, each by linear least squares on the residual rows:
+///   usual unmodelled effects, each by linear least squares on the residual rows, its columns first
+///   made orthogonal to the fit's Jacobian (IdentificationResult::jacobian: what the identified
+///   parameters already absorbed of it cannot explain the residual):
 ///     * `length scale` s:            e(p) = s · (p_W − o_W)            (thermal growth of the arm;
 ///                                    o_W = the robot base origin)
 ///     * `drift with time` d (3):     e(p) = d · (i / (N − 1))           (the part, fixture or
@@ -51,7 +53,7 @@ struct FitCheck {
   int dof{0};
   double rms_normalized{0};  ///< √(χ²/dof): the residual in units of the measurement σ
   double chi2_999{0};        ///< the 99.9 % quantile of χ²(dof)
-  double rms_limit{3.0};
+  double rms_limit{2.0};
   bool consistent{true};    ///< rms_normalized ≤ rms_limit
   UnmodelledEffect best;    ///< the candidate that removes the largest share of χ²
   std::string explanation;  ///< what the model cannot explain (empty when consistent)
@@ -60,9 +62,10 @@ struct FitCheck {
 /// The χ² check of `r`, identified from `holes` (the same observations, same order). The base
 /// origin o_W is the base frame's origin (0, 0, 0).
 FitCheck checkFit(const IdentificationResult& r, const std::vector<IdentificationHole>& holes,
-                  double rms_limit = 3.0);
+                  double rms_limit = 2.0);
 
-/// The p-quantile of χ²(dof) (Wilson–Hilferty; relative error < 1 % for dof ≥ 3).
+/// The p-quantile of χ²(dof) (Wilson–Hilferty; at p = 0.999 relative error < 1.5 % for dof ≥ 5,
+/// < 1 % for dof ≥ 10).
 double chiSquareQuantile(int dof, double p);
 
 struct HeldOutValidation {

@@ -827,6 +827,10 @@ int priority(const Layout& l, int k) {
   return 2;
 }
 
+/// A column whose prior σ moves the σ-weighted residuals by less than this (2-norm over all of
+/// them) is not seen by the data at all.
+constexpr double kUnseen = 1e-3;
+
 /// The columns `cols` of J (data Jacobian on those columns) without the dependent ones: taken in
 /// priority order, a column is kept when the part of it (prior-σ scaled) that the kept columns do
 /// not reproduce exceeds `tol` × its norm (a QR factorisation grown column by column); a dropped
@@ -851,7 +855,7 @@ std::vector<int> dependentFree(const Problem& P, MatrixXd J, const std::vector<i
       coef = K.colPivHouseholderQr().solve(col);
       rest = (col - K * coef).norm();
     }
-    if (norm > 0 && rest > tol * norm) {
+    if (norm > kUnseen && rest > tol * norm) {
       kept.push_back(c);
       K.conservativeResize(Eigen::NoChange, K.cols() + 1);
       K.col(K.cols() - 1) = col;
@@ -870,7 +874,8 @@ std::vector<int> dependentFree(const Problem& P, MatrixXd J, const std::vector<i
       text +=
           (shown++ ? " + " : " ") + numberText(v, 3) + " × " + P.spec.name[static_cast<size_t>(k)];
     }
-    if (shown == 0) text += " 0 (the data do not see it)";
+    if (shown == 0 || norm <= kUnseen)
+      text = P.spec.name[static_cast<size_t>(cols[c])] + " ≡ 0 (the data do not see it)";
     dependencies.push_back(text);
   }
   std::vector<int> out;
@@ -900,9 +905,11 @@ GeometryCalibration identifiedGeometry(const Problem& P, const IdentificationRes
   return g;
 }
 
-double conditionOf(Problem& P, const Pass& pass) {
-  MatrixXd J;
+/// The condition number of the pass's data Jacobian at its estimate; J is left in `J` (empty
+/// when it cannot be evaluated).
+double conditionOf(Problem& P, const Pass& pass, MatrixXd& J) {
   if (pass.cols.empty() || !dataJacobian(P, pass.lm.state.x, pass.lm.state.p, pass.cols, J)) {
+    J.resize(0, 0);
     return std::numeric_limits<double>::infinity();
   }
   return scaledCondition(J);
@@ -937,7 +944,7 @@ IdentificationResult identifyStiffness(const PredictionModel& m,
   r.converged = first.lm.converged && final_pass.lm.converged;
   r.iterations = first.lm.iterations + (refit ? final_pass.lm.iterations : 0);
   r.message = final_pass.lm.message.empty() ? first.lm.message : final_pass.lm.message;
-  r.condition_number = conditionOf(P, final_pass);
+  r.condition_number = conditionOf(P, final_pass, r.jacobian);
   fillParameters(P, first_cov, final_pass, considerCovariance(P, final_pass.lm.state, seen),
                  o.identifiable_ratio, r);
   fillCompliance(m, r);
@@ -1280,15 +1287,15 @@ void planStatistics(const Problem& P, const MatrixXd& J, const MatrixXd& C, doub
     if (plan.expected_sigma[k] > ratio_limit * P.spec.s0[k])
       plan.unobservable.push_back(P.spec.name[static_cast<size_t>(k)]);
   }
-  const MatrixXd Crr = C.topLeftCorner(nr, nr);
   const VectorXd prior = P.spec.s0.head(nr).cwiseAbs2();
   double after = 0;
   double before = 0;
   const Eigen::Index holes = J.rows() / 2;
   for (Eigen::Index i = 0; i < holes; ++i) {
-    const MatrixXd Ji = J.block(2 * i, 0, 2, nr) * sigma;  // m per unit parameter
-    after += (Ji * Crr * Ji.transpose()).trace();
-    before += (Ji * prior.asDiagonal() * Ji.transpose()).trace();
+    const MatrixXd Ji = J.middleRows(2 * i, 2) * sigma;  // m per unit parameter
+    after += (Ji * C * Ji.transpose()).trace();
+    const MatrixXd Jr = Ji.leftCols(nr);
+    before += (Jr * prior.asDiagonal() * Jr.transpose()).trace();
   }
   plan.predicted_accuracy = holes > 0 ? std::sqrt(after / static_cast<double>(holes)) : 0.0;
   plan.prior_accuracy = holes > 0 ? std::sqrt(before / static_cast<double>(holes)) : 0.0;

@@ -235,6 +235,10 @@ struct IdentificationResult {
   double chi2{0};
   int equations{0};
   int dof{0};
+  /// σ-weighted data Jacobian ∂r/∂x of the estimated parameters at the estimate (rows as the
+  /// residuals, internal units): what the fit could absorb (fit_validation.hpp). Empty when it
+  /// could not be evaluated.
+  Eigen::MatrixXd jacobian;
 };
 
 /// Identifies the effective joint compliances (and optionally the tool and the registration)
@@ -379,10 +383,12 @@ struct TestPlan {
   std::vector<std::string> unobservable;
   std::vector<std::string> dependencies;
   /// Predicted accuracy after calibration: RMS over the admissible candidates of the standard
-  /// uncertainty of the predicted in-plane position (√trace of J_robot C J_robotᵀ, 2-D), from the
-  /// robot parameters' expected covariance — the part a calibrated model still does not know. m.
+  /// uncertainty of the predicted in-plane position (√trace of J C Jᵀ, 2-D) with the expected
+  /// covariance C of all parameters, the registration included (the next part in the same
+  /// fixture: robot and registration are used together, as `verify --write-cell` writes them) —
+  /// what a calibrated model still does not know. m.
   double predicted_accuracy{0};
-  /// The same with the prior covariance (before calibration). m.
+  /// Before calibration: the same with the robot parameters' prior covariance alone. m.
   double prior_accuracy{0};
 };
 

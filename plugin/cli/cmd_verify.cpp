@@ -275,7 +275,7 @@ const CommandRegistration reg{
      "The new card's urdf attribute points to the original URDF when it is not beside the card.\n"
      "--identify-tool: also identify the tool's mass and centre of mass (changes to the cell's\n"
      "<tool>, prior σ 2 kg and 20 mm), reported with their σ; the cell file is not rewritten.\n"
-     "Every --calibrate is checked: the fit's χ² against the measurement σ (a residual above 3 σ\n"
+     "Every --calibrate is checked: the fit's χ² against the measurement σ (a residual above 2 σ\n"
      "RMS is a warning naming what the model cannot explain — a length scale, a drift with time —\n"
      "and exit 1), and a K-fold cross-validation (--folds, default 5; observation i in fold i mod "
      "K)\n"
