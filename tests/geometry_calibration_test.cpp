@@ -5,10 +5,10 @@
 
 #include <gtest/gtest.h>
 
-#include <filesystem>
 #include <kdl/chainfksolverpos_recursive.hpp>
 #include <random>
 
+#include "compensator/robot/model.hpp"
 #include "compensator/robot/robot_card.hpp"
 #include "compensator/support/error.hpp"
 #include "compensator/support/xml_node.hpp"
@@ -45,37 +45,23 @@ GeometryCalibration randomCalibration(unsigned seed) {
   return cal;
 }
 
-/// The error's transform built with KDL (not FrameError::transform).
-Pose kdlErrorPose(const FrameError& e) {
-  return test::fromKdl(KDL::Frame(KDL::Rotation::RPY(e.drpy.x(), e.drpy.y(), e.drpy.z()),
-                                  KDL::Vector(e.dxyz.x(), e.dxyz.y(), e.dxyz.z())));
-}
-
-/// FK of the truth robot: KDL on the perturbed URDF, base error on the left, tool error appended.
+/// FK of the truth robot: KDL on the perturbed URDF, base error in front, tool error appended.
 class KdlTruth {
  public:
-  KdlTruth(const Robot& robot, const GeometryCalibration& cal, const std::string& tag) {
-    std::vector<std::pair<std::string, Pose>> errors;
-    for (size_t i = 0; i < 6; ++i)
-      errors.emplace_back(robot.chain.joints[i].name, kdlErrorPose(cal.joints[i]));
-    const std::string path = test::tempDir(tag) + "/perturbed.urdf";
-    test::writeFile(path, test::perturbedUrdf(robot.card.urdf_path, errors));
-    chain_ =
-        test::kdlChain(path, robot.chain.base_link, robot.chain.tip_link, kdlErrorPose(cal.tool));
-    base_ = kdlErrorPose(cal.base);
-  }
+  KdlTruth(const Robot& robot, const GeometryCalibration& cal, const std::string& tag)
+      : chain_(test::kdlTruthGeometry(robot, cal, test::tempDir(tag))
+                   .chain(robot.chain.base_link, robot.chain.tip_link)) {}
   [[nodiscard]] Pose fk(const Vec6& q) const {
     KDL::ChainFkSolverPos_recursive solver(chain_);
     KDL::JntArray jq(6);
     for (unsigned i = 0; i < 6; ++i) jq(i) = q[i];
     KDL::Frame F;
     EXPECT_GE(solver.JntToCart(jq, F), 0);
-    return base_ * test::fromKdl(F);
+    return test::fromKdl(F);
   }
 
  private:
   KDL::Chain chain_;
-  Pose base_{Pose::Identity()};
 };
 
 Vec6 randomJoints(const ChainDescription& chain, std::mt19937& rng) {
@@ -98,21 +84,6 @@ std::array<std::string, 6> jointNames(const Robot& r) {
   return n;
 }
 
-/// A copy of a bundled card with an absolute URDF path and `block` before </robot>.
-std::string cardWithBlock(const std::string& robot, const std::string& block,
-                          const std::string& tag) {
-  const Robot r = loadRobot({robot, "", ""});
-  std::string text = test::readFile(r.card.file);
-  const std::string urdf_name = std::filesystem::path(r.card.urdf_path).filename().string();
-  const std::size_t u = text.find("urdf=\"" + urdf_name + "\"");
-  EXPECT_NE(u, std::string::npos);
-  text.replace(u, 8 + urdf_name.size(), "urdf=\"" + r.card.urdf_path + "\"");
-  text.insert(text.rfind("</robot>"), block);
-  const std::string path = test::tempDir(tag) + "/robot.xml";
-  test::writeFile(path, text);
-  return path;
-}
-
 TEST(GeometryCalibration, CalibratedChainMatchesKdlOnPerturbedUrdfOfThreeVendors) {
   for (const char* name : {"kuka-kr120-r2500-pro", "abb-irb6700-200-260", "fanuc-r2000ic-165f"}) {
     SCOPED_TRACE(name);
@@ -133,6 +104,25 @@ TEST(GeometryCalibration, CalibratedChainMatchesKdlOnPerturbedUrdfOfThreeVendors
   }
 }
 
+TEST(GeometryCalibration, NaturalCoordinateModelTakesTheCalibratedGeometry) {
+  // the model's constants (link vectors, unit-vector angles, TCP) come from the real chain: its
+  // FK equals the KDL truth
+  for (const char* name : {"kuka-kr210-r2700-2", "fanuc-r2000ic-210f"}) {
+    SCOPED_TRACE(name);
+    const Robot robot = loadRobot({name, "", ""});
+    const GeometryCalibration cal = randomCalibration(44);
+    const KdlTruth truth(robot, cal, std::string("geomcal-nc-") + name);
+    const nc::Model model = nc::buildModel(calibratedChain(robot.chain, cal));
+    nc::Data data(model);
+    std::mt19937 rng(3);
+    for (int k = 0; k < 20; ++k) {
+      const Vec6 q = randomJoints(robot.chain, rng);
+      ASSERT_TRUE(nc::forwardKinematics(model, data, q).converged);
+      expectSamePose(data.T_W_flange, truth.fk(q), 1e-11, 1e-11);
+    }
+  }
+}
+
 TEST(GeometryCalibration, ZeroOffsetIsTheRotationAboutTheJointAxis) {
   const Robot robot = loadRobot({"kuka-kr120-r2500-pro", "", ""});
   GeometryCalibration cal;
@@ -149,8 +139,8 @@ TEST(GeometryCalibration, ZeroOffsetIsTheRotationAboutTheJointAxis) {
 TEST(GeometryCalibration, CardBlockLoadsIntoRealChainAndRoundTripsInNativeUnits) {
   const Robot nominal = loadRobot({"abb-irb6700-200-260", "", ""});
   const GeometryCalibration cal = randomCalibration(5);
-  const std::string card = cardWithBlock("abb-irb6700-200-260",
-                                         calibrationXml(cal, jointNames(nominal)), "geomcal-card");
+  const std::string card = test::cardWithCalibration(
+      nominal, calibrationXml(cal, jointNames(nominal)), test::tempDir("geomcal-card"));
   const Robot robot = loadRobot({card, "", ""});
   ASSERT_TRUE(robot.card.calibration.has_value());
   const GeometryCalibration& got = *robot.card.calibration;

@@ -36,6 +36,40 @@ ChainDescription calibratedChain(const ChainDescription& nominal, const Geometry
 
 namespace {
 
+/// The smallest rotation taking unit vector a onto unit vector b (identity when equal).
+Mat3 rotationOnto(const Vec3& a, const Vec3& b) {
+  const Vec3 axis = a.cross(b);
+  const double s = axis.norm();
+  if (s < 1e-15) return Mat3::Identity();  // equal (opposite axes are refused by the caller)
+  return Eigen::AngleAxisd(std::atan2(s, a.dot(b)), axis / s).toRotationMatrix();
+}
+
+}  // namespace
+
+GeometryCalibration calibrationFromChains(const ChainDescription& nominal,
+                                          const ChainDescription& calibrated) {
+  GeometryCalibration cal;
+  Pose carry = Pose::Identity();
+  for (size_t i = 0; i < 6; ++i) {
+    const ChainJoint& n = nominal.joints[i];
+    const ChainJoint& c = calibrated.joints[i];
+    if (n.name != c.name || n.axis.dot(c.axis) < 0.5) {
+      throw InputError(calibrated.file, c.line,
+                       "joint " + std::to_string(i + 1) + " '" + c.name +
+                           "' is not the nominal chain's '" + n.name +
+                           "' turning about the same axis: not a calibration of this robot");
+    }
+    Pose R = Pose::Identity();
+    R.linear() = rotationOnto(n.axis, c.axis);
+    cal.joints[i] = frameErrorFromTransform(n.origin.inverse() * carry * c.origin * R);
+    carry = R.inverse();
+  }
+  cal.tool = frameErrorFromTransform(nominal.tip.inverse() * carry * calibrated.tip);
+  return cal;
+}
+
+namespace {
+
 constexpr double kMm = 1e-3;    // m per mm
 constexpr double kMrad = 1e-3;  // rad per mrad
 

@@ -59,6 +59,17 @@ struct GeometryCalibration {
 /// in their (moved) link frames. chainForwardKinematics(calibratedChain(n, c), q) is FK_real(q).
 ChainDescription calibratedChain(const ChainDescription& nominal, const GeometryCalibration& cal);
 
+/// The calibration that turns `nominal` into `calibrated` (two chains of the same joints, e.g. the
+/// card's URDF and a URDF an external calibration wrote): per joint
+///   E_i = origin_nom_i⁻¹ · C_{i-1} · origin_cal_i · R_i,   C_i = R_iᵀ,   C_0 = I,
+/// with R_i the smallest rotation taking the nominal joint axis onto the calibrated one (a tool
+/// that tilts the axis vector instead of the origin; R_iᵀ is carried into the next origin), and
+/// E_tool = tip_nom⁻¹ · C_5 · tip_cal. A URDF cannot tell a base error from joint 1's origin
+/// error: both go into joint 1 (base stays zero; the real chain is the same). σ are 0 (not
+/// stated). Throws InputError(calibrated.file, …) when the joint names differ.
+GeometryCalibration calibrationFromChains(const ChainDescription& nominal,
+                                          const ChainDescription& calibrated);
+
 /// Parses a card's `<calibration>` element (docs/cards.md §5; native units mm, mrad, residual in
 /// mm). `joint_names` are the card's joints in chain order; a `<joint_origin joint="…">` naming
 /// another joint, a joint given twice, an unknown attribute or element, a negative σ or a missing

@@ -227,12 +227,22 @@ Vec6 vendorReferencePose(const RobotCard& card) {
   return fromControllerJoints(card, ctrl);
 }
 
-IkModel buildIkModel(const Robot& robot) {
+namespace {
+IkModelOptions ikOptionsOf(const RobotCard& card) {
   IkModelOptions o;
-  o.reference_q = vendorReferencePose(robot.card);
-  o.ctrl_sign5 = robot.card.joints[4].controller_sign;
-  o.ctrl_offset5 = robot.card.joints[4].controller_offset;
-  return buildIkModel(robot.chain, o);
+  o.reference_q = vendorReferencePose(card);
+  o.ctrl_sign5 = card.joints[4].controller_sign;
+  o.ctrl_offset5 = card.joints[4].controller_offset;
+  return o;
+}
+}  // namespace
+
+IkModel buildIkModel(const Robot& robot) {
+  return buildIkModel(robot.chain, ikOptionsOf(robot.card));
+}
+
+IkModel buildRealIkModel(const Robot& robot) {
+  return buildIkModel(robot.real_chain, ikOptionsOf(robot.card));
 }
 
 IkModel buildIkModel(const ChainDescription& chain, const IkModelOptions& options) {

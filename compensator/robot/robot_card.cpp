@@ -182,9 +182,9 @@ RobotCard loadRobotCard(const std::string& path) {
   allowOnly(root, {"name", "vendor", "model", "urdf", "base_link", "flange_link",
                    "rated_payload_kg", "dimensions_source", "inertial_source"});
   allowChildren(root, {"joint", "repeatability", "controller", "counterbalance", "gravity", "link",
-                       "calibration"});
-  allowAtMostOnce(root,
-                  {"repeatability", "controller", "counterbalance", "gravity", "calibration"});
+                       "calibration", "accuracy"});
+  allowAtMostOnce(root, {"repeatability", "controller", "counterbalance", "gravity", "calibration",
+                         "accuracy"});
   RobotCard card;
   card.file = path;
   card.name = root.str("name");
@@ -257,6 +257,14 @@ RobotCard loadRobotCard(const std::string& path) {
   card.rp_mm = rp->number("rp_mm");
   if (!(card.rp_mm > 0)) rp->fail("rp_mm must be > 0, got " + rp->str("rp_mm"));
   card.rp_source = rp->str("source", "");
+  if (const XmlNode* ac = root.child("accuracy")) {
+    allowOnly(*ac, {"ap_mm", "standard", "source"});
+    card.accuracy_ap_mm = ac->number("ap_mm");
+    if (!(card.accuracy_ap_mm > 0 && card.accuracy_ap_mm <= 20))
+      ac->fail("ap_mm (absolute pose accuracy) must lie in (0, 20] mm, got " + ac->str("ap_mm"));
+    card.accuracy_source = requireSource(*ac);
+    card.accuracy_line = ac->line;
+  }
   Eigen::Matrix<double, 6, 1> cal_deg = vendorCalibrationPoseDeg(card.vendor);
   card.calibration_pose_source =
       "vendor default (" + vendorName(card.vendor) + "; docs/model.md section 6.3)";

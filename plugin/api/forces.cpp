@@ -454,7 +454,7 @@ Json millingPath(const ForcesRequest& req, bool& converged) {
 /// The cell robot's own deflection at `joints` as the coupling's compliance.
 ComplianceFunction robotCompliance(const CellSpec& cell, const nc::Vec6& joints) {
   const Robot r = loadRobot(cell.robot);
-  const nc::Model model = nc::buildModel(r.chain, toolOf(cell));
+  const nc::Model model = nc::buildModel(r.real_chain, toolOf(cell));
   return robotMillingCompliance(model, complianceOf(r.card), joints);
 }
 

@@ -9,7 +9,8 @@
 namespace roprec::api {
 
 FkResult forwardKinematicsAt(const RobotSetup& setup, const Vec6& joints) {
-  const nc::Model model = nc::buildModel(setup.robot.chain, setup.tool);
+  // the real robot: its calibrated geometry (robot card <calibration>), else the URDF
+  const nc::Model model = nc::buildModel(setup.robot.real_chain, setup.tool);
   nc::Data data(model);
   FkResult r;
   r.joints = joints;
@@ -55,7 +56,7 @@ IkAnswer inverseKinematicsFor(const RobotSetup& setup, const IkRequest& request)
   a.T_flange =
       setup.cell ? Pose(request.target * setup.cell->tool.T_flange_tcp.inverse()) : request.target;
   if (request.fanuc_turn_axes) a.config_options.fanuc_turn_axes = *request.fanuc_turn_axes;
-  a.model = buildIkModel(setup.robot);
+  a.model = buildRealIkModel(setup.robot);  // the real robot reaches the target
   a.result = std::make_unique<IkResult>();
   IkOptions opt;
   opt.turns = request.all_turns ? IkTurns::kAll : IkTurns::kPrimary;

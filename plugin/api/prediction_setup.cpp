@@ -67,6 +67,40 @@ CapabilityInputs capabilityFromCell(const CellSpec& cell) {
   return c;
 }
 
+/// The budget's absolute-accuracy term (AccuracyInputs): the cell's controller option
+/// (<absolute_accuracy>), else the card's <calibration> σ, else the card's <accuracy>; the cell's
+/// registration σ (<workobject sigma_mm>) in every case.
+AccuracyInputs accuracyFromCell(const CellSpec& cell, const RobotCard& card) {
+  constexpr double kMaxwell95 = 2.7955;  // P(|e| <= 2.7955 σ) = 0.95 for an isotropic 3-D normal
+  AccuracyInputs a;
+  if (const XmlNode* w = cell.root.child("workobject"))
+    a.registration_sigma = w->number("sigma_mm", 0.0) * 1e-3;
+  std::string registration;
+  if (a.registration_sigma > 0) {
+    const XmlNode* w = cell.root.child("workobject");
+    registration = "; + registration σ " + w->str("sigma_mm") + " mm (" +
+                   w->str("sigma_source", "cell <workobject sigma_mm>") + ")";
+  }
+  if (const XmlNode* e = cell.root.child("absolute_accuracy")) {
+    a.kind = AccuracyInputs::Kind::kControllerOption;
+    a.u = e->number("ap_mm") * 1e-3 / kMaxwell95;
+    a.source = "controller absolute-accuracy option, AP " + e->str("ap_mm") + " mm / 2.7955 (" +
+               e->str("source") + ")";
+  } else if (card.calibration) {
+    a.kind = AccuracyInputs::Kind::kCalibrated;
+    a.source = "calibration σ through the FK Jacobian (" + card.calibration->source + ")";
+  } else if (card.accuracy_ap_mm > 0) {
+    a.kind = AccuracyInputs::Kind::kDataSheet;
+    a.u = card.accuracy_ap_mm * 1e-3 / kMaxwell95;
+    a.source = "uncalibrated, AP " + numberText(card.accuracy_ap_mm) + " mm / 2.7955 (" +
+               card.accuracy_source + ")";
+  } else if (a.registration_sigma > 0) {
+    a.source = "registration only";
+  }
+  a.source += registration;
+  return a;
+}
+
 /// Everything of the prediction model's setup that comes from the cell and the command line
 /// (not the holes' diameters): throws as the cell's elements are read.
 PredictionSetup setupFromCell(const PredictionContext& c, const std::string& uncertainty_override) {
@@ -83,6 +117,7 @@ PredictionSetup setupFromCell(const PredictionContext& c, const std::string& unc
     throw UsageError("--uncertainty must be linear or montecarlo");
   }
   s.capability = capabilityFromCell(c.cell);
+  s.accuracy = accuracyFromCell(c.cell, c.robot.card);
   // the controller's gravity handling: the one decision every command shares
   const ControllerGravity cg = controllerGravityOf(c.robot.card, &c.cell, c.tool);
   s.controller_gravity = cg.gravity_compensated;
@@ -239,8 +274,15 @@ Json holeJson(const HolePrediction& h, const HoleRequest& r, const RobotCard* ca
     u.set("coverage", Json::str("2-D radial 95 % (Rayleigh)"));
     u.set("U_work_anisotropic", Json::number(h.U_work_exact * 1e6, 3));
     Json b = Json::object();
-    for (const BudgetTerm& t : h.budget) b.set(t.name, Json::number(t.u * 1e6, 3));
+    Json sources = Json::object();
+    bool any_source = false;
+    for (const BudgetTerm& t : h.budget) {
+      b.set(t.name, Json::number(t.u * 1e6, 3));
+      if (t.source != nullptr) sources.set(t.name, Json::str(t.source));
+      any_source |= t.source != nullptr;
+    }
     u.set("standard_per_axis", b);
+    if (any_source) u.set("term_sources", sources);
     u.set("process_share", Json::number(h.process_share, 4));
     u.set("process_force_share", Json::number(h.process_force_share, 4));
     j.set("uncertainty_um", u);

@@ -1,5 +1,7 @@
 #include "tests/support/kdl_support.hpp"
 
+#include "tests/support/test_support.hpp"
+
 #include <gtest/gtest.h>
 #include <tinyxml2.h>
 #include <kdl/chainidsolver_recursive_newton_euler.hpp>
@@ -7,6 +9,8 @@
 #include <kdl_parser/kdl_parser.hpp>
 
 #include <cstdio>
+#include <filesystem>
+#include <random>
 #include <sstream>
 
 namespace roprec::test {
@@ -87,6 +91,67 @@ std::string perturbedUrdf(const std::string& urdf_path,
   tinyxml2::XMLPrinter printer;
   doc.Print(&printer);
   return printer.CStr();
+}
+
+GeometryCalibration seededGeometryErrors(unsigned seed, double mm, double mrad) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> t(-mm * 1e-3, mm * 1e-3);
+  std::uniform_real_distribution<double> r(-mrad * 1e-3, mrad * 1e-3);
+  const auto error = [&] {
+    FrameError e;
+    e.dxyz = Vec3(t(rng), t(rng), t(rng));
+    e.drpy = Vec3(r(rng), r(rng), r(rng));
+    return e;
+  };
+  GeometryCalibration cal;
+  for (FrameError& j : cal.joints) j = error();
+  cal.base = error();
+  cal.tool = error();
+  cal.source = "test: seeded geometric errors";
+  return cal;
+}
+
+Pose kdlErrorPose(const FrameError& e) {
+  return fromKdl(KDL::Frame(KDL::Rotation::RPY(e.drpy.x(), e.drpy.y(), e.drpy.z()),
+                            KDL::Vector(e.dxyz.x(), e.dxyz.y(), e.dxyz.z())));
+}
+
+KDL::Chain KdlTruthGeometry::chain(const std::string& base_link, const std::string& tip_link,
+                                   const Pose& extra) const {
+  KDL::Chain c;
+  c.addSegment(KDL::Segment("truth_base_error", KDL::Joint(KDL::Joint::None), toKdl(base)));
+  c.addChain(kdlChain(urdf, base_link, tip_link, tool));
+  if (!extra.isApprox(Pose::Identity(), 0.0))
+    c.addSegment(KDL::Segment("truth_extra", KDL::Joint(KDL::Joint::None), toKdl(extra)));
+  return c;
+}
+
+KdlTruthGeometry kdlTruthGeometry(const Robot& robot, const GeometryCalibration& cal,
+                                  const std::string& dir) {
+  std::vector<std::pair<std::string, Pose>> errors;
+  for (size_t i = 0; i < 6; ++i)
+    errors.emplace_back(robot.chain.joints[i].name, kdlErrorPose(cal.joints[i]));
+  KdlTruthGeometry g;
+  g.urdf = dir + "/truth.urdf";
+  writeFile(g.urdf, perturbedUrdf(robot.card.urdf_path, errors));
+  g.base = kdlErrorPose(cal.base);
+  g.tool = kdlErrorPose(cal.tool);
+  return g;
+}
+
+std::string cardWithCalibration(const Robot& robot, const std::string& block,
+                                const std::string& dir) {
+  std::string text = readFile(robot.card.file);
+  const std::string name = std::filesystem::path(robot.card.urdf_path).filename().string();
+  const std::size_t u = text.find("urdf=\"" + name + "\"");
+  if (u == std::string::npos)
+    ADD_FAILURE() << "no urdf=\"" << name << "\" in " << robot.card.file;
+  else
+    text.replace(u, 8 + name.size(), "urdf=\"" + robot.card.urdf_path + "\"");
+  text.insert(text.rfind("</robot>"), block);
+  const std::string path = dir + "/robot.xml";
+  writeFile(path, text);
+  return path;
 }
 
 Eigen::Matrix<double, 6, 1> kdlGravity(const KDL::Chain& chain,
