@@ -262,7 +262,7 @@ void setUpHoles(Problem& P) {
                          "observation '" + h.id +
                              "' has a payload: the tool cannot be identified together with "
                              "payload rows");
-      P.obs_model[i] = nc::buildModel(P.m.robot.chain, *h.tool);
+      P.obs_model[i] = nc::buildModel(P.m.robot.real_chain, *h.tool);
       P.obs_model[i]->gravity = P.m.model.gravity;
       P.obs_model[i]->tol_phi = P.m.model.tol_phi;
       P.obs_model[i]->max_iterations = P.m.model.max_iterations;
