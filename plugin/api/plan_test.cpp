@@ -180,7 +180,10 @@ void setGeometryJson(Json& j, const PlanTestResult& r) {
   }
   j.set("geometry", a);
   j.set("unobservable", stringArray(r.plan.unobservable));
-  j.set("dependencies", stringArray(r.plan.dependencies));
+  // the names only (the combinations are printed by the CLI): the summary stays short
+  std::vector<std::string> dependent;
+  for (const std::string& d : r.plan.dependencies) dependent.push_back(d.substr(0, d.find(' ')));
+  j.set("dependent", stringArray(dependent));
   j.set("prior_accuracy_um", Json::number(r.plan.prior_accuracy * 1e6, 2));
   j.set("predicted_accuracy_um", Json::number(r.plan.predicted_accuracy * 1e6, 2));
 }

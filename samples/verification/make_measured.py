@@ -14,7 +14,7 @@ How the file is made (deterministic: running it again gives identical bytes):
    samples/cells/housing-kr120.xml (KUKA KR 120 R2500 pro, bundled card)::
 
        roprec plan-test --cell samples/cells/housing-kr120.xml --region "-200 -200 100 200 200 230" \\
-              --directions "0 0 -1, 0 1 0, 0 -1 0, 1 0 0" --per-axis 3 --count 24 \\
+              --directions "0 0 -1, 0 1 0, 0 -1 0, 1 0 0" --per-axis 3 --count 24 --identify stiffness \\
               -o samples/verification/test_kr120.src
 
    This script re-runs that command first, so the files always belong together. roprec's KRL
@@ -62,7 +62,8 @@ FIXTURE_OFFSET_MM = (0.040, -0.025, 0.030)
 NOISE_UM = 5.0
 SEED = 11
 PLAN = ["--cell", CELL, "--region", "-200 -200 100 200 200 230",
-        "--directions", "0 0 -1, 0 1 0, 0 -1 0, 1 0 0", "--per-axis", "3", "--count", "24"]
+        "--directions", "0 0 -1, 0 1 0, 0 -1 0, 1 0 0", "--per-axis", "3", "--count", "24",
+        "--identify", "stiffness"]
 
 
 def run(roprec, *args):
