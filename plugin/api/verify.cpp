@@ -165,6 +165,19 @@ void calibrate(VerifyResult& r, const VerifyJob& job, IdentificationOptions o) {
   }
 }
 
+/// The identification's hole frame: the nominal hole, its in-plane axes ⊥ the measured hole axis
+/// when the file has one (the real drilled axis: the position ⊥ it is what the CMM measured
+/// meaningfully); the measured axis is oriented like the nominal drilling direction.
+Pose measuredAxisFrame(const VerifyResult& r, const Pose& nominal, int k) {
+  const postproc::MeasuredHole& m = r.measured.holes[static_cast<size_t>(k)];
+  if (!m.axis) return nominal;
+  Vec3 a = r.prediction.context.cell.T_base_wobj.linear() * m.axis->normalized();
+  if (a.dot(nominal.linear().col(2)) < 0) a = -a;
+  Pose T = nominal;
+  T.linear() = holeFrame(a);
+  return T;
+}
+
 /// A measured pose as an observation: the commanded joints from the controller's convention, the
 /// measured TCP in the base frame, gravity with the row's payload and applied wrench.
 IdentificationHole poseObservation(const VerifyResult& r, const postproc::MeasuredPose& q,
@@ -200,7 +213,7 @@ void identify(VerifyResult& r, const VerifyJob& job) {
     IdentificationHole h;
     h.id = p.id;
     h.theta_cmd = p.joints;
-    h.T_W_hole = nominalHole(c, i);
+    h.T_W_hole = measuredAxisFrame(r, nominalHole(c, i), r.measured_of[n]);
     h.diameter = c.job.requests[i].diameter;
     h.p_W_measured = measuredW(r, r.measured_of[n]);
     h.sigma = residualSigma(
