@@ -389,6 +389,12 @@ Json identificationJson(const VerifyResult& r) {
   }
   j.set("parameters", ps);
   j.set("not_identifiable", fixed);
+  // geometry only (the key is absent for a stiffness identification: outputs unchanged)
+  if (id.geometry) {
+    Json deps = Json::array();
+    for (const std::string& d : id.dependencies) deps.push(Json::str(d));
+    j.set("dependencies", deps);
+  }
   j.set("joints", jointsJson(r));
   j.set("covariance", covarianceJson(id.covariance));
   setValidationJson(j, r);
