@@ -321,11 +321,25 @@ nc::JointCompliance complianceOf(const Problem& P, const VectorXd& x) {
   return c;
 }
 
-/// Iterates may leave the physical region (a compliance below zero): the equilibrium is still
-/// defined there for small loads, and a Gauss–Newton path through it reaches an interior optimum
-/// that a bound would trap in a corner (the gravity-torque gradient makes the problem mildly
-/// nonlinear). A non-physical final value is reported, not used (fillCompliance).
-bool admissible(const VectorXd& x) { return x.allFinite(); }
+/// Geometry bounds inside the fit: a joint-origin or tip error beyond these is not a calibration
+/// error (card check refuses it: 5 mm / 20 mrad), so a step that leaves the box is rejected (the
+/// damping grows) rather than taken and reverted afterwards.
+constexpr double kGeometryXyzBound = 5e-3;   // m
+constexpr double kGeometryRpyBound = 20e-3;  // rad
+
+/// Iterates may leave the physical region of the compliances (a compliance below zero): the
+/// equilibrium is still defined there for small loads, and a Gauss–Newton path through it
+/// reaches an interior optimum that a bound would trap in a corner (the gravity-torque gradient
+/// makes the problem mildly nonlinear). A non-physical final value is reported, not used
+/// (fillCompliance). The geometry stays inside its bounds.
+bool admissible(const Layout& l, const VectorXd& x) {
+  if (!x.allFinite()) return false;
+  for (int k = 0; l.geo >= 0 && k < kGeometryParameters; ++k) {
+    const bool rot = k % 6 >= 3;
+    if (std::abs(x[l.geo + k]) > (rot ? kGeometryRpyBound : kGeometryXyzBound)) return false;
+  }
+  return true;
+}
 
 /// p̂_W of every hole at x without the geometry term, and the real joint angles θ.
 int predictEquilibrium(Problem& P, const VectorXd& x, std::vector<Vec3>& p,
@@ -478,7 +492,7 @@ struct LmOutcome {
 
 /// Evaluates x; false when x is not admissible or an equilibrium fails.
 bool evaluate(Problem& P, const VectorXd& x, LmState& s) {
-  if (!admissible(x)) return false;
+  if (!admissible(P.layout, x)) return false;
   std::vector<Vec3> p;
   if (predictRobot(P, x, p) >= 0) return false;
   s.x = x;

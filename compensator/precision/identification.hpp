@@ -153,6 +153,8 @@ struct IdentificationOptions {
   /// the nominal URDF. Prior: the card's <calibration> values (0 without one), σ the card's stated
   /// σ, else the data-sheet class values below. The base error is not a parameter: it is exactly
   /// joint 1's origin error (folded into it), and it keeps the card's value.
+  /// Inside the fit each component stays within ±5 mm / ±20 mrad (a step leaving the box is
+  /// rejected and the damping raised).
   bool geometry{false};
   double geometry_xyz_prior{0.3e-3};  ///< m: link length/offset errors 0.1–0.5 mm (calibration.md)
   double geometry_rpy_prior{0.5e-3};  ///< rad: zero offsets 0.2–0.9 mrad, axis errors 0.1–1 mrad
@@ -362,6 +364,8 @@ struct PlanOptions {
   double min_spacing{0.02};  ///< m: holes closer than this to a chosen one are not candidates
   /// Plan for the geometry too (IdentificationOptions::geometry, priors as there): the criterion
   /// is then over compliances + geometry, the registration still the nuisance.
+  /// Inside the fit each component stays within ±5 mm / ±20 mrad (a step leaving the box is
+  /// rejected and the damping raised).
   bool geometry{false};
   double identifiable_ratio{0.9};  ///< expected ρ above this: reported as unobservable
 };
