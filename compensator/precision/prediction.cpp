@@ -1,5 +1,8 @@
 #include "compensator/precision/prediction.hpp"
 
+#include <mutex>
+#include <set>
+
 #include "compensator/robot/calibration_jacobian.hpp"
 
 #include <algorithm>
@@ -122,6 +125,16 @@ Eigen::Matrix2d accuracyCovariance(const PredictionModel& m, const Vec6& theta, 
     }
   }
   return cov + iso * Eigen::Matrix2d::Identity();
+}
+
+/// A process-lifetime copy of `text` (BudgetTerm::source must outlive every copy of the model and
+/// of the predictions: predictions are formatted after lookahead models are gone). Thread-safe;
+/// allocates only the first time a text is seen.
+const char* internedText(const std::string& text) {
+  static std::mutex mutex;
+  static auto* texts = new std::set<std::string, std::less<>>();  // never freed: stable pointers
+  const std::lock_guard<std::mutex> lock(mutex);
+  return texts->insert(text).first->c_str();
 }
 
 bool hasAccuracyTerm(const AccuracyInputs& a) {
@@ -448,7 +461,7 @@ void predictAtSolution(const PredictionModel& m, PredictionData& d, const HoleRe
                       false});
   p.budget.push_back({"robot_deflection_process_force", u_robdef_proc, true});
   if (with_accuracy)
-    p.budget.push_back({"robot_absolute_accuracy", u_acc, false, m.accuracy.source.c_str()});
+    p.budget.push_back({"robot_absolute_accuracy", u_acc, false, internedText(m.accuracy.source)});
   double u_mach2 = 0;
   if (proc) {
     for (const UncertaintyComponent& c : proc->mach.components) {

@@ -69,6 +69,7 @@ void useProgramTool(PredictionContext& c, const Pose& T_flange_tcp) {
   s.tool = c.tool;
   s.process = c.process;
   s.uncertainty = c.model.uncertainty;
+  s.accuracy = c.model.accuracy;
   s.capability = c.model.capability;
   const ControllerGravity cg = controllerGravityOf(c.robot.card, &c.cell, c.tool);
   s.controller_gravity = cg.gravity_compensated;

@@ -33,6 +33,7 @@ PredictionModel modelAtFeed(const PredictionContext& c, double feed_m_per_rev) {
   proc.drilling.feed = feed_m_per_rev;
   s.process = proc;
   s.uncertainty = c.model.uncertainty;
+  s.accuracy = c.model.accuracy;
   s.capability = c.model.capability;
   s.default_tolerance = c.model.default_tolerance;
   const ControllerGravity cg = controllerGravityOf(c.robot.card, &c.cell, c.tool);

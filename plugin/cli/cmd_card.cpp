@@ -117,9 +117,7 @@ int run(Args& args, CommandContext& ctx) {
 }
 
 const CommandRegistration reg{
-    {"card",
-     "make a robot card for a URDF (card new), check it (card check), import or export a "
-     "calibration (card import-calibration, card export-urdf)",
+    {"card", "robot cards: card new, check, import-calibration, export-urdf",
      "usage: roprec card new --urdf FILE.urdf [--vendor KUKA|ABB|FANUC] [--model TEXT]\n"
      "                       [--payload-kg KG] [--mass-kg KG] -o robot.xml\n"
      "       roprec card check robot.xml [--cell CELL.xml]\n"
@@ -133,10 +131,10 @@ const CommandRegistration reg{
      "stiffness from the published class data (KUKA KR500 set for 120-500 kg arms, times\n"
      "payload/120 kg below), position gain 40 1/s, repeatability 0.08 mm, link inertials from\n"
      "the URDF unless missing or ROS-Industrial placeholders (then a class estimate from the\n"
-     "robot mass, --mass-kg or 34 kg x payload^0.7). Every number has a source; estimates are\n"
-     "marked 'estimate:'. The vendor and payload are read from the URDF robot name when not\n"
-     "given. The URDF is referenced relative to the card's folder. What you must still confirm\n"
-     "is printed on stderr.\n\n"
+     "robot mass, --mass-kg or 34 kg x payload^0.7), absolute accuracy AP 1.0 mm. Every number\n"
+     "has a source; estimates are marked 'estimate:'. The vendor and payload are read from the\n"
+     "URDF robot name when not given. The URDF is referenced relative to the card's folder.\n"
+     "What you must still confirm is printed on stderr.\n\n"
      "card check loads the card and checks it against its URDF and the vendor conventions:\n"
      "flange z out of the flange, the flange orientation at the vendor's home pose, the base\n"
      "frame (FANUC World at J2 height), joint signs and J2/J3 coupling, joint ranges,\n"
