@@ -367,6 +367,37 @@ TEST(Identification, IsDeterministicAndNonConvergenceIsAValue) {
   EXPECT_THROW(identifyStiffness(c.model, {}, o), InputError);
 }
 
+TEST(Identification, CompliancesStayPhysicalInsideTheFit) {
+  // Holes measured on the wrong side of the nominal (each real point mirrored through its
+  // nominal): the least-squares compliances are negative. Inside the fit every effective
+  // compliance stays above its servo's (projected steps), the fit converges on the bound, and the
+  // joints it stopped at keep the card's stiffness.
+  const api::PredictionContext c = loadJob(false);
+  const Vec6 k_true = truthStiffness(c, 11);
+  KdlTruth truth(c, k_true, false);
+  Measured m = measure(c, truth, 5, 5e-6);
+  for (IdentificationHole& h : m.holes)
+    h.p_W_measured = 2.0 * h.T_W_hole.translation() - h.p_W_measured;
+  IdentificationOptions o;
+  o.compliance_prior_rel = compliancePriorSigma(c.robot.card);
+  const IdentificationResult r = identifyStiffness(c.model, m.holes, o);
+  print(r, k_true);
+  EXPECT_TRUE(r.converged) << r.message;
+  int at_bound = 0;
+  for (int j = 0; j < 6; ++j) {
+    const IdentifiedParameter& q = r.parameters[static_cast<size_t>(j)];
+    const double k_servo = c.model.compliance.k_servo[j];
+    const double c_servo = k_servo < 1e299 ? 1.0 / k_servo : 0.0;
+    EXPECT_GT(q.value, c_servo) << q.name;
+    if (q.identifiable && !r.joint_identified[static_cast<size_t>(j)]) {
+      ++at_bound;
+      EXPECT_EQ(r.compliance.k[j], c.model.compliance.k[j]) << q.name;
+    }
+  }
+  EXPECT_GE(at_bound, 1);
+  EXPECT_NE(r.message.find("physical bound"), std::string::npos) << r.message;
+}
+
 /// Registration (ω, t) as an isometry: m = T_W_wobj (R(ω) T_W_wobj⁻¹ p + t).
 Pose registrationPose(const Vec3& w, const Vec3& t) {
   Pose G = Pose::Identity();

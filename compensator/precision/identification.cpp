@@ -327,11 +327,27 @@ nc::JointCompliance complianceOf(const Problem& P, const VectorXd& x) {
 constexpr double kGeometryXyzBound = 5e-3;   // m
 constexpr double kGeometryRpyBound = 20e-3;  // rad
 
-/// Iterates may leave the physical region of the compliances (a compliance below zero): the
-/// equilibrium is still defined there for small loads, and a Gauss–Newton path through it
-/// reaches an interior optimum that a bound would trap in a corner (the gravity-torque gradient
-/// makes the problem mildly nonlinear). A non-physical final value is reported, not used
-/// (fillCompliance). The geometry stays inside its bounds.
+/// The smallest effective compliance of joint j inside the fit, as a factor of its prior c0_j: the
+/// servo's compliance plus kComplianceFloor of the prior joint compliance (a joint at most 1000 ×
+/// stiffer than the card says). Below it the joint would be stiffer than its servo: not physical.
+constexpr double kComplianceFloor = 1e-3;
+
+double complianceLowerBound(const Problem& P, int j) {
+  const double k_servo = P.m.compliance.k_servo[j];
+  const double c_servo = k_servo < 1e299 ? 1.0 / k_servo : 0.0;
+  const double c0 = P.c0[j];
+  return (c_servo + kComplianceFloor * std::max(c0 - c_servo, 0.0)) / c0;
+}
+
+/// Projects a candidate onto the physical region: every compliance at least its lower bound (a
+/// projected Levenberg–Marquardt step: the cost is evaluated at the projected point).
+VectorXd projected(const Problem& P, VectorXd x) {
+  for (int j = 0; j < 6; ++j) x[j] = std::max(x[j], complianceLowerBound(P, j));
+  return x;
+}
+
+/// Compliances stay physical inside the fit (projected steps, projected()); the geometry stays
+/// inside its bounds (a step leaving the box is rejected).
 bool admissible(const Layout& l, const VectorXd& x) {
   if (!x.allFinite()) return false;
   for (int k = 0; l.geo >= 0 && k < kGeometryParameters; ++k) {
@@ -534,7 +550,7 @@ bool takeStep(Problem& P, const MatrixXd& A, const VectorXd& g, const std::vecto
               double& lambda, LmState& state) {
   for (; lambda < 1e12; lambda *= 10) {
     LmState trial;
-    if (evaluate(P, state.x + dampedStep(A, g, lambda, cols, P.layout.n), trial) &&
+    if (evaluate(P, projected(P, state.x + dampedStep(A, g, lambda, cols, P.layout.n)), trial) &&
         trial.cost <= state.cost) {
       state = std::move(trial);
       lambda = std::max(lambda / 10, 1e-12);
@@ -557,7 +573,9 @@ LmOutcome levenbergMarquardt(Problem& P, const LmState& start, const std::vector
     }
     const MatrixXd A = normalMatrix(P, J, cols);
     const VectorXd g = gradient(P, J, out.state, cols);
-    const VectorXd dx = dampedStep(A, g, lambda, cols, P.layout.n);
+    // the step actually taken: a compliance on its bound does not move
+    const VectorXd dx =
+        projected(P, out.state.x + dampedStep(A, g, lambda, cols, P.layout.n)) - out.state.x;
     const double step = scaledSize(P, dx);
     if (step <= tol) {  // the step is below the tolerance: converged
       LmState trial;
@@ -752,7 +770,14 @@ void fillCompliance(const PredictionModel& m, IdentificationResult& r) {
     const IdentifiedParameter& q = r.parameters[static_cast<size_t>(j)];
     const double c_servo = m.compliance.k_servo[j] < 1e299 ? 1.0 / m.compliance.k_servo[j] : 0.0;
     const double c_joint = q.value - c_servo;
-    r.joint_identified[static_cast<size_t>(j)] = q.identifiable && c_joint > 0;
+    // on the fit's lower bound (complianceLowerBound): the data want a joint stiffer than physical
+    const bool at_bound = c_joint <= kComplianceFloor * (q.prior - c_servo) * (1 + 1e-6);
+    r.joint_identified[static_cast<size_t>(j)] = q.identifiable && c_joint > 0 && !at_bound;
+    if (q.identifiable && c_joint > 0 && at_bound) {
+      r.message += (r.message.empty() ? "" : "; ") + std::string("joint ") + std::to_string(j + 1) +
+                   ": the compliance stopped at its physical bound (1000 × the card's stiffness); "
+                   "the card keeps its stiffness";
+    }
     if (q.identifiable && !(c_joint > 0)) {
       r.message += (r.message.empty() ? "" : "; ") + std::string("joint ") + std::to_string(j + 1) +
                    ": the identified compliance is not above the servo's (not physical); the card "

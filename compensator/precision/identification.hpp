@@ -54,10 +54,12 @@
 ///   estimate's sensitivity G = A_aa⁻¹ J_aᵀ J_f (A_aa = J_wᵀJ_w on the estimated columns):
 ///     P_aa = A_aa⁻¹ + G S_f Gᵀ,  P_af = −G S_f,  P_ff = S_f,
 ///   so fixing a parameter the data see a little does not make the others overconfident.
-///   Iterates are not bounded: a compliance may pass below zero on the way (the equilibrium is
-///   defined there; the gravity-torque gradient makes the problem mildly nonlinear, and a bound
-///   would trap the path in a corner). A non-physical final value is reported in `message` and
-///   the card keeps that joint's stiffness.
+///   Bounds inside the fit (projected Levenberg–Marquardt: each trial point is projected onto the
+///   box before its cost is evaluated, and the convergence test uses the projected step): every
+///   effective compliance stays ≥ c_servo,j + 1e-3 (c0_j − c_servo,j) (a joint at most 1000 ×
+///   stiffer than its card, never stiffer than its servo); the geometry within ±5 mm / ±20 mrad.
+///   A compliance that ends on its bound (the data want it non-physical) is reported in
+///   `message` and the card keeps that joint's stiffness.
 ///   Condition number: of the data-only normal matrix J_dᵀJ_d of the identifiable parameters at
 ///   the estimate, its columns scaled to unit norm (λ_max/λ_min). A large value (≳ 1e8) says that
 ///   a combination of them is fixed only by the priors — e.g. a rigid registration from holes on
