@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <regex>
@@ -240,6 +241,44 @@ Eigen::Vector3d attributeTriple(const std::string& xml, const std::string& tag,
   Eigen::Vector3d v;
   in >> v.x() >> v.y() >> v.z();
   return v;
+}
+
+/// The `date` of the `<calibration>` a geometry calibration writes from `measured` (+ `extra`).
+std::string calibrationDateOf(const std::string& dir, const std::string& measured_file,
+                              const std::string& env, const std::string& extra) {
+  const std::string card = dir + "/card.xml";
+  fs::remove(card);
+  const auto r = test::runCommand(env + " '" + test::roprecBin() + "' verify --cell " + q(cell()) +
+                                  " " + q(s("verification/geometry_kr120.src")) + " --holes " +
+                                  q(s("verification/geometry_kr120_holes.csv")) + " --measured " +
+                                  q(measured_file) + " --register none --quiet --calibrate " +
+                                  q(card) + " " + extra);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  std::smatch m;
+  const std::string text = fs::exists(card) ? test::readFile(card) : std::string();
+  if (!std::regex_search(text, m, std::regex("<calibration [^>]*date=\"([^\"]*)\""))) return "";
+  return m[1];
+}
+
+TEST(VerifyCli, CalibrationDateIsGivenOrSourceDateEpochOrTheMeasuredFilesDay) {
+  const std::string dir = test::tempDir("caldate");
+  const std::string measured_copy = dir + "/measured_geometry.csv";
+  fs::copy_file(s("verification/measured_geometry.csv"), measured_copy);
+  // 2021-03-04 12:00 UTC as the file's modification time
+  const auto when =
+      std::chrono::file_clock::from_sys(std::chrono::sys_seconds{std::chrono::seconds{1614859200}});
+  fs::last_write_time(measured_copy, when);
+  EXPECT_EQ(calibrationDateOf(dir, measured_copy, "env -u SOURCE_DATE_EPOCH", ""), "2021-03-04");
+  EXPECT_EQ(calibrationDateOf(dir, measured_copy, "SOURCE_DATE_EPOCH=1700000000", ""),
+            "2023-11-14");
+  EXPECT_EQ(
+      calibrationDateOf(dir, measured_copy, "SOURCE_DATE_EPOCH=1700000000", "--date 2026-11-20"),
+      "2026-11-20");
+  const auto bad = test::runRoprec(verifyGeometryArgs("--register none --calibrate " +
+                                                      q(dir + "/bad.xml") + " --date 20-11-2026"));
+  EXPECT_EQ(bad.exit_code, 2) << bad.err;
+  EXPECT_NE(bad.err.find("--date must be YYYY-MM-DD"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(dir + "/bad.xml"));
 }
 
 TEST(VerifyCli, WriteCellMovesTheWorkobjectToThePartAndUsesTheNewCard) {

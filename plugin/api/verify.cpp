@@ -2,7 +2,11 @@
 
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
 #include <filesystem>
 #include <regex>
 
@@ -479,6 +483,33 @@ void readHoles(VerifyResult& r, const std::string& cell_path, const std::string&
 
 }  // namespace
 
+std::string calibrationDate(const std::string& date, const std::string& measured_file) {
+  if (!date.empty()) {
+    int y = 0, m = 0, d = 0;
+    char tail = 0;
+    if (!std::regex_match(date, std::regex("[0-9]{4}-[0-9]{2}-[0-9]{2}")) ||
+        std::sscanf(date.c_str(), "%d-%d-%d%c", &y, &m, &d, &tail) != 3 || m < 1 || m > 12 ||
+        d < 1 || d > 31)
+      throw UsageError("--date must be YYYY-MM-DD, not '" + date + "'");
+    return date;
+  }
+  std::time_t t = 0;
+  const char* epoch = std::getenv("SOURCE_DATE_EPOCH");
+  if (epoch != nullptr && *epoch != '\0') {
+    if (!std::regex_match(epoch, std::regex("[0-9]{1,12}")))
+      throw UsageError(std::string("SOURCE_DATE_EPOCH must be whole seconds, not '") + epoch + "'");
+    t = static_cast<std::time_t>(std::stoll(epoch));
+  } else {
+    const auto ft = fs::last_write_time(fs::path(measured_file));
+    t = std::chrono::system_clock::to_time_t(std::chrono::file_clock::to_sys(ft));
+  }
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%04d-%02d-%02d", tm.tm_year + 1900, tm.tm_mon + 1, tm.tm_mday);
+  return buf;
+}
+
 VerifyResult verifyJob(const std::string& cell_path, const std::string& program_path,
                        const VerifyJob& job, const ProgressFn& progress) {
   if (job.measured.empty() && job.poses.empty())
@@ -489,6 +520,8 @@ VerifyResult verifyJob(const std::string& cell_path, const std::string& program_
   r.program_path = program_path;
   r.registration = job.registration;
   r.calibrate = job.calibrate;
+  if (job.calibrate)
+    r.date = calibrationDate(job.date, job.measured.empty() ? job.poses : job.measured);
   if (!program_path.empty()) {
     readHoles(r, cell_path, program_path, job, progress);
   } else {
@@ -577,6 +610,7 @@ std::string calibratedCardText(const VerifyResult& r, const std::string& measure
                                  : std::string())
              : std::string("unchecked")) +
         ")";
+    g.date = r.date;
     g.residual_rms = r.identification->rms_final;
     g.measurements = r.identification->holes;
     std::array<std::string, 6> names;

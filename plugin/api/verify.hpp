@@ -51,10 +51,18 @@ struct VerifyJob {
   /// k of the k-fold held-out validation run with calibrate (fit_validation.hpp); 0: none (the
   /// card is then written without a held-out check, and the result says so).
   int folds{5};
+  /// The calibration's `date` (YYYY-MM-DD); empty: calibrationDate()'s rule.
+  std::string date;
 };
+
+/// The date written into a calibration: `date` when given (YYYY-MM-DD, checked), else the UTC day
+/// of SOURCE_DATE_EPOCH when set, else the UTC day of `measured_file`'s modification time (the
+/// day the measurement was saved). Never empty; the same inputs give the same day.
+std::string calibrationDate(const std::string& date, const std::string& measured_file);
 
 struct VerifyResult {
   PredictionResult prediction;  ///< the program predicted with the cell's card
+  std::string date;             ///< of the calibration (calibrationDate), with calibrate
   postproc::MeasuredHoles measured;
   postproc::MeasuredPoses poses;  ///< empty without a pose file
   postproc::MeasuredMatch match;

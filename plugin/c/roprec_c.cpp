@@ -35,7 +35,7 @@ struct roprec_session {
 struct roprec_options {
   roprec::api::CompensationJob job;  ///< job.job: the prediction options; mode, force
   /// roprec_verify_file_ex only: --write-cell, --poses, --identify, --folds.
-  std::string write_cell, poses;
+  std::string write_cell, poses, date;
   roprec::IdentifySet identify{roprec::IdentifySet::kAll};
   int folds{5};
 };
@@ -224,6 +224,9 @@ bool setVerifyOption(roprec_options& o, const std::string& key, const std::strin
     o.write_cell = v;
   } else if (key == "poses") {
     o.poses = v;
+  } else if (key == "date") {
+    if (!v.empty()) roprec::api::calibrationDate(v, "");
+    o.date = v;
   } else if (key == "identify") {
     const auto s = roprec::identifySetFromName(v);
     if (!s || *s == roprec::IdentifySet::kNone)
@@ -267,7 +270,7 @@ void setOption(roprec_options& o, const std::string& key, const std::string& v) 
     throw roprec::UsageError(
         "unknown option '" + key +
         "' (holes, match_tol_mm, uncertainty, frame, tool, threads, orientation, force, "
-        "write_cell, poses, identify, folds)");
+        "write_cell, poses, identify, folds, date)");
   }
 }
 
@@ -448,6 +451,7 @@ ROPREC_API int roprec_verify_file_ex(const char* cell_path, const char* program_
       throw roprec::UsageError("program_path is NULL (a measured file needs its program)");
     job.identify = options->identify;
     job.folds = options->folds;
+    job.date = options->date;
     const std::string json_out = optionalArg(json_out_path);
     const std::string card_out = optionalArg(new_card_out_path);
     checkTextBuffer(summary_json, summary_len, "summary_json");

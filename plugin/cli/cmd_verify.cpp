@@ -157,6 +157,7 @@ int run(Args& args, CommandContext& ctx) {
   const auto cell_out = args.option("write-cell");
   const auto folds = args.option("folds");
   const auto identify = args.option("identify");
+  const auto date = args.option("date");
   job.identify_tool = args.flag("identify-tool");
   const std::vector<std::string> pos = args.positionals();
   args.finish();
@@ -174,6 +175,7 @@ int run(Args& args, CommandContext& ctx) {
     if (!r) throw UsageError("--register must be none, translation or rigid");
     job.registration = *r;
   }
+  if (date) job.date = *date;
   if (u) job.u_measurement_um = parseNumberList(*u, 1, "--u-meas (µm)")[0];
   if (folds) {
     const double k = parseNumberList(*folds, 1, "--folds")[0];
@@ -237,7 +239,7 @@ const CommandRegistration reg{
      "                     [--json OUT.json] [--report OUT.html] [--calibrate NEW_CARD.xml]\n"
      "                     [--register none|translation|rigid] [--identify-tool] [--u-meas UM]\n"
      "                     [--identify stiffness|geometry|all] [--folds K]\n"
-     "                     [--write-cell NEW_CELL.xml] [--quiet]\n\n"
+     "                     [--write-cell NEW_CELL.xml] [--date YYYY-MM-DD] [--quiet]\n\n"
      "Compares the holes a CMM measured on a part drilled with PROGRAM against roprec's "
      "prediction.\n"
      "MEASURED: roprec CSV (id,x,y,z[,i,j,k][,u]), PC-DMIS CSV (TYPE,NAME,X,Y,Z,...) or DMIS "
@@ -273,6 +275,8 @@ const CommandRegistration reg{
      "With the geometry identified, the card's <calibration> block holds it (per joint origin,\n"
      "the tip; σ from the posterior; source, number of observations, fit residual).\n"
      "The new card's urdf attribute points to the original URDF when it is not beside the card.\n"
+     "--date YYYY-MM-DD: the <calibration date>; without it the UTC day of SOURCE_DATE_EPOCH\n"
+     "when set, else of the measured file's modification time (docs/cards.md).\n"
      "--identify-tool: also identify the tool's mass and centre of mass (changes to the cell's\n"
      "<tool>, prior σ 2 kg and 20 mm), reported with their σ; the cell file is not rewritten.\n"
      "Every --calibrate is checked: the fit's χ² against the measurement σ (a residual above 2 σ\n"
