@@ -145,7 +145,7 @@ TEST(CApi, ExportsExactlyTheHeadersFunctions) {
        it != std::sregex_iterator(); ++it) {
     declared.insert((*it)[1]);
   }
-  EXPECT_EQ(declared.size(), 14U);
+  EXPECT_EQ(declared.size(), 15U);
   // nm -D --defined-only: every dynamic symbol libroprec_c defines.
   FILE* p = ::popen(("nm -D --defined-only '" + std::string(ROPREC_C_LIB) + "'").c_str(), "r");
   ASSERT_NE(p, nullptr);
@@ -655,6 +655,46 @@ TEST(CApi, CompensateFileExForceAndFrameOptions) {
             ROPREC_OK)
       << opt.err;
   EXPECT_TRUE(std::filesystem::exists(twice));
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CApi, VerifyFileExWritesTheCliCardCellAndJsonByteForByte) {
+  const std::string dir = tempDir("capi-verify-ex");
+  const std::string v = sourceDir() + "/samples/verification/";
+  const std::string program = v + "geometry_kr120.src";
+  const std::string holes = v + "geometry_kr120_holes.csv";
+  const std::string measured = v + "measured_geometry.csv";
+  std::filesystem::create_directories(dir + "/cli");
+  std::filesystem::create_directories(dir + "/c");
+  const test::RunResult cli = runRoprec("verify --cell '" + kCell + "' '" + program +
+                                        "' --holes '" + holes + "' --measured '" + measured +
+                                        "' --register none --identify all --folds 4 --calibrate '" +
+                                        dir + "/cli/card.xml' --write-cell '" + dir +
+                                        "/cli/cell.xml' --json '" + dir + "/cli/v.json' --quiet");
+  ASSERT_EQ(cli.exit_code, 0) << cli.err << cli.out;
+  Options opt;
+  ASSERT_EQ(opt.set("holes", holes.c_str()), ROPREC_OK) << opt.err;
+  ASSERT_EQ(opt.set("identify", "all"), ROPREC_OK) << opt.err;
+  ASSERT_EQ(opt.set("folds", "4"), ROPREC_OK) << opt.err;
+  ASSERT_EQ(opt.set("write_cell", (dir + "/c/cell.xml").c_str()), ROPREC_OK) << opt.err;
+  EXPECT_EQ(opt.set("folds", "2.5"), ROPREC_BAD_INPUT);
+  EXPECT_EQ(opt.set("identify", "everything"), ROPREC_BAD_INPUT);
+  char summary[ROPREC_SUMMARY_LEN];
+  ASSERT_EQ(roprec_verify_file_ex(kCell.c_str(), program.c_str(), measured.c_str(), "none", opt.o,
+                                  (dir + "/c/v.json").c_str(), (dir + "/c/card.xml").c_str(),
+                                  summary, sizeof summary, opt.err, sizeof opt.err),
+            ROPREC_OK)
+      << opt.err;
+  for (const char* f : {"/card.xml", "/cell.xml", "/v.json"})
+    EXPECT_EQ(readFile(dir + "/c" + f), readFile(dir + "/cli" + f)) << f;
+  EXPECT_NE(std::string(summary).find("cell.xml"), std::string::npos) << summary;
+  // write_cell with neither a registration nor a new card: nothing to write (2), as the CLI
+  const std::string none = dir + "/none.json";
+  EXPECT_EQ(roprec_verify_file_ex(kCell.c_str(), program.c_str(), measured.c_str(), "none", opt.o,
+                                  none.c_str(), nullptr, summary, sizeof summary, opt.err,
+                                  sizeof opt.err),
+            ROPREC_BAD_INPUT);
+  EXPECT_FALSE(std::filesystem::exists(none));
   std::filesystem::remove_all(dir);
 }
 

@@ -341,7 +341,11 @@ TEST(MutationRegression, ADecimalCommaInAHoleListIsAnErrorAtItsCell) {
 TEST(MutationRegression, MeasuredColumnsSwappedAreRefusedBeforeTheIdentification) {
   const std::string dir = test::tempDir("mutation-swap");
   std::string text = test::readFile(sample("verification/measured.csv"));
-  text.replace(text.find("V01,-200.2937,-199.9566,99.7145"), 31, "V01,-200.2937,99.7145,-199.9566");
+  // swap the y and z cells of the first hole
+  const size_t row = text.find("\nV01,") + 1;
+  const size_t y = text.find(',', row + 4) + 1, z = text.find(',', y) + 1, u = text.find(',', z);
+  text = text.substr(0, row + 4) + text.substr(z, u - z) + "," + text.substr(y, z - 1 - y) +
+         text.substr(u);
   test::writeFile(dir + "/m.csv", text);
   const auto r = test::runRoprec("verify --cell " + q(sample("cells/housing-kr120.xml")) + " " +
                                  q(sample("verification/test_kr120.src")) + " --holes " +

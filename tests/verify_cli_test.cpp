@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <regex>
@@ -46,6 +47,14 @@ const std::string& holes() {
 std::string verifyArgs(const std::string& extra) {
   return "verify --cell " + q(cell()) + " " + q(program()) + " --holes " + q(holes()) +
          " --measured " + q(measured()) + " " + extra;
+}
+
+/// verify on the sample's geometry test part (geometry_kr120.src: planned for the geometry, the
+/// compliances and the registration together), drilled by the same truth robot.
+std::string verifyGeometryArgs(const std::string& extra) {
+  return "verify --cell " + q(cell()) + " " + q(s("verification/geometry_kr120.src")) +
+         " --holes " + q(s("verification/geometry_kr120_holes.csv")) + " --measured " +
+         q(s("verification/measured_geometry.csv")) + " " + extra;
 }
 
 TEST(VerifyCli, SampleExitsZeroAndPrintsTheStatistics) {
@@ -201,7 +210,7 @@ TEST(VerifyCli, BadMeasuredFilesExitTwoWithFileLineAndWriteNothing) {
 TEST(VerifyCli, IdentifyToolReportsTheToolWithinItsSigma) {
   // The truth robot drilled with the cell's own tool: the identified changes of the tool mass and
   // centre of mass must be consistent with zero (within 3σ).
-  const auto r = test::runRoprec(verifyArgs("--register translation --identify-tool"));
+  const auto r = test::runRoprec(verifyGeometryArgs("--register none --identify-tool"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::regex mass("tool_mass = (-?[0-9.]+) ± ([0-9.]+) kg change");
   std::smatch m;
@@ -220,6 +229,125 @@ TEST(VerifyCli, JsonIsDeterministic) {
   }
   EXPECT_EQ(test::readFile(dir + "/a.json"), test::readFile(dir + "/b.json"));
   EXPECT_EQ(test::readFile(dir + "/a.xml"), test::readFile(dir + "/b.xml"));
+}
+
+/// The three numbers of attribute `name` of the first `<tag .../>` in an XML text.
+Eigen::Vector3d attributeTriple(const std::string& xml, const std::string& tag,
+                                const std::string& name) {
+  std::smatch m;
+  const std::regex re("<" + tag + "[^>]*\\s" + name + "=\"([^\"]*)\"");
+  EXPECT_TRUE(std::regex_search(xml, m, re)) << tag << " " << name;
+  std::istringstream in(m.size() > 1 ? m.str(1) : "0 0 0");
+  Eigen::Vector3d v;
+  in >> v.x() >> v.y() >> v.z();
+  return v;
+}
+
+/// The `date` of the `<calibration>` a geometry calibration writes from `measured` (+ `extra`).
+std::string calibrationDateOf(const std::string& dir, const std::string& measured_file,
+                              const std::string& env, const std::string& extra) {
+  const std::string card = dir + "/card.xml";
+  fs::remove(card);
+  const auto r = test::runCommand(env + " '" + test::roprecBin() + "' verify --cell " + q(cell()) +
+                                  " " + q(s("verification/geometry_kr120.src")) + " --holes " +
+                                  q(s("verification/geometry_kr120_holes.csv")) + " --measured " +
+                                  q(measured_file) + " --register none --quiet --calibrate " +
+                                  q(card) + " " + extra);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  std::smatch m;
+  const std::string text = fs::exists(card) ? test::readFile(card) : std::string();
+  if (!std::regex_search(text, m, std::regex("<calibration [^>]*date=\"([^\"]*)\""))) return "";
+  return m[1];
+}
+
+TEST(VerifyCli, CalibrationDateIsGivenOrSourceDateEpochOrTheMeasuredFilesDay) {
+  const std::string dir = test::tempDir("caldate");
+  const std::string measured_copy = dir + "/measured_geometry.csv";
+  fs::copy_file(s("verification/measured_geometry.csv"), measured_copy);
+  // 2021-03-04 12:00 UTC as the file's modification time
+  const auto when =
+      std::chrono::file_clock::from_sys(std::chrono::sys_seconds{std::chrono::seconds{1614859200}});
+  fs::last_write_time(measured_copy, when);
+  EXPECT_EQ(calibrationDateOf(dir, measured_copy, "env -u SOURCE_DATE_EPOCH", ""), "2021-03-04");
+  EXPECT_EQ(calibrationDateOf(dir, measured_copy, "SOURCE_DATE_EPOCH=1700000000", ""),
+            "2023-11-14");
+  EXPECT_EQ(
+      calibrationDateOf(dir, measured_copy, "SOURCE_DATE_EPOCH=1700000000", "--date 2026-11-20"),
+      "2026-11-20");
+  const auto bad = test::runRoprec(verifyGeometryArgs("--register none --calibrate " +
+                                                      q(dir + "/bad.xml") + " --date 20-11-2026"));
+  EXPECT_EQ(bad.exit_code, 2) << bad.err;
+  EXPECT_NE(bad.err.find("--date must be YYYY-MM-DD"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(dir + "/bad.xml"));
+}
+
+TEST(VerifyCli, WriteCellMovesTheWorkobjectToThePartAndUsesTheNewCard) {
+  const std::string dir = test::tempDir("writecell");
+  const std::string card = dir + "/kr120-cal.xml";
+  const std::string new_cell = dir + "/cell-cal.xml";
+  const auto v = test::runRoprec(verifyGeometryArgs("--register translation --json " +
+                                                    q(dir + "/v.json") + " --calibrate " + q(card) +
+                                                    " --write-cell " + q(new_cell)));
+  ASSERT_EQ(v.exit_code, 0) << v.err << v.out;
+  EXPECT_NE(v.out.find("held-out validation (5-fold)"), std::string::npos) << v.out;
+  EXPECT_NE(v.out.find("fit check"), std::string::npos) << v.out;
+  const std::string text = test::readFile(new_cell);
+  EXPECT_NE(text.find("<robot file=\"kr120-cal.xml\"/>"), std::string::npos) << text;
+  // the part frame: T_W_part = T_W_wobj · Transl(t)⁻¹ (translation registration, mm)
+  const json j = json::parse(test::readFile(dir + "/v.json"));
+  const Eigen::Vector3d t_um = vec(j["registration"]["translation_um"]);
+  const Eigen::Vector3d old_xyz = attributeTriple(test::readFile(cell()), "workobject", "xyz");
+  const Eigen::Vector3d new_xyz = attributeTriple(text, "workobject", "xyz");
+  EXPECT_LE((new_xyz - (old_xyz - t_um * 1e-3)).cwiseAbs().maxCoeff(), 1e-4);
+  // the sample's fixture offset (make_measured.py: 40, -25, 30 µm) within 3σ of the estimate
+  const Eigen::Vector3d sigma = vec(j["registration"]["translation_sigma_um"]);
+  const Eigen::Vector3d truth(40, -25, 30);
+  for (int a = 0; a < 3; ++a) EXPECT_LE(std::abs(t_um[a] - truth[a]), 3 * sigma[a] + 1.0) << a;
+  // the next job uses both: compensate with the new cell runs on the new card
+  const auto c = test::runRoprec("compensate --cell " + q(new_cell) + " " + q(program()) + " -o " +
+                                 q(dir + "/comp.src"));
+  EXPECT_EQ(c.exit_code, 0) << c.err;
+  EXPECT_TRUE(j["identification"].contains("validation"));
+  EXPECT_EQ(j["identification"]["card_refused"], "");
+}
+
+TEST(VerifyCli, PosesAloneCalibrateAndRecoverATrackerOffset) {
+  // tracker poses = the sample program's commanded joints, measured at the programmed TCP (the
+  // cell's controller compensates gravity with this tool, and a tracker pose has no process
+  // load: the real TCP is the programmed one to second order) shifted by a known
+  // tracker-alignment offset (workobject frame): the registration recovers it
+  const std::string dir = test::tempDir("poses");
+  const auto p = test::runRoprec("predict --cell " + q(cell()) + " " + q(program()) +
+                                 " --quiet --json " + q(dir + "/p.json"));
+  ASSERT_EQ(p.exit_code, 0) << p.err;
+  const json holes = json::parse(test::readFile(dir + "/p.json"))["holes"];
+  const Eigen::Vector3d wobj = attributeTriple(test::readFile(cell()), "workobject", "xyz");
+  const Eigen::Vector3d offset(120, -80, 60);  // µm
+  std::string csv = "id,j1,j2,j3,j4,j5,j6,x,y,z\n";
+  for (const auto& h : holes) {
+    const Eigen::Vector3d real = vec(h["nominal"]["position_mm"]);
+    const Eigen::Vector3d m = real - wobj + offset * 1e-3;  // workobject axes = base axes here
+    csv += h["id"].get<std::string>();
+    for (const auto& q : h["controller_joints_deg"]) csv += "," + std::to_string(q.get<double>());
+    char buf[128];
+    std::snprintf(buf, sizeof buf, ",%.4f,%.4f,%.4f\n", m.x(), m.y(), m.z());
+    csv += buf;
+  }
+  test::writeFile(dir + "/poses.csv", csv);
+  const auto v =
+      test::runRoprec("verify --cell " + q(cell()) + " --poses " + q(dir + "/poses.csv") +
+                      " --register translation --identify stiffness --json " + q(dir + "/v.json"));
+  ASSERT_EQ(v.exit_code, 0) << v.err << v.out;
+  EXPECT_NE(v.out.find("measured poses"), std::string::npos) << v.out;
+  const json j = json::parse(test::readFile(dir + "/v.json"));
+  EXPECT_EQ(j["poses"]["count"], holes.size());
+  const Eigen::Vector3d t = vec(j["registration"]["translation_um"]);
+  EXPECT_LE((t - offset).norm(), 5.0) << t.transpose();
+  // a bad pose file: exit 2 at its line
+  test::writeFile(dir + "/bad.csv", "id,j1,j2,j3,j4,j5,j6,x,y,z\nA,1,2,3,4,5,6,7,8\n");
+  const auto b = test::runRoprec("verify --cell " + q(cell()) + " --poses " + q(dir + "/bad.csv"));
+  EXPECT_EQ(b.exit_code, 2);
+  EXPECT_NE(b.err.find("bad.csv:2:"), std::string::npos) << b.err;
 }
 
 TEST(VerifyCli, PlanTestWritesAProgramInspectReadsWithNHoles) {

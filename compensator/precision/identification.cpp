@@ -3,6 +3,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
+#include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -33,6 +34,28 @@ std::optional<Registration> registrationFromName(const std::string& name) {
   return std::nullopt;
 }
 
+const char* identifySetName(IdentifySet s) {
+  switch (s) {
+    case IdentifySet::kAll:
+      return "all";
+    case IdentifySet::kStiffness:
+      return "stiffness";
+    case IdentifySet::kGeometry:
+      return "geometry";
+    case IdentifySet::kNone:
+      return "none";
+  }
+  return "?";
+}
+
+std::optional<IdentifySet> identifySetFromName(const std::string& name) {
+  for (const IdentifySet s :
+       {IdentifySet::kAll, IdentifySet::kStiffness, IdentifySet::kGeometry, IdentifySet::kNone}) {
+    if (name == identifySetName(s)) return s;
+  }
+  return std::nullopt;
+}
+
 Vec6 compliancePriorSigma(const RobotCard& card, double estimate_rel, double known_rel) {
   Vec6 s;
   for (int j = 0; j < 6; ++j)
@@ -52,19 +75,27 @@ Mat3 rotationOf(const Vec3& w) {
 
 // ---------------------------------------------------------------- parameters
 
-/// Where each parameter group sits in x: c (0..5), then the tool (4), then the registration.
+/// Where each parameter group sits in x: c (0..5), then the tool (4), then the geometry (6 per
+/// joint origin, 6 for the tip: δx δy δz δroll δpitch δyaw), then the registration.
 struct Layout {
   int tool{-1};  ///< Δm, Δcom x/y/z
+  int geo{-1};   ///< joint 1..6 origins, tip
   int reg{-1};   ///< t x/y/z [, ω x/y/z]
   int n_reg{0};
   int n{6};
 };
 
-Layout layoutOf(bool tool, Registration reg) {
+constexpr int kGeometryParameters = 42;
+
+Layout layoutOf(bool tool, bool geometry, Registration reg) {
   Layout l;
   if (tool) {
     l.tool = l.n;
     l.n += 4;
+  }
+  if (geometry) {
+    l.geo = l.n;
+    l.n += kGeometryParameters;
   }
   l.n_reg = reg == Registration::kNone ? 0 : reg == Registration::kTranslation ? 3 : 6;
   if (l.n_reg > 0) {
@@ -76,6 +107,25 @@ Layout layoutOf(bool tool, Registration reg) {
 
 /// Is x_k a robot parameter (changes the prediction) rather than a registration one?
 bool robotParameter(const Layout& l, int k) { return l.reg < 0 || k < l.reg; }
+
+bool geometryParameter(const Layout& l, int k) {
+  return l.geo >= 0 && k >= l.geo && k < l.geo + kGeometryParameters;
+}
+
+/// The FrameError that x's geometry block `e` (0..5 joints, 6 tip) describes.
+FrameError frameErrorOf(const Layout& l, const VectorXd& x, int e) {
+  FrameError f;
+  f.dxyz = x.segment<3>(l.geo + 6 * e);
+  f.drpy = x.segment<3>(l.geo + 6 * e + 3);
+  return f;
+}
+
+FrameError& frameOf(GeometryCalibration& g, int e) {
+  return e < 6 ? g.joints[static_cast<size_t>(e)] : g.tool;
+}
+const FrameError& frameOf(const GeometryCalibration& g, int e) {
+  return e < 6 ? g.joints[static_cast<size_t>(e)] : g.tool;
+}
 
 /// Names, units, prior values (internal units: c relative) and σ, FD steps.
 struct ParameterSpec {
@@ -94,7 +144,26 @@ void addParameter(ParameterSpec& p, int k, const std::string& name, const std::s
   p.scale[k] = scale;
 }
 
-ParameterSpec parameterSpec(const Layout& l, const Vec6& c0, const IdentificationOptions& o) {
+/// The geometry parameters: prior = the card's calibration, σ = its stated σ or o's class values.
+void addGeometry(ParameterSpec& p, const Layout& l, const GeometryCalibration& g0,
+                 const IdentificationOptions& o) {
+  const char* comp[] = {"x", "y", "z", "rx", "ry", "rz"};
+  for (int e = 0; e < 7; ++e) {
+    const FrameError& f = frameOf(g0, e);
+    const std::string prefix = e < 6 ? "j" + std::to_string(e + 1) + "_" : std::string("tip_");
+    for (int a = 0; a < 6; ++a) {
+      const bool rot = a >= 3;
+      const double stated = rot ? f.sigma_rpy[a - 3] : f.sigma_xyz[a];
+      const double s0 = stated > 0 ? stated : rot ? o.geometry_rpy_prior : o.geometry_xyz_prior;
+      addParameter(p, l.geo + 6 * e + a, prefix + comp[a], rot ? "rad" : "m",
+                   rot ? f.drpy[a - 3] : f.dxyz[a], s0,
+                   rot ? o.geometry_rpy_step : o.geometry_xyz_step, 1.0);
+    }
+  }
+}
+
+ParameterSpec parameterSpec(const Layout& l, const Vec6& c0, const IdentificationOptions& o,
+                            const GeometryCalibration& g0) {
   ParameterSpec p;
   p.name.resize(static_cast<size_t>(l.n));
   p.unit.resize(static_cast<size_t>(l.n));
@@ -112,6 +181,7 @@ ParameterSpec parameterSpec(const Layout& l, const Vec6& c0, const Identificatio
                    o.tool_com_prior, o.com_step, 1.0);
     }
   }
+  if (l.geo >= 0) addGeometry(p, l, g0, o);
   if (l.reg >= 0) {
     const char* names[] = {"reg_tx", "reg_ty", "reg_tz", "reg_rx", "reg_ry", "reg_rz"};
     for (int a = 0; a < l.n_reg; ++a) {
@@ -138,19 +208,98 @@ struct Problem {
   std::vector<nc::Loads> loads;   ///< per hole
   std::vector<Vec3> d_mach_tool;  ///< δmach in the tool frame, per hole
   nc::Data data;
+  IdentifySet identify{IdentifySet::kAll};
+  std::vector<Eigen::Index> row;  ///< first residual row of each observation; back() = total
+  std::vector<std::optional<nc::Model>> obs_model;  ///< per observation with its own tool
+  // geometry: p̂ = p̂_model + TCP(calibratedChain(nominal, G(x)), θ) − TCP(m's chain, θ)
+  GeometryCalibration g0;  ///< the card's (the prior; its base is kept)
+  Pose T_flange_tcp{Pose::Identity()};
+  /// The equilibrium depends on the non-geometry parameters only: their last value, θ and p̂
+  /// without the geometry term, and the TCP of m's own chain at θ.
+  VectorXd cache_key;
+  std::vector<Vec6> cache_theta;
+  std::vector<Vec3> cache_p, cache_tcp_ref;
 };
+
+/// The non-geometry part of x (the key of the equilibrium cache).
+VectorXd equilibriumKey(const Layout& l, const VectorXd& x) {
+  if (l.geo < 0) return x;
+  VectorXd k(x.size() - kGeometryParameters);
+  k << x.head(l.geo), x.tail(x.size() - l.geo - kGeometryParameters);
+  return k;
+}
+
+/// May x_k move in this identification (IdentificationOptions::identify)?
+bool freeParameter(const Problem& P, int k) {
+  if (!robotParameter(P.layout, k)) return true;
+  if (P.identify == IdentifySet::kNone) return false;
+  if (k < 6) return P.identify == IdentifySet::kAll || P.identify == IdentifySet::kStiffness;
+  if (geometryParameter(P.layout, k))
+    return P.identify == IdentifySet::kAll || P.identify == IdentifySet::kGeometry;
+  return true;  // tool mass/COM: asked for explicitly
+}
+
+std::vector<int> freeColumns(const Problem& P) {
+  std::vector<int> c;
+  for (int k = 0; k < P.layout.n; ++k) {
+    if (freeParameter(P, k)) c.push_back(k);
+  }
+  return c;
+}
 
 Vec6 priorEffectiveCompliance(const PredictionModel& m) {
   return m.compliance.effective().cwiseInverse();
 }
 
 void setUpHoles(Problem& P) {
-  for (const IdentificationHole& h : P.holes) {
-    const ProcessAtDiameter* proc = processFor(P.m, h.diameter);
-    P.loads.push_back(processLoads(P.m, proc));
+  P.row.assign(1, 0);
+  P.obs_model.assign(P.holes.size(), std::nullopt);
+  for (size_t i = 0; i < P.holes.size(); ++i) {
+    const IdentificationHole& h = P.holes[i];
+    if (h.tool) {
+      if (P.layout.tool >= 0)
+        throw InputError("", 0,
+                         "observation '" + h.id +
+                             "' has a payload: the tool cannot be identified together with "
+                             "payload rows");
+      P.obs_model[i] = nc::buildModel(P.m.robot.real_chain, *h.tool);
+      P.obs_model[i]->gravity = P.m.model.gravity;
+      P.obs_model[i]->tol_phi = P.m.model.tol_phi;
+      P.obs_model[i]->max_iterations = P.m.model.max_iterations;
+    }
+    const ProcessAtDiameter* proc = h.point ? nullptr : processFor(P.m, h.diameter);
+    P.loads.push_back(h.loads ? *h.loads : processLoads(P.m, proc));
     P.d_mach_tool.push_back(proc ? Vec3(proc->mach.delta_tool.x(), proc->mach.delta_tool.y(), 0.0)
                                  : Vec3::Zero());
+    P.row.push_back(P.row.back() + observationRows(h));
   }
+}
+
+/// The problem of identifying `o`'s parameters of `m` from `holes` (set up, not evaluated).
+Problem makeProblem(const PredictionModel& m, const std::vector<IdentificationHole>& holes,
+                    const IdentificationOptions& o) {
+  Problem P{m,
+            holes,
+            layoutOf(o.tool.has_value(), o.geometry, o.registration),
+            {},
+            priorEffectiveCompliance(m),
+            o.tool,
+            o.T_W_wobj,
+            {},
+            {},
+            nc::Data(m.model),
+            o.identify,
+            {},
+            {},
+            cardGeometry(m),
+            m.robot.real_chain.tip.inverse() * m.model.T_L6_tcp,
+            {},
+            {},
+            {},
+            {}};
+  P.spec = parameterSpec(P.layout, P.c0, o, P.g0);
+  setUpHoles(P);
+  return P;
 }
 
 /// The model with the candidate tool (mass and centre of mass shifted by x).
@@ -172,25 +321,103 @@ nc::JointCompliance complianceOf(const Problem& P, const VectorXd& x) {
   return c;
 }
 
-/// Iterates may leave the physical region (a compliance below zero): the equilibrium is still
-/// defined there for small loads, and a Gauss–Newton path through it reaches an interior optimum
-/// that a bound would trap in a corner (the gravity-torque gradient makes the problem mildly
-/// nonlinear). A non-physical final value is reported, not used (fillCompliance).
-bool admissible(const VectorXd& x) { return x.allFinite(); }
+/// Geometry bounds inside the fit: a joint-origin or tip error beyond these is not a calibration
+/// error (card check refuses it: 5 mm / 20 mrad), so a step that leaves the box is rejected (the
+/// damping grows) rather than taken and reverted afterwards.
+constexpr double kGeometryXyzBound = 5e-3;   // m
+constexpr double kGeometryRpyBound = 20e-3;  // rad
 
-/// p̂_W of every hole at x. Returns the index of the first hole whose equilibrium fails, or −1.
-int predictRobot(Problem& P, const VectorXd& x, std::vector<Vec3>& p) {
+/// The smallest effective compliance of joint j inside the fit, as a factor of its prior c0_j: the
+/// servo's compliance plus kComplianceFloor of the prior joint compliance (a joint at most 1000 ×
+/// stiffer than the card says). Below it the joint would be stiffer than its servo: not physical.
+constexpr double kComplianceFloor = 1e-3;
+
+double complianceLowerBound(const Problem& P, int j) {
+  const double k_servo = P.m.compliance.k_servo[j];
+  const double c_servo = k_servo < 1e299 ? 1.0 / k_servo : 0.0;
+  const double c0 = P.c0[j];
+  return (c_servo + kComplianceFloor * std::max(c0 - c_servo, 0.0)) / c0;
+}
+
+/// Projects a candidate onto the physical region: every compliance at least its lower bound (a
+/// projected Levenberg–Marquardt step: the cost is evaluated at the projected point).
+VectorXd projected(const Problem& P, VectorXd x) {
+  for (int j = 0; j < 6; ++j) x[j] = std::max(x[j], complianceLowerBound(P, j));
+  return x;
+}
+
+/// Compliances stay physical inside the fit (projected steps, projected()); the geometry stays
+/// inside its bounds (a step leaving the box is rejected).
+bool admissible(const Layout& l, const VectorXd& x) {
+  if (!x.allFinite()) return false;
+  for (int k = 0; l.geo >= 0 && k < kGeometryParameters; ++k) {
+    const bool rot = k % 6 >= 3;
+    if (std::abs(x[l.geo + k]) > (rot ? kGeometryRpyBound : kGeometryXyzBound)) return false;
+  }
+  return true;
+}
+
+/// p̂_W of every hole at x without the geometry term, and the real joint angles θ.
+int predictEquilibrium(Problem& P, const VectorXd& x, std::vector<Vec3>& p,
+                       std::vector<Vec6>& theta) {
   const nc::JointCompliance c = complianceOf(P, x);
   std::optional<nc::Model> rebuilt;
   if (P.layout.tool >= 0) rebuilt = toolModel(P, x);
-  const nc::Model& model = rebuilt ? *rebuilt : P.m.model;
+  const nc::Model& tool_model = rebuilt ? *rebuilt : P.m.model;
   p.resize(P.holes.size());
+  theta.resize(P.holes.size());
   for (size_t i = 0; i < P.holes.size(); ++i) {
+    const nc::Model& model = P.obs_model[i] ? *P.obs_model[i] : tool_model;
     const Vec6& th = P.holes[i].theta_cmd;
     const Vec6 offset = controllerOffset(P.m, P.data, th, c);
     const nc::Deflection d = nc::predictDeflection(model, P.data, c, th, P.loads[i], {}, offset);
     if (!d.converged || !d.position_converged) return static_cast<int>(i);
     p[i] = d.T_real.translation() + d.T_nominal.linear() * P.d_mach_tool[i];
+    theta[i] = d.theta;
+  }
+  return -1;
+}
+
+/// The geometry x describes: the card's base, x's joint origins and tip.
+GeometryCalibration geometryOf(const Problem& P, const VectorXd& x) {
+  GeometryCalibration g = P.g0;
+  for (int e = 0; e < 7; ++e) {
+    const FrameError f = frameErrorOf(P.layout, x, e);
+    frameOf(g, e).dxyz = f.dxyz;
+    frameOf(g, e).drpy = f.drpy;
+  }
+  return g;
+}
+
+/// p̂_W of every hole at x. Returns the index of the first hole whose equilibrium fails, or −1.
+/// Geometry enters as FK_G(θ) − FK_m(θ) at the equilibrium θ of m's own geometry (the geometry
+/// errors change the torques by a relative 1e-3 at most, far below the compliance's σ).
+int predictRobot(Problem& P, const VectorXd& x, std::vector<Vec3>& p) {
+  if (P.layout.geo < 0) {
+    std::vector<Vec6> theta;
+    return predictEquilibrium(P, x, p, theta);
+  }
+  const VectorXd key = equilibriumKey(P.layout, x);
+  if (P.cache_key.size() != key.size() || P.cache_key != key) {
+    const int bad = predictEquilibrium(P, x, P.cache_p, P.cache_theta);
+    if (bad >= 0) {
+      P.cache_key.resize(0);
+      return bad;
+    }
+    P.cache_key = key;
+    P.cache_tcp_ref.resize(P.holes.size());
+    for (size_t i = 0; i < P.holes.size(); ++i) {
+      P.cache_tcp_ref[i] =
+          (chainForwardKinematics(P.m.robot.real_chain, P.cache_theta[i]) * P.T_flange_tcp)
+              .translation();
+    }
+  }
+  const ChainDescription real = calibratedChain(P.m.robot.chain, geometryOf(P, x));
+  p.resize(P.holes.size());
+  for (size_t i = 0; i < P.holes.size(); ++i) {
+    const Vec3 tcp =
+        (chainForwardKinematics(real, P.cache_theta[i]) * P.T_flange_tcp).translation();
+    p[i] = P.cache_p[i] + tcp - P.cache_tcp_ref[i];
   }
   return -1;
 }
@@ -203,20 +430,22 @@ Vec3 registered(const Problem& P, const VectorXd& x, const Vec3& p_W) {
   return P.T_W_wobj * (rotationOf(w) * (P.T_W_wobj.inverse() * p_W) + t);
 }
 
-/// Unweighted in-plane residual of hole i: [e₁ e₂]ᵀ (p_measured − m̂).
-Eigen::Vector2d inPlaneResidual(const Problem& P, const VectorXd& x, size_t i, const Vec3& p_W) {
+/// Unweighted residual of observation i: [e₁ e₂]ᵀ (p_measured − m̂) for a hole, all three axes
+/// of T_W_hole for a point.
+VectorXd inPlaneResidual(const Problem& P, const VectorXd& x, size_t i, const Vec3& p_W) {
   const IdentificationHole& h = P.holes[i];
   const Vec3 d = h.p_W_measured - registered(P, x, p_W);
   const Mat3 R = h.T_W_hole.linear();
-  return {R.col(0).dot(d), R.col(1).dot(d)};
+  if (h.point) return R.transpose() * d;
+  return Eigen::Vector2d(R.col(0).dot(d), R.col(1).dot(d));
 }
 
-/// σ-weighted data residuals r (2N).
+/// σ-weighted data residuals r (2 rows per hole, 3 per point).
 VectorXd dataResiduals(const Problem& P, const VectorXd& x, const std::vector<Vec3>& p) {
-  VectorXd r(2 * static_cast<Eigen::Index>(P.holes.size()));
+  VectorXd r(P.row.back());
   for (size_t i = 0; i < P.holes.size(); ++i) {
-    r.segment<2>(2 * static_cast<Eigen::Index>(i)) =
-        inPlaneResidual(P, x, i, p[i]) / P.holes[i].sigma;
+    const VectorXd e = inPlaneResidual(P, x, i, p[i]) / P.holes[i].sigma;
+    r.segment(P.row[i], e.size()) = e;
   }
   return r;
 }
@@ -229,7 +458,7 @@ double priorCost(const Problem& P, const VectorXd& x) {
 /// Returns false when an equilibrium fails at a perturbed point.
 bool dataJacobian(Problem& P, const VectorXd& x, const std::vector<Vec3>& p_x,
                   const std::vector<int>& cols, MatrixXd& J) {
-  J.resize(2 * static_cast<Eigen::Index>(P.holes.size()), static_cast<Eigen::Index>(cols.size()));
+  J.resize(P.row.back(), static_cast<Eigen::Index>(cols.size()));
   std::vector<Vec3> pp;
   std::vector<Vec3> pm;
   for (size_t c = 0; c < cols.size(); ++c) {
@@ -279,7 +508,7 @@ struct LmOutcome {
 
 /// Evaluates x; false when x is not admissible or an equilibrium fails.
 bool evaluate(Problem& P, const VectorXd& x, LmState& s) {
-  if (!admissible(x)) return false;
+  if (!admissible(P.layout, x)) return false;
   std::vector<Vec3> p;
   if (predictRobot(P, x, p) >= 0) return false;
   s.x = x;
@@ -321,7 +550,7 @@ bool takeStep(Problem& P, const MatrixXd& A, const VectorXd& g, const std::vecto
               double& lambda, LmState& state) {
   for (; lambda < 1e12; lambda *= 10) {
     LmState trial;
-    if (evaluate(P, state.x + dampedStep(A, g, lambda, cols, P.layout.n), trial) &&
+    if (evaluate(P, projected(P, state.x + dampedStep(A, g, lambda, cols, P.layout.n)), trial) &&
         trial.cost <= state.cost) {
       state = std::move(trial);
       lambda = std::max(lambda / 10, 1e-12);
@@ -344,7 +573,9 @@ LmOutcome levenbergMarquardt(Problem& P, const LmState& start, const std::vector
     }
     const MatrixXd A = normalMatrix(P, J, cols);
     const VectorXd g = gradient(P, J, out.state, cols);
-    const VectorXd dx = dampedStep(A, g, lambda, cols, P.layout.n);
+    // the step actually taken: a compliance on its bound does not move
+    const VectorXd dx =
+        projected(P, out.state.x + dampedStep(A, g, lambda, cols, P.layout.n)) - out.state.x;
     const double step = scaledSize(P, dx);
     if (step <= tol) {  // the step is below the tolerance: converged
       LmState trial;
@@ -393,14 +624,14 @@ std::vector<int> allColumns(int n) {
   return c;
 }
 
-double rmsNorm(const std::vector<Eigen::Vector2d>& r) {
+double rmsNorm(const std::vector<VectorXd>& r) {
   double s = 0;
   for (const auto& v : r) s += v.squaredNorm();
   return r.empty() ? 0.0 : std::sqrt(s / static_cast<double>(r.size()));
 }
 
-std::vector<Eigen::Vector2d> inPlaneResiduals(const Problem& P, const LmState& s) {
-  std::vector<Eigen::Vector2d> r;
+std::vector<VectorXd> inPlaneResiduals(const Problem& P, const LmState& s) {
+  std::vector<VectorXd> r;
   for (size_t i = 0; i < P.holes.size(); ++i) r.push_back(inPlaneResidual(P, s.x, i, s.p[i]));
   return r;
 }
@@ -459,6 +690,20 @@ MatrixXd passCovariance(Problem& P, const Pass& pass) {
   return C;
 }
 
+/// passCovariance scattered into all parameters; the ones the pass kept fixed get their prior
+/// variance (ρ = 1: nothing learnt about them).
+MatrixXd fullCovariance(Problem& P, const Pass& pass) {
+  const MatrixXd Cp = passCovariance(P, pass);
+  MatrixXd C = P.spec.s0.cwiseAbs2().asDiagonal();
+  for (size_t a = 0; a < pass.cols.size(); ++a) {
+    for (size_t b = 0; b < pass.cols.size(); ++b) {
+      C(pass.cols[a], pass.cols[b]) =
+          Cp(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b));
+    }
+  }
+  return C;
+}
+
 /// Posterior covariance (internal units, all parameters) with the fixed parameters as "consider"
 /// parameters: they keep their prior S_f, and their uncertainty is carried into the estimated
 /// ones through the sensitivity of the estimate, G = A_aa⁻¹ J_aᵀ J_f:
@@ -511,7 +756,7 @@ void fillParameters(const Problem& P, const MatrixXd& first_cov, const Pass& fin
     q.prior = P.spec.x0[k] * P.spec.scale[k];
     q.prior_sigma = P.spec.s0[k] * P.spec.scale[k];
     q.ratio = std::sqrt(std::max(0.0, first_cov(k, k))) / P.spec.s0[k];
-    q.identifiable = q.ratio <= ratio_limit;
+    q.identifiable = freeParameter(P, k) && q.ratio <= ratio_limit;
     q.value = (q.identifiable ? final_pass.lm.state.x[k] : P.spec.x0[k]) * P.spec.scale[k];
     q.sigma = std::sqrt(r.covariance(k, k));
     r.parameters.push_back(q);
@@ -525,7 +770,14 @@ void fillCompliance(const PredictionModel& m, IdentificationResult& r) {
     const IdentifiedParameter& q = r.parameters[static_cast<size_t>(j)];
     const double c_servo = m.compliance.k_servo[j] < 1e299 ? 1.0 / m.compliance.k_servo[j] : 0.0;
     const double c_joint = q.value - c_servo;
-    r.joint_identified[static_cast<size_t>(j)] = q.identifiable && c_joint > 0;
+    // on the fit's lower bound (complianceLowerBound): the data want a joint stiffer than physical
+    const bool at_bound = c_joint <= kComplianceFloor * (q.prior - c_servo) * (1 + 1e-6);
+    r.joint_identified[static_cast<size_t>(j)] = q.identifiable && c_joint > 0 && !at_bound;
+    if (q.identifiable && c_joint > 0 && at_bound) {
+      r.message += (r.message.empty() ? "" : "; ") + std::string("joint ") + std::to_string(j + 1) +
+                   ": the compliance stopped at its physical bound (1000 × the card's stiffness); "
+                   "the card keeps its stiffness";
+    }
     if (q.identifiable && !(c_joint > 0)) {
       r.message += (r.message.empty() ? "" : "; ") + std::string("joint ") + std::to_string(j + 1) +
                    ": the identified compliance is not above the servo's (not physical); the card "
@@ -564,7 +816,9 @@ std::vector<int> identifiableColumns(const MatrixXd& first_cov, const Problem& P
                                      double ratio_limit) {
   std::vector<int> cols;
   for (int k = 0; k < P.layout.n; ++k) {
-    if (std::sqrt(std::max(0.0, first_cov(k, k))) / P.spec.s0[k] <= ratio_limit) cols.push_back(k);
+    if (freeParameter(P, k) &&
+        std::sqrt(std::max(0.0, first_cov(k, k))) / P.spec.s0[k] <= ratio_limit)
+      cols.push_back(k);
   }
   return cols;
 }
@@ -591,9 +845,110 @@ Pass reestimate(Problem& P, const Pass& first, const LmState& prior, const std::
   return estimate(P, start, seen, o);
 }
 
-double conditionOf(Problem& P, const Pass& pass) {
+/// The free columns without those that are exact linear combinations of others, from the data
+/// Jacobian at the prior (dependentFree).
+std::vector<int> dependentFree(const Problem& P, MatrixXd J, const std::vector<int>& cols,
+                               double tol, std::vector<std::string>& dependencies);
+
+std::vector<int> independentColumns(Problem& P, const LmState& prior, const std::vector<int>& cols,
+                                    double tol, std::vector<std::string>& dependencies) {
   MatrixXd J;
+  if (cols.empty() || !dataJacobian(P, prior.x, prior.p, cols, J)) return cols;
+  return dependentFree(P, J, cols, tol, dependencies);
+}
+
+/// Which parameter group keeps its place when two are exactly dependent: the registration (a
+/// property of the part, not of the robot) first, then the compliances, the tool, the geometry.
+int priority(const Layout& l, int k) {
+  if (!robotParameter(l, k)) return 0;
+  if (k < 6) return 1;
+  if (geometryParameter(l, k)) return 3;
+  return 2;
+}
+
+/// A column whose prior σ moves the σ-weighted residuals by less than this (2-norm over all of
+/// them) is not seen by the data at all.
+constexpr double kUnseen = 1e-3;
+
+/// The columns `cols` of J (data Jacobian on those columns) without the dependent ones: taken in
+/// priority order, a column is kept when the part of it (prior-σ scaled) that the kept columns do
+/// not reproduce exceeds `tol` × its norm (a QR factorisation grown column by column); a dropped
+/// column is reported with the combination of kept columns that reproduces it.
+std::vector<int> dependentFree(const Problem& P, MatrixXd J, const std::vector<int>& cols,
+                               double tol, std::vector<std::string>& dependencies) {
+  for (size_t c = 0; c < cols.size(); ++c)
+    J.col(static_cast<Eigen::Index>(c)) *= P.spec.s0[cols[c]];
+  std::vector<size_t> order(cols.size());
+  for (size_t c = 0; c < cols.size(); ++c) order[c] = c;
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    return priority(P.layout, cols[a]) < priority(P.layout, cols[b]);
+  });
+  std::vector<size_t> kept;
+  MatrixXd K(J.rows(), 0);
+  for (const size_t c : order) {
+    const VectorXd col = J.col(static_cast<Eigen::Index>(c));
+    const double norm = col.norm();
+    VectorXd coef;
+    double rest = norm;
+    if (K.cols() > 0) {
+      coef = K.colPivHouseholderQr().solve(col);
+      rest = (col - K * coef).norm();
+    }
+    if (norm > kUnseen && rest > tol * norm) {
+      kept.push_back(c);
+      K.conservativeResize(Eigen::NoChange, K.cols() + 1);
+      K.col(K.cols() - 1) = col;
+      continue;
+    }
+    std::vector<std::pair<double, int>> terms;
+    for (Eigen::Index a = 0; a < coef.size(); ++a)
+      terms.emplace_back(coef[a], cols[kept[static_cast<size_t>(a)]]);
+    std::stable_sort(terms.begin(), terms.end(), [](const auto& a, const auto& b) {
+      return std::abs(a.first) > std::abs(b.first);
+    });
+    std::string text = P.spec.name[static_cast<size_t>(cols[c])] + " ≡";
+    size_t shown = 0;
+    for (const auto& [v, k] : terms) {
+      if (shown == 3 || std::abs(v) < 1e-3) break;
+      text +=
+          (shown++ ? " + " : " ") + numberText(v, 3) + " × " + P.spec.name[static_cast<size_t>(k)];
+    }
+    if (shown == 0 || norm <= kUnseen)
+      text = P.spec.name[static_cast<size_t>(cols[c])] + " ≡ 0 (the data do not see it)";
+    dependencies.push_back(text);
+  }
+  std::vector<int> out;
+  for (const size_t c : kept) out.push_back(cols[c]);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+/// The dependent parameters of the data Jacobian J (all columns), named.
+void dependentNames(const Problem& P, const MatrixXd& J, double tol,
+                    std::vector<std::string>& dependencies) {
+  (void)dependentFree(P, J, allColumns(P.layout.n), tol, dependencies);
+}
+
+/// The identified geometry with σ from the posterior covariance.
+GeometryCalibration identifiedGeometry(const Problem& P, const IdentificationResult& r) {
+  GeometryCalibration g = P.g0;
+  for (int e = 0; e < 7; ++e) {
+    FrameError& f = frameOf(g, e);
+    for (int a = 0; a < 6; ++a) {
+      const auto k = static_cast<size_t>(P.layout.geo + 6 * e + a);
+      (a < 3 ? f.dxyz : f.drpy)[a % 3] = r.parameters[k].value;
+      (a < 3 ? f.sigma_xyz : f.sigma_rpy)[a % 3] = r.parameters[k].sigma;
+    }
+  }
+  g.measurements = r.holes;
+  return g;
+}
+
+/// The condition number of the pass's data Jacobian at its estimate; J is left in `J` (empty
+/// when it cannot be evaluated).
+double conditionOf(Problem& P, const Pass& pass, MatrixXd& J) {
   if (pass.cols.empty() || !dataJacobian(P, pass.lm.state.x, pass.lm.state.p, pass.cols, J)) {
+    J.resize(0, 0);
     return std::numeric_limits<double>::infinity();
   }
   return scaledCondition(J);
@@ -605,26 +960,22 @@ IdentificationResult identifyStiffness(const PredictionModel& m,
                                        const std::vector<IdentificationHole>& holes,
                                        const IdentificationOptions& o) {
   validateHoles(holes);
-  Problem P{m,
-            holes,
-            layoutOf(o.tool.has_value(), o.registration),
-            {},
-            priorEffectiveCompliance(m),
-            o.tool,
-            o.T_W_wobj,
-            {},
-            {},
-            nc::Data(m.model)};
-  P.spec = parameterSpec(P.layout, P.c0, o);
-  setUpHoles(P);
+  Problem P = makeProblem(m, holes, o);
   const LmState prior = priorState(P);
 
-  // pass 1: every parameter free; its posterior says what the data can see
-  const Pass first = estimate(P, prior, allColumns(P.layout.n), o);
-  const MatrixXd first_cov = passCovariance(P, first);
+  // exact dependencies out first (geometry only: without it the parameter set has none the
+  // priors do not already settle)
+  std::vector<std::string> dependencies;
+  const std::vector<int> free =
+      P.layout.geo >= 0
+          ? independentColumns(P, prior, freeColumns(P), o.dependency_tolerance, dependencies)
+          : freeColumns(P);
+  // pass 1: every free parameter estimated; its posterior says what the data can see
+  const Pass first = estimate(P, prior, free, o);
+  const MatrixXd first_cov = fullCovariance(P, first);
   const std::vector<int> seen = identifiableColumns(first_cov, P, o.identifiable_ratio);
   // pass 2: what the data cannot see keeps its prior
-  const bool refit = static_cast<int>(seen.size()) < P.layout.n;
+  const bool refit = seen != first.cols;
   const Pass final_pass = refit ? reestimate(P, first, prior, seen, o) : first;
 
   IdentificationResult r;
@@ -632,15 +983,48 @@ IdentificationResult identifyStiffness(const PredictionModel& m,
   r.converged = first.lm.converged && final_pass.lm.converged;
   r.iterations = first.lm.iterations + (refit ? final_pass.lm.iterations : 0);
   r.message = final_pass.lm.message.empty() ? first.lm.message : final_pass.lm.message;
-  r.condition_number = conditionOf(P, final_pass);
+  r.condition_number = conditionOf(P, final_pass, r.jacobian);
   fillParameters(P, first_cov, final_pass, considerCovariance(P, final_pass.lm.state, seen),
                  o.identifiable_ratio, r);
   fillCompliance(m, r);
   fillToolAndRegistration(P, o, r);
+  if (P.layout.geo >= 0) r.geometry = identifiedGeometry(P, r);
+  r.dependencies = std::move(dependencies);
   r.residuals = inPlaneResiduals(P, final_pass.lm.state);
   r.rms_prior = rmsNorm(inPlaneResiduals(P, prior));
   r.rms_final = rmsNorm(r.residuals);
+  r.chi2 = final_pass.lm.state.r.squaredNorm();
+  r.equations = static_cast<int>(P.row.back());
+  r.dof = r.equations - static_cast<int>(seen.size());
   return r;
+}
+
+std::vector<Eigen::VectorXd> residualsAt(const PredictionModel& m, const IdentificationResult& r,
+                                         const std::vector<IdentificationHole>& holes,
+                                         const IdentificationOptions& o) {
+  validateHoles(holes);
+  Problem P = makeProblem(m, holes, o);
+  if (static_cast<int>(r.parameters.size()) != P.layout.n)
+    throw InputError("", 0, "the identification does not match the validation's parameters");
+  VectorXd x(P.layout.n);
+  for (int k = 0; k < P.layout.n; ++k)
+    x[k] = r.parameters[static_cast<size_t>(k)].value / P.spec.scale[k];
+  std::vector<Vec3> p;
+  const int bad = predictRobot(P, x, p);
+  if (bad >= 0) {
+    throw InputError("", 0,
+                     "hole '" + holes[static_cast<size_t>(bad)].id +
+                         "': the compliance equilibrium does not converge at the identified "
+                         "parameters");
+  }
+  LmState s;
+  s.x = x;
+  s.p = std::move(p);
+  return inPlaneResiduals(P, s);
+}
+
+GeometryCalibration cardGeometry(const PredictionModel& m) {
+  return m.robot.card.calibration ? *m.robot.card.calibration : GeometryCalibration{};
 }
 
 PredictionModel withIdentification(const PredictionModel& m, const IdentificationResult& r,
@@ -837,12 +1221,6 @@ double logDet(const MatrixXd& A) {
   return 2.0 * llt.matrixL().toDenseMatrix().diagonal().array().log().sum();
 }
 
-/// D_s criterion: log det M − log det M_nn (nuisance block = the columns from 6 on).
-double dsCriterion(const MatrixXd& M) {
-  const Eigen::Index nn = M.rows() - 6;
-  return logDet(M) - logDet(M.bottomRightCorner(nn, nn));
-}
-
 /// The IdentificationHoles of the admissible candidates (their predicted joints).
 std::vector<IdentificationHole> plannedHoles(const PredictionModel& m,
                                              const std::vector<HoleRequest>& candidates,
@@ -870,27 +1248,54 @@ std::vector<IdentificationHole> plannedHoles(const PredictionModel& m,
   return holes;
 }
 
-/// Greedy selection on the per-hole information blocks J_i (2×n rows of J).
+/// Inverse of an SPD matrix.
+MatrixXd spdInverse(const MatrixXd& A) {
+  return A.ldlt().solve(MatrixXd::Identity(A.rows(), A.cols()));
+}
+
+/// Gain of the D_s criterion (log det M − log det M_nn, nuisance = the last `nn` columns) when
+/// the 2×n block Ji is added: by the matrix determinant lemma,
+///   Δ = log det(I + Ji M⁻¹ Jiᵀ) − log det(I + Ji,n M_nn⁻¹ Ji,nᵀ)
+/// with M⁻¹ and M_nn⁻¹ computed once per step (rank-2 updates: no n×n factorisation per
+/// candidate).
+double criterionGain(const MatrixXd& Ji, const MatrixXd& Minv, const MatrixXd& Mnn_inv,
+                     Eigen::Index nn) {
+  const auto logdet2 = [](const MatrixXd& S) {
+    const double d = S.determinant();
+    return d > 0 ? std::log(d) : -std::numeric_limits<double>::infinity();
+  };
+  const MatrixXd I = MatrixXd::Identity(Ji.rows(), Ji.rows());
+  double g = logdet2(I + Ji * Minv * Ji.transpose());
+  if (nn > 0) {
+    const MatrixXd Jn = Ji.rightCols(nn);
+    g -= logdet2(I + Jn * Mnn_inv * Jn.transpose());
+  }
+  return g;
+}
+
 /// Greedy D-optimal selection of `count` holes; a candidate closer than `min_spacing` (m) to a
 /// chosen hole is not drillable any more (one hole per place). Returns fewer than `count` when
-/// the well-spaced candidates run out.
-std::vector<int> greedyDOptimal(const MatrixXd& J, const VectorXd& s0, int count,
+/// the well-spaced candidates run out. `criterion`: the final D_s value.
+std::vector<int> greedyDOptimal(const MatrixXd& J, const VectorXd& s0, int count, Eigen::Index nn,
                                 const std::vector<Vec3>& p_W, double min_spacing,
                                 double& criterion) {
-  const Eigen::Index n = J.cols();
   MatrixXd M = s0.cwiseInverse().cwiseAbs2().asDiagonal();
+  const Eigen::Index n = M.rows();
+  const auto value = [&](const MatrixXd& A) {
+    return logDet(A) - (nn > 0 ? logDet(A.bottomRightCorner(nn, nn)) : 0.0);
+  };
   std::vector<int> chosen;
   std::vector<bool> used(static_cast<size_t>(J.rows() / 2), false);
   for (int step = 0; step < count; ++step) {
+    const MatrixXd Minv = spdInverse(M);
+    const MatrixXd Mnn_inv = nn > 0 ? spdInverse(M.bottomRightCorner(nn, nn)) : MatrixXd();
     int best = -1;
-    double best_value = -std::numeric_limits<double>::infinity();
+    double best_gain = -std::numeric_limits<double>::infinity();
     for (Eigen::Index i = 0; i < J.rows() / 2; ++i) {
       if (used[static_cast<size_t>(i)]) continue;
-      const MatrixXd Ji = J.middleRows(2 * i, 2);
-      const double v =
-          n > 6 ? dsCriterion(M + Ji.transpose() * Ji) : logDet(M + Ji.transpose() * Ji);
-      if (v > best_value) {
-        best_value = v;
+      const double g = criterionGain(J.middleRows(2 * i, 2), Minv, Mnn_inv, nn);
+      if (g > best_gain) {
+        best_gain = g;
         best = static_cast<int>(i);
       }
     }
@@ -902,9 +1307,37 @@ std::vector<int> greedyDOptimal(const MatrixXd& J, const VectorXd& s0, int count
     chosen.push_back(best);
     const MatrixXd Jb = J.middleRows(2 * static_cast<Eigen::Index>(best), 2);
     M += Jb.transpose() * Jb;
-    criterion = best_value;
   }
+  (void)n;
+  criterion = value(M);
   return chosen;
+}
+
+/// Expected σ per parameter, the unobservable robot parameters, and the predicted accuracy
+/// before and after calibration over all candidates.
+void planStatistics(const Problem& P, const MatrixXd& J, const MatrixXd& C, double sigma,
+                    double ratio_limit, TestPlan& plan) {
+  const int n = P.layout.n;
+  const int nr = P.layout.reg >= 0 ? P.layout.reg : n;  // robot parameters
+  plan.names = P.spec.name;
+  plan.prior_sigma = P.spec.s0;
+  plan.expected_sigma = C.diagonal().cwiseMax(0.0).cwiseSqrt();
+  for (int k = 0; k < nr; ++k) {
+    if (plan.expected_sigma[k] > ratio_limit * P.spec.s0[k])
+      plan.unobservable.push_back(P.spec.name[static_cast<size_t>(k)]);
+  }
+  const VectorXd prior = P.spec.s0.head(nr).cwiseAbs2();
+  double after = 0;
+  double before = 0;
+  const Eigen::Index holes = J.rows() / 2;
+  for (Eigen::Index i = 0; i < holes; ++i) {
+    const MatrixXd Ji = J.middleRows(2 * i, 2) * sigma;  // m per unit parameter
+    after += (Ji * C * Ji.transpose()).trace();
+    const MatrixXd Jr = Ji.leftCols(nr);
+    before += (Jr * prior.asDiagonal() * Jr.transpose()).trace();
+  }
+  plan.predicted_accuracy = holes > 0 ? std::sqrt(after / static_cast<double>(holes)) : 0.0;
+  plan.prior_accuracy = holes > 0 ? std::sqrt(before / static_cast<double>(holes)) : 0.0;
 }
 
 }  // namespace
@@ -928,18 +1361,8 @@ TestPlan planTest(const PredictionModel& m, const std::vector<HoleRequest>& cand
   io.translation_prior = o.translation_prior;
   io.rotation_prior = o.rotation_prior;
   io.relative_step = o.relative_step;
-  Problem P{m,
-            holes,
-            layoutOf(false, o.registration),
-            {},
-            priorEffectiveCompliance(m),
-            std::nullopt,
-            o.T_W_wobj,
-            {},
-            {},
-            nc::Data(m.model)};
-  P.spec = parameterSpec(P.layout, P.c0, io);
-  setUpHoles(P);
+  io.geometry = o.geometry;
+  Problem P = makeProblem(m, holes, io);
   const LmState prior = priorState(P);
   MatrixXd J;
   if (!dataJacobian(P, prior.x, prior.p, allColumns(P.layout.n), J)) {
@@ -950,7 +1373,7 @@ TestPlan planTest(const PredictionModel& m, const std::vector<HoleRequest>& cand
   p_W.reserve(holes.size());
   for (const IdentificationHole& h : holes) p_W.push_back(h.T_W_hole.translation());
   const std::vector<int> chosen =
-      greedyDOptimal(J, P.spec.s0, count, p_W, o.min_spacing, plan.log_det);
+      greedyDOptimal(J, P.spec.s0, count, P.layout.n_reg, p_W, o.min_spacing, plan.log_det);
   if (static_cast<int>(chosen.size()) < count) {
     throw InputError("", 0,
                      "only " + std::to_string(chosen.size()) + " candidate holes are at least " +
@@ -963,7 +1386,15 @@ TestPlan planTest(const PredictionModel& m, const std::vector<HoleRequest>& cand
     const MatrixXd Jc = J.middleRows(2 * static_cast<Eigen::Index>(c), 2);
     M += Jc.transpose() * Jc;
   }
-  const MatrixXd C = M.ldlt().solve(MatrixXd::Identity(M.rows(), M.cols()));
+  const MatrixXd C = spdInverse(M);
+  planStatistics(P, J, C, o.sigma, o.identifiable_ratio, plan);
+  if (o.geometry) {
+    MatrixXd Jc(2 * static_cast<Eigen::Index>(chosen.size()), J.cols());
+    for (size_t c = 0; c < chosen.size(); ++c)
+      Jc.middleRows(2 * static_cast<Eigen::Index>(c), 2) =
+          J.middleRows(2 * static_cast<Eigen::Index>(chosen[c]), 2);
+    dependentNames(P, Jc, io.dependency_tolerance, plan.dependencies);
+  }
   const Vec6 k = m.compliance.k;
   for (int j = 0; j < 6; ++j) {
     plan.prior_sigma_rel[j] = o.compliance_prior_rel[j];

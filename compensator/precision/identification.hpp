@@ -54,10 +54,12 @@
 ///   estimate's sensitivity G = A_aa⁻¹ J_aᵀ J_f (A_aa = J_wᵀJ_w on the estimated columns):
 ///     P_aa = A_aa⁻¹ + G S_f Gᵀ,  P_af = −G S_f,  P_ff = S_f,
 ///   so fixing a parameter the data see a little does not make the others overconfident.
-///   Iterates are not bounded: a compliance may pass below zero on the way (the equilibrium is
-///   defined there; the gravity-torque gradient makes the problem mildly nonlinear, and a bound
-///   would trap the path in a corner). A non-physical final value is reported in `message` and
-///   the card keeps that joint's stiffness.
+///   Bounds inside the fit (projected Levenberg–Marquardt: each trial point is projected onto the
+///   box before its cost is evaluated, and the convergence test uses the projected step): every
+///   effective compliance stays ≥ c_servo,j + 1e-3 (c0_j − c_servo,j) (a joint at most 1000 ×
+///   stiffer than its card, never stiffer than its servo); the geometry within ±5 mm / ±20 mrad.
+///   A compliance that ends on its bound (the data want it non-physical) is reported in
+///   `message` and the card keeps that joint's stiffness.
 ///   Condition number: of the data-only normal matrix J_dᵀJ_d of the identifiable parameters at
 ///   the estimate, its columns scaled to unit norm (λ_max/λ_min). A large value (≳ 1e8) says that
 ///   a combination of them is fixed only by the priors — e.g. a rigid registration from holes on
@@ -107,7 +109,29 @@ struct IdentificationHole {
   Vec3 p_W_measured{Vec3::Zero()};  ///< measured hole position, base frame (via the workobject), m
   double sigma{5e-6};  ///< standard uncertainty per in-plane axis of measured − predicted, m
                        ///< (residualSigma: measurement, repeatability, machining)
+  /// A measured TCP point (laser tracker, CMM probe on the flange) rather than a drilled hole:
+  /// all three components of measured − predicted are equations (T_W_hole's axes), and there is
+  /// no δmach. The TCP is the point measured (the reflector's centre on the cell's tool).
+  bool point{false};
+  /// The loads at this observation when they are not the drilling process's at `diameter`
+  /// (a tracker point: gravity plus the payload/wrench of its row). nullopt: processLoads.
+  std::optional<nc::Loads> loads;
+  /// The tool at this observation when it is not the model's (the cell's tool plus a payload of
+  /// a pose-file row): the model is rebuilt with it once. Not combinable with an identified tool.
+  std::optional<nc::ToolAttachment> tool;
 };
+
+/// Rows of an observation's residual: 2 for a hole (⊥ its axis), 3 for a point.
+inline int observationRows(const IdentificationHole& h) { return h.point ? 3 : 2; }
+
+/// Which robot parameter groups the identification may move (the registration is always
+/// estimated when asked): `all` = compliances and (when the options carry a geometry prior)
+/// geometry; `none` = the robot kept at its card (only the registration is estimated — the
+/// baseline of the original card in the held-out validation).
+enum class IdentifySet { kAll, kStiffness, kGeometry, kNone };
+/// "all", "stiffness", "geometry", "none".
+const char* identifySetName(IdentifySet s);
+std::optional<IdentifySet> identifySetFromName(const std::string& name);
 
 enum class Registration { kNone, kTranslation, kRigid };
 /// "none", "translation", "rigid".
@@ -116,6 +140,7 @@ const char* registrationName(Registration r);
 std::optional<Registration> registrationFromName(const std::string& name);
 
 struct IdentificationOptions {
+  IdentifySet identify{IdentifySet::kAll};
   Vec6 compliance_prior_rel{Vec6::Constant(0.5)};  ///< s_j: relative σ of each prior c_eff,j
   Registration registration{Registration::kNone};
   Pose T_W_wobj{Pose::Identity()};  ///< workobject frame (registration origin and axes), base frame
@@ -125,6 +150,25 @@ struct IdentificationOptions {
   /// built with (the cell's). The model is rebuilt with the candidate tool at every evaluation; a
   /// gravity-compensating controller keeps the calibration load it was configured with.
   std::optional<nc::ToolAttachment> tool;
+  /// Identify the robot's geometry too (geometry_calibration.hpp): per joint origin δxyz (m) and
+  /// δrpy (rad; about the joint axis = its zero offset) and the tip (flange) error, relative to
+  /// the nominal URDF. Prior: the card's <calibration> values (0 without one), σ the card's stated
+  /// σ, else the data-sheet class values below. The base error is not a parameter: it is exactly
+  /// joint 1's origin error (folded into it), and it keeps the card's value.
+  /// Inside the fit each component stays within ±5 mm / ±20 mrad (a step leaving the box is
+  /// rejected and the damping raised).
+  bool geometry{false};
+  double geometry_xyz_prior{0.3e-3};  ///< m: link length/offset errors 0.1–0.5 mm (calibration.md)
+  double geometry_rpy_prior{0.5e-3};  ///< rad: zero offsets 0.2–0.9 mrad, axis errors 0.1–1 mrad
+  double geometry_xyz_step{1e-6};     ///< m
+  double geometry_rpy_step{1e-6};     ///< rad
+  /// Exact dependencies: the prior-scaled data Jacobian J_d·diag(σ⁰) at the prior is factorised
+  /// (QR) column by column in priority order — registration (the part's, never the robot's),
+  /// compliances, tool, geometry — and a column of which less than dependency_tolerance of its
+  /// norm lies outside the span of the columns kept before it is a linear combination of them
+  /// (joint-1 origin vs registration, joint-6 origin vs tip, …): it keeps its prior (a consider
+  /// parameter) and the combination is reported.
+  double dependency_tolerance{1e-6};
   double tool_mass_prior{2.0};  ///< kg, σ of Δm_tool
   double tool_com_prior{0.02};  ///< m, σ of each Δcom_tool component
   // central-difference steps
@@ -179,9 +223,26 @@ struct IdentificationResult {
   std::optional<double> tool_mass;  ///< kg (identified tool mass) when the tool was identified
   std::optional<Vec3> tool_com;     ///< m, flange frame
   RegistrationEstimate registration;
-  std::vector<Eigen::Vector2d> residuals;  ///< final measured − predicted ⊥ axis (e₁, e₂), m
+  /// With IdentificationOptions::geometry: the identified geometric errors (non-identifiable
+  /// components at their prior), σ from the posterior covariance; base = the card's.
+  std::optional<GeometryCalibration> geometry;
+  /// Parameters removed as exact linear combinations of the others, each as
+  /// "name ≡ coefficient × name + …" in prior-σ units (largest three terms).
+  std::vector<std::string> dependencies;
+  /// Final measured − predicted per observation, m: ⊥ axis (e₁, e₂) for a hole, (x, y, z) of
+  /// T_W_hole's axes for a point.
+  std::vector<Eigen::VectorXd> residuals;
   double rms_prior{0};  ///< RMS |measured − predicted| with the card (and no registration), m
   double rms_final{0};  ///< the same at the estimate, m
+  /// Goodness of fit: χ² = Σ (residual/σ)² over the equations at the estimate; dof = equations −
+  /// estimated parameters (identifiable ones).
+  double chi2{0};
+  int equations{0};
+  int dof{0};
+  /// σ-weighted data Jacobian ∂r/∂x of the estimated parameters at the estimate (rows as the
+  /// residuals, internal units): what the fit could absorb (fit_validation.hpp). Empty when it
+  /// could not be evaluated.
+  Eigen::MatrixXd jacobian;
 };
 
 /// Identifies the effective joint compliances (and optionally the tool and the registration)
@@ -193,11 +254,22 @@ IdentificationResult identifyStiffness(const PredictionModel& m,
                                        const std::vector<IdentificationHole>& holes,
                                        const IdentificationOptions& options);
 
+/// Measured − predicted (m, per observation as IdentificationResult::residuals) of `holes` with
+/// the parameters of `r` (an identification of the same model and options on other holes): the
+/// held-out residuals of a validation. Throws InputError("", 0, …) naming an observation whose
+/// equilibrium fails.
+std::vector<Eigen::VectorXd> residualsAt(const PredictionModel& m, const IdentificationResult& r,
+                                         const std::vector<IdentificationHole>& holes,
+                                         const IdentificationOptions& options);
+
 /// The σ to give an IdentificationHole: the scatter of measured − predicted that the
 /// identification does not model, per in-plane axis: √(u_meas² + u_robpos² + u_mach²) (the
 /// measurement, the robot's repeatability and the machining terms of the hole's prediction; the
 /// deflection-model terms are what is being estimated). m.
 double residualSigma(const HolePrediction& p, double u_measurement);
+
+/// The geometry prior of a model: its card's <calibration> (zero without one).
+GeometryCalibration cardGeometry(const PredictionModel& m);
 
 /// `m` with the identified compliance (and tool, when identified) for predict/compensate.
 PredictionModel withIdentification(const PredictionModel& m, const IdentificationResult& r,
@@ -292,6 +364,12 @@ struct PlanOptions {
   double rotation_prior{10e-3};
   double relative_step{1e-4};
   double min_spacing{0.02};  ///< m: holes closer than this to a chosen one are not candidates
+  /// Plan for the geometry too (IdentificationOptions::geometry, priors as there): the criterion
+  /// is then over compliances + geometry, the registration still the nuisance.
+  /// Inside the fit each component stays within ±5 mm / ±20 mrad (a step leaving the box is
+  /// rejected and the damping raised).
+  bool geometry{false};
+  double identifiable_ratio{0.9};  ///< expected ρ above this: reported as unobservable
 };
 
 struct TestPlan {
@@ -302,6 +380,22 @@ struct TestPlan {
   Vec6 expected_sigma_rel{Vec6::Zero()};  ///< expected posterior σ(c_j)/c_j with the chosen holes
   Vec6 expected_sigma_k{Vec6::Zero()};    ///< the same as σ of k_j, N m/rad (first order)
   double log_det{0};                      ///< final criterion value
+  /// Every parameter (IdentifiedParameter names): prior σ and the expected posterior σ with the
+  /// chosen holes (internal units: relative for c_j, m / rad otherwise).
+  std::vector<std::string> names;
+  Eigen::VectorXd prior_sigma, expected_sigma;
+  /// Robot parameters whose expected ρ = σ/σ_prior exceeds identifiable_ratio (they would keep
+  /// their prior) or that are exact combinations of others (IdentificationResult::dependencies).
+  std::vector<std::string> unobservable;
+  std::vector<std::string> dependencies;
+  /// Predicted accuracy after calibration: RMS over the admissible candidates of the standard
+  /// uncertainty of the predicted in-plane position (√trace of J C Jᵀ, 2-D) with the expected
+  /// covariance C of all parameters, the registration included (the next part in the same
+  /// fixture: robot and registration are used together, as `verify --write-cell` writes them) —
+  /// what a calibrated model still does not know. m.
+  double predicted_accuracy{0};
+  /// Before calibration: the same with the robot parameters' prior covariance alone. m.
+  double prior_accuracy{0};
 };
 
 /// Greedy D-optimal choice of `count` holes among `candidates` (each predicted with predictHole:

@@ -89,6 +89,7 @@ PlanTestResult planTestJob(const std::string& cell_path, const Vec3& region_lo_m
   po.sigma = options.sigma_um * 1e-6;
   po.registration = options.registration;
   po.T_W_wobj = r.context.cell.T_base_wobj;
+  po.geometry = options.geometry;
   r.plan = planTest(r.context.model, r.candidates, count, po);
   r.holes = chosenHoles(r);
   return r;
@@ -118,7 +119,10 @@ postproc::DrillProgramText planTestProgram(const PlanTestResult& r, const std::s
   o.tool_mass = r.context.tool.mass;
   o.tool_cog = r.context.tool.com;
   o.comment = "roprec plan-test: " + std::to_string(r.holes.size()) +
-              " D-optimal holes for re-identifying the joint stiffness";
+              (r.plan.names.size() > 6 + 6 ? " D-optimal holes for calibrating the geometry and "
+                                             "the joint stiffness"
+                                           : " D-optimal holes for re-identifying the joint "
+                                             "stiffness");
   std::vector<postproc::DrillHole> holes = r.holes;
   if (o.dialect == postproc::Dialect::kHoleCsv) {
     for (auto& h : holes) h.config.reset();
@@ -129,6 +133,62 @@ postproc::DrillProgramText planTestProgram(const PlanTestResult& r, const std::s
     throw UsageError(e.what());
   }
 }
+
+std::vector<PlanGroupSigma> geometryGroups(const TestPlan& plan) {
+  std::vector<PlanGroupSigma> out;
+  for (int e = 0; e < 7; ++e) {
+    const std::string prefix = e < 6 ? "j" + std::to_string(e + 1) + "_" : std::string("tip_");
+    PlanGroupSigma g;
+    g.group = e < 6 ? "joint " + std::to_string(e + 1) + " origin" : std::string("tip");
+    bool any = false;
+    for (size_t k = 0; k < plan.names.size(); ++k) {
+      if (plan.names[k].rfind(prefix, 0) != 0) continue;
+      any = true;
+      const bool rot = plan.names[k].find("_r") != std::string::npos;
+      const auto i = static_cast<Eigen::Index>(k);
+      double& prior = rot ? g.prior_rpy : g.prior_xyz;
+      double& expected = rot ? g.expected_rpy : g.expected_xyz;
+      prior = std::max(prior, plan.prior_sigma[i]);
+      expected = std::max(expected, plan.expected_sigma[i]);
+    }
+    if (any) out.push_back(g);
+  }
+  return out;
+}
+
+namespace {
+
+Json stringArray(const std::vector<std::string>& v) {
+  Json a = Json::array();
+  for (const auto& s : v) a.push(Json::str(s));
+  return a;
+}
+
+/// The geometry part of the plan summary (absent for a stiffness-only plan).
+void setGeometryJson(Json& j, const PlanTestResult& r) {
+  const std::vector<PlanGroupSigma> groups = geometryGroups(r.plan);
+  if (groups.empty()) return;
+  Json a = Json::array();
+  for (const PlanGroupSigma& g : groups) {
+    Json o = Json::object();
+    o.set("group", Json::str(g.group));
+    o.set("prior_sigma_mm", Json::number(g.prior_xyz * 1e3, 4));
+    o.set("expected_sigma_mm", Json::number(g.expected_xyz * 1e3, 4));
+    o.set("prior_sigma_mrad", Json::number(g.prior_rpy * 1e3, 4));
+    o.set("expected_sigma_mrad", Json::number(g.expected_rpy * 1e3, 4));
+    a.push(o);
+  }
+  j.set("geometry", a);
+  j.set("unobservable", stringArray(r.plan.unobservable));
+  // the names only (the combinations are printed by the CLI): the summary stays short
+  std::vector<std::string> dependent;
+  for (const std::string& d : r.plan.dependencies) dependent.push_back(d.substr(0, d.find(' ')));
+  j.set("dependent", stringArray(dependent));
+  j.set("prior_accuracy_um", Json::number(r.plan.prior_accuracy * 1e6, 2));
+  j.set("predicted_accuracy_um", Json::number(r.plan.predicted_accuracy * 1e6, 2));
+}
+
+}  // namespace
 
 Json planTestSummaryJson(const PlanTestResult& r, const std::vector<std::string>& written) {
   Json j = Json::object();
@@ -151,6 +211,7 @@ Json planTestSummaryJson(const PlanTestResult& r, const std::vector<std::string>
   Json ids = Json::array();
   for (const auto& h : r.holes) ids.push(Json::str(h.id));
   j.set("ids", ids);
+  setGeometryJson(j, r);
   Json w = Json::array();
   for (const auto& p : written) w.push(Json::str(p));
   j.set("written", w);

@@ -31,6 +31,9 @@ struct PlanTestOptions {
   double sigma_um{5.0};   ///< expected σ per in-plane axis of a residual, µm
   double depth_mm{0};     ///< hole depth, mm (0: the cell's process depth, else 20 mm)
   double diameter_mm{0};  ///< drill, mm (0: the cell's process drill)
+  /// Plan for the geometry (joint origins, tip) as well as the joint compliances (default): the
+  /// parameters `verify --calibrate` identifies by default.
+  bool geometry{true};
 };
 
 struct PlanTestResult {
@@ -48,6 +51,14 @@ PlanTestResult planTestJob(const std::string& cell_path, const Vec3& region_lo_m
                            const Vec3& region_hi_mm, int count,
                            const PlanTestOptions& options = {});
 
+/// A geometry group of a plan (a joint origin or the tip): the largest prior and expected σ of
+/// its translation (m) and rotation (rad) components.
+struct PlanGroupSigma {
+  std::string group;  ///< "joint 1 origin" … "joint 6 origin", "tip"
+  double prior_xyz{0}, expected_xyz{0}, prior_rpy{0}, expected_rpy{0};
+};
+std::vector<PlanGroupSigma> geometryGroups(const TestPlan& plan);
+
 /// The dialect of the cell's robot (KUKA: KRL, ABB: RAPID, FANUC: TP), or a hole list when
 /// `out_path` ends in ".csv". UsageError for a generic robot without a hole-list output.
 postproc::Dialect planTestDialect(const PlanTestResult& r, const std::string& out_path);
@@ -57,7 +68,10 @@ postproc::Dialect planTestDialect(const PlanTestResult& r, const std::string& ou
 postproc::DrillProgramText planTestProgram(const PlanTestResult& r, const std::string& out_path);
 
 /// Summary JSON (C ABI, Python): holes, candidates, rejected, log_det, per joint the prior and
-/// expected relative σ and expected σ(k) (N·m/rad), chosen ids, and `written`.
+/// expected relative σ and expected σ(k) (N·m/rad), chosen ids, and `written`; with geometry
+/// also per geometry group (joint origins, tip) the largest prior and expected σ (mm, mrad), the
+/// unobservable parameters, the names of the exactly dependent ones (`dependent`) and the
+/// predicted accuracy (µm) before and after calibration.
 Json planTestSummaryJson(const PlanTestResult& r, const std::vector<std::string>& written);
 
 }  // namespace roprec::api

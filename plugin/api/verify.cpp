@@ -1,11 +1,20 @@
 #include "plugin/api/verify.hpp"
 
+#include <algorithm>
+#include <cctype>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
 #include <filesystem>
+#include <regex>
 
 #include "compensator/precision/card_writer.hpp"
 #include "compensator/support/atomic_file.hpp"
+#include "compensator/support/c_format.hpp"
 #include "compensator/support/error.hpp"
+#include "compensator/support/rotation.hpp"
 
 namespace roprec::api {
 namespace {
@@ -99,6 +108,106 @@ void checkPlausibleDeviations(const VerifyResult& r) {
   }
 }
 
+/// The χ² check and the held-out validation of a calibration; the card is refused when the
+/// validation finds it no better than the original card.
+/// Whether the held-out validation can run (a note when not).
+bool canValidate(VerifyResult& r, const VerifyJob& job) {
+  const int n = static_cast<int>(r.observations.size());
+  if (job.folds <= 0) {
+    r.notes.push_back("no held-out validation (--folds 0): the card is written unchecked");
+    return false;
+  }
+  if (n < 2 * job.folds) {
+    r.notes.push_back("no held-out validation: " + std::to_string(n) +
+                      " measured observations are fewer than 2 per fold for " +
+                      std::to_string(job.folds) + " folds");
+    return false;
+  }
+  return true;
+}
+
+/// --identify all: the geometry is identified when it is observable enough to help — when its
+/// k-fold held-out residual is below the compliances-alone one (a small test part cannot hold
+/// 42 more parameters: the priors then shape them, and the held-out residual says so). Returns
+/// the options to identify with and their validation.
+std::pair<IdentificationOptions, HeldOutValidation> chooseParameters(
+    VerifyResult& r, const VerifyJob& job, const IdentificationOptions& all) {
+  const PredictionModel& m = r.prediction.context.model;
+  const HeldOutValidation with = crossValidate(m, r.observations, all, job.folds);
+  if (job.identify != IdentifySet::kAll || !all.geometry) return {all, with};
+  IdentificationOptions stiffness = all;
+  stiffness.geometry = false;
+  const HeldOutValidation without = crossValidate(m, r.observations, stiffness, job.folds);
+  if (with.rms_calibrated < without.rms_calibrated) return {all, with};
+  r.notes.push_back("the geometry is not identified: with it the held-out residual is " +
+                    numberText(with.rms_calibrated * 1e6, 4) +
+                    " µm RMS, with the joint "
+                    "compliances alone " +
+                    numberText(without.rms_calibrated * 1e6, 4) + " µm (" +
+                    std::to_string(job.folds) +
+                    "-fold cross-validation): these "
+                    "measurements do not hold the geometry; measure more poses, directions "
+                    "or a larger region (roprec plan-test)");
+  return {stiffness, without};
+}
+
+/// The identification with its χ² check and held-out validation; the card is refused when the
+/// validation finds it no better than the original card.
+void calibrate(VerifyResult& r, const VerifyJob& job, IdentificationOptions o) {
+  if (canValidate(r, job)) {
+    auto [chosen, validation] = chooseParameters(r, job, o);
+    o = chosen;
+    r.validation = validation;
+  }
+  r.identification = identifyStiffness(r.prediction.context.model, r.observations, o);
+  r.fit_check = checkFit(*r.identification, r.observations);
+  if (r.validation && !r.validation->better) {
+    r.card_refused = "its held-out residual (" + numberText(r.validation->rms_calibrated * 1e6, 4) +
+                     " µm RMS, " + std::to_string(job.folds) +
+                     "-fold cross-validation) is not below the original card's (" +
+                     numberText(r.validation->rms_original * 1e6, 4) + " µm)";
+  }
+}
+
+/// The identification's hole frame: the nominal hole, its in-plane axes ⊥ the measured hole axis
+/// when the file has one (the real drilled axis: the position ⊥ it is what the CMM measured
+/// meaningfully); the measured axis is oriented like the nominal drilling direction.
+Pose measuredAxisFrame(const VerifyResult& r, const Pose& nominal, int k) {
+  const postproc::MeasuredHole& m = r.measured.holes[static_cast<size_t>(k)];
+  if (!m.axis) return nominal;
+  Vec3 a = r.prediction.context.cell.T_base_wobj.linear() * m.axis->normalized();
+  if (a.dot(nominal.linear().col(2)) < 0) a = -a;
+  Pose T = nominal;
+  T.linear() = holeFrame(a);
+  return T;
+}
+
+/// A measured pose as an observation: the commanded joints from the controller's convention, the
+/// measured TCP in the base frame, gravity with the row's payload and applied wrench.
+IdentificationHole poseObservation(const VerifyResult& r, const postproc::MeasuredPose& q,
+                                   const VerifyJob& job) {
+  const PredictionContext& c = r.prediction.context;
+  IdentificationHole h;
+  h.id = q.id;
+  h.point = true;
+  h.theta_cmd = fromControllerJoints(c.robot.card, q.joints_deg * kDeg);
+  h.T_W_hole = Pose::Identity();
+  h.T_W_hole.linear() = c.cell.T_base_wobj.linear();  // residual axes: the workobject's
+  h.p_W_measured = c.cell.T_base_wobj * (q.p_mm * 1e-3);
+  h.sigma = (q.u_um ? *q.u_um : job.u_measurement_um) * 1e-6;
+  nc::Loads loads = processLoads(c.model, nullptr);
+  if (q.force_n) loads.tcp = nc::Wrench{*q.force_n, q.torque_nm};
+  h.loads = loads;
+  if (q.payload_kg && *q.payload_kg > 0) {
+    nc::ToolAttachment t = c.tool;
+    const double m = t.mass + *q.payload_kg;
+    t.com = (t.mass * t.com + *q.payload_kg * q.payload_com_mm * 1e-3) / m;
+    t.mass = m;
+    h.tool = t;
+  }
+  return h;
+}
+
 void identify(VerifyResult& r, const VerifyJob& job) {
   const PredictionContext& c = r.prediction.context;
   std::vector<IdentificationHole> holes;
@@ -108,20 +217,27 @@ void identify(VerifyResult& r, const VerifyJob& job) {
     IdentificationHole h;
     h.id = p.id;
     h.theta_cmd = p.joints;
-    h.T_W_hole = nominalHole(c, i);
+    h.T_W_hole = measuredAxisFrame(r, nominalHole(c, i), r.measured_of[n]);
     h.diameter = c.job.requests[i].diameter;
     h.p_W_measured = measuredW(r, r.measured_of[n]);
     h.sigma = residualSigma(
         p, uMeasurement(r.measured.holes[static_cast<size_t>(r.measured_of[n])], job));
     holes.push_back(h);
   }
+  for (const postproc::MeasuredPose& q : r.poses.poses) holes.push_back(poseObservation(r, q, job));
   IdentificationOptions o;
+  o.identify = job.identify;
+  o.geometry = job.calibrate && job.identify != IdentifySet::kStiffness;
   o.compliance_prior_rel = compliancePriorSigma(c.robot.card);
   o.registration = r.registration;
   o.T_W_wobj = c.cell.T_base_wobj;
   if (job.identify_tool) o.tool = c.tool;
-  r.identification = identifyStiffness(c.model, holes, o);
-  for (const Eigen::Vector2d& e : r.identification->residuals)
+  r.observations = holes;
+  if (job.calibrate)
+    calibrate(r, job, o);
+  else
+    r.identification = identifyStiffness(c.model, holes, o);
+  for (const Eigen::VectorXd& e : r.identification->residuals)
     r.residual_identified.push_back(e.norm());
 }
 
@@ -226,6 +342,37 @@ Json covarianceJson(const Eigen::MatrixXd& P) {
   return rows;
 }
 
+/// The χ² check and the held-out validation (calibrate only).
+void setValidationJson(Json& j, const VerifyResult& r) {
+  if (r.fit_check) {
+    const FitCheck& f = *r.fit_check;
+    Json o = Json::object();
+    o.set("chi2", Json::number(f.chi2, -1));
+    o.set("dof", Json::integer(f.dof));
+    o.set("rms_normalized", Json::number(f.rms_normalized, 4));
+    o.set("rms_limit", Json::number(f.rms_limit, 4));
+    o.set("chi2_quantile_999", Json::number(f.chi2_999, -1));
+    o.set("consistent", Json::boolean(f.consistent));
+    Json b = Json::object();
+    b.set("name", Json::str(f.best.name));
+    b.set("value", Json::str(f.best.value));
+    b.set("share", Json::number(f.best.share, 4));
+    o.set("largest_unmodelled_effect", b);
+    o.set("explanation", Json::str(f.explanation));
+    j.set("fit_check", o);
+  }
+  if (r.validation) {
+    const HeldOutValidation& v = *r.validation;
+    Json o = Json::object();
+    o.set("folds", Json::integer(v.folds));
+    o.set("rms_calibrated_um", um(v.rms_calibrated));
+    o.set("rms_original_um", um(v.rms_original));
+    o.set("better", Json::boolean(v.better));
+    j.set("validation", o);
+  }
+  if (r.calibrate) j.set("card_refused", Json::str(r.card_refused));
+}
+
 Json identificationJson(const VerifyResult& r) {
   const IdentificationResult& id = *r.identification;
   Json j = Json::object();
@@ -246,8 +393,15 @@ Json identificationJson(const VerifyResult& r) {
   }
   j.set("parameters", ps);
   j.set("not_identifiable", fixed);
+  // geometry only (the key is absent for a stiffness identification: outputs unchanged)
+  if (id.geometry) {
+    Json deps = Json::array();
+    for (const std::string& d : id.dependencies) deps.push(Json::str(d));
+    j.set("dependencies", deps);
+  }
   j.set("joints", jointsJson(r));
   j.set("covariance", covarianceJson(id.covariance));
+  setValidationJson(j, r);
   return j;
 }
 
@@ -278,6 +432,26 @@ Json holeJsonOf(const VerifyResult& r, size_t n) {
   return j;
 }
 
+/// The measured poses: file, count and per pose |measured − predicted| after identification.
+Json posesJson(const VerifyResult& r) {
+  Json j = Json::object();
+  j.set("file", Json::str(baseName(r.poses.path)));
+  j.set("count", Json::integer(static_cast<std::int64_t>(r.poses.poses.size())));
+  j.set("frame", Json::str("workobject"));
+  Json a = Json::array();
+  const size_t first = r.observations.size() - r.poses.poses.size();
+  for (size_t k = 0; k < r.poses.poses.size(); ++k) {
+    Json o = Json::object();
+    o.set("id", Json::str(r.poses.poses[k].id));
+    o.set("line", Json::integer(r.poses.poses[k].line));
+    if (r.identification)
+      o.set("residual_identified_um", vecUm(r.identification->residuals[first + k]));
+    a.push(o);
+  }
+  j.set("poses", a);
+  return j;
+}
+
 Json strings(const std::vector<std::string>& v) {
   Json a = Json::array();
   for (const auto& s : v) a.push(Json::str(s));
@@ -290,15 +464,12 @@ std::string holeWhere(const std::string& id, int line, const std::string& progra
   return line > 0 ? "hole " + id + " (" + program + ":" + std::to_string(line) + ")" : "hole " + id;
 }
 
-VerifyResult verifyJob(const std::string& cell_path, const std::string& program_path,
-                       const VerifyJob& job, const ProgressFn& progress) {
-  if (job.measured.empty()) throw UsageError("give the measured-hole file");
-  if (!(job.u_measurement_um > 0)) throw UsageError("the measurement uncertainty must be > 0 µm");
-  VerifyResult r;
-  r.cell_path = cell_path;
-  r.program_path = program_path;
-  r.registration = job.registration;
-  r.calibrate = job.calibrate;
+namespace {
+
+/// The drilled part of a job: the program predicted, the measured holes read and matched.
+void readHoles(VerifyResult& r, const std::string& cell_path, const std::string& program_path,
+               const VerifyJob& job, const ProgressFn& progress) {
+  if (job.measured.empty()) throw UsageError("give the measured-hole file with the program");
   r.prediction = predictJob(cell_path, program_path, job.job, progress);
   r.measured = postproc::readMeasured(job.measured);
   r.match = postproc::matchMeasured(r.measured, programRefs(r.prediction.context));
@@ -308,7 +479,59 @@ VerifyResult verifyJob(const std::string& cell_path, const std::string& program_
   if (r.request_of.empty())
     throw InputError(job.measured, 0, "no measured hole of the program could be predicted");
   checkPlausibleDeviations(r);
-  if (job.calibrate || job.identify_tool || job.registration != Registration::kNone)
+}
+
+}  // namespace
+
+std::string calibrationDate(const std::string& date, const std::string& measured_file) {
+  if (!date.empty()) {
+    int y = 0, m = 0, d = 0;
+    char tail = 0;
+    if (!std::regex_match(date, std::regex("[0-9]{4}-[0-9]{2}-[0-9]{2}")) ||
+        std::sscanf(date.c_str(), "%d-%d-%d%c", &y, &m, &d, &tail) != 3 || m < 1 || m > 12 ||
+        d < 1 || d > 31)
+      throw UsageError("--date must be YYYY-MM-DD, not '" + date + "'");
+    return date;
+  }
+  std::time_t t = 0;
+  const char* epoch = std::getenv("SOURCE_DATE_EPOCH");
+  if (epoch != nullptr && *epoch != '\0') {
+    if (!std::regex_match(epoch, std::regex("[0-9]{1,12}")))
+      throw UsageError(std::string("SOURCE_DATE_EPOCH must be whole seconds, not '") + epoch + "'");
+    t = static_cast<std::time_t>(std::stoll(epoch));
+  } else {
+    const auto ft = fs::last_write_time(fs::path(measured_file));
+    t = std::chrono::system_clock::to_time_t(std::chrono::file_clock::to_sys(ft));
+  }
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%04d-%02d-%02d", tm.tm_year + 1900, tm.tm_mon + 1, tm.tm_mday);
+  return buf;
+}
+
+VerifyResult verifyJob(const std::string& cell_path, const std::string& program_path,
+                       const VerifyJob& job, const ProgressFn& progress) {
+  if (job.measured.empty() && job.poses.empty())
+    throw UsageError("give the measured-hole file (or a pose file)");
+  if (!(job.u_measurement_um > 0)) throw UsageError("the measurement uncertainty must be > 0 µm");
+  VerifyResult r;
+  r.cell_path = cell_path;
+  r.program_path = program_path;
+  r.registration = job.registration;
+  r.calibrate = job.calibrate;
+  if (job.calibrate)
+    r.date = calibrationDate(job.date, job.measured.empty() ? job.poses : job.measured);
+  if (!program_path.empty()) {
+    readHoles(r, cell_path, program_path, job, progress);
+  } else {
+    if (!job.measured.empty())
+      throw UsageError("measured holes need the PROGRAM that drilled them");
+    r.prediction.context = loadPredictionContext(cell_path, "", std::nullopt, "", 0.5, false);
+  }
+  if (!job.poses.empty()) r.poses = postproc::readMeasuredPoses(job.poses);
+  if (job.calibrate || job.identify_tool || job.registration != Registration::kNone ||
+      !r.poses.poses.empty())
     identify(r, job);
   verifyHoles(r, job);
   return r;
@@ -328,6 +551,7 @@ Json verifyJson(const VerifyResult& r) {
   m.set("matched", Json::integer(r.match.matched));
   m.set("frame", Json::str("workobject"));
   root.set("measured", m);
+  if (!r.poses.poses.empty()) root.set("poses", posesJson(r));
   root.set("registration", registrationJson(r));
   root.set("summary", summaryJsonOf(r.summary));
   if (r.identification) root.set("identification", identificationJson(r));
@@ -360,6 +584,7 @@ Json verifySummaryJson(const VerifyResult& r, const std::vector<std::string>& wr
     o.set("rms_prior_um", um(id.rms_prior));
     o.set("rms_final_um", um(id.rms_final));
     o.set("joints", jointsJson(r));
+    setValidationJson(o, r);
     j.set("identification", o);
   }
   j.set("written", strings(written));
@@ -373,6 +598,25 @@ std::string calibratedCardText(const VerifyResult& r, const std::string& measure
   std::string text =
       updateCardStiffness(readFileBytes(card.file), card.file, cardUpdates(*r.identification),
                           r.identification->holes, measured_file_name);
+  if (r.identification->geometry) {
+    GeometryCalibration g = *r.identification->geometry;
+    g.source =
+        "identified: " + std::to_string(r.identification->holes) + " observations from " +
+        measured_file_name + " by roprec verify (" +
+        (r.fit_check
+             ? "fit residual " + numberText(r.fit_check->rms_normalized, 3) + " σ" +
+                   (r.validation ? ", held-out " +
+                                       numberText(r.validation->rms_calibrated * 1e6, 3) + " µm RMS"
+                                 : std::string())
+             : std::string("unchecked")) +
+        ")";
+    g.date = r.date;
+    g.residual_rms = r.identification->rms_final;
+    g.measurements = r.identification->holes;
+    std::array<std::string, 6> names;
+    for (size_t i = 0; i < 6; ++i) names[i] = card.joints[i].name;
+    text = replaceCardCalibration(text, card.file, calibrationXml(g, names, "  "));
+  }
   if (card_out_path.empty()) return text;
   const fs::path urdf(card.urdf_path);
   const fs::path out_dir = fs::absolute(fs::path(card_out_path)).parent_path();
@@ -383,6 +627,138 @@ std::string calibratedCardText(const VerifyResult& r, const std::string& measure
   const std::string rel =
       fs::absolute(urdf).lexically_normal().lexically_relative(out_dir).string();
   return text.replace(at, attr.size(), "urdf=\"" + rel + "\"");
+}
+
+}  // namespace roprec::api
+
+namespace roprec::api {
+namespace {
+
+/// [begin, end) of the first start tag `<name …>` outside comments, or nullopt.
+std::optional<std::pair<size_t, size_t>> startTag(const std::string& text,
+                                                  const std::string& name) {
+  size_t at = 0;
+  while ((at = text.find('<', at)) != std::string::npos) {
+    if (text.compare(at, 4, "<!--") == 0) {
+      at = text.find("-->", at);
+      if (at == std::string::npos) return std::nullopt;
+      continue;
+    }
+    const size_t after = at + 1 + name.size();
+    if (text.compare(at + 1, name.size(), name) == 0 && after < text.size() &&
+        (std::isspace(static_cast<unsigned char>(text[after])) || text[after] == '/' ||
+         text[after] == '>')) {
+      const size_t end = text.find('>', after);
+      if (end == std::string::npos) return std::nullopt;
+      return std::make_pair(at, end + 1);
+    }
+    ++at;
+  }
+  return std::nullopt;
+}
+
+int lineAt(const std::string& text, size_t at) {
+  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
+}
+
+/// The tag with attribute `name` set to `value` (replaced when present, else added).
+std::string withAttribute(std::string tag, const std::string& name, const std::string& value) {
+  const std::regex re("(\\s)" + name + "\\s*=\\s*(\"[^\"]*\"|'[^']*')");
+  std::smatch m;
+  if (std::regex_search(tag, m, re))
+    return tag.replace(static_cast<size_t>(m.position(0)), static_cast<size_t>(m.length(0)),
+                       m.str(1) + name + "=\"" + value + "\"");
+  const size_t close = tag.size() - (tag.size() >= 2 && tag[tag.size() - 2] == '/' ? 2 : 1);
+  return tag.insert(close, " " + name + "=\"" + value + "\"");
+}
+
+std::string withoutAttribute(std::string tag, const std::string& name) {
+  return std::regex_replace(tag, std::regex("\\s" + name + "\\s*=\\s*(\"[^\"]*\"|'[^']*')"), "");
+}
+
+std::optional<std::string> attribute(const std::string& tag, const std::string& name) {
+  const std::regex re("\\s" + name + "\\s*=\\s*(\"([^\"]*)\"|'([^']*)')");
+  std::smatch m;
+  if (!std::regex_search(tag, m, re)) return std::nullopt;
+  return m[2].matched ? m.str(2) : m.str(3);
+}
+
+/// Fixed decimals in the "C" locale, without a negative zero.
+std::string fixedText(double v, int decimals) {
+  return cFixed(std::abs(v) < 0.5 * std::pow(10.0, -decimals) ? 0.0 : v, decimals);
+}
+
+std::string triple(const Vec3& v, int decimals) {
+  return fixedText(v.x(), decimals) + " " + fixedText(v.y(), decimals) + " " +
+         fixedText(v.z(), decimals);
+}
+
+std::string relativePath(const std::string& target, const std::string& from_file) {
+  const fs::path dir = fs::absolute(fs::path(from_file)).parent_path();
+  return fs::absolute(fs::path(target)).lexically_normal().lexically_relative(dir).string();
+}
+
+/// The `<robot>` tag for the new cell: the new card, else the old reference re-rooted.
+std::string robotTag(const std::string& tag, const VerifyResult& r, const std::string& cell_out,
+                     const std::string& card_path) {
+  if (!card_path.empty())
+    return withAttribute(withoutAttribute(tag, "ref"), "file", relativePath(card_path, cell_out));
+  if (const auto f = attribute(tag, "file")) {
+    const fs::path old = fs::path(*f).is_absolute()
+                             ? fs::path(*f)
+                             : fs::path(r.cell_path).parent_path() / fs::path(*f);
+    return withAttribute(tag, "file", relativePath(old.string(), cell_out));
+  }
+  return tag;
+}
+
+}  // namespace
+
+std::string calibratedCellText(const VerifyResult& r, const std::string& cell_out_path,
+                               const std::string& card_path) {
+  if (!r.identification) throw UsageError("no identification: ask for --register or --calibrate");
+  std::string text = readFileBytes(r.cell_path);
+  const auto robot = startTag(text, "robot");
+  if (!robot || text[robot->second - 2] != '/')
+    throw InputError(r.cell_path, robot ? lineAt(text, robot->first) : 0,
+                     "the cell's <robot> element is not one empty-element tag <robot .../>: "
+                     "cannot write the new cell; hint: write <robot ref|file=\"...\"/>");
+  const std::string new_robot = robotTag(text.substr(robot->first, robot->second - robot->first), r,
+                                         cell_out_path, card_path);
+  text.replace(robot->first, robot->second - robot->first, new_robot);
+
+  const RegistrationEstimate& g = r.identification->registration;
+  Pose fix = Pose::Identity();
+  fix.linear() =
+      Eigen::AngleAxisd(g.rotation.norm(),
+                        g.rotation.norm() > 0 ? Vec3(g.rotation.normalized()) : Vec3::UnitZ())
+          .toRotationMatrix();
+  fix.translation() = g.translation;
+  const Pose T = r.prediction.context.cell.T_base_wobj * fix.inverse();
+  const Vec3 rpy = rpyFromRotation(T.linear()) / kDeg;
+  const std::string comment = "<!-- workobject: the part as measured (" +
+                              baseName(r.measured.path) + ", registration " +
+                              registrationName(r.registration) + " estimated by roprec verify) -->";
+  const auto wobj = startTag(text, "workobject");
+  if (wobj) {
+    if (text[wobj->second - 2] != '/')
+      throw InputError(r.cell_path, lineAt(text, wobj->first),
+                       "the cell's <workobject> element is not one empty-element tag: cannot "
+                       "write the new cell");
+    std::string tag = text.substr(wobj->first, wobj->second - wobj->first);
+    tag = withAttribute(withAttribute(tag, "xyz", triple(T.translation() * 1e3, 4)), "rpy",
+                        triple(rpy, 6));
+    const size_t line_start = text.rfind('\n', wobj->first);
+    const std::string indent =
+        text.substr(line_start == std::string::npos ? 0 : line_start + 1,
+                    wobj->first - (line_start == std::string::npos ? 0 : line_start + 1));
+    text.replace(wobj->first, wobj->second - wobj->first, comment + "\n" + indent + tag);
+  } else {
+    const size_t at = text.find('>', text.find(new_robot)) + 1;
+    text.insert(at, "\n  " + comment + "\n  <workobject xyz=\"" + triple(T.translation() * 1e3, 4) +
+                        "\" rpy=\"" + triple(rpy, 6) + "\"/>");
+  }
+  return text;
 }
 
 }  // namespace roprec::api

@@ -23,9 +23,11 @@
 #include <string>
 #include <vector>
 
+#include "compensator/precision/fit_validation.hpp"
 #include "compensator/precision/identification.hpp"
 #include "plugin/api/job.hpp"
 #include "postproc/measured.hpp"
+#include "postproc/measured_poses.hpp"
 
 namespace roprec::api {
 
@@ -36,17 +38,33 @@ std::string holeWhere(const std::string& id, int line, const std::string& progra
 struct VerifyJob {
   JobOptions job;        ///< hole list, match tolerance, uncertainty method
   std::string measured;  ///< the CMM file (roprec CSV, PC-DMIS CSV or DMIS), workobject mm
+  /// Measured TCP poses (laser tracker / CMM, postproc/measured_poses.hpp), identified together
+  /// with the holes: 3 equations per pose. With poses, the program and `measured` are optional.
+  std::string poses;
   Registration registration{Registration::kNone};  ///< part registration estimated jointly
   bool calibrate{false};  ///< re-identify the joint stiffness (identification.hpp)
   /// Also identify the tool's mass and centre of mass (prior: the cell's <tool>, σ 2 kg and
   /// 20 mm); reported, the cell is not rewritten.
   bool identify_tool{false};
   double u_measurement_um{5.0};  ///< σ per axis of a measured position when the file has no `u`
+  IdentifySet identify{IdentifySet::kAll};  ///< which robot parameters --calibrate may move
+  /// k of the k-fold held-out validation run with calibrate (fit_validation.hpp); 0: none (the
+  /// card is then written without a held-out check, and the result says so).
+  int folds{5};
+  /// The calibration's `date` (YYYY-MM-DD); empty: calibrationDate()'s rule.
+  std::string date;
 };
+
+/// The date written into a calibration: `date` when given (YYYY-MM-DD, checked), else the UTC day
+/// of SOURCE_DATE_EPOCH when set, else the UTC day of `measured_file`'s modification time (the
+/// day the measurement was saved). Never empty; the same inputs give the same day.
+std::string calibrationDate(const std::string& date, const std::string& measured_file);
 
 struct VerifyResult {
   PredictionResult prediction;  ///< the program predicted with the cell's card
+  std::string date;             ///< of the calibration (calibrationDate), with calibrate
   postproc::MeasuredHoles measured;
+  postproc::MeasuredPoses poses;  ///< empty without a pose file
   postproc::MeasuredMatch match;
   Registration registration{Registration::kNone};
   bool calibrate{false};
@@ -63,6 +81,16 @@ struct VerifyResult {
   std::optional<IdentificationResult> identification;
   /// Per-hole residual |measured − predicted| ⊥ axis after identification (m), holes order.
   std::vector<double> residual_identified;
+  /// The observations identified from (the verified holes in order, then the poses); kept for
+  /// the validation and the checks.
+  std::vector<IdentificationHole> observations;
+  /// With calibrate: the χ² check of the fit and the held-out validation (k-fold; absent with
+  /// folds = 0 or fewer observations than folds, with a note).
+  std::optional<FitCheck> fit_check;
+  std::optional<HeldOutValidation> validation;
+  /// Why the calibrated card must not be written (empty: it may): its held-out error is not
+  /// below the original card's.
+  std::string card_refused;
 };
 
 /// Predicts the job, reads and matches the measured holes, identifies (when asked) and verifies
@@ -92,5 +120,15 @@ std::string verifyReport(const VerifyResult& r);
 /// has no identification (calibrate was not asked), InputError for a malformed card.
 std::string calibratedCardText(const VerifyResult& r, const std::string& measured_file_name,
                                const std::string& card_out_path = "");
+
+/// The cell for the next job (cell.hpp format): the cell file's text with its `<workobject>` set
+/// to where the registration found the part — T_W_part = T_W_wobj · [R(ω), t]⁻¹ (mm, deg; a
+/// comment states the source) — and, when `card_path` is given, `<robot file="…"/>` pointing to
+/// that card (relative to the new cell's folder); otherwise a `file=`/`urdf=` reference is made
+/// relative to the new cell's folder. Nothing else changes. Throws UsageError when the result
+/// has no identification, InputError(cell, line, …) when the cell's `<robot>`/`<workobject>`
+/// element cannot be rewritten (not a single empty-element tag).
+std::string calibratedCellText(const VerifyResult& r, const std::string& cell_out_path,
+                               const std::string& card_path);
 
 }  // namespace roprec::api

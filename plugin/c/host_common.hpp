@@ -222,16 +222,22 @@ inline Registration registration(const std::string& text) {
 
 /// The texts `roprec verify` writes, rendered before anything is written: (path, text) for the
 /// JSON (when json_out is not empty) and the calibrated card (when card_out is not empty).
-inline std::vector<std::pair<std::string, std::string>> verifyOutputs(const api::VerifyResult& r,
-                                                                      const api::VerifyJob& job,
-                                                                      const std::string& json_out,
-                                                                      const std::string& card_out) {
+/// The files a verify writes: the JSON, the calibrated card (not when the held-out validation
+/// refused it: VerifyResult::card_refused), the new cell (workobject at the registered part, robot
+/// = the new card when one is written; not when the card was refused).
+inline std::vector<std::pair<std::string, std::string>> verifyOutputs(
+    const api::VerifyResult& r, const api::VerifyJob& job, const std::string& json_out,
+    const std::string& card_out, const std::string& cell_out = "") {
   std::vector<std::pair<std::string, std::string>> out;
   if (!json_out.empty()) out.emplace_back(json_out, api::verifyJson(r).dump());
-  if (!card_out.empty()) {
-    const std::string name = job.measured.substr(job.measured.find_last_of('/') + 1);
+  const bool card_ok = !card_out.empty() && r.card_refused.empty();
+  if (card_ok) {
+    const std::string& file = job.measured.empty() ? job.poses : job.measured;
+    const std::string name = file.substr(file.find_last_of('/') + 1);
     out.emplace_back(card_out, api::calibratedCardText(r, name, card_out));
   }
+  if (!cell_out.empty() && (card_out.empty() || card_ok))
+    out.emplace_back(cell_out, api::calibratedCellText(r, cell_out, card_ok ? card_out : ""));
   return out;
 }
 

@@ -209,6 +209,16 @@ ROPREC_API void roprec_options_free(roprec_options* options);
  *   "orientation"   "keep" (default), "flip-free" or "stiffest" (compensate only) --orientation
  *   "force"         "1": compensate a program that carries roprec's compensation   --force
  *                   marker again (with a note); "0" (default): such a program is refused (2)
+ * roprec_verify_file_ex only:
+ *   "write_cell"    where the cell the next job runs with is written ("" = none):  --write-cell
+ *                   its <workobject> at the registered part, its robot the new card
+ *   "poses"         measured TCP poses (laser tracker / CMM CSV) identified with   --poses
+ *                   the holes ("" = none); with poses, program and measured may be NULL
+ *   "identify"      "stiffness", "geometry" or "all" (default): what the new card  --identify
+ *                   may move
+ *   "folds"         k of the held-out validation, "0".."100" (default "5")        --folds
+ *   "date"          the written calibration's date, YYYY-MM-DD ("" = the rule of  --date
+ *                   docs/cards.md: SOURCE_DATE_EPOCH, else the measured file's day)
  * Without "frame"/"tool", a controller-only frame or a differing tool is an error (2) naming the
  * frame or tool and these options. How they were resolved is stated in the prediction JSON's
  * notes and in the report header. */
@@ -256,6 +266,18 @@ ROPREC_API int roprec_verify_file(const char* cell_path, const char* program_pat
                                   const char* registration, const char* json_out_path,
                                   const char* new_card_out_path, char* summary_json,
                                   size_t summary_len, char* err, size_t err_len);
+
+/* roprec_verify_file with the job options: "holes", "match_tol_mm", "uncertainty", "frame",
+ * "tool", "threads" and the verify keys "write_cell", "poses", "identify", "folds", "date" (see
+ * roprec_options_set). measured_path and program_path may be NULL when "poses" is set. Every file
+ * written (JSON, card, cell) is byte for byte what `roprec verify` writes with the same options;
+ * the summary's "written" lists them. The cell is not written when the held-out validation refused
+ * the card. 2 also for "write_cell" without a registration or a new card. */
+ROPREC_API int roprec_verify_file_ex(const char* cell_path, const char* program_path,
+                                     const char* measured_path, const char* registration,
+                                     const roprec_options* options, const char* json_out_path,
+                                     const char* new_card_out_path, char* summary_json,
+                                     size_t summary_len, char* err, size_t err_len);
 
 /* `roprec plan-test --cell CELL --region "x0 y0 z0 x1 y1 z1" --count N -o OUT_PATH`: a D-optimal
  * drilling test program for re-identifying the joint stiffness. Candidate drill points on a 4 x 4 x

@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "compensator/precision/identification.hpp"
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/c_format.hpp"
 #include "compensator/support/error.hpp"
@@ -33,6 +34,10 @@ struct roprec_session {
 /// The job options of roprec_predict_file_ex / roprec_compensate_file_ex (roprec_options_set).
 struct roprec_options {
   roprec::api::CompensationJob job;  ///< job.job: the prediction options; mode, force
+  /// roprec_verify_file_ex only: --write-cell, --poses, --identify, --folds.
+  std::string write_cell, poses, date;
+  roprec::IdentifySet identify{roprec::IdentifySet::kAll};
+  int folds{5};
 };
 
 namespace {
@@ -213,7 +218,34 @@ int compensateFile(const char* cell_path, const char* program_path,
 }
 
 /// One roprec_options_set key (see roprec.h). Throws UsageError/InputError on a bad key or value.
-void setOption(roprec::api::CompensationJob& job, const std::string& key, const std::string& v) {
+/// The verify keys of roprec_options_set (see roprec.h); false: not a verify key.
+bool setVerifyOption(roprec_options& o, const std::string& key, const std::string& v) {
+  if (key == "write_cell") {
+    o.write_cell = v;
+  } else if (key == "poses") {
+    o.poses = v;
+  } else if (key == "date") {
+    if (!v.empty()) roprec::api::calibrationDate(v, "");
+    o.date = v;
+  } else if (key == "identify") {
+    const auto s = roprec::identifySetFromName(v);
+    if (!s || *s == roprec::IdentifySet::kNone)
+      throw roprec::UsageError("identify must be stiffness, geometry or all");
+    o.identify = *s;
+  } else if (key == "folds") {
+    const double k = roprec::api::numbersFromText(v, 1, "folds")[0];
+    if (!(k >= 0 && k <= 100 && k == std::floor(k)))
+      throw roprec::UsageError("folds must be a whole number in [0, 100]");
+    o.folds = static_cast<int>(k);
+  } else {
+    return false;
+  }
+  return true;
+}
+
+void setOption(roprec_options& o, const std::string& key, const std::string& v) {
+  if (setVerifyOption(o, key, v)) return;
+  roprec::api::CompensationJob& job = o.job;
   if (key == "holes") {
     job.job.holes = v.empty() ? std::nullopt : std::optional<std::string>(v);
   } else if (key == "match_tol_mm") {
@@ -237,7 +269,8 @@ void setOption(roprec::api::CompensationJob& job, const std::string& key, const 
   } else {
     throw roprec::UsageError(
         "unknown option '" + key +
-        "' (holes, match_tol_mm, uncertainty, frame, tool, threads, orientation, force)");
+        "' (holes, match_tol_mm, uncertainty, frame, tool, threads, orientation, force, "
+        "write_cell, poses, identify, folds, date)");
   }
 }
 
@@ -361,7 +394,7 @@ ROPREC_API int roprec_options_set(roprec_options* options, const char* key, cons
     require(key, "key");
     require(value, "value");
     roprec_options next = *options;  // unchanged on a refused value
-    setOption(next.job, key, value);
+    setOption(next, key, value);
     *options = std::move(next);
     return ROPREC_OK;
   });
@@ -387,6 +420,49 @@ ROPREC_API int roprec_verify_file(const char* cell_path, const char* program_pat
     const roprec::api::VerifyResult r = roprec::api::verifyJob(cell, program, job);
     std::vector<std::pair<std::string, std::string>> out =
         host::verifyOutputs(r, job, json_out, card_out);
+    if (!r.failed.empty()) throw ItemFailure{host::joinLines(r.failed) + "\nnothing written"};
+    std::vector<std::string> paths;
+    paths.reserve(out.size());
+    for (const auto& o : out) paths.push_back(o.first);
+    const std::string summary = roprec::api::verifySummaryJson(r, paths).dump(0);
+    checkFits(summary, summary_json, summary_len, "summary_json");
+    for (const auto& [path, text] : out) roprec::writeFileAtomic(path, text);
+    copyText(summary, summary_json);
+    return ROPREC_OK;
+  });
+}
+
+ROPREC_API int roprec_verify_file_ex(const char* cell_path, const char* program_path,
+                                     const char* measured_path, const char* registration,
+                                     const roprec_options* options, const char* json_out_path,
+                                     const char* new_card_out_path, char* summary_json,
+                                     size_t summary_len, char* err, size_t err_len) {
+  return guarded(err, err_len, [&] {
+    require(options, "options");
+    const std::string cell = pathArg(cell_path, "cell_path");
+    roprec::api::VerifyJob job;
+    job.job = options->job.job;
+    job.poses = options->poses;
+    job.measured = optionalArg(measured_path);
+    const std::string program = optionalArg(program_path);
+    if (job.measured.empty() && job.poses.empty())
+      throw roprec::UsageError("give measured_path and/or the option \"poses\"");
+    if (!job.measured.empty() && program.empty())
+      throw roprec::UsageError("program_path is NULL (a measured file needs its program)");
+    job.identify = options->identify;
+    job.folds = options->folds;
+    job.date = options->date;
+    const std::string json_out = optionalArg(json_out_path);
+    const std::string card_out = optionalArg(new_card_out_path);
+    checkTextBuffer(summary_json, summary_len, "summary_json");
+    job.registration = host::registration(optionalArg(registration));
+    job.calibrate = !card_out.empty();
+    if (!options->write_cell.empty() && !job.calibrate &&
+        job.registration == roprec::Registration::kNone)
+      throw roprec::UsageError("write_cell needs a registration and/or new_card_out_path");
+    const roprec::api::VerifyResult r = roprec::api::verifyJob(cell, program, job);
+    std::vector<std::pair<std::string, std::string>> out =
+        host::verifyOutputs(r, job, json_out, card_out, options->write_cell);
     if (!r.failed.empty()) throw ItemFailure{host::joinLines(r.failed) + "\nnothing written"};
     std::vector<std::string> paths;
     paths.reserve(out.size());

@@ -48,11 +48,42 @@ PlanTestOptions parseOptions(Args& args) {
     if (!g) throw UsageError("--register must be none, translation or rigid");
     o.registration = *g;
   }
+  if (const auto g = args.option("identify")) {
+    if (*g != "all" && *g != "stiffness")
+      throw UsageError("--identify must be all (geometry and stiffness) or stiffness");
+    o.geometry = *g == "all";
+  }
   if (const auto s = args.option("sigma")) o.sigma_um = parseNumberList(*s, 1, "--sigma (µm)")[0];
   if (const auto s = args.option("depth")) o.depth_mm = parseNumberList(*s, 1, "--depth (mm)")[0];
   if (const auto s = args.option("diameter"))
     o.diameter_mm = parseNumberList(*s, 1, "--diameter (mm)")[0];
   return o;
+}
+
+/// Expected σ per geometry group, the predicted accuracy, unobservable parameters (a warning).
+void printGeometryPlan(CommandContext& ctx, const PlanTestResult& r) {
+  const std::vector<PlanGroupSigma> groups = geometryGroups(r.plan);
+  if (groups.empty()) return;
+  ctx.out << "  expected geometry uncertainty (largest component, prior -> expected):\n";
+  for (const PlanGroupSigma& g : groups) {
+    ctx.out << "    " << g.group << ": " << formatNumber(g.prior_xyz * 1e3, 3) << " -> "
+            << formatNumber(g.expected_xyz * 1e3, 3) << " mm, "
+            << formatNumber(g.prior_rpy * 1e3, 3) << " -> " << formatNumber(g.expected_rpy * 1e3, 3)
+            << " mrad\n";
+  }
+  ctx.out << "  predicted accuracy of the model over the region (1 σ, in-plane): "
+          << formatNumber(r.plan.prior_accuracy * 1e6, 1) << " µm before calibration -> "
+          << formatNumber(r.plan.predicted_accuracy * 1e6, 1) << " µm after\n";
+  for (const auto& d : r.plan.dependencies)
+    ctx.out << "  dependent (not separable by any measurement of this kind): " << d << "\n";
+  if (!r.plan.unobservable.empty()) {
+    std::string names;
+    for (const auto& n : r.plan.unobservable) names += (names.empty() ? "" : ", ") + n;
+    ctx.err << "roprec: warning: the region and directions leave " << r.plan.unobservable.size()
+            << " robot parameters unobservable (they keep their prior): " << names
+            << "; hint: add drilling directions, rotations about the drill axis (--psi) or a "
+               "larger region\n";
+  }
 }
 
 void printPlan(CommandContext& ctx, const PlanTestResult& r, const postproc::DrillProgramText& t) {
@@ -69,6 +100,7 @@ void printPlan(CommandContext& ctx, const PlanTestResult& r, const postproc::Dri
             << formatNumber(100 * r.plan.expected_sigma_rel[j], 2) << " % (σ "
             << formatNumber(r.plan.expected_sigma_k[j], 0) << " N·m/rad)\n";
   }
+  printGeometryPlan(ctx, r);
   for (const auto& n : t.notes) ctx.out << "  note: " << n << "\n";
 }
 
@@ -105,7 +137,7 @@ const CommandRegistration reg{
      "usage: roprec plan-test --cell CELL.xml --region \"x0 y0 z0 x1 y1 z1\" --count N -o OUT\n"
      "                        [--directions \"i j k, i j k\"] [--psi \"0 90\"] [--per-axis 4]\n"
      "                        [--register none|translation|rigid] [--sigma UM] [--depth MM]\n"
-     "                        [--diameter MM] [--quiet]\n\n"
+     "                        [--diameter MM] [--identify all|stiffness] [--quiet]\n\n"
      "Candidate drill points (hole bottoms) on a grid of --per-axis points per axis over the "
      "region\n"
      "(workobject frame, mm; an axis with x0 = x1 gets one point), each with every drilling\n"
@@ -116,6 +148,11 @@ const CommandRegistration reg{
      "information on the joint compliances (D-optimal: log det of the posterior information, the\n"
      "registration of --register eliminated as nuisance), assuming a residual σ of --sigma µm (5)\n"
      "per axis. Prints the expected σ of each joint stiffness after the test.\n"
+     "--identify all (default): the criterion covers the geometry too (per joint origin δxyz and\n"
+     "δrpy, the tip; prior 0.3 mm / 0.5 mrad); prints the expected σ per geometry group, the\n"
+     "predicted accuracy of the model over the candidates before and after calibration, the exact\n"
+     "dependencies, and warns (stderr) about robot parameters the plan leaves unobservable.\n"
+     "--identify stiffness: the joint compliances alone (the criterion before geometry).\n"
      "OUT is written in the cell robot's dialect (KUKA .src + .dat, ABB .mod, FANUC .ls), or as a\n"
      "hole list when OUT ends in .csv: holes V01…, the OLP drill cycle of the sample jobs, depth\n"
      "--depth mm (the cell's process depth) with the cell's drill (--diameter), frames and tool\n"

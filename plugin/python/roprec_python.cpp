@@ -429,7 +429,8 @@ py::dict compensate(const std::string& cell, const std::string& program, const s
 py::dict verify(const std::string& cell, const std::string& program, const std::string& measured,
                 const std::optional<std::string>& holes, const std::string& registration,
                 const std::optional<std::string>& calibrate,
-                const std::optional<std::string>& json_out) {
+                const std::optional<std::string>& json_out,
+                const std::optional<std::string>& write_cell) {
   api::VerifyJob job;
   job.measured = measured;
   job.job.holes = holes;
@@ -444,7 +445,8 @@ py::dict verify(const std::string& cell, const std::string& program, const std::
     RunScope run;
     const api::VerifyResult r = api::verifyJob(cell, program, job);
     json = api::verifyJson(r).dump();
-    const auto out = host::verifyOutputs(r, job, json_out.value_or(""), calibrate.value_or(""));
+    const auto out = host::verifyOutputs(r, job, json_out.value_or(""), calibrate.value_or(""),
+                                         write_cell.value_or(""));
     std::vector<std::string> paths;
     paths.reserve(out.size());
     for (const auto& o : out) paths.push_back(o.first);
@@ -624,7 +626,7 @@ PYBIND11_MODULE(_roprec, m) {
   m.def("_verify", &verify, py::arg("cell"), py::arg("program"), py::arg("measured"),
         py::arg("holes") = py::none(), py::arg("register") = "none",
         py::arg("calibrate") = py::none(), py::arg("json_out") = py::none(),
-        "Internal: see roprec.verify.");
+        py::arg("write_cell") = py::none(), "Internal: see roprec.verify.");
   m.def("_plan_test", &planTest, py::arg("cell"), py::arg("region"), py::arg("count"),
         py::arg("out"), "Internal: see roprec.plan_test.");
 }

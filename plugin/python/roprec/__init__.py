@@ -197,7 +197,8 @@ def compensate(cell, program, out, orientation="keep", targets=None, holes=None,
     return result
 
 
-def verify(cell, program, measured, holes=None, register="none", calibrate=None, json_out=None):
+def verify(cell, program, measured, holes=None, register="none", calibrate=None, json_out=None,
+           write_cell=None):
     """Measured holes against the prediction: ``roprec verify --cell CELL PROGRAM --measured M ...``.
 
     Args:
@@ -208,8 +209,14 @@ def verify(cell, program, measured, holes=None, register="none", calibrate=None,
         holes: optional hole-list CSV (the nominal holes) matched to the program's holes.
         register: "none", "translation" or "rigid": a part registration estimated jointly with
             the joint stiffness and removed from the measured positions before the comparison.
-        calibrate: optional path: the joint stiffness is re-identified and the new robot card is
-            written there (``--calibrate``); unidentifiable joints keep the card's value.
+        calibrate: optional path: the geometry and the joint stiffness are identified and the new
+            robot card is written there (``--calibrate``); unidentifiable parameters keep the
+            card's value. The fit is checked (``identification.fit_check``: χ² against the
+            measurement σ) and cross-validated (``identification.validation``, 5-fold); a card
+            whose held-out residual is not below the original card's is not written
+            (``identification.card_refused`` says why).
+        write_cell: optional path: the cell with its workobject at the registered part and its
+            robot = the new card (``--write-cell``; needs ``register`` or ``calibrate``).
         json_out: optional path: the verification JSON, byte for byte ``roprec verify --json``.
 
     Returns:
@@ -230,7 +237,8 @@ def verify(cell, program, measured, holes=None, register="none", calibrate=None,
     r = _roprec._verify(str(cell), str(program), str(measured),
                         None if holes is None else str(holes), str(register),
                         None if calibrate is None else str(calibrate),
-                        None if json_out is None else str(json_out))
+                        None if json_out is None else str(json_out),
+                        None if write_cell is None else str(write_cell))
     result = _json.loads(r["json"])
     result["written"] = _json.loads(r["summary_json"])["written"]
     if r["problems"]:
