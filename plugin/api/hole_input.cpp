@@ -381,6 +381,12 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
   } else {
     job.recognized = postproc::recognizeHoles(p);
   }
+  std::vector<postproc::HoleSpec> specs;
+  if (hole_list) {  // the hole list is drilling evidence too (a cycle with a dwell alone)
+    specs = postproc::readHoleList(*hole_list);
+    job.recognized =
+        postproc::withHoleListEvidence(p, std::move(job.recognized), specs, match_tol_mm);
+  }
   if (job.recognized.empty()) {
     // point at the program's first motion (or its first line when it has none)
     std::string where = path;
@@ -404,10 +410,8 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
                          " motions (approach -> feed along the tool z axis -> retract)" + unknown +
                          "; hint: a hole list (.csv) or --holes gives the holes directly");
   }
-  std::vector<postproc::HoleSpec> specs;
   std::vector<int> spec_of_hole(job.recognized.size(), -1);
   if (hole_list) {
-    specs = postproc::readHoleList(*hole_list);
     for (const postproc::HoleMatch& m :
          postproc::matchHoles(job.recognized, p, specs, match_tol_mm))
       spec_of_hole[static_cast<std::size_t>(m.hole)] = m.spec;
