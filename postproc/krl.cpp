@@ -134,9 +134,11 @@ class KrlReader {
   Fdat fdat_;
   double vel_cp_{-1};
   int vel_zero_line_{0};  ///< line of a $VEL.CP (or LDAT VEL) of zero or below in force (0: none)
-  /// A SPLINE … ENDSPLINE block being read: its segments blend; `vel` its WITH speed (m/s).
+  /// A SPLINE … ENDSPLINE block being read: its segments blend; `vel` its WITH speed (m/s, < 0:
+  /// not known) when `with_speed`.
   struct SplineBlock {
     bool active{false};
+    bool with_speed{false};
     double vel{-1};
     int last_motion{-1};
   } spline_;
@@ -723,7 +725,7 @@ class KrlReader {
     }
     // the approximation clause may follow a WITH list (`SPL P3 WITH $VEL.CP = 3.0 C_SPL`)
     std::string zone;
-    double vel = spline_.active && spline_.vel >= 0 ? spline_.vel : vel_cp_;
+    double vel = spline_.active && spline_.with_speed ? spline_.vel : vel_cp_;
     int zdepth = 0;
     for (std::size_t j = k; j < e; ++j) {
       const Token& t = f.tokens[j];
@@ -758,8 +760,10 @@ class KrlReader {
   /// `$VEL = SVEL_CP(v, …)` set the path speed `vel` (m/s) of that motion or block alone;
   /// STOOL2/SBASE/SFRAME(FPn) select its tool and base. Other parameters (`$APO.CDIS`,
   /// `$ACC`, …) are kept verbatim.
-  void withList(std::size_t b, std::size_t e, std::uint32_t with_offset, double& vel) {
+  /// True when the list states the speed.
+  bool withList(std::size_t b, std::size_t e, std::uint32_t with_offset, double& vel) {
     const SourceFile& f = file();
+    bool stated = false;
     for (std::size_t q = b; q < e; ++q) {
       const std::string_view w = f.text(f.tokens[q]);
       if (q + 2 < e && (iequals(w, "STOOL2") || iequals(w, "SBASE") || iequals(w, "SFRAME")) &&
@@ -779,11 +783,12 @@ class KrlReader {
           iequals(f.text(f.tokens[q + 2]), "SVEL_CP") && is1(f.text(f.tokens[q + 3]), '('))
         v = q + 4;
       if (v == 0 || v >= e) continue;
-      std::size_t last = v;  // the value: a number with its sign, up to ',' ')' or a keyword
-      while (last < e && f.tokens[last].kind != TokenKind::kIdentifier &&
-             !is1(f.text(f.tokens[last]), ',') && !is1(f.text(f.tokens[last]), ')'))
+      std::size_t last = v;  // the value: up to ',' ')' or the approximation clause
+      while (last < e && !isApprox(f.text(f.tokens[last])) && !is1(f.text(f.tokens[last]), ',') &&
+             !is1(f.text(f.tokens[last]), ')'))
         ++last;
       if (last == v) continue;
+      stated = true;
       const std::uint32_t vb = f.tokens[v].offset;
       const std::string_view text = std::string_view(f.bytes).substr(
           vb, f.tokens[last - 1].offset + f.tokens[last - 1].length - vb);
@@ -799,6 +804,7 @@ class KrlReader {
       if (*val <= 0) zeroSpeed(file().lineOf(vb), *val, 0);
       vel = *val;
     }
+    return stated;
   }
 
   /// A path velocity of zero or below: no motion can run at it, and a drill feed would no
@@ -836,13 +842,11 @@ class KrlReader {
       return;
     }
     if (c.isIdent("SPLINE") || c.isIdent("PTP_SPLINE")) {  // [WITH …]: blend up to ENDSPLINE
-      spline_ = SplineBlock{true, -1, -1};
-      double vel = -1;
+      spline_ = SplineBlock{true, false, -1, -1};
       for (std::size_t j = b; j < e; ++j) {
         if (f.tokens[j].kind == TokenKind::kIdentifier && iequals(f.text(f.tokens[j]), "WITH"))
-          withList(j + 1, e, f.tokens[j].offset, vel);
+          spline_.with_speed = withList(j + 1, e, f.tokens[j].offset, spline_.vel);
       }
-      spline_.vel = vel;
       return;
     }
     if (c.isIdent("ENDSPLINE")) {  // the block stops at its end unless it is approximated

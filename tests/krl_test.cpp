@@ -191,6 +191,22 @@ TEST(KrlReader, SplineWithListsCarryTheirSpeedAndApproximation) {
   EXPECT_EQ(h["evidence"][0], "feed slower than approach/retract");
 }
 
+TEST(KrlReader, ASplineBlockSpeedRoprecCannotEvaluateMakesItsSegmentsSpeedsUnknown) {
+  // not the $VEL.CP in force (0.25 m/s): a feed inside the block would pass for an approach
+  std::string src = kSplineSrc;
+  src.replace(src.find("SPLINE WITH $VEL.CP = 0.05"), 26, "SPLINE WITH $VEL.CP = vFeed");
+  const Job j = write("krl-spline-unknown", src, kSplineDat);
+  const json r = roundTripAndInspect(j, src, kSplineDat);
+  ASSERT_TRUE(r.is_object());
+  ASSERT_EQ(r["motions"].size(), 8U);
+  EXPECT_FALSE(r["motions"][5].contains("speed_mm_s"));
+  EXPECT_FALSE(r["motions"][6].contains("speed_mm_s"));
+  EXPECT_DOUBLE_EQ(r["motions"][7]["speed_mm_s"].get<double>(), 250.0);
+  const json u = unresolvedOf(r, "$VEL.CP");
+  ASSERT_FALSE(u.is_null());
+  EXPECT_EQ(u["line"], 10);
+}
+
 TEST(KrlReader, APathVelocityOfZeroOrBelowIsAnInputErrorAtItsLine) {
   const struct {
     const char* from;
