@@ -108,7 +108,8 @@ class TpReader {
     return line != 0 && f_.line_starts[static_cast<std::size_t>(line - 1)] == offset;
   }
   std::unordered_map<int, int> by_number_;  // P number -> target
-  std::unordered_map<int, int> untaught_;   // P number -> line of a record never taught
+  /// P number -> line of a record never taught (negated once a motion to it is reported)
+  std::unordered_map<int, int> untaught_;
   bool other_config_noted_{false};
   struct Pending {
     int motion;
@@ -646,12 +647,14 @@ class TpReader {
       Motion& m = p_.motions[static_cast<std::size_t>(pd.motion)];
       auto bind = [&](int number) -> int {
         if (number < 0) return -1;
-        if (const auto u = untaught_.find(number); u != untaught_.end()) {
+        if (auto u = untaught_.find(number); u != untaught_.end()) {
           m.derivation = p_.addText("untaught");
+          if (u->second < 0) return -1;  // reported at its first motion
           p_.unresolved.push_back(Unresolved{
               "P[" + std::to_string(number) + "]", 0, m.line,
               "position never taught (UF : F / ******** at line " + std::to_string(u->second) +
                   "): its pose is not known (not predicted, not compensated)"});
+          u->second = -u->second;
           return -1;
         }
         const auto it = by_number_.find(number);

@@ -101,6 +101,7 @@ TEST(TpReader, APositionNeverTaughtReadsAndAMotionToItIsUnresolved) {
       "/PROG  UNTAUGHT\r\n/MN\r\n"
       "   1:J P[1] 10% FINE ;\r\n"
       "   2:L P[3] 100mm/sec FINE ;\r\n"
+      "   3:J P[3] 10% FINE ;\r\n"
       "/POS\r\n" +
       record("P[1]", "UF : 0, UT : 1", "N U T, 0, 0, 0", "284.000") + kUntaught + "/END\r\n";
   std::string err;
@@ -108,14 +109,15 @@ TEST(TpReader, APositionNeverTaughtReadsAndAMotionToItIsUnresolved) {
   EXPECT_EQ(err.find("broken number"), std::string::npos) << err;
   ASSERT_TRUE(j.is_object());
   EXPECT_EQ(j["targets"].size(), 1U);  // P[3] has no pose
-  ASSERT_EQ(j["motions"].size(), 2U);
+  ASSERT_EQ(j["motions"].size(), 3U);
   EXPECT_EQ(j["motions"][1]["target"], -1);
   EXPECT_EQ(j["motions"][1]["derivation"], "untaught");
-  bool reported = false;
+  EXPECT_EQ(j["motions"][2]["derivation"], "untaught");
+  int reported = 0;  // once, at the first motion to it
   for (const json& u : j["unresolved"])
-    reported = reported || (u["ref"] == "P[3]" && u["line"] == 4 &&
-                            u["what"].get<std::string>().find("never taught") != std::string::npos);
-  EXPECT_TRUE(reported) << j["unresolved"].dump();
+    reported += u["ref"] == "P[3]" && u["line"] == 4 &&
+                u["what"].get<std::string>().find("never taught") != std::string::npos;
+  EXPECT_EQ(reported, 1) << j["unresolved"].dump();
 }
 
 TEST(TpReader, APositionNeverTaughtIsAnErrorOnlyWhereAJobNeedsIt) {
