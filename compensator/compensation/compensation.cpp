@@ -960,6 +960,7 @@ void stiffestAgainstKeep(std::vector<Evaluator>& evs, const std::vector<HoleRequ
 /// Why hole i is not compensated before its stage 5 ("" when it is to be finalized).
 std::string notCompensatedReason(const HoleCompensation& c, const Node& chosen) {
   if (c.before.status == HoleStatus::kNotConverged) return "not compensated: " + c.before.reason;
+  if (c.before.beyond_drill) return c.before.reason;  // not a question of the arm's posture
   if (c.before.status != HoleStatus::kOk) {
     // No arm posture to keep: the controller cannot reach the programmed target as written, and
     // any "compensated" target would put the arm into a posture the program never asked for.
