@@ -256,6 +256,18 @@ std::vector<std::string> holeEvidence(const Program& p, const Hole& h) {
   return e;
 }
 
+std::string drillingEvidence(const Program& p, const Hole& h) {
+  if (h.slower_feed) return "feed segment along the tool axis";
+  for (int k = std::max(0, h.marker_begin);
+       k < h.marker_end && static_cast<std::size_t>(k) < p.motions.size(); ++k) {
+    const Motion& m = p.motions[static_cast<std::size_t>(k)];
+    for (const std::string& mk : p.markers(m)) {
+      if (processMarker(mk)) return mk + " after the motion at line " + std::to_string(m.line);
+    }
+  }
+  return h.dwell_only ? "on the hole list" : "";
+}
+
 namespace {
 
 /// Hole-list points for the position match, by direction then by position across it: the

@@ -103,6 +103,11 @@ class HoleRecognizer {
 /// program writes them), "exact stop at the bottom", "no feed change: surface and depth not known
 /// from the program".
 std::vector<std::string> holeEvidence(const Program& p, const Hole& h);
+/// The one piece of process evidence that made `h` a hole, short (the prediction JSON's
+/// "evidence"): "feed segment along the tool axis", else the first spindle/drill call or drilling
+/// comment as "MARKER after the motion at line N", else "on the hole list" (a dwell-only cycle a
+/// hole list confirmed).
+std::string drillingEvidence(const Program& p, const Hole& h);
 
 /// A motion marker that says drilling: starts with DWELL, or contains SPINDLE, DRILL, PLUNGE,
 /// BOOR or BOHR (any case).

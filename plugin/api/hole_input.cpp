@@ -56,6 +56,7 @@ HoleRequest fromSpec(const postproc::HoleSpec& s, const CellSpec& cell) {
   if (s.diameter_mm) r.diameter = *s.diameter_mm * 1e-3;
   if (s.depth_mm) r.depth = *s.depth_mm * 1e-3;
   r.line = s.line;
+  r.evidence = "on the hole list";
   return r;
 }
 
@@ -220,6 +221,7 @@ void setUpHole(const std::vector<postproc::Hole>& recognized, const postproc::Pr
   r.id = h.id;
   r.T_W_tcp = src.T_W_frame * *T_frame_tcp;
   r.line = t.line;
+  r.evidence = postproc::drillingEvidence(p, h);
   r.depth = h.depth;
   if (h.surface_motion >= 0) r.surface_W = Vec3(src.T_W_frame * h.surface);
   // The drill point is reached by linear moves, which keep the arm configuration the robot had:
