@@ -75,6 +75,10 @@ bool drillMarker(std::string_view m) {
          containsUpper(m, "BOOR", false) || containsUpper(m, "BOHR", false);
 }
 
+bool processMarker(std::string_view m) {
+  return drillMarker(m) && !containsUpper(m, "DWELL", true);
+}
+
 HoleRecognizer::HoleRecognizer(const RecognitionOptions& o)
     : o_(o), cache_(std::make_unique<PoseCache>()) {}
 HoleRecognizer::~HoleRecognizer() = default;
@@ -165,14 +169,21 @@ void HoleRecognizer::advance(const Program& p, bool final) {
       bool marker = false;
       h.marker_begin = static_cast<int>(i > 0 ? i - 1 : i);
       h.marker_end = static_cast<int>(j);
+      // a dwell alone is no evidence (a gripper waits at a placement too): a spindle or drill
+      // call or a drilling comment is
+      bool dwell = false;
       for (std::size_t k = (i > 0 ? i - 1 : i); k < j; ++k) {
-        for (const std::string& mk : p.markers(p.motions[k])) marker = marker || drillMarker(mk);
+        for (const std::string& mk : p.markers(p.motions[k])) {
+          marker = marker || processMarker(mk);
+          dwell = dwell || drillMarker(mk);
+        }
       }
+      h.dwell_only = !slower && !marker && dwell && o_.dwell_candidates;
       h.fine_bottom = p.motions[bottom].fine;
       // A cycle whose next point is stated by values roprec cannot evaluate (a RAPID component
       // set at run time) may end deeper than the points it knows: its bottom is unknown, so it
       // is not taken as a hole (the unresolved value is reported with its line).
-      if (dmax > line_tol && (slower || marker) && !cut_by_unknown) {
+      if (dmax > line_tol && (slower || marker || h.dwell_only) && !cut_by_unknown) {
         h.entry_motion = static_cast<int>(i);
         h.bottom_motion = static_cast<int>(bottom);
         h.entry_target = m0.target;
@@ -238,10 +249,23 @@ std::vector<std::string> holeEvidence(const Program& p, const Hole& h) {
       if (h.all_markers || drillMarker(mk)) e.push_back(mk);
     }
   }
+  if (h.dwell_only) e.emplace_back("on the hole list (a dwell alone is no drilling evidence)");
   if (h.fine_bottom) e.emplace_back("exact stop at the bottom");
   if (h.no_feed_change)
     e.emplace_back("no feed change: surface and depth not known from the program");
   return e;
+}
+
+std::string drillingEvidence(const Program& p, const Hole& h) {
+  if (h.slower_feed) return "feed segment along the tool axis";
+  for (int k = std::max(0, h.marker_begin);
+       k < h.marker_end && static_cast<std::size_t>(k) < p.motions.size(); ++k) {
+    const Motion& m = p.motions[static_cast<std::size_t>(k)];
+    for (const std::string& mk : p.markers(m)) {
+      if (processMarker(mk)) return mk + " after the motion at line " + std::to_string(m.line);
+    }
+  }
+  return h.dwell_only ? "on the hole list" : "";
 }
 
 namespace {
@@ -397,6 +421,28 @@ std::vector<HoleMatch> matchHoles(const std::vector<Hole>& holes, const Program&
       taken[static_cast<std::size_t>(best)] = true;
       out.push_back(HoleMatch{static_cast<int>(h), best, best_d});
     }
+  }
+  return out;
+}
+
+}  // namespace roprec::postproc
+
+namespace roprec::postproc {
+
+std::vector<Hole> withHoleListEvidence(const Program& p, std::vector<Hole> holes,
+                                       const std::vector<HoleSpec>& specs, double tol_mm,
+                                       RecognitionOptions o) {
+  if (specs.empty() || matchHoles(holes, p, specs, tol_mm).size() == specs.size()) return holes;
+  o.dwell_candidates = true;
+  std::vector<Hole> all = recognizeHoles(p, o);
+  std::vector<bool> listed(all.size(), false);
+  for (const HoleMatch& m : matchHoles(all, p, specs, tol_mm))
+    listed[static_cast<std::size_t>(m.hole)] = true;
+  std::vector<Hole> out;
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    if (all[k].dwell_only && !listed[k]) continue;
+    out.push_back(std::move(all[k]));
+    out.back().id = "H" + std::to_string(out.size());
   }
   return out;
 }

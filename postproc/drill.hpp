@@ -6,12 +6,13 @@
 /// through the first target, along its drilling axis a = R_first · tool_axis (|Δp × a| < line
 /// tolerance), with constant orientation (< orientation tolerance), one tool and one base, all
 /// after the first being linear moves, that goes into the material (some target deeper than the
-/// first along +a) and carries evidence of drilling: a feed slower than the run's fastest move,
-/// a dwell, a spindle/drill call or a drilling comment. The drill point ("bottom") is the deepest
-/// target along +a; the surface is the point the first feed move into the material starts from
-/// (approach and clearance moves run at the faster approach speed); depth = bottom − surface.
-/// Every target of the run moves together when compensated. A TP/KRL call of a
-/// drilling macro after a single target also makes a hole (entry = bottom = that target).
+/// first along +a) and carries process evidence: a feed slower than the run's fastest move, a
+/// spindle/drill call or a drilling comment (a dwell alone is none: pick-and-place dwells too). The
+/// drill point ("bottom") is the deepest target along +a; the surface is the point the first feed
+/// move into the material starts from (approach and clearance moves run at the faster approach
+/// speed); depth = bottom − surface. Every target of the run moves together when compensated. A
+/// TP/KRL call of a drilling macro after a single target also makes a hole (entry = bottom = that
+/// target).
 ///
 /// Convention: roprec's drilling axis is the TCP +z axis (into the material) for every vendor;
 /// `RecognitionOptions::tool_axis` changes it (e.g. +x for a KUKA tool with X tool direction).
@@ -30,6 +31,9 @@ struct RecognitionOptions {
   Vec3 tool_axis{0, 0, 1};   ///< drilling axis in the TCP frame (unit)
   double line_tol_mm{0.05};  ///< |Δp × a| tolerance
   double ori_tol_deg{0.05};  ///< orientation constancy
+  /// Also take a cycle whose only evidence is a dwell, marked Hole::dwell_only: a candidate that
+  /// only a hole list can confirm (confirmedByHoleList).
+  bool dwell_candidates{false};
 };
 
 struct Hole {
@@ -59,6 +63,7 @@ struct Hole {
   bool fine_bottom{false};
   bool no_feed_change{false};
   bool all_markers{false};
+  bool dwell_only{false};  ///< a dwell is its only evidence (RecognitionOptions::dwell_candidates)
   int marker_begin{0};
   int marker_end{0};
 };
@@ -98,10 +103,19 @@ class HoleRecognizer {
 /// program writes them), "exact stop at the bottom", "no feed change: surface and depth not known
 /// from the program".
 std::vector<std::string> holeEvidence(const Program& p, const Hole& h);
+/// The one piece of process evidence that made `h` a hole, short (the prediction JSON's
+/// "evidence"): "feed segment along the tool axis", else the first spindle/drill call or drilling
+/// comment as "MARKER after the motion at line N", else "on the hole list" (a dwell-only cycle a
+/// hole list confirmed).
+std::string drillingEvidence(const Program& p, const Hole& h);
 
 /// A motion marker that says drilling: starts with DWELL, or contains SPINDLE, DRILL, PLUNGE,
 /// BOOR or BOHR (any case).
 bool drillMarker(std::string_view marker);
+
+/// A drillMarker that is process evidence on its own: a spindle or drill call or a drilling
+/// comment, not a dwell (a gripper dwells at a placement too).
+bool processMarker(std::string_view marker);
 
 /// One row of the contract's hole list: `id,x,y,z,i,j,k[,diameter,depth,tolerance]` (mm,
 /// workobject frame, i,j,k = drilling direction into the material).
@@ -131,5 +145,13 @@ struct HoleMatch {
 /// which is the workobject frame when the program's base frame is the workobject.
 std::vector<HoleMatch> matchHoles(const std::vector<Hole>& holes, const Program& p,
                                   const std::vector<HoleSpec>& specs, double tol_mm);
+
+/// The holes of `p` with a hole list as evidence: `holes` (recognised without dwell candidates)
+/// when they match every hole of the list; else the program recognised again with
+/// RecognitionOptions::dwell_candidates, keeping a dwell-only cycle where the list has a hole
+/// (matchHoles, `tol_mm`), ids renumbered H1, H2… in program order.
+std::vector<Hole> withHoleListEvidence(const Program& p, std::vector<Hole> holes,
+                                       const std::vector<HoleSpec>& specs, double tol_mm,
+                                       RecognitionOptions o = {});
 
 }  // namespace roprec::postproc

@@ -114,7 +114,8 @@ class KrlReader {
     bool tcp{false};
   };
   NameMap<Fdat> fdats_;
-  NameMap<double> ldat_vel_;  // m/s
+  NameMap<int> runtime_locals_;  // position variables declared without a value -> their line
+  NameMap<double> ldat_vel_;     // m/s
   // FRAME declarations by name (value -1 - index into frame_decls_). POS/E6POS declarations are
   // named frames too: found in targets_ and read back from the target (namedFrameIndex), so a
   // 100,000-point .dat keeps no second copy of its poses and no second table entry.
@@ -132,6 +133,15 @@ class KrlReader {
   Frame base_{"$BASE", false, Pose::Identity(), -1, 0};
   Fdat fdat_;
   double vel_cp_{-1};
+  int vel_zero_line_{0};  ///< line of a $VEL.CP (or LDAT VEL) of zero or below in force (0: none)
+  /// A SPLINE … ENDSPLINE block being read: its segments blend; `vel` its WITH speed (m/s, < 0:
+  /// not known) when `with_speed`.
+  struct SplineBlock {
+    bool active{false};
+    bool with_speed{false};
+    double vel{-1};
+    int last_motion{-1};
+  } spline_;
   // the texts of the last few $VEL.CP values (a drill cycle alternates a rapid and a feed speed):
   // one printf per value, not one per motion; round robin, `next_speed_text_` the next to replace
   std::array<std::pair<double, TextId>, 4> speed_texts_{{{-1, {}}, {-1, {}}, {-1, {}}, {-1, {}}}};
@@ -426,7 +436,18 @@ class KrlReader {
     const std::size_t name_off = c.peek().offset;
     c.next();
     if (c.isPunct('[')) return true;  // arrays: runtime values
-    if (!c.isPunct('=')) return true;
+    if (!c.isPunct('=')) {
+      // `DECL POS xHole,xProfile`: variables set while the program runs (a .src's locals)
+      if (isPositionType(type)) {
+        runtimeLocal(name, name_off);
+        while (c.isPunct(',') && c.isKind(TokenKind::kIdentifier, 1)) {
+          c.next();
+          runtimeLocal(c.text(), c.peek().offset);
+          c.next();
+        }
+      }
+      return true;
+    }
     c.next();
     if (!c.isPunct('{')) return true;
     const Aggregate a = parseAggregate(c);
@@ -452,6 +473,11 @@ class KrlReader {
         ldat_vel_[name] = v->value;
     }
     return true;
+  }
+
+  /// A position variable declared without a value: its value is set at run time.
+  void runtimeLocal(std::string_view name, std::size_t offset) {
+    if (targets_.find(name) == nullptr) runtime_locals_[name] = file().lineOf(offset);
   }
 
   void readDat() {
@@ -608,11 +634,23 @@ class KrlReader {
         m.derivation = p_.addText("system variable");
         return -1;
       }
-      if (p_.files.size() < 2) {
-        fail(s, "missing .dat: target '" + std::string(c.text()) +
-                    "' is declared nowhere (expected " + p_.dat_path + ")");
+      if (const int* local = runtime_locals_.find(n)) {
+        m.derivation = p_.addText("runtime");
+        unresolved(std::string(n), s,
+                   "position variable declared without a value (" +
+                       p_.files[static_cast<std::size_t>(file_)].path + ":" +
+                       std::to_string(*local) +
+                       "): set while the program runs, its pose is not known (not predicted, "
+                       "not compensated)");
+        return -1;
       }
-      unresolved(std::string(c.text()), s, "target not declared in the .src or .dat");
+      unresolved(std::string(n), s,
+                 p_.files.size() < 2
+                     ? "target declared neither in the .src nor in a .dat (no " + p_.dat_path +
+                           "): a global of the controller's $config.dat (e.g. XHOME) or of "
+                           "another module; its pose is not known (not predicted, not "
+                           "compensated)"
+                     : std::string("target not declared in the .src or .dat"));
       m.derivation = p_.addText("undeclared");
       return -1;
     }
@@ -685,33 +723,29 @@ class KrlReader {
     } else {
       m.target = motionTarget(exprs[0].first, exprs[0].second, m, relative);
     }
+    // the approximation clause may follow a WITH list (`SPL P3 WITH $VEL.CP = 3.0 C_SPL`)
     std::string zone;
+    double vel = spline_.active && spline_.with_speed ? spline_.vel : vel_cp_;
+    int zdepth = 0;
     for (std::size_t j = k; j < e; ++j) {
       const Token& t = f.tokens[j];
       const std::string_view tx = f.text(t);
-      if (t.kind == TokenKind::kIdentifier && isApprox(tx))
+      if (t.kind == TokenKind::kPunct && (is1(tx, '(') || is1(tx, '{') || is1(tx, '['))) ++zdepth;
+      if (t.kind == TokenKind::kPunct && (is1(tx, ')') || is1(tx, '}') || is1(tx, ']'))) --zdepth;
+      if (zdepth == 0 && t.kind == TokenKind::kIdentifier && isApprox(tx))
         zone += (zone.empty() ? "" : " ") + std::string(tx);
-      if (t.kind == TokenKind::kIdentifier && iequals(tx, "WITH")) {
-        for (std::size_t q = j + 1; q + 2 < e; ++q) {
-          const std::string_view w = f.text(f.tokens[q]);
-          if ((iequals(w, "STOOL2") || iequals(w, "SBASE") || iequals(w, "SFRAME")) &&
-              is1(f.text(f.tokens[q + 1]), '(')) {
-            if (const Fdat* it = fdats_.find(f.text(f.tokens[q + 2]))) {
-              Fdat fd = *it;
-              if (iequals(w, "SBASE")) fd.tool = -1;
-              if (iequals(w, "STOOL2")) fd.base = -1;
-              applyFdat(fd, t.offset);
-            }
-          }
-        }
-        break;
-      }
+      if (zdepth == 0 && t.kind == TokenKind::kIdentifier && iequals(tx, "WITH"))
+        withList(j + 1, e, t.offset, vel);
     }
     m.zone_text = p_.addText(zone);
-    m.fine = zone.empty();
-    if (m.type != MotionType::kJoint && vel_cp_ > 0) {
-      m.speed_mm_s = vel_cp_ * 1000.0;
-      m.speed_text = speedText(vel_cp_);
+    // inside SPLINE ... ENDSPLINE the segments blend into one path: only the block's end stops
+    m.fine = zone.empty() && !spline_.active;
+    if (spline_.active) spline_.last_motion = static_cast<int>(p_.motions.size());
+    if (m.type != MotionType::kJoint && vel <= 0 && vel_zero_line_ > 0 && vel == vel_cp_)
+      zeroSpeed(vel_zero_line_, vel_cp_, m.line);
+    if (m.type != MotionType::kJoint && vel > 0) {
+      m.speed_mm_s = vel * 1000.0;
+      m.speed_text = speedText(vel);
     }
     m.tool = internFrame(p_, tool_);
     m.base = internFrame(p_, base_);
@@ -720,6 +754,68 @@ class KrlReader {
     const Motion& mm = p_.motions.back();
     if (mm.target >= 0) p_.target_list[static_cast<std::size_t>(mm.target)].uses.push_back(mi);
     if (mm.aux >= 0) p_.target_list[static_cast<std::size_t>(mm.aux)].uses.push_back(mi);
+  }
+
+  /// A WITH list `[b, e)` of a spline motion or a SPLINE block: `$VEL.CP = v` and
+  /// `$VEL = SVEL_CP(v, …)` set the path speed `vel` (m/s) of that motion or block alone;
+  /// STOOL2/SBASE/SFRAME(FPn) select its tool and base. Other parameters (`$APO.CDIS`,
+  /// `$ACC`, …) are kept verbatim.
+  /// True when the list states the speed.
+  bool withList(std::size_t b, std::size_t e, std::uint32_t with_offset, double& vel) {
+    const SourceFile& f = file();
+    bool stated = false;
+    for (std::size_t q = b; q < e; ++q) {
+      const std::string_view w = f.text(f.tokens[q]);
+      if (q + 2 < e && (iequals(w, "STOOL2") || iequals(w, "SBASE") || iequals(w, "SFRAME")) &&
+          is1(f.text(f.tokens[q + 1]), '(')) {
+        if (const Fdat* it = fdats_.find(f.text(f.tokens[q + 2]))) {
+          Fdat fd = *it;
+          if (iequals(w, "SBASE")) fd.tool = -1;
+          if (iequals(w, "STOOL2")) fd.base = -1;
+          applyFdat(fd, with_offset);
+        }
+      }
+      std::size_t v = 0;  // first token of the speed value
+      if (iequals(w, "$VEL") && q + 3 < e && is1(f.text(f.tokens[q + 1]), '.') &&
+          iequals(f.text(f.tokens[q + 2]), "CP") && is1(f.text(f.tokens[q + 3]), '='))
+        v = q + 4;
+      if (iequals(w, "$VEL") && q + 4 < e && is1(f.text(f.tokens[q + 1]), '=') &&
+          iequals(f.text(f.tokens[q + 2]), "SVEL_CP") && is1(f.text(f.tokens[q + 3]), '('))
+        v = q + 4;
+      if (v == 0 || v >= e) continue;
+      std::size_t last = v;  // the value: up to ',' ')' or the approximation clause
+      while (last < e && !isApprox(f.text(f.tokens[last])) && !is1(f.text(f.tokens[last]), ',') &&
+             !is1(f.text(f.tokens[last]), ')'))
+        ++last;
+      if (last == v) continue;
+      stated = true;
+      const std::uint32_t vb = f.tokens[v].offset;
+      const std::string_view text = std::string_view(f.bytes).substr(
+          vb, f.tokens[last - 1].offset + f.tokens[last - 1].length - vb);
+      const auto val = parseNumber(text);
+      if (!val) {
+        vel = -1;
+        unresolved("$VEL.CP", vb,
+                   "the path velocity '" + std::string(text) +
+                       "' in a WITH list is not a number roprec can evaluate: that motion's "
+                       "speed is unknown");
+        continue;
+      }
+      if (*val <= 0) zeroSpeed(file().lineOf(vb), *val, 0);
+      vel = *val;
+    }
+    return stated;
+  }
+
+  /// A path velocity of zero or below: no motion can run at it, and a drill feed would no
+  /// longer be recognised (the depth silently the cell's). An input error at its line.
+  [[noreturn]] void zeroSpeed(int line, double vel, int motion_line) const {
+    throw InputError(file().path, line,
+                     "$VEL.CP = " + numberText(vel) + " m/s is not a speed (" +
+                         (motion_line > 0 ? "the motion at line " + std::to_string(motion_line)
+                                          : std::string("the motion")) +
+                         " would not move); hint: a path velocity is > 0 m/s, e.g. $VEL.CP = 0.02 "
+                         "for a 20 mm/s feed");
   }
 
   static bool isMotionKeyword(std::string_view w) {
@@ -743,6 +839,24 @@ class KrlReader {
     if (c.isIdent("DECL") || (c.isKind(TokenKind::kIdentifier) &&
                               c.isKind(TokenKind::kIdentifier, 1) && isPositionType(w))) {
       tryDecl(c);
+      return;
+    }
+    if (c.isIdent("SPLINE") || c.isIdent("PTP_SPLINE")) {  // [WITH …]: blend up to ENDSPLINE
+      spline_ = SplineBlock{true, false, -1, -1};
+      for (std::size_t j = b; j < e; ++j) {
+        if (f.tokens[j].kind == TokenKind::kIdentifier && iequals(f.text(f.tokens[j]), "WITH"))
+          spline_.with_speed = withList(j + 1, e, f.tokens[j].offset, spline_.vel);
+      }
+      return;
+    }
+    if (c.isIdent("ENDSPLINE")) {  // the block stops at its end unless it is approximated
+      bool approx = false;
+      for (std::size_t j = b; j < e; ++j)
+        approx =
+            approx || (f.tokens[j].kind == TokenKind::kIdentifier && isApprox(f.text(f.tokens[j])));
+      if (spline_.active && spline_.last_motion >= 0 && !approx)
+        p_.motions[static_cast<std::size_t>(spline_.last_motion)].fine = true;
+      spline_ = SplineBlock{};
       return;
     }
     if (c.isIdent("WAIT") && c.isIdent("SEC", 1)) {
@@ -811,6 +925,7 @@ class KrlReader {
                 vel != nullptr && vel->kind == Component::kNumber)
               vel_cp_ = vel->value;
           }
+          vel_zero_line_ = vel_cp_ <= 0 && vel_cp_ != -1 ? file().lineOf(off) : 0;
           return;
         }
         if (n == "$VEL" && c.isPunct('.', 1) && c.isIdent("CP", 2) && eq == b + 3) {
@@ -821,11 +936,13 @@ class KrlReader {
               std::string_view(f.bytes).substr(vb, last.offset + last.length - vb);
           if (const auto val = parseNumber(text)) {
             vel_cp_ = *val;
+            vel_zero_line_ = *val <= 0 ? file().lineOf(vb) : 0;
           } else {
             // a variable, an expression or `inf`/`nan` (identifiers to KRL): the path velocity
             // is known only at run time, so the speeds of the motions after it are unknown (not
             // the previous value: a feed move would pass for an approach)
             vel_cp_ = -1;
+            vel_zero_line_ = 0;
             unresolved("$VEL.CP", vb,
                        "the path velocity '" + std::string(text) +
                            "' is not a number roprec can evaluate: the speeds after it are "

@@ -133,6 +133,7 @@ class RapidReader {
       count(n, w2);
       return i;
     }
+    if (const std::size_t after = labelOrPlaceholder(); after > 0) return after;
     if (iequals(w, "IF") || iequals(w, "WHILE") || iequals(w, "FOR") || iequals(w, "ELSEIF")) {
       std::size_t j = 0;
       while (has(j) && !(pc(j) == ';') &&
@@ -143,6 +144,16 @@ class RapidReader {
       return j + 1;
     }
     return statementAt();
+  }
+
+  /// A label `name:` (the target of a GOTO; it may stand before any statement, also before
+  /// ENDPROC, IF, WHILE or TEST) or the FlexPendant's `<SMT>` placeholder of an empty routine
+  /// body at tok_[0]: neither is a statement (no ';'). Returns the index after it, 0 for anything
+  /// else.
+  std::size_t labelOrPlaceholder() {
+    if (tok_[0].kind == TokenKind::kIdentifier && has(1) && pc(1) == ':') return 2;
+    if (pc(0) == '<' && has(2) && iequals(f_.text(tok_[1]), "SMT") && pc(2) == '>') return 3;
+    return 0;
   }
 
   /// The statement at tok_[0] up to its ';'; returns the index after the ';'.
@@ -909,6 +920,12 @@ class RapidReader {
     for (const auto& [name, a] : sw) {
       if (name == "WOBJ") wobj = argText(trim(a));
       if (name == "V") m.speed_mm_s = parseNumber(argText(trim(a))).value_or(m.speed_mm_s);
+    }
+    if (m.speed_mm_s < 0 && m.speed_mm_s != -1.0) {
+      // a speeddata whose v_tcp is below zero (-1 is "not stated", Motion's default)
+      fail(t[b].offset, std::string(f_.text(t[b])) + ": speed " + p_.text(m.speed_text) + " is " +
+                            numberText(m.speed_mm_s) +
+                            " mm/s: no motion runs at it; hint: v_tcp is > 0 mm/s");
     }
     const std::size_t off = t[b].offset;
     m.tool = frameIndex(true, tool, off);

@@ -667,7 +667,12 @@ class CsvReader {
     m.file = 0;
     const Target& t = p_.target_list[static_cast<std::size_t>(target)];
     m.line = t.line;
-    if (const auto v = num(cells, kSpeed)) m.speed_mm_s = v->value;
+    if (const auto v = num(cells, kSpeed)) {
+      if (v->value < 0)
+        fail(v->offset, "speed " + numberText(v->value) +
+                            " mm/s is below zero: no motion runs at it; hint: a speed is > 0 mm/s");
+      m.speed_mm_s = v->value;
+    }
     if (!t.frame_ref.empty()) m.base = frameIndex(frames_, p_.text(t.frame_ref), base_memo_);
     if (!t.tool_ref.empty()) m.tool = frameIndex(tools_, p_.text(t.tool_ref), tool_memo_);
     m.target = target;
@@ -1155,8 +1160,13 @@ class JsonTargets {
                                                                           : MotionType::kLinear;
     mo.file = 0;
     mo.line = line;
-    if (const JValue* s = m[kJSpeed]; s != nullptr && s->kind == JValue::kNumber)
+    if (const JValue* s = m[kJSpeed]; s != nullptr && s->kind == JValue::kNumber) {
+      if (s->number < 0)
+        failAt(f_, s->begin,
+               "speed_mm_s " + numberText(s->number) +
+                   " is below zero: no motion runs at it; hint: a speed is > 0 mm/s");
       mo.speed_mm_s = s->number;
+    }
     if (const JValue* s = m[kJFine]; s != nullptr)
       mo.fine = f_.bytes.compare(s->begin, 4, "true") == 0;
     mo.target = static_cast<int>(p_.target_list.size() - 1);

@@ -73,14 +73,44 @@ class TpReader {
   /// Appends the next line's tokens to tok_; false at the end of the file.
   bool lexMore() {
     if (next_line_ >= f_.bytes.size()) return false;
+    const std::size_t from = tok_.size();
     next_line_ = lexLine(f_, opt_, next_line_, tok_);
+    quotesInBrackets(from);
     return true;
+  }
+
+  /// An apostrophe inside brackets (a position comment `P[101:1-0']`) is text, not the start of
+  /// a string: the lexer read it as a string running to the line end, so the line's tokens from
+  /// tok_[from] on are re-lexed after the bracket that closes the comment.
+  void quotesInBrackets(std::size_t from) {
+    int depth = 0;
+    for (std::size_t k = from; k < tok_.size(); ++k) {
+      if (punct(k, '[')) ++depth;
+      if (punct(k, ']') && depth > 0) --depth;
+      if (depth == 0 || tok_[k].kind != TokenKind::kString || f_.bytes[tok_[k].offset] != '\'')
+        continue;
+      const std::size_t close = f_.bytes.find(']', tok_[k].offset);
+      const std::size_t eol = f_.bytes.find_first_of("\r\n", tok_[k].offset);
+      if (close == std::string::npos || close > eol) return;  // unterminated: reference() says so
+      std::vector<Token> rest;
+      lexLine(f_, opt_, close, rest);
+      tok_[k].kind = TokenKind::kOther;  // the comment text from the apostrophe on
+      tok_[k].length = static_cast<std::uint32_t>(close - tok_[k].offset);
+      std::size_t end = k + 1;  // the tokens of this line the string swallowed or followed
+      while (end < tok_.size() && tok_[end - 1].kind != TokenKind::kNewline) ++end;
+      tok_.erase(tok_.begin() + static_cast<std::ptrdiff_t>(k + 1),
+                 tok_.begin() + static_cast<std::ptrdiff_t>(end));
+      tok_.insert(tok_.begin() + static_cast<std::ptrdiff_t>(k + 1), rest.begin(), rest.end());
+    }
   }
   bool atLineStart(std::uint32_t offset) const {
     const int line = f_.lineOf(offset);
     return line != 0 && f_.line_starts[static_cast<std::size_t>(line - 1)] == offset;
   }
   std::unordered_map<int, int> by_number_;  // P number -> target
+  /// P number -> line of a record never taught (negated once a motion to it is reported)
+  std::unordered_map<int, int> untaught_;
+  bool other_config_noted_{false};
   struct Pending {
     int motion;
     int number;
@@ -143,6 +173,8 @@ class TpReader {
       // continuation line of a C/A motion: the end point
       continuation(k, e);
       return;
+    } else if (subBlockEnd(k, e)) {
+      return;
     } else {
       // a program line starts with its number (`12:`): anything else is a damaged line, never
       // dropped in silence (it may be a motion)
@@ -186,6 +218,14 @@ class TpReader {
                    tok_[k].offset, tok_[e - 1].offset + tok_[e - 1].length - tok_[k].offset)));
       }
     }
+  }
+
+  /// `------ ;`: the line that closes the point-logic sub-block of a motion (its own numbered
+  /// lines `1:  CALL ... ;` follow the motion line; TB/TA/DB logic).
+  bool subBlockEnd(std::size_t k, std::size_t e) const {
+    std::size_t q = k;
+    while (q < e && punct(q, '-')) ++q;
+    return q > k && q + 1 == e && punct(q, ';');
   }
 
   void tail(Motion& m, std::size_t k, std::size_t e) {
@@ -278,6 +318,16 @@ class TpReader {
     tail(m, after, e);
     p_.motions.push_back(std::move(m));
     pending_.push_back(Pending{static_cast<int>(p_.motions.size() - 1), pnum, -1});
+    optionCalls(after, e);
+  }
+
+  /// Point-logic calls on the motion line (`TB .50sec,CALL SPINDLE_ON`, `DB 10.0mm,CALL DRILL`):
+  /// markers of that motion, as a CALL on its own line after it.
+  void optionCalls(std::size_t k, std::size_t e) {
+    for (std::size_t q = k; q + 1 < e; ++q) {
+      if (iequals(tx(q), "CALL") && tok_[q + 1].kind == TokenKind::kIdentifier)
+        marker("call " + std::string(tx(q + 1)));
+    }
   }
 
   void continuation(std::size_t k, std::size_t e) {
@@ -286,6 +336,7 @@ class TpReader {
     const std::string_view ref = tx(k);
     const std::size_t after = reference(k, e, number);
     tail(m, after, e);
+    optionCalls(after, e);
     if (iequals(ref, "P") && number >= 0) {
       pending_.back().number = number;
     } else {
@@ -409,6 +460,7 @@ class TpReader {
     t.line = f_.lineOf(tok_[rec].offset);
     t.config.vendor = Vendor::kFanuc;
     bool gp1 = false;
+    bool untaught = false;
     bool cart = false;
     bool joint = false;
     int group = 0;
@@ -431,6 +483,11 @@ class TpReader {
         continue;
       }
       const bool uf = iequals(n, "UF");
+      if ((uf || iequals(n, "UT")) && q + 2 < e && punct(q + 1, ':') && iequals(tx(q + 2), "F")) {
+        untaught = true;  // `UF : F`: the controller's mark of a position never taught
+        q += 3;
+        continue;
+      }
       if ((uf || iequals(n, "UT")) && q + 2 < e && punct(q + 1, ':')) {
         std::size_t r = q + 2;
         const NumberField v = signedNumber(r, e, tok_[q + 1].offset + 1);
@@ -449,12 +506,22 @@ class TpReader {
         const std::string_view sv = f_.text(s);
         if (sv.size() < 2 || sv.back() != '\'') fail(s.offset, "unterminated CONFIG string");
         if (s.length - 2 > NumberField::kMaxLength) fail(s.offset, "CONFIG string too long");
-        NumberField& config = t.fanucConfig();
-        config.file = 0;
-        config.offset = s.offset + 1;
-        config.length = static_cast<std::uint16_t>(s.length - 2);
-        parseConfig(sv.substr(1, sv.size() - 2), t.config, s.offset);
+        const std::string_view text = sv.substr(1, sv.size() - 2);
+        if (parseConfig(text, t.config)) {
+          NumberField& config = t.fanucConfig();
+          config.file = 0;
+          config.offset = s.offset + 1;
+          config.length = static_cast<std::uint16_t>(s.length - 2);
+        } else if (!untaught) {
+          otherConfig(t, text, s.offset);
+        }
         q += 3;
+        continue;
+      }
+      if (q + 2 < e && punct(q + 1, '=') && punct(q + 2, '*')) {
+        untaught = true;  // `X = ********  mm`: a value never taught
+        q += 2;
+        while (q < e && punct(q, '*')) ++q;
         continue;
       }
       if (q + 1 < e && punct(q + 1, '=')) {
@@ -467,37 +534,62 @@ class TpReader {
       ++q;
     }
     if (!gp1) p_.notes.push_back(t.name + ": no GP1 group; kept verbatim");
+    if (by_number_.count(number) != 0 || untaught_.count(number) != 0)
+      fail(tok_[rec].offset, "position P[" + std::to_string(number) + "] defined twice");
+    if (untaught) {
+      // a record the controller wrote for a position never taught: kept verbatim, no target;
+      // a motion to it is unresolved (finish()), an error only where a job needs its pose
+      untaught_[number] = t.line;
+      p_.notes.push_back(t.name + " (" + f_.path + ":" + std::to_string(t.line) +
+                         "): never taught (UF : F / ********), kept verbatim; a motion to it has "
+                         "no known position");
+      return;
+    }
     t.kind = joint && !cart ? TargetKind::kJoint : TargetKind::kCartesian;
     t.orientation = t.kind == TargetKind::kCartesian ? Orientation::kFanucWpr : Orientation::kNone;
-    if (by_number_.count(number) != 0)
-      fail(tok_[rec].offset, "position P[" + std::to_string(number) + "] defined twice");
     p_.target_list.push_back(std::move(t));
     by_number_[number] = static_cast<int>(p_.target_list.size() - 1);
   }
 
-  void parseConfig(std::string_view s, Configuration& c, std::size_t off) const {
+  /// A 6-axis arm's CONFIG `F|N U|D T|B, t1, t2, t3` into c; false (c unchanged) for any other
+  /// text the controller writes (a SCARA's `'L, 0, 0, 0'`, an untaught `''`).
+  static bool parseConfig(std::string_view s, Configuration& c) {
+    Configuration r = c;
     int turn = 0;
     for (std::size_t i = 0; i < s.size(); ++i) {
       const char ch = static_cast<char>(std::toupper(static_cast<unsigned char>(s[i])));
       if (ch == 'F' || ch == 'N')
-        c.flip = ch;
+        r.flip = ch;
       else if (ch == 'U' || ch == 'D')
-        c.elbow = ch;
+        r.elbow = ch;
       else if (ch == 'T' || ch == 'B')
-        c.front = ch;
+        r.front = ch;
       else if (isDigit(ch) || ch == '-') {
         std::size_t j = i + 1;
         while (j < s.size() && isDigit(s[j])) ++j;
         const auto v = parseNumber(s.substr(i, j - i));
-        if (!v || turn >= 3) fail(off, "CONFIG string not understood: '" + std::string(s) + "'");
-        c.turns[static_cast<std::size_t>(turn++)] = toInt(*v, 0);
+        if (!v || turn >= 3) return false;
+        r.turns[static_cast<std::size_t>(turn++)] = toInt(*v, 0);
         i = j - 1;
       } else if (ch != ' ' && ch != ',') {
-        fail(off, "CONFIG string not understood: '" + std::string(s) + "'");
+        return false;
       }
     }
-    if (c.flip == 0 || c.elbow == 0 || c.front == 0)
-      fail(off, "CONFIG string needs F|N U|D T|B: '" + std::string(s) + "'");
+    if (r.flip == 0 || r.elbow == 0 || r.front == 0) return false;
+    c = r;
+    return true;
+  }
+
+  /// A CONFIG that is not a 6-axis arm's (a SCARA's `'L, 0, 0, 0'`): kept as text (the bytes stay
+  /// as they are), the target states no configuration; noted once.
+  void otherConfig(Target& t, std::string_view text, std::size_t off) {
+    t.config.vendor = Vendor::kNone;
+    if (other_config_noted_) return;
+    other_config_noted_ = true;
+    p_.notes.push_back("CONFIG '" + std::string(text.substr(0, 40)) + "' (" + f_.path + ":" +
+                       std::to_string(f_.lineOf(off)) +
+                       ") is not a 6-axis arm's configuration (F|N U|D T|B, e.g. a SCARA's): kept "
+                       "as text; roprec predicts 6-axis arms only");
   }
 
   /// X Y Z W P R J1..J6 E1..E6 of a position record into the target.
@@ -555,6 +647,16 @@ class TpReader {
       Motion& m = p_.motions[static_cast<std::size_t>(pd.motion)];
       auto bind = [&](int number) -> int {
         if (number < 0) return -1;
+        if (auto u = untaught_.find(number); u != untaught_.end()) {
+          m.derivation = p_.addText("untaught");
+          if (u->second < 0) return -1;  // reported at its first motion
+          p_.unresolved.push_back(Unresolved{
+              "P[" + std::to_string(number) + "]", 0, m.line,
+              "position never taught (UF : F / ******** at line " + std::to_string(u->second) +
+                  "): its pose is not known (not predicted, not compensated)"});
+          u->second = -u->second;
+          return -1;
+        }
         const auto it = by_number_.find(number);
         if (it == by_number_.end()) {
           p_.unresolved.push_back(

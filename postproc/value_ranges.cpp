@@ -132,6 +132,12 @@ void checkMotion(const Program& p, const Motion& m) {
                                : (p.files.empty() ? std::string() : p.files.front().path);
   // a known linear speed (speed_mm_s < 0: not stated or not known) drives the hole recognition's
   // feed and the machining times
+  if (m.speed_mm_s == 0) {
+    throw InputError(file, m.line,
+                     p.text(m.instruction) +
+                         ": speed 0 mm/s: the motion would not move; hint: give the speed the "
+                         "motion runs at (> 0 mm/s)");
+  }
   if (m.speed_mm_s >= 0 && !(m.speed_mm_s <= kMaxSpeedMmS)) {
     throw InputError(file, m.line,
                      p.text(m.instruction) + ": speed " + numberText(m.speed_mm_s) +
@@ -149,7 +155,10 @@ void checkMotion(const Program& p, const Motion& m) {
 }  // namespace
 
 void checkValueRanges(const Program& p) {
-  for (const Target& t : p.target_list) checkTarget(p, t);
+  // only the targets a motion moves to: an unused placeholder point (`Xp9={X 666666.688,…}` in a
+  // .dat) places nothing
+  for (const Target& t : p.target_list)
+    if (!t.uses.empty()) checkTarget(p, t);
   for (const Frame& f : p.frames) checkFrame(p, f);
   for (const Motion& m : p.motions) checkMotion(p, m);
 }

@@ -494,6 +494,31 @@ TEST(CompensationCli, UnreachableHoleExitsOneAndWritesNothingUnlessPartialAllowe
   EXPECT_NE(test::readFile(out).find("FAR1,4000.000,0.000,250.000,0,0,-1"), std::string::npos);
 }
 
+TEST(CompensationCli, AHoleDeeperThanTheDrillCutsIsNotCompensatedAndNamedWithItsReason) {
+  const std::string dir = test::tempDir("deepcomp");
+  test::writeFile(dir + "/p.src", test::krlCyclesOfDepths({18.0, 358.0, 20.0}));
+  const std::string cell = test::sourceDir() + "/samples/cells/housing-kr120.xml";
+  const auto r = test::runRoprec("compensate --cell '" + cell + "' '" + dir + "/p.src' -o '" + dir +
+                                 "/out.src'");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("roprec: hole H2 (" + dir +
+                       "/p.src:13): not compensated: the drill cannot reach the bottom: the hole "
+                       "is 358 mm deep, the Ø8.5 mm drill cuts 34 mm at most"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("hole H1 ("), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("hole H3 ("), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir + "/out.src"));
+  const auto p = test::runRoprec("compensate --cell '" + cell + "' '" + dir + "/p.src' -o '" + dir +
+                                 "/out.src' --allow-partial");
+  EXPECT_EQ(p.exit_code, 1) << p.err;
+  ASSERT_TRUE(fs::exists(dir + "/out.src"));
+  // the deep "hole" keeps its programmed targets
+  EXPECT_NE(test::readFile(dir + "/out.src")
+                .find("LIN {X 0.000,Y 0.000,Z -58.000,A 0.000,B 0.000,C 180.000}"),
+            std::string::npos);
+}
+
 TEST(CompensationCli, OutputsAreByteIdenticalForIdenticalInputs) {
   const std::string dir = test::tempDir("det");
   const std::string cell = test::sourceDir() + "/samples/cells/housing-kr120.xml";

@@ -4,6 +4,7 @@
 // centre time of 70 mm) before; the surface point is reported with the bottom.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
@@ -57,18 +58,27 @@ TEST(DrillSurface, HoleStartsWhereTheFeedStartsNotAtTheApproachPoint) {
 }
 
 TEST(DrillSurface, NoFeedChangeLeavesTheDepthToTheCell) {
-  // every move at the same speed: the program does not say where the material starts
+  // every move at the same speed: the program does not say where the material starts; the drill
+  // call is the process evidence
   std::string text = kHandWritten;
-  text.replace(text.find("$VEL.CP = 0.002"), 15, "WAIT SEC 0.3\n$VEL.CP = 0.250");
+  text.replace(text.find("$VEL.CP = 0.002"), 15, "WAIT SEC 0.3\nDRILL_CYCLE()\n$VEL.CP = 0.250");
   const postproc::Program p = postproc::parseProgram(postproc::Dialect::kKrl, "hand.src", text);
   const std::vector<postproc::Hole> holes = postproc::recognizeHoles(p);
   ASSERT_EQ(holes.size(), 1U);
   EXPECT_EQ(holes[0].depth, 0.0);
   EXPECT_EQ(holes[0].surface_motion, -1);
   EXPECT_EQ(postproc::holeEvidence(p, holes[0]),
-            (std::vector<std::string>{"dwell 0.3 s", "exact stop at the bottom",
+            (std::vector<std::string>{"dwell 0.3 s", "call DRILL_CYCLE", "exact stop at the bottom",
                                       "no feed change: surface and depth not known from the "
                                       "program"}));
+}
+
+TEST(DrillSurface, ADwellAloneIsNoDrillingEvidence) {
+  // down, wait, up at one speed: a gripper placing a part looks the same, so no hole
+  std::string text = kHandWritten;
+  text.replace(text.find("$VEL.CP = 0.002"), 15, "WAIT SEC 0.3\n$VEL.CP = 0.250");
+  const postproc::Program p = postproc::parseProgram(postproc::Dialect::kKrl, "hand.src", text);
+  EXPECT_TRUE(postproc::recognizeHoles(p).empty());
 }
 
 TEST(DrillSurface, PeckCycleLongerThanThePoseCacheKeepsItsSurfaceAndBottom) {
@@ -120,6 +130,36 @@ TEST(DrillSurface, DrillMarkersAreRecognisedInAnyCase) {
     EXPECT_TRUE(postproc::drillMarker(m)) << m;
   for (const char* m : {"", "wait for part", "; a dwelling", "SPIN", "WAIT SEC 0.3"})
     EXPECT_FALSE(postproc::drillMarker(m)) << m;
+}
+
+TEST(DrillSurface, AHoleListConfirmsACycleWithADwellAlone) {
+  std::string text = kHandWritten;
+  text.replace(text.find("$VEL.CP = 0.002"), 15, "WAIT SEC 0.3\n$VEL.CP = 0.250");
+  const postproc::Program p = postproc::parseProgram(postproc::Dialect::kKrl, "hand.src", text);
+  // the hole on the list (program frame, drilling along -z) and one the program never visits
+  const std::vector<postproc::HoleSpec> listed =
+      postproc::parseHoleList("holes.csv", "id,x,y,z,i,j,k\nA1,150,0,234,0,0,-1\n");
+  const std::vector<postproc::Hole> holes =
+      postproc::withHoleListEvidence(p, postproc::recognizeHoles(p), listed, 0.5);
+  ASSERT_EQ(holes.size(), 1U);
+  EXPECT_EQ(holes[0].id, "H1");
+  EXPECT_TRUE(holes[0].dwell_only);
+  EXPECT_LT((holes[0].position * 1e3 - Eigen::Vector3d(150, 0, 214)).norm(), 1e-9);
+  const std::vector<std::string> ev = postproc::holeEvidence(p, holes[0]);
+  EXPECT_NE(
+      std::find(ev.begin(), ev.end(), "on the hole list (a dwell alone is no drilling evidence)"),
+      ev.end());
+  const std::vector<postproc::HoleSpec> elsewhere =
+      postproc::parseHoleList("holes.csv", "id,x,y,z,i,j,k\nA1,450,0,234,0,0,-1\n");
+  EXPECT_TRUE(
+      postproc::withHoleListEvidence(p, postproc::recognizeHoles(p), elsewhere, 0.5).empty());
+}
+
+TEST(DrillSurface, OnlyCallsAndCommentsAreProcessEvidenceNotADwell) {
+  for (const char* m : {"SPINDLE_ON()", "call Drill_Cycle", "plunge", "; Bohrung 12"})
+    EXPECT_TRUE(postproc::processMarker(m)) << m;
+  for (const char* m : {"dwell 0.3 s", "DWELL", "wait for part"})
+    EXPECT_FALSE(postproc::processMarker(m)) << m;
 }
 
 TEST(DrillSurface, PredictAndInspectReportTheSurfaceAndTheBottom) {

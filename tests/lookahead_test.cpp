@@ -220,6 +220,7 @@ TEST(Lookahead, SameRequestTellsApartEveryField) {
       {"nominal axis", [](HoleRequest& r) { r.nominal_axis->second.z() = 1; }},
       {"seed", [](HoleRequest& r) { (*r.ik_seed)[5] = -0.0; }},
       {"no seed", [](HoleRequest& r) { r.ik_seed.reset(); }},
+      {"evidence", [](HoleRequest& r) { r.evidence = "on the hole list"; }},
   };
   for (const auto& [what, change] : changes) {
     HoleRequest b = a;
@@ -228,7 +229,7 @@ TEST(Lookahead, SameRequestTellsApartEveryField) {
     EXPECT_FALSE(api::sameRequest(b, a)) << what;
   }
   // a field added to HoleRequest must be compared by sameRequest (and changed above)
-  EXPECT_EQ(sizeof(HoleRequest), 464U);
+  EXPECT_EQ(sizeof(HoleRequest), 496U);
 }
 
 }  // namespace

@@ -67,9 +67,15 @@ TEST(PostprocCli, BrokenNumber) {
   expectRejected(t, "j.ls:8:", "broken number");
 }
 
-TEST(PostprocCli, MissingDat) {
+TEST(PostprocCli, MissingDatNamesTheTargetAsUnresolved) {
+  // a .src may stand alone (its points globals of $config.dat or another module): it reads, and
+  // the target it cannot place is named with its line, not refused
   const Bad b = write("nodat", "job.src", "DEF job( )\nPTP $AXIS_ACT\nLIN XP1 C_DIS\nEND\n");
-  expectRejected(b, "job.src:3:", "missing .dat");
+  const auto r = test::runRoprec("inspect '" + b.program + "'");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("\"ref\": \"XP1\""), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"line\": 3"), std::string::npos) << r.out;
+  EXPECT_EQ(r.err.find("missing .dat"), std::string::npos) << r.err;
 }
 
 TEST(PostprocCli, TruncatedFile) {

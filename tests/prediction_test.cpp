@@ -386,5 +386,139 @@ TEST(PredictionCli, BadInputExitsTwoWithFileAndLine) {
   EXPECT_NE(r2.err.find("cell.xml:1"), std::string::npos) << r2.err;
 }
 
+/// Writes `text` as `name` into a fresh temp dir; its path.
+std::string written(const std::string& tag, const std::string& name, const std::string& text) {
+  const std::string path = test::tempDir(tag) + "/" + name;
+  test::writeFile(path, text);
+  return path;
+}
+
+TEST(Prediction, AHoleDeeperThanTheDrillCutsFailsAloneAndLeavesTheOthersAsTheyWere) {
+  // housing-kr120: Ø8.5 drill, <drill stickout_mm="34"> (no flute length): it cuts 34 mm at most.
+  // A 358 mm "hole" (a pick-and-place move fed slowly) fails with its reason, no IK, no time;
+  // the holes around it are predicted as without it (it seeds nothing).
+  const std::string cell = test::sourceDir() + "/samples/cells/housing-kr120.xml";
+  const std::string with =
+      written("deep", "p.src", test::krlCyclesOfDepths({18.0, 358.0, 34.0, 20.0}));
+  const api::PredictionContext c = api::loadPredictionContext(cell, with, std::nullopt, "");
+  ASSERT_EQ(c.job.requests.size(), 4u);
+  for (const int threads : {1, 2}) {
+    PredictOptions o;
+    o.threads = threads;
+    const std::vector<HolePrediction> p = predictHoles(c.model, c.job.requests, o);
+    EXPECT_EQ(p[1].status, HoleStatus::kUnreachable);
+    EXPECT_EQ(p[1].verdict, Verdict::kUnreachable);
+    EXPECT_TRUE(p[1].beyond_drill);
+    EXPECT_NE(p[1].reason.find("the hole is 358 mm deep, the Ø8.5 mm drill cuts 34 mm at most "
+                               "(cell <drill stickout_mm>)"),
+              std::string::npos)
+        << p[1].reason;
+    EXPECT_NEAR(p[1].depth, 358e-3, 1e-9);
+    EXPECT_EQ(p[1].mc_time, 0.0);
+    // exactly the drill's length is cut
+    EXPECT_EQ(p[2].status, HoleStatus::kOk) << p[2].reason;
+    EXPECT_FALSE(p[2].beyond_drill);
+    EXPECT_GT(p[2].mc_time, 0.0);
+    std::vector<HoleRequest> others = c.job.requests;
+    others.erase(others.begin() + 1);
+    const std::vector<HolePrediction> q = predictHoles(c.model, others, o);
+    for (const auto& [i, k] : {std::pair{0, 0}, {2, 1}, {3, 2}}) {
+      EXPECT_EQ(p[i].status, HoleStatus::kOk) << p[i].reason;
+      EXPECT_TRUE(test::sameBits(p[i].d_work.data(), q[k].d_work.data(), 3)) << i;
+      EXPECT_TRUE(test::sameBits(p[i].joints.data(), q[k].joints.data(), 6)) << i;
+      EXPECT_TRUE(test::sameBits(p[i].U_work_exact, q[k].U_work_exact)) << i;
+    }
+  }
+}
+
+TEST(Prediction, TheDrillsFluteLengthLimitsTheDepthItCuts) {
+  // a cell stating <drill flute_length_mm="20">: a 26 mm hole fails, a 20 mm one does not
+  std::string xml = test::readFile(test::sourceDir() + "/samples/cells/housing-kr120.xml");
+  const std::string from = "stickout_mm=\"34\"";
+  ASSERT_NE(xml.find(from), std::string::npos);
+  xml.replace(xml.find(from), from.size(), from + " flute_length_mm=\"20\"");
+  const std::string dir = test::tempDir("flute");
+  test::writeFile(dir + "/cell.xml", xml);
+  test::writeFile(dir + "/p.src", test::krlCyclesOfDepths({20.0, 26.0}));
+  const api::PredictionContext c =
+      api::loadPredictionContext(dir + "/cell.xml", dir + "/p.src", std::nullopt, "");
+  const std::vector<HolePrediction> p = predictHoles(c.model, c.job.requests);
+  EXPECT_EQ(p[0].status, HoleStatus::kOk) << p[0].reason;
+  EXPECT_EQ(p[1].verdict, Verdict::kUnreachable);
+  EXPECT_NE(p[1].reason.find("cuts 20 mm at most (cell <drill flute_length_mm>)"),
+            std::string::npos)
+      << p[1].reason;
+}
+
+TEST(PredictionCli, AHoleDeeperThanTheDrillCutsIsAFailedHoleNotAVerdictOfTheJob) {
+  const std::string cell = test::sourceDir() + "/samples/cells/housing-kr120.xml";
+  const std::string prog = written("deepcli", "p.src", test::krlCyclesOfDepths({18.0, 358.0}));
+  const std::string json = prog + ".json";
+  const auto r =
+      test::runRoprec("predict --cell '" + cell + "' '" + prog + "' --json '" + json + "'");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("roprec: hole H2 (" + prog +
+                       ":13): unreachable: the drill cannot reach the bottom: the hole is 358 mm "
+                       "deep"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("hole H1 ("), std::string::npos) << r.err;  // predicted normally
+  const std::string j = test::readFile(json);
+  const std::size_t h2 = j.find("\"id\": \"H2\"");
+  ASSERT_NE(h2, std::string::npos) << j;
+  const std::string tail = j.substr(h2);
+  EXPECT_NE(tail.find("\"depth_mm\": 358.000"), std::string::npos);
+  EXPECT_NE(tail.find("\"verdict\": \"unreachable\""), std::string::npos);
+  EXPECT_NE(tail.find("\"reason\": \"the drill cannot reach the bottom"), std::string::npos);
+  EXPECT_NE(tail.find("\"mc_time_s\": 0.000"), std::string::npos);
+  EXPECT_EQ(tail.substr(0, tail.find("\"verdict\"")).find("joints_deg"), std::string::npos);
+}
+
+/// The "evidence" members of a prediction JSON, in hole order.
+std::vector<std::string> evidenceOf(const std::string& json) {
+  std::vector<std::string> e;
+  const std::regex member("\"evidence\": \"([^\"]*)\"");
+  for (auto it = std::sregex_iterator(json.begin(), json.end(), member);
+       it != std::sregex_iterator(); ++it)
+    e.push_back((*it)[1]);
+  return e;
+}
+
+TEST(PredictionCli, EveryHoleStatesItsDrillingEvidence) {
+  const std::string cell = test::sourceDir() + "/samples/cells/housing-kr120.xml";
+  const std::string dir = test::tempDir("evidence");
+  // a slower feed along the tool axis; a spindle call with one speed throughout; a hole list
+  test::writeFile(dir + "/feed.src", test::krlCyclesOfDepths({18.0, 20.0}));
+  test::writeFile(dir + "/call.src",
+                  std::string("DEF c ( )\n") + test::kHousingBase +
+                      "\n$TOOL = {FRAME: X 0.000,Y 0.000,Z 320.000,A 0.000,B 0.000,C 0.000}\n"
+                      "$VEL.CP = 0.25\n"
+                      "PTP {X 0.000,Y 0.000,Z 300.000,A 0.000,B 0.000,C 180.000}\n"
+                      "LIN {X 0.000,Y 0.000,Z 282.000,A 0.000,B 0.000,C 180.000}\n"
+                      "SPINDLE_DRILL()\n"
+                      "LIN {X 0.000,Y 0.000,Z 300.000,A 0.000,B 0.000,C 180.000}\n"
+                      "END\n");
+  test::writeFile(dir + "/holes.csv", "id,x,y,z,i,j,k\nA1,100,0,150,0,0,-1\nA2,120,0,150,0,0,-1\n");
+  const std::vector<std::pair<std::string, std::vector<std::string>>> cases{
+      {"feed.src", {"feed segment along the tool axis", "feed segment along the tool axis"}},
+      {"call.src", {"call SPINDLE_DRILL after the motion at line 6"}},
+      {"holes.csv", {"on the hole list", "on the hole list"}}};
+  for (const auto& [file, expected] : cases) {
+    const auto r = test::runRoprec("predict --cell '" + cell + "' '" + dir + "/" + file +
+                                   "' --json '" + dir + "/" + file + ".json' --quiet");
+    EXPECT_LE(r.exit_code, 1) << file << r.err;
+    const std::string j = test::readFile(dir + "/" + file + ".json");
+    EXPECT_EQ(evidenceOf(j), expected) << file;
+    // one member per hole, right after its id and line
+    EXPECT_NE(j.find("\"line\": " +
+                     std::string(file == "holes.csv"  ? "2"
+                                 : file == "call.src" ? "6"
+                                                      : "7") +
+                     ",\n      \"evidence\": \""),
+              std::string::npos)
+        << j.substr(0, 1500);
+  }
+}
+
 }  // namespace
 }  // namespace roprec

@@ -104,6 +104,38 @@ TEST(ProcessSpec, MachiningDeviationOverridesApplyToTheDiametersTheyName) {
   EXPECT_NEAR(p6.axis_lever, 6e-3, 1e-15);
 }
 
+TEST(ProcessSpec, CuttingLengthIsTheFluteLengthElseTheStickOutElseTheThreeDiameterEstimate) {
+  const DrillingSpec plain = parse(kDrilling).drilling;  // Ø10, nothing stated
+  const CuttingLength est = cuttingLengthAt(plain, 10e-3);
+  EXPECT_NEAR(est.length, 30e-3, 1e-15);
+  EXPECT_EQ(est.source.rfind("estimate: stick-out 3 Dc", 0), 0u) << est.source;
+  EXPECT_NEAR(cuttingLengthAt(plain, 6e-3).length, 18e-3, 1e-15);
+  const auto with = [](const std::string& attrs) {
+    return parse("<process type=\"drilling\">\n  <drill diameter_mm=\"10\" " + attrs +
+                 "/>\n  <cut feed_mm_per_rev=\"0.2\"/>\n  <material name=\"Al 6061-T6\"/>\n"
+                 "</process>\n")
+        .drilling;
+  };
+  const DrillingSpec stick = with("stickout_mm=\"50\"");
+  EXPECT_NEAR(cuttingLengthAt(stick, 10e-3).length, 50e-3, 1e-15);
+  EXPECT_EQ(cuttingLengthAt(stick, 10e-3).source, "cell <drill stickout_mm>");
+  const DrillingSpec flute = with("stickout_mm=\"50\" flute_length_mm=\"43\"");
+  EXPECT_NEAR(flute.drill_flute_length.value_or(0), 43e-3, 1e-15);
+  EXPECT_NEAR(cuttingLengthAt(flute, 10e-3).length, 43e-3, 1e-15);
+  EXPECT_EQ(cuttingLengthAt(flute, 10e-3).source, "cell <drill flute_length_mm>");
+  // the flute length is the drill's own: another diameter keeps its estimate
+  EXPECT_NEAR(cuttingLengthAt(flute, 6e-3).length, 18e-3, 1e-15);
+  // flutes longer than the stick-out: the part inside the holder does not cut
+  const DrillingSpec held = with("stickout_mm=\"40\" flute_length_mm=\"60\"");
+  EXPECT_NEAR(cuttingLengthAt(held, 10e-3).length, 40e-3, 1e-15);
+  EXPECT_NE(cuttingLengthAt(held, 10e-3).source.find("flutes inside the holder"),
+            std::string::npos);
+  expectError(
+      "<process type=\"drilling\">\n  <drill diameter_mm=\"10\" flute_length_mm=\"5\"/>\n"
+      "  <cut feed_mm_per_rev=\"0.2\"/>\n  <material name=\"Al 6061-T6\"/>\n</process>\n",
+      2, "flute_length_mm");
+}
+
 TEST(ProcessSpec, MachiningDeviationCoverageFactorIsRefused) {
   expectError(
       "<process type=\"drilling\">\n"

@@ -152,5 +152,28 @@ TEST(TargetListValidation, PredictStatesHowARoboDkExportWasRead) {
   EXPECT_NE(json.find("\"R2\""), std::string::npos);
 }
 
+TEST(TargetListValidation, SpeedsOfZeroOrBelowAreErrorsAtTheirLine) {
+  for (const char* speed : {"0", "-5"}) {
+    SCOPED_TRACE(speed);
+    const auto csv = readError(Dialect::kCsv, std::string("id,motion,x,y,z,a,b,c,speed\n"
+                                                          "P1,L,100,0,500,0,90,0,100\n"
+                                                          "P2,L,100,0,480,0,90,0,") +
+                                                  speed + "\n");
+    ASSERT_TRUE(csv);
+    EXPECT_EQ(csv->line(), 3);
+    EXPECT_NE(std::string(csv->what()).find("hint:"), std::string::npos) << csv->what();
+    const auto json = readError(
+        Dialect::kJson, std::string("{\"targets\": [\n"
+                                    " {\"id\": \"P1\", \"position_mm\": [100, 0, 500], "
+                                    "\"quaternion_wxyz\": [1, 0, 0, 0], \"speed_mm_s\": 100},\n"
+                                    " {\"id\": \"P2\", \"position_mm\": [100, 0, 480], "
+                                    "\"quaternion_wxyz\": [1, 0, 0, 0], \"speed_mm_s\": ") +
+                            speed + "}\n]}\n");
+    ASSERT_TRUE(json);
+    EXPECT_EQ(json->line(), 3);
+    EXPECT_NE(std::string(json->what()).find("hint:"), std::string::npos) << json->what();
+  }
+}
+
 }  // namespace
 }  // namespace roprec

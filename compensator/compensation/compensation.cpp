@@ -809,10 +809,19 @@ void assemble(Evaluator& ev, const HoleRequest& h, const nc::Loads& loads, bool 
   }
   c.residual = def.T_real.translation() - c.T_nominal.translation();
   c.residual_rot = smallRotationDifference(def.T_real.linear(), c.T_nominal.linear()).norm();
-  HoleRequest after = h;
+  // the compensated target as a request: h's fields but the pose, the configuration, no nominal
+  // axis and no evidence (not predicted from; copying its text would allocate per hole)
+  HoleRequest after;
+  after.id = h.id;
   after.T_W_tcp = c.T_programmed;
+  after.tolerance = h.tolerance;
+  after.diameter = h.diameter;
+  after.depth = h.depth;
   after.config = c.config;
-  after.nominal_axis.reset();
+  after.written_config = h.written_config;
+  after.line = h.line;
+  after.surface_W = h.surface_W;
+  after.ik_seed = h.ik_seed;
   c.after = predictHole(m, d, after, &c.theta_cmd);
   if (c.after.status != HoleStatus::kOk) {
     c.reason = "re-prediction of the compensated target failed: " + c.after.reason;
@@ -963,6 +972,7 @@ void stiffestAgainstKeep(std::vector<Evaluator>& evs, const std::vector<HoleRequ
 /// Why hole i is not compensated before its stage 5 ("" when it is to be finalized).
 std::string notCompensatedReason(const HoleCompensation& c, const Node& chosen) {
   if (c.before.status == HoleStatus::kNotConverged) return "not compensated: " + c.before.reason;
+  if (c.before.beyond_drill) return c.before.reason;  // not a question of the arm's posture
   if (c.before.status != HoleStatus::kOk) {
     // No arm posture to keep: the controller cannot reach the programmed target as written, and
     // any "compensated" target would put the arm into a posture the program never asked for.

@@ -88,6 +88,9 @@ ProcessAtDiameter processAt(const ProcessSpec& spec, double diameter) {
     p.mach = machiningDeviation(s.deviation, s.geometry, F.residual);
     p.feed_rate = s.feed * s.spindle_rpm / 60.0;
     p.default_depth = s.hole_depth > 0 ? s.hole_depth : 2.0 * diameter;
+    CuttingLength c = cuttingLengthAt(spec.drilling, diameter);
+    p.cutting_length = c.length;
+    p.cutting_length_source = std::move(c.source);
   } else {
     const SteadyProcessLoad l = steadyProcessLoad(spec);
     p.wrench = l.wrench;
@@ -226,12 +229,34 @@ nc::Loads processLoads(const PredictionModel& m, const ProcessAtDiameter* proc) 
 
 namespace {
 
+/// The hole's depth: its own, else the process's default depth (m).
+double holeDepth(const HoleRequest& h, const ProcessAtDiameter* proc) {
+  return h.depth > 0 ? h.depth : (proc ? proc->default_depth : 0.0);
+}
+
+/// Step 0: a hole deeper than the drill cuts fails on its own (p says why; true).
+bool beyondDrill(const PredictionModel& m, const HoleRequest& h, HolePrediction& p) {
+  const ProcessAtDiameter* proc = processFor(m, h.diameter);
+  if (!proc || proc->cutting_length <= 0) return false;
+  const double depth = holeDepth(h, proc);
+  if (depth <= proc->cutting_length * (1.0 + 1e-9)) return false;
+  p.status = HoleStatus::kUnreachable;
+  p.verdict = Verdict::kUnreachable;
+  p.beyond_drill = true;
+  p.reason = "the drill cannot reach the bottom: the hole is " + numberText(depth * 1e3) +
+             " mm deep, the Ø" + numberText(proc->diameter * 1e3) + " mm drill cuts " +
+             numberText(proc->cutting_length * 1e3) + " mm at most (" +
+             proc->cutting_length_source + ")";
+  return true;
+}
+
 /// Step 1 (IK): the solution the hole's configuration selects, else the admissible one nearest
 /// `ref` (from `ahead`, the hole's IK candidates computed beforehand, when given). On failure
 /// p.status/verdict/reason say why and false is returned.
 bool chooseSolution(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
                     const Pose& T_W_flange, const Vec6& ref, HolePrediction& p, IkSolution& sol,
                     const IkCandidates* ahead = nullptr) {
+  if (beyondDrill(m, h, p)) return false;
   if (h.config) {
     ConfigurationMatch match;
     match.explain_inexact = false;  // reason read only when nothing is found (no allocation)
@@ -318,8 +343,8 @@ void predictAtSolution(const PredictionModel& m, PredictionData& d, const HoleRe
   p.tolerance = h.tolerance > 0 ? h.tolerance : m.default_tolerance;
   const ProcessAtDiameter* proc = processFor(m, h.diameter);
   p.diameter = h.diameter > 0 ? h.diameter : (proc ? proc->diameter : 0.0);
-  p.depth = h.depth > 0 ? h.depth : (proc ? proc->default_depth : 0.0);
-  if (proc && proc->feed_rate > 0)
+  p.depth = holeDepth(h, proc);
+  if (proc && proc->feed_rate > 0 && !p.beyond_drill)
     p.mc_time = p.depth / proc->feed_rate + m.capability.mc_approach_s;
   if (p.status != HoleStatus::kOk) return;
   p.joints = sol.q;

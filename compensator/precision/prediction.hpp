@@ -27,7 +27,9 @@
 ///       conforms                     e + U ≤ t/2
 ///       conforms-after-compensation  U ≤ t/2 < e + U   (the systematic part is too large)
 ///       not-capable                  U > t/2           (the scatter alone exceeds t/2)
-///       unreachable / singular       no admissible IK solution / wrist or shoulder singular
+///       unreachable / singular       no admissible IK solution / wrist or shoulder singular;
+///                                    unreachable too when the hole is deeper than the drill cuts
+///                                    (ProcessAtDiameter::cutting_length): no IK, no time
 
 #include <functional>
 #include <map>
@@ -94,6 +96,10 @@ struct ProcessAtDiameter {
   MachiningDeviation mach;
   double feed_rate{0};      ///< m/s (feed per rev × spindle speed)
   double default_depth{0};  ///< m
+  /// The deepest hole the drill cuts (cuttingLengthAt), m; 0: no limit (no drilling process).
+  /// A deeper hole fails on its own (verdict unreachable, HolePrediction::beyond_drill).
+  double cutting_length{0};
+  std::string cutting_length_source;
 };
 
 /// A calibrated robot (robot card <calibration>, geometry_calibration.hpp): `model` is the REAL
@@ -174,6 +180,9 @@ struct HoleRequest {
   /// (docs/configuration.md §6). Does not steer the prediction's IK choice.
   std::optional<VendorConfig> written_config;
   int line{0};  ///< source line (messages)
+  /// What made it a hole (JSON "evidence"): "feed segment along the tool axis", "call X after
+  /// the motion at line N", "on the hole list"; empty for a pose a host gives (none written).
+  std::string evidence;
   /// Where the hole starts: the surface point on the drill axis (base frame, m), when the
   /// program's cycle shows it (the feed starts there); T_W_tcp is the bottom (drill point).
   std::optional<Vec3> surface_W;
@@ -218,6 +227,9 @@ struct HolePrediction {
   std::string id;
   HoleStatus status{HoleStatus::kOk};
   std::string reason;
+  /// Deeper than the drill cuts (status and verdict unreachable, the reason says so): not
+  /// predicted, no machining-center time.
+  bool beyond_drill{false};
   Vec6 joints{Vec6::Zero()};  ///< motor-side command (rigid IK of the programmed pose), rad
   std::string config;         ///< vendor flags
   int branch{0};

@@ -153,9 +153,9 @@ void applyOverride(const MachiningDeviationOverride& o, MachiningDeviationParams
 void parseDrilling(const XmlNode& proc, DrillingSpec& s) {
   allowChildren(proc, {"drill", "cut", "material", "coefficients", "machining_deviation"});
   const XmlNode& d = required(proc, "drill", "drill geometry");
-  allowOnly(
-      d, {"diameter_mm", "point_angle_deg", "helix_angle_deg", "web_mm", "chisel_angle_deg", "lips",
-          "runout_mm", "tool_material", "stickout_mm", "angle_law", "working_angles"});
+  allowOnly(d, {"diameter_mm", "point_angle_deg", "helix_angle_deg", "web_mm", "chisel_angle_deg",
+                "lips", "runout_mm", "tool_material", "stickout_mm", "flute_length_mm", "angle_law",
+                "working_angles"});
   DrillGeometry& g = s.geometry;
   g.diameter = positive(d, "diameter_mm", 0, false) * kMm;
   plausible(d, "diameter_mm", 0.1, 100.0, "twist drill diameter, mm");
@@ -188,6 +188,11 @@ void parseDrilling(const XmlNode& proc, DrillingSpec& s) {
     s.drill_stickout = positive(d, "stickout_mm", 0, false) * kMm;
     plausible(d, "stickout_mm", g.diameter / kMm, 1000.0,
               "tool length out of the holder, mm: at least the drill diameter");
+  }
+  if (d.has("flute_length_mm")) {
+    s.drill_flute_length = positive(d, "flute_length_mm", 0, false) * kMm;
+    plausible(d, "flute_length_mm", g.diameter / kMm, 1000.0,
+              "the drill's cutting (flute) length, mm: at least the drill diameter");
   }
 
   const XmlNode& c = required(proc, "cut", "feed and speed");
@@ -270,6 +275,17 @@ MachiningDeviationParams machiningDeviationAt(const DrillingSpec& s, double diam
     if (namesDiameter(o, diameter)) applyOverride(o, p, runout_set);
   if (!runout_set) p.runout = 0.25e-3 * p.stickout;  // the default law follows the stick-out
   return p;
+}
+
+CuttingLength cuttingLengthAt(const DrillingSpec& s, double diameter) {
+  const MachiningDeviationParams p = machiningDeviationAt(s, diameter);
+  CuttingLength c{p.stickout, p.stickout_source};
+  const bool own = std::abs(diameter - s.geometry.diameter) < 1e-6;
+  if (own && s.drill_flute_length && *s.drill_flute_length <= p.stickout)
+    c = {*s.drill_flute_length, "cell <drill flute_length_mm>"};
+  else if (own && s.drill_flute_length)
+    c.source += " (below <drill flute_length_mm>: the flutes inside the holder do not cut)";
+  return c;
 }
 
 namespace {

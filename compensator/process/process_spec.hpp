@@ -7,7 +7,8 @@
 ///
 ///   <process type="drilling">
 ///     <drill diameter_mm point_angle_deg helix_angle_deg web_mm chisel_angle_deg lips runout_mm
-///            tool_material="carbide|hss" stickout_mm angle_law="geometric|paper" working_angles/>
+///            tool_material="carbide|hss" stickout_mm flute_length_mm angle_law="geometric|paper"
+///            working_angles/>
 ///     <cut feed_mm_per_rev spindle_rpm depth_mm through/>
 ///     <material name/>
 ///     <coefficients kst0_N_mm2 at bt_per_deg ct_per_deg ksa0_N_mm2 aa ba_per_deg ca_per_deg m
@@ -68,6 +69,7 @@ struct DrillingSpec {
   std::string coeff_source;    ///< "material table" or the <coefficients source=...>
   bool runout_given{false};
   std::optional<double> drill_stickout;  ///< <drill stickout_mm> [m] (the drill's diameter only)
+  std::optional<double> drill_flute_length;  ///< <drill flute_length_mm> [m] (its cutting length)
   std::vector<MachiningDeviationOverride> deviation_overrides;  ///< in document order
   MachiningDeviationParams deviation;  ///< machiningDeviationAt(*this, geometry.diameter)
   int line{0};                         ///< <process> line
@@ -97,6 +99,17 @@ struct WrenchSpec {
 /// stick-out and runout, then every `<machining_deviation>` without diameters, then those naming D.
 /// A stick-out without an explicit runout moves the runout default with it (0.25 µm/mm).
 MachiningDeviationParams machiningDeviationAt(const DrillingSpec& s, double diameter);
+
+/// The deepest hole a drill of diameter D can cut, and where that figure comes from.
+struct CuttingLength {
+  double length{0};  ///< [m]
+  std::string source;
+};
+/// The cutting length of a drill of diameter D (m) under this spec (docs/process.md §5.7): for
+/// the drill's own diameter its `<drill flute_length_mm>`, limited by the stick-out at D
+/// (machiningDeviationAt: the flutes inside the holder do not cut); otherwise the stick-out at D
+/// itself (`<drill stickout_mm>`, `<machining_deviation stickout_mm>`, else the estimate 3 Dc).
+CuttingLength cuttingLengthAt(const DrillingSpec& s, double diameter);
 
 struct ProcessSpec {
   ProcessType type{ProcessType::kDrilling};

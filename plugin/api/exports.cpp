@@ -352,6 +352,10 @@ void predictionHole(JsonWriter& w, const HolePrediction& h, const HoleRequest& r
     w.key("line");
     w.integer(r.line);
   }
+  if (!r.evidence.empty()) {
+    w.key("evidence");
+    w.str(r.evidence);
+  }
   w.key("nominal");
   w.beginObject();
   w.key("position_mm");

@@ -57,6 +57,7 @@ HoleRequest fromSpec(const postproc::HoleSpec& s, const CellSpec& cell) {
   if (s.diameter_mm) r.diameter = *s.diameter_mm * 1e-3;
   if (s.depth_mm) r.depth = *s.depth_mm * 1e-3;
   r.line = s.line;
+  r.evidence = "on the hole list";
   return r;
 }
 
@@ -221,6 +222,7 @@ void setUpHole(const std::vector<postproc::Hole>& recognized, const postproc::Pr
   r.id = h.id;
   r.T_W_tcp = src.T_W_frame * *T_frame_tcp;
   r.line = t.line;
+  r.evidence = postproc::drillingEvidence(p, h);
   r.depth = h.depth;
   if (h.surface_motion >= 0) r.surface_W = Vec3(src.T_W_frame * h.surface);
   // The drill point is reached by linear moves, which keep the arm configuration the robot had:
@@ -382,6 +384,12 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
   } else {
     job.recognized = postproc::recognizeHoles(p);
   }
+  std::vector<postproc::HoleSpec> specs;
+  if (hole_list) {  // the hole list is drilling evidence too (a cycle with a dwell alone)
+    specs = postproc::readHoleList(*hole_list);
+    job.recognized =
+        postproc::withHoleListEvidence(p, std::move(job.recognized), specs, match_tol_mm);
+  }
   if (job.recognized.empty()) {
     // point at the program's first motion (or its first line when it has none)
     std::string where = path;
@@ -405,10 +413,8 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
                          " motions (approach -> feed along the tool z axis -> retract)" + unknown +
                          "; hint: a hole list (.csv) or --holes gives the holes directly");
   }
-  std::vector<postproc::HoleSpec> specs;
   std::vector<int> spec_of_hole(job.recognized.size(), -1);
   if (hole_list) {
-    specs = postproc::readHoleList(*hole_list);
     for (const postproc::HoleMatch& m :
          postproc::matchHoles(job.recognized, p, specs, match_tol_mm))
       spec_of_hole[static_cast<std::size_t>(m.hole)] = m.spec;

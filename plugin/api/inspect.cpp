@@ -225,7 +225,7 @@ Json inspectProgram(const InspectRequest& request) {
   const Program p = readProgramWithFrames(request.program, request.frames);
   postproc::RecognitionOptions ro;
   if (request.tool_axis) ro.tool_axis = *request.tool_axis;
-  const std::vector<postproc::Hole> holes = postproc::recognizeHoles(p, ro);
+  std::vector<postproc::Hole> holes = postproc::recognizeHoles(p, ro);
 
   Json root = Json::object();
   root.set("program", Json::str(request.program));
@@ -243,6 +243,9 @@ Json inspectProgram(const InspectRequest& request) {
   HoleListMatch list;
   if (request.hole_list) {
     list.specs = postproc::readHoleList(*request.hole_list);
+    // the hole list is drilling evidence too (a cycle with a dwell alone)
+    holes = postproc::withHoleListEvidence(p, std::move(holes), list.specs,
+                                           request.match_tolerance_mm, ro);
     list.matches = postproc::matchHoles(holes, p, list.specs, request.match_tolerance_mm);
   }
   Json hj = Json::array();

@@ -252,6 +252,7 @@ Json holeJson(const HolePrediction& h, const HoleRequest& r, const RobotCard* ca
   Json j = Json::object();
   j.set("id", Json::str(h.id));
   if (r.line > 0) j.set("line", Json::integer(r.line));
+  if (!r.evidence.empty()) j.set("evidence", Json::str(r.evidence));
   j.set("nominal", [&] {
     Json n = Json::object();
     n.set("position_mm", Json::vector(r.T_W_tcp.translation() * 1e3, 6));

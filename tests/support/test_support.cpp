@@ -56,11 +56,29 @@ std::string krlDrillCycles(int n, const std::string& base, bool drill_comment,
     char a[128];
     char f[128];
     std::snprintf(a, sizeof a, p, 300.0);
-    std::snprintf(f, sizeof f, p, 234.0);
+    std::snprintf(f, sizeof f, p, 270.0);  // 30 mm: the Ø8.5 drill cuts 34
     s << "$VEL.CP = 0.25\nPTP {" << a << "}\n$VEL.CP = 0.02\nLIN {" << f << "}\n"
       << (drill_comment ? "; spindle drill\n" : "") << "$VEL.CP = 0.25\nLIN {" << a << "}\n";
   }
   s << tail << "END\n";
+  return s.str();
+}
+
+std::string krlCyclesOfDepths(const std::vector<double>& depths_mm) {
+  std::ostringstream s;
+  s << "DEF depths ( )\n"
+    << kHousingBase << "\n$TOOL = {FRAME: X 0.000,Y 0.000,Z 320.000,A 0.000,B 0.000,C 0.000}\n";
+  for (std::size_t k = 0; k < depths_mm.size(); ++k) {
+    char a[128];
+    char f[128];
+    const double x = -40.0 + 40.0 * static_cast<double>(k);
+    std::snprintf(a, sizeof a, "X %.3f,Y 0.000,Z 300.000,A 0.000,B 0.000,C 180.000", x);
+    std::snprintf(f, sizeof f, "X %.3f,Y 0.000,Z %.3f,A 0.000,B 0.000,C 180.000", x,
+                  300.0 - depths_mm[k]);
+    s << "$VEL.CP = 0.25\nPTP {" << a << "}\n$VEL.CP = 0.02\nLIN {" << f << "}\n"
+      << "$VEL.CP = 0.25\nLIN {" << a << "}\n";
+  }
+  s << "END\n";
   return s.str();
 }
 

@@ -42,11 +42,15 @@ void writeFile(const std::string& path, const std::string& text);
 /// The $BASE line of krlDrillCycles: the housing's top face in the KR 120 sample cell.
 inline constexpr const char* kHousingBase =
     "$BASE = {FRAME: X 1350.000,Y 0.000,Z 300.000,A 0.000,B 0.000,C 0.000}";
-/// A KRL .src of `n` drill cycles (PTP approach at z 300, feed to z 234 at a slower $VEL.CP,
+/// A KRL .src of `n` drill cycles (PTP approach at z 300, feed to z 270 at a slower $VEL.CP,
 /// retract) on a 1.2 mm grid of the housing's top face, 7 lines a cycle with `drill_comment`
 /// (a "; spindle drill" marker after the feed), else 6, after three header lines (DEF, `base`,
 /// $TOOL); `tail` goes before END.
 std::string krlDrillCycles(int n, const std::string& base = kHousingBase,
                            bool drill_comment = false, const std::string& tail = "");
+/// A KRL .src (header as krlDrillCycles) of one drill cycle per depth (mm), 40 mm apart along
+/// x on the housing's top face: PTP approach at z 300, feed at a slower $VEL.CP to z 300 − depth,
+/// retract; hole k's drill point is on line 7 + 6k.
+std::string krlCyclesOfDepths(const std::vector<double>& depths_mm);
 
 }  // namespace roprec::test
