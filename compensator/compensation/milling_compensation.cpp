@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "compensator/process/milling_robot.hpp"
+#include "compensator/process/milling_stability.hpp"
 #include "compensator/support/c_format.hpp"
 
 namespace roprec {
@@ -16,6 +17,24 @@ Vec3 millToTool(const Vec3& v) { return Vec3(v.x(), -v.y(), -v.z()); }
 
 std::string fmt(double v, int decimals) { return cFixed(v, decimals); }
 std::string mm(double v_m) { return fmt(v_m * 1e3, 3); }
+
+/// The zero-order stability limit at θ_d (robot modes there and the tool mode) into `p`.
+void checkStability(const PredictionModel& m, const StabilityCut& cut, PathPointCompensation& p) {
+  const MillingSpec& s = m.process.milling;
+  ModalModel dyn;
+  try {
+    dyn = robotModes(m.model, m.compliance, p.theta_d, s.robot_damping_ratio);
+  } catch (const std::runtime_error&) {
+    return;  // no modes at this pose: not checked
+  }
+  if (!dyn.modes.empty()) p.first_mode_hz = dyn.modes.front().omega / (2 * kPi);
+  addToolMode(dyn, s.tool_mode);
+  const StabilityLimit lim = limitingDepth(dyn, cut, s.cut.spindle_rpm);
+  p.stability_checked = true;
+  p.stability_bounded = lim.bounded;
+  p.ap_limit = lim.ap_lim;
+  p.chatter_hz = lim.chatter_hz;
+}
 }  // namespace
 
 std::vector<CuttingDecision> decideCutting(const MillingSpec& s, const Pose& T_W_wobj,
@@ -63,6 +82,7 @@ std::vector<PathPointCompensation> compensateMillingPath(
     throw std::invalid_argument("compensateMillingPath needs a milling process");
   }
   const MillingModel mm = millingModelOf(m.process.milling);
+  const StabilityCut stability_cut = stabilityCutOf(mm);
   const Vec3 F_nom = millingMeanForce(mm, m.process.milling.cut.fz, m.process.milling.cut.ae);
   CouplingOptions copt = m.process.milling.coupling;
   PredictionData d(m);
@@ -120,6 +140,7 @@ std::vector<PathPointCompensation> compensateMillingPath(
       p.before_residual = cb.residual;
       p.before_loop_gain = cb.loop_gain;
       p.before_force = cb.force;
+      checkStability(m, stability_cut, p);
     } else {
       before_state = CouplingState{};  // the tool left the material
       p.before_status = "not_cutting";

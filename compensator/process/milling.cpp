@@ -380,7 +380,7 @@ CouplingResult coupleMillingPoint(const MillingModel& m, const ComplianceFunctio
   return r;
 }
 
-CorrectedRevolution correctedRevolution(const MillingModel& m, const ComplianceFunction& compliance,
+CorrectedRevolution correctedRevolution(const MillingModel& m, const ModalModel& dynamics,
                                         const CouplingResult& point) {
   CorrectedRevolution out;
   const MillingProfile nominal = millingForceProfile(m);
@@ -389,25 +389,24 @@ CorrectedRevolution correctedRevolution(const MillingModel& m, const ComplianceF
   mc.cut.ae = std::clamp(point.ae_effective, 0.0, m.tool.diameter);
   const MillingProfile corrected =
       mc.cut.fz > 0 && mc.cut.ae > 0 ? millingForceProfile(mc) : MillingProfile{};
+  std::vector<Vec3> force(nominal.samples.size(), Vec3::Zero());
+  for (size_t i = 0; i < corrected.samples.size() && i < force.size(); ++i)
+    force[i] = corrected.samples[i].force;
+  const std::vector<Vec3> x = periodicResponse(dynamics, force, m.cut.spindle_rpm);
   double lo = 1e300;
   double hi = 0;
+  Vec3 xlo = Vec3::Constant(1e300);
+  Vec3 xhi = Vec3::Constant(-1e300);
   for (size_t i = 0; i < nominal.samples.size(); ++i) {
     CorrectedSample s;
     s.angle = nominal.samples[i].angle;
     s.nominal = nominal.samples[i].force;
-    if (i < corrected.samples.size()) s.corrected = corrected.samples[i].force;
-    try {
-      const Vec3 d = compliance(s.corrected);
-      if (d.allFinite()) {
-        s.tcp_movement = d;
-      } else {
-        out.ok = false;
-      }
-    } catch (const std::exception&) {
-      out.ok = false;
-    }
+    s.corrected = force[i];
+    s.tcp_movement = point.delta + x[i];
     lo = std::min(lo, s.tcp_movement.norm());
     hi = std::max(hi, s.tcp_movement.norm());
+    xlo = xlo.cwiseMin(x[i]);
+    xhi = xhi.cwiseMax(x[i]);
     out.samples.push_back(s);
   }
   out.mean_nominal = nominal.mean;
@@ -415,6 +414,7 @@ CorrectedRevolution correctedRevolution(const MillingModel& m, const ComplianceF
   out.peak_nominal_xy = nominal.peak_xy;
   out.peak_corrected_xy = corrected.peak_xy;
   out.movement_range = out.samples.empty() ? 0.0 : hi - lo;
+  if (!out.samples.empty()) out.vibration_peak_to_peak = xhi - xlo;
   return out;
 }
 

@@ -45,6 +45,7 @@
 #include <vector>
 
 #include "compensator/process/materials.hpp"
+#include "compensator/process/milling_dynamics.hpp"
 #include "compensator/support/rotation.hpp"
 
 namespace roprec {
@@ -185,10 +186,14 @@ std::vector<CouplingResult> coupleMillingPath(
     const MillingModel& m, const std::vector<ComplianceFunction>& compliance_per_point,
     const CouplingOptions& options = {});
 
-/// The corrected revolution at a coupled point (docs/process.md §4.5): per cutter angle of tooth 0,
-/// the nominal force (cut fz, ae), the corrected force (fz_eff, ae_eff of the coupled point: the
-/// robot's deflection and the previous edge's uncut chip δprev) and the TCP movement
-/// C(F_corrected(φ)) — the quasi-static deflection under the instantaneous corrected force.
+/// The corrected revolution at a coupled point (docs/process.md §4.5–4.6): per cutter angle of
+/// tooth 0, the nominal force (cut fz, ae), the corrected force (fz_eff, ae_eff of the coupled
+/// point: the robot's deflection and the previous edge's uncut chip δprev) and the TCP movement
+///   x(φ) = δ + x_dyn(φ),
+/// δ the coupled static deflection of the point (the mean force through the full compliance) and
+/// x_dyn the steady periodic response to the corrected force's harmonics through the receptance
+/// of `dynamics` (milling_dynamics.hpp: robot modes at the pose and the spindle/tool mode) at the
+/// cut's spindle speed.
 struct CorrectedSample {
   double angle{0};                  ///< [rad]
   Vec3 nominal{Vec3::Zero()};       ///< [N], milling frame
@@ -196,13 +201,13 @@ struct CorrectedSample {
   Vec3 tcp_movement{Vec3::Zero()};  ///< [m]
 };
 struct CorrectedRevolution {
-  bool ok{true};  ///< false when the compliance failed at some angle (movement then zero there)
   std::vector<CorrectedSample> samples;
   Vec3 mean_nominal{Vec3::Zero()}, mean_corrected{Vec3::Zero()};
   double peak_nominal_xy{0}, peak_corrected_xy{0};  ///< [N]
   double movement_range{0};  ///< max − min of |TCP movement| over the revolution [m]
+  Vec3 vibration_peak_to_peak{Vec3::Zero()};  ///< per axis max − min of x_dyn [m]
 };
-CorrectedRevolution correctedRevolution(const MillingModel& m, const ComplianceFunction& compliance,
+CorrectedRevolution correctedRevolution(const MillingModel& m, const ModalModel& dynamics,
                                         const CouplingResult& point);
 
 }  // namespace roprec

@@ -7,6 +7,7 @@
 
 #include "compensator/precision/parallel.hpp"
 #include "plugin/api/job.hpp"
+#include "plugin/api/milling_stability.hpp"
 #include "plugin/api/report.hpp"
 #include "plugin/api/robots.hpp"
 
@@ -676,6 +677,7 @@ std::string millingTargetsJson(const MillingCompensationResult& r,
     cp.set("loop_gain", Json::number(p.loop_gain, 4));
     cp.set("force_fixed_point_iterations", Json::integer(p.force_iterations));
     j.set("coupling", cp);
+    if (p.cutting) j.set("stability", pathPointStabilityJson(p, c.model.process.milling.cut.ap));
     ps.push(j);
   }
   root.set("points", ps);

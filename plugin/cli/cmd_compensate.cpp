@@ -24,6 +24,24 @@
 namespace roprec::cli {
 namespace {
 
+/// The cutting points whose ap is above the chatter limit, one line each on stderr: 1 if any.
+int reportUnstable(CommandContext& ctx, const MillingCompensationResult& r) {
+  const double ap = r.context.model.process.milling.cut.ap;
+  int n = 0;
+  for (size_t i = 0; i < r.points_comp.size(); ++i) {
+    const PathPointCompensation& p = r.points_comp[i];
+    if (!p.unstable(ap)) continue;
+    ++n;
+    ctx.err << "roprec: path point " << i + 1 << ": chatter: ap " << formatNumber(ap * 1e3, 3)
+            << " mm > limit " << formatNumber(p.ap_limit * 1e3, 3) << " mm (chatter at "
+            << formatNumber(p.chatter_hz, 1) << " Hz)\n";
+  }
+  if (n > 0)
+    ctx.err << "roprec: " << n << " cutting path points are above the chatter limit (outputs "
+            << "written; the static compensation does not remove chatter)\n";
+  return n > 0 ? 1 : 0;
+}
+
 /// Milling: every linear path point of the program is compensated with the coupled force
 /// iteration (compensator/compensation/milling_compensation.hpp).
 int runMillingPath(CommandContext& ctx, const std::string& cell, const std::string& program,
@@ -60,7 +78,7 @@ int runMillingPath(CommandContext& ctx, const std::string& cell, const std::stri
             << " µm; predicted residual max " << formatNumber(after * 1e6, 4) << " µm\n";
     for (const auto& pth : written) ctx.out << "  wrote " << pth << "\n";
   }
-  return 0;
+  return reportUnstable(ctx, r);
 }
 
 CompensationOptions parseCompensationOptions(Args& args) {
