@@ -25,8 +25,8 @@ namespace roprec {
 namespace {
 
 TEST(MillingDynamics, OneModeForcedResponseIsTheClosedFormReceptance) {
-  const double mass = 4.0;       // kg
-  const double k = 2.5e7;        // N/m
+  const double mass = 4.0;  // kg
+  const double k = 2.5e7;   // N/m
   const double zeta = 0.04;
   const double wn = std::sqrt(k / mass);
   const double c = 2 * zeta * std::sqrt(k * mass);
@@ -92,10 +92,10 @@ TEST(MillingDynamics, RobotNaturalFrequenciesMatchKdlMassMatrix) {
   ASSERT_EQ(dyn.modes.size(), 6u);
   // KDL: the URDF chain, then the spindle as a fixed segment carrying its mass; the TCP as a
   // massless fixed segment
-  KDL::Chain kc = test::kdlChain(r.robot.card.urdf_path, r.robot.chain.base_link,
-                                 r.robot.chain.tip_link);
-  const KDL::RigidBodyInertia I(r.tool.mass, KDL::Vector(r.tool.com.x(), r.tool.com.y(),
-                                                         r.tool.com.z()),
+  KDL::Chain kc =
+      test::kdlChain(r.robot.card.urdf_path, r.robot.chain.base_link, r.robot.chain.tip_link);
+  const KDL::RigidBodyInertia I(r.tool.mass,
+                                KDL::Vector(r.tool.com.x(), r.tool.com.y(), r.tool.com.z()),
                                 KDL::RotationalInertia(0.4, 0.5, 0.2, 0, 0, 0));
   kc.addSegment(KDL::Segment("spindle", KDL::Joint(KDL::Joint::None), KDL::Frame::Identity(), I));
   KDL::ChainDynParam dp(kc, KDL::Vector(0, 0, -9.80665));
@@ -135,8 +135,8 @@ TEST(MillingDynamics, ModalSumAtZeroFrequencyIsTheLinearStaticCompliance) {
   const Mat3 S = Vec3(1, -1, -1).asDiagonal();
   const Mat3 T = S * d.T_W_tcp.linear().transpose();
   const Eigen::Matrix<double, 3, 6> Jv = J.data.topRows<3>();
-  const Mat3 C_ref = T * Jv * r.c.effective().cwiseInverse().asDiagonal() * Jv.transpose() *
-                     T.transpose();
+  const Mat3 C_ref =
+      T * Jv * r.c.effective().cwiseInverse().asDiagonal() * Jv.transpose() * T.transpose();
   const Mat3 C = receptance(dyn, 0.0).real();
   EXPECT_LE((C - C_ref).norm(), 1e-9 * C_ref.norm());
   EXPECT_LE(receptance(dyn, 0.0).imag().norm(), 1e-20);
@@ -149,7 +149,8 @@ TEST(MillingDynamics, ToothFrequencyResponseIsFarBelowTheQuasiStaticOne) {
   // a pure tooth-frequency force of 100 N in Y, 3 teeth at 12000 rpm: 600 Hz
   const int N = 360;
   std::vector<Vec3> F(N);
-  for (int n = 0; n < N; ++n) F[static_cast<size_t>(n)] = Vec3(0, 100 * std::cos(3 * 2 * kPi * n / N), 0);
+  for (int n = 0; n < N; ++n)
+    F[static_cast<size_t>(n)] = Vec3(0, 100 * std::cos(3 * 2 * kPi * n / N), 0);
   const std::vector<Vec3> x = periodicResponse(dyn, F, 12000);
   double peak = 0;
   double quasi = 0;
@@ -172,7 +173,8 @@ TEST(MillingDynamics, ToolModeReceptanceIsItsClosedForm) {
   for (double f : {0.0, 600.0, 1800.0, 2500.0}) {
     const double w = 2 * kPi * f;
     const std::complex<double> G =
-        1.0 / (t.stiffness * std::complex<double>(1 - w * w / (wn * wn), 2 * t.damping_ratio * w / wn));
+        1.0 /
+        (t.stiffness * std::complex<double>(1 - w * w / (wn * wn), 2 * t.damping_ratio * w / wn));
     const Mat3c H = receptance(dyn, w);
     EXPECT_NEAR(std::abs(H(0, 0) - G), 0.0, 1e-12 * std::abs(G));
     EXPECT_NEAR(std::abs(H(1, 1) - G), 0.0, 1e-12 * std::abs(G));

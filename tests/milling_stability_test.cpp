@@ -151,8 +151,8 @@ TEST(MillingStability, TwoModesMatchAltintasClosedFormQuadratic) {
     for (int sign : {-1, 1}) {
       const auto ref = branch(sign)(w);
       if (!(ref.first > 0)) continue;
-      const double d = std::min(std::abs(roots[0].a_lim - ref.first),
-                                std::abs(roots[1].a_lim - ref.first));
+      const double d =
+          std::min(std::abs(roots[0].a_lim - ref.first), std::abs(roots[1].a_lim - ref.first));
       EXPECT_LE(d, 1e-9 * ref.first) << f;
     }
   }

@@ -1,5 +1,6 @@
 #include "compensator/compensation/milling_compensation.hpp"
 
+#include <Eigen/QR>
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -83,6 +84,7 @@ std::vector<PathPointCompensation> compensateMillingPath(
   }
   const MillingModel mm = millingModelOf(m.process.milling);
   const StabilityCut stability_cut = stabilityCutOf(mm);
+  const Mat3 C_tool = toolStaticCompliance(m.process.milling.tool_mode);
   const Vec3 F_nom = millingMeanForce(mm, m.process.milling.cut.fz, m.process.milling.cut.ae);
   CouplingOptions copt = m.process.milling.coupling;
   PredictionData d(m);
@@ -127,12 +129,16 @@ std::vector<PathPointCompensation> compensateMillingPath(
       l.tcp_tool.force = millToTool(F_mill);
       return l;
     };
+    // the spindle/tool's own deflection under F, base frame (it adds to the robot's)
+    auto toolBending = [&](const Vec3& F_mill) -> Vec3 { return R * millToTool(C_tool * F_mill); };
     // uncompensated: the robot at θ_d under the coupled force
     Vec3 F_before = Vec3::Zero();
     if (p.cutting) {
       const CouplingResult cb = coupleMillingPoint(
-          mm, robotMillingCompliance(m.model, m.compliance, p.theta_d, m.gravity), before_state,
-          copt);
+          mm,
+          withToolCompliance(robotMillingCompliance(m.model, m.compliance, p.theta_d, m.gravity),
+                             C_tool),
+          before_state, copt);
       before_state = cb.next;
       F_before = cb.force;
       p.before_status = couplingStatusName(cb.status);
@@ -149,13 +155,22 @@ std::vector<PathPointCompensation> compensateMillingPath(
       const nc::Deflection db =
           nc::predictDeflection(m.model, d.nc, m.compliance, p.theta_d, loadsWith(F_before), {},
                                 controllerOffset(m, d.nc, p.theta_d));
-      p.deviation_before = db.dp;
+      p.deviation_before = db.dp + toolBending(F_before);
     }
+    // the link-side target that pre-offsets the tool's bending: θ_d + J⁻¹ [−bending; 0]
+    nc::forwardKinematics(m.model, d.nc, p.theta_d);
+    const Eigen::ColPivHouseholderQR<Mat6> J_qr(nc::tcpJacobian(m.model, d.nc));
+    auto targetFor = [&](const Vec3& G) -> Vec6 {
+      if (G.isZero() || J_qr.rank() < 6) return p.theta_d;
+      Vec6 twist = Vec6::Zero();
+      twist.head<3>() = -toolBending(G);
+      return p.theta_d + J_qr.solve(twist);
+    };
     // the controller command that puts the link side at θ_d under force G (exact inverse; a
     // gravity-compensating controller adds its own offset: θ_cmd + off(θ_cmd) = θ_m)
     auto commandFor = [&](const Vec3& G) {
       const Vec6 theta_m =
-          nc::compensateCommand(m.model, d.nc, m.compliance, p.theta_d, loadsWith(G));
+          nc::compensateCommand(m.model, d.nc, m.compliance, targetFor(G), loadsWith(G));
       Vec6 cmd = theta_m;
       for (int it = 0; it < 20 && m.controller.kind != nc::ControllerReference::Kind::kNone; ++it)
         cmd = theta_m - controllerOffset(m, d.nc, cmd);
@@ -176,7 +191,8 @@ std::vector<PathPointCompensation> compensateMillingPath(
             nc::predictDeflection(m.model, d.nc, m.compliance, p.theta_cmd, loadsWith(G), {},
                                   controllerOffset(m, d.nc, p.theta_cmd));
         if (!dg.converged) throw std::runtime_error("the compliance equilibrium did not converge");
-        return millToTool(R.transpose() * (dg.T_real.translation() - points[i].translation()));
+        return millToTool(R.transpose() * (dg.T_real.translation() - points[i].translation())) +
+               C_tool * G;
       };
       ca = coupleMillingPoint(mm, residualCompliance, after_state, copt);
       const double change = (ca.force - F).norm();
@@ -211,7 +227,7 @@ std::vector<PathPointCompensation> compensateMillingPath(
     const nc::Deflection da =
         nc::predictDeflection(m.model, d.nc, m.compliance, p.theta_cmd, loadsWith(F), {},
                               controllerOffset(m, d.nc, p.theta_cmd));
-    p.residual = da.T_real.translation() - points[i].translation();
+    p.residual = da.T_real.translation() + toolBending(F) - points[i].translation();
     p.config_text =
         formatConfig(configurationOf(m.ik, m.robot.card, p.theta_cmd, m.config_options));
     p.ok = da.converged;

@@ -46,6 +46,10 @@ Mat3c receptance(const ModalModel& model, double omega) {
   return H;
 }
 
+Mat3 toolStaticCompliance(const ToolModeSpec& tool) {
+  return Vec3(1.0 / tool.stiffness, 1.0 / tool.stiffness, 0.0).asDiagonal();
+}
+
 void addToolMode(ModalModel& model, const ToolModeSpec& tool) {
   const double w = 2 * kPi * tool.frequency_hz;
   const double mass = tool.stiffness / (w * w);

@@ -45,11 +45,12 @@ namespace roprec {
 using Mat3c = Eigen::Matrix3cd;
 
 struct VibrationMode {
-  double omega{0};           ///< undamped natural frequency ω_r [rad/s]
-  double zeta{0};            ///< modal damping ratio
-  Vec3 tcp{Vec3::Zero()};    ///< u_r: TCP displacement of the mass-normalised mode, milling frame
-  nc::Vec6 joints{nc::Vec6::Zero()}; ///< joint shape normalised to max |φ_j| = 1 (zero for the tool mode)
-  bool robot{true};          ///< a robot mode (false: the spindle/tool mode)
+  double omega{0};         ///< undamped natural frequency ω_r [rad/s]
+  double zeta{0};          ///< modal damping ratio
+  Vec3 tcp{Vec3::Zero()};  ///< u_r: TCP displacement of the mass-normalised mode, milling frame
+  nc::Vec6 joints{
+      nc::Vec6::Zero()};  ///< joint shape normalised to max |φ_j| = 1 (zero for the tool mode)
+  bool robot{true};       ///< a robot mode (false: the spindle/tool mode)
   /// Modal stiffness seen at the TCP along the mode's own TCP direction: ω_r²/|u_r|² [N/m]
   /// (infinite when the mode does not move the TCP).
   [[nodiscard]] double tcpStiffness() const;
@@ -67,6 +68,8 @@ struct ToolModeSpec {
   double stiffness{20e6};     ///< k_t [N/m]
   double damping_ratio{0.03};
 };
+/// The tool mode's static compliance diag(1/k_t, 1/k_t, 0) [m/N], milling frame.
+Mat3 toolStaticCompliance(const ToolModeSpec& tool);
 /// Adds the spindle/tool mode in X and in Y (two modes, tool == false).
 void addToolMode(ModalModel& model, const ToolModeSpec& tool);
 

@@ -12,9 +12,9 @@ namespace {
 using cd = std::complex<double>;
 using Eigs = std::array<cd, 2>;
 
-constexpr double kH0 = 1e-3;            // Kienzle reference chip thickness [m]
-constexpr int kBandPoints = 97;         // grid points across each mode's band
-constexpr double kBandLo = -6.0;        // band: ω_r (1 + ζ_r x), x in [kBandLo, kBandHi]
+constexpr double kH0 = 1e-3;      // Kienzle reference chip thickness [m]
+constexpr int kBandPoints = 97;   // grid points across each mode's band
+constexpr double kBandLo = -6.0;  // band: ω_r (1 + ζ_r x), x in [kBandLo, kBandHi]
 constexpr double kBandHi = 18.0;
 constexpr double kStepPerTooth = 1.0 / 16;  // largest grid step, in tooth frequencies
 

@@ -49,7 +49,7 @@ Eigen::Matrix2d directionalFactors(const ImmersionAngles& arc, double Kr);
 
 /// One eigenvalue branch at a chatter frequency.
 struct ChatterRoot {
-  double a_lim{0};  ///< [m]; ≤ 0 (or not finite): this branch cannot chatter at ω_c
+  double a_lim{0};    ///< [m]; ≤ 0 (or not finite): this branch cannot chatter at ω_c
   double epsilon{0};  ///< phase ε in (0, 2π) [rad]
 };
 /// Both eigenvalue branches of Φ0 at ω_c [rad/s] (unordered).
@@ -57,10 +57,10 @@ std::array<ChatterRoot, 2> chatterRoots(const ModalModel& dyn, const StabilityCu
                                         double omega_c);
 
 struct StabilityLimit {
-  bool bounded{false};  ///< false: no chatter frequency found at this speed (stable at any depth)
-  double ap_lim{0};     ///< limiting axial depth [m] (when bounded)
-  double chatter_hz{0}; ///< chatter frequency at the limit [Hz]
-  int lobe{0};          ///< k
+  bool bounded{false};   ///< false: no chatter frequency found at this speed (stable at any depth)
+  double ap_lim{0};      ///< limiting axial depth [m] (when bounded)
+  double chatter_hz{0};  ///< chatter frequency at the limit [Hz]
+  int lobe{0};           ///< k
 };
 /// The limiting depth at `spindle_rpm`.
 StabilityLimit limitingDepth(const ModalModel& dyn, const StabilityCut& cut, double spindle_rpm);

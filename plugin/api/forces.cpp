@@ -350,6 +350,7 @@ Json couplingPointJson(int index, const CouplingResult& r) {
   p.set("force_nominal_N", vec3(r.force_nominal, 2));
   p.set("fz_effective_mm", Json::number(r.fz_effective / kMm, 6));
   p.set("ae_effective_mm", Json::number(r.ae_effective / kMm, 6));
+  p.set("ap_effective_mm", Json::number(r.ap_effective / kMm, 6));
   p.set("uncut_carried_mm", Json::number(r.next.uncut_prev / kMm, 6));
   return p;
 }
@@ -388,7 +389,9 @@ Json correctedRevolutionOf(const MillingModel& m, const ModalModel& dyn, const C
 Json millingCoupling(const MillingModel& m, const MillingSpec& s, int points,
                      const std::optional<ComplianceFunction>& robot, const ModalModel& dyn,
                      bool& converged, std::string& csv) {
-  const ComplianceFunction C = robot ? *robot : linearCompliance(*s.compliance);
+  const Mat3 C_tool = toolStaticCompliance(s.tool_mode);
+  const ComplianceFunction C =
+      withToolCompliance(robot ? *robot : linearCompliance(*s.compliance), C_tool);
   const std::vector<ComplianceFunction> path(static_cast<size_t>(points), C);
   const std::vector<CouplingResult> res = coupleMillingPath(m, path, s.coupling);
   Json cp = Json::object();
@@ -400,6 +403,7 @@ Json millingCoupling(const MillingModel& m, const MillingSpec& s, int points,
     cp.set("compliance_um_per_N",
            Json::vector(Eigen::Map<const Eigen::VectorXd>(row_major.data(), 9) * 1e6, 5));
   }
+  cp.set("tool_compliance_um_per_N", Json::number(C_tool(0, 0) * 1e6, 5));
   cp.set("solver", Json::str(couplingMethodName(s.coupling.method)));
   cp.set("tolerance_um", Json::number(s.coupling.tolerance * 1e6, 4));
   cp.set("relaxation", Json::number(s.coupling.relaxation, 3));

@@ -40,8 +40,9 @@ Json modeJson(int index, const VibrationMode& v) {
 Json millingDynamicsJson(const ModalModel& dyn, const MillingSpec& s, bool robot) {
   Json d = Json::object();
   d.set("source", Json::str(s.dynamics_source));
-  d.set("robot_modes", Json::str(robot ? "multibody mass matrix and joint+servo stiffness at --joints"
-                                       : "none: give --joints for the robot's modes at a pose"));
+  d.set("robot_modes",
+        Json::str(robot ? "multibody mass matrix and joint+servo stiffness at --joints"
+                        : "none: give --joints for the robot's modes at a pose"));
   d.set("tooth_frequency_Hz", Json::number(s.cut.spindle_rpm / 60.0 * s.tool.teeth, 3));
   Json modes = Json::array();
   int i = 0;
@@ -73,7 +74,6 @@ Json millingStabilityJson(const ModalModel& dyn, const MillingModel& m) {
   j.set("stable", Json::boolean(!lim.bounded || lim.ap_lim > m.cut.ap));
   return j;
 }
-
 
 Json pathPointStabilityJson(const PathPointCompensation& p, double ap) {
   Json j = Json::object();
@@ -123,11 +123,11 @@ std::string lobePlot(const std::vector<LobeSample>& lobes, double rpm, double ap
   for (const LobeSample& s : lobes)
     line += px(s.spindle_rpm) + "," + py(s.limit.bounded ? s.limit.ap_lim : top) + " ";
   std::string svg = "<svg width=\"860\" height=\"360\" role=\"img\" aria-label=\"lobes\">\n";
-  svg += "<polyline fill=\"none\" stroke=\"#1f4e9c\" stroke-width=\"1.5\" points=\"" + line +
-         "\"/>\n";
+  svg +=
+      "<polyline fill=\"none\" stroke=\"#1f4e9c\" stroke-width=\"1.5\" points=\"" + line + "\"/>\n";
   svg += "<circle cx=\"" + px(rpm) + "\" cy=\"" + py(ap) + "\" r=\"4\" fill=\"#c0392b\"/>\n";
-  svg += "<text x=\"4\" y=\"" + cFixed(y0 + 4, 0) + "\" font-size=\"11\">" +
-         cFixed(top / kMm, 2) + " mm</text>\n";
+  svg += "<text x=\"4\" y=\"" + cFixed(y0 + 4, 0) + "\" font-size=\"11\">" + cFixed(top / kMm, 2) +
+         " mm</text>\n";
   svg += "<text x=\"" + cFixed(x0, 0) + "\" y=\"" + cFixed(y0 + h + 20, 0) +
          "\" font-size=\"11\">" + cFixed(lo, 0) + " rpm</text>\n<text x=\"" +
          cFixed(x0 + w - 60, 0) + "\" y=\"" + cFixed(y0 + h + 20, 0) + "\" font-size=\"11\">" +
@@ -141,13 +141,13 @@ std::string lobeReport(const std::string& cell, const std::vector<LobeSample>& l
       "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>roprec milling "
       "stability — " +
       escapeXml(cell) + "</title></head><body style=\"font-family:sans-serif\">\n";
-  r += "<h1>Stability lobes (zero-order approximation)</h1>\n<p>cell <b>" + escapeXml(cell) +
-       "</b>; cut ap " + cFixed(s.cut.ap / kMm, 3) + " mm at " + cFixed(s.cut.spindle_rpm, 0) +
-       " rpm (red dot); limiting ap there: <b>" +
-       (at.bounded ? cFixed(at.ap_lim / kMm, 3) + " mm (chatter " + cFixed(at.chatter_hz, 1) +
-                         " Hz)"
-                   : std::string("unbounded")) +
-       "</b>.</p>\n";
+  r +=
+      "<h1>Stability lobes (zero-order approximation)</h1>\n<p>cell <b>" + escapeXml(cell) +
+      "</b>; cut ap " + cFixed(s.cut.ap / kMm, 3) + " mm at " + cFixed(s.cut.spindle_rpm, 0) +
+      " rpm (red dot); limiting ap there: <b>" +
+      (at.bounded ? cFixed(at.ap_lim / kMm, 3) + " mm (chatter " + cFixed(at.chatter_hz, 1) + " Hz)"
+                  : std::string("unbounded")) +
+      "</b>.</p>\n";
   r += lobePlot(lobes, s.cut.spindle_rpm, s.cut.ap);
   r += "<p>Above the blue line the cut chatters. Dynamics: " + escapeXml(s.dynamics_source) +
        ". roprec " + std::string(version()) + "</p>\n</body></html>\n";

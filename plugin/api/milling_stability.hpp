@@ -32,17 +32,17 @@ Json millingStabilityJson(const ModalModel& dyn, const MillingModel& m);
 Json pathPointStabilityJson(const PathPointCompensation& p, double ap);
 
 struct MillingStabilityRequest {
-  std::string cell;                 ///< CELL.xml with a <process type="milling">
-  std::optional<nc::Vec6> joints;   ///< the pose (rad); without it the tool mode alone
+  std::string cell;                      ///< CELL.xml with a <process type="milling">
+  std::optional<nc::Vec6> joints;        ///< the pose (rad); without it the tool mode alone
   std::optional<double> rpm_lo, rpm_hi;  ///< lobe range; default 0.2–2 × the cut's speed
-  int steps{400};                   ///< speeds of the lobe diagram
+  int steps{400};                        ///< speeds of the lobe diagram
 };
 
 struct MillingStabilityResult {
-  Json json;            ///< cell, joints_deg, dynamics, stability, lobes summary
-  std::string csv;      ///< spindle_rpm,ap_limit_mm,chatter_Hz,lobe (ap empty when unbounded)
-  std::string report;   ///< HTML: the lobe diagram with the programmed cut marked
-  bool stable{true};    ///< the cell's ap is below the limit at its spindle speed
+  Json json;           ///< cell, joints_deg, dynamics, stability, lobes summary
+  std::string csv;     ///< spindle_rpm,ap_limit_mm,chatter_Hz,lobe (ap empty when unbounded)
+  std::string report;  ///< HTML: the lobe diagram with the programmed cut marked
+  bool stable{true};   ///< the cell's ap is below the limit at its spindle speed
 };
 
 MillingStabilityResult millingStability(const MillingStabilityRequest& request);
