@@ -195,6 +195,46 @@ TEST(MillingCompensation, CliChangesOnlyThePathTargets) {
   EXPECT_EQ(cutting, 25);  // approach and retract do not cut
   EXPECT_FALSE(t["points"][0]["cutting"].get<bool>());
   EXPECT_FALSE(t["points"][26]["cutting"].get<bool>());
+  // every cutting point carries its chatter check; the sample cut is below the limit
+  for (const auto& p : t["points"]) {
+    if (!p["cutting"].get<bool>()) continue;
+    ASSERT_TRUE(p["stability"]["checked"].get<bool>());
+    EXPECT_TRUE(p["stability"]["stable"].get<bool>());
+    EXPECT_GT(p["stability"]["margin"].get<double>(), 1.0);
+  }
+}
+
+// `--targets F.csv` writes the milling export as CSV (the extension names the format): one row
+// per path point with the same programmed positions as the JSON export.
+TEST(MillingCompensation, TargetsExportFollowsTheExtension) {
+  const std::string dir = test::tempDir("mill");
+  const std::string base = "compensate --cell '" + test::sourceDir() +
+                           "/samples/cells/alu-milling-7075.xml' '" + test::sourceDir() +
+                           "/samples/milling/wall_pass.src' -o '" + dir;
+  const auto rj = test::runRoprec(base + "/a.src' --targets '" + dir + "/t.json'");
+  const auto rc = test::runRoprec(base + "/b.src' --targets '" + dir + "/t.csv'");
+  ASSERT_EQ(rj.exit_code, 0) << rj.err;
+  ASSERT_EQ(rc.exit_code, 0) << rc.err;
+  const std::string csv = test::readFile(dir + "/t.csv");
+  ASSERT_NE(csv.front(), '{');
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line.rfind("point,target,line,cutting,ok,x_mm,y_mm,z_mm,", 0), 0u);
+  const auto t = nlohmann::json::parse(test::readFile(dir + "/t.json"));
+  size_t rows = 0;
+  while (std::getline(in, line)) {
+    std::vector<std::string> f;
+    std::istringstream ls(line);
+    for (std::string c; std::getline(ls, c, ',');) f.push_back(c);
+    ASSERT_GE(f.size(), 8u);
+    const auto& pos = t["points"][rows]["programmed"]["position_mm"];
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(std::stod(f[static_cast<size_t>(5 + k)]),
+                  pos[static_cast<size_t>(k)].get<double>(), 1e-3);
+    ++rows;
+  }
+  EXPECT_EQ(rows, t["points"].size());
 }
 
 }  // namespace

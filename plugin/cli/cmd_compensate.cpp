@@ -62,7 +62,10 @@ int runMillingPath(CommandContext& ctx, const std::string& cell, const std::stri
     return 1;
   }
   std::vector<std::pair<std::string, std::string>> extra;
-  if (targets) extra.emplace_back(*targets, millingTargetsJson(r, program));
+  if (targets) {
+    const bool csv = targets->size() > 4 && targets->substr(targets->size() - 4) == ".csv";
+    extra.emplace_back(*targets, csv ? millingTargetsCsv(r) : millingTargetsJson(r, program));
+  }
   if (report) extra.emplace_back(*report, millingCompensationReport(r, program));
   const std::vector<std::string> written = writeCompensatedProgram(r.context, out, extra);
   if (!ctx.quiet) {
