@@ -45,8 +45,7 @@ TEST(MillingStabilityCli, SampleCellModesLobesAndExitCodes) {
   std::string text = test::readFile(sampleCell());
   const std::string stock = "<stock top_z_mm=\"0\"/>";
   ASSERT_NE(text.find(stock), std::string::npos);
-  text.replace(text.find(stock), stock.size(),
-               stock + "<dynamics tool_stiffness_N_per_um=\"2\"/>");
+  text.replace(text.find(stock), stock.size(), stock + "<dynamics tool_stiffness_N_per_um=\"2\"/>");
   test::writeFile(dir + "/soft.xml", text);
   const auto soft = runRoprec("milling-stability --cell '" + dir + "/soft.xml' --steps 2");
   EXPECT_EQ(soft.exit_code, 1) << soft.err;
@@ -55,8 +54,7 @@ TEST(MillingStabilityCli, SampleCellModesLobesAndExitCodes) {
   EXPECT_NEAR(a2, a20 / 10, 1e-3 * a20 / 10);
   EXPECT_FALSE(nlohmann::json::parse(soft.out)["stability"]["stable"].get<bool>());
 
-  const auto bad =
-      runRoprec("milling-stability --cell '" + sampleCell() + "' --rpm \"5000 100\"");
+  const auto bad = runRoprec("milling-stability --cell '" + sampleCell() + "' --rpm \"5000 100\"");
   EXPECT_EQ(bad.exit_code, 2);
 }
 

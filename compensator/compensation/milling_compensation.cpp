@@ -19,8 +19,32 @@ Vec3 millToTool(const Vec3& v) { return Vec3(v.x(), -v.y(), -v.z()); }
 std::string fmt(double v, int decimals) { return cFixed(v, decimals); }
 std::string mm(double v_m) { return fmt(v_m * 1e3, 3); }
 
+/// The last chatter check along the path: reused while the robot's modes stay within
+/// kModeReuseTolerance of those it was computed with (they change slowly along a path; the limit
+/// moves about as much as the modes do).
+struct StabilityCache {
+  ModalModel modes;
+  StabilityLimit limit;
+  bool valid{false};
+};
+constexpr double kModeReuseTolerance = 0.005;
+
+bool sameModes(const ModalModel& a, const ModalModel& b) {
+  if (a.modes.size() != b.modes.size()) return false;
+  for (size_t r = 0; r < a.modes.size(); ++r) {
+    const VibrationMode& x = a.modes[r];
+    const VibrationMode& y = b.modes[r];
+    if (std::abs(x.omega - y.omega) > kModeReuseTolerance * y.omega) return false;
+    // the mode's TCP vector up to its sign
+    const double d = std::min((x.tcp - y.tcp).norm(), (x.tcp + y.tcp).norm());
+    if (d > kModeReuseTolerance * y.tcp.norm()) return false;
+  }
+  return true;
+}
+
 /// The zero-order stability limit at θ_d (robot modes there and the tool mode) into `p`.
-void checkStability(const PredictionModel& m, const StabilityCut& cut, PathPointCompensation& p) {
+void checkStability(const PredictionModel& m, const StabilityCut& cut, StabilityCache& cache,
+                    PathPointCompensation& p) {
   const MillingSpec& s = m.process.milling;
   ModalModel dyn;
   try {
@@ -30,11 +54,15 @@ void checkStability(const PredictionModel& m, const StabilityCut& cut, PathPoint
   }
   if (!dyn.modes.empty()) p.first_mode_hz = dyn.modes.front().omega / (2 * kPi);
   addToolMode(dyn, s.tool_mode);
-  const StabilityLimit lim = limitingDepth(dyn, cut, s.cut.spindle_rpm);
+  if (!cache.valid || !sameModes(dyn, cache.modes)) {
+    cache.limit = limitingDepth(dyn, cut, s.cut.spindle_rpm);
+    cache.modes = dyn;
+    cache.valid = true;
+  }
   p.stability_checked = true;
-  p.stability_bounded = lim.bounded;
-  p.ap_limit = lim.ap_lim;
-  p.chatter_hz = lim.chatter_hz;
+  p.stability_bounded = cache.limit.bounded;
+  p.ap_limit = cache.limit.ap_lim;
+  p.chatter_hz = cache.limit.chatter_hz;
 }
 }  // namespace
 
@@ -85,6 +113,7 @@ std::vector<PathPointCompensation> compensateMillingPath(
   const MillingModel mm = millingModelOf(m.process.milling);
   const StabilityCut stability_cut = stabilityCutOf(mm);
   const Mat3 C_tool = toolStaticCompliance(m.process.milling.tool_mode);
+  StabilityCache stability_cache;
   const Vec3 F_nom = millingMeanForce(mm, m.process.milling.cut.fz, m.process.milling.cut.ae);
   CouplingOptions copt = m.process.milling.coupling;
   PredictionData d(m);
@@ -146,7 +175,7 @@ std::vector<PathPointCompensation> compensateMillingPath(
       p.before_residual = cb.residual;
       p.before_loop_gain = cb.loop_gain;
       p.before_force = cb.force;
-      checkStability(m, stability_cut, p);
+      checkStability(m, stability_cut, stability_cache, p);
     } else {
       before_state = CouplingState{};  // the tool left the material
       p.before_status = "not_cutting";

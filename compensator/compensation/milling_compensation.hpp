@@ -71,7 +71,9 @@ struct PathPointCompensation {
   double loop_gain{0};              ///< of the final coupling
   std::string config_text;
   /// Chatter stability at the point (cutting points; milling_stability.hpp): the zero-order limit
-  /// with the robot's modes at θ_d and the spindle/tool mode, at the cut's spindle speed.
+  /// with the robot's modes at θ_d and the spindle/tool mode, at the cut's spindle speed; the
+  /// previous point's limit is reused while every mode's frequency and TCP vector stay within
+  /// 0.5 % of those it was computed with.
   bool stability_checked{false};
   bool stability_bounded{false};  ///< false: no chatter frequency found (stable at any depth)
   double ap_limit{0};             ///< limiting axial depth [m] (when bounded)
