@@ -10,6 +10,7 @@
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
 #include "compensator/support/fixed_chars.hpp"
+#include "compensator/support/input_file.hpp"
 #include "compensator/support/str_cat.hpp"
 
 namespace roprec::postproc {
@@ -577,7 +578,7 @@ MeasuredHoles parseMeasured(const std::string& text, const std::string& path) {
 }
 
 MeasuredHoles readMeasured(const std::string& path) {
-  return parseMeasured(readFileBytes(path), path);
+  return parseMeasured(readInputFile(path, InputKind::kMeasured), path);
 }
 
 std::string writeMeasuredCsv(const std::vector<MeasuredHole>& holes,

@@ -10,6 +10,7 @@
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/c_format.hpp"
 #include "compensator/support/error.hpp"
+#include "compensator/support/input_file.hpp"
 #include "postproc/dialects.hpp"
 #include "postproc/lexer.hpp"
 #include "postproc/value_ranges.hpp"
@@ -996,7 +997,7 @@ Program parseProgram(Dialect d, const std::string& path, std::string bytes,
 
 Program readProgram(const std::string& path, const ReadProgress& progress) {
   if (!fs::exists(path)) throw InputError(path, 0, "cannot open file");
-  return readProgram(path, readFileBytes(path), progress);
+  return readProgram(path, readInputFile(path, InputKind::kProgram), progress);
 }
 
 Program readProgram(const std::string& path, std::string bytes, const ReadProgress& progress) {
@@ -1014,7 +1015,7 @@ Program readProgram(const std::string& path, std::string bytes, const ReadProgre
       }
     }
     if (src_path == path) throw InputError(path, 0, "a KRL .dat needs its .src beside it");
-    bytes = readFileBytes(src_path);
+    bytes = readInputFile(src_path, InputKind::kProgram);
   }
   std::optional<std::string> dat;
   std::string dat_path;
@@ -1022,7 +1023,7 @@ Program readProgram(const std::string& path, std::string bytes, const ReadProgre
     const fs::path s = fs::path(src_path).replace_extension(e);
     if (fs::exists(s)) {
       dat_path = s.string();
-      dat = readFileBytes(dat_path);
+      dat = readInputFile(dat_path, InputKind::kProgram);
       break;
     }
   }

@@ -18,6 +18,7 @@
 
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
+#include "compensator/support/input_file.hpp"
 #include "compensator/support/xml_node.hpp"
 #include "postproc/dialects.hpp"
 #include "postproc/drill.hpp"
@@ -40,7 +41,9 @@ std::string lower(std::string_view s) {
 std::string columnKey(std::string_view raw) {
   std::string k = lower(raw);
   while (!k.empty() && (k.back() == ' ' || k.back() == '"')) k.pop_back();
-  while (!k.empty() && (k.front() == ' ' || k.front() == '"')) k.erase(0, 1);
+  std::size_t lead = 0;  // one erase, not one a character (linear in the cell)
+  while (lead < k.size() && (k[lead] == ' ' || k[lead] == '"')) ++lead;
+  k.erase(0, lead);
   for (const char* suf : {"_mm", "_deg", "_frame"}) {
     const std::string s(suf);
     if (k.size() > s.size() && k.compare(k.size() - s.size(), s.size(), s) == 0)
@@ -51,8 +54,8 @@ std::string columnKey(std::string_view raw) {
 
 // Hole-list bounds (docs/contract.md §7): values outside are typing or unit mistakes.
 constexpr double kMinDiameterMm = 0.1;
-constexpr double kMaxDiameterMm = 200.0;
-constexpr double kMinDepthMm = 0.05;  // a spot drill's shallowest cone
+constexpr double kMaxDiameterMm = 100.0;  // the cell's <drill> diameter_mm range too
+constexpr double kMinDepthMm = 0.05;      // a spot drill's shallowest cone
 constexpr double kMaxDepthMm = 2000.0;
 constexpr double kMinToleranceMm = 0.001;
 constexpr double kMaxToleranceMm = 50.0;
@@ -463,7 +466,7 @@ class CsvReader {
           for (std::size_t j = 0; j < known.size(); ++j) (hint += j ? "," : "") += known[j];
           hint += ")";
         }
-        std::string msg = "unknown column '" + std::string(raw);
+        std::string msg = "unknown column '" + clipForMessage(raw);
         msg += "' in the " + what;
         fail(cells[i].begin, msg + hint);
       }
@@ -927,7 +930,7 @@ void checkMembers(const SourceFile& f, const JValue& o, const std::vector<std::s
       for (std::size_t j = 0; j < known.size(); ++j) (hint += j ? ", " : "") += known[j];
       hint += ")";
     }
-    std::string msg = "unknown member \"" + k;
+    std::string msg = "unknown member \"" + clipForMessage(k);
     msg += "\" in " + what;
     failAt(f, o.items[i].begin, msg + hint);
   }
@@ -977,7 +980,7 @@ std::vector<HoleSpec> parseHoleList(const std::string& path, const std::string& 
 }
 
 std::vector<HoleSpec> readHoleList(const std::string& path) {
-  return parseHoleList(path, readFileBytes(path));
+  return parseHoleList(path, readInputFile(path, InputKind::kHoleList));
 }
 
 namespace {

@@ -3,6 +3,7 @@
 
 usage: scripts/mutation-campaign.py [--binary build-mut/bin/roprec] [--count N] [--seed S]
                                     [--jobs J] [--timeout SEC] [--out DIR] [--only KIND,...]
+                                    [--encodings]
 
 Build the CLI with AddressSanitizer + UndefinedBehaviorSanitizer first (the flags of
 scripts/sanitize.sh, e.g. in build-mut/: `ninja -C build-mut roprec`), then run this script.
@@ -31,6 +32,13 @@ unmutated baseline's (stdout and outputs other than programs and HTML: a written
 its uncompensated lines as they are) and no new warning/note line on stderr says so; value
 mutations through inspect and convert, which report values as they are, are not judged so.
 Other mutations that make a valid different input (a changed digit in a coordinate) may exit 0.
+
+--encodings mutates encodings instead (its own mutants for a seed, so the seeds above keep theirs):
+the file re-encoded as UTF-16/32 or given a NUL byte must be refused (exit 2, else FAIL
+"not_refused"); a byte that is not UTF-8 put into a name must leave every JSON and HTML output
+valid UTF-8 (else "invalid_utf8_output"); a name grown to 1 MB must end within the timeout with
+no stderr line longer than 5000 bytes (else "timeout" / "huge_message"). These checks apply to
+every run.
 
 Prints a summary (mutants, runs, per-category counts, every failing case with a reproduction
 command), writes DIR/log.json (DIR defaults to mutation/ beside the binary's bin/ folder) and
@@ -492,6 +500,43 @@ MUTATORS = [mut_byteflip, mut_digit, mut_delete_line, mut_dup_line, mut_truncate
             mut_numeric, mut_misspell, mut_remove, mut_swap_columns, mut_unit, mut_comma]
 
 
+# --encodings (kept apart so that the seeds of the mutations above give the same mutants): the
+# text re-encoded as UTF-16/32 or with a NUL byte (must be refused: exit 2), a byte that is not
+# UTF-8 in a name (JSON and HTML outputs must stay valid UTF-8), and a name grown to 1 MB (must end
+# at once with a short message).
+def mut_wide(text, rng, kind):
+    enc = rng.choice(["utf-16-le", "utf-16-be", "utf-16", "utf-32-le", "utf-32"])
+    b = text.encode("utf-8", "surrogateescape").decode("utf-8", "replace").encode(enc)
+    op = "utf32" if "32" in enc else "utf16"
+    return b.decode("utf-8", "surrogateescape"), op, True, "re-encoded as %s" % enc
+
+
+def mut_nul(text, rng, kind):
+    if not text:
+        return None
+    i = rng.randrange(len(text))
+    return text[:i] + "\0" + text[i:], "nul", True, "NUL byte at %d" % i
+
+
+def mut_latin1(text, rng, kind):
+    spots = [m.start() for m in re.finditer(r"[A-Za-z]", text)]
+    if not spots:
+        return None
+    i = rng.choice(spots)
+    return text[:i] + "\udce4" + text[i + 1:], "latin1", False, "byte 0xE4 at %d" % i
+
+
+def mut_huge_name(text, rng, kind):
+    spots = [m.start() for m in re.finditer(r"[A-Za-z_]{3,}", text)]
+    if not spots:
+        return None
+    i = rng.choice(spots)
+    return text[:i] + "q" * 1000000 + text[i:], "huge_name", False, "1 MB name at %d" % i
+
+
+ENCODING_MUTATORS = [mut_wide, mut_nul, mut_latin1, mut_huge_name]
+
+
 # ---------------------------------------------------------------------------------------------
 # Running and classifying.
 # ---------------------------------------------------------------------------------------------
@@ -537,9 +582,20 @@ def run_one(binary, tree, command, timeout):
             with open(full, "rb") as f:
                 files[rel] = f.read()
     norm = lambda b: b.decode("utf-8", "replace").replace(tree, "@T")
+
+    def not_utf8(b):
+        try:
+            b.decode("utf-8")
+            return False
+        except UnicodeDecodeError:
+            return True
+    bad_utf8 = [k for k, v in files.items() if k.endswith((".json", ".html")) and not_utf8(v)]
+    if so.lstrip().startswith(b"{") and not_utf8(so):
+        bad_utf8.append("stdout")
     return {"args": args, "rc": rc, "timeout": timed_out, "seconds": round(dt, 3),
             "stdout": norm(so), "stderr": norm(se),
-            "files": {k: norm(v) for k, v in files.items()}}
+            "stderr_longest_line": max((len(l) for l in se.split(b"\n")), default=0),
+            "bad_utf8": bad_utf8, "files": {k: norm(v) for k, v in files.items()}}
 
 
 def json_bad_numbers(text):
@@ -637,6 +693,12 @@ def classify(run, command, mutation, baseline):
             fails.append("nonfinite_message")
     if LONGNUM_RE.search(se) and not LONGNUM_RE.search(base_msg):
         fails.append("long_number_message")
+    if run.get("bad_utf8"):
+        fails.append("invalid_utf8_output")
+    if mutation["operator"] in ("utf16", "utf32", "nul") and rc != 2:
+        fails.append("not_refused")
+    if run.get("stderr_longest_line", 0) > 5000:
+        fails.append("huge_message")
     echo_ok = command["echo"] and mutation["operator"].startswith("value_")
     if rc == 0 and mutation["strict"] and not echo_ok and baseline is not None and \
             baseline["rc"] == 0:
@@ -658,6 +720,8 @@ def main():
     ap.add_argument("--timeout", type=float, default=10.0)
     ap.add_argument("--out", default=None, help="log folder (default: BINARY/../../mutation)")
     ap.add_argument("--only", default="", help="comma list of file kinds: cell,card,urdf,csv,program")
+    ap.add_argument("--encodings", action="store_true",
+                    help="mutate encodings instead: UTF-16/32, NUL, a Latin-1 byte, a 1 MB name")
     a = ap.parse_args()
     binary = os.path.abspath(a.binary)
     if not os.access(binary, os.X_OK):
@@ -681,7 +745,7 @@ def main():
         with open(os.path.join(ROOT, f), encoding="utf-8", errors="surrogateescape",
                   newline="") as fh:
             text = fh.read()
-        r = rng.choice(MUTATORS)(text, rng, kind_of(f))
+        r = rng.choice(ENCODING_MUTATORS if a.encodings else MUTATORS)(text, rng, kind_of(f))
         if r is None or r[0] == text:
             continue
         mutants.append({"id": "m%05d" % len(mutants), "scenario": s["name"], "file": f,

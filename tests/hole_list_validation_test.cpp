@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <filesystem>
 #include <random>
 #include <set>
@@ -42,9 +43,9 @@ TEST(HoleListValidation, BadRowsAreRefusedWithTheirLine) {
       {"H1,0,0,0,0,0,-1,8,10,0.2\nH2,40,0,0,0,0,-1,8,10,0.2\nH1,80,0,0,0,0,-1,8,10,0.2\n", 4,
        "duplicate hole id 'H1' (first at line 2"},
       {"H1,0,0,0,0,0,-1,8,10,0.2\nh1,80,0,0,0,0,-1,8,10,0.2\n", 3, "duplicate hole id 'h1'"},
-      {"H1,0,0,0,0,0,-1,0,10,0.2\n", 2, "hole H1: diameter 0 mm is outside 0.1..200 mm"},
-      {"H1,0,0,0,0,0,-1,-8,10,0.2\n", 2, "diameter -8 mm is outside 0.1..200 mm"},
-      {"H1,0,0,0,0,0,-1,1e300,10,0.2\n", 2, "diameter 1e+300 mm is outside 0.1..200 mm"},
+      {"H1,0,0,0,0,0,-1,0,10,0.2\n", 2, "hole H1: diameter 0 mm is outside 0.1..100 mm"},
+      {"H1,0,0,0,0,0,-1,-8,10,0.2\n", 2, "diameter -8 mm is outside 0.1..100 mm"},
+      {"H1,0,0,0,0,0,-1,1e300,10,0.2\n", 2, "diameter 1e+300 mm is outside 0.1..100 mm"},
       {"H1,0,0,0,0,0,-1,8,0,0.2\n", 2, "depth 0 mm is outside 0.05..2000 mm"},
       {"H1,0,0,0,0,0,-1,8,1e300,0.2\n", 2, "depth 1e+300 mm is outside 0.05..2000 mm"},
       {"H1,0,0,0,0,0,-1,8,10,0\n", 2, "tolerance 0 mm is outside 0.001..50 mm"},
@@ -303,6 +304,42 @@ TEST(HolesMatching, TheFastMatcherAgreesWithTheBruteForceOne) {
     }
     EXPECT_GT(fast.size(), 100u);
   }
+}
+
+// A header that is one 10 MB token is refused at once ("unknown column", the name cut to a readable
+// length), in time and memory independent of the token; every parse step is linear.
+TEST(HoleListValidation, AHugeUnknownColumnIsRefusedFastWithAShortMessage) {
+  const std::string token(10'000'000, 'w');
+  const auto t0 = std::chrono::steady_clock::now();
+  const InputError e = holeListError(token + "\nH1,1,2,3,0,0,-1\n");
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 2.0);
+  EXPECT_NE(e.message().find("unknown column '" + std::string(80, 'w') + "… (10000000 bytes)'"),
+            std::string::npos)
+      << e.message().substr(0, 300);
+  EXPECT_LT(e.message().size(), 500u);
+  const std::string spaces = "id,x,y,z,i,j,k," + std::string(2'000'000, ' ') + "dia\n";
+  const auto t1 = std::chrono::steady_clock::now();
+  (void)holeListError(spaces + "H1,1,2,3,0,0,-1,5\n");
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count(), 2.0);
+}
+
+// A hole-list diameter meets the same rules as the cell's drill diameter: the range 0.1 .. 100 mm,
+// and the cell's feed <= 0.1 Dc (a 0.1 mm hole at 0.2 mm/rev would get 0 N and "conforms"): an
+// error naming the hole's line.
+TEST(HoleListValidation, AHoleTheCellsFeedCannotDrillIsAnError) {
+  const std::string dir = test::tempDir("holes-feed");
+  const std::string cell = test::sourceDir() + "/samples/cells/housing-kr120.xml";
+  test::writeFile(
+      dir + "/h.csv",
+      kHeader + "T001,150,0,250,0,0,-1,6.8,16,0.2\nT002,144.889,38.823,250,0,0,-1,0.1,16,0.2\n");
+  const auto r = test::runRoprec("predict --cell '" + cell + "' '" + dir + "/h.csv' --quiet");
+  EXPECT_EQ(r.exit_code, 2) << r.out.substr(0, 300);
+  EXPECT_NE(
+      r.err.find(dir + "/h.csv:3: hole T002: diameter 0.1 mm is too small for the cell's feed"),
+      std::string::npos)
+      << r.err;
+  EXPECT_NE(holeListError(kHeader + "H1,1,2,3,0,0,-1,150,16,0.2\n").message().find("diameter"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -108,6 +108,19 @@ TEST(IkCli, UnreachableExitsOneWithReason) {
   EXPECT_NE(r.err.find("unreachable"), std::string::npos);
 }
 
+// A pose 1e300 mm away: "far beyond the arm's reach", never "infinite mm"; joints of 1e300° are
+// refused, not echoed with 300 digits.
+TEST(IkCli, AbsurdlyFarPosesAndHugeJointsGetReadableMessages) {
+  const auto r = runRoprec("ik --robot kuka-kr120-r2500-pro --xyzabc '1e300 0 0 0 0 0'");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("far beyond the arm's reach"), std::string::npos) << r.err;
+  EXPECT_EQ((r.out + r.err).find("infinite"), std::string::npos) << r.out << r.err;
+  const auto fk = runRoprec("fk --robot kuka-kr120-r2500-pro --joints '1e300 0 0 0 0 0'");
+  EXPECT_EQ(fk.exit_code, 2) << fk.out.substr(0, 200);
+  EXPECT_NE(fk.err.find("joint 1 = 1e+300° is beyond ten turns"), std::string::npos) << fk.err;
+  EXPECT_LT(fk.out.size() + fk.err.size(), 300u);
+}
+
 TEST(IkCli, BareUrdfWithSeed) {
   const std::string corpus = test::corpusDir();
   if (corpus.empty()) GTEST_SKIP() << "no corpus";

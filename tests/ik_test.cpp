@@ -4,9 +4,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
+#include <memory>
 #include <random>
 
+#include "compensator/robot/robot_card.hpp"
 #include "compensator/robot/urdf_loader.hpp"
 #include "compensator/support/error.hpp"
 #include "tests/support/test_support.hpp"
@@ -128,6 +131,37 @@ TEST(Ik, RandomRoundTripAllRobots) {
     EXPECT_GT(full_branch_sets, 100)
         << "all 8 distinct branches should appear for many random poses";
   }
+}
+
+// A pose taught exactly at a joint limit (KR 120 A2 = +35.000°, its URDF upper limit) and written
+// as a program writes it (mm with 3 decimals, i.e. rounded to 1e-6 m) is reachable: the rounding
+// moves the exact IK solution up to ~1e-6 rad past the limit, which is no reason to refuse it.
+TEST(Ik, APoseTaughtExactlyAtAJointLimitIsReachable) {
+  const Robot robot = loadRobot({"kuka-kr120-r2500-pro", "", ""});
+  const IkModel m = buildIkModel(robot);
+  auto result = std::make_unique<IkResult>();
+  int checked = 0;
+  for (const double q1 : {-0.4, 0.0, 0.3}) {
+    for (const double q3 : {-1.2, -0.6, 0.2, 0.9}) {
+      for (const double q5 : {-0.9, 0.7}) {
+        Vec6 q;
+        q << q1, m.upper[1], q3, 0.3, q5, -0.2;
+        Pose T = ikForwardKinematics(m, q);
+        for (int i = 0; i < 3; ++i)
+          T.translation()[i] = std::round(T.translation()[i] * 1e6) / 1e6;  // 0.001 mm
+        solveIk(m, T, IkOptions{}, *result);
+        bool found = false;
+        for (int k = 0; k < result->count; ++k) {
+          const IkSolution& s = result->solutions[static_cast<size_t>(k)];
+          found = found || (s.within_limits && (s.q - q).cwiseAbs().maxCoeff() < 1e-4);
+        }
+        EXPECT_TRUE(found) << "q1 " << q1 << " q3 " << q3 << " q5 " << q5 << ": "
+                           << describeIkFailure(*result);
+        ++checked;
+      }
+    }
+  }
+  EXPECT_EQ(checked, 24);
 }
 
 TEST(Ik, OpwParametersFromGeometry) {

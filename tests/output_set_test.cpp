@@ -2,11 +2,13 @@
 /// in its target folder and renames all of them only when all were staged.
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/file.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <filesystem>
 #include <string>
 #include <thread>
@@ -291,6 +293,262 @@ TEST(OutputSet, CApiCompensateWritesNothingWhenTheTargetsExportFails) {
             std::string::npos)
       << err;
   EXPECT_TRUE(listDir(dir).empty());
+}
+
+// Every output is compared with every other output and every input of the set before anything is
+// renamed: the same file by device and inode (a link, a "./" path) or by resolved path (a file not
+// there yet). Nothing is written, no temporary is left.
+TEST(OutputSet, AnOutputThatIsAnInputOrAnotherOutputIsRefusedBeforeAnyRename) {
+  const std::string dir = test::tempDir("outset-same");
+  test::writeFile(dir + "/in.src", "the input");
+  ASSERT_EQ(::symlink("in.src", (dir + "/link.src").c_str()), 0);
+  {
+    OutputSet set;
+    set.noteInput(dir + "/link.src");
+    set.stage(dir + "/other.json", "json");
+    set.stage(dir + "/./in.src", "would clobber the input");
+    try {
+      set.commit();
+      ADD_FAILURE() << "an output equal to an input was committed";
+    } catch (const UsageError& e) {
+      EXPECT_NE(std::string(e.what()).find("is the input file " + dir + "/link.src"),
+                std::string::npos)
+          << e.what();
+      EXPECT_NE(std::string(e.what()).find("output " + dir + "/./in.src"), std::string::npos)
+          << e.what();
+    }
+  }
+  EXPECT_EQ(test::readFile(dir + "/in.src"), "the input");
+  EXPECT_FALSE(fs::exists(dir + "/other.json"));
+  EXPECT_EQ(temporariesIn(dir), 0);
+  // two outputs naming one file (not there yet: by resolved path; there: by inode)
+  for (const std::string& second : {dir + "/sub/../new.json", dir + "/./new.json"}) {
+    fs::create_directories(dir + "/sub");
+    OutputSet set;
+    set.stage(dir + "/new.json", "one");
+    try {
+      set.stage(second, "two");
+      ADD_FAILURE() << "two outputs naming one file were staged: " << second;
+    } catch (const UsageError& e) {
+      EXPECT_NE(std::string(e.what()).find("are the same file"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_FALSE(fs::exists(dir + "/new.json"));
+  ASSERT_EQ(::link((dir + "/in.src").c_str(), (dir + "/hard.src").c_str()), 0);
+  OutputSet set;
+  set.stage(dir + "/in.src", "a");
+  EXPECT_THROW(set.stage(dir + "/hard.src", "b"), UsageError);
+}
+
+// The CLI: an output equal to the program, the cell, the hole list or another output is exit 2
+// naming both files, and nothing is written (the program keeps its bytes).
+TEST(OutputSet, CliOutputsNeverReplaceAnInputOrEachOther) {
+  const std::string dir = test::tempDir("outset-cli-same");
+  const std::string src = test::sourceDir();
+  const std::string program = dir + "/y.src";
+  const std::string cell = dir + "/cell.xml";
+  const std::string holes = dir + "/holes.csv";
+  const std::string program_bytes =
+      test::readFile(src + "/samples/emotor-housing/housing_kr120.src");
+  const std::string cell_bytes = test::readFile(src + "/samples/cells/housing-kr120.xml");
+  const std::string holes_bytes = test::readFile(src + "/samples/emotor-housing/holes.csv");
+  test::writeFile(program, program_bytes);
+  test::writeFile(cell, cell_bytes);
+  test::writeFile(holes, holes_bytes);
+  const std::string base = "--cell '" + cell + "' '" + program + "' ";
+  struct Case {
+    std::string args;
+    std::string first;
+    std::string second;
+  };
+  const std::vector<Case> cases{
+      {"predict " + base + "--json '" + program + "'", program, program},
+      {"predict " + base + "--json '" + cell + "'", cell, cell},
+      {"predict " + base + "--holes '" + holes + "' --json '" + holes + "'", holes, holes},
+      {"predict " + base + "--report '" + dir + "/./y.src'", dir + "/./y.src", program},
+      {"compensate " + base + "-o '" + dir + "/c.src' --targets '" + cell + "'", cell, cell},
+      {"compensate " + base + "-o '" + dir + "/c.src' --report '" + cell + "'", cell, cell},
+      {"compensate " + base + "-o '" + dir + "/z.src' --targets '" + dir + "/z.src'",
+       dir + "/z.src", dir + "/z.src"},
+  };
+  for (const Case& c : cases) {
+    const auto r = test::runRoprec(c.args + " --quiet");
+    EXPECT_EQ(r.exit_code, 2) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.first), std::string::npos) << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.second), std::string::npos) << c.args << "\n" << r.err;
+    EXPECT_EQ(r.out.find("wrote"), std::string::npos) << r.out;
+    EXPECT_TRUE(test::readFile(program) == program_bytes) << c.args;
+    EXPECT_TRUE(test::readFile(cell) == cell_bytes) << c.args;
+    EXPECT_TRUE(test::readFile(holes) == holes_bytes) << c.args;
+    EXPECT_FALSE(fs::exists(dir + "/z.src")) << c.args;
+    EXPECT_FALSE(fs::exists(dir + "/c.src")) << c.args;
+    EXPECT_EQ(temporariesIn(dir), 0) << c.args;
+  }
+}
+
+// Two threads of one process writing the same path: every call succeeds and the file always holds
+// one call's bytes whole (temporary names are unique per thread).
+TEST(OutputSet, ThreadsWritingTheSamePathNeverFailOrMix) {
+  const std::string dir = test::tempDir("outset-threads");
+  const std::string path = dir + "/same.json";
+  std::atomic<int> failures{0};
+  auto body = [&](int t) {
+    const std::string bytes(4096 + t, static_cast<char>('a' + t));
+    for (int i = 0; i < 150; ++i) {
+      try {
+        writeFileAtomic(path, bytes);
+      } catch (const std::exception&) {
+        ++failures;
+      }
+    }
+  };
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t) threads.emplace_back(body, t);
+  for (auto& th : threads) th.join();
+  EXPECT_EQ(failures.load(), 0);
+  const std::string got = test::readFile(path);
+  ASSERT_GE(got.size(), 4096u);
+  const int t = got[0] - 'a';
+  EXPECT_EQ(got, std::string(4096 + static_cast<std::size_t>(t), got[0]));
+  EXPECT_EQ(temporariesIn(dir), 0);
+}
+
+// Sets committed concurrently never interleave: a reader holding the folder lock (what a commit
+// holds during its renames) always sees the program and the targets of one and the same set.
+TEST(OutputSet, ConcurrentSetsAreCommittedWhole) {
+  const std::string dir = test::tempDir("outset-concurrent");
+  std::atomic<bool> done{false};
+  std::atomic<int> mixed{0};
+  std::atomic<int> failures{0};
+  auto writer = [&](char tag) {
+    for (int i = 0; i < 150; ++i) {
+      try {
+        OutputSet set;
+        const std::string v = std::string(1, tag) + std::to_string(i);
+        set.stage(dir + "/p.src", v);
+        set.stage(dir + "/p.json", v);
+        set.stage(dir + "/p.html", v);
+        set.commit();
+      } catch (const std::exception&) {
+        ++failures;
+      }
+    }
+  };
+  std::thread reader([&] {
+    while (!done) {
+      const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY);
+      ASSERT_GE(fd, 0);
+      ASSERT_EQ(::flock(fd, LOCK_EX), 0);
+      if (fs::exists(dir + "/p.html")) {
+        const std::string a = test::readFile(dir + "/p.src");
+        if (a != test::readFile(dir + "/p.json") || a != test::readFile(dir + "/p.html")) ++mixed;
+      }
+      ::close(fd);
+    }
+  });
+  std::thread w1(writer, 'a');
+  std::thread w2(writer, 'b');
+  w1.join();
+  w2.join();
+  done = true;
+  reader.join();
+  EXPECT_EQ(failures.load(), 0);
+  EXPECT_EQ(mixed.load(), 0);
+  EXPECT_EQ(temporariesIn(dir), 0);
+}
+
+// Two spellings of one folder ("d" and "d/sub/..") are locked once: the commit neither waits for
+// itself nor fails (run in a child that the test kills after 10 s).
+TEST(OutputSet, OneFolderSpelledTwoWaysIsLockedOnce) {
+  const std::string dir = test::tempDir("outset-two-spellings");
+  fs::create_directories(dir + "/sub");
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    OutputSet set;
+    set.stage(dir + "/a.json", "a");
+    set.stage(dir + "/sub/../b.json", "b");
+    set.commit();
+    ::_exit(0);
+  }
+  int status = 0;
+  pid_t done = 0;
+  for (int i = 0; i < 1000 && done == 0; ++i) {
+    done = ::waitpid(child, &status, WNOHANG);
+    if (done == 0) ::usleep(10000);
+  }
+  if (done == 0) {
+    ::kill(child, SIGKILL);
+    ::waitpid(child, &status, 0);
+    FAIL() << "the commit did not finish within 10 s";
+  }
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  EXPECT_EQ(test::readFile(dir + "/a.json"), "a");
+  EXPECT_EQ(test::readFile(dir + "/b.json"), "b");
+}
+
+// A run killed between the renames of its set (fault injection: ROPREC_FAULT_KILL_AFTER_RENAMES)
+// leaves a mixed set and its commit journal; the next run writing to the folder finishes the
+// renames, says so, and removes the journal.
+TEST(OutputSet, ACommitKilledBetweenRenamesIsFinishedByTheNextRun) {
+  const std::string dir = test::tempDir("outset-kill-mid");
+  test::writeFile(dir + "/p.src", "old src");
+  test::writeFile(dir + "/p.dat", "old dat");
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    ::setenv(kFaultKillAfterRenamesEnv, "1", 1);
+    OutputSet set;
+    set.stage(dir + "/p.src", "new src");
+    set.stage(dir + "/p.dat", "new dat");
+    set.stage(dir + "/p.json", "new json");
+    set.commit();
+    ::_exit(0);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFSIGNALED(status));
+  // the mixed set the kill left, and its journal
+  EXPECT_EQ(test::readFile(dir + "/p.src"), "new src");
+  EXPECT_EQ(test::readFile(dir + "/p.dat"), "old dat");
+  int journals = 0;
+  for (const auto& name : listDir(dir)) journals += name.rfind(".roprec-commit.", 0) == 0 ? 1 : 0;
+  EXPECT_EQ(journals, 1);
+  OutputSet next;
+  next.stage(dir + "/q.txt", "q");
+  next.commit();
+  EXPECT_EQ(test::readFile(dir + "/p.src"), "new src");
+  EXPECT_EQ(test::readFile(dir + "/p.dat"), "new dat");
+  EXPECT_EQ(test::readFile(dir + "/p.json"), "new json");
+  ASSERT_EQ(next.notes().size(), 1u);
+  EXPECT_NE(next.notes()[0].find("killed during it: " + dir + "/p.dat, " + dir + "/p.json"),
+            std::string::npos)
+      << next.notes()[0];
+  EXPECT_EQ(listDir(dir), (std::vector<std::string>{"p.dat", "p.json", "p.src", "q.txt"}));
+}
+
+// The same through the CLI: compensate killed after renaming the program; the next roprec run
+// writing there finishes the set (the targets appear) and prints a note.
+TEST(OutputSet, CliCommitKilledBetweenRenamesIsFinishedByTheNextRun) {
+  const std::string dir = test::tempDir("outset-cli-kill");
+  const std::string src = test::sourceDir();
+  const auto killed =
+      test::runCommand(std::string(kFaultKillAfterRenamesEnv) + "=1 '" + test::roprecBin() +
+                       "' compensate --cell '" + src + "/samples/cells/housing-kr120.xml' '" + src +
+                       "/samples/emotor-housing/housing_kr120.src' -o '" + dir +
+                       "/c.src' --targets '" + dir + "/t.json' --quiet");
+  EXPECT_NE(killed.exit_code, 0);
+  EXPECT_FALSE(fs::exists(dir + "/t.json"));
+  const auto next = test::runRoprec(
+      "fk --robot kuka-kr120-r2500-pro --joints \"0 -90 90 0 0 0\" -o '" + dir + "/fk.json'");
+  EXPECT_EQ(next.exit_code, 0) << next.err;
+  EXPECT_NE(next.err.find("roprec: note: finished the output commit of an earlier run"),
+            std::string::npos)
+      << next.err;
+  EXPECT_TRUE(fs::exists(dir + "/c.src"));
+  EXPECT_TRUE(fs::exists(dir + "/t.json"));
+  EXPECT_EQ(temporariesIn(dir), 0);
 }
 
 }  // namespace

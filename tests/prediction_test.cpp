@@ -5,11 +5,14 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
+#include <random>
 #include <regex>
 
 #include "compensator/precision/uncertainty.hpp"
 #include "plugin/api/prediction_setup.hpp"
+#include "tests/support/kdl_support.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace roprec {
@@ -146,8 +149,14 @@ TEST(Prediction, BudgetRecomputedByHand) {
   EXPECT_NEAR(h.U_work, std::sqrt(h.U_robot * h.U_robot + h.U_mach * h.U_mach), 1e-15);
   EXPECT_NEAR(h.budget[0].u, 0.06e-3 / 3.6161, 1e-8);  // KR 120 RP 0.06 mm
   EXPECT_NEAR(h.k, 2.4477, 1e-4);
-  // the verdict uses the anisotropic 95 % radius of Σ_def + (u_robpos² + u_mach²) I, ≥ U_work
-  const double iso2 = h.budget[0].u * h.budget[0].u + u2_mach;
+  // the verdict uses the anisotropic 95 % radius of Σ_def + (u_robpos² + u_acc² + u_mach²) I
+  // (the card's uncalibrated absolute accuracy is isotropic), ≥ U_work
+  const BudgetTerm* acc = nullptr;
+  for (const BudgetTerm& t : h.budget)
+    if (std::string(t.name) == "robot_absolute_accuracy") acc = &t;
+  ASSERT_NE(acc, nullptr);
+  EXPECT_NEAR(acc->u, 1.0e-3 / 2.7955, 1e-15);  // KR 120 card: AP 1.0 mm (estimate)
+  const double iso2 = h.budget[0].u * h.budget[0].u + acc->u * acc->u + u2_mach;
   const Eigen::Matrix2d S = h.robdef_cov + iso2 * Eigen::Matrix2d::Identity();
   EXPECT_NEAR(h.U_work_exact, radialCoverage(S), 1e-12);
   EXPECT_GE(h.U_work_exact, h.U_work * (1 - 1e-12));
@@ -173,6 +182,178 @@ TEST(Prediction, MonteCarloAgreesWithLinearisationAtSmallInputUncertainty) {
     const double ul = std::sqrt(0.5 * pl[i].robdef_cov.trace());
     EXPECT_NEAR(um, ul, 0.10 * ul) << pm[i].id;
   }
+}
+
+/// The paper cell with its robot replaced by a copy of the KR 120 card holding `card_extra` (before
+/// </robot>) and `cell_extra` before <tolerance>.
+std::string paperCellWith(const std::string& card_extra, const std::string& cell_extra,
+                          const std::string& tag) {
+  const std::string dir = test::tempDir(tag);
+  const Robot robot = loadRobot({"kuka-kr120-r2500-pro", "", ""});
+  const std::string card = test::cardWithCalibration(robot, card_extra, dir);
+  std::string xml = test::readFile(paper("cell.xml"));
+  xml = std::regex_replace(xml, std::regex("<robot ref=\"kuka-kr120-r2500-pro\"/>"),
+                           "<robot file=\"" + card + "\"/>");
+  xml = std::regex_replace(xml, std::regex("<tolerance"), cell_extra + "\n  <tolerance");
+  test::writeFile(dir + "/cell.xml", xml);
+  return dir + "/cell.xml";
+}
+
+const BudgetTerm* termNamed(const HolePrediction& h, const std::string& name) {
+  for (const BudgetTerm& t : h.budget)
+    if (name == t.name) return &t;
+  return nullptr;
+}
+
+/// The card of a paperCellWith cell with its <accuracy> element replaced by `accuracy`.
+void replaceCardAccuracy(const std::string& cell, const std::string& accuracy) {
+  const std::string card = std::filesystem::path(cell).parent_path().string() + "/robot.xml";
+  test::writeFile(card, std::regex_replace(test::readFile(card),
+                                           std::regex("  <accuracy [^>]*/>\n"), accuracy));
+}
+
+TEST(Prediction, AbsoluteAccuracyTermFromTheCardTheOptionAndTheRegistration) {
+  const std::string none = paperCellWith("", "", "acc-none");
+  replaceCardAccuracy(none, "");
+  const api::PredictionContext plain =
+      api::loadPredictionContext(none, paper("holes.csv"), std::nullopt, "");
+  const HolePrediction h0 = byId(predictHoles(plain.model, plain.job.requests), "X2");
+  EXPECT_EQ(termNamed(h0, "robot_absolute_accuracy"), nullptr);  // nothing stated: no term
+  // the card's AP (uncalibrated): AP / 2.7955 per axis, in u_robot, with its source
+  const std::string with_ap = paperCellWith("", "", "acc-card");
+  replaceCardAccuracy(with_ap, "  <accuracy ap_mm=\"0.8\" source=\"test: AP\"/>\n");
+  api::PredictionContext c =
+      api::loadPredictionContext(with_ap, paper("holes.csv"), std::nullopt, "");
+  HolePrediction h = byId(predictHoles(c.model, c.job.requests), "X2");
+  const BudgetTerm* t = termNamed(h, "robot_absolute_accuracy");
+  ASSERT_NE(t, nullptr);
+  EXPECT_NEAR(t->u, 0.8e-3 / 2.7955, 1e-15);
+  ASSERT_NE(t->source, nullptr);
+  EXPECT_NE(std::string(t->source).find("test: AP"), std::string::npos) << t->source;
+  EXPECT_NEAR(h.u_robot, std::sqrt(h0.u_robot * h0.u_robot + t->u * t->u), 1e-12);
+  EXPECT_GT(h.U_work_exact, h0.U_work_exact);
+  // the controller's option replaces it; the registration σ adds in quadrature
+  const std::string option =
+      paperCellWith("", "<absolute_accuracy ap_mm=\"0.2\" source=\"test: option\"/>", "acc-option");
+  test::writeFile(option, std::regex_replace(test::readFile(option), std::regex("rpy=\"0 0 0\"/>"),
+                                             "rpy=\"0 0 0\" sigma_mm=\"0.01\"/>"));
+  c = api::loadPredictionContext(option, paper("holes.csv"), std::nullopt, "");
+  h = byId(predictHoles(c.model, c.job.requests), "X2");
+  t = termNamed(h, "robot_absolute_accuracy");
+  ASSERT_NE(t, nullptr);
+  EXPECT_NEAR(t->u, std::hypot(0.2e-3 / 2.7955, 0.01e-3), 1e-15);
+  EXPECT_NE(std::string(t->source).find("test: option"), std::string::npos) << t->source;
+}
+
+TEST(Prediction, CalibratedAccuracyTermMatchesAMonteCarloOfTheCalibration) {
+  // σ per component, propagated by the FK Jacobian, against sampled calibrations pushed through
+  // the calibrated chain's FK (no Jacobian): in-plane standard deviation within 5 % (4000 samples:
+  // sampling error ~2 %)
+  GeometryCalibration cal = test::seededGeometryErrors(3, 0.3, 0.4);
+  const auto setSigma = [](FrameError& e) {
+    e.sigma_xyz = Vec3(0.02e-3, 0.03e-3, 0.01e-3);
+    e.sigma_rpy = Vec3(0.02e-3, 0.01e-3, 0.03e-3);
+  };
+  for (FrameError& j : cal.joints) setSigma(j);
+  setSigma(cal.base);
+  setSigma(cal.tool);
+  std::array<std::string, 6> names;
+  const Robot robot = loadRobot({"kuka-kr120-r2500-pro", "", ""});
+  for (size_t i = 0; i < 6; ++i) names[i] = robot.card.joints[i].name;
+  const api::PredictionContext c =
+      api::loadPredictionContext(paperCellWith(calibrationXml(cal, names), "", "acc-cal"),
+                                 paper("holes.csv"), std::nullopt, "");
+  const HolePrediction h = byId(predictHoles(c.model, c.job.requests), "X3");
+  const BudgetTerm* t = termNamed(h, "robot_absolute_accuracy");
+  ASSERT_NE(t, nullptr);
+  const Pose tool = c.tool.T_flange_tcp;
+  const Vec3 e1 = c.job.requests[2].T_W_tcp.linear().col(0);
+  const Vec3 e2 = c.job.requests[2].T_W_tcp.linear().col(1);
+  std::mt19937 rng(17);
+  std::normal_distribution<double> n(0.0, 1.0);
+  const auto draw = [&](const FrameError& e) {
+    FrameError d = e;
+    for (int k = 0; k < 3; ++k) {
+      d.dxyz[k] += e.sigma_xyz[k] * n(rng);
+      d.drpy[k] += e.sigma_rpy[k] * n(rng);
+    }
+    return d;
+  };
+  const Vec3 p0 =
+      (chainForwardKinematics(calibratedChain(robot.chain, cal), h.deflection.theta) * tool)
+          .translation();
+  double s2 = 0;
+  const int N = 4000;
+  for (int s = 0; s < N; ++s) {
+    GeometryCalibration d = cal;
+    for (FrameError& j : d.joints) j = draw(j);
+    d.base = draw(cal.base);
+    d.tool = draw(cal.tool);
+    const Vec3 dp =
+        (chainForwardKinematics(calibratedChain(robot.chain, d), h.deflection.theta) * tool)
+            .translation() -
+        p0;
+    s2 += 0.5 * (std::pow(dp.dot(e1), 2) + std::pow(dp.dot(e2), 2));
+  }
+  EXPECT_NEAR(t->u, std::sqrt(s2 / N), 0.05 * t->u);
+  EXPECT_GT(t->u, 1e-5);
+}
+
+TEST(Prediction, CalibratedAccuracyTermCoversTruthRobotsDrawnFromTheCalibration) {
+  // truth robots: the calibration's values plus seeded draws of its stated σ (each component
+  // independent, normal), FK by calibratedChain at the predicted equilibrium; the in-plane miss
+  // of the predicted real drill point lies inside k·u_acc (k = 2.4477, the 2-D 95 % factor) for
+  // 95 ± 3 % of (robot, hole) pairs over the paper cell's holes
+  GeometryCalibration cal = test::seededGeometryErrors(5, 0.3, 0.4);
+  const auto setSigma = [](FrameError& e) {
+    e.sigma_xyz = Vec3(0.015e-3, 0.015e-3, 0.015e-3);
+    e.sigma_rpy = Vec3(0.015e-3, 0.015e-3, 0.015e-3);
+  };
+  for (FrameError& j : cal.joints) setSigma(j);
+  setSigma(cal.base);
+  setSigma(cal.tool);
+  const Robot robot = loadRobot({"kuka-kr120-r2500-pro", "", ""});
+  std::array<std::string, 6> names;
+  for (size_t i = 0; i < 6; ++i) names[i] = robot.card.joints[i].name;
+  const api::PredictionContext c =
+      api::loadPredictionContext(paperCellWith(calibrationXml(cal, names), "", "acc-cover"),
+                                 paper("holes.csv"), std::nullopt, "");
+  const std::vector<HolePrediction> p = predictHoles(c.model, c.job.requests);
+  std::mt19937 rng(29);
+  std::normal_distribution<double> n(0.0, 1.0);
+  const auto draw = [&](const FrameError& e) {
+    FrameError d = e;
+    for (int k = 0; k < 3; ++k) {
+      d.dxyz[k] += e.sigma_xyz[k] * n(rng);
+      d.drpy[k] += e.sigma_rpy[k] * n(rng);
+    }
+    return d;
+  };
+  const Pose tool = c.tool.T_flange_tcp;
+  const ChainDescription real = calibratedChain(robot.chain, cal);
+  int inside = 0;
+  int total = 0;
+  for (int s = 0; s < 500; ++s) {
+    GeometryCalibration d = cal;
+    for (FrameError& j : d.joints) j = draw(j);
+    d.base = draw(cal.base);
+    d.tool = draw(cal.tool);
+    const ChainDescription truth = calibratedChain(robot.chain, d);
+    for (size_t i = 0; i < p.size(); ++i) {
+      const BudgetTerm* t = termNamed(p[i], "robot_absolute_accuracy");
+      ASSERT_NE(t, nullptr);
+      const Vec6& th = p[i].deflection.theta;
+      const Vec3 e = (chainForwardKinematics(truth, th) * tool).translation() -
+                     (chainForwardKinematics(real, th) * tool).translation();
+      const Mat3 R = c.job.requests[i].T_W_tcp.linear();
+      const double miss = std::hypot(e.dot(R.col(0)), e.dot(R.col(1)));
+      inside += miss <= p[i].k * t->u ? 1 : 0;
+      ++total;
+    }
+  }
+  const double coverage = static_cast<double>(inside) / total;
+  RecordProperty("coverage", std::to_string(coverage));
+  EXPECT_NEAR(coverage, 0.95, 0.03) << inside << " of " << total;
 }
 
 TEST(PredictionCli, SameInputGivesByteIdenticalJsonAndHtml) {

@@ -314,3 +314,28 @@ TEST(ProgramFrames, ControllerOnlyFramesAreErrorsUnlessResolved) {
 
 }  // namespace
 }  // namespace roprec
+
+namespace roprec {
+namespace {
+
+// --frame cell names the cell's <workobject>; a cell without one defines no frame, so the option
+// is an error (it used to fall back to the robot base frame without a word).
+TEST(ProgramFrames, FrameCellWithoutAWorkobjectIsAnError) {
+  const std::string dir = test::tempDir("frame-cell-no-wobj");
+  std::string cell = test::readFile(test::sourceDir() + "/samples/cells/housing-r2000.xml");
+  const std::string wobj = "<workobject xyz=\"1400 0 -370\" rpy=\"0 0 0\"/>";
+  ASSERT_NE(cell.find(wobj), std::string::npos);
+  cell.replace(cell.find(wobj), wobj.size(), "");
+  test::writeFile(dir + "/cell.xml", cell);
+  const auto r = test::runRoprec("predict --cell '" + dir + "/cell.xml' '" + test::sourceDir() +
+                                 "/samples/emotor-housing/housing_r2000.ls' --frame cell --tool "
+                                 "cell --json '" +
+                                 dir + "/p.json'");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find(dir + "/cell.xml:"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--frame cell: the cell has no <workobject>"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/p.json"));
+}
+
+}  // namespace
+}  // namespace roprec

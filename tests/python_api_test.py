@@ -225,6 +225,23 @@ class PythonApiTest(unittest.TestCase):
         self.assertEqual(sorted(roprec.__all__), sorted(["__version__", "Session", "predict", "compensate", "verify", "plan_test", "Prediction",
                                                          "RoprecError", "InputError", "UsageError", "ItemError"]))
 
+    def test_a_folder_given_as_an_input_is_a_directory_not_a_memory_error(self):
+        with self.assertRaises(roprec.InputError) as e:
+            roprec.predict(CELL, str(self.tmp))
+        self.assertIn(str(self.tmp) + ": is a directory", str(e.exception))
+        with self.assertRaises(roprec.InputError) as e:
+            roprec.predict(str(self.tmp), PROGRAM)
+        self.assertIn("is a directory; give a cell file", str(e.exception))
+
+    def test_an_output_that_is_an_input_is_refused_and_the_input_kept(self):
+        program = self.tmp / "p.src"
+        shutil.copy(PROGRAM, program)
+        before = program.read_bytes()
+        with self.assertRaises(roprec.UsageError) as e:
+            roprec.predict(CELL, str(program), json_out=str(program))
+        self.assertIn("is the input file", str(e.exception))
+        self.assertEqual(program.read_bytes(), before)
+
     def test_predict_gives_the_cli_and_c_numbers(self):
         r = cli("predict", "--cell", CELL, PROGRAM, "--holes", HOLES, "--json", self.tmp / "cli.json", "--quiet")
         self.assertLessEqual(r.returncode, 1, r.stderr)

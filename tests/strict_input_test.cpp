@@ -3,6 +3,7 @@
 // repository's own cells and cards (the positive corpus) still load.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
 #include <regex>
 
@@ -58,6 +59,23 @@ TEST(XmlNames, DidYouMeanFindsNearMissesOnly) {
   EXPECT_EQ(didYouMean("dia", known), " (did you mean 'diameter'?)");
   EXPECT_EQ(didYouMean("colour", known), "");
   EXPECT_EQ(didYouMean("tolerence", {"tolerance"}, "<", ">"), " (did you mean <tolerance>?)");
+}
+
+// A 10 MB unknown name costs no more than a short one (candidates whose length differs by more
+// than the distance allowed are skipped), and the message echoes it cut to a readable length.
+TEST(XmlNames, AHugeUnknownNameIsAnsweredAtOnceAndClippedInTheMessage) {
+  const std::vector<std::string> known = {"mass_kg", "com_mm", "name", "diameter"};
+  const std::string huge(10'000'000, 'm');
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int i = 0; i < 50; ++i) EXPECT_EQ(didYouMean(huge, known), "");
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 1.0);
+  const InputError e = cellError(
+      replaced(sampleCell(), "<tool ", "<tool " + std::string(1'000'000, 'q') + "=\"1\" "),
+      "strict-huge-attr");
+  EXPECT_NE(e.message().find("unknown attribute '" + std::string(80, 'q') + "… (1000000 bytes)'"),
+            std::string::npos)
+      << e.message().substr(0, 300);
+  EXPECT_LT(e.message().size(), 400u);
 }
 
 TEST(StrictCell, MisspeltToolMassIsAnErrorWithAHint) {

@@ -3,6 +3,8 @@
 /// of the literal origins of a small fixture, hand-computed combined inertials, and one test
 /// per kind of bad input, through the library and through the CLI.
 #include <gtest/gtest.h>
+
+#include <chrono>
 #include <kdl/chainfksolverpos_recursive.hpp>
 #include <kdl/tree.hpp>
 #include <kdl_parser/kdl_parser.hpp>
@@ -331,6 +333,42 @@ TEST(UrdfLoaderBadInput, UnknownRobotName) {
     EXPECT_NE(e.message().find("no-such-robot"), std::string::npos);
     EXPECT_NE(e.message().find("kuka-kr120-r2500-pro"), std::string::npos)
         << "lists the bundled robots";
+  }
+}
+
+// A URDF of 1,000 joints (a chain, and the same chain closed into a loop through the root) is
+// answered in well under a second: the loop check walks each link once.
+TEST(UrdfLoaderBadInput, AThousandJointsAreCheckedInLinearTime) {
+  const std::string dir = test::tempDir("urdf-1000");
+  for (const bool loop : {false, true}) {
+    std::string u = "<?xml version=\"1.0\"?>\n<robot name=\"long\">\n<link name=\"l0\"/>\n";
+    for (int i = 1; i <= 1000; ++i) u += "<link name=\"l" + std::to_string(i) + "\"/>\n";
+    for (int i = 1; i <= 1000; ++i) {
+      u += "<joint name=\"j" + std::to_string(i) + "\" type=\"revolute\"><parent link=\"l" +
+           std::to_string(i - 1) + "\"/><child link=\"l" + std::to_string(i) +
+           "\"/><axis xyz=\"0 0 1\"/><limit lower=\"-1\" upper=\"1\" velocity=\"1\" "
+           "effort=\"0\"/></joint>\n";
+    }
+    if (loop) {
+      u += "<joint name=\"jclose\" type=\"revolute\"><parent link=\"l1000\"/><child link=\"l0\"/>"
+           "<axis xyz=\"0 0 1\"/><limit lower=\"-1\" upper=\"1\" velocity=\"1\" effort=\"0\"/>"
+           "</joint>\n";
+    }
+    u += "</robot>\n";
+    const std::string path = dir + (loop ? "/loop.urdf" : "/chain.urdf");
+    test::writeFile(path, u);
+    const auto t0 = std::chrono::steady_clock::now();
+    try {
+      (void)loadUrdfChain(path);
+      ADD_FAILURE() << "a 1000-joint chain was loaded as a 6R robot";
+    } catch (const InputError& e) {
+      if (loop) {
+        EXPECT_NE(e.message().find("kinematic loop"), std::string::npos) << e.message();
+      }
+    }
+    const auto r = test::runRoprec(fkArgs(path));
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 3.0);
   }
 }
 

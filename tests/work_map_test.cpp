@@ -173,6 +173,8 @@ TEST(WorkMap, BadRequestsExitTwoWithAMessage) {
       {"--region \"0 0 0 1 1\" --direction \"0 0 -1\"", "--region"},
       {"--region \"0 0 0 1 1 1\" --direction \"0 0 -1\" --feeds \"0.1 -0.2\"", "--feeds"},
       {"--region \"0 0 nan 1 1 1\" --direction \"0 0 -1\"", "--region"},
+      // a tiny step is named as given, not rounded to "0.000"
+      {"--region \"0 0 0 1 1 1\" --direction \"0 0 -1\" --step 1e-300", "--step 1e-300 mm"},
   };
   for (const auto& [args, what] : cases) {
     const test::RunResult r = test::runRoprec(base + args);

@@ -105,7 +105,8 @@ struct Evaluator {
     return roprec::processFor(m, diameter);
   }
 
-  /// IK at T_W_tcp in `branch` (−1: any) nearest `seed`; `enforce_wrist`: |θ5| ≥ margin.
+  /// IK of the real robot (the link angles θ_d that put the real TCP at T_W_tcp, realIk) in
+  /// `branch` (−1: any) nearest `seed`; `enforce_wrist`: |θ5| ≥ margin.
   Node evaluate(const HoleRequest& h, double psi, int branch, const Vec6& seed, bool enforce_wrist,
                 bool with_cost) {
     Node n;
@@ -115,7 +116,7 @@ struct Evaluator {
     IkOptions opt;
     opt.seed = &seed;
     opt.branch = branch;  // the other branches are never candidates: not solved
-    solveIk(m.ik, T_flange, opt, d.ik);
+    solveIk(realIk(m), T_flange, opt, d.ik);
     double best = kInf;
     n.why = Why::kUnreachable;
     auto worse = [&](Why w) {
@@ -666,10 +667,11 @@ void refineTurned(std::vector<Evaluator>& evs, const std::vector<HoleRequest>& h
 std::optional<Vec6> positionOnlyCommand(Evaluator& ev, const Pose& T_nominal, const Vec6& theta_d,
                                         const nc::Loads& loads) {
   const PredictionModel& m = ev.m;
+  const nc::Model& controller = controllerModel(m);
   Pose T = T_nominal;
   Vec6 q = theta_d;
   for (int it = 0; it < 30; ++it) {
-    const Pose T_flange = T * m.model.T_L6_tcp.inverse() * m.model.T_L6_flange;
+    const Pose T_flange = T * controller.T_L6_tcp.inverse() * controller.T_L6_flange;
     const IkNearResult ik = solveIkNear(m.ik, T_flange, q);
     if (!ik.converged) return std::nullopt;
     q = ik.q;
@@ -783,7 +785,8 @@ void assemble(Evaluator& ev, const HoleRequest& h, const nc::Loads& loads, bool 
               HoleCompensation& c) {
   const PredictionModel& m = ev.m;
   PredictionData& d = ev.d;
-  nc::chainFrames(m.model, d.nc, c.theta_cmd);  // rigid FK (frame recursion, closed form)
+  const nc::Model& controller = controllerModel(m);  // the programmed target is FK_nom(θ_cmd)
+  nc::chainFrames(controller, d.nc, c.theta_cmd);    // rigid FK (frame recursion, closed form)
   if (!d.nc.frames.p_tcp.allFinite() || !d.nc.frames.R_tcp.allFinite()) {
     c.reason = "the rigid forward kinematics of the compensated command is not finite";
     return;
@@ -792,7 +795,7 @@ void assemble(Evaluator& ev, const HoleRequest& h, const nc::Loads& loads, bool 
   c.T_programmed.translation() = d.nc.frames.p_tcp;
   if (positions_only) c.T_programmed.linear() = c.T_nominal.linear();  // exact by construction
   c.delta = c.T_programmed * c.T_nominal.inverse();
-  settleFlags(ev, h, c.T_programmed * m.model.T_L6_tcp.inverse() * m.model.T_L6_flange, c);
+  settleFlags(ev, h, c.T_programmed * controller.T_L6_tcp.inverse() * controller.T_L6_flange, c);
   if (!withinLimits(m.ik, c.theta_cmd)) {
     c.reason = "the compensated command leaves the joint limits";
     return;

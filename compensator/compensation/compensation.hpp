@@ -4,11 +4,14 @@
 /// choosing the free rotation ψ about each drill axis (NLopt + dynamic programming).
 ///
 /// Per hole, for a rotation ψ about the drill axis and an IK branch:
-///   1. desired TCP  T_d = T_nom · Rz(ψ); link-side joints θ_d = IK(T_d) in the branch;
+///   1. desired TCP  T_d = T_nom · Rz(ψ); link-side joints θ_d = IK(T_d) in the branch — the IK of
+///      the real robot (realIk: a calibrated robot's analytic solution refined by Newton on its
+///      calibrated chain, docs/model.md §6.8);
 ///   2. motor-side command θ_m = θ_d + K_eff⁻¹ τ(θ_d) — exact, the inverse of deflection.hpp
 ///      (τ with link/tool weight and the process wrench following the real = desired tool axis);
 ///      a controller that compensates gravity itself adds its own offset, which is removed here;
-///   3. programmed target = the controller's rigid FK of θ_m, with the configuration flags of θ_m.
+///   3. programmed target = the controller's rigid FK of θ_m (FK_nom: the card's URDF), with the
+///      configuration flags of θ_m.
 /// Every target of a drill cycle moves with the drill point (T ← ΔT · T · Rz(ψ), ΔT = T_prog T_d⁻¹)
 /// so the drilling axis stays straight. Re-predicting the programmed pose gives θ = θ_d exactly
 /// (to the equilibrium tolerance), hence a systematic residual at solver precision.

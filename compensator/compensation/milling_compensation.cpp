@@ -64,6 +64,16 @@ void checkStability(const PredictionModel& m, const StabilityCut& cut, Stability
   p.ap_limit = cache.limit.ap_lim;
   p.chatter_hz = cache.limit.chatter_hz;
 }
+
+/// The command the controller's IK gives for the path point T_W_tcp (the link angles θ_d of the
+/// real robot seed it): θ_d itself without a calibration (nominal = real).
+Vec6 uncompensatedCommand(const PredictionModel& m, const Pose& T_W_tcp, const Vec6& theta_d) {
+  if (!m.calibrated) return theta_d;
+  const nc::Model& n = controllerModel(m);
+  const IkNearResult ik =
+      solveIkNear(m.ik, T_W_tcp * n.T_L6_tcp.inverse() * n.T_L6_flange, theta_d);
+  return ik.converged ? ik.q : theta_d;
+}
 }  // namespace
 
 std::vector<CuttingDecision> decideCutting(const MillingSpec& s, const Pose& T_W_wobj,
@@ -127,12 +137,12 @@ std::vector<PathPointCompensation> compensateMillingPath(
       p.cutting = (*cutting)[i].cutting;
       p.cutting_reason = (*cutting)[i].reason;
     }
-    // 1. IK with continuity
+    // 1. IK of the real robot with continuity (realIk: FK_real(θ_d) = the path point)
     const Pose T_flange = points[i] * m.model.T_L6_tcp.inverse() * m.model.T_L6_flange;
     const Vec6 seed = prev ? *prev : m.reference_pose;
     IkOptions opt;
     opt.seed = &seed;
-    solveIk(m.ik, T_flange, opt, d.ik);
+    solveIk(realIk(m), T_flange, opt, d.ik);
     double best = 1e300;
     bool found = false;
     for (int k = 0; k < d.ik.count; ++k) {
@@ -181,9 +191,13 @@ std::vector<PathPointCompensation> compensateMillingPath(
       p.before_status = "not_cutting";
     }
     {
-      const nc::Deflection db =
-          nc::predictDeflection(m.model, d.nc, m.compliance, p.theta_d, loadsWith(F_before), {},
-                                controllerOffset(m, d.nc, p.theta_d));
+      // the uncompensated command: the controller's IK of the path point (θ_d without a
+      // calibration), its deviation from the path point
+      const Vec6 q_before = uncompensatedCommand(m, points[i], p.theta_d);
+      nc::Deflection db =
+          nc::predictDeflection(m.model, d.nc, m.compliance, q_before, loadsWith(F_before), {},
+                                controllerOffset(m, d.nc, q_before));
+      if (m.calibrated) nc::referToControllerPose(db, controllerTcp(m, q_before));
       p.deviation_before = db.dp + toolBending(F_before);
     }
     // the link-side target that pre-offsets the tool's bending: θ_d + J⁻¹ [−bending; 0]
@@ -251,7 +265,7 @@ std::vector<PathPointCompensation> compensateMillingPath(
       p.reason = "the compensated command leaves the joint limits";
       continue;
     }
-    nc::forwardKinematics(m.model, d.nc, p.theta_cmd);
+    nc::forwardKinematics(controllerModel(m), d.nc, p.theta_cmd);  // FK_nom: what is programmed
     p.T_programmed = d.nc.T_W_tcp;
     const nc::Deflection da =
         nc::predictDeflection(m.model, d.nc, m.compliance, p.theta_cmd, loadsWith(F), {},

@@ -20,6 +20,9 @@ namespace roprec {
 
 namespace {
 
+/// Uncalibrated absolute accuracy (ISO 9283 AP) class prior, mm (estimate, docs/cards.md §6).
+constexpr double kClassAccuracyMm = 1.0;
+
 constexpr double kAligned = 1.0 - 1e-6;
 /// Share of the total robot mass of moving bodies 1..6 (the base takes the remaining 22 %).
 constexpr std::array<double, 6> kMassFraction = {0.30, 0.18, 0.22, 0.05, 0.025, 0.005};
@@ -231,6 +234,13 @@ std::string writeCard(Ctx& c) {
            "industrial 6R arms (bundled 120-185 kg arms: 0.05-0.07 mm); replace it by the data "
            "sheet's RP") +
        "\"/>\n";
+  x += "  <accuracy ap_mm=\"" + num(kClassAccuracyMm) +
+       "\" standard=\"ISO 9283\"\n            source=\"" +
+       attr(
+           "estimate: class value; uncalibrated six-axis arms are 0.5-2 mm off (Slamani, "
+           "Nubiola, Bonev, Industrial Robot 39(1), 2012); replace it by a measured AP, or "
+           "calibrate the robot (<calibration>, docs/cards.md section 5)") +
+       "\"/>\n";
   x += "  <controller gravity_compensated=\"false\" j23_coupling=\"" + num(c.signs.j23) +
        "\"\n              calibration_pose_source=\"" +
        attr("vendor default (" + vendor + " " + vendorConvention(c.out.vendor)->home_text +
@@ -255,6 +265,8 @@ void listConfirm(Ctx& c) {
               "); identify the robot with roprec verify --calibrate");
   k.push_back("repeatability rp_mm " + num(kClassRepeatabilityMm) +
               " mm is a class estimate: enter the data sheet's ISO 9283 RP");
+  k.push_back("absolute accuracy ap_mm " + num(kClassAccuracyMm) +
+              " mm is a class estimate: measure the robot's AP or calibrate it");
   k.push_back("position_gain " + num(kClassPositionGain) +
               " 1/s is a typical value, not the robot's");
   k.push_back(

@@ -192,4 +192,64 @@ std::string updateCardStiffness(const std::string& card_text, const std::string&
   return out;
 }
 
+namespace {
+
+/// Position of the first `<name` tag (followed by space, '/' or '>') outside comments, or npos.
+std::size_t findTag(const std::string& s, const std::string& name, const std::string& path) {
+  std::size_t i = 0;
+  while ((i = s.find('<', i)) != std::string::npos) {
+    if (s.compare(i, 4, "<!--") == 0) {
+      const std::size_t e = s.find("-->", i + 4);
+      if (e == std::string::npos) throw InputError(path, lineAt(s, i), "unterminated comment");
+      i = e + 3;
+      continue;
+    }
+    const std::size_t after = i + 1 + name.size();
+    if (s.compare(i + 1, name.size(), name) == 0 && after < s.size() &&
+        (isSpace(s[after]) || s[after] == '/' || s[after] == '>'))
+      return i;
+    ++i;
+  }
+  return std::string::npos;
+}
+
+std::size_t lineStart(const std::string& s, std::size_t pos) {
+  const std::size_t nl = s.rfind('\n', pos == 0 ? 0 : pos - 1);
+  return nl == std::string::npos || pos == 0 ? 0 : nl + 1;
+}
+
+std::size_t afterLineEnd(const std::string& s, std::size_t pos) {
+  const std::size_t nl = s.find('\n', pos);
+  return nl == std::string::npos ? s.size() : nl + 1;
+}
+
+/// One past the end of the <calibration> element starting at `begin`.
+std::size_t calibrationEnd(const std::string& s, std::size_t begin, const std::string& path) {
+  const std::size_t gt = s.find('>', begin);
+  if (gt == std::string::npos)
+    throw InputError(path, lineAt(s, begin), "unterminated <calibration> tag");
+  if (s[gt - 1] == '/') return gt + 1;
+  const std::size_t close = s.find("</calibration>", gt);
+  if (close == std::string::npos)
+    throw InputError(path, lineAt(s, begin), "<calibration> has no </calibration>");
+  return close + 14;
+}
+
+}  // namespace
+
+std::string replaceCardCalibration(const std::string& card_text, const std::string& card_path,
+                                   const std::string& block) {
+  std::string out = card_text;
+  const std::size_t at = findTag(card_text, "calibration", card_path);
+  if (at != std::string::npos) {
+    const std::size_t begin = lineStart(card_text, at);
+    const std::size_t end = afterLineEnd(card_text, calibrationEnd(card_text, at, card_path));
+    return out.replace(begin, end - begin, block);
+  }
+  const std::size_t close = card_text.rfind("</robot>");
+  if (close == std::string::npos)
+    throw InputError(card_path, 0, "the card has no </robot> to put the <calibration> before");
+  return out.insert(lineStart(card_text, close), block);
+}
+
 }  // namespace roprec

@@ -43,4 +43,12 @@ std::string updateCardStiffness(const std::string& card_text, const std::string&
                                 const std::vector<CardStiffnessUpdate>& updates, int holes,
                                 const std::string& measured_file);
 
+/// Writes the card's geometric calibration back: `card_text` with its `<calibration>` element
+/// (comments skipped; from the start of its line to the end of the line of `</calibration>` or of
+/// its `/>`) replaced by `block` (calibrationXml, whole lines), or `block` inserted on the line
+/// before `</robot>` when the card has none. Everything else stays byte-identical. Throws
+/// InputError(card_path, line, …) for an unterminated element or a card without `</robot>`.
+std::string replaceCardCalibration(const std::string& card_text, const std::string& card_path,
+                                   const std::string& block);
+
 }  // namespace roprec

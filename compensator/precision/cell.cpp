@@ -58,15 +58,15 @@ ToolSpec parseTool(const XmlNode& t) {
 
 CellSpec loadCell(const std::string& path) {
   CellSpec cell;
-  cell.root = loadXmlFile(path);
+  cell.root = loadXmlFile(path, InputKind::kCell);
   const XmlNode& root = cell.root;
   if (root.name != "cell")
     root.fail("a cell file's root element is <cell>, got <" + root.name + ">");
   allowOnly(root, {"name"});
   allowChildren(root, {"robot", "tool", "workobject", "process", "tolerance", "controller",
-                       "uncertainty", "capability"});
+                       "uncertainty", "capability", "absolute_accuracy"});
   allowAtMostOnce(root, {"robot", "tool", "workobject", "process", "tolerance", "controller",
-                         "uncertainty", "capability"});
+                         "uncertainty", "capability", "absolute_accuracy"});
   cell.file = path;
   cell.name = root.str("name", fs::path(path).stem().string());
   const fs::path dir = fs::path(path).parent_path();
@@ -101,8 +101,10 @@ CellSpec loadCell(const std::string& path) {
 
   if (const XmlNode* t = root.child("tool")) cell.tool = parseTool(*t);
   if (const XmlNode* w = root.child("workobject")) {
-    allowOnly(*w, {"name", "xyz", "rpy"});
+    allowOnly(*w, {"name", "xyz", "rpy", "sigma_mm", "sigma_source"});
     cell.T_base_wobj = poseFromXyzRpyMm(*w);
+    if (w->has("sigma_mm") && !(w->number("sigma_mm") >= 0 && w->number("sigma_mm") <= 100))
+      w->fail("sigma_mm (the registration's standard uncertainty per axis) must lie in [0, 100]");
   }
   if (const XmlNode* p = root.child("process")) {
     cell.has_process = true;
@@ -125,6 +127,12 @@ CellSpec loadCell(const std::string& path) {
     allowOnly(*u, {"method", "stiffness_rel", "position_gain_rel", "process_halfwidth", "samples",
                    "seed", "source"});
   if (const XmlNode* c = root.child("capability")) allowOnly(*c, {"mc_approach_s", "source"});
+  if (const XmlNode* a = root.child("absolute_accuracy")) {
+    allowOnly(*a, {"ap_mm", "source"});
+    if (!(a->number("ap_mm") > 0 && a->number("ap_mm") <= 10))
+      a->fail("ap_mm (the absolute-accuracy option's residual, ISO 9283 AP) must lie in (0, 10]");
+    if (a->str("source", "").empty()) a->fail("<absolute_accuracy> needs a source=");
+  }
   return cell;
 }
 

@@ -158,7 +158,7 @@ nc::Model toolModel(const Problem& P, const VectorXd& x) {
   nc::ToolAttachment t = *P.tool;
   t.mass += x[P.layout.tool];
   t.com += x.segment<3>(P.layout.tool + 1);
-  nc::Model model = nc::buildModel(P.m.robot.chain, t);
+  nc::Model model = nc::buildModel(P.m.robot.real_chain, t);
   model.gravity = P.m.model.gravity;
   model.tol_phi = P.m.model.tol_phi;
   model.max_iterations = P.m.model.max_iterations;
@@ -651,7 +651,7 @@ PredictionModel withIdentification(const PredictionModel& m, const Identificatio
     nc::ToolAttachment t = *tool;
     t.mass = *r.tool_mass;
     t.com = *r.tool_com;
-    out.model = nc::buildModel(m.robot.chain, t);
+    out.model = nc::buildModel(m.robot.real_chain, t);
     out.model.gravity = m.model.gravity;
     out.model.tol_phi = m.model.tol_phi;
     out.model.max_iterations = m.model.max_iterations;

@@ -1,5 +1,10 @@
 #include "compensator/precision/prediction.hpp"
 
+#include <mutex>
+#include <set>
+
+#include "compensator/robot/calibration_jacobian.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -97,6 +102,45 @@ ProcessAtDiameter processAt(const ProcessSpec& spec, double diameter) {
   return p;
 }
 
+/// In-plane covariance (m², axes e1, e2) of the absolute-accuracy term at the real joint values θ
+/// (AccuracyInputs): the data sheet's or the controller option's isotropic u², or the
+/// calibration's σ through ∂p_tcp/∂c (calibration_jacobian.hpp), plus the registration σ².
+Eigen::Matrix2d accuracyCovariance(const PredictionModel& m, const Vec6& theta, const Vec3& e1,
+                                   const Vec3& e2) {
+  const AccuracyInputs& a = m.accuracy;
+  double iso = a.registration_sigma * a.registration_sigma;
+  Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+  if (a.kind == AccuracyInputs::Kind::kDataSheet ||
+      a.kind == AccuracyInputs::Kind::kControllerOption) {
+    iso += a.u * a.u;
+  } else if (a.kind == AccuracyInputs::Kind::kCalibrated && m.robot.card.calibration) {
+    CalibrationJacobian J;
+    tcpCalibrationJacobian(m.robot.real_chain, m.model.T_L6_flange.inverse() * m.model.T_L6_tcp,
+                           theta, J);
+    const CalibrationSigmas s = calibrationSigmas(*m.robot.card.calibration);
+    for (int c = 0; c < kCalibrationParameters; ++c) {
+      if (s[c] <= 0) continue;
+      const Eigen::Vector2d v(J.col(c).dot(e1) * s[c], J.col(c).dot(e2) * s[c]);
+      cov += v * v.transpose();
+    }
+  }
+  return cov + iso * Eigen::Matrix2d::Identity();
+}
+
+/// A process-lifetime copy of `text` (BudgetTerm::source must outlive every copy of the model and
+/// of the predictions: predictions are formatted after lookahead models are gone). Thread-safe;
+/// allocates only the first time a text is seen.
+const char* internedText(const std::string& text) {
+  static std::mutex mutex;
+  static auto* texts = new std::set<std::string, std::less<>>();  // never freed: stable pointers
+  const std::lock_guard<std::mutex> lock(mutex);
+  return texts->insert(text).first->c_str();
+}
+
+bool hasAccuracyTerm(const AccuracyInputs& a) {
+  return a.kind != AccuracyInputs::Kind::kNone || a.registration_sigma > 0;
+}
+
 /// Unit vectors e1, e2 spanning the plane ⊥ the hole axis: the nominal TCP x and y.
 void planeBasis(const Mat3& R, Vec3& e1, Vec3& e2) {
   e1 = R.col(0);
@@ -108,13 +152,19 @@ void planeBasis(const Mat3& R, Vec3& e1, Vec3& e2) {
 PredictionModel buildPredictionModel(const PredictionSetup& setup) {
   PredictionModel m;
   m.robot = setup.robot;
-  m.model = nc::buildModel(setup.robot.chain, setup.tool);
+  m.model = nc::buildModel(setup.robot.real_chain, setup.tool);
   m.ik = buildIkModel(setup.robot);
+  m.calibrated = setup.robot.card.calibration.has_value();
+  if (m.calibrated) {
+    m.nominal_model = nc::buildModel(setup.robot.chain, setup.tool);
+    m.real_ik = buildRealIkModel(setup.robot);
+  }
   m.compliance = nc::complianceFromCard(setup.robot.card);
   m.reference_pose = vendorReferencePose(setup.robot.card);
-  m.controller = nc::makeControllerReference(setup.robot.chain, setup.robot.card, m.gravity,
+  m.controller = nc::makeControllerReference(setup.robot.real_chain, setup.robot.card, m.gravity,
                                              setup.controller_gravity, setup.calibration_load);
   m.uncertainty = setup.uncertainty;
+  m.accuracy = setup.accuracy;
   m.capability = setup.capability;
   m.default_tolerance = setup.default_tolerance;
   if (setup.process) {
@@ -130,6 +180,17 @@ PredictionModel buildPredictionModel(const PredictionSetup& setup) {
     }
   }
   return m;
+}
+
+const nc::Model& controllerModel(const PredictionModel& m) {
+  return m.calibrated ? m.nominal_model : m.model;
+}
+
+const IkModel& realIk(const PredictionModel& m) { return m.calibrated ? m.real_ik : m.ik; }
+
+Pose controllerTcp(const PredictionModel& m, const Vec6& theta) {
+  const nc::Model& n = controllerModel(m);
+  return chainForwardKinematics(m.robot.chain, theta) * n.T_L6_flange.inverse() * n.T_L6_tcp;
 }
 
 PredictionData::PredictionData(const PredictionModel& m) : nc(m.model), rng(m.uncertainty.seed) {}
@@ -209,8 +270,10 @@ bool chooseSolution(const PredictionModel& m, PredictionData& d, const HoleReque
   return false;
 }
 
+/// The flange pose the controller's IK solves for a programmed TCP pose.
 Pose flangeTarget(const PredictionModel& m, const HoleRequest& h) {
-  return h.T_W_tcp * m.model.T_L6_tcp.inverse() * m.model.T_L6_flange;
+  const nc::Model& n = controllerModel(m);
+  return h.T_W_tcp * n.T_L6_tcp.inverse() * n.T_L6_flange;
 }
 
 /// The IK seed of a hole: its own, else the sequence's, else the vendor's reference pose.
@@ -286,6 +349,7 @@ void predictAtSolution(const PredictionModel& m, PredictionData& d, const HoleRe
                numberText(p.deflection.residual) + " rad)";
     return;
   }
+  if (m.calibrated) nc::referToControllerPose(p.deflection, controllerTcp(m, sol.q));
   p.d_robot = p.deflection.dp;
   p.d_rot = p.deflection.drot;
 
@@ -384,6 +448,10 @@ void predictAtSolution(const PredictionModel& m, PredictionData& d, const HoleRe
     }
   }
   p.robdef_cov = cov_def;
+  const bool with_accuracy = hasAccuracyTerm(m.accuracy);
+  const Eigen::Matrix2d cov_acc = with_accuracy ? accuracyCovariance(m, p.deflection.theta, e1, e2)
+                                                : Eigen::Matrix2d::Zero().eval();
+  const double u_acc = std::sqrt(0.5 * cov_acc.trace());
   const double u_robdef = std::sqrt(0.5 * cov_def.trace());
   const double u_robdef_proc = std::sqrt(0.5 * cov_def_proc.trace());
   p.budget.reserve(3 + (proc ? proc->mach.components.size() : 0));  // within kMaxBudgetTerms
@@ -392,6 +460,8 @@ void predictAtSolution(const PredictionModel& m, PredictionData& d, const HoleRe
                       std::sqrt(std::max(0.0, u_robdef * u_robdef - u_robdef_proc * u_robdef_proc)),
                       false});
   p.budget.push_back({"robot_deflection_process_force", u_robdef_proc, true});
+  if (with_accuracy)
+    p.budget.push_back({"robot_absolute_accuracy", u_acc, false, internedText(m.accuracy.source)});
   double u_mach2 = 0;
   if (proc) {
     for (const UncertaintyComponent& c : proc->mach.components) {
@@ -402,15 +472,17 @@ void predictAtSolution(const PredictionModel& m, PredictionData& d, const HoleRe
       u_mach2 += c.standard * c.standard;
     }
   }
-  p.u_robot = std::sqrt(u_robpos * u_robpos + u_robdef * u_robdef);
+  p.u_robot = with_accuracy ? std::sqrt(u_robpos * u_robpos + u_robdef * u_robdef + u_acc * u_acc)
+                            : std::sqrt(u_robpos * u_robpos + u_robdef * u_robdef);
   p.u_mach = std::sqrt(u_mach2);
   p.u_work = std::sqrt(p.u_robot * p.u_robot + p.u_mach * p.u_mach);
   p.k = rayleighCoverageFactor(U.coverage_probability);
   p.U_robot = p.k * p.u_robot;
   p.U_mach = p.k * p.u_mach;
   p.U_work = p.k * p.u_work;
-  const Eigen::Matrix2d cov_total =
+  Eigen::Matrix2d cov_total =
       cov_def + (u_robpos * u_robpos + u_mach2) * Eigen::Matrix2d::Identity();
+  if (with_accuracy) cov_total += cov_acc;
   p.U_work_exact = radialCoverage(cov_total, U.coverage_probability);
   p.process_share = p.u_work > 0 ? u_mach2 / (p.u_work * p.u_work) : 0.0;
   p.process_force_share =

@@ -62,6 +62,25 @@ struct UncertaintyInputs {
 /// Defaults with their sources (see prediction.cpp).
 UncertaintyInputs defaultUncertaintyInputs();
 
+/// The absolute-accuracy term of the budget: how far the robot's geometry may put the TCP from
+/// where the model says (docs/process.md §5). Per in-plane axis standard uncertainty, m:
+///   kDataSheet        uncalibrated robot: u = AP / 2.7955 (card <accuracy ap_mm>: AP read as the
+///                     95 % bound of the 3-D error of an isotropic normal error, whose magnitude is
+///                     Maxwell-distributed: P(|e| ≤ 2.7955 σ) = 0.95);
+///   kCalibrated       robot card <calibration>: the calibration's σ (each FrameError component
+///                     independent) propagated through the Jacobian of FK_real at the hole's pose
+///                     (∂p_tcp/∂component by central differences), in-plane, RSS;
+///   kControllerOption the cell declares the controller's absolute-accuracy option
+///                     (<absolute_accuracy ap_mm source/>): its residual AP, as kDataSheet;
+/// plus the cell's registration σ (<workobject sigma_mm>) in quadrature; kNone: no term.
+struct AccuracyInputs {
+  enum class Kind { kNone, kDataSheet, kCalibrated, kControllerOption };
+  Kind kind{Kind::kNone};
+  double u{0.0};                   ///< m per axis (kDataSheet, kControllerOption)
+  double registration_sigma{0.0};  ///< m per axis (0: not stated)
+  std::string source;              ///< what the term rests on (JSON, report)
+};
+
 struct CapabilityInputs {
   double mc_approach_s{2.0};  ///< machining-center positioning + approach + retract per hole
   std::string source;
@@ -77,16 +96,26 @@ struct ProcessAtDiameter {
   double default_depth{0};  ///< m
 };
 
+/// A calibrated robot (robot card <calibration>, geometry_calibration.hpp): `model` is the REAL
+/// robot (robot.real_chain: every deflection, equilibrium and real TCP is computed on it) and `ik`
+/// the CONTROLLER's nominal IK (programmed targets → commands, configuration flags, limits);
+/// `nominal_model` is the controller's FK_nom and `real_ik` solves FK_real(θ) = target (the link
+/// angles a compensation wants). Without a calibration `calibrated` is false, `model`/`ik` are
+/// both nominal and real, and nominal_model/real_ik are left empty (controllerModel/realIk).
 struct PredictionModel {
   Robot robot;
   nc::Model model;
   IkModel ik;
+  bool calibrated{false};
+  nc::Model nominal_model;
+  IkModel real_ik;
   nc::JointCompliance compliance;
   Vec6 reference_pose{Vec6::Zero()};
   bool has_process{false};
   ProcessSpec process;
   std::map<long, ProcessAtDiameter> process_by_diameter;  ///< key: diameter in µm
   UncertaintyInputs uncertainty;
+  AccuracyInputs accuracy;
   CapabilityInputs capability;
   ConfigurationOptions config_options;
   double default_tolerance{0.2e-3};  ///< m, ⌀
@@ -97,6 +126,13 @@ struct PredictionModel {
   /// reference at the card's calibration pose; roprec predicts only the part beyond it.
   nc::ControllerReference controller;
 };
+
+/// The controller's kinematic model: nominal_model when calibrated, else model.
+const nc::Model& controllerModel(const PredictionModel& m);
+/// The IK of the real robot: real_ik when calibrated, else ik.
+const IkModel& realIk(const PredictionModel& m);
+/// FK_nom of the TCP at the command θ (rad): the pose the controller means (base frame).
+Pose controllerTcp(const PredictionModel& m, const Vec6& theta);
 
 /// The process at a hole diameter (m; ≤ 0: the cell's drill), nullptr without a process.
 const ProcessAtDiameter* processFor(const PredictionModel& m, double diameter);
@@ -115,6 +151,7 @@ struct PredictionSetup {
   nc::ToolAttachment tool;
   std::optional<ProcessSpec> process;
   UncertaintyInputs uncertainty = defaultUncertaintyInputs();
+  AccuracyInputs accuracy;
   CapabilityInputs capability;
   double default_tolerance{0.2e-3};
   std::vector<double> hole_diameters;   ///< diameters the holes use (m); the process's is added
@@ -166,13 +203,15 @@ std::string verdictAndReason(Verdict v, const std::string& reason);
 /// (m) against a ⌀t position tolerance (m): see the file comment.
 Verdict verdictFor(double e, double U, double t);
 
-/// Terms of a hole's uncertainty budget: 3 robot terms + the 3 machining components.
-inline constexpr std::size_t kMaxBudgetTerms = 6;
+/// Terms of a hole's uncertainty budget: 4 robot terms (with the absolute accuracy) + the 3
+/// machining components.
+inline constexpr std::size_t kMaxBudgetTerms = 7;
 
 struct BudgetTerm {
   const char* name;
-  double u{0};          ///< per-axis standard uncertainty, m
-  bool process{false};  ///< belongs to the process (for the process share)
+  double u{0};                  ///< per-axis standard uncertainty, m
+  bool process{false};          ///< belongs to the process (for the process share)
+  const char* source{nullptr};  ///< what the term rests on, when it states one (else null)
 };
 
 struct HolePrediction {

@@ -1,5 +1,6 @@
 #include "compensator/robot/card_check.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -17,6 +18,29 @@ using Vec6d = Eigen::Matrix<double, 6, 1>;
 
 /// Directions agree within ~1.4 mrad.
 constexpr double kAligned = 1.0 - 1e-6;
+
+/// How far a measured (calibrated) geometry may plausibly lie from the nominal one
+/// (docs/cards.md §3): up to 1 mm / 5 mrad is a calibration offset, up to 5 mm / 20 mrad a warning,
+/// beyond an error (a unit, frame or convention mistake, not a calibration).
+constexpr double kCalibrationWarnM = 1e-3;
+constexpr double kCalibrationErrorM = 5e-3;
+constexpr double kCalibrationWarnRad = 5e-3;
+constexpr double kCalibrationErrorRad = 20e-3;
+
+/// The angle (rad) between two unit directions (|cos| clamped to 1).
+double angleBetween(const Vec3& a, const Vec3& b) { return std::acos(std::min(1.0, a.dot(b))); }
+
+/// Verdict of an offset against the calibration bounds: "ok", "WARNING" or "ERROR".
+const char* offsetVerdict(double metres, double radians) {
+  if (metres > kCalibrationErrorM || radians > kCalibrationErrorRad) return "ERROR";
+  if (metres > kCalibrationWarnM || radians > kCalibrationWarnRad) return "WARNING";
+  return "ok";
+}
+
+/// " (a calibrated URDF: N mrad off the convention)" for a direction within the calibration bound.
+std::string calibratedNote(double radians) {
+  return " (calibrated URDF? " + cFixed(radians * 1e3, 2) + " mrad off the convention)";
+}
 
 std::string axisText(const Vec3& a) {
   static const char* names[3] = {"x", "y", "z"};
@@ -54,6 +78,20 @@ bool checkFlange(Checker& c) {
   bool known = true;
   const double cz = flangeZOutCosine(c.robot.chain, &known);
   const std::string value = "z.out = " + cFixed(cz, 6);
+  const double off = std::acos(std::clamp(cz, -1.0, 1.0));
+  if (cz <= kAligned && off <= kCalibrationErrorRad) {
+    // a calibrated URDF: the flange is off the joint-6 axis by its calibration
+    const char* verdict = offsetVerdict(0.0, off);
+    c.add("flange z out of the flange (" + c.card().flange_link + ")", value + calibratedNote(off),
+          "1", verdict);
+    if (std::string(verdict) != "ok") {
+      c.find(false, c.card().urdf_line,
+             "flange '" + c.card().flange_link + "' z is " + cFixed(off * 1e3, 2) +
+                 " mrad off the joint-6 axis, more than a calibration usually moves it",
+             "check that the URDF is the robot's (a calibrated URDF is within a few mrad)");
+    }
+    return true;
+  }
   if (cz > kAligned) {
     c.add("flange z out of the flange (" + c.card().flange_link + ")", value, "1",
           known ? "ok" : "WARNING");
@@ -91,6 +129,18 @@ void checkHome(Checker& c) {
   const std::string ref =
       v.home_orientation + " (z " + axisText(v.home_z) + ", x " + axisText(v.home_x) + ")";
   const bool ok = z.dot(v.home_z) > kAligned && x.dot(v.home_x) > kAligned;
+  const double off = std::max(angleBetween(z, v.home_z), angleBetween(x, v.home_x));
+  if (!ok && off <= kCalibrationErrorRad) {  // a calibrated URDF
+    const char* verdict = offsetVerdict(0.0, off);
+    c.add("flange at " + v.home_text, value + calibratedNote(off), ref, verdict);
+    if (std::string(verdict) != "ok") {
+      c.find(false, c.card().urdf_line,
+             "at the " + v.home_text + " the flange is " + cFixed(off * 1e3, 2) +
+                 " mrad off the vendor's orientation, more than a calibration usually moves it",
+             "check that the URDF is the robot's (a calibrated URDF is within a few mrad)");
+    }
+    return;
+  }
   c.add("flange at " + v.home_text, value, ref, ok ? "ok" : "ERROR");
   if (!ok) {
     c.find(
@@ -108,6 +158,18 @@ void checkBase(Checker& c) {
   const std::string value = "J2 axis at z = " + cFixed(h * 1e3, 3) + " mm";
   if (c.conv->world_at_j2) {
     const bool ok = std::abs(h) < 1e-6;
+    if (!ok && std::abs(h) <= kCalibrationErrorM) {  // a calibrated URDF's J2 height
+      const char* verdict = offsetVerdict(std::abs(h), 0.0);
+      c.add("base frame (FANUC World at J2 height)", value + " (calibrated URDF?)", "z = 0",
+            verdict);
+      if (std::string(verdict) != "ok") {
+        c.find(false, c.card().urdf_line,
+               "the J2 axis is " + cFixed(h * 1e3, 3) +
+                   " mm off the World frame's z = 0, more than a calibration usually moves it",
+               "check base_link (FANUC World at J2 height)");
+      }
+      return;
+    }
     c.add("base frame (FANUC World at J2 height)", value, "z = 0", ok ? "ok" : "ERROR");
     if (!ok) {
       c.find(true, c.card().urdf_line,
@@ -136,9 +198,19 @@ void checkAxes(Checker& c) {
     const JointCard& j = c.card().joints[static_cast<size_t>(i)];
     const Vec3& e = c.conv->axes[static_cast<size_t>(i)];
     const double d = g.a[static_cast<size_t>(i)].dot(e);
-    const std::string value = "URDF " + axisText(g.a[static_cast<size_t>(i)]) + ", sign " +
-                              cGeneral(j.controller_sign, 2);
-    if (std::abs(d) < kAligned) {
+    std::string value = "URDF " + axisText(g.a[static_cast<size_t>(i)]) + ", sign " +
+                        cGeneral(j.controller_sign, 2);
+    const double off = std::acos(std::min(1.0, std::abs(d)));
+    if (std::abs(d) < kAligned && off <= kCalibrationErrorRad) {  // a calibrated URDF
+      value += calibratedNote(off);
+      if (off > kCalibrationWarnRad) {
+        c.find(false, j.line,
+               "joint '" + j.name + "' axis is " + cFixed(off * 1e3, 2) + " mrad off the " +
+                   vendorName(c.card().vendor) + " axis " + std::to_string(i + 1) +
+                   ", more than a calibration usually moves it",
+               "check that the URDF is the robot's (a calibrated URDF is within a few mrad)");
+      }
+    } else if (std::abs(d) < kAligned) {
       c.add("joint " + j.name + " axis", value, axisText(e), "ERROR");
       c.find(
           true, j.line,
@@ -150,7 +222,10 @@ void checkAxes(Checker& c) {
     }
     const double sign = d > 0 ? 1.0 : -1.0;
     const bool ok = j.controller_sign == sign;
-    c.add("joint " + j.name + " axis", value, axisText(e), ok ? "ok" : "ERROR");
+    c.add("joint " + j.name + " axis", value, axisText(e),
+          !ok                         ? "ERROR"
+          : off > kCalibrationWarnRad ? "WARNING"
+                                      : "ok");
     if (!ok) {
       c.find(true, j.line,
              "joint '" + j.name + "': the URDF axis is " + axisText(g.a[static_cast<size_t>(i)]) +
@@ -367,7 +442,8 @@ std::string lowerArmProblem(const ChainDescription& chain,
                      .toRotationMatrix();
   }
   const Vec3 d = p[2] - p[1];
-  const double tol = 1e-3 * d.norm();
+  // up to a calibrated URDF's tilt (kCalibrationErrorRad); a wrong convention is ~90° off
+  const double tol = kCalibrationErrorRad * d.norm();
   const bool ok = v.lower_arm_vertical ? (std::abs(d.x()) + std::abs(d.y()) <= tol && d.z() > 0)
                                        : (std::abs(d.z()) + std::abs(d.y()) <= tol && d.x() > 0);
   if (ok) return "";
@@ -401,6 +477,32 @@ int CardCheckReport::errors() const {
 }
 int CardCheckReport::warnings() const { return static_cast<int>(findings.size()) - errors(); }
 
+namespace {
+
+/// The card's <calibration> offsets against the plausible bounds (one row per stated error).
+void checkCalibration(Checker& c) {
+  const GeometryCalibration& cal = *c.card().calibration;
+  const auto row = [&](const std::string& what, const FrameError& e) {
+    if (e.isZero()) return;
+    const double m = e.dxyz.norm();
+    const double rad = e.drpy.norm();
+    const char* verdict = offsetVerdict(m, rad);
+    c.add("calibration " + what, cFixed(m * 1e3, 3) + " mm, " + cFixed(rad * 1e3, 3) + " mrad",
+          "<= 1 mm, <= 5 mrad", verdict);
+    if (std::string(verdict) == "ok") return;
+    c.find(std::string(verdict) == "ERROR", cal.line,
+           "<calibration> " + what + " moves by " + cFixed(m * 1e3, 3) + " mm / " +
+               cFixed(rad * 1e3, 3) + " mrad (a calibration: up to ~1 mm / 5 mrad; an error " +
+               "above 5 mm / 20 mrad)",
+           "check the units (xyz_mm in mm, rpy_mrad in mrad) and the frame (docs/cards.md §5)");
+  };
+  row("base", cal.base);
+  for (size_t i = 0; i < 6; ++i) row("joint " + c.card().joints[i].name, cal.joints[i]);
+  row("tool", cal.tool);
+}
+
+}  // namespace
+
 CardCheckReport checkRobotCard(const Robot& robot) {
   Checker c{robot, {}, vendorConvention(robot.card.vendor)};
   c.add("vendor", robot.card.vendor_label.empty() ? "(none)" : robot.card.vendor_label,
@@ -429,6 +531,7 @@ CardCheckReport checkRobotCard(const Robot& robot) {
   checkStiffness(c);
   checkRepeatability(c);
   checkInertials(c);
+  if (robot.card.calibration) checkCalibration(c);
   return c.report;
 }
 

@@ -24,6 +24,11 @@
 /// 120–500 kg class; scaled linearly by payload below 120 kg). A card stiffness 100× or more off
 /// the class is an error, 10× a warning.
 ///
+/// Calibrated URDFs (a URDF an external calibration wrote): axes, the flange z and its orientation
+/// at home within 5 mrad of the convention are calibration offsets (ok, noted), up to 20 mrad a
+/// warning, beyond an error; FANUC's J2 height likewise 1 mm / 5 mm. A card's <calibration>
+/// offsets: per error |xyz| > 1 mm or |rpy| > 5 mrad a warning, > 5 mm / 20 mrad an error.
+///
 /// Placeholder inertials: three or more moving bodies with the same mass and inertia tensor (the
 /// ROS-Industrial support packages give every link 2 kg and 0.01 kg m²); used as real weight
 /// (no card <link> override, gravity modelled) they are an error.
@@ -81,8 +86,8 @@ double flangeZOutCosine(const ChainDescription& chain, bool* known = nullptr);
 
 /// "" when the lower arm (joint-2 origin -> joint-3 origin, in B) at the URDF joint values
 /// `q_urdf` of the controller's zero pose lies as the vendor's zero pose has it (ABB, FANUC:
-/// vertical, J3 above J2; KUKA: horizontal, J3 in front of J2; within 1e-3 of its length), else
-/// what is wrong.
+/// vertical, J3 above J2; KUKA: horizontal, J3 in front of J2; within 0.02 of its length: a
+/// calibrated URDF's tilt), else what is wrong.
 std::string lowerArmProblem(const ChainDescription& chain,
                             const Eigen::Matrix<double, 6, 1>& q_urdf, const VendorConvention& v);
 

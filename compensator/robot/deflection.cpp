@@ -256,6 +256,12 @@ Deflection predictDeflection(const Model& model, Data& data, const JointComplian
   return d;
 }
 
+void referToControllerPose(Deflection& d, const Pose& T_controller) {
+  d.T_nominal = T_controller;
+  d.dp = d.T_real.translation() - d.T_nominal.translation();
+  d.drot = smallRotationDifference(d.T_real.linear(), d.T_nominal.linear());
+}
+
 Vec6 compensateCommand(const Model& model, Data& data, const JointCompliance& c,
                        const Vec6& theta_d, const Loads& loads) {
   Vec6 tau;

@@ -77,6 +77,12 @@ Deflection predictDeflection(const Model& model, Data& data, const JointComplian
                              const DeflectionOptions& opt = {},
                              const Vec6& command_offset = Vec6::Zero());
 
+/// A calibrated robot (geometry_calibration.hpp) is predicted on its real model, while the pose
+/// the controller means by the command is its nominal FK: d.T_nominal becomes `T_controller`
+/// (FK_nom(θ_m) of the TCP) and δrobot = FK_real(θ) − FK_nom(θ_m) (dp, drot as above), so the
+/// deviation holds the geometric error as well as the deflection.
+void referToControllerPose(Deflection& d, const Pose& T_controller);
+
 /// Explicit inverse: the command θ_m = θ_d + τ(θ_d)/k_eff that makes the link side reach θ_d.
 Vec6 compensateCommand(const Model& model, Data& data, const JointCompliance& c,
                        const Vec6& theta_d, const Loads& loads);

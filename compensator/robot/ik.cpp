@@ -16,6 +16,9 @@ constexpr double kMaxDeviationRad =
     0.02;  // estimate: beyond ~1° the ideal-model start may pick a wrong branch
 constexpr double kMaxDeviationM = 0.02;  // estimate: same reasoning for a 2 m class arm
 constexpr double kExactTol = 1e-12;
+/// Slack of the joint limits (rad, 0.0006°): a pose taught exactly at a limit and written as
+/// programs write it (mm with 3 decimals, angles with 4) comes back up to ~2e-6 rad past it.
+constexpr double kLimitTol = 1e-5;
 constexpr double kConvergedTol = 1e-9;  // contract of this module: m and rad
 constexpr double kRefineTol = 1e-13;    // polish below this (m, rad)
 constexpr double kReachClamp =
@@ -159,8 +162,8 @@ void expandTurns(const IkModel& m, const IkSolution& base, const IkOptions& opt,
     const double qw = base.q[i];
     // Turn counts in double, clamped before the conversion: absurd (or non-finite) limits must
     // neither overflow an int nor make the loops below run 2^31 times.
-    const double lo_d = std::ceil((m.lower[i] - qw - kExactTol) / kTwoPi);
-    const double hi_d = std::floor((m.upper[i] - qw + kExactTol) / kTwoPi);
+    const double lo_d = std::ceil((m.lower[i] - qw - kLimitTol) / kTwoPi);
+    const double hi_d = std::floor((m.upper[i] - qw + kLimitTol) / kTwoPi);
     if (!(lo_d <= hi_d)) {  // also NaN limits
       inside = false;
       break;
@@ -227,12 +230,22 @@ Vec6 vendorReferencePose(const RobotCard& card) {
   return fromControllerJoints(card, ctrl);
 }
 
-IkModel buildIkModel(const Robot& robot) {
+namespace {
+IkModelOptions ikOptionsOf(const RobotCard& card) {
   IkModelOptions o;
-  o.reference_q = vendorReferencePose(robot.card);
-  o.ctrl_sign5 = robot.card.joints[4].controller_sign;
-  o.ctrl_offset5 = robot.card.joints[4].controller_offset;
-  return buildIkModel(robot.chain, o);
+  o.reference_q = vendorReferencePose(card);
+  o.ctrl_sign5 = card.joints[4].controller_sign;
+  o.ctrl_offset5 = card.joints[4].controller_offset;
+  return o;
+}
+}  // namespace
+
+IkModel buildIkModel(const Robot& robot) {
+  return buildIkModel(robot.chain, ikOptionsOf(robot.card));
+}
+
+IkModel buildRealIkModel(const Robot& robot) {
+  return buildIkModel(robot.real_chain, ikOptionsOf(robot.card));
 }
 
 IkModel buildIkModel(const ChainDescription& chain, const IkModelOptions& options) {
@@ -467,7 +480,7 @@ IkBranch ikBranch(const IkModel& m, const Vec6& q) {
 
 bool withinLimits(const IkModel& m, const Vec6& q) {
   for (int i = 0; i < 6; ++i) {
-    if (q[i] < m.lower[i] - kExactTol || q[i] > m.upper[i] + kExactTol) return false;
+    if (q[i] < m.lower[i] - kLimitTol || q[i] > m.upper[i] + kLimitTol) return false;
   }
   return true;
 }
@@ -595,8 +608,8 @@ int rawSolutions(const IkModel& m, const Pose& target, const IkOptions& opt,
 /// joint the in-limit turn nearest the seed, ties to the larger); false when a joint has none.
 bool primaryRepresentative(const IkModel& m, const Vec6& qw, const Vec6* seed, Vec6& q) {
   for (int i = 0; i < 6; ++i) {
-    const double lo_d = std::ceil((m.lower[i] - qw[i] - kExactTol) / kTwoPi);
-    const double hi_d = std::floor((m.upper[i] - qw[i] + kExactTol) / kTwoPi);
+    const double lo_d = std::ceil((m.lower[i] - qw[i] - kLimitTol) / kTwoPi);
+    const double hi_d = std::floor((m.upper[i] - qw[i] + kLimitTol) / kTwoPi);
     if (!(lo_d <= hi_d)) return false;
     const int lo = static_cast<int>(std::clamp(lo_d, -kMaxTurnIndex, kMaxTurnIndex));
     const int hi = static_cast<int>(std::clamp(hi_d, -kMaxTurnIndex, kMaxTurnIndex));
@@ -741,6 +754,11 @@ std::string describeIkFailure(const IkResult& r) {
     case IkFailure::kNone:
       return r.count > 0 ? "" : "no solution";
     case IkFailure::kOutOfReach:
+      if (!std::isfinite(r.failure_value) || r.failure_value > 1e9) {  // a 1e300 mm target
+        s << "unreachable: the wrist centre is far beyond the arm's reach (over 10^12 mm: check "
+             "the target)";
+        break;
+      }
       s << "unreachable: the wrist centre is " << numberText(r.failure_value * 1e3)
         << " mm beyond the arm's reach";
       break;

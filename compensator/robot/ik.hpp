@@ -148,6 +148,10 @@ IkModel buildIkModel(const ChainDescription& chain, const IkModelOptions& option
 /// joints: KUKA {0,−90°,90°,0,0,0}, ABB / FANUC / generic all-zero; converted with
 /// fromControllerJoints).
 IkModel buildIkModel(const Robot& robot);
+/// The same on robot.real_chain (geometry_calibration.hpp): the analytic solution of the ideal
+/// model refined by Newton on the calibrated chain, so `converged` solutions satisfy FK_real(q) =
+/// target to 1e-9. Equals buildIkModel(robot) for a robot without a calibration.
+IkModel buildRealIkModel(const Robot& robot);
 /// The vendor's elbow-up reference pose in URDF joints.
 Vec6 vendorReferencePose(const RobotCard& card);
 

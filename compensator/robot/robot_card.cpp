@@ -176,14 +176,15 @@ std::string vendorName(Vendor v) {
 bool JointCard::estimated() const { return source.rfind("estimate:", 0) == 0 || source.empty(); }
 
 RobotCard loadRobotCard(const std::string& path) {
-  const XmlNode root = loadXmlFile(path);
+  const XmlNode root = loadXmlFile(path, InputKind::kRobotCard);
   if (root.name != "robot")
     root.fail("a robot card's root element is <robot>, got <" + root.name + ">");
   allowOnly(root, {"name", "vendor", "model", "urdf", "base_link", "flange_link",
                    "rated_payload_kg", "dimensions_source", "inertial_source"});
-  allowChildren(root,
-                {"joint", "repeatability", "controller", "counterbalance", "gravity", "link"});
-  allowAtMostOnce(root, {"repeatability", "controller", "counterbalance", "gravity"});
+  allowChildren(root, {"joint", "repeatability", "controller", "counterbalance", "gravity", "link",
+                       "calibration", "accuracy"});
+  allowAtMostOnce(root, {"repeatability", "controller", "counterbalance", "gravity", "calibration",
+                         "accuracy"});
   RobotCard card;
   card.file = path;
   card.name = root.str("name");
@@ -256,6 +257,14 @@ RobotCard loadRobotCard(const std::string& path) {
   card.rp_mm = rp->number("rp_mm");
   if (!(card.rp_mm > 0)) rp->fail("rp_mm must be > 0, got " + rp->str("rp_mm"));
   card.rp_source = rp->str("source", "");
+  if (const XmlNode* ac = root.child("accuracy")) {
+    allowOnly(*ac, {"ap_mm", "standard", "source"});
+    card.accuracy_ap_mm = ac->number("ap_mm");
+    if (!(card.accuracy_ap_mm > 0 && card.accuracy_ap_mm <= 20))
+      ac->fail("ap_mm (absolute pose accuracy) must lie in (0, 20] mm, got " + ac->str("ap_mm"));
+    card.accuracy_source = requireSource(*ac);
+    card.accuracy_line = ac->line;
+  }
   Eigen::Matrix<double, 6, 1> cal_deg = vendorCalibrationPoseDeg(card.vendor);
   card.calibration_pose_source =
       "vendor default (" + vendorName(card.vendor) + "; docs/model.md section 6.3)";
@@ -287,6 +296,11 @@ RobotCard loadRobotCard(const std::string& path) {
   }
   card.calibration_pose = fromControllerJoints(card, cal_deg * kDeg);
   parseWeightElements(root, card);
+  if (const XmlNode* cal = root.child("calibration")) {
+    std::array<std::string, 6> names;
+    for (size_t i = 0; i < 6; ++i) names[i] = card.joints[i].name;
+    card.calibration = parseCalibration(*cal, names);
+  }
   return card;
 }
 
@@ -390,6 +404,7 @@ Robot loadRobot(const RobotRequest& request) {
     c.base_link = robot.chain.base_link;
     c.flange_link = robot.chain.tip_link;
     for (size_t i = 0; i < 6; ++i) c.joints[i].name = robot.chain.joints[i].name;
+    robot.real_chain = robot.chain;
     return robot;
   }
   std::string card_path;
@@ -428,13 +443,15 @@ Robot loadRobot(const RobotRequest& request) {
   robot.card.base_link = robot.chain.base_link;
   robot.card.flange_link = robot.chain.tip_link;
   applyWeightCard(robot);
+  robot.real_chain =
+      robot.card.calibration ? calibratedChain(robot.chain, *robot.card.calibration) : robot.chain;
   return robot;
 }
 
 namespace {
 /// Line of `<link name="...">` in the URDF (the robot line if not found).
 int urdfLinkLine(const std::string& urdf, const std::string& link) {
-  const XmlNode root = loadXmlFile(urdf);
+  const XmlNode root = loadXmlFile(urdf, InputKind::kUrdf);
   for (const XmlNode* l : root.childrenNamed("link"))
     if (l->str("name", "") == link) return l->line;
   return root.line;

@@ -18,6 +18,10 @@
 ///       the mastering pose (default per vendor, vendorCalibrationPoseDeg);
 ///   <gravity model="links|none" source/>   none: weight is not modelled at all;
 ///   <link name mass_kg com_mm [inertia_kgm2] source/>   replaces a chain body's URDF inertial.
+///   <accuracy ap_mm source/>   absolute accuracy of the uncalibrated robot (ISO 9283 AP).
+///   <calibration source [date measurements residual_mm]> <base|joint_origin joint|tool xyz_mm
+///                rpy_mrad [sigma_xyz_mm sigma_rpy_mrad]/> </calibration>   the measured
+///       geometric errors (geometry_calibration.hpp, docs/cards.md §5).
 /// Unknown attributes of these elements (and of <controller>) throw InputError.
 
 #include <array>
@@ -27,6 +31,7 @@
 
 #include "compensator/robot/chain.hpp"
 #include "compensator/robot/counterbalance.hpp"
+#include "compensator/robot/geometry_calibration.hpp"
 
 namespace roprec {
 
@@ -63,6 +68,12 @@ struct RobotCard {
   bool has_stiffness{false};
   double rp_mm{0.0};  ///< ISO 9283 pose repeatability RP, mm (0 = unknown)
   std::string rp_source;
+  /// Absolute (pose) accuracy of the uncalibrated robot, mm: ISO 9283 AP or the data sheet's
+  /// figure, read as the 95 % bound of the 3-D position error (`<accuracy ap_mm source/>`; 0 = not
+  /// stated). The budget's absolute-accuracy term without a <calibration> (prediction.hpp).
+  double accuracy_ap_mm{0.0};
+  std::string accuracy_source;
+  int accuracy_line{0};
   bool gravity_compensated{false};          ///< controller already compensates gravity deflection
   double calibration_load_kg{0.0};          ///< load the compensation was calibrated for
   Vec3 calibration_load_com{Vec3::Zero()};  ///< m, flange frame
@@ -89,6 +100,9 @@ struct RobotCard {
     int line{0};
   };
   std::vector<LinkInertial> links;  ///< <link> overrides of the URDF inertials
+  /// The measured geometric errors relative to the URDF (<calibration>, docs/cards.md §5);
+  /// absent: the robot is taken to be its nominal URDF.
+  std::optional<GeometryCalibration> calibration;
 };
 
 /// The vendor's mastering/calibration pose in the controller convention, degrees: KUKA
@@ -109,9 +123,14 @@ std::string bundledRobotsDir();
 std::vector<std::string> bundledRobotNames();
 
 /// A loaded robot: its card and its kinematic chain base_link -> flange_link.
+/// `chain` is the NOMINAL chain of the URDF: the controller's model (inverse kinematics of
+/// programmed targets, FK_nom). `real_chain` is the robot as it is: calibratedChain(chain,
+/// *card.calibration), or a copy of `chain` when the card has no <calibration> (FK_real; every real
+/// TCP, deflection and equilibrium is computed on it).
 struct Robot {
   RobotCard card;
   ChainDescription chain;
+  ChainDescription real_chain;
 };
 
 struct RobotRequest {

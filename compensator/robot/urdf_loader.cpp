@@ -35,24 +35,14 @@ namespace {
 /// made the IK's turn enumeration loop 2^31 times).
 constexpr double kMaxJointLimitRad = 10.0 * 2.0 * 3.14159265358979323846;
 
-std::string readFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    const int e = errno;
-    throw InputError(
-        path, 0,
-        std::string("cannot open URDF file") + (e ? ": " + std::string(std::strerror(e)) : ""));
-  }
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+std::string readFile(const std::string& path) { return readInputFile(path, InputKind::kUrdf); }
 
 /// Validation with line numbers before urdfdom sees the text.
 struct UrdfIndex {
   std::map<std::string, int> link_line;
   std::map<std::string, int> joint_line;
   std::map<std::string, std::string> parent_joint_of_link;  // child link -> joint
+  std::map<std::string, std::string> parent_of_link;        // child link -> parent link
   std::vector<std::string> link_order;
   int robot_line{1};
 };
@@ -67,6 +57,32 @@ void checkOrigin(const XmlNode& parent) {
         o->fail(std::string("<origin> ") + k + " '" + o->str(k) + "' is beyond 100 " +
                 (k[0] == 'x' ? "m" : "rad") + " (URDF lengths are in metres, angles in radians)");
     }
+  }
+}
+
+/// A loop: a link that is its own ancestor. Each link is walked up once (a link already known to
+/// reach the root ends the walk), so the check is linear in the links (times the map's log).
+void checkNoLoop(const XmlNode& robot, const UrdfIndex& idx) {
+  enum class State { kUnseen, kOnPath, kReachesRoot };
+  std::map<std::string, State> state;
+  for (const auto& [start, joint] : idx.parent_joint_of_link) {
+    std::vector<std::string> path;
+    std::string cur = start;
+    while (true) {
+      State& s = state[cur];
+      if (s == State::kReachesRoot) break;
+      if (s == State::kOnPath) {
+        const std::string& j = idx.parent_joint_of_link.at(cur);
+        throw InputError(robot.file, idx.joint_line.at(j),
+                         "joint '" + j + "' is part of a kinematic loop (a URDF must be a tree)");
+      }
+      s = State::kOnPath;
+      path.push_back(cur);
+      const auto up = idx.parent_of_link.find(cur);
+      if (up == idx.parent_of_link.end()) break;  // the root
+      cur = up->second;
+    }
+    for (const std::string& l : path) state[l] = State::kReachesRoot;
   }
 }
 
@@ -133,6 +149,7 @@ UrdfIndex validate(const XmlNode& robot) {
                     "' already has the parent joint '", it->second, "' (a URDF must be a tree)"));
     }
     idx.parent_joint_of_link[child] = name;
+    idx.parent_of_link[child] = parent;
     checkOrigin(e);
     if (const XmlNode* a = e.child("axis")) {
       allowOnly(*a, {"xyz"});
@@ -173,23 +190,7 @@ UrdfIndex validate(const XmlNode& robot) {
                      "link '" + roots[1] + "' has no parent joint, but '" + roots[0] +
                          "' is already the root: a URDF must be one connected tree");
   }
-  // A loop through the root: a link that is its own ancestor.
-  for (const auto& [link, joint] : idx.parent_joint_of_link) {
-    std::string cur = link;
-    int steps = 0;
-    while (idx.parent_joint_of_link.count(cur) && steps <= static_cast<int>(idx.link_line.size())) {
-      const XmlNode* je = nullptr;
-      for (const XmlNode& e : robot.children) {
-        if (e.name == "joint" && e.str("name") == idx.parent_joint_of_link.at(cur)) je = &e;
-      }
-      cur = je->child("parent")->str("link");
-      ++steps;
-    }
-    if (steps > static_cast<int>(idx.link_line.size())) {
-      throw InputError(robot.file, idx.joint_line.at(joint),
-                       "joint '" + joint + "' is part of a kinematic loop (a URDF must be a tree)");
-    }
-  }
+  checkNoLoop(robot, idx);
   return idx;
 }
 
@@ -240,7 +241,7 @@ bool isMoving(int type) {
 }  // namespace
 
 std::vector<std::string> urdfLinkNames(const std::string& path) {
-  return validate(loadXmlFile(path)).link_order;
+  return validate(loadXmlFile(path, InputKind::kUrdf)).link_order;
 }
 
 ChainDescription loadUrdfChain(const std::string& path, const UrdfChainRequest& request) {

@@ -2,18 +2,23 @@
 
 #include <dirent.h>
 #include <fcntl.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <sys/sysmacros.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <csignal>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <tuple>
 
 #include "compensator/support/error.hpp"
 
@@ -22,10 +27,13 @@ namespace roprec {
 namespace {
 
 constexpr const char* kTmpTag = ".roprec-tmp.";
+constexpr const char* kJournalTag = ".roprec-commit.";
+constexpr const char* kJournalEnd = "roprec-commit-end";
 constexpr std::size_t kNameMax = 255;  // NAME_MAX on Linux file systems
 
 thread_local OutputSet* g_active = nullptr;
 void (*g_commit_hook)() = nullptr;
+std::atomic<unsigned long> g_seq{0};  ///< staging number: temporary names unique per thread
 
 std::string errnoText(int e) { return std::strerror(e); }
 
@@ -88,6 +96,189 @@ void checkTarget(const std::string& path) {
   if (S_ISDIR(st.st_mode)) fail(path, "it is a folder");
   if (S_ISFIFO(st.st_mode)) fail(path, "it is a FIFO (named pipe), not a regular file");
   if (!S_ISREG(st.st_mode)) fail(path, "it is not a regular file (a device or socket)");
+}
+
+/// What a path names, for the same-file checks: device and inode of the file it resolves to
+/// (links followed) when it exists, else its resolved absolute path.
+struct FileIdentity {
+  bool exists{false};
+  dev_t dev{};
+  ino_t ino{};
+  std::string resolved;
+};
+
+FileIdentity identify(const std::string& path) {
+  FileIdentity id;
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0) {
+    id.exists = true;
+    id.dev = st.st_dev;
+    id.ino = st.st_ino;
+  }
+  std::error_code e;
+  id.resolved = std::filesystem::weakly_canonical(std::filesystem::absolute(path, e), e).string();
+  if (e) id.resolved = path;
+  return id;
+}
+
+bool sameIdentity(const FileIdentity& a, const FileIdentity& b) {
+  if (a.exists && b.exists) return a.dev == b.dev && a.ino == b.ino;
+  return a.resolved == b.resolved;
+}
+
+/// Exclusive flock() on folders, released (closed) by the destructor. flock locks belong to the
+/// open file description, so two threads of one process exclude each other as two processes do.
+class FolderLocks {
+ public:
+  FolderLocks() = default;
+  FolderLocks(const FolderLocks&) = delete;
+  FolderLocks& operator=(const FolderLocks&) = delete;
+  ~FolderLocks() {
+    for (const int fd : fds_) ::close(fd);
+  }
+  /// Locks `dir` (blocking). A folder that cannot be opened for locking is not locked (the
+  /// staging or rename in it reports its own error).
+  void lock(const std::string& dir) {
+    const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd < 0) return;
+    while (::flock(fd, LOCK_EX) != 0) {
+      if (errno != EINTR) {
+        ::close(fd);
+        return;
+      }
+    }
+    fds_.push_back(fd);
+  }
+  /// Locks `dir` unless another holds it; false then.
+  bool tryLock(const std::string& dir) {
+    const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd < 0) return false;
+    if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+      ::close(fd);
+      return false;
+    }
+    fds_.push_back(fd);
+    return true;
+  }
+
+ private:
+  std::vector<int> fds_;
+};
+
+/// `dirs` once each by identity (device and inode: "out" and "./out" are one folder, and a
+/// second flock on it from this thread would wait for ever), in one order for every run (device,
+/// inode), so that runs locking several folders never wait for each other in a cycle. A folder
+/// that cannot be stat'ed is left out (its staging or rename reports the error).
+std::vector<std::string> uniqueFolders(const std::vector<std::string>& dirs) {
+  std::vector<std::tuple<dev_t, ino_t, std::string>> ids;
+  for (const std::string& d : dirs) {
+    struct stat st {};
+    if (::stat(d.c_str(), &st) != 0) continue;
+    const bool seen = std::any_of(ids.begin(), ids.end(), [&](const auto& x) {
+      return std::get<0>(x) == st.st_dev && std::get<1>(x) == st.st_ino;
+    });
+    if (!seen) ids.emplace_back(st.st_dev, st.st_ino, d);
+  }
+  std::sort(ids.begin(), ids.end());
+  std::vector<std::string> out;
+  out.reserve(ids.size());
+  for (auto& x : ids) out.push_back(std::move(std::get<2>(x)));
+  return out;
+}
+
+bool processGone(long pid) {
+  return pid > 0 && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
+}
+
+/// "PID" or "PID.N" (digits): the writing process.
+bool parseOwner(const std::string& digits, long* pid) {
+  if (digits.empty() || digits.size() > 40) return false;
+  const std::size_t dot = digits.find('.');
+  const std::string p = digits.substr(0, dot);
+  const std::string n = dot == std::string::npos ? std::string() : digits.substr(dot + 1);
+  const auto all_digits = [](const std::string& x) {
+    return std::all_of(x.begin(), x.end(), [](char c) { return c >= '0' && c <= '9'; });
+  };
+  if (p.empty() || p.size() > 18 || !all_digits(p)) return false;
+  if (dot != std::string::npos && (n.empty() || n.size() > 20 || !all_digits(n))) return false;
+  if (pid) *pid = std::stol(p);
+  return true;
+}
+
+bool isJournalName(const std::string& name, long* pid) {
+  const std::size_t t = std::strlen(kJournalTag);
+  return name.size() > t && name.compare(0, t, kJournalTag) == 0 && parseOwner(name.substr(t), pid);
+}
+
+/// The commit journal: "tmp\0target\0" per output, then the end marker (absent: the run was killed
+/// while writing the journal, before any rename).
+struct Journal {
+  std::vector<std::pair<std::string, std::string>> renames;
+  bool complete{false};
+};
+
+Journal readJournal(const std::string& path) {
+  Journal j;
+  std::ifstream in(path, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::vector<std::string> parts;
+  std::size_t b = 0;
+  for (std::size_t e = text.find('\0'); e != std::string::npos; e = text.find('\0', b)) {
+    parts.push_back(text.substr(b, e - b));
+    b = e + 1;
+  }
+  if (!parts.empty() && parts.back() == kJournalEnd) {
+    j.complete = true;
+    parts.pop_back();
+  }
+  for (std::size_t i = 0; i + 1 < parts.size(); i += 2)
+    j.renames.emplace_back(parts[i], parts[i + 1]);
+  return j;
+}
+
+void fsyncDir(const std::string& dir);
+
+/// Writes the journal of a set's renames (fsynced, and its folder) before the first rename.
+std::string writeJournal(const std::string& dir, const std::vector<std::string>& temps,
+                         const std::vector<std::string>& paths) {
+  std::string text;
+  for (std::size_t i = 0; i < paths.size(); ++i) {
+    std::error_code e;
+    const std::string t = std::filesystem::absolute(temps[i], e).string();
+    const std::string p = std::filesystem::absolute(paths[i], e).string();
+    text += t;
+    text += '\0';
+    text += p;
+    text += '\0';
+  }
+  text += kJournalEnd;
+  text += '\0';
+  const std::string name = std::string(kJournalTag) + std::to_string(::getpid()) + "." +
+                           std::to_string(g_seq.fetch_add(1));
+  const std::string path = dir == "/" ? "/" + name : dir + "/" + name;
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+  if (fd < 0) return "";  // no journal: the commit still happens, without recovery
+  const char* p = text.data();
+  std::size_t left = text.size();
+  bool ok = true;
+  while (left > 0) {
+    const ssize_t n = ::write(fd, p, left);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      ok = false;
+      break;
+    }
+    p += n;
+    left -= static_cast<std::size_t>(n);
+  }
+  ok = ok && ::fsync(fd) == 0;
+  ::close(fd);
+  if (!ok) {
+    ::unlink(path.c_str());
+    return "";
+  }
+  fsyncDir(dir);
+  return path;
 }
 
 void fsyncDir(const std::string& dir) {
@@ -177,10 +368,10 @@ void writeAll(const std::string& path, const std::string& tmp,
 
 }  // namespace
 
-std::string outputTemporaryPath(const std::string& path, long pid) {
+std::string outputTemporaryPath(const std::string& path, long pid, unsigned long seq) {
   const std::string dir = dirOf(path);
   const std::string name = nameOf(path);
-  const std::string tail = std::string(kTmpTag) + std::to_string(pid);
+  const std::string tail = std::string(kTmpTag) + std::to_string(pid) + "." + std::to_string(seq);
   std::string file = "." + name + tail;
   if (file.size() > kNameMax) {
     char hash[24];
@@ -201,12 +392,7 @@ bool isOutputTemporaryName(const std::string& file_name, long* pid) {
   if (file_name.size() < 2 || file_name[0] != '.') return false;
   const std::size_t t = file_name.rfind(kTmpTag);
   if (t == std::string::npos || t < 2) return false;
-  const std::string digits = file_name.substr(t + std::strlen(kTmpTag));
-  if (digits.empty() || digits.size() > 18) return false;
-  if (!std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }))
-    return false;
-  if (pid) *pid = std::stol(digits);
-  return true;
+  return parseOwner(file_name.substr(t + std::strlen(kTmpTag)), pid);
 }
 
 void removeStaleOutputTemporaries(const std::string& dir) {
@@ -217,7 +403,7 @@ void removeStaleOutputTemporaries(const std::string& dir) {
     long pid = 0;
     const std::string name = e->d_name;
     if (!isOutputTemporaryName(name, &pid) || pid == self || pid <= 0) continue;
-    if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;  // still running
+    if (!processGone(pid)) continue;  // still running
     std::string full = dir == "/" ? "/" : dir + "/";
     full += name;
     struct stat st {};
@@ -242,47 +428,133 @@ void OutputSet::stageStream(const std::string& path,
     return;
   }
   checkTarget(path);
+  const FileIdentity id = identify(path);
+  for (const std::string& p : paths_) {
+    if (sameIdentity(identify(p), id))
+      throw UsageError("output " + path + " and output " + p +
+                       " are the same file; give each output its own file (nothing written)");
+  }
   const std::string dir = dirOf(path);
   if (std::find(cleaned_dirs_.begin(), cleaned_dirs_.end(), dir) == cleaned_dirs_.end()) {
-    removeStaleOutputTemporaries(dir);
+    recoverFolder(dir);
     cleaned_dirs_.push_back(dir);
   }
-  const std::string tmp = outputTemporaryPath(path, static_cast<long>(::getpid()));
-  const auto it = std::find(paths_.begin(), paths_.end(), path);
-  if (it != paths_.end()) {  // staged again: the new bytes replace the old ones
-    const auto i = static_cast<std::size_t>(it - paths_.begin());
-    ::unlink(temps_[i].c_str());
-    paths_.erase(it);
-    temps_.erase(temps_.begin() + static_cast<std::ptrdiff_t>(i));
-  }
+  const std::string tmp = outputTemporaryPath(path, static_cast<long>(::getpid()), g_seq++);
   writeAll(path, tmp, produce);
   paths_.push_back(path);
   temps_.push_back(tmp);
 }
 
+void OutputSet::noteInput(const std::string& path) {
+  if (std::find(inputs_.begin(), inputs_.end(), path) == inputs_.end()) inputs_.push_back(path);
+}
+
+void OutputSet::checkSameFiles() const {
+  std::vector<FileIdentity> outs;
+  outs.reserve(paths_.size());
+  for (const std::string& p : paths_) outs.push_back(identify(p));
+  for (std::size_t i = 0; i < outs.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      if (sameIdentity(outs[i], outs[j]))
+        throw UsageError("output " + paths_[i] + " and output " + paths_[j] +
+                         " are the same file; give each output its own file (nothing written)");
+    }
+  }
+  for (const std::string& in : inputs_) {
+    const FileIdentity iid = identify(in);
+    for (std::size_t i = 0; i < outs.size(); ++i) {
+      if (sameIdentity(outs[i], iid))
+        throw UsageError("output " + paths_[i] + " is the input file " + in +
+                         "; write the output to another file (nothing written)");
+    }
+  }
+}
+
+void OutputSet::recoverFolder(const std::string& dir) {
+  FolderLocks locks;
+  locks.lock(dir);
+  DIR* d = ::opendir(dir.c_str());
+  if (d == nullptr) return;
+  std::vector<std::pair<std::string, long>> journals;
+  while (const dirent* e = ::readdir(d)) {
+    long pid = 0;
+    if (isJournalName(e->d_name, &pid) && processGone(pid)) journals.emplace_back(e->d_name, pid);
+  }
+  ::closedir(d);
+  std::sort(journals.begin(), journals.end());
+  for (const auto& [name, pid] : journals) {
+    const std::string path = dir == "/" ? "/" + name : dir + "/" + name;
+    const Journal j = readJournal(path);
+    if (j.complete) {
+      // the other folders of that set are locked too (skipped if a live run holds one now)
+      FolderLocks others;
+      std::vector<std::string> folders{dir};
+      for (const auto& r : j.renames) folders.push_back(dirOf(r.second));
+      folders = uniqueFolders(folders);
+      bool all = true;
+      for (const std::string& od : folders) {
+        std::error_code e;
+        if (!std::filesystem::equivalent(od, dir, e)) all = all && others.tryLock(od);
+      }
+      if (!all) continue;
+      std::string done;
+      for (const auto& [tmp, target] : j.renames) {
+        struct stat st {};
+        if (::lstat(tmp.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) continue;  // renamed before
+        if (::rename(tmp.c_str(), target.c_str()) == 0) done += (done.empty() ? "" : ", ") + target;
+      }
+      for (const auto& r : j.renames) fsyncDir(dirOf(r.second));
+      if (!done.empty())
+        notes_.push_back("finished the output commit of an earlier run (pid " +
+                         std::to_string(pid) + ") that was killed during it: " + done);
+    }
+    ::unlink(path.c_str());
+    fsyncDir(dir);
+  }
+  removeStaleOutputTemporaries(dir);
+}
+
 std::vector<std::string> OutputSet::commit() {
   if (g_commit_hook && !paths_.empty()) g_commit_hook();
-  // Re-check the targets right before replacing them (a link or FIFO made meanwhile).
+  // Re-check the targets right before replacing them (a link or FIFO made meanwhile), and that no
+  // output is another output or an input of the run.
   try {
+    checkSameFiles();
     for (const std::string& p : paths_) checkTarget(p);
   } catch (...) {
     rollback();
     throw;
   }
   std::vector<std::string> dirs;
+  for (const std::string& p : paths_) {
+    const std::string dir = dirOf(p);
+    if (std::find(dirs.begin(), dirs.end(), dir) == dirs.end()) dirs.push_back(dir);
+  }
+  const std::vector<std::string> lock_order = uniqueFolders(dirs);
+  FolderLocks locks;
+  for (const std::string& d : lock_order) locks.lock(d);
+  const std::string journal = paths_.size() > 1 && !lock_order.empty()
+                                  ? writeJournal(lock_order.front(), temps_, paths_)
+                                  : std::string();
+  long kill_after = -1;
+  if (const char* k = std::getenv(kFaultKillAfterRenamesEnv)) kill_after = std::atol(k);
   for (std::size_t i = 0; i < paths_.size(); ++i) {
+    if (kill_after >= 0 && static_cast<long>(i) == kill_after) ::raise(SIGKILL);
     if (::rename(temps_[i].c_str(), paths_[i].c_str()) != 0) {
       const int e = errno;
       const std::string path = paths_[i];
       for (std::size_t j = i; j < temps_.size(); ++j) ::unlink(temps_[j].c_str());
       paths_.clear();
       temps_.clear();
+      if (!journal.empty()) ::unlink(journal.c_str());
       fail(path, errnoText(e));
     }
-    const std::string dir = dirOf(paths_[i]);
-    if (std::find(dirs.begin(), dirs.end(), dir) == dirs.end()) dirs.push_back(dir);
   }
   for (const std::string& d : dirs) fsyncDir(d);
+  if (!journal.empty()) {
+    ::unlink(journal.c_str());
+    fsyncDir(lock_order.front());
+  }
   std::vector<std::string> written;
   written.swap(paths_);
   temps_.clear();
@@ -302,8 +574,16 @@ void OutputSet::adopt(OutputSet&& other) {
     if (std::find(cleaned_dirs_.begin(), cleaned_dirs_.end(), d) == cleaned_dirs_.end())
       cleaned_dirs_.push_back(d);
   }
+  for (const std::string& in : other.inputs_) noteInput(in);
+  notes_.insert(notes_.end(), other.notes_.begin(), other.notes_.end());
   other.paths_.clear();
   other.temps_.clear();
+  other.inputs_.clear();
+  other.notes_.clear();
+}
+
+void noteInputFile(const std::string& path) {
+  if (g_active != nullptr) g_active->noteInput(path);
 }
 
 OutputSet* activeOutputSet() { return g_active; }

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <utility>
 
+#include "compensator/support/long_words.hpp"
+
 namespace roprec {
 
 namespace {
@@ -22,12 +24,13 @@ std::string compose(const std::string& file, int line, int column, const std::st
 }
 }  // namespace
 
+// A 1 MB name or value echoed into a message is cut to a readable length (clipLongWords).
 InputError::InputError(std::string file, int line, std::string message, int column)
-    : std::runtime_error(compose(file, line, column, message)),
+    : std::runtime_error(compose(file, line, column, clipLongWords(message))),
       file_(std::move(file)),
       line_(line),
       column_(column),
-      message_(std::move(message)) {}
+      message_(clipLongWords(message)) {}
 
 std::string formatInputError(const InputError& e) { return e.what(); }
 

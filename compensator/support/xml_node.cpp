@@ -123,30 +123,42 @@ std::string lowerAscii(std::string s) {
 }
 
 /// Edit distance with adjacent transpositions (optimal string alignment): 'xzy' -> 'xyz' is 1.
+/// Rolling rows (the transposition needs the one before the previous), one allocation.
 std::size_t editDistance(const std::string& a, const std::string& b) {
   const std::size_t n = a.size();
   const std::size_t m = b.size();
-  std::vector<std::vector<std::size_t>> d(n + 1, std::vector<std::size_t>(m + 1));
-  for (std::size_t i = 0; i <= n; ++i) d[i][0] = i;
-  for (std::size_t j = 0; j <= m; ++j) d[0][j] = j;
+  std::vector<std::size_t> rows(3 * (m + 1));
+  std::size_t* prev2 = rows.data();
+  std::size_t* prev = prev2 + (m + 1);
+  std::size_t* cur = prev + (m + 1);
+  for (std::size_t j = 0; j <= m; ++j) prev[j] = j;
   for (std::size_t i = 1; i <= n; ++i) {
+    cur[0] = i;
     for (std::size_t j = 1; j <= m; ++j) {
       const std::size_t cost = a[i - 1] == b[j - 1] ? 0 : 1;
-      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + cost});
       if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
-        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+        cur[j] = std::min(cur[j], prev2[j - 2] + 1);
     }
+    std::swap(prev2, prev);  // rotate: prev2 <- prev, prev <- cur, cur <- old prev2
+    std::swap(prev, cur);
   }
-  return d[n][m];
+  return prev[m];
 }
 
-/// How near `name` is to `known` (lower is nearer); nullopt when it is not a near miss.
+/// How near `name` is to `known` (lower is nearer); nullopt when it is not a near miss. A name
+/// longer than `known` by more than the distance allowed is not compared at all (a 10 MB name
+/// costs nothing), and the edit distance only runs when the lengths are within that distance.
 std::optional<std::size_t> nearness(const std::string& name, const std::string& known) {
+  const std::size_t limit = name.size() <= 2 ? 0 : name.size() <= 4 ? 1 : 2;
+  if (name.size() > known.size() + limit) return std::nullopt;
   const std::string a = lowerAscii(name);
   const std::string b = lowerAscii(known);
   if (a == b) return 0;
-  const std::size_t limit = a.size() <= 2 ? 0 : a.size() <= 4 ? 1 : 2;
-  if (const std::size_t d = editDistance(a, b); d <= limit) return d;
+  const std::size_t diff = a.size() > b.size() ? a.size() - b.size() : b.size() - a.size();
+  if (diff <= limit) {
+    if (const std::size_t d = editDistance(a, b); d <= limit) return d;
+  }
   // an abbreviation: 'dia' for 'diameter'
   if (a.size() >= 3 && b.rfind(a, 0) == 0) return 3;
   return std::nullopt;
@@ -193,7 +205,8 @@ void allowOnly(const XmlNode& e, std::initializer_list<const char*> names) {
     const std::vector<std::string> known = toStrings(names);
     std::string hint = didYouMean(k, known);
     if (hint.empty()) hint = knownList(known, "", "");
-    e.fail(strCat("unknown attribute '", k, "' on <", e.name, ">", hint));
+    e.fail(strCat("unknown attribute '", clipForMessage(k), "' on <", clipForMessage(e.name), ">",
+                  hint));
   }
 }
 
@@ -203,7 +216,8 @@ void allowChildren(const XmlNode& e, std::initializer_list<const char*> names) {
     const std::vector<std::string> known = toStrings(names);
     std::string hint = didYouMean(c.name, known, "<", ">");
     if (hint.empty()) hint = knownList(known, "<", ">");
-    c.fail("unknown element <" + c.name + "> in <" + e.name + ">" + hint);
+    c.fail("unknown element <" + clipForMessage(c.name) + "> in <" + clipForMessage(e.name) + ">" +
+           hint);
   }
 }
 
@@ -260,12 +274,8 @@ XmlNode parseXmlText(const std::string& text, const std::string& file) {
   return convert(root, file);
 }
 
-XmlNode loadXmlFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, 0, "cannot open file");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return parseXmlText(ss.str(), path);
+XmlNode loadXmlFile(const std::string& path, InputKind kind) {
+  return parseXmlText(readInputFile(path, kind), path);
 }
 
 }  // namespace roprec

@@ -11,6 +11,8 @@
 #include <utility>
 #include <vector>
 
+#include "compensator/support/input_file.hpp"
+
 namespace roprec {
 
 struct XmlNode {
@@ -43,7 +45,7 @@ struct XmlNode {
 };
 
 /// Parses an XML file; malformed XML throws InputError with tinyxml2's line.
-XmlNode loadXmlFile(const std::string& path);
+XmlNode loadXmlFile(const std::string& path, InputKind kind = InputKind::kXml);
 /// Parses XML text (`file` is used in messages only).
 XmlNode parseXmlText(const std::string& text, const std::string& file);
 

@@ -2,8 +2,14 @@
 #include "plugin/api/card_tools.hpp"
 
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 
+#include "compensator/precision/card_writer.hpp"
 #include "compensator/precision/cell.hpp"
+#include "compensator/robot/urdf_loader.hpp"
+#include "compensator/robot/urdf_writer.hpp"
 #include "compensator/support/c_format.hpp"
 #include "compensator/support/error.hpp"
 
@@ -90,9 +96,96 @@ CardCheckResult cardCheck(const std::string& card_path, const std::optional<std:
   return r;
 }
 
+namespace {
+
+namespace fs = std::filesystem;
+
+/// `card_text` with its urdf="…" (in the <robot> tag) pointing at `urdf` from `out_path`'s folder,
+/// when that folder is not the card's.
+std::string relocateUrdf(const std::string& card_text, const RobotCard& card,
+                         const std::string& out_path) {
+  std::error_code ec;
+  const fs::path card_dir = fs::absolute(fs::path(card.file).parent_path(), ec);
+  const fs::path out_dir = fs::absolute(fs::path(out_path).parent_path(), ec);
+  if (card_dir.lexically_normal() == out_dir.lexically_normal()) return card_text;
+  const std::size_t robot = card_text.find("<robot");
+  const std::size_t at = card_text.find("urdf=", robot);
+  if (robot == std::string::npos || at == std::string::npos) return card_text;
+  const char q = card_text[at + 5];
+  const std::size_t end = card_text.find(q, at + 6);
+  const std::string rel =
+      fs::absolute(card.urdf_path, ec).lexically_normal().lexically_relative(out_dir).string();
+  std::string out = card_text;
+  return out.replace(at + 6, end - at - 6, rel);
+}
+
+std::string largestOffsets(const GeometryCalibration& c, const RobotCard& card) {
+  std::string s = "derived the <calibration> block (origin errors in the nominal joint frames):\n";
+  for (size_t i = 0; i < 6; ++i) {
+    s += "  " + card.joints[i].name + ": " + cFixed(c.joints[i].dxyz.norm() * 1e3, 4) + " mm, " +
+         cFixed(c.joints[i].drpy.norm() * 1e3, 4) + " mrad\n";
+  }
+  s += "  tool: " + cFixed(c.tool.dxyz.norm() * 1e3, 4) + " mm, " +
+       cFixed(c.tool.drpy.norm() * 1e3, 4) + " mrad\n";
+  return s + "then: roprec card check NEW.xml\n";
+}
+
+std::array<std::string, 6> jointNamesOf(const RobotCard& card) {
+  std::array<std::string, 6> n;
+  for (size_t i = 0; i < 6; ++i) n[i] = card.joints[i].name;
+  return n;
+}
+
+std::string readWhole(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, 0, "cannot open the file");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+}  // namespace
+
+CardImportResult cardImportCalibration(const std::string& card_path,
+                                       const std::string& calibrated_urdf,
+                                       const std::string& out_path) {
+  const Robot robot = loadRobot({card_path, "", ""});
+  const ChainDescription cal_chain =
+      loadUrdfChain(calibrated_urdf, {robot.chain.base_link, robot.chain.tip_link});
+  CardImportResult r;
+  r.calibration = calibrationFromChains(robot.chain, cal_chain);
+  r.calibration.source = "imported from " + calibrated_urdf + " (roprec card import-calibration)";
+  const std::string text = replaceCardCalibration(
+      readWhole(card_path), card_path, calibrationXml(r.calibration, jointNamesOf(robot.card)));
+  r.card_text = relocateUrdf(text, robot.card, out_path);
+  r.summary = largestOffsets(r.calibration, robot.card);
+  return r;
+}
+
+std::string cardExportUrdf(const std::string& card_path) {
+  const Robot robot = loadRobot({card_path, "", ""});
+  if (!robot.card.calibration) {
+    throw InputError(card_path, 0,
+                     "the card has no <calibration> block: its URDF " + robot.card.urdf_path +
+                         " already is the robot's model");
+  }
+  return calibratedUrdf(robot.card.urdf_path, robot.chain, *robot.card.calibration);
+}
+
+std::string calibrationNote(const RobotCard& card) {
+  if (!card.calibration) return "";
+  const GeometryCalibration& c = *card.calibration;
+  std::string n = "robot card: calibrated geometry (" + c.source;
+  if (!c.date.empty()) n += ", " + c.date;
+  if (c.measurements > 0) n += ", " + std::to_string(c.measurements) + " measurements";
+  if (c.residual_rms > 0) n += ", fit residual " + cFixed(c.residual_rms * 1e6, 1) + " um RMS";
+  return n + "): real TCPs by FK_real, the controller's targets by the card's URDF";
+}
+
 std::vector<std::string> cardCheckOnLoad(const Robot& robot) {
   std::vector<std::string> notes;
   if (robot.card.file.empty()) return notes;
+  if (robot.card.calibration) notes.push_back(calibrationNote(robot.card));
   const CardCheckReport report = checkRobotCard(robot);
   throwFirstCardError(report, robot.card);
   for (const CardFinding& f : report.findings) {

@@ -38,6 +38,29 @@ struct CardCheckResult {
 /// the cell names a bundled robot without a card path.
 CardCheckResult cardCheck(const std::string& card_path, const std::optional<std::string>& cell);
 
+/// `roprec card import-calibration --urdf CALIBRATED.urdf CARD.xml -o NEW.xml` (docs/cards.md
+/// §5): the card's text with the <calibration> block that turns the card's URDF chain into the
+/// calibrated URDF's (calibrationFromChains; the old block replaced), its urdf= re-written relative
+/// to the folder of `out_path` when that differs from the card's. Throws InputError for cards and
+/// URDFs that do not load or whose joints differ.
+struct CardImportResult {
+  std::string card_text;
+  GeometryCalibration calibration;
+  std::string summary;  ///< the largest offsets (stderr text)
+};
+CardImportResult cardImportCalibration(const std::string& card_path,
+                                       const std::string& calibrated_urdf,
+                                       const std::string& out_path);
+
+/// `roprec card export-urdf CARD.xml -o real.urdf`: the card's URDF with its calibration written
+/// into the joint origins (calibratedUrdf). Throws InputError at the card when it has no
+/// <calibration> (its URDF already is the model).
+std::string cardExportUrdf(const std::string& card_path);
+
+/// One note for the outputs of a calibrated robot ("robot card: calibrated geometry: …"), "" for
+/// a robot without <calibration>.
+std::string calibrationNote(const RobotCard& card);
+
 /// Warnings of a card check as notes ("robot card: ..."), for the outputs of predict/compensate;
 /// throws the first error (throwFirstCardError). Does nothing for a robot without a card file.
 std::vector<std::string> cardCheckOnLoad(const Robot& robot);

@@ -36,7 +36,7 @@ DeflectResult deflectAt(const RobotSetup& setup, const DeflectRequest& request) 
   r.joints = request.joints;
   requireWithinLimits(setup.robot.chain, r.joints, request.joints_name);
   const nc::JointCompliance c = complianceOf(setup.robot.card);
-  const nc::Model model = nc::buildModel(setup.robot.chain, setup.tool);
+  const nc::Model model = nc::buildModel(setup.robot.real_chain, setup.tool);
   nc::Data data(model);
   nc::forwardKinematics(model, data, r.joints);
   r.R_W_tcp = data.T_W_tcp.linear();
@@ -48,6 +48,10 @@ DeflectResult deflectAt(const RobotSetup& setup, const DeflectRequest& request) 
   r.deflection = nc::predictDeflection(model, data, c, r.joints, r.loads, {}, offset);
   if (!r.deflection.position_converged)
     throw InputError("", 0, "the position problem did not converge at this pose");
+  if (setup.robot.card.calibration) {  // deviation from the pose the controller means (FK_nom)
+    nc::referToControllerPose(r.deflection, chainForwardKinematics(setup.robot.chain, r.joints) *
+                                                setup.tool.T_flange_tcp);
+  }
   return r;
 }
 

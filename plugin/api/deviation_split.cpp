@@ -47,7 +47,7 @@ std::vector<std::optional<DeviationSplit>> splitRobotDeviations(
   PredictionModel links = base(m);
   nc::ToolAttachment massless;
   massless.T_flange_tcp = tool.T_flange_tcp;
-  links.model = nc::buildModel(m.robot.chain, massless);
+  links.model = nc::buildModel(m.robot.real_chain, massless);
   dropProcessLoad(links);
   // δ₂: links + tool
   PredictionModel weight = base(m);
@@ -68,11 +68,16 @@ std::vector<std::optional<DeviationSplit>> splitRobotDeviations(
     const auto d4 = deviationOf(v4, requests[i], *p);
     if (!d1 || !d2 || !d3 || !d4) continue;
     DeviationSplit s;
-    s.gravity = *d1;
+    if (m.calibrated) {
+      const Pose real = chainForwardKinematics(m.robot.real_chain, p->joints) *
+                        m.model.T_L6_flange.inverse() * m.model.T_L6_tcp;
+      s.geometry = real.translation() - controllerTcp(m, p->joints).translation();
+    }
+    s.gravity = *d1 - s.geometry;
     s.tool = *d2 - *d1;
     s.process = *d3 - *d2;
     s.controller = p->d_robot - *d3;
-    s.process_alone = *d4;
+    s.process_alone = *d4 - s.geometry;
     out[i] = s;
   }
   return out;

@@ -30,6 +30,10 @@ struct DeviationSplit {
   Vec3 process{Vec3::Zero()};     ///< steady process wrench
   Vec3 controller{Vec3::Zero()};  ///< the controller reference (compensation / mastering)
   Vec3 process_alone{Vec3::Zero()};
+  /// the robot's geometric error FK_real − FK_nom at the command (a calibrated robot, robot card
+  /// <calibration>; zero otherwise): part of every re-evaluation, taken out of `gravity` and
+  /// `process_alone`, so the five parts sum to δrobot
+  Vec3 geometry{Vec3::Zero()};
 };
 
 /// The split of each hole with status kOk (nullopt otherwise or when a re-evaluation does not

@@ -424,11 +424,23 @@ void predictionHole(JsonWriter& w, const HolePrediction& h, const HoleRequest& r
     w.number(h.U_work_exact * 1e6, 3);
     w.key("standard_per_axis");
     w.beginObject();
+    bool any_source = false;
     for (const BudgetTerm& t : h.budget) {
       w.key(t.name);
       w.number(t.u * 1e6, 3);
+      any_source |= t.source != nullptr;
     }
     w.endObject();
+    if (any_source) {
+      w.key("term_sources");
+      w.beginObject();
+      for (const BudgetTerm& t : h.budget) {
+        if (t.source == nullptr) continue;
+        w.key(t.name);
+        w.str(t.source);
+      }
+      w.endObject();
+    }
     w.key("process_share");
     w.number(h.process_share, 4);
     w.key("process_force_share");

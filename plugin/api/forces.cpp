@@ -475,7 +475,7 @@ struct CellRobot {
 };
 CellRobot cellRobot(const CellSpec& cell) {
   const Robot r = loadRobot(cell.robot);
-  return {nc::buildModel(r.chain, toolOf(cell)), complianceOf(r.card)};
+  return {nc::buildModel(r.real_chain, toolOf(cell)), complianceOf(r.card)};
 }
 
 void millingForcesOf(const CellSpec& cell, const MillingSpec& s, const ForcesRequest& req,

@@ -8,6 +8,7 @@
 #include "compensator/precision/parallel.hpp"
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
+#include "compensator/support/input_file.hpp"
 
 namespace roprec::api {
 
@@ -317,7 +318,7 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
                       const std::function<postproc::HoleRecognizer*()>& recognizer) {
   JobHoles job;
   job.path = path;
-  std::string bytes = readFileBytes(path);
+  std::string bytes = readInputFile(path, InputKind::kProgram);
   postproc::Dialect dialect = postproc::detectDialect(path, bytes);
   std::optional<postproc::Program> parsed;
   if (dialect == postproc::Dialect::kCsv) {

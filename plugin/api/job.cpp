@@ -69,6 +69,7 @@ void useProgramTool(PredictionContext& c, const Pose& T_flange_tcp) {
   s.tool = c.tool;
   s.process = c.process;
   s.uncertainty = c.model.uncertainty;
+  s.accuracy = c.model.accuracy;
   s.capability = c.model.capability;
   const ControllerGravity cg = controllerGravityOf(c.robot.card, &c.cell, c.tool);
   s.controller_gravity = cg.gravity_compensated;
@@ -86,6 +87,12 @@ void useProgramTool(PredictionContext& c, const Pose& T_flange_tcp) {
 /// only the controller defines, or a program tool that differs from the cell's, is an error
 /// unless the options say how to resolve it; every resolution is stated in the job's notes.
 void resolveFramesAndTool(PredictionContext& c, const JobOptions& o) {
+  if (o.frame_cell && c.cell.root.child("workobject") == nullptr) {
+    throw InputError(c.cell.file, std::max(1, c.cell.root.line),
+                     "--frame cell: the cell has no <workobject>, so it defines no frame (the "
+                     "robot base frame would be used silently). Add <workobject xyz=\"...\" "
+                     "rpy=\"...\"/> to the cell, or give --frame \"x y z a b c\"");
+  }
   if (!c.job.program || c.job.is_hole_list) return;
   const postproc::Program& p = *c.job.program;
   auto where = [&](int file, int line, const postproc::Motion& mo) {

@@ -7,6 +7,7 @@
 
 #include "compensator/support/error.hpp"
 #include "compensator/support/fixed_chars.hpp"
+#include "compensator/support/utf8.hpp"
 
 namespace roprec::api {
 
@@ -78,40 +79,54 @@ bool Json::finite() const {
 }
 
 namespace {
-bool needsEscape(char c) { return c == '"' || c == '\\' || static_cast<unsigned char>(c) < 0x20; }
+bool needsEscape(char c) {
+  return c == '"' || c == '\\' || static_cast<unsigned char>(c) < 0x20 ||
+         static_cast<unsigned char>(c) >= 0x80;
+}
+
+void appendEscapedChar(std::string& o, char c) {
+  switch (c) {
+    case '"':
+      o += "\\\"";
+      break;
+    case '\\':
+      o += "\\\\";
+      break;
+    case '\n':
+      o += "\\n";
+      break;
+    case '\r':
+      o += "\\r";
+      break;
+    case '\t':
+      o += "\\t";
+      break;
+    default: {
+      // a control character, or a byte that is not valid UTF-8 (its Latin-1 character, utf8.hpp)
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x",
+                    static_cast<unsigned>(static_cast<unsigned char>(c)));
+      o += buf;
+    }
+  }
+}
 }  // namespace
 
 void appendJsonEscaped(std::string& o, std::string_view s) {
   // runs without a character to escape are appended whole (ids, keys, notes: nearly everything)
-  size_t run = 0;
-  while (run < s.size() && !needsEscape(s[run])) ++run;
-  o.append(s.data(), run);
-  for (const char c : s.substr(run)) {
-    switch (c) {
-      case '"':
-        o += "\\\"";
-        break;
-      case '\\':
-        o += "\\\\";
-        break;
-      case '\n':
-        o += "\\n";
-        break;
-      case '\r':
-        o += "\\r";
-        break;
-      case '\t':
-        o += "\\t";
-        break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x",
-                        static_cast<unsigned>(static_cast<unsigned char>(c)));
-          o += buf;
-        } else {
-          o += c;
-        }
+  size_t i = 0;
+  while (i < s.size()) {
+    size_t run = i;
+    while (run < s.size() && !needsEscape(s[run])) ++run;
+    o.append(s.data() + i, run - i);
+    if (run == s.size()) break;
+    const size_t n = static_cast<unsigned char>(s[run]) >= 0x80 ? utf8SequenceLength(s, run) : 0;
+    if (n > 0) {  // valid UTF-8 passes through
+      o.append(s.data() + run, n);
+      i = run + n;
+    } else {
+      appendEscapedChar(o, s[run]);
+      i = run + 1;
     }
   }
 }

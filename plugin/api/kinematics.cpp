@@ -8,8 +8,17 @@
 
 namespace roprec::api {
 
+namespace {
+/// What fk/ik answer for a calibrated robot (robot card <calibration>).
+std::string geometryText(const RobotCard& card) {
+  return "calibrated (" + card.calibration->source +
+         "): the real robot, FK_real; the controller's targets follow the card's URDF";
+}
+}  // namespace
+
 FkResult forwardKinematicsAt(const RobotSetup& setup, const Vec6& joints) {
-  const nc::Model model = nc::buildModel(setup.robot.chain, setup.tool);
+  // the real robot: its calibrated geometry (robot card <calibration>), else the URDF
+  const nc::Model model = nc::buildModel(setup.robot.real_chain, setup.tool);
   nc::Data data(model);
   FkResult r;
   r.joints = joints;
@@ -28,6 +37,7 @@ FkResult forwardKinematicsAt(const RobotSetup& setup, const Vec6& joints) {
 Json fkJson(const RobotSetup& setup, const FkResult& r) {
   Json root = Json::object();
   root.set("robot", Json::str(setup.robot.card.name));
+  if (setup.robot.card.calibration) root.set("geometry", Json::str(geometryText(setup.robot.card)));
   root.set("base_link", Json::str(setup.robot.chain.base_link));
   root.set("flange_link", Json::str(setup.robot.chain.tip_link));
   root.set("joints_deg", Json::vector(r.joints / kDeg, 6));
@@ -55,7 +65,7 @@ IkAnswer inverseKinematicsFor(const RobotSetup& setup, const IkRequest& request)
   a.T_flange =
       setup.cell ? Pose(request.target * setup.cell->tool.T_flange_tcp.inverse()) : request.target;
   if (request.fanuc_turn_axes) a.config_options.fanuc_turn_axes = *request.fanuc_turn_axes;
-  a.model = buildIkModel(setup.robot);
+  a.model = buildRealIkModel(setup.robot);  // the real robot reaches the target
   a.result = std::make_unique<IkResult>();
   IkOptions opt;
   opt.turns = request.all_turns ? IkTurns::kAll : IkTurns::kPrimary;
@@ -136,6 +146,7 @@ Json solutionJson(const RobotSetup& setup, const IkAnswer& a, const IkSolution& 
 Json ikJson(const RobotSetup& setup, const IkAnswer& a) {
   Json root = Json::object();
   root.set("robot", Json::str(setup.robot.card.name));
+  if (setup.robot.card.calibration) root.set("geometry", Json::str(geometryText(setup.robot.card)));
   root.set("vendor", Json::str(vendorName(setup.robot.card.vendor)));
   root.set("base_link", Json::str(setup.robot.chain.base_link));
   root.set("flange_link", Json::str(setup.robot.chain.tip_link));

@@ -174,7 +174,7 @@ MillingStabilityResult millingStability(const MillingStabilityRequest& req) {
   out.json.set("cell", Json::str(cell.name));
   if (req.joints) {
     const Robot r = loadRobot(cell.robot);
-    const nc::Model model = nc::buildModel(r.chain, toolOf(cell));
+    const nc::Model model = nc::buildModel(r.real_chain, toolOf(cell));
     dyn = robotModes(model, complianceOf(r.card), *req.joints, s.robot_damping_ratio);
     out.json.set("joints_deg", Json::vector(*req.joints / kDeg, 6));
   }

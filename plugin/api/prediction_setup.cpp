@@ -8,6 +8,7 @@
 
 #include "compensator/process/process_load.hpp"
 #include "compensator/support/error.hpp"
+#include "compensator/support/input_file.hpp"
 #include "plugin/api/card_tools.hpp"
 #include "plugin/api/lookahead.hpp"
 #include "plugin/api/robot_compliance.hpp"
@@ -67,6 +68,40 @@ CapabilityInputs capabilityFromCell(const CellSpec& cell) {
   return c;
 }
 
+/// The budget's absolute-accuracy term (AccuracyInputs): the cell's controller option
+/// (<absolute_accuracy>), else the card's <calibration> σ, else the card's <accuracy>; the cell's
+/// registration σ (<workobject sigma_mm>) in every case.
+AccuracyInputs accuracyFromCell(const CellSpec& cell, const RobotCard& card) {
+  constexpr double kMaxwell95 = 2.7955;  // P(|e| <= 2.7955 σ) = 0.95 for an isotropic 3-D normal
+  AccuracyInputs a;
+  if (const XmlNode* w = cell.root.child("workobject"))
+    a.registration_sigma = w->number("sigma_mm", 0.0) * 1e-3;
+  std::string registration;
+  if (a.registration_sigma > 0) {
+    const XmlNode* w = cell.root.child("workobject");
+    registration = "; + registration σ " + w->str("sigma_mm") + " mm (" +
+                   w->str("sigma_source", "cell <workobject sigma_mm>") + ")";
+  }
+  if (const XmlNode* e = cell.root.child("absolute_accuracy")) {
+    a.kind = AccuracyInputs::Kind::kControllerOption;
+    a.u = e->number("ap_mm") * 1e-3 / kMaxwell95;
+    a.source = "controller absolute-accuracy option, AP " + e->str("ap_mm") + " mm / 2.7955 (" +
+               e->str("source") + ")";
+  } else if (card.calibration) {
+    a.kind = AccuracyInputs::Kind::kCalibrated;
+    a.source = "calibration σ through the FK Jacobian (" + card.calibration->source + ")";
+  } else if (card.accuracy_ap_mm > 0) {
+    a.kind = AccuracyInputs::Kind::kDataSheet;
+    a.u = card.accuracy_ap_mm * 1e-3 / kMaxwell95;
+    a.source = "uncalibrated, AP " + numberText(card.accuracy_ap_mm) + " mm / 2.7955 (" +
+               card.accuracy_source + ")";
+  } else if (a.registration_sigma > 0) {
+    a.source = "registration only";
+  }
+  a.source += registration;
+  return a;
+}
+
 /// Everything of the prediction model's setup that comes from the cell and the command line
 /// (not the holes' diameters): throws as the cell's elements are read.
 PredictionSetup setupFromCell(const PredictionContext& c, const std::string& uncertainty_override) {
@@ -83,6 +118,7 @@ PredictionSetup setupFromCell(const PredictionContext& c, const std::string& unc
     throw UsageError("--uncertainty must be linear or montecarlo");
   }
   s.capability = capabilityFromCell(c.cell);
+  s.accuracy = accuracyFromCell(c.cell, c.robot.card);
   // the controller's gravity handling: the one decision every command shares
   const ControllerGravity cg = controllerGravityOf(c.robot.card, &c.cell, c.tool);
   s.controller_gravity = cg.gravity_compensated;
@@ -124,6 +160,23 @@ std::unique_ptr<HoleLookahead> startLookahead(const PredictionContext& c,
                                            format_ahead ? format_ahead(c) : HoleFormat());
   } catch (...) {
     return nullptr;
+  }
+}
+
+/// The cell's rule feed <= 0.1 Dc (process_spec.cpp) applies to a diameter from the hole list too:
+/// a hole the cell's feed cannot drill is an error at its line (the force model would give 0 N
+/// and "conforms").
+void requireDrillableDiameters(const PredictionContext& c) {
+  if (!c.process || c.process->type != ProcessType::kDrilling) return;
+  const double feed = c.process->drilling.feed;
+  for (const HoleRequest& r : c.job.requests) {
+    if (!(r.diameter > 0) || feed <= 0.1 * r.diameter * (1 + 1e-12)) continue;
+    throw InputError(c.job.path, r.line,
+                     "hole " + clipForMessage(r.id) + ": diameter " + numberText(r.diameter * 1e3) +
+                         " mm is too small for the cell's feed " + numberText(feed * 1e3) +
+                         " mm/rev (feed <= 0.1 Dc: a diameter of at least " +
+                         numberText(feed * 1e4) +
+                         " mm); drill it with another cell (feed) or correct the diameter");
   }
 }
 
@@ -179,6 +232,7 @@ PredictionContext loadPredictionContext(const std::string& cell_path, const std:
   for (const HoleRequest& r : c.job.requests) {
     if (r.diameter > 0) s.hole_diameters.push_back(r.diameter);
   }
+  requireDrillableDiameters(c);
   c.model = buildPredictionModel(s);
   if (c.fanuc_turn_axes) {
     c.model.config_options.fanuc_turn_axes = *c.fanuc_turn_axes;
@@ -239,8 +293,15 @@ Json holeJson(const HolePrediction& h, const HoleRequest& r, const RobotCard* ca
     u.set("coverage", Json::str("2-D radial 95 % (Rayleigh)"));
     u.set("U_work_anisotropic", Json::number(h.U_work_exact * 1e6, 3));
     Json b = Json::object();
-    for (const BudgetTerm& t : h.budget) b.set(t.name, Json::number(t.u * 1e6, 3));
+    Json sources = Json::object();
+    bool any_source = false;
+    for (const BudgetTerm& t : h.budget) {
+      b.set(t.name, Json::number(t.u * 1e6, 3));
+      if (t.source != nullptr) sources.set(t.name, Json::str(t.source));
+      any_source |= t.source != nullptr;
+    }
     u.set("standard_per_axis", b);
+    if (any_source) u.set("term_sources", sources);
     u.set("process_share", Json::number(h.process_share, 4));
     u.set("process_force_share", Json::number(h.process_force_share, 4));
     j.set("uncertainty_um", u);

@@ -733,8 +733,11 @@ struct TermInfo {
   const char* basis;
 };
 
-constexpr std::array<TermInfo, 6> kTerms{{
+constexpr std::array<TermInfo, 7> kTerms{{
     {"robot_repeatability", "Robot repeatability", "ISO 9283 RP, normal: \u03c3 = RP / 3.616"},
+    {"robot_absolute_accuracy", "Robot absolute accuracy",
+     "uncalibrated: AP / 2.7955 (card <accuracy>); calibrated: the calibration \u03c3 through the "
+     "FK Jacobian; the controller option: its AP; + the registration \u03c3"},
     {"robot_deflection_model", "Deflection model",
      "joint stiffness and servo gain uncertainty propagated through the deflection"},
     {"robot_deflection_process_force", "Deflection under process-force scatter",
@@ -1361,8 +1364,9 @@ std::vector<std::string> budgetNames(const std::vector<HoleView>& hv) {
 }
 
 const char* shortTerm(const std::string& name) {
-  static constexpr std::array<std::array<const char*, 2>, 6> kShort{{
+  static constexpr std::array<std::array<const char*, 2>, 7> kShort{{
       {"robot_repeatability", "u repeat."},
+      {"robot_absolute_accuracy", "u abs. acc."},
       {"robot_deflection_model", "u defl. model"},
       {"robot_deflection_process_force", "u defl. force"},
       {"mach_axis", "u axis"},

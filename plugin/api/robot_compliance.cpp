@@ -31,7 +31,7 @@ ControllerGravity controllerGravityOf(const RobotCard& card, const CellSpec* cel
 nc::ControllerReference controllerReferenceOf(const Robot& robot, const CellSpec* cell,
                                               const nc::ToolAttachment& cell_tool, bool gravity) {
   const ControllerGravity g = controllerGravityOf(robot.card, cell, cell_tool);
-  return nc::makeControllerReference(robot.chain, robot.card, gravity, g.gravity_compensated,
+  return nc::makeControllerReference(robot.real_chain, robot.card, gravity, g.gravity_compensated,
                                      g.calibration_load);
 }
 

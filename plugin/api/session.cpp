@@ -50,8 +50,9 @@ Session::JointPrediction Session::predictJoints(const Vec6& joints_controller) {
   const PredictionModel& m = impl_->context.model;
   JointPrediction p;
   const Vec6 q = fromControllerJoints(m.robot.card, joints_controller);
+  // the pose the controller means by these joints (FK_nom; the real one without a calibration)
   nc::Data d(m.model);
-  const nc::PositionResult pr = nc::forwardKinematics(m.model, d, q);
+  const nc::PositionResult pr = nc::forwardKinematics(controllerModel(m), d, q);
   if (!pr.converged) {
     p.reason = "the position problem did not converge at these joints";
     return p;

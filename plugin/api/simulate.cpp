@@ -384,7 +384,7 @@ SimulationResult simulateAt(const RobotSetup& setup, const HoleJoints& at,
                             const SimulateOptions& options) {
   if (!setup.cell) throw UsageError("a simulation needs a cell (robot, tool and process)");
   requireWithinLimits(setup.robot.chain, at.joints, "joints");
-  const nc::Model model = nc::buildModel(setup.robot.chain, setup.tool);
+  const nc::Model model = nc::buildModel(setup.robot.real_chain, setup.tool);
   nc::Data data(model);
   const nc::TransientProblem p = transientProblem(setup, model, data, at.joints, options);
 

@@ -33,6 +33,7 @@ PredictionModel modelAtFeed(const PredictionContext& c, double feed_m_per_rev) {
   proc.drilling.feed = feed_m_per_rev;
   s.process = proc;
   s.uncertainty = c.model.uncertainty;
+  s.accuracy = c.model.accuracy;
   s.capability = c.model.capability;
   s.default_tolerance = c.model.default_tolerance;
   const ControllerGravity cg = controllerGravityOf(c.robot.card, &c.cell, c.tool);
@@ -95,7 +96,7 @@ WorkMap computeWorkMap(const WorkMapRequest& request,
   const double span = (q.hi_mm - q.lo_mm).maxCoeff();
   if (q.step_mm) {
     if (!std::isfinite(*q.step_mm) || *q.step_mm <= 0)
-      throw UsageError("--step must be > 0 mm, got " + formatNumber(*q.step_mm, 6));
+      throw UsageError("--step must be > 0 mm, got " + numberText(*q.step_mm));
   } else {
     q.step_mm = std::max(1.0, span / 10.0);
   }
@@ -110,9 +111,8 @@ WorkMap computeWorkMap(const WorkMapRequest& request,
   for (int i = 0; i < 3; ++i) {
     const double n = std::floor((q.hi_mm[i] - q.lo_mm[i]) / step + 1e-9) + 1;
     if (n > 1e7) {
-      throw UsageError("--step " + formatNumber(step, 3) +
-                       " mm gives more than 10^7 points along " + std::string(1, "xyz"[i]) +
-                       "; use a larger --step");
+      throw UsageError("--step " + numberText(step) + " mm gives more than 10^7 points along " +
+                       std::string(1, "xyz"[i]) + "; use a larger --step");
     }
     map.counts[static_cast<size_t>(i)] = countAlong(q.hi_mm[i] - q.lo_mm[i], step);
     points *= static_cast<size_t>(map.counts[static_cast<size_t>(i)]);
@@ -124,7 +124,7 @@ WorkMap computeWorkMap(const WorkMapRequest& request,
         std::pow(static_cast<double>(points * feeds) / static_cast<double>(q.max_predictions),
                  1.0 / std::max(1, dims));
     throw UsageError(
-        "the region with --step " + formatNumber(step, 3) + " mm has " + std::to_string(points) +
+        "the region with --step " + numberText(step) + " mm has " + std::to_string(points) +
         " points \u00d7 " + std::to_string(feeds) + " feeds = " + std::to_string(points * feeds) +
         " predictions, more than the limit " + std::to_string(q.max_predictions) + "; use --step " +
         formatNumber(std::ceil(step * grow * 1.01 * 10) / 10, 1) + " or a smaller region");

@@ -72,7 +72,15 @@ Eigen::VectorXd parseNumberList(const std::string& text, int n, const std::strin
 }
 
 Eigen::Matrix<double, 6, 1> parseJointsDeg(const std::string& text) {
-  return parseNumberList(text, 6, "--joints") * kDeg;
+  const Eigen::VectorXd deg = parseNumberList(text, 6, "--joints");
+  // ten turns either way, as the URDF joint limits (a 1e300 would be printed with 300 digits)
+  constexpr double kMaxJointDeg = 3600.0;
+  for (int i = 0; i < 6; ++i) {
+    if (std::abs(deg[i]) > kMaxJointDeg)
+      throw UsageError("--joints: joint " + std::to_string(i + 1) + " = " + numberText(deg[i]) +
+                       "° is beyond ten turns (±3600°); give joint angles in degrees");
+  }
+  return deg * kDeg;
 }
 
 Pose parsePoseQuat(const std::string& text) {

@@ -5,13 +5,19 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <csignal>
+#include <cstring>
 #include <exception>
 #include <iostream>
 #include <new>
 #include <sstream>
+#include <streambuf>
+#include <string>
 
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
+#include "compensator/support/long_words.hpp"
 #include "plugin/api/job.hpp"
 #include "plugin/cli/cli.hpp"
 
@@ -51,17 +57,84 @@ std::string inputFiles(const std::vector<std::string>& tokens) {
   return s;
 }
 
+/// stderr a line at a time through clipLongWords: no message or note echoes a 1 MB name whole,
+/// whichever command prints it. A partial line is passed on at each flush (progress lines).
+class ClippedLines : public std::streambuf {
+ public:
+  explicit ClippedLines(std::streambuf* to) : to_(to) {}
+
+ protected:
+  int_type overflow(int_type c) override {
+    if (traits_type::eq_int_type(c, traits_type::eof())) return traits_type::not_eof(c);
+    line_ += traits_type::to_char_type(c);
+    if (traits_type::to_char_type(c) == '\n') passOn();
+    return c;
+  }
+  std::streamsize xsputn(const char* s, std::streamsize n) override {
+    for (std::streamsize i = 0; i < n; ++i) overflow(traits_type::to_int_type(s[i]));
+    return n;
+  }
+  int sync() override {
+    passOn();
+    return to_->pubsync();
+  }
+
+ private:
+  void passOn() {
+    if (line_.empty()) return;
+    const std::string c = roprec::clipLongWords(line_);
+    to_->sputn(c.data(), static_cast<std::streamsize>(c.size()));
+    line_.clear();
+  }
+  std::streambuf* to_;
+  std::string line_;
+};
+
+/// Writes all of `text` to standard output (file descriptor 1); 0, or the errno of a failed
+/// write (a full disk, a closed pipe: SIGPIPE is ignored so that it is reported, not fatal).
+int writeStdout(std::string_view text) {
+  const char* p = text.data();
+  size_t left = text.size();
+  while (left > 0) {
+    const ssize_t n = ::write(1, p, left);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return errno;
+    }
+    if (n == 0) return EIO;
+    p += n;
+    left -= static_cast<size_t>(n);
+  }
+  return 0;
+}
+
+int stdoutFailed(int e) {
+  std::cerr << "roprec: error: cannot write to standard output: " << std::strerror(e)
+            << "; nothing written\n";
+  return 2;
+}
+
+/// Prints `text` on stdout and returns `rc`, or 2 when the write failed.
+int printAndReturn(const std::string& text, int rc) {
+  const int e = writeStdout(text);
+  return e != 0 ? stdoutFailed(e) : rc;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  std::signal(SIGPIPE, SIG_IGN);
+  // never destroyed: std::cerr writes through it until the process ends
+  static auto* const clipped = new ClippedLines(std::cerr.rdbuf());  // NOLINT
+  std::cerr.rdbuf(clipped);
   std::vector<std::string> tokens(argv + 1, argv + argc);
   if (tokens.empty() || tokens[0] == "--help" || tokens[0] == "-h" || tokens[0] == "help") {
-    printHelp(std::cout);
-    return tokens.empty() ? 2 : 0;
+    std::ostringstream help;
+    printHelp(help);
+    return printAndReturn(help.str(), tokens.empty() ? 2 : 0);
   }
   if (tokens[0] == "--version") {
-    std::cout << "roprec " << roprec::api::version() << "\n";
-    return 0;
+    return printAndReturn("roprec " + std::string(roprec::api::version()) + "\n", 0);
   }
   const std::string name = tokens[0];
   tokens.erase(tokens.begin());
@@ -73,12 +146,12 @@ int main(int argc, char** argv) {
     return 2;
   }
   if (std::find(tokens.begin(), tokens.end(), "--help") != tokens.end()) {
-    std::cout << it->usage;
-    return 0;
+    return printAndReturn(it->usage, 0);
   }
   roprec::cli::Args args(tokens);
-  // stdout is held back until the outputs are committed, so "wrote X" is never printed for a
-  // file that was not written.
+  // stdout is held back until every output is staged, and written before the staged files are
+  // renamed: a failed or short write to stdout (a full disk, /dev/full) is exit 2 with nothing
+  // written; "wrote X" is never printed for a file that failed to stage.
   std::ostringstream out;
   roprec::cli::CommandContext ctx{out, std::cerr, false, ::isatty(2) != 0};
   ctx.quiet = args.flag("quiet");
@@ -88,8 +161,12 @@ int main(int argc, char** argv) {
     roprec::OutputSet outputs;
     const roprec::ScopedOutputSet scope(outputs);
     const int rc = it->run(args, ctx);
+    if (const int e = writeStdout(out.str()); e != 0) {
+      outputs.rollback();
+      return stdoutFailed(e);
+    }
     outputs.commit();
-    std::cout << out.str() << std::flush;
+    for (const std::string& n : outputs.notes()) std::cerr << "roprec: note: " << n << "\n";
     return rc;
   } catch (const std::bad_alloc&) {
     const std::string files = inputFiles(tokens);

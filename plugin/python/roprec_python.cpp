@@ -36,6 +36,10 @@ namespace {
 /// (compensator/support/atomic_file.hpp).
 template <class F>
 void writeAllOrNone(F&& write) {
+  if (activeOutputSet() != nullptr) {  // inside a RunScope: its commit writes them
+    write();
+    return;
+  }
   OutputSet outputs;
   {
     const ScopedOutputSet scope(outputs);
@@ -43,6 +47,17 @@ void writeAllOrNone(F&& write) {
   }
   outputs.commit();
 }
+
+/// The outputs of one call, staged from its start: the input files the call reads are noted in
+/// it, so that no output can replace one (atomic_file.hpp); commit() at the end of the call.
+class RunScope {
+ public:
+  void commit() { set_.commit(); }
+
+ private:
+  OutputSet set_;
+  ScopedOutputSet scope_{set_};
+};
 
 using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
@@ -328,9 +343,11 @@ py::dict predict(const std::string& cell, const std::string& program,
   {
     py::gil_scoped_release release;
     const ClassicLocaleScope c_locale;  // the "C" locale whatever the host set
+    RunScope run;
     r = api::predictJob(cell, program, options);
     summary = host::predictionSummary(*r).dump(0);
     if (json_out) writeFileAtomic(*json_out, api::predictionJson(*r).dump());
+    run.commit();
   }
   py::list hs;
   for (size_t i = 0; i < r->holes.size(); ++i)
@@ -365,6 +382,7 @@ py::dict compensate(const std::string& cell, const std::string& program, const s
   if (api::cellIsMilling(cell)) {
     py::gil_scoped_release release;
     const ClassicLocaleScope c_locale;  // the "C" locale whatever the host set
+    RunScope run;
     api::MillingCompensationResult r = api::compensateMillingJob(cell, program, force);
     problems = host::millingProblems(r);
     const bool write = problems.empty();
@@ -376,11 +394,13 @@ py::dict compensate(const std::string& cell, const std::string& program, const s
       if (targets) extra.emplace_back(*targets, api::millingTargetsJson(r, program));
       writeAllOrNone([&] { api::writeCompensatedProgram(r.context, out, extra); });
     }
+    run.commit();
   } else {
     std::optional<api::CompensationResult> r;
     {
       py::gil_scoped_release release;
       const ClassicLocaleScope c_locale;  // the "C" locale whatever the host set
+      RunScope run;
       r = api::compensateJob(cell, program, job);
       problems = host::compensationProblems(*r, program);
       const bool write = problems.empty();
@@ -395,6 +415,7 @@ py::dict compensate(const std::string& cell, const std::string& program, const s
                              api::compensationTargets(*r, program, host::isCsvPath(*targets)));
         writeAllOrNone([&] { api::writeCompensatedProgram(r->context, out, extra); });
       }
+      run.commit();
     }
     py::list results;
     for (size_t i = 0; i < r->holes.size(); ++i) results.append(compensationDict(*r, i));
@@ -420,6 +441,7 @@ py::dict verify(const std::string& cell, const std::string& program, const std::
   {
     py::gil_scoped_release release;
     const ClassicLocaleScope c_locale;  // the "C" locale whatever the host set
+    RunScope run;
     const api::VerifyResult r = api::verifyJob(cell, program, job);
     json = api::verifyJson(r).dump();
     const auto out = host::verifyOutputs(r, job, json_out.value_or(""), calibrate.value_or(""));
@@ -436,6 +458,7 @@ py::dict verify(const std::string& cell, const std::string& program, const std::
         for (const auto& [path, text] : out) writeFileAtomic(path, text);
       });
     }
+    run.commit();
   }
   py::dict d;
   d["json"] = json;
@@ -451,11 +474,13 @@ py::dict planTest(const std::string& cell, const std::vector<double>& region, in
   {
     py::gil_scoped_release release;
     const ClassicLocaleScope c_locale;  // the "C" locale whatever the host set
+    RunScope run;
     const api::PlanTestResult r = api::planTestJob(cell, Vec3(region[0], region[1], region[2]),
                                                    Vec3(region[3], region[4], region[5]), count);
     const postproc::DrillProgramText t = api::planTestProgram(r, out);
     summary = api::planTestSummaryJson(r, postproc::drillProgramPaths(t, out)).dump(0);
     postproc::saveDrillProgram(t, out);
+    run.commit();
   }
   py::dict d;
   d["summary_json"] = summary;
