@@ -1,8 +1,8 @@
 // Milling path compensation (issue 7 item 5): every point of the sample wall pass is compensated
 // with the coupled force solve; the commands, fed to an independent nonlinear joint-compliance
 // equilibrium computed here with KDL (FK + RNE, same stiffness, tool mass, axis-2 balancer,
-// mastering reference and converged milling force on the tool), put the tool on the nominal path
-// ≤ 0.5 µm; through the CLI only the path
+// mastering reference and converged milling force on the tool) plus the tool's bending on the
+// spindle (F/k_t), put the tool tip on the nominal path ≤ 0.5 µm; through the CLI only the path
 // targets' bytes change.
 #include "compensator/compensation/milling_compensation.hpp"
 
@@ -80,7 +80,12 @@ TEST(MillingCompensation, PathLandsOnTheNominalPathAgainstKdl) {
     for (unsigned j = 0; j < 6; ++j) q(j) = th[j];
     KDL::Frame F;
     fk.JntToCart(q, F);
-    EXPECT_LE((Vec3(F.p.x(), F.p.y(), F.p.z()) - points[i].translation()).norm(), 0.5e-6)
+    // the tool bends on the spindle by F/k_t in the milling XY plane (tool x, −tool y)
+    const double kt = c.model.process.milling.tool_mode.stiffness;
+    const Vec3 bending =
+        points[i].linear() * Vec3(comp[i].force.x() / kt, -comp[i].force.y() / kt, 0.0);
+    EXPECT_GT(bending.norm(), 1e-6);
+    EXPECT_LE((Vec3(F.p.x(), F.p.y(), F.p.z()) + bending - points[i].translation()).norm(), 0.5e-6)
         << "point " << i;
   }
 }
@@ -190,6 +195,46 @@ TEST(MillingCompensation, CliChangesOnlyThePathTargets) {
   EXPECT_EQ(cutting, 25);  // approach and retract do not cut
   EXPECT_FALSE(t["points"][0]["cutting"].get<bool>());
   EXPECT_FALSE(t["points"][26]["cutting"].get<bool>());
+  // every cutting point carries its chatter check; the sample cut is below the limit
+  for (const auto& p : t["points"]) {
+    if (!p["cutting"].get<bool>()) continue;
+    ASSERT_TRUE(p["stability"]["checked"].get<bool>());
+    EXPECT_TRUE(p["stability"]["stable"].get<bool>());
+    EXPECT_GT(p["stability"]["margin"].get<double>(), 1.0);
+  }
+}
+
+// `--targets F.csv` writes the milling export as CSV (the extension names the format): one row
+// per path point with the same programmed positions as the JSON export.
+TEST(MillingCompensation, TargetsExportFollowsTheExtension) {
+  const std::string dir = test::tempDir("mill");
+  const std::string base = "compensate --cell '" + test::sourceDir() +
+                           "/samples/cells/alu-milling-7075.xml' '" + test::sourceDir() +
+                           "/samples/milling/wall_pass.src' -o '" + dir;
+  const auto rj = test::runRoprec(base + "/a.src' --targets '" + dir + "/t.json'");
+  const auto rc = test::runRoprec(base + "/b.src' --targets '" + dir + "/t.csv'");
+  ASSERT_EQ(rj.exit_code, 0) << rj.err;
+  ASSERT_EQ(rc.exit_code, 0) << rc.err;
+  const std::string csv = test::readFile(dir + "/t.csv");
+  ASSERT_NE(csv.front(), '{');
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line.rfind("point,target,line,cutting,ok,x_mm,y_mm,z_mm,", 0), 0u);
+  const auto t = nlohmann::json::parse(test::readFile(dir + "/t.json"));
+  size_t rows = 0;
+  while (std::getline(in, line)) {
+    std::vector<std::string> f;
+    std::istringstream ls(line);
+    for (std::string c; std::getline(ls, c, ',');) f.push_back(c);
+    ASSERT_GE(f.size(), 8u);
+    const auto& pos = t["points"][rows]["programmed"]["position_mm"];
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(std::stod(f[static_cast<size_t>(5 + k)]),
+                  pos[static_cast<size_t>(k)].get<double>(), 1e-3);
+    ++rows;
+  }
+  EXPECT_EQ(rows, t["points"].size());
 }
 
 }  // namespace

@@ -266,25 +266,33 @@ TEST(Milling, OscillatingLoopPlainFailsNewtonConverges) {
 // of the instantaneous law (written here, not the library's Gauss–Legendre), and the fixed point
 // by nested bisection.
 
-/// Nt/(2π) ∫ over [φst, φex] of kc1.1 ap h0 (fz sin φ/h0)^(1−mc) (−cos φ − cr sin φ,
-/// sin φ − cr cos φ, −ca) dφ; chips below h_min are not cut.
-Vec3 referenceMeanForce(MillingMode mode, double fz, double ae) {
+/// (1/2π) Σ_j ∫ over [φst, φex] of kc1.1 ap h0 (h_j/h0)^(1−mc) (−cos φ − cr sin φ,
+/// sin φ − cr cos φ, −ca) dφ with tooth j's chip h_j = min_k [k fz sin φ + R_j − R_{j−k}] (the full
+/// memory of the earlier teeth, R_j = R + ρ cos(j 2π/3)); chips below h_min are not cut.
+Vec3 referenceMeanForce(MillingMode mode, double fz, double ae, double ap = 5e-3,
+                        double runout = 0) {
   if (!(fz > 0) || !(ae > 0)) return Vec3::Zero();
-  const double D = 10e-3, ap = 5e-3, kc = 800e6, mc = 0.25, cr = 0.35, ca = 0.2, hmin = 2e-6;
+  const double D = 10e-3, kc = 800e6, mc = 0.25, cr = 0.35, ca = 0.2, hmin = 2e-6;
   const double arc = std::acos(1.0 - 2.0 * std::min(ae, D) / D);
   const double a = mode == MillingMode::kUp ? 0.0 : kPi - arc;
   const double b = mode == MillingMode::kUp ? arc : kPi;
   const int n = 6000;
+  double R[3];
+  for (int j = 0; j < 3; ++j) R[j] = runout * std::cos(j * 2 * kPi / 3);
   Vec3 F = Vec3::Zero();
-  for (int i = 0; i < n; ++i) {
-    const double phi = a + (b - a) * (i + 0.5) / n;
-    const double h = fz * std::sin(phi);
-    if (h < hmin) continue;
-    const double Ft = kc * ap * 1e-3 * std::pow(h / 1e-3, 1.0 - mc) * (b - a) / n;
-    F += Vec3(-Ft * std::cos(phi) - cr * Ft * std::sin(phi),
-              Ft * std::sin(phi) - cr * Ft * std::cos(phi), -ca * Ft);
+  for (int j = 0; j < 3; ++j) {
+    for (int i = 0; i < n; ++i) {
+      const double phi = a + (b - a) * (i + 0.5) / n;
+      double h = 1e9;
+      for (int k = 1; k <= 3; ++k)
+        h = std::min(h, k * fz * std::sin(phi) + R[j] - R[(j + 3 - k) % 3]);
+      if (h < hmin) continue;
+      const double Ft = kc * ap * 1e-3 * std::pow(h / 1e-3, 1.0 - mc) * (b - a) / n;
+      F += Vec3(-Ft * std::cos(phi) - cr * Ft * std::sin(phi),
+                Ft * std::sin(phi) - cr * Ft * std::cos(phi), -ca * Ft);
+    }
   }
-  return F * (3.0 / (2.0 * kPi));
+  return F / (2.0 * kPi);
 }
 
 /// Bisection for the root of an increasing function on [lo, hi].
@@ -297,30 +305,33 @@ double bisect(const G& g, double lo, double hi) {
   return 0.5 * (lo + hi);
 }
 
-/// δ = diag(c) F(fz + δx/n, ae + δ·n_wall) with δ_{i−1} = 0: outer bisection on δy, inner on δx
-/// (both residuals increase monotonically: the feedback is negative in X for Fx < 0, and in Y for
-/// down-milling; for up-milling the Y gain is kept below 1).
-Vec3 referenceFixedPoint(MillingMode mode, const Vec3& c, int n) {
+/// δ = diag(c) F(fz + δx/n, ae + δ·n_wall, ap − δz) with δ_{i−1} = 0: outer bisection on δy,
+/// inner on δx (both residuals increase monotonically: the feedback is negative in X for Fx < 0,
+/// and in Y for down-milling; for up-milling the Y gain is kept below 1); δz in closed form (F is
+/// linear in ap: δz = cz Fz(ap − δz)/ap).
+struct ReferencePoint {
+  Vec3 delta, force;
+};
+ReferencePoint referenceFixedPoint(MillingMode mode, const Vec3& c, int n, double runout) {
   const double wall = mode == MillingMode::kUp ? 1.0 : -1.0;
-  const auto deltaX = [&](double dy) {
-    return bisect(
-        [&](double dx) {
-          return dx - c.x() * referenceMeanForce(mode, 0.1e-3 + dx / n, 2e-3 + wall * dy).x();
-        },
-        -2e-3, 2e-3);
+  const double ap = 5e-3;
+  const auto forceAt = [&](double dx, double dy) {
+    const Vec3 F1 = referenceMeanForce(mode, 0.1e-3 + dx / n, 2e-3 + wall * dy, ap, runout);
+    const double dz = c.z() * F1.z() / (1 + c.z() * F1.z() / ap);
+    return Vec3(F1 * ((ap - dz) / ap));
   };
-  const double dy = bisect(
-      [&](double y) {
-        const double dx = deltaX(y);
-        return y - c.y() * referenceMeanForce(mode, 0.1e-3 + dx / n, 2e-3 + wall * y).y();
-      },
-      -1.9e-3, 1.9e-3);
+  const auto deltaX = [&](double dy) {
+    return bisect([&](double dx) { return dx - c.x() * forceAt(dx, dy).x(); }, -2e-3, 2e-3);
+  };
+  const double dy =
+      bisect([&](double y) { return y - c.y() * forceAt(deltaX(y), y).y(); }, -1.9e-3, 1.9e-3);
   const double dx = deltaX(dy);
-  const Vec3 F = referenceMeanForce(mode, 0.1e-3 + dx / n, 2e-3 + wall * dy);
-  return Vec3(dx, dy, c.z() * F.z());
+  const Vec3 F = forceAt(dx, dy);
+  return {Vec3(dx, dy, c.z() * F.z()), F};
 }
 
-// The coupled solve against the independent reference: δ and F within 0.5 % (of |δ|, |F|), for a
+// The coupled solve against the independent reference (with the ap feedback; the last two cases
+// with runout and a soft Z): δ and F within 0.5 % (of |δ|, |F|), for a
 // robot-like compliance (gain < 1) and soft ones with negative feedback (gain > 1, where the plain
 // iteration fails): up-milling soft along the feed (Fx < 0: the deflection lowers fz), down-milling
 // soft along the wall normal (the deflection lowers ae).
@@ -329,13 +340,14 @@ TEST(Milling, FixedPointMatchesIndependentKienzleQuadrature) {
     MillingMode mode;
     Vec3 c_um_per_N;
     bool soft;
+    double runout_um;
   };
-  const Case cases[] = {{MillingMode::kUp, {2, 1, 0.5}, false},
-                        {MillingMode::kDown, {2, 1, 0.5}, false},
-                        {MillingMode::kUp, {60, 3, 1}, true},
-                        {MillingMode::kDown, {2, 30, 1}, true}};
+  const Case cases[] = {
+      {MillingMode::kUp, {2, 1, 0.5}, false, 0}, {MillingMode::kDown, {2, 1, 0.5}, false, 0},
+      {MillingMode::kUp, {60, 3, 1}, true, 0},   {MillingMode::kDown, {2, 30, 1}, true, 0},
+      {MillingMode::kUp, {2, 1, 20}, false, 5},  {MillingMode::kDown, {2, 1, 20}, false, 10}};
   for (const Case& k : cases) {
-    const MillingModel m = model(2, 0.1, k.mode);
+    const MillingModel m = model(2, 0.1, k.mode, k.runout_um);
     const Vec3 c = k.c_um_per_N * 1e-6;
     const Mat3 C = c.asDiagonal();
     CouplingOptions o;
@@ -343,13 +355,12 @@ TEST(Milling, FixedPointMatchesIndependentKienzleQuadrature) {
     const CouplingResult r = coupleMillingPoint(m, linearCompliance(C), CouplingState{}, o);
     ASSERT_TRUE(r.converged) << couplingStatusName(r.status);
     EXPECT_LE(r.residual, o.tolerance);
-    const Vec3 d_ref = referenceFixedPoint(k.mode, c, 10);
-    const Vec3 F_ref = referenceMeanForce(k.mode, 0.1e-3 + d_ref.x() / 10,
-                                          2e-3 + (k.mode == MillingMode::kUp ? 1 : -1) * d_ref.y());
-    EXPECT_LE((r.delta - d_ref).norm(), 0.005 * d_ref.norm())
-        << r.delta.transpose() << " | " << d_ref.transpose();
-    EXPECT_LE((r.force - F_ref).norm(), 0.005 * F_ref.norm())
-        << r.force.transpose() << " | " << F_ref.transpose();
+    const ReferencePoint ref = referenceFixedPoint(k.mode, c, 10, k.runout_um * 1e-6);
+    EXPECT_LE((r.delta - ref.delta).norm(), 0.005 * ref.delta.norm())
+        << r.delta.transpose() << " | " << ref.delta.transpose();
+    EXPECT_LE((r.force - ref.force).norm(), 0.005 * ref.force.norm())
+        << r.force.transpose() << " | " << ref.force.transpose();
+    EXPECT_NEAR(r.ap_effective, 5e-3 - r.delta.z(), 1e-12);
     if (k.soft) {
       EXPECT_GT(r.loop_gain, 1.0);
       const CouplingResult plain =
@@ -441,26 +452,45 @@ TEST(Milling, UpMillingPullsIntoTheWallDownMillingPushesAway) {
 }
 
 // The corrected revolution: the nominal column is the rigid profile, the corrected one the profile
-// at (fz_eff, ae_eff) whose mean is the coupled mean force (±0.4 %), and the TCP movement is C F(φ)
-// for a linear compliance.
+// at (fz_eff, ae_eff) whose mean is the coupled mean force (±0.4 %), and the TCP movement is the
+// coupled static deflection plus the periodic response of the modal model: with no modes it is the
+// static deflection at every angle; with one stiff mode (fn 500 kHz, far above the harmonics) it
+// approaches the quasi-static C (F(φ) − F̄) around it (1 % of the vibration's range).
 TEST(Milling, CorrectedRevolution) {
   const MillingModel m = model(2, 0.1, MillingMode::kUp);
   const Mat3 C = Vec3(2e-6, 1e-6, 0.5e-6).asDiagonal();
   const CouplingResult r = steadyPoint(m, C, CouplingOptions{});
   ASSERT_TRUE(r.converged);
-  const CorrectedRevolution rev = correctedRevolution(m, linearCompliance(C), r);
+  const CorrectedRevolution rev = correctedRevolution(m, ModalModel{}, r);
   const MillingProfile P = millingForceProfile(m);
   ASSERT_EQ(rev.samples.size(), P.samples.size());
   Vec3 mean = Vec3::Zero();
   for (size_t i = 0; i < P.samples.size(); ++i) {
     EXPECT_EQ(rev.samples[i].nominal, P.samples[i].force);
-    EXPECT_LT((rev.samples[i].tcp_movement - C * rev.samples[i].corrected).norm(), 1e-15);
+    EXPECT_EQ(rev.samples[i].tcp_movement, r.delta);
     mean += rev.samples[i].corrected;
   }
   mean /= static_cast<double>(P.samples.size());
   EXPECT_LT((mean - r.force).norm(), 4e-3 * r.force.norm());
-  EXPECT_GT(rev.movement_range, 0.0);
-  EXPECT_TRUE(rev.ok);
+  EXPECT_EQ(rev.movement_range, 0.0);
+
+  ModalModel stiff;
+  ToolModeSpec t;
+  t.frequency_hz = 500000;
+  t.stiffness = 1e6;  // 1 um/N in X and Y
+  t.damping_ratio = 0.02;
+  addToolMode(stiff, t);
+  const CorrectedRevolution q = correctedRevolution(m, stiff, r);
+  ASSERT_EQ(q.samples.size(), P.samples.size());
+  Vec3 fmean = Vec3::Zero();
+  for (const CorrectedSample& s : q.samples) fmean += s.corrected;
+  fmean /= static_cast<double>(q.samples.size());
+  for (const CorrectedSample& s : q.samples) {
+    const Vec3 quasi =
+        r.delta + 1e-6 * Vec3(s.corrected.x() - fmean.x(), s.corrected.y() - fmean.y(), 0.0);
+    EXPECT_LT((s.tcp_movement - quasi).norm(), 0.01 * q.vibration_peak_to_peak.norm());
+  }
+  EXPECT_GT(q.vibration_peak_to_peak.norm(), 1e-6);
 }
 
 // Qualitative (paper): the deviation grows with the feed because the force does.

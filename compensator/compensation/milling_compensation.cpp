@@ -1,11 +1,13 @@
 #include "compensator/compensation/milling_compensation.hpp"
 
+#include <Eigen/QR>
 #include <cmath>
 #include <cstdio>
 #include <optional>
 #include <stdexcept>
 
 #include "compensator/process/milling_robot.hpp"
+#include "compensator/process/milling_stability.hpp"
 #include "compensator/support/c_format.hpp"
 
 namespace roprec {
@@ -16,6 +18,52 @@ Vec3 millToTool(const Vec3& v) { return Vec3(v.x(), -v.y(), -v.z()); }
 
 std::string fmt(double v, int decimals) { return cFixed(v, decimals); }
 std::string mm(double v_m) { return fmt(v_m * 1e3, 3); }
+
+/// The last chatter check along the path: reused while the robot's modes stay within
+/// kModeReuseTolerance of those it was computed with (they change slowly along a path; the limit
+/// moves about as much as the modes do).
+struct StabilityCache {
+  ModalModel modes;
+  StabilityLimit limit;
+  bool valid{false};
+};
+constexpr double kModeReuseTolerance = 0.005;
+
+bool sameModes(const ModalModel& a, const ModalModel& b) {
+  if (a.modes.size() != b.modes.size()) return false;
+  for (size_t r = 0; r < a.modes.size(); ++r) {
+    const VibrationMode& x = a.modes[r];
+    const VibrationMode& y = b.modes[r];
+    if (std::abs(x.omega - y.omega) > kModeReuseTolerance * y.omega) return false;
+    // the mode's TCP vector up to its sign
+    const double d = std::min((x.tcp - y.tcp).norm(), (x.tcp + y.tcp).norm());
+    if (d > kModeReuseTolerance * y.tcp.norm()) return false;
+  }
+  return true;
+}
+
+/// The zero-order stability limit at θ_d (robot modes there and the tool mode) into `p`.
+void checkStability(const PredictionModel& m, const StabilityCut& cut, StabilityCache& cache,
+                    PathPointCompensation& p) {
+  const MillingSpec& s = m.process.milling;
+  ModalModel dyn;
+  try {
+    dyn = robotModes(m.model, m.compliance, p.theta_d, s.robot_damping_ratio);
+  } catch (const std::runtime_error&) {
+    return;  // no modes at this pose: not checked
+  }
+  if (!dyn.modes.empty()) p.first_mode_hz = dyn.modes.front().omega / (2 * kPi);
+  addToolMode(dyn, s.tool_mode);
+  if (!cache.valid || !sameModes(dyn, cache.modes)) {
+    cache.limit = limitingDepth(dyn, cut, s.cut.spindle_rpm);
+    cache.modes = dyn;
+    cache.valid = true;
+  }
+  p.stability_checked = true;
+  p.stability_bounded = cache.limit.bounded;
+  p.ap_limit = cache.limit.ap_lim;
+  p.chatter_hz = cache.limit.chatter_hz;
+}
 
 /// The command the controller's IK gives for the path point T_W_tcp (the link angles θ_d of the
 /// real robot seed it): θ_d itself without a calibration (nominal = real).
@@ -73,6 +121,9 @@ std::vector<PathPointCompensation> compensateMillingPath(
     throw std::invalid_argument("compensateMillingPath needs a milling process");
   }
   const MillingModel mm = millingModelOf(m.process.milling);
+  const StabilityCut stability_cut = stabilityCutOf(mm);
+  const Mat3 C_tool = toolStaticCompliance(m.process.milling.tool_mode);
+  StabilityCache stability_cache;
   const Vec3 F_nom = millingMeanForce(mm, m.process.milling.cut.fz, m.process.milling.cut.ae);
   CouplingOptions copt = m.process.milling.coupling;
   PredictionData d(m);
@@ -117,12 +168,16 @@ std::vector<PathPointCompensation> compensateMillingPath(
       l.tcp_tool.force = millToTool(F_mill);
       return l;
     };
+    // the spindle/tool's own deflection under F, base frame (it adds to the robot's)
+    auto toolBending = [&](const Vec3& F_mill) -> Vec3 { return R * millToTool(C_tool * F_mill); };
     // uncompensated: the robot at θ_d under the coupled force
     Vec3 F_before = Vec3::Zero();
     if (p.cutting) {
       const CouplingResult cb = coupleMillingPoint(
-          mm, robotMillingCompliance(m.model, m.compliance, p.theta_d, m.gravity), before_state,
-          copt);
+          mm,
+          withToolCompliance(robotMillingCompliance(m.model, m.compliance, p.theta_d, m.gravity),
+                             C_tool),
+          before_state, copt);
       before_state = cb.next;
       F_before = cb.force;
       p.before_status = couplingStatusName(cb.status);
@@ -130,6 +185,7 @@ std::vector<PathPointCompensation> compensateMillingPath(
       p.before_residual = cb.residual;
       p.before_loop_gain = cb.loop_gain;
       p.before_force = cb.force;
+      checkStability(m, stability_cut, stability_cache, p);
     } else {
       before_state = CouplingState{};  // the tool left the material
       p.before_status = "not_cutting";
@@ -142,13 +198,22 @@ std::vector<PathPointCompensation> compensateMillingPath(
           nc::predictDeflection(m.model, d.nc, m.compliance, q_before, loadsWith(F_before), {},
                                 controllerOffset(m, d.nc, q_before));
       if (m.calibrated) nc::referToControllerPose(db, controllerTcp(m, q_before));
-      p.deviation_before = db.dp;
+      p.deviation_before = db.dp + toolBending(F_before);
     }
+    // the link-side target that pre-offsets the tool's bending: θ_d + J⁻¹ [−bending; 0]
+    nc::forwardKinematics(m.model, d.nc, p.theta_d);
+    const Eigen::ColPivHouseholderQR<Mat6> J_qr(nc::tcpJacobian(m.model, d.nc));
+    auto targetFor = [&](const Vec3& G) -> Vec6 {
+      if (G.isZero() || J_qr.rank() < 6) return p.theta_d;
+      Vec6 twist = Vec6::Zero();
+      twist.head<3>() = -toolBending(G);
+      return p.theta_d + J_qr.solve(twist);
+    };
     // the controller command that puts the link side at θ_d under force G (exact inverse; a
     // gravity-compensating controller adds its own offset: θ_cmd + off(θ_cmd) = θ_m)
     auto commandFor = [&](const Vec3& G) {
       const Vec6 theta_m =
-          nc::compensateCommand(m.model, d.nc, m.compliance, p.theta_d, loadsWith(G));
+          nc::compensateCommand(m.model, d.nc, m.compliance, targetFor(G), loadsWith(G));
       Vec6 cmd = theta_m;
       for (int it = 0; it < 20 && m.controller.kind != nc::ControllerReference::Kind::kNone; ++it)
         cmd = theta_m - controllerOffset(m, d.nc, cmd);
@@ -169,7 +234,8 @@ std::vector<PathPointCompensation> compensateMillingPath(
             nc::predictDeflection(m.model, d.nc, m.compliance, p.theta_cmd, loadsWith(G), {},
                                   controllerOffset(m, d.nc, p.theta_cmd));
         if (!dg.converged) throw std::runtime_error("the compliance equilibrium did not converge");
-        return millToTool(R.transpose() * (dg.T_real.translation() - points[i].translation()));
+        return millToTool(R.transpose() * (dg.T_real.translation() - points[i].translation())) +
+               C_tool * G;
       };
       ca = coupleMillingPoint(mm, residualCompliance, after_state, copt);
       const double change = (ca.force - F).norm();
@@ -204,7 +270,7 @@ std::vector<PathPointCompensation> compensateMillingPath(
     const nc::Deflection da =
         nc::predictDeflection(m.model, d.nc, m.compliance, p.theta_cmd, loadsWith(F), {},
                               controllerOffset(m, d.nc, p.theta_cmd));
-    p.residual = da.T_real.translation() - points[i].translation();
+    p.residual = da.T_real.translation() + toolBending(F) - points[i].translation();
     p.config_text =
         formatConfig(configurationOf(m.ik, m.robot.card, p.theta_cmd, m.config_options));
     p.ok = da.converged;

@@ -70,6 +70,18 @@ struct PathPointCompensation {
   double coupling_residual{0};      ///< |δ − C(F(δ))| of the final coupling [m]
   double loop_gain{0};              ///< of the final coupling
   std::string config_text;
+  /// Chatter stability at the point (cutting points; milling_stability.hpp): the zero-order limit
+  /// with the robot's modes at θ_d and the spindle/tool mode, at the cut's spindle speed; the
+  /// previous point's limit is reused while every mode's frequency and TCP vector stay within
+  /// 0.5 % of those it was computed with.
+  bool stability_checked{false};
+  bool stability_bounded{false};  ///< false: no chatter frequency found (stable at any depth)
+  double ap_limit{0};             ///< limiting axial depth [m] (when bounded)
+  double chatter_hz{0};           ///< chatter frequency at the limit [Hz]
+  double first_mode_hz{0};        ///< the robot's first natural frequency at θ_d [Hz]
+  [[nodiscard]] bool unstable(double ap) const {
+    return stability_checked && stability_bounded && ap_limit <= ap;
+  }
 };
 
 /// `m` must carry a milling process. Points are nominal TCP poses in the base frame (path order);

@@ -123,31 +123,78 @@ MillingProfile millingForceProfile(const MillingModel& m) {
   return P;
 }
 
+namespace {
+
+/// ∫ over [lo, hi] of the instantaneous law at the chip min_k (k fz sin φ + c[k−1]) by
+/// Gauss–Legendre (the min is smooth in between: the caller splits at its kinks).
+Vec3 arcIntegral(const MillingModel& m, double fz, const std::vector<double>& c, double lo,
+                 double hi) {
+  const double e = 1.0 - m.coeff.mc;
+  const double cr = m.coeff.radial_ratio;
+  const double half = 0.5 * (hi - lo);
+  const double mid = 0.5 * (hi + lo);
+  Vec3 F = Vec3::Zero();
+  for (size_t i = 0; i < m.gl_x.size(); ++i) {
+    const double phi = mid + half * m.gl_x[i];
+    const double sn = std::sin(phi);
+    double h = fz * sn + c[0];
+    for (size_t k = 1; k < c.size(); ++k)
+      h = std::min(h, static_cast<double>(k + 1) * fz * sn + c[k]);
+    const double Ft = m.coeff.kc11 * m.cut.ap * kH0 * std::pow(h / kH0, e) * half * m.gl_w[i];
+    const double cs = std::cos(phi);
+    F += Vec3(-Ft * cs - cr * Ft * sn, Ft * sn - cr * Ft * cs, -m.coeff.axial_ratio * Ft);
+  }
+  return F;
+}
+
+/// Tooth j's share ∫ Ft(h_j)(…) dφ with h_j = min_k [k fz sin φ + R_j − R_{j−k}] (§4.3: what the
+/// earlier teeth left), on the part of the arc where h_j ≥ h_min, split where the minimising k
+/// changes.
+Vec3 toothMeanForce(const MillingModel& m, int j, double fz, const ImmersionAngles& a) {
+  const int Nt = m.tool.teeth;
+  std::vector<double> c(static_cast<size_t>(Nt));
+  double smin = -1;  // h_j ≥ h_min ⇔ sin φ ≥ smin
+  for (int k = 1; k <= Nt; ++k) {
+    c[static_cast<size_t>(k - 1)] = m.tooth_radius[static_cast<size_t>(j)] -
+                                    m.tooth_radius[static_cast<size_t>(((j - k) % Nt + Nt) % Nt)];
+    smin = std::max(smin, (m.coeff.h_min - c[static_cast<size_t>(k - 1)]) / (k * fz));
+  }
+  if (smin > 1) return Vec3::Zero();
+  const double cut = smin > 0 ? std::asin(smin) : 0.0;
+  const double lo = std::max(a.start, cut);
+  const double hi = std::min(a.exit, kPi - cut);
+  if (!(hi > lo)) return Vec3::Zero();
+  std::vector<double> breaks{lo, hi};
+  for (int k1 = 1; k1 <= Nt; ++k1) {
+    for (int k2 = k1 + 1; k2 <= Nt; ++k2) {
+      const double sx =
+          (c[static_cast<size_t>(k2 - 1)] - c[static_cast<size_t>(k1 - 1)]) / ((k1 - k2) * fz);
+      if (!(sx > 0 && sx < 1)) continue;
+      for (const double phi : {std::asin(sx), kPi - std::asin(sx)})
+        if (phi > lo && phi < hi) breaks.push_back(phi);
+    }
+  }
+  std::sort(breaks.begin(), breaks.end());
+  Vec3 F = Vec3::Zero();
+  for (size_t i = 1; i < breaks.size(); ++i)
+    if (breaks[i] > breaks[i - 1]) F += arcIntegral(m, fz, c, breaks[i - 1], breaks[i]);
+  return F;
+}
+
+/// (1/2π) Σ_j tooth j's share; without runout every tooth is tooth 0 (Nt/(2π) × its share).
+Vec3 instantaneousMeanForce(const MillingModel& m, double fz, const ImmersionAngles& a) {
+  if (m.tool.runout == 0) return toothMeanForce(m, 0, fz, a) * (m.tool.teeth / (2 * kPi));
+  Vec3 F = Vec3::Zero();
+  for (int j = 0; j < m.tool.teeth; ++j) F += toothMeanForce(m, j, fz, a);
+  return F / (2 * kPi);
+}
+
+}  // namespace
+
 Vec3 millingMeanForce(const MillingModel& m, double fz, double ae) {
   if (!(fz > 0) || !(ae > 0)) return Vec3::Zero();
   const ImmersionAngles a = immersionAngles(m.tool.diameter, ae, m.cut.mode);
-  if (m.mean_law == MeanForceLaw::kInstantaneous) {
-    // Chips thinner than h_min are not cut: integrate over the part of the arc where
-    // fz sin φ ≥ h_min exactly (continuous in fz, which the coupling's Newton solve needs).
-    const double cut = m.coeff.h_min > 0 ? std::asin(std::min(1.0, m.coeff.h_min / fz)) : 0.0;
-    const double lo = std::max(a.start, cut);
-    const double hi = std::min(a.exit, kPi - cut);
-    if (!(hi > lo)) return Vec3::Zero();
-    const double half = 0.5 * (hi - lo);
-    const double mid = 0.5 * (hi + lo);
-    const double e = 1.0 - m.coeff.mc;
-    const double cr = m.coeff.radial_ratio;
-    Vec3 F = Vec3::Zero();
-    for (size_t i = 0; i < m.gl_x.size(); ++i) {
-      const double phi = mid + half * m.gl_x[i];
-      const double h = fz * std::sin(phi);
-      const double Ft = m.coeff.kc11 * m.cut.ap * kH0 * std::pow(h / kH0, e) * half * m.gl_w[i];
-      const double c = std::cos(phi);
-      const double sn = std::sin(phi);
-      F += Vec3(-Ft * c - cr * Ft * sn, Ft * sn - cr * Ft * c, -m.coeff.axial_ratio * Ft);
-    }
-    return F * (m.tool.teeth / (2 * kPi));
-  }
+  if (m.mean_law == MeanForceLaw::kInstantaneous) return instantaneousMeanForce(m, fz, a);
   const double hm = meanChipThickness(fz, a);
   if (hm < m.coeff.h_min) return Vec3::Zero();
   const double Ftm = m.coeff.kc11 * m.cut.ap * kH0 * std::pow(hm / kH0, 1.0 - m.coeff.mc);
@@ -160,6 +207,11 @@ Vec3 millingMeanForce(const MillingModel& m, double fz, double ae) {
 
 ComplianceFunction linearCompliance(const Mat3& C_m_per_N) {
   return [C_m_per_N](const Vec3& f) -> Vec3 { return C_m_per_N * f; };
+}
+
+ComplianceFunction withToolCompliance(ComplianceFunction robot, const Mat3& C_tool) {
+  return
+      [robot = std::move(robot), C_tool](const Vec3& f) -> Vec3 { return robot(f) + C_tool * f; };
 }
 
 const char* couplingStatusName(CouplingStatus s) {
@@ -187,7 +239,7 @@ const char* couplingMethodName(CouplingMethod m) {
 namespace {
 
 struct CutAt {
-  double fz{0}, ae{0};
+  double fz{0}, ae{0}, ap{0};
   bool in_range{true};
 };
 
@@ -203,12 +255,15 @@ CutAt cutAt(const MillingModel& m, const CouplingState& st, const CouplingOption
     c.in_range = false;
   }
   if (c.fz > kMaxFeedPerDiameter * m.tool.diameter) c.in_range = false;
+  c.ap = m.cut.ap - d.z();  // +Z lifts the tool out of the cut
+  if (c.ap > 2 * m.cut.ap) c.in_range = false;
   return c;
 }
 
+/// F̄ is linear in ap: the mean force at the cut's ap scaled to the effective one.
 Vec3 forceAt(const MillingModel& m, const CutAt& c) {
-  if (c.fz <= 0 || c.ae <= 0) return Vec3::Zero();
-  return millingMeanForce(m, c.fz, c.ae);
+  if (c.fz <= 0 || c.ae <= 0 || c.ap <= 0) return Vec3::Zero();
+  return millingMeanForce(m, c.fz, c.ae) * (c.ap / m.cut.ap);
 }
 
 /// Thrown by the evaluator when the compliance fails or returns a non-finite value.
@@ -342,7 +397,7 @@ void solveFixedPoint(CoupledMap& map, const CouplingOptions& o, Vec3& d, Couplin
 CouplingResult coupleMillingPoint(const MillingModel& m, const ComplianceFunction& compliance,
                                   const CouplingState& state, const CouplingOptions& o) {
   CouplingResult r;
-  r.force_nominal = forceAt(m, CutAt{m.cut.fz + state.uncut_prev, m.cut.ae, true});
+  r.force_nominal = forceAt(m, CutAt{m.cut.fz + state.uncut_prev, m.cut.ae, m.cut.ap, true});
   CoupledMap map(m, compliance, state, o);
   Vec3 d = Vec3::Zero();
   try {
@@ -375,39 +430,41 @@ CouplingResult coupleMillingPoint(const MillingModel& m, const ComplianceFunctio
   r.force = forceAt(m, c);
   r.fz_effective = c.fz;
   r.ae_effective = c.ae;
+  r.ap_effective = c.ap;
   r.next.delta_prev = d;
   r.next.uncut_prev = c.fz < 0 ? c.fz : 0.0;
   return r;
 }
 
-CorrectedRevolution correctedRevolution(const MillingModel& m, const ComplianceFunction& compliance,
+CorrectedRevolution correctedRevolution(const MillingModel& m, const ModalModel& dynamics,
                                         const CouplingResult& point) {
   CorrectedRevolution out;
   const MillingProfile nominal = millingForceProfile(m);
   MillingModel mc = m;
   mc.cut.fz = std::max(0.0, point.fz_effective);
   mc.cut.ae = std::clamp(point.ae_effective, 0.0, m.tool.diameter);
+  mc.cut.ap = std::max(0.0, point.ap_effective);
+  mc.slice_height = mc.cut.ap / mc.slices;
   const MillingProfile corrected =
-      mc.cut.fz > 0 && mc.cut.ae > 0 ? millingForceProfile(mc) : MillingProfile{};
+      mc.cut.fz > 0 && mc.cut.ae > 0 && mc.cut.ap > 0 ? millingForceProfile(mc) : MillingProfile{};
+  std::vector<Vec3> force(nominal.samples.size(), Vec3::Zero());
+  for (size_t i = 0; i < corrected.samples.size() && i < force.size(); ++i)
+    force[i] = corrected.samples[i].force;
+  const std::vector<Vec3> x = periodicResponse(dynamics, force, m.cut.spindle_rpm);
   double lo = 1e300;
   double hi = 0;
+  Vec3 xlo = Vec3::Constant(1e300);
+  Vec3 xhi = Vec3::Constant(-1e300);
   for (size_t i = 0; i < nominal.samples.size(); ++i) {
     CorrectedSample s;
     s.angle = nominal.samples[i].angle;
     s.nominal = nominal.samples[i].force;
-    if (i < corrected.samples.size()) s.corrected = corrected.samples[i].force;
-    try {
-      const Vec3 d = compliance(s.corrected);
-      if (d.allFinite()) {
-        s.tcp_movement = d;
-      } else {
-        out.ok = false;
-      }
-    } catch (const std::exception&) {
-      out.ok = false;
-    }
+    s.corrected = force[i];
+    s.tcp_movement = point.delta + x[i];
     lo = std::min(lo, s.tcp_movement.norm());
     hi = std::max(hi, s.tcp_movement.norm());
+    xlo = xlo.cwiseMin(x[i]);
+    xhi = xhi.cwiseMax(x[i]);
     out.samples.push_back(s);
   }
   out.mean_nominal = nominal.mean;
@@ -415,6 +472,7 @@ CorrectedRevolution correctedRevolution(const MillingModel& m, const ComplianceF
   out.peak_nominal_xy = nominal.peak_xy;
   out.peak_corrected_xy = corrected.peak_xy;
   out.movement_range = out.samples.empty() ? 0.0 : hi - lo;
+  if (!out.samples.empty()) out.vibration_peak_to_peak = xhi - xlo;
   return out;
 }
 

@@ -24,20 +24,21 @@
 ///   F̄y = Nt Ft,m/(2π) [(cos φst − cos φex) − cr (sin φex − sin φst)],  F̄z = −ca F̄t.
 ///
 /// Coupling per path point i (§4.3/§4.4): with tool deflection δ (milling frame, m),
-///   fz_i(δ) = fz + (δ − δ_{i−1})·X / n_teeth + δprev_i,   ae_i(δ) = ae + δ·n_wall
-/// (n_wall = +Y up-milling, −Y down-milling, 0 for a slot), F_i(δ) = F̄(fz_i, ae_i), and the
-/// coupled residual
+///   fz_i(δ) = fz + (δ − δ_{i−1})·X / n_teeth + δprev_i,   ae_i(δ) = ae + δ·n_wall,
+///   ap_i(δ) = ap − δ·Z
+/// (n_wall = +Y up-milling, −Y down-milling, 0 for a slot; +Z lifts the tool out of the cut),
+/// F_i(δ) = F̄(fz_i, ae_i)·ap_i/ap (F̄ is linear in ap), and the coupled residual
 ///   r(δ) = δ − C_i(F_i(δ)),   solved for r(δ) = 0.
 /// Default solver (CouplingMethod::kNewton): Newton on r with a forward-difference Jacobian
 /// J = I − G, G = ∂(C∘F)/∂δ (step 1 µm), and a backtracking line search on |r| (Armijo, α halved
 /// down to 2⁻³⁰); it converges whatever the loop gain ρ(G). Convergence: |r(δ)| ≤ tolerance
 /// (default 0.1 µm) — the residual of the equation itself, not the last step. Not converged is a
 /// status (never a throw): no descent (|r| has no zero near: no fixed point), iteration limit,
-/// the fixed point leaves the cut's range (ae > D or fz_eff > 0.2 D), or the compliance failed (its
-/// equilibrium did not converge). CouplingMethod::kFixedPoint keeps the plain (optionally
-/// under-relaxed) iteration δ ← (1−ω)δ + ω C(F(δ)), which converges only for ρ(G) < 1 (for
-/// comparison). δprev carries a negative chip (the tooth did not reach the surface) to the next
-/// point. The loop gain ρ(G) at the solution is reported.
+/// the fixed point leaves the cut's range (ae > D, fz_eff > 0.2 D or ap_eff > 2 ap), or the
+/// compliance failed (its equilibrium did not converge). CouplingMethod::kFixedPoint keeps the
+/// plain (optionally under-relaxed) iteration δ ← (1−ω)δ + ω C(F(δ)), which converges only for ρ(G)
+/// < 1 (for comparison). δprev carries a negative chip (the tooth did not reach the surface) to the
+/// next point. The loop gain ρ(G) at the solution is reported.
 
 #include <Eigen/Core>
 #include <functional>
@@ -45,6 +46,7 @@
 #include <vector>
 
 #include "compensator/process/materials.hpp"
+#include "compensator/process/milling_dynamics.hpp"
 #include "compensator/support/rotation.hpp"
 
 namespace roprec {
@@ -76,9 +78,11 @@ ImmersionAngles immersionAngles(double diameter, double ae, MillingMode mode);
 double meanChipThickness(double fz, const ImmersionAngles& a);
 
 /// How the coupling recomputes the revolution-averaged force at (fz_i, ae_i):
-///   kInstantaneous: exact average of the instantaneous Kienzle law, Nt/(2π)∫ Ft(fz sin φ)(…) dφ
-///                   (Gauss–Legendre over the part of the arc where fz sin φ ≥ h_min, so that it
-///                   is continuous in fz; equals the mean of millingForceProfile without runout);
+///   kInstantaneous: exact average of the instantaneous Kienzle law, (1/2π) Σ_j ∫ Ft(h_j)(…) dφ
+///                   with tooth j's chip h_j = min_k [k fz sin φ + R_j − R_{j−k}] (runout and
+///                   the memory of the earlier teeth, §4.3), Gauss–Legendre over the part of the
+///                   arc where h_j ≥ h_min (so that it is continuous in fz), split where the
+///                   minimising k changes; equals the mean of millingForceProfile without helix;
 ///   kMeanChip:      the source paper's form with h_m (closed form in the file comment) [P].
 enum class MeanForceLaw { kInstantaneous, kMeanChip };
 
@@ -122,6 +126,8 @@ Vec3 millingMeanForce(const MillingModel& m, double fz, double ae);
 /// compliance at this path point; later wired to the robot deflection model).
 using ComplianceFunction = std::function<Vec3(const Vec3& force_N)>;
 ComplianceFunction linearCompliance(const Mat3& C_m_per_N);
+/// The robot's compliance and the spindle/tool's static compliance in series: C(F) + C_tool F.
+ComplianceFunction withToolCompliance(ComplianceFunction robot, const Mat3& C_tool);
 
 enum class CouplingMethod {
   kNewton,      ///< Newton + line search on r(δ) = δ − C(F(δ)) (default)
@@ -172,6 +178,7 @@ struct CouplingResult {
   Vec3 force_nominal{Vec3::Zero()};
   double fz_effective{0};  ///< [m]
   double ae_effective{0};  ///< [m]
+  double ap_effective{0};  ///< ap − δ·Z [m]
   CouplingState next;      ///< state to pass to the next path point
 };
 
@@ -185,10 +192,14 @@ std::vector<CouplingResult> coupleMillingPath(
     const MillingModel& m, const std::vector<ComplianceFunction>& compliance_per_point,
     const CouplingOptions& options = {});
 
-/// The corrected revolution at a coupled point (docs/process.md §4.5): per cutter angle of tooth 0,
-/// the nominal force (cut fz, ae), the corrected force (fz_eff, ae_eff of the coupled point: the
-/// robot's deflection and the previous edge's uncut chip δprev) and the TCP movement
-/// C(F_corrected(φ)) — the quasi-static deflection under the instantaneous corrected force.
+/// The corrected revolution at a coupled point (docs/process.md §4.5–4.6): per cutter angle of
+/// tooth 0, the nominal force (cut fz, ae), the corrected force (fz_eff, ae_eff of the coupled
+/// point: the robot's deflection and the previous edge's uncut chip δprev) and the TCP movement
+///   x(φ) = δ + x_dyn(φ),
+/// δ the coupled static deflection of the point (the mean force through the full compliance) and
+/// x_dyn the steady periodic response to the corrected force's harmonics through the receptance
+/// of `dynamics` (milling_dynamics.hpp: robot modes at the pose and the spindle/tool mode) at the
+/// cut's spindle speed.
 struct CorrectedSample {
   double angle{0};                  ///< [rad]
   Vec3 nominal{Vec3::Zero()};       ///< [N], milling frame
@@ -196,13 +207,13 @@ struct CorrectedSample {
   Vec3 tcp_movement{Vec3::Zero()};  ///< [m]
 };
 struct CorrectedRevolution {
-  bool ok{true};  ///< false when the compliance failed at some angle (movement then zero there)
   std::vector<CorrectedSample> samples;
   Vec3 mean_nominal{Vec3::Zero()}, mean_corrected{Vec3::Zero()};
   double peak_nominal_xy{0}, peak_corrected_xy{0};  ///< [N]
   double movement_range{0};  ///< max − min of |TCP movement| over the revolution [m]
+  Vec3 vibration_peak_to_peak{Vec3::Zero()};  ///< per axis max − min of x_dyn [m]
 };
-CorrectedRevolution correctedRevolution(const MillingModel& m, const ComplianceFunction& compliance,
+CorrectedRevolution correctedRevolution(const MillingModel& m, const ModalModel& dynamics,
                                         const CouplingResult& point);
 
 }  // namespace roprec

@@ -290,8 +290,24 @@ CuttingLength cuttingLengthAt(const DrillingSpec& s, double diameter) {
 
 namespace {
 
+/// <dynamics>: the robot's modal damping and the spindle/tool mode (docs/process.md §4.6).
+void parseMillingDynamics(const XmlNode& dy, MillingSpec& s) {
+  allowOnly(dy, {"robot_damping_ratio", "tool_frequency_hz", "tool_stiffness_N_per_um",
+                 "tool_damping_ratio", "source"});
+  s.robot_damping_ratio = positive(dy, "robot_damping_ratio", s.robot_damping_ratio, true);
+  plausible(dy, "robot_damping_ratio", 0.001, 0.5, "modal damping ratio of the robot");
+  s.tool_mode.frequency_hz = positive(dy, "tool_frequency_hz", s.tool_mode.frequency_hz, true);
+  plausible(dy, "tool_frequency_hz", 50.0, 50000.0, "spindle/tool natural frequency, Hz");
+  s.tool_mode.stiffness =
+      positive(dy, "tool_stiffness_N_per_um", s.tool_mode.stiffness * 1e-6, true) * 1e6;
+  plausible(dy, "tool_stiffness_N_per_um", 0.1, 1000.0, "spindle/tool stiffness, N/um");
+  s.tool_mode.damping_ratio = positive(dy, "tool_damping_ratio", s.tool_mode.damping_ratio, true);
+  plausible(dy, "tool_damping_ratio", 0.001, 0.5, "modal damping ratio of the tool");
+  s.dynamics_source = dy.str("source", "cell <dynamics> line " + std::to_string(dy.line));
+}
+
 void parseMilling(const XmlNode& proc, MillingSpec& s) {
-  allowChildren(proc, {"mill", "cut", "material", "coefficients", "coupling", "stock"});
+  allowChildren(proc, {"mill", "cut", "material", "coefficients", "coupling", "stock", "dynamics"});
   const XmlNode& t = required(proc, "mill", "cutter geometry");
   allowOnly(t, {"diameter_mm", "teeth", "helix_angle_deg", "runout_mm", "runout_angle_deg"});
   s.tool.diameter = positive(t, "diameter_mm", 0, false) * kMm;
@@ -403,6 +419,7 @@ void parseMilling(const XmlNode& proc, MillingSpec& s) {
     if (!std::isfinite(z)) st->fail("<stock> top_z_mm must be a number");
     s.stock_top_z = z * kMm;
   }
+  if (const XmlNode* dy = proc.child("dynamics")) parseMillingDynamics(*dy, s);
 }
 
 }  // namespace

@@ -28,6 +28,8 @@
 ///     compliance_um_per_N="9 numbers" solver="newton|fixed_point"/>
 ///     <stock top_z_mm/>   (optional: the stock's top face z = top_z in the workobject frame;
 ///                          the cutting decision of docs/process.md §4.5)
+///     <dynamics robot_damping_ratio tool_frequency_hz tool_stiffness_N_per_um
+///               tool_damping_ratio/>   (optional; defaults are stated estimates, §4.6)
 ///   </process>
 ///   <process type="wrench" force_N="fx fy fz" torque_Nm="mx my mz"/>   (on the TCP, tool frame)
 
@@ -39,6 +41,7 @@
 #include "compensator/process/machining_deviation.hpp"
 #include "compensator/process/materials.hpp"
 #include "compensator/process/milling.hpp"
+#include "compensator/process/milling_dynamics.hpp"
 #include "compensator/support/xml_node.hpp"
 
 namespace roprec {
@@ -86,6 +89,11 @@ struct MillingSpec {
   CouplingOptions coupling;
   std::optional<Mat3> compliance;     ///< [m/N] milling frame, from <coupling compliance_um_per_N>
   std::optional<double> stock_top_z;  ///< [m] workobject frame, from <stock top_z_mm>
+  double robot_damping_ratio{0.05};   ///< modal damping of the robot modes (<dynamics>)
+  ToolModeSpec tool_mode;             ///< spindle/tool mode (<dynamics>)
+  std::string dynamics_source{
+      "default estimates (robot modes 5 % damping; tool mode 2000 Hz, 20 N/um, 3 %): give "
+      "<dynamics> from an impact test"};
   int line{0};
 };
 

@@ -7,6 +7,7 @@
 
 #include "compensator/precision/parallel.hpp"
 #include "plugin/api/job.hpp"
+#include "plugin/api/milling_stability.hpp"
 #include "plugin/api/report.hpp"
 #include "plugin/api/robots.hpp"
 
@@ -649,6 +650,32 @@ std::string compensationReport(const CompensationResult& r, const std::string& p
   return renderReport(in);
 }
 
+std::string millingTargetsCsv(const MillingCompensationResult& r) {
+  const double ap = r.context.model.process.milling.cut.ap;
+  std::string s =
+      "point,target,line,cutting,ok,x_mm,y_mm,z_mm,deviation_before_um,residual_um,Fx_N,Fy_N,"
+      "Fz_N,coupling,ap_limit_mm,chatter_margin,reason\n";
+  for (size_t i = 0; i < r.points_comp.size(); ++i) {
+    const PathPointCompensation& p = r.points_comp[i];
+    const postproc::Target& t = r.context.job.program->targets()[static_cast<size_t>(r.targets[i])];
+    s += std::to_string(i + 1);
+    csvQuoted(s, t.name);
+    s += "," + std::to_string(t.line) + "," + (p.cutting ? "1" : "0") + "," + (p.ok ? "1" : "0");
+    const Vec3 x = p.T_programmed.translation() * 1e3;
+    for (int k = 0; k < 3; ++k) s += "," + formatNumber(x[k], 5);
+    s += "," + formatNumber(p.deviation_before.norm() * 1e6, 3) + "," +
+         formatNumber(p.residual.norm() * 1e6, 4);
+    for (int k = 0; k < 3; ++k) s += "," + formatNumber(p.force[k], 3);
+    csvQuoted(s, p.coupling_status);
+    const bool bounded = p.cutting && p.stability_checked && p.stability_bounded;
+    s += "," + (bounded ? formatNumber(p.ap_limit * 1e3, 4) : std::string()) + "," +
+         (bounded ? formatNumber(p.ap_limit / ap, 4) : std::string());
+    csvQuoted(s, p.reason);
+    s += "\n";
+  }
+  return s;
+}
+
 std::string millingTargetsJson(const MillingCompensationResult& r,
                                const std::string& program_path) {
   const PredictionContext& c = r.context;
@@ -692,6 +719,7 @@ std::string millingTargetsJson(const MillingCompensationResult& r,
     cp.set("loop_gain", Json::number(p.loop_gain, 4));
     cp.set("force_fixed_point_iterations", Json::integer(p.force_iterations));
     j.set("coupling", cp);
+    if (p.cutting) j.set("stability", pathPointStabilityJson(p, c.model.process.milling.cut.ap));
     ps.push(j);
   }
   root.set("points", ps);

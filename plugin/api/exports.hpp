@@ -66,5 +66,9 @@ std::string compensationReport(const CompensationResult& r, const std::string& p
 
 /// The milling path export: per point the nominal and programmed pose, force, coupling iterations.
 std::string millingTargetsJson(const MillingCompensationResult& r, const std::string& program_path);
+/// The milling path export as CSV (one row per path point: programmed position in mm, the
+/// deviation before and the residual after in µm, the force, the coupling status, the chatter
+/// limit and margin; the limit is empty where not cutting or unbounded).
+std::string millingTargetsCsv(const MillingCompensationResult& r);
 
 }  // namespace roprec::api

@@ -12,6 +12,7 @@
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
 #include "plugin/api/job.hpp"
+#include "plugin/api/milling_stability.hpp"
 #include "plugin/api/robot_compliance.hpp"
 #include "plugin/api/robot_setup.hpp"
 
@@ -349,14 +350,15 @@ Json couplingPointJson(int index, const CouplingResult& r) {
   p.set("force_nominal_N", vec3(r.force_nominal, 2));
   p.set("fz_effective_mm", Json::number(r.fz_effective / kMm, 6));
   p.set("ae_effective_mm", Json::number(r.ae_effective / kMm, 6));
+  p.set("ap_effective_mm", Json::number(r.ap_effective / kMm, 6));
   p.set("uncut_carried_mm", Json::number(r.next.uncut_prev / kMm, 6));
   return p;
 }
 
 /// The corrected revolution of the last coupled point (steady state) as CSV, and its summary.
-Json correctedRevolutionOf(const MillingModel& m, const ComplianceFunction& C,
-                           const CouplingResult& last, int point, std::string& csv) {
-  const CorrectedRevolution cr = correctedRevolution(m, C, last);
+Json correctedRevolutionOf(const MillingModel& m, const ModalModel& dyn, const CouplingResult& last,
+                           int point, std::string& csv) {
+  const CorrectedRevolution cr = correctedRevolution(m, dyn, last);
   std::ostringstream c;
   c << "angle_deg,Fx_nom_N,Fy_nom_N,Fz_nom_N,Fxy_nom_N,Fx_N,Fy_N,Fz_N,Fxy_N,dx_um,dy_um,dz_um\n";
   for (const CorrectedSample& s : cr.samples) {
@@ -375,7 +377,9 @@ Json correctedRevolutionOf(const MillingModel& m, const ComplianceFunction& C,
   j.set("peak_xy_nominal_N", Json::number(cr.peak_nominal_xy, 2));
   j.set("peak_xy_corrected_N", Json::number(cr.peak_corrected_xy, 2));
   j.set("tcp_movement_range_um", Json::number(cr.movement_range * 1e6, 3));
-  j.set("compliance_ok", Json::boolean(cr.ok));
+  j.set("vibration_peak_to_peak_um", vec3(cr.vibration_peak_to_peak * 1e6, 4));
+  j.set("tcp_movement", Json::str("coupled static deflection + steady response to the force "
+                                  "harmonics through the receptance (\"dynamics\")"));
   return j;
 }
 
@@ -383,9 +387,11 @@ Json correctedRevolutionOf(const MillingModel& m, const ComplianceFunction& C,
 /// compliance or the robot's own (`robot`); the CSV becomes the corrected revolution of the last
 /// point.
 Json millingCoupling(const MillingModel& m, const MillingSpec& s, int points,
-                     const std::optional<ComplianceFunction>& robot, bool& converged,
-                     std::string& csv) {
-  const ComplianceFunction C = robot ? *robot : linearCompliance(*s.compliance);
+                     const std::optional<ComplianceFunction>& robot, const ModalModel& dyn,
+                     bool& converged, std::string& csv) {
+  const Mat3 C_tool = toolStaticCompliance(s.tool_mode);
+  const ComplianceFunction C =
+      withToolCompliance(robot ? *robot : linearCompliance(*s.compliance), C_tool);
   const std::vector<ComplianceFunction> path(static_cast<size_t>(points), C);
   const std::vector<CouplingResult> res = coupleMillingPath(m, path, s.coupling);
   Json cp = Json::object();
@@ -397,6 +403,7 @@ Json millingCoupling(const MillingModel& m, const MillingSpec& s, int points,
     cp.set("compliance_um_per_N",
            Json::vector(Eigen::Map<const Eigen::VectorXd>(row_major.data(), 9) * 1e6, 5));
   }
+  cp.set("tool_compliance_um_per_N", Json::number(C_tool(0, 0) * 1e6, 5));
   cp.set("solver", Json::str(couplingMethodName(s.coupling.method)));
   cp.set("tolerance_um", Json::number(s.coupling.tolerance * 1e6, 4));
   cp.set("relaxation", Json::number(s.coupling.relaxation, 3));
@@ -407,16 +414,24 @@ Json millingCoupling(const MillingModel& m, const MillingSpec& s, int points,
     if (!r.converged) converged = false;
   }
   cp.set("points", pts);
-  cp.set("corrected_revolution", correctedRevolutionOf(m, C, res.back(), idx - 1, csv));
+  cp.set("corrected_revolution", correctedRevolutionOf(m, dyn, res.back(), idx - 1, csv));
   return cp;
+}
+
+std::string unstablePointText(size_t i, const postproc::Target& t, const PathPointCompensation& p,
+                              double ap) {
+  return "path point " + std::to_string(i + 1) + " (line " + std::to_string(t.line) +
+         "): chatter: ap " + fixed(ap / kMm, 3) + " mm > limit " + fixed(p.ap_limit / kMm, 3) +
+         " mm (chatter at " + fixed(p.chatter_hz, 1) + " Hz)";
 }
 
 /// `--program`: every linear point of the program, the cutting decision and the coupled solve
 /// with the robot's compliance at the point (uncompensated: status, iterations, residual_um,
 /// force_N, deviation_um), and the compensated point ("compensated").
-Json millingPath(const ForcesRequest& req, bool& converged) {
+Json millingPath(const ForcesRequest& req, bool& converged, std::vector<std::string>& unstable) {
   const MillingCompensationResult r = compensateMillingJob(req.cell, *req.program);
   const postproc::Program& prog = *r.context.job.program;
+  const double ap = r.context.model.process.milling.cut.ap;
   Json pts = Json::array();
   for (size_t i = 0; i < r.points_comp.size(); ++i) {
     const PathPointCompensation& p = r.points_comp[i];
@@ -442,8 +457,10 @@ Json millingPath(const ForcesRequest& req, bool& converged) {
     c.set("force_N", vec3(p.force, 2));
     c.set("predicted_residual_um", Json::number(p.residual.norm() * 1e6, 4));
     j.set("compensated", c);
+    if (p.cutting) j.set("stability", pathPointStabilityJson(p, ap));
     pts.push(j);
     if (!before_ok || !p.ok) converged = false;
+    if (p.unstable(ap)) unstable.push_back(unstablePointText(i, t, p, ap));
   }
   Json path = Json::object();
   path.set("program", Json::str(*req.program));
@@ -451,21 +468,28 @@ Json millingPath(const ForcesRequest& req, bool& converged) {
   return path;
 }
 
-/// The cell robot's own deflection at `joints` as the coupling's compliance.
-ComplianceFunction robotCompliance(const CellSpec& cell, const nc::Vec6& joints) {
+/// The cell's robot model and joint compliance (milling with --joints).
+struct CellRobot {
+  nc::Model model;
+  nc::JointCompliance compliance;
+};
+CellRobot cellRobot(const CellSpec& cell) {
   const Robot r = loadRobot(cell.robot);
-  const nc::Model model = nc::buildModel(r.real_chain, toolOf(cell));
-  return robotMillingCompliance(model, complianceOf(r.card), joints);
+  return {nc::buildModel(r.real_chain, toolOf(cell)), complianceOf(r.card)};
 }
 
 void millingForcesOf(const CellSpec& cell, const MillingSpec& s, const ForcesRequest& req,
                      ForcesResult& out) {
   Json& root = out.json;
   std::optional<ComplianceFunction> robot;
+  ModalModel dyn;
   if (req.joints) {
-    robot = robotCompliance(cell, *req.joints);
+    const CellRobot r = cellRobot(cell);
+    robot = robotMillingCompliance(r.model, r.compliance, *req.joints);
+    dyn = robotModes(r.model, r.compliance, *req.joints, s.robot_damping_ratio);
     root.set("joints_deg", Json::vector(*req.joints / kDeg, 6));
   }
+  addToolMode(dyn, s.tool_mode);
   root.set("process", Json::str("milling"));
   root.set("material", Json::str(s.material->name));
   root.set(
@@ -478,9 +502,12 @@ void millingForcesOf(const CellSpec& cell, const MillingSpec& s, const ForcesReq
   const MillingModel m = millingModelOf(s);
   root.set("immersion", immersionJson(s));
   root.set("steady", millingSteady(m, s, out.curve_csv));
+  root.set("dynamics", millingDynamicsJson(dyn, s, robot.has_value()));
+  root.set("stability", millingStabilityJson(dyn, m));
   if (s.compliance || robot)
-    root.set("coupling", millingCoupling(m, s, req.points, robot, out.converged, out.curve_csv));
-  if (req.program) root.set("path", millingPath(req, out.converged));
+    root.set("coupling",
+             millingCoupling(m, s, req.points, robot, dyn, out.converged, out.curve_csv));
+  if (req.program) root.set("path", millingPath(req, out.converged, out.unstable));
 }
 
 // ---------------------------------------------------------------- wrench

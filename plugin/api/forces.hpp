@@ -17,6 +17,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "compensator/robot/model.hpp"
 #include "plugin/api/json.hpp"
@@ -56,6 +57,8 @@ struct ForcesResult {
       calibrated_cell;   ///< the cell's text with calibrated <coefficients> (calibrated_cell)
   bool converged{true};  ///< every coupled point (axial or milling coupling, program path)
                          ///< converged
+  std::vector<std::string> unstable;  ///< milling --program: the points whose ap is above the
+                                      ///< chatter limit, one line each
 };
 
 /// Computes the forces of the cell's process; the robot is loaded only for `joints`.

@@ -64,6 +64,47 @@ std::string pathPlot(const MillingCompensationResult& r) {
   return s;
 }
 
+/// The chatter margin ap_limit/ap of the cutting points along the path (1 = the limit), clipped at
+/// 5; points without a bounded limit at the top.
+std::string marginPlot(const MillingCompensationResult& r) {
+  const std::size_t n = r.points_comp.size();
+  const double ap = r.context.model.process.milling.cut.ap;
+  const double top = 5.0;
+  const double w = 760;
+  const double h = 160;
+  const double x0 = 60;
+  const double y0 = 20;
+  auto px = [&](std::size_t i) {
+    return x0 + (n > 1 ? w * static_cast<double>(i) / static_cast<double>(n - 1) : w / 2);
+  };
+  auto py = [&](double v) { return y0 + h - h * std::min(v, top) / top; };
+  std::string dots;
+  for (std::size_t i = 0; i < n; ++i) {
+    const PathPointCompensation& p = r.points_comp[i];
+    if (!p.cutting || !p.stability_checked) continue;
+    const double margin = p.stability_bounded ? p.ap_limit / ap : top;
+    dots += "<circle cx=\"" + num(px(i), 1, "x") + "\" cy=\"" + num(py(margin), 1, "margin") +
+            "\" r=\"3\" fill=\"" + (p.unstable(ap) ? "#c0392b" : "#1e7b34") + "\"/>\n";
+  }
+  std::string s = "<svg width=\"860\" height=\"210\" role=\"img\" aria-label=\"chatter margin\">\n";
+  s += "<line x1=\"" + num(x0, 0, "") + "\" y1=\"" + num(py(1.0), 1, "") + "\" x2=\"" +
+       num(x0 + w, 0, "") + "\" y2=\"" + num(py(1.0), 1, "") +
+       "\" stroke=\"#c0392b\" stroke-dasharray=\"4 3\"/>\n";
+  s += "<text x=\"4\" y=\"" + num(py(1.0) + 4, 0, "") + "\" font-size=\"11\">1</text>\n";
+  s += "<text x=\"4\" y=\"" + num(y0 + 4, 0, "") + "\" font-size=\"11\">5</text>\n";
+  s += "<text x=\"" + num(x0 + 10, 0, "") + "\" y=\"" + num(y0 + 14, 0, "") +
+       "\" font-size=\"12\">chatter margin ap_limit / ap per cutting point (below 1: "
+       "chatter; clipped at 5)</text>\n";
+  return s + dots + "</svg>\n";
+}
+
+/// The chatter margin cell: limit/ap, "—" when not cutting or not checked, "∞" when unbounded.
+std::string margin(const MillingCompensationResult& r, const PathPointCompensation& p) {
+  if (!p.cutting || !p.stability_checked) return "—";
+  if (!p.stability_bounded) return "∞";
+  return num(p.ap_limit / r.context.model.process.milling.cut.ap, 2, "margin");
+}
+
 std::string pointRow(const MillingCompensationResult& r, std::size_t i) {
   const PathPointCompensation& p = r.points_comp[i];
   const postproc::Target& t =
@@ -77,8 +118,8 @@ std::string pointRow(const MillingCompensationResult& r, std::size_t i) {
   for (int k = 0; k < 3; ++k) s += "<td>" + num(b[k], 2, "deviation") + "</td>";
   s += "<td>" + num(b.norm(), 2, "deviation") + "</td><td>" + num(a.norm(), 4, "residual") +
        "</td><td>" + esc(p.coupling_status) + "</td><td>" + std::to_string(p.coupling_iterations) +
-       "</td><td>" + num(p.loop_gain, 3, "loop gain") + "</td><td>" + esc(p.config_text) +
-       "</td><td>" + esc(p.ok ? "compensated" : p.reason) + "</td></tr>\n";
+       "</td><td>" + num(p.loop_gain, 3, "loop gain") + "</td><td>" + margin(r, p) + "</td><td>" +
+       esc(p.config_text) + "</td><td>" + esc(p.ok ? "compensated" : p.reason) + "</td></tr>\n";
   return s;
 }
 
@@ -101,7 +142,7 @@ std::string millingCompensationReport(const MillingCompensationResult& r,
       esc(program_path) +
       "</title>\n<style>body{font-family:sans-serif;margin:1.5em}"
       "table{border-collapse:collapse;font-size:12px}td,th{border:1px solid #ccc;padding:2px 6px;"
-      "text-align:right}td:nth-child(2),td:nth-child(5),td:nth-child(13),td:nth-child(16){text-"
+      "text-align:right}td:nth-child(2),td:nth-child(5),td:nth-child(13),td:nth-child(17){text-"
       "align:left}"
       "th{background:#eee}tr.bad td{background:#fde2e2}</style></head><body>\n";
   s += "<h1>Milling path compensation</h1>\n<p>program <b>" + esc(program_path) + "</b>, cell <b>" +
@@ -113,10 +154,11 @@ std::string millingCompensationReport(const MillingCompensationResult& r,
        num(after * 1e6, 4, "residual") + " µm</b>.</p>\n";
   for (const auto& n : c.job.notes) s += "<p class=\"note\">note: " + esc(n) + "</p>\n";
   s += pathPlot(r);
+  s += marginPlot(r);
   s += "<table>\n<tr><th>point</th><th>target</th><th>line</th><th>cuts</th><th>why</th>"
        "<th>|F| [N]</th><th>δx before [µm]</th><th>δy before [µm]</th><th>δz before [µm]</th>"
        "<th>|δ| before [µm]</th><th>|residual| after [µm]</th><th>coupling</th><th>iterations</th>"
-       "<th>loop gain</th><th>configuration</th><th>status</th></tr>\n";
+       "<th>loop gain</th><th>chatter margin</th><th>configuration</th><th>status</th></tr>\n";
   for (std::size_t i = 0; i < r.points_comp.size(); ++i) s += pointRow(r, i);
   s += "</table>\n<p>Deviations in the robot base frame; the force in the milling frame. "
        "roprec " +

@@ -24,6 +24,24 @@
 namespace roprec::cli {
 namespace {
 
+/// The cutting points whose ap is above the chatter limit, one line each on stderr: 1 if any.
+int reportUnstable(CommandContext& ctx, const MillingCompensationResult& r) {
+  const double ap = r.context.model.process.milling.cut.ap;
+  int n = 0;
+  for (size_t i = 0; i < r.points_comp.size(); ++i) {
+    const PathPointCompensation& p = r.points_comp[i];
+    if (!p.unstable(ap)) continue;
+    ++n;
+    ctx.err << "roprec: path point " << i + 1 << ": chatter: ap " << formatNumber(ap * 1e3, 3)
+            << " mm > limit " << formatNumber(p.ap_limit * 1e3, 3) << " mm (chatter at "
+            << formatNumber(p.chatter_hz, 1) << " Hz)\n";
+  }
+  if (n > 0)
+    ctx.err << "roprec: " << n << " cutting path points are above the chatter limit (outputs "
+            << "written; the static compensation does not remove chatter)\n";
+  return n > 0 ? 1 : 0;
+}
+
 /// Milling: every linear path point of the program is compensated with the coupled force
 /// iteration (compensator/compensation/milling_compensation.hpp).
 int runMillingPath(CommandContext& ctx, const std::string& cell, const std::string& program,
@@ -44,7 +62,10 @@ int runMillingPath(CommandContext& ctx, const std::string& cell, const std::stri
     return 1;
   }
   std::vector<std::pair<std::string, std::string>> extra;
-  if (targets) extra.emplace_back(*targets, millingTargetsJson(r, program));
+  if (targets) {
+    const bool csv = targets->size() > 4 && targets->substr(targets->size() - 4) == ".csv";
+    extra.emplace_back(*targets, csv ? millingTargetsCsv(r) : millingTargetsJson(r, program));
+  }
   if (report) extra.emplace_back(*report, millingCompensationReport(r, program));
   const std::vector<std::string> written = writeCompensatedProgram(r.context, out, extra);
   if (!ctx.quiet) {
@@ -60,7 +81,7 @@ int runMillingPath(CommandContext& ctx, const std::string& cell, const std::stri
             << " µm; predicted residual max " << formatNumber(after * 1e6, 4) << " µm\n";
     for (const auto& pth : written) ctx.out << "  wrote " << pth << "\n";
   }
-  return 0;
+  return reportUnstable(ctx, r);
 }
 
 CompensationOptions parseCompensationOptions(Args& args) {
@@ -316,10 +337,14 @@ const CommandRegistration reg{
      "(--turn-axes or\n"
      "the cell's <controller fanuc_turn_axes>); otherwise such edits are refused.\n"
      "With a milling cell every linear path point is compensated instead, with the coupled force\n"
-     "iteration (the force depends on the deviation); the export lists points, forces and "
-     "iterations,\n"
-     "the report draws the deviation before and the residual after along the path, a row per "
-     "point.\n"
+     "iteration (the force depends on the deviation; the tool's bending is pre-offset too); the "
+     "export\n"
+     "(CSV or JSON by its extension) lists points, forces, iterations and the chatter limit at "
+     "each\n"
+     "cutting point (robot modes at the pose + tool mode, zero-order lobes); the report draws the\n"
+     "deviation before, the residual after and the chatter margin along the path. Points above "
+     "the\n"
+     "chatter limit are listed and the exit code is 1 (outputs written).\n"
      "Unreachable, singular or non-converging holes are listed; without --allow-partial nothing "
      "is\n"
      "written and the exit code is 1; with it they keep their original targets and are flagged.\n"

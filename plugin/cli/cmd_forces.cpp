@@ -100,7 +100,8 @@ int run(Args& args, CommandContext& ctx) {
   } else {
     ctx.out << json_text;
   }
-  return r.converged ? 0 : 1;
+  for (const std::string& u : r.unstable) ctx.err << "roprec: " << u << "\n";
+  return r.converged && r.unstable.empty() ? 0 : 1;
 }
 
 const CommandRegistration reg{
