@@ -12,6 +12,7 @@
 #include "compensator/support/fixed_chars.hpp"
 #include "compensator/support/input_file.hpp"
 #include "compensator/support/str_cat.hpp"
+#include "postproc/text_lines.hpp"
 
 namespace roprec::postproc {
 
@@ -31,33 +32,6 @@ namespace {
 
 // ---------------------------------------------------------------- text helpers
 
-struct Line {
-  std::string_view text;  ///< without its terminator
-  int number{0};          ///< 1-based
-};
-
-/// Physical lines (LF, CRLF or CR terminated); a leading UTF-8 byte-order mark is dropped.
-std::vector<Line> splitLines(std::string_view text) {
-  if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
-  std::vector<Line> lines;
-  std::size_t i = 0;
-  int n = 1;
-  while (i < text.size()) {
-    std::size_t j = i;
-    while (j < text.size() && text[j] != '\n' && text[j] != '\r') ++j;
-    lines.push_back({text.substr(i, j - i), n++});
-    if (j < text.size() && text[j] == '\r' && j + 1 < text.size() && text[j + 1] == '\n') ++j;
-    i = j + 1;
-  }
-  return lines;
-}
-
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
-  return s;
-}
-
 std::string upper(std::string_view s) {
   std::string r(s);
   for (char& c : r) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
@@ -68,11 +42,6 @@ std::string lowerAscii(std::string_view s) {
   std::string r(s);
   for (char& c : r) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return r;
-}
-
-bool isSkippable(std::string_view line) {
-  const std::string_view t = trim(line);
-  return t.empty() || t.front() == '#';
 }
 
 /// CSV cells, trimmed; a cell in double quotes may hold commas ("" is a quote).
@@ -99,7 +68,7 @@ std::vector<std::string> csvCells(std::string_view line) {
     } else {
       const std::size_t j = line.find(',', i);
       const std::size_t e = j == std::string_view::npos ? line.size() : j;
-      cell = std::string(trim(line.substr(i, e - i)));
+      cell = std::string(trimBlanks(line.substr(i, e - i)));
       i = e;
     }
     cells.push_back(cell);
@@ -111,7 +80,7 @@ std::vector<std::string> csvCells(std::string_view line) {
 
 /// A finite number (optional leading '+'), locale-independent; nullopt otherwise.
 std::optional<double> parseFinite(std::string_view s) {
-  s = trim(s);
+  s = trimBlanks(s);
   if (!s.empty() && s.front() == '+') s.remove_prefix(1);
   if (s.empty() || s.front() == '+') return std::nullopt;
   double v = 0;
@@ -303,9 +272,9 @@ MeasuredHole tableRow(const std::vector<std::string>& cells, const TableColumns&
 
 /// Index of the header line: the first content line (roprec CSV), or the first line naming TYPE
 /// and NAME (PC-DMIS, after a preamble).
-std::size_t headerIndex(const std::vector<Line>& lines, MeasuredFormat f) {
+std::size_t headerIndex(const std::vector<TextLine>& lines, MeasuredFormat f) {
   for (std::size_t n = 0; n < lines.size(); ++n) {
-    if (isSkippable(lines[n].text)) continue;
+    if (isBlankOrComment(lines[n].text)) continue;
     if (f == MeasuredFormat::kCsv) return n;
     const std::vector<std::string> cells = csvCells(lines[n].text);
     std::vector<std::string> keys;
@@ -316,7 +285,7 @@ std::size_t headerIndex(const std::vector<Line>& lines, MeasuredFormat f) {
   return lines.size();
 }
 
-std::vector<MeasuredHole> readTable(const std::vector<Line>& lines, MeasuredFormat f,
+std::vector<MeasuredHole> readTable(const std::vector<TextLine>& lines, MeasuredFormat f,
                                     const std::string& path) {
   const TableSpec& spec = f == MeasuredFormat::kCsv ? csvSpec() : pcDmisSpec();
   const std::size_t h = headerIndex(lines, f);
@@ -326,11 +295,11 @@ std::vector<MeasuredHole> readTable(const std::vector<Line>& lines, MeasuredForm
   const TableColumns c = tableColumns(csvCells(lines[h].text), spec, path, lines[h].number);
   std::vector<MeasuredHole> holes;
   for (std::size_t n = h + 1; n < lines.size(); ++n) {
-    if (isSkippable(lines[n].text)) continue;
+    if (isBlankOrComment(lines[n].text)) continue;
     const std::vector<std::string> cells = csvCells(lines[n].text);
     // roprec CSV: a row longer than its header shifts the values (a decimal comma: "-200,28").
     std::size_t used = cells.size();  // trailing empty cells ("1,2,3,") are harmless
-    while (used > header_cells && trim(cells[used - 1]).empty()) --used;
+    while (used > header_cells && trimBlanks(cells[used - 1]).empty()) --used;
     if (f == MeasuredFormat::kCsv && used > header_cells)
       throw InputError(path, lines[n].number,
                        std::to_string(used) + " cells but the header has " +
@@ -350,16 +319,16 @@ struct Statement {
 };
 
 /// DMIS statements: `$$` comments removed, `$`-continued lines joined.
-std::vector<Statement> dmisStatements(const std::vector<Line>& lines) {
+std::vector<Statement> dmisStatements(const std::vector<TextLine>& lines) {
   std::vector<Statement> out;
   Statement cur;
   bool continuing = false;
-  for (const Line& l : lines) {
+  for (const TextLine& l : lines) {
     std::string_view t = l.text;
     if (const std::size_t c = t.find("$$"); c != std::string_view::npos) t = t.substr(0, c);
-    t = trim(t);
+    t = trimBlanks(t);
     const bool cont = !t.empty() && t.back() == '$';
-    if (cont) t = trim(t.substr(0, t.size() - 1));
+    if (cont) t = trimBlanks(t.substr(0, t.size() - 1));
     if (!continuing) cur = Statement{std::string(), l.number};
     cur.text += std::string(t);
     continuing = cont;
@@ -390,7 +359,7 @@ std::optional<FeatureStatement> featureStatement(const std::string& s) {
   }
   const std::size_t close = s.find(')', p);
   if (close == std::string::npos) return std::nullopt;
-  f.label = std::string(trim(std::string_view(s).substr(p, close - p)));
+  f.label = std::string(trimBlanks(std::string_view(s).substr(p, close - p)));
   std::size_t q = close + 1;
   while (q < s.size() && (s[q] == ' ' || s[q] == '\t')) ++q;
   if (q >= s.size() || s[q] != '=') return std::nullopt;
@@ -407,7 +376,7 @@ std::optional<double> dmisUnits(const std::string& s, const std::string& path, i
   if (u.rfind("UNITS/", 0) != 0) return std::nullopt;
   std::string_view rest = std::string_view(u).substr(6);
   rest = rest.substr(0, rest.find(','));
-  const std::string unit(trim(rest));
+  const std::string unit(trimBlanks(rest));
   static const std::map<std::string, double> scale = {
       {"MM", 1.0}, {"CM", 10.0}, {"METER", 1000.0}, {"INCH", 25.4}, {"FEET", 304.8}};
   const auto it = scale.find(unit);
@@ -419,7 +388,7 @@ std::optional<double> dmisUnits(const std::string& s, const std::string& path, i
 std::optional<MeasuredHole> dmisHole(const FeatureStatement& f, double unit_mm,
                                      const std::string& path, int line) {
   std::vector<std::string> a = csvCells(f.body);
-  for (std::string& s : a) s = std::string(trim(s));
+  for (std::string& s : a) s = std::string(trimBlanks(s));
   const std::string type = a.empty() ? std::string() : upper(a[0]);
   if (type != "CIRCLE" && type != "CYLNDR") return std::nullopt;
   if (a.size() < 3 || upper(a[1]) == "OUTER") return std::nullopt;
@@ -450,7 +419,7 @@ std::optional<MeasuredHole> dmisHole(const FeatureStatement& f, double unit_mm,
   return h;
 }
 
-std::vector<MeasuredHole> readDmis(const std::vector<Line>& lines, const std::string& path) {
+std::vector<MeasuredHole> readDmis(const std::vector<TextLine>& lines, const std::string& path) {
   std::vector<MeasuredHole> nominal;
   std::vector<MeasuredHole> actual;
   double unit_mm = 1.0;
@@ -508,7 +477,7 @@ std::string fixed(double v, int decimals) {
 }
 
 std::string csvId(const std::string& id) {
-  if (id.find_first_of(",\"\n\r") == std::string::npos && trim(id) == id) return id;
+  if (id.find_first_of(",\"\n\r") == std::string::npos && trimBlanks(id) == id) return id;
   std::string q = "\"";
   for (const char c : id) q += c == '"' ? std::string("\"\"") : std::string(1, c);
   return q + "\"";
@@ -534,13 +503,13 @@ std::string positionCells(const MeasuredHole& h, int decimals) {
 }  // namespace
 
 std::optional<MeasuredFormat> detectMeasuredFormat(const std::string& text) {
-  const std::vector<Line> lines = splitLines(text);
+  const std::vector<TextLine> lines = splitTextLines(text);
   for (const Statement& s : dmisStatements(lines)) {
     if (featureStatement(s.text)) return MeasuredFormat::kDmis;
   }
   std::size_t first = lines.size();
   for (std::size_t n = 0; n < lines.size() && first == lines.size(); ++n) {
-    if (!isSkippable(lines[n].text)) first = n;
+    if (!isBlankOrComment(lines[n].text)) first = n;
   }
   if (first == lines.size()) return std::nullopt;
   std::vector<std::string> keys;
@@ -552,11 +521,11 @@ std::optional<MeasuredFormat> detectMeasuredFormat(const std::string& text) {
 
 MeasuredHoles parseMeasured(const std::string& text, const std::string& path) {
   const auto format = detectMeasuredFormat(text);
-  const std::vector<Line> lines = splitLines(text);
+  const std::vector<TextLine> lines = splitTextLines(text);
   if (!format) {
     int line = 1;
-    for (const Line& l : lines) {
-      if (!isSkippable(l.text)) {
+    for (const TextLine& l : lines) {
+      if (!isBlankOrComment(l.text)) {
         line = l.number;
         break;
       }

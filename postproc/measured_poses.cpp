@@ -10,41 +10,10 @@
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/c_format.hpp"
 #include "compensator/support/error.hpp"
+#include "postproc/text_lines.hpp"
 
 namespace roprec::postproc {
 namespace {
-
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
-  return s;
-}
-
-struct Line {
-  std::string_view text;
-  int number{0};
-};
-
-/// Physical lines (LF, CRLF or CR); a leading UTF-8 byte-order mark is dropped.
-std::vector<Line> splitLines(std::string_view text) {
-  if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
-  std::vector<Line> lines;
-  std::size_t i = 0;
-  int n = 1;
-  while (i < text.size()) {
-    std::size_t j = i;
-    while (j < text.size() && text[j] != '\n' && text[j] != '\r') ++j;
-    lines.push_back({text.substr(i, j - i), n++});
-    if (j < text.size() && text[j] == '\r' && j + 1 < text.size() && text[j + 1] == '\n') ++j;
-    i = j + 1;
-  }
-  return lines;
-}
-
-bool skippable(std::string_view line) {
-  const std::string_view t = trim(line);
-  return t.empty() || t.front() == '#';
-}
 
 std::vector<std::string> cells(std::string_view line) {
   std::vector<std::string> out;
@@ -52,7 +21,7 @@ std::vector<std::string> cells(std::string_view line) {
   while (true) {
     const std::size_t j = line.find(',', i);
     const std::size_t e = j == std::string_view::npos ? line.size() : j;
-    out.emplace_back(trim(line.substr(i, e - i)));
+    out.emplace_back(trimBlanks(line.substr(i, e - i)));
     if (j == std::string_view::npos) break;
     i = j + 1;
   }
@@ -74,7 +43,7 @@ const std::vector<std::string> kWrench{"fx", "fy", "fz", "mx", "my", "mz"};
 
 class Table {
  public:
-  Table(const std::string& path, const Line& header) : path_(path) {
+  Table(const std::string& path, const TextLine& header) : path_(path) {
     const std::vector<std::string> names = cells(header.text);
     for (size_t c = 0; c < names.size(); ++c) column_.emplace(lower(names[c]), c);
     for (const auto& group : {std::vector<std::string>{"id"}, kJoints, kPosition}) {
@@ -142,7 +111,7 @@ class Table {
   std::map<std::string, size_t> column_;
 };
 
-MeasuredPose poseOfRow(const Table& t, const std::vector<std::string>& row, const Line& l,
+MeasuredPose poseOfRow(const Table& t, const std::vector<std::string>& row, const TextLine& l,
                        const std::string& path) {
   MeasuredPose p;
   p.line = l.number;
@@ -174,8 +143,8 @@ MeasuredPose poseOfRow(const Table& t, const std::vector<std::string>& row, cons
 }  // namespace
 
 bool looksLikeMeasuredPoses(const std::string& text) {
-  for (const Line& l : splitLines(text)) {
-    if (skippable(l.text)) continue;
+  for (const TextLine& l : splitTextLines(text)) {
+    if (isBlankOrComment(l.text)) continue;
     bool j1 = false;
     bool x = false;
     for (const std::string& c : cells(l.text)) {
@@ -190,11 +159,11 @@ bool looksLikeMeasuredPoses(const std::string& text) {
 MeasuredPoses parseMeasuredPoses(const std::string& text, const std::string& path) {
   MeasuredPoses out;
   out.path = path;
-  const std::vector<Line> lines = splitLines(text);
+  const std::vector<TextLine> lines = splitTextLines(text);
   std::optional<Table> table;
   std::set<std::string> ids;
-  for (const Line& l : lines) {
-    if (skippable(l.text)) continue;
+  for (const TextLine& l : lines) {
+    if (isBlankOrComment(l.text)) continue;
     if (!table) {
       table.emplace(path, l);
       continue;

@@ -274,6 +274,22 @@ void setOption(roprec_options& o, const std::string& key, const std::string& v) 
   }
 }
 
+/// The verify calls' common end: nothing is written unless every measured item was predicted;
+/// then the summary (checked to fit first) and every output.
+int writeVerifyOutputs(const roprec::api::VerifyResult& r,
+                       const std::vector<std::pair<std::string, std::string>>& out,
+                       char* summary_json, size_t summary_len) {
+  if (!r.failed.empty()) throw ItemFailure{host::joinLines(r.failed) + "\nnothing written"};
+  std::vector<std::string> paths;
+  paths.reserve(out.size());
+  for (const auto& o : out) paths.push_back(o.first);
+  const std::string summary = roprec::api::verifySummaryJson(r, paths).dump(0);
+  checkFits(summary, summary_json, summary_len, "summary_json");
+  for (const auto& [path, text] : out) roprec::writeFileAtomic(path, text);
+  copyText(summary, summary_json);
+  return ROPREC_OK;
+}
+
 }  // namespace
 
 extern "C" {
@@ -418,17 +434,8 @@ ROPREC_API int roprec_verify_file(const char* cell_path, const char* program_pat
     job.registration = host::registration(optionalArg(registration));
     job.calibrate = !card_out.empty();
     const roprec::api::VerifyResult r = roprec::api::verifyJob(cell, program, job);
-    std::vector<std::pair<std::string, std::string>> out =
-        host::verifyOutputs(r, job, json_out, card_out);
-    if (!r.failed.empty()) throw ItemFailure{host::joinLines(r.failed) + "\nnothing written"};
-    std::vector<std::string> paths;
-    paths.reserve(out.size());
-    for (const auto& o : out) paths.push_back(o.first);
-    const std::string summary = roprec::api::verifySummaryJson(r, paths).dump(0);
-    checkFits(summary, summary_json, summary_len, "summary_json");
-    for (const auto& [path, text] : out) roprec::writeFileAtomic(path, text);
-    copyText(summary, summary_json);
-    return ROPREC_OK;
+    return writeVerifyOutputs(r, host::verifyOutputs(r, job, json_out, card_out), summary_json,
+                              summary_len);
   });
 }
 
@@ -461,17 +468,9 @@ ROPREC_API int roprec_verify_file_ex(const char* cell_path, const char* program_
         job.registration == roprec::Registration::kNone)
       throw roprec::UsageError("write_cell needs a registration and/or new_card_out_path");
     const roprec::api::VerifyResult r = roprec::api::verifyJob(cell, program, job);
-    std::vector<std::pair<std::string, std::string>> out =
-        host::verifyOutputs(r, job, json_out, card_out, options->write_cell);
-    if (!r.failed.empty()) throw ItemFailure{host::joinLines(r.failed) + "\nnothing written"};
-    std::vector<std::string> paths;
-    paths.reserve(out.size());
-    for (const auto& o : out) paths.push_back(o.first);
-    const std::string summary = roprec::api::verifySummaryJson(r, paths).dump(0);
-    checkFits(summary, summary_json, summary_len, "summary_json");
-    for (const auto& [path, text] : out) roprec::writeFileAtomic(path, text);
-    copyText(summary, summary_json);
-    return ROPREC_OK;
+    return writeVerifyOutputs(r,
+                              host::verifyOutputs(r, job, json_out, card_out, options->write_cell),
+                              summary_json, summary_len);
   });
 }
 
