@@ -17,6 +17,7 @@
 
 #include "compensator/robot/robot_card.hpp"
 #include "compensator/robot/urdf_loader.hpp"
+#include "tests/support/counting_new.hpp"
 #include "tests/support/kdl_support.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -264,9 +265,10 @@ TEST(Deflection, NonConvergenceIsAValueAndNoAllocation) {
   th << 0.1, -1.2, 1.4, 0.2, 0.7, 0.1;
   nc::Loads loads;
   loads.tcp.force = Vec3(0, 0, 800);
-  Eigen::internal::set_is_malloc_allowed(false);
-  const nc::Deflection d = nc::predictDeflection(model, data, c, th, loads);
-  Eigen::internal::set_is_malloc_allowed(true);
+  nc::Deflection d;
+  const long allocations =
+      test::allocationsOf([&] { d = nc::predictDeflection(model, data, c, th, loads); });
+  EXPECT_EQ(allocations, 0);
   EXPECT_TRUE(d.converged);
   nc::DeflectionOptions opt;
   opt.max_iterations = 1;

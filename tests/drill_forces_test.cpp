@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "compensator/process/drilling_forces.hpp"
+#include "tests/support/counting_new.hpp"
 
 namespace roprec {
 namespace {
@@ -176,9 +177,9 @@ TEST(DrillForces, ForcesGrowWithFeedAndDiameter) {
 
 TEST(DrillForces, PerHoleEvaluationDoesNotAllocate) {
   const DrillingModel m = model(10, 0.2, 10);
-  Eigen::internal::set_is_malloc_allowed(false);
-  const DrillingForces F = drillingForces(m, 0.21e-3);
-  Eigen::internal::set_is_malloc_allowed(true);
+  DrillingForces F;
+  const long allocations = test::allocationsOf([&] { F = drillingForces(m, 0.21e-3); });
+  EXPECT_EQ(allocations, 0);
   EXPECT_GT(F.thrust, 0);
 }
 

@@ -12,6 +12,7 @@
 #include "compensator/robot/robot_card.hpp"
 #include "compensator/robot/urdf_loader.hpp"
 #include "compensator/support/error.hpp"
+#include "tests/support/counting_new.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace roprec {
@@ -87,10 +88,8 @@ TEST(Ik, RandomRoundTripAllRobots) {
       const Pose T = chainForwardKinematics(c.chain, q);
       IkOptions all;
       all.turns = IkTurns::kAll;
-      Eigen::internal::set_is_malloc_allowed(
-          false);  // caller-owned storage: no allocation per call
-      solveIk(c.model, T, all, *result);
-      Eigen::internal::set_is_malloc_allowed(true);
+      // Caller-owned storage: no allocation per call.
+      ASSERT_EQ(test::allocationsOf([&] { solveIk(c.model, T, all, *result); }), 0);
       ASSERT_GT(result->count, 0) << describeIkFailure(*result);
       ASSERT_FALSE(result->truncated);
       double best = 1e9;
@@ -389,9 +388,8 @@ TEST(Ik, SeededNearSolutionNoAllocation) {
       T.linear() =
           Eigen::AngleAxisd(0.5 * kDeg * d(rng), Vec3(d(rng), d(rng), d(rng)).normalized()) *
           T.linear();
-      Eigen::internal::set_is_malloc_allowed(false);
-      const IkNearResult r = solveIkNear(c.model, T, q);
-      Eigen::internal::set_is_malloc_allowed(true);
+      IkNearResult r;
+      ASSERT_EQ(test::allocationsOf([&] { r = solveIkNear(c.model, T, q); }), 0);
       ASSERT_TRUE(r.converged);
       const Pose Ts = chainForwardKinematics(c.chain, r.q);
       EXPECT_LE((Ts.translation() - T.translation()).norm(), 1e-9);

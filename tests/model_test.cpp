@@ -15,6 +15,7 @@
 
 #include "compensator/robot/robot_card.hpp"
 #include "compensator/robot/urdf_loader.hpp"
+#include "tests/support/counting_new.hpp"
 #include "tests/support/kdl_support.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -277,12 +278,15 @@ TEST(NaturalModel, PerPosePathDoesNotAllocate) {
   nc::Data data(model);
   Vec6 z;
   z << 0.1, -1.2, 1.3, 0.4, 0.5, 0.6;
-  Eigen::internal::set_is_malloc_allowed(false);
-  const nc::PositionResult r = nc::forwardKinematics(model, data, z);
-  nc::tcpJacobian(model, data);
-  z[2] += 0.01;
-  const nc::PositionResult r2 = nc::solvePosition(model, data, z, nc::Guess::kWarmStart);
-  Eigen::internal::set_is_malloc_allowed(true);
+  nc::PositionResult r;
+  nc::PositionResult r2;
+  const long allocations = test::allocationsOf([&] {
+    r = nc::forwardKinematics(model, data, z);
+    nc::tcpJacobian(model, data);
+    z[2] += 0.01;
+    r2 = nc::solvePosition(model, data, z, nc::Guess::kWarmStart);
+  });
+  EXPECT_EQ(allocations, 0);
   EXPECT_TRUE(r.converged);
   EXPECT_TRUE(r2.converged);
 }

@@ -26,6 +26,7 @@
 #include "compensator/process/process_spec.hpp"
 #include "compensator/robot/robot_card.hpp"
 #include "compensator/robot/urdf_loader.hpp"
+#include "tests/support/counting_new.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace roprec {
@@ -390,11 +391,15 @@ TEST(Transient, RightHandSideDoesNotAllocate) {
   y1[y1.size() - 1] = 8e-3;  // D in full engagement
   Eigen::VectorXd yd(y0.size());
   ASSERT_EQ(sim.rhs(0.3, y0.data(), yd.data()), 0);  // warm up (entry)
-  Eigen::internal::set_is_malloc_allowed(false);
-  const int a = sim.rhs(0.35, y0.data(), yd.data());
-  const double entry_thrust_rate = yd[y0.size() - 1];
-  const int b = sim.rhs(0.9, y1.data(), yd.data());  // full engagement
-  Eigen::internal::set_is_malloc_allowed(true);
+  int a = -1;
+  int b = -1;
+  double entry_thrust_rate = 0.0;
+  const long allocations = test::allocationsOf([&] {
+    a = sim.rhs(0.35, y0.data(), yd.data());
+    entry_thrust_rate = yd[y0.size() - 1];
+    b = sim.rhs(0.9, y1.data(), yd.data());  // full engagement
+  });
+  EXPECT_EQ(allocations, 0);
   EXPECT_EQ(a, 0);
   EXPECT_EQ(b, 0);
   EXPECT_TRUE(yd.allFinite());
