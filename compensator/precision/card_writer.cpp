@@ -102,10 +102,11 @@ JointTag parseTag(const std::string& s, std::size_t begin, const std::string& pa
   }
 }
 
-/// The <joint> tags of the card in document order, comments and processing instructions skipped.
-std::vector<JointTag> jointTags(const std::string& s, const std::string& path) {
-  std::vector<JointTag> tags;
-  std::size_t i = 0;
+/// Position of the first `<name` tag (followed by space, '/' or '>') at or after `from` outside
+/// comments, or npos.
+std::size_t findTag(const std::string& s, const std::string& name, const std::string& path,
+                    std::size_t from = 0) {
+  std::size_t i = from;
   while ((i = s.find('<', i)) != std::string::npos) {
     if (s.compare(i, 4, "<!--") == 0) {
       const std::size_t e = s.find("-->", i + 4);
@@ -113,14 +114,21 @@ std::vector<JointTag> jointTags(const std::string& s, const std::string& path) {
       i = e + 3;
       continue;
     }
-    if (s.compare(i, 6, "<joint") == 0 && i + 6 < s.size() &&
-        (isSpace(s[i + 6]) || s[i + 6] == '/' || s[i + 6] == '>')) {
-      tags.push_back(parseTag(s, i, path));
-      i = tags.back().end;
-      continue;
-    }
+    const std::size_t after = i + 1 + name.size();
+    if (s.compare(i + 1, name.size(), name) == 0 && after < s.size() &&
+        (isSpace(s[after]) || s[after] == '/' || s[after] == '>'))
+      return i;
     ++i;
   }
+  return std::string::npos;
+}
+
+/// The <joint> tags of the card in document order, comments and processing instructions skipped.
+std::vector<JointTag> jointTags(const std::string& s, const std::string& path) {
+  std::vector<JointTag> tags;
+  for (std::size_t i = findTag(s, "joint", path); i != std::string::npos;
+       i = findTag(s, "joint", path, tags.back().end))
+    tags.push_back(parseTag(s, i, path));
   if (tags.size() != 6) {
     throw InputError(path, 0,
                      "a robot card needs 6 <joint> elements, found " + std::to_string(tags.size()));
@@ -193,25 +201,6 @@ std::string updateCardStiffness(const std::string& card_text, const std::string&
 }
 
 namespace {
-
-/// Position of the first `<name` tag (followed by space, '/' or '>') outside comments, or npos.
-std::size_t findTag(const std::string& s, const std::string& name, const std::string& path) {
-  std::size_t i = 0;
-  while ((i = s.find('<', i)) != std::string::npos) {
-    if (s.compare(i, 4, "<!--") == 0) {
-      const std::size_t e = s.find("-->", i + 4);
-      if (e == std::string::npos) throw InputError(path, lineAt(s, i), "unterminated comment");
-      i = e + 3;
-      continue;
-    }
-    const std::size_t after = i + 1 + name.size();
-    if (s.compare(i + 1, name.size(), name) == 0 && after < s.size() &&
-        (isSpace(s[after]) || s[after] == '/' || s[after] == '>'))
-      return i;
-    ++i;
-  }
-  return std::string::npos;
-}
 
 std::size_t lineStart(const std::string& s, std::size_t pos) {
   const std::size_t nl = s.rfind('\n', pos == 0 ? 0 : pos - 1);
