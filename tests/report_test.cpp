@@ -24,8 +24,8 @@
 #include "plugin/api/deviation_split.hpp"
 #include "plugin/api/exports.hpp"
 #include "plugin/api/job.hpp"
-#include "plugin/api/report.hpp"
 #include "plugin/api/robots.hpp"
+#include "plugin/report/hole_report.hpp"
 #include "support/test_support.hpp"
 
 namespace roprec {

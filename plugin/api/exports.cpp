@@ -8,7 +8,7 @@
 #include "compensator/precision/parallel.hpp"
 #include "plugin/api/job.hpp"
 #include "plugin/api/milling_stability.hpp"
-#include "plugin/api/report.hpp"
+#include "plugin/api/report_input.hpp"
 #include "plugin/api/robots.hpp"
 
 namespace roprec::api {
@@ -508,7 +508,7 @@ std::string predictionReport(const PredictionResult& r) {
     rh.T_W_tcp = c.job.requests[i].T_W_tcp;
     in.holes.push_back(std::move(rh));
   }
-  addPartFrameAndSplit(in, c);  // report.hpp: part frame and the δrobot split (issue 14)
+  addPartFrameAndSplit(in, c);  // report_input.hpp: part frame and the δrobot split (issue 14)
   return renderReport(in);
 }
 
@@ -646,7 +646,7 @@ std::string compensationReport(const CompensationResult& r, const std::string& p
     }
     in.holes.push_back(rh);
   }
-  addPartFrameAndSplit(in, c);  // report.hpp: part frame and the δrobot split (issue 14)
+  addPartFrameAndSplit(in, c);  // report_input.hpp: part frame and the δrobot split (issue 14)
   return renderReport(in);
 }
 

@@ -8,8 +8,8 @@
 
 #include "compensator/support/c_format.hpp"
 #include "compensator/support/xml_escape.hpp"
-#include "plugin/api/report.hpp"
 #include "plugin/api/verify.hpp"
+#include "plugin/report/hole_report.hpp"
 
 namespace roprec::api {
 namespace {

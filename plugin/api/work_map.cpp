@@ -11,8 +11,8 @@
 #include "compensator/support/error.hpp"
 #include "compensator/support/xml_escape.hpp"
 #include "plugin/api/job.hpp"
-#include "plugin/api/report.hpp"
 #include "plugin/api/robot_compliance.hpp"
+#include "plugin/report/palette.hpp"
 
 namespace roprec::api {
 namespace {
@@ -286,8 +286,8 @@ void renderHeat(std::string& o, const WorkMap& map, const WorkMapLayer& layer, i
         const double v = q(p);
         tip += n1(v) + " \u00b5m \u00b7 " + verdictName(p.verdict) + " \u00b7 " + esc(p.config);
         o += "<rect class=\"c\" x=\"" + n1(x) + "\" y=\"" + n1(y) + "\" width=\"" + n1(cell) +
-             "\" height=\"" + n1(cell) + "\" fill=\"" + viridisHex(sc.t(v)) + "\"><title>" + tip +
-             "</title></rect>";
+             "\" height=\"" + n1(cell) + "\" fill=\"" + report::viridisHex(sc.t(v)) + "\"><title>" +
+             tip + "</title></rect>";
         if (p.config != dominant) {
           o += "<rect class=\"cfg\" x=\"" + n1(x + 1.5) + "\" y=\"" + n1(y + 1.5) + "\" width=\"" +
                n1(cell - 3) + "\" height=\"" + n1(cell - 3) + "\"/>";
@@ -342,7 +342,8 @@ void renderHeat(std::string& o, const WorkMap& map, const WorkMapLayer& layer, i
   const double by = kMT + ny * cell + 48, bw = cell * nx;
   for (int k = 0; k < 40; ++k) {
     o += "<rect x=\"" + n1(kML + bw * k / 40) + "\" y=\"" + n1(by) + "\" width=\"" +
-         n1(bw / 40 + 0.6) + "\" height=\"10\" fill=\"" + viridisHex((k + 0.5) / 40) + "\"/>";
+         n1(bw / 40 + 0.6) + "\" height=\"10\" fill=\"" + report::viridisHex((k + 0.5) / 40) +
+         "\"/>";
   }
   o += "<text x=\"" + n1(kML) + "\" y=\"" + n1(by + 24) + "\">" + n1(sc.lo) + "</text><text x=\"" +
        n1(kML + bw) + "\" y=\"" + n1(by + 24) + "\" text-anchor=\"end\">" + n1(sc.hi) +

@@ -1,5 +1,5 @@
 #pragma once
-/// \file report.hpp
+/// \file hole_report.hpp
 /// The self-contained HTML report of `roprec predict` (and of `roprec compensate`, which adds
 /// before/after maps): inline SVG deviation maps over the work area like Ferreras-Higuero et al.
 /// (RCIM 2020) Fig. 13–15 (δrobot, δwork and U_work coloured over the hole positions, wrist/arm
@@ -72,18 +72,7 @@ struct ReportInput {
 /// 20,000-hole report stays small and opens quickly (docs/reports.md §4).
 inline constexpr size_t kReportAggregateAbove = 2000;
 
-struct PredictionContext;
-
-/// The reports' colour map (viridis, see report.cpp) at t ∈ [0, 1] (clamped; NaN → 0) as "#rrggbb".
-std::string viridisHex(double t);
-
-/// Fills what the report derives from the job: the part frame (the program frame every hole
-/// shares, else the cell's <workobject>, named after it) and each predicted hole's δrobot split
-/// (splitRobotDeviations with the context's model and tool). Call after `in.holes` has one entry
-/// per context.job.requests entry, in that order. Throws std::invalid_argument otherwise.
-void addPartFrameAndSplit(ReportInput& in, const PredictionContext& c);
-
-/// The whole HTML document.
+/// The whole HTML document (plugin/api/report_input.hpp fills the part frame and the split).
 std::string renderReport(const ReportInput& in);
 
 /// The reports' inline table script (no network, no library): a click on a head of the table

@@ -1,0 +1,17 @@
+#pragma once
+/// \file report_input.hpp
+/// What the hole report (plugin/report/hole_report.hpp) derives from the job before it is drawn.
+
+#include "plugin/report/hole_report.hpp"
+
+namespace roprec::api {
+
+struct PredictionContext;
+
+/// Fills what the report derives from the job: the part frame (the program frame every hole
+/// shares, else the cell's <workobject>, named after it) and each predicted hole's δrobot split
+/// (splitRobotDeviations with the context's model and tool). Call after `in.holes` has one entry
+/// per context.job.requests entry, in that order. Throws std::invalid_argument otherwise.
+void addPartFrameAndSplit(ReportInput& in, const PredictionContext& c);
+
+}  // namespace roprec::api

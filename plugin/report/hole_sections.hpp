@@ -1,0 +1,51 @@
+#pragma once
+/// \file hole_sections.hpp
+/// The sections of the hole report (renderReport, hole_report.hpp), one file each: the header and
+/// verdicts (hole_report.cpp), the deviation maps (hole_maps.cpp), the uncertainty budget
+/// (hole_budget.cpp) and the per-hole table (hole_table.cpp). Internal to plugin/report.
+
+#include <string>
+#include <vector>
+
+#include "plugin/report/hole_report.hpp"
+#include "plugin/report/html.hpp"
+
+namespace roprec::report {
+
+using api::ReportHole;
+using api::ReportInput;
+
+/// One hole as the sections show it: its position and drilling axis in the part frame (mm), and
+/// whether the robot changed its IK branch since the previous predicted hole.
+struct HoleView {
+  const ReportHole* rh{nullptr};
+  const HolePrediction* p{nullptr};
+  Vec3 pos_mm{Vec3::Zero()};  ///< part frame
+  Vec3 axis{Vec3::UnitZ()};   ///< part frame
+  bool ok{false};
+  bool config_change{false};
+  int prev_branch{-1};
+};
+
+/// One view per hole, in order. Throws std::invalid_argument for a hole without a prediction.
+std::vector<HoleView> holeViews(const ReportInput& in);
+
+/// The verdict a hole ends with: after compensation when it was compensated, else as predicted.
+Verdict finalVerdict(const HoleView& h);
+/// The hole conforms in the end (the table's "pass" rows).
+bool passes(const HoleView& h);
+/// "1 hole", "2 holes".
+std::string plural(long n, const char* one, const char* many);
+/// part / whole in %, 0 when whole ≤ 0.
+double pct(double part, double whole);
+
+void renderMaps(Html& h, const ReportInput& in, const std::vector<HoleView>& hv);
+void renderBudget(Html& h, const std::vector<HoleView>& hv);
+void renderTable(Html& h, const ReportInput& in, const std::vector<HoleView>& hv);
+
+/// The reports' stylesheet and table scripts (report_assets.cpp).
+extern const char* const kReportCss;
+extern const char* const kTableScript;
+extern const char* const kPagedTableScript;
+
+}  // namespace roprec::report

@@ -1,0 +1,428 @@
+/// \file hole_table.cpp
+/// The hole report's per-hole table (hole_sections.hpp): one row per hole in program order —
+/// verdict, e⊥, U₉₅, δrobot with its split, δmach, every budget term, the posture (flags, IK
+/// branch, joints as the controller shows them), the machining-center time and, after
+/// compensation, the offset applied and the verdict after. Large jobs keep their rows in a script
+/// array and show a page at a time (docs/reports.md §4).
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+
+#include "compensator/robot/robot_card.hpp"
+#include "compensator/support/str_cat.hpp"
+#include "plugin/report/hole_sections.hpp"
+#include "plugin/report/palette.hpp"
+
+namespace roprec::report {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr size_t kTableRowsPerPage = 200;  ///< rows a page of a large job's table
+
+struct Column {
+  std::string head;  ///< markup
+  std::string unit;  ///< shown under the head
+  bool text{false};  ///< sorts as text, left-aligned
+};
+
+/// What every row reads: the report, the budget terms' order and which optional columns exist.
+struct TableLayout {
+  const ReportInput& in;
+  std::vector<std::string> terms;  ///< budget terms, first-seen order over the predicted holes
+  bool has_split{false};           ///< the δrobot split columns
+  bool large{false};               ///< rows in a script array, a page at a time
+};
+
+std::vector<std::string> budgetNames(const std::vector<HoleView>& hv) {
+  std::vector<std::string> names;
+  for (const HoleView& h : hv) {
+    if (!h.ok) continue;
+    for (const BudgetTerm& b : h.p->budget) {
+      const std::string n = b.name ? b.name : "";
+      if (std::find(names.begin(), names.end(), n) == names.end()) names.push_back(n);
+    }
+  }
+  return names;
+}
+
+const char* shortTerm(const std::string& name) {
+  static constexpr std::array<std::array<const char*, 2>, 7> kShort{{
+      {"robot_repeatability", "u repeat."},
+      {"robot_absolute_accuracy", "u abs. acc."},
+      {"robot_deflection_model", "u defl. model"},
+      {"robot_deflection_process_force", "u defl. force"},
+      {"mach_axis", "u axis"},
+      {"mach_runout", "u runout"},
+      {"mach_tool_deflection", "u tool defl."},
+  }};
+  for (const auto& s : kShort) {
+    if (name == s[0]) return s[1];
+  }
+  return nullptr;
+}
+
+// ------------------------------------------------------------------ head
+
+std::vector<Column> columns(const TableLayout& t) {
+  std::vector<Column> cols{{"#", "", false},
+                           {"Hole", "", true},
+                           {t.in.compensation ? "Verdict before" : "Verdict", "", true},
+                           {"e\u22a5", "\u00b5m"},
+                           {"U<sub>95</sub>", "\u00b5m"},
+                           {"e\u22a5 + U", "\u00b5m"},
+                           {"t/2", "\u00b5m"},
+                           {"|\u03b4robot|", "\u00b5m"}};
+  if (t.has_split) {
+    for (const char* part : {"gravity", "tool weight", "process", "controller"})
+      cols.push_back({std::string("\u2192 ") + part, "\u00b5m"});
+  }
+  for (const char* c : {"\u03b4robot x", "\u03b4robot y", "\u03b4robot z", "\u03b4mach x",
+                        "\u03b4mach y", "\u03b4mach z"})
+    cols.push_back({c, "\u00b5m"});
+  cols.push_back({"tilt", "\u00b5rad"});
+  for (const std::string& term : t.terms) {
+    const char* sh = shortTerm(term);
+    cols.push_back({sh ? std::string(sh) : esc(term), "\u00b5m"});
+  }
+  cols.push_back({"U<sub>robot</sub>", "\u00b5m"});
+  cols.push_back({"U<sub>mach</sub>", "\u00b5m"});
+  cols.push_back({"\u2300", "mm"});
+  cols.push_back({"Config", "", true});
+  cols.push_back({"Br.", ""});
+  const std::string jconv = t.in.card != nullptr ? "deg, ctrl" : "deg, URDF";
+  for (int j = 1; j <= 6; ++j) cols.push_back({"J" + std::to_string(j), jconv});
+  cols.push_back({"MC", "s"});
+  if (t.in.compensation) {
+    for (const char* c : {"\u0394x", "\u0394y", "\u0394z", "|\u0394p|"}) cols.push_back({c, "mm"});
+    cols.push_back({"\u0394rot", "deg"});
+    cols.push_back({"rot. about axis", "deg"});
+    cols.push_back({"Why rotated", "", true});
+    cols.push_back({"Config before \u2192 after", "", true});
+    cols.push_back({"Why config changed", "", true});
+    cols.push_back({"Verdict after", "", true});
+    cols.push_back({"Residual", "\u00b5m"});
+  }
+  return cols;
+}
+
+void renderHead(Html& h, const std::vector<Column>& cols) {
+  h.markup("<thead><tr>");
+  for (size_t c = 0; c < cols.size(); ++c) {
+    std::vector<Attr> a;
+    if (c == 0) a.emplace_back("class", "c0");
+    if (c == 1) a.emplace_back("class", "l c1");
+    if (c > 1 && cols[c].text) a.emplace_back("class", "l");
+    if (cols[c].text) a.emplace_back("data-t", "1");
+    h.open("th", a).markup(cols[c].head);
+    if (!cols[c].unit.empty()) h.markup("<br>").markupElement("small", {}, cols[c].unit);
+    h.close("th");
+  }
+  h.markup("</tr></thead>");
+}
+
+/// The table note on the joint convention (the J columns' unit line says "ctrl" or "URDF").
+std::string jointConventionText(const ReportInput& in) {
+  if (in.card == nullptr) return "Joints J1\u2013J6: motor-side command, URDF convention.";
+  std::string s = "Joints J1\u2013J6: motor-side command as the " +
+                  esc(vendorName(in.card->vendor)) +
+                  " controller shows it (\u03b8<sub>ctrl</sub> = sign\u00b7\u03b8<sub>URDF</sub> "
+                  "+ offset";
+  if (in.card->j23_coupling != 0.0) {
+    s += "; J3<sub>ctrl</sub> = J3<sub>URDF</sub> " +
+         std::string(in.card->j23_coupling < 0 ? "\u2212 " : "+ ") +
+         (std::fabs(in.card->j23_coupling) == 1.0
+              ? ""
+              : num(std::fabs(in.card->j23_coupling), 3) + "\u00b7") +
+         "J2<sub>URDF</sub>";
+  }
+  return s + ").";
+}
+
+void renderNote(Html& h, const TableLayout& t) {
+  h.open("p", {{"class", "note"}})
+      .markup(
+          "In program order; click a column head to sort, tick \u201cnot conforming only\u201d "
+          "to filter. e\u22a5 = |\u03b4work \u22a5 hole axis|, U = U<sub>95</sub> (k as "
+          "above): the hole conforms when e\u22a5 + U \u2264 t/2. Deviations in the robot base "
+          "frame. ");
+  if (t.has_split) {
+    h.markup(
+        "Why: the \u2192 columns split |\u03b4robot| into the parts caused by the arm's own "
+        "weight, the tool weight, the process load and the controller reference (its "
+        "gravity compensation or mastering offset), each part's component along \u03b4robot, "
+        "so the four add up to |\u03b4robot| (hover for the part's vector; docs/reports.md "
+        "\u00a73). ");
+  }
+  h.markup("u = per-axis standard uncertainty of each budget term. ")
+      .markup(jointConventionText(t.in))
+      .markup(" A ringed branch marks a configuration change from the previous hole.");
+  if (t.in.compensation) {
+    h.markup(
+        " \u0394 = the offset applied to the target (programmed \u2212 original, base frame).");
+  }
+  h.close("p");
+}
+
+// ------------------------------------------------------------------ cells
+
+void numCell(Html& h, double v, int decimals) { h.element("td", {}, num(v, decimals)); }
+void dashCells(Html& h, int n) {
+  for (int i = 0; i < n; ++i) h.element("td", {}, kDash);
+}
+void optionalCell(Html& h, const std::optional<double>& v, int decimals) {
+  if (v) {
+    numCell(h, *v, decimals);
+  } else {
+    dashCells(h, 1);
+  }
+}
+
+/// A text cell with a reason (dash when there is none).
+void reasonCell(Html& h, const std::string& reason) {
+  h.element("td", {{"class", "l why"}}, reason.empty() ? kDash : reason);
+}
+
+void verdictBadge(Html& h, Verdict v) {
+  const VerdictStyle& vs = styleOf(v);
+  h.open("td", {{"class", "l"}})
+      .element("span", {{"class", std::string("badge b-") + vs.cls}, {"title", verdictName(v)}},
+               vs.badge)
+      .close("td");
+}
+
+/// δrobot split into its four causes, each part's component along δrobot (µm); small tables
+/// carry the part's vector as a tooltip.
+void splitCells(Html& h, const TableLayout& t, const HoleView& hole) {
+  if (!hole.rh->split) return dashCells(h, 4);
+  const HolePrediction& p = *hole.p;
+  const api::DeviationSplit& s = *hole.rh->split;
+  const double n = p.d_robot.norm();
+  const Vec3 u = n > 0 ? Vec3(p.d_robot / n) : Vec3::Zero();
+  for (const Vec3* part : {&s.gravity, &s.tool, &s.process, &s.controller}) {
+    const Vec3 um = *part * 1e6;
+    if (t.large) {  // the vectors only where the table is small (bytes, load time)
+      numCell(h, part->dot(u) * 1e6, 1);
+    } else {
+      h.element("td",
+                {{"title", "(" + num(um.x(), 1) + ", " + num(um.y(), 1) + ", " + num(um.z(), 1) +
+                               ") \u00b5m"}},
+                num(part->dot(u) * 1e6, 1));
+    }
+  }
+}
+
+/// e⊥, U, the verdict's sum, t/2, δrobot (and its split), δmach, the tilt, the budget terms and
+/// the expanded robot and process uncertainties of a predicted hole.
+void deviationCells(Html& h, const TableLayout& t, const HoleView& hole) {
+  const HolePrediction& p = *hole.p;
+  const double e = p.position_error * 1e6, U = p.U_work_exact * 1e6;
+  h.open("td").element("strong", {}, num(e, 1)).close("td");
+  for (const double v : {U, e + U, 0.5 * p.tolerance * 1e6, p.d_robot.norm() * 1e6})
+    numCell(h, v, 1);
+  if (t.has_split) splitCells(h, t, hole);
+  for (int k = 0; k < 3; ++k) numCell(h, p.d_robot[k] * 1e6, 1);
+  for (int k = 0; k < 3; ++k) numCell(h, p.d_mach[k] * 1e6, 1);
+  numCell(h, p.axis_tilt * 1e6, 1);
+  for (const std::string& term : t.terms) {
+    const auto it = std::find_if(p.budget.begin(), p.budget.end(), [&](const BudgetTerm& b) {
+      return term == (b.name ? b.name : "");
+    });
+    if (it == p.budget.end()) {
+      dashCells(h, 1);
+    } else {
+      numCell(h, it->u * 1e6, 2);
+    }
+  }
+  numCell(h, p.U_robot * 1e6, 1);
+  numCell(h, p.U_mach * 1e6, 1);
+}
+
+/// A hole that was not predicted: its reason over the deviation columns.
+void reasonSpan(Html& h, const TableLayout& t, const HolePrediction& p) {
+  const int span = 14 + (t.has_split ? 4 : 0) + static_cast<int>(t.terms.size());
+  h.element("td", {{"class", "reason"}, {"colspan", span}},
+            p.reason.empty() ? std::string(verdictName(p.verdict)) : p.reason);
+}
+
+/// Diameter, configuration flags, IK branch (ringed on a change) and the joints.
+void postureCells(Html& h, const ReportInput& in, const HoleView& hole) {
+  const HolePrediction& p = *hole.p;
+  numCell(h, p.diameter * 1e3, 2);
+  h.element("td", {{"class", "l"}}, p.config.empty() ? kDash : p.config);
+  const bool has_joints = hole.ok || !p.config.empty();
+  if (hole.config_change) {
+    h.open("td", {{"class", "chg"},
+                  {"title", "configuration change: branch " + std::to_string(hole.prev_branch) +
+                                " \u2192 " + std::to_string(p.branch)}})
+        .element("b", {}, std::to_string(p.branch))
+        .close("td");
+  } else {
+    h.element("td", {}, has_joints ? std::to_string(p.branch) : std::string(kDash));
+  }
+  const Vec6 q = in.card != nullptr ? toControllerJoints(*in.card, p.joints) : p.joints;
+  for (int j = 0; j < 6; ++j) {
+    if (has_joints) {
+      numCell(h, q[j] * 180.0 / kPi, 1);
+    } else {
+      dashCells(h, 1);
+    }
+  }
+}
+
+/// The offset applied to the target: programmed − original position (mm, base frame), the angle
+/// of the rotation between them (deg), the rotation about the drill axis and the flags before →
+/// after, each change with its reason.
+void offsetCells(Html& h, const ReportHole& rh, const HolePrediction& p) {
+  const Vec3 dp_mm = (rh.T_W_programmed->translation() - rh.T_W_tcp.translation()) * 1e3;
+  const Eigen::AngleAxisd aa(rh.T_W_tcp.linear().transpose() * rh.T_W_programmed->linear());
+  for (int k = 0; k < 3; ++k) numCell(h, dp_mm[k], 3);
+  numCell(h, dp_mm.norm(), 3);
+  numCell(h, std::abs(aa.angle()) * 180.0 / kPi, 3);
+  const std::string& cb = rh.config_before.empty() ? p.config : rh.config_before;
+  const std::string before = cb.empty() ? std::string(kDash) : cb;
+  const std::string after = rh.config_after ? *rh.config_after : before;
+  optionalCell(h, rh.rotation_about_axis_deg, 2);
+  reasonCell(h, rh.rotation_reason);
+  h.element("td", {{"class", after != before ? "l cfgchg" : "l"}}, before + " \u2192 " + after);
+  reasonCell(h, rh.config_reason);
+}
+
+void compensationCells(Html& h, const HoleView& hole) {
+  const ReportHole& rh = *hole.rh;
+  if (rh.T_W_programmed) {
+    offsetCells(h, rh, *hole.p);
+  } else {
+    dashCells(h, 5);
+    optionalCell(h, rh.rotation_about_axis_deg, 2);
+    reasonCell(h, rh.rotation_reason);
+    h.element("td", {{"class", "l"}}, kDash);
+    reasonCell(h, rh.config_reason);
+  }
+  verdictBadge(h, finalVerdict(hole));
+  optionalCell(h, rh.residual_um, 1);
+}
+
+std::string rowOf(const TableLayout& t, const HoleView& hole, size_t i) {
+  const HolePrediction& p = *hole.p;
+  std::string row;
+  Html h(row);
+  if (passes(hole)) {
+    h.open("tr", {{"class", "pass"}});
+  } else {
+    h.open("tr");
+  }
+  h.element("td", {{"class", "c0"}}, std::to_string(i + 1))
+      .element("td", {{"class", "id c1"}}, p.id);
+  verdictBadge(h, p.verdict);
+  if (hole.ok) {
+    deviationCells(h, t, hole);
+  } else {
+    reasonSpan(h, t, p);
+  }
+  postureCells(h, t.in, hole);
+  numCell(h, p.mc_time, 2);
+  if (t.in.compensation) compensationCells(h, hole);
+  h.close("tr");
+  return row;
+}
+
+// ------------------------------------------------------------------ large jobs
+
+/// A string as a JavaScript string literal (no "</" so it cannot end the script element).
+std::string jsString(std::string_view v) {
+  std::string s = "\"";
+  for (size_t i = 0; i < v.size(); ++i) {
+    const char c = v[i];
+    if (c == '\\' || c == '"') s += '\\';
+    if (c == '/' && i > 0 && v[i - 1] == '<') s += '\\';
+    if (c == '\n') {
+      s += "\\n";
+      continue;
+    }
+    if (c == '\x1f') {
+      s += "\\x1f";
+      continue;
+    }
+    s += c;
+  }
+  return s + "\"";
+}
+
+/// "</td><td" → the unit separator (JS "\x1f"): the rows are half the bytes; the script joins
+/// them back for the page it shows.
+std::string packRow(const std::string& row) {
+  std::string packed;
+  packed.reserve(row.size());
+  for (size_t k = 0; k < row.size();) {
+    if (row.compare(k, 8, "</td><td") == 0) {
+      packed += '\x1f';
+      k += 8;
+    } else {
+      packed += row[k++];
+    }
+  }
+  return packed;
+}
+
+/// The rows: in the table body, or (large jobs) packed into the script array `rows_js`.
+void renderRows(Html& h, const TableLayout& t, const std::vector<HoleView>& hv,
+                std::string& rows_js) {
+  for (size_t i = 0; i < hv.size(); ++i) {
+    const std::string row = rowOf(t, hv[i], i);
+    if (!t.large) {
+      h.markup(row);
+      continue;
+    }
+    if (!rows_js.empty()) rows_js += ",\n";
+    rows_js += jsString(packRow(row));
+  }
+}
+
+void renderScript(Html& h, const TableLayout& t, const std::string& rows_js) {
+  h.open("script");
+  if (t.large) {
+    h.markup("var ROPREC_ROWS=[").markup(rows_js).markup("];").markup(kPagedTableScript);
+  } else {
+    h.markup(kTableScript);
+  }
+  h.close("script");
+}
+
+}  // namespace
+
+void renderTable(Html& h, const ReportInput& in, const std::vector<HoleView>& hv) {
+  const TableLayout t{
+      in, budgetNames(hv),
+      std::any_of(hv.begin(), hv.end(), [](const HoleView& v) { return v.rh->split.has_value(); }),
+      hv.size() > api::kReportAggregateAbove};
+  const long n_fail =
+      std::count_if(hv.begin(), hv.end(), [](const HoleView& v) { return !passes(v); });
+  h.open("section", {{"id", "holes"}}).element("h2", {}, "Per-hole results");
+  renderNote(h, t);
+  if (t.large) {
+    h.markup(strCat("<p><strong>", std::to_string(hv.size()), " holes: the table shows ",
+                    std::to_string(kTableRowsPerPage),
+                    " rows a page (sorting and filtering act on every hole).</strong></p>"));
+  }
+  h.open("label", {{"class", "filter"}})
+      .open("input", {{"type", "checkbox"}, {"id", "failonly"}})
+      .markup(" not conforming only (" + std::to_string(n_fail) + ")")
+      .close("label");
+  h.open("div", {{"class", "scroll"}}).open("table", {{"class", "holes"}, {"id", "holetable"}});
+  renderHead(h, columns(t));
+  h.open("tbody");
+  std::string rows_js;
+  renderRows(h, t, hv, rows_js);
+  h.close("tbody").close("table").close("div");
+  if (t.large) {
+    h.markup(
+        "<div class=\"pager\" id=\"pager\"><button class=\"prev\">\u25c0 previous</button> "
+        "<span></span> <button class=\"next\">next \u25b6</button></div>");
+  }
+  h.close("section");
+  renderScript(h, t, rows_js);
+}
+
+}  // namespace roprec::report
