@@ -11,7 +11,7 @@
 
 #include "compensator/support/error.hpp"
 #include "plugin/api/json.hpp"
-#include "plugin/api/work_map.hpp"
+#include "plugin/report/work_map_report.hpp"
 #include "support/test_support.hpp"
 
 namespace roprec {

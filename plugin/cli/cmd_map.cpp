@@ -3,8 +3,8 @@
 
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
-#include "plugin/api/work_map.hpp"
 #include "plugin/cli/cli.hpp"
+#include "plugin/report/work_map_report.hpp"
 
 namespace roprec::cli {
 namespace {
