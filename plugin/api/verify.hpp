@@ -108,9 +108,7 @@ Json verifyJson(const VerifyResult& r);
 /// condition number, and `written` (the paths given).
 Json verifySummaryJson(const VerifyResult& r, const std::vector<std::string>& written);
 
-/// The self-contained HTML report (inline SVG; deterministic bytes): measured vs predicted
-/// arrows per face, residual map, statistics, identified parameters with their uncertainties.
-std::string verifyReport(const VerifyResult& r);
+// The HTML report: plugin/report/verify_report.hpp.
 
 /// The new robot card (card_writer.hpp): the cell's card with each identified joint's stiffness
 /// and source replaced (`identified: N holes from MEASURED_FILE_NAME by roprec verify (σ = …)`);

@@ -5,8 +5,8 @@
 
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
-#include "plugin/api/verify.hpp"
 #include "plugin/cli/cli.hpp"
+#include "plugin/report/verify_report.hpp"
 
 namespace roprec::cli {
 namespace {
