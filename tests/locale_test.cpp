@@ -16,11 +16,11 @@
 
 #include "compensator/robot/robot_card.hpp"
 #include "compensator/support/xml_node.hpp"
-#include "plugin/api/exports.hpp"
 #include "plugin/api/job.hpp"
 #include "plugin/api/json.hpp"
 #include "plugin/api/robot_setup.hpp"
 #include "plugin/api/robots.hpp"
+#include "plugin/report/exports.hpp"
 #include "postproc/program.hpp"
 #include "tests/support/test_support.hpp"
 

@@ -22,9 +22,9 @@
 #include "compensator/precision/prediction.hpp"
 #include "compensator/robot/robot_card.hpp"
 #include "plugin/api/deviation_split.hpp"
-#include "plugin/api/exports.hpp"
 #include "plugin/api/job.hpp"
 #include "plugin/api/robots.hpp"
+#include "plugin/report/exports.hpp"
 #include "plugin/report/hole_report.hpp"
 #include "support/test_support.hpp"
 

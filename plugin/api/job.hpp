@@ -207,5 +207,5 @@ std::vector<std::string> writeCompensatedProgram(
 
 }  // namespace roprec::api
 
-#include "plugin/api/exports.hpp"  // IWYU pragma: export
-#include "plugin/api/session.hpp"  // IWYU pragma: export
+#include "plugin/api/session.hpp"     // IWYU pragma: export
+#include "plugin/report/exports.hpp"  // IWYU pragma: export

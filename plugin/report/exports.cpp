@@ -1,3 +1,4 @@
+/// \file exports.cpp
 /// The texts a job writes: prediction JSON and report, corrected-target exports (CSV/JSON),
 /// compensation report, milling path export (docs/contract.md).
 #include <cmath>
