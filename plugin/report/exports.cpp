@@ -234,6 +234,74 @@ void uncertaintyTarget(JsonWriter& w, const HolePrediction& u) {
   w.endObject();
 }
 
+/// "before": the deviation and the verdict of the hole as programmed.
+void targetBefore(JsonWriter& w, const HoleCompensation& h) {
+  w.key("before");
+  w.beginObject();
+  w.key("deviation_um");
+  w.beginObject();
+  w.key("translation");
+  w.numbers(h.before.d_work * 1e6, 3);
+  w.key("rotation_urad");
+  w.numbers(h.before.d_rot * 1e6, 3);
+  w.endObject();
+  w.key("verdict");
+  w.str(verdictName(h.before.verdict));
+  w.endObject();
+}
+
+/// "programmed": the compensated pose, its joints and flags.
+void targetProgrammed(JsonWriter& w, const CompensationResult& r, const HoleCompensation& h) {
+  w.key("programmed");
+  w.beginObject();
+  poseContract(w, h.T_programmed);
+  w.key("joints_deg");
+  w.numbers(h.theta_cmd / kDeg, 6);
+  w.key("controller_joints_deg");
+  w.numbers(toControllerJoints(r.context.robot.card, h.theta_cmd) / kDeg, 6);
+  w.key("config");
+  w.str(h.config_text);
+  w.endObject();
+}
+
+/// What a compensated hole adds: the programmed target, the rotation about the drill axis, the
+/// residual, whether the branch and flags changed and why, stiffest's gain, a note.
+void targetCompensation(JsonWriter& w, const CompensationResult& r, const HoleCompensation& h,
+                        const Pose& N) {
+  targetProgrammed(w, r, h);
+  w.key("rotation_about_axis_deg");
+  w.number(h.psi / kDeg, 4);
+  w.key("residual_um");
+  w.number(perpNorm(h.residual, N.linear().col(2)) * 1e6, 4);
+  w.key("residual_vector_um");
+  w.numbers(h.residual * 1e6, 4);
+  w.key("branch_changed");
+  w.boolean(h.branch_changed);
+  // issue 14: why the rotation about the drill axis / the flags changed, stiffest's gain
+  if (!h.psi_reason.empty()) {
+    w.key("rotation_reason");
+    w.str(h.psi_reason);
+  }
+  w.key("config_before");
+  w.str(h.config_before);
+  w.key("config_changed");
+  w.boolean(h.config_changed);
+  if (!h.config_reason.empty()) {
+    w.key("config_reason");
+    w.str(h.config_reason);
+  }
+  if (std::isfinite(h.U_work_keep)) {
+    w.key("U_work_keep_um");
+    w.number(h.U_work_keep * 1e6, 3);
+    w.key("U_work_gain_um");
+    w.number((h.U_work_keep - h.after.U_work_exact) * 1e6, 3);
+  }
+  if (!h.note.empty()) {
+    w.key("note");
+    w.str(h.note);
+  }
+}
+
 void targetJson(JsonWriter& w, const CompensationResult& r, size_t i) {
   const HoleCompensation& h = r.holes[i];
   w.beginObject();
@@ -250,61 +318,8 @@ void targetJson(JsonWriter& w, const CompensationResult& r, size_t i) {
   w.beginObject();
   poseContract(w, N);
   w.endObject();
-  w.key("before");
-  w.beginObject();
-  w.key("deviation_um");
-  w.beginObject();
-  w.key("translation");
-  w.numbers(h.before.d_work * 1e6, 3);
-  w.key("rotation_urad");
-  w.numbers(h.before.d_rot * 1e6, 3);
-  w.endObject();
-  w.key("verdict");
-  w.str(verdictName(h.before.verdict));
-  w.endObject();
-  if (h.ok) {
-    w.key("programmed");
-    w.beginObject();
-    poseContract(w, h.T_programmed);
-    w.key("joints_deg");
-    w.numbers(h.theta_cmd / kDeg, 6);
-    w.key("controller_joints_deg");
-    w.numbers(toControllerJoints(r.context.robot.card, h.theta_cmd) / kDeg, 6);
-    w.key("config");
-    w.str(h.config_text);
-    w.endObject();
-    w.key("rotation_about_axis_deg");
-    w.number(h.psi / kDeg, 4);
-    w.key("residual_um");
-    w.number(perpNorm(h.residual, N.linear().col(2)) * 1e6, 4);
-    w.key("residual_vector_um");
-    w.numbers(h.residual * 1e6, 4);
-    w.key("branch_changed");
-    w.boolean(h.branch_changed);
-    // issue 14: why the rotation about the drill axis / the flags changed, stiffest's gain
-    if (!h.psi_reason.empty()) {
-      w.key("rotation_reason");
-      w.str(h.psi_reason);
-    }
-    w.key("config_before");
-    w.str(h.config_before);
-    w.key("config_changed");
-    w.boolean(h.config_changed);
-    if (!h.config_reason.empty()) {
-      w.key("config_reason");
-      w.str(h.config_reason);
-    }
-    if (std::isfinite(h.U_work_keep)) {
-      w.key("U_work_keep_um");
-      w.number(h.U_work_keep * 1e6, 3);
-      w.key("U_work_gain_um");
-      w.number((h.U_work_keep - h.after.U_work_exact) * 1e6, 3);
-    }
-    if (!h.note.empty()) {
-      w.key("note");
-      w.str(h.note);
-    }
-  }
+  targetBefore(w, h);
+  if (h.ok) targetCompensation(w, r, h, N);
   const HolePrediction& u = h.ok ? h.after : h.before;
   w.key("uncertainty_um");
   uncertaintyTarget(w, u);
@@ -342,22 +357,8 @@ void targetsJson(const CompensationResult& r, const std::string& program_path,
   sink(w.out());
 }
 
-/// One hole of the prediction JSON: the same members, in the same order, as holeJson()
-/// (prediction_setup.cpp, the tree the C and Python hosts build; tests/streaming_output_test.cpp
-/// compares the two byte for byte).
-void predictionHole(JsonWriter& w, const HolePrediction& h, const HoleRequest& r,
-                    const RobotCard& card) {
-  w.beginObject();
-  w.key("id");
-  w.str(h.id);
-  if (r.line > 0) {
-    w.key("line");
-    w.integer(r.line);
-  }
-  if (!r.evidence.empty()) {
-    w.key("evidence");
-    w.str(r.evidence);
-  }
+/// "nominal": the hole's frame (position, surface, bottom, orientation, axis).
+void predictionNominal(JsonWriter& w, const HoleRequest& r) {
   w.key("nominal");
   w.beginObject();
   w.key("position_mm");
@@ -374,92 +375,136 @@ void predictionHole(JsonWriter& w, const HolePrediction& h, const HoleRequest& r
   w.key("axis");
   w.numbers(r.T_W_tcp.linear().col(2), 9);
   w.endObject();
+}
+
+/// The posture the IK found: joints (URDF and controller), flags, branch.
+void predictionPosture(JsonWriter& w, const HolePrediction& h, const RobotCard& card) {
+  w.key("joints_deg");
+  w.numbers(h.joints / kDeg, 6);
+  w.key("controller_joints_deg");
+  w.numbers(toControllerJoints(card, h.joints) / kDeg, 6);
+  if (!h.config.empty()) {
+    w.key("config");
+    w.str(h.config);
+  }
+  w.key("branch");
+  w.integer(h.branch);
+}
+
+/// "deviation_um" of a predicted hole.
+void predictionDeviation(JsonWriter& w, const HolePrediction& h) {
+  w.key("deviation_um");
+  w.beginObject();
+  w.key("robot");
+  w.numbers(h.d_robot * 1e6, 3);
+  w.key("mach");
+  w.numbers(h.d_mach * 1e6, 3);
+  w.key("work");
+  w.numbers(h.d_work * 1e6, 3);
+  w.key("robot_rotation_urad");
+  w.numbers(h.d_rot * 1e6, 3);
+  w.key("work_tool_xy");
+  w.numbers(h.e_tool * 1e6, 3);
+  w.key("position_error");
+  w.number(h.position_error * 1e6, 3);
+  w.key("axis_tilt_urad");
+  w.number(h.axis_tilt * 1e6, 3);
+  if (h.nominal_axis_error) {
+    w.key("from_nominal_axis");
+    w.number(*h.nominal_axis_error * 1e6, 4);
+  }
+  w.endObject();
+}
+
+/// "standard_per_axis": every budget term's standard uncertainty; "term_sources" when known.
+void budgetTerms(JsonWriter& w, const HolePrediction& h) {
+  w.key("standard_per_axis");
+  w.beginObject();
+  bool any_source = false;
+  for (const BudgetTerm& t : h.budget) {
+    w.key(t.name);
+    w.number(t.u * 1e6, 3);
+    any_source |= t.source != nullptr;
+  }
+  w.endObject();
+  if (any_source) {
+    w.key("term_sources");
+    w.beginObject();
+    for (const BudgetTerm& t : h.budget) {
+      if (t.source == nullptr) continue;
+      w.key(t.name);
+      w.str(t.source);
+    }
+    w.endObject();
+  }
+}
+
+/// "uncertainty_um" of a predicted hole: expanded, per term, the process shares.
+void predictionUncertainty(JsonWriter& w, const HolePrediction& h) {
+  w.key("uncertainty_um");
+  w.beginObject();
+  w.key("U_robot");
+  w.number(h.U_robot * 1e6, 3);
+  w.key("U_mach");
+  w.number(h.U_mach * 1e6, 3);
+  w.key("U_work");
+  w.number(h.U_work * 1e6, 3);
+  w.key("k");
+  w.number(h.k, 4);
+  w.key("coverage");
+  w.str("2-D radial 95 % (Rayleigh)");
+  w.key("U_work_anisotropic");
+  w.number(h.U_work_exact * 1e6, 3);
+  budgetTerms(w, h);
+  w.key("process_share");
+  w.number(h.process_share, 4);
+  w.key("process_force_share");
+  w.number(h.process_force_share, 4);
+  w.endObject();
+}
+
+/// The process force and the equilibrium of the deflection.
+void predictionLoad(JsonWriter& w, const HolePrediction& h) {
+  w.key("process_force_N");
+  w.numbers(h.force_base, 2);
+  w.key("equilibrium");
+  w.beginObject();
+  w.key("converged");
+  w.boolean(h.deflection.converged);
+  w.key("iterations");
+  w.integer(h.deflection.iterations);
+  w.endObject();
+}
+
+/// One hole of the prediction JSON: the same members, in the same order, as holeJson()
+/// (prediction_setup.cpp, the tree the C and Python hosts build; tests/streaming_output_test.cpp
+/// compares the two byte for byte).
+void predictionHole(JsonWriter& w, const HolePrediction& h, const HoleRequest& r,
+                    const RobotCard& card) {
+  w.beginObject();
+  w.key("id");
+  w.str(h.id);
+  if (r.line > 0) {
+    w.key("line");
+    w.integer(r.line);
+  }
+  if (!r.evidence.empty()) {
+    w.key("evidence");
+    w.str(r.evidence);
+  }
+  predictionNominal(w, r);
   w.key("diameter_mm");
   w.number(h.diameter * 1e3, 3);
   w.key("depth_mm");
   w.number(h.depth * 1e3, 3);
   if (h.status == HoleStatus::kOk || h.status == HoleStatus::kNotConverged ||
       h.status == HoleStatus::kSingular) {
-    w.key("joints_deg");
-    w.numbers(h.joints / kDeg, 6);
-    w.key("controller_joints_deg");
-    w.numbers(toControllerJoints(card, h.joints) / kDeg, 6);
-    if (!h.config.empty()) {
-      w.key("config");
-      w.str(h.config);
-    }
-    w.key("branch");
-    w.integer(h.branch);
+    predictionPosture(w, h, card);
   }
   if (h.status == HoleStatus::kOk) {
-    w.key("deviation_um");
-    w.beginObject();
-    w.key("robot");
-    w.numbers(h.d_robot * 1e6, 3);
-    w.key("mach");
-    w.numbers(h.d_mach * 1e6, 3);
-    w.key("work");
-    w.numbers(h.d_work * 1e6, 3);
-    w.key("robot_rotation_urad");
-    w.numbers(h.d_rot * 1e6, 3);
-    w.key("work_tool_xy");
-    w.numbers(h.e_tool * 1e6, 3);
-    w.key("position_error");
-    w.number(h.position_error * 1e6, 3);
-    w.key("axis_tilt_urad");
-    w.number(h.axis_tilt * 1e6, 3);
-    if (h.nominal_axis_error) {
-      w.key("from_nominal_axis");
-      w.number(*h.nominal_axis_error * 1e6, 4);
-    }
-    w.endObject();
-    w.key("uncertainty_um");
-    w.beginObject();
-    w.key("U_robot");
-    w.number(h.U_robot * 1e6, 3);
-    w.key("U_mach");
-    w.number(h.U_mach * 1e6, 3);
-    w.key("U_work");
-    w.number(h.U_work * 1e6, 3);
-    w.key("k");
-    w.number(h.k, 4);
-    w.key("coverage");
-    w.str("2-D radial 95 % (Rayleigh)");
-    w.key("U_work_anisotropic");
-    w.number(h.U_work_exact * 1e6, 3);
-    w.key("standard_per_axis");
-    w.beginObject();
-    bool any_source = false;
-    for (const BudgetTerm& t : h.budget) {
-      w.key(t.name);
-      w.number(t.u * 1e6, 3);
-      any_source |= t.source != nullptr;
-    }
-    w.endObject();
-    if (any_source) {
-      w.key("term_sources");
-      w.beginObject();
-      for (const BudgetTerm& t : h.budget) {
-        if (t.source == nullptr) continue;
-        w.key(t.name);
-        w.str(t.source);
-      }
-      w.endObject();
-    }
-    w.key("process_share");
-    w.number(h.process_share, 4);
-    w.key("process_force_share");
-    w.number(h.process_force_share, 4);
-    w.endObject();
-    w.key("process_force_N");
-    w.numbers(h.force_base, 2);
-    w.key("equilibrium");
-    w.beginObject();
-    w.key("converged");
-    w.boolean(h.deflection.converged);
-    w.key("iterations");
-    w.integer(h.deflection.iterations);
-    w.endObject();
+    predictionDeviation(w, h);
+    predictionUncertainty(w, h);
+    predictionLoad(w, h);
   }
   w.key("tolerance_mm");
   w.number(h.tolerance * 1e3, 4);
