@@ -1,7 +1,7 @@
-// The HTML report of `roprec predict` / `roprec compensate` (plugin/api/report.hpp): structure,
-// determinism, escaping, self-containedness, and a real headless-Chromium render whose screenshot
-// is decoded (own PNG + inflate reader, checked by the PNG CRC-32 and zlib Adler-32 of every
-// stream) and checked for a drawn map.
+// The HTML report of `roprec predict` / `roprec compensate` (plugin/report/hole_report.hpp):
+// structure, determinism, escaping, self-containedness, and a real headless-Chromium render whose
+// screenshot is decoded (own PNG + inflate reader, checked by the PNG CRC-32 and zlib Adler-32 of
+// every stream) and checked for a drawn map.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -63,7 +63,7 @@ class Json {
 /// `out()`, which the caller may drain at any point between two values (`take()`).
 /// Non-finite numbers are never written: number()/numbers() throw JsonNonFinite naming the place
 /// ($.holes[3].deviation_um.robot[1]); an item producer can catch it, cut the item off with
-/// mark()/rewind() and write a "failed" item instead (see exports.cpp).
+/// mark()/rewind() and write a "failed" item instead (see plugin/report/exports.cpp).
 class JsonNonFinite : public InternalError {
  public:
   explicit JsonNonFinite(const std::string& where);
