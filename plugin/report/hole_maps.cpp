@@ -806,7 +806,9 @@ std::vector<std::pair<int, std::string>> branchesPresent(const std::vector<HoleV
 /// the program path.
 void renderLegend(Html& h, const std::vector<HoleView>& hv) {
   h.open("div", {{"class", "legend"}}).markup("<strong>Marker shape = IK branch:</strong>");
-  for (const auto& [branch, config] : branchesPresent(hv)) {
+  for (const auto& b : branchesPresent(hv)) {
+    const int branch = b.first;
+    const std::string& config = b.second;
     legendEntry(
         h,
         [&](Html& g) {
