@@ -5,6 +5,7 @@
 /// (RCIM 2020) Fig. 13–15 (δrobot, δwork and U_work coloured over the hole positions, wrist/arm
 /// configuration changes visible), a per-hole table, the uncertainty budget, verdict counts and
 /// the capability summary. No network, no external scripts or fonts; deterministic bytes.
+/// Drawn by hole_report.cpp and one file per section (hole_sections.hpp: maps, budget, table).
 
 #include <optional>
 #include <string>
