@@ -267,8 +267,12 @@ class RoboDKAppTest(unittest.TestCase):
                                   {"name": "Pause 500 ms", "type": robolink.INS_TYPE_PAUSE},
                                   {"name": "ChangeDrill", "type": robolink.INS_TYPE_CODE},
                                   {"name": "Set Speed 100", "type": robolink.INS_TYPE_CHANGESPEED}]
-        code, out, err, st = run_app(station(ins))
+        desc = station(ins)
+        desc["programs"].append({"name": "ChangeDrill", "robot": ROBOT, "instructions": []})
+        desc["programs"][0]["calls"] = ["ChangeDrill"]
+        code, out, err, st = run_app(desc)
         self.assertEqual(code, 0, err)
+        self.assertIn("calls the programs 'ChangeDrill': run the app on each of them too", out)
         self.assertIn("1 MoveC, 1 other instructions; 1 pauses, 2 program calls/code", out)
         self.assertIn("MoveC 'MoveC (Arc1, Arc2)' (left alone)", out)
         self.assertIn("call/code 'ChangeDrill'", out)

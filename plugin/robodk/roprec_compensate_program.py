@@ -20,8 +20,9 @@ Instructions, in program order
     MoveJ                 left alone (an approach or retract motion, no process load).
     MoveC                 left alone and listed: RoboDK's Item.Instruction() does not give a
                           MoveC's two targets.
-    Pause, program calls  listed in the summary (a called program is compensated on its own:
-                          run the app on it); any other instruction is copied as it is.
+    Pause, program calls  listed in the summary with the programs it calls (prog.Childs()): a
+                          called program is compensated on its own (run the app on it); any
+                          other instruction is copied as it is.
 
 Hole data
     A MoveL's hole is named by its target (the instruction ``MoveL (T001)`` or ``Drill T001``: the
@@ -541,6 +542,9 @@ def summary(ctx, w, action):
                c["other"], c["pauses"], c["calls"]))
     if w.no_hole_data:
         text += "; %d targets have no hole data and use the cell's drill" % w.no_hole_data
+    called = [p.Name() for p in ctx["prog"].Childs()]
+    if called:
+        text += "\n  calls the programs %s: run the app on each of them too" % ", ".join("'%s'" % n for n in called)
     if w.listed:
         text += "\n  " + "\n  ".join(w.listed)
     return text

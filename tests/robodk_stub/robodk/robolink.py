@@ -7,7 +7,7 @@ fills, or that ``Robolink.AddFile`` loads from a JSON description::
                  "accuracy_active": false, "legacy_api": false}],
      "frames": [{"name": "Part", "pose_abs_mm": 4x4}],
      "tools": [{"name": "Drill 6.8", "robot": "R", "tcp_mm": 4x4}],
-     "programs": [{"name": "P", "robot": "R", "params": {}, "instructions": [
+     "programs": [{"name": "P", "robot": "R", "params": {}, "calls": ["Sub"], "instructions": [
          {"name": "Set Reference Frame (Part)", "type": 3},
          {"name": "MoveL 1", "type": 0, "move_type": 2, "joint_target": 0, "pose": 4x4, "joints": [6]},
          {"name": "Spindle on", "type": 8}]}],
@@ -79,7 +79,7 @@ class Station(object):
         self.frames = {f["name"]: f for f in d.get("frames", [])}
         self.tools = {t["name"]: t for t in d.get("tools", [])}
         self.programs = {p["name"]: {"name": p["name"], "robot": p.get("robot"), "params": p.get("params", {}),
-                                     "instructions": p.get("instructions", [])}
+                                     "calls": p.get("calls", []), "instructions": p.get("instructions", [])}
                          for p in d.get("programs", [])}
         self.params = d.get("params", {})
         self.selected = d.get("selected")
@@ -92,7 +92,8 @@ class Station(object):
         """The station as its JSON description."""
         return {"robots": list(self.robots.values()), "frames": list(self.frames.values()),
                 "tools": list(self.tools.values()),
-                "programs": [{"name": p["name"], "robot": p["robot"], "instructions": p["instructions"],
+                "programs": [{"name": p["name"], "robot": p["robot"], "calls": p["calls"],
+                              "instructions": p["instructions"],
                               "params": {k: v.decode("utf-8") if isinstance(v, bytes) else v
                                          for k, v in p["params"].items()}}
                              for p in self.programs.values()],
@@ -212,6 +213,11 @@ class Item(object):
             return Item(self.link)
         cls = LegacyRobotItem if self._station().robots[name].get("legacy_api") else Item
         return cls(self.link, name, ITEM_TYPE_ROBOT)
+
+    @api
+    def Childs(self):
+        """A program's called programs (RoboDK: Childs() of a program lists its subprograms)."""
+        return [Item(self.link, n, ITEM_TYPE_PROGRAM) for n in self._program().get("calls", [])]
 
     @api
     def InstructionCount(self):
@@ -365,7 +371,7 @@ class Robolink(object):
         instructions = (list(source["instructions"]) if s.shared_targets
                         else copy.deepcopy(source["instructions"]))
         s.programs[name] = {"name": name, "robot": source["robot"], "params": copy.deepcopy(source["params"]),
-                            "instructions": instructions}
+                            "calls": list(source["calls"]), "instructions": instructions}
         s.record("Paste", source["name"], name)
         return Item(self, name, ITEM_TYPE_PROGRAM)
 
