@@ -27,11 +27,13 @@ while(queue)
   endforeach()
 endwhile()
 list(SORT public)
+# One stage per destination: installs into different prefixes may run at the same time.
+string(MD5 destination "$ENV{DESTDIR}${CMAKE_INSTALL_PREFIX}")
 
 foreach(header IN LISTS public)
   file(READ "${ROPREC_SOURCE_DIR}/${header}" text)
   string(REGEX REPLACE "#include \"((compensator|postproc|plugin)/)" "#include \"roprec/\\1" text "${text}")
-  set(staged "${ROPREC_HEADER_STAGE}/roprec/${header}")
+  set(staged "${ROPREC_HEADER_STAGE}/${destination}/roprec/${header}")
   file(WRITE "${staged}" "${text}")
   get_filename_component(dir "${header}" DIRECTORY)
   file(INSTALL DESTINATION "${CMAKE_INSTALL_PREFIX}/${ROPREC_INSTALL_INCLUDEDIR}/roprec/${dir}" TYPE FILE
