@@ -305,6 +305,18 @@ class RoboDKAppTest(unittest.TestCase):
         self.assertEqual(RecordingSession.calls, expected)
         self.assertNotIn("no hole data", out)
         self.assertEqual(st.params[app.HOLES_PARAM], HOLES)
+        with open(HOLES, "rb") as f:
+            self.assertEqual(st.params[app.HOLES_DATA_PARAM], f.read())
+        # Later runs take the hole list the station keeps, even when its file has gone.
+        desc["params"] = {app.HOLES_PARAM: "/gone/holes.csv", app.HOLES_DATA_PARAM: st.params[app.HOLES_DATA_PARAM]}
+        RecordingSession.calls = []
+        roprec.Session = RecordingSession
+        try:
+            code, out, err, _ = run_app(desc)
+        finally:
+            roprec.Session = RecordingSession.real
+        self.assertEqual(code, 0, err)
+        self.assertEqual(RecordingSession.calls, expected)
         # The roprec module as built: its filter_target either takes the process or the app refuses
         # (never the cell's drill in silence).
         code, out, err, st = run_app(desc, "--holes", HOLES)

@@ -27,8 +27,9 @@ Instructions, in program order
 Hole data
     A MoveL's hole is named by its target (the instruction ``MoveL (T001)`` or ``Drill T001``: the
     first word that is a hole of the hole list). The hole list (roprec's CSV, columns
-    id,x,y,z,i,j,k[,diameter,depth,tolerance]) is --holes, stored with the station as the station
-    parameter ROPREC_HOLES. A target name may also carry the hole's process as key=value words:
+    id,x,y,z,i,j,k[,diameter,depth,tolerance]) is --holes, kept with the station (saved in the .rdk):
+    its path as the station parameter ROPREC_HOLES, its text as the station data ROPREC_HOLES_CSV
+    (RDK.setParam with bytes), which later runs use. A target name may also carry the hole's process as key=value words:
     ``tool=2 dia=6.8 depth=16 feed=0.12 rpm=6000`` (tool number or name, diameter and depth in mm,
     feed in mm/rev, spindle speed in 1/min); they override the hole list. The active Set Tool's
     name is the hole's tool unless the target names one. Without any hole data the cell's drill is
@@ -104,6 +105,7 @@ APP = "roprec_compensate_program"
 HEADLESS_ARGS = ["-NEWINSTANCE", "-NOUI", "-EXIT_LAST_COM"]
 CELL_PARAM = "ROPREC_CELL"        # station parameter: the cell's path
 HOLES_PARAM = "ROPREC_HOLES"      # station parameter: the hole list's path
+HOLES_DATA_PARAM = "ROPREC_HOLES_CSV"  # station data: the hole list itself (saved with the .rdk)
 MARKER_PARAM = "ROPREC_SOURCE"    # item parameter of a compensated copy
 COPY_SUFFIX = "_roprec"
 APP_FOLDER = "roprec"             # the app's folder in RoboDK's Apps folder
@@ -184,27 +186,33 @@ def resolve_cell(rdk, arg):
 
 
 def resolve_holes(rdk, arg):
-    """The hole list path: --holes (then stored as ROPREC_HOLES), else the station's ROPREC_HOLES, else None."""
+    """(where, text) of the hole list: --holes (then kept with the station: its path as ROPREC_HOLES,
+    its text as the station data ROPREC_HOLES_CSV), else the station's copy; (None, None) without."""
     if arg:
         path = os.path.abspath(arg)
+        try:
+            with open(path, "rb") as f:
+                data = f.read()
+        except OSError as e:
+            raise Refused("cannot read the hole list %s: %s" % (path, e.strerror))
         rdk.setParam(HOLES_PARAM, path)
-        return path
-    return station_param(rdk, HOLES_PARAM)
+        rdk.setParam(HOLES_DATA_PARAM, data)
+        return path, data.decode("utf-8")
+    data = rdk.getParam(HOLES_DATA_PARAM, False)
+    if data:
+        return "%s (kept with the station)" % (station_param(rdk, HOLES_PARAM) or HOLES_DATA_PARAM), data.decode("utf-8")
+    return None, None
 
 
-def read_hole_list(path):
+def read_hole_list(where, text):
     """{hole id: process keys} from a roprec hole list (its diameter and depth columns, when present)."""
-    try:
-        with open(path, encoding="utf-8") as f:
-            rows = [line for line in f if line.strip() and not line.lstrip().startswith("#")]
-    except OSError as e:
-        raise Refused("cannot read the hole list %s: %s" % (path, e.strerror))
+    rows = [line for line in text.splitlines() if line.strip() and not line.lstrip().startswith("#")]
     holes = {}
     for row in csv.DictReader(rows):
         row = {k.strip().lower(): (v or "").strip() for k, v in row.items() if k}
         if not row.get("id"):
             raise Refused("%s: the hole list has no 'id' column (columns: id,x,y,z,i,j,k[,diameter,depth,"
-                          "tolerance])" % path)
+                          "tolerance])" % where)
         process = {}
         for column, key in (("diameter", "diameter_mm"), ("depth", "depth_mm")):
             if row.get(column):
@@ -514,7 +522,7 @@ def open_job(args, rdk, robodk, roprec):
         if not station.Valid():
             raise Refused("RoboDK could not load the station " + args.station)
     cell = resolve_cell(rdk, args.cell)
-    holes_path = resolve_holes(rdk, args.holes)
+    holes_where, holes_text = resolve_holes(rdk, args.holes)
     prog = pick_program(rdk, robodk, args.program)
     refuse_compensated(prog)
     robot = prog.getLink(robodk.ITEM_TYPE_ROBOT)
@@ -526,7 +534,7 @@ def open_job(args, rdk, robodk, roprec):
                       "(robot.setAccuracyActive(0)) to use roprec, or keep RoboDK's and do not run this app"
                       % robot.Name())
     session = roprec.Session(cell)
-    holes = read_hole_list(holes_path) if holes_path else {}
+    holes = read_hole_list(holes_where, holes_text) if holes_text else {}
     return {"rdk": rdk, "robodk": robodk, "roprec": roprec, "args": args, "cell": cell, "prog": prog,
             "robot": robot, "session": session, "holes": holes}
 

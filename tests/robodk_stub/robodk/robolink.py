@@ -97,7 +97,8 @@ class Station(object):
                               "params": {k: v.decode("utf-8") if isinstance(v, bytes) else v
                                          for k, v in p["params"].items()}}
                              for p in self.programs.values()],
-                "params": self.params, "selected": self.selected}
+                "params": {k: v.decode("utf-8") if isinstance(v, bytes) else v for k, v in self.params.items()},
+                "selected": self.selected}
 
     def record(self, *call):
         self.calls.append(list(call))
@@ -377,14 +378,17 @@ class Robolink(object):
 
     @api
     def getParam(self, param="PATH_OPENSTATION", str_type=True):
-        """A station parameter, or None when it is unknown."""
-        return self._station.params.get(param)
+        """A station parameter (str_type=False: its binary data, b"" when none), or None when unknown."""
+        value = self._station.params.get(param)
+        if not str_type:
+            return value.encode("utf-8") if isinstance(value, str) else (value or b"")
+        return value.decode("utf-8") if isinstance(value, bytes) else value
 
     @api
     def setParam(self, param, value):
-        """Sets a station parameter (recorded)."""
-        self._station.params[param] = str(value)
-        self._station.record("setParam", param, str(value))
+        """Sets a station parameter, or binary data when value is bytes (recorded)."""
+        self._station.params[param] = value if isinstance(value, bytes) else str(value)
+        self._station.record("setParam", param, value.decode("utf-8") if isinstance(value, bytes) else str(value))
 
     @api
     def ShowMessage(self, message, popup=True):
