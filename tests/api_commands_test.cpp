@@ -187,7 +187,7 @@ TEST(ApiCommands, InspectConvertAndRobotsEqualTheCli) {
   api::InspectRequest ins;
   ins.program = src;
   ins.hole_list = holes;
-  const auto cli = test::runRoprec("inspect '" + src + "' --holes '" + holes + "'");
+  const auto cli = test::runRoprec("inspect '" + src + "' --holes '" + holes + "' --all");
   ASSERT_EQ(cli.exit_code, 0) << cli.err;
   EXPECT_EQ(api::inspectProgram(ins).dump() + "\n", cli.out);
 
@@ -204,7 +204,8 @@ TEST(ApiCommands, InspectConvertAndRobotsEqualTheCli) {
             (std::vector<std::string>{"no config (4 items: p1, p2, p3, ...)", "tool: mass"}));
 
   const api::RobotList robots = api::bundledRobotList();
-  EXPECT_EQ(robots.text, test::runRoprec("robots").out);
+  EXPECT_EQ(robots.summary, test::runRoprec("robots").out);
+  EXPECT_EQ(robots.text, test::runRoprec("robots --all").out);
   EXPECT_EQ(robots.json.dump(), test::runRoprec("robots --json").out);
 }
 

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <filesystem>
@@ -144,11 +145,18 @@ Vec6 randomJoints(const ChainDescription& chain, std::mt19937& rng) {
   return q;
 }
 
-TEST(BundledRobots, ListedByRoprecRobots) {
+TEST(BundledRobots, ListedByRoprecRobotsOneLineEachAndInFullWithAll) {
   const test::RunResult r = test::runRoprec("robots");
   ASSERT_EQ(r.exit_code, 0) << r.err;
+  const test::RunResult all = test::runRoprec("robots --all");
+  ASSERT_EQ(all.exit_code, 0) << all.err;
+  EXPECT_EQ(static_cast<size_t>(std::count(r.out.begin(), r.out.end(), '\n')),
+            bundledRobotNames().size());
   for (const Sheet& s : kSheets) {
-    EXPECT_NE(r.out.find(std::string(s.name) + "  (" + s.vendor + " " + s.model + ")"),
+    EXPECT_NE(r.out.find(std::string(s.name) + "  " + s.vendor + " " + s.model + ", "),
+              std::string::npos)
+        << s.name;
+    EXPECT_NE(all.out.find(std::string(s.name) + "  (" + s.vendor + " " + s.model + ")"),
               std::string::npos)
         << s.name;
   }

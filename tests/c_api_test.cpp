@@ -385,7 +385,8 @@ TEST(CApi, ErrorsAreStatusesWithTheCliText) {
   const std::string missing = sourceDir() + "/samples/cells/no-such-cell.xml";
   EXPECT_EQ(roprec_open(missing.c_str(), &s, err, sizeof err), ROPREC_BAD_INPUT);
   EXPECT_EQ(s, nullptr);
-  const test::RunResult cli = runRoprec("predict --cell '" + missing + "' '" + kProgram + "'");
+  const test::RunResult cli =
+      runRoprec("predict --cell '" + missing + "' '" + kProgram + "' --json -");
   EXPECT_EQ(cli.exit_code, 2);
   EXPECT_EQ(std::string(err), cliErrorText(cli));
 
@@ -394,7 +395,8 @@ TEST(CApi, ErrorsAreStatusesWithTheCliText) {
   const std::string bad = dir + "/bad.xml";
   writeFile(bad, "<cell name=\"x\">\n  <robot ref=\"no-such-robot\"/>\n</cell>\n");
   EXPECT_EQ(roprec_open(bad.c_str(), &s, err, sizeof err), ROPREC_BAD_INPUT);
-  const test::RunResult cli_bad = runRoprec("predict --cell '" + bad + "' '" + kProgram + "'");
+  const test::RunResult cli_bad =
+      runRoprec("predict --cell '" + bad + "' '" + kProgram + "' --json -");
   EXPECT_EQ(cli_bad.exit_code, 2);
   EXPECT_EQ(std::string(err), cliErrorText(cli_bad));
   EXPECT_EQ(std::string(err).rfind(bad, 0), 0U) << err;
@@ -594,7 +596,7 @@ TEST(CApi, OptionsRefuseUnknownKeysAndBadValuesAndStayUnchanged) {
                                    summary, sizeof summary, opt.err, sizeof opt.err),
             ROPREC_BAD_INPUT);
   const test::RunResult cli =
-      runRoprec("predict --cell '" + kFanucCell + "' '" + kFanucProgram + "'");
+      runRoprec("predict --cell '" + kFanucCell + "' '" + kFanucProgram + "' --json -");
   EXPECT_EQ(cli.exit_code, 2);
   EXPECT_EQ(std::string(opt.err), cliErrorText(cli));
 }

@@ -442,7 +442,7 @@ TEST(DrillProgram, InspectAcceptsTheWrittenPrograms) {
     ASSERT_EQ(paths.size(), t.files.size());
     for (std::size_t k = 0; k < paths.size(); ++k)
       EXPECT_EQ(test::readFile(paths[k]), t.files[k].text);
-    const auto r = test::runRoprec("inspect '" + paths[0] + "' --holes '" + hl[0] + "'");
+    const auto r = test::runRoprec("inspect '" + paths[0] + "' --holes '" + hl[0] + "' --all");
     EXPECT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(count(r.out, "\"entry_target\""), 5) << r.out;
     EXPECT_EQ(count(r.out, "\"hole_list_id\""), 5) << r.out;

@@ -179,7 +179,7 @@ TEST(DrillSurface, PredictAndInspectReportTheSurfaceAndTheBottom) {
   EXPECT_NEAR(nom["surface_mm"][2].get<double>(), 534.0, 1e-6) << nom.dump();
   EXPECT_NEAR(nom["bottom_mm"][2].get<double>(), 514.0, 1e-6) << nom.dump();
   EXPECT_NEAR(nom["surface_mm"][0].get<double>(), 1500.0, 1e-6) << nom.dump();
-  const auto i = test::runRoprec("inspect '" + dir + "/hand.src'");
+  const auto i = test::runRoprec("inspect '" + dir + "/hand.src' --all");
   ASSERT_EQ(i.exit_code, 0) << i.err;
   const json ins = json::parse(i.out);
   const json& h = ins["holes"][0];

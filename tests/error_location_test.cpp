@@ -63,7 +63,7 @@ TEST(ErrorLocation, NoDrillCyclePointsAtTheFirstMotion) {
                   "PTP {A1 0,A2 -90,A3 90,A4 0,A5 0,A6 0}\n"
                   "END\n");
   const auto r = test::runRoprec("predict --cell '" + test::sourceDir() +
-                                 "/samples/cells/housing-kr120.xml' '" + dir + "/p.src'");
+                                 "/samples/cells/housing-kr120.xml' '" + dir + "/p.src' --json -");
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_NE(r.err.find("p.src:4:"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("no drill cycle"), std::string::npos) << r.err;
@@ -74,7 +74,7 @@ TEST(ErrorLocation, AnUnreachableHoleIsNamedOnceWithItsLineAndVerdict) {
   test::writeFile(dir + "/far.csv", "id,x,y,z,i,j,k\nF1,9000,0,0,0,0,-1\nF2,100,0,150,0,0,-1\n");
   const test::RunResult r =
       test::runRoprec("predict --cell '" + test::sourceDir() +
-                      "/samples/cells/housing-kr120.xml' '" + dir + "/far.csv'");
+                      "/samples/cells/housing-kr120.xml' '" + dir + "/far.csv' --json -");
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_NE(
       r.err.find("roprec: hole F1 (" + dir + "/far.csv:2): unreachable: the wrist centre is "),

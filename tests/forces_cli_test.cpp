@@ -43,6 +43,17 @@ TEST(ForcesCli, DrillingSampleCellPrintsThrustTorqueAndFr) {
   EXPECT_EQ(r.out, r2.out);
 }
 
+TEST(ForcesCli, HelpStatesTheCoverageFactorTheOutputUses) {
+  const auto r = runRoprec("forces --cell " + sample("alu-drilling-6061.xml"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const double k = nlohmann::json::parse(r.out)["machining_deviation"]["k"];
+  std::ostringstream printed;
+  printed.precision(3);
+  printed << "k = " << k;  // 2.45
+  const auto help = runRoprec("forces --help");
+  EXPECT_NE(help.out.find("(U_mach, " + printed.str() + ":"), std::string::npos) << help.out;
+}
+
 TEST(ForcesCli, MillingSampleCellWithCoupling) {
   const std::string dir = test::tempDir("forces");
   const auto r =

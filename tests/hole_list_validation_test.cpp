@@ -332,7 +332,8 @@ TEST(HoleListValidation, AHoleTheCellsFeedCannotDrillIsAnError) {
   test::writeFile(
       dir + "/h.csv",
       kHeader + "T001,150,0,250,0,0,-1,6.8,16,0.2\nT002,144.889,38.823,250,0,0,-1,0.1,16,0.2\n");
-  const auto r = test::runRoprec("predict --cell '" + cell + "' '" + dir + "/h.csv' --quiet");
+  const auto r =
+      test::runRoprec("predict --cell '" + cell + "' '" + dir + "/h.csv' --quiet --json -");
   EXPECT_EQ(r.exit_code, 2) << r.out.substr(0, 300);
   EXPECT_NE(
       r.err.find(dir + "/h.csv:3: hole T002: diameter 0.1 mm is too small for the cell's feed"),

@@ -62,13 +62,13 @@ TEST(InputFile, FoldersDevicesAndFifosAreRefusedSayingWhatTheyAre) {
 
 TEST(InputFile, CliAndCApiSayAFolderIsADirectoryNotOutOfMemory) {
   const std::string dir = test::tempDir("input-folder-cli");
-  const auto r = test::runRoprec("predict --cell '" + kCell + "' '" + dir + "'");
+  const auto r = test::runRoprec("predict --cell '" + kCell + "' '" + dir + "' --json -");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find(dir + ": is a directory"), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("memory"), std::string::npos) << r.err;
-  const auto c = test::runRoprec("predict --cell '" + dir + "' '" + dir + "'");
+  const auto c = test::runRoprec("predict --cell '" + dir + "' '" + dir + "' --json -");
   EXPECT_NE(c.err.find(dir + ": is a directory; give a cell file"), std::string::npos) << c.err;
-  const auto zero = test::runRoprec("predict --cell /dev/zero '" + dir + "'");
+  const auto zero = test::runRoprec("predict --cell /dev/zero '" + dir + "' --json -");
   EXPECT_EQ(zero.exit_code, 2);
   EXPECT_NE(zero.err.find("/dev/zero: is not a regular file"), std::string::npos) << zero.err;
   char summary[ROPREC_SUMMARY_LEN];
@@ -123,7 +123,7 @@ TEST(InputFile, Utf16AndUtf32AreRefusedWithWhatToDoAndAUtf8MarkIsAccepted) {
   for (const auto& c : cases) {
     test::writeFile(dir + "/cell.xml", c.bytes);
     const auto r = test::runRoprec("predict --cell '" + dir + "/cell.xml' '" + test::sourceDir() +
-                                   "/samples/emotor-housing/holes.csv'");
+                                   "/samples/emotor-housing/holes.csv' --json -");
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(
         r.err.find(dir + "/cell.xml:1: this file is " + std::string(c.name) + "; save it as UTF-8"),
@@ -146,7 +146,7 @@ TEST(InputFile, ANulByteIsRefusedAtItsLineAndColumn) {
       errorOf(dir + "/holes.csv", InputKind::kHoleList).find(dir + "/holes.csv:3:2: a NUL byte"),
       std::string::npos)
       << errorOf(dir + "/holes.csv", InputKind::kHoleList);
-  const auto r = test::runRoprec("predict --cell '" + kCell + "' '" + dir + "/holes.csv'");
+  const auto r = test::runRoprec("predict --cell '" + kCell + "' '" + dir + "/holes.csv' --json -");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("holes.csv:3:2: a NUL byte"), std::string::npos) << r.err;
 }

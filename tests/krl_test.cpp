@@ -39,7 +39,7 @@ json roundTripAndInspect(const Job& j, const std::string& src, const std::string
   }
   EXPECT_EQ(c.err.find("missing .dat"), std::string::npos) << c.err;
   EXPECT_EQ(c.err.find("out of range"), std::string::npos) << c.err;
-  const auto i = test::runRoprec("inspect '" + j.src + "'");
+  const auto i = test::runRoprec("inspect '" + j.src + "' --all");
   EXPECT_EQ(i.exit_code, 0) << i.err;
   return i.exit_code == 0 ? json::parse(i.out) : json();
 }
@@ -120,7 +120,7 @@ TEST(KrlReader, AnUnusedPlaceholderPointIsOutsideTheRangeCheck) {
   EXPECT_TRUE(r["targets"][2]["used_at_lines"].empty());
   // the same value at a point a motion moves to is still refused at its line
   const Job bad = write("krl-placeholder-used", kPlaceholderSrc, placeholderDat("666666.688"));
-  const auto e = test::runRoprec("inspect '" + bad.src + "'");
+  const auto e = test::runRoprec("inspect '" + bad.src + "' --all");
   EXPECT_EQ(e.exit_code, 2);
   EXPECT_NE(e.err.find("job.dat:3: target XP2: position x (mm) = 666667 is out of range"),
             std::string::npos)

@@ -41,7 +41,7 @@ TEST(CliMain, AFailedWriteToStandardOutputIsExitTwoAndWritesNothing) {
   const std::string cell = src + "/samples/cells/housing-kr120.xml";
   const std::string program = src + "/samples/emotor-housing/housing_kr120.src";
   const std::vector<std::string> commands{
-      "predict --cell '" + cell + "' '" + program + "' --quiet",
+      "predict --cell '" + cell + "' '" + program + "' --quiet --json -",
       "predict --cell '" + cell + "' '" + program + "' --json - --quiet --report '" + dir +
           "/r.html'",
       "inspect '" + program + "'",

@@ -367,13 +367,13 @@ TEST(MutationRegression, HolesOffTheirHoleListAxisAreAWarning) {
   test::writeFile(dir + "/cell.xml", text);
   const std::string args = " " + q(sample("emotor-housing/housing_kr120.src")) + " --holes " +
                            q(sample("emotor-housing/holes.csv")) + " --json " + q(dir + "/p.json");
-  const auto bad = test::runRoprec("predict --cell " + q(dir + "/cell.xml") + args);
+  const auto bad = test::runRoprec("predict --cell " + q(dir + "/cell.xml") + args + " --json -");
   EXPECT_NE(bad.err.find("warning: 204 of 204 drill points of the program lie off their "
                          "hole-list axis by more than --match-tol 0.5 mm"),
             std::string::npos)
       << bad.err;
-  const auto good =
-      test::runRoprec("predict --cell " + q(sample("cells/housing-kr120.xml")) + args);
+  const auto good = test::runRoprec("predict --cell " + q(sample("cells/housing-kr120.xml")) +
+                                    args + " --json -");
   EXPECT_EQ(good.exit_code, 0) << good.err;
   EXPECT_EQ(good.err.find("off their hole-list axis"), std::string::npos) << good.err;
 }

@@ -89,7 +89,7 @@ TEST(OutputSet, CannotWriteSaysWhy) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find(
                   "cannot write output file: the folder /nonexistent-folder-roprec does not "
-                  "exist (roprec does not create folders)"),
+                  "exist (roprec does not create folders: mkdir -p /nonexistent-folder-roprec)"),
               std::string::npos)
         << e.what();
   }

@@ -71,7 +71,7 @@ TEST(PostprocCli, MissingDatNamesTheTargetAsUnresolved) {
   // a .src may stand alone (its points globals of $config.dat or another module): it reads, and
   // the target it cannot place is named with its line, not refused
   const Bad b = write("nodat", "job.src", "DEF job( )\nPTP $AXIS_ACT\nLIN XP1 C_DIS\nEND\n");
-  const auto r = test::runRoprec("inspect '" + b.program + "'");
+  const auto r = test::runRoprec("inspect '" + b.program + "' --all");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("\"ref\": \"XP1\""), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\"line\": 3"), std::string::npos) << r.out;
@@ -120,7 +120,7 @@ TEST(PostprocCli, UnknownInstructionsAreKeptVerbatim) {
     const auto r = test::runRoprec("convert '" + b.program + "' --o '" + out + "'");
     EXPECT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(test::readFile(out), c.text);
-    const auto i = test::runRoprec("inspect '" + b.program + "'");
+    const auto i = test::runRoprec("inspect '" + b.program + "' --all");
     EXPECT_EQ(i.exit_code, 0) << i.err;
     EXPECT_NE(i.out.find("\"targets\""), std::string::npos);
   }
@@ -136,13 +136,13 @@ TEST(PostprocCli, InspectAndConvertCorpus) {
   EXPECT_EQ(test::readFile(dir + "/copy.dat"),
             test::readFile(test::corpusDir() + "/robodk/DrillKRC2DAT.dat"));
   const auto i = test::runRoprec("inspect '" + src + "' --holes '" + test::sourceDir() +
-                                 "/tests/data/programs/holes.csv'");
+                                 "/tests/data/programs/holes.csv' --all");
   ASSERT_EQ(i.exit_code, 0) << i.err;
   EXPECT_NE(i.out.find("\"hole_list_id\": \"H3\""), std::string::npos);
   EXPECT_NE(i.out.find("\"position_mm\": [1400.000000, 80.000000, 388.000000]"), std::string::npos);
   // deterministic
-  EXPECT_EQ(test::runRoprec("inspect '" + src + "'").out,
-            test::runRoprec("inspect '" + src + "'").out);
+  EXPECT_EQ(test::runRoprec("inspect '" + src + "' --all").out,
+            test::runRoprec("inspect '" + src + "' --all").out);
   const auto c = test::runRoprec("convert '" + src + "' --to tp --o '" + dir + "/t.ls'");
   EXPECT_EQ(c.exit_code, 1);  // joint approach targets are listed
   EXPECT_TRUE(fs::exists(dir + "/t.ls"));

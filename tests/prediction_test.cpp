@@ -380,8 +380,8 @@ TEST(PredictionCli, BadInputExitsTwoWithFileAndLine) {
   EXPECT_NE(r.err.find("holes.csv:3"), std::string::npos) << r.err;
   EXPECT_FALSE(std::ifstream(dir + "/o.json").good());
   test::writeFile(dir + "/cell.xml", "<cell><robot ref=\"no-such-robot\"/></cell>\n");
-  const auto r2 =
-      test::runRoprec("predict --cell '" + dir + "/cell.xml' '" + paper("holes.csv") + "'");
+  const auto r2 = test::runRoprec("predict --cell '" + dir + "/cell.xml' '" + paper("holes.csv") +
+                                  "' --json -");
   EXPECT_EQ(r2.exit_code, 2);
   EXPECT_NE(r2.err.find("cell.xml:1"), std::string::npos) << r2.err;
 }

@@ -99,7 +99,8 @@ TEST(CompensationGuard, CompensatedProgramIsMarkedAndNotCompensatedAgainUnlessFo
   EXPECT_TRUE(fs::exists(twice));
   EXPECT_NE(c.err.find("--force"), std::string::npos) << c.err;
   // predict reads a marked program as any other
-  const auto p = test::runRoprec("predict --cell '" + kr120Cell() + "' '" + once + "' --quiet");
+  const auto p =
+      test::runRoprec("predict --cell '" + kr120Cell() + "' '" + once + "' --quiet --json -");
   EXPECT_LE(p.exit_code, 1) << p.err;
 }
 

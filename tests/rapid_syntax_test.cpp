@@ -147,7 +147,7 @@ TEST(RapidSyntax, InlineTargetsWithNamedConstantsThroughTheCli) {
   const auto c = test::runRoprec("convert '" + in + "' -o '" + dir + "/copy.mod'");
   ASSERT_EQ(c.exit_code, 0) << c.err;
   EXPECT_EQ(test::readFile(dir + "/copy.mod"), kNamedModule);
-  const auto i = test::runRoprec("inspect '" + in + "'");
+  const auto i = test::runRoprec("inspect '" + in + "' --all");
   ASSERT_EQ(i.exit_code, 0) << i.err;
   EXPECT_NE(i.out.find("nRuntime"), std::string::npos) << i.out;
 }

@@ -24,7 +24,7 @@ json roundTripAndInspect(const std::string& tag, const std::string& name, const 
   EXPECT_EQ(c.exit_code, 0) << c.err;
   EXPECT_EQ(test::readFile(dir + "/copy.mod"), text);
   EXPECT_EQ(c.err.find("missing ';'"), std::string::npos) << c.err;
-  const auto i = test::runRoprec("inspect '" + path + "'");
+  const auto i = test::runRoprec("inspect '" + path + "' --all");
   EXPECT_EQ(i.exit_code, 0) << i.err;
   return i.exit_code == 0 ? json::parse(i.out) : json();
 }
@@ -102,7 +102,7 @@ TEST(RapidReader, ALabelDoesNotHideAMissingSemicolon) {
   bad.pop_back();
   test::writeFile(dir + "/m.mod", "MODULE m\n  PROC main()\n  l1: " + bad + "\n    " +
                                       moveL("234", "v20") + "\n  ENDPROC\nENDMODULE\n");
-  const auto r = test::runRoprec("inspect '" + dir + "/m.mod'");
+  const auto r = test::runRoprec("inspect '" + dir + "/m.mod' --all");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("m.mod:3: missing ';'"), std::string::npos) << r.err;
 }

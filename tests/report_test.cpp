@@ -1343,7 +1343,7 @@ TEST(ReportSample, StatesTheRobotCardsEstimates) {
   const std::string src = test::sourceDir();
   const test::RunResult r = test::runRoprec(
       "predict --cell '" + src + "/samples/cells/housing-kr120.xml' '" + src +
-      "/samples/emotor-housing/housing_kr120.src' --report '" + dir + "/p.html' --quiet");
+      "/samples/emotor-housing/housing_kr120.src' --report '" + dir + "/p.html' --quiet --json -");
   ASSERT_LE(r.exit_code, 1) << r.err;
   const std::string html = test::readFile(dir + "/p.html");
   EXPECT_NE(html.find("<dt>Robot card estimates</dt>"), std::string::npos);

@@ -1,14 +1,22 @@
 """roprec's RoboDK app (plugin/robodk/roprec_compensate_program.py) against the RoboDK stand-in
-(tests/robodk_stub): on a program built from the sample hole list, every MoveL to a Cartesian target
-is written back as Session.filter_target gives it, everything else is left alone; an active RoboDK
-accuracy model, a tool mismatch, an unreachable target and a missing program are refused; the
-headless command line works.
+(tests/robodk_stub): on a program built from the sample hole list, the compensated copy NAME_roprec
+holds every MoveL to a Cartesian target as Session.filter_target gives it, in the frame the
+program's Set Reference Frame instructions set, and everything else as it was; the original is
+never changed; a second run rebuilds the copy and a run on the copy is refused; hole data comes
+from the hole list and target names through one adapter; the cell and hole list are kept as
+station parameters; an active RoboDK accuracy model, a tool mismatch, an unreachable target and a
+missing program are refused; the headless command line and the installation into RoboDK's Apps
+folder (AppConfig.ini) work; every RoboDK call the app makes exists in RoboDK's published API with
+that signature (tests/data/robodk/api_signatures.txt).
 
 Run by ctest with PYTHONPATH = tests/robodk_stub + the build tree's python/ folder.
 """
 
+import ast
+import configparser
 import contextlib
 import csv
+import inspect
 import importlib.util
 import io
 import json
@@ -87,13 +95,23 @@ def station(instructions, accuracy_active=False, legacy_api=False, tool=None):
             "selected": "Drill"}
 
 
-def run_app(description, *args):
-    """Runs the app in this process against a RoboDK (stand-in) holding `description`."""
-    robolink.STATION = robolink.Station(description)
+API_LIST = SRC / "tests" / "data" / "robodk" / "api_signatures.txt"
+COPY = "Drill_roprec"
+
+
+def run_app(description, *args, cell=CELL, fresh=True):
+    """Runs the app in this process against a RoboDK (stand-in) holding `description` (or, with
+    fresh=False, the station as the previous run left it)."""
+    if fresh:
+        robolink.STATION = robolink.Station(description)
     out, err = io.StringIO(), io.StringIO()
     with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-        code = app.main(["--cell", CELL] + list(args))
+        code = app.main((["--cell", cell] if cell else []) + list(args))
     return code, out.getvalue(), err.getvalue(), robolink.STATION
+
+
+def set_calls(st):
+    return [c for c in st.calls if c[0] == "setInstruction"]
 
 
 def expected_edit(ins):
@@ -104,21 +122,53 @@ def expected_edit(ins):
     return pose, joints
 
 
+def linear_cartesian(instructions):
+    return [i for i, ins in enumerate(instructions) if ins["type"] == robolink.INS_TYPE_MOVE and
+            ins["move_type"] == robolink.MOVE_TYPE_LINEAR and not ins["joint_target"]]
+
+
+def pose_of(rows):
+    return np.array(rows, dtype=float)
+
+
+def rot_z(deg, xyz):
+    c, s = np.cos(np.radians(deg)), np.sin(np.radians(deg))
+    T = np.eye(4)
+    T[:2, :2] = [[c, -s], [s, c]]
+    T[:3, 3] = xyz
+    return T
+
+
+class RecordingSession(object):
+    """A roprec.Session that records the keyword arguments filter_target gets (the per-hole
+    process) and filters with the cell's drill."""
+
+    calls = []
+    real = roprec.Session
+
+    def __init__(self, cell):
+        self._s = RecordingSession.real(cell)
+        self.tool_pose_mm, self.cell = self._s.tool_pose_mm, self._s.cell
+
+    def filter_target(self, pose, seed=None, **process):
+        RecordingSession.calls.append(process)
+        return self._s.filter_target(pose, seed)
+
+
 class RoboDKAppTest(unittest.TestCase):
-    def test_filters_every_linear_cartesian_target_and_leaves_the_rest(self):
+    def test_copy_holds_every_linear_cartesian_target_filtered_and_the_original_is_kept(self):
         original = drill_program()
         code, out, err, st = run_app(station(original))
         self.assertEqual(code, 0, err)
-        sets = [c for c in st.calls if c[0] == "setInstruction"]
-        linear = [i for i, ins in enumerate(original) if ins["type"] == robolink.INS_TYPE_MOVE and
-                  ins["move_type"] == robolink.MOVE_TYPE_LINEAR and not ins["joint_target"]]
+        linear = linear_cartesian(original)
         self.assertEqual(len(linear), 2 * len(HOLE_ROWS))
-        self.assertEqual([c[2] for c in sets], linear)     # only those, each once, in order
-        final = st.programs["Drill"]["instructions"]
+        self.assertEqual([(c[1], c[2]) for c in set_calls(st)], [(COPY, i) for i in linear])  # each once, in order
+        self.assertEqual(st.programs["Drill"]["instructions"], original)           # the original is kept
+        final = st.programs[COPY]["instructions"]
         worst_mm, worst_real_um = 0.0, 0.0
         for i, ins in enumerate(original):
             if i not in linear:
-                self.assertEqual(final[i], ins)            # joint moves, joint targets, code: untouched
+                self.assertEqual(final[i], ins)            # joint moves, joint targets, code: as they were
                 continue
             new = final[i]
             self.assertEqual((new["name"], new["type"], new["move_type"], new["joint_target"]),
@@ -127,7 +177,6 @@ class RoboDKAppTest(unittest.TestCase):
             written_base = FRAME @ np.array(new["pose"])
             np.testing.assert_allclose(written_base[:3, 3], pose[:3, 3], rtol=0, atol=1e-9)
             np.testing.assert_allclose(written_base[:3, :3], pose[:3, :3], rtol=0, atol=1e-12)
-            np.testing.assert_allclose(np.array(new["pose"]), np.linalg.inv(FRAME) @ pose, rtol=0, atol=1e-9)
             np.testing.assert_allclose(new["joints"], joints, rtol=0, atol=1e-12)
             worst_mm = max(worst_mm, float(np.linalg.norm(written_base[:3, 3] - pose[:3, 3])))
             if i % 25 == 0:  # the predicted real TCP at the written joints is the original target
@@ -136,21 +185,183 @@ class RoboDKAppTest(unittest.TestCase):
                 worst_real_um = max(worst_real_um,
                                     1e3 * float(np.linalg.norm(real - (FRAME @ np.array(ins["pose"]))[:3, 3])))
         self.assertLess(worst_real_um, 0.1)
+        mark = json.loads(st.programs[COPY]["params"][app.MARKER_PARAM].decode("utf-8"))
+        self.assertEqual(mark, {"source": "Drill", "cell": CELL})
         self.assertIn("compensated %d linear Cartesian targets" % len(linear), out)
-        self.assertIn("left alone: %d joint moves, 1 moves to joint targets, 1 other instructions"
-                      % len(HOLE_ROWS), out)
+        self.assertIn("left alone: %d joint moves, 1 moves to joint targets, 0 MoveC" % len(HOLE_ROWS), out)
+        self.assertIn("%d targets have no hole data and use the cell's drill" % len(linear), out)
+        self.assertIn("wrote the copy '%s' (the original is unchanged)" % COPY, out)
         # Inside RoboDK the summary goes to the status bar, not a popup.
         self.assertEqual(st.calls[-1][0], "ShowMessage")
         self.assertFalse(st.calls[-1][2])
         print("robodk app: %d targets filtered, written = filter_target to %.2g mm, real TCP off by max %.3g um"
               % (len(linear), worst_mm, worst_real_um))
 
+    def test_second_run_rebuilds_the_copy_and_a_run_on_the_copy_is_refused(self):
+        code, _, err, st = run_app(station(drill_program(4)))
+        self.assertEqual(code, 0, err)
+        first = json.loads(json.dumps(st.programs[COPY]["instructions"]))
+        code, out, err, st = run_app(None, fresh=False)
+        self.assertEqual(code, 0, err)
+        self.assertIn("replaced the copy '%s'" % COPY, out)
+        self.assertEqual(sorted(st.programs), ["Drill", COPY])
+        self.assertEqual(st.programs[COPY]["instructions"], first)   # the same numbers, not compensated twice
+        self.assertEqual(st.programs["Drill"]["instructions"], drill_program(4))
+        before = len(set_calls(st))
+        code, _, err, st = run_app(None, "--program", COPY, fresh=False)
+        self.assertEqual(code, 2)
+        self.assertIn("'%s' is already compensated by roprec (from 'Drill')" % COPY, err)
+        self.assertEqual(len(set_calls(st)), before)
+        # A program of that name that roprec did not write is not replaced.
+        desc = station(drill_program(2))
+        desc["programs"].append({"name": COPY, "robot": ROBOT, "instructions": []})
+        code, _, err, st = run_app(desc, "--program", "Drill")
+        self.assertEqual(code, 2)
+        self.assertIn("exists and is not roprec's copy of 'Drill'", err)
+        self.assertEqual(st.programs[COPY]["instructions"], [])
+
+    def test_frame_and_tool_instructions_apply_in_program_order(self):
+        # The robot base stands somewhere in the station; frame "Part B" is the workobject turned
+        # 90 deg about z. The first two holes are programmed in the robot's active frame (FRAME),
+        # the next two after "Set Reference Frame (Part B)" in Part B, with a Set Tool between.
+        base_abs = rot_z(30.0, [500.0, -200.0, 100.0])
+        part_b = FRAME @ rot_z(90.0, [10.0, 20.0, 0.0])
+        ins = drill_program(2)
+        ins.append({"name": "Set Reference Frame (Part B)", "type": robolink.INS_TYPE_CHANGEFRAME})
+        ins.append({"name": "Set Tool (Drill 6.8)", "type": robolink.INS_TYPE_CHANGETOOL})
+        for move in drill_program(4)[-6:]:
+            if move["type"] == robolink.INS_TYPE_MOVE:
+                move["pose"] = (np.linalg.inv(part_b) @ FRAME @ pose_of(move["pose"])).tolist()
+            ins.append(move)
+        desc = station(ins)
+        desc["robots"][0]["base_abs_mm"] = base_abs.tolist()
+        desc["frames"] = [{"name": "Part", "pose_abs_mm": (base_abs @ FRAME).tolist()},
+                          {"name": "Part B", "pose_abs_mm": (base_abs @ part_b).tolist()}]
+        desc["tools"] = [{"name": "Drill 6.8", "robot": ROBOT, "tcp_mm": SESSION.tool_pose_mm.tolist()}]
+        code, out, err, st = run_app(desc)
+        self.assertEqual(code, 0, err)
+        final = st.programs[COPY]["instructions"]
+        linear = linear_cartesian(ins)
+        self.assertEqual(len(linear), 8)
+        for i in linear:
+            frame = FRAME if i < len(drill_program(2)) else part_b
+            wanted = frame @ pose_of(ins[i]["pose"])
+            pose, _ = SESSION.filter_target(wanted, ins[i]["joints"])
+            np.testing.assert_allclose(frame @ pose_of(final[i]["pose"]), pose, rtol=0, atol=1e-9)
+        # A tool that is not the cell's, set before a MoveL, is refused by name.
+        desc["tools"].append({"name": "Probe", "robot": ROBOT,
+                              "tcp_mm": (SESSION.tool_pose_mm @ rot_z(0.0, [0, 0, 40.0])).tolist()})
+        desc["programs"][0]["instructions"][len(drill_program(2)) + 1]["name"] = "Set Tool (Probe)"
+        code, _, err, st = run_app(desc)
+        self.assertEqual(code, 2)
+        self.assertIn("RoboDK's tool 'Probe'", err)
+        self.assertNotIn(COPY, st.programs)
+        # A frame instruction naming no frame of the station is refused.
+        desc["programs"][0]["instructions"][len(drill_program(2))]["name"] = "Set Reference Frame (Gone)"
+        code, _, err, _ = run_app(desc)
+        self.assertEqual(code, 2)
+        self.assertIn("'Set Reference Frame (Gone)': no reference frame of the station", err)
+
+    def test_movec_pauses_and_program_calls_are_listed_and_copied_unchanged(self):
+        ins = drill_program(2) + [{"name": "MoveC (Arc1, Arc2)", "type": robolink.INS_TYPE_MOVEC},
+                                  {"name": "Pause 500 ms", "type": robolink.INS_TYPE_PAUSE},
+                                  {"name": "ChangeDrill", "type": robolink.INS_TYPE_CODE},
+                                  {"name": "Set Speed 100", "type": robolink.INS_TYPE_CHANGESPEED}]
+        desc = station(ins)
+        desc["programs"].append({"name": "ChangeDrill", "robot": ROBOT, "instructions": []})
+        desc["programs"][0]["calls"] = ["ChangeDrill"]
+        code, out, err, st = run_app(desc)
+        self.assertEqual(code, 0, err)
+        self.assertIn("calls the programs 'ChangeDrill': run the app on each of them too", out)
+        self.assertIn("1 MoveC, 1 other instructions; 1 pauses, 2 program calls/code", out)
+        self.assertIn("MoveC 'MoveC (Arc1, Arc2)' (left alone)", out)
+        self.assertIn("call/code 'ChangeDrill'", out)
+        self.assertEqual(st.programs[COPY]["instructions"][-4:], ins[-4:])
+
+    def test_hole_data_from_hole_list_and_target_names_reach_filter_target(self):
+        ins = drill_program(3)
+        ins.insert(0, {"name": "Set Tool (Drill 6.8)", "type": robolink.INS_TYPE_CHANGETOOL})
+        drills = [i for i, x in enumerate(ins) if x["name"].startswith("Drill ")]
+        ins[drills[1]]["name"] += " tool=3 dia=7.0 feed=0.12 rpm=6000"
+        desc = station(ins)
+        desc["tools"] = [{"name": "Drill 6.8", "robot": ROBOT, "tcp_mm": SESSION.tool_pose_mm.tolist()}]
+        real = roprec.Session
+        RecordingSession.calls = []
+        roprec.Session = RecordingSession
+        try:
+            code, out, err, st = run_app(desc, "--holes", HOLES)
+        finally:
+            roprec.Session = real
+        self.assertEqual(code, 0, err)
+        with open(HOLES, encoding="utf-8") as f:
+            rows = {r["id"]: r for r in csv.DictReader(l for l in f if not l.startswith("#"))}
+        expected = []
+        for x in (x for x in ins if x.get("move_type") == robolink.MOVE_TYPE_LINEAR and not x.get("joint_target")):
+            hid = x["name"].split()[1]
+            p = {"tool": "Drill 6.8", "diameter_mm": float(rows[hid]["diameter"]), "depth_mm": float(rows[hid]["depth"])}
+            if "tool=3" in x["name"]:
+                p.update(tool="3", diameter_mm=7.0, feed_mm_per_rev=0.12, spindle_rpm=6000.0)
+            expected.append(p)
+        self.assertEqual(RecordingSession.calls, expected)
+        self.assertNotIn("no hole data", out)
+        self.assertEqual(st.params[app.HOLES_PARAM], HOLES)
+        with open(HOLES, "rb") as f:
+            self.assertEqual(st.params[app.HOLES_DATA_PARAM], f.read())
+        # Later runs take the hole list the station keeps, even when its file has gone.
+        desc["params"] = {app.HOLES_PARAM: "/gone/holes.csv", app.HOLES_DATA_PARAM: st.params[app.HOLES_DATA_PARAM]}
+        RecordingSession.calls = []
+        roprec.Session = RecordingSession
+        try:
+            code, out, err, _ = run_app(desc)
+        finally:
+            roprec.Session = RecordingSession.real
+        self.assertEqual(code, 0, err)
+        self.assertEqual(RecordingSession.calls, expected)
+        # The roprec module as built: its filter_target either takes the process or the app refuses
+        # (never the cell's drill in silence).
+        code, out, err, st = run_app(desc, "--holes", HOLES)
+        try:
+            SESSION.filter_target(np.eye(4), None, diameter_mm=6.8)
+            takes_process = True
+        except TypeError:
+            takes_process = False
+        except roprec.RoprecError:
+            takes_process = True
+        if takes_process:
+            self.assertEqual(code, 0, err)
+        else:
+            self.assertEqual(code, 2)
+            self.assertIn("filter_target takes no per-hole process (depth_mm, diameter_mm, tool)", err)
+            self.assertNotIn(COPY, st.programs)
+
+    def test_cell_and_hole_list_are_kept_as_station_parameters(self):
+        code, _, err, st = run_app(station(drill_program(2)))
+        self.assertEqual(code, 0, err)
+        self.assertEqual(st.params[app.CELL_PARAM], CELL)
+        code, _, err, st = run_app(None, cell=None, fresh=False)     # no --cell: the station's
+        self.assertEqual(code, 0, err)
+        desc = station(drill_program(2))
+        desc["params"] = {app.CELL_PARAM: "/nonexistent/stored.xml"}
+        code, _, err, _ = run_app(desc, cell=None)
+        self.assertEqual(code, 2)
+        self.assertIn("/nonexistent/stored.xml: cannot open file", err)
+        os.environ["ROPREC_CELL"] = CELL
+        try:
+            code, _, err, _ = run_app(station(drill_program(2)), cell=None)
+        finally:
+            del os.environ["ROPREC_CELL"]
+        self.assertEqual(code, 0, err)
+        code, _, err, _ = run_app(station(drill_program(2)), cell=None)
+        self.assertEqual(code, 2)
+        self.assertIn("no roprec cell for this station", err)
+        self.assertIn(app.CELL_PARAM, err)
+
     def test_refuses_when_robodk_accuracy_model_is_active(self):
         code, out, err, st = run_app(station(drill_program(5), accuracy_active=True))
         self.assertEqual(code, 2)
         self.assertIn("accuracy model is active", err)
         self.assertIn("compensate gravity twice", err)
-        self.assertEqual([c for c in st.calls if c[0] in ("setInstruction", "setAccuracyActive")], [])
+        self.assertEqual([c for c in st.calls if c[0] in ("setInstruction", "setAccuracyActive", "Paste")], [])
         self.assertEqual(st.calls[-1][0], "ShowMessage")
         self.assertTrue(st.calls[-1][2])                   # a popup
 
@@ -158,10 +369,10 @@ class RoboDKAppTest(unittest.TestCase):
         code, _, err, st = run_app(station(drill_program(3), legacy_api=True))
         self.assertEqual(code, 2)
         self.assertIn("--assume-accuracy-inactive", err)
-        self.assertFalse([c for c in st.calls if c[0] == "setInstruction"])
+        self.assertFalse(set_calls(st))
         code, _, err, st = run_app(station(drill_program(3), legacy_api=True), "--assume-accuracy-inactive")
         self.assertEqual(code, 0, err)
-        self.assertEqual(len([c for c in st.calls if c[0] == "setInstruction"]), 6)
+        self.assertEqual(len(set_calls(st)), 6)
 
     def test_refuses_a_tool_other_than_the_cells(self):
         tool = SESSION.tool_pose_mm.copy()
@@ -169,7 +380,7 @@ class RoboDKAppTest(unittest.TestCase):
         code, _, err, st = run_app(station(drill_program(3), tool=tool))
         self.assertEqual(code, 2)
         self.assertIn("is not the cell's <tool>", err)
-        self.assertFalse([c for c in st.calls if c[0] == "setInstruction"])
+        self.assertFalse(set_calls(st))
         code, _, err, _ = run_app(station(drill_program(3), tool=tool), "--skip-tool-check")
         self.assertEqual(code, 0, err)
 
@@ -178,47 +389,54 @@ class RoboDKAppTest(unittest.TestCase):
         self.assertEqual(code, 1)
         self.assertIn("could not be filtered; nothing changed", err)
         self.assertIn("Drill " + HOLE_ROWS[3][0], err)
-        self.assertFalse([c for c in st.calls if c[0] == "setInstruction"])
+        self.assertFalse(set_calls(st))
+        self.assertNotIn(COPY, st.programs)
+
+    def test_copy_sharing_targets_with_the_original_is_undone(self):
+        desc = station(drill_program(3))
+        desc["shared_targets"] = True
+        code, _, err, st = run_app(desc)
+        self.assertEqual(code, 1)
+        self.assertIn("RoboDK changed the original program 'Drill'", err)
+        self.assertEqual(st.programs["Drill"]["instructions"], drill_program(3))
+        self.assertNotIn(COPY, st.programs)
 
     def test_dry_run_and_missing_program(self):
         code, out, err, st = run_app(station(drill_program(3)), "--dry-run")
         self.assertEqual(code, 0, err)
         self.assertIn("would compensate 6 linear", out)
-        self.assertFalse([c for c in st.calls if c[0] == "setInstruction"])
+        self.assertFalse([c for c in st.calls if c[0] in ("setInstruction", "Paste")])
         code, _, err, _ = run_app(station(drill_program(3)), "--program", "NoSuchProgram")
         self.assertEqual(code, 2)
         self.assertIn("no program named 'NoSuchProgram'", err)
 
     def test_bad_cell_reports_the_roprec_error(self):
-        code, _, err, st = run_app(station(drill_program(2)), "--cell", "/nonexistent/cell.xml")
+        code, _, err, st = run_app(station(drill_program(2)), cell="/nonexistent/cell.xml")
         self.assertEqual(code, 2)
         self.assertIn("/nonexistent/cell.xml: cannot open file", err)
 
-    def test_cell_from_environment_and_from_file_beside_the_app(self):
+    def test_install_app_writes_the_app_and_its_appconfig(self):
         tmp = tempfile.mkdtemp()
         try:
-            robolink.STATION = robolink.Station(station(drill_program(2)))
-            with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
-                os.environ["ROPREC_CELL"] = CELL
-                try:
-                    self.assertEqual(app.main([]), 0)
-                finally:
-                    del os.environ["ROPREC_CELL"]
-            copy = Path(tmp) / APP.name
-            shutil.copy(APP, copy)
-            (Path(tmp) / "roprec_cell.txt").write_text(CELL + "\n", encoding="utf-8")
-            spec = importlib.util.spec_from_file_location("app_copy", copy)
-            module = importlib.util.module_from_spec(spec)
-            spec.loader.exec_module(module)
-            robolink.STATION = robolink.Station(station(drill_program(2)))
-            with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
-                self.assertEqual(module.main([]), 0)
-            self.assertEqual(len([c for c in robolink.STATION.calls if c[0] == "setInstruction"]), 4)
-            # Without any cell: refused.
+            for _ in range(2):                              # installing again overwrites
+                out = io.StringIO()
+                with contextlib.redirect_stdout(out):
+                    self.assertEqual(app.main(["--install-app", tmp]), 0)
+            folder = Path(tmp) / app.APP_FOLDER
+            self.assertEqual(sorted(p.name for p in folder.iterdir()), ["AppConfig.ini", APP.name])
+            self.assertEqual((folder / APP.name).read_bytes(), APP.read_bytes())
+            ini = configparser.ConfigParser()
+            ini.optionxform = str
+            ini.read(folder / "AppConfig.ini", encoding="utf-8")
+            self.assertEqual(ini["General"]["MenuName"], "roprec")
+            self.assertEqual(ini["General"]["MenuVisible"], "true")
+            action = ini[APP.stem]                          # the AppLoader runs SECTION.py
+            self.assertEqual(action["TypeOnContextMenu"], str(robolink.ITEM_TYPE_PROGRAM))
+            self.assertEqual(action["Visible"], "true")
             err = io.StringIO()
-            with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(err):
-                self.assertEqual(app.main([]), 2)
-            self.assertIn("no roprec cell", err.getvalue())
+            with contextlib.redirect_stderr(err):
+                self.assertEqual(app.main(["--install-app", str(Path(tmp) / "missing")]), 2)
+            self.assertIn("does not exist (create it: mkdir -p", err.getvalue())
         finally:
             shutil.rmtree(tmp)
 
@@ -238,10 +456,13 @@ class RoboDKAppTest(unittest.TestCase):
             rec = json.loads(record.read_text(encoding="utf-8"))
             self.assertEqual(rec["launch_args"], ["-NEWINSTANCE", "-NOUI", "-EXIT_LAST_COM"])
             kinds = [c[0] for c in rec["calls"]]
-            self.assertEqual(kinds, ["AddFile"] + ["setInstruction"] * 12 + ["MakeProgram", "Save"])
+            self.assertEqual(kinds, ["AddFile", "setParam", "Paste", "setName"] + ["setInstruction"] * 12 +
+                             ["Item.setParam", "MakeProgram", "Save"])
             self.assertNotIn("ShowMessage", kinds)         # headless: no popups
-            self.assertTrue((Path(tmp) / "Drill.json").exists())
-            final = json.loads(saved.read_text(encoding="utf-8"))["programs"][0]["instructions"]
+            self.assertTrue((Path(tmp) / (COPY + ".json")).exists())
+            programs = {p["name"]: p for p in json.loads(saved.read_text(encoding="utf-8"))["programs"]}
+            self.assertEqual(programs["Drill"]["instructions"], original)
+            final = programs[COPY]["instructions"]
             for i, ins in enumerate(original):
                 if ins.get("move_type") == robolink.MOVE_TYPE_LINEAR and not ins.get("joint_target"):
                     pose, _ = expected_edit(ins)
@@ -251,6 +472,61 @@ class RoboDKAppTest(unittest.TestCase):
             self.assertIn("program generated into", r.stdout)
         finally:
             shutil.rmtree(tmp)
+
+
+def published_api():
+    """{Class.method: inspect.Signature} and {constant: value} from tests/data/robodk/api_signatures.txt."""
+    methods, constants = {}, {}
+    for line in API_LIST.read_text(encoding="utf-8").splitlines():
+        line = line.strip()
+        if not line or line.startswith("#"):
+            continue
+        if " = " in line:
+            name, value = line.split(" = ")
+            constants[name] = int(value)
+            continue
+        name, params = line[:line.index("(")], line[line.index("("):]
+        fn = ast.parse("def f(self, %s): pass" % params[1:-1] if params != "()" else "def f(self): pass").body[0]
+        ns = {}
+        exec(compile(ast.Module(body=[fn], type_ignores=[]), "api", "exec"), ns)
+        methods[name] = inspect.signature(ns["f"])
+    return methods, constants
+
+
+class PublishedApiTest(unittest.TestCase):
+    """The stand-in has RoboDK's published signatures, and every call the app makes (in two full
+    runs here, and in whatever tests of this file ran before) binds to them."""
+
+    def test_stub_has_the_published_signatures(self):
+        from robodk import robomath
+        methods, constants = published_api()
+        classes = {"Robolink": robolink.Robolink, "Item": robolink.Item, "Mat": robomath.Mat}
+        for name, sig in methods.items():
+            cls, method = name.split(".")
+            impl = inspect.unwrap(getattr(classes[cls], method))
+            self.assertEqual(str(inspect.signature(impl)), str(sig), name)
+        for name, value in constants.items():
+            self.assertEqual(getattr(robolink, name), value, name)
+
+    def test_every_call_the_app_makes_is_in_the_published_api(self):
+        methods, _ = published_api()
+        RoboDKAppTest("test_frame_and_tool_instructions_apply_in_program_order").debug()
+        RoboDKAppTest("test_headless_command_line").debug()
+        self.assertGreater(len(robolink.API_CALLS), 100)
+        used = set()
+        for name, args, kwargs in robolink.API_CALLS:
+            self.assertIn(name, methods, "%s is not in RoboDK's published API" % name)
+            methods[name].bind(None, *args, **kwargs)       # raises TypeError when the call does not fit
+            used.add(name)
+        print("robodk api: %d calls of %d published methods, all with RoboDK's signatures"
+              % (len(robolink.API_CALLS), len(used)))
+        # The app's source names no RoboDK method outside the list.
+        tree = ast.parse(APP.read_text(encoding="utf-8"))
+        robodk_names = {n.split(".")[1] for n in methods}
+        stub_names = {n for n in dir(robolink.Item) + dir(robolink.Robolink) if not n.startswith("_")}
+        called = {node.func.attr for node in ast.walk(tree)
+                  if isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute)}
+        self.assertEqual(sorted((called & stub_names) - robodk_names), [])
 
 
 if __name__ == "__main__":

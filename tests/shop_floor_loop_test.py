@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """The shop-floor loop of README on the shipped sample (samples/verification/), through the CLI.
 
-Proves: (1) the shipped measured files are what the truth robot drills from the shipped programs
+Proves: (0) the shipped test programs (.src, .dat) are byte for byte what `plan-test` writes today
+with README's arguments; (1) the shipped measured files are what the truth robot drills from the shipped programs
 (make_measured.py --drill, same noise and seed: identical data rows); (2) calibrating on the
 geometry test part (verify --calibrate --write-cell), compensating the held-out test program
 with the written cell and drilling it with the truth leaves <= 25 um RMS (and <= 5 % of the
@@ -38,12 +39,37 @@ def rms_perp_um(holes_csv, measured_csv):
     return math.sqrt(s / len(holes)) * 1000.0
 
 
+# README's shop-floor loop, step 1: the arguments that plan the shipped test programs.
+PLANS = {
+    "geometry_kr120.src": ["--region", "-200 -200 0 200 200 300", "--directions", "0 0 -1, 0 1 0, 0 -1 0, 1 0 0",
+                           "--psi", "0 90", "--per-axis", "4", "--count", "40", "--register", "rigid"],
+    "test_kr120.src": ["--region", "-200 -200 100 200 200 230", "--directions", "0 0 -1, 0 1 0, 0 -1 0, 1 0 0",
+                       "--per-axis", "3", "--count", "24", "--identify", "stiffness"],
+}
+
+
+def replanned_differences(roprec, src, v, tmp):
+    """The shipped program files that plan-test no longer writes byte for byte."""
+    out = []
+    for prog, args in PLANS.items():
+        dest = os.path.join(tmp, prog)
+        subprocess.run([roprec, "plan-test", "--cell", os.path.join(src, "samples", "cells", "housing-kr120.xml")] +
+                       args + ["-o", dest, "--quiet"], check=True, cwd=tmp, stdout=subprocess.DEVNULL)
+        for name in (prog, prog[:-4] + ".dat"):
+            with open(os.path.join(tmp, name), "rb") as a, open(os.path.join(v, name), "rb") as b:
+                if a.read() != b.read():
+                    out.append("samples/verification/%s is not what plan-test writes today (regenerate it "
+                               "with README's shop-floor step 1)" % name)
+    return out
+
+
 def main():
     roprec, src = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
     v = os.path.join(src, "samples", "verification")
     make = [sys.executable, os.path.join(v, "make_measured.py"), roprec]
     failures = []
     with tempfile.TemporaryDirectory() as tmp:
+        failures += replanned_differences(roprec, src, v, tmp)
         for prog, shipped in (("test_kr120.src", "measured.csv"), ("geometry_kr120.src", "measured_geometry.csv")):
             out = os.path.join(tmp, shipped)
             subprocess.run(make + ["--drill", os.path.join(v, prog), out], check=True, cwd=src,

@@ -100,7 +100,7 @@ TEST(TargetListValidation, UnknownJsonMembersAreRefusedWithAHint) {
 TEST(TargetListValidation, TheCliRefusesAMisspeltColumnWithExit2) {
   const std::string dir = test::tempDir("target-list-strict");
   test::writeFile(dir + "/t.csv", "id,x,y,z,a,b,c,spede\nP1,1500,0,500,0,90,0,100\n");
-  const test::RunResult r = test::runRoprec("inspect '" + dir + "/t.csv'");
+  const test::RunResult r = test::runRoprec("inspect '" + dir + "/t.csv' --all");
   EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
   EXPECT_NE(r.err.find(dir + "/t.csv:1:"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("did you mean 'speed'"), std::string::npos) << r.err;

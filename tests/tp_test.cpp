@@ -21,7 +21,7 @@ json roundTripAndInspect(const std::string& tag, const std::string& text, std::s
   const auto c = test::runRoprec("convert '" + path + "' -o '" + dir + "/copy.ls'");
   EXPECT_EQ(c.exit_code, 0) << c.err;
   EXPECT_EQ(test::readFile(dir + "/copy.ls"), text);
-  const auto i = test::runRoprec("inspect '" + path + "'");
+  const auto i = test::runRoprec("inspect '" + path + "' --all");
   EXPECT_EQ(i.exit_code, 0) << i.err;
   if (err != nullptr) *err = c.err + i.err;
   return i.exit_code == 0 ? json::parse(i.out) : json();
@@ -65,7 +65,7 @@ TEST(TpReader, ALineWithoutItsNumberIsStillAnError) {
   test::writeFile(dir + "/j.ls",
                   "/PROG  J\r\n/MN\r\n   1:L P[1] 100mm/sec FINE ;\r\n       --x-- ;\r\n/POS\r\n" +
                       record("P[1]", "UF : 0, UT : 1", "N U T, 0, 0, 0", "284.000") + "/END\r\n");
-  const auto r = test::runRoprec("inspect '" + dir + "/j.ls'");
+  const auto r = test::runRoprec("inspect '" + dir + "/j.ls' --all");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("j.ls:4: a /MN line starts with its line number"), std::string::npos)
       << r.err;
@@ -159,7 +159,7 @@ TEST(TpReader, ASpeedOfZeroIsAnInputErrorAtItsLine) {
                   "/PROG  J\r\n/MN\r\n   1:J P[1] 10% FINE ;\r\n   2:L P[1] 0mm/sec FINE ;\r\n"
                   "/POS\r\n" +
                       record("P[1]", "UF : 0, UT : 1", "N U T, 0, 0, 0", "284.000") + "/END\r\n");
-  const auto r = test::runRoprec("inspect '" + dir + "/j.ls'");
+  const auto r = test::runRoprec("inspect '" + dir + "/j.ls' --all");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("j.ls:4: L: speed 0 mm/s"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("hint:"), std::string::npos) << r.err;

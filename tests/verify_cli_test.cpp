@@ -136,7 +136,8 @@ TEST(VerifyCli, CalibratedCardCompensatesBetterOnTheTruthRobot) {
             std::string::npos);
   // the card loads in a cell: roprec predict accepts it
   const std::string cal_cell = cellWithCard(dir, card);
-  const auto p = test::runRoprec("predict --cell " + q(cal_cell) + " " + q(program()) + " --quiet");
+  const auto p =
+      test::runRoprec("predict --cell " + q(cal_cell) + " " + q(program()) + " --quiet --json -");
   ASSERT_EQ(p.exit_code, 0) << p.err;
   // compensate with each card, execute on the truth robot
   const std::string orig = dir + "/comp_orig.src";
@@ -158,6 +159,28 @@ TEST(VerifyCli, CalibratedCardCompensatesBetterOnTheTruthRobot) {
       before, with_card, with_calibrated);
   EXPECT_LT(with_calibrated, with_card);
   EXPECT_LT(with_calibrated, 0.5 * with_card);
+}
+
+TEST(VerifyCli, FailOnNonconformanceGatesTheExitCodeOnProvenNonconformingHoles) {
+  // The uncalibrated sample has holes proven non-conforming: exit 0 without the gate, 1 with it
+  // (outputs still written); the gate counts exactly the holes the JSON marks so.
+  const std::string dir = test::tempDir("verify_gate");
+  const auto plain = test::runRoprec(verifyArgs("--register none --quiet"));
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  const auto gated = test::runRoprec(
+      verifyArgs("--register none --fail-on nonconformance --json " + q(dir + "/v.json")));
+  EXPECT_EQ(gated.exit_code, 1) << gated.err;
+  ASSERT_TRUE(fs::exists(dir + "/v.json"));
+  const json j = json::parse(test::readFile(dir + "/v.json"));
+  int proven = 0;
+  for (const auto& h : j["holes"]) proven += h.value("decision", "") == "non-conformance-proven";
+  ASSERT_GT(proven, 0);
+  EXPECT_NE(gated.err.find("roprec: " + std::to_string(proven) + " holes proven non-conforming"),
+            std::string::npos)
+      << gated.err;
+  const auto bad = test::runRoprec(verifyArgs("--fail-on everything"));
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("--fail-on takes nonconformance"), std::string::npos) << bad.err;
 }
 
 TEST(VerifyCli, BadMeasuredFilesExitTwoWithFileLineAndWriteNothing) {

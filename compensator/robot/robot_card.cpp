@@ -310,30 +310,58 @@ RobotCard loadRobotCard(const std::string& path) {
 #define ROPREC_ROBOTS_RELDIR "../share/roprec/robots"
 #endif
 
+namespace {
+
+// The folder of the loaded shared object that holds this code (libroprec), or "".
+fs::path loadedLibraryDir() {
+  Dl_info info{};
+  if (dladdr(reinterpret_cast<const void*>(&bundledRobotsDir), &info) == 0 ||
+      info.dli_fname == nullptr || *info.dli_fname == '\0') {
+    return {};
+  }
+  std::error_code ec;
+  const fs::path dir = fs::absolute(fs::path(info.dli_fname), ec).parent_path();
+  return ec ? fs::path() : dir;
+}
+
+// True when `dir` lies in the build tree (libroprec in build/lib, or a binary that links the
+// objects, e.g. a fuzz harness): the only place the source tree's robots/ is used from.
+bool inBuildTree([[maybe_unused]] const fs::path& dir) {
+#ifdef ROPREC_BUILD_DIR
+  std::error_code ec;
+  const fs::path build = fs::weakly_canonical(fs::path(ROPREC_BUILD_DIR), ec);
+  const fs::path here = fs::weakly_canonical(dir, ec);
+  if (ec || dir.empty()) return false;
+  const auto [b, h] = std::mismatch(build.begin(), build.end(), here.begin(), here.end());
+  return b == build.end();
+#else
+  return false;
+#endif
+}
+
+}  // namespace
+
 std::string bundledRobotsDir() {
   if (const char* env = std::getenv("ROPREC_ROBOTS_DIR"); env != nullptr && *env != '\0')
     return env;
   // An installed library: the robots folder next to it (<prefix>/lib/../share/roprec/robots),
-  // found from the path of the loaded shared object that holds this function.
-  static const std::string installed = [] {
-    Dl_info info{};
-    if (dladdr(reinterpret_cast<const void*>(&bundledRobotsDir), &info) == 0 ||
-        info.dli_fname == nullptr || *info.dli_fname == '\0') {
-      return std::string();
-    }
-    std::error_code ec;
-    const fs::path dir =
-        fs::absolute(fs::path(info.dli_fname), ec).parent_path() / ROPREC_ROBOTS_RELDIR;
-    if (ec || !fs::is_directory(dir, ec)) return std::string();
+  // found from the path of the loaded shared object that holds this function. The build tree's
+  // library uses the source tree's robots/; an installed one never does.
+  static const fs::path lib_dir = loadedLibraryDir();
+  const fs::path dir = lib_dir / ROPREC_ROBOTS_RELDIR;
+  std::error_code ec;
+  if (!lib_dir.empty() && fs::is_directory(dir, ec)) {
     const fs::path real = fs::canonical(dir, ec);
     return (ec ? dir.lexically_normal() : real).string();
-  }();
-  if (!installed.empty()) return installed;
+  }
 #ifdef ROPREC_ROBOTS_DIR
-  return ROPREC_ROBOTS_DIR;  // the source tree's robots/ (build-tree use)
-#else
-  return "robots";
+  if (inBuildTree(lib_dir)) return ROPREC_ROBOTS_DIR;  // the source tree's robots/
 #endif
+  throw InputError("", 0,
+                   "no bundled robots: " + dir.lexically_normal().string() +
+                       " does not exist (reinstall roprec, or set the environment variable "
+                       "ROPREC_ROBOTS_DIR to a folder of robot cards, e.g. the robots/ folder of "
+                       "roprec's source)");
 }
 
 std::vector<std::string> bundledRobotNames() {

@@ -117,7 +117,7 @@ RobotCard loadRobotCard(const std::string& path);
 /// 1. the environment variable ROPREC_ROBOTS_DIR, if set and not empty;
 /// 2. `../share/roprec/robots` relative to the folder of the loaded libroprec shared object
 ///    (found with dladdr), if that folder exists: an installed or relocated prefix;
-/// 3. the source tree's robots/ compiled in at build time (use from the build tree).
+/// 3. the source tree's robots/, for the build tree only (installed: InputError with a hint).
 std::string bundledRobotsDir();
 /// Names of the bundled robots (sorted).
 std::vector<std::string> bundledRobotNames();

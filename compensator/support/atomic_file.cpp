@@ -84,7 +84,8 @@ void checkTarget(const std::string& path) {
     const std::string dir = dirOf(path);
     struct stat ds {};
     if (::stat(dir.c_str(), &ds) != 0) {
-      fail(path, "the folder " + dir + " does not exist (roprec does not create folders)");
+      fail(path, "the folder " + dir +
+                     " does not exist (roprec does not create folders: mkdir -p " + dir + ")");
     }
     if (!S_ISDIR(ds.st_mode)) fail(path, dir + " is not a folder");
     if (e == ENOTDIR) fail(path, errnoText(e));

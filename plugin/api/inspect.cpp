@@ -221,7 +221,7 @@ Json unresolvedJson(const Program& p) {
 
 }  // namespace
 
-Json inspectProgram(const InspectRequest& request) {
+Json inspectProgram(const InspectRequest& request, InspectSummary* summary) {
   const Program p = readProgramWithFrames(request.program, request.frames);
   postproc::RecognitionOptions ro;
   if (request.tool_axis) ro.tool_axis = *request.tool_axis;
@@ -255,7 +255,34 @@ Json inspectProgram(const InspectRequest& request) {
   Json notes = Json::array();
   for (const auto& n : p.notes) notes.push(Json::str(n));
   root.set("notes", notes);
+  if (summary != nullptr) {
+    *summary = {request.program,
+                postproc::dialectName(p.dialect),
+                p.files.size(),
+                p.targets().size(),
+                p.motions.size(),
+                holes.size(),
+                {},
+                p.notes};
+    for (const auto& u : p.unresolved) {
+      const std::string file =
+          u.file >= 0 ? p.files[static_cast<std::size_t>(u.file)].path : request.program;
+      summary->unresolved.push_back(file + ":" + std::to_string(u.line) + ": " + u.ref + ": " +
+                                    u.what);
+    }
+  }
   return root;
+}
+
+std::string inspectSummaryText(const InspectSummary& s) {
+  std::string text = "roprec inspect: " + s.program + " (" + s.dialect + ", " +
+                     std::to_string(s.files) + (s.files == 1 ? " file" : " files") + ")\n";
+  text += "  " + std::to_string(s.targets) + " targets, " + std::to_string(s.motions) +
+          " motions, " + std::to_string(s.holes) + " drill holes, " +
+          std::to_string(s.unresolved.size()) + " unresolved references\n";
+  for (const auto& u : s.unresolved) text += "  unresolved: " + u + "\n";
+  for (const auto& n : s.notes) text += "  note: " + n + "\n";
+  return text;
 }
 
 }  // namespace roprec::api

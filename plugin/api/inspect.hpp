@@ -8,6 +8,7 @@
 /// Units: JSON in mm, deg (native values as the program states them).
 /// Errors: InputError for an unreadable or malformed program or hole list.
 
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <vector>
@@ -25,8 +26,24 @@ struct InspectRequest {
   double match_tolerance_mm{1.0};        ///< position match of the hole list, mm
 };
 
+/// The counts `roprec inspect` prints for a person (the JSON holds everything).
+struct InspectSummary {
+  std::string program;
+  std::string dialect;
+  std::size_t files{0};
+  std::size_t targets{0};
+  std::size_t motions{0};
+  std::size_t holes{0};
+  std::vector<std::string> unresolved;  ///< "FILE:LINE: REF: what"
+  std::vector<std::string> notes;
+};
+
 /// program, dialect, files, drilling_axis_tcp, targets[], motions[], holes[], unresolved[],
-/// notes[].
-Json inspectProgram(const InspectRequest& request);
+/// notes[]. With `summary`, also fills its counts.
+Json inspectProgram(const InspectRequest& request, InspectSummary* summary = nullptr);
+
+/// A few lines: the program, its dialect and files, how many targets, motions and drill holes,
+/// each unresolved reference and note.
+std::string inspectSummaryText(const InspectSummary& s);
 
 }  // namespace roprec::api

@@ -7,6 +7,14 @@
 
 namespace roprec::api {
 
+namespace {
+const char* stiffnessOrigin(const RobotCard& card) {
+  int estimated = 0;
+  for (const JointCard& j : card.joints) estimated += j.estimated() ? 1 : 0;
+  return estimated == 6 ? "ESTIMATE" : estimated ? "partly estimated" : "published";
+}
+}  // namespace
+
 Json robotCardJson(const RobotCard& card) {
   Json r = Json::object();
   r.set("name", Json::str(card.name));
@@ -34,8 +42,6 @@ Json robotCardJson(const RobotCard& card) {
 }
 
 std::string robotCardText(const RobotCard& card) {
-  int estimated = 0;
-  for (const JointCard& j : card.joints) estimated += j.estimated() ? 1 : 0;
   std::ostringstream text;
   text.imbue(std::locale::classic());  // "C" numbers whatever the host's global locale
   text << card.name << "  (" << vendorName(card.vendor) << " " << card.model << ")\n";
@@ -45,13 +51,18 @@ std::string robotCardText(const RobotCard& card) {
   for (const JointCard& j : card.joints)
     text << " " << std::scientific << std::setprecision(2) << j.stiffness;
   text << std::fixed << "\n";
-  text << "  stiffness source: "
-       << (estimated == 6 ? "ESTIMATE"
-           : estimated    ? "partly estimated"
-                          : "published")
-       << " — " << card.joints[0].source << "\n";
+  text << "  stiffness source: " << stiffnessOrigin(card) << " — " << card.joints[0].source << "\n";
   text << "  inertials: " << card.inertial_source << "\n";
   text << "  dimensions: " << card.dimensions_source << "\n\n";
+  return text.str();
+}
+
+std::string robotCardLine(const RobotCard& card) {
+  std::ostringstream text;
+  text.imbue(std::locale::classic());
+  text << card.name << "  " << vendorName(card.vendor) << " " << card.model << ", " << std::fixed
+       << std::setprecision(0) << card.rated_payload_kg << " kg, RP " << std::setprecision(3)
+       << card.rp_mm << " mm, stiffness " << stiffnessOrigin(card) << "\n";
   return text.str();
 }
 
@@ -62,6 +73,7 @@ RobotList bundledRobotList() {
     const RobotCard card = loadRobotCard(bundledRobotsDir() + "/" + name + "/robot.xml");
     list.push(robotCardJson(card));
     out.text += robotCardText(card);
+    out.summary += robotCardLine(card);
   }
   out.json = Json::object();
   out.json.set("robots", list);

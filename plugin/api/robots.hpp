@@ -27,9 +27,14 @@ std::string robotCardText(const RobotCard& card);
 /// whose source starts with `estimate:` (docs/cards.md), for reports to show next to the results.
 std::vector<std::string> cardEstimates(const RobotCard& card);
 
+/// One line of one card: name, vendor and model, payload, repeatability RP and whether the joint
+/// stiffness is published or estimated.
+std::string robotCardLine(const RobotCard& card);
+
 struct RobotList {
-  Json json;         ///< {"robots": [robotCardJson, ...]}
-  std::string text;  ///< robotCardText of each, in name order
+  Json json;            ///< {"robots": [robotCardJson, ...]}
+  std::string text;     ///< robotCardText of each, in name order
+  std::string summary;  ///< robotCardLine of each, in name order
 };
 
 /// Every bundled robot, in name order.

@@ -9,7 +9,8 @@ namespace roprec::cli {
 namespace {
 
 int run(Args& args, CommandContext& ctx) {
-  const std::string out = args.option("o").value_or("-");
+  const std::optional<std::string> out = args.option("o");
+  const bool all = args.flag("all");
   const std::optional<std::string> holes = args.option("holes");
   const std::optional<std::string> tol = args.option("match-tol");
   if (args.option("match-tolerance"))
@@ -29,17 +30,23 @@ int run(Args& args, CommandContext& ctx) {
   }
   req.hole_list = holes;
   if (holes && tol) req.match_tolerance_mm = parseNumberList(*tol, 1, "--match-tol (mm)")[0];
-  emit(ctx, out, inspectProgram(req).dump() + "\n");
+  if (all && out) throw UsageError("give --all (the JSON on stdout) or -o OUT.json, not both");
+  InspectSummary summary;
+  const Json json = inspectProgram(req, &summary);
+  if (all || out) emit(ctx, all ? "-" : *out, json.dump() + "\n");
+  if (!all && !(out && *out == "-")) ctx.out << inspectSummaryText(summary);
   return 0;
 }
 
 const CommandRegistration reg{
     {"inspect", "what a robot program contains: targets, frames, configurations, holes",
-     "usage: roprec inspect PROGRAM [-o OUT.json] [--holes HOLES.csv [--match-tol MM]]\n"
+     "usage: roprec inspect PROGRAM [--all | -o OUT.json] [--holes HOLES.csv [--match-tol MM]]\n"
      "                      [--tool-axis \"x y z\"] [--frame 'REF=x y z a b c[;REF=...]']\n\n"
      "PROGRAM: KUKA .src (+ .dat beside it), ABB .mod/.prg/.sys, FANUC .ls, CSV/JSON target list "
      "or\n"
-     "hole list. JSON: targets (pose in their frame and, where the frame resolves, in the robot "
+     "hole list. Prints a summary (targets, motions, drill holes, unresolved references, notes);\n"
+     "--all prints the whole JSON instead, -o OUT.json writes it (-o - to stdout). JSON: targets "
+     "(pose in their frame and, where the frame resolves, in the robot "
      "base\n"
      "frame: position_mm, quaternion_wxyz; native values; configuration; external axes; "
      "tool/base),\n"

@@ -75,7 +75,7 @@ int run(Args& args, CommandContext& ctx) {
   std::vector<std::string> notes;
   CapabilitySummary summary;
   const bool to_file = json_out && *json_out != "-";
-  std::string json;  // stdout only
+  std::string json;  // stdout only (--json -)
   // The JSON is written hole by hole: to the staged output file (its text is not kept) or, for
   // stdout, to a string printed after the outputs are committed.
   auto produce = [&](const ByteWriter& write) {
@@ -110,23 +110,25 @@ int run(Args& args, CommandContext& ctx) {
   };
   if (to_file) {
     writeFileAtomicStream(*json_out, produce);
-  } else {
+  } else if (json_out) {
     produce([&](std::string_view b) { json += b; });
+  } else {
+    produce([](std::string_view) {});  // no JSON asked for: the summary only
   }
   progress.finish();
   printJobNotes(ctx, notes);
-  if (!to_file) emit(ctx, "", json);
+  if (json_out && !to_file) emit(ctx, "", json);
 
   if (!ctx.quiet) {
     for (const std::string& f : digest.failures) ctx.err << "roprec: " << f << "\n";
   }
-  if (!ctx.quiet && json_out) printSummary(ctx, summary, digest);
+  if (!ctx.quiet) printSummary(ctx, summary, digest);
   return digest.failures.empty() ? 0 : 1;
 }
 
 const CommandRegistration reg{
     {"predict", "per-hole deviation, uncertainty, tolerance verdict and capability",
-     "usage: roprec predict --cell CELL.xml PROGRAM_OR_HOLES [--json OUT.json] [--report "
+     "usage: roprec predict --cell CELL.xml PROGRAM_OR_HOLES [--json OUT.json|-] [--report "
      "OUT.html]\n"
      "                      [--holes HOLES.csv] [--uncertainty linear|montecarlo] [--quiet]\n"
      "                      [--frame cell|\"x y z a b c\"|'REF=x y z a b c;...'] [--tool "
@@ -149,8 +151,8 @@ const CommandRegistration reg{
      "else by position within --match-tol mm (0.5); the JSON then reports from_nominal_axis, the "
      "real\n"
      "drill point's distance from the nominal hole axis (the residual of a compensated program).\n"
-     "JSON to stdout unless --json; --report writes one self-contained HTML file. The JSON file "
-     "is\n"
+     "Prints a summary; --json OUT.json writes the JSON (--json - to stdout); --report writes one\n"
+     "self-contained HTML file. The JSON file is\n"
      "written hole by hole (the JSON text is not kept), but memory grows with the number of "
      "holes:\n"
      "the holes read and their set-up stay in memory, about 1.5 kB a hole (a 1,000,000-hole list:\n"

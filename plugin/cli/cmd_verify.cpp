@@ -159,6 +159,7 @@ int run(Args& args, CommandContext& ctx) {
   const auto identify = args.option("identify");
   const auto date = args.option("date");
   job.identify_tool = args.flag("identify-tool");
+  const auto fail_on = args.option("fail-on");
   const std::vector<std::string> pos = args.positionals();
   args.finish();
   if (!cell) throw UsageError("give --cell CELL.xml");
@@ -189,6 +190,9 @@ int run(Args& args, CommandContext& ctx) {
       throw UsageError("--identify must be stiffness, geometry or all");
     job.identify = *s;
   }
+  if (fail_on && *fail_on != "nonconformance")
+    throw UsageError(
+        "--fail-on takes nonconformance (exit 1 when a hole is proven non-conforming)");
   if (cell_out && !reg && !card_out)
     throw UsageError("--write-cell needs --register and/or --calibrate (nothing to write)");
 
@@ -223,10 +227,15 @@ int run(Args& args, CommandContext& ctx) {
             << "written\n";
     return 1;
   }
-  const int code = warnings(ctx, r);
+  int code = warnings(ctx, r);
   for (const auto& [path, text] : out) writeFileAtomic(path, text);
   if (!ctx.quiet) {
     for (const auto& [path, text] : out) ctx.out << "  wrote " << path << "\n";
+  }
+  if (fail_on && r.summary.nonconformance_proven > 0) {
+    ctx.err << "roprec: " << r.summary.nonconformance_proven
+            << " holes proven non-conforming (ISO 14253-1; --fail-on nonconformance)\n";
+    code = 1;
   }
   return code;
 }
@@ -239,7 +248,8 @@ const CommandRegistration reg{
      "                     [--json OUT.json] [--report OUT.html] [--calibrate NEW_CARD.xml]\n"
      "                     [--register none|translation|rigid] [--identify-tool] [--u-meas UM]\n"
      "                     [--identify stiffness|geometry|all] [--folds K]\n"
-     "                     [--write-cell NEW_CELL.xml] [--date YYYY-MM-DD] [--quiet]\n\n"
+     "                     [--write-cell NEW_CELL.xml] [--date YYYY-MM-DD] [--quiet]\n"
+     "                     [--fail-on nonconformance]\n\n"
      "Compares the holes a CMM measured on a part drilled with PROGRAM against roprec's "
      "prediction.\n"
      "MEASURED: roprec CSV (id,x,y,z[,i,j,k][,u]), PC-DMIS CSV (TYPE,NAME,X,Y,Z,...) or DMIS "
@@ -300,7 +310,9 @@ const CommandRegistration reg{
      "Outputs are written only when every measured hole was predicted. Exit 1 if some measured "
      "holes\n"
      "could not be predicted (listed, nothing written), if the fit is not consistent with the\n"
-     "noise or the card was refused (warning on stderr), 2 for bad input (FILE:LINE: what).\n",
+     "noise or the card was refused (warning on stderr), with --fail-on nonconformance when a\n"
+     "measured hole is proven non-conforming (outputs written; a QA gate), 2 for bad input\n"
+     "(FILE:LINE: what).\n",
      55, run}};
 
 }  // namespace
