@@ -1,6 +1,6 @@
 # Installs roprec's public C++ headers (run by `cmake --install`, see CMakeLists.txt): the job API
-# (plugin/api/*.hpp), the report writers (plugin/report/*.hpp) and every project header it includes, directly or not, and nothing else, as
-# PREFIX/include/roprec/<path>. In the installed copies the project's own includes
+# (plugin/api/*.hpp), the report writers (plugin/report/*.hpp) and every project header they
+# include, directly or not, and nothing else, as PREFIX/include/roprec/<path>. In the installed copies the project's own includes
 # (#include "compensator/...", "postproc/...", "plugin/...") become #include "roprec/...", so that
 # a consumer needs one include path, PREFIX/include, and writes #include <roprec/plugin/api/job.hpp>.
 #
