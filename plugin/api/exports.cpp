@@ -556,37 +556,13 @@ void PredictionJsonStream::item(JsonWriter& w, const HolePrediction& h, const Ho
   itemOrFailed(w, h.id, r.line, [&] { predictionHole(w, h, r, card); });
 }
 
-HoleFormat PredictionJsonStream::itemFormat(const PredictionContext& c) {
-  // an item's bytes depend on its array's depth and on whether items come before it (the comma),
-  // not on the header: a writer in the "holes" array of an otherwise empty document stands for
-  // the stream's
-  auto in_holes = std::make_shared<JsonWriter>();
-  in_holes->beginObject();
-  in_holes->key("holes");
-  in_holes->beginArray();
-  return [in_holes, card = c.robot.card](size_t k, const HolePrediction& h, const HoleRequest& r,
-                                         std::string& out) {
-    JsonWriter w = in_holes->itemWriter(k);
-    w.out().swap(out);  // the caller's buffer, reused
-    w.out().clear();
-    item(w, h, r, card);
-    w.out().swap(out);
-  };
-}
-
 void PredictionJsonStream::hole(const HolePrediction& h, const HoleRequest& r) {
   item(w_, h, r, card_);
   drain(false);
 }
 
 void PredictionJsonStream::holes(std::span<const HolePrediction> h, std::span<const HoleRequest> r,
-                                 int threads, std::span<const std::string> texts) {
-  for (const std::string& t : texts) {
-    w_.appendItems(t, 1);
-    drain(false);
-  }
-  h = h.subspan(texts.size());
-  r = r.subspan(texts.size());
+                                 int threads) {
   constexpr size_t kRun = 32;  // holes per text (about 60 kB)
   const size_t runs = (h.size() + kRun - 1) / kRun;
   texts_.resize(runs);

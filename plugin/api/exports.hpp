@@ -27,15 +27,9 @@ class PredictionJsonStream {
   PredictionJsonStream(const PredictionContext& c, ByteSink sink);
   void hole(const HolePrediction& h, const HoleRequest& r);
   /// The next holes, in order (request k of hole k), formatted on `threads` workers: the bytes of
-  /// hole() called for each one after the other. `texts[k]` (k < texts.size()) is hole k's text
-  /// already made by itemFormat(): written as it is.
-  void holes(std::span<const HolePrediction> h, std::span<const HoleRequest> r, int threads,
-             std::span<const std::string> texts = {});
+  /// hole() called for each one after the other.
+  void holes(std::span<const HolePrediction> h, std::span<const HoleRequest> r, int threads);
   void finish(const CapabilitySummary& s);
-  /// The text of hole k as an item of the "holes" array, made anywhere (the lookahead formats
-  /// the holes it predicts while the program is read): the bytes hole() writes for it as the
-  /// k-th hole of a stream of the context `c`. Holds a copy of the robot card.
-  static HoleFormat itemFormat(const PredictionContext& c);
 
  private:
   /// One hole as an item of the "holes" array of `w` (a hole with a non-finite number as

@@ -97,12 +97,11 @@ int run(Args& args, CommandContext& ctx) {
     PredictionResult r = predictJobStreaming(
         *cell, pos[0], opt,
         [&](size_t, std::span<const HolePrediction> block, std::span<const HoleRequest> reqs,
-            std::span<const std::string> texts, int threads) {
-          js->holes(block, reqs, threads, texts);  // formatted on the workers (or ahead)
+            int threads) {
+          js->holes(block, reqs, threads);  // formatted on the workers
           for (size_t k = 0; k < block.size(); ++k) digest.add(block[k], reqs[k], pos[0]);
         },
-        [&](const PredictionContext& c) { js.emplace(c, write); }, step,
-        &PredictionJsonStream::itemFormat);
+        [&](const PredictionContext& c) { js.emplace(c, write); }, step);
     js->finish(r.summary);
     notes = r.context.job.notes;
     summary = r.summary;
