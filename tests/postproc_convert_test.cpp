@@ -258,7 +258,7 @@ TEST(PostprocConvert, ListsWaitsCallsAndZoneMappingsItDoesNotCarry) {
     for (const char* f : {"UFRAME[9]", "UTOOL[1]", "wUnknown", "TOOL_DATA[2]", "BASE_DATA[3]"})
       resolveFrame(src, f, Pose::Identity());
     ConversionReport rep;
-    convertProgram(src, c.to, dir + "/o_" + dialectName(c.to), rep);
+    convertProgram(src, c.to, dir + "/o_" + dialectName(c.to), rep, true);
     for (const std::string& e : c.expect) EXPECT_TRUE(listed(rep.not_carried, e)) << e;
     expectLinesTrue(src, rep.not_carried);
     // the motions' zones that a dialect keeps are not listed
@@ -274,6 +274,45 @@ TEST(PostprocConvert, ListsWaitsCallsAndZoneMappingsItDoesNotCarry) {
             std::string::npos)
       << r.err;
   EXPECT_NE(r.err.find("zone z1 -> C_DIS at "), std::string::npos) << r.err;
+}
+
+/// A repeated instruction or zone of a large program is one notice of about 1 KB that states the
+/// count and its first lines; asked for every line (--verbose), it lists all of them.
+TEST(PostprocConvert, RepeatedNoticesAreCutToAboutOneKilobyteUnlessEveryLineIsAsked) {
+  const std::string dir = test::tempDir("convert-notice");
+  std::string prog = "DEF big ( )\n" + std::string(test::kHousingBase) +
+                     "\n$TOOL = {FRAME: X 0,Y 0,Z 320,A 0,B 0,C 0}\n";
+  for (int k = 0; k < 600; ++k) {  // a wait and two approximated motions per cycle
+    const std::string xy = "X " + std::to_string(k) + ",Y 0,";
+    prog += "PTP {" + xy + "Z 300,A 0,B 0,C 180} C_PTP\nLIN {" + xy +
+            "Z 270,A 0,B 0,C 180}\nWAIT SEC 0.3\nLIN {" + xy + "Z 300,A 0,B 0,C 180} C_DIS\n";
+  }
+  test::writeFile(dir + "/big.src", prog + "END\n");
+  const Program src = readProgram(dir + "/big.src");
+  ConversionReport cut;
+  convertProgram(src, Dialect::kRapid, dir + "/cut.mod", cut);
+  ConversionReport all;
+  convertProgram(src, Dialect::kRapid, dir + "/all.mod", all, true);
+  ASSERT_EQ(cut.not_carried.size(), all.not_carried.size());
+  bool any_cut = false;
+  for (size_t i = 0; i < cut.not_carried.size(); ++i) {
+    const std::string& c = cut.not_carried[i];
+    const std::string& a = all.not_carried[i];
+    SCOPED_TRACE(a.substr(0, 80));
+    EXPECT_LE(c.size(), kNoticeBytes + 8);
+    if (a.size() <= kNoticeBytes) {
+      EXPECT_EQ(c, a);
+      continue;
+    }
+    any_cut = true;
+    const size_t dots = c.find(",...");
+    ASSERT_NE(dots, std::string::npos);
+    EXPECT_EQ(a.compare(0, dots, c, 0, dots), 0);  // the first lines as in the full list
+    // the count stays
+    EXPECT_TRUE(c.find("600 in all") != std::string::npos ||
+                c.find("(600 motions") != std::string::npos);
+  }
+  EXPECT_TRUE(any_cut);
 }
 
 /// A KRL source states E1..E6 = 0 for axes the cell does not have: RAPID gets 9E+09 for them and
