@@ -75,9 +75,8 @@ int run(Args& args, CommandContext& ctx) {
   std::vector<std::string> notes;
   CapabilitySummary summary;
   const bool to_file = json_out && *json_out != "-";
-  std::string json;  // stdout only
-  // The JSON is written hole by hole: to the staged output file (its text is not kept) or, for
-  // stdout, to a string printed after the outputs are committed.
+  // The JSON is written hole by hole, its text not kept: to the staged output file (committed
+  // when complete) or to stdout as it is made.
   auto produce = [&](const ByteWriter& write) {
     if (report_out) {  // the report needs every hole at once
       PredictionResult r = predictJob(*cell, pos[0], opt, step);
@@ -110,11 +109,13 @@ int run(Args& args, CommandContext& ctx) {
   if (to_file) {
     writeFileAtomicStream(*json_out, produce);
   } else {
-    produce([&](std::string_view b) { json += b; });
+    produce([&](std::string_view b) {
+      ctx.out.write(b.data(), static_cast<std::streamsize>(b.size()));
+    });
+    ctx.out.flush();
   }
   progress.finish();
   printJobNotes(ctx, notes);
-  if (!to_file) emit(ctx, "", json);
 
   if (!ctx.quiet) {
     for (const std::string& f : digest.failures) ctx.err << "roprec: " << f << "\n";
