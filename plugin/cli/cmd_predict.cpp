@@ -1,7 +1,9 @@
 /// `roprec predict`: per-hole deviation, uncertainty budget, tolerance verdict and capability.
 #include <algorithm>
+#include <cstring>
 #include <filesystem>
 #include <optional>
+#include <stdexcept>
 #include <string_view>
 
 #include "compensator/support/atomic_file.hpp"
@@ -76,7 +78,7 @@ int run(Args& args, CommandContext& ctx) {
   CapabilitySummary summary;
   const bool to_file = json_out && *json_out != "-";
   // The JSON is written hole by hole, its text not kept: to the staged output file (committed
-  // when complete) or to stdout as it is made.
+  // when complete) or straight to stdout as it is made (not held back in ctx.out).
   auto produce = [&](const ByteWriter& write) {
     if (report_out) {  // the report needs every hole at once
       PredictionResult r = predictJob(*cell, pos[0], opt, step);
@@ -109,10 +111,11 @@ int run(Args& args, CommandContext& ctx) {
   if (to_file) {
     writeFileAtomicStream(*json_out, produce);
   } else {
-    produce([&](std::string_view b) {
-      ctx.out.write(b.data(), static_cast<std::streamsize>(b.size()));
+    produce([](std::string_view b) {
+      if (const int e = writeStdout(b); e != 0)
+        throw std::runtime_error(std::string("cannot write to standard output: ") +
+                                 std::strerror(e));
     });
-    ctx.out.flush();
   }
   progress.finish();
   printJobNotes(ctx, notes);
