@@ -89,13 +89,15 @@ if want compensate; then
 fi
 if want convert; then
   gen "$CONV" "$DIR/conv.src"
-  mb=$(awk "BEGIN { printf \"%.0f\", $(stat -c %s "$DIR/conv.src") / 1e6 }")
+  mb() { awk "BEGIN { printf \"%.0f\", $(stat -c %s "$1") / 1e6 }"; }  # the input's size, MB
   for d in rapid tp krl csv json; do
-    run "convert $mb MB krl -> $d" convert "$DIR/conv.src" --to "$d" -o "$DIR/out_$d"
+    run "convert $(mb "$DIR/conv.src") MB krl -> $d" convert "$DIR/conv.src" --to "$d" \
+      -o "$DIR/out_$d"
   done
-  run "convert $mb MB rapid -> krl" convert "$DIR/out_rapid.mod" --to krl -o "$DIR/back_rapid"
-  run "convert $mb MB tp -> krl" convert "$DIR/out_tp.ls" --to krl -o "$DIR/back_tp" \
-    --frame 'UFRAME[1]=1350 0 300 0 0 0'
+  run "convert $(mb "$DIR/out_rapid.mod") MB rapid -> krl" convert "$DIR/out_rapid.mod" --to krl \
+    -o "$DIR/back_rapid"
+  run "convert $(mb "$DIR/out_tp.ls") MB tp -> krl" convert "$DIR/out_tp.ls" --to krl \
+    -o "$DIR/back_tp" --frame 'UFRAME[1]=1350 0 300 0 0 0;UTOOL[1]=0 0 320 0 0 0'
 fi
 if want map; then
   run "map 1.2 x 1.6 m at 10 mm, 3 feeds" map --cell "$CELL" --region "-600 -800 0 600 800 0" \
