@@ -361,14 +361,15 @@ class LineScanner {
   bool open_{false};                    ///< RAPID: a statement continues on the next line
 };
 
-/// A notice's line numbers "19,28,37": all of them with `all_lines`, else as many as fit in
-/// `budget` characters, followed by ",..." when some are left out (the notice states the count).
+/// A notice's line numbers "19,28,37": as many as fit in `budget` characters, followed by ",..."
+/// when some are left out (the notice states the count); with `all_lines` every one, as
+/// "19, 28, 37" (the CLI cuts a word of over 1000 bytes on stderr: clipLongWords).
 std::string lineList(const std::vector<int>& lines, bool all_lines, std::size_t budget) {
   std::string s;
   for (std::size_t i = 0; i < lines.size(); ++i) {
     const std::string n = std::to_string(lines[i]);
     if (!all_lines && s.size() + n.size() + 5 > budget) return s + ",...";
-    if (i) s += ',';
+    if (i) s += all_lines ? ", " : ",";
     s += n;
   }
   return s;
