@@ -496,7 +496,7 @@ Json predictionJson(const PredictionResult& r) {
   return root;
 }
 
-std::string predictionReport(const PredictionResult& r) {
+std::string predictionReport(const PredictionResult& r, int threads) {
   const PredictionContext& c = r.context;
   ReportInput in = reportHeader(c, "roprec prediction — " + fileName(c.job.path));
   if (!c.robot.card.model.empty())
@@ -508,7 +508,7 @@ std::string predictionReport(const PredictionResult& r) {
     rh.T_W_tcp = c.job.requests[i].T_W_tcp;
     in.holes.push_back(std::move(rh));
   }
-  addPartFrameAndSplit(in, c);  // report.hpp: part frame and the δrobot split (issue 14)
+  addPartFrameAndSplit(in, c, threads);  // report.hpp: part frame and the δrobot split (issue 14)
   return renderReport(in);
 }
 

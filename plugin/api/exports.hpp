@@ -45,8 +45,9 @@ class PredictionJsonStream {
 
 /// The prediction JSON of the file contract (docs/contract.md "Prediction output").
 Json predictionJson(const PredictionResult& r);
-/// The self-contained HTML report of a prediction.
-std::string predictionReport(const PredictionResult& r);
+/// The self-contained HTML report of a prediction; the δrobot split of its holes on `threads`
+/// workers (the same bytes).
+std::string predictionReport(const PredictionResult& r, int threads = 1);
 
 /// The corrected-target export: CSV when `csv`, else JSON (docs/contract.md "Corrected targets").
 std::string compensationTargets(const CompensationResult& r, const std::string& program_path,

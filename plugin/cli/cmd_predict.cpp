@@ -88,7 +88,7 @@ int run(Args& args, CommandContext& ctx) {
         digest.add(r.holes[i], r.context.job.requests[i], pos[0]);
       }
       js.finish(r.summary);
-      writeFileAtomic(*report_out, predictionReport(r));
+      writeFileAtomic(*report_out, predictionReport(r, resolvedThreads(opt.threads)));
       notes = r.context.job.notes;
       summary = r.summary;
       keepUntilExit(std::move(r));
