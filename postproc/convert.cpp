@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <map>
 #include <set>
+#include <unordered_map>
+#include <unordered_set>
 
 #include "compensator/support/c_format.hpp"
 #include "compensator/support/error.hpp"
@@ -359,17 +361,33 @@ class LineScanner {
   bool open_{false};                    ///< RAPID: a statement continues on the next line
 };
 
+/// A notice's line numbers "19,28,37": as many as fit in `budget` characters, followed by ",..."
+/// when some are left out (the notice states the count); with `all_lines` every one, as
+/// "19, 28, 37" (the CLI cuts a word of over 1000 bytes on stderr: clipLongWords).
+std::string lineList(const std::vector<int>& lines, bool all_lines, std::size_t budget) {
+  std::string s;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    const std::string n = std::to_string(lines[i]);
+    if (!all_lines && s.size() + n.size() + 5 > budget) return s + ",...";
+    if (i) s += all_lines ? ", " : ",";
+    s += n;
+  }
+  return s;
+}
+
 /// Every instruction of the source that the new program does not carry, as
 /// "FILE:LINE: text (kind)", in source order; an instruction written several times (a WAIT per
-/// hole) once, at its first line: "FILE:19: WAIT SEC 0.3 (wait; 204 in all, lines 19,28,...)".
-void listNotCarried(const Program& p, ConversionReport& rep) {
+/// hole) once, at its first line: "FILE:19: WAIT SEC 0.3 (wait; 204 in all, lines 19,28,...)"
+/// (every line with `all_lines`, else a notice of at most kNoticeBytes).
+void listNotCarried(const Program& p, bool all_lines, ConversionReport& rep) {
   if (p.files.empty() ||
       (p.dialect != Dialect::kKrl && p.dialect != Dialect::kRapid && p.dialect != Dialect::kTp))
     return;  // a target list has nothing but targets
   const SourceFile& f = p.files[0];
-  std::set<int> motion_lines;
+  std::vector<char> motion_line(f.line_starts.size() + 1, 0);  // by line number
   for (const Motion& m : p.motions) {
-    if (m.file == 0) motion_lines.insert(m.line);
+    if (m.file == 0 && m.line > 0 && static_cast<std::size_t>(m.line) < motion_line.size())
+      motion_line[static_cast<std::size_t>(m.line)] = 1;
   }
   std::vector<std::string> order;                 // "text (kind" in first-seen order
   std::map<std::string, std::vector<int>> lines;  // its lines
@@ -377,7 +395,7 @@ void listNotCarried(const Program& p, ConversionReport& rep) {
   for (std::size_t l = 0; l < f.line_starts.size(); ++l) {
     std::string code;
     const std::string kind = scan.kind(lineAt(f, l), code);
-    if (kind.empty() || motion_lines.count(static_cast<int>(l + 1))) continue;
+    if (kind.empty() || motion_line[l + 1]) continue;
     if (code.size() > 60) code = code.substr(0, 57) + "...";
     const std::string key = strCat(code, " (", kind);
     if (!lines.count(key)) order.push_back(key);
@@ -388,7 +406,7 @@ void listNotCarried(const Program& p, ConversionReport& rep) {
     std::string s = f.path + ":" + std::to_string(at[0]) + ": " + key;
     if (at.size() > 1) {
       s += "; " + std::to_string(at.size()) + " in all, lines ";
-      for (std::size_t i = 0; i < at.size(); ++i) s += (i ? "," : "") + std::to_string(at[i]);
+      s += lineList(at, all_lines, kNoticeBytes - std::min(kNoticeBytes / 2, s.size() + 1));
     }
     rep.not_carried.push_back(s + ")");
   }
@@ -403,8 +421,9 @@ std::string writtenZone(Dialect to, const Item& it) {
 }
 
 /// One line per zone mapping that changes what the source says ("z10 -> C_DIS"), with the
-/// source lines of the motions it concerns: "zone z10 -> C_DIS at FILE:12,14,20 (3 motions)".
-void listZoneMappings(const Program& p, Dialect to, const std::vector<Item>& items,
+/// source lines of the motions it concerns: "zone z10 -> C_DIS at FILE:12,14,20 (3 motions)"
+/// (every line with `all_lines`, else a notice of at most kNoticeBytes).
+void listZoneMappings(const Program& p, Dialect to, const std::vector<Item>& items, bool all_lines,
                       ConversionReport& rep) {
   std::vector<std::string> order;
   std::map<std::string, std::pair<std::string, std::vector<int>>> seen;  // mapping -> file, lines
@@ -431,9 +450,12 @@ void listZoneMappings(const Program& p, Dialect to, const std::vector<Item>& ite
   for (const std::string& key : order) {
     const auto& [file, lines] = seen[key];
     std::string s = strCat("zone ", key, " at ", file, ":");
-    for (std::size_t i = 0; i < lines.size(); ++i) s += (i ? "," : "") + std::to_string(lines[i]);
-    s += " (" + std::to_string(lines.size()) + (lines.size() == 1 ? " motion" : " motions") +
-         "; the approximation size is not carried)";
+    const std::string tail = " (" + std::to_string(lines.size()) +
+                             (lines.size() == 1 ? " motion" : " motions") +
+                             "; the approximation size is not carried)";
+    s += lineList(lines, all_lines,
+                  kNoticeBytes - std::min(kNoticeBytes / 2, s.size() + tail.size()));
+    s += tail;
     rep.not_carried.push_back(s);
   }
 }
@@ -763,19 +785,24 @@ std::string motionName(const Item& it) {
   return it.type == MotionType::kJoint ? "J" : it.type == MotionType::kCircular ? "C" : "L";
 }
 
-std::string targetId(const Program& p, const Item& it, std::map<int, std::string>& ids) {
-  const int idx = it.key;
-  const auto f = ids.find(idx);
-  if (f != ids.end()) return f->second;
+/// The ids given so far: by item key, and the set of names taken (a look-up per new target).
+struct TargetIds {
+  std::unordered_map<int, std::string> by_key;
+  std::unordered_set<std::string> taken;
+};
+
+/// The id of an item's target: its name (sanitised) the first time that name is given, else
+/// "T<n>" (n = the count of targets named so far + 1); the same id for the same key again.
+const std::string& targetId(const Program& p, const Item& it, TargetIds& ids) {
+  const auto f = ids.by_key.find(it.key);
+  if (f != ids.by_key.end()) return f->second;
   std::string n = it.key == it.target
                       ? sanitize(p.targets()[static_cast<std::size_t>(it.target)].name, "")
                       : "";
-  for (const auto& [k, v] : ids) {
-    if (v == n) n.clear();
-  }
-  if (n.empty()) n = "T" + std::to_string(ids.size() + 1);
-  ids[idx] = n;
-  return n;
+  if (ids.taken.count(n)) n.clear();
+  if (n.empty()) n = "T" + std::to_string(ids.by_key.size() + 1);
+  ids.taken.insert(n);
+  return ids.by_key.emplace(it.key, std::move(n)).first->second;
 }
 
 std::vector<std::pair<std::string, std::string>> toCsv(const Program& p,
@@ -796,7 +823,7 @@ std::vector<std::pair<std::string, std::string>> toCsv(const Program& p,
   for (const auto& [n, f] : tools)
     s += "# tool " + n + ": " + xyz(f->pose, " ") + " " + quat(f->pose, " ") + "\n";
   s += "id,motion,x,y,z,qw,qx,qy,qz,frame,tool,conf,speed,j1,j2,j3,j4,j5,j6\n";
-  std::map<int, std::string> ids;
+  TargetIds ids;
   for (const Item& it : items) {
     s += targetId(p, it, ids) + "," + motionName(it) + ",";
     s += it.cartesian ? xyz(it.T, ",") + "," + quat(it.T, ",") : std::string(",,,,,,");
@@ -832,7 +859,7 @@ std::vector<std::pair<std::string, std::string>> toJson(const Program& p,
     first = false;
   }
   s += std::string(first ? "" : "\n  ") + "],\n  \"targets\": [";
-  std::map<int, std::string> ids;
+  TargetIds ids;
   first = true;
   for (const Item& it : items) {
     s += std::string(first ? "\n" : ",\n") + "    {\"id\": " + jsonStr(targetId(p, it, ids)) +
@@ -871,13 +898,14 @@ Dialect dialectFromName(const std::string& name) {
 
 std::vector<std::pair<std::string, std::string>> convertProgram(const Program& p, Dialect to,
                                                                 const std::string& out_path,
-                                                                ConversionReport& report) {
+                                                                ConversionReport& report,
+                                                                bool all_lines) {
   const bool table = to == Dialect::kCsv || to == Dialect::kJson;
   std::vector<Item> items = collect(p, table, report);
-  if (!table) {  // a program: say what of the source it does not carry (issue 14)
+  if (!table) {  // a program: say what of the source it does not carry
     markUnusedKrlExternalAxes(p, items, report);
-    listNotCarried(p, report);
-    listZoneMappings(p, to, items, report);
+    listNotCarried(p, all_lines, report);
+    listZoneMappings(p, to, items, all_lines, report);
   }
   switch (to) {
     case Dialect::kKrl:

@@ -35,15 +35,22 @@ struct ConversionReport {
   /// spindle and other calls, control flow, assignments, interrupts), as "FILE:LINE: text
   /// (kind)" (a repeated instruction once: "(wait; 204 in all, lines 19,28,...)"), and every
   /// zone mapping that changes the source's zone, as "zone z10 -> C_DIS at
-  /// FILE:12,14 (2 motions; ...)". Not an error (exit code 0): the motions are all there.
+  /// FILE:12,14 (2 motions; ...)". Not an error (exit code 0): the motions are all there. Each
+  /// notice is at most about kNoticeBytes (its line list cut to ",...") unless convertProgram is
+  /// asked for every line.
   std::vector<std::string> not_carried;
 };
 
+/// The length a not-carried notice's line list keeps it to (the count of lines is stated).
+inline constexpr std::size_t kNoticeBytes = 1024;
+
 /// The files of the converted program: (path, bytes). KRL: OUT.src and OUT.dat. Throws
 /// InputError when a frame the output must state by value is unresolved (give it with --frame).
+/// `all_lines`: every line number in the not-carried notices (`--verbose`).
 std::vector<std::pair<std::string, std::string>> convertProgram(const Program& p, Dialect to,
                                                                 const std::string& out_path,
-                                                                ConversionReport& report);
+                                                                ConversionReport& report,
+                                                                bool all_lines = false);
 
 /// Dialect from a `--to` name: krl, rapid, tp, csv, json.
 Dialect dialectFromName(const std::string& name);

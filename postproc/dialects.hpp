@@ -8,7 +8,7 @@ namespace roprec::postproc {
 
 /// Readers fill p.target_list/motions/frames/unresolved from p.files (already loaded, lines
 /// indexed). They throw InputError(file, line, message) on real errors.
-void parseKrl(Program& p, const ReadProgress& progress = {});
+void parseKrl(Program& p);
 void parseRapid(Program& p);
 void parseTp(Program& p);
 void parseCsv(Program& p);

@@ -70,7 +70,7 @@ struct Hole {
 
 std::vector<Hole> recognizeHoles(const Program& p, const RecognitionOptions& o = {});
 
-/// recognizeHoles while a program is still being read (postproc::ReadProgress): advance(p,
+/// recognizeHoles over a program that grows (read or made a block at a time): advance(p,
 /// false) recognises the cycles of the motions read so far that are complete (the motion after
 /// the cycle is read, so the cycle and its markers can no longer change) and keeps its place;
 /// advance(p, true) at the end of the program recognises the rest. The same Program, grown by

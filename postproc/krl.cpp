@@ -84,7 +84,7 @@ int sigDigits(std::string_view s) {
 
 class KrlReader {
  public:
-  KrlReader(Program& p, const ReadProgress& progress) : p_(p), progress_(progress) {}
+  explicit KrlReader(Program& p) : p_(p) {}
 
   void run() {
     lex_.comment = ';';
@@ -104,7 +104,6 @@ class KrlReader {
 
  private:
   Program& p_;
-  const ReadProgress& progress_;
   LexOptions lex_;
   int file_{0};
   NameMap<int> targets_;  // name -> index
@@ -970,9 +969,7 @@ class KrlReader {
     file_ = 0;
     int depth = 0;
     bool any_def = false;
-    std::size_t lines = 0;
     forEachLine([&](std::size_t b, std::size_t e, std::size_t j) {
-      if (progress_ && ++lines % kReadProgressLines == 0) progress_(p_);
       const SourceFile& f = file();
       // comment markers on comment-only lines
       if (b == e) {
@@ -1008,6 +1005,6 @@ class KrlReader {
 
 }  // namespace
 
-void parseKrl(Program& p, const ReadProgress& progress) { KrlReader(p, progress).run(); }
+void parseKrl(Program& p) { KrlReader(p).run(); }
 
 }  // namespace roprec::postproc

@@ -949,8 +949,7 @@ Dialect detectDialect(const std::string& path, const std::string& bytes) {
 }
 
 Program parseProgram(Dialect d, const std::string& path, std::string bytes,
-                     std::optional<std::string> dat_bytes, const std::string& dat_path,
-                     const ReadProgress& progress) {
+                     std::optional<std::string> dat_bytes, const std::string& dat_path) {
   Program p;
   p.dialect = d;
   SourceFile f;
@@ -974,7 +973,7 @@ Program parseProgram(Dialect d, const std::string& path, std::string bytes,
   p.motions.reserve(lines + 16);
   switch (d) {
     case Dialect::kKrl:
-      parseKrl(p, progress);
+      parseKrl(p);
       break;
     case Dialect::kRapid:
       parseRapid(p);
@@ -995,16 +994,15 @@ Program parseProgram(Dialect d, const std::string& path, std::string bytes,
   return p;
 }
 
-Program readProgram(const std::string& path, const ReadProgress& progress) {
+Program readProgram(const std::string& path) {
   if (!fs::exists(path)) throw InputError(path, 0, "cannot open file");
-  return readProgram(path, readInputFile(path, InputKind::kProgram), progress);
+  return readProgram(path, readInputFile(path, InputKind::kProgram));
 }
 
-Program readProgram(const std::string& path, std::string bytes, const ReadProgress& progress) {
+Program readProgram(const std::string& path, std::string bytes) {
   std::string src_path = path;
   const Dialect d = detectDialect(path, bytes);
-  if (d != Dialect::kKrl)
-    return parseProgram(d, path, std::move(bytes), std::nullopt, "", progress);
+  if (d != Dialect::kKrl) return parseProgram(d, path, std::move(bytes), std::nullopt, "");
   const fs::path pp(path);
   if (iequals(pp.extension().string(), ".dat")) {
     for (const char* e : {".src", ".SRC", ".Src"}) {
@@ -1028,8 +1026,7 @@ Program readProgram(const std::string& path, std::string bytes, const ReadProgre
     }
   }
   if (dat_path.empty()) dat_path = fs::path(src_path).replace_extension(".dat").string();
-  return parseProgram(Dialect::kKrl, src_path, std::move(bytes), std::move(dat), dat_path,
-                      progress);
+  return parseProgram(Dialect::kKrl, src_path, std::move(bytes), std::move(dat), dat_path);
 }
 
 }  // namespace roprec::postproc

@@ -483,24 +483,16 @@ struct Program {
   }
 };
 
-/// Called while a program is read, on the reading thread, between two lines of the main file
-/// (KRL .src: every kReadProgressLines lines; the other dialects do not call it): the program
-/// then holds every statement before that line, as it will stay, except that the last motion
-/// may still get markers. It may look at the program (not keep references into its vectors,
-/// which still grow) and must not change it. What it throws ends the read.
-using ReadProgress = std::function<void(const Program&)>;
-inline constexpr std::size_t kReadProgressLines = 2048;
-
 /// Reads a program; the dialect comes from the extension and the content. KRL: `x.src` reads
 /// `x.dat` beside it when present. Throws InputError(file, line, message) on real errors.
-Program readProgram(const std::string& path, const ReadProgress& progress = {});
+Program readProgram(const std::string& path);
 /// The same with `path`'s bytes already read (`bytes`: what readFileBytes(path) gives; a KRL
 /// .src's .dat is still read from beside it).
-Program readProgram(const std::string& path, std::string bytes, const ReadProgress& progress);
+Program readProgram(const std::string& path, std::string bytes);
 /// Same from bytes already in memory (`dat_bytes` only for KRL; nullopt = no .dat).
 Program parseProgram(Dialect d, const std::string& path, std::string bytes,
                      std::optional<std::string> dat_bytes = std::nullopt,
-                     const std::string& dat_path = "", const ReadProgress& progress = {});
+                     const std::string& dat_path = "");
 /// Dialect from a path (extension, then content); throws InputError when unknown.
 Dialect detectDialect(const std::string& path, const std::string& bytes);
 

@@ -19,9 +19,7 @@
 #   predict 100,000 holes     1.01 s / 187 MiB (1 thread), 0.84 s / 188 MiB (2)
 # every output byte-identical for 1 and 2 threads. Wall times of a 2-thread run depend on the
 # second core being free: with other builds running, the speed-ups drop to ~1.0x.
-# The last column is user + system CPU: about the same for 1 and 2 threads (predict with 2
-# threads also sets up the first 6,144 holes while the program is read and copies their JSON
-# texts: ~10 ms more).
+# The last column is user + system CPU: about the same for 1 and 2 threads.
 #
 # BENCH_SIZES  hole counts (default "1000 10000 100000")
 # BENCH_COMPENSATE_MAX  largest job that is also compensated (default 10000)
@@ -45,29 +43,7 @@ mkdir -p "$DIR"
 CELL="$ROOT/samples/cells/housing-kr120.xml"
 
 gen() {  # gen N FILE: a KRL program with N drill cycles on the housing's top face
-  python3 - "$1" "$2" <<'EOF'
-import math, sys
-n, path = int(sys.argv[1]), sys.argv[2]
-cols = int(math.ceil(math.sqrt(n * 1.2)))  # a 1.2 mm grid centred on the top face (z = 250)
-x0, y0 = -0.6 * (cols - 1), -0.6 * (int(math.ceil(n / cols)) - 1)
-name = "bench_%d" % n
-with open(path, "w") as f:
-    f.write("&ACCESS RVP\n&REL 1\n&COMMENT roprec bench-cli job\nDEF %s ( )\n" % name)
-    f.write(";FOLD INI\nBAS (#INITMOV,0 )\n;ENDFOLD (INI)\n\n")
-    f.write("$BASE = {FRAME: X 1350.000,Y 0.000,Z 300.000,A 0.000,B 0.000,C 0.000}\n")
-    f.write("$TOOL = {FRAME: X 0.000,Y 0.000,Z 320.000,A 0.000,B 0.000,C 0.000}\n")
-    f.write("SPINDLE_ON()\n")
-    for k in range(n):
-        x = x0 + 1.2 * (k % cols)
-        y = y0 + 1.2 * (k // cols)
-        p = "X %.3f,Y %.3f,Z %%.3f,A 0.000,B 0.000,C 180.000" % (x, y)
-        f.write("; B%06d drill D6.8 depth 16.0\n$VEL.CP = 0.25000\n" % (k + 1))
-        f.write("PTP {" + p % 300.0 + "} C_PTP\n")
-        f.write("LIN {" + p % 252.0 + "} C_DIS\n$VEL.CP = 0.02000\n")
-        f.write("LIN {" + p % 234.0 + "}\nWAIT SEC 0.3\n$VEL.CP = 0.25000\n")
-        f.write("LIN {" + p % 300.0 + "} C_DIS\n")
-    f.write("SPINDLE_OFF()\nEND\n")
-EOF
+  python3 "$ROOT/scripts/gen-drill-job.py" "$1" "$2"
 }
 
 FAILED=0

@@ -6,6 +6,8 @@
 #                            PredictHoles1000 allocations per hole, program ReadWrite per dialect,
 #                            the 2 s drilling-cycle transient)
 #   scripts/bench-cli.sh    (10,000 holes 1 vs 2 threads, 100,000-hole predict wall and RSS)
+#   scripts/bench-large.sh  (1,000,000-hole predict / report / compensate, a 110 MB program
+#                            converted between dialects, map, plan-test: wall and peak RSS)
 # and prints every row with its goal and whether it is met. Benchmark times are CPU medians of
 # BENCH_REPS repetitions (default 3); CLI rows are the least wall time of BENCH_REPEAT runs
 # (bench-cli.sh, default 3, 1 and 2 threads alternating), so a machine busy with other work lowers
@@ -14,7 +16,8 @@
 #   scripts/bench-table.sh [BUILD_DIR]      (default build; needs -DROPREC_BUILD_BENCH=ON)
 #
 # BENCH_REPS  repetitions of each benchmark (default 3)
-# BENCH_SKIP_CLI=1  benchmarks only (no bench-cli.sh run)
+# BENCH_SKIP_CLI=1  benchmarks only (no bench-cli.sh or bench-large.sh run)
+# BENCH_SKIP_LARGE=1  no bench-large.sh run (its BENCH_LARGE_* variables choose sizes and groups)
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BUILD="${1:-$ROOT/build}"
@@ -31,6 +34,9 @@ FILTER='BM_Roprec_StaticDeviation$|BM_KDL_LinearCompliance$|BM_PredictHole$|BM_P
 if [ "${BENCH_SKIP_CLI:-0}" != 1 ]; then
   BENCH_SIZES="10000 100000" BENCH_COMPENSATE_MAX=10000 \
     bash "$ROOT/scripts/bench-cli.sh" "$BUILD/bin/roprec" | tee "$OUT/cli.txt"
+  if [ "${BENCH_SKIP_LARGE:-0}" != 1 ]; then
+    bash "$ROOT/scripts/bench-large.sh" "$BUILD/bin/roprec" | tee -a "$OUT/cli.txt" || true
+  fi
 fi
 
 python3 - "$OUT/bench.json" "$OUT/cli.txt" <<'EOF'
@@ -103,6 +109,42 @@ row("program read + write", ", ".join("%s %.0f" % r for r in rates) + " MB/s",
 t = real("BM_DrillingCycle2s_Default", "s")
 row("drilling-cycle transient (2 s cycle)", "%.1f ms = %.0fx real time" % (t * 1e3, 2.0 / t),
     2.0 / t >= 200, ">= 200x")
+
+# ---- large jobs (bench-large.sh): wall time and peak RSS against the goal of each workload; a
+# row measured on a smaller job than the goal's (BENCH_LARGE_*) is shown but not met
+MB, GB = 1e6 / 2**20, 1e9 / 2**20  # MiB per MB and per GB
+def large(what, pattern, wall_goal, rss_goal_mib, goal_text, size=None):
+    got = [(k, cli[k]) for k in sorted(cli) if re.match(pattern, k) and isinstance(cli[k], tuple)]
+    if not got:
+        row(what, "not run", False, goal_text)
+        return
+    text = "; ".join("%.2f s / %d MiB (%s)" % (w, m, k.split(" ", 1)[1]) for k, (w, m) in got)
+    ok = all(w <= wall_goal and m <= rss_goal_mib for _, (w, m) in got)
+    if size is not None:
+        ok = ok and all(k.split()[1] == str(size) for k, _ in got)
+    row(what, text, ok, goal_text)
+
+large("predict 1,000,000 holes --json", r"predict \d+ --json", 10, 500 * MB,
+      "<= 10 s / <= 500 MB", 1000000)
+large("predict 1,000,000 holes, JSON on stdout", r"predict \d+ stdout", 10, 500 * MB,
+      "<= 10 s / <= 500 MB", 1000000)
+large("predict 1,000,000 holes --report", r"predict \d+ --report", 15, 2 * GB,
+      "<= 15 s / <= 2 GB", 1000000)
+for o in ("keep", "flip-free", "stiffest"):
+    large("compensate 1,000,000 holes %s" % o, r"compensate \d+ %s," % o, 15, 3 * GB,
+          "<= 15 s / <= 3 GB", 1000000)
+conv = [k for k in sorted(cli) if k.startswith("convert ") and isinstance(cli[k], tuple)]
+if conv:
+    speeds = [(k.split(" MB ")[1], float(k.split()[1]) / cli[k][0], cli[k][1]) for k in conv]
+    row("convert a 110 MB program, dialect -> dialect (MB of input/s)",
+        ", ".join("%s %.0f MB/s %d MiB" % s for s in speeds),
+        all(s >= 40 for _, s, _ in speeds), ">= 40 MB/s each")
+else:
+    row("convert a 110 MB program, dialect -> dialect", "not run", False, ">= 40 MB/s each")
+large("map 1.2 x 1.6 m at 10 mm, 3 feeds", r"map ", float("inf"), float("inf"),
+      "runs (cap >= 250,000 predictions)")
+large("plan-test 64,000 candidates x 400 holes", r"plan-test ", 1.5, float("inf"), "<= 1.5 s")
+
 pa = med.get("BM_PredictHoles1000/1/real_time", {}).get("allocs_per_hole")
 ka = med.get("BM_Compensate1000/0/iterations:1", {}).get("allocs_per_hole")
 fa = med.get("BM_Compensate1000/1/iterations:1", {}).get("allocs_per_hole")

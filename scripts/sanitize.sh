@@ -56,4 +56,4 @@ export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 # * label `packaging`: installs the build and runs consumer programs built without the sanitizers;
 # * tests named *python* / *Python* and robodk_app: they load the roprec module into the system Python
 #   (the module is not even built here, see ROPREC_BUILD_PYTHON above).
-ctest --output-on-failure --parallel "$(nproc)" --timeout 900 -LE '^packaging$' -E '[Pp]ython|robodk_app'
+ctest --output-on-failure --parallel "$(nproc)" --timeout 900 -LE '^(packaging|perf)$' -E '[Pp]ython|robodk_app'

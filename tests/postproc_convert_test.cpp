@@ -232,12 +232,12 @@ TEST(PostprocConvert, ListsWaitsCallsAndZoneMappingsItDoesNotCarry) {
        Dialect::kKrl,
        {"rapid_drill.mod:23: WaitTime 0.5; (wait)", "rapid_drill.mod:20: SpindleOn 12000; (call)",
         "rapid_drill.mod:31: nCount := nCount + 1; (assignment)",
-        "zone z10 -> C_DIS at " + dataProgram("rapid_drill.mod") + ":24,25 (2 motions",
+        "zone z10 -> C_DIS at " + dataProgram("rapid_drill.mod") + ":24, 25 (2 motions",
         "zone z10 -> C_PTP at " + dataProgram("rapid_drill.mod") + ":18 (1 motion"}},
       {"rapid_drill.mod",
        Dialect::kTp,
        {"rapid_drill.mod:23: WaitTime 0.5; (wait)",
-        "zone z10 -> CNT100 at " + dataProgram("rapid_drill.mod") + ":18,24,25 (3 motions"}},
+        "zone z10 -> CNT100 at " + dataProgram("rapid_drill.mod") + ":18, 24, 25 (3 motions"}},
       {"tp_controller.ls",
        Dialect::kRapid,
        {"tp_controller.ls:32: WAIT    .25(sec) (wait)",
@@ -246,7 +246,7 @@ TEST(PostprocConvert, ListsWaitsCallsAndZoneMappingsItDoesNotCarry) {
       {"../../../samples/emotor-housing/housing_kr120.src",
        Dialect::kRapid,
        {"housing_kr120.src:12: SPINDLE_ON() (call)",
-        "housing_kr120.src:19: WAIT SEC 0.3 (wait; 204 in all, lines 19,28,37,"}},
+        "housing_kr120.src:19: WAIT SEC 0.3 (wait; 204 in all, lines 19, 28, 37,"}},
       {"kss_drill.src",
        Dialect::kTp,
        {"kss_drill.src:46: WAIT SEC 0.5 (wait)", "kss_drill.src:61: MyCustomMacro(1, 2) (call)",
@@ -258,7 +258,7 @@ TEST(PostprocConvert, ListsWaitsCallsAndZoneMappingsItDoesNotCarry) {
     for (const char* f : {"UFRAME[9]", "UTOOL[1]", "wUnknown", "TOOL_DATA[2]", "BASE_DATA[3]"})
       resolveFrame(src, f, Pose::Identity());
     ConversionReport rep;
-    convertProgram(src, c.to, dir + "/o_" + dialectName(c.to), rep);
+    convertProgram(src, c.to, dir + "/o_" + dialectName(c.to), rep, true);
     for (const std::string& e : c.expect) EXPECT_TRUE(listed(rep.not_carried, e)) << e;
     expectLinesTrue(src, rep.not_carried);
     // the motions' zones that a dialect keeps are not listed
@@ -274,6 +274,57 @@ TEST(PostprocConvert, ListsWaitsCallsAndZoneMappingsItDoesNotCarry) {
             std::string::npos)
       << r.err;
   EXPECT_NE(r.err.find("zone z1 -> C_DIS at "), std::string::npos) << r.err;
+}
+
+/// A repeated instruction or zone of a large program is one notice of about 1 KB that states the
+/// count and its first lines; asked for every line (--verbose), it lists all of them.
+TEST(PostprocConvert, RepeatedNoticesAreCutToAboutOneKilobyteUnlessEveryLineIsAsked) {
+  const std::string dir = test::tempDir("convert-notice");
+  std::string prog = "DEF big ( )\n" + std::string(test::kHousingBase) +
+                     "\n$TOOL = {FRAME: X 0,Y 0,Z 320,A 0,B 0,C 0}\n";
+  for (int k = 0; k < 600; ++k) {  // a wait and two approximated motions per cycle
+    const std::string xy = "X " + std::to_string(k) + ",Y 0,";
+    prog += "PTP {" + xy + "Z 300,A 0,B 0,C 180} C_PTP\nLIN {" + xy +
+            "Z 270,A 0,B 0,C 180}\nWAIT SEC 0.3\nLIN {" + xy + "Z 300,A 0,B 0,C 180} C_DIS\n";
+  }
+  test::writeFile(dir + "/big.src", prog + "END\n");
+  const Program src = readProgram(dir + "/big.src");
+  ConversionReport cut;
+  convertProgram(src, Dialect::kRapid, dir + "/cut.mod", cut);
+  ConversionReport all;
+  convertProgram(src, Dialect::kRapid, dir + "/all.mod", all, true);
+  ASSERT_EQ(cut.not_carried.size(), all.not_carried.size());
+  const auto unspaced = [](std::string s) {  // every line is listed with ", " between them
+    s.erase(std::remove(s.begin(), s.end(), ' '), s.end());
+    return s;
+  };
+  bool any_cut = false;
+  for (size_t i = 0; i < cut.not_carried.size(); ++i) {
+    const std::string& c = cut.not_carried[i];
+    const std::string& a = all.not_carried[i];
+    SCOPED_TRACE(a.substr(0, 80));
+    EXPECT_LE(c.size(), kNoticeBytes + 8);
+    const size_t dots = c.find(",...");
+    if (dots == std::string::npos) {
+      EXPECT_EQ(unspaced(c), unspaced(a));
+      continue;
+    }
+    any_cut = true;
+    const std::string first = unspaced(c.substr(0, dots));  // the first lines of the full list
+    EXPECT_EQ(unspaced(a).compare(0, first.size(), first), 0);
+    // the count stays
+    EXPECT_TRUE(c.find("600 in all") != std::string::npos ||
+                c.find("(600 motions") != std::string::npos);
+  }
+  EXPECT_TRUE(any_cut);
+  // the CLI: the last WAIT (line 2402) is listed with --verbose only, and not cut on stderr
+  const std::string cmd = "convert '" + dir + "/big.src' --to rapid -o '" + dir + "/cli.mod'";
+  const test::RunResult brief = test::runRoprec(cmd);
+  const test::RunResult verbose = test::runRoprec(cmd + " --verbose");
+  EXPECT_EQ(brief.exit_code, 0) << brief.err;
+  EXPECT_EQ(verbose.exit_code, 0) << verbose.err;
+  EXPECT_EQ(brief.err.find("2402"), std::string::npos) << brief.err;
+  EXPECT_NE(verbose.err.find(", 2402)"), std::string::npos) << verbose.err;
 }
 
 /// A KRL source states E1..E6 = 0 for axes the cell does not have: RAPID gets 9E+09 for them and

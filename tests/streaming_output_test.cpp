@@ -46,21 +46,15 @@ std::string streamed(const api::PredictionResult& r) {
 }
 
 /// The same through PredictionJsonStream::holes(): blocks of `block` holes formatted on `threads`
-/// workers; the first `ahead` holes of each block made apart by itemFormat() (as the lookahead
-/// does) and handed over as texts.
-std::string streamedInBlocks(const api::PredictionResult& r, size_t block, int threads,
-                             size_t ahead = 0) {
+/// workers.
+std::string streamedInBlocks(const api::PredictionResult& r, size_t block, int threads) {
   std::string out;
   api::PredictionJsonStream js(r.context, [&](std::string_view b) { out += b; });
-  const api::HoleFormat format = api::PredictionJsonStream::itemFormat(r.context);
   const std::span<const HolePrediction> holes(r.holes);
   const std::span<const HoleRequest> requests(r.context.job.requests);
   for (size_t b = 0; b < holes.size(); b += block) {
     const size_t n = std::min(block, holes.size() - b);
-    std::vector<std::string> texts(std::min(ahead, n));
-    for (size_t k = 0; k < texts.size(); ++k)
-      format(b + k, holes[b + k], requests[b + k], texts[k]);
-    js.holes(holes.subspan(b, n), requests.subspan(b, n), threads, texts);
+    js.holes(holes.subspan(b, n), requests.subspan(b, n), threads);
   }
   js.finish(r.summary);
   return out;
@@ -317,12 +311,12 @@ TEST(StreamingOutput, AProgramSetUpBlockByBlockGivesTheBytesOfTheWholeJob) {
       std::optional<api::PredictionJsonStream> js;
       const api::PredictionResult s = api::predictJobStreaming(
           c.cell, c.program, opt,
-          [&](size_t, std::span<const HolePrediction> h, std::span<const HoleRequest> q,
-              std::span<const std::string> x, int t) { js->holes(h, q, t, x); },
+          [&](size_t, std::span<const HolePrediction> h, std::span<const HoleRequest> q, int t) {
+            js->holes(h, q, t);
+          },
           [&](const api::PredictionContext& ctx) {
             js.emplace(ctx, [&](std::string_view b) { out += b; });
-          },
-          {}, &api::PredictionJsonStream::itemFormat);
+          });
       js->finish(s.summary);
       EXPECT_TRUE(out == api::predictionJson(r).dump()) << threads << " threads";
       EXPECT_EQ(s.context.job.notes, r.context.job.notes);
@@ -348,12 +342,6 @@ TEST(StreamingOutput, AHoleWithANonFiniteNumberIsWrittenAsFailedLikeTheTree) {
   for (const int threads : {1, 2, 3}) {
     for (const size_t block : {size_t{5}, size_t{64}, r.holes.size()})
       EXPECT_TRUE(streamedInBlocks(r, block, threads) == tree) << threads << " threads, " << block;
-  }
-  // the first holes of each block made apart by itemFormat (the lookahead's texts), the failed
-  // ones among them: hole 3 as the fourth of a block of 64, hole 7 as the third of a block of 5
-  for (const size_t ahead : {size_t{1}, size_t{4}, r.holes.size()}) {
-    for (const size_t block : {size_t{5}, size_t{64}, r.holes.size()})
-      EXPECT_TRUE(streamedInBlocks(r, block, 2, ahead) == tree) << ahead << " ahead, " << block;
   }
   EXPECT_EQ(s.find("nan"), std::string::npos);
   EXPECT_EQ(s.find("inf"), std::string::npos);

@@ -189,7 +189,7 @@ TEST(WorkMap, BadRequestsExitTwoWithAMessage) {
   ASSERT_NE(at, std::string::npos) << r.err;
   const double step = std::stod(r.err.substr(at + 11));
   const double n = std::pow(std::floor(1000 / step + 1e-9) + 1, 2);
-  EXPECT_LE(n, 40000.0) << step;
+  EXPECT_LE(n, 250000.0) << step;
   // --help names the options
   const test::RunResult h = test::runRoprec("map --help");
   EXPECT_EQ(h.exit_code, 0);

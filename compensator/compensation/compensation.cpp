@@ -861,6 +861,17 @@ HoleCompensation finalizeHole(Evaluator& ev, const HoleRequest& h, HoleCompensat
   return c;
 }
 
+/// What finalizeHole takes over of a hole's stage-1 result (id, prediction, note), copied from
+/// `c`: the stage-1 result itself or a result finalizeHole made of it (which carries them as they
+/// were).
+HoleCompensation stageOne(const HoleCompensation& c) {
+  HoleCompensation s;
+  s.id = c.id;
+  s.before = c.before;
+  s.note = c.note;
+  return s;
+}
+
 /// Largest |Δθ4|, |Δθ6| between a and b (rad) and the axis (4 or 6) it is on.
 std::pair<double, int> largestWristJump(const Vec6& a, const Vec6& b) {
   const double d4 = std::abs(a[3] - b[3]);
@@ -937,17 +948,17 @@ void psiReason(const Evaluator& ev, const std::vector<HoleRequest>& holes,
 /// Stiffest: the keep result (ψ = 0, positions only) of every hole with a ψ = 0 posture (holes in
 /// parallel). Then, in hole order: a hole at ψ = 0 takes it; a turned hole goes back to it unless
 /// the turn gains at least kStiffnessGainMin of U_work, when the jump constraints with the final
-/// neighbours allow it. Records U_work(keep) for the gain.
+/// neighbours allow it. Records U_work(keep) for the gain. A compensated hole's result carries
+/// its stage-1 part (stageOne).
 void stiffestAgainstKeep(std::vector<Evaluator>& evs, const std::vector<HoleRequest>& holes,
-                         const std::vector<HoleCompensation>& original,
                          const std::vector<Node>& programmed, std::vector<Node>& chosen, double thr,
                          std::vector<HoleCompensation>& out) {
   const size_t n = out.size();
   std::vector<HoleCompensation> keep(n);
   parallelFor(n, static_cast<int>(evs.size()), [&](int w, size_t i) {
     if (out[i].ok && programmed[i].feasible)
-      keep[i] =
-          finalizeHole(evs[static_cast<size_t>(w)], holes[i], original[i], programmed[i], true);
+      keep[i] = finalizeHole(evs[static_cast<size_t>(w)], holes[i], stageOne(out[i]), programmed[i],
+                             true);
   });
   for (size_t i = 0; i < n; ++i) {
     HoleCompensation& k = keep[i];
@@ -1064,10 +1075,8 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,
             evs[static_cast<size_t>(w)].evaluate(holes[i], 0.0, b.branch, b.joints, false, true);
     });
   }
-  // stiffest compares with the keep result later and needs the stage-1 results again; the other
-  // modes hand each hole's over (no copy)
-  std::vector<HoleCompensation> original;
-  if (stiffest) original = out;
+  // stiffest compares with the keep result later, made from the stage-1 part the result carries
+  // (stageOne); the other modes hand each hole's over (no copy)
   parallelFor(n, threads, [&](int w, size_t i) {
     std::string why = notCompensatedReason(out[i], chosen[i]);
     if (!why.empty()) {
@@ -1075,10 +1084,10 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,
       return;
     }
     out[i] = finalizeHole(evs[static_cast<size_t>(w)], holes[i],
-                          stiffest ? original[i] : std::move(out[i]), chosen[i],
+                          stiffest ? stageOne(out[i]) : std::move(out[i]), chosen[i],
                           o.mode == OrientationMode::kKeep);
   });
-  if (stiffest) stiffestAgainstKeep(evs, holes, original, programmed, chosen, thr, out);
+  if (stiffest) stiffestAgainstKeep(evs, holes, programmed, chosen, thr, out);
   const Evaluator& ev = evs[0];
   for (size_t i = 0; i < n; ++i) {
     HoleCompensation& c = out[i];

@@ -1253,22 +1253,48 @@ MatrixXd spdInverse(const MatrixXd& A) {
   return A.ldlt().solve(MatrixXd::Identity(A.rows(), A.cols()));
 }
 
+/// log det of the 2×2 matrix S (−∞ unless det S > 0), det S by LU with partial pivoting: the
+/// arithmetic of Eigen's PartialPivLU::determinant for a 2×2 matrix (row 1 becomes the pivot row
+/// only when strictly larger in magnitude), without its allocation.
+double logDet2(const MatrixXd& S) {
+  double a = S(0, 0), b = S(0, 1), c = S(1, 0), d = S(1, 1);
+  double sign = 1.0;
+  if (std::abs(c) > std::abs(a)) {
+    std::swap(a, c);
+    std::swap(b, d);
+    sign = -1.0;
+  }
+  if (std::max(std::abs(a), std::abs(c)) != 0.0) c /= a;
+  d -= c * b;
+  const double det = sign * (a * d);
+  return det > 0 ? std::log(det) : -std::numeric_limits<double>::infinity();
+}
+
+/// Work space of criterionGain, sized once per selection (no allocation per candidate).
+struct GainScratch {
+  MatrixXd Ji, Jn, W, Wn, S;
+};
+
 /// Gain of the D_s criterion (log det M − log det M_nn, nuisance = the last `nn` columns) when
-/// the 2×n block Ji is added: by the matrix determinant lemma,
+/// the 2×n block Ji (rows 2i, 2i + 1 of J) is added: by the matrix determinant lemma,
 ///   Δ = log det(I + Ji M⁻¹ Jiᵀ) − log det(I + Ji,n M_nn⁻¹ Ji,nᵀ)
 /// with M⁻¹ and M_nn⁻¹ computed once per step (rank-2 updates: no n×n factorisation per
-/// candidate).
-double criterionGain(const MatrixXd& Ji, const MatrixXd& Minv, const MatrixXd& Mnn_inv,
-                     Eigen::Index nn) {
-  const auto logdet2 = [](const MatrixXd& S) {
-    const double d = S.determinant();
-    return d > 0 ? std::log(d) : -std::numeric_limits<double>::infinity();
-  };
-  const MatrixXd I = MatrixXd::Identity(Ji.rows(), Ji.rows());
-  double g = logdet2(I + Ji * Minv * Ji.transpose());
+/// candidate), each product into the scratch's matrices.
+double criterionGain(const MatrixXd& J, Eigen::Index i, const MatrixXd& Minv,
+                     const MatrixXd& Mnn_inv, Eigen::Index nn, GainScratch& s) {
+  s.Ji = J.middleRows(2 * i, 2);
+  s.W.noalias() = s.Ji * Minv;
+  s.S.noalias() = s.W * s.Ji.transpose();
+  s.S(0, 0) += 1.0;
+  s.S(1, 1) += 1.0;
+  double g = logDet2(s.S);
   if (nn > 0) {
-    const MatrixXd Jn = Ji.rightCols(nn);
-    g -= logdet2(I + Jn * Mnn_inv * Jn.transpose());
+    s.Jn = s.Ji.rightCols(nn);
+    s.Wn.noalias() = s.Jn * Mnn_inv;
+    s.S.noalias() = s.Wn * s.Jn.transpose();
+    s.S(0, 0) += 1.0;
+    s.S(1, 1) += 1.0;
+    g -= logDet2(s.S);
   }
   return g;
 }
@@ -1286,6 +1312,7 @@ std::vector<int> greedyDOptimal(const MatrixXd& J, const VectorXd& s0, int count
   };
   std::vector<int> chosen;
   std::vector<bool> used(static_cast<size_t>(J.rows() / 2), false);
+  GainScratch scratch;
   for (int step = 0; step < count; ++step) {
     const MatrixXd Minv = spdInverse(M);
     const MatrixXd Mnn_inv = nn > 0 ? spdInverse(M.bottomRightCorner(nn, nn)) : MatrixXd();
@@ -1293,7 +1320,7 @@ std::vector<int> greedyDOptimal(const MatrixXd& J, const VectorXd& s0, int count
     double best_gain = -std::numeric_limits<double>::infinity();
     for (Eigen::Index i = 0; i < J.rows() / 2; ++i) {
       if (used[static_cast<size_t>(i)]) continue;
-      const double g = criterionGain(J.middleRows(2 * i, 2), Minv, Mnn_inv, nn);
+      const double g = criterionGain(J, i, Minv, Mnn_inv, nn, scratch);
       if (g > best_gain) {
         best_gain = g;
         best = static_cast<int>(i);

@@ -131,7 +131,7 @@ Eigen::Matrix2d accuracyCovariance(const PredictionModel& m, const Vec6& theta, 
 }
 
 /// A process-lifetime copy of `text` (BudgetTerm::source must outlive every copy of the model and
-/// of the predictions: predictions are formatted after lookahead models are gone). Thread-safe;
+/// of the predictions: predictions may be formatted after their model is gone). Thread-safe;
 /// allocates only the first time a text is seen.
 const char* internedText(const std::string& text) {
   static std::mutex mutex;

@@ -18,8 +18,8 @@ ConvertResult convertProgramFile(const ConvertRequest& request) {
     return r;
   }
   postproc::ConversionReport report;
-  const auto files =
-      postproc::convertProgram(p, postproc::dialectFromName(*request.to), request.output, report);
+  const auto files = postproc::convertProgram(p, postproc::dialectFromName(*request.to),
+                                              request.output, report, request.all_lines);
   for (const auto& [path, bytes] : files) {
     writeFileAtomic(path, bytes);
     r.written.push_back(path);

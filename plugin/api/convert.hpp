@@ -22,6 +22,8 @@ struct ConvertRequest {
   std::string output;             ///< the output path (KRL: the .src; the .dat goes beside it)
   std::optional<std::string> to;  ///< krl, rapid, tp, csv or json; none: the program's own writer
   std::vector<FrameDefinition> frames;  ///< frames the program uses but does not define
+  /// Every line number in the not-carried notices (else each notice is cut to about 1 KB).
+  bool all_lines{false};
 };
 
 struct ConvertResult {

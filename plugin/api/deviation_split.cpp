@@ -2,6 +2,11 @@
 /// δrobot split by sequential re-evaluation (see deviation_split.hpp).
 #include "plugin/api/deviation_split.hpp"
 
+#include <algorithm>
+#include <array>
+
+#include "compensator/precision/parallel.hpp"
+
 namespace roprec::api {
 namespace {
 
@@ -13,10 +18,14 @@ void dropProcessLoad(PredictionModel& m) {
   }
 }
 
-struct Variant {
-  PredictionModel model;
-  PredictionData data;
-  explicit Variant(PredictionModel m) : model(std::move(m)), data(model) {}
+/// The four re-evaluated models (δ₁ links, δ₂ + tool, δ₃ + process, the process alone).
+using Variants = std::array<PredictionModel, 4>;
+
+/// One worker's prediction scratch for each of the four models.
+struct VariantData {
+  std::array<PredictionData, 4> d;
+  explicit VariantData(const Variants& v)
+      : d{PredictionData(v[0]), PredictionData(v[1]), PredictionData(v[2]), PredictionData(v[3])} {}
 };
 
 PredictionModel base(const PredictionModel& m) {
@@ -27,12 +36,13 @@ PredictionModel base(const PredictionModel& m) {
 }
 
 /// δ of hole `r` with the IK solution of `p` (the nearest solution to p's joints is p's own).
-std::optional<Vec3> deviationOf(Variant& v, const HoleRequest& r, const HolePrediction& p) {
+std::optional<Vec3> deviationOf(const PredictionModel& m, PredictionData& d, const HoleRequest& r,
+                                const HolePrediction& p) {
   HoleRequest q = r;
   q.config.reset();
   q.ik_seed = p.joints;
   q.nominal_axis.reset();
-  const HolePrediction e = predictHole(v.model, v.data, q, nullptr);
+  const HolePrediction e = predictHole(m, d, q, nullptr);
   if (e.status != HoleStatus::kOk) return std::nullopt;
   if ((e.joints - p.joints).cwiseAbs().maxCoeff() > 1e-9) return std::nullopt;
   return e.d_robot;
@@ -42,7 +52,8 @@ std::optional<Vec3> deviationOf(Variant& v, const HoleRequest& r, const HolePred
 
 std::vector<std::optional<DeviationSplit>> splitRobotDeviations(
     const PredictionModel& m, const nc::ToolAttachment& tool,
-    const std::vector<HoleRequest>& requests, const std::vector<const HolePrediction*>& preds) {
+    const std::vector<HoleRequest>& requests, const std::vector<const HolePrediction*>& preds,
+    int threads) {
   // δ₁: links only (tool massless, its TCP kept), no process, no reference
   PredictionModel links = base(m);
   nc::ToolAttachment massless;
@@ -57,16 +68,21 @@ std::vector<std::optional<DeviationSplit>> splitRobotDeviations(
   PredictionModel alone = base(m);
   alone.gravity = false;
 
-  Variant v1(std::move(links)), v2(std::move(weight)), v3(std::move(loaded)), v4(std::move(alone));
+  const Variants v{std::move(links), std::move(weight), std::move(loaded), std::move(alone)};
+  const int workers = std::max(1, threads);
+  std::vector<VariantData> scratch;
+  scratch.reserve(static_cast<size_t>(workers));
+  for (int w = 0; w < workers; ++w) scratch.emplace_back(v);
   std::vector<std::optional<DeviationSplit>> out(preds.size());
-  for (size_t i = 0; i < preds.size() && i < requests.size(); ++i) {
+  parallelFor(std::min(preds.size(), requests.size()), workers, [&](int w, size_t i) {
     const HolePrediction* p = preds[i];
-    if (p == nullptr || p->status != HoleStatus::kOk) continue;
-    const auto d1 = deviationOf(v1, requests[i], *p);
-    const auto d2 = deviationOf(v2, requests[i], *p);
-    const auto d3 = deviationOf(v3, requests[i], *p);
-    const auto d4 = deviationOf(v4, requests[i], *p);
-    if (!d1 || !d2 || !d3 || !d4) continue;
+    if (p == nullptr || p->status != HoleStatus::kOk) return;
+    std::array<PredictionData, 4>& d = scratch[static_cast<size_t>(w)].d;
+    const auto d1 = deviationOf(v[0], d[0], requests[i], *p);
+    const auto d2 = deviationOf(v[1], d[1], requests[i], *p);
+    const auto d3 = deviationOf(v[2], d[2], requests[i], *p);
+    const auto d4 = deviationOf(v[3], d[3], requests[i], *p);
+    if (!d1 || !d2 || !d3 || !d4) return;
     DeviationSplit s;
     if (m.calibrated) {
       const Pose real = chainForwardKinematics(m.robot.real_chain, p->joints) *
@@ -79,7 +95,7 @@ std::vector<std::optional<DeviationSplit>> splitRobotDeviations(
     s.controller = p->d_robot - *d3;
     s.process_alone = *d4 - s.geometry;
     out[i] = s;
-  }
+  });
   return out;
 }
 

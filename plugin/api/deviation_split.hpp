@@ -38,10 +38,12 @@ struct DeviationSplit {
 
 /// The split of each hole with status kOk (nullopt otherwise or when a re-evaluation does not
 /// converge). `tool` is the tool attachment `m` was built with (PredictionContext::tool).
-/// Monte Carlo uncertainty settings are not used (the re-evaluations need δ only). Throws nothing
-/// beyond std::bad_alloc.
+/// Monte Carlo uncertainty settings are not used (the re-evaluations need δ only). The holes are
+/// shared out over `threads` workers (each hole's split does not depend on the count). Throws
+/// nothing beyond std::bad_alloc.
 std::vector<std::optional<DeviationSplit>> splitRobotDeviations(
     const PredictionModel& m, const nc::ToolAttachment& tool,
-    const std::vector<HoleRequest>& requests, const std::vector<const HolePrediction*>& preds);
+    const std::vector<HoleRequest>& requests, const std::vector<const HolePrediction*>& preds,
+    int threads = 1);
 
 }  // namespace roprec::api

@@ -297,12 +297,6 @@ void applyBaseFrame(const JobHoles& job, HoleRequest& r, HoleSource& src) {
   src.frame_resolved = true;
 }
 
-void setUpRecognizedHole(const std::vector<postproc::Hole>& recognized, const postproc::Program& p,
-                         const CellSpec& cell, const Robot& robot, size_t i, HoleRequest& r,
-                         HoleSource& src) {
-  setUpHole(recognized, p, cell, robot, {}, -1, i, r, src);
-}
-
 void setUpHoles(const JobHoles& job, const CellSpec& cell, const Robot& robot, size_t begin,
                 size_t end, int threads, std::vector<HoleRequest>& requests,
                 std::vector<HoleSource>& sources) {
@@ -316,8 +310,7 @@ void setUpHoles(const JobHoles& job, const CellSpec& cell, const Robot& robot, s
 
 JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot& robot,
                       const std::optional<std::string>& hole_list, double match_tol_mm, int threads,
-                      bool defer_setup, const postproc::ReadProgress& progress,
-                      const std::function<postproc::HoleRecognizer*()>& recognizer) {
+                      bool defer_setup) {
   JobHoles job;
   job.path = path;
   std::string bytes = readInputFile(path, InputKind::kProgram);
@@ -370,20 +363,13 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
     job.program = std::move(parsed);
     return job;
   }
-  job.program =
-      parsed ? std::move(*parsed) : postproc::readProgram(path, std::move(bytes), progress);
+  job.program = parsed ? std::move(*parsed) : postproc::readProgram(path, std::move(bytes));
   job.deferred = defer_setup && !hole_list;
   if (job.deferred) {  // a job that writes no program: its bytes are not read again
     for (postproc::SourceFile& f : job.program->files) std::string().swap(f.bytes);
   }
   const postproc::Program& p = *job.program;
-  postproc::HoleRecognizer* read_along = recognizer ? recognizer() : nullptr;
-  if (read_along) {
-    read_along->advance(p, true);
-    job.recognized = read_along->take();
-  } else {
-    job.recognized = postproc::recognizeHoles(p);
-  }
+  job.recognized = postproc::recognizeHoles(p);
   std::vector<postproc::HoleSpec> specs;
   if (hole_list) {  // the hole list is drilling evidence too (a cycle with a dwell alone)
     specs = postproc::readHoleList(*hole_list);

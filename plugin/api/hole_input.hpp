@@ -67,13 +67,6 @@ void setUpHoles(const JobHoles& job, const CellSpec& cell, const Robot& robot, s
                 size_t end, int threads, std::vector<HoleRequest>& requests,
                 std::vector<HoleSource>& sources);
 
-/// Hole i of `recognized`, the cycles recognised in `p` (holes 0..i at least), set up as
-/// setUpHoles does but without a job's base frames (JobHoles::base_frames): `p` may be a program
-/// still being read (HoleLookahead). Throws InputError as setUpHoles does.
-void setUpRecognizedHole(const std::vector<postproc::Hole>& recognized, const postproc::Program& p,
-                         const CellSpec& cell, const Robot& robot, size_t i, HoleRequest& r,
-                         HoleSource& src);
-
 /// Per hole, whether it shares a program target with another hole: over the holes with
 /// `included[i]` != 0, of a program with `targets` targets. A target a hole lists twice (in and
 /// out through one approach point) is not shared. Holes that share targets must be edited in
@@ -95,13 +88,8 @@ Mat3 holeFrame(const Vec3& direction);
 /// checked (the same errors) but the requests are not kept: setUpHoles() builds them block by
 /// block (JobHoles::deferred); the program's files' bytes are released once it is read (its
 /// targets, motions and frames stay; its files keep their paths and lines).
-/// `progress` is passed to postproc::readProgram (a program's read only); `recognizer`, when
-/// given, is one `progress` advanced over the program as it was read: it is finished instead of
-/// recognising the program's holes from the start (the same holes).
 JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot& robot,
                       const std::optional<std::string>& hole_list, double match_tol_mm = 0.5,
-                      int threads = 1, bool defer_setup = false,
-                      const postproc::ReadProgress& progress = {},
-                      const std::function<postproc::HoleRecognizer*()>& recognizer = {});
+                      int threads = 1, bool defer_setup = false);
 
 }  // namespace roprec::api

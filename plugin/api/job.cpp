@@ -12,7 +12,6 @@
 #include "compensator/precision/parallel.hpp"
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
-#include "plugin/api/lookahead.hpp"
 #include "plugin/api/robot_compliance.hpp"
 
 namespace roprec::api {
@@ -204,14 +203,13 @@ void resolveFramesAndTool(PredictionContext& c, const JobOptions& o) {
 }
 
 PredictionContext loadContext(const std::string& cell_path, const std::string& program_path,
-                              const JobOptions& o, bool load_holes = true, bool defer_setup = false,
-                              std::unique_ptr<HoleLookahead>* lookahead = nullptr,
-                              const HoleFormatFactory& format_ahead = {}) {
+                              const JobOptions& o, bool load_holes = true,
+                              bool defer_setup = false) {
   if (!o.tool.empty() && o.tool != "program" && o.tool != "cell")
     throw UsageError("--tool must be program or cell");
-  PredictionContext c = loadPredictionContext(
-      cell_path, program_path, o.holes, o.uncertainty, o.match_tol_mm, load_holes,
-      resolvedThreads(o.threads), defer_setup, lookahead, format_ahead);
+  PredictionContext c =
+      loadPredictionContext(cell_path, program_path, o.holes, o.uncertainty, o.match_tol_mm,
+                            load_holes, resolvedThreads(o.threads), defer_setup);
   if (o.fanuc_turn_axes) {
     c.model.config_options.fanuc_turn_axes = *o.fanuc_turn_axes;
     if (c.job.program) c.job.program->fanuc_turn_axes = *o.fanuc_turn_axes;
@@ -429,26 +427,6 @@ void predictRange(const PredictionModel& m, std::span<const HoleRequest> req, si
   }
 }
 
-/// The predictions of block [b, b + requests.size()) the lookahead made while the program was
-/// read, into holes[0, taken) (holes sized to the block), and their texts into texts[0, taken)
-/// when it formatted them (texts empty otherwise); `prev` carries the continuity seed on. Stops
-/// the lookahead at the first block (it predicts until then).
-size_t takeAhead(HoleLookahead* ahead, const JobOptions& o, size_t b,
-                 const std::vector<HoleRequest>& requests, std::optional<Vec6>& prev,
-                 std::vector<HolePrediction>& holes, std::vector<std::string>& texts) {
-  holes.resize(requests.size());
-  texts.clear();
-  if (ahead == nullptr) return 0;
-  if (b == 0) ahead->stop(o.lookahead == JobOptions::Lookahead::kComplete);
-  size_t k = 0;
-  std::string text;
-  for (; k < requests.size() && ahead->take(b + k, requests[k], holes[k], text); ++k) {
-    if (holes[k].status == HoleStatus::kOk) prev = holes[k].joints;
-    if (ahead->formats()) texts.push_back(std::move(text));
-  }
-  return k;
-}
-
 }  // namespace
 
 PredictionResult predictJob(const std::string& cell_path, const std::string& program_path,
@@ -475,8 +453,7 @@ PredictionResult predictJobStreaming(
     const HoleSink& sink, const std::function<void(const PredictionContext&)>& on_context,
     const ProgressFn& progress) {
   const BlockSink each = [&sink](size_t first, std::span<const HolePrediction> holes,
-                                 std::span<const HoleRequest> requests,
-                                 std::span<const std::string>, int) {
+                                 std::span<const HoleRequest> requests, int) {
     for (size_t k = 0; k < holes.size(); ++k) sink(first + k, holes[k], requests[k]);
   };
   return predictJobStreaming(cell_path, program_path, options, sink ? each : BlockSink(),
@@ -486,17 +463,11 @@ PredictionResult predictJobStreaming(
 PredictionResult predictJobStreaming(
     const std::string& cell_path, const std::string& program_path, const JobOptions& options,
     const BlockSink& sink, const std::function<void(const PredictionContext&)>& on_context,
-    const ProgressFn& progress, const HoleFormatFactory& format_ahead) {
+    const ProgressFn& progress) {
   PredictionResult r;
   const int threads = resolvedThreads(options.threads);
-  // The lookahead predicts with the model the cell gives; options that change the model after
-  // the program is read (--tool program, --fanuc-turn-axes) go without it.
-  std::unique_ptr<HoleLookahead> ahead;
-  const bool look_ahead = threads > 1 && options.lookahead != JobOptions::Lookahead::kOff &&
-                          options.tool != "program" && !options.fanuc_turn_axes;
   // a program's holes are set up block by block as they are predicted (the memory of a block)
-  r.context = loadContext(cell_path, program_path, options, true, true,
-                          look_ahead ? &ahead : nullptr, format_ahead);
+  r.context = loadContext(cell_path, program_path, options, true, true);
   if (on_context) on_context(r.context);
   const JobHoles& job = r.context.job;
   const size_t n = job.deferred ? job.recognized.size() : job.requests.size();
@@ -505,7 +476,6 @@ PredictionResult predictJobStreaming(
     std::vector<HoleRequest> requests;  // deferred job: the block's own
     std::vector<HoleSource> sources;
     std::vector<HolePrediction> holes;
-    std::vector<std::string> texts;  // holes[0, texts.size()): formatted ahead
   };
   auto requestsOf = [&](const Block& blk, size_t b) {
     return job.deferred ? std::span<const HoleRequest>(blk.requests)
@@ -516,11 +486,10 @@ PredictionResult predictJobStreaming(
   // one thread at a time, so the bytes are those of one thread.
   auto drain = [&](const Block& blk, size_t b) {
     for (const HolePrediction& h : blk.holes) sum.add(h);
-    if (sink) sink(b, blk.holes, requestsOf(blk, b), blk.texts, threads);
+    if (sink) sink(b, blk.holes, requestsOf(blk, b), threads);
   };
   std::optional<Vec6> prev;
   std::array<Block, 2> blocks;
-  std::vector<HolePrediction> rest;  // a block's holes not predicted ahead
   std::future<void> draining;
   int k = 0;
   for (size_t b = 0, e = 0; b < n; b = e, k ^= 1) {
@@ -528,14 +497,7 @@ PredictionResult predictJobStreaming(
     Block& blk = blocks[static_cast<size_t>(k)];
     if (job.deferred) {
       setUpHoles(job, r.context.cell, r.context.robot, b, e, threads, blk.requests, blk.sources);
-      const size_t taken =
-          takeAhead(ahead.get(), options, b, blk.requests, prev, blk.holes, blk.texts);
-      r.predicted_ahead += taken;
-      if (taken < e - b) {
-        ahead.reset();  // nothing more to take: its memory goes
-        predictRange(r.context.model, blk.requests, taken, e - b, prev, threads, rest);
-        std::move(rest.begin(), rest.end(), blk.holes.begin() + static_cast<std::ptrdiff_t>(taken));
-      }
+      predictRange(r.context.model, blk.requests, 0, e - b, prev, threads, blk.holes);
     } else {
       predictRange(r.context.model, job.requests, b, e, prev, threads, blk.holes);
     }

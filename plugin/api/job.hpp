@@ -54,12 +54,6 @@ struct JobOptions {
   /// whatever the count (the sequential parts — IK seeds, the orientation sequence — are fixed
   /// before the per-hole work is shared out).
   int threads{1};
-  /// predictJobStreaming with more than one thread: predict a program's first holes while it is
-  /// still being read (lookahead.hpp; the same bytes). kOff: not; kComplete (tests): the job
-  /// waits until every hole handed ahead is predicted, so that what is taken does not depend on
-  /// timing.
-  enum class Lookahead { kAuto, kOff, kComplete };
-  Lookahead lookahead{Lookahead::kAuto};
 };
 
 /// `threads` with 0 resolved to the number of cores (at least 1). Throws UsageError when < 0.
@@ -75,9 +69,6 @@ struct PredictionResult {
   PredictionContext context;          ///< cell, robot, job holes, model
   std::vector<HolePrediction> holes;  ///< one per context.job.requests entry
   CapabilitySummary summary;
-  /// predictJobStreaming: holes whose prediction was made while the program was read
-  /// (JobOptions::lookahead).
-  std::size_t predicted_ahead{0};
   /// Holes whose status is not kOk.
   [[nodiscard]] int failed() const;
 };
@@ -97,11 +88,8 @@ using HoleSink =
 /// `requests[k]` = context.job.requests[first + k]. The calls come as a HoleSink's do (one at a
 /// time; with threads > 1 from a task of their own while the next block is predicted);
 /// `threads` is the job's thread count, for a sink that formats a block on several workers.
-/// `texts[k]` (k < texts.size(), often none) is hole first + k's text made ahead by the job's
-/// `format_ahead` (see predictJobStreaming), for the sink to write instead of formatting it.
 using BlockSink = std::function<void(size_t first, std::span<const HolePrediction> holes,
-                                     std::span<const HoleRequest> requests,
-                                     std::span<const std::string> texts, int threads)>;
+                                     std::span<const HoleRequest> requests, int threads)>;
 
 /// predictJob in constant memory: the holes are predicted in blocks and handed to `sink` in
 /// order, then dropped; the result's `holes` stays empty and its `summary` is the one
@@ -110,13 +98,10 @@ using BlockSink = std::function<void(size_t first, std::span<const HolePredictio
 /// A program's holes are set up block by block and its files' bytes released once it is read (a
 /// predict writes no program): see loadJobHoles' `defer_setup`; the result's context.job.requests
 /// and sources then stay empty (a hole list's are kept).
-/// `format_ahead` (may be empty): the sink's own formatting of a hole (e.g.
-/// PredictionJsonStream::itemFormat); the holes predicted while the program is read (the
-/// lookahead, threads > 1) are also formatted then, and their texts handed to the sink.
 PredictionResult predictJobStreaming(
     const std::string& cell_path, const std::string& program_path, const JobOptions& options,
     const BlockSink& sink, const std::function<void(const PredictionContext&)>& on_context,
-    const ProgressFn& progress = {}, const HoleFormatFactory& format_ahead = {});
+    const ProgressFn& progress = {});
 /// The same with the holes handed over one by one.
 PredictionResult predictJobStreaming(
     const std::string& cell_path, const std::string& program_path, const JobOptions& options,

@@ -2,15 +2,12 @@
 
 #include <cmath>
 #include <cstdint>
-#include <filesystem>
-#include <limits>
 #include <ostream>
 
 #include "compensator/process/process_load.hpp"
 #include "compensator/support/error.hpp"
 #include "compensator/support/input_file.hpp"
 #include "plugin/api/card_tools.hpp"
-#include "plugin/api/lookahead.hpp"
 #include "plugin/api/robot_compliance.hpp"
 
 namespace roprec::api {
@@ -140,29 +137,6 @@ std::optional<std::array<int, 3>> fanucTurnAxesFromCell(const CellSpec& cell) {
   return axes;
 }
 
-/// The size of a job's file (its .src for KRL); unknown sizes count as large.
-std::uintmax_t programBytes(const std::string& path) {
-  std::error_code ec;
-  const std::uintmax_t n = std::filesystem::file_size(path, ec);
-  return ec ? std::numeric_limits<std::uintmax_t>::max() : n;
-}
-
-/// The lookahead of a job that sets its holes up block by block: the model the job will build
-/// once its program is read (a deferred job's holes add no diameters to it). Null when the cell
-/// has an error: the job reports it after reading its program, as without a lookahead.
-std::unique_ptr<HoleLookahead> startLookahead(const PredictionContext& c,
-                                              const std::string& uncertainty_override,
-                                              const HoleFormatFactory& format_ahead) {
-  try {
-    PredictionModel m = buildPredictionModel(setupFromCell(c, uncertainty_override));
-    if (const auto axes = fanucTurnAxesFromCell(c.cell)) m.config_options.fanuc_turn_axes = *axes;
-    return std::make_unique<HoleLookahead>(std::move(m), c.cell, c.robot, kLookaheadHoles,
-                                           format_ahead ? format_ahead(c) : HoleFormat());
-  } catch (...) {
-    return nullptr;
-  }
-}
-
 /// The cell's rule feed <= 0.1 Dc (process_spec.cpp) applies to a diameter from the hole list too:
 /// a hole the cell's feed cannot drill is an error at its line (the force model would give 0 N
 /// and "conforms").
@@ -186,8 +160,7 @@ PredictionContext loadPredictionContext(const std::string& cell_path, const std:
                                         const std::optional<std::string>& hole_list,
                                         const std::string& uncertainty_override,
                                         double match_tol_mm, bool load_holes, int threads,
-                                        bool defer_setup, std::unique_ptr<HoleLookahead>* lookahead,
-                                        const HoleFormatFactory& format_ahead) {
+                                        bool defer_setup) {
   PredictionContext c;
   c.cell = loadCell(cell_path);
   try {
@@ -211,14 +184,8 @@ PredictionContext loadPredictionContext(const std::string& cell_path, const std:
   } else {
     c.process_description = "no process (gravity and tool weight only)";
   }
-  if (lookahead && load_holes && defer_setup && !hole_list && threads > 1 &&
-      programBytes(job_path) <= kLookaheadProgramBytes)
-    *lookahead = startLookahead(c, uncertainty_override, format_ahead);
   if (load_holes) {
-    HoleLookahead* ahead = lookahead ? lookahead->get() : nullptr;
-    c.job = loadJobHoles(job_path, c.cell, c.robot, hole_list, match_tol_mm, threads, defer_setup,
-                         ahead ? ahead->hook() : postproc::ReadProgress(),
-                         [ahead] { return ahead ? ahead->recognizer() : nullptr; });
+    c.job = loadJobHoles(job_path, c.cell, c.robot, hole_list, match_tol_mm, threads, defer_setup);
   } else if (!job_path.empty()) {
     c.job.path = job_path;
     c.job.program = postproc::readProgram(job_path);

@@ -10,7 +10,7 @@
 
 namespace roprec::api {
 
-void addPartFrameAndSplit(ReportInput& in, const PredictionContext& c) {
+void addPartFrameAndSplit(ReportInput& in, const PredictionContext& c, int threads) {
   const JobHoles& job = c.job;
   if (in.holes.size() != job.requests.size())
     throw std::invalid_argument("addPartFrameAndSplit: one report hole per request expected");
@@ -31,7 +31,7 @@ void addPartFrameAndSplit(ReportInput& in, const PredictionContext& c) {
   std::vector<const HolePrediction*> preds;
   preds.reserve(in.holes.size());
   for (const ReportHole& h : in.holes) preds.push_back(h.prediction);
-  const auto splits = splitRobotDeviations(c.model, c.tool, job.requests, preds);
+  const auto splits = splitRobotDeviations(c.model, c.tool, job.requests, preds, threads);
   for (size_t i = 0; i < in.holes.size(); ++i) in.holes[i].split = splits[i];
 }
 

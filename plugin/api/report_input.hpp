@@ -11,7 +11,8 @@ struct PredictionContext;
 /// Fills what the report derives from the job: the part frame (the program frame every hole
 /// shares, else the cell's <workobject>, named after it) and each predicted hole's δrobot split
 /// (splitRobotDeviations with the context's model and tool). Call after `in.holes` has one entry
-/// per context.job.requests entry, in that order. Throws std::invalid_argument otherwise.
-void addPartFrameAndSplit(ReportInput& in, const PredictionContext& c);
+/// per context.job.requests entry, in that order. Throws std::invalid_argument otherwise. The
+/// split runs on `threads` workers (the same bytes).
+void addPartFrameAndSplit(ReportInput& in, const PredictionContext& c, int threads = 1);
 
 }  // namespace roprec::api

@@ -31,7 +31,7 @@ struct WorkMapRequest {
   Vec3 direction{-Vec3::UnitZ()};        ///< drilling direction, workobject frame (normalised here)
   std::vector<double> feeds_mm_per_rev;  ///< empty: the cell's feed
   std::optional<double> step_mm;         ///< empty: the largest span / 10 (≥ 1 mm)
-  size_t max_predictions{40000};         ///< points × feeds limit
+  size_t max_predictions{250000};        ///< points × feeds limit
 };
 
 struct WorkMapPoint {

@@ -1,5 +1,8 @@
 #include "plugin/cli/cli.hpp"
 
+#include <unistd.h>
+
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <ostream>
@@ -107,6 +110,22 @@ std::vector<Command>& commandRegistry() {
 }
 
 CommandRegistration::CommandRegistration(Command c) { commandRegistry().push_back(std::move(c)); }
+
+int writeStdout(std::string_view text) {
+  const char* p = text.data();
+  size_t left = text.size();
+  while (left > 0) {
+    const ssize_t n = ::write(1, p, left);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return errno;
+    }
+    if (n == 0) return EIO;
+    p += n;
+    left -= static_cast<size_t>(n);
+  }
+  return 0;
+}
 
 void emit(CommandContext& ctx, const std::string& path, const std::string& text) {
   if (path.empty() || path == "-") {

@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -117,6 +118,11 @@ inline int parseThreadsOption(Args& args) {
     throw UsageError("--threads must be a whole number: 0 (every core) or 1..1024, not " + *t);
   return static_cast<int>(n);
 }
+
+/// Writes all of `text` to standard output (file descriptor 1) now, past ctx.out (which main
+/// prints once the command succeeded); 0, or the errno of a failed write (a full disk, a closed
+/// pipe: SIGPIPE is ignored so that it is reported, not fatal).
+int writeStdout(std::string_view text);
 
 /// Writes `text` to `path` atomically, or to ctx.out when path is "-" or empty.
 void emit(CommandContext& ctx, const std::string& path, const std::string& text);

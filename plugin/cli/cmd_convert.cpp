@@ -12,6 +12,7 @@ int run(Args& args, CommandContext& ctx) {
   std::optional<std::string> out = args.option("o");
   const std::optional<std::string> to = args.option("to");
   const std::optional<std::string> frames = args.option("frame");
+  const bool verbose = args.flag("verbose");
   const std::vector<std::string> pos = args.positionals();
   args.finish();
   if (pos.size() != 1 || !out) throw UsageError("convert needs one PROGRAM and -o OUT");
@@ -20,6 +21,7 @@ int run(Args& args, CommandContext& ctx) {
   req.output = *out;
   req.to = to;
   if (frames) req.frames = parseFrames(*frames);
+  req.all_lines = verbose;
   const ConvertResult r = convertProgramFile(req);
   if (!ctx.quiet) {
     for (const std::string& n : r.notes) ctx.err << "roprec: note: " << n << "\n";
@@ -32,7 +34,8 @@ int run(Args& args, CommandContext& ctx) {
 const CommandRegistration reg{
     {"convert", "a program through its own reader/writer, or its targets into another dialect",
      "usage: roprec convert PROGRAM [--to krl|rapid|tp|csv|json] -o OUT [--frame 'REF=x y z a b "
-     "c[;...]']\n\n"
+     "c[;...]']\n"
+     "                      [--verbose]\n\n"
      "Without --to: PROGRAM is read and written back through its own reader and writer; the "
      "output\n"
      "is byte-identical to the input (KRL: OUT names the .src, the .dat is written beside it).\n"
@@ -45,6 +48,8 @@ const CommandRegistration reg{
      "new program does not carry (WAIT/WaitTime, I/O, spindle and other calls, control flow) is\n"
      "listed on stderr as 'not carried: FILE:LINE: text (kind)', and so is each zone mapping\n"
      "('zone z10 -> C_DIS at FILE:LINES'); unused external axes are written 9E+09 in RAPID.\n"
+     "A repeated instruction or zone is listed once with its count and its first line numbers\n"
+     "(about 1 KB a notice); --verbose lists every line number.\n"
      "Frames that the output must\n"
      "state by value but the program does not define are given with --frame (mm, deg, KUKA ABC).\n",
      61, run}};

@@ -1,7 +1,9 @@
 /// `roprec predict`: per-hole deviation, uncertainty budget, tolerance verdict and capability.
 #include <algorithm>
+#include <cstring>
 #include <filesystem>
 #include <optional>
+#include <stdexcept>
 #include <string_view>
 
 #include "compensator/support/atomic_file.hpp"
@@ -75,9 +77,8 @@ int run(Args& args, CommandContext& ctx) {
   std::vector<std::string> notes;
   CapabilitySummary summary;
   const bool to_file = json_out && *json_out != "-";
-  std::string json;  // stdout only (--json -)
-  // The JSON is written hole by hole: to the staged output file (its text is not kept) or, for
-  // stdout, to a string printed after the outputs are committed.
+  // The JSON is written hole by hole, its text not kept: to the staged output file (committed
+  // when complete) or, with --json -, straight to stdout as it is made.
   auto produce = [&](const ByteWriter& write) {
     if (report_out) {  // the report needs every hole at once
       PredictionResult r = predictJob(*cell, pos[0], opt, step);
@@ -87,7 +88,7 @@ int run(Args& args, CommandContext& ctx) {
         digest.add(r.holes[i], r.context.job.requests[i], pos[0]);
       }
       js.finish(r.summary);
-      writeFileAtomic(*report_out, predictionReport(r));
+      writeFileAtomic(*report_out, predictionReport(r, resolvedThreads(opt.threads)));
       notes = r.context.job.notes;
       summary = r.summary;
       keepUntilExit(std::move(r));
@@ -97,12 +98,11 @@ int run(Args& args, CommandContext& ctx) {
     PredictionResult r = predictJobStreaming(
         *cell, pos[0], opt,
         [&](size_t, std::span<const HolePrediction> block, std::span<const HoleRequest> reqs,
-            std::span<const std::string> texts, int threads) {
-          js->holes(block, reqs, threads, texts);  // formatted on the workers (or ahead)
+            int threads) {
+          js->holes(block, reqs, threads);  // formatted on the workers
           for (size_t k = 0; k < block.size(); ++k) digest.add(block[k], reqs[k], pos[0]);
         },
-        [&](const PredictionContext& c) { js.emplace(c, write); }, step,
-        &PredictionJsonStream::itemFormat);
+        [&](const PredictionContext& c) { js.emplace(c, write); }, step);
     js->finish(r.summary);
     notes = r.context.job.notes;
     summary = r.summary;
@@ -111,13 +111,16 @@ int run(Args& args, CommandContext& ctx) {
   if (to_file) {
     writeFileAtomicStream(*json_out, produce);
   } else if (json_out) {
-    produce([&](std::string_view b) { json += b; });
+    produce([](std::string_view b) {
+      if (const int e = writeStdout(b); e != 0)
+        throw std::runtime_error(std::string("cannot write to standard output: ") +
+                                 std::strerror(e));
+    });
   } else {
     produce([](std::string_view) {});  // no JSON asked for: the summary only
   }
   progress.finish();
   printJobNotes(ctx, notes);
-  if (json_out && !to_file) emit(ctx, "", json);
 
   if (!ctx.quiet) {
     for (const std::string& f : digest.failures) ctx.err << "roprec: " << f << "\n";

@@ -90,23 +90,7 @@ class ClippedLines : public std::streambuf {
   std::string line_;
 };
 
-/// Writes all of `text` to standard output (file descriptor 1); 0, or the errno of a failed
-/// write (a full disk, a closed pipe: SIGPIPE is ignored so that it is reported, not fatal).
-int writeStdout(std::string_view text) {
-  const char* p = text.data();
-  size_t left = text.size();
-  while (left > 0) {
-    const ssize_t n = ::write(1, p, left);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      return errno;
-    }
-    if (n == 0) return EIO;
-    p += n;
-    left -= static_cast<size_t>(n);
-  }
-  return 0;
-}
+using roprec::cli::writeStdout;
 
 int stdoutFailed(int e) {
   std::cerr << "roprec: error: cannot write to standard output: " << std::strerror(e)

@@ -542,7 +542,7 @@ Json predictionJson(const PredictionResult& r) {
   return root;
 }
 
-std::string predictionReport(const PredictionResult& r) {
+std::string predictionReport(const PredictionResult& r, int threads) {
   const PredictionContext& c = r.context;
   ReportInput in = reportHeader(c, "roprec prediction — " + fileName(c.job.path));
   if (!c.robot.card.model.empty())
@@ -554,7 +554,7 @@ std::string predictionReport(const PredictionResult& r) {
     rh.T_W_tcp = c.job.requests[i].T_W_tcp;
     in.holes.push_back(std::move(rh));
   }
-  addPartFrameAndSplit(in, c);  // report_input.hpp: part frame and the δrobot split (issue 14)
+  addPartFrameAndSplit(in, c, threads);  // report_input.hpp: part frame and the δrobot split
   return renderReport(in);
 }
 
@@ -602,37 +602,13 @@ void PredictionJsonStream::item(JsonWriter& w, const HolePrediction& h, const Ho
   itemOrFailed(w, h.id, r.line, [&] { predictionHole(w, h, r, card); });
 }
 
-HoleFormat PredictionJsonStream::itemFormat(const PredictionContext& c) {
-  // an item's bytes depend on its array's depth and on whether items come before it (the comma),
-  // not on the header: a writer in the "holes" array of an otherwise empty document stands for
-  // the stream's
-  auto in_holes = std::make_shared<JsonWriter>();
-  in_holes->beginObject();
-  in_holes->key("holes");
-  in_holes->beginArray();
-  return [in_holes, card = c.robot.card](size_t k, const HolePrediction& h, const HoleRequest& r,
-                                         std::string& out) {
-    JsonWriter w = in_holes->itemWriter(k);
-    w.out().swap(out);  // the caller's buffer, reused
-    w.out().clear();
-    item(w, h, r, card);
-    w.out().swap(out);
-  };
-}
-
 void PredictionJsonStream::hole(const HolePrediction& h, const HoleRequest& r) {
   item(w_, h, r, card_);
   drain(false);
 }
 
 void PredictionJsonStream::holes(std::span<const HolePrediction> h, std::span<const HoleRequest> r,
-                                 int threads, std::span<const std::string> texts) {
-  for (const std::string& t : texts) {
-    w_.appendItems(t, 1);
-    drain(false);
-  }
-  h = h.subspan(texts.size());
-  r = r.subspan(texts.size());
+                                 int threads) {
   constexpr size_t kRun = 32;  // holes per text (about 60 kB)
   const size_t runs = (h.size() + kRun - 1) / kRun;
   texts_.resize(runs);
@@ -692,7 +668,7 @@ std::string compensationReport(const CompensationResult& r, const std::string& p
     }
     in.holes.push_back(rh);
   }
-  addPartFrameAndSplit(in, c);  // report_input.hpp: part frame and the δrobot split (issue 14)
+  addPartFrameAndSplit(in, c);  // report_input.hpp: part frame and the δrobot split
   return renderReport(in);
 }
 

@@ -27,15 +27,9 @@ class PredictionJsonStream {
   PredictionJsonStream(const PredictionContext& c, ByteSink sink);
   void hole(const HolePrediction& h, const HoleRequest& r);
   /// The next holes, in order (request k of hole k), formatted on `threads` workers: the bytes of
-  /// hole() called for each one after the other. `texts[k]` (k < texts.size()) is hole k's text
-  /// already made by itemFormat(): written as it is.
-  void holes(std::span<const HolePrediction> h, std::span<const HoleRequest> r, int threads,
-             std::span<const std::string> texts = {});
+  /// hole() called for each one after the other.
+  void holes(std::span<const HolePrediction> h, std::span<const HoleRequest> r, int threads);
   void finish(const CapabilitySummary& s);
-  /// The text of hole k as an item of the "holes" array, made anywhere (the lookahead formats
-  /// the holes it predicts while the program is read): the bytes hole() writes for it as the
-  /// k-th hole of a stream of the context `c`. Holds a copy of the robot card.
-  static HoleFormat itemFormat(const PredictionContext& c);
 
  private:
   /// One hole as an item of the "holes" array of `w` (a hole with a non-finite number as
@@ -51,8 +45,9 @@ class PredictionJsonStream {
 
 /// The prediction JSON of the file contract (docs/contract.md "Prediction output").
 Json predictionJson(const PredictionResult& r);
-/// The self-contained HTML report of a prediction.
-std::string predictionReport(const PredictionResult& r);
+/// The self-contained HTML report of a prediction; the δrobot split of its holes on `threads`
+/// workers (the same bytes).
+std::string predictionReport(const PredictionResult& r, int threads = 1);
 
 /// The corrected-target export: CSV when `csv`, else JSON (docs/contract.md "Corrected targets").
 std::string compensationTargets(const CompensationResult& r, const std::string& program_path,

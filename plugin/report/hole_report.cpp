@@ -326,7 +326,7 @@ std::string renderReport(const ReportInput& in) {
   using namespace report;
   const std::vector<HoleView> hv = holeViews(in);
   std::string o;
-  o.reserve(65536 + 4096 * hv.size());
+  o.reserve(65536 + 640 * hv.size());  // about 0.54 KB a hole
   Html h(o);
   renderHead(h, in);
   renderHeader(h, in, hv);
