@@ -29,13 +29,6 @@ std::string sampleCell() {
   return test::readFile(test::sourceDir() + "/samples/cells/housing-kr120.xml");
 }
 
-/// 1-based line of the first occurrence of `needle` in `text`.
-int lineOf(const std::string& text, const std::string& needle) {
-  const std::size_t at = text.find(needle);
-  if (at == std::string::npos) return -1;
-  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
-}
-
 /// Writes `text` as a cell file and loads it; returns the error (or fails the test).
 InputError cellError(const std::string& text, const std::string& tag) {
   const std::string path = test::tempDir(tag) + "/cell.xml";
@@ -50,14 +43,6 @@ InputError cellError(const std::string& text, const std::string& tag) {
   return InputError("", 0, "");
 }
 
-std::string replaced(const std::string& text, const std::string& from, const std::string& to) {
-  const std::size_t at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  std::string out = text;
-  if (at != std::string::npos) out.replace(at, from.size(), to);
-  return out;
-}
-
 // A 10 MB unknown name costs no more than a short one (candidates whose length differs by more
 // than the distance allowed are skipped), and the message echoes it cut to a readable length.
 TEST(Cell, AHugeUnknownAttributeIsAnsweredAtOnceAndClippedInTheMessage) {
@@ -67,7 +52,7 @@ TEST(Cell, AHugeUnknownAttributeIsAnsweredAtOnceAndClippedInTheMessage) {
   for (int i = 0; i < 50; ++i) EXPECT_EQ(didYouMean(huge, known), "");
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 1.0);
   const InputError e = cellError(
-      replaced(sampleCell(), "<tool ", "<tool " + std::string(1'000'000, 'q') + "=\"1\" "),
+      test::replaced(sampleCell(), "<tool ", "<tool " + std::string(1'000'000, 'q') + "=\"1\" "),
       "strict-huge-attr");
   EXPECT_NE(e.message().find("unknown attribute '" + std::string(80, 'q') + "… (1000000 bytes)'"),
             std::string::npos)
@@ -76,16 +61,16 @@ TEST(Cell, AHugeUnknownAttributeIsAnsweredAtOnceAndClippedInTheMessage) {
 }
 
 TEST(Cell, MisspeltToolMassIsAnErrorWithAHint) {
-  const std::string text = replaced(sampleCell(), "mass_kg=", "mas_kg=");
+  const std::string text = test::replaced(sampleCell(), "mass_kg=", "mas_kg=");
   const InputError e = cellError(text, "strict-mas");
-  EXPECT_EQ(e.line(), lineOf(text, "<tool "));
+  EXPECT_EQ(e.line(), test::lineOf(text, "<tool "));
   EXPECT_EQ(e.message(), "unknown attribute 'mas_kg' on <tool> (did you mean 'mass_kg'?)");
 }
 
 TEST(Cell, MisspeltToleranceElementIsAnErrorWithAHint) {
-  const std::string text = replaced(sampleCell(), "<tolerance ", "<tolerence ");
+  const std::string text = test::replaced(sampleCell(), "<tolerance ", "<tolerence ");
   const InputError e = cellError(text, "strict-tolerence");
-  EXPECT_EQ(e.line(), lineOf(text, "<tolerence "));
+  EXPECT_EQ(e.line(), test::lineOf(text, "<tolerence "));
   EXPECT_EQ(e.message(), "unknown element <tolerence> in <cell> (did you mean <tolerance>?)");
 }
 
@@ -118,7 +103,7 @@ TEST(Cell, UnknownNamesEverywhereAreErrors) {
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.to);
-    const std::string text = replaced(sampleCell(), c.from, c.to);
+    const std::string text = test::replaced(sampleCell(), c.from, c.to);
     const InputError e = cellError(text, "strict-unknown");
     EXPECT_NE(e.message().find(c.expect), std::string::npos) << e.message();
     EXPECT_GT(e.line(), 0);
@@ -141,23 +126,23 @@ TEST(Cell, ToolMassAndInertiaMustBePhysical) {
   const std::string base = sampleCell();
   for (const auto& c : cases) {
     SCOPED_TRACE(c.to);
-    const std::string text = replaced(base, c.from, c.to);
+    const std::string text = test::replaced(base, c.from, c.to);
     const InputError e = cellError(text, "strict-mass");
     EXPECT_NE(e.message().find(c.expect), std::string::npos) << e.message();
-    EXPECT_EQ(e.line(), lineOf(text, "<tool "));
+    EXPECT_EQ(e.line(), test::lineOf(text, "<tool "));
   }
 }
 
 TEST(Cell, CliRefusesAMisspeltCellWithExit2AndWritesNothing) {
   const std::string dir = test::tempDir("strict-cli");
   const std::string cell = dir + "/cell.xml";
-  const std::string text = replaced(sampleCell(), "mass_kg=", "mas_kg=");
+  const std::string text = test::replaced(sampleCell(), "mass_kg=", "mas_kg=");
   test::writeFile(cell, text);
   const std::string src = test::sourceDir() + "/samples/emotor-housing/housing_kr120.src";
   const auto r = test::runRoprec("predict --cell '" + cell + "' '" + src + "' --json '" + dir +
                                  "/p.json' --report '" + dir + "/p.html'");
   EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_NE(r.err.find(cell + ":" + std::to_string(lineOf(text, "<tool ")) +
+  EXPECT_NE(r.err.find(cell + ":" + std::to_string(test::lineOf(text, "<tool ")) +
                        ": unknown attribute 'mas_kg' on <tool> (did you mean 'mass_kg'?)"),
             std::string::npos)
       << r.err;
@@ -172,13 +157,13 @@ TEST(Cell, UncertaintySeedAndSamplesMustBeIntegersInRange) {
                                 "samples=\"1e300\"", "samples=\"100.5\""}) {
     SCOPED_TRACE(bad);
     const std::string text =
-        replaced(sampleCell(), "<uncertainty method=", "<uncertainty " + bad + " method=");
+        test::replaced(sampleCell(), "<uncertainty method=", "<uncertainty " + bad + " method=");
     test::writeFile(dir + "/cell.xml", text);
     const auto r = test::runRoprec("predict --cell '" + dir + "/cell.xml' '" + src + "' --json '" +
                                    dir + "/p.json'");
     EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_NE(
-        r.err.find(dir + "/cell.xml:" + std::to_string(lineOf(text, "<uncertainty ")) +
+        r.err.find(dir + "/cell.xml:" + std::to_string(test::lineOf(text, "<uncertainty ")) +
                    ": <uncertainty> " + bad.substr(0, bad.find('=')) + " must be an integer in"),
         std::string::npos)
         << r.err;

@@ -22,21 +22,6 @@ namespace fs = std::filesystem;
 
 std::string q(const std::string& p) { return "'" + p + "'"; }
 
-/// 1-based line of the first occurrence of `needle` in `text`.
-int lineOf(const std::string& text, const std::string& needle) {
-  const std::size_t at = text.find(needle);
-  if (at == std::string::npos) return -1;
-  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
-}
-
-std::string replaced(const std::string& text, const std::string& from, const std::string& to) {
-  const std::size_t at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  std::string out = text;
-  if (at != std::string::npos) out.replace(at, from.size(), to);
-  return out;
-}
-
 std::string bundledCardDir() { return test::sourceDir() + "/robots/kuka-kr120-r2500-pro"; }
 
 /// The bundled KR 120 card with an absolute URDF path, edited by `edit`, written into a temp dir.
@@ -44,7 +29,7 @@ std::string cardCopy(const std::string& tag, const std::string& from, const std:
   std::string text = test::readFile(bundledCardDir() + "/robot.xml");
   text = std::regex_replace(text, std::regex("urdf=\"kr120r2500pro.urdf\""),
                             "urdf=\"" + bundledCardDir() + "/kr120r2500pro.urdf\"");
-  if (!from.empty()) text = replaced(text, from, to);
+  if (!from.empty()) text = test::replaced(text, from, to);
   const std::string path = test::tempDir(tag) + "/robot.xml";
   test::writeFile(path, text);
   return path;
@@ -85,7 +70,7 @@ TEST(RobotCard, UnknownNamesAreErrorsWithAHint) {
     const std::string path = cardCopy("strict-card", c.from, c.to);
     const InputError e = cardError(path);
     EXPECT_NE(e.message().find(c.expect), std::string::npos) << e.message();
-    EXPECT_EQ(e.line(), lineOf(test::readFile(path), c.line_of)) << e.message();
+    EXPECT_EQ(e.line(), test::lineOf(test::readFile(path), c.line_of)) << e.message();
   }
 }
 
@@ -98,7 +83,7 @@ TEST(RobotCard, ACardWithoutRepeatabilityIsAnError) {
   test::writeFile(path, text);
   const InputError e = cardError(path);
   EXPECT_NE(e.message().find("has no <repeatability"), std::string::npos) << e.message();
-  EXPECT_EQ(e.line(), lineOf(text, "<robot "));
+  EXPECT_EQ(e.line(), test::lineOf(text, "<robot "));
 }
 
 TEST(RobotCard, LinkMassesAndInertiasMustBePhysical) {
@@ -122,7 +107,7 @@ TEST(RobotCard, LinkMassesAndInertiasMustBePhysical) {
     const std::string path = cardCopy("strict-card-link", link, c.extra + "\n  " + link);
     const InputError e = cardError(path);
     EXPECT_NE(e.message().find(c.expect), std::string::npos) << e.message();
-    EXPECT_EQ(e.line(), lineOf(test::readFile(path), "<link "));
+    EXPECT_EQ(e.line(), test::lineOf(test::readFile(path), "<link "));
   }
 }
 

@@ -1,8 +1,10 @@
 #pragma once
-// Helpers of the input-validation tests (krl, rapid, tp, urdf_loader, robot_card): the text of
-// the InputError a program reader throws, and the bundled KR 120 copied with one edit.
+// Helpers of the input-validation tests (krl, rapid, tp, urdf_loader, robot_card, cell): text
+// edits and their lines, the text of the InputError a reader throws, and the bundled KR 120
+// copied with one edit.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -13,6 +15,23 @@
 #include "tests/support/test_support.hpp"
 
 namespace roprec::test {
+
+/// 1-based line of the first occurrence of `needle` in `text` (-1: none).
+inline int lineOf(const std::string& text, const std::string& needle) {
+  const std::size_t at = text.find(needle);
+  if (at == std::string::npos) return -1;
+  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
+}
+
+/// `text` with the first `from` replaced by `to` (a test failure when there is none).
+inline std::string replaced(const std::string& text, const std::string& from,
+                            const std::string& to) {
+  const std::size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  std::string out = text;
+  if (at != std::string::npos) out.replace(at, from.size(), to);
+  return out;
+}
 
 /// The what() of the InputError `load` throws ("FILE:LINE: message"), or "(accepted)".
 inline std::string inputErrorText(const std::function<void()>& load) {
