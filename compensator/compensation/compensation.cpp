@@ -98,11 +98,12 @@ struct Evaluator {
   const PredictionModel& m;
   PredictionData& d;
   const CompensationOptions& o;
+  bool after_budget{true};  ///< assemble re-predicts the compensated target (budget, verdict)
 
   nc::Loads loadsFor(const ProcessAtDiameter* proc) const { return processLoads(m, proc); }
 
-  const ProcessAtDiameter* processFor(double diameter) const {
-    return roprec::processFor(m, diameter);
+  const ProcessAtDiameter* processFor(const HoleRequest& h) const {
+    return roprec::processFor(m, h);
   }
 
   /// IK of the real robot (the link angles θ_d that put the real TCP at T_W_tcp, realIk) in
@@ -162,7 +163,7 @@ struct Evaluator {
     const double s2 = std::sin(2.0 * o.wrist_margin);
     if (n.wrist < s2) n.penalty += std::pow((s2 - n.wrist) / s2, 2);
     // stiffness proxy: linearised deflection-model uncertainty ⊥ the axis
-    const ProcessAtDiameter* proc = processFor(h.diameter);
+    const ProcessAtDiameter* proc = processFor(h);
     const nc::Loads loads = loadsFor(proc);
     // frame recursion (fast_equilibrium.hpp; the model of record's τ and J to 1e-9 relative)
     nc::chainFrames(m.model, d.nc, n.q);
@@ -817,11 +818,18 @@ void assemble(Evaluator& ev, const HoleRequest& h, const nc::Loads& loads, bool 
   after.tolerance = h.tolerance;
   after.diameter = h.diameter;
   after.depth = h.depth;
+  after.drill = h.drill;
+  after.feed = h.feed;
+  after.spindle_rpm = h.spindle_rpm;
   after.config = c.config;
   after.written_config = h.written_config;
   after.line = h.line;
   after.surface_W = h.surface_W;
   after.ik_seed = h.ik_seed;
+  if (!ev.after_budget) {
+    c.ok = true;
+    return;
+  }
   c.after = predictHole(m, d, after, &c.theta_cmd);
   if (c.after.status != HoleStatus::kOk) {
     c.reason = "re-prediction of the compensated target failed: " + c.after.reason;
@@ -846,7 +854,7 @@ HoleCompensation finalizeHole(Evaluator& ev, const HoleRequest& h, HoleCompensat
   c.theta_d = node.q;
   c.branch = node.branch;
   c.branch_changed = c.before.status == HoleStatus::kOk && c.branch != c.before.branch;
-  const nc::Loads loads = ev.loadsFor(ev.processFor(h.diameter));
+  const nc::Loads loads = ev.loadsFor(ev.processFor(h));
   if (positions_only) {
     const std::optional<Vec6> q = positionOnlyCommand(ev, c.T_nominal, c.theta_d, loads);
     if (!q) {
@@ -1037,14 +1045,14 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,
   evs.reserve(static_cast<size_t>(threads));
   for (int w = 0; w < threads; ++w) {
     scratch.emplace_back(m);
-    evs.push_back(Evaluator{m, scratch.back(), o});
+    evs.push_back(Evaluator{m, scratch.back(), o, true});
   }
   std::vector<HoleCompensation> out = predictOriginalThreads(m, scratch[0], holes, threads);
   const int grid = o.mode == OrientationMode::kKeep ? 1 : std::max(4, o.grid);
   Grid<Node> nodes;
   double thr = 0;
   PredictionData serial_scratch(m);
-  Evaluator serial{m, serial_scratch, o};
+  Evaluator serial{m, serial_scratch, o, true};
   const std::vector<int> choice = chooseSequence(evs, serial, holes, out, grid, nodes, st, thr);
   st.jump_threshold_used = thr;
   std::vector<Node> chosen(n);
@@ -1097,6 +1105,31 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,
   }
   if (stats) *stats = st;
   return out;
+}
+
+void compensateTarget(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
+                      const CompensationOptions& options, TargetBudgets budgets,
+                      HoleCompensation& out) {
+  out.id = h.id;
+  out.ok = false;
+  out.reason.clear();
+  if (budgets == TargetBudgets::kBoth)
+    predictHole(m, d, h, nullptr, out.before);
+  else
+    chooseHoleSolution(m, d, h, nullptr, out.before);
+  CompensationOptions o = options;
+  o.mode = OrientationMode::kKeep;
+  Evaluator ev{m, d, o, budgets == TargetBudgets::kBoth};
+  Node node;
+  const HolePrediction& b = out.before;
+  if (b.status == HoleStatus::kOk)  // stage 2 of keep: ψ = 0 in the programmed branch
+    node = ev.evaluate(h, 0.0, o.allow_branch_change ? -1 : b.branch, b.joints, false, false);
+  std::string why = notCompensatedReason(out, node);
+  if (!why.empty()) {
+    out.reason = std::move(why);
+    return;
+  }
+  out = finalizeHole(ev, h, std::move(out), node, true);
 }
 
 }  // namespace roprec

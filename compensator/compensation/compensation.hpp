@@ -66,6 +66,13 @@ struct CompensationOptions {
   int threads{1};
 };
 
+/// What compensateTarget computes beyond the compensated target.
+enum class TargetBudgets {
+  kBoth,  ///< `before` and `after` are full predictions (budgets, verdicts): compensateHoles'
+          ///< result
+  kNone   ///< `before` holds the IK choice only (chooseHoleSolution), `after` is not predicted
+};
+
 /// Inline message capacities (bytes; inline_text.hpp: a longer text ends in "..."). The note is one
 /// fixed 78-byte phrase; a ψ reason ≤ 110 bytes of phrase + one hole id (ids up to 146 bytes fit);
 /// a flag reason ≤ 125 bytes of phrase + the program's flags + the mismatch of ≤ 6 turn flags
@@ -137,5 +144,14 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,
                                               const std::vector<HoleRequest>& holes,
                                               const CompensationOptions& options,
                                               CompensationStats* stats = nullptr);
+
+/// One target compensated with its orientation kept (the `keep` mode of compensateHoles for a
+/// program of this one hole: the same T_programmed, theta_cmd, flags and residual, bit for bit)
+/// into `out`, reusing `d` (a host's per-target call: no allocation beyond the strings').
+/// `budgets` kNone skips the uncertainty budgets before and after and the verdict (a caller that
+/// needs only the target to program). options.mode is ignored (keep).
+void compensateTarget(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
+                      const CompensationOptions& options, TargetBudgets budgets,
+                      HoleCompensation& out);
 
 }  // namespace roprec

@@ -11,6 +11,10 @@ void dropProcessLoad(PredictionModel& m) {
     proc.wrench.force.setZero();
     proc.wrench.torque.setZero();
   }
+  for (auto& [key, proc] : m.process_by_hole) {
+    proc.wrench.force.setZero();
+    proc.wrench.torque.setZero();
+  }
 }
 
 struct Variant {

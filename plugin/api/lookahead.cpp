@@ -47,7 +47,8 @@ bool sameRequest(const HoleRequest& a, const HoleRequest& b) {
          sameOptional(a.written_config, b.written_config, cfg) && a.line == b.line &&
          sameOptional(a.surface_W, b.surface_W, vec) &&
          sameOptional(a.nominal_axis, b.nominal_axis, axis) &&
-         sameOptional(a.ik_seed, b.ik_seed, vec) && a.evidence == b.evidence;
+         sameOptional(a.ik_seed, b.ik_seed, vec) && a.evidence == b.evidence &&
+         a.drill == b.drill && sameBits(a.feed, b.feed) && sameBits(a.spindle_rpm, b.spindle_rpm);
 }
 
 HoleLookahead::HoleLookahead(PredictionModel model, const CellSpec& cell, const Robot& robot,
