@@ -288,8 +288,9 @@ TEST(HoleInput, ProgramToolChangesAndHoleListGiveEachHoleTheSameDrill) {
     EXPECT_EQ(prog.context.job.requests[i].drill, listed.context.job.requests[i].drill);
     EXPECT_EQ(a.diameter, b.diameter);
     EXPECT_EQ(a.feed, b.feed);
-    // the program's depth runs from the feed start 2 mm above the surface
-    EXPECT_NEAR(a.depth, b.depth + 2e-3, 1e-9);
+    // the program's depth runs from the feed start 2 mm above the surface (its coordinates are
+    // printed to 0.001 mm)
+    EXPECT_NEAR(a.depth, b.depth + 2e-3, 1e-6);
     EXPECT_EQ(a.d_robot, b.d_robot);
     EXPECT_EQ(a.d_mach, b.d_mach);
     EXPECT_EQ(a.U_work_exact, b.U_work_exact);

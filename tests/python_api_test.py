@@ -385,11 +385,13 @@ class PythonApiTest(unittest.TestCase):
         out = self.tmp / "p.json"
         r = cli("predict", "--cell", TOOLS_CELL, HOLES, "--json", out, "--quiet")
         self.assertEqual(r.returncode, 0, r.stderr)
-        holes = json.load(open(out, encoding="utf-8"))["holes"]
+        with open(out, encoding="utf-8") as f:
+            holes = json.load(f)["holes"]
         r = cli("compensate", "--cell", TOOLS_CELL, HOLES, "--orientation", "keep", "-o", self.tmp / "c.csv",
                 "--targets", self.tmp / "t.json", "--quiet")
         self.assertEqual(r.returncode, 0, r.stderr)
-        targets = json.load(open(self.tmp / "t.json", encoding="utf-8"))["holes"]
+        with open(self.tmp / "t.json", encoding="utf-8") as f:
+            targets = json.load(f)["holes"]
         s = roprec.Session(TOOLS_CELL)
         cs = C.open(TOOLS_CELL)
         try:

@@ -666,7 +666,7 @@ void refineTurned(std::vector<Evaluator>& evs, const std::vector<HoleRequest>& h
 /// real TCP position is the nominal one: p ← p − (p_real(p) − p_nom) (∂p_real/∂p ≈ I: a few
 /// iterations). Returns the command, or nullopt when it does not converge.
 std::optional<Vec6> positionOnlyCommand(Evaluator& ev, const Pose& T_nominal, const Vec6& theta_d,
-                                        const nc::Loads& loads) {
+                                        const nc::Loads& loads, nc::Deflection* last = nullptr) {
   const PredictionModel& m = ev.m;
   const nc::Model& controller = controllerModel(m);
   Pose T = T_nominal;
@@ -680,7 +680,10 @@ std::optional<Vec6> positionOnlyCommand(Evaluator& ev, const Pose& T_nominal, co
                                                     framesOnly(), controllerOffset(m, ev.d.nc, q));
     if (!df.converged) return std::nullopt;
     const Vec3 err = df.T_real.translation() - T_nominal.translation();
-    if (err.norm() < 5e-10) return q;  // 0.0005 µm: the seeded IK stops at 1e-10
+    if (err.norm() < 5e-10) {  // 0.0005 µm: the seeded IK stops at 1e-10
+      if (last) *last = df;
+      return q;
+    }
     T.translation() -= err;
   }
   return std::nullopt;
@@ -783,7 +786,7 @@ void settleFlags(Evaluator& ev, const HoleRequest& h, const Pose& T_flange, Hole
 /// The programmed pose, flags, residual and re-predicted budget at the command c.theta_cmd.
 /// Sets c.reason and returns with c.ok false when something fails.
 void assemble(Evaluator& ev, const HoleRequest& h, const nc::Loads& loads, bool positions_only,
-              HoleCompensation& c) {
+              HoleCompensation& c, const nc::Deflection* at_command = nullptr) {
   const PredictionModel& m = ev.m;
   PredictionData& d = ev.d;
   const nc::Model& controller = controllerModel(m);  // the programmed target is FK_nom(θ_cmd)
@@ -796,14 +799,21 @@ void assemble(Evaluator& ev, const HoleRequest& h, const nc::Loads& loads, bool 
   c.T_programmed.translation() = d.nc.frames.p_tcp;
   if (positions_only) c.T_programmed.linear() = c.T_nominal.linear();  // exact by construction
   c.delta = c.T_programmed * c.T_nominal.inverse();
-  settleFlags(ev, h, c.T_programmed * controller.T_L6_tcp.inverse() * controller.T_L6_flange, c);
+  if (ev.after_budget) {
+    settleFlags(ev, h, c.T_programmed * controller.T_L6_tcp.inverse() * controller.T_L6_flange, c);
+  } else {  // a host's target: the command's own flags, no search for the program's
+    c.config = configurationOf(m.ik, m.robot.card, c.theta_cmd, m.config_options);
+    c.config_text = formatConfig(c.config);
+  }
   if (!withinLimits(m.ik, c.theta_cmd)) {
     c.reason = "the compensated command leaves the joint limits";
     return;
   }
+  // the deflection at the command when the caller has it (the position-only iteration's last)
   const nc::Deflection def =
-      nc::predictDeflection(m.model, d.nc, m.compliance, c.theta_cmd, loads, framesOnly(),
-                            controllerOffset(m, d.nc, c.theta_cmd));
+      at_command ? *at_command
+                 : nc::predictDeflection(m.model, d.nc, m.compliance, c.theta_cmd, loads,
+                                         framesOnly(), controllerOffset(m, d.nc, c.theta_cmd));
   if (!def.converged) {
     c.reason = "the compliance equilibrium did not converge at the compensated command";
     return;
@@ -855,8 +865,12 @@ HoleCompensation finalizeHole(Evaluator& ev, const HoleRequest& h, HoleCompensat
   c.branch = node.branch;
   c.branch_changed = c.before.status == HoleStatus::kOk && c.branch != c.before.branch;
   const nc::Loads loads = ev.loadsFor(ev.processFor(h));
+  // a host's target (no budget after) reuses the iteration's last deflection at the command
+  std::optional<nc::Deflection> last;
   if (positions_only) {
-    const std::optional<Vec6> q = positionOnlyCommand(ev, c.T_nominal, c.theta_d, loads);
+    if (!ev.after_budget) last.emplace();
+    const std::optional<Vec6> q =
+        positionOnlyCommand(ev, c.T_nominal, c.theta_d, loads, last ? &*last : nullptr);
     if (!q) {
       c.reason = "the position-only compensation did not converge";
       return c;
@@ -865,7 +879,7 @@ HoleCompensation finalizeHole(Evaluator& ev, const HoleRequest& h, HoleCompensat
   } else {
     c.theta_cmd = exactCommand(ev, c.theta_d, loads);
   }
-  assemble(ev, h, loads, positions_only, c);
+  assemble(ev, h, loads, positions_only, c, last ? &*last : nullptr);
   return c;
 }
 

@@ -70,7 +70,10 @@ struct CompensationOptions {
 enum class TargetBudgets {
   kBoth,  ///< `before` and `after` are full predictions (budgets, verdicts): compensateHoles'
           ///< result
-  kNone   ///< `before` holds the IK choice only (chooseHoleSolution), `after` is not predicted
+  /// `before` holds the IK choice only (chooseHoleSolution), `after` is not predicted, and the
+  /// flags written are the command's own (the program's are not searched: a host's target has
+  /// none); T_programmed, theta_cmd and the residual are compensateHoles' keep result
+  kNone
 };
 
 /// Inline message capacities (bytes; inline_text.hpp: a longer text ends in "..."). The note is one
@@ -146,10 +149,10 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,
                                               CompensationStats* stats = nullptr);
 
 /// One target compensated with its orientation kept (the `keep` mode of compensateHoles for a
-/// program of this one hole: the same T_programmed, theta_cmd, flags and residual, bit for bit)
-/// into `out`, reusing `d` (a host's per-target call: no allocation beyond the strings').
-/// `budgets` kNone skips the uncertainty budgets before and after and the verdict (a caller that
-/// needs only the target to program). options.mode is ignored (keep).
+/// program of this one hole: the same T_programmed and theta_cmd, bit for bit) into `out`,
+/// reusing `d` (a host's per-target call). `budgets` kNone skips the uncertainty budgets before
+/// and after, the verdict and the search for the program's flags (a caller that needs only the
+/// target to program). options.mode is ignored (keep).
 void compensateTarget(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
                       const CompensationOptions& options, TargetBudgets budgets,
                       HoleCompensation& out);
