@@ -221,6 +221,10 @@ TEST(Lookahead, SameRequestTellsApartEveryField) {
       {"seed", [](HoleRequest& r) { (*r.ik_seed)[5] = -0.0; }},
       {"no seed", [](HoleRequest& r) { r.ik_seed.reset(); }},
       {"evidence", [](HoleRequest& r) { r.evidence = "on the hole list"; }},
+      {"drill", [](HoleRequest& r) { r.drill = 2; }},
+      {"feed", [](HoleRequest& r) { r.feed = 0.25e-3; }},
+      {"spindle speed", [](HoleRequest& r) { r.spindle_rpm = 4500; }},
+      {"tool", [](HoleRequest& r) { r.tool = "3"; }},
   };
   for (const auto& [what, change] : changes) {
     HoleRequest b = a;
@@ -229,7 +233,7 @@ TEST(Lookahead, SameRequestTellsApartEveryField) {
     EXPECT_FALSE(api::sameRequest(b, a)) << what;
   }
   // a field added to HoleRequest must be compared by sameRequest (and changed above)
-  EXPECT_EQ(sizeof(HoleRequest), 496U);
+  EXPECT_EQ(sizeof(HoleRequest), 560U);
 }
 
 }  // namespace

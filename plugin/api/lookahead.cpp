@@ -48,7 +48,8 @@ bool sameRequest(const HoleRequest& a, const HoleRequest& b) {
          sameOptional(a.surface_W, b.surface_W, vec) &&
          sameOptional(a.nominal_axis, b.nominal_axis, axis) &&
          sameOptional(a.ik_seed, b.ik_seed, vec) && a.evidence == b.evidence &&
-         a.drill == b.drill && sameBits(a.feed, b.feed) && sameBits(a.spindle_rpm, b.spindle_rpm);
+         a.drill == b.drill && sameBits(a.feed, b.feed) && sameBits(a.spindle_rpm, b.spindle_rpm) &&
+         a.tool == b.tool;
 }
 
 HoleLookahead::HoleLookahead(PredictionModel model, const CellSpec& cell, const Robot& robot,

@@ -413,10 +413,12 @@ SimulationResult simulateAt(const RobotSetup& setup, const HoleJoints& at,
 
   std::optional<ProcessSpec> spec;
   std::unique_ptr<nc::ProcessCycle> cycle;
+  std::string drill;  // the drill of the hole, as the summary names it
   if (setup.cell->has_process) {
     spec = parseProcess(setup.cell->process);
     if (spec->type == ProcessType::kDrilling) {
       const HoleProcessChoice& h = at.process;
+      drill = drillLabel(spec->drills[static_cast<size_t>(std::max(h.drill, 0))]);
       spec->drilling = holeDrilling(*spec, h.drill, h.diameter, h.depth, h.feed, h.spindle_rpm);
     }
     cycle = nc::makeProcessCycle(*spec, {}, options.runout);
@@ -442,7 +444,7 @@ SimulationResult simulateAt(const RobotSetup& setup, const HoleJoints& at,
   root.set("process",
            Json::str(spec ? steadyProcessLoad(*spec).description : "none (gravity only)"));
   if (spec && spec->type == ProcessType::kDrilling && !at.process.source.empty())
-    root.set("process_source", Json::str(at.process.source + ": " + drillLabel(spec->drilling)));
+    root.set("process_source", Json::str(at.process.source + ": " + drill));
   root.set("gravity_handling",
            gravityHandlingJson(setup.robot, controllerReferenceOf(setup.robot, &*setup.cell,
                                                                   setup.tool, options.gravity)));
