@@ -1136,8 +1136,18 @@ void compensateTarget(const PredictionModel& m, PredictionData& d, const HoleReq
   Evaluator ev{m, d, o, budgets == TargetBudgets::kBoth};
   Node node;
   const HolePrediction& b = out.before;
-  if (b.status == HoleStatus::kOk)  // stage 2 of keep: ψ = 0 in the programmed branch
+  if (b.status == HoleStatus::kOk && budgets == TargetBudgets::kNone && !m.calibrated) {
+    // stage 2 of keep without a calibration: the real and the controller's IK are one, so the
+    // solution in the programmed branch nearest the programmed joints is those joints (admissible:
+    // the IK choice checked the limits and singularities)
+    node.q = b.joints;
+    node.branch = b.branch;
+    node.wrist = b.wrist_margin;
+    node.feasible = true;
+    node.why = Why::kNone;
+  } else if (b.status == HoleStatus::kOk) {  // stage 2 of keep: ψ = 0 in the programmed branch
     node = ev.evaluate(h, 0.0, o.allow_branch_change ? -1 : b.branch, b.joints, false, false);
+  }
   std::string why = notCompensatedReason(out, node);
   if (!why.empty()) {
     out.reason = std::move(why);
