@@ -117,8 +117,9 @@ bool drillMarker(std::string_view marker);
 /// comment, not a dwell (a gripper dwells at a placement too).
 bool processMarker(std::string_view marker);
 
-/// One row of the contract's hole list: `id,x,y,z,i,j,k[,diameter,depth,tolerance]` (mm,
-/// workobject frame, i,j,k = drilling direction into the material).
+/// One row of the contract's hole list: `id,x,y,z,i,j,k[,diameter,depth,tolerance,tool,feed,
+/// spindle_rpm]` (mm, workobject frame, i,j,k = drilling direction into the material; tool = the
+/// controller's tool number or name of the cell's tool table, feed in mm/rev, spindle speed 1/min).
 struct HoleSpec {
   std::string id;
   Vec3 position_mm{Vec3::Zero()};
@@ -126,6 +127,9 @@ struct HoleSpec {
   std::optional<double> diameter_mm;
   std::optional<double> depth_mm;
   std::optional<double> tolerance_mm;
+  std::string tool;  ///< empty: none given
+  std::optional<double> feed_mm_per_rev;
+  std::optional<double> spindle_rpm;
   int line{0};
 };
 

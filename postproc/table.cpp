@@ -59,6 +59,10 @@ constexpr double kMinDepthMm = 0.05;      // a spot drill's shallowest cone
 constexpr double kMaxDepthMm = 2000.0;
 constexpr double kMinToleranceMm = 0.001;
 constexpr double kMaxToleranceMm = 50.0;
+constexpr double kMinFeedMm = 0.001;  // mm/rev: the cell's <cut feed_mm_per_rev> range
+constexpr double kMaxFeedMm = 10.0;
+constexpr double kMinSpindleRpm = 10.0;  // 1/min: the cell's <cut spindle_rpm> range
+constexpr double kMaxSpindleRpm = 100000.0;
 constexpr double kMaxCoordinateMm = 1e5;    // 100 m from the workobject origin
 constexpr double kDirectionNormTol = 1e-3;  // |n| within 1 ± this is normalised, else refused
 // A file that looks like metres: every coordinate below this (mm) ...
@@ -68,8 +72,9 @@ constexpr double kMetresSpacingMm = 1.0;
 
 /// The columns a hole list may have (after columnKey).
 const std::vector<std::string>& holeListColumns() {
-  static const std::vector<std::string> k = {"id", "x",        "y",     "z",         "i",      "j",
-                                             "k",  "diameter", "depth", "tolerance", "comment"};
+  static const std::vector<std::string> k = {"id",   "x",    "y",           "z",      "i",
+                                             "j",    "k",    "diameter",    "depth",  "tolerance",
+                                             "tool", "feed", "spindle_rpm", "comment"};
   return k;
 }
 
@@ -181,14 +186,16 @@ enum Col : std::uint8_t {
   kDiameter,
   kDepth,
   kTolerance,
+  kFeed,
+  kSpindleRpm,
   kColCount
 };
 constexpr const char* kColName[kColCount] = {
-    "id",   "name", "x",      "y",     "z",        "a",     "b",        "c",      "w",
-    "p",    "r",    "qw",     "qx",    "qy",       "qz",    "rx",       "ry",     "rz",
-    "i",    "j",    "k",      "j1",    "j2",       "j3",    "j4",       "j5",     "j6",
-    "e1",   "e2",   "e3",     "e4",    "e5",       "e6",    "conf",     "config", "frame",
-    "tool", "move", "motion", "speed", "diameter", "depth", "tolerance"};
+    "id",   "name", "x",      "y",     "z",        "a",     "b",         "c",      "w",
+    "p",    "r",    "qw",     "qx",    "qy",       "qz",    "rx",        "ry",     "rz",
+    "i",    "j",    "k",      "j1",    "j2",       "j3",    "j4",        "j5",     "j6",
+    "e1",   "e2",   "e3",     "e4",    "e5",       "e6",    "conf",      "config", "frame",
+    "tool", "move", "motion", "speed", "diameter", "depth", "tolerance", "feed",   "spindle_rpm"};
 
 class CsvReader {
  public:
@@ -500,6 +507,19 @@ class CsvReader {
     return v->value;
   }
 
+  /// A per-hole process value (feed, spindle speed) within [lo, hi] in `unit`.
+  std::optional<double> bounded(const std::vector<Cell>& cells, Col key, double lo, double hi,
+                                const char* unit, const std::string& id, std::size_t row) const {
+    const auto v = num(cells, key);
+    if (!v) return std::nullopt;
+    if (!(v->value >= lo && v->value <= hi)) {
+      fail(cellOffset(cells, key, row), "hole " + id + ": " + kColName[key] + " " +
+                                            numberText(v->value) + " " + unit + " is outside " +
+                                            numberText(lo) + ".." + numberText(hi) + " " + unit);
+    }
+    return v->value;
+  }
+
   /// Unit drilling direction: refused when zero or when |n| is off 1 by more than 1e-3.
   Vec3 unitDirection(const Vec3& d, const std::vector<Cell>& cells, const std::string& id,
                      std::size_t row) const {
@@ -653,6 +673,9 @@ class CsvReader {
     h.diameter_mm = sizeMm(cells, kDiameter, kMinDiameterMm, kMaxDiameterMm, h.id, s);
     h.depth_mm = sizeMm(cells, kDepth, kMinDepthMm, kMaxDepthMm, h.id, s);
     h.tolerance_mm = sizeMm(cells, kTolerance, kMinToleranceMm, kMaxToleranceMm, h.id, s);
+    h.tool = std::string(text(cells, kTool));
+    h.feed_mm_per_rev = bounded(cells, kFeed, kMinFeedMm, kMaxFeedMm, "mm/rev", h.id, s);
+    h.spindle_rpm = bounded(cells, kSpindleRpm, kMinSpindleRpm, kMaxSpindleRpm, "1/min", h.id, s);
     holes.push_back(h);
   }
 

@@ -145,7 +145,7 @@ TEST(CApi, ExportsExactlyTheHeadersFunctions) {
        it != std::sregex_iterator(); ++it) {
     declared.insert((*it)[1]);
   }
-  EXPECT_EQ(declared.size(), 15U);
+  EXPECT_EQ(declared.size(), 18U);
   // nm -D --defined-only: every dynamic symbol libroprec_c defines.
   FILE* p = ::popen(("nm -D --defined-only '" + std::string(ROPREC_C_LIB) + "'").c_str(), "r");
   ASSERT_NE(p, nullptr);
@@ -377,6 +377,120 @@ TEST(CApi, FilterTargetEqualsKeepCompensationOnEverySampleHole) {
   EXPECT_EQ(inout, prog0);
   roprec_close(s);
   std::filesystem::remove_all(dir);
+}
+
+TEST(CApi, ReadmeTableListsEveryExportedFunction) {
+  const std::string header = readFile(sourceDir() + "/plugin/c/roprec.h");
+  const std::string readme = readFile(sourceDir() + "/README.md");
+  const std::regex decl(R"(ROPREC_API[^;(]*\b(roprec_\w+)\s*\()");
+  std::set<std::string> declared;
+  for (auto it = std::sregex_iterator(header.begin(), header.end(), decl);
+       it != std::sregex_iterator(); ++it) {
+    declared.insert((*it)[1]);
+  }
+  EXPECT_EQ(declared.size(), 18U);
+  for (const std::string& name : declared) {
+    EXPECT_NE(readme.find("`" + name + "`"), std::string::npos)
+        << name << " is not in README's C table";
+  }
+}
+
+TEST(CApi, JointsOutsideTheLimitsAreBadInputAsInTheCli) {
+  // the CLI refuses them (exit 2): so do the per-joint calls (2, not an item failure)
+  const test::RunResult cli =
+      runRoprec("deflect --cell '" + kCell + "' --joints \"0 -90 90 0 0 400\"");
+  EXPECT_EQ(cli.exit_code, 2) << cli.err;
+  EXPECT_NE(cli.err.find("outside the joint limits: joint_a6 = 400"), std::string::npos) << cli.err;
+  roprec_session* s = nullptr;
+  char err[1024];
+  ASSERT_EQ(roprec_open(kCell.c_str(), &s, err, sizeof err), ROPREC_OK) << err;
+  const std::array<double, 6> out_of_range{0, -90, 90, 0, 0, 400};
+  std::array<double, 6> dev{};
+  EXPECT_EQ(roprec_predict_joints(s, out_of_range.data(), dev.data(), nullptr, err, sizeof err),
+            ROPREC_BAD_INPUT);
+  EXPECT_NE(std::string(err).find("joints_deg outside the joint limits: joint_a6 = "),
+            std::string::npos)
+      << err;
+  EXPECT_EQ(roprec_predict_joints_hole(s, out_of_range.data(), nullptr, dev.data(), nullptr,
+                                       nullptr, err, sizeof err),
+            ROPREC_BAD_INPUT);
+  roprec_close(s);
+}
+
+TEST(CApi, HoleProcessCallsStateTheProcessAndRefuseAToolTheCellLacks) {
+  const std::string cell = sourceDir() + "/samples/cells/housing-kr120-tools.xml";
+  roprec_session* s = nullptr;
+  char err[1024];
+  ASSERT_EQ(roprec_open(cell.c_str(), &s, err, sizeof err), ROPREC_OK) << err;
+  const std::array<double, 16> pose{1, 0, 0, 1500, 0, -1, 0, 0, 0, 0, -1, 550, 0, 0, 0, 1};
+  std::array<double, 16> out{};
+  std::array<double, 6> joints{};
+  roprec_process_used used{};
+  // nothing given: the cell's first drill, its cut, the cell's depth
+  ASSERT_EQ(roprec_filter_target_hole(s, pose.data(), nullptr, nullptr, out.data(), joints.data(),
+                                      &used, err, sizeof err),
+            ROPREC_OK)
+      << err;
+  EXPECT_STREQ(used.tool, "1");
+  EXPECT_DOUBLE_EQ(used.diameter_mm, 6.8);
+  EXPECT_DOUBLE_EQ(used.depth_mm, 20.0);
+  EXPECT_DOUBLE_EQ(used.feed_mm_per_rev, 0.2);
+  EXPECT_DOUBLE_EQ(used.spindle_rpm, 6000.0);
+  EXPECT_EQ(used.from_cell, 1);
+  // tool 4: its own cut; the old call equals the hole call without a process
+  roprec_hole_process hole{"4", 0.0, 24.0, 0.0, 0.0};
+  std::array<double, 16> out4{};
+  ASSERT_EQ(roprec_filter_target_hole(s, pose.data(), nullptr, &hole, out4.data(), joints.data(),
+                                      &used, err, sizeof err),
+            ROPREC_OK)
+      << err;
+  EXPECT_STREQ(used.tool, "4");
+  EXPECT_DOUBLE_EQ(used.diameter_mm, 12.0);
+  EXPECT_DOUBLE_EQ(used.depth_mm, 24.0);
+  EXPECT_DOUBLE_EQ(used.feed_mm_per_rev, 0.25);
+  EXPECT_DOUBLE_EQ(used.spindle_rpm, 5000.0);
+  EXPECT_EQ(used.from_cell, 0);
+  EXPECT_NE(out4, out);  // a larger drill, a larger thrust: another pre-offset
+  std::array<double, 16> plain{};
+  ASSERT_EQ(
+      roprec_filter_target(s, pose.data(), nullptr, plain.data(), joints.data(), err, sizeof err),
+      ROPREC_OK);
+  EXPECT_EQ(plain, out);
+  // a tool the table does not have, a feed the hole cannot take, a negative value: bad input
+  hole.tool = "9";
+  EXPECT_EQ(roprec_filter_target_hole(s, pose.data(), nullptr, &hole, out4.data(), joints.data(),
+                                      nullptr, err, sizeof err),
+            ROPREC_BAD_INPUT);
+  EXPECT_NE(std::string(err).find("tool '9' is not in the cell's tool table (tools: 1, 2, 3, 4)"),
+            std::string::npos)
+      << err;
+  hole = {"1", 1.0, 0.0, 0.0, 0.0};
+  EXPECT_EQ(roprec_filter_target_hole(s, pose.data(), nullptr, &hole, out4.data(), joints.data(),
+                                      nullptr, err, sizeof err),
+            ROPREC_BAD_INPUT);
+  EXPECT_NE(std::string(err).find("feed <= 0.1 Dc"), std::string::npos) << err;
+  hole = {nullptr, -1.0, 0.0, 0.0, 0.0};
+  EXPECT_EQ(roprec_filter_target_hole(s, pose.data(), nullptr, &hole, out4.data(), joints.data(),
+                                      nullptr, err, sizeof err),
+            ROPREC_BAD_INPUT);
+  EXPECT_STREQ(err, "process.diameter_mm must be finite and >= 0 (0: the cell's)");
+  // the batch: one target unreachable among reachable ones → 1, its status 1, the rest written
+  std::array<double, 48> poses{};
+  std::copy(pose.begin(), pose.end(), poses.begin());
+  std::copy(pose.begin(), pose.end(), poses.begin() + 16);
+  std::copy(pose.begin(), pose.end(), poses.begin() + 32);
+  poses[16 + 3] = 9000.0;  // 9 m away
+  std::array<double, 48> outs{};
+  std::array<double, 18> outj{};
+  std::array<int, 3> status{9, 9, 9};
+  EXPECT_EQ(roprec_filter_targets(s, 3, poses.data(), nullptr, nullptr, outs.data(), outj.data(),
+                                  status.data(), err, sizeof err),
+            ROPREC_ITEM_FAILED);
+  EXPECT_EQ(status, (std::array<int, 3>{0, 1, 0}));
+  EXPECT_EQ(std::string(err).rfind("target 1: ", 0), 0U) << err;
+  EXPECT_TRUE(std::equal(out.begin(), out.end(), outs.begin()));
+  EXPECT_TRUE(std::all_of(outs.begin() + 16, outs.begin() + 32, [](double v) { return v == 0; }));
+  roprec_close(s);
 }
 
 TEST(CApi, ErrorsAreStatusesWithTheCliText) {

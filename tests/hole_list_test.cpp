@@ -65,6 +65,28 @@ TEST(HoleListValidation, BadRowsAreRefusedWithTheirLine) {
   }
 }
 
+TEST(HoleListValidation, PerHoleToolFeedAndSpeedAreReadAndBounded) {
+  const std::string header = "id,x,y,z,i,j,k,tool,feed,spindle_rpm\n";
+  const std::vector<postproc::HoleSpec> ok = postproc::parseHoleList(
+      "h.csv", header + "H1,0,0,0,0,0,-1,3,0.15,4500\nH2,40,0,0,0,0,-1,tDrill,,\n");
+  ASSERT_EQ(ok.size(), 2U);
+  EXPECT_EQ(ok[0].tool, "3");
+  EXPECT_EQ(ok[0].feed_mm_per_rev, 0.15);
+  EXPECT_EQ(ok[0].spindle_rpm, 4500.0);
+  EXPECT_EQ(ok[1].tool, "tDrill");
+  EXPECT_FALSE(ok[1].feed_mm_per_rev);
+  EXPECT_FALSE(ok[1].spindle_rpm);
+  const InputError feed = holeListError(header + "H1,0,0,0,0,0,-1,3,20,4500\n");
+  EXPECT_EQ(feed.line(), 2);
+  EXPECT_NE(feed.message().find("hole H1: feed 20 mm/rev is outside 0.001..10 mm/rev"),
+            std::string::npos)
+      << feed.message();
+  const InputError rpm = holeListError(header + "H1,0,0,0,0,0,-1,3,0.1,0\n");
+  EXPECT_NE(rpm.message().find("hole H1: spindle_rpm 0 1/min is outside 10..100000 1/min"),
+            std::string::npos)
+      << rpm.message();
+}
+
 TEST(HoleListValidation, UnknownAndRepeatedColumnsAreRefused) {
   const InputError dia = holeListError("id,x,y,z,i,j,k,dia\nH1,0,0,0,0,0,-1,8\n");
   EXPECT_EQ(dia.line(), 1);

@@ -158,6 +158,102 @@ TEST(ProcessSpec, MachiningDeviationCoverageFactorIsRefused) {
       5, "diameter_mm");
 }
 
+const char* const kToolTable =
+    "<process type=\"drilling\">\n"
+    "  <drill tool=\"1\" name=\"D6.8\" diameter_mm=\"6.8\" stickout_mm=\"30\"/>\n"
+    "  <drill tool=\"tDrill12\" diameter_mm=\"12\">\n"
+    "    <cut feed_mm_per_rev=\"0.25\" spindle_rpm=\"4500\"/>\n"
+    "  </drill>\n"
+    "  <cut feed_mm_per_rev=\"0.2\" spindle_rpm=\"6000\" depth_mm=\"18\"/>\n"
+    "  <material name=\"AlSi9Cu3\"/>\n"
+    "</process>\n";
+
+TEST(ProcessSpec, ToolTableKeysEachDrillWithItsOwnCutOverTheSharedOne) {
+  const ProcessSpec s = parse(kToolTable);
+  ASSERT_EQ(s.drills.size(), 2U);
+  EXPECT_EQ(s.drills[0].tool, "1");
+  EXPECT_EQ(s.drills[0].name, "D6.8");
+  EXPECT_DOUBLE_EQ(s.drills[0].geometry.diameter, 6.8e-3);
+  EXPECT_DOUBLE_EQ(s.drills[0].feed, 0.2e-3);
+  EXPECT_DOUBLE_EQ(s.drills[0].spindle_rpm, 6000.0);
+  EXPECT_DOUBLE_EQ(s.drills[0].hole_depth, 18e-3);
+  EXPECT_EQ(s.drills[0].drill_line, 2);
+  // the second drill's own <cut>, attribute by attribute over the shared one
+  EXPECT_DOUBLE_EQ(s.drills[1].geometry.diameter, 12e-3);
+  EXPECT_DOUBLE_EQ(s.drills[1].feed, 0.25e-3);
+  EXPECT_DOUBLE_EQ(s.drills[1].spindle_rpm, 4500.0);
+  EXPECT_DOUBLE_EQ(s.drills[1].hole_depth, 18e-3);
+  EXPECT_EQ(s.drills[1].feed_line, 4);
+  // the first drill is the one of a hole nothing assigns
+  EXPECT_DOUBLE_EQ(s.drilling.geometry.diameter, 6.8e-3);
+  // keys: numbers as numbers, names without regard to case
+  EXPECT_EQ(drillIndex(s, "01"), 0);
+  EXPECT_EQ(drillIndex(s, "TDRILL12"), 1);
+  EXPECT_EQ(drillIndex(s, "2"), -1);
+  EXPECT_EQ(drillLabel(s.drills[0]), "tool 1 'D6.8' (Ø6.8 mm)");
+  EXPECT_EQ(drillLabel(parse(kDrilling).drilling), "the cell's drill (Ø10 mm)");
+}
+
+TEST(ProcessSpec, SingleDrillCellIsAToolTableOfOne) {
+  const ProcessSpec s = parse(kDrilling);
+  ASSERT_EQ(s.drills.size(), 1U);
+  EXPECT_TRUE(s.drills[0].tool.empty());
+  EXPECT_EQ(s.drills[0].geometry.diameter, s.drilling.geometry.diameter);
+  EXPECT_EQ(s.drills[0].feed, s.drilling.feed);
+  EXPECT_EQ(drillIndex(s, "1"), -1);  // an unkeyed drill matches no tool
+}
+
+TEST(ProcessSpec, HoleDrillingScalesTheDrillToTheHoleAndTakesItsCut) {
+  const ProcessSpec s = parse(kToolTable);
+  const DrillingSpec own = holeDrilling(s, 1, 0.0);
+  EXPECT_EQ(own.geometry.diameter, s.drills[1].geometry.diameter);
+  EXPECT_EQ(own.geometry.web_thickness, s.drills[1].geometry.web_thickness);
+  const DrillingSpec h = holeDrilling(s, 1, 11e-3, 30e-3, 0.3e-3, 3000.0);
+  EXPECT_DOUBLE_EQ(h.geometry.diameter, 11e-3);
+  // the web scales with the diameter (0.16 Dc default of the 12 mm drill)
+  EXPECT_NEAR(h.geometry.web_thickness, s.drills[1].geometry.web_thickness * 11.0 / 12.0, 1e-15);
+  EXPECT_DOUBLE_EQ(h.hole_depth, 30e-3);
+  EXPECT_DOUBLE_EQ(h.feed, 0.3e-3);
+  EXPECT_DOUBLE_EQ(h.spindle_rpm, 3000.0);
+}
+
+TEST(ProcessSpec, ToolTableMistakesNameTheLine) {
+  expectError(
+      "<process type=\"drilling\">\n"
+      "  <drill tool=\"1\" diameter_mm=\"6.8\"/>\n"
+      "  <drill diameter_mm=\"12\"/>\n"
+      "  <cut feed_mm_per_rev=\"0.2\"/>\n"
+      "  <material name=\"AlSi9Cu3\"/>\n"
+      "</process>\n",
+      3, "<drill> needs tool=");
+  expectError(
+      "<process type=\"drilling\">\n"
+      "  <drill tool=\"3\" diameter_mm=\"6.8\"/>\n"
+      "  <drill tool=\"03\" diameter_mm=\"12\"/>\n"
+      "  <cut feed_mm_per_rev=\"0.2\"/>\n"
+      "  <material name=\"AlSi9Cu3\"/>\n"
+      "</process>\n",
+      3, "is given twice (first at line 2)");
+  // a drill's own feed above 0.1 Dc, at its own <cut>
+  expectError(
+      "<process type=\"drilling\">\n"
+      "  <drill tool=\"1\" diameter_mm=\"6.8\"/>\n"
+      "  <drill tool=\"2\" diameter_mm=\"3\">\n"
+      "    <cut feed_mm_per_rev=\"0.4\"/>\n"
+      "  </drill>\n"
+      "  <cut feed_mm_per_rev=\"0.2\"/>\n"
+      "  <material name=\"AlSi9Cu3\"/>\n"
+      "</process>\n",
+      4, "above 0.1 Dc");
+  // no <cut> at all for a drill
+  expectError(
+      "<process type=\"drilling\">\n"
+      "  <drill tool=\"1\" diameter_mm=\"6.8\"/>\n"
+      "  <material name=\"AlSi9Cu3\"/>\n"
+      "</process>\n",
+      1, "needs a <cut> element");
+}
+
 TEST(ProcessSpec, MillingAndWrench) {
   const ProcessSpec m = parse(
       "<process type=\"milling\">\n"

@@ -24,6 +24,7 @@ import roprec
 
 SRC = Path(__file__).resolve().parents[1]
 CELL = str(SRC / "samples" / "cells" / "housing-kr120.xml")
+TOOLS_CELL = str(SRC / "samples" / "cells" / "housing-kr120-tools.xml")
 PROGRAM = str(SRC / "samples" / "emotor-housing" / "housing_kr120.src")
 HOLES = str(SRC / "samples" / "emotor-housing" / "holes.csv")
 ROPREC_BIN = os.environ["ROPREC_BIN"]
@@ -114,7 +115,8 @@ PREDICT_KEYS = {
     "U_work_anisotropic_um": "uncertainty_um.U_work_anisotropic", "process_share": "uncertainty_um.process_share",
     "process_force_share": "uncertainty_um.process_force_share", "process_force_N": "process_force_N",
     "equilibrium_converged": "equilibrium.converged", "equilibrium_iterations": "equilibrium.iterations",
-    "line": "line", "reason": "reason",
+    "line": "line", "reason": "reason", "drill_tool": "drill.tool", "feed_mm_per_rev": "drill.feed_mm_per_rev",
+    "spindle_rpm": "drill.spindle_rpm",
 }
 
 # Python per-hole compensation key -> the corrected-target export's key.
@@ -142,6 +144,16 @@ def compare_hole(py, ref, mapping, what):
         compare_value(py[py_key], value, "%s %s" % (what, py_key))
 
 
+class HoleProcess(ctypes.Structure):
+    _fields_ = [("tool", ctypes.c_char_p), ("diameter_mm", ctypes.c_double), ("depth_mm", ctypes.c_double),
+                ("feed_mm_per_rev", ctypes.c_double), ("spindle_rpm", ctypes.c_double)]
+
+
+class ProcessUsed(ctypes.Structure):
+    _fields_ = [("tool", ctypes.c_char * 64), ("diameter_mm", ctypes.c_double), ("depth_mm", ctypes.c_double),
+                ("feed_mm_per_rev", ctypes.c_double), ("spindle_rpm", ctypes.c_double), ("from_cell", ctypes.c_int)]
+
+
 class CApi(object):
     """libroprec_c through ctypes."""
 
@@ -155,8 +167,12 @@ class CApi(object):
         lib.roprec_predict_joints.argtypes = [ctypes.c_void_p, D, D, D, P, S]
         lib.roprec_predict_file.argtypes = [P, P, P, P, P, S, P, S]
         lib.roprec_compensate_file.argtypes = [P, P, P, P, P, P, P, S, P, S]
+        lib.roprec_predict_joints_hole.argtypes = [ctypes.c_void_p, D, ctypes.POINTER(HoleProcess), D, D,
+                                                   ctypes.POINTER(ProcessUsed), P, S]
+        lib.roprec_filter_targets.argtypes = [ctypes.c_void_p, S, D, D, ctypes.POINTER(HoleProcess), D, D,
+                                              ctypes.POINTER(I), P, S]
         for f in (lib.roprec_open, lib.roprec_filter_target, lib.roprec_predict_joints, lib.roprec_predict_file,
-                  lib.roprec_compensate_file):
+                  lib.roprec_compensate_file, lib.roprec_predict_joints_hole, lib.roprec_filter_targets):
             f.restype = I
         self.lib = lib
 
@@ -196,6 +212,24 @@ class CApi(object):
         dev, U, err = (ctypes.c_double * 6)(), ctypes.c_double(), ctypes.create_string_buffer(1024)
         rc = self.lib.roprec_predict_joints(s, (ctypes.c_double * 6)(*joints), dev, ctypes.byref(U), err, 1024)
         return rc, np.array(dev[:]), U.value
+
+
+    def predict_joints_hole(self, s, joints, tool, diameter_mm, depth_mm):
+        dev, U, err, used = (ctypes.c_double * 6)(), ctypes.c_double(), ctypes.create_string_buffer(1024), ProcessUsed()
+        hp = HoleProcess(self.b(tool), diameter_mm, depth_mm, 0.0, 0.0)
+        rc = self.lib.roprec_predict_joints_hole(s, (ctypes.c_double * 6)(*joints), ctypes.byref(hp), dev,
+                                                 ctypes.byref(U), ctypes.byref(used), err, 1024)
+        return rc, np.array(dev[:]), U.value, used, err.value.decode()
+
+    def filter_targets(self, s, poses, holes):
+        n = len(poses)
+        flat = (ctypes.c_double * (16 * n))(*[float(x) for x in np.ravel(poses)])
+        hp = (HoleProcess * n)(*[HoleProcess(self.b(h.get("tool")), h.get("diameter_mm", 0.0), h.get("depth_mm", 0.0),
+                                             0.0, 0.0) for h in holes])
+        out, joints = (ctypes.c_double * (16 * n))(), (ctypes.c_double * (6 * n))()
+        status, err = (ctypes.c_int * n)(), ctypes.create_string_buffer(4096)
+        rc = self.lib.roprec_filter_targets(s, n, flat, None, hp, out, joints, status, err, 4096)
+        return rc, np.array(out[:]).reshape(n, 4, 4), np.array(joints[:]).reshape(n, 6), list(status), err.value.decode()
 
 
 C = CApi(os.environ["ROPREC_C_LIB"])
@@ -342,6 +376,65 @@ class PythonApiTest(unittest.TestCase):
             np.testing.assert_allclose(s.hole_pose([150, 0, 250], [0, 0, -1]), p[0]["nominal_pose_mm"], rtol=0, atol=1e-12)
             self.assertEqual(s.robot, p.robot)
             self.assertEqual(s.cell_path, CELL)
+        finally:
+            C.lib.roprec_close(cs)
+
+    def test_host_calls_take_the_hole_and_agree_with_the_cli_per_hole(self):
+        """predict_joints / filter_targets with each hole's drill, diameter and depth (C and Python)
+        give the CLI's `predict --holes` deviations and `compensate` targets per hole, to 1e-9 m."""
+        out = self.tmp / "p.json"
+        r = cli("predict", "--cell", TOOLS_CELL, HOLES, "--json", out, "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(out, encoding="utf-8") as f:
+            holes = json.load(f)["holes"]
+        r = cli("compensate", "--cell", TOOLS_CELL, HOLES, "--orientation", "keep", "-o", self.tmp / "c.csv",
+                "--targets", self.tmp / "t.json", "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        with open(self.tmp / "t.json", encoding="utf-8") as f:
+            targets = json.load(f)["holes"]
+        s = roprec.Session(TOOLS_CELL)
+        cs = C.open(TOOLS_CELL)
+        try:
+            p = roprec.predict(TOOLS_CELL, HOLES)
+            hole_args = []
+            for h, ph in zip(holes, p):
+                self.assertEqual(h["id"], ph["id"])
+                args = dict(tool=h["drill"]["tool"], diameter_mm=h["diameter_mm"], depth_mm=h["depth_mm"])
+                hole_args.append(args)
+                d = s.predict_joints(ph["controller_joints_deg"], **args)
+                rc, cdev, cU, used, err = C.predict_joints_hole(cs, ph["controller_joints_deg"], **args)
+                self.assertEqual(rc, 0, err)
+                np.testing.assert_array_equal(d["deviation_um"], cdev[:3])
+                for k in range(3):   # the JSON's µm with 3 decimals: 1e-9 m
+                    self.assertAlmostEqual(d["deviation_um"][k], h["deviation_um"]["robot"][k], delta=1e-3)
+                self.assertAlmostEqual(d["U_work_um"], h["uncertainty_um"]["U_work_anisotropic"], delta=1e-3)
+                self.assertEqual(d["process"]["tool"], h["drill"]["tool"])
+                self.assertEqual(used.tool.decode(), h["drill"]["tool"])
+                self.assertAlmostEqual(used.feed_mm_per_rev, h["drill"]["feed_mm_per_rev"], delta=1e-9)
+                self.assertAlmostEqual(d["process"]["spindle_rpm"], h["drill"]["spindle_rpm"], delta=1e-9)
+                self.assertAlmostEqual(used.diameter_mm, h["diameter_mm"], delta=1e-9)
+                self.assertEqual(used.from_cell, 0)
+            wanted = np.array([ph["nominal_pose_mm"] for ph in p])
+            batch = s.filter_targets(wanted, holes=hole_args)
+            rc, cposes, cjoints, status, err = C.filter_targets(cs, wanted, hole_args)
+            self.assertEqual(rc, 0, err)
+            self.assertTrue(all(batch["ok"]))
+            np.testing.assert_array_equal(batch["poses_mm"], cposes)
+            np.testing.assert_array_equal(batch["joints_deg"], cjoints)
+            for i, t in enumerate(targets):   # the export's mm with 6 decimals: 1e-9 m
+                np.testing.assert_allclose(cposes[i][:3, 3], t["programmed"]["position_mm"], rtol=0, atol=0.5e-6 + 1e-9)
+            # a joint outside the limits is bad input (2), as in the CLI
+            rc, _, _, _, err = C.predict_joints_hole(cs, [0, -90, 90, 0, 0, 400], None, 0.0, 0.0)
+            self.assertEqual(rc, 2, err)
+            self.assertIn("outside the joint limits", err)
+            with self.assertRaises(roprec.InputError):
+                s.predict_joints([0, -90, 90, 0, 0, 400])
+            with self.assertRaises(roprec.InputError):
+                s.filter_target(wanted[0], tool="9")
+            # the old call: the cell's (first) drill, stated in the details
+            det = s.filter_target(wanted[0], details=True)
+            self.assertTrue(det["process"]["from_cell"])
+            self.assertEqual(det["process"]["tool"], "1")
         finally:
             C.lib.roprec_close(cs)
 

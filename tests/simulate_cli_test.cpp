@@ -208,6 +208,25 @@ TEST(SimulateCli, HoleFromHoleList) {
   EXPECT_NE(j["joints_source"].get<std::string>().find("hole list row"), std::string::npos);
 }
 
+TEST(SimulateCli, HoleIsDrilledWithItsOwnDrillDiameterAndDepth) {
+  // the sample's T001 is a 6.8 x 16 mm hole: with the single 8.5 mm drill cell the drill is
+  // scaled to 6.8 mm and the hole's depth taken; with the tool table, its 6.8 mm drill
+  const std::string dir = test::tempDir("simulate_own_drill");
+  const std::string holes = test::sourceDir() + "/samples/emotor-housing/holes.csv";
+  for (const std::string cell : {"housing-kr120.xml", "housing-kr120-tools.xml"}) {
+    SCOPED_TRACE(cell);
+    const auto r = runRoprec("simulate --cell '" + test::sourceDir() + "/samples/cells/" + cell +
+                             "' --hole T001 '" + holes + "' --duration 0.02 -o '" + dir +
+                             "/h.csv' --summary '" + dir + "/h.json'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(test::readFile(dir + "/h.json"));
+    const std::string process = j["process"].get<std::string>();
+    EXPECT_EQ(process.rfind("drilling Dc 6.80 mm", 0), 0U) << process;
+    const std::string source = j["process_source"].get<std::string>();
+    EXPECT_EQ(source.rfind("hole list row 3: ", 0), 0U) << source;
+  }
+}
+
 TEST(SimulateCli, BadInputExitsTwoAndWritesNothing) {
   const std::string dir = test::tempDir("simulate_bad");
   const std::string out = " -o '" + dir + "/x.csv'";

@@ -98,11 +98,12 @@ struct Evaluator {
   const PredictionModel& m;
   PredictionData& d;
   const CompensationOptions& o;
+  bool after_budget{true};  ///< assemble re-predicts the compensated target (budget, verdict)
 
   nc::Loads loadsFor(const ProcessAtDiameter* proc) const { return processLoads(m, proc); }
 
-  const ProcessAtDiameter* processFor(double diameter) const {
-    return roprec::processFor(m, diameter);
+  const ProcessAtDiameter* processFor(const HoleRequest& h) const {
+    return roprec::processFor(m, h);
   }
 
   /// IK of the real robot (the link angles θ_d that put the real TCP at T_W_tcp, realIk) in
@@ -162,7 +163,7 @@ struct Evaluator {
     const double s2 = std::sin(2.0 * o.wrist_margin);
     if (n.wrist < s2) n.penalty += std::pow((s2 - n.wrist) / s2, 2);
     // stiffness proxy: linearised deflection-model uncertainty ⊥ the axis
-    const ProcessAtDiameter* proc = processFor(h.diameter);
+    const ProcessAtDiameter* proc = processFor(h);
     const nc::Loads loads = loadsFor(proc);
     // frame recursion (fast_equilibrium.hpp; the model of record's τ and J to 1e-9 relative)
     nc::chainFrames(m.model, d.nc, n.q);
@@ -665,7 +666,7 @@ void refineTurned(std::vector<Evaluator>& evs, const std::vector<HoleRequest>& h
 /// real TCP position is the nominal one: p ← p − (p_real(p) − p_nom) (∂p_real/∂p ≈ I: a few
 /// iterations). Returns the command, or nullopt when it does not converge.
 std::optional<Vec6> positionOnlyCommand(Evaluator& ev, const Pose& T_nominal, const Vec6& theta_d,
-                                        const nc::Loads& loads) {
+                                        const nc::Loads& loads, nc::Deflection* last = nullptr) {
   const PredictionModel& m = ev.m;
   const nc::Model& controller = controllerModel(m);
   Pose T = T_nominal;
@@ -679,7 +680,10 @@ std::optional<Vec6> positionOnlyCommand(Evaluator& ev, const Pose& T_nominal, co
                                                     framesOnly(), controllerOffset(m, ev.d.nc, q));
     if (!df.converged) return std::nullopt;
     const Vec3 err = df.T_real.translation() - T_nominal.translation();
-    if (err.norm() < 5e-10) return q;  // 0.0005 µm: the seeded IK stops at 1e-10
+    if (err.norm() < 5e-10) {  // 0.0005 µm: the seeded IK stops at 1e-10
+      if (last) *last = df;
+      return q;
+    }
     T.translation() -= err;
   }
   return std::nullopt;
@@ -782,7 +786,7 @@ void settleFlags(Evaluator& ev, const HoleRequest& h, const Pose& T_flange, Hole
 /// The programmed pose, flags, residual and re-predicted budget at the command c.theta_cmd.
 /// Sets c.reason and returns with c.ok false when something fails.
 void assemble(Evaluator& ev, const HoleRequest& h, const nc::Loads& loads, bool positions_only,
-              HoleCompensation& c) {
+              HoleCompensation& c, const nc::Deflection* at_command = nullptr) {
   const PredictionModel& m = ev.m;
   PredictionData& d = ev.d;
   const nc::Model& controller = controllerModel(m);  // the programmed target is FK_nom(θ_cmd)
@@ -795,14 +799,21 @@ void assemble(Evaluator& ev, const HoleRequest& h, const nc::Loads& loads, bool 
   c.T_programmed.translation() = d.nc.frames.p_tcp;
   if (positions_only) c.T_programmed.linear() = c.T_nominal.linear();  // exact by construction
   c.delta = c.T_programmed * c.T_nominal.inverse();
-  settleFlags(ev, h, c.T_programmed * controller.T_L6_tcp.inverse() * controller.T_L6_flange, c);
+  if (ev.after_budget) {
+    settleFlags(ev, h, c.T_programmed * controller.T_L6_tcp.inverse() * controller.T_L6_flange, c);
+  } else {  // a host's target: the command's own flags, no search for the program's
+    c.config = configurationOf(m.ik, m.robot.card, c.theta_cmd, m.config_options);
+    c.config_text = formatConfig(c.config);
+  }
   if (!withinLimits(m.ik, c.theta_cmd)) {
     c.reason = "the compensated command leaves the joint limits";
     return;
   }
+  // the deflection at the command when the caller has it (the position-only iteration's last)
   const nc::Deflection def =
-      nc::predictDeflection(m.model, d.nc, m.compliance, c.theta_cmd, loads, framesOnly(),
-                            controllerOffset(m, d.nc, c.theta_cmd));
+      at_command ? *at_command
+                 : nc::predictDeflection(m.model, d.nc, m.compliance, c.theta_cmd, loads,
+                                         framesOnly(), controllerOffset(m, d.nc, c.theta_cmd));
   if (!def.converged) {
     c.reason = "the compliance equilibrium did not converge at the compensated command";
     return;
@@ -817,11 +828,18 @@ void assemble(Evaluator& ev, const HoleRequest& h, const nc::Loads& loads, bool 
   after.tolerance = h.tolerance;
   after.diameter = h.diameter;
   after.depth = h.depth;
+  after.drill = h.drill;
+  after.feed = h.feed;
+  after.spindle_rpm = h.spindle_rpm;
   after.config = c.config;
   after.written_config = h.written_config;
   after.line = h.line;
   after.surface_W = h.surface_W;
   after.ik_seed = h.ik_seed;
+  if (!ev.after_budget) {
+    c.ok = true;
+    return;
+  }
   c.after = predictHole(m, d, after, &c.theta_cmd);
   if (c.after.status != HoleStatus::kOk) {
     c.reason = "re-prediction of the compensated target failed: " + c.after.reason;
@@ -846,9 +864,13 @@ HoleCompensation finalizeHole(Evaluator& ev, const HoleRequest& h, HoleCompensat
   c.theta_d = node.q;
   c.branch = node.branch;
   c.branch_changed = c.before.status == HoleStatus::kOk && c.branch != c.before.branch;
-  const nc::Loads loads = ev.loadsFor(ev.processFor(h.diameter));
+  const nc::Loads loads = ev.loadsFor(ev.processFor(h));
+  // a host's target (no budget after) reuses the iteration's last deflection at the command
+  std::optional<nc::Deflection> last;
   if (positions_only) {
-    const std::optional<Vec6> q = positionOnlyCommand(ev, c.T_nominal, c.theta_d, loads);
+    if (!ev.after_budget) last.emplace();
+    const std::optional<Vec6> q =
+        positionOnlyCommand(ev, c.T_nominal, c.theta_d, loads, last ? &*last : nullptr);
     if (!q) {
       c.reason = "the position-only compensation did not converge";
       return c;
@@ -857,7 +879,7 @@ HoleCompensation finalizeHole(Evaluator& ev, const HoleRequest& h, HoleCompensat
   } else {
     c.theta_cmd = exactCommand(ev, c.theta_d, loads);
   }
-  assemble(ev, h, loads, positions_only, c);
+  assemble(ev, h, loads, positions_only, c, last ? &*last : nullptr);
   return c;
 }
 
@@ -1048,14 +1070,14 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,
   evs.reserve(static_cast<size_t>(threads));
   for (int w = 0; w < threads; ++w) {
     scratch.emplace_back(m);
-    evs.push_back(Evaluator{m, scratch.back(), o});
+    evs.push_back(Evaluator{m, scratch.back(), o, true});
   }
   std::vector<HoleCompensation> out = predictOriginalThreads(m, scratch[0], holes, threads);
   const int grid = o.mode == OrientationMode::kKeep ? 1 : std::max(4, o.grid);
   Grid<Node> nodes;
   double thr = 0;
   PredictionData serial_scratch(m);
-  Evaluator serial{m, serial_scratch, o};
+  Evaluator serial{m, serial_scratch, o, true};
   const std::vector<int> choice = chooseSequence(evs, serial, holes, out, grid, nodes, st, thr);
   st.jump_threshold_used = thr;
   std::vector<Node> chosen(n);
@@ -1106,6 +1128,41 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,
   }
   if (stats) *stats = st;
   return out;
+}
+
+void compensateTarget(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
+                      const CompensationOptions& options, TargetBudgets budgets,
+                      HoleCompensation& out) {
+  out.id = h.id;
+  out.ok = false;
+  out.reason.clear();
+  if (budgets == TargetBudgets::kBoth)
+    predictHole(m, d, h, nullptr, out.before);
+  else
+    chooseHoleSolution(m, d, h, nullptr, out.before);
+  CompensationOptions o = options;
+  o.mode = OrientationMode::kKeep;
+  Evaluator ev{m, d, o, budgets == TargetBudgets::kBoth};
+  Node node;
+  const HolePrediction& b = out.before;
+  if (b.status == HoleStatus::kOk && budgets == TargetBudgets::kNone && !m.calibrated) {
+    // stage 2 of keep without a calibration: the real and the controller's IK are one, so the
+    // solution in the programmed branch nearest the programmed joints is those joints (admissible:
+    // the IK choice checked the limits and singularities)
+    node.q = b.joints;
+    node.branch = b.branch;
+    node.wrist = b.wrist_margin;
+    node.feasible = true;
+    node.why = Why::kNone;
+  } else if (b.status == HoleStatus::kOk) {  // stage 2 of keep: ψ = 0 in the programmed branch
+    node = ev.evaluate(h, 0.0, o.allow_branch_change ? -1 : b.branch, b.joints, false, false);
+  }
+  std::string why = notCompensatedReason(out, node);
+  if (!why.empty()) {
+    out.reason = std::move(why);
+    return;
+  }
+  out = finalizeHole(ev, h, std::move(out), node, true);
 }
 
 }  // namespace roprec

@@ -66,6 +66,16 @@ struct CompensationOptions {
   int threads{1};
 };
 
+/// What compensateTarget computes beyond the compensated target.
+enum class TargetBudgets {
+  kBoth,  ///< `before` and `after` are full predictions (budgets, verdicts): compensateHoles'
+          ///< result
+  /// `before` holds the IK choice only (chooseHoleSolution), `after` is not predicted, and the
+  /// flags written are the command's own (the program's are not searched: a host's target has
+  /// none); T_programmed, theta_cmd and the residual are compensateHoles' keep result
+  kNone
+};
+
 /// Inline message capacities (bytes; inline_text.hpp: a longer text ends in "..."). The note is one
 /// fixed 78-byte phrase; a ψ reason ≤ 110 bytes of phrase + one hole id (ids up to 146 bytes fit);
 /// a flag reason ≤ 125 bytes of phrase + the program's flags + the mismatch of ≤ 6 turn flags
@@ -137,5 +147,14 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,
                                               const std::vector<HoleRequest>& holes,
                                               const CompensationOptions& options,
                                               CompensationStats* stats = nullptr);
+
+/// One target compensated with its orientation kept (the `keep` mode of compensateHoles for a
+/// program of this one hole: the same T_programmed and theta_cmd, bit for bit) into `out`,
+/// reusing `d` (a host's per-target call). `budgets` kNone skips the uncertainty budgets before
+/// and after, the verdict and the search for the program's flags (a caller that needs only the
+/// target to program). options.mode is ignored (keep).
+void compensateTarget(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
+                      const CompensationOptions& options, TargetBudgets budgets,
+                      HoleCompensation& out);
 
 }  // namespace roprec

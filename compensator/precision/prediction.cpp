@@ -65,19 +65,16 @@ namespace {
 
 long diameterKey(double d) { return std::lround(d * 1e6); }
 
-ProcessAtDiameter processAt(const ProcessSpec& spec, double diameter) {
+/// The process of a hole of `diameter` drilled by drill `drill` of the tool table, with its
+/// feed (m/rev) and speed (1/min) when > 0 (else the drill's <cut>).
+ProcessAtDiameter processAt(const ProcessSpec& spec, double diameter, int drill = 0,
+                            double feed = 0.0, double spindle_rpm = 0.0) {
   ProcessAtDiameter p;
   p.diameter = diameter;
   if (spec.type == ProcessType::kDrilling) {
-    DrillingSpec s = spec.drilling;
-    const bool same = std::abs(diameter - s.geometry.diameter) < 1e-9;
-    if (!same) {
-      const double scale = diameter / s.geometry.diameter;
-      s.geometry.web_thickness *= scale;
-      s.geometry.diameter = diameter;
-      s.deviation = machiningDeviationAt(spec.drilling, diameter);
-      s.geometry.runout = s.deviation.runout;
-    }
+    const DrillingSpec& own =
+        spec.drills.empty() ? spec.drilling : spec.drills[static_cast<size_t>(drill)];
+    const DrillingSpec s = holeDrilling(spec, drill, diameter, 0.0, feed, spindle_rpm);
     const DrillingModel dm = drillingModelOf(s);
     const DrillingForces F = drillingForces(dm, s.feed);
     ToolWrench w = toolWrench(F, 0.0);
@@ -88,7 +85,7 @@ ProcessAtDiameter processAt(const ProcessSpec& spec, double diameter) {
     p.mach = machiningDeviation(s.deviation, s.geometry, F.residual);
     p.feed_rate = s.feed * s.spindle_rpm / 60.0;
     p.default_depth = s.hole_depth > 0 ? s.hole_depth : 2.0 * diameter;
-    CuttingLength c = cuttingLengthAt(spec.drilling, diameter);
+    CuttingLength c = cuttingLengthAt(own, diameter);
     p.cutting_length = c.length;
     p.cutting_length_source = std::move(c.source);
   } else {
@@ -175,8 +172,78 @@ PredictionModel buildPredictionModel(const PredictionSetup& setup) {
       const long key = diameterKey(d);
       if (!m.process_by_diameter.count(key)) m.process_by_diameter[key] = processAt(m.process, d);
     }
+    for (size_t i = 1; i < m.process.drills.size(); ++i) {
+      HoleRequest h;
+      h.drill = static_cast<int>(i);
+      addHoleProcess(m, h);
+    }
+    for (const HoleRequest& h : setup.hole_processes) addHoleProcess(m, h);
   }
   return m;
+}
+
+namespace {
+
+/// Whether `h` is drilled by the first drill at its own cut data (process_by_diameter).
+bool firstDrillAtItsCut(const PredictionModel& m, const HoleProcessKey& k) {
+  if (m.process.type != ProcessType::kDrilling) return true;
+  if (k.drill != 0) return false;
+  const DrillingSpec& s = m.process.drilling;
+  return k.feed_nm == std::lround(s.feed * 1e9) && k.rpm_milli == std::lround(s.spindle_rpm * 1e3);
+}
+
+}  // namespace
+
+HoleRequest holeProcessOf(const HoleRequest& h) {
+  HoleRequest p;
+  p.diameter = h.diameter;
+  p.drill = h.drill;
+  p.feed = h.feed;
+  p.spindle_rpm = h.spindle_rpm;
+  return p;
+}
+
+HoleProcessKey holeProcessKey(const PredictionModel& m, const HoleRequest& h) {
+  HoleProcessKey k;
+  k.drill = std::max(h.drill, 0);
+  if (m.process.type != ProcessType::kDrilling || m.process.drills.empty()) {
+    k.diameter_um = diameterKey(h.diameter);
+    return k;
+  }
+  const DrillingSpec& s = m.process.drills[static_cast<size_t>(k.drill)];
+  k.diameter_um = diameterKey(h.diameter > 0 ? h.diameter : s.geometry.diameter);
+  k.feed_nm = std::lround((h.feed > 0 ? h.feed : s.feed) * 1e9);
+  k.rpm_milli = std::lround((h.spindle_rpm > 0 ? h.spindle_rpm : s.spindle_rpm) * 1e3);
+  return k;
+}
+
+void addHoleProcess(PredictionModel& m, const HoleRequest& h) {
+  if (!m.has_process) return;
+  const HoleProcessKey k = holeProcessKey(m, h);
+  if (firstDrillAtItsCut(m, k)) {
+    const double d = h.diameter > 0 ? h.diameter
+                     : m.process.type == ProcessType::kDrilling
+                         ? m.process.drilling.geometry.diameter
+                         : 0.0;
+    const long key = diameterKey(d);
+    if (!m.process_by_diameter.count(key)) m.process_by_diameter[key] = processAt(m.process, d);
+    return;
+  }
+  if (m.process_by_hole.count(k)) return;
+  const DrillingSpec& s = m.process.drills[static_cast<size_t>(k.drill)];
+  m.process_by_hole[k] = processAt(m.process, h.diameter > 0 ? h.diameter : s.geometry.diameter,
+                                   k.drill, h.feed, h.spindle_rpm);
+}
+
+const ProcessAtDiameter* processFor(const PredictionModel& m, const HoleRequest& h) {
+  if (!m.has_process) return nullptr;
+  if (h.drill <= 0 && h.feed <= 0 && h.spindle_rpm <= 0) return processFor(m, h.diameter);
+  const HoleProcessKey k = holeProcessKey(m, h);
+  if (firstDrillAtItsCut(m, k)) return processFor(m, h.diameter);
+  const auto it = m.process_by_hole.find(k);
+  if (it == m.process_by_hole.end())
+    throw std::logic_error("processFor: hole " + h.id + "'s process was not built");
+  return &it->second;
 }
 
 const nc::Model& controllerModel(const PredictionModel& m) {
@@ -230,7 +297,7 @@ double holeDepth(const HoleRequest& h, const ProcessAtDiameter* proc) {
 
 /// Step 0: a hole deeper than the drill cuts fails on its own (p says why; true).
 bool beyondDrill(const PredictionModel& m, const HoleRequest& h, HolePrediction& p) {
-  const ProcessAtDiameter* proc = processFor(m, h.diameter);
+  const ProcessAtDiameter* proc = processFor(m, h);
   if (!proc || proc->cutting_length <= 0) return false;
   const double depth = holeDepth(h, proc);
   if (depth <= proc->cutting_length * (1.0 + 1e-9)) return false;
@@ -303,6 +370,39 @@ const Vec6& seedOf(const PredictionModel& m, const HoleRequest& h, const Vec6* s
 void predictAtSolution(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
                        const IkSolution& sol, HolePrediction& p);
 
+void holeFigures(const PredictionModel& m, const HoleRequest& h, const ProcessAtDiameter* proc,
+                 HolePrediction& p);
+bool takeSolution(const PredictionModel& m, const IkSolution& sol, HolePrediction& p);
+
+/// The drill, feed and spindle speed hole `h` is drilled with (HolePrediction::drill, ...).
+void setHoleProcess(const PredictionModel& m, const HoleRequest& h, HolePrediction& p) {
+  p.drill = std::max(h.drill, 0);
+  if (!m.has_process || m.process.type != ProcessType::kDrilling) return;
+  const DrillingSpec& s = m.process.drills.empty() ? m.process.drilling
+                                                   : m.process.drills[static_cast<size_t>(p.drill)];
+  p.feed = h.feed > 0 ? h.feed : s.feed;
+  p.spindle_rpm = h.spindle_rpm > 0 ? h.spindle_rpm : s.spindle_rpm;
+}
+
+}  // namespace
+
+namespace {
+
+/// Resets every field of p for hole h, keeping the capacity of its strings (no allocation; the
+/// budget is inline).
+void resetPrediction(const HoleRequest& h, HolePrediction& p) {
+  std::string id = std::move(p.id);
+  std::string reason = std::move(p.reason);
+  std::string config = std::move(p.config);
+  p = HolePrediction{};
+  id.assign(h.id);
+  reason.clear();
+  config.clear();
+  p.id = std::move(id);
+  p.reason = std::move(reason);
+  p.config = std::move(config);
+}
+
 }  // namespace
 
 HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
@@ -314,20 +414,20 @@ HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const Ho
 
 void predictHole(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
                  const Vec6* seed, HolePrediction& p) {
-  // reset every field, keeping the capacity of the strings (no allocation; the budget is inline)
-  std::string id = std::move(p.id);
-  std::string reason = std::move(p.reason);
-  std::string config = std::move(p.config);
-  p = HolePrediction{};
-  id.assign(h.id);
-  reason.clear();
-  config.clear();
-  p.id = std::move(id);
-  p.reason = std::move(reason);
-  p.config = std::move(config);
+  resetPrediction(h, p);
   IkSolution sol;
   chooseSolution(m, d, h, flangeTarget(m, h), seedOf(m, h, seed), p, sol);
   predictAtSolution(m, d, h, sol, p);  // without a solution: the per-hole process figures only
+}
+
+void chooseHoleSolution(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
+                        const Vec6* seed, HolePrediction& p) {
+  resetPrediction(h, p);
+  IkSolution sol;
+  chooseSolution(m, d, h, flangeTarget(m, h), seedOf(m, h, seed), p, sol);
+  const ProcessAtDiameter* proc = processFor(m, h);
+  holeFigures(m, h, proc, p);
+  if (p.status == HoleStatus::kOk) takeSolution(m, sol, p);
 }
 
 namespace {
@@ -341,11 +441,12 @@ struct HolePlane {
 
 HolePlane holePlane(const Mat3& R_tcp) { return {R_tcp.col(0), R_tcp.col(1), R_tcp.col(2)}; }
 
-/// The hole's own figures, predicted or not: tolerance, diameter, depth and the
+/// The hole's own figures, predicted or not: tolerance, drill, feed, speed, diameter, depth and the
 /// machining-centre time.
 void holeFigures(const PredictionModel& m, const HoleRequest& h, const ProcessAtDiameter* proc,
                  HolePrediction& p) {
   p.tolerance = h.tolerance > 0 ? h.tolerance : m.default_tolerance;
+  setHoleProcess(m, h, p);
   p.diameter = h.diameter > 0 ? h.diameter : (proc ? proc->diameter : 0.0);
   p.depth = holeDepth(h, proc);
   if (proc && proc->feed_rate > 0 && !p.beyond_drill)
@@ -558,7 +659,7 @@ void uncertaintyBudget(const PredictionModel& m, const ProcessAtDiameter* proc,
 /// solution (p.status set by the IK choice) gets its figures only.
 void predictAtSolution(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
                        const IkSolution& sol, HolePrediction& p) {
-  const ProcessAtDiameter* proc = processFor(m, h.diameter);
+  const ProcessAtDiameter* proc = processFor(m, h);
   holeFigures(m, h, proc, p);
   if (p.status != HoleStatus::kOk || !takeSolution(m, sol, p)) return;
 

@@ -102,6 +102,17 @@ struct ProcessAtDiameter {
   std::string cutting_length_source;
 };
 
+/// Which process a hole is drilled with, resolved against the cell's tool table: the drill
+/// (index into ProcessSpec::drills), the hole diameter, feed and spindle speed (units: µm, nm/rev,
+/// 1/1000 min⁻¹, so that equal values compare equal).
+struct HoleProcessKey {
+  int drill{0};
+  long diameter_um{0};
+  long feed_nm{0};
+  long rpm_milli{0};
+  auto operator<=>(const HoleProcessKey&) const = default;
+};
+
 /// A calibrated robot (robot card <calibration>, geometry_calibration.hpp): `model` is the REAL
 /// robot (robot.real_chain: every deflection, equilibrium and real TCP is computed on it) and `ik`
 /// the CONTROLLER's nominal IK (programmed targets → commands, configuration flags, limits);
@@ -120,6 +131,10 @@ struct PredictionModel {
   bool has_process{false};
   ProcessSpec process;
   std::map<long, ProcessAtDiameter> process_by_diameter;  ///< key: diameter in µm
+  /// Holes drilled with another drill of the tool table, or with their own feed or spindle
+  /// speed (HoleRequest::drill, feed, spindle_rpm); the cell's first drill at its own cut data is
+  /// in process_by_diameter.
+  std::map<HoleProcessKey, ProcessAtDiameter> process_by_hole;
   UncertaintyInputs uncertainty;
   AccuracyInputs accuracy;
   CapabilityInputs capability;
@@ -152,6 +167,8 @@ Vec6 controllerOffset(const PredictionModel& m, nc::Data& data, const Vec6& thet
 Vec6 controllerOffset(const PredictionModel& m, nc::Data& data, const Vec6& theta,
                       const nc::JointCompliance& c);
 
+struct HoleRequest;
+
 struct PredictionSetup {
   Robot robot;
   nc::ToolAttachment tool;
@@ -160,7 +177,10 @@ struct PredictionSetup {
   AccuracyInputs accuracy;
   CapabilityInputs capability;
   double default_tolerance{0.2e-3};
-  std::vector<double> hole_diameters;   ///< diameters the holes use (m); the process's is added
+  std::vector<double> hole_diameters;  ///< diameters the holes use (m); the process's is added
+  /// The holes' requests whose process is not the first drill's at its cut data (every drill of
+  /// the tool table at its own diameter and cut data is built anyway).
+  std::vector<HoleRequest> hole_processes;
   bool controller_gravity{false};       ///< absolute-accuracy option (api::controllerGravityOf)
   nc::ToolAttachment calibration_load;  ///< load the controller's gravity compensation assumes
 };
@@ -192,7 +212,24 @@ struct HoleRequest {
   /// Joints (URDF convention, rad) the IK choice of a hole without a configuration is nearest
   /// to; overrides the sequence's continuity seed (a host's approximate joints).
   std::optional<Vec6> ik_seed;
+  /// The hole's process (docs/process.md §8, tool table): the drill of the cell's tool table (index
+  /// into ProcessSpec::drills; -1: the first, i.e. the single drill of a cell without a table), and
+  /// its own feed (m/rev) and spindle speed (1/min); 0: the drill's <cut> values.
+  int drill{-1};
+  double feed{0.0};
+  double spindle_rpm{0.0};
+  std::string tool;  ///< the tool key that selected `drill` (<drill tool>), for the outputs
 };
+
+/// The process fields of `h` alone (diameter, drill, feed, speed): PredictionSetup::hole_processes.
+HoleRequest holeProcessOf(const HoleRequest& h);
+/// The process key of a hole (its drill, diameter, feed and speed with the cell's defaults).
+HoleProcessKey holeProcessKey(const PredictionModel& m, const HoleRequest& h);
+/// Builds the process of hole `h` into `m` when not there yet (a host's per-call process).
+void addHoleProcess(PredictionModel& m, const HoleRequest& h);
+/// The process of hole `h` (addHoleProcess must have run for it, or buildPredictionModel with it
+/// in PredictionSetup::hole_processes), nullptr without a process.
+const ProcessAtDiameter* processFor(const PredictionModel& m, const HoleRequest& h);
 
 enum class HoleStatus { kOk, kUnreachable, kSingular, kNotConverged };
 enum class Verdict {
@@ -264,6 +301,9 @@ struct HolePrediction {
   double mc_time{0};  ///< machining-center time for this hole, s
   double diameter{0};
   double depth{0};
+  int drill{0};                   ///< index into the cell's tool table (ProcessSpec::drills)
+  double feed{0};                 ///< m/rev (0: no drilling process)
+  double spindle_rpm{0};          ///< 1/min
   Vec3 force_base{Vec3::Zero()};  ///< process force on the TCP, base frame, N
 };
 
@@ -282,6 +322,13 @@ HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const Ho
 /// samples). A fresh prediction allocates only for strings beyond the short-string buffer.
 void predictHole(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
                  const Vec6* seed, HolePrediction& out);
+
+/// Step 1 of predictHole alone (the IK choice) into `out`: status and reason, joints, branch,
+/// wrist margin and flags, and the hole's process figures (tolerance, diameter, depth, drill, feed,
+/// speed, machining-center time) — no deflection, no budget, no verdict beyond a failed IK. The
+/// same values as predictHole's for them.
+void chooseHoleSolution(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
+                        const Vec6* seed, HolePrediction& out);
 
 struct PredictOptions {
   /// Worker threads over holes (≥ 1; 1: the calling thread only). The output is byte-identical

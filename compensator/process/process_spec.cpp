@@ -3,6 +3,7 @@
 #include <tinyxml2.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <initializer_list>
@@ -150,12 +151,35 @@ void applyOverride(const MachiningDeviationOverride& o, MachiningDeviationParams
   }
 }
 
-void parseDrilling(const XmlNode& proc, DrillingSpec& s) {
-  allowChildren(proc, {"drill", "cut", "material", "coefficients", "machining_deviation"});
-  const XmlNode& d = required(proc, "drill", "drill geometry");
-  allowOnly(d, {"diameter_mm", "point_angle_deg", "helix_angle_deg", "web_mm", "chisel_angle_deg",
-                "lips", "runout_mm", "tool_material", "stickout_mm", "flute_length_mm", "angle_law",
-                "working_angles"});
+/// The <cut> of drill `d`: the process's <cut> with the attributes of the drill's own <cut>
+/// over it (messages at the drill's <cut> when it has one). Throws when neither exists.
+XmlNode cutOf(const XmlNode& proc, const XmlNode& d) {
+  allowChildren(d, {"cut"});
+  allowAtMostOnce(d, {"cut"});
+  const XmlNode* shared = proc.child("cut");
+  const XmlNode* own = d.child("cut");
+  if (own == nullptr) return required(proc, "cut", "feed and speed");
+  XmlNode c = shared != nullptr ? *shared : *own;
+  c.line = own->line;
+  for (const auto& [name, value] : own->attributes) {
+    auto it = std::find_if(c.attributes.begin(), c.attributes.end(),
+                           [&](const auto& a) { return a.first == name; });
+    if (it == c.attributes.end())
+      c.attributes.emplace_back(name, value);
+    else
+      it->second = value;
+  }
+  return c;
+}
+
+/// One <drill> of the tool table with its cut data (docs/process.md §8, tool table).
+void parseDrill(const XmlNode& proc, const XmlNode& d, DrillingSpec& s) {
+  s.tool = d.str("tool", "");
+  s.name = d.str("name", "");
+  s.drill_line = d.line;
+  allowOnly(d, {"tool", "name", "diameter_mm", "point_angle_deg", "helix_angle_deg", "web_mm",
+                "chisel_angle_deg", "lips", "runout_mm", "tool_material", "stickout_mm",
+                "flute_length_mm", "angle_law", "working_angles"});
   DrillGeometry& g = s.geometry;
   g.diameter = positive(d, "diameter_mm", 0, false) * kMm;
   plausible(d, "diameter_mm", 0.1, 100.0, "twist drill diameter, mm");
@@ -195,7 +219,7 @@ void parseDrilling(const XmlNode& proc, DrillingSpec& s) {
               "the drill's cutting (flute) length, mm: at least the drill diameter");
   }
 
-  const XmlNode& c = required(proc, "cut", "feed and speed");
+  const XmlNode c = cutOf(proc, d);
   allowOnly(c, {"feed_mm_per_rev", "spindle_rpm", "depth_mm", "through"});
   s.feed_line = c.line;
   const double f = c.number("feed_mm_per_rev");
@@ -253,7 +277,78 @@ void parseDrilling(const XmlNode& proc, DrillingSpec& s) {
   if (const std::string problem = drillGeometryProblem(g); !problem.empty()) d.fail(problem);
 }
 
+void parseDrilling(const XmlNode& proc, ProcessSpec& spec) {
+  allowChildren(proc, {"drill", "cut", "material", "coefficients", "machining_deviation"});
+  const std::vector<const XmlNode*> drills = proc.childrenNamed("drill");
+  if (drills.empty()) required(proc, "drill", "drill geometry");
+  for (const XmlNode* d : drills) {
+    if (drills.size() > 1 && !d->has("tool")) {
+      d->fail("<drill> needs tool=\"...\" in a tool table of " + std::to_string(drills.size()) +
+              " drills: the controller's tool number or name that selects it (KRL TOOL_DATA[n], "
+              "RAPID tooldata, FANUC UTOOL n)");
+    }
+    for (const DrillingSpec& o : spec.drills) {
+      if (!o.tool.empty() && sameToolKey(o.tool, d->str("tool", "")))
+        d->fail("<drill> tool=\"" + d->str("tool") + "\" is given twice (first at line " +
+                std::to_string(o.drill_line) + ")");
+    }
+    DrillingSpec s;
+    s.line = proc.line;
+    parseDrill(proc, *d, s);
+    spec.drills.push_back(std::move(s));
+  }
+  spec.drilling = spec.drills.front();
+}
+
 }  // namespace
+
+DrillingSpec holeDrilling(const ProcessSpec& spec, int drill, double diameter, double depth,
+                          double feed, double spindle_rpm) {
+  const DrillingSpec& own =
+      spec.drills.empty() ? spec.drilling : spec.drills[static_cast<size_t>(std::max(drill, 0))];
+  DrillingSpec s = own;
+  if (feed > 0) s.feed = feed;
+  if (spindle_rpm > 0) s.spindle_rpm = spindle_rpm;
+  if (depth > 0) s.hole_depth = depth;
+  if (diameter > 0 && std::abs(diameter - s.geometry.diameter) >= 1e-9) {
+    const double scale = diameter / s.geometry.diameter;
+    s.geometry.web_thickness *= scale;
+    s.geometry.diameter = diameter;
+    s.deviation = machiningDeviationAt(own, diameter);
+    s.geometry.runout = s.deviation.runout;
+  }
+  return s;
+}
+
+bool sameToolKey(std::string_view a, std::string_view b) {
+  const auto integer = [](std::string_view t) -> std::optional<long> {
+    if (t.empty() || t.size() > 9) return std::nullopt;
+    long v = 0;
+    for (const char ch : t) {
+      if (ch < '0' || ch > '9') return std::nullopt;
+      v = v * 10 + (ch - '0');
+    }
+    return v;
+  };
+  if (const auto ia = integer(a), ib = integer(b); ia && ib) return *ia == *ib;
+  return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
+           return std::tolower(static_cast<unsigned char>(x)) ==
+                  std::tolower(static_cast<unsigned char>(y));
+         });
+}
+
+int drillIndex(const ProcessSpec& s, std::string_view tool) {
+  for (std::size_t i = 0; i < s.drills.size(); ++i)
+    if (!s.drills[i].tool.empty() && sameToolKey(s.drills[i].tool, tool))
+      return static_cast<int>(i);
+  return -1;
+}
+
+std::string drillLabel(const DrillingSpec& d) {
+  const std::string size = "Ø" + numberText(d.geometry.diameter / kMm) + " mm";
+  if (d.tool.empty()) return "the cell's drill (" + size + ")";
+  return "tool " + d.tool + (d.name.empty() ? "" : " '" + d.name + "'") + " (" + size + ")";
+}
 
 MachiningDeviationParams machiningDeviationAt(const DrillingSpec& s, double diameter) {
   MachiningDeviationParams p = defaultMachiningDeviation(diameter, s.carbide);
@@ -433,8 +528,7 @@ ProcessSpec parseProcess(const XmlNode& proc) {
   if (type == "drilling") {
     allowOnly(proc, {"type"});
     s.type = ProcessType::kDrilling;
-    s.drilling.line = proc.line;
-    parseDrilling(proc, s.drilling);
+    parseDrilling(proc, s);
   } else if (type == "milling") {
     allowOnly(proc, {"type"});
     s.type = ProcessType::kMilling;

@@ -35,6 +35,8 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "compensator/process/drill_geometry.hpp"
 #include "compensator/process/drilling_forces.hpp"
@@ -59,6 +61,8 @@ struct MachiningDeviationOverride {
 };
 
 struct DrillingSpec {
+  std::string tool;  ///< <drill tool>: the controller's tool number or name; empty: not keyed
+  std::string name;  ///< <drill name>; empty: none given
   DrillGeometry geometry;
   AngleLaw law{AngleLaw::kGeometric};
   bool working_angles{true};  ///< build the edge angles with the feed (docs/process.md §1.2)
@@ -77,6 +81,7 @@ struct DrillingSpec {
   MachiningDeviationParams deviation;  ///< machiningDeviationAt(*this, geometry.diameter)
   int line{0};                         ///< <process> line
   int feed_line{0};                    ///< <cut> line (for calibration messages)
+  int drill_line{0};                   ///< <drill> line
 };
 
 struct MillingSpec {
@@ -123,13 +128,31 @@ struct ProcessSpec {
   ProcessType type{ProcessType::kDrilling};
   std::string file;
   int line{0};
+  /// The tool table (drilling): every <drill> in document order with its cut data; one entry for
+  /// a single-drill cell. `drilling` is its first entry (the drill of a hole nothing assigns).
+  std::vector<DrillingSpec> drills;
   DrillingSpec drilling;
   MillingSpec milling;
   WrenchSpec wrench;
 };
 
+/// The drilling spec of one hole: drill `drill` of the tool table (ProcessSpec::drills) at the
+/// hole's diameter (m; its web and machining deviation scaled to it when it differs from the
+/// drill's), depth (m), feed (m/rev) and spindle speed (1/min); a value <= 0 keeps the drill's.
+DrillingSpec holeDrilling(const ProcessSpec& spec, int drill, double diameter, double depth = 0.0,
+                          double feed = 0.0, double spindle_rpm = 0.0);
+
 /// Parses a <process> element (file and line numbers come from the node).
 ProcessSpec parseProcess(const XmlNode& process);
+
+/// Whether two tool keys name the same tool: equal ignoring case, or the same integer ("3",
+/// "03").
+bool sameToolKey(std::string_view a, std::string_view b);
+/// The index in `s.drills` of the drill keyed `tool` (sameToolKey), -1 when none.
+int drillIndex(const ProcessSpec& s, std::string_view tool);
+/// A drill as messages and reports name it: `tool 3 'D6.8' (Ø6.8 mm)`, `the cell's drill (Ø8.5
+/// mm)` for an unkeyed single drill.
+std::string drillLabel(const DrillingSpec& d);
 
 /// The drilling model of a spec (working angles at the spec's feed when enabled).
 DrillingModel drillingModelOf(const DrillingSpec& s, int nodes = 24);

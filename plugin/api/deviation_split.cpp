@@ -16,6 +16,10 @@ void dropProcessLoad(PredictionModel& m) {
     proc.wrench.force.setZero();
     proc.wrench.torque.setZero();
   }
+  for (auto& [key, proc] : m.process_by_hole) {
+    proc.wrench.force.setZero();
+    proc.wrench.torque.setZero();
+  }
 }
 
 /// The four re-evaluated models (δ₁ links, δ₂ + tool, δ₃ + process, the process alone).

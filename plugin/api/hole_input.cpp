@@ -44,7 +44,93 @@ Mat3 holeFrame(const Vec3& direction) {
   return R;
 }
 
+std::string programToolKey(const std::string& ref) {
+  for (const char* table : {"TOOL_DATA[", "UTOOL["}) {
+    const std::string t(table);
+    if (ref.size() > t.size() + 1 && ref.compare(0, t.size(), t) == 0 && ref.back() == ']')
+      return ref.substr(t.size(), ref.size() - t.size() - 1);
+  }
+  return ref;
+}
+
+std::vector<const XmlNode*> cellDrills(const CellSpec& cell) {
+  if (!cell.has_process || cell.process.str("type", "") != "drilling") return {};
+  return cell.process.childrenNamed("drill");
+}
+
 namespace {
+
+/// Whether the cell's process has more than one <drill> (a tool table): only then does a hole's
+/// tool select its drill (HoleRequest::drill); a single drill drills every hole.
+bool hasToolTable(const CellSpec& cell) {
+  if (!cell.has_process) return false;
+  int drills = 0;
+  for (const XmlNode& c : cell.process.children) drills += c.name == "drill" ? 1 : 0;
+  return drills > 1;
+}
+
+std::string toolTableText(const std::vector<const XmlNode*>& drills) {
+  std::string t;
+  for (const XmlNode* d : drills) {
+    if (!t.empty()) t += ", ";
+    t += d->str("tool", "?") + " (Ø" + d->str("diameter_mm", "?") + " mm)";
+  }
+  return t;
+}
+
+}  // namespace
+
+void assignDrill(const CellSpec& cell, const std::string& tool, const std::string& named_as,
+                 const std::string& file, int line, HoleRequest& r) {
+  if (!hasToolTable(cell)) return;
+  const std::vector<const XmlNode*> drills = cellDrills(cell);
+  if (!tool.empty()) {
+    for (size_t i = 0; i < drills.size(); ++i) {
+      if (sameToolKey(drills[i]->str("tool", ""), tool)) {
+        r.drill = static_cast<int>(i);
+        r.tool = drills[i]->str("tool");
+        return;
+      }
+    }
+    throw InputError(file, line,
+                     "hole " + clipForMessage(r.id) + " is drilled with tool " + named_as +
+                         ", which the cell's tool table does not have (tools: " +
+                         toolTableText(drills) + "); hint: add <drill tool=\"" + tool +
+                         "\" .../> to the cell's <process> (" + cell.file + ")");
+  }
+  int found = -1;
+  for (size_t i = 0; i < drills.size() && r.diameter > 0; ++i) {
+    const double d = drills[i]->number("diameter_mm", 0.0) * 1e-3;
+    if (std::abs(d - r.diameter) > 1e-6) continue;
+    if (found >= 0) {
+      found = -2;
+      break;
+    }
+    found = static_cast<int>(i);
+  }
+  if (found >= 0) {
+    r.drill = found;
+    r.tool = drills[static_cast<size_t>(found)]->str("tool");
+    return;
+  }
+  throw InputError(file, line,
+                   "hole " + clipForMessage(r.id) +
+                       ": nothing says which drill of the cell's tool table drills it (tools: " +
+                       toolTableText(drills) +
+                       "); hint: select the tool in the program (KRL $TOOL/BAS(#TOOL,n), RAPID "
+                       "tooldata, FANUC UTOOL_NUM / UT) or give the hole list a tool column (or "
+                       "a diameter only one drill has)");
+}
+
+namespace {
+
+/// The hole-list row's own process: its tool's drill, feed and spindle speed.
+void holeListProcess(const postproc::HoleSpec& s, const CellSpec& cell, const std::string& file,
+                     HoleRequest& r) {
+  if (s.feed_mm_per_rev) r.feed = *s.feed_mm_per_rev * 1e-3;
+  if (s.spindle_rpm) r.spindle_rpm = *s.spindle_rpm;
+  assignDrill(cell, s.tool, s.tool, file, s.line, r);
+}
 
 HoleRequest fromSpec(const postproc::HoleSpec& s, const CellSpec& cell) {
   HoleRequest r;
@@ -59,6 +145,14 @@ HoleRequest fromSpec(const postproc::HoleSpec& s, const CellSpec& cell) {
   r.line = s.line;
   r.evidence = "on the hole list";
   return r;
+}
+
+/// The tool key of recognised hole `h` (its bottom motion's tool) and how the program names it;
+/// empty when the program names none.
+std::pair<std::string, std::string> holeTool(const postproc::Program& p, const postproc::Hole& h) {
+  if (h.tool < 0) return {};
+  const std::string& ref = p.frames[static_cast<size_t>(h.tool)].ref;
+  return {programToolKey(ref), ref};
 }
 
 std::optional<VendorConfig> programConfig(const postproc::Configuration& c, const Robot& robot,
@@ -251,6 +345,18 @@ void setUpHole(const std::vector<postproc::Hole>& recognized, const postproc::Pr
     if (s.tolerance_mm) r.tolerance = *s.tolerance_mm * 1e-3;
     if (s.diameter_mm) r.diameter = *s.diameter_mm * 1e-3;
     if (s.depth_mm) r.depth = *s.depth_mm * 1e-3;
+    if (s.feed_mm_per_rev) r.feed = *s.feed_mm_per_rev * 1e-3;
+    if (s.spindle_rpm) r.spindle_rpm = *s.spindle_rpm;
+  }
+  if (hasToolTable(cell)) {
+    const auto [key, ref] = holeTool(p, h);
+    const std::string list_tool = spec >= 0 ? specs[static_cast<size_t>(spec)].tool : "";
+    const postproc::Motion& mo = p.motions[static_cast<size_t>(h.bottom_motion)];
+    const std::string& file = p.files[static_cast<size_t>(std::max(0, mo.file))].path;
+    if (!key.empty())
+      assignDrill(cell, key, ref, file, mo.line, r);
+    else
+      assignDrill(cell, list_tool, list_tool, file, mo.line, r);
   }
 }
 
@@ -282,6 +388,66 @@ void setUpRange(const JobHoles& job, const CellSpec& cell, const Robot& robot,
   const auto first = std::min_element(
       failed.begin(), failed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   if (first->second) std::rethrow_exception(first->second);
+}
+
+/// A single-drill cell drills every hole with its drill: a job whose holes name two tools (the
+/// program changes tools, or the hole list's tool column does) is refused at the first hole of
+/// the second tool.
+void requireOneToolForOneDrill(const JobHoles& job, const CellSpec& cell,
+                               const std::vector<postproc::HoleSpec>& specs,
+                               const std::string& path) {
+  if (hasToolTable(cell) || cellDrills(cell).empty()) return;
+  std::string first, first_ref, first_at;
+  auto check = [&](const std::string& key, const std::string& ref, const std::string& file,
+                   int line) {
+    if (key.empty()) return;
+    if (first.empty()) {
+      first = key;
+      first_ref = ref;
+      first_at = file + ":" + std::to_string(line);
+      return;
+    }
+    if (sameToolKey(first, key)) return;
+    throw InputError(file, line,
+                     "the job changes tools (" + first_ref + " at " + first_at + ", then " + ref +
+                         ") but the cell has a single drill, which would drill every hole; hint: "
+                         "give the cell a tool table, one <drill tool=\"n\" .../> per tool "
+                         "(docs/process.md §8, tool table)");
+  };
+  if (job.is_hole_list) {
+    for (const postproc::HoleSpec& s : specs) check(s.tool, "tool " + s.tool, path, s.line);
+    return;
+  }
+  const postproc::Program& p = *job.program;
+  for (const postproc::Hole& h : job.recognized) {
+    const auto [key, ref] = holeTool(p, h);
+    const postproc::Motion& mo = p.motions[static_cast<size_t>(h.bottom_motion)];
+    check(key, ref, p.files[static_cast<size_t>(std::max(0, mo.file))].path, mo.line);
+  }
+}
+
+/// The note that says which holes the cell's single drill drills although nothing in the job
+/// says so: the holes without a diameter of their own (a hole list's diameter scales the drill).
+void noteDefaultDrill(JobHoles& job, const CellSpec& cell) {
+  const std::vector<const XmlNode*> drills = cellDrills(cell);
+  if (drills.size() != 1) return;
+  size_t n = 0;
+  std::string first;
+  const size_t holes = job.deferred ? job.recognized.size() : job.requests.size();
+  for (size_t i = 0; i < job.requests.size(); ++i) {
+    if (job.requests[i].diameter > 0) continue;
+    if (n++ == 0) first = job.requests[i].id;
+  }
+  if (job.deferred) n = holes;  // a deferred job has no hole list: no hole has a diameter
+  if (n == 0) return;
+  const XmlNode& d = *drills.front();
+  job.notes.push_back(
+      "drill: " + std::to_string(n) + " of " + std::to_string(holes) + " holes (the first " +
+      (job.deferred ? job.recognized.front().id : first) +
+      ") state no drill or diameter: drilled with the cell's single drill Ø" +
+      d.str("diameter_mm") + " mm and its <cut> (" + cell.file +
+      "); hint: a hole list with diameters, or a tool table in the cell selected by the "
+      "program's tool numbers, gives each hole its drill");
 }
 
 }  // namespace
@@ -331,6 +497,8 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
     for (size_t i = 0; i < specs.size(); ++i) {
       const auto& s = specs[i];
       job.requests.push_back(fromSpec(s, cell));
+      if (!s.tool.empty() || s.feed_mm_per_rev || s.spindle_rpm || hasToolTable(cell))
+        holeListProcess(s, cell, path, job.requests.back());
       HoleSource src;
       if (parsed && i < parsed->targets().size()) {
         src.targets = {static_cast<int>(i)};
@@ -357,10 +525,14 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
                                         Vec3(cell.T_base_wobj.linear() * s.direction.normalized()));
         if (s.tolerance_mm) r.tolerance = *s.tolerance_mm * 1e-3;
         if (s.diameter_mm) r.diameter = *s.diameter_mm * 1e-3;
+        if (!s.tool.empty() || s.feed_mm_per_rev || s.spindle_rpm || hasToolTable(cell))
+          holeListProcess(s, cell, *hole_list, r);
       }
       reportMatching(job, *hole_list, ref, spec_of_hole, "matched by id");
     }
     job.program = std::move(parsed);
+    requireOneToolForOneDrill(job, cell, specs, path);
+    noteDefaultDrill(job, cell);
     return job;
   }
   job.program = parsed ? std::move(*parsed) : postproc::readProgram(path, std::move(bytes));
@@ -436,6 +608,8 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
                        " mm on a parallel axis");
     far.note(job, match_tol_mm);
   }
+  requireOneToolForOneDrill(job, cell, specs, path);
+  noteDefaultDrill(job, cell);
   for (const auto& note : p.notes) job.notes.push_back(note);
   for (const auto& u : p.unresolved) {
     const std::string& file = p.files[static_cast<size_t>(std::max(0, u.file))].path;

@@ -74,6 +74,21 @@ void setUpHoles(const JobHoles& job, const CellSpec& cell, const Robot& robot, s
 std::vector<char> holesSharingTargets(const std::vector<HoleSource>& sources,
                                       const std::vector<char>& included, std::size_t targets);
 
+/// The key a program names a tool by, as the cell's tool table keys its drills (<drill tool>):
+/// `TOOL_DATA[3]` (KRL) and `UTOOL[3]` (FANUC) → "3", a RAPID tooldata name as it is.
+std::string programToolKey(const std::string& ref);
+/// The cell's <drill> elements in document order (ProcessSpec::drills); empty without a drilling
+/// process.
+std::vector<const XmlNode*> cellDrills(const CellSpec& cell);
+
+/// Sets r.drill and r.tool: the drill of the cell's tool table (docs/process.md §8, tool table)
+/// keyed by `tool` (a program's tool key, programToolKey, or a hole list's tool column; `named_as`
+/// is how the job names it), else the one drill of r.diameter. Throws InputError at `file:line`
+/// when the table has no such tool or nothing says which drill. A cell without a tool table (one
+/// drill): nothing to do (r.drill stays -1, the cell's drill).
+void assignDrill(const CellSpec& cell, const std::string& tool, const std::string& named_as,
+                 const std::string& file, int line, HoleRequest& r);
+
 /// TCP rotation for a drilling direction (see the file comment), in the frame of `direction`.
 Mat3 holeFrame(const Vec3& direction);
 

@@ -76,6 +76,8 @@ void useProgramTool(PredictionContext& c, const Pose& T_flange_tcp) {
   s.default_tolerance = c.model.default_tolerance;
   for (const HoleRequest& r : c.job.requests) {
     if (r.diameter > 0) s.hole_diameters.push_back(r.diameter);
+    if (r.drill > 0 || r.feed > 0 || r.spindle_rpm > 0)
+      s.hole_processes.push_back(holeProcessOf(r));
   }
   const ConfigurationOptions cfg = c.model.config_options;
   c.model = buildPredictionModel(s);

@@ -142,12 +142,15 @@ std::optional<std::array<int, 3>> fanucTurnAxesFromCell(const CellSpec& cell) {
 /// and "conforms").
 void requireDrillableDiameters(const PredictionContext& c) {
   if (!c.process || c.process->type != ProcessType::kDrilling) return;
-  const double feed = c.process->drilling.feed;
   for (const HoleRequest& r : c.job.requests) {
-    if (!(r.diameter > 0) || feed <= 0.1 * r.diameter * (1 + 1e-12)) continue;
+    const DrillingSpec& drill = c.process->drills[static_cast<size_t>(std::max(r.drill, 0))];
+    const double feed = r.feed > 0 ? r.feed : drill.feed;
+    const double diameter = r.diameter > 0 ? r.diameter : drill.geometry.diameter;
+    if (feed <= 0.1 * diameter * (1 + 1e-12)) continue;
     throw InputError(c.job.path, r.line,
-                     "hole " + clipForMessage(r.id) + ": diameter " + numberText(r.diameter * 1e3) +
-                         " mm is too small for the cell's feed " + numberText(feed * 1e3) +
+                     "hole " + clipForMessage(r.id) + ": diameter " + numberText(diameter * 1e3) +
+                         " mm is too small for the " + (r.feed > 0 ? "hole's" : "cell's") +
+                         " feed " + numberText(feed * 1e3) +
                          " mm/rev (feed <= 0.1 Dc: a diameter of at least " +
                          numberText(feed * 1e4) +
                          " mm); drill it with another cell (feed) or correct the diameter");
@@ -181,6 +184,16 @@ PredictionContext loadPredictionContext(const std::string& cell_path, const std:
   if (c.cell.has_process) {
     c.process = parseProcess(c.cell.process);
     c.process_description = steadyProcessLoad(*c.process).description;
+    if (c.process->drills.size() > 1) {  // a tool table: each hole its drill
+      std::string table;
+      for (const DrillingSpec& d : c.process->drills)
+        table += (table.empty() ? "" : ", ") + drillLabel(d);
+      c.process_description = "drilling with a tool table of " +
+                              std::to_string(c.process->drills.size()) +
+                              " drills, each hole its "
+                              "own (" +
+                              table + ")";
+    }
   } else {
     c.process_description = "no process (gravity and tool weight only)";
   }
@@ -198,6 +211,8 @@ PredictionContext loadPredictionContext(const std::string& cell_path, const std:
   c.fanuc_turn_axes = fanucTurnAxesFromCell(c.cell);
   for (const HoleRequest& r : c.job.requests) {
     if (r.diameter > 0) s.hole_diameters.push_back(r.diameter);
+    if (r.drill > 0 || r.feed > 0 || r.spindle_rpm > 0)
+      s.hole_processes.push_back(holeProcessOf(r));
   }
   requireDrillableDiameters(c);
   c.model = buildPredictionModel(s);
@@ -233,6 +248,13 @@ Json holeJson(const HolePrediction& h, const HoleRequest& r, const RobotCard* ca
   }());
   j.set("diameter_mm", Json::number(h.diameter * 1e3, 3));
   j.set("depth_mm", Json::number(h.depth * 1e3, 3));
+  if (statesOwnProcess(r)) {
+    Json d = Json::object();
+    if (!r.tool.empty()) d.set("tool", Json::str(r.tool));
+    d.set("feed_mm_per_rev", Json::number(h.feed * 1e3, 4));
+    d.set("spindle_rpm", Json::number(h.spindle_rpm, 1));
+    j.set("drill", d);
+  }
   if (h.status == HoleStatus::kOk || h.status == HoleStatus::kNotConverged ||
       h.status == HoleStatus::kSingular) {
     j.set("joints_deg", Json::vector(h.joints / kDeg, 6));

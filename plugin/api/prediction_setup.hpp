@@ -47,6 +47,11 @@ PredictionContext loadPredictionContext(const std::string& cell_path, const std:
 /// controller's convention (`controller_joints_deg`, toControllerJoints; issue 14).
 Json holeJson(const HolePrediction& h, const HoleRequest& r, const RobotCard* card = nullptr);
 Json summaryJson(const CapabilitySummary& s);
+/// Whether a hole's JSON states its drill (`"drill": {tool, feed_mm_per_rev, spindle_rpm}`): a
+/// hole drilled with a drill of the cell's tool table, or with its own feed or spindle speed.
+inline bool statesOwnProcess(const HoleRequest& r) {
+  return r.drill >= 0 || r.feed > 0 || r.spindle_rpm > 0;
+}
 std::string uncertaintyMethodText(const UncertaintyInputs& u);
 
 }  // namespace roprec::api

@@ -13,6 +13,7 @@
 #include "compensator/robot/ik.hpp"
 #include "compensator/support/c_format.hpp"
 #include "compensator/support/fixed_chars.hpp"
+#include "plugin/api/hole_input.hpp"
 #include "plugin/api/robot_compliance.hpp"
 #include "postproc/drill.hpp"
 #include "postproc/program.hpp"
@@ -71,6 +72,17 @@ HoleJoints holeListJoints(const RobotSetup& s, const std::string& path, const st
     hc.joints = jointsNearReference(s, T, path, h.line, id);
     hc.source = "hole list row " + std::to_string(h.line) +
                 " (cell workobject, IK solution nearest the reference pose)";
+    HoleRequest r;
+    r.id = id;
+    if (h.diameter_mm) r.diameter = *h.diameter_mm * 1e-3;
+    assignDrill(*s.cell, h.tool, h.tool, path, h.line, r);
+    HoleProcessChoice& pc = hc.process;
+    pc.drill = r.drill;
+    pc.diameter = r.diameter;
+    pc.depth = h.depth_mm.value_or(0.0) * 1e-3;
+    pc.feed = h.feed_mm_per_rev.value_or(0.0) * 1e-3;
+    pc.spindle_rpm = h.spindle_rpm.value_or(0.0);
+    pc.source = "hole list row " + std::to_string(h.line);
     return hc;
   }
   throw InputError(path, 0, "no hole '" + id + "' in the hole list");
@@ -99,7 +111,7 @@ HoleJoints jointTargetJoints(const RobotSetup& s, const postproc::Target& t,
     throw InputError(tfile, t.line, "joint target of hole '" + id + "' has fewer than 6 axes");
   nc::Vec6 qc;
   for (int i = 0; i < 6; ++i) qc[i] = j[static_cast<size_t>(i)] * kDeg;
-  return {fromControllerJoints(s.robot.card, qc), "joint target " + t.name};
+  return {fromControllerJoints(s.robot.card, qc), "joint target " + t.name, {}};
 }
 
 /// A Cartesian drill point: in the program's frame when it resolves, else the cell's work object;
@@ -121,7 +133,8 @@ HoleJoints cartesianTargetJoints(const RobotSetup& s, const postproc::Program& p
   const IkModel ik = buildIkModel(s.robot);  // first: its errors precede a configuration's
   if (!t.config.present()) {
     return {jointsNearReference(s, T_base_frame * *pose, tfile, t.line, id),
-            "target " + t.name + " (" + frame + ", IK solution nearest the reference pose)"};
+            "target " + t.name + " (" + frame + ", IK solution nearest the reference pose)",
+            {}};
   }
   const Pose T_base_flange = T_base_frame * *pose * s.tool.T_flange_tcp.inverse();
   const VendorConfig vc = parseConfig(s.robot.card.vendor, t.config.text(), tfile, t.line);
@@ -132,7 +145,8 @@ HoleJoints cartesianTargetJoints(const RobotSetup& s, const postproc::Program& p
                               t.config.text() + ": " + cs.reason);
   }
   return {cs.solution.q,
-          "target " + t.name + " (" + frame + ", configuration " + t.config.text() + ")"};
+          "target " + t.name + " (" + frame + ", configuration " + t.config.text() + ")",
+          {}};
 }
 
 }  // namespace
@@ -148,8 +162,17 @@ HoleJoints holeJoints(const RobotSetup& setup, const std::string& program_path,
   const postproc::Target& t = prog.targets()[static_cast<size_t>(hole.bottom_target)];
   const std::string tfile =
       t.file >= 0 ? prog.files[static_cast<size_t>(t.file)].path : program_path;
-  if (t.kind == postproc::TargetKind::kJoint) return jointTargetJoints(setup, t, tfile, id);
-  return cartesianTargetJoints(setup, prog, hole, tfile, id);
+  HoleJoints hj = t.kind == postproc::TargetKind::kJoint
+                      ? jointTargetJoints(setup, t, tfile, id)
+                      : cartesianTargetJoints(setup, prog, hole, tfile, id);
+  HoleRequest r;
+  r.id = id;
+  const std::string ref = hole.tool >= 0 ? prog.frames[static_cast<size_t>(hole.tool)].ref : "";
+  assignDrill(*setup.cell, ref.empty() ? "" : programToolKey(ref), ref, tfile, t.line, r);
+  hj.process.drill = r.drill;
+  hj.process.depth = hole.depth;
+  hj.process.source = ref.empty() ? "program (no tool named)" : "program tool " + ref;
+  return hj;
 }
 
 // ---------------------------------------------------------------- the transient
@@ -390,8 +413,14 @@ SimulationResult simulateAt(const RobotSetup& setup, const HoleJoints& at,
 
   std::optional<ProcessSpec> spec;
   std::unique_ptr<nc::ProcessCycle> cycle;
+  std::string drill;  // the drill of the hole, as the summary names it
   if (setup.cell->has_process) {
     spec = parseProcess(setup.cell->process);
+    if (spec->type == ProcessType::kDrilling) {
+      const HoleProcessChoice& h = at.process;
+      drill = drillLabel(spec->drills[static_cast<size_t>(std::max(h.drill, 0))]);
+      spec->drilling = holeDrilling(*spec, h.drill, h.diameter, h.depth, h.feed, h.spindle_rpm);
+    }
     cycle = nc::makeProcessCycle(*spec, {}, options.runout);
   } else {
     cycle = std::make_unique<nc::NoProcess>(0.5);
@@ -414,6 +443,8 @@ SimulationResult simulateAt(const RobotSetup& setup, const HoleJoints& at,
   root.set("joints_source", Json::str(at.source));
   root.set("process",
            Json::str(spec ? steadyProcessLoad(*spec).description : "none (gravity only)"));
+  if (spec && spec->type == ProcessType::kDrilling && !at.process.source.empty())
+    root.set("process_source", Json::str(at.process.source + ": " + drill));
   root.set("gravity_handling",
            gravityHandlingJson(setup.robot, controllerReferenceOf(setup.robot, &*setup.cell,
                                                                   setup.tool, options.gravity)));

@@ -19,10 +19,22 @@
 
 namespace roprec::api {
 
+/// The process of the hole a cycle is simulated for (docs/process.md §8, tool table): the drill of
+/// the cell's tool table and the hole's own size and cut data; 0 / -1: the cell's.
+struct HoleProcessChoice {
+  int drill{-1};          ///< index into the tool table (ProcessSpec::drills); -1: the first
+  double diameter{0};     ///< m
+  double depth{0};        ///< m
+  double feed{0};         ///< m/rev
+  double spindle_rpm{0};  ///< 1/min
+  std::string source;     ///< what said so: "hole list row 3", "program tool TOOL_DATA[2]"
+};
+
 /// Joints at which a cycle is simulated, and how they were obtained.
 struct HoleJoints {
   nc::Vec6 joints{nc::Vec6::Zero()};  ///< URDF convention, rad
   std::string source;  ///< e.g. "--joints", "target P[3] (cell workobject, configuration ...)"
+  HoleProcessChoice process;  ///< the hole's own drill and cut (holeJoints); --joints: the cell's
 };
 
 /// The hole is in the program but cannot be reached (an item that cannot be handled, not bad
@@ -37,8 +49,10 @@ class HoleUnreachable : public InputError {
 /// resolved, else the cell's work object; the cell's tool; a joint target as it is; IK with the
 /// target's configuration flags when it states them, else the in-limit, non-singular solution
 /// nearest the vendor reference pose. A hole-list hole is drilled along its direction with tool x
-/// = base x projected ⊥ the axis (else base y). Throws InputError (no such hole, no pose) or
-/// HoleUnreachable.
+/// = base x projected ⊥ the axis (else base y). The hole's process: its drill (the program's tool
+/// or the row's tool column in the cell's tool table, assignDrill) and the row's diameter, depth,
+/// feed and speed, or the program cycle's depth. Throws InputError (no such hole, no pose, a tool
+/// the cell does not have) or HoleUnreachable.
 HoleJoints holeJoints(const RobotSetup& setup, const std::string& program_path,
                       const std::string& id);
 

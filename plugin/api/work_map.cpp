@@ -23,6 +23,7 @@ PredictionModel modelAtFeed(const PredictionContext& c, double feed_m_per_rev) {
   s.tool = c.tool;
   ProcessSpec proc = *c.process;
   proc.drilling.feed = feed_m_per_rev;
+  if (!proc.drills.empty()) proc.drills.front().feed = feed_m_per_rev;  // the cell's (first) drill
   s.process = proc;
   s.uncertainty = c.model.uncertainty;
   s.accuracy = c.model.accuracy;

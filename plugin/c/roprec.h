@@ -119,9 +119,66 @@ ROPREC_API int roprec_filter_target(roprec_session* s, const double pose_mm[16],
  * receives the expanded uncertainty of a hole drilled there: the exact 95 % radius of the
  * anisotropic in-plane distribution (U_work_anisotropic, the radius the verdict uses), µm.
  * 1: no prediction at these joints (singular, not converged; reason in err); outputs unchanged.
+ * 2: a joint outside the robot's limits (as the roprec CLI), or bad input.
  */
 ROPREC_API int roprec_predict_joints(roprec_session* s, const double joints_deg[6],
                                      double deviation[6], double* U_work_um, char* err,
+                                     size_t err_len);
+
+/* ---------------------------------------------------------------- the hole's process */
+
+/* The process of one hole (docs/process.md §1.5): which drill of the cell's tool table drills it
+ * and the hole's own size and cut data. A zero (or NULL / "") field takes the cell's value. */
+typedef struct roprec_hole_process {
+  const char* tool;       /* the controller's tool number or name, as the cell's <drill tool="...">
+                             keys it ("3", "tDrill68"); NULL or "": the cell's (first) drill */
+  double diameter_mm;     /* hole diameter; 0: the drill's */
+  double depth_mm;        /* hole depth; 0: the cell's <cut depth_mm> (else 2 x diameter) */
+  double feed_mm_per_rev; /* 0: the drill's <cut feed_mm_per_rev> */
+  double spindle_rpm;     /* 0: the drill's <cut spindle_rpm> */
+} roprec_hole_process;
+
+/* The process a call used, every value resolved (the cell's where the caller gave none). */
+typedef struct roprec_process_used {
+  char tool[64]; /* the drill's <drill tool> ("" for a single drill without one),
+                    NUL-terminated (truncated to 63 bytes) */
+  double diameter_mm;
+  double depth_mm;
+  double feed_mm_per_rev; /* 0 when the cell's process is not drilling */
+  double spindle_rpm;
+  int from_cell; /* 1: the caller gave no value: all of it is the cell's */
+} roprec_process_used;
+
+/* roprec_filter_target for a hole drilled with `process` (NULL: the cell's drill): the process
+ * load is that drill's at the hole's diameter, feed and speed. `used` (may be NULL) receives the
+ * process used. 2 also for a tool the cell's tool table does not have, a diameter outside
+ * 0.1 .. 100 mm, a feed above 0.1 x the diameter, or a second tool with a single-drill cell. */
+ROPREC_API int roprec_filter_target_hole(roprec_session* s, const double pose_mm[16],
+                                         const double* seed_joints_deg,
+                                         const roprec_hole_process* process, double out_pose_mm[16],
+                                         double out_joints_deg[6], roprec_process_used* used,
+                                         char* err, size_t err_len);
+
+/* roprec_predict_joints for a hole drilled with `process` (NULL: the cell's drill); `used` (may be
+ * NULL) receives the process used. */
+ROPREC_API int roprec_predict_joints_hole(roprec_session* s, const double joints_deg[6],
+                                          const roprec_hole_process* process, double deviation[6],
+                                          double* U_work_um, roprec_process_used* used, char* err,
+                                          size_t err_len);
+
+/* The batch of roprec_filter_target_hole for a program's `count` targets in order (RoboDK's
+ * FilterProgram): poses_mm holds count row-major 4x4 poses (16 * count doubles);
+ * seed_joints_deg NULL (target i is then seeded with the IK choice of the previous target that
+ * could be filtered — the continuity of `roprec compensate`; the first with the reference pose)
+ * or 6 * count joints; processes NULL (the cell's drill) or count entries. out_poses_mm (16 *
+ * count) and out_joints_deg (6 * count) receive each filtered target; status (NULL or count ints)
+ * receives 0 (filtered) or 1 (not: its outputs are left unchanged) per target.
+ * Returns 0 when every target was filtered, 1 when some were not (err lists them, `target I:
+ * reason`), 2 for bad input (nothing written). */
+ROPREC_API int roprec_filter_targets(roprec_session* s, size_t count, const double* poses_mm,
+                                     const double* seed_joints_deg,
+                                     const roprec_hole_process* processes, double* out_poses_mm,
+                                     double* out_joints_deg, int* status, char* err,
                                      size_t err_len);
 
 /* ---------------------------------------------------------------- whole programs (by file) */

@@ -274,6 +274,38 @@ void setOption(roprec_options& o, const std::string& key, const std::string& v) 
   }
 }
 
+/// A host's hole process (NULL: the cell's) in SI; UsageError for a negative or non-finite value.
+roprec::api::HoleProcess holeProcess(const roprec_hole_process* p, const std::string& name) {
+  roprec::api::HoleProcess h;
+  if (p == nullptr) return h;
+  const std::pair<double, const char*> values[] = {{p->diameter_mm, "diameter_mm"},
+                                                   {p->depth_mm, "depth_mm"},
+                                                   {p->feed_mm_per_rev, "feed_mm_per_rev"},
+                                                   {p->spindle_rpm, "spindle_rpm"}};
+  for (const auto& [v, field] : values) {
+    if (!std::isfinite(v) || v < 0)
+      throw roprec::UsageError(name + "." + field + " must be finite and >= 0 (0: the cell's)");
+  }
+  if (p->tool != nullptr) h.tool = p->tool;
+  h.diameter = p->diameter_mm * 1e-3;
+  h.depth = p->depth_mm * 1e-3;
+  h.feed = p->feed_mm_per_rev * 1e-3;
+  h.spindle_rpm = p->spindle_rpm;
+  return h;
+}
+
+/// The process a call used, into the caller's struct (the tool text truncated to fit).
+void processUsed(const roprec::api::ProcessUsed& u, roprec_process_used& out) {
+  const size_t n = std::min(u.tool.size(), sizeof out.tool - 1);
+  std::memcpy(out.tool, u.tool.data(), n);
+  out.tool[n] = '\0';
+  out.diameter_mm = u.diameter * 1e3;
+  out.depth_mm = u.depth * 1e3;
+  out.feed_mm_per_rev = u.feed * 1e3;
+  out.spindle_rpm = u.spindle_rpm;
+  out.from_cell = u.from_cell ? 1 : 0;
+}
+
 /// The verify calls' common end: nothing is written unless every measured item was predicted;
 /// then the summary (checked to fit first) and every output.
 int writeVerifyOutputs(const roprec::api::VerifyResult& r,
@@ -340,6 +372,91 @@ ROPREC_API int roprec_predict_joints(roprec_session* s, const double joints_deg[
       deviation[3 + i] = p.d_rotation[i] * 1e6;
     }
     if (U_work_um != nullptr) *U_work_um = p.U_work * 1e6;
+    return ROPREC_OK;
+  });
+}
+
+ROPREC_API int roprec_filter_target_hole(roprec_session* s, const double pose_mm[16],
+                                         const double* seed_joints_deg,
+                                         const roprec_hole_process* process, double out_pose_mm[16],
+                                         double out_joints_deg[6], roprec_process_used* used,
+                                         char* err, size_t err_len) {
+  return guarded(err, err_len, [&] {
+    require(s, "session");
+    require(out_pose_mm, "out_pose_mm");
+    require(out_joints_deg, "out_joints_deg");
+    const Pose T = host::poseFromRowMajorMm(pose_mm, "pose_mm");
+    std::optional<Vec6> seed;
+    if (seed_joints_deg != nullptr) seed = host::jointsFromDeg(seed_joints_deg, "seed_joints_deg");
+    const roprec::api::HoleProcess hp = holeProcess(process, "process");
+    const roprec::api::Session::Filtered f =
+        s->session.filterTarget(T, seed ? &*seed : nullptr, hp);
+    if (!f.ok) throw ItemFailure{"target not filtered: " + f.reason};
+    host::poseToRowMajorMm(f.T_programmed, out_pose_mm);
+    for (int i = 0; i < 6; ++i) out_joints_deg[i] = f.joints_controller[i] / roprec::kDeg;
+    if (used != nullptr) processUsed(f.process, *used);
+    return ROPREC_OK;
+  });
+}
+
+ROPREC_API int roprec_predict_joints_hole(roprec_session* s, const double joints_deg[6],
+                                          const roprec_hole_process* process, double deviation[6],
+                                          double* U_work_um, roprec_process_used* used, char* err,
+                                          size_t err_len) {
+  return guarded(err, err_len, [&] {
+    require(s, "session");
+    require(deviation, "deviation");
+    const Vec6 q = host::jointsFromDeg(joints_deg, "joints_deg");
+    const roprec::api::Session::JointPrediction p =
+        s->session.predictJoints(q, holeProcess(process, "process"));
+    if (!p.ok) throw ItemFailure{"no prediction at these joints: " + p.reason};
+    for (int i = 0; i < 3; ++i) {
+      deviation[i] = p.d_translation[i] * 1e6;
+      deviation[3 + i] = p.d_rotation[i] * 1e6;
+    }
+    if (U_work_um != nullptr) *U_work_um = p.U_work * 1e6;
+    if (used != nullptr) processUsed(p.process, *used);
+    return ROPREC_OK;
+  });
+}
+
+ROPREC_API int roprec_filter_targets(roprec_session* s, size_t count, const double* poses_mm,
+                                     const double* seed_joints_deg,
+                                     const roprec_hole_process* processes, double* out_poses_mm,
+                                     double* out_joints_deg, int* status, char* err,
+                                     size_t err_len) {
+  return guarded(err, err_len, [&] {
+    require(s, "session");
+    if (count == 0) return ROPREC_OK;
+    require(poses_mm, "poses_mm");
+    require(out_poses_mm, "out_poses_mm");
+    require(out_joints_deg, "out_joints_deg");
+    std::vector<Pose> poses;
+    std::vector<Vec6> seeds;
+    std::vector<roprec::api::HoleProcess> holes;
+    poses.reserve(count);
+    for (size_t i = 0; i < count; ++i) {
+      const std::string n = "poses_mm[" + std::to_string(i) + "]";
+      poses.push_back(host::poseFromRowMajorMm(poses_mm + 16 * i, n));
+      if (seed_joints_deg != nullptr)
+        seeds.push_back(host::jointsFromDeg(seed_joints_deg + 6 * i, "seed_joints_deg"));
+      if (processes != nullptr)
+        holes.push_back(holeProcess(processes + i, "processes[" + std::to_string(i) + "]"));
+    }
+    const std::vector<roprec::api::Session::Filtered> f =
+        s->session.filterTargets(poses, seeds, holes);
+    std::vector<std::string> failed;
+    for (size_t i = 0; i < count; ++i) {
+      if (status != nullptr) status[i] = f[i].ok ? ROPREC_OK : ROPREC_ITEM_FAILED;
+      if (!f[i].ok) {
+        failed.push_back("target " + std::to_string(i) + ": " + f[i].reason);
+        continue;
+      }
+      host::poseToRowMajorMm(f[i].T_programmed, out_poses_mm + 16 * i);
+      for (int j = 0; j < 6; ++j)
+        out_joints_deg[6 * i + j] = f[i].joints_controller[j] / roprec::kDeg;
+    }
+    if (!failed.empty()) throw ItemFailure{host::joinLines(failed)};
     return ROPREC_OK;
   });
 }

@@ -47,7 +47,7 @@ int run(Args& args, CommandContext& ctx) {
 
   HoleJoints at;
   if (joints) {
-    at = {parseJointsDeg(*joints), "--joints"};
+    at = {parseJointsDeg(*joints), "--joints", {}};
   } else {
     try {
       at = holeJoints(s, pos[0], *hole);

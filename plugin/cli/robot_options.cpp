@@ -38,6 +38,8 @@ void printJobNotes(CommandContext& ctx, const std::vector<std::string>& notes) {
       ctx.err << "roprec: note: " << n.substr(resolution.size()) << "\n";
     } else if (n.rfind(reading, 0) == 0) {
       ctx.err << "roprec: note: " << n.substr(reading.size()) << "\n";
+    } else if (n.rfind("drill: ", 0) == 0) {  // holes the cell's single drill drills unasked
+      ctx.err << "roprec: warning: " << n.substr(7) << "\n";
     } else if (n.rfind("robot card: ", 0) == 0) {
       ctx.err << "roprec: warning: " << n.substr(12) << "\n";
     } else if (n.rfind("--holes:", 0) == 0 || n.rfind("--force", 0) == 0) {

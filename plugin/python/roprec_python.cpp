@@ -167,6 +167,11 @@ py::dict holeDict(const HolePrediction& h, const HoleRequest& r, const RobotCard
   d["diameter_mm"] = h.diameter * 1e3;
   d["depth_mm"] = h.depth * 1e3;
   d["tolerance_mm"] = h.tolerance * 1e3;
+  // the hole's own drill (a tool table's, or its own feed/speed), as the JSON's "drill"
+  const bool own = api::statesOwnProcess(r);
+  d["drill_tool"] = own && !r.tool.empty() ? py::object(py::str(r.tool)) : py::object(py::none());
+  d["feed_mm_per_rev"] = own ? py::object(py::float_(h.feed * 1e3)) : py::object(py::none());
+  d["spindle_rpm"] = own ? py::object(py::float_(h.spindle_rpm)) : py::object(py::none());
   d["mc_time_s"] = h.mc_time;
   const bool has_joints = h.status == HoleStatus::kOk || h.status == HoleStatus::kNotConverged ||
                           h.status == HoleStatus::kSingular;
@@ -249,6 +254,72 @@ py::dict compensationDict(const api::CompensationResult& r, size_t i) {
 
 // ---------------------------------------------------------------- Session
 
+/// The process a call used (api::ProcessUsed) as a dict in mm, mm/rev and 1/min.
+py::dict processDict(const api::ProcessUsed& u) {
+  py::dict d;
+  d["tool"] = u.tool;
+  d["drill"] = u.drill;
+  d["diameter_mm"] = u.diameter * 1e3;
+  d["depth_mm"] = u.depth * 1e3;
+  d["feed_mm_per_rev"] = u.feed * 1e3;
+  d["spindle_rpm"] = u.spindle_rpm;
+  d["from_cell"] = u.from_cell;
+  return d;
+}
+
+py::dict filteredDict(const api::Session::Filtered& f) {
+  py::dict d;
+  d["pose_mm"] = poseArray(f.T_programmed);
+  d["joints_deg"] = degreesArray(f.joints_controller);
+  d["config"] = f.config;
+  d["residual_um"] = f.residual * 1e6;
+  d["process"] = processDict(f.process);
+  return d;
+}
+
+/// A non-negative finite number of a hole dict (mm units), 0 when absent or None.
+double processNumber(const py::dict& d, const char* key, double scale) {
+  if (!d.contains(key) || d[key].is_none()) return 0.0;
+  const double v = d[key].cast<double>();
+  if (!std::isfinite(v) || v < 0)
+    throw UsageError(std::string("hole ") + key + " must be finite and >= 0 (0: the cell's)");
+  return v * scale;
+}
+
+/// A hole dict {tool, diameter_mm, depth_mm, feed_mm_per_rev, spindle_rpm} (any subset).
+api::HoleProcess holeProcessOf(const py::handle& h) {
+  if (h.is_none()) return {};
+  if (!py::isinstance<py::dict>(h)) throw UsageError("a hole's process is a dict or None");
+  const py::dict d = py::reinterpret_borrow<py::dict>(h);
+  for (const auto& item : d) {
+    const std::string k = py::str(item.first);
+    if (k != "tool" && k != "diameter_mm" && k != "depth_mm" && k != "feed_mm_per_rev" &&
+        k != "spindle_rpm")
+      throw UsageError("unknown hole key '" + k +
+                       "' (tool, diameter_mm, depth_mm, feed_mm_per_rev, spindle_rpm)");
+  }
+  api::HoleProcess p;
+  if (d.contains("tool") && !d["tool"].is_none()) p.tool = py::str(d["tool"]);
+  p.diameter = processNumber(d, "diameter_mm", 1e-3);
+  p.depth = processNumber(d, "depth_mm", 1e-3);
+  p.feed = processNumber(d, "feed_mm_per_rev", 1e-3);
+  p.spindle_rpm = processNumber(d, "spindle_rpm", 1.0);
+  return p;
+}
+
+/// The keyword arguments of one hole's process (None: the cell's).
+api::HoleProcess holeProcessArgs(const py::object& tool, const py::object& diameter_mm,
+                                 const py::object& depth_mm, const py::object& feed_mm_per_rev,
+                                 const py::object& spindle_rpm) {
+  py::dict d;
+  d["tool"] = tool;
+  d["diameter_mm"] = diameter_mm;
+  d["depth_mm"] = depth_mm;
+  d["feed_mm_per_rev"] = feed_mm_per_rev;
+  d["spindle_rpm"] = spindle_rpm;
+  return holeProcessOf(d);
+}
+
 /// api::Session behind a mutex: one Python Session may be shared by threads (calls on it are
 /// serialised); distinct sessions run in parallel with the GIL released.
 class PySession {
@@ -259,7 +330,8 @@ class PySession {
     session_ = std::make_unique<api::Session>(cell_path_);
   }
 
-  py::tuple filterTarget(const py::handle& pose, const py::handle& seed) {
+  py::object filterTarget(const py::handle& pose, const py::handle& seed,
+                          const api::HoleProcess& hole, bool details) {
     const Pose T = poseArg(pose, "pose_mm");
     std::optional<Vec6> q;
     if (!seed.is_none()) q = vectorArg<6>(seed, "seed_joints_deg") * kDeg;
@@ -268,20 +340,76 @@ class PySession {
       py::gil_scoped_release release;
       const ClassicLocaleScope c_locale;  // the "C" locale whatever the host set
       const std::lock_guard<std::mutex> lock(mutex_);
-      f = session_->filterTarget(T, q ? &*q : nullptr);
+      f = session_->filterTarget(T, q ? &*q : nullptr, hole);
     }
     if (!f.ok) throw ItemFailure("target not filtered: " + f.reason);
-    return py::make_tuple(poseArray(f.T_programmed), degreesArray(f.joints_controller));
+    if (!details)
+      return py::make_tuple(poseArray(f.T_programmed), degreesArray(f.joints_controller));
+    return filteredDict(f);
   }
 
-  py::dict predictJoints(const py::handle& joints) {
+  py::dict filterTargets(const py::handle& poses, const py::handle& seeds,
+                         const py::handle& holes) {
+    const Array a = Array::ensure(poses);
+    if (!a || a.ndim() != 3 || a.shape(1) != 4 || a.shape(2) != 4)
+      throw UsageError("poses_mm: an array of 4x4 poses (N x 4 x 4) is expected");
+    const auto n = static_cast<size_t>(a.shape(0));
+    std::vector<Pose> T;
+    T.reserve(n);
+    for (size_t i = 0; i < n; ++i)
+      T.push_back(
+          host::poseFromRowMajorMm(a.data() + 16 * i, "poses_mm[" + std::to_string(i) + "]"));
+    std::vector<Vec6> q;
+    if (!seeds.is_none()) {
+      const Array s = Array::ensure(seeds);
+      if (!s || s.ndim() != 2 || static_cast<size_t>(s.shape(0)) != n || s.shape(1) != 6)
+        throw UsageError("seed_joints_deg: None or N x 6 joints (deg) are expected");
+      for (size_t i = 0; i < n; ++i)
+        q.push_back(host::jointsFromDeg(s.data() + 6 * i, "seed_joints_deg"));
+    }
+    std::vector<api::HoleProcess> hp;
+    if (!holes.is_none()) {
+      for (const py::handle h : holes) hp.push_back(holeProcessOf(h));
+      if (hp.size() != n) throw UsageError("holes: None or one dict per pose is expected");
+    }
+    std::vector<api::Session::Filtered> f;
+    {
+      py::gil_scoped_release release;
+      const ClassicLocaleScope c_locale;  // the "C" locale whatever the host set
+      const std::lock_guard<std::mutex> lock(mutex_);
+      f = session_->filterTargets(T, q, hp);
+    }
+    py::array_t<double> out_poses({static_cast<py::ssize_t>(n), py::ssize_t{4}, py::ssize_t{4}});
+    py::array_t<double> out_joints({static_cast<py::ssize_t>(n), py::ssize_t{6}});
+    py::array_t<bool> ok(static_cast<py::ssize_t>(n));
+    py::list reasons;
+    py::list process;
+    for (size_t i = 0; i < n; ++i) {
+      host::poseToRowMajorMm(f[i].ok ? f[i].T_programmed : T[i], out_poses.mutable_data() + 16 * i);
+      for (int j = 0; j < 6; ++j)
+        out_joints.mutable_data()[6 * i + static_cast<size_t>(j)] =
+            f[i].ok ? f[i].joints_controller[j] / kDeg : std::nan("");
+      ok.mutable_data()[i] = f[i].ok;
+      reasons.append(f[i].ok ? py::object(py::none()) : py::object(py::str(f[i].reason)));
+      process.append(processDict(f[i].process));
+    }
+    py::dict d;
+    d["poses_mm"] = out_poses;
+    d["joints_deg"] = out_joints;
+    d["ok"] = ok;
+    d["reasons"] = reasons;
+    d["process"] = process;
+    return d;
+  }
+
+  py::dict predictJoints(const py::handle& joints, const api::HoleProcess& hole) {
     const Vec6 q = vectorArg<6>(joints, "joints_deg") * kDeg;
     api::Session::JointPrediction p;
     {
       py::gil_scoped_release release;
       const ClassicLocaleScope c_locale;  // the "C" locale whatever the host set
       const std::lock_guard<std::mutex> lock(mutex_);
-      p = session_->predictJoints(q);
+      p = session_->predictJoints(q, hole);
     }
     if (!p.ok) throw ItemFailure("no prediction at these joints: " + p.reason);
     const HolePrediction& h = p.prediction;
@@ -300,6 +428,7 @@ class PySession {
     d["config"] = h.config;
     d["joints_deg"] = degreesArray(q);
     d["process_force_N"] = vectorArray(h.force_base);
+    d["process"] = processDict(p.process);
     return d;
   }
 
@@ -571,24 +700,63 @@ PYBIND11_MODULE(_roprec, m) {
            }),
            py::arg("cell_path"))
       .def(
-          "filter_target", &PySession::filterTarget, py::arg("pose_mm"),
-          py::arg("seed_joints_deg") = py::none(),
-          "filter_target(pose_mm, seed_joints_deg=None) -> (pose_mm, joints_deg)\n\n"
+          "filter_target",
+          [](PySession& s, const py::handle& pose, const py::handle& seed, const py::object& tool,
+             const py::object& diameter, const py::object& depth, const py::object& feed,
+             const py::object& rpm, bool details) {
+            return s.filterTarget(pose, seed, holeProcessArgs(tool, diameter, depth, feed, rpm),
+                                  details);
+          },
+          py::arg("pose_mm"), py::arg("seed_joints_deg") = py::none(), py::kw_only(),
+          py::arg("tool") = py::none(), py::arg("diameter_mm") = py::none(),
+          py::arg("depth_mm") = py::none(), py::arg("feed_mm_per_rev") = py::none(),
+          py::arg("spindle_rpm") = py::none(), py::arg("details") = false,
+          "filter_target(pose_mm, seed_joints_deg=None, *, tool=None, diameter_mm=None,\n"
+          "              depth_mm=None, feed_mm_per_rev=None, spindle_rpm=None, details=False)\n"
+          "    -> (pose_mm, joints_deg)\n\n"
           "The pose to program (4x4, mm, base frame) and its joints (6, controller convention,\n"
           "deg) so that the predicted real TCP lands on `pose_mm` under the cell's gravity, tool\n"
-          "weight and process load. Orientation is kept: only the position is pre-offset.\n"
-          "seed_joints_deg: joints whose IK branch/turns to keep (the nearest solution is taken);\n"
-          "None: the robot's reference pose. Raises roprec.ItemError when the target cannot be\n"
-          "filtered (unreachable, singular), roprec.UsageError for a non-rigid pose.")
-      .def("predict_joints", &PySession::predictJoints, py::arg("joints_deg"),
-           "predict_joints(joints_deg) -> dict\n\n"
-           "The predicted TCP deviation when the robot is commanded to `joints_deg` (controller\n"
-           "convention, deg) under the cell's loads. Keys: deviation_um (real - commanded TCP\n"
-           "position, base frame, 3), rotation_urad (rotation vector, base frame, 3), U_work_um\n"
-           "(expanded 95 % uncertainty of a hole there), U_robot_um, U_mach_um, k,\n"
-           "work_deviation_um (deviation_um + the machining deviation), position_error_um and\n"
-           "axis_tilt_urad (w.r.t. the commanded TCP z axis), tolerance_mm, verdict, config,\n"
-           "joints_deg, process_force_N. Raises roprec.ItemError when no prediction exists.")
+          "weight and the hole's process load. Orientation is kept: only the position is\n"
+          "pre-offset. seed_joints_deg: joints whose IK branch/turns to keep (the nearest\n"
+          "solution is taken); None: the robot's reference pose. The hole's process: tool (the\n"
+          "controller's tool number or name in the cell's tool table), diameter_mm, depth_mm,\n"
+          "feed_mm_per_rev, spindle_rpm; None: the cell's. details=True returns a dict instead:\n"
+          "pose_mm, joints_deg, config, residual_um and process (the values used: tool, drill,\n"
+          "diameter_mm, depth_mm, feed_mm_per_rev, spindle_rpm, from_cell). Raises\n"
+          "roprec.ItemError when the target cannot be filtered (unreachable, singular),\n"
+          "roprec.UsageError for a non-rigid pose, roprec.InputError for a tool the cell does\n"
+          "not have.")
+      .def("filter_targets", &PySession::filterTargets, py::arg("poses_mm"),
+           py::arg("seed_joints_deg") = py::none(), py::arg("holes") = py::none(),
+           "filter_targets(poses_mm, seed_joints_deg=None, holes=None) -> dict\n\n"
+           "filter_target over a program's targets in order (RoboDK's FilterProgram): poses_mm\n"
+           "N x 4 x 4; seed_joints_deg None (each target seeded with the previous target's IK\n"
+           "choice, as roprec compensate) or N x 6; holes None or one dict per target with any of\n"
+           "tool, diameter_mm, depth_mm, feed_mm_per_rev, spindle_rpm. Keys: poses_mm (N x 4 x\n"
+           "4; a target not filtered keeps its pose), joints_deg (N x 6; NaN where not\n"
+           "filtered), ok (N bools), reasons (None or why not, per target), process (the values\n"
+           "used, per target).")
+      .def(
+          "predict_joints",
+          [](PySession& s, const py::handle& joints, const py::object& tool,
+             const py::object& diameter, const py::object& depth, const py::object& feed,
+             const py::object& rpm) {
+            return s.predictJoints(joints, holeProcessArgs(tool, diameter, depth, feed, rpm));
+          },
+          py::arg("joints_deg"), py::kw_only(), py::arg("tool") = py::none(),
+          py::arg("diameter_mm") = py::none(), py::arg("depth_mm") = py::none(),
+          py::arg("feed_mm_per_rev") = py::none(), py::arg("spindle_rpm") = py::none(),
+          "predict_joints(joints_deg, *, tool=None, diameter_mm=None, depth_mm=None,\n"
+          "               feed_mm_per_rev=None, spindle_rpm=None) -> dict\n\n"
+          "The predicted TCP deviation when the robot is commanded to `joints_deg` (controller\n"
+          "convention, deg) under the cell's loads. Keys: deviation_um (real - commanded TCP\n"
+          "position, base frame, 3), rotation_urad (rotation vector, base frame, 3), U_work_um\n"
+          "(expanded 95 % uncertainty of a hole there), U_robot_um, U_mach_um, k,\n"
+          "work_deviation_um (deviation_um + the machining deviation), position_error_um and\n"
+          "axis_tilt_urad (w.r.t. the commanded TCP z axis), tolerance_mm, verdict, config,\n"
+          "joints_deg, process_force_N, process (the hole's process used, as filter_target's).\n"
+          "The hole's process as for filter_target. Raises roprec.ItemError when no prediction\n"
+          "exists, roprec.InputError for joints outside the limits.")
       .def(
           "hole_pose", &PySession::holePose, py::arg("position_mm"), py::arg("direction"),
           "hole_pose(position_mm, direction) -> pose_mm\n\n"

@@ -52,6 +52,7 @@ ReportInput reportHeader(const PredictionContext& c, const std::string& title) {
   for (const std::string& n : c.job.notes) {
     const std::string prefix = kResolutionPrefix;
     if (n.rfind(prefix, 0) == 0) in.resolutions.push_back(n.substr(prefix.size()));
+    if (n.rfind("drill: ", 0) == 0) in.process += "; " + n;  // holes the single drill drills
   }
   in.card_estimates = cardEstimates(c.robot.card);
   in.uncertainty_method = uncertaintyMethodText(c.model.uncertainty);
@@ -497,6 +498,19 @@ void predictionHole(JsonWriter& w, const HolePrediction& h, const HoleRequest& r
   w.number(h.diameter * 1e3, 3);
   w.key("depth_mm");
   w.number(h.depth * 1e3, 3);
+  if (statesOwnProcess(r)) {
+    w.key("drill");
+    w.beginObject();
+    if (!r.tool.empty()) {
+      w.key("tool");
+      w.str(r.tool);
+    }
+    w.key("feed_mm_per_rev");
+    w.number(h.feed * 1e3, 4);
+    w.key("spindle_rpm");
+    w.number(h.spindle_rpm, 1);
+    w.endObject();
+  }
   if (h.status == HoleStatus::kOk || h.status == HoleStatus::kNotConverged ||
       h.status == HoleStatus::kSingular) {
     predictionPosture(w, h, card);

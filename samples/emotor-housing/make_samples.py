@@ -4,6 +4,8 @@ vertical) with 204 holes of four diameters on four faces, as
 
   holes.csv            the contract's hole list (workobject frame, mm)
   housing_kr120.src    KUKA KRL (KRC4 style: inline aggregates, $BASE/$TOOL set in the program)
+  housing_kr120_tools.src  the same holes drilled tool by tool: TOOL_DATA[1..4] (one drill per
+                       diameter, samples/cells/housing-kr120-tools.xml) selected by $TOOL
   housing_irb6640.mod  ABB RAPID (wobjdata/tooldata in the module, MoveJ/MoveL, inline robtargets)
   housing_r2000.ls     FANUC TP (/POS records in UFRAME 1 / UTOOL 1; the frame lives in the
                        controller, so roprec takes it from the cell's <workobject>)
@@ -186,6 +188,36 @@ def krl(hs):
     write("housing_kr120.src", "\n".join(L), crlf=True)
 
 
+# tool number of each diameter: samples/cells/housing-kr120-tools.xml's tool table
+TOOLS = {6.8: 1, 8.5: 2, 10.2: 3, 12.0: 4}
+
+
+def krl_tools(hs):
+    """The KRL job drilled tool by tool (a tool change per diameter), each tool's holes in the
+    hole list's order; TOOL_DATA[n] defined in the program (the spindle's TCP: one TCP per job)."""
+    L = ["&ACCESS RVP", "&REL 1", "&COMMENT e-motor housing drilled tool by tool (roprec sample)",
+         "DEF housing_kr120_tools ( )", ";FOLD INI", "BAS (#INITMOV,0 )", ";ENDFOLD (INI)", "",
+         "; workobject = housing fixture; tools 1..4 = drills D6.8, D8.5, D10.2, D12 in the spindle",
+         "$BASE = {FRAME: X %s,Y %s,Z %s,A 0.000,B 0.000,C 0.000}" % tuple(f3(v) for v in WOBJ["kuka"])]
+    for dia, n in sorted(TOOLS.items(), key=lambda kv: kv[1]):
+        L.append("TOOL_DATA[%d] = {X 0.000,Y 0.000,Z 320.000,A 0.000,B 0.000,C 0.000} ; D%.1f" % (n, dia))
+    for dia, n in sorted(TOOLS.items(), key=lambda kv: kv[1]):
+        L += ["; tool change: tool %d, drill D%.1f" % (n, dia), "SPINDLE_OFF()", "$TOOL = TOOL_DATA[%d]" % n,
+              "SPINDLE_ON()"]
+        for hid, p, d, hdia, depth, tol in hs:
+            if hdia != dia:
+                continue
+            a, b, c = zyx(hole_frame(d))
+            pts = cycle_points(p, d, depth)
+            agg = lambda q: "{X %s,Y %s,Z %s,A %s,B %s,C %s}" % (f3(q[0]), f3(q[1]), f3(q[2]), f3(a), f3(b), f3(c))
+            L += ["; %s drill D%.1f depth %.1f" % (hid, hdia, depth), "$VEL.CP = %.5f" % (RAPID_MM_S / 1000),
+                  "PTP %s C_PTP" % agg(pts[0]), "LIN %s C_DIS" % agg(pts[1]),
+                  "$VEL.CP = %.5f" % (FEED_MM_S / 1000), "LIN %s" % agg(pts[2]), "WAIT SEC 0.3",
+                  "$VEL.CP = %.5f" % (RAPID_MM_S / 1000), "LIN %s C_DIS" % agg(pts[0])]
+    L += ["SPINDLE_OFF()", "END", ""]
+    write("housing_kr120_tools.src", "\n".join(L), crlf=True)
+
+
 def rapid(hs, cfgs):
     L = ["MODULE housing_irb6640", "  ! e-motor housing drilling (roprec sample)",
          "  PERS tooldata tSpindle:=[TRUE,[[0,0,320],[1,0,0,0]],[25.8,[0,0,120],[1,0,0,0],0.35,0.33,0.08]];",
@@ -249,6 +281,7 @@ if __name__ == "__main__":
     hs = holes()
     holes_csv(hs)
     krl(hs)
+    krl_tools(hs)
     rapid(hs, configs(sys.argv[1], "abb", hs))
     tp(hs, configs(sys.argv[1], "fanuc", hs))
     print("%d holes" % len(hs))

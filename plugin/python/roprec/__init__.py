@@ -12,8 +12,12 @@ Units and frames
 API
     ``__version__``                          the library version
     ``Session(cell_path)``                   a cell loaded once, for one target at a time:
-        ``.filter_target(pose_mm, seed_joints_deg=None) -> (pose_mm, joints_deg)``
-        ``.predict_joints(joints_deg) -> dict``
+        ``.filter_target(pose_mm, seed_joints_deg=None, *, tool=None, diameter_mm=None,
+        depth_mm=None, feed_mm_per_rev=None, spindle_rpm=None, details=False)
+        -> (pose_mm, joints_deg)``           (the hole's process; None: the cell's)
+        ``.filter_targets(poses_mm, seed_joints_deg=None, holes=None) -> dict``   a program's
+        targets in order (RoboDK's FilterProgram), one process dict per hole
+        ``.predict_joints(joints_deg, *, tool=None, diameter_mm=None, ...) -> dict``
         ``.hole_pose(position_mm, direction) -> pose_mm``
     ``predict(cell, program, holes=None, json_out=None) -> Prediction``   (a list of per-hole dicts)
     ``compensate(cell, program, out, orientation="keep", targets=None, holes=None) -> dict``
