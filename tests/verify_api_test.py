@@ -61,6 +61,25 @@ class C(object):
                                          b(card_out), summary, 4096, err, 4096)
         return rc, summary.value.decode(), err.value.decode()
 
+    def verify_ex(self, program, measured, registration, json_out, card_out, options):
+        b = lambda s: None if s is None else str(s).encode()
+        lib, P, S = self.lib, ctypes.c_char_p, ctypes.c_size_t
+        lib.roprec_options_new.argtypes = [ctypes.POINTER(ctypes.c_void_p), P, S]
+        lib.roprec_options_set.argtypes = [ctypes.c_void_p, P, P, P, S]
+        lib.roprec_options_free.argtypes = [ctypes.c_void_p]
+        lib.roprec_verify_file_ex.argtypes = [P, P, P, P, ctypes.c_void_p, P, P, P, S, P, S]
+        summary, err = ctypes.create_string_buffer(4096), ctypes.create_string_buffer(4096)
+        opt = ctypes.c_void_p()
+        assert lib.roprec_options_new(ctypes.byref(opt), err, 4096) == 0, err.value
+        try:
+            for k, v in options.items():
+                assert lib.roprec_options_set(opt, b(k), b(v), err, 4096) == 0, err.value
+            rc = lib.roprec_verify_file_ex(b(CELL), b(program), b(measured), b(registration), opt, b(json_out),
+                                           b(card_out), summary, 4096, err, 4096)
+        finally:
+            lib.roprec_options_free(opt)
+        return rc, summary.value.decode(), err.value.decode()
+
     def plan_test(self, region, count, out):
         arr = (ctypes.c_double * 6)(*region)
         summary, err = ctypes.create_string_buffer(4096), ctypes.create_string_buffer(4096)
@@ -99,6 +118,38 @@ class VerifyAcrossInterfaces(unittest.TestCase):
         close(s["explained"], doc["summary"]["explained"], "explained")
         close(s["identification"]["joints"], doc["identification"]["joints"], "joints")
         self.assertGreater(doc["summary"]["explained"], 0.0)
+
+    def test_calibration_date_identify_and_folds_alike_in_cli_c_python(self):
+        # the geometry test part of README's loop, calibrated with the geometry alone
+        t, v = self.tmp, SRC / "samples" / "verification"
+        prog, holes, measured = v / "geometry_kr120.src", v / "geometry_kr120_holes.csv", v / "measured_geometry.csv"
+        r = cli("verify", "--cell", CELL, prog, "--holes", holes, "--measured", measured, "--register", "none",
+                "--calibrate", t / "cli.xml", "--json", t / "cli.json", "--quiet", "--identify", "geometry",
+                "--date", "2025-03-04", "--folds", "3")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        rc, _, err = C().verify_ex(prog, measured, "none", t / "c.json", t / "c.xml",
+                                   {"holes": holes, "identify": "geometry", "date": "2025-03-04", "folds": "3"})
+        self.assertEqual(rc, 0, err)
+        py = roprec.verify(CELL, prog, measured, holes=holes, register="none", calibrate=t / "py.xml",
+                           json_out=t / "py.json", identify="geometry", date="2025-03-04", folds=3)
+        card = (t / "cli.xml").read_bytes()
+        self.assertEqual(card, (t / "c.xml").read_bytes())
+        self.assertEqual(card, (t / "py.xml").read_bytes())
+        self.assertEqual((t / "cli.json").read_bytes(), (t / "py.json").read_bytes())
+        self.assertEqual((t / "cli.json").read_bytes(), (t / "c.json").read_bytes())
+        self.assertIn(b'date="2025-03-04"', card)
+        ident = py["identification"]
+        self.assertEqual(ident["validation"]["folds"], 3)
+        # identify="geometry": the joint compliances keep the card's values
+        self.assertEqual([p["identifiable"] for p in ident["parameters"][:6]], [False] * 6)
+        self.assertTrue(any(p["identifiable"] for p in ident["parameters"] if p["name"].startswith("j2_")))
+        # the defaults (identify all, 5 folds, the date rule) give another card
+        roprec.verify(CELL, prog, measured, holes=holes, calibrate=t / "all.xml", date="2024-12-31")
+        self.assertIn(b'date="2024-12-31"', (t / "all.xml").read_bytes())
+        for bad in ({"identify": "everything"}, {"date": "4 March 2025"}, {"folds": 101}):
+            with self.assertRaises(roprec.UsageError):
+                roprec.verify(CELL, prog, measured, holes=holes, calibrate=t / "x.xml", **bad)
+        self.assertFalse((t / "x.xml").exists())
 
     def test_bad_measured_file_is_an_input_error_everywhere(self):
         bad = self.tmp / "bad.csv"
