@@ -9,6 +9,7 @@ ROPREC_C_LIB = libroprec_c.so.
 import ctypes
 import json
 import os
+import random
 import subprocess
 import tempfile
 import unittest
@@ -150,6 +151,42 @@ class VerifyAcrossInterfaces(unittest.TestCase):
             with self.assertRaises(roprec.UsageError):
                 roprec.verify(CELL, prog, measured, holes=holes, calibrate=t / "x.xml", **bad)
         self.assertFalse((t / "x.xml").exists())
+
+    def test_a_card_no_better_on_held_out_holes_is_refused_and_a_residual_above_the_noise_exits_1(self):
+        t = self.tmp
+        # holes "drilled" exactly as the card predicts (+ 5 um noise): a geometry fitted to them fits
+        # the noise, the cross-validation finds it worse than the card, and it is not written
+        r = cli("predict", "--cell", CELL, PROGRAM, "--holes", HOLES, "--quiet", "--json", t / "p.json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        wobj = (1350.0, 0.0, 300.0)  # samples/cells/housing-kr120.xml, axes = the base's
+        rng = random.Random(5)
+        lines = ["id,x,y,z"]
+        for h in json.loads((t / "p.json").read_text())["holes"]:
+            p = [h["nominal"]["position_mm"][a] - wobj[a] + h["deviation_um"]["work"][a] * 1e-3 + rng.gauss(0, 0.005)
+                 for a in range(3)]
+            lines.append("%s,%.4f,%.4f,%.4f" % (h["id"], p[0], p[1], p[2]))
+        (t / "self.csv").write_text("\n".join(lines) + "\n")
+        r = cli("verify", "--cell", CELL, PROGRAM, "--holes", HOLES, "--measured", t / "self.csv", "--register", "none",
+                "--identify", "geometry", "--calibrate", t / "cli.xml", "--write-cell", t / "cell.xml", "--date",
+                "2026-01-01")
+        self.assertEqual(r.returncode, 1, r.stdout + r.stderr)
+        self.assertIn("the calibrated card is not written", r.stderr)
+        self.assertFalse((t / "cli.xml").exists() or (t / "cell.xml").exists())
+        py = roprec.verify(CELL, PROGRAM, t / "self.csv", holes=HOLES, calibrate=t / "py.xml", identify="geometry",
+                           date="2026-01-01")
+        self.assertEqual(py["written"], [])
+        self.assertIn("not below the original card", py["identification"]["card_refused"])
+        self.assertFalse(py["identification"]["validation"]["better"])
+        # the shipped held-out holes come from a truth with geometric errors: the joint stiffness alone
+        # cannot explain them, the χ² check says so and the run exits 1 (Python: fit_check.consistent)
+        r = cli("verify", "--cell", CELL, PROGRAM, "--holes", HOLES, "--measured", MEASURED, "--register", "none",
+                "--identify", "stiffness", "--calibrate", t / "k.xml", "--date", "2026-01-01")
+        self.assertEqual(r.returncode, 1, r.stdout + r.stderr)
+        self.assertIn("times the measurement σ", r.stderr)
+        py = roprec.verify(CELL, PROGRAM, MEASURED, holes=HOLES, calibrate=t / "k2.xml", identify="stiffness",
+                           date="2026-01-01")
+        self.assertFalse(py["identification"]["fit_check"]["consistent"])
+        self.assertGreater(py["identification"]["fit_check"]["rms_normalized"], 2.0)
 
     def test_bad_measured_file_is_an_input_error_everywhere(self):
         bad = self.tmp / "bad.csv"
