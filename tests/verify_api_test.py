@@ -9,6 +9,7 @@ ROPREC_C_LIB = libroprec_c.so.
 import ctypes
 import json
 import os
+import re
 import random
 import subprocess
 import tempfile
@@ -187,6 +188,29 @@ class VerifyAcrossInterfaces(unittest.TestCase):
                            date="2026-01-01")
         self.assertFalse(py["identification"]["fit_check"]["consistent"])
         self.assertGreater(py["identification"]["fit_check"]["rms_normalized"], 2.0)
+
+    def test_plan_test_names_what_one_drilling_direction_leaves_unobservable(self):
+        # planning for geometry + compliances + registration: one drilling direction leaves more of
+        # the robot unobservable (named in the warning) than three directions with two rotations about
+        # the drill axis; both print the expected σ per group and the accuracy before -> after
+        def plan(directions, psi):
+            r = cli("plan-test", "--cell", CELL, "--region", "-200 -200 0 200 200 300", "--directions", directions,
+                    "--psi", psi, "--per-axis", 3, "--count", 20, "--register", "rigid", "-o", self.tmp / "p.csv")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            m = re.search(r"leave (\d+) robot parameters unobservable \(they keep their prior\): ([^;]*);", r.stderr)
+            self.assertIsNotNone(m, r.stderr)
+            self.assertIn("expected geometry uncertainty", r.stdout)
+            self.assertIn("expected joint stiffness uncertainty", r.stdout)
+            acc = re.search(r"predicted accuracy .*: ([0-9.]+) µm before calibration -> ([0-9.]+) µm after", r.stdout)
+            self.assertIsNotNone(acc, r.stdout)
+            self.assertLess(float(acc.group(2)), 0.01 * float(acc.group(1)))
+            return int(m.group(1)), m.group(2).split(", ")
+        one, names_one = plan("0 0 -1", "0")
+        three, names_three = plan("0 0 -1, 0 1 0, 0.7071 0 -0.7071", "0 90")
+        self.assertEqual(one, len(names_one))
+        self.assertGreater(one, three)
+        self.assertIn("j1_x", names_three)  # joint 1's origin is the registration's, whatever the plan
+        self.assertTrue(set(names_three) <= set(names_one), (names_one, names_three))
 
     def test_bad_measured_file_is_an_input_error_everywhere(self):
         bad = self.tmp / "bad.csv"
