@@ -591,6 +591,21 @@ Json verifySummaryJson(const VerifyResult& r, const std::vector<std::string>& wr
   return j;
 }
 
+namespace {
+
+/// The calibration's model error floor (modelErrorFloor): from the held-out residuals when the
+/// calibration was cross-validated, else from the fit's own (dof-inflated).
+double modelErrorFloor(const VerifyResult& r) {
+  if (r.validation) return roprec::modelErrorFloor(r.validation->calibrated, r.observations);
+  const IdentificationResult& id = *r.identification;
+  std::vector<double> norms;
+  for (const Eigen::VectorXd& e : id.residuals) norms.push_back(e.norm());
+  const double inflation = id.dof > 0 ? static_cast<double>(id.equations) / id.dof : 1.0;
+  return roprec::modelErrorFloor(norms, r.observations, inflation);
+}
+
+}  // namespace
+
 std::string calibratedCardText(const VerifyResult& r, const std::string& measured_file_name,
                                const std::string& card_out_path) {
   if (!r.identification) throw UsageError("no identification: ask for calibration");
@@ -612,6 +627,7 @@ std::string calibratedCardText(const VerifyResult& r, const std::string& measure
         ")";
     g.date = r.date;
     g.residual_rms = r.identification->rms_final;
+    g.model_error = modelErrorFloor(r);
     g.measurements = r.identification->holes;
     std::array<std::string, 6> names;
     for (size_t i = 0; i < 6; ++i) names[i] = card.joints[i].name;
