@@ -8,6 +8,7 @@ ROPREC_C_LIB = libroprec_c.so.
 
 import ctypes
 import json
+import math
 import os
 import re
 import random
@@ -211,6 +212,46 @@ class VerifyAcrossInterfaces(unittest.TestCase):
         self.assertGreater(one, three)
         self.assertIn("j1_x", names_three)  # joint 1's origin is the registration's, whatever the plan
         self.assertTrue(set(names_three) <= set(names_one), (names_one, names_three))
+
+    def test_tracker_poses_may_name_the_programs_targets_instead_of_joints(self):
+        # the same tracker poses given once with the commanded joints and once as the program's
+        # targets (j1..j6 empty): the same observations, the same fit; a known tracker offset is
+        # recovered (as VerifyCli.PosesAloneCalibrateAndRecoverATrackerOffset)
+        t = self.tmp
+        r = cli("predict", "--cell", CELL, PROGRAM, "--holes", HOLES, "--quiet", "--json", t / "p.json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        wobj, offset = (1350.0, 0.0, 300.0), (0.120, -0.080, 0.060)  # mm
+        with_joints, targets = ["id,j1,j2,j3,j4,j5,j6,x,y,z"], ["id,j1,j2,j3,j4,j5,j6,x,y,z"]
+        for h in json.loads((t / "p.json").read_text())["holes"]:
+            xyz = ",".join("%.4f" % (h["nominal"]["position_mm"][a] - wobj[a] + offset[a]) for a in range(3))
+            with_joints.append(h["id"] + "," + ",".join("%.9f" % q for q in h["controller_joints_deg"]) + "," + xyz)
+            targets.append(h["id"] + ",,,,,," + "," + xyz)
+        (t / "joints.csv").write_text("\n".join(with_joints) + "\n")
+        (t / "targets.csv").write_text("\n".join(targets) + "\n")
+        common = ("--register", "translation", "--identify", "stiffness", "--quiet")
+        a = cli("verify", "--cell", CELL, "--poses", t / "joints.csv", "--json", t / "a.json", *common)
+        self.assertEqual(a.returncode, 0, a.stderr)
+        b = cli("verify", "--cell", CELL, PROGRAM, "--holes", HOLES, "--poses", t / "targets.csv", "--json",
+                t / "b.json", *common)
+        self.assertEqual(b.returncode, 0, b.stderr)
+        ja, jb = (json.loads((t / f).read_text()) for f in ("a.json", "b.json"))
+        self.assertEqual(jb["poses"]["count"], len(targets) - 1)
+        # (the predict JSON's joints have 6 decimals: 1e-6 deg moves the TCP by some 10 nm)
+        for pa, pb in zip(ja["identification"]["parameters"], jb["identification"]["parameters"]):
+            self.assertEqual(pa["name"], pb["name"])
+            tol = 1e-8 if pa["unit"] == "m" else 1e-4 * abs(pa["value"])
+            self.assertLessEqual(abs(pa["value"] - pb["value"]), tol, pa["name"])
+        tb = jb["registration"]["translation_um"]
+        self.assertLessEqual(math.dist(tb, [1e3 * o for o in offset]), 5.0, tb)
+        # an id that names no target of the program, and target rows without a program: exit 2 at the line
+        (t / "bad.csv").write_text(targets[0] + "\n" + targets[1] + "\nNOPE,,,,,,,1,2,3\n")
+        r = cli("verify", "--cell", CELL, PROGRAM, "--holes", HOLES, "--poses", t / "bad.csv")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("bad.csv:3:", r.stderr)
+        self.assertIn("names no target", r.stderr)
+        r = cli("verify", "--cell", CELL, "--poses", t / "targets.csv")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("targets.csv:2:", r.stderr)
 
     def test_bad_measured_file_is_an_input_error_everywhere(self):
         bad = self.tmp / "bad.csv"
