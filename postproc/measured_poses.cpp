@@ -117,8 +117,11 @@ MeasuredPose poseOfRow(const Table& t, const std::vector<std::string>& row, cons
   p.line = l.number;
   p.id = t.id(row);
   if (p.id.empty()) throw InputError(path, l.number, "the pose has no id");
-  const std::vector<double> j = *t.group(row, l.number, kJoints, true);
-  for (int k = 0; k < 6; ++k) p.joints_deg[k] = j[static_cast<size_t>(k)];
+  if (const auto j = t.group(row, l.number, kJoints, false)) {
+    for (int k = 0; k < 6; ++k) p.joints_deg[k] = (*j)[static_cast<size_t>(k)];
+  } else {
+    p.program_target = true;
+  }
   const std::vector<double> x = *t.group(row, l.number, kPosition, true);
   p.p_mm = Vec3(x[0], x[1], x[2]);
   if (const auto r = t.group(row, l.number, kRpy, false))
@@ -205,7 +208,7 @@ std::string writeMeasuredPoses(const std::vector<MeasuredPose>& poses) {
   for (const MeasuredPose& p : poses) {
     s += p.id;
     add(
-        true, 6, [&](int k) { return p.joints_deg[k]; }, 6);
+        !p.program_target, 6, [&](int k) { return p.joints_deg[k]; }, 6);
     add(
         true, 3, [&](int k) { return p.p_mm[k]; }, 4);
     if (rpy)

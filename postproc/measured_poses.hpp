@@ -9,7 +9,9 @@
 ///  * `id`: the pose's name (unique).
 ///  * `j1..j6`: the **commanded** joints the controller was given (degrees, the controller's
 ///    convention = the card's URDF convention with its vendor offsets removed by the host; roprec
-///    takes them as URDF joint values).
+///    takes them as URDF joint values). All six cells empty: the pose is the **program's target**
+///    named `id` (`verify --cell C PROGRAM --poses P`): its commanded joints are those roprec
+///    predicts for that target of the program (the configuration it states).
 ///  * `x,y,z`: the measured TCP (the tracker's reflector at the cell's tool TCP), **workobject
 ///    frame of the cell, mm** (the tracker's frame after its alignment; a residual offset is the
 ///    registration `verify --register` estimates).
@@ -38,6 +40,7 @@ namespace roprec::postproc {
 struct MeasuredPose {
   std::string id;
   Eigen::Matrix<double, 6, 1> joints_deg{Eigen::Matrix<double, 6, 1>::Zero()};  ///< commanded
+  bool program_target{false};         ///< j1..j6 empty: the joints of the program's target named id
   Vec3 p_mm{Vec3::Zero()};            ///< measured TCP, workobject frame, mm
   std::optional<Vec3> rpy_deg;        ///< measured TCP orientation, workobject frame
   std::optional<double> payload_kg;   ///< extra payload on the flange

@@ -264,6 +264,39 @@ std::string calibratedCardCopy(const std::string& robot, const GeometryCalibrati
   return test::cardWithCalibration(r, calibrationXml(cal, names), test::tempDir(tag));
 }
 
+// `roprec fk` of a calibrated card is the real robot's FK: KDL on the perturbed URDF (base error
+// in front, tool error appended) within 1e-6 mm, and ≈ 1 mm from the nominal card's.
+TEST(CardCalibration, FkOfACalibratedCardIsTheKdlFkOfItsTruth) {
+  for (const char* robot : {"kuka-kr120-r2500-pro", "abb-irb6640-185-280", "fanuc-r2000ic-210f"}) {
+    SCOPED_TRACE(robot);
+    const GeometryCalibration cal = test::seededGeometryErrors(23, 0.4, 0.6);
+    const std::string card = calibratedCardCopy(robot, cal, std::string("cardfk-") + robot);
+    const Robot r = loadRobot({robot, "", ""});
+    const KDL::Chain chain = test::kdlTruthGeometry(r, cal, fs::path(card).parent_path().string())
+                                 .chain(r.chain.base_link, r.chain.tip_link);
+    KDL::ChainFkSolverPos_recursive solver(chain);
+    const Vec6 q_deg = (Vec6() << 10, -80, 95, 20, 40, -30).finished();
+    KDL::JntArray jq(6);
+    for (unsigned i = 0; i < 6; ++i) jq(i) = q_deg[i] * kDeg;
+    KDL::Frame F;
+    ASSERT_GE(solver.JntToCart(jq, F), 0);
+    const auto fkOf = [&](const std::string& robot_arg) {
+      const auto o = runRoprec("fk --robot " + q(robot_arg) + " --joints '10 -80 95 20 40 -30'");
+      EXPECT_EQ(o.exit_code, 0) << o.err;
+      std::smatch m;
+      EXPECT_TRUE(std::regex_search(
+          o.out, m,
+          std::regex(
+              "\"flange\": \\{\\s*\"position_mm\": \\[([-0-9.e]+), ([-0-9.e]+), ([-0-9.e]+)\\]")))
+          << o.out;
+      return m.size() == 4 ? Vec3(std::stod(m[1]), std::stod(m[2]), std::stod(m[3])) : Vec3::Zero();
+    };
+    const Vec3 kdl(F.p.x() * 1e3, F.p.y() * 1e3, F.p.z() * 1e3);
+    EXPECT_LT((fkOf(card) - kdl).norm(), 1e-5);  // the JSON's 6 decimals in mm
+    EXPECT_GT((fkOf(robot) - kdl).norm(), 0.3);
+  }
+}
+
 TEST(CardCalibration, ImportOfTheExportedUrdfRoundTripsTheBlock) {
   for (const char* robot : {"kuka-kr210-r2700-2", "abb-irb6640-185-280", "fanuc-r2000ic-210f"}) {
     SCOPED_TRACE(robot);

@@ -165,6 +165,59 @@ TEST(GeometryCalibration, CardBlockLoadsIntoRealChainAndRoundTripsInNativeUnits)
   }
 }
 
+// The <covariance> element: the factor L written (9 significant digits) gives back Σ = L Lᵀ to
+// 1e-8 of its largest entry, correlations included, with its parameters and the model error; a
+// bad element fails at its line.
+TEST(GeometryCalibration, CovarianceRoundTripsThroughItsCholeskyFactor) {
+  const std::array<std::string, 6> names{"a1", "a2", "a3", "a4", "a5", "a6"};
+  GeometryCalibration cal;
+  cal.source = "test";
+  cal.model_error = 3.5e-6;
+  cal.covariance_parameters = {"base_x", "base_rz", "j1_x", "j1_rz", "j6_z", "tip_z"};
+  std::mt19937 rng(4);
+  std::normal_distribution<double> n(0.0, 1.0);
+  Eigen::MatrixXd A(6, 6);
+  for (Eigen::Index i = 0; i < A.size(); ++i) A.data()[i] = n(rng);
+  cal.covariance = 1e-8 * A * A.transpose();  // 0.1 mm / 0.1 mrad scale, strongly correlated
+  cal.covariance.row(1) *= 0.5;
+  cal.covariance.col(1) *= 0.5;
+  const std::string xml = calibrationXml(cal, names);
+  const GeometryCalibration got = parseCalibration(parseXmlText(xml, "card.xml"), names);
+  EXPECT_EQ(got.covariance_parameters, cal.covariance_parameters);
+  ASSERT_EQ(got.covariance.rows(), 6);
+  EXPECT_LT((got.covariance - cal.covariance).cwiseAbs().maxCoeff(),
+            1e-8 * cal.covariance.cwiseAbs().maxCoeff())
+      << xml;
+  EXPECT_NEAR(got.model_error, 3.5e-6, 1e-18);
+  EXPECT_EQ(calibrationComponent("base_x"), 0);
+  EXPECT_EQ(calibrationComponent("j1_x"), 6);
+  EXPECT_EQ(calibrationComponent("j6_rz"), 41);
+  EXPECT_EQ(calibrationComponent("tip_rz"), 47);
+  EXPECT_EQ(calibrationComponent("j7_x"), -1);
+  EXPECT_EQ(calibrationComponent("reg_tx"), -1);
+  const auto lineOf = [&](const std::string& bad) {
+    try {
+      parseCalibration(parseXmlText(bad, "card.xml"), names);
+    } catch (const InputError& e) {
+      return e.line();
+    }
+    return -1;
+  };
+  // unknown parameter, one row missing, a row of the wrong length, a parameter twice
+  EXPECT_EQ(lineOf("<calibration source=\"s\">\n<covariance parameters=\"j1_q\"><row "
+                   "l=\"1\"/></covariance></calibration>"),
+            2);
+  EXPECT_EQ(lineOf("<calibration source=\"s\">\n\n<covariance parameters=\"j1_x j1_y\"><row "
+                   "l=\"1\"/></covariance></calibration>"),
+            3);
+  EXPECT_EQ(lineOf("<calibration source=\"s\"><covariance parameters=\"j1_x j1_y\">\n<row "
+                   "l=\"1\"/>\n<row l=\"1\"/></covariance></calibration>"),
+            3);
+  EXPECT_EQ(lineOf("<calibration source=\"s\">\n<covariance parameters=\"j1_x j1_x\"><row "
+                   "l=\"1\"/><row l=\"1 1\"/></covariance></calibration>"),
+            2);
+}
+
 TEST(GeometryCalibration, CardWithoutBlockHasRealChainEqualToNominal) {
   const Robot robot = loadRobot({"kuka-kr210-r2700-2", "", ""});
   EXPECT_FALSE(robot.card.calibration.has_value());

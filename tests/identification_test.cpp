@@ -20,6 +20,7 @@
 #include <kdl/chainfksolverpos_recursive.hpp>
 #include <kdl/chainidsolver_recursive_newton_euler.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -930,13 +931,11 @@ IdentificationOptions geometryOptions(const api::PredictionContext& c) {
   return o;
 }
 
-/// The loop closed through the files: the identification written as a robot card (stiffness and
-/// <calibration> block) and a cell (robot = that card, workobject at the registered part), loaded
-/// back as any job loads them, compensates the held-out holes; the truth drills the compensated
-/// commands on the displaced part. Returns the RMS ⊥ error on the part, m.
-double compensatedOnTruth(const api::PredictionContext& c, const Scenario& s,
-                          const IdentificationResult& r, KdlTruth& truth,
-                          const std::vector<HoleRequest>& held, const std::string& dir) {
+/// The identification written as a robot card (stiffness and <calibration> block, its covariance
+/// included) and a cell (robot = that card, workobject at the registered part), loaded back as
+/// any job loads them.
+api::PredictionContext calibratedContext(const api::PredictionContext& c, const Scenario& s,
+                                         const IdentificationResult& r, const std::string& dir) {
   const RobotCard& card = c.robot.card;
   const fs::path urdf = fs::path(card.urdf_path).filename();
   if (!fs::exists(fs::path(dir) / urdf))
@@ -964,9 +963,19 @@ double compensatedOnTruth(const api::PredictionContext& c, const Scenario& s,
   cell = std::regex_replace(cell, std::regex("<workobject [^>]*/>"), wobj);
   const std::string cell_path = dir + "/cell-" + s.cell;
   test::writeFile(cell_path, cell);
-  const api::PredictionContext next =
+  api::PredictionContext next =
       api::loadPredictionContext(cell_path, "", std::nullopt, "", 0.5, false);
   EXPECT_TRUE(next.robot.card.calibration.has_value());
+  return next;
+}
+
+/// The loop closed through the files: the calibratedContext compensates the held-out holes; the
+/// truth drills the compensated commands on the displaced part. Returns the RMS ⊥ error on the
+/// part, m.
+double compensatedOnTruth(const api::PredictionContext& c, const Scenario& s,
+                          const IdentificationResult& r, KdlTruth& truth,
+                          const std::vector<HoleRequest>& held, const std::string& dir) {
+  const api::PredictionContext next = calibratedContext(c, s, r, dir);
   // the same holes of the part, programmed in the new workobject
   std::vector<HoleRequest> requests = held;
   const Pose to_new = next.cell.T_base_wobj * c.cell.T_base_wobj.inverse();
@@ -1091,6 +1100,167 @@ TEST(IdentificationGeometry, ThermalGrowthDuringTheRunTriggersTheChiSquareWarnin
   std::printf("thermal growth: %.2f sigma; %s\n", f.rms_normalized, f.explanation.c_str());
   EXPECT_FALSE(f.consistent);
   EXPECT_NE(f.best.name.find("scale"), std::string::npos) << f.explanation;
+}
+
+// ---------------------------------------------------------------- U_work against the truth
+
+/// The held-out holes programmed in `next`'s workobject (the part where the registration put it).
+std::vector<HoleRequest> inWorkobjectOf(const api::PredictionContext& next,
+                                        const api::PredictionContext& c,
+                                        const std::vector<HoleRequest>& held) {
+  std::vector<HoleRequest> requests = held;
+  const Pose to_new = next.cell.T_base_wobj * c.cell.T_base_wobj.inverse();
+  for (HoleRequest& h : requests) h.T_W_tcp = to_new * h.T_W_tcp;
+  return requests;
+}
+
+// After calibration U_work must cover the real holes 95 % of the time, the calibrated accuracy
+// term (the card's covariance of geometry and registration) included. The truth (KDL, geometric
+// and stiffness errors, fixture offset) is fixed; what varies is what the budget says varies: the
+// calibration is repeated on 40 planned holes with new 5 µm measurement noise (the posterior
+// covariance speaks of that), and each held-out hole is drilled with the scatter the budget
+// states per hole: each joint stiffness 10 % (Gaussian) about the calibrated card's, the process
+// force ±15 % (rectangular), the repeatability RP/3.616 per axis, the machining terms.
+// 6 calibrations × 40 held-out holes × 5 drillings = 1,200 holes.
+TEST(IdentificationGeometry, UWorkCoversHeldOutHolesAfterCalibration) {
+  const Scenario& s = kKukaSmall;
+  const api::PredictionContext c = loadCell(s.cell);
+  const std::string dir = test::tempDir("geomcover");
+  const Vec6 k_true = truthStiffness(c, s.seed);
+  KdlTruth truth(c, k_true, gravityCompensated(c), 0.0, truthUrdf(c, s.seed, dir));
+  const auto [fit_req, held_req] = plannedAndHeldOut(c, s, true);
+  const IdentificationOptions o = geometryOptions(c);
+  const Pose T_W_fixture = c.cell.T_base_wobj * fixtureOffset();
+  const double u_rep = c.robot.card.rp_mm * 1e-3 / 3.616;
+  Rng rng(2026);
+  int inside = 0;
+  int n = 0;
+  std::vector<double> residual;
+  std::vector<double> u_accuracy;
+  std::vector<double> U;
+  for (std::uint32_t rep = 0; rep < 6; ++rep) {
+    truth.setStiffness(k_true);
+    const Measured fit = measureRequests(c, truth, fit_req, 300 + rep, fixtureOffset());
+    const IdentificationResult r = identifyStiffness(c.model, fit.holes, o);
+    const api::PredictionContext next = calibratedContext(c, s, r, dir);
+    const std::vector<HoleRequest> requests = inWorkobjectOf(next, c, held_req);
+    const std::vector<HolePrediction> pred = predictHoles(next.model, requests);
+    const Vec6 k_calibrated = cardStiffness(next);
+    for (size_t i = 0; i < pred.size(); ++i) {
+      ASSERT_EQ(pred[i].status, HoleStatus::kOk) << pred[i].id << ": " << pred[i].reason;
+      const HolePrediction& p = pred[i];
+      for (const BudgetTerm& b : p.budget) {
+        if (std::string(b.name) == "robot_absolute_accuracy") u_accuracy.push_back(b.u);
+      }
+      U.push_back(p.U_work_exact);
+      const Pose T_part_hole = c.cell.T_base_wobj.inverse() * held_req[i].T_W_tcp;
+      const Vec3 predicted_part =
+          next.cell.T_base_wobj.inverse() * (p.deflection.T_real.translation() + p.d_mach);
+      for (int d = 0; d < 5; ++d) {
+        Vec6 k = k_calibrated;
+        for (int j = 0; j < 6; ++j) k[j] *= 1.0 + 0.1 * rng.normal();
+        truth.setStiffness(k);
+        const double force_scale = 1.0 + 0.15 * (2.0 * rng.uniform() - 1.0);
+        const Vec3 mach = requests[i].T_W_tcp.linear() *
+                          Vec3(p.u_mach * rng.normal(), p.u_mach * rng.normal(), 0.0);
+        const Vec3 real = truth.realTcp(p.joints, force_scale) + u_rep * rng.normal3() + mach;
+        const double e = inPlane(T_part_hole, T_W_fixture.inverse() * real - predicted_part).norm();
+        residual.push_back(e);
+        inside += e <= p.U_work_exact ? 1 : 0;
+        ++n;
+      }
+    }
+  }
+  ASSERT_EQ(u_accuracy.size(), U.size());
+  const double coverage = static_cast<double>(inside) / n;
+  std::printf(
+      "after calibration: coverage %.1f %% (%d of %d), residual RMS %.1f um, U_work RMS %.1f "
+      "um, calibrated accuracy term u RMS %.2f um\n",
+      100 * coverage, inside, n, rms(residual) * 1e6, rms(U) * 1e6, rms(u_accuracy) * 1e6);
+  EXPECT_NEAR(coverage, 0.95, 0.03);
+}
+
+/// A copy of the cell `s.cell` in `dir` whose robot card states <accuracy ap_mm="ap_mm">.
+api::PredictionContext cellWithAccuracy(const api::PredictionContext& c, const Scenario& s,
+                                        double ap_mm, const std::string& dir) {
+  const RobotCard& card = c.robot.card;
+  const fs::path urdf = fs::path(card.urdf_path).filename();
+  if (!fs::exists(fs::path(dir) / urdf))
+    fs::copy_file(fs::path(card.file).parent_path() / urdf, fs::path(dir) / urdf);
+  char ap[96];
+  std::snprintf(ap, sizeof ap, "<accuracy ap_mm=\"%.6f\" source=\"test: the population's AP\"/>",
+                ap_mm);
+  const std::string text = std::regex_replace(test::readFile(card.file),
+                                              std::regex("<accuracy [^>]*/>"), std::string(ap));
+  test::writeFile(dir + "/ap-card-" + s.cell, text);
+  std::string cell = test::readFile(test::sourceDir() + "/samples/cells/" + s.cell);
+  cell = std::regex_replace(cell, std::regex("<robot ref=\"[^\"]*\"/>"),
+                            "<robot file=\"ap-card-" + s.cell + "\"/>");
+  const std::string cell_path = dir + "/ap-cell-" + s.cell;
+  test::writeFile(cell_path, cell);
+  return api::loadPredictionContext(cell_path, "", std::nullopt, "", 0.5, false);
+}
+
+/// Held-out errors of one uncalibrated truth robot (geometric errors in the issue's ranges, each
+/// joint stiffness 10 % about the card's as the budget states, seed `seed`) after the rigid
+/// registration of the part on the 40 fit holes (what an uncalibrated cell does: the workobject is
+/// where the robot finds the part): measured − predicted, 3-D for TCP points (gravity only, as ISO
+/// 9283 measures AP) or ⊥ the axis for holes.
+std::vector<Eigen::VectorXd> uncalibratedErrors(const api::PredictionContext& c,
+                                                const std::vector<HoleRequest>& fit_req,
+                                                const std::vector<HoleRequest>& held_req,
+                                                std::uint32_t seed, bool points,
+                                                const std::string& dir) {
+  Rng rng(seed);
+  Vec6 k = cardStiffness(c);
+  for (int j = 0; j < 6; ++j) k[j] *= 1.0 + 0.1 * rng.normal();
+  KdlTruth truth(c, k, gravityCompensated(c), 0.0, truthUrdf(c, seed, dir));
+  const Measured fit = measureRequests(c, truth, fit_req, seed + 1, fixtureOffset(), points);
+  const Measured held = measureRequests(c, truth, held_req, seed + 2, fixtureOffset(), points);
+  IdentificationOptions o = geometryOptions(c);
+  o.geometry = false;
+  o.identify = IdentifySet::kNone;
+  return residualsAt(c.model, identifyStiffness(c.model, fit.holes, o), held.holes, o);
+}
+
+// Before calibration the accuracy term is the card's AP (u = AP/2.7955 per axis). The card's own
+// 1.0 mm is an estimate; what is checked here is that a card stating the AP of its robots covers
+// new robots of the same build: AP is the 95 % quantile of the 3-D TCP error (ISO 9283 reading of
+// docs/cards.md §6) over 15 truth robots drawn with the issue's error ranges (KDL, tracker points
+// under gravity, the part registered rigidly), and U_work of a card stating it must cover the
+// held-out holes ⊥ their axes of 15 other truth robots 95 ± 3 % of the time (600 holes).
+TEST(IdentificationGeometry, UWorkCoversHeldOutHolesBeforeCalibration) {
+  const Scenario& s = kKukaSmall;
+  const api::PredictionContext c = loadCell(s.cell);
+  const std::string dir = test::tempDir("geomap");
+  const auto [fit_req, held_req] = plannedAndHeldOut(c, s, true);
+  std::vector<double> e3;
+  for (std::uint32_t seed = 600; seed < 615; ++seed) {
+    for (const Eigen::VectorXd& e : uncalibratedErrors(c, fit_req, held_req, seed, true, dir))
+      e3.push_back(e.norm());
+  }
+  std::sort(e3.begin(), e3.end());
+  const double ap = e3[static_cast<size_t>(0.95 * static_cast<double>(e3.size()))];
+  const api::PredictionContext with_ap = cellWithAccuracy(c, s, ap * 1e3, dir);
+  const std::vector<HolePrediction> pred = predictHoles(with_ap.model, held_req);
+  int inside = 0;
+  int n = 0;
+  std::vector<double> e2;
+  for (std::uint32_t seed = 700; seed < 715; ++seed) {
+    const auto errors = uncalibratedErrors(c, fit_req, held_req, seed, false, dir);
+    for (size_t i = 0; i < errors.size(); ++i) {
+      ASSERT_EQ(pred[i].status, HoleStatus::kOk) << pred[i].id;
+      e2.push_back(errors[i].norm());
+      inside += errors[i].norm() <= pred[i].U_work_exact ? 1 : 0;
+      ++n;
+    }
+  }
+  const double coverage = static_cast<double>(inside) / n;
+  std::printf(
+      "before calibration: population AP %.3f mm; coverage %.1f %% (%d of %d), held-out error "
+      "RMS %.1f um, U_work %.1f um\n",
+      ap * 1e3, 100 * coverage, inside, n, rms(e2) * 1e6, pred[0].U_work_exact * 1e6);
+  EXPECT_NEAR(coverage, 0.95, 0.03);
 }
 
 // With the joint compliances alone (the parameter set before geometry), a constant thermal scale

@@ -34,6 +34,30 @@ TEST(MeasuredPoses, ReadsColumnsInAnyOrderAndOptionalGroups) {
   EXPECT_FALSE(looksLikeMeasuredPoses("id,x,y,z\nA,1,2,3\n"));
 }
 
+TEST(MeasuredPoses, EmptyJointsNameTheProgramsTargetAndWriteBackEmpty) {
+  const std::string text =
+      "id,j1,j2,j3,j4,j5,j6,x,y,z\n"
+      "V01,,,,,,,1,2,3\n"
+      "P2,0,-80,100,5,30,-5,4,5,6\n";
+  const MeasuredPoses p = parseMeasuredPoses(text, "poses.csv");
+  ASSERT_EQ(p.poses.size(), 2u);
+  EXPECT_TRUE(p.poses[0].program_target);
+  EXPECT_FALSE(p.poses[1].program_target);
+  EXPECT_DOUBLE_EQ(p.poses[1].joints_deg[2], 100);
+  const std::string written = writeMeasuredPoses(p.poses);
+  EXPECT_NE(written.find("\nV01,,,,,,,1.0000,2.0000,3.0000\n"), std::string::npos) << written;
+  const MeasuredPoses back = parseMeasuredPoses(written, "back.csv");
+  EXPECT_TRUE(back.poses[0].program_target);
+  EXPECT_EQ(back.poses[1].joints_deg, p.poses[1].joints_deg);
+  // some joints given, some not: still an error at the line
+  try {
+    parseMeasuredPoses("id,j1,j2,j3,j4,j5,j6,x,y,z\nA,1,,,,,,1,2,3\n", "part.csv");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), 2);
+  }
+}
+
 TEST(MeasuredPoses, WriterReadsBackToTheSamePoses) {
   MeasuredPose a;
   a.id = "T1";

@@ -8,7 +8,10 @@ ROPREC_C_LIB = libroprec_c.so.
 
 import ctypes
 import json
+import math
 import os
+import re
+import random
 import subprocess
 import tempfile
 import unittest
@@ -61,6 +64,25 @@ class C(object):
                                          b(card_out), summary, 4096, err, 4096)
         return rc, summary.value.decode(), err.value.decode()
 
+    def verify_ex(self, program, measured, registration, json_out, card_out, options):
+        b = lambda s: None if s is None else str(s).encode()
+        lib, P, S = self.lib, ctypes.c_char_p, ctypes.c_size_t
+        lib.roprec_options_new.argtypes = [ctypes.POINTER(ctypes.c_void_p), P, S]
+        lib.roprec_options_set.argtypes = [ctypes.c_void_p, P, P, P, S]
+        lib.roprec_options_free.argtypes = [ctypes.c_void_p]
+        lib.roprec_verify_file_ex.argtypes = [P, P, P, P, ctypes.c_void_p, P, P, P, S, P, S]
+        summary, err = ctypes.create_string_buffer(4096), ctypes.create_string_buffer(4096)
+        opt = ctypes.c_void_p()
+        assert lib.roprec_options_new(ctypes.byref(opt), err, 4096) == 0, err.value
+        try:
+            for k, v in options.items():
+                assert lib.roprec_options_set(opt, b(k), b(v), err, 4096) == 0, err.value
+            rc = lib.roprec_verify_file_ex(b(CELL), b(program), b(measured), b(registration), opt, b(json_out),
+                                           b(card_out), summary, 4096, err, 4096)
+        finally:
+            lib.roprec_options_free(opt)
+        return rc, summary.value.decode(), err.value.decode()
+
     def plan_test(self, region, count, out):
         arr = (ctypes.c_double * 6)(*region)
         summary, err = ctypes.create_string_buffer(4096), ctypes.create_string_buffer(4096)
@@ -99,6 +121,137 @@ class VerifyAcrossInterfaces(unittest.TestCase):
         close(s["explained"], doc["summary"]["explained"], "explained")
         close(s["identification"]["joints"], doc["identification"]["joints"], "joints")
         self.assertGreater(doc["summary"]["explained"], 0.0)
+
+    def test_calibration_date_identify_and_folds_alike_in_cli_c_python(self):
+        # the geometry test part of README's loop, calibrated with the geometry alone
+        t, v = self.tmp, SRC / "samples" / "verification"
+        prog, holes, measured = v / "geometry_kr120.src", v / "geometry_kr120_holes.csv", v / "measured_geometry.csv"
+        r = cli("verify", "--cell", CELL, prog, "--holes", holes, "--measured", measured, "--register", "none",
+                "--calibrate", t / "cli.xml", "--json", t / "cli.json", "--quiet", "--identify", "geometry",
+                "--date", "2025-03-04", "--folds", "3")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        rc, _, err = C().verify_ex(prog, measured, "none", t / "c.json", t / "c.xml",
+                                   {"holes": holes, "identify": "geometry", "date": "2025-03-04", "folds": "3"})
+        self.assertEqual(rc, 0, err)
+        py = roprec.verify(CELL, prog, measured, holes=holes, register="none", calibrate=t / "py.xml",
+                           json_out=t / "py.json", identify="geometry", date="2025-03-04", folds=3)
+        card = (t / "cli.xml").read_bytes()
+        self.assertEqual(card, (t / "c.xml").read_bytes())
+        self.assertEqual(card, (t / "py.xml").read_bytes())
+        self.assertEqual((t / "cli.json").read_bytes(), (t / "py.json").read_bytes())
+        self.assertEqual((t / "cli.json").read_bytes(), (t / "c.json").read_bytes())
+        self.assertIn(b'date="2025-03-04"', card)
+        ident = py["identification"]
+        self.assertEqual(ident["validation"]["folds"], 3)
+        # identify="geometry": the joint compliances keep the card's values
+        self.assertEqual([p["identifiable"] for p in ident["parameters"][:6]], [False] * 6)
+        self.assertTrue(any(p["identifiable"] for p in ident["parameters"] if p["name"].startswith("j2_")))
+        # the defaults (identify all, 5 folds, the date rule) give another card
+        roprec.verify(CELL, prog, measured, holes=holes, calibrate=t / "all.xml", date="2024-12-31")
+        self.assertIn(b'date="2024-12-31"', (t / "all.xml").read_bytes())
+        for bad in ({"identify": "everything"}, {"date": "4 March 2025"}, {"folds": 101}):
+            with self.assertRaises(roprec.UsageError):
+                roprec.verify(CELL, prog, measured, holes=holes, calibrate=t / "x.xml", **bad)
+        self.assertFalse((t / "x.xml").exists())
+
+    def test_a_card_no_better_on_held_out_holes_is_refused_and_a_residual_above_the_noise_exits_1(self):
+        t = self.tmp
+        # holes "drilled" exactly as the card predicts (+ 5 um noise): a geometry fitted to them fits
+        # the noise, the cross-validation finds it worse than the card, and it is not written
+        r = cli("predict", "--cell", CELL, PROGRAM, "--holes", HOLES, "--quiet", "--json", t / "p.json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        wobj = (1350.0, 0.0, 300.0)  # samples/cells/housing-kr120.xml, axes = the base's
+        rng = random.Random(5)
+        lines = ["id,x,y,z"]
+        for h in json.loads((t / "p.json").read_text())["holes"]:
+            p = [h["nominal"]["position_mm"][a] - wobj[a] + h["deviation_um"]["work"][a] * 1e-3 + rng.gauss(0, 0.005)
+                 for a in range(3)]
+            lines.append("%s,%.4f,%.4f,%.4f" % (h["id"], p[0], p[1], p[2]))
+        (t / "self.csv").write_text("\n".join(lines) + "\n")
+        r = cli("verify", "--cell", CELL, PROGRAM, "--holes", HOLES, "--measured", t / "self.csv", "--register", "none",
+                "--identify", "geometry", "--calibrate", t / "cli.xml", "--write-cell", t / "cell.xml", "--date",
+                "2026-01-01")
+        self.assertEqual(r.returncode, 1, r.stdout + r.stderr)
+        self.assertIn("the calibrated card is not written", r.stderr)
+        self.assertFalse((t / "cli.xml").exists() or (t / "cell.xml").exists())
+        py = roprec.verify(CELL, PROGRAM, t / "self.csv", holes=HOLES, calibrate=t / "py.xml", identify="geometry",
+                           date="2026-01-01")
+        self.assertEqual(py["written"], [])
+        self.assertIn("not below the original card", py["identification"]["card_refused"])
+        self.assertFalse(py["identification"]["validation"]["better"])
+        # the shipped held-out holes come from a truth with geometric errors: the joint stiffness alone
+        # cannot explain them, the χ² check says so and the run exits 1 (Python: fit_check.consistent)
+        r = cli("verify", "--cell", CELL, PROGRAM, "--holes", HOLES, "--measured", MEASURED, "--register", "none",
+                "--identify", "stiffness", "--calibrate", t / "k.xml", "--date", "2026-01-01")
+        self.assertEqual(r.returncode, 1, r.stdout + r.stderr)
+        self.assertIn("times the measurement σ", r.stderr)
+        py = roprec.verify(CELL, PROGRAM, MEASURED, holes=HOLES, calibrate=t / "k2.xml", identify="stiffness",
+                           date="2026-01-01")
+        self.assertFalse(py["identification"]["fit_check"]["consistent"])
+        self.assertGreater(py["identification"]["fit_check"]["rms_normalized"], 2.0)
+
+    def test_plan_test_names_what_one_drilling_direction_leaves_unobservable(self):
+        # planning for geometry + compliances + registration: one drilling direction leaves more of
+        # the robot unobservable (named in the warning) than three directions with two rotations about
+        # the drill axis; both print the expected σ per group and the accuracy before -> after
+        def plan(directions, psi):
+            r = cli("plan-test", "--cell", CELL, "--region", "-200 -200 0 200 200 300", "--directions", directions,
+                    "--psi", psi, "--per-axis", 3, "--count", 20, "--register", "rigid", "-o", self.tmp / "p.csv")
+            self.assertEqual(r.returncode, 0, r.stderr)
+            m = re.search(r"leave (\d+) robot parameters unobservable \(they keep their prior\): ([^;]*);", r.stderr)
+            self.assertIsNotNone(m, r.stderr)
+            self.assertIn("expected geometry uncertainty", r.stdout)
+            self.assertIn("expected joint stiffness uncertainty", r.stdout)
+            acc = re.search(r"predicted accuracy .*: ([0-9.]+) µm before calibration -> ([0-9.]+) µm after", r.stdout)
+            self.assertIsNotNone(acc, r.stdout)
+            self.assertLess(float(acc.group(2)), 0.01 * float(acc.group(1)))
+            return int(m.group(1)), m.group(2).split(", ")
+        one, names_one = plan("0 0 -1", "0")
+        three, names_three = plan("0 0 -1, 0 1 0, 0.7071 0 -0.7071", "0 90")
+        self.assertEqual(one, len(names_one))
+        self.assertGreater(one, three)
+        self.assertIn("j1_x", names_three)  # joint 1's origin is the registration's, whatever the plan
+        self.assertTrue(set(names_three) <= set(names_one), (names_one, names_three))
+
+    def test_tracker_poses_may_name_the_programs_targets_instead_of_joints(self):
+        # the same tracker poses given once with the commanded joints and once as the program's
+        # targets (j1..j6 empty): the same observations, the same fit; a known tracker offset is
+        # recovered (as VerifyCli.PosesAloneCalibrateAndRecoverATrackerOffset)
+        t = self.tmp
+        r = cli("predict", "--cell", CELL, PROGRAM, "--holes", HOLES, "--quiet", "--json", t / "p.json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        wobj, offset = (1350.0, 0.0, 300.0), (0.120, -0.080, 0.060)  # mm
+        with_joints, targets = ["id,j1,j2,j3,j4,j5,j6,x,y,z"], ["id,j1,j2,j3,j4,j5,j6,x,y,z"]
+        for h in json.loads((t / "p.json").read_text())["holes"]:
+            xyz = ",".join("%.4f" % (h["nominal"]["position_mm"][a] - wobj[a] + offset[a]) for a in range(3))
+            with_joints.append(h["id"] + "," + ",".join("%.9f" % q for q in h["controller_joints_deg"]) + "," + xyz)
+            targets.append(h["id"] + ",,,,,," + "," + xyz)
+        (t / "joints.csv").write_text("\n".join(with_joints) + "\n")
+        (t / "targets.csv").write_text("\n".join(targets) + "\n")
+        common = ("--register", "translation", "--identify", "stiffness", "--quiet")
+        a = cli("verify", "--cell", CELL, "--poses", t / "joints.csv", "--json", t / "a.json", *common)
+        self.assertEqual(a.returncode, 0, a.stderr)
+        b = cli("verify", "--cell", CELL, PROGRAM, "--holes", HOLES, "--poses", t / "targets.csv", "--json",
+                t / "b.json", *common)
+        self.assertEqual(b.returncode, 0, b.stderr)
+        ja, jb = (json.loads((t / f).read_text()) for f in ("a.json", "b.json"))
+        self.assertEqual(jb["poses"]["count"], len(targets) - 1)
+        # (the predict JSON's joints have 6 decimals: 1e-6 deg moves the TCP by some 10 nm)
+        for pa, pb in zip(ja["identification"]["parameters"], jb["identification"]["parameters"]):
+            self.assertEqual(pa["name"], pb["name"])
+            tol = 1e-8 if pa["unit"] == "m" else 1e-4 * abs(pa["value"])
+            self.assertLessEqual(abs(pa["value"] - pb["value"]), tol, pa["name"])
+        tb = jb["registration"]["translation_um"]
+        self.assertLessEqual(math.dist(tb, [1e3 * o for o in offset]), 5.0, tb)
+        # an id that names no target of the program, and target rows without a program: exit 2 at the line
+        (t / "bad.csv").write_text(targets[0] + "\n" + targets[1] + "\nNOPE,,,,,,,1,2,3\n")
+        r = cli("verify", "--cell", CELL, PROGRAM, "--holes", HOLES, "--poses", t / "bad.csv")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("bad.csv:3:", r.stderr)
+        self.assertIn("names no target", r.stderr)
+        r = cli("verify", "--cell", CELL, "--poses", t / "targets.csv")
+        self.assertEqual(r.returncode, 2, r.stderr)
+        self.assertIn("targets.csv:2:", r.stderr)
 
     def test_bad_measured_file_is_an_input_error_everywhere(self):
         bad = self.tmp / "bad.csv"

@@ -266,6 +266,21 @@ HeldOutValidation crossValidate(const PredictionModel& m,
   return v;
 }
 
+double modelErrorFloor(const std::vector<double>& residual_norms,
+                       const std::vector<IdentificationHole>& holes, double inflation) {
+  double rr = 0.0;
+  double noise = 0.0;
+  double rows = 0.0;
+  for (size_t i = 0; i < holes.size() && i < residual_norms.size(); ++i) {
+    const double n = observationRows(holes[i]);
+    rr += residual_norms[i] * residual_norms[i];
+    noise += n * holes[i].sigma * holes[i].sigma;
+    rows += n;
+  }
+  if (!(rows > 0)) return 0.0;
+  return std::sqrt(std::max(0.0, (inflation * rr - noise) / rows));
+}
+
 HeldOutValidation validateOn(const PredictionModel& m, const IdentificationResult& r,
                              const std::vector<IdentificationHole>& fit,
                              const std::vector<IdentificationHole>& held_out,

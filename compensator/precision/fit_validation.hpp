@@ -83,6 +83,14 @@ HeldOutValidation crossValidate(const PredictionModel& m,
                                 const std::vector<IdentificationHole>& holes,
                                 const IdentificationOptions& o, int folds);
 
+/// The model error floor, m per axis: the scatter of residuals that the observations' own σ
+/// (measurement, repeatability, machining: IdentificationHole::sigma) do not explain,
+///   u_model² = max(0, inflation · Σ_i |r_i|² / Σ_i n_i − Σ_i n_i σ_i² / Σ_i n_i),
+/// n_i = observationRows. `residual_norms` |r_i| per observation (holes' order): held-out ones
+/// (HeldOutValidation::calibrated; inflation 1) or the fit's own (inflation equations/dof).
+double modelErrorFloor(const std::vector<double>& residual_norms,
+                       const std::vector<IdentificationHole>& holes, double inflation = 1.0);
+
 /// Validation on separate observations: `r` (identified from the fit set `fit`) predicts
 /// `held_out`; the original card is the registration-only fit on `fit`.
 HeldOutValidation validateOn(const PredictionModel& m, const IdentificationResult& r,

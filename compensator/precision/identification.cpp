@@ -929,6 +929,33 @@ void dependentNames(const Problem& P, const MatrixXd& J, double tol,
   (void)dependentFree(P, J, allColumns(P.layout.n), tol, dependencies);
 }
 
+/// The posterior covariance of the geometry and the part's registration together (internal =
+/// reported units for both), the registration restated as the base error it is to every hole:
+/// m̂ = T_W_wobj (R(ω) T_W_wobj⁻¹ p + t) moves p by δm = R δt + (R δω) × (p − o) (R, o the
+/// workobject's axes and origin), i.e. by the base translation δt_B = R δt + o × (R δω) and
+/// rotation δω_B = R δω about the base origin: C = T Σ Tᵀ with T that linear map.
+void calibrationCovariance(const Problem& P, const MatrixXd& cov, GeometryCalibration& g) {
+  const Layout& l = P.layout;
+  const int n_base = l.n_reg;  // 0, 3 (translation) or 6 (rigid)
+  const int n = n_base + kGeometryParameters;
+  MatrixXd T = MatrixXd::Zero(n, l.n);
+  const Mat3& R = P.T_W_wobj.linear();
+  const Vec3 o = P.T_W_wobj.translation();
+  Mat3 ox;
+  ox << 0, -o.z(), o.y(), o.z(), 0, -o.x(), -o.y(), o.x(), 0;
+  if (n_base > 0) T.block(0, l.reg, 3, 3) = R;
+  if (n_base == 6) {
+    T.block(0, l.reg + 3, 3, 3) = ox * R;
+    T.block(3, l.reg + 3, 3, 3) = R;
+  }
+  for (int k = 0; k < kGeometryParameters; ++k) T(n_base + k, l.geo + k) = 1.0;
+  g.covariance = T * cov * T.transpose();
+  const char* base[] = {"base_x", "base_y", "base_z", "base_rx", "base_ry", "base_rz"};
+  for (int a = 0; a < n_base; ++a) g.covariance_parameters.emplace_back(base[a]);
+  for (int k = 0; k < kGeometryParameters; ++k)
+    g.covariance_parameters.push_back(P.spec.name[static_cast<size_t>(l.geo + k)]);
+}
+
 /// The identified geometry with σ from the posterior covariance.
 GeometryCalibration identifiedGeometry(const Problem& P, const IdentificationResult& r) {
   GeometryCalibration g = P.g0;
@@ -940,6 +967,8 @@ GeometryCalibration identifiedGeometry(const Problem& P, const IdentificationRes
       (a < 3 ? f.sigma_xyz : f.sigma_rpy)[a % 3] = r.parameters[k].sigma;
     }
   }
+  g.covariance_parameters.clear();
+  calibrationCovariance(P, r.covariance, g);
   g.measurements = r.holes;
   return g;
 }

@@ -224,7 +224,10 @@ struct IdentificationResult {
   std::optional<Vec3> tool_com;     ///< m, flange frame
   RegistrationEstimate registration;
   /// With IdentificationOptions::geometry: the identified geometric errors (non-identifiable
-  /// components at their prior), σ from the posterior covariance; base = the card's.
+  /// components at their prior), σ from the posterior covariance; base = the card's; its
+  /// covariance = the posterior covariance of the geometry and the registration together, the
+  /// registration stated as the base components (consider parameters and correlations included:
+  /// the budget's calibrated accuracy term).
   std::optional<GeometryCalibration> geometry;
   /// Parameters removed as exact linear combinations of the others, each as
   /// "name ≡ coefficient × name + …" in prior-σ units (largest three terms).

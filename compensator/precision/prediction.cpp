@@ -104,7 +104,8 @@ ProcessAtDiameter processAt(const ProcessSpec& spec, double diameter, int drill 
 
 /// In-plane covariance (m², axes e1, e2) of the absolute-accuracy term at the real joint values θ
 /// (AccuracyInputs): the data sheet's or the controller option's isotropic u², or the
-/// calibration's σ through ∂p_tcp/∂c (calibration_jacobian.hpp), plus the registration σ².
+/// calibration's covariance through ∂p_tcp/∂c (calibrationPositionCovariance), plus the
+/// registration σ².
 Eigen::Matrix2d accuracyCovariance(const PredictionModel& m, const Vec6& theta, const Vec3& e1,
                                    const Vec3& e2) {
   const AccuracyInputs& a = m.accuracy;
@@ -114,15 +115,13 @@ Eigen::Matrix2d accuracyCovariance(const PredictionModel& m, const Vec6& theta, 
       a.kind == AccuracyInputs::Kind::kControllerOption) {
     iso += a.u * a.u;
   } else if (a.kind == AccuracyInputs::Kind::kCalibrated && m.robot.card.calibration) {
-    CalibrationJacobian J;
-    tcpCalibrationJacobian(m.robot.real_chain, m.model.T_L6_flange.inverse() * m.model.T_L6_tcp,
-                           theta, J);
-    const CalibrationSigmas s = calibrationSigmas(*m.robot.card.calibration);
-    for (int c = 0; c < kCalibrationParameters; ++c) {
-      if (s[c] <= 0) continue;
-      const Eigen::Vector2d v(J.col(c).dot(e1) * s[c], J.col(c).dot(e2) * s[c]);
-      cov += v * v.transpose();
-    }
+    Eigen::Matrix<double, 3, 2> E;
+    E << e1, e2;
+    cov = E.transpose() *
+          calibrationPositionCovariance(m.robot.real_chain,
+                                        m.model.T_L6_flange.inverse() * m.model.T_L6_tcp, theta,
+                                        *m.robot.card.calibration) *
+          E;
   }
   return cov + iso * Eigen::Matrix2d::Identity();
 }

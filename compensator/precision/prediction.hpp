@@ -69,9 +69,11 @@ UncertaintyInputs defaultUncertaintyInputs();
 ///   kDataSheet        uncalibrated robot: u = AP / 2.7955 (card <accuracy ap_mm>: AP read as the
 ///                     95 % bound of the 3-D error of an isotropic normal error, whose magnitude is
 ///                     Maxwell-distributed: P(|e| ≤ 2.7955 σ) = 0.95);
-///   kCalibrated       robot card <calibration>: the calibration's σ (each FrameError component
-///                     independent) propagated through the Jacobian of FK_real at the hole's pose
-///                     (∂p_tcp/∂component by central differences), in-plane, RSS;
+///   kCalibrated       robot card <calibration>: the fit's covariance of its components (with
+///                     their correlations, the calibration part's registration as the base
+///                     components; each stated σ independent when the block has no
+///                     <covariance>) through ∂p_tcp/∂component at the hole's pose, plus the
+///                     block's model error (calibrationPositionCovariance), in-plane;
 ///   kControllerOption the cell declares the controller's absolute-accuracy option
 ///                     (<absolute_accuracy ap_mm source/>): its residual AP, as kDataSheet;
 /// plus the cell's registration σ (<workobject sigma_mm>) in quadrature; kNone: no term.

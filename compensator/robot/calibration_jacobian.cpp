@@ -48,4 +48,24 @@ CalibrationSigmas calibrationSigmas(const GeometryCalibration& cal) {
   return s;
 }
 
+Mat3 calibrationPositionCovariance(const ChainDescription& real, const Pose& T_flange_tcp,
+                                   const Eigen::Matrix<double, 6, 1>& theta,
+                                   const GeometryCalibration& cal) {
+  CalibrationJacobian J;
+  tcpCalibrationJacobian(real, T_flange_tcp, theta, J);
+  Mat3 C = cal.model_error * cal.model_error * Mat3::Identity();
+  if (cal.covariance_parameters.empty()) {
+    const CalibrationSigmas s = calibrationSigmas(cal);
+    for (int c = 0; c < kCalibrationParameters; ++c) {
+      if (s[c] > 0) C += s[c] * s[c] * J.col(c) * J.col(c).transpose();
+    }
+    return C;
+  }
+  const auto n = static_cast<Eigen::Index>(cal.covariance_parameters.size());
+  Eigen::Matrix<double, 3, Eigen::Dynamic> Jc(3, n);
+  for (Eigen::Index k = 0; k < n; ++k)
+    Jc.col(k) = J.col(calibrationComponent(cal.covariance_parameters[static_cast<size_t>(k)]));
+  return C + Jc * cal.covariance * Jc.transpose();
+}
+
 }  // namespace roprec

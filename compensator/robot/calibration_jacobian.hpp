@@ -33,4 +33,17 @@ void tcpCalibrationJacobian(const ChainDescription& real, const Pose& T_flange_t
 /// The σ of each column's component (m, rad) in the same order; 0 where not stated.
 CalibrationSigmas calibrationSigmas(const GeometryCalibration& cal);
 
+/// Covariance (m², base frame W) of the real TCP position that the calibration `cal` leaves
+/// unknown at θ:
+///   with the fit's covariance Σ over components c (GeometryCalibration::covariance):
+///     C = J_c Σ J_cᵀ with the columns J_c of tcpCalibrationJacobian, correlations included (what
+///     the part's registration absorbed, e.g. joint 1's origin, cancels with the base
+///     components it is stated in);
+///   without: C = Σ_c σ_c² J_c J_cᵀ over the stated σ (each component independent);
+/// plus model_error² I (the fit's unexplained scatter per axis). Allocates (the covariance's
+/// columns).
+Mat3 calibrationPositionCovariance(const ChainDescription& real, const Pose& T_flange_tcp,
+                                   const Eigen::Matrix<double, 6, 1>& theta,
+                                   const GeometryCalibration& cal);
+
 }  // namespace roprec

@@ -1,7 +1,10 @@
 #include "compensator/robot/geometry_calibration.hpp"
 
+#include <Eigen/Cholesky>
+#include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <sstream>
 
 #include "compensator/support/error.hpp"
 #include "compensator/support/xml_escape.hpp"
@@ -68,10 +71,39 @@ GeometryCalibration calibrationFromChains(const ChainDescription& nominal,
   return cal;
 }
 
+int calibrationComponent(const std::string& name) {
+  static const char* const kAxes[] = {"x", "y", "z", "rx", "ry", "rz"};
+  const auto axis = [&](const std::string& tail, const char* const* names) {
+    for (int a = 0; a < 6; ++a)
+      if (tail == names[a]) return a;
+    return -1;
+  };
+  const size_t us = name.find('_');
+  if (us == std::string::npos) return -1;
+  const std::string head = name.substr(0, us);
+  const std::string tail = name.substr(us + 1);
+  int first = -1;
+  if (head == "base") first = 0;
+  if (head == "tip") first = 42;
+  if (head.size() == 2 && head[0] == 'j' && head[1] >= '1' && head[1] <= '6')
+    first = 6 + 6 * (head[1] - '1');
+  if (first >= 0) {
+    const int a = axis(tail, kAxes);
+    return a < 0 ? -1 : first + a;
+  }
+  return -1;
+}
+
 namespace {
 
 constexpr double kMm = 1e-3;    // m per mm
 constexpr double kMrad = 1e-3;  // rad per mrad
+
+/// Card unit of a component (mm for lengths, mrad for angles), in SI.
+double componentUnit(int component) {
+  const int a = component % 6;
+  return a < 3 ? kMm : kMrad;
+}
 
 /// Reads one error element's xyz_mm / rpy_mrad / sigma_xyz_mm / sigma_rpy_mrad (all optional).
 FrameError parseFrameError(const XmlNode& e) {
@@ -131,17 +163,88 @@ std::string frameErrorAttributes(const FrameError& f) {
   return a;
 }
 
+/// 9 significant digits (the factor's entries; "C" locale).
+std::string digits9(double v) {
+  if (v == 0.0) return "0";
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general, 9);
+  return {buf, r.ptr};
+}
+
+/// The lower-triangular factor L (card units) of the covariance, Σ = L Lᵀ: Cholesky, with a
+/// jitter of 1e-12 of the largest variance when Σ is only semi-definite (rounding).
+Eigen::MatrixXd covarianceFactor(const GeometryCalibration& cal) {
+  const auto n = static_cast<Eigen::Index>(cal.covariance_parameters.size());
+  Eigen::VectorXd unit(n);
+  for (Eigen::Index i = 0; i < n; ++i)
+    unit[i] =
+        componentUnit(calibrationComponent(cal.covariance_parameters[static_cast<size_t>(i)]));
+  const Eigen::MatrixXd S =
+      unit.cwiseInverse().asDiagonal() * cal.covariance * unit.cwiseInverse().asDiagonal();
+  Eigen::LLT<Eigen::MatrixXd> llt(0.5 * (S + S.transpose()));
+  for (double jitter = 1e-12; llt.info() != Eigen::Success && jitter < 1e-3; jitter *= 100) {
+    Eigen::MatrixXd Sj = 0.5 * (S + S.transpose());
+    Sj.diagonal().array() += jitter * S.diagonal().maxCoeff();
+    llt.compute(Sj);
+  }
+  return llt.matrixL();
+}
+
+std::string covarianceXml(const GeometryCalibration& cal, const std::string& indent) {
+  std::string names;
+  for (const std::string& n : cal.covariance_parameters) names += (names.empty() ? "" : " ") + n;
+  std::string x = indent + "<covariance parameters=\"" + names + "\">\n";
+  const Eigen::MatrixXd L = covarianceFactor(cal);
+  for (Eigen::Index i = 0; i < L.rows(); ++i) {
+    std::string row;
+    for (Eigen::Index k = 0; k <= i; ++k) row += (k ? " " : "") + digits9(L(i, k));
+    x += indent + "  <row l=\"" + row + "\"/>\n";
+  }
+  return x + indent + "</covariance>\n";
+}
+
 bool stated(const FrameError& f) {
   return !f.isZero() || !f.sigma_xyz.isZero(0.0) || !f.sigma_rpy.isZero(0.0);
+}
+
+/// `<covariance parameters="…">` with one `<row l="…"/>` per parameter: row i holds the i+1
+/// entries of the lower-triangular factor L (card units) with Σ = L Lᵀ.
+void parseCovariance(const XmlNode& e, GeometryCalibration& cal) {
+  allowOnly(e, {"parameters"});
+  allowChildren(e, {"row"});
+  std::istringstream names(e.str("parameters"));
+  std::vector<int> seen;
+  for (std::string n; names >> n;) {
+    const int c = calibrationComponent(n);
+    if (c < 0)
+      e.fail("<covariance> parameter '" + n +
+             "' is not a calibration component (base_x…base_rz, j1_x…j6_rz, tip_x…tip_rz)");
+    if (std::find(seen.begin(), seen.end(), c) != seen.end())
+      e.fail("<covariance> parameter '" + n + "' is given twice");
+    seen.push_back(c);
+    cal.covariance_parameters.push_back(n);
+  }
+  const std::vector<const XmlNode*> rows = e.childrenNamed("row");
+  const auto n = static_cast<int>(seen.size());
+  if (n == 0 || static_cast<int>(rows.size()) != n)
+    e.fail("<covariance> needs one <row> per parameter (" + std::to_string(n) + "), got " +
+           std::to_string(rows.size()));
+  Eigen::MatrixXd L = Eigen::MatrixXd::Zero(n, n);
+  for (int i = 0; i < n; ++i) {
+    allowOnly(*rows[static_cast<size_t>(i)], {"l"});
+    const Eigen::VectorXd v = rows[static_cast<size_t>(i)]->numbers("l", i + 1);
+    for (int k = 0; k <= i; ++k) L(i, k) = v[k] * componentUnit(seen[static_cast<size_t>(i)]);
+  }
+  cal.covariance = L * L.transpose();
 }
 
 }  // namespace
 
 GeometryCalibration parseCalibration(const XmlNode& block,
                                      const std::array<std::string, 6>& joint_names) {
-  allowOnly(block, {"source", "date", "measurements", "residual_mm"});
-  allowChildren(block, {"joint_origin", "base", "tool"});
-  allowAtMostOnce(block, {"base", "tool"});
+  allowOnly(block, {"source", "date", "measurements", "residual_mm", "model_error_mm"});
+  allowChildren(block, {"joint_origin", "base", "tool", "covariance"});
+  allowAtMostOnce(block, {"base", "tool", "covariance"});
   GeometryCalibration cal;
   cal.line = block.line;
   cal.source = block.str("source", "");
@@ -154,6 +257,8 @@ GeometryCalibration parseCalibration(const XmlNode& block,
   cal.measurements = static_cast<int>(n);
   cal.residual_rms = block.number("residual_mm", 0.0) * kMm;
   if (cal.residual_rms < 0) block.fail("<calibration> residual_mm must be >= 0");
+  cal.model_error = block.number("model_error_mm", 0.0) * kMm;
+  if (cal.model_error < 0) block.fail("<calibration> model_error_mm must be >= 0");
   parseJointOrigins(block, joint_names, cal);
   for (const char* name : {"base", "tool"}) {
     if (const XmlNode* e = block.child(name)) {
@@ -161,6 +266,7 @@ GeometryCalibration parseCalibration(const XmlNode& block,
       (std::string(name) == "base" ? cal.base : cal.tool) = parseFrameError(*e);
     }
   }
+  if (const XmlNode* e = block.child("covariance")) parseCovariance(*e, cal);
   return cal;
 }
 
@@ -170,7 +276,9 @@ std::string calibrationXml(const GeometryCalibration& cal,
   std::string x = indent + "<calibration source=\"" + escapeXml(cal.source, '"') + "\"";
   if (!cal.date.empty()) x += " date=\"" + escapeXml(cal.date, '"') + "\"";
   x += " measurements=\"" + std::to_string(cal.measurements) + "\"";
-  x += " residual_mm=\"" + shortest(cal.residual_rms / kMm) + "\">\n";
+  x += " residual_mm=\"" + shortest(cal.residual_rms / kMm) + "\"";
+  if (cal.model_error > 0) x += " model_error_mm=\"" + shortest(cal.model_error / kMm) + "\"";
+  x += ">\n";
   if (stated(cal.base)) x += indent + "  <base" + frameErrorAttributes(cal.base) + "/>\n";
   for (size_t i = 0; i < 6; ++i) {
     if (!stated(cal.joints[i])) continue;
@@ -178,6 +286,7 @@ std::string calibrationXml(const GeometryCalibration& cal,
          frameErrorAttributes(cal.joints[i]) + "/>\n";
   }
   if (stated(cal.tool)) x += indent + "  <tool" + frameErrorAttributes(cal.tool) + "/>\n";
+  if (!cal.covariance_parameters.empty()) x += covarianceXml(cal, indent + "  ");
   return x + indent + "</calibration>\n";
 }
 

@@ -16,6 +16,7 @@
 /// FK_nom(q) is the same product without the E's. The controller moves by FK_nom (it knows only
 /// the nominal model); the robot's real TCP is FK_real of its (deflected) joint angles.
 
+#include <Eigen/Core>
 #include <array>
 #include <string>
 #include <vector>
@@ -51,8 +52,28 @@ struct GeometryCalibration {
   std::string date;
   int measurements{0};
   double residual_rms{0.0};  ///< m, RMS residual of the fit that produced the block
-  int line{0};               ///< line of the <calibration> element in the card (0: none)
+  /// m per axis: the scatter the fit's model leaves unexplained beyond the measurement σ (the
+  /// cross-validated residual's excess, fit_validation.hpp modelErrorFloor); 0: not stated.
+  double model_error{0.0};
+  /// The fit's posterior covariance of the components it estimated together, correlations
+  /// included (SI: m, rad), over `covariance_parameters` (calibrationComponent names). Empty:
+  /// not stated (the σ above are then taken as independent).
+  std::vector<std::string> covariance_parameters;
+  Eigen::MatrixXd covariance;
+  int line{0};  ///< line of the <calibration> element in the card (0: none)
 };
+
+/// Components of a calibration's covariance, by name (docs/cards.md §5), in the order of
+/// calibration_jacobian.hpp's columns:
+///   base_x base_y base_z base_rx base_ry base_rz   0..5    (FrameError base)
+///   jI_x … jI_rz (I = 1..6)                        6+6(I−1) .. (joint I's origin error)
+///   tip_x … tip_rz                                 42..47  (FrameError tool)
+/// x/y/z are m (mm in the card), r* are rad (mrad in the card). −1: an unknown name.
+/// A part registration estimated with the geometry is a base error to every hole (a rigid
+/// displacement of the part in the base frame): `verify --calibrate` states it as the base
+/// components.
+constexpr int kCalibrationComponents = 48;
+int calibrationComponent(const std::string& name);
 
 /// The real chain: each joint origin right-multiplied by its error, the base error folded into
 /// joint 1's origin (left-multiplied), the tip right-multiplied by the tool error. Inertials stay

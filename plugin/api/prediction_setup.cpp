@@ -86,7 +86,14 @@ AccuracyInputs accuracyFromCell(const CellSpec& cell, const RobotCard& card) {
                e->str("source") + ")";
   } else if (card.calibration) {
     a.kind = AccuracyInputs::Kind::kCalibrated;
-    a.source = "calibration σ through the FK Jacobian (" + card.calibration->source + ")";
+    a.source =
+        std::string(card.calibration->covariance_parameters.empty() ? "calibration σ (independent)"
+                                                                    : "calibration covariance") +
+        " through the FK Jacobian" +
+        (card.calibration->model_error > 0
+             ? " + model error " + numberText(card.calibration->model_error * 1e3) + " mm"
+             : std::string()) +
+        " (" + card.calibration->source + ")";
   } else if (card.accuracy_ap_mm > 0) {
     a.kind = AccuracyInputs::Kind::kDataSheet;
     a.u = card.accuracy_ap_mm * 1e-3 / kMaxwell95;

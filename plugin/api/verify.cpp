@@ -182,6 +182,32 @@ Pose measuredAxisFrame(const VerifyResult& r, const Pose& nominal, int k) {
   return T;
 }
 
+/// The commanded joints of the program's target a pose row names (its j1..j6 left empty): those
+/// the prediction of the program found for that target.
+Vec6 programTargetJoints(const VerifyResult& r, const postproc::MeasuredPose& q) {
+  const std::vector<HolePrediction>& holes = r.prediction.holes;
+  if (r.program_path.empty())
+    throw InputError(r.poses.path, q.line,
+                     "pose " + q.id +
+                         " has no joints (j1..j6 empty): give them, or the PROGRAM whose target "
+                         "it names");
+  for (size_t i = 0; i < holes.size(); ++i) {
+    if (holes[i].id != q.id) continue;
+    if (holes[i].status != HoleStatus::kOk)
+      throw InputError(
+          r.poses.path, q.line,
+          "pose " + q.id + " names " +
+              holeWhere(holes[i].id, r.prediction.context.job.requests[i].line, r.program_path) +
+              ", which has no predicted joints: " +
+              verdictAndReason(holes[i].verdict, holes[i].reason));
+    return holes[i].joints;
+  }
+  throw InputError(r.poses.path, q.line,
+                   "pose " + q.id + " has no joints (j1..j6 empty) and names no target of " +
+                       r.program_path +
+                       "; hint: give j1..j6, or the id of a target of the program");
+}
+
 /// A measured pose as an observation: the commanded joints from the controller's convention, the
 /// measured TCP in the base frame, gravity with the row's payload and applied wrench.
 IdentificationHole poseObservation(const VerifyResult& r, const postproc::MeasuredPose& q,
@@ -190,7 +216,8 @@ IdentificationHole poseObservation(const VerifyResult& r, const postproc::Measur
   IdentificationHole h;
   h.id = q.id;
   h.point = true;
-  h.theta_cmd = fromControllerJoints(c.robot.card, q.joints_deg * kDeg);
+  h.theta_cmd = q.program_target ? programTargetJoints(r, q)
+                                 : fromControllerJoints(c.robot.card, q.joints_deg * kDeg);
   h.T_W_hole = Pose::Identity();
   h.T_W_hole.linear() = c.cell.T_base_wobj.linear();  // residual axes: the workobject's
   h.p_W_measured = c.cell.T_base_wobj * (q.p_mm * 1e-3);
@@ -522,7 +549,10 @@ VerifyResult verifyJob(const std::string& cell_path, const std::string& program_
   r.calibrate = job.calibrate;
   if (job.calibrate)
     r.date = calibrationDate(job.date, job.measured.empty() ? job.poses : job.measured);
-  if (!program_path.empty()) {
+  if (!program_path.empty() && job.measured.empty()) {  // poses naming the program's targets
+    r.prediction = predictJob(cell_path, program_path, job.job, progress);
+    r.notes = r.prediction.context.job.notes;
+  } else if (!program_path.empty()) {
     readHoles(r, cell_path, program_path, job, progress);
   } else {
     if (!job.measured.empty())
@@ -591,6 +621,21 @@ Json verifySummaryJson(const VerifyResult& r, const std::vector<std::string>& wr
   return j;
 }
 
+namespace {
+
+/// The calibration's model error floor (modelErrorFloor): from the held-out residuals when the
+/// calibration was cross-validated, else from the fit's own (dof-inflated).
+double modelErrorFloor(const VerifyResult& r) {
+  if (r.validation) return roprec::modelErrorFloor(r.validation->calibrated, r.observations);
+  const IdentificationResult& id = *r.identification;
+  std::vector<double> norms;
+  for (const Eigen::VectorXd& e : id.residuals) norms.push_back(e.norm());
+  const double inflation = id.dof > 0 ? static_cast<double>(id.equations) / id.dof : 1.0;
+  return roprec::modelErrorFloor(norms, r.observations, inflation);
+}
+
+}  // namespace
+
 std::string calibratedCardText(const VerifyResult& r, const std::string& measured_file_name,
                                const std::string& card_out_path) {
   if (!r.identification) throw UsageError("no identification: ask for calibration");
@@ -612,6 +657,7 @@ std::string calibratedCardText(const VerifyResult& r, const std::string& measure
         ")";
     g.date = r.date;
     g.residual_rms = r.identification->rms_final;
+    g.model_error = modelErrorFloor(r);
     g.measurements = r.identification->holes;
     std::array<std::string, 6> names;
     for (size_t i = 0; i < 6; ++i) names[i] = card.joints[i].name;

@@ -166,8 +166,11 @@ int run(Args& args, CommandContext& ctx) {
   if (!measured && !poses)
     throw UsageError("give --measured MEASURED (CSV, PC-DMIS CSV or DMIS) and/or --poses POSES");
   if (measured && pos.size() != 1) throw UsageError("give exactly one PROGRAM file");
-  if (!measured && !pos.empty())
-    throw UsageError("a PROGRAM needs --measured (the holes measured on the part it drilled)");
+  if (pos.size() > 1) throw UsageError("give at most one PROGRAM file");
+  if (!measured && !pos.empty() && !poses)
+    throw UsageError(
+        "a PROGRAM needs --measured (the holes measured on the part it drilled) or "
+        "--poses (tracker poses of its targets)");
   if (measured) job.measured = *measured;
   if (poses) job.poses = *poses;
   job.calibrate = card_out.has_value();
@@ -243,7 +246,7 @@ int run(Args& args, CommandContext& ctx) {
 const CommandRegistration reg{
     {"verify", "measured holes (CMM) vs prediction; registration, re-identified robot card",
      "usage: roprec verify --cell CELL.xml PROGRAM --measured MEASURED [--holes HOLES.csv]\n"
-     "                     [--poses POSES.csv]  |  roprec verify --cell CELL.xml --poses "
+     "                     [--poses POSES.csv]  |  roprec verify --cell CELL.xml [PROGRAM] --poses "
      "POSES.csv\n"
      "                     [--json OUT.json] [--report OUT.html] [--calibrate NEW_CARD.xml]\n"
      "                     [--register none|translation|rigid] [--identify-tool] [--u-meas UM]\n"
@@ -260,8 +263,9 @@ const CommandRegistration reg{
      "none).\n"
      "POSES (laser tracker / CMM): CSV id,j1..j6 (commanded, controller convention, deg),x,y,z\n"
      "(measured TCP, workobject mm)[,rx,ry,rz][,mass,com_x,com_y,com_z][,fx,fy,fz,mx,my,mz][,u]\n"
-     "(docs/verification.md); each pose gives 3 equations and joins the holes in the fit; without\n"
-     "a PROGRAM the cell calibrates from poses alone.\n"
+     "(docs/verification.md); j1..j6 left empty: the pose is PROGRAM's target of that id (its\n"
+     "predicted command joints). Each pose gives 3 equations and joins the holes in the fit;\n"
+     "without measured holes the cell calibrates from poses alone.\n"
      "Holes are matched by id; unknown ids and unmeasured holes are notes. --holes: the program's\n"
      "hole list (ids, nominal positions and axes); give it to verify a compensated program "
      "against\n"

@@ -559,12 +559,20 @@ py::dict verify(const std::string& cell, const std::string& program, const std::
                 const std::optional<std::string>& holes, const std::string& registration,
                 const std::optional<std::string>& calibrate,
                 const std::optional<std::string>& json_out,
-                const std::optional<std::string>& write_cell) {
+                const std::optional<std::string>& write_cell, const std::string& identify,
+                const std::optional<std::string>& date, int folds) {
   api::VerifyJob job;
   job.measured = measured;
   job.job.holes = holes;
   job.registration = host::registration(registration);
   job.calibrate = calibrate.has_value();
+  const auto set = identifySetFromName(identify);
+  if (!set || *set == IdentifySet::kNone)
+    throw UsageError("identify must be stiffness, geometry or all, not '" + identify + "'");
+  job.identify = *set;
+  if (date) job.date = *date;
+  if (folds < 0 || folds > 100) throw UsageError("folds must lie in 0..100");
+  job.folds = folds;
   std::string json;
   std::string summary;
   std::string problems;
@@ -794,7 +802,8 @@ PYBIND11_MODULE(_roprec, m) {
   m.def("_verify", &verify, py::arg("cell"), py::arg("program"), py::arg("measured"),
         py::arg("holes") = py::none(), py::arg("register") = "none",
         py::arg("calibrate") = py::none(), py::arg("json_out") = py::none(),
-        py::arg("write_cell") = py::none(), "Internal: see roprec.verify.");
+        py::arg("write_cell") = py::none(), py::arg("identify") = "all",
+        py::arg("date") = py::none(), py::arg("folds") = 5, "Internal: see roprec.verify.");
   m.def("_plan_test", &planTest, py::arg("cell"), py::arg("region"), py::arg("count"),
         py::arg("out"), "Internal: see roprec.plan_test.");
 }

@@ -202,7 +202,7 @@ def compensate(cell, program, out, orientation="keep", targets=None, holes=None,
 
 
 def verify(cell, program, measured, holes=None, register="none", calibrate=None, json_out=None,
-           write_cell=None):
+           write_cell=None, identify="all", date=None, folds=5):
     """Measured holes against the prediction: ``roprec verify --cell CELL PROGRAM --measured M ...``.
 
     Args:
@@ -222,6 +222,12 @@ def verify(cell, program, measured, holes=None, register="none", calibrate=None,
         write_cell: optional path: the cell with its workobject at the registered part and its
             robot = the new card (``--write-cell``; needs ``register`` or ``calibrate``).
         json_out: optional path: the verification JSON, byte for byte ``roprec verify --json``.
+        identify: "all" (default: every parameter the measurements make observable), "stiffness"
+            or "geometry": what the calibration may move (``--identify``).
+        date: the written calibration's date, ``YYYY-MM-DD`` (``--date``); None: the rule of
+            docs/cards.md (SOURCE_DATE_EPOCH, else the measured file's day).
+        folds: k of the held-out validation, 0..100 (``--folds``; 0: none, the card is written
+            unchecked).
 
     Returns:
         dict: the verification JSON document (µm, µrad, mm) — ``measured`` (file, format, holes,
@@ -242,7 +248,8 @@ def verify(cell, program, measured, holes=None, register="none", calibrate=None,
                         None if holes is None else str(holes), str(register),
                         None if calibrate is None else str(calibrate),
                         None if json_out is None else str(json_out),
-                        None if write_cell is None else str(write_cell))
+                        None if write_cell is None else str(write_cell), str(identify),
+                        None if date is None else str(date), int(folds))
     result = _json.loads(r["json"])
     result["written"] = _json.loads(r["summary_json"])["written"]
     if r["problems"]:
