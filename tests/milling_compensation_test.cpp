@@ -237,5 +237,51 @@ TEST(MillingCompensation, TargetsExportFollowsTheExtension) {
   EXPECT_EQ(rows, t["points"].size());
 }
 
+// Engagement from the program (box stock): samples/milling/box_passes.src in the block y ≥ 3 mm,
+// z ≤ 0 of box-stock-7075.xml. Closed forms (tool D 10 at y_c, material y ≥ y_wall): pass 1 (y 0,
+// z −5) ae = 0 + 5 − 3 = 2, ap = 5; pass 2 (y 2) cuts what pass 1 left, y ≥ 5: ae = 2; pass 3 (y 2,
+// z −10) the column 3 ≤ y ≤ 7 below pass 1–2's floor: ae = 4, ap = 5. Points in the box's middle
+// (x −20 … 60, clear of the entry) are checked to the tracker's resolution (D/200); before the box
+// nothing is engaged; every engaged point is coupled with its own ae/ap (the force grows with ae:
+// pass 3 > pass 1).
+TEST(MillingCompensation, EngagementFromTheBoxStockAndTheEarlierPasses) {
+  const std::string cell = test::sourceDir() + "/samples/milling/box-stock-7075.xml";
+  const std::string prog = test::sourceDir() + "/samples/milling/box_passes.src";
+  const api::MillingCompensationResult r = api::compensateMillingJob(cell, prog);
+  struct Pass {
+    double y, z, ae, ap;
+  };
+  const Pass passes[] = {
+      {0, -5e-3, 2e-3, 5e-3}, {2e-3, -5e-3, 2e-3, 5e-3}, {2e-3, -10e-3, 4e-3, 5e-3}};
+  const Pose T_wobj_W = r.context.cell.T_base_wobj.inverse();
+  int checked[3] = {0, 0, 0};
+  double force[3] = {0, 0, 0};
+  bool before_box = false;
+  for (size_t i = 0; i < r.points.size(); ++i) {
+    const Vec3 x = T_wobj_W * r.points[i].translation();
+    const CuttingDecision& d = r.cutting[i];
+    const PathPointCompensation& p = r.points_comp[i];
+    for (int k = 0; k < 3; ++k) {
+      if (std::abs(x.y() - passes[k].y) > 1e-6 || std::abs(x.z() - passes[k].z) > 1e-6) continue;
+      if (x.x() >= -20e-3 && x.x() <= 60e-3) {
+        ASSERT_TRUE(d.cutting) << i << ": " << d.reason;
+        ASSERT_TRUE(d.engagement.has_value());
+        EXPECT_NEAR(d.engagement->ae, passes[k].ae, 10e-3 / 200) << "pass " << k + 1;
+        EXPECT_NEAR(d.engagement->ap, passes[k].ap, 1e-9) << "pass " << k + 1;
+        EXPECT_NEAR(p.ae, d.engagement->ae, 1e-15);
+        EXPECT_TRUE(p.ok) << p.reason;
+        force[k] = p.before_force.head<2>().norm();
+        ++checked[k];
+      }
+      // before the box (x −45: the leading half reaches x −40 only at the wall side's
+      // centre line, where y < 3) nothing is engaged: not cutting, unlike a plane stock
+      if (k == 0 && std::abs(x.x() + 45e-3) < 1e-6) before_box = !d.cutting;
+    }
+  }
+  for (int k = 0; k < 3; ++k) EXPECT_GE(checked[k], 15) << "pass " << k + 1;
+  EXPECT_GT(force[2], force[0]);
+  EXPECT_TRUE(before_box);
+}
+
 }  // namespace
 }  // namespace roprec

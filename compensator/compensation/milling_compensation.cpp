@@ -42,20 +42,75 @@ bool sameModes(const ModalModel& a, const ModalModel& b) {
   return true;
 }
 
-/// The zero-order stability limit at θ_d (robot modes there and the tool mode) into `p`.
-void checkStability(const PredictionModel& m, const StabilityCut& cut, StabilityCache& cache,
-                    PathPointCompensation& p) {
+/// The cell's model with the engagement's ae and ap (the slices and helix lags follow ap).
+MillingModel engagedModel(const MillingModel& cell, const MillingEngagement& e) {
+  MillingCut cut = cell.cut;
+  cut.ae = e.ae;
+  cut.ap = e.ap;
+  MillingModel m = makeMillingModel(cell.tool, cut, cell.coeff, cell.angle_steps, cell.slices);
+  m.mean_law = cell.mean_law;
+  return m;
+}
+
+/// The robot's modes at θ_d and the spindle/tool mode; none when the pose has no modes.
+std::optional<ModalModel> pointModes(const PredictionModel& m, PathPointCompensation& p) {
   const MillingSpec& s = m.process.milling;
   ModalModel dyn;
   try {
     dyn = robotModes(m.model, m.compliance, p.theta_d, s.robot_damping_ratio);
   } catch (const std::runtime_error&) {
-    return;  // no modes at this pose: not checked
+    return std::nullopt;  // no modes at this pose: not checked
   }
   if (!dyn.modes.empty()) p.first_mode_hz = dyn.modes.front().omega / (2 * kPi);
   addToolMode(dyn, s.tool_mode);
+  return dyn;
+}
+
+/// The last resolved revolution along the path and the cut and modes it was computed with.
+struct EdgeCache {
+  ModalModel modes;
+  double fz{0}, ae{0}, ap{0};
+  EdgeRevolution nominal, corrected;
+  bool valid{false};
+};
+
+/// The revolution resolved by edge angle at the point's coupled cut into `p`.
+void resolveEdges(const MillingModel& mm, const ModalModel& dyn, const CouplingResult& c,
+                  EdgeCache& cache, PathPointCompensation& p) {
+  const bool same = cache.valid && sameModes(dyn, cache.modes) &&
+                    std::abs(c.fz_effective - cache.fz) <= kEdgeReuseTolerance &&
+                    std::abs(c.ae_effective - cache.ae) <= kEdgeReuseTolerance &&
+                    std::abs(c.ap_effective - cache.ap) <= kEdgeReuseTolerance;
+  if (!same) {
+    if (!cache.valid)
+      cache.nominal = edgeRevolution(mm, ModalModel{}, mm.cut.fz, mm.cut.ae, mm.cut.ap);
+    cache.corrected = edgeRevolution(mm, dyn, c.fz_effective, c.ae_effective, c.ap_effective);
+    cache.modes = dyn;
+    cache.fz = c.fz_effective;
+    cache.ae = c.ae_effective;
+    cache.ap = c.ap_effective;
+    cache.valid = true;
+  }
+  const EdgeRevolution& r = cache.corrected;
+  p.edges_checked = true;
+  p.edges_converged = r.converged;
+  p.tooth_feed = r.tooth_feed;
+  p.peak_xy_nominal = cache.nominal.peak_xy;
+  p.peak_xy = r.peak_xy;
+  Vec3 lo = Vec3::Constant(1e300);
+  Vec3 hi = Vec3::Constant(-1e300);
+  for (const Vec3& x : r.vibration) {
+    lo = lo.cwiseMin(x);
+    hi = hi.cwiseMax(x);
+  }
+  p.vibration_pp = r.vibration.empty() ? Vec3::Zero() : Vec3(hi - lo);
+}
+
+/// The zero-order stability limit with the modes `dyn` into `p`.
+void checkStability(const ModalModel& dyn, const StabilityCut& cut, double spindle_rpm,
+                    StabilityCache& cache, PathPointCompensation& p) {
   if (!cache.valid || !sameModes(dyn, cache.modes)) {
-    cache.limit = limitingDepth(dyn, cut, s.cut.spindle_rpm);
+    cache.limit = limitingDepth(dyn, cut, spindle_rpm);
     cache.modes = dyn;
     cache.valid = true;
   }
@@ -74,6 +129,36 @@ Vec6 uncompensatedCommand(const PredictionModel& m, const Pose& T_W_tcp, const V
       solveIkNear(m.ik, T_W_tcp * n.T_L6_tcp.inverse() * n.T_L6_flange, theta_d);
   return ik.converged ? ik.q : theta_d;
 }
+
+CuttingDecision decision(bool cutting, std::string reason,
+                         std::optional<MillingEngagement> engagement = std::nullopt) {
+  CuttingDecision c;
+  c.cutting = cutting;
+  c.reason = std::move(reason);
+  c.engagement = engagement;
+  return c;
+}
+
+/// The decision of a non-rapid move a → b with a box stock (milling_engagement.hpp).
+CuttingDecision engagedDecision(EngagementTracker& tracker, const std::optional<Vec3>& a,
+                                const Vec3& b) {
+  CuttingDecision c;
+  if (!a) {
+    c = decision(false, "first point of a feed chain: no move into it (box stock)", std::nullopt);
+    return c;
+  }
+  const MillingEngagement e = tracker.cut(*a, b);
+  if (!e.cuts()) {
+    c = decision(false, "the move engages no material (box stock and the earlier passes)", e);
+    return c;
+  }
+  c = decision(
+      true,
+      "engaged: ae " + mm(e.ae) + " mm, ap " + mm(e.ap) + " mm (box stock and the earlier passes)",
+      e);
+  return c;
+}
+
 }  // namespace
 
 std::vector<CuttingDecision> decideCutting(const MillingSpec& s, const Pose& T_W_wobj,
@@ -82,33 +167,50 @@ std::vector<CuttingDecision> decideCutting(const MillingSpec& s, const Pose& T_W
   const double v_max = kRapidSpeedFactor * vf;
   const Pose T_wobj_W = T_W_wobj.inverse();
   std::optional<double> z_ref;  // tool height at the first non-rapid point (no <stock>)
+  std::optional<EngagementTracker> tracker;  // a box stock: the engagement of every move
+  if (s.stock_box_min && s.stock_box_max) {
+    StockShape stock;
+    stock.top_z = s.stock_box_max->z();
+    stock.box_min = s.stock_box_min;
+    stock.box_max = s.stock_box_max;
+    tracker.emplace(stock, s.tool.diameter);
+  }
+  std::optional<Vec3> prev_tip;
   std::vector<CuttingDecision> out(points.size());
   for (size_t i = 0; i < points.size(); ++i) {
     const MillingPathPoint& p = points[i];
     CuttingDecision& c = out[i];
-    const double z = (T_wobj_W * p.T_W_tcp).translation().z();
+    const Vec3 tip = (T_wobj_W * p.T_W_tcp).translation();
+    const double z = tip.z();
     if (p.speed > v_max) {
-      c = {false, "rapid: programmed " + fmt(p.speed * 1e3, 1) + " mm/s > " +
-                      fmt(kRapidSpeedFactor, 2) + " x feed speed " + fmt(vf * 1e3, 1) + " mm/s"};
+      prev_tip.reset();  // a rapid move removes nothing (and breaks the chain of moves)
+      c = decision(false, "rapid: programmed " + fmt(p.speed * 1e3, 1) + " mm/s > " +
+                              fmt(kRapidSpeedFactor, 2) + " x feed speed " + fmt(vf * 1e3, 1) +
+                              " mm/s");
+      continue;
+    }
+    if (tracker) {
+      c = engagedDecision(*tracker, prev_tip, tip);
+      prev_tip = tip;
       continue;
     }
     if (s.stock_top_z) {
       const double depth = *s.stock_top_z - z;
       if (depth >= s.cut.ap - kDepthTolerance) {
-        c = {true, "feed move at depth " + mm(depth) + " mm below the stock top (ap " +
-                       mm(s.cut.ap) + " mm)"};
+        c = decision(true, "feed move at depth " + mm(depth) + " mm below the stock top (ap " +
+                               mm(s.cut.ap) + " mm)");
       } else {
-        c = {false, depth <= 0 ? "above the stock top by " + mm(-depth) + " mm"
-                               : "depth " + mm(depth) + " mm < ap " + mm(s.cut.ap) +
-                                     " mm: not at the cutting depth"};
+        c = decision(false, depth <= 0 ? "above the stock top by " + mm(-depth) + " mm"
+                                       : "depth " + mm(depth) + " mm < ap " + mm(s.cut.ap) +
+                                             " mm: not at the cutting depth");
       }
       continue;
     }
     if (!z_ref) z_ref = z;
     if (std::abs(z - *z_ref) <= kDepthTolerance) {
-      c = {true, "feed move at the depth of the first feed move"};
+      c = decision(true, "feed move at the depth of the first feed move");
     } else {
-      c = {false, "tool " + mm(z - *z_ref) + " mm from the depth of the first feed move"};
+      c = decision(false, "tool " + mm(z - *z_ref) + " mm from the depth of the first feed move");
     }
   }
   return out;
@@ -124,7 +226,12 @@ std::vector<PathPointCompensation> compensateMillingPath(
   const StabilityCut stability_cut = stabilityCutOf(mm);
   const Mat3 C_tool = toolStaticCompliance(m.process.milling.tool_mode);
   StabilityCache stability_cache;
-  const Vec3 F_nom = millingMeanForce(mm, m.process.milling.cut.fz, m.process.milling.cut.ae);
+  EdgeCache edge_cache;
+  // the cut at the point: the cell's, or the engagement's ae/ap (box stock), with its stability
+  // cut and nominal force; rebuilt (and the caches dropped) when the engagement changes
+  MillingModel pm = mm;
+  StabilityCut pm_stability = stability_cut;
+  Vec3 F_nom = millingMeanForce(mm, mm.cut.fz, mm.cut.ae);
   CouplingOptions copt = m.process.milling.coupling;
   PredictionData d(m);
   std::vector<PathPointCompensation> out(points.size());
@@ -134,9 +241,20 @@ std::vector<PathPointCompensation> compensateMillingPath(
   for (size_t i = 0; i < points.size(); ++i) {
     PathPointCompensation& p = out[i];
     if (cutting != nullptr && i < cutting->size()) {
-      p.cutting = (*cutting)[i].cutting;
-      p.cutting_reason = (*cutting)[i].reason;
+      const CuttingDecision& cd = (*cutting)[i];
+      p.cutting = cd.cutting;
+      p.cutting_reason = cd.reason;
+      if (cd.cutting && cd.engagement &&
+          (cd.engagement->ae != pm.cut.ae || cd.engagement->ap != pm.cut.ap)) {
+        pm = engagedModel(mm, *cd.engagement);
+        pm_stability = stabilityCutOf(pm);
+        F_nom = millingMeanForce(pm, pm.cut.fz, pm.cut.ae);
+        stability_cache.valid = false;
+        edge_cache.valid = false;
+      }
     }
+    p.ae = pm.cut.ae;
+    p.ap = pm.cut.ap;
     // 1. IK of the real robot with continuity (realIk: FK_real(θ_d) = the path point)
     const Pose T_flange = points[i] * m.model.T_L6_tcp.inverse() * m.model.T_L6_flange;
     const Vec6 seed = prev ? *prev : m.reference_pose;
@@ -174,7 +292,7 @@ std::vector<PathPointCompensation> compensateMillingPath(
     Vec3 F_before = Vec3::Zero();
     if (p.cutting) {
       const CouplingResult cb = coupleMillingPoint(
-          mm,
+          pm,
           withToolCompliance(robotMillingCompliance(m.model, m.compliance, p.theta_d, m.gravity),
                              C_tool),
           before_state, copt);
@@ -185,7 +303,10 @@ std::vector<PathPointCompensation> compensateMillingPath(
       p.before_residual = cb.residual;
       p.before_loop_gain = cb.loop_gain;
       p.before_force = cb.force;
-      checkStability(m, stability_cut, stability_cache, p);
+      if (const std::optional<ModalModel> dyn = pointModes(m, p)) {
+        checkStability(*dyn, pm_stability, m.process.milling.cut.spindle_rpm, stability_cache, p);
+        resolveEdges(pm, *dyn, cb, edge_cache, p);
+      }
     } else {
       before_state = CouplingState{};  // the tool left the material
       p.before_status = "not_cutting";
@@ -237,7 +358,7 @@ std::vector<PathPointCompensation> compensateMillingPath(
         return millToTool(R.transpose() * (dg.T_real.translation() - points[i].translation())) +
                C_tool * G;
       };
-      ca = coupleMillingPoint(mm, residualCompliance, after_state, copt);
+      ca = coupleMillingPoint(pm, residualCompliance, after_state, copt);
       const double change = (ca.force - F).norm();
       F = ca.force;
       if (!ca.converged) break;

@@ -19,13 +19,19 @@
 ///      (unknown speed: not decided by speed);
 ///   2. the tool is at the cutting depth: with <stock top_z_mm>, depth = top_z − z_tcp (workobject
 ///      frame) ≥ ap − kDepthTolerance; without it, |z_tcp − z_ref| ≤ kDepthTolerance where z_ref is
-///      the tool height at the first non-rapid linear point.
+///      the tool height at the first non-rapid linear point. With a box stock (<stock box_min_mm
+///      box_max_mm>) instead: the move ending at the point engages material of the box not removed
+///      by the program's earlier moves (milling_engagement.hpp), and that point is coupled with its
+///      own ae and ap (the cell's ae/ap are then only the nominal of the report).
 /// A non-cutting point is compensated for gravity and the tool weight only (force 0) and resets
 /// the coupling's memory (the tool left the material).
 #include <string>
 #include <vector>
 
+#include <optional>
+
 #include "compensator/precision/prediction.hpp"
+#include "compensator/process/milling_engagement.hpp"
 
 namespace roprec {
 
@@ -33,6 +39,9 @@ namespace roprec {
 constexpr double kRapidSpeedFactor = 1.5;
 /// "At the cutting depth" tolerance [m].
 constexpr double kDepthTolerance = 0.1e-3;
+/// A path point reuses the previous point's resolved revolution while its fz_eff, ae_eff and
+/// ap_eff are within this of those it was computed with [m] (and the modes within 0.5 %).
+constexpr double kEdgeReuseTolerance = 0.1e-6;
 
 struct MillingPathPoint {
   Pose T_W_tcp{Pose::Identity()};  ///< nominal TCP, base frame
@@ -41,6 +50,9 @@ struct MillingPathPoint {
 struct CuttingDecision {
   bool cutting{true};
   std::string reason;  ///< why (speeds in mm/s, depths in mm)
+  /// With a box stock: the engagement of the move ending at the point (milling_engagement.hpp);
+  /// the point cuts when the move is not rapid and engages material (rule 2 is replaced).
+  std::optional<MillingEngagement> engagement;
 };
 /// The cutting decision of every point (rules above). `T_W_wobj`: the cell's workobject.
 std::vector<CuttingDecision> decideCutting(const MillingSpec& s, const Pose& T_W_wobj,
@@ -51,6 +63,7 @@ struct PathPointCompensation {
   std::string reason;
   bool cutting{true};
   std::string cutting_reason;
+  double ae{0}, ap{0};  ///< the engagement the point was coupled with [m] (cutting points)
   Vec6 theta_d{Vec6::Zero()};
   Vec6 theta_cmd{Vec6::Zero()};
   Pose T_programmed{Pose::Identity()};
@@ -79,8 +92,20 @@ struct PathPointCompensation {
   double ap_limit{0};             ///< limiting axial depth [m] (when bounded)
   double chatter_hz{0};           ///< chatter frequency at the limit [Hz]
   double first_mode_hz{0};        ///< the robot's first natural frequency at θ_d [Hz]
-  [[nodiscard]] bool unstable(double ap) const {
-    return stability_checked && stability_bounded && ap_limit <= ap;
+  /// The revolution resolved by edge angle at the uncompensated coupled cut (fz_eff, ae_eff,
+  /// ap_eff of the "before" solve; milling.hpp edgeRevolution with the robot's modes at θ_d and
+  /// the spindle/tool mode, 120 samples per tooth): each edge cuts what the previous edges left
+  /// while the tool vibrates. Reused from the previous point while the modes stay within 0.5 %
+  /// (as the stability) and fz_eff, ae_eff, ap_eff within kEdgeReuseTolerance of those it was
+  /// computed with.
+  bool edges_checked{false};
+  bool edges_converged{false};
+  std::vector<double> tooth_feed;   ///< chip-area feed per tooth [m]
+  double peak_xy_nominal{0};        ///< rigid tool at the programmed cut [N]
+  double peak_xy{0};                ///< at the coupled cut, vibrating tool [N]
+  Vec3 vibration_pp{Vec3::Zero()};  ///< per axis max − min of the vibration [m]
+  [[nodiscard]] bool unstable(double depth) const {
+    return stability_checked && stability_bounded && ap_limit <= depth;
   }
 };
 

@@ -4,6 +4,7 @@
 #include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <exception>
 
 #include "compensator/support/quadrature.hpp"
@@ -436,41 +437,176 @@ CouplingResult coupleMillingPoint(const MillingModel& m, const ComplianceFunctio
   return r;
 }
 
+namespace {
+
+/// The receptance at the harmonics k = 1..kmax of the spindle frequency (k = 0 unused).
+std::vector<Mat3c> harmonicReceptances(const ModalModel& dyn, double spindle_rpm, size_t kmax) {
+  std::vector<Mat3c> H(kmax + 1, Mat3c::Zero());
+  const double Omega = 2 * kPi * spindle_rpm / 60.0;
+  for (size_t k = 1; k <= kmax && !dyn.modes.empty(); ++k)
+    H[k] = receptance(dyn, static_cast<double>(k) * Omega);
+  return H;
+}
+
+/// x_dyn from the force samples through the harmonic receptances (milling_dynamics.hpp
+/// periodicResponse, with the receptances computed once).
+void harmonicResponse(const std::vector<Mat3c>& H, const std::vector<std::complex<double>>& rot,
+                      const std::vector<Vec3>& force, std::vector<Vec3>& x) {
+  const size_t N = force.size();
+  std::fill(x.begin(), x.end(), Vec3::Zero());
+  for (size_t k = 1; k < H.size(); ++k) {
+    if (H[k].isZero()) continue;
+    Eigen::Vector3cd Fk = Eigen::Vector3cd::Zero();
+    for (size_t n = 0; n < N; ++n) Fk += force[n].cast<std::complex<double>>() * rot[(k * n) % N];
+    Fk /= static_cast<double>(N);
+    const Eigen::Vector3cd Xk = H[k] * Fk;
+    for (size_t n = 0; n < N; ++n) x[n] += 2.0 * (Xk * std::conj(rot[(k * n) % N])).real();
+  }
+}
+
+/// One pass over the revolution: the forces under the vibration x (see edgeRevolution), and,
+/// when `out` is given, the per-tooth chips.
+struct EdgeCut {
+  double fz, ae, ap;
+  int per;  ///< samples per tooth
+};
+void edgeForces(const MillingModel& m, const EdgeCut& c, const std::vector<Vec3>& x,
+                std::vector<Vec3>& F, EdgeRevolution* out) {
+  const int Nt = m.tool.teeth;
+  const int N = static_cast<int>(x.size());
+  const double e = 1.0 - m.coeff.mc;
+  const Vec3 wall = wallNormal(m.cut.mode);
+  std::vector<double> area(static_cast<size_t>(Nt), 0.0);
+  std::vector<double> norm(static_cast<size_t>(Nt), 0.0);
+  for (int n = 0; n < N; ++n) {
+    const double angle = 2 * kPi * n / N;
+    const Vec3& xn = x[static_cast<size_t>(n)];
+    const double ae_t = m.cut.mode == MillingMode::kSlot ? c.ae : c.ae + xn.dot(wall);
+    const ImmersionAngles arc = immersionAngles(m.tool.diameter, ae_t, m.cut.mode);
+    const ImmersionAngles static_arc = immersionAngles(m.tool.diameter, c.ae, m.cut.mode);
+    const double dz = std::max(0.0, c.ap - xn.z()) / m.slices;
+    Vec3 Fn = Vec3::Zero();
+    for (int j = 0; j < Nt && ae_t > 0; ++j) {
+      const double R_j = m.tooth_radius[static_cast<size_t>(j)];
+      for (int s = 0; s < m.slices; ++s) {
+        const double phi = angle + j * 2 * kPi / Nt - m.slice_lag[static_cast<size_t>(s)];
+        const double sn = std::sin(phi);
+        if (out != nullptr && inArc(phi, static_arc)) norm[static_cast<size_t>(j)] += sn;
+        if (!inArc(phi, arc)) continue;
+        const double cs = std::cos(phi);
+        double h = 1e300;
+        for (int k = 1; k <= Nt; ++k) {
+          const Vec3& xp = x[static_cast<size_t>(((n - k * c.per) % N + N) % N)];
+          const double R_prev = m.tooth_radius[static_cast<size_t>(((j - k) % Nt + Nt) % Nt)];
+          h = std::min(
+              h, k * c.fz * sn + (R_j - R_prev) + (xn.x() - xp.x()) * sn + (xn.y() - xp.y()) * cs);
+        }
+        h = std::max(0.0, h);
+        if (out != nullptr) {
+          area[static_cast<size_t>(j)] += h;
+          out->max_chip[static_cast<size_t>(j)] =
+              std::max(out->max_chip[static_cast<size_t>(j)], h);
+        }
+        if (h < m.coeff.h_min) continue;
+        const double dFt = m.coeff.kc11 * dz * kH0 * std::pow(h / kH0, e);
+        const double dFr = m.coeff.radial_ratio * dFt;
+        Fn += Vec3(-dFt * cs - dFr * sn, dFt * sn - dFr * cs, -m.coeff.axial_ratio * dFt);
+      }
+    }
+    F[static_cast<size_t>(n)] = Fn;
+  }
+  if (out == nullptr) return;
+  for (int j = 0; j < Nt; ++j) {
+    const size_t u = static_cast<size_t>(j);
+    out->tooth_feed[u] = norm[u] > 0 ? area[u] / norm[u] : 0.0;
+  }
+}
+
+}  // namespace
+
+EdgeRevolution edgeRevolution(const MillingModel& m, const ModalModel& dynamics, double fz,
+                              double ae, double ap, const EdgeRevolutionOptions& o) {
+  const int Nt = m.tool.teeth;
+  const EdgeCut c{std::max(0.0, fz), std::clamp(ae, 0.0, m.tool.diameter), std::max(0.0, ap),
+                  std::max(2, o.samples_per_tooth)};
+  const size_t N = static_cast<size_t>(Nt * c.per);
+  EdgeRevolution r;
+  r.angle.resize(N);
+  for (size_t n = 0; n < N; ++n) r.angle[n] = 2 * kPi * static_cast<double>(n) / N;
+  r.force.assign(N, Vec3::Zero());
+  r.vibration.assign(N, Vec3::Zero());
+  r.tooth_feed.assign(static_cast<size_t>(Nt), 0.0);
+  r.max_chip.assign(static_cast<size_t>(Nt), 0.0);
+  const std::vector<Mat3c> H = harmonicReceptances(dynamics, m.cut.spindle_rpm, (N - 1) / 2);
+  std::vector<std::complex<double>> rot(N);  // e^{−i 2π n/N}
+  for (size_t n = 0; n < N; ++n)
+    rot[n] = std::polar(1.0, -2 * kPi * static_cast<double>(n) / static_cast<double>(N));
+  std::vector<Vec3> next(N, Vec3::Zero());
+  double omega = std::clamp(o.relaxation, 1.0 / 64, 1.0);
+  double last = 1e300;
+  r.converged = dynamics.modes.empty();
+  for (int it = 1; !r.converged && it <= o.max_iterations; ++it) {
+    edgeForces(m, c, r.vibration, r.force, nullptr);
+    harmonicResponse(H, rot, r.force, next);
+    double update = 0;
+    for (size_t n = 0; n < N; ++n) update = std::max(update, (next[n] - r.vibration[n]).norm());
+    if (!std::isfinite(update)) break;
+    if (update > last) omega = std::max(omega * 0.5, 1.0 / 64);
+    last = update;
+    r.iterations = it;
+    r.update = update;
+    if (update <= o.tolerance) {
+      r.vibration = next;
+      r.converged = true;
+      break;
+    }
+    for (size_t n = 0; n < N; ++n) r.vibration[n] += omega * (next[n] - r.vibration[n]);
+  }
+  if (!r.converged) {
+    // no periodic cut (past the chatter limit, or not settled): the vibration of the last
+    // iterate, bounded; the caller reports the status
+    for (Vec3& v : r.vibration)
+      if (!v.allFinite()) v = Vec3::Zero();
+  }
+  edgeForces(m, c, r.vibration, r.force, &r);
+  for (const Vec3& F : r.force) {
+    r.mean += F;
+    r.peak_xy = std::max(r.peak_xy, F.head<2>().norm());
+  }
+  r.mean /= static_cast<double>(N);
+  return r;
+}
+
 CorrectedRevolution correctedRevolution(const MillingModel& m, const ModalModel& dynamics,
                                         const CouplingResult& point) {
   CorrectedRevolution out;
-  const MillingProfile nominal = millingForceProfile(m);
-  MillingModel mc = m;
-  mc.cut.fz = std::max(0.0, point.fz_effective);
-  mc.cut.ae = std::clamp(point.ae_effective, 0.0, m.tool.diameter);
-  mc.cut.ap = std::max(0.0, point.ap_effective);
-  mc.slice_height = mc.cut.ap / mc.slices;
-  const MillingProfile corrected =
-      mc.cut.fz > 0 && mc.cut.ae > 0 && mc.cut.ap > 0 ? millingForceProfile(mc) : MillingProfile{};
-  std::vector<Vec3> force(nominal.samples.size(), Vec3::Zero());
-  for (size_t i = 0; i < corrected.samples.size() && i < force.size(); ++i)
-    force[i] = corrected.samples[i].force;
-  const std::vector<Vec3> x = periodicResponse(dynamics, force, m.cut.spindle_rpm);
+  EdgeRevolutionOptions o;
+  o.samples_per_tooth = (m.angle_steps + m.tool.teeth - 1) / m.tool.teeth;
+  out.nominal_edges = edgeRevolution(m, ModalModel{}, m.cut.fz, m.cut.ae, m.cut.ap, o);
+  out.corrected_edges =
+      edgeRevolution(m, dynamics, point.fz_effective, point.ae_effective, point.ap_effective, o);
+  const EdgeRevolution& nom = out.nominal_edges;
+  const EdgeRevolution& cor = out.corrected_edges;
   double lo = 1e300;
   double hi = 0;
   Vec3 xlo = Vec3::Constant(1e300);
   Vec3 xhi = Vec3::Constant(-1e300);
-  for (size_t i = 0; i < nominal.samples.size(); ++i) {
+  for (size_t i = 0; i < nom.angle.size(); ++i) {
     CorrectedSample s;
-    s.angle = nominal.samples[i].angle;
-    s.nominal = nominal.samples[i].force;
-    s.corrected = force[i];
-    s.tcp_movement = point.delta + x[i];
+    s.angle = nom.angle[i];
+    s.nominal = nom.force[i];
+    s.corrected = cor.force[i];
+    s.tcp_movement = point.delta + cor.vibration[i];
     lo = std::min(lo, s.tcp_movement.norm());
     hi = std::max(hi, s.tcp_movement.norm());
-    xlo = xlo.cwiseMin(x[i]);
-    xhi = xhi.cwiseMax(x[i]);
+    xlo = xlo.cwiseMin(cor.vibration[i]);
+    xhi = xhi.cwiseMax(cor.vibration[i]);
     out.samples.push_back(s);
   }
-  out.mean_nominal = nominal.mean;
-  out.mean_corrected = corrected.mean;
-  out.peak_nominal_xy = nominal.peak_xy;
-  out.peak_corrected_xy = corrected.peak_xy;
+  out.mean_nominal = nom.mean;
+  out.mean_corrected = cor.mean;
+  out.peak_nominal_xy = nom.peak_xy;
+  out.peak_corrected_xy = cor.peak_xy;
   out.movement_range = out.samples.empty() ? 0.0 : hi - lo;
   if (!out.samples.empty()) out.vibration_peak_to_peak = xhi - xlo;
   return out;

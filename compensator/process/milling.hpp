@@ -192,14 +192,57 @@ std::vector<CouplingResult> coupleMillingPath(
     const MillingModel& m, const std::vector<ComplianceFunction>& compliance_per_point,
     const CouplingOptions& options = {});
 
+/// ## The revolution resolved by edge angle (docs/process.md §4.5)
+/// The steady periodic cut at a path point whose static cut is (fz, ae, ap), each edge cutting
+/// what the previous edges left, with the tool vibrating under the cut it makes:
+///   x(t) = Σ_{k≥1} 2 Re[H(kΩ) F̂_k e^{ikΩt}]   (the dynamic part; the static δ is the coupling's),
+///   h_j(φ, t) = max{0, min_{k=1..Nt} [k fz sin φ + (R_j − R_{j−k}) + (x(t) − x(t − kτ))·n(φ)]},
+///   ae(t) = ae + x(t)·n_wall,   ap(t) = ap − x(t)·Z,
+/// F(t) = Σ_j Σ_slices (Kienzle law at h_j over the arc of ae(t), slice height ap(t)/slices) — the
+/// same force law, runout and helix as millingForceProfile. τ = 2π/(Nt Ω) is the tooth period;
+/// the revolution is sampled at N = Nt · samples_per_tooth cutter angles of tooth 0, so that the
+/// earlier passes are whole sample shifts. The periodic x is the fixed point of x ↦ x_dyn(F(x)),
+/// iterated with relaxation ω (halved, down to 1/64, whenever the update grows) until
+/// max_n |Δx| ≤ tolerance. Without modes x = 0 and this is the rigid profile at (fz, ae, ap). A
+/// regenerative loop too strong for the iteration (near or past the chatter limit; whether the cut
+/// chatters is milling_stability's verdict) ends with converged = false and the last iterate,
+/// never a throw or NaN.
+/// Per tooth, the effective feed is the chip-area equivalent
+///   fz_j = Σ_{in cut} h_j / Σ_{static arc} sin φ  (over the revolution's angles and slices; the
+///   denominator over the arc of ae, the same for every tooth),
+/// which is fz for a rigid tool without runout. The teeth share the material: in steady state the
+/// mean over the teeth is fz up to what the vibrating wall (ae(t)) adds or takes at the arc's
+/// end, while each tooth's differs (runout, and the vibration between successive edges).
+struct EdgeRevolutionOptions {
+  int samples_per_tooth{120};
+  double tolerance{1e-9};  ///< on max_n |Δx| [m]
+  int max_iterations{300};
+  double relaxation{1.0};  ///< initial ω
+};
+struct EdgeRevolution {
+  bool converged{false};
+  int iterations{0};
+  std::vector<double> angle;       ///< cutter angle of tooth 0 [rad]
+  std::vector<Vec3> force;         ///< on the tool, milling frame [N]
+  std::vector<Vec3> vibration;     ///< x_dyn [m], milling frame
+  std::vector<double> tooth_feed;  ///< fz_j [m]
+  std::vector<double> max_chip;    ///< per tooth [m]
+  Vec3 mean{Vec3::Zero()};         ///< revolution average [N]
+  double peak_xy{0};               ///< max |(Fx, Fy)| [N]
+  double update{0};                ///< last max_n |Δx| [m]
+};
+EdgeRevolution edgeRevolution(const MillingModel& m, const ModalModel& dynamics, double fz,
+                              double ae, double ap, const EdgeRevolutionOptions& options = {});
+
 /// The corrected revolution at a coupled point (docs/process.md §4.5–4.6): per cutter angle of
-/// tooth 0, the nominal force (cut fz, ae), the corrected force (fz_eff, ae_eff of the coupled
-/// point: the robot's deflection and the previous edge's uncut chip δprev) and the TCP movement
+/// tooth 0 (m.angle_steps rounded up to a multiple of Nt), the nominal force (rigid tool at the
+/// programmed fz, ae, ap) and the corrected force: edgeRevolution at the coupled point's fz_eff,
+/// ae_eff, ap_eff (the robot's static deflection and the previous edge's uncut chip δprev) with
+/// the tool vibrating through `dynamics` (milling_dynamics.hpp: robot modes at the pose and the
+/// spindle/tool mode) — each edge cuts what the previous edges left. The TCP movement is
 ///   x(φ) = δ + x_dyn(φ),
 /// δ the coupled static deflection of the point (the mean force through the full compliance) and
-/// x_dyn the steady periodic response to the corrected force's harmonics through the receptance
-/// of `dynamics` (milling_dynamics.hpp: robot modes at the pose and the spindle/tool mode) at the
-/// cut's spindle speed.
+/// x_dyn the periodic vibration of that regenerative steady state.
 struct CorrectedSample {
   double angle{0};                  ///< [rad]
   Vec3 nominal{Vec3::Zero()};       ///< [N], milling frame
@@ -208,6 +251,8 @@ struct CorrectedSample {
 };
 struct CorrectedRevolution {
   std::vector<CorrectedSample> samples;
+  EdgeRevolution nominal_edges;    ///< rigid tool at the programmed cut
+  EdgeRevolution corrected_edges;  ///< vibrating tool at the coupled cut
   Vec3 mean_nominal{Vec3::Zero()}, mean_corrected{Vec3::Zero()};
   double peak_nominal_xy{0}, peak_corrected_xy{0};  ///< [N]
   double movement_range{0};  ///< max − min of |TCP movement| over the revolution [m]

@@ -508,11 +508,25 @@ void parseMilling(const XmlNode& proc, MillingSpec& s) {
     }
   }
   if (const XmlNode* st = proc.child("stock")) {
-    allowOnly(*st, {"top_z_mm"});
-    if (!st->has("top_z_mm")) st->fail("<stock> needs top_z_mm");
-    const double z = st->number("top_z_mm");
-    if (!std::isfinite(z)) st->fail("<stock> top_z_mm must be a number");
-    s.stock_top_z = z * kMm;
+    allowOnly(*st, {"top_z_mm", "box_min_mm", "box_max_mm"});
+    if (st->has("box_min_mm") != st->has("box_max_mm"))
+      st->fail("<stock> a box needs both box_min_mm and box_max_mm");
+    if (st->has("box_min_mm")) {
+      const Vec3 lo = st->vec3("box_min_mm", Vec3::Zero()) * kMm;
+      const Vec3 hi = st->vec3("box_max_mm", Vec3::Zero()) * kMm;
+      if (!lo.allFinite() || !hi.allFinite() || !(hi.array() > lo.array()).all())
+        st->fail("<stock> box_max_mm must be above box_min_mm in x, y and z");
+      s.stock_box_min = lo;
+      s.stock_box_max = hi;
+      if (st->has("top_z_mm") && std::abs(st->number("top_z_mm") * kMm - hi.z()) > 1e-9)
+        st->fail("<stock> top_z_mm differs from the box's top (box_max_mm z): give one");
+      s.stock_top_z = hi.z();
+    } else {
+      if (!st->has("top_z_mm")) st->fail("<stock> needs top_z_mm (or box_min_mm and box_max_mm)");
+      const double z = st->number("top_z_mm");
+      if (!std::isfinite(z)) st->fail("<stock> top_z_mm must be a number");
+      s.stock_top_z = z * kMm;
+    }
   }
   if (const XmlNode* dy = proc.child("dynamics")) parseMillingDynamics(*dy, s);
 }

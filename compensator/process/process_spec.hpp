@@ -94,8 +94,11 @@ struct MillingSpec {
   CouplingOptions coupling;
   std::optional<Mat3> compliance;     ///< [m/N] milling frame, from <coupling compliance_um_per_N>
   std::optional<double> stock_top_z;  ///< [m] workobject frame, from <stock top_z_mm>
-  double robot_damping_ratio{0.05};   ///< modal damping of the robot modes (<dynamics>)
-  ToolModeSpec tool_mode;             ///< spindle/tool mode (<dynamics>)
+  /// A box stock (<stock box_min_mm box_max_mm>, workobject frame [m]): the engagement ae/ap per
+  /// path point comes from it and the program's earlier passes (milling_engagement.hpp).
+  std::optional<Vec3> stock_box_min, stock_box_max;
+  double robot_damping_ratio{0.05};  ///< modal damping of the robot modes (<dynamics>)
+  ToolModeSpec tool_mode;            ///< spindle/tool mode (<dynamics>)
   std::string dynamics_source{
       "default estimates (robot modes 5 % damping; tool mode 2000 Hz, 20 N/um, 3 %): give "
       "<dynamics> from an impact test"};

@@ -355,6 +355,25 @@ Json couplingPointJson(int index, const CouplingResult& r) {
   return p;
 }
 
+Json millimetres(const std::vector<double>& v_m, int decimals) {
+  Json a = Json::array();
+  for (const double v : v_m) a.push(Json::number(v / kMm, decimals));
+  return a;
+}
+
+/// The revolution resolved by edge angle: per tooth, the chip-area feed and the peak chip of the
+/// rigid tool at the programmed cut and of the vibrating tool at the coupled cut.
+Json edgesJson(const EdgeRevolution& nominal, const EdgeRevolution& corrected) {
+  Json e = Json::object();
+  e.set("converged", Json::boolean(corrected.converged));
+  e.set("iterations", Json::integer(corrected.iterations));
+  e.set("tooth_feed_nominal_mm", millimetres(nominal.tooth_feed, 6));
+  e.set("tooth_feed_mm", millimetres(corrected.tooth_feed, 6));
+  e.set("max_chip_nominal_mm", millimetres(nominal.max_chip, 6));
+  e.set("max_chip_mm", millimetres(corrected.max_chip, 6));
+  return e;
+}
+
 /// The corrected revolution of the last coupled point (steady state) as CSV, and its summary.
 Json correctedRevolutionOf(const MillingModel& m, const ModalModel& dyn, const CouplingResult& last,
                            int point, std::string& csv) {
@@ -378,8 +397,9 @@ Json correctedRevolutionOf(const MillingModel& m, const ModalModel& dyn, const C
   j.set("peak_xy_corrected_N", Json::number(cr.peak_corrected_xy, 2));
   j.set("tcp_movement_range_um", Json::number(cr.movement_range * 1e6, 3));
   j.set("vibration_peak_to_peak_um", vec3(cr.vibration_peak_to_peak * 1e6, 4));
-  j.set("tcp_movement", Json::str("coupled static deflection + steady response to the force "
-                                  "harmonics through the receptance (\"dynamics\")"));
+  j.set("tcp_movement", Json::str("coupled static deflection + the vibration of the regenerative "
+                                  "steady state through the receptance (\"dynamics\")"));
+  j.set("edges", edgesJson(cr.nominal_edges, cr.corrected_edges));
   return j;
 }
 
@@ -416,6 +436,17 @@ Json millingCoupling(const MillingModel& m, const MillingSpec& s, int points,
   cp.set("points", pts);
   cp.set("corrected_revolution", correctedRevolutionOf(m, dyn, res.back(), idx - 1, csv));
   return cp;
+}
+
+/// A path point's revolution resolved by edge angle (PathPointCompensation::edges_*).
+Json pathPointEdgesJson(const PathPointCompensation& p) {
+  Json e = Json::object();
+  e.set("converged", Json::boolean(p.edges_converged));
+  e.set("tooth_feed_mm", millimetres(p.tooth_feed, 6));
+  e.set("peak_xy_nominal_N", Json::number(p.peak_xy_nominal, 2));
+  e.set("peak_xy_N", Json::number(p.peak_xy, 2));
+  e.set("vibration_peak_to_peak_um", vec3(p.vibration_pp * 1e6, 4));
+  return e;
 }
 
 std::string unstablePointText(size_t i, const postproc::Target& t, const PathPointCompensation& p,
@@ -457,10 +488,17 @@ Json millingPath(const ForcesRequest& req, bool& converged, std::vector<std::str
     c.set("force_N", vec3(p.force, 2));
     c.set("predicted_residual_um", Json::number(p.residual.norm() * 1e6, 4));
     j.set("compensated", c);
-    if (p.cutting) j.set("stability", pathPointStabilityJson(p, ap));
+    const bool engaged = r.cutting[i].engagement.has_value();
+    if (p.cutting && engaged) {
+      j.set("ae_mm", Json::number(p.ae / kMm, 4));
+      j.set("ap_mm", Json::number(p.ap / kMm, 4));
+    }
+    const double ap_i = p.cutting && engaged ? p.ap : ap;
+    if (p.cutting) j.set("stability", pathPointStabilityJson(p, ap_i));
+    if (p.edges_checked) j.set("edges", pathPointEdgesJson(p));
     pts.push(j);
     if (!before_ok || !p.ok) converged = false;
-    if (p.unstable(ap)) unstable.push_back(unstablePointText(i, t, p, ap));
+    if (p.unstable(ap_i)) unstable.push_back(unstablePointText(i, t, p, ap_i));
   }
   Json path = Json::object();
   path.set("program", Json::str(*req.program));
