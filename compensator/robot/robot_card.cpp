@@ -1,7 +1,5 @@
 #include "compensator/robot/robot_card.hpp"
 
-#include <dlfcn.h>
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -12,6 +10,7 @@
 
 #include "compensator/robot/urdf_loader.hpp"
 #include "compensator/support/error.hpp"
+#include "compensator/support/platform.hpp"
 #include "compensator/support/xml_node.hpp"
 
 namespace fs = std::filesystem;
@@ -316,17 +315,14 @@ std::string bundledRobotsDir() {
   // An installed library: the robots folder next to it (<prefix>/lib/../share/roprec/robots),
   // found from the path of the loaded shared object that holds this function.
   static const std::string installed = [] {
-    Dl_info info{};
-    if (dladdr(reinterpret_cast<const void*>(&bundledRobotsDir), &info) == 0 ||
-        info.dli_fname == nullptr || *info.dli_fname == '\0') {
-      return std::string();
-    }
+    const std::string module = platform::loadedModulePath();
+    if (module.empty()) return std::string();
     std::error_code ec;
-    const fs::path dir =
-        fs::absolute(fs::path(info.dli_fname), ec).parent_path() / ROPREC_ROBOTS_RELDIR;
+    const fs::path dir = fs::absolute(platform::fromUtf8(module), ec).parent_path() /
+                         platform::fromUtf8(ROPREC_ROBOTS_RELDIR);
     if (ec || !fs::is_directory(dir, ec)) return std::string();
     const fs::path real = fs::canonical(dir, ec);
-    return (ec ? dir.lexically_normal() : real).string();
+    return platform::toUtf8(ec ? dir.lexically_normal() : real);
   }();
   if (!installed.empty()) return installed;
 #ifdef ROPREC_ROBOTS_DIR

@@ -31,13 +31,4 @@ std::string cGeneral(double v, int precision) {
   return std::string(buf, r.ptr);
 }
 
-ClassicLocaleScope::ClassicLocaleScope() {
-  static const locale_t c_locale = ::newlocale(LC_ALL_MASK, "C", static_cast<locale_t>(nullptr));
-  if (c_locale != static_cast<locale_t>(nullptr)) previous_ = ::uselocale(c_locale);
-}
-
-ClassicLocaleScope::~ClassicLocaleScope() {
-  if (previous_ != static_cast<locale_t>(nullptr)) ::uselocale(previous_);
-}
-
 }  // namespace roprec

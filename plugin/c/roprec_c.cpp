@@ -18,7 +18,6 @@
 
 #include "compensator/precision/identification.hpp"
 #include "compensator/support/atomic_file.hpp"
-#include "compensator/support/c_format.hpp"
 #include "compensator/support/error.hpp"
 #include "plugin/api/job.hpp"
 #include "plugin/api/job_options.hpp"
@@ -83,10 +82,9 @@ template <class F>
 int guarded(char* err, size_t err_len, F&& f) noexcept {
   copyError(err, err_len, "");
   try {
-    // The C library functions see the "C" locale whatever the host set, and the outputs of one
-    // call are written all or none (compensator/support/atomic_file.hpp): committed when the call
-    // returns or reports failed items (whose outputs were complete), removed on any error.
-    const roprec::ClassicLocaleScope c_locale;
+    // The outputs of one call are written all or none (compensator/support/atomic_file.hpp):
+    // committed when the call returns or reports failed items (whose outputs were complete),
+    // removed on any error. Numbers are formatted locale-free whatever locale the host set.
     roprec::OutputSet outputs;
     const roprec::ScopedOutputSet scope(outputs);
     int status = ROPREC_OK;
