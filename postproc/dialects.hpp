@@ -1,6 +1,7 @@
 #pragma once
 /// \file dialects.hpp
-/// Internal interface between the generic program model (program.cpp) and the dialect readers.
+/// Internal interface between the generic program model (program.cpp), the dialect readers and
+/// drill-cycle recognition (drill.cpp).
 
 #include "postproc/program.hpp"
 
@@ -58,6 +59,10 @@ inline std::string jsonStr(const std::string& s) {
 
 /// Adds a frame snapshot unless identical to the last one; returns its index.
 int internFrame(Program& p, const Frame& f);
+
+/// Frames a and b of p (indices into p.frames, -1: none) are the same frame: the same reference
+/// (case-insensitive), resolution and pose.
+bool sameFrame(const Program& p, int a, int b);
 
 /// Number field of the token [begin, end) of `sf`, file `file` (index into p.files), whose value
 /// the reader has already parsed. Throws InputError for a number longer than

@@ -7,19 +7,11 @@
 #include <optional>
 #include <unordered_map>
 
+#include "postproc/dialects.hpp"
 #include "postproc/lexer.hpp"
 
 namespace roprec::postproc {
 namespace {
-
-bool sameFrameIdx(const Program& p, int a, int b) {
-  if (a == b) return true;
-  if (a < 0 || b < 0) return false;
-  const Frame& fa = p.frames[static_cast<std::size_t>(a)];
-  const Frame& fb = p.frames[static_cast<std::size_t>(b)];
-  return iequals(fa.ref, fb.ref) && fa.resolved == fb.resolved &&
-         fa.pose.matrix() == fb.pose.matrix();
-}
 
 /// The motion goes to a Cartesian target with a component roprec could not evaluate.
 bool statesUnknownValues(const Program& p, const Motion& m) {
@@ -120,7 +112,7 @@ void HoleRecognizer::advance(const Program& p, bool final) {
         cut_by_unknown = statesUnknownValues(p, mj);
         break;
       }
-      if (!sameFrameIdx(p, mj.base, m0.base) || !sameFrameIdx(p, mj.tool, m0.tool)) break;
+      if (!sameFrame(p, mj.base, m0.base) || !sameFrame(p, mj.tool, m0.tool)) break;
       if (smallRotationDifference(Tj->linear(), T0->linear()).norm() > ori_tol) break;
       if ((Tj->translation() - p0).cross(a).norm() > line_tol) break;
     }

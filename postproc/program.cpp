@@ -644,8 +644,6 @@ const Frame* targetTool(const Program& p, const Target& t) {
   return b >= 0 ? &p.frames[static_cast<std::size_t>(b)] : nullptr;
 }
 
-namespace {
-
 bool sameFrame(const Program& p, int a, int b) {
   if (a == b) return true;
   if (a < 0 || b < 0) return false;
@@ -654,6 +652,8 @@ bool sameFrame(const Program& p, int a, int b) {
   return iequals(fa.ref, fb.ref) && fa.resolved == fb.resolved &&
          fa.pose.matrix() == fb.pose.matrix();
 }
+
+namespace {
 
 Vendor vendorOf(Dialect d) {
   switch (d) {

@@ -550,7 +550,7 @@ TEST(CApi, DistinctSessionsRunOnThreads) {
 
 }  // namespace
 
-// ---------------------------------------------------------------- job options (issue 13)
+// ---------------------------------------------------------------- job options
 
 namespace {
 

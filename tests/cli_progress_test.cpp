@@ -1,4 +1,4 @@
-// The progress line (issue 14 §4): on stderr only when it is a terminal and not --quiet, with
+// The progress line: on stderr only when it is a terminal and not --quiet, with
 // holes done, rate and ETA, after the run has taken a second (ROPREC_PROGRESS_AFTER_S lowers that
 // for the test). The terminal is a pseudo-terminal made by script(1).
 #include <gtest/gtest.h>

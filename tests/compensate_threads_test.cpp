@@ -1,4 +1,4 @@
-// compensateHoles over threads (issue 15): the result is byte-identical to one thread for keep,
+// compensateHoles over threads: the result is byte-identical to one thread for keep,
 // flip-free and stiffest — every hole's doubles bit for bit, its strings, and the run's counters —
 // and through the job the written program, the targets CSV/JSON and the HTML report are the same
 // bytes for 1, 2 and 3 threads. The sequence carries from hole to hole (IK seeds after an

@@ -1,4 +1,4 @@
-// Issue 7 through the CLI: compensate a program (each bundled robot in its own dialect, each
+// Compensation through the CLI: compensate a program (each bundled robot in its own dialect, each
 // orientation mode), then predict the written program: the predicted real drill point of every
 // hole lies on the original program's drilling axis within 0.1 µm (systematic residual).
 #include <gtest/gtest.h>

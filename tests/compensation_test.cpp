@@ -1,4 +1,4 @@
-// Compensation (issue 7) against independent references and its contract:
+// Compensation against independent references and its contract:
 //  * every bundled robot, every orientation mode: the predicted residual at the nominal hole is
 //    ≤ 0.1 µm, and the compensated commands fed to an independent nonlinear joint-compliance
 //    equilibrium computed here with KDL (FK + RNE, same stiffness, tool mass and tool-frame
@@ -6,7 +6,7 @@
 //  * keep changes positions only (orientation within 1e-9 rad); stiffest never predicts a larger
 //    U_work than keep; flip-free removes the axis-4/6 flips of a sample built to flip under keep
 //    and keeps |θ5| ≥ the margin;
-//  * orientation choices (issue 14): on the 204-hole demo flip-free turns no hole that keep could
+//  * orientation choices: on the 204-hole demo flip-free turns no hole that keep could
 //    drill without a jump, limit or wrist-margin violation, and every turned hole has its reason;
 //    stiffest makes no axis-4/6 jump over the threshold and reports its U_work gain over keep;
 //    flags stay as programmed at a sign boundary (A4 = 0 on the x axis) and a hole that really

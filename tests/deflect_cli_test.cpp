@@ -1,4 +1,4 @@
-// roprec deflect through the CLI: the issue's example, JSON keys, and bad input (exit 2, message,
+// roprec deflect through the CLI: a KR 120 example, JSON keys, and bad input (exit 2, message,
 // nothing on stdout).
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 namespace roprec {
 namespace {
 
-TEST(DeflectCli, IssueExamplePrintsTorquesDeflectionsAndDeviation) {
+TEST(DeflectCli, Kr120UnderAnAxialWrenchPrintsTorquesDeflectionsAndDeviation) {
   const auto r = test::runRoprec(
       "deflect --robot kuka-kr120-r2500-pro --joints \"0 -60 100 0 50 0\" --wrench \"0 0 800 0 0 "
       "0\"");

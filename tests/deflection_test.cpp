@@ -183,7 +183,7 @@ TEST(Deflection, AgreesWithLinearAndNonlinearKdlCompliance) {
   }
 }
 
-TEST(Deflection, LinearEstimateWithinHalfPercentAtTheIssuePose) {
+TEST(Deflection, LinearEstimateWithinHalfPercentAtAKr120WorkingPose) {
   // roprec deflect --robot kuka-kr120-r2500-pro --joints "0 -60 100 0 50 0" --wrench "0 0 800 0 0
   // 0"
   const auto robots = bundled();

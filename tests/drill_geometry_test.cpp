@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <random>
+#include <string>
 
 namespace roprec {
 namespace {
@@ -196,6 +197,19 @@ TEST(DrillGeometry, RejectsBadGeometry) {
   EXPECT_NE(drillGeometryProblem(g).find("wider than the drill"), std::string::npos);
   g.web_thickness = 9e-3;
   EXPECT_NE(drillGeometryProblem(g).find("web is too wide"), std::string::npos);
+}
+
+TEST(DrillGeometry, ProblemMessagesUseBoundedNumbers) {
+  DrillGeometry g;
+  g.point_angle = 1e300;
+  std::string why = drillGeometryProblem(g);
+  EXPECT_NE(why.find("5.72958e+301"), std::string::npos) << why;  // not 300 digits
+  EXPECT_LT(why.size(), 120u) << why;
+  g = DrillGeometry{};
+  g.web_thickness = 1e300;
+  why = drillGeometryProblem(g);
+  EXPECT_LT(why.size(), 120u) << why;
+  EXPECT_EQ(why.find("nan"), std::string::npos) << why;
 }
 
 }  // namespace

@@ -1,11 +1,17 @@
+// `roprec forces` end to end: the drilling and milling sample cells, the coupled solve with the
+// robot, calibration, and bad or absurd process values (exit 2 at their line, nothing written).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <sstream>
+#include <string>
 #include <vector>
 
+#include "compensator/process/drilling_forces.hpp"
 #include "compensator/support/rotation.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -84,9 +90,10 @@ std::vector<std::vector<double>> csvRows(const std::string& csv) {
   return rows;
 }
 
-// The KR 120 at the issue's pose: every point converges (|r| ≤ 0.1 µm) in a few Newton steps; the
-// CSV gives, over one revolution (720 angles), the nominal and the corrected force and the TCP
-// movement, whose means agree with the coupled point (±1 %: profile with runout vs arc average).
+// The KR 120 at joints (0, -60, 100, 0, 50, 0) deg: every point converges (|r| ≤ 0.1 µm) in a few
+// Newton steps; the CSV gives, over one revolution (720 angles), the nominal and the corrected
+// force and the TCP movement, whose means agree with the coupled point (±1 %: profile with runout
+// vs arc average).
 TEST(ForcesCli, MillingWithTheRobotAtJointsConvergesAndWritesTheCorrectedRevolution) {
   const std::string dir = test::tempDir("forces");
   const auto r = runRoprec("forces --cell " + sample("alu-milling-7075.xml") +
@@ -283,6 +290,77 @@ TEST(ForcesCli, BadCalibrationArgumentWritesNothing) {
       runRoprec("forces --cell " + sample("alu-milling-7075.xml") + " --calibrate 'Fa_N=3 M_Nm=4'");
   EXPECT_EQ(r2.exit_code, 2);
   EXPECT_NE(r2.err.find("needs a <process type=\"drilling\">"), std::string::npos);
+}
+
+TEST(ForcesCli, ADepthStepBelowTheProfilesResolutionIsExit2) {
+  EXPECT_NE(kMaxDepthSamples, 0.0);
+  const auto r = test::runRoprec("forces --cell '" + test::sourceDir() +
+                                 "/samples/cells/alu-drilling-6061.xml' --step-mm 1e-12");
+  EXPECT_EQ(r.exit_code, 2) << r.out.substr(0, 200);
+  EXPECT_NE(r.err.find("--step-mm"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("at most"), std::string::npos) << r.err;
+  const auto r2 = test::runRoprec("forces --cell '" + test::sourceDir() +
+                                  "/samples/cells/alu-drilling-6061.xml' --step-mm 1e-8");
+  EXPECT_EQ(r2.exit_code, 2);
+  EXPECT_EQ(r2.err.find("bad_alloc"), std::string::npos) << r2.err;
+  EXPECT_NE(r2.err.find("--step-mm"), std::string::npos) << r2.err;
+}
+
+TEST(ForcesCli, AnAbsurdCutDepthIsExit2AtItsLineAndWritesNothing) {
+  const std::string dir = test::tempDir("range-depth");
+  std::string cell = test::readFile(test::sourceDir() + "/samples/cells/alu-drilling-6061.xml");
+  const std::regex depth("depth_mm=\"[^\"]*\"");
+  ASSERT_TRUE(std::regex_search(cell, depth));
+  cell = std::regex_replace(cell, depth, "depth_mm=\"1e300\"",
+                            std::regex_constants::format_first_only);
+  const std::size_t at = cell.find("depth_mm=\"1e300\"");
+  const int line = 1 + static_cast<int>(std::count(cell.begin(), cell.begin() + at, '\n'));
+  const std::string path = dir + "/cell.xml";
+  test::writeFile(path, cell);
+  const auto r = test::runRoprec("forces --cell '" + path + "' --csv '" + dir + "/d.csv'");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find(path + ":" + std::to_string(line)), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir + "/d.csv"));
+  EXPECT_LT(r.err.size(), 400u) << r.err;
+}
+
+// A milling cell's <coupling compliance_um_per_N> of 1e300 must not overflow the coupling to inf,
+// nor a cutter's diameter or runout of 1e300 reach the forces: exit 2 at the number's line.
+TEST(ForcesCli, AbsurdCouplingComplianceCutterDiameterAndRunoutAreExit2AtTheirLine) {
+  // the milling and drilling samples with one number corrupted, through `forces`: exit 2 at the
+  // number's line, no "internal error", nothing written
+  const std::string dir = test::tempDir("forces-absurd");
+  auto forcesWith = [&](const std::string& cell, const std::string& from, const std::string& to,
+                        const std::string& expected) {
+    std::string text = test::readFile(test::sourceDir() + "/samples/cells/" + cell);
+    const std::size_t at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+    test::writeFile(dir + "/cell.xml", text);
+    const auto r =
+        test::runRoprec("forces --cell '" + dir + "/cell.xml' --json '" + dir + "/f.json'");
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find(expected), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir + "/f.json"));
+  };
+  forcesWith("alu-milling-7075.xml", "compliance_um_per_N=\"1 0 0",
+             "compliance_um_per_N=\"1e300 0 0",
+             "cell.xml:16: <coupling> compliance_um_per_N entry 1 = 1e+300 is outside the "
+             "plausible range");
+  // a milling cutter of 1e300 mm (forces must not write its 300-digit diameter), and the
+  // drill's diameter below
+  forcesWith("alu-milling-7075.xml", "<mill diameter_mm=\"10\"", "<mill diameter_mm=\"1e300\"",
+             "cell.xml:13: <mill> diameter_mm = 1e+300 is outside the plausible range 0.1 .. 200 "
+             "(cutter diameter, mm)");
+  // a runout angle of 1e300 deg (its cosine would be whatever the reduction of 1e300 gives)
+  forcesWith("alu-milling-7075.xml", "runout_angle_deg=\"0\"", "runout_angle_deg=\"1e300\"",
+             "cell.xml:13: <mill> runout_angle_deg = 1e+300 is outside the plausible range -360 .. "
+             "360 (angle of the runout, deg)");
+  forcesWith("alu-drilling-7075-dc8.xml", "<drill diameter_mm=\"8\"",
+             "<drill diameter_mm=\"1e300\"",
+             "cell.xml:9: <drill> diameter_mm = 1e+300 is outside the plausible range 0.1 .. 100 "
+             "(twist drill diameter, mm)");
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// Re-identification from measured holes (issue 11), against an independent truth:
+// Re-identification from measured holes, against an independent truth:
 //  * the truth robot is built here from KDL (FK + RNE of the same URDF, the cell's tool as a
 //    rigid segment, the process wrench on the TCP segment) with the nonlinear joint-compliance
 //    equilibrium θ = θ_cmd + Δθ_ctrl − K_true⁻¹ τ_KDL(θ) solved by fixed-point iteration, and

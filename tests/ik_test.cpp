@@ -4,8 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <random>
 
@@ -475,6 +477,40 @@ TEST(Ik, TurnsWithinLimits) {
     }
     EXPECT_EQ(all->count, expected);
   }
+}
+
+TEST(Ik, TurnEnumerationIsBoundedWhateverTheModelsLimits) {
+  IkModel m = buildIkModel(loadRobot({"kuka-kr120-r2500-pro", "", ""}));
+  const Vec6 q = (Vec6() << 0.1, -1.2, 1.4, 0.3, 0.7, -0.2).finished();
+  const Pose T = ikForwardKinematics(m, q);
+  for (const double lim : {1e300, 1e12, std::numeric_limits<double>::infinity()}) {
+    m.lower = Vec6::Constant(-lim);
+    m.upper = Vec6::Constant(lim);
+    for (const IkTurns turns : {IkTurns::kPrimary, IkTurns::kAll}) {
+      IkOptions opt;
+      opt.turns = turns;
+      IkResult r;
+      const auto t0 = std::chrono::steady_clock::now();
+      solveIk(m, T, opt, r);
+      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      EXPECT_LT(s, 0.5) << "limit " << lim;
+      EXPECT_GT(r.count, 0);
+    }
+  }
+}
+
+TEST(Ik, FailureMessagesHaveNoInfOrNan) {
+  IkResult r;
+  r.failure = IkFailure::kOutOfReach;
+  r.failure_value = std::numeric_limits<double>::infinity();
+  std::string msg = describeIkFailure(r);
+  EXPECT_EQ(msg.find("inf "), std::string::npos) << msg;
+  r.failure_value = std::numeric_limits<double>::quiet_NaN();
+  msg = describeIkFailure(r);
+  EXPECT_EQ(msg.find("nan"), std::string::npos) << msg;
+  r.failure_value = 1e300;
+  msg = describeIkFailure(r);
+  EXPECT_LT(msg.size(), 120u) << msg;
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// Inline per-hole storage (issue 15): InlineText (fixed bytes, clipped visibly at a
+// Inline per-hole storage: InlineText (fixed bytes, clipped visibly at a
 // UTF-8 boundary, never silently) and InlineVector (fixed capacity, overflow is an error).
 // Expected values are written out by hand from the stated rule, not produced by the code.
 #include <gtest/gtest.h>

@@ -3,12 +3,18 @@
 // unused placeholder points in a .dat, KSS 8 spline motions with WITH lists and SPLINE blocks,
 // and path velocities no motion can run at. Each program is written for the test; it must
 // round-trip byte for byte through `roprec convert` and `roprec inspect` must describe it.
+// Values no controller could mean (a .dat angle or a position of 1e300, a $VEL.CP in mm/s) and a
+// statement cut short are InputErrors at their own line.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
+#include "compensator/support/error.hpp"
+#include "postproc/program.hpp"
+#include "tests/support/input_errors.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace roprec {
@@ -227,6 +233,67 @@ TEST(KrlReader, APathVelocityOfZeroOrBelowIsAnInputErrorAtItsLine) {
     EXPECT_NE(r.err.find(c.where), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("hint:"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(j.dir + "/o.mod"));
+  }
+}
+
+using postproc::Dialect;
+using postproc::parseProgram;
+
+const char* const kKrlSrc =
+    "DEF p( )\n"
+    "$BASE = {FRAME: X 1350.000,Y 0.000,Z 300.000,A 0.000,B 0.000,C 0.000}\n"
+    "$TOOL = {FRAME: X 0.000,Y 0.000,Z 320.000,A 0.000,B 0.000,C 0.000}\n"
+    "PTP XP1\n"
+    "LIN {X 150.000,Y 0.000,Z 214.000,A 0.000,B 0.000,C 180.000}\n"
+    "LIN {X 150.000,Y 0.000,Z 284.000,A 0.000,B 0.000,C 180.000}\n"
+    "END\n";
+const char* const kKrlDat =
+    "DEFDAT p\n"
+    "DECL E6POS XP1={X 150.000,Y 0.000,Z 284.000,A 0.000,B 0.000,C 180.000,S 2,T 2}\n"
+    "ENDDAT\n";
+
+TEST(KrlReader, AnAbsurdAngleInTheDatIsRefusedAtItsLine) {
+  std::string dat = kKrlDat;
+  dat.replace(dat.find("B 0.000"), 7, "B 1e300");
+  int line = 0;
+  const std::string e = test::programReadError(Dialect::kKrl, "p.src", kKrlSrc, dat, &line);
+  EXPECT_EQ(e.rfind("p.dat: target XP1: angle B = 1e+300 is out of range", 0), 0u) << e;
+  EXPECT_EQ(line, 2);
+  EXPECT_EQ(test::programReadError(Dialect::kKrl, "p.src", kKrlSrc, std::string(kKrlDat)),
+            "(accepted)");
+}
+
+TEST(KrlReader, ARetractAtZ1e300IsRefusedAtItsLine) {
+  std::string src = kKrlSrc;
+  src.replace(src.find("Z 284.000,A 0.000,B 0.000,C 180.000}\nEND"), 9, "Z 1e300");
+  int line = 0;
+  const std::string e =
+      test::programReadError(Dialect::kKrl, "p.src", src, std::string(kKrlDat), &line);
+  EXPECT_NE(e.find("position z (mm) = 1e+300 is out of range"), std::string::npos) << e;
+  EXPECT_EQ(line, 6);
+}
+
+TEST(KrlReader, AStatementCutShortIsReportedAtItsOwnLine) {
+  // an aggregate that ends at the line's end: the reader looks one token past the statement,
+  // which used to carry offset 0 and named line 1
+  const std::string dir = test::tempDir("errloc_cut");
+  test::writeFile(dir + "/cut.src", "DEF cut ( )\n$VEL.CP = 0.2\n\nLIN {X 1.0,Y\nEND\n");
+  const auto r = test::runRoprec("convert '" + dir + "/cut.src' --to csv -o '" + dir + "/out.csv'");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("cut.src:4: component Y has no value"), std::string::npos) << r.err;
+}
+
+TEST(KrlReader, APathVelocityIsInMetresPerSecond) {
+  // KUKA: $VEL.CP is in m/s
+  std::string krl = test::readFile(test::sourceDir() + "/samples/emotor-housing/housing_kr120.src");
+  const std::string vel = "$VEL.CP = 0.25000";
+  ASSERT_NE(krl.find(vel), std::string::npos);
+  krl.replace(krl.find(vel), vel.size(), "$VEL.CP = 250");
+  try {
+    (void)postproc::parseProgram(postproc::Dialect::kKrl, "k.src", krl);
+    ADD_FAILURE() << "a 250 m/s speed was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(e.message().find("speed 250000 mm/s is out of range"), std::string::npos) << e.what();
   }
 }
 

@@ -1,4 +1,4 @@
-/// Locale independence (issue 13 item 8): a host process that sets a comma-decimal locale (the C
+/// Locale independence: a host process that sets a comma-decimal locale (the C
 /// locale through setlocale and the global C++ locale) must not change a byte of roprec's results,
 /// and numbers must still parse.
 #include <unistd.h>

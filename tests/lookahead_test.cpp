@@ -1,4 +1,4 @@
-// Predicting a program's holes while it is read (plugin/api/lookahead.hpp, issue 15):
+// Predicting a program's holes while it is read (plugin/api/lookahead.hpp):
 //  - postproc::HoleRecognizer advanced over a program as it grows gives recognizeHoles' holes
 //    (every prefix of the motions of the samples and the corpus programs, every dialect);
 //  - readProgram's progress hook is called every kReadProgressLines lines of a KRL .src;

@@ -1,7 +1,9 @@
-// The roprec executable's own entry points (plugin/cli/main.cpp): --version, --help and an
-// unknown command.
+// The roprec executable's own entry points (plugin/cli/main.cpp): --version, --help, an unknown
+// command, a failed write to stdout and running out of memory ("input too large").
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -69,6 +71,30 @@ TEST(CliMain, PredictHelpSaysWhatMemoryGrowsWith) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.out.find("constant memory"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("memory grows with the number of holes"), std::string::npos) << r.out;
+}
+
+namespace fs = std::filesystem;
+
+TEST(CliMain, OutOfMemoryIsReportedAsInputTooLargeNamingTheInput) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "ulimit -v and the address sanitizer's shadow memory do not mix";
+#else
+  // 650,000 depth rows are within range but do not fit in 100 MB of address space: the
+  // std::bad_alloc is reported as "input too large" with the input named, exit 2, nothing written.
+  const std::string dir = test::tempDir("range-oom");
+  const std::string cell = test::sourceDir() + "/samples/cells/alu-drilling-6061.xml";
+  const std::string cmd = "ulimit -v 100000; '" + test::roprecBin() + "' forces --cell '" + cell +
+                          "' --step-mm 2e-5 --csv '" + dir + "/d.csv' >/dev/null 2>'" + dir +
+                          "/err'";
+  const int status = std::system(cmd.c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 2);
+  const std::string err = test::readFile(dir + "/err");
+  EXPECT_NE(err.find("input too large"), std::string::npos) << err;
+  EXPECT_NE(err.find(cell), std::string::npos) << err;
+  EXPECT_EQ(err.find("bad_alloc"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(dir + "/d.csv"));
+#endif
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
-// Measured-hole files (issue 11): the three formats recognised by content, round trips through
+// Measured-hole files: the three formats recognised by content, round trips through
 // every writer, refusals with FILE:LINE (missing columns, non-numbers, non-finite values,
-// duplicates), matching to the program's holes and the metres refusal.
+// duplicates, absurd values, decimal commas), matching to the program's holes and the metres
+// refusal.
 #include "postproc/measured.hpp"
 
 #include <gtest/gtest.h>
@@ -240,6 +241,39 @@ TEST(Measured, AFileInMetresIsRefusedButASmallPartNearTheOriginIsNot) {
   const std::vector<ProgramHoleRef> small = {{"A", Vec3(-4, -4, 0)}, {"B", Vec3(4, 4, 0)}};
   const MeasuredHoles mm = parseMeasured("id,x,y,z\nA,-3.98,-4.01,0.002\nB,4.02,3.99,0\n", "s.csv");
   EXPECT_EQ(matchMeasured(mm, small).matched, 2);
+}
+
+/// The InputError text of parsing `text` as m.csv (or "(accepted)").
+std::string parseError(const std::string& text) {
+  try {
+    (void)parseMeasured(text, "m.csv");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
+TEST(Measured, AbsurdValuesAndADecimalCommaAreRefusedAtTheirLine) {
+  EXPECT_EQ(parseError("id,x,y,z\nV01,1,2,3\nV02,1,1e300,3\n")
+                .rfind("m.csv:3: hole 'V02': a "
+                       "coordinate lies more than 100 m",
+                       0),
+            0u)
+      << parseError("id,x,y,z\nV01,1,2,3\nV02,1,1e300,3\n");
+  EXPECT_EQ(parseError("id,x,y,z,u\nV01,1,2,3,1e300\n")
+                .rfind("m.csv:2: hole 'V01': the measurement "
+                       "uncertainty u is over 10 mm",
+                       0),
+            0u);
+  EXPECT_EQ(parseError("TYPE,NAME,X,Y,Z,D\nCIRCLE,V01,1,2,3,1e300\n")
+                .rfind("m.csv:2: hole 'V01': the diameter is over 2 m", 0),
+            0u);
+  // A decimal comma shifted the row's values (x = -200, y = 2796, z = -199.9, u = 164.7).
+  EXPECT_EQ(parseError("id,x,y,z,u\nV02,-200,2796,-199.9475,164.7312,5.0\n")
+                .rfind("m.csv:2: 6 cells but the header has 5 (decimal commas?", 0),
+            0u);
+  // The limits leave real files alone: 100 m and 10 mm are accepted.
+  EXPECT_EQ(parseError("id,x,y,z,u\nV01,100000,-100000,0,10000\n"), "(accepted)");
 }
 
 }  // namespace

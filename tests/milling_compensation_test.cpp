@@ -1,4 +1,4 @@
-// Milling path compensation (issue 7 item 5): every point of the sample wall pass is compensated
+// Milling path compensation: every point of the sample wall pass is compensated
 // with the coupled force solve; the commands, fed to an independent nonlinear joint-compliance
 // equilibrium computed here with KDL (FK + RNE, same stiffness, tool mass, axis-2 balancer,
 // mastering reference and converged milling force on the tool) plus the tool's bending on the

@@ -1,4 +1,4 @@
-// `roprec compensate --report` with a milling cell (issue 14 §5): the report is written with the
+// `roprec compensate --report` with a milling cell: the report is written with the
 // program, one row per linear path point, and agrees with the targets export.
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>

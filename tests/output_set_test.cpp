@@ -1,4 +1,4 @@
-/// All-or-nothing outputs (issue 13 item 3): OutputSet stages every output to a temporary file
+/// All-or-nothing outputs: OutputSet stages every output to a temporary file
 /// in its target folder and renames all of them only when all were staged.
 #include <fcntl.h>
 #include <signal.h>

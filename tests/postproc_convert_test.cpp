@@ -171,7 +171,7 @@ TEST(PostprocConvert, UnresolvedFrameNeedsAValue) {
   EXPECT_NE(r.err.find("joint target"), std::string::npos);
 }
 
-// ------------------------------------------------------------------ what is not carried (issue 14)
+// ------------------------------------------------------------------ what is not carried
 
 std::string dataProgram(const std::string& name) {
   return test::sourceDir() + "/tests/data/programs/" + name;

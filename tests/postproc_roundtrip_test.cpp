@@ -1,4 +1,4 @@
-// Byte-faithful round trips and the RoboDK corpus (docs/programs.md §1, issue 5 tests).
+// Byte-faithful round trips and the RoboDK corpus (docs/programs.md §1).
 #include <gtest/gtest.h>
 
 #include <filesystem>

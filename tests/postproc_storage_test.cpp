@@ -1,4 +1,4 @@
-// Compact program storage (issue 15): blocks of fields stored only when written, motion indices
+// Compact program storage: blocks of fields stored only when written, motion indices
 // with the first inline, offsets on the heap only when set, and the one-pass line lexer. Checked
 // against hand-written expectations and std containers, not against the code itself.
 #include <gtest/gtest.h>
@@ -74,7 +74,7 @@ TEST(PostprocStorage, SparsePoseIsIdentityUntilSet) {
 }
 
 TEST(PostprocStorage, ProgramRecordsStayCompact) {
-  // ~4 targets + 4 motions per drilled hole: a 100,000-hole predict within 200 MB (issue 15)
+  // ~4 targets + 4 motions per drilled hole: a 100,000-hole predict within 200 MB
   EXPECT_LE(sizeof(NumberField), 16u);
   EXPECT_LE(sizeof(Target), 256u);
   EXPECT_LE(sizeof(Configuration), 40u);

@@ -1,4 +1,4 @@
-// Per-hole prediction (issue 6): the robot-process precision study's qualitative findings on a
+// Per-hole prediction: the robot-process precision study's qualitative findings on a
 // paper-like cell, Monte Carlo vs linearised U_robdef, the budget recomputed by hand, and
 // byte-identical JSON/HTML through the CLI.
 #include "compensator/precision/prediction.hpp"
@@ -518,6 +518,20 @@ TEST(PredictionCli, EveryHoleStatesItsDrillingEvidence) {
               std::string::npos)
         << j.substr(0, 1500);
   }
+}
+
+TEST(PredictionCli, AnUnreachableHoleIsNamedOnceWithItsLineAndVerdict) {
+  const std::string dir = test::tempDir("err-unreachable");
+  test::writeFile(dir + "/far.csv", "id,x,y,z,i,j,k\nF1,9000,0,0,0,0,-1\nF2,100,0,150,0,0,-1\n");
+  const test::RunResult r =
+      test::runRoprec("predict --cell '" + test::sourceDir() +
+                      "/samples/cells/housing-kr120.xml' '" + dir + "/far.csv'");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(
+      r.err.find("roprec: hole F1 (" + dir + "/far.csv:2): unreachable: the wrist centre is "),
+      std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("unreachable: unreachable"), std::string::npos) << r.err;
 }
 
 }  // namespace

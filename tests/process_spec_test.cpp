@@ -1,7 +1,10 @@
+// The cell's <process> (compensator/process/process_spec.hpp): defaults and units, overrides,
+// the cutting length, and bad or implausible values named at their line.
 #include "compensator/process/process_spec.hpp"
 
 #include <gtest/gtest.h>
 
+#include <string>
 #include "compensator/precision/cell.hpp"
 #include "compensator/support/error.hpp"
 #include "tests/support/test_support.hpp"
@@ -234,6 +237,30 @@ TEST(ProcessSpec, CalibratedCopyKeepsTheRestOfTheCell) {
   EXPECT_EQ(root.child("process")->child("material")->str("name"), "Al 6061-T6");
   const ProcessSpec s = parseProcess(*root.child("process"));
   EXPECT_DOUBLE_EQ(s.drilling.coeff.tangential.k0, 1091.25e6);
+}
+
+TEST(ProcessSpec, DrillStickoutMustBeAtLeastTheDiameter) {
+  const auto spec = [](const std::string& stickout) {
+    return "<process type=\"drilling\">\n"
+           "  <drill diameter_mm=\"10\" stickout_mm=\"" +
+           stickout +
+           "\"/>\n"
+           "  <cut feed_mm_per_rev=\"0.2\" spindle_rpm=\"3000\"/>\n"
+           "  <material name=\"Al 6061-T6\"/>\n"
+           "</process>\n";
+  };
+  EXPECT_NO_THROW(parseProcess(parseXmlText(spec("34"), "cell.xml")));
+  for (const char* bad : {"1e-300", "5", "1e300"}) {
+    try {
+      (void)parseProcess(parseXmlText(spec(bad), "cell.xml"));
+      ADD_FAILURE() << "stickout " << bad << " accepted";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.line(), 2);
+      EXPECT_NE(std::string(e.what()).find("stickout_mm"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("plausible range 10 .. 1000"), std::string::npos)
+          << e.what();
+    }
+  }
 }
 
 }  // namespace

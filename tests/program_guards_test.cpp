@@ -1,4 +1,4 @@
-// Issue 13 (programs, compensation guards): a hole that is singular or unreachable at its
+// Compensation guards and program frames: a hole that is singular or unreachable at its
 // programmed target is never "compensated" into another arm posture; a compensated program is
 // marked and not compensated again unless --force; -o equal to the input is refused; controller-
 // only frames and a program tool that differs from the cell's are errors unless resolved.

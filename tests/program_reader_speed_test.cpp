@@ -1,4 +1,4 @@
-// The fast paths of the CSV/JSON/RAPID/TP readers (issue 15: program read + write >= 100 MB/s):
+// The fast paths of the CSV/JSON/RAPID/TP readers (program read + write >= 100 MB/s):
 // JSON targets streamed before the document's "frames"/"euler" are known, CSV lookups memoised
 // over runs of equal rows. Expectations are hand-written closed forms, not the code's output.
 #include <gtest/gtest.h>

@@ -1,12 +1,23 @@
 // The RAPID reader (postproc/rapid.cpp) on syntax the controller accepts: labels before any
 // statement (also before ENDPROC, IF, WHILE, TEST), the FlexPendant's `<SMT>` placeholder, and
 // speeds no motion can run at. Each program is written for the test; it must round-trip byte for
-// byte through `roprec convert` and `roprec inspect` must describe its motions.
+// byte through `roprec convert` and `roprec inspect` must describe its motions. A line missing its
+// ';' is a syntax error with its line (it must not swallow the next instruction); inline targets
+// whose components are named constants round-trip, resolve where the value is known and are
+// reported where not; a zero quaternion or an absurd external axis is refused at its line.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
 #include <string>
 
+#include "compensator/support/error.hpp"
+#include "postproc/drill.hpp"
+#include "postproc/program.hpp"
+#include "tests/support/input_errors.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace roprec {
@@ -119,6 +130,236 @@ TEST(RapidReader, ASpeedOfZeroOrBelowIsAnInputErrorAtItsLine) {
     EXPECT_NE(r.err.find("m.mod:4: MoveL: speed"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("hint:"), std::string::npos) << r.err;
   }
+}
+
+namespace fs = std::filesystem;
+
+std::vector<std::string> lines(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<std::string> v;
+  std::string l;
+  while (std::getline(in, l)) v.push_back(l);
+  return v;
+}
+
+/// The sample RAPID job cut to its first three holes (lines 1..27); `drop_semicolon_line` > 0
+/// removes the ';' that ends that line.
+std::string threeHoleModule(const std::string& dir, int drop_semicolon_line) {
+  const auto src = lines(test::sourceDir() + "/samples/emotor-housing/housing_irb6640.mod");
+  std::string text;
+  for (int i = 1; i <= 27; ++i) {
+    std::string l = src[static_cast<size_t>(i - 1)];
+    if (i == drop_semicolon_line) {
+      EXPECT_EQ(l.back(), ';');
+      l.pop_back();
+    }
+    text += l + "\n";
+  }
+  text += "  ENDPROC\nENDMODULE\n";
+  const std::string path =
+      dir + (drop_semicolon_line > 0 ? "/missing_semicolon.mod" : "/three_holes.mod");
+  test::writeFile(path, text);
+  return path;
+}
+
+TEST(RapidReader, LineMissingItsSemicolonIsASyntaxErrorWithTheLine) {
+  const std::string dir = test::tempDir("rapid_semicolon");
+  const std::string cell = test::sourceDir() + "/samples/cells/housing-irb6640.xml";
+  const std::string good = threeHoleModule(dir, 0);
+  const auto ok = test::runRoprec("predict --cell '" + cell + "' '" + good + "' --quiet --json '" +
+                                  dir + "/good.json'");
+  ASSERT_LE(ok.exit_code, 1) << ok.err;
+  // line 25 is T003's drill point (the bottom); without its ';' it would swallow `WaitTime 0.3;`
+  const std::string bad = threeHoleModule(dir, 25);
+  const auto r = test::runRoprec("predict --cell '" + cell + "' '" + bad + "' --quiet --json '" +
+                                 dir + "/bad.json' --report '" + dir + "/bad.html'");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("missing_semicolon.mod:25: missing ';'"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir + "/bad.json"));
+  EXPECT_FALSE(fs::exists(dir + "/bad.html"));
+  const auto c =
+      test::runRoprec("compensate --cell '" + cell + "' '" + bad + "' -o '" + dir + "/out.mod'");
+  EXPECT_EQ(c.exit_code, 2) << c.err;
+  EXPECT_FALSE(fs::exists(dir + "/out.mod"));
+  // the reader itself
+  try {
+    postproc::readProgram(bad);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.line(), 25);
+  }
+}
+
+TEST(RapidReader, StatementsContinuedOverLinesStillRead) {
+  const std::string text =
+      "MODULE m\n"
+      "  VAR num n := 1;\n"
+      "  PROC main()\n"
+      "    n := n\n"
+      "      + 2;\n"
+      "    MoveL [[1,2,3],[1,0,0,0],[0,0,0,0],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]],\n"
+      "      v100, fine, tool0\n"
+      "      \\WObj:=wobj0;\n"
+      "    IF n > 2\n"
+      "      AND n < 5 THEN\n"
+      "      n := 0;\n"
+      "    ENDIF\n"
+      "  ENDPROC\n"
+      "ENDMODULE\n";
+  const postproc::Program p = postproc::parseProgram(postproc::Dialect::kRapid, "c.mod", text);
+  EXPECT_EQ(p.motions.size(), 1U);
+  EXPECT_EQ(postproc::renderFiles(p)[0], text);
+}
+
+const char* kNamedModule =
+    "MODULE mTrack\n"
+    "  CONST num Shift_Track := 250;\n"
+    "  CONST num nHalf := Shift_Track / 2 - 5;\n"
+    "  VAR num nRuntime;\n"
+    "  PROC main()\n"
+    "    MoveAbsJ [[-90,0,0,0,0,0],[Shift_Track,9E+09,9E+09,9E+09,9E+09,9E+09]]\\NoEOffs, v1000, "
+    "z50, tool0;\n"
+    "    MoveAbsJ [[-90,0,nHalf,0,-(nHalf+5),0],[nRuntime,9E+09,9E+09,9E+09,9E+09,9E+09]], v1000, "
+    "z50, tool0;\n"
+    "    MoveL [[1000,Shift_Track,800],[0,1,0,0],[0,0,0,0],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]], "
+    "v100, fine, tool0;\n"
+    "  ENDPROC\n"
+    "ENDMODULE\n";
+
+TEST(RapidReader, InlineTargetsWithNamedConstantsRoundTripAndResolve) {
+  const postproc::Program p =
+      postproc::parseProgram(postproc::Dialect::kRapid, "track.mod", kNamedModule);
+  EXPECT_EQ(postproc::renderFiles(p)[0], kNamedModule);
+  ASSERT_EQ(p.targets().size(), 3U);
+  const postproc::Target& j1 = p.targets()[0];
+  EXPECT_EQ(p.exprText(j1.ext[0]), "Shift_Track");
+  EXPECT_TRUE(j1.ext[0].expr_known);
+  EXPECT_DOUBLE_EQ(j1.ext[0].value, 250.0);
+  const postproc::Target& j2 = p.targets()[1];
+  EXPECT_DOUBLE_EQ(j2.joints[2].value, 120.0);  // 250/2 - 5
+  EXPECT_DOUBLE_EQ(j2.joints[4].value, -125.0);
+  EXPECT_EQ(postproc::targetJointsDeg(j2).size(), 6U);
+  EXPECT_FALSE(j2.ext[0].expr_known);  // a variable without value: reported
+  bool reported = false;
+  for (const auto& u : p.unresolved) reported |= u.ref == "nRuntime" && u.line == 7;
+  EXPECT_TRUE(reported);
+  // a robtarget with a named component: its pose is known, but roprec does not rewrite names
+  const postproc::Target& c = p.targets()[2];
+  EXPECT_TRUE(postproc::targetComplete(c));
+  EXPECT_NEAR(postproc::targetPose(p, c).translation().y(), 0.25, 1e-12);
+  postproc::Program q = p;
+  const postproc::EditResult er = postproc::replaceTargetPose(
+      q, 2, postproc::targetPose(p, c) * Pose(Eigen::Translation3d(0, 0, 1e-3)));
+  EXPECT_FALSE(er.ok);
+  EXPECT_NE(er.reason.find("Shift_Track"), std::string::npos) << er.reason;
+  EXPECT_EQ(postproc::renderFiles(q)[0], kNamedModule);
+}
+
+TEST(RapidReader, InlineTargetsWithNamedConstantsThroughTheCli) {
+  const std::string dir = test::tempDir("rapid_named");
+  const std::string in = dir + "/track.mod";
+  test::writeFile(in, kNamedModule);
+  const auto c = test::runRoprec("convert '" + in + "' -o '" + dir + "/copy.mod'");
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  EXPECT_EQ(test::readFile(dir + "/copy.mod"), kNamedModule);
+  const auto i = test::runRoprec("inspect '" + in + "'");
+  ASSERT_EQ(i.exit_code, 0) << i.err;
+  EXPECT_NE(i.out.find("nRuntime"), std::string::npos) << i.out;
+}
+
+using postproc::Dialect;
+using postproc::parseProgram;
+
+// A RAPID drill cycle in a work object: approach 48 mm above on the axis at v250, the bottom at
+// the feed, retract.
+std::string rapidCycle(const std::string& bottom_rot, const std::string& bottom_conf,
+                       const std::string& extax = "9E+09") {
+  const std::string tail = ",[" + extax + ",9E+09,9E+09,9E+09,9E+09,9E+09]]";
+  return "MODULE M\n"
+         "  PERS tooldata tS:=[TRUE,[[0,0,320],[1,0,0,0]],[10,[0,0,100],[1,0,0,0],0,0,0]];\n"
+         "  PERS wobjdata wW:=[FALSE,TRUE,\"\",[[1350,0,300],[1,0,0,0]],[[0,0,0],[1,0,0,0]]];\n"
+         "  PROC main()\n"
+         "    MoveJ [[150,0,284],[0,1,0,0],[0,0,0,0]" +
+         tail +
+         ",v1000,z10,tS\\WObj:=wW;\n"
+         "    MoveL [[150,0,234],[0,1,0,0],[0,0,0,0]" +
+         tail +
+         ",v250,z1,tS\\WObj:=wW;\n"
+         "    MoveL [[150,0,214],[" +
+         bottom_rot + "],[" + bottom_conf + "]" + tail +
+         ",v2,fine,tS\\WObj:=wW;\n"
+         "    MoveL [[150,0,284],[0,1,0,0],[0,0,0,0]" +
+         tail +
+         ",v250,z10,tS\\WObj:=wW;\n"
+         "  ENDPROC\n"
+         "ENDMODULE\n";
+}
+
+TEST(RapidReader, AZeroQuaternionAndAnAbsurdExternalAxisAreRefused) {
+  EXPECT_EQ(test::programReadError(Dialect::kRapid, "m.mod", rapidCycle("0,1,0,0", "0,0,0,0")),
+            "(accepted)");
+  int line = 0;
+  const std::string e = test::programReadError(
+      Dialect::kRapid, "m.mod", rapidCycle("0,0,0,0", "0,0,0,0"), std::nullopt, &line);
+  EXPECT_NE(e.find("has norm 0, not 1"), std::string::npos) << e;
+  EXPECT_EQ(line, 7);
+  const std::string x =
+      test::programReadError(Dialect::kRapid, "m.mod", rapidCycle("0,1,0,0", "0,0,0,0", "8E+09"));
+  EXPECT_NE(x.find("external axis 1 = 8e+09 is out of range"), std::string::npos) << x;
+}
+
+TEST(RapidReader, AHoleBottomRoprecCannotEvaluateIsNotTakenForTheApproachPoint) {
+  const auto holes = [](const std::string& text) {
+    return postproc::recognizeHoles(parseProgram(Dialect::kRapid, "m.mod", text));
+  };
+  const auto good = holes(rapidCycle("0,1,0,0", "0,0,0,0"));
+  ASSERT_EQ(good.size(), 1u);
+  EXPECT_NEAR(good[0].depth * 1e3, 20.0, 1e-9);
+  // `inf` is not a RAPID number: an identifier the module does not declare, value unknown
+  const postproc::Program p =
+      parseProgram(Dialect::kRapid, "m.mod", rapidCycle("0,inf,0,0", "0,0,0,0"));
+  EXPECT_TRUE(postproc::recognizeHoles(p).empty());
+  ASSERT_FALSE(p.unresolved.empty());
+  EXPECT_EQ(p.unresolved[0].ref, "inf");
+  EXPECT_EQ(p.unresolved[0].line, 7);
+}
+
+TEST(RapidReader, ARobconfRoprecCannotEvaluateStatesNoConfiguration) {
+  const postproc::Program known =
+      parseProgram(Dialect::kRapid, "m.mod", rapidCycle("0,1,0,0", "0,-1,2,0"));
+  const postproc::Program unknown =
+      parseProgram(Dialect::kRapid, "m.mod", rapidCycle("0,1,0,0", "0,nan,2,0"));
+  const auto bottom = [](const postproc::Program& p) {
+    return p.targets()[static_cast<std::size_t>(postproc::recognizeHoles(p).at(0).bottom_target)];
+  };
+  EXPECT_TRUE(bottom(known).config.present());
+  EXPECT_EQ(bottom(known).config.cf[1], -1);
+  EXPECT_FALSE(bottom(unknown).config.present());
+}
+
+TEST(RapidReader, PredictWarnsAboutAnUnresolvedTargetComponentOnStderr) {
+  const std::string dir = test::tempDir("rapid-unresolved");
+  // a second, complete cycle after the one with the unknown bottom: one hole predicted, the
+  // unresolved component named as a warning
+  std::string text = rapidCycle("0,inf,0,0", "0,0,0,0");
+  const std::string good = rapidCycle("0,1,0,0", "0,0,0,0");
+  const std::size_t b = good.find("    MoveJ"), e = good.find("  ENDPROC");
+  text.insert(text.find("  ENDPROC"), good.substr(b, e - b));
+  test::writeFile(dir + "/m.mod", text);
+  const std::string cell = test::sourceDir() + "/samples/cells/housing-irb6640.xml";
+  const auto r = test::runRoprec("predict --cell '" + cell + "' '" + dir + "/m.mod' --json '" +
+                                 dir + "/p.json'");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("roprec predict: 1 holes"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("warning: unresolved inf (" + dir + "/m.mod:7): robtarget rot component"),
+            std::string::npos)
+      << r.err;
+  // the only cycle cut short: the error names the reference
+  test::writeFile(dir + "/one.mod", rapidCycle("0,inf,0,0", "0,0,0,0"));
+  const auto one = test::runRoprec("predict --cell '" + cell + "' '" + dir + "/one.mod' --json '" +
+                                   dir + "/q.json'");
+  EXPECT_EQ(one.exit_code, 2);
+  EXPECT_NE(one.err.find("the first 'inf' at line 7"), std::string::npos) << one.err;
 }
 
 }  // namespace

@@ -783,7 +783,7 @@ TEST(ReportChromium, HeadlessScreenshotShowsTheMaps) {
   if (!HasFailure()) fs::remove_all(dir);
 }
 
-// ------------------------------------------------------------------ the sample job (issue 14)
+// ------------------------------------------------------------------ the sample job
 
 std::string sample(const std::string& rel) { return test::sourceDir() + "/samples/" + rel; }
 

@@ -1,4 +1,4 @@
-// Issue 15 streaming writers: the prediction JSON and the corrected-target exports are written
+// The streaming writers: the prediction JSON and the corrected-target exports are written
 // hole by hole (JsonWriter, PredictionJsonStream, writeCompensationTargets) and must give the very
 // bytes of the in-memory writers they replace: the Json tree of predictionJson()/holeJson() (kept
 // for the C and Python hosts) and, for the target exports, the tree/ostringstream writers of the
@@ -529,7 +529,7 @@ std::string targetsJson(const api::CompensationResult& r, const std::string& pro
 
 /// True when every line of `reference` appears in `text`, in order (trailing commas aside): the
 /// streamed export keeps every member and number of the previous writer byte for byte; members
-/// added since (issue 14: rotation and flag reasons) are extra lines.
+/// added since (rotation and flag reasons) are extra lines.
 ::testing::AssertionResult keepsEveryLineInOrder(const std::string& text,
                                                  const std::string& reference) {
   auto lines = [](const std::string& t) {
@@ -566,8 +566,8 @@ TEST(StreamingOutput, TargetExportsKeepEveryByteOfThePreviousWriters) {
     r.holes[1].ok = false;
     r.holes[1].reason = "kept for the test, \"quoted\"";
     r.holes[2].note = "a note";
-    // CSV: every row starts with the previous writer's row (issue 14 appended the controller
-    // joints and the rotation/flag reasons as further columns)
+    // CSV: every row starts with the previous writer's row (the controller joints
+    // and the rotation/flag reasons follow as further columns)
     {
       std::istringstream now(api::compensationTargets(r, program, true));
       std::istringstream before(reference::targetsCsv(r));

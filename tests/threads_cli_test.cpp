@@ -1,4 +1,4 @@
-// Issue 15 `--threads N` through the CLI: predict and compensate write byte-identical files for
+// `--threads N` through the CLI: predict and compensate write byte-identical files for
 // 1, 2 and 0 (every core) threads, on the KUKA sample and on a generated 600-hole program (more
 // than one block of the streamed predict per worker); a count that is not a whole number in
 // [0, 1024] is a usage error (exit 2, nothing written).

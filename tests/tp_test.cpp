@@ -2,11 +2,19 @@
 // sub-block, apostrophes in position comments, positions never taught (`UF : F`, `********`), a
 // SCARA's CONFIG, and speeds no motion can run at. Each program is written for the test; it must
 // round-trip byte for byte through `roprec convert` and `roprec inspect` must describe it.
+// Damaged lines are errors at their line: a line number, a speed without its number or with an
+// exponent, a frame number that is not a small integer; a motion to a position only the
+// controller knows (P[R[4]], PR[3]) is an unresolved reference at its line.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
+#include <vector>
 
+#include "compensator/support/error.hpp"
+#include "postproc/program.hpp"
+#include "tests/support/input_errors.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace roprec {
@@ -163,6 +171,112 @@ TEST(TpReader, ASpeedOfZeroIsAnInputErrorAtItsLine) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("j.ls:4: L: speed 0 mm/s"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("hint:"), std::string::npos) << r.err;
+}
+
+using postproc::Dialect;
+using postproc::parseProgram;
+
+TEST(TpReader, FrameNumbersAreSmallIntegers) {
+  const std::string path = test::sourceDir() + "/samples/emotor-housing/housing_r2000.ls";
+  const std::string good = test::readFile(path);
+  EXPECT_EQ(test::programReadError(Dialect::kTp, "r.ls", good), "(accepted)");
+  for (const char* bad : {"UT : 1e300", "UT : 1.5", "UT : -1"}) {
+    std::string text = good;
+    const std::size_t at = text.find("UT : 1,");
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, 6, bad);
+    int line = 0;
+    const std::string e = test::programReadError(Dialect::kTp, "r.ls", text, std::nullopt, &line);
+    EXPECT_NE(e.find("is not a frame number (an integer 0 .. 99)"), std::string::npos) << e;
+    EXPECT_GT(line, 0);
+  }
+}
+
+/// The sample R-2000iC program with `from` (at `at` characters past the first `anchor`)
+/// replaced by `to`, parsed: its InputError text (or "(accepted)").
+std::string tpError(const std::string& anchor, std::size_t at, std::size_t from,
+                    const std::string& to) {
+  std::string text = test::readFile(test::sourceDir() + "/samples/emotor-housing/housing_r2000.ls");
+  const std::size_t a = text.find(anchor);
+  EXPECT_NE(a, std::string::npos) << anchor;
+  if (a == std::string::npos) return "(anchor not found)";
+  text.replace(a + at, from, to);
+  try {
+    (void)postproc::parseProgram(postproc::Dialect::kTp, "r.ls", text);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
+TEST(TpReader, ALineWhoseNumberIsDamagedIsAnError) {
+  // `inf:L P[591] ...` (the line number damaged) must not be skipped: a motion dropped in silence
+  const std::string e = tpError("1182:L P[591]", 0, 4, "inf");
+  EXPECT_NE(e.find("a /MN line starts with its line number"), std::string::npos) << e;
+  EXPECT_NE(e.find("got 'inf'"), std::string::npos) << e;
+}
+
+TEST(TpReader, ASpeedWithoutItsNumberIsAnError) {
+  // `nanmm/sec` must not leave the move without a speed (the drill feed is recognised from it)
+  const std::string e = tpError("L P[306] 20mm/sec", 9, 2, "nan");
+  EXPECT_NE(e.find("speed 'nanmm/sec' is not a number with its unit"), std::string::npos) << e;
+}
+
+TEST(TpReader, ASpeedWithAnExponentAndASpeedOver10MetresPerSecondAreErrors) {
+  // `L P[374] 1e300mm/sec` must not be read as 1 mm/sec (the number's leading digit; the rest
+  // taken for the unit): the approach became the slowest move, the hole's depth 32 -> 80 mm and
+  // predict exited 0. The unit must follow the number, and a linear speed is at most 10 m/s.
+  EXPECT_NE(tpError("L P[374] 250mm/sec", 9, 3, "1e300")
+                .find("speed '1e300mm/sec' is not a number with its unit"),
+            std::string::npos);
+  EXPECT_NE(tpError("L P[374] 250mm/sec", 9, 3, "25x0").find("speed '25x0mm/sec' is not a number"),
+            std::string::npos);
+  const std::string fast = tpError("L P[374] 250mm/sec", 9, 3, "25000");
+  EXPECT_NE(fast.find("r.ls:768: L: speed 25000 mm/s is out of range (<= 10000 mm/s"),
+            std::string::npos)
+      << fast;
+  EXPECT_EQ(tpError("L P[374] 250mm/sec", 9, 3, "9000"), "(accepted)");  // fast, but a speed
+  EXPECT_EQ(tpError("L P[374] 250mm/sec", 9, 9, "1500cm/min"), "(accepted)");
+}
+
+/// The unresolved references of `p` that are positions (not the controller's frames).
+std::vector<postproc::Unresolved> positionsUnresolved(const postproc::Program& p) {
+  std::vector<postproc::Unresolved> out;
+  for (const postproc::Unresolved& u : p.unresolved)
+    if (u.ref.rfind("UFRAME", 0) != 0 && u.ref.rfind("UTOOL", 0) != 0) out.push_back(u);
+  return out;
+}
+
+TEST(TpReader, AMotionToAPositionRoprecCannotKnowIsReportedAtItsLine) {
+  // `L P[inf] ...` (the index damaged), a register-indexed position `P[R[4]]` and a position
+  // register `PR[3]`, whose values live in the controller, must not go to no position without
+  // a word (the hole they approach would drop out of the job): each is an unresolved reference
+  // with its line.
+  const std::string text =
+      test::readFile(test::sourceDir() + "/samples/emotor-housing/housing_r2000.ls");
+  const std::string anchor = " 113:L P[56] 250mm/sec CNT10 ;";
+  ASSERT_NE(text.find(anchor), std::string::npos);
+  const std::string dir = test::tempDir("tp-runtime-position");
+  for (const std::string ref : {"P[inf]", "P[R[4]]", "PR[3]"}) {
+    SCOPED_TRACE(ref);
+    std::string t = text;
+    t.replace(t.find(anchor), anchor.size(), " 113:L " + ref + " 250mm/sec CNT10 ;");
+    const postproc::Program p = postproc::parseProgram(postproc::Dialect::kTp, "r.ls", t);
+    ASSERT_EQ(positionsUnresolved(p).size(), 1U);
+    EXPECT_EQ(positionsUnresolved(p)[0].ref, ref);
+    EXPECT_EQ(positionsUnresolved(p)[0].line, 132);
+    test::writeFile(dir + "/r.ls", t);
+    const auto r = test::runRoprec("predict --cell '" + test::sourceDir() +
+                                   "/samples/cells/housing-r2000.xml' '" + dir +
+                                   "/r.ls' --frame cell --tool cell --json '" + dir + "/p.json'");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("roprec: warning: unresolved " + ref + " (" + dir + "/r.ls:132): "),
+              std::string::npos)
+        << r.err;
+  }
+  // the sample itself has none (only its controller frames UFRAME[1] and UTOOL[1])
+  EXPECT_TRUE(
+      positionsUnresolved(postproc::parseProgram(postproc::Dialect::kTp, "r.ls", text)).empty());
 }
 
 }  // namespace

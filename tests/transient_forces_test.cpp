@@ -1,4 +1,4 @@
-// The drilling force law tabulated along the lip radius (compensator/robot/transient_forces.hpp)
+// The drilling force law tabulated along the lip radius (compensator/process/transient_forces.hpp)
 // against the exact evaluator drillingForcesAtDepth (24-node Gauss–Legendre rebuilt at every
 // call), which is the independent reference here:
 //  * entry, full engagement and breakthrough of the sample cell's through hole and of a blind
@@ -10,7 +10,7 @@
 //  * runout 10 µm (unequal lip chips, corner strips in the breakthrough) within the same bound;
 //  * the exact fallback for chips under the floor h_min;
 //  * table accuracy converges like Δ⁴ (local cubic): 24 → 48 cells gains ≥ 8×.
-#include "compensator/robot/transient_forces.hpp"
+#include "compensator/process/transient_forces.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// CVODE transient of the flexible-joint robot under its servo (compensator/robot/transient.hpp)
+// CVODE transient of the flexible-joint robot under its servo (compensator/process/transient.hpp)
 // against independent references:
 //  * the steady state equals the static deviation of predictDeflection (fixed point/Newton on the
 //    static equations, no integration) to ≤ 0.01 µm, with integral action (ideal-servo statics)
@@ -10,7 +10,7 @@
 //    the two-inertia oscillator, ω² = k(1/J + 1/B_m) (undamped and damped);
 //  * the C firewall: an exception thrown inside the right-hand side comes back as itself, a
 //    non-finite load is a failed result (a value), and the right-hand side does not allocate.
-#include "compensator/robot/transient.hpp"
+#include "compensator/process/transient.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
-// U_mach is one number per tool and cut, whichever command prints it (issue: consistent machining
-// deviation): `roprec forces` (the process alone) and `roprec predict` (the per-hole budget) give
+// U_mach is one number per tool and cut, whichever command prints it:
+// `roprec forces` (the process alone) and `roprec predict` (the per-hole budget) give
 // the same U_mach with the same 2-D radial coverage factor, at the drill's own diameter and — with
 // a <machining_deviation diameter_mm> override — at another diameter of the hole list.
 #include <gtest/gtest.h>

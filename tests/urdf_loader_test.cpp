@@ -1,7 +1,8 @@
 /// URDF loading (compensator/robot/urdf_loader.cpp) against independent references: KDL's own URDF
 /// parser (kdl_parser) on the real ROS-Industrial files of the corpus, a hand-composed product
 /// of the literal origins of a small fixture, hand-computed combined inertials, and one test
-/// per kind of bad input, through the library and through the CLI.
+/// per kind of bad input, through the library and through the CLI: near-miss names, absurd
+/// origins, axes and joint limits, non-numeric or unphysical inertials are errors at their line.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -9,13 +10,17 @@
 #include <kdl/tree.hpp>
 #include <kdl_parser/kdl_parser.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <random>
+#include <regex>
+#include <string>
 
 #include "compensator/robot/chain.hpp"
 #include "compensator/robot/robot_card.hpp"
 #include "compensator/robot/urdf_loader.hpp"
 #include "compensator/support/error.hpp"
+#include "tests/support/input_errors.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace roprec {
@@ -408,6 +413,121 @@ TEST(UrdfLoaderBadInputCli, UnknownRobotName) {
   EXPECT_EQ(r.out, "");
   EXPECT_EQ(r.err.rfind("roprec: error: ", 0), 0u) << r.err;
   EXPECT_NE(r.err.find("no-such-robot"), std::string::npos) << r.err;
+}
+
+namespace fs = std::filesystem;
+
+std::string kukaUrdf() {
+  return test::sourceDir() + "/robots/kuka-kr120-r2500-pro/kr120r2500pro.urdf";
+}
+
+/// The KUKA URDF with the first <limit lower="..."> replaced by `lower`; returns the line of the
+/// <joint> element that carries it in *joint_line.
+std::string urdfWithLowerLimit(const std::string& dir, const std::string& lower, int* joint_line) {
+  std::string text = test::readFile(kukaUrdf());
+  const std::size_t l = text.find("<limit lower=\"");
+  const std::size_t v = l + std::string("<limit lower=\"").size();
+  const std::size_t e = text.find('"', v);
+  text.replace(v, e - v, lower);
+  const std::size_t j = text.rfind("<joint", l);
+  *joint_line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + j, '\n'));
+  const std::string path = dir + "/bad_limit.urdf";
+  test::writeFile(path, text);
+  return path;
+}
+
+TEST(UrdfLoaderBadInput, AnAbsurdJointLimitIsRefusedAtTheJointLine) {
+  const std::string dir = test::tempDir("range-urdf");
+  int line = 0;
+  const std::string path = urdfWithLowerLimit(dir, "-1e300", &line);
+  try {
+    (void)loadUrdfChain(path);
+    FAIL() << "a joint limit of -1e300 rad was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), path);
+    EXPECT_EQ(e.line(), line) << e.what();
+    const std::string what = e.what();
+    EXPECT_NE(what.find("out of range"), std::string::npos) << what;
+    EXPECT_LT(what.size(), 400u) << what;  // the number in bounded %g, not 300 digits
+  }
+  // 10 turns is the limit; 9 turns still loads
+  const std::string ok = urdfWithLowerLimit(dir, "-56.5", &line);
+  EXPECT_NO_THROW((void)loadUrdfChain(ok));
+}
+
+// A non-numeric inertia must be an InputError at its line, not an exception thrown inside Eigen's
+// comma initializer (whose destructor aborts in builds with assertions).
+TEST(UrdfLoaderBadInput, ANonNumericInertiaIsAnInputErrorAtItsLine) {
+  const std::string dir = test::tempDir("errloc_urdf");
+  std::string urdf =
+      test::readFile(test::sourceDir() + "/robots/kuka-kr120-r2500-pro/kr120r2500pro.urdf");
+  const std::size_t at = urdf.find("iyz=\"");
+  ASSERT_NE(at, std::string::npos);
+  urdf.replace(at, 5, "iyz=\"i0");
+  test::writeFile(dir + "/r.urdf", urdf);
+  try {
+    loadUrdfChain(dir + "/r.urdf", {"base_link", "flange"});
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_GT(e.line(), 0) << e.what();
+    EXPECT_NE(std::string(e.what()).find("iyz"), std::string::npos) << e.what();
+  }
+}
+
+TEST(UrdfLoaderBadInput, InertialsMustBePhysical) {
+  const std::string urdf = test::readFile(kukaUrdf());
+  const std::regex mass("<mass value=\"([0-9.eE+-]+)\"\\s*/>");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(urdf, m, mass));
+  const std::string dir = test::tempDir("strict-urdf");
+  for (const char* value : {"-12", "nan"}) {
+    SCOPED_TRACE(value);
+    std::string text = urdf;
+    text.replace(static_cast<std::size_t>(m.position(1)), static_cast<std::size_t>(m.length(1)),
+                 value);
+    test::writeFile(dir + "/r.urdf", text);
+    EXPECT_THROW((void)loadUrdfChain(dir + "/r.urdf"), InputError);
+  }
+}
+
+std::string urdfError(const std::string& anchor, const std::string& from, const std::string& to) {
+  const std::string dir = test::editedKr120("kr120r2500pro.urdf", anchor, from, to);
+  return test::inputErrorText([&] { (void)loadUrdfChain(dir + "/kr120r2500pro.urdf"); });
+}
+
+TEST(UrdfLoaderBadInput, NearMissNamesAndAbsurdOriginsAreErrorsAtTheirLine) {
+  const std::string j2 = "<joint name=\"joint_a2\"";
+  EXPECT_NE(urdfError(j2, "<origin xyz=", "<origin ryz=")
+                .find(":122: unknown attribute 'ryz' on "
+                      "<origin> (did you mean 'xyz'?)"),
+            std::string::npos)
+      << urdfError(j2, "<origin xyz=", "<origin ryz=");
+  EXPECT_NE(urdfError(j2, "<axis xyz", "<axns xyz")
+                .find(":123: unknown element <axns> in <joint> "
+                      "(did you mean <axis>?)"),
+            std::string::npos)
+      << urdfError(j2, "<axis xyz", "<axns xyz");
+  EXPECT_NE(urdfError(j2, "rpy=\"0 0 0\"", "rpy=\"1e300 0 0\"")
+                .find(":122: <origin> rpy '1e300 0 0' is beyond 100 rad"),
+            std::string::npos);
+  EXPECT_NE(urdfError(j2, "xyz=\"0.350 0 0.675\"", "xyz=\"0.350 0 1e300\"")
+                .find(":122: <origin> xyz '0.350 0 1e300' is beyond 100 m"),
+            std::string::npos);
+  EXPECT_NE(urdfError(j2, "<limit lower", "<limit lowr").find(":125: unknown attribute 'lowr'"),
+            std::string::npos);
+  EXPECT_NE(urdfError("<link", "<mass value=", "<mass valeu=")
+                .find("unknown attribute 'valeu' on <mass> (did you mean 'value'?)"),
+            std::string::npos);
+  EXPECT_NE(urdfError("<link", "<inertial>", "<inertial><centre/>")
+                .find("unknown element <centre> in <inertial>"),
+            std::string::npos);
+  // an axis component of 1e300 must not be normalised into another axis
+  EXPECT_NE(urdfError(j2, "<axis xyz=\"0 1 0\"", "<axis xyz=\"0 1 1e300\"")
+                .find(":123: joint 'joint_a2' axis xyz '0 1 1e300' is not a direction"),
+            std::string::npos)
+      << urdfError(j2, "<axis xyz=\"0 1 0\"", "<axis xyz=\"0 1 1e300\"");
+  // The unmutated copy loads (the checks accept the bundled URDF).
+  EXPECT_EQ(urdfError(j2, "<origin", "<origin"), "(accepted)");
 }
 
 }  // namespace

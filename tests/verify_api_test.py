@@ -1,4 +1,4 @@
-"""`roprec verify` and `roprec plan-test` (issue 11): the CLI, the C ABI (ctypes) and the Python
+"""`roprec verify` and `roprec plan-test`: the CLI, the C ABI (ctypes) and the Python
 module give identical numbers on the shipped sample (samples/verification/): identical JSON and
 card bytes, and every number of the summaries equal within 1e-9 relative.
 

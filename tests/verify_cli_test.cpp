@@ -1,4 +1,4 @@
-// Issue 11 through the CLI, on the shipped sample (samples/verification/): `roprec verify` prints
+// Verify through the CLI, on the shipped sample (samples/verification/): `roprec verify` prints
 // the statistics; `--calibrate` writes a card that loads in a cell and whose compensation, executed
 // by the truth robot (the truth card the sample was measured with), leaves a smaller residual than
 // the bundled card's; bad measured files exit 2 with FILE:LINE and write nothing; the JSON is
@@ -71,7 +71,7 @@ TEST(VerifyCli, SampleExitsZeroAndPrintsTheStatistics) {
   EXPECT_EQ(j["registration"]["kind"], "translation");
   const std::string html = test::readFile(dir + "/v.html");
   EXPECT_NE(html.find("<svg"), std::string::npos);
-  // Self-contained (the reason this test once demanded no <script> at all): since issue 14 the
+  // Self-contained (the reason this test once demanded no <script> at all): the
   // per-hole table sorts like the prediction report's, with one inline script; nothing is
   // loaded from anywhere.
   EXPECT_EQ(html.find("<script src"), std::string::npos);

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "compensator/precision/identification.hpp"
+#include "compensator/support/c_format.hpp"  // formatCardNumber, the stiffness style
 
 namespace roprec {
 
@@ -30,9 +31,6 @@ std::vector<CardStiffnessUpdate> cardUpdates(const IdentificationResult& r);
 
 /// "identified: N holes from FILE by roprec verify (σ = S N·m/rad)".
 std::string identifiedSource(int holes, const std::string& measured_file, double sigma);
-
-/// Prints k in the cards' style: 4 significant digits, plain exponent ("2.413e6", "8.38e4").
-std::string formatCardNumber(double v, int significant = 4);
 
 /// Rewrites `card_text` (the original robot.xml bytes). `card_path` names the card in errors.
 /// Throws InputError(card_path, line, …) when the card does not hold exactly 6 <joint> elements

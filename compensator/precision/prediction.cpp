@@ -144,12 +144,6 @@ bool hasAccuracyTerm(const AccuracyInputs& a) {
   return a.kind != AccuracyInputs::Kind::kNone || a.registration_sigma > 0;
 }
 
-/// Unit vectors e1, e2 spanning the plane ⊥ the hole axis: the nominal TCP x and y.
-void planeBasis(const Mat3& R, Vec3& e1, Vec3& e2) {
-  e1 = R.col(0);
-  e2 = R.col(1);
-}
-
 }  // namespace
 
 PredictionModel buildPredictionModel(const PredictionSetup& setup) {
@@ -338,31 +332,52 @@ void predictHole(const PredictionModel& m, PredictionData& d, const HoleRequest&
 
 namespace {
 
-void predictAtSolution(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
-                       const IkSolution& sol, HolePrediction& p) {
+/// The plane ⊥ the hole axis: unit vectors e1, e2 (the nominal TCP x and y) and the axis a (its z).
+struct HolePlane {
+  Vec3 e1, e2, a;
+  /// The in-plane components (e1, e2) of a base-frame vector.
+  Eigen::Vector2d of(const Vec3& v) const { return Eigen::Vector2d(v.dot(e1), v.dot(e2)); }
+};
+
+HolePlane holePlane(const Mat3& R_tcp) { return {R_tcp.col(0), R_tcp.col(1), R_tcp.col(2)}; }
+
+/// The hole's own figures, predicted or not: tolerance, diameter, depth and the
+/// machining-centre time.
+void holeFigures(const PredictionModel& m, const HoleRequest& h, const ProcessAtDiameter* proc,
+                 HolePrediction& p) {
   p.tolerance = h.tolerance > 0 ? h.tolerance : m.default_tolerance;
-  const ProcessAtDiameter* proc = processFor(m, h.diameter);
   p.diameter = h.diameter > 0 ? h.diameter : (proc ? proc->diameter : 0.0);
   p.depth = holeDepth(h, proc);
   if (proc && proc->feed_rate > 0 && !p.beyond_drill)
     p.mc_time = p.depth / proc->feed_rate + m.capability.mc_approach_s;
-  if (p.status != HoleStatus::kOk) return;
+}
+
+/// The chosen IK solution as the hole's command (joints, branch, vendor flags); false,
+/// with p saying why, at a wrist or shoulder singularity.
+bool takeSolution(const PredictionModel& m, const IkSolution& sol, HolePrediction& p) {
   p.joints = sol.q;
   p.branch = 4 * sol.branch.shoulder + 2 * sol.branch.elbow + sol.branch.wrist;
   p.wrist_margin = sol.branch.wrist_margin_rad;
   p.config = formatConfig(configurationOf(m.ik, m.robot.card, sol.q, m.config_options));
-  if (sol.singular_wrist || sol.singular_shoulder) {
-    p.status = HoleStatus::kSingular;
-    p.verdict = Verdict::kSingular;
-    p.reason = sol.singular_wrist ? "wrist singularity (axis 5 near 0)" : "shoulder singularity";
-    return;
-  }
+  if (!sol.singular_wrist && !sol.singular_shoulder) return true;
+  p.status = HoleStatus::kSingular;
+  p.verdict = Verdict::kSingular;
+  p.reason = sol.singular_wrist ? "wrist singularity (axis 5 near 0)" : "shoulder singularity";
+  return false;
+}
 
-  // 2. δrobot
-  const nc::Loads loads = processLoads(m, proc);
-  const Mat3& R = h.T_W_tcp.linear();
-  p.force_base = R * loads.tcp_tool.force;
-  const Vec6 offset = controllerOffset(m, d.nc, sol.q);
+/// The process wrench on the TCP in the base frame, w = [R f; R m] (N, N m).
+Vec6 processWrenchBase(const Mat3& R_tcp, const nc::Loads& loads) {
+  Vec6 w;
+  w << R_tcp * loads.tcp_tool.force, R_tcp * loads.tcp_tool.moment;
+  return w;
+}
+
+/// δrobot: the compliance equilibrium at the command under gravity and the process
+/// wrench (the controller's own offset `offset` applied), referred to the controller's pose when
+/// the robot is calibrated; false, with p saying why, when it does not converge.
+bool robotDeviation(const PredictionModel& m, PredictionData& d, const IkSolution& sol,
+                    const nc::Loads& loads, const Vec6& offset, HolePrediction& p) {
   nc::DeflectionOptions dopt;
   // the linear budget reads data.frames only; Monte Carlo's share uses the full state
   dopt.natural_state = m.uncertainty.method != UncertaintyInputs::Method::kLinear;
@@ -372,121 +387,144 @@ void predictAtSolution(const PredictionModel& m, PredictionData& d, const HoleRe
     p.verdict = Verdict::kNotConverged;
     p.reason = "the compliance equilibrium did not converge (residual " +
                numberText(p.deflection.residual) + " rad)";
-    return;
+    return false;
   }
   if (m.calibrated) nc::referToControllerPose(p.deflection, controllerTcp(m, sol.q));
   p.d_robot = p.deflection.dp;
   p.d_rot = p.deflection.drot;
+  return true;
+}
 
-  // 3. δmach (systematic part, tool XY plane)
-  if (proc) p.d_mach = R * Vec3(proc->mach.delta_tool.x(), proc->mach.delta_tool.y(), 0.0);
+/// δmach (its systematic part, in the tool XY plane), δwork = δrobot + δmach and the
+/// errors ⊥ the hole axis: position error, axis tilt and, when the nominal hole is known, the real
+/// drill point's distance from its axis.
+void workDeviation(const HoleRequest& h, const ProcessAtDiameter* proc, const Mat3& R_tcp,
+                   const HolePlane& plane, HolePrediction& p) {
+  if (proc) p.d_mach = R_tcp * Vec3(proc->mach.delta_tool.x(), proc->mach.delta_tool.y(), 0.0);
   p.d_work = p.d_robot + p.d_mach;
-
-  // 4. errors ⊥ the axis
-  Vec3 e1;
-  Vec3 e2;
-  planeBasis(R, e1, e2);
-  const Vec3 a = R.col(2);
-  p.e_tool = Eigen::Vector2d(p.d_work.dot(e1), p.d_work.dot(e2));
+  p.e_tool = plane.of(p.d_work);
   p.position_error = p.e_tool.norm();
-  p.axis_tilt = (p.d_rot - p.d_rot.dot(a) * a).norm();
+  p.axis_tilt = (p.d_rot - p.d_rot.dot(plane.a) * plane.a).norm();
   if (h.nominal_axis) {
     const Vec3 real = p.deflection.T_real.translation() + p.d_mach;
     const Vec3 n = h.nominal_axis->second.normalized();
     const Vec3 r = real - h.nominal_axis->first;
     p.nominal_axis_error = (r - r.dot(n) * n).norm();
   }
+}
 
-  // 5. budget
+/// In-plane covariances (m²) of δrobot's model uncertainty: the whole, and the part the process
+/// force's scale uncertainty causes (the robot_deflection_process_force term).
+struct DeflectionCovariance {
+  Eigen::Matrix2d total{Eigen::Matrix2d::Zero()};
+  Eigen::Matrix2d process_force{Eigen::Matrix2d::Zero()};
+};
+
+/// The process-force part, first order: the deviation J K_eff⁻¹ Jᵀ w of the wrench w alone,
+/// scaled by the force scale's standard uncertainty (rectangular half-width a: a/√3).
+Eigen::Matrix2d processForceCovariance(const PredictionModel& m, const nc::Mat6& J,
+                                       const Vec6& w_base, const HolePlane& plane) {
+  const double u_force_scale = m.uncertainty.process_halfwidth / std::sqrt(3.0);
+  const Vec6 phi_w = (J.transpose() * w_base).cwiseQuotient(m.compliance.effective());
+  const Eigen::Vector2d delta_u = plane.of(J.topRows<3>() * phi_w * u_force_scale);
+  return delta_u * delta_u.transpose();
+}
+
+/// The deflection covariance, linear: the sensitivity of δrobot to each joint's stiffness k_i and
+/// servo stiffness, with the TCP Jacobian at the deflected configuration (data.frames hold it after
+/// robotDeviation), plus the process-force part.
+DeflectionCovariance linearDeflectionCovariance(const PredictionModel& m, PredictionData& d,
+                                                const IkSolution& sol, const Vec6* w_base,
+                                                const HolePlane& plane, const HolePrediction& p) {
   const UncertaintyInputs& U = m.uncertainty;
-  const double u_robpos = m.robot.card.rp_mm > 0 ? sigmaFromRp(m.robot.card.rp_mm * 1e-3) : 0.0;
-  Eigen::Matrix2d cov_def = Eigen::Matrix2d::Zero();
-  Eigen::Matrix2d cov_def_proc = Eigen::Matrix2d::Zero();
-  const double u_proc_scale = U.process_halfwidth / std::sqrt(3.0);
-  if (U.method == UncertaintyInputs::Method::kLinear) {
-    // Jacobian at the deflected configuration (data.frames hold it after predictDeflection).
-    const nc::Mat6& J = nc::tcpJacobianFromFrames(m.model, d.nc);
-    auto inPlane = [&](const Vec3& v) { return Eigen::Vector2d(v.dot(e1), v.dot(e2)); };
-    // Sensitivity to k_i of the part of the deflection roprec predicts (beyond a controller's own
-    // gravity compensation): net joint deformation Δθ_i = θ_i − θ_m,i − offset_i, first order.
-    for (int i = 0; i < 6; ++i) {
-      const Vec3 col = J.block<3, 1>(0, i);
-      const double net = p.deflection.theta[i] - sol.q[i] - p.deflection.dpsi[i];
-      const Eigen::Vector2d sk = inPlane(col * net * U.stiffness_rel);
-      cov_def += sk * sk.transpose();
-      if (m.compliance.k_servo[i] < 1e299) {
-        const Eigen::Vector2d ss = inPlane(col * p.deflection.dpsi[i] * U.position_gain_rel);
-        cov_def += ss * ss.transpose();
-      }
-    }
-    if (proc) {
-      // deviation caused by the process wrench alone, first order: J K_eff⁻¹ Jᵀ w
-      Eigen::Matrix<double, 6, 1> w;
-      w << R * loads.tcp_tool.force, R * loads.tcp_tool.moment;
-      const Vec6 phi_w = (J.transpose() * w).cwiseQuotient(m.compliance.effective());
-      const Eigen::Vector2d sp = inPlane(J.topRows<3>() * phi_w * u_proc_scale);
-      cov_def_proc = sp * sp.transpose();
-      cov_def += cov_def_proc;
-    }
-  } else {
-    // Monte Carlo: k_i ~ N(k_i, (rel k_i)²), k_servo likewise, force scale ~ U(1 − a, 1 + a).
-    std::uint32_t hid = 2166136261u;  // FNV-1a of the id: per-hole streams, reproducible everywhere
-    for (const char ch : h.id) hid = (hid ^ static_cast<unsigned char>(ch)) * 16777619u;
-    std::mt19937 rng(U.seed ^ hid);
-    std::normal_distribution<double> nd(0.0, 1.0);
-    std::uniform_real_distribution<double> ud(-1.0, 1.0);
-    const int n = std::max(10, U.samples);
-    std::vector<Eigen::Vector2d> samples;
-    std::vector<Eigen::Vector2d> samples_proc;
-    samples.reserve(static_cast<size_t>(n));
-    for (int s = 0; s < n; ++s) {
-      nc::JointCompliance c = m.compliance;
-      for (int i = 0; i < 6; ++i) {
-        c.k[i] *= std::max(0.05, 1.0 + U.stiffness_rel * nd(rng));
-        if (c.k_servo[i] < 1e299)
-          c.k_servo[i] *= std::max(0.05, 1.0 + U.position_gain_rel * nd(rng));
-      }
-      nc::Loads l = loads;
-      const double scale = 1.0 + U.process_halfwidth * ud(rng);
-      l.tcp_tool.force *= scale;
-      l.tcp_tool.moment *= scale;
-      // the controller's offset (gravity compensation or mastering) was set up with the same
-      // (uncertain) stiffness: Δθ_c = K_eff⁻¹ τ_ref scales with it
-      const Vec6 off = offset.cwiseProduct(m.compliance.effective()).cwiseQuotient(c.effective());
-      const nc::Deflection dd = nc::predictDeflection(m.model, d.nc, c, sol.q, l, {}, off);
-      samples.emplace_back(dd.dp.dot(e1), dd.dp.dot(e2));
-    }
-    Eigen::Vector2d mean = Eigen::Vector2d::Zero();
-    for (const auto& s : samples) mean += s;
-    mean /= n;
-    for (const auto& s : samples) cov_def += (s - mean) * (s - mean).transpose();
-    cov_def /= (n - 1);
-    // process part by the linear sensitivity (for the share only)
-    const nc::Mat6& J = nc::tcpJacobian(m.model, d.nc);
-    if (proc) {
-      Eigen::Matrix<double, 6, 1> w;
-      w << R * loads.tcp_tool.force, R * loads.tcp_tool.moment;
-      const Vec6 phi_w = (J.transpose() * w).cwiseQuotient(m.compliance.effective());
-      const Vec3 dv = J.topRows<3>() * phi_w * u_proc_scale;
-      const Eigen::Vector2d sp(dv.dot(e1), dv.dot(e2));
-      cov_def_proc = sp * sp.transpose();
+  const nc::Mat6& J = nc::tcpJacobianFromFrames(m.model, d.nc);
+  DeflectionCovariance cov;
+  // Sensitivity to k_i of the part of the deflection roprec predicts (beyond a controller's own
+  // gravity compensation): net joint deformation Δθ_i = θ_i − θ_m,i − offset_i, first order.
+  for (int i = 0; i < 6; ++i) {
+    const Vec3 col = J.block<3, 1>(0, i);
+    const double net = p.deflection.theta[i] - sol.q[i] - p.deflection.dpsi[i];
+    const Eigen::Vector2d sk = plane.of(col * net * U.stiffness_rel);
+    cov.total += sk * sk.transpose();
+    if (m.compliance.k_servo[i] < 1e299) {
+      const Eigen::Vector2d ss = plane.of(col * p.deflection.dpsi[i] * U.position_gain_rel);
+      cov.total += ss * ss.transpose();
     }
   }
-  p.robdef_cov = cov_def;
+  if (w_base) {
+    cov.process_force = processForceCovariance(m, J, *w_base, plane);
+    cov.total += cov.process_force;
+  }
+  return cov;
+}
+
+/// The deflection covariance, Monte Carlo: k_i ~ N(k_i, (rel k_i)²), k_servo likewise, force scale
+/// ~ U(1 − a, 1 + a), one reproducible stream per hole (seed ^ FNV-1a of the id); the process-force
+/// part by the linear sensitivity (for its share only).
+DeflectionCovariance monteCarloDeflectionCovariance(const PredictionModel& m, PredictionData& d,
+                                                    const HoleRequest& h, const IkSolution& sol,
+                                                    const nc::Loads& loads, const Vec6& offset,
+                                                    const Vec6* w_base, const HolePlane& plane) {
+  const UncertaintyInputs& U = m.uncertainty;
+  std::uint32_t hid = 2166136261u;  // FNV-1a of the id: per-hole streams, reproducible everywhere
+  for (const char ch : h.id) hid = (hid ^ static_cast<unsigned char>(ch)) * 16777619u;
+  std::mt19937 rng(U.seed ^ hid);
+  std::normal_distribution<double> nd(0.0, 1.0);
+  std::uniform_real_distribution<double> ud(-1.0, 1.0);
+  const int n = std::max(10, U.samples);
+  std::vector<Eigen::Vector2d> samples;
+  samples.reserve(static_cast<size_t>(n));
+  for (int s = 0; s < n; ++s) {
+    nc::JointCompliance c = m.compliance;
+    for (int i = 0; i < 6; ++i) {
+      c.k[i] *= std::max(0.05, 1.0 + U.stiffness_rel * nd(rng));
+      if (c.k_servo[i] < 1e299) c.k_servo[i] *= std::max(0.05, 1.0 + U.position_gain_rel * nd(rng));
+    }
+    nc::Loads l = loads;
+    const double scale = 1.0 + U.process_halfwidth * ud(rng);
+    l.tcp_tool.force *= scale;
+    l.tcp_tool.moment *= scale;
+    // the controller's offset (gravity compensation or mastering) was set up with the same
+    // (uncertain) stiffness: Δθ_c = K_eff⁻¹ τ_ref scales with it
+    const Vec6 off = offset.cwiseProduct(m.compliance.effective()).cwiseQuotient(c.effective());
+    const nc::Deflection dd = nc::predictDeflection(m.model, d.nc, c, sol.q, l, {}, off);
+    samples.push_back(plane.of(dd.dp));
+  }
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (const auto& s : samples) mean += s;
+  mean /= n;
+  DeflectionCovariance cov;
+  for (const auto& s : samples) cov.total += (s - mean) * (s - mean).transpose();
+  cov.total /= (n - 1);
+  const nc::Mat6& J = nc::tcpJacobian(m.model, d.nc);
+  if (w_base) cov.process_force = processForceCovariance(m, J, *w_base, plane);
+  return cov;
+}
+
+/// The budget terms (u per in-plane axis), u_robot, u_mach, u_work, their expansions by
+/// the 2-D coverage factor k, the exact anisotropic U_work and the variance shares.
+void uncertaintyBudget(const PredictionModel& m, const ProcessAtDiameter* proc,
+                       const HolePlane& plane, const DeflectionCovariance& cov, HolePrediction& p) {
+  const UncertaintyInputs& U = m.uncertainty;
+  const double u_repeatability =
+      m.robot.card.rp_mm > 0 ? sigmaFromRp(m.robot.card.rp_mm * 1e-3) : 0.0;
+  p.robdef_cov = cov.total;
   const bool with_accuracy = hasAccuracyTerm(m.accuracy);
-  const Eigen::Matrix2d cov_acc = with_accuracy ? accuracyCovariance(m, p.deflection.theta, e1, e2)
-                                                : Eigen::Matrix2d::Zero().eval();
-  const double u_acc = std::sqrt(0.5 * cov_acc.trace());
-  const double u_robdef = std::sqrt(0.5 * cov_def.trace());
-  const double u_robdef_proc = std::sqrt(0.5 * cov_def_proc.trace());
+  const Eigen::Matrix2d cov_accuracy =
+      with_accuracy ? accuracyCovariance(m, p.deflection.theta, plane.e1, plane.e2)
+                    : Eigen::Matrix2d::Zero().eval();
+  const double u_accuracy = std::sqrt(0.5 * cov_accuracy.trace());
+  const double u_robdef = std::sqrt(0.5 * cov.total.trace());
+  const double u_robdef_force = std::sqrt(0.5 * cov.process_force.trace());
   p.budget.reserve(3 + (proc ? proc->mach.components.size() : 0));  // within kMaxBudgetTerms
-  p.budget.push_back({"robot_repeatability", u_robpos, false});
-  p.budget.push_back({"robot_deflection_model",
-                      std::sqrt(std::max(0.0, u_robdef * u_robdef - u_robdef_proc * u_robdef_proc)),
-                      false});
-  p.budget.push_back({"robot_deflection_process_force", u_robdef_proc, true});
+  p.budget.push_back({"robot_repeatability", u_repeatability, false});
+  p.budget.push_back(
+      {"robot_deflection_model",
+       std::sqrt(std::max(0.0, u_robdef * u_robdef - u_robdef_force * u_robdef_force)), false});
+  p.budget.push_back({"robot_deflection_process_force", u_robdef_force, true});
   if (with_accuracy)
-    p.budget.push_back({"robot_absolute_accuracy", u_acc, false, internedText(m.accuracy.source)});
+    p.budget.push_back(
+        {"robot_absolute_accuracy", u_accuracy, false, internedText(m.accuracy.source)});
   double u_mach2 = 0;
   if (proc) {
     for (const UncertaintyComponent& c : proc->mach.components) {
@@ -497,25 +535,53 @@ void predictAtSolution(const PredictionModel& m, PredictionData& d, const HoleRe
       u_mach2 += c.standard * c.standard;
     }
   }
-  p.u_robot = with_accuracy ? std::sqrt(u_robpos * u_robpos + u_robdef * u_robdef + u_acc * u_acc)
-                            : std::sqrt(u_robpos * u_robpos + u_robdef * u_robdef);
+  p.u_robot = with_accuracy ? std::sqrt(u_repeatability * u_repeatability + u_robdef * u_robdef +
+                                        u_accuracy * u_accuracy)
+                            : std::sqrt(u_repeatability * u_repeatability + u_robdef * u_robdef);
   p.u_mach = std::sqrt(u_mach2);
   p.u_work = std::sqrt(p.u_robot * p.u_robot + p.u_mach * p.u_mach);
   p.k = rayleighCoverageFactor(U.coverage_probability);
   p.U_robot = p.k * p.u_robot;
   p.U_mach = p.k * p.u_mach;
   p.U_work = p.k * p.u_work;
-  Eigen::Matrix2d cov_total =
-      cov_def + (u_robpos * u_robpos + u_mach2) * Eigen::Matrix2d::Identity();
-  if (with_accuracy) cov_total += cov_acc;
-  p.U_work_exact = radialCoverage(cov_total, U.coverage_probability);
+  Eigen::Matrix2d cov_work =
+      cov.total + (u_repeatability * u_repeatability + u_mach2) * Eigen::Matrix2d::Identity();
+  if (with_accuracy) cov_work += cov_accuracy;
+  p.U_work_exact = radialCoverage(cov_work, U.coverage_probability);
   p.process_share = p.u_work > 0 ? u_mach2 / (p.u_work * p.u_work) : 0.0;
   p.process_force_share =
-      p.u_work > 0 ? u_robdef_proc * u_robdef_proc / (p.u_work * p.u_work) : 0.0;
+      p.u_work > 0 ? u_robdef_force * u_robdef_force / (p.u_work * p.u_work) : 0.0;
+}
 
-  // 6. verdict
-  // The hole's real position error: from the nominal hole axis when the nominal hole is known
-  // (e.g. a compensated program checked against its hole list), else from the programmed pose.
+/// The hole at its chosen IK solution, stage by stage: its figures, the command, δrobot, δmach
+/// with δwork and the errors ⊥ the axis, the uncertainty budget and the verdict. A hole without a
+/// solution (p.status set by the IK choice) gets its figures only.
+void predictAtSolution(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
+                       const IkSolution& sol, HolePrediction& p) {
+  const ProcessAtDiameter* proc = processFor(m, h.diameter);
+  holeFigures(m, h, proc, p);
+  if (p.status != HoleStatus::kOk || !takeSolution(m, sol, p)) return;
+
+  const nc::Loads loads = processLoads(m, proc);
+  const Mat3& R_tcp = h.T_W_tcp.linear();
+  const Vec6 w_base = processWrenchBase(R_tcp, loads);
+  p.force_base = w_base.head<3>();
+  const Vec6 offset = controllerOffset(m, d.nc, sol.q);
+  if (!robotDeviation(m, d, sol, loads, offset, p)) return;
+
+  const HolePlane plane = holePlane(R_tcp);
+  workDeviation(h, proc, R_tcp, plane, p);
+
+  const Vec6* w_process = proc ? &w_base : nullptr;
+  const DeflectionCovariance cov =
+      m.uncertainty.method == UncertaintyInputs::Method::kLinear
+          ? linearDeflectionCovariance(m, d, sol, w_process, plane, p)
+          : monteCarloDeflectionCovariance(m, d, h, sol, loads, offset, w_process, plane);
+  uncertaintyBudget(m, proc, plane, cov, p);
+
+  // The verdict on the hole's real position error: from the nominal hole axis when the nominal hole
+  // is known (e.g. a compensated program checked against its hole list), else from the programmed
+  // pose.
   p.verdict =
       verdictFor(p.nominal_axis_error.value_or(p.position_error), p.U_work_exact, p.tolerance);
 }
@@ -609,43 +675,48 @@ void predictHoles(const PredictionModel& m, std::span<const HoleRequest> holes,
 }
 
 CapabilitySummary summarize(const std::vector<HolePrediction>& p) {
-  CapabilitySummary s;
-  s.holes = static_cast<int>(p.size());
-  double share_sum = 0;
-  int share_n = 0;
-  for (const HolePrediction& h : p) {
-    s.mc_time_total += h.mc_time;
-    switch (h.verdict) {
-      case Verdict::kConforms:
-        ++s.conforms;
-        break;
-      case Verdict::kConformsAfterCompensation:
-        ++s.conforms_after_compensation;
-        break;
-      case Verdict::kNotCapable:
-        ++s.not_capable;
-        break;
-      case Verdict::kUnreachable:
-        ++s.unreachable;
-        break;
-      case Verdict::kSingular:
-        ++s.singular;
-        break;
-      case Verdict::kNotConverged:
-        ++s.not_converged;
-        break;
-    }
-    if (h.verdict == Verdict::kConforms || h.verdict == Verdict::kConformsAfterCompensation) {
-      ++s.robot_can_take;
-      s.mc_time_taken += h.mc_time;
-    }
-    if (h.status == HoleStatus::kOk) {
-      s.max_process_share = std::max(s.max_process_share, h.process_share);
-      share_sum += h.process_share;
-      ++share_n;
-    }
+  SummaryAccumulator sum;
+  for (const HolePrediction& h : p) sum.add(h);
+  return sum.summary();
+}
+
+void SummaryAccumulator::add(const HolePrediction& h) {
+  ++s_.holes;
+  s_.mc_time_total += h.mc_time;
+  switch (h.verdict) {
+    case Verdict::kConforms:
+      ++s_.conforms;
+      break;
+    case Verdict::kConformsAfterCompensation:
+      ++s_.conforms_after_compensation;
+      break;
+    case Verdict::kNotCapable:
+      ++s_.not_capable;
+      break;
+    case Verdict::kUnreachable:
+      ++s_.unreachable;
+      break;
+    case Verdict::kSingular:
+      ++s_.singular;
+      break;
+    case Verdict::kNotConverged:
+      ++s_.not_converged;
+      break;
   }
-  s.mean_process_share = share_n ? share_sum / share_n : 0.0;
+  if (h.verdict == Verdict::kConforms || h.verdict == Verdict::kConformsAfterCompensation) {
+    ++s_.robot_can_take;
+    s_.mc_time_taken += h.mc_time;
+  }
+  if (h.status == HoleStatus::kOk) {
+    s_.max_process_share = std::max(s_.max_process_share, h.process_share);
+    share_sum_ += h.process_share;
+    ++share_n_;
+  }
+}
+
+CapabilitySummary SummaryAccumulator::summary() const {
+  CapabilitySummary s = s_;
+  s.mean_process_share = share_n_ ? share_sum_ / share_n_ : 0.0;
   return s;
 }
 

@@ -320,4 +320,17 @@ struct CapabilitySummary {
 };
 CapabilitySummary summarize(const std::vector<HolePrediction>& p);
 
+/// summarize() over holes given one at a time (a streamed prediction): the same operations in the
+/// same order, so the same bits.
+class SummaryAccumulator {
+ public:
+  void add(const HolePrediction& h);
+  [[nodiscard]] CapabilitySummary summary() const;
+
+ private:
+  CapabilitySummary s_;
+  double share_sum_{0};
+  int share_n_{0};
+};
+
 }  // namespace roprec

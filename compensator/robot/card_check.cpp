@@ -4,7 +4,6 @@
 #include <cmath>
 #include <map>
 
-#include "compensator/precision/card_writer.hpp"
 #include "compensator/robot/urdf_loader.hpp"
 #include "compensator/support/c_format.hpp"
 #include "compensator/support/error.hpp"

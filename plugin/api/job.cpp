@@ -349,55 +349,6 @@ CompensationResult::Stats compensationStats(const CompensationResult& r, double 
 
 namespace {
 
-/// summarize() over holes given one at a time: the same operations in the same order, so the
-/// same bits (tests/streaming_output_test.cpp compares the streamed JSON with the in-memory one).
-class SummaryAccumulator {
- public:
-  void add(const HolePrediction& h) {
-    ++s_.holes;
-    s_.mc_time_total += h.mc_time;
-    switch (h.verdict) {
-      case Verdict::kConforms:
-        ++s_.conforms;
-        break;
-      case Verdict::kConformsAfterCompensation:
-        ++s_.conforms_after_compensation;
-        break;
-      case Verdict::kNotCapable:
-        ++s_.not_capable;
-        break;
-      case Verdict::kUnreachable:
-        ++s_.unreachable;
-        break;
-      case Verdict::kSingular:
-        ++s_.singular;
-        break;
-      case Verdict::kNotConverged:
-        ++s_.not_converged;
-        break;
-    }
-    if (h.verdict == Verdict::kConforms || h.verdict == Verdict::kConformsAfterCompensation) {
-      ++s_.robot_can_take;
-      s_.mc_time_taken += h.mc_time;
-    }
-    if (h.status == HoleStatus::kOk) {
-      s_.max_process_share = std::max(s_.max_process_share, h.process_share);
-      share_sum_ += h.process_share;
-      ++share_n_;
-    }
-  }
-  [[nodiscard]] CapabilitySummary summary() const {
-    CapabilitySummary s = s_;
-    s.mean_process_share = share_n_ ? share_sum_ / share_n_ : 0.0;
-    return s;
-  }
-
- private:
-  CapabilitySummary s_;
-  double share_sum_{0};
-  int share_n_{0};
-};
-
 /// Holes predicted per block of the streaming predict (bounded memory, whatever the job's size).
 constexpr size_t kPredictBlock = 2048;
 /// The smallest block: the last blocks halve down to it.

@@ -1,7 +1,7 @@
 #pragma once
 /// \file simulate.hpp
 /// The transient of one process cycle at one pose (flexible joints under the cascade servo,
-/// CVODE; compensator/robot/transient.hpp, docs/transient.md): the joints of a program's hole,
+/// CVODE; compensator/process/transient.hpp, docs/transient.md): the joints of a program's hole,
 /// the integration, the CSV time history and the JSON summary `roprec simulate` prints.
 ///
 /// Units: SI in the structs (s, rad, m, N); CSV and JSON in s, mm, µm, µrad, N, N·m, deg.
@@ -12,7 +12,7 @@
 
 #include <string>
 
-#include "compensator/robot/transient.hpp"
+#include "compensator/process/transient.hpp"
 #include "compensator/support/error.hpp"
 #include "plugin/api/json.hpp"
 #include "plugin/api/robot_setup.hpp"

@@ -1,6 +1,6 @@
 /// `roprec simulate`: transient of one drilling cycle at one hole (CVODE,
-/// compensator/robot/transient.hpp): CSV time history of the process forces and the TCP deviation,
-/// JSON summary.
+/// compensator/process/transient.hpp): CSV time history of the process forces and the TCP
+/// deviation, JSON summary.
 #include "compensator/support/error.hpp"
 #include "plugin/api/simulate.hpp"
 #include "plugin/cli/cli.hpp"

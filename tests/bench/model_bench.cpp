@@ -1,5 +1,5 @@
 // FK + TCP Jacobian per pose: roprec's natural-coordinate model vs Orocos KDL, same URDF, same
-// binary (issue 2 benchmark). KR 120-class chain from the bundled robots (or the corpus).
+// binary. KR 120-class chain from the bundled robots (or the corpus).
 #include <benchmark/benchmark.h>
 #include <kdl/chainfksolverpos_recursive.hpp>
 #include <kdl/chainjnttojacsolver.hpp>

@@ -1,5 +1,5 @@
 // Read + write throughput of the robot-program readers/writers on generated 100,000-target
-// programs (issue 15 goal: >= 100 MB/s). Bytes counted = input bytes (src + dat for KRL); the rate
+// programs (goal: >= 100 MB/s). Bytes counted = input bytes (src + dat for KRL); the rate
 // is per CPU second (Google Benchmark's default), so a loaded machine inflates the wall time only.
 //   build-pp/bin/roprec_bench --benchmark_filter=ReadWrite
 #include <benchmark/benchmark.h>

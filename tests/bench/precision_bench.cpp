@@ -1,6 +1,6 @@
-// Issue 3: static deviation per pose (position problem + inverse dynamics + compliance iteration)
-// vs a KDL kernel (Jacobian + RNE gravity + J K⁻¹ Jᵀ w). Issue 6: full prediction per hole
-// (IK + deviation + forces + linearised budget). Issue 7: compensation of a 1,000-hole program
+// Static deviation per pose (position problem + inverse dynamics + compliance iteration)
+// vs a KDL kernel (Jacobian + RNE gravity + J K⁻¹ Jᵀ w). Full prediction per hole
+// (IK + deviation + forces + linearised budget). Compensation of a 1,000-hole program
 // through the library, keep vs flip-free. Same binary, same robot (KR 120 sample cell).
 #include <benchmark/benchmark.h>
 #include <kdl/chainidsolver_recursive_newton_euler.hpp>

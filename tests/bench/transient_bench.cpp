@@ -1,6 +1,6 @@
-// Transient of a drilling cycle (compensator/robot/transient.hpp) on the KUKA KR 120 R2500 pro with
-// the sample cell's spindle and Al 6061 drilling process: simulated-time / real-time ratio of the
-// whole cycle (goal ≥ 200×: BM_DrillingCycle2s_Default, the default options chosen by the
+// Transient of a drilling cycle (compensator/process/transient.hpp) on the KUKA KR 120 R2500 pro
+// with the sample cell's spindle and Al 6061 drilling process: simulated-time / real-time ratio of
+// the whole cycle (goal ≥ 200×: BM_DrillingCycle2s_Default, the default options chosen by the
 // convergence study of docs/transient.md) and the cost of one right-hand-side evaluation. The
 // method/rtol variants keep the absolute tolerances used before the study. Counters:
 // `sim_per_real` (simulated s per wall s), `steps`, `rhs` (evaluations incl. the
@@ -12,8 +12,8 @@
 
 #include "compensator/precision/cell.hpp"
 #include "compensator/process/process_spec.hpp"
+#include "compensator/process/transient.hpp"
 #include "compensator/robot/robot_card.hpp"
-#include "compensator/robot/transient.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace {

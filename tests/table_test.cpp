@@ -1,6 +1,6 @@
-// Strict CSV/JSON target lists (issue 13 §1): a column or member roprec does not know is an error
-// at FILE:LINE with a "did you mean" for a near miss, instead of being ignored (a misspelt `conf`
-// column drops every configuration; a misspelt "quaternion_wxyz" reads targets without their
+// The CSV/JSON target-list readers (postproc/table.cpp): a column or member roprec does not know is
+// an error at FILE:LINE with a "did you mean" for a near miss, instead of being ignored (a misspelt
+// `conf` column drops every configuration; a misspelt "quaternion_wxyz" reads targets without their
 // orientation).
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "compensator/robot/transient_forces.hpp"
+#include "compensator/process/transient_forces.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,8 @@
-// Strict hole lists and --holes matching (issue 13 §1, §6): duplicate ids, unknown columns,
-// absurd sizes, non-unit directions and files in metres are refused with FILE:LINE and exit 2;
-// a --holes list that matches nothing is an error, a partial match is listed; the matcher is
-// the old greedy one, without its O(n m) scans.
+// The hole-list reader (postproc/table.cpp) and --holes matching (plugin/api/hole_input.cpp):
+// duplicate ids, unknown columns, absurd sizes, non-unit directions and files in metres are refused
+// with FILE:LINE and exit 2; a --holes list that matches nothing is an error, a partial match is
+// listed, holes off their hole-list axis are a warning; the matcher is the old greedy one, without
+// its O(n m) scans.
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -340,6 +341,47 @@ TEST(HoleListValidation, AHoleTheCellsFeedCannotDrillIsAnError) {
       << r.err;
   EXPECT_NE(holeListError(kHeader + "H1,1,2,3,0,0,-1,150,16,0.2\n").message().find("diameter"),
             std::string::npos);
+}
+
+std::string q(const std::string& p) { return "'" + p + "'"; }
+std::string sample(const std::string& rel) { return test::sourceDir() + "/samples/" + rel; }
+
+TEST(HoleListValidation, ADecimalCommaIsAnErrorAtItsRow) {
+  const std::string dir = test::tempDir("hole-list-comma");
+  std::string text = test::readFile(sample("emotor-housing/holes.csv"));
+  const std::size_t at = text.find(",6.8,16.0,0.20");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 4, ",6,8");
+  test::writeFile(dir + "/holes.csv", text);
+  const auto r = test::runRoprec("predict --cell " + q(sample("cells/housing-kr120.xml")) + " " +
+                                 q(dir + "/holes.csv") + " --json " + q(dir + "/p.json"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("holes.csv:3: this row has 11 cells but the header has 10 columns"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(dir + "/p.json"));
+}
+
+// A cell without its <workobject> with a program that states its own base frame and a hole list:
+// every hole lies 1.3 m off its hole-list axis, which must not be matched by id without a word.
+TEST(HolesMatching, ProgramHolesOffTheirHoleListAxisAreAWarning) {
+  std::string text = test::readFile(sample("cells/housing-kr120.xml"));
+  const std::size_t b = text.find("<workobject");
+  const std::size_t e = text.find("/>", b) + 2;
+  text.erase(b, e - b);
+  const std::string dir = test::tempDir("holes-off-axis");
+  test::writeFile(dir + "/cell.xml", text);
+  const std::string args = " " + q(sample("emotor-housing/housing_kr120.src")) + " --holes " +
+                           q(sample("emotor-housing/holes.csv")) + " --json " + q(dir + "/p.json");
+  const auto bad = test::runRoprec("predict --cell " + q(dir + "/cell.xml") + args);
+  EXPECT_NE(bad.err.find("warning: 204 of 204 drill points of the program lie off their "
+                         "hole-list axis by more than --match-tol 0.5 mm"),
+            std::string::npos)
+      << bad.err;
+  const auto good =
+      test::runRoprec("predict --cell " + q(sample("cells/housing-kr120.xml")) + args);
+  EXPECT_EQ(good.exit_code, 0) << good.err;
+  EXPECT_EQ(good.err.find("off their hole-list axis"), std::string::npos) << good.err;
 }
 
 }  // namespace

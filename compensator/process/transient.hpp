@@ -122,9 +122,9 @@
 #include <vector>
 
 #include "compensator/process/process_spec.hpp"
+#include "compensator/process/transient_forces.hpp"
 #include "compensator/robot/deflection.hpp"
 #include "compensator/robot/robot_card.hpp"
-#include "compensator/robot/transient_forces.hpp"
 
 namespace roprec::nc {
 

@@ -1,7 +1,8 @@
-// Issue 13 (programs): a drill cycle's hole starts at the surface — the point the feed move into
-// the material starts from — not at the approach point above it. A hand-written cycle with the
-// approach 50 mm above the surface and a 20 mm hole reported depth 70 mm (and the machining-
-// centre time of 70 mm) before; the surface point is reported with the bottom.
+// Drill-cycle recognition (postproc/drill.cpp): a hole starts at the surface — the point the feed
+// move into the material starts from — not at the approach point above it. A hand-written cycle
+// with the approach 50 mm above the surface and a 20 mm hole is 20 mm deep (not 70 mm, and the
+// machining-centre time is that of 20 mm); the surface point is reported with the bottom. A
+// program without a drill cycle is an error at its first motion.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -188,6 +189,21 @@ TEST(DrillSurface, PredictAndInspectReportTheSurfaceAndTheBottom) {
   EXPECT_NEAR(h["bottom_in_frame_mm"][2].get<double>(), 214.0, 1e-9);
   EXPECT_NEAR(h["position_mm"][2].get<double>(), 534.0, 1e-9);
   EXPECT_NEAR(h["bottom_mm"][2].get<double>(), 514.0, 1e-9);
+}
+
+TEST(DrillCycle, NoDrillCycleIsAnErrorAtTheProgramsFirstMotion) {
+  const std::string dir = test::tempDir("errloc_prog");
+  test::writeFile(dir + "/p.src",
+                  "DEF p ( )\n"
+                  "$BASE = {FRAME: X 1350,Y 0,Z 300,A 0,B 0,C 0}\n"
+                  "$TOOL = {FRAME: X 0,Y 0,Z 350,A 0,B 0,C 0}\n"
+                  "PTP {A1 0,A2 -90,A3 90,A4 0,A5 0,A6 0}\n"
+                  "END\n");
+  const auto r = test::runRoprec("predict --cell '" + test::sourceDir() +
+                                 "/samples/cells/housing-kr120.xml' '" + dir + "/p.src'");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("p.src:4:"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("no drill cycle"), std::string::npos) << r.err;
 }
 
 }  // namespace

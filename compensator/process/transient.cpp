@@ -1,4 +1,4 @@
-#include "compensator/robot/transient.hpp"
+#include "compensator/process/transient.hpp"
 
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
