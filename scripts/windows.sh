@@ -66,7 +66,7 @@ phase_done() { echo "windows:   done in $(($(date +%s) - phase_start)) s"; }
 # ---- 1. packages
 install_packages() {
   local packages=(g++-mingw-w64-x86-64-posix gcc-mingw-w64-x86-64-posix wine64 nsis dpkg-dev cmake ninja-build
-    zip libeigen3-dev nlohmann-json3-dev googletest)
+    zip unzip libeigen3-dev nlohmann-json3-dev googletest)
   local missing=() p
   for p in "${packages[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
