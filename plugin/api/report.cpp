@@ -625,8 +625,10 @@ void renderPanel(std::string& o, const FaceGroup& f, const std::vector<HoleView>
     const int sa = severity(verdictOf(hv[f.members[a]], pn.after));
     const int sb = severity(verdictOf(hv[f.members[b]], pn.after));
     if (sa != sb) return sa > sb;
-    const auto va = (*pn.values)[f.members[a]], vb = (*pn.values)[f.members[b]];
-    return va.value_or(-1.0) > vb.value_or(-1.0);
+    // by the value as the tooltip prints it (0.1 µm), ties in program order: the order does not
+    // hang on a value's last bits (another platform's libm)
+    const auto shown = [](std::optional<double> v) { return v ? std::round(*v * 10.0) : -1.0; };
+    return shown((*pn.values)[f.members[a]]) > shown((*pn.values)[f.members[b]]);
   });
   for (size_t n = 0; n < failing.size() && n < kMaxFailLabels; ++n) {
     const size_t k = failing[n];
