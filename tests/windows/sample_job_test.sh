@@ -15,7 +15,7 @@ done
 WINE="${WINE:-$(command -v wine64 || echo /usr/lib/wine/wine64)}"
 [[ -x "$LINUX" ]] || { echo "sample_job_test: no Linux roprec at $LINUX (build it first)" >&2; exit 1; }
 WORK="$(mktemp -d)"
-trap 'rm -rf "$WORK"' EXIT
+trap '[[ -n "${KEEP:-}" ]] || rm -rf "$WORK"' EXIT
 (cd "$WORK" && unzip -q "$ZIP")
 EXE="$(find "$WORK" -path "*/bin/roprec.exe" | head -1)"
 [[ -n "$EXE" ]] || { echo "sample_job_test: no bin/roprec.exe in $ZIP" >&2; exit 1; }
@@ -35,7 +35,8 @@ for job in "${JOBS[@]}"; do
 done
 ls "$WORK/linux"
 if ! diff -r "$WORK/linux" "$WORK/windows" >"$WORK/diff.txt"; then
-  head -40 "$WORK/diff.txt" >&2
+  diff -rq "$WORK/linux" "$WORK/windows" >&2 || true
+  cut -c1-300 "$WORK/diff.txt" | head -20 >&2
   echo "sample_job_test: the Windows outputs differ from Linux" >&2
   exit 1
 fi
