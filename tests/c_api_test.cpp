@@ -25,6 +25,7 @@
 #include "plugin/api/job.hpp"
 #include "plugin/c/roprec.h"
 #include "postproc/drill.hpp"
+#include "tests/support/process.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace roprec {
@@ -147,12 +148,10 @@ TEST(CApi, ExportsExactlyTheHeadersFunctions) {
   }
   EXPECT_EQ(declared.size(), 18U);
   // nm -D --defined-only: every dynamic symbol libroprec_c defines.
-  FILE* p = ::popen(("nm -D --defined-only '" + std::string(ROPREC_C_LIB) + "'").c_str(), "r");
-  ASSERT_NE(p, nullptr);
-  std::string listing;
-  char buf[512];
-  while (std::fgets(buf, sizeof buf, p) != nullptr) listing += buf;
-  ASSERT_EQ(::pclose(p), 0) << listing;
+  const test::ProcessResult nm =
+      test::runProcess({"/usr/bin/nm", "-D", "--defined-only", ROPREC_C_LIB});
+  const std::string& listing = nm.out;
+  ASSERT_EQ(nm.exit_code, 0) << nm.err;
   std::set<std::string> exported;
   std::istringstream lines(listing);
   for (std::string line; std::getline(lines, line);) {

@@ -2,7 +2,6 @@
 // command, a failed write to stdout and running out of memory ("input too large").
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -83,13 +82,11 @@ TEST(CliMain, OutOfMemoryIsReportedAsInputTooLargeNamingTheInput) {
   // std::bad_alloc is reported as "input too large" with the input named, exit 2, nothing written.
   const std::string dir = test::tempDir("range-oom");
   const std::string cell = test::sourceDir() + "/samples/cells/alu-drilling-6061.xml";
-  const std::string cmd = "ulimit -v 100000; '" + test::roprecBin() + "' forces --cell '" + cell +
-                          "' --step-mm 2e-5 --csv '" + dir + "/d.csv' >/dev/null 2>'" + dir +
-                          "/err'";
-  const int status = std::system(cmd.c_str());
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 2);
-  const std::string err = test::readFile(dir + "/err");
+  const test::RunResult r =
+      test::runCommand("ulimit -v 100000; '" + test::roprecBin() + "' forces --cell '" + cell +
+                       "' --step-mm 2e-5 --csv '" + dir + "/d.csv'");
+  EXPECT_EQ(r.exit_code, 2);
+  const std::string& err = r.err;
   EXPECT_NE(err.find("input too large"), std::string::npos) << err;
   EXPECT_NE(err.find(cell), std::string::npos) << err;
   EXPECT_EQ(err.find("bad_alloc"), std::string::npos) << err;

@@ -492,6 +492,8 @@ class PythonApiTest(unittest.TestCase):
         roprec.compensate(fcell, once, twice, frame="cell", tool="cell", force=True)
         self.assertTrue(twice.exists())
 
+    @unittest.skipIf(roprec._roprec.__name__.endswith("_cabi"),
+                     "the C ABI gives no summary or per-hole results for a compensation it refused")
     def test_compensate_with_a_failed_hole_writes_nothing(self):
         s = roprec.Session(CELL)
         wobj = s.workobject_pose_mm

@@ -17,10 +17,9 @@
 #include <span>
 #include <sstream>
 
-#include <unistd.h>
-
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
+#include "compensator/support/platform.hpp"
 #include "plugin/api/job.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -604,7 +603,7 @@ TEST(StreamingOutput, AStreamedOutputIsAllOrNothing) {
                                    throw InputError("x.src", 3, "bad");
                                  }),
                  InputError);
-    EXPECT_FALSE(std::filesystem::exists(outputTemporaryPath(b, static_cast<long>(::getpid()))));
+    EXPECT_FALSE(std::filesystem::exists(outputTemporaryPath(b, platform::processId())));
     set.rollback();
   }
   EXPECT_EQ(test::readFile(a), "old a");

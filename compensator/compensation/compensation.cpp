@@ -15,6 +15,7 @@
 #include "compensator/compensation/nlopt_problem.hpp"
 #include "compensator/precision/parallel.hpp"
 #include "compensator/robot/fast_equilibrium.hpp"
+#include "compensator/support/c_format.hpp"
 
 namespace roprec {
 
@@ -726,7 +727,9 @@ void configReason(const Evaluator& ev, const ConfiguredSolution& cs, const Vendo
         .append(" in the planned posture: ");
   }
   if (std::abs(c.psi) > kPsiKept)
-    r.appendf("the rotation of %.1f deg about the drill axis", c.psi / kDeg);
+    r.append("the rotation of ")
+        .append(cFixed(c.psi / kDeg, 1))
+        .append(" deg about the drill axis");
   else
     r.append("the compensation offset");
   r.append(" gives ");
@@ -907,10 +910,11 @@ void infeasibleZeroReason(const Node& zero, const CompensationOptions& o, Compen
   switch (zero.why) {
     case Why::kWrist:
       ++st.psi_for_wrist;
-      r.appendf(
-          "the programmed rotation puts |axis 5| at %.1f deg, inside the wrist margin of "
-          "%.1f deg",
-          std::asin(zero.wrist) / kDeg, o.wrist_margin / kDeg);
+      r.append("the programmed rotation puts |axis 5| at ")
+          .append(cFixed(std::asin(zero.wrist) / kDeg, 1))
+          .append(" deg, inside the wrist margin of ")
+          .append(cFixed(o.wrist_margin / kDeg, 1))
+          .append(" deg");
       return;
     case Why::kSingular:
       ++st.psi_for_limits;
@@ -949,9 +953,10 @@ void psiReason(const Evaluator& ev, const std::vector<HoleRequest>& holes,
       worst_jump = j.first;
       const size_t k = static_cast<size_t>(nb.first - chosen.data());
       r.clear();
-      r.appendf("keeping the programmed rotation would turn axis %d by %.1f deg %s hole ", j.second,
-                j.first / kDeg, dir < 0 ? "after" : "before");
-      r.append(out[k].id).appendf(" (jump threshold %.1f deg)", thr / kDeg);
+      r.appendf("keeping the programmed rotation would turn axis %d by ", j.second)
+          .append(cFixed(j.first / kDeg, 1))
+          .append(dir < 0 ? " deg after hole " : " deg before hole ");
+      r.append(out[k].id).append(" (jump threshold ").append(cFixed(thr / kDeg, 1)).append(" deg)");
     }
   }
   if (!r.empty()) {

@@ -1,7 +1,5 @@
 #include "compensator/robot/robot_card.hpp"
 
-#include <dlfcn.h>
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -12,6 +10,7 @@
 
 #include "compensator/robot/urdf_loader.hpp"
 #include "compensator/support/error.hpp"
+#include "compensator/support/platform.hpp"
 #include "compensator/support/xml_node.hpp"
 
 namespace fs = std::filesystem;
@@ -314,11 +313,12 @@ namespace {
 
 // The folder of the loaded shared object that holds this code (libroprec), or "".
 fs::path loadedLibraryDir() {
-  Dl_info info{};
-  if (dladdr(reinterpret_cast<const void*>(&bundledRobotsDir), &info) == 0 ||
-      info.dli_fname == nullptr || *info.dli_fname == '\0') {
-    return {};
-  }
+  const std::string module = platform::loadedModulePath();
+  if (module.empty()) return {};
+  std::error_code ec;
+  const fs::path dir = fs::absolute(platform::fromUtf8(module), ec).parent_path();
+  return ec ? fs::path() : dir;
+}
   std::error_code ec;
   const fs::path dir = fs::absolute(fs::path(info.dli_fname), ec).parent_path();
   return ec ? fs::path() : dir;
@@ -348,17 +348,17 @@ std::string bundledRobotsDir() {
   // found from the path of the loaded shared object that holds this function. The build tree's
   // library uses the source tree's robots/; an installed one never does.
   static const fs::path lib_dir = loadedLibraryDir();
-  const fs::path dir = lib_dir / ROPREC_ROBOTS_RELDIR;
+  const fs::path dir = lib_dir / platform::fromUtf8(ROPREC_ROBOTS_RELDIR);
   std::error_code ec;
   if (!lib_dir.empty() && fs::is_directory(dir, ec)) {
     const fs::path real = fs::canonical(dir, ec);
-    return (ec ? dir.lexically_normal() : real).string();
+    return platform::toUtf8(ec ? dir.lexically_normal() : real);
   }
 #ifdef ROPREC_ROBOTS_DIR
   if (inBuildTree(lib_dir)) return ROPREC_ROBOTS_DIR;  // the source tree's robots/
 #endif
   throw InputError("", 0,
-                   "no bundled robots: " + dir.lexically_normal().string() +
+                   "no bundled robots: " + platform::toUtf8(dir.lexically_normal()) +
                        " does not exist (reinstall roprec, or set the environment variable "
                        "ROPREC_ROBOTS_DIR to a folder of robot cards, e.g. the robots/ folder of "
                        "roprec's source)");

@@ -1,16 +1,8 @@
 #include "compensator/support/atomic_file.hpp"
 
-#include <dirent.h>
-#include <fcntl.h>
-#include <sys/file.h>
-#include <sys/stat.h>
-#include <sys/sysmacros.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
-#include <csignal>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -21,6 +13,7 @@
 #include <tuple>
 
 #include "compensator/support/error.hpp"
+#include "compensator/support/platform.hpp"
 
 namespace roprec {
 
@@ -35,7 +28,7 @@ thread_local OutputSet* g_active = nullptr;
 void (*g_commit_hook)() = nullptr;
 std::atomic<unsigned long> g_seq{0};  ///< staging number: temporary names unique per thread
 
-std::string errnoText(int e) { return std::strerror(e); }
+std::string errnoText(int e) { return platform::errorText(e); }
 
 std::string dirOf(const std::string& path) {
   const std::size_t s = path.find_last_of('/');
@@ -65,59 +58,52 @@ std::uint64_t fnv1a(const std::string& s) {
 /// The null device (/dev/null, or any name for character device 1:3): what is written to it is
 /// discarded, so nothing is staged or replaced.
 bool isNullDevice(const std::string& path) {
-#ifdef __linux__
-  struct stat st {};
-  return ::lstat(path.c_str(), &st) == 0 && S_ISCHR(st.st_mode) && major(st.st_rdev) == 1 &&
-         minor(st.st_rdev) == 3;
-#else
-  (void)path;
-  return false;
-#endif
+  return platform::linkStatus(path).kind == platform::Kind::kNullDevice;
 }
 
 /// Refuses targets that are not regular files (symbolic links, FIFOs, devices, folders).
 void checkTarget(const std::string& path) {
-  struct stat st {};
-  if (::lstat(path.c_str(), &st) != 0) {
-    const int e = errno;
-    if (e != ENOENT && e != ENOTDIR) fail(path, errnoText(e));
+  using platform::Kind;
+  const platform::Status st = platform::linkStatus(path);
+  if (st.kind == Kind::kError) fail(path, errnoText(st.error));
+  if (st.kind == Kind::kMissing) {
     const std::string dir = dirOf(path);
-    struct stat ds {};
-    if (::stat(dir.c_str(), &ds) != 0) {
-      fail(path, "the folder " + dir +
-                     " does not exist (roprec does not create folders: mkdir -p " + dir + ")");
+    const platform::Status ds = platform::fileStatus(dir);
+    if (ds.kind == Kind::kMissing || ds.kind == Kind::kError) {
+      fail(path, "the folder " + dir + " does not exist (roprec does not create folders: mkdir -p " + dir + ")");
     }
-    if (!S_ISDIR(ds.st_mode)) fail(path, dir + " is not a folder");
-    if (e == ENOTDIR) fail(path, errnoText(e));
+    if (ds.kind != Kind::kFolder) fail(path, dir + " is not a folder");
+    if (st.error != ENOENT) fail(path, errnoText(st.error));
     return;
   }
-  if (S_ISLNK(st.st_mode)) {
+  if (st.kind == Kind::kSymlink) {
     fail(path, "it is a symbolic link; roprec does not replace links (give the real path)");
   }
-  if (S_ISDIR(st.st_mode)) fail(path, "it is a folder");
-  if (S_ISFIFO(st.st_mode)) fail(path, "it is a FIFO (named pipe), not a regular file");
-  if (!S_ISREG(st.st_mode)) fail(path, "it is not a regular file (a device or socket)");
+  if (st.kind == Kind::kFolder) fail(path, "it is a folder");
+  if (st.kind == Kind::kFifo) fail(path, "it is a FIFO (named pipe), not a regular file");
+  if (st.kind != Kind::kRegular) fail(path, "it is not a regular file (a device or socket)");
 }
 
 /// What a path names, for the same-file checks: device and inode of the file it resolves to
 /// (links followed) when it exists, else its resolved absolute path.
 struct FileIdentity {
   bool exists{false};
-  dev_t dev{};
-  ino_t ino{};
+  std::uint64_t dev{};
+  std::uint64_t ino{};
   std::string resolved;
 };
 
 FileIdentity identify(const std::string& path) {
   FileIdentity id;
-  struct stat st {};
-  if (::stat(path.c_str(), &st) == 0) {
+  const platform::Status st = platform::fileStatus(path);
+  if (st.kind != platform::Kind::kMissing && st.kind != platform::Kind::kError) {
     id.exists = true;
-    id.dev = st.st_dev;
-    id.ino = st.st_ino;
+    id.dev = st.device;
+    id.ino = st.inode;
   }
   std::error_code e;
-  id.resolved = std::filesystem::weakly_canonical(std::filesystem::absolute(path, e), e).string();
+  id.resolved = platform::toUtf8(
+      std::filesystem::weakly_canonical(std::filesystem::absolute(platform::fromUtf8(path), e), e));
   if (e) id.resolved = path;
   return id;
 }
@@ -127,43 +113,29 @@ bool sameIdentity(const FileIdentity& a, const FileIdentity& b) {
   return a.resolved == b.resolved;
 }
 
-/// Exclusive flock() on folders, released (closed) by the destructor. flock locks belong to the
-/// open file description, so two threads of one process exclude each other as two processes do.
+/// Exclusive locks on folders (platform::FolderLock: flock() on POSIX, where the lock belongs to
+/// the open file description, so two threads of one process exclude each other as two processes
+/// do), released by the destructor.
 class FolderLocks {
  public:
   FolderLocks() = default;
   FolderLocks(const FolderLocks&) = delete;
   FolderLocks& operator=(const FolderLocks&) = delete;
-  ~FolderLocks() {
-    for (const int fd : fds_) ::close(fd);
-  }
+  ~FolderLocks() = default;
   /// Locks `dir` (blocking). A folder that cannot be opened for locking is not locked (the
   /// staging or rename in it reports its own error).
-  void lock(const std::string& dir) {
-    const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (fd < 0) return;
-    while (::flock(fd, LOCK_EX) != 0) {
-      if (errno != EINTR) {
-        ::close(fd);
-        return;
-      }
-    }
-    fds_.push_back(fd);
-  }
+  void lock(const std::string& dir) { take(dir, true); }
   /// Locks `dir` unless another holds it; false then.
-  bool tryLock(const std::string& dir) {
-    const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (fd < 0) return false;
-    if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
-      ::close(fd);
-      return false;
-    }
-    fds_.push_back(fd);
-    return true;
-  }
+  bool tryLock(const std::string& dir) { return take(dir, false); }
 
  private:
-  std::vector<int> fds_;
+  bool take(const std::string& dir, bool wait) {
+    platform::FolderLock l;
+    if (!l.acquire(dir, wait)) return false;
+    locks_.push_back(std::move(l));
+    return true;
+  }
+  std::vector<platform::FolderLock> locks_;
 };
 
 /// `dirs` once each by identity (device and inode: "out" and "./out" are one folder, and a
@@ -171,24 +143,20 @@ class FolderLocks {
 /// inode), so that runs locking several folders never wait for each other in a cycle. A folder
 /// that cannot be stat'ed is left out (its staging or rename reports the error).
 std::vector<std::string> uniqueFolders(const std::vector<std::string>& dirs) {
-  std::vector<std::tuple<dev_t, ino_t, std::string>> ids;
+  std::vector<std::tuple<std::uint64_t, std::uint64_t, std::string>> ids;
   for (const std::string& d : dirs) {
-    struct stat st {};
-    if (::stat(d.c_str(), &st) != 0) continue;
+    const platform::Status st = platform::fileStatus(d);
+    if (st.kind == platform::Kind::kMissing || st.kind == platform::Kind::kError) continue;
     const bool seen = std::any_of(ids.begin(), ids.end(), [&](const auto& x) {
-      return std::get<0>(x) == st.st_dev && std::get<1>(x) == st.st_ino;
+      return std::get<0>(x) == st.device && std::get<1>(x) == st.inode;
     });
-    if (!seen) ids.emplace_back(st.st_dev, st.st_ino, d);
+    if (!seen) ids.emplace_back(st.device, st.inode, d);
   }
   std::sort(ids.begin(), ids.end());
   std::vector<std::string> out;
   out.reserve(ids.size());
   for (auto& x : ids) out.push_back(std::move(std::get<2>(x)));
   return out;
-}
-
-bool processGone(long pid) {
-  return pid > 0 && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
 }
 
 /// "PID" or "PID.N" (digits): the writing process.
@@ -220,7 +188,7 @@ struct Journal {
 
 Journal readJournal(const std::string& path) {
   Journal j;
-  std::ifstream in(path, std::ios::binary);
+  std::ifstream in(platform::fromUtf8(path), std::ios::binary);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   std::vector<std::string> parts;
   std::size_t b = 0;
@@ -237,16 +205,16 @@ Journal readJournal(const std::string& path) {
   return j;
 }
 
-void fsyncDir(const std::string& dir);
-
 /// Writes the journal of a set's renames (fsynced, and its folder) before the first rename.
 std::string writeJournal(const std::string& dir, const std::vector<std::string>& temps,
                          const std::vector<std::string>& paths) {
   std::string text;
   for (std::size_t i = 0; i < paths.size(); ++i) {
     std::error_code e;
-    const std::string t = std::filesystem::absolute(temps[i], e).string();
-    const std::string p = std::filesystem::absolute(paths[i], e).string();
+    const std::string t =
+        platform::toUtf8(std::filesystem::absolute(platform::fromUtf8(temps[i]), e));
+    const std::string p =
+        platform::toUtf8(std::filesystem::absolute(platform::fromUtf8(paths[i]), e));
     text += t;
     text += '\0';
     text += p;
@@ -254,108 +222,72 @@ std::string writeJournal(const std::string& dir, const std::vector<std::string>&
   }
   text += kJournalEnd;
   text += '\0';
-  const std::string name = std::string(kJournalTag) + std::to_string(::getpid()) + "." +
+  const std::string name = std::string(kJournalTag) + std::to_string(platform::processId()) + "." +
                            std::to_string(g_seq.fetch_add(1));
   const std::string path = dir == "/" ? "/" + name : dir + "/" + name;
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
-  if (fd < 0) return "";  // no journal: the commit still happens, without recovery
-  const char* p = text.data();
-  std::size_t left = text.size();
-  bool ok = true;
-  while (left > 0) {
-    const ssize_t n = ::write(fd, p, left);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      ok = false;
-      break;
-    }
-    p += n;
-    left -= static_cast<std::size_t>(n);
-  }
-  ok = ok && ::fsync(fd) == 0;
-  ::close(fd);
+  platform::File f;
+  if (f.createNew(path) != 0) return "";  // no journal: the commit still happens, without recovery
+  bool ok = f.writeAll(text) == 0;
+  ok = ok && f.sync() == 0;
+  (void)f.close();
   if (!ok) {
-    ::unlink(path.c_str());
+    platform::removeFile(path);
     return "";
   }
-  fsyncDir(dir);
+  platform::syncFolder(dir);
   return path;
-}
-
-void fsyncDir(const std::string& dir) {
-  const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (fd < 0) return;
-  (void)::fsync(fd);
-  ::close(fd);
 }
 
 /// An open temporary: written, fsynced and closed, or removed on any failure.
 class TempFile {
  public:
   TempFile(const std::string& path, const std::string& tmp) : path_(path), tmp_(tmp) {
-    fd_ = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
-    if (fd_ < 0 && errno == EEXIST) {  // our own earlier staging of the same path, or a reused pid
-      ::unlink(tmp.c_str());
-      fd_ = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+    int e = file_.createNew(tmp);
+    if (e == EEXIST) {  // our own earlier staging of the same path, or a reused pid
+      platform::removeFile(tmp);
+      e = file_.createNew(tmp);
     }
-    if (fd_ < 0) fail(path, errnoText(errno));
+    if (e != 0) fail(path, errnoText(e));
   }
   TempFile(const TempFile&) = delete;
   TempFile& operator=(const TempFile&) = delete;
   ~TempFile() {
-    if (fd_ >= 0) {
-      ::close(fd_);
-      ::unlink(tmp_.c_str());
+    if (file_.isOpen()) {
+      (void)file_.close();
+      platform::removeFile(tmp_);
     }
   }
   void write(std::string_view bytes) {
-    const char* p = bytes.data();
-    std::size_t left = bytes.size();
-    while (left > 0) {
-      const ssize_t n = ::write(fd_, p, left);
-      if (n < 0) {
-        if (errno == EINTR) continue;
-        failAndRemove(errno);
-      }
-      p += n;
-      left -= static_cast<std::size_t>(n);
-    }
+    if (const int e = file_.writeAll(bytes); e != 0) failAndRemove(e);
     written_ += bytes.size();
     writeBehind();
   }
   void close() {
-    if (::fsync(fd_) != 0) failAndRemove(errno);
-    const int fd = fd_;
-    fd_ = -1;
-    if (::close(fd) != 0) {
-      const int e = errno;
-      ::unlink(tmp_.c_str());
+    if (const int e = file_.sync(); e != 0) failAndRemove(e);
+    if (const int e = file_.close(); e != 0) {
+      platform::removeFile(tmp_);
       fail(path_, errnoText(e));
     }
   }
 
  private:
   [[noreturn]] void failAndRemove(int e) {
-    ::close(fd_);
-    fd_ = -1;
-    ::unlink(tmp_.c_str());
+    (void)file_.close();
+    platform::removeFile(tmp_);
     fail(path_, errnoText(e));
   }
   /// Starts the disk write of every kWriteBehind bytes written (Linux: sync_file_range, which
   /// does not wait), so that close()'s fsync waits for the last part only, not for an 18 MB
   /// file written in one go at the end. Durability is fsync's, as before.
   void writeBehind() {
-#ifdef __linux__
     constexpr std::size_t kWriteBehind = std::size_t{1} << 20U;
     if (written_ - started_ < kWriteBehind) return;
-    (void)::sync_file_range(fd_, static_cast<off_t>(started_),
-                            static_cast<off_t>(written_ - started_), SYNC_FILE_RANGE_WRITE);
+    file_.startWriteBack(started_, written_ - started_);
     started_ = written_;
-#endif
   }
   std::string path_;
   std::string tmp_;
-  int fd_{-1};
+  platform::File file_;
   std::size_t written_{0};  ///< bytes written
   std::size_t started_{0};  ///< bytes whose disk write writeBehind() started
 };
@@ -397,20 +329,15 @@ bool isOutputTemporaryName(const std::string& file_name, long* pid) {
 }
 
 void removeStaleOutputTemporaries(const std::string& dir) {
-  DIR* d = ::opendir(dir.c_str());
-  if (d == nullptr) return;
-  const long self = static_cast<long>(::getpid());
-  while (const dirent* e = ::readdir(d)) {
+  const long self = platform::processId();
+  for (const std::string& name : platform::folderEntries(dir)) {
     long pid = 0;
-    const std::string name = e->d_name;
     if (!isOutputTemporaryName(name, &pid) || pid == self || pid <= 0) continue;
-    if (!processGone(pid)) continue;  // still running
+    if (!platform::processGone(pid)) continue;  // still running
     std::string full = dir == "/" ? "/" : dir + "/";
     full += name;
-    struct stat st {};
-    if (::lstat(full.c_str(), &st) == 0 && S_ISREG(st.st_mode)) ::unlink(full.c_str());
+    if (platform::linkStatus(full).kind == platform::Kind::kRegular) platform::removeFile(full);
   }
-  ::closedir(d);
 }
 
 OutputSet::~OutputSet() { rollback(); }
@@ -440,7 +367,7 @@ void OutputSet::stageStream(const std::string& path,
     recoverFolder(dir);
     cleaned_dirs_.push_back(dir);
   }
-  const std::string tmp = outputTemporaryPath(path, static_cast<long>(::getpid()), g_seq++);
+  const std::string tmp = outputTemporaryPath(path, platform::processId(), g_seq++);
   writeAll(path, tmp, produce);
   paths_.push_back(path);
   temps_.push_back(tmp);
@@ -474,14 +401,11 @@ void OutputSet::checkSameFiles() const {
 void OutputSet::recoverFolder(const std::string& dir) {
   FolderLocks locks;
   locks.lock(dir);
-  DIR* d = ::opendir(dir.c_str());
-  if (d == nullptr) return;
   std::vector<std::pair<std::string, long>> journals;
-  while (const dirent* e = ::readdir(d)) {
+  for (const std::string& name : platform::folderEntries(dir)) {
     long pid = 0;
-    if (isJournalName(e->d_name, &pid) && processGone(pid)) journals.emplace_back(e->d_name, pid);
+    if (isJournalName(name, &pid) && platform::processGone(pid)) journals.emplace_back(name, pid);
   }
-  ::closedir(d);
   std::sort(journals.begin(), journals.end());
   for (const auto& [name, pid] : journals) {
     const std::string path = dir == "/" ? "/" + name : dir + "/" + name;
@@ -495,22 +419,22 @@ void OutputSet::recoverFolder(const std::string& dir) {
       bool all = true;
       for (const std::string& od : folders) {
         std::error_code e;
-        if (!std::filesystem::equivalent(od, dir, e)) all = all && others.tryLock(od);
+        if (!std::filesystem::equivalent(platform::fromUtf8(od), platform::fromUtf8(dir), e))
+          all = all && others.tryLock(od);
       }
       if (!all) continue;
       std::string done;
       for (const auto& [tmp, target] : j.renames) {
-        struct stat st {};
-        if (::lstat(tmp.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) continue;  // renamed before
-        if (::rename(tmp.c_str(), target.c_str()) == 0) done += (done.empty() ? "" : ", ") + target;
+        if (platform::linkStatus(tmp).kind != platform::Kind::kRegular) continue;  // renamed before
+        if (platform::replaceFile(tmp, target) == 0) done += (done.empty() ? "" : ", ") + target;
       }
-      for (const auto& r : j.renames) fsyncDir(dirOf(r.second));
+      for (const auto& r : j.renames) platform::syncFolder(dirOf(r.second));
       if (!done.empty())
         notes_.push_back("finished the output commit of an earlier run (pid " +
                          std::to_string(pid) + ") that was killed during it: " + done);
     }
-    ::unlink(path.c_str());
-    fsyncDir(dir);
+    platform::removeFile(path);
+    platform::syncFolder(dir);
   }
   removeStaleOutputTemporaries(dir);
 }
@@ -540,21 +464,20 @@ std::vector<std::string> OutputSet::commit() {
   long kill_after = -1;
   if (const char* k = std::getenv(kFaultKillAfterRenamesEnv)) kill_after = std::atol(k);
   for (std::size_t i = 0; i < paths_.size(); ++i) {
-    if (kill_after >= 0 && static_cast<long>(i) == kill_after) ::raise(SIGKILL);
-    if (::rename(temps_[i].c_str(), paths_[i].c_str()) != 0) {
-      const int e = errno;
+    if (kill_after >= 0 && static_cast<long>(i) == kill_after) platform::killThisProcess();
+    if (const int e = platform::replaceFile(temps_[i], paths_[i]); e != 0) {
       const std::string path = paths_[i];
-      for (std::size_t j = i; j < temps_.size(); ++j) ::unlink(temps_[j].c_str());
+      for (std::size_t j = i; j < temps_.size(); ++j) platform::removeFile(temps_[j]);
       paths_.clear();
       temps_.clear();
-      if (!journal.empty()) ::unlink(journal.c_str());
+      if (!journal.empty()) platform::removeFile(journal);
       fail(path, errnoText(e));
     }
   }
-  for (const std::string& d : dirs) fsyncDir(d);
+  for (const std::string& d : dirs) platform::syncFolder(d);
   if (!journal.empty()) {
-    ::unlink(journal.c_str());
-    fsyncDir(lock_order.front());
+    platform::removeFile(journal);
+    platform::syncFolder(lock_order.front());
   }
   std::vector<std::string> written;
   written.swap(paths_);
@@ -563,7 +486,7 @@ std::vector<std::string> OutputSet::commit() {
 }
 
 void OutputSet::rollback() noexcept {
-  for (const std::string& t : temps_) ::unlink(t.c_str());
+  for (const std::string& t : temps_) platform::removeFile(t);
   temps_.clear();
   paths_.clear();
 }
@@ -614,7 +537,7 @@ void writeFileAtomicStream(const std::string& path,
 }
 
 std::string readFileBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
+  std::ifstream in(platform::fromUtf8(path), std::ios::binary);
   if (!in) {
     const int e = errno;
     throw InputError(path, 0, "cannot open file" + (e ? ": " + errnoText(e) : std::string()));

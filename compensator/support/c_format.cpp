@@ -31,15 +31,6 @@ std::string cGeneral(double v, int precision) {
   return std::string(buf, r.ptr);
 }
 
-ClassicLocaleScope::ClassicLocaleScope() {
-  static const locale_t c_locale = ::newlocale(LC_ALL_MASK, "C", static_cast<locale_t>(nullptr));
-  if (c_locale != static_cast<locale_t>(nullptr)) previous_ = ::uselocale(c_locale);
-}
-
-ClassicLocaleScope::~ClassicLocaleScope() {
-  if (previous_ != static_cast<locale_t>(nullptr)) ::uselocale(previous_);
-}
-
 std::string formatCardNumber(double v, int significant) {
   char buf[64];
   const auto res = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::scientific,

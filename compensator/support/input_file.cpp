@@ -1,9 +1,5 @@
 #include "compensator/support/input_file.hpp"
 
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -11,6 +7,7 @@
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
 #include "compensator/support/long_words.hpp"
+#include "compensator/support/platform.hpp"
 
 namespace roprec {
 
@@ -52,14 +49,6 @@ std::size_t defaultLimitMB(InputKind kind) {
   }
   return 64;
 }
-
-/// Closes the descriptor on every path out.
-struct Fd {
-  int fd;
-  ~Fd() {
-    if (fd >= 0) ::close(fd);
-  }
-};
 
 /// The line (1-based) and column of byte `at`.
 std::pair<int, int> lineColumn(std::string_view bytes, std::size_t at) {
@@ -122,28 +111,26 @@ void checkInputText(std::string_view bytes, const std::string& file) {
 }
 
 std::string readInputFile(const std::string& path, InputKind kind) {
-  const Fd f{::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK)};
-  if (f.fd < 0) {
-    const int e = errno;
+  platform::File f;
+  if (const int e = f.openRead(path); e != 0) {
     throw InputError(
         path, 0,
         std::string(kind == InputKind::kUrdf ? "cannot open URDF file: " : "cannot open file: ") +
-            std::strerror(e));
+            platform::errorText(e));
   }
-  struct stat st {};
-  if (::fstat(f.fd, &st) != 0) {
-    const int e = errno;
-    throw InputError(path, 0, std::string("cannot read file: ") + std::strerror(e));
+  const platform::Status st = f.status();
+  if (st.kind == platform::Kind::kError) {
+    throw InputError(path, 0, std::string("cannot read file: ") + platform::errorText(st.error));
   }
-  if (S_ISDIR(st.st_mode))
+  if (st.kind == platform::Kind::kFolder)
     throw InputError(path, 0, std::string("is a directory; give ") + kindName(kind) + " file");
-  if (!S_ISREG(st.st_mode)) {
+  if (st.kind != platform::Kind::kRegular) {
     throw InputError(path, 0,
                      std::string("is not a regular file (a device, FIFO or socket); give ") +
                          kindName(kind) + " file (no roprec command reads a stream)");
   }
   const std::size_t limit = inputSizeLimit(kind);
-  const auto size = static_cast<std::size_t>(st.st_size);
+  const auto size = static_cast<std::size_t>(st.size);
   const auto too_large = [&](std::size_t n) {
     throw InputError(path, 0,
                      "the file is " + std::to_string((n + kMB - 1) / kMB) + " MB, more than the " +
@@ -154,13 +141,10 @@ std::string readInputFile(const std::string& path, InputKind kind) {
   std::string bytes(size, '\0');
   std::size_t got = 0;
   const auto readSome = [&](char* into, std::size_t n) -> std::size_t {
-    while (true) {
-      const ssize_t r = ::read(f.fd, into, n);
-      if (r >= 0) return static_cast<std::size_t>(r);
-      if (errno == EINTR) continue;
-      const int e = errno;
-      throw InputError(path, 0, std::string("cannot read file: ") + std::strerror(e));
-    }
+    int e = 0;
+    const long long r = f.read(into, n, &e);
+    if (r >= 0) return static_cast<std::size_t>(r);
+    throw InputError(path, 0, std::string("cannot read file: ") + platform::errorText(e));
   };
   while (got < size) {
     const std::size_t n = readSome(bytes.data() + got, size - got);

@@ -7,6 +7,7 @@
 
 #include "compensator/precision/parallel.hpp"
 #include "compensator/support/atomic_file.hpp"
+#include "compensator/support/c_format.hpp"
 #include "compensator/support/error.hpp"
 #include "compensator/support/input_file.hpp"
 
@@ -601,11 +602,9 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
     if (spec_of_hole[i] >= 0) far.add(job.requests[i], match_tol_mm);
   }
   if (hole_list) {
-    char tol[32];
-    std::snprintf(tol, sizeof tol, "%g", match_tol_mm);
     reportMatching(job, *hole_list, specs, spec_of_hole,
-                   std::string("matched by id, else by position within --match-tol ") + tol +
-                       " mm on a parallel axis");
+                   "matched by id, else by position within --match-tol " +
+                       cGeneral(match_tol_mm, 6) + " mm on a parallel axis");
     far.note(job, match_tol_mm);
   }
   requireOneToolForOneDrill(job, cell, specs, path);

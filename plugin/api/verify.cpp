@@ -14,6 +14,7 @@
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/c_format.hpp"
 #include "compensator/support/error.hpp"
+#include "compensator/support/platform.hpp"
 #include "compensator/support/rotation.hpp"
 
 namespace roprec::api {
@@ -527,13 +528,15 @@ std::string calibrationDate(const std::string& date, const std::string& measured
       throw UsageError(std::string("SOURCE_DATE_EPOCH must be whole seconds, not '") + epoch + "'");
     t = static_cast<std::time_t>(std::stoll(epoch));
   } else {
-    const auto ft = fs::last_write_time(fs::path(measured_file));
+    const auto ft = fs::last_write_time(platform::fromUtf8(measured_file));
     t = std::chrono::system_clock::to_time_t(std::chrono::file_clock::to_sys(ft));
   }
-  std::tm tm{};
-  gmtime_r(&t, &tm);
+  // the UTC calendar day (std::chrono: no gmtime_r, which Windows lacks)
+  const std::chrono::year_month_day day{
+      std::chrono::floor<std::chrono::days>(std::chrono::system_clock::from_time_t(t))};
   char buf[48];
-  std::snprintf(buf, sizeof buf, "%04d-%02d-%02d", tm.tm_year + 1900, tm.tm_mon + 1, tm.tm_mday);
+  std::snprintf(buf, sizeof buf, "%04d-%02u-%02u", static_cast<int>(day.year()),
+                static_cast<unsigned>(day.month()), static_cast<unsigned>(day.day()));
   return buf;
 }
 

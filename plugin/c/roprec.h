@@ -350,6 +350,38 @@ ROPREC_API int roprec_plan_test_file(const char* cell_path, const double region_
                                      const char* out_path, char* summary_json, size_t summary_len,
                                      char* err, size_t err_len);
 
+/* ---------------------------------------------------------------- for bindings */
+
+/* The kind of the error the last call on this thread returned (ROPREC_OK: none), for bindings that
+ * map it to their own exceptions: an item that could not be handled (the call returned 1), a bad
+ * input file (`FILE:LINE: ...`), a bad argument or option, out of memory, an internal error. */
+#define ROPREC_ERROR_NONE 0
+#define ROPREC_ERROR_ITEM 1
+#define ROPREC_ERROR_INPUT 2
+#define ROPREC_ERROR_USAGE 3
+#define ROPREC_ERROR_MEMORY 4
+#define ROPREC_ERROR_INTERNAL 5
+ROPREC_API int roprec_error_kind(void);
+
+/* The session's cell as a one-line JSON object: "cell_path", "cell" (its name), "robot" (the robot
+ * card's name), "process" (as the prediction JSON describes it), "tool_pose_mm" (the TCP in the
+ * flange frame: the cell's <tool>) and "workobject_pose_mm" (the workobject frame in the robot
+ * base frame), each 16 numbers of a 4x4 pose, row-major. Numbers are the shortest text that reads
+ * back as the same double. ROPREC_SUMMARY_LEN bytes suffice unless the names are long; too small
+ * gives 2. */
+ROPREC_API int roprec_session_info(roprec_session* s, char* json, size_t json_len, char* err,
+                                   size_t err_len);
+
+/* roprec_predict_joints with every figure of the prediction, as a one-line JSON object (numbers
+ * as in roprec_session_info): "deviation_um", "rotation_urad" (3 each, as deviation[]),
+ * "U_work_um", "U_robot_um", "U_mach_um", "k", "work_deviation_um" (3: deviation_um + the
+ * machining deviation), "position_error_um", "axis_tilt_urad" (w.r.t. the commanded TCP z axis),
+ * "tolerance_mm", "verdict", "config", "joints_deg" (6, the joints predicted, radians converted
+ * as the JSON exports do), "process_force_N" (3, base frame). ROPREC_SUMMARY_LEN bytes suffice.
+ * 1: no prediction at these joints (reason in err). */
+ROPREC_API int roprec_predict_joints_json(roprec_session* s, const double joints_deg[6], char* json,
+                                          size_t json_len, char* err, size_t err_len);
+
 #ifdef __cplusplus
 } /* extern "C" */
 #endif

@@ -18,7 +18,6 @@
 
 #include "compensator/precision/identification.hpp"
 #include "compensator/support/atomic_file.hpp"
-#include "compensator/support/c_format.hpp"
 #include "compensator/support/error.hpp"
 #include "plugin/api/job.hpp"
 #include "plugin/api/job_options.hpp"
@@ -27,7 +26,8 @@
 #include "plugin/c/host_common.hpp"
 
 struct roprec_session {
-  explicit roprec_session(const std::string& cell_path) : session(cell_path) {}
+  explicit roprec_session(const std::string& path) : cell_path(path), session(path) {}
+  std::string cell_path;
   roprec::api::Session session;
 };
 
@@ -73,6 +73,9 @@ void copyError(char* err, size_t err_len, const char* a, const char* b = "") noe
   err[n] = '\0';
 }
 
+/// The ROPREC_ERROR_* kind of the last call's error on this thread (roprec_error_kind).
+thread_local int g_error_kind = ROPREC_ERROR_NONE;
+
 /// An item failure (status 1) carrying its message.
 struct ItemFailure {
   std::string message;
@@ -82,11 +85,11 @@ struct ItemFailure {
 template <class F>
 int guarded(char* err, size_t err_len, F&& f) noexcept {
   copyError(err, err_len, "");
+  g_error_kind = ROPREC_ERROR_NONE;
   try {
-    // The C library functions see the "C" locale whatever the host set, and the outputs of one
-    // call are written all or none (compensator/support/atomic_file.hpp): committed when the call
-    // returns or reports failed items (whose outputs were complete), removed on any error.
-    const roprec::ClassicLocaleScope c_locale;
+    // The outputs of one call are written all or none (compensator/support/atomic_file.hpp):
+    // committed when the call returns or reports failed items (whose outputs were complete),
+    // removed on any error. Numbers are formatted locale-free whatever locale the host set.
     roprec::OutputSet outputs;
     const roprec::ScopedOutputSet scope(outputs);
     int status = ROPREC_OK;
@@ -100,21 +103,27 @@ int guarded(char* err, size_t err_len, F&& f) noexcept {
     return status;
   } catch (const ItemFailure& e) {
     copyError(err, err_len, e.message.c_str());
+    g_error_kind = ROPREC_ERROR_ITEM;
     return ROPREC_ITEM_FAILED;
   } catch (const roprec::InputError& e) {
     copyError(err, err_len, e.what());
+    g_error_kind = ROPREC_ERROR_INPUT;
     return ROPREC_BAD_INPUT;
   } catch (const roprec::UsageError& e) {
     copyError(err, err_len, e.what());
+    g_error_kind = ROPREC_ERROR_USAGE;
     return ROPREC_BAD_INPUT;
   } catch (const std::bad_alloc&) {
     copyError(err, err_len, "out of memory");
+    g_error_kind = ROPREC_ERROR_MEMORY;
     return ROPREC_BAD_INPUT;
   } catch (const std::exception& e) {
     copyError(err, err_len, "internal error: ", e.what());
+    g_error_kind = ROPREC_ERROR_INTERNAL;
     return ROPREC_BAD_INPUT;
   } catch (...) {
     copyError(err, err_len, "internal error (unknown exception)");
+    g_error_kind = ROPREC_ERROR_INTERNAL;
     return ROPREC_BAD_INPUT;
   }
 }
@@ -173,6 +182,38 @@ int compensateMilling(const std::string& cell, const std::string& program, const
   const std::string text =
       host::millingSummary(r, host::compensationPaths(r.context, out, targets)).dump(0);
   return writeCompensation(r.context, out, extra, text, summary, summary_len);
+}
+
+/// A pose as 16 numbers, row-major, mm (shortest round-trip text).
+roprec::api::Json poseJson(const roprec::Pose& T) {
+  double m[16];
+  host::poseToRowMajorMm(T, m);
+  return roprec::api::Json::vector(Eigen::Map<const Eigen::VectorXd>(m, 16));
+}
+
+/// The figures of roprec_predict_joints_json (the Python module's predict_joints keys).
+roprec::api::Json jointPredictionJson(const roprec::api::Session::JointPrediction& p,
+                                      const Vec6& q) {
+  using roprec::api::Json;
+  const roprec::HolePrediction& h = p.prediction;
+  Vec6 deg;
+  for (int i = 0; i < 6; ++i) deg[i] = q[i] / roprec::kDeg;
+  Json o = Json::object();
+  o.set("deviation_um", Json::vector(p.d_translation * 1e6));
+  o.set("rotation_urad", Json::vector(p.d_rotation * 1e6));
+  o.set("U_work_um", Json::number(p.U_work * 1e6));
+  o.set("U_robot_um", Json::number(h.U_robot * 1e6));
+  o.set("U_mach_um", Json::number(h.U_mach * 1e6));
+  o.set("k", Json::number(h.k));
+  o.set("work_deviation_um", Json::vector(h.d_work * 1e6));
+  o.set("position_error_um", Json::number(h.position_error * 1e6));
+  o.set("axis_tilt_urad", Json::number(h.axis_tilt * 1e6));
+  o.set("tolerance_mm", Json::number(h.tolerance * 1e3));
+  o.set("verdict", Json::str(roprec::verdictName(h.verdict)));
+  o.set("config", Json::str(h.config));
+  o.set("joints_deg", Json::vector(deg));
+  o.set("process_force_N", Json::vector(h.force_base));
+  return o;
 }
 
 /// The whole prediction job of roprec_predict_file(_ex).
@@ -457,6 +498,44 @@ ROPREC_API int roprec_filter_targets(roprec_session* s, size_t count, const doub
         out_joints_deg[6 * i + j] = f[i].joints_controller[j] / roprec::kDeg;
     }
     if (!failed.empty()) throw ItemFailure{host::joinLines(failed)};
+    return ROPREC_OK;
+  });
+}
+
+ROPREC_API int roprec_error_kind(void) { return g_error_kind; }
+
+ROPREC_API int roprec_session_info(roprec_session* s, char* json, size_t json_len, char* err,
+                                   size_t err_len) {
+  return guarded(err, err_len, [&] {
+    require(s, "session");
+    checkTextBuffer(json, json_len, "json");
+    const roprec::api::PredictionContext& c = s->session.context();
+    using roprec::api::Json;
+    Json o = Json::object();
+    o.set("cell_path", Json::str(s->cell_path));
+    o.set("cell", Json::str(c.cell.name));
+    o.set("robot", Json::str(c.robot.card.name));
+    o.set("process", Json::str(c.process_description));
+    o.set("tool_pose_mm", poseJson(c.tool.T_flange_tcp));
+    o.set("workobject_pose_mm", poseJson(c.cell.T_base_wobj));
+    const std::string text = o.dump(0);
+    checkFits(text, json, json_len, "json");
+    copyText(text, json);
+    return ROPREC_OK;
+  });
+}
+
+ROPREC_API int roprec_predict_joints_json(roprec_session* s, const double joints_deg[6], char* json,
+                                          size_t json_len, char* err, size_t err_len) {
+  return guarded(err, err_len, [&] {
+    require(s, "session");
+    checkTextBuffer(json, json_len, "json");
+    const Vec6 q = host::jointsFromDeg(joints_deg, "joints_deg");
+    const roprec::api::Session::JointPrediction p = s->session.predictJoints(q);
+    if (!p.ok) throw ItemFailure{"no prediction at these joints: " + p.reason};
+    const std::string text = jointPredictionJson(p, q).dump(0);
+    checkFits(text, json, json_len, "json");
+    copyText(text, json);
     return ROPREC_OK;
   });
 }

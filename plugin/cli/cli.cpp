@@ -1,7 +1,5 @@
 #include "plugin/cli/cli.hpp"
 
-#include <unistd.h>
-
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -11,6 +9,7 @@
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/c_format.hpp"
 #include "compensator/support/error.hpp"
+#include "compensator/support/platform.hpp"
 #include "compensator/support/xml_node.hpp"
 #include "plugin/api/job_options.hpp"
 
@@ -111,21 +110,7 @@ std::vector<Command>& commandRegistry() {
 
 CommandRegistration::CommandRegistration(Command c) { commandRegistry().push_back(std::move(c)); }
 
-int writeStdout(std::string_view text) {
-  const char* p = text.data();
-  size_t left = text.size();
-  while (left > 0) {
-    const ssize_t n = ::write(1, p, left);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      return errno;
-    }
-    if (n == 0) return EIO;
-    p += n;
-    left -= static_cast<size_t>(n);
-  }
-  return 0;
-}
+int writeStdout(std::string_view text) { return platform::writeStdout(text); }
 
 void emit(CommandContext& ctx, const std::string& path, const std::string& text) {
   if (path.empty() || path == "-") {

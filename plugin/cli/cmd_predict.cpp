@@ -8,6 +8,7 @@
 
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
+#include "compensator/support/platform.hpp"
 #include "plugin/api/job.hpp"
 #include "plugin/api/json.hpp"
 #include "plugin/api/verify.hpp"
@@ -114,7 +115,7 @@ int run(Args& args, CommandContext& ctx) {
     produce([](std::string_view b) {
       if (const int e = writeStdout(b); e != 0)
         throw std::runtime_error(std::string("cannot write to standard output: ") +
-                                 std::strerror(e));
+                                 platform::errorText(e));
     });
   } else {
     produce([](std::string_view) {});  // no JSON asked for: the summary only

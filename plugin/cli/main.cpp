@@ -1,12 +1,7 @@
 /// roprec — robot-process precision: predict and compensate where an industrial robot really
 /// drills. This is the command dispatcher; every command lives in plugin/cmd_*.cpp.
-#include <unistd.h>
-
-#include <sys/stat.h>
-
 #include <algorithm>
 #include <cerrno>
-#include <csignal>
 #include <cstring>
 #include <exception>
 #include <iostream>
@@ -18,6 +13,7 @@
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
 #include "compensator/support/long_words.hpp"
+#include "compensator/support/platform.hpp"
 #include "plugin/api/job.hpp"
 #include "plugin/cli/cli.hpp"
 
@@ -50,8 +46,9 @@ std::string inputFiles(const std::vector<std::string>& tokens) {
     const std::string& t = tokens[i];
     if (i > 0 && std::find(outputs.begin(), outputs.end(), tokens[i - 1]) != outputs.end())
       continue;  // an output file, not an input
-    struct stat st {};
-    if (t.empty() || t[0] == '-' || ::stat(t.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) continue;
+    if (t.empty() || t[0] == '-' ||
+        roprec::platform::fileStatus(t).kind != roprec::platform::Kind::kRegular)
+      continue;
     s += (s.empty() ? "" : ", ") + t;
   }
   return s;
@@ -93,7 +90,7 @@ class ClippedLines : public std::streambuf {
 using roprec::cli::writeStdout;
 
 int stdoutFailed(int e) {
-  std::cerr << "roprec: error: cannot write to standard output: " << std::strerror(e)
+  std::cerr << "roprec: error: cannot write to standard output: " << roprec::platform::errorText(e)
             << "; nothing written\n";
   return 2;
 }
@@ -107,11 +104,12 @@ int printAndReturn(const std::string& text, int rc) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::signal(SIGPIPE, SIG_IGN);
+  roprec::platform::setUpStdio();
   // never destroyed: std::cerr writes through it until the process ends
   static auto* const clipped = new ClippedLines(std::cerr.rdbuf());  // NOLINT
   std::cerr.rdbuf(clipped);
-  std::vector<std::string> tokens(argv + 1, argv + argc);
+  std::vector<std::string> tokens = roprec::platform::utf8Arguments(argc, argv);
+  if (!tokens.empty()) tokens.erase(tokens.begin());  // the program's own name
   if (tokens.empty() || tokens[0] == "--help" || tokens[0] == "-h" || tokens[0] == "help") {
     std::ostringstream help;
     printHelp(help);
@@ -137,7 +135,7 @@ int main(int argc, char** argv) {
   // renamed: a failed or short write to stdout (a full disk, /dev/full) is exit 2 with nothing
   // written; "wrote X" is never printed for a file that failed to stage.
   std::ostringstream out;
-  roprec::cli::CommandContext ctx{out, std::cerr, false, ::isatty(2) != 0};
+  roprec::cli::CommandContext ctx{out, std::cerr, false, roprec::platform::stderrIsTerminal()};
   ctx.quiet = args.flag("quiet");
   try {
     // Every file the command writes is staged and renamed only when the command succeeded:

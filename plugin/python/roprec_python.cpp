@@ -18,7 +18,6 @@
 #include <vector>
 
 #include "compensator/support/atomic_file.hpp"
-#include "compensator/support/c_format.hpp"
 #include "compensator/support/error.hpp"
 #include "plugin/api/hole_input.hpp"
 #include "plugin/api/job.hpp"
@@ -326,7 +325,6 @@ class PySession {
  public:
   explicit PySession(std::string cell_path) : cell_path_(std::move(cell_path)) {
     py::gil_scoped_release release;
-    const ClassicLocaleScope c_locale;  // the "C" locale whatever the host set
     session_ = std::make_unique<api::Session>(cell_path_);
   }
 
@@ -338,7 +336,6 @@ class PySession {
     api::Session::Filtered f;
     {
       py::gil_scoped_release release;
-      const ClassicLocaleScope c_locale;  // the "C" locale whatever the host set
       const std::lock_guard<std::mutex> lock(mutex_);
       f = session_->filterTarget(T, q ? &*q : nullptr, hole);
     }
@@ -407,7 +404,6 @@ class PySession {
     api::Session::JointPrediction p;
     {
       py::gil_scoped_release release;
-      const ClassicLocaleScope c_locale;  // the "C" locale whatever the host set
       const std::lock_guard<std::mutex> lock(mutex_);
       p = session_->predictJoints(q, hole);
     }
@@ -471,7 +467,6 @@ py::dict predict(const std::string& cell, const std::string& program,
   std::string summary;
   {
     py::gil_scoped_release release;
-    const ClassicLocaleScope c_locale;  // the "C" locale whatever the host set
     RunScope run;
     r = api::predictJob(cell, program, options);
     summary = host::predictionSummary(*r).dump(0);
@@ -510,7 +505,6 @@ py::dict compensate(const std::string& cell, const std::string& program, const s
   std::string summary;
   if (api::cellIsMilling(cell)) {
     py::gil_scoped_release release;
-    const ClassicLocaleScope c_locale;  // the "C" locale whatever the host set
     RunScope run;
     api::MillingCompensationResult r = api::compensateMillingJob(cell, program, force);
     problems = host::millingProblems(r);
@@ -528,7 +522,6 @@ py::dict compensate(const std::string& cell, const std::string& program, const s
     std::optional<api::CompensationResult> r;
     {
       py::gil_scoped_release release;
-      const ClassicLocaleScope c_locale;  // the "C" locale whatever the host set
       RunScope run;
       r = api::compensateJob(cell, program, job);
       problems = host::compensationProblems(*r, program);
@@ -578,7 +571,6 @@ py::dict verify(const std::string& cell, const std::string& program, const std::
   std::string problems;
   {
     py::gil_scoped_release release;
-    const ClassicLocaleScope c_locale;  // the "C" locale whatever the host set
     RunScope run;
     const api::VerifyResult r = api::verifyJob(cell, program, job);
     json = api::verifyJson(r).dump();
@@ -612,7 +604,6 @@ py::dict planTest(const std::string& cell, const std::vector<double>& region, in
   std::string summary;
   {
     py::gil_scoped_release release;
-    const ClassicLocaleScope c_locale;  // the "C" locale whatever the host set
     RunScope run;
     const api::PlanTestResult r = api::planTestJob(cell, Vec3(region[0], region[1], region[2]),
                                                    Vec3(region[3], region[4], region[5]), count);

@@ -505,7 +505,10 @@ std::vector<size_t> failingMembers(const PanelView& pv) {
   std::stable_sort(failing.begin(), failing.end(), [&](size_t a, size_t b) {
     const int sa = severity(pv.verdict(a)), sb = severity(pv.verdict(b));
     if (sa != sb) return sa > sb;
-    return pv.value(a).value_or(-1.0) > pv.value(b).value_or(-1.0);
+    // by the value as the tooltip prints it (0.1 µm), ties in program order: the order does not
+    // hang on a value's last bits (another platform's libm)
+    const auto shown = [](std::optional<double> v) { return v ? std::round(*v * 10.0) : -1.0; };
+    return shown(pv.value(a)) > shown(pv.value(b));
   });
   return failing;
 }

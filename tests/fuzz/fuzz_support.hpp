@@ -9,9 +9,8 @@
 #include <fstream>
 #include <string>
 
-#include <unistd.h>
-
 #include "compensator/support/error.hpp"
+#include "compensator/support/platform.hpp"
 
 namespace roprec::fuzz {
 
@@ -21,7 +20,7 @@ inline const std::filesystem::path& scratchDir(const std::string& tag) {
     std::filesystem::path p;
     explicit Dir(const std::string& t)
         : p(std::filesystem::temp_directory_path() /
-            ("roprec-fuzz-" + t + "-" + std::to_string(::getpid()))) {
+            ("roprec-fuzz-" + t + "-" + std::to_string(roprec::platform::processId()))) {
       std::filesystem::remove_all(p);
       std::filesystem::create_directories(p);
     }

@@ -1,7 +1,10 @@
 #include "tests/support/test_support.hpp"
 
+#ifndef _WIN32
 #include <sys/wait.h>
+#endif
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -10,6 +13,9 @@
 #include <sstream>
 
 #include <gtest/gtest.h>
+
+#include "compensator/support/platform.hpp"
+#include "tests/support/process.hpp"
 
 namespace fs = std::filesystem;
 
@@ -84,8 +90,9 @@ std::string krlCyclesOfDepths(const std::vector<double>& depths_mm) {
 
 std::string tempDir(const std::string& tag) {
   static int counter = 0;
-  const fs::path p = fs::temp_directory_path() / ("roprec-test-" + std::to_string(::getpid()) +
-                                                  "-" + tag + "-" + std::to_string(counter++));
+  const fs::path p =
+      fs::temp_directory_path() / ("roprec-test-" + std::to_string(platform::processId()) + "-" +
+                                   tag + "-" + std::to_string(counter++));
   fs::remove_all(p);
   fs::create_directories(p);
   return p.string();
@@ -93,7 +100,20 @@ std::string tempDir(const std::string& tag) {
 
 RunResult runRoprec(const std::string& args) { return runCommand("'" + roprecBin() + "' " + args); }
 
-RunResult runCommand(const std::string& command) {
+namespace {
+bool isAssignment(const std::string& word) {
+  const std::size_t eq = word.find('=');
+  return eq != std::string::npos && eq > 0 &&
+         word.find_first_not_of(
+             "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_") == eq;
+}
+
+/// A command line with shell operators, through /bin/sh (POSIX only).
+RunResult runShell(const std::string& command) {
+#ifdef _WIN32
+  ADD_FAILURE() << "this command needs a POSIX shell: " << command;
+  return RunResult{127, "", ""};
+#else
   const std::string dir = tempDir("run");
   const std::string out = dir + "/stdout";
   const std::string err = dir + "/stderr";
@@ -105,6 +125,26 @@ RunResult runCommand(const std::string& command) {
   r.err = readFile(err);
   fs::remove_all(dir);
   return r;
+#endif
+}
+}  // namespace
+
+// A command line written with POSIX shell quoting: leading NAME=VALUE words set the environment;
+// a plain command (a program path and its words) is started directly by runProcess
+// (tests/support/process.hpp: the same on Linux and Windows); one with shell operators (|, >, &&,
+// ...) goes to /bin/sh, and fails the test on Windows.
+RunResult runCommand(const std::string& command) {
+  std::vector<std::string> words = shellWords(command);
+  std::vector<std::string> env;
+  while (!words.empty() && isAssignment(words.front())) {
+    env.push_back(words.front());
+    words.erase(words.begin());
+  }
+  const bool plain = !words.empty() && std::none_of(words.begin(), words.end(), isShellOperator) &&
+                     words.front().find('/') != std::string::npos;
+  if (!plain) return runShell(command);
+  const ProcessResult p = runProcess(words, env);
+  return RunResult{p.exit_code, p.out, p.err};
 }
 
 }  // namespace roprec::test

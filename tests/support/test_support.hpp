@@ -30,9 +30,11 @@ struct RunResult {
   std::string out;
   std::string err;
 };
-/// Runs `roprec ARGS` (ARGS is passed to /bin/sh, quote as needed) and captures stdout/stderr.
+/// Runs `roprec ARGS` and captures stdout/stderr (ARGS quoted as for a POSIX shell: runCommand).
 RunResult runRoprec(const std::string& args);
-/// Runs a /bin/sh command line (stdin /dev/null) and captures stdout/stderr.
+/// Runs a command line written with POSIX shell quoting (stdin empty) and captures stdout/stderr:
+/// started directly by tests/support/process.hpp when it is plain (leading NAME=VALUE words set
+/// the environment), through /bin/sh when it has shell operators (POSIX only).
 RunResult runCommand(const std::string& command);
 /// A fresh temporary directory under the build tree.
 std::string tempDir(const std::string& tag);

@@ -43,8 +43,17 @@ Example::
 
 import json as _json
 
-from . import _roprec
-from ._roprec import InputError, ItemError, RoprecError, Session, UsageError
+import os as _os
+
+if _os.environ.get("ROPREC_PYTHON_BACKEND") == "ctypes":
+    from . import _cabi as _roprec
+else:
+    try:
+        from . import _roprec
+    except ImportError:  # no extension built for this interpreter (RoboDK's Python on Windows):
+        from . import _cabi as _roprec  # the C library through ctypes, same API (roprec/_cabi.py)
+InputError, ItemError, RoprecError = _roprec.InputError, _roprec.ItemError, _roprec.RoprecError
+Session, UsageError = _roprec.Session, _roprec.UsageError
 
 __version__ = _roprec.version()
 

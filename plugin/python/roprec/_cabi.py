@@ -1,0 +1,388 @@
+"""roprec over its C ABI (roprec.h) through ctypes: the stand-in for the compiled module ``_roprec``.
+
+Pure Python (any CPython >= 3.7, numpy optional): used where no ``_roprec`` extension was built for
+the interpreter — RoboDK's embedded Python on Windows, or with ROPREC_PYTHON_BACKEND=ctypes. It
+loads ``roprec_c.dll`` / ``libroprec_c.so`` (found as :func:`library_candidates` says) and gives the
+same names as ``_roprec``: the exceptions, ``version``, ``Session`` and the whole-job calls.
+Differences: the per-hole dicts of ``predict``/``compensate`` come from the JSON documents, so their
+numbers carry the JSON's rounding; ``compensate`` gives ``results`` only when ``targets`` is a JSON
+export.
+"""
+
+import ctypes
+import json
+import os
+import sys
+import tempfile
+
+try:
+    import numpy as _np
+except ImportError:  # numpy is optional: poses and vectors are then nested lists
+    _np = None
+
+
+class RoprecError(Exception):
+    """Base class of roprec's errors. str(e) is the text the roprec CLI prints after 'roprec: error: '."""
+
+
+class InputError(RoprecError):
+    """Bad input in a file (cell, program, hole list): 'FILE:LINE: what is wrong'."""
+
+
+class UsageError(RoprecError, ValueError):
+    """A bad argument (wrong shape, not finite, non-rigid pose, unknown option). Also a ValueError."""
+
+
+class ItemError(RoprecError):
+    """A target or hole that could not be handled (unreachable, singular, not converged)."""
+
+
+_LEN = 1 << 16
+_ERROR_ITEM, _ERROR_INPUT, _ERROR_USAGE, _ERROR_MEMORY = 1, 2, 3, 4
+
+
+def library_candidates(env=None, package_dir=None, platform=None):
+    """Where roprec_c is looked for, in order: $ROPREC_C_LIB; beside this package; the install
+    layout's bin/ (Windows) or lib/ (Linux) above it; then the bare name (the system's search)."""
+    env = os.environ if env is None else env
+    package_dir = os.path.dirname(os.path.abspath(__file__)) if package_dir is None else package_dir
+    windows = (sys.platform if platform is None else platform).startswith("win")
+    names = ["roprec_c.dll"] if windows else ["libroprec_c.so.0", "libroprec_c.so"]
+    found = []
+    if env.get("ROPREC_C_LIB"):
+        found.append(env["ROPREC_C_LIB"])
+    up = package_dir
+    for depth in range(5):  # <prefix>/python/roprec, <prefix>/lib/python3/dist-packages/roprec
+        for sub in ([""] if depth == 0 else (["bin", ""] if windows else ["lib", ""])):
+            for n in names:
+                found.append(os.path.join(up, sub, n) if sub else os.path.join(up, n))
+        up = os.path.dirname(up)
+    found.extend(names)
+    seen = []
+    for f in found:
+        if f not in seen:
+            seen.append(f)
+    return seen
+
+
+def _load():
+    errors = []
+    for path in library_candidates():
+        if os.path.sep in path and not os.path.exists(path):
+            continue
+        try:
+            if os.name == "nt" and os.path.isabs(path):
+                folder = os.path.dirname(path)
+                if hasattr(os, "add_dll_directory"):  # Python >= 3.8: roprec.dll and the others beside it
+                    os.add_dll_directory(folder)
+                else:  # Python 3.7 (RoboDK's older builds) searches PATH for the dependent DLLs
+                    os.environ["PATH"] = folder + os.pathsep + os.environ.get("PATH", "")
+            return ctypes.CDLL(path)
+        except OSError as e:
+            errors.append("%s: %s" % (path, e))
+    raise ImportError("roprec: the C library roprec_c was not found (set ROPREC_C_LIB): " + "; ".join(errors))
+
+
+_lib = _load()
+_D = ctypes.POINTER(ctypes.c_double)
+_P, _S, _I, _V = ctypes.c_char_p, ctypes.c_size_t, ctypes.c_int, ctypes.c_void_p
+for _name, _args in {
+    "roprec_open": [_P, ctypes.POINTER(_V), _P, _S],
+    "roprec_filter_target": [_V, _D, _D, _D, _D, _P, _S],
+    "roprec_predict_joints_json": [_V, _D, _P, _S, _P, _S],
+    "roprec_session_info": [_V, _P, _S, _P, _S],
+    "roprec_options_new": [ctypes.POINTER(_V), _P, _S],
+    "roprec_options_set": [_V, _P, _P, _P, _S],
+    "roprec_predict_file_ex": [_P, _P, _V, _P, _P, _S, _P, _S],
+    "roprec_compensate_file_ex": [_P, _P, _V, _P, _P, _P, _S, _P, _S],
+    "roprec_verify_file_ex": [_P, _P, _P, _P, _V, _P, _P, _P, _S, _P, _S],
+    "roprec_plan_test_file": [_P, _D, _I, _P, _P, _S, _P, _S],
+}.items():
+    getattr(_lib, _name).argtypes = _args
+    getattr(_lib, _name).restype = _I
+_lib.roprec_close.argtypes = [_V]
+_lib.roprec_options_free.argtypes = [_V]
+_lib.roprec_version.restype = _P
+_lib.roprec_error_kind.restype = _I
+
+
+def version():
+    """The library version, e.g. '0.2.0'."""
+    return _lib.roprec_version().decode()
+
+
+def _b(s):
+    return None if s is None else os.fspath(s).encode("utf-8")
+
+
+def _raise(rc, err):
+    """The exception of a failed call (rc != 0), by the kind the library reports."""
+    text = err.value.decode("utf-8", "replace")
+    kind = _lib.roprec_error_kind()
+    if kind == _ERROR_ITEM:
+        raise ItemError(text)
+    if kind == _ERROR_INPUT:
+        raise InputError(text)
+    if kind == _ERROR_USAGE:
+        raise UsageError(text)
+    if kind == _ERROR_MEMORY:
+        raise MemoryError(text)
+    raise RoprecError(text)
+
+
+def _call(f, *args, item_ok=False, size=_LEN):
+    """Calls f(*args, out, size, err, size); returns (rc, out text, err text)."""
+    out, err = ctypes.create_string_buffer(size), ctypes.create_string_buffer(size)
+    rc = f(*(args + (out, size, err, size)))
+    if rc != 0 and not (item_ok and rc == 1):
+        _raise(rc, err)
+    return rc, out.value.decode("utf-8"), err.value.decode("utf-8", "replace")
+
+
+def _numbers(x, n, name):
+    if _np is not None:  # one conversion, no per-element Python work
+        try:
+            a = _np.ascontiguousarray(x, dtype=float).reshape(-1)
+        except (TypeError, ValueError):
+            raise UsageError("%s: %d numbers are expected" % (name, n))
+        if a.size != n:
+            raise UsageError("%s: %d numbers are expected" % (name, n))
+        return a.ctypes.data_as(_D), a  # the array keeps the memory alive
+    try:
+        flat = [float(v) for row in x for v in (row if hasattr(row, "__iter__") else [row])]
+    except TypeError:
+        raise UsageError("%s: %d numbers are expected" % (name, n))
+    if len(flat) != n:
+        raise UsageError("%s: %d numbers are expected" % (name, n))
+    return (ctypes.c_double * n)(*flat), None
+
+
+def _array(values, shape=None):
+    if _np is None:
+        v = list(values)
+        return [v[i * 4:(i + 1) * 4] for i in range(4)] if shape == (4, 4) else v
+    a = _np.array(values, dtype=float)
+    return a.reshape(shape) if shape else a
+
+
+def _mat_mul(a, b):
+    return [[sum(a[i][k] * b[k][j] for k in range(4)) for j in range(4)] for i in range(4)]
+
+
+def _hole_frame(d):
+    """The hole's TCP rotation (columns x, y, z) for drilling direction d (plugin/api holeFrame)."""
+    n = sum(v * v for v in d) ** 0.5
+    z = [v / n for v in d]
+    ref = [1.0, 0.0, 0.0] if abs(z[0]) < 0.9 else [0.0, 1.0, 0.0]
+    y = [z[1] * ref[2] - z[2] * ref[1], z[2] * ref[0] - z[0] * ref[2], z[0] * ref[1] - z[1] * ref[0]]
+    m = sum(v * v for v in y) ** 0.5
+    y = [v / m for v in y]
+    x = [y[1] * z[2] - y[2] * z[1], y[2] * z[0] - y[0] * z[2], y[0] * z[1] - y[1] * z[0]]
+    return [[x[i], y[i], z[i]] for i in range(3)]
+
+
+class Session(object):
+    """A cell loaded once for per-target calls (the RoboDK FilterTarget analogue); see roprec.Session."""
+
+    def __init__(self, cell_path):
+        self._s = _V()
+        err = ctypes.create_string_buffer(_LEN)
+        rc = _lib.roprec_open(_b(cell_path), ctypes.byref(self._s), err, _LEN)
+        if rc:
+            _raise(rc, err)
+        self._info = json.loads(_call(_lib.roprec_session_info, self._s)[1])
+
+    def __del__(self):
+        if getattr(self, "_s", None):
+            _lib.roprec_close(self._s)
+            self._s = None
+
+    def filter_target(self, pose_mm, seed_joints_deg=None):
+        """(pose_mm, joints_deg): the pose to program and its joints; see roprec.Session."""
+        err = ctypes.create_string_buffer(1024)
+        pose, keep = _numbers(pose_mm, 16, "pose_mm")
+        seed, keep_seed = (None, None) if seed_joints_deg is None else _numbers(seed_joints_deg, 6, "seed_joints_deg")
+        if _np is not None:
+            out, joints = _np.empty((4, 4)), _np.empty(6)
+            rc = _lib.roprec_filter_target(self._s, pose, seed, out.ctypes.data_as(_D), joints.ctypes.data_as(_D),
+                                           err, 1024)
+        else:
+            out, joints = (ctypes.c_double * 16)(), (ctypes.c_double * 6)()
+            rc = _lib.roprec_filter_target(self._s, pose, seed, out, joints, err, 1024)
+            out, joints = _array(out[:], (4, 4)), _array(joints[:])
+        if rc:
+            _raise(rc, err)
+        return out, joints
+
+    def predict_joints(self, joints_deg):
+        """The predicted TCP deviation at these joints (dict); see roprec.Session."""
+        d = json.loads(_call(_lib.roprec_predict_joints_json, self._s, _numbers(joints_deg, 6, "joints_deg")[0], size=8192)[1])
+        for k, v in d.items():
+            if isinstance(v, list):
+                d[k] = _array(v)
+        return d
+
+    def hole_pose(self, position_mm, direction):
+        """The TCP pose roprec uses for a hole-list row (workobject frame); see roprec.Session."""
+        p = [float(v) for v in _numbers(position_mm, 3, "position_mm")[0][:3]]
+        d = [float(v) for v in _numbers(direction, 3, "direction")[0][:3]]
+        if not sum(v * v for v in d) ** 0.5 > 1e-9:
+            raise UsageError("direction: a non-zero vector is expected")
+        R = _hole_frame(d)
+        T = [R[0] + [p[0]], R[1] + [p[1]], R[2] + [p[2]], [0.0, 0.0, 0.0, 1.0]]
+        w = self._info["workobject_pose_mm"]
+        W = [w[i * 4:(i + 1) * 4] for i in range(4)]
+        return _array([v for row in _mat_mul(W, T) for v in row], (4, 4))
+
+    cell_path = property(lambda self: self._info["cell_path"], doc="The cell file this session was loaded from.")
+    cell = property(lambda self: self._info["cell"], doc="The cell's name.")
+    robot = property(lambda self: self._info["robot"], doc="The robot card's name.")
+    process = property(lambda self: self._info["process"], doc="The cell's process.")
+    tool_pose_mm = property(lambda self: _array(self._info["tool_pose_mm"], (4, 4)),
+                            doc="The TCP in the flange frame (4x4, mm): the cell's <tool>.")
+    workobject_pose_mm = property(lambda self: _array(self._info["workobject_pose_mm"], (4, 4)),
+                                  doc="The cell's workobject frame in the robot base frame (4x4, mm).")
+
+
+class _Options(object):
+    def __init__(self, **values):
+        self.o = _V()
+        err = ctypes.create_string_buffer(_LEN)
+        if _lib.roprec_options_new(ctypes.byref(self.o), err, _LEN):
+            _raise(2, err)
+        for key, value in values.items():
+            if value is not None:
+                rc = _lib.roprec_options_set(self.o, key.encode(), str(value).encode("utf-8"), err, _LEN)
+                if rc:
+                    _raise(rc, err)
+
+    def __enter__(self):
+        return self.o
+
+    def __exit__(self, *exc):
+        _lib.roprec_options_free(self.o)
+
+
+def _dig(tree, dotted):
+    for key in dotted.split("."):
+        if not isinstance(tree, dict) or key not in tree:
+            return None
+        tree = tree[key]
+    return _array(tree) if isinstance(tree, list) else tree
+
+
+def _pose(position, quaternion):
+    w, x, y, z = quaternion
+    R = [[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+         [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+         [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]]
+    return _array([v for i in range(3) for v in R[i] + [position[i]]] + [0.0, 0.0, 0.0, 1.0], (4, 4))
+
+
+_HOLE_KEYS = {
+    "id": "id", "line": "line", "verdict": "verdict", "reason": "reason",
+    "nominal_position_mm": "nominal.position_mm", "nominal_quaternion_wxyz": "nominal.quaternion_wxyz",
+    "axis": "nominal.axis", "diameter_mm": "diameter_mm", "depth_mm": "depth_mm", "tolerance_mm": "tolerance_mm",
+    "mc_time_s": "mc_time_s", "joints_deg": "joints_deg", "controller_joints_deg": "controller_joints_deg",
+    "config": "config", "branch": "branch", "deviation_um": "deviation_um.work",
+    "robot_deviation_um": "deviation_um.robot", "mach_deviation_um": "deviation_um.mach",
+    "rotation_urad": "deviation_um.robot_rotation_urad", "work_tool_xy_um": "deviation_um.work_tool_xy",
+    "position_error_um": "deviation_um.position_error", "axis_tilt_urad": "deviation_um.axis_tilt_urad",
+    "from_nominal_axis_um": "deviation_um.from_nominal_axis", "U_robot_um": "uncertainty_um.U_robot",
+    "U_mach_um": "uncertainty_um.U_mach", "U_work_um": "uncertainty_um.U_work", "k": "uncertainty_um.k",
+    "U_work_anisotropic_um": "uncertainty_um.U_work_anisotropic", "budget_um": "uncertainty_um.standard_per_axis",
+    "process_share": "uncertainty_um.process_share", "process_force_share": "uncertainty_um.process_force_share",
+    "process_force_N": "process_force_N", "equilibrium_converged": "equilibrium.converged",
+    "equilibrium_iterations": "equilibrium.iterations",
+}
+_FAILED = ("unreachable", "singular", "not-converged")
+
+
+def _hole(j):
+    d = {k: _dig(j, path) for k, path in _HOLE_KEYS.items()}
+    d["status"] = d["verdict"] if d["verdict"] in _FAILED else "ok"
+    d["nominal_pose_mm"] = _pose(j["nominal"]["position_mm"], j["nominal"]["quaternion_wxyz"])
+    return d
+
+
+def _predict(cell, program, holes=None, json_out=None, frame=None, tool=None):
+    with _Options(holes=holes, frame=frame, tool=tool) as o:
+        tmp = None
+        if json_out is None:
+            fd, tmp = tempfile.mkstemp(suffix=".json", prefix="roprec-")
+            os.close(fd)
+        try:
+            rc, summary, err = _call(_lib.roprec_predict_file_ex, _b(cell), _b(program), o,
+                                     _b(json_out if tmp is None else tmp), item_ok=True)
+            with open(json_out if tmp is None else tmp, encoding="utf-8") as f:
+                doc = json.load(f)
+        finally:
+            if tmp is not None:
+                os.remove(tmp)
+    return {"holes": [_hole(h) for h in doc["holes"]], "summary_json": summary, "notes": doc.get("notes", []),
+            "failures": err if rc == 1 else "", "robot": doc["robot"], "cell": doc["cell"],
+            "process": doc.get("process", "")}
+
+
+def _compensate(cell, program, out, orientation, targets=None, holes=None, frame=None, tool=None, force=False):
+    with _Options(holes=holes, frame=frame, tool=tool, orientation=orientation, force="1" if force else None) as o:
+        rc, summary, err = _call(_lib.roprec_compensate_file_ex, _b(cell), _b(program), o, _b(out), _b(targets),
+                                 item_ok=True)
+    r = {"summary_json": summary if rc == 0 else json.dumps({"written": []}), "problems": err if rc == 1 else ""}
+    if rc == 0 and targets is not None and not str(targets).lower().endswith(".csv"):
+        with open(targets, encoding="utf-8") as f:
+            doc = json.load(f)
+        if "holes" in doc:
+            r["results"] = [_compensation(h) for h in doc["holes"]]
+    return r
+
+
+def _compensation(j):
+    keys = {
+        "id": "id", "status": "status", "reason": "reason", "nominal_position_mm": "nominal.position_mm",
+        "nominal_quaternion_wxyz": "nominal.quaternion_wxyz", "before_deviation_um": "before.deviation_um.translation",
+        "before_rotation_urad": "before.deviation_um.rotation_urad", "before_verdict": "before.verdict",
+        "programmed_position_mm": "programmed.position_mm", "programmed_quaternion_wxyz": "programmed.quaternion_wxyz",
+        "joints_deg": "programmed.joints_deg", "controller_joints_deg": "programmed.controller_joints_deg",
+        "config": "programmed.config", "rotation_about_axis_deg": "rotation_about_axis_deg",
+        "residual_um": "residual_um", "residual_vector_um": "residual_vector_um", "branch_changed": "branch_changed",
+        "note": "note", "U_robot_um": "uncertainty_um.U_robot", "U_mach_um": "uncertainty_um.U_mach",
+        "U_work_um": "uncertainty_um.U_work", "k": "uncertainty_um.k", "verdict": "verdict",
+    }
+    d = {k: _dig(j, path) for k, path in keys.items()}
+    d["nominal_pose_mm"] = _pose(j["nominal"]["position_mm"], j["nominal"]["quaternion_wxyz"])
+    p = j.get("programmed")
+    d["programmed_pose_mm"] = _pose(p["position_mm"], p["quaternion_wxyz"]) if p else None
+    return d
+
+
+def _verify(cell, program, measured, holes=None, register="none", calibrate=None, json_out=None, write_cell=None):
+    with _Options(holes=holes, write_cell=write_cell) as o:
+        tmp = None
+        if json_out is None:
+            fd, tmp = tempfile.mkstemp(suffix=".json", prefix="roprec-")
+            os.close(fd)
+        try:
+            rc, summary, err = _call(_lib.roprec_verify_file_ex, _b(cell), _b(program), _b(measured),
+                                     _b(register), o, _b(json_out if tmp is None else tmp), _b(calibrate),
+                                     item_ok=True)
+            text = ""
+            if rc == 0:
+                with open(json_out if tmp is None else tmp, encoding="utf-8") as f:
+                    text = f.read()
+        finally:
+            if tmp is not None and os.path.exists(tmp):
+                os.remove(tmp)
+    if rc == 0 and tmp is not None:  # the temporary document is not one of the caller's outputs
+        s = json.loads(summary)
+        s["written"] = [w for w in s.get("written", []) if os.path.abspath(w) != os.path.abspath(tmp)]
+        summary = json.dumps(s)
+    return {"json": text or "{}", "summary_json": summary or json.dumps({"written": []}),
+            "problems": err if rc == 1 else ""}
+
+
+def _plan_test(cell, region, count, out):
+    if len(region) != 6:
+        raise UsageError("region: give 6 numbers x0 y0 z0 x1 y1 z1 (mm)")
+    return {"summary_json": _call(_lib.roprec_plan_test_file, _b(cell), (ctypes.c_double * 6)(*region), int(count),
+                                  _b(out))[1]}

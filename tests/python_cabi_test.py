@@ -1,0 +1,54 @@
+"""roprec/_cabi.py, the ctypes binding over roprec_c: where it looks for the C library (Windows and
+Linux install layouts, ROPREC_C_LIB first) and that its error kinds map to roprec's exceptions.
+Its API is the same as the compiled module's: tests/python_api_test.py runs against both
+(ctest python_api and python_api_ctypes)."""
+
+import os
+import sys
+import unittest
+
+os.environ["ROPREC_PYTHON_BACKEND"] = "ctypes"
+import roprec  # noqa: E402
+from roprec import _cabi  # noqa: E402
+
+SRC = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+class LibraryCandidatesTest(unittest.TestCase):
+    def test_windows_zip_layout_finds_roprec_c_in_bin_beside_the_exe(self):
+        pkg = os.path.join(os.sep, "roprec", "python", "roprec")  # <install folder>/python/roprec
+        c = _cabi.library_candidates(env={}, package_dir=pkg, platform="win32")
+        self.assertIn(os.path.join(os.sep, "roprec", "bin", "roprec_c.dll"), c)
+        self.assertTrue(all(p.endswith("roprec_c.dll") for p in c), c)
+        self.assertEqual(c[-1], "roprec_c.dll")  # last: the system's own search
+
+    def test_linux_dist_packages_layout_finds_the_versioned_library_in_lib(self):
+        pkg = "/opt/roprec/lib/python3/dist-packages/roprec"
+        c = _cabi.library_candidates(env={}, package_dir=pkg, platform="linux")
+        self.assertIn("/opt/roprec/lib/libroprec_c.so.0", c)
+        self.assertLess(c.index("/opt/roprec/lib/libroprec_c.so.0"), c.index("libroprec_c.so.0"))
+
+    def test_the_environment_variable_comes_first(self):
+        c = _cabi.library_candidates(env={"ROPREC_C_LIB": "/x/libroprec_c.so"}, package_dir="/p/roprec",
+                                     platform="linux")
+        self.assertEqual(c[0], "/x/libroprec_c.so")
+        self.assertEqual(len(c), len(set(c)))
+
+    def test_the_loaded_library_is_the_one_the_environment_names(self):
+        self.assertEqual(os.path.realpath(_cabi._lib._name), os.path.realpath(os.environ["ROPREC_C_LIB"]))
+        self.assertIs(roprec._roprec, _cabi)
+
+
+class ErrorKindsTest(unittest.TestCase):
+    def test_a_missing_cell_is_an_input_error_and_a_bad_pose_a_usage_error(self):
+        with self.assertRaises(roprec.InputError):
+            roprec.Session(os.path.join(SRC, "no-such-cell.xml"))
+        s = roprec.Session(os.path.join(SRC, "samples", "cells", "housing-kr120.xml"))
+        with self.assertRaises(roprec.UsageError):
+            s.filter_target([[1, 0, 0, 0]] * 4)  # not a rigid pose
+        with self.assertRaises(ValueError):
+            s.filter_target([1, 2, 3])  # not 16 numbers
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=2)
