@@ -2,8 +2,8 @@
 // move into the material starts from — not at the approach point above it. A hand-written cycle
 // with the approach 50 mm above the surface and a 20 mm hole is 20 mm deep (not 70 mm, and the
 // machining-centre time is that of 20 mm); the surface point is reported with the bottom. A
-// program without a drill cycle is an error at its first motion. Recognition advanced over a program
-// as it grows (HoleRecognizer) gives the holes of the whole program, in every dialect.
+// program without a drill cycle is an error at its first motion. Recognition advanced over a
+// program as it grows (HoleRecognizer) gives the holes of the whole program, in every dialect.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -70,7 +70,8 @@ void checkTarget(const std::string& path) {
     const std::string dir = dirOf(path);
     const platform::Status ds = platform::fileStatus(dir);
     if (ds.kind == Kind::kMissing || ds.kind == Kind::kError) {
-      fail(path, "the folder " + dir + " does not exist (roprec does not create folders: mkdir -p " + dir + ")");
+      fail(path, "the folder " + dir +
+                     " does not exist (roprec does not create folders: mkdir -p " + dir + ")");
     }
     if (ds.kind != Kind::kFolder) fail(path, dir + " is not a folder");
     if (st.error != ENOENT) fail(path, errnoText(st.error));
