@@ -319,10 +319,6 @@ fs::path loadedLibraryDir() {
   const fs::path dir = fs::absolute(platform::fromUtf8(module), ec).parent_path();
   return ec ? fs::path() : dir;
 }
-std::error_code ec;
-const fs::path dir = fs::absolute(fs::path(info.dli_fname), ec).parent_path();
-return ec ? fs::path() : dir;
-}
 
 // True when `dir` lies in the build tree (libroprec in build/lib, or a binary that links the
 // objects, e.g. a fuzz harness): the only place the source tree's robots/ is used from.
