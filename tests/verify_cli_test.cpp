@@ -395,6 +395,18 @@ TEST(VerifyCli, WrittenPartRegistrationReachesAProgramWithItsOwnBase) {
   }
   EXPECT_LE(worst, 2e-3) << worst << " mm from the displaced holes";
   EXPECT_GE(worst_unregistered, 0.1) << "the registration moves every hole by more than 0.1 mm";
+  // a registration in metres instead of mm is refused at its line, nothing written
+  std::string bad = text;
+  const size_t at = bad.find("xyz_mm=\"");
+  ASSERT_NE(at, std::string::npos);
+  bad.insert(at + 8, "5000");
+  test::writeFile(dir + "/bad.xml", bad);
+  const auto b = test::runRoprec("compensate --cell " + q(dir + "/bad.xml") + " " + q(prog) +
+                                 " -o " + q(dir + "/bad.src"));
+  EXPECT_EQ(b.exit_code, 2) << b.err;
+  EXPECT_NE(b.err.find("bad.xml:14:"), std::string::npos) << b.err;
+  EXPECT_NE(b.err.find("xyz_mm"), std::string::npos) << b.err;
+  EXPECT_FALSE(fs::exists(dir + "/bad.src"));
 }
 
 TEST(VerifyCli, PosesAloneCalibrateAndRecoverATrackerOffset) {
