@@ -79,7 +79,7 @@ def main():
         card, cell = os.path.join(tmp, "kr120-cal.xml"), os.path.join(tmp, "cell.xml")
         subprocess.run([roprec, "verify", "--cell", os.path.join(src, "samples", "cells", "housing-kr120.xml"),
                         os.path.join(v, "geometry_kr120.src"), "--holes", os.path.join(v, "geometry_kr120_holes.csv"),
-                        "--measured", os.path.join(v, "measured_geometry.csv"), "--register", "none",
+                        "--measured", os.path.join(v, "measured_geometry.csv"), "--register", "rigid",
                         "--calibrate", card, "--write-cell", cell, "--quiet"], check=True, cwd=src)
         comp = os.path.join(tmp, "test_kr120_comp.src")
         subprocess.run([roprec, "compensate", "--cell", cell, os.path.join(v, "test_kr120.src"), "-o", comp,

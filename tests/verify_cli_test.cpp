@@ -5,13 +5,17 @@
 // deterministic; `roprec plan-test` writes a program `roprec inspect` reads with N holes.
 #include <gtest/gtest.h>
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <regex>
 #include <sstream>
+#include <vector>
 
 #include "tests/support/test_support.hpp"
 
@@ -304,7 +308,7 @@ TEST(VerifyCli, CalibrationDateIsGivenOrSourceDateEpochOrTheMeasuredFilesDay) {
   EXPECT_FALSE(fs::exists(dir + "/bad.xml"));
 }
 
-TEST(VerifyCli, WriteCellMovesTheWorkobjectToThePartAndUsesTheNewCard) {
+TEST(VerifyCli, WriteCellStatesThePartRegistrationAndUsesTheNewCard) {
   const std::string dir = test::tempDir("writecell");
   const std::string card = dir + "/kr120-cal.xml";
   const std::string new_cell = dir + "/cell-cal.xml";
@@ -316,12 +320,14 @@ TEST(VerifyCli, WriteCellMovesTheWorkobjectToThePartAndUsesTheNewCard) {
   EXPECT_NE(v.out.find("fit check"), std::string::npos) << v.out;
   const std::string text = test::readFile(new_cell);
   EXPECT_NE(text.find("<robot file=\"kr120-cal.xml\"/>"), std::string::npos) << text;
-  // the part frame: T_W_part = T_W_wobj · Transl(t)⁻¹ (translation registration, mm)
+  // the workobject stays; the registration is the cell's <part_registration> (t in mm)
   const json j = json::parse(test::readFile(dir + "/v.json"));
   const Eigen::Vector3d t_um = vec(j["registration"]["translation_um"]);
-  const Eigen::Vector3d old_xyz = attributeTriple(test::readFile(cell()), "workobject", "xyz");
-  const Eigen::Vector3d new_xyz = attributeTriple(text, "workobject", "xyz");
-  EXPECT_LE((new_xyz - (old_xyz - t_um * 1e-3)).cwiseAbs().maxCoeff(), 1e-4);
+  EXPECT_EQ(attributeTriple(test::readFile(cell()), "workobject", "xyz"),
+            attributeTriple(text, "workobject", "xyz"));
+  const Eigen::Vector3d xyz = attributeTriple(text, "part_registration", "xyz_mm");
+  EXPECT_LE((xyz - t_um * 1e-3).cwiseAbs().maxCoeff(), 1e-4);
+  EXPECT_EQ(attributeTriple(text, "part_registration", "rpy_mrad"), Eigen::Vector3d::Zero());
   // the sample's fixture offset (make_measured.py: 40, -25, 30 µm) within 3σ of the estimate
   const Eigen::Vector3d sigma = vec(j["registration"]["translation_sigma_um"]);
   const Eigen::Vector3d truth(40, -25, 30);
@@ -332,6 +338,98 @@ TEST(VerifyCli, WriteCellMovesTheWorkobjectToThePartAndUsesTheNewCard) {
   EXPECT_EQ(c.exit_code, 0) << c.err;
   EXPECT_TRUE(j["identification"].contains("validation"));
   EXPECT_EQ(j["identification"]["card_refused"], "");
+}
+
+/// Real drill points (base frame, mm) of `prog` predicted with `cell_path`: the programmed point
+/// plus δwork, hole by hole (the cell's robot is the truth here).
+std::vector<Eigen::Vector3d> drilledPoints(const std::string& cell_path, const std::string& prog,
+                                           const std::string& json_out, json* holes_out = nullptr) {
+  const auto r = test::runRoprec("predict --cell " + q(cell_path) + " " + q(prog) +
+                                 " --quiet --json " + q(json_out));
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  const json holes = json::parse(test::readFile(json_out))["holes"];
+  std::vector<Eigen::Vector3d> out;
+  for (const auto& h : holes)
+    out.push_back(vec(h["nominal"]["position_mm"]) + vec(h["deviation_um"]["work"]) * 1e-3);
+  if (holes_out) *holes_out = holes;
+  return out;
+}
+
+TEST(VerifyCli, WrittenPartRegistrationReachesAProgramWithItsOwnBase) {
+  // the test program with its own $BASE (not the cell's workobject 1350 0 300, rpy 0), drilled
+  // by the cell's robot (the truth here) on a part displaced by a known registration F = [R, t]
+  // about the workobject: the CMM measures a real point p (base frame) at F · T_W_wobj⁻¹ · p
+  const std::string dir = test::tempDir("partreg");
+  const std::string prog = dir + "/test_kr120.src";
+  std::string src = test::readFile(program());
+  const std::string base = "$BASE={FRAME: X 1350.000000,Y 0.000000,Z 300.000000,A 0.000000000";
+  ASSERT_NE(src.find(base), std::string::npos);
+  const std::string own = "$BASE={FRAME: X 1362.500000,Y -14.000000,Z 291.000000,A 2.000000000";
+  src.replace(src.find(base), base.size(), own);
+  test::writeFile(prog, src);
+  fs::copy_file(s("verification/test_kr120.dat"), dir + "/test_kr120.dat");
+  json nominal;
+  const std::vector<Eigen::Vector3d> real = drilledPoints(cell(), prog, dir + "/p.json", &nominal);
+  Eigen::Isometry3d T_W_wobj = Eigen::Isometry3d::Identity();
+  T_W_wobj.translation() = Eigen::Vector3d(1350, 0, 300);  // mm, rpy 0
+  Eigen::Isometry3d F = Eigen::Isometry3d::Identity();
+  F.linear() = (Eigen::AngleAxisd(0.6e-3, Eigen::Vector3d::UnitZ()) *
+                Eigen::AngleAxisd(-0.4e-3, Eigen::Vector3d::UnitY()) *
+                Eigen::AngleAxisd(0.5e-3, Eigen::Vector3d::UnitX()))
+                   .toRotationMatrix();
+  F.translation() = Eigen::Vector3d(0.35, -0.20, 0.25);  // mm
+  std::string csv = "id,x,y,z,u\n";
+  for (size_t i = 0; i < real.size(); ++i) {
+    const Eigen::Vector3d m = F * (T_W_wobj.inverse() * real[i]);
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "%s,%.5f,%.5f,%.5f,1.0\n",
+                  nominal[i]["id"].get<std::string>().c_str(), m.x(), m.y(), m.z());
+    csv += buf;
+  }
+  test::writeFile(dir + "/measured.csv", csv);
+  const std::string new_cell = dir + "/cell.xml";
+  const auto v = test::runRoprec("verify --cell " + q(cell()) + " " + q(prog) + " --measured " +
+                                 q(dir + "/measured.csv") + " --register rigid --write-cell " +
+                                 q(new_cell) + " --quiet");
+  ASSERT_EQ(v.exit_code, 0) << v.err << v.out;
+  const std::string text = test::readFile(new_cell);
+  EXPECT_NE(text.find("<workobject xyz=\"1350 0 300\" rpy=\"0 0 0\"/>"), std::string::npos) << text;
+  EXPECT_LE((attributeTriple(text, "part_registration", "xyz_mm") - F.translation()).norm(), 2e-3)
+      << text;
+  // compensate with the written cell; the cell's robot drills the result
+  const std::string comp = dir + "/comp.src";
+  const auto c =
+      test::runRoprec("compensate --cell " + q(new_cell) + " " + q(prog) + " -o " + q(comp));
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  EXPECT_NE(test::readFile(comp).find(own), std::string::npos) << "the program keeps its $BASE";
+  const std::vector<Eigen::Vector3d> drilled = drilledPoints(cell(), comp, dir + "/c.json");
+  ASSERT_EQ(drilled.size(), real.size());
+  // the displaced holes by hand: the real part is the nominal one moved by F⁻¹ about the
+  // workobject, p_reg = T_W_wobj · F⁻¹ · T_W_wobj⁻¹ · p_nominal; distances ⊥ the nominal axis
+  double worst = 0;
+  double worst_unregistered = 1e9;
+  for (size_t i = 0; i < drilled.size(); ++i) {
+    const Eigen::Vector3d p = vec(nominal[i]["nominal"]["position_mm"]);
+    const Eigen::Vector3d a = vec(nominal[i]["nominal"]["axis"]);
+    const Eigen::Vector3d p_reg = T_W_wobj * (F.inverse() * (T_W_wobj.inverse() * p));
+    auto perp = [&](const Eigen::Vector3d& d) { return (d - d.dot(a) * a).norm(); };
+    worst = std::max(worst, perp(drilled[i] - p_reg));
+    worst_unregistered = std::min(worst_unregistered, perp(p - p_reg));
+  }
+  EXPECT_LE(worst, 2e-3) << worst << " mm from the displaced holes";
+  EXPECT_GE(worst_unregistered, 0.1) << "the registration moves every hole by more than 0.1 mm";
+  // a registration in metres instead of mm is refused at its line, nothing written
+  std::string bad = text;
+  const size_t at = bad.find("xyz_mm=\"");
+  ASSERT_NE(at, std::string::npos);
+  bad.insert(at + 8, "5000");
+  test::writeFile(dir + "/bad.xml", bad);
+  const auto b = test::runRoprec("compensate --cell " + q(dir + "/bad.xml") + " " + q(prog) +
+                                 " -o " + q(dir + "/bad.src"));
+  EXPECT_EQ(b.exit_code, 2) << b.err;
+  EXPECT_NE(b.err.find("bad.xml:14:"), std::string::npos) << b.err;
+  EXPECT_NE(b.err.find("xyz_mm"), std::string::npos) << b.err;
+  EXPECT_FALSE(fs::exists(dir + "/bad.src"));
 }
 
 TEST(VerifyCli, PosesAloneCalibrateAndRecoverATrackerOffset) {

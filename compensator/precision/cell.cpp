@@ -29,7 +29,24 @@ Pose poseFromXyzRpyMm(const XmlNode& e) {
   return T;
 }
 
+Pose partMotion(const CellSpec& cell) {
+  if (!cell.part_registration) return Pose::Identity();
+  return cell.T_base_wobj * cell.part_registration->inverse() * cell.T_base_wobj.inverse();
+}
+
 namespace {
+
+/// The <part_registration> element: t in mm, R from rpy in mrad (URDF order, as <workobject>).
+Pose parsePartRegistration(const XmlNode& e) {
+  allowOnly(e, {"xyz_mm", "rpy_mrad", "source"});
+  Pose F = Pose::Identity();
+  F.translation() =
+      boundedVec3(e, "xyz_mm", 1e3, "1 m (a registration is a small offset, mm)") * 1e-3;
+  const Vec3 rpy =
+      boundedVec3(e, "rpy_mrad", 200.0, "200 mrad (a registration is a small rotation)") * 1e-3;
+  F.linear() = rotationFromRpy(rpy.x(), rpy.y(), rpy.z());
+  return F;
+}
 
 /// Tool + spindle mass above this is not a tool (kg; the heaviest robots carry 2.3 t).
 constexpr double kMaxToolMassKg = 5000.0;
@@ -64,9 +81,9 @@ CellSpec loadCell(const std::string& path) {
     root.fail("a cell file's root element is <cell>, got <" + root.name + ">");
   allowOnly(root, {"name"});
   allowChildren(root, {"robot", "tool", "workobject", "process", "tolerance", "controller",
-                       "uncertainty", "capability", "absolute_accuracy"});
+                       "uncertainty", "capability", "absolute_accuracy", "part_registration"});
   allowAtMostOnce(root, {"robot", "tool", "workobject", "process", "tolerance", "controller",
-                         "uncertainty", "capability", "absolute_accuracy"});
+                         "uncertainty", "capability", "absolute_accuracy", "part_registration"});
   cell.file = path;
   cell.name = root.str("name", fs::path(path).stem().string());
   const fs::path dir = fs::path(path).parent_path();
@@ -106,6 +123,8 @@ CellSpec loadCell(const std::string& path) {
     if (w->has("sigma_mm") && !(w->number("sigma_mm") >= 0 && w->number("sigma_mm") <= 100))
       w->fail("sigma_mm (the registration's standard uncertainty per axis) must lie in [0, 100]");
   }
+  if (const XmlNode* g = root.child("part_registration"))
+    cell.part_registration = parsePartRegistration(*g);
   if (const XmlNode* p = root.child("process")) {
     cell.has_process = true;
     cell.process = *p;

@@ -4,6 +4,7 @@
 /// centre of mass), work object (hole frame in the base frame), process element and default
 /// position tolerance. Files use mm and degrees; everything here is SI.
 
+#include <optional>
 #include <string>
 
 #include "compensator/robot/robot_card.hpp"
@@ -26,6 +27,11 @@ struct CellSpec {
   int robot_line{0};
   ToolSpec tool;
   Pose T_base_wobj{Pose::Identity()};  ///< work object frame in the robot base frame
+  /// <part_registration xyz_mm rpy_mrad source>: where the part was found (roprec verify
+  /// --register, written by --write-cell) as the rigid transform F = [R, t] of verify's model
+  /// (identification.hpp): a point p of the nominal part (workobject coordinates) is measured at
+  /// R p + t, so the real part is the nominal one moved by F⁻¹. Absent: the part is nominal.
+  std::optional<Pose> part_registration;
   bool has_process{false};
   XmlNode process;           ///< the <process> element (type="drilling|milling|wrench")
   double tolerance_mm{0.2};  ///< default ⌀ position tolerance (ISO 1101)
@@ -35,6 +41,11 @@ struct CellSpec {
 /// Pose from `xyz` (mm) and `rpy` (deg, URDF order) attributes of an element. Throws InputError
 /// at the element's line when a value is not finite or beyond ±1e5 mm (100 m) / ±3600 deg.
 Pose poseFromXyzRpyMm(const XmlNode& e);
+
+/// The motion of the part in the robot base frame the cell's <part_registration> states:
+/// G = T_W_wobj · F⁻¹ · T_W_wobj⁻¹, so a nominal hole pose T (base frame, whatever frame its
+/// program uses) is at G · T on the real part. Identity without a registration.
+Pose partMotion(const CellSpec& cell);
 
 /// Loads and validates a cell file. Throws InputError `FILE:LINE: what` for malformed XML, an
 /// unknown element or attribute anywhere (with a "did you mean" hint for a near-miss name, e.g.

@@ -222,6 +222,21 @@ PredictionContext loadContext(const std::string& cell_path, const std::string& p
 
 double perpNorm(const Vec3& v, const Vec3& a) { return (v - v.dot(a) * a).norm(); }
 
+/// The job's holes where the cell's <part_registration> found the part: every pose and point of
+/// a request moved by G = partMotion (base frame), whatever frame its program uses.
+std::vector<HoleRequest> registeredHoles(const PredictionContext& c) {
+  const Pose G = partMotion(c.cell);
+  std::vector<HoleRequest> out = c.job.requests;
+  for (HoleRequest& h : out) {
+    h.T_W_tcp = G * h.T_W_tcp;
+    if (h.surface_W) h.surface_W = G * *h.surface_W;
+    if (h.nominal_axis)
+      h.nominal_axis = std::make_pair(Vec3(G * h.nominal_axis->first),
+                                      Vec3(G.linear() * h.nominal_axis->second));
+  }
+  return out;
+}
+
 // ---- compensation stages after compensateHoles
 
 /// The edits of hole i's targets (T_new = ΔT · T · Rz(ψ)) queued into `log`, its refusals
@@ -234,7 +249,11 @@ void editHoleTargets(CompensationResult& r, size_t i, postproc::EditLog& log,
   for (const int t : src.targets) {
     const postproc::Target& tg = prog.targets()[static_cast<size_t>(t)];
     const Pose T_W_t = src.T_W_frame * postproc::targetPose(prog, tg);
-    const Pose T_W_new = h.delta * T_W_t * Pose(Eigen::AngleAxisd(h.psi, Vec3::UnitZ()));
+    // with a part registration the target first moves with the part (G), then compensates
+    const Pose T_W_new =
+        (r.context.cell.part_registration ? h.delta * partMotion(r.context.cell) * T_W_t
+                                          : h.delta * T_W_t) *
+        Pose(Eigen::AngleAxisd(h.psi, Vec3::UnitZ()));
     std::optional<postproc::Configuration> cfg;
     // the program's own flag bytes stay unless the compensated target needs others
     if (tg.config.present() && h.config_changed)
@@ -484,7 +503,12 @@ CompensationResult compensateJobHoles(const std::string& cell_path, const std::s
   r.orientation = orientationModeName(job.options.mode);
   CompensationOptions options = job.options;
   options.threads = resolvedThreads(job.job.threads);  // the same bytes for any count
-  r.holes = compensateHoles(r.context.model, r.context.job.requests, options, &r.stats);
+  if (r.context.cell.part_registration) {
+    const std::vector<HoleRequest> aimed = registeredHoles(r.context);
+    r.holes = compensateHoles(r.context.model, aimed, options, &r.stats);
+  } else {
+    r.holes = compensateHoles(r.context.model, r.context.job.requests, options, &r.stats);
+  }
   if (progress) progress(r.holes.size(), r.holes.size());
   r.failed = static_cast<int>(
       std::count_if(r.holes.begin(), r.holes.end(), [](const auto& h) { return !h.ok; }));

@@ -16,6 +16,7 @@
 #include "compensator/support/error.hpp"
 #include "compensator/support/platform.hpp"
 #include "compensator/support/rotation.hpp"
+#include "compensator/support/xml_escape.hpp"
 
 namespace roprec::api {
 namespace {
@@ -25,8 +26,11 @@ namespace fs = std::filesystem;
 std::string baseName(const std::string& path) { return fs::path(path).filename().string(); }
 
 /// The nominal hole of request i: the hole list's when one was matched (its point and axis; the
-/// program's rotation about the axis when the axes agree), else the program's drill point.
-Pose nominalHole(const PredictionContext& c, size_t i) {
+/// program's rotation about the axis when the axes agree), else the program's drill point; on
+/// the part where the cell's <part_registration> found it (partMotion).
+Pose nominalHole(const PredictionContext& c, size_t i);
+
+Pose nominalHoleOfJob(const PredictionContext& c, size_t i) {
   if (i < c.job.sources.size() && c.job.sources[i].T_W_tcp_spec)
     return *c.job.sources[i].T_W_tcp_spec;
   const HoleRequest& q = c.job.requests[i];
@@ -38,11 +42,16 @@ Pose nominalHole(const PredictionContext& c, size_t i) {
   return T;
 }
 
+Pose nominalHole(const PredictionContext& c, size_t i) {
+  if (!c.cell.part_registration) return nominalHoleOfJob(c, i);
+  return partMotion(c.cell) * nominalHoleOfJob(c, i);
+}
+
 std::vector<postproc::ProgramHoleRef> programRefs(const PredictionContext& c) {
   std::vector<postproc::ProgramHoleRef> refs;
   const Pose T_wobj_W = c.cell.T_base_wobj.inverse();
   for (size_t i = 0; i < c.job.requests.size(); ++i)
-    refs.push_back({c.job.requests[i].id, T_wobj_W * nominalHole(c, i).translation() * 1e3});
+    refs.push_back({c.job.requests[i].id, T_wobj_W * nominalHoleOfJob(c, i).translation() * 1e3});
   return refs;
 }
 
@@ -63,10 +72,12 @@ double uMeasurement(const postproc::MeasuredHole& m, const VerifyJob& job) {
   return (m.u_um ? *m.u_um : job.u_measurement_um) * 1e-6;
 }
 
-/// Measured position of hole i in the base frame (registration not removed).
+/// Measured position of hole i in the base frame (registration not removed): the part's
+/// coordinates through the workobject, on the part where the cell's <part_registration> found it.
 Vec3 measuredW(const VerifyResult& r, int k) {
-  return r.prediction.context.cell.T_base_wobj *
-         (r.measured.holes[static_cast<size_t>(k)].p_mm * 1e-3);
+  const CellSpec& cell = r.prediction.context.cell;
+  const Vec3 p = cell.T_base_wobj * (r.measured.holes[static_cast<size_t>(k)].p_mm * 1e-3);
+  return cell.part_registration ? Vec3(partMotion(cell) * p) : p;
 }
 
 /// The holes to verify: measured and predicted; the measured but unpredicted ones are failures.
@@ -761,6 +772,28 @@ std::string robotTag(const std::string& tag, const VerifyResult& r, const std::s
   return tag;
 }
 
+/// The cell's <part_registration> composed with the one estimated (verify measured the part
+/// through the cell's registration): F = F_cell · [R(ω), t], written in mm and mrad (rpy, URDF
+/// order) with its source.
+std::string partRegistrationTag(const VerifyResult& r) {
+  const RegistrationEstimate& g = r.identification->registration;
+  Pose F = Pose::Identity();
+  F.linear() =
+      Eigen::AngleAxisd(g.rotation.norm(),
+                        g.rotation.norm() > 0 ? Vec3(g.rotation.normalized()) : Vec3::UnitZ())
+          .toRotationMatrix();
+  F.translation() = g.translation;
+  const std::optional<Pose>& before = r.prediction.context.cell.part_registration;
+  if (before) F = *before * F;
+  const std::string source =
+      std::string("roprec verify --register ") + registrationName(r.registration) + ": " +
+      std::to_string(r.identification->holes) + " holes of " + baseName(r.measured.path) +
+      (before ? ", on the cell's" : "") + (r.date.empty() ? std::string() : ", " + r.date);
+  return "<part_registration xyz_mm=\"" + triple(F.translation() * 1e3, 4) + "\" rpy_mrad=\"" +
+         triple(rpyFromRotation(F.linear()) * 1e3, 6) + "\" source=\"" + escapeXml(source, '"') +
+         "\"/>";
+}
+
 }  // namespace
 
 std::string calibratedCellText(const VerifyResult& r, const std::string& cell_out_path,
@@ -776,37 +809,25 @@ std::string calibratedCellText(const VerifyResult& r, const std::string& cell_ou
                                          cell_out_path, card_path);
   text.replace(robot->first, robot->second - robot->first, new_robot);
 
-  const RegistrationEstimate& g = r.identification->registration;
-  Pose fix = Pose::Identity();
-  fix.linear() =
-      Eigen::AngleAxisd(g.rotation.norm(),
-                        g.rotation.norm() > 0 ? Vec3(g.rotation.normalized()) : Vec3::UnitZ())
-          .toRotationMatrix();
-  fix.translation() = g.translation;
-  const Pose T = r.prediction.context.cell.T_base_wobj * fix.inverse();
-  const Vec3 rpy = rpyFromRotation(T.linear()) / kDeg;
-  const std::string comment = "<!-- workobject: the part as measured (" +
-                              baseName(r.measured.path) + ", registration " +
-                              registrationName(r.registration) + " estimated by roprec verify) -->";
-  const auto wobj = startTag(text, "workobject");
-  if (wobj) {
-    if (text[wobj->second - 2] != '/')
-      throw InputError(r.cell_path, lineAt(text, wobj->first),
-                       "the cell's <workobject> element is not one empty-element tag: cannot "
-                       "write the new cell");
-    std::string tag = text.substr(wobj->first, wobj->second - wobj->first);
-    tag = withAttribute(withAttribute(tag, "xyz", triple(T.translation() * 1e3, 4)), "rpy",
-                        triple(rpy, 6));
-    const size_t line_start = text.rfind('\n', wobj->first);
-    const std::string indent =
-        text.substr(line_start == std::string::npos ? 0 : line_start + 1,
-                    wobj->first - (line_start == std::string::npos ? 0 : line_start + 1));
-    text.replace(wobj->first, wobj->second - wobj->first, comment + "\n" + indent + tag);
-  } else {
-    const size_t at = text.find('>', text.find(new_robot)) + 1;
-    text.insert(at, "\n  " + comment + "\n  <workobject xyz=\"" + triple(T.translation() * 1e3, 4) +
-                        "\" rpy=\"" + triple(rpy, 6) + "\"/>");
+  if (r.registration == Registration::kNone) return text;  // the part stays where the cell has it
+  const std::string tag = partRegistrationTag(r);
+  const auto old = startTag(text, "part_registration");
+  if (old) {
+    if (text[old->second - 2] != '/')
+      throw InputError(r.cell_path, lineAt(text, old->first),
+                       "the cell's <part_registration> element is not one empty-element tag: "
+                       "cannot write the new cell");
+    text.replace(old->first, old->second - old->first, tag);
+    return text;
   }
+  const auto wobj = startTag(text, "workobject");
+  const size_t after = wobj ? wobj->second : text.find('>', text.find(new_robot)) + 1;
+  const size_t tag_start = wobj ? wobj->first : text.find(new_robot);
+  const size_t line_start = text.rfind('\n', tag_start);
+  const std::string indent =
+      text.substr(line_start == std::string::npos ? 0 : line_start + 1,
+                  tag_start - (line_start == std::string::npos ? 0 : line_start + 1));
+  text.insert(after, "\n" + indent + tag);
   return text;
 }
 

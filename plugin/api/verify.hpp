@@ -7,10 +7,11 @@
 ///
 /// Frames and units: SI inside every struct (m, rad, N·m/rad). The measured file holds hole
 /// positions in the cell's **workobject** frame in mm (postproc/measured.hpp); they are taken to
-/// the robot base frame with the cell's T_base_wobj. Per hole the in-plane axes (e₁, e₂) are those
-/// of the nominal hole pose (the hole list's when --holes is given, else the program's drill
-/// point), z = the drilling direction (compensator/precision/identification.hpp).
-/// The commanded joints of a hole are the prediction's (rigid IK of the programmed target).
+/// the robot base frame with the cell's T_base_wobj (and its <part_registration>, partMotion). Per
+/// hole the in-plane axes (e₁, e₂) are those of the nominal hole pose (the hole list's when --holes
+/// is given, else the program's drill point), z = the drilling direction
+/// (compensator/precision/identification.hpp). The commanded joints of a hole are the prediction's
+/// (rigid IK of the programmed target).
 ///
 /// Errors: bad input (cell, program, hole list, measured file: missing column, non-number,
 /// duplicate id, a file in metres, no hole matching) throws roprec::InputError (`FILE:LINE:
@@ -119,12 +120,13 @@ Json verifySummaryJson(const VerifyResult& r, const std::vector<std::string>& wr
 std::string calibratedCardText(const VerifyResult& r, const std::string& measured_file_name,
                                const std::string& card_out_path = "");
 
-/// The cell for the next job (cell.hpp format): the cell file's text with its `<workobject>` set
-/// to where the registration found the part — T_W_part = T_W_wobj · [R(ω), t]⁻¹ (mm, deg; a
-/// comment states the source) — and, when `card_path` is given, `<robot file="…"/>` pointing to
+/// The cell for the next job (cell.hpp format): the cell file's text with the registration as
+/// `<part_registration xyz_mm rpy_mrad source>` — F = [R(ω), t], composed as F_cell · F with the
+/// cell's own when it has one; none with Registration::kNone; the workobject kept — and, when
+/// `card_path` is given, `<robot file="…"/>` pointing to
 /// that card (relative to the new cell's folder); otherwise a `file=`/`urdf=` reference is made
 /// relative to the new cell's folder. Nothing else changes. Throws UsageError when the result
-/// has no identification, InputError(cell, line, …) when the cell's `<robot>`/`<workobject>`
+/// has no identification, InputError(cell, line, …) when the cell's `<robot>`/`<part_registration>`
 /// element cannot be rewritten (not a single empty-element tag).
 std::string calibratedCellText(const VerifyResult& r, const std::string& cell_out_path,
                                const std::string& card_path);

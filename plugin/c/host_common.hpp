@@ -223,8 +223,8 @@ inline Registration registration(const std::string& text) {
 /// The texts `roprec verify` writes, rendered before anything is written: (path, text) for the
 /// JSON (when json_out is not empty) and the calibrated card (when card_out is not empty).
 /// The files a verify writes: the JSON, the calibrated card (not when the held-out validation
-/// refused it: VerifyResult::card_refused), the new cell (workobject at the registered part, robot
-/// = the new card when one is written; not when the card was refused).
+/// refused it: VerifyResult::card_refused), the new cell (<part_registration> of the registered
+/// part, robot = the new card when one is written; not when the card was refused).
 inline std::vector<std::pair<std::string, std::string>> verifyOutputs(
     const api::VerifyResult& r, const api::VerifyJob& job, const std::string& json_out,
     const std::string& card_out, const std::string& cell_out = "") {

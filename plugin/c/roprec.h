@@ -268,7 +268,7 @@ ROPREC_API void roprec_options_free(roprec_options* options);
  *                   marker again (with a note); "0" (default): such a program is refused (2)
  * roprec_verify_file_ex only:
  *   "write_cell"    where the cell the next job runs with is written ("" = none):  --write-cell
- *                   its <workobject> at the registered part, its robot the new card
+ *                   its <part_registration> (workobject kept), its robot the new card
  *   "poses"         measured TCP poses (laser tracker / CMM CSV) identified with   --poses
  *                   the holes ("" = none); with poses, program and measured may be NULL
  *   "identify"      "stiffness", "geometry" or "all" (default): what the new card  --identify

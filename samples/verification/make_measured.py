@@ -7,8 +7,9 @@ Usage: samples/verification/make_measured.py build/bin/roprec
 The second form "drills" another program of the same holes (e.g. the compensated test program)
 with the truth robot and writes its CMM result the same way (same offset, noise and seed), for the
 second round of the loop in README. CELL is the cell the program was compensated for: its
-``<workobject>`` is the base frame the controller is given with the program (``verify --write-cell``
-moves it to where the part was found); the part itself stays where it is.
+``<workobject>`` is the base frame the controller is given with a program that takes its base from
+the cell (``verify --write-cell`` keeps it and states where the part was found as the cell's
+``<part_registration>``, which only roprec's compensation reads); the part itself stays where it is.
 
 How the file is made (deterministic: running it again gives identical bytes):
 

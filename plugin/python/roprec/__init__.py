@@ -228,8 +228,8 @@ def verify(cell, program, measured, holes=None, register="none", calibrate=None,
             measurement σ) and cross-validated (``identification.validation``, 5-fold); a card
             whose held-out residual is not below the original card's is not written
             (``identification.card_refused`` says why).
-        write_cell: optional path: the cell with its workobject at the registered part and its
-            robot = the new card (``--write-cell``; needs ``register`` or ``calibrate``).
+        write_cell: optional path: the cell with the registered part as its
+            ``<part_registration>`` (workobject kept) and its robot = the new card (``--write-cell``; needs ``register`` or ``calibrate``).
         json_out: optional path: the verification JSON, byte for byte ``roprec verify --json``.
         identify: "all" (default: every parameter the measurements make observable), "stiffness"
             or "geometry": what the calibration may move (``--identify``).
