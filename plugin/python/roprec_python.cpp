@@ -372,7 +372,6 @@ class PySession {
     std::vector<api::Session::Filtered> f;
     {
       py::gil_scoped_release release;
-      const ClassicLocaleScope c_locale;  // the "C" locale whatever the host set
       const std::lock_guard<std::mutex> lock(mutex_);
       f = session_->filterTargets(T, q, hp);
     }
