@@ -379,6 +379,20 @@ class PythonApiTest(unittest.TestCase):
         finally:
             C.lib.roprec_close(cs)
 
+    @unittest.skipUnless(roprec._roprec.__name__.endswith("_cabi"), "the ctypes backend only")
+    def test_ctypes_backend_refuses_a_per_hole_process(self):
+        s = roprec.Session(CELL)
+        wanted = s.hole_pose([150, 0, 250], [0, 0, -1])
+        for call in (lambda: s.filter_target(wanted, None, diameter_mm=6.8),
+                     lambda: s.predict_joints([0, -90, 90, 0, 45, 0], tool="2")):
+            with self.assertRaises(roprec.UsageError) as e:
+                call()
+            self.assertIn("takes no per-hole process", str(e.exception))
+        pose, _ = s.filter_target(wanted, None)  # without one: the cell's drill
+        self.assertEqual(len(pose), 4)
+
+    @unittest.skipIf(roprec._roprec.__name__.endswith("_cabi"),
+                     "the ctypes backend takes no per-hole process (it refuses one: see the test above)")
     def test_host_calls_take_the_hole_and_agree_with_the_cli_per_hole(self):
         """predict_joints / filter_targets with each hole's drill, diameter and depth (C and Python)
         give the CLI's `predict --holes` deviations and `compensate` targets per hole, to 1e-9 m."""

@@ -318,7 +318,8 @@ class RoboDKAppTest(unittest.TestCase):
         self.assertEqual(code, 0, err)
         self.assertEqual(RecordingSession.calls, expected)
         # The roprec module as built: its filter_target either takes the process or the app refuses
-        # (never the cell's drill in silence).
+        # (never the cell's drill in silence). It takes it: a program that changes tools (the
+        # station's "Drill 6.8", then tool 3) on a single-drill cell is refused, nothing written.
         code, out, err, st = run_app(desc, "--holes", HOLES)
         try:
             SESSION.filter_target(np.eye(4), None, diameter_mm=6.8)
@@ -328,7 +329,9 @@ class RoboDKAppTest(unittest.TestCase):
         except roprec.RoprecError:
             takes_process = True
         if takes_process:
-            self.assertEqual(code, 0, err)
+            self.assertEqual(code, 2, err)
+            self.assertIn("changes tools (Drill 6.8, then 3) but the cell has a single drill", err)
+            self.assertNotIn(COPY, st.programs)
         else:
             self.assertEqual(code, 2)
             self.assertIn("filter_target takes no per-hole process (depth_mm, diameter_mm, tool)", err)

@@ -169,6 +169,15 @@ def _mat_mul(a, b):
     return [[sum(a[i][k] * b[k][j] for k in range(4)) for j in range(4)] for i in range(4)]
 
 
+def _no_hole_process(call, process):
+    """Refuses a per-hole process: this backend has no call that takes one (the compiled module
+    does), and the cell's drill must never stand in for the hole's in silence."""
+    given = sorted(k for k, v in process.items() if v is not None and k != "details")
+    if given:
+        raise UsageError("%s: the ctypes backend takes no per-hole process (%s); use the compiled "
+                         "roprec module, or leave them out for the cell's drill" % (call, ", ".join(given)))
+
+
 def _hole_frame(d):
     """The hole's TCP rotation (columns x, y, z) for drilling direction d (plugin/api holeFrame)."""
     n = sum(v * v for v in d) ** 0.5
@@ -197,8 +206,10 @@ class Session(object):
             _lib.roprec_close(self._s)
             self._s = None
 
-    def filter_target(self, pose_mm, seed_joints_deg=None):
-        """(pose_mm, joints_deg): the pose to program and its joints; see roprec.Session."""
+    def filter_target(self, pose_mm, seed_joints_deg=None, **process):
+        """(pose_mm, joints_deg): the pose to program and its joints; see roprec.Session. This
+        backend takes no per-hole process (tool, diameter_mm, ...): it raises UsageError."""
+        _no_hole_process("filter_target", process)
         err = ctypes.create_string_buffer(1024)
         pose, keep = _numbers(pose_mm, 16, "pose_mm")
         seed, keep_seed = (None, None) if seed_joints_deg is None else _numbers(seed_joints_deg, 6, "seed_joints_deg")
@@ -214,8 +225,10 @@ class Session(object):
             _raise(rc, err)
         return out, joints
 
-    def predict_joints(self, joints_deg):
-        """The predicted TCP deviation at these joints (dict); see roprec.Session."""
+    def predict_joints(self, joints_deg, **process):
+        """The predicted TCP deviation at these joints (dict); see roprec.Session. This backend
+        takes no per-hole process (tool, diameter_mm, ...): it raises UsageError."""
+        _no_hole_process("predict_joints", process)
         d = json.loads(_call(_lib.roprec_predict_joints_json, self._s, _numbers(joints_deg, 6, "joints_deg")[0], size=8192)[1])
         for k, v in d.items():
             if isinstance(v, list):
@@ -294,6 +307,7 @@ _HOLE_KEYS = {
     "process_share": "uncertainty_um.process_share", "process_force_share": "uncertainty_um.process_force_share",
     "process_force_N": "process_force_N", "equilibrium_converged": "equilibrium.converged",
     "equilibrium_iterations": "equilibrium.iterations",
+    "drill_tool": "drill.tool", "feed_mm_per_rev": "drill.feed_mm_per_rev", "spindle_rpm": "drill.spindle_rpm",
 }
 _FAILED = ("unreachable", "singular", "not-converged")
 
