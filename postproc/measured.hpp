@@ -1,6 +1,6 @@
 #pragma once
 /// \file measured.hpp
-/// Measured holes from a coordinate-measuring machine (CMM), for `roprec verify` (issue 11):
+/// Measured holes from a coordinate-measuring machine (CMM), for `roprec verify`:
 /// readers for three formats recognised by content, writers for each, and the matching of the
 /// measured holes to a program's holes.
 ///

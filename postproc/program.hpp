@@ -539,7 +539,7 @@ struct EditLog {
 /// replaceTargetPose with its edits queued into `log` instead of p.edits; applyEdits(p, log)
 /// queues them later. It reads `p` and writes only target `index` (its values and flags), so
 /// several threads may prepare the targets of one program at once as long as no two of them
-/// touch the same target (roprec compensate --threads, issue 15). Applying the logs in the order
+/// touch the same target (roprec compensate --threads). Applying the logs in the order
 /// the calls would have run gives the bytes of the direct calls.
 EditResult replaceTargetPose(Program& p, int index, const Pose& T_frame_tcp,
                              const std::optional<Configuration>& config, EditLog& log);

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# CLI scaling bench (issue 15; a script, not a timed test): generates 1,000 / 10,000 / 100,000-hole
+# CLI scaling bench (a script, not a timed test): generates 1,000 / 10,000 / 100,000-hole
 # KUKA KRL drilling programs for the KR 120 sample cell (samples/cells/housing-kr120.xml: the
 # top face of the e-motor housing, a 1.2 mm grid of OLP-style drill cycles like
 # samples/emotor-housing/housing_kr120.src), then runs

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Scaling check of `--holes` matching (issue 13 §6; not a timed test): generates a 67,500-hole
+# Scaling check of `--holes` matching (not a timed test): generates a 67,500-hole
 # job as a CSV program (drill cycles of targets) and as a CSV hole list, and a 20,000-row hole
 # list for it, then times
 #   roprec predict --cell CELL PROGRAM.csv [--holes LIST.csv] (a CSV program: position matching)

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The performance table of issue 15 / README "Performance" from one run of the benchmarks (a
+# README's "Performance" table from one run of the benchmarks (a
 # script, not a timed test): runs
 #   build/bin/roprec_bench  (static deviation kernel vs KDL's linear kernel, PredictHole,
 #                            Compensate1000 keep / flip-free with allocations per hole,

@@ -87,7 +87,7 @@ using NoteText = InlineText<kNoteChars>;
 using PsiReasonText = InlineText<kPsiReasonChars>;
 using ConfigReasonText = InlineText<kConfigReasonChars>;
 
-/// One hole's result. Building it allocates nothing per hole (issue 15): the messages are inline
+/// One hole's result. Building it allocates nothing per hole: the messages are inline
 /// texts (the capacities above), the budgets inline
 /// (kMaxBudgetTerms); id, reason and the flag texts are std::string, within the short-string
 /// buffer (15 bytes) for ids like the samples' and every vendor's flag text; reason is set only

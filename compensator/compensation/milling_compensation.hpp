@@ -1,6 +1,6 @@
 #pragma once
 /// \file milling_compensation.hpp
-/// Compensation of a milling path (issue 7 item 5): every path point's target is pre-offset so that
+/// Compensation of a milling path: every path point's target is pre-offset so that
 /// the predicted real tool lands on the nominal path under the milling force, which itself depends
 /// on the deviation (docs/process.md §4.3–4.4). Per point i, in path order:
 ///   1. θ_d = IK(T_nom,i) (continuity from the previous point);

@@ -1,6 +1,6 @@
 #pragma once
 /// \file identification.hpp
-/// Shop-floor verification and re-identification from measured holes (issue 11): residuals of
+/// Shop-floor verification and re-identification from measured holes: residuals of
 /// the measured holes against the prediction, a regularised Levenberg–Marquardt identification of
 /// the joint compliances on the full nonlinear flexible-joint model, the verification statistics
 /// (coverage of U_work, ISO 14253-1 decision on the measured value), and a D-optimal test-program

@@ -1,6 +1,6 @@
 #pragma once
 /// \file parallel.hpp
-/// Work over holes on a few worker threads (issue 15): `parallelFor(n, threads, work)` runs
+/// Work over holes on a few worker threads: `parallelFor(n, threads, work)` runs
 /// work(worker, i) for every i in [0, n) on min(threads, n) workers, the calling thread being
 /// worker 0, in chunks of kParallelChunk indices taken from a shared counter. Each index runs
 /// exactly once; `worker` ∈ [0, threads) selects the caller's per-thread scratch. The order in

@@ -120,7 +120,7 @@ struct DepthSample {
   double depth{0};  ///< tip depth below the entry surface [m]
   DrillingForces forces;
 };
-/// Range limits (issue 13: a depth of 1e300 mm or a step of 1e-12 mm overflowed the sample
+/// Range limits (a depth of 1e300 mm or a step of 1e-12 mm overflowed the sample
 /// count): hole depth at most 2 m, a depth profile or an axial coupling at most 1e6 rows.
 inline constexpr double kMaxHoleDepth = 2.0;              ///< [m]
 inline constexpr double kMaxDepthSamples = 1.0e6;         ///< rows of a depth profile

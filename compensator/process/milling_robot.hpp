@@ -1,6 +1,6 @@
 #pragma once
 /// \file milling_robot.hpp
-/// The robot as the milling coupling's compliance (docs/process.md §4.4, issue 4 item 6): at a path
+/// The robot as the milling coupling's compliance (docs/process.md §4.4): at a path
 /// point with commanded joints θ_m, the tool deflection under a milling force F is the robot's
 /// deviation recomputed with the full nonlinear joint-compliance equilibrium (deflection.hpp):
 ///

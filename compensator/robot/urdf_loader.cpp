@@ -31,7 +31,7 @@ std::string inertiaProblem(const Mat3& I) {
 
 namespace {
 
-/// Joint limits beyond ten turns either way are refused at load (issue 13: a limit of -1e300
+/// Joint limits beyond ten turns either way are refused at load (a limit of -1e300
 /// made the IK's turn enumeration loop 2^31 times).
 constexpr double kMaxJointLimitRad = 10.0 * 2.0 * 3.14159265358979323846;
 

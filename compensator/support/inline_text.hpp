@@ -2,7 +2,7 @@
 /// \file inline_text.hpp
 /// Text of at most N bytes stored inline (no heap), for the per-hole messages of a compensation
 /// result (HoleCompensation::psi_reason, config_reason, note: their capacities and bounds are
-/// stated there): building and keeping them allocates nothing (issue 15: zero heap allocations
+/// stated there): building and keeping them allocates nothing (zero heap allocations
 /// per hole). A text that would exceed N is never cut silently: it is clipped to N − 3 bytes at a
 /// UTF-8 character boundary and ends with "..." (visible in every output); `clipped()` tells.
 /// UTF-8 is kept valid.

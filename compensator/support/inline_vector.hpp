@@ -3,7 +3,7 @@
 /// A vector of at most N elements stored inline (no heap), for per-hole results whose size the
 /// model bounds: the uncertainty budget of a hole has 3 robot terms and the machining model's 3
 /// components (HolePrediction::budget), so a fresh prediction or compensation result allocates
-/// nothing for it (issue 15: zero heap allocations per hole). The interface is the part of
+/// nothing for it (zero heap allocations per hole). The interface is the part of
 /// std::vector the results use: push_back, iteration, size, operator[], at, clear, reserve and
 /// assignment from a braced list. Exceeding N is a programming error: push_back, reserve and a
 /// longer list throw InternalError (never a silent truncation); at() checks the index.

@@ -1,6 +1,6 @@
 #pragma once
 /// \file plan_test.hpp
-/// `roprec plan-test` (issue 11) as a host-facing job: a D-optimal drilling test program for
+/// `roprec plan-test` as a host-facing job: a D-optimal drilling test program for
 /// re-identifying the joint stiffness (compensator/precision/identification.hpp planTest), written
 /// in the cell's dialect with postproc/drill_program.hpp.
 ///

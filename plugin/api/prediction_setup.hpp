@@ -44,7 +44,7 @@ PredictionContext loadPredictionContext(const std::string& cell_path, const std:
                                         int threads = 1, bool defer_setup = false);
 
 /// Per-hole JSON object (contract keys + details). With `card`, the joints are also given in the
-/// controller's convention (`controller_joints_deg`, toControllerJoints; issue 14).
+/// controller's convention (`controller_joints_deg`, toControllerJoints).
 Json holeJson(const HolePrediction& h, const HoleRequest& r, const RobotCard* card = nullptr);
 Json summaryJson(const CapabilitySummary& s);
 /// Whether a hole's JSON states its drill (`"drill": {tool, feed_mm_per_rev, spindle_rpm}`): a

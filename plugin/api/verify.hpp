@@ -1,6 +1,6 @@
 #pragma once
 /// \file verify.hpp
-/// `roprec verify` (issue 11) as a host-facing job: a cell + the drilled program + the CMM's
+/// `roprec verify` as a host-facing job: a cell + the drilled program + the CMM's
 /// measured holes in; per hole the measured deviation against the predicted one, the statistics,
 /// optionally the part registration and the re-identified joint stiffness, and the texts a host
 /// writes (JSON, HTML report, the calibrated robot card). No parsing of arguments, no printing.

@@ -298,7 +298,7 @@ ROPREC_API int roprec_compensate_file_ex(const char* cell_path, const char* prog
 
 /* `roprec verify --cell CELL PROGRAM --measured MEASURED [--holes HOLES] [--register REG]
  *  [--json JSON_OUT] [--calibrate NEW_CARD_OUT]`: compares the holes a CMM measured on a part
- * drilled with `program_path` against the prediction (issue 11). measured_path     roprec CSV
+ * drilled with `program_path` against the prediction. measured_path     roprec CSV
  * (id,x,y,z[,i,j,k][,u]), PC-DMIS CSV or DMIS output; positions in the cell's workobject frame, mm;
  * u (µm) the standard measurement uncertainty per axis (5 µm when absent). Holes are matched by id.
  *   holes_path        NULL, or a hole-list CSV matched to the program's holes (nominal holes).

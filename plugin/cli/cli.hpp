@@ -56,7 +56,7 @@ Pose parsePoseXyzAbc(const std::string& text, const std::string& what = "--xyzab
 
 /// Keeps `value` until the process exits and never destroys it: a command's job result (100,000
 /// holes: ~10^6 heap blocks and ~0.1 s of frees) goes back to the operating system with the whole
-/// process instead of block by block (issue 15). It stays reachable from a static, so leak
+/// process instead of block by block. It stays reachable from a static, so leak
 /// checkers do not report it. For the CLI's commands only (one job per process).
 template <class T>
 void keepUntilExit(T&& value) {

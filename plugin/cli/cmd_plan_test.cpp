@@ -1,5 +1,5 @@
-/// `roprec plan-test`: a D-optimal drilling test program for re-identifying the joint stiffness
-/// (issue 11), in the cell's dialect or as a hole list.
+/// `roprec plan-test`: a D-optimal drilling test program for re-identifying the robot, in the
+/// cell's dialect or as a hole list.
 #include <cmath>
 #include <sstream>
 

@@ -1,5 +1,5 @@
 /// `roprec verify`: measured holes (CMM) against the prediction; optional registration and
-/// re-identification of the joint stiffness with a new robot card (issue 11).
+/// re-identification of the joint stiffness with a new robot card.
 #include <cmath>
 #include <filesystem>
 

@@ -58,7 +58,7 @@ ReportInput reportHeader(const PredictionContext& c, const std::string& title) {
   in.uncertainty_method = uncertaintyMethodText(c.model.uncertainty);
   in.uncertainty_source = c.model.uncertainty.source;
   in.default_tolerance_mm = c.cell.tolerance_mm;
-  in.card = &c.robot.card;  // joints in the controller's convention (issue 14)
+  in.card = &c.robot.card;  // joints in the controller's convention
   in.generator = std::string("roprec ") + version();
   return in;
 }
@@ -124,7 +124,7 @@ void csvRow(std::string& s, const CompensationResult& r, size_t i) {
   s += ',';
   s += verdictName(u.verdict);
   csvQuoted(s, h.reason);
-  // issue 14: the joints as the controller shows them, why the rotation and the flags changed
+  // the joints as the controller shows them, why the rotation and the flags changed
   const Vec6 q_ctrl =
       toControllerJoints(r.context.robot.card, h.ok ? h.theta_cmd : h.before.joints);
   for (int k = 0; k < 6; ++k) csvNumber(s, q_ctrl[k] / kDeg, 6);
@@ -168,7 +168,7 @@ void targetsCsv(const CompensationResult& r, const ByteSink& sink, int threads) 
 }
 
 /// One item whose numbers are not all finite (a bug or an input that escaped the range checks)
-/// is reported as failed on its own instead of poisoning the whole output (issue 13).
+/// is reported as failed on its own instead of poisoning the whole output.
 Json finiteOrFailed(Json item, const std::string& id, int line) {
   if (item.finite()) return item;
   Json j = Json::object();
@@ -182,7 +182,7 @@ Json finiteOrFailed(Json item, const std::string& id, int line) {
 
 /// The item written instead of one whose numbers are not all finite (a bug or an input that
 /// escaped the range checks): it is reported as failed on its own instead of poisoning the whole
-/// output (issue 13). The same members as finiteOrFailed().
+/// output. The same members as finiteOrFailed().
 void failedItem(JsonWriter& w, const std::string& id, int line) {
   w.beginObject();
   w.key("id");
@@ -278,7 +278,7 @@ void targetCompensation(JsonWriter& w, const CompensationResult& r, const HoleCo
   w.numbers(h.residual * 1e6, 4);
   w.key("branch_changed");
   w.boolean(h.branch_changed);
-  // issue 14: why the rotation about the drill axis / the flags changed, stiffest's gain
+  // why the rotation about the drill axis / the flags changed, stiffest's gain
   if (!h.psi_reason.empty()) {
     w.key("rotation_reason");
     w.str(h.psi_reason);
@@ -675,7 +675,7 @@ std::string compensationReport(const CompensationResult& r, const std::string& p
       rh.T_W_programmed = h.T_programmed;
       rh.rotation_about_axis_deg = h.psi / kDeg;
       rh.after = &h.after;
-      rh.config_after = h.config_text;  // issue 14: flags before → after, and why
+      rh.config_after = h.config_text;  // flags before → after, and why
       rh.config_before = h.config_before;
       rh.rotation_reason = h.psi_reason.str();
       rh.config_reason = h.config_reason.str();
