@@ -4,6 +4,7 @@
 #include "compensator/process/process_load.hpp"
 #include "compensator/support/error.hpp"
 #include "plugin/api/robot_compliance.hpp"
+#include "plugin/report/pose_json.hpp"
 
 namespace roprec::api {
 

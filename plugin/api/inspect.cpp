@@ -4,6 +4,7 @@
 #include <cstdint>
 
 #include "plugin/api/robot_setup.hpp"
+#include "plugin/report/pose_json.hpp"
 #include "postproc/drill.hpp"
 
 namespace roprec::api {

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "compensator/support/error.hpp"
+#include "plugin/report/pose_json.hpp"
 
 namespace roprec::api {
 

@@ -2,8 +2,8 @@
 /// \file robot_setup.hpp
 /// A robot loaded for the per-pose calls (forward and inverse kinematics, deflection, transient
 /// simulation): the robot card or bare URDF, optionally a cell (its robot, tool and process) and
-/// a joint-stiffness override; plus what those calls share: the joint-limit check and the JSON
-/// of a pose.
+/// a joint-stiffness override; plus what those calls share: the joint-limit check (the JSON of a
+/// pose: plugin/report/pose_json.hpp).
 ///
 /// Units: SI in every struct (m, rad, N·m/rad); JSON in mm and degrees.
 /// Frames: base = the robot's base link; the TCP is flange × the cell's tool (the flange itself
@@ -18,7 +18,6 @@
 #include "compensator/precision/cell.hpp"
 #include "compensator/robot/model.hpp"
 #include "compensator/robot/robot_card.hpp"
-#include "plugin/api/json.hpp"
 
 namespace roprec::api {
 
@@ -59,12 +58,5 @@ std::vector<std::string> limitViolations(const ChainDescription& chain, const nc
 /// Throws InputError "`what` outside the joint limits: <first violation>" when q (URDF, rad) is
 /// outside the limits.
 void requireWithinLimits(const ChainDescription& chain, const nc::Vec6& q, const std::string& what);
-
-/// JSON of a pose (base frame): position_mm (6 decimals), quaternion_wxyz (w ≥ 0, 9 decimals) and
-/// abc_deg, the KUKA Z-Y'-X'' angles (6 decimals).
-Json poseJson(const Pose& T);
-
-/// Sets position_mm (6 decimals) and quaternion_wxyz (w ≥ 0, 9 decimals) of `T` on the object `j`.
-void setPositionQuaternion(Json& j, const Pose& T);
 
 }  // namespace roprec::api
