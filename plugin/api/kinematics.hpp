@@ -1,8 +1,8 @@
 #pragma once
 /// \file kinematics.hpp
 /// Rigid forward kinematics of the natural-coordinate model and the analytic inverse kinematics
-/// (all OPW solutions with the vendor's configuration flags), with the JSON `roprec fk` and
-/// `roprec ik` print.
+/// (all OPW solutions with the vendor's configuration flags). Their JSON: plugin/report/
+/// kinematics_json.hpp.
 ///
 /// Units: SI in the structs (m, rad); JSON in mm and degrees. Joints are in the URDF convention
 /// unless named `controller` (the vendor's convention, toControllerJoints).
@@ -16,7 +16,6 @@
 
 #include "compensator/robot/configuration.hpp"
 #include "compensator/robot/ik.hpp"
-#include "plugin/api/json.hpp"
 #include "plugin/api/robot_setup.hpp"
 
 namespace roprec::api {
@@ -34,10 +33,6 @@ struct FkResult {
 /// Solves the position problem at `joints` (URDF, rad; outside the limits is allowed and
 /// reported). Throws InputError "position problem did not converge (residual ...)".
 FkResult forwardKinematicsAt(const RobotSetup& setup, const Vec6& joints);
-
-/// robot, base_link, flange_link, joints_deg, controller_joints_deg, within_limits
-/// (+ limit_violations), flange, tcp (with a cell), position_problem.
-Json fkJson(const RobotSetup& setup, const FkResult& r);
 
 // ---------------------------------------------------------------- inverse kinematics
 
@@ -60,10 +55,5 @@ struct IkAnswer {
 
 /// All analytic IK solutions of the target. No solution is not an error: see `unreachable`.
 IkAnswer inverseKinematicsFor(const RobotSetup& setup, const IkRequest& request);
-
-/// robot, vendor, links, flange (+ tcp), opw geometry, fanuc_turn_axes (FANUC), solutions[] with
-/// branch, joints, controller joints, config, limits, singularity flags and margins, residuals;
-/// count, turns_truncated, unreachable.
-Json ikJson(const RobotSetup& setup, const IkAnswer& a);
 
 }  // namespace roprec::api

@@ -1,8 +1,8 @@
 /// `roprec fk`: rigid forward kinematics of the natural-coordinate model.
 #include "compensator/support/error.hpp"
-#include "plugin/api/kinematics.hpp"
 #include "plugin/cli/cli.hpp"
 #include "plugin/cli/robot_options.hpp"
+#include "plugin/report/kinematics_json.hpp"
 
 namespace roprec::cli {
 namespace {

@@ -1,8 +1,8 @@
 /// `roprec ik`: all analytic inverse-kinematics solutions with the vendor's configuration flags.
 #include "compensator/support/error.hpp"
-#include "plugin/api/kinematics.hpp"
 #include "plugin/cli/cli.hpp"
 #include "plugin/cli/robot_options.hpp"
+#include "plugin/report/kinematics_json.hpp"
 
 namespace roprec::cli {
 namespace {
