@@ -13,6 +13,7 @@
 #include "plugin/api/kinematics.hpp"
 #include "plugin/api/robots.hpp"
 #include "plugin/api/simulate.hpp"
+#include "plugin/report/deflect_json.hpp"
 #include "plugin/report/kinematics_json.hpp"
 #include "tests/support/test_support.hpp"
 

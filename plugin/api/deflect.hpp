@@ -6,7 +6,7 @@
 /// sees it: the card's and the cell's <controller gravity_compensated>, else the mastering
 /// reference at the calibration pose (plugin/api/robot_compliance.hpp, docs/model.md §6.3).
 ///
-/// Units: SI in the structs (rad, N, N·m, m); JSON in µm, µrad, mm, deg.
+/// Units: SI in the structs (rad, N, N·m, m). The JSON: plugin/report/deflect_json.hpp.
 /// Frames: the deviation δrobot = FK(θ) − FK(θ_m) is in the base frame; a given wrench is in the
 /// base frame, the cell's process load in the tool frame (it follows the real tool orientation).
 
@@ -14,7 +14,6 @@
 #include <string>
 
 #include "compensator/robot/deflection.hpp"
-#include "plugin/api/json.hpp"
 #include "plugin/api/robot_setup.hpp"
 
 namespace roprec::api {
@@ -50,11 +49,5 @@ struct DeflectResult {
 /// position problem does not converge at this pose. A non-converged compliance equilibrium is
 /// not an error: see deflection.converged and deflection.residual.
 DeflectResult deflectAt(const RobotSetup& setup, const DeflectRequest& request);
-
-/// robot, joints_deg, loads (with gravity_handling: robot_compliance.hpp gravityHandlingJson),
-/// torques_Nm, joint_deflection_urad, joint_deformation_urad,
-/// servo_correction_urad, deviation {translation_um, rotation_urad, translation_norm_um},
-/// nominal_tcp, real_tcp, equilibrium.
-Json deflectJson(const RobotSetup& setup, const DeflectResult& r);
 
 }  // namespace roprec::api

@@ -35,20 +35,4 @@ nc::ControllerReference controllerReferenceOf(const Robot& robot, const CellSpec
                                      g.calibration_load);
 }
 
-Json gravityHandlingJson(const Robot& robot, const nc::ControllerReference& ref) {
-  Json j = Json::object();
-  j.set("gravity_model", Json::str(robot.card.gravity_modelled ? "links" : "none"));
-  j.set("controller_reference", Json::str(ref.description()));
-  j.set("calibration_pose_deg",
-        Json::vector(toControllerJoints(robot.card, robot.card.calibration_pose) / kDeg, 6));
-  const Counterbalance& cb = robot.card.counterbalance;
-  j.set("counterbalance",
-        Json::str(!cb.present() ? "none"
-                                : robot.chain.joints[static_cast<size_t>(cb.joint)].name + " " +
-                                      (cb.law == Counterbalance::Law::kGas ? "gas" : "spring")));
-  const std::string note = gravityNotModelledNote(robot.card);
-  if (!note.empty()) j.set("note", Json::str(note));
-  return j;
-}
-
 }  // namespace roprec::api

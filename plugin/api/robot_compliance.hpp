@@ -17,7 +17,6 @@
 #include "compensator/precision/cell.hpp"
 #include "compensator/robot/deflection.hpp"
 #include "compensator/robot/robot_card.hpp"
-#include "plugin/api/json.hpp"
 
 namespace roprec::api {
 
@@ -37,9 +36,5 @@ ControllerGravity controllerGravityOf(const RobotCard& card, const CellSpec* cel
 /// kind kNone when `gravity` is false or the card does not model gravity.
 nc::ControllerReference controllerReferenceOf(const Robot& robot, const CellSpec* cell,
                                               const nc::ToolAttachment& cell_tool, bool gravity);
-
-/// {"gravity_model": "links" | "none", "controller_reference": description, "calibration_pose_deg"
-/// (controller convention), "counterbalance": law or "none", "note": gravityNotModelledNote}.
-Json gravityHandlingJson(const Robot& robot, const nc::ControllerReference& ref);
 
 }  // namespace roprec::api

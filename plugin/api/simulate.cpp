@@ -15,6 +15,7 @@
 #include "compensator/support/fixed_chars.hpp"
 #include "plugin/api/hole_input.hpp"
 #include "plugin/api/robot_compliance.hpp"
+#include "plugin/report/deflect_json.hpp"
 #include "postproc/drill.hpp"
 #include "postproc/program.hpp"
 

@@ -1,9 +1,9 @@
 /// `roprec deflect`: static deviation of the TCP at one pose under gravity, tool weight and a
 /// process wrench (flexible joints + servo gain, deformed-configuration equilibrium).
 #include "compensator/support/error.hpp"
-#include "plugin/api/deflect.hpp"
 #include "plugin/cli/cli.hpp"
 #include "plugin/cli/robot_options.hpp"
+#include "plugin/report/deflect_json.hpp"
 
 namespace roprec::cli {
 namespace {
