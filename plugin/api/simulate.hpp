@@ -2,19 +2,20 @@
 /// \file simulate.hpp
 /// The transient of one process cycle at one pose (flexible joints under the cascade servo,
 /// CVODE; compensator/process/transient.hpp, docs/transient.md): the joints of a program's hole,
-/// the integration, the CSV time history and the JSON summary `roprec simulate` prints.
+/// the integration (the CSV time history and the JSON summary `roprec simulate` prints:
+/// plugin/report/simulate_output.hpp).
 ///
-/// Units: SI in the structs (s, rad, m, N); CSV and JSON in s, mm, µm, µrad, N, N·m, deg.
+/// Units: SI in the structs (s, rad, m, N).
 /// Frames: deviations are of the TCP from the nominal rigid TCP, in the base frame.
 /// Errors: InputError for bad files and joints outside the limits; HoleUnreachable (an
 /// InputError) when the hole exists but no admissible IK solution reaches it. A failed
 /// integration is not an error: see transient.ok.
 
+#include <memory>
 #include <string>
 
 #include "compensator/process/transient.hpp"
 #include "compensator/support/error.hpp"
-#include "plugin/api/json.hpp"
 #include "plugin/api/robot_setup.hpp"
 
 namespace roprec::api {
@@ -68,14 +69,22 @@ struct SimulateOptions {
   bool gravity{true};   ///< link and tool weight (and the controller's gravity compensation)
 };
 
+/// The static references (the deflect model: same compliance, load at full engagement).
+struct StaticReference {
+  nc::Deflection gravity_only;
+  nc::Deflection full_engagement;
+};
+
 struct SimulationResult {
   nc::TransientResult transient;  ///< samples; ok/message/t_reached of the integration
-  /// robot, cell, joints_deg, joints_source, process, drive (servo, k, B_m, D, Kv, Kω), static
-  /// (gravity-only and full-engagement deviation, as deflect), transient (end of full engagement,
-  /// maxima; drilling: first contact, end of cut, max thrust, cut depth; settling to 0.1 µm with
-  /// the equivalent damping ratio; damping: the joint damping ratio, an estimate), cvode (ok,
-  /// method, tolerances, statistics, events).
-  Json summary;
+  StaticReference static_reference;
+  std::string process;         ///< the steady process load, or "none (gravity only)"
+  std::string process_source;  ///< drilling at a hole: where its process and drill come from
+  nc::ControllerReference controller;       ///< the controller's gravity handling
+  nc::DriveModel drive;                     ///< servo, k, B_m, D, Kv, Kω of the run
+  std::unique_ptr<nc::ProcessCycle> cycle;  ///< the process cycle integrated
+  nc::TransientOptions options;             ///< method, tolerances of the run
+  double t_end{0.0};                        ///< s
 };
 
 /// Integrates the cell's process cycle (the setup needs a cell; no process: gravity only) with the
@@ -83,10 +92,5 @@ struct SimulationResult {
 /// Throws UsageError without a cell, InputError outside the joint limits or without stiffness.
 SimulationResult simulateAt(const RobotSetup& setup, const HoleJoints& at,
                             const SimulateOptions& options);
-
-/// CSV: t_s, depth_mm (commanded spindle depth p_c ≥ 0), Fa_N, Ft_N, M_Nm, Fr_N, dx/dy/dz_um,
-/// rx/ry/rz_urad, dq1..dq6_urad (link angle − the first sample's command), tip_mm (s = p_c + u),
-/// cut_depth_mm (D), feed_per_rev_mm (h = Ḋ·60/n), axial_um (u), phase (docs/transient.md).
-std::string transientHistoryCsv(const nc::TransientResult& r);
 
 }  // namespace roprec::api

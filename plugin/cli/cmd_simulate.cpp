@@ -2,9 +2,9 @@
 /// compensator/process/transient.hpp): CSV time history of the process forces and the TCP
 /// deviation, JSON summary.
 #include "compensator/support/error.hpp"
-#include "plugin/api/simulate.hpp"
 #include "plugin/cli/cli.hpp"
 #include "plugin/cli/robot_options.hpp"
+#include "plugin/report/simulate_output.hpp"
 
 namespace roprec::cli {
 namespace {
@@ -59,9 +59,9 @@ int run(Args& args, CommandContext& ctx) {
   const SimulationResult r = simulateAt(s, at, opt);
   emit(ctx, out.value_or("-"), transientHistoryCsv(r.transient));
   if (summary_path) {
-    emit(ctx, *summary_path, r.summary.dump());
+    emit(ctx, *summary_path, simulationSummaryJson(s, at, r).dump());
   } else {
-    ctx.err << r.summary.dump();
+    ctx.err << simulationSummaryJson(s, at, r).dump();
   }
   if (!r.transient.ok) {
     const std::string where =
