@@ -67,11 +67,4 @@ postproc::Dialect planTestDialect(const PlanTestResult& r, const std::string& ou
 /// `out_path` (KRL requires it). Throws UsageError for invalid names/holes.
 postproc::DrillProgramText planTestProgram(const PlanTestResult& r, const std::string& out_path);
 
-/// Summary JSON (C ABI, Python): holes, candidates, rejected, log_det, per joint the prior and
-/// expected relative σ and expected σ(k) (N·m/rad), chosen ids, and `written`; with geometry
-/// also per geometry group (joint origins, tip) the largest prior and expected σ (mm, mrad), the
-/// unobservable parameters, the names of the exactly dependent ones (`dependent`) and the
-/// predicted accuracy (µm) before and after calibration.
-Json planTestSummaryJson(const PlanTestResult& r, const std::vector<std::string>& written);
-
 }  // namespace roprec::api
