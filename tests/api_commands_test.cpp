@@ -15,6 +15,7 @@
 #include "plugin/api/simulate.hpp"
 #include "plugin/report/deflect_json.hpp"
 #include "plugin/report/kinematics_json.hpp"
+#include "plugin/report/robots_output.hpp"
 #include "plugin/report/simulate_output.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -206,7 +207,7 @@ TEST(ApiCommands, InspectConvertAndRobotsEqualTheCli) {
                 {"p1: no config", "p2: no config", "p3: no config", "p4: no config", "tool: mass"}),
             (std::vector<std::string>{"no config (4 items: p1, p2, p3, ...)", "tool: mass"}));
 
-  const api::RobotList robots = api::bundledRobotList();
+  const api::RobotList robots = api::robotList(api::bundledRobotCards());
   EXPECT_EQ(robots.summary, test::runRoprec("robots").out);
   EXPECT_EQ(robots.text, test::runRoprec("robots --all").out);
   EXPECT_EQ(robots.json.dump(), test::runRoprec("robots --json").out);

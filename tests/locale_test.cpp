@@ -21,6 +21,7 @@
 #include "plugin/api/robot_setup.hpp"
 #include "plugin/api/robots.hpp"
 #include "plugin/report/exports.hpp"
+#include "plugin/report/robots_output.hpp"
 #include "postproc/program.hpp"
 #include "tests/support/test_support.hpp"
 

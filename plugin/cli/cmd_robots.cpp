@@ -1,6 +1,7 @@
 /// `roprec robots`: the bundled robots, with the source of every number the card carries.
 #include "plugin/api/robots.hpp"
 #include "plugin/cli/cli.hpp"
+#include "plugin/report/robots_output.hpp"
 
 namespace roprec::cli {
 namespace {
@@ -9,7 +10,7 @@ int run(Args& args, CommandContext& ctx) {
   const bool as_json = args.flag("json");
   const bool all = args.flag("all");
   args.finish();
-  const RobotList robots = bundledRobotList();
+  const RobotList robots = robotList(bundledRobotCards());
   if (as_json) {
     ctx.out << robots.json.dump();
   } else {
