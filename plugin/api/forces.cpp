@@ -12,9 +12,9 @@
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
 #include "plugin/api/job.hpp"
-#include "plugin/api/milling_stability.hpp"
 #include "plugin/api/robot_compliance.hpp"
 #include "plugin/api/robot_setup.hpp"
+#include "plugin/report/milling_output.hpp"
 
 namespace roprec::api {
 

@@ -6,30 +6,21 @@
 /// cell's `<dynamics>`, and the zero-order stability lobes (compensator/process/milling_stability
 /// .hpp; docs/process.md §4.6–4.7).
 ///
-/// Units: SI in the structs; JSON and CSV in mm, Hz, rpm, N/µm, µm/N. Frames: the milling frame
+/// Units: SI in the structs (the JSON, CSV and HTML: plugin/report/milling_output.hpp). Frames:
+/// the milling frame
 /// (X = feed, Y, Z from the tool tip toward the spindle). Errors: InputError (cell file and line)
 /// for a bad cell or a non-milling process; UsageError for a bad speed range.
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "compensator/compensation/milling_compensation.hpp"
 #include "compensator/process/milling_stability.hpp"
 #include "compensator/process/process_spec.hpp"
 #include "compensator/robot/model.hpp"
-#include "plugin/api/json.hpp"
 
 namespace roprec::api {
-
-/// "dynamics": the modes (frequency, damping, TCP direction and stiffness, joint shape), the tooth
-/// frequency and the modal model's static compliance; `robot` says whether robot modes are in it.
-Json millingDynamicsJson(const ModalModel& dyn, const MillingSpec& s, bool robot);
-/// "stability": Kt, Kr, α and the zero-order limit at the cut's spindle speed (margin = ap_lim/ap).
-Json millingStabilityJson(const ModalModel& dyn, const MillingModel& m);
-
-/// A path point's chatter check (PathPointCompensation): checked, bounded, ap_limit_mm,
-/// chatter_frequency_Hz, margin (limit/ap), stable, first_mode_Hz.
-Json pathPointStabilityJson(const PathPointCompensation& p, double ap);
 
 struct MillingStabilityRequest {
   std::string cell;                      ///< CELL.xml with a <process type="milling">
@@ -39,10 +30,16 @@ struct MillingStabilityRequest {
 };
 
 struct MillingStabilityResult {
-  Json json;           ///< cell, joints_deg, dynamics, stability, lobes summary
-  std::string csv;     ///< spindle_rpm,ap_limit_mm,chatter_Hz,lobe (ap empty when unbounded)
-  std::string report;  ///< HTML: the lobe diagram with the programmed cut marked
-  bool stable{true};   ///< the cell's ap is below the limit at its spindle speed
+  std::string cell;                ///< the cell's name
+  std::optional<nc::Vec6> joints;  ///< the pose of the robot's modes (rad), if any
+  MillingSpec spec;                ///< the cell's milling process
+  ModalModel dynamics;             ///< robot modes at `joints` (if any) and the tool mode
+  MillingModel model;              ///< the cut
+  std::vector<LobeSample> lobes;   ///< the lobe diagram over [rpm_lo, rpm_hi]
+  StabilityLimit at;               ///< the limit at the cut's spindle speed
+  double rpm_lo{0}, rpm_hi{0};     ///< the lobe range, rpm
+  int steps{0};                    ///< speeds of the lobe diagram
+  bool stable{true};               ///< the cell's ap is below the limit at its spindle speed
 };
 
 MillingStabilityResult millingStability(const MillingStabilityRequest& request);

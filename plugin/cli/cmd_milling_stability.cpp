@@ -1,8 +1,8 @@
 /// `roprec milling-stability`: the robot's modes at a pose, the spindle/tool mode and the
 /// zero-order stability lobes of the cell's milling cut (plugin/api/milling_stability.hpp).
 #include "compensator/support/error.hpp"
-#include "plugin/api/milling_stability.hpp"
 #include "plugin/cli/cli.hpp"
+#include "plugin/report/milling_output.hpp"
 
 namespace roprec::cli {
 namespace {
@@ -40,9 +40,10 @@ int run(Args& args, CommandContext& ctx) {
   if (joints) req.joints = parseJointsDeg(*joints);
   parseRange(req, rpm, steps);
   const MillingStabilityResult r = millingStability(req);
-  const std::string text = r.json.dump() + "\n";
-  if (csv) emit(ctx, *csv, r.csv);
-  if (report) emit(ctx, *report, r.report);
+  const MillingStabilityOutput o = millingStabilityOutput(r);
+  const std::string text = o.json.dump() + "\n";
+  if (csv) emit(ctx, *csv, o.csv);
+  if (report) emit(ctx, *report, o.report);
   if (json) {
     emit(ctx, *json, text);
   } else {

@@ -8,9 +8,9 @@
 
 #include "compensator/precision/parallel.hpp"
 #include "plugin/api/job.hpp"
-#include "plugin/api/milling_stability.hpp"
 #include "plugin/api/report_input.hpp"
 #include "plugin/api/robots.hpp"
+#include "plugin/report/milling_output.hpp"
 
 namespace roprec::api {
 

@@ -1,0 +1,36 @@
+#pragma once
+/// \file milling_output.hpp
+/// What `roprec milling-stability` writes (plugin/api/milling_stability.hpp computes it) and the
+/// "dynamics"/"stability" blocks of `roprec forces`: the modes, the zero-order chatter limit, the
+/// lobe diagram as CSV and as a self-contained HTML page.
+///
+/// Units: mm, Hz, rpm, N/µm, µm/N. Frames: the milling frame (X = feed, Y, Z from the tool tip
+/// toward the spindle).
+
+#include <string>
+
+#include "compensator/compensation/milling_compensation.hpp"
+#include "plugin/api/json.hpp"
+#include "plugin/api/milling_stability.hpp"
+
+namespace roprec::api {
+
+/// "dynamics": the modes (frequency, damping, TCP direction and stiffness, joint shape), the tooth
+/// frequency and the modal model's static compliance; `robot` says whether robot modes are in it.
+Json millingDynamicsJson(const ModalModel& dyn, const MillingSpec& s, bool robot);
+/// "stability": Kt, Kr, α and the zero-order limit at the cut's spindle speed (margin = ap_lim/ap).
+Json millingStabilityJson(const ModalModel& dyn, const MillingModel& m);
+
+/// A path point's chatter check (PathPointCompensation): checked, bounded, ap_limit_mm,
+/// chatter_frequency_Hz, margin (limit/ap), stable, first_mode_Hz.
+Json pathPointStabilityJson(const PathPointCompensation& p, double ap);
+
+struct MillingStabilityOutput {
+  Json json;           ///< cell, joints_deg, dynamics, stability, lobes summary
+  std::string csv;     ///< spindle_rpm,ap_limit_mm,chatter_Hz,lobe (ap empty when unbounded)
+  std::string report;  ///< HTML: the lobe diagram with the programmed cut marked
+};
+
+MillingStabilityOutput millingStabilityOutput(const MillingStabilityResult& r);
+
+}  // namespace roprec::api
