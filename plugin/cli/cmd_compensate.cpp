@@ -16,9 +16,9 @@
 #include "compensator/support/c_format.hpp"
 #include "compensator/support/error.hpp"
 #include "plugin/api/job.hpp"
-#include "plugin/api/milling_report.hpp"
 #include "plugin/cli/cli.hpp"
 #include "plugin/cli/robot_options.hpp"
+#include "plugin/report/milling_report.hpp"
 #include "postproc/program.hpp"
 
 namespace roprec::cli {

@@ -1,4 +1,4 @@
-#include "plugin/api/milling_report.hpp"
+#include "plugin/report/milling_report.hpp"
 
 #include <algorithm>
 #include <cmath>
