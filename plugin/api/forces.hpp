@@ -8,7 +8,7 @@
 /// coupled force and TCP movement — and, with a program, the per-point cutting decision and coupled
 /// solve along the program's path; docs/process.md §4.4–4.5) or a given wrench.
 ///
-/// Units: SI in the structs (m, N, N·m, m/N); JSON and CSV in mm, µm, N, N·m, deg, N/mm², kW.
+/// Units: SI in the structs (m, N, N·m, m/N). The JSON and CSV: plugin/report/forces_output.hpp.
 /// Frames: drilling tool frame z = drill axis into the material, forces on the TCP; milling frame
 /// X = feed, φ clockwise from +Y, Z from the tool tip toward the spindle, forces on the tool.
 /// Errors: InputError (cell file and line) for a bad cell, no <process>, a calibration of a
@@ -19,8 +19,9 @@
 #include <string>
 #include <vector>
 
+#include "compensator/process/process_spec.hpp"
 #include "compensator/robot/model.hpp"
-#include "plugin/api/json.hpp"
+#include "plugin/api/job.hpp"
 
 namespace roprec::api {
 
@@ -46,13 +47,45 @@ struct ForcesRequest {
       program;  ///< milling: every linear point of this program (cutting decision, coupled solve)
 };
 
+/// Drilling: the spec (after the calibration), the steady forces, the curve over depth and, with
+/// an axial compliance, the curve per revolution.
+struct DrillingForcesData {
+  DrillingSpec spec;  ///< coefficients and their source after the calibration, if any
+  std::optional<DrillingMeasurement> measurement;  ///< the calibration test
+  std::optional<DrillingCalibration> calibration;  ///< identified from `measurement`
+  DrillingCoefficients coeff_before;               ///< the cell's coefficients
+  DrillingForces steady;                           ///< at the cell's feed
+  std::vector<DepthSample> profile;                ///< over depth, `step` apart
+  double step{0};                                  ///< m
+  std::optional<double> axial_compliance;          ///< m/N
+  std::vector<AxialCouplingSample> axial;          ///< per revolution (axial_compliance)
+};
+
+/// Milling: the coupled force/deflection solve over the path points and the corrected revolution
+/// of the last point.
+struct MillingCouplingData {
+  bool robot{false};  ///< the robot's compliance at --joints (else the cell's linear one)
+  Mat3 tool_compliance{Mat3::Zero()};  ///< m/N
+  std::vector<CouplingResult> points;
+  CorrectedRevolution corrected;  ///< of the last point
+};
+
+struct MillingForcesData {
+  MillingSpec spec;
+  std::optional<nc::Vec6> joints;  ///< the robot's pose (rad) with --joints
+  ModalModel dynamics;             ///< robot modes at `joints` (if any) and the tool mode
+  MillingModel model;
+  MillingProfile profile;  ///< one revolution
+  std::optional<MillingCouplingData> coupling;
+  std::optional<MillingCompensationResult> path;  ///< with a program
+  std::string program;                            ///< its path
+};
+
 struct ForcesResult {
-  /// cell, process, material; drilling: drill, cut, calibration, coefficients, steady, wrench_tool,
-  /// axial_coupling, max_over_depth, machining_deviation; milling: joints_deg, frame, mill, cut,
-  /// coefficients, immersion, steady, coupling; wrench: wrench_tool.
-  Json json;
-  std::string curve_csv;  ///< drilling: over depth (or per revolution); milling: over one
-                          ///< revolution (with a coupling: nominal and corrected, TCP movement)
+  std::string cell;  ///< the cell's name
+  std::optional<DrillingForcesData> drilling;
+  std::optional<MillingForcesData> milling;
+  std::optional<WrenchSpec> wrench;
   std::string
       calibrated_cell;   ///< the cell's text with calibrated <coefficients> (calibrated_cell)
   bool converged{true};  ///< every coupled point (axial or milling coupling, program path)
@@ -60,6 +93,9 @@ struct ForcesResult {
   std::vector<std::string> unstable;  ///< milling --program: the points whose ap is above the
                                       ///< chatter limit, one line each
 };
+
+/// The ap of path point `i` (the engaged ap of a cutting point with an engagement, else the cut's).
+double pathPointAp(const MillingCompensationResult& r, size_t i);
 
 /// Computes the forces of the cell's process; the robot is loaded only for `joints`.
 ForcesResult processForces(const ForcesRequest& request);

@@ -5,9 +5,9 @@
 #include <sstream>
 
 #include "compensator/support/error.hpp"
-#include "plugin/api/forces.hpp"
 #include "plugin/api/job.hpp"
 #include "plugin/cli/cli.hpp"
+#include "plugin/report/forces_output.hpp"
 
 namespace roprec::cli {
 namespace {
@@ -92,8 +92,9 @@ int run(Args& args, CommandContext& ctx) {
   req.curve = csv_path.has_value();
 
   const ForcesResult r = processForces(req);
-  const std::string json_text = r.json.dump() + "\n";
-  if (csv_path) emit(ctx, *csv_path, r.curve_csv);
+  const ForcesOutput o = forcesOutput(r);
+  const std::string json_text = o.json.dump() + "\n";
+  if (csv_path) emit(ctx, *csv_path, o.curve_csv);
   if (out_xml) emit(ctx, *out_xml, r.calibrated_cell);
   if (json_path) {
     emit(ctx, *json_path, json_text);
