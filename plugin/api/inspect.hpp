@@ -5,7 +5,7 @@
 /// configuration, external axes, tool/base), motions, recognised drill holes (optionally matched
 /// to a hole list), unresolved references and the reader's notes.
 ///
-/// Units: JSON in mm, deg (native values as the program states them).
+/// Units: SI in the structs (the JSON, in mm and deg: plugin/report/inspect_output.hpp).
 /// Errors: InputError for an unreadable or malformed program or hole list.
 
 #include <cstddef>
@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "plugin/api/json.hpp"
 #include "plugin/api/program_frames.hpp"
+#include "postproc/drill.hpp"
 
 namespace roprec::api {
 
@@ -38,12 +38,26 @@ struct InspectSummary {
   std::vector<std::string> notes;
 };
 
-/// program, dialect, files, drilling_axis_tcp, targets[], motions[], holes[], unresolved[],
-/// notes[]. With `summary`, also fills its counts.
-Json inspectProgram(const InspectRequest& request, InspectSummary* summary = nullptr);
+/// A hole list matched to the recognised holes (InspectRequest::hole_list).
+struct HoleListMatch {
+  std::vector<postproc::HoleSpec> specs;
+  std::vector<postproc::HoleMatch> matches;
+};
 
-/// A few lines: the program, its dialect and files, how many targets, motions and drill holes,
-/// each unresolved reference and note.
-std::string inspectSummaryText(const InspectSummary& s);
+/// What inspect found: the program as read (with the given frames), the recognised holes and
+/// the hole-list matches.
+struct InspectedProgram {
+  std::string path;  ///< the program as requested
+  postproc::Program program;
+  Vec3 tool_axis{Vec3::UnitZ()};  ///< the drilling axis in the TCP frame used
+  std::vector<postproc::Hole> holes;
+  HoleListMatch list;
+};
+
+/// Reads the program, recognises its drill holes and matches them to the hole list.
+InspectedProgram inspectProgram(const InspectRequest& request);
+
+/// The counts of `r` for a person.
+InspectSummary inspectSummary(const InspectedProgram& r);
 
 }  // namespace roprec::api

@@ -1,9 +1,9 @@
 /// `roprec inspect PROGRAM`: what a robot program contains (docs/contract.md §11,
 /// docs/programs.md).
 #include "compensator/support/error.hpp"
-#include "plugin/api/inspect.hpp"
 #include "plugin/cli/cli.hpp"
 #include "plugin/cli/robot_options.hpp"
+#include "plugin/report/inspect_output.hpp"
 
 namespace roprec::cli {
 namespace {
@@ -31,10 +31,9 @@ int run(Args& args, CommandContext& ctx) {
   req.hole_list = holes;
   if (holes && tol) req.match_tolerance_mm = parseNumberList(*tol, 1, "--match-tol (mm)")[0];
   if (all && out) throw UsageError("give --all (the JSON on stdout) or -o OUT.json, not both");
-  InspectSummary summary;
-  const Json json = inspectProgram(req, &summary);
-  if (all || out) emit(ctx, all ? "-" : *out, json.dump() + "\n");
-  if (!all && !(out && *out == "-")) ctx.out << inspectSummaryText(summary);
+  const InspectedProgram r = inspectProgram(req);
+  if (all || out) emit(ctx, all ? "-" : *out, inspectJson(r).dump() + "\n");
+  if (!all && !(out && *out == "-")) ctx.out << inspectSummaryText(inspectSummary(r));
   return 0;
 }
 
