@@ -18,9 +18,9 @@
 #include "compensator/robot/deflection.hpp"
 #include "compensator/support/error.hpp"
 #include "plugin/api/deflect.hpp"
-#include "plugin/api/json.hpp"
 #include "plugin/api/robot_compliance.hpp"
 #include "plugin/api/robot_setup.hpp"
+#include "plugin/report/json.hpp"
 #include "tests/support/kdl_support.hpp"
 #include "tests/support/test_support.hpp"
 

@@ -1,6 +1,6 @@
-// The JSON writer (plugin/api/json.hpp): a non-finite number is an internal error naming its path,
-// never "null", "nan" or "inf" in the output.
-#include "plugin/api/json.hpp"
+// The JSON writer (plugin/report/json.hpp): a non-finite number is an internal error naming its
+// path, never "null", "nan" or "inf" in the output.
+#include "plugin/report/json.hpp"
 
 #include <gtest/gtest.h>
 

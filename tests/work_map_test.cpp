@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "compensator/support/error.hpp"
-#include "plugin/api/json.hpp"
+#include "plugin/report/json.hpp"
 #include "plugin/report/work_map_report.hpp"
 #include "support/test_support.hpp"
 

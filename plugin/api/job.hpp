@@ -20,9 +20,9 @@
 #include "compensator/compensation/compensation.hpp"
 #include "compensator/compensation/milling_compensation.hpp"
 #include "compensator/precision/prediction.hpp"
-#include "plugin/api/json.hpp"
 #include "plugin/api/prediction_setup.hpp"
 #include "plugin/api/program_frames.hpp"
+#include "plugin/report/json.hpp"
 
 namespace roprec::api {
 

@@ -18,7 +18,7 @@
 
 #include "compensator/precision/prediction.hpp"
 #include "plugin/api/hole_input.hpp"
-#include "plugin/api/json.hpp"
+#include "plugin/report/json.hpp"
 
 namespace roprec::api {
 

@@ -10,10 +10,10 @@
 #include "compensator/support/error.hpp"
 #include "compensator/support/platform.hpp"
 #include "plugin/api/job.hpp"
-#include "plugin/api/json.hpp"
 #include "plugin/api/verify.hpp"
 #include "plugin/cli/cli.hpp"
 #include "plugin/cli/robot_options.hpp"
+#include "plugin/report/json.hpp"
 
 namespace roprec::cli {
 namespace {

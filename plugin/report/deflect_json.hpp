@@ -6,7 +6,7 @@
 /// Units: µm, µrad, mm, deg, N, N·m. Frames: the base frame (deflect.hpp).
 
 #include "plugin/api/deflect.hpp"
-#include "plugin/api/json.hpp"
+#include "plugin/report/json.hpp"
 
 namespace roprec::api {
 

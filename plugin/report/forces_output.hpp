@@ -9,7 +9,7 @@
 #include <string>
 
 #include "plugin/api/forces.hpp"
-#include "plugin/api/json.hpp"
+#include "plugin/report/json.hpp"
 
 namespace roprec::api {
 

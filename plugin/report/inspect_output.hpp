@@ -8,7 +8,7 @@
 #include <string>
 
 #include "plugin/api/inspect.hpp"
-#include "plugin/api/json.hpp"
+#include "plugin/report/json.hpp"
 
 namespace roprec::api {
 

@@ -6,8 +6,8 @@
 /// vendor's convention, toControllerJoints).
 /// Frames: base = the robot's base link; TCP = flange × the setup's tool.
 
-#include "plugin/api/json.hpp"
 #include "plugin/api/kinematics.hpp"
+#include "plugin/report/json.hpp"
 
 namespace roprec::api {
 

@@ -10,8 +10,8 @@
 #include <string>
 
 #include "compensator/compensation/milling_compensation.hpp"
-#include "plugin/api/json.hpp"
 #include "plugin/api/milling_stability.hpp"
+#include "plugin/report/json.hpp"
 
 namespace roprec::api {
 

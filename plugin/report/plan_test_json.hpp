@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "plugin/api/json.hpp"
 #include "plugin/api/plan_test.hpp"
+#include "plugin/report/json.hpp"
 
 namespace roprec::api {
 

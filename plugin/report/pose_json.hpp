@@ -5,7 +5,7 @@
 /// Units: position in mm, angles in degrees. Frames: as given (the caller's base frame).
 
 #include "compensator/support/rotation.hpp"
-#include "plugin/api/json.hpp"
+#include "plugin/report/json.hpp"
 
 namespace roprec::api {
 

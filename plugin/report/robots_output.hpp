@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "compensator/robot/robot_card.hpp"
-#include "plugin/api/json.hpp"
+#include "plugin/report/json.hpp"
 
 namespace roprec::api {
 

@@ -8,8 +8,8 @@
 
 #include <string>
 
-#include "plugin/api/json.hpp"
 #include "plugin/api/simulate.hpp"
+#include "plugin/report/json.hpp"
 
 namespace roprec::api {
 

@@ -12,9 +12,9 @@
 #include "compensator/support/c_format.hpp"
 #include "compensator/support/str_cat.hpp"
 #include "plugin/api/job.hpp"
-#include "plugin/api/json.hpp"
 #include "plugin/report/hole_report.hpp"
 #include "plugin/report/html.hpp"
+#include "plugin/report/json.hpp"
 
 namespace roprec::api {
 namespace {

@@ -9,8 +9,8 @@
 #include <sstream>
 
 #include "plugin/api/job.hpp"
-#include "plugin/api/json.hpp"
 #include "plugin/report/html.hpp"
+#include "plugin/report/json.hpp"
 #include "plugin/report/palette.hpp"
 
 namespace roprec::api {

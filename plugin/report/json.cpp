@@ -1,4 +1,4 @@
-#include "plugin/api/json.hpp"
+#include "plugin/report/json.hpp"
 
 #include <algorithm>
 #include <charconv>
