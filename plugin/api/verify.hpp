@@ -100,14 +100,7 @@ struct VerifyResult {
 VerifyResult verifyJob(const std::string& cell_path, const std::string& program_path,
                        const VerifyJob& job, const ProgressFn& progress = {});
 
-/// The verification JSON: measured file, registration, summary, identification (parameters,
-/// covariance, condition number, identifiability), per-hole records. µm, µrad, mm.
-Json verifyJson(const VerifyResult& r);
-
-/// The one-line summary host interfaces return (C ABI, Python): holes, matched, failed, RMS of
-/// measured/predicted/residual (µm), explained, coverage, registration, identified stiffness,
-/// condition number, and `written` (the paths given).
-Json verifySummaryJson(const VerifyResult& r, const std::vector<std::string>& written);
+// The JSON texts: plugin/report/verify_json.hpp.
 
 // The HTML report: plugin/report/verify_report.hpp.
 

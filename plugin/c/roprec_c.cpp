@@ -24,6 +24,7 @@
 #include "plugin/api/plan_test.hpp"
 #include "plugin/api/verify.hpp"
 #include "plugin/c/host_common.hpp"
+#include "plugin/report/verify_json.hpp"
 
 struct roprec_session {
   explicit roprec_session(const std::string& path) : cell_path(path), session(path) {}

@@ -6,6 +6,7 @@
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
 #include "plugin/cli/cli.hpp"
+#include "plugin/report/verify_json.hpp"
 #include "plugin/report/verify_report.hpp"
 
 namespace roprec::cli {

@@ -25,6 +25,7 @@
 #include "plugin/api/plan_test.hpp"
 #include "plugin/api/verify.hpp"
 #include "plugin/c/host_common.hpp"
+#include "plugin/report/verify_json.hpp"
 
 namespace py = pybind11;
 
