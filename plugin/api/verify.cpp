@@ -55,6 +55,13 @@ std::vector<postproc::ProgramHoleRef> programRefs(const PredictionContext& c) {
   return refs;
 }
 
+/// The job options of verify's prediction: the program as it was drilled (the nominal holes and
+/// the measured positions are moved with the part here, nominalHole and measuredW).
+JobOptions asDrilled(JobOptions o) {
+  o.registered_part = false;
+  return o;
+}
+
 void noteMatch(VerifyResult& r) {
   for (const int k : r.match.unknown) {
     const postproc::MeasuredHole& m = r.measured.holes[static_cast<size_t>(k)];
@@ -221,7 +228,8 @@ Vec6 programTargetJoints(const VerifyResult& r, const postproc::MeasuredPose& q)
 }
 
 /// A measured pose as an observation: the commanded joints from the controller's convention, the
-/// measured TCP in the base frame, gravity with the row's payload and applied wrench.
+/// measured TCP (and its orientation, when the row has one) in the base frame, gravity with the
+/// row's payload and applied wrench.
 IdentificationHole poseObservation(const VerifyResult& r, const postproc::MeasuredPose& q,
                                    const VerifyJob& job) {
   const PredictionContext& c = r.prediction.context;
@@ -234,6 +242,11 @@ IdentificationHole poseObservation(const VerifyResult& r, const postproc::Measur
   h.T_W_hole.linear() = c.cell.T_base_wobj.linear();  // residual axes: the workobject's
   h.p_W_measured = c.cell.T_base_wobj * (q.p_mm * 1e-3);
   h.sigma = (q.u_um ? *q.u_um : job.u_measurement_um) * 1e-6;
+  if (q.rpy_deg) {
+    const Vec3 rpy = *q.rpy_deg * kDeg;
+    h.R_W_measured = c.cell.T_base_wobj.linear() * rotationFromRpy(rpy.x(), rpy.y(), rpy.z());
+    h.sigma_rotation = (q.u_rot_urad ? *q.u_rot_urad : job.u_rotation_urad) * 1e-6;
+  }
   nc::Loads loads = processLoads(c.model, nullptr);
   if (q.force_n) loads.tcp = nc::Wrench{*q.force_n, q.torque_nm};
   h.loads = loads;
@@ -306,7 +319,7 @@ namespace {
 void readHoles(VerifyResult& r, const std::string& cell_path, const std::string& program_path,
                const VerifyJob& job, const ProgressFn& progress) {
   if (job.measured.empty()) throw UsageError("give the measured-hole file with the program");
-  r.prediction = predictJob(cell_path, program_path, job.job, progress);
+  r.prediction = predictJob(cell_path, program_path, asDrilled(job.job), progress);
   r.measured = postproc::readMeasured(job.measured);
   r.match = postproc::matchMeasured(r.measured, programRefs(r.prediction.context));
   r.notes = r.prediction.context.job.notes;
@@ -361,7 +374,7 @@ VerifyResult verifyJob(const std::string& cell_path, const std::string& program_
   if (job.calibrate)
     r.date = calibrationDate(job.date, job.measured.empty() ? job.poses : job.measured);
   if (!program_path.empty() && job.measured.empty()) {  // poses naming the program's targets
-    r.prediction = predictJob(cell_path, program_path, job.job, progress);
+    r.prediction = predictJob(cell_path, program_path, asDrilled(job.job), progress);
     r.notes = r.prediction.context.job.notes;
   } else if (!program_path.empty()) {
     readHoles(r, cell_path, program_path, job, progress);

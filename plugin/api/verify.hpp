@@ -40,7 +40,8 @@ struct VerifyJob {
   JobOptions job;        ///< hole list, match tolerance, uncertainty method
   std::string measured;  ///< the CMM file (roprec CSV, PC-DMIS CSV or DMIS), workobject mm
   /// Measured TCP poses (laser tracker / CMM, postproc/measured_poses.hpp), identified together
-  /// with the holes: 3 equations per pose. With poses, the program and `measured` are optional.
+  /// with the holes: 3 equations per pose, 6 when the row has its orientation (rx,ry,rz). With
+  /// poses, the program and `measured` are optional.
   std::string poses;
   Registration registration{Registration::kNone};  ///< part registration estimated jointly
   bool calibrate{false};  ///< re-identify the joint stiffness (identification.hpp)
@@ -48,6 +49,9 @@ struct VerifyJob {
   /// 20 mm); reported, the cell is not rewritten.
   bool identify_tool{false};
   double u_measurement_um{5.0};  ///< σ per axis of a measured position when the file has no `u`
+  /// σ per axis of a measured pose orientation (rx,ry,rz) when the row has no `u_rot`, µrad: a
+  /// 6-DoF tracker probe's stated orientation accuracy is 0.01° ≈ 175 µrad (2σ).
+  double u_rotation_urad{100.0};
   IdentifySet identify{IdentifySet::kAll};  ///< which robot parameters --calibrate may move
   /// k of the k-fold held-out validation run with calibrate (fit_validation.hpp); 0: none (the
   /// card is then written without a held-out check, and the result says so).

@@ -9,7 +9,9 @@
 namespace roprec::api {
 namespace {
 
-std::string baseName(const std::string& path) { return std::filesystem::path(path).filename().string(); }
+std::string baseName(const std::string& path) {
+  return std::filesystem::path(path).filename().string();
+}
 
 // ---------------------------------------------------------------- JSON
 
@@ -202,6 +204,10 @@ Json posesJson(const VerifyResult& r) {
     o.set("line", Json::integer(r.poses.poses[k].line));
     if (r.identification)
       o.set("residual_identified_um", vecUm(r.identification->residuals[first + k]));
+    // a measured orientation: its residual (the key is absent without one: outputs unchanged)
+    if (r.identification && r.poses.poses[k].rpy_deg)
+      o.set("rotation_residual_identified_urad",
+            vecUm(r.identification->rotation_residuals[first + k]));
     a.push(o);
   }
   j.set("poses", a);
