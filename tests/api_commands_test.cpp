@@ -13,6 +13,7 @@
 #include "plugin/api/kinematics.hpp"
 #include "plugin/api/robots.hpp"
 #include "plugin/api/simulate.hpp"
+#include "tests/support/kdl_support.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace roprec {
@@ -207,6 +208,62 @@ TEST(ApiCommands, InspectConvertAndRobotsEqualTheCli) {
   EXPECT_EQ(robots.summary, test::runRoprec("robots").out);
   EXPECT_EQ(robots.text, test::runRoprec("robots --all").out);
   EXPECT_EQ(robots.json.dump(), test::runRoprec("robots --json").out);
+}
+
+// ---- a calibrated card: the real robot is the URDF `card export-urdf` writes (KDL)
+
+api::RobotSetup calibratedKuka() {
+  api::RobotSetupRequest req;
+  req.robot = sample("verification/kr120-calibrated.xml");
+  return api::loadRobotSetup(req);
+}
+
+// ik answers for the real robot: every usable solution puts KDL's flange of the exported URDF on
+// the target to 1e-9 m (and the nominal URDF's flange off it by the calibration).
+TEST(ApiCommands, IkOfACalibratedCardReachesTheTargetWithTheExportedUrdf) {
+  const api::RobotSetup s = calibratedKuka();
+  ASSERT_TRUE(s.robot.card.calibration.has_value());
+  const KDL::Chain real = test::kdlExportedChain(s.robot.card.file, test::tempDir("ikcal"));
+  const KDL::Chain nominal =
+      test::kdlChain(s.robot.card.urdf_path, s.robot.chain.base_link, s.robot.chain.tip_link);
+  api::IkRequest req;
+  req.target = test::kdlPose(nominal, degrees(15, -70, 100, 25, 45, -35));
+  const api::IkAnswer a = api::inverseKinematicsFor(s, req);
+  ASSERT_GT(a.usable, 0) << a.unreachable;
+  for (int k = 0; k < a.result->count; ++k) {
+    const IkSolution& sol = a.result->solutions[static_cast<size_t>(k)];
+    if (!sol.converged || !sol.within_limits) continue;
+    const Pose T = test::kdlPose(real, sol.q);
+    EXPECT_LT((T.translation() - req.target.translation()).norm(), 1e-9) << k;
+    EXPECT_LT(Eigen::AngleAxisd(T.linear().transpose() * req.target.linear()).angle(), 1e-9) << k;
+    EXPECT_GT((test::kdlPose(nominal, sol.q).translation() - req.target.translation()).norm(),
+              0.1e-3)
+        << k;
+  }
+}
+
+// deflect at commanded joints: the real TCP is KDL's on the exported URDF at the equilibrium
+// joints, and the deviation is taken from the pose the controller means (KDL on the nominal
+// URDF at the command), both to 1e-9 m.
+TEST(ApiCommands, DeflectOfACalibratedCardIsTheExportedUrdfsTcp) {
+  api::RobotSetupRequest sr;
+  sr.cell = sample("verification/housing-kr120-calibrated.xml");
+  const api::RobotSetup s = api::loadRobotSetup(sr);
+  ASSERT_TRUE(s.robot.card.calibration.has_value());
+  const Pose tool = s.tool.T_flange_tcp;
+  const KDL::Chain real = test::kdlExportedChain(s.robot.card.file, test::tempDir("deflcal"), tool);
+  const KDL::Chain nominal =
+      test::kdlChain(s.robot.card.urdf_path, s.robot.chain.base_link, s.robot.chain.tip_link, tool);
+  api::DeflectRequest req;
+  req.joints = degrees(5, -60, 100, 10, 50, -20);
+  req.wrench = nc::Wrench{Vec3(0, 0, 800), Vec3::Zero()};
+  const api::DeflectResult r = api::deflectAt(s, req);
+  ASSERT_TRUE(r.deflection.converged);
+  const Vec3 real_tcp = test::kdlPose(real, r.deflection.theta).translation();
+  EXPECT_LT((real_tcp - r.deflection.T_real.translation()).norm(), 1e-9);
+  const Vec3 commanded = test::kdlPose(nominal, req.joints).translation();
+  EXPECT_LT((r.deflection.dp - (real_tcp - commanded)).norm(), 1e-9);
+  EXPECT_GT((real_tcp - test::kdlPose(nominal, r.deflection.theta).translation()).norm(), 0.1e-3);
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include "compensator/support/error.hpp"
 #include "plugin/api/json.hpp"
 #include "plugin/report/work_map_report.hpp"
+#include "support/kdl_support.hpp"
 #include "support/test_support.hpp"
 
 namespace roprec {
@@ -227,6 +228,40 @@ TEST(WorkMap, CsvCarriesTheJointsAsTheFanucControllerShowsThem) {
   }
   EXPECT_GE(checked, 3u);
   EXPECT_TRUE(coupled) << "J2 near 0 everywhere: the test would not see the coupling";
+}
+
+// A map of a cell whose robot card is calibrated (the shop-floor sample's): each point is
+// commanded by the controller's model — KDL on the card's nominal URDF at the commanded joints
+// reaches the map point — and drilled by the calibrated one: the real TCP is KDL on the URDF
+// `card export-urdf` writes, at the equilibrium joints, both to 1e-9 m.
+TEST(WorkMap, ACalibratedCardDrillsWithTheExportedUrdfsKinematics) {
+  api::WorkMapRequest q;
+  q.cell_path = test::sourceDir() + "/samples/verification/housing-kr120-calibrated.xml";
+  q.lo_mm = Vec3(-100, -100, 150);
+  q.hi_mm = Vec3(100, 100, 150);
+  q.step_mm = 200;
+  const api::WorkMap m = api::computeWorkMap(q);
+  const RobotCard& card = m.context.robot.card;
+  ASSERT_TRUE(card.calibration.has_value());
+  const Pose tool = m.context.tool.T_flange_tcp;
+  const KDL::Chain real = test::kdlExportedChain(card.file, test::tempDir("mapcal"), tool);
+  const KDL::Chain nominal = test::kdlChain(card.urdf_path, m.context.robot.chain.base_link,
+                                            m.context.robot.chain.tip_link, tool);
+  ASSERT_EQ(m.layers.size(), 1u);
+  ASSERT_EQ(m.layers[0].points.size(), 4u);
+  double geometry = 0;
+  for (const api::WorkMapPoint& pt : m.layers[0].points) {
+    const HolePrediction& h = pt.prediction;
+    ASSERT_EQ(h.status, HoleStatus::kOk) << h.reason;
+    const Vec3 target = m.context.cell.T_base_wobj * (pt.p_mm * 1e-3);
+    EXPECT_LT((test::kdlPose(nominal, h.joints).translation() - target).norm(), 1e-9);
+    EXPECT_LT(
+        (test::kdlPose(real, h.deflection.theta).translation() - h.deflection.T_real.translation())
+            .norm(),
+        1e-9);
+    geometry = std::max(geometry, (test::kdlPose(real, h.joints).translation() - target).norm());
+  }
+  EXPECT_GT(geometry, 0.1e-3) << "the calibration moves the real TCP";
 }
 
 }  // namespace
