@@ -266,5 +266,45 @@ TEST(ApiCommands, DeflectOfACalibratedCardIsTheExportedUrdfsTcp) {
   EXPECT_GT((real_tcp - test::kdlPose(nominal, r.deflection.theta).translation()).norm(), 0.1e-3);
 }
 
+// simulate on a calibrated cell: the hole's joints are the controller's command (KDL on the
+// nominal URDF puts the TCP on the hole's axis) and the static gravity deviation is the exported
+// URDF's TCP at deflect's equilibrium joints less its TCP at the command, both to 1e-9 m.
+TEST(ApiCommands, SimulateOfACalibratedCellUsesTheExportedUrdfsKinematics) {
+  api::RobotSetupRequest sr;
+  sr.cell = sample("verification/housing-kr120-calibrated.xml");
+  const api::RobotSetup s = api::loadRobotSetup(sr);
+  ASSERT_TRUE(s.robot.card.calibration.has_value());
+  const std::string dir = test::tempDir("simcal");
+  test::writeFile(dir + "/holes.csv",
+                  "id,x,y,z,i,j,k,diameter,depth,tolerance\nH1,40,-30,150,0,0,-1,8.5,20,0.2\n");
+  const api::HoleJoints at = api::holeJoints(s, dir + "/holes.csv", "H1");
+  const Pose tool = s.tool.T_flange_tcp;
+  const KDL::Chain real = test::kdlExportedChain(s.robot.card.file, dir, tool);
+  const KDL::Chain nominal =
+      test::kdlChain(s.robot.card.urdf_path, s.robot.chain.base_link, s.robot.chain.tip_link, tool);
+  const Pose T_W_wobj = s.cell->T_base_wobj;
+  const Vec3 hole = T_W_wobj * Vec3(0.040, -0.030, 0.150);
+  const Vec3 axis = -T_W_wobj.linear().col(2);
+  const Pose commanded = test::kdlPose(nominal, at.joints);
+  const Vec3 off = commanded.translation() - hole;
+  EXPECT_LT((off - off.dot(axis) * axis).norm(), 1e-9);
+  EXPECT_LT((commanded.linear().col(2) - axis).norm(), 1e-9);
+
+  api::SimulateOptions opt;
+  opt.duration = 0.02;
+  const api::SimulationResult r = api::simulateAt(s, at, opt);
+  ASSERT_TRUE(r.transient.ok) << r.transient.message;
+  api::DeflectRequest dq;
+  dq.joints = at.joints;
+  dq.process = false;
+  const api::DeflectResult d = api::deflectAt(s, dq);
+  const Vec3 expected = test::kdlPose(real, d.deflection.theta).translation() -
+                        test::kdlPose(real, at.joints).translation();
+  const json sj = json::parse(r.summary.dump());
+  const auto& g = sj.at("static").at("gravity_only_um");
+  const Vec3 got(g[0].get<double>(), g[1].get<double>(), g[2].get<double>());
+  EXPECT_LT((got * 1e-6 - expected).norm(), 1e-9) << got.transpose();
+}
+
 }  // namespace
 }  // namespace roprec
