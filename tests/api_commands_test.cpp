@@ -11,6 +11,7 @@
 #include "plugin/api/forces.hpp"
 #include "plugin/api/inspect.hpp"
 #include "plugin/api/kinematics.hpp"
+#include "plugin/api/plan_test.hpp"
 #include "plugin/api/robots.hpp"
 #include "plugin/api/simulate.hpp"
 #include "tests/support/kdl_support.hpp"
@@ -304,6 +305,38 @@ TEST(ApiCommands, SimulateOfACalibratedCellUsesTheExportedUrdfsKinematics) {
   const auto& g = sj.at("static").at("gravity_only_um");
   const Vec3 got(g[0].get<double>(), g[1].get<double>(), g[2].get<double>());
   EXPECT_LT((got * 1e-6 - expected).norm(), 1e-9) << got.transpose();
+}
+
+// plan-test on a calibrated cell plans with the calibrated robot: each chosen hole's command is
+// the controller's (KDL on the nominal URDF reaches the hole) and its predicted real TCP is KDL on
+// the exported URDF at the equilibrium joints, both to 1e-9 m.
+TEST(ApiCommands, PlanTestOfACalibratedCellPlansWithTheExportedUrdfsKinematics) {
+  const std::string cell = sample("verification/housing-kr120-calibrated.xml");
+  api::PlanTestOptions o;
+  o.per_axis = 3;
+  const api::PlanTestResult r =
+      api::planTestJob(cell, Vec3(-150, -150, 100), Vec3(150, 150, 200), 6, o);
+  const PredictionModel& m = r.context.model;
+  ASSERT_TRUE(r.context.robot.card.calibration.has_value());
+  const Pose tool = r.context.tool.T_flange_tcp;
+  const ChainDescription& ch = r.context.robot.chain;
+  const KDL::Chain real =
+      test::kdlExportedChain(r.context.robot.card.file, test::tempDir("plancal"), tool);
+  const KDL::Chain nominal =
+      test::kdlChain(r.context.robot.card.urdf_path, ch.base_link, ch.tip_link, tool);
+  ASSERT_EQ(r.plan.chosen.size(), 6u);
+  PredictionData d(m);
+  for (const int k : r.plan.chosen) {
+    const HoleRequest& c = r.candidates[static_cast<size_t>(k)];
+    const HolePrediction h = predictHole(m, d, c, nullptr);
+    ASSERT_EQ(h.status, HoleStatus::kOk) << h.reason;
+    EXPECT_LT((test::kdlPose(nominal, h.joints).translation() - c.T_W_tcp.translation()).norm(),
+              1e-9)
+        << c.id;
+    const Vec3 tcp = test::kdlPose(real, h.deflection.theta).translation();
+    EXPECT_LT((tcp - h.deflection.T_real.translation()).norm(), 1e-9) << c.id;
+    EXPECT_GT((tcp - test::kdlPose(nominal, h.deflection.theta).translation()).norm(), 0.1e-3);
+  }
 }
 
 }  // namespace
