@@ -577,13 +577,20 @@ MillingCompensationResult compensateMillingJob(const std::string& cell_path,
     r.targets.push_back(mo.target);
     frame.push_back(T_W_frame);
     r.points.push_back(T_W_frame * postproc::targetPose(prog, t));
+    // on the part where the cell's <part_registration> found it, as a drilled hole is aimed
+    if (r.context.cell.part_registration)
+      r.points.back() = partMotion(r.context.cell) * r.points.back();
     path.push_back({r.points.back(), mo.speed_mm_s >= 0 ? mo.speed_mm_s * 1e-3 : -1.0});
   }
   if (r.points.empty()) {
     throw InputError(program_path, 0,
                      "no linear path points (LIN/MoveL/L to Cartesian targets) in the program");
   }
-  r.cutting = decideCutting(r.context.model.process.milling, r.context.cell.T_base_wobj, path);
+  // the stock (workobject frame) moves with the part
+  const Pose T_W_stock = r.context.cell.part_registration
+                             ? partMotion(r.context.cell) * r.context.cell.T_base_wobj
+                             : r.context.cell.T_base_wobj;
+  r.cutting = decideCutting(r.context.model.process.milling, T_W_stock, path);
   r.points_comp = compensateMillingPath(r.context.model, r.points, &r.cutting);
   for (size_t i = 0; i < r.points_comp.size(); ++i) {
     const postproc::Target& t = prog.targets()[static_cast<size_t>(r.targets[i])];
