@@ -269,7 +269,8 @@ TEST(ApiCommands, DeflectOfACalibratedCardIsTheExportedUrdfsTcp) {
 
 // simulate on a calibrated cell: the hole's joints are the controller's command (KDL on the
 // nominal URDF puts the TCP on the hole's axis) and the static gravity deviation is the exported
-// URDF's TCP at deflect's equilibrium joints less its TCP at the command, both to 1e-9 m.
+// URDF's TCP at deflect's equilibrium joints less the nominal URDF's TCP at the command (the pose
+// the controller means, as deflect), both to 1e-9 m.
 TEST(ApiCommands, SimulateOfACalibratedCellUsesTheExportedUrdfsKinematics) {
   api::RobotSetupRequest sr;
   sr.cell = sample("verification/housing-kr120-calibrated.xml");
@@ -300,7 +301,7 @@ TEST(ApiCommands, SimulateOfACalibratedCellUsesTheExportedUrdfsKinematics) {
   dq.process = false;
   const api::DeflectResult d = api::deflectAt(s, dq);
   const Vec3 expected = test::kdlPose(real, d.deflection.theta).translation() -
-                        test::kdlPose(real, at.joints).translation();
+                        test::kdlPose(nominal, at.joints).translation();
   const json sj = json::parse(r.summary.dump());
   const auto& g = sj.at("static").at("gravity_only_um");
   const Vec3 got(g[0].get<double>(), g[1].get<double>(), g[2].get<double>());

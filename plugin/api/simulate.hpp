@@ -71,7 +71,8 @@ struct SimulateOptions {
 struct SimulationResult {
   nc::TransientResult transient;  ///< samples; ok/message/t_reached of the integration
   /// robot, cell, joints_deg, joints_source, process, drive (servo, k, B_m, D, Kv, Kω), static
-  /// (gravity-only and full-engagement deviation, as deflect), transient (end of full engagement,
+  /// (gravity-only and full-engagement deviation, as deflect: from FK_nom(θ_cmd) for a calibrated
+  /// card, as the transient's samples), transient (end of full engagement,
   /// maxima; drilling: first contact, end of cut, max thrust, cut depth; settling to 0.1 µm with
   /// the equivalent damping ratio; damping: the joint damping ratio, an estimate), cvode (ok,
   /// method, tolerances, statistics, events).
