@@ -580,6 +580,44 @@ class PythonApiTest(unittest.TestCase):
         with self.assertRaises(roprec.UsageError):
             roprec.verify(CELL, None, None, poses=poses, register="rigid", u_rot=0)
 
+    def test_filter_target_of_a_registered_cell_aims_at_the_registered_part(self):
+        # as CApi.FilterTargetOfARegisteredCellAimsAtTheRegisteredPart: a cell with a
+        # <part_registration> F (about the workobject W) programs a wanted pose T of the nominal
+        # part as the plain cell programs G·T, G = W·F⁻¹·W⁻¹ (the real part), to 1e-6 mm and 1e-9 rad,
+        # and the part moved the program by ≥ 0.1 mm
+        text = Path(CELL).read_text()
+        at = text.index("/>", text.index("<workobject ")) + 2
+        registered = self.tmp / "registered.xml"
+        registered.write_text(text[:at] + '\n  <part_registration xyz_mm="0.35 -0.2 0.25" rpy_mrad="0.5 -0.4 0.6" '
+                              'source="test"/>' + text[at:])
+
+        def rot(axis, a):
+            c, s = np.cos(a), np.sin(a)
+            i, j = (axis + 1) % 3, (axis + 2) % 3
+            R = np.eye(3)
+            R[i, i], R[i, j], R[j, i], R[j, j] = c, -s, s, c
+            return R
+
+        F = np.eye(4)  # the registration by hand: URDF rpy, R = Rz · Ry · Rx; mm
+        F[:3, :3] = rot(2, 0.6e-3) @ rot(1, -0.4e-3) @ rot(0, 0.5e-3)
+        F[:3, 3] = [0.35, -0.2, 0.25]
+        s, plain = roprec.Session(str(registered)), roprec.Session(CELL)
+        W = np.asarray(plain.workobject_pose_mm)
+        np.testing.assert_array_equal(np.asarray(s.workobject_pose_mm), W)  # the workobject stays
+        G = W @ np.linalg.inv(F) @ np.linalg.inv(W)
+        rows = [r.split(",") for r in Path(HOLES).read_text().splitlines() if r and not r.startswith("#")]
+        head = rows[0]
+        for row in rows[1:13]:
+            v = dict(zip(head, row))
+            want = np.asarray(plain.hole_pose([float(v[k]) for k in "xyz"], [float(v[k]) for k in "ijk"]))
+            prog = s.filter_target(want)[0]
+            hand = plain.filter_target(G @ want)[0]
+            prog, hand = np.asarray(prog), np.asarray(hand)
+            self.assertLessEqual(np.linalg.norm(prog[:3, 3] - hand[:3, 3]), 1e-6, v["id"])
+            D = prog[:3, :3].T @ hand[:3, :3]  # the small rotation between them: its vee part, rad
+            self.assertLessEqual(np.linalg.norm([D[2, 1] - D[1, 2], D[0, 2] - D[2, 0], D[1, 0] - D[0, 1]]) / 2, 1e-9)
+            self.assertGreaterEqual(np.linalg.norm(prog[:3, 3] - want[:3, 3]), 0.1, v["id"])
+
     def test_sessions_on_threads(self):
         holes = roprec.predict(CELL, HOLES)[:30]
         serial = [roprec.Session(CELL).filter_target(h["nominal_pose_mm"])[0] for h in holes]
