@@ -52,7 +52,7 @@ class Table {
           throw InputError(path, header.number,
                            "the pose file has no column '" + n +
                                "'; hint: the header is id,j1,j2,j3,j4,j5,j6,x,y,z "
-                               "(optional rx,ry,rz, mass,com_x,com_y,com_z, fx..mz, u)");
+                               "(optional rx,ry,rz, mass,com_x,com_y,com_z, fx..mz, u, u_rot)");
       }
     }
   }
@@ -140,6 +140,11 @@ MeasuredPose poseOfRow(const Table& t, const std::vector<std::string>& row, cons
       throw InputError(path, l.number, "the measurement uncertainty u must be > 0 µm");
     p.u_um = (*u)[0];
   }
+  if (const auto u = t.group(row, l.number, {"u_rot"}, false)) {
+    if (!((*u)[0] > 0))
+      throw InputError(path, l.number, "the orientation uncertainty u_rot must be > 0 µrad");
+    p.u_rot_urad = (*u)[0];
+  }
   return p;
 }
 
@@ -190,17 +195,20 @@ std::string writeMeasuredPoses(const std::vector<MeasuredPose>& poses) {
   bool payload = false;
   bool wrench = false;
   bool u = false;
+  bool u_rot = false;
   for (const MeasuredPose& p : poses) {
     rpy = rpy || p.rpy_deg.has_value();
     payload = payload || p.payload_kg.has_value();
     wrench = wrench || p.force_n.has_value();
     u = u || p.u_um.has_value();
+    u_rot = u_rot || p.u_rot_urad.has_value();
   }
   std::string s = "id,j1,j2,j3,j4,j5,j6,x,y,z";
   if (rpy) s += ",rx,ry,rz";
   if (payload) s += ",mass,com_x,com_y,com_z";
   if (wrench) s += ",fx,fy,fz,mx,my,mz";
   if (u) s += ",u";
+  if (u_rot) s += ",u_rot";
   s += "\n";
   const auto add = [&](bool present, int n, const auto& value, int decimals) {
     for (int k = 0; k < n; ++k) s += "," + (present ? cFixed(value(k), decimals) : std::string());
@@ -225,6 +233,9 @@ std::string writeMeasuredPoses(const std::vector<MeasuredPose>& poses) {
     if (u)
       add(
           p.u_um.has_value(), 1, [&](int) { return *p.u_um; }, 3);
+    if (u_rot)
+      add(
+          p.u_rot_urad.has_value(), 1, [&](int) { return *p.u_rot_urad; }, 3);
     s += "\n";
   }
   return s;

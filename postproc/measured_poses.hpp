@@ -5,7 +5,7 @@
 /// without drilling. Reading only; the modelling is compensator/precision/identification.hpp.
 ///
 /// ## The file (CSV, recognised by its header; docs/verification.md)
-///   id,j1,j2,j3,j4,j5,j6,x,y,z[,rx,ry,rz][,mass,com_x,com_y,com_z][,fx,fy,fz,mx,my,mz][,u]
+///   id,j1,j2,j3,j4,j5,j6,x,y,z[,rx,ry,rz][,mass,com_x,com_y,com_z][,fx,fy,fz,mx,my,mz][,u][,u_rot]
 ///  * `id`: the pose's name (unique).
 ///  * `j1..j6`: the **commanded** joints the controller was given (degrees, the controller's
 ///    convention = the card's URDF convention with its vendor offsets removed by the host; roprec
@@ -15,13 +15,17 @@
 ///  * `x,y,z`: the measured TCP (the tracker's reflector at the cell's tool TCP), **workobject
 ///    frame of the cell, mm** (the tracker's frame after its alignment; a residual offset is the
 ///    registration `verify --register` estimates).
-///  * `rx,ry,rz`: optional measured TCP orientation (URDF rpy, degrees, workobject frame); read and
-///    reported, the three cells together.
+///  * `rx,ry,rz`: optional measured TCP orientation (a 6-DoF tracker probe), degrees, of the
+///    cell's tool TCP frame in the workobject frame: URDF rpy = fixed X-Y-Z, R =
+///    Rz(rz)·Ry(ry)·Rx(rx) (the CSV targets' `# euler: XYZ_fixed`, docs/programs.md). The three
+///    cells together; the identification then has three more equations per pose.
 ///  * `mass` (kg) and `com_x,com_y,com_z` (mm, flange frame): an optional payload on the flange in
 ///    addition to the cell's tool, all four cells together.
 ///  * `fx,fy,fz` (N) and `mx,my,mz` (N·m): an optional wrench applied at the TCP, base frame (e.g.
 ///    a rope and weight), the six together.
 ///  * `u`: optional standard measurement uncertainty per axis, µm (> 0).
+///  * `u_rot`: optional standard uncertainty per axis of the measured orientation, µrad (> 0;
+///    default verify's, 100 µrad).
 /// Column names are case-insensitive, in any order; unknown columns are ignored; `#` starts a
 /// comment line; blank lines are skipped; optional cells of a row may be empty (their group
 /// together). Numbers are parsed locale-independently and must be finite.
@@ -47,8 +51,9 @@ struct MeasuredPose {
   Vec3 payload_com_mm{Vec3::Zero()};  ///< its centre of mass, flange frame
   std::optional<Vec3> force_n;        ///< wrench at the TCP, base frame (with torque_nm)
   Vec3 torque_nm{Vec3::Zero()};
-  std::optional<double> u_um;  ///< standard measurement uncertainty per axis
-  int line{0};                 ///< 1-based source line
+  std::optional<double> u_um;        ///< standard measurement uncertainty per axis
+  std::optional<double> u_rot_urad;  ///< standard uncertainty per axis of the orientation
+  int line{0};                       ///< 1-based source line
 };
 
 struct MeasuredPoses {

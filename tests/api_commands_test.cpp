@@ -11,6 +11,7 @@
 #include "plugin/api/forces.hpp"
 #include "plugin/api/inspect.hpp"
 #include "plugin/api/kinematics.hpp"
+#include "plugin/api/plan_test.hpp"
 #include "plugin/api/robots.hpp"
 #include "plugin/api/simulate.hpp"
 #include "plugin/report/deflect_json.hpp"
@@ -19,6 +20,7 @@
 #include "plugin/report/kinematics_json.hpp"
 #include "plugin/report/robots_output.hpp"
 #include "plugin/report/simulate_output.hpp"
+#include "tests/support/kdl_support.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace roprec {
@@ -214,6 +216,135 @@ TEST(ApiCommands, InspectConvertAndRobotsEqualTheCli) {
   EXPECT_EQ(robots.summary, test::runRoprec("robots").out);
   EXPECT_EQ(robots.text, test::runRoprec("robots --all").out);
   EXPECT_EQ(robots.json.dump(), test::runRoprec("robots --json").out);
+}
+
+// ---- a calibrated card: the real robot is the URDF `card export-urdf` writes (KDL)
+
+api::RobotSetup calibratedKuka() {
+  api::RobotSetupRequest req;
+  req.robot = sample("verification/kr120-calibrated.xml");
+  return api::loadRobotSetup(req);
+}
+
+// ik answers for the real robot: every usable solution puts KDL's flange of the exported URDF on
+// the target to 1e-9 m (and the nominal URDF's flange off it by the calibration).
+TEST(ApiCommands, IkOfACalibratedCardReachesTheTargetWithTheExportedUrdf) {
+  const api::RobotSetup s = calibratedKuka();
+  ASSERT_TRUE(s.robot.card.calibration.has_value());
+  const KDL::Chain real = test::kdlExportedChain(s.robot.card.file, test::tempDir("ikcal"));
+  const KDL::Chain nominal =
+      test::kdlChain(s.robot.card.urdf_path, s.robot.chain.base_link, s.robot.chain.tip_link);
+  api::IkRequest req;
+  req.target = test::kdlPose(nominal, degrees(15, -70, 100, 25, 45, -35));
+  const api::IkAnswer a = api::inverseKinematicsFor(s, req);
+  ASSERT_GT(a.usable, 0) << a.unreachable;
+  for (int k = 0; k < a.result->count; ++k) {
+    const IkSolution& sol = a.result->solutions[static_cast<size_t>(k)];
+    if (!sol.converged || !sol.within_limits) continue;
+    const Pose T = test::kdlPose(real, sol.q);
+    EXPECT_LT((T.translation() - req.target.translation()).norm(), 1e-9) << k;
+    EXPECT_LT(Eigen::AngleAxisd(T.linear().transpose() * req.target.linear()).angle(), 1e-9) << k;
+    EXPECT_GT((test::kdlPose(nominal, sol.q).translation() - req.target.translation()).norm(),
+              0.1e-3)
+        << k;
+  }
+}
+
+// deflect at commanded joints: the real TCP is KDL's on the exported URDF at the equilibrium
+// joints, and the deviation is taken from the pose the controller means (KDL on the nominal
+// URDF at the command), both to 1e-9 m.
+TEST(ApiCommands, DeflectOfACalibratedCardIsTheExportedUrdfsTcp) {
+  api::RobotSetupRequest sr;
+  sr.cell = sample("verification/housing-kr120-calibrated.xml");
+  const api::RobotSetup s = api::loadRobotSetup(sr);
+  ASSERT_TRUE(s.robot.card.calibration.has_value());
+  const Pose tool = s.tool.T_flange_tcp;
+  const KDL::Chain real = test::kdlExportedChain(s.robot.card.file, test::tempDir("deflcal"), tool);
+  const KDL::Chain nominal =
+      test::kdlChain(s.robot.card.urdf_path, s.robot.chain.base_link, s.robot.chain.tip_link, tool);
+  api::DeflectRequest req;
+  req.joints = degrees(5, -60, 100, 10, 50, -20);
+  req.wrench = nc::Wrench{Vec3(0, 0, 800), Vec3::Zero()};
+  const api::DeflectResult r = api::deflectAt(s, req);
+  ASSERT_TRUE(r.deflection.converged);
+  const Vec3 real_tcp = test::kdlPose(real, r.deflection.theta).translation();
+  EXPECT_LT((real_tcp - r.deflection.T_real.translation()).norm(), 1e-9);
+  const Vec3 commanded = test::kdlPose(nominal, req.joints).translation();
+  EXPECT_LT((r.deflection.dp - (real_tcp - commanded)).norm(), 1e-9);
+  EXPECT_GT((real_tcp - test::kdlPose(nominal, r.deflection.theta).translation()).norm(), 0.1e-3);
+}
+
+// simulate on a calibrated cell: the hole's joints are the controller's command (KDL on the
+// nominal URDF puts the TCP on the hole's axis) and the static gravity deviation is the exported
+// URDF's TCP at deflect's equilibrium joints less the nominal URDF's TCP at the command (the pose
+// the controller means, as deflect), both to 1e-9 m.
+TEST(ApiCommands, SimulateOfACalibratedCellUsesTheExportedUrdfsKinematics) {
+  api::RobotSetupRequest sr;
+  sr.cell = sample("verification/housing-kr120-calibrated.xml");
+  const api::RobotSetup s = api::loadRobotSetup(sr);
+  ASSERT_TRUE(s.robot.card.calibration.has_value());
+  const std::string dir = test::tempDir("simcal");
+  test::writeFile(dir + "/holes.csv",
+                  "id,x,y,z,i,j,k,diameter,depth,tolerance\nH1,40,-30,150,0,0,-1,8.5,20,0.2\n");
+  const api::HoleJoints at = api::holeJoints(s, dir + "/holes.csv", "H1");
+  const Pose tool = s.tool.T_flange_tcp;
+  const KDL::Chain real = test::kdlExportedChain(s.robot.card.file, dir, tool);
+  const KDL::Chain nominal =
+      test::kdlChain(s.robot.card.urdf_path, s.robot.chain.base_link, s.robot.chain.tip_link, tool);
+  const Pose T_W_wobj = s.cell->T_base_wobj;
+  const Vec3 hole = T_W_wobj * Vec3(0.040, -0.030, 0.150);
+  const Vec3 axis = -T_W_wobj.linear().col(2);
+  const Pose commanded = test::kdlPose(nominal, at.joints);
+  const Vec3 off = commanded.translation() - hole;
+  EXPECT_LT((off - off.dot(axis) * axis).norm(), 1e-9);
+  EXPECT_LT((commanded.linear().col(2) - axis).norm(), 1e-9);
+
+  api::SimulateOptions opt;
+  opt.duration = 0.02;
+  const api::SimulationResult r = api::simulateAt(s, at, opt);
+  ASSERT_TRUE(r.transient.ok) << r.transient.message;
+  api::DeflectRequest dq;
+  dq.joints = at.joints;
+  dq.process = false;
+  const api::DeflectResult d = api::deflectAt(s, dq);
+  const Vec3 expected = test::kdlPose(real, d.deflection.theta).translation() -
+                        test::kdlPose(nominal, at.joints).translation();
+  const json sj = json::parse(api::simulationSummaryJson(s, at, r).dump());
+  const auto& g = sj.at("static").at("gravity_only_um");
+  const Vec3 got(g[0].get<double>(), g[1].get<double>(), g[2].get<double>());
+  EXPECT_LT((got * 1e-6 - expected).norm(), 1e-9) << got.transpose();
+}
+
+// plan-test on a calibrated cell plans with the calibrated robot: each chosen hole's command is
+// the controller's (KDL on the nominal URDF reaches the hole) and its predicted real TCP is KDL on
+// the exported URDF at the equilibrium joints, both to 1e-9 m.
+TEST(ApiCommands, PlanTestOfACalibratedCellPlansWithTheExportedUrdfsKinematics) {
+  const std::string cell = sample("verification/housing-kr120-calibrated.xml");
+  api::PlanTestOptions o;
+  o.per_axis = 3;
+  const api::PlanTestResult r =
+      api::planTestJob(cell, Vec3(-150, -150, 100), Vec3(150, 150, 200), 6, o);
+  const PredictionModel& m = r.context.model;
+  ASSERT_TRUE(r.context.robot.card.calibration.has_value());
+  const Pose tool = r.context.tool.T_flange_tcp;
+  const ChainDescription& ch = r.context.robot.chain;
+  const KDL::Chain real =
+      test::kdlExportedChain(r.context.robot.card.file, test::tempDir("plancal"), tool);
+  const KDL::Chain nominal =
+      test::kdlChain(r.context.robot.card.urdf_path, ch.base_link, ch.tip_link, tool);
+  ASSERT_EQ(r.plan.chosen.size(), 6u);
+  PredictionData d(m);
+  for (const int k : r.plan.chosen) {
+    const HoleRequest& c = r.candidates[static_cast<size_t>(k)];
+    const HolePrediction h = predictHole(m, d, c, nullptr);
+    ASSERT_EQ(h.status, HoleStatus::kOk) << h.reason;
+    EXPECT_LT((test::kdlPose(nominal, h.joints).translation() - c.T_W_tcp.translation()).norm(),
+              1e-9)
+        << c.id;
+    const Vec3 tcp = test::kdlPose(real, h.deflection.theta).translation();
+    EXPECT_LT((tcp - h.deflection.T_real.translation()).norm(), 1e-9) << c.id;
+    EXPECT_GT((tcp - test::kdlPose(nominal, h.deflection.theta).translation()).norm(), 0.1e-3);
+  }
 }
 
 }  // namespace

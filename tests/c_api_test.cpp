@@ -378,6 +378,75 @@ TEST(CApi, FilterTargetEqualsKeepCompensationOnEverySampleHole) {
   std::filesystem::remove_all(dir);
 }
 
+// A cell with a <part_registration> (verify --write-cell): filter_target takes a pose on the
+// nominal part and aims it where the registration found the part — the same programmed pose as
+// filter_target on the cell without it for the registered pose computed by hand,
+// G = T_W_wobj · F⁻¹ · T_W_wobj⁻¹ — and as compensate (keep) of the registered cell, to 1e-9 m.
+TEST(CApi, FilterTargetOfARegisteredCellAimsAtTheRegisteredPart) {
+  const std::vector<postproc::HoleSpec> specs = postproc::readHoleList(kHoles);
+  const CellSpec cell = loadCell(kCell);
+  const std::string dir = tempDir("capi-registered");
+  std::string text = readFile(kCell);
+  const size_t wobj = text.find("<workobject ");
+  ASSERT_NE(wobj, std::string::npos);
+  text.insert(text.find("/>", wobj) + 2,
+              "\n  <part_registration xyz_mm=\"0.35 -0.2 0.25\" rpy_mrad=\"0.5 -0.4 0.6\" "
+              "source=\"test\"/>");
+  const std::string registered = dir + "/registered.xml";
+  writeFile(registered, text);
+  Pose F = Pose::Identity();  // the registration by hand: URDF rpy, R = Rz · Ry · Rx
+  F.linear() =
+      (Eigen::AngleAxisd(0.6e-3, Vec3::UnitZ()) * Eigen::AngleAxisd(-0.4e-3, Vec3::UnitY()) *
+       Eigen::AngleAxisd(0.5e-3, Vec3::UnitX()))
+          .toRotationMatrix();
+  F.translation() = Vec3(0.35e-3, -0.2e-3, 0.25e-3);
+  const Pose G = cell.T_base_wobj * F.inverse() * cell.T_base_wobj.inverse();
+  std::vector<postproc::HoleSpec> some(specs.begin(), specs.begin() + 12);
+  const std::string program = dir + "/holes_program.json";
+  writeFile(program, holeListProgram(some, cell.T_base_wobj));
+  api::CompensationJob cj;
+  cj.options.mode = OrientationMode::kKeep;
+  const api::CompensationResult job = api::compensateJobHoles(registered, program, cj);
+  ASSERT_EQ(job.holes.size(), some.size());
+  roprec_session* s = nullptr;
+  roprec_session* plain = nullptr;
+  char err[1024];
+  ASSERT_EQ(roprec_open(registered.c_str(), &s, err, sizeof err), ROPREC_OK) << err;
+  ASSERT_EQ(roprec_open(kCell.c_str(), &plain, err, sizeof err), ROPREC_OK) << err;
+  const RobotCard& card = job.context.robot.card;
+  for (size_t i = 0; i < some.size(); ++i) {
+    SCOPED_TRACE(some[i].id);
+    const HoleCompensation& h = job.holes[i];
+    ASSERT_TRUE(h.ok) << h.reason;
+    Pose T_wobj_tcp = Pose::Identity();
+    T_wobj_tcp.linear() = api::holeFrame(some[i].direction);
+    T_wobj_tcp.translation() = some[i].position_mm * 1e-3;
+    const Pose T_want = cell.T_base_wobj * T_wobj_tcp;
+    const Vec6 seed_deg = toControllerJoints(card, h.before.joints) / kDeg;
+    std::array<double, 16> prog{};
+    std::array<double, 16> prog_hand{};
+    std::array<double, 6> joints{};
+    const std::array<double, 16> want = rowMajorMm(T_want);
+    const std::array<double, 16> want_hand = rowMajorMm(G * T_want);
+    ASSERT_EQ(roprec_filter_target(s, want.data(), seed_deg.data(), prog.data(), joints.data(), err,
+                                   sizeof err),
+              ROPREC_OK)
+        << err;
+    ASSERT_EQ(roprec_filter_target(plain, want_hand.data(), seed_deg.data(), prog_hand.data(),
+                                   joints.data(), err, sizeof err),
+              ROPREC_OK)
+        << err;
+    const Vec3 p(prog[3], prog[7], prog[11]);
+    EXPECT_LE((p - Vec3(prog_hand[3], prog_hand[7], prog_hand[11])).norm(), 1e-6);  // mm
+    EXPECT_LE(angleBetween(rotationOf(prog), rotationOf(prog_hand)), 1e-9);
+    EXPECT_LE((p - h.T_programmed.translation() * 1e3).norm(), 1e-6);
+    EXPECT_GE((p - Vec3(want[3], want[7], want[11])).norm(), 0.1) << "the part moved ≥ 0.1 mm";
+  }
+  roprec_close(s);
+  roprec_close(plain);
+  std::filesystem::remove_all(dir);
+}
+
 TEST(CApi, ReadmeTableListsEveryExportedFunction) {
   const std::string header = readFile(sourceDir() + "/plugin/c/roprec.h");
   const std::string readme = readFile(sourceDir() + "/README.md");

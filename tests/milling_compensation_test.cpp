@@ -283,5 +283,52 @@ TEST(MillingCompensation, EngagementFromTheBoxStockAndTheEarlierPasses) {
   EXPECT_TRUE(before_box);
 }
 
+// A milling cell with a <part_registration> (verify --write-cell): every path point is aimed
+// where the registration found the part — the nominal path moved by G = T_W_wobj · F⁻¹ ·
+// T_W_wobj⁻¹ computed by hand, to 1e-12 m — with the same cutting decisions (the stock moves with
+// the part), and the compensation lands on the moved path as it lands on the nominal one.
+TEST(MillingCompensation, ARegisteredCellCompensatesTheRegisteredPath) {
+  const std::string cell = test::sourceDir() + "/samples/cells/alu-milling-7075.xml";
+  const std::string prog = test::sourceDir() + "/samples/milling/wall_pass.src";
+  const std::string dir = test::tempDir("mill-registered");
+  std::string text = test::readFile(cell);
+  const size_t wobj = text.find("<workobject ");
+  ASSERT_NE(wobj, std::string::npos);
+  text.insert(text.find("/>", wobj) + 2,
+              "\n  <part_registration xyz_mm=\"0.35 -0.2 0.25\" rpy_mrad=\"0.5 -0.4 0.6\" "
+              "source=\"test\"/>");
+  const std::string registered = dir + "/registered.xml";
+  test::writeFile(registered, text);
+  const api::MillingCompensationResult plain = api::compensateMillingJob(cell, prog, false);
+  const api::MillingCompensationResult reg = api::compensateMillingJob(registered, prog, false);
+  Pose F = Pose::Identity();  // URDF rpy: R = Rz · Ry · Rx
+  F.linear() =
+      (Eigen::AngleAxisd(0.6e-3, Vec3::UnitZ()) * Eigen::AngleAxisd(-0.4e-3, Vec3::UnitY()) *
+       Eigen::AngleAxisd(0.5e-3, Vec3::UnitX()))
+          .toRotationMatrix();
+  F.translation() = Vec3(0.35e-3, -0.2e-3, 0.25e-3);
+  const Pose T_W_wobj = plain.context.cell.T_base_wobj;
+  const Pose G = T_W_wobj * F.inverse() * T_W_wobj.inverse();
+  ASSERT_EQ(reg.points.size(), plain.points.size());
+  double worst_plain = 0;
+  double worst_reg = 0;
+  for (size_t i = 0; i < reg.points.size(); ++i) {
+    const Pose moved = G * plain.points[i];
+    EXPECT_LT((reg.points[i].translation() - moved.translation()).norm(), 1e-12) << i;
+    EXPECT_LT((reg.points[i].linear() - moved.linear()).norm(), 1e-12) << i;
+    EXPECT_EQ(reg.cutting[i].cutting, plain.cutting[i].cutting) << i;
+    ASSERT_EQ(reg.points_comp[i].ok, plain.points_comp[i].ok) << i;
+    if (!reg.points_comp[i].ok) continue;
+    worst_plain = std::max(worst_plain, plain.points_comp[i].residual.norm());
+    worst_reg = std::max(worst_reg, reg.points_comp[i].residual.norm());
+    EXPECT_GT((reg.points_comp[i].T_programmed.translation() -
+               plain.points_comp[i].T_programmed.translation())
+                  .norm(),
+              0.1e-3)
+        << i;
+  }
+  EXPECT_LE(worst_reg, worst_plain + 1e-6);
+}
+
 }  // namespace
 }  // namespace roprec

@@ -10,7 +10,9 @@ ROPREC_C_LIB = libroprec_c.so.
 
 import ctypes
 import json
+import math
 import os
+import random
 import shutil
 import subprocess
 import tempfile
@@ -533,6 +535,88 @@ class PythonApiTest(unittest.TestCase):
         self.assertEqual(rc, 1)
         self.assertIn("not compensated", err)
         self.assertFalse((self.tmp / "out.json").exists())
+
+    def tracker_poses_with_orientation(self, count=24):
+        """A tracker pose file with rx,ry,rz: the sample program's commanded joints, measured at the
+        programmed TCP (workobject frame; its axes are the base's) with a seeded ±0.3 mrad error per
+        angle, so the fit trades the orientations against the positions by their σ."""
+        r = cli("predict", "--cell", CELL, PROGRAM, "--holes", HOLES, "--quiet", "--json", self.tmp / "p.json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        wobj = (1350.0, 0.0, 300.0)  # mm, the cell's <workobject>
+        rng = random.Random(7)
+        rows = ["id,j1,j2,j3,j4,j5,j6,x,y,z,rx,ry,rz"]
+        for h in load_json(self.tmp / "p.json")["holes"][:count]:
+            w, x, y, z = (float(v) for v in h["nominal"]["quaternion_wxyz"])
+            R = [[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+                 [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+                 [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]]
+            rpy = (math.atan2(R[2][1], R[2][2]), math.asin(-R[2][0]), math.atan2(R[1][0], R[0][0]))  # fixed X-Y-Z
+            xyz = ",".join("%.4f" % (float(h["nominal"]["position_mm"][a]) - wobj[a]) for a in range(3))
+            angles = ",".join("%.7f" % math.degrees(a + rng.uniform(-3e-4, 3e-4)) for a in rpy)
+            joints = ",".join("%.9f" % float(q) for q in h["controller_joints_deg"])
+            rows.append("%s,%s,%s,%s" % (h["id"], joints, xyz, angles))
+        path = self.tmp / "poses.csv"
+        path.write_text("\n".join(rows) + "\n")
+        return path
+
+    def test_verify_u_rot_gives_the_cli_rotation_residuals(self):
+        # verify(poses=..., u_rot=...) as `roprec verify --poses ... --u-rot ...`: the same JSON (each
+        # pose's rotation_residual_identified_urad within 1e-9 relative); u_rot weighs the orientations
+        # against the positions in the rigid registration, so another σ gives other residuals
+        poses = self.tracker_poses_with_orientation()
+        r = cli("verify", "--cell", CELL, "--poses", poses, "--register", "rigid", "--u-rot", "20", "--quiet", "--json",
+                self.tmp / "cli.json")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        ref = json.loads((self.tmp / "cli.json").read_text())
+        got = roprec.verify(CELL, None, None, poses=poses, register="rigid", u_rot=20)
+        self.assertEqual(got.pop("written"), [])
+        compare_trees(got, ref)
+        rot = [p["rotation_residual_identified_urad"] for p in got["poses"]["poses"]]
+        self.assertEqual(len(rot), 24)
+        self.assertGreater(max(max(abs(v) for v in p) for p in rot), 1.0)  # µrad: the orientations were fitted
+        default = roprec.verify(CELL, None, None, poses=poses, register="rigid")
+        other = [p["rotation_residual_identified_urad"] for p in default["poses"]["poses"]]
+        self.assertGreater(max(abs(a - b) for p, q in zip(rot, other) for a, b in zip(p, q)), 1e-3)
+        with self.assertRaises(roprec.UsageError):
+            roprec.verify(CELL, None, None, poses=poses, register="rigid", u_rot=0)
+
+    def test_filter_target_of_a_registered_cell_aims_at_the_registered_part(self):
+        # as CApi.FilterTargetOfARegisteredCellAimsAtTheRegisteredPart: a cell with a
+        # <part_registration> F (about the workobject W) programs a wanted pose T of the nominal
+        # part as the plain cell programs G·T, G = W·F⁻¹·W⁻¹ (the real part), to 1e-6 mm and 1e-9 rad,
+        # and the part moved the program by ≥ 0.1 mm
+        text = Path(CELL).read_text()
+        at = text.index("/>", text.index("<workobject ")) + 2
+        registered = self.tmp / "registered.xml"
+        registered.write_text(text[:at] + '\n  <part_registration xyz_mm="0.35 -0.2 0.25" rpy_mrad="0.5 -0.4 0.6" '
+                              'source="test"/>' + text[at:])
+
+        def rot(axis, a):
+            c, s = np.cos(a), np.sin(a)
+            i, j = (axis + 1) % 3, (axis + 2) % 3
+            R = np.eye(3)
+            R[i, i], R[i, j], R[j, i], R[j, j] = c, -s, s, c
+            return R
+
+        F = np.eye(4)  # the registration by hand: URDF rpy, R = Rz · Ry · Rx; mm
+        F[:3, :3] = rot(2, 0.6e-3) @ rot(1, -0.4e-3) @ rot(0, 0.5e-3)
+        F[:3, 3] = [0.35, -0.2, 0.25]
+        s, plain = roprec.Session(str(registered)), roprec.Session(CELL)
+        W = np.asarray(plain.workobject_pose_mm)
+        np.testing.assert_array_equal(np.asarray(s.workobject_pose_mm), W)  # the workobject stays
+        G = W @ np.linalg.inv(F) @ np.linalg.inv(W)
+        rows = [r.split(",") for r in Path(HOLES).read_text().splitlines() if r and not r.startswith("#")]
+        head = rows[0]
+        for row in rows[1:13]:
+            v = dict(zip(head, row))
+            want = np.asarray(plain.hole_pose([float(v[k]) for k in "xyz"], [float(v[k]) for k in "ijk"]))
+            prog = s.filter_target(want)[0]
+            hand = plain.filter_target(G @ want)[0]
+            prog, hand = np.asarray(prog), np.asarray(hand)
+            self.assertLessEqual(np.linalg.norm(prog[:3, 3] - hand[:3, 3]), 1e-6, v["id"])
+            D = prog[:3, :3].T @ hand[:3, :3]  # the small rotation between them: its vee part, rad
+            self.assertLessEqual(np.linalg.norm([D[2, 1] - D[1, 2], D[0, 2] - D[2, 0], D[1, 0] - D[0, 1]]) / 2, 1e-9)
+            self.assertGreaterEqual(np.linalg.norm(prog[:3, 3] - want[:3, 3]), 0.1, v["id"])
 
     def test_sessions_on_threads(self):
         holes = roprec.predict(CELL, HOLES)[:30]

@@ -355,63 +355,91 @@ std::vector<Eigen::Vector3d> drilledPoints(const std::string& cell_path, const s
   return out;
 }
 
-TEST(VerifyCli, WrittenPartRegistrationReachesAProgramWithItsOwnBase) {
-  // the test program with its own $BASE (not the cell's workobject 1350 0 300, rpy 0), drilled
-  // by the cell's robot (the truth here) on a part displaced by a known registration F = [R, t]
-  // about the workobject: the CMM measures a real point p (base frame) at F · T_W_wobj⁻¹ · p
-  const std::string dir = test::tempDir("partreg");
-  const std::string prog = dir + "/test_kr120.src";
+/// The test program with its own $BASE (not the cell's workobject 1350 0 300, rpy 0), drilled
+/// by the cell's robot (the truth here) on a part displaced by a known registration F = [R, t]
+/// about the workobject — the CMM measures a real point p (base frame) at F · T_W_wobj⁻¹ · p —
+/// and the cell verify --register rigid --write-cell wrote from it.
+struct RegisteredPart {
+  std::string dir, prog, own_base, new_cell;
+  json nominal;                       ///< the program's holes predicted with the cell
+  std::vector<Eigen::Vector3d> real;  ///< their real drill points, base frame, mm
+  Eigen::Isometry3d T_W_wobj, F;      ///< mm
+  /// The hole i of the nominal part where F puts it: T_W_wobj · F⁻¹ · T_W_wobj⁻¹ · p (mm).
+  [[nodiscard]] Eigen::Vector3d registered(size_t i) const {
+    return T_W_wobj *
+           (F.inverse() * (T_W_wobj.inverse() * vec(nominal[i]["nominal"]["position_mm"])));
+  }
+};
+
+RegisteredPart registeredPart(const std::string& name) {
+  RegisteredPart r;
+  r.dir = test::tempDir(name);
+  r.prog = r.dir + "/test_kr120.src";
   std::string src = test::readFile(program());
   const std::string base = "$BASE={FRAME: X 1350.000000,Y 0.000000,Z 300.000000,A 0.000000000";
-  ASSERT_NE(src.find(base), std::string::npos);
-  const std::string own = "$BASE={FRAME: X 1362.500000,Y -14.000000,Z 291.000000,A 2.000000000";
-  src.replace(src.find(base), base.size(), own);
-  test::writeFile(prog, src);
-  fs::copy_file(s("verification/test_kr120.dat"), dir + "/test_kr120.dat");
-  json nominal;
-  const std::vector<Eigen::Vector3d> real = drilledPoints(cell(), prog, dir + "/p.json", &nominal);
-  Eigen::Isometry3d T_W_wobj = Eigen::Isometry3d::Identity();
-  T_W_wobj.translation() = Eigen::Vector3d(1350, 0, 300);  // mm, rpy 0
-  Eigen::Isometry3d F = Eigen::Isometry3d::Identity();
-  F.linear() = (Eigen::AngleAxisd(0.6e-3, Eigen::Vector3d::UnitZ()) *
-                Eigen::AngleAxisd(-0.4e-3, Eigen::Vector3d::UnitY()) *
-                Eigen::AngleAxisd(0.5e-3, Eigen::Vector3d::UnitX()))
-                   .toRotationMatrix();
-  F.translation() = Eigen::Vector3d(0.35, -0.20, 0.25);  // mm
+  EXPECT_NE(src.find(base), std::string::npos);
+  r.own_base = "$BASE={FRAME: X 1362.500000,Y -14.000000,Z 291.000000,A 2.000000000";
+  src.replace(src.find(base), base.size(), r.own_base);
+  test::writeFile(r.prog, src);
+  fs::copy_file(s("verification/test_kr120.dat"), r.dir + "/test_kr120.dat");
+  r.real = drilledPoints(cell(), r.prog, r.dir + "/p.json", &r.nominal);
+  r.T_W_wobj = Eigen::Isometry3d::Identity();
+  r.T_W_wobj.translation() = Eigen::Vector3d(1350, 0, 300);  // mm, rpy 0
+  r.F = Eigen::Isometry3d::Identity();
+  r.F.linear() = (Eigen::AngleAxisd(0.6e-3, Eigen::Vector3d::UnitZ()) *
+                  Eigen::AngleAxisd(-0.4e-3, Eigen::Vector3d::UnitY()) *
+                  Eigen::AngleAxisd(0.5e-3, Eigen::Vector3d::UnitX()))
+                     .toRotationMatrix();
+  r.F.translation() = Eigen::Vector3d(0.35, -0.20, 0.25);  // mm
   std::string csv = "id,x,y,z,u\n";
-  for (size_t i = 0; i < real.size(); ++i) {
-    const Eigen::Vector3d m = F * (T_W_wobj.inverse() * real[i]);
+  for (size_t i = 0; i < r.real.size(); ++i) {
+    const Eigen::Vector3d m = r.F * (r.T_W_wobj.inverse() * r.real[i]);
     char buf[160];
     std::snprintf(buf, sizeof buf, "%s,%.5f,%.5f,%.5f,1.0\n",
-                  nominal[i]["id"].get<std::string>().c_str(), m.x(), m.y(), m.z());
+                  r.nominal[i]["id"].get<std::string>().c_str(), m.x(), m.y(), m.z());
     csv += buf;
   }
-  test::writeFile(dir + "/measured.csv", csv);
-  const std::string new_cell = dir + "/cell.xml";
-  const auto v = test::runRoprec("verify --cell " + q(cell()) + " " + q(prog) + " --measured " +
-                                 q(dir + "/measured.csv") + " --register rigid --write-cell " +
-                                 q(new_cell) + " --quiet");
-  ASSERT_EQ(v.exit_code, 0) << v.err << v.out;
-  const std::string text = test::readFile(new_cell);
+  test::writeFile(r.dir + "/measured.csv", csv);
+  r.new_cell = r.dir + "/cell.xml";
+  const auto v = test::runRoprec("verify --cell " + q(cell()) + " " + q(r.prog) + " --measured " +
+                                 q(r.dir + "/measured.csv") + " --register rigid --write-cell " +
+                                 q(r.new_cell) + " --quiet");
+  EXPECT_EQ(v.exit_code, 0) << v.err << v.out;
+  return r;
+}
+
+/// The registration F of `F` as the cell writes it: rpy (URDF order), mrad.
+Eigen::Vector3d rpyMrad(const Eigen::Isometry3d& F) {
+  const Eigen::Matrix3d R = F.linear();
+  return Eigen::Vector3d(std::atan2(R(2, 1), R(2, 2)), std::asin(-R(2, 0)),
+                         std::atan2(R(1, 0), R(0, 0))) *
+         1e3;
+}
+
+TEST(VerifyCli, WrittenPartRegistrationReachesAProgramWithItsOwnBase) {
+  const RegisteredPart part = registeredPart("partreg");
+  const std::string text = test::readFile(part.new_cell);
   EXPECT_NE(text.find("<workobject xyz=\"1350 0 300\" rpy=\"0 0 0\"/>"), std::string::npos) << text;
-  EXPECT_LE((attributeTriple(text, "part_registration", "xyz_mm") - F.translation()).norm(), 2e-3)
+  EXPECT_LE((attributeTriple(text, "part_registration", "xyz_mm") - part.F.translation()).norm(),
+            2e-3)
       << text;
   // compensate with the written cell; the cell's robot drills the result
-  const std::string comp = dir + "/comp.src";
-  const auto c =
-      test::runRoprec("compensate --cell " + q(new_cell) + " " + q(prog) + " -o " + q(comp));
+  const std::string comp = part.dir + "/comp.src";
+  const auto c = test::runRoprec("compensate --cell " + q(part.new_cell) + " " + q(part.prog) +
+                                 " -o " + q(comp));
   ASSERT_EQ(c.exit_code, 0) << c.err;
-  EXPECT_NE(test::readFile(comp).find(own), std::string::npos) << "the program keeps its $BASE";
-  const std::vector<Eigen::Vector3d> drilled = drilledPoints(cell(), comp, dir + "/c.json");
-  ASSERT_EQ(drilled.size(), real.size());
+  EXPECT_NE(test::readFile(comp).find(part.own_base), std::string::npos)
+      << "the program keeps its $BASE";
+  const std::vector<Eigen::Vector3d> drilled = drilledPoints(cell(), comp, part.dir + "/c.json");
+  ASSERT_EQ(drilled.size(), part.real.size());
   // the displaced holes by hand: the real part is the nominal one moved by F⁻¹ about the
   // workobject, p_reg = T_W_wobj · F⁻¹ · T_W_wobj⁻¹ · p_nominal; distances ⊥ the nominal axis
   double worst = 0;
   double worst_unregistered = 1e9;
   for (size_t i = 0; i < drilled.size(); ++i) {
-    const Eigen::Vector3d p = vec(nominal[i]["nominal"]["position_mm"]);
-    const Eigen::Vector3d a = vec(nominal[i]["nominal"]["axis"]);
-    const Eigen::Vector3d p_reg = T_W_wobj * (F.inverse() * (T_W_wobj.inverse() * p));
+    const Eigen::Vector3d p = vec(part.nominal[i]["nominal"]["position_mm"]);
+    const Eigen::Vector3d a = vec(part.nominal[i]["nominal"]["axis"]);
+    const Eigen::Vector3d p_reg = part.registered(i);
     auto perp = [&](const Eigen::Vector3d& d) { return (d - d.dot(a) * a).norm(); };
     worst = std::max(worst, perp(drilled[i] - p_reg));
     worst_unregistered = std::min(worst_unregistered, perp(p - p_reg));
@@ -423,13 +451,83 @@ TEST(VerifyCli, WrittenPartRegistrationReachesAProgramWithItsOwnBase) {
   const size_t at = bad.find("xyz_mm=\"");
   ASSERT_NE(at, std::string::npos);
   bad.insert(at + 8, "5000");
-  test::writeFile(dir + "/bad.xml", bad);
-  const auto b = test::runRoprec("compensate --cell " + q(dir + "/bad.xml") + " " + q(prog) +
-                                 " -o " + q(dir + "/bad.src"));
+  test::writeFile(part.dir + "/bad.xml", bad);
+  const auto b = test::runRoprec("compensate --cell " + q(part.dir + "/bad.xml") + " " +
+                                 q(part.prog) + " -o " + q(part.dir + "/bad.src"));
   EXPECT_EQ(b.exit_code, 2) << b.err;
   EXPECT_NE(b.err.find("bad.xml:14:"), std::string::npos) << b.err;
   EXPECT_NE(b.err.find("xyz_mm"), std::string::npos) << b.err;
-  EXPECT_FALSE(fs::exists(dir + "/bad.src"));
+  EXPECT_FALSE(fs::exists(part.dir + "/bad.src"));
+}
+
+// predict with the written cell aims every hole at the registered part as compensate does: its
+// nominal holes are the displaced ones computed by hand (to 1e-9 m: the JSON's 6 decimals of mm)
+// and its deviations are compensate's "before" deviations, hole by hole.
+TEST(VerifyCli, PredictWithARegisteredCellDeviatesFromTheRegisteredHoles) {
+  const RegisteredPart part = registeredPart("predictreg");
+  json predicted;
+  drilledPoints(part.new_cell, part.prog, part.dir + "/reg.json", &predicted);
+  const auto c =
+      test::runRoprec("compensate --cell " + q(part.new_cell) + " " + q(part.prog) + " -o " +
+                      q(part.dir + "/comp.src") + " --targets " + q(part.dir + "/targets.json"));
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  const json targets = json::parse(test::readFile(part.dir + "/targets.json"))["holes"];
+  ASSERT_EQ(predicted.size(), part.nominal.size());
+  ASSERT_EQ(targets.size(), predicted.size());
+  // the registered part as the cell states it (its 4 / 6 decimals), by hand
+  const std::string text = test::readFile(part.new_cell);
+  Eigen::Isometry3d F = Eigen::Isometry3d::Identity();
+  const Eigen::Vector3d rpy = attributeTriple(text, "part_registration", "rpy_mrad") * 1e-3;
+  F.linear() = (Eigen::AngleAxisd(rpy.z(), Eigen::Vector3d::UnitZ()) *
+                Eigen::AngleAxisd(rpy.y(), Eigen::Vector3d::UnitY()) *
+                Eigen::AngleAxisd(rpy.x(), Eigen::Vector3d::UnitX()))
+                   .toRotationMatrix();
+  F.translation() = attributeTriple(text, "part_registration", "xyz_mm");
+  for (size_t i = 0; i < predicted.size(); ++i) {
+    const json& h = predicted[i];
+    ASSERT_EQ(h["id"], part.nominal[i]["id"]);
+    const Eigen::Vector3d p = vec(part.nominal[i]["nominal"]["position_mm"]);
+    const Eigen::Vector3d p_reg = part.T_W_wobj * (F.inverse() * (part.T_W_wobj.inverse() * p));
+    EXPECT_LE((vec(h["nominal"]["position_mm"]) - p_reg).cwiseAbs().maxCoeff(), 1.5e-6) << i;
+    const json& t = targets[i];
+    ASSERT_EQ(t["id"], h["id"]);
+    EXPECT_LE((vec(h["deviation_um"]["work"]) - vec(t["before"]["deviation_um"]["translation"]))
+                  .cwiseAbs()
+                  .maxCoeff(),
+              1e-3)
+        << h["id"];
+    EXPECT_EQ(h["verdict"], t["before"]["verdict"]) << h["id"];
+  }
+}
+
+// verify again on the cell verify wrote (its registration applied): the new registration is the
+// small rest, composed with the cell's (F_cell · F_new), and both runs are at the part's truth.
+TEST(VerifyCli, VerifyingARegisteredCellAgainComposesTheRegistration) {
+  const RegisteredPart part = registeredPart("regagain");
+  const std::string second = part.dir + "/cell2.xml";
+  const auto v =
+      test::runRoprec("verify --cell " + q(part.new_cell) + " " + q(part.prog) + " --measured " +
+                      q(part.dir + "/measured.csv") + " --register rigid --write-cell " +
+                      q(second) + " --json " + q(part.dir + "/v2.json") + " --quiet");
+  ASSERT_EQ(v.exit_code, 0) << v.err << v.out;
+  const json j = json::parse(test::readFile(part.dir + "/v2.json"));
+  const Eigen::Vector3d rest_um = vec(j["registration"]["translation_um"]);
+  EXPECT_LE(rest_um.norm(), 2.0) << "the first registration already holds the offset";
+  EXPECT_LE(j["summary"]["residual_um"]["rms"].get<double>(), 2.0);
+  const std::string first = test::readFile(part.new_cell);
+  const std::string text = test::readFile(second);
+  const Eigen::Vector3d xyz1 = attributeTriple(first, "part_registration", "xyz_mm");
+  const Eigen::Vector3d xyz2 = attributeTriple(text, "part_registration", "xyz_mm");
+  const Eigen::Vector3d rpy2 = attributeTriple(text, "part_registration", "rpy_mrad");
+  std::printf(
+      "registration: truth t %.4f %.4f %.4f mm; first %.4f %.4f %.4f; second %.4f %.4f "
+      "%.4f; rotation second - truth %.4f mrad\n",
+      part.F.translation().x(), part.F.translation().y(), part.F.translation().z(), xyz1.x(),
+      xyz1.y(), xyz1.z(), xyz2.x(), xyz2.y(), xyz2.z(), (rpy2 - rpyMrad(part.F)).norm());
+  EXPECT_LE((xyz2 - part.F.translation()).norm(), 2e-3) << text;
+  EXPECT_LE((rpy2 - rpyMrad(part.F)).cwiseAbs().maxCoeff(), 5e-3) << text;
+  EXPECT_LE((xyz2 - xyz1).norm(), 2e-3) << "the second run stays where the first converged";
+  EXPECT_NE(text.find(", on the cell's"), std::string::npos) << text;
 }
 
 TEST(VerifyCli, PosesAloneCalibrateAndRecoverATrackerOffset) {

@@ -10,8 +10,10 @@
 #include <vector>
 
 #include "compensator/support/error.hpp"
+#include "plugin/api/job.hpp"
 #include "plugin/report/json.hpp"
 #include "plugin/report/work_map_report.hpp"
+#include "support/kdl_support.hpp"
 #include "support/test_support.hpp"
 
 namespace roprec {
@@ -227,6 +229,89 @@ TEST(WorkMap, CsvCarriesTheJointsAsTheFanucControllerShowsThem) {
   }
   EXPECT_GE(checked, 3u);
   EXPECT_TRUE(coupled) << "J2 near 0 everywhere: the test would not see the coupling";
+}
+
+// A map of a cell whose robot card is calibrated (the shop-floor sample's): each point is
+// commanded by the controller's model — KDL on the card's nominal URDF at the commanded joints
+// reaches the map point — and drilled by the calibrated one: the real TCP is KDL on the URDF
+// `card export-urdf` writes, at the equilibrium joints, both to 1e-9 m.
+TEST(WorkMap, ACalibratedCardDrillsWithTheExportedUrdfsKinematics) {
+  api::WorkMapRequest q;
+  q.cell_path = test::sourceDir() + "/samples/verification/housing-kr120-calibrated.xml";
+  q.lo_mm = Vec3(-100, -100, 150);
+  q.hi_mm = Vec3(100, 100, 150);
+  q.step_mm = 200;
+  const api::WorkMap m = api::computeWorkMap(q);
+  const RobotCard& card = m.context.robot.card;
+  ASSERT_TRUE(card.calibration.has_value());
+  const Pose tool = m.context.tool.T_flange_tcp;
+  const KDL::Chain real = test::kdlExportedChain(card.file, test::tempDir("mapcal"), tool);
+  const KDL::Chain nominal = test::kdlChain(card.urdf_path, m.context.robot.chain.base_link,
+                                            m.context.robot.chain.tip_link, tool);
+  ASSERT_EQ(m.layers.size(), 1u);
+  ASSERT_EQ(m.layers[0].points.size(), 4u);
+  double geometry = 0;
+  for (const api::WorkMapPoint& pt : m.layers[0].points) {
+    const HolePrediction& h = pt.prediction;
+    ASSERT_EQ(h.status, HoleStatus::kOk) << h.reason;
+    const Vec3 target = m.context.cell.T_base_wobj * (pt.p_mm * 1e-3);
+    EXPECT_LT((test::kdlPose(nominal, h.joints).translation() - target).norm(), 1e-9);
+    EXPECT_LT(
+        (test::kdlPose(real, h.deflection.theta).translation() - h.deflection.T_real.translation())
+            .norm(),
+        1e-9);
+    geometry = std::max(geometry, (test::kdlPose(real, h.joints).translation() - target).norm());
+  }
+  EXPECT_GT(geometry, 0.1e-3) << "the calibration moves the real TCP";
+}
+
+// A cell with a <part_registration> (verify --write-cell): each map point is a point of the
+// nominal part, aimed where the registration found it — the same prediction as predict of a
+// one-hole hole list at that point with the same cell (double precision), at the registered
+// pose computed by hand, G = T_W_wobj · F⁻¹ · T_W_wobj⁻¹.
+TEST(WorkMap, ARegisteredCellMapsThePointsOfTheRegisteredPart) {
+  const std::string dir = test::tempDir("map-registered");
+  std::string text = test::readFile(cellPath());
+  const size_t wobj = text.find("<workobject ");
+  ASSERT_NE(wobj, std::string::npos);
+  text.insert(text.find("/>", wobj) + 2,
+              "\n  <part_registration xyz_mm=\"0.35 -0.2 0.25\" rpy_mrad=\"0.5 -0.4 0.6\" "
+              "source=\"test\"/>");
+  api::WorkMapRequest q;
+  q.cell_path = dir + "/registered.xml";
+  test::writeFile(q.cell_path, text);
+  q.lo_mm = Vec3(-100, -100, 250);
+  q.hi_mm = Vec3(100, 100, 250);
+  q.step_mm = 200;
+  const api::WorkMap m = api::computeWorkMap(q);
+  ASSERT_EQ(m.layers.size(), 1u);
+  ASSERT_EQ(m.layers[0].points.size(), 4u);
+  Pose F = Pose::Identity();  // URDF rpy: R = Rz · Ry · Rx
+  F.linear() =
+      (Eigen::AngleAxisd(0.6e-3, Vec3::UnitZ()) * Eigen::AngleAxisd(-0.4e-3, Vec3::UnitY()) *
+       Eigen::AngleAxisd(0.5e-3, Vec3::UnitX()))
+          .toRotationMatrix();
+  F.translation() = Vec3(0.35e-3, -0.2e-3, 0.25e-3);
+  const Pose T_W_wobj = m.context.cell.T_base_wobj;
+  const Pose G = T_W_wobj * F.inverse() * T_W_wobj.inverse();
+  for (const api::WorkMapPoint& pt : m.layers[0].points) {
+    const HolePrediction& h = pt.prediction;
+    ASSERT_EQ(h.status, HoleStatus::kOk) << h.reason;
+    const std::string list = dir + "/" + h.id + ".csv";
+    test::writeFile(list, "id,x,y,z,i,j,k\nP," + std::to_string(pt.p_mm.x()) + "," +
+                              std::to_string(pt.p_mm.y()) + "," + std::to_string(pt.p_mm.z()) +
+                              ",0,0,-1\n");
+    const api::PredictionResult p = api::predictJob(q.cell_path, list);
+    ASSERT_EQ(p.holes.size(), 1u);
+    const Vec3 registered = G * (T_W_wobj * (pt.p_mm * 1e-3));
+    EXPECT_LT((p.context.job.requests[0].T_W_tcp.translation() - registered).norm(), 1e-9);
+    EXPECT_LT((h.d_work - p.holes[0].d_work).norm(), 1e-9);
+    EXPECT_LT(
+        (h.deflection.T_real.translation() - p.holes[0].deflection.T_real.translation()).norm(),
+        1e-9);
+    EXPECT_LT((h.joints - p.holes[0].joints).norm(), 1e-9);
+    EXPECT_GT((registered - T_W_wobj * (pt.p_mm * 1e-3)).norm(), 0.1e-3);
+  }
 }
 
 }  // namespace

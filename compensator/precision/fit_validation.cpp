@@ -37,9 +37,20 @@ std::pair<VectorXd, double> fitEffect(const IdentificationResult& r,
   Eigen::Index rows = 0;
   for (size_t i = 0; i < n; ++i) {
     const MatrixXd B = rowsOf(holes[i]);
-    blocks.push_back(B * effect(i, n, holes[i].T_W_hole.translation()) / holes[i].sigma);
-    w.push_back(r.residuals[i] / holes[i].sigma);
-    rows += B.rows();
+    const MatrixXd E = B * effect(i, n, holes[i].T_W_hole.translation()) / holes[i].sigma;
+    const int o = orientationRows(holes[i]);
+    // a measured orientation: its rows as the fit has them (the candidate effects move positions)
+    MatrixXd block = MatrixXd::Zero(E.rows() + o, E.cols());
+    block.topRows(E.rows()) = E;
+    VectorXd wi(E.rows() + o);
+    wi.head(E.rows()) = r.residuals[i] / holes[i].sigma;
+    if (o > 0)
+      wi.tail(o) = i < r.rotation_residuals.size()
+                       ? VectorXd(r.rotation_residuals[i] / holes[i].sigma_rotation)
+                       : VectorXd::Zero(o);
+    blocks.push_back(block);
+    w.push_back(wi);
+    rows += block.rows();
   }
   MatrixXd A(rows, blocks.front().cols());
   VectorXd b(rows);

@@ -218,7 +218,7 @@ struct Problem {
   /// without the geometry term, and the TCP of m's own chain at θ.
   VectorXd cache_key;
   std::vector<Vec6> cache_theta;
-  std::vector<Vec3> cache_p, cache_tcp_ref;
+  std::vector<Pose> cache_p, cache_tcp_ref;
 };
 
 /// The non-geometry part of x (the key of the equilibrium cache).
@@ -271,7 +271,7 @@ void setUpHoles(Problem& P) {
     P.loads.push_back(h.loads ? *h.loads : processLoads(P.m, proc));
     P.d_mach_tool.push_back(proc ? Vec3(proc->mach.delta_tool.x(), proc->mach.delta_tool.y(), 0.0)
                                  : Vec3::Zero());
-    P.row.push_back(P.row.back() + observationRows(h));
+    P.row.push_back(P.row.back() + observationRows(h) + orientationRows(h));
   }
 }
 
@@ -357,8 +357,9 @@ bool admissible(const Layout& l, const VectorXd& x) {
   return true;
 }
 
-/// p̂_W of every hole at x without the geometry term, and the real joint angles θ.
-int predictEquilibrium(Problem& P, const VectorXd& x, std::vector<Vec3>& p,
+/// p̂_W of every hole at x without the geometry term (the real TCP's orientation with it), and
+/// the real joint angles θ.
+int predictEquilibrium(Problem& P, const VectorXd& x, std::vector<Pose>& p,
                        std::vector<Vec6>& theta) {
   const nc::JointCompliance c = complianceOf(P, x);
   std::optional<nc::Model> rebuilt;
@@ -372,7 +373,8 @@ int predictEquilibrium(Problem& P, const VectorXd& x, std::vector<Vec3>& p,
     const Vec6 offset = controllerOffset(P.m, P.data, th, c);
     const nc::Deflection d = nc::predictDeflection(model, P.data, c, th, P.loads[i], {}, offset);
     if (!d.converged || !d.position_converged) return static_cast<int>(i);
-    p[i] = d.T_real.translation() + d.T_nominal.linear() * P.d_mach_tool[i];
+    p[i] = d.T_real;
+    p[i].translation() += d.T_nominal.linear() * P.d_mach_tool[i];
     theta[i] = d.theta;
   }
   return -1;
@@ -389,10 +391,11 @@ GeometryCalibration geometryOf(const Problem& P, const VectorXd& x) {
   return g;
 }
 
-/// p̂_W of every hole at x. Returns the index of the first hole whose equilibrium fails, or −1.
-/// Geometry enters as FK_G(θ) − FK_m(θ) at the equilibrium θ of m's own geometry (the geometry
-/// errors change the torques by a relative 1e-3 at most, far below the compliance's σ).
-int predictRobot(Problem& P, const VectorXd& x, std::vector<Vec3>& p) {
+/// p̂_W of every hole at x (and the real TCP's orientation). Returns the index of the first hole
+/// whose equilibrium fails, or −1. Geometry enters as FK_G(θ) − FK_m(θ) at the equilibrium θ of
+/// m's own geometry (the geometry errors change the torques by a relative 1e-3 at most, far below
+/// the compliance's σ); the orientation as R_G(θ) R_m(θ)ᵀ R̂.
+int predictRobot(Problem& P, const VectorXd& x, std::vector<Pose>& p) {
   if (P.layout.geo < 0) {
     std::vector<Vec6> theta;
     return predictEquilibrium(P, x, p, theta);
@@ -408,18 +411,29 @@ int predictRobot(Problem& P, const VectorXd& x, std::vector<Vec3>& p) {
     P.cache_tcp_ref.resize(P.holes.size());
     for (size_t i = 0; i < P.holes.size(); ++i) {
       P.cache_tcp_ref[i] =
-          (chainForwardKinematics(P.m.robot.real_chain, P.cache_theta[i]) * P.T_flange_tcp)
-              .translation();
+          chainForwardKinematics(P.m.robot.real_chain, P.cache_theta[i]) * P.T_flange_tcp;
     }
   }
   const ChainDescription real = calibratedChain(P.m.robot.chain, geometryOf(P, x));
-  p.resize(P.holes.size());
+  p.assign(P.holes.size(), Pose::Identity());
   for (size_t i = 0; i < P.holes.size(); ++i) {
-    const Vec3 tcp =
-        (chainForwardKinematics(real, P.cache_theta[i]) * P.T_flange_tcp).translation();
-    p[i] = P.cache_p[i] + tcp - P.cache_tcp_ref[i];
+    const Pose tcp = chainForwardKinematics(real, P.cache_theta[i]) * P.T_flange_tcp;
+    p[i].translation() =
+        P.cache_p[i].translation() + tcp.translation() - P.cache_tcp_ref[i].translation();
+    p[i].linear() = tcp.linear() * P.cache_tcp_ref[i].linear().transpose() * P.cache_p[i].linear();
   }
   return -1;
+}
+
+/// The registration of x as a base-frame motion: m = T_W_wobj [R(ω), t] T_W_wobj⁻¹ p.
+Pose registrationMotion(const Problem& P, const VectorXd& x) {
+  if (P.layout.reg < 0) return Pose::Identity();
+  const Vec3 t = x.segment<3>(P.layout.reg);
+  const Vec3 w = P.layout.n_reg == 6 ? Vec3(x.segment<3>(P.layout.reg + 3)) : Vec3::Zero();
+  Pose G = Pose::Identity();
+  G.linear() = rotationOf(w);
+  G.translation() = t;
+  return P.T_W_wobj * G * P.T_W_wobj.inverse();
 }
 
 /// m̂_W: the robot position as the CMM sees it through the registration of x.
@@ -432,20 +446,35 @@ Vec3 registered(const Problem& P, const VectorXd& x, const Vec3& p_W) {
 
 /// Unweighted residual of observation i: [e₁ e₂]ᵀ (p_measured − m̂) for a hole, all three axes
 /// of T_W_hole for a point.
-VectorXd inPlaneResidual(const Problem& P, const VectorXd& x, size_t i, const Vec3& p_W) {
+VectorXd inPlaneResidual(const Problem& P, const VectorXd& x, size_t i, const Pose& p_W) {
   const IdentificationHole& h = P.holes[i];
-  const Vec3 d = h.p_W_measured - registered(P, x, p_W);
+  const Vec3 d = h.p_W_measured - registered(P, x, p_W.translation());
   const Mat3 R = h.T_W_hole.linear();
   if (h.point) return R.transpose() * d;
   return Eigen::Vector2d(R.col(0).dot(d), R.col(1).dot(d));
 }
 
-/// σ-weighted data residuals r (2 rows per hole, 3 per point).
-VectorXd dataResiduals(const Problem& P, const VectorXd& x, const std::vector<Vec3>& p) {
+/// Unweighted orientation residual of observation i (rad, T_W_hole's axes): the small rotation
+/// from the predicted orientation, seen through the registration, to the measured one; zero
+/// without a measured orientation.
+Vec3 rotationResidual(const Problem& P, const VectorXd& x, size_t i, const Pose& p_W) {
+  const IdentificationHole& h = P.holes[i];
+  if (orientationRows(h) == 0) return Vec3::Zero();
+  const Mat3 R_seen = registrationMotion(P, x).linear() * p_W.linear();
+  const Eigen::AngleAxisd e(Mat3(*h.R_W_measured * R_seen.transpose()));
+  return h.T_W_hole.linear().transpose() * (e.angle() * e.axis());
+}
+
+/// σ-weighted data residuals r (2 rows per hole, 3 per point, 3 more for a measured
+/// orientation).
+VectorXd dataResiduals(const Problem& P, const VectorXd& x, const std::vector<Pose>& p) {
   VectorXd r(P.row.back());
   for (size_t i = 0; i < P.holes.size(); ++i) {
-    const VectorXd e = inPlaneResidual(P, x, i, p[i]) / P.holes[i].sigma;
+    const IdentificationHole& h = P.holes[i];
+    const VectorXd e = inPlaneResidual(P, x, i, p[i]) / h.sigma;
     r.segment(P.row[i], e.size()) = e;
+    if (orientationRows(h) > 0)
+      r.segment<3>(P.row[i] + e.size()) = rotationResidual(P, x, i, p[i]) / h.sigma_rotation;
   }
   return r;
 }
@@ -456,11 +485,11 @@ double priorCost(const Problem& P, const VectorXd& x) {
 
 /// Central-difference J_d = ∂r/∂x for the columns `cols`; registration columns reuse p at x.
 /// Returns false when an equilibrium fails at a perturbed point.
-bool dataJacobian(Problem& P, const VectorXd& x, const std::vector<Vec3>& p_x,
+bool dataJacobian(Problem& P, const VectorXd& x, const std::vector<Pose>& p_x,
                   const std::vector<int>& cols, MatrixXd& J) {
   J.resize(P.row.back(), static_cast<Eigen::Index>(cols.size()));
-  std::vector<Vec3> pp;
-  std::vector<Vec3> pm;
+  std::vector<Pose> pp;
+  std::vector<Pose> pm;
   for (size_t c = 0; c < cols.size(); ++c) {
     const int k = cols[c];
     const double h = P.spec.step[k];
@@ -494,7 +523,7 @@ MatrixXd normalMatrix(const Problem& P, const MatrixXd& J, const std::vector<int
 
 struct LmState {
   VectorXd x;
-  std::vector<Vec3> p;  ///< p̂ at x
+  std::vector<Pose> p;  ///< p̂ at x (and the real TCP's orientation)
   VectorXd r;           ///< weighted data residuals at x
   double cost{0};
 };
@@ -509,7 +538,7 @@ struct LmOutcome {
 /// Evaluates x; false when x is not admissible or an equilibrium fails.
 bool evaluate(Problem& P, const VectorXd& x, LmState& s) {
   if (!admissible(P.layout, x)) return false;
-  std::vector<Vec3> p;
+  std::vector<Pose> p;
   if (predictRobot(P, x, p) >= 0) return false;
   s.x = x;
   s.p = std::move(p);
@@ -636,6 +665,12 @@ std::vector<VectorXd> inPlaneResiduals(const Problem& P, const LmState& s) {
   return r;
 }
 
+std::vector<Vec3> rotationResiduals(const Problem& P, const LmState& s) {
+  std::vector<Vec3> r;
+  for (size_t i = 0; i < P.holes.size(); ++i) r.push_back(rotationResidual(P, s.x, i, s.p[i]));
+  return r;
+}
+
 // ---------------------------------------------------------------- set-up and results
 
 void validateHoles(const std::vector<IdentificationHole>& holes) {
@@ -644,12 +679,14 @@ void validateHoles(const std::vector<IdentificationHole>& holes) {
     if (!(h.sigma > 0) || !std::isfinite(h.sigma)) {
       throw InputError("", 0, "hole '" + h.id + "': the measurement σ must be > 0");
     }
+    if (orientationRows(h) > 0 && (!(h.sigma_rotation > 0) || !std::isfinite(h.sigma_rotation)))
+      throw InputError("", 0, "pose '" + h.id + "': the orientation σ must be > 0");
   }
 }
 
 /// The state at the prior; throws InputError naming the hole whose equilibrium fails.
 LmState priorState(Problem& P) {
-  std::vector<Vec3> p;
+  std::vector<Pose> p;
   const int bad = predictRobot(P, P.spec.x0, p);
   if (bad >= 0) {
     throw InputError("", 0,
@@ -1020,6 +1057,7 @@ IdentificationResult identifyStiffness(const PredictionModel& m,
   if (P.layout.geo >= 0) r.geometry = identifiedGeometry(P, r);
   r.dependencies = std::move(dependencies);
   r.residuals = inPlaneResiduals(P, final_pass.lm.state);
+  r.rotation_residuals = rotationResiduals(P, final_pass.lm.state);
   r.rms_prior = rmsNorm(inPlaneResiduals(P, prior));
   r.rms_final = rmsNorm(r.residuals);
   r.chi2 = final_pass.lm.state.r.squaredNorm();
@@ -1028,28 +1066,45 @@ IdentificationResult identifyStiffness(const PredictionModel& m,
   return r;
 }
 
-std::vector<Eigen::VectorXd> residualsAt(const PredictionModel& m, const IdentificationResult& r,
-                                         const std::vector<IdentificationHole>& holes,
-                                         const IdentificationOptions& o) {
-  validateHoles(holes);
-  Problem P = makeProblem(m, holes, o);
+namespace {
+
+/// The state of `holes` at the parameters of `r` (residualsAt).
+LmState stateAt(Problem& P, const IdentificationResult& r) {
   if (static_cast<int>(r.parameters.size()) != P.layout.n)
     throw InputError("", 0, "the identification does not match the validation's parameters");
   VectorXd x(P.layout.n);
   for (int k = 0; k < P.layout.n; ++k)
     x[k] = r.parameters[static_cast<size_t>(k)].value / P.spec.scale[k];
-  std::vector<Vec3> p;
+  std::vector<Pose> p;
   const int bad = predictRobot(P, x, p);
   if (bad >= 0) {
     throw InputError("", 0,
-                     "hole '" + holes[static_cast<size_t>(bad)].id +
+                     "hole '" + P.holes[static_cast<size_t>(bad)].id +
                          "': the compliance equilibrium does not converge at the identified "
                          "parameters");
   }
   LmState s;
   s.x = x;
   s.p = std::move(p);
-  return inPlaneResiduals(P, s);
+  return s;
+}
+
+}  // namespace
+
+std::vector<Eigen::VectorXd> residualsAt(const PredictionModel& m, const IdentificationResult& r,
+                                         const std::vector<IdentificationHole>& holes,
+                                         const IdentificationOptions& o) {
+  validateHoles(holes);
+  Problem P = makeProblem(m, holes, o);
+  return inPlaneResiduals(P, stateAt(P, r));
+}
+
+std::vector<Vec3> rotationResidualsAt(const PredictionModel& m, const IdentificationResult& r,
+                                      const std::vector<IdentificationHole>& holes,
+                                      const IdentificationOptions& o) {
+  validateHoles(holes);
+  Problem P = makeProblem(m, holes, o);
+  return rotationResiduals(P, stateAt(P, r));
 }
 
 GeometryCalibration cardGeometry(const PredictionModel& m) {

@@ -21,6 +21,12 @@
 ///   m̂_W(x) = T_W_wobj · ( R(ω) · (T_W_wobj⁻¹ · p̂_W(x)) + t )          (registration)
 ///   r_i(x) = [e₁ e₂]ᵀ (p_W,measured − m̂_W(x)) / σ_i  ∈ ℝ²              (⊥ the nominal axis)
 ///
+/// A measured point (tracker) has all three axes of T_W_hole as rows; with a measured orientation
+/// R_W,measured three more: with R̂_W(x) the real TCP orientation (FK_cal at θ(x)) seen through the
+/// registration, R_W_wobj R(ω) R_W_wobjᵀ R̂_W(x),
+///   r_i,rot(x) = R_W_holeᵀ vee(log(R_W,measured · (R_W_wobj R(ω) R_W_wobjᵀ R̂_W(x))ᵀ)) / σ_rot,i
+/// (the small rotation from the predicted to the measured orientation, rad).
+///
 /// with C_eff = diag(c_eff,j), c_eff,j = 1/k_j + 1/k_servo,j the **effective** compliance (joint
 /// and servo in series). τ includes link, tool and spindle weight and the process wrench of the
 /// hole's diameter following the real drill axis (processLoads). Δθ_ctrl = C_eff τ_g,cal(θ_cmd)
@@ -113,6 +119,11 @@ struct IdentificationHole {
   /// all three components of measured − predicted are equations (T_W_hole's axes), and there is
   /// no δmach. The TCP is the point measured (the reflector's centre on the cell's tool).
   bool point{false};
+  /// A point's measured TCP orientation (base frame), when the tracker measured it (a 6-DoF
+  /// probe): three more equations, the small-angle rotation from the predicted to the measured
+  /// orientation, ω = vee(log(R_measured · R̂ᵀ)) in T_W_hole's axes, each over sigma_rotation.
+  std::optional<Mat3> R_W_measured;
+  double sigma_rotation{100e-6};  ///< standard uncertainty per axis of ω, rad
   /// The loads at this observation when they are not the drilling process's at `diameter`
   /// (a tracker point: gravity plus the payload/wrench of its row). nullopt: processLoads.
   std::optional<nc::Loads> loads;
@@ -121,8 +132,12 @@ struct IdentificationHole {
   std::optional<nc::ToolAttachment> tool;
 };
 
-/// Rows of an observation's residual: 2 for a hole (⊥ its axis), 3 for a point.
+/// Position rows of an observation's residual: 2 for a hole (⊥ its axis), 3 for a point.
 inline int observationRows(const IdentificationHole& h) { return h.point ? 3 : 2; }
+/// Orientation rows: 3 for a point with a measured orientation, else 0.
+inline int orientationRows(const IdentificationHole& h) {
+  return h.point && h.R_W_measured ? 3 : 0;
+}
 
 /// Which robot parameter groups the identification may move (the registration is always
 /// estimated when asked): `all` = compliances and (when the options carry a geometry prior)
@@ -235,6 +250,9 @@ struct IdentificationResult {
   /// Final measured − predicted per observation, m: ⊥ axis (e₁, e₂) for a hole, (x, y, z) of
   /// T_W_hole's axes for a point.
   std::vector<Eigen::VectorXd> residuals;
+  /// Final orientation residual ω per observation (rad, T_W_hole's axes; zero without a measured
+  /// orientation).
+  std::vector<Vec3> rotation_residuals;
   double rms_prior{0};  ///< RMS |measured − predicted| with the card (and no registration), m
   double rms_final{0};  ///< the same at the estimate, m
   /// Goodness of fit: χ² = Σ (residual/σ)² over the equations at the estimate; dof = equations −
@@ -264,6 +282,13 @@ IdentificationResult identifyStiffness(const PredictionModel& m,
 std::vector<Eigen::VectorXd> residualsAt(const PredictionModel& m, const IdentificationResult& r,
                                          const std::vector<IdentificationHole>& holes,
                                          const IdentificationOptions& options);
+
+/// The orientation residuals ω (rad, as IdentificationResult::rotation_residuals) of `holes`
+/// with the parameters of `r`, as residualsAt: zero for an observation without a measured
+/// orientation.
+std::vector<Vec3> rotationResidualsAt(const PredictionModel& m, const IdentificationResult& r,
+                                      const std::vector<IdentificationHole>& holes,
+                                      const IdentificationOptions& options);
 
 /// The σ to give an IdentificationHole: the scatter of measured − predicted that the
 /// identification does not model, per in-plane axis: √(u_meas² + u_robpos² + u_mach²) (the

@@ -433,8 +433,9 @@ struct TransientSimulator::Impl {
   bool with_integral{false};
   Vec6 theta_c{Vec6::Zero()};
   Pose T_nominal{Pose::Identity()};
-  Vec3 z_n{Vec3::UnitZ()};   ///< nominal drill axis (tool z of FK(θ_cmd)), base frame
-  Vec3 p_ref{Vec3::Zero()};  ///< TCP at the gravity-only static equilibrium, base frame
+  Pose T_reference{Pose::Identity()};  ///< of the samples' dp, drot (problem.controller_tcp)
+  Vec3 z_n{Vec3::UnitZ()};             ///< nominal drill axis (tool z of FK(θ_cmd)), base frame
+  Vec3 p_ref{Vec3::Zero()};            ///< TCP at the gravity-only static equilibrium, base frame
   int n_events{0};
   std::array<int, 8> fired{};  ///< CVodeGetRootInfo
   std::array<double, 8> g_now{};
@@ -751,6 +752,7 @@ void TransientSimulator::Impl::setup() {
   }
   framePoses(model, out_data);
   T_nominal = out_data.T_W_tcp;
+  T_reference = problem.controller_tcp.value_or(T_nominal);
   z_n = T_nominal.linear().col(2);
   p_ref = staticDeflection(ToolWrench{}).T_real.translation();
   if (!solvePosition(model, data, theta_c, Guess::kClosedForm).converged) {
@@ -822,8 +824,8 @@ void TransientSimulator::Impl::record(double t, const double* yp, TransientResul
   x.depth = yp[idx_depth];
   if (tipFromState(yp, out_data, x)) {
     process.sample(t, x, s.process);
-    s.dp = out_data.frames.p_tcp - T_nominal.translation();
-    s.drot = smallRotationDifference(out_data.frames.R_tcp, T_nominal.linear());
+    s.dp = out_data.frames.p_tcp - T_reference.translation();
+    s.drot = smallRotationDifference(out_data.frames.R_tcp, T_reference.linear());
   } else {
     process.sample(t, x, s.process);
     s.dp.setConstant(std::numeric_limits<double>::quiet_NaN());

@@ -118,6 +118,7 @@
 #include <array>
 #include <exception>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -381,6 +382,10 @@ struct TransientProblem {
   Vec6 command_offset{Vec6::Zero()};  ///< added by the controller, not part of the nominal
   bool gravity{true};
   bool follower_wrench{true};  ///< process wrench turns with the real TCP
+  /// The pose the controller means by θ_cmd, the reference of the samples' dp and drot:
+  /// FK_nom(θ_cmd) of the TCP for a calibrated robot (its deviation then holds the geometric error
+  /// too, as deflect's, docs/model.md §6.8); unset: the model's rigid FK(θ_cmd).
+  std::optional<Pose> controller_tcp;
 };
 
 struct TransientSample {
@@ -389,7 +394,7 @@ struct TransientSample {
   Vec6 theta{Vec6::Zero()};    ///< link angles, rad
   Vec6 theta_d{Vec6::Zero()};  ///< link rates, rad/s
   Vec6 theta_m{Vec6::Zero()};  ///< motor angles (link side), rad
-  Vec3 dp{Vec3::Zero()};       ///< TCP translation deviation from FK(θ_cmd), m, base frame
+  Vec3 dp{Vec3::Zero()};       ///< TCP deviation from FK(θ_cmd) (controller_tcp), m, base frame
   Vec3 drot{Vec3::Zero()};     ///< TCP rotation deviation (rotation vector), rad, base frame
 };
 

@@ -222,19 +222,28 @@ PredictionContext loadContext(const std::string& cell_path, const std::string& p
 
 double perpNorm(const Vec3& v, const Vec3& a) { return (v - v.dot(a) * a).norm(); }
 
-/// The job's holes where the cell's <part_registration> found the part: every pose and point of
-/// a request moved by G = partMotion (base frame), whatever frame its program uses.
-std::vector<HoleRequest> registeredHoles(const PredictionContext& c) {
-  const Pose G = partMotion(c.cell);
-  std::vector<HoleRequest> out = c.job.requests;
-  for (HoleRequest& h : out) {
+/// Holes moved with the part by G = partMotion (base frame): every pose and point of each request.
+void moveWithPart(const Pose& G, std::span<HoleRequest> holes) {
+  for (HoleRequest& h : holes) {
     h.T_W_tcp = G * h.T_W_tcp;
     if (h.surface_W) h.surface_W = G * *h.surface_W;
     if (h.nominal_axis)
       h.nominal_axis = std::make_pair(Vec3(G * h.nominal_axis->first),
                                       Vec3(G.linear() * h.nominal_axis->second));
   }
+}
+
+/// The job's holes where the cell's <part_registration> found the part: every pose and point of
+/// a request moved by G = partMotion (base frame), whatever frame its program uses.
+std::vector<HoleRequest> registeredHoles(const PredictionContext& c) {
+  std::vector<HoleRequest> out = c.job.requests;
+  moveWithPart(partMotion(c.cell), out);
   return out;
+}
+
+/// Does a prediction job aim its holes at the registered part (JobOptions::registered_part)?
+bool aimsAtRegisteredPart(const PredictionContext& c, const JobOptions& o) {
+  return o.registered_part && c.cell.part_registration.has_value();
 }
 
 // ---- compensation stages after compensateHoles
@@ -405,6 +414,7 @@ PredictionResult predictJob(const std::string& cell_path, const std::string& pro
                             const JobOptions& options, const ProgressFn& progress) {
   PredictionResult r;
   r.context = loadContext(cell_path, program_path, options);
+  if (aimsAtRegisteredPart(r.context, options)) r.context.job.requests = registeredHoles(r.context);
   const int threads = resolvedThreads(options.threads);
   const auto& req = r.context.job.requests;
   r.holes.reserve(req.size());
@@ -440,6 +450,8 @@ PredictionResult predictJobStreaming(
   const int threads = resolvedThreads(options.threads);
   // a program's holes are set up block by block as they are predicted (the memory of a block)
   r.context = loadContext(cell_path, program_path, options, true, true);
+  const bool registered = aimsAtRegisteredPart(r.context, options);
+  if (registered && !r.context.job.deferred) r.context.job.requests = registeredHoles(r.context);
   if (on_context) on_context(r.context);
   const JobHoles& job = r.context.job;
   const size_t n = job.deferred ? job.recognized.size() : job.requests.size();
@@ -469,6 +481,7 @@ PredictionResult predictJobStreaming(
     Block& blk = blocks[static_cast<size_t>(k)];
     if (job.deferred) {
       setUpHoles(job, r.context.cell, r.context.robot, b, e, threads, blk.requests, blk.sources);
+      if (registered) moveWithPart(partMotion(r.context.cell), blk.requests);
       predictRange(r.context.model, blk.requests, 0, e - b, prev, threads, blk.holes);
     } else {
       predictRange(r.context.model, job.requests, b, e, prev, threads, blk.holes);
@@ -564,13 +577,20 @@ MillingCompensationResult compensateMillingJob(const std::string& cell_path,
     r.targets.push_back(mo.target);
     frame.push_back(T_W_frame);
     r.points.push_back(T_W_frame * postproc::targetPose(prog, t));
+    // on the part where the cell's <part_registration> found it, as a drilled hole is aimed
+    if (r.context.cell.part_registration)
+      r.points.back() = partMotion(r.context.cell) * r.points.back();
     path.push_back({r.points.back(), mo.speed_mm_s >= 0 ? mo.speed_mm_s * 1e-3 : -1.0});
   }
   if (r.points.empty()) {
     throw InputError(program_path, 0,
                      "no linear path points (LIN/MoveL/L to Cartesian targets) in the program");
   }
-  r.cutting = decideCutting(r.context.model.process.milling, r.context.cell.T_base_wobj, path);
+  // the stock (workobject frame) moves with the part
+  const Pose T_W_stock = r.context.cell.part_registration
+                             ? partMotion(r.context.cell) * r.context.cell.T_base_wobj
+                             : r.context.cell.T_base_wobj;
+  r.cutting = decideCutting(r.context.model.process.milling, T_W_stock, path);
   r.points_comp = compensateMillingPath(r.context.model, r.points, &r.cutting);
   for (size_t i = 0; i < r.points_comp.size(); ++i) {
     const postproc::Target& t = prog.targets()[static_cast<size_t>(r.targets[i])];

@@ -54,6 +54,13 @@ struct JobOptions {
   /// whatever the count (the sequential parts — IK seeds, the orientation sequence — are fixed
   /// before the per-hole work is shared out).
   int threads{1};
+  /// predict: when the cell has a <part_registration> (verify --write-cell), every hole is aimed
+  /// where the registration found the part — each pose and point of a request moved by
+  /// partMotion, as compensate aims them — so its deviations and verdict are those of the real
+  /// drilled point of the hole aimed at the registered part from that hole (compensate's
+  /// "before"). verify sets false: it predicts the program as it was drilled and moves the
+  /// nominal holes itself.
+  bool registered_part{true};
 };
 
 /// `threads` with 0 resolved to the number of cores (at least 1). Throws UsageError when < 0.

@@ -114,7 +114,8 @@ Session::Filtered Session::filterTarget(const Pose& T_W_wanted, const Vec6* seed
   const PredictionModel& m = s.context.model;
   s.setProcess(process);
   HoleRequest& req = s.request;
-  req.T_W_tcp = T_W_wanted;
+  req.T_W_tcp =
+      s.context.cell.part_registration ? partMotion(s.context.cell) * T_W_wanted : T_W_wanted;
   req.ik_seed.reset();
   if (seed_controller) req.ik_seed = fromControllerJoints(m.robot.card, *seed_controller);
   HoleCompensation& h = s.compensation;

@@ -63,9 +63,13 @@ class Session {
   };
   /// The pose to program so that the predicted real TCP lands on `T_W_wanted` (base frame, m)
   /// under the cell's gravity, tool and the hole's process load; orientation kept (the keep
-  /// compensation of this one target, compensateTarget). `seed_controller` (rad, controller
-  /// convention) picks the IK solution nearest to it; nullptr: the reference pose. Throws
-  /// InputError for a tool the cell's tool table does not have, or a size or feed it refuses.
+  /// compensation of this one target, compensateTarget). With a cell <part_registration>
+  /// (verify --write-cell) `T_W_wanted` is a pose on the nominal part and is aimed where the
+  /// registration found the part (partMotion · T_W_wanted, as compensate aims a program's
+  /// holes): `before` and `residual` are then about that registered pose. `seed_controller` (rad,
+  /// controller convention) picks the IK solution nearest to it; nullptr: the reference pose.
+  /// Throws InputError for a tool the cell's tool table does not have, or a size or feed it
+  /// refuses.
   Filtered filterTarget(const Pose& T_W_wanted, const Vec6* seed_controller = nullptr,
                         const HoleProcess& process = {}, bool with_prediction = false);
 

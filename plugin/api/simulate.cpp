@@ -191,7 +191,17 @@ nc::TransientProblem transientProblem(const RobotSetup& s, const nc::Model& mode
   const nc::ControllerReference ref =
       controllerReferenceOf(s.robot, s.cell ? &*s.cell : nullptr, s.tool, o.gravity);
   p.command_offset = nc::controllerReferenceOffset(ref, data, p.drive.staticCompliance(), q);
+  if (s.robot.card.calibration)  // deviation from the pose the controller means, as deflect
+    p.controller_tcp = chainForwardKinematics(s.robot.chain, q) * s.tool.T_flange_tcp;
   return p;
+}
+
+nc::Deflection staticDeflection(const nc::Model& model, nc::Data& data,
+                                const nc::TransientProblem& p, const nc::Loads& loads) {
+  nc::Deflection d = nc::predictDeflection(model, data, p.drive.staticCompliance(), p.theta_cmd,
+                                           loads, {}, p.command_offset);
+  if (p.controller_tcp) nc::referToControllerPose(d, *p.controller_tcp);
+  return d;
 }
 
 StaticReference staticReference(const nc::Model& model, nc::Data& data,
@@ -200,16 +210,14 @@ StaticReference staticReference(const nc::Model& model, nc::Data& data,
   StaticReference ref;
   nc::Loads gl;
   gl.gravity = p.gravity;
-  ref.gravity_only = nc::predictDeflection(model, data, p.drive.staticCompliance(), p.theta_cmd, gl,
-                                           {}, p.command_offset);
+  ref.gravity_only = staticDeflection(model, data, p, gl);
   nc::Loads fl = gl;
   if (spec) {
     const SteadyProcessLoad pl = steadyProcessLoad(*spec);
     fl.tcp_tool.force = pl.wrench.force;
     fl.tcp_tool.moment = pl.wrench.torque;
   }
-  ref.full_engagement = nc::predictDeflection(model, data, p.drive.staticCompliance(), p.theta_cmd,
-                                              fl, {}, p.command_offset);
+  ref.full_engagement = staticDeflection(model, data, p, fl);
   return ref;
 }
 

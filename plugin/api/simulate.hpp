@@ -69,7 +69,8 @@ struct SimulateOptions {
   bool gravity{true};   ///< link and tool weight (and the controller's gravity compensation)
 };
 
-/// The static references (the deflect model: same compliance, load at full engagement).
+/// The static references (the deflect model: same compliance, load at full engagement; deviation
+/// from the same reference as the transient's samples: FK_nom(θ_cmd) for a calibrated card).
 struct StaticReference {
   nc::Deflection gravity_only;
   nc::Deflection full_engagement;

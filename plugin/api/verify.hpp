@@ -40,7 +40,8 @@ struct VerifyJob {
   JobOptions job;        ///< hole list, match tolerance, uncertainty method
   std::string measured;  ///< the CMM file (roprec CSV, PC-DMIS CSV or DMIS), workobject mm
   /// Measured TCP poses (laser tracker / CMM, postproc/measured_poses.hpp), identified together
-  /// with the holes: 3 equations per pose. With poses, the program and `measured` are optional.
+  /// with the holes: 3 equations per pose, 6 when the row has its orientation (rx,ry,rz). With
+  /// poses, the program and `measured` are optional.
   std::string poses;
   Registration registration{Registration::kNone};  ///< part registration estimated jointly
   bool calibrate{false};  ///< re-identify the joint stiffness (identification.hpp)
@@ -48,6 +49,9 @@ struct VerifyJob {
   /// 20 mm); reported, the cell is not rewritten.
   bool identify_tool{false};
   double u_measurement_um{5.0};  ///< σ per axis of a measured position when the file has no `u`
+  /// σ per axis of a measured pose orientation (rx,ry,rz) when the row has no `u_rot`, µrad: a
+  /// 6-DoF tracker probe's stated orientation accuracy is 0.01° ≈ 175 µrad (2σ).
+  double u_rotation_urad{100.0};
   IdentifySet identify{IdentifySet::kAll};  ///< which robot parameters --calibrate may move
   /// k of the k-fold held-out validation run with calibrate (fit_validation.hpp); 0: none (the
   /// card is then written without a held-out check, and the result says so).
@@ -100,14 +104,7 @@ struct VerifyResult {
 VerifyResult verifyJob(const std::string& cell_path, const std::string& program_path,
                        const VerifyJob& job, const ProgressFn& progress = {});
 
-/// The verification JSON: measured file, registration, summary, identification (parameters,
-/// covariance, condition number, identifiability), per-hole records. µm, µrad, mm.
-Json verifyJson(const VerifyResult& r);
-
-/// The one-line summary host interfaces return (C ABI, Python): holes, matched, failed, RMS of
-/// measured/predicted/residual (µm), explained, coverage, registration, identified stiffness,
-/// condition number, and `written` (the paths given).
-Json verifySummaryJson(const VerifyResult& r, const std::vector<std::string>& written);
+// The JSON texts: plugin/report/verify_json.hpp.
 
 // The HTML report: plugin/report/verify_report.hpp.
 

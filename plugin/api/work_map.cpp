@@ -132,6 +132,8 @@ WorkMap computeWorkMap(const WorkMapRequest& request,
           T_wobj_tcp.linear() = R_wobj_tcp;
           T_wobj_tcp.translation() = pt.p_mm * 1e-3;
           r.T_W_tcp = c.cell.T_base_wobj * T_wobj_tcp;
+          // on the part where the cell's <part_registration> found it, as predict aims a hole
+          if (c.cell.part_registration) r.T_W_tcp = partMotion(c.cell) * r.T_W_tcp;
           if (fresh) {
             PredictionData d(m);  // the sampler restarts at its seed, as in a one-hole predict
             pt.prediction = predictHole(m, d, r, nullptr);

@@ -17,6 +17,7 @@
 #include "compensator/support/rotation.hpp"
 #include "plugin/api/job.hpp"
 #include "plugin/api/verify.hpp"
+#include "plugin/report/verify_json.hpp"
 #include "postproc/program.hpp"
 
 namespace roprec::host {

@@ -276,6 +276,8 @@ ROPREC_API void roprec_options_free(roprec_options* options);
  *   "folds"         k of the held-out validation, "0".."100" (default "5")        --folds
  *   "date"          the written calibration's date, YYYY-MM-DD ("" = the rule of  --date
  *                   docs/cards.md: SOURCE_DATE_EPOCH, else the measured file's day)
+ *   "u_rot"         σ per axis of a measured pose orientation (rx,ry,rz) when the --u-rot
+ *                   row has no u_rot, µrad, > 0 ("" = the default 100)
  * Without "frame"/"tool", a controller-only frame or a differing tool is an error (2) naming the
  * frame or tool and these options. How they were resolved is stated in the prediction JSON's
  * notes and in the report header. */
@@ -325,11 +327,11 @@ ROPREC_API int roprec_verify_file(const char* cell_path, const char* program_pat
                                   size_t summary_len, char* err, size_t err_len);
 
 /* roprec_verify_file with the job options: "holes", "match_tol_mm", "uncertainty", "frame",
- * "tool", "threads" and the verify keys "write_cell", "poses", "identify", "folds", "date" (see
- * roprec_options_set). measured_path and program_path may be NULL when "poses" is set. Every file
- * written (JSON, card, cell) is byte for byte what `roprec verify` writes with the same options;
- * the summary's "written" lists them. The cell is not written when the held-out validation refused
- * the card. 2 also for "write_cell" without a registration or a new card. */
+ * "tool", "threads" and the verify keys "write_cell", "poses", "identify", "folds", "date",
+ * "u_rot" (see roprec_options_set). measured_path and program_path may be NULL when "poses" is set.
+ * Every file written (JSON, card, cell) is byte for byte what `roprec verify` writes with the same
+ * options; the summary's "written" lists them. The cell is not written when the held-out validation
+ * refused the card. 2 also for "write_cell" without a registration or a new card. */
 ROPREC_API int roprec_verify_file_ex(const char* cell_path, const char* program_path,
                                      const char* measured_path, const char* registration,
                                      const roprec_options* options, const char* json_out_path,

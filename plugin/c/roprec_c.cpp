@@ -25,6 +25,7 @@
 #include "plugin/api/verify.hpp"
 #include "plugin/c/host_common.hpp"
 #include "plugin/report/plan_test_json.hpp"
+#include "plugin/report/verify_json.hpp"
 
 struct roprec_session {
   explicit roprec_session(const std::string& path) : cell_path(path), session(path) {}
@@ -35,10 +36,11 @@ struct roprec_session {
 /// The job options of roprec_predict_file_ex / roprec_compensate_file_ex (roprec_options_set).
 struct roprec_options {
   roprec::api::CompensationJob job;  ///< job.job: the prediction options; mode, force
-  /// roprec_verify_file_ex only: --write-cell, --poses, --identify, --folds.
+  /// roprec_verify_file_ex only: --write-cell, --poses, --identify, --folds, --date, --u-rot.
   std::string write_cell, poses, date;
   roprec::IdentifySet identify{roprec::IdentifySet::kAll};
   int folds{5};
+  double u_rot_urad{roprec::api::VerifyJob{}.u_rotation_urad};
 };
 
 namespace {
@@ -279,6 +281,10 @@ bool setVerifyOption(roprec_options& o, const std::string& key, const std::strin
     if (!(k >= 0 && k <= 100 && k == std::floor(k)))
       throw roprec::UsageError("folds must be a whole number in [0, 100]");
     o.folds = static_cast<int>(k);
+  } else if (key == "u_rot") {
+    o.u_rot_urad = v.empty() ? roprec::api::VerifyJob{}.u_rotation_urad
+                             : roprec::api::numbersFromText(v, 1, "u_rot")[0];
+    if (!(o.u_rot_urad > 0)) throw roprec::UsageError("u_rot must be > 0 µrad");
   } else {
     return false;
   }
@@ -312,7 +318,7 @@ void setOption(roprec_options& o, const std::string& key, const std::string& v) 
     throw roprec::UsageError(
         "unknown option '" + key +
         "' (holes, match_tol_mm, uncertainty, frame, tool, threads, orientation, force, "
-        "write_cell, poses, identify, folds, date)");
+        "write_cell, poses, identify, folds, date, u_rot)");
   }
 }
 
@@ -656,6 +662,7 @@ ROPREC_API int roprec_verify_file_ex(const char* cell_path, const char* program_
     job.identify = options->identify;
     job.folds = options->folds;
     job.date = options->date;
+    job.u_rotation_urad = options->u_rot_urad;
     const std::string json_out = optionalArg(json_out_path);
     const std::string card_out = optionalArg(new_card_out_path);
     checkTextBuffer(summary_json, summary_len, "summary_json");

@@ -169,6 +169,9 @@ const CommandRegistration reg{
      "<workobject>); a program tool that differs from the cell's, or is defined only on the\n"
      "controller (UTOOL[n], TOOL_DATA[n]), needs --tool program|cell. Without them: exit 2.\n"
      "The resolution is printed on stderr and stated in the JSON notes and the report header.\n"
+     "A cell with <part_registration> (verify --write-cell): every hole is aimed where the\n"
+     "registration found the part, as compensate aims it; the nominal positions are the\n"
+     "registered holes and the deviations those of compensate's \"before\".\n"
      "Exit 1 if some holes could not be handled (listed on stderr), 2 for bad input.\n",
      40, run}};
 

@@ -6,6 +6,7 @@
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
 #include "plugin/cli/cli.hpp"
+#include "plugin/report/verify_json.hpp"
 #include "plugin/report/verify_report.hpp"
 
 namespace roprec::cli {
@@ -154,6 +155,7 @@ int run(Args& args, CommandContext& ctx) {
   const auto card_out = args.option("calibrate");
   const auto reg = args.option("register");
   const auto u = args.option("u-meas");
+  const auto u_rot = args.option("u-rot");
   const auto cell_out = args.option("write-cell");
   const auto folds = args.option("folds");
   const auto identify = args.option("identify");
@@ -181,6 +183,10 @@ int run(Args& args, CommandContext& ctx) {
   }
   if (date) job.date = *date;
   if (u) job.u_measurement_um = parseNumberList(*u, 1, "--u-meas (µm)")[0];
+  if (u_rot) {
+    job.u_rotation_urad = parseNumberList(*u_rot, 1, "--u-rot (µrad)")[0];
+    if (!(job.u_rotation_urad > 0)) throw UsageError("--u-rot must be > 0 µrad");
+  }
   if (folds) {
     const double k = parseNumberList(*folds, 1, "--folds")[0];
     if (!(k >= 0 && k <= 100 && k == std::floor(k)))
@@ -250,6 +256,7 @@ const CommandRegistration reg{
      "POSES.csv\n"
      "                     [--json OUT.json] [--report OUT.html] [--calibrate NEW_CARD.xml]\n"
      "                     [--register none|translation|rigid] [--identify-tool] [--u-meas UM]\n"
+     "                     [--u-rot URAD]\n"
      "                     [--identify stiffness|geometry|all] [--folds K]\n"
      "                     [--write-cell NEW_CELL.xml] [--date YYYY-MM-DD] [--quiet]\n"
      "                     [--fail-on nonconformance]\n\n"
@@ -263,9 +270,13 @@ const CommandRegistration reg{
      "none).\n"
      "POSES (laser tracker / CMM): CSV id,j1..j6 (commanded, controller convention, deg),x,y,z\n"
      "(measured TCP, workobject mm)[,rx,ry,rz][,mass,com_x,com_y,com_z][,fx,fy,fz,mx,my,mz][,u]\n"
-     "(docs/verification.md); j1..j6 left empty: the pose is PROGRAM's target of that id (its\n"
+     "[,u_rot] (docs/contract.md); j1..j6 left empty: the pose is PROGRAM's target of that id "
+     "(its\n"
      "predicted command joints). Each pose gives 3 equations and joins the holes in the fit;\n"
-     "without measured holes the cell calibrates from poses alone.\n"
+     "with rx,ry,rz (the measured TCP orientation, URDF rpy = fixed X-Y-Z, deg, workobject frame)\n"
+     "3 more: the small rotation from the predicted to the measured orientation, σ per axis u_rot\n"
+     "µrad (--u-rot, default 100, when the row has none). Without measured holes the cell\n"
+     "calibrates from poses alone.\n"
      "Holes are matched by id; unknown ids and unmeasured holes are notes. --holes: the program's\n"
      "hole list (ids, nominal positions and axes); give it to verify a compensated program "
      "against\n"

@@ -26,6 +26,7 @@
 #include "plugin/api/verify.hpp"
 #include "plugin/c/host_common.hpp"
 #include "plugin/report/plan_test_json.hpp"
+#include "plugin/report/verify_json.hpp"
 
 namespace py = pybind11;
 
@@ -548,14 +549,24 @@ py::dict compensate(const std::string& cell, const std::string& program, const s
   return d;
 }
 
-py::dict verify(const std::string& cell, const std::string& program, const std::string& measured,
-                const std::optional<std::string>& holes, const std::string& registration,
-                const std::optional<std::string>& calibrate,
+py::dict verify(const std::string& cell, const std::optional<std::string>& program,
+                const std::optional<std::string>& measured, const std::optional<std::string>& holes,
+                const std::string& registration, const std::optional<std::string>& calibrate,
                 const std::optional<std::string>& json_out,
                 const std::optional<std::string>& write_cell, const std::string& identify,
-                const std::optional<std::string>& date, int folds) {
+                const std::optional<std::string>& date, int folds,
+                const std::optional<std::string>& poses, const std::optional<double>& u_rot) {
   api::VerifyJob job;
-  job.measured = measured;
+  job.measured = measured.value_or("");
+  job.poses = poses.value_or("");
+  if (job.measured.empty() && job.poses.empty())
+    throw UsageError("give measured and/or poses (tracker poses)");
+  if (!job.measured.empty() && !program)
+    throw UsageError("program is None (a measured file needs its program)");
+  if (u_rot) {
+    if (!(*u_rot > 0)) throw UsageError("u_rot must be > 0 µrad");
+    job.u_rotation_urad = *u_rot;
+  }
   job.job.holes = holes;
   job.registration = host::registration(registration);
   job.calibrate = calibrate.has_value();
@@ -572,7 +583,7 @@ py::dict verify(const std::string& cell, const std::string& program, const std::
   {
     py::gil_scoped_release release;
     RunScope run;
-    const api::VerifyResult r = api::verifyJob(cell, program, job);
+    const api::VerifyResult r = api::verifyJob(cell, program.value_or(""), job);
     json = api::verifyJson(r).dump();
     const auto out = host::verifyOutputs(r, job, json_out.value_or(""), calibrate.value_or(""),
                                          write_cell.value_or(""));
@@ -794,7 +805,8 @@ PYBIND11_MODULE(_roprec, m) {
         py::arg("holes") = py::none(), py::arg("register") = "none",
         py::arg("calibrate") = py::none(), py::arg("json_out") = py::none(),
         py::arg("write_cell") = py::none(), py::arg("identify") = "all",
-        py::arg("date") = py::none(), py::arg("folds") = 5, "Internal: see roprec.verify.");
+        py::arg("date") = py::none(), py::arg("folds") = 5, py::arg("poses") = py::none(),
+        py::arg("u_rot") = py::none(), "Internal: see roprec.verify.");
   m.def("_plan_test", &planTest, py::arg("cell"), py::arg("region"), py::arg("count"),
         py::arg("out"), "Internal: see roprec.plan_test.");
 }

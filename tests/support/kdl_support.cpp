@@ -1,9 +1,11 @@
 #include "tests/support/kdl_support.hpp"
 
+#include "plugin/api/card_tools.hpp"
 #include "tests/support/test_support.hpp"
 
 #include <gtest/gtest.h>
 #include <tinyxml2.h>
+#include <kdl/chainfksolverpos_recursive.hpp>
 #include <kdl/chainidsolver_recursive_newton_euler.hpp>
 #include <kdl/tree.hpp>
 #include <kdl_parser/kdl_parser.hpp>
@@ -152,6 +154,23 @@ std::string cardWithCalibration(const Robot& robot, const std::string& block,
   const std::string path = dir + "/robot.xml";
   writeFile(path, text);
   return path;
+}
+
+KDL::Chain kdlExportedChain(const std::string& card_path, const std::string& dir,
+                            const Pose& extra) {
+  const std::string urdf = dir + "/real.urdf";
+  writeFile(urdf, api::cardExportUrdf(card_path));
+  const Robot r = loadRobot({card_path, "", ""});
+  return kdlChain(urdf, r.chain.base_link, r.chain.tip_link, extra);
+}
+
+Pose kdlPose(const KDL::Chain& chain, const Eigen::Matrix<double, 6, 1>& q) {
+  KDL::ChainFkSolverPos_recursive fk(chain);
+  KDL::JntArray jq(chain.getNrOfJoints());
+  for (unsigned i = 0; i < jq.rows() && i < 6; ++i) jq(i) = q[i];
+  KDL::Frame F;
+  EXPECT_GE(fk.JntToCart(jq, F), 0);
+  return fromKdl(F);
 }
 
 Eigen::Matrix<double, 6, 1> kdlGravity(const KDL::Chain& chain,

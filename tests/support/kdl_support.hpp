@@ -57,6 +57,16 @@ KdlTruthGeometry kdlTruthGeometry(const Robot& robot, const GeometryCalibration&
 std::string cardWithCalibration(const Robot& robot, const std::string& block,
                                 const std::string& dir);
 
+/// The KDL chain base -> flange (then `extra`) of the URDF `roprec card export-urdf` writes for
+/// the calibrated card `card_path` (written into `dir` as real.urdf, read by kdl_parser): the
+/// real robot as other tools see it, the reference FK_cal of a command is checked against.
+KDL::Chain kdlExportedChain(const std::string& card_path, const std::string& dir,
+                            const Pose& extra = Pose::Identity());
+
+/// KDL's forward kinematics of `chain` at q (rad) as a pose (base frame, m); fails the current test
+/// when the solver reports an error.
+Pose kdlPose(const KDL::Chain& chain, const Eigen::Matrix<double, 6, 1>& q);
+
 KDL::Frame toKdl(const Pose& T);
 Pose fromKdl(const KDL::Frame& F);
 

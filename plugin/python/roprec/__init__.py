@@ -21,8 +21,9 @@ API
         ``.hole_pose(position_mm, direction) -> pose_mm``
     ``predict(cell, program, holes=None, json_out=None) -> Prediction``   (a list of per-hole dicts)
     ``compensate(cell, program, out, orientation="keep", targets=None, holes=None) -> dict``
-    ``verify(cell, program, measured, holes=None, register="none", calibrate=None, json_out=None)
-    -> dict``                                 measured holes (CMM) vs prediction; new robot card
+    ``verify(cell, program, measured, holes=None, register="none", calibrate=None, json_out=None,
+    ..., poses=None, u_rot=None) -> dict``    measured holes (CMM) or tracker poses vs prediction;
+                                              new robot card
     ``plan_test(cell, region, count, out) -> dict``   D-optimal drilling test program
 
 Errors
@@ -211,14 +212,16 @@ def compensate(cell, program, out, orientation="keep", targets=None, holes=None,
 
 
 def verify(cell, program, measured, holes=None, register="none", calibrate=None, json_out=None,
-           write_cell=None, identify="all", date=None, folds=5):
+           write_cell=None, identify="all", date=None, folds=5, poses=None, u_rot=None):
     """Measured holes against the prediction: ``roprec verify --cell CELL PROGRAM --measured M ...``.
 
     Args:
-        cell, program: as for :func:`predict` (the program the part was drilled with).
+        cell, program: as for :func:`predict` (the program the part was drilled with; None with
+            ``poses`` alone when their rows give the joints).
         measured: the CMM file — roprec CSV (``id,x,y,z[,i,j,k][,u]``), PC-DMIS CSV or DMIS output;
             hole positions in the cell's workobject frame, mm; ``u`` the standard measurement
             uncertainty per axis in µm (5 µm when absent). Matched to the program's holes by id.
+            None: no measured holes (``poses`` then required).
         holes: optional hole-list CSV (the nominal holes) matched to the program's holes.
         register: "none", "translation" or "rigid": a part registration estimated jointly with
             the joint stiffness and removed from the measured positions before the comparison.
@@ -237,6 +240,10 @@ def verify(cell, program, measured, holes=None, register="none", calibrate=None,
             docs/cards.md (SOURCE_DATE_EPOCH, else the measured file's day).
         folds: k of the held-out validation, 0..100 (``--folds``; 0: none, the card is written
             unchecked).
+        poses: optional path: measured TCP poses (laser tracker / CMM CSV, docs/contract.md §8.2)
+            identified with the holes (``--poses``).
+        u_rot: σ per axis of a measured pose orientation (``rx,ry,rz``) when its row has no
+            ``u_rot``, µrad, > 0 (``--u-rot``; None: 100).
 
     Returns:
         dict: the verification JSON document (µm, µrad, mm) — ``measured`` (file, format, holes,
@@ -253,12 +260,15 @@ def verify(cell, program, measured, holes=None, register="none", calibrate=None,
             holds the dict above (``written`` empty).
         InputError, UsageError: a bad file (``FILE:LINE: what``) or argument; nothing was written.
     """
-    r = _roprec._verify(str(cell), str(program), str(measured),
+    r = _roprec._verify(str(cell), None if program is None else str(program),
+                        None if measured is None else str(measured),
                         None if holes is None else str(holes), str(register),
                         None if calibrate is None else str(calibrate),
                         None if json_out is None else str(json_out),
                         None if write_cell is None else str(write_cell), str(identify),
-                        None if date is None else str(date), int(folds))
+                        None if date is None else str(date), int(folds),
+                        poses=None if poses is None else str(poses),
+                        u_rot=None if u_rot is None else float(u_rot))
     result = _json.loads(r["json"])
     result["written"] = _json.loads(r["summary_json"])["written"]
     if r["problems"]:

@@ -370,8 +370,10 @@ def _compensation(j):
     return d
 
 
-def _verify(cell, program, measured, holes=None, register="none", calibrate=None, json_out=None, write_cell=None):
-    with _Options(holes=holes, write_cell=write_cell) as o:
+def _verify(cell, program, measured, holes=None, register="none", calibrate=None, json_out=None, write_cell=None,
+            identify="all", date=None, folds=5, poses=None, u_rot=None):
+    with _Options(holes=holes, write_cell=write_cell, identify=identify, date=date, folds=int(folds), poses=poses,
+                  u_rot=None if u_rot is None else repr(float(u_rot))) as o:
         tmp = None
         if json_out is None:
             fd, tmp = tempfile.mkstemp(suffix=".json", prefix="roprec-")
