@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 namespace roprec {
@@ -73,6 +74,36 @@ TEST(FitValidation, ALengthScaleIsNamedWithItsValue) {
   const FitCheck f = checkFit(s.r, s.holes);
   EXPECT_FALSE(f.consistent);
   EXPECT_EQ(f.best.name, "length scale");
+  EXPECT_GT(f.best.share, 0.95);
+  EXPECT_NE(f.explanation.find("length scale of 0.2"), std::string::npos) << f.explanation;
+}
+
+TEST(FitValidation, ALengthScaleIsNamedOnTrackerPoints) {
+  // tracker points as verify makes them (T_W_hole: the residual axes only, at the origin; the
+  // point is where it was measured), all three components, 0.2 mm/m about the base origin
+  std::mt19937 g(11);
+  std::normal_distribution<double> n(0.0, 5e-6);
+  Synthetic s;
+  for (int a = 0; a < 4; ++a) {
+    for (int b = 0; b < 4; ++b) {
+      for (int c = 0; c < 3; ++c) {
+        IdentificationHole h;
+        h.point = true;
+        h.p_W_measured = Vec3(1.2 + 0.1 * a, -0.2 + 0.1 * b, 0.2 + 0.15 * c);
+        h.sigma = 5e-6;
+        const Vec3 r = 0.2e-3 * h.p_W_measured + Vec3(n(g), n(g), n(g));
+        s.r.residuals.emplace_back(r);
+        s.r.chi2 += (r / h.sigma).squaredNorm();
+        s.holes.push_back(h);
+      }
+    }
+  }
+  s.r.equations = static_cast<int>(3 * s.holes.size());
+  s.r.dof = s.r.equations - 12;
+  const FitCheck f = checkFit(s.r, s.holes);
+  EXPECT_FALSE(f.consistent);
+  EXPECT_EQ(f.best.name, "length scale");
+  EXPECT_TRUE(std::isfinite(f.best.share));
   EXPECT_GT(f.best.share, 0.95);
   EXPECT_NE(f.explanation.find("length scale of 0.2"), std::string::npos) << f.explanation;
 }

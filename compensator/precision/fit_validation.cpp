@@ -37,7 +37,10 @@ std::pair<VectorXd, double> fitEffect(const IdentificationResult& r,
   Eigen::Index rows = 0;
   for (size_t i = 0; i < n; ++i) {
     const MatrixXd B = rowsOf(holes[i]);
-    const MatrixXd E = B * effect(i, n, holes[i].T_W_hole.translation()) / holes[i].sigma;
+    // where the observation is: a drilled hole's nominal point, a tracker point's measured one
+    // (its T_W_hole carries only the residual axes)
+    const Vec3 p_W = holes[i].point ? holes[i].p_W_measured : holes[i].T_W_hole.translation();
+    const MatrixXd E = B * effect(i, n, p_W) / holes[i].sigma;
     const int o = orientationRows(holes[i]);
     // a measured orientation: its rows as the fit has them (the candidate effects move positions)
     MatrixXd block = MatrixXd::Zero(E.rows() + o, E.cols());
@@ -66,7 +69,9 @@ std::pair<VectorXd, double> fitEffect(const IdentificationResult& r,
     const Eigen::ColPivHouseholderQR<MatrixXd> qr(r.jacobian);
     A -= r.jacobian * qr.solve(A);
   }
-  const VectorXd beta = A.colPivHouseholderQr().solve(b);
+  const Eigen::ColPivHouseholderQR<MatrixXd> qr(A);
+  if (qr.rank() == 0) return {VectorXd::Zero(A.cols()), 0.0};  // the fit absorbs it all
+  const VectorXd beta = qr.solve(b);
   const double total = b.squaredNorm();
   const double share = total > 0 ? 1.0 - (b - A * beta).squaredNorm() / total : 0.0;
   return {beta, std::clamp(share, 0.0, 1.0)};
