@@ -116,7 +116,7 @@ void SourceFile::indexLines() {
 int SourceFile::lineOf(std::size_t offset) const {
   const auto it =
       std::upper_bound(line_starts.begin(), line_starts.end(), static_cast<std::uint32_t>(offset));
-  return static_cast<int>(it - line_starts.begin());
+  return line_base + static_cast<int>(it - line_starts.begin());
 }
 
 std::string SourceFile::dominantLineEnd() const {
@@ -155,8 +155,26 @@ TextId TextTable::add(std::string_view s) {
 
 TextId TextTable::append(std::string_view s) {
   if (s.empty()) return TextId{};
+  if (!free_.empty()) {
+    const std::uint32_t id = free_.back();
+    free_.pop_back();
+    texts_[id].assign(s);
+    return TextId{id};
+  }
   texts_.emplace_back(s);
   return TextId{static_cast<std::uint32_t>(texts_.size() - 1)};
+}
+
+void TextTable::release(TextId id) {
+  if (id.empty() || id.index >= texts_.size()) return;
+  std::string& t = texts_[id.index];
+  if (t.empty()) return;  // released already
+  if (t.size() <= kSharedMax) {
+    const auto it = index_.find(std::string_view(t));
+    if (it != index_.end() && it->second == id.index) return;  // shared
+  }
+  std::string().swap(t);
+  free_.push_back(id.index);
 }
 
 void TextTable::reindex() {
