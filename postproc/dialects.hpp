@@ -4,6 +4,8 @@
 /// drill-cycle recognition (drill.cpp).
 
 #include <memory>
+#include <string>
+#include <utility>
 
 #include "postproc/program.hpp"
 
@@ -16,6 +18,10 @@ void parseRapid(Program& p);
 void parseTp(Program& p);
 void parseCsv(Program& p);
 void parseJson(Program& p);
+
+/// The `.src` of a KRL program path (a `.dat` names the `.src` beside it: InputError when there is
+/// none) and its `.dat` ("" when there is none beside it).
+std::pair<std::string, std::string> krlFiles(const std::string& path);
 
 /// The KRL reader a window of the .src at a time (ProgramStream): constructed once p.files holds
 /// the .src's first window and the .dat (read then); lines() reads the lines of the window

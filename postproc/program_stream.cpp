@@ -14,37 +14,6 @@ namespace roprec::postproc {
 
 namespace fs = std::filesystem;
 
-namespace {
-
-bool iequal(std::string a, std::string b) {
-  std::transform(a.begin(), a.end(), a.begin(), [](unsigned char c) { return std::tolower(c); });
-  std::transform(b.begin(), b.end(), b.begin(), [](unsigned char c) { return std::tolower(c); });
-  return a == b;
-}
-
-/// The `.src` of a KRL path (a `.dat` names the `.src` beside it) and its `.dat` (may not exist),
-/// as readProgram finds them.
-std::pair<std::string, std::string> krlFiles(const std::string& path) {
-  std::string src = path;
-  if (iequal(fs::path(path).extension().string(), ".dat")) {
-    for (const char* e : {".src", ".SRC", ".Src"}) {
-      const fs::path s = fs::path(path).replace_extension(e);
-      if (fs::exists(s)) {
-        src = s.string();
-        break;
-      }
-    }
-    if (src == path) throw InputError(path, 0, "a KRL .dat needs its .src beside it");
-  }
-  for (const char* e : {".dat", ".DAT", ".Dat"}) {
-    const fs::path s = fs::path(src).replace_extension(e);
-    if (fs::exists(s)) return {src, s.string()};
-  }
-  return {src, ""};
-}
-
-}  // namespace
-
 ProgramStream::ProgramStream(const std::string& path, std::size_t window_bytes)
     : path_(path), window_bytes_(std::max<std::size_t>(window_bytes, 4096)) {
   // a file that cannot be read in windows (missing, not a regular file, above the size limit)
@@ -115,9 +84,17 @@ bool ProgramStream::readWindow() {
     if (n < 0) (void)readInputFile(f.path, InputKind::kProgram);  // its read error
     buf.resize(old + static_cast<std::size_t>(std::max(0LL, n)));
     if (n <= 0) eof_ = true;
+    read_ += static_cast<std::size_t>(std::max(0LL, n));
+    if (read_ > inputSizeLimit(InputKind::kProgram))  // a file grown past the limit as it is read
+      (void)readInputFile(f.path, InputKind::kProgram);
     if (std::memchr(buf.data() + old, '\0', buf.size() - old) != nullptr)
       (void)readInputFile(f.path, InputKind::kProgram);  // the NUL byte at its line and column
-    cut = buf.find_last_of('\n');
+    for (std::size_t k = buf.size(); k > old; --k) {     // the bytes read before have none
+      if (buf[k - 1] == '\n') {
+        cut = k - 1;
+        break;
+      }
+    }
     if (cut != std::string::npos) break;
   }
   if (buf.empty()) return false;
@@ -132,8 +109,6 @@ bool ProgramStream::readWindow() {
   f.line_base = lines;
   if (!first) f.bom = false;
   f.tokens.clear();
-  if (f.bytes.size() + rest_.size() > inputSizeLimit(InputKind::kProgram))
-    (void)readInputFile(f.path, InputKind::kProgram);  // a file grown past the limit
   return true;
 }
 
@@ -171,7 +146,8 @@ Retired ProgramStream::retire(std::size_t m) {
   Program& p = p_;
   if (!krl_ || p.motions.empty()) return {};
   m = std::min(m, p.motions.size() - 1);
-  if (const int held = krl_->heldMotion(); held >= 0) m = std::min(m, static_cast<std::size_t>(held));
+  if (const int held = krl_->heldMotion(); held >= 0)
+    m = std::min(m, static_cast<std::size_t>(held));
   if (m == 0) return {};
   // the unnamed targets after the pinned ones that no remaining motion uses
   const std::size_t t0 = pinned_;

@@ -67,11 +67,12 @@ class ProgramStream {
   Program p_;
   std::unique_ptr<KrlStream> krl_;
   platform::File file_;
-  std::string rest_;  ///< bytes read after the window's last line
+  std::string rest_;     ///< bytes read after the window's last line
+  std::size_t read_{0};  ///< bytes of the .src read so far
   bool eof_{false};
   bool whole_read_{false};
   bool finished_{false};
-  bool pending_{false};  ///< the window the constructor read is not parsed yet
+  bool pending_{false};    ///< the window the constructor read is not parsed yet
   std::size_t pinned_{0};  ///< targets that always stay (the .dat's)
   std::exception_ptr range_error_;
 };

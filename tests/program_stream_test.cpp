@@ -32,15 +32,9 @@ struct SeenHole {
 };
 
 SeenHole seen(const postproc::Program& p, const postproc::Hole& h) {
-  return {h.id,
-          h.position,
-          h.axis,
-          h.surface,
-          h.depth,
-          p.motions[static_cast<size_t>(h.bottom_motion)].line,
-          h.base,
-          h.tool,
-          postproc::drillingEvidence(p, h)};
+  return {h.id,      h.position, h.axis,
+          h.surface, h.depth,    p.motions[static_cast<size_t>(h.bottom_motion)].line,
+          h.base,    h.tool,     postproc::drillingEvidence(p, h)};
 }
 
 struct Streamed {
@@ -94,7 +88,8 @@ TEST(ProgramStream, WindowsWithRetiredMotionsGiveTheHolesOfTheWholeProgram) {
     SCOPED_TRACE(path);
     const std::vector<SeenHole> whole = readWhole(path);
     ASSERT_FALSE(whole.empty());
-    for (const size_t window : {size_t{4096}, size_t{10000}, postproc::ProgramStream::kWindowBytes}) {
+    for (const size_t window :
+         {size_t{4096}, size_t{10000}, postproc::ProgramStream::kWindowBytes}) {
       SCOPED_TRACE(window);
       const Streamed st = readStreamed(path, window);
       ASSERT_EQ(st.holes.size(), whole.size());
@@ -138,8 +133,8 @@ TEST(ProgramStream, ErrorsAreThoseOfTheWholeReadInItsOrder) {
   const size_t end = bad.rfind("END");
   ASSERT_NE(end, std::string::npos);
   const std::string truncated = bad.substr(0, end);
-  for (const auto& [name, text] : {std::pair<std::string, std::string>{"range.src", bad},
-                                   {"truncated.src", truncated}}) {
+  for (const auto& [name, text] :
+       {std::pair<std::string, std::string>{"range.src", bad}, {"truncated.src", truncated}}) {
     SCOPED_TRACE(name);
     const std::string path = dir + "/" + name;
     test::writeFile(path, text);
