@@ -1,8 +1,8 @@
 // A program read a window at a time (postproc/program_stream.cpp), its motions retired behind the
 // hole recogniser, gives the holes of the program read whole (readProgram + recognizeHoles): the
-// same ids, points, axes, depths, frames, lines and evidence, while the window holds a bounded
-// number of motions. Errors are readProgram's, in its order (a reader's error before a value out
-// of range met earlier).
+// same ids, points, axes, depths, frames, lines and evidence, whatever its line ends, while the
+// window holds a bounded number of motions. Errors are readProgram's, in its order (a reader's
+// error before a value out of range met earlier).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -76,8 +76,18 @@ std::vector<SeenHole> readWhole(const std::string& path) {
 
 TEST(ProgramStream, WindowsWithRetiredMotionsGiveTheHolesOfTheWholeProgram) {
   const std::string dir = test::tempDir("program_stream");
-  test::writeFile(dir + "/big.src", test::krlDrillCycles(300, test::kHousingBase, true));
-  std::vector<std::string> programs = {dir + "/big.src"};
+  const std::string big = test::krlDrillCycles(300, test::kHousingBase, true);
+  test::writeFile(dir + "/big.src", big);
+  // the same lines ended by CR LF (a window ends after LF) and by CR alone (no LF: one window)
+  std::string crlf;
+  std::string cr;
+  for (const char c : big) {
+    crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
+    cr += c == '\n' ? '\r' : c;
+  }
+  test::writeFile(dir + "/crlf.src", crlf);
+  test::writeFile(dir + "/cr.src", cr);
+  std::vector<std::string> programs = {dir + "/big.src", dir + "/crlf.src", dir + "/cr.src"};
   for (const char* f : {"housing_kr120.src", "housing_irb6640.mod", "housing_r2000.ls"})
     programs.push_back(test::sourceDir() + "/samples/emotor-housing/" + f);
   if (const std::string corpus = test::corpusDir(); !corpus.empty()) {
