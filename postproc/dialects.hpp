@@ -3,6 +3,10 @@
 /// Internal interface between the generic program model (program.cpp), the dialect readers and
 /// drill-cycle recognition (drill.cpp).
 
+#include <memory>
+#include <string>
+#include <utility>
+
 #include "postproc/program.hpp"
 
 namespace roprec::postproc {
@@ -14,6 +18,32 @@ void parseRapid(Program& p);
 void parseTp(Program& p);
 void parseCsv(Program& p);
 void parseJson(Program& p);
+
+/// The `.src` of a KRL program path (a `.dat` names the `.src` beside it: InputError when there is
+/// none) and its `.dat` ("" when there is none beside it).
+std::pair<std::string, std::string> krlFiles(const std::string& path);
+
+/// The KRL reader a window of the .src at a time (ProgramStream): constructed once p.files holds
+/// the .src's first window and the .dat (read then); lines() reads the lines of the window
+/// p.files[0] holds now, finish() checks the .src's end after the last window.
+class KrlStream {
+ public:
+  explicit KrlStream(Program& p);
+  ~KrlStream();
+  KrlStream(const KrlStream&) = delete;
+  KrlStream& operator=(const KrlStream&) = delete;
+  void lines();
+  void finish();
+  /// The motion the reader may still change (the last segment of a SPLINE block being read),
+  /// -1 when none: motions from it on may not be retired.
+  [[nodiscard]] int heldMotion() const;
+  /// Motions [0, m) of the window were dropped (their indices shift by m).
+  void retired(std::size_t m);
+
+ private:
+  struct Reader;
+  std::unique_ptr<Reader> r_;
+};
 
 /// Where the edit functions queue their edits: Program::edits, or an EditLog replayed later.
 class EditQueue {

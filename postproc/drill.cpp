@@ -7,6 +7,7 @@
 #include <optional>
 #include <unordered_map>
 
+#include "compensator/support/error.hpp"
 #include "postproc/dialects.hpp"
 #include "postproc/lexer.hpp"
 
@@ -75,6 +76,19 @@ HoleRecognizer::HoleRecognizer(const RecognitionOptions& o)
     : o_(o), cache_(std::make_unique<PoseCache>()) {}
 HoleRecognizer::~HoleRecognizer() = default;
 HoleRecognizer::HoleRecognizer(HoleRecognizer&&) noexcept = default;
+
+void HoleRecognizer::retired(std::size_t motions, std::size_t target_begin,
+                             std::size_t target_end) {
+  if (!holes_.empty() || motions > next_)
+    throw InternalError("HoleRecognizer::retired: holes not taken, or motions not yet read");
+  next_ -= motions;
+  target_end = std::min(target_end, used_.size());
+  if (target_begin < target_end) {
+    used_.erase(used_.begin() + static_cast<std::ptrdiff_t>(target_begin),
+                used_.begin() + static_cast<std::ptrdiff_t>(target_end));
+  }
+  cache_ = std::make_unique<PoseCache>();
+}
 
 std::vector<Hole> recognizeHoles(const Program& p, const RecognitionOptions& o) {
   HoleRecognizer r(o);
@@ -200,7 +214,7 @@ void HoleRecognizer::advance(const Program& p, bool final) {
         }
         h.base = m0.base;
         h.tool = m0.tool;
-        h.id = "H" + std::to_string(holes.size() + 1);
+        h.id = "H" + std::to_string(++count_);
         holes.push_back(std::move(h));
         i = j;
         continue;
@@ -224,7 +238,7 @@ void HoleRecognizer::advance(const Program& p, bool final) {
       h.all_markers = true;
       h.marker_begin = static_cast<int>(i);
       h.marker_end = static_cast<int>(i + 1);
-      h.id = "H" + std::to_string(holes.size() + 1);
+      h.id = "H" + std::to_string(++count_);
       used[static_cast<std::size_t>(m0.target)] = true;
       holes.push_back(std::move(h));
     }

@@ -86,6 +86,11 @@ class HoleRecognizer {
   HoleRecognizer& operator=(HoleRecognizer&&) = delete;
 
   void advance(const Program& p, bool final);
+  /// The program's motions [0, motions) and targets [target_begin, target_end) were dropped
+  /// (ProgramStream::retire): the indices after them shift. The holes must have been taken.
+  void retired(std::size_t motions, std::size_t target_begin, std::size_t target_end);
+  /// The motion the next cycle may start at.
+  [[nodiscard]] std::size_t nextMotion() const { return next_; }
   [[nodiscard]] const std::vector<Hole>& holes() const { return holes_; }
   std::vector<Hole> take() { return std::move(holes_); }
 
@@ -96,6 +101,7 @@ class HoleRecognizer {
   std::vector<Hole> holes_;
   std::vector<bool> used_;  // targets of recognised cycles
   std::size_t next_{0};     // the motion the next cycle may start at
+  std::size_t count_{0};    // holes recognised so far (taken or not): the next id is H<count_ + 1>
 };
 
 /// The evidence of a recognised hole of `p` as text, in the order it was found: "feed slower

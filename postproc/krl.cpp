@@ -87,6 +87,14 @@ class KrlReader {
   explicit KrlReader(Program& p) : p_(p) {}
 
   void run() {
+    start(true);
+    readSrcLines();
+    finish();
+  }
+
+  /// Before the .src: the lexer's options, the .dat's declarations (p.files[1], read whole).
+  /// `reserve`: the .src is read whole (its targets' vector sized once).
+  void start(bool reserve) {
     lex_.comment = ';';
     lex_.header_amp = true;
     lex_.single_quote_string = true;
@@ -94,12 +102,32 @@ class KrlReader {
     // resident) tens of MB a .src without declarations never uses
     // every target is an aggregate: '{' bounds their count (no regrowth of the large Target
     // vector, whose copy would double the peak memory of a 100,000-hole program)
-    std::size_t aggregates = 16;
-    for (const SourceFile& f : p_.files)
-      aggregates += static_cast<std::size_t>(std::count(f.bytes.begin(), f.bytes.end(), '{'));
-    p_.target_list.reserve(aggregates);
+    if (reserve) {
+      std::size_t aggregates = 16;
+      for (const SourceFile& f : p_.files)
+        aggregates += static_cast<std::size_t>(std::count(f.bytes.begin(), f.bytes.end(), '{'));
+      p_.target_list.reserve(aggregates);
+    }
     if (p_.files.size() > 1) readDat();
-    readSrc();
+  }
+
+  /// The motion the reader may still change (a SPLINE block's last segment), -1: none.
+  [[nodiscard]] int heldMotion() const { return spline_.active ? spline_.last_motion : -1; }
+  /// The window's motions [0, m) were dropped (ProgramStream::retire).
+  void retired(std::size_t m) {
+    if (spline_.last_motion >= 0) spline_.last_motion -= static_cast<int>(m);
+  }
+
+  /// The lines of the .src (p.files[0]: the whole file, or the window of it read now).
+  void readSrcLines() {
+    file_ = 0;
+    forEachLine([&](std::size_t b, std::size_t e, std::size_t j) { srcLine(b, e, j); });
+  }
+
+  /// After the .src's last line: its DEF ... END checked.
+  void finish() {
+    if (!any_def_) throw InputError(file().path, 1, "no DEF found: not a KRL .src");
+    if (depth_ != 0) fail(file().bytes.size(), "truncated file: DEF without END");
   }
 
  private:
@@ -146,6 +174,8 @@ class KrlReader {
   std::array<std::pair<double, TextId>, 4> speed_texts_{{{-1, {}}, {-1, {}}, {-1, {}}, {-1, {}}}};
   std::size_t next_speed_text_{0};
   bool ext_tcp_{false};
+  int depth_{0};  ///< DEF ... END nesting of the .src so far
+  bool any_def_{false};
 
   const SourceFile& file() const { return p_.files[static_cast<std::size_t>(file_)]; }
 
@@ -187,7 +217,7 @@ class KrlReader {
     const std::vector<std::uint32_t>& s = file().line_starts;
     if (line_index_ >= s.size() || s[line_index_] > offset) return file().lineOf(offset);
     while (line_index_ + 1 < s.size() && s[line_index_ + 1] <= offset) ++line_index_;
-    return static_cast<int>(line_index_ + 1);
+    return file().line_base + static_cast<int>(line_index_ + 1);
   }
 
   Aggregate parseAggregate(TokenCursor& c) {
@@ -965,46 +995,50 @@ class KrlReader {
     }
   }
 
-  void readSrc() {
-    file_ = 0;
-    int depth = 0;
-    bool any_def = false;
-    forEachLine([&](std::size_t b, std::size_t e, std::size_t j) {
-      const SourceFile& f = file();
-      // comment markers on comment-only lines
-      if (b == e) {
-        for (std::size_t k = b; k < j; ++k) {
-          if (f.tokens[k].kind != TokenKind::kComment) continue;
-          const std::string_view u = f.text(f.tokens[k]);
-          if (istartsWith(u, ";FOLD") || istartsWith(u, ";ENDFOLD") || istartsWith(u, "&"))
-            continue;
-          if (icontains(u, "PLUNGE") || icontains(u, "DRILL")) {
-            addMarker("comment " + std::string(f.text(f.tokens[k])));
-          }
+  /// One line of the .src: [b, e) its tokens before a trailing comment, j its newline token.
+  void srcLine(std::size_t b, std::size_t e, std::size_t j) {
+    const SourceFile& f = file();
+    // comment markers on comment-only lines
+    if (b == e) {
+      for (std::size_t k = b; k < j; ++k) {
+        if (f.tokens[k].kind != TokenKind::kComment) continue;
+        const std::string_view u = f.text(f.tokens[k]);
+        if (istartsWith(u, ";FOLD") || istartsWith(u, ";ENDFOLD") || istartsWith(u, "&")) continue;
+        if (icontains(u, "PLUNGE") || icontains(u, "DRILL")) {
+          addMarker("comment " + std::string(f.text(f.tokens[k])));
         }
-        return;
       }
-      TokenCursor c(f, b, e);
-      if (c.isIdent("GLOBAL")) c.next();
-      if (c.isIdent("DEF") || c.isIdent("DEFFCT")) {
-        ++depth;
-        any_def = true;
-        return;
-      }
-      if (c.isIdent("END") || c.isIdent("ENDFCT")) {
-        --depth;
-        return;
-      }
-      if (c.isIdent("DEFDAT")) fail(c.peek().offset, "DEFDAT in a .src file");
-      statement(c.index(), e);
-    });
-    if (!any_def) fail(0, "no DEF found: not a KRL .src");
-    if (depth != 0) fail(file().bytes.size(), "truncated file: DEF without END");
+      return;
+    }
+    TokenCursor c(f, b, e);
+    if (c.isIdent("GLOBAL")) c.next();
+    if (c.isIdent("DEF") || c.isIdent("DEFFCT")) {
+      ++depth_;
+      any_def_ = true;
+      return;
+    }
+    if (c.isIdent("END") || c.isIdent("ENDFCT")) {
+      --depth_;
+      return;
+    }
+    if (c.isIdent("DEFDAT")) fail(c.peek().offset, "DEFDAT in a .src file");
+    statement(c.index(), e);
   }
 };
 
 }  // namespace
 
 void parseKrl(Program& p) { KrlReader(p).run(); }
+
+struct KrlStream::Reader : KrlReader {
+  using KrlReader::KrlReader;
+};
+
+KrlStream::KrlStream(Program& p) : r_(std::make_unique<Reader>(p)) { r_->start(false); }
+KrlStream::~KrlStream() = default;
+void KrlStream::lines() { r_->readSrcLines(); }
+void KrlStream::finish() { r_->finish(); }
+int KrlStream::heldMotion() const { return r_->heldMotion(); }
+void KrlStream::retired(std::size_t m) { r_->retired(m); }
 
 }  // namespace roprec::postproc

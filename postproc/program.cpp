@@ -116,7 +116,7 @@ void SourceFile::indexLines() {
 int SourceFile::lineOf(std::size_t offset) const {
   const auto it =
       std::upper_bound(line_starts.begin(), line_starts.end(), static_cast<std::uint32_t>(offset));
-  return static_cast<int>(it - line_starts.begin());
+  return line_base + static_cast<int>(it - line_starts.begin());
 }
 
 std::string SourceFile::dominantLineEnd() const {
@@ -155,8 +155,26 @@ TextId TextTable::add(std::string_view s) {
 
 TextId TextTable::append(std::string_view s) {
   if (s.empty()) return TextId{};
+  if (!free_.empty()) {
+    const std::uint32_t id = free_.back();
+    free_.pop_back();
+    texts_[id].assign(s);
+    return TextId{id};
+  }
   texts_.emplace_back(s);
   return TextId{static_cast<std::uint32_t>(texts_.size() - 1)};
+}
+
+void TextTable::release(TextId id) {
+  if (id.empty() || id.index >= texts_.size()) return;
+  std::string& t = texts_[id.index];
+  if (t.empty()) return;  // released already
+  if (t.size() <= kSharedMax) {
+    const auto it = index_.find(std::string_view(t));
+    if (it != index_.end() && it->second == id.index) return;  // shared
+  }
+  std::string().swap(t);
+  free_.push_back(id.index);
 }
 
 void TextTable::reindex() {
@@ -999,34 +1017,36 @@ Program readProgram(const std::string& path) {
   return readProgram(path, readInputFile(path, InputKind::kProgram));
 }
 
-Program readProgram(const std::string& path, std::string bytes) {
-  std::string src_path = path;
-  const Dialect d = detectDialect(path, bytes);
-  if (d != Dialect::kKrl) return parseProgram(d, path, std::move(bytes), std::nullopt, "");
+std::pair<std::string, std::string> krlFiles(const std::string& path) {
+  std::string src = path;
   const fs::path pp(path);
   if (iequals(pp.extension().string(), ".dat")) {
     for (const char* e : {".src", ".SRC", ".Src"}) {
       const fs::path s = fs::path(pp).replace_extension(e);
       if (fs::exists(s)) {
-        src_path = s.string();
+        src = s.string();
         break;
       }
     }
-    if (src_path == path) throw InputError(path, 0, "a KRL .dat needs its .src beside it");
-    bytes = readInputFile(src_path, InputKind::kProgram);
+    if (src == path) throw InputError(path, 0, "a KRL .dat needs its .src beside it");
   }
-  std::optional<std::string> dat;
-  std::string dat_path;
   for (const char* e : {".dat", ".DAT", ".Dat"}) {
-    const fs::path s = fs::path(src_path).replace_extension(e);
-    if (fs::exists(s)) {
-      dat_path = s.string();
-      dat = readInputFile(dat_path, InputKind::kProgram);
-      break;
-    }
+    const fs::path s = fs::path(src).replace_extension(e);
+    if (fs::exists(s)) return {src, s.string()};
   }
-  if (dat_path.empty()) dat_path = fs::path(src_path).replace_extension(".dat").string();
-  return parseProgram(Dialect::kKrl, src_path, std::move(bytes), std::move(dat), dat_path);
+  return {src, ""};
+}
+
+Program readProgram(const std::string& path, std::string bytes) {
+  const Dialect d = detectDialect(path, bytes);
+  if (d != Dialect::kKrl) return parseProgram(d, path, std::move(bytes), std::nullopt, "");
+  const auto [src_path, dat_path] = krlFiles(path);
+  if (src_path != path) bytes = readInputFile(src_path, InputKind::kProgram);
+  std::optional<std::string> dat;
+  if (!dat_path.empty()) dat = readInputFile(dat_path, InputKind::kProgram);
+  return parseProgram(
+      Dialect::kKrl, src_path, std::move(bytes), std::move(dat),
+      dat_path.empty() ? fs::path(src_path).replace_extension(".dat").string() : dat_path);
 }
 
 }  // namespace roprec::postproc

@@ -73,10 +73,13 @@ struct SourceFile {
   bool bare_fractions{false};  ///< numbers such as `.044` occur (FANUC controller style)
   bool zero_fractions{false};  ///< numbers such as `0.044` occur
   bool significant9{false};    ///< KSS style: positions written with 9 significant digits
+  /// Lines of the file before `bytes`: a file read a window at a time (ProgramStream) holds one
+  /// window of whole lines; offsets are the window's, lineOf() the file's line.
+  int line_base{0};
 
   /// Builds line_starts/line_ends and the fraction-style flags.
   void indexLines();
-  /// 1-based line of a byte offset.
+  /// 1-based line of a byte offset (in the file: line_base + the line in `bytes`).
   [[nodiscard]] int lineOf(std::size_t offset) const;
   [[nodiscard]] std::string_view text(const Token& t) const {
     return std::string_view(bytes.data() + t.offset, t.length);  // tokens lie inside bytes
@@ -283,6 +286,9 @@ class TextTable {
   TextId append(std::string_view s);
   [[nodiscard]] const std::string& operator[](TextId id) const { return texts_[id.index]; }
   [[nodiscard]] std::size_t size() const { return texts_.size(); }
+  /// Frees a text that append() stored (a read window's motions retired: ProgramStream); its id
+  /// is given to a later append(). Shared texts (add() of up to kSharedMax bytes) stay.
+  void release(TextId id);
 
  private:
   void reindex();
@@ -297,6 +303,7 @@ class TextTable {
                                                  ///< look-ups repeat a recent text
   std::deque<std::string> texts_;  ///< a deque: the index's views stay valid as it grows
   std::unordered_map<std::string_view, std::uint32_t> index_;  ///< shared texts -> index
+  std::vector<std::uint32_t> free_;                            ///< released ids, reused by append()
 };
 
 struct Target {

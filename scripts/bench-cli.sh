@@ -36,7 +36,9 @@ SIZES="${BENCH_SIZES:-1000 10000 100000}"
 COMP_MAX="${BENCH_COMPENSATE_MAX:-10000}"
 REPEAT="${BENCH_REPEAT:-3}"
 [ -x "$BIN" ] || { echo "bench-cli: $BIN is not an executable (build roprec first)" >&2; exit 2; }
-[ -x /usr/bin/time ] || { echo "bench-cli: needs GNU time (/usr/bin/time; scripts/setup.sh installs it)" >&2; exit 2; }
+# shellcheck source=scripts/lib/measure.sh
+source "$ROOT/scripts/lib/measure.sh"
+measure_require bench-cli
 DIR="${BENCH_DIR:-$(mktemp -d)}"
 [ -n "${BENCH_DIR:-}" ] || trap 'rm -rf "$DIR"' EXIT
 mkdir -p "$DIR"
@@ -52,26 +54,20 @@ run() {  # run KEY ARGS...: one roprec run under GNU time; keeps the key's least
   # CPU time of that run) and its largest peak RSS over the repetitions
   local key="$1"
   shift
-  local rc=0
-  local t0=$EPOCHREALTIME
-  /usr/bin/time -v -o "$DIR/time.txt" "$BIN" "$@" >"$DIR/out.txt" 2>"$DIR/err.txt" || rc=$?
-  local t1=$EPOCHREALTIME
-  if [ "$rc" -gt 1 ]; then
-    echo "bench-cli: $key failed (exit $rc):" >&2
+  measure "$DIR" "$BIN" "$@"
+  if [ "$MEASURE_RC" -gt 1 ]; then
+    echo "bench-cli: $key failed (exit $MEASURE_RC):" >&2
     tail -3 "$DIR/err.txt" >&2
     FAILED=1
     return
   fi
-  local wall rss cpu
-  wall=$(awk "BEGIN { printf \"%.4f\", $t1 - $t0 }")  # µs clock (GNU time's is 10 ms)
-  # GNU time's "Maximum resident set size" is in KiB: the peak in MiB (1 MiB = 1.048576 MB)
-  rss=$(awk -F': ' '/Maximum resident set size/ { printf "%.0f", $2 / 1024 }' "$DIR/time.txt")
-  cpu=$(awk -F': ' '/(User|System) time \(seconds\)/ { s += $2 } END { print s }' "$DIR/time.txt")
-  if [ -z "${WALL[$key]:-}" ] || awk "BEGIN { exit !($wall < ${WALL[$key]}) }"; then
-    WALL[$key]=$wall
-    CPU[$key]=$cpu
+  if [ -z "${WALL[$key]:-}" ] || awk "BEGIN { exit !($MEASURE_WALL < ${WALL[$key]}) }"; then
+    WALL[$key]=$MEASURE_WALL
+    CPU[$key]=$MEASURE_CPU
   fi
-  if [ -z "${RSS[$key]:-}" ] || [ "$rss" -gt "${RSS[$key]}" ]; then RSS[$key]=$rss; fi
+  if [ -z "${RSS[$key]:-}" ] || [ "$MEASURE_RSS" -gt "${RSS[$key]}" ]; then
+    RSS[$key]=$MEASURE_RSS
+  fi
 }
 
 show() {  # show KEY: the key's best wall time, peak RSS and CPU time

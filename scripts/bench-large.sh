@@ -31,7 +31,9 @@ COMP="${BENCH_LARGE_COMPENSATE:-1000000}"
 CONV="${BENCH_LARGE_CONVERT_HOLES:-300000}"
 ROWS=" ${BENCH_LARGE_ROWS:-predict report compensate convert map plan} "
 [ -x "$BIN" ] || { echo "bench-large: $BIN is not an executable (build roprec first)" >&2; exit 2; }
-[ -x /usr/bin/time ] || { echo "bench-large: needs GNU time (/usr/bin/time)" >&2; exit 2; }
+# shellcheck source=scripts/lib/measure.sh
+source "$ROOT/scripts/lib/measure.sh"
+measure_require bench-large
 DIR="${BENCH_DIR:-$(mktemp -d)}"
 [ -n "${BENCH_DIR:-}" ] || trap 'rm -rf "$DIR"' EXIT
 mkdir -p "$DIR"
@@ -43,21 +45,14 @@ want() { [[ "$ROWS" == *" $1 "* ]]; }
 run() {  # run KEY ARGS...: one roprec run (stdout to a file) under GNU time: "KEY  WALL s  RSS MiB"
   local key="$1"
   shift
-  local rc=0
-  local t0=$EPOCHREALTIME
-  /usr/bin/time -v -o "$DIR/time.txt" "$BIN" "$@" >"$DIR/stdout.txt" 2>"$DIR/err.txt" || rc=$?
-  local t1=$EPOCHREALTIME
-  if [ "$rc" -gt 1 ]; then
-    echo "bench-large: $key failed (exit $rc):" >&2
+  measure "$DIR" "$BIN" "$@"
+  if [ "$MEASURE_RC" -gt 1 ]; then
+    echo "bench-large: $key failed (exit $MEASURE_RC):" >&2
     tail -3 "$DIR/err.txt" >&2
     FAILED=1
     return
   fi
-  local rss cpu
-  rss=$(awk -F': ' '/Maximum resident set size/ { printf "%.0f", $2 / 1024 }' "$DIR/time.txt")
-  cpu=$(awk -F': ' '/(User|System) time \(seconds\)/ { s += $2 } END { print s }' "$DIR/time.txt")
-  printf '%-44s %8.3f s %8s MiB %8.2f s CPU\n' "$key" "$(awk "BEGIN { print $t1 - $t0 }")" "$rss" \
-    "$cpu"
+  printf '%-44s %8.3f s %8s MiB %8.2f s CPU\n' "$key" "$MEASURE_WALL" "$MEASURE_RSS" "$MEASURE_CPU"
 }
 
 gen() { [ -s "$2" ] || python3 "$ROOT/scripts/gen-drill-job.py" "$1" "$2"; }

@@ -19,7 +19,9 @@ LARGE="${MEM_LARGE:-100000}"
 RATIO="${MEM_RATIO:-1.25}"
 SLACK="${MEM_SLACK_MIB:-16}"
 [ -x "$BIN" ] || { echo "check-memory: $BIN is not an executable (build roprec first)" >&2; exit 2; }
-[ -x /usr/bin/time ] || { echo "check-memory: needs GNU time (/usr/bin/time)" >&2; exit 2; }
+# shellcheck source=scripts/lib/measure.sh
+source "$ROOT/scripts/lib/measure.sh"
+measure_require check-memory
 DIR="$(mktemp -d)"
 trap 'rm -rf "$DIR"' EXIT
 CELL="$ROOT/samples/cells/housing-kr120.xml"
@@ -29,12 +31,13 @@ peak() {  # peak N ARGS...: the peak RSS in MiB of roprec ARGS on the N-hole job
   local n="$1"
   shift
   local args=("${@//JOB/$DIR/job$n.src}")
-  /usr/bin/time -v -o "$DIR/time.txt" "$BIN" "${args[@]}" >/dev/null 2>"$DIR/err.txt" || {
+  MEASURE_STDOUT=/dev/null measure "$DIR" "$BIN" "${args[@]}"
+  if [ "$MEASURE_RC" -ne 0 ]; then
     echo "check-memory: roprec ${args[*]} failed:" >&2
     tail -3 "$DIR/err.txt" >&2
     exit 2
-  }
-  awk -F': ' '/Maximum resident set size/ { printf "%.0f", $2 / 1024 }' "$DIR/time.txt"
+  fi
+  echo "$MEASURE_RSS"
 }
 
 FAILED=0

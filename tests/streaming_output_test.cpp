@@ -21,6 +21,7 @@
 #include "compensator/support/error.hpp"
 #include "compensator/support/platform.hpp"
 #include "plugin/api/job.hpp"
+#include "postproc/program_stream.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace roprec {
@@ -269,8 +270,9 @@ TEST(StreamingOutput, PredictionJsonIsByteIdenticalToTheInMemoryTree) {
 }
 
 // predictJobStreaming sets a program's holes up block by block (JobHoles::deferred) and releases
-// the program's bytes once it is read: its JSON is the bytes of predictJob's tree for programs
-// whose base frame and tool the options resolve, and for more than one block of holes.
+// the program's bytes once it is read; a KRL program is read by windows (JobHoles::streamed): its
+// JSON is the bytes of predictJob's tree for programs whose base frame and tool the options
+// resolve, for more than one block of holes and for a program of more than one window.
 TEST(StreamingOutput, AProgramSetUpBlockByBlockGivesTheBytesOfTheWholeJob) {
   const std::string dir = test::tempDir("stream_deferred");
   // KUKA: the base frame lives in $config.dat (BASE_DATA[1]), given by name
@@ -279,8 +281,10 @@ TEST(StreamingOutput, AProgramSetUpBlockByBlockGivesTheBytesOfTheWholeJob) {
   ASSERT_NE(krl.find(base), std::string::npos);
   krl.replace(krl.find(base), base.size(), "$BASE = BASE_DATA[1]");
   test::writeFile(dir + "/bd.src", krl);
-  // 2,100 drill cycles (two blocks of the streaming predict) on the housing's top face
-  test::writeFile(dir + "/big.src", test::krlDrillCycles(2100));
+  // 15,000 drill cycles (blocks of the streaming predict, windows of the reading) on the housing's
+  // top face
+  test::writeFile(dir + "/big.src", test::krlDrillCycles(15000));
+  ASSERT_GT(std::filesystem::file_size(dir + "/big.src"), postproc::ProgramStream::kWindowBytes);
   struct Case {
     std::string cell;
     std::string program;
@@ -304,7 +308,7 @@ TEST(StreamingOutput, AProgramSetUpBlockByBlockGivesTheBytesOfTheWholeJob) {
       const api::PredictionResult r = api::predictJob(c.cell, c.program, opt);
       ASSERT_FALSE(r.holes.empty());
       if (c.program == dir + "/big.src") {
-        EXPECT_EQ(r.holes.size(), 2100U);
+        EXPECT_EQ(r.holes.size(), 15000U);
       }
       std::string out;
       std::optional<api::PredictionJsonStream> js;
@@ -320,6 +324,7 @@ TEST(StreamingOutput, AProgramSetUpBlockByBlockGivesTheBytesOfTheWholeJob) {
       EXPECT_TRUE(out == api::predictionJson(r).dump()) << threads << " threads";
       EXPECT_EQ(s.context.job.notes, r.context.job.notes);
       EXPECT_TRUE(s.context.job.deferred);
+      EXPECT_EQ(s.context.job.streamed, c.program.ends_with(".src"));
       EXPECT_TRUE(s.context.job.requests.empty());
       EXPECT_TRUE(s.context.job.program->files.front().bytes.empty());
       EXPECT_EQ(s.summary.holes, static_cast<int>(r.holes.size()));

@@ -10,6 +10,7 @@
 #include "compensator/support/c_format.hpp"
 #include "compensator/support/error.hpp"
 #include "compensator/support/input_file.hpp"
+#include "postproc/program_stream.hpp"
 
 namespace roprec::api {
 
@@ -296,6 +297,7 @@ void setUpHole(const std::vector<postproc::Hole>& recognized, const postproc::Pr
                HoleSource& src) {
   const postproc::Hole& h = recognized[i];
   src.hole = static_cast<int>(i);
+  src.base = h.base;
   src.targets = h.targets;
   src.bottom_target = h.bottom_target;
   const postproc::Frame* base = h.base >= 0 ? &p.frames[static_cast<size_t>(h.base)] : nullptr;
@@ -364,10 +366,10 @@ void setUpHole(const std::vector<postproc::Hole>& recognized, const postproc::Pr
 /// setUpHole over holes [begin, end) on `threads` workers, hole i into requests[i - begin] and
 /// sources[i - begin]; with null arrays into a scratch pair per worker (a check that every hole
 /// can be set up). The error of the first failing hole (in hole order) is rethrown.
-void setUpRange(const JobHoles& job, const CellSpec& cell, const Robot& robot,
+void setUpRange(const postproc::Program& p, const std::vector<postproc::Hole>& recognized,
+                const CellSpec& cell, const Robot& robot,
                 const std::vector<postproc::HoleSpec>& specs, const std::vector<int>& spec_of_hole,
                 size_t begin, size_t end, int threads, HoleRequest* requests, HoleSource* sources) {
-  const postproc::Program& p = *job.program;
   const int workers = std::max(1, threads);
   std::vector<std::pair<size_t, std::exception_ptr>> failed(static_cast<size_t>(workers),
                                                             {end, nullptr});
@@ -379,8 +381,8 @@ void setUpRange(const JobHoles& job, const CellSpec& cell, const Robot& robot,
     try {
       HoleRequest& r = requests ? requests[k] : (scratch_r[wi] = HoleRequest{});
       HoleSource& src = sources ? sources[k] : (scratch_s[wi] = HoleSource{});
-      setUpHole(job.recognized, p, cell, robot, specs, spec_of_hole.empty() ? -1 : spec_of_hole[i],
-                i, r, src);
+      setUpHole(recognized, p, cell, robot, specs, spec_of_hole.empty() ? -1 : spec_of_hole[i], i,
+                r, src);
     } catch (...) {
       auto& f = failed[wi];
       if (i < f.first) f = {i, std::current_exception()};
@@ -393,38 +395,76 @@ void setUpRange(const JobHoles& job, const CellSpec& cell, const Robot& robot,
 
 /// A single-drill cell drills every hole with its drill: a job whose holes name two tools (the
 /// program changes tools, or the hole list's tool column does) is refused at the first hole of
-/// the second tool.
-void requireOneToolForOneDrill(const JobHoles& job, const CellSpec& cell,
-                               const std::vector<postproc::HoleSpec>& specs,
-                               const std::string& path) {
-  if (hasToolTable(cell) || cellDrills(cell).empty()) return;
-  std::string first, first_ref, first_at;
-  auto check = [&](const std::string& key, const std::string& ref, const std::string& file,
-                   int line) {
-    if (key.empty()) return;
-    if (first.empty()) {
-      first = key;
-      first_ref = ref;
-      first_at = file + ":" + std::to_string(line);
+/// the second tool. Fed the job's holes in order.
+class OneToolForOneDrill {
+ public:
+  explicit OneToolForOneDrill(const CellSpec& cell)
+      : on_(!hasToolTable(cell) && !cellDrills(cell).empty()) {}
+  void check(const std::string& key, const std::string& ref, const std::string& file, int line) {
+    if (!on_ || key.empty()) return;
+    if (first_.empty()) {
+      first_ = key;
+      first_ref_ = ref;
+      first_at_ = file + ":" + std::to_string(line);
       return;
     }
-    if (sameToolKey(first, key)) return;
+    if (sameToolKey(first_, key)) return;
     throw InputError(file, line,
-                     "the job changes tools (" + first_ref + " at " + first_at + ", then " + ref +
+                     "the job changes tools (" + first_ref_ + " at " + first_at_ + ", then " + ref +
                          ") but the cell has a single drill, which would drill every hole; hint: "
                          "give the cell a tool table, one <drill tool=\"n\" .../> per tool "
                          "(docs/process.md §8, tool table)");
-  };
-  if (job.is_hole_list) {
-    for (const postproc::HoleSpec& s : specs) check(s.tool, "tool " + s.tool, path, s.line);
-    return;
   }
-  const postproc::Program& p = *job.program;
-  for (const postproc::Hole& h : job.recognized) {
+  /// Program hole `h`.
+  void check(const postproc::Program& p, const postproc::Hole& h) {
+    if (!on_) return;
     const auto [key, ref] = holeTool(p, h);
     const postproc::Motion& mo = p.motions[static_cast<size_t>(h.bottom_motion)];
     check(key, ref, p.files[static_cast<size_t>(std::max(0, mo.file))].path, mo.line);
   }
+
+ private:
+  bool on_;
+  std::string first_, first_ref_, first_at_;
+};
+
+void requireOneToolForOneDrill(const JobHoles& job, const CellSpec& cell,
+                               const std::vector<postproc::HoleSpec>& specs,
+                               const std::string& path) {
+  OneToolForOneDrill one(cell);
+  if (job.is_hole_list) {
+    for (const postproc::HoleSpec& s : specs) one.check(s.tool, "tool " + s.tool, path, s.line);
+    return;
+  }
+  for (const postproc::Hole& h : job.recognized) one.check(*job.program, h);
+}
+
+/// The frame uses of program holes (HoleFrameUse), appended to `uses` for the holes whose base
+/// frame or tool no hole before them had (`seen`: base and tool frames met so far).
+void addFrameUses(const postproc::Program& p, const std::vector<postproc::Hole>& holes,
+                  size_t begin, std::vector<char>& seen, std::vector<HoleFrameUse>& uses) {
+  for (size_t i = begin; i < holes.size(); ++i) {
+    const postproc::Hole& h = holes[i];
+    const postproc::Motion& mo = p.motions[static_cast<size_t>(h.bottom_motion)];
+    seen.resize(2 * p.frames.size(), 0);
+    const bool new_base = h.base >= 0 && !seen[2 * static_cast<size_t>(h.base)];
+    const bool new_tool = mo.tool >= 0 && !seen[2 * static_cast<size_t>(mo.tool) + 1];
+    if (!new_base && !new_tool) continue;
+    if (h.base >= 0) seen[2 * static_cast<size_t>(h.base)] = 1;
+    if (mo.tool >= 0) seen[2 * static_cast<size_t>(mo.tool) + 1] = 1;
+    uses.push_back({h.id, h.base, mo.tool, mo.file, mo.line});
+  }
+}
+
+/// The note on the first hole whose base frame the program does not define (setUpHole:
+/// frame_resolved); false when hole `h`'s is defined.
+bool noteUndefinedBase(JobHoles& job, const postproc::Program& p, const postproc::Hole& h) {
+  const postproc::Frame* base = h.base >= 0 ? &p.frames[static_cast<size_t>(h.base)] : nullptr;
+  if (base && base->resolved) return false;
+  job.notes.push_back("program base frame " + (base ? base->ref : std::string("(none)")) +
+                      " is not defined in the program: the cell's <workobject> is used as that "
+                      "frame");
+  return true;
 }
 
 /// The note that says which holes the cell's single drill drills although nothing in the job
@@ -434,7 +474,7 @@ void noteDefaultDrill(JobHoles& job, const CellSpec& cell) {
   if (drills.size() != 1) return;
   size_t n = 0;
   std::string first;
-  const size_t holes = job.deferred ? job.recognized.size() : job.requests.size();
+  const size_t holes = job.hole_count;
   for (size_t i = 0; i < job.requests.size(); ++i) {
     if (job.requests[i].diameter > 0) continue;
     if (n++ == 0) first = job.requests[i].id;
@@ -444,18 +484,199 @@ void noteDefaultDrill(JobHoles& job, const CellSpec& cell) {
   const XmlNode& d = *drills.front();
   job.notes.push_back(
       "drill: " + std::to_string(n) + " of " + std::to_string(holes) + " holes (the first " +
-      (job.deferred ? job.recognized.front().id : first) +
+      (job.deferred ? job.first_hole_id : first) +
       ") state no drill or diameter: drilled with the cell's single drill Ø" +
       d.str("diameter_mm") + " mm and its <cut> (" + cell.file +
       "); hint: a hole list with diameters, or a tool table in the cell selected by the "
       "program's tool numbers, gives each hole its drill");
 }
 
+/// The error of a program without a drill cycle, at its first motion (or its first line when it
+/// has none).
+[[noreturn]] void throwNoDrillCycle(const postproc::Program& p, const std::string& path) {
+  // point at the program's first motion (or its first line when it has none)
+  std::string where = path;
+  int line = 1;
+  if (!p.motions.empty()) {
+    const postproc::Motion& m0 = p.motions.front();
+    if (m0.file >= 0 && static_cast<std::size_t>(m0.file) < p.files.size())
+      where = p.files[static_cast<std::size_t>(m0.file)].path;
+    line = std::max(1, m0.line);
+  }
+  std::string unknown;  // values roprec cannot evaluate cut cycles short
+  if (!p.unresolved.empty()) {
+    const postproc::Unresolved& u = p.unresolved.front();
+    unknown = "; " + std::to_string(p.unresolved.size()) +
+              " reference(s) roprec cannot resolve, the first '" + u.ref + "' at line " +
+              std::to_string(u.line) + " (" + u.what + ")";
+  }
+  throw InputError(where, line,
+                   "no drill cycle recognised in the program's " +
+                       std::to_string(p.motions.size()) +
+                       " motions (approach -> feed along the tool z axis -> retract)" + unknown +
+                       "; hint: a hole list (.csv) or --holes gives the holes directly");
+}
+
+/// The program's own notes and its unresolved references as job notes.
+void addProgramNotes(JobHoles& job, const postproc::Program& p) {
+  for (const auto& note : p.notes) job.notes.push_back(note);
+  for (const auto& u : p.unresolved) {
+    const std::string& file = p.files[static_cast<size_t>(std::max(0, u.file))].path;
+    const std::string where = u.line > 0 ? file + ":" + std::to_string(u.line) : file;
+    // a frame the program names but does not define is resolved (or refused) by the job's
+    // frame and tool resolution, which states it; a value roprec cannot know is a warning
+    const bool frame = std::any_of(p.frames.begin(), p.frames.end(),
+                                   [&](const postproc::Frame& f) { return f.ref == u.ref; });
+    job.notes.push_back((frame ? "program frame " : kUnresolvedPrefix) + u.ref + " (" + where +
+                        "): " + u.what);
+  }
+}
+
+}  // namespace
+
+/// The holes of a KRL program read by windows (postproc::ProgramStream), window after window:
+/// before the next window is read, the motions behind the last hole given are retired.
+class ProgramHoles {
+ public:
+  explicit ProgramHoles(const std::string& path) : stream_(path) {}
+  [[nodiscard]] bool windowed() const { return stream_.windowed(); }
+  /// Reads on to the next holes: false once the program is read and every hole given.
+  bool next() {
+    retireBehind();
+    while (!ended_) {
+      if (stream_.next()) {
+        rec_.advance(stream_.program(), false);
+      } else {
+        rec_.advance(stream_.program(), true);
+        ended_ = true;
+      }
+      std::vector<postproc::Hole> fresh = rec_.take();
+      if (fresh.empty()) continue;
+      for (postproc::Hole& h : fresh) holes_.push_back(std::move(h));
+      return true;
+    }
+    return false;
+  }
+  [[nodiscard]] postproc::Program& program() { return stream_.program(); }
+  /// The window's holes: the hole before the new ones first (its bottom motion bounds the
+  /// joint target the next hole starts from) when there is one, then the new ones.
+  [[nodiscard]] const std::vector<postproc::Hole>& holes() const { return holes_; }
+  [[nodiscard]] size_t firstNew() const { return first_new_; }
+  /// Hands the set-up of the job's next `end - begin` holes (begin: the count handed so far).
+  void take(const JobHoles& job, const CellSpec& cell, const Robot& robot, size_t begin, size_t end,
+            int threads, std::vector<HoleRequest>& requests, std::vector<HoleSource>& sources) {
+    if (begin != given_) throw InternalError("ProgramHoles::take: holes asked for out of order");
+    requests.clear();
+    sources.clear();
+    while (given_ < end) {
+      if (ready_ == ready_r_.size()) setUpNext(job, cell, robot, threads);
+      requests.push_back(std::move(ready_r_[ready_]));
+      sources.push_back(std::move(ready_s_[ready_]));
+      ++ready_;
+      ++given_;
+    }
+  }
+
+ private:
+  void retireBehind() {
+    if (holes_.empty()) return;
+    postproc::Hole last = std::move(holes_.back());
+    holes_.clear();
+    const size_t keep = std::min(static_cast<size_t>(last.bottom_motion), rec_.nextMotion() - 1);
+    const postproc::Retired r = stream_.retire(keep);
+    rec_.retired(r.motions, r.target_begin, r.target_end);
+    last.bottom_motion -= static_cast<int>(r.motions);
+    holes_.push_back(std::move(last));
+    first_new_ = 1;
+  }
+  /// The next window's holes set up (base frames applied) into the ready list.
+  void setUpNext(const JobHoles& job, const CellSpec& cell, const Robot& robot, int threads) {
+    if (!next()) throw InternalError("ProgramHoles: fewer holes than the first reading found");
+    const size_t n = holes_.size() - first_new_;
+    ready_r_.assign(n, HoleRequest{});
+    ready_s_.assign(n, HoleSource{});
+    setUpRange(program(), holes_, cell, robot, {}, {}, first_new_, holes_.size(), threads,
+               ready_r_.data(), ready_s_.data());
+    for (size_t k = 0; k < n; ++k) applyBaseFrame(job, ready_r_[k], ready_s_[k]);
+    ready_ = 0;
+  }
+
+  postproc::ProgramStream stream_;
+  postproc::HoleRecognizer rec_;
+  std::vector<postproc::Hole> holes_;
+  size_t first_new_{0};
+  bool ended_{false};
+  std::vector<HoleRequest> ready_r_;
+  std::vector<HoleSource> ready_s_;
+  size_t ready_{0};
+  size_t given_{0};
+};
+
+namespace {
+
+/// loadJobHoles of a deferred KRL program read by windows (`first`: its first reading): every
+/// hole checked and counted, the notes and errors of the program read whole, in their order
+/// (a hole's set-up error before a change of tools, wherever they are met); the holes are set
+/// up on a second reading (setUpHoles).
+JobHoles loadStreamedHoles(const std::string& path, const CellSpec& cell, const Robot& robot,
+                           int threads, ProgramHoles& first) {
+  JobHoles job;
+  job.path = path;
+  job.deferred = true;
+  job.streamed = true;
+  OneToolForOneDrill one(cell);
+  std::vector<char> seen;
+  std::string base_note;
+  std::exception_ptr setup_error;
+  std::exception_ptr tool_error;
+  while (first.next()) {  // a reader's error is thrown where it is met
+    if (setup_error) continue;
+    const postproc::Program& p = first.program();
+    const std::vector<postproc::Hole>& hs = first.holes();
+    try {
+      setUpRange(p, hs, cell, robot, {}, {}, first.firstNew(), hs.size(), threads, nullptr,
+                 nullptr);
+    } catch (const InputError&) {
+      setup_error = std::current_exception();
+      continue;
+    }
+    if (job.hole_count == 0) job.first_hole_id = hs[first.firstNew()].id;
+    job.hole_count += hs.size() - first.firstNew();
+    addFrameUses(p, hs, first.firstNew(), seen, job.frame_uses);
+    for (size_t i = first.firstNew(); i < hs.size(); ++i) {
+      if (base_note.empty()) {
+        JobHoles scratch;
+        if (noteUndefinedBase(scratch, p, hs[i])) base_note = scratch.notes.front();
+      }
+      if (tool_error) continue;
+      try {
+        one.check(p, hs[i]);
+      } catch (const InputError&) {
+        tool_error = std::current_exception();
+      }
+    }
+  }
+  const postproc::Program& p = first.program();
+  if (job.hole_count == 0 && !setup_error) throwNoDrillCycle(p, path);
+  if (setup_error) std::rethrow_exception(setup_error);
+  if (!base_note.empty()) job.notes.push_back(base_note);
+  if (tool_error) std::rethrow_exception(tool_error);
+  noteDefaultDrill(job, cell);
+  addProgramNotes(job, p);
+  job.program = std::move(first.program());
+  // its frames, files, notes and unresolved references stay; the last window's motions go
+  std::vector<postproc::Motion>().swap(job.program->motions);
+  std::vector<postproc::Target>().swap(job.program->target_list);
+  std::vector<postproc::TextId>().swap(job.program->marker_texts);
+  job.stream = std::make_shared<ProgramHoles>(path);
+  return job;
+}
+
 }  // namespace
 
 void applyBaseFrame(const JobHoles& job, HoleRequest& r, HoleSource& src) {
   if (src.hole < 0 || src.frame_resolved) return;
-  const int base = job.recognized[static_cast<size_t>(src.hole)].base;
+  const int base = src.base;
   if (base < 0 || static_cast<size_t>(base) >= job.base_frames.size()) return;
   const std::optional<Pose>& T = job.base_frames[static_cast<size_t>(base)];
   if (!T) return;
@@ -467,17 +688,26 @@ void applyBaseFrame(const JobHoles& job, HoleRequest& r, HoleSource& src) {
 void setUpHoles(const JobHoles& job, const CellSpec& cell, const Robot& robot, size_t begin,
                 size_t end, int threads, std::vector<HoleRequest>& requests,
                 std::vector<HoleSource>& sources) {
-  if (!job.deferred || !job.program || end > job.recognized.size() || begin > end)
+  if (!job.deferred || !job.program || end > job.hole_count || begin > end)
     throw InternalError("setUpHoles: not a deferred job or holes out of range");
   requests.assign(end - begin, HoleRequest{});
   sources.assign(end - begin, HoleSource{});
-  setUpRange(job, cell, robot, {}, {}, begin, end, threads, requests.data(), sources.data());
+  if (job.streamed) {
+    job.stream->take(job, cell, robot, begin, end, threads, requests, sources);
+    return;
+  }
+  setUpRange(*job.program, job.recognized, cell, robot, {}, {}, begin, end, threads,
+             requests.data(), sources.data());
   for (size_t k = 0; k < requests.size(); ++k) applyBaseFrame(job, requests[k], sources[k]);
 }
 
 JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot& robot,
                       const std::optional<std::string>& hole_list, double match_tol_mm, int threads,
                       bool defer_setup) {
+  if (defer_setup && !hole_list) {  // a KRL program is read by windows (twice)
+    auto holes = std::make_shared<ProgramHoles>(path);
+    if (holes->windowed()) return loadStreamedHoles(path, cell, robot, threads, *holes);
+  }
   JobHoles job;
   job.path = path;
   std::string bytes = readInputFile(path, InputKind::kProgram);
@@ -532,6 +762,7 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
       reportMatching(job, *hole_list, ref, spec_of_hole, "matched by id");
     }
     job.program = std::move(parsed);
+    job.hole_count = job.requests.size();
     requireOneToolForOneDrill(job, cell, specs, path);
     noteDefaultDrill(job, cell);
     return job;
@@ -549,29 +780,7 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
     job.recognized =
         postproc::withHoleListEvidence(p, std::move(job.recognized), specs, match_tol_mm);
   }
-  if (job.recognized.empty()) {
-    // point at the program's first motion (or its first line when it has none)
-    std::string where = path;
-    int line = 1;
-    if (!p.motions.empty()) {
-      const postproc::Motion& m0 = p.motions.front();
-      if (m0.file >= 0 && static_cast<std::size_t>(m0.file) < p.files.size())
-        where = p.files[static_cast<std::size_t>(m0.file)].path;
-      line = std::max(1, m0.line);
-    }
-    std::string unknown;  // values roprec cannot evaluate cut cycles short
-    if (!p.unresolved.empty()) {
-      const postproc::Unresolved& u = p.unresolved.front();
-      unknown = "; " + std::to_string(p.unresolved.size()) +
-                " reference(s) roprec cannot resolve, the first '" + u.ref + "' at line " +
-                std::to_string(u.line) + " (" + u.what + ")";
-    }
-    throw InputError(where, line,
-                     "no drill cycle recognised in the program's " +
-                         std::to_string(p.motions.size()) +
-                         " motions (approach -> feed along the tool z axis -> retract)" + unknown +
-                         "; hint: a hole list (.csv) or --holes gives the holes directly");
-  }
+  if (job.recognized.empty()) throwNoDrillCycle(p, path);
   std::vector<int> spec_of_hole(job.recognized.size(), -1);
   if (hole_list) {
     for (const postproc::HoleMatch& m :
@@ -579,23 +788,23 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
       spec_of_hole[static_cast<std::size_t>(m.hole)] = m.spec;
   }
   const size_t n = job.recognized.size();
+  job.hole_count = n;
+  job.first_hole_id = job.recognized.front().id;
+  std::vector<char> seen;
+  addFrameUses(p, job.recognized, 0, seen, job.frame_uses);
   // on the workers; the error of the first failing hole (in hole order) is the one thrown
   if (job.deferred) {
-    setUpRange(job, cell, robot, specs, spec_of_hole, 0, n, threads, nullptr, nullptr);
+    setUpRange(p, job.recognized, cell, robot, specs, spec_of_hole, 0, n, threads, nullptr,
+               nullptr);
   } else {
     job.requests.resize(n);
     job.sources.resize(n);
-    setUpRange(job, cell, robot, specs, spec_of_hole, 0, n, threads, job.requests.data(),
-               job.sources.data());
+    setUpRange(p, job.recognized, cell, robot, specs, spec_of_hole, 0, n, threads,
+               job.requests.data(), job.sources.data());
   }
   // the first hole whose base frame the program does not define (setUpHole: frame_resolved)
   for (const postproc::Hole& h : job.recognized) {
-    const postproc::Frame* base = h.base >= 0 ? &p.frames[static_cast<size_t>(h.base)] : nullptr;
-    if (base && base->resolved) continue;
-    job.notes.push_back("program base frame " + (base ? base->ref : std::string("(none)")) +
-                        " is not defined in the program: the cell's <workobject> is used as that "
-                        "frame");
-    break;
+    if (noteUndefinedBase(job, p, h)) break;
   }
   FarFromTheList far;
   for (size_t i = 0; i < n; ++i) {
@@ -609,17 +818,7 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
   }
   requireOneToolForOneDrill(job, cell, specs, path);
   noteDefaultDrill(job, cell);
-  for (const auto& note : p.notes) job.notes.push_back(note);
-  for (const auto& u : p.unresolved) {
-    const std::string& file = p.files[static_cast<size_t>(std::max(0, u.file))].path;
-    const std::string where = u.line > 0 ? file + ":" + std::to_string(u.line) : file;
-    // a frame the program names but does not define is resolved (or refused) by the job's
-    // frame and tool resolution, which states it; a value roprec cannot know is a warning
-    const bool frame = std::any_of(p.frames.begin(), p.frames.end(),
-                                   [&](const postproc::Frame& f) { return f.ref == u.ref; });
-    job.notes.push_back((frame ? "program frame " : kUnresolvedPrefix) + u.ref + " (" + where +
-                        "): " + u.what);
-  }
+  addProgramNotes(job, p);
   return job;
 }
 

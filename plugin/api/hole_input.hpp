@@ -13,6 +13,7 @@
 /// free and `roprec compensate --orientation` may change it.
 
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -30,6 +31,7 @@ inline constexpr const char* kUnresolvedPrefix = "unresolved ";
 
 struct HoleSource {
   int hole{-1};              ///< index into `recognized` (programs)
+  int base{-1};              ///< the program frame of the hole's base (index into frames)
   std::vector<int> targets;  ///< program targets of the cycle (all move together when compensated)
   int bottom_target{-1};
   Pose T_W_frame{Pose::Identity()};  ///< base frame of the program frame the target is in
@@ -37,6 +39,19 @@ struct HoleSource {
   std::string frame_ref;
   std::optional<Pose> T_W_tcp_spec;  ///< hole-list nominal pose when a hole list was matched
 };
+
+/// What the job's frame and tool resolution needs of a hole (resolveFramesAndTool in job.cpp):
+/// the hole, its base frame and the tool, file and line of its drill point's motion. A job keeps
+/// those of the first hole of each base frame and of each tool (the others repeat them).
+struct HoleFrameUse {
+  std::string id;
+  int base{-1};  ///< index into the program's frames (-1: none named)
+  int tool{-1};  ///< the bottom motion's tool, index into the program's frames
+  int file{-1};  ///< the bottom motion's file (index into the program's files) and line
+  int line{0};
+};
+
+class ProgramHoles;
 
 struct JobHoles {
   std::string path;
@@ -49,6 +64,14 @@ struct JobHoles {
   /// Set up on demand (loadJobHoles with `defer_setup`): `requests` and `sources` stay empty and
   /// setUpHoles() builds those of a range of holes (predictJobStreaming holds one block's).
   bool deferred{false};
+  /// A deferred KRL program read by windows (postproc::ProgramStream): `recognized` stays empty,
+  /// `program` holds its frames, notes and unresolved references (not its motions), and
+  /// setUpHoles() reads the program again, in hole order, as the holes are asked for.
+  bool streamed{false};
+  std::size_t hole_count{0};  ///< the job's holes (every kind of job)
+  std::string first_hole_id;
+  std::vector<HoleFrameUse> frame_uses;
+  std::shared_ptr<ProgramHoles> stream;  ///< streamed: the second reading (setUpHoles)
   /// Per program frame (index into program->frames): the pose the job gives a base frame the
   /// program does not define (--frame, --frame cell: see resolveFramesAndTool in job.cpp), for
   /// the holes drilled in that frame (applyBaseFrame).
@@ -63,6 +86,7 @@ void applyBaseFrame(const JobHoles& job, HoleRequest& r, HoleSource& src);
 /// The requests and sources of holes [begin, end) of a deferred job (JobHoles::deferred), set up
 /// on `threads` workers with the job's base frames applied: the values loadJobHoles gives when
 /// it does not defer. Throws InputError as loadJobHoles does (the first failing hole in order).
+/// A streamed job's holes are asked for in order (`begin` = the previous call's `end`).
 void setUpHoles(const JobHoles& job, const CellSpec& cell, const Robot& robot, size_t begin,
                 size_t end, int threads, std::vector<HoleRequest>& requests,
                 std::vector<HoleSource>& sources);
@@ -102,7 +126,9 @@ Mat3 holeFrame(const Vec3& direction);
 /// `defer_setup` (a job that writes no program; a program without a hole list): every hole is
 /// checked (the same errors) but the requests are not kept: setUpHoles() builds them block by
 /// block (JobHoles::deferred); the program's files' bytes are released once it is read (its
-/// targets, motions and frames stay; its files keep their paths and lines).
+/// targets, motions and frames stay; its files keep their paths and lines). A deferred KRL
+/// program is read by windows instead (JobHoles::streamed): every hole checked on a first
+/// reading that keeps no motion behind the window, the holes set up on a second.
 JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot& robot,
                       const std::optional<std::string>& hole_list, double match_tol_mm = 0.5,
                       int threads = 1, bool defer_setup = false);

@@ -96,9 +96,9 @@ void resolveFramesAndTool(PredictionContext& c, const JobOptions& o) {
   }
   if (!c.job.program || c.job.is_hole_list) return;
   const postproc::Program& p = *c.job.program;
-  auto where = [&](int file, int line, const postproc::Motion& mo) {
+  auto where = [&](int file, int line, const HoleFrameUse& h) {
     if (line > 0 && file >= 0) return std::make_pair(p.files[static_cast<size_t>(file)].path, line);
-    return std::make_pair(p.files[static_cast<size_t>(std::max(0, mo.file))].path, mo.line);
+    return std::make_pair(p.files[static_cast<size_t>(std::max(0, h.file))].path, h.line);
   };
   std::vector<std::string> stated;
   auto state = [&](const std::string& key, const std::string& text) {
@@ -111,11 +111,10 @@ void resolveFramesAndTool(PredictionContext& c, const JobOptions& o) {
   // defines is the one an error names), then applied to the holes set up so far (a deferred
   // job's holes get it when they are set up: setUpHoles)
   c.job.base_frames.assign(p.frames.size(), std::nullopt);
-  for (const postproc::Hole& h : c.job.recognized) {
+  for (const HoleFrameUse& h : c.job.frame_uses) {
     if (h.base < 0) continue;  // no frame named: the cell's workobject (noted by hole_input)
     const postproc::Frame& f = p.frames[static_cast<size_t>(h.base)];
     if (f.resolved || c.job.base_frames[static_cast<size_t>(h.base)]) continue;
-    const postproc::Motion& mo = p.motions[static_cast<size_t>(h.bottom_motion)];
     std::optional<Pose> T = givenFrame(o, f.ref);
     std::string how = "--frame '" + f.ref + "=...'";
     if (!T && o.frame_pose) {
@@ -127,7 +126,7 @@ void resolveFramesAndTool(PredictionContext& c, const JobOptions& o) {
       how = "the cell's <workobject> (--frame cell)";
     }
     if (!T) {
-      const auto [file, line] = where(-1, 0, mo);
+      const auto [file, line] = where(-1, 0, h);
       throw InputError(file, line,
                        "hole " + h.id + " uses the base frame " + f.ref +
                            ", which only the controller defines (not the program, the cell or "
@@ -152,12 +151,11 @@ void resolveFramesAndTool(PredictionContext& c, const JobOptions& o) {
   const Pose& T_cell = c.cell.tool.T_flange_tcp;
   const std::string cell_tool = "'" + (c.cell.tool.name.empty() ? "tool" : c.cell.tool.name) + "'";
   std::optional<std::pair<std::string, Pose>> program_tool;
-  for (const postproc::Hole& h : c.job.recognized) {
-    const postproc::Motion& mo = p.motions[static_cast<size_t>(h.bottom_motion)];
-    if (mo.tool < 0) continue;  // the program names no tool
-    const postproc::Frame& tf = p.frames[static_cast<size_t>(mo.tool)];
+  for (const HoleFrameUse& h : c.job.frame_uses) {
+    if (h.tool < 0) continue;  // the program names no tool
+    const postproc::Frame& tf = p.frames[static_cast<size_t>(h.tool)];
     std::optional<Pose> Tt = tf.resolved ? std::optional<Pose>(tf.pose) : givenFrame(o, tf.ref);
-    const auto [file, line] = where(tf.file, tf.line, mo);
+    const auto [file, line] = where(tf.file, tf.line, h);
     if (!Tt) {
       if (o.tool == "cell") {
         state("tool " + tf.ref, "tool " + tf.ref +
@@ -165,7 +163,7 @@ void resolveFramesAndTool(PredictionContext& c, const JobOptions& o) {
                                     cell_tool + " (--tool cell): TCP " + poseText(T_cell));
         continue;
       }
-      throw InputError(mo.file >= 0 ? p.files[static_cast<size_t>(mo.file)].path : file, mo.line,
+      throw InputError(h.file >= 0 ? p.files[static_cast<size_t>(h.file)].path : file, h.line,
                        "hole " + h.id + " uses the tool " + tf.ref +
                            ", which only the controller defines. Give --tool cell (the cell's "
                            "tool " +
@@ -454,7 +452,7 @@ PredictionResult predictJobStreaming(
   if (registered && !r.context.job.deferred) r.context.job.requests = registeredHoles(r.context);
   if (on_context) on_context(r.context);
   const JobHoles& job = r.context.job;
-  const size_t n = job.deferred ? job.recognized.size() : job.requests.size();
+  const size_t n = job.deferred ? job.hole_count : job.requests.size();
   SummaryAccumulator sum;
   struct Block {
     std::vector<HoleRequest> requests;  // deferred job: the block's own

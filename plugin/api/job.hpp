@@ -199,5 +199,6 @@ std::vector<std::string> writeCompensatedProgram(
 
 }  // namespace roprec::api
 
-#include "plugin/api/session.hpp"     // IWYU pragma: export
-#include "plugin/report/exports.hpp"  // IWYU pragma: export
+#include "plugin/api/session.hpp"             // IWYU pragma: export
+#include "plugin/report/exports.hpp"          // IWYU pragma: export
+#include "plugin/report/prediction_json.hpp"  // IWYU pragma: export

@@ -1,8 +1,8 @@
 #pragma once
 /// \file prediction_setup.hpp
 /// Everything `roprec predict` and `roprec compensate` share: the cell (robot, tool, process,
-/// tolerance, <uncertainty>, <capability>), the job's holes, the prediction model, and the JSON
-/// of a prediction (docs/contract.md §9 keys).
+/// tolerance, <uncertainty>, <capability>), the job's holes and the prediction model (the JSON of
+/// a prediction: plugin/report/prediction_json.hpp).
 ///
 /// Cell extensions read here (all optional):
 ///   <uncertainty method="linear|montecarlo" stiffness_rel="0.10" position_gain_rel="0.20"
@@ -43,10 +43,6 @@ PredictionContext loadPredictionContext(const std::string& cell_path, const std:
                                         double match_tol_mm = 0.5, bool load_holes = true,
                                         int threads = 1, bool defer_setup = false);
 
-/// Per-hole JSON object (contract keys + details). With `card`, the joints are also given in the
-/// controller's convention (`controller_joints_deg`, toControllerJoints).
-Json holeJson(const HolePrediction& h, const HoleRequest& r, const RobotCard* card = nullptr);
-Json summaryJson(const CapabilitySummary& s);
 /// Whether a hole's JSON states its drill (`"drill": {tool, feed_mm_per_rev, spindle_rpm}`): a
 /// hole drilled with a drill of the cell's tool table, or with its own feed or spindle speed.
 inline bool statesOwnProcess(const HoleRequest& r) {

@@ -23,6 +23,8 @@ struct HoleDigest {
   double axis_max{0};
   double axis_sum{0};
   int axis_n{0};
+  size_t failed{0};
+  bool list{true};                    ///< keep the failures' lines (not with --quiet)
   std::vector<std::string> failures;  ///< "hole ID (FILE:LINE): verdict: reason"
 
   void add(const HolePrediction& h, const HoleRequest& q, const std::string& program) {
@@ -32,6 +34,8 @@ struct HoleDigest {
       ++axis_n;
     }
     if (h.status == HoleStatus::kOk) return;
+    ++failed;
+    if (!list) return;
     failures.push_back(api::holeWhere(h.id, q.line, program) + ": " +
                        verdictAndReason(h.verdict, h.reason));
   }
@@ -75,6 +79,7 @@ int run(Args& args, CommandContext& ctx) {
   Progress progress(ctx, "predicting holes", 0);
   const ProgressFn step = [&](size_t done, size_t total) { progress.step(done, total); };
   HoleDigest digest;
+  digest.list = !ctx.quiet;  // printed only without --quiet: not kept with it
   std::vector<std::string> notes;
   CapabilitySummary summary;
   const bool to_file = json_out && *json_out != "-";
@@ -127,7 +132,7 @@ int run(Args& args, CommandContext& ctx) {
     for (const std::string& f : digest.failures) ctx.err << "roprec: " << f << "\n";
   }
   if (!ctx.quiet) printSummary(ctx, summary, digest);
-  return digest.failures.empty() ? 0 : 1;
+  return digest.failed == 0 ? 0 : 1;
 }
 
 const CommandRegistration reg{
@@ -156,11 +161,14 @@ const CommandRegistration reg{
      "real\n"
      "drill point's distance from the nominal hole axis (the residual of a compensated program).\n"
      "Prints a summary; --json OUT.json writes the JSON (--json - to stdout); --report writes one\n"
-     "self-contained HTML file. The JSON file is\n"
-     "written hole by hole (the JSON text is not kept), but memory grows with the number of "
-     "holes:\n"
-     "the holes read and their set-up stay in memory, about 1.5 kB a hole (a 1,000,000-hole list:\n"
-     "~1.5 GB peak); --report keeps every hole's prediction too.\n"
+     "self-contained HTML file. The JSON (file or stdout) is written a block of holes at a time,\n"
+     "its text not kept. A KUKA KRL program is read twice by windows of whole lines (every hole\n"
+     "checked first, then set up, predicted and written): memory does not grow with the number of\n"
+     "holes (a 1,000,000-hole .src: ~100 MB peak; its .dat is read whole), except for the lines "
+     "of\n"
+     "the holes that cannot be handled, kept for the list on stderr (not with --quiet). Other\n"
+     "dialects, hole lists and --holes keep the holes read and their set-up, about 1.5 kB a hole;\n"
+     "--report keeps every hole's prediction too.\n"
      "--threads N: worker threads for the per-hole work (0 = every core; default 1); the output "
      "is\n"
      "byte-identical for any N.\n"

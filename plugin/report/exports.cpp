@@ -11,6 +11,7 @@
 #include "plugin/api/report_input.hpp"
 #include "plugin/api/robots.hpp"
 #include "plugin/report/milling_output.hpp"
+#include "plugin/report/prediction_json.hpp"
 
 namespace roprec::api {
 

@@ -1,0 +1,213 @@
+#include "postproc/program_stream.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <filesystem>
+
+#include "compensator/support/atomic_file.hpp"
+#include "compensator/support/error.hpp"
+#include "compensator/support/input_file.hpp"
+#include "postproc/dialects.hpp"
+#include "postproc/value_ranges.hpp"
+
+namespace roprec::postproc {
+
+namespace fs = std::filesystem;
+
+ProgramStream::ProgramStream(const std::string& path, std::size_t window_bytes)
+    : path_(path), window_bytes_(std::max<std::size_t>(window_bytes, 4096)) {
+  // a file that cannot be read in windows (missing, not a regular file, above the size limit)
+  // gets readInputFile's error
+  const auto refuse = [&](const std::string& p) {
+    (void)readInputFile(p, InputKind::kProgram);
+    throw InputError(p, 0, "cannot open file");  // not reached: readInputFile threw
+  };
+  std::string head;
+  {
+    platform::File f;
+    if (f.openRead(path) != 0) refuse(path);
+    const platform::Status st = f.status();
+    if (st.kind != platform::Kind::kRegular || st.size > inputSizeLimit(InputKind::kProgram))
+      refuse(path);
+    head.resize(4096);
+    int e = 0;
+    const long long n = f.read(head.data(), head.size(), &e);
+    if (n < 0) refuse(path);
+    head.resize(static_cast<std::size_t>(n));
+  }
+  if (detectDialect(path, head) != Dialect::kKrl) {
+    whole_read_ = true;
+    return;
+  }
+  const auto [src, dat] = krlFiles(path);
+  p_.dialect = Dialect::kKrl;
+  p_.dat_path = dat.empty() ? fs::path(src).replace_extension(".dat").string() : dat;
+  if (file_.openRead(src) != 0) refuse(src);
+  const platform::Status st = file_.status();
+  if (st.kind != platform::Kind::kRegular || st.size > inputSizeLimit(InputKind::kProgram))
+    refuse(src);
+  SourceFile s;
+  s.path = src;
+  p_.files.push_back(std::move(s));
+  if (!dat.empty()) {
+    SourceFile d;
+    d.path = dat;
+    d.bytes = readInputFile(dat, InputKind::kProgram);
+    d.indexLines();
+    p_.files.push_back(std::move(d));
+  }
+  noteInputFile(src);
+  if (!readWindow()) {  // an empty .src: read whole, as readProgram does
+    file_.close();
+    whole_read_ = true;
+    p_ = Program{};
+    return;
+  }
+  checkInputText(p_.files[0].bytes, src);
+  krl_ = std::make_unique<KrlStream>(p_);  // reads the .dat
+  pinned_ = p_.target_list.size();
+  pending_ = true;
+}
+
+ProgramStream::~ProgramStream() = default;
+
+bool ProgramStream::readWindow() {
+  SourceFile& f = p_.files[0];
+  std::string buf = std::move(rest_);
+  rest_.clear();
+  std::size_t cut = std::string::npos;
+  while (!eof_) {  // whole lines: up to the last line end, more when the window has none
+    const std::size_t old = buf.size();
+    buf.resize(old + window_bytes_);
+    int e = 0;
+    const long long n = file_.read(buf.data() + old, window_bytes_, &e);
+    if (n < 0) (void)readInputFile(f.path, InputKind::kProgram);  // its read error
+    buf.resize(old + static_cast<std::size_t>(std::max(0LL, n)));
+    if (n <= 0) eof_ = true;
+    read_ += static_cast<std::size_t>(std::max(0LL, n));
+    if (read_ > inputSizeLimit(InputKind::kProgram))  // a file grown past the limit as it is read
+      (void)readInputFile(f.path, InputKind::kProgram);
+    if (std::memchr(buf.data() + old, '\0', buf.size() - old) != nullptr)
+      (void)readInputFile(f.path, InputKind::kProgram);  // the NUL byte at its line and column
+    for (std::size_t k = buf.size(); k > old; --k) {     // the bytes read before have none
+      if (buf[k - 1] == '\n') {
+        cut = k - 1;
+        break;
+      }
+    }
+    if (cut != std::string::npos) break;
+  }
+  if (buf.empty()) return false;
+  if (!eof_ && cut != std::string::npos) {
+    rest_.assign(buf, cut + 1, std::string::npos);
+    buf.resize(cut + 1);
+  }
+  const bool first = f.line_starts.empty();
+  const int lines = first ? 0 : f.line_base + static_cast<int>(f.line_starts.size());
+  f.bytes = std::move(buf);
+  f.indexLines();
+  f.line_base = lines;
+  if (!first) f.bom = false;
+  f.tokens.clear();
+  return true;
+}
+
+bool ProgramStream::next() {
+  if (finished_) return false;
+  if (whole_read_) {
+    if (!p_.files.empty()) {
+      finished_ = true;
+      return false;
+    }
+    p_ = readProgram(path_, readInputFile(path_, InputKind::kProgram));
+    return true;
+  }
+  if (pending_) {  // the constructor's window
+    pending_ = false;
+  } else if (!readWindow()) {
+    finished_ = true;
+    krl_->finish();
+    if (range_error_) std::rethrow_exception(range_error_);
+    std::string().swap(p_.files[0].bytes);
+    return false;
+  }
+  krl_->lines();
+  if (!range_error_) {
+    try {
+      checkValueRanges(p_);
+    } catch (const InputError&) {
+      range_error_ = std::current_exception();
+    }
+  }
+  return true;
+}
+
+Retired ProgramStream::retire(std::size_t m) {
+  Program& p = p_;
+  if (!krl_ || p.motions.empty()) return {};
+  m = std::min(m, p.motions.size() - 1);
+  if (const int held = krl_->heldMotion(); held >= 0)
+    m = std::min(m, static_cast<std::size_t>(held));
+  if (m == 0) return {};
+  // the unnamed targets after the pinned ones that no remaining motion uses
+  const std::size_t t0 = pinned_;
+  std::size_t t1 = p.target_list.size();
+  auto lowest = [&](int t) {
+    if (t >= 0 && static_cast<std::size_t>(t) >= t0) t1 = std::min(t1, static_cast<std::size_t>(t));
+  };
+  for (std::size_t k = m; k < p.motions.size(); ++k) {
+    lowest(p.motions[k].target);
+    lowest(p.motions[k].aux);
+  }
+  for (std::size_t t = t0; t < t1; ++t) {
+    if (!p.target_list[t].name.empty()) {
+      t1 = t;
+      break;
+    }
+  }
+  t1 = std::max(t1, t0);
+  // the targets whose uses change: those of every motion of the window that stay
+  std::vector<int> touched;
+  for (const Motion& mo : p.motions) {
+    for (const int t : {mo.target, mo.aux}) {
+      if (t < 0) continue;
+      const auto u = static_cast<std::size_t>(t);
+      if (u >= t0 && u < t1) continue;
+      touched.push_back(static_cast<int>(u >= t1 ? u - (t1 - t0) : u));
+    }
+  }
+  std::sort(touched.begin(), touched.end());
+  touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+  // the retired motions' own texts and markers
+  std::size_t marker_cut = 0;
+  for (std::size_t k = 0; k < m; ++k) {
+    const Motion& mo = p.motions[k];
+    p.texts.release(mo.target_text);
+    for (std::uint32_t j = 0; j < mo.marker_count; ++j)
+      p.texts.release(p.marker_texts[mo.marker_begin + j]);
+    if (mo.marker_count > 0) marker_cut = mo.marker_begin + mo.marker_count;
+  }
+  p.marker_texts.erase(p.marker_texts.begin(),
+                       p.marker_texts.begin() + static_cast<std::ptrdiff_t>(marker_cut));
+  p.motions.erase(p.motions.begin(), p.motions.begin() + static_cast<std::ptrdiff_t>(m));
+  p.target_list.erase(p.target_list.begin() + static_cast<std::ptrdiff_t>(t0),
+                      p.target_list.begin() + static_cast<std::ptrdiff_t>(t1));
+  const auto shift = static_cast<int>(t1 - t0);
+  for (Motion& mo : p.motions) {
+    if (mo.marker_count > 0) mo.marker_begin -= static_cast<std::uint32_t>(marker_cut);
+    if (mo.target >= static_cast<int>(t1)) mo.target -= shift;
+    if (mo.aux >= static_cast<int>(t1)) mo.aux -= shift;
+  }
+  for (const int t : touched) {
+    Target& tg = p.target_list[static_cast<std::size_t>(t)];
+    IndexList uses;
+    for (const int u : tg.uses) {
+      if (u >= static_cast<int>(m)) uses.push_back(u - static_cast<int>(m));
+    }
+    tg.uses = std::move(uses);
+  }
+  krl_->retired(m);
+  return {m, t0, t1};
+}
+
+}  // namespace roprec::postproc

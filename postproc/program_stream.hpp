@@ -1,0 +1,80 @@
+#pragma once
+/// \file program_stream.hpp
+/// A program read a window at a time, for a job that writes no program (`roprec predict`): it
+/// needs the motions in order, never the whole model. A KUKA KRL `.src` is read by windows of
+/// whole lines (about `window_bytes` each) through one reader that keeps its state from window to
+/// window; its `.dat` is read whole first (declarations before the lines that use them). The
+/// window Program holds the motions and targets read since the last retire() (every target of
+/// the `.dat` and every named target stays), and the frames, notes and unresolved references of
+/// everything read so far; its `.src` SourceFile holds the window's bytes (lineOf() gives the
+/// file's line: SourceFile::line_base). The other dialects are read whole, as one window.
+///
+/// Errors are those readProgram gives, in the same order: a reader's error where it is met, a
+/// value out of range (checkValueRanges) once the whole program is read without one.
+///
+///   ProgramStream s(path);
+///   HoleRecognizer rec;
+///   while (s.next()) { rec.advance(s.program(), false); ...; s.retire(m); }
+///   rec.advance(s.program(), true);
+
+#include <cstddef>
+#include <exception>
+#include <memory>
+#include <string>
+
+#include "compensator/support/platform.hpp"
+#include "postproc/program.hpp"
+
+namespace roprec::postproc {
+
+class KrlStream;
+class HoleRecognizer;
+
+/// What retire() dropped: motions [0, motions) and targets [target_begin, target_end) of the
+/// window; the indices after them shift down by as many.
+struct Retired {
+  std::size_t motions{0};
+  std::size_t target_begin{0};
+  std::size_t target_end{0};
+};
+
+class ProgramStream {
+ public:
+  static constexpr std::size_t kWindowBytes = std::size_t{1} << 20U;
+  /// Opens `path` as readProgram does (a KRL `.dat` reads its `.src`; the same InputErrors).
+  explicit ProgramStream(const std::string& path, std::size_t window_bytes = kWindowBytes);
+  ~ProgramStream();
+  ProgramStream(const ProgramStream&) = delete;
+  ProgramStream& operator=(const ProgramStream&) = delete;
+
+  /// Reads the next window into program(); false (program() unchanged) once the whole program
+  /// was read: the end-of-file checks are then done and a value out of range thrown.
+  bool next();
+  [[nodiscard]] Program& program() { return p_; }
+  /// Whether the program is read by windows (KRL); false: next() reads it whole once.
+  [[nodiscard]] bool windowed() const { return krl_ != nullptr; }
+  /// Drops the window's motions before `m` (fewer when the reader may still change one of them;
+  /// the last motion always stays: a marker after it belongs to it) and the unnamed targets only
+  /// they use, their texts released. A whole-read program drops nothing.
+  Retired retire(std::size_t m);
+
+ private:
+  /// Fills p_.files[0].bytes with the next window of whole lines; false at the end of the file.
+  bool readWindow();
+
+  std::string path_;
+  std::size_t window_bytes_;
+  Program p_;
+  std::unique_ptr<KrlStream> krl_;
+  platform::File file_;
+  std::string rest_;     ///< bytes read after the window's last line
+  std::size_t read_{0};  ///< bytes of the .src read so far
+  bool eof_{false};
+  bool whole_read_{false};
+  bool finished_{false};
+  bool pending_{false};    ///< the window the constructor read is not parsed yet
+  std::size_t pinned_{0};  ///< targets that always stay (the .dat's)
+  std::exception_ptr range_error_;
+};
+
+}  // namespace roprec::postproc
