@@ -126,7 +126,7 @@ TEST(HoleInput, RapidToolDataArgumentSelectsTheDrill) {
   EXPECT_EQ(twelve, 16);
 }
 
-TEST(HoleInput, FanucPositionToolSelectsTheDrill) {
+TEST(HoleInput, FanucUtoolNumAndThePositionsToolSelectTheDrill) {
   const std::string dir = test::tempDir("hole-input-tp");
   const std::string ls =
       test::readFile(test::sourceDir() + "/samples/emotor-housing/housing_r2000.ls");
@@ -147,7 +147,25 @@ TEST(HoleInput, FanucPositionToolSelectsTheDrill) {
     }
   }
   ASSERT_EQ(positions.size(), 16U * 3U);  // approach, entry, bottom of each hole
-  std::string out = ls;
+  // the program selects tool 2 for them as a controller needs (UTOOL_NUM=2, back to 1 after):
+  // the comment line where the tool changes becomes the UTOOL_NUM line
+  std::string out;
+  int active = 1;
+  for (size_t b = 0, e = 0; b < ls.size(); b = e + 1) {
+    e = ls.find('\n', b);
+    if (e == std::string::npos) e = ls.size();
+    std::string line = ls.substr(b, e - b);
+    const size_t bang = line.find("  !");
+    if (line.find("/POS") == 0) active = 0;
+    const int want = line.find("drill D12.0") != std::string::npos ? 2 : 1;
+    if (active > 0 && bang != std::string::npos && line.find(" drill D") != std::string::npos &&
+        want != active) {
+      line = line.substr(0, bang) + "  UTOOL_NUM=" + std::to_string(want) + " ;" +
+             (line.back() == '\r' ? "\r" : "");
+      active = want;
+    }
+    out += line + (e < ls.size() ? "\n" : "");
+  }
   for (const std::string& pos : positions) {
     const size_t rec = out.find("\n" + pos + "{");
     ASSERT_NE(rec, std::string::npos) << pos;
