@@ -435,6 +435,16 @@ struct Unresolved {
   std::string what;
 };
 
+/// A motion whose position was taught in another tool than the one the program selected before
+/// it (FANUC `UTOOL_NUM=1`, then `P[5]` with `UT : 2`): the controller stops there. The readers
+/// list it; predict and compensate refuse it (docs/programs.md §15).
+struct ToolConflict {
+  int motion{-1};        ///< index into Program::motions
+  int selected_line{0};  ///< the line that selected the active tool (same file)
+  std::string selected;  ///< the active tool (`UTOOL[1]`)
+  std::string taught;    ///< the position's tool (`UTOOL[2]`)
+};
+
 struct Edit {
   int file{-1};
   std::uint32_t offset{0};
@@ -454,6 +464,7 @@ struct Program {
   std::vector<Motion> motions;
   std::vector<Frame> frames;
   std::vector<Unresolved> unresolved;
+  std::vector<ToolConflict> tool_conflicts;
   std::vector<std::string> notes;
   /// Texts of the target components stated by name or expression (NumberField::setExpression).
   std::vector<std::string> expressions;

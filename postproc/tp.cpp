@@ -115,10 +115,14 @@ class TpReader {
     int motion;
     int number;
     int aux_number;
+    int utool;       ///< the UTOOL_NUM active at the motion (-1: none, -2: a register)
+    int utool_line;  ///< its line
   };
   std::vector<Pending> pending_;
   int uframe_{-1};
   int utool_{-1};
+  int utool_line_{0};
+  bool utool_register_noted_{false};
   int last_motion_line_{-1};
   std::array<TextId, 100> uframe_names_{}, utool_names_{};  ///< UF/UT number -> its text
   struct Memo {
@@ -194,10 +198,16 @@ class TpReader {
     }
     const std::string w = upper(letter);
     if (w == "UFRAME_NUM" || w == "UTOOL_NUM") {
+      int& selected = w == "UFRAME_NUM" ? uframe_ : utool_;
       if (k + 2 < e && punct(k + 1, '=') && tok_[k + 2].kind == TokenKind::kNumber) {
-        (w == "UFRAME_NUM" ? uframe_ : utool_) = toInt(parseNumber(tx(k + 2)).value_or(-1));
+        selected = toInt(parseNumber(tx(k + 2)).value_or(-1));
+        if (selected > 99) selected = -2;  // not a frame number: as unknown as a register
       } else {
-        (w == "UFRAME_NUM" ? uframe_ : utool_) = -2;  // register: runtime
+        selected = -2;  // register: runtime
+      }
+      if (w == "UTOOL_NUM") {
+        utool_line_ = f_.lineOf(tok_[k].offset);
+        if (selected == -2) utoolFromRegister(k, e);
       }
       return;
     }
@@ -311,14 +321,27 @@ class TpReader {
       // C P[aux] [speed...] ; then the end point on the continuation line
       tail(m, after, e);
       p_.motions.push_back(std::move(m));
-      pending_.push_back(Pending{static_cast<int>(p_.motions.size() - 1), -1, pnum});
+      pending_.push_back(
+          Pending{static_cast<int>(p_.motions.size() - 1), -1, pnum, utool_, utool_line_});
       last_motion_line_ = static_cast<int>(p_.motions.size() - 1);
       return;
     }
     tail(m, after, e);
     p_.motions.push_back(std::move(m));
-    pending_.push_back(Pending{static_cast<int>(p_.motions.size() - 1), pnum, -1});
+    pending_.push_back(
+        Pending{static_cast<int>(p_.motions.size() - 1), pnum, -1, utool_, utool_line_});
     optionCalls(after, e);
+  }
+
+  /// `UTOOL_NUM=R[i]` (tokens [k, e)): the tool is known only at run time; noted once, each
+  /// position's own UT is then its tool.
+  void utoolFromRegister(std::size_t k, std::size_t e) {
+    if (utool_register_noted_) return;
+    utool_register_noted_ = true;
+    p_.unresolved.push_back(Unresolved{
+        std::string(spanText(k, e)), 0, utool_line_,
+        "the tool number comes from a register: known only at run time (each position's UT is "
+        "taken as its tool)"});
   }
 
   /// Point-logic calls on the motion line (`TB .50sec,CALL SPINDLE_ON`, `DB 10.0mm,CALL DRILL`):
@@ -642,6 +665,20 @@ class TpReader {
     return Frame{ref, false, Pose::Identity(), -1, 0};
   }
 
+  /// The tool UTOOL_NUM selected for motion `m` (pd.utool): its tool when its position names
+  /// none; a position taught in another tool is a ToolConflict (the position's UT stays its tool).
+  void selectedTool(const Pending& pd, Motion& m) {
+    if (pd.utool < 0) return;
+    const int active = frameIndex(frameName(false, pd.utool), true);
+    if (m.tool < 0) {
+      m.tool = active;
+    } else if (m.tool != active) {
+      p_.tool_conflicts.push_back(ToolConflict{pd.motion, pd.utool_line,
+                                               p_.frames[static_cast<std::size_t>(active)].ref,
+                                               p_.frames[static_cast<std::size_t>(m.tool)].ref});
+    }
+  }
+
   void finish() {
     for (const Pending& pd : pending_) {
       Motion& m = p_.motions[static_cast<std::size_t>(pd.motion)];
@@ -673,6 +710,7 @@ class TpReader {
         if (!t.frame_ref.empty()) m.base = frameIndex(t.frame_ref, false);
         if (!t.tool_ref.empty()) m.tool = frameIndex(t.tool_ref, true);
       }
+      selectedTool(pd, m);
       if (m.target >= 0)
         p_.target_list[static_cast<std::size_t>(m.target)].uses.push_back(pd.motion);
       if (m.aux >= 0) p_.target_list[static_cast<std::size_t>(m.aux)].uses.push_back(pd.motion);

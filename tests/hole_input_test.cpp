@@ -126,7 +126,7 @@ TEST(HoleInput, RapidToolDataArgumentSelectsTheDrill) {
   EXPECT_EQ(twelve, 16);
 }
 
-TEST(HoleInput, FanucPositionToolSelectsTheDrill) {
+TEST(HoleInput, FanucUtoolNumAndThePositionsToolSelectTheDrill) {
   const std::string dir = test::tempDir("hole-input-tp");
   const std::string ls =
       test::readFile(test::sourceDir() + "/samples/emotor-housing/housing_r2000.ls");
@@ -147,7 +147,25 @@ TEST(HoleInput, FanucPositionToolSelectsTheDrill) {
     }
   }
   ASSERT_EQ(positions.size(), 16U * 3U);  // approach, entry, bottom of each hole
-  std::string out = ls;
+  // the program selects tool 2 for them as a controller needs (UTOOL_NUM=2, back to 1 after):
+  // the comment line where the tool changes becomes the UTOOL_NUM line
+  std::string out;
+  int active = 1;
+  for (size_t b = 0, e = 0; b < ls.size(); b = e + 1) {
+    e = ls.find('\n', b);
+    if (e == std::string::npos) e = ls.size();
+    std::string line = ls.substr(b, e - b);
+    const size_t bang = line.find("  !");
+    if (line.find("/POS") == 0) active = 0;
+    const int want = line.find("drill D12.0") != std::string::npos ? 2 : 1;
+    if (active > 0 && bang != std::string::npos && line.find(" drill D") != std::string::npos &&
+        want != active) {
+      line = line.substr(0, bang) + "  UTOOL_NUM=" + std::to_string(want) + " ;" +
+             (line.back() == '\r' ? "\r" : "");
+      active = want;
+    }
+    out += line + (e < ls.size() ? "\n" : "");
+  }
   for (const std::string& pos : positions) {
     const size_t rec = out.find("\n" + pos + "{");
     ASSERT_NE(rec, std::string::npos) << pos;
@@ -315,6 +333,132 @@ TEST(HoleInput, ToolTableDrillsGiveTheSameHoleAsTheSingleDrillAtItsDiameter) {
   }
   EXPECT_EQ(bigger, 16);
   EXPECT_EQ(same, 56);  // the 8.5 mm drill is the single cell's drill, same cut
+}
+
+// ---- each drill's own TCP (<drill><tcp/>)
+
+/// A one- or two-drill KR120 housing cell: `tool` is the cell's <tool>, `drills` its <drill>s.
+std::string housingCell(const std::string& tool, const std::string& drills) {
+  return "<cell name=\"tcp\">\n  <robot ref=\"kuka-kr120-r2500-pro\"/>\n  " + tool +
+         "\n  <controller gravity_compensated=\"true\" calibration_load=\"tool\"/>\n"
+         "  <workobject xyz=\"1350 0 300\" rpy=\"0 0 0\"/>\n  <process type=\"drilling\">\n" +
+         drills +
+         "    <cut feed_mm_per_rev=\"0.2\" spindle_rpm=\"6000\" depth_mm=\"20\"/>\n"
+         "    <material name=\"AlSi9Cu3\"/>\n  </process>\n</cell>\n";
+}
+
+const std::string kSpindle =
+    "<tool name=\"spindle\" xyz=\"0 0 320\" rpy=\"0 0 0\" mass_kg=\"25.8\" com_mm=\"0 0 120\" "
+    "inertia_kgm2=\"0.35 0 0 0.33 0 0.08\"/>";
+const std::string kDrill1 =
+    "diameter_mm=\"6.8\" point_angle_deg=\"140\" web_mm=\"0.95\" stickout_mm=\"30\"";
+const std::string kDrill2 =
+    "diameter_mm=\"8.5\" point_angle_deg=\"140\" web_mm=\"1.2\" stickout_mm=\"34\"";
+// drill 2 is a longer, heavier tool: its own mass data
+const std::string kTool2Mass =
+    "mass_kg=\"27.1\" com_mm=\"0 0 135\" inertia_kgm2=\"0.4 0 0 0.38 0 0.08\"";
+
+/// The sample program drilled tool by tool, with its tools 1 and 2 at TCP z 300 and 340 mm;
+/// `only`: just the holes of that tool (1 or 2), else those of tools 1 and 2.
+std::string twoTcpProgram(int only) {
+  std::string src = test::readFile(kToolsProgram);
+  auto replace = [&](const std::string& a, const std::string& b) {
+    const size_t at = src.find(a);
+    ASSERT_NE(at, std::string::npos) << a;
+    src.replace(at, a.size(), b);
+  };
+  replace("TOOL_DATA[1] = {X 0.000,Y 0.000,Z 320.000", "TOOL_DATA[1] = {X 0.000,Y 0.000,Z 300.000");
+  replace("TOOL_DATA[2] = {X 0.000,Y 0.000,Z 320.000", "TOOL_DATA[2] = {X 0.000,Y 0.000,Z 340.000");
+  const size_t t1 = src.find("; tool change: tool 1");
+  const size_t t2 = src.find("; tool change: tool 2");
+  const size_t t3 = src.find("; tool change: tool 3");
+  const std::string head = src.substr(0, t1);
+  const std::string body = only == 1   ? src.substr(t1, t2 - t1)
+                           : only == 2 ? src.substr(t2, t3 - t2)
+                                       : src.substr(t1, t3 - t1);
+  return head + body + "SPINDLE_OFF()\nEND\n";
+}
+
+TEST(HoleInput, EachDrillsOwnTcpCompensatesAsASingleDrillCellWithThatTcp) {
+  const std::string dir = test::tempDir("hole-input-tcp");
+  // the tool table: tool 1 at z 300 with the spindle's mass data, tool 2 at z 340 with its own
+  test::writeFile(
+      dir + "/table.xml",
+      housingCell(kSpindle, "    <drill tool=\"1\" " + kDrill1 +
+                                ">\n      <tcp xyz=\"0 0 300\" rpy=\"0 0 0\"/>\n"
+                                "    </drill>\n    <drill tool=\"2\" " +
+                                kDrill2 + ">\n      <tcp xyz=\"0 0 340\" rpy=\"0 0 0\" " +
+                                kTool2Mass + "/>\n    </drill>\n"));
+  // the oracles: one single-drill cell per drill, its <tool> at that drill's TCP and mass
+  test::writeFile(
+      dir + "/one.xml",
+      housingCell("<tool name=\"spindle\" xyz=\"0 0 300\" rpy=\"0 0 0\" mass_kg=\"25.8\" "
+                  "com_mm=\"0 0 120\" inertia_kgm2=\"0.35 0 0 0.33 0 0.08\"/>",
+                  "    <drill " + kDrill1 + "/>\n"));
+  test::writeFile(
+      dir + "/two.xml",
+      housingCell("<tool name=\"spindle\" xyz=\"0 0 340\" rpy=\"0 0 0\" " + kTool2Mass + "/>",
+                  "    <drill " + kDrill2 + "/>\n"));
+  test::writeFile(dir + "/both.src", twoTcpProgram(0));
+  test::writeFile(dir + "/one.src", twoTcpProgram(1));
+  test::writeFile(dir + "/two.src", twoTcpProgram(2));
+  const api::CompensationResult both = api::compensateJob(dir + "/table.xml", dir + "/both.src");
+  const api::CompensationResult one = api::compensateJob(dir + "/one.xml", dir + "/one.src");
+  const api::CompensationResult two = api::compensateJob(dir + "/two.xml", dir + "/two.src");
+  ASSERT_EQ(one.holes.size(), 72U);
+  ASSERT_EQ(two.holes.size(), 56U);
+  ASSERT_EQ(both.holes.size(), one.holes.size() + two.holes.size());
+  // the same table without <tcp>s (every drill at the cell's <tool>, the program's tools taken
+  // as its TCP): a compensation the per-drill TCPs visibly change
+  test::writeFile(dir + "/flat.xml",
+                  housingCell(kSpindle, "    <drill tool=\"1\" " + kDrill1 +
+                                            "/>\n    <drill tool=\"2\" " + kDrill2 + "/>\n"));
+  api::CompensationJob flat_job;
+  flat_job.job.tool = "cell";
+  const api::CompensationResult flat =
+      api::compensateJob(dir + "/flat.xml", dir + "/both.src", flat_job);
+  ASSERT_EQ(flat.holes.size(), both.holes.size());
+  double worst = 0;
+  double worst_rot = 0;
+  double moved = 0;
+  for (size_t i = 0; i < both.holes.size(); ++i) {
+    const HoleCompensation& h = both.holes[i];
+    const HoleCompensation& o = i < 72 ? one.holes[i] : two.holes[i - 72];
+    ASSERT_TRUE(h.ok && o.ok) << h.id << " " << h.reason << o.reason;
+    worst = std::max(worst, (h.T_programmed.translation() - o.T_programmed.translation()).norm());
+    worst_rot = std::max(
+        worst_rot,
+        Eigen::AngleAxisd(h.T_programmed.linear().transpose() * o.T_programmed.linear()).angle());
+    moved = std::max(moved, (h.delta.translation() - flat.holes[i].delta.translation()).norm());
+  }
+  EXPECT_LE(worst, 1e-9);
+  EXPECT_LE(worst_rot, 1e-9);
+  EXPECT_GT(moved, 1e-6);
+}
+
+TEST(HoleInput, ProgramToolIsCheckedAgainstItsOwnDrillsTcp) {
+  const std::string dir = test::tempDir("hole-input-tcp-check");
+  test::writeFile(dir + "/both.src", twoTcpProgram(0));
+  // tool 2's <tcp> says z 330, the program's TOOL_DATA[2] z 340: an error where it is selected
+  test::writeFile(dir + "/table.xml",
+                  housingCell(kSpindle, "    <drill tool=\"1\" " + kDrill1 +
+                                            ">\n      <tcp xyz=\"0 0 300\"/>\n    </drill>\n"
+                                            "    <drill tool=\"2\" " +
+                                            kDrill2 +
+                                            ">\n      <tcp xyz=\"0 0 330\"/>\n"
+                                            "    </drill>\n"));
+  const test::RunResult r =
+      test::runRoprec("predict --cell '" + dir + "/table.xml' '" + dir + "/both.src' --quiet");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(
+      r.err.find("both.src:" + std::to_string(lineOf(dir + "/both.src", "$TOOL = TOOL_DATA[2]")) +
+                 ": the program's tool TOOL_DATA[2]"),
+      std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("differs from the cell's drill 2 <tcp>"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("Correct the drill's <tcp> in"), std::string::npos) << r.err;
+  // tool 1 matches its own <tcp> (z 300) though the cell's <tool> is at z 320: no error for it
+  EXPECT_EQ(r.err.find("TOOL_DATA[1]"), std::string::npos) << r.err;
 }
 
 }  // namespace

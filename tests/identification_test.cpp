@@ -35,6 +35,7 @@
 #include "compensator/precision/fit_validation.hpp"
 #include "compensator/support/error.hpp"
 #include "plugin/api/prediction_setup.hpp"
+#include "plugin/api/verify.hpp"
 #include "tests/support/kdl_support.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -1364,6 +1365,69 @@ TEST(Identification, ThermalScaleIsUnmodelledByTheStiffnessAlone) {
   truth.setScale(0.0);
   const Measured clean = measure(c, truth, 7, 5e-6);
   EXPECT_TRUE(checkFit(identifyStiffness(c.model, clean.holes, o), clean.holes).consistent);
+}
+
+/// The holes of `r` from `first` on, measured `offset` (base frame, m) off where `r` predicts
+/// them, as a CMM file (workobject frame, mm) whose ids are H`first_id`, H`first_id + 1`, ...
+std::string measuredFile(const api::PredictionResult& r, size_t first, const Vec3& offset,
+                         size_t first_id) {
+  const Pose T_wobj_W = r.context.cell.T_base_wobj.inverse();
+  std::string csv = "id,x,y,z,u\n";
+  for (size_t i = first; i < r.holes.size(); ++i) {
+    const Vec3 at =
+        T_wobj_W * (r.context.job.requests[i].T_W_tcp.translation() + r.holes[i].d_work + offset);
+    char row[160];
+    std::snprintf(row, sizeof row, "H%zu,%.7f,%.7f,%.7f,5.0\n", first_id + i - first, at.x() * 1e3,
+                  at.y() * 1e3, at.z() * 1e3);
+    csv += row;
+  }
+  return csv;
+}
+
+TEST(Identification, VerifyObservesEachHoleWithItsOwnDrillsProcess) {
+  // the sample tool table's tool 4 (Ø12, its own feed 0.25 and 5000 rpm) verified in the job of
+  // four drills gives each measured hole the residual a single-drill cell of that drill gives
+  // it (the same holes, the same measurements): the identification takes each hole's own drill
+  const std::string s = test::sourceDir() + "/samples/";
+  const std::string dir = test::tempDir("identify-tools");
+  const std::string program = s + "emotor-housing/housing_kr120_tools.src";
+  const std::string src = test::readFile(program);
+  const size_t t1 = src.find("; tool change: tool 1");
+  const size_t t4 = src.find("; tool change: tool 4");
+  ASSERT_NE(t4, std::string::npos);
+  test::writeFile(dir + "/d12.src", src.substr(0, t1) + src.substr(t4));
+  std::string cell = test::readFile(s + "cells/housing-kr120.xml");
+  const size_t d = cell.find("<drill diameter_mm=\"8.5\"");
+  ASSERT_NE(d, std::string::npos);
+  const size_t cut = cell.find("<cut ", d);
+  const size_t cut_end = cell.find("/>", cut) + 2;
+  cell.replace(d, cut_end - d,
+               "<drill diameter_mm=\"12\" point_angle_deg=\"140\" helix_angle_deg=\"30\" "
+               "web_mm=\"1.7\" tool_material=\"carbide\" stickout_mm=\"45\"/>\n    <cut "
+               "feed_mm_per_rev=\"0.25\" spindle_rpm=\"5000\" depth_mm=\"20\"/>");
+  test::writeFile(dir + "/d12.xml", cell);
+  const std::string tools_cell = s + "cells/housing-kr120-tools.xml";
+  const api::PredictionResult all = api::predictJob(tools_cell, program);
+  const api::PredictionResult one = api::predictJob(dir + "/d12.xml", dir + "/d12.src");
+  ASSERT_EQ(all.holes.size(), 204U);
+  ASSERT_EQ(one.holes.size(), 16U);
+  const Vec3 offset(12e-6, -7e-6, 3e-6);
+  // the same measurements under each job's ids (H189..H204 there, H1..H16 here)
+  test::writeFile(dir + "/all.csv", measuredFile(all, 188, offset, 189));
+  test::writeFile(dir + "/one.csv", measuredFile(all, 188, offset, 1));
+  api::VerifyJob job;
+  job.registration = Registration::kTranslation;
+  job.measured = dir + "/all.csv";
+  const api::VerifyResult a = api::verifyJob(tools_cell, program, job);
+  job.measured = dir + "/one.csv";
+  const api::VerifyResult b = api::verifyJob(dir + "/d12.xml", dir + "/d12.src", job);
+  ASSERT_TRUE(a.identification && b.identification);
+  ASSERT_EQ(a.identification->residuals.size(), 16U);
+  ASSERT_EQ(b.identification->residuals.size(), 16U);
+  EXPECT_GT(b.identification->rms_prior, 1e-6);
+  EXPECT_NEAR(a.identification->rms_prior, b.identification->rms_prior, 1e-11);
+  for (size_t i = 0; i < 16; ++i)
+    EXPECT_LE((a.identification->residuals[i] - b.identification->residuals[i]).norm(), 1e-9) << i;
 }
 
 }  // namespace

@@ -4,7 +4,9 @@
 // round-trip byte for byte through `roprec convert` and `roprec inspect` must describe it.
 // Damaged lines are errors at their line: a line number, a speed without its number or with an
 // exponent, a frame number that is not a small integer; a motion to a position only the
-// controller knows (P[R[4]], PR[3]) is an unresolved reference at its line.
+// controller knows (P[R[4]], PR[3]) is an unresolved reference at its line. UTOOL_NUM selects the
+// tool of positions without their own UT; a position taught in another tool than the active one
+// is a conflict predict refuses at the motion; UTOOL_NUM=R[i] is unresolved, noted once.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -277,6 +279,85 @@ TEST(TpReader, AMotionToAPositionRoprecCannotKnowIsReportedAtItsLine) {
   // the sample itself has none (only its controller frames UFRAME[1] and UTOOL[1])
   EXPECT_TRUE(
       positionsUnresolved(postproc::parseProgram(postproc::Dialect::kTp, "r.ls", text)).empty());
+}
+
+/// A TP program: `mn` (the /MN lines, numbered here) and positions P[1] (UT : ut1), P[2] (UT :
+/// ut2), each "" to leave its UT out.
+std::string toolProgram(const std::vector<std::string>& mn, const std::string& ut1,
+                        const std::string& ut2) {
+  std::string t = "/PROG  TOOLS\r\n/MN\r\n";
+  for (size_t i = 0; i < mn.size(); ++i)
+    t += "   " + std::to_string(i + 1) + ":" + mn[i] + " ;\r\n";
+  auto ufut = [](const std::string& ut) {
+    return ut.empty() ? std::string("UF : 0") : "UF : 0, UT : " + ut;
+  };
+  return t + "/POS\r\n" + record("P[1]", ufut(ut1), "N U T, 0, 0, 0", "284.000") +
+         record("P[2]", ufut(ut2), "N U T, 0, 0, 0", "234.000") + "/END\r\n";
+}
+
+std::string toolOf(const postproc::Program& p, size_t motion) {
+  const int t = p.motions[motion].tool;
+  return t < 0 ? std::string() : p.frames[static_cast<size_t>(t)].ref;
+}
+
+TEST(TpReader, UtoolNumSelectsTheToolOfPositionsWithoutTheirOwn) {
+  const std::string text = toolProgram(
+      {"UTOOL_NUM=2", "J P[1] 10% FINE", "UTOOL_NUM=3", "L P[2] 20mm/sec FINE"}, "", "");
+  const postproc::Program p = postproc::parseProgram(postproc::Dialect::kTp, "t.ls", text);
+  ASSERT_EQ(p.motions.size(), 2U);
+  EXPECT_EQ(toolOf(p, 0), "UTOOL[2]");
+  EXPECT_EQ(toolOf(p, 1), "UTOOL[3]");
+  EXPECT_TRUE(p.tool_conflicts.empty());
+  std::string err;
+  roundTripAndInspect("tp-utool", text, &err);
+}
+
+TEST(TpReader, APositionTaughtInAnotherToolThanTheActiveOneIsAConflictAtItsMotion) {
+  // UTOOL_NUM=1, then P[2] taught with UT : 2: the controller stops at line 3's motion; the
+  // position's UT stays its tool, the reader lists the conflict (convert and inspect still work)
+  const std::string text =
+      toolProgram({"UTOOL_NUM=1", "J P[1] 10% FINE", "L P[2] 20mm/sec FINE"}, "1", "2");
+  const postproc::Program p = postproc::parseProgram(postproc::Dialect::kTp, "t.ls", text);
+  ASSERT_EQ(p.motions.size(), 2U);
+  EXPECT_EQ(toolOf(p, 0), "UTOOL[1]");
+  EXPECT_EQ(toolOf(p, 1), "UTOOL[2]");
+  ASSERT_EQ(p.tool_conflicts.size(), 1U);
+  EXPECT_EQ(p.tool_conflicts[0].motion, 1);
+  EXPECT_EQ(p.tool_conflicts[0].selected, "UTOOL[1]");
+  EXPECT_EQ(p.tool_conflicts[0].taught, "UTOOL[2]");
+  EXPECT_EQ(p.tool_conflicts[0].selected_line, 3);  // /PROG, /MN, then line 1
+  std::string err;
+  roundTripAndInspect("tp-utool-conflict", text, &err);
+}
+
+TEST(TpReader, UtoolNumFromARegisterIsUnresolvedOnceAndThePositionsUtIsTheTool) {
+  const std::string text = toolProgram(
+      {"UTOOL_NUM=R[4]", "J P[1] 10% FINE", "UTOOL_NUM=R[5]", "L P[2] 20mm/sec FINE"}, "2", "");
+  const postproc::Program p = postproc::parseProgram(postproc::Dialect::kTp, "t.ls", text);
+  EXPECT_EQ(toolOf(p, 0), "UTOOL[2]");
+  EXPECT_EQ(toolOf(p, 1), "");  // nothing known: the job's tool (as a program naming none)
+  EXPECT_TRUE(p.tool_conflicts.empty());
+  int noted = 0;
+  for (const postproc::Unresolved& u : p.unresolved)
+    noted += u.ref.rfind("UTOOL_NUM", 0) == 0 && u.line == 3 &&
+             u.what.find("register") != std::string::npos;
+  EXPECT_EQ(noted, 1);
+}
+
+TEST(TpReader, APredictionOfAProgramWithAToolConflictIsRefusedAtTheMotion) {
+  const std::string dir = test::tempDir("tp-utool-predict");
+  test::writeFile(dir + "/j.ls", toolProgram({"UTOOL_NUM=1", "J P[1] 10% FINE",
+                                              "L P[2] 2mm/sec FINE", "L P[1] 250mm/sec FINE"},
+                                             "1", "2"));
+  const auto r = test::runRoprec("predict --cell '" + test::sourceDir() +
+                                 "/samples/cells/housing-r2000.xml' '" + dir +
+                                 "/j.ls' --frame cell --tool cell --json '" + dir + "/p.json'");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find(dir + "/j.ls:5: the motion's position was taught in tool 2 (UT : 2) but "
+                             "UTOOL_NUM=1 is active (line 3)"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("Hint: select its tool with UTOOL_NUM=2"), std::string::npos) << r.err;
 }
 
 }  // namespace

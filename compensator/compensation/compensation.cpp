@@ -263,8 +263,9 @@ Cost transitionCost(const Node& a, const Node& b, OrientationMode mode) {
 
 /// Predictions of the original targets (continuity seeds, like `roprec predict`).
 void predictOriginal(const PredictionModel& m, PredictionData& d,
-                     const std::vector<HoleRequest>& holes, std::vector<HoleCompensation>& out) {
-  std::optional<Vec6> prev;
+                     const std::vector<HoleRequest>& holes, const std::optional<Vec6>& first,
+                     std::vector<HoleCompensation>& out) {
+  std::optional<Vec6> prev = first;
   for (size_t i = 0; i < holes.size(); ++i) {
     out[i].id = holes[i].id;
     try {
@@ -1030,6 +1031,7 @@ std::string notCompensatedReason(const HoleCompensation& c, const Node& chosen) 
 /// thread) are built on a task of their own while predictHoles' sequential IK pass runs.
 std::vector<HoleCompensation> predictOriginalThreads(const PredictionModel& m, PredictionData& d,
                                                      const std::vector<HoleRequest>& holes,
+                                                     const std::optional<Vec6>& first,
                                                      int threads) {
   std::vector<HoleCompensation> out;
   std::shared_future<void> built;
@@ -1044,6 +1046,7 @@ std::vector<HoleCompensation> predictOriginalThreads(const PredictionModel& m, P
   try {
     PredictOptions po;
     po.threads = threads;
+    po.seed = first;
     predictHoles(m, holes, po, [&](size_t i) -> HolePrediction& {
       ready();
       return out[i].before;
@@ -1055,17 +1058,16 @@ std::vector<HoleCompensation> predictOriginalThreads(const PredictionModel& m, P
     // the sequential loop below reports the failing hole as not converged
   }
   ready();
-  predictOriginal(m, d, holes, out);
+  predictOriginal(m, d, holes, first, out);
   return out;
 }
 
-}  // namespace
-
-std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,
-                                              const std::vector<HoleRequest>& holes,
-                                              const CompensationOptions& o,
-                                              CompensationStats* stats) {
-  CompensationStats st;
+/// compensateHoles over holes that share one model (one TCP), the first seeded with `first`.
+std::vector<HoleCompensation> compensateRun(const PredictionModel& m,
+                                            const std::vector<HoleRequest>& holes,
+                                            const CompensationOptions& o,
+                                            const std::optional<Vec6>& first,
+                                            CompensationStats& st) {
   const size_t n = holes.size();
   const int threads = static_cast<int>(
       std::clamp<size_t>(static_cast<size_t>(std::max(1, o.threads)), 1, std::max<size_t>(1, n)));
@@ -1077,7 +1079,7 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,
     scratch.emplace_back(m);
     evs.push_back(Evaluator{m, scratch.back(), o, true});
   }
-  std::vector<HoleCompensation> out = predictOriginalThreads(m, scratch[0], holes, threads);
+  std::vector<HoleCompensation> out = predictOriginalThreads(m, scratch[0], holes, first, threads);
   const int grid = o.mode == OrientationMode::kKeep ? 1 : std::max(4, o.grid);
   Grid<Node> nodes;
   double thr = 0;
@@ -1131,13 +1133,70 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,
       st.U_work_gain_max = std::max(st.U_work_gain_max, c.U_work_keep - c.after.U_work_exact);
     }
   }
+  return out;
+}
+
+/// The statistics of two runs of holes as one sequence's.
+void addStats(CompensationStats& to, const CompensationStats& s) {
+  to.dp_nodes += s.dp_nodes;
+  to.infeasible_nodes += s.infeasible_nodes;
+  to.refined += s.refined;
+  to.nlopt_evaluations += s.nlopt_evaluations;
+  to.relaxed_jumps = to.relaxed_jumps || s.relaxed_jumps;
+  to.jump_threshold_used = std::max(to.jump_threshold_used, s.jump_threshold_used);
+  to.relaxed_wrist += s.relaxed_wrist;
+  to.psi_changed += s.psi_changed;
+  to.psi_for_limits += s.psi_for_limits;
+  to.psi_for_wrist += s.psi_for_wrist;
+  to.psi_for_jumps += s.psi_for_jumps;
+  to.psi_for_stiffness += s.psi_for_stiffness;
+  to.config_changed += s.config_changed;
+  to.stiffness_compared += s.stiffness_compared;
+  to.U_work_keep_sum += s.U_work_keep_sum;
+  to.U_work_sum += s.U_work_sum;
+  to.U_work_gain_max = std::max(to.U_work_gain_max, s.U_work_gain_max);
+}
+
+}  // namespace
+
+std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,
+                                              const std::vector<HoleRequest>& holes,
+                                              const CompensationOptions& o,
+                                              CompensationStats* stats) {
+  CompensationStats st;
+  if (!hasDrillModels(m)) {
+    std::vector<HoleCompensation> out = compensateRun(m, holes, o, std::nullopt, st);
+    if (stats) *stats = st;
+    return out;
+  }
+  // drills with TCPs of their own: each run of holes drilled at one TCP is compensated with its
+  // model, seeded with the joints of the run before (a tool change is a repositioning move)
+  std::vector<HoleCompensation> out;
+  out.reserve(holes.size());
+  std::optional<Vec6> seed;
+  for (size_t b = 0; b < holes.size();) {
+    const PredictionModel& mb = modelFor(m, holes[b]);
+    size_t e = b + 1;
+    while (e < holes.size() && &modelFor(m, holes[e]) == &mb) ++e;
+    const std::vector<HoleRequest> run(holes.begin() + static_cast<std::ptrdiff_t>(b),
+                                       holes.begin() + static_cast<std::ptrdiff_t>(e));
+    CompensationStats rs;
+    std::vector<HoleCompensation> part = compensateRun(mb, run, o, seed, rs);
+    addStats(st, rs);
+    for (HoleCompensation& c : part) {
+      if (c.before.status == HoleStatus::kOk) seed = c.before.joints;
+      out.push_back(std::move(c));
+    }
+    b = e;
+  }
   if (stats) *stats = st;
   return out;
 }
 
-void compensateTarget(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
+void compensateTarget(const PredictionModel& base, PredictionData& d, const HoleRequest& h,
                       const CompensationOptions& options, TargetBudgets budgets,
                       HoleCompensation& out) {
+  const PredictionModel& m = modelFor(base, h);
   out.id = h.id;
   out.ok = false;
   out.reason.clear();

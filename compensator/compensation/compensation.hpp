@@ -143,6 +143,10 @@ struct CompensationStats {
   double U_work_gain_max{0.0};  ///< m (largest per-hole gain)
 };
 
+/// Compensates a program's holes in sequence. With drills of their own TCP (drill_models), each
+/// run of consecutive holes drilled at one TCP is a sequence of its own with its drill's model,
+/// seeded with the last admissible joints before it: a tool change is a repositioning move, so
+/// no jump limit applies across it.
 std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,
                                               const std::vector<HoleRequest>& holes,
                                               const CompensationOptions& options,

@@ -51,24 +51,58 @@ Pose parsePartRegistration(const XmlNode& e) {
 /// Tool + spindle mass above this is not a tool (kg; the heaviest robots carry 2.3 t).
 constexpr double kMaxToolMassKg = 5000.0;
 
+/// The mass data of a <tool> (or a drill's <tcp>) element: mass, centre of mass and inertia.
+void parseToolMass(const XmlNode& t, ToolSpec& tool) {
+  tool.mass = t.number("mass_kg", 0.0);
+  if (!(tool.mass >= 0 && tool.mass <= kMaxToolMassKg)) {
+    t.fail("<" + t.name + "> mass_kg must lie in [0, " +
+           std::to_string(static_cast<int>(kMaxToolMassKg)) + "] kg, got " + t.str("mass_kg"));
+  }
+  tool.com = boundedVec3(t, "com_mm", 1e5, "100 m (mm expected)") * 1e-3;
+  tool.inertia = Mat3::Zero();
+  if (t.has("inertia_kgm2")) {
+    const Eigen::VectorXd I = t.numbers("inertia_kgm2", 6);  // ixx ixy ixz iyy iyz izz
+    tool.inertia << I[0], I[1], I[2], I[1], I[3], I[4], I[2], I[4], I[5];
+    if (const std::string why = inertiaProblem(tool.inertia); !why.empty())
+      t.fail("<" + t.name + "> inertia_kgm2: " + why);
+  }
+}
+
 ToolSpec parseTool(const XmlNode& t) {
   allowOnly(t, {"name", "xyz", "rpy", "mass_kg", "com_mm", "inertia_kgm2"});
   ToolSpec tool;
   tool.name = t.str("name", "tool");
   tool.T_flange_tcp = poseFromXyzRpyMm(t);
-  tool.mass = t.number("mass_kg", 0.0);
-  if (!(tool.mass >= 0 && tool.mass <= kMaxToolMassKg)) {
-    t.fail("<tool> mass_kg must lie in [0, " + std::to_string(static_cast<int>(kMaxToolMassKg)) +
-           "] kg, got " + t.str("mass_kg"));
-  }
-  tool.com = boundedVec3(t, "com_mm", 1e5, "100 m (mm expected)") * 1e-3;
-  if (t.has("inertia_kgm2")) {
-    const Eigen::VectorXd I = t.numbers("inertia_kgm2", 6);  // ixx ixy ixz iyy iyz izz
-    tool.inertia << I[0], I[1], I[2], I[1], I[3], I[4], I[2], I[4], I[5];
-    if (const std::string why = inertiaProblem(tool.inertia); !why.empty())
-      t.fail("<tool> inertia_kgm2: " + why);
-  }
+  parseToolMass(t, tool);
   return tool;
+}
+
+/// The TCP of every <drill> of a drilling process (CellSpec::drill_tools): a drill's <tcp> is
+/// its TCP in the flange frame; its mass data are its own when it states mass_kg, else the cell
+/// tool's (the same spindle, another drill).
+std::vector<std::optional<ToolSpec>> parseDrillTools(const XmlNode& process, const ToolSpec& cell) {
+  std::vector<std::optional<ToolSpec>> out;
+  if (process.str("type", "") != "drilling") return out;
+  for (const XmlNode* d : process.childrenNamed("drill")) {
+    const XmlNode* t = d->child("tcp");
+    if (t == nullptr) {
+      out.emplace_back();
+      continue;
+    }
+    allowOnly(*t, {"xyz", "rpy", "mass_kg", "com_mm", "inertia_kgm2"});
+    ToolSpec tool = cell;
+    tool.name = d->str("tool", d->str("name", "drill"));
+    tool.T_flange_tcp = poseFromXyzRpyMm(*t);
+    if (t->has("mass_kg")) {
+      parseToolMass(*t, tool);
+    } else if (t->has("com_mm") || t->has("inertia_kgm2")) {
+      t->fail(
+          "<tcp> com_mm and inertia_kgm2 belong to a mass: give mass_kg too (without it the "
+          "drill carries the cell's <tool> mass data)");
+    }
+    out.emplace_back(std::move(tool));
+  }
+  return out;
 }
 
 }  // namespace
@@ -129,6 +163,7 @@ CellSpec loadCell(const std::string& path) {
     cell.has_process = true;
     cell.process = *p;
     (void)parseProcess(*p);  // validates the whole element (unknown names, ranges) up front
+    cell.drill_tools = parseDrillTools(*p, cell.tool);
   }
   if (const XmlNode* tol = root.child("tolerance")) {
     allowOnly(*tol, {"position_mm"});

@@ -251,6 +251,17 @@ Vec6 priorEffectiveCompliance(const PredictionModel& m) {
   return m.compliance.effective().cwiseInverse();
 }
 
+/// The process fields of an observation as a hole request (processFor).
+HoleRequest processRequest(const IdentificationHole& h) {
+  HoleRequest r;
+  r.id = h.id;
+  r.diameter = h.diameter;
+  r.drill = h.drill;
+  r.feed = h.feed;
+  r.spindle_rpm = h.spindle_rpm;
+  return r;
+}
+
 void setUpHoles(Problem& P) {
   P.row.assign(1, 0);
   P.obs_model.assign(P.holes.size(), std::nullopt);
@@ -267,7 +278,7 @@ void setUpHoles(Problem& P) {
       P.obs_model[i]->tol_phi = P.m.model.tol_phi;
       P.obs_model[i]->max_iterations = P.m.model.max_iterations;
     }
-    const ProcessAtDiameter* proc = h.point ? nullptr : processFor(P.m, h.diameter);
+    const ProcessAtDiameter* proc = h.point ? nullptr : processFor(P.m, processRequest(h));
     P.loads.push_back(h.loads ? *h.loads : processLoads(P.m, proc));
     P.d_mach_tool.push_back(proc ? Vec3(proc->mach.delta_tool.x(), proc->mach.delta_tool.y(), 0.0)
                                  : Vec3::Zero());

@@ -112,6 +112,12 @@ struct IdentificationHole {
   Pose T_W_hole{
       Pose::Identity()};  ///< nominal hole: drill point, z = drilling direction; base frame
   double diameter{0.0};   ///< m (0: the process drill): selects the process wrench and δmach
+  /// The hole's drill of the cell's tool table and its own feed (m/rev) and spindle speed (1/min)
+  /// (HoleRequest::drill, feed, spindle_rpm; -1 and 0: the first drill at its cut data): with
+  /// `diameter` they select the process wrench and δmach (processFor).
+  int drill{-1};
+  double feed{0.0};
+  double spindle_rpm{0.0};
   Vec3 p_W_measured{Vec3::Zero()};  ///< measured hole position, base frame (via the workobject), m
   double sigma{5e-6};  ///< standard uncertainty per in-plane axis of measured − predicted, m
                        ///< (residualSigma: measurement, repeatability, machining)

@@ -178,7 +178,26 @@ PredictionModel buildPredictionModel(const PredictionSetup& setup) {
     }
     for (const HoleRequest& h : setup.hole_processes) addHoleProcess(m, h);
   }
+  for (size_t i = 0; i < setup.drill_tools.size(); ++i) {
+    if (!setup.drill_tools[i]) continue;
+    PredictionSetup own = setup;
+    own.tool = setup.drill_tools[i]->tool;
+    own.calibration_load = setup.drill_tools[i]->calibration_load;
+    own.drill_tools.clear();
+    m.drill_models.resize(setup.drill_tools.size());
+    m.drill_models[i] = std::make_shared<PredictionModel>(buildPredictionModel(own));
+  }
   return m;
+}
+
+const PredictionModel& modelFor(const PredictionModel& m, const HoleRequest& h) {
+  const size_t i = static_cast<size_t>(std::max(h.drill, 0));
+  return i < m.drill_models.size() && m.drill_models[i] ? *m.drill_models[i] : m;
+}
+
+bool hasDrillModels(const PredictionModel& m) {
+  return std::any_of(m.drill_models.begin(), m.drill_models.end(),
+                     [](const std::shared_ptr<PredictionModel>& p) { return p != nullptr; });
 }
 
 namespace {
@@ -218,6 +237,8 @@ HoleProcessKey holeProcessKey(const PredictionModel& m, const HoleRequest& h) {
 
 void addHoleProcess(PredictionModel& m, const HoleRequest& h) {
   if (!m.has_process) return;
+  const size_t own = static_cast<size_t>(std::max(h.drill, 0));
+  if (own < m.drill_models.size() && m.drill_models[own]) addHoleProcess(*m.drill_models[own], h);
   const HoleProcessKey k = holeProcessKey(m, h);
   if (firstDrillAtItsCut(m, k)) {
     const double d = h.diameter > 0 ? h.diameter
@@ -411,16 +432,18 @@ HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const Ho
   return p;
 }
 
-void predictHole(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
+void predictHole(const PredictionModel& base, PredictionData& d, const HoleRequest& h,
                  const Vec6* seed, HolePrediction& p) {
+  const PredictionModel& m = modelFor(base, h);
   resetPrediction(h, p);
   IkSolution sol;
   chooseSolution(m, d, h, flangeTarget(m, h), seedOf(m, h, seed), p, sol);
   predictAtSolution(m, d, h, sol, p);  // without a solution: the per-hole process figures only
 }
 
-void chooseHoleSolution(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
+void chooseHoleSolution(const PredictionModel& base, PredictionData& d, const HoleRequest& h,
                         const Vec6* seed, HolePrediction& p) {
+  const PredictionModel& m = modelFor(base, h);
   resetPrediction(h, p);
   IkSolution sol;
   chooseSolution(m, d, h, flangeTarget(m, h), seedOf(m, h, seed), p, sol);
@@ -725,14 +748,15 @@ void chooseInOrder(const PredictionModel& m, PredictionData& d, std::span<const 
       parallelFor(c1 - c0, threads, [&](int, size_t k) {
         const HoleRequest& h = holes[c0 + k];
         ahead[k].valid = false;
-        if (!h.config) ikCandidates(m.ik, flangeTarget(m, h), ahead[k]);
+        if (!h.config) ikCandidates(m.ik, flangeTarget(modelFor(m, h), h), ahead[k]);
       });
     }
     for (size_t i = c0; i < c1; ++i) {
       seed[i] = prev;
       probe.status = HoleStatus::kOk;
-      chosen[i] = chooseSolution(m, d, holes[i], flangeTarget(m, holes[i]),
-                                 seedOf(m, holes[i], prev ? &*prev : nullptr), probe, sol[i],
+      const PredictionModel& mi = modelFor(m, holes[i]);
+      chosen[i] = chooseSolution(mi, d, holes[i], flangeTarget(mi, holes[i]),
+                                 seedOf(mi, holes[i], prev ? &*prev : nullptr), probe, sol[i],
                                  compute_ahead ? &ahead[i - c0] : nullptr);
       if (chosen[i] && !sol[i].singular_wrist && !sol[i].singular_shoulder) prev = sol[i].q;
     }
@@ -758,7 +782,8 @@ void predictHoles(const PredictionModel& m, std::span<const HoleRequest> holes,
     HolePrediction& p = at(i);
     p.id = holes[i].id;
     if (chosen[i]) {
-      predictAtSolution(m, scratch[static_cast<size_t>(w)], holes[i], sol[i], p);
+      predictAtSolution(modelFor(m, holes[i]), scratch[static_cast<size_t>(w)], holes[i], sol[i],
+                        p);
     } else {
       predictHole(m, scratch[static_cast<size_t>(w)], holes[i], seed[i] ? &*seed[i] : nullptr, p);
     }

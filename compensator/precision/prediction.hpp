@@ -33,6 +33,7 @@
 
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <random>
 #include <span>
@@ -148,7 +149,19 @@ struct PredictionModel {
   /// `<controller gravity_compensated>` or the cell's `<controller>`), else the mastering
   /// reference at the card's calibration pose; roprec predicts only the part beyond it.
   nc::ControllerReference controller;
+  /// The model of each drill of the tool table that has its own TCP (PredictionSetup::
+  /// drill_tools, ProcessSpec::drills order; null: the drill sits at this model's tool): the same
+  /// robot, process and budget inputs with that TCP and tool mass. modelFor picks a hole's.
+  std::vector<std::shared_ptr<PredictionModel>> drill_models;
 };
+
+struct HoleRequest;
+
+/// The model hole `h` is predicted and compensated with: its drill's own (drill_models, the
+/// first drill's for a hole nothing assigns), else `m` itself.
+const PredictionModel& modelFor(const PredictionModel& m, const HoleRequest& h);
+/// Whether some drill of the tool table has a TCP of its own (drill_models).
+bool hasDrillModels(const PredictionModel& m);
 
 /// The controller's kinematic model: nominal_model when calibrated, else model.
 const nc::Model& controllerModel(const PredictionModel& m);
@@ -169,7 +182,12 @@ Vec6 controllerOffset(const PredictionModel& m, nc::Data& data, const Vec6& thet
 Vec6 controllerOffset(const PredictionModel& m, nc::Data& data, const Vec6& theta,
                       const nc::JointCompliance& c);
 
-struct HoleRequest;
+/// A drill of the tool table with its own TCP (cell <drill><tcp/>): the tool attachment while it
+/// is in the spindle, and the load the controller's gravity compensation then assumes.
+struct DrillTool {
+  nc::ToolAttachment tool;
+  nc::ToolAttachment calibration_load;
+};
 
 struct PredictionSetup {
   Robot robot;
@@ -185,6 +203,9 @@ struct PredictionSetup {
   std::vector<HoleRequest> hole_processes;
   bool controller_gravity{false};       ///< absolute-accuracy option (api::controllerGravityOf)
   nc::ToolAttachment calibration_load;  ///< load the controller's gravity compensation assumes
+  /// Per drill of the tool table (ProcessSpec::drills order): its own TCP, nullopt (or a shorter
+  /// list) where the drill sits at `tool` (PredictionModel::drill_models).
+  std::vector<std::optional<DrillTool>> drill_tools;
 };
 
 /// Builds the model once (process evaluated per distinct diameter).

@@ -154,8 +154,8 @@ void applyOverride(const MachiningDeviationOverride& o, MachiningDeviationParams
 /// The <cut> of drill `d`: the process's <cut> with the attributes of the drill's own <cut>
 /// over it (messages at the drill's <cut> when it has one). Throws when neither exists.
 XmlNode cutOf(const XmlNode& proc, const XmlNode& d) {
-  allowChildren(d, {"cut"});
-  allowAtMostOnce(d, {"cut"});
+  allowChildren(d, {"cut", "tcp"});  // <tcp>: the drill's own TCP, read with the cell's tool
+  allowAtMostOnce(d, {"cut", "tcp"});
   const XmlNode* shared = proc.child("cut");
   const XmlNode* own = d.child("cut");
   if (own == nullptr) return required(proc, "cut", "feed and speed");

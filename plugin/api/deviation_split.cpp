@@ -36,6 +36,7 @@ PredictionModel base(const PredictionModel& m) {
   PredictionModel v = m;
   v.controller = nc::ControllerReference{};  // kNone: no reference offset
   v.uncertainty.method = UncertaintyInputs::Method::kLinear;
+  v.drill_models.clear();  // a variant of one model (splitRobotDeviations splits by drill)
   return v;
 }
 
@@ -52,16 +53,14 @@ std::optional<Vec3> deviationOf(const PredictionModel& m, PredictionData& d, con
   return e.d_robot;
 }
 
-}  // namespace
-
-std::vector<std::optional<DeviationSplit>> splitRobotDeviations(
-    const PredictionModel& m, const nc::ToolAttachment& tool,
-    const std::vector<HoleRequest>& requests, const std::vector<const HolePrediction*>& preds,
-    int threads) {
+/// splitRobotDeviations with one model (`m` has no drill_models in use), its TCP T_flange_tcp.
+std::vector<std::optional<DeviationSplit>> splitOneModel(
+    const PredictionModel& m, const Pose& T_flange_tcp, const std::vector<HoleRequest>& requests,
+    const std::vector<const HolePrediction*>& preds, int threads) {
   // δ₁: links only (tool massless, its TCP kept), no process, no reference
   PredictionModel links = base(m);
   nc::ToolAttachment massless;
-  massless.T_flange_tcp = tool.T_flange_tcp;
+  massless.T_flange_tcp = T_flange_tcp;
   links.model = nc::buildModel(m.robot.real_chain, massless);
   dropProcessLoad(links);
   // δ₂: links + tool
@@ -100,6 +99,34 @@ std::vector<std::optional<DeviationSplit>> splitRobotDeviations(
     s.process_alone = *d4 - s.geometry;
     out[i] = s;
   });
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::optional<DeviationSplit>> splitRobotDeviations(
+    const PredictionModel& m, const nc::ToolAttachment& tool,
+    const std::vector<HoleRequest>& requests, const std::vector<const HolePrediction*>& preds,
+    int threads) {
+  if (!hasDrillModels(m)) return splitOneModel(m, tool.T_flange_tcp, requests, preds, threads);
+  // drills with TCPs of their own: the holes of each model split with it
+  const size_t n = std::min(preds.size(), requests.size());
+  std::vector<const PredictionModel*> models;
+  for (size_t i = 0; i < n; ++i) {
+    const PredictionModel* mi = &modelFor(m, requests[i]);
+    if (std::find(models.begin(), models.end(), mi) == models.end()) models.push_back(mi);
+  }
+  std::vector<std::optional<DeviationSplit>> out(preds.size());
+  for (const PredictionModel* mm : models) {
+    std::vector<const HolePrediction*> own(preds.size(), nullptr);
+    for (size_t i = 0; i < n; ++i)
+      if (&modelFor(m, requests[i]) == mm) own[i] = preds[i];
+    const Pose T =
+        mm == &m ? tool.T_flange_tcp : Pose(mm->model.T_L6_flange.inverse() * mm->model.T_L6_tcp);
+    std::vector<std::optional<DeviationSplit>> part = splitOneModel(*mm, T, requests, own, threads);
+    for (size_t i = 0; i < n; ++i)
+      if (own[i] != nullptr) out[i] = part[i];
+  }
   return out;
 }
 

@@ -701,6 +701,24 @@ void setUpHoles(const JobHoles& job, const CellSpec& cell, const Robot& robot, s
   for (size_t k = 0; k < requests.size(); ++k) applyBaseFrame(job, requests[k], sources[k]);
 }
 
+/// A motion to a position taught in another tool than the active one (postproc::ToolConflict):
+/// the controller stops there, so the program cannot run as written (exit 2 at the motion).
+void refuseToolConflicts(const postproc::Program& p) {
+  if (p.tool_conflicts.empty()) return;
+  const postproc::ToolConflict& k = p.tool_conflicts.front();
+  const postproc::Motion& mo = p.motions[static_cast<size_t>(k.motion)];
+  const std::string file = p.files[static_cast<size_t>(std::max(0, mo.file))].path;
+  const std::string active = programToolKey(k.selected);
+  const std::string taught = programToolKey(k.taught);
+  throw InputError(file, mo.line,
+                   "the motion's position was taught in tool " + taught + " (UT : " + taught +
+                       ") but UTOOL_NUM=" + active + " is active (line " +
+                       std::to_string(k.selected_line) +
+                       "): the controller stops at this motion (a position's tool must be the "
+                       "active one). Hint: select its tool with UTOOL_NUM=" +
+                       taught + " before the motion, or re-teach the position in tool " + active);
+}
+
 JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot& robot,
                       const std::optional<std::string>& hole_list, double match_tol_mm, int threads,
                       bool defer_setup) {
@@ -768,6 +786,7 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
     return job;
   }
   job.program = parsed ? std::move(*parsed) : postproc::readProgram(path, std::move(bytes));
+  refuseToolConflicts(*job.program);
   job.deferred = defer_setup && !hole_list;
   if (job.deferred) {  // a job that writes no program: its bytes are not read again
     for (postproc::SourceFile& f : job.program->files) std::string().swap(f.bytes);

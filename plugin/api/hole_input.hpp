@@ -101,6 +101,11 @@ std::vector<char> holesSharingTargets(const std::vector<HoleSource>& sources,
 /// The key a program names a tool by, as the cell's tool table keys its drills (<drill tool>):
 /// `TOOL_DATA[3]` (KRL) and `UTOOL[3]` (FANUC) → "3", a RAPID tooldata name as it is.
 std::string programToolKey(const std::string& ref);
+
+/// Throws InputError at the first motion whose position was taught in another tool than the one
+/// the program selected before it (postproc::ToolConflict, FANUC UTOOL_NUM against a position's
+/// UT): the controller stops there, so the program cannot run as written (exit 2, with a hint).
+void refuseToolConflicts(const postproc::Program& p);
 /// The cell's <drill> elements in document order (ProcessSpec::drills); empty without a drilling
 /// process.
 std::vector<const XmlNode*> cellDrills(const CellSpec& cell);

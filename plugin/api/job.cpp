@@ -74,6 +74,7 @@ void useProgramTool(PredictionContext& c, const Pose& T_flange_tcp) {
   s.controller_gravity = cg.gravity_compensated;
   s.calibration_load = cg.calibration_load;
   s.default_tolerance = c.model.default_tolerance;
+  s.drill_tools = drillToolsOf(c.cell, c.robot.card);
   for (const HoleRequest& r : c.job.requests) {
     if (r.diameter > 0) s.hole_diameters.push_back(r.diameter);
     if (r.drill > 0 || r.feed > 0 || r.spindle_rpm > 0)
@@ -82,6 +83,17 @@ void useProgramTool(PredictionContext& c, const Pose& T_flange_tcp) {
   const ConfigurationOptions cfg = c.model.config_options;
   c.model = buildPredictionModel(s);
   c.model.config_options = cfg;
+}
+
+/// The cell's TCP of the program tool `ref`: the <tcp> of the tool-table drill it selects, else
+/// the cell's <tool>.
+const ToolSpec& toolOfProgramTool(const PredictionContext& c, const std::string& ref) {
+  if (!c.process || c.process->type != ProcessType::kDrilling) return c.cell.tool;
+  // a single drill drills every hole, whatever the program's tool
+  const int i = c.process->drills.size() == 1 ? 0 : drillIndex(*c.process, programToolKey(ref));
+  if (i < 0 || static_cast<size_t>(i) >= c.cell.drill_tools.size()) return c.cell.tool;
+  const std::optional<ToolSpec>& own = c.cell.drill_tools[static_cast<size_t>(i)];
+  return own ? *own : c.cell.tool;
 }
 
 /// Program frames and tool against the cell (docs/programs.md §15): a base frame or tool that
@@ -147,15 +159,25 @@ void resolveFramesAndTool(PredictionContext& c, const JobOptions& o) {
                        [](const std::string& n) { return n.rfind("program base frame ", 0) == 0; }),
         c.job.notes.end());
   }
-  // ---- tool
-  const Pose& T_cell = c.cell.tool.T_flange_tcp;
-  const std::string cell_tool = "'" + (c.cell.tool.name.empty() ? "tool" : c.cell.tool.name) + "'";
+  // ---- tool: each program tool against the TCP of the drill it selects (its own <tcp>, else
+  // the cell's <tool>)
   std::optional<std::pair<std::string, Pose>> program_tool;
   for (const HoleFrameUse& h : c.job.frame_uses) {
     if (h.tool < 0) continue;  // the program names no tool
     const postproc::Frame& tf = p.frames[static_cast<size_t>(h.tool)];
+    const ToolSpec& reference = toolOfProgramTool(c, tf.ref);
+    const bool own_tcp = &reference != &c.cell.tool;
+    const Pose& T_cell = reference.T_flange_tcp;
+    const std::string cell_tool =
+        own_tcp ? "drill " + reference.name + " <tcp>"
+                : "'" + (c.cell.tool.name.empty() ? "tool" : c.cell.tool.name) + "'";
     std::optional<Pose> Tt = tf.resolved ? std::optional<Pose>(tf.pose) : givenFrame(o, tf.ref);
     const auto [file, line] = where(tf.file, tf.line, h);
+    if (!Tt && own_tcp) {
+      state("tool " + tf.ref, "tool " + tf.ref + " (defined only on the controller) = the cell's " +
+                                  cell_tool + ": TCP " + poseText(T_cell));
+      continue;
+    }
     if (!Tt) {
       if (o.tool == "cell") {
         state("tool " + tf.ref, "tool " + tf.ref +
@@ -174,13 +196,19 @@ void resolveFramesAndTool(PredictionContext& c, const JobOptions& o) {
     const double dr = Eigen::AngleAxisd(Tt->linear().transpose() * T_cell.linear()).angle();
     if (dt <= 1e-5 && dr <= 1e-4) continue;  // 0.01 mm, 0.006 deg: the same tool
     const std::string diff = "the program's tool " + tf.ref + " (TCP " + poseText(*Tt) +
-                             ") differs from the cell's tool " + cell_tool + " (TCP " +
-                             poseText(T_cell) + ") by " + mm(dt) + " mm and " +
+                             ") differs from the cell's " + (own_tcp ? "" : "tool ") + cell_tool +
+                             " (TCP " + poseText(T_cell) + ") by " + mm(dt) + " mm and " +
                              formatNumber(dr / kDeg, 3) + " deg";
     if (o.tool == "cell") {
       state("tool " + tf.ref, diff +
                                   ": --tool cell: the cell's TCP is used; the program's "
                                   "targets are taken as TCP poses of the cell's tool");
+    } else if (o.tool == "program" && own_tcp) {
+      throw InputError(file, line,
+                       diff +
+                           "; --tool program takes one TCP for the cell's <tool>, not for a drill "
+                           "with a <tcp> of its own: correct the drill's <tcp> in " +
+                           c.cell.file + " or the program's tool, or give --tool cell");
     } else if (o.tool == "program") {
       if (program_tool && !program_tool->second.isApprox(*Tt, 1e-9)) {
         throw UsageError("--tool program: the program drills with more than one tool (" +
@@ -192,6 +220,11 @@ void resolveFramesAndTool(PredictionContext& c, const JobOptions& o) {
       state("tool " + tf.ref, diff +
                                   ": --tool program: the program's TCP is used (mass data "
                                   "from the cell)");
+    } else if (own_tcp) {
+      throw InputError(file, line,
+                       diff + ". Correct the drill's <tcp> in " + c.cell.file +
+                           " or the program's tool, or give --tool cell (the cell's TCP is the "
+                           "real one)");
     } else {
       throw InputError(file, line,
                        diff +

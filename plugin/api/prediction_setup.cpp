@@ -9,6 +9,7 @@
 #include "compensator/support/input_file.hpp"
 #include "plugin/api/card_tools.hpp"
 #include "plugin/api/robot_compliance.hpp"
+#include "plugin/api/robot_setup.hpp"
 
 namespace roprec::api {
 
@@ -106,6 +107,28 @@ AccuracyInputs accuracyFromCell(const CellSpec& cell, const RobotCard& card) {
   return a;
 }
 
+}  // namespace
+
+std::vector<std::optional<DrillTool>> drillToolsOf(const CellSpec& cell, const RobotCard& card) {
+  std::vector<std::optional<DrillTool>> out;
+  for (const std::optional<ToolSpec>& t : cell.drill_tools) {
+    if (!t) {
+      out.emplace_back();
+      continue;
+    }
+    ToolSpec own = *t;
+    CellSpec with = cell;
+    with.tool = own;
+    DrillTool d;
+    d.tool = toolOf(with);
+    d.calibration_load = controllerGravityOf(card, &cell, d.tool).calibration_load;
+    out.emplace_back(d);
+  }
+  return out;
+}
+
+namespace {
+
 /// Everything of the prediction model's setup that comes from the cell and the command line
 /// (not the holes' diameters): throws as the cell's elements are read.
 PredictionSetup setupFromCell(const PredictionContext& c, const std::string& uncertainty_override) {
@@ -128,6 +151,7 @@ PredictionSetup setupFromCell(const PredictionContext& c, const std::string& unc
   s.controller_gravity = cg.gravity_compensated;
   s.calibration_load = cg.calibration_load;
   s.default_tolerance = c.cell.tolerance_mm * 1e-3;
+  s.drill_tools = drillToolsOf(c.cell, c.robot.card);
   return s;
 }
 

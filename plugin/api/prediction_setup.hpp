@@ -43,6 +43,11 @@ PredictionContext loadPredictionContext(const std::string& cell_path, const std:
                                         double match_tol_mm = 0.5, bool load_holes = true,
                                         int threads = 1, bool defer_setup = false);
 
+/// The TCP and mass data of each drill of the cell's tool table that has a <tcp> of its own
+/// (PredictionSetup::drill_tools), with the calibration load the cell's <controller> implies
+/// while it is in (calibration_load="tool": that tool).
+std::vector<std::optional<DrillTool>> drillToolsOf(const CellSpec& cell, const RobotCard& card);
+
 /// Whether a hole's JSON states its drill (`"drill": {tool, feed_mm_per_rev, spindle_rpm}`): a
 /// hole drilled with a drill of the cell's tool table, or with its own feed or spindle speed.
 inline bool statesOwnProcess(const HoleRequest& r) {

@@ -172,12 +172,12 @@ Session::JointPrediction Session::predictJoints(const Vec6& joints_controller,
   s.setProcess(process);
   // the pose the controller means by these joints (FK_nom; the real one without a calibration)
   PredictionData& d = *s.data;
-  const nc::PositionResult pr = nc::forwardKinematics(controllerModel(m), d.nc, q);
+  HoleRequest& req = s.request;
+  const nc::PositionResult pr = nc::forwardKinematics(controllerModel(modelFor(m, req)), d.nc, q);
   if (!pr.converged) {
     p.reason = "the position problem did not converge at these joints";
     return p;
   }
-  HoleRequest& req = s.request;
   req.T_W_tcp = d.nc.T_W_tcp;
   req.ik_seed = q;  // the commanded joints select their own IK solution
   predictHole(m, d, req, &q, p.prediction);

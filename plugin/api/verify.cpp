@@ -260,6 +260,18 @@ IdentificationHole poseObservation(const VerifyResult& r, const postproc::Measur
   return h;
 }
 
+/// The hole's own process in the observation: its drill, diameter, feed and speed, and the
+/// drill's TCP and mass when it has a <tcp> of its own (the model is rebuilt with that tool).
+void ownProcess(const PredictionContext& c, const HoleRequest& q, IdentificationHole& h) {
+  h.diameter = q.diameter;
+  h.drill = q.drill;
+  h.feed = q.feed;
+  h.spindle_rpm = q.spindle_rpm;
+  if (&modelFor(c.model, q) == &c.model) return;
+  const std::vector<std::optional<DrillTool>> tools = drillToolsOf(c.cell, c.robot.card);
+  h.tool = tools[static_cast<size_t>(std::max(q.drill, 0))]->tool;
+}
+
 void identify(VerifyResult& r, const VerifyJob& job) {
   const PredictionContext& c = r.prediction.context;
   std::vector<IdentificationHole> holes;
@@ -270,7 +282,7 @@ void identify(VerifyResult& r, const VerifyJob& job) {
     h.id = p.id;
     h.theta_cmd = p.joints;
     h.T_W_hole = measuredAxisFrame(r, nominalHole(c, i), r.measured_of[n]);
-    h.diameter = c.job.requests[i].diameter;
+    ownProcess(c, c.job.requests[i], h);
     h.p_W_measured = measuredW(r, r.measured_of[n]);
     h.sigma = residualSigma(
         p, uMeasurement(r.measured.holes[static_cast<size_t>(r.measured_of[n])], job));
