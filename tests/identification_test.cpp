@@ -24,6 +24,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <map>
 #include <memory>
 #include <random>
@@ -766,6 +767,46 @@ TEST(Identification, DOptimalPlanBeatsANaiveProgramAndPredictsThePosterior) {
     const double s =
         r.parameters[static_cast<size_t>(j)].sigma / r.parameters[static_cast<size_t>(j)].prior;
     EXPECT_NEAR(s / plan.expected_sigma_rel[j], 1.0, 0.5) << "c" << j + 1;
+  }
+}
+
+/// Reference greedy by brute force: at each step the candidate (well spaced from the ones chosen)
+/// whose addition gives the largest log det of the whole information matrix — each value from a
+/// plan of exactly the holes chosen so far plus that one (planTest's final log det, an LLT of M),
+/// not from the selection's gain updates.
+TEST(Identification, DOptimalPlanIsTheGreedyOfTheLargestLogDetEachStep) {
+  const api::PredictionContext c = loadJob(false);
+  const std::vector<HoleRequest> cand = housingCandidates(c.cell.T_base_wobj);
+  PlanOptions po;
+  po.compliance_prior_rel = compliancePriorSigma(c.robot.card);
+  const int count = 5;
+  const TestPlan plan = planTest(c.model, cand, count, po);
+  ASSERT_EQ(plan.chosen.size(), static_cast<size_t>(count));
+  std::vector<HoleRequest> chosen;
+  for (int step = 0; step < count; ++step) {
+    int best = -1;
+    double best_value = -std::numeric_limits<double>::infinity();
+    double second = -std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i < cand.size(); ++i) {
+      bool spaced = true;
+      for (const HoleRequest& h : chosen)
+        spaced = spaced &&
+                 (h.T_W_tcp.translation() - cand[i].T_W_tcp.translation()).norm() >= po.min_spacing;
+      if (!spaced) continue;
+      std::vector<HoleRequest> trial = chosen;
+      trial.push_back(cand[i]);
+      const double v = planTest(c.model, trial, step + 1, po).log_det;
+      if (v > best_value) {
+        second = best_value;
+        best_value = v;
+        best = static_cast<int>(i);
+      } else if (v > second) {
+        second = v;
+      }
+    }
+    ASSERT_GT(best_value - second, 1e-9) << "step " << step << ": a near tie, no clear reference";
+    EXPECT_EQ(plan.chosen[static_cast<size_t>(step)], best) << "step " << step;
+    chosen.push_back(cand[static_cast<size_t>(best)]);
   }
 }
 

@@ -973,38 +973,52 @@ void psiReason(const Evaluator& ev, const std::vector<HoleRequest>& holes,
   r = "the sequence's jump limit cannot be met with the programmed rotation here";
 }
 
+/// Holes whose keep results stiffestAgainstKeep holds at a time (bounds its memory).
+constexpr size_t kKeepBlock = 4096;
+
+/// Stiffest, hole i in hole order with its keep result k: records U_work(keep); a hole at ψ = 0
+/// takes k; a turned hole goes back to it unless the turn gains at least kStiffnessGainMin of
+/// U_work, when the jump constraints with the final neighbours allow it.
+void takeKeepWhereStiffEnough(const std::vector<HoleRequest>& holes, const Node& programmed,
+                              double thr, size_t i, HoleCompensation& k, std::vector<Node>& chosen,
+                              std::vector<HoleCompensation>& out) {
+  if (!out[i].ok || !programmed.feasible || !k.ok) return;
+  out[i].U_work_keep = k.after.U_work_exact;
+  const bool turned = std::abs(out[i].psi) > kPsiKept;
+  if (turned && k.after.U_work_exact * (1.0 - kStiffnessGainMin) >= out[i].after.U_work_exact)
+    return;  // turned, and stiffer by the minimum gain
+  // ψ = 0 is the keep result itself; a turned hole goes back when the jump limit allows
+  bool ok = true;
+  for (const int dir : {-1, +1}) {
+    const std::pair<const Node*, bool> nb = neighbour(chosen, holes, i, dir);
+    if (nb.first && nb.second && !jumpOk(programmed.q, nb.first->q, thr)) ok = false;
+  }
+  if (turned && !ok) return;
+  chosen[i] = programmed;
+  k.U_work_keep = k.after.U_work_exact;
+  out[i] = std::move(k);
+}
+
 /// Stiffest: the keep result (ψ = 0, positions only) of every hole with a ψ = 0 posture (holes in
-/// parallel). Then, in hole order: a hole at ψ = 0 takes it; a turned hole goes back to it unless
-/// the turn gains at least kStiffnessGainMin of U_work, when the jump constraints with the final
-/// neighbours allow it. Records U_work(keep) for the gain. A compensated hole's result carries
-/// its stage-1 part (stageOne).
+/// parallel, kKeepBlock holes at a time), then takeKeepWhereStiffEnough for each hole of the
+/// block in hole order (a keep result depends on no other hole's choice, so the blocks change
+/// nothing but the memory). A compensated hole's result carries its stage-1 part (stageOne).
 void stiffestAgainstKeep(std::vector<Evaluator>& evs, const std::vector<HoleRequest>& holes,
                          const std::vector<Node>& programmed, std::vector<Node>& chosen, double thr,
                          std::vector<HoleCompensation>& out) {
   const size_t n = out.size();
-  std::vector<HoleCompensation> keep(n);
-  parallelFor(n, static_cast<int>(evs.size()), [&](int w, size_t i) {
-    if (out[i].ok && programmed[i].feasible)
-      keep[i] = finalizeHole(evs[static_cast<size_t>(w)], holes[i], stageOne(out[i]), programmed[i],
-                             true);
-  });
-  for (size_t i = 0; i < n; ++i) {
-    HoleCompensation& k = keep[i];
-    if (!out[i].ok || !programmed[i].feasible || !k.ok) continue;
-    out[i].U_work_keep = k.after.U_work_exact;
-    const bool turned = std::abs(out[i].psi) > kPsiKept;
-    if (turned && k.after.U_work_exact * (1.0 - kStiffnessGainMin) >= out[i].after.U_work_exact)
-      continue;  // turned, and stiffer by the minimum gain
-    // ψ = 0 is the keep result itself; a turned hole goes back when the jump limit allows
-    bool ok = true;
-    for (const int dir : {-1, +1}) {
-      const std::pair<const Node*, bool> nb = neighbour(chosen, holes, i, dir);
-      if (nb.first && nb.second && !jumpOk(programmed[i].q, nb.first->q, thr)) ok = false;
-    }
-    if (turned && !ok) continue;
-    chosen[i] = programmed[i];
-    k.U_work_keep = k.after.U_work_exact;
-    out[i] = std::move(k);
+  std::vector<HoleCompensation> keep;  // the keep results of one block of holes
+  for (size_t b = 0; b < n; b += kKeepBlock) {
+    const size_t e = std::min(n, b + kKeepBlock);
+    keep.assign(e - b, HoleCompensation{});
+    parallelFor(e - b, static_cast<int>(evs.size()), [&](int w, size_t j) {
+      const size_t i = b + j;
+      if (out[i].ok && programmed[i].feasible)
+        keep[j] = finalizeHole(evs[static_cast<size_t>(w)], holes[i], stageOne(out[i]),
+                               programmed[i], true);
+    });
+    for (size_t i = b; i < e; ++i)
+      takeKeepWhereStiffEnough(holes, programmed[i], thr, i, keep[i - b], chosen, out);
   }
 }
 

@@ -1370,67 +1370,160 @@ struct GainScratch {
   MatrixXd Ji, Jn, W, Wn, S;
 };
 
-/// Gain of the D_s criterion (log det M − log det M_nn, nuisance = the last `nn` columns) when
-/// the 2×n block Ji (rows 2i, 2i + 1 of J) is added: by the matrix determinant lemma,
-///   Δ = log det(I + Ji M⁻¹ Jiᵀ) − log det(I + Ji,n M_nn⁻¹ Ji,nᵀ)
-/// with M⁻¹ and M_nn⁻¹ computed once per step (rank-2 updates: no n×n factorisation per
-/// candidate), each product into the scratch's matrices.
-double criterionGain(const MatrixXd& J, Eigen::Index i, const MatrixXd& Minv,
-                     const MatrixXd& Mnn_inv, Eigen::Index nn, GainScratch& s) {
+/// The two terms of the D_s criterion's gain (log det M − log det M_nn, nuisance = the last `nn`
+/// columns) when the 2×n block Ji (rows 2i, 2i + 1 of J) is added: by the matrix determinant
+/// lemma,
+///   Δ = full − nuisance,  full = log det(I + Ji M⁻¹ Jiᵀ),  nuisance = log det(I + Ji,n M_nn⁻¹
+///   Ji,nᵀ)
+/// with M⁻¹ and M_nn⁻¹ computed once per step (no n×n factorisation per candidate), each product
+/// into the scratch's matrices. nuisance ≥ 0, and both terms only shrink as M grows (M⁻¹ and
+/// M_nn⁻¹ decrease in the Loewner order): `full` at any earlier step bounds Δ from above.
+struct Gain {
+  double full{0};
+  double value{0};  ///< Δ = full − nuisance
+};
+
+Gain criterionGain(const MatrixXd& J, Eigen::Index i, const MatrixXd& Minv, const MatrixXd& Mnn_inv,
+                   Eigen::Index nn, GainScratch& s) {
   s.Ji = J.middleRows(2 * i, 2);
   s.W.noalias() = s.Ji * Minv;
   s.S.noalias() = s.W * s.Ji.transpose();
   s.S(0, 0) += 1.0;
   s.S(1, 1) += 1.0;
-  double g = logDet2(s.S);
+  Gain g;
+  g.full = logDet2(s.S);
+  g.value = g.full;
   if (nn > 0) {
     s.Jn = s.Ji.rightCols(nn);
     s.Wn.noalias() = s.Jn * Mnn_inv;
     s.S.noalias() = s.Wn * s.Jn.transpose();
     s.S(0, 0) += 1.0;
     s.S(1, 1) += 1.0;
-    g -= logDet2(s.S);
+    g.value -= logDet2(s.S);
   }
   return g;
+}
+
+/// A candidate in the lazy greedy's heap: `bound` ≥ its gain at the current step (its `full`
+/// term when last evaluated; −∞ stands for NaN).
+struct Bounded {
+  double bound;
+  int index;
+};
+
+/// Heap order: the largest bound on top, the lower index first among equal bounds.
+bool belowInHeap(const Bounded& a, const Bounded& b) {
+  return a.bound < b.bound || (a.bound == b.bound && a.index > b.index);
+}
+
+/// Slack of the lazy greedy's stopping test: a bound computed at an earlier step may undercut a
+/// fresh gain by rounding (M⁻¹ is recomputed each step, relative error ~ cond(M)·ε); candidates
+/// whose bound is within this of the best fresh gain are evaluated again.
+double lazySlack(double best_gain) { return 1e-6 * (1.0 + std::abs(best_gain)); }
+
+/// Marks the candidates closer than `min_spacing` to `chosen` (and itself) as used. A candidate
+/// used already or |Δx| ≥ min_spacing away is skipped (its computed norm is ≥ the computed |Δx|).
+void markNeighbours(const std::vector<Vec3>& p_W, int chosen, double min_spacing,
+                    std::vector<bool>& used) {
+  const Vec3& c = p_W[static_cast<size_t>(chosen)];
+  for (size_t k = 0; k < used.size(); ++k) {
+    if (used[k] || std::abs(p_W[k].x() - c.x()) >= min_spacing) continue;
+    if ((p_W[k] - c).norm() < min_spacing) used[k] = true;
+  }
+  used[static_cast<size_t>(chosen)] = true;
+}
+
+/// One step of the lazy greedy: the candidate of the largest fresh gain (the lowest index among
+/// equal gains — the choice of a scan over all candidates), or −1 when none is left. Pops the
+/// heap's top, evaluates it with this step's M⁻¹, and stops once the top's bound is below the
+/// best fresh gain (by more than lazySlack): the gains only shrink, so no candidate below can
+/// win. The evaluated candidates go back with their fresh bounds.
+int lazyStep(const MatrixXd& J, const MatrixXd& Minv, const MatrixXd& Mnn_inv, Eigen::Index nn,
+             const std::vector<bool>& used, std::vector<Bounded>& heap, GainScratch& scratch) {
+  int best = -1;
+  double best_gain = -std::numeric_limits<double>::infinity();
+  std::vector<Bounded> evaluated;
+  while (!heap.empty()) {
+    const Bounded top = heap.front();
+    if (!used[static_cast<size_t>(top.index)] && best >= 0 &&
+        top.bound < best_gain - lazySlack(best_gain))
+      break;
+    std::pop_heap(heap.begin(), heap.end(), belowInHeap);
+    heap.pop_back();
+    if (used[static_cast<size_t>(top.index)]) continue;  // chosen or too close: gone for good
+    const Gain g = criterionGain(J, top.index, Minv, Mnn_inv, nn, scratch);
+    if (g.value > best_gain || (g.value == best_gain && best >= 0 && top.index < best)) {
+      best_gain = g.value;
+      best = top.index;
+    }
+    evaluated.push_back(
+        {std::isnan(g.full) ? -std::numeric_limits<double>::infinity() : g.full, top.index});
+  }
+  for (const Bounded& e : evaluated) {
+    if (e.index == best) continue;
+    heap.push_back(e);
+    std::push_heap(heap.begin(), heap.end(), belowInHeap);
+  }
+  return best;
+}
+
+/// One step of the plain greedy: every candidate left evaluated with this step's M⁻¹; the largest
+/// gain, the first candidate among equal gains, or −1 when none is left.
+int scanStep(const MatrixXd& J, const MatrixXd& Minv, const MatrixXd& Mnn_inv, Eigen::Index nn,
+             const std::vector<bool>& used, GainScratch& scratch) {
+  int best = -1;
+  double best_gain = -std::numeric_limits<double>::infinity();
+  for (Eigen::Index i = 0; i < J.rows() / 2; ++i) {
+    if (used[static_cast<size_t>(i)]) continue;
+    const double g = criterionGain(J, i, Minv, Mnn_inv, nn, scratch).value;
+    if (g > best_gain) {
+      best_gain = g;
+      best = static_cast<int>(i);
+    }
+  }
+  return best;
 }
 
 /// Greedy D-optimal selection of `count` holes; a candidate closer than `min_spacing` (m) to a
 /// chosen hole is not drillable any more (one hole per place). Returns fewer than `count` when
 /// the well-spaced candidates run out. `criterion`: the final D_s value.
+///
+/// Without nuisance (nn = 0) the criterion log det M is submodular: a lazy greedy (Minoux), each
+/// candidate's last gain an upper bound in a max-heap, only the top evaluated again until the
+/// best fresh gain beats every remaining bound. Its choice is the one of a scan over all
+/// candidates with this step's M⁻¹: the largest gain, the lowest candidate index among equal
+/// gains (each gain evaluated by the same arithmetic). With nuisance the D_s gain may grow (its
+/// nuisance term shrinks too) and `full` bounds it loosely: every step scans all candidates.
+/// M grows by the rank-2 update Jbᵀ Jb of the chosen hole.
 std::vector<int> greedyDOptimal(const MatrixXd& J, const VectorXd& s0, int count, Eigen::Index nn,
                                 const std::vector<Vec3>& p_W, double min_spacing,
                                 double& criterion) {
   MatrixXd M = s0.cwiseInverse().cwiseAbs2().asDiagonal();
-  const Eigen::Index n = M.rows();
   const auto value = [&](const MatrixXd& A) {
     return logDet(A) - (nn > 0 ? logDet(A.bottomRightCorner(nn, nn)) : 0.0);
   };
+  const int candidates = static_cast<int>(J.rows() / 2);
   std::vector<int> chosen;
-  std::vector<bool> used(static_cast<size_t>(J.rows() / 2), false);
+  std::vector<bool> used(static_cast<size_t>(candidates), false);
+  std::vector<Bounded> heap;  // the lazy greedy's (nn = 0), all bounds +∞ (not evaluated yet)
+  if (nn == 0) {
+    heap.reserve(static_cast<size_t>(candidates));
+    for (int i = 0; i < candidates; ++i)
+      heap.push_back({std::numeric_limits<double>::infinity(), i});
+    std::make_heap(heap.begin(), heap.end(), belowInHeap);
+  }
   GainScratch scratch;
   for (int step = 0; step < count; ++step) {
     const MatrixXd Minv = spdInverse(M);
     const MatrixXd Mnn_inv = nn > 0 ? spdInverse(M.bottomRightCorner(nn, nn)) : MatrixXd();
-    int best = -1;
-    double best_gain = -std::numeric_limits<double>::infinity();
-    for (Eigen::Index i = 0; i < J.rows() / 2; ++i) {
-      if (used[static_cast<size_t>(i)]) continue;
-      const double g = criterionGain(J, i, Minv, Mnn_inv, nn, scratch);
-      if (g > best_gain) {
-        best_gain = g;
-        best = static_cast<int>(i);
-      }
-    }
+    const int best = nn > 0 ? scanStep(J, Minv, Mnn_inv, nn, used, scratch)
+                            : lazyStep(J, Minv, Mnn_inv, nn, used, heap, scratch);
     if (best < 0) break;
-    for (size_t k = 0; k < used.size(); ++k) {
-      if ((p_W[k] - p_W[static_cast<size_t>(best)]).norm() < min_spacing) used[k] = true;
-    }
-    used[static_cast<size_t>(best)] = true;
+    markNeighbours(p_W, best, min_spacing, used);
     chosen.push_back(best);
     const MatrixXd Jb = J.middleRows(2 * static_cast<Eigen::Index>(best), 2);
     M += Jb.transpose() * Jb;
   }
-  (void)n;
   criterion = value(M);
   return chosen;
 }

@@ -91,8 +91,10 @@
 ///   Information of a candidate hole: J_iᵀJ_i with J_i the 2×n data Jacobian (σ-weighted) at the
 ///   prior; M = Σ_chosen J_iᵀJ_i + diag(1/σ⁰²). Greedy: add the candidate maximising
 ///   log det M_cc|n — the compliance block after eliminating the nuisance (registration)
-///   parameters, log det M − log det M_nn — until N are chosen. Expected posterior σ of x_j:
-///   √((M⁻¹)_jj).
+///   parameters, log det M − log det M_nn — until N are chosen. Without nuisance log det M is
+///   submodular: the greedy is lazy (each candidate's last gain bounds its next in a max-heap;
+///   only the top is evaluated again), with the choice of a scan over all candidates. Expected
+///   posterior σ of x_j: √((M⁻¹)_jj).
 
 #include <array>
 #include <optional>
