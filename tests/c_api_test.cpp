@@ -146,7 +146,7 @@ TEST(CApi, ExportsExactlyTheHeadersFunctions) {
        it != std::sregex_iterator(); ++it) {
     declared.insert((*it)[1]);
   }
-  EXPECT_EQ(declared.size(), 21U);
+  EXPECT_EQ(declared.size(), 24U);
   // nm -D --defined-only: every dynamic symbol libroprec_c defines.
   const test::ProcessResult nm =
       test::runProcess({"/usr/bin/nm", "-D", "--defined-only", ROPREC_C_LIB});
@@ -456,7 +456,7 @@ TEST(CApi, ReadmeTableListsEveryExportedFunction) {
        it != std::sregex_iterator(); ++it) {
     declared.insert((*it)[1]);
   }
-  EXPECT_EQ(declared.size(), 21U);
+  EXPECT_EQ(declared.size(), 24U);
   for (const std::string& name : declared) {
     EXPECT_NE(readme.find("`" + name + "`"), std::string::npos)
         << name << " is not in README's C table";
@@ -558,6 +558,206 @@ TEST(CApi, HoleProcessCallsStateTheProcessAndRefuseAToolTheCellLacks) {
   EXPECT_EQ(std::string(err).rfind("target 1: ", 0), 0U) << err;
   EXPECT_TRUE(std::equal(out.begin(), out.end(), outs.begin()));
   EXPECT_TRUE(std::all_of(outs.begin() + 16, outs.begin() + 32, [](double v) { return v == 0; }));
+  roprec_close(s);
+}
+
+/// The hole-list row's process as the CLI stated it in the prediction JSON ("drill").
+struct CliHole {
+  std::string tool;
+  roprec_hole_process process;
+};
+
+CliHole cliHole(const nlohmann::json& h) {
+  CliHole c{h.at("drill").at("tool").get<std::string>(), {}};
+  c.process = {nullptr, h.at("diameter_mm").get<double>(), h.at("depth_mm").get<double>(), 0.0,
+               0.0};
+  return c;
+}
+
+/// The process object of a JSON answer states the CLI's drill of that hole.
+void expectCliProcess(const nlohmann::json& used, const nlohmann::json& h) {
+  EXPECT_EQ(used.at("tool"), h.at("drill").at("tool"));
+  EXPECT_NEAR(used.at("diameter_mm").get<double>(), h.at("diameter_mm").get<double>(), 1e-9);
+  EXPECT_NEAR(used.at("depth_mm").get<double>(), h.at("depth_mm").get<double>(), 1e-9);
+  EXPECT_NEAR(used.at("feed_mm_per_rev").get<double>(),
+              h.at("drill").at("feed_mm_per_rev").get<double>(), 1e-9);
+  EXPECT_NEAR(used.at("spindle_rpm").get<double>(), h.at("drill").at("spindle_rpm").get<double>(),
+              1e-9);
+  EXPECT_EQ(used.at("from_cell"), false);
+}
+
+TEST(CApi, HoleJsonCallsGiveTheCliPerHoleNumbersAndTheSessionsValues) {
+  const std::string cell = sourceDir() + "/samples/cells/housing-kr120-tools.xml";
+  const std::string dir = tempDir("capi-hole-json");
+  const test::RunResult cli = runRoprec("predict --cell '" + cell + "' '" + kHoles + "' --json '" +
+                                        dir + "/p.json' --quiet");
+  ASSERT_EQ(cli.exit_code, 0) << cli.err;
+  const auto holes = nlohmann::json::parse(readFile(dir + "/p.json")).at("holes");
+  const api::PredictionResult job = api::predictJob(cell, kHoles);  // full-precision joints
+  ASSERT_EQ(job.holes.size(), holes.size());
+  const RobotCard& card = job.context.robot.card;
+  api::Session session(cell);  // the C++ call the C ABI wraps
+  roprec_session* s = nullptr;
+  char err[1024];
+  ASSERT_EQ(roprec_open(cell.c_str(), &s, err, sizeof err), ROPREC_OK) << err;
+  std::vector<char> json(ROPREC_SUMMARY_LEN);
+  std::vector<CliHole> rows;
+  rows.reserve(holes.size());  // process.tool points into its row
+  double worst_um = 0;
+  for (size_t i = 0; i < holes.size(); ++i) {
+    SCOPED_TRACE(holes[i].at("id").get<std::string>());
+    rows.push_back(cliHole(holes[i]));
+    CliHole& row = rows.back();
+    row.process.tool = row.tool.c_str();
+    const Vec6 q_deg = toControllerJoints(card, job.holes[i].joints) / kDeg;
+    ASSERT_EQ(roprec_predict_joints_hole_json(s, q_deg.data(), &row.process, json.data(),
+                                              json.size(), err, sizeof err),
+              ROPREC_OK)
+        << err;
+    const auto j = nlohmann::json::parse(json.data());
+    // the CLI's deviation of the hole (printed to 1e-3 µm): 1e-9 m
+    const auto& robot = holes[i].at("deviation_um").at("robot");
+    for (size_t k = 0; k < 3; ++k)
+      worst_um = std::max(worst_um,
+                          std::abs(j.at("deviation_um")[k].get<double>() - robot[k].get<double>()));
+    EXPECT_NEAR(j.at("U_work_um").get<double>(),
+                holes[i].at("uncertainty_um").at("U_work_anisotropic").get<double>(), 1e-3);
+    expectCliProcess(j.at("process"), holes[i]);
+    // the session's call with the same process: value for value (shortest round-trip text)
+    const api::HoleProcess hp{row.tool, row.process.diameter_mm * 1e-3, row.process.depth_mm * 1e-3,
+                              0.0, 0.0};
+    const api::Session::JointPrediction p = session.predictJoints(q_deg * kDeg, hp);
+    ASSERT_TRUE(p.ok) << p.reason;
+    for (Eigen::Index k = 0; k < 3; ++k) {
+      EXPECT_EQ(j.at("deviation_um")[static_cast<size_t>(k)].get<double>(),
+                p.d_translation[k] * 1e6);
+      EXPECT_EQ(j.at("rotation_urad")[static_cast<size_t>(k)].get<double>(), p.d_rotation[k] * 1e6);
+    }
+    EXPECT_EQ(j.at("U_work_um").get<double>(), p.U_work * 1e6);
+    EXPECT_EQ(j.at("config"), p.prediction.config);
+    EXPECT_EQ(j.at("process").at("drill"), p.process.drill);
+  }
+  EXPECT_LE(worst_um, 1e-3);
+  std::printf("per-hole deviation vs the CLI: %.3g um worst over %zu holes\n", worst_um,
+              holes.size());
+
+  // the batch: the CLI's compensated targets (printed to 1e-6 mm), each hole's process stated
+  const test::RunResult comp =
+      runRoprec("compensate --cell '" + cell + "' '" + kHoles + "' --orientation keep -o '" + dir +
+                "/c.csv' --targets '" + dir + "/t.json' --quiet");
+  ASSERT_EQ(comp.exit_code, 0) << comp.err;
+  const auto targets = nlohmann::json::parse(readFile(dir + "/t.json")).at("holes");
+  ASSERT_EQ(targets.size(), holes.size());
+  const size_t n = holes.size();
+  std::vector<double> poses;
+  std::vector<roprec_hole_process> processes;
+  for (size_t i = 0; i < n; ++i) {
+    const std::array<double, 16> m = rowMajorMm(job.context.job.requests[i].T_W_tcp);
+    poses.insert(poses.end(), m.begin(), m.end());
+    processes.push_back(rows[i].process);
+  }
+  std::vector<char> batch(2048 * n);
+  ASSERT_EQ(roprec_filter_targets_json(s, n, poses.data(), nullptr, processes.data(), batch.data(),
+                                       batch.size(), err, sizeof err),
+            ROPREC_OK)
+      << err;
+  const auto b = nlohmann::json::parse(batch.data());
+  std::vector<double> outs(16 * n);
+  std::vector<double> outj(6 * n);
+  ASSERT_EQ(roprec_filter_targets(s, n, poses.data(), nullptr, processes.data(), outs.data(),
+                                  outj.data(), nullptr, err, sizeof err),
+            ROPREC_OK)
+      << err;
+  double worst_mm = 0;
+  for (size_t i = 0; i < n; ++i) {
+    SCOPED_TRACE(holes[i].at("id").get<std::string>());
+    EXPECT_EQ(b.at("ok")[i], true);
+    EXPECT_TRUE(b.at("reasons")[i].is_null());
+    for (size_t k = 0; k < 16; ++k)
+      EXPECT_EQ(b.at("poses_mm")[i][k].get<double>(), outs[16 * i + k]);
+    for (size_t k = 0; k < 6; ++k)
+      EXPECT_EQ(b.at("joints_deg")[i][k].get<double>(), outj[6 * i + k]);
+    const auto& at = targets[i].at("programmed").at("position_mm");
+    for (size_t k = 0; k < 3; ++k)
+      worst_mm = std::max(worst_mm, std::abs(outs[16 * i + 4 * k + 3] - at[k].get<double>()));
+    expectCliProcess(b.at("process")[i], holes[i]);
+  }
+  EXPECT_LE(worst_mm, 0.5e-6 + 1e-9);
+  std::printf("filtered targets vs the CLI's export: %.3g mm worst\n", worst_mm);
+
+  // one target: the details of the batch's first, and the session's configuration and residual
+  ASSERT_EQ(roprec_filter_target_hole_json(s, poses.data(), nullptr, &processes[0], json.data(),
+                                           json.size(), err, sizeof err),
+            ROPREC_OK)
+      << err;
+  const auto one = nlohmann::json::parse(json.data());
+  EXPECT_EQ(one.at("pose_mm"), b.at("poses_mm")[0]);
+  EXPECT_EQ(one.at("joints_deg"), b.at("joints_deg")[0]);
+  EXPECT_EQ(one.at("process"), b.at("process")[0]);
+  const api::HoleProcess hp0{rows[0].tool, rows[0].process.diameter_mm * 1e-3,
+                             rows[0].process.depth_mm * 1e-3, 0.0, 0.0};
+  const api::Session::Filtered f =
+      session.filterTarget(job.context.job.requests[0].T_W_tcp, nullptr, hp0);
+  ASSERT_TRUE(f.ok) << f.reason;
+  EXPECT_EQ(one.at("config"), f.config);
+  EXPECT_EQ(one.at("residual_um").get<double>(), f.residual * 1e6);
+  EXPECT_LT(f.residual, 1e-9);
+  roprec_close(s);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(CApi, HoleJsonCallsRefuseWhatTheCliRefusesAndReportTheUnfiltered) {
+  const std::string cell = sourceDir() + "/samples/cells/housing-kr120-tools.xml";
+  roprec_session* s = nullptr;
+  char err[1024];
+  ASSERT_EQ(roprec_open(cell.c_str(), &s, err, sizeof err), ROPREC_OK) << err;
+  std::vector<char> json(ROPREC_SUMMARY_LEN);
+  // a joint outside the limits: bad input (the CLI's exit 2), an input error, the CLI's text
+  const test::RunResult cli =
+      runRoprec("deflect --cell '" + cell + "' --joints \"0 -90 90 0 0 400\"");
+  EXPECT_EQ(cli.exit_code, 2) << cli.err;
+  const std::array<double, 6> out_of_range{0, -90, 90, 0, 0, 400};
+  EXPECT_EQ(roprec_predict_joints_hole_json(s, out_of_range.data(), nullptr, json.data(),
+                                            json.size(), err, sizeof err),
+            ROPREC_BAD_INPUT);
+  EXPECT_EQ(roprec_error_kind(), ROPREC_ERROR_INPUT);
+  EXPECT_NE(std::string(err).find("outside the joint limits: joint_a6 = 400"), std::string::npos)
+      << err;
+  EXPECT_STREQ(json.data(), "");
+  // a tool the cell's table lacks: an input error
+  const std::array<double, 16> pose{1, 0, 0, 1500, 0, -1, 0, 0, 0, 0, -1, 550, 0, 0, 0, 1};
+  const roprec_hole_process nine{"9", 0.0, 0.0, 0.0, 0.0};
+  EXPECT_EQ(roprec_filter_target_hole_json(s, pose.data(), nullptr, &nine, json.data(), json.size(),
+                                           err, sizeof err),
+            ROPREC_BAD_INPUT);
+  EXPECT_EQ(roprec_error_kind(), ROPREC_ERROR_INPUT);
+  EXPECT_NE(std::string(err).find("tool '9' is not in the cell's tool table"), std::string::npos)
+      << err;
+  // a buffer too small: a usage error stating the bytes needed, nothing written
+  std::array<char, 16> tiny{'x'};
+  EXPECT_EQ(roprec_filter_target_hole_json(s, pose.data(), nullptr, nullptr, tiny.data(),
+                                           tiny.size(), err, sizeof err),
+            ROPREC_BAD_INPUT);
+  EXPECT_EQ(roprec_error_kind(), ROPREC_ERROR_USAGE);
+  EXPECT_NE(std::string(err).find("are needed; nothing was written"), std::string::npos) << err;
+  EXPECT_EQ(tiny[0], '\0');
+  // the batch with an unreachable target: 1, the JSON still written, that target kept and stated
+  std::array<double, 32> poses{};
+  std::copy(pose.begin(), pose.end(), poses.begin());
+  std::copy(pose.begin(), pose.end(), poses.begin() + 16);
+  poses[3] = 9000.0;  // 9 m away
+  EXPECT_EQ(roprec_filter_targets_json(s, 2, poses.data(), nullptr, nullptr, json.data(),
+                                       json.size(), err, sizeof err),
+            ROPREC_ITEM_FAILED);
+  EXPECT_EQ(std::string(err).rfind("target 0: ", 0), 0U) << err;
+  const auto b = nlohmann::json::parse(json.data());
+  EXPECT_EQ(b.at("ok"), nlohmann::json::parse("[false, true]"));
+  EXPECT_TRUE(b.at("joints_deg")[0].is_null());
+  EXPECT_EQ(b.at("reasons")[0].get<std::string>(), std::string(err).substr(10));
+  EXPECT_TRUE(b.at("reasons")[1].is_null());
+  EXPECT_EQ(b.at("poses_mm")[0][3].get<double>(), 9000.0);
+  EXPECT_EQ(b.at("process")[0].at("from_cell"), true);
+  EXPECT_EQ(b.at("process")[0].at("tool"), "1");
   roprec_close(s);
 }
 

@@ -2,13 +2,17 @@
 predict and compensate keep give the same numbers (the CLI's JSON rounds; the Python dicts carry
 full precision and are compared at the JSON's printed decimals, within 1e-9 relative); the same
 files byte for byte; Session.filter_target / predict_joints equal roprec_filter_target /
-roprec_predict_joints; errors are roprec.RoprecError subclasses with the CLI's text; docstrings.
+roprec_predict_joints; the per-hole Session calls give the CLI's per-hole numbers and the same
+dicts under both backends (the compiled module and the ctypes one over the C ABI); errors are
+roprec.RoprecError subclasses with the CLI's text; docstrings.
 
 Run by ctest with PYTHONPATH = the build tree's python/ folder, ROPREC_BIN = the CLI and
 ROPREC_C_LIB = libroprec_c.so.
 """
 
 import ctypes
+import glob
+import importlib.util
 import json
 import math
 import os
@@ -237,6 +241,38 @@ class CApi(object):
 C = CApi(os.environ["ROPREC_C_LIB"])
 
 
+def other_backend():
+    """The backend roprec is not using: the ctypes one (roprec/_cabi.py) or the compiled module of
+    the build (loaded under its own name, beside the package's)."""
+    if not roprec._roprec.__name__.endswith("_cabi"):
+        from roprec import _cabi
+        return _cabi
+    found = glob.glob(os.path.join(os.path.dirname(roprec.__file__), "_roprec*.so"))
+    assert found, "the build's compiled module _roprec is missing"
+    spec = importlib.util.spec_from_file_location("_roprec", found[0])
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def compare_exactly(a, b, what):
+    """Same keys, types of container and values (arrays equal, NaN where NaN)."""
+    if isinstance(a, dict):
+        assert isinstance(b, dict) and sorted(a) == sorted(b), "%s: keys %s vs %s" % (what, sorted(a), sorted(b))
+        for k in a:
+            compare_exactly(a[k], b[k], "%s.%s" % (what, k))
+    elif isinstance(a, np.ndarray):
+        assert isinstance(b, np.ndarray), "%s: an array vs %r" % (what, type(b))
+        assert a.dtype == b.dtype, "%s: %s vs %s" % (what, a.dtype, b.dtype)
+        np.testing.assert_array_equal(a, b, err_msg=what)
+    elif isinstance(a, list):
+        assert isinstance(b, list) and len(a) == len(b), what
+        for i, (x, y) in enumerate(zip(a, b)):
+            compare_exactly(x, y, "%s[%d]" % (what, i))
+    else:
+        assert type(a) is type(b) and a == b, "%s: %r vs %r" % (what, a, b)
+
+
 class PythonApiTest(unittest.TestCase):
     def setUp(self):
         self.tmp = Path(tempfile.mkdtemp(prefix="roprec-pytest-"))
@@ -253,7 +289,8 @@ class PythonApiTest(unittest.TestCase):
         self.assertTrue(issubclass(roprec.UsageError, ValueError))
         public = [roprec, roprec.Session, roprec.predict, roprec.compensate, roprec.Prediction, roprec.RoprecError,
                   roprec.InputError, roprec.UsageError, roprec.ItemError]
-        public += [getattr(roprec.Session, n) for n in ("filter_target", "predict_joints", "hole_pose", "cell_path",
+        public += [getattr(roprec.Session, n) for n in ("filter_target", "filter_targets", "predict_joints",
+                                                        "hole_pose", "cell_path",
                                                         "cell", "robot", "tool_pose_mm", "workobject_pose_mm",
                                                         "process")]
         for obj in public:
@@ -381,20 +418,49 @@ class PythonApiTest(unittest.TestCase):
         finally:
             C.lib.roprec_close(cs)
 
-    @unittest.skipUnless(roprec._roprec.__name__.endswith("_cabi"), "the ctypes backend only")
-    def test_ctypes_backend_refuses_a_per_hole_process(self):
-        s = roprec.Session(CELL)
-        wanted = s.hole_pose([150, 0, 250], [0, 0, -1])
-        for call in (lambda: s.filter_target(wanted, None, diameter_mm=6.8),
-                     lambda: s.predict_joints([0, -90, 90, 0, 45, 0], tool="2")):
-            with self.assertRaises(roprec.UsageError) as e:
-                call()
-            self.assertIn("takes no per-hole process", str(e.exception))
-        pose, _ = s.filter_target(wanted, None)  # without one: the cell's drill
-        self.assertEqual(len(pose), 4)
+    def test_both_backends_give_the_same_per_hole_dicts(self):
+        """The Session calls with a hole's process give the same dicts, value for value, from the
+        compiled module and from the ctypes one over the C ABI (its JSON answers)."""
+        this, other = roprec._roprec, other_backend()
+        p = roprec.predict(TOOLS_CELL, HOLES)[::23]
+        a, b = this.Session(TOOLS_CELL), other.Session(TOOLS_CELL)
+        holes = [dict(tool=h["drill_tool"], diameter_mm=h["diameter_mm"], depth_mm=h["depth_mm"]) for h in p]
+        holes[0] = dict(tool=3, feed_mm_per_rev=0.15, spindle_rpm=4000.0)  # a number as the tool, own cut data
+        holes[1] = {}                                                      # the cell's drill
+        for h, args in zip(p, holes):
+            compare_exactly(a.predict_joints(h["controller_joints_deg"], **args),
+                            b.predict_joints(h["controller_joints_deg"], **args), "predict_joints")
+            compare_exactly(a.filter_target(h["nominal_pose_mm"], h["controller_joints_deg"], details=True, **args),
+                            b.filter_target(h["nominal_pose_mm"], h["controller_joints_deg"], details=True, **args),
+                            "filter_target details")
+            plain = (s.filter_target(h["nominal_pose_mm"], **args) for s in (a, b))
+            for x, y in zip(*plain):
+                np.testing.assert_array_equal(x, y)
+        d = a.predict_joints(p[0]["controller_joints_deg"], **holes[0])["process"]
+        self.assertEqual((d["tool"], d["feed_mm_per_rev"], d["spindle_rpm"], d["from_cell"]),
+                         ("3", 0.15, 4000.0, False))
+        self.assertTrue(a.predict_joints(p[1]["controller_joints_deg"])["process"]["from_cell"])
+        poses = np.array([h["nominal_pose_mm"] for h in p])
+        poses[2, 0, 3] = 9000.0  # unreachable: kept, NaN joints, its reason
+        batch = a.filter_targets(poses, holes=holes)
+        compare_exactly(batch, b.filter_targets(poses, holes=holes), "filter_targets")
+        self.assertEqual(list(batch["ok"]), [i != 2 for i in range(len(p))])
+        self.assertTrue(np.isnan(batch["joints_deg"][2]).all())
+        np.testing.assert_array_equal(batch["poses_mm"][2], poses[2])
+        self.assertIn("unreachable", batch["reasons"][2])
+        seeds = np.array([h["controller_joints_deg"] for h in p])
+        compare_exactly(a.filter_targets(poses, seeds), b.filter_targets(poses, seeds), "filter_targets seeded")
+        for s in (a, b):  # the same refusals
+            for call, error in ((lambda: s.filter_target(poses[0], tool="9"), this.InputError),
+                                (lambda: s.predict_joints([0, -90, 90, 0, 0, 400], tool="2"), this.InputError),
+                                (lambda: s.predict_joints(seeds[0], diameter_mm=-1.0), this.UsageError),
+                                (lambda: s.filter_targets(poses, holes=[{"drill": "1"}] * len(p)), this.UsageError),
+                                (lambda: s.filter_targets(poses, holes=holes[:1]), this.UsageError),
+                                (lambda: s.filter_targets(poses[0]), this.UsageError)):
+                with self.assertRaises(Exception) as e:
+                    call()
+                self.assertEqual(type(e.exception).__name__, error.__name__, str(e.exception))
 
-    @unittest.skipIf(roprec._roprec.__name__.endswith("_cabi"),
-                     "the ctypes backend takes no per-hole process (it refuses one: see the test above)")
     def test_host_calls_take_the_hole_and_agree_with_the_cli_per_hole(self):
         """predict_joints / filter_targets with each hole's drill, diameter and depth (C and Python)
         give the CLI's `predict --holes` deviations and `compensate` targets per hole, to 1e-9 m."""
@@ -430,6 +496,8 @@ class PythonApiTest(unittest.TestCase):
                 self.assertAlmostEqual(d["process"]["spindle_rpm"], h["drill"]["spindle_rpm"], delta=1e-9)
                 self.assertAlmostEqual(used.diameter_mm, h["diameter_mm"], delta=1e-9)
                 self.assertEqual(used.from_cell, 0)
+                self.assertFalse(d["process"]["from_cell"])
+                self.assertAlmostEqual(d["process"]["depth_mm"], h["depth_mm"], delta=1e-9)
             wanted = np.array([ph["nominal_pose_mm"] for ph in p])
             batch = s.filter_targets(wanted, holes=hole_args)
             rc, cposes, cjoints, status, err = C.filter_targets(cs, wanted, hole_args)
@@ -439,6 +507,8 @@ class PythonApiTest(unittest.TestCase):
             np.testing.assert_array_equal(batch["joints_deg"], cjoints)
             for i, t in enumerate(targets):   # the export's mm with 6 decimals: 1e-9 m
                 np.testing.assert_allclose(cposes[i][:3, 3], t["programmed"]["position_mm"], rtol=0, atol=0.5e-6 + 1e-9)
+                self.assertEqual(batch["process"][i]["tool"], holes[i]["drill"]["tool"])
+                self.assertEqual(batch["reasons"][i], None)
             # a joint outside the limits is bad input (2), as in the CLI
             rc, _, _, _, err = C.predict_joints_hole(cs, [0, -90, 90, 0, 0, 400], None, 0.0, 0.0)
             self.assertEqual(rc, 2, err)

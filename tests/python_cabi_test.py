@@ -1,9 +1,12 @@
 """roprec/_cabi.py, the ctypes binding over roprec_c: where it looks for the C library (Windows and
-Linux install layouts, ROPREC_C_LIB first) and that its error kinds map to roprec's exceptions.
+Linux install layouts, ROPREC_C_LIB first), that its error kinds map to roprec's exceptions and
+that without numpy its per-hole Session calls give nested lists of the same values.
 Its API is the same as the compiled module's: tests/python_api_test.py runs against both
 (ctest python_api and python_api_ctypes)."""
 
+import json
 import os
+import subprocess
 import sys
 import unittest
 
@@ -48,6 +51,41 @@ class ErrorKindsTest(unittest.TestCase):
             s.filter_target([[1, 0, 0, 0]] * 4)  # not a rigid pose
         with self.assertRaises(ValueError):
             s.filter_target([1, 2, 3])  # not 16 numbers
+
+
+# The per-hole Session calls (tool 2 of the tool table, a hole of its own size) as a JSON text.
+PER_HOLE_CALLS = r"""
+import json, sys
+import roprec
+s = roprec.Session(sys.argv[1])
+hole = dict(tool="2", diameter_mm=8.5, depth_mm=17.0)
+wanted = s.hole_pose([150, 0, 250], [0, 0, -1])
+far = [list(row) for row in wanted]
+far[0][3] = 9000.0
+one = s.filter_target(wanted, None, details=True, **hole)
+joints = s.predict_joints(one["joints_deg"], **hole)
+batch = s.filter_targets([wanted, far], holes=[hole, None])
+lists = lambda x: x.tolist() if hasattr(x, "tolist") else x
+out = [{k: lists(v) for k, v in d.items()} for d in (one, joints, batch)]
+print(json.dumps(out))
+"""
+
+
+class WithoutNumpyTest(unittest.TestCase):
+    def test_per_hole_calls_give_nested_lists_of_the_numpy_values(self):
+        cell = os.path.join(SRC, "samples", "cells", "housing-kr120-tools.xml")
+        runs = []
+        for block in ("", "import sys; sys.modules['numpy'] = None\n"):  # None: 'import numpy' fails
+            r = subprocess.run([sys.executable, "-c", block + PER_HOLE_CALLS, cell], capture_output=True, text=True,
+                               env=dict(os.environ), timeout=300)
+            self.assertEqual(r.returncode, 0, r.stderr)
+            runs.append(r.stdout)
+        self.assertEqual(runs[1], runs[0])
+        one, joints, batch = json.loads(runs[0])
+        self.assertEqual(len(one["pose_mm"]), 4)
+        self.assertEqual((one["process"]["tool"], joints["process"]["depth_mm"]), ("2", 17.0))
+        self.assertEqual(batch["ok"], [True, False])
+        self.assertEqual(batch["process"][1]["from_cell"], True)
 
 
 if __name__ == "__main__":

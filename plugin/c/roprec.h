@@ -181,6 +181,44 @@ ROPREC_API int roprec_filter_targets(roprec_session* s, size_t count, const doub
                                      double* out_joints_deg, int* status, char* err,
                                      size_t err_len);
 
+/* roprec_predict_joints_hole with every figure of the prediction, as a one-line JSON object:
+ * the keys of roprec_predict_joints_json plus "process", the process used: {"tool", "drill" (its
+ * label, e.g. "tool 3 'D6.8' (Ø6.8 mm)"), "diameter_mm", "depth_mm", "feed_mm_per_rev",
+ * "spindle_rpm", "from_cell" (true: the caller gave no value)}. Numbers are the shortest text that
+ * reads back as the same double (the Python module's predict_joints dict, value for value).
+ * ROPREC_SUMMARY_LEN bytes suffice unless the tool names are long; too small gives 2.
+ * 1: no prediction at these joints (reason in err). 2: a joint outside the robot's limits (as the
+ * roprec CLI; roprec_error_kind gives ROPREC_ERROR_INPUT), a tool the cell does not have, or bad
+ * input. */
+ROPREC_API int roprec_predict_joints_hole_json(roprec_session* s, const double joints_deg[6],
+                                               const roprec_hole_process* process, char* json,
+                                               size_t json_len, char* err, size_t err_len);
+
+/* roprec_filter_target_hole with the details, as a one-line JSON object (numbers as in
+ * roprec_predict_joints_hole_json): "pose_mm" (16, the pose to program, row-major), "joints_deg"
+ * (6, controller convention), "config" (the vendor's configuration flags of those joints),
+ * "residual_um" (|predicted real TCP - wanted|) and "process" (as
+ * roprec_predict_joints_hole_json's). ROPREC_SUMMARY_LEN bytes suffice unless the tool names are
+ * long; too small gives 2. 1: the target cannot be filtered (reason in err); 2 as
+ * roprec_filter_target_hole. */
+ROPREC_API int roprec_filter_target_hole_json(roprec_session* s, const double pose_mm[16],
+                                              const double* seed_joints_deg,
+                                              const roprec_hole_process* process, char* json,
+                                              size_t json_len, char* err, size_t err_len);
+
+/* roprec_filter_targets with the process used per target, as a one-line JSON object (numbers as in
+ * roprec_predict_joints_hole_json): "poses_mm" (count arrays of 16; a target not filtered keeps its
+ * wanted pose), "joints_deg" (count arrays of 6, or null where not filtered), "ok" (count
+ * booleans), "reasons" (null or why not, per target) and "process" (count objects, as
+ * roprec_predict_joints_hole_json's). A buffer too small gives 2 and the bytes needed in err
+ * (about 1 kB per target suffices unless the tool names are long).
+ * Returns 0 when every target was filtered, 1 when some were not (the JSON is still written; err
+ * lists them, `target I: reason`), 2 for bad input (nothing written). */
+ROPREC_API int roprec_filter_targets_json(roprec_session* s, size_t count, const double* poses_mm,
+                                          const double* seed_joints_deg,
+                                          const roprec_hole_process* processes, char* json,
+                                          size_t json_len, char* err, size_t err_len);
+
 /* ---------------------------------------------------------------- whole programs (by file) */
 
 /* `roprec predict --cell CELL PROGRAM [--holes HOLES] [--json JSON_OUT]`:

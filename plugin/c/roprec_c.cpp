@@ -219,6 +219,72 @@ roprec::api::Json jointPredictionJson(const roprec::api::Session::JointPredictio
   return o;
 }
 
+/// The process a call used (roprec_*_hole_json's "process"; the Python module's process dict).
+roprec::api::Json processUsedJson(const roprec::api::ProcessUsed& u) {
+  using roprec::api::Json;
+  Json o = Json::object();
+  o.set("tool", Json::str(u.tool));
+  o.set("drill", Json::str(u.drill));
+  o.set("diameter_mm", Json::number(u.diameter * 1e3));
+  o.set("depth_mm", Json::number(u.depth * 1e3));
+  o.set("feed_mm_per_rev", Json::number(u.feed * 1e3));
+  o.set("spindle_rpm", Json::number(u.spindle_rpm));
+  o.set("from_cell", Json::boolean(u.from_cell));
+  return o;
+}
+
+/// Joints in degrees, controller convention (as the Python module converts them).
+roprec::api::Json degreesJson(const Vec6& q) {
+  Vec6 deg;
+  for (int i = 0; i < 6; ++i) deg[i] = q[i] / roprec::kDeg;
+  return roprec::api::Json::vector(deg);
+}
+
+/// One filtered target (roprec_filter_target_hole_json; the Python module's details dict).
+roprec::api::Json filteredJson(const roprec::api::Session::Filtered& f) {
+  using roprec::api::Json;
+  Json o = Json::object();
+  o.set("pose_mm", poseJson(f.T_programmed));
+  o.set("joints_deg", degreesJson(f.joints_controller));
+  o.set("config", Json::str(f.config));
+  o.set("residual_um", Json::number(f.residual * 1e6));
+  o.set("process", processUsedJson(f.process));
+  return o;
+}
+
+/// A program's filtered targets (roprec_filter_targets_json; the Python module's filter_targets):
+/// a target not filtered keeps its wanted pose and has null joints.
+roprec::api::Json filteredBatchJson(const std::vector<roprec::api::Session::Filtered>& f,
+                                    const std::vector<Pose>& wanted) {
+  using roprec::api::Json;
+  Json poses = Json::array();
+  Json joints = Json::array();
+  Json ok = Json::array();
+  Json reasons = Json::array();
+  Json process = Json::array();
+  for (size_t i = 0; i < f.size(); ++i) {
+    poses.push(poseJson(f[i].ok ? f[i].T_programmed : wanted[i]));
+    joints.push(f[i].ok ? degreesJson(f[i].joints_controller) : Json());
+    ok.push(Json::boolean(f[i].ok));
+    reasons.push(f[i].ok ? Json() : Json::str(f[i].reason));
+    process.push(processUsedJson(f[i].process));
+  }
+  Json o = Json::object();
+  o.set("poses_mm", std::move(poses));
+  o.set("joints_deg", std::move(joints));
+  o.set("ok", std::move(ok));
+  o.set("reasons", std::move(reasons));
+  o.set("process", std::move(process));
+  return o;
+}
+
+/// Copies a JSON answer into the caller's buffer (UsageError, nothing written, when too small).
+void copyJson(const roprec::api::Json& o, char* json, size_t json_len) {
+  const std::string text = o.dump(0);
+  checkFits(text, json, json_len, "json");
+  copyText(text, json);
+}
+
 /// The whole prediction job of roprec_predict_file(_ex).
 int predictFile(const char* cell_path, const char* program_path,
                 const roprec::api::JobOptions& options, const char* json_out_path,
@@ -354,6 +420,56 @@ void processUsed(const roprec::api::ProcessUsed& u, roprec_process_used& out) {
   out.from_cell = u.from_cell ? 1 : 0;
 }
 
+/// The targets of roprec_filter_targets(_json), read and filtered in order.
+struct FilteredBatch {
+  std::vector<Pose> wanted;
+  std::vector<roprec::api::Session::Filtered> filtered;
+};
+
+FilteredBatch filterBatch(roprec::api::Session& session, size_t count, const double* poses_mm,
+                          const double* seed_joints_deg, const roprec_hole_process* processes) {
+  FilteredBatch b;
+  if (count == 0) return b;
+  require(poses_mm, "poses_mm");
+  std::vector<Vec6> seeds;
+  std::vector<roprec::api::HoleProcess> holes;
+  b.wanted.reserve(count);
+  for (size_t i = 0; i < count; ++i) {
+    const std::string n = "poses_mm[" + std::to_string(i) + "]";
+    b.wanted.push_back(host::poseFromRowMajorMm(poses_mm + 16 * i, n));
+    if (seed_joints_deg != nullptr)
+      seeds.push_back(host::jointsFromDeg(seed_joints_deg + 6 * i, "seed_joints_deg"));
+    if (processes != nullptr)
+      holes.push_back(holeProcess(processes + i, "processes[" + std::to_string(i) + "]"));
+  }
+  b.filtered = session.filterTargets(b.wanted, seeds, holes);
+  return b;
+}
+
+/// `target I: reason` of each target not filtered, one a line ("" when all were).
+std::string batchFailures(const std::vector<roprec::api::Session::Filtered>& f) {
+  std::vector<std::string> failed;
+  for (size_t i = 0; i < f.size(); ++i)
+    if (!f[i].ok) failed.push_back("target " + std::to_string(i) + ": " + f[i].reason);
+  return host::joinLines(failed);
+}
+
+/// roprec_predict_joints(_hole)_json: the prediction's figures, with the process used when asked.
+int predictJointsJson(roprec_session* s, const double joints_deg[6],
+                      const roprec_hole_process* process, bool with_process, char* json,
+                      size_t json_len) {
+  require(s, "session");
+  checkTextBuffer(json, json_len, "json");
+  const Vec6 q = host::jointsFromDeg(joints_deg, "joints_deg");
+  const roprec::api::Session::JointPrediction p =
+      s->session.predictJoints(q, holeProcess(process, "process"));
+  if (!p.ok) throw ItemFailure{"no prediction at these joints: " + p.reason};
+  roprec::api::Json o = jointPredictionJson(p, q);
+  if (with_process) o.set("process", processUsedJson(p.process));
+  copyJson(o, json, json_len);
+  return ROPREC_OK;
+}
+
 /// The verify calls' common end: nothing is written unless every measured item was predicted;
 /// then the summary (checked to fit first) and every output.
 int writeVerifyOutputs(const roprec::api::VerifyResult& r,
@@ -479,32 +595,16 @@ ROPREC_API int roprec_filter_targets(roprec_session* s, size_t count, const doub
     require(poses_mm, "poses_mm");
     require(out_poses_mm, "out_poses_mm");
     require(out_joints_deg, "out_joints_deg");
-    std::vector<Pose> poses;
-    std::vector<Vec6> seeds;
-    std::vector<roprec::api::HoleProcess> holes;
-    poses.reserve(count);
-    for (size_t i = 0; i < count; ++i) {
-      const std::string n = "poses_mm[" + std::to_string(i) + "]";
-      poses.push_back(host::poseFromRowMajorMm(poses_mm + 16 * i, n));
-      if (seed_joints_deg != nullptr)
-        seeds.push_back(host::jointsFromDeg(seed_joints_deg + 6 * i, "seed_joints_deg"));
-      if (processes != nullptr)
-        holes.push_back(holeProcess(processes + i, "processes[" + std::to_string(i) + "]"));
-    }
     const std::vector<roprec::api::Session::Filtered> f =
-        s->session.filterTargets(poses, seeds, holes);
-    std::vector<std::string> failed;
+        filterBatch(s->session, count, poses_mm, seed_joints_deg, processes).filtered;
     for (size_t i = 0; i < count; ++i) {
       if (status != nullptr) status[i] = f[i].ok ? ROPREC_OK : ROPREC_ITEM_FAILED;
-      if (!f[i].ok) {
-        failed.push_back("target " + std::to_string(i) + ": " + f[i].reason);
-        continue;
-      }
+      if (!f[i].ok) continue;
       host::poseToRowMajorMm(f[i].T_programmed, out_poses_mm + 16 * i);
       for (int j = 0; j < 6; ++j)
         out_joints_deg[6 * i + j] = f[i].joints_controller[j] / roprec::kDeg;
     }
-    if (!failed.empty()) throw ItemFailure{host::joinLines(failed)};
+    if (const std::string failed = batchFailures(f); !failed.empty()) throw ItemFailure{failed};
     return ROPREC_OK;
   });
 }
@@ -534,15 +634,46 @@ ROPREC_API int roprec_session_info(roprec_session* s, char* json, size_t json_le
 
 ROPREC_API int roprec_predict_joints_json(roprec_session* s, const double joints_deg[6], char* json,
                                           size_t json_len, char* err, size_t err_len) {
+  return guarded(err, err_len,
+                 [&] { return predictJointsJson(s, joints_deg, nullptr, false, json, json_len); });
+}
+
+ROPREC_API int roprec_predict_joints_hole_json(roprec_session* s, const double joints_deg[6],
+                                               const roprec_hole_process* process, char* json,
+                                               size_t json_len, char* err, size_t err_len) {
+  return guarded(err, err_len,
+                 [&] { return predictJointsJson(s, joints_deg, process, true, json, json_len); });
+}
+
+ROPREC_API int roprec_filter_target_hole_json(roprec_session* s, const double pose_mm[16],
+                                              const double* seed_joints_deg,
+                                              const roprec_hole_process* process, char* json,
+                                              size_t json_len, char* err, size_t err_len) {
   return guarded(err, err_len, [&] {
     require(s, "session");
     checkTextBuffer(json, json_len, "json");
-    const Vec6 q = host::jointsFromDeg(joints_deg, "joints_deg");
-    const roprec::api::Session::JointPrediction p = s->session.predictJoints(q);
-    if (!p.ok) throw ItemFailure{"no prediction at these joints: " + p.reason};
-    const std::string text = jointPredictionJson(p, q).dump(0);
-    checkFits(text, json, json_len, "json");
-    copyText(text, json);
+    const Pose T = host::poseFromRowMajorMm(pose_mm, "pose_mm");
+    std::optional<Vec6> seed;
+    if (seed_joints_deg != nullptr) seed = host::jointsFromDeg(seed_joints_deg, "seed_joints_deg");
+    const roprec::api::Session::Filtered f =
+        s->session.filterTarget(T, seed ? &*seed : nullptr, holeProcess(process, "process"));
+    if (!f.ok) throw ItemFailure{"target not filtered: " + f.reason};
+    copyJson(filteredJson(f), json, json_len);
+    return ROPREC_OK;
+  });
+}
+
+ROPREC_API int roprec_filter_targets_json(roprec_session* s, size_t count, const double* poses_mm,
+                                          const double* seed_joints_deg,
+                                          const roprec_hole_process* processes, char* json,
+                                          size_t json_len, char* err, size_t err_len) {
+  return guarded(err, err_len, [&] {
+    require(s, "session");
+    checkTextBuffer(json, json_len, "json");
+    const FilteredBatch b = filterBatch(s->session, count, poses_mm, seed_joints_deg, processes);
+    copyJson(filteredBatchJson(b.filtered, b.wanted), json, json_len);
+    if (const std::string failed = batchFailures(b.filtered); !failed.empty())
+      throw ItemFailure{failed};
     return ROPREC_OK;
   });
 }

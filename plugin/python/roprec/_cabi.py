@@ -4,6 +4,8 @@ Pure Python (any CPython >= 3.7, numpy optional): used where no ``_roprec`` exte
 the interpreter — RoboDK's embedded Python on Windows, or with ROPREC_PYTHON_BACKEND=ctypes. It
 loads ``roprec_c.dll`` / ``libroprec_c.so`` (found as :func:`library_candidates` says) and gives the
 same names as ``_roprec``: the exceptions, ``version``, ``Session`` and the whole-job calls.
+The Session calls take the hole's process as ``_roprec`` does and give its dicts value for value
+(the C library's JSON answers print every number as the shortest text of the same double).
 Differences: the per-hole dicts of ``predict``/``compensate`` come from the JSON documents, so their
 numbers carry the JSON's rounding; ``compensate`` gives ``results`` only when ``targets`` is a JSON
 export.
@@ -11,7 +13,9 @@ export.
 
 import ctypes
 import json
+import math
 import os
+import re
 import sys
 import tempfile
 
@@ -83,13 +87,24 @@ def _load():
     raise ImportError("roprec: the C library roprec_c was not found (set ROPREC_C_LIB): " + "; ".join(errors))
 
 
+class _HoleProcess(ctypes.Structure):
+    """roprec_hole_process (roprec.h): the hole's process, mm; 0 / NULL: the cell's."""
+    _fields_ = [("tool", ctypes.c_char_p), ("diameter_mm", ctypes.c_double), ("depth_mm", ctypes.c_double),
+                ("feed_mm_per_rev", ctypes.c_double), ("spindle_rpm", ctypes.c_double)]
+
+
 _lib = _load()
 _D = ctypes.POINTER(ctypes.c_double)
 _P, _S, _I, _V = ctypes.c_char_p, ctypes.c_size_t, ctypes.c_int, ctypes.c_void_p
+_H = ctypes.POINTER(_HoleProcess)
 for _name, _args in {
     "roprec_open": [_P, ctypes.POINTER(_V), _P, _S],
     "roprec_filter_target": [_V, _D, _D, _D, _D, _P, _S],
     "roprec_predict_joints_json": [_V, _D, _P, _S, _P, _S],
+    "roprec_filter_target_hole": [_V, _D, _D, _H, _D, _D, _V, _P, _S],
+    "roprec_predict_joints_hole_json": [_V, _D, _H, _P, _S, _P, _S],
+    "roprec_filter_target_hole_json": [_V, _D, _D, _H, _P, _S, _P, _S],
+    "roprec_filter_targets_json": [_V, _S, _D, _D, _H, _P, _S, _P, _S],
     "roprec_session_info": [_V, _P, _S, _P, _S],
     "roprec_options_new": [ctypes.POINTER(_V), _P, _S],
     "roprec_options_set": [_V, _P, _P, _P, _S],
@@ -130,10 +145,19 @@ def _raise(rc, err):
     raise RoprecError(text)
 
 
+_NEEDED = re.compile(r"^json: the buffer holds \d+ bytes, (\d+) are needed")
+
+
 def _call(f, *args, item_ok=False, size=_LEN):
-    """Calls f(*args, out, size, err, size); returns (rc, out text, err text)."""
-    out, err = ctypes.create_string_buffer(size), ctypes.create_string_buffer(size)
-    rc = f(*(args + (out, size, err, size)))
+    """Calls f(*args, out, size, err, size); returns (rc, out text, err text). A JSON answer larger
+    than `size` is asked for once more with the size the library states."""
+    out, err = ctypes.create_string_buffer(size), ctypes.create_string_buffer(_LEN)
+    rc = f(*(args + (out, size, err, _LEN)))
+    needed = _NEEDED.match(err.value.decode("utf-8", "replace")) if rc == 2 else None
+    if needed and _lib.roprec_error_kind() == _ERROR_USAGE:
+        size = int(needed.group(1))
+        out = ctypes.create_string_buffer(size)
+        rc = f(*(args + (out, size, err, _LEN)))
     if rc != 0 and not (item_ok and rc == 1):
         _raise(rc, err)
     return rc, out.value.decode("utf-8"), err.value.decode("utf-8", "replace")
@@ -169,13 +193,60 @@ def _mat_mul(a, b):
     return [[sum(a[i][k] * b[k][j] for k in range(4)) for j in range(4)] for i in range(4)]
 
 
-def _no_hole_process(call, process):
-    """Refuses a per-hole process: this backend has no call that takes one (the compiled module
-    does), and the cell's drill must never stand in for the hole's in silence."""
-    given = sorted(k for k, v in process.items() if v is not None and k != "details")
-    if given:
-        raise UsageError("%s: the ctypes backend takes no per-hole process (%s); use the compiled "
-                         "roprec module, or leave them out for the cell's drill" % (call, ", ".join(given)))
+_PROCESS_KEYS = ("tool", "diameter_mm", "depth_mm", "feed_mm_per_rev", "spindle_rpm")
+
+
+def _process_number(d, key):
+    """A non-negative finite number of a hole dict (mm units), 0 when absent or None."""
+    v = d.get(key)
+    if v is None:
+        return 0.0
+    try:
+        v = float(v)
+    except (TypeError, ValueError):
+        raise UsageError("hole %s must be a number" % key)
+    if not math.isfinite(v) or v < 0:
+        raise UsageError("hole %s must be finite and >= 0 (0: the cell's)" % key)
+    return v
+
+
+def _hole_process(d):
+    """A hole dict {tool, diameter_mm, depth_mm, feed_mm_per_rev, spindle_rpm} (any subset; None:
+    the cell's) as roprec_hole_process, or None when it gives nothing."""
+    if d is None:
+        return None
+    if not isinstance(d, dict):
+        raise UsageError("a hole's process is a dict or None")
+    for k in d:
+        if k not in _PROCESS_KEYS:
+            raise UsageError("unknown hole key '%s' (%s)" % (k, ", ".join(_PROCESS_KEYS)))
+    tool = d.get("tool")
+    return _HoleProcess(None if tool is None else str(tool).encode("utf-8"), _process_number(d, "diameter_mm"),
+                        _process_number(d, "depth_mm"), _process_number(d, "feed_mm_per_rev"),
+                        _process_number(d, "spindle_rpm"))
+
+
+def _process_args(tool, diameter_mm, depth_mm, feed_mm_per_rev, spindle_rpm):
+    """The keyword arguments of one hole's process as roprec_hole_process (None: the cell's)."""
+    return _hole_process({"tool": tool, "diameter_mm": diameter_mm, "depth_mm": depth_mm,
+                          "feed_mm_per_rev": feed_mm_per_rev, "spindle_rpm": spindle_rpm})
+
+
+def _floats(text):
+    """A Session call's JSON answer: every number is a double (the JSON prints 20.0 as 20)."""
+    return json.loads(text, parse_int=float)
+
+
+def _ref(hole):
+    return None if hole is None else ctypes.byref(hole)
+
+
+def _arrays(d, shapes):
+    """The lists of a JSON answer as arrays: `shapes` names the reshaped ones, the rest stay 1-D."""
+    for k, v in d.items():
+        if isinstance(v, list) and v and not isinstance(v[0], (dict, str, bool)) and v[0] is not None:
+            d[k] = _array(v, shapes.get(k))
+    return d
 
 
 def _hole_frame(d):
@@ -206,34 +277,77 @@ class Session(object):
             _lib.roprec_close(self._s)
             self._s = None
 
-    def filter_target(self, pose_mm, seed_joints_deg=None, **process):
-        """(pose_mm, joints_deg): the pose to program and its joints; see roprec.Session. This
-        backend takes no per-hole process (tool, diameter_mm, ...): it raises UsageError."""
-        _no_hole_process("filter_target", process)
-        err = ctypes.create_string_buffer(1024)
+    def filter_target(self, pose_mm, seed_joints_deg=None, *, tool=None, diameter_mm=None, depth_mm=None,
+                      feed_mm_per_rev=None, spindle_rpm=None, details=False):
+        """(pose_mm, joints_deg): the pose to program and its joints, drilling with the hole's
+        process (None: the cell's); details=True: a dict (pose_mm, joints_deg, config, residual_um,
+        process). See roprec.Session."""
+        hole = _process_args(tool, diameter_mm, depth_mm, feed_mm_per_rev, spindle_rpm)
         pose, keep = _numbers(pose_mm, 16, "pose_mm")
         seed, keep_seed = (None, None) if seed_joints_deg is None else _numbers(seed_joints_deg, 6, "seed_joints_deg")
+        if details:
+            d = _floats(_call(_lib.roprec_filter_target_hole_json, self._s, pose, seed, _ref(hole), size=8192)[1])
+            return _arrays(d, {"pose_mm": (4, 4)})
+        err = ctypes.create_string_buffer(1024)
         if _np is not None:
             out, joints = _np.empty((4, 4)), _np.empty(6)
-            rc = _lib.roprec_filter_target(self._s, pose, seed, out.ctypes.data_as(_D), joints.ctypes.data_as(_D),
-                                           err, 1024)
+            rc = _lib.roprec_filter_target_hole(self._s, pose, seed, _ref(hole), out.ctypes.data_as(_D),
+                                                joints.ctypes.data_as(_D), None, err, 1024)
         else:
             out, joints = (ctypes.c_double * 16)(), (ctypes.c_double * 6)()
-            rc = _lib.roprec_filter_target(self._s, pose, seed, out, joints, err, 1024)
+            rc = _lib.roprec_filter_target_hole(self._s, pose, seed, _ref(hole), out, joints, None, err, 1024)
             out, joints = _array(out[:], (4, 4)), _array(joints[:])
         if rc:
             _raise(rc, err)
         return out, joints
 
-    def predict_joints(self, joints_deg, **process):
-        """The predicted TCP deviation at these joints (dict); see roprec.Session. This backend
-        takes no per-hole process (tool, diameter_mm, ...): it raises UsageError."""
-        _no_hole_process("predict_joints", process)
-        d = json.loads(_call(_lib.roprec_predict_joints_json, self._s, _numbers(joints_deg, 6, "joints_deg")[0], size=8192)[1])
-        for k, v in d.items():
-            if isinstance(v, list):
-                d[k] = _array(v)
+    def filter_targets(self, poses_mm, seed_joints_deg=None, holes=None):
+        """filter_target over a program's targets in order (RoboDK's FilterProgram): a dict with
+        poses_mm (N x 4 x 4), joints_deg (N x 6, NaN where not filtered), ok, reasons and process
+        (per target). See roprec.Session."""
+        try:
+            n = len(poses_mm)
+        except TypeError:
+            n = -1
+        if n < 0 or (_np is not None and _np.ndim(poses_mm) != 3):
+            raise UsageError("poses_mm: an array of 4x4 poses (N x 4 x 4) is expected")
+        try:
+            poses, keep = _numbers([v for p in poses_mm for row in p for v in row], 16 * n, "poses_mm")
+        except (TypeError, UsageError):
+            raise UsageError("poses_mm: an array of 4x4 poses (N x 4 x 4) is expected")
+        seeds, keep_seeds = None, None
+        if seed_joints_deg is not None:
+            try:
+                if len(seed_joints_deg) != n:
+                    raise TypeError
+                seeds, keep_seeds = _numbers([v for q in seed_joints_deg for v in q], 6 * n, "seed_joints_deg")
+            except (TypeError, UsageError):
+                raise UsageError("seed_joints_deg: None or N x 6 joints (deg) are expected")
+        processes = None
+        if holes is not None:
+            given = [_hole_process(h) or _HoleProcess(None, 0.0, 0.0, 0.0, 0.0) for h in holes]
+            if len(given) != n:
+                raise UsageError("holes: None or one dict per pose is expected")
+            processes = (_HoleProcess * n)(*given)
+        rc, text, err = _call(_lib.roprec_filter_targets_json, self._s, n, poses, seeds, processes, item_ok=True,
+                              size=4096 + 2048 * n)
+        d = _floats(text)
+        nan = float("nan")
+        joints = [[nan] * 6 if q is None else q for q in d["joints_deg"]]
+        d["poses_mm"] = _array([v for p in d["poses_mm"] for v in p], (n, 4, 4)) if _np is not None else \
+            [_array(p, (4, 4)) for p in d["poses_mm"]]
+        d["joints_deg"] = _array([v for q in joints for v in q], (n, 6)) if _np is not None else joints
+        d["ok"] = _np.array(d["ok"], dtype=bool) if _np is not None else d["ok"]
         return d
+
+    def predict_joints(self, joints_deg, *, tool=None, diameter_mm=None, depth_mm=None, feed_mm_per_rev=None,
+                       spindle_rpm=None):
+        """The predicted TCP deviation at these joints drilling with the hole's process (None: the
+        cell's), a dict; see roprec.Session."""
+        hole = _process_args(tool, diameter_mm, depth_mm, feed_mm_per_rev, spindle_rpm)
+        d = _floats(_call(_lib.roprec_predict_joints_hole_json, self._s, _numbers(joints_deg, 6, "joints_deg")[0],
+                          _ref(hole), size=8192)[1])
+        return _arrays(d, {})
 
     def hole_pose(self, position_mm, direction):
         """The TCP pose roprec uses for a hole-list row (workobject frame); see roprec.Session."""
