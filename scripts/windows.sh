@@ -15,12 +15,13 @@
 # fuzz seed replays; the C example; then the sample job from the ZIP against build/bin/roprec
 # (so .ci/run runs this after scripts/test.sh). The Python package is tested on Linux (ctest
 # python_api_ctypes, python_cabi): Debian has no Windows CPython.
-# CI budget: on the shared 2-core machine this was first run on (load ~19 from other builds, all
-# of it at nice 10) the dependencies up to SUNDIALS took ~17 min and roprec's library, CLI and C
-# DLL ~28 min at -O1; a whole run on an idle machine is not measured yet, and the C++ suite has not
-# yet run under wine64 (KDL and the ~95 test files were not cross-built there in time). So .ci/run
-# runs --sample-job (build, ZIP + installer, the sample job byte for byte), which fits its budget
-# once the dependency prefix is cached; the full run is for a machine with the time.
+# CI budget: on the shared 2-core machine (load 8-19 from other builds, all at nice 10) the
+# dependencies up to SUNDIALS took ~17 min, KDL + kdl_parser + GoogleTest 7 min, roprec's library,
+# CLI and C DLL ~18 min and the C++ suite ~18 min more at -O1 (precompiled header); the suite under
+# wine64 took 6-17 min. It does not pass there yet (624 passed, 27 failed at its last run; the
+# summary names them). So .ci/run runs --sample-job (build, ZIP + installer, the sample job byte
+# for byte), which fits its budget once the dependency prefix is cached; the full run is for a
+# machine with the time.
 # Options: --no-tests (steps 1-4 and 6), --sample-job (steps 1-4, 6 and the sample job of 7: what
 # .ci/run runs, see below), --deps-only (steps 1-3). Each step's wall time is printed.
 # Logs: build-windows/logs/. ROPREC_WINDOWS_JOBS sets the parallel jobs (default: nproc);
