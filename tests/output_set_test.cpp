@@ -3,6 +3,7 @@
 /// set up (fork and kill, flock, FIFOs, links, rlimits, devices) is in output_set_posix_test.cpp.
 #include <algorithm>
 #include <atomic>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <thread>
@@ -253,7 +254,8 @@ namespace {
 TEST(ReadFileBytes, EveryByteOfFilesOfAnySize) {
   const std::string dir = test::tempDir("read_file_bytes");
   std::string big;
-  for (long i = 0; i < 300000; ++i) big += static_cast<char>((i * 7919) % 251);
+  // 64-bit arithmetic: i * 7919 passes 2^31 (a 32-bit long on Windows would overflow)
+  for (std::int64_t i = 0; i < 300000; ++i) big += static_cast<char>((i * 7919) % 251);
   for (const std::string& text : {std::string(), std::string("a\0b\r\nc", 6), big}) {
     const std::string path = dir + "/f" + std::to_string(text.size());
     test::writeFile(path, text);
