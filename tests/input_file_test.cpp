@@ -1,10 +1,8 @@
 /// The one loader of input files (compensator/support/input_file.hpp): what it refuses before a
 /// reader sees the bytes (folders, devices, FIFOs, files above their kind's limit, UTF-16/32, NUL
-/// bytes), through the library, the CLI and the C ABI.
+/// bytes), through the library, the CLI and the C ABI. What needs POSIX (devices, FIFOs, setenv)
+/// is in input_file_posix_test.cpp.
 #include "compensator/support/input_file.hpp"
-
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <cstdlib>
@@ -42,24 +40,6 @@ bool validUtf8(const std::string& s) {
 
 const std::string kCell = test::sourceDir() + "/samples/cells/housing-kr120.xml";
 
-TEST(InputFile, FoldersDevicesAndFifosAreRefusedSayingWhatTheyAre) {
-  const std::string dir = test::tempDir("input-kinds");
-  EXPECT_NE(errorOf(dir, InputKind::kCell).find(dir + ": is a directory; give a cell file"),
-            std::string::npos)
-      << errorOf(dir, InputKind::kCell);
-  const auto t0 = std::chrono::steady_clock::now();
-  EXPECT_NE(errorOf("/dev/zero", InputKind::kCell).find("is not a regular file"),
-            std::string::npos);
-  EXPECT_NE(errorOf("/dev/urandom", InputKind::kProgram).find("is not a regular file"),
-            std::string::npos);
-  const std::string fifo = dir + "/pipe";
-  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
-  EXPECT_NE(errorOf(fifo, InputKind::kHoleList).find("is not a regular file"), std::string::npos);
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 2.0);
-  EXPECT_NE(errorOf(dir + "/missing.xml", InputKind::kCell).find("cannot open file"),
-            std::string::npos);
-}
-
 TEST(InputFile, CliAndCApiSayAFolderIsADirectoryNotOutOfMemory) {
   const std::string dir = test::tempDir("input-folder-cli");
   const auto r = test::runRoprec("predict --cell '" + kCell + "' '" + dir + "' --json -");
@@ -68,33 +48,12 @@ TEST(InputFile, CliAndCApiSayAFolderIsADirectoryNotOutOfMemory) {
   EXPECT_EQ(r.err.find("memory"), std::string::npos) << r.err;
   const auto c = test::runRoprec("predict --cell '" + dir + "' '" + dir + "' --json -");
   EXPECT_NE(c.err.find(dir + ": is a directory; give a cell file"), std::string::npos) << c.err;
-  const auto zero = test::runRoprec("predict --cell /dev/zero '" + dir + "' --json -");
-  EXPECT_EQ(zero.exit_code, 2);
-  EXPECT_NE(zero.err.find("/dev/zero: is not a regular file"), std::string::npos) << zero.err;
   char summary[ROPREC_SUMMARY_LEN];
   char err[2048];
   const int rc = roprec_predict_file(kCell.c_str(), dir.c_str(), nullptr, nullptr, summary,
                                      sizeof summary, err, sizeof err);
   EXPECT_EQ(rc, ROPREC_BAD_INPUT);
   EXPECT_NE(std::string(err).find("is a directory"), std::string::npos) << err;
-}
-
-TEST(InputFile, EachKindHasASizeLimitThatTheEnvironmentRaises) {
-  EXPECT_EQ(inputSizeLimit(InputKind::kCell), std::size_t{64} << 20U);
-  EXPECT_EQ(inputSizeLimit(InputKind::kProgram), std::size_t{2048} << 20U);
-  const std::string dir = test::tempDir("input-limit");
-  std::string big = "id,x,y,z,i,j,k\n";
-  while (big.size() < (std::size_t{3} << 20U)) big += "H1,1,2,3,0,0,-1\n";
-  test::writeFile(dir + "/big.csv", big);
-  ::setenv("ROPREC_MAX_INPUT_MB", "2", 1);
-  const std::string e = errorOf(dir + "/big.csv", InputKind::kHoleList);
-  EXPECT_NE(e.find("MB, more than the 2 MB allowed for a hole list (set the "
-                   "environment variable ROPREC_MAX_INPUT_MB to raise the limit)"),
-            std::string::npos)
-      << e;
-  ::setenv("ROPREC_MAX_INPUT_MB", "4", 1);
-  EXPECT_EQ(readInputFile(dir + "/big.csv", InputKind::kHoleList).size(), big.size());
-  ::unsetenv("ROPREC_MAX_INPUT_MB");
 }
 
 TEST(InputFile, Utf16AndUtf32AreRefusedWithWhatToDoAndAUtf8MarkIsAccepted) {

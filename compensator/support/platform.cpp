@@ -239,8 +239,20 @@ File::~File() {
 }
 
 int File::openRead(const std::string& path) {
-  fd_ = ::_wopen(wide(path).c_str(), _O_RDONLY | _O_BINARY | _O_NOINHERIT);
-  return fd_ < 0 ? errno : 0;
+  // CreateFileW, not _wopen: FILE_FLAG_BACKUP_SEMANTICS opens a folder too (status() then says
+  // kFolder instead of _wopen's EACCES), and FILE_SHARE_DELETE lets another writer rename its
+  // file over this one while it is read (as on POSIX); the handle is not inherited
+  const HANDLE h = ::CreateFileW(wide(path).c_str(), GENERIC_READ,
+                                 FILE_SHARE_READ | FILE_SHARE_WRITE | FILE_SHARE_DELETE, nullptr,
+                                 OPEN_EXISTING, FILE_FLAG_BACKUP_SEMANTICS, nullptr);
+  if (h == INVALID_HANDLE_VALUE) return fromWindowsError(::GetLastError());
+  fd_ = ::_open_osfhandle(reinterpret_cast<intptr_t>(h), _O_RDONLY | _O_BINARY);
+  if (fd_ < 0) {
+    const int e = errno;
+    ::CloseHandle(h);
+    return e;
+  }
+  return 0;
 }
 
 int File::createNew(const std::string& path) {
@@ -306,11 +318,24 @@ int File::close() {
 }
 
 int replaceFile(const std::string& from, const std::string& to) {
-  if (::MoveFileExW(wide(from).c_str(), wide(to).c_str(),
-                    MOVEFILE_REPLACE_EXISTING | MOVEFILE_WRITE_THROUGH)) {
-    return 0;
+  const std::wstring f = wide(from);
+  const std::wstring t = wide(to);
+  // Windows refuses the rename while another process or thread has `to` open without
+  // FILE_SHARE_DELETE or is renaming onto it (ERROR_ACCESS_DENIED / ERROR_SHARING_VIOLATION),
+  // where POSIX rename replaces it at once: retried for up to about 2 s, then the error
+  DWORD e = 0;
+  for (int attempt = 0; attempt < 200; ++attempt) {
+    if (::MoveFileExW(f.c_str(), t.c_str(), MOVEFILE_REPLACE_EXISTING | MOVEFILE_WRITE_THROUGH))
+      return 0;
+    e = ::GetLastError();
+    if (e != ERROR_ACCESS_DENIED && e != ERROR_SHARING_VIOLATION) break;
+    const DWORD attrs = ::GetFileAttributesW(t.c_str());  // refused for good: no retry
+    if (attrs != INVALID_FILE_ATTRIBUTES &&
+        (attrs & (FILE_ATTRIBUTE_DIRECTORY | FILE_ATTRIBUTE_READONLY)) != 0)
+      break;
+    ::Sleep(attempt < 10 ? 1 : 10);
   }
-  return fromWindowsError(::GetLastError());
+  return fromWindowsError(e);
 }
 
 void removeFile(const std::string& path) { (void)::DeleteFileW(wide(path).c_str()); }

@@ -2,6 +2,8 @@
 // roprec_bench.
 #include "tests/support/counting_new.hpp"
 
+#include <algorithm>
+#include <cstdint>
 #include <cstdlib>
 #include <new>
 
@@ -14,11 +16,20 @@ void* counted(std::size_t n) {
   if (void* p = std::malloc(n ? n : 1)) return p;
   throw std::bad_alloc();
 }
+// Over-aligned blocks on malloc alone (the C runtime of Windows has no std::aligned_alloc): the
+// block from malloc is kept in the word just before the aligned address, for countedAlignedFree.
 void* countedAligned(std::size_t n, std::align_val_t a) {
   ++t_allocations;
-  const std::size_t al = static_cast<std::size_t>(a);
-  if (void* p = std::aligned_alloc(al, (n + al - 1) / al * al)) return p;
-  throw std::bad_alloc();
+  const std::size_t al = std::max(static_cast<std::size_t>(a), alignof(void*));
+  void* const raw = std::malloc(n + al + sizeof(void*));
+  if (raw == nullptr) throw std::bad_alloc();
+  const std::uintptr_t first = reinterpret_cast<std::uintptr_t>(raw) + sizeof(void*);
+  void* const p = reinterpret_cast<void*>((first + al - 1) / al * al);
+  static_cast<void**>(p)[-1] = raw;
+  return p;
+}
+void countedAlignedFree(void* p) noexcept {
+  if (p != nullptr) std::free(static_cast<void**>(p)[-1]);
 }
 }  // namespace
 
@@ -49,7 +60,11 @@ void operator delete(void* p) noexcept { std::free(p); }
 void operator delete[](void* p) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
-void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+void operator delete(void* p, std::align_val_t) noexcept { roprec::test::countedAlignedFree(p); }
+void operator delete[](void* p, std::align_val_t) noexcept { roprec::test::countedAlignedFree(p); }
+void operator delete(void* p, std::size_t, std::align_val_t) noexcept {
+  roprec::test::countedAlignedFree(p);
+}
+void operator delete[](void* p, std::size_t, std::align_val_t) noexcept {
+  roprec::test::countedAlignedFree(p);
+}

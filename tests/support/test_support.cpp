@@ -90,9 +90,11 @@ std::string krlCyclesOfDepths(const std::vector<double>& depths_mm) {
 
 std::string tempDir(const std::string& tag) {
   static int counter = 0;
+  const char* const root = std::getenv("ROPREC_TEST_TMPDIR");  // else the system's temp folder
   const fs::path p =
-      fs::temp_directory_path() / ("roprec-test-" + std::to_string(platform::processId()) + "-" +
-                                   tag + "-" + std::to_string(counter++));
+      (root != nullptr && *root != '\0' ? fs::path(root) : fs::temp_directory_path()) /
+      ("roprec-test-" + std::to_string(platform::processId()) + "-" + tag + "-" +
+       std::to_string(counter++));
   fs::remove_all(p);
   fs::create_directories(p);
   return p.string();

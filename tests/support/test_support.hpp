@@ -36,7 +36,8 @@ RunResult runRoprec(const std::string& args);
 /// started directly by tests/support/process.hpp when it is plain (leading NAME=VALUE words set
 /// the environment), through /bin/sh when it has shell operators (POSIX only).
 RunResult runCommand(const std::string& command);
-/// A fresh temporary directory under the build tree.
+/// A fresh temporary directory in $ROPREC_TEST_TMPDIR when set (the Windows run: on the build
+/// tree's drive), else in the system's temporary folder.
 std::string tempDir(const std::string& tag);
 std::string readFile(const std::string& path);
 void writeFile(const std::string& path, const std::string& text);
