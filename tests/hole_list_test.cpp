@@ -6,7 +6,6 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include <chrono>
 #include <filesystem>
 #include <random>
 #include <set>
@@ -329,21 +328,18 @@ TEST(HolesMatching, TheFastMatcherAgreesWithTheBruteForceOne) {
   }
 }
 
-// A header that is one 10 MB token is refused at once ("unknown column", the name cut to a readable
-// length), in time and memory independent of the token; every parse step is linear.
+// A header that is one 10 MB token is refused ("unknown column", the name cut to a readable
+// length) with a message of bounded size; every parse step is linear (a quadratic step on 10 MB
+// would not end within the test's time limit).
 TEST(HoleListValidation, AHugeUnknownColumnIsRefusedFastWithAShortMessage) {
   const std::string token(10'000'000, 'w');
-  const auto t0 = std::chrono::steady_clock::now();
   const InputError e = holeListError(token + "\nH1,1,2,3,0,0,-1\n");
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 2.0);
   EXPECT_NE(e.message().find("unknown column '" + std::string(80, 'w') + "… (10000000 bytes)'"),
             std::string::npos)
       << e.message().substr(0, 300);
   EXPECT_LT(e.message().size(), 500u);
   const std::string spaces = "id,x,y,z,i,j,k," + std::string(2'000'000, ' ') + "dia\n";
-  const auto t1 = std::chrono::steady_clock::now();
   (void)holeListError(spaces + "H1,1,2,3,0,0,-1,5\n");
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count(), 2.0);
 }
 
 // A hole-list diameter meets the same rules as the cell's drill diameter: the range 0.1 .. 100 mm,

@@ -4,7 +4,6 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -490,11 +489,10 @@ TEST(Ik, TurnEnumerationIsBoundedWhateverTheModelsLimits) {
       IkOptions opt;
       opt.turns = turns;
       IkResult r;
-      const auto t0 = std::chrono::steady_clock::now();
-      solveIk(m, T, opt, r);
-      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      EXPECT_LT(s, 0.5) << "limit " << lim;
+      solveIk(m, T, opt, r);  // an unbounded enumeration would not end within the time limit
       EXPECT_GT(r.count, 0);
+      EXPECT_LE(r.count, kIkMaxSolutions);
+      if (turns == IkTurns::kAll) EXPECT_TRUE(r.truncated) << "limit " << lim;
     }
   }
 }

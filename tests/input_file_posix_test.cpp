@@ -5,7 +5,6 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <cstdlib>
 #include <string>
 
@@ -32,7 +31,7 @@ TEST(InputFile, FoldersDevicesAndFifosAreRefusedSayingWhatTheyAre) {
   EXPECT_NE(errorOf(dir, InputKind::kCell).find(dir + ": is a directory; give a cell file"),
             std::string::npos)
       << errorOf(dir, InputKind::kCell);
-  const auto t0 = std::chrono::steady_clock::now();
+  // devices and FIFOs are refused before any read (reading /dev/zero would not end)
   EXPECT_NE(errorOf("/dev/zero", InputKind::kCell).find("is not a regular file"),
             std::string::npos);
   EXPECT_NE(errorOf("/dev/urandom", InputKind::kProgram).find("is not a regular file"),
@@ -40,7 +39,6 @@ TEST(InputFile, FoldersDevicesAndFifosAreRefusedSayingWhatTheyAre) {
   const std::string fifo = dir + "/pipe";
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
   EXPECT_NE(errorOf(fifo, InputKind::kHoleList).find("is not a regular file"), std::string::npos);
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 2.0);
   EXPECT_NE(errorOf(dir + "/missing.xml", InputKind::kCell).find("cannot open file"),
             std::string::npos);
   const auto zero = test::runRoprec("predict --cell /dev/zero '" + dir + "' --json -");
