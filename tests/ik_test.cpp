@@ -492,7 +492,9 @@ TEST(Ik, TurnEnumerationIsBoundedWhateverTheModelsLimits) {
       solveIk(m, T, opt, r);  // an unbounded enumeration would not end within the time limit
       EXPECT_GT(r.count, 0);
       EXPECT_LE(r.count, kIkMaxSolutions);
-      if (turns == IkTurns::kAll) EXPECT_TRUE(r.truncated) << "limit " << lim;
+      if (turns == IkTurns::kAll) {
+        EXPECT_TRUE(r.truncated) << "limit " << lim;
+      }
     }
   }
 }
