@@ -462,14 +462,16 @@ std::string unstablePointText(size_t i, const postproc::Target& t, const PathPoi
 Json millingPath(const ForcesRequest& req, bool& converged, std::vector<std::string>& unstable) {
   const MillingCompensationResult r = compensateMillingJob(req.cell, *req.program);
   const postproc::Program& prog = *r.context.job.program;
-  const double ap = r.context.model.process.milling.cut.ap;
+  const bool table = r.context.model.process.mills.size() > 1;
   Json pts = Json::array();
   for (size_t i = 0; i < r.points_comp.size(); ++i) {
     const PathPointCompensation& p = r.points_comp[i];
     const postproc::Target& t = prog.targets()[static_cast<size_t>(r.targets[i])];
+    const double ap = millOf(r, i).cut.ap;
     Json j = Json::object();
     j.set("point", Json::integer(static_cast<std::int64_t>(i + 1)));
     j.set("line", Json::integer(t.line));
+    if (table) j.set("tool", Json::str(millOf(r, i).tool_key));
     j.set("cutting", Json::boolean(p.cutting));
     j.set("cutting_reason", Json::str(p.cutting_reason));
     const bool before_ok = !p.cutting || p.before_status == "converged";
