@@ -237,6 +237,151 @@ TEST(MillingCompensation, TargetsExportFollowsTheExtension) {
   EXPECT_EQ(rows, t["points"].size());
 }
 
+/// A milling cell on the KR120 (the sample wall pass's cell) with the given <mill>s; the process
+/// <cut> is shared, a mill's own <cut> overrides it.
+std::string millCell(const std::string& mills) {
+  return "<cell name=\"mills\">\n  <robot ref=\"kuka-kr120-r2500-pro\"/>\n"
+         "  <tool name=\"spindle\" xyz=\"0 0 300\" rpy=\"0 0 0\" mass_kg=\"30\" com_mm=\"0 0 "
+         "140\"/>\n"
+         "  <workobject xyz=\"1600 0 400\" rpy=\"0 0 0\"/>\n  <process type=\"milling\">\n" +
+         mills +
+         "    <cut ap_mm=\"5\" ae_mm=\"2\" fz_mm=\"0.1\" mode=\"up\" spindle_rpm=\"12000\"/>\n"
+         "    <material name=\"Al 7075-T6\"/>\n"
+         "    <coupling tolerance_um=\"0.1\" max_iterations=\"50\" solver=\"newton\"/>\n"
+         "    <stock top_z_mm=\"0\"/>\n  </process>\n</cell>\n";
+}
+const std::string kMill1 =
+    "diameter_mm=\"10\" teeth=\"3\" helix_angle_deg=\"30\" runout_mm=\"0.005\"";
+const std::string kMill2 = "diameter_mm=\"6\" teeth=\"4\" helix_angle_deg=\"35\"";
+const std::string kMill2Cut = "<cut ae_mm=\"1\" fz_mm=\"0.06\"/>";
+
+/// One pass of a KRL milling program: select `tool`, approach, 9 feed points along x at y, z −5
+/// (at ap below the stock top), retract.
+std::string millPass(const std::string& tool, double y) {
+  const auto pt = [&](double x, double z) {
+    return "LIN {X " + std::to_string(x) + ",Y " + std::to_string(y) + ",Z " + std::to_string(z) +
+           ",A 0.0,B 0.0,C 180.0} C_DIS\n";
+  };
+  std::string s = tool.empty() ? "" : "$TOOL = " + tool + "\n";
+  s += "$VEL.CP = 0.25\n" + pt(-60, 50) + pt(-60, -5) + "$VEL.CP = 0.06\n";
+  for (int k = 0; k < 9; ++k) s += pt(-50 + 5 * k, -5);
+  return s + "$VEL.CP = 0.25\n" + pt(-10, 50);
+}
+
+std::string millProgram(const std::string& name, const std::string& passes) {
+  return "DEF " + name +
+         " ( )\nBAS (#INITMOV,0 )\n$BASE = {FRAME: X 1600.0,Y 0.0,Z 400.0,A 0.0,B 0.0,C 0.0}\n"
+         "TOOL_DATA[1] = {X 0.0,Y 0.0,Z 300.0,A 0.0,B 0.0,C 0.0}\n"
+         "TOOL_DATA[2] = {X 0.0,Y 0.0,Z 300.0,A 0.0,B 0.0,C 0.0}\n"
+         "PTP {X -60.0,Y 0.0,Z 80.0,A 0.0,B 0.0,C 180.0}\n" +
+         passes + "END\n";
+}
+
+// Two mills (Ø10 × 3 teeth, Ø6 × 4 teeth with its own cut) selected by $TOOL = TOOL_DATA[n]: each
+// pass gets the forces, coupling and compensation of a single-mill cell of its mill running that
+// pass alone (the cells without a tool table), to 1e-9 relative.
+TEST(MillingCompensation, ToolTableMillsEachPassAsItsSingleMillCell) {
+  const std::string dir = test::tempDir("mills");
+  test::writeFile(dir + "/two.xml", millCell("    <mill tool=\"1\" " + kMill1 + "/>\n" +
+                                             "    <mill tool=\"2\" name=\"E6\" " + kMill2 + ">" +
+                                             kMill2Cut + "</mill>\n"));
+  test::writeFile(dir + "/one.xml", millCell("    <mill " + kMill1 + "/>\n"));
+  test::writeFile(dir + "/two_only.xml",
+                  millCell("    <mill " + kMill2 + ">" + kMill2Cut + "</mill>\n"));
+  const std::string pass1 = millPass("TOOL_DATA[1]", 0);
+  const std::string pass2 = millPass("TOOL_DATA[2]", 20);
+  test::writeFile(dir + "/both.src", millProgram("both", pass1 + pass2));
+  test::writeFile(dir + "/p1.src", millProgram("p1", pass1));
+  test::writeFile(dir + "/p2.src", millProgram("p2", pass2));
+  const api::MillingCompensationResult both =
+      api::compensateMillingJob(dir + "/two.xml", dir + "/both.src");
+  const api::MillingCompensationResult r1 =
+      api::compensateMillingJob(dir + "/one.xml", dir + "/p1.src");
+  const api::MillingCompensationResult r2 =
+      api::compensateMillingJob(dir + "/two_only.xml", dir + "/p2.src");
+  ASSERT_EQ(r1.points_comp.size(), 12u);
+  ASSERT_EQ(r2.points_comp.size(), 12u);
+  ASSERT_EQ(both.points_comp.size(), 24u);
+  const auto rel = [](const Vec3& a, const Vec3& b) {
+    return (a - b).norm() / std::max(1.0, b.norm());
+  };
+  int cutting = 0;
+  for (size_t i = 0; i < both.points_comp.size(); ++i) {
+    const PathPointCompensation& p = both.points_comp[i];
+    const PathPointCompensation& q = i < 12 ? r1.points_comp[i] : r2.points_comp[i - 12];
+    EXPECT_EQ(both.mill[i], i < 12 ? 0 : 1) << i;
+    EXPECT_EQ(api::millOf(both, i).tool.teeth, i < 12 ? 3 : 4);
+    ASSERT_TRUE(p.ok && q.ok) << i << " " << p.reason << " " << q.reason;
+    EXPECT_EQ(p.cutting, q.cutting) << i;
+    cutting += p.cutting;
+    EXPECT_LE(rel(p.before_force, q.before_force), 1e-9) << i;
+    EXPECT_LE(rel(p.force, q.force), 1e-9) << i;
+    EXPECT_LE(rel(p.deviation_before * 1e6, q.deviation_before * 1e6), 1e-9) << i;
+    EXPECT_LE(rel(p.T_programmed.translation() * 1e3, q.T_programmed.translation() * 1e3), 1e-9);
+  }
+  EXPECT_EQ(cutting, 18);  // the 9 feed points of each pass, not the rapid plunge and retract
+  // the two mills cut differently: the Ø6 × 4 mill at ae 1, fz 0.06 pulls less than the Ø10 one
+  EXPECT_LT(both.points_comp[16].before_force.norm(), both.points_comp[4].before_force.norm());
+}
+
+// Which mill cuts must be known: a tool the mills do not have (a drill's number), no tool with
+// several mills, and two tools with one mill are errors at the motion's line (exit 2).
+TEST(MillingCompensation, PathToolNotAMillOfTheTableIsRefusedAtItsLine) {
+  const std::string dir = test::tempDir("mills");
+  test::writeFile(dir + "/two.xml", millCell("    <mill tool=\"1\" " + kMill1 + "/>\n" +
+                                             "    <mill tool=\"2\" " + kMill2 + "/>\n"));
+  test::writeFile(dir + "/one.xml", millCell("    <mill " + kMill1 + "/>\n"));
+  const auto firstLin = [&](const std::string& file, const std::string& after) {
+    std::istringstream in(test::readFile(file));
+    std::string l;
+    bool seen = after.empty();
+    for (int n = 1; std::getline(in, l); ++n) {
+      seen = seen || l.find(after) != std::string::npos;
+      if (seen && l.rfind("LIN ", 0) == 0) return n;
+    }
+    return 0;
+  };
+  const auto run = [&](const std::string& cell, const std::string& prog) {
+    return test::runRoprec("forces --cell '" + dir + "/" + cell + "' --program '" + dir + "/" +
+                           prog + "'");
+  };
+  test::writeFile(dir + "/drill.src",
+                  millProgram("drill", millPass("TOOL_DATA[1]", 0) + millPass("TOOL_DATA[3]", 20)));
+  test::RunResult r = run("two.xml", "drill.src");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find(
+                dir + "/drill.src:" + std::to_string(firstLin(dir + "/drill.src", "TOOL_DATA[3]")) +
+                ": path point 13 is milled with tool TOOL_DATA[3], which is not a mill of "
+                "the cell's tool table (tool 1 (Ø10 mm, 3 teeth), tool 2 (Ø6 mm, 4 "
+                "teeth)); hint: select a mill's tool"),
+            std::string::npos)
+      << r.err;
+  test::writeFile(dir + "/none.src", millProgram("none", millPass("", 0)));
+  r = run("two.xml", "none.src");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find(dir + "/none.src:" + std::to_string(firstLin(dir + "/none.src", "")) +
+                       ": path point 1: nothing selects a tool, and the cell's tool table has 2 "
+                       "mills"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("which mill cuts?"), std::string::npos) << r.err;
+  test::writeFile(dir + "/change.src", millProgram("change", millPass("TOOL_DATA[1]", 0) +
+                                                                 millPass("TOOL_DATA[2]", 20)));
+  r = run("one.xml", "change.src");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find(dir + "/change.src:" +
+                       std::to_string(firstLin(dir + "/change.src", "$TOOL = TOOL_DATA[2]")) +
+                       ": path point 13 is milled with tool TOOL_DATA[2], TOOL_DATA[1] before it"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("but the cell has one mill, the cell's mill (Ø10 mm, 3 teeth); hint"),
+            std::string::npos)
+      << r.err;
+  // one tool with one mill is that mill (no tool table needed)
+  test::writeFile(dir + "/one.src", millProgram("one", millPass("TOOL_DATA[2]", 0)));
+  EXPECT_LT(run("one.xml", "one.src").exit_code, 2);
+}
+
 // Engagement from the program (box stock): samples/milling/box_passes.src in the block y ≥ 3 mm,
 // z ≤ 0 of box-stock-7075.xml. Closed forms (tool D 10 at y_c, material y ≥ y_wall): pass 1 (y 0,
 // z −5) ae = 0 + 5 − 3 = 2, ap = 5; pass 2 (y 2) cuts what pass 1 left, y ≥ 5: ae = 2; pass 3 (y 2,

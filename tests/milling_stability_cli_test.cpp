@@ -58,5 +58,39 @@ TEST(MillingStabilityCli, SampleCellModesLobesAndExitCodes) {
   EXPECT_EQ(bad.exit_code, 2);
 }
 
+// A tool table of two mills: without --tool the command cannot tell which (exit 2); --tool 2 gives
+// exactly what a cell with that mill alone gives (its geometry and own cut), --tool 9 is refused.
+TEST(MillingStabilityCli, ToolSelectsTheMillOfTheTable) {
+  const std::string dir = test::tempDir("milling-stability");
+  std::string text = test::readFile(sampleCell());
+  const size_t b = text.find("<mill ");
+  const size_t e = text.find("/>", b) + 2;
+  ASSERT_NE(b, std::string::npos);
+  const std::string own = "<cut ae_mm=\"1\" fz_mm=\"0.06\"/>";
+  std::string table = text;
+  table.replace(b, e - b,
+                "<mill tool=\"1\" diameter_mm=\"10\" teeth=\"3\"/>"
+                "<mill tool=\"2\" diameter_mm=\"6\" teeth=\"4\">" +
+                    own + "</mill>");
+  std::string alone = text;
+  alone.replace(b, e - b, "<mill diameter_mm=\"6\" teeth=\"4\">" + own + "</mill>");
+  test::writeFile(dir + "/table.xml", table);
+  test::writeFile(dir + "/alone.xml", alone);
+  const std::string args = " --joints \"0 -60 100 0 50 0\" --steps 20";
+  const auto which = runRoprec("milling-stability --cell '" + dir + "/table.xml'" + args);
+  EXPECT_EQ(which.exit_code, 2);
+  EXPECT_NE(which.err.find("which mill? Give --tool N"), std::string::npos) << which.err;
+  const auto two = runRoprec("milling-stability --cell '" + dir + "/table.xml' --tool 2" + args);
+  const auto ref = runRoprec("milling-stability --cell '" + dir + "/alone.xml'" + args);
+  ASSERT_LT(two.exit_code, 2) << two.err;
+  auto a = nlohmann::json::parse(two.out);
+  auto r = nlohmann::json::parse(ref.out);
+  a.erase("cell");
+  r.erase("cell");
+  EXPECT_EQ(a, r);
+  EXPECT_EQ(runRoprec("milling-stability --cell '" + dir + "/table.xml' --tool 9" + args).exit_code,
+            2);
+}
+
 }  // namespace
 }  // namespace roprec

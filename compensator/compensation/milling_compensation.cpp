@@ -218,7 +218,7 @@ std::vector<CuttingDecision> decideCutting(const MillingSpec& s, const Pose& T_W
 
 std::vector<PathPointCompensation> compensateMillingPath(
     const PredictionModel& m, const std::vector<Pose>& points,
-    const std::vector<CuttingDecision>* cutting) {
+    const std::vector<CuttingDecision>* cutting, const Vec6* seed) {
   if (!m.has_process || m.process.type != ProcessType::kMilling) {
     throw std::invalid_argument("compensateMillingPath needs a milling process");
   }
@@ -236,6 +236,7 @@ std::vector<PathPointCompensation> compensateMillingPath(
   PredictionData d(m);
   std::vector<PathPointCompensation> out(points.size());
   std::optional<Vec6> prev;
+  if (seed != nullptr) prev = *seed;
   CouplingState before_state;  // the uncompensated path's memory (for the "before" deviation)
   CouplingState after_state;
   for (size_t i = 0; i < points.size(); ++i) {
@@ -257,16 +258,16 @@ std::vector<PathPointCompensation> compensateMillingPath(
     p.ap = pm.cut.ap;
     // 1. IK of the real robot with continuity (realIk: FK_real(θ_d) = the path point)
     const Pose T_flange = points[i] * m.model.T_L6_tcp.inverse() * m.model.T_L6_flange;
-    const Vec6 seed = prev ? *prev : m.reference_pose;
+    const Vec6 start = prev ? *prev : m.reference_pose;
     IkOptions opt;
-    opt.seed = &seed;
+    opt.seed = &start;
     solveIk(realIk(m), T_flange, opt, d.ik);
     double best = 1e300;
     bool found = false;
     for (int k = 0; k < d.ik.count; ++k) {
       const IkSolution& s = d.ik.solutions[static_cast<size_t>(k)];
       if (!s.converged || !s.within_limits || s.singular_wrist || s.singular_shoulder) continue;
-      const double dist = (s.q - seed).squaredNorm();
+      const double dist = (s.q - start).squaredNorm();
       if (dist < best) {
         best = dist;
         p.theta_d = s.q;

@@ -110,9 +110,10 @@ struct PathPointCompensation {
 };
 
 /// `m` must carry a milling process. Points are nominal TCP poses in the base frame (path order);
-/// `cutting` (optional, one per point) says which points cut — all of them when absent.
+/// `cutting` (optional, one per point) says which points cut — all of them when absent. The first
+/// point's IK is seeded with `seed` (rad), else the model's reference pose.
 std::vector<PathPointCompensation> compensateMillingPath(
     const PredictionModel& m, const std::vector<Pose>& points,
-    const std::vector<CuttingDecision>* cutting = nullptr);
+    const std::vector<CuttingDecision>* cutting = nullptr, const Vec6* seed = nullptr);
 
 }  // namespace roprec

@@ -77,13 +77,15 @@ ToolSpec parseTool(const XmlNode& t) {
   return tool;
 }
 
-/// The TCP of every <drill> of a drilling process (CellSpec::drill_tools): a drill's <tcp> is
-/// its TCP in the flange frame; its mass data are its own when it states mass_kg, else the cell
-/// tool's (the same spindle, another drill).
+/// The TCP of every <drill> of a drilling process, or every <mill> of a milling process
+/// (CellSpec::drill_tools): a tool's <tcp> is its TCP in the flange frame; its mass data are its
+/// own when it states mass_kg, else the cell tool's (the same spindle, another cutter).
 std::vector<std::optional<ToolSpec>> parseDrillTools(const XmlNode& process, const ToolSpec& cell) {
   std::vector<std::optional<ToolSpec>> out;
-  if (process.str("type", "") != "drilling") return out;
-  for (const XmlNode* d : process.childrenNamed("drill")) {
+  const std::string type = process.str("type", "");
+  if (type != "drilling" && type != "milling") return out;
+  const char* const element = type == "drilling" ? "drill" : "mill";
+  for (const XmlNode* d : process.childrenNamed(element)) {
     const XmlNode* t = d->child("tcp");
     if (t == nullptr) {
       out.emplace_back();
@@ -91,14 +93,13 @@ std::vector<std::optional<ToolSpec>> parseDrillTools(const XmlNode& process, con
     }
     allowOnly(*t, {"xyz", "rpy", "mass_kg", "com_mm", "inertia_kgm2"});
     ToolSpec tool = cell;
-    tool.name = d->str("tool", d->str("name", "drill"));
+    tool.name = d->str("tool", d->str("name", element));
     tool.T_flange_tcp = poseFromXyzRpyMm(*t);
     if (t->has("mass_kg")) {
       parseToolMass(*t, tool);
     } else if (t->has("com_mm") || t->has("inertia_kgm2")) {
-      t->fail(
-          "<tcp> com_mm and inertia_kgm2 belong to a mass: give mass_kg too (without it the "
-          "drill carries the cell's <tool> mass data)");
+      t->fail("<tcp> com_mm and inertia_kgm2 belong to a mass: give mass_kg too (without it the " +
+              std::string(element) + " carries the cell's <tool> mass data)");
     }
     out.emplace_back(std::move(tool));
   }

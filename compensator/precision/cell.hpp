@@ -27,9 +27,10 @@ struct CellSpec {
   RobotRequest robot;  ///< resolved relative to the cell file's folder
   int robot_line{0};
   ToolSpec tool;
-  /// The TCP of each <drill> of the process's tool table (document order): its own <tcp xyz rpy
-  /// [mass_kg com_mm inertia_kgm2]> (without mass_kg the cell's tool's mass data), nullopt for
-  /// a drill without one (it sits at the cell's <tool>). Empty without a drilling process.
+  /// The TCP of each <drill> (drilling) or <mill> (milling) of the process's tool table (document
+  /// order): its own <tcp xyz rpy [mass_kg com_mm inertia_kgm2]> (without mass_kg the cell's
+  /// tool's mass data), nullopt for a tool without one (it sits at the cell's <tool>). Empty
+  /// without a drilling or milling process.
   std::vector<std::optional<ToolSpec>> drill_tools;
   Pose T_base_wobj{Pose::Identity()};  ///< work object frame in the robot base frame
   /// <part_registration xyz_mm rpy_mrad source>: where the part was found (roprec verify

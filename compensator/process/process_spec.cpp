@@ -151,14 +151,15 @@ void applyOverride(const MachiningDeviationOverride& o, MachiningDeviationParams
   }
 }
 
-/// The <cut> of drill `d`: the process's <cut> with the attributes of the drill's own <cut>
-/// over it (messages at the drill's <cut> when it has one). Throws when neither exists.
-XmlNode cutOf(const XmlNode& proc, const XmlNode& d) {
-  allowChildren(d, {"cut", "tcp"});  // <tcp>: the drill's own TCP, read with the cell's tool
+/// The <cut> of tool `d` (a <drill> or <mill>): the process's <cut> with the attributes of the
+/// tool's own <cut> over it (messages at the tool's <cut> when it has one). Throws (`what`: the
+/// cut's content) when neither exists.
+XmlNode cutOf(const XmlNode& proc, const XmlNode& d, const std::string& what) {
+  allowChildren(d, {"cut", "tcp"});  // <tcp>: the tool's own TCP, read with the cell's tool
   allowAtMostOnce(d, {"cut", "tcp"});
   const XmlNode* shared = proc.child("cut");
   const XmlNode* own = d.child("cut");
-  if (own == nullptr) return required(proc, "cut", "feed and speed");
+  if (own == nullptr) return required(proc, "cut", what);
   XmlNode c = shared != nullptr ? *shared : *own;
   c.line = own->line;
   for (const auto& [name, value] : own->attributes) {
@@ -170,6 +171,43 @@ XmlNode cutOf(const XmlNode& proc, const XmlNode& d) {
       it->second = value;
   }
   return c;
+}
+
+/// Refuses an entry `t` (<drill> or <mill>) of a tool table of `count` without tool=, or with the
+/// tool of an `earlier` entry (its tool key and line).
+void checkToolKey(const XmlNode& t, std::size_t count,
+                  const std::vector<std::pair<std::string, int>>& earlier) {
+  if (count > 1 && !t.has("tool")) {
+    t.fail("<" + t.name + "> needs tool=\"...\" in a tool table of " + std::to_string(count) + " " +
+           t.name +
+           "s: the controller's tool number or name that selects it (KRL TOOL_DATA[n], "
+           "RAPID tooldata, FANUC UTOOL n)");
+  }
+  for (const auto& [key, line] : earlier) {
+    if (!key.empty() && sameToolKey(key, t.str("tool", "")))
+      t.fail("<" + t.name + "> tool=\"" + t.str("tool") + "\" is given twice (first at line " +
+             std::to_string(line) + ")");
+  }
+}
+
+/// Every `element` (<drill> or <mill>) of the process's tool table, in document order, each read
+/// by `parse(proc, node, spec)` after its tool key is checked (checkToolKey).
+template <class Spec, class Parse>
+std::vector<Spec> parseToolTable(const XmlNode& proc, const std::string& element,
+                                 const std::string& what, Parse parse) {
+  const std::vector<const XmlNode*> nodes = proc.childrenNamed(element);
+  if (nodes.empty()) required(proc, element, what);
+  std::vector<std::pair<std::string, int>> keys;
+  std::vector<Spec> out;
+  for (const XmlNode* t : nodes) {
+    checkToolKey(*t, nodes.size(), keys);
+    keys.emplace_back(t->str("tool", ""), t->line);
+    Spec s;
+    s.line = proc.line;
+    parse(proc, *t, s);
+    out.push_back(std::move(s));
+  }
+  return out;
 }
 
 /// One <drill> of the tool table with its cut data (docs/process.md §8, tool table).
@@ -219,7 +257,7 @@ void parseDrill(const XmlNode& proc, const XmlNode& d, DrillingSpec& s) {
               "the drill's cutting (flute) length, mm: at least the drill diameter");
   }
 
-  const XmlNode c = cutOf(proc, d);
+  const XmlNode c = cutOf(proc, d, "feed and speed");
   allowOnly(c, {"feed_mm_per_rev", "spindle_rpm", "depth_mm", "through"});
   s.feed_line = c.line;
   const double f = c.number("feed_mm_per_rev");
@@ -279,24 +317,7 @@ void parseDrill(const XmlNode& proc, const XmlNode& d, DrillingSpec& s) {
 
 void parseDrilling(const XmlNode& proc, ProcessSpec& spec) {
   allowChildren(proc, {"drill", "cut", "material", "coefficients", "machining_deviation"});
-  const std::vector<const XmlNode*> drills = proc.childrenNamed("drill");
-  if (drills.empty()) required(proc, "drill", "drill geometry");
-  for (const XmlNode* d : drills) {
-    if (drills.size() > 1 && !d->has("tool")) {
-      d->fail("<drill> needs tool=\"...\" in a tool table of " + std::to_string(drills.size()) +
-              " drills: the controller's tool number or name that selects it (KRL TOOL_DATA[n], "
-              "RAPID tooldata, FANUC UTOOL n)");
-    }
-    for (const DrillingSpec& o : spec.drills) {
-      if (!o.tool.empty() && sameToolKey(o.tool, d->str("tool", "")))
-        d->fail("<drill> tool=\"" + d->str("tool") + "\" is given twice (first at line " +
-                std::to_string(o.drill_line) + ")");
-    }
-    DrillingSpec s;
-    s.line = proc.line;
-    parseDrill(proc, *d, s);
-    spec.drills.push_back(std::move(s));
-  }
+  spec.drills = parseToolTable<DrillingSpec>(proc, "drill", "drill geometry", parseDrill);
   spec.drilling = spec.drills.front();
 }
 
@@ -342,6 +363,20 @@ int drillIndex(const ProcessSpec& s, std::string_view tool) {
     if (!s.drills[i].tool.empty() && sameToolKey(s.drills[i].tool, tool))
       return static_cast<int>(i);
   return -1;
+}
+
+int millIndex(const ProcessSpec& s, std::string_view tool) {
+  for (std::size_t i = 0; i < s.mills.size(); ++i)
+    if (!s.mills[i].tool_key.empty() && sameToolKey(s.mills[i].tool_key, tool))
+      return static_cast<int>(i);
+  return -1;
+}
+
+std::string millLabel(const MillingSpec& m) {
+  const std::string size =
+      "Ø" + numberText(m.tool.diameter / kMm) + " mm, " + std::to_string(m.tool.teeth) + " teeth";
+  if (m.tool_key.empty()) return "the cell's mill (" + size + ")";
+  return "tool " + m.tool_key + (m.name.empty() ? "" : " '" + m.name + "'") + " (" + size + ")";
 }
 
 std::string drillLabel(const DrillingSpec& d) {
@@ -401,10 +436,13 @@ void parseMillingDynamics(const XmlNode& dy, MillingSpec& s) {
   s.dynamics_source = dy.str("source", "cell <dynamics> line " + std::to_string(dy.line));
 }
 
-void parseMilling(const XmlNode& proc, MillingSpec& s) {
-  allowChildren(proc, {"mill", "cut", "material", "coefficients", "coupling", "stock", "dynamics"});
-  const XmlNode& t = required(proc, "mill", "cutter geometry");
-  allowOnly(t, {"diameter_mm", "teeth", "helix_angle_deg", "runout_mm", "runout_angle_deg"});
+/// One <mill> `t` of the tool table with its cut data and the process's shared elements.
+void parseMill(const XmlNode& proc, const XmlNode& t, MillingSpec& s) {
+  allowOnly(t, {"tool", "name", "diameter_mm", "teeth", "helix_angle_deg", "runout_mm",
+                "runout_angle_deg"});
+  s.tool_key = t.str("tool", "");
+  s.name = t.str("name", "");
+  s.mill_line = t.line;
   s.tool.diameter = positive(t, "diameter_mm", 0, false) * kMm;
   plausible(t, "diameter_mm", 0.1, 200.0, "cutter diameter, mm");
   const double teeth = t.number("teeth", 3.0);
@@ -419,7 +457,7 @@ void parseMilling(const XmlNode& proc, MillingSpec& s) {
   plausible(t, "runout_angle_deg", -360.0, 360.0, "angle of the runout, deg");
   s.tool.runout_angle = t.number("runout_angle_deg", 0.0) * kDeg;
 
-  const XmlNode& c = required(proc, "cut", "ap, ae, fz and mode");
+  const XmlNode c = cutOf(proc, t, "ap, ae, fz and mode");
   allowOnly(c, {"ap_mm", "ae_mm", "fz_mm", "mode", "spindle_rpm"});
   s.cut.ap = positive(c, "ap_mm", 0, false) * kMm;
   s.cut.ae = positive(c, "ae_mm", 0, false) * kMm;
@@ -531,6 +569,18 @@ void parseMilling(const XmlNode& proc, MillingSpec& s) {
   if (const XmlNode* dy = proc.child("dynamics")) parseMillingDynamics(*dy, s);
 }
 
+void parseMilling(const XmlNode& proc, ProcessSpec& spec) {
+  allowChildren(proc, {"mill", "cut", "material", "coefficients", "coupling", "stock", "dynamics"});
+  spec.mills = parseToolTable<MillingSpec>(proc, "mill", "cutter geometry", parseMill);
+  if (spec.mills.size() > 1 && spec.mills.front().stock_box_min) {
+    const XmlNode* st = proc.child("stock");
+    st->fail(
+        "<stock box_min_mm box_max_mm> with a tool table of several mills is not supported: the "
+        "box's engagement follows one cutter diameter; give <stock top_z_mm> (or one <mill>)");
+  }
+  spec.milling = spec.mills.front();
+}
+
 }  // namespace
 
 ProcessSpec parseProcess(const XmlNode& proc) {
@@ -546,8 +596,7 @@ ProcessSpec parseProcess(const XmlNode& proc) {
   } else if (type == "milling") {
     allowOnly(proc, {"type"});
     s.type = ProcessType::kMilling;
-    s.milling.line = proc.line;
-    parseMilling(proc, s.milling);
+    parseMilling(proc, s);
   } else if (type == "wrench") {
     allowOnly(proc, {"type", "force_N", "torque_Nm"});
     allowChildren(proc, {});

@@ -20,7 +20,9 @@
 ///                          youngs_modulus_GPa spindle_compliance_um_per_N k/>          (optional)
 ///   </process>
 ///   <process type="milling">
-///     <mill diameter_mm teeth helix_angle_deg runout_mm runout_angle_deg/>
+///     <mill tool name diameter_mm teeth helix_angle_deg runout_mm runout_angle_deg>  (one or
+///       <cut .../> <tcp .../>                      more; own cut and TCP optional, as a drill's)
+///     </mill>
 ///     <cut ap_mm ae_mm fz_mm mode="up|down|slot" spindle_rpm/>
 ///     <material name/>
 ///     <coefficients kc11_N_mm2 mc radial_ratio axial_ratio force_law="instantaneous|mean_chip"
@@ -85,6 +87,8 @@ struct DrillingSpec {
 };
 
 struct MillingSpec {
+  std::string tool_key;  ///< <mill tool>: the controller's tool number or name; empty: not keyed
+  std::string name;      ///< <mill name>; empty: none given
   MillingTool tool;
   MillingCut cut;
   const Material* material{nullptr};
@@ -103,6 +107,7 @@ struct MillingSpec {
       "default estimates (robot modes 5 % damping; tool mode 2000 Hz, 20 N/um, 3 %): give "
       "<dynamics> from an impact test"};
   int line{0};
+  int mill_line{0};  ///< <mill> line
 };
 
 struct WrenchSpec {
@@ -135,6 +140,9 @@ struct ProcessSpec {
   /// a single-drill cell. `drilling` is its first entry (the drill of a hole nothing assigns).
   std::vector<DrillingSpec> drills;
   DrillingSpec drilling;
+  /// The tool table (milling): every <mill> in document order with its cut data; one entry for a
+  /// single-mill cell. `milling` is its first entry.
+  std::vector<MillingSpec> mills;
   MillingSpec milling;
   WrenchSpec wrench;
 };
@@ -153,6 +161,11 @@ ProcessSpec parseProcess(const XmlNode& process);
 bool sameToolKey(std::string_view a, std::string_view b);
 /// The index in `s.drills` of the drill keyed `tool` (sameToolKey), -1 when none.
 int drillIndex(const ProcessSpec& s, std::string_view tool);
+/// The index in `s.mills` of the mill keyed `tool` (sameToolKey), -1 when none.
+int millIndex(const ProcessSpec& s, std::string_view tool);
+/// A mill as messages name it: `tool 2 'E6' (Ø6 mm, 4 teeth)`, `the cell's mill (Ø10 mm, 3
+/// teeth)` for an unkeyed single mill.
+std::string millLabel(const MillingSpec& m);
 /// A drill as messages and reports name it: `tool 3 'D6.8' (Ø6.8 mm)`, `the cell's drill (Ø8.5
 /// mm)` for an unkeyed single drill.
 std::string drillLabel(const DrillingSpec& d);

@@ -165,7 +165,7 @@ void wrenchForcesOf(const CellSpec& cell, const WrenchSpec& w, const ForcesReque
 double pathPointAp(const MillingCompensationResult& r, size_t i) {
   const PathPointCompensation& p = r.points_comp[i];
   const bool engaged = r.cutting[i].engagement.has_value();
-  return p.cutting && engaged ? p.ap : r.context.model.process.milling.cut.ap;
+  return p.cutting && engaged ? p.ap : millOf(r, i).cut.ap;
 }
 
 ForcesResult processForces(const ForcesRequest& request) {

@@ -582,6 +582,108 @@ bool cellIsMilling(const std::string& cell_path) {
   return cell.has_process && cell.process.str("type") == "milling";
 }
 
+namespace {
+
+std::string millTable(const ProcessSpec& spec) {
+  std::string t;
+  for (const MillingSpec& m : spec.mills) t += (t.empty() ? "" : ", ") + millLabel(m);
+  return t;
+}
+
+/// The mill of every path point (the motions `motions` of `prog`): the one its active tool
+/// selects (docs/process.md §8, tool table); all 0 for a single mill, which mills with one tool.
+std::vector<int> millsOfPath(const ProcessSpec& spec, const postproc::Program& prog,
+                             const std::vector<int>& motions) {
+  std::vector<int> out(motions.size(), 0);
+  std::string first_key, first_ref;
+  int first_line = 0;
+  for (size_t k = 0; k < motions.size(); ++k) {
+    const postproc::Motion& mo = prog.motions[static_cast<size_t>(motions[k])];
+    const std::string& file = prog.files[static_cast<size_t>(std::max(0, mo.file))].path;
+    const std::string ref = mo.tool >= 0 ? prog.frames[static_cast<size_t>(mo.tool)].ref : "";
+    // KRL's $TOOL without TOOL_DATA[n] (an inline frame, or none) selects no tool of a table
+    const std::string key = ref.empty() || ref == "$TOOL" ? "" : programToolKey(ref);
+    const std::string point = "path point " + std::to_string(k + 1);
+    if (spec.mills.size() == 1) {
+      if (key.empty()) continue;
+      if (first_key.empty()) {
+        first_key = key;
+        first_ref = ref;
+        first_line = mo.line;
+      } else if (!sameToolKey(key, first_key)) {
+        throw InputError(file, mo.line,
+                         point + " is milled with tool " + ref + ", " + first_ref +
+                             " before it (line " + std::to_string(first_line) +
+                             "), but the cell has one mill, " + millLabel(spec.mills.front()) +
+                             "; hint: list one <mill tool=\"...\"> per tool in the cell's "
+                             "<process> (docs/process.md, tool table)");
+      }
+      continue;
+    }
+    if (key.empty()) {
+      throw InputError(file, mo.line,
+                       point + ": nothing selects a tool, and the cell's tool table has " +
+                           std::to_string(spec.mills.size()) + " mills (" + millTable(spec) +
+                           "): which mill cuts? Hint: select the tool before the path (KRL "
+                           "$TOOL=TOOL_DATA[n]/BAS(#TOOL,n), RAPID tooldata, FANUC UTOOL_NUM)");
+    }
+    out[k] = millIndex(spec, key);
+    if (out[k] < 0) {
+      throw InputError(file, mo.line,
+                       point + " is milled with tool " + ref +
+                           ", which is not a mill of the cell's tool table (" + millTable(spec) +
+                           "); hint: select a mill's tool before the milling path (a drill "
+                           "cannot mill), or add <mill tool=\"" +
+                           key + "\" .../> to the cell's <process>");
+    }
+  }
+  return out;
+}
+
+/// Every run of points with one mill (r.mill) decided and compensated as a path of its own with
+/// that mill's process and TCP model, seeded with the joints of the run before it.
+void compensateMillRuns(MillingCompensationResult& r, const std::vector<MillingPathPoint>& path) {
+  const PredictionModel& cell = r.context.model;
+  // the stock (workobject frame) moves with the part
+  const Pose T_W_stock = r.context.cell.part_registration
+                             ? partMotion(r.context.cell) * r.context.cell.T_base_wobj
+                             : r.context.cell.T_base_wobj;
+  std::optional<Vec6> seed;
+  for (size_t b = 0; b < path.size();) {
+    size_t e = b;
+    while (e < path.size() && r.mill[e] == r.mill[b]) ++e;
+    const size_t i = static_cast<size_t>(r.mill[b]);
+    const PredictionModel& own =
+        i < cell.drill_models.size() && cell.drill_models[i] ? *cell.drill_models[i] : cell;
+    std::optional<PredictionModel> with;  // a copy only when the run's mill is not the first
+    if (i > 0) {
+      with = own;
+      with->process.milling = cell.process.mills[i];
+    }
+    const PredictionModel& m = with ? *with : own;
+    const std::vector<MillingPathPoint> run(path.begin() + static_cast<std::ptrdiff_t>(b),
+                                            path.begin() + static_cast<std::ptrdiff_t>(e));
+    const std::vector<Pose> points(r.points.begin() + static_cast<std::ptrdiff_t>(b),
+                                   r.points.begin() + static_cast<std::ptrdiff_t>(e));
+    const std::vector<CuttingDecision> cutting = decideCutting(m.process.milling, T_W_stock, run);
+    const std::vector<PathPointCompensation> comp =
+        compensateMillingPath(m, points, &cutting, seed ? &*seed : nullptr);
+    r.cutting.insert(r.cutting.end(), cutting.begin(), cutting.end());
+    r.points_comp.insert(r.points_comp.end(), comp.begin(), comp.end());
+    for (const PathPointCompensation& p : comp)
+      if (p.ok) seed = p.theta_d;
+    b = e;
+  }
+}
+
+}  // namespace
+
+const MillingSpec& millOf(const MillingCompensationResult& r, std::size_t i) {
+  const ProcessSpec& spec = r.context.model.process;
+  const size_t k = i < r.mill.size() ? static_cast<size_t>(r.mill[i]) : 0;
+  return k < spec.mills.size() ? spec.mills[k] : spec.milling;
+}
+
 MillingCompensationResult compensateMillingJob(const std::string& cell_path,
                                                const std::string& program_path, bool force) {
   MillingCompensationResult r;
@@ -592,6 +694,7 @@ MillingCompensationResult compensateMillingJob(const std::string& cell_path,
   prog.position_min_decimals = 5;
   std::vector<Pose> frame;  // T_W_frame per point
   std::vector<MillingPathPoint> path;
+  std::vector<int> motions;  // the motion of each point
   std::vector<bool> seen(prog.targets().size(), false);
   for (const postproc::Motion& mo : prog.motions) {
     if (mo.type != postproc::MotionType::kLinear || mo.target < 0 || !mo.derivation.empty())
@@ -612,17 +715,14 @@ MillingCompensationResult compensateMillingJob(const std::string& cell_path,
     if (r.context.cell.part_registration)
       r.points.back() = partMotion(r.context.cell) * r.points.back();
     path.push_back({r.points.back(), mo.speed_mm_s >= 0 ? mo.speed_mm_s * 1e-3 : -1.0});
+    motions.push_back(static_cast<int>(&mo - prog.motions.data()));
   }
   if (r.points.empty()) {
     throw InputError(program_path, 0,
                      "no linear path points (LIN/MoveL/L to Cartesian targets) in the program");
   }
-  // the stock (workobject frame) moves with the part
-  const Pose T_W_stock = r.context.cell.part_registration
-                             ? partMotion(r.context.cell) * r.context.cell.T_base_wobj
-                             : r.context.cell.T_base_wobj;
-  r.cutting = decideCutting(r.context.model.process.milling, T_W_stock, path);
-  r.points_comp = compensateMillingPath(r.context.model, r.points, &r.cutting);
+  r.mill = millsOfPath(r.context.model.process, prog, motions);
+  compensateMillRuns(r, path);
   for (size_t i = 0; i < r.points_comp.size(); ++i) {
     const postproc::Target& t = prog.targets()[static_cast<size_t>(r.targets[i])];
     const PathPointCompensation& p = r.points_comp[i];

@@ -172,12 +172,21 @@ struct MillingCompensationResult {
   std::vector<int> targets;              ///< program target per point
   std::vector<Pose> points;              ///< nominal TCP, base frame
   std::vector<CuttingDecision> cutting;  ///< per point: cuts or not, and why (§4.5)
+  /// Per point: its mill (ProcessSpec::mills index), the one the motion's active tool selects
+  /// (docs/process.md §8, tool table); 0 for a single-mill cell.
+  std::vector<int> mill;
   std::vector<PathPointCompensation> points_comp;
   std::vector<std::string> failures;  ///< "path point N (FILE:LINE): not compensated: why"
   std::vector<std::string> refused;
 };
+/// Each run of path points with one mill is compensated as a path of its own with that mill's
+/// process and TCP (a tool change leaves the material), seeded with the joints before it. Throws
+/// InputError at a path motion whose tool the cell's mills do not have, at one that selects no
+/// tool when the cell has several mills, and at the first motion of a second tool when it has one.
 MillingCompensationResult compensateMillingJob(const std::string& cell_path,
                                                const std::string& program_path, bool force = false);
+/// The mill of path point `i` (MillingCompensationResult::mill).
+const MillingSpec& millOf(const MillingCompensationResult& r, std::size_t i);
 
 /// Throws InputError (the marker's FILE:LINE) when the program carries roprec's "compensated"
 /// marker and `force` is false; with `force` returns a note saying it was compensated again.

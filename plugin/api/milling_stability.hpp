@@ -27,6 +27,8 @@ struct MillingStabilityRequest {
   std::optional<nc::Vec6> joints;        ///< the pose (rad); without it the tool mode alone
   std::optional<double> rpm_lo, rpm_hi;  ///< lobe range; default 0.2–2 × the cut's speed
   int steps{400};                        ///< speeds of the lobe diagram
+  /// The mill of the cell's tool table (<mill tool>); needed when it has several mills.
+  std::optional<std::string> tool;
 };
 
 struct MillingStabilityResult {

@@ -26,10 +26,10 @@ namespace {
 
 /// The cutting points whose ap is above the chatter limit, one line each on stderr: 1 if any.
 int reportUnstable(CommandContext& ctx, const MillingCompensationResult& r) {
-  const double ap = r.context.model.process.milling.cut.ap;
   int n = 0;
   for (size_t i = 0; i < r.points_comp.size(); ++i) {
     const PathPointCompensation& p = r.points_comp[i];
+    const double ap = millOf(r, i).cut.ap;
     if (!p.unstable(ap)) continue;
     ++n;
     ctx.err << "roprec: path point " << i + 1 << ": chatter: ap " << formatNumber(ap * 1e3, 3)

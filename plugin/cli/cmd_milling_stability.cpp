@@ -33,10 +33,12 @@ int run(Args& args, CommandContext& ctx) {
   const auto json = args.option("json");
   const auto rpm = args.option("rpm");
   const auto steps = args.option("steps");
+  const auto tool = args.option("tool");
   args.finish();
   if (!cell) throw UsageError("give --cell CELL.xml");
   MillingStabilityRequest req;
   req.cell = *cell;
+  req.tool = tool;
   if (joints) req.joints = parseJointsDeg(*joints);
   parseRange(req, rpm, steps);
   const MillingStabilityResult r = millingStability(req);
@@ -56,7 +58,8 @@ const CommandRegistration reg{
     {"milling-stability", "robot and tool modes at a pose; chatter stability lobes of the cut",
      "usage: roprec milling-stability --cell CELL.xml [--joints \"j1 .. j6\"] [--csv F.csv]\n"
      "                                [--report F.html] [--json F.json] [--rpm \"LO HI\"] "
-     "[--steps N]\n\n"
+     "[--steps N]\n"
+     "                                [--tool N]\n\n"
      "The linearised dynamics at the tool of the cell's milling process: with --joints (deg) the\n"
      "robot's modes at that pose (multibody mass matrix, joint stiffness in series with the "
      "servo,\n"
@@ -66,6 +69,8 @@ const CommandRegistration reg{
      "(ap_limit_mm, chatter_frequency_Hz, margin = limit/ap).\n"
      "--csv writes the lobe diagram: spindle_rpm,ap_limit_mm,chatter_Hz,lobe over --rpm (default\n"
      "0.2-2 x the cut's speed, --steps speeds, default 400); --report an HTML plot of it.\n"
+     "--tool N: the mill of the cell's tool table (<mill tool=\"N\">, its cut and TCP); needed\n"
+     "when the cell has several mills.\n"
      "Exit 0 the cut is stable; 1 the cut's ap is above the limit (chatter); 2 bad input.\n",
      41, run}};
 

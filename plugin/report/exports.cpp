@@ -688,7 +688,6 @@ std::string compensationReport(const CompensationResult& r, const std::string& p
 }
 
 std::string millingTargetsCsv(const MillingCompensationResult& r) {
-  const double ap = r.context.model.process.milling.cut.ap;
   std::string s =
       "point,target,line,cutting,ok,x_mm,y_mm,z_mm,deviation_before_um,residual_um,Fx_N,Fy_N,"
       "Fz_N,coupling,ap_limit_mm,chatter_margin,reason\n";
@@ -706,7 +705,7 @@ std::string millingTargetsCsv(const MillingCompensationResult& r) {
     csvQuoted(s, p.coupling_status);
     const bool bounded = p.cutting && p.stability_checked && p.stability_bounded;
     s += "," + (bounded ? formatNumber(p.ap_limit * 1e3, 4) : std::string()) + "," +
-         (bounded ? formatNumber(p.ap_limit / ap, 4) : std::string());
+         (bounded ? formatNumber(p.ap_limit / millOf(r, i).cut.ap, 4) : std::string());
     csvQuoted(s, p.reason);
     s += "\n";
   }
@@ -756,7 +755,7 @@ std::string millingTargetsJson(const MillingCompensationResult& r,
     cp.set("loop_gain", Json::number(p.loop_gain, 4));
     cp.set("force_fixed_point_iterations", Json::integer(p.force_iterations));
     j.set("coupling", cp);
-    if (p.cutting) j.set("stability", pathPointStabilityJson(p, c.model.process.milling.cut.ap));
+    if (p.cutting) j.set("stability", pathPointStabilityJson(p, millOf(r, i).cut.ap));
     ps.push(j);
   }
   root.set("points", ps);

@@ -405,6 +405,7 @@ Json pathPointJson(const MillingCompensationResult& r, size_t i) {
   Json j = Json::object();
   j.set("point", Json::integer(static_cast<std::int64_t>(i + 1)));
   j.set("line", Json::integer(t.line));
+  if (r.context.model.process.mills.size() > 1) j.set("tool", Json::str(millOf(r, i).tool_key));
   j.set("cutting", Json::boolean(p.cutting));
   j.set("cutting_reason", Json::str(p.cutting_reason));
   j.set("status", Json::str(p.before_status));

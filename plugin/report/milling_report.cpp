@@ -68,7 +68,6 @@ std::string pathPlot(const MillingCompensationResult& r) {
 /// 5; points without a bounded limit at the top.
 std::string marginPlot(const MillingCompensationResult& r) {
   const std::size_t n = r.points_comp.size();
-  const double ap = r.context.model.process.milling.cut.ap;
   const double top = 5.0;
   const double w = 760;
   const double h = 160;
@@ -82,6 +81,7 @@ std::string marginPlot(const MillingCompensationResult& r) {
   for (std::size_t i = 0; i < n; ++i) {
     const PathPointCompensation& p = r.points_comp[i];
     if (!p.cutting || !p.stability_checked) continue;
+    const double ap = millOf(r, i).cut.ap;
     const double margin = p.stability_bounded ? p.ap_limit / ap : top;
     dots += "<circle cx=\"" + num(px(i), 1, "x") + "\" cy=\"" + num(py(margin), 1, "margin") +
             "\" r=\"3\" fill=\"" + (p.unstable(ap) ? "#c0392b" : "#1e7b34") + "\"/>\n";
@@ -99,10 +99,11 @@ std::string marginPlot(const MillingCompensationResult& r) {
 }
 
 /// The chatter margin cell: limit/ap, "—" when not cutting or not checked, "∞" when unbounded.
-std::string margin(const MillingCompensationResult& r, const PathPointCompensation& p) {
+std::string margin(const MillingCompensationResult& r, std::size_t i) {
+  const PathPointCompensation& p = r.points_comp[i];
   if (!p.cutting || !p.stability_checked) return "—";
   if (!p.stability_bounded) return "∞";
-  return num(p.ap_limit / r.context.model.process.milling.cut.ap, 2, "margin");
+  return num(p.ap_limit / millOf(r, i).cut.ap, 2, "margin");
 }
 
 std::string pointRow(const MillingCompensationResult& r, std::size_t i) {
@@ -118,7 +119,7 @@ std::string pointRow(const MillingCompensationResult& r, std::size_t i) {
   for (int k = 0; k < 3; ++k) s += "<td>" + num(b[k], 2, "deviation") + "</td>";
   s += "<td>" + num(b.norm(), 2, "deviation") + "</td><td>" + num(a.norm(), 4, "residual") +
        "</td><td>" + esc(p.coupling_status) + "</td><td>" + std::to_string(p.coupling_iterations) +
-       "</td><td>" + num(p.loop_gain, 3, "loop gain") + "</td><td>" + margin(r, p) + "</td><td>" +
+       "</td><td>" + num(p.loop_gain, 3, "loop gain") + "</td><td>" + margin(r, i) + "</td><td>" +
        esc(p.config_text) + "</td><td>" + esc(p.ok ? "compensated" : p.reason) + "</td></tr>\n";
   return s;
 }
