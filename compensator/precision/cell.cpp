@@ -123,7 +123,8 @@ CellSpec loadCell(const std::string& path) {
   cell.name = root.str("name", fs::path(path).stem().string());
   const fs::path dir = fs::path(path).parent_path();
   auto rel = [&](const std::string& p) {
-    return fs::path(p).is_absolute() ? p : (dir / p).lexically_normal().string();
+    // a rooted path (Windows: "/x" or "C:/x") is kept as written, not joined to the cell's folder
+    return fs::path(p).has_root_directory() ? p : (dir / p).lexically_normal().string();
   };
 
   const XmlNode* r = root.child("robot");

@@ -31,14 +31,14 @@ std::atomic<unsigned long> g_seq{0};  ///< staging number: temporary names uniqu
 std::string errnoText(int e) { return platform::errorText(e); }
 
 std::string dirOf(const std::string& path) {
-  const std::size_t s = path.find_last_of('/');
+  const std::size_t s = path.find_last_of(platform::kPathSeparators);
   if (s == std::string::npos) return ".";
   if (s == 0) return "/";
   return path.substr(0, s);
 }
 
 std::string nameOf(const std::string& path) {
-  const std::size_t s = path.find_last_of('/');
+  const std::size_t s = path.find_last_of(platform::kPathSeparators);
   return s == std::string::npos ? path : path.substr(s + 1);
 }
 
@@ -318,7 +318,7 @@ std::string outputTemporaryPath(const std::string& path, long pid, unsigned long
     }
     file = "." + name.substr(0, keep) + hash + tail;
   }
-  const std::size_t s = path.find_last_of('/');
+  const std::size_t s = path.find_last_of(platform::kPathSeparators);
   return s == std::string::npos ? file : path.substr(0, s + 1) + file;
 }
 

@@ -86,7 +86,8 @@ int fromWindowsError(DWORD code) {
 bool isNullDeviceName(const std::string& path) {
   std::string n = path;
   for (char& c : n) c = static_cast<char>(c >= 'a' && c <= 'z' ? c - 'a' + 'A' : c);
-  return n == "NUL" || n == "\\\\.\\NUL" || n == "//./NUL";
+  // "/dev/null" too: a command line written for a POSIX shell means the null device by it
+  return n == "NUL" || n == "\\\\.\\NUL" || n == "//./NUL" || n == "/DEV/NULL";
 }
 
 Status fromHandleInfo(HANDLE h) {

@@ -15,6 +15,13 @@
 
 namespace roprec::platform {
 
+/// The characters that end a folder's name in a path: "/" (Windows: "/" and "\\").
+#ifdef _WIN32
+inline constexpr const char* kPathSeparators = "/\\";
+#else
+inline constexpr const char* kPathSeparators = "/";
+#endif
+
 /// A path from UTF-8 bytes (Linux: the bytes unchanged) and back.
 std::filesystem::path fromUtf8(std::string_view utf8);
 std::string toUtf8(const std::filesystem::path& path);

@@ -10,6 +10,7 @@
 #include "compensator/support/c_format.hpp"
 #include "compensator/support/error.hpp"
 #include "compensator/support/input_file.hpp"
+#include "compensator/support/platform.hpp"
 #include "postproc/program_stream.hpp"
 
 namespace roprec::api {
@@ -201,7 +202,7 @@ std::string idList(const std::vector<std::string>& ids) {
 }
 
 std::string fileName(const std::string& path) {
-  const auto slash = path.find_last_of('/');
+  const auto slash = path.find_last_of(platform::kPathSeparators);
   return slash == std::string::npos ? path : path.substr(slash + 1);
 }
 

@@ -49,7 +49,8 @@ std::pair<fs::path, fs::path> captureFiles() {
   return {dir / (stem + ".out"), dir / (stem + ".err")};
 }
 
-/// The environment of this process with `extra` ("NAME=VALUE") added or replacing.
+/// The environment of this process with `extra` ("NAME=VALUE") added or replacing; a bare
+/// "NAME" in `extra` removes NAME.
 std::vector<std::string> mergedEnvironment(const std::vector<std::string>& extra,
                                            const std::vector<std::string>& own) {
   std::vector<std::string> env;
@@ -59,7 +60,8 @@ std::vector<std::string> mergedEnvironment(const std::vector<std::string>& extra
     for (const std::string& e : extra) replaced = replaced || name(e) == name(kv);
     if (!replaced) env.push_back(kv);
   }
-  env.insert(env.end(), extra.begin(), extra.end());
+  for (const std::string& e : extra)
+    if (e.find('=') != std::string::npos) env.push_back(e);
   return env;
 }
 

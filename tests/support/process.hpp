@@ -24,8 +24,8 @@ struct ProcessResult {
 };
 
 /// Runs argv[0] (a path) with the arguments argv[1..], the environment of this process plus
-/// `env` ("NAME=VALUE" each), in the current folder; waits for it and returns its exit status
-/// and captured output.
+/// `env` ("NAME=VALUE" each; a bare "NAME" removes it), in the current folder; waits for it and
+/// returns its exit status and captured output.
 ProcessResult runProcess(const std::vector<std::string>& argv,
                          const std::vector<std::string>& env = {});
 

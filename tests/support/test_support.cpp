@@ -25,7 +25,7 @@ std::string sourceDir() { return ROPREC_SOURCE_DIR; }
 
 std::string corpusDir() {
   const fs::path p = fs::path(ROPREC_SOURCE_DIR) / ".." / "shared" / "corpus";
-  if (fs::exists(p)) return fs::canonical(p).string();
+  if (fs::exists(p)) return fs::canonical(p).generic_string();
   // In CI the corpus is part of the job: a missing corpus must fail the test that wanted it (a
   // failure recorded before GTEST_SKIP() keeps the test failed), not skip it silently.
   if (const char* ci = std::getenv("CI"); ci != nullptr && std::string(ci) == "true") {
@@ -97,7 +97,7 @@ std::string tempDir(const std::string& tag) {
        std::to_string(counter++));
   fs::remove_all(p);
   fs::create_directories(p);
-  return p.string();
+  return p.generic_string();  // "/" between names on Windows too, like the paths tests join
 }
 
 RunResult runRoprec(const std::string& args) { return runCommand("'" + roprecBin() + "' " + args); }
@@ -131,7 +131,8 @@ RunResult runShell(const std::string& command) {
 }
 }  // namespace
 
-// A command line written with POSIX shell quoting: leading NAME=VALUE words set the environment;
+// A command line written with POSIX shell quoting: leading NAME=VALUE words (and `env -u NAME`)
+// set the environment;
 // a plain command (a program path and its words) is started directly by runProcess
 // (tests/support/process.hpp: the same on Linux and Windows); one with shell operators (|, >, &&,
 // ...) goes to /bin/sh, and fails the test on Windows.
@@ -141,6 +142,14 @@ RunResult runCommand(const std::string& command) {
   while (!words.empty() && isAssignment(words.front())) {
     env.push_back(words.front());
     words.erase(words.begin());
+  }
+  // env -u NAME ... COMMAND: NAME removed from the child's environment (on Windows too)
+  if (words.size() > 1 && words[0] == "env" && words[1] == "-u") {
+    words.erase(words.begin());
+    while (words.size() > 1 && words[0] == "-u") {
+      env.push_back(words[1]);
+      words.erase(words.begin(), words.begin() + 2);
+    }
   }
   const bool plain = !words.empty() && std::none_of(words.begin(), words.end(), isShellOperator) &&
                      words.front().find('/') != std::string::npos;
