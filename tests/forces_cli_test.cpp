@@ -49,6 +49,51 @@ TEST(ForcesCli, DrillingSampleCellPrintsThrustTorqueAndFr) {
   EXPECT_EQ(r.out, r2.out);
 }
 
+// A cell with a tool table: `forces` needs --tool N when the table holds several drills (exit 2,
+// naming them), and --tool N gives the forces of that drill with its own cut: the same numbers as
+// a single-drill cell written by hand with that drill's geometry and the cut merged attribute by
+// attribute (feed and speed of the drill's <cut>, depth of the process's).
+TEST(ForcesCli, ToolSelectsTheDrillOfTheTable) {
+  const std::string tools = sample("housing-kr120-tools.xml");
+  const auto none = runRoprec("forces --cell " + tools);
+  EXPECT_EQ(none.exit_code, 2) << none.err;
+  EXPECT_NE(none.err.find("4 drills (tool 1 'D6.8' (Ø6.8 mm)"), std::string::npos) << none.err;
+  EXPECT_NE(none.err.find("which drill? Give --tool N"), std::string::npos) << none.err;
+  const auto unknown = runRoprec("forces --cell " + tools + " --tool 9");
+  EXPECT_EQ(unknown.exit_code, 2) << unknown.err;
+  EXPECT_NE(unknown.err.find("--tool 9: the cell has no such drill"), std::string::npos);
+
+  const auto table = runRoprec("forces --cell " + tools + " --tool 4");
+  ASSERT_EQ(table.exit_code, 0) << table.err;
+  const std::string text =
+      test::readFile(test::sourceDir() + "/samples/cells/housing-kr120-tools.xml");
+  const size_t begin = text.find("    <drill tool=\"1\"");
+  const size_t end = text.find("    <material ");
+  ASSERT_NE(begin, std::string::npos);
+  ASSERT_NE(end, std::string::npos);
+  const std::string single =
+      text.substr(0, begin) +
+      "    <drill name=\"D12\" diameter_mm=\"12\" point_angle_deg=\"140\" helix_angle_deg=\"30\" "
+      "web_mm=\"1.7\" tool_material=\"carbide\" stickout_mm=\"45\"/>\n"
+      "    <cut feed_mm_per_rev=\"0.25\" spindle_rpm=\"5000\" depth_mm=\"20\"/>\n" +
+      text.substr(end);
+  const std::string dir = test::tempDir("forces-tool");
+  test::writeFile(dir + "/single.xml", single);
+  const auto one = runRoprec("forces --cell '" + dir + "/single.xml'");
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  const nlohmann::json a = nlohmann::json::parse(table.out);
+  const nlohmann::json b = nlohmann::json::parse(one.out);
+  EXPECT_EQ(a.at("drill").at("diameter_mm"), b.at("drill").at("diameter_mm"));
+  EXPECT_EQ(a.at("cut"), b.at("cut"));
+  EXPECT_EQ(a.at("steady"), b.at("steady"));
+  EXPECT_EQ(a.at("wrench_tool"), b.at("wrench_tool"));
+  EXPECT_EQ(a.at("machining_deviation"), b.at("machining_deviation"));
+  // and not the first drill's
+  const auto first = runRoprec("forces --cell " + tools + " --tool 1");
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  EXPECT_NE(nlohmann::json::parse(first.out).at("steady"), a.at("steady"));
+}
+
 TEST(ForcesCli, HelpStatesTheCoverageFactorTheOutputUses) {
   const auto r = runRoprec("forces --cell " + sample("alu-drilling-6061.xml"));
   ASSERT_EQ(r.exit_code, 0) << r.err;

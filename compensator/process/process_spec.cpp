@@ -372,6 +372,43 @@ int millIndex(const ProcessSpec& s, std::string_view tool) {
   return -1;
 }
 
+namespace {
+
+/// commandToolIndex over one table: `labels` name its entries; `index` is the entry keyed `tool`.
+std::size_t tableEntry(const std::vector<std::string>& labels, bool single_unkeyed,
+                       const std::optional<std::string>& tool, int index, const char* kind) {
+  std::string all;
+  for (const std::string& l : labels) all += (all.empty() ? "" : ", ") + l;
+  if (!tool) {
+    if (labels.size() == 1) return 0;
+    throw UsageError("the cell's tool table has " + std::to_string(labels.size()) + " " + kind +
+                     "s (" + all + "): which " + kind + "? Give --tool N");
+  }
+  if (single_unkeyed || index < 0)
+    throw UsageError("--tool " + *tool + ": the cell has no such " + kind + " (" + all + ")");
+  return static_cast<std::size_t>(index);
+}
+
+}  // namespace
+
+std::size_t commandToolIndex(const ProcessSpec& s, const std::optional<std::string>& tool) {
+  std::vector<std::string> labels;
+  switch (s.type) {
+    case ProcessType::kDrilling:
+      for (const DrillingSpec& d : s.drills) labels.push_back(drillLabel(d));
+      return tableEntry(labels, s.drills.size() == 1 && s.drills.front().tool.empty(), tool,
+                        tool ? drillIndex(s, *tool) : -1, "drill");
+    case ProcessType::kMilling:
+      for (const MillingSpec& m : s.mills) labels.push_back(millLabel(m));
+      return tableEntry(labels, s.mills.size() == 1 && s.mills.front().tool_key.empty(), tool,
+                        tool ? millIndex(s, *tool) : -1, "mill");
+    case ProcessType::kWrench:
+      break;
+  }
+  if (tool) throw UsageError("--tool " + *tool + ": the cell's process is a wrench, not a tool");
+  return 0;
+}
+
 std::string millLabel(const MillingSpec& m) {
   const std::string size =
       "Ø" + numberText(m.tool.diameter / kMm) + " mm, " + std::to_string(m.tool.teeth) + " teeth";

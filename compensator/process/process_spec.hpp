@@ -169,6 +169,11 @@ std::string millLabel(const MillingSpec& m);
 /// A drill as messages and reports name it: `tool 3 'D6.8' (Ø6.8 mm)`, `the cell's drill (Ø8.5
 /// mm)` for an unkeyed single drill.
 std::string drillLabel(const DrillingSpec& d);
+/// The tool-table entry a command that works on the process alone (forces, milling-stability)
+/// uses: the drill or mill (ProcessSpec::drills / ::mills, by the process type) keyed `tool`, the
+/// single entry when no `tool` is given. Throws UsageError when a table of several has no `tool`
+/// (which one?), when none is keyed `tool`, or when a wrench process is given a `tool`.
+std::size_t commandToolIndex(const ProcessSpec& s, const std::optional<std::string>& tool);
 
 /// The drilling model of a spec (working angles at the spec's feed when enabled).
 DrillingModel drillingModelOf(const DrillingSpec& s, int nodes = 24);

@@ -183,14 +183,22 @@ ForcesResult processForces(const ForcesRequest& request) {
   if (request.calibrated_cell && !request.calibrate) {
     throw UsageError("-o/--o writes the calibrated cell: use it with --calibrate");
   }
+  if (request.program && request.tool) {
+    throw UsageError(
+        "--tool with --program: the program's active tool selects the mill of each "
+        "point; leave out --tool");
+  }
+  const size_t k = request.program ? 0 : commandToolIndex(spec, request.tool);
   ForcesResult out;
   out.cell = cell.name;
+  CellSpec with = cell;  // the tool's own <tcp>, else the cell's <tool>
+  if (k < cell.drill_tools.size() && cell.drill_tools[k]) with.tool = *cell.drill_tools[k];
   switch (spec.type) {
     case ProcessType::kDrilling:
-      drillingForcesOf(cell, spec.drilling, request, out);
+      drillingForcesOf(with, spec.drills[k], request, out);
       break;
     case ProcessType::kMilling:
-      millingForcesOf(cell, spec.milling, request, out);
+      millingForcesOf(with, request.program ? spec.milling : spec.mills[k], request, out);
       break;
     case ProcessType::kWrench:
       wrenchForcesOf(cell, spec.wrench, request, out);

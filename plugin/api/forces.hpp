@@ -45,6 +45,9 @@ struct ForcesRequest {
       joints;  ///< milling: couple with the cell robot's compliance here (URDF, rad)
   std::optional<std::string>
       program;  ///< milling: every linear point of this program (cutting decision, coupled solve)
+  /// The drill or mill of the cell's tool table (its tool number or name; needed when the table
+  /// holds several); with `program` the program's active tool selects instead.
+  std::optional<std::string> tool;
 };
 
 /// Drilling: the spec (after the calibration), the steady forces, the curve over depth and, with

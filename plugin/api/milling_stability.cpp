@@ -11,25 +11,6 @@
 
 namespace roprec::api {
 
-namespace {
-
-/// The index of the mill `tool` selects (ProcessSpec::mills); the single mill without it.
-size_t millOfRequest(const ProcessSpec& spec, const std::optional<std::string>& tool) {
-  std::string mills;
-  for (const MillingSpec& m : spec.mills) mills += (mills.empty() ? "" : ", ") + millLabel(m);
-  if (!tool) {
-    if (spec.mills.size() == 1) return 0;
-    throw UsageError("the cell's tool table has " + std::to_string(spec.mills.size()) + " mills (" +
-                     mills + "): which mill? Give --tool N");
-  }
-  const int i =
-      spec.mills.size() == 1 && spec.mills.front().tool_key.empty() ? -1 : millIndex(spec, *tool);
-  if (i < 0) throw UsageError("--tool " + *tool + ": the cell has no such mill (" + mills + ")");
-  return static_cast<size_t>(i);
-}
-
-}  // namespace
-
 MillingStabilityResult millingStability(const MillingStabilityRequest& req) {
   const CellSpec cell = loadCell(req.cell);
   if (!cell.has_process)
@@ -38,7 +19,7 @@ MillingStabilityResult millingStability(const MillingStabilityRequest& req) {
   if (spec.type != ProcessType::kMilling)
     throw InputError(cell.file, cell.process.line,
                      "milling-stability needs a <process type=\"milling\">");
-  const size_t mill = millOfRequest(spec, req.tool);
+  const size_t mill = commandToolIndex(spec, req.tool);
   const MillingSpec& s = spec.mills[mill];
   const double lo = req.rpm_lo.value_or(std::max(100.0, 0.2 * s.cut.spindle_rpm));
   const double hi = req.rpm_hi.value_or(2.0 * s.cut.spindle_rpm);

@@ -79,6 +79,7 @@ int run(Args& args, CommandContext& ctx) {
   const auto axial = args.option("axial-compliance-um-per-N");
   const auto joints = args.option("joints");
   const auto program = args.option("program");
+  const auto tool = args.option("tool");
   args.finish();
   if (!cell_path) throw UsageError("give --cell CELL.xml");
   ForcesRequest req;
@@ -88,6 +89,7 @@ int run(Args& args, CommandContext& ctx) {
   if (joints && cellIsMilling(req.cell))
     req.joints = parseJointsDeg(*joints);  // read for milling only
   req.program = program;
+  req.tool = tool;
   req.calibrated_cell = out_xml.has_value();
   req.curve = csv_path.has_value();
 
@@ -111,7 +113,8 @@ const CommandRegistration reg{
      "                     [--calibrate \"Fa_N=... M_Nm=...\" [-o|--output OUT.xml]] [--points "
      "N]\n"
      "                     [--axial-compliance-um-per-N C] [--joints \"j1 .. j6\"] [--program "
-     "P.src]\n\n"
+     "P.src]\n"
+     "                     [--tool N]\n\n"
      "Computes the process forces of the cell's <process> (the robot is loaded only with "
      "--joints).\n"
      "  drilling: steady thrust, torque, rotating runout force Fr, per-lip forces, chisel share, "
@@ -144,6 +147,11 @@ const CommandRegistration reg{
      "            quasi-static step per revolution (entry, steady cut, breakthrough lunge); the "
      "CSV is then\n"
      "            per revolution with feed_mm and dz_um columns.\n"
+     "--tool N: the drill or mill of the cell's tool table (<drill tool=\"N\">, <mill "
+     "tool=\"N\">: its\n"
+     "geometry, cut and TCP); needed when the table holds several; with --program the program's "
+     "active\n"
+     "tool selects the mill of each point instead.\n"
      "--calibrate identifies kst0 and ksa0 from one measured thrust and torque at the cell's "
      "diameter and\n"
      "feed; -o OUT.xml writes a copy of the cell with the calibrated <coefficients> "

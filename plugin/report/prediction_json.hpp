@@ -3,8 +3,8 @@
 /// The JSON of a prediction (docs/contract.md §9 keys): one hole, the capability summary.
 
 #include "compensator/precision/prediction.hpp"
-#include "plugin/report/json.hpp"
 #include "plugin/api/prediction_setup.hpp"
+#include "plugin/report/json.hpp"
 
 namespace roprec::api {
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "plugin/report/json.hpp"
 #include "plugin/api/verify.hpp"
+#include "plugin/report/json.hpp"
 
 namespace roprec::api {
 
