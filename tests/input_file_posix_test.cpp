@@ -12,18 +12,14 @@
 
 #include "compensator/support/error.hpp"
 #include "compensator/support/input_file.hpp"
+#include "tests/support/file_checks.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace roprec {
 namespace {
 
 std::string errorOf(const std::string& path, InputKind kind) {
-  try {
-    readInputFile(path, kind);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return test::inputErrorOf(path, kind);
 }
 
 TEST(InputFile, FoldersDevicesAndFifosAreRefusedSayingWhatTheyAre) {

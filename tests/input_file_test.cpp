@@ -15,18 +15,14 @@
 #include "compensator/support/long_words.hpp"
 #include "compensator/support/utf8.hpp"
 #include "plugin/c/roprec.h"
+#include "tests/support/file_checks.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace roprec {
 namespace {
 
 std::string errorOf(const std::string& path, InputKind kind) {
-  try {
-    readInputFile(path, kind);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return test::inputErrorOf(path, kind);
 }
 
 bool validUtf8(const std::string& s) {

@@ -14,6 +14,7 @@
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
 #include "plugin/c/roprec.h"
+#include "tests/support/file_checks.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace roprec {
@@ -21,18 +22,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::vector<std::string> listDir(const std::string& dir) {
-  std::vector<std::string> names;
-  for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
-  std::sort(names.begin(), names.end());
-  return names;
-}
-
-int temporariesIn(const std::string& dir) {
-  int n = 0;
-  for (const auto& name : listDir(dir)) n += isOutputTemporaryName(name) ? 1 : 0;
-  return n;
-}
+using test::listDir;
+using test::temporariesIn;
 
 TEST(OutputSet, CommitWritesAllAndLeavesNoTemporaries) {
   const std::string dir = test::tempDir("outset-commit");
