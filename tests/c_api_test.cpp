@@ -25,6 +25,7 @@
 #include "plugin/api/job.hpp"
 #include "plugin/c/roprec.h"
 #include "postproc/drill.hpp"
+#include "tests/support/part_registration.hpp"
 #include "tests/support/process.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -386,20 +387,11 @@ TEST(CApi, FilterTargetOfARegisteredCellAimsAtTheRegisteredPart) {
   const std::vector<postproc::HoleSpec> specs = postproc::readHoleList(kHoles);
   const CellSpec cell = loadCell(kCell);
   const std::string dir = tempDir("capi-registered");
-  std::string text = readFile(kCell);
-  const size_t wobj = text.find("<workobject ");
-  ASSERT_NE(wobj, std::string::npos);
-  text.insert(text.find("/>", wobj) + 2,
-              "\n  <part_registration xyz_mm=\"0.35 -0.2 0.25\" rpy_mrad=\"0.5 -0.4 0.6\" "
-              "source=\"test\"/>");
+  const std::string text = test::withPartRegistration(readFile(kCell));
+  ASSERT_FALSE(text.empty());
   const std::string registered = dir + "/registered.xml";
   writeFile(registered, text);
-  Pose F = Pose::Identity();  // the registration by hand: URDF rpy, R = Rz · Ry · Rx
-  F.linear() =
-      (Eigen::AngleAxisd(0.6e-3, Vec3::UnitZ()) * Eigen::AngleAxisd(-0.4e-3, Vec3::UnitY()) *
-       Eigen::AngleAxisd(0.5e-3, Vec3::UnitX()))
-          .toRotationMatrix();
-  F.translation() = Vec3(0.35e-3, -0.2e-3, 0.25e-3);
+  const Pose F = test::partRegistration();  // the registration by hand
   const Pose G = cell.T_base_wobj * F.inverse() * cell.T_base_wobj.inverse();
   std::vector<postproc::HoleSpec> some(specs.begin(), specs.begin() + 12);
   const std::string program = dir + "/holes_program.json";

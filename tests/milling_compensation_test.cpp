@@ -19,6 +19,7 @@
 #include "plugin/api/prediction_setup.hpp"
 #include "postproc/program.hpp"
 #include "tests/support/kdl_support.hpp"
+#include "tests/support/part_registration.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace roprec {
@@ -436,22 +437,13 @@ TEST(MillingCompensation, ARegisteredCellCompensatesTheRegisteredPath) {
   const std::string cell = test::sourceDir() + "/samples/cells/alu-milling-7075.xml";
   const std::string prog = test::sourceDir() + "/samples/milling/wall_pass.src";
   const std::string dir = test::tempDir("mill-registered");
-  std::string text = test::readFile(cell);
-  const size_t wobj = text.find("<workobject ");
-  ASSERT_NE(wobj, std::string::npos);
-  text.insert(text.find("/>", wobj) + 2,
-              "\n  <part_registration xyz_mm=\"0.35 -0.2 0.25\" rpy_mrad=\"0.5 -0.4 0.6\" "
-              "source=\"test\"/>");
+  const std::string text = test::withPartRegistration(test::readFile(cell));
+  ASSERT_FALSE(text.empty());
   const std::string registered = dir + "/registered.xml";
   test::writeFile(registered, text);
   const api::MillingCompensationResult plain = api::compensateMillingJob(cell, prog, false);
   const api::MillingCompensationResult reg = api::compensateMillingJob(registered, prog, false);
-  Pose F = Pose::Identity();  // URDF rpy: R = Rz · Ry · Rx
-  F.linear() =
-      (Eigen::AngleAxisd(0.6e-3, Vec3::UnitZ()) * Eigen::AngleAxisd(-0.4e-3, Vec3::UnitY()) *
-       Eigen::AngleAxisd(0.5e-3, Vec3::UnitX()))
-          .toRotationMatrix();
-  F.translation() = Vec3(0.35e-3, -0.2e-3, 0.25e-3);
+  const Pose F = test::partRegistration();  // the registration by hand
   const Pose T_W_wobj = plain.context.cell.T_base_wobj;
   const Pose G = T_W_wobj * F.inverse() * T_W_wobj.inverse();
   ASSERT_EQ(reg.points.size(), plain.points.size());

@@ -15,6 +15,7 @@
 #include "plugin/report/work_map_report.hpp"
 #include "support/kdl_support.hpp"
 #include "support/test_support.hpp"
+#include "tests/support/part_registration.hpp"
 
 namespace roprec {
 namespace {
@@ -271,12 +272,8 @@ TEST(WorkMap, ACalibratedCardDrillsWithTheExportedUrdfsKinematics) {
 // pose computed by hand, G = T_W_wobj · F⁻¹ · T_W_wobj⁻¹.
 TEST(WorkMap, ARegisteredCellMapsThePointsOfTheRegisteredPart) {
   const std::string dir = test::tempDir("map-registered");
-  std::string text = test::readFile(cellPath());
-  const size_t wobj = text.find("<workobject ");
-  ASSERT_NE(wobj, std::string::npos);
-  text.insert(text.find("/>", wobj) + 2,
-              "\n  <part_registration xyz_mm=\"0.35 -0.2 0.25\" rpy_mrad=\"0.5 -0.4 0.6\" "
-              "source=\"test\"/>");
+  const std::string text = test::withPartRegistration(test::readFile(cellPath()));
+  ASSERT_FALSE(text.empty());
   api::WorkMapRequest q;
   q.cell_path = dir + "/registered.xml";
   test::writeFile(q.cell_path, text);
@@ -286,12 +283,7 @@ TEST(WorkMap, ARegisteredCellMapsThePointsOfTheRegisteredPart) {
   const api::WorkMap m = api::computeWorkMap(q);
   ASSERT_EQ(m.layers.size(), 1u);
   ASSERT_EQ(m.layers[0].points.size(), 4u);
-  Pose F = Pose::Identity();  // URDF rpy: R = Rz · Ry · Rx
-  F.linear() =
-      (Eigen::AngleAxisd(0.6e-3, Vec3::UnitZ()) * Eigen::AngleAxisd(-0.4e-3, Vec3::UnitY()) *
-       Eigen::AngleAxisd(0.5e-3, Vec3::UnitX()))
-          .toRotationMatrix();
-  F.translation() = Vec3(0.35e-3, -0.2e-3, 0.25e-3);
+  const Pose F = test::partRegistration();  // the registration by hand
   const Pose T_W_wobj = m.context.cell.T_base_wobj;
   const Pose G = T_W_wobj * F.inverse() * T_W_wobj.inverse();
   for (const api::WorkMapPoint& pt : m.layers[0].points) {
