@@ -96,32 +96,37 @@ const ToolSpec& toolOfProgramTool(const PredictionContext& c, const std::string&
   return own ? *own : c.cell.tool;
 }
 
-/// Program frames and tool against the cell (docs/programs.md §15): a base frame or tool that
-/// only the controller defines, or a program tool that differs from the cell's, is an error
-/// unless the options say how to resolve it; every resolution is stated in the job's notes.
-void resolveFramesAndTool(PredictionContext& c, const JobOptions& o) {
-  if (o.frame_cell && c.cell.root.child("workobject") == nullptr) {
-    throw InputError(c.cell.file, std::max(1, c.cell.root.line),
-                     "--frame cell: the cell has no <workobject>, so it defines no frame (the "
-                     "robot base frame would be used silently). Add <workobject xyz=\"...\" "
-                     "rpy=\"...\"/> to the cell, or give --frame \"x y z a b c\"");
+/// The notes a frame and tool resolution writes (each resolution stated once, by key) and where
+/// a hole's frame or tool is written.
+class ResolutionNotes {
+ public:
+  ResolutionNotes(const postproc::Program& p, std::vector<std::string>& notes)
+      : program_(p), notes_(notes) {}
+
+  void state(const std::string& key, const std::string& text) {
+    if (std::find(stated_.begin(), stated_.end(), key) != stated_.end()) return;
+    stated_.push_back(key);
+    notes_.push_back(kResolutionPrefix + text);
   }
-  if (!c.job.program || c.job.is_hole_list) return;
+
+  /// The file and line of a frame (`file`, `line`), else of the hole's bottom motion.
+  [[nodiscard]] std::pair<std::string, int> where(int file, int line, const HoleFrameUse& h) const {
+    if (line > 0 && file >= 0) return {program_.files[static_cast<size_t>(file)].path, line};
+    return {program_.files[static_cast<size_t>(std::max(0, h.file))].path, h.line};
+  }
+
+ private:
+  const postproc::Program& program_;
+  std::vector<std::string>& notes_;
+  std::vector<std::string> stated_;
+};
+
+/// Base frames only the controller defines, decided per program frame in hole order (the first
+/// hole in a frame no one defines is the one an error names), then applied to the holes set up so
+/// far (a deferred job's holes get theirs when they are set up: setUpHoles).
+void resolveBaseFrames(PredictionContext& c, const JobOptions& o, ResolutionNotes& notes) {
   const postproc::Program& p = *c.job.program;
-  auto where = [&](int file, int line, const HoleFrameUse& h) {
-    if (line > 0 && file >= 0) return std::make_pair(p.files[static_cast<size_t>(file)].path, line);
-    return std::make_pair(p.files[static_cast<size_t>(std::max(0, h.file))].path, h.line);
-  };
-  std::vector<std::string> stated;
-  auto state = [&](const std::string& key, const std::string& text) {
-    if (std::find(stated.begin(), stated.end(), key) != stated.end()) return;
-    stated.push_back(key);
-    c.job.notes.push_back(kResolutionPrefix + text);
-  };
   bool base_explicit = false;
-  // ---- base frames: decided per program frame, in hole order (the first hole in a frame no one
-  // defines is the one an error names), then applied to the holes set up so far (a deferred
-  // job's holes get it when they are set up: setUpHoles)
   c.job.base_frames.assign(p.frames.size(), std::nullopt);
   for (const HoleFrameUse& h : c.job.frame_uses) {
     if (h.base < 0) continue;  // no frame named: the cell's workobject (noted by hole_input)
@@ -138,7 +143,7 @@ void resolveFramesAndTool(PredictionContext& c, const JobOptions& o) {
       how = "the cell's <workobject> (--frame cell)";
     }
     if (!T) {
-      const auto [file, line] = where(-1, 0, h);
+      const auto [file, line] = notes.where(-1, 0, h);
       throw InputError(file, line,
                        "hole " + h.id + " uses the base frame " + f.ref +
                            ", which only the controller defines (not the program, the cell or "
@@ -148,8 +153,8 @@ void resolveFramesAndTool(PredictionContext& c, const JobOptions& o) {
     }
     c.job.base_frames[static_cast<size_t>(h.base)] = *T;
     base_explicit = true;
-    state("base " + f.ref, "base frame " + f.ref + " (defined only on the controller) = " + how +
-                               ": " + poseText(*T));
+    notes.state("base " + f.ref, "base frame " + f.ref + " (defined only on the controller) = " +
+                                     how + ": " + poseText(*T));
   }
   for (size_t i = 0; i < c.job.sources.size(); ++i)
     applyBaseFrame(c.job, c.job.requests[i], c.job.sources[i]);
@@ -159,80 +164,119 @@ void resolveFramesAndTool(PredictionContext& c, const JobOptions& o) {
                        [](const std::string& n) { return n.rfind("program base frame ", 0) == 0; }),
         c.job.notes.end());
   }
-  // ---- tool: each program tool against the TCP of the drill it selects (its own <tcp>, else
-  // the cell's <tool>)
+}
+
+/// A program tool's TCP that `--tool program` takes, with the text of how it differs.
+struct ProgramTcp {
+  Pose T;
+  std::string difference;
+};
+
+/// One program tool (of hole `h`) against the TCP of the drill it selects (its own <tcp>, else the
+/// cell's <tool>): a resolution the options give is stated; a difference they do not resolve is
+/// an error at the tool's line. Returns the program's TCP when `--tool program` takes it.
+std::optional<ProgramTcp> checkProgramTool(PredictionContext& c, const JobOptions& o,
+                                           const HoleFrameUse& h, ResolutionNotes& notes) {
+  const postproc::Program& p = *c.job.program;
+  const postproc::Frame& tf = p.frames[static_cast<size_t>(h.tool)];
+  const ToolSpec& reference = toolOfProgramTool(c, tf.ref);
+  const bool own_tcp = &reference != &c.cell.tool;
+  const Pose& T_cell = reference.T_flange_tcp;
+  const std::string cell_tool =
+      own_tcp ? "drill " + reference.name + " <tcp>"
+              : "'" + (c.cell.tool.name.empty() ? "tool" : c.cell.tool.name) + "'";
+  std::optional<Pose> Tt = tf.resolved ? std::optional<Pose>(tf.pose) : givenFrame(o, tf.ref);
+  const auto [file, line] = notes.where(tf.file, tf.line, h);
+  if (!Tt && own_tcp) {
+    notes.state("tool " + tf.ref, "tool " + tf.ref +
+                                      " (defined only on the controller) = the cell's " +
+                                      cell_tool + ": TCP " + poseText(T_cell));
+    return std::nullopt;
+  }
+  if (!Tt) {
+    if (o.tool == "cell") {
+      notes.state("tool " + tf.ref, "tool " + tf.ref +
+                                        " (defined only on the controller) = the cell's tool " +
+                                        cell_tool + " (--tool cell): TCP " + poseText(T_cell));
+      return std::nullopt;
+    }
+    throw InputError(h.file >= 0 ? p.files[static_cast<size_t>(h.file)].path : file, h.line,
+                     "hole " + h.id + " uses the tool " + tf.ref +
+                         ", which only the controller defines. Give --tool cell (the cell's "
+                         "tool " +
+                         cell_tool + " is that tool) or --frame '" + tf.ref +
+                         "=x y z a b c' (its TCP in the flange frame, mm and deg)");
+  }
+  const double dt = (Tt->translation() - T_cell.translation()).norm();
+  const double dr = Eigen::AngleAxisd(Tt->linear().transpose() * T_cell.linear()).angle();
+  if (dt <= 1e-5 && dr <= 1e-4) return std::nullopt;  // 0.01 mm, 0.006 deg: the same tool
+  const std::string diff = "the program's tool " + tf.ref + " (TCP " + poseText(*Tt) +
+                           ") differs from the cell's " + (own_tcp ? "" : "tool ") + cell_tool +
+                           " (TCP " + poseText(T_cell) + ") by " + mm(dt) + " mm and " +
+                           formatNumber(dr / kDeg, 3) + " deg";
+  if (o.tool == "cell") {
+    notes.state("tool " + tf.ref, diff +
+                                      ": --tool cell: the cell's TCP is used; the program's "
+                                      "targets are taken as TCP poses of the cell's tool");
+    return std::nullopt;
+  }
+  if (o.tool == "program" && own_tcp) {
+    throw InputError(file, line,
+                     diff +
+                         "; --tool program takes one TCP for the cell's <tool>, not for a drill "
+                         "with a <tcp> of its own: correct the drill's <tcp> in " +
+                         c.cell.file + " or the program's tool, or give --tool cell");
+  }
+  if (o.tool == "program") return ProgramTcp{*Tt, diff};
+  if (own_tcp) {
+    throw InputError(file, line,
+                     diff + ". Correct the drill's <tcp> in " + c.cell.file +
+                         " or the program's tool, or give --tool cell (the cell's TCP is the "
+                         "real one)");
+  }
+  throw InputError(file, line,
+                   diff +
+                       ". Give --tool program (the program's TCP is the real one) or --tool "
+                       "cell (the cell's TCP is the real one)");
+}
+
+/// Every program tool checked (checkProgramTool); with `--tool program` the program's one TCP
+/// replaces the cell's (a program with two is a usage error).
+void resolveProgramTools(PredictionContext& c, const JobOptions& o, ResolutionNotes& notes) {
   std::optional<std::pair<std::string, Pose>> program_tool;
   for (const HoleFrameUse& h : c.job.frame_uses) {
     if (h.tool < 0) continue;  // the program names no tool
-    const postproc::Frame& tf = p.frames[static_cast<size_t>(h.tool)];
-    const ToolSpec& reference = toolOfProgramTool(c, tf.ref);
-    const bool own_tcp = &reference != &c.cell.tool;
-    const Pose& T_cell = reference.T_flange_tcp;
-    const std::string cell_tool =
-        own_tcp ? "drill " + reference.name + " <tcp>"
-                : "'" + (c.cell.tool.name.empty() ? "tool" : c.cell.tool.name) + "'";
-    std::optional<Pose> Tt = tf.resolved ? std::optional<Pose>(tf.pose) : givenFrame(o, tf.ref);
-    const auto [file, line] = where(tf.file, tf.line, h);
-    if (!Tt && own_tcp) {
-      state("tool " + tf.ref, "tool " + tf.ref + " (defined only on the controller) = the cell's " +
-                                  cell_tool + ": TCP " + poseText(T_cell));
-      continue;
+    const std::optional<ProgramTcp> tcp = checkProgramTool(c, o, h, notes);
+    if (!tcp) continue;
+    const std::string& ref = c.job.program->frames[static_cast<size_t>(h.tool)].ref;
+    if (program_tool && !program_tool->second.isApprox(tcp->T, 1e-9)) {
+      throw UsageError("--tool program: the program drills with more than one tool (" +
+                       program_tool->first + ", " + ref +
+                       "); the model takes one tool per job: give --tool cell or split the "
+                       "program");
     }
-    if (!Tt) {
-      if (o.tool == "cell") {
-        state("tool " + tf.ref, "tool " + tf.ref +
-                                    " (defined only on the controller) = the cell's tool " +
-                                    cell_tool + " (--tool cell): TCP " + poseText(T_cell));
-        continue;
-      }
-      throw InputError(h.file >= 0 ? p.files[static_cast<size_t>(h.file)].path : file, h.line,
-                       "hole " + h.id + " uses the tool " + tf.ref +
-                           ", which only the controller defines. Give --tool cell (the cell's "
-                           "tool " +
-                           cell_tool + " is that tool) or --frame '" + tf.ref +
-                           "=x y z a b c' (its TCP in the flange frame, mm and deg)");
-    }
-    const double dt = (Tt->translation() - T_cell.translation()).norm();
-    const double dr = Eigen::AngleAxisd(Tt->linear().transpose() * T_cell.linear()).angle();
-    if (dt <= 1e-5 && dr <= 1e-4) continue;  // 0.01 mm, 0.006 deg: the same tool
-    const std::string diff = "the program's tool " + tf.ref + " (TCP " + poseText(*Tt) +
-                             ") differs from the cell's " + (own_tcp ? "" : "tool ") + cell_tool +
-                             " (TCP " + poseText(T_cell) + ") by " + mm(dt) + " mm and " +
-                             formatNumber(dr / kDeg, 3) + " deg";
-    if (o.tool == "cell") {
-      state("tool " + tf.ref, diff +
-                                  ": --tool cell: the cell's TCP is used; the program's "
-                                  "targets are taken as TCP poses of the cell's tool");
-    } else if (o.tool == "program" && own_tcp) {
-      throw InputError(file, line,
-                       diff +
-                           "; --tool program takes one TCP for the cell's <tool>, not for a drill "
-                           "with a <tcp> of its own: correct the drill's <tcp> in " +
-                           c.cell.file + " or the program's tool, or give --tool cell");
-    } else if (o.tool == "program") {
-      if (program_tool && !program_tool->second.isApprox(*Tt, 1e-9)) {
-        throw UsageError("--tool program: the program drills with more than one tool (" +
-                         program_tool->first + ", " + tf.ref +
-                         "); the model takes one tool per job: give --tool cell or split the "
-                         "program");
-      }
-      program_tool = std::make_pair(tf.ref, *Tt);
-      state("tool " + tf.ref, diff +
-                                  ": --tool program: the program's TCP is used (mass data "
-                                  "from the cell)");
-    } else if (own_tcp) {
-      throw InputError(file, line,
-                       diff + ". Correct the drill's <tcp> in " + c.cell.file +
-                           " or the program's tool, or give --tool cell (the cell's TCP is the "
-                           "real one)");
-    } else {
-      throw InputError(file, line,
-                       diff +
-                           ". Give --tool program (the program's TCP is the real one) or --tool "
-                           "cell (the cell's TCP is the real one)");
-    }
+    program_tool = std::make_pair(ref, tcp->T);
+    notes.state("tool " + ref, tcp->difference +
+                                   ": --tool program: the program's TCP is used (mass data "
+                                   "from the cell)");
   }
   if (program_tool) useProgramTool(c, program_tool->second);
+}
+
+/// Program frames and tool against the cell (docs/programs.md §15): a base frame or tool that
+/// only the controller defines, or a program tool that differs from the cell's, is an error
+/// unless the options say how to resolve it; every resolution is stated in the job's notes.
+void resolveFramesAndTool(PredictionContext& c, const JobOptions& o) {
+  if (o.frame_cell && c.cell.root.child("workobject") == nullptr) {
+    throw InputError(c.cell.file, std::max(1, c.cell.root.line),
+                     "--frame cell: the cell has no <workobject>, so it defines no frame (the "
+                     "robot base frame would be used silently). Add <workobject xyz=\"...\" "
+                     "rpy=\"...\"/> to the cell, or give --frame \"x y z a b c\"");
+  }
+  if (!c.job.program || c.job.is_hole_list) return;
+  ResolutionNotes notes(*c.job.program, c.job.notes);
+  resolveBaseFrames(c, o, notes);
+  resolveProgramTools(c, o, notes);
 }
 
 PredictionContext loadContext(const std::string& cell_path, const std::string& program_path,
