@@ -21,6 +21,7 @@
 #include "compensator/support/error.hpp"
 #include "compensator/support/platform.hpp"
 #include "plugin/api/job.hpp"
+#include "plugin/report/exports.hpp"
 #include "postproc/program_stream.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -460,17 +461,6 @@ std::string targetsCsv(const api::CompensationResult& r) {
   return s.str();
 }
 
-Json finiteOrFailed(Json item, const std::string& id, int line) {
-  if (item.finite()) return item;
-  Json j = Json::object();
-  j.set("id", Json::str(id));
-  if (line > 0) j.set("line", Json::integer(line));
-  j.set("status", Json::str("failed"));
-  j.set("reason", Json::str("internal error: the result of this hole is not a finite number, so "
-                            "it is not reported (please report this input)"));
-  return j;
-}
-
 Json targetJson(const api::CompensationResult& r, size_t i) {
   const HoleCompensation& h = r.holes[i];
   Json j = Json::object();
@@ -511,7 +501,7 @@ std::string targetsJson(const api::CompensationResult& r, const std::string& pro
   root.set("orientation", Json::str(r.orientation));
   Json hs = Json::array();
   for (size_t i = 0; i < r.holes.size(); ++i) {
-    hs.push(finiteOrFailed(targetJson(r, i), r.holes[i].id, r.context.job.requests[i].line));
+    hs.push(api::finiteOrFailed(targetJson(r, i), r.holes[i].id, r.context.job.requests[i].line));
   }
   root.set("holes", hs);
   return root.dump();

@@ -168,19 +168,6 @@ void targetsCsv(const CompensationResult& r, const ByteSink& sink, int threads) 
   }
 }
 
-/// One item whose numbers are not all finite (a bug or an input that escaped the range checks)
-/// is reported as failed on its own instead of poisoning the whole output.
-Json finiteOrFailed(Json item, const std::string& id, int line) {
-  if (item.finite()) return item;
-  Json j = Json::object();
-  j.set("id", Json::str(id));
-  if (line > 0) j.set("line", Json::integer(line));
-  j.set("status", Json::str("failed"));
-  j.set("reason", Json::str("internal error: the result of this hole is not a finite number, so "
-                            "it is not reported (please report this input)"));
-  return j;
-}
-
 /// The item written instead of one whose numbers are not all finite (a bug or an input that
 /// escaped the range checks): it is reported as failed on its own instead of poisoning the whole
 /// output. The same members as finiteOrFailed().
@@ -535,6 +522,17 @@ void predictionHole(JsonWriter& w, const HolePrediction& h, const HoleRequest& r
 }
 
 }  // namespace
+
+Json finiteOrFailed(Json item, const std::string& id, int line) {
+  if (item.finite()) return item;
+  Json j = Json::object();
+  j.set("id", Json::str(id));
+  if (line > 0) j.set("line", Json::integer(line));
+  j.set("status", Json::str("failed"));
+  j.set("reason", Json::str("internal error: the result of this hole is not a finite number, so "
+                            "it is not reported (please report this input)"));
+  return j;
+}
 
 Json predictionJson(const PredictionResult& r) {
   const PredictionContext& c = r.context;

@@ -43,6 +43,11 @@ class PredictionJsonStream {
   RobotCard card_;  ///< for the joints in the controller's convention
 };
 
+/// `item`, or when one of its numbers is not finite (a bug or an input that escaped the range
+/// checks) the item reported as failed on its own (id, line, status, reason) instead of poisoning
+/// the whole output.
+Json finiteOrFailed(Json item, const std::string& id, int line);
+
 /// The prediction JSON of the file contract (docs/contract.md "Prediction output").
 Json predictionJson(const PredictionResult& r);
 /// The self-contained HTML report of a prediction; the δrobot split of its holes on `threads`
