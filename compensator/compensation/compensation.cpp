@@ -262,24 +262,26 @@ Cost transitionCost(const Node& a, const Node& b, OrientationMode mode) {
 // ---- stage 1: the program as it is
 
 /// Predictions of the original targets (continuity seeds, like `roprec predict`).
+/// `at(i)`: where hole i's prediction goes.
+template <class At>
 void predictOriginal(const PredictionModel& m, PredictionData& d,
-                     const std::vector<HoleRequest>& holes, const std::optional<Vec6>& first,
-                     std::vector<HoleCompensation>& out) {
+                     std::span<const HoleRequest> holes, const std::optional<Vec6>& first,
+                     const At& at) {
   std::optional<Vec6> prev = first;
   for (size_t i = 0; i < holes.size(); ++i) {
-    out[i].id = holes[i].id;
+    HolePrediction& b = at(i);
     try {
-      out[i].before = predictHole(m, d, holes[i], prev ? &*prev : nullptr);
+      b = predictHole(m, d, holes[i], prev ? &*prev : nullptr);
     } catch (const std::exception& e) {
       // isolated per hole: the others are predicted and compensated as usual
-      out[i].before = HolePrediction{};
-      out[i].before.id = holes[i].id;
-      out[i].before.status = HoleStatus::kNotConverged;
-      out[i].before.verdict = Verdict::kNotConverged;
-      out[i].before.reason = std::string("prediction failed: ") + e.what();
+      b = HolePrediction{};
+      b.id = holes[i].id;
+      b.status = HoleStatus::kNotConverged;
+      b.verdict = Verdict::kNotConverged;
+      b.reason = std::string("prediction failed: ") + e.what();
       continue;
     }
-    if (out[i].before.status == HoleStatus::kOk) prev = out[i].before.joints;
+    if (b.status == HoleStatus::kOk) prev = b.joints;
   }
 }
 
@@ -298,10 +300,14 @@ struct NodeCount {
   bool relaxed_wrist{false};
 };
 
+/// The note of a hole where no rotation meets the wrist margin (NodeCount::relaxed_wrist).
+constexpr const char* kRelaxedWristNote =
+    "no rotation about the drill axis meets |θ5| ≥ the wrist margin at this hole";
+
 /// The ψ grid of hole h seeded with s (keep: the single ψ = 0 candidate). Where |θ5| ≥ margin
-/// fails for every ψ, the margin becomes a penalty and `note` says so.
+/// fails for every ψ, the margin becomes a penalty (relaxed_wrist: the hole's note says so).
 NodeCount holeNodes(Evaluator& ev, const HoleRequest& h, const Vec6& s, int branch, int grid,
-                    std::span<Node> nodes, NoteText& note) {
+                    std::span<Node> nodes) {
   const bool choose = ev.o.mode != OrientationMode::kKeep;
   NodeCount count;
   bool any = false;
@@ -319,10 +325,7 @@ NodeCount holeNodes(Evaluator& ev, const HoleRequest& h, const Vec6& s, int bran
       nodes[static_cast<size_t>(k)] = ev.evaluate(h, gridPsi(k, grid), branch, s, false, true);
       any |= nodes[static_cast<size_t>(k)].feasible;
     }
-    if (any) {
-      count.relaxed_wrist = true;
-      note = "no rotation about the drill axis meets |θ5| ≥ the wrist margin at this hole";
-    }
+    if (any) count.relaxed_wrist = true;
   }
   return count;
 }
@@ -423,7 +426,8 @@ std::vector<int> dpBacktrack(const Grid<Cost>& cost, const Grid<int>& from) {
 /// Returns the chosen node per hole (−1: none); `nodes` receives the grids.
 std::vector<int> chooseSequence(std::vector<Evaluator>& evs, Evaluator& serial,
                                 const std::vector<HoleRequest>& holes,
-                                std::vector<HoleCompensation>& out, int grid, Grid<Node>& nodes,
+                                const std::vector<HolePrediction>& before,
+                                std::vector<char>& relaxed, int grid, Grid<Node>& nodes,
                                 CompensationStats& st, double& thr) {
   constexpr size_t kBlock = 1024;  // holes per block of the pipeline (a block boundary costs
                                    // a wait for its slowest worker)
@@ -440,20 +444,22 @@ std::vector<int> chooseSequence(std::vector<Evaluator>& evs, Evaluator& serial,
   Vec6 seed = serial.m.reference_pose;
   DpChain chain;
   thr = o.jump_threshold;
+  relaxed.assign(n, 0);
   auto onWorker = [&](int w, size_t i) {
-    const HolePrediction& b = out[i].before;
+    const HolePrediction& b = before[i];
     if (b.status != HoleStatus::kOk) return;
-    counts[i] = holeNodes(evs[static_cast<size_t>(w)], holes[i], b.joints, branchOf(b), grid,
-                          nodes[i], out[i].note);
+    counts[i] =
+        holeNodes(evs[static_cast<size_t>(w)], holes[i], b.joints, branchOf(b), grid, nodes[i]);
   };
   auto inOrder = [&](size_t b, size_t e) {
     for (size_t i = b; i < e; ++i) {
-      const HolePrediction& h = out[i].before;
+      const HolePrediction& h = before[i];
       if (h.status != HoleStatus::kOk)
-        counts[i] = holeNodes(serial, holes[i], seed, branchOf(h), grid, nodes[i], out[i].note);
+        counts[i] = holeNodes(serial, holes[i], seed, branchOf(h), grid, nodes[i]);
       st.dp_nodes += counts[i].nodes;
       st.infeasible_nodes += counts[i].infeasible;
       if (counts[i].relaxed_wrist) ++st.relaxed_wrist;
+      relaxed[i] = counts[i].relaxed_wrist ? 1 : 0;
       for (const Node& nd : nodes[i]) {
         if (nd.feasible) {
           seed = nd.q;
@@ -634,8 +640,8 @@ size_t previousFeasible(const std::vector<Node>& chosen, size_t i) {
 /// predecessor changed is refined again (the only input that differs), so the result is the
 /// sequential one for any thread count.
 void refineTurned(std::vector<Evaluator>& evs, const std::vector<HoleRequest>& holes,
-                  const std::vector<HoleCompensation>& out, std::vector<Node>& chosen, int grid,
-                  double thr, CompensationStats& st) {
+                  const std::vector<char>& relaxed, std::vector<Node>& chosen, int grid, double thr,
+                  CompensationStats& st) {
   const size_t n = chosen.size();
   auto turned = [&](size_t i) { return chosen[i].feasible && std::abs(chosen[i].psi) > kPsiKept; };
   std::vector<std::unique_ptr<Refiner>> refiners;  // one per thread
@@ -644,15 +650,14 @@ void refineTurned(std::vector<Evaluator>& evs, const std::vector<HoleRequest>& h
   std::vector<Refined> spec(n);
   parallelFor(n, static_cast<int>(evs.size()), [&](int w, size_t i) {
     if (turned(i))
-      spec[i] = refiners[static_cast<size_t>(w)]->refine(holes, chosen, i, out[i].note.empty(),
-                                                         grid, thr);
+      spec[i] = refiners[static_cast<size_t>(w)]->refine(holes, chosen, i, !relaxed[i], grid, thr);
   });
   std::vector<char> changed(n, 0);
   for (size_t i = 0; i < n; ++i) {
     if (!turned(i)) continue;
     const size_t p = previousFeasible(chosen, i);
     const Refined r = p < n && changed[p]
-                          ? refiners[0]->refine(holes, chosen, i, out[i].note.empty(), grid, thr)
+                          ? refiners[0]->refine(holes, chosen, i, !relaxed[i], grid, thr)
                           : std::move(spec[i]);
     st.nlopt_evaluations += r.evaluations;
     if (!r.changed) continue;
@@ -936,8 +941,8 @@ void infeasibleZeroReason(const Node& zero, const CompensationOptions& o, Compen
 /// Why hole i does not keep ψ = 0 (`zero`: its ψ = 0 candidate); counts the reason in `st`.
 /// Written into `r` (inline: no allocation).
 void psiReason(const Evaluator& ev, const std::vector<HoleRequest>& holes,
-               const std::vector<Node>& chosen, const std::vector<HoleCompensation>& out,
-               const Node& zero, size_t i, double thr, CompensationStats& st, PsiReasonText& r) {
+               const std::vector<Node>& chosen, const Node& zero, size_t i, double thr,
+               CompensationStats& st, PsiReasonText& r) {
   const CompensationOptions& o = ev.o;
   r.clear();
   if (!zero.feasible) {
@@ -957,7 +962,10 @@ void psiReason(const Evaluator& ev, const std::vector<HoleRequest>& holes,
       r.appendf("keeping the programmed rotation would turn axis %d by ", j.second)
           .append(cFixed(j.first / kDeg, 1))
           .append(dir < 0 ? " deg after hole " : " deg before hole ");
-      r.append(out[k].id).append(" (jump threshold ").append(cFixed(thr / kDeg, 1)).append(" deg)");
+      r.append(holes[k].id)
+          .append(" (jump threshold ")
+          .append(cFixed(thr / kDeg, 1))
+          .append(" deg)");
     }
   }
   if (!r.empty()) {
@@ -981,11 +989,11 @@ constexpr size_t kKeepBlock = 4096;
 /// U_work, when the jump constraints with the final neighbours allow it.
 void takeKeepWhereStiffEnough(const std::vector<HoleRequest>& holes, const Node& programmed,
                               double thr, size_t i, HoleCompensation& k, std::vector<Node>& chosen,
-                              std::vector<HoleCompensation>& out) {
-  if (!out[i].ok || !programmed.feasible || !k.ok) return;
-  out[i].U_work_keep = k.after.U_work_exact;
-  const bool turned = std::abs(out[i].psi) > kPsiKept;
-  if (turned && k.after.U_work_exact * (1.0 - kStiffnessGainMin) >= out[i].after.U_work_exact)
+                              HoleCompensation& c) {
+  if (!c.ok || !programmed.feasible || !k.ok) return;
+  c.U_work_keep = k.after.U_work_exact;
+  const bool turned = std::abs(c.psi) > kPsiKept;
+  if (turned && k.after.U_work_exact * (1.0 - kStiffnessGainMin) >= c.after.U_work_exact)
     return;  // turned, and stiffer by the minimum gain
   // ψ = 0 is the keep result itself; a turned hole goes back when the jump limit allows
   bool ok = true;
@@ -996,29 +1004,31 @@ void takeKeepWhereStiffEnough(const std::vector<HoleRequest>& holes, const Node&
   if (turned && !ok) return;
   chosen[i] = programmed;
   k.U_work_keep = k.after.U_work_exact;
-  out[i] = std::move(k);
+  c = std::move(k);
 }
 
-/// Stiffest: the keep result (ψ = 0, positions only) of every hole with a ψ = 0 posture (holes in
-/// parallel, kKeepBlock holes at a time), then takeKeepWhereStiffEnough for each hole of the
-/// block in hole order (a keep result depends on no other hole's choice, so the blocks change
-/// nothing but the memory). A compensated hole's result carries its stage-1 part (stageOne).
+/// Stiffest, holes [first, last): the keep result (ψ = 0, positions only) of every hole with a ψ =
+/// 0 posture (holes in parallel, kKeepBlock holes at a time), then takeKeepWhereStiffEnough for
+/// each hole of the block in hole order (a keep result depends on no other hole's choice, so the
+/// blocks change nothing but the memory). A compensated hole's result carries its stage-1 part
+/// (stageOne).
 void stiffestAgainstKeep(std::vector<Evaluator>& evs, const std::vector<HoleRequest>& holes,
                          const std::vector<Node>& programmed, std::vector<Node>& chosen, double thr,
-                         std::vector<HoleCompensation>& out) {
-  const size_t n = out.size();
+                         std::span<HoleCompensation> res, size_t first) {
+  const size_t n = first + res.size();
+  auto out = [&](size_t i) -> HoleCompensation& { return res[i - first]; };
   std::vector<HoleCompensation> keep;  // the keep results of one block of holes
-  for (size_t b = 0; b < n; b += kKeepBlock) {
+  for (size_t b = first; b < n; b += kKeepBlock) {
     const size_t e = std::min(n, b + kKeepBlock);
     keep.assign(e - b, HoleCompensation{});
     parallelFor(e - b, static_cast<int>(evs.size()), [&](int w, size_t j) {
       const size_t i = b + j;
-      if (out[i].ok && programmed[i].feasible)
-        keep[j] = finalizeHole(evs[static_cast<size_t>(w)], holes[i], stageOne(out[i]),
+      if (out(i).ok && programmed[i].feasible)
+        keep[j] = finalizeHole(evs[static_cast<size_t>(w)], holes[i], stageOne(out(i)),
                                programmed[i], true);
     });
     for (size_t i = b; i < e; ++i)
-      takeKeepWhereStiffEnough(holes, programmed[i], thr, i, keep[i - b], chosen, out);
+      takeKeepWhereStiffEnough(holes, programmed[i], thr, i, keep[i - b], chosen, out(i));
   }
 }
 
@@ -1041,103 +1051,60 @@ std::string notCompensatedReason(const HoleCompensation& c, const Node& chosen) 
 
 /// Stage 1 with the continuity seeds of `roprec predict` (predictHoles on `threads` workers); a
 /// hole whose prediction throws makes it fall back to the sequential loop, which isolates it.
-/// With workers, the results (~4 kB a hole, ~20 ms of page faults for 10,000 holes on one
-/// thread) are built on a task of their own while predictHoles' sequential IK pass runs.
-std::vector<HoleCompensation> predictOriginalThreads(const PredictionModel& m, PredictionData& d,
-                                                     const std::vector<HoleRequest>& holes,
-                                                     const std::optional<Vec6>& first,
-                                                     int threads) {
-  std::vector<HoleCompensation> out;
-  std::shared_future<void> built;
-  if (threads > 1) {
-    built = std::async(std::launch::async, [&] { out.resize(holes.size()); }).share();
-  } else {
-    out.resize(holes.size());
-  }
-  auto ready = [&] {
-    if (built.valid()) built.get();  // rethrows the task's error
-  };
+std::vector<HolePrediction> predictOriginalThreads(const PredictionModel& m, PredictionData& d,
+                                                   const std::vector<HoleRequest>& holes,
+                                                   const std::optional<Vec6>& first, int threads) {
+  std::vector<HolePrediction> out(holes.size());
   try {
     PredictOptions po;
     po.threads = threads;
     po.seed = first;
-    predictHoles(m, holes, po, [&](size_t i) -> HolePrediction& {
-      ready();
-      return out[i].before;
-    });
-    ready();
-    for (size_t i = 0; i < holes.size(); ++i) out[i].id = holes[i].id;
+    predictHoles(m, holes, po, [&](size_t i) -> HolePrediction& { return out[i]; });
     return out;
   } catch (const std::exception&) {
     // the sequential loop below reports the failing hole as not converged
   }
-  ready();
-  predictOriginal(m, d, holes, first, out);
+  predictOriginal(m, d, holes, first, [&](size_t i) -> HolePrediction& { return out[i]; });
   return out;
 }
 
-/// compensateHoles over holes that share one model (one TCP), the first seeded with `first`.
-std::vector<HoleCompensation> compensateRun(const PredictionModel& m,
-                                            const std::vector<HoleRequest>& holes,
-                                            const CompensationOptions& o,
-                                            const std::optional<Vec6>& first,
-                                            CompensationStats& st) {
-  const size_t n = holes.size();
-  const int threads = static_cast<int>(
-      std::clamp<size_t>(static_cast<size_t>(std::max(1, o.threads)), 1, std::max<size_t>(1, n)));
+/// Where a run's finished holes go: handed to a sink a block at a time, or (`whole`) kept in
+/// one vector the run returns (compensateHoles' result; no second copy of the results).
+struct RunOutput {
+  const CompensationSink* sink{nullptr};
+  size_t offset{0};  ///< index of the run's first hole in the request list
+  std::vector<HoleCompensation>* whole{nullptr};
+};
+
+/// The per-thread evaluators of a run (their scratch first: an Evaluator holds a reference).
+struct Workers {
   std::vector<PredictionData> scratch;
-  scratch.reserve(static_cast<size_t>(threads));
   std::vector<Evaluator> evs;
-  evs.reserve(static_cast<size_t>(threads));
-  for (int w = 0; w < threads; ++w) {
-    scratch.emplace_back(m);
-    evs.push_back(Evaluator{m, scratch.back(), o, true});
-  }
-  std::vector<HoleCompensation> out = predictOriginalThreads(m, scratch[0], holes, first, threads);
-  const int grid = o.mode == OrientationMode::kKeep ? 1 : std::max(4, o.grid);
-  Grid<Node> nodes;
-  double thr = 0;
-  PredictionData serial_scratch(m);
-  Evaluator serial{m, serial_scratch, o, true};
-  const std::vector<int> choice = chooseSequence(evs, serial, holes, out, grid, nodes, st, thr);
-  st.jump_threshold_used = thr;
-  std::vector<Node> chosen(n);
-  for (size_t i = 0; i < n; ++i) {
-    if (choice[i] >= 0) chosen[i] = nodes[i][static_cast<size_t>(choice[i])];
-  }
-  if (o.mode != OrientationMode::kKeep && o.refine)
-    refineTurned(evs, holes, out, chosen, grid, thr, st);
-  const bool stiffest = o.mode == OrientationMode::kStiffest;
-  // the programmed posture (ψ = 0, no wrist requirement) of each hole: stiffest's reference
-  std::vector<Node> programmed(n);
-  if (stiffest) {
-    parallelFor(n, threads, [&](int w, size_t i) {
-      const HolePrediction& b = out[i].before;
-      if (b.status == HoleStatus::kOk)
-        programmed[i] =
-            evs[static_cast<size_t>(w)].evaluate(holes[i], 0.0, b.branch, b.joints, false, true);
-    });
-  }
-  // stiffest compares with the keep result later, made from the stage-1 part the result carries
-  // (stageOne); the other modes hand each hole's over (no copy)
-  parallelFor(n, threads, [&](int w, size_t i) {
-    std::string why = notCompensatedReason(out[i], chosen[i]);
-    if (!why.empty()) {
-      out[i].reason = std::move(why);
-      return;
+  Workers(const PredictionModel& m, const CompensationOptions& o, size_t n) {
+    const int threads = static_cast<int>(
+        std::clamp<size_t>(static_cast<size_t>(std::max(1, o.threads)), 1, std::max<size_t>(1, n)));
+    scratch.reserve(static_cast<size_t>(threads));
+    evs.reserve(static_cast<size_t>(threads));
+    for (int w = 0; w < threads; ++w) {
+      scratch.emplace_back(m);
+      evs.push_back(Evaluator{m, scratch.back(), o, true});
     }
-    out[i] = finalizeHole(evs[static_cast<size_t>(w)], holes[i],
-                          stiffest ? stageOne(out[i]) : std::move(out[i]), chosen[i],
-                          o.mode == OrientationMode::kKeep);
-  });
-  if (stiffest) stiffestAgainstKeep(evs, holes, programmed, chosen, thr, out);
-  const Evaluator& ev = evs[0];
-  for (size_t i = 0; i < n; ++i) {
-    HoleCompensation& c = out[i];
+  }
+  [[nodiscard]] int threads() const { return static_cast<int>(evs.size()); }
+};
+
+/// The counters of the finished holes [b, e) of `out` (ψ reasons and U_work for the modes that
+/// choose ψ: psiReason reads the final chosen postures of the neighbours).
+void countFinished(const Evaluator& ev, const std::vector<HoleRequest>& holes,
+                   const std::vector<Node>& chosen, const Grid<Node>* nodes, double thr,
+                   std::span<HoleCompensation> out, size_t b, CompensationStats& st) {
+  for (size_t k = 0; k < out.size(); ++k) {
+    HoleCompensation& c = out[k];
     if (!c.ok) continue;
+    const size_t i = b + k;
     if (std::abs(c.psi) > kPsiKept) {
       ++st.psi_changed;
-      psiReason(ev, holes, chosen, out, nodes[i][0], i, thr, st, c.psi_reason);
+      psiReason(ev, holes, chosen, (*nodes)[i][0], i, thr, st, c.psi_reason);
     }
     if (c.config_changed && c.config_in_program) ++st.config_changed;
     if (std::isfinite(c.U_work_keep)) {
@@ -1147,7 +1114,186 @@ std::vector<HoleCompensation> compensateRun(const PredictionModel& m,
       st.U_work_gain_max = std::max(st.U_work_gain_max, c.U_work_keep - c.after.U_work_exact);
     }
   }
-  return out;
+}
+
+/// keep, block by block: each block of holes predicted (stage 1), its ψ = 0 candidate (stage 2;
+/// keep's sequence is the candidate of every hole: no jump limit, one node), compensated
+/// (stage 5) and handed over before the next block starts. The results and counters of
+/// chooseSequence and the stage-5 pass over the whole run.
+void keepRun(Workers& w, const std::vector<HoleRequest>& holes, const std::optional<Vec6>& first,
+             CompensationStats& st, const RunOutput& to) {
+  std::vector<Evaluator>& evs = w.evs;
+  const PredictionModel& m = evs[0].m;
+  const int threads = w.threads();
+  const size_t n = holes.size();
+  PredictionData serial_scratch(m);
+  Evaluator serial{m, serial_scratch, evs[0].o, true};
+  std::optional<Vec6> prev = first;
+  Vec6 seed = m.reference_pose;  // the serial candidates' seed (holes not predicted as they are)
+  const size_t cap = std::min(n, kCompensationBlock);
+  std::vector<HoleCompensation> own;
+  std::vector<Node> node(cap);
+  std::vector<NodeCount> counts(cap);
+  if (to.whole) to.whole->resize(n);
+  for (size_t b = 0; b < n; b += kCompensationBlock) {
+    const size_t e = std::min(n, b + kCompensationBlock);
+    std::vector<HoleCompensation>& blk = to.whole ? *to.whole : own;
+    const size_t o0 = to.whole ? b : 0;  // the block's first hole in blk
+    if (!to.whole) {
+      own.clear();
+      own.resize(e - b);
+    }
+    const std::span<HoleCompensation> out(blk.data() + o0, e - b);
+    {  // stage 1 with the continuity seed carried from block to block (predictHoles' seeds over
+       // the run); a hole whose prediction throws makes the block fall back to the sequential
+       // loop, which isolates it
+      const std::span<const HoleRequest> req =
+          std::span<const HoleRequest>(holes).subspan(b, e - b);
+      try {
+        PredictOptions po;
+        po.threads = threads;
+        po.seed = prev;
+        predictHoles(m, req, po, [&](size_t j) -> HolePrediction& { return out[j].before; });
+        for (size_t j = 0; j < req.size(); ++j) out[j].id = req[j].id;
+      } catch (const std::exception&) {
+        predictOriginal(m, w.scratch[0], req, prev,
+                        [&](size_t j) -> HolePrediction& { return out[j].before; });
+        for (size_t j = 0; j < req.size(); ++j) out[j].id = req[j].id;
+      }
+      for (const HoleCompensation& c : out) {
+        if (c.before.status == HoleStatus::kOk) prev = c.before.joints;
+      }
+    }
+    std::fill(counts.begin(), counts.end(), NodeCount{});
+    parallelFor(e - b, threads, [&](int wk, size_t j) {
+      const HolePrediction& bp = out[j].before;
+      if (bp.status != HoleStatus::kOk) return;
+      counts[j] =
+          holeNodes(evs[static_cast<size_t>(wk)], holes[b + j], bp.joints,
+                    evs[0].o.allow_branch_change ? -1 : bp.branch, 1, std::span<Node>(&node[j], 1));
+    });
+    for (size_t j = 0; j < e - b; ++j) {
+      if (out[j].before.status != HoleStatus::kOk)
+        counts[j] = holeNodes(serial, holes[b + j], seed, -1, 1, std::span<Node>(&node[j], 1));
+      st.dp_nodes += counts[j].nodes;
+      st.infeasible_nodes += counts[j].infeasible;
+      if (counts[j].relaxed_wrist) {
+        ++st.relaxed_wrist;
+        out[j].note = kRelaxedWristNote;
+      }
+      if (node[j].feasible) seed = node[j].q;
+    }
+    parallelFor(e - b, threads, [&](int wk, size_t j) {
+      std::string why = notCompensatedReason(out[j], node[j]);
+      if (!why.empty()) {
+        out[j].reason = std::move(why);
+        return;
+      }
+      out[j] = finalizeHole(evs[static_cast<size_t>(wk)], holes[b + j], std::move(out[j]), node[j],
+                            true);
+    });
+    countFinished(evs[0], holes, {}, nullptr, 0.0, out, b, st);
+    if (to.sink) (*to.sink)(to.offset + b, out);
+  }
+  st.jump_threshold_used = evs[0].o.jump_threshold;
+}
+
+/// flip-free and stiffest: stage 1 over the run (the predictions alone), the sequence chosen over
+/// the whole run (stages 2 to 4), then the holes finished (stage 5; stiffest against keep) and
+/// handed over a block at a time. A stiffest hole is handed over once the next hole with a
+/// chosen posture is final (its ψ reason reads it).
+void sequenceRun(Workers& w, const std::vector<HoleRequest>& holes,
+                 const std::optional<Vec6>& first, CompensationStats& st, const RunOutput& to) {
+  std::vector<Evaluator>& evs = w.evs;
+  const PredictionModel& m = evs[0].m;
+  const CompensationOptions& o = evs[0].o;
+  const int threads = w.threads();
+  const size_t n = holes.size();
+  std::vector<HolePrediction> before =
+      predictOriginalThreads(m, w.scratch[0], holes, first, threads);
+  const int grid = std::max(4, o.grid);
+  Grid<Node> nodes;
+  double thr = 0;
+  std::vector<char> relaxed;
+  std::vector<Node> chosen(n);
+  {
+    PredictionData serial_scratch(m);
+    Evaluator serial{m, serial_scratch, o, true};
+    const std::vector<int> choice =
+        chooseSequence(evs, serial, holes, before, relaxed, grid, nodes, st, thr);
+    st.jump_threshold_used = thr;
+    for (size_t i = 0; i < n; ++i) {
+      if (choice[i] >= 0) chosen[i] = nodes[i][static_cast<size_t>(choice[i])];
+    }
+  }
+  if (o.refine) refineTurned(evs, holes, relaxed, chosen, grid, thr, st);
+  const bool stiffest = o.mode == OrientationMode::kStiffest;
+  // the programmed posture (ψ = 0, no wrist requirement) of each hole: stiffest's reference
+  std::vector<Node> programmed(stiffest ? n : 0);
+  if (stiffest) {
+    parallelFor(n, threads, [&](int wk, size_t i) {
+      const HolePrediction& b = before[i];
+      if (b.status == HoleStatus::kOk)
+        programmed[i] =
+            evs[static_cast<size_t>(wk)].evaluate(holes[i], 0.0, b.branch, b.joints, false, true);
+    });
+  }
+  if (to.whole) to.whole->reserve(to.whole->size() + n);
+  std::vector<HoleCompensation> pend;  // the finished holes [ready, e) not handed over yet
+  size_t ready = 0;
+  for (size_t b = 0; b < n; b += kCompensationBlock) {
+    const size_t e = std::min(n, b + kCompensationBlock);
+    const size_t p0 = pend.size();  // hole b in pend
+    pend.resize(p0 + (e - b));
+    // the stage-1 part (id, prediction, note) taken over; stiffest compares with the keep result
+    // made later from the copy the result carries (stageOne)
+    parallelFor(e - b, threads, [&](int wk, size_t j) {
+      const size_t i = b + j;
+      HoleCompensation& c = pend[p0 + j];
+      c.id = holes[i].id;
+      c.before = std::move(before[i]);
+      if (relaxed[i]) c.note = kRelaxedWristNote;
+      std::string why = notCompensatedReason(c, chosen[i]);
+      if (!why.empty()) {
+        c.reason = std::move(why);
+        return;
+      }
+      c = finalizeHole(evs[static_cast<size_t>(wk)], holes[i],
+                       stiffest ? stageOne(c) : std::move(c), chosen[i], false);
+    });
+    if (stiffest)
+      stiffestAgainstKeep(evs, holes, programmed, chosen, thr,
+                          std::span<HoleCompensation>(pend).subspan(p0), b);
+    size_t upto = e;  // stiffest: the last hole with a posture waits for the next block
+    if (stiffest && e < n) {
+      for (size_t i = e; i-- > ready;) {
+        if (chosen[i].feasible) {
+          upto = i;
+          break;
+        }
+      }
+    }
+    const std::span<HoleCompensation> done(pend.data(), upto - ready);
+    countFinished(evs[0], holes, chosen, &nodes, thr, done, ready, st);
+    if (to.sink) (*to.sink)(to.offset + ready, done);
+    if (to.whole) {
+      for (HoleCompensation& c : done) to.whole->push_back(std::move(c));
+    }
+    pend.erase(pend.begin(), pend.begin() + static_cast<std::ptrdiff_t>(upto - ready));
+    ready = upto;
+  }
+}
+
+/// compensateHoles over holes that share one model (one TCP), the first seeded with `first`.
+void compensateRun(const PredictionModel& m, const std::vector<HoleRequest>& holes,
+                   const CompensationOptions& o, const std::optional<Vec6>& first,
+                   CompensationStats& st, const RunOutput& to) {
+  Workers w(m, o, holes.size());
+  if (o.mode == OrientationMode::kKeep) {
+    keepRun(w, holes, first, st, to);
+  } else {
+    sequenceRun(w, holes, first, st, to);
+  }
 }
 
 /// The statistics of two runs of holes as one sequence's.
@@ -1173,20 +1319,21 @@ void addStats(CompensationStats& to, const CompensationStats& s) {
 
 }  // namespace
 
-std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,
-                                              const std::vector<HoleRequest>& holes,
-                                              const CompensationOptions& o,
-                                              CompensationStats* stats) {
+namespace {
+
+/// compensateHoles into `to`: each run of holes drilled at one TCP (drills with TCPs of their own)
+/// with its model, seeded with the joints of the run before (a tool change is a repositioning
+/// move).
+void compensateAll(const PredictionModel& m, const std::vector<HoleRequest>& holes,
+                   const CompensationOptions& o, const CompensationSink* sink,
+                   std::vector<HoleCompensation>* whole, CompensationStats* stats) {
   CompensationStats st;
   if (!hasDrillModels(m)) {
-    std::vector<HoleCompensation> out = compensateRun(m, holes, o, std::nullopt, st);
+    compensateRun(m, holes, o, std::nullopt, st, RunOutput{sink, 0, whole});
     if (stats) *stats = st;
-    return out;
+    return;
   }
-  // drills with TCPs of their own: each run of holes drilled at one TCP is compensated with its
-  // model, seeded with the joints of the run before (a tool change is a repositioning move)
-  std::vector<HoleCompensation> out;
-  out.reserve(holes.size());
+  if (whole) whole->reserve(holes.size());
   std::optional<Vec6> seed;
   for (size_t b = 0; b < holes.size();) {
     const PredictionModel& mb = modelFor(m, holes[b]);
@@ -1195,16 +1342,42 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,
     const std::vector<HoleRequest> run(holes.begin() + static_cast<std::ptrdiff_t>(b),
                                        holes.begin() + static_cast<std::ptrdiff_t>(e));
     CompensationStats rs;
-    std::vector<HoleCompensation> part = compensateRun(mb, run, o, seed, rs);
+    std::vector<HoleCompensation> part;
+    const CompensationSink each = [&](size_t first, std::span<HoleCompensation> done) {
+      for (const HoleCompensation& c : done) {
+        if (c.before.status == HoleStatus::kOk) seed = c.before.joints;
+      }
+      if (sink) (*sink)(first, done);
+    };
+    compensateRun(mb, run, o, seed, rs,
+                  RunOutput{whole ? nullptr : &each, b, whole ? &part : nullptr});
     addStats(st, rs);
-    for (HoleCompensation& c : part) {
-      if (c.before.status == HoleStatus::kOk) seed = c.before.joints;
-      out.push_back(std::move(c));
+    if (whole) {
+      for (HoleCompensation& c : part) {
+        if (c.before.status == HoleStatus::kOk) seed = c.before.joints;
+        whole->push_back(std::move(c));
+      }
     }
     b = e;
   }
   if (stats) *stats = st;
+}
+
+}  // namespace
+
+std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,
+                                              const std::vector<HoleRequest>& holes,
+                                              const CompensationOptions& o,
+                                              CompensationStats* stats) {
+  std::vector<HoleCompensation> out;
+  compensateAll(m, holes, o, nullptr, &out, stats);
   return out;
+}
+
+void compensateHoles(const PredictionModel& m, const std::vector<HoleRequest>& holes,
+                     const CompensationOptions& o, const CompensationSink& sink,
+                     CompensationStats* stats) {
+  compensateAll(m, holes, o, &sink, nullptr, stats);
 }
 
 void compensateTarget(const PredictionModel& base, PredictionData& d, const HoleRequest& h,

@@ -39,7 +39,10 @@
 /// same joints up to whole turns; a joint within kFlagBoundaryTolerance of a flag boundary
 /// matches either side); otherwise the flags of the command are written and the change is
 /// listed with its reason (`config_changed`, `config_reason`).
+#include <cstddef>
+#include <functional>
 #include <limits>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -151,6 +154,21 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,
                                               const std::vector<HoleRequest>& holes,
                                               const CompensationOptions& options,
                                               CompensationStats* stats = nullptr);
+
+/// Receives the compensated holes a block at a time, in hole order: `holes[k]` is hole
+/// `first + k` of the request list. The holes may be moved from; they are dropped after the call.
+using CompensationSink = std::function<void(std::size_t first, std::span<HoleCompensation> holes)>;
+
+/// Holes finished (stage 5) and handed to a CompensationSink at a time.
+inline constexpr std::size_t kCompensationBlock = 2048;
+
+/// compensateHoles with the results handed to `sink` block by block instead of returned (the same
+/// holes, bytes and statistics). keep holds one block of results at a time (each block of holes is
+/// predicted, compensated and handed over in turn); flip-free and stiffest choose the sequence
+/// over the whole program first, then finish and hand over the holes a block at a time.
+void compensateHoles(const PredictionModel& m, const std::vector<HoleRequest>& holes,
+                     const CompensationOptions& options, const CompensationSink& sink,
+                     CompensationStats* stats = nullptr);
 
 /// One target compensated with its orientation kept (the `keep` mode of compensateHoles for a
 /// program of this one hole: the same T_programmed and theta_cmd, bit for bit) into `out`,

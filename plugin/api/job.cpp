@@ -325,10 +325,9 @@ bool aimsAtRegisteredPart(const PredictionContext& c, const JobOptions& o) {
 
 /// The edits of hole i's targets (T_new = ΔT · T · Rz(ψ)) queued into `log`, its refusals
 /// appended to `refused`. Writes only the hole's own targets.
-void editHoleTargets(CompensationResult& r, size_t i, postproc::EditLog& log,
-                     std::vector<std::string>& refused) {
+void editHoleTargets(CompensationResult& r, const HoleCompensation& h, size_t i,
+                     postproc::EditLog& log, std::vector<std::string>& refused) {
   postproc::Program& prog = *r.context.job.program;
-  const HoleCompensation& h = r.holes[i];
   const HoleSource& src = r.context.job.sources[i];
   for (const int t : src.targets) {
     const postproc::Target& tg = prog.targets()[static_cast<size_t>(t)];
@@ -381,14 +380,15 @@ std::vector<std::string> editProgram(CompensationResult& r, int threads) {
         const size_t k = i % kBlock;
         blk.logs[k].ops.clear();
         blk.refusals[k].clear();
-        if (edited[i] && !shared[i]) editHoleTargets(r, i, blk.logs[k], blk.refusals[k]);
+        if (edited[i] && !shared[i])
+          editHoleTargets(r, r.holes[i], i, blk.logs[k], blk.refusals[k]);
       },
       [&](size_t b, size_t e) {
         Block& blk = blockOf(b);
         for (size_t i = b; i < e; ++i) {
           if (!edited[i]) continue;
           const size_t k = i - b;
-          if (shared[i]) editHoleTargets(r, i, blk.logs[k], blk.refusals[k]);
+          if (shared[i]) editHoleTargets(r, r.holes[i], i, blk.logs[k], blk.refusals[k]);
           postproc::applyEdits(prog, std::move(blk.logs[k]));
           for (std::string& x : blk.refusals[k]) refused.push_back(std::move(x));
         }
@@ -423,29 +423,61 @@ bool sameFile(const std::string& a, const std::string& b) {
   return !e && ca == cb;
 }
 
+/// What compensationStats carries from a hole to the next: the hole before.
+struct StatsCarry {
+  bool any{false};
+  bool ok{false};
+  Vec6 theta_cmd{Vec6::Zero()};
+  Vec6 joints{Vec6::Zero()};
+};
+
+/// Hole i (h) added to the before/after statistics.
+void addHoleStats(CompensationResult::Stats& s, StatsCarry& prev,
+                  const std::vector<HoleRequest>& req, size_t i, const HoleCompensation& h,
+                  double jump_threshold) {
+  if (h.before.status == HoleStatus::kOk)
+    s.error_before_um.push_back(h.before.position_error * 1e6);
+  if (h.before.verdict == Verdict::kConforms) ++s.conform_before;
+  if (h.ok) {
+    s.residual_after_um.push_back(perpNorm(h.residual, h.T_nominal.linear().col(2)) * 1e6);
+    if (h.after.verdict == Verdict::kConforms) ++s.conform_after;
+  }
+  const bool same_face = i > 0 && req[i].T_W_tcp.linear().col(2).dot(
+                                      req[i - 1].T_W_tcp.linear().col(2)) > std::cos(10.0 * kDeg);
+  if (prev.any && h.ok && prev.ok && same_face) {
+    s.jumps_after += wristJump(h.theta_cmd, prev.theta_cmd, jump_threshold) ? 1 : 0;
+    s.jumps_before += wristJump(h.before.joints, prev.joints, jump_threshold) ? 1 : 0;
+  }
+  prev.any = true;
+  prev.ok = h.ok;
+  prev.theta_cmd = h.theta_cmd;
+  prev.joints = h.before.joints;
+}
+
 /// Before/after statistics: errors ⊥ axis, conforming holes, axis-4/6 jumps within a face.
 CompensationResult::Stats compensationStats(const CompensationResult& r, double jump_threshold) {
   CompensationResult::Stats s;
-  const auto& req = r.context.job.requests;
-  const HoleCompensation* prev = nullptr;
-  for (size_t i = 0; i < r.holes.size(); ++i) {
-    const HoleCompensation& h = r.holes[i];
-    if (h.before.status == HoleStatus::kOk)
-      s.error_before_um.push_back(h.before.position_error * 1e6);
-    if (h.before.verdict == Verdict::kConforms) ++s.conform_before;
-    if (h.ok) {
-      s.residual_after_um.push_back(perpNorm(h.residual, h.T_nominal.linear().col(2)) * 1e6);
-      if (h.after.verdict == Verdict::kConforms) ++s.conform_after;
-    }
-    const bool same_face = i > 0 && req[i].T_W_tcp.linear().col(2).dot(
-                                        req[i - 1].T_W_tcp.linear().col(2)) > std::cos(10.0 * kDeg);
-    if (prev && h.ok && prev->ok && same_face) {
-      s.jumps_after += wristJump(h.theta_cmd, prev->theta_cmd, jump_threshold) ? 1 : 0;
-      s.jumps_before += wristJump(h.before.joints, prev->before.joints, jump_threshold) ? 1 : 0;
-    }
-    prev = &h;
-  }
+  StatsCarry prev;
+  for (size_t i = 0; i < r.holes.size(); ++i)
+    addHoleStats(s, prev, r.context.job.requests, i, r.holes[i], jump_threshold);
   return s;
+}
+
+/// Whether the compensated program may be written (CompensationResult::writable), given `failed`
+/// of `n` holes not compensated and the edits refused.
+void settleWritable(CompensationResult& r, const CompensationJob& job, size_t n) {
+  r.writable = true;
+  if (r.failed && !job.allow_partial) {
+    r.writable = false;
+    r.why_not_writable =
+        std::to_string(r.failed) + " of " + std::to_string(n) +
+        " holes could not be compensated; nothing written (use --allow-partial to keep their "
+        "original targets)";
+  } else if (!r.refused.empty() && !job.allow_partial) {
+    r.writable = false;
+    r.why_not_writable =
+        "the writer refused " + std::to_string(r.refused.size()) + " target edits; nothing written";
+  }
 }
 
 }  // namespace
@@ -581,14 +613,27 @@ CompensationResult compensateJob(const std::string& cell_path, const std::string
   return r;
 }
 
-CompensationResult compensateJobHoles(const std::string& cell_path, const std::string& program_path,
-                                      const CompensationJob& job, const ProgressFn& progress) {
+CompensationResult loadCompensationJob(const std::string& cell_path,
+                                       const std::string& program_path,
+                                       const CompensationJob& job) {
   CompensationResult r;
   r.context = loadContext(cell_path, program_path, job.job);
   if (!r.context.job.program) throw InputError(program_path, 0, "not a program roprec can rewrite");
   if (const auto note = checkNotCompensated(*r.context.job.program, job.force))
     r.context.job.notes.push_back(*note);
   r.orientation = orientationModeName(job.options.mode);
+  return r;
+}
+
+CompensationResult compensateJobHoles(const std::string& cell_path, const std::string& program_path,
+                                      const CompensationJob& job, const ProgressFn& progress) {
+  CompensationResult r = loadCompensationJob(cell_path, program_path, job);
+  compensateLoadedHoles(r, job, progress);
+  return r;
+}
+
+void compensateLoadedHoles(CompensationResult& r, const CompensationJob& job,
+                           const ProgressFn& progress) {
   CompensationOptions options = job.options;
   options.threads = resolvedThreads(job.job.threads);  // the same bytes for any count
   if (r.context.cell.part_registration) {
@@ -600,25 +645,81 @@ CompensationResult compensateJobHoles(const std::string& cell_path, const std::s
   if (progress) progress(r.holes.size(), r.holes.size());
   r.failed = static_cast<int>(
       std::count_if(r.holes.begin(), r.holes.end(), [](const auto& h) { return !h.ok; }));
-  return r;
+  r.hole_count = r.holes.size();
+}
+
+void compensateLoadedStreaming(CompensationResult& r, const CompensationJob& job,
+                               const CompensatedBlockSink& sink) {
+  postproc::Program& prog = *r.context.job.program;
+  prog.position_min_decimals = 5;  // 0.01 µm: the written target carries the compensation
+  // the marker first: the program's first file is written out as the holes are edited
+  postproc::markCompensated(prog, markerText(r.context.cell, r.orientation));
+  const int threads = resolvedThreads(job.job.threads);
+  CompensationOptions options = job.options;
+  options.threads = threads;  // the same bytes for any count
+  const std::vector<HoleRequest>& req = r.context.job.requests;
+  const std::vector<HoleSource>& sources = r.context.job.sources;
+  const size_t n = req.size();
+  // holes that share a target with another hole are edited in hole order (each reads what the
+  // one before wrote), the others prepared on the workers
+  const std::vector<char> shared =
+      holesSharingTargets(sources, std::vector<char>(n, 1), prog.targets().size());
+  // stable[i]: the first byte of the first file that the edits of holes i.. may change (the start
+  // of the line of their earliest target there)
+  const postproc::SourceFile& f0 = prog.files[0];
+  std::vector<std::size_t> stable(n + 1, f0.bytes.size());
+  for (size_t i = n; i-- > 0;) {
+    std::size_t at = stable[i + 1];
+    for (const int t : sources[i].targets) {
+      const postproc::Target& tg = prog.targets()[static_cast<size_t>(t)];
+      if (tg.file != 0 || tg.line < 1) continue;
+      const auto l = static_cast<size_t>(tg.line - 1 - f0.line_base);
+      at = std::min<std::size_t>(at, l < f0.line_starts.size() ? f0.line_starts[l] : 0);
+    }
+    stable[i] = at;
+  }
+  std::vector<postproc::EditLog> logs(std::min(n, kCompensationBlock));
+  std::vector<std::vector<std::string>> refusals(logs.size());
+  StatsCarry carry;
+  const CompensationSink each = [&](size_t first, std::span<HoleCompensation> holes) {
+    if (logs.size() < holes.size()) {  // stiffest may hand over a little more than a block
+      logs.resize(holes.size());
+      refusals.resize(holes.size());
+    }
+    parallelFor(holes.size(), threads, [&](int, size_t k) {
+      logs[k].ops.clear();
+      refusals[k].clear();
+      if (holes[k].ok && !shared[first + k])
+        editHoleTargets(r, holes[k], first + k, logs[k], refusals[k]);
+    });
+    for (size_t k = 0; k < holes.size(); ++k) {
+      const size_t i = first + k;
+      addHoleStats(r.summary, carry, req, i, holes[k], job.options.jump_threshold);
+      if (!holes[k].ok) {
+        ++r.failed;
+        continue;
+      }
+      if (shared[i]) editHoleTargets(r, holes[k], i, logs[k], refusals[k]);
+      postproc::applyEdits(prog, std::move(logs[k]));
+      for (std::string& x : refusals[k]) r.refused.push_back(std::move(x));
+    }
+    sink(r, first, holes, stable[first + holes.size()]);
+  };
+  if (r.context.cell.part_registration) {
+    const std::vector<HoleRequest> aimed = registeredHoles(r.context);
+    compensateHoles(r.context.model, aimed, options, each, &r.stats);
+  } else {
+    compensateHoles(r.context.model, req, options, each, &r.stats);
+  }
+  r.hole_count = n;
+  settleWritable(r, job, n);
 }
 
 void editCompensatedProgram(CompensationResult& r, const CompensationJob& job) {
   r.refused = editProgram(r, resolvedThreads(job.job.threads));
   postproc::markCompensated(*r.context.job.program, markerText(r.context.cell, r.orientation));
   r.summary = compensationStats(r, job.options.jump_threshold);
-  r.writable = true;
-  if (r.failed && !job.allow_partial) {
-    r.writable = false;
-    r.why_not_writable =
-        std::to_string(r.failed) + " of " + std::to_string(r.holes.size()) +
-        " holes could not be compensated; nothing written (use --allow-partial to keep their "
-        "original targets)";
-  } else if (!r.refused.empty() && !job.allow_partial) {
-    r.writable = false;
-    r.why_not_writable =
-        "the writer refused " + std::to_string(r.refused.size()) + " target edits; nothing written";
-  }
+  settleWritable(r, job, r.holes.size());
 }
 
 bool cellIsMilling(const std::string& cell_path) {

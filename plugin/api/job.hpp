@@ -130,7 +130,8 @@ struct CompensationJob {
 /// of a drill cycle moves with its drill point) in `context.job.program`.
 struct CompensationResult {
   PredictionContext context;
-  std::vector<HoleCompensation> holes;
+  std::vector<HoleCompensation> holes;  ///< empty after compensateLoadedStreaming
+  std::size_t hole_count{0};            ///< holes compensated or not (holes.size() when kept)
   CompensationStats stats;
   std::string orientation;           ///< "keep", "flip-free" or "stiffest"
   std::vector<std::string> refused;  ///< target edits the dialect writer refused
@@ -162,6 +163,30 @@ CompensationResult compensateJob(const std::string& cell_path, const std::string
 /// `why_not_writable`.
 CompensationResult compensateJobHoles(const std::string& cell_path, const std::string& program_path,
                                       const CompensationJob& job, const ProgressFn& progress = {});
+/// compensateJobHoles' first part: the job loaded (context, the "compensated" marker checked,
+/// `orientation`), no hole compensated yet.
+CompensationResult loadCompensationJob(const std::string& cell_path,
+                                       const std::string& program_path, const CompensationJob& job);
+/// compensateJobHoles' second part, on a job loadCompensationJob loaded.
+void compensateLoadedHoles(CompensationResult& r, const CompensationJob& job,
+                           const ProgressFn& progress = {});
+
+/// Receives the compensated holes of compensateLoadedStreaming a block at a time, in hole order:
+/// holes[k] is hole first + k (request r.context.job.requests[first + k]); their targets' edits
+/// are queued in the program, and every edit of the later holes lies at or after byte `stable` of
+/// the program's first file (postproc::EditedFileWriter::flushBefore(stable) writes what is
+/// final). The holes are dropped after the call.
+using CompensatedBlockSink =
+    std::function<void(CompensationResult& r, std::size_t first,
+                       std::span<const HoleCompensation> holes, std::size_t stable)>;
+/// compensateLoadedHoles and editCompensatedProgram in one pass that holds the results of one
+/// block of holes at a time (kCompensationBlock): the compensation marker is queued first, then
+/// each block's targets are edited and the block handed to `sink`. r.holes stays empty; at the
+/// end `hole_count`, `failed`, `stats`, `refused`, `summary`, `writable` and `why_not_writable`
+/// are those of compensateJob (the edits and the program's bytes too).
+void compensateLoadedStreaming(CompensationResult& r, const CompensationJob& job,
+                               const CompensatedBlockSink& sink);
+
 /// compensateJob's second stage: every compensated hole's targets edited in the program, the
 /// compensation marker, the before/after summary and whether the program may be written.
 void editCompensatedProgram(CompensationResult& r, const CompensationJob& job);

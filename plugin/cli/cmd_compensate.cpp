@@ -19,6 +19,7 @@
 #include "plugin/cli/cli.hpp"
 #include "plugin/cli/robot_options.hpp"
 #include "plugin/report/milling_report.hpp"
+#include "postproc/edited_file_writer.hpp"
 #include "postproc/program.hpp"
 
 namespace roprec::cli {
@@ -196,8 +197,8 @@ std::string stat(std::vector<double> v) {
 void printSummary(CommandContext& ctx, const CompensationResult& r, const CompensationOptions& opt,
                   const std::vector<std::string>& written) {
   const CompensationResult::Stats& s = r.summary;
-  ctx.out << "roprec compensate (" << r.orientation << "): " << r.holes.size() << " holes, "
-          << (r.holes.size() - static_cast<size_t>(r.failed)) << " compensated\n";
+  ctx.out << "roprec compensate (" << r.orientation << "): " << r.hole_count << " holes, "
+          << (r.hole_count - static_cast<size_t>(r.failed)) << " compensated\n";
   ctx.out << "  position error ⊥ axis before [µm]: " << stat(s.error_before_um) << "\n";
   ctx.out << "  predicted residual after    [µm]: " << stat(s.residual_after_um) << "\n";
   ctx.out << "  holes conforming (ISO 14253-1): before " << s.conform_before << ", after "
@@ -229,6 +230,105 @@ void printSummary(CommandContext& ctx, const CompensationResult& r, const Compen
   for (const auto& p : written) ctx.out << "  wrote " << p << "\n";
 }
 
+/// A hole that was not compensated, for the messages after the job.
+struct NotCompensated {
+  std::string id;
+  int line{0};
+  std::string reason;
+};
+
+void printNotCompensated(CommandContext& ctx, const std::string& program,
+                         const std::vector<NotCompensated>& failed) {
+  for (const NotCompensated& f : failed) {
+    ctx.err << "roprec: hole " << f.id;
+    if (f.line > 0) ctx.err << " (" << program << ":" << f.line << ")";
+    ctx.err << ": not compensated: " << f.reason << "\n";
+  }
+}
+
+/// Stages `path` into `set` with the bytes `produce` writes, or runs produce with no writer
+/// (nullptr) when there is no such output.
+void stageOptional(OutputSet& set, const std::optional<std::string>& path,
+                   const std::function<void(const ByteWriter*)>& produce) {
+  if (!path) {
+    produce(nullptr);
+    return;
+  }
+  set.stageStream(*path, [&](const ByteWriter& write) { produce(&write); });
+}
+
+/// compensate without a report, in bounded memory for the per-hole results: the holes are
+/// compensated a block at a time and each block goes to its outputs at once — the program's first
+/// file written up to the bytes no later edit changes (EditedFileWriter), the targets export's
+/// rows — into temporaries of sets of its own, handed to the command's set (the same files, bytes
+/// and commit order as the whole-result path) only when the program may be written.
+int runStreaming(CommandContext& ctx, CompensationResult& r, const CompensationJob& job,
+                 const std::string& program, const std::string& out,
+                 const std::optional<std::string>& targets, bool csv, int threads) {
+  postproc::Program& prog = *r.context.job.program;
+  const std::vector<std::string> prog_outs = postproc::outputPaths(prog, out);
+  std::vector<NotCompensated> failed;
+  OutputSet program_set;
+  OutputSet targets_set;
+  program_set.stageStream(out, [&](const ByteWriter& write_src) {
+    postproc::EditedFileWriter src(prog, 0, write_src);
+    stageOptional(targets_set, targets, [&](const ByteWriter* write_targets) {
+      std::optional<CompensationTargetsStream> export_rows;
+      if (write_targets)
+        export_rows.emplace(r.context, r.orientation, program, csv, *write_targets, threads);
+      compensateLoadedStreaming(
+          r, job,
+          [&](CompensationResult& res, size_t first, std::span<const HoleCompensation> holes,
+              size_t stable) {
+            const std::span<const HoleRequest> req =
+                std::span<const HoleRequest>(res.context.job.requests).subspan(first, holes.size());
+            for (size_t k = 0; k < holes.size(); ++k) {
+              if (!holes[k].ok) failed.push_back({holes[k].id, req[k].line, holes[k].reason});
+            }
+            src.flushBefore(stable);
+            if (export_rows) export_rows->holes(holes, req);
+          });
+      if (export_rows && r.writable) export_rows->finish();
+    });
+    if (r.writable) src.finish();
+  });
+  if (r.writable && prog_outs.size() > 1) {  // the .dat (KRL), whole: its edits are all made
+    std::string dat;
+    postproc::EditedFileWriter w(prog, 1, [&](std::string_view b) { dat.append(b); });
+    w.finish();
+    program_set.stage(prog_outs[1], dat);
+  }
+  printJobNotes(ctx, r.context.job.notes);
+  printNotCompensated(ctx, program, failed);
+  for (const auto& x : r.refused) ctx.err << "roprec: " << x << "\n";
+  if (!r.writable) {
+    ctx.err << "roprec: " << r.why_not_writable << "\n";
+    return 1;  // the sets' temporaries are removed with them
+  }
+  std::vector<std::string> written = prog_outs;
+  for (OutputSet* set : {&program_set, &targets_set}) {
+    if (OutputSet* active = activeOutputSet()) {
+      active->adopt(std::move(*set));
+    } else {
+      set->commit();
+    }
+  }
+  if (targets) written.push_back(*targets);
+  if (!ctx.quiet) printSummary(ctx, r, job.options, written);
+  return r.failed ? 1 : 0;
+}
+
+/// Whether a file of the compensated program (OUT, its .dat) is one of the program's input files.
+bool overwritesInput(const CompensationResult& r, const std::string& out) {
+  try {
+    refuseOverwritingInput(*r.context.job.program,
+                           postproc::outputPaths(*r.context.job.program, out));
+  } catch (const UsageError&) {
+    return true;
+  }
+  return false;
+}
+
 int run(Args& args, CommandContext& ctx) {
   const auto cell = args.option("cell");
   const auto out = args.option("o");
@@ -257,7 +357,7 @@ int run(Args& args, CommandContext& ctx) {
     return runMillingPath(ctx, *cell, pos[0], *out, targets, report, job.force);
 
   const int threads = resolvedThreads(job.job.threads);
-  CompensationResult r = compensateJobHoles(*cell, pos[0], job);
+  CompensationResult r = loadCompensationJob(*cell, pos[0], job);
   std::vector<std::string> extra;  // checked against the inputs before anything is staged
   if (targets) extra.push_back(*targets);
   if (report) extra.push_back(*report);
@@ -280,6 +380,13 @@ int run(Args& args, CommandContext& ctx) {
   } catch (const UsageError&) {
     overwrites_input = std::current_exception();
   }
+  // without a report (which draws every hole at once) the results are not kept: streamed out
+  if (!report && distinct && !overwrites_input && !overwritesInput(r, *out)) {
+    const int rc = runStreaming(ctx, r, job, pos[0], *out, targets, csv, threads);
+    keepUntilExit(std::move(r));
+    return rc;
+  }
+  compensateLoadedHoles(r, job);
   StagedOutputs targets_started;  // dropped with its set (no file) unless taken over below
   if (threads > 1 && targets && distinct && !overwrites_input)
     targets_started = stagedApart(writeTargets);

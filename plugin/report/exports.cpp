@@ -66,9 +66,10 @@ ReportInput reportHeader(const PredictionContext& c, const std::string& title) {
 
 // ---- corrected-target export, one row / object per hole
 
-/// The nominal pose of hole i: the chosen one when compensated, else the programmed one.
-const Pose& nominalOf(const CompensationResult& r, size_t i) {
-  return r.holes[i].ok ? r.holes[i].T_nominal : r.context.job.requests[i].T_W_tcp;
+/// The nominal pose of hole h (request q): the chosen one when compensated, else the programmed
+/// one.
+const Pose& nominalOf(const HoleCompensation& h, const HoleRequest& q) {
+  return h.ok ? h.T_nominal : q.T_W_tcp;
 }
 
 void csvNumber(std::string& s, double v, int decimals) {
@@ -98,9 +99,9 @@ void csvQuoted(std::string& s, std::string_view text) {
   s += '"';
 }
 
-void csvRow(std::string& s, const CompensationResult& r, size_t i) {
-  const HoleCompensation& h = r.holes[i];
-  const Pose& N = nominalOf(r, i);
+void csvRow(std::string& s, const HoleCompensation& h, const HoleRequest& q,
+            const RobotCard& card) {
+  const Pose& N = nominalOf(h, q);
   const Pose& P = h.ok ? h.T_programmed : N;
   s += h.id;
   s += h.ok ? ",compensated" : ",original-kept";
@@ -126,8 +127,7 @@ void csvRow(std::string& s, const CompensationResult& r, size_t i) {
   s += verdictName(u.verdict);
   csvQuoted(s, h.reason);
   // the joints as the controller shows them, why the rotation and the flags changed
-  const Vec6 q_ctrl =
-      toControllerJoints(r.context.robot.card, h.ok ? h.theta_cmd : h.before.joints);
+  const Vec6 q_ctrl = toControllerJoints(card, h.ok ? h.theta_cmd : h.before.joints);
   for (int k = 0; k < 6; ++k) csvNumber(s, q_ctrl[k] / kDeg, 6);
   csvQuoted(s, h.ok ? h.psi_reason.view() : std::string_view());
   csvQuoted(s, h.config_before);
@@ -138,34 +138,42 @@ void csvRow(std::string& s, const CompensationResult& r, size_t i) {
 
 constexpr size_t kChunk = size_t{64} * 1024;  ///< bytes handed to a ByteSink at a time
 
-void targetsCsv(const CompensationResult& r, const ByteSink& sink, int threads) {
-  std::string s =
-      "id,status,nominal_x_mm,nominal_y_mm,nominal_z_mm,nominal_qw,nominal_qx,nominal_qy,nominal_"
-      "qz,"
-      "before_dx_um,before_dy_um,before_dz_um,before_rx_urad,before_ry_urad,before_rz_urad,"
-      "programmed_x_mm,programmed_y_mm,programmed_z_mm,programmed_qw,programmed_qx,programmed_qy,"
-      "programmed_qz,"
-      "j1_deg,j2_deg,j3_deg,j4_deg,j5_deg,j6_deg,config,rotation_about_axis_deg,residual_um,U_"
-      "robot_um,U_mach_um,"
-      "U_work_um,k,verdict,reason,j1_ctrl_deg,j2_ctrl_deg,j3_ctrl_deg,j4_ctrl_deg,j5_ctrl_deg,"
-      "j6_ctrl_deg,rotation_reason,config_before,config_changed,config_reason\n";
-  // blocks of rows formatted on the workers (the calling thread alone for threads <= 1), a round
-  // of them at a time, written in order
-  const size_t n = r.holes.size();
+/// The header row of the CSV export.
+const char* const kTargetsCsvHeader =
+    "id,status,nominal_x_mm,nominal_y_mm,nominal_z_mm,nominal_qw,nominal_qx,nominal_qy,nominal_"
+    "qz,"
+    "before_dx_um,before_dy_um,before_dz_um,before_rx_urad,before_ry_urad,before_rz_urad,"
+    "programmed_x_mm,programmed_y_mm,programmed_z_mm,programmed_qw,programmed_qx,programmed_qy,"
+    "programmed_qz,"
+    "j1_deg,j2_deg,j3_deg,j4_deg,j5_deg,j6_deg,config,rotation_about_axis_deg,residual_um,U_"
+    "robot_um,U_mach_um,"
+    "U_work_um,k,verdict,reason,j1_ctrl_deg,j2_ctrl_deg,j3_ctrl_deg,j4_ctrl_deg,j5_ctrl_deg,"
+    "j6_ctrl_deg,rotation_reason,config_before,config_changed,config_reason\n";
+
+/// The CSV rows of holes[k] (request q[k]) to `sink`: blocks of rows formatted on the workers
+/// (the calling thread alone for threads <= 1), a round of them at a time, written in order.
+void csvRows(std::span<const HoleCompensation> holes, std::span<const HoleRequest> q,
+             const RobotCard& card, const ByteSink& sink, int threads) {
+  const size_t n = holes.size();
   constexpr size_t kRows = 128;
   const size_t blocks = (n + kRows - 1) / kRows;
   const size_t round = 8 * static_cast<size_t>(std::max(1, threads));
   std::vector<std::string> text(std::min(blocks, round));
-  sink(s);
   for (size_t b0 = 0; b0 < blocks; b0 += round) {
     const size_t m = std::min(round, blocks - b0);
     parallelFor(m, threads, [&](int, size_t k) {
       text[k].clear();
       const size_t first = (b0 + k) * kRows;
-      for (size_t i = first; i < std::min(n, first + kRows); ++i) csvRow(text[k], r, i);
+      for (size_t i = first; i < std::min(n, first + kRows); ++i)
+        csvRow(text[k], holes[i], q[i], card);
     });
     for (size_t k = 0; k < m; ++k) sink(text[k]);
   }
+}
+
+void targetsCsv(const CompensationResult& r, const ByteSink& sink, int threads) {
+  sink(kTargetsCsvHeader);
+  csvRows(r.holes, r.context.job.requests, r.context.robot.card, sink, threads);
 }
 
 /// The item written instead of one whose numbers are not all finite (a bug or an input that
@@ -240,14 +248,14 @@ void targetBefore(JsonWriter& w, const HoleCompensation& h) {
 }
 
 /// "programmed": the compensated pose, its joints and flags.
-void targetProgrammed(JsonWriter& w, const CompensationResult& r, const HoleCompensation& h) {
+void targetProgrammed(JsonWriter& w, const RobotCard& card, const HoleCompensation& h) {
   w.key("programmed");
   w.beginObject();
   poseContract(w, h.T_programmed);
   w.key("joints_deg");
   w.numbers(h.theta_cmd / kDeg, 6);
   w.key("controller_joints_deg");
-  w.numbers(toControllerJoints(r.context.robot.card, h.theta_cmd) / kDeg, 6);
+  w.numbers(toControllerJoints(card, h.theta_cmd) / kDeg, 6);
   w.key("config");
   w.str(h.config_text);
   w.endObject();
@@ -255,9 +263,9 @@ void targetProgrammed(JsonWriter& w, const CompensationResult& r, const HoleComp
 
 /// What a compensated hole adds: the programmed target, the rotation about the drill axis, the
 /// residual, whether the branch and flags changed and why, stiffest's gain, a note.
-void targetCompensation(JsonWriter& w, const CompensationResult& r, const HoleCompensation& h,
+void targetCompensation(JsonWriter& w, const RobotCard& card, const HoleCompensation& h,
                         const Pose& N) {
-  targetProgrammed(w, r, h);
+  targetProgrammed(w, card, h);
   w.key("rotation_about_axis_deg");
   w.number(h.psi / kDeg, 4);
   w.key("residual_um");
@@ -291,8 +299,8 @@ void targetCompensation(JsonWriter& w, const CompensationResult& r, const HoleCo
   }
 }
 
-void targetJson(JsonWriter& w, const CompensationResult& r, size_t i) {
-  const HoleCompensation& h = r.holes[i];
+void targetJson(JsonWriter& w, const HoleCompensation& h, const HoleRequest& q,
+                const RobotCard& card) {
   w.beginObject();
   w.key("id");
   w.str(h.id);
@@ -302,13 +310,13 @@ void targetJson(JsonWriter& w, const CompensationResult& r, size_t i) {
     w.key("reason");
     w.str(h.reason);
   }
-  const Pose& N = nominalOf(r, i);
+  const Pose& N = nominalOf(h, q);
   w.key("nominal");
   w.beginObject();
   poseContract(w, N);
   w.endObject();
   targetBefore(w, h);
-  if (h.ok) targetCompensation(w, r, h, N);
+  if (h.ok) targetCompensation(w, card, h, N);
   const HolePrediction& u = h.ok ? h.after : h.before;
   w.key("uncertainty_um");
   uncertaintyTarget(w, u);
@@ -317,33 +325,52 @@ void targetJson(JsonWriter& w, const CompensationResult& r, size_t i) {
   w.endObject();
 }
 
-void targetsJson(const CompensationResult& r, const std::string& program_path,
-                 const ByteSink& sink) {
-  JsonWriter w;
+/// The JSON export's members before the holes, up to the opening of the "holes" array.
+void targetsJsonHead(JsonWriter& w, const PredictionContext& c, const std::string& orientation,
+                     const std::string& program_path) {
   w.out().reserve(kChunk + 8192);
   w.beginObject();
   w.key("robot");
-  w.str(r.context.robot.card.name);
+  w.str(c.robot.card.name);
   w.key("cell");
-  w.str(r.context.cell.name);
+  w.str(c.cell.name);
   const std::string program = fileName(program_path);
   w.key("program");
   w.str(program);
   w.key("orientation");
-  w.str(r.orientation);
+  w.str(orientation);
   w.key("holes");
   w.beginArray();
-  for (size_t i = 0; i < r.holes.size(); ++i) {
-    itemOrFailed(w, r.holes[i].id, r.context.job.requests[i].line, [&] { targetJson(w, r, i); });
+}
+
+/// The items of holes[k] (request q[k]) into the "holes" array, handed to `sink` about kChunk
+/// bytes at a time.
+void targetsJsonItems(JsonWriter& w, std::span<const HoleCompensation> holes,
+                      std::span<const HoleRequest> q, const RobotCard& card, const ByteSink& sink) {
+  for (size_t i = 0; i < holes.size(); ++i) {
+    itemOrFailed(w, holes[i].id, q[i].line, [&] { targetJson(w, holes[i], q[i], card); });
     if (w.out().size() >= kChunk) {
       sink(w.out());
       w.out().clear();
     }
   }
+}
+
+/// The end of the JSON export (the "holes" array closed), handed to `sink`.
+void targetsJsonEnd(JsonWriter& w, const ByteSink& sink) {
   w.endArray();
   w.endObject();
   w.finish();
   sink(w.out());
+  w.out().clear();
+}
+
+void targetsJson(const CompensationResult& r, const std::string& program_path,
+                 const ByteSink& sink) {
+  JsonWriter w;
+  targetsJsonHead(w, r.context, r.orientation, program_path);
+  targetsJsonItems(w, r.holes, r.context.job.requests, r.context.robot.card, sink);
+  targetsJsonEnd(w, sink);
 }
 
 /// "nominal": the hole's frame (position, surface, bottom, orientation, axis).
@@ -576,6 +603,31 @@ std::string compensationTargets(const CompensationResult& r, const std::string& 
   std::string out;
   writeCompensationTargets(r, program_path, csv, [&](std::string_view b) { out += b; });
   return out;
+}
+
+CompensationTargetsStream::CompensationTargetsStream(const PredictionContext& c,
+                                                     const std::string& orientation,
+                                                     const std::string& program_path, bool csv,
+                                                     ByteSink sink, int threads)
+    : csv_(csv), threads_(threads), sink_(std::move(sink)), card_(c.robot.card) {
+  if (csv_) {
+    sink_(kTargetsCsvHeader);
+  } else {
+    targetsJsonHead(w_, c, orientation, program_path);
+  }
+}
+
+void CompensationTargetsStream::holes(std::span<const HoleCompensation> h,
+                                      std::span<const HoleRequest> q) {
+  if (csv_) {
+    csvRows(h, q, card_, sink_, threads_);
+  } else {
+    targetsJsonItems(w_, h, q, card_, sink_);
+  }
+}
+
+void CompensationTargetsStream::finish() {
+  if (!csv_) targetsJsonEnd(w_, sink_);
 }
 
 void writeCompensationTargets(const CompensationResult& r, const std::string& program_path,

@@ -61,6 +61,25 @@ std::string compensationTargets(const CompensationResult& r, const std::string& 
 /// `threads` > 1 the CSV rows are formatted by blocks on that many workers (the same bytes).
 void writeCompensationTargets(const CompensationResult& r, const std::string& program_path,
                               bool csv, const ByteSink& sink, int threads = 1);
+/// The corrected-target export written as the holes are compensated (compensateHoles with a
+/// CompensationSink): the constructor writes the header, holes() the next holes in order (request
+/// q[k] of hole h[k]), finish() the end; the bytes of writeCompensationTargets over the same
+/// holes. Holds one JSON chunk (about 64 KiB) or one round of CSV rows at a time.
+class CompensationTargetsStream {
+ public:
+  CompensationTargetsStream(const PredictionContext& c, const std::string& orientation,
+                            const std::string& program_path, bool csv, ByteSink sink,
+                            int threads = 1);
+  void holes(std::span<const HoleCompensation> h, std::span<const HoleRequest> q);
+  void finish();
+
+ private:
+  bool csv_;
+  int threads_;
+  ByteSink sink_;
+  JsonWriter w_;
+  RobotCard card_;  ///< for the joints in the controller's convention
+};
 /// The compensation report (before/after maps).
 std::string compensationReport(const CompensationResult& r, const std::string& program_path);
 
