@@ -13,6 +13,7 @@
 #include "plugin/api/hole_input.hpp"
 #include "plugin/api/job.hpp"
 #include "plugin/api/prediction_setup.hpp"
+#include "postproc/edited_file_writer.hpp"
 #include "postproc/program.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -20,6 +21,8 @@ namespace roprec {
 namespace {
 
 using test::sameBits;
+
+std::string sharedTargetJob(const std::string& dir);
 
 void expectSameHole(const HoleCompensation& a, const HoleCompensation& b) {
   SCOPED_TRACE(a.id);
@@ -102,6 +105,119 @@ TEST(CompensateThreads, HolesAreBitIdenticalForOneTwoThreeThreads) {
   }
 }
 
+// The sink overload hands over the holes of the vector result, in order, a block at a time
+// (more than one block here; stiffest may hold a hole back until its next neighbour is final),
+// bit for bit, with the same counters, for one and two threads.
+TEST(CompensateThreads, SinkGetsTheVectorResultBlockByBlock) {
+  api::PredictionContext c = api::loadPredictionContext(
+      test::sourceDir() + "/samples/cells/housing-kr120.xml",
+      test::sourceDir() + "/samples/emotor-housing/holes.csv", std::nullopt, "");
+  // the housing twelve times (more than kCompensationBlock holes), every 7th hole of the odd
+  // copies out of reach, a band of each even copy turned by 170° about its axis
+  std::vector<HoleRequest> req;
+  while (req.size() <= kCompensationBlock + 100) {
+    const size_t copy = req.size() / c.job.requests.size();
+    for (HoleRequest h : c.job.requests) {
+      h.id.append("_").append(std::to_string(copy));
+      if (copy % 2 == 1 && req.size() % 7 == 0) h.T_W_tcp.translation().x() += 3.0;
+      if (copy % 2 == 0 && req.size() % 40 < 12)
+        h.T_W_tcp.linear() =
+            h.T_W_tcp.linear() * Eigen::AngleAxisd(170.0 * kDeg, Vec3::UnitZ()).toRotationMatrix();
+      req.push_back(h);
+    }
+  }
+  for (const OrientationMode mode :
+       {OrientationMode::kKeep, OrientationMode::kFlipFree, OrientationMode::kStiffest}) {
+    SCOPED_TRACE(orientationModeName(mode));
+    CompensationOptions o;
+    o.mode = mode;
+    o.grid = 12;
+    CompensationStats ref_stats;
+    const std::vector<HoleCompensation> ref = compensateHoles(c.model, req, o, &ref_stats);
+    for (const int threads : {1, 2}) {
+      SCOPED_TRACE(threads);
+      o.threads = threads;
+      std::vector<HoleCompensation> got;
+      int blocks = 0;
+      const CompensationSink sink = [&](size_t first, std::span<HoleCompensation> holes) {
+        EXPECT_EQ(first, got.size());
+        EXPECT_FALSE(holes.empty());
+        EXPECT_LE(holes.size(), 2 * kCompensationBlock);
+        ++blocks;
+        for (HoleCompensation& h : holes) got.push_back(std::move(h));
+      };
+      CompensationStats stats;
+      compensateHoles(c.model, req, o, sink, &stats);
+      EXPECT_GE(blocks, 2);
+      ASSERT_EQ(got.size(), ref.size());
+      for (size_t i = 0; i < ref.size(); ++i) expectSameHole(got[i], ref[i]);
+      expectSameStats(stats, ref_stats);
+      EXPECT_EQ(stats.psi_for_jumps, ref_stats.psi_for_jumps);
+      EXPECT_EQ(stats.stiffness_compared, ref_stats.stiffness_compared);
+    }
+  }
+}
+
+// compensateLoadedStreaming, its program's first file written piece by piece as the blocks come
+// (EditedFileWriter up to each block's `stable` byte) and its targets export by rows
+// (CompensationTargetsStream), writes the bytes of compensateJob and its whole-result writers;
+// the counters and the summary are the same. A program with a .dat and targets two holes share,
+// and the housing, in each orientation.
+TEST(CompensateThreads, StreamedJobWritesTheBytesOfTheWholeJob) {
+  const std::string dir = test::tempDir("compensate_threads_streamed");
+  const std::string cell = test::sourceDir() + "/samples/cells/housing-kr120.xml";
+  for (const std::string& program :
+       {sharedTargetJob(dir), test::sourceDir() + "/samples/emotor-housing/housing_kr120.src"}) {
+    for (const OrientationMode mode :
+         {OrientationMode::kKeep, OrientationMode::kFlipFree, OrientationMode::kStiffest}) {
+      SCOPED_TRACE(program + " " + orientationModeName(mode));
+      api::CompensationJob job;
+      job.options.mode = mode;
+      job.job.threads = 2;
+      api::CompensationResult whole = api::compensateJob(cell, program, job);
+      const std::vector<std::string> want = postproc::renderFiles(*whole.context.job.program);
+      api::CompensationResult r = api::loadCompensationJob(cell, program, job);
+      std::string src, csv, json;
+      postproc::Program& p = *r.context.job.program;
+      postproc::EditedFileWriter w(p, 0, [&](std::string_view b) { src.append(b); });
+      api::CompensationTargetsStream csv_rows(
+          r.context, r.orientation, program, true, [&](std::string_view b) { csv.append(b); }, 2);
+      api::CompensationTargetsStream json_rows(r.context, r.orientation, program, false,
+                                               [&](std::string_view b) { json.append(b); });
+      api::compensateLoadedStreaming(
+          r, job,
+          [&](api::CompensationResult& res, size_t first, std::span<const HoleCompensation> holes,
+              size_t stable) {
+            EXPECT_TRUE(res.holes.empty());
+            const std::span<const HoleRequest> q =
+                std::span<const HoleRequest>(res.context.job.requests).subspan(first, holes.size());
+            w.flushBefore(stable);
+            csv_rows.holes(holes, q);
+            json_rows.holes(holes, q);
+          });
+      w.finish();
+      csv_rows.finish();
+      json_rows.finish();
+      EXPECT_TRUE(src == want[0]);
+      if (want.size() > 1) {
+        EXPECT_TRUE(postproc::renderFiles(p)[1] == want[1]);
+      }
+      EXPECT_TRUE(csv == api::compensationTargets(whole, program, true));
+      EXPECT_TRUE(json == api::compensationTargets(whole, program, false));
+      EXPECT_EQ(r.hole_count, whole.holes.size());
+      EXPECT_EQ(r.failed, whole.failed);
+      EXPECT_EQ(r.writable, whole.writable);
+      EXPECT_EQ(r.refused, whole.refused);
+      EXPECT_EQ(r.summary.error_before_um, whole.summary.error_before_um);
+      EXPECT_EQ(r.summary.residual_after_um, whole.summary.residual_after_um);
+      EXPECT_EQ(r.summary.conform_after, whole.summary.conform_after);
+      EXPECT_EQ(r.summary.jumps_before, whole.summary.jumps_before);
+      EXPECT_EQ(r.summary.jumps_after, whole.summary.jumps_after);
+      expectSameStats(r.stats, whole.stats);
+    }
+  }
+}
+
 /// The bytes a compensation job writes: program, targets CSV and JSON, report.
 std::vector<std::string> jobBytes(OrientationMode mode, int threads) {
   const std::string program = test::sourceDir() + "/samples/emotor-housing/housing_kr120.src";
@@ -175,6 +291,35 @@ TEST(CompensateThreads, CliWritesTheOutputsTogetherAllOrNothing) {
   EXPECT_EQ(bad_targets.exit_code, 2);
   EXPECT_FALSE(std::filesystem::exists(dir + "/f2.src"));
   EXPECT_FALSE(std::filesystem::exists(dir + "/f2.html"));
+  for (const auto& e : std::filesystem::directory_iterator(dir))  // no temporaries left
+    EXPECT_FALSE(isOutputTemporaryName(e.path().filename().string(), nullptr)) << e.path();
+}
+
+// Without --report the program and the targets are written as the holes are compensated, into
+// temporaries: the same bytes as with the report, and still all or nothing.
+TEST(CompensateThreads, CliStreamsTheProgramAndTargetsAllOrNothing) {
+  const std::string dir = test::tempDir("compensate_threads_cli_stream");
+  const std::string src = test::sourceDir() + "/samples/emotor-housing/housing_kr120.src";
+  const std::string cell = test::sourceDir() + "/samples/cells/housing-kr120.xml";
+  auto run = [&](const std::string& out, const std::string& targets, const std::string& extra) {
+    return test::runRoprec("compensate --cell '" + cell + "' '" + src + "' --quiet -o '" + out +
+                           "' --targets '" + targets + "' --orientation stiffest --threads 2" +
+                           extra);
+  };
+  ASSERT_EQ(run(dir + "/w.src", dir + "/w.csv", " --report '" + dir + "/w.html'").exit_code, 0);
+  ASSERT_EQ(run(dir + "/s.src", dir + "/s.csv", "").exit_code, 0);
+  for (const char* ext : {".src", ".csv"}) {
+    SCOPED_TRACE(ext);
+    const std::string whole = test::readFile(dir + "/w" + ext);
+    EXPECT_GT(whole.size(), 1000U);
+    EXPECT_TRUE(whole == test::readFile(dir + "/s" + ext));
+  }
+  const auto bad_program = run(dir + "/none/o.src", dir + "/f1.csv", "");
+  EXPECT_EQ(bad_program.exit_code, 2);
+  EXPECT_FALSE(std::filesystem::exists(dir + "/f1.csv"));
+  const auto bad_targets = run(dir + "/f2.src", dir + "/none/t.csv", "");
+  EXPECT_EQ(bad_targets.exit_code, 2);
+  EXPECT_FALSE(std::filesystem::exists(dir + "/f2.src"));
   for (const auto& e : std::filesystem::directory_iterator(dir))  // no temporaries left
     EXPECT_FALSE(isOutputTemporaryName(e.path().filename().string(), nullptr)) << e.path();
 }

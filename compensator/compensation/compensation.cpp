@@ -1,7 +1,9 @@
 #include "compensator/compensation/compensation.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <exception>
 #include <future>
 #include <limits>
@@ -49,20 +51,22 @@ Pose rotZ(double psi) {
 }
 
 /// Why a candidate rotation is not admissible.
-enum class Why { kNone, kUnreachable, kLimits, kSingular, kWrist };
+enum class Why : std::uint8_t { kNone, kUnreachable, kLimits, kSingular, kWrist };
 
-/// One candidate: the IK solution for the hole at ψ and its costs.
+/// One candidate: the IK solution for the hole at ψ and its costs. 96 bytes: the candidate grids
+/// of flip-free and stiffest hold `grid` of them per hole for the whole program.
 struct Node {
-  bool feasible{false};
-  double psi{0.0};
   Vec6 q{Vec6::Zero()};
-  int branch{-1};
+  double psi{0.0};
   double u_def{0.0};    ///< m: linearised deflection-model uncertainty (stiffness proxy)
   double penalty{0.0};  ///< limits + wrist proximity (dimensionless)
   double wrist{0.0};    ///< |sin(θ5 + α)|
-  Why why{Why::kNone};  ///< when not feasible
-  int limit_joint{-1};  ///< kLimits: a joint (0-based) outside its limits
+  std::int8_t branch{-1};
+  Why why{Why::kNone};          ///< when not feasible
+  std::int8_t limit_joint{-1};  ///< kLimits: a joint (0-based) outside its limits
+  bool feasible{false};
 };
+static_assert(sizeof(Node) <= 96, "a grid holds many of them");
 
 /// n rows of K values in one block (the per-hole candidate grids and DP tables: no allocation per
 /// hole); row i is a span of K. The rows are first written by `threads` workers: a 10,000-hole
@@ -131,7 +135,8 @@ struct Evaluator {
       if (!s.within_limits) {
         worse(Why::kLimits);
         for (int j = 0; j < 6 && n.limit_joint < 0; ++j) {
-          if (s.q[j] < m.ik.lower[j] - 1e-12 || s.q[j] > m.ik.upper[j] + 1e-12) n.limit_joint = j;
+          if (s.q[j] < m.ik.lower[j] - 1e-12 || s.q[j] > m.ik.upper[j] + 1e-12)
+            n.limit_joint = static_cast<std::int8_t>(j);
         }
         continue;
       }
@@ -148,7 +153,7 @@ struct Evaluator {
       if (dist < best) {
         best = dist;
         n.q = s.q;
-        n.branch = b;
+        n.branch = static_cast<std::int8_t>(b);
         n.wrist = s.branch.wrist_margin_rad;
         n.feasible = true;
       }
@@ -1131,17 +1136,21 @@ void keepRun(Workers& w, const std::vector<HoleRequest>& holes, const std::optio
   std::optional<Vec6> prev = first;
   Vec6 seed = m.reference_pose;  // the serial candidates' seed (holes not predicted as they are)
   const size_t cap = std::min(n, kCompensationBlock);
-  std::vector<HoleCompensation> own;
+  // with workers, block k goes to the sink on a task of its own while block k + 1 is computed
+  // (the sink sees the blocks one at a time, in order): two blocks of results
+  std::array<std::vector<HoleCompensation>, 2> own;
   std::vector<Node> node(cap);
   std::vector<NodeCount> counts(cap);
   if (to.whole) to.whole->resize(n);
-  for (size_t b = 0; b < n; b += kCompensationBlock) {
+  std::future<void> handing;  // the sink's call for the block before
+  int k = 0;
+  for (size_t b = 0; b < n; b += kCompensationBlock, k ^= 1) {
     const size_t e = std::min(n, b + kCompensationBlock);
-    std::vector<HoleCompensation>& blk = to.whole ? *to.whole : own;
+    std::vector<HoleCompensation>& blk = to.whole ? *to.whole : own[static_cast<size_t>(k)];
     const size_t o0 = to.whole ? b : 0;  // the block's first hole in blk
     if (!to.whole) {
-      own.clear();
-      own.resize(e - b);
+      blk.clear();
+      blk.resize(e - b);
     }
     const std::span<HoleCompensation> out(blk.data() + o0, e - b);
     {  // stage 1 with the continuity seed carried from block to block (predictHoles' seeds over
@@ -1193,8 +1202,14 @@ void keepRun(Workers& w, const std::vector<HoleRequest>& holes, const std::optio
                             true);
     });
     countFinished(evs[0], holes, {}, nullptr, 0.0, out, b, st);
-    if (to.sink) (*to.sink)(to.offset + b, out);
+    if (handing.valid()) handing.get();  // the block before is handed over (or its error thrown)
+    if (to.sink && threads > 1) {
+      handing = std::async(std::launch::async, [&to, b, out] { (*to.sink)(to.offset + b, out); });
+    } else if (to.sink) {
+      (*to.sink)(to.offset + b, out);
+    }
   }
+  if (handing.valid()) handing.get();
   st.jump_threshold_used = evs[0].o.jump_threshold;
 }
 
@@ -1239,10 +1254,16 @@ void sequenceRun(Workers& w, const std::vector<HoleRequest>& holes,
     });
   }
   if (to.whole) to.whole->reserve(to.whole->size() + n);
-  std::vector<HoleCompensation> pend;  // the finished holes [ready, e) not handed over yet
+  // the finished holes [ready, e) not handed over yet are in bufs[k]; with workers, those handed
+  // over go to the sink on a task of its own while the next block is finished (the holes that
+  // wait move to the other buffer first)
+  std::array<std::vector<HoleCompensation>, 2> bufs;
+  std::future<void> handing;  // the sink's call for the holes before
+  int k = 0;
   size_t ready = 0;
   for (size_t b = 0; b < n; b += kCompensationBlock) {
     const size_t e = std::min(n, b + kCompensationBlock);
+    std::vector<HoleCompensation>& pend = bufs[static_cast<size_t>(k)];
     const size_t p0 = pend.size();  // hole b in pend
     pend.resize(p0 + (e - b));
     // the stage-1 part (id, prediction, note) taken over; stiffest compares with the keep result
@@ -1275,13 +1296,23 @@ void sequenceRun(Workers& w, const std::vector<HoleRequest>& holes,
     }
     const std::span<HoleCompensation> done(pend.data(), upto - ready);
     countFinished(evs[0], holes, chosen, &nodes, thr, done, ready, st);
-    if (to.sink) (*to.sink)(to.offset + ready, done);
+    if (handing.valid()) handing.get();  // the holes before are handed over (or its error thrown)
+    std::vector<HoleCompensation>& next = bufs[static_cast<size_t>(k ^ 1)];
+    next.clear();
+    for (size_t j = upto - ready; j < pend.size(); ++j) next.push_back(std::move(pend[j]));
+    pend.resize(upto - ready);
     if (to.whole) {
-      for (HoleCompensation& c : done) to.whole->push_back(std::move(c));
+      for (HoleCompensation& c : pend) to.whole->push_back(std::move(c));
+    } else if (to.sink && threads > 1) {
+      handing = std::async(std::launch::async,
+                           [&to, ready, &pend] { (*to.sink)(to.offset + ready, pend); });
+    } else if (to.sink) {
+      (*to.sink)(to.offset + ready, pend);
     }
-    pend.erase(pend.begin(), pend.begin() + static_cast<std::ptrdiff_t>(upto - ready));
     ready = upto;
+    k ^= 1;
   }
+  if (handing.valid()) handing.get();
 }
 
 /// compensateHoles over holes that share one model (one TCP), the first seeded with `first`.
@@ -1401,7 +1432,7 @@ void compensateTarget(const PredictionModel& base, PredictionData& d, const Hole
     // solution in the programmed branch nearest the programmed joints is those joints (admissible:
     // the IK choice checked the limits and singularities)
     node.q = b.joints;
-    node.branch = b.branch;
+    node.branch = static_cast<std::int8_t>(b.branch);
     node.wrist = b.wrist_margin;
     node.feasible = true;
     node.why = Why::kNone;

@@ -651,6 +651,8 @@ void compensateLoadedHoles(CompensationResult& r, const CompensationJob& job,
 void compensateLoadedStreaming(CompensationResult& r, const CompensationJob& job,
                                const CompensatedBlockSink& sink) {
   postproc::Program& prog = *r.context.job.program;
+  // the recognised cycles are not read after the holes' set-up (requests and sources)
+  std::vector<postproc::Hole>().swap(r.context.job.recognized);
   prog.position_min_decimals = 5;  // 0.01 µm: the written target carries the compensation
   // the marker first: the program's first file is written out as the holes are edited
   postproc::markCompensated(prog, markerText(r.context.cell, r.orientation));

@@ -461,7 +461,9 @@ const CommandRegistration reg{
      "input is refused. --frame and --tool: as for roprec predict (controller-only frames and a\n"
      "program tool that differs from the cell's are errors unless resolved).\n"
      "--threads N: worker threads for the per-hole work (0 = every core; default 1); the outputs\n"
-     "are byte-identical for any N. The --targets export is written hole by hole.\n",
+     "are byte-identical for any N. Without --report the holes are compensated and written out a\n"
+     "block at a time (the program's bytes up to the next hole's targets, the --targets rows):\n"
+     "memory does not grow with the per-hole results; --report keeps them all (it draws them).\n",
      50, run}};
 
 }  // namespace
