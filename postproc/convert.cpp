@@ -1,11 +1,18 @@
 #include "postproc/convert.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <condition_variable>
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <filesystem>
+#include <future>
 #include <map>
+#include <memory>
+#include <mutex>
 #include <set>
+#include <thread>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -30,15 +37,6 @@ std::string fmt(double v, int decimals) {
 }
 
 std::string fmtG(double v) { return cGeneral(v, 10); }
-
-/// fmt(v, decimals) appended to `s`.
-void addFixed(std::string& s, double v, int decimals) {
-  if (std::isfinite(v)) {
-    appendFixed(s, v, decimals);  // fmt's text: no sign on a value that rounds to zero
-  } else {
-    s += fmt(v, decimals);
-  }
-}
 
 std::string sanitize(const std::string& s, const std::string& fallback) {
   std::string r;
@@ -559,36 +557,152 @@ void listZoneMappings(const Program& p, Dialect to, const std::vector<Item>& ite
 
 // ---------------------------------------------------------------- output
 
-/// The bytes of one output file, appended piece by piece and handed on in blocks of about
-/// kBlock bytes (the file is never held whole). flush() hands on the rest.
+/// A block of output bytes: a buffer of kBlockCapacity bytes and the count used.
+struct Block {
+  static constexpr std::size_t kCapacity = (std::size_t{1} << 20U) + (std::size_t{1} << 16U);
+  std::unique_ptr<char[]> bytes{std::make_unique<char[]>(kCapacity)};
+  std::size_t size{0};
+};
+
+/// Hands blocks of bytes to a ByteWriter on a thread of its own, in order: the write system
+/// calls (copying into the page cache: a good part of a large conversion's time) overlap the
+/// formatting. One block waits at most (two blocks in memory). An error of the writer is thrown
+/// by the next write() or by finish().
+class BackgroundWriter {
+ public:
+  explicit BackgroundWriter(const ByteWriter& w) : w_(w), thread_([this] { run(); }) {}
+  BackgroundWriter(const BackgroundWriter&) = delete;
+  BackgroundWriter& operator=(const BackgroundWriter&) = delete;
+  ~BackgroundWriter() { stop(); }
+
+  /// Queues `block` (waits while the last one is being written); `block` comes back empty (a
+  /// block written before).
+  void write(Block& block) {
+    std::unique_lock<std::mutex> l(m_);
+    idle_.wait(l, [this] { return !pending_; });
+    if (error_) std::rethrow_exception(error_);
+    std::swap(block_, block);
+    block.size = 0;
+    pending_ = true;
+    work_.notify_one();
+  }
+  /// Waits for every block to be written; throws the writer's error.
+  void finish() {
+    stop();
+    if (error_) std::rethrow_exception(error_);
+  }
+
+ private:
+  void run() {
+    std::unique_lock<std::mutex> l(m_);
+    while (true) {
+      work_.wait(l, [this] { return pending_ || stopping_; });
+      if (!pending_) return;
+      l.unlock();
+      std::exception_ptr e;
+      if (!error_) {
+        try {
+          w_(std::string_view(block_.bytes.get(), block_.size));
+        } catch (...) {
+          e = std::current_exception();
+        }
+      }
+      l.lock();
+      if (e) error_ = e;
+      pending_ = false;
+      idle_.notify_all();
+    }
+  }
+  void stop() {
+    {
+      std::unique_lock<std::mutex> l(m_);
+      idle_.wait(l, [this] { return !pending_; });
+      stopping_ = true;
+      work_.notify_one();
+    }
+    if (thread_.joinable()) thread_.join();
+  }
+
+  const ByteWriter& w_;
+  std::mutex m_;
+  std::condition_variable work_;  ///< a block is pending, or stopping
+  std::condition_variable idle_;  ///< no block is pending
+  Block block_;                   ///< the block being written (pending_)
+  bool pending_{false};
+  bool stopping_{false};
+  std::exception_ptr error_;
+  std::thread thread_;  ///< last: started once the members above exist
+};
+
+/// The bytes of one output file, appended piece by piece (a copy into a block, no call per
+/// piece) and handed on in blocks of about kBlock bytes to a BackgroundWriter: the file is never
+/// held whole. finish() hands on the rest and waits for the writes.
 class Out {
  public:
-  explicit Out(const ByteWriter& w) : w_(w) { buf_.reserve(kBlock + kBlock / 4); }
+  explicit Out(const ByteWriter& w) : writer_(w) {}
   Out(const Out&) = delete;
   Out& operator=(const Out&) = delete;
   ~Out() = default;
 
   template <class... Pieces>
   Out& add(const Pieces&... pieces) {
-    strAppend(buf_, pieces...);
-    if (buf_.size() >= kBlock) flush();
+    (put(std::string_view(pieces)), ...);
     return *this;
   }
-  /// fmt(v, decimals) appended.
+  /// fmt(v, decimals) appended: appendFixed's text written in place.
   Out& num(double v, int decimals) {
-    addFixed(buf_, v, decimals);
+    if (!std::isfinite(v)) return add(fmt(v, decimals));
+    room(kNumberRoom);
+    char* const b = buf_.bytes.get() + buf_.size;
+    const auto r = toFixedChars(b, b + kNumberRoom, v, std::clamp(decimals, 0, 60));
+    std::size_t n = static_cast<std::size_t>(r.ptr - b);
+    if (n > 0 && b[0] == '-' &&
+        std::all_of(b + 1, r.ptr, [](char c) { return c == '0' || c == '.'; })) {
+      std::memmove(b, b + 1, n - 1);  // a value that rounds to zero has no sign
+      --n;
+    }
+    buf_.size += n;
     return *this;
   }
-  void flush() {
-    if (buf_.empty()) return;
-    w_(buf_);
-    buf_.clear();
+  void finish() {
+    if (buf_.size > 0) writer_.write(buf_);
+    writer_.finish();
   }
 
  private:
   static constexpr std::size_t kBlock = std::size_t{1} << 20U;
-  const ByteWriter& w_;
-  std::string buf_;
+  static constexpr std::size_t kNumberRoom = 400;  ///< DBL_MAX with 60 places and a sign
+
+  /// Room for `n` more bytes (n ≤ Block::kCapacity): the block handed on first when needed.
+  void room(std::size_t n) {
+    if (buf_.size + n > Block::kCapacity) writer_.write(buf_);
+  }
+  /// Inline: a literal's copy is a few moves.
+  [[gnu::always_inline]] void put(std::string_view s) {
+    if (s.size() > Block::kCapacity - buf_.size) {
+      putLarge(s);
+      return;
+    }
+    std::memcpy(buf_.bytes.get() + buf_.size, s.data(), s.size());
+    buf_.size += s.size();
+    if (buf_.size >= kBlock) writer_.write(buf_);
+  }
+  /// A piece larger than the room left.
+  void putLarge(std::string_view s) {
+    while (s.size() > Block::kCapacity - buf_.size) {
+      const std::size_t k = Block::kCapacity - buf_.size;
+      std::memcpy(buf_.bytes.get() + buf_.size, s.data(), k);
+      buf_.size += k;
+      writer_.write(buf_);
+      s.remove_prefix(k);
+    }
+    std::memcpy(buf_.bytes.get() + buf_.size, s.data(), s.size());
+    buf_.size += s.size();
+    if (buf_.size >= kBlock) writer_.write(buf_);
+  }
+
+  Block buf_;
+  BackgroundWriter writer_;
 };
 
 /// The number given to each output-name key (an item's target, or a motion with an offset: key
@@ -737,12 +851,12 @@ void toKrl(const Program& p, const std::vector<Item>& items, const std::string& 
   sink(src_path, [&](const ByteWriter& w) {
     Out s(w);
     krlSrc(s, p, items, name, rep);
-    s.flush();
+    s.finish();
   });
   sink(dat_path, [&](const ByteWriter& w) {
     Out d(w);
     krlDat(d, p, items, name);
-    d.flush();
+    d.finish();
   });
 }
 
@@ -868,7 +982,7 @@ void toRapid(const Program& p, const std::vector<Item>& items, const std::string
   sink(path, [&](const ByteWriter& w) {
     Out o(w);
     rapidModule(o, p, items, programName(out, 32), rep);
-    o.flush();
+    o.finish();
   });
 }
 
@@ -1053,7 +1167,7 @@ void toTp(const Program& p, const std::vector<Item>& items, const std::string& o
     o.add("/POS\n");
     tpPositions(o, p, items, plan);
     o.add("/END\n");
-    o.flush();
+    o.finish();
   });
 }
 
@@ -1259,8 +1373,31 @@ void toTable(const Program& p, const std::vector<Item>& items, const std::string
     } else {
       csvTargets(o, p, items);
     }
-    o.flush();
+    o.finish();
   });
+}
+
+void writeConverted(const Program& p, const std::vector<Item>& items, Dialect to,
+                    const std::string& out_path, ConversionReport& report,
+                    const ConvertedFileSink& sink) {
+  switch (to) {
+    case Dialect::kKrl:
+      toKrl(p, items, out_path, report, sink);
+      return;
+    case Dialect::kRapid:
+      toRapid(p, items, out_path, report, sink);
+      return;
+    case Dialect::kTp:
+      toTp(p, items, out_path, report, sink);
+      return;
+    case Dialect::kCsv:
+    case Dialect::kHoleCsv:
+      toTable(p, items, out_path, false, sink);
+      return;
+    case Dialect::kJson:
+      toTable(p, items, out_path, true, sink);
+      return;
+  }
 }
 
 }  // namespace
@@ -1279,28 +1416,21 @@ void convertProgram(const Program& p, Dialect to, const std::string& out_path,
                     ConversionReport& report, bool all_lines, const ConvertedFileSink& sink) {
   const bool table = to == Dialect::kCsv || to == Dialect::kJson;
   std::vector<Item> items = collect(p, table, report);
+  std::future<std::vector<std::string>> lost;
   if (!table) {  // a program: say what of the source it does not carry
     markUnusedKrlExternalAxes(p, items, report);
-    listNotCarried(p, all_lines, report);
-    listZoneMappings(p, to, items, all_lines, report);
+    // listed on a thread of its own while the files are written (it reads the program and the
+    // items only); its notices follow the ones collect() gave, in the same order
+    lost = std::async(std::launch::async, [&p, &items, to, all_lines] {
+      ConversionReport r;
+      listNotCarried(p, all_lines, r);
+      listZoneMappings(p, to, items, all_lines, r);
+      return std::move(r.not_carried);
+    });
   }
-  switch (to) {
-    case Dialect::kKrl:
-      toKrl(p, items, out_path, report, sink);
-      return;
-    case Dialect::kRapid:
-      toRapid(p, items, out_path, report, sink);
-      return;
-    case Dialect::kTp:
-      toTp(p, items, out_path, report, sink);
-      return;
-    case Dialect::kCsv:
-    case Dialect::kHoleCsv:
-      toTable(p, items, out_path, false, sink);
-      return;
-    case Dialect::kJson:
-      toTable(p, items, out_path, true, sink);
-      return;
+  writeConverted(p, items, to, out_path, report, sink);
+  if (lost.valid()) {
+    for (std::string& s : lost.get()) report.not_carried.push_back(std::move(s));
   }
 }
 
