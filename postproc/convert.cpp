@@ -1,16 +1,24 @@
 #include "postproc/convert.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <condition_variable>
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <filesystem>
+#include <future>
 #include <map>
+#include <memory>
+#include <mutex>
 #include <set>
+#include <thread>
 #include <unordered_map>
 #include <unordered_set>
 
 #include "compensator/support/c_format.hpp"
 #include "compensator/support/error.hpp"
+#include "compensator/support/fixed_chars.hpp"
 #include "compensator/support/str_cat.hpp"
 #include "postproc/dialects.hpp"
 #include "postproc/lexer.hpp"
@@ -47,34 +55,66 @@ std::string programName(const std::string& out_path, std::size_t max_len) {
 
 constexpr double kUnusedExt = 9e9;  ///< RAPID's "no external axis" value (9E+09)
 
+/// A frame's sanitised name ("" for none), made once per frame.
+class FrameNames {
+ public:
+  explicit FrameNames(const char* fallback) : fallback_(fallback) {}
+  const std::string& of(const Frame* f) {
+    static const std::string kNone;
+    if (f == nullptr) return kNone;
+    auto it = names_.find(f);
+    if (it == names_.end()) it = names_.emplace(f, sanitize(f->ref, fallback_)).first;
+    return it->second;
+  }
+
+ private:
+  const char* fallback_;
+  std::map<const Frame*, std::string> names_;
+};
+
+/// A motion the new program carries. Its pose, its target's configuration and (circular)
+/// auxiliary point are read from the program where a writer needs them (itemPose, auxPose,
+/// itemJoints; the same arithmetic each time): an item holds what the motion itself decides.
 struct Item {
   int motion{-1};
+  int target{-1};
+  /// output-name key: the target, or a unique key (−2 − motion) when an offset makes the pose
+  /// differ
+  int key{-1};
+  int aux{-1};
   MotionType type{MotionType::kLinear};
   bool cartesian{true};
-  Pose T{Pose::Identity()};
-  int target{-1};
-  int key{
-      -1};  ///< output-name key: the target, or a unique key when an offset makes the pose differ
-  int aux{-1};
-  Pose Taux{Pose::Identity()};
+  bool fine{false};
   const Frame* base{nullptr};
   const Frame* tool{nullptr};
-  Configuration config;
-  std::vector<double> ext;
-  std::vector<double> joints;
+  const Configuration* config{nullptr};  ///< the target's
+  std::array<double, 6> ext{};           ///< E1..E6, kUnusedExt where the target states none
   double speed{-1};
-  bool fine{false};
 };
+
+/// Hands a note to the report (ConversionReport::on_note, else `notes`).
+void note(ConversionReport& rep, std::string s) {
+  if (rep.on_note) {
+    rep.on_note(s);
+  } else {
+    rep.notes.push_back(std::move(s));
+  }
+}
+
+/// "FILE:LINE" of a motion ("FILE" without a line).
+std::string motionWhere(const Program& p, const Motion& m) {
+  const std::string& path = p.files[static_cast<std::size_t>(m.file)].path;
+  return m.line > 0 ? path + ":" + std::to_string(m.line) : path;
+}
 
 std::vector<Item> collect(const Program& p, bool joints_ok, ConversionReport& rep) {
   std::vector<Item> items;
+  items.reserve(p.motions.size());
   for (std::size_t i = 0; i < p.motions.size(); ++i) {
     const Motion& m = p.motions[i];
-    const std::string& path = p.files[static_cast<std::size_t>(m.file)].path;
-    const std::string where = m.line > 0 ? path + ":" + std::to_string(m.line) : path;
     if (m.target < 0) {
-      rep.skipped.push_back(where + ": " + p.text(m.instruction) + " " + p.text(m.target_text) +
-                            " (target built at run time" +
+      rep.skipped.push_back(motionWhere(p, m) + ": " + p.text(m.instruction) + " " +
+                            p.text(m.target_text) + " (target built at run time" +
                             (m.derivation.empty() ? "" : ": " + p.text(m.derivation)) + ")");
       continue;
     }
@@ -86,44 +126,54 @@ std::vector<Item> collect(const Program& p, bool joints_ok, ConversionReport& re
     it.key = m.has_offset ? -static_cast<int>(i) - 2 : m.target;
     it.base = m.base >= 0 ? &p.frames[static_cast<std::size_t>(m.base)] : nullptr;
     it.tool = m.tool >= 0 ? &p.frames[static_cast<std::size_t>(m.tool)] : nullptr;
-    it.config = t.config;
+    it.config = &t.config;
     it.speed = m.speed_mm_s;
     it.fine = m.fine;
-    for (const NumberField& e : t.ext) it.ext.push_back(e.present() ? e.value : kUnusedExt);
+    for (std::size_t k = 0; k < it.ext.size(); ++k)
+      it.ext[k] = t.ext[k].present() ? t.ext[k].value : kUnusedExt;
     if (t.kind == TargetKind::kJoint) {
       if (!joints_ok) {
         rep.skipped.push_back(
-            where + ": joint target " + (t.name.empty() ? std::string("(inline)") : t.name) +
+            motionWhere(p, m) + ": joint target " +
+            (t.name.empty() ? std::string("(inline)") : t.name) +
             " (joint conventions differ between vendors; re-teach it in the output)");
         continue;
       }
       it.cartesian = false;
-      it.joints = targetJointsDeg(t);
-      items.push_back(std::move(it));
+      items.push_back(it);
       continue;
     }
-    const std::optional<Pose> T = motionPose(p, m);
-    if (!T) {
-      rep.skipped.push_back(where + ": " + p.text(m.target_text) +
+    if (!motionPose(p, m)) {
+      rep.skipped.push_back(motionWhere(p, m) + ": " + p.text(m.target_text) +
                             " (incomplete pose or unknown offset)");
       continue;
     }
-    it.T = *T;
     if (m.aux >= 0) {
       const Target& a = p.targets()[static_cast<std::size_t>(m.aux)];
       if (a.kind != TargetKind::kCartesian || !targetComplete(a)) {
-        rep.skipped.push_back(where + ": circular motion with a non-Cartesian auxiliary point");
+        rep.skipped.push_back(motionWhere(p, m) +
+                              ": circular motion with a non-Cartesian auxiliary point");
         continue;
       }
       it.aux = m.aux;
-      it.Taux = targetPose(p, a);
     } else if (m.type == MotionType::kCircular) {
       it.type = MotionType::kLinear;
-      rep.notes.push_back(where + ": circular motion without auxiliary point written as linear");
+      note(rep, motionWhere(p, m) + ": circular motion without auxiliary point written as linear");
     }
-    items.push_back(std::move(it));
+    items.push_back(it);
   }
   return items;
+}
+
+/// The pose a Cartesian item moves to (collect() checked that it has one).
+Pose itemPose(const Program& p, const Item& it) {
+  return *motionPose(p, p.motions[static_cast<std::size_t>(it.motion)]);
+}
+
+/// The joint values of a joint item (deg or mm), none for a Cartesian one.
+std::vector<double> itemJoints(const Program& p, const Item& it) {
+  if (it.cartesian) return {};
+  return targetJointsDeg(p.targets()[static_cast<std::size_t>(it.target)]);
 }
 
 /// KRL states E1..E6 in every E6POS, 0 for axes the cell does not have: an external axis that is
@@ -147,20 +197,13 @@ void markUnusedKrlExternalAxes(const Program& p, std::vector<Item>& items, Conve
     zero_axes += (zero_axes.empty() ? "E" : ", E") + std::to_string(k + 1);
   }
   if (!zero_axes.empty())
-    rep.notes.push_back(zero_axes +
-                        " = 0 in every target of the KRL source: taken as unused "
-                        "external axes (RAPID 9E+09)");
+    note(rep, zero_axes +
+                  " = 0 in every target of the KRL source: taken as unused external axes (RAPID "
+                  "9E+09)");
 }
 
 bool hasExt(const Item& it, std::size_t k) {
   return k < it.ext.size() && std::fabs(it.ext[k]) < 8e9;
-}
-
-std::string abcText(const Pose& T) {
-  const Vec3 abc = zyxFromRotation(T.linear()) / kDeg;
-  return "X " + fmt(T.translation().x() * 1e3, 6) + ",Y " + fmt(T.translation().y() * 1e3, 6) +
-         ",Z " + fmt(T.translation().z() * 1e3, 6) + ",A " + fmt(abc[0], 9) + ",B " +
-         fmt(abc[1], 9) + ",C " + fmt(abc[2], 9);
 }
 
 std::optional<int> tableIndex(const std::string& ref, const char* table) {
@@ -185,20 +228,20 @@ void requireResolved(const Frame* f, const std::string& path, const char* what) 
 // ---------------------------------------------------------------- what the new program drops
 
 /// Line `l` (0-based) of `f` without its terminator.
-std::string lineAt(const SourceFile& f, std::size_t l) {
+std::string_view lineAt(const SourceFile& f, std::size_t l) {
   const std::size_t a = f.line_starts[l];
   std::size_t b = l + 1 < f.line_starts.size() ? f.line_starts[l + 1] : f.bytes.size();
   while (b > a && (f.bytes[b - 1] == '\n' || f.bytes[b - 1] == '\r')) --b;
-  return f.bytes.substr(a, b - a);
+  return std::string_view(f.bytes).substr(a, b - a);
 }
 
 /// `s` up to its comment (`comment` outside double quotes), trimmed.
-std::string codeOf(const std::string& s, const char* comment) {
+std::string_view codeOf(std::string_view s, char comment) {
   bool in_string = false;
   std::size_t end = s.size();
   for (std::size_t i = 0; i < s.size(); ++i) {
     if (s[i] == '"') in_string = !in_string;
-    if (!in_string && s.compare(i, std::strlen(comment), comment) == 0) {
+    if (!in_string && s[i] == comment) {
       end = i;
       break;
     }
@@ -210,30 +253,30 @@ std::string codeOf(const std::string& s, const char* comment) {
 }
 
 /// The first word of `u` (upper case): identifier characters up to the first other character.
-std::string firstWord(const std::string& u) {
+std::string_view firstWord(std::string_view u) {
   std::size_t n = 0;
   while (n < u.size() && isIdentChar(u[n])) ++n;
   return u.substr(0, n);
 }
 
-bool oneOf(const std::string& w, std::initializer_list<const char*> words) {
-  for (const char* x : words) {
+bool oneOf(std::string_view w, std::initializer_list<std::string_view> words) {
+  for (const std::string_view x : words) {
     if (w == x) return true;
   }
   return false;
 }
 
-bool startsWith(const std::string& u, std::initializer_list<const char*> prefixes) {
-  for (const char* x : prefixes) {
-    if (u.rfind(x, 0) == 0) return true;
+bool startsWith(std::string_view u, std::initializer_list<std::string_view> prefixes) {
+  for (const std::string_view x : prefixes) {
+    if (u.substr(0, x.size()) == x) return true;
   }
   return false;
 }
 
 /// KRL: the kind of a code line the minimal program does not carry; "" when it is carried or
 /// structure (declarations, frames and speeds carried by value, inline-form motion parameters).
-std::string krlKind(const std::string& u) {
-  const std::string w = firstWord(u);
+std::string_view krlKind(std::string_view u) {
+  const std::string_view w = firstWord(u);
   if (u.empty() || u[0] == '&' ||
       oneOf(w, {"DEF",  "END",      "DEFDAT",   "ENDDAT",    "DEFFCT",    "ENDFCT",  "DECL",
                 "EXT",  "EXTFCT",   "SIGNAL",   "STRUC",     "ENUM",      "PTP",     "LIN",
@@ -241,7 +284,7 @@ std::string krlKind(const std::string& u) {
                 "INI",  "PDAT_ACT", "LDAT_ACT", "FDAT_ACT",  "$BWDSTART", "$H_POS",  "$VEL",
                 "$ACC", "$BASE",    "$TOOL",    "BASE_DATA", "TOOL_DATA"}))
     return "";
-  if (w == "GLOBAL") return u.find("INTERRUPT") != std::string::npos ? "interrupt" : "";
+  if (w == "GLOBAL") return u.find("INTERRUPT") != std::string_view::npos ? "interrupt" : "";
   if (w == "WAIT") return "wait";
   if (w == "$APO") return "approximation parameter";
   if (oneOf(w, {"$OUT", "$ANOUT", "ANOUT", "PULSE", "$OUT_C"})) return "I/O";
@@ -251,21 +294,21 @@ std::string krlKind(const std::string& u) {
                 "ENDSWITCH", "GOTO",    "EXIT",   "HALT",  "RETURN", "CONTINUE"}))
     return "control flow";
   if (!w.empty() && u.size() > w.size() &&
-      u.find_first_not_of(" \t", w.size()) != std::string::npos &&
+      u.find_first_not_of(" \t", w.size()) != std::string_view::npos &&
       u[u.find_first_not_of(" \t", w.size())] == '(')
     return "call";
-  return u.find('=') != std::string::npos ? "assignment" : "other";
+  return u.find('=') != std::string_view::npos ? "assignment" : "other";
 }
 
 /// RAPID: as krlKind. ConfJ/ConfL are written \Off (the header says so).
-std::string rapidKind(const std::string& u) {
-  const std::string w = firstWord(u);
+std::string_view rapidKind(std::string_view u) {
+  const std::string_view w = firstWord(u);
   if (oneOf(w,
             {"MODULE", "ENDMODULE", "PROC",  "ENDPROC", "FUNC",  "ENDFUNC", "TRAP",     "ENDTRAP",
              "LOCAL",  "TASK",      "PERS",  "VAR",     "CONST", "ERROR",   "BACKWARD", "UNDO",
              "CONFJ",  "CONFL",     "MOVEL", "MOVEJ",   "MOVEC", "MOVEABSJ"}))
     return "";
-  if (w.rfind("WAIT", 0) == 0) return "wait";
+  if (w.substr(0, 4) == "WAIT") return "wait";
   if (oneOf(w, {"SETDO", "SET", "RESET", "PULSEDO", "SETAO", "SETGO", "INVERTDO", "SETDO"}))
     return "I/O";
   if (oneOf(w, {"IF",       "ELSEIF", "ELSE",  "ENDIF",   "FOR",     "ENDFOR", "WHILE",
@@ -273,25 +316,25 @@ std::string rapidKind(const std::string& u) {
                 "EXIT",     "STOP",   "BREAK", "RAISE",   "RETRY",   "TRYNEXT"}))
     return "control flow";
   const std::size_t k = u.find_first_not_of(" \t", w.size());
-  if (k != std::string::npos && (u.compare(k, 2, ":=") == 0 || u[k] == '{' || u[k] == '.'))
+  if (k != std::string_view::npos && (u.substr(k, 2) == ":=" || u[k] == '{' || u[k] == '.'))
     return "assignment";
   return w.empty() ? "other" : "call";
 }
 
 /// A RAPID line that opens or closes a block (no `;` ends it).
-bool rapidBlockLine(const std::string& u) {
+bool rapidBlockLine(std::string_view u) {
   return oneOf(firstWord(u),
                {"MODULE",   "ENDMODULE", "PROC",   "ENDPROC", "FUNC",    "ENDFUNC", "TRAP",
                 "ENDTRAP",  "IF",        "ELSEIF", "ELSE",    "ENDIF",   "FOR",     "ENDFOR",
                 "WHILE",    "ENDWHILE",  "TEST",   "CASE",    "DEFAULT", "ENDTEST", "ERROR",
                 "BACKWARD", "UNDO",      "LOCAL",  "TASK"}) &&
-         u.find(';') == std::string::npos;
+         u.find(';') == std::string_view::npos;
 }
 
 /// FANUC TP (a /MN line without its number and `;`): as krlKind.
-std::string tpKind(const std::string& u) {
-  const std::string w = firstWord(u);
-  if (u.empty() || u[0] == '!' || u.rfind("//", 0) == 0 || u[0] == ':' ||
+std::string_view tpKind(std::string_view u) {
+  const std::string_view w = firstWord(u);
+  if (u.empty() || u[0] == '!' || u.substr(0, 2) == "//" || u[0] == ':' ||
       oneOf(w, {"J", "L", "C", "A", "UFRAME_NUM", "UTOOL_NUM", "OFFSET", "TOOL_OFFSET"}))
     return "";
   if (w == "WAIT") return "wait";
@@ -305,60 +348,72 @@ std::string tpKind(const std::string& u) {
 }
 
 /// Reads a program's main file line by line and names the kind of each instruction the new
-/// program does not carry (`kind` empty: carried, structure, comment or a motion).
+/// program does not carry (`kind` empty: carried, structure, comment or a motion). The code and
+/// the kind are views (into the program's bytes and literals): no copy per line.
 class LineScanner {
  public:
   explicit LineScanner(const Program& p) : p_(p) {
     for (const Frame& fr : p.frames) {
       if (fr.resolved) carried_vars_.insert(upper(fr.ref));
     }
+    std::vector<bool> seen(p.texts.size(), false);  // a speed text is looked at once
     for (const Motion& m : p.motions) {
-      if (m.speed_mm_s > 0) carried_vars_.insert(upper(p.text(m.speed_text)));
+      if (m.speed_mm_s <= 0 || seen[m.speed_text.index]) continue;
+      seen[m.speed_text.index] = true;
+      carried_vars_.insert(upper(p.text(m.speed_text)));
     }
   }
   /// The code of `raw` (comment stripped) in `code` and its kind ("" when nothing is lost).
-  std::string kind(const std::string& raw, std::string& code) {
+  std::string_view kind(std::string_view raw, std::string_view& code) {
     if (p_.dialect == Dialect::kTp) return tp(raw, code);
     if (p_.dialect == Dialect::kRapid) return rapid(raw, code);
-    code = codeOf(raw, ";");
-    return krlKind(upper(code));
+    code = codeOf(raw, ';');
+    return krlKind(upperView(code));
   }
 
  private:
-  std::string tp(const std::string& raw, std::string& code) {
+  /// `s` in upper case, in the scanner's buffer (valid until the next call).
+  std::string_view upperView(std::string_view s) {
+    upper_.assign(s);
+    for (char& c : upper_) c = asciiUpper(c);
+    return upper_;
+  }
+
+  std::string_view tp(std::string_view raw, std::string_view& code) {
     if (!raw.empty() && raw[0] == '/') {  // a section: only /MN holds instructions
-      in_mn_ = raw.rfind("/MN", 0) == 0;
+      in_mn_ = raw.substr(0, 3) == "/MN";
       return "";
     }
     const std::size_t first = raw.find_first_not_of(' ');
-    if (!in_mn_ || first == std::string::npos || raw[first] == ':')
+    if (!in_mn_ || first == std::string_view::npos || raw[first] == ':')
       return "";  // outside /MN, blank, or the second line of a C motion
     const std::size_t colon = raw.find(':');
-    code = codeOf(colon == std::string::npos ? raw : raw.substr(colon + 1), "\x01");
+    code = codeOf(colon == std::string_view::npos ? raw : raw.substr(colon + 1), '\x01');
     while (!code.empty() && (code.back() == ';' || code.back() == ' ' || code.back() == '\t'))
-      code.pop_back();
-    return tpKind(upper(code));
+      code.remove_suffix(1);
+    return tpKind(upperView(code));
   }
 
-  std::string rapid(const std::string& raw, std::string& code) {
-    code = codeOf(raw, "!");
+  std::string_view rapid(std::string_view raw, std::string_view& code) {
+    code = codeOf(raw, '!');
     if (code == "%%%") in_header_ = !in_header_;  // the module header: VERSION, LANGUAGE
     if (code.empty() || code == "%%%" || in_header_) return "";
-    const std::string u = upper(code);
+    const std::string_view u = upperView(code);
     const bool continued = open_;
     open_ = !rapidBlockLine(u) && code.back() != ';';
     if (continued) return "";
-    const std::string k = rapidKind(u);
+    const std::string_view k = rapidKind(u);
     // `rdkWObj.uframe := ...`, `rdkSpeed := ...`: frames and speeds the new program states by
     // value (the reader resolved them)
     return k == "assignment" && carried_vars_.count(firstWord(u)) ? "" : k;
   }
 
   const Program& p_;
-  std::set<std::string> carried_vars_;  ///< upper case
-  bool in_mn_{false};                   ///< TP: inside /MN
-  bool in_header_{false};               ///< RAPID: inside the %%% header
-  bool open_{false};                    ///< RAPID: a statement continues on the next line
+  std::set<std::string, std::less<>> carried_vars_;  ///< upper case
+  std::string upper_;                                ///< upperView's buffer
+  bool in_mn_{false};                                ///< TP: inside /MN
+  bool in_header_{false};                            ///< RAPID: inside the %%% header
+  bool open_{false};  ///< RAPID: a statement continues on the next line
 };
 
 /// A notice's line numbers "19,28,37": as many as fit in `budget` characters, followed by ",..."
@@ -389,21 +444,40 @@ void listNotCarried(const Program& p, bool all_lines, ConversionReport& rep) {
     if (m.file == 0 && m.line > 0 && static_cast<std::size_t>(m.line) < motion_line.size())
       motion_line[static_cast<std::size_t>(m.line)] = 1;
   }
-  std::vector<std::string> order;                 // "text (kind" in first-seen order
-  std::map<std::string, std::vector<int>> lines;  // its lines
+  std::vector<std::string> order;                              // "text (kind" in first-seen order
+  std::map<std::string, std::vector<int>, std::less<>> lines;  // its lines
   LineScanner scan(p);
+  std::string key;
+  std::vector<int>* last = nullptr;  // the lines of the last key (a WAIT per hole: no look-up)
+  std::string last_key;
+  // a motion's line is carried; the scanner keeps no state across one in KRL and TP (RAPID: a
+  // statement may continue over lines)
+  const bool skip_motions = p.dialect != Dialect::kRapid;
   for (std::size_t l = 0; l < f.line_starts.size(); ++l) {
-    std::string code;
-    const std::string kind = scan.kind(lineAt(f, l), code);
+    if (skip_motions && motion_line[l + 1]) continue;
+    std::string_view code;
+    const std::string_view kind = scan.kind(lineAt(f, l), code);
     if (kind.empty() || motion_line[l + 1]) continue;
-    if (code.size() > 60) code = code.substr(0, 57) + "...";
-    const std::string key = strCat(code, " (", kind);
-    if (!lines.count(key)) order.push_back(key);
-    lines[key].push_back(static_cast<int>(l + 1));
+    key.clear();
+    if (code.size() > 60) {
+      strAppend(key, code.substr(0, 57), "...", " (", kind);
+    } else {
+      strAppend(key, code, " (", kind);
+    }
+    if (last == nullptr || key != last_key) {
+      auto it = lines.find(key);
+      if (it == lines.end()) {
+        order.push_back(key);
+        it = lines.emplace(key, std::vector<int>{}).first;
+      }
+      last = &it->second;
+      last_key = key;
+    }
+    last->push_back(static_cast<int>(l + 1));
   }
-  for (const std::string& key : order) {
-    const std::vector<int>& at = lines[key];
-    std::string s = f.path + ":" + std::to_string(at[0]) + ": " + key;
+  for (const std::string& k : order) {
+    const std::vector<int>& at = lines.find(k)->second;
+    std::string s = f.path + ":" + std::to_string(at[0]) + ": " + k;
     if (at.size() > 1) {
       s += "; " + std::to_string(at.size()) + " in all, lines ";
       s += lineList(at, all_lines, kNoticeBytes - std::min(kNoticeBytes / 2, s.size() + 1));
@@ -413,81 +487,285 @@ void listNotCarried(const Program& p, bool all_lines, ConversionReport& rep) {
 }
 
 /// The zone the writer of `to` gives a motion (fine: exact stop).
-std::string writtenZone(Dialect to, const Item& it) {
+std::string_view writtenZone(Dialect to, const Item& it) {
   if (to == Dialect::kKrl)
     return it.fine ? "exact stop" : it.type == MotionType::kJoint ? "C_PTP" : "C_DIS";
   if (to == Dialect::kRapid) return it.fine ? "fine" : "z1";
   return it.fine ? "FINE" : "CNT100";
 }
 
+/// Whether every word of a zone text (`C_DIS C_DIS`: KRL may repeat it) is `into`.
+bool sameZone(std::string_view from, std::string_view into) {
+  bool same = true;
+  for (std::size_t a = 0; a < from.size();) {
+    const std::size_t b = std::min(from.find(' ', a), from.size());
+    same = same && iequals(from.substr(a, b - a), into);
+    a = b + 1;
+  }
+  return same;
+}
+
 /// One line per zone mapping that changes what the source says ("z10 -> C_DIS"), with the
 /// source lines of the motions it concerns: "zone z10 -> C_DIS at FILE:12,14,20 (3 motions)"
-/// (every line with `all_lines`, else a notice of at most kNoticeBytes).
+/// (every line with `all_lines`, else a notice of at most kNoticeBytes). A motion's mapping
+/// depends on its zone text and on whether it is a joint motion only: looked up once per pair.
 void listZoneMappings(const Program& p, Dialect to, const std::vector<Item>& items, bool all_lines,
                       ConversionReport& rep) {
-  std::vector<std::string> order;
-  std::map<std::string, std::pair<std::string, std::vector<int>>> seen;  // mapping -> file, lines
+  struct Mapping {
+    std::string key;  ///< "z10 -> C_DIS"
+    std::string file;
+    std::vector<int> lines;
+  };
+  std::vector<Mapping> order;
+  std::map<std::string, std::size_t, std::less<>> by_key;
+  std::unordered_map<std::uint64_t, int> by_zone;  // (zone text, joint motion) -> mapping, -1: same
   for (const Item& it : items) {
     const Motion& m = p.motions[static_cast<std::size_t>(it.motion)];
     if (it.fine) continue;  // exact stop in, exact stop out
-    const std::string from =
-        m.zone_text.empty() ? std::string("approximated") : p.text(m.zone_text);
-    const std::string into = writtenZone(to, it);
-    bool same = true;  // KRL may repeat the word: `C_DIS C_DIS`
-    for (std::size_t a = 0; a < from.size();) {
-      const std::size_t b = std::min(from.find(' ', a), from.size());
-      same = same && iequals(from.substr(a, b - a), into);
-      a = b + 1;
+    const std::uint64_t code =
+        std::uint64_t{m.zone_text.index} * 2 + (it.type == MotionType::kJoint ? 1 : 0);
+    auto z = by_zone.find(code);
+    if (z == by_zone.end()) {
+      const std::string_view from =
+          m.zone_text.empty() ? std::string_view("approximated") : p.text(m.zone_text);
+      const std::string_view into = writtenZone(to, it);
+      int index = -1;
+      if (!sameZone(from, into)) {
+        const std::string key = strCat(from, " -> ", into);
+        auto k = by_key.find(key);
+        if (k == by_key.end()) {
+          order.push_back({key, p.files[static_cast<std::size_t>(m.file)].path, {}});
+          k = by_key.emplace(key, order.size() - 1).first;
+        }
+        index = static_cast<int>(k->second);
+      }
+      z = by_zone.emplace(code, index).first;
     }
-    if (same) continue;
-    const std::string key = strCat(from, " -> ", into);
-    if (!seen.count(key)) {
-      order.push_back(key);
-      seen[key].first = p.files[static_cast<std::size_t>(m.file)].path;
-    }
-    seen[key].second.push_back(m.line);
+    if (z->second >= 0) order[static_cast<std::size_t>(z->second)].lines.push_back(m.line);
   }
-  for (const std::string& key : order) {
-    const auto& [file, lines] = seen[key];
-    std::string s = strCat("zone ", key, " at ", file, ":");
-    const std::string tail = " (" + std::to_string(lines.size()) +
-                             (lines.size() == 1 ? " motion" : " motions") +
+  for (const Mapping& g : order) {
+    std::string s = strCat("zone ", g.key, " at ", g.file, ":");
+    const std::string tail = " (" + std::to_string(g.lines.size()) +
+                             (g.lines.size() == 1 ? " motion" : " motions") +
                              "; the approximation size is not carried)";
-    s += lineList(lines, all_lines,
+    s += lineList(g.lines, all_lines,
                   kNoticeBytes - std::min(kNoticeBytes / 2, s.size() + tail.size()));
     s += tail;
     rep.not_carried.push_back(s);
   }
 }
 
+// ---------------------------------------------------------------- output
+
+/// A block of output bytes: a buffer of kBlockCapacity bytes and the count used.
+struct Block {
+  static constexpr std::size_t kCapacity = (std::size_t{1} << 20U) + (std::size_t{1} << 16U);
+  std::unique_ptr<char[]> bytes{std::make_unique<char[]>(kCapacity)};
+  std::size_t size{0};
+};
+
+/// Hands blocks of bytes to a ByteWriter on a thread of its own, in order: the write system
+/// calls (copying into the page cache: a good part of a large conversion's time) overlap the
+/// formatting. One block waits at most (two blocks in memory). An error of the writer is thrown
+/// by the next write() or by finish().
+class BackgroundWriter {
+ public:
+  explicit BackgroundWriter(const ByteWriter& w) : w_(w), thread_([this] { run(); }) {}
+  BackgroundWriter(const BackgroundWriter&) = delete;
+  BackgroundWriter& operator=(const BackgroundWriter&) = delete;
+  ~BackgroundWriter() { stop(); }
+
+  /// Queues `block` (waits while the last one is being written); `block` comes back empty (a
+  /// block written before).
+  void write(Block& block) {
+    std::unique_lock<std::mutex> l(m_);
+    idle_.wait(l, [this] { return !pending_; });
+    if (error_) std::rethrow_exception(error_);
+    std::swap(block_, block);
+    block.size = 0;
+    pending_ = true;
+    work_.notify_one();
+  }
+  /// Waits for every block to be written; throws the writer's error.
+  void finish() {
+    stop();
+    if (error_) std::rethrow_exception(error_);
+  }
+
+ private:
+  void run() {
+    std::unique_lock<std::mutex> l(m_);
+    while (true) {
+      work_.wait(l, [this] { return pending_ || stopping_; });
+      if (!pending_) return;
+      l.unlock();
+      std::exception_ptr e;
+      if (!error_) {
+        try {
+          w_(std::string_view(block_.bytes.get(), block_.size));
+        } catch (...) {
+          e = std::current_exception();
+        }
+      }
+      l.lock();
+      if (e) error_ = e;
+      pending_ = false;
+      idle_.notify_all();
+    }
+  }
+  void stop() {
+    {
+      std::unique_lock<std::mutex> l(m_);
+      idle_.wait(l, [this] { return !pending_; });
+      stopping_ = true;
+      work_.notify_one();
+    }
+    if (thread_.joinable()) thread_.join();
+  }
+
+  const ByteWriter& w_;
+  std::mutex m_;
+  std::condition_variable work_;  ///< a block is pending, or stopping
+  std::condition_variable idle_;  ///< no block is pending
+  Block block_;                   ///< the block being written (pending_)
+  bool pending_{false};
+  bool stopping_{false};
+  std::exception_ptr error_;
+  std::thread thread_;  ///< last: started once the members above exist
+};
+
+/// The bytes of one output file, appended piece by piece (a copy into a block, no call per
+/// piece) and handed on in blocks of about kBlock bytes to a BackgroundWriter: the file is never
+/// held whole. finish() hands on the rest and waits for the writes.
+class Out {
+ public:
+  explicit Out(const ByteWriter& w) : writer_(w) {}
+  Out(const Out&) = delete;
+  Out& operator=(const Out&) = delete;
+  ~Out() = default;
+
+  template <class... Pieces>
+  Out& add(const Pieces&... pieces) {
+    (put(std::string_view(pieces)), ...);
+    return *this;
+  }
+  /// fmt(v, decimals) appended: appendFixed's text written in place.
+  Out& num(double v, int decimals) {
+    if (!std::isfinite(v)) return add(fmt(v, decimals));
+    room(kNumberRoom);
+    char* const b = buf_.bytes.get() + buf_.size;
+    const auto r = toFixedChars(b, b + kNumberRoom, v, std::clamp(decimals, 0, 60));
+    std::size_t n = static_cast<std::size_t>(r.ptr - b);
+    if (n > 0 && b[0] == '-' &&
+        std::all_of(b + 1, r.ptr, [](char c) { return c == '0' || c == '.'; })) {
+      std::memmove(b, b + 1, n - 1);  // a value that rounds to zero has no sign
+      --n;
+    }
+    buf_.size += n;
+    return *this;
+  }
+  void finish() {
+    if (buf_.size > 0) writer_.write(buf_);
+    writer_.finish();
+  }
+
+ private:
+  static constexpr std::size_t kBlock = std::size_t{1} << 20U;
+  static constexpr std::size_t kNumberRoom = 400;  ///< DBL_MAX with 60 places and a sign
+
+  /// Room for `n` more bytes (n ≤ Block::kCapacity): the block handed on first when needed.
+  void room(std::size_t n) {
+    if (buf_.size + n > Block::kCapacity) writer_.write(buf_);
+  }
+  /// Inline: a literal's copy is a few moves.
+  [[gnu::always_inline]] void put(std::string_view s) {
+    if (s.size() > Block::kCapacity - buf_.size) {
+      putLarge(s);
+      return;
+    }
+    std::memcpy(buf_.bytes.get() + buf_.size, s.data(), s.size());
+    buf_.size += s.size();
+    if (buf_.size >= kBlock) writer_.write(buf_);
+  }
+  /// A piece larger than the room left.
+  void putLarge(std::string_view s) {
+    while (s.size() > Block::kCapacity - buf_.size) {
+      const std::size_t k = Block::kCapacity - buf_.size;
+      std::memcpy(buf_.bytes.get() + buf_.size, s.data(), k);
+      buf_.size += k;
+      writer_.write(buf_);
+      s.remove_prefix(k);
+    }
+    std::memcpy(buf_.bytes.get() + buf_.size, s.data(), s.size());
+    buf_.size += s.size();
+    if (buf_.size >= kBlock) writer_.write(buf_);
+  }
+
+  Block buf_;
+  BackgroundWriter writer_;
+};
+
+/// The number given to each output-name key (an item's target, or a motion with an offset: key
+/// −2 − motion) in first-use order, 1, 2, ...: a table by target and one by motion, no map.
+class KeyNumbers {
+ public:
+  explicit KeyNumbers(const Program& p)
+      : by_target_(p.targets().size(), 0), by_motion_(p.motions.size(), 0) {}
+  /// The key's number, 0 when it has none yet.
+  [[nodiscard]] int find(int key) const { return slot(key); }
+  /// Gives `key` the next number (it has none yet) and returns it.
+  int give(int key) {
+    slot(key) = ++count_;
+    return count_;
+  }
+  [[nodiscard]] int count() const { return count_; }
+
+ private:
+  [[nodiscard]] int slot(int key) const {
+    return key >= 0 ? by_target_[static_cast<std::size_t>(key)]
+                    : by_motion_[static_cast<std::size_t>(-2 - key)];
+  }
+  int& slot(int key) {
+    return key >= 0 ? by_target_[static_cast<std::size_t>(key)]
+                    : by_motion_[static_cast<std::size_t>(-2 - key)];
+  }
+  std::vector<int> by_target_;
+  std::vector<int> by_motion_;
+  int count_{0};
+};
+
+/// The pose an item's auxiliary point names (MoveC, CIRC) and its configuration.
+Pose auxPose(const Program& p, const Item& it) {
+  return targetPose(p, p.targets()[static_cast<std::size_t>(it.aux)]);
+}
+const Configuration& auxConfig(const Program& p, const Item& it) {
+  return p.targets()[static_cast<std::size_t>(it.aux)].config;
+}
+
 // ---------------------------------------------------------------- KRL
 
-std::vector<std::pair<std::string, std::string>> toKrl(const Program& p,
-                                                       const std::vector<Item>& items,
-                                                       const std::string& out,
-                                                       ConversionReport& rep) {
-  const std::string name = programName(out, 24);
+void abcText(Out& o, const Pose& T) {
+  const Vec3 abc = zyxFromRotation(T.linear()) / kDeg;
+  o.add("X ").num(T.translation().x() * 1e3, 6).add(",Y ").num(T.translation().y() * 1e3, 6);
+  o.add(",Z ").num(T.translation().z() * 1e3, 6).add(",A ").num(abc[0], 9).add(",B ");
+  o.num(abc[1], 9).add(",C ").num(abc[2], 9);
+}
+
+/// The .src: frames and speeds where they change, a motion line per item (the E6POS names
+/// given in first-use order, as krlDat declares them).
+void krlSrc(Out& o, const Program& p, const std::vector<Item>& items, const std::string& name,
+            ConversionReport& rep) {
   const std::string src_name = fs::path(p.files[0].path).filename().string();
-  std::string src = "&ACCESS RVP\n&REL 1\nDEF " + name + "( )\n";
-  src += "; generated by roprec convert from " + src_name + "\n";
-  src +=
-      "; configuration carried at the branch level: S bits 0-2 (bit 1 = elbow up); T not carried\n";
-  src += "BAS(#INITMOV,0)\n";
-  std::string dat = "&ACCESS RVP\n&REL 1\nDEFDAT " + name + "\n";
-  std::map<int, std::string> names;
-  auto decl = [&](int target, const Pose& T, const Configuration& c, const Item& it) {
-    const auto f = names.find(target);
-    if (f != names.end()) return f->second;
-    std::string n = "XP" + std::to_string(names.size() + 1);
-    names[target] = n;
-    std::string d = "DECL E6POS " + n + "={" + abcText(T);
-    if (const auto b = c.branch())
-      d += ",S " + std::to_string(configurationFromBranch(Vendor::kKuka, *b).status);
-    for (std::size_t k = 0; k < 6; ++k) {
-      if (hasExt(it, k)) d += ",E" + std::to_string(k + 1) + " " + fmt(it.ext[k], 6);
-    }
-    dat += d + "}\n";
-    return n;
+  o.add("&ACCESS RVP\n&REL 1\nDEF ", name, "( )\n");
+  o.add("; generated by roprec convert from ", src_name, "\n");
+  o.add(
+      "; configuration carried at the branch level: S bits 0-2 (bit 1 = elbow up); T not "
+      "carried\n");
+  o.add("BAS(#INITMOV,0)\n");
+  KeyNumbers names(p);
+  auto decl = [&](int key) {
+    const int n = names.find(key);
+    return std::to_string(n ? n : names.give(key));
   };
   const Frame* cur_base = nullptr;
   const Frame* cur_tool = nullptr;
@@ -496,154 +774,269 @@ std::vector<std::pair<std::string, std::string>> toKrl(const Program& p,
   for (const Item& it : items) {
     if (first || it.base != cur_base) {
       if (it.base == nullptr) {
-        src += "BAS(#BASE,0)\n";
-        rep.notes.push_back("no base frame in the source: poses written in $WORLD (BASE 0)");
+        o.add("BAS(#BASE,0)\n");
+        note(rep, "no base frame in the source: poses written in $WORLD (BASE 0)");
       } else if (!it.base->resolved && tableIndex(it.base->ref, "BASE_DATA")) {
-        src += "$BASE=" + it.base->ref + "\n";
+        o.add("$BASE=", it.base->ref, "\n");
       } else {
         requireResolved(it.base, p.files[0].path, "base frame");
-        src += "$BASE={FRAME: " + abcText(it.base->pose) + "} ; " + it.base->ref + "\n";
+        o.add("$BASE={FRAME: ");
+        abcText(o, it.base->pose);
+        o.add("} ; ", it.base->ref, "\n");
       }
       cur_base = it.base;
     }
     if (first || it.tool != cur_tool) {
       if (it.tool == nullptr) {
-        src += "BAS(#TOOL,0)\n";
-        rep.notes.push_back("no tool in the source: TCP = flange (TOOL 0)");
+        o.add("BAS(#TOOL,0)\n");
+        note(rep, "no tool in the source: TCP = flange (TOOL 0)");
       } else if (!it.tool->resolved && tableIndex(it.tool->ref, "TOOL_DATA")) {
-        src += "$TOOL=" + it.tool->ref + "\n";
+        o.add("$TOOL=", it.tool->ref, "\n");
       } else {
         requireResolved(it.tool, p.files[0].path, "tool");
-        src += "$TOOL={FRAME: " + abcText(it.tool->pose) + "} ; " + it.tool->ref + "\n";
+        o.add("$TOOL={FRAME: ");
+        abcText(o, it.tool->pose);
+        o.add("} ; ", it.tool->ref, "\n");
       }
       cur_tool = it.tool;
     }
     first = false;
     if (it.type != MotionType::kJoint && it.speed > 0 && it.speed != vel) {
-      src += "$VEL.CP=" + fmtG(it.speed / 1000.0) + "\n";
+      o.add("$VEL.CP=", fmtG(it.speed / 1000.0), "\n");
       vel = it.speed;
     }
-    const std::string n = decl(it.key, it.T, it.config, it);
+    const std::string n = decl(it.key);
     if (it.type == MotionType::kJoint) {
-      src += "PTP " + n + (it.fine ? "" : " C_PTP") + "\n";
+      o.add("PTP XP", n, it.fine ? "" : " C_PTP", "\n");
     } else if (it.type == MotionType::kCircular) {
-      const std::string a =
-          decl(it.aux, it.Taux, p.targets()[static_cast<std::size_t>(it.aux)].config, it);
-      strAppend(src, "CIRC ", a, ", ", n, it.fine ? "" : " C_DIS", "\n");
+      const std::string a = decl(it.aux);
+      o.add("CIRC XP", a, ", XP", n, it.fine ? "" : " C_DIS", "\n");
     } else {
-      src += "LIN " + n + (it.fine ? "" : " C_DIS") + "\n";
+      o.add("LIN XP", n, it.fine ? "" : " C_DIS", "\n");
     }
   }
-  src += "END\n";
-  dat += "ENDDAT\n";
+  o.add("END\n");
+}
+
+/// The .dat: an E6POS declaration per name, in the order krlSrc gives them.
+void krlDat(Out& o, const Program& p, const std::vector<Item>& items, const std::string& name) {
+  o.add("&ACCESS RVP\n&REL 1\nDEFDAT ", name, "\n");
+  KeyNumbers names(p);
+  auto decl = [&](int key, const Pose& T, const Configuration& c, const Item& it) {
+    if (names.find(key)) return;
+    o.add("DECL E6POS XP", std::to_string(names.give(key)), "={");
+    abcText(o, T);
+    if (const auto b = c.branch())
+      o.add(",S ", std::to_string(configurationFromBranch(Vendor::kKuka, *b).status));
+    for (std::size_t k = 0; k < 6; ++k) {
+      if (hasExt(it, k)) o.add(",E", std::to_string(k + 1), " ").num(it.ext[k], 6);
+    }
+    o.add("}\n");
+  };
+  for (const Item& it : items) {
+    if (!names.find(it.key)) decl(it.key, itemPose(p, it), *it.config, it);
+    if (it.type == MotionType::kCircular) decl(it.aux, auxPose(p, it), auxConfig(p, it), it);
+  }
+  o.add("ENDDAT\n");
+}
+
+void toKrl(const Program& p, const std::vector<Item>& items, const std::string& out,
+           ConversionReport& rep, const ConvertedFileSink& sink) {
+  const std::string name = programName(out, 24);
   fs::path o(out);
   const std::string dat_path = (o.parent_path() / (o.stem().string() + ".dat")).string();
   std::string src_path = out;
   if (!iequals(o.extension().string(), ".src"))
     src_path = (o.parent_path() / (o.stem().string() + ".src")).string();
-  return {{src_path, src}, {dat_path, dat}};
+  sink(src_path, [&](const ByteWriter& w) {
+    Out s(w);
+    krlSrc(s, p, items, name, rep);
+    s.finish();
+  });
+  sink(dat_path, [&](const ByteWriter& w) {
+    Out d(w);
+    krlDat(d, p, items, name);
+    d.finish();
+  });
 }
 
 // ---------------------------------------------------------------- RAPID
 
-std::string poseRapid(const Pose& T) {
+void poseRapid(Out& o, const Pose& T) {
   const Eigen::Quaterniond q = quaternionFromRotation(T.linear());
-  return "[[" + fmt(T.translation().x() * 1e3, 6) + "," + fmt(T.translation().y() * 1e3, 6) + "," +
-         fmt(T.translation().z() * 1e3, 6) + "],[" + fmt(q.w(), 12) + "," + fmt(q.x(), 12) + "," +
-         fmt(q.y(), 12) + "," + fmt(q.z(), 12) + "]]";
+  o.add("[[").num(T.translation().x() * 1e3, 6).add(",").num(T.translation().y() * 1e3, 6);
+  o.add(",").num(T.translation().z() * 1e3, 6).add("],[").num(q.w(), 12).add(",");
+  o.num(q.x(), 12).add(",").num(q.y(), 12).add(",").num(q.z(), 12).add("]]");
 }
 
-std::vector<std::pair<std::string, std::string>> toRapid(const Program& p,
-                                                         const std::vector<Item>& items,
-                                                         const std::string& out,
-                                                         ConversionReport& rep) {
-  const std::string name = programName(out, 32);
-  std::string head = "MODULE " + name + "\n";
-  head += "  ! generated by roprec convert from " + fs::path(p.files[0].path).filename().string() +
-          "\n";
-  head +=
-      "  ! configuration carried at the branch level (cfx); cf1, cf4, cf6 unknown: ConfJ/ConfL "
-      "off\n";
-  std::string decls;
-  std::string body = "  PROC " + name + "()\n    ConfJ \\Off;\n    ConfL \\Off;\n";
-  std::map<const Frame*, std::string> tools;
-  std::map<const Frame*, std::string> wobjs;
-  std::map<int, std::string> names;
-  auto toolName = [&](const Frame* f) -> std::string {
-    if (f == nullptr) return "tool0";
-    const auto it = tools.find(f);
-    if (it != tools.end()) return it->second;
-    requireResolved(f, p.files[0].path, "tool");
-    std::string n = "tTool" + std::to_string(tools.size() + 1);
-    tools[f] = n;
-    decls += "  ! " + f->ref + "; tool load not carried: set " + n + ".tload\n";
-    decls += "  PERS tooldata " + n + ":=[TRUE," + poseRapid(f->pose) +
-             ",[1,[0,0,0.001],[1,0,0,0],0,0,0]];\n";
-    rep.notes.push_back(
-        n + ": tool load data not carried (placeholder mass 1 kg); set it before running");
-    return n;
-  };
-  auto wobjName = [&](const Frame* f) -> std::string {
-    if (f == nullptr) return "wobj0";
-    const auto it = wobjs.find(f);
-    if (it != wobjs.end()) return it->second;
-    requireResolved(f, p.files[0].path, "base frame");
-    std::string n = "wObj" + std::to_string(wobjs.size() + 1);
-    wobjs[f] = n;
-    decls += "  ! " + f->ref + "\n";
-    decls += "  PERS wobjdata " + n + ":=[FALSE,TRUE,\"\"," + poseRapid(f->pose) +
-             ",[[0,0,0],[1,0,0,0]]];\n";
-    return n;
-  };
-  auto target = [&](int key, const Pose& T, const Configuration& c, const Item& it) {
-    const auto f = names.find(key);
-    if (f != names.end()) return f->second;
-    std::string n = "p" + std::to_string(names.size() + 1);
-    names[key] = n;
+/// The RAPID module's names: robtargets p<n> by key, tools and work objects by frame, given in
+/// the order the motions use them (declare() writes their declarations and notes).
+class RapidNames {
+ public:
+  explicit RapidNames(const Program& p) : p_(p), targets_(p) {}
+
+  /// Declares what `it` uses, in the order the motions name it: its target, tool, work object
+  /// and (MoveC) auxiliary point.
+  void declare(Out& o, const Item& it, ConversionReport& rep) {
+    if (!targets_.find(it.key)) target(o, it.key, itemPose(p_, it), *it.config, it, rep);
+    tool(o, it.tool, rep);
+    wobj(o, it.base);
+    if (it.type == MotionType::kCircular)
+      target(o, it.aux, auxPose(p_, it), auxConfig(p_, it), it, rep);
+  }
+  [[nodiscard]] std::string target(int key) const {
+    return "p" + std::to_string(targets_.find(key));
+  }
+  [[nodiscard]] std::string tool(const Frame* f) const {
+    return f == nullptr ? std::string("tool0") : tools_.at(f);
+  }
+  [[nodiscard]] std::string wobj(const Frame* f) const {
+    return f == nullptr ? std::string("wobj0") : wobjs_.at(f);
+  }
+
+ private:
+  void target(Out& o, int key, const Pose& T, const Configuration& c, const Item& it,
+              ConversionReport& rep) {
+    if (targets_.find(key)) return;
+    const std::string n = "p" + std::to_string(targets_.give(key));
     const int cfx = c.branch().value_or(0);
-    if (!c.branch()) rep.notes.push_back(n + ": no configuration in the source; cfx written 0");
-    std::string ext = "[";
-    for (std::size_t k = 0; k < 6; ++k)
-      ext += (k ? "," : "") + (hasExt(it, k) ? fmt(it.ext[k], 6) : std::string("9E+09"));
-    ext += "]";
-    const std::string pr = poseRapid(T);
-    decls += "  CONST robtarget " + n + ":=[" + pr.substr(1, pr.size() - 2) + ",[0,0,0," +
-             std::to_string(cfx) + "]," + ext + "];\n";
-    return n;
-  };
+    if (!c.branch()) note(rep, n + ": no configuration in the source; cfx written 0");
+    o.add("  CONST robtarget ", n, ":=[");
+    const Eigen::Quaterniond q = quaternionFromRotation(T.linear());
+    o.add("[").num(T.translation().x() * 1e3, 6).add(",").num(T.translation().y() * 1e3, 6);
+    o.add(",").num(T.translation().z() * 1e3, 6).add("],[").num(q.w(), 12).add(",");
+    o.num(q.x(), 12).add(",").num(q.y(), 12).add(",").num(q.z(), 12).add("]");
+    o.add(",[0,0,0,", std::to_string(cfx), "],[");
+    for (std::size_t k = 0; k < 6; ++k) {
+      if (k) o.add(",");
+      if (hasExt(it, k)) {
+        o.num(it.ext[k], 6);
+      } else {
+        o.add("9E+09");
+      }
+    }
+    o.add("]];\n");
+  }
+  void tool(Out& o, const Frame* f, ConversionReport& rep) {
+    if (f == nullptr || tools_.count(f)) return;
+    requireResolved(f, p_.files[0].path, "tool");
+    std::string n = "tTool" + std::to_string(tools_.size() + 1);
+    tools_[f] = n;
+    o.add("  ! ", f->ref, "; tool load not carried: set ", n, ".tload\n");
+    o.add("  PERS tooldata ", n, ":=[TRUE,");
+    poseRapid(o, f->pose);
+    o.add(",[1,[0,0,0.001],[1,0,0,0],0,0,0]];\n");
+    note(rep, n + ": tool load data not carried (placeholder mass 1 kg); set it before running");
+  }
+  void wobj(Out& o, const Frame* f) {
+    if (f == nullptr || wobjs_.count(f)) return;
+    requireResolved(f, p_.files[0].path, "base frame");
+    std::string n = "wObj" + std::to_string(wobjs_.size() + 1);
+    wobjs_[f] = n;
+    o.add("  ! ", f->ref, "\n");
+    o.add("  PERS wobjdata ", n, ":=[FALSE,TRUE,\"\",");
+    poseRapid(o, f->pose);
+    o.add(",[[0,0,0],[1,0,0,0]]];\n");
+  }
+
+  const Program& p_;
+  KeyNumbers targets_;
+  std::map<const Frame*, std::string> tools_;
+  std::map<const Frame*, std::string> wobjs_;
+};
+
+/// The module: header, every declaration (first pass over the motions), then the procedure.
+void rapidModule(Out& o, const Program& p, const std::vector<Item>& items, const std::string& name,
+                 ConversionReport& rep) {
+  o.add("MODULE ", name, "\n");
+  o.add("  ! generated by roprec convert from ", fs::path(p.files[0].path).filename().string(),
+        "\n");
+  o.add(
+      "  ! configuration carried at the branch level (cfx); cf1, cf4, cf6 unknown: ConfJ/ConfL "
+      "off\n");
+  RapidNames names(p);
+  for (const Item& it : items) names.declare(o, it, rep);
+  o.add("  PROC ", name, "()\n    ConfJ \\Off;\n    ConfL \\Off;\n");
   for (const Item& it : items) {
-    const std::string n = target(it.key, it.T, it.config, it);
-    const std::string tool = toolName(it.tool);
-    const std::string wobj = wobjName(it.base);
-    const std::string zone = it.fine ? "fine" : "z1";
+    const std::string n = names.target(it.key);
+    const std::string tool = names.tool(it.tool);
+    const std::string wobj = names.wobj(it.base);
+    const char* zone = it.fine ? "fine" : "z1";
     const std::string speed = it.speed > 0 ? "[" + fmtG(it.speed) + ",500,5000,1000]" : "v1000";
     if (it.type == MotionType::kJoint) {
-      strAppend(body, "    MoveJ ", n, ",", speed, ",", zone, ",", tool, "\\WObj:=", wobj, ";\n");
+      o.add("    MoveJ ", n, ",", speed, ",", zone, ",", tool, "\\WObj:=", wobj, ";\n");
     } else if (it.type == MotionType::kCircular) {
-      const std::string a =
-          target(it.aux, it.Taux, p.targets()[static_cast<std::size_t>(it.aux)].config, it);
-      strAppend(body, "    MoveC ", a, ",", n, ",", speed, ",", zone, ",", tool, "\\WObj:=", wobj,
-                ";\n");
+      o.add("    MoveC ", names.target(it.aux), ",", n, ",", speed, ",", zone, ",", tool,
+            "\\WObj:=", wobj, ";\n");
     } else {
-      strAppend(body, "    MoveL ", n, ",", speed, ",", zone, ",", tool, "\\WObj:=", wobj, ";\n");
+      o.add("    MoveL ", n, ",", speed, ",", zone, ",", tool, "\\WObj:=", wobj, ";\n");
     }
   }
-  body += "  ENDPROC\nENDMODULE\n";
+  o.add("  ENDPROC\nENDMODULE\n");
+}
+
+void toRapid(const Program& p, const std::vector<Item>& items, const std::string& out,
+             ConversionReport& rep, const ConvertedFileSink& sink) {
   std::string path = out;
   if (fs::path(out).extension().empty()) path += ".mod";
-  return {{path, head + decls + body}};
+  sink(path, [&](const ByteWriter& w) {
+    Out o(w);
+    rapidModule(o, p, items, programName(out, 32), rep);
+    o.finish();
+  });
 }
 
 // ---------------------------------------------------------------- TP
 
-std::vector<std::pair<std::string, std::string>> toTp(const Program& p,
-                                                      const std::vector<Item>& items,
-                                                      const std::string& out,
-                                                      ConversionReport& rep) {
-  std::string name = upper(programName(out, 36));
-  std::map<const Frame*, int> uf;
-  std::map<const Frame*, int> ut;
-  auto number = [&](std::map<const Frame*, int>& table, const Frame* f, const char* kind) {
+/// The TP program's numbers: UFRAME/UTOOL by frame, P[n] by key in first-use order, and the
+/// count of numbered /MN lines (LINE_COUNT); plan() gives them and the notes in motion order.
+class TpPlan {
+ public:
+  explicit TpPlan(const Program& p) : p_(p), pnum_(p) {}
+
+  void plan(const std::vector<Item>& items, ConversionReport& rep) {
+    int cur_uf = -1;
+    int cur_ut = -1;
+    bool turn_note = false;
+    for (const Item& it : items) {
+      const int ufn = number(uf_, it.base, "UFRAME");
+      const int utn = number(ut_, it.tool, "UTOOL");
+      if (ufn != cur_uf) {
+        if (it.base != nullptr && it.base->resolved) {
+          lines_ += 2;
+          note(rep,
+               "set UFRAME[" + std::to_string(ufn) + "] on the controller (values in the remarks)");
+        }
+        ++lines_;
+        cur_uf = ufn;
+      }
+      if (utn != cur_ut) {
+        if (it.tool != nullptr && it.tool->resolved) {
+          lines_ += 2;
+          note(rep,
+               "set UTOOL[" + std::to_string(utn) + "] on the controller (values in the remarks)");
+        }
+        ++lines_;
+        cur_ut = utn;
+      }
+      if (!turn_note) {
+        note(rep,
+             "FANUC turn digits written 0 (turns are not carried across vendors); check J4/J6 "
+             "turns");
+        turn_note = true;
+      }
+      record(it.key, *it.config, rep);
+      if (it.type == MotionType::kCircular) record(it.aux, auxConfig(p_, it), rep);
+      ++lines_;  // a C motion's second line is not numbered
+    }
+  }
+  [[nodiscard]] int uframe(const Frame* f) const { return f == nullptr ? 0 : uf_.at(f); }
+  [[nodiscard]] int utool(const Frame* f) const { return f == nullptr ? 0 : ut_.at(f); }
+  [[nodiscard]] int position(int key) const { return pnum_.find(key); }
+  [[nodiscard]] int lineCount() const { return lines_; }
+
+ private:
+  static int number(std::map<const Frame*, int>& table, const Frame* f, const char* kind) {
     if (f == nullptr) return 0;
     const auto it = table.find(f);
     if (it != table.end()) return it->second;
@@ -656,195 +1049,269 @@ std::vector<std::pair<std::string, std::string>> toTp(const Program& p,
     }
     table[f] = n;
     return n;
-  };
-  std::vector<std::string> mn;
-  std::string pos;
-  std::map<int, int> pnum;
+  }
+  void record(int key, const Configuration& c, ConversionReport& rep) {
+    if (pnum_.find(key)) return;
+    const int n = pnum_.give(key);
+    if (!c.branch())
+      note(rep,
+           "P[" + std::to_string(n) + "]: no configuration in the source; CONFIG written 'F U T'");
+  }
+
+  const Program& p_;
+  std::map<const Frame*, int> uf_;
+  std::map<const Frame*, int> ut_;
+  KeyNumbers pnum_;
+  int lines_{0};
+};
+
+/// A frame's values as /MN remarks ("! UF1 REF ;", "! = x,y,z,w,p,r ;").
+void tpFrameRemarks(Out& o, int& line, const char* kind, int number, const Frame& f) {
+  const Vec3 abc = zyxFromRotation(f.pose.linear()) / kDeg;
+  const Vec3 x = f.pose.translation() * 1e3;
+  char buf[16];
+  std::snprintf(buf, sizeof buf, "%4d:", ++line);
+  o.add(buf, "  ! ", kind, std::to_string(number), " ", f.ref, " ;\n");
+  std::snprintf(buf, sizeof buf, "%4d:", ++line);
+  o.add(buf, "  ! = ").num(x.x(), 3).add(",").num(x.y(), 3).add(",").num(x.z(), 3).add(",");
+  o.num(abc[2], 6).add(",").num(abc[1], 6).add(",").num(abc[0], 6).add(" ;\n");
+}
+
+/// The /MN section: frame selections where they change, a numbered line per motion.
+void tpMain(Out& o, const std::vector<Item>& items, const TpPlan& plan) {
   int cur_uf = -1;
   int cur_ut = -1;
-  auto remark = [&](const std::string& s) { mn.push_back("  ! " + s + " ;"); };
-  auto record = [&](int key, const Pose& T, const Configuration& c, const Item& it, int ufn,
-                    int utn) {
-    const auto f = pnum.find(key);
-    if (f != pnum.end()) return f->second;
-    const int n = static_cast<int>(pnum.size()) + 1;
-    pnum[key] = n;
-    Configuration fc = configurationFromBranch(Vendor::kFanuc, c.branch().value_or(0));
-    if (!c.branch())
-      rep.notes.push_back("P[" + std::to_string(n) +
-                          "]: no configuration in the source; CONFIG written 'F U T'");
-    const Vec3 abc = zyxFromRotation(T.linear()) / kDeg;
-    pos += "P[" + std::to_string(n) + "]{\n   GP1:\n\tUF : " + std::to_string(ufn) +
-           ", UT : " + std::to_string(utn) + ",\t\tCONFIG : '" + fc.text() + "',\n";
-    pos += "\tX = " + fmt(T.translation().x() * 1e3, 6) +
-           "  mm,\tY = " + fmt(T.translation().y() * 1e3, 6) +
-           "  mm,\tZ = " + fmt(T.translation().z() * 1e3, 6) + "  mm,\n";
-    pos += "\tW = " + fmt(abc[2], 9) + " deg,\tP = " + fmt(abc[1], 9) +
-           " deg,\tR = " + fmt(abc[0], 9) + " deg";
-    for (std::size_t k = 0; k < 3; ++k) {
-      if (hasExt(it, k))
-        pos += ",\n\tE" + std::to_string(k + 1) + "= " + fmt(it.ext[k], 6) + "  mm";
-    }
-    pos += "\n};\n";
-    return n;
+  int line = 0;
+  char buf[16];
+  auto numbered = [&]() {
+    std::snprintf(buf, sizeof buf, "%4d:", ++line);
+    return std::string_view(buf);
   };
-  bool turn_note = false;
   for (const Item& it : items) {
-    const int ufn = number(uf, it.base, "UFRAME");
-    const int utn = number(ut, it.tool, "UTOOL");
+    const int ufn = plan.uframe(it.base);
+    const int utn = plan.utool(it.tool);
     if (ufn != cur_uf) {
-      if (it.base != nullptr && it.base->resolved) {
-        const Vec3 abc = zyxFromRotation(it.base->pose.linear()) / kDeg;
-        const Vec3 x = it.base->pose.translation() * 1e3;
-        remark("UF" + std::to_string(ufn) + " " + it.base->ref);
-        remark("= " + fmt(x.x(), 3) + "," + fmt(x.y(), 3) + "," + fmt(x.z(), 3) + "," +
-               fmt(abc[2], 6) + "," + fmt(abc[1], 6) + "," + fmt(abc[0], 6));
-        rep.notes.push_back("set UFRAME[" + std::to_string(ufn) +
-                            "] on the controller (values in the remarks)");
-      }
-      mn.push_back("  UFRAME_NUM=" + std::to_string(ufn) + " ;");
+      if (it.base != nullptr && it.base->resolved) tpFrameRemarks(o, line, "UF", ufn, *it.base);
+      o.add(numbered(), "  UFRAME_NUM=", std::to_string(ufn), " ;\n");
       cur_uf = ufn;
     }
     if (utn != cur_ut) {
-      if (it.tool != nullptr && it.tool->resolved) {
-        const Vec3 abc = zyxFromRotation(it.tool->pose.linear()) / kDeg;
-        const Vec3 x = it.tool->pose.translation() * 1e3;
-        remark("UT" + std::to_string(utn) + " " + it.tool->ref);
-        remark("= " + fmt(x.x(), 3) + "," + fmt(x.y(), 3) + "," + fmt(x.z(), 3) + "," +
-               fmt(abc[2], 6) + "," + fmt(abc[1], 6) + "," + fmt(abc[0], 6));
-        rep.notes.push_back("set UTOOL[" + std::to_string(utn) +
-                            "] on the controller (values in the remarks)");
-      }
-      mn.push_back("  UTOOL_NUM=" + std::to_string(utn) + " ;");
+      if (it.tool != nullptr && it.tool->resolved) tpFrameRemarks(o, line, "UT", utn, *it.tool);
+      o.add(numbered(), "  UTOOL_NUM=", std::to_string(utn), " ;\n");
       cur_ut = utn;
     }
-    if (!turn_note) {
-      rep.notes.push_back(
-          "FANUC turn digits written 0 (turns are not carried across vendors); check J4/J6 turns");
-      turn_note = true;
-    }
-    const int n = record(it.key, it.T, it.config, it, ufn, utn);
-    const std::string term = it.fine ? "FINE" : "CNT100";
+    const std::string n = std::to_string(plan.position(it.key));
+    const char* term = it.fine ? "FINE" : "CNT100";
     const std::string speed =
         it.type == MotionType::kJoint ? "100%" : (it.speed > 0 ? fmtG(it.speed) : "250") + "mm/sec";
     if (it.type == MotionType::kJoint) {
-      mn.push_back(strCat("J P[", std::to_string(n), "] ", speed, " ", term, " ;"));
+      o.add(numbered(), "J P[", n, "] ", speed, " ", term, " ;\n");
     } else if (it.type == MotionType::kCircular) {
-      const int a = record(it.aux, it.Taux, p.targets()[static_cast<std::size_t>(it.aux)].config,
-                           it, ufn, utn);
-      mn.push_back("C P[" + std::to_string(a) + "] ");
-      mn.push_back(strCat(":  P[", std::to_string(n), "] ", speed, " ", term, " ;"));
+      o.add(numbered(), "C P[", std::to_string(plan.position(it.aux)), "] \n");
+      o.add("    :  P[", n, "] ", speed, " ", term, " ;\n");
     } else {
-      mn.push_back(strCat("L P[", std::to_string(n), "] ", speed, " ", term, " ;"));
+      o.add(numbered(), "L P[", n, "] ", speed, " ", term, " ;\n");
     }
   }
-  std::string s =
-      "/PROG  " + name +
-      "\n/ATTR\nOWNER\t\t= MNEDITOR;\nCOMMENT\t\t= \"roprec convert\";\nPROG_SIZE\t= 0;\n";
-  s += "CREATE\t\t= DATE 00-01-01  TIME 00:00:00;\nMODIFIED\t= DATE 00-01-01  TIME "
-       "00:00:00;\nFILE_NAME\t= ;\n";
-  s += "VERSION\t\t= 0;\nLINE_COUNT\t= " +
-       std::to_string(mn.size() -
-                      static_cast<std::size_t>(std::count_if(
-                          mn.begin(), mn.end(),
-                          [](const std::string& l) { return l.rfind(":  P[", 0) == 0; }))) +
-       ";\nMEMORY_SIZE\t= 0;\n";
-  s += "PROTECT\t\t= READ_WRITE;\nTCD:  STACK_SIZE\t= 0,\n      TASK_PRIORITY\t= 50,\n      "
-       "TIME_SLICE\t= 0,\n";
-  s += "      BUSY_LAMP_OFF\t= 0,\n      ABORT_REQUEST\t= 0,\n      PAUSE_REQUEST\t= 0;\n";
-  s += "DEFAULT_GROUP\t= 1,*,*,*,*;\nCONTROL_CODE\t= 00000000 00000000;\n/MN\n";
-  int line = 0;
-  for (const std::string& l : mn) {
-    if (l.rfind(":  P[", 0) == 0) {
-      s += "    " + l + "\n";
-      continue;
+}
+
+/// The /POS section: each P[n] once, in number order (first use), with the frames of the motion
+/// that first uses it.
+void tpPositions(Out& o, const Program& p, const std::vector<Item>& items, const TpPlan& plan) {
+  int written = 0;
+  auto record = [&](int key, const Pose& T, const Configuration& c, const Item& it) {
+    const int n = plan.position(key);
+    if (n <= written) return;
+    written = n;
+    const Configuration fc = configurationFromBranch(Vendor::kFanuc, c.branch().value_or(0));
+    const Vec3 abc = zyxFromRotation(T.linear()) / kDeg;
+    o.add("P[", std::to_string(n), "]{\n   GP1:\n\tUF : ", std::to_string(plan.uframe(it.base)),
+          ", UT : ", std::to_string(plan.utool(it.tool)), ",\t\tCONFIG : '", fc.text(), "',\n");
+    o.add("\tX = ").num(T.translation().x() * 1e3, 6).add("  mm,\tY = ");
+    o.num(T.translation().y() * 1e3, 6).add("  mm,\tZ = ").num(T.translation().z() * 1e3, 6);
+    o.add("  mm,\n\tW = ").num(abc[2], 9).add(" deg,\tP = ").num(abc[1], 9).add(" deg,\tR = ");
+    o.num(abc[0], 9).add(" deg");
+    for (std::size_t k = 0; k < 3; ++k) {
+      if (hasExt(it, k)) o.add(",\n\tE", std::to_string(k + 1), "= ").num(it.ext[k], 6).add("  mm");
     }
-    char buf[16];
-    std::snprintf(buf, sizeof buf, "%4d:", ++line);
-    s += buf + l + "\n";
+    o.add("\n};\n");
+  };
+  for (const Item& it : items) {
+    if (plan.position(it.key) > written) record(it.key, itemPose(p, it), *it.config, it);
+    if (it.type == MotionType::kCircular) record(it.aux, auxPose(p, it), auxConfig(p, it), it);
   }
-  s += "/POS\n" + pos + "/END\n";
+}
+
+void toTp(const Program& p, const std::vector<Item>& items, const std::string& out,
+          ConversionReport& rep, const ConvertedFileSink& sink) {
+  const std::string name = upper(programName(out, 36));
+  TpPlan plan(p);
+  plan.plan(items, rep);
   std::string path = out;
   if (fs::path(out).extension().empty()) path += ".ls";
-  return {{path, s}};
+  sink(path, [&](const ByteWriter& w) {
+    Out o(w);
+    o.add("/PROG  ", name,
+          "\n/ATTR\nOWNER\t\t= MNEDITOR;\nCOMMENT\t\t= \"roprec convert\";\nPROG_SIZE\t= 0;\n");
+    o.add(
+        "CREATE\t\t= DATE 00-01-01  TIME 00:00:00;\nMODIFIED\t= DATE 00-01-01  TIME "
+        "00:00:00;\nFILE_NAME\t= ;\n");
+    o.add("VERSION\t\t= 0;\nLINE_COUNT\t= ", std::to_string(plan.lineCount()),
+          ";\nMEMORY_SIZE\t= 0;\n");
+    o.add(
+        "PROTECT\t\t= READ_WRITE;\nTCD:  STACK_SIZE\t= 0,\n      TASK_PRIORITY\t= 50,\n      "
+        "TIME_SLICE\t= 0,\n");
+    o.add("      BUSY_LAMP_OFF\t= 0,\n      ABORT_REQUEST\t= 0,\n      PAUSE_REQUEST\t= 0;\n");
+    o.add("DEFAULT_GROUP\t= 1,*,*,*,*;\nCONTROL_CODE\t= 00000000 00000000;\n/MN\n");
+    tpMain(o, items, plan);
+    o.add("/POS\n");
+    tpPositions(o, p, items, plan);
+    o.add("/END\n");
+    o.finish();
+  });
 }
 
 // ---------------------------------------------------------------- CSV / JSON
 
-std::string quat(const Pose& T, const char* sep) {
+void quat(Out& o, const Pose& T, const char* sep) {
   const Eigen::Quaterniond q = quaternionFromRotation(T.linear());
-  return fmt(q.w(), 12) + sep + fmt(q.x(), 12) + sep + fmt(q.y(), 12) + sep + fmt(q.z(), 12);
+  o.num(q.w(), 12).add(sep).num(q.x(), 12).add(sep).num(q.y(), 12).add(sep).num(q.z(), 12);
 }
 
-std::string xyz(const Pose& T, const char* sep) {
-  return fmt(T.translation().x() * 1e3, 6) + sep + fmt(T.translation().y() * 1e3, 6) + sep +
-         fmt(T.translation().z() * 1e3, 6);
+void xyz(Out& o, const Pose& T, const char* sep) {
+  o.num(T.translation().x() * 1e3, 6).add(sep).num(T.translation().y() * 1e3, 6).add(sep);
+  o.num(T.translation().z() * 1e3, 6);
 }
 
-std::string motionName(const Item& it) {
+const char* motionName(const Item& it) {
   return it.type == MotionType::kJoint ? "J" : it.type == MotionType::kCircular ? "C" : "L";
 }
 
-/// The ids given so far: by item key, and the set of names taken (a look-up per new target).
-struct TargetIds {
-  std::unordered_map<int, std::string> by_key;
-  std::unordered_set<std::string> taken;
+/// The ids of the targets of a target list: an item's target name (sanitised) the first time
+/// that name is given, else "T<n>" (n = the count of targets named so far + 1); the same id for
+/// the same key again. The "T<n>" ids are numbers, not strings, and a look-up per new target.
+class TargetIds {
+ public:
+  explicit TargetIds(const Program& p) : p_(p), keys_(p) {}
+
+  /// The id of an item's target.
+  std::string_view of(const Item& it) {
+    const int order = keys_.find(it.key);
+    const int id = order != 0 ? ids_[static_cast<std::size_t>(order)] : give(it);
+    if (id > 0) {
+      id_.assign("T");
+      id_ += std::to_string(id);
+      return id_;
+    }
+    return names_[static_cast<std::size_t>(-id - 1)];
+  }
+
+ private:
+  /// A new id: > 0 for "T<id>", < 0 for names_[-id - 1] (KeyNumbers holds ids as numbers).
+  int give(const Item& it) {
+    std::string n = it.key == it.target
+                        ? sanitize(p_.targets()[static_cast<std::size_t>(it.target)].name, "")
+                        : "";
+    if (taken(n)) n.clear();
+    const int count = keys_.count() + 1;  // the ids given so far + 1
+    int id = 0;
+    if (n.empty()) {
+      id = count;
+      if (generated_.size() <= static_cast<std::size_t>(id)) generated_.resize(2 * id + 1, false);
+      generated_[static_cast<std::size_t>(id)] = true;
+    } else {
+      given_.insert(n);
+      names_.push_back(std::move(n));
+      id = -static_cast<int>(names_.size());
+    }
+    keys_.give(it.key);  // counts the ids given
+    ids_.resize(std::max<std::size_t>(ids_.size(), static_cast<std::size_t>(count) + 1), 0);
+    ids_[static_cast<std::size_t>(count)] = id;
+    return id;
+  }
+  /// Whether `n` was given as an id already (a name, or a "T<n>").
+  [[nodiscard]] bool taken(const std::string& n) const {
+    if (n.empty()) return false;
+    if (given_.count(n)) return true;
+    if (n.size() < 2 || n.size() > 11 || n[0] != 'T' || n[1] == '0') return false;
+    std::size_t k = 0;
+    for (std::size_t i = 1; i < n.size(); ++i) {
+      if (!isDigit(n[i])) return false;
+      k = k * 10 + static_cast<std::size_t>(n[i] - '0');
+    }
+    return k < generated_.size() && generated_[k];
+  }
+
+  const Program& p_;
+  KeyNumbers keys_;                        ///< key -> the order its id was given in (1, 2, ...)
+  std::vector<int> ids_;                   ///< by that order: the id (see give())
+  std::vector<std::string> names_;         ///< the names given as ids
+  std::unordered_set<std::string> given_;  ///< the same, for the look-up
+  std::vector<bool> generated_;            ///< "T<k>" given
+  std::string id_;                         ///< of()'s buffer for a "T<n>"
 };
 
-/// The id of an item's target: its name (sanitised) the first time that name is given, else
-/// "T<n>" (n = the count of targets named so far + 1); the same id for the same key again.
-const std::string& targetId(const Program& p, const Item& it, TargetIds& ids) {
-  const auto f = ids.by_key.find(it.key);
-  if (f != ids.by_key.end()) return f->second;
-  std::string n = it.key == it.target
-                      ? sanitize(p.targets()[static_cast<std::size_t>(it.target)].name, "")
-                      : "";
-  if (ids.taken.count(n)) n.clear();
-  if (n.empty()) n = "T" + std::to_string(ids.by_key.size() + 1);
-  ids.taken.insert(n);
-  return ids.by_key.emplace(it.key, std::move(n)).first->second;
-}
-
-std::vector<std::pair<std::string, std::string>> toCsv(const Program& p,
-                                                       const std::vector<Item>& items,
-                                                       const std::string& out) {
-  std::string s =
-      "# roprec target list converted from " + fs::path(p.files[0].path).filename().string() + "\n";
-  s += "# units: mm, deg; orientation: quaternion qw,qx,qy,qz; poses are TCP poses in the named "
-       "frame\n";
+void csvTargets(Out& o, const Program& p, const std::vector<Item>& items) {
+  o.add("# roprec target list converted from ", fs::path(p.files[0].path).filename().string(),
+        "\n");
+  o.add(
+      "# units: mm, deg; orientation: quaternion qw,qx,qy,qz; poses are TCP poses in the named "
+      "frame\n");
   std::map<std::string, const Frame*> frames;
   std::map<std::string, const Frame*> tools;
   for (const Item& it : items) {
     if (it.base != nullptr && it.base->resolved) frames[sanitize(it.base->ref, "frame")] = it.base;
     if (it.tool != nullptr && it.tool->resolved) tools[sanitize(it.tool->ref, "tool")] = it.tool;
   }
-  for (const auto& [n, f] : frames)
-    s += "# frame " + n + ": " + xyz(f->pose, " ") + " " + quat(f->pose, " ") + "\n";
-  for (const auto& [n, f] : tools)
-    s += "# tool " + n + ": " + xyz(f->pose, " ") + " " + quat(f->pose, " ") + "\n";
-  s += "id,motion,x,y,z,qw,qx,qy,qz,frame,tool,conf,speed,j1,j2,j3,j4,j5,j6\n";
-  TargetIds ids;
-  for (const Item& it : items) {
-    s += targetId(p, it, ids) + "," + motionName(it) + ",";
-    s += it.cartesian ? xyz(it.T, ",") + "," + quat(it.T, ",") : std::string(",,,,,,");
-    s += "," + (it.base ? sanitize(it.base->ref, "frame") : "") + "," +
-         (it.tool ? sanitize(it.tool->ref, "tool") : "");
-    const std::string conf = it.config.text();
-    s += "," + (conf.find(',') != std::string::npos ? "\"" + conf + "\"" : conf);
-    s += "," + (it.speed > 0 ? fmtG(it.speed) : "");
-    for (std::size_t k = 0; k < 6; ++k)
-      s += "," + (k < it.joints.size() ? fmt(it.joints[k], 9) : "");
-    s += "\n";
+  for (const auto& [n, f] : frames) {
+    o.add("# frame ", n, ": ");
+    xyz(o, f->pose, " ");
+    o.add(" ");
+    quat(o, f->pose, " ");
+    o.add("\n");
   }
-  return {{fs::path(out).extension().empty() ? out + ".csv" : out, s}};
+  for (const auto& [n, f] : tools) {
+    o.add("# tool ", n, ": ");
+    xyz(o, f->pose, " ");
+    o.add(" ");
+    quat(o, f->pose, " ");
+    o.add("\n");
+  }
+  o.add("id,motion,x,y,z,qw,qx,qy,qz,frame,tool,conf,speed,j1,j2,j3,j4,j5,j6\n");
+  TargetIds ids(p);
+  FrameNames frame_names("frame");
+  FrameNames tool_names("tool");
+  for (const Item& it : items) {
+    o.add(ids.of(it), ",", motionName(it), ",");
+    if (it.cartesian) {
+      const Pose T = itemPose(p, it);
+      xyz(o, T, ",");
+      o.add(",");
+      quat(o, T, ",");
+    } else {
+      o.add(",,,,,,");
+    }
+    o.add(",", frame_names.of(it.base), ",", tool_names.of(it.tool));
+    const std::string conf = it.config->text();
+    if (conf.find(',') != std::string::npos) {
+      o.add(",\"", conf, "\"");
+    } else {
+      o.add(",", conf);
+    }
+    o.add(",", it.speed > 0 ? fmtG(it.speed) : "");
+    const std::vector<double> joints = itemJoints(p, it);
+    for (std::size_t k = 0; k < 6; ++k) {
+      o.add(",");
+      if (k < joints.size()) o.num(joints[k], 9);
+    }
+    o.add("\n");
+  }
 }
 
-std::vector<std::pair<std::string, std::string>> toJson(const Program& p,
-                                                        const std::vector<Item>& items,
-                                                        const std::string& out) {
-  std::string s = "{\n  \"format\": \"roprec-targets\",\n  \"source\": " +
-                  jsonStr(fs::path(p.files[0].path).filename().string()) +
-                  ",\n  \"units\": {\"length\": \"mm\", \"angle\": \"deg\"},\n  \"frames\": [";
+void jsonTargets(Out& o, const Program& p, const std::vector<Item>& items) {
+  o.add("{\n  \"format\": \"roprec-targets\",\n  \"source\": ",
+        jsonStr(fs::path(p.files[0].path).filename().string()),
+        ",\n  \"units\": {\"length\": \"mm\", \"angle\": \"deg\"},\n  \"frames\": [");
   std::map<std::string, const Frame*> frames;
   for (const Item& it : items) {
     for (const Frame* f : {it.base, it.tool}) {
@@ -853,35 +1320,84 @@ std::vector<std::pair<std::string, std::string>> toJson(const Program& p,
   }
   bool first = true;
   for (const auto& [n, f] : frames) {
-    s += std::string(first ? "\n" : ",\n") + "    {\"name\": " + jsonStr(n) +
-         ", \"position_mm\": [" + xyz(f->pose, ", ") + "], \"quaternion_wxyz\": [" +
-         quat(f->pose, ", ") + "]}";
+    o.add(first ? "\n" : ",\n", "    {\"name\": ", jsonStr(n), ", \"position_mm\": [");
+    xyz(o, f->pose, ", ");
+    o.add("], \"quaternion_wxyz\": [");
+    quat(o, f->pose, ", ");
+    o.add("]}");
     first = false;
   }
-  s += std::string(first ? "" : "\n  ") + "],\n  \"targets\": [";
-  TargetIds ids;
+  o.add(first ? "" : "\n  ", "],\n  \"targets\": [");
+  TargetIds ids(p);
+  FrameNames frame_names("frame");
+  FrameNames tool_names("tool");
   first = true;
   for (const Item& it : items) {
-    s += std::string(first ? "\n" : ",\n") + "    {\"id\": " + jsonStr(targetId(p, it, ids)) +
-         ", \"motion\": \"" + motionName(it) + "\"";
-    if (it.cartesian)
-      s += ", \"position_mm\": [" + xyz(it.T, ", ") + "], \"quaternion_wxyz\": [" +
-           quat(it.T, ", ") + "]";
-    if (!it.joints.empty()) {
-      s += ", \"joints_deg\": [";
-      for (std::size_t k = 0; k < it.joints.size(); ++k)
-        s += (k ? ", " : "") + fmt(it.joints[k], 9);
-      s += "]";
+    o.add(first ? "\n" : ",\n", "    {\"id\": ", jsonStr(std::string(ids.of(it))),
+          ", \"motion\": \"", motionName(it), "\"");
+    if (it.cartesian) {
+      o.add(", \"position_mm\": [");
+      const Pose T = itemPose(p, it);
+      xyz(o, T, ", ");
+      o.add("], \"quaternion_wxyz\": [");
+      quat(o, T, ", ");
+      o.add("]");
     }
-    if (it.base != nullptr) s += ", \"frame\": " + jsonStr(sanitize(it.base->ref, "frame"));
-    if (it.tool != nullptr) s += ", \"tool\": " + jsonStr(sanitize(it.tool->ref, "tool"));
-    if (it.config.present()) s += ", \"config\": " + jsonStr(it.config.text());
-    if (it.speed > 0) s += ", \"speed_mm_s\": " + fmtG(it.speed);
-    s += std::string(", \"fine\": ") + (it.fine ? "true" : "false") + "}";
+    const std::vector<double> joints = itemJoints(p, it);
+    if (!joints.empty()) {
+      o.add(", \"joints_deg\": [");
+      for (std::size_t k = 0; k < joints.size(); ++k) {
+        if (k) o.add(", ");
+        o.num(joints[k], 9);
+      }
+      o.add("]");
+    }
+    if (it.base != nullptr) o.add(", \"frame\": ", jsonStr(frame_names.of(it.base)));
+    if (it.tool != nullptr) o.add(", \"tool\": ", jsonStr(tool_names.of(it.tool)));
+    if (it.config->present()) o.add(", \"config\": ", jsonStr(it.config->text()));
+    if (it.speed > 0) o.add(", \"speed_mm_s\": ", fmtG(it.speed));
+    o.add(", \"fine\": ", it.fine ? "true" : "false", "}");
     first = false;
   }
-  s += std::string(first ? "" : "\n  ") + "]\n}\n";
-  return {{fs::path(out).extension().empty() ? out + ".json" : out, s}};
+  o.add(first ? "" : "\n  ", "]\n}\n");
+}
+
+void toTable(const Program& p, const std::vector<Item>& items, const std::string& out, bool json,
+             const ConvertedFileSink& sink) {
+  const std::string path =
+      fs::path(out).extension().empty() ? out + (json ? ".json" : ".csv") : out;
+  sink(path, [&](const ByteWriter& w) {
+    Out o(w);
+    if (json) {
+      jsonTargets(o, p, items);
+    } else {
+      csvTargets(o, p, items);
+    }
+    o.finish();
+  });
+}
+
+void writeConverted(const Program& p, const std::vector<Item>& items, Dialect to,
+                    const std::string& out_path, ConversionReport& report,
+                    const ConvertedFileSink& sink) {
+  switch (to) {
+    case Dialect::kKrl:
+      toKrl(p, items, out_path, report, sink);
+      return;
+    case Dialect::kRapid:
+      toRapid(p, items, out_path, report, sink);
+      return;
+    case Dialect::kTp:
+      toTp(p, items, out_path, report, sink);
+      return;
+    case Dialect::kCsv:
+    case Dialect::kHoleCsv:
+      toTable(p, items, out_path, false, sink);
+      return;
+    case Dialect::kJson:
+      toTable(p, items, out_path, true, sink);
+      return;
+  }
 }
 
 }  // namespace
@@ -896,31 +1412,41 @@ Dialect dialectFromName(const std::string& name) {
   throw UsageError("--to must be krl, rapid, tp, csv or json (got '" + name + "')");
 }
 
+void convertProgram(const Program& p, Dialect to, const std::string& out_path,
+                    ConversionReport& report, bool all_lines, const ConvertedFileSink& sink) {
+  const bool table = to == Dialect::kCsv || to == Dialect::kJson;
+  std::vector<Item> items = collect(p, table, report);
+  std::future<std::vector<std::string>> lost;
+  if (!table) {  // a program: say what of the source it does not carry
+    markUnusedKrlExternalAxes(p, items, report);
+    // listed on a thread of its own while the files are written (it reads the program and the
+    // items only); its notices follow the ones collect() gave, in the same order
+    lost = std::async(std::launch::async, [&p, &items, to, all_lines] {
+      ConversionReport r;
+      listNotCarried(p, all_lines, r);
+      listZoneMappings(p, to, items, all_lines, r);
+      return std::move(r.not_carried);
+    });
+  }
+  writeConverted(p, items, to, out_path, report, sink);
+  if (lost.valid()) {
+    for (std::string& s : lost.get()) report.not_carried.push_back(std::move(s));
+  }
+}
+
 std::vector<std::pair<std::string, std::string>> convertProgram(const Program& p, Dialect to,
                                                                 const std::string& out_path,
                                                                 ConversionReport& report,
                                                                 bool all_lines) {
-  const bool table = to == Dialect::kCsv || to == Dialect::kJson;
-  std::vector<Item> items = collect(p, table, report);
-  if (!table) {  // a program: say what of the source it does not carry
-    markUnusedKrlExternalAxes(p, items, report);
-    listNotCarried(p, all_lines, report);
-    listZoneMappings(p, to, items, all_lines, report);
-  }
-  switch (to) {
-    case Dialect::kKrl:
-      return toKrl(p, items, out_path, report);
-    case Dialect::kRapid:
-      return toRapid(p, items, out_path, report);
-    case Dialect::kTp:
-      return toTp(p, items, out_path, report);
-    case Dialect::kCsv:
-    case Dialect::kHoleCsv:
-      return toCsv(p, items, out_path);
-    case Dialect::kJson:
-      return toJson(p, items, out_path);
-  }
-  return {};
+  std::vector<std::pair<std::string, std::string>> files;
+  convertProgram(
+      p, to, out_path, report, all_lines,
+      [&](const std::string& path, const std::function<void(const ByteWriter&)>& produce) {
+        std::string bytes;
+        produce([&](std::string_view s) { bytes.append(s); });
+        files.emplace_back(path, std::move(bytes));
+      });
+  return files;
 }
 
 }  // namespace roprec::postproc

@@ -20,10 +20,12 @@
 /// Numbers: positions 6 decimals (mm), angles 9 decimals (deg), quaternions 12 decimals, so a
 /// conversion keeps poses to < 1e-6 mm and < 1e-9 rad.
 
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "compensator/support/atomic_file.hpp"
 #include "postproc/program.hpp"
 
 namespace roprec::postproc {
@@ -39,6 +41,9 @@ struct ConversionReport {
   /// notice is at most about kNoticeBytes (its line list cut to ",...") unless convertProgram is
   /// asked for every line.
   std::vector<std::string> not_carried;
+  /// When set, each note is handed to it, in order, instead of kept in `notes` (a caller that
+  /// groups them holds one line per kind, not one per target of a large program).
+  std::function<void(const std::string&)> on_note;
 };
 
 /// The length a not-carried notice's line list keeps it to (the count of lines is stated).
@@ -51,6 +56,18 @@ std::vector<std::pair<std::string, std::string>> convertProgram(const Program& p
                                                                 const std::string& out_path,
                                                                 ConversionReport& report,
                                                                 bool all_lines = false);
+
+/// Receives each file of a converted program, in order: its path and `produce`, which writes
+/// the file's bytes through the ByteWriter it is given (piece by piece: a large program is never
+/// held whole; writeFileAtomicStream takes these two arguments).
+using ConvertedFileSink = std::function<void(
+    const std::string& path, const std::function<void(const ByteWriter&)>& produce)>;
+
+/// convertProgram with the files handed to `sink` as they are made (the same bytes, the same
+/// report). A frame that must be stated by value but is unresolved throws while its file is
+/// being produced.
+void convertProgram(const Program& p, Dialect to, const std::string& out_path,
+                    ConversionReport& report, bool all_lines, const ConvertedFileSink& sink);
 
 /// Dialect from a `--to` name: krl, rapid, tp, csv, json.
 Dialect dialectFromName(const std::string& name);

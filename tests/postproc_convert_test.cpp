@@ -158,6 +158,45 @@ TEST(PostprocConvert, CorpusProgramsConvertAndJointTargetsAreReported) {
   }
 }
 
+// The streamed form: the notes go to the report's callback (none kept), the files are the same,
+// and an error of the file writer (on the conversion's writing thread) stops the conversion.
+TEST(PostprocConvert, NotesGoToTheCallbackAndAWriteErrorStopsTheConversion) {
+  std::mt19937 rng(7);
+  const std::string dir = test::tempDir("convert-sink");
+  test::writeFile(dir + "/rand.mod", randomRapid(rng));
+  const Program src = readProgram(dir + "/rand.mod");
+  for (const Dialect d :
+       {Dialect::kKrl, Dialect::kRapid, Dialect::kTp, Dialect::kCsv, Dialect::kJson}) {
+    SCOPED_TRACE(dialectName(d));
+    ConversionReport rep;
+    const auto files = convertProgram(src, d, dir + "/o", rep);
+    ConversionReport called;
+    std::vector<std::string> notes;
+    called.on_note = [&notes](const std::string& n) { notes.push_back(n); };
+    std::vector<std::pair<std::string, std::string>> streamed;
+    convertProgram(
+        src, d, dir + "/o", called, false,
+        [&](const std::string& path, const std::function<void(const ByteWriter&)>& produce) {
+          std::string bytes;
+          produce([&bytes](std::string_view s) { bytes.append(s); });
+          streamed.emplace_back(path, bytes);
+        });
+    EXPECT_EQ(streamed, files);
+    EXPECT_EQ(notes, rep.notes);
+    EXPECT_TRUE(called.notes.empty());
+    EXPECT_EQ(called.not_carried, rep.not_carried);
+    ConversionReport failing;
+    EXPECT_THROW(convertProgram(src, d, dir + "/o", failing, false,
+                                [](const std::string& path,
+                                   const std::function<void(const ByteWriter&)>& produce) {
+                                  produce([&path](std::string_view) {
+                                    throw InputError(path, 0, "cannot write output file: full");
+                                  });
+                                }),
+                 InputError);
+  }
+}
+
 TEST(PostprocConvert, UnresolvedFrameNeedsAValue) {
   if (test::corpusDir().empty()) GTEST_SKIP() << "no corpus";
   const Program src = readProgram(test::corpusDir() + "/robodk/DRILLR30IA.LS");

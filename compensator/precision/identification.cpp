@@ -219,6 +219,9 @@ struct Problem {
   VectorXd cache_key;
   std::vector<Vec6> cache_theta;
   std::vector<Pose> cache_p, cache_tcp_ref;
+  /// Per hole: the torques of the controller's command offset at θ_cmd (offsetTorque), which do
+  /// not change with x; the offset is τ ⊘ c_eff(x).
+  std::vector<Vec6> offset_torque;
 };
 
 /// The non-geometry part of x (the key of the equilibrium cache).
@@ -262,9 +265,20 @@ HoleRequest processRequest(const IdentificationHole& h) {
   return r;
 }
 
+/// The torques the controller's command offset divides by K_eff at θ_cmd (controllerOffset =
+/// τ ⊘ c.effective() for every controller reference): the offset for a unit effective
+/// stiffness (k = 1, ideal servo: k_eff = 1 / (1 / 1 + 1 / ∞) = 1 exactly, so τ ⊘ 1 = τ).
+Vec6 offsetTorque(Problem& P, const Vec6& theta_cmd) {
+  nc::JointCompliance unit;
+  unit.k = Vec6::Ones();
+  unit.k_servo = Vec6::Constant(std::numeric_limits<double>::infinity());
+  return controllerOffset(P.m, P.data, theta_cmd, unit);
+}
+
 void setUpHoles(Problem& P) {
   P.row.assign(1, 0);
   P.obs_model.assign(P.holes.size(), std::nullopt);
+  P.offset_torque.clear();
   for (size_t i = 0; i < P.holes.size(); ++i) {
     const IdentificationHole& h = P.holes[i];
     if (h.tool) {
@@ -283,6 +297,7 @@ void setUpHoles(Problem& P) {
     P.d_mach_tool.push_back(proc ? Vec3(proc->mach.delta_tool.x(), proc->mach.delta_tool.y(), 0.0)
                                  : Vec3::Zero());
     P.row.push_back(P.row.back() + observationRows(h) + orientationRows(h));
+    P.offset_torque.push_back(offsetTorque(P, h.theta_cmd));
   }
 }
 
@@ -304,6 +319,7 @@ Problem makeProblem(const PredictionModel& m, const std::vector<IdentificationHo
             {},
             cardGeometry(m),
             m.robot.real_chain.tip.inverse() * m.model.T_L6_tcp,
+            {},
             {},
             {},
             {},
@@ -378,10 +394,14 @@ int predictEquilibrium(Problem& P, const VectorXd& x, std::vector<Pose>& p,
   const nc::Model& tool_model = rebuilt ? *rebuilt : P.m.model;
   p.resize(P.holes.size());
   theta.resize(P.holes.size());
+  const Vec6 c_eff = c.effective();
   for (size_t i = 0; i < P.holes.size(); ++i) {
     const nc::Model& model = P.obs_model[i] ? *P.obs_model[i] : tool_model;
     const Vec6& th = P.holes[i].theta_cmd;
-    const Vec6 offset = controllerOffset(P.m, P.data, th, c);
+    // controllerOffset(P.m, P.data, th, c): the same torques over the same c_eff
+    const Vec6 offset = P.m.controller.kind == nc::ControllerReference::Kind::kNone
+                            ? Vec6::Zero()
+                            : Vec6(P.offset_torque[i].cwiseQuotient(c_eff));
     const nc::Deflection d = nc::predictDeflection(model, P.data, c, th, P.loads[i], {}, offset);
     if (!d.converged || !d.position_converged) return static_cast<int>(i);
     p[i] = d.T_real;
@@ -482,10 +502,19 @@ VectorXd dataResiduals(const Problem& P, const VectorXd& x, const std::vector<Po
   VectorXd r(P.row.back());
   for (size_t i = 0; i < P.holes.size(); ++i) {
     const IdentificationHole& h = P.holes[i];
-    const VectorXd e = inPlaneResidual(P, x, i, p[i]) / h.sigma;
-    r.segment(P.row[i], e.size()) = e;
+    Eigen::Index n = 2;
+    if (h.point) {
+      const VectorXd e = inPlaneResidual(P, x, i, p[i]) / h.sigma;
+      r.segment(P.row[i], e.size()) = e;
+      n = e.size();
+    } else {  // inPlaneResidual's two rows, written in place (no vector per hole)
+      const Vec3 d = h.p_W_measured - registered(P, x, p[i].translation());
+      const Mat3 R = h.T_W_hole.linear();
+      r[P.row[i]] = R.col(0).dot(d) / h.sigma;
+      r[P.row[i] + 1] = R.col(1).dot(d) / h.sigma;
+    }
     if (orientationRows(h) > 0)
-      r.segment<3>(P.row[i] + e.size()) = rotationResidual(P, x, i, p[i]) / h.sigma_rotation;
+      r.segment<3>(P.row[i] + n) = rotationResidual(P, x, i, p[i]) / h.sigma_rotation;
   }
   return r;
 }
@@ -704,8 +733,12 @@ LmState priorState(Problem& P) {
                      "hole '" + P.holes[static_cast<size_t>(bad)].id +
                          "': the compliance equilibrium does not converge at the card's stiffness");
   }
-  LmState s;
-  evaluate(P, P.spec.x0, s);
+  LmState s;  // evaluate(P, x0, s) without a second equilibrium pass (p is p̂ at x0)
+  if (!admissible(P.layout, P.spec.x0)) return s;
+  s.x = P.spec.x0;
+  s.p = std::move(p);
+  s.r = dataResiduals(P, s.x, s.p);
+  s.cost = s.r.squaredNorm() + priorCost(P, s.x);
   return s;
 }
 
@@ -1423,14 +1456,30 @@ double lazySlack(double best_gain) { return 1e-6 * (1.0 + std::abs(best_gain)); 
 
 /// Marks the candidates closer than `min_spacing` to `chosen` (and itself) as used. A candidate
 /// used already or |Δx| ≥ min_spacing away is skipped (its computed norm is ≥ the computed |Δx|).
-void markNeighbours(const std::vector<Vec3>& p_W, int chosen, double min_spacing,
-                    std::vector<bool>& used) {
+/// `by_x`: the candidates sorted by x (byX), so that only those within 2·min_spacing in x are
+/// looked at (a superset of the |Δx| < min_spacing the test keeps, whatever the rounding).
+void markNeighbours(const std::vector<Vec3>& p_W, const std::vector<int>& by_x, int chosen,
+                    double min_spacing, std::vector<bool>& used) {
   const Vec3& c = p_W[static_cast<size_t>(chosen)];
-  for (size_t k = 0; k < used.size(); ++k) {
+  const auto x_of = [&](int k) { return p_W[static_cast<size_t>(k)].x(); };
+  auto it = std::lower_bound(by_x.begin(), by_x.end(), c.x() - 2 * min_spacing,
+                             [&](int k, double x) { return x_of(k) < x; });
+  for (; it != by_x.end() && x_of(*it) <= c.x() + 2 * min_spacing; ++it) {
+    const auto k = static_cast<size_t>(*it);
     if (used[k] || std::abs(p_W[k].x() - c.x()) >= min_spacing) continue;
     if ((p_W[k] - c).norm() < min_spacing) used[k] = true;
   }
   used[static_cast<size_t>(chosen)] = true;
+}
+
+/// The candidate indices sorted by x (markNeighbours' window).
+std::vector<int> byX(const std::vector<Vec3>& p_W) {
+  std::vector<int> order(p_W.size());
+  for (size_t k = 0; k < order.size(); ++k) order[k] = static_cast<int>(k);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return p_W[static_cast<size_t>(a)].x() < p_W[static_cast<size_t>(b)].x();
+  });
+  return order;
 }
 
 /// One step of the lazy greedy: the candidate of the largest fresh gain (the lowest index among
@@ -1513,13 +1562,14 @@ std::vector<int> greedyDOptimal(const MatrixXd& J, const VectorXd& s0, int count
     std::make_heap(heap.begin(), heap.end(), belowInHeap);
   }
   GainScratch scratch;
+  const std::vector<int> by_x = byX(p_W);
   for (int step = 0; step < count; ++step) {
     const MatrixXd Minv = spdInverse(M);
     const MatrixXd Mnn_inv = nn > 0 ? spdInverse(M.bottomRightCorner(nn, nn)) : MatrixXd();
     const int best = nn > 0 ? scanStep(J, Minv, Mnn_inv, nn, used, scratch)
                             : lazyStep(J, Minv, Mnn_inv, nn, used, heap, scratch);
     if (best < 0) break;
-    markNeighbours(p_W, best, min_spacing, used);
+    markNeighbours(p_W, by_x, best, min_spacing, used);
     chosen.push_back(best);
     const MatrixXd Jb = J.middleRows(2 * static_cast<Eigen::Index>(best), 2);
     M += Jb.transpose() * Jb;

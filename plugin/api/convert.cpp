@@ -1,8 +1,7 @@
 /// Program conversion (plugin/api/convert.hpp).
 #include "plugin/api/convert.hpp"
 
-#include <algorithm>
-#include <map>
+#include <functional>
 
 #include "compensator/support/atomic_file.hpp"
 #include "postproc/convert.hpp"
@@ -18,42 +17,53 @@ ConvertResult convertProgramFile(const ConvertRequest& request) {
     return r;
   }
   postproc::ConversionReport report;
-  const auto files = postproc::convertProgram(p, postproc::dialectFromName(*request.to),
-                                              request.output, report, request.all_lines);
-  for (const auto& [path, bytes] : files) {
-    writeFileAtomic(path, bytes);
-    r.written.push_back(path);
-  }
-  r.notes = groupNotes(report.notes);
+  NoteGroups notes;
+  report.on_note = [&notes](const std::string& n) { notes.add(n); };
+  postproc::convertProgram(
+      p, postproc::dialectFromName(*request.to), request.output, report, request.all_lines,
+      [&r](const std::string& path, const std::function<void(const ByteWriter&)>& produce) {
+        writeFileAtomicStream(path, produce);
+        r.written.push_back(path);
+      });
+  r.notes = notes.lines();
   r.skipped = report.skipped;
   r.not_carried = report.not_carried;
   return r;
 }
 
-std::vector<std::string> groupNotes(const std::vector<std::string>& notes) {
-  std::vector<std::string> order;
-  std::map<std::string, std::vector<std::string>> who;
-  for (const std::string& n : notes) {
-    const std::size_t c = n.find(": ");
-    const std::string key = c == std::string::npos ? n : n.substr(c + 2);
-    const std::string name = c == std::string::npos ? "" : n.substr(0, c);
-    if (!who.count(key)) order.push_back(key);
-    who[key].push_back(name);
+void NoteGroups::add(const std::string& note) {
+  const std::size_t c = note.find(": ");
+  std::string key = c == std::string::npos ? note : note.substr(c + 2);
+  auto it = groups_.find(key);
+  if (it == groups_.end()) {
+    order_.push_back(key);
+    it = groups_.emplace(std::move(key), Group{}).first;
   }
+  Group& g = it->second;
+  if (g.names.size() < 3) g.names.push_back(c == std::string::npos ? "" : note.substr(0, c));
+  ++g.count;
+}
+
+std::vector<std::string> NoteGroups::lines() const {
   std::vector<std::string> out;
-  for (const std::string& key : order) {
-    const auto& names = who[key];
-    if (names.size() == 1) {
-      out.push_back((names[0].empty() ? "" : names[0] + ": ") + key);
+  for (const std::string& key : order_) {
+    const Group& g = groups_.at(key);
+    if (g.count == 1) {
+      out.push_back((g.names[0].empty() ? "" : g.names[0] + ": ") + key);
       continue;
     }
-    std::string line = key + " (" + std::to_string(names.size()) + " items: ";
-    for (size_t i = 0; i < std::min<size_t>(names.size(), 3); ++i)
-      line += (i ? ", " : "") + names[i];
-    line += names.size() > 3 ? ", ...)" : ")";
+    std::string line = key + " (" + std::to_string(g.count) + " items: ";
+    for (std::size_t i = 0; i < g.names.size(); ++i) line += (i ? ", " : "") + g.names[i];
+    line += g.count > 3 ? ", ...)" : ")";
     out.push_back(line);
   }
   return out;
+}
+
+std::vector<std::string> groupNotes(const std::vector<std::string>& notes) {
+  NoteGroups g;
+  for (const std::string& n : notes) g.add(n);
+  return g.lines();
 }
 
 }  // namespace roprec::api

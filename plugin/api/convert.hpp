@@ -11,6 +11,7 @@
 
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "plugin/api/program_frames.hpp"
@@ -42,5 +43,22 @@ ConvertResult convertProgramFile(const ConvertRequest& request);
 /// message once with the targets it concerns (the first three named), in first-seen order:
 /// "p7: message" for one target, "message (12 items: p1, p2, p3, ...)" for several.
 std::vector<std::string> groupNotes(const std::vector<std::string>& notes);
+
+/// groupNotes kept as the notes come: one entry per message (its count and first three
+/// targets), not one per note.
+class NoteGroups {
+ public:
+  void add(const std::string& note);
+  /// groupNotes(every note added).
+  [[nodiscard]] std::vector<std::string> lines() const;
+
+ private:
+  struct Group {
+    std::size_t count{0};
+    std::vector<std::string> names;  ///< the first three
+  };
+  std::vector<std::string> order_;  ///< messages in first-seen order
+  std::unordered_map<std::string, Group> groups_;
+};
 
 }  // namespace roprec::api
