@@ -324,7 +324,7 @@ struct PanelView {
   /// The verdict a marker shows: after compensation on an "after" panel when compensated.
   [[nodiscard]] Verdict verdict(size_t k) const {
     const HoleView& h = hole(k);
-    if (pn.after && h.rh->after != nullptr) return h.rh->after->verdict;
+    if (pn.after && h.after != nullptr) return h.after->verdict;
     return h.p->verdict;
   }
 };
@@ -412,7 +412,7 @@ void renderProgramPath(Html& h, const FaceGroup& f) {
 /// One marker with its tooltip: the hole's shape filled by its value, or a cross.
 void renderMarker(Html& h, const PanelView& pv, size_t k) {
   const HoleView& hole = pv.hole(k);
-  const HolePrediction& p = *hole.p;
+  const api::ReportPrediction& p = *hole.p;
   const Eigen::Vector2d c = pv.f.screen(k);
   const double r = pv.f.marker_r;
   const std::optional<double> v = pv.value(k);
@@ -552,7 +552,7 @@ void renderArrows(Html& h, const PanelView& pv) {
                    [&](size_t a, size_t b) { return *pv.value(a) > *pv.value(b); });
   if (order.size() > 3) order.resize(3);
   for (const size_t k : order) {
-    const HolePrediction& p = *pv.hole(k).p;
+    const api::ReportPrediction& p = *pv.hole(k).p;
     const Vec3 d = f.R_part_W * (pv.pn.arrows == ArrowOf::kRobot ? p.d_robot : p.d_work);
     const Eigen::Vector2d q(d.dot(f.u), -d.dot(f.v));
     if (q.norm() < 1e-3 * std::max(d.norm(), 1e-15) || q.norm() <= 0) continue;
@@ -714,14 +714,14 @@ MapValues mapValues(const std::vector<HoleView>& hv) {
   MapValues q{Values(n), Values(n), Values(n), Values(n)};
   for (size_t i = 0; i < n; ++i) {
     if (!hv[i].ok) continue;
-    const HolePrediction& p = *hv[i].p;
+    const api::ReportPrediction& p = *hv[i].p;
     q.robot[i] = p.d_robot.norm() * 1e6;
     q.err[i] = p.position_error * 1e6;
     q.U[i] = p.U_work_exact * 1e6;
-    if (hv[i].rh->residual_um) {
+    if (hv[i].rh != nullptr && hv[i].rh->residual_um) {
       q.res[i] = *hv[i].rh->residual_um;
-    } else if (hv[i].rh->after != nullptr && hv[i].rh->after->status == HoleStatus::kOk) {
-      q.res[i] = hv[i].rh->after->position_error * 1e6;
+    } else if (hv[i].after != nullptr && hv[i].after->status == HoleStatus::kOk) {
+      q.res[i] = hv[i].after->position_error * 1e6;
     }
   }
   return q;
