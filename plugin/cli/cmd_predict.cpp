@@ -162,7 +162,7 @@ const CommandRegistration reg{
      "of\n"
      "the holes that cannot be handled, kept for the list on stderr (not with --quiet). Other\n"
      "dialects, hole lists and --holes keep the holes read and their set-up, about 1.5 kB a hole;\n"
-     "--report keeps every hole's prediction too.\n"
+     "--report keeps what the report shows of each hole, about 0.8 kB a hole.\n"
      "--threads N: worker threads for the per-hole work (0 = every core; default 1); the output "
      "is\n"
      "byte-identical for any N.\n"
