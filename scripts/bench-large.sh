@@ -67,7 +67,7 @@ if want predict; then
       --quiet --json "$DIR/p.json" --threads "$t"
   done
   run "predict $HOLES stdout, --threads 2" predict --cell "$CELL" "$DIR/job$HOLES.src" --quiet \
-    --threads 2
+    --json - --threads 2
 fi
 if want report; then
   for t in 1 2; do

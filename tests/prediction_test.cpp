@@ -59,6 +59,28 @@ TEST(Prediction, DeviationGrowsWithFeedAndWithArmExtension) {
   EXPECT_LT(byId(p, "X3").d_robot.norm(), byId(p, "X4").d_robot.norm());
 }
 
+TEST(Prediction, DeviationAtTheChosenJointsIsThePredictedDeviationWithoutIk) {
+  // the calibrated robot too: δrobot is referred to the controller's pose there
+  for (const auto& [cell, holes] :
+       {std::pair<std::string, std::string>{paper("cell.xml"), paper("holes.csv")},
+        {test::sourceDir() + "/samples/verification/housing-kr120-calibrated.xml",
+         test::sourceDir() + "/samples/verification/geometry_kr120_holes.csv"}}) {
+    const api::PredictionContext c = api::loadPredictionContext(cell, holes, std::nullopt, "");
+    const auto p = predictHoles(c.model, c.job.requests);
+    PredictionData d(c.model);
+    size_t ok = 0;
+    for (size_t i = 0; i < p.size(); ++i) {
+      if (p[i].status != HoleStatus::kOk) continue;
+      ++ok;
+      // a scratch used before for another hole: no state carried from hole to hole
+      const std::optional<Vec3> at = robotDeviationAt(c.model, d, c.job.requests[i], p[i].joints);
+      ASSERT_TRUE(at.has_value()) << p[i].id;
+      EXPECT_EQ(*at, p[i].d_robot) << p[i].id;  // the same equilibrium: the same bits
+    }
+    EXPECT_GT(ok, 3u) << cell;
+  }
+}
+
 TEST(Prediction, WristConfigurationChangeIsAJumpOfTensOfMicrometres) {
   // Neighbouring holes (1 mm apart) drilled with the wrist reconfigured: the OLP turned the
   // spindle 90° about the drill axis, so the wrist axes take other angles and, with the spindle

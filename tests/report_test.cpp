@@ -12,8 +12,10 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <random>
 #include <regex>
+#include <span>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -934,6 +936,33 @@ TEST(ReportSample, SplitIsNearlyAdditiveAndIndependentOfTheProgram) {
     EXPECT_LT((s.gravity + s.tool + s.controller).norm(), 5e-6) << r.holes[i].id;
   }
   RecordProperty("worst_relative_non_additivity", std::to_string(worst));
+}
+
+TEST(ReportSample, StreamedReportHasTheBytesOfTheWholeJobsReport) {
+  // one drill, and a tool table whose drills have TCPs of their own (a split model per drill)
+  for (const auto& [cell, program] :
+       {std::pair<std::string, std::string>{"cells/housing-kr120.xml",
+                                            "emotor-housing/housing_kr120.src"},
+        {"cells/housing-kr120-tools.xml", "emotor-housing/housing_kr120_tools.src"}}) {
+    const api::PredictionResult whole = api::predictJob(sample(cell), sample(program));
+    const std::string expected = api::predictionReport(whole);
+    api::JobOptions o;
+    o.threads = 2;
+    std::optional<api::PredictionReportStream> report;
+    size_t seen = 0;
+    const api::PredictionResult r = api::predictJobStreaming(
+        sample(cell), sample(program), o,
+        [&](size_t first, std::span<const HolePrediction> holes,
+            std::span<const HoleRequest> requests, int threads) {
+          EXPECT_EQ(first, seen);
+          seen += holes.size();
+          report->holes(holes, requests, threads);
+        },
+        [&](const api::PredictionContext& c) { report.emplace(c, 2); });
+    EXPECT_EQ(seen, whole.holes.size());
+    EXPECT_TRUE(r.holes.empty());  // nothing kept but the report's compact records
+    EXPECT_EQ(report->finish(r), expected) << cell;
+  }
 }
 
 /// Compensation: the offset per target (mm, deg), flags before → after, verdict before → after.

@@ -499,12 +499,18 @@ Vec6 processWrenchBase(const Mat3& R_tcp, const nc::Loads& loads) {
 /// δrobot: the compliance equilibrium at the command under gravity and the process
 /// wrench (the controller's own offset `offset` applied), referred to the controller's pose when
 /// the robot is calibrated; false, with p saying why, when it does not converge.
-bool robotDeviation(const PredictionModel& m, PredictionData& d, const IkSolution& sol,
-                    const nc::Loads& loads, const Vec6& offset, HolePrediction& p) {
+/// The compliance equilibrium at the command θ (the controller's own offset `offset` applied).
+nc::Deflection equilibriumAt(const PredictionModel& m, PredictionData& d, const Vec6& theta,
+                             const nc::Loads& loads, const Vec6& offset) {
   nc::DeflectionOptions dopt;
   // the linear budget reads data.frames only; Monte Carlo's share uses the full state
   dopt.natural_state = m.uncertainty.method != UncertaintyInputs::Method::kLinear;
-  p.deflection = nc::predictDeflection(m.model, d.nc, m.compliance, sol.q, loads, dopt, offset);
+  return nc::predictDeflection(m.model, d.nc, m.compliance, theta, loads, dopt, offset);
+}
+
+bool robotDeviation(const PredictionModel& m, PredictionData& d, const IkSolution& sol,
+                    const nc::Loads& loads, const Vec6& offset, HolePrediction& p) {
+  p.deflection = equilibriumAt(m, d, sol.q, loads, offset);
   if (!p.deflection.converged || !p.deflection.position_converged) {
     p.status = HoleStatus::kNotConverged;
     p.verdict = Verdict::kNotConverged;
@@ -710,6 +716,17 @@ void predictAtSolution(const PredictionModel& m, PredictionData& d, const HoleRe
 }
 
 }  // namespace
+
+std::optional<Vec3> robotDeviationAt(const PredictionModel& base, PredictionData& d,
+                                     const HoleRequest& h, const Vec6& joints) {
+  const PredictionModel& m = modelFor(base, h);
+  const nc::Loads loads = processLoads(m, processFor(m, h));
+  const Vec6 offset = controllerOffset(m, d.nc, joints);
+  nc::Deflection def = equilibriumAt(m, d, joints, loads, offset);
+  if (!def.converged || !def.position_converged) return std::nullopt;
+  if (m.calibrated) nc::referToControllerPose(def, controllerTcp(m, joints));
+  return def.dp;
+}
 
 std::vector<HolePrediction> predictHoles(const PredictionModel& m,
                                          std::span<const HoleRequest> holes) {

@@ -353,6 +353,14 @@ void predictHole(const PredictionModel& m, PredictionData& d, const HoleRequest&
 void chooseHoleSolution(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
                         const Vec6* seed, HolePrediction& out);
 
+/// δrobot of hole `h` at a known command `joints` (rad): predictHole's step 2 alone (the compliance
+/// equilibrium under gravity, tool weight and the hole's process wrench, the controller's offset
+/// applied, referred to the controller's pose when calibrated) without the IK choice, the budget or
+/// the verdict. The same bits as predictHole's d_robot when its IK chooses `joints`; nullopt when
+/// the equilibrium does not converge.
+std::optional<Vec3> robotDeviationAt(const PredictionModel& m, PredictionData& d,
+                                     const HoleRequest& h, const Vec6& joints);
+
 struct PredictOptions {
   /// Worker threads over holes (≥ 1; 1: the calling thread only). The output is byte-identical
   /// for every count: a sequential pass fixes the IK choice that seeds each next hole (the

@@ -6,8 +6,8 @@
 ///
 /// The deflection is a nonlinear equilibrium (the loads act on the deflected arm, the process
 /// wrench follows the real drill axis), so the parts are defined by re-evaluating the same
-/// prediction (predictHole, same IK solution) with the loads added one after the other, the
-/// controller reference last:
+/// equilibrium at the hole's command (its joints, known: no IK; robotDeviationAt) with the loads
+/// added one after the other, the controller reference last:
 ///   δ₁ = δ(link weight)                       → gravity    = δ₁
 ///   δ₂ = δ(link + tool weight)                → tool       = δ₂ − δ₁
 ///   δ₃ = δ(link + tool weight + process)      → process    = δ₃ − δ₂
@@ -17,6 +17,7 @@
 /// a loaded arm it equals `process` to first order (tests/report_test.cpp checks within 2 %).
 /// All vectors in the robot base frame, m.
 
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -34,6 +35,29 @@ struct DeviationSplit {
   /// <calibration>; zero otherwise): part of every re-evaluation, taken out of `gravity` and
   /// `process_alone`, so the five parts sum to δrobot
   Vec3 geometry{Vec3::Zero()};
+};
+
+/// The re-evaluated models of a prediction model (one set per drill with a TCP of its own) and
+/// per-worker scratch: split() gives one hole's split, on any of `workers` threads at once (each
+/// with its own worker index). The split of a hole does not depend on the worker.
+class DeviationSplitter {
+ public:
+  /// `tool` is the tool attachment `m` was built with (PredictionContext::tool).
+  DeviationSplitter(const PredictionModel& m, const nc::ToolAttachment& tool, int workers);
+  ~DeviationSplitter();
+  DeviationSplitter(const DeviationSplitter&) = delete;
+  DeviationSplitter& operator=(const DeviationSplitter&) = delete;
+
+  /// The split of hole `r` predicted as `p` (nullopt unless p.status is kOk, or when a
+  /// re-evaluation does not converge), with worker `worker`'s scratch.
+  [[nodiscard]] std::optional<DeviationSplit> split(const HoleRequest& r, HoleStatus status,
+                                                    const Vec6& joints, const Vec3& d_robot,
+                                                    int worker) const;
+
+ private:
+  struct Models;
+  const PredictionModel& m_;
+  std::vector<std::unique_ptr<Models>> models_;  ///< m_'s, then each drill model's
 };
 
 /// The split of each hole with status kOk (nullopt otherwise or when a re-evaluation does not

@@ -691,12 +691,12 @@ void setUpHoles(const JobHoles& job, const CellSpec& cell, const Robot& robot, s
                 std::vector<HoleSource>& sources) {
   if (!job.deferred || !job.program || end > job.hole_count || begin > end)
     throw InternalError("setUpHoles: not a deferred job or holes out of range");
-  requests.assign(end - begin, HoleRequest{});
-  sources.assign(end - begin, HoleSource{});
-  if (job.streamed) {
+  if (job.streamed) {  // moved from the window's set-up (take clears both first)
     job.stream->take(job, cell, robot, begin, end, threads, requests, sources);
     return;
   }
+  requests.assign(end - begin, HoleRequest{});
+  sources.assign(end - begin, HoleSource{});
   setUpRange(*job.program, job.recognized, cell, robot, {}, {}, begin, end, threads,
              requests.data(), sources.data());
   for (size_t k = 0; k < requests.size(); ++k) applyBaseFrame(job, requests[k], sources[k]);

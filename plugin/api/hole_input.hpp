@@ -40,6 +40,29 @@ struct HoleSource {
   std::optional<Pose> T_W_tcp_spec;  ///< hole-list nominal pose when a hole list was matched
 };
 
+/// The frame every hole's targets are given in, if they share one (the report's part frame),
+/// gathered hole by hole: the first hole's frame while every later one has the same name and a
+/// pose within 1e-12 of it.
+class SharedFrame {
+ public:
+  void add(const HoleSource& s) {
+    if (!first_) {
+      first_ = s;
+      first_->targets.clear();
+      return;
+    }
+    shared_ = shared_ && s.frame_ref == first_->frame_ref &&
+              s.T_W_frame.isApprox(first_->T_W_frame, 1e-12);
+  }
+  /// The shared frame's source (frame_ref, T_W_frame), nullptr when there is none (no hole, or
+  /// two frames).
+  [[nodiscard]] const HoleSource* shared() const { return first_ && shared_ ? &*first_ : nullptr; }
+
+ private:
+  std::optional<HoleSource> first_;
+  bool shared_{true};
+};
+
 /// What the job's frame and tool resolution needs of a hole (resolveFramesAndTool in job.cpp):
 /// the hole, its base frame and the tool, file and line of its drill point's motion. A job keeps
 /// those of the first hole of each base frame and of each tool (the others repeat them).

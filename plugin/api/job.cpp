@@ -562,6 +562,7 @@ PredictionResult predictJobStreaming(
   if (on_context) on_context(r.context);
   const JobHoles& job = r.context.job;
   const size_t n = job.deferred ? job.hole_count : job.requests.size();
+  for (const HoleSource& s : job.sources) r.frames.add(s);
   SummaryAccumulator sum;
   struct Block {
     std::vector<HoleRequest> requests;  // deferred job: the block's own
@@ -589,6 +590,7 @@ PredictionResult predictJobStreaming(
     if (job.deferred) {
       setUpHoles(job, r.context.cell, r.context.robot, b, e, threads, blk.requests, blk.sources);
       if (registered) moveWithPart(partMotion(r.context.cell), blk.requests);
+      for (const HoleSource& s : blk.sources) r.frames.add(s);
       predictRange(r.context.model, blk.requests, 0, e - b, prev, threads, blk.holes);
     } else {
       predictRange(r.context.model, job.requests, b, e, prev, threads, blk.holes);

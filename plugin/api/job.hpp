@@ -76,6 +76,9 @@ struct PredictionResult {
   PredictionContext context;          ///< cell, robot, job holes, model
   std::vector<HolePrediction> holes;  ///< one per context.job.requests entry
   CapabilitySummary summary;
+  /// The frame every hole's targets share (predictJobStreaming: gathered block by block; the
+  /// report's part frame).
+  SharedFrame frames;
   /// Holes whose status is not kOk.
   [[nodiscard]] int failed() const;
 };

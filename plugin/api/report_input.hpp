@@ -8,6 +8,12 @@ namespace roprec::api {
 
 struct PredictionContext;
 
+class SharedFrame;
+
+/// The report's part frame: the frame every hole's targets share (`frames`), named after it, else
+/// the cell's <workobject>.
+void setPartFrame(ReportInput& in, const PredictionContext& c, const SharedFrame& frames);
+
 /// Fills what the report derives from the job: the part frame (the program frame every hole
 /// shares, else the cell's <workobject>, named after it) and each predicted hole's δrobot split
 /// (splitRobotDeviations with the context's model and tool). Call after `in.holes` has one entry

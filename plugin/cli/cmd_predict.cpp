@@ -86,30 +86,24 @@ int run(Args& args, CommandContext& ctx) {
   // The JSON is written hole by hole, its text not kept: to the staged output file (committed
   // when complete) or, with --json -, straight to stdout as it is made.
   auto produce = [&](const ByteWriter& write) {
-    if (report_out) {  // the report needs every hole at once
-      PredictionResult r = predictJob(*cell, pos[0], opt, step);
-      PredictionJsonStream js(r.context, write);
-      for (size_t i = 0; i < r.holes.size(); ++i) {
-        js.hole(r.holes[i], r.context.job.requests[i]);
-        digest.add(r.holes[i], r.context.job.requests[i], pos[0]);
-      }
-      js.finish(r.summary);
-      writeFileAtomic(*report_out, predictionReport(r, resolvedThreads(opt.threads)));
-      notes = r.context.job.notes;
-      summary = r.summary;
-      keepUntilExit(std::move(r));
-      return;
-    }
     std::optional<PredictionJsonStream> js;
+    // the report keeps a compact record of each hole (and its δrobot split) as they stream past
+    std::optional<PredictionReportStream> report;
     PredictionResult r = predictJobStreaming(
         *cell, pos[0], opt,
         [&](size_t, std::span<const HolePrediction> block, std::span<const HoleRequest> reqs,
             int threads) {
-          js->holes(block, reqs, threads);  // formatted on the workers
+          if (json_out) js->holes(block, reqs, threads);  // formatted on the workers
+          if (report) report->holes(block, reqs, threads);
           for (size_t k = 0; k < block.size(); ++k) digest.add(block[k], reqs[k], pos[0]);
         },
-        [&](const PredictionContext& c) { js.emplace(c, write); }, step);
+        [&](const PredictionContext& c) {
+          js.emplace(c, write);
+          if (report_out) report.emplace(c, resolvedThreads(opt.threads));
+        },
+        step);
     js->finish(r.summary);
+    if (report) writeFileAtomic(*report_out, report->finish(r));
     notes = r.context.job.notes;
     summary = r.summary;
     keepUntilExit(std::move(r));
@@ -168,7 +162,7 @@ const CommandRegistration reg{
      "of\n"
      "the holes that cannot be handled, kept for the list on stderr (not with --quiet). Other\n"
      "dialects, hole lists and --holes keep the holes read and their set-up, about 1.5 kB a hole;\n"
-     "--report keeps every hole's prediction too.\n"
+     "--report keeps what the report shows of each hole, about 0.8 kB a hole.\n"
      "--threads N: worker threads for the per-hole work (0 = every core; default 1); the output "
      "is\n"
      "byte-identical for any N.\n"

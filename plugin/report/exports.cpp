@@ -582,12 +582,22 @@ Json predictionJson(const PredictionResult& r) {
   return root;
 }
 
-std::string predictionReport(const PredictionResult& r, int threads) {
-  const PredictionContext& c = r.context;
+namespace {
+
+/// The header of a prediction's report: title, robot with its model, the job's summary.
+ReportInput predictionReportHeader(const PredictionContext& c, const CapabilitySummary& summary) {
   ReportInput in = reportHeader(c, "roprec prediction — " + fileName(c.job.path));
   if (!c.robot.card.model.empty())
     in.robot += " (" + vendorName(c.robot.card.vendor) + " " + c.robot.card.model + ")";
-  in.summary = r.summary;
+  in.summary = summary;
+  return in;
+}
+
+}  // namespace
+
+std::string predictionReport(const PredictionResult& r, int threads) {
+  const PredictionContext& c = r.context;
+  ReportInput in = predictionReportHeader(c, r.summary);
   for (size_t i = 0; i < r.holes.size(); ++i) {
     ReportHole rh;
     rh.prediction = &r.holes[i];
@@ -637,6 +647,33 @@ void writeCompensationTargets(const CompensationResult& r, const std::string& pr
   } else {
     targetsJson(r, program_path, sink);
   }
+}
+
+// ---- streamed prediction report
+
+PredictionReportStream::PredictionReportStream(const PredictionContext& c, int threads)
+    : splitter_(c.model, c.tool, std::max(1, threads)), workers_(std::max(1, threads)) {
+  holes_.reserve(c.job.deferred ? c.job.hole_count : c.job.requests.size());
+}
+
+void PredictionReportStream::holes(std::span<const HolePrediction> h,
+                                   std::span<const HoleRequest> r, int threads) {
+  const size_t first = holes_.size();
+  holes_.resize(first + h.size());
+  parallelFor(h.size(), std::min(threads, workers_), [&](int w, size_t k) {
+    PredictedHole& ph = holes_[first + k];
+    ph.prediction = reportPrediction(h[k]);
+    ph.position = r[k].T_W_tcp.translation();
+    ph.axis = r[k].T_W_tcp.linear().col(2);
+    ph.split = splitter_.split(r[k], h[k].status, h[k].joints, h[k].d_robot, w);
+  });
+}
+
+std::string PredictionReportStream::finish(const PredictionResult& r) {
+  ReportInput in = predictionReportHeader(r.context, r.summary);
+  setPartFrame(in, r.context, r.frames);
+  in.predicted = std::move(holes_);
+  return renderReport(in);
 }
 
 // ---- streamed prediction JSON

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "plugin/api/job.hpp"
+#include "plugin/report/hole_report.hpp"
 
 namespace roprec::api {
 
@@ -41,6 +42,24 @@ class PredictionJsonStream {
   std::vector<std::string> texts_;  ///< holes(): each hole's text
   ByteSink sink_;
   RobotCard card_;  ///< for the joints in the controller's convention
+};
+
+/// Gathers a prediction's HTML report while its holes stream past (predictJobStreaming's
+/// blocks): each hole's compact record (PredictedHole, ~0.6 kB) and its δrobot split from its
+/// joints, on the workers; finish() renders the document: the same bytes as predictionReport.
+class PredictionReportStream {
+ public:
+  /// `threads`: the most workers holes() is given.
+  PredictionReportStream(const PredictionContext& c, int threads);
+  /// The next holes, in order (request k of hole k), on `threads` workers.
+  void holes(std::span<const HolePrediction> h, std::span<const HoleRequest> r, int threads);
+  /// The report of the job `r` (its context, summary and shared frame) with every hole given.
+  std::string finish(const PredictionResult& r);
+
+ private:
+  DeviationSplitter splitter_;
+  int workers_;
+  std::vector<PredictedHole> holes_;
 };
 
 /// `item`, or when one of its numbers is not finite (a bug or an input that escaped the range

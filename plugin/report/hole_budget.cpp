@@ -71,7 +71,7 @@ struct BudgetStats {
   Sum process_share;
 };
 
-void addTerms(BudgetStats& b, const HolePrediction& p) {
+void addTerms(BudgetStats& b, const api::ReportPrediction& p) {
   const double uw2 = p.u_work * p.u_work;
   for (const BudgetTerm& t : p.budget) {
     const std::string name = t.name ? t.name : "";
@@ -106,7 +106,7 @@ BudgetStats budgetStats(const std::vector<HoleView>& hv) {
   BudgetStats b;
   for (const HoleView& h : hv) {
     if (!h.ok) continue;
-    const HolePrediction& p = *h.p;
+    const api::ReportPrediction& p = *h.p;
     ++b.n_ok;
     if (b.k == 0) b.k = p.k;
     addTerms(b, p);

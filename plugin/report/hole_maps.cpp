@@ -324,7 +324,7 @@ struct PanelView {
   /// The verdict a marker shows: after compensation on an "after" panel when compensated.
   [[nodiscard]] Verdict verdict(size_t k) const {
     const HoleView& h = hole(k);
-    if (pn.after && h.rh->after != nullptr) return h.rh->after->verdict;
+    if (pn.after && h.after != nullptr) return h.after->verdict;
     return h.p->verdict;
   }
 };
@@ -412,7 +412,7 @@ void renderProgramPath(Html& h, const FaceGroup& f) {
 /// One marker with its tooltip: the hole's shape filled by its value, or a cross.
 void renderMarker(Html& h, const PanelView& pv, size_t k) {
   const HoleView& hole = pv.hole(k);
-  const HolePrediction& p = *hole.p;
+  const api::ReportPrediction& p = *hole.p;
   const Eigen::Vector2d c = pv.f.screen(k);
   const double r = pv.f.marker_r;
   const std::optional<double> v = pv.value(k);
@@ -496,30 +496,47 @@ void renderBins(Html& h, const PanelView& pv) {
   }
 }
 
-/// The members that do not conform, worst verdict first, then the largest value.
-std::vector<size_t> failingMembers(const PanelView& pv) {
-  std::vector<size_t> failing;
+/// The members that do not conform (their count), the first `limit` of them in order: worst
+/// verdict first, then the largest value, ties in program order.
+struct Failing {
+  std::vector<size_t> first;
+  size_t count{0};
+};
+
+Failing failingMembers(const PanelView& pv, size_t limit) {
+  struct Key {
+    int severity;
+    double shown;
+    size_t k;
+  };
+  // by the value as the tooltip prints it (0.1 µm), ties in program order: the order does not
+  // hang on a value's last bits (another platform's libm)
+  const auto shown = [](std::optional<double> v) { return v ? std::round(*v * 10.0) : -1.0; };
+  std::vector<Key> keys;
   for (size_t k = 0; k < pv.f.members.size(); ++k) {
-    if (severity(pv.verdict(k)) > 0) failing.push_back(k);
+    const int s = severity(pv.verdict(k));
+    if (s > 0) keys.push_back({s, shown(pv.value(k)), k});
   }
-  std::stable_sort(failing.begin(), failing.end(), [&](size_t a, size_t b) {
-    const int sa = severity(pv.verdict(a)), sb = severity(pv.verdict(b));
-    if (sa != sb) return sa > sb;
-    // by the value as the tooltip prints it (0.1 µm), ties in program order: the order does not
-    // hang on a value's last bits (another platform's libm)
-    const auto shown = [](std::optional<double> v) { return v ? std::round(*v * 10.0) : -1.0; };
-    return shown(pv.value(a)) > shown(pv.value(b));
-  });
-  return failing;
+  const auto before = [](const Key& a, const Key& b) {
+    if (a.severity != b.severity) return a.severity > b.severity;
+    if (a.shown != b.shown) return a.shown > b.shown;
+    return a.k < b.k;
+  };
+  const size_t n = std::min(limit, keys.size());
+  std::partial_sort(keys.begin(), keys.begin() + static_cast<std::ptrdiff_t>(n), keys.end(),
+                    before);
+  Failing out;
+  out.count = keys.size();
+  for (size_t i = 0; i < n; ++i) out.first.push_back(keys[i].k);
+  return out;
 }
 
 /// Ids of the holes that do not conform, visible without hovering (worst first, capped).
 void renderFailLabels(Html& h, const PanelView& pv) {
-  const std::vector<size_t> failing = failingMembers(pv);
+  const Failing failing = failingMembers(pv, kMaxFailLabels);
   const FaceGroup& f = pv.f;
   const double r = f.marker_r;
-  for (size_t n = 0; n < failing.size() && n < kMaxFailLabels; ++n) {
-    const size_t k = failing[n];
+  for (const size_t k : failing.first) {
     const std::string& id = pv.hole(k).p->id;
     const Eigen::Vector2d c = f.screen(k);
     const bool right = c.x() + r + 4 + 6.2 * static_cast<double>(id.size()) < kMarginL + f.plot_w;
@@ -530,12 +547,12 @@ void renderFailLabels(Html& h, const PanelView& pv) {
                {"text-anchor", right ? "start" : "end"}},
               id);
   }
-  if (failing.size() > kMaxFailLabels) {
+  if (failing.count > kMaxFailLabels) {
     h.element("text",
               {{"class", "tick"},
                {"x", fixed(kMarginL + 4, 1)},
                {"y", fixed(kMarginT + f.plot_h - 5, 1)}},
-              "+" + std::to_string(failing.size() - kMaxFailLabels) +
+              "+" + std::to_string(failing.count - kMaxFailLabels) +
                   " more not conforming: see the table");
   }
 }
@@ -552,7 +569,7 @@ void renderArrows(Html& h, const PanelView& pv) {
                    [&](size_t a, size_t b) { return *pv.value(a) > *pv.value(b); });
   if (order.size() > 3) order.resize(3);
   for (const size_t k : order) {
-    const HolePrediction& p = *pv.hole(k).p;
+    const api::ReportPrediction& p = *pv.hole(k).p;
     const Vec3 d = f.R_part_W * (pv.pn.arrows == ArrowOf::kRobot ? p.d_robot : p.d_work);
     const Eigen::Vector2d q(d.dot(f.u), -d.dot(f.v));
     if (q.norm() < 1e-3 * std::max(d.norm(), 1e-15) || q.norm() <= 0) continue;
@@ -714,14 +731,14 @@ MapValues mapValues(const std::vector<HoleView>& hv) {
   MapValues q{Values(n), Values(n), Values(n), Values(n)};
   for (size_t i = 0; i < n; ++i) {
     if (!hv[i].ok) continue;
-    const HolePrediction& p = *hv[i].p;
+    const api::ReportPrediction& p = *hv[i].p;
     q.robot[i] = p.d_robot.norm() * 1e6;
     q.err[i] = p.position_error * 1e6;
     q.U[i] = p.U_work_exact * 1e6;
-    if (hv[i].rh->residual_um) {
+    if (hv[i].rh != nullptr && hv[i].rh->residual_um) {
       q.res[i] = *hv[i].rh->residual_um;
-    } else if (hv[i].rh->after != nullptr && hv[i].rh->after->status == HoleStatus::kOk) {
-      q.res[i] = hv[i].rh->after->position_error * 1e6;
+    } else if (hv[i].after != nullptr && hv[i].after->status == HoleStatus::kOk) {
+      q.res[i] = hv[i].after->position_error * 1e6;
     }
   }
   return q;

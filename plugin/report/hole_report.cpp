@@ -18,33 +18,54 @@
 
 namespace roprec::report {
 
-std::vector<HoleView> holeViews(const ReportInput& in) {
-  std::vector<HoleView> hv;
-  hv.reserve(in.holes.size());
+namespace {
+
+/// The view of one hole: its position and axis in the part frame, its branch change.
+HoleView viewOf(const Pose& T_part_W, const Vec3& position, const Vec3& axis,
+                const api::ReportPrediction& p, int& prev_branch) {
+  HoleView h;
+  h.p = &p;
+  h.pos_mm = (T_part_W * position) * 1e3;
+  const Vec3 a = T_part_W.linear() * axis;
+  h.axis = a.norm() > 0 ? Vec3(a.normalized()) : Vec3(Vec3::UnitZ());
+  h.ok = p.status == HoleStatus::kOk;
+  if (h.ok) {
+    h.config_change = prev_branch >= 0 && p.branch != prev_branch;
+    h.prev_branch = prev_branch;
+    prev_branch = p.branch;
+  }
+  return h;
+}
+
+}  // namespace
+
+HoleViews holeViews(const ReportInput& in) {
+  HoleViews out;
   int prev_branch = -1;
   const Pose T_part_W = in.T_W_part.inverse();
+  out.views.reserve(in.holes.size() + in.predicted.size());
+  for (const api::PredictedHole& ph : in.predicted) {
+    out.views.push_back(viewOf(T_part_W, ph.position, ph.axis, ph.prediction, prev_branch));
+    out.views.back().split = &ph.split;
+  }
+  // a ReportHole's predictions converted (stable addresses: reserved once)
+  out.own.reserve(2 * in.holes.size());
   for (const ReportHole& rh : in.holes) {
     if (rh.prediction == nullptr)
       throw std::invalid_argument("renderReport: a hole without a prediction");
-    HoleView h;
+    const api::ReportPrediction& p = out.own.emplace_back(api::reportPrediction(*rh.prediction));
+    HoleView h =
+        viewOf(T_part_W, rh.T_W_tcp.translation(), rh.T_W_tcp.linear().col(2), p, prev_branch);
     h.rh = &rh;
-    h.p = rh.prediction;
-    h.pos_mm = (T_part_W * rh.T_W_tcp.translation()) * 1e3;
-    const Vec3 a = T_part_W.linear() * rh.T_W_tcp.linear().col(2);
-    h.axis = a.norm() > 0 ? Vec3(a.normalized()) : Vec3(Vec3::UnitZ());
-    h.ok = h.p->status == HoleStatus::kOk;
-    if (h.ok) {
-      h.config_change = prev_branch >= 0 && h.p->branch != prev_branch;
-      h.prev_branch = prev_branch;
-      prev_branch = h.p->branch;
-    }
-    hv.push_back(h);
+    h.split = &rh.split;
+    if (rh.after != nullptr) h.after = &out.own.emplace_back(api::reportPrediction(*rh.after));
+    out.views.push_back(h);
   }
-  return hv;
+  return out;
 }
 
 Verdict finalVerdict(const HoleView& h) {
-  return h.rh->after != nullptr ? h.rh->after->verdict : h.p->verdict;
+  return h.after != nullptr ? h.after->verdict : h.p->verdict;
 }
 
 bool passes(const HoleView& h) { return finalVerdict(h) == Verdict::kConforms; }
@@ -322,9 +343,42 @@ namespace roprec::api {
 
 const char* reportTableScript() { return report::kTableScript; }
 
+ReportPrediction reportPrediction(const HolePrediction& p) {
+  ReportPrediction r;
+  r.id = p.id;
+  r.status = p.status;
+  r.verdict = p.verdict;
+  r.reason = p.reason;
+  r.config = p.config;
+  r.branch = p.branch;
+  r.joints = p.joints;
+  r.d_robot = p.d_robot;
+  r.d_mach = p.d_mach;
+  r.d_work = p.d_work;
+  r.position_error = p.position_error;
+  r.axis_tilt = p.axis_tilt;
+  r.budget = p.budget;
+  r.u_robot = p.u_robot;
+  r.u_mach = p.u_mach;
+  r.u_work = p.u_work;
+  r.k = p.k;
+  r.U_robot = p.U_robot;
+  r.U_mach = p.U_mach;
+  r.U_work = p.U_work;
+  r.U_work_exact = p.U_work_exact;
+  r.process_share = p.process_share;
+  r.tolerance = p.tolerance;
+  r.mc_time = p.mc_time;
+  r.diameter = p.diameter;
+  return r;
+}
+
 std::string renderReport(const ReportInput& in) {
   using namespace report;
-  const std::vector<HoleView> hv = holeViews(in);
+  if (!in.holes.empty() && !in.predicted.empty())
+    throw std::invalid_argument("renderReport: holes and predicted holes at once");
+  const HoleViews views = holeViews(in);
+  const std::vector<HoleView>& hv = views.views;
   std::string o;
   o.reserve(65536 + 640 * hv.size());  // about 0.54 KB a hole
   Html h(o);

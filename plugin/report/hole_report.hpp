@@ -20,6 +20,46 @@ struct RobotCard;
 
 namespace roprec::api {
 
+/// What the report shows of a hole's prediction (HolePrediction's fields the sections read): a
+/// compact copy, so a streamed job keeps ~0.6 kB a hole for its report instead of every
+/// prediction (reportPrediction).
+struct ReportPrediction {
+  std::string id;
+  HoleStatus status{HoleStatus::kOk};
+  Verdict verdict{Verdict::kConforms};
+  std::string reason;
+  std::string config;
+  int branch{0};
+  Vec6 joints{Vec6::Zero()};
+  Vec3 d_robot{Vec3::Zero()};
+  Vec3 d_mach{Vec3::Zero()};
+  Vec3 d_work{Vec3::Zero()};
+  double position_error{0};
+  double axis_tilt{0};
+  InlineVector<BudgetTerm, kMaxBudgetTerms> budget;
+  double u_robot{0}, u_mach{0}, u_work{0};
+  double k{0};
+  double U_robot{0}, U_mach{0}, U_work{0};
+  double U_work_exact{0};
+  double process_share{0};
+  double tolerance{0};
+  double mc_time{0};
+  double diameter{0};
+};
+
+/// The report's copy of a prediction.
+ReportPrediction reportPrediction(const HolePrediction& p);
+
+/// A hole of a streamed prediction's report (ReportInput::predicted): its prediction, the
+/// nominal drill point and drilling axis (base frame: T_W_tcp's translation and z column) and
+/// its δrobot split.
+struct PredictedHole {
+  ReportPrediction prediction;
+  Vec3 position{Vec3::Zero()};
+  Vec3 axis{Vec3::UnitZ()};
+  std::optional<DeviationSplit> split;
+};
+
 struct ReportHole {
   const HolePrediction* prediction{nullptr};
   Pose T_W_tcp{Pose::Identity()};  ///< nominal TCP pose at the drill point, base frame
@@ -59,6 +99,9 @@ struct ReportInput {
   /// The robot card's estimated numbers (cardEstimates), stated in the header.
   std::vector<std::string> card_estimates;
   std::vector<ReportHole> holes;
+  /// A prediction report's holes kept compactly as they stream past (instead of `holes`, which
+  /// must then be empty).
+  std::vector<PredictedHole> predicted;
   /// The part (workobject) frame the maps are drawn in, and its name ("cell workobject",
   /// "BASE_DATA[2]", ...): hole positions and directions are expressed in it, axes named after it.
   Pose T_W_part{Pose::Identity()};

@@ -15,11 +15,15 @@ namespace roprec::report {
 using api::ReportHole;
 using api::ReportInput;
 
-/// One hole as the sections show it: its position and drilling axis in the part frame (mm), and
-/// whether the robot changed its IK branch since the previous predicted hole.
+/// One hole as the sections show it: its prediction (and after compensation), its δrobot split,
+/// its position and drilling axis in the part frame (mm), and whether the robot changed its IK
+/// branch since the previous predicted hole.
 struct HoleView {
+  /// null for a streamed prediction's hole (ReportInput::predicted)
   const ReportHole* rh{nullptr};
-  const HolePrediction* p{nullptr};
+  const api::ReportPrediction* p{nullptr};
+  const api::ReportPrediction* after{nullptr};  ///< compensate: the prediction after
+  const std::optional<api::DeviationSplit>* split{nullptr};
   Vec3 pos_mm{Vec3::Zero()};  ///< part frame
   Vec3 axis{Vec3::UnitZ()};   ///< part frame
   bool ok{false};
@@ -27,8 +31,13 @@ struct HoleView {
   int prev_branch{-1};
 };
 
-/// One view per hole, in order. Throws std::invalid_argument for a hole without a prediction.
-std::vector<HoleView> holeViews(const ReportInput& in);
+/// The views of a report's holes, in order, and the predictions they point to (ReportHole's
+/// converted by reportPrediction). Throws std::invalid_argument for a hole without a prediction.
+struct HoleViews {
+  std::vector<api::ReportPrediction> own;
+  std::vector<HoleView> views;
+};
+HoleViews holeViews(const ReportInput& in);
 
 /// The verdict a hole ends with: after compensation when it was compensated, else as predicted.
 Verdict finalVerdict(const HoleView& h);

@@ -195,9 +195,9 @@ void verdictBadge(Html& h, Verdict v) {
 /// δrobot split into its four causes, each part's component along δrobot (µm); small tables
 /// carry the part's vector as a tooltip.
 void splitCells(Html& h, const TableLayout& t, const HoleView& hole) {
-  if (!hole.rh->split) return dashCells(h, 4);
-  const HolePrediction& p = *hole.p;
-  const api::DeviationSplit& s = *hole.rh->split;
+  if (!*hole.split) return dashCells(h, 4);
+  const api::ReportPrediction& p = *hole.p;
+  const api::DeviationSplit& s = **hole.split;
   const double n = p.d_robot.norm();
   const Vec3 u = n > 0 ? Vec3(p.d_robot / n) : Vec3::Zero();
   for (const Vec3* part : {&s.gravity, &s.tool, &s.process, &s.controller}) {
@@ -216,7 +216,7 @@ void splitCells(Html& h, const TableLayout& t, const HoleView& hole) {
 /// e⊥, U, the verdict's sum, t/2, δrobot (and its split), δmach, the tilt, the budget terms and
 /// the expanded robot and process uncertainties of a predicted hole.
 void deviationCells(Html& h, const TableLayout& t, const HoleView& hole) {
-  const HolePrediction& p = *hole.p;
+  const api::ReportPrediction& p = *hole.p;
   const double e = p.position_error * 1e6, U = p.U_work_exact * 1e6;
   h.open("td").element("strong", {}, num(e, 1)).close("td");
   for (const double v : {U, e + U, 0.5 * p.tolerance * 1e6, p.d_robot.norm() * 1e6})
@@ -240,7 +240,7 @@ void deviationCells(Html& h, const TableLayout& t, const HoleView& hole) {
 }
 
 /// A hole that was not predicted: its reason over the deviation columns.
-void reasonSpan(Html& h, const TableLayout& t, const HolePrediction& p) {
+void reasonSpan(Html& h, const TableLayout& t, const api::ReportPrediction& p) {
   const int span = 14 + (t.has_split ? 4 : 0) + static_cast<int>(t.terms.size());
   h.element("td", {{"class", "reason"}, {"colspan", span}},
             p.reason.empty() ? std::string(verdictName(p.verdict)) : p.reason);
@@ -248,7 +248,7 @@ void reasonSpan(Html& h, const TableLayout& t, const HolePrediction& p) {
 
 /// Diameter, configuration flags, IK branch (ringed on a change) and the joints.
 void postureCells(Html& h, const ReportInput& in, const HoleView& hole) {
-  const HolePrediction& p = *hole.p;
+  const api::ReportPrediction& p = *hole.p;
   numCell(h, p.diameter * 1e3, 2);
   h.element("td", {{"class", "l"}}, p.config.empty() ? kDash : p.config);
   const bool has_joints = hole.ok || !p.config.empty();
@@ -274,7 +274,7 @@ void postureCells(Html& h, const ReportInput& in, const HoleView& hole) {
 /// The offset applied to the target: programmed − original position (mm, base frame), the angle
 /// of the rotation between them (deg), the rotation about the drill axis and the flags before →
 /// after, each change with its reason.
-void offsetCells(Html& h, const ReportHole& rh, const HolePrediction& p) {
+void offsetCells(Html& h, const ReportHole& rh, const api::ReportPrediction& p) {
   const Vec3 dp_mm = (rh.T_W_programmed->translation() - rh.T_W_tcp.translation()) * 1e3;
   const Eigen::AngleAxisd aa(rh.T_W_tcp.linear().transpose() * rh.T_W_programmed->linear());
   for (int k = 0; k < 3; ++k) numCell(h, dp_mm[k], 3);
@@ -305,7 +305,7 @@ void compensationCells(Html& h, const HoleView& hole) {
 }
 
 std::string rowOf(const TableLayout& t, const HoleView& hole, size_t i) {
-  const HolePrediction& p = *hole.p;
+  const api::ReportPrediction& p = *hole.p;
   std::string row;
   Html h(row);
   if (passes(hole)) {
@@ -366,24 +366,21 @@ std::string packRow(const std::string& row) {
   return packed;
 }
 
-/// The rows: in the table body, or (large jobs) packed into the script array `rows_js`.
-void renderRows(Html& h, const TableLayout& t, const std::vector<HoleView>& hv,
-                std::string& rows_js) {
-  for (size_t i = 0; i < hv.size(); ++i) {
-    const std::string row = rowOf(t, hv[i], i);
-    if (!t.large) {
-      h.markup(row);
-      continue;
-    }
-    if (!rows_js.empty()) rows_js += ",\n";
-    rows_js += jsString(packRow(row));
-  }
+/// The rows in the table body (a small job's).
+void renderRows(Html& h, const TableLayout& t, const std::vector<HoleView>& hv) {
+  for (size_t i = 0; i < hv.size(); ++i) h.markup(rowOf(t, hv[i], i));
 }
 
-void renderScript(Html& h, const TableLayout& t, const std::string& rows_js) {
+/// The table's script; a large job's rows packed into its array ROPREC_ROWS, written row by row.
+void renderScript(Html& h, const TableLayout& t, const std::vector<HoleView>& hv) {
   h.open("script");
   if (t.large) {
-    h.markup("var ROPREC_ROWS=[").markup(rows_js).markup("];").markup(kPagedTableScript);
+    h.markup("var ROPREC_ROWS=[");
+    for (size_t i = 0; i < hv.size(); ++i) {
+      if (i > 0) h.markup(",\n");
+      h.markup(jsString(packRow(rowOf(t, hv[i], i))));
+    }
+    h.markup("];").markup(kPagedTableScript);
   } else {
     h.markup(kTableScript);
   }
@@ -395,7 +392,7 @@ void renderScript(Html& h, const TableLayout& t, const std::string& rows_js) {
 void renderTable(Html& h, const ReportInput& in, const std::vector<HoleView>& hv) {
   const TableLayout t{
       in, budgetNames(hv),
-      std::any_of(hv.begin(), hv.end(), [](const HoleView& v) { return v.rh->split.has_value(); }),
+      std::any_of(hv.begin(), hv.end(), [](const HoleView& v) { return v.split->has_value(); }),
       hv.size() > api::kReportAggregateAbove};
   const long n_fail =
       std::count_if(hv.begin(), hv.end(), [](const HoleView& v) { return !passes(v); });
@@ -413,8 +410,7 @@ void renderTable(Html& h, const ReportInput& in, const std::vector<HoleView>& hv
   h.open("div", {{"class", "scroll"}}).open("table", {{"class", "holes"}, {"id", "holetable"}});
   renderHead(h, columns(t));
   h.open("tbody");
-  std::string rows_js;
-  renderRows(h, t, hv, rows_js);
+  if (!t.large) renderRows(h, t, hv);
   h.close("tbody").close("table").close("div");
   if (t.large) {
     h.markup(
@@ -422,7 +418,7 @@ void renderTable(Html& h, const ReportInput& in, const std::vector<HoleView>& hv
         "<span></span> <button class=\"next\">next \u25b6</button></div>");
   }
   h.close("section");
-  renderScript(h, t, rows_js);
+  renderScript(h, t, hv);
 }
 
 }  // namespace roprec::report
