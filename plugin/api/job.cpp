@@ -686,7 +686,8 @@ std::vector<int> millsOfPath(const ProcessSpec& spec, const postproc::Program& p
 
 /// Every run of points with one mill (r.mill) decided and compensated as a path of its own with
 /// that mill's process and TCP model, seeded with the joints of the run before it.
-void compensateMillRuns(MillingCompensationResult& r, const std::vector<MillingPathPoint>& path) {
+void compensateMillRuns(MillingCompensationResult& r, const std::vector<MillingPathPoint>& path,
+                        const MillingPathOptions& options) {
   const PredictionModel& cell = r.context.model;
   // the stock (workobject frame) moves with the part
   const Pose T_W_stock = r.context.cell.part_registration
@@ -711,7 +712,7 @@ void compensateMillRuns(MillingCompensationResult& r, const std::vector<MillingP
                                    r.points.begin() + static_cast<std::ptrdiff_t>(e));
     const std::vector<CuttingDecision> cutting = decideCutting(m.process.milling, T_W_stock, run);
     const std::vector<PathPointCompensation> comp =
-        compensateMillingPath(m, points, &cutting, seed ? &*seed : nullptr);
+        compensateMillingPath(m, points, &cutting, seed ? &*seed : nullptr, options);
     r.cutting.insert(r.cutting.end(), cutting.begin(), cutting.end());
     r.points_comp.insert(r.points_comp.end(), comp.begin(), comp.end());
     for (const PathPointCompensation& p : comp)
@@ -729,7 +730,8 @@ const MillingSpec& millOf(const MillingCompensationResult& r, std::size_t i) {
 }
 
 MillingCompensationResult compensateMillingJob(const std::string& cell_path,
-                                               const std::string& program_path, bool force) {
+                                               const std::string& program_path, bool force,
+                                               const MillingPathOptions& options) {
   MillingCompensationResult r;
   r.context = loadContext(cell_path, program_path, {}, false);
   postproc::Program& prog = *r.context.job.program;
@@ -766,7 +768,7 @@ MillingCompensationResult compensateMillingJob(const std::string& cell_path,
                      "no linear path points (LIN/MoveL/L to Cartesian targets) in the program");
   }
   r.mill = millsOfPath(r.context.model.process, prog, motions);
-  compensateMillRuns(r, path);
+  compensateMillRuns(r, path, options);
   for (size_t i = 0; i < r.points_comp.size(); ++i) {
     const postproc::Target& t = prog.targets()[static_cast<size_t>(r.targets[i])];
     const PathPointCompensation& p = r.points_comp[i];

@@ -46,8 +46,12 @@ int reportUnstable(CommandContext& ctx, const MillingCompensationResult& r) {
 /// iteration (compensator/compensation/milling_compensation.hpp).
 int runMillingPath(CommandContext& ctx, const std::string& cell, const std::string& program,
                    const std::string& out, const std::optional<std::string>& targets,
-                   const std::optional<std::string>& report, bool force) {
-  MillingCompensationResult r = compensateMillingJob(cell, program, force);
+                   const std::optional<std::string>& report, bool force, int threads) {
+  // the compensate outputs report no revolution by edge angle: not resolved
+  MillingPathOptions path;
+  path.resolve_edges = false;
+  path.threads = threads;
+  MillingCompensationResult r = compensateMillingJob(cell, program, force, path);
   printJobNotes(ctx, r.context.job.notes);
   for (const auto& f : r.failures) ctx.err << "roprec: " << f << "\n";
   if (!r.failures.empty()) {
@@ -254,7 +258,8 @@ int run(Args& args, CommandContext& ctx) {
                        ": write the compensated program to another file (nothing written)");
   }
   if (cellIsMilling(*cell))
-    return runMillingPath(ctx, *cell, pos[0], *out, targets, report, job.force);
+    return runMillingPath(ctx, *cell, pos[0], *out, targets, report, job.force,
+                          resolvedThreads(job.job.threads));
 
   const int threads = resolvedThreads(job.job.threads);
   CompensationResult r = compensateJobHoles(*cell, pos[0], job);
