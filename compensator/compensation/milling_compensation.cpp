@@ -488,9 +488,6 @@ void CompensatedChain::run(size_t i, const PointCut& cut, PathPointCompensation&
   if (!p.ok) p.reason = "the compliance equilibrium did not converge at the compensated command";
 }
 
-/// Points per block of the pipeline.
-constexpr size_t kPathBlock = 512;
-
 /// One block [b, e) of the path after the first chain: the points it found an IK for, their
 /// cuts and revolutions.
 struct PathBlock {
@@ -549,10 +546,11 @@ std::vector<PathPointCompensation> compensateMillingPath(
   // over block k − 1 on a task of its own (inline with one thread)
   PathBlock blocks[2];
   std::future<void> pending;
-  for (size_t b = 0, k = 0; b < points.size(); b += kPathBlock, ++k) {
+  const size_t block = std::max<size_t>(1, options.block);
+  for (size_t b = 0, k = 0; b < points.size(); b += block, ++k) {
     PathBlock& blk = blocks[k % 2];
     blk.b = b;
-    blk.e = std::min(points.size(), b + kPathBlock);
+    blk.e = std::min(points.size(), b + block);
     runFirstChain(first, out, blk);
     resolveBlockEdges(blk, out, threads > 1 ? threads - 1 : 1);
     if (pending.valid()) pending.get();

@@ -119,6 +119,8 @@ struct MillingPathOptions {
   /// compensated chain of each block of points run as a pipeline, the revolutions of a block
   /// on the workers; the results are the same whatever the count.
   int threads{1};
+  /// Points per block of the pipeline (>= 1).
+  size_t block{512};
 };
 
 /// `m` must carry a milling process. Points are nominal TCP poses in the base frame (path order);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <future>
+#include <iterator>
 #include <system_error>
 #include <thread>
 
@@ -706,17 +707,31 @@ void compensateMillRuns(MillingCompensationResult& r, const std::vector<MillingP
       with->process.milling = cell.process.mills[i];
     }
     const PredictionModel& m = with ? *with : own;
-    const std::vector<MillingPathPoint> run(path.begin() + static_cast<std::ptrdiff_t>(b),
-                                            path.begin() + static_cast<std::ptrdiff_t>(e));
-    const std::vector<Pose> points(r.points.begin() + static_cast<std::ptrdiff_t>(b),
-                                   r.points.begin() + static_cast<std::ptrdiff_t>(e));
-    const std::vector<CuttingDecision> cutting = decideCutting(m.process.milling, T_W_stock, run);
-    const std::vector<PathPointCompensation> comp =
-        compensateMillingPath(m, points, &cutting, seed ? &*seed : nullptr, options);
-    r.cutting.insert(r.cutting.end(), cutting.begin(), cutting.end());
-    r.points_comp.insert(r.points_comp.end(), comp.begin(), comp.end());
+    // one run (the usual path): the job's own vectors, no copies
+    const bool whole = b == 0 && e == path.size();
+    std::vector<MillingPathPoint> run_copy;
+    std::vector<Pose> points_copy;
+    if (!whole) {
+      run_copy.assign(path.begin() + static_cast<std::ptrdiff_t>(b),
+                      path.begin() + static_cast<std::ptrdiff_t>(e));
+      points_copy.assign(r.points.begin() + static_cast<std::ptrdiff_t>(b),
+                         r.points.begin() + static_cast<std::ptrdiff_t>(e));
+    }
+    std::vector<CuttingDecision> cutting =
+        decideCutting(m.process.milling, T_W_stock, whole ? path : run_copy);
+    std::vector<PathPointCompensation> comp = compensateMillingPath(
+        m, whole ? r.points : points_copy, &cutting, seed ? &*seed : nullptr, options);
     for (const PathPointCompensation& p : comp)
       if (p.ok) seed = p.theta_d;
+    if (whole) {
+      r.cutting = std::move(cutting);
+      r.points_comp = std::move(comp);
+    } else {
+      r.cutting.insert(r.cutting.end(), std::make_move_iterator(cutting.begin()),
+                       std::make_move_iterator(cutting.end()));
+      r.points_comp.insert(r.points_comp.end(), std::make_move_iterator(comp.begin()),
+                           std::make_move_iterator(comp.end()));
+    }
     b = e;
   }
 }
