@@ -183,10 +183,12 @@ int runMillingPath(CommandContext& ctx, const std::string& cell, const std::stri
       writeMillingCompensationReport(r, program, write);
     });
   };
-  const std::vector<std::string> written = writeOutputsTogether(
+  std::vector<std::string> written = writeOutputsTogether(
       threads, distinct, [&] { return writeCompensatedProgram(r.context, out, {}); },
       targets ? std::function<void()>(writeTargets) : nullptr,
       report ? std::function<void()>(writeReport) : nullptr);
+  if (targets) written.push_back(*targets);
+  if (report) written.push_back(*report);
   if (!ctx.quiet) {
     double before = 0;
     double after = 0;
