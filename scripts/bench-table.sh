@@ -8,6 +8,8 @@
 #   scripts/bench-cli.sh    (10,000 holes 1 vs 2 threads, 100,000-hole predict wall and RSS)
 #   scripts/bench-large.sh  (1,000,000-hole predict / report / compensate, a 110 MB program
 #                            converted between dialects, map, plan-test: wall and peak RSS)
+#   scripts/bench-milling.sh  (a BENCH_MILLING_POINTS-point milling path, default 1,000,000,
+#                            compensated with every export on 2 threads under 500 MB)
 # and prints every row with its goal and whether it is met. Benchmark times are CPU medians of
 # BENCH_REPS repetitions (default 3); CLI rows are the least wall time of BENCH_REPEAT runs
 # (bench-cli.sh, default 3, 1 and 2 threads alternating), so a machine busy with other work lowers
@@ -36,6 +38,8 @@ if [ "${BENCH_SKIP_CLI:-0}" != 1 ]; then
     bash "$ROOT/scripts/bench-cli.sh" "$BUILD/bin/roprec" | tee "$OUT/cli.txt"
   if [ "${BENCH_SKIP_LARGE:-0}" != 1 ]; then
     bash "$ROOT/scripts/bench-large.sh" "$BUILD/bin/roprec" | tee -a "$OUT/cli.txt" || true
+    BENCH_MILLING_THREADS=2 bash "$ROOT/scripts/bench-milling.sh" \
+      "${BENCH_MILLING_POINTS:-1000000}" 500 "$BUILD/bin/roprec" | tee -a "$OUT/cli.txt" || true
   fi
 fi
 
@@ -133,6 +137,9 @@ large("predict 1,000,000 holes --report", r"predict \d+ --report", 15, 2 * GB,
 for o in ("keep", "flip-free", "stiffest"):
     large("compensate 1,000,000 holes %s" % o, r"compensate \d+ %s," % o, 15, 3 * GB,
           "<= 15 s / <= 3 GB", 1000000)
+large("compensate a 1,000,000-point milling path, every export, 2 threads",
+      r"milling \d+ --targets \w+ --report, --threads 2", 60, 500 * MB, "<= 60 s / <= 500 MB",
+      1000000)
 conv = [k for k in sorted(cli) if k.startswith("convert ") and isinstance(cli[k], tuple)]
 if conv:
     speeds = [(k.split(" MB ")[1], float(k.split()[1]) / cli[k][0], cli[k][1]) for k in conv]

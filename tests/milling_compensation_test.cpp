@@ -429,6 +429,63 @@ TEST(MillingCompensation, EngagementFromTheBoxStockAndTheEarlierPasses) {
   EXPECT_TRUE(before_box);
 }
 
+// The pipeline (the uncompensated chain of a block while the compensated chain runs over the
+// block before it, the revolutions on the workers) changes nothing: blocks of 7 points on 2
+// threads give every field bit for bit as one block on one thread, on passes whose engagement
+// changes (box stock); without the revolutions every other field is the same too.
+TEST(MillingCompensation, PipelinedBlocksOnTwoThreadsGiveTheOneThreadResults) {
+  const std::string cell = test::sourceDir() + "/samples/milling/box-stock-7075.xml";
+  const std::string prog = test::sourceDir() + "/samples/milling/box_passes.src";
+  MillingPathOptions one;
+  one.block = 100000;
+  const api::MillingCompensationResult a = api::compensateMillingJob(cell, prog, false, one);
+  MillingPathOptions two;
+  two.threads = 2;
+  two.block = 7;
+  const api::MillingCompensationResult b = api::compensateMillingJob(cell, prog, false, two);
+  MillingPathOptions bare = two;
+  bare.resolve_edges = false;
+  const api::MillingCompensationResult c = api::compensateMillingJob(cell, prog, false, bare);
+  ASSERT_GT(a.points_comp.size(), 3 * two.block);
+  ASSERT_EQ(b.points_comp.size(), a.points_comp.size());
+  ASSERT_EQ(c.points_comp.size(), a.points_comp.size());
+  int edges = 0;
+  for (size_t i = 0; i < a.points_comp.size(); ++i) {
+    const PathPointCompensation& x = a.points_comp[i];
+    for (const PathPointCompensation* y : {&b.points_comp[i], &c.points_comp[i]}) {
+      EXPECT_EQ(x.ok, y->ok) << i;
+      EXPECT_EQ(x.reason, y->reason) << i;
+      EXPECT_EQ(x.cutting, y->cutting) << i;
+      EXPECT_EQ(x.ae, y->ae) << i;
+      EXPECT_EQ(x.ap, y->ap) << i;
+      EXPECT_EQ(x.theta_d, y->theta_d) << i;
+      EXPECT_EQ(x.theta_cmd, y->theta_cmd) << i;
+      EXPECT_EQ(x.T_programmed.matrix(), y->T_programmed.matrix()) << i;
+      EXPECT_EQ(x.deviation_before, y->deviation_before) << i;
+      EXPECT_EQ(x.residual, y->residual) << i;
+      EXPECT_EQ(x.force, y->force) << i;
+      EXPECT_EQ(x.before_force, y->before_force) << i;
+      EXPECT_EQ(x.before_loop_gain, y->before_loop_gain) << i;
+      EXPECT_EQ(x.loop_gain, y->loop_gain) << i;
+      EXPECT_EQ(x.coupling_status, y->coupling_status) << i;
+      EXPECT_EQ(x.force_iterations, y->force_iterations) << i;
+      EXPECT_EQ(x.config_text, y->config_text) << i;
+      EXPECT_EQ(x.stability_checked, y->stability_checked) << i;
+      EXPECT_EQ(x.ap_limit, y->ap_limit) << i;
+      EXPECT_EQ(x.chatter_hz, y->chatter_hz) << i;
+    }
+    const PathPointCompensation& y = b.points_comp[i];
+    EXPECT_EQ(x.edges_checked, y.edges_checked) << i;
+    EXPECT_EQ(x.tooth_feed, y.tooth_feed) << i;
+    EXPECT_EQ(x.peak_xy, y.peak_xy) << i;
+    EXPECT_EQ(x.peak_xy_nominal, y.peak_xy_nominal) << i;
+    EXPECT_EQ(x.vibration_pp, y.vibration_pp) << i;
+    EXPECT_FALSE(c.points_comp[i].edges_checked) << i;
+    edges += x.edges_checked ? 1 : 0;
+  }
+  EXPECT_GT(edges, 3 * static_cast<int>(two.block));  // the revolutions were resolved
+}
+
 // A milling cell with a <part_registration> (verify --write-cell): every path point is aimed
 // where the registration found the part — the nominal path moved by G = T_W_wobj · F⁻¹ ·
 // T_W_wobj⁻¹ computed by hand, to 1e-12 m — with the same cutting decisions (the stock moves with

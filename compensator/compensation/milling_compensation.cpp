@@ -3,9 +3,13 @@
 #include <Eigen/QR>
 #include <cmath>
 #include <cstdio>
+#include <future>
+#include <memory>
 #include <optional>
 #include <stdexcept>
+#include <utility>
 
+#include "compensator/precision/parallel.hpp"
 #include "compensator/process/milling_robot.hpp"
 #include "compensator/process/milling_stability.hpp"
 #include "compensator/support/c_format.hpp"
@@ -64,46 +68,6 @@ std::optional<ModalModel> pointModes(const PredictionModel& m, PathPointCompensa
   if (!dyn.modes.empty()) p.first_mode_hz = dyn.modes.front().omega / (2 * kPi);
   addToolMode(dyn, s.tool_mode);
   return dyn;
-}
-
-/// The last resolved revolution along the path and the cut and modes it was computed with.
-struct EdgeCache {
-  ModalModel modes;
-  double fz{0}, ae{0}, ap{0};
-  EdgeRevolution nominal, corrected;
-  bool valid{false};
-};
-
-/// The revolution resolved by edge angle at the point's coupled cut into `p`.
-void resolveEdges(const MillingModel& mm, const ModalModel& dyn, const CouplingResult& c,
-                  EdgeCache& cache, PathPointCompensation& p) {
-  const bool same = cache.valid && sameModes(dyn, cache.modes) &&
-                    std::abs(c.fz_effective - cache.fz) <= kEdgeReuseTolerance &&
-                    std::abs(c.ae_effective - cache.ae) <= kEdgeReuseTolerance &&
-                    std::abs(c.ap_effective - cache.ap) <= kEdgeReuseTolerance;
-  if (!same) {
-    if (!cache.valid)
-      cache.nominal = edgeRevolution(mm, ModalModel{}, mm.cut.fz, mm.cut.ae, mm.cut.ap);
-    cache.corrected = edgeRevolution(mm, dyn, c.fz_effective, c.ae_effective, c.ap_effective);
-    cache.modes = dyn;
-    cache.fz = c.fz_effective;
-    cache.ae = c.ae_effective;
-    cache.ap = c.ap_effective;
-    cache.valid = true;
-  }
-  const EdgeRevolution& r = cache.corrected;
-  p.edges_checked = true;
-  p.edges_converged = r.converged;
-  p.tooth_feed = r.tooth_feed;
-  p.peak_xy_nominal = cache.nominal.peak_xy;
-  p.peak_xy = r.peak_xy;
-  Vec3 lo = Vec3::Constant(1e300);
-  Vec3 hi = Vec3::Constant(-1e300);
-  for (const Vec3& x : r.vibration) {
-    lo = lo.cwiseMin(x);
-    hi = hi.cwiseMax(x);
-  }
-  p.vibration_pp = r.vibration.empty() ? Vec3::Zero() : Vec3(hi - lo);
 }
 
 /// The zero-order stability limit with the modes `dyn` into `p`.
@@ -216,188 +180,388 @@ std::vector<CuttingDecision> decideCutting(const MillingSpec& s, const Pose& T_W
   return out;
 }
 
+namespace {
+
+/// The cut at a path point: the cell's, or the engagement's ae/ap (box stock), with its stability
+/// cut and nominal force.
+struct PointCut {
+  MillingModel model;
+  StabilityCut stability;
+  Vec3 F_nom{Vec3::Zero()};
+};
+std::shared_ptr<const PointCut> pointCut(MillingModel model) {
+  auto c = std::make_shared<PointCut>();
+  c->stability = stabilityCutOf(model);
+  c->F_nom = millingMeanForce(model, model.cut.fz, model.cut.ae);
+  c->model = std::move(model);
+  return c;
+}
+
+/// What both chains of the path read.
+struct PathSetup {
+  const PredictionModel& m;
+  const std::vector<Pose>& points;
+  const std::vector<CuttingDecision>* cutting;
+  Mat3 C_tool;
+  CouplingOptions copt;
+  MillingPathOptions options;
+};
+
+nc::Loads loadsWith(const PredictionModel& m, const Vec3& F_mill) {
+  nc::Loads l;
+  l.gravity = m.gravity;
+  l.tcp_tool.force = millToTool(F_mill);
+  return l;
+}
+
+/// The spindle/tool's own deflection under F, base frame (it adds to the robot's).
+Vec3 toolBending(const PathSetup& s, size_t i, const Vec3& F_mill) {
+  return s.points[i].linear() * millToTool(s.C_tool * F_mill);
+}
+
+/// A resolved revolution to compute (edgeRevolution at the cut, with the modes) and its result;
+/// the points that reuse it share it.
+struct EdgeJob {
+  std::shared_ptr<const PointCut> cut;
+  ModalModel dyn;  ///< empty: the rigid tool at the programmed cut
+  double fz{0}, ae{0}, ap{0};
+  EdgeRevolution result;
+};
+using EdgeRef = std::shared_ptr<EdgeJob>;
+
+/// The last revolution along the path and the cut and modes it was computed with.
+struct EdgeCache {
+  ModalModel modes;
+  double fz{0}, ae{0}, ap{0};
+  EdgeRef nominal, corrected;
+};
+
+/// The first chain along the path, in path order: the cutting decision's engagement, the IK with
+/// continuity, the uncompensated coupled solve and deviation, the modes, the chatter check and
+/// which revolution a point resolves (computed later, on the workers).
+class UncompensatedChain {
+ public:
+  UncompensatedChain(const PathSetup& s, const Vec6* seed)
+      : s_(s), cell_(pointCut(millingModelOf(s.m.process.milling))), cut_(cell_), d_(s.m) {
+    if (seed != nullptr) prev_ = *seed;
+  }
+  /// Point i into `p`; false when it has no admissible IK (p.reason says why). `cut` receives
+  /// the point's cut, `edges` the revolutions it reports (nominal, corrected) when cutting.
+  bool run(size_t i, PathPointCompensation& p, std::shared_ptr<const PointCut>& cut,
+           std::pair<EdgeRef, EdgeRef>& edges, std::vector<EdgeRef>& jobs);
+
+ private:
+  bool inverseKinematics(size_t i, PathPointCompensation& p);
+  void reuseOrQueueEdges(const ModalModel& dyn, const CouplingResult& c,
+                         std::pair<EdgeRef, EdgeRef>& edges, std::vector<EdgeRef>& jobs);
+  const PathSetup& s_;
+  std::shared_ptr<const PointCut> cell_, cut_;
+  PredictionData d_;
+  std::optional<Vec6> prev_;
+  CouplingState state_;  // the uncompensated path's memory (for the "before" deviation)
+  StabilityCache stability_cache_;
+  EdgeCache edge_cache_;
+};
+
+bool UncompensatedChain::inverseKinematics(size_t i, PathPointCompensation& p) {
+  const PredictionModel& m = s_.m;
+  // IK of the real robot with continuity (realIk: FK_real(θ_d) = the path point)
+  const Pose T_flange = s_.points[i] * m.model.T_L6_tcp.inverse() * m.model.T_L6_flange;
+  const Vec6 start = prev_ ? *prev_ : m.reference_pose;
+  IkOptions opt;
+  opt.seed = &start;
+  solveIk(realIk(m), T_flange, opt, d_.ik);
+  double best = 1e300;
+  bool found = false;
+  for (int k = 0; k < d_.ik.count; ++k) {
+    const IkSolution& sol = d_.ik.solutions[static_cast<size_t>(k)];
+    if (!sol.converged || !sol.within_limits || sol.singular_wrist || sol.singular_shoulder)
+      continue;
+    const double dist = (sol.q - start).squaredNorm();
+    if (dist < best) {
+      best = dist;
+      p.theta_d = sol.q;
+      found = true;
+    }
+  }
+  if (!found) {
+    p.reason = d_.ik.count == 0 ? describeIkFailure(d_.ik)
+                                : "no admissible IK solution (limits, singularity)";
+    return false;
+  }
+  prev_ = p.theta_d;
+  return true;
+}
+
+void UncompensatedChain::reuseOrQueueEdges(const ModalModel& dyn, const CouplingResult& c,
+                                           std::pair<EdgeRef, EdgeRef>& edges,
+                                           std::vector<EdgeRef>& jobs) {
+  EdgeCache& cache = edge_cache_;
+  const bool same = cache.corrected && sameModes(dyn, cache.modes) &&
+                    std::abs(c.fz_effective - cache.fz) <= kEdgeReuseTolerance &&
+                    std::abs(c.ae_effective - cache.ae) <= kEdgeReuseTolerance &&
+                    std::abs(c.ap_effective - cache.ap) <= kEdgeReuseTolerance;
+  if (!same) {
+    const MillingCut& cut = cut_->model.cut;
+    if (!cache.corrected) {
+      cache.nominal =
+          std::make_shared<EdgeJob>(EdgeJob{cut_, ModalModel{}, cut.fz, cut.ae, cut.ap, {}});
+      jobs.push_back(cache.nominal);
+    }
+    cache.corrected = std::make_shared<EdgeJob>(
+        EdgeJob{cut_, dyn, c.fz_effective, c.ae_effective, c.ap_effective, {}});
+    jobs.push_back(cache.corrected);
+    cache.modes = dyn;
+    cache.fz = c.fz_effective;
+    cache.ae = c.ae_effective;
+    cache.ap = c.ap_effective;
+  }
+  edges = {cache.nominal, cache.corrected};
+}
+
+bool UncompensatedChain::run(size_t i, PathPointCompensation& p,
+                             std::shared_ptr<const PointCut>& cut,
+                             std::pair<EdgeRef, EdgeRef>& edges, std::vector<EdgeRef>& jobs) {
+  const PredictionModel& m = s_.m;
+  if (s_.cutting != nullptr && i < s_.cutting->size()) {
+    const CuttingDecision& cd = (*s_.cutting)[i];
+    p.cutting = cd.cutting;
+    p.cutting_reason = cd.reason;
+    if (cd.cutting && cd.engagement &&
+        (cd.engagement->ae != cut_->model.cut.ae || cd.engagement->ap != cut_->model.cut.ap)) {
+      // the cut rebuilt (and the caches dropped) when the engagement changes
+      cut_ = pointCut(engagedModel(cell_->model, *cd.engagement));
+      stability_cache_.valid = false;
+      edge_cache_ = EdgeCache{};
+    }
+  }
+  cut = cut_;
+  p.ae = cut_->model.cut.ae;
+  p.ap = cut_->model.cut.ap;
+  if (!inverseKinematics(i, p)) return false;
+  // uncompensated: the robot at θ_d under the coupled force
+  Vec3 F_before = Vec3::Zero();
+  if (p.cutting) {
+    const CouplingResult cb = coupleMillingPoint(
+        cut_->model,
+        withToolCompliance(robotMillingCompliance(m.model, m.compliance, p.theta_d, m.gravity),
+                           s_.C_tool),
+        state_, s_.copt);
+    state_ = cb.next;
+    F_before = cb.force;
+    p.before_status = couplingStatusName(cb.status);
+    p.before_iterations = cb.iterations;
+    p.before_residual = cb.residual;
+    p.before_loop_gain = cb.loop_gain;
+    p.before_force = cb.force;
+    if (const std::optional<ModalModel> dyn = pointModes(m, p)) {
+      checkStability(*dyn, cut_->stability, m.process.milling.cut.spindle_rpm, stability_cache_, p);
+      if (s_.options.resolve_edges) reuseOrQueueEdges(*dyn, cb, edges, jobs);
+    }
+  } else {
+    state_ = CouplingState{};  // the tool left the material
+    p.before_status = "not_cutting";
+  }
+  // the uncompensated command: the controller's IK of the path point (θ_d without a
+  // calibration), its deviation from the path point
+  const Vec6 q_before = uncompensatedCommand(m, s_.points[i], p.theta_d);
+  nc::Deflection db =
+      nc::predictDeflection(m.model, d_.nc, m.compliance, q_before, loadsWith(m, F_before), {},
+                            controllerOffset(m, d_.nc, q_before));
+  if (m.calibrated) nc::referToControllerPose(db, controllerTcp(m, q_before));
+  p.deviation_before = db.dp + toolBending(s_, i, F_before);
+  return true;
+}
+
+/// A point's resolved revolution (nominal, corrected) into `p`.
+void reportEdges(const std::pair<EdgeRef, EdgeRef>& edges, PathPointCompensation& p) {
+  if (!edges.second) return;
+  const EdgeRevolution& r = edges.second->result;
+  p.edges_checked = true;
+  p.edges_converged = r.converged;
+  p.tooth_feed = r.tooth_feed;
+  p.peak_xy_nominal = edges.first->result.peak_xy;
+  p.peak_xy = r.peak_xy;
+  Vec3 lo = Vec3::Constant(1e300);
+  Vec3 hi = Vec3::Constant(-1e300);
+  for (const Vec3& x : r.vibration) {
+    lo = lo.cwiseMin(x);
+    hi = hi.cwiseMax(x);
+  }
+  p.vibration_pp = r.vibration.empty() ? Vec3::Zero() : Vec3(hi - lo);
+}
+
+/// The second chain along the path, in path order: the compensated command of each point whose
+/// IK the first chain found (its coupling memory is the compensated path's).
+class CompensatedChain {
+ public:
+  explicit CompensatedChain(const PathSetup& s) : s_(s), d_(s.m) {}
+  void run(size_t i, const PointCut& cut, PathPointCompensation& p);
+
+ private:
+  Vec6 commandFor(size_t i, const PathPointCompensation& p,
+                  const Eigen::ColPivHouseholderQR<Mat6>& J, const Vec3& G);
+  const PathSetup& s_;
+  PredictionData d_;
+  CouplingState state_;
+};
+
+/// The controller command that puts the link side at θ_d under force G (exact inverse; a
+/// gravity-compensating controller adds its own offset: θ_cmd + off(θ_cmd) = θ_m), with the link
+/// side pre-offset for the tool's bending: θ_d + J⁻¹ [−bending; 0].
+Vec6 CompensatedChain::commandFor(size_t i, const PathPointCompensation& p,
+                                  const Eigen::ColPivHouseholderQR<Mat6>& J, const Vec3& G) {
+  const PredictionModel& m = s_.m;
+  Vec6 target = p.theta_d;
+  if (!G.isZero() && J.rank() == 6) {
+    Vec6 twist = Vec6::Zero();
+    twist.head<3>() = -toolBending(s_, i, G);
+    target = p.theta_d + J.solve(twist);
+  }
+  const Vec6 theta_m = nc::compensateCommand(m.model, d_.nc, m.compliance, target, loadsWith(m, G));
+  Vec6 cmd = theta_m;
+  for (int it = 0; it < 20 && m.controller.kind != nc::ControllerReference::Kind::kNone; ++it)
+    cmd = theta_m - controllerOffset(m, d_.nc, cmd);
+  return cmd;
+}
+
+void CompensatedChain::run(size_t i, const PointCut& cut, PathPointCompensation& p) {
+  const PredictionModel& m = s_.m;
+  const Pose& T = s_.points[i];
+  const Mat3 R = T.linear();
+  nc::forwardKinematics(m.model, d_.nc, p.theta_d);
+  const Eigen::ColPivHouseholderQR<Mat6> J_qr(nc::tcpJacobian(m.model, d_.nc));
+  // force fixed point with the exact inverse (no force at a point that does not cut)
+  Vec3 F = p.cutting ? cut.F_nom : Vec3::Zero();
+  bool conv = !p.cutting;
+  CouplingResult ca;
+  ca.converged = true;
+  ca.status = CouplingStatus::kConverged;
+  for (p.force_iterations = 1; p.cutting && p.force_iterations <= 20; ++p.force_iterations) {
+    p.theta_cmd = commandFor(i, p, J_qr, F);
+    // the compensated robot's deviation from the nominal tool position under a force G (milling
+    // frame)
+    const ComplianceFunction residualCompliance = [&](const Vec3& G) -> Vec3 {
+      const nc::Deflection dg =
+          nc::predictDeflection(m.model, d_.nc, m.compliance, p.theta_cmd, loadsWith(m, G), {},
+                                controllerOffset(m, d_.nc, p.theta_cmd));
+      if (!dg.converged) throw std::runtime_error("the compliance equilibrium did not converge");
+      return millToTool(R.transpose() * (dg.T_real.translation() - T.translation())) +
+             s_.C_tool * G;
+    };
+    ca = coupleMillingPoint(cut.model, residualCompliance, state_, s_.copt);
+    const double change = (ca.force - F).norm();
+    F = ca.force;
+    if (!ca.converged) break;
+    if (change <= 1e-9) {
+      conv = true;
+      break;
+    }
+  }
+  p.coupling_converged = ca.converged;
+  p.coupling_iterations = ca.iterations;
+  p.coupling_status = p.cutting ? couplingStatusName(ca.status) : "not_cutting";
+  p.coupling_residual = ca.residual;
+  p.loop_gain = ca.loop_gain;
+  if (!p.cutting) p.force_iterations = 0;
+  p.force = F;
+  if (!conv) {
+    p.reason = ca.converged ? "the force fixed point did not converge"
+                            : std::string("the coupled milling iteration did not converge (") +
+                                  couplingStatusName(ca.status) + ")";
+    return;
+  }
+  state_ = p.cutting ? ca.next : CouplingState{};
+  p.theta_cmd = commandFor(i, p, J_qr, F);
+  if (!withinLimits(m.ik, p.theta_cmd)) {
+    p.reason = "the compensated command leaves the joint limits";
+    return;
+  }
+  nc::forwardKinematics(controllerModel(m), d_.nc, p.theta_cmd);  // FK_nom: what is programmed
+  p.T_programmed = d_.nc.T_W_tcp;
+  const nc::Deflection da =
+      nc::predictDeflection(m.model, d_.nc, m.compliance, p.theta_cmd, loadsWith(m, F), {},
+                            controllerOffset(m, d_.nc, p.theta_cmd));
+  p.residual = da.T_real.translation() + toolBending(s_, i, F) - T.translation();
+  p.config_text = formatConfig(configurationOf(m.ik, m.robot.card, p.theta_cmd, m.config_options));
+  p.ok = da.converged;
+  if (!p.ok) p.reason = "the compliance equilibrium did not converge at the compensated command";
+}
+
+/// One block [b, e) of the path after the first chain: the points it found an IK for, their
+/// cuts and revolutions.
+struct PathBlock {
+  size_t b{0}, e{0};
+  std::vector<char> found;
+  std::vector<std::shared_ptr<const PointCut>> cut;
+  std::vector<std::pair<EdgeRef, EdgeRef>> edges;
+  std::vector<EdgeRef> jobs;  ///< the revolutions first needed in this block
+};
+
+void runFirstChain(UncompensatedChain& chain, std::vector<PathPointCompensation>& out,
+                   PathBlock& blk) {
+  const size_t n = blk.e - blk.b;
+  blk.found.assign(n, 0);
+  blk.cut.assign(n, nullptr);
+  blk.edges.assign(n, {});
+  blk.jobs.clear();
+  for (size_t k = 0; k < n; ++k)
+    blk.found[k] = chain.run(blk.b + k, out[blk.b + k], blk.cut[k], blk.edges[k], blk.jobs) ? 1 : 0;
+}
+
+void resolveBlockEdges(PathBlock& blk, std::vector<PathPointCompensation>& out, int threads) {
+  parallelFor(blk.jobs.size(), threads, [&](int, size_t k) {
+    EdgeJob& j = *blk.jobs[k];
+    j.result = edgeRevolution(j.cut->model, j.dyn, j.fz, j.ae, j.ap);
+  });
+  for (size_t k = 0; k < blk.edges.size(); ++k) reportEdges(blk.edges[k], out[blk.b + k]);
+}
+
+void runSecondChain(CompensatedChain& chain, const PathBlock& blk,
+                    std::vector<PathPointCompensation>& out) {
+  for (size_t k = 0; k < blk.e - blk.b; ++k)
+    if (blk.found[k]) chain.run(blk.b + k, *blk.cut[k], out[blk.b + k]);
+}
+
+}  // namespace
+
 std::vector<PathPointCompensation> compensateMillingPath(
     const PredictionModel& m, const std::vector<Pose>& points,
-    const std::vector<CuttingDecision>* cutting, const Vec6* seed) {
+    const std::vector<CuttingDecision>* cutting, const Vec6* seed,
+    const MillingPathOptions& options) {
   if (!m.has_process || m.process.type != ProcessType::kMilling) {
     throw std::invalid_argument("compensateMillingPath needs a milling process");
   }
-  const MillingModel mm = millingModelOf(m.process.milling);
-  const StabilityCut stability_cut = stabilityCutOf(mm);
-  const Mat3 C_tool = toolStaticCompliance(m.process.milling.tool_mode);
-  StabilityCache stability_cache;
-  EdgeCache edge_cache;
-  // the cut at the point: the cell's, or the engagement's ae/ap (box stock), with its stability
-  // cut and nominal force; rebuilt (and the caches dropped) when the engagement changes
-  MillingModel pm = mm;
-  StabilityCut pm_stability = stability_cut;
-  Vec3 F_nom = millingMeanForce(mm, mm.cut.fz, mm.cut.ae);
-  CouplingOptions copt = m.process.milling.coupling;
-  PredictionData d(m);
+  const PathSetup setup{m,
+                        points,
+                        cutting,
+                        toolStaticCompliance(m.process.milling.tool_mode),
+                        m.process.milling.coupling,
+                        options};
+  const int threads = std::max(1, options.threads);
   std::vector<PathPointCompensation> out(points.size());
-  std::optional<Vec6> prev;
-  if (seed != nullptr) prev = *seed;
-  CouplingState before_state;  // the uncompensated path's memory (for the "before" deviation)
-  CouplingState after_state;
-  for (size_t i = 0; i < points.size(); ++i) {
-    PathPointCompensation& p = out[i];
-    if (cutting != nullptr && i < cutting->size()) {
-      const CuttingDecision& cd = (*cutting)[i];
-      p.cutting = cd.cutting;
-      p.cutting_reason = cd.reason;
-      if (cd.cutting && cd.engagement &&
-          (cd.engagement->ae != pm.cut.ae || cd.engagement->ap != pm.cut.ap)) {
-        pm = engagedModel(mm, *cd.engagement);
-        pm_stability = stabilityCutOf(pm);
-        F_nom = millingMeanForce(pm, pm.cut.fz, pm.cut.ae);
-        stability_cache.valid = false;
-        edge_cache.valid = false;
-      }
-    }
-    p.ae = pm.cut.ae;
-    p.ap = pm.cut.ap;
-    // 1. IK of the real robot with continuity (realIk: FK_real(θ_d) = the path point)
-    const Pose T_flange = points[i] * m.model.T_L6_tcp.inverse() * m.model.T_L6_flange;
-    const Vec6 start = prev ? *prev : m.reference_pose;
-    IkOptions opt;
-    opt.seed = &start;
-    solveIk(realIk(m), T_flange, opt, d.ik);
-    double best = 1e300;
-    bool found = false;
-    for (int k = 0; k < d.ik.count; ++k) {
-      const IkSolution& s = d.ik.solutions[static_cast<size_t>(k)];
-      if (!s.converged || !s.within_limits || s.singular_wrist || s.singular_shoulder) continue;
-      const double dist = (s.q - start).squaredNorm();
-      if (dist < best) {
-        best = dist;
-        p.theta_d = s.q;
-        found = true;
-      }
-    }
-    if (!found) {
-      p.reason = d.ik.count == 0 ? describeIkFailure(d.ik)
-                                 : "no admissible IK solution (limits, singularity)";
-      continue;
-    }
-    prev = p.theta_d;
-    const Mat3 R = points[i].linear();
-    auto loadsWith = [&](const Vec3& F_mill) {
-      nc::Loads l;
-      l.gravity = m.gravity;
-      l.tcp_tool.force = millToTool(F_mill);
-      return l;
-    };
-    // the spindle/tool's own deflection under F, base frame (it adds to the robot's)
-    auto toolBending = [&](const Vec3& F_mill) -> Vec3 { return R * millToTool(C_tool * F_mill); };
-    // uncompensated: the robot at θ_d under the coupled force
-    Vec3 F_before = Vec3::Zero();
-    if (p.cutting) {
-      const CouplingResult cb = coupleMillingPoint(
-          pm,
-          withToolCompliance(robotMillingCompliance(m.model, m.compliance, p.theta_d, m.gravity),
-                             C_tool),
-          before_state, copt);
-      before_state = cb.next;
-      F_before = cb.force;
-      p.before_status = couplingStatusName(cb.status);
-      p.before_iterations = cb.iterations;
-      p.before_residual = cb.residual;
-      p.before_loop_gain = cb.loop_gain;
-      p.before_force = cb.force;
-      if (const std::optional<ModalModel> dyn = pointModes(m, p)) {
-        checkStability(*dyn, pm_stability, m.process.milling.cut.spindle_rpm, stability_cache, p);
-        resolveEdges(pm, *dyn, cb, edge_cache, p);
-      }
+  UncompensatedChain first(setup, seed);
+  CompensatedChain second(setup);
+  // pipeline: the first chain over block k (and its revolutions) while the second chain runs
+  // over block k − 1 on a task of its own (inline with one thread)
+  PathBlock blocks[2];
+  std::future<void> pending;
+  const size_t block = std::max<size_t>(1, options.block);
+  for (size_t b = 0, k = 0; b < points.size(); b += block, ++k) {
+    PathBlock& blk = blocks[k % 2];
+    blk.b = b;
+    blk.e = std::min(points.size(), b + block);
+    runFirstChain(first, out, blk);
+    resolveBlockEdges(blk, out, threads > 1 ? threads - 1 : 1);
+    if (pending.valid()) pending.get();
+    if (threads > 1) {
+      pending = std::async(std::launch::async,
+                           [&second, &blk, &out] { runSecondChain(second, blk, out); });
     } else {
-      before_state = CouplingState{};  // the tool left the material
-      p.before_status = "not_cutting";
+      runSecondChain(second, blk, out);
     }
-    {
-      // the uncompensated command: the controller's IK of the path point (θ_d without a
-      // calibration), its deviation from the path point
-      const Vec6 q_before = uncompensatedCommand(m, points[i], p.theta_d);
-      nc::Deflection db =
-          nc::predictDeflection(m.model, d.nc, m.compliance, q_before, loadsWith(F_before), {},
-                                controllerOffset(m, d.nc, q_before));
-      if (m.calibrated) nc::referToControllerPose(db, controllerTcp(m, q_before));
-      p.deviation_before = db.dp + toolBending(F_before);
-    }
-    // the link-side target that pre-offsets the tool's bending: θ_d + J⁻¹ [−bending; 0]
-    nc::forwardKinematics(m.model, d.nc, p.theta_d);
-    const Eigen::ColPivHouseholderQR<Mat6> J_qr(nc::tcpJacobian(m.model, d.nc));
-    auto targetFor = [&](const Vec3& G) -> Vec6 {
-      if (G.isZero() || J_qr.rank() < 6) return p.theta_d;
-      Vec6 twist = Vec6::Zero();
-      twist.head<3>() = -toolBending(G);
-      return p.theta_d + J_qr.solve(twist);
-    };
-    // the controller command that puts the link side at θ_d under force G (exact inverse; a
-    // gravity-compensating controller adds its own offset: θ_cmd + off(θ_cmd) = θ_m)
-    auto commandFor = [&](const Vec3& G) {
-      const Vec6 theta_m =
-          nc::compensateCommand(m.model, d.nc, m.compliance, targetFor(G), loadsWith(G));
-      Vec6 cmd = theta_m;
-      for (int it = 0; it < 20 && m.controller.kind != nc::ControllerReference::Kind::kNone; ++it)
-        cmd = theta_m - controllerOffset(m, d.nc, cmd);
-      return cmd;
-    };
-    // 2. force fixed point with the exact inverse (no force at a point that does not cut)
-    Vec3 F = p.cutting ? F_nom : Vec3::Zero();
-    bool conv = !p.cutting;
-    CouplingResult ca;
-    ca.converged = true;
-    ca.status = CouplingStatus::kConverged;
-    for (p.force_iterations = 1; p.cutting && p.force_iterations <= 20; ++p.force_iterations) {
-      p.theta_cmd = commandFor(F);
-      // the compensated robot's deviation from the nominal tool position under a force G (milling
-      // frame)
-      const ComplianceFunction residualCompliance = [&](const Vec3& G) -> Vec3 {
-        const nc::Deflection dg =
-            nc::predictDeflection(m.model, d.nc, m.compliance, p.theta_cmd, loadsWith(G), {},
-                                  controllerOffset(m, d.nc, p.theta_cmd));
-        if (!dg.converged) throw std::runtime_error("the compliance equilibrium did not converge");
-        return millToTool(R.transpose() * (dg.T_real.translation() - points[i].translation())) +
-               C_tool * G;
-      };
-      ca = coupleMillingPoint(pm, residualCompliance, after_state, copt);
-      const double change = (ca.force - F).norm();
-      F = ca.force;
-      if (!ca.converged) break;
-      if (change <= 1e-9) {
-        conv = true;
-        break;
-      }
-    }
-    p.coupling_converged = ca.converged;
-    p.coupling_iterations = ca.iterations;
-    p.coupling_status = p.cutting ? couplingStatusName(ca.status) : "not_cutting";
-    p.coupling_residual = ca.residual;
-    p.loop_gain = ca.loop_gain;
-    if (!p.cutting) p.force_iterations = 0;
-    p.force = F;
-    if (!conv) {
-      p.reason = ca.converged ? "the force fixed point did not converge"
-                              : std::string("the coupled milling iteration did not converge (") +
-                                    couplingStatusName(ca.status) + ")";
-      continue;
-    }
-    after_state = p.cutting ? ca.next : CouplingState{};
-    p.theta_cmd = commandFor(F);
-    if (!withinLimits(m.ik, p.theta_cmd)) {
-      p.reason = "the compensated command leaves the joint limits";
-      continue;
-    }
-    nc::forwardKinematics(controllerModel(m), d.nc, p.theta_cmd);  // FK_nom: what is programmed
-    p.T_programmed = d.nc.T_W_tcp;
-    const nc::Deflection da =
-        nc::predictDeflection(m.model, d.nc, m.compliance, p.theta_cmd, loadsWith(F), {},
-                              controllerOffset(m, d.nc, p.theta_cmd));
-    p.residual = da.T_real.translation() + toolBending(F) - points[i].translation();
-    p.config_text =
-        formatConfig(configurationOf(m.ik, m.robot.card, p.theta_cmd, m.config_options));
-    p.ok = da.converged;
-    if (!p.ok) p.reason = "the compliance equilibrium did not converge at the compensated command";
   }
+  if (pending.valid()) pending.get();
   return out;
 }
 

@@ -109,11 +109,26 @@ struct PathPointCompensation {
   }
 };
 
+/// What compensateMillingPath computes beyond the compensation, and on how many workers.
+struct MillingPathOptions {
+  /// Resolve the revolution by edge angle at every cutting point (the `edges_*`, `tooth_feed`,
+  /// `peak_xy*` and `vibration_pp` fields); a caller that reports none of them (compensate)
+  /// leaves it off: nothing else depends on it.
+  bool resolve_edges{true};
+  /// Workers (>= 1): the uncompensated chain (IK, "before" coupling, modes, chatter) and the
+  /// compensated chain of each block of points run as a pipeline, the revolutions of a block
+  /// on the workers; the results are the same whatever the count.
+  int threads{1};
+  /// Points per block of the pipeline (>= 1).
+  size_t block{512};
+};
+
 /// `m` must carry a milling process. Points are nominal TCP poses in the base frame (path order);
 /// `cutting` (optional, one per point) says which points cut — all of them when absent. The first
 /// point's IK is seeded with `seed` (rad), else the model's reference pose.
 std::vector<PathPointCompensation> compensateMillingPath(
     const PredictionModel& m, const std::vector<Pose>& points,
-    const std::vector<CuttingDecision>* cutting = nullptr, const Vec6* seed = nullptr);
+    const std::vector<CuttingDecision>* cutting = nullptr, const Vec6* seed = nullptr,
+    const MillingPathOptions& options = {});
 
 }  // namespace roprec

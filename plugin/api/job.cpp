@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <future>
+#include <iterator>
 #include <system_error>
 #include <thread>
 
@@ -791,7 +792,8 @@ std::vector<int> millsOfPath(const ProcessSpec& spec, const postproc::Program& p
 
 /// Every run of points with one mill (r.mill) decided and compensated as a path of its own with
 /// that mill's process and TCP model, seeded with the joints of the run before it.
-void compensateMillRuns(MillingCompensationResult& r, const std::vector<MillingPathPoint>& path) {
+void compensateMillRuns(MillingCompensationResult& r, const std::vector<MillingPathPoint>& path,
+                        const MillingPathOptions& options) {
   const PredictionModel& cell = r.context.model;
   // the stock (workobject frame) moves with the part
   const Pose T_W_stock = r.context.cell.part_registration
@@ -810,17 +812,31 @@ void compensateMillRuns(MillingCompensationResult& r, const std::vector<MillingP
       with->process.milling = cell.process.mills[i];
     }
     const PredictionModel& m = with ? *with : own;
-    const std::vector<MillingPathPoint> run(path.begin() + static_cast<std::ptrdiff_t>(b),
-                                            path.begin() + static_cast<std::ptrdiff_t>(e));
-    const std::vector<Pose> points(r.points.begin() + static_cast<std::ptrdiff_t>(b),
-                                   r.points.begin() + static_cast<std::ptrdiff_t>(e));
-    const std::vector<CuttingDecision> cutting = decideCutting(m.process.milling, T_W_stock, run);
-    const std::vector<PathPointCompensation> comp =
-        compensateMillingPath(m, points, &cutting, seed ? &*seed : nullptr);
-    r.cutting.insert(r.cutting.end(), cutting.begin(), cutting.end());
-    r.points_comp.insert(r.points_comp.end(), comp.begin(), comp.end());
+    // one run (the usual path): the job's own vectors, no copies
+    const bool whole = b == 0 && e == path.size();
+    std::vector<MillingPathPoint> run_copy;
+    std::vector<Pose> points_copy;
+    if (!whole) {
+      run_copy.assign(path.begin() + static_cast<std::ptrdiff_t>(b),
+                      path.begin() + static_cast<std::ptrdiff_t>(e));
+      points_copy.assign(r.points.begin() + static_cast<std::ptrdiff_t>(b),
+                         r.points.begin() + static_cast<std::ptrdiff_t>(e));
+    }
+    std::vector<CuttingDecision> cutting =
+        decideCutting(m.process.milling, T_W_stock, whole ? path : run_copy);
+    std::vector<PathPointCompensation> comp = compensateMillingPath(
+        m, whole ? r.points : points_copy, &cutting, seed ? &*seed : nullptr, options);
     for (const PathPointCompensation& p : comp)
       if (p.ok) seed = p.theta_d;
+    if (whole) {
+      r.cutting = std::move(cutting);
+      r.points_comp = std::move(comp);
+    } else {
+      r.cutting.insert(r.cutting.end(), std::make_move_iterator(cutting.begin()),
+                       std::make_move_iterator(cutting.end()));
+      r.points_comp.insert(r.points_comp.end(), std::make_move_iterator(comp.begin()),
+                           std::make_move_iterator(comp.end()));
+    }
     b = e;
   }
 }
@@ -834,7 +850,8 @@ const MillingSpec& millOf(const MillingCompensationResult& r, std::size_t i) {
 }
 
 MillingCompensationResult compensateMillingJob(const std::string& cell_path,
-                                               const std::string& program_path, bool force) {
+                                               const std::string& program_path, bool force,
+                                               const MillingPathOptions& options) {
   MillingCompensationResult r;
   r.context = loadContext(cell_path, program_path, {}, false);
   postproc::Program& prog = *r.context.job.program;
@@ -871,7 +888,7 @@ MillingCompensationResult compensateMillingJob(const std::string& cell_path,
                      "no linear path points (LIN/MoveL/L to Cartesian targets) in the program");
   }
   r.mill = millsOfPath(r.context.model.process, prog, motions);
-  compensateMillRuns(r, path);
+  compensateMillRuns(r, path, options);
   for (size_t i = 0; i < r.points_comp.size(); ++i) {
     const postproc::Target& t = prog.targets()[static_cast<size_t>(r.targets[i])];
     const PathPointCompensation& p = r.points_comp[i];

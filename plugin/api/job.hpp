@@ -211,8 +211,11 @@ struct MillingCompensationResult {
 /// process and TCP (a tool change leaves the material), seeded with the joints before it. Throws
 /// InputError at a path motion whose tool the cell's mills do not have, at one that selects no
 /// tool when the cell has several mills, and at the first motion of a second tool when it has one.
+/// `path`: the revolutions resolved by edge angle or not, and the workers (the same results
+/// whatever their count; compensateMillingPath).
 MillingCompensationResult compensateMillingJob(const std::string& cell_path,
-                                               const std::string& program_path, bool force = false);
+                                               const std::string& program_path, bool force = false,
+                                               const MillingPathOptions& path = {});
 /// The mill of path point `i` (MillingCompensationResult::mill).
 const MillingSpec& millOf(const MillingCompensationResult& r, std::size_t i);
 

@@ -43,48 +43,6 @@ int reportUnstable(CommandContext& ctx, const MillingCompensationResult& r) {
   return n > 0 ? 1 : 0;
 }
 
-/// Milling: every linear path point of the program is compensated with the coupled force
-/// iteration (compensator/compensation/milling_compensation.hpp).
-int runMillingPath(CommandContext& ctx, const std::string& cell, const std::string& program,
-                   const std::string& out, const std::optional<std::string>& targets,
-                   const std::optional<std::string>& report, bool force) {
-  MillingCompensationResult r = compensateMillingJob(cell, program, force);
-  printJobNotes(ctx, r.context.job.notes);
-  for (const auto& f : r.failures) ctx.err << "roprec: " << f << "\n";
-  if (!r.failures.empty()) {
-    ctx.err << "roprec: " << r.failures.size() << " of " << r.points_comp.size()
-            << " path points could not be compensated; nothing written\n";
-    return 1;
-  }
-  if (!r.refused.empty()) {
-    for (const auto& x : r.refused) ctx.err << "roprec: " << x << "\n";
-    ctx.err << "roprec: the writer refused " << r.refused.size()
-            << " target edits; nothing written\n";
-    return 1;
-  }
-  std::vector<std::pair<std::string, std::string>> extra;
-  if (targets) {
-    const bool csv = targets->size() > 4 && targets->substr(targets->size() - 4) == ".csv";
-    extra.emplace_back(*targets, csv ? millingTargetsCsv(r) : millingTargetsJson(r, program));
-  }
-  if (report) extra.emplace_back(*report, millingCompensationReport(r, program));
-  const std::vector<std::string> written = writeCompensatedProgram(r.context, out, extra);
-  if (!ctx.quiet) {
-    double before = 0;
-    double after = 0;
-    for (const auto& p : r.points_comp) {
-      before = std::max(before, p.deviation_before.norm());
-      after = std::max(after, p.residual.norm());
-    }
-    ctx.out << "roprec compensate (milling path): " << r.points_comp.size()
-            << " path points compensated\n";
-    ctx.out << "  deviation before (coupled force) max " << formatNumber(before * 1e6, 3)
-            << " µm; predicted residual max " << formatNumber(after * 1e6, 4) << " µm\n";
-    for (const auto& pth : written) ctx.out << "  wrote " << pth << "\n";
-  }
-  return reportUnstable(ctx, r);
-}
-
 CompensationOptions parseCompensationOptions(Args& args) {
   CompensationOptions opt;
   const std::string mode = args.option("orientation").value_or("keep");
@@ -183,6 +141,69 @@ std::vector<std::string> writeOutputsTogether(
   }
   if (first) std::rethrow_exception(first);
   return written;
+}
+
+/// Milling: every linear path point of the program is compensated with the coupled force
+/// iteration (compensator/compensation/milling_compensation.hpp).
+int runMillingPath(CommandContext& ctx, const std::string& cell, const std::string& program,
+                   const std::string& out, const std::optional<std::string>& targets,
+                   const std::optional<std::string>& report, bool force, int threads) {
+  // the compensate outputs report no revolution by edge angle: not resolved
+  MillingPathOptions path;
+  path.resolve_edges = false;
+  path.threads = threads;
+  MillingCompensationResult r = compensateMillingJob(cell, program, force, path);
+  printJobNotes(ctx, r.context.job.notes);
+  for (const auto& f : r.failures) ctx.err << "roprec: " << f << "\n";
+  if (!r.failures.empty()) {
+    ctx.err << "roprec: " << r.failures.size() << " of " << r.points_comp.size()
+            << " path points could not be compensated; nothing written\n";
+    return 1;
+  }
+  if (!r.refused.empty()) {
+    for (const auto& x : r.refused) ctx.err << "roprec: " << x << "\n";
+    ctx.err << "roprec: the writer refused " << r.refused.size()
+            << " target edits; nothing written\n";
+    return 1;
+  }
+  std::vector<std::string> extra;
+  if (targets) extra.push_back(*targets);
+  if (report) extra.push_back(*report);
+  refuseOverwritingInput(*r.context.job.program, extra);
+  std::vector<std::string> outs = postproc::outputPaths(*r.context.job.program, out);
+  outs.insert(outs.end(), extra.begin(), extra.end());
+  std::sort(outs.begin(), outs.end());
+  const bool distinct = std::adjacent_find(outs.begin(), outs.end()) == outs.end();
+  const bool csv = targets && targets->size() > 4 && targets->substr(targets->size() - 4) == ".csv";
+  auto writeTargets = [&] {  // written point by point into its staged file
+    writeFileAtomicStream(
+        *targets, [&](const ByteWriter& write) { writeMillingTargets(r, program, csv, write); });
+  };
+  auto writeReport = [&] {  // written point by point into its staged file
+    writeFileAtomicStream(*report, [&](const ByteWriter& write) {
+      writeMillingCompensationReport(r, program, write);
+    });
+  };
+  std::vector<std::string> written = writeOutputsTogether(
+      threads, distinct, [&] { return writeCompensatedProgram(r.context, out, {}); },
+      targets ? std::function<void()>(writeTargets) : nullptr,
+      report ? std::function<void()>(writeReport) : nullptr);
+  if (targets) written.push_back(*targets);
+  if (report) written.push_back(*report);
+  if (!ctx.quiet) {
+    double before = 0;
+    double after = 0;
+    for (const auto& p : r.points_comp) {
+      before = std::max(before, p.deviation_before.norm());
+      after = std::max(after, p.residual.norm());
+    }
+    ctx.out << "roprec compensate (milling path): " << r.points_comp.size()
+            << " path points compensated\n";
+    ctx.out << "  deviation before (coupled force) max " << formatNumber(before * 1e6, 3)
+            << " µm; predicted residual max " << formatNumber(after * 1e6, 4) << " µm\n";
+    for (const auto& pth : written) ctx.out << "  wrote " << pth << "\n";
+  }
+  return reportUnstable(ctx, r);
 }
 
 std::string stat(std::vector<double> v) {
@@ -354,7 +375,8 @@ int run(Args& args, CommandContext& ctx) {
                        ": write the compensated program to another file (nothing written)");
   }
   if (cellIsMilling(*cell))
-    return runMillingPath(ctx, *cell, pos[0], *out, targets, report, job.force);
+    return runMillingPath(ctx, *cell, pos[0], *out, targets, report, job.force,
+                          resolvedThreads(job.job.threads));
 
   const int threads = resolvedThreads(job.job.threads);
   CompensationResult r = loadCompensationJob(*cell, pos[0], job);
@@ -460,10 +482,12 @@ const CommandRegistration reg{
      "a program carrying it is refused (exit 2) unless --force. OUT (or its .dat) equal to the\n"
      "input is refused. --frame and --tool: as for roprec predict (controller-only frames and a\n"
      "program tool that differs from the cell's are errors unless resolved).\n"
-     "--threads N: worker threads for the per-hole work (0 = every core; default 1); the outputs\n"
-     "are byte-identical for any N. Without --report the holes are compensated and written out a\n"
-     "block at a time (the program's bytes up to the next hole's targets, the --targets rows):\n"
-     "memory does not grow with the per-hole results; --report keeps them all (it draws them).\n",
+     "--threads N: worker threads for the per-hole work, or a milling path's two pipelined\n"
+     "chains (0 = every core; default 1); the outputs are byte-identical for any N. Without\n"
+     "--report the holes are compensated and written out a block at a time (the program's bytes\n"
+     "up to the next hole's targets, the --targets rows): memory does not grow with the per-hole\n"
+     "results; --report keeps them all (it draws them). A milling path's --targets export is\n"
+     "written point by point.\n",
      50, run}};
 
 }  // namespace

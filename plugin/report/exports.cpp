@@ -774,79 +774,128 @@ std::string compensationReport(const CompensationResult& r, const std::string& p
   return renderReport(in);
 }
 
-std::string millingTargetsCsv(const MillingCompensationResult& r) {
-  std::string s =
-      "point,target,line,cutting,ok,x_mm,y_mm,z_mm,deviation_before_um,residual_um,Fx_N,Fy_N,"
-      "Fz_N,coupling,ap_limit_mm,chatter_margin,reason\n";
-  for (size_t i = 0; i < r.points_comp.size(); ++i) {
-    const PathPointCompensation& p = r.points_comp[i];
-    const postproc::Target& t = r.context.job.program->targets()[static_cast<size_t>(r.targets[i])];
-    s += std::to_string(i + 1);
-    csvQuoted(s, t.name);
-    s += "," + std::to_string(t.line) + "," + (p.cutting ? "1" : "0") + "," + (p.ok ? "1" : "0");
-    const Vec3 x = p.T_programmed.translation() * 1e3;
-    for (int k = 0; k < 3; ++k) s += "," + formatNumber(x[k], 5);
-    s += "," + formatNumber(p.deviation_before.norm() * 1e6, 3) + "," +
-         formatNumber(p.residual.norm() * 1e6, 4);
-    for (int k = 0; k < 3; ++k) s += "," + formatNumber(p.force[k], 3);
-    csvQuoted(s, p.coupling_status);
-    const bool bounded = p.cutting && p.stability_checked && p.stability_bounded;
-    s += "," + (bounded ? formatNumber(p.ap_limit * 1e3, 4) : std::string()) + "," +
-         (bounded ? formatNumber(p.ap_limit / millOf(r, i).cut.ap, 4) : std::string());
-    csvQuoted(s, p.reason);
-    s += "\n";
+namespace {
+
+/// Path point i of the milling export as a JSON object.
+Json millingPointJson(const MillingCompensationResult& r, size_t i) {
+  const PredictionContext& c = r.context;
+  const PathPointCompensation& p = r.points_comp[i];
+  Json j = Json::object();
+  j.set("point", Json::integer(static_cast<std::int64_t>(i + 1)));
+  j.set("ok", Json::boolean(p.ok));
+  if (!p.reason.empty()) j.set("reason", Json::str(p.reason));
+  j.set("target", Json::str(c.job.program->targets()[static_cast<size_t>(r.targets[i])].name));
+  j.set("nominal", poseJsonContract(r.points[i]));
+  j.set("cutting", Json::boolean(p.cutting));
+  j.set("cutting_reason", Json::str(p.cutting_reason));
+  Json b = Json::object();
+  b.set("deviation_um", Json::vector(p.deviation_before * 1e6, 3));
+  b.set("coupling_status", Json::str(p.before_status));
+  b.set("coupling_iterations", Json::integer(p.before_iterations));
+  b.set("coupling_residual_um", Json::number(p.before_residual * 1e6, 4));
+  b.set("loop_gain", Json::number(p.before_loop_gain, 4));
+  b.set("force_N", Json::vector(p.before_force, 3));
+  j.set("before", b);
+  Json pr = poseJsonContract(p.T_programmed);
+  pr.set("joints_deg", Json::vector(p.theta_cmd / kDeg, 6));
+  pr.set("controller_joints_deg",
+         Json::vector(toControllerJoints(c.robot.card, p.theta_cmd) / kDeg, 6));
+  pr.set("config", Json::str(p.config_text));
+  j.set("programmed", pr);
+  j.set("residual_um", Json::number(p.residual.norm() * 1e6, 4));
+  j.set("force_N", Json::vector(p.force, 3));
+  Json cp = Json::object();
+  cp.set("converged", Json::boolean(p.coupling_converged));
+  cp.set("status", Json::str(p.coupling_status));
+  cp.set("iterations", Json::integer(p.coupling_iterations));
+  cp.set("residual_um", Json::number(p.coupling_residual * 1e6, 4));
+  cp.set("loop_gain", Json::number(p.loop_gain, 4));
+  cp.set("force_fixed_point_iterations", Json::integer(p.force_iterations));
+  j.set("coupling", cp);
+  if (p.cutting) j.set("stability", pathPointStabilityJson(p, millOf(r, i).cut.ap));
+  return j;
+}
+
+/// The CSV row of path point i.
+void millingPointCsv(const MillingCompensationResult& r, size_t i, std::string& s) {
+  const PathPointCompensation& p = r.points_comp[i];
+  const postproc::Target& t = r.context.job.program->targets()[static_cast<size_t>(r.targets[i])];
+  s += std::to_string(i + 1);
+  csvQuoted(s, t.name);
+  s += "," + std::to_string(t.line) + "," + (p.cutting ? "1" : "0") + "," + (p.ok ? "1" : "0");
+  const Vec3 x = p.T_programmed.translation() * 1e3;
+  for (int k = 0; k < 3; ++k) s += "," + formatNumber(x[k], 5);
+  s += "," + formatNumber(p.deviation_before.norm() * 1e6, 3) + "," +
+       formatNumber(p.residual.norm() * 1e6, 4);
+  for (int k = 0; k < 3; ++k) s += "," + formatNumber(p.force[k], 3);
+  csvQuoted(s, p.coupling_status);
+  const bool bounded = p.cutting && p.stability_checked && p.stability_bounded;
+  s += "," + (bounded ? formatNumber(p.ap_limit * 1e3, 4) : std::string()) + "," +
+       (bounded ? formatNumber(p.ap_limit / millOf(r, i).cut.ap, 4) : std::string());
+  csvQuoted(s, p.reason);
+  s += "\n";
+}
+
+constexpr size_t kSinkPiece = 64 * 1024;
+
+}  // namespace
+
+void writeMillingTargets(const MillingCompensationResult& r, const std::string& program_path,
+                         bool csv, const ByteSink& sink) {
+  if (csv) {
+    std::string s =
+        "point,target,line,cutting,ok,x_mm,y_mm,z_mm,deviation_before_um,residual_um,Fx_N,Fy_N,"
+        "Fz_N,coupling,ap_limit_mm,chatter_margin,reason\n";
+    for (size_t i = 0; i < r.points_comp.size(); ++i) {
+      millingPointCsv(r, i, s);
+      if (s.size() >= kSinkPiece) {
+        sink(s);
+        s.clear();
+      }
+    }
+    sink(s);
+    return;
   }
+  const PredictionContext& c = r.context;
+  JsonWriter w;
+  w.beginObject();
+  w.key("robot");
+  w.str(c.robot.card.name);
+  w.key("cell");
+  w.str(c.cell.name);
+  const std::string program = fileName(program_path);
+  w.key("program");
+  w.str(program);
+  w.key("process");
+  w.str(c.process_description);
+  w.key("points");
+  w.beginArray();
+  std::string piece;
+  for (size_t i = 0; i < r.points_comp.size(); ++i) {
+    w.value(millingPointJson(r, i));  // one point's tree at a time
+    if (w.out().size() >= kSinkPiece) {
+      w.take(piece);
+      sink(piece);
+    }
+  }
+  w.endArray();
+  w.endObject();
+  w.finish();
+  w.take(piece);
+  sink(piece);
+}
+
+std::string millingTargetsCsv(const MillingCompensationResult& r) {
+  std::string s;
+  writeMillingTargets(r, "", true, [&s](std::string_view v) { s += v; });
   return s;
 }
 
 std::string millingTargetsJson(const MillingCompensationResult& r,
                                const std::string& program_path) {
-  const PredictionContext& c = r.context;
-  Json root = Json::object();
-  root.set("robot", Json::str(c.robot.card.name));
-  root.set("cell", Json::str(c.cell.name));
-  root.set("program", Json::str(fileName(program_path)));
-  root.set("process", Json::str(c.process_description));
-  Json ps = Json::array();
-  for (size_t i = 0; i < r.points_comp.size(); ++i) {
-    const PathPointCompensation& p = r.points_comp[i];
-    Json j = Json::object();
-    j.set("point", Json::integer(static_cast<std::int64_t>(i + 1)));
-    j.set("ok", Json::boolean(p.ok));
-    if (!p.reason.empty()) j.set("reason", Json::str(p.reason));
-    j.set("target", Json::str(c.job.program->targets()[static_cast<size_t>(r.targets[i])].name));
-    j.set("nominal", poseJsonContract(r.points[i]));
-    j.set("cutting", Json::boolean(p.cutting));
-    j.set("cutting_reason", Json::str(p.cutting_reason));
-    Json b = Json::object();
-    b.set("deviation_um", Json::vector(p.deviation_before * 1e6, 3));
-    b.set("coupling_status", Json::str(p.before_status));
-    b.set("coupling_iterations", Json::integer(p.before_iterations));
-    b.set("coupling_residual_um", Json::number(p.before_residual * 1e6, 4));
-    b.set("loop_gain", Json::number(p.before_loop_gain, 4));
-    b.set("force_N", Json::vector(p.before_force, 3));
-    j.set("before", b);
-    Json pr = poseJsonContract(p.T_programmed);
-    pr.set("joints_deg", Json::vector(p.theta_cmd / kDeg, 6));
-    pr.set("controller_joints_deg",
-           Json::vector(toControllerJoints(c.robot.card, p.theta_cmd) / kDeg, 6));
-    pr.set("config", Json::str(p.config_text));
-    j.set("programmed", pr);
-    j.set("residual_um", Json::number(p.residual.norm() * 1e6, 4));
-    j.set("force_N", Json::vector(p.force, 3));
-    Json cp = Json::object();
-    cp.set("converged", Json::boolean(p.coupling_converged));
-    cp.set("status", Json::str(p.coupling_status));
-    cp.set("iterations", Json::integer(p.coupling_iterations));
-    cp.set("residual_um", Json::number(p.coupling_residual * 1e6, 4));
-    cp.set("loop_gain", Json::number(p.loop_gain, 4));
-    cp.set("force_fixed_point_iterations", Json::integer(p.force_iterations));
-    j.set("coupling", cp);
-    if (p.cutting) j.set("stability", pathPointStabilityJson(p, millOf(r, i).cut.ap));
-    ps.push(j);
-  }
-  root.set("points", ps);
-  return root.dump();
+  std::string s;
+  writeMillingTargets(r, program_path, false, [&s](std::string_view v) { s += v; });
+  return s;
 }
 
 }  // namespace roprec::api

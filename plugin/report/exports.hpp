@@ -108,5 +108,9 @@ std::string millingTargetsJson(const MillingCompensationResult& r, const std::st
 /// deviation before and the residual after in µm, the force, the coupling status, the chatter
 /// limit and margin; the limit is empty where not cutting or unbounded).
 std::string millingTargetsCsv(const MillingCompensationResult& r);
+/// The same bytes (CSV when `csv`, else JSON) written point by point to `sink`, in pieces of
+/// about 64 KiB: no whole-document tree or string.
+void writeMillingTargets(const MillingCompensationResult& r, const std::string& program_path,
+                         bool csv, const ByteSink& sink);
 
 }  // namespace roprec::api

@@ -21,8 +21,15 @@ std::string num(double v, int decimals, const char* what) {
 
 std::string esc(const std::string& s) { return escapeXml(s); }
 
+/// Hands `s` to `sink` once it holds about 64 KiB (and clears it).
+void flush(std::string& s, const ByteSink& sink, bool all = false) {
+  if (s.empty() || (!all && s.size() < 64 * 1024)) return;
+  sink(s);
+  s.clear();
+}
+
 /// |deviation before| and |residual after| (µm) along the path as two polylines.
-std::string pathPlot(const MillingCompensationResult& r) {
+void pathPlot(const MillingCompensationResult& r, std::string& s, const ByteSink& sink) {
   const std::size_t n = r.points_comp.size();
   double top = 1.0;
   for (const auto& p : r.points_comp) top = std::max(top, p.deviation_before.norm() * 1e6);
@@ -34,16 +41,7 @@ std::string pathPlot(const MillingCompensationResult& r) {
     return x0 + (n > 1 ? w * static_cast<double>(i) / static_cast<double>(n - 1) : w / 2);
   };
   auto py = [&](double um) { return y0 + h - h * um / top; };
-  std::string before;
-  std::string after;
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto& p = r.points_comp[i];
-    before +=
-        num(px(i), 1, "x") + "," + num(py(p.deviation_before.norm() * 1e6), 1, "deviation") + " ";
-    after += num(px(i), 1, "x") + "," + num(py(p.residual.norm() * 1e6), 1, "residual") + " ";
-  }
-  std::string s =
-      "<svg width=\"860\" height=\"280\" role=\"img\" aria-label=\"deviation along the path\">\n";
+  s += "<svg width=\"860\" height=\"280\" role=\"img\" aria-label=\"deviation along the path\">\n";
   s += "<line x1=\"" + num(x0, 0, "") + "\" y1=\"" + num(y0 + h, 0, "") + "\" x2=\"" +
        num(x0 + w, 0, "") + "\" y2=\"" + num(y0 + h, 0, "") + "\" stroke=\"#444\"/>\n";
   s += "<line x1=\"" + num(x0, 0, "") + "\" y1=\"" + num(y0, 0, "") + "\" x2=\"" + num(x0, 0, "") +
@@ -53,20 +51,30 @@ std::string pathPlot(const MillingCompensationResult& r) {
        "\" font-size=\"11\">0</text>\n";
   s += "<text x=\"" + num(x0 + w / 2 - 60, 0, "") + "\" y=\"" + num(y0 + h + 30, 0, "") +
        "\" font-size=\"12\">path point (program order)</text>\n";
-  s += "<polyline fill=\"none\" stroke=\"#c0392b\" stroke-width=\"1.5\" points=\"" + before +
-       "\"/>\n";
-  s += "<polyline fill=\"none\" stroke=\"#1e7b34\" stroke-width=\"1.5\" points=\"" + after +
-       "\"/>\n";
+  // the two polylines, point by point
+  s += "<polyline fill=\"none\" stroke=\"#c0392b\" stroke-width=\"1.5\" points=\"";
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& p = r.points_comp[i];
+    s += num(px(i), 1, "x") + "," + num(py(p.deviation_before.norm() * 1e6), 1, "deviation") + " ";
+    flush(s, sink);
+  }
+  s += "\"/>\n";
+  s += "<polyline fill=\"none\" stroke=\"#1e7b34\" stroke-width=\"1.5\" points=\"";
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& p = r.points_comp[i];
+    s += num(px(i), 1, "x") + "," + num(py(p.residual.norm() * 1e6), 1, "residual") + " ";
+    flush(s, sink);
+  }
+  s += "\"/>\n";
   s += "<text x=\"" + num(x0 + 10, 0, "") + "\" y=\"" + num(y0 + 14, 0, "") +
        "\" font-size=\"12\" fill=\"#c0392b\">|deviation| before (coupled force)</text>\n";
   s += "<text x=\"" + num(x0 + 260, 0, "") + "\" y=\"" + num(y0 + 14, 0, "") +
        "\" font-size=\"12\" fill=\"#1e7b34\">|residual| after compensation</text>\n</svg>\n";
-  return s;
 }
 
 /// The chatter margin ap_limit/ap of the cutting points along the path (1 = the limit), clipped at
 /// 5; points without a bounded limit at the top.
-std::string marginPlot(const MillingCompensationResult& r) {
+void marginPlot(const MillingCompensationResult& r, std::string& out, const ByteSink& sink) {
   const std::size_t n = r.points_comp.size();
   const double top = 5.0;
   const double w = 760;
@@ -77,16 +85,8 @@ std::string marginPlot(const MillingCompensationResult& r) {
     return x0 + (n > 1 ? w * static_cast<double>(i) / static_cast<double>(n - 1) : w / 2);
   };
   auto py = [&](double v) { return y0 + h - h * std::min(v, top) / top; };
-  std::string dots;
-  for (std::size_t i = 0; i < n; ++i) {
-    const PathPointCompensation& p = r.points_comp[i];
-    if (!p.cutting || !p.stability_checked) continue;
-    const double ap = millOf(r, i).cut.ap;
-    const double margin = p.stability_bounded ? p.ap_limit / ap : top;
-    dots += "<circle cx=\"" + num(px(i), 1, "x") + "\" cy=\"" + num(py(margin), 1, "margin") +
-            "\" r=\"3\" fill=\"" + (p.unstable(ap) ? "#c0392b" : "#1e7b34") + "\"/>\n";
-  }
-  std::string s = "<svg width=\"860\" height=\"210\" role=\"img\" aria-label=\"chatter margin\">\n";
+  std::string& s = out;
+  s += "<svg width=\"860\" height=\"210\" role=\"img\" aria-label=\"chatter margin\">\n";
   s += "<line x1=\"" + num(x0, 0, "") + "\" y1=\"" + num(py(1.0), 1, "") + "\" x2=\"" +
        num(x0 + w, 0, "") + "\" y2=\"" + num(py(1.0), 1, "") +
        "\" stroke=\"#c0392b\" stroke-dasharray=\"4 3\"/>\n";
@@ -95,7 +95,16 @@ std::string marginPlot(const MillingCompensationResult& r) {
   s += "<text x=\"" + num(x0 + 10, 0, "") + "\" y=\"" + num(y0 + 14, 0, "") +
        "\" font-size=\"12\">chatter margin ap_limit / ap per cutting point (below 1: "
        "chatter; clipped at 5)</text>\n";
-  return s + dots + "</svg>\n";
+  for (std::size_t i = 0; i < n; ++i) {
+    const PathPointCompensation& p = r.points_comp[i];
+    if (!p.cutting || !p.stability_checked) continue;
+    const double ap = millOf(r, i).cut.ap;
+    const double margin = p.stability_bounded ? p.ap_limit / ap : top;
+    s += "<circle cx=\"" + num(px(i), 1, "x") + "\" cy=\"" + num(py(margin), 1, "margin") +
+         "\" r=\"3\" fill=\"" + (p.unstable(ap) ? "#c0392b" : "#1e7b34") + "\"/>\n";
+    flush(s, sink);
+  }
+  s += "</svg>\n";
 }
 
 /// The chatter margin cell: limit/ap, "—" when not cutting or not checked, "∞" when unbounded.
@@ -126,8 +135,8 @@ std::string pointRow(const MillingCompensationResult& r, std::size_t i) {
 
 }  // namespace
 
-std::string millingCompensationReport(const MillingCompensationResult& r,
-                                      const std::string& program_path) {
+void writeMillingCompensationReport(const MillingCompensationResult& r,
+                                    const std::string& program_path, const ByteSink& sink) {
   const PredictionContext& c = r.context;
   double before = 0;
   double after = 0;
@@ -154,16 +163,26 @@ std::string millingCompensationReport(const MillingCompensationResult& r,
        num(before * 1e6, 2, "deviation") + " µm</b>; predicted residual after max <b>" +
        num(after * 1e6, 4, "residual") + " µm</b>.</p>\n";
   for (const auto& n : c.job.notes) s += "<p class=\"note\">note: " + esc(n) + "</p>\n";
-  s += pathPlot(r);
-  s += marginPlot(r);
+  pathPlot(r, s, sink);
+  marginPlot(r, s, sink);
   s += "<table>\n<tr><th>point</th><th>target</th><th>line</th><th>cuts</th><th>why</th>"
        "<th>|F| [N]</th><th>δx before [µm]</th><th>δy before [µm]</th><th>δz before [µm]</th>"
        "<th>|δ| before [µm]</th><th>|residual| after [µm]</th><th>coupling</th><th>iterations</th>"
        "<th>loop gain</th><th>chatter margin</th><th>configuration</th><th>status</th></tr>\n";
-  for (std::size_t i = 0; i < r.points_comp.size(); ++i) s += pointRow(r, i);
+  for (std::size_t i = 0; i < r.points_comp.size(); ++i) {
+    s += pointRow(r, i);
+    flush(s, sink);
+  }
   s += "</table>\n<p>Deviations in the robot base frame; the force in the milling frame. "
        "roprec " +
        std::string(version()) + "</p>\n</body></html>\n";
+  flush(s, sink, true);
+}
+
+std::string millingCompensationReport(const MillingCompensationResult& r,
+                                      const std::string& program_path) {
+  std::string s;
+  writeMillingCompensationReport(r, program_path, [&s](std::string_view v) { s += v; });
   return s;
 }
 

@@ -14,5 +14,8 @@ namespace roprec::api {
 /// Throws InputError when a number to be shown is not finite (nothing is written then).
 std::string millingCompensationReport(const MillingCompensationResult& r,
                                       const std::string& program_path);
+/// The same bytes handed to `sink` in pieces of about 64 KiB (no whole-document string).
+void writeMillingCompensationReport(const MillingCompensationResult& r,
+                                    const std::string& program_path, const ByteSink& sink);
 
 }  // namespace roprec::api
