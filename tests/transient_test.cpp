@@ -663,7 +663,9 @@ TEST(Transient, DrillingTipNeverRetreatsUnderThrustThroughHole) {
   EXPECT_NEAR(last_full->Fa, -steady, 1e-3 * -steady);
   EXPECT_NEAR(last_full->feed_per_rev, ps.drilling.feed, 1e-3 * ps.drilling.feed);
   // the lag of the tip behind the spindle is the axial deflection (hundreds of µm at 1.5 kN)
-  EXPECT_NEAR(last_full->feed_position - last_full->depth, -last_full->axial, 1e-9);
+  // (feed − D = −axial is tip = D: within the integration's contactTolerance)
+  EXPECT_NEAR(last_full->feed_position - last_full->depth, -last_full->axial,
+              contactTolerance(opt, axialLever(p), last_full->depth, r.y_final.size()));
   EXPECT_GT(lag_max, 100e-6);
   EXPECT_LT(fa_max, 1.05 * -steady);  // no impact peak: the cut builds with the penetration
   std::printf("through hole: max thrust %.1f N (steady %.1f N), max lag %.1f um, cut end %.4f s\n",
@@ -893,9 +895,9 @@ TEST(Transient, DrillingEnergyBalanceAndReleaseOneDof) {
 
 /// Deviation of the default (fast) path from a tight reference on one drilling cycle.
 struct FastVsReference {
-  double bottom{0.0};  ///< |dp − dp_ref| at the last sample before the reference's end of cut, m
-  double worst{0.0};   ///< max over the samples up to there (the cut), m
-  double depth{0.0};   ///< |D − D_ref| at the end, m
+  double bottom{0.0};     ///< |dp − dp_ref| at the last sample before both ends of cut, m
+  double worst{0.0};      ///< max over the samples up to there (the cut), m
+  double depth{0.0};      ///< |D − D_ref| at the end, m
   double depth_ref{0.0};  ///< D_ref at the end, m
   double cut_end{0.0};    ///< the end of the cut, s (the fast path's)
   double cut_end_ref{0.0};
@@ -931,7 +933,10 @@ FastVsReference fastAgainstReference(const DrillingSpec& spec) {
   EXPECT_GT(ref.cutEnd(), 0.0);
   const size_t n = std::min(a.samples.size(), b.samples.size());
   if (n == 0) return d;
-  const auto bottom = std::min(n - 1, static_cast<size_t>(ref.cutEnd() / 1e-3));
+  // the last sample at which both still cut: where the end of the cut is ill-conditioned (the
+  // blind hole's dwell) the other may already have released the arm
+  const auto bottom =
+      std::min(n - 1, static_cast<size_t>(std::min(ref.cutEnd(), fast.cutEnd()) / 1e-3));
   double after = 0.0;  // after the end of the cut: the release, timed by the end-of-cut event
   for (size_t i = 0; i < n; ++i) {
     EXPECT_DOUBLE_EQ(a.samples[i].t, b.samples[i].t);
@@ -964,9 +969,10 @@ FastVsReference fastAgainstReference(const DrillingSpec& spec) {
 }
 
 /// The stated tolerance of the fast path (docs/transient.md "Integrator tolerances"): 0.5 µm at
-/// the hole bottom (the last sample of the cut) and on the final cut depth, 1 µm anywhere during
-/// the cut. After the cut the release is timed by the end-of-cut event (h falling through 1 % of
-/// f in the dwell), which is ill-conditioned; the free vibration after it is not compared.
+/// the hole bottom (the last sample at which both runs cut) and on the final cut depth, 1 µm
+/// anywhere during the cut. After the cut the release is timed by the end-of-cut event (h falling
+/// through 1 % of f in the dwell), which is ill-conditioned; the free vibration after it is not
+/// compared.
 TEST(Transient, FastPathAgreesWithTightReferenceThroughHole) {
   const FastVsReference d = fastAgainstReference(sampleDrilling().drilling);
   EXPECT_LT(d.bottom, 0.5e-6);
@@ -982,7 +988,8 @@ TEST(Transient, FastPathAgreesWithTightReferenceThroughHole) {
 /// rate error), δh = δḊ/n. The final depth then differs by D's integration error (its local
 /// error weight rtol·|D| + atol_depth) plus the advance over the moved end, h_stop·n·δt. (With
 /// 1-ulp changes of θ_cmd on Linux the end moved by up to 2.8 ms of the bound's 3.9 ms and the
-/// depth by 0.49 µm of 1.0 µm; MinGW-w64's sin/cos rounding moves them alike.) The deviation during
+/// depth by 0.49 µm of 1.0 µm; under Wine, where MinGW-w64's sin/cos round otherwise, 2.9 ms and
+/// 0.34 µm.) The deviation during
 /// the cut and at the bottom keeps the stated 1 µm and 0.5 µm.
 TEST(Transient, FastPathAgreesWithTightReferenceBlindHoleDwell) {
   DrillingSpec s = sampleDrilling().drilling;
