@@ -574,11 +574,11 @@ double axialLever(const nc::TransientProblem& p) {
 /// tip. (θ's relative part rtol·|θ| weighs the whole joint angle, of which the cut changes only
 /// the µrad deflection; with it the bound would exceed the feed per revolution.) The error itself
 /// follows the step sequence, which round-off changes: MinGW-w64's sin/cos differ from glibc's
-/// by 1–3 ulp on 0.1–0.2 % of arguments. Seen with 1-ulp changes of θ_cmd: ≤ 0.001 of this bound
-/// with the default options (the through hole: 1.2 nm on Linux, 3–10 nm under Wine, against 2–9
-/// µm), ≤ 0.3 with tightOptions() (≤ 4.4 nm in the blind hole), ≤ 0.05 for the one-joint drill. A
-/// mode error (cutting with the tip off the bottom, the tip pressing into uncut material) parts
-/// them at the feed rate instead, ≈ 10 µm more at each 1 ms sample.
+/// by 1–3 ulp on 0.1–0.2 % of arguments. Seen on Linux with 1-ulp changes of θ_cmd: ≤ 0.001 of
+/// this bound with the default options (the through hole: 1.2 nm against 2–9 µm), ≤ 0.3 with
+/// tightOptions() (≤ 4.4 nm in the blind hole), ≤ 0.05 for the one-joint drill; under Wine 0.007
+/// (9.9 nm), 0.04 and 0.04. A mode error (cutting with the tip off the bottom, the tip pressing
+/// into uncut material) parts them at the feed rate instead, ≈ 10 µm more at each 1 ms sample.
 double contactTolerance(const nc::TransientOptions& o, double lever, double depth, long n) {
   return std::sqrt(static_cast<double>(n)) *
          (o.rtol * std::abs(depth) + o.atol_depth + o.atol_angle * lever);
