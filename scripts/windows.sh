@@ -9,21 +9,30 @@
 #      machine, reused by later runs;
 #   4. builds roprec into build-windows/ with cmake/mingw-w64.cmake;
 #   5. runs the tests under wine64 (see "Tests" below);
-#   6. packs build-windows/roprec-<version>-win64.zip and the NSIS installer (CPack).
+#   6. packs build-windows/roprec-<version>-win64.zip and the NSIS installer (CPack);
+#   7. runs the README's sample job from the ZIP under wine64 against Linux, byte for byte.
 # Tests: the C++ suite (roprec_tests, KDL and kdl_parser cross-built for its reference tests) under
 # wine64 in two shards, without the POSIX-only tests of tests/windows/posix_only_tests.txt; the
 # fuzz seed replays; the C example; then the sample job from the ZIP against build/bin/roprec
 # (so .ci/run runs this after scripts/test.sh). The Python package is tested on Linux (ctest
-# python_api_ctypes, python_cabi): Debian has no Windows CPython.
-# CI budget: on the shared 2-core machine (load 8-19 from other builds, all at nice 10) the
-# dependencies up to SUNDIALS took ~17 min, KDL + kdl_parser + GoogleTest 7 min, roprec's library,
-# CLI and C DLL ~18 min and the C++ suite ~18 min more at -O1 (precompiled header); the suite under
-# wine64 took 6-17 min. It does not pass there yet (649 passed, 2 failed at its last run: two
-# Transient tests' nanometre tolerances; the summary names them). So .ci/run runs --sample-job
-# (build, ZIP + installer, the sample job byte for byte), which fits its budget once the dependency
-# prefix is cached; the full run is for a machine with the time.
-# Options: --no-tests (steps 1-4 and 6), --sample-job (steps 1-4, 6 and the sample job of 7: what
-# .ci/run runs, see below), --deps-only (steps 1-3). Each step's wall time is printed.
+# python_api_ctypes, python_cabi, whose Windows DLL loading runs against a stand-in os module):
+# Debian has no Windows CPython.
+# --ci (what .ci/run runs): the same steps with roprec_tests built from the test files of
+# tests/windows/ci_tests.txt only (-DROPREC_TEST_ONLY): the platform layer, UTF-8 paths, atomic
+# output sets, input files, number formatting, the CLI's main and the C ABI, the parts that differ
+# between Linux and Windows. The rest of the suite is portable code whose Windows build differs
+# only in the C library's rounding (MinGW-w64's sin/cos/exp: 1-3 ulp on 0.1-0.2 % of arguments).
+# Budget (the shared 2-core machine, 6 builds at once, each its fair share of ~1/3 core): the
+# dependencies up to SUNDIALS took ~17 min, KDL + kdl_parser + GoogleTest 7 min, once per machine;
+# roprec's library, CLI and C DLL ~18 min at -O1; the whole suite's 95 test files ~60-70 min more
+# (precompiled header) and 5-17 min under wine64 (its last run: 684 passed, none failed, 8 left
+# out, 4.7 min). --ci adds to --sample-job the precompiled header,
+# its 7 test files, the fuzz harnesses and their run: measured on that loaded machine 98 + 184 s
+# (header, c_api_test) + 188 s (the rest) of build and 60 s under wine64 (49 tests, 13 ctests);
+# with the header and c_api_test built, the whole --ci run took 6.2 min and 1.7 min of CPU
+# (user + sys, packing included). Estimate on 2 free cores: ~2-3 min more than --sample-job.
+# Options: --ci (above), --no-tests (steps 1-4 and 6), --sample-job (steps 1-4, 6 and the sample
+# job of 7), --deps-only (steps 1-3). Each step's wall time is printed.
 # Logs: build-windows/logs/. ROPREC_WINDOWS_JOBS sets the parallel jobs (default: nproc);
 # ROPREC_WINDOWS_OPT replaces Release's -O3 (e.g. -O1: about half the compile time on a loaded
 # machine; IEEE arithmetic without -ffast-math, so the same numbers).
@@ -35,12 +44,14 @@ JOBS="${ROPREC_WINDOWS_JOBS:-$(nproc)}"
 RUN_TESTS=1
 SAMPLE_JOB=1
 DEPS_ONLY=0
+CI_TESTS=0
 for a in "$@"; do
   case "$a" in
     --no-tests) RUN_TESTS=0; SAMPLE_JOB=0 ;;
     --sample-job) RUN_TESTS=0 ;;  # no C++ suite: build, pack, and the sample job against Linux
+    --ci) CI_TESTS=1 ;;  # roprec_tests of tests/windows/ci_tests.txt's files only, then as the default
     --deps-only) DEPS_ONLY=1 ;;
-    *) echo "usage: scripts/windows.sh [--no-tests | --sample-job | --deps-only]" >&2; exit 2 ;;
+    *) echo "usage: scripts/windows.sh [--ci | --no-tests | --sample-job | --deps-only]" >&2; exit 2 ;;
   esac
 done
 mkdir -p "$LOGS"
@@ -263,9 +274,16 @@ fi
 
 phase "building roprec into $BUILD (log: $LOGS/build.log)"
 CCACHE="$(command -v ccache || true)"  # a later run on the same machine compiles only what changed
+# --ci: roprec_tests from the files of tests/windows/ci_tests.txt (a regex of their names, dots
+# escaped); otherwise from every test file (an empty value clears one cached by an earlier --ci)
+TEST_ONLY=""
+if ((CI_TESTS)); then
+  TEST_ONLY="/($(awk '$1 == "file" { gsub(/\./, "\\.", $2); print $2 }' "$ROOT/tests/windows/ci_tests.txt" | paste -sd'|'))\$"
+fi
 nice -n 10 cmake -S "$ROOT" -B "$BUILD" -G Ninja -DCMAKE_TOOLCHAIN_FILE="$ROOT/cmake/mingw-w64.cmake" \
   -DROPREC_WINDOWS_PREFIX="$PREFIX" -DCMAKE_BUILD_TYPE=Release -DROPREC_BUILD_BENCH=OFF \
   -DROPREC_BUILD_PYTHON=OFF -DROPREC_BUILD_TESTS="$([[ $RUN_TESTS == 1 ]] && echo ON || echo OFF)" \
+  -DROPREC_TEST_ONLY="$TEST_ONLY" \
   ${CCACHE:+-DCMAKE_C_COMPILER_LAUNCHER=$CCACHE -DCMAKE_CXX_COMPILER_LAUNCHER=$CCACHE} \
   ${ROPREC_WINDOWS_OPT:+"-DCMAKE_CXX_FLAGS_RELEASE=$ROPREC_WINDOWS_OPT -DNDEBUG"} \
   >"$LOGS/configure.log" 2>&1 || { tail -30 "$LOGS/configure.log" >&2; exit 1; }

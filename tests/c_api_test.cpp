@@ -1056,8 +1056,11 @@ TEST(CApi, VerifyFileExWritesTheCliCardCellAndJsonByteForByte) {
   EXPECT_EQ(opt.set("folds", "2.5"), ROPREC_BAD_INPUT);
   EXPECT_EQ(opt.set("identify", "everything"), ROPREC_BAD_INPUT);
   char summary[ROPREC_SUMMARY_LEN];
-  ASSERT_EQ(roprec_verify_file_ex(kCell.c_str(), program.c_str(), measured.c_str(), "none", opt.o,
-                                  (dir + "/c/v.json").c_str(), (dir + "/c/card.xml").c_str(),
+  // the measured file in the system's own separators ("\\" on Windows): the card names it
+  // without its folder, as the CLI does
+  const std::string measured_native = std::filesystem::path(measured).make_preferred().string();
+  ASSERT_EQ(roprec_verify_file_ex(kCell.c_str(), program.c_str(), measured_native.c_str(), "none",
+                                  opt.o, (dir + "/c/v.json").c_str(), (dir + "/c/card.xml").c_str(),
                                   summary, sizeof summary, opt.err, sizeof opt.err),
             ROPREC_OK)
       << opt.err;

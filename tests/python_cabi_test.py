@@ -1,13 +1,16 @@
 """roprec/_cabi.py, the ctypes binding over roprec_c: where it looks for the C library (Windows and
-Linux install layouts, ROPREC_C_LIB first), that its error kinds map to roprec's exceptions and
+Linux install layouts, ROPREC_C_LIB first), how it loads it on Windows (os.add_dll_directory on
+Python >= 3.8, PATH on 3.7; run on Linux with a stand-in of Windows' os module), that its error kinds map to roprec's exceptions and
 that without numpy its per-hole Session calls give nested lists of the same values.
 Its API is the same as the compiled module's: tests/python_api_test.py runs against both
 (ctest python_api and python_api_ctypes)."""
 
 import json
+import ntpath
 import os
 import subprocess
 import sys
+import types
 import unittest
 
 os.environ["ROPREC_PYTHON_BACKEND"] = "ctypes"
@@ -19,11 +22,12 @@ SRC = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 class LibraryCandidatesTest(unittest.TestCase):
     def test_windows_zip_layout_finds_roprec_c_in_bin_beside_the_exe(self):
-        pkg = os.path.join(os.sep, "roprec", "python", "roprec")  # <install folder>/python/roprec
+        pkg = r"C:\RoboDK\Apps\roprec\python\roprec"  # <install folder>\python\roprec
         c = _cabi.library_candidates(env={}, package_dir=pkg, platform="win32")
-        self.assertIn(os.path.join(os.sep, "roprec", "bin", "roprec_c.dll"), c)
+        self.assertEqual(c[0], pkg + r"\roprec_c.dll")  # first: beside the package
+        self.assertIn(r"C:\RoboDK\Apps\roprec\bin\roprec_c.dll", c)
         self.assertTrue(all(p.endswith("roprec_c.dll") for p in c), c)
-        self.assertEqual(c[-1], "roprec_c.dll")  # last: the system's own search
+        self.assertEqual(c[-1], "roprec_c.dll")  # last: the system's own search (PATH)
 
     def test_linux_dist_packages_layout_finds_the_versioned_library_in_lib(self):
         pkg = "/opt/roprec/lib/python3/dist-packages/roprec"
@@ -40,6 +44,77 @@ class LibraryCandidatesTest(unittest.TestCase):
     def test_the_loaded_library_is_the_one_the_environment_names(self):
         self.assertEqual(os.path.realpath(_cabi._lib._name), os.path.realpath(os.environ["ROPREC_C_LIB"]))
         self.assertIs(roprec._roprec, _cabi)
+
+
+class FakeWindows:
+    """The os module of a Windows CPython, for _cabi._load: ntpath, the files that exist, PATH, and
+    os.add_dll_directory when `dll_directories` is a list (Python >= 3.8; absent on 3.7)."""
+
+    name = "nt"
+    pathsep = ";"
+
+    def __init__(self, existing, dll_directories=None):
+        self.path = types.SimpleNamespace(sep="\\", exists=lambda p: p in existing, isabs=ntpath.isabs,
+                                          dirname=ntpath.dirname)
+        self.environ = {"PATH": r"C:\Windows\system32"}
+        if dll_directories is not None:
+            self.add_dll_directory = lambda folder: dll_directories.append(folder) or folder
+
+
+class WindowsLoadingTest(unittest.TestCase):
+    """_cabi._load as on Windows, with the DLL loader replaced by a recorder of what it was given."""
+
+    PKG = r"C:\Program Files\roprec\python\roprec"
+    DLL = r"C:\Program Files\roprec\bin\roprec_c.dll"
+
+    def load(self, system, fail=()):
+        loaded = []
+
+        def cdll(path):
+            if path in fail:
+                raise OSError("[WinError 126] The specified module could not be found")
+            loaded.append(path)
+            return "handle of " + path
+
+        c = _cabi.library_candidates(env={}, package_dir=self.PKG, platform="win32")
+        return _cabi._load(c, system=system, cdll=cdll), loaded
+
+    def test_python_38_adds_the_dll_folder_to_the_search_and_loads_the_full_path(self):
+        dirs = []
+        system = FakeWindows({self.DLL}, dll_directories=dirs)
+        lib, loaded = self.load(system)
+        self.assertEqual(loaded, [self.DLL])
+        self.assertEqual(lib, "handle of " + self.DLL)
+        self.assertEqual(dirs, [r"C:\Program Files\roprec\bin"])
+        self.assertEqual(system.environ["PATH"], r"C:\Windows\system32")  # PATH left alone
+
+    def test_python_37_puts_the_dll_folder_in_front_of_path(self):
+        system = FakeWindows({self.DLL})
+        self.assertFalse(hasattr(system, "add_dll_directory"))
+        _, loaded = self.load(system)
+        self.assertEqual(loaded, [self.DLL])
+        self.assertEqual(system.environ["PATH"], r"C:\Program Files\roprec\bin;C:\Windows\system32")
+
+    def test_the_dll_beside_the_package_comes_before_the_install_layout(self):
+        beside = self.PKG + r"\roprec_c.dll"
+        dirs = []
+        _, loaded = self.load(FakeWindows({beside, self.DLL}, dll_directories=dirs))
+        self.assertEqual(loaded, [beside])
+        self.assertEqual(dirs, [self.PKG])
+
+    def test_without_a_dll_on_disk_the_bare_name_is_left_to_the_system_search(self):
+        dirs = []
+        system = FakeWindows(set(), dll_directories=dirs)
+        _, loaded = self.load(system)
+        self.assertEqual(loaded, ["roprec_c.dll"])
+        self.assertEqual(dirs, [])  # no folder of its own: nothing added
+        self.assertEqual(system.environ["PATH"], r"C:\Windows\system32")
+
+    def test_a_dll_that_fails_to_load_is_named_in_the_import_error(self):
+        with self.assertRaises(ImportError) as e:
+            self.load(FakeWindows({self.DLL}, dll_directories=[]), fail=(self.DLL, "roprec_c.dll"))
+        self.assertIn(self.DLL + ": [WinError 126]", str(e.exception))
+        self.assertIn("ROPREC_C_LIB", str(e.exception))
 
 
 class ErrorKindsTest(unittest.TestCase):

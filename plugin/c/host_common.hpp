@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "compensator/support/error.hpp"
+#include "compensator/support/platform.hpp"
 #include "compensator/support/rotation.hpp"
 #include "plugin/api/job.hpp"
 #include "plugin/api/verify.hpp"
@@ -234,7 +235,8 @@ inline std::vector<std::pair<std::string, std::string>> verifyOutputs(
   const bool card_ok = !card_out.empty() && r.card_refused.empty();
   if (card_ok) {
     const std::string& file = job.measured.empty() ? job.poses : job.measured;
-    const std::string name = file.substr(file.find_last_of('/') + 1);
+    // the file's name without its folder, as the CLI writes it ("\\" ends a folder on Windows too)
+    const std::string name = file.substr(file.find_last_of(platform::kPathSeparators) + 1);
     out.emplace_back(card_out, api::calibratedCardText(r, name, card_out));
   }
   if (!cell_out.empty() && (card_out.empty() || card_ok))

@@ -14,7 +14,9 @@ export.
 import ctypes
 import json
 import math
+import ntpath
 import os
+import posixpath
 import re
 import sys
 import tempfile
@@ -47,10 +49,12 @@ _ERROR_ITEM, _ERROR_INPUT, _ERROR_USAGE, _ERROR_MEMORY = 1, 2, 3, 4
 
 def library_candidates(env=None, package_dir=None, platform=None):
     """Where roprec_c is looked for, in order: $ROPREC_C_LIB; beside this package; the install
-    layout's bin/ (Windows) or lib/ (Linux) above it; then the bare name (the system's search)."""
+    layout's bin/ (Windows) or lib/ (Linux) above it; then the bare name (the system's search).
+    `platform` (default sys.platform) also chooses the path syntax (ntpath on Windows)."""
     env = os.environ if env is None else env
     package_dir = os.path.dirname(os.path.abspath(__file__)) if package_dir is None else package_dir
     windows = (sys.platform if platform is None else platform).startswith("win")
+    path = ntpath if windows else posixpath  # os.path on the system itself
     names = ["roprec_c.dll"] if windows else ["libroprec_c.so.0", "libroprec_c.so"]
     found = []
     if env.get("ROPREC_C_LIB"):
@@ -59,8 +63,8 @@ def library_candidates(env=None, package_dir=None, platform=None):
     for depth in range(5):  # <prefix>/python/roprec, <prefix>/lib/python3/dist-packages/roprec
         for sub in ([""] if depth == 0 else (["bin", ""] if windows else ["lib", ""])):
             for n in names:
-                found.append(os.path.join(up, sub, n) if sub else os.path.join(up, n))
-        up = os.path.dirname(up)
+                found.append(path.join(up, sub, n) if sub else path.join(up, n))
+        up = path.dirname(up)
     found.extend(names)
     seen = []
     for f in found:
@@ -69,22 +73,32 @@ def library_candidates(env=None, package_dir=None, platform=None):
     return seen
 
 
-def _load():
+def _load(candidates=None, system=os, cdll=ctypes.CDLL):
+    """The first of `candidates` (default :func:`library_candidates`) that exists and loads. A path
+    (one with a separator) that does not exist is skipped; a bare name is left to the system's
+    search. On Windows (system.name "nt") the folder of an absolute path is first made a place
+    where the DLLs it needs (roprec.dll, the GCC runtime, beside it) are found:
+    os.add_dll_directory on Python >= 3.8, else (3.7: RoboDK's older builds) the front of PATH.
+    `system` and `cdll` are the os module and ctypes.CDLL, replaced by the tests."""
+    candidates = library_candidates() if candidates is None else candidates
     errors = []
-    for path in library_candidates():
-        if os.path.sep in path and not os.path.exists(path):
+    for path in candidates:
+        if system.path.sep in path and not system.path.exists(path):
             continue
         try:
-            if os.name == "nt" and os.path.isabs(path):
-                folder = os.path.dirname(path)
-                if hasattr(os, "add_dll_directory"):  # Python >= 3.8: roprec.dll and the others beside it
-                    os.add_dll_directory(folder)
-                else:  # Python 3.7 (RoboDK's older builds) searches PATH for the dependent DLLs
-                    os.environ["PATH"] = folder + os.pathsep + os.environ.get("PATH", "")
-            return ctypes.CDLL(path)
+            if system.name == "nt" and system.path.isabs(path):
+                folder = system.path.dirname(path)
+                if hasattr(system, "add_dll_directory"):
+                    _dll_directories.append(system.add_dll_directory(folder))
+                else:
+                    system.environ["PATH"] = folder + system.pathsep + system.environ.get("PATH", "")
+            return cdll(path)
         except OSError as e:
             errors.append("%s: %s" % (path, e))
     raise ImportError("roprec: the C library roprec_c was not found (set ROPREC_C_LIB): " + "; ".join(errors))
+
+
+_dll_directories = []  # the handles of os.add_dll_directory, kept for the process's lifetime
 
 
 class _HoleProcess(ctypes.Structure):
