@@ -1,11 +1,14 @@
 #include "compensator/compensation/milling_compensation.hpp"
 
 #include <Eigen/QR>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <optional>
 #include <stdexcept>
 
+#include "compensator/process/milling_consistent.hpp"
+#include "compensator/process/milling_mode_coupling.hpp"
 #include "compensator/process/milling_robot.hpp"
 #include "compensator/process/milling_stability.hpp"
 #include "compensator/support/c_format.hpp"
@@ -74,24 +77,70 @@ struct EdgeCache {
   bool valid{false};
 };
 
-/// The revolution resolved by edge angle at the point's coupled cut into `p`.
-void resolveEdges(const MillingModel& mm, const ModalModel& dyn, const CouplingResult& c,
-                  EdgeCache& cache, PathPointCompensation& p) {
+/// The revolution resolved by edge angle at the cut (fz, ae, ap) with the modes `dyn`: the
+/// cached one while the modes and the cut are those it was computed with.
+const EdgeRevolution& edgesAt(const MillingModel& mm, const ModalModel& dyn, double fz, double ae,
+                              double ap, EdgeCache& cache) {
   const bool same = cache.valid && sameModes(dyn, cache.modes) &&
-                    std::abs(c.fz_effective - cache.fz) <= kEdgeReuseTolerance &&
-                    std::abs(c.ae_effective - cache.ae) <= kEdgeReuseTolerance &&
-                    std::abs(c.ap_effective - cache.ap) <= kEdgeReuseTolerance;
+                    std::abs(fz - cache.fz) <= kEdgeReuseTolerance &&
+                    std::abs(ae - cache.ae) <= kEdgeReuseTolerance &&
+                    std::abs(ap - cache.ap) <= kEdgeReuseTolerance;
   if (!same) {
     if (!cache.valid)
       cache.nominal = edgeRevolution(mm, ModalModel{}, mm.cut.fz, mm.cut.ae, mm.cut.ap);
-    cache.corrected = edgeRevolution(mm, dyn, c.fz_effective, c.ae_effective, c.ap_effective);
+    cache.corrected = edgeRevolution(mm, dyn, fz, ae, ap);
     cache.modes = dyn;
-    cache.fz = c.fz_effective;
-    cache.ae = c.ae_effective;
-    cache.ap = c.ap_effective;
+    cache.fz = fz;
+    cache.ae = ae;
+    cache.ap = ap;
     cache.valid = true;
   }
-  const EdgeRevolution& r = cache.corrected;
+  return cache.corrected;
+}
+
+/// The coupled solve of a cutting point: with the point's modes, consistent with its resolved
+/// revolution (milling.hpp coupleMillingPointConsistent, started from the previous point's force
+/// correction); without modes the plain mean-force law.
+CouplingResult solvePoint(const MillingModel& mm, const ComplianceFunction& C,
+                          const std::optional<ModalModel>& dyn, const CouplingState& state,
+                          const CouplingOptions& o, EdgeCache& cache, Vec3& correction) {
+  if (!dyn) return coupleMillingPoint(mm, C, state, o);
+  const EdgeRevolutionFunction edges = [&](double fz, double ae, double ap) {
+    return edgesAt(mm, *dyn, fz, ae, ap, cache);
+  };
+  ConsistentCoupling cc = coupleMillingPointConsistent(mm, C, edges, state, o, correction);
+  correction = cc.correction;
+  if (cc.point.converged && !cc.consistent) {
+    cc.point.converged = false;
+    cc.point.status = CouplingStatus::kMaxIterations;
+  }
+  if (cc.consistent) cc.point.residual = cc.edge_residual;
+  return cc.point;
+}
+
+/// The wall's normal into the material in the base frame (milling frame ±Y: up +Y, down −Y; none
+/// for a slot, which has a wall on each side) at the path point's orientation R.
+Vec3 wallNormalIn(const Mat3& R, MillingMode mode) {
+  if (mode == MillingMode::kSlot) return Vec3::Zero();
+  return R * millToTool(mode == MillingMode::kUp ? Vec3::UnitY() : Vec3(-Vec3::UnitY()));
+}
+
+/// The coupling options at path point i: the tooth passes since the previous point from the
+/// program's spacing, |p_i − p_{i−1}| / fz (at least 1); the cell's for the first point.
+CouplingOptions optionsAt(const CouplingOptions& cell, const std::vector<Pose>& points, size_t i,
+                          double fz) {
+  CouplingOptions o = cell;
+  if (i > 0 && fz > 0) {
+    const double spacing = (points[i].translation() - points[i - 1].translation()).norm();
+    o.teeth_between_points = std::max(1, static_cast<int>(std::lround(spacing / fz)));
+  }
+  return o;
+}
+
+/// The revolution resolved by edge angle at the point's coupled cut into `p`.
+void resolveEdges(const MillingModel& mm, const ModalModel& dyn, const CouplingResult& c,
+                  EdgeCache& cache, PathPointCompensation& p) {
+  const EdgeRevolution& r = edgesAt(mm, dyn, c.fz_effective, c.ae_effective, c.ap_effective, cache);
   p.edges_checked = true;
   p.edges_converged = r.converged;
   p.tooth_feed = r.tooth_feed;
@@ -118,6 +167,30 @@ void checkStability(const ModalModel& dyn, const StabilityCut& cut, double spind
   p.stability_bounded = cache.limit.bounded;
   p.ap_limit = cache.limit.ap_lim;
   p.chatter_hz = cache.limit.chatter_hz;
+}
+
+/// The last mode-coupling check along the path, reused as the stability's (same modes, same cut).
+struct ModeCouplingCache {
+  ModalModel modes;
+  ModeCouplingLimit limit;
+  bool valid{false};
+};
+
+/// The mode-coupling limit of the point's cut (the engagement's fz, ae, ap) with the modes `dyn`
+/// into `p`.
+void checkModeCoupling(const MillingModel& mm, const ModalModel& dyn, ModeCouplingCache& cache,
+                       PathPointCompensation& p) {
+  if (!cache.valid || !sameModes(dyn, cache.modes)) {
+    const ProcessGradient g = processGradient(mm, mm.cut.fz, mm.cut.ae, mm.cut.ap);
+    cache.limit = modeCouplingLimit(dyn, g, mm.cut.ap);
+    cache.modes = dyn;
+    cache.valid = true;
+  }
+  p.mode_coupling_checked = true;
+  p.mode_coupling_bounded = cache.limit.bounded;
+  p.mode_coupling_ap_limit = cache.limit.ap_lim;
+  p.mode_coupling_hz = cache.limit.frequency_hz;
+  p.mode_coupling_flutter = cache.limit.flutter;
 }
 
 /// The command the controller's IK gives for the path point T_W_tcp (the link angles θ_d of the
@@ -226,7 +299,11 @@ std::vector<PathPointCompensation> compensateMillingPath(
   const StabilityCut stability_cut = stabilityCutOf(mm);
   const Mat3 C_tool = toolStaticCompliance(m.process.milling.tool_mode);
   StabilityCache stability_cache;
+  ModeCouplingCache mode_coupling_cache;
   EdgeCache edge_cache;
+  EdgeCache after_edge_cache;             // the compensated cut's revolution (the "after" solve)
+  Vec3 before_correction = Vec3::Zero();  // ΔF of the consistent solves, carried point to point
+  Vec3 after_correction = Vec3::Zero();
   // the cut at the point: the cell's, or the engagement's ae/ap (box stock), with its stability
   // cut and nominal force; rebuilt (and the caches dropped) when the engagement changes
   MillingModel pm = mm;
@@ -251,7 +328,9 @@ std::vector<PathPointCompensation> compensateMillingPath(
         pm_stability = stabilityCutOf(pm);
         F_nom = millingMeanForce(pm, pm.cut.fz, pm.cut.ae);
         stability_cache.valid = false;
+        mode_coupling_cache.valid = false;
         edge_cache.valid = false;
+        after_edge_cache.valid = false;
       }
     }
     p.ae = pm.cut.ae;
@@ -291,12 +370,17 @@ std::vector<PathPointCompensation> compensateMillingPath(
     auto toolBending = [&](const Vec3& F_mill) -> Vec3 { return R * millToTool(C_tool * F_mill); };
     // uncompensated: the robot at θ_d under the coupled force
     Vec3 F_before = Vec3::Zero();
+    std::optional<ModalModel> dyn;
+    const CouplingOptions copt_i = optionsAt(copt, points, i, pm.cut.fz);
+    p.teeth_between_points = copt_i.teeth_between_points;
     if (p.cutting) {
-      const CouplingResult cb = coupleMillingPoint(
+      dyn = pointModes(m, p);
+      const CouplingResult cb = solvePoint(
           pm,
           withToolCompliance(robotMillingCompliance(m.model, m.compliance, p.theta_d, m.gravity),
                              C_tool),
-          before_state, copt);
+          dyn, before_state, copt_i, edge_cache, before_correction);
+      p.before_fz_effective = cb.fz_effective;
       before_state = cb.next;
       F_before = cb.force;
       p.before_status = couplingStatusName(cb.status);
@@ -304,8 +388,9 @@ std::vector<PathPointCompensation> compensateMillingPath(
       p.before_residual = cb.residual;
       p.before_loop_gain = cb.loop_gain;
       p.before_force = cb.force;
-      if (const std::optional<ModalModel> dyn = pointModes(m, p)) {
+      if (dyn) {
         checkStability(*dyn, pm_stability, m.process.milling.cut.spindle_rpm, stability_cache, p);
+        checkModeCoupling(pm, *dyn, mode_coupling_cache, p);
         resolveEdges(pm, *dyn, cb, edge_cache, p);
       }
     } else {
@@ -321,6 +406,7 @@ std::vector<PathPointCompensation> compensateMillingPath(
                                 controllerOffset(m, d.nc, q_before));
       if (m.calibrated) nc::referToControllerPose(db, controllerTcp(m, q_before));
       p.deviation_before = db.dp + toolBending(F_before);
+      if (p.cutting) p.surface_error_before = p.deviation_before.dot(wallNormalIn(R, pm.cut.mode));
     }
     // the link-side target that pre-offsets the tool's bending: θ_d + J⁻¹ [−bending; 0]
     nc::forwardKinematics(m.model, d.nc, p.theta_d);
@@ -359,7 +445,8 @@ std::vector<PathPointCompensation> compensateMillingPath(
         return millToTool(R.transpose() * (dg.T_real.translation() - points[i].translation())) +
                C_tool * G;
       };
-      ca = coupleMillingPoint(pm, residualCompliance, after_state, copt);
+      ca = solvePoint(pm, residualCompliance, dyn, after_state, copt_i, after_edge_cache,
+                      after_correction);
       const double change = (ca.force - F).norm();
       F = ca.force;
       if (!ca.converged) break;
@@ -393,6 +480,7 @@ std::vector<PathPointCompensation> compensateMillingPath(
         nc::predictDeflection(m.model, d.nc, m.compliance, p.theta_cmd, loadsWith(F), {},
                               controllerOffset(m, d.nc, p.theta_cmd));
     p.residual = da.T_real.translation() + toolBending(F) - points[i].translation();
+    if (p.cutting) p.surface_error = p.residual.dot(wallNormalIn(R, pm.cut.mode));
     p.config_text =
         formatConfig(configurationOf(m.ik, m.robot.card, p.theta_cmd, m.config_options));
     p.ok = da.converged;
