@@ -1,6 +1,7 @@
 #include "compensator/compensation/milling_compensation.hpp"
 
 #include <Eigen/QR>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <future>
@@ -10,6 +11,7 @@
 #include <utility>
 
 #include "compensator/precision/parallel.hpp"
+#include "compensator/process/milling_mode_coupling.hpp"
 #include "compensator/process/milling_robot.hpp"
 #include "compensator/process/milling_stability.hpp"
 #include "compensator/support/c_format.hpp"
@@ -82,6 +84,50 @@ void checkStability(const ModalModel& dyn, const StabilityCut& cut, double spind
   p.stability_bounded = cache.limit.bounded;
   p.ap_limit = cache.limit.ap_lim;
   p.chatter_hz = cache.limit.chatter_hz;
+}
+
+/// The last mode-coupling limit along the path and the modes it was computed with (reused with
+/// the stability's rule).
+struct ModeCouplingCache {
+  ModalModel modes;
+  ModeCouplingLimit limit;
+  bool valid{false};
+};
+
+/// The mode-coupling limit of the point's cut (the engagement's fz, ae, ap) with the modes `dyn`
+/// into `p`.
+void checkModeCoupling(const MillingModel& mm, const ModalModel& dyn, ModeCouplingCache& cache,
+                       PathPointCompensation& p) {
+  if (!cache.valid || !sameModes(dyn, cache.modes)) {
+    const ProcessGradient g = processGradient(mm, mm.cut.fz, mm.cut.ae, mm.cut.ap);
+    cache.limit = modeCouplingLimit(dyn, g, mm.cut.ap);
+    cache.modes = dyn;
+    cache.valid = true;
+  }
+  p.mode_coupling_checked = true;
+  p.mode_coupling_bounded = cache.limit.bounded;
+  p.mode_coupling_ap_limit = cache.limit.ap_lim;
+  p.mode_coupling_hz = cache.limit.frequency_hz;
+  p.mode_coupling_flutter = cache.limit.flutter;
+}
+
+/// The wall's normal into the material in the base frame (milling frame ±Y: up +Y, down −Y; none
+/// for a slot, which has a wall on each side) at the path point's orientation R.
+Vec3 wallNormalIn(const Mat3& R, MillingMode mode) {
+  if (mode == MillingMode::kSlot) return Vec3::Zero();
+  return R * millToTool(mode == MillingMode::kUp ? Vec3::UnitY() : Vec3(-Vec3::UnitY()));
+}
+
+/// The coupling options at path point i: the tooth passes since the previous point from the
+/// program's spacing, |p_i − p_{i−1}| / fz (at least 1); the cell's for the first point.
+CouplingOptions optionsAt(const CouplingOptions& cell, const std::vector<Pose>& points, size_t i,
+                          double fz) {
+  CouplingOptions o = cell;
+  if (i > 0 && fz > 0) {
+    const double spacing = (points[i].translation() - points[i - 1].translation()).norm();
+    o.teeth_between_points = std::max(1, static_cast<int>(std::lround(spacing / fz)));
+  }
+  return o;
 }
 
 /// The command the controller's IK gives for the path point T_W_tcp (the link angles θ_d of the
@@ -260,6 +306,7 @@ class UncompensatedChain {
   std::optional<Vec6> prev_;
   CouplingState state_;  // the uncompensated path's memory (for the "before" deviation)
   StabilityCache stability_cache_;
+  ModeCouplingCache mode_coupling_cache_;
   EdgeCache edge_cache_;
 };
 
@@ -332,6 +379,7 @@ bool UncompensatedChain::run(size_t i, PathPointCompensation& p,
       // the cut rebuilt (and the caches dropped) when the engagement changes
       cut_ = pointCut(engagedModel(cell_->model, *cd.engagement));
       stability_cache_.valid = false;
+      mode_coupling_cache_.valid = false;
       edge_cache_ = EdgeCache{};
     }
   }
@@ -341,13 +389,16 @@ bool UncompensatedChain::run(size_t i, PathPointCompensation& p,
   if (!inverseKinematics(i, p)) return false;
   // uncompensated: the robot at θ_d under the coupled force
   Vec3 F_before = Vec3::Zero();
+  const CouplingOptions copt = optionsAt(s_.copt, s_.points, i, cut_->model.cut.fz);
+  p.teeth_between_points = copt.teeth_between_points;
   if (p.cutting) {
     const CouplingResult cb = coupleMillingPoint(
         cut_->model,
         withToolCompliance(robotMillingCompliance(m.model, m.compliance, p.theta_d, m.gravity),
                            s_.C_tool),
-        state_, s_.copt);
+        state_, copt);
     state_ = cb.next;
+    p.before_fz_effective = cb.fz_effective;
     F_before = cb.force;
     p.before_status = couplingStatusName(cb.status);
     p.before_iterations = cb.iterations;
@@ -356,6 +407,7 @@ bool UncompensatedChain::run(size_t i, PathPointCompensation& p,
     p.before_force = cb.force;
     if (const std::optional<ModalModel> dyn = pointModes(m, p)) {
       checkStability(*dyn, cut_->stability, m.process.milling.cut.spindle_rpm, stability_cache_, p);
+      checkModeCoupling(cut_->model, *dyn, mode_coupling_cache_, p);
       if (s_.options.resolve_edges) reuseOrQueueEdges(*dyn, cb, edges, jobs);
     }
   } else {
@@ -370,6 +422,9 @@ bool UncompensatedChain::run(size_t i, PathPointCompensation& p,
                             controllerOffset(m, d_.nc, q_before));
   if (m.calibrated) nc::referToControllerPose(db, controllerTcp(m, q_before));
   p.deviation_before = db.dp + toolBending(s_, i, F_before);
+  if (p.cutting)
+    p.surface_error_before =
+        p.deviation_before.dot(wallNormalIn(s_.points[i].linear(), cut_->model.cut.mode));
   return true;
 }
 
@@ -449,7 +504,8 @@ void CompensatedChain::run(size_t i, const PointCut& cut, PathPointCompensation&
       return millToTool(R.transpose() * (dg.T_real.translation() - T.translation())) +
              s_.C_tool * G;
     };
-    ca = coupleMillingPoint(cut.model, residualCompliance, state_, s_.copt);
+    ca = coupleMillingPoint(cut.model, residualCompliance, state_,
+                            optionsAt(s_.copt, s_.points, i, cut.model.cut.fz));
     const double change = (ca.force - F).norm();
     F = ca.force;
     if (!ca.converged) break;
@@ -483,6 +539,7 @@ void CompensatedChain::run(size_t i, const PointCut& cut, PathPointCompensation&
       nc::predictDeflection(m.model, d_.nc, m.compliance, p.theta_cmd, loadsWith(m, F), {},
                             controllerOffset(m, d_.nc, p.theta_cmd));
   p.residual = da.T_real.translation() + toolBending(s_, i, F) - T.translation();
+  if (p.cutting) p.surface_error = p.residual.dot(wallNormalIn(R, cut.model.cut.mode));
   p.config_text = formatConfig(configurationOf(m.ik, m.robot.card, p.theta_cmd, m.config_options));
   p.ok = da.converged;
   if (!p.ok) p.reason = "the compliance equilibrium did not converge at the compensated command";

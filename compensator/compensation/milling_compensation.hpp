@@ -98,14 +98,37 @@ struct PathPointCompensation {
   /// while the tool vibrates. Reused from the previous point while the modes stay within 0.5 %
   /// (as the stability) and fz_eff, ae_eff, ap_eff within kEdgeReuseTolerance of those it was
   /// computed with.
+  /// Mode-coupling chatter of the modes at θ_d (milling_mode_coupling.hpp): the process
+  /// stiffness of the point's cut through the robot's and the tool's modes; reused with the
+  /// stability's cache rule.
+  bool mode_coupling_checked{false};
+  bool mode_coupling_bounded{false};  ///< false: stable up to 100 × ap
+  double mode_coupling_ap_limit{0};   ///< [m] (when bounded)
+  double mode_coupling_hz{0};         ///< frequency of the root crossing at the limit [Hz]
+  bool mode_coupling_flutter{false};  ///< that root is a complex pair (else: static divergence)
+  /// Tooth passes between the previous path point and this one, |p_i − p_{i−1}| / fz (the
+  /// program's spacing; the cell's teeth_between_points for the first point).
+  double teeth_between_points{0};
+  double before_fz_effective{0};  ///< fz_eff of the uncompensated solve [m]
+  /// The deviation normal to the wall, + into the material (an overcut), [m]: the surface error
+  /// a machinist measures. Before: the uncompensated tool; after: the predicted residual.
+  double surface_error_before{0};
+  double surface_error{0};
   bool edges_checked{false};
   bool edges_converged{false};
   std::vector<double> tooth_feed;   ///< chip-area feed per tooth [m]
   double peak_xy_nominal{0};        ///< rigid tool at the programmed cut [N]
   double peak_xy{0};                ///< at the coupled cut, vibrating tool [N]
   Vec3 vibration_pp{Vec3::Zero()};  ///< per axis max − min of the vibration [m]
-  [[nodiscard]] bool unstable(double depth) const {
+  [[nodiscard]] bool regenerativeUnstable(double depth) const {
     return stability_checked && stability_bounded && ap_limit <= depth;
+  }
+  [[nodiscard]] bool modeCouplingUnstable(double depth) const {
+    return mode_coupling_checked && mode_coupling_bounded && mode_coupling_ap_limit <= depth;
+  }
+  /// Chatter by either mechanism.
+  [[nodiscard]] bool unstable(double depth) const {
+    return regenerativeUnstable(depth) || modeCouplingUnstable(depth);
   }
 };
 

@@ -1,4 +1,5 @@
 #include "compensator/process/milling.hpp"
+#include "compensator/process/milling_consistent.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
@@ -267,6 +268,13 @@ Vec3 forceAt(const MillingModel& m, const CutAt& c) {
   return millingMeanForce(m, c.fz, c.ae) * (c.ap / m.cut.ap);
 }
 
+/// The force law of the solve: F̄ plus a constant correction ΔF while the tool cuts (the
+/// edge-consistent solve's dynamic part, coupleMillingPointConsistent; zero otherwise).
+Vec3 forceAt(const MillingModel& m, const CutAt& c, const Vec3& correction) {
+  const Vec3 F = forceAt(m, c);
+  return F.isZero() ? F : Vec3(F + correction);
+}
+
 /// Thrown by the evaluator when the compliance fails or returns a non-finite value.
 struct ComplianceFailure {};
 
@@ -274,13 +282,13 @@ struct ComplianceFailure {};
 class CoupledMap {
  public:
   CoupledMap(const MillingModel& m, const ComplianceFunction& C, const CouplingState& st,
-             const CouplingOptions& o)
-      : m_(m), C_(C), st_(st), o_(o) {}
+             const CouplingOptions& o, const Vec3& correction)
+      : m_(m), C_(C), st_(st), o_(o), correction_(correction) {}
   Vec3 image(const Vec3& d) {
     ++evaluations;
     Vec3 out;
     try {
-      out = C_(forceAt(m_, cutAt(m_, st_, o_, d)));
+      out = C_(forceAt(m_, cutAt(m_, st_, o_, d), correction_));
     } catch (const std::exception&) {
       throw ComplianceFailure{};
     }
@@ -306,6 +314,7 @@ class CoupledMap {
   const ComplianceFunction& C_;
   const CouplingState& st_;
   const CouplingOptions& o_;
+  Vec3 correction_;
 };
 
 double spectralRadius(const Mat3& G) {
@@ -395,11 +404,15 @@ void solveFixedPoint(CoupledMap& map, const CouplingOptions& o, Vec3& d, Couplin
 
 }  // namespace
 
-CouplingResult coupleMillingPoint(const MillingModel& m, const ComplianceFunction& compliance,
-                                  const CouplingState& state, const CouplingOptions& o) {
+namespace {
+
+/// coupleMillingPoint with the force law F̄ + ΔF (forceAt with a correction).
+CouplingResult couplePoint(const MillingModel& m, const ComplianceFunction& compliance,
+                           const CouplingState& state, const CouplingOptions& o,
+                           const Vec3& correction) {
   CouplingResult r;
   r.force_nominal = forceAt(m, CutAt{m.cut.fz + state.uncut_prev, m.cut.ae, m.cut.ap, true});
-  CoupledMap map(m, compliance, state, o);
+  CoupledMap map(m, compliance, state, o, correction);
   Vec3 d = Vec3::Zero();
   try {
     d = map.image(Vec3::Zero());  // first iterate: the deflection under the nominal force
@@ -428,13 +441,60 @@ CouplingResult coupleMillingPoint(const MillingModel& m, const ComplianceFunctio
   r.converged = r.status == CouplingStatus::kConverged;
   r.evaluations = map.evaluations;
   r.delta = d;
-  r.force = forceAt(m, c);
+  r.force = forceAt(m, c, correction);
   r.fz_effective = c.fz;
   r.ae_effective = c.ae;
   r.ap_effective = c.ap;
   r.next.delta_prev = d;
   r.next.uncut_prev = c.fz < 0 ? c.fz : 0.0;
   return r;
+}
+
+}  // namespace
+
+CouplingResult coupleMillingPoint(const MillingModel& m, const ComplianceFunction& compliance,
+                                  const CouplingState& state, const CouplingOptions& o) {
+  return couplePoint(m, compliance, state, o, Vec3::Zero());
+}
+
+ConsistentCoupling coupleMillingPointConsistent(const MillingModel& m,
+                                                const ComplianceFunction& compliance,
+                                                const EdgeRevolutionFunction& edges,
+                                                const CouplingState& state,
+                                                const CouplingOptions& o,
+                                                const Vec3& start_correction) {
+  ConsistentCoupling out;
+  Vec3 correction = start_correction;
+  for (out.rounds = 1; out.rounds <= kConsistencyRounds; ++out.rounds) {
+    out.point = couplePoint(m, compliance, state, o, correction);
+    out.correction = correction;
+    if (!out.point.converged) return out;
+    const CouplingResult& p = out.point;
+    out.edges = edges(p.fz_effective, p.ae_effective, p.ap_effective);
+    Vec3 image;
+    try {
+      image = compliance(out.edges.mean);
+    } catch (const std::exception&) {
+      out.point.converged = false;
+      out.point.status = CouplingStatus::kComplianceFailed;
+      return out;
+    }
+    if (!image.allFinite()) {
+      out.point.converged = false;
+      out.point.status = CouplingStatus::kComplianceFailed;
+      return out;
+    }
+    out.edge_residual = (p.delta - image).norm();
+    if (out.edge_residual <= o.tolerance) {
+      out.consistent = true;
+      out.point.force = out.edges.mean;
+      return out;
+    }
+    const Vec3 F_static = forceAt(m, cutAt(m, state, o, p.delta));  // zero out of the cut
+    correction = F_static.isZero() ? Vec3::Zero() : Vec3(out.edges.mean - F_static);
+  }
+  out.rounds = kConsistencyRounds;
+  return out;
 }
 
 namespace {

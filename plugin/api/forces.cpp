@@ -96,8 +96,14 @@ MillingCouplingData millingCoupling(const MillingModel& m, const MillingSpec& s,
 
 std::string unstablePointText(size_t i, const postproc::Target& t, const PathPointCompensation& p,
                               double ap) {
-  return "path point " + std::to_string(i + 1) + " (line " + std::to_string(t.line) +
-         "): chatter: ap " + fixed(ap / kMm, 3) + " mm > limit " + fixed(p.ap_limit / kMm, 3) +
+  const std::string at =
+      "path point " + std::to_string(i + 1) + " (line " + std::to_string(t.line) + "): ";
+  if (!p.regenerativeUnstable(ap)) {
+    return at + "mode-coupling chatter: ap " + fixed(ap / kMm, 3) + " mm > limit " +
+           fixed(p.mode_coupling_ap_limit / kMm, 3) + " mm (at " + fixed(p.mode_coupling_hz, 1) +
+           " Hz)";
+  }
+  return at + "chatter: ap " + fixed(ap / kMm, 3) + " mm > limit " + fixed(p.ap_limit / kMm, 3) +
          " mm (chatter at " + fixed(p.chatter_hz, 1) + " Hz)";
 }
 

@@ -33,9 +33,17 @@ int reportUnstable(CommandContext& ctx, const MillingCompensationResult& r) {
     const double ap = millOf(r, i).cut.ap;
     if (!p.unstable(ap)) continue;
     ++n;
-    ctx.err << "roprec: path point " << i + 1 << ": chatter: ap " << formatNumber(ap * 1e3, 3)
-            << " mm > limit " << formatNumber(p.ap_limit * 1e3, 3) << " mm (chatter at "
-            << formatNumber(p.chatter_hz, 1) << " Hz)\n";
+    if (p.regenerativeUnstable(ap)) {
+      ctx.err << "roprec: path point " << i + 1 << ": chatter: ap " << formatNumber(ap * 1e3, 3)
+              << " mm > limit " << formatNumber(p.ap_limit * 1e3, 3) << " mm (chatter at "
+              << formatNumber(p.chatter_hz, 1) << " Hz)\n";
+    }
+    if (p.modeCouplingUnstable(ap)) {
+      ctx.err << "roprec: path point " << i + 1 << ": mode-coupling chatter: ap "
+              << formatNumber(ap * 1e3, 3) << " mm > limit "
+              << formatNumber(p.mode_coupling_ap_limit * 1e3, 3) << " mm (at "
+              << formatNumber(p.mode_coupling_hz, 1) << " Hz)\n";
+    }
   }
   if (n > 0)
     ctx.err << "roprec: " << n << " cutting path points are above the chatter limit (outputs "
@@ -193,14 +201,20 @@ int runMillingPath(CommandContext& ctx, const std::string& cell, const std::stri
   if (!ctx.quiet) {
     double before = 0;
     double after = 0;
+    double wall_before = 0;  // the largest |surface error normal to the wall|
+    double wall_after = 0;
     for (const auto& p : r.points_comp) {
       before = std::max(before, p.deviation_before.norm());
       after = std::max(after, p.residual.norm());
+      wall_before = std::max(wall_before, std::abs(p.surface_error_before));
+      wall_after = std::max(wall_after, std::abs(p.surface_error));
     }
     ctx.out << "roprec compensate (milling path): " << r.points_comp.size()
             << " path points compensated\n";
     ctx.out << "  deviation before (coupled force) max " << formatNumber(before * 1e6, 3)
             << " µm; predicted residual max " << formatNumber(after * 1e6, 4) << " µm\n";
+    ctx.out << "  surface error normal to the wall max " << formatNumber(wall_before * 1e6, 3)
+            << " µm before; " << formatNumber(wall_after * 1e6, 4) << " µm compensated\n";
     for (const auto& pth : written) ctx.out << "  wrote " << pth << "\n";
   }
   return reportUnstable(ctx, r);
@@ -473,7 +487,10 @@ const CommandRegistration reg{
      "cutting point (robot modes at the pose + tool mode, zero-order lobes); the report draws the\n"
      "deviation before, the residual after and the chatter margin along the path. Points above "
      "the\n"
-     "chatter limit are listed and the exit code is 1 (outputs written).\n"
+     "chatter limit (regenerative, or mode coupling of the robot's modes) are listed and the exit "
+     "code\n"
+     "is 1 (outputs written). The summary gives the surface error normal to the wall before and "
+     "after.\n"
      "Unreachable, singular or non-converging holes are listed; without --allow-partial nothing "
      "is\n"
      "written and the exit code is 1; with it they keep their original targets and are flagged.\n"

@@ -414,6 +414,11 @@ Json pathPointJson(const MillingCompensationResult& r, size_t i) {
   j.set("loop_gain", Json::number(p.before_loop_gain, 4));
   j.set("force_N", vec3(p.before_force, 2));
   j.set("deviation_um", vec3(p.deviation_before * 1e6, 3));
+  if (p.cutting) {
+    j.set("surface_error_um", Json::number(p.surface_error_before * 1e6, 3));
+    j.set("teeth_between_points", Json::number(p.teeth_between_points, 2));
+    j.set("fz_effective_mm", Json::number(p.before_fz_effective / kMm, 6));
+  }
   Json c = Json::object();
   c.set("ok", Json::boolean(p.ok));
   if (!p.ok) c.set("reason", Json::str(p.reason));
@@ -422,6 +427,7 @@ Json pathPointJson(const MillingCompensationResult& r, size_t i) {
   c.set("residual_um", Json::number(p.coupling_residual * 1e6, 5));
   c.set("force_N", vec3(p.force, 2));
   c.set("predicted_residual_um", Json::number(p.residual.norm() * 1e6, 4));
+  if (p.cutting) c.set("surface_error_um", Json::number(p.surface_error * 1e6, 4));
   j.set("compensated", c);
   const bool engaged = r.cutting[i].engagement.has_value();
   if (p.cutting && engaged) {

@@ -84,6 +84,20 @@ Json pathPointStabilityJson(const PathPointCompensation& p, double ap) {
   }
   j.set("stable", Json::boolean(!p.unstable(ap)));
   j.set("first_mode_Hz", Json::number(p.first_mode_hz, 3));
+  if (p.mode_coupling_checked) j.set("mode_coupling", pathPointModeCouplingJson(p, ap));
+  return j;
+}
+
+Json pathPointModeCouplingJson(const PathPointCompensation& p, double ap) {
+  Json j = Json::object();
+  j.set("bounded", Json::boolean(p.mode_coupling_bounded));
+  if (p.mode_coupling_bounded) {
+    j.set("ap_limit_mm", Json::number(p.mode_coupling_ap_limit / kMm, 4));
+    j.set("frequency_Hz", Json::number(p.mode_coupling_hz, 3));
+    j.set("kind", Json::str(p.mode_coupling_flutter ? "flutter" : "divergence"));
+    j.set("margin", Json::number(p.mode_coupling_ap_limit / ap, 4));
+  }
+  j.set("stable", Json::boolean(!p.modeCouplingUnstable(ap)));
   return j;
 }
 

@@ -22,8 +22,12 @@ Json millingDynamicsJson(const ModalModel& dyn, const MillingSpec& s, bool robot
 Json millingStabilityJson(const ModalModel& dyn, const MillingModel& m);
 
 /// A path point's chatter check (PathPointCompensation): checked, bounded, ap_limit_mm,
-/// chatter_frequency_Hz, margin (limit/ap), stable, first_mode_Hz.
+/// chatter_frequency_Hz, margin (limit/ap), stable (by both mechanisms), first_mode_Hz and the
+/// "mode_coupling" block.
 Json pathPointStabilityJson(const PathPointCompensation& p, double ap);
+/// Its "mode_coupling" block (milling_mode_coupling.hpp): bounded, ap_limit_mm, frequency_Hz,
+/// kind (flutter | divergence), margin (limit/ap), stable.
+Json pathPointModeCouplingJson(const PathPointCompensation& p, double ap);
 
 struct MillingStabilityOutput {
   Json json;           ///< cell, joints_deg, dynamics, stability, lobes summary

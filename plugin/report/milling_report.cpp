@@ -129,7 +129,9 @@ std::string pointRow(const MillingCompensationResult& r, std::size_t i) {
   s += "<td>" + num(b.norm(), 2, "deviation") + "</td><td>" + num(a.norm(), 4, "residual") +
        "</td><td>" + esc(p.coupling_status) + "</td><td>" + std::to_string(p.coupling_iterations) +
        "</td><td>" + num(p.loop_gain, 3, "loop gain") + "</td><td>" + margin(r, i) + "</td><td>" +
-       esc(p.config_text) + "</td><td>" + esc(p.ok ? "compensated" : p.reason) + "</td></tr>\n";
+       esc(p.config_text) + "</td><td>" + esc(p.ok ? "compensated" : p.reason) + "</td><td>" +
+       num(p.surface_error_before * 1e6, 2, "surface error") + "</td><td>" +
+       num(p.surface_error * 1e6, 4, "surface error") + "</td></tr>\n";
   return s;
 }
 
@@ -140,10 +142,14 @@ void writeMillingCompensationReport(const MillingCompensationResult& r,
   const PredictionContext& c = r.context;
   double before = 0;
   double after = 0;
+  double wall_before = 0;  // the largest |surface error normal to the wall|
+  double wall_after = 0;
   int cutting = 0;
   for (const auto& p : r.points_comp) {
     before = std::max(before, p.deviation_before.norm());
     after = std::max(after, p.residual.norm());
+    wall_before = std::max(wall_before, std::abs(p.surface_error_before));
+    wall_after = std::max(wall_after, std::abs(p.surface_error));
     cutting += p.cutting ? 1 : 0;
   }
   std::string s =
@@ -161,19 +167,23 @@ void writeMillingCompensationReport(const MillingCompensationResult& r,
   s += "<p>" + std::to_string(r.points_comp.size()) + " linear path points, " +
        std::to_string(cutting) + " cutting; deviation before (coupled force) max <b>" +
        num(before * 1e6, 2, "deviation") + " µm</b>; predicted residual after max <b>" +
-       num(after * 1e6, 4, "residual") + " µm</b>.</p>\n";
+       num(after * 1e6, 4, "residual") + " µm</b>; surface error normal to the wall max <b>" +
+       num(wall_before * 1e6, 2, "surface error") + " µm</b> before, <b>" +
+       num(wall_after * 1e6, 4, "surface error") + " µm</b> compensated.</p>\n";
   for (const auto& n : c.job.notes) s += "<p class=\"note\">note: " + esc(n) + "</p>\n";
   pathPlot(r, s, sink);
   marginPlot(r, s, sink);
   s += "<table>\n<tr><th>point</th><th>target</th><th>line</th><th>cuts</th><th>why</th>"
        "<th>|F| [N]</th><th>δx before [µm]</th><th>δy before [µm]</th><th>δz before [µm]</th>"
        "<th>|δ| before [µm]</th><th>|residual| after [µm]</th><th>coupling</th><th>iterations</th>"
-       "<th>loop gain</th><th>chatter margin</th><th>configuration</th><th>status</th></tr>\n";
+       "<th>loop gain</th><th>chatter margin</th><th>configuration</th><th>status</th>"
+       "<th>wall error before [µm]</th><th>wall error after [µm]</th></tr>\n";
   for (std::size_t i = 0; i < r.points_comp.size(); ++i) {
     s += pointRow(r, i);
     flush(s, sink);
   }
-  s += "</table>\n<p>Deviations in the robot base frame; the force in the milling frame. "
+  s += "</table>\n<p>Deviations in the robot base frame; the force in the milling frame; the wall "
+       "error is the deviation normal to the wall, + into the material. "
        "roprec " +
        std::string(version()) + "</p>\n</body></html>\n";
   flush(s, sink, true);
