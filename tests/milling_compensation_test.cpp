@@ -150,35 +150,14 @@ TEST(MillingCompensation, WallPassCuttingPointsConverge) {
   }
 }
 
-// The feed term follows the program's spacing: the tooth passes between points are
-// |p_i − p_{i−1}| / fz from the program's coordinates (100 for the 10 mm move from the approach
-// point X −60 into the cut at X −50, 50 for the 5 mm steps), so the first cutting point's
-// deflection (≈ −0.26 mm along the feed) builds up over 100 teeth: its effective feed is within
-// 4 % of fz (measured −2.6 %) and its force within 3 % of the steady one (measured −2.2 %; the
-// cell's default of 10 teeth dropped it 17.5 %); in steady state fz_eff is fz within 0.1 %.
 // The surface error is the deviation normal to the wall into the material: for this up-milling
 // pass along base +X with the tool axis down (Z_mill = +z_base), n_wall = Z × X = +y_base, so it
 // is the deviation's y (to 1e-12 m); the compensated tool leaves ≤ 0.01 µm on the wall.
-TEST(MillingCompensation, FeedTermFromTheProgramSpacingAndTheWallError) {
+TEST(MillingCompensation, SurfaceErrorIsTheDeviationNormalToTheWall) {
   const api::MillingCompensationResult r =
       api::compensateMillingJob(test::sourceDir() + "/samples/cells/alu-milling-7075.xml",
                                 test::sourceDir() + "/samples/milling/wall_pass.src");
   ASSERT_EQ(r.points_comp.size(), 27u);
-  const double fz = 0.1e-3;
-  const PathPointCompensation& first = r.points_comp[1];
-  const PathPointCompensation& steady = r.points_comp[25];
-  ASSERT_TRUE(first.cutting && steady.cutting);
-  const Pose T_wobj_W = r.context.cell.T_base_wobj.inverse();
-  for (size_t i = 1; i + 1 < r.points_comp.size(); ++i) {
-    const Vec3 a = T_wobj_W * r.points[i - 1].translation();
-    const Vec3 b = T_wobj_W * r.points[i].translation();
-    const double expected = i == 1 ? 100.0 : 50.0;
-    EXPECT_NEAR((b - a).norm() / fz, expected, 1e-6);
-    EXPECT_NEAR(r.points_comp[i].teeth_between_points, expected, 1e-6) << i;
-  }
-  EXPECT_NEAR(first.before_fz_effective, fz, 0.04 * fz);
-  EXPECT_NEAR(steady.before_fz_effective, fz, 0.001 * fz);
-  EXPECT_LT((first.before_force - steady.before_force).norm(), 0.03 * steady.before_force.norm());
   for (const PathPointCompensation& p : r.points_comp) {
     if (!p.cutting) {
       EXPECT_EQ(p.surface_error_before, 0.0);

@@ -118,18 +118,6 @@ Vec3 wallNormalIn(const Mat3& R, MillingMode mode) {
   return R * millToTool(mode == MillingMode::kUp ? Vec3::UnitY() : Vec3(-Vec3::UnitY()));
 }
 
-/// The coupling options at path point i: the tooth passes since the previous point from the
-/// program's spacing, |p_i − p_{i−1}| / fz (at least 1); the cell's for the first point.
-CouplingOptions optionsAt(const CouplingOptions& cell, const std::vector<Pose>& points, size_t i,
-                          double fz) {
-  CouplingOptions o = cell;
-  if (i > 0 && fz > 0) {
-    const double spacing = (points[i].translation() - points[i - 1].translation()).norm();
-    o.teeth_between_points = std::max(1, static_cast<int>(std::lround(spacing / fz)));
-  }
-  return o;
-}
-
 /// The command the controller's IK gives for the path point T_W_tcp (the link angles θ_d of the
 /// real robot seed it): θ_d itself without a calibration (nominal = real).
 Vec6 uncompensatedCommand(const PredictionModel& m, const Pose& T_W_tcp, const Vec6& theta_d) {
@@ -389,7 +377,7 @@ bool UncompensatedChain::run(size_t i, PathPointCompensation& p,
   if (!inverseKinematics(i, p)) return false;
   // uncompensated: the robot at θ_d under the coupled force
   Vec3 F_before = Vec3::Zero();
-  const CouplingOptions copt = optionsAt(s_.copt, s_.points, i, cut_->model.cut.fz);
+  const CouplingOptions& copt = s_.copt;
   p.teeth_between_points = copt.teeth_between_points;
   if (p.cutting) {
     const CouplingResult cb = coupleMillingPoint(
@@ -504,8 +492,7 @@ void CompensatedChain::run(size_t i, const PointCut& cut, PathPointCompensation&
       return millToTool(R.transpose() * (dg.T_real.translation() - T.translation())) +
              s_.C_tool * G;
     };
-    ca = coupleMillingPoint(cut.model, residualCompliance, state_,
-                            optionsAt(s_.copt, s_.points, i, cut.model.cut.fz));
+    ca = coupleMillingPoint(cut.model, residualCompliance, state_, s_.copt);
     const double change = (ca.force - F).norm();
     F = ca.force;
     if (!ca.converged) break;

@@ -106,8 +106,8 @@ struct PathPointCompensation {
   double mode_coupling_ap_limit{0};   ///< [m] (when bounded)
   double mode_coupling_hz{0};         ///< frequency of the root crossing at the limit [Hz]
   bool mode_coupling_flutter{false};  ///< that root is a complex pair (else: static divergence)
-  /// Tooth passes between the previous path point and this one, |p_i − p_{i−1}| / fz (the
-  /// program's spacing; the cell's teeth_between_points for the first point).
+  /// Tooth passes between the previous path point and this one that the feed term uses (the
+  /// cell's teeth_between_points, or point_spacing_mm / fz).
   double teeth_between_points{0};
   double before_fz_effective{0};  ///< fz_eff of the uncompensated solve [m]
   /// The deviation normal to the wall, + into the material (an overcut), [m]: the surface error
