@@ -696,6 +696,25 @@ TimeDomainRevolution timeDomainRevolution(const MillingModel& m, double k, doubl
   return out;
 }
 
+/// The cut the time-domain comparisons march: ap 1 mm, ae 2 mm, fz 0.1 mm at 12000 rpm.
+MillingCut regenerativeCut(MillingMode mode) {
+  MillingCut c;
+  c.ap = 1e-3;
+  c.ae = 2e-3;
+  c.fz = 0.1e-3;
+  c.mode = mode;
+  c.spindle_rpm = 12000;
+  return c;
+}
+
+/// Its model: 10 µm runout at 30°, 360 edge-angle steps.
+MillingModel regenerativeCutModel(const MillingCut& c) {
+  MillingTool t;
+  t.runout = 10e-6;
+  t.runout_angle = 30 * kDeg;
+  return makeMillingModel(t, c, kienzle800(), 360, 5);
+}
+
 // The regenerative steady state against the time-domain march: a compliant tool mode (20 N/µm,
 // 1500 Hz, ζ 0.05), up- and down-milling with 10 µm runout, ap 1 mm (below the chatter limit):
 // forces within 2 % of the peak and the vibration within 3 % of its peak-to-peak at every sample
@@ -703,16 +722,8 @@ TimeDomainRevolution timeDomainRevolution(const MillingModel& m, double k, doubl
 // cut differs by far more (the test can fail).
 TEST(Milling, EdgeRevolutionMatchesTimeDomainRegenerativeCut) {
   for (MillingMode mode : {MillingMode::kUp, MillingMode::kDown}) {
-    MillingTool t;
-    t.runout = 10e-6;
-    t.runout_angle = 30 * kDeg;
-    MillingCut c;
-    c.ap = 1e-3;
-    c.ae = 2e-3;
-    c.fz = 0.1e-3;
-    c.mode = mode;
-    c.spindle_rpm = 12000;
-    const MillingModel m = makeMillingModel(t, c, kienzle800(), 360, 5);
+    const MillingCut c = regenerativeCut(mode);
+    const MillingModel m = regenerativeCutModel(c);
     const TimeDomainRevolution ref = timeDomainRevolution(m, 20e6, 1500, 0.05, 360);
     // the static deflection moves the wall (the coupling's ae_eff); the rest is the vibration
     const double ae = c.ae + (mode == MillingMode::kUp ? 1 : -1) * ref.mean.y();
@@ -748,16 +759,8 @@ TEST(Milling, EdgeRevolutionMatchesTimeDomainRegenerativeCut) {
 // the mean force by 0.2–0.3 %).
 TEST(Milling, ConsistentSolveIsTheTimeDomainStaticDeflection) {
   for (MillingMode mode : {MillingMode::kUp, MillingMode::kDown}) {
-    MillingTool t;
-    t.runout = 10e-6;
-    t.runout_angle = 30 * kDeg;
-    MillingCut c;
-    c.ap = 1e-3;
-    c.ae = 2e-3;
-    c.fz = 0.1e-3;
-    c.mode = mode;
-    c.spindle_rpm = 12000;
-    const MillingModel m = makeMillingModel(t, c, kienzle800(), 360, 5);
+    const MillingCut c = regenerativeCut(mode);
+    const MillingModel m = regenerativeCutModel(c);
     const TimeDomainRevolution ref = timeDomainRevolution(m, 20e6, 1500, 0.05, 360);
     Vec3 ref_force = Vec3::Zero();
     for (const Vec3& F : ref.force) ref_force += F;

@@ -325,18 +325,22 @@ void targetJson(JsonWriter& w, const HoleCompensation& h, const HoleRequest& q,
   w.endObject();
 }
 
+/// An export's first members: the robot card's name, the cell's and the program's file name.
+void jobIdentityJson(JsonWriter& w, const PredictionContext& c, const std::string& program_path) {
+  w.key("robot");
+  w.str(c.robot.card.name);
+  w.key("cell");
+  w.str(c.cell.name);
+  w.key("program");
+  w.str(fileName(program_path));
+}
+
 /// The JSON export's members before the holes, up to the opening of the "holes" array.
 void targetsJsonHead(JsonWriter& w, const PredictionContext& c, const std::string& orientation,
                      const std::string& program_path) {
   w.out().reserve(kChunk + 8192);
   w.beginObject();
-  w.key("robot");
-  w.str(c.robot.card.name);
-  w.key("cell");
-  w.str(c.cell.name);
-  const std::string program = fileName(program_path);
-  w.key("program");
-  w.str(program);
+  jobIdentityJson(w, c, program_path);
   w.key("orientation");
   w.str(orientation);
   w.key("holes");
@@ -859,13 +863,7 @@ void writeMillingTargets(const MillingCompensationResult& r, const std::string& 
   const PredictionContext& c = r.context;
   JsonWriter w;
   w.beginObject();
-  w.key("robot");
-  w.str(c.robot.card.name);
-  w.key("cell");
-  w.str(c.cell.name);
-  const std::string program = fileName(program_path);
-  w.key("program");
-  w.str(program);
+  jobIdentityJson(w, c, program_path);
   w.key("process");
   w.str(c.process_description);
   w.key("points");
