@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <utility>
 
 namespace roprec {
@@ -104,6 +105,30 @@ Vec3 meanForce(double fz, double ae, double ap) {
   return F * (3.0 / (2.0 * kPi));
 }
 
+/// The real cut of the time-domain and gradient checks: up-milling ap 5, ae 2, fz 0.1 mm.
+MillingCut upMillingCut() {
+  MillingCut c;
+  c.ap = 5e-3;
+  c.ae = 2e-3;
+  c.fz = 0.1e-3;
+  return c;
+}
+
+/// kc1.1 800 N/mm², mc 0.25, cr 0.35 (the reference's), and the axial ratio when given.
+MillingCoefficients kienzle(std::optional<double> axial_ratio) {
+  MillingCoefficients k;
+  k.kc11 = 800e6;
+  k.mc = 0.25;
+  k.radial_ratio = 0.35;
+  if (axial_ratio) k.axial_ratio = *axial_ratio;
+  return k;
+}
+
+/// The default tool (D 10, 3 teeth, no runout) on that cut, 360 edge-angle steps.
+MillingModel upMillingModel(const MillingCut& c, const MillingCoefficients& k) {
+  return makeMillingModel(MillingTool{}, c, k, 360, 20);
+}
+
 /// The two modes under the cut's quasi-static mean force (ae = ae0 + y), marched by RK4 from the
 /// static equilibrium plus 1 µm: the ratio of the vibration's amplitude over the last 5 periods of
 /// the slower mode to that over the first 5.
@@ -155,16 +180,8 @@ double amplitudeGrowth(const ModalModel& dyn, double ap) {
 // limit 2.26 mm, flutter at 22.9 Hz.
 TEST(MillingModeCoupling, DepthLimitSeparatesDecayFromGrowthInTimeDomain) {
   const ModalModel dyn = twoModes(30.0, 0.60e6, 0.66e6, 30 * kDeg, 0.005);
-  MillingTool t;
-  MillingCut c;
-  c.ap = 5e-3;
-  c.ae = 2e-3;
-  c.fz = 0.1e-3;
-  MillingCoefficients k;
-  k.kc11 = 800e6;
-  k.mc = 0.25;
-  k.radial_ratio = 0.35;
-  const MillingModel m = makeMillingModel(t, c, k, 360, 20);
+  const MillingCut c = upMillingCut();
+  const MillingModel m = upMillingModel(c, kienzle(std::nullopt));
   const ModeCouplingLimit lim = modeCouplingLimit(dyn, processGradient(m, c.fz, c.ae, c.ap), c.ap);
   ASSERT_TRUE(lim.bounded);
   EXPECT_TRUE(lim.flutter);
@@ -179,17 +196,8 @@ TEST(MillingModeCoupling, DepthLimitSeparatesDecayFromGrowthInTimeDomain) {
 // The process stiffness against finite differences of the independent quadrature: ∂F̄/∂ae along
 // the wall normal (+Y, up-milling) within 0.3 %, and the ap column −F̄/ap.
 TEST(MillingModeCoupling, ProcessGradientIsTheMeanForceDerivative) {
-  MillingTool t;
-  MillingCut c;
-  c.ap = 5e-3;
-  c.ae = 2e-3;
-  c.fz = 0.1e-3;
-  MillingCoefficients k;
-  k.kc11 = 800e6;
-  k.mc = 0.25;
-  k.radial_ratio = 0.35;
-  k.axial_ratio = 0.0;
-  const MillingModel m = makeMillingModel(t, c, k, 360, 20);
+  const MillingCut c = upMillingCut();
+  const MillingModel m = upMillingModel(c, kienzle(0.0));
   const ProcessGradient g = processGradient(m, c.fz, c.ae, 4e-3);
   const Vec3 ref = (meanForce(c.fz, c.ae + 2e-6, 4e-3) - meanForce(c.fz, c.ae - 2e-6, 4e-3)) / 4e-6;
   EXPECT_LT((g.per_depth.col(1) - ref).norm(), 0.003 * ref.norm());

@@ -52,20 +52,19 @@ void pathPlot(const MillingCompensationResult& r, std::string& s, const ByteSink
   s += "<text x=\"" + num(x0 + w / 2 - 60, 0, "") + "\" y=\"" + num(y0 + h + 30, 0, "") +
        "\" font-size=\"12\">path point (program order)</text>\n";
   // the two polylines, point by point
-  s += "<polyline fill=\"none\" stroke=\"#c0392b\" stroke-width=\"1.5\" points=\"";
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto& p = r.points_comp[i];
-    s += num(px(i), 1, "x") + "," + num(py(p.deviation_before.norm() * 1e6), 1, "deviation") + " ";
-    flush(s, sink);
-  }
-  s += "\"/>\n";
-  s += "<polyline fill=\"none\" stroke=\"#1e7b34\" stroke-width=\"1.5\" points=\"";
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto& p = r.points_comp[i];
-    s += num(px(i), 1, "x") + "," + num(py(p.residual.norm() * 1e6), 1, "residual") + " ";
-    flush(s, sink);
-  }
-  s += "\"/>\n";
+  auto polyline = [&](const char* colour, const char* what, auto micrometres) {
+    s += std::string("<polyline fill=\"none\" stroke=\"") + colour +
+         "\" stroke-width=\"1.5\" points=\"";
+    for (std::size_t i = 0; i < n; ++i) {
+      s += num(px(i), 1, "x") + "," + num(py(micrometres(r.points_comp[i])), 1, what) + " ";
+      flush(s, sink);
+    }
+    s += "\"/>\n";
+  };
+  polyline("#c0392b", "deviation",
+           [](const PathPointCompensation& p) { return p.deviation_before.norm() * 1e6; });
+  polyline("#1e7b34", "residual",
+           [](const PathPointCompensation& p) { return p.residual.norm() * 1e6; });
   s += "<text x=\"" + num(x0 + 10, 0, "") + "\" y=\"" + num(y0 + 14, 0, "") +
        "\" font-size=\"12\" fill=\"#c0392b\">|deviation| before (coupled force)</text>\n";
   s += "<text x=\"" + num(x0 + 260, 0, "") + "\" y=\"" + num(y0 + 14, 0, "") +
