@@ -998,27 +998,21 @@ class TpPlan {
     int cur_uf = -1;
     int cur_ut = -1;
     bool turn_note = false;
+    // a frame selection line when frame n is not the current one (and its two remark lines
+    // with a note when its values are known)
+    auto select = [&](const char* kind, int n, const auto* frame, int& current) {
+      if (n == current) return;
+      if (frame != nullptr && frame->resolved) {
+        lines_ += 2;
+        note(rep, std::string("set ") + kind + "[" + std::to_string(n) +
+                      "] on the controller (values in the remarks)");
+      }
+      ++lines_;
+      current = n;
+    };
     for (const Item& it : items) {
-      const int ufn = number(uf_, it.base, "UFRAME");
-      const int utn = number(ut_, it.tool, "UTOOL");
-      if (ufn != cur_uf) {
-        if (it.base != nullptr && it.base->resolved) {
-          lines_ += 2;
-          note(rep,
-               "set UFRAME[" + std::to_string(ufn) + "] on the controller (values in the remarks)");
-        }
-        ++lines_;
-        cur_uf = ufn;
-      }
-      if (utn != cur_ut) {
-        if (it.tool != nullptr && it.tool->resolved) {
-          lines_ += 2;
-          note(rep,
-               "set UTOOL[" + std::to_string(utn) + "] on the controller (values in the remarks)");
-        }
-        ++lines_;
-        cur_ut = utn;
-      }
+      select("UFRAME", number(uf_, it.base, "UFRAME"), it.base, cur_uf);
+      select("UTOOL", number(ut_, it.tool, "UTOOL"), it.tool, cur_ut);
       if (!turn_note) {
         note(rep,
              "FANUC turn digits written 0 (turns are not carried across vendors); check J4/J6 "
