@@ -178,7 +178,9 @@ class RapidReader {
     return j + 1;
   }
 
-  std::unordered_map<std::string, int> targets_;
+  /// Declared targets: name (a view of the file, case-insensitive) -> index in p_.target_list;
+  /// a later declaration of a name replaces the earlier one.
+  NameMap<int> targets_;
   std::unordered_map<std::string, ToolState> tools_;
   std::unordered_map<std::string, ToolState> wobjs_;
   std::unordered_map<std::string, double> speeds_;
@@ -457,6 +459,7 @@ class RapidReader {
     if (pcIn(i, e) == '-' || pcIn(i, e) == '+') ++i;
     if (i >= e || tok_[i].kind != TokenKind::kNumber) return false;
     const std::uint32_t end = tok_[i].offset + tok_[i].length;
+    if (end - tok_[s].offset > NumberField::kMaxLength) return false;  // tokenField refuses it
     const auto v =
         parseNumber(std::string_view(f_.bytes).substr(tok_[s].offset, end - tok_[s].offset));
     if (!v) return false;
@@ -470,10 +473,10 @@ class RapidReader {
 
   /// An inline robtarget written in plain numbers on one line, the OLP form
   /// `[[x,y,z],[q1,q2,q3,q4],[cf1,cf4,cf6,cfx],[eax_a,..,eax_f]]`, in tokens [b, e): the target
-  /// makeRobtarget(parseValue(b, e), "") makes, without building the tree. -1 for any other
+  /// makeRobtarget(parseValue(b, e), name) makes, without building the tree. -1 for any other
   /// text (names, expressions, comments, line breaks, malformed numbers): the general path then
   /// reads it and reports its errors.
-  int plainRobtarget(std::size_t b, std::size_t e) {
+  int plainRobtarget(std::size_t b, std::size_t e, std::string_view name) {
     static constexpr std::size_t kCount[4] = {3, 4, 4, 6};
     std::array<NumberField, 17> v;
     std::size_t i = b;
@@ -490,6 +493,7 @@ class RapidReader {
     }
     if (i + 1 != e || pcIn(i, e) != ']') return -1;
     Target t;
+    t.name = name;
     t.file = 0;
     t.line = f_.lineOf(tok_[b].offset);
     t.kind = TargetKind::kCartesian;
@@ -502,10 +506,10 @@ class RapidReader {
       t.config.cf[k] = toInt(std::round(v[7 + k].value), 0);
     }
     for (std::size_t k = 0; k < 6; ++k) t.ext[k] = v[11 + k];
-    return add(std::move(t));
+    return add(std::move(t), name);
   }
 
-  int makeRobtarget(const Node& n, const std::string& name) {
+  int makeRobtarget(const Node& n, std::string_view name) {
     shape(n, 4, "robtarget");
     shape(n.items[0], 3, "robtarget trans");
     shape(n.items[1], 4, "robtarget rot");
@@ -531,10 +535,10 @@ class RapidReader {
       if (!f.known()) t.config.vendor = Vendor::kNone;
     for (std::size_t k = 0; k < 6; ++k)
       t.ext[k] = component(n.items[3].items[k], "robtarget extax");
-    return add(std::move(t));
+    return add(std::move(t), name);
   }
 
-  int makeJointtarget(const Node& n, const std::string& name) {
+  int makeJointtarget(const Node& n, std::string_view name) {
     shape(n, 2, "jointtarget");
     shape(n.items[0], 6, "jointtarget robax");
     shape(n.items[1], 6, "jointtarget extax");
@@ -547,14 +551,14 @@ class RapidReader {
       t.joints[k] = component(n.items[0].items[k], "jointtarget robax");
     for (std::size_t k = 0; k < 6; ++k)
       t.ext[k] = component(n.items[1].items[k], "jointtarget extax");
-    return add(std::move(t));
+    return add(std::move(t), name);
   }
 
-  int add(Target t) {
-    const std::string key = upper(t.name);
+  /// Appends t, declared as `name` (a view of the file; empty for inline targets).
+  int add(Target t, std::string_view name) {
     p_.target_list.push_back(std::move(t));
     const int idx = static_cast<int>(p_.target_list.size() - 1);
-    if (!key.empty()) targets_[key] = idx;
+    if (!name.empty()) targets_[name] = idx;
     return idx;
   }
 
@@ -583,7 +587,7 @@ class RapidReader {
     ++i;  // CONST/VAR/PERS
     if (i + 1 >= e) return;
     const std::string type = upper(f_.text(t[i]));
-    const std::string name(f_.text(t[i + 1]));
+    const std::string_view name = f_.text(t[i + 1]);
     const std::size_t name_off = t[i + 1].offset;
     i += 2;
     if (i < e && is1(f_.text(t[i]), '{')) return;  // arrays: runtime
@@ -606,6 +610,7 @@ class RapidReader {
       return;
     }
     if (f_.text(t[i]) != "[") return;  // expressions: runtime
+    if (type == "ROBTARGET" && plainRobtarget(i, e, name) >= 0) return;
     const Node v = parseValue(i, e);
     if (type == "ROBTARGET") {
       makeRobtarget(v, name);
@@ -729,20 +734,19 @@ class RapidReader {
     const std::vector<Token>& t = tok_;
     if (a.b >= a.e) fail(t[a.b > 0 ? a.b - 1 : 0].offset, "motion without a target");
     if (f_.text(t[a.b]) != "[") {  // literal targets: the target itself is the text
-      m.target_text = p_.addText(std::string_view(f_.bytes).substr(
+      m.target_text = p_.addUniqueText(std::string_view(f_.bytes).substr(
           t[a.b].offset, t[a.e - 1].offset + t[a.e - 1].length - t[a.b].offset));
     }
     if (is1(f_.text(t[a.b]), '[')) {
       if (!joint) {
-        const int plain = plainRobtarget(a.b, a.e);
+        const int plain = plainRobtarget(a.b, a.e, {});
         if (plain >= 0) return plain;
       }
       const Node n = parseValue(a.b, a.e);
       return joint ? makeJointtarget(n, "") : makeRobtarget(n, "");
     }
     if (a.e - a.b == 1 && t[a.b].kind == TokenKind::kIdentifier) {
-      const auto it = targets_.find(upper(f_.text(t[a.b])));
-      if (it != targets_.end()) return it->second;
+      if (const int* idx = targets_.find(f_.text(t[a.b]))) return *idx;
       unresolved(std::string(f_.text(t[a.b])), t[a.b].offset, "target not declared in the module");
       m.derivation = p_.addText("undeclared");
       return -1;
@@ -751,8 +755,8 @@ class RapidReader {
     if ((fn == "OFFS" || fn == "RELTOOL") && a.e - a.b > 3 && is1(f_.text(t[a.b + 1]), '(') &&
         t[a.b + 2].kind == TokenKind::kIdentifier) {
       m.derivation = p_.addText(fn == "OFFS" ? "Offs" : "RelTool");
-      const auto it = targets_.find(upper(f_.text(t[a.b + 2])));
-      if (it == targets_.end()) {
+      const int* const idx = targets_.find(f_.text(t[a.b + 2]));
+      if (idx == nullptr) {
         unresolved(std::string(f_.text(t[a.b + 2])), t[a.b + 2].offset,
                    "target not declared in the module");
         return -1;
@@ -804,7 +808,7 @@ class RapidReader {
                               .toRotationMatrix();
         m.offset.set(offset);
       }
-      return it->second;
+      return *idx;
     }
     m.derivation = p_.addText("runtime");
     return -1;

@@ -362,5 +362,79 @@ TEST(RapidReader, PredictWarnsAboutAnUnresolvedTargetComponentOnStderr) {
   EXPECT_NE(one.err.find("the first 'inf' at line 7"), std::string::npos) << one.err;
 }
 
+// Declared robtargets are looked up by name case-insensitively (RAPID names are), also inside
+// Offs; a name declared twice resolves to its later declaration from there on.
+TEST(RapidReader, DeclaredTargetsResolveCaseInsensitivelyTheLaterDeclarationWins) {
+  const std::string text =
+      "MODULE names\n"
+      "  CONST robtarget pHole:=[[1,2,3],[0,1,0,0],[0,0,0,0],[9E+09,9E+09,9E+09,9E+09,9E+09,"
+      "9E+09]];\n"
+      "  CONST robtarget pOther:=[[4,5,6],[0,1,0,0],[0,0,0,0],[9E+09,9E+09,9E+09,9E+09,9E+09,"
+      "9E+09]];\n"
+      "  PROC main()\n"
+      "    MoveL PHOLE,v100,fine,tool0;\n"
+      "    MoveL Offs(phole,0,0,10),v100,fine,tool0;\n"
+      "  ENDPROC\n"
+      "  CONST robtarget POTHER:=[[7,8,9],[0,1,0,0],[0,0,0,0],[9E+09,9E+09,9E+09,9E+09,9E+09,"
+      "9E+09]];\n"
+      "  PROC second()\n"
+      "    MoveL pother,v100,fine,tool0;\n"
+      "  ENDPROC\n"
+      "ENDMODULE\n";
+  const postproc::Program p = parseProgram(Dialect::kRapid, "names.mod", text);
+  ASSERT_EQ(p.targets().size(), 3U);
+  ASSERT_EQ(p.motions.size(), 3U);
+  EXPECT_EQ(p.motions[0].target, 0);
+  EXPECT_EQ(p.motions[1].target, 0);
+  EXPECT_TRUE(p.motions[1].has_offset);
+  EXPECT_EQ(p.motions[2].target, 2);  // the later POTHER, not pOther
+  EXPECT_EQ(p.targets()[2].name, "POTHER");
+  EXPECT_DOUBLE_EQ(p.targets()[2].pos[0].value, 7.0);
+  EXPECT_TRUE(p.unresolved.empty());
+}
+
+// A robtarget declared in plain numbers on one line (read without a parse tree) gives the
+// target the general reader gives the same numbers spread over lines with a comment.
+TEST(RapidReader, APlainDeclaredTargetReadsAsTheGeneralPathReadsIt) {
+  const std::string plain =
+      "MODULE m\n"
+      "  CONST robtarget p1:=[[-359.4,+299.4,3e2],[0,1,0,0],[-1,0,-2,1],[9E+09,9E+09,9E+09,"
+      "9E+09,9E+09,12.5]];\n"
+      "  PROC main()\n"
+      "    MoveL p1,v100,fine,tool0;\n"
+      "  ENDPROC\n"
+      "ENDMODULE\n";
+  std::string spread = plain;
+  spread.replace(spread.find("[0,1,0,0]"), 9, "[0,1,0,\n  0]");
+  spread.replace(spread.find("[-1,0,-2,1]"), 11, "[-1,0,-2,1] ! robconf\n  ");
+  const postproc::Program a = parseProgram(Dialect::kRapid, "a.mod", plain);
+  const postproc::Program b = parseProgram(Dialect::kRapid, "b.mod", spread);
+  ASSERT_EQ(a.targets().size(), 1U);
+  ASSERT_EQ(b.targets().size(), 1U);
+  const postproc::Target& ta = a.targets()[0];
+  const postproc::Target& tb = b.targets()[0];
+  EXPECT_EQ(ta.name, tb.name);
+  EXPECT_EQ(ta.line, tb.line);
+  EXPECT_EQ(ta.config.vendor, tb.config.vendor);
+  EXPECT_EQ(ta.config.cf, tb.config.cf);
+  const auto text = [](const postproc::Program& p, const postproc::NumberField& f) {
+    return std::string(p.files[0].bytes.substr(f.offset, f.length));
+  };
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_EQ(ta.pos[k].value, tb.pos[k].value);
+    EXPECT_EQ(text(a, ta.pos[k]), text(b, tb.pos[k]));
+  }
+  for (std::size_t k = 0; k < 4; ++k) {
+    EXPECT_EQ(ta.rot[k].value, tb.rot[k].value);
+    EXPECT_EQ(ta.cf_fields[k].value, tb.cf_fields[k].value);
+  }
+  for (std::size_t k = 0; k < 6; ++k) EXPECT_EQ(ta.ext[k].value, tb.ext[k].value);
+  EXPECT_EQ(text(a, ta.pos[1]), "+299.4");
+  EXPECT_DOUBLE_EQ(ta.pos[2].value, 300.0);
+  EXPECT_EQ(ta.config.cf[0], -1);
+  EXPECT_EQ(a.motions[0].target, 0);
+  EXPECT_EQ(b.motions[0].target, 0);
+}
+
 }  // namespace
 }  // namespace roprec
