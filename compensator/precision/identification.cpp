@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <memory>
 
 #include "compensator/precision/uncertainty.hpp"
 #include "compensator/support/error.hpp"
@@ -210,7 +211,10 @@ struct Problem {
   nc::Data data;
   IdentifySet identify{IdentifySet::kAll};
   std::vector<Eigen::Index> row;  ///< first residual row of each observation; back() = total
-  std::vector<std::optional<nc::Model>> obs_model;  ///< per observation with its own tool
+  /// Per observation with its own tool, its model (null: the problem's). A pointer, not an
+  /// optional: a 4 kB model per observation would be written (and kept resident) for the
+  /// 64,000 candidates of a test plan, which have none.
+  std::vector<std::unique_ptr<const nc::Model>> obs_model;
   // geometry: p̂ = p̂_model + TCP(calibratedChain(nominal, G(x)), θ) − TCP(m's chain, θ)
   GeometryCalibration g0;  ///< the card's (the prior; its base is kept)
   Pose T_flange_tcp{Pose::Identity()};
@@ -277,7 +281,8 @@ Vec6 offsetTorque(Problem& P, const Vec6& theta_cmd) {
 
 void setUpHoles(Problem& P) {
   P.row.assign(1, 0);
-  P.obs_model.assign(P.holes.size(), std::nullopt);
+  P.obs_model.clear();
+  P.obs_model.resize(P.holes.size());
   P.offset_torque.clear();
   for (size_t i = 0; i < P.holes.size(); ++i) {
     const IdentificationHole& h = P.holes[i];
@@ -287,10 +292,11 @@ void setUpHoles(Problem& P) {
                          "observation '" + h.id +
                              "' has a payload: the tool cannot be identified together with "
                              "payload rows");
-      P.obs_model[i] = nc::buildModel(P.m.robot.real_chain, *h.tool);
-      P.obs_model[i]->gravity = P.m.model.gravity;
-      P.obs_model[i]->tol_phi = P.m.model.tol_phi;
-      P.obs_model[i]->max_iterations = P.m.model.max_iterations;
+      auto model = std::make_unique<nc::Model>(nc::buildModel(P.m.robot.real_chain, *h.tool));
+      model->gravity = P.m.model.gravity;
+      model->tol_phi = P.m.model.tol_phi;
+      model->max_iterations = P.m.model.max_iterations;
+      P.obs_model[i] = std::move(model);
     }
     const ProcessAtDiameter* proc = h.point ? nullptr : processFor(P.m, processRequest(h));
     P.loads.push_back(h.loads ? *h.loads : processLoads(P.m, proc));
