@@ -810,6 +810,75 @@ TEST(Identification, DOptimalPlanIsTheGreedyOfTheLargestLogDetEachStep) {
   }
 }
 
+/// The D_s criterion log det M − log det M_nn, each by its own LLT (no gain formula).
+double referenceCriterion(const Eigen::MatrixXd& M, Eigen::Index nn) {
+  const auto logDetOf = [](const Eigen::MatrixXd& A) {
+    const Eigen::LLT<Eigen::MatrixXd> llt(A);
+    EXPECT_EQ(llt.info(), Eigen::Success);
+    return 2.0 * Eigen::MatrixXd(llt.matrixL()).diagonal().array().log().sum();
+  };
+  return logDetOf(M) - (nn > 0 ? logDetOf(M.bottomRightCorner(nn, nn)) : 0.0);
+}
+
+/// Random σ-weighted Jacobian rows (2 per candidate, entries of mixed magnitude), positions in a
+/// 0.2 m cube and the greedy of referenceCriterion: each step every well-spaced candidate's
+/// criterion with it added, recomputed from M; the selection must pick the same holes in the
+/// same order. n = 6 without nuisance is the joint-stiffness plan's fixed-size path, n = 8
+/// without nuisance the general lazy greedy, n = 9 with 3 nuisance columns the scan.
+TEST(Identification, GreedyDOptimalChoosesTheHolesOfTheLogDetGreedy) {
+  struct Case {
+    Eigen::Index n, nn;
+  };
+  for (const Case& k : {Case{6, 0}, Case{8, 0}, Case{9, 3}}) {
+    std::mt19937 rng(static_cast<unsigned>(17 + k.n));
+    std::normal_distribution<double> normal;
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const int candidates = 300;
+    const int count = 25;
+    Eigen::MatrixXd J(2 * candidates, k.n);
+    for (Eigen::Index r = 0; r < J.rows(); ++r)
+      for (Eigen::Index c = 0; c < k.n; ++c) J(r, c) = normal(rng) * (0.2 + 3.0 * unit(rng));
+    std::vector<Vec3> p_W;
+    for (int i = 0; i < candidates; ++i)
+      p_W.emplace_back(0.2 * unit(rng), 0.2 * unit(rng), 0.2 * unit(rng));
+    const Eigen::VectorXd s0 = Eigen::VectorXd::Constant(k.n, 0.5);
+    const double spacing = 0.03;
+    double criterion = 0;
+    const std::vector<int> chosen = greedyDOptimal(J, s0, count, k.nn, p_W, spacing, criterion);
+    ASSERT_EQ(chosen.size(), static_cast<size_t>(count)) << "n " << k.n;
+
+    Eigen::MatrixXd M = s0.cwiseInverse().cwiseAbs2().asDiagonal();
+    std::vector<int> reference;
+    for (int step = 0; step < count; ++step) {
+      int best = -1;
+      double best_value = -std::numeric_limits<double>::infinity();
+      double second = best_value;
+      for (int i = 0; i < candidates; ++i) {
+        bool spaced = true;
+        for (const int c : reference)
+          spaced = spaced &&
+                   (p_W[static_cast<size_t>(i)] - p_W[static_cast<size_t>(c)]).norm() >= spacing;
+        if (!spaced) continue;
+        const Eigen::MatrixXd Ji = J.middleRows(2 * i, 2);
+        const double v = referenceCriterion(M + Ji.transpose() * Ji, k.nn);
+        if (v > best_value) {
+          second = best_value;
+          best_value = v;
+          best = i;
+        } else if (v > second) {
+          second = v;
+        }
+      }
+      ASSERT_GT(best_value - second, 1e-9) << "n " << k.n << ", step " << step << ": a near tie";
+      reference.push_back(best);
+      const Eigen::MatrixXd Jb = J.middleRows(2 * best, 2);
+      M += Jb.transpose() * Jb;
+    }
+    EXPECT_EQ(chosen, reference) << "n " << k.n << ", nuisance " << k.nn;
+    EXPECT_NEAR(criterion, referenceCriterion(M, k.nn), 1e-9) << "n " << k.n;
+  }
+}
+
 // ---------------------------------------------------------------- geometry with the stiffness
 //
 // The truth robot has geometric errors as real robots have them (calibration reference): each

@@ -390,6 +390,9 @@ bool admissible(const Layout& l, const VectorXd& x) {
   return true;
 }
 
+/// The equilibria below read the TCP and θ only (P.data is their scratch): the frames suffice.
+constexpr nc::DeflectionOptions kFramesOnly{.natural_state = false};
+
 /// p̂_W of every hole at x without the geometry term (the real TCP's orientation with it), and
 /// the real joint angles θ.
 int predictEquilibrium(Problem& P, const VectorXd& x, std::vector<Pose>& p,
@@ -408,7 +411,8 @@ int predictEquilibrium(Problem& P, const VectorXd& x, std::vector<Pose>& p,
     const Vec6 offset = P.m.controller.kind == nc::ControllerReference::Kind::kNone
                             ? Vec6::Zero()
                             : Vec6(P.offset_torque[i].cwiseQuotient(c_eff));
-    const nc::Deflection d = nc::predictDeflection(model, P.data, c, th, P.loads[i], {}, offset);
+    const nc::Deflection d =
+        nc::predictDeflection(model, P.data, c, th, P.loads[i], kFramesOnly, offset);
     if (!d.converged || !d.position_converged) return static_cast<int>(i);
     p[i] = d.T_real;
     p[i].translation() += d.T_nominal.linear() * P.d_mach_tool[i];
@@ -1390,8 +1394,7 @@ MatrixXd spdInverse(const MatrixXd& A) {
 /// log det of the 2×2 matrix S (−∞ unless det S > 0), det S by LU with partial pivoting: the
 /// arithmetic of Eigen's PartialPivLU::determinant for a 2×2 matrix (row 1 becomes the pivot row
 /// only when strictly larger in magnitude), without its allocation.
-double logDet2(const MatrixXd& S) {
-  double a = S(0, 0), b = S(0, 1), c = S(1, 0), d = S(1, 1);
+double logDet2(double a, double b, double c, double d) {
   double sign = 1.0;
   if (std::abs(c) > std::abs(a)) {
     std::swap(a, c);
@@ -1403,6 +1406,7 @@ double logDet2(const MatrixXd& S) {
   const double det = sign * (a * d);
   return det > 0 ? std::log(det) : -std::numeric_limits<double>::infinity();
 }
+double logDet2(const MatrixXd& S) { return logDet2(S(0, 0), S(0, 1), S(1, 0), S(1, 1)); }
 
 /// Work space of criterionGain, sized once per selection (no allocation per candidate).
 struct GainScratch {
@@ -1441,6 +1445,46 @@ Gain criterionGain(const MatrixXd& J, Eigen::Index i, const MatrixXd& Minv, cons
     g.value -= logDet2(s.S);
   }
   return g;
+}
+
+/// criterionGain of a 6-parameter criterion without nuisance (the joint-stiffness plan) on
+/// fixed-size data: Ji the candidate's 2 rows (row-major, 12 doubles), Minv M⁻¹ (row-major).
+/// Every sum runs over k in order, as Eigen's coefficient-based product of the dynamic 2×6 and
+/// 6×6 matrices does: the same gain to the last bit, without copies of the rows.
+Gain criterionGain6(const double* Ji, const std::array<double, 36>& Minv) {
+  std::array<double, 12> W;  // Ji M⁻¹
+  for (int r = 0; r < 2; ++r) {
+    for (int c = 0; c < 6; ++c) {
+      double a = Ji[6 * r] * Minv[c];
+      for (int k = 1; k < 6; ++k) a += Ji[6 * r + k] * Minv[6 * k + c];
+      W[static_cast<size_t>(6 * r + c)] = a;
+    }
+  }
+  double S[2][2];  // W Jiᵀ
+  for (int r = 0; r < 2; ++r) {
+    for (int c = 0; c < 2; ++c) {
+      double a = W[static_cast<size_t>(6 * r)] * Ji[6 * c];
+      for (int k = 1; k < 6; ++k) a += W[static_cast<size_t>(6 * r + k)] * Ji[6 * c + k];
+      S[r][c] = a;
+    }
+  }
+  S[0][0] += 1.0;
+  S[1][1] += 1.0;
+  Gain g;
+  g.full = logDet2(S[0][0], S[0][1], S[1][0], S[1][1]);
+  g.value = g.full;
+  return g;
+}
+
+/// Asks the cache for a candidate's 12 contiguous doubles (96 bytes: two lines at most) while
+/// the one before is evaluated; the lazy greedy visits the candidates in no memory order.
+inline void prefetchRows(const double* rows) {
+#if defined(__GNUC__)
+  __builtin_prefetch(rows);
+  __builtin_prefetch(rows + 11);
+#else
+  (void)rows;
+#endif
 }
 
 /// A candidate in the lazy greedy's heap: `bound` ≥ its gain at the current step (its `full`
@@ -1493,11 +1537,13 @@ std::vector<int> byX(const std::vector<Vec3>& p_W) {
 /// heap's top, evaluates it with this step's M⁻¹, and stops once the top's bound is below the
 /// best fresh gain (by more than lazySlack): the gains only shrink, so no candidate below can
 /// win. The evaluated candidates go back with their fresh bounds.
-int lazyStep(const MatrixXd& J, const MatrixXd& Minv, const MatrixXd& Mnn_inv, Eigen::Index nn,
-             const std::vector<bool>& used, std::vector<Bounded>& heap, GainScratch& scratch) {
+/// `gain(i)`: candidate i's Gain at this step.
+template <class GainOf, class Prefetch>
+int lazyStep(const GainOf& gain, const Prefetch& prefetch, const std::vector<bool>& used,
+             std::vector<Bounded>& heap, std::vector<Bounded>& evaluated) {
   int best = -1;
   double best_gain = -std::numeric_limits<double>::infinity();
-  std::vector<Bounded> evaluated;
+  evaluated.clear();
   while (!heap.empty()) {
     const Bounded top = heap.front();
     if (!used[static_cast<size_t>(top.index)] && best >= 0 &&
@@ -1506,7 +1552,8 @@ int lazyStep(const MatrixXd& J, const MatrixXd& Minv, const MatrixXd& Mnn_inv, E
     std::pop_heap(heap.begin(), heap.end(), belowInHeap);
     heap.pop_back();
     if (used[static_cast<size_t>(top.index)]) continue;  // chosen or too close: gone for good
-    const Gain g = criterionGain(J, top.index, Minv, Mnn_inv, nn, scratch);
+    if (!heap.empty()) prefetch(heap.front().index);     // likely the next one evaluated
+    const Gain g = gain(top.index);
     if (g.value > best_gain || (g.value == best_gain && best >= 0 && top.index < best)) {
       best_gain = g.value;
       best = top.index;
@@ -1524,64 +1571,19 @@ int lazyStep(const MatrixXd& J, const MatrixXd& Minv, const MatrixXd& Mnn_inv, E
 
 /// One step of the plain greedy: every candidate left evaluated with this step's M⁻¹; the largest
 /// gain, the first candidate among equal gains, or −1 when none is left.
-int scanStep(const MatrixXd& J, const MatrixXd& Minv, const MatrixXd& Mnn_inv, Eigen::Index nn,
-             const std::vector<bool>& used, GainScratch& scratch) {
+template <class GainOf>
+int scanStep(const GainOf& gain, const std::vector<bool>& used) {
   int best = -1;
   double best_gain = -std::numeric_limits<double>::infinity();
-  for (Eigen::Index i = 0; i < J.rows() / 2; ++i) {
-    if (used[static_cast<size_t>(i)]) continue;
-    const double g = criterionGain(J, i, Minv, Mnn_inv, nn, scratch).value;
+  for (size_t i = 0; i < used.size(); ++i) {
+    if (used[i]) continue;
+    const double g = gain(static_cast<int>(i)).value;
     if (g > best_gain) {
       best_gain = g;
       best = static_cast<int>(i);
     }
   }
   return best;
-}
-
-/// Greedy D-optimal selection of `count` holes; a candidate closer than `min_spacing` (m) to a
-/// chosen hole is not drillable any more (one hole per place). Returns fewer than `count` when
-/// the well-spaced candidates run out. `criterion`: the final D_s value.
-///
-/// Without nuisance (nn = 0) the criterion log det M is submodular: a lazy greedy (Minoux), each
-/// candidate's last gain an upper bound in a max-heap, only the top evaluated again until the
-/// best fresh gain beats every remaining bound. Its choice is the one of a scan over all
-/// candidates with this step's M⁻¹: the largest gain, the lowest candidate index among equal
-/// gains (each gain evaluated by the same arithmetic). With nuisance the D_s gain may grow (its
-/// nuisance term shrinks too) and `full` bounds it loosely: every step scans all candidates.
-/// M grows by the rank-2 update Jbᵀ Jb of the chosen hole.
-std::vector<int> greedyDOptimal(const MatrixXd& J, const VectorXd& s0, int count, Eigen::Index nn,
-                                const std::vector<Vec3>& p_W, double min_spacing,
-                                double& criterion) {
-  MatrixXd M = s0.cwiseInverse().cwiseAbs2().asDiagonal();
-  const auto value = [&](const MatrixXd& A) {
-    return logDet(A) - (nn > 0 ? logDet(A.bottomRightCorner(nn, nn)) : 0.0);
-  };
-  const int candidates = static_cast<int>(J.rows() / 2);
-  std::vector<int> chosen;
-  std::vector<bool> used(static_cast<size_t>(candidates), false);
-  std::vector<Bounded> heap;  // the lazy greedy's (nn = 0), all bounds +∞ (not evaluated yet)
-  if (nn == 0) {
-    heap.reserve(static_cast<size_t>(candidates));
-    for (int i = 0; i < candidates; ++i)
-      heap.push_back({std::numeric_limits<double>::infinity(), i});
-    std::make_heap(heap.begin(), heap.end(), belowInHeap);
-  }
-  GainScratch scratch;
-  const std::vector<int> by_x = byX(p_W);
-  for (int step = 0; step < count; ++step) {
-    const MatrixXd Minv = spdInverse(M);
-    const MatrixXd Mnn_inv = nn > 0 ? spdInverse(M.bottomRightCorner(nn, nn)) : MatrixXd();
-    const int best = nn > 0 ? scanStep(J, Minv, Mnn_inv, nn, used, scratch)
-                            : lazyStep(J, Minv, Mnn_inv, nn, used, heap, scratch);
-    if (best < 0) break;
-    markNeighbours(p_W, by_x, best, min_spacing, used);
-    chosen.push_back(best);
-    const MatrixXd Jb = J.middleRows(2 * static_cast<Eigen::Index>(best), 2);
-    M += Jb.transpose() * Jb;
-  }
-  criterion = value(M);
-  return chosen;
 }
 
 /// Expected σ per parameter, the unobservable robot parameters, and the predicted accuracy
@@ -1612,6 +1614,61 @@ void planStatistics(const Problem& P, const MatrixXd& J, const MatrixXd& C, doub
 }
 
 }  // namespace
+
+// Lazy greedy (Minoux) without nuisance: its choice is the one of a scan over all candidates with
+// this step's M⁻¹ (each gain evaluated by the same arithmetic); with nuisance the D_s gain may
+// grow (its nuisance term shrinks too) and `full` bounds it loosely: every step scans.
+std::vector<int> greedyDOptimal(const MatrixXd& J, const VectorXd& s0, int count, Eigen::Index nn,
+                                const std::vector<Vec3>& p_W, double min_spacing,
+                                double& criterion) {
+  MatrixXd M = s0.cwiseInverse().cwiseAbs2().asDiagonal();
+  const auto value = [&](const MatrixXd& A) {
+    return logDet(A) - (nn > 0 ? logDet(A.bottomRightCorner(nn, nn)) : 0.0);
+  };
+  const int candidates = static_cast<int>(J.rows() / 2);
+  std::vector<int> chosen;
+  std::vector<bool> used(static_cast<size_t>(candidates), false);
+  std::vector<Bounded> heap;  // the lazy greedy's (nn = 0), all bounds +∞ (not evaluated yet)
+  if (nn == 0) {
+    heap.reserve(static_cast<size_t>(candidates));
+    for (int i = 0; i < candidates; ++i)
+      heap.push_back({std::numeric_limits<double>::infinity(), i});
+    std::make_heap(heap.begin(), heap.end(), belowInHeap);
+  }
+  GainScratch scratch;
+  std::vector<Bounded> evaluated;
+  // the stiffness plan (6 parameters, no nuisance): each candidate's rows contiguous, gains in
+  // fixed-size arithmetic (criterionGain6)
+  const bool six = J.cols() == 6 && nn == 0;
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> J_rows;
+  if (six) J_rows = J;
+  std::array<double, 36> Minv6{};
+  const std::vector<int> by_x = byX(p_W);
+  for (int step = 0; step < count; ++step) {
+    const MatrixXd Minv = spdInverse(M);
+    const MatrixXd Mnn_inv = nn > 0 ? spdInverse(M.bottomRightCorner(nn, nn)) : MatrixXd();
+    int best = -1;
+    if (six) {
+      for (int r = 0; r < 6; ++r)
+        for (int c = 0; c < 6; ++c) Minv6[static_cast<size_t>(6 * r + c)] = Minv(r, c);
+      const auto rows = [&](int i) { return J_rows.data() + 12 * static_cast<size_t>(i); };
+      best = lazyStep([&](int i) { return criterionGain6(rows(i), Minv6); },
+                      [&](int i) { prefetchRows(rows(i)); }, used, heap, evaluated);
+    } else {
+      const auto gain = [&](int i) { return criterionGain(J, i, Minv, Mnn_inv, nn, scratch); };
+      best = nn > 0 ? scanStep(gain, used)
+                    : lazyStep(
+                          gain, [](int) {}, used, heap, evaluated);
+    }
+    if (best < 0) break;
+    markNeighbours(p_W, by_x, best, min_spacing, used);
+    chosen.push_back(best);
+    const MatrixXd Jb = J.middleRows(2 * static_cast<Eigen::Index>(best), 2);
+    M += Jb.transpose() * Jb;
+  }
+  criterion = value(M);
+  return chosen;
+}
 
 TestPlan planTest(const PredictionModel& m, const std::vector<HoleRequest>& candidates, int count,
                   const PlanOptions& o) {

@@ -442,6 +442,19 @@ struct TestPlan {
 TestPlan planTest(const PredictionModel& m, const std::vector<HoleRequest>& candidates, int count,
                   const PlanOptions& options);
 
+/// The greedy D-optimal selection of planTest: `count` of the candidates, candidate i being rows
+/// 2i and 2i + 1 of the σ-weighted data Jacobian J (2 · candidates × n parameters, prior σ s0),
+/// each step the one of the largest gain of the D_s criterion log det M − log det M_nn (M =
+/// diag(s0)⁻² + Σ chosen Jᵢᵀ Jᵢ, the last `nn` parameters a nuisance), the lowest index among
+/// equal gains. A candidate closer than `min_spacing` (m; positions p_W) to a chosen one is not
+/// drillable any more (one hole per place). Returns the chosen indices in selection order, fewer
+/// than `count` when the well-spaced candidates run out; `criterion` = the final D_s value.
+/// Without nuisance the gains shrink as M grows: a lazy greedy re-evaluates a candidate only
+/// while its last gain may still win. M grows by the rank-2 update Jᵢᵀ Jᵢ of the chosen hole.
+std::vector<int> greedyDOptimal(const Eigen::MatrixXd& J, const Eigen::VectorXd& s0, int count,
+                                Eigen::Index nn, const std::vector<Vec3>& p_W, double min_spacing,
+                                double& criterion);
+
 /// Candidate holes for planning: a grid of `per_axis`³ points over the box [lo, hi] (m,
 /// workobject frame; an axis with lo = hi gets one point), each with every drilling direction
 /// (workobject frame, normalised) and every rotation ψ about it (rad). TCP x = the workobject x
