@@ -677,6 +677,7 @@ std::string PredictionReportStream::finish(const PredictionResult& r) {
   ReportInput in = predictionReportHeader(r.context, r.summary);
   setPartFrame(in, r.context, r.frames);
   in.predicted = std::move(holes_);
+  in.threads = workers_;
   return renderReport(in);
 }
 
