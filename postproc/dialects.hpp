@@ -33,7 +33,13 @@ class KrlStream {
   KrlStream(const KrlStream&) = delete;
   KrlStream& operator=(const KrlStream&) = delete;
   void lines();
+  /// lines() of a window whose tokens lexWindow() put in p.files[0].tokens already.
+  void lexedLines();
   void finish();
+  /// Lexes a window of whole lines of a .src (not its first: no byte-order mark) into f.tokens
+  /// as lines() would, line after line: lexedLines() then reads them (the lexing may run on
+  /// another thread, ahead of the reader).
+  static void lexWindow(SourceFile& f);
   /// The motion the reader may still change (the last segment of a SPLINE block being read),
   /// -1 when none: motions from it on may not be retired.
   [[nodiscard]] int heldMotion() const;

@@ -63,8 +63,10 @@ bool istartsWith(std::string_view s, std::string_view w) {
 }
 
 bool icontains(std::string_view s, std::string_view w) {
+  if (w.empty()) return true;
+  const char first = asciiUpper(w[0]);  // compared first: most places fail on it
   for (std::size_t i = 0; i + w.size() <= s.size(); ++i) {
-    if (iequals(s.substr(i, w.size()), w)) return true;
+    if (asciiUpper(s[i]) == first && iequals(s.substr(i, w.size()), w)) return true;
   }
   return false;
 }
@@ -82,6 +84,15 @@ int sigDigits(std::string_view s) {
   return n;
 }
 
+/// The tokenizer options of KRL (`;` comments, `&` header lines, quoted literals).
+LexOptions krlLexOptions() {
+  LexOptions o;
+  o.comment = ';';
+  o.header_amp = true;
+  o.single_quote_string = true;
+  return o;
+}
+
 class KrlReader {
  public:
   explicit KrlReader(Program& p) : p_(p) {}
@@ -95,9 +106,7 @@ class KrlReader {
   /// Before the .src: the lexer's options, the .dat's declarations (p.files[1], read whole).
   /// `reserve`: the .src is read whole (its targets' vector sized once).
   void start(bool reserve) {
-    lex_.comment = ';';
-    lex_.header_amp = true;
-    lex_.single_quote_string = true;
+    lex_ = krlLexOptions();
     // the name tables grow by doubling: a reserve from the file size would touch (and keep
     // resident) tens of MB a .src without declarations never uses
     // every target is an aggregate: '{' bounds their count (no regrowth of the large Target
@@ -122,6 +131,11 @@ class KrlReader {
   void readSrcLines() {
     file_ = 0;
     forEachLine([&](std::size_t b, std::size_t e, std::size_t j) { srcLine(b, e, j); });
+  }
+  /// readSrcLines() over the window's tokens lexed already (KrlStream::lexWindow).
+  void readLexedSrcLines() {
+    file_ = 0;
+    forEachLexedLine([&](std::size_t b, std::size_t e, std::size_t j) { srcLine(b, e, j); });
   }
 
   /// After the .src's last line: its DEF ... END checked.
@@ -207,6 +221,25 @@ class KrlReader {
       std::size_t e = j;
       while (e > 0 && f.tokens[e - 1].kind == TokenKind::kComment) --e;
       fn(std::size_t{0}, e, j);
+    }
+    f.tokens.clear();
+  }
+
+  // forEachLine over the tokens of the whole window (lexed line by line ahead, the same tokens):
+  // fn(b, e, j) with [b, e) the logical line and j its newline token (or the tokens' end), as
+  // indices into f.tokens; the reader never looks before b or past j.
+  template <class F>
+  void forEachLexedLine(F&& fn) {
+    SourceFile& f = p_.files[static_cast<std::size_t>(file_)];
+    line_index_ = 0;
+    const std::size_t n = f.tokens.size();
+    for (std::size_t b = 0; b < n;) {
+      std::size_t j = b;
+      while (j < n && f.tokens[j].kind != TokenKind::kNewline) ++j;
+      std::size_t e = j;
+      while (e > b && f.tokens[e - 1].kind == TokenKind::kComment) --e;
+      fn(b, e, j);
+      b = j + 1;
     }
     f.tokens.clear();
   }
@@ -1037,6 +1070,13 @@ struct KrlStream::Reader : KrlReader {
 KrlStream::KrlStream(Program& p) : r_(std::make_unique<Reader>(p)) { r_->start(false); }
 KrlStream::~KrlStream() = default;
 void KrlStream::lines() { r_->readSrcLines(); }
+void KrlStream::lexedLines() { r_->readLexedSrcLines(); }
+void KrlStream::lexWindow(SourceFile& f) {
+  const LexOptions o = krlLexOptions();
+  f.tokens.clear();
+  f.tokens.reserve(f.bytes.size() / 3 + 16);
+  for (std::size_t pos = 0; pos < f.bytes.size();) pos = lexLine(f, o, pos, f.tokens);
+}
 void KrlStream::finish() { r_->finish(); }
 int KrlStream::heldMotion() const { return r_->heldMotion(); }
 void KrlStream::retired(std::size_t m) { r_->retired(m); }

@@ -14,8 +14,10 @@ namespace roprec::postproc {
 
 namespace fs = std::filesystem;
 
-ProgramStream::ProgramStream(const std::string& path, std::size_t window_bytes)
-    : path_(path), window_bytes_(std::max<std::size_t>(window_bytes, 4096)) {
+ProgramStream::ProgramStream(const std::string& path, std::size_t window_bytes, bool read_ahead)
+    : path_(path),
+      window_bytes_(std::max<std::size_t>(window_bytes, 4096)),
+      read_ahead_(read_ahead) {
   // a file that cannot be read in windows (missing, not a regular file, above the size limit)
   // gets readInputFile's error
   const auto refuse = [&](const std::string& p) {
@@ -46,6 +48,7 @@ ProgramStream::ProgramStream(const std::string& path, std::size_t window_bytes)
   const platform::Status st = file_.status();
   if (st.kind != platform::Kind::kRegular || st.size > inputSizeLimit(InputKind::kProgram))
     refuse(src);
+  src_ = src;
   SourceFile s;
   s.path = src;
   p_.files.push_back(std::move(s));
@@ -69,11 +72,50 @@ ProgramStream::ProgramStream(const std::string& path, std::size_t window_bytes)
   pending_ = true;
 }
 
-ProgramStream::~ProgramStream() = default;
+ProgramStream::~ProgramStream() {
+  if (ahead_.valid()) ahead_.wait();  // its errors are no one's any more
+}
 
 bool ProgramStream::readWindow() {
+  std::string buf;
+  readWindowBytes(buf);
+  if (buf.empty()) return false;
+  SourceFile w;
+  w.bytes = std::move(buf);
+  w.indexLines();
+  installWindow(std::move(w));
+  return true;
+}
+
+void ProgramStream::installWindow(SourceFile&& w) {
   SourceFile& f = p_.files[0];
-  std::string buf = std::move(rest_);
+  const bool first = f.line_starts.empty();
+  const int lines = first ? 0 : f.line_base + static_cast<int>(f.line_starts.size());
+  f.bytes = std::move(w.bytes);
+  f.line_starts = std::move(w.line_starts);
+  f.line_ends = std::move(w.line_ends);
+  f.bare_fractions = f.bare_fractions || w.bare_fractions;  // the flags of the file so far
+  f.zero_fractions = f.zero_fractions || w.zero_fractions;
+  f.bom = first && w.bom;
+  f.line_base = lines;
+  f.tokens = std::move(w.tokens);
+}
+
+void ProgramStream::startAhead() {
+  ahead_ = std::async(std::launch::async, [this] {
+    SourceFile w;
+    readWindowBytes(w.bytes);
+    if (w.bytes.empty()) return w;
+    w.indexLines();
+    w.bom = false;  // not the file's first bytes
+    KrlStream::lexWindow(w);
+    return w;
+  });
+}
+
+void ProgramStream::readWindowBytes(std::string& buf) {
+  const std::string& path = src_;  // not p_ (the reader may change it meanwhile)
+  buf = std::move(rest_);
   rest_.clear();
   std::size_t cut = std::string::npos;
   while (!eof_) {  // whole lines: up to the last line end, more when the window has none
@@ -81,15 +123,15 @@ bool ProgramStream::readWindow() {
     buf.resize(old + window_bytes_);
     int e = 0;
     const long long n = file_.read(buf.data() + old, window_bytes_, &e);
-    if (n < 0) (void)readInputFile(f.path, InputKind::kProgram);  // its read error
+    if (n < 0) (void)readInputFile(path, InputKind::kProgram);  // its read error
     buf.resize(old + static_cast<std::size_t>(std::max(0LL, n)));
     if (n <= 0) eof_ = true;
     read_ += static_cast<std::size_t>(std::max(0LL, n));
     if (read_ > inputSizeLimit(InputKind::kProgram))  // a file grown past the limit as it is read
-      (void)readInputFile(f.path, InputKind::kProgram);
+      (void)readInputFile(path, InputKind::kProgram);
     if (std::memchr(buf.data() + old, '\0', buf.size() - old) != nullptr)
-      (void)readInputFile(f.path, InputKind::kProgram);  // the NUL byte at its line and column
-    for (std::size_t k = buf.size(); k > old; --k) {     // the bytes read before have none
+      (void)readInputFile(path, InputKind::kProgram);  // the NUL byte at its line and column
+    for (std::size_t k = buf.size(); k > old; --k) {   // the bytes read before have none
       if (buf[k - 1] == '\n') {
         cut = k - 1;
         break;
@@ -97,19 +139,10 @@ bool ProgramStream::readWindow() {
     }
     if (cut != std::string::npos) break;
   }
-  if (buf.empty()) return false;
-  if (!eof_ && cut != std::string::npos) {
+  if (!buf.empty() && !eof_ && cut != std::string::npos) {
     rest_.assign(buf, cut + 1, std::string::npos);
     buf.resize(cut + 1);
   }
-  const bool first = f.line_starts.empty();
-  const int lines = first ? 0 : f.line_base + static_cast<int>(f.line_starts.size());
-  f.bytes = std::move(buf);
-  f.indexLines();
-  f.line_base = lines;
-  if (!first) f.bom = false;
-  f.tokens.clear();
-  return true;
 }
 
 bool ProgramStream::next() {
@@ -122,16 +155,33 @@ bool ProgramStream::next() {
     p_ = readProgram(path_, readInputFile(path_, InputKind::kProgram));
     return true;
   }
+  bool more = true;
+  bool lexed = false;
   if (pending_) {  // the constructor's window
     pending_ = false;
-  } else if (!readWindow()) {
+  } else if (read_ahead_) {
+    more = ahead_.valid();  // none after the window that ended the file
+    if (more) {
+      SourceFile w = ahead_.get();  // its read error, where readWindow() would throw it
+      more = lexed = !w.bytes.empty();
+      if (more) installWindow(std::move(w));
+    }
+  } else {
+    more = readWindow();
+  }
+  if (!more) {
     finished_ = true;
     krl_->finish();
     if (range_error_) std::rethrow_exception(range_error_);
     std::string().swap(p_.files[0].bytes);
     return false;
   }
-  krl_->lines();
+  if (read_ahead_ && !eof_) startAhead();  // the window after, while this one is read
+  if (lexed) {
+    krl_->lexedLines();
+  } else {
+    krl_->lines();
+  }
   if (!range_error_) {
     try {
       checkValueRanges(p_);

@@ -19,6 +19,7 @@
 
 #include <cstddef>
 #include <exception>
+#include <future>
 #include <memory>
 #include <string>
 
@@ -42,7 +43,11 @@ class ProgramStream {
  public:
   static constexpr std::size_t kWindowBytes = std::size_t{1} << 20U;
   /// Opens `path` as readProgram does (a KRL `.dat` reads its `.src`; the same InputErrors).
-  explicit ProgramStream(const std::string& path, std::size_t window_bytes = kWindowBytes);
+  /// `read_ahead`: a KRL .src's next window is read, indexed and lexed on a task of its own
+  /// while the reader reads the window before (the same windows, tokens and errors, in the same
+  /// order; for a caller with a second core).
+  explicit ProgramStream(const std::string& path, std::size_t window_bytes = kWindowBytes,
+                         bool read_ahead = false);
   ~ProgramStream();
   ProgramStream(const ProgramStream&) = delete;
   ProgramStream& operator=(const ProgramStream&) = delete;
@@ -61,8 +66,15 @@ class ProgramStream {
  private:
   /// Fills p_.files[0].bytes with the next window of whole lines; false at the end of the file.
   bool readWindow();
+  /// The next window's bytes of whole lines into `buf` (empty at the end of the file).
+  void readWindowBytes(std::string& buf);
+  /// Makes `w` (the bytes, line index and tokens of the window after the last one) p_.files[0].
+  void installWindow(SourceFile&& w);
+  /// Starts reading, indexing and lexing the next window on a task of its own (read_ahead).
+  void startAhead();
 
   std::string path_;
+  std::string src_;  ///< the KRL .src's path
   std::size_t window_bytes_;
   Program p_;
   std::unique_ptr<KrlStream> krl_;
@@ -75,6 +87,8 @@ class ProgramStream {
   bool pending_{false};    ///< the window the constructor read is not parsed yet
   std::size_t pinned_{0};  ///< targets that always stay (the .dat's)
   std::exception_ptr range_error_;
+  bool read_ahead_{false};
+  std::future<SourceFile> ahead_;  ///< the next window (read_ahead); last: joined first
 };
 
 }  // namespace roprec::postproc

@@ -2,7 +2,8 @@
 // hole recogniser, gives the holes of the program read whole (readProgram + recognizeHoles): the
 // same ids, points, axes, depths, frames, lines and evidence, whatever its line ends, while the
 // window holds a bounded number of motions. Errors are readProgram's, in its order (a reader's
-// error before a value out of range met earlier).
+// error before a value out of range met earlier), also when each next window is read and lexed
+// ahead on a task of its own.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -42,10 +43,11 @@ struct Streamed {
   size_t max_window_motions{0};
 };
 
-/// Reads `path` by windows of `window` bytes, retiring the motions before the last hole's bottom.
-Streamed readStreamed(const std::string& path, size_t window) {
+/// Reads `path` by windows of `window` bytes, retiring the motions before the last hole's bottom;
+/// `ahead`: each next window read and lexed on a task of its own (ProgramStream's read_ahead).
+Streamed readStreamed(const std::string& path, size_t window, bool ahead = false) {
   Streamed out;
-  postproc::ProgramStream s(path, window);
+  postproc::ProgramStream s(path, window, ahead);
   postproc::HoleRecognizer rec;
   auto take = [&] {
     const postproc::Program& p = s.program();
@@ -98,10 +100,12 @@ TEST(ProgramStream, WindowsWithRetiredMotionsGiveTheHolesOfTheWholeProgram) {
     SCOPED_TRACE(path);
     const std::vector<SeenHole> whole = readWhole(path);
     ASSERT_FALSE(whole.empty());
-    for (const size_t window :
-         {size_t{4096}, size_t{10000}, postproc::ProgramStream::kWindowBytes}) {
-      SCOPED_TRACE(window);
-      const Streamed st = readStreamed(path, window);
+    for (const auto& [window, ahead] :
+         {std::pair{size_t{4096}, false}, std::pair{size_t{4096}, true},
+          std::pair{size_t{10000}, false}, std::pair{size_t{10000}, true},
+          std::pair{postproc::ProgramStream::kWindowBytes, false}}) {
+      SCOPED_TRACE(std::to_string(window) + (ahead ? " read ahead" : ""));
+      const Streamed st = readStreamed(path, window, ahead);
       ASSERT_EQ(st.holes.size(), whole.size());
       for (size_t i = 0; i < whole.size(); ++i) {
         SCOPED_TRACE(i);
@@ -143,14 +147,22 @@ TEST(ProgramStream, ErrorsAreThoseOfTheWholeReadInItsOrder) {
   const size_t end = bad.rfind("END");
   ASSERT_NE(end, std::string::npos);
   const std::string truncated = bad.substr(0, end);
-  for (const auto& [name, text] :
-       {std::pair<std::string, std::string>{"range.src", bad}, {"truncated.src", truncated}}) {
+  // a NUL byte far into the file (a read error of a later window), an aggregate left open there
+  std::string nul = cycles;
+  nul.insert(nul.rfind("LIN {"), std::string(1, '\0'));
+  std::string open = cycles;
+  open.erase(open.find('}', open.rfind("LIN {")), 1);
+  for (const auto& [name, text] : {std::pair<std::string, std::string>{"range.src", bad},
+                                   {"truncated.src", truncated},
+                                   {"nul.src", nul},
+                                   {"open.src", open}}) {
     SCOPED_TRACE(name);
     const std::string path = dir + "/" + name;
     test::writeFile(path, text);
     const std::string whole = errorOf([&] { (void)postproc::readProgram(path); });
     ASSERT_NE(whole, "(no error)");
     EXPECT_EQ(errorOf([&] { (void)readStreamed(path, 4096); }), whole);
+    EXPECT_EQ(errorOf([&] { (void)readStreamed(path, 4096, true); }), whole);
   }
 }
 

@@ -1274,6 +1274,70 @@ TEST(ReportChromium, TwentyThousandHolesRenderInABrowser) {
   if (!HasFailure()) fs::remove_all(dir);
 }
 
+/// The items of a large report's script array ROPREC_ROWS, decoded (JavaScript string escapes
+/// undone, each unit separator back to "</td><td").
+std::vector<std::string> scriptRows(const std::string& html) {
+  std::vector<std::string> rows;
+  const std::string open = "var ROPREC_ROWS=[";
+  size_t k = html.find(open);
+  if (k == std::string::npos) return rows;
+  k += open.size();
+  while (k < html.size() && html[k] == '"') {
+    std::string row;
+    for (++k; k < html.size() && html[k] != '"'; ++k) {
+      if (html[k] != '\\') {
+        row += html[k];
+      } else if (html.compare(k, 4, "\\x1f") == 0) {
+        row += "</td><td";
+        k += 3;
+      } else {
+        ++k;
+        row += html[k] == 'n' ? '\n' : html[k];
+      }
+    }
+    rows.push_back(row);
+    k += 1;                                      // the closing quote
+    if (html.compare(k, 2, ",\n") == 0) k += 2;  // the next item
+  }
+  return rows;
+}
+
+/// The rows of a small report's per-hole table body, each "<tr…>…</tr>".
+std::vector<std::string> bodyRows(const std::string& html) {
+  std::vector<std::string> rows;
+  const size_t table = html.find("id=\"holetable\"");
+  const size_t b = html.find("<tbody>", table) + 7, e = html.find("</tbody>", b);
+  for (size_t k = b; k < e;) {
+    const size_t end = html.find("</tr>", k) + 5;
+    rows.push_back(html.substr(k, end - k));
+    k = end;
+  }
+  return rows;
+}
+
+/// A large job's table rows are rendered on the workers: the bytes do not depend on their count,
+/// and each item of the script array is, decoded, the row a small job's table shows for that
+/// hole (ids with quotes, backslashes, "</" and non-ASCII characters escaped and back).
+TEST(Report, LargeTableRowsOnWorkersAreTheRowsOfTheSmallTable) {
+  const size_t small = api::kReportAggregateAbove;
+  Synthetic s = makeLarge(2 * small + 777);
+  s.preds[3].id = "q\"b\\s</x>\u00e9";
+  s.preds[small - 2].id = "line\nbreak";
+  api::ReportInput in = makeInput(s, false);
+  in.threads = 1;
+  const std::string one = api::renderReport(in);
+  in.threads = 3;
+  EXPECT_TRUE(api::renderReport(in) == one) << "3 workers";
+  const std::vector<std::string> large = scriptRows(one);
+  ASSERT_EQ(large.size(), s.preds.size());
+  Synthetic first;
+  first.preds.assign(s.preds.begin(), s.preds.begin() + static_cast<std::ptrdiff_t>(small));
+  first.poses.assign(s.poses.begin(), s.poses.begin() + static_cast<std::ptrdiff_t>(small));
+  const std::vector<std::string> rows = bodyRows(api::renderReport(makeInput(first, false)));
+  ASSERT_EQ(rows.size(), small);
+  for (size_t i = 0; i < small; ++i) ASSERT_EQ(large[i], rows[i]) << i;
+}
+
 /// verify's report: faces in the workobject frame with named axes, the decision on every residual
 /// marker, the ids of failing holes written, a table with units and a "failing only" filter.
 TEST(ReportSample, VerifyReportNamesAxesDecisionsAndFailingHoles) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <exception>
+#include <future>
 #include <unordered_map>
 
 #include "compensator/precision/parallel.hpp"
@@ -539,7 +540,9 @@ void addProgramNotes(JobHoles& job, const postproc::Program& p) {
 /// before the next window is read, the motions behind the last hole given are retired.
 class ProgramHoles {
  public:
-  explicit ProgramHoles(const std::string& path) : stream_(path) {}
+  /// With threads > 1 the program's next window is read and lexed ahead on a task of its own.
+  ProgramHoles(const std::string& path, int threads)
+      : stream_(path, postproc::ProgramStream::kWindowBytes, threads > 1) {}
   [[nodiscard]] bool windowed() const { return stream_.windowed(); }
   /// Reads on to the next holes: false once the program is read and every hole given.
   bool next() {
@@ -590,9 +593,12 @@ class ProgramHoles {
     holes_.push_back(std::move(last));
     first_new_ = 1;
   }
-  /// The next window's holes set up (base frames applied) into the ready list.
+  /// The next window's holes set up (base frames applied) into the ready list. With threads > 1
+  /// the window after is then read on a task of its own while these holes are predicted (the
+  /// set-up reads the window; the list holds what the holes need of it).
   void setUpNext(const JobHoles& job, const CellSpec& cell, const Robot& robot, int threads) {
-    if (!next()) throw InternalError("ProgramHoles: fewer holes than the first reading found");
+    const bool more = reading_.valid() ? reading_.get() : next();
+    if (!more) throw InternalError("ProgramHoles: fewer holes than the first reading found");
     const size_t n = holes_.size() - first_new_;
     ready_r_.assign(n, HoleRequest{});
     ready_s_.assign(n, HoleSource{});
@@ -600,6 +606,7 @@ class ProgramHoles {
                ready_r_.data(), ready_s_.data());
     for (size_t k = 0; k < n; ++k) applyBaseFrame(job, ready_r_[k], ready_s_[k]);
     ready_ = 0;
+    if (threads > 1) reading_ = std::async(std::launch::async, [this] { return next(); });
   }
 
   postproc::ProgramStream stream_;
@@ -611,6 +618,7 @@ class ProgramHoles {
   std::vector<HoleSource> ready_s_;
   size_t ready_{0};
   size_t given_{0};
+  std::future<bool> reading_;  ///< next() of the window after the ready list's; last: joined first
 };
 
 namespace {
@@ -669,7 +677,7 @@ JobHoles loadStreamedHoles(const std::string& path, const CellSpec& cell, const 
   std::vector<postproc::Motion>().swap(job.program->motions);
   std::vector<postproc::Target>().swap(job.program->target_list);
   std::vector<postproc::TextId>().swap(job.program->marker_texts);
-  job.stream = std::make_shared<ProgramHoles>(path);
+  job.stream = std::make_shared<ProgramHoles>(path, threads);
   return job;
 }
 
@@ -724,7 +732,7 @@ JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot
                       const std::optional<std::string>& hole_list, double match_tol_mm, int threads,
                       bool defer_setup) {
   if (defer_setup && !hole_list) {  // a KRL program is read by windows (twice)
-    auto holes = std::make_shared<ProgramHoles>(path);
+    auto holes = std::make_shared<ProgramHoles>(path, threads);
     if (holes->windowed()) return loadStreamedHoles(path, cell, robot, threads, *holes);
   }
   JobHoles job;

@@ -677,6 +677,7 @@ std::string PredictionReportStream::finish(const PredictionResult& r) {
   ReportInput in = predictionReportHeader(r.context, r.summary);
   setPartFrame(in, r.context, r.frames);
   in.predicted = std::move(holes_);
+  in.threads = workers_;
   return renderReport(in);
 }
 
@@ -726,9 +727,11 @@ void PredictionJsonStream::holes(std::span<const HolePrediction> h, std::span<co
       item(w, h[i], r[i], card_);
     w.out().swap(texts_[k]);
   });
+  // each run's text goes to the sink as it is (not copied behind the writer's text first)
   for (size_t k = 0; k < runs; ++k) {
-    w_.appendItems(texts_[k], std::min(kRun, h.size() - k * kRun));
-    drain(false);
+    drain(true);
+    sink_(texts_[k]);
+    w_.appendItems({}, std::min(kRun, h.size() - k * kRun));
   }
 }
 

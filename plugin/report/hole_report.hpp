@@ -109,6 +109,8 @@ struct ReportInput {
   CapabilitySummary summary;
   bool compensation{false};  ///< adds the before/after maps and residual columns
   std::string generator{"roprec 0.1.0"};
+  /// Workers that render a large job's table rows (the bytes do not depend on the count).
+  int threads{1};
 };
 
 /// Above this many holes the maps aggregate holes into bins (the worst value and verdict of each

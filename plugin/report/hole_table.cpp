@@ -10,6 +10,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "compensator/precision/parallel.hpp"
 #include "compensator/robot/robot_card.hpp"
 #include "compensator/support/str_cat.hpp"
 #include "plugin/report/hole_sections.hpp"
@@ -330,40 +331,42 @@ std::string rowOf(const TableLayout& t, const HoleView& hole, size_t i) {
 
 // ------------------------------------------------------------------ large jobs
 
-/// A string as a JavaScript string literal (no "</" so it cannot end the script element).
-std::string jsString(std::string_view v) {
-  std::string s = "\"";
+/// Appends a string as a JavaScript string literal (no "</" so it cannot end the script element).
+void appendJsString(std::string& s, std::string_view v) {
+  s += '"';
+  size_t run = 0;  // start of the bytes not appended yet (none of them needs an escape)
   for (size_t i = 0; i < v.size(); ++i) {
     const char c = v[i];
-    if (c == '\\' || c == '"') s += '\\';
-    if (c == '/' && i > 0 && v[i - 1] == '<') s += '\\';
+    const bool slash = c == '/' && i > 0 && v[i - 1] == '<';
+    if (c != '\\' && c != '"' && !slash && c != '\n' && c != '\x1f') continue;
+    s.append(v.data() + run, i - run);
+    run = i + 1;
     if (c == '\n') {
       s += "\\n";
-      continue;
-    }
-    if (c == '\x1f') {
+    } else if (c == '\x1f') {
       s += "\\x1f";
-      continue;
+    } else {
+      s += '\\';
+      s += c;
     }
-    s += c;
   }
-  return s + "\"";
+  s.append(v.data() + run, v.size() - run);
+  s += '"';
 }
 
-/// "</td><td" → the unit separator (JS "\x1f"): the rows are half the bytes; the script joins
-/// them back for the page it shows.
-std::string packRow(const std::string& row) {
-  std::string packed;
+/// `row` with "</td><td" → the unit separator (JS "\x1f") into `packed`: the rows are half the
+/// bytes; the script joins them back for the page it shows.
+void packRow(const std::string& row, std::string& packed) {
+  constexpr std::string_view kCut = "</td><td";
+  packed.clear();
   packed.reserve(row.size());
-  for (size_t k = 0; k < row.size();) {
-    if (row.compare(k, 8, "</td><td") == 0) {
-      packed += '\x1f';
-      k += 8;
-    } else {
-      packed += row[k++];
-    }
+  size_t k = 0;
+  for (size_t at = row.find(kCut); at != std::string::npos; at = row.find(kCut, k)) {
+    packed.append(row, k, at - k);
+    packed += '\x1f';
+    k = at + kCut.size();
   }
-  return packed;
+  packed.append(row, k, std::string::npos);
 }
 
 /// The rows in the table body (a small job's).
@@ -371,15 +374,36 @@ void renderRows(Html& h, const TableLayout& t, const std::vector<HoleView>& hv) 
   for (size_t i = 0; i < hv.size(); ++i) h.markup(rowOf(t, hv[i], i));
 }
 
+/// A large job's rows as the items of the script array ROPREC_ROWS (packed JavaScript strings,
+/// ",\n" between them). Runs of rows are rendered on t.in.threads workers, a bounded number at
+/// a time, and appended in order: the bytes of rendering them one after the other.
+void renderPackedRows(Html& h, const TableLayout& t, const std::vector<HoleView>& hv) {
+  constexpr size_t kRun = 256;  // rows a worker renders into one text
+  const size_t workers = static_cast<size_t>(std::max(1, t.in.threads));
+  std::vector<std::string> texts(4 * workers);  // runs rendered at a time
+  for (size_t b = 0; b < hv.size(); b += texts.size() * kRun) {
+    const size_t runs = std::min(texts.size(), (hv.size() - b + kRun - 1) / kRun);
+    parallelFor(runs, t.in.threads, [&](int, size_t k) {
+      std::string& text = texts[k];
+      text.clear();
+      std::string packed;
+      const size_t r0 = b + k * kRun;
+      for (size_t i = r0; i < std::min(hv.size(), r0 + kRun); ++i) {
+        if (i > 0) text += ",\n";
+        packRow(rowOf(t, hv[i], i), packed);
+        appendJsString(text, packed);
+      }
+    });
+    for (size_t k = 0; k < runs; ++k) h.markup(texts[k]);
+  }
+}
+
 /// The table's script; a large job's rows packed into its array ROPREC_ROWS, written row by row.
 void renderScript(Html& h, const TableLayout& t, const std::vector<HoleView>& hv) {
   h.open("script");
   if (t.large) {
     h.markup("var ROPREC_ROWS=[");
-    for (size_t i = 0; i < hv.size(); ++i) {
-      if (i > 0) h.markup(",\n");
-      h.markup(jsString(packRow(rowOf(t, hv[i], i))));
-    }
+    renderPackedRows(h, t, hv);
     h.markup("];").markup(kPagedTableScript);
   } else {
     h.markup(kTableScript);

@@ -1,6 +1,7 @@
 #include "plugin/report/json.hpp"
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -79,10 +80,15 @@ bool Json::finite() const {
 }
 
 namespace {
-bool needsEscape(char c) {
-  return c == '"' || c == '\\' || static_cast<unsigned char>(c) < 0x20 ||
-         static_cast<unsigned char>(c) >= 0x80;
-}
+/// The bytes appendJsonEscaped does not copy as they are: '"', '\\', control characters and
+/// the bytes of non-ASCII characters (checked as UTF-8).
+constexpr std::array<bool, 256> kNeedsEscape = [] {
+  std::array<bool, 256> t{};
+  for (std::size_t c = 0; c < 256; ++c) t[c] = c < 0x20 || c >= 0x80 || c == '"' || c == '\\';
+  return t;
+}();
+
+bool needsEscape(char c) { return kNeedsEscape[static_cast<unsigned char>(c)]; }
 
 void appendEscapedChar(std::string& o, char c) {
   switch (c) {
@@ -297,15 +303,25 @@ std::string JsonWriter::where(std::string_view tail) const {
 void JsonWriter::beforeValue() {
   if (stack_.empty() || stack_.back().object) return;  // top level, or after key()
   Frame& f = stack_.back();
-  out_ += f.count ? ",\n" : "\n";
-  pad(stack_.size());
+  newLine(f.count > 0);
   ++f.count;
+}
+
+void JsonWriter::newLine(bool comma) {
+  // ",\n" or "\n" and two spaces a level, in one append
+  const size_t n = 2 * stack_.size();
+  const std::string_view kSpaces = ",\n                                ";  // 32 spaces
+  if (n + 2 <= kSpaces.size()) {
+    out_.append(comma ? kSpaces.data() : kSpaces.data() + 1, n + (comma ? 2 : 1));
+    return;
+  }
+  out_.append(comma ? ",\n" : "\n", comma ? 2 : 1);
+  pad(stack_.size());
 }
 
 void JsonWriter::key(std::string_view k) {
   Frame& f = stack_.back();
-  out_ += f.count ? ",\n" : "\n";
-  pad(stack_.size());
+  newLine(f.count > 0);
   out_ += '"';
   appendJsonEscaped(out_, k);
   out_ += "\": ";

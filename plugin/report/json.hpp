@@ -123,6 +123,8 @@ class JsonWriter {
     std::string_view key;  ///< last key (objects), for messages
   };
   void beforeValue();
+  /// Before a member or an item: ",\n" (`comma`) or "\n", then the indentation of this level.
+  void newLine(bool comma);
   void pad(size_t n);
   [[nodiscard]] std::string where(std::string_view tail = {}) const;
   std::string out_;
