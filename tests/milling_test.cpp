@@ -244,6 +244,52 @@ TEST(Milling, NewtonAndPlainIterationAgreeBelowGainOne) {
   EXPECT_LT((newton.delta - plain.delta).norm(), 0.5e-6);
 }
 
+// The mean-force memo returns millingMeanForce's own bits, also after its 8 entries were
+// replaced (eviction) and after reset().
+TEST(Milling, MeanForceMemoReturnsTheSameBits) {
+  const MillingModel m = model(2, 0.1, MillingMode::kUp, 5);
+  MeanForceMemo memo;
+  for (int round = 0; round < 3; ++round) {
+    for (int k = 0; k < 12; ++k) {
+      const double fz = (0.05 + 0.01 * k) * 1e-3;
+      const double ae = (1.5 + 0.1 * (k % 5)) * 1e-3;
+      const Vec3 direct = millingMeanForce(m, fz, ae);
+      EXPECT_EQ(memo(m, fz, ae), direct) << k;
+      EXPECT_EQ(memo(m, fz, ae), direct) << k;  // remembered
+    }
+    if (round == 1) memo.reset();
+  }
+}
+
+// A solve with the memo and without the loop gain has the same δ, force and iterations as the
+// plain solve, and couplingLoopGain gives the plain solve's loop gain to the bit (Newton, runout,
+// the path's memory).
+TEST(Milling, LoopGainAfterTheSolveIsTheSolvesOwn) {
+  const MillingModel m = model(2, 0.1, MillingMode::kUp, 5);
+  Mat3 C = Mat3::Zero();
+  C(1, 1) = 0.5 / dFyDae(m);
+  const ComplianceFunction f = linearCompliance(C);
+  CouplingState st;
+  st.delta_prev = Vec3(3e-6, 1e-6, 0);
+  const CouplingResult plain = coupleMillingPoint(m, f, st);
+  ASSERT_TRUE(plain.converged) << couplingStatusName(plain.status);
+  ASSERT_GE(plain.iterations, 1);
+  CouplingOptions o;
+  o.loop_gain = false;
+  MeanForceMemo memo;
+  for (int k = 0; k < 2; ++k) {  // the second solve starts with a filled memo
+    const CouplingResult r = coupleMillingPoint(m, f, st, o, &memo);
+    EXPECT_EQ(r.delta, plain.delta);
+    EXPECT_EQ(r.force, plain.force);
+    EXPECT_EQ(r.force_nominal, plain.force_nominal);
+    EXPECT_EQ(r.iterations, plain.iterations);
+    EXPECT_EQ(r.loop_gain, 0.0);
+    EXPECT_EQ(couplingLoopGain(m, f, st, o, r, &memo), plain.loop_gain);
+    EXPECT_EQ(couplingLoopGain(m, f, st, o, r), plain.loop_gain);
+  }
+  EXPECT_GT(plain.loop_gain, 0.3);
+}
+
 // An oscillating loop (negative feedback, gain 1.4, down-milling pushed away from the wall): the
 // plain iteration fails, under-relaxation ω = 0.3 rescues it, Newton converges directly to the
 // same static equilibrium δ = C F(δ).

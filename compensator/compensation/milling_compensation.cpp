@@ -253,6 +253,35 @@ Vec3 toolBending(const PathSetup& s, size_t i, const Vec3& F_mill) {
   return s.points[i].linear() * millToTool(s.C_tool * F_mill);
 }
 
+/// The robot's compliance at θ_d (milling frame) linearised at the cut's nominal force F_nom, in
+/// series with the spindle/tool's (milling_robot.hpp lineariseCompliance): the uncompensated
+/// coupling evaluates it, and its C is the compensated chain's compliance at the point.
+LinearCompliance pointCompliance(const PathSetup& s, const Vec6& theta_d, const Vec3& F_nom) {
+  const PredictionModel& m = s.m;
+  LinearCompliance l =
+      lineariseCompliance(robotMillingCompliance(m.model, m.compliance, theta_d, m.gravity), F_nom);
+  l.delta_ref += s.C_tool * F_nom;
+  l.C += s.C_tool;
+  return l;
+}
+
+/// A chain's mean-force memo (milling.hpp MeanForceMemo) for the cut it couples with, reset when
+/// the cut changes (the memo holds the cut, so its address is not reused meanwhile).
+class CutMemo {
+ public:
+  MeanForceMemo& operator()(const std::shared_ptr<const PointCut>& cut) {
+    if (cut != cut_) {
+      memo_.reset();
+      cut_ = cut;
+    }
+    return memo_;
+  }
+
+ private:
+  std::shared_ptr<const PointCut> cut_;
+  MeanForceMemo memo_;
+};
+
 /// A resolved revolution to compute (edgeRevolution at the cut, with the modes) and its result;
 /// the points that reuse it share it.
 struct EdgeJob {
@@ -280,9 +309,10 @@ class UncompensatedChain {
     if (seed != nullptr) prev_ = *seed;
   }
   /// Point i into `p`; false when it has no admissible IK (p.reason says why). `cut` receives
-  /// the point's cut, `edges` the revolutions it reports (nominal, corrected) when cutting.
+  /// the point's cut, `compliance` its linearised C (pointCompliance; cutting points), `edges`
+  /// the revolutions it reports (nominal, corrected) when cutting.
   bool run(size_t i, PathPointCompensation& p, std::shared_ptr<const PointCut>& cut,
-           std::pair<EdgeRef, EdgeRef>& edges, std::vector<EdgeRef>& jobs);
+           Mat3& compliance, std::pair<EdgeRef, EdgeRef>& edges, std::vector<EdgeRef>& jobs);
 
  private:
   bool inverseKinematics(size_t i, PathPointCompensation& p);
@@ -296,6 +326,7 @@ class UncompensatedChain {
   StabilityCache stability_cache_;
   ModeCouplingCache mode_coupling_cache_;
   EdgeCache edge_cache_;
+  CutMemo memo_;
 };
 
 bool UncompensatedChain::inverseKinematics(size_t i, PathPointCompensation& p) {
@@ -355,7 +386,7 @@ void UncompensatedChain::reuseOrQueueEdges(const ModalModel& dyn, const Coupling
 }
 
 bool UncompensatedChain::run(size_t i, PathPointCompensation& p,
-                             std::shared_ptr<const PointCut>& cut,
+                             std::shared_ptr<const PointCut>& cut, Mat3& compliance,
                              std::pair<EdgeRef, EdgeRef>& edges, std::vector<EdgeRef>& jobs) {
   const PredictionModel& m = s_.m;
   if (s_.cutting != nullptr && i < s_.cutting->size()) {
@@ -380,11 +411,10 @@ bool UncompensatedChain::run(size_t i, PathPointCompensation& p,
   const CouplingOptions& copt = s_.copt;
   p.teeth_between_points = copt.teeth_between_points;
   if (p.cutting) {
+    const LinearCompliance lc = pointCompliance(s_, p.theta_d, cut_->F_nom);
+    compliance = lc.C;
     const CouplingResult cb = coupleMillingPoint(
-        cut_->model,
-        withToolCompliance(robotMillingCompliance(m.model, m.compliance, p.theta_d, m.gravity),
-                           s_.C_tool),
-        state_, copt);
+        cut_->model, [&lc](const Vec3& G) { return lc(G); }, state_, copt, &memo_(cut_));
     state_ = cb.next;
     p.before_fz_effective = cb.fz_effective;
     F_before = cb.force;
@@ -439,14 +469,19 @@ void reportEdges(const std::pair<EdgeRef, EdgeRef>& edges, PathPointCompensation
 class CompensatedChain {
  public:
   explicit CompensatedChain(const PathSetup& s) : s_(s), d_(s.m) {}
-  void run(size_t i, const PointCut& cut, PathPointCompensation& p);
+  /// `C`: the point's linearised compliance (robot and tool, milling frame; pointCompliance).
+  void run(size_t i, const std::shared_ptr<const PointCut>& cut_ref, const Mat3& C,
+           PathPointCompensation& p);
 
  private:
+  ComplianceFunction residualCompliance(size_t i, const Vec6& theta_cmd, const Vec3& F,
+                                        const Mat3& C);
   Vec6 commandFor(size_t i, const PathPointCompensation& p,
                   const Eigen::ColPivHouseholderQR<Mat6>& J, const Vec3& G);
   const PathSetup& s_;
   PredictionData d_;
   CouplingState state_;
+  CutMemo memo_;
 };
 
 /// The controller command that puts the link side at θ_d under force G (exact inverse; a
@@ -468,8 +503,35 @@ Vec6 CompensatedChain::commandFor(size_t i, const PathPointCompensation& p,
   return cmd;
 }
 
-void CompensatedChain::run(size_t i, const PointCut& cut, PathPointCompensation& p) {
+/// The compensated robot's deviation from the nominal tool position under a force G (milling
+/// frame) at the command θ_cmd: the full equilibrium at the current force F, and the point's
+/// linearised compliance C for G − F: δ(G) ≈ δ(F) + C (G − F). Throws (the coupling's
+/// "compliance_failed") when that equilibrium does not converge.
+ComplianceFunction CompensatedChain::residualCompliance(size_t i, const Vec6& theta_cmd,
+                                                        const Vec3& F, const Mat3& C) {
   const PredictionModel& m = s_.m;
+  const Pose& T = s_.points[i];
+  const nc::Deflection dg =
+      nc::predictDeflection(m.model, d_.nc, m.compliance, theta_cmd, loadsWith(m, F), {},
+                            controllerOffset(m, d_.nc, theta_cmd));
+  if (!dg.converged) {
+    return [](const Vec3&) -> Vec3 {
+      throw std::runtime_error("the compliance equilibrium did not converge");
+    };
+  }
+  LinearCompliance l;
+  l.F_ref = F;
+  l.delta_ref = millToTool(T.linear().transpose() * (dg.T_real.translation() - T.translation())) +
+                s_.C_tool * F;
+  l.C = C;
+  return [l](const Vec3& G) { return l(G); };
+}
+
+void CompensatedChain::run(size_t i, const std::shared_ptr<const PointCut>& cut_ref, const Mat3& C,
+                           PathPointCompensation& p) {
+  const PredictionModel& m = s_.m;
+  const PointCut& cut = *cut_ref;
+  MeanForceMemo& memo = memo_(cut_ref);
   const Pose& T = s_.points[i];
   const Mat3 R = T.linear();
   nc::forwardKinematics(m.model, d_.nc, p.theta_d);
@@ -480,19 +542,14 @@ void CompensatedChain::run(size_t i, const PointCut& cut, PathPointCompensation&
   CouplingResult ca;
   ca.converged = true;
   ca.status = CouplingStatus::kConverged;
+  // the loop gain only of the last solve (it is what is reported)
+  CouplingOptions copt = s_.copt;
+  copt.loop_gain = false;
+  ComplianceFunction compliance;
   for (p.force_iterations = 1; p.cutting && p.force_iterations <= 20; ++p.force_iterations) {
     p.theta_cmd = commandFor(i, p, J_qr, F);
-    // the compensated robot's deviation from the nominal tool position under a force G (milling
-    // frame)
-    const ComplianceFunction residualCompliance = [&](const Vec3& G) -> Vec3 {
-      const nc::Deflection dg =
-          nc::predictDeflection(m.model, d_.nc, m.compliance, p.theta_cmd, loadsWith(m, G), {},
-                                controllerOffset(m, d_.nc, p.theta_cmd));
-      if (!dg.converged) throw std::runtime_error("the compliance equilibrium did not converge");
-      return millToTool(R.transpose() * (dg.T_real.translation() - T.translation())) +
-             s_.C_tool * G;
-    };
-    ca = coupleMillingPoint(cut.model, residualCompliance, state_, s_.copt);
+    compliance = residualCompliance(i, p.theta_cmd, F, C);
+    ca = coupleMillingPoint(cut.model, compliance, state_, copt, &memo);
     const double change = (ca.force - F).norm();
     F = ca.force;
     if (!ca.converged) break;
@@ -505,7 +562,7 @@ void CompensatedChain::run(size_t i, const PointCut& cut, PathPointCompensation&
   p.coupling_iterations = ca.iterations;
   p.coupling_status = p.cutting ? couplingStatusName(ca.status) : "not_cutting";
   p.coupling_residual = ca.residual;
-  p.loop_gain = ca.loop_gain;
+  if (p.cutting) p.loop_gain = couplingLoopGain(cut.model, compliance, state_, copt, ca, &memo);
   if (!p.cutting) p.force_iterations = 0;
   p.force = F;
   if (!conv) {
@@ -538,6 +595,7 @@ struct PathBlock {
   size_t b{0}, e{0};
   std::vector<char> found;
   std::vector<std::shared_ptr<const PointCut>> cut;
+  std::vector<Mat3> compliance;  ///< linearised, per point (cutting points)
   std::vector<std::pair<EdgeRef, EdgeRef>> edges;
   std::vector<EdgeRef> jobs;  ///< the revolutions first needed in this block
 };
@@ -547,10 +605,15 @@ void runFirstChain(UncompensatedChain& chain, std::vector<PathPointCompensation>
   const size_t n = blk.e - blk.b;
   blk.found.assign(n, 0);
   blk.cut.assign(n, nullptr);
+  blk.compliance.assign(n, Mat3::Zero());
   blk.edges.assign(n, {});
   blk.jobs.clear();
-  for (size_t k = 0; k < n; ++k)
-    blk.found[k] = chain.run(blk.b + k, out[blk.b + k], blk.cut[k], blk.edges[k], blk.jobs) ? 1 : 0;
+  for (size_t k = 0; k < n; ++k) {
+    blk.found[k] =
+        chain.run(blk.b + k, out[blk.b + k], blk.cut[k], blk.compliance[k], blk.edges[k], blk.jobs)
+            ? 1
+            : 0;
+  }
 }
 
 void resolveBlockEdges(PathBlock& blk, std::vector<PathPointCompensation>& out, int threads) {
@@ -564,7 +627,7 @@ void resolveBlockEdges(PathBlock& blk, std::vector<PathPointCompensation>& out, 
 void runSecondChain(CompensatedChain& chain, const PathBlock& blk,
                     std::vector<PathPointCompensation>& out) {
   for (size_t k = 0; k < blk.e - blk.b; ++k)
-    if (blk.found[k]) chain.run(blk.b + k, *blk.cut[k], out[blk.b + k]);
+    if (blk.found[k]) chain.run(blk.b + k, blk.cut[k], blk.compliance[k], out[blk.b + k]);
 }
 
 }  // namespace

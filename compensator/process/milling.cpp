@@ -193,6 +193,23 @@ Vec3 instantaneousMeanForce(const MillingModel& m, double fz, const ImmersionAng
 
 }  // namespace
 
+Vec3 MeanForceMemo::operator()(const MillingModel& m, double fz, double ae) {
+  ++clock_;
+  for (Entry& e : entries_) {
+    if (e.used != 0 && e.fz == fz && e.ae == ae) {
+      e.used = clock_;
+      return e.F;
+    }
+  }
+  Entry* out = entries_.data();  // the least recently used
+  for (Entry& e : entries_)
+    if (e.used < out->used) out = &e;
+  *out = Entry{fz, ae, millingMeanForce(m, fz, ae), clock_};
+  return out->F;
+}
+
+void MeanForceMemo::reset() { *this = MeanForceMemo{}; }
+
 Vec3 millingMeanForce(const MillingModel& m, double fz, double ae) {
   if (!(fz > 0) || !(ae > 0)) return Vec3::Zero();
   const ImmersionAngles a = immersionAngles(m.tool.diameter, ae, m.cut.mode);
@@ -263,15 +280,19 @@ CutAt cutAt(const MillingModel& m, const CouplingState& st, const CouplingOption
 }
 
 /// F̄ is linear in ap: the mean force at the cut's ap scaled to the effective one.
-Vec3 forceAt(const MillingModel& m, const CutAt& c) {
+Vec3 forceAt(const MillingModel& m, const CutAt& c, MeanForceMemo& memo) {
   if (c.fz <= 0 || c.ae <= 0 || c.ap <= 0) return Vec3::Zero();
-  return millingMeanForce(m, c.fz, c.ae) * (c.ap / m.cut.ap);
+  return memo(m, c.fz, c.ae) * (c.ap / m.cut.ap);
+}
+Vec3 forceAt(const MillingModel& m, const CutAt& c) {
+  MeanForceMemo memo;
+  return forceAt(m, c, memo);
 }
 
 /// The force law of the solve: F̄ plus a constant correction ΔF while the tool cuts (the
 /// edge-consistent solve's dynamic part, coupleMillingPointConsistent; zero otherwise).
-Vec3 forceAt(const MillingModel& m, const CutAt& c, const Vec3& correction) {
-  const Vec3 F = forceAt(m, c);
+Vec3 forceAt(const MillingModel& m, const CutAt& c, const Vec3& correction, MeanForceMemo& memo) {
+  const Vec3 F = forceAt(m, c, memo);
   return F.isZero() ? F : Vec3(F + correction);
 }
 
@@ -282,13 +303,13 @@ struct ComplianceFailure {};
 class CoupledMap {
  public:
   CoupledMap(const MillingModel& m, const ComplianceFunction& C, const CouplingState& st,
-             const CouplingOptions& o, const Vec3& correction)
-      : m_(m), C_(C), st_(st), o_(o), correction_(correction) {}
+             const CouplingOptions& o, const Vec3& correction, MeanForceMemo& memo)
+      : m_(m), C_(C), st_(st), o_(o), correction_(correction), memo_(memo) {}
   Vec3 image(const Vec3& d) {
     ++evaluations;
     Vec3 out;
     try {
-      out = C_(forceAt(m_, cutAt(m_, st_, o_, d), correction_));
+      out = C_(force(cutAt(m_, st_, o_, d)));
     } catch (const std::exception&) {
       throw ComplianceFailure{};
     }
@@ -296,6 +317,9 @@ class CoupledMap {
     return out;
   }
   Vec3 residual(const Vec3& d) { return d - image(d); }
+  /// The solve's force law at the cut c (forceAt, through the map's memo), and F̄ alone.
+  Vec3 force(const CutAt& c) { return forceAt(m_, c, correction_, memo_); }
+  Vec3 staticForce(const CutAt& c) { return forceAt(m_, c, memo_); }
   /// G = ∂(C∘F)/∂δ by forward differences (step h) around d, whose image is `image_d`.
   Mat3 gain(const Vec3& d, const Vec3& image_d) {
     constexpr double h = 1e-6;
@@ -315,6 +339,7 @@ class CoupledMap {
   const CouplingState& st_;
   const CouplingOptions& o_;
   Vec3 correction_;
+  MeanForceMemo& memo_;
 };
 
 double spectralRadius(const Mat3& G) {
@@ -409,10 +434,11 @@ namespace {
 /// coupleMillingPoint with the force law F̄ + ΔF (forceAt with a correction).
 CouplingResult couplePoint(const MillingModel& m, const ComplianceFunction& compliance,
                            const CouplingState& state, const CouplingOptions& o,
-                           const Vec3& correction) {
+                           const Vec3& correction, MeanForceMemo* shared_memo = nullptr) {
   CouplingResult r;
-  r.force_nominal = forceAt(m, CutAt{m.cut.fz + state.uncut_prev, m.cut.ae, m.cut.ap, true});
-  CoupledMap map(m, compliance, state, o, correction);
+  MeanForceMemo own;
+  CoupledMap map(m, compliance, state, o, correction, shared_memo ? *shared_memo : own);
+  r.force_nominal = map.staticForce(CutAt{m.cut.fz + state.uncut_prev, m.cut.ae, m.cut.ap, true});
   Vec3 d = Vec3::Zero();
   try {
     d = map.image(Vec3::Zero());  // first iterate: the deflection under the nominal force
@@ -428,8 +454,10 @@ CouplingResult couplePoint(const MillingModel& m, const ComplianceFunction& comp
       d = Vec3::Zero();
       r.status = CouplingStatus::kDiverged;
     }
-    const Vec3 Cd = map.image(d);
-    r.loop_gain = std::max(r.loop_gain, spectralRadius(map.gain(d, Cd)));
+    if (o.loop_gain || o.method != CouplingMethod::kNewton) {
+      const Vec3 Cd = map.image(d);
+      r.loop_gain = std::max(r.loop_gain, spectralRadius(map.gain(d, Cd)));
+    }
   } catch (const ComplianceFailure&) {
     r.status = CouplingStatus::kComplianceFailed;
     if (!d.allFinite()) d = Vec3::Zero();
@@ -441,7 +469,7 @@ CouplingResult couplePoint(const MillingModel& m, const ComplianceFunction& comp
   r.converged = r.status == CouplingStatus::kConverged;
   r.evaluations = map.evaluations;
   r.delta = d;
-  r.force = forceAt(m, c, correction);
+  r.force = map.force(c);
   r.fz_effective = c.fz;
   r.ae_effective = c.ae;
   r.ap_effective = c.ap;
@@ -453,8 +481,23 @@ CouplingResult couplePoint(const MillingModel& m, const ComplianceFunction& comp
 }  // namespace
 
 CouplingResult coupleMillingPoint(const MillingModel& m, const ComplianceFunction& compliance,
-                                  const CouplingState& state, const CouplingOptions& o) {
-  return couplePoint(m, compliance, state, o, Vec3::Zero());
+                                  const CouplingState& state, const CouplingOptions& o,
+                                  MeanForceMemo* memo) {
+  return couplePoint(m, compliance, state, o, Vec3::Zero(), memo);
+}
+
+double couplingLoopGain(const MillingModel& m, const ComplianceFunction& compliance,
+                        const CouplingState& state, const CouplingOptions& o,
+                        const CouplingResult& r, MeanForceMemo* memo) {
+  if (o.method != CouplingMethod::kNewton) return r.loop_gain;  // computed by the solve
+  if (r.status == CouplingStatus::kComplianceFailed) return 0.0;
+  MeanForceMemo own;
+  CoupledMap map(m, compliance, state, o, Vec3::Zero(), memo ? *memo : own);
+  try {
+    return spectralRadius(map.gain(r.delta, map.image(r.delta)));
+  } catch (const ComplianceFailure&) {
+    return 0.0;
+  }
 }
 
 ConsistentCoupling coupleMillingPointConsistent(const MillingModel& m,

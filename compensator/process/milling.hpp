@@ -41,6 +41,7 @@
 /// next point. The loop gain ρ(G) at the solution is reported.
 
 #include <Eigen/Core>
+#include <array>
 #include <functional>
 #include <string>
 #include <vector>
@@ -122,6 +123,26 @@ MillingProfile millingForceProfile(const MillingModel& m);
 /// Revolution-averaged force at (fz, ae) under model.mean_law [N], milling frame.
 Vec3 millingMeanForce(const MillingModel& m, double fz, double ae);
 
+/// millingMeanForce remembering the (fz, ae) it was last asked for (the 8 most recently used):
+/// a path point's solves ask again for the same ones — the coupling's Jacobian column along Z
+/// moves ap only (F̄ is linear in ap), its final image repeats the last accepted iterate, and
+/// successive solves at one point (a force fixed point around them) start from the same cut.
+/// Bound to one model: reset() it when the model changes. The same bits as millingMeanForce.
+class MeanForceMemo {
+ public:
+  Vec3 operator()(const MillingModel& m, double fz, double ae);
+  void reset();
+
+ private:
+  struct Entry {
+    double fz{0}, ae{0};
+    Vec3 F{Vec3::Zero()};
+    unsigned long used{0};  ///< 0: empty
+  };
+  std::array<Entry, 8> entries_{};
+  unsigned long clock_{0};
+};
+
 /// Tool deflection [m] under a force on the tool [N], both in the milling frame (the robot's
 /// compliance at this path point; later wired to the robot deflection model).
 using ComplianceFunction = std::function<Vec3(const Vec3& force_N)>;
@@ -143,6 +164,10 @@ struct CouplingOptions {
   /// Tooth passes between successive path points: the feed-direction deflection change per
   /// tooth is (δ_i − δ_{i−1})·X / n. Default 10 (path points 1 mm apart at fz 0.1 mm).
   int teeth_between_points{10};
+  /// Compute CouplingResult::loop_gain at the solution (Newton: three more evaluations of the
+  /// force law and the compliance); false leaves it 0 — a caller that solves a point several
+  /// times reports it of the last solve only (couplingLoopGain).
+  bool loop_gain{true};
 };
 
 struct CouplingState {
@@ -183,9 +208,18 @@ struct CouplingResult {
 };
 
 /// One path point: solves δ = C(F(fz_i(δ), ae_i(δ))) with options.method. Never throws for a
-/// failing compliance: the status says so.
+/// failing compliance: the status says so. `memo` (optional, bound to `m`): the mean forces
+/// remembered across calls (the result is the same with or without it).
 CouplingResult coupleMillingPoint(const MillingModel& m, const ComplianceFunction& compliance,
-                                  const CouplingState& state, const CouplingOptions& options = {});
+                                  const CouplingState& state, const CouplingOptions& options = {},
+                                  MeanForceMemo* memo = nullptr);
+
+/// The loop gain coupleMillingPoint reports (with options.loop_gain) of a solve `r` made with
+/// these arguments (Newton: the spectral radius of G at r.delta, 0 when that solve's compliance
+/// failed; the plain iteration computes it always: r.loop_gain). The same bits as the solve's.
+double couplingLoopGain(const MillingModel& m, const ComplianceFunction& compliance,
+                        const CouplingState& state, const CouplingOptions& options,
+                        const CouplingResult& r, MeanForceMemo* memo = nullptr);
 
 /// A path: compliance per point (e.g. the robot's C(q_i)); the state is carried point to point.
 std::vector<CouplingResult> coupleMillingPath(

@@ -42,4 +42,17 @@ ComplianceFunction robotMillingCompliance(const nc::Model& model, const nc::Join
   };
 }
 
+LinearCompliance lineariseCompliance(const ComplianceFunction& full, const Vec3& F_ref,
+                                     double step_N) {
+  LinearCompliance l;
+  l.F_ref = F_ref;
+  l.delta_ref = full(F_ref);
+  for (int i = 0; i < 3; ++i) {
+    Vec3 G = F_ref;
+    G[i] += step_N;
+    l.C.col(i) = (full(G) - l.delta_ref) / step_N;
+  }
+  return l;
+}
+
 }  // namespace roprec
