@@ -1177,6 +1177,161 @@ struct SequenceTables {
   }
 };
 
+/// flip-free's forward pass over holes whose ψ = 0 candidate (node 0) is known first. A run of
+/// holes S = [s, e) whose node 0 is admissible at every hole and connects within thr from hole to
+/// hole, where the DP's link into S and out of it is not jump-limited (S starts the program or
+/// follows its latest reachable hole s − 1 on another face or after a joint target, and ends the
+/// program or is followed by hole e on such a link with an admissible node 0), is node 0
+/// throughout in the DP's result: a path with a turned hole in S has more changes, the first
+/// term of the lexicographic cost, than the same path with node 0 throughout S, which is
+/// admissible whatever the nodes before and after it (no jump limit on the links). Node 0 of each
+/// hole of S has the fewest changes among its paths, so the DP's predecessor of node 0 inside S,
+/// of every node of hole e and the chain's end are node 0: the other nodes of S are never read.
+/// Their grids are not evaluated; S's holes go through dpForwardHole with node 0 alone (the same
+/// path costs, bit for bit). Every other hole's grid is evaluated (holeNodes), in hole order
+/// through the DP as before, a chunk of holes at a time on the workers.
+class FlipFreeForward {
+ public:
+  FlipFreeForward(Workers& w, Evaluator& serial, const std::vector<HoleRequest>& holes, int grid,
+                  double thr, bool count, SequenceTables& t, CompensationStats& st, DpFrontier& f,
+                  Vec6& seed, Grid<Node>& nodes)
+      : w_(w),
+        serial_(serial),
+        holes_(holes),
+        grid_(grid),
+        thr_(thr),
+        count_(count),
+        t_(t),
+        st_(st),
+        f_(f),
+        seed_(seed),
+        nodes_(nodes),
+        row_(static_cast<size_t>(grid), Node{}) {}
+
+  /// Hole i (its set-up in t: seed, branch) after the holes before it; `zero`: its node 0 when its
+  /// prediction is admissible (`ok`).
+  void add(size_t i, bool ok, const Node& zero) {
+    if (!ok || !zero.feasible) {
+      if (!run_.empty()) breakRun();
+      if (ok) {
+        waitFull(i);
+        return;
+      }
+      flush();  // a hole without an admissible prediction: its grid seeded in hole order
+      t_.seed[i] = seed_;
+      NodeCount c = holeNodes(serial_, holes_[i], seed_, t_.branch[i], grid_, nodes_[0]);
+      through(i, c, nodes_[0]);
+      return;
+    }
+    if (!run_.empty()) {
+      if (!jumpLimited(holes_[i - 1], holes_[i])) {
+        closeRun();
+      } else if (!jumpOk(run_.back().q, zero.q, thr_)) {
+        breakRun();
+        waitFull(i);
+        return;
+      } else {
+        run_.push_back(zero);
+        seed_ = zero.q;
+        return;
+      }
+    }
+    const bool free_link = i == 0 || !jumpLimited(holes_[i - 1], holes_[i]);
+    if (free_link) flush();
+    if (full_end_ > full_begin_) {  // on a limited link after holes that wait for their grids
+      waitFull(i);
+      return;
+    }
+    const bool starts = f_.last < 0 || (free_link && f_.last == static_cast<std::ptrdiff_t>(i) - 1);
+    if (!starts) {
+      waitFull(i);
+      return;
+    }
+    run_begin_ = i;
+    run_.push_back(zero);
+    seed_ = zero.q;
+  }
+  /// The end of the program: the waiting holes' grids, the run closed.
+  void finish() {
+    flush();
+    closeRun();
+  }
+
+ private:
+  void waitFull(size_t i) {
+    if (full_end_ == full_begin_) full_begin_ = i;
+    full_end_ = i + 1;
+  }
+  /// The run cannot be node 0 throughout: its holes wait for their grids.
+  void breakRun() {
+    full_begin_ = run_begin_;
+    full_end_ = run_begin_ + run_.size();
+    run_.clear();
+  }
+  /// The run S: node 0 alone through the DP.
+  void closeRun() {
+    for (size_t k = 0; k < run_.size(); ++k) {
+      row_[0] = run_[k];
+      NodeCount c;
+      c.nodes = 1;
+      through(run_begin_ + k, c, row_);
+    }
+    run_.clear();
+  }
+  /// The waiting holes' grids, a chunk of holes on the workers at a time, then through the DP in
+  /// hole order.
+  void flush() {
+    const size_t chunk = nodes_.size();
+    for (size_t b = full_begin_; b < full_end_; b += chunk) {
+      const size_t e = std::min(full_end_, b + chunk);
+      counts_.resize(chunk);
+      parallelFor(e - b, w_.threads(), [&](int wk, size_t j) {
+        const size_t i = b + j;
+        counts_[j] = holeNodes(w_.evs[static_cast<size_t>(wk)], holes_[i], t_.seed[i], t_.branch[i],
+                               grid_, nodes_[j]);
+      });
+      for (size_t j = 0; j < e - b; ++j) through(b + j, counts_[j], nodes_[j]);
+    }
+    full_begin_ = full_end_ = 0;
+  }
+  /// Hole i's candidates `row` (counted by c) through the counters, the serial seed and the DP.
+  void through(size_t i, const NodeCount& c, std::span<const Node> row) {
+    t_.enforced[i] = c.enforced ? 1 : 0;
+    t_.relaxed[i] = c.relaxed_wrist ? 1 : 0;
+    if (count_) {
+      st_.dp_nodes += c.nodes;
+      st_.infeasible_nodes += c.infeasible;
+      if (c.relaxed_wrist) ++st_.relaxed_wrist;
+    }
+    for (const Node& nd : row) {
+      if (nd.feasible) {
+        seed_ = nd.q;
+        break;
+      }
+    }
+    dpForwardHole(row, holes_, i, OrientationMode::kFlipFree, thr_, f_,
+                  DpRow{t_.from[i], t_.best[i]}, cost_);
+  }
+
+  Workers& w_;
+  Evaluator& serial_;
+  const std::vector<HoleRequest>& holes_;
+  int grid_;
+  double thr_;
+  bool count_;
+  SequenceTables& t_;
+  CompensationStats& st_;
+  DpFrontier& f_;
+  Vec6& seed_;
+  Grid<Node>& nodes_;
+  std::vector<Node> row_;  ///< node 0 and grid − 1 candidates that are not admissible
+  std::vector<Node> run_;  ///< node 0 of the run's holes [run_begin_, run_begin_ + size)
+  size_t run_begin_{0};
+  size_t full_begin_{0}, full_end_{0};  ///< holes waiting for their grids
+  std::vector<NodeCount> counts_;
+  std::vector<Cost> cost_;
+};
+
 /// Stages 1 to 3 at the jump threshold thr, a block of holes at a time: the
 /// block predicted (stage 1, the continuity seed carried), then, 1,024 holes at a time
 /// (pipelinedFor), the workers evaluate the grids (holeNodes) while the holes before are finished
@@ -1210,11 +1365,32 @@ bool forwardPass(Workers& w, const std::vector<HoleRequest>& holes,
   Vec6 seed = m.reference_pose;
   DpFrontier f;
   std::vector<Cost> cost;
+  std::optional<FlipFreeForward> ff;
+  if (o.mode == OrientationMode::kFlipFree)
+    ff.emplace(w, serial, holes, grid, thr, count, t, st, f, seed, nodes);
+  std::vector<Node> zero(ff ? cap : 0);
   for (size_t b0 = 0; b0 < n; b0 += w.block) {
     const size_t e0 = std::min(n, b0 + w.block);
     t.block_seed[b0 / w.block] = prev;
     predictBlock(m, w.scratch[0], std::span<const HoleRequest>(holes).subspan(b0, e0 - b0), threads,
                  prev, [&](size_t j) -> HolePrediction& { return before[j]; });
+    if (ff) {  // node 0 of the admissible holes on the workers, then the holes in order
+      parallelFor(e0 - b0, threads, [&](int wk, size_t j) {
+        const HolePrediction& b = before[j];
+        if (b.status == HoleStatus::kOk)
+          zero[j] = evs[static_cast<size_t>(wk)].evaluate(holes[b0 + j], gridPsi(0, grid),
+                                                          branchOf(b), b.joints, true, true);
+      });
+      for (size_t j = 0; j < e0 - b0; ++j) {
+        const size_t i = b0 + j;
+        const HolePrediction& h = before[j];
+        const bool ok = h.status == HoleStatus::kOk;
+        t.seed[i] = ok ? h.joints : seed;
+        t.branch[i] = static_cast<std::int8_t>(branchOf(h));
+        ff->add(i, ok, zero[j]);
+      }
+      continue;
+    }
     auto onWorker = [&](int wk, size_t j) {
       const HolePrediction& b = before[j];
       counts[j] = NodeCount{};
@@ -1248,6 +1424,7 @@ bool forwardPass(Workers& w, const std::vector<HoleRequest>& holes,
     };
     pipelinedFor(e0 - b0, std::min(kBlock, w.block), threads, onWorker, inOrder);
   }
+  if (ff) ff->finish();
   return f.all_connected;
 }
 

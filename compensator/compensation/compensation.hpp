@@ -133,7 +133,7 @@ struct HoleCompensation {
 };
 
 struct CompensationStats {
-  int dp_nodes{0};
+  int dp_nodes{0};  ///< candidates evaluated for the DP (flip-free skips runs that keep ψ = 0)
   int infeasible_nodes{0};
   int refined{0};
   int nlopt_evaluations{0};
