@@ -1188,8 +1188,10 @@ struct SequenceTables {
 /// hole of S has the fewest changes among its paths, so the DP's predecessor of node 0 inside S,
 /// of every node of hole e and the chain's end are node 0: the other nodes of S are never read.
 /// Their grids are not evaluated; S's holes go through dpForwardHole with node 0 alone (the same
-/// path costs, bit for bit). Every other hole's grid is evaluated (holeNodes), in hole order
-/// through the DP as before, a chunk of holes at a time on the workers.
+/// path costs, bit for bit) as they come, the DP's frontier before S kept: a run that turns out
+/// not to be such an S goes back to it, and its holes' grids are evaluated. Every other hole's
+/// grid is evaluated (holeNodes), in hole order through the DP as before, a chunk of holes at a
+/// time on the workers.
 class FlipFreeForward {
  public:
   FlipFreeForward(Workers& w, Evaluator& serial, const std::vector<HoleRequest>& holes, int grid,
@@ -1212,7 +1214,7 @@ class FlipFreeForward {
   /// prediction is admissible (`ok`).
   void add(size_t i, bool ok, const Node& zero) {
     if (!ok || !zero.feasible) {
-      if (!run_.empty()) breakRun();
+      if (run_size_ > 0) breakRun();
       if (ok) {
         waitFull(i);
         return;
@@ -1223,16 +1225,15 @@ class FlipFreeForward {
       through(i, c, nodes_[0]);
       return;
     }
-    if (!run_.empty()) {
+    if (run_size_ > 0) {
       if (!jumpLimited(holes_[i - 1], holes_[i])) {
         closeRun();
-      } else if (!jumpOk(run_.back().q, zero.q, thr_)) {
+      } else if (!jumpOk(run_last_, zero.q, thr_)) {
         breakRun();
         waitFull(i);
         return;
       } else {
-        run_.push_back(zero);
-        seed_ = zero.q;
+        extendRun(i, zero);
         return;
       }
     }
@@ -1248,8 +1249,8 @@ class FlipFreeForward {
       return;
     }
     run_begin_ = i;
-    run_.push_back(zero);
-    seed_ = zero.q;
+    f0_ = f_;
+    extendRun(i, zero);
   }
   /// The end of the program: the waiting holes' grids, the run closed.
   void finish() {
@@ -1262,21 +1263,25 @@ class FlipFreeForward {
     if (full_end_ == full_begin_) full_begin_ = i;
     full_end_ = i + 1;
   }
-  /// The run cannot be node 0 throughout: its holes wait for their grids.
-  void breakRun() {
-    full_begin_ = run_begin_;
-    full_end_ = run_begin_ + run_.size();
-    run_.clear();
+  /// Hole i of the run, node 0 alone through the DP (counted when the run is closed).
+  void extendRun(size_t i, const Node& zero) {
+    row_[0] = zero;
+    through(i, NodeCount{}, row_);
+    run_last_ = zero.q;
+    ++run_size_;
   }
-  /// The run S: node 0 alone through the DP.
+  /// The run cannot be node 0 throughout: the DP goes back to its frontier before the run, whose
+  /// holes wait for their grids.
+  void breakRun() {
+    f_ = f0_;
+    full_begin_ = run_begin_;
+    full_end_ = run_begin_ + run_size_;
+    run_size_ = 0;
+  }
+  /// The run is an S: one candidate evaluated per hole.
   void closeRun() {
-    for (size_t k = 0; k < run_.size(); ++k) {
-      row_[0] = run_[k];
-      NodeCount c;
-      c.nodes = 1;
-      through(run_begin_ + k, c, row_);
-    }
-    run_.clear();
+    if (count_) st_.dp_nodes += static_cast<int>(run_size_);
+    run_size_ = 0;
   }
   /// The waiting holes' grids, a chunk of holes on the workers at a time, then through the DP in
   /// hole order.
@@ -1325,8 +1330,10 @@ class FlipFreeForward {
   Vec6& seed_;
   Grid<Node>& nodes_;
   std::vector<Node> row_;  ///< node 0 and grid − 1 candidates that are not admissible
-  std::vector<Node> run_;  ///< node 0 of the run's holes [run_begin_, run_begin_ + size)
-  size_t run_begin_{0};
+  size_t run_begin_{0};    ///< the run: holes [run_begin_, run_begin_ + run_size_)
+  size_t run_size_{0};
+  Vec6 run_last_{Vec6::Zero()};         ///< node 0's joints at the run's last hole
+  DpFrontier f0_;                       ///< the DP's frontier before the run
   size_t full_begin_{0}, full_end_{0};  ///< holes waiting for their grids
   std::vector<NodeCount> counts_;
   std::vector<Cost> cost_;
@@ -1477,9 +1484,14 @@ Sequence chooseSequence(Workers& w, const std::vector<HoleRequest>& holes,
     if (choice[i] >= 0)
       q.chosen[i] = t.node(w.evs[static_cast<size_t>(wk)], holes, i, choice[i], grid);
   });
-  for (size_t i = 0; i < n; ++i) {
-    if (q.chosen[i].feasible && std::abs(q.chosen[i].psi) > kPsiKept)
-      q.zero.emplace_back(i, Node{});
+  auto turned = [&](size_t i) {
+    return q.chosen[i].feasible && std::abs(q.chosen[i].psi) > kPsiKept;
+  };
+  size_t count = 0;
+  for (size_t i = 0; i < n; ++i) count += turned(i) ? 1 : 0;
+  q.zero.resize(count);
+  for (size_t i = 0, k = 0; i < n; ++i) {
+    if (turned(i)) q.zero[k++].first = i;
   }
   parallelFor(q.zero.size(), w.threads(), [&](int wk, size_t k) {
     q.zero[k].second = t.node(w.evs[static_cast<size_t>(wk)], holes, q.zero[k].first, 0, grid);
