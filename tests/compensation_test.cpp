@@ -19,6 +19,7 @@
 #include <kdl/chainfksolverpos_recursive.hpp>
 #include <kdl/chainidsolver_recursive_newton_euler.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -364,6 +365,69 @@ TEST(CompensationOrientation, StiffestObeysTheJumpLimitAndReportsItsGain) {
       "%d holes turned\n",
       st.U_work_sum / st.stiffness_compared * 1e6, st.U_work_keep_sum / st.stiffness_compared * 1e6,
       st.U_work_gain_max * 1e6, st.psi_changed);
+}
+
+// flip-free and stiffest hold one block of predictions and candidate grids at a time (the DP
+// keeps its last reachable hole and a table of predecessors, the chosen nodes are evaluated again,
+// the predictions made again block by block): blocks of 1, 3 and 50 holes give the result of one
+// block holding the whole program, bit for bit, with the same counters. The demo on several faces
+// with every fifth hole turned by 90° about its axis (turned back for the jump limit) and three
+// holes out of reach, two of them in a row (the DP's chain breaks and starts again); at the
+// default jump threshold and at 5°, which no sequence meets (the threshold is relaxed: the grids
+// are evaluated again).
+TEST(CompensationOrientation, BlocksOfAnySizeGiveTheResultOfOneBlock) {
+  const api::PredictionContext c = demoContext();
+  std::vector<HoleRequest> req = c.job.requests;
+  for (size_t i = 1; i < req.size(); i += 5)
+    req[i].T_W_tcp.linear() *= Eigen::AngleAxisd(90.0 * kDeg, Vec3::UnitZ()).toRotationMatrix();
+  for (const size_t i : {30, 31, 100}) req[i].T_W_tcp.translation().x() += 3.0;
+  for (const auto& [mode, threshold] :
+       {std::pair{OrientationMode::kFlipFree, 60.0}, std::pair{OrientationMode::kStiffest, 60.0},
+        std::pair{OrientationMode::kFlipFree, 5.0}}) {
+    SCOPED_TRACE(testing::Message() << orientationModeName(mode) << ", jumps " << threshold);
+    CompensationOptions o;
+    o.mode = mode;
+    o.jump_threshold = threshold * kDeg;
+    o.block = req.size();
+    CompensationStats ref_st;
+    const std::vector<HoleCompensation> ref = compensateHoles(c.model, req, o, &ref_st);
+    EXPECT_GT(ref_st.psi_changed, 10);
+    EXPECT_EQ(ref_st.relaxed_jumps, threshold < 10.0);
+    EXPECT_EQ(std::count_if(ref.begin(), ref.end(), [](const auto& h) { return !h.ok; }), 3);
+    for (const size_t block : {1, 3, 50}) {
+      for (const int threads : {1, 2}) {
+        SCOPED_TRACE(testing::Message() << "block " << block << ", threads " << threads);
+        o.block = block;
+        o.threads = threads;
+        CompensationStats st;
+        const std::vector<HoleCompensation> got = compensateHoles(c.model, req, o, &st);
+        ASSERT_EQ(got.size(), ref.size());
+        for (size_t i = 0; i < ref.size(); ++i) {
+          SCOPED_TRACE(ref[i].id);
+          EXPECT_EQ(got[i].ok, ref[i].ok);
+          EXPECT_EQ(got[i].reason, ref[i].reason);
+          EXPECT_TRUE(test::sameBits(got[i].psi, ref[i].psi));
+          EXPECT_TRUE(test::sameBits(got[i].T_programmed.data(), ref[i].T_programmed.data(), 16));
+          EXPECT_TRUE(test::sameBits(got[i].theta_cmd.data(), ref[i].theta_cmd.data(), 6));
+          EXPECT_TRUE(test::sameBits(got[i].before.joints.data(), ref[i].before.joints.data(), 6));
+          EXPECT_TRUE(test::sameBits(got[i].after.U_work_exact, ref[i].after.U_work_exact));
+          EXPECT_TRUE(test::sameBits(got[i].U_work_keep, ref[i].U_work_keep));
+          EXPECT_EQ(got[i].psi_reason, ref[i].psi_reason);
+          EXPECT_EQ(got[i].config_text, ref[i].config_text);
+          EXPECT_EQ(got[i].note, ref[i].note);
+        }
+        EXPECT_EQ(st.dp_nodes, ref_st.dp_nodes);
+        EXPECT_EQ(st.infeasible_nodes, ref_st.infeasible_nodes);
+        EXPECT_EQ(st.refined, ref_st.refined);
+        EXPECT_EQ(st.nlopt_evaluations, ref_st.nlopt_evaluations);
+        EXPECT_EQ(st.psi_changed, ref_st.psi_changed);
+        EXPECT_EQ(st.psi_for_jumps, ref_st.psi_for_jumps);
+        EXPECT_EQ(st.stiffness_compared, ref_st.stiffness_compared);
+        EXPECT_TRUE(test::sameBits(st.U_work_sum, ref_st.U_work_sum));
+        EXPECT_TRUE(test::sameBits(st.jump_threshold_used, ref_st.jump_threshold_used));
+      }
+    }
+  }
 }
 
 TEST(CompensationFlags, ASignBoundaryKeepsTheProgrammedKukaTurn) {

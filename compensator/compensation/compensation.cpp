@@ -3,13 +3,17 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <exception>
+#include <functional>
 #include <future>
 #include <limits>
 #include <memory>
 #include <new>
+#include <optional>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -303,6 +307,7 @@ struct NodeCount {
   int nodes{0};
   int infeasible{0};
   bool relaxed_wrist{false};
+  bool enforced{true};  ///< the grid is the one with |θ5| ≥ margin enforced (gridNode)
 };
 
 /// The note of a hole where no rotation meets the wrist margin (NodeCount::relaxed_wrist).
@@ -323,6 +328,7 @@ NodeCount holeNodes(Evaluator& ev, const HoleRequest& h, const Vec6& s, int bran
     if (!nd.feasible) ++count.infeasible;
     any |= nd.feasible;
   }
+  count.enforced = any || !choose;
   if (!any && choose) {
     // With the drill on the flange axis, ψ turns axis 6 only: if |θ5| < margin for every ψ the
     // margin cannot be met here. Keep it as a penalty and say so, rather than drop the hole.
@@ -335,157 +341,95 @@ NodeCount holeNodes(Evaluator& ev, const HoleRequest& h, const Vec6& s, int bran
   return count;
 }
 
+/// Node k of the grid holeNodes gives hole h in flip-free and stiffest (seeded with s, in
+/// `branch`; `enforced`: NodeCount::enforced of that grid), evaluated again: the same node.
+Node gridNode(Evaluator& ev, const HoleRequest& h, const Vec6& s, int branch, int k, int grid,
+              bool enforced) {
+  return ev.evaluate(h, gridPsi(k, grid), branch, s, enforced, true);
+}
+
 // ---- stage 3: dynamic programming over the whole sequence
 
-/// Where dpForwardRange left the forward pass: the latest hole with a reachable node, and
-/// whether every reachable hole so far connected within the threshold.
-struct DpChain {
-  int last{-1};
+/// What the DP's forward pass carries from hole to hole: the latest hole with a reachable node
+/// (`last`), its candidates and their path costs, and whether every reachable hole so far
+/// connected within the threshold.
+struct DpFrontier {
+  std::ptrdiff_t last{-1};
+  std::vector<Node> nodes;
+  std::vector<Cost> cost;
   bool all_connected{true};
 };
 
-/// Forward pass over holes [b, e) after those before b: cost[i][k] of the cheapest admissible
-/// path ending at node k of hole i (jumps ≤ thr between holes of one face) and its predecessor.
-/// `chain.all_connected` turns false when a reachable hole cannot be connected within thr.
-void dpForwardRange(const Grid<Node>& nodes, const std::vector<HoleRequest>& holes,
-                    OrientationMode mode, double thr, Grid<Cost>& cost, Grid<int>& from, size_t b,
-                    size_t e, DpChain& chain) {
-  for (size_t i = b; i < e; ++i) {
-    const size_t K = nodes[i].size();
-    for (size_t k = 0; k < K; ++k) {
-      const Node& nd = nodes[i][k];
-      if (!nd.feasible) continue;
-      const Cost c0 = nodeCost(nd, mode);
-      if (chain.last < 0) {
-        cost[i][k] = c0;
-        continue;
-      }
-      const size_t l0 = static_cast<size_t>(chain.last);
-      const bool limit_jumps = mode != OrientationMode::kKeep && jumpLimited(holes[l0], holes[i]);
-      for (size_t l = 0; l < nodes[l0].size(); ++l) {
-        const Cost& cp = cost[l0][l];
-        if (!isFinite(cp) || (limit_jumps && !jumpOk(nodes[l0][l].q, nd.q, thr))) continue;
-        const Cost c = cp + c0 + transitionCost(nodes[l0][l], nd, mode);
-        if (c < cost[i][k]) {
-          cost[i][k] = c;
-          from[i][k] = static_cast<int>(l);
-        }
-      }
+/// What the DP keeps of hole i once its grid is dropped: per node, its predecessor on the
+/// cheapest admissible path ending there (`from`, −1: none), and the hole's own cheapest node
+/// (`best`, −1: none reachable), where the backtracking starts a chain.
+struct DpRow {
+  std::span<std::int16_t> from;
+  std::int16_t& best;
+};
+
+/// Forward pass over hole i (its candidates `row`) after the holes before it (`f`): the cost of
+/// the cheapest admissible path ending at each node (jumps ≤ thr between holes of one face) and
+/// its predecessor. `f.all_connected` turns false when a reachable hole cannot be connected
+/// within thr. `cost` is scratch.
+void dpForwardHole(std::span<const Node> row, const std::vector<HoleRequest>& holes, size_t i,
+                   OrientationMode mode, double thr, DpFrontier& f, DpRow out,
+                   std::vector<Cost>& cost) {
+  const size_t K = row.size();
+  cost.assign(K, kInfCost);
+  std::fill(out.from.begin(), out.from.end(), std::int16_t{-1});
+  for (size_t k = 0; k < K; ++k) {
+    const Node& nd = row[k];
+    if (!nd.feasible) continue;
+    const Cost c0 = nodeCost(nd, mode);
+    if (f.last < 0) {
+      cost[k] = c0;
+      continue;
     }
-    const bool any = std::any_of(cost[i].begin(), cost[i].end(), isFinite);
-    if (any) {
-      chain.last = static_cast<int>(i);
-    } else if (std::any_of(nodes[i].begin(), nodes[i].end(),
-                           [](const Node& nd) { return nd.feasible; })) {
-      chain.all_connected = false;  // reachable but not within the jump threshold
+    const size_t l0 = static_cast<size_t>(f.last);
+    const bool limit_jumps = mode != OrientationMode::kKeep && jumpLimited(holes[l0], holes[i]);
+    for (size_t l = 0; l < f.nodes.size(); ++l) {
+      const Cost& cp = f.cost[l];
+      if (!isFinite(cp) || (limit_jumps && !jumpOk(f.nodes[l].q, nd.q, thr))) continue;
+      const Cost c = cp + c0 + transitionCost(f.nodes[l], nd, mode);
+      if (c < cost[k]) {
+        cost[k] = c;
+        out.from[k] = static_cast<std::int16_t>(l);
+      }
     }
   }
-}
-
-/// The whole forward pass at threshold thr into fresh tables; false when a reachable hole
-/// cannot be connected within thr.
-bool dpForward(const Grid<Node>& nodes, const std::vector<HoleRequest>& holes, OrientationMode mode,
-               double thr, int threads, Grid<Cost>& cost, Grid<int>& from) {
-  const size_t n = nodes.size();
-  cost = Grid<Cost>(n, nodes.width(), kInfCost, threads);
-  from = Grid<int>(n, nodes.width(), -1, threads);
-  DpChain chain;
-  dpForwardRange(nodes, holes, mode, thr, cost, from, 0, n, chain);
-  return chain.all_connected;
+  out.best = -1;
+  Cost best = kInfCost;
+  for (size_t k = 0; k < K; ++k) {
+    if (isFinite(cost[k]) && cost[k] < best) {
+      best = cost[k];
+      out.best = static_cast<std::int16_t>(k);
+    }
+  }
+  if (out.best >= 0) {
+    f.last = static_cast<std::ptrdiff_t>(i);
+    f.nodes.assign(row.begin(), row.end());
+    f.cost.swap(cost);
+  } else if (std::any_of(row.begin(), row.end(), [](const Node& nd) { return nd.feasible; })) {
+    f.all_connected = false;  // reachable but not within the jump threshold
+  }
 }
 
 /// Backtracking: the cheapest end node, then its predecessors; a hole that starts a new chain
 /// (after an unreachable one) takes its own cheapest node.
-std::vector<int> dpBacktrack(const Grid<Cost>& cost, const Grid<int>& from) {
-  const size_t n = cost.size();
+std::vector<int> dpBacktrack(const Grid<std::int16_t>& from,
+                             const std::vector<std::int16_t>& best) {
+  const size_t n = from.size();
   std::vector<int> choice(n, -1);
   int cur = -1;
   for (size_t ii = n; ii-- > 0;) {
-    if (cur < 0) {
-      Cost best = kInfCost;
-      for (size_t k = 0; k < cost[ii].size(); ++k) {
-        if (isFinite(cost[ii][k]) && cost[ii][k] < best) {
-          best = cost[ii][k];
-          cur = static_cast<int>(k);
-        }
-      }
-    }
+    if (cur < 0) cur = best[ii];
     if (cur >= 0) {
       choice[ii] = cur;
       cur = from[ii][static_cast<size_t>(cur)];
     }
   }
   return choice;
-}
-
-/// Stages 2 and 3: every hole's ψ grid (holeNodes) and the cheapest admissible path through
-/// them, block by block (pipelinedFor): the workers evaluate the grids of one block of holes
-/// while the block before is finished in hole order on a task of its own.
-///  - Grids are in the branch of the original solution unless a branch change is allowed. A hole
-///    with an admissible original prediction is seeded with its joints (on the workers); the
-///    others, in hole order, with the first admissible candidate of the latest hole before them
-///    that has one (else the reference pose), on `serial`, the ordered pass's own evaluator.
-///  - The DP's forward pass runs over each finished block at the requested jump threshold. When
-///    a reachable hole does not connect, the threshold is relaxed ×1.5 and the whole pass
-///    repeated until every reachable hole connects (`thr` returns the threshold used).
-/// Returns the chosen node per hole (−1: none); `nodes` receives the grids.
-std::vector<int> chooseSequence(std::vector<Evaluator>& evs, Evaluator& serial,
-                                const std::vector<HoleRequest>& holes,
-                                const std::vector<HolePrediction>& before,
-                                std::vector<char>& relaxed, int grid, Grid<Node>& nodes,
-                                CompensationStats& st, double& thr) {
-  constexpr size_t kBlock = 1024;  // holes per block of the pipeline (a block boundary costs
-                                   // a wait for its slowest worker)
-  const CompensationOptions& o = evs[0].o;
-  const size_t n = holes.size();
-  const int threads = static_cast<int>(evs.size());
-  nodes = Grid<Node>(n, static_cast<size_t>(grid), Node{}, threads);
-  Grid<Cost> cost(n, static_cast<size_t>(grid), kInfCost, threads);
-  Grid<int> from(n, static_cast<size_t>(grid), -1, threads);
-  std::vector<NodeCount> counts(n);
-  auto branchOf = [&](const HolePrediction& b) {
-    return (b.status == HoleStatus::kOk && !o.allow_branch_change) ? b.branch : -1;
-  };
-  Vec6 seed = serial.m.reference_pose;
-  DpChain chain;
-  thr = o.jump_threshold;
-  relaxed.assign(n, 0);
-  auto onWorker = [&](int w, size_t i) {
-    const HolePrediction& b = before[i];
-    if (b.status != HoleStatus::kOk) return;
-    counts[i] =
-        holeNodes(evs[static_cast<size_t>(w)], holes[i], b.joints, branchOf(b), grid, nodes[i]);
-  };
-  auto inOrder = [&](size_t b, size_t e) {
-    for (size_t i = b; i < e; ++i) {
-      const HolePrediction& h = before[i];
-      if (h.status != HoleStatus::kOk)
-        counts[i] = holeNodes(serial, holes[i], seed, branchOf(h), grid, nodes[i]);
-      st.dp_nodes += counts[i].nodes;
-      st.infeasible_nodes += counts[i].infeasible;
-      if (counts[i].relaxed_wrist) ++st.relaxed_wrist;
-      relaxed[i] = counts[i].relaxed_wrist ? 1 : 0;
-      for (const Node& nd : nodes[i]) {
-        if (nd.feasible) {
-          seed = nd.q;
-          break;
-        }
-      }
-    }
-    dpForwardRange(nodes, holes, o.mode, thr, cost, from, b, e, chain);
-  };
-  pipelinedFor(n, kBlock, threads, onWorker, inOrder);
-  bool connected = chain.all_connected;
-  while (!connected) {
-    st.relaxed_jumps = true;
-    thr *= 1.5;
-    if (thr > 4 * kPi) {
-      dpForward(nodes, holes, o.mode, kInf, threads, cost, from);
-      break;
-    }
-    connected = dpForward(nodes, holes, o.mode, thr, threads, cost, from);
-  }
-  return dpBacktrack(cost, from);
 }
 
 // ---- stage 4: NLopt refinement of each hole's ψ with its neighbours fixed
@@ -1012,28 +956,29 @@ void takeKeepWhereStiffEnough(const std::vector<HoleRequest>& holes, const Node&
   c = std::move(k);
 }
 
-/// Stiffest, holes [first, last): the keep result (ψ = 0, positions only) of every hole with a ψ =
-/// 0 posture (holes in parallel, kKeepBlock holes at a time), then takeKeepWhereStiffEnough for
-/// each hole of the block in hole order (a keep result depends on no other hole's choice, so the
-/// blocks change nothing but the memory). A compensated hole's result carries its stage-1 part
-/// (stageOne).
+/// Stiffest, holes [first, last) (`programmed`: their programmed postures): the keep result (ψ =
+/// 0, positions only) of every hole with a ψ = 0 posture (holes in parallel, kKeepBlock holes at
+/// a time), then takeKeepWhereStiffEnough for each hole of the block in hole order (a keep result
+/// depends on no other hole's choice, so the blocks change nothing but the memory). A compensated
+/// hole's result carries its stage-1 part (stageOne).
 void stiffestAgainstKeep(std::vector<Evaluator>& evs, const std::vector<HoleRequest>& holes,
-                         const std::vector<Node>& programmed, std::vector<Node>& chosen, double thr,
+                         std::span<const Node> programmed, std::vector<Node>& chosen, double thr,
                          std::span<HoleCompensation> res, size_t first) {
   const size_t n = first + res.size();
   auto out = [&](size_t i) -> HoleCompensation& { return res[i - first]; };
+  auto posture = [&](size_t i) -> const Node& { return programmed[i - first]; };
   std::vector<HoleCompensation> keep;  // the keep results of one block of holes
   for (size_t b = first; b < n; b += kKeepBlock) {
     const size_t e = std::min(n, b + kKeepBlock);
     keep.assign(e - b, HoleCompensation{});
     parallelFor(e - b, static_cast<int>(evs.size()), [&](int w, size_t j) {
       const size_t i = b + j;
-      if (out(i).ok && programmed[i].feasible)
-        keep[j] = finalizeHole(evs[static_cast<size_t>(w)], holes[i], stageOne(out(i)),
-                               programmed[i], true);
+      if (out(i).ok && posture(i).feasible)
+        keep[j] =
+            finalizeHole(evs[static_cast<size_t>(w)], holes[i], stageOne(out(i)), posture(i), true);
     });
     for (size_t i = b; i < e; ++i)
-      takeKeepWhereStiffEnough(holes, programmed[i], thr, i, keep[i - b], chosen, out(i));
+      takeKeepWhereStiffEnough(holes, posture(i), thr, i, keep[i - b], chosen, out(i));
   }
 }
 
@@ -1054,23 +999,25 @@ std::string notCompensatedReason(const HoleCompensation& c, const Node& chosen) 
   return "";
 }
 
-/// Stage 1 with the continuity seeds of `roprec predict` (predictHoles on `threads` workers); a
-/// hole whose prediction throws makes it fall back to the sequential loop, which isolates it.
-std::vector<HolePrediction> predictOriginalThreads(const PredictionModel& m, PredictionData& d,
-                                                   const std::vector<HoleRequest>& holes,
-                                                   const std::optional<Vec6>& first, int threads) {
-  std::vector<HolePrediction> out(holes.size());
+/// Stage 1 of the holes `req` seeded with `prev` (then the last admissible joints among them, the
+/// seed of the next block): predictHoles on `threads` workers, the continuity seeds of `roprec
+/// predict`; a hole whose prediction throws makes the block fall back to the sequential loop,
+/// which isolates it. `at(j)`: where hole j's prediction goes.
+void predictBlock(const PredictionModel& m, PredictionData& d, std::span<const HoleRequest> req,
+                  int threads, std::optional<Vec6>& prev,
+                  const std::function<HolePrediction&(size_t)>& at) {
+  for (size_t j = 0; j < req.size(); ++j) at(j) = HolePrediction{};  // what predictHoles expects
   try {
     PredictOptions po;
     po.threads = threads;
-    po.seed = first;
-    predictHoles(m, holes, po, [&](size_t i) -> HolePrediction& { return out[i]; });
-    return out;
+    po.seed = prev;
+    predictHoles(m, req, po, at);
   } catch (const std::exception&) {
-    // the sequential loop below reports the failing hole as not converged
+    predictOriginal(m, d, req, prev, at);
   }
-  predictOriginal(m, d, holes, first, [&](size_t i) -> HolePrediction& { return out[i]; });
-  return out;
+  for (size_t j = 0; j < req.size(); ++j) {
+    if (at(j).status == HoleStatus::kOk) prev = at(j).joints;
+  }
 }
 
 /// Where a run's finished holes go: handed to a sink a block at a time, or (`whole`) kept in
@@ -1094,14 +1041,17 @@ struct Workers {
       scratch.emplace_back(m);
       evs.push_back(Evaluator{m, scratch.back(), o, true});
     }
+    block = std::max<size_t>(1, o.block);
   }
   [[nodiscard]] int threads() const { return static_cast<int>(evs.size()); }
+  size_t block{kCompensationBlock};  ///< CompensationOptions::block (≥ 1)
 };
 
 /// The counters of the finished holes [b, e) of `out` (ψ reasons and U_work for the modes that
-/// choose ψ: psiReason reads the final chosen postures of the neighbours).
+/// choose ψ: psiReason reads the final chosen postures of the neighbours and `zero[k]`, the ψ = 0
+/// candidate of each turned hole b + k).
 void countFinished(const Evaluator& ev, const std::vector<HoleRequest>& holes,
-                   const std::vector<Node>& chosen, const Grid<Node>* nodes, double thr,
+                   const std::vector<Node>& chosen, std::span<const Node> zero, double thr,
                    std::span<HoleCompensation> out, size_t b, CompensationStats& st) {
   for (size_t k = 0; k < out.size(); ++k) {
     HoleCompensation& c = out[k];
@@ -1109,7 +1059,7 @@ void countFinished(const Evaluator& ev, const std::vector<HoleRequest>& holes,
     const size_t i = b + k;
     if (std::abs(c.psi) > kPsiKept) {
       ++st.psi_changed;
-      psiReason(ev, holes, chosen, (*nodes)[i][0], i, thr, st, c.psi_reason);
+      psiReason(ev, holes, chosen, zero[k], i, thr, st, c.psi_reason);
     }
     if (c.config_changed && c.config_in_program) ++st.config_changed;
     if (std::isfinite(c.U_work_keep)) {
@@ -1135,7 +1085,7 @@ void keepRun(Workers& w, const std::vector<HoleRequest>& holes, const std::optio
   Evaluator serial{m, serial_scratch, evs[0].o, true};
   std::optional<Vec6> prev = first;
   Vec6 seed = m.reference_pose;  // the serial candidates' seed (holes not predicted as they are)
-  const size_t cap = std::min(n, kCompensationBlock);
+  const size_t cap = std::min(n, w.block);
   // with workers, block k goes to the sink on a task of its own while block k + 1 is computed
   // (the sink sees the blocks one at a time, in order): two blocks of results
   std::array<std::vector<HoleCompensation>, 2> own;
@@ -1144,8 +1094,8 @@ void keepRun(Workers& w, const std::vector<HoleRequest>& holes, const std::optio
   if (to.whole) to.whole->resize(n);
   std::future<void> handing;  // the sink's call for the block before
   int k = 0;
-  for (size_t b = 0; b < n; b += kCompensationBlock, k ^= 1) {
-    const size_t e = std::min(n, b + kCompensationBlock);
+  for (size_t b = 0; b < n; b += w.block, k ^= 1) {
+    const size_t e = std::min(n, b + w.block);
     std::vector<HoleCompensation>& blk = to.whole ? *to.whole : own[static_cast<size_t>(k)];
     const size_t o0 = to.whole ? b : 0;  // the block's first hole in blk
     if (!to.whole) {
@@ -1153,26 +1103,11 @@ void keepRun(Workers& w, const std::vector<HoleRequest>& holes, const std::optio
       blk.resize(e - b);
     }
     const std::span<HoleCompensation> out(blk.data() + o0, e - b);
-    {  // stage 1 with the continuity seed carried from block to block (predictHoles' seeds over
-       // the run); a hole whose prediction throws makes the block fall back to the sequential
-       // loop, which isolates it
-      const std::span<const HoleRequest> req =
-          std::span<const HoleRequest>(holes).subspan(b, e - b);
-      try {
-        PredictOptions po;
-        po.threads = threads;
-        po.seed = prev;
-        predictHoles(m, req, po, [&](size_t j) -> HolePrediction& { return out[j].before; });
-        for (size_t j = 0; j < req.size(); ++j) out[j].id = req[j].id;
-      } catch (const std::exception&) {
-        predictOriginal(m, w.scratch[0], req, prev,
-                        [&](size_t j) -> HolePrediction& { return out[j].before; });
-        for (size_t j = 0; j < req.size(); ++j) out[j].id = req[j].id;
-      }
-      for (const HoleCompensation& c : out) {
-        if (c.before.status == HoleStatus::kOk) prev = c.before.joints;
-      }
-    }
+    // stage 1 with the continuity seed carried from block to block (predictHoles' seeds over the
+    // run)
+    predictBlock(m, w.scratch[0], std::span<const HoleRequest>(holes).subspan(b, e - b), threads,
+                 prev, [&](size_t j) -> HolePrediction& { return out[j].before; });
+    for (size_t j = 0; j < e - b; ++j) out[j].id = holes[b + j].id;
     std::fill(counts.begin(), counts.end(), NodeCount{});
     parallelFor(e - b, threads, [&](int wk, size_t j) {
       const HolePrediction& bp = out[j].before;
@@ -1201,7 +1136,7 @@ void keepRun(Workers& w, const std::vector<HoleRequest>& holes, const std::optio
       out[j] = finalizeHole(evs[static_cast<size_t>(wk)], holes[b + j], std::move(out[j]), node[j],
                             true);
     });
-    countFinished(evs[0], holes, {}, nullptr, 0.0, out, b, st);
+    countFinished(evs[0], holes, {}, {}, 0.0, out, b, st);
     if (handing.valid()) handing.get();  // the block before is handed over (or its error thrown)
     if (to.sink && threads > 1) {
       handing = std::async(std::launch::async, [&to, b, out] { (*to.sink)(to.offset + b, out); });
@@ -1213,10 +1148,363 @@ void keepRun(Workers& w, const std::vector<HoleRequest>& holes, const std::optio
   st.jump_threshold_used = evs[0].o.jump_threshold;
 }
 
-/// flip-free and stiffest: stage 1 over the run (the predictions alone), the sequence chosen over
-/// the whole run (stages 2 to 4), then the holes finished (stage 5; stiffest against keep) and
-/// handed over a block at a time. A stiffest hole is handed over once the next hole with a
-/// chosen posture is final (its ψ reason reads it).
+/// What flip-free and stiffest keep of each hole between their passes over the run (the
+/// predictions, grids and path costs are held a block at a time): the DP's tables (DpRow), what
+/// rebuilds a node of the hole's grid (gridNode: the seed, the branch, NodeCount::enforced),
+/// whether the wrist margin was relaxed there, and the prediction seed of each block of
+/// CompensationOptions::block holes (stage 1 is made again block by block as the holes are
+/// finished).
+struct SequenceTables {
+  Grid<std::int16_t> from;
+  std::vector<std::int16_t> best;
+  std::vector<Vec6> seed;
+  std::vector<std::int8_t> branch;
+  std::vector<char> enforced;
+  std::vector<char> relaxed;
+  std::vector<std::optional<Vec6>> block_seed;
+
+  SequenceTables(size_t n, int grid, int threads, size_t block)
+      : from(n, static_cast<size_t>(grid), std::int16_t{-1}, threads),
+        best(n, -1),
+        seed(n, Vec6::Zero()),
+        branch(n, -1),
+        enforced(n, 1),
+        relaxed(n, 0),
+        block_seed((n + block - 1) / block) {}
+  /// Node k of hole i's grid.
+  Node node(Evaluator& ev, const std::vector<HoleRequest>& holes, size_t i, int k, int grid) const {
+    return gridNode(ev, holes[i], seed[i], branch[i], k, grid, enforced[i] != 0);
+  }
+};
+
+/// flip-free's forward pass over holes whose ψ = 0 candidate (node 0) is known first. A run of
+/// holes S = [s, e) whose node 0 is admissible at every hole and connects within thr from hole to
+/// hole, where the DP's link into S and out of it is not jump-limited (S starts the program or
+/// follows its latest reachable hole s − 1 on another face or after a joint target, and ends the
+/// program or is followed by hole e on such a link with an admissible node 0), is node 0
+/// throughout in the DP's result: a path with a turned hole in S has more changes, the first
+/// term of the lexicographic cost, than the same path with node 0 throughout S, which is
+/// admissible whatever the nodes before and after it (no jump limit on the links). Node 0 of each
+/// hole of S has the fewest changes among its paths, so the DP's predecessor of node 0 inside S,
+/// of every node of hole e and the chain's end are node 0: the other nodes of S are never read.
+/// Their grids are not evaluated; S's holes go through dpForwardHole with node 0 alone (the same
+/// path costs, bit for bit) as they come, the DP's frontier before S kept: a run that turns out
+/// not to be such an S goes back to it, and its holes' grids are evaluated. Every other hole's
+/// grid is evaluated (holeNodes), in hole order through the DP as before, a chunk of holes at a
+/// time on the workers.
+class FlipFreeForward {
+ public:
+  FlipFreeForward(Workers& w, Evaluator& serial, const std::vector<HoleRequest>& holes, int grid,
+                  double thr, bool count, SequenceTables& t, CompensationStats& st, DpFrontier& f,
+                  Vec6& seed, Grid<Node>& nodes)
+      : w_(w),
+        serial_(serial),
+        holes_(holes),
+        grid_(grid),
+        thr_(thr),
+        count_(count),
+        t_(t),
+        st_(st),
+        f_(f),
+        seed_(seed),
+        nodes_(nodes),
+        row_(static_cast<size_t>(grid), Node{}) {}
+
+  /// Hole i (its set-up in t: seed, branch) after the holes before it; `zero`: its node 0 when its
+  /// prediction is admissible (`ok`).
+  void add(size_t i, bool ok, const Node& zero) {
+    if (!ok || !zero.feasible) {
+      if (run_size_ > 0) breakRun();
+      if (ok) {
+        waitFull(i);
+        return;
+      }
+      flush();  // a hole without an admissible prediction: its grid seeded in hole order
+      t_.seed[i] = seed_;
+      NodeCount c = holeNodes(serial_, holes_[i], seed_, t_.branch[i], grid_, nodes_[0]);
+      through(i, c, nodes_[0]);
+      return;
+    }
+    if (run_size_ > 0) {
+      if (!jumpLimited(holes_[i - 1], holes_[i])) {
+        closeRun();
+      } else if (!jumpOk(run_last_, zero.q, thr_)) {
+        breakRun();
+        waitFull(i);
+        return;
+      } else {
+        extendRun(i, zero);
+        return;
+      }
+    }
+    const bool free_link = i == 0 || !jumpLimited(holes_[i - 1], holes_[i]);
+    if (free_link) flush();
+    if (full_end_ > full_begin_) {  // on a limited link after holes that wait for their grids
+      waitFull(i);
+      return;
+    }
+    const bool starts = f_.last < 0 || (free_link && f_.last == static_cast<std::ptrdiff_t>(i) - 1);
+    if (!starts) {
+      waitFull(i);
+      return;
+    }
+    run_begin_ = i;
+    f0_ = f_;
+    extendRun(i, zero);
+  }
+  /// The end of the program: the waiting holes' grids, the run closed.
+  void finish() {
+    flush();
+    closeRun();
+  }
+
+ private:
+  void waitFull(size_t i) {
+    if (full_end_ == full_begin_) full_begin_ = i;
+    full_end_ = i + 1;
+  }
+  /// Hole i of the run, node 0 alone through the DP (counted when the run is closed).
+  void extendRun(size_t i, const Node& zero) {
+    row_[0] = zero;
+    through(i, NodeCount{}, row_);
+    run_last_ = zero.q;
+    ++run_size_;
+  }
+  /// The run cannot be node 0 throughout: the DP goes back to its frontier before the run, whose
+  /// holes wait for their grids.
+  void breakRun() {
+    f_ = f0_;
+    full_begin_ = run_begin_;
+    full_end_ = run_begin_ + run_size_;
+    run_size_ = 0;
+  }
+  /// The run is an S: one candidate evaluated per hole.
+  void closeRun() {
+    if (count_) st_.dp_nodes += static_cast<int>(run_size_);
+    run_size_ = 0;
+  }
+  /// The waiting holes' grids, a chunk of holes on the workers at a time, then through the DP in
+  /// hole order.
+  void flush() {
+    const size_t chunk = nodes_.size();
+    for (size_t b = full_begin_; b < full_end_; b += chunk) {
+      const size_t e = std::min(full_end_, b + chunk);
+      counts_.resize(chunk);
+      parallelFor(e - b, w_.threads(), [&](int wk, size_t j) {
+        const size_t i = b + j;
+        counts_[j] = holeNodes(w_.evs[static_cast<size_t>(wk)], holes_[i], t_.seed[i], t_.branch[i],
+                               grid_, nodes_[j]);
+      });
+      for (size_t j = 0; j < e - b; ++j) through(b + j, counts_[j], nodes_[j]);
+    }
+    full_begin_ = full_end_ = 0;
+  }
+  /// Hole i's candidates `row` (counted by c) through the counters, the serial seed and the DP.
+  void through(size_t i, const NodeCount& c, std::span<const Node> row) {
+    t_.enforced[i] = c.enforced ? 1 : 0;
+    t_.relaxed[i] = c.relaxed_wrist ? 1 : 0;
+    if (count_) {
+      st_.dp_nodes += c.nodes;
+      st_.infeasible_nodes += c.infeasible;
+      if (c.relaxed_wrist) ++st_.relaxed_wrist;
+    }
+    for (const Node& nd : row) {
+      if (nd.feasible) {
+        seed_ = nd.q;
+        break;
+      }
+    }
+    dpForwardHole(row, holes_, i, OrientationMode::kFlipFree, thr_, f_,
+                  DpRow{t_.from[i], t_.best[i]}, cost_);
+  }
+
+  Workers& w_;
+  Evaluator& serial_;
+  const std::vector<HoleRequest>& holes_;
+  int grid_;
+  double thr_;
+  bool count_;
+  SequenceTables& t_;
+  CompensationStats& st_;
+  DpFrontier& f_;
+  Vec6& seed_;
+  Grid<Node>& nodes_;
+  std::vector<Node> row_;  ///< node 0 and grid − 1 candidates that are not admissible
+  size_t run_begin_{0};    ///< the run: holes [run_begin_, run_begin_ + run_size_)
+  size_t run_size_{0};
+  Vec6 run_last_{Vec6::Zero()};         ///< node 0's joints at the run's last hole
+  DpFrontier f0_;                       ///< the DP's frontier before the run
+  size_t full_begin_{0}, full_end_{0};  ///< holes waiting for their grids
+  std::vector<NodeCount> counts_;
+  std::vector<Cost> cost_;
+};
+
+/// Stages 1 to 3 at the jump threshold thr, a block of holes at a time: the
+/// block predicted (stage 1, the continuity seed carried), then, 1,024 holes at a time
+/// (pipelinedFor), the workers evaluate the grids (holeNodes) while the holes before are finished
+/// in hole order on a task of its own (the serial seeds, the counters when `count`, the DP's
+/// forward pass). One block's predictions and grids are held. False when a reachable hole cannot
+/// be connected within thr.
+///  - Grids are in the branch of the original solution unless a branch change is allowed. A hole
+///    with an admissible original prediction is seeded with its joints (on the workers); the
+///    others, in hole order, with the first admissible candidate of the latest hole before them
+///    that has one (else the reference pose), on the ordered pass's own evaluator.
+bool forwardPass(Workers& w, const std::vector<HoleRequest>& holes,
+                 const std::optional<Vec6>& first, int grid, double thr, bool count,
+                 SequenceTables& t, CompensationStats& st) {
+  constexpr size_t kBlock = 1024;  // holes per block of the pipeline (a block boundary costs
+                                   // a wait for its slowest worker)
+  std::vector<Evaluator>& evs = w.evs;
+  const PredictionModel& m = evs[0].m;
+  const CompensationOptions& o = evs[0].o;
+  const int threads = w.threads();
+  const size_t n = holes.size();
+  const size_t cap = std::min(n, w.block);
+  std::vector<HolePrediction> before(cap);
+  Grid<Node> nodes(cap, static_cast<size_t>(grid), Node{}, threads);
+  std::vector<NodeCount> counts(cap);
+  PredictionData serial_scratch(m);
+  Evaluator serial{m, serial_scratch, o, true};
+  auto branchOf = [&](const HolePrediction& b) {
+    return (b.status == HoleStatus::kOk && !o.allow_branch_change) ? b.branch : -1;
+  };
+  std::optional<Vec6> prev = first;
+  Vec6 seed = m.reference_pose;
+  DpFrontier f;
+  std::vector<Cost> cost;
+  std::optional<FlipFreeForward> ff;
+  if (o.mode == OrientationMode::kFlipFree)
+    ff.emplace(w, serial, holes, grid, thr, count, t, st, f, seed, nodes);
+  std::vector<Node> zero(ff ? cap : 0);
+  for (size_t b0 = 0; b0 < n; b0 += w.block) {
+    const size_t e0 = std::min(n, b0 + w.block);
+    t.block_seed[b0 / w.block] = prev;
+    predictBlock(m, w.scratch[0], std::span<const HoleRequest>(holes).subspan(b0, e0 - b0), threads,
+                 prev, [&](size_t j) -> HolePrediction& { return before[j]; });
+    if (ff) {  // node 0 of the admissible holes on the workers, then the holes in order
+      parallelFor(e0 - b0, threads, [&](int wk, size_t j) {
+        const HolePrediction& b = before[j];
+        if (b.status == HoleStatus::kOk)
+          zero[j] = evs[static_cast<size_t>(wk)].evaluate(holes[b0 + j], gridPsi(0, grid),
+                                                          branchOf(b), b.joints, true, true);
+      });
+      for (size_t j = 0; j < e0 - b0; ++j) {
+        const size_t i = b0 + j;
+        const HolePrediction& h = before[j];
+        const bool ok = h.status == HoleStatus::kOk;
+        t.seed[i] = ok ? h.joints : seed;
+        t.branch[i] = static_cast<std::int8_t>(branchOf(h));
+        ff->add(i, ok, zero[j]);
+      }
+      continue;
+    }
+    auto onWorker = [&](int wk, size_t j) {
+      const HolePrediction& b = before[j];
+      counts[j] = NodeCount{};
+      if (b.status != HoleStatus::kOk) return;
+      counts[j] = holeNodes(evs[static_cast<size_t>(wk)], holes[b0 + j], b.joints, branchOf(b),
+                            grid, nodes[j]);
+    };
+    auto inOrder = [&](size_t b, size_t e) {
+      for (size_t j = b; j < e; ++j) {
+        const size_t i = b0 + j;
+        const HolePrediction& h = before[j];
+        const bool ok = h.status == HoleStatus::kOk;
+        t.seed[i] = ok ? h.joints : seed;
+        t.branch[i] = static_cast<std::int8_t>(branchOf(h));
+        if (!ok) counts[j] = holeNodes(serial, holes[i], seed, branchOf(h), grid, nodes[j]);
+        t.enforced[i] = counts[j].enforced ? 1 : 0;
+        t.relaxed[i] = counts[j].relaxed_wrist ? 1 : 0;
+        if (count) {
+          st.dp_nodes += counts[j].nodes;
+          st.infeasible_nodes += counts[j].infeasible;
+          if (counts[j].relaxed_wrist) ++st.relaxed_wrist;
+        }
+        for (const Node& nd : nodes[j]) {
+          if (nd.feasible) {
+            seed = nd.q;
+            break;
+          }
+        }
+        dpForwardHole(nodes[j], holes, i, o.mode, thr, f, DpRow{t.from[i], t.best[i]}, cost);
+      }
+    };
+    pipelinedFor(e0 - b0, std::min(kBlock, w.block), threads, onWorker, inOrder);
+  }
+  if (ff) ff->finish();
+  return f.all_connected;
+}
+
+/// What stages 2 and 3 give the holes' finishing: the chosen node per hole (not feasible: none),
+/// the ψ = 0 candidate of each hole whose chosen node is turned (by hole index: psiReason reads
+/// it; the refinement and stiffest only turn holes back), whether the wrist margin was relaxed,
+/// and the prediction seeds of the blocks (SequenceTables::block_seed).
+struct Sequence {
+  std::vector<Node> chosen;
+  std::vector<std::pair<size_t, Node>> zero;
+  std::vector<char> relaxed;
+  std::vector<std::optional<Vec6>> block_seed;
+
+  /// The ψ = 0 candidate of turned hole i.
+  [[nodiscard]] const Node& zeroOf(size_t i) const {
+    const auto it = std::lower_bound(zero.begin(), zero.end(), i,
+                                     [](const auto& z, size_t k) { return z.first < k; });
+    if (it == zero.end() || it->first != i)
+      throw std::logic_error("compensateHoles: a hole turned after the sequence was chosen");
+    return it->second;
+  }
+};
+
+/// Stages 2 and 3: every hole's ψ grid (holeNodes) and the cheapest admissible path through
+/// them (forwardPass, then dpBacktrack). When a reachable hole does not connect, the threshold is
+/// relaxed ×1.5 and the whole pass repeated (the grids made again) until every reachable hole
+/// connects (`thr` returns the threshold used). The chosen nodes and the turned holes' ψ = 0
+/// candidates are evaluated again from the tables, which are then dropped.
+Sequence chooseSequence(Workers& w, const std::vector<HoleRequest>& holes,
+                        const std::optional<Vec6>& first, int grid, CompensationStats& st,
+                        double& thr) {
+  const size_t n = holes.size();
+  SequenceTables t(n, grid, w.threads(), w.block);
+  thr = w.evs[0].o.jump_threshold;
+  bool connected = forwardPass(w, holes, first, grid, thr, true, t, st);
+  while (!connected) {
+    st.relaxed_jumps = true;
+    thr *= 1.5;
+    if (thr > 4 * kPi) {
+      forwardPass(w, holes, first, grid, kInf, false, t, st);
+      break;
+    }
+    connected = forwardPass(w, holes, first, grid, thr, false, t, st);
+  }
+  std::vector<int> choice = dpBacktrack(t.from, t.best);
+  t.from = Grid<std::int16_t>();
+  Sequence q;
+  q.chosen.resize(n);
+  parallelFor(n, w.threads(), [&](int wk, size_t i) {
+    if (choice[i] >= 0)
+      q.chosen[i] = t.node(w.evs[static_cast<size_t>(wk)], holes, i, choice[i], grid);
+  });
+  auto turned = [&](size_t i) {
+    return q.chosen[i].feasible && std::abs(q.chosen[i].psi) > kPsiKept;
+  };
+  size_t count = 0;
+  for (size_t i = 0; i < n; ++i) count += turned(i) ? 1 : 0;
+  q.zero.resize(count);
+  for (size_t i = 0, k = 0; i < n; ++i) {
+    if (turned(i)) q.zero[k++].first = i;
+  }
+  parallelFor(q.zero.size(), w.threads(), [&](int wk, size_t k) {
+    q.zero[k].second = t.node(w.evs[static_cast<size_t>(wk)], holes, q.zero[k].first, 0, grid);
+  });
+  q.relaxed = std::move(t.relaxed);
+  q.block_seed = std::move(t.block_seed);
+  return q;
+}
+
+/// flip-free and stiffest: the sequence chosen over the whole run (stages 1 to 4, a block of
+/// predictions and grids at a time), then the holes predicted again, finished (stage 5; stiffest
+/// against keep) and handed over a block at a time. A stiffest hole is handed over once the next
+/// hole with a chosen posture is final (its ψ reason reads it).
 void sequenceRun(Workers& w, const std::vector<HoleRequest>& holes,
                  const std::optional<Vec6>& first, CompensationStats& st, const RunOutput& to) {
   std::vector<Evaluator>& evs = w.evs;
@@ -1224,35 +1512,21 @@ void sequenceRun(Workers& w, const std::vector<HoleRequest>& holes,
   const CompensationOptions& o = evs[0].o;
   const int threads = w.threads();
   const size_t n = holes.size();
-  std::vector<HolePrediction> before =
-      predictOriginalThreads(m, w.scratch[0], holes, first, threads);
   const int grid = std::max(4, o.grid);
-  Grid<Node> nodes;
+  if (grid > std::numeric_limits<std::int16_t>::max())
+    throw std::invalid_argument("compensateHoles: the ψ grid has more than 32767 nodes");
   double thr = 0;
-  std::vector<char> relaxed;
-  std::vector<Node> chosen(n);
-  {
-    PredictionData serial_scratch(m);
-    Evaluator serial{m, serial_scratch, o, true};
-    const std::vector<int> choice =
-        chooseSequence(evs, serial, holes, before, relaxed, grid, nodes, st, thr);
-    st.jump_threshold_used = thr;
-    for (size_t i = 0; i < n; ++i) {
-      if (choice[i] >= 0) chosen[i] = nodes[i][static_cast<size_t>(choice[i])];
-    }
-  }
-  if (o.refine) refineTurned(evs, holes, relaxed, chosen, grid, thr, st);
+  Sequence q = chooseSequence(w, holes, first, grid, st, thr);
+  std::vector<Node>& chosen = q.chosen;
+  st.jump_threshold_used = thr;
+  if (o.refine) refineTurned(evs, holes, q.relaxed, chosen, grid, thr, st);
   const bool stiffest = o.mode == OrientationMode::kStiffest;
-  // the programmed posture (ψ = 0, no wrist requirement) of each hole: stiffest's reference
-  std::vector<Node> programmed(stiffest ? n : 0);
-  if (stiffest) {
-    parallelFor(n, threads, [&](int wk, size_t i) {
-      const HolePrediction& b = before[i];
-      if (b.status == HoleStatus::kOk)
-        programmed[i] =
-            evs[static_cast<size_t>(wk)].evaluate(holes[i], 0.0, b.branch, b.joints, false, true);
-    });
-  }
+  const size_t cap = std::min(n, w.block);
+  std::vector<HolePrediction> before(cap);
+  // the programmed posture (ψ = 0, no wrist requirement) of each hole of a block: stiffest's
+  // reference
+  std::vector<Node> programmed(stiffest ? cap : 0);
+  std::vector<Node> zero;  // the ψ = 0 candidates of the turned holes handed over (psiReason)
   if (to.whole) to.whole->reserve(to.whole->size() + n);
   // the finished holes [ready, e) not handed over yet are in bufs[k]; with workers, those handed
   // over go to the sink on a task of its own while the next block is finished (the holes that
@@ -1261,8 +1535,11 @@ void sequenceRun(Workers& w, const std::vector<HoleRequest>& holes,
   std::future<void> handing;  // the sink's call for the holes before
   int k = 0;
   size_t ready = 0;
-  for (size_t b = 0; b < n; b += kCompensationBlock) {
-    const size_t e = std::min(n, b + kCompensationBlock);
+  for (size_t b = 0; b < n; b += w.block) {
+    const size_t e = std::min(n, b + w.block);
+    std::optional<Vec6> seed = q.block_seed[b / w.block];
+    predictBlock(m, w.scratch[0], std::span<const HoleRequest>(holes).subspan(b, e - b), threads,
+                 seed, [&](size_t j) -> HolePrediction& { return before[j]; });
     std::vector<HoleCompensation>& pend = bufs[static_cast<size_t>(k)];
     const size_t p0 = pend.size();  // hole b in pend
     pend.resize(p0 + (e - b));
@@ -1270,20 +1547,25 @@ void sequenceRun(Workers& w, const std::vector<HoleRequest>& holes,
     // made later from the copy the result carries (stageOne)
     parallelFor(e - b, threads, [&](int wk, size_t j) {
       const size_t i = b + j;
+      Evaluator& ev = evs[static_cast<size_t>(wk)];
       HoleCompensation& c = pend[p0 + j];
       c.id = holes[i].id;
-      c.before = std::move(before[i]);
-      if (relaxed[i]) c.note = kRelaxedWristNote;
+      c.before = std::move(before[j]);
+      if (stiffest) {
+        programmed[j] = Node{};
+        if (c.before.status == HoleStatus::kOk)
+          programmed[j] = ev.evaluate(holes[i], 0.0, c.before.branch, c.before.joints, false, true);
+      }
+      if (q.relaxed[i]) c.note = kRelaxedWristNote;
       std::string why = notCompensatedReason(c, chosen[i]);
       if (!why.empty()) {
         c.reason = std::move(why);
         return;
       }
-      c = finalizeHole(evs[static_cast<size_t>(wk)], holes[i],
-                       stiffest ? stageOne(c) : std::move(c), chosen[i], false);
+      c = finalizeHole(ev, holes[i], stiffest ? stageOne(c) : std::move(c), chosen[i], false);
     });
     if (stiffest)
-      stiffestAgainstKeep(evs, holes, programmed, chosen, thr,
+      stiffestAgainstKeep(evs, holes, std::span<const Node>(programmed.data(), e - b), chosen, thr,
                           std::span<HoleCompensation>(pend).subspan(p0), b);
     size_t upto = e;  // stiffest: the last hole with a posture waits for the next block
     if (stiffest && e < n) {
@@ -1295,7 +1577,11 @@ void sequenceRun(Workers& w, const std::vector<HoleRequest>& holes,
       }
     }
     const std::span<HoleCompensation> done(pend.data(), upto - ready);
-    countFinished(evs[0], holes, chosen, &nodes, thr, done, ready, st);
+    zero.assign(done.size(), Node{});
+    for (size_t j = 0; j < done.size(); ++j) {
+      if (done[j].ok && std::abs(done[j].psi) > kPsiKept) zero[j] = q.zeroOf(ready + j);
+    }
+    countFinished(evs[0], holes, chosen, zero, thr, done, ready, st);
     if (handing.valid()) handing.get();  // the holes before are handed over (or its error thrown)
     std::vector<HoleCompensation>& next = bufs[static_cast<size_t>(k ^ 1)];
     next.clear();

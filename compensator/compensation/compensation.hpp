@@ -52,6 +52,10 @@
 namespace roprec {
 
 enum class OrientationMode { kKeep, kFlipFree, kStiffest };
+
+/// Holes predicted, finished (stage 5) and handed to a CompensationSink at a time (the default of
+/// CompensationOptions::block).
+inline constexpr std::size_t kCompensationBlock = 2048;
 const char* orientationModeName(OrientationMode m);
 
 struct CompensationOptions {
@@ -67,6 +71,10 @@ struct CompensationOptions {
   /// refinement against its refined predecessor), the per-hole work (candidate IK, NLopt, exact
   /// command, re-prediction) runs on the workers with per-thread scratch.
   int threads{1};
+  /// Holes held at a time (≥ 1): each block of holes is predicted, finished and handed over in
+  /// turn; flip-free and stiffest also evaluate their candidate grids a block at a time. The
+  /// result is the same for every size (tests make it small).
+  std::size_t block{kCompensationBlock};
 };
 
 /// What compensateTarget computes beyond the compensated target.
@@ -125,7 +133,7 @@ struct HoleCompensation {
 };
 
 struct CompensationStats {
-  int dp_nodes{0};
+  int dp_nodes{0};  ///< candidates evaluated for the DP (flip-free skips runs that keep ψ = 0)
   int infeasible_nodes{0};
   int refined{0};
   int nlopt_evaluations{0};
@@ -159,13 +167,12 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,
 /// `first + k` of the request list. The holes may be moved from; they are dropped after the call.
 using CompensationSink = std::function<void(std::size_t first, std::span<HoleCompensation> holes)>;
 
-/// Holes finished (stage 5) and handed to a CompensationSink at a time.
-inline constexpr std::size_t kCompensationBlock = 2048;
-
 /// compensateHoles with the results handed to `sink` block by block instead of returned (the same
 /// holes, bytes and statistics). keep holds one block of results at a time (each block of holes is
 /// predicted, compensated and handed over in turn); flip-free and stiffest choose the sequence
-/// over the whole program first, then finish and hand over the holes a block at a time.
+/// over the whole program first (a block of predictions and candidate grids at a time, the DP's
+/// predecessor table and the chosen candidates for the whole program), then predict again,
+/// finish and hand over the holes a block at a time.
 void compensateHoles(const PredictionModel& m, const std::vector<HoleRequest>& holes,
                      const CompensationOptions& options, const CompensationSink& sink,
                      CompensationStats* stats = nullptr);
