@@ -686,6 +686,10 @@ TEST(MillingCompensation, PipelinedBlocksOnTwoThreadsGiveTheOneThreadResults) {
       EXPECT_EQ(x.cutting, y->cutting) << i;
       EXPECT_EQ(x.ae, y->ae) << i;
       EXPECT_EQ(x.ap, y->ap) << i;
+      EXPECT_EQ(x.cutting_after, y->cutting_after) << i;
+      EXPECT_EQ(x.ae_after, y->ae_after) << i;
+      EXPECT_EQ(x.ap_after, y->ap_after) << i;
+      EXPECT_EQ(x.deviation_free, y->deviation_free) << i;
       EXPECT_EQ(x.theta_d, y->theta_d) << i;
       EXPECT_EQ(x.theta_cmd, y->theta_cmd) << i;
       EXPECT_EQ(x.T_programmed.matrix(), y->T_programmed.matrix()) << i;

@@ -171,7 +171,7 @@ CuttingDecision engagedDecision(EngagementTracker& tracker, const std::optional<
 
 ForceFixedPoint solveForceFixedPoint(const std::function<bool(const Vec3&, Vec3&)>& phi,
                                      const Vec3& F0, ForceUpdate update, double tolerance,
-                                     int max_evaluations) {
+                                     int max_evaluations, Mat3* jacobian) {
   ForceFixedPoint out;
   Vec3 F = F0;
   Vec3 image;
@@ -181,14 +181,17 @@ ForceFixedPoint solveForceFixedPoint(const std::function<bool(const Vec3&, Vec3&
     return out;
   }
   Vec3 r = image - F;
-  Mat3 J = -Mat3::Identity();  // Broyden's estimate of ∂r/∂F (Φ constant: −I)
+  // Broyden's estimate of ∂r/∂F (Φ constant: −I)
+  Mat3 J = jacobian != nullptr ? *jacobian : Mat3(-Mat3::Identity());
+  const auto done = [&](bool converged) {
+    out.converged = converged;
+    if (jacobian != nullptr) *jacobian = J;
+    return out;
+  };
   while (true) {
     out.force = F + r;
-    if (r.norm() <= tolerance) {
-      out.converged = true;
-      return out;
-    }
-    if (out.evaluations >= max_evaluations) return out;
+    if (r.norm() <= tolerance) return done(true);
+    if (out.evaluations >= max_evaluations) return done(false);
     Vec3 step = r;  // the plain step: F + r = Φ(F)
     if (update == ForceUpdate::kBroyden) {
       const Eigen::ColPivHouseholderQR<Mat3> qr(J);
@@ -207,7 +210,7 @@ ForceFixedPoint solveForceFixedPoint(const std::function<bool(const Vec3&, Vec3&
     }
     if (!ok) {
       out.map_failed = true;
-      return out;
+      return done(false);
     }
     r_next = image - F_next;
     const Vec3 dF = F_next - F;
@@ -631,6 +634,8 @@ class CompensatedChain {
   CouplingState state_;
   RealPathEngagement engagement_;
   std::shared_ptr<const PointCut> own_;  ///< the cut of its own engagement when it differs
+  /// Broyden's estimate of ∂(Φ(F) − F)/∂F, carried from point to point
+  Mat3 force_jacobian_{-Mat3::Identity()};
 };
 
 /// Box stock: the compensated path's engagement of the move into point i (queried at the path
@@ -721,7 +726,8 @@ void CompensatedChain::compensate(size_t i, const PointCut& cut, PathPointCompen
   bool conv = !cutting;
   p.force_iterations = 0;
   if (cutting) {
-    const ForceFixedPoint fp = solveForceFixedPoint(phi, cut.F_nom, s_.options.force_update);
+    const ForceFixedPoint fp =
+        solveForceFixedPoint(phi, cut.F_nom, s_.options.force_update, 1e-9, 20, &force_jacobian_);
     F = fp.force;
     conv = fp.converged;
     p.force_iterations = fp.evaluations;

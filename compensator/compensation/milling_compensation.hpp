@@ -8,7 +8,8 @@
 ///      the converged force of the coupled iteration of milling.hpp with the compensated robot's
 ///      compliance at θ_m(F) (δ(G) = real − nominal tool position under G, milling frame) from the
 ///      previous point's state. Solved from F⁽⁰⁾ = F(fz, ae) nominal by Broyden's method on
-///      r(F) = Φ(F) − F (solveForceFixedPoint) until |r| ≤ 1e-9 N — with an exact compensation the
+///      r(F) = Φ(F) − F (solveForceFixedPoint, its Jacobian estimate carried from point to point)
+///      until |r| ≤ 1e-9 N — with an exact compensation the
 ///      tool stays on the path, the chip is nominal and this converges at the first check; the
 ///      plain iteration F ← Φ(F) diverges when the previous-edge coupling is strong (a tooth pass
 ///      or so between points: ∂Φ/∂F has a spectral radius above 1);
@@ -174,9 +175,12 @@ struct ForceFixedPoint {
   bool map_failed{false};    ///< Φ could not be evaluated (its last call returned false)
 };
 /// Solves F = Φ(F) from F0. `phi(F, out)` returns false when Φ cannot be evaluated at F.
+/// `jacobian` (Broyden): the initial estimate of ∂(Φ(F) − F)/∂F (none: −I, the first step then
+/// the plain one), and on return the updated estimate (a path warm-starts each point with the
+/// previous point's: Φ changes little from point to point).
 ForceFixedPoint solveForceFixedPoint(const std::function<bool(const Vec3&, Vec3&)>& phi,
                                      const Vec3& F0, ForceUpdate update, double tolerance = 1e-9,
-                                     int max_evaluations = 20);
+                                     int max_evaluations = 20, Mat3* jacobian = nullptr);
 
 /// What compensateMillingPath computes beyond the compensation, and on how many workers.
 struct MillingPathOptions {
