@@ -12,9 +12,13 @@
 #include <kdl/chainidsolver_recursive_newton_euler.hpp>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cstdio>
+#include <functional>
 #include <sstream>
 
 #include "compensator/robot/counterbalance.hpp"
+#include "compensator/support/c_format.hpp"
 #include "plugin/api/job.hpp"
 #include "plugin/api/prediction_setup.hpp"
 #include "postproc/program.hpp"
@@ -404,12 +408,12 @@ TEST(MillingCompensation, PathToolNotAMillOfTheTableIsRefusedAtItsLine) {
 }
 
 // Engagement from the program (box stock): samples/milling/box_passes.src in the block y ≥ 3 mm,
-// z ≤ 0 of box-stock-7075.xml. Closed forms (tool D 10 at y_c, material y ≥ y_wall): pass 1 (y 0,
-// z −5) ae = 0 + 5 − 3 = 2, ap = 5; pass 2 (y 2) cuts what pass 1 left, y ≥ 5: ae = 2; pass 3 (y 2,
-// z −10) the column 3 ≤ y ≤ 7 below pass 1–2's floor: ae = 4, ap = 5. Points in the box's middle
-// (x −20 … 60, clear of the entry) are checked to the tracker's resolution (D/200); before the box
-// nothing is engaged; every engaged point is coupled with its own ae/ap (the force grows with ae:
-// pass 3 > pass 1).
+// z ≤ 0 of box-stock-7075.xml. Closed forms on the programmed path (tool D 10 at y_c, material
+// y ≥ y_wall): pass 1 (y 0, z −5) ae = 0 + 5 − 3 = 2, ap = 5; pass 2 (y 2) cuts what pass 1 left,
+// y ≥ 5: ae = 2; pass 3 (y 2, z −10) the column 3 ≤ y ≤ 7 below pass 1–2's floor: ae = 4, ap = 5.
+// Points in the box's middle (x −20 … 60, clear of the entry) are checked to 0.01 µm (the
+// tracker's refined run ends); before the box nothing is engaged; every engaged point is coupled
+// with its own ae/ap (the force grows with ae: pass 3 > pass 1).
 TEST(MillingCompensation, EngagementFromTheBoxStockAndTheEarlierPasses) {
   const std::string cell = test::sourceDir() + "/samples/milling/box-stock-7075.xml";
   const std::string prog = test::sourceDir() + "/samples/milling/box_passes.src";
@@ -432,9 +436,8 @@ TEST(MillingCompensation, EngagementFromTheBoxStockAndTheEarlierPasses) {
       if (x.x() >= -20e-3 && x.x() <= 60e-3) {
         ASSERT_TRUE(d.cutting) << i << ": " << d.reason;
         ASSERT_TRUE(d.engagement.has_value());
-        EXPECT_NEAR(d.engagement->ae, passes[k].ae, 10e-3 / 200) << "pass " << k + 1;
+        EXPECT_NEAR(d.engagement->ae, passes[k].ae, 1e-8) << "pass " << k + 1;
         EXPECT_NEAR(d.engagement->ap, passes[k].ap, 1e-9) << "pass " << k + 1;
-        EXPECT_NEAR(p.ae, d.engagement->ae, 1e-15);
         EXPECT_TRUE(p.ok) << p.reason;
         force[k] = p.before_force.head<2>().norm();
         ++checked[k];
@@ -447,6 +450,211 @@ TEST(MillingCompensation, EngagementFromTheBoxStockAndTheEarlierPasses) {
   for (int k = 0; k < 3; ++k) EXPECT_GE(checked[k], 15) << "pass " << k + 1;
   EXPECT_GT(force[2], force[0]);
   EXPECT_TRUE(before_box);
+}
+
+/// The engagement of a tool (radius R) at tip b moving from tip a (workobject frame, XY) against
+/// material at y ≥ wall(x): the leading half-circle's points p(s) = b + s l + √(R² − s²) f are in
+/// material from the offset s* where p(s*).y = wall(p(s*).x) up to s = R (l = +y side), so
+/// ae = R − s* (s* by bisection; the wall is a function of x, not the tracker's capsules).
+double aeAgainstWall(const Vec3& a, const Vec3& b, const std::function<double(double)>& wall) {
+  const double R = 5e-3;
+  const Eigen::Vector2d f = (b - a).head<2>().normalized();
+  const Eigen::Vector2d l(-f.y(), f.x());
+  const auto inside = [&](double s) {
+    const Eigen::Vector2d p = b.head<2>() + s * l + std::sqrt(R * R - s * s) * f;
+    return p.y() >= wall(p.x());
+  };
+  double lo = -R;  // outside
+  double hi = R;   // inside
+  for (int k = 0; k < 80; ++k) (inside(0.5 * (lo + hi)) ? hi : lo) = 0.5 * (lo + hi);
+  return R - 0.5 * (lo + hi);
+}
+
+/// The wall a pass left (material at y ≥ wall(x)): its tips' y, linearly between them, + R.
+std::function<double(double)> wallLeftBy(std::vector<Vec3> tips) {
+  std::sort(tips.begin(), tips.end(), [](const Vec3& u, const Vec3& v) { return u.x() < v.x(); });
+  return [tips](double x) {
+    const auto it = std::lower_bound(tips.begin(), tips.end(), x,
+                                     [](const Vec3& t, double v) { return t.x() < v; });
+    if (it == tips.begin() || it == tips.end()) return -1.0;
+    const Vec3& u = *(it - 1);
+    const Vec3& v = *it;
+    return u.y() + (x - u.x()) / (v.x() - u.x()) * (v.y() - u.y()) + 5e-3;
+  };
+}
+
+// The real path's engagement (box_passes in the box stock): without compensation each pass cuts
+// what the earlier ones really left — pass 2's ae against the wall of pass 1's real tips (path
+// point + deviation_before, the wall their y + R between them), queried from its own tool without
+// the milling force (path point + deviation_free); passes 1 and 3 against the box face y = 3 mm
+// — all from the geometry above (not the tracker), to 0.02 µm, and pass 2's ae differs from the
+// programmed 2 mm by pass 1's surface error (several µm). With compensation, pass 2 cuts what the
+// compensated pass 1 left (path point + residual): its ae equals the programmed one within pass
+// 1's residual.
+TEST(MillingCompensation, EachPassCutsWhatTheEarlierPassesReallyLeft) {
+  const std::string cell = test::sourceDir() + "/samples/milling/box-stock-7075.xml";
+  const std::string prog = test::sourceDir() + "/samples/milling/box_passes.src";
+  MillingPathOptions options;
+  options.resolve_edges = false;  // not needed here
+  const api::MillingCompensationResult r = api::compensateMillingJob(cell, prog, false, options);
+  const Pose T_wobj_W = r.context.cell.T_base_wobj.inverse();
+  const auto wobj = [&](size_t i, const Vec3& dev) {
+    return Vec3(T_wobj_W * (r.points[i].translation() + dev));
+  };
+  std::vector<size_t> pass[3];
+  const double ys[] = {0, 2e-3, 2e-3};
+  const double zs[] = {-5e-3, -5e-3, -10e-3};
+  for (size_t i = 0; i < r.points.size(); ++i) {
+    const Vec3 x = wobj(i, Vec3::Zero());
+    for (int k = 0; k < 3; ++k)
+      if (std::abs(x.y() - ys[k]) < 1e-6 && std::abs(x.z() - zs[k]) < 1e-6 && r.cutting[i].cutting)
+        pass[k].push_back(i);
+  }
+  for (int k = 0; k < 3; ++k) ASSERT_GE(pass[k].size(), 20u) << k;
+  std::vector<Vec3> real1, compensated1;
+  double residual1 = 0;
+  for (const size_t i : pass[0]) {
+    real1.push_back(wobj(i, r.points_comp[i].deviation_before));
+    compensated1.push_back(wobj(i, r.points_comp[i].residual));
+    residual1 = std::max(residual1, r.points_comp[i].residual.norm());
+  }
+  const std::function<double(double)> face = [](double) { return 3e-3; };
+  const std::function<double(double)> walls[] = {face, wallLeftBy(real1), face};
+  double change = 0;
+  int checked = 0;
+  for (int k = 0; k < 3; ++k) {
+    for (const size_t i : pass[k]) {
+      const double x = wobj(i, Vec3::Zero()).x();
+      if (x < -20e-3 || x > 60e-3) continue;
+      const PathPointCompensation& p = r.points_comp[i];
+      const PathPointCompensation& q = r.points_comp[i - 1];
+      ASSERT_TRUE(p.ok && p.cutting && p.cutting_after) << i << " " << p.reason;
+      const Vec3 a = wobj(i - 1, q.deviation_free);
+      const Vec3 b = wobj(i, p.deviation_free);
+      EXPECT_NEAR(p.ae, aeAgainstWall(a, b, walls[k]), 0.02e-6) << "pass " << k + 1 << " " << i;
+      if (k < 2) {
+        EXPECT_NEAR(p.ap, -b.z(), 1e-9) << "pass " << k + 1;
+      }
+      if (k == 1) {
+        change = std::max(change, std::abs(p.ae - r.cutting[i].engagement->ae));
+        const Vec3 an = wobj(i - 1, Vec3::Zero());
+        const Vec3 bn = wobj(i, Vec3::Zero());
+        EXPECT_NEAR(p.ae_after, aeAgainstWall(an, bn, wallLeftBy(compensated1)), 0.02e-6) << i;
+        EXPECT_NEAR(p.ae_after, r.cutting[i].engagement->ae, residual1 + 0.02e-6) << i;
+      }
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, 45);
+  EXPECT_GT(change, 2e-6);  // the real path changes pass 2's engagement measurably
+  EXPECT_LT(residual1, 0.5e-6);
+}
+
+// The compensated force fixed point F = Φ(F) on a map whose Jacobian has a spectral radius above 1
+// (as strong previous-edge coupling gives: −∂Φ/∂F = M, eigenvalues 1.6, 0.4, −1.3) with a small
+// quadratic term: the plain iteration F ← Φ(F) diverges from a start 1 N off; Broyden's method
+// converges to the known root F* (closed form) in ≤ 20 evaluations: |Φ(F) − F| ≤ 1e-9 N, so
+// |F − F*| ≤ |(I + M)⁻¹| 1e-9 N ≈ 3.4e-9 N (the eigenvalue −1.3 of M).
+TEST(MillingCompensation, BroydenForceFixedPointConvergesWhereThePlainIterationDiverges) {
+  const Vec3 F_star(-180.0, 95.0, -12.0);
+  Mat3 Q;
+  Q = Eigen::AngleAxisd(0.4, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  const Mat3 M = Q * Vec3(1.6, 0.4, -1.3).asDiagonal() * Q.transpose();
+  const auto phi = [&](const Vec3& F, Vec3& out) {
+    const Vec3 e = F - F_star;
+    out = F_star - M * e + 1e-3 * e.squaredNorm() * Vec3::UnitX();
+    return true;
+  };
+  const Vec3 F0 = F_star + Vec3(0.6, -0.5, 0.62);
+  const ForceFixedPoint plain = solveForceFixedPoint(phi, F0, ForceUpdate::kPlain);
+  EXPECT_FALSE(plain.converged);
+  EXPECT_GT((plain.force - F_star).norm(), 10 * (F0 - F_star).norm());
+  const ForceFixedPoint broyden = solveForceFixedPoint(phi, F0, ForceUpdate::kBroyden);
+  EXPECT_TRUE(broyden.converged);
+  EXPECT_LE(broyden.evaluations, 20);
+  EXPECT_LT((broyden.force - F_star).norm(), 4e-9);
+  // a Φ that cannot be evaluated far from the root: Broyden halves the step and still converges
+  const auto guarded = [&](const Vec3& F, Vec3& out) {
+    return (F - F_star).norm() < 3.0 && phi(F, out);
+  };
+  const ForceFixedPoint halved = solveForceFixedPoint(guarded, F0, ForceUpdate::kBroyden);
+  EXPECT_TRUE(halved.converged);
+  EXPECT_LT((halved.force - F_star).norm(), 4e-9);
+}
+
+/// samples/milling/wall_pass.src with its feed points replaced by n points `step` apart from
+/// x −50 mm.
+std::string fineWallPass(int n, double step_mm) {
+  const std::string text = test::readFile(test::sourceDir() + "/samples/milling/wall_pass.src");
+  const std::string feed = "$VEL.CP = 0.06000\r\n";  // the sample's lines end in CR LF
+  const size_t head = text.find(feed) + feed.size();
+  const size_t tail = text.find("LIN {X 70.000");
+  std::string s = text.substr(0, head);
+  for (int i = 0; i < n; ++i)
+    s += "LIN {X " + cFixed(-50 + step_mm * i, 4) +
+         ",Y 0.000,Z -5.000,A 0.000,B 0.000,C 180.000} C_DIS\r\n";
+  return s + text.substr(tail);
+}
+
+// One tooth pass between points (6 µm apart at fz 0.1 mm: spacing / fz rounds to 0, at least 1,
+// taken from the program since the cell gives none): the feed term's previous-edge coupling makes
+// ∂Φ/∂F's spectral radius exceed 1 — the plain force iteration fails ("the force fixed point did
+// not converge") while Broyden's compensates every cutting point to ≤ 0.5 µm.
+TEST(MillingCompensation, OneToothPassPerPointCompensatesEveryCuttingPoint) {
+  const std::string dir = test::tempDir("mill-fine");
+  test::writeFile(dir + "/fine.src", fineWallPass(60, 0.006));
+  const std::string cell = test::sourceDir() + "/samples/cells/alu-milling-7075.xml";
+  const api::MillingCompensationResult r = api::compensateMillingJob(cell, dir + "/fine.src");
+  MillingPathOptions plain_options;
+  plain_options.force_update = ForceUpdate::kPlain;
+  const api::MillingCompensationResult plain =
+      api::compensateMillingJob(cell, dir + "/fine.src", false, plain_options);
+  int cutting = 0;
+  int plain_failed = 0;
+  for (size_t i = 0; i < r.points_comp.size(); ++i) {
+    const PathPointCompensation& p = r.points_comp[i];
+    if (!p.cutting) continue;
+    ++cutting;
+    EXPECT_TRUE(p.ok) << i << " " << p.reason;
+    EXPECT_LT(p.residual.norm(), 0.5e-6) << i;
+    EXPECT_FALSE(p.teeth_from_cell);
+    if (i >= 2 && i <= 60) {  // after the first fine point, to the last (then x 70 follows)
+      EXPECT_EQ(p.teeth_between_points, 1) << i;
+    }
+    if (!plain.points_comp[i].ok) {
+      ++plain_failed;
+      EXPECT_EQ(plain.points_comp[i].reason, "the force fixed point did not converge") << i;
+    }
+  }
+  EXPECT_GE(cutting, 60);
+  EXPECT_GT(plain_failed, 30);
+  std::printf("one tooth pass per point: %d cutting points, the plain update failed %d\n", cutting,
+              plain_failed);
+}
+
+// The tooth passes between points: from the program's spacing (wall_pass: 5 mm / fz 0.1 = 50, the
+// first feed point 10 mm after the plunge: 100) unless the cell's <coupling> gives them.
+TEST(MillingCompensation, TeethBetweenPointsFromTheSpacingUnlessTheCellGivesThem) {
+  const std::string cell = test::sourceDir() + "/samples/cells/alu-milling-7075.xml";
+  const std::string prog = test::sourceDir() + "/samples/milling/wall_pass.src";
+  const api::MillingCompensationResult r = api::compensateMillingJob(cell, prog);
+  const std::string dir = test::tempDir("mill-teeth");
+  std::string text = test::readFile(cell);
+  const size_t at = text.find("<coupling ") + std::string("<coupling ").size();
+  text.insert(at, "teeth_between_points=\"7\" ");
+  test::writeFile(dir + "/seven.xml", text);
+  const api::MillingCompensationResult g = api::compensateMillingJob(dir + "/seven.xml", prog);
+  int checked = 0;
+  for (size_t i = 2; i < r.points_comp.size(); ++i) {
+    if (!r.points_comp[i].cutting) continue;
+    const double spacing = (r.points[i].translation() - r.points[i - 1].translation()).norm();
+    EXPECT_EQ(r.points_comp[i].teeth_between_points, std::round(spacing / 0.1e-3)) << i;
+    EXPECT_FALSE(r.points_comp[i].teeth_from_cell);
+    EXPECT_EQ(g.points_comp[i].teeth_between_points, 7) << i;
+    EXPECT_TRUE(g.points_comp[i].teeth_from_cell);
+    ++checked;
+  }
+  EXPECT_GE(checked, 20);
 }
 
 // The pipeline (the uncompensated chain of a block while the compensated chain runs over the
@@ -478,6 +686,10 @@ TEST(MillingCompensation, PipelinedBlocksOnTwoThreadsGiveTheOneThreadResults) {
       EXPECT_EQ(x.cutting, y->cutting) << i;
       EXPECT_EQ(x.ae, y->ae) << i;
       EXPECT_EQ(x.ap, y->ap) << i;
+      EXPECT_EQ(x.cutting_after, y->cutting_after) << i;
+      EXPECT_EQ(x.ae_after, y->ae_after) << i;
+      EXPECT_EQ(x.ap_after, y->ap_after) << i;
+      EXPECT_EQ(x.deviation_free, y->deviation_free) << i;
       EXPECT_EQ(x.theta_d, y->theta_d) << i;
       EXPECT_EQ(x.theta_cmd, y->theta_cmd) << i;
       EXPECT_EQ(x.T_programmed.matrix(), y->T_programmed.matrix()) << i;

@@ -9,7 +9,8 @@ namespace roprec {
 namespace {
 
 constexpr double kD = 10e-3;          // tool diameter
-constexpr double kSample = kD / 200;  // lateral resolution of the tracker
+constexpr double kSample = kD / 200;  // lateral sampling of the tracker
+constexpr double kEdge = 1e-8;        // its refined run ends (kBoundaryResolution) and rounding
 
 StockShape box(double x0, double y0, double z0, double x1, double y1, double z1) {
   StockShape s;
@@ -30,13 +31,15 @@ std::vector<MillingEngagement> pass(EngagementTracker& t, double y, double z, do
 }
 
 // A wall pass along a box edge: the tool centre at y = y0 − R + w overlaps the box (y ≥ y0) by w,
-// so ae = w (closed form) and ap = top − z; outside the box in x nothing is engaged.
+// so ae = w (closed form, to the refined run ends — widths off the D/200 sampling grid included)
+// and ap = top − z; outside the box in x nothing is engaged. (A run narrower than D/200 between
+// two samples is missed: the sampling finds runs, the bisection their ends.)
 TEST(MillingEngagement, WallPassAlongABoxEdgeGivesTheOverlap) {
-  for (const double w : {1e-3, 2e-3, 4.5e-3}) {
+  for (const double w : {1e-3, 2e-3, 4.5e-3, 2.0173e-3}) {
     EngagementTracker t(box(0, 0, -0.02, 0.1, 0.05, 0), kD);
     const std::vector<MillingEngagement> e = pass(t, -kD / 2 + w, -5e-3, 0.02, 0.08);
     for (const MillingEngagement& g : e) {
-      EXPECT_NEAR(g.ae, w, kSample) << w;
+      EXPECT_NEAR(g.ae, w, kEdge) << w;
       EXPECT_NEAR(g.ap, 5e-3, 1e-12);
     }
     // beyond the box's end face (x = 0.1 + R … ) the leading half is in the air
@@ -57,7 +60,7 @@ TEST(MillingEngagement, EarlierPassesSetTheStepoverAndTheStepDown) {
   for (const double s : {1.5e-3, 3e-3}) {
     EngagementTracker u = t;
     for (const MillingEngagement& g : pass(u, -kD / 2 + 2e-3 + s, z, 0.02, 0.08)) {
-      EXPECT_NEAR(g.ae, s, kSample) << s;
+      EXPECT_NEAR(g.ae, s, kEdge) << s;
       EXPECT_NEAR(g.ap, 5e-3, 1e-12);
     }
   }
@@ -66,7 +69,7 @@ TEST(MillingEngagement, EarlierPassesSetTheStepoverAndTheStepDown) {
     EXPECT_FALSE(g.cuts());
   EngagementTracker down = t;
   for (const MillingEngagement& g : pass(down, -kD / 2 + 2e-3, z - 1.5e-3, 0.02, 0.08)) {
-    EXPECT_NEAR(g.ae, 2e-3, kSample);  // the box's side, below the first pass's floor
+    EXPECT_NEAR(g.ae, 2e-3, kEdge);  // the box's side, below the first pass's floor
     EXPECT_NEAR(g.ap, 1.5e-3, 1e-12);
   }
   StockShape plane;
@@ -85,8 +88,45 @@ TEST(MillingEngagement, EnteringTheStockEngagesTheChord) {
   for (const double c : {-4e-3, -2.5e-3, -1e-3}) {
     EngagementTracker t(box(0, -0.02, -0.02, 0.1, 0.02, 0), kD);
     const MillingEngagement g = t.cut(Vec3(c - 1e-3, 0, -2e-3), Vec3(c, 0, -2e-3));
-    EXPECT_NEAR(g.ae, 2 * std::sqrt(kD * kD / 4 - c * c), 2 * kSample) << c;
+    EXPECT_NEAR(g.ae, 2 * std::sqrt(kD * kD / 4 - c * c), 2 * kEdge) << c;
     EXPECT_NEAR(g.ap, 2e-3, 1e-12);
+  }
+}
+
+// A query removes nothing: the same move queried twice engages the same; record() removes what
+// it swept: after the longer move a → c is recorded, the move a → b (b between them, its leading
+// half inside the swept capsule) engages nothing.
+TEST(MillingEngagement, AQueryRemovesNothingARecordRemovesTheMove) {
+  EngagementTracker t(box(0, 0, -0.02, 0.1, 0.05, 0), kD);
+  const Vec3 a(0.03, -kD / 2 + 2e-3, -5e-3);
+  const Vec3 b(0.031, -kD / 2 + 2e-3, -5e-3);
+  const Vec3 c(0.04, -kD / 2 + 2e-3, -5e-3);
+  const MillingEngagement e1 = t.engagementAt(a, b);
+  const MillingEngagement e2 = t.engagementAt(a, b);
+  EXPECT_NEAR(e1.ae, 2e-3, kEdge);
+  EXPECT_EQ(e1.ae, e2.ae);
+  EXPECT_EQ(e1.ap, e2.ap);
+  t.record(a, c);
+  EXPECT_FALSE(t.engagementAt(a, b).cuts());
+}
+
+// The wall a pass really left sets the next pass's ae: the first pass recorded d off its
+// programmed line (d > 0 into the material: an overcut; d < 0: an undercut), the second pass
+// queried on its programmed line, stepover s: ae = s − d (closed form), for d of a few µm — far
+// below the D/200 = 50 µm sampling, so only the refined run ends resolve it.
+TEST(MillingEngagement, AWallLeftOffsetByDChangesTheNextPassesAeByD) {
+  const double y1 = -kD / 2 + 2e-3;
+  const double z = -5e-3;
+  const double s = 2e-3;
+  for (const double d : {17e-6, -8.5e-6, 3.2e-6}) {
+    EngagementTracker t(box(0, 0, -0.02, 0.1, 0.05, 0), kD);
+    for (double x = 0.001; x <= 0.1 + 1e-12; x += 1e-3)
+      t.record(Vec3(x - 1e-3, y1 + d, z), Vec3(x, y1 + d, z));
+    for (double x = 0.021; x <= 0.08; x += 1e-3) {
+      const MillingEngagement g = t.engagementAt(Vec3(x - 1e-3, y1 + s, z), Vec3(x, y1 + s, z));
+      EXPECT_NEAR(g.ae, s - d, kEdge) << d;
+      EXPECT_NEAR(g.ap, 5e-3, 1e-12);
+    }
   }
 }
 

@@ -137,6 +137,16 @@ CuttingDecision decision(bool cutting, std::string reason,
   return c;
 }
 
+/// The engagement tracker of a box stock; none without one.
+std::optional<EngagementTracker> boxStockTracker(const MillingSpec& s) {
+  if (!s.stock_box_min || !s.stock_box_max) return std::nullopt;
+  StockShape stock;
+  stock.top_z = s.stock_box_max->z();
+  stock.box_min = s.stock_box_min;
+  stock.box_max = s.stock_box_max;
+  return EngagementTracker(stock, s.tool.diameter);
+}
+
 /// The decision of a non-rapid move a → b with a box stock (milling_engagement.hpp).
 CuttingDecision engagedDecision(EngagementTracker& tracker, const std::optional<Vec3>& a,
                                 const Vec3& b) {
@@ -159,20 +169,65 @@ CuttingDecision engagedDecision(EngagementTracker& tracker, const std::optional<
 
 }  // namespace
 
+ForceFixedPoint solveForceFixedPoint(const std::function<bool(const Vec3&, Vec3&)>& phi,
+                                     const Vec3& F0, ForceUpdate update, double tolerance,
+                                     int max_evaluations, Mat3* jacobian) {
+  ForceFixedPoint out;
+  Vec3 F = F0;
+  Vec3 image;
+  ++out.evaluations;
+  if (!phi(F, image)) {
+    out.map_failed = true;
+    return out;
+  }
+  Vec3 r = image - F;
+  // Broyden's estimate of ∂r/∂F (Φ constant: −I)
+  Mat3 J = jacobian != nullptr ? *jacobian : Mat3(-Mat3::Identity());
+  const auto done = [&](bool converged) {
+    out.converged = converged;
+    if (jacobian != nullptr) *jacobian = J;
+    return out;
+  };
+  while (true) {
+    out.force = F + r;
+    if (r.norm() <= tolerance) return done(true);
+    if (out.evaluations >= max_evaluations) return done(false);
+    Vec3 step = r;  // the plain step: F + r = Φ(F)
+    if (update == ForceUpdate::kBroyden) {
+      const Eigen::ColPivHouseholderQR<Mat3> qr(J);
+      if (qr.rank() == 3) step = qr.solve(-r);
+    }
+    // a step whose Φ cannot be evaluated is halved (Broyden; the plain iteration stops)
+    Vec3 F_next = F + step;
+    Vec3 r_next;
+    bool ok = false;
+    for (int half = 0; half < 6 && out.evaluations < max_evaluations; ++half) {
+      ++out.evaluations;
+      ok = phi(F_next, image);
+      if (ok || update == ForceUpdate::kPlain) break;
+      step *= 0.5;
+      F_next = F + step;
+    }
+    if (!ok) {
+      out.map_failed = true;
+      return done(false);
+    }
+    r_next = image - F_next;
+    const Vec3 dF = F_next - F;
+    if (update == ForceUpdate::kBroyden && dF.squaredNorm() > 0)
+      J += ((r_next - r) - J * dF) * dF.transpose() / dF.squaredNorm();
+    F = F_next;
+    r = r_next;
+  }
+}
+
 std::vector<CuttingDecision> decideCutting(const MillingSpec& s, const Pose& T_W_wobj,
                                            const std::vector<MillingPathPoint>& points) {
   const double vf = s.cut.fz * s.tool.teeth * s.cut.spindle_rpm / 60.0;  // m/s
   const double v_max = kRapidSpeedFactor * vf;
   const Pose T_wobj_W = T_W_wobj.inverse();
   std::optional<double> z_ref;  // tool height at the first non-rapid point (no <stock>)
-  std::optional<EngagementTracker> tracker;  // a box stock: the engagement of every move
-  if (s.stock_box_min && s.stock_box_max) {
-    StockShape stock;
-    stock.top_z = s.stock_box_max->z();
-    stock.box_min = s.stock_box_min;
-    stock.box_max = s.stock_box_max;
-    tracker.emplace(stock, s.tool.diameter);
-  }
+  std::optional<EngagementTracker> tracker = boxStockTracker(s);  // the engagement of every move
   std::optional<Vec3> prev_tip;
   std::vector<CuttingDecision> out(points.size());
   for (size_t i = 0; i < points.size(); ++i) {
@@ -185,6 +240,7 @@ std::vector<CuttingDecision> decideCutting(const MillingSpec& s, const Pose& T_W
       c = decision(false, "rapid: programmed " + fmt(p.speed * 1e3, 1) + " mm/s > " +
                               fmt(kRapidSpeedFactor, 2) + " x feed speed " + fmt(vf * 1e3, 1) +
                               " mm/s");
+      c.rapid = true;
       continue;
     }
     if (tracker) {
@@ -240,6 +296,67 @@ struct PathSetup {
   CouplingOptions copt;
   MillingPathOptions options;
 };
+
+/// The coupling options at point i: the tooth passes since the previous point from the program's
+/// spacing (|p_i − p_{i−1}| / fz rounded, at least 1) unless the cell gives them or i = 0.
+CouplingOptions pointCoupling(const PathSetup& s, size_t i, bool& from_cell) {
+  const MillingSpec& spec = s.m.process.milling;
+  from_cell = spec.teeth_between_points_given || i == 0;
+  if (from_cell) return s.copt;
+  CouplingOptions o = s.copt;
+  const double spacing = (s.points[i].translation() - s.points[i - 1].translation()).norm();
+  const double teeth = std::round(spacing / spec.cut.fz);
+  o.teeth_between_points = teeth < 1 ? 1 : teeth > 1e6 ? 1000000 : static_cast<int>(teeth);
+  return o;
+}
+
+/// The engagement along one chain's real tool path (box stock; milling_engagement.hpp): the move
+/// into a point is queried at one tool position and recorded at another (where the tool really
+/// went), both base frame; a rapid point breaks the chain of moves. Without a box stock (or
+/// without cutting decisions) nothing is tracked.
+class RealPathEngagement {
+ public:
+  explicit RealPathEngagement(const PathSetup& s)
+      : tracker_(s.cutting != nullptr ? boxStockTracker(s.m.process.milling) : std::nullopt),
+        T_stock_W_(s.options.T_W_stock.inverse()) {}
+  [[nodiscard]] bool tracked() const { return tracker_.has_value(); }
+  /// The engagement of the move into a point whose tool is at `tip_W`; none for a rapid point or
+  /// the first point of a chain of moves.
+  std::optional<MillingEngagement> query(bool rapid, const Vec3& tip_W) {
+    if (rapid) {
+      from_query_.reset();
+      return std::nullopt;
+    }
+    const Vec3 b = T_stock_W_ * tip_W;
+    std::optional<MillingEngagement> e;
+    if (from_query_) e = tracker_->engagementAt(*from_query_, b);
+    from_query_ = b;
+    return e;
+  }
+  /// Records the move into the point, the tool really at `real_W`.
+  void record(bool rapid, const Vec3& real_W) {
+    if (rapid) {
+      from_real_.reset();
+      return;
+    }
+    const Vec3 b = T_stock_W_ * real_W;
+    if (from_real_) tracker_->record(*from_real_, b);
+    from_real_ = b;
+  }
+
+ private:
+  std::optional<EngagementTracker> tracker_;
+  Pose T_stock_W_;
+  std::optional<Vec3> from_query_, from_real_;
+};
+
+bool sameEngagement(const MillingCut& cut, const MillingEngagement& e) {
+  return cut.ae == e.ae && cut.ap == e.ap;
+}
+
+std::string engagementText(const MillingEngagement& e) {
+  return "ae " + mm(e.ae) + " mm, ap " + mm(e.ap) + " mm";
+}
 
 nc::Loads loadsWith(const PredictionModel& m, const Vec3& F_mill) {
   nc::Loads l;
@@ -305,7 +422,11 @@ struct EdgeCache {
 class UncompensatedChain {
  public:
   UncompensatedChain(const PathSetup& s, const Vec6* seed)
-      : s_(s), cell_(pointCut(millingModelOf(s.m.process.milling))), cut_(cell_), d_(s.m) {
+      : s_(s),
+        cell_(pointCut(millingModelOf(s.m.process.milling))),
+        cut_(cell_),
+        d_(s.m),
+        engagement_(s) {
     if (seed != nullptr) prev_ = *seed;
   }
   /// Point i into `p`; false when it has no admissible IK (p.reason says why). `cut` receives
@@ -316,6 +437,10 @@ class UncompensatedChain {
 
  private:
   bool inverseKinematics(size_t i, PathPointCompensation& p);
+  std::optional<Vec3> engageRealPath(size_t i, const CuttingDecision& cd, const Vec6& q_before,
+                                     PathPointCompensation& p);
+  void useEngagement(const MillingEngagement& e);
+  Vec3 deviationUnder(size_t i, const Vec6& q_before, const Vec3& F);
   void reuseOrQueueEdges(const ModalModel& dyn, const CouplingResult& c,
                          std::pair<EdgeRef, EdgeRef>& edges, std::vector<EdgeRef>& jobs);
   const PathSetup& s_;
@@ -327,6 +452,7 @@ class UncompensatedChain {
   ModeCouplingCache mode_coupling_cache_;
   EdgeCache edge_cache_;
   CutMemo memo_;
+  RealPathEngagement engagement_;
 };
 
 bool UncompensatedChain::inverseKinematics(size_t i, PathPointCompensation& p) {
@@ -385,30 +511,82 @@ void UncompensatedChain::reuseOrQueueEdges(const ModalModel& dyn, const Coupling
   edges = {cache.nominal, cache.corrected};
 }
 
+/// The point's cut with the engagement e (rebuilt, and the caches dropped, when it changes).
+void UncompensatedChain::useEngagement(const MillingEngagement& e) {
+  if (sameEngagement(cut_->model.cut, e)) return;
+  cut_ = pointCut(engagedModel(cell_->model, e));
+  stability_cache_.valid = false;
+  mode_coupling_cache_.valid = false;
+  edge_cache_ = EdgeCache{};
+}
+
+/// The uncompensated tool's deviation from path point i under the milling force F (base frame):
+/// the controller's command q_before under gravity and F, and the tool's bending.
+Vec3 UncompensatedChain::deviationUnder(size_t i, const Vec6& q_before, const Vec3& F) {
+  const PredictionModel& m = s_.m;
+  nc::Deflection db = nc::predictDeflection(m.model, d_.nc, m.compliance, q_before, loadsWith(m, F),
+                                            {}, controllerOffset(m, d_.nc, q_before));
+  if (m.calibrated) nc::referToControllerPose(db, controllerTcp(m, q_before));
+  return db.dp + toolBending(s_, i, F);
+}
+
+/// Box stock: the engagement of the move into point i on the uncompensated real path — queried
+/// where the tool is without the milling force (the coupling adds the cut's own deflection) — and
+/// whether the point cuts there. Returns that force-free deviation (none for a rapid point).
+std::optional<Vec3> UncompensatedChain::engageRealPath(size_t i, const CuttingDecision& cd,
+                                                       const Vec6& q_before,
+                                                       PathPointCompensation& p) {
+  std::optional<Vec3> free;
+  if (!cd.rapid) free = deviationUnder(i, q_before, Vec3::Zero());
+  const std::optional<MillingEngagement> e =
+      engagement_.query(cd.rapid, s_.points[i].translation() + (free ? *free : Vec3::Zero()));
+  const bool cuts = !cd.rapid && e && e->cuts();
+  if (cuts != p.cutting) {
+    p.cutting = cuts;
+    p.cutting_reason =
+        cuts ? "engaged on the real path: " + engagementText(*e) +
+                   " (the programmed path engages none: the earlier passes left material where "
+                   "the tool really went)"
+             : std::string(
+                   "the real path engages no material (the programmed path does: the "
+                   "earlier passes removed it where the tool really went)");
+  }
+  if (cuts) useEngagement(*e);
+  return free;
+}
+
 bool UncompensatedChain::run(size_t i, PathPointCompensation& p,
                              std::shared_ptr<const PointCut>& cut, Mat3& compliance,
                              std::pair<EdgeRef, EdgeRef>& edges, std::vector<EdgeRef>& jobs) {
   const PredictionModel& m = s_.m;
-  if (s_.cutting != nullptr && i < s_.cutting->size()) {
-    const CuttingDecision& cd = (*s_.cutting)[i];
-    p.cutting = cd.cutting;
-    p.cutting_reason = cd.reason;
-    if (cd.cutting && cd.engagement &&
-        (cd.engagement->ae != cut_->model.cut.ae || cd.engagement->ap != cut_->model.cut.ap)) {
-      // the cut rebuilt (and the caches dropped) when the engagement changes
-      cut_ = pointCut(engagedModel(cell_->model, *cd.engagement));
-      stability_cache_.valid = false;
-      mode_coupling_cache_.valid = false;
-      edge_cache_ = EdgeCache{};
-    }
+  const CuttingDecision* cd =
+      s_.cutting != nullptr && i < s_.cutting->size() ? &(*s_.cutting)[i] : nullptr;
+  if (cd != nullptr) {
+    p.cutting = cd->cutting;
+    p.cutting_reason = cd->reason;
+    if (cd->cutting && cd->engagement && !engagement_.tracked()) useEngagement(*cd->engagement);
   }
+  const bool rapid = cd != nullptr && cd->rapid;
+  if (!inverseKinematics(i, p)) {
+    // where the tool really goes is unknown: the programmed point
+    if (engagement_.tracked()) {
+      engagement_.query(rapid, s_.points[i].translation());
+      engagement_.record(rapid, s_.points[i].translation());
+    }
+    return false;
+  }
+  // the uncompensated command: the controller's IK of the path point (θ_d without a
+  // calibration)
+  const Vec6 q_before = uncompensatedCommand(m, s_.points[i], p.theta_d);
+  std::optional<Vec3> free;  // the deviation without the milling force (box stock)
+  if (engagement_.tracked()) free = engageRealPath(i, *cd, q_before, p);
+  if (free) p.deviation_free = *free;
   cut = cut_;
   p.ae = cut_->model.cut.ae;
   p.ap = cut_->model.cut.ap;
-  if (!inverseKinematics(i, p)) return false;
   // uncompensated: the robot at θ_d under the coupled force
   Vec3 F_before = Vec3::Zero();
-  const CouplingOptions& copt = s_.copt;
+  const CouplingOptions copt = pointCoupling(s_, i, p.teeth_from_cell);
   p.teeth_between_points = copt.teeth_between_points;
   if (p.cutting) {
     const LinearCompliance lc = pointCompliance(s_, p.theta_d, cut_->F_nom);
@@ -432,14 +610,10 @@ bool UncompensatedChain::run(size_t i, PathPointCompensation& p,
     state_ = CouplingState{};  // the tool left the material
     p.before_status = "not_cutting";
   }
-  // the uncompensated command: the controller's IK of the path point (θ_d without a
-  // calibration), its deviation from the path point
-  const Vec6 q_before = uncompensatedCommand(m, s_.points[i], p.theta_d);
-  nc::Deflection db =
-      nc::predictDeflection(m.model, d_.nc, m.compliance, q_before, loadsWith(m, F_before), {},
-                            controllerOffset(m, d_.nc, q_before));
-  if (m.calibrated) nc::referToControllerPose(db, controllerTcp(m, q_before));
-  p.deviation_before = db.dp + toolBending(s_, i, F_before);
+  // its deviation from the path point under the coupled force: where the tool really goes
+  p.deviation_before = free && !p.cutting ? *free : deviationUnder(i, q_before, F_before);
+  if (engagement_.tracked())
+    engagement_.record(rapid, s_.points[i].translation() + p.deviation_before);
   if (p.cutting)
     p.surface_error_before =
         p.deviation_before.dot(wallNormalIn(s_.points[i].linear(), cut_->model.cut.mode));
@@ -465,24 +639,80 @@ void reportEdges(const std::pair<EdgeRef, EdgeRef>& edges, PathPointCompensation
 }
 
 /// The second chain along the path, in path order: the compensated command of each point whose
-/// IK the first chain found (its coupling memory is the compensated path's).
+/// IK the first chain found (its coupling memory and, with a box stock, its engagement are the
+/// compensated path's).
 class CompensatedChain {
  public:
-  explicit CompensatedChain(const PathSetup& s) : s_(s), d_(s.m) {}
-  /// `C`: the point's linearised compliance (robot and tool, milling frame; pointCompliance).
-  void run(size_t i, const std::shared_ptr<const PointCut>& cut_ref, const Mat3& C,
+  explicit CompensatedChain(const PathSetup& s)
+      : s_(s), cell_(millingModelOf(s.m.process.milling)), d_(s.m), engagement_(s) {}
+  /// `cut`: the first chain's cut at the point; `C`: the point's linearised compliance (robot and
+  /// tool, milling frame; pointCompliance), zero where the first chain does not cut.
+  void run(size_t i, const std::shared_ptr<const PointCut>& cut, const Mat3& C,
            PathPointCompensation& p);
+  /// A point the first chain found no IK for: the compensated tool is taken to pass the
+  /// programmed point.
+  void skip(size_t i);
 
  private:
   ComplianceFunction residualCompliance(size_t i, const Vec6& theta_cmd, const Vec3& F,
                                         const Mat3& C);
   Vec6 commandFor(size_t i, const PathPointCompensation& p,
                   const Eigen::ColPivHouseholderQR<Mat6>& J, const Vec3& G);
+  std::shared_ptr<const PointCut> engage(size_t i, const std::shared_ptr<const PointCut>& cut,
+                                         PathPointCompensation& p);
+  void compensate(size_t i, const std::shared_ptr<const PointCut>& cut_ref, const Mat3& C,
+                  PathPointCompensation& p);
+  [[nodiscard]] bool rapid(size_t i) const {
+    return s_.cutting != nullptr && i < s_.cutting->size() && (*s_.cutting)[i].rapid;
+  }
   const PathSetup& s_;
+  MillingModel cell_;
   PredictionData d_;
   CouplingState state_;
   CutMemo memo_;
+  RealPathEngagement engagement_;
+  std::shared_ptr<const PointCut> own_;  ///< the cut of its own engagement when it differs
+  /// Broyden's estimate of ∂(Φ(F) − F)/∂F, carried from point to point
+  Mat3 force_jacobian_{-Mat3::Identity()};
 };
+
+/// Box stock: the compensated path's engagement of the move into point i (queried at the path
+/// point: the coupling's δ is the whole deviation from it) decides whether the compensated tool
+/// cuts and with which cut — the first chain's when the engagement is the same, else its own.
+std::shared_ptr<const PointCut> CompensatedChain::engage(size_t i,
+                                                         const std::shared_ptr<const PointCut>& cut,
+                                                         PathPointCompensation& p) {
+  p.cutting_after = p.cutting;
+  if (!engagement_.tracked()) {
+    p.ae_after = p.ae;
+    p.ap_after = p.ap;
+    return cut;
+  }
+  const std::optional<MillingEngagement> e =
+      engagement_.query(rapid(i), s_.points[i].translation());
+  p.cutting_after = !rapid(i) && e && e->cuts();
+  if (!p.cutting_after) return cut;
+  p.ae_after = e->ae;
+  p.ap_after = e->ap;
+  if (sameEngagement(cut->model.cut, *e)) return cut;
+  if (!own_ || !sameEngagement(own_->model.cut, *e)) own_ = pointCut(engagedModel(cell_, *e));
+  return own_;
+}
+
+void CompensatedChain::skip(size_t i) {
+  if (!engagement_.tracked()) return;
+  engagement_.query(rapid(i), s_.points[i].translation());
+  engagement_.record(rapid(i), s_.points[i].translation());
+}
+
+void CompensatedChain::run(size_t i, const std::shared_ptr<const PointCut>& cut, const Mat3& C,
+                           PathPointCompensation& p) {
+  compensate(i, engage(i, cut, p), C, p);
+  if (engagement_.tracked()) {
+    const Vec3 real = s_.points[i].translation() + (p.ok ? p.residual : Vec3::Zero());
+    engagement_.record(rapid(i), real);
+  }
+}
 
 /// The controller command that puts the link side at θ_d under force G (exact inverse; a
 /// gravity-compensating controller adds its own offset: θ_cmd + off(θ_cmd) = θ_m), with the link
@@ -527,43 +757,50 @@ ComplianceFunction CompensatedChain::residualCompliance(size_t i, const Vec6& th
   return [l](const Vec3& G) { return l(G); };
 }
 
-void CompensatedChain::run(size_t i, const std::shared_ptr<const PointCut>& cut_ref, const Mat3& C,
-                           PathPointCompensation& p) {
+void CompensatedChain::compensate(size_t i, const std::shared_ptr<const PointCut>& cut_ref,
+                                  const Mat3& C_first, PathPointCompensation& p) {
   const PredictionModel& m = s_.m;
   const PointCut& cut = *cut_ref;
   MeanForceMemo& memo = memo_(cut_ref);
   const Pose& T = s_.points[i];
   const Mat3 R = T.linear();
+  const bool cutting = p.cutting_after;
+  // the first chain's compliance, or the point's own where only the compensated tool cuts
+  const Mat3 C =
+      cutting && C_first.isZero() ? pointCompliance(s_, p.theta_d, cut.F_nom).C : C_first;
+  bool from_cell = false;
+  CouplingOptions copt = pointCoupling(s_, i, from_cell);
+  copt.loop_gain = false;  // the loop gain only of the last solve (it is what is reported)
   nc::forwardKinematics(m.model, d_.nc, p.theta_d);
   const Eigen::ColPivHouseholderQR<Mat6> J_qr(nc::tcpJacobian(m.model, d_.nc));
-  // force fixed point with the exact inverse (no force at a point that does not cut)
-  Vec3 F = p.cutting ? cut.F_nom : Vec3::Zero();
-  bool conv = !p.cutting;
+  // force fixed point with the exact inverse (no force at a point that does not cut):
+  // Φ(F) = the coupled force with the command compensated for F
   CouplingResult ca;
   ca.converged = true;
   ca.status = CouplingStatus::kConverged;
-  // the loop gain only of the last solve (it is what is reported)
-  CouplingOptions copt = s_.copt;
-  copt.loop_gain = false;
   ComplianceFunction compliance;
-  for (p.force_iterations = 1; p.cutting && p.force_iterations <= 20; ++p.force_iterations) {
+  const auto phi = [&](const Vec3& F, Vec3& out) {
     p.theta_cmd = commandFor(i, p, J_qr, F);
     compliance = residualCompliance(i, p.theta_cmd, F, C);
     ca = coupleMillingPoint(cut.model, compliance, state_, copt, &memo);
-    const double change = (ca.force - F).norm();
-    F = ca.force;
-    if (!ca.converged) break;
-    if (change <= 1e-9) {
-      conv = true;
-      break;
-    }
+    out = ca.force;
+    return ca.converged;
+  };
+  Vec3 F = Vec3::Zero();
+  bool conv = !cutting;
+  p.force_iterations = 0;
+  if (cutting) {
+    const ForceFixedPoint fp =
+        solveForceFixedPoint(phi, cut.F_nom, s_.options.force_update, 1e-9, 20, &force_jacobian_);
+    F = fp.force;
+    conv = fp.converged;
+    p.force_iterations = fp.evaluations;
   }
   p.coupling_converged = ca.converged;
   p.coupling_iterations = ca.iterations;
-  p.coupling_status = p.cutting ? couplingStatusName(ca.status) : "not_cutting";
+  p.coupling_status = cutting ? couplingStatusName(ca.status) : "not_cutting";
   p.coupling_residual = ca.residual;
-  if (p.cutting) p.loop_gain = couplingLoopGain(cut.model, compliance, state_, copt, ca, &memo);
-  if (!p.cutting) p.force_iterations = 0;
+  if (cutting) p.loop_gain = couplingLoopGain(cut.model, compliance, state_, copt, ca, &memo);
   p.force = F;
   if (!conv) {
     p.reason = ca.converged ? "the force fixed point did not converge"
@@ -571,7 +808,7 @@ void CompensatedChain::run(size_t i, const std::shared_ptr<const PointCut>& cut_
                                   couplingStatusName(ca.status) + ")";
     return;
   }
-  state_ = p.cutting ? ca.next : CouplingState{};
+  state_ = cutting ? ca.next : CouplingState{};
   p.theta_cmd = commandFor(i, p, J_qr, F);
   if (!withinLimits(m.ik, p.theta_cmd)) {
     p.reason = "the compensated command leaves the joint limits";
@@ -583,7 +820,7 @@ void CompensatedChain::run(size_t i, const std::shared_ptr<const PointCut>& cut_
       nc::predictDeflection(m.model, d_.nc, m.compliance, p.theta_cmd, loadsWith(m, F), {},
                             controllerOffset(m, d_.nc, p.theta_cmd));
   p.residual = da.T_real.translation() + toolBending(s_, i, F) - T.translation();
-  if (p.cutting) p.surface_error = p.residual.dot(wallNormalIn(R, cut.model.cut.mode));
+  if (cutting) p.surface_error = p.residual.dot(wallNormalIn(R, cut.model.cut.mode));
   p.config_text = formatConfig(configurationOf(m.ik, m.robot.card, p.theta_cmd, m.config_options));
   p.ok = da.converged;
   if (!p.ok) p.reason = "the compliance equilibrium did not converge at the compensated command";
@@ -626,8 +863,13 @@ void resolveBlockEdges(PathBlock& blk, std::vector<PathPointCompensation>& out, 
 
 void runSecondChain(CompensatedChain& chain, const PathBlock& blk,
                     std::vector<PathPointCompensation>& out) {
-  for (size_t k = 0; k < blk.e - blk.b; ++k)
-    if (blk.found[k]) chain.run(blk.b + k, blk.cut[k], blk.compliance[k], out[blk.b + k]);
+  for (size_t k = 0; k < blk.e - blk.b; ++k) {
+    if (blk.found[k]) {
+      chain.run(blk.b + k, blk.cut[k], blk.compliance[k], out[blk.b + k]);
+    } else {
+      chain.skip(blk.b + k);
+    }
+  }
 }
 
 }  // namespace

@@ -4,15 +4,31 @@
 /// the predicted real tool lands on the nominal path under the milling force, which itself depends
 /// on the deviation (docs/process.md §4.3–4.4). Per point i, in path order:
 ///   1. θ_d = IK(T_nom,i) (continuity from the previous point);
-///   2. fixed point on the force: F⁽⁰⁾ = F(fz, ae) nominal; θ_m⁽ᵏ⁾ = θ_d + K⁻¹τ(θ_d; F⁽ᵏ⁾) (exact
-///   inverse);
-///      the coupled iteration of milling.hpp is then run with the compensated robot's compliance
-///      (δ(F) = real − nominal tool position under F, milling frame) from the previous point's
-///      state: F⁽ᵏ⁺¹⁾ = its converged force, until |F⁽ᵏ⁺¹⁾ − F⁽ᵏ⁾| ≤ 1e-9 N — with an exact
-///      compensation the tool stays on the path, the chip is nominal and this converges at the
-///      first check;
+///   2. fixed point on the force F = Φ(F): θ_m(F) = θ_d + K⁻¹τ(θ_d; F) (exact inverse); Φ(F) is
+///      the converged force of the coupled iteration of milling.hpp with the compensated robot's
+///      compliance at θ_m(F) (δ(G) = real − nominal tool position under G, milling frame) from the
+///      previous point's state. Solved from F⁽⁰⁾ = F(fz, ae) nominal by Broyden's method on
+///      r(F) = Φ(F) − F (solveForceFixedPoint, its Jacobian estimate carried from point to point)
+///      until |r| ≤ 1e-9 N — with an exact compensation the
+///      tool stays on the path, the chip is nominal and this converges at the first check; the
+///      plain iteration F ← Φ(F) diverges when the previous-edge coupling is strong (a tooth pass
+///      or so between points: ∂Φ/∂F has a spectral radius above 1);
 ///   3. programmed target = rigid FK(θ_m); the residual is re-predicted with the converged force.
 /// Non-convergence (coupling or force fixed point) is reported per point, never silently emitted.
+///
+/// Tooth passes between points (the feed term of milling.hpp): per point, the program's spacing
+/// |p_i − p_{i−1}| / fz rounded, at least 1 (the first point: the cell's value), unless the cell's
+/// <coupling> gives teeth_between_points or point_spacing_mm (then that value everywhere).
+///
+/// Engagement along the real path (box stock, docs/process.md §4.5): each chain keeps its own
+/// EngagementTracker. The uncompensated chain queries the move into a point where the tool is
+/// before the cut's own deflection (the path point + its deviation without the milling force:
+/// the coupling adds the cut's deflection, Eq. 9) and records the move where the tool really went
+/// (path point + deviation_before): a pass cuts what the earlier passes really left, so their
+/// surface error changes its ae and ap (and can make a nominally idle pass cut). The compensated
+/// chain queries at the path point (its coupling's δ is the whole deviation from it) and records
+/// the compensated tool (path point + residual); where its engagement differs from the first
+/// chain's, it couples with its own cut.
 ///
 /// Cutting decision (docs/process.md §4.5): a point gets a milling force only if it cuts —
 ///   1. its move is not rapid: programmed linear speed ≤ kRapidSpeedFactor · vf, vf = fz Nt n/60
@@ -25,6 +41,7 @@
 ///      own ae and ap (the cell's ae/ap are then only the nominal of the report).
 /// A non-cutting point is compensated for gravity and the tool weight only (force 0) and resets
 /// the coupling's memory (the tool left the material).
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -50,9 +67,11 @@ struct MillingPathPoint {
 struct CuttingDecision {
   bool cutting{true};
   std::string reason;  ///< why (speeds in mm/s, depths in mm)
-  /// With a box stock: the engagement of the move ending at the point (milling_engagement.hpp);
-  /// the point cuts when the move is not rapid and engages material (rule 2 is replaced).
+  /// With a box stock: the engagement of the move ending at the point on the programmed path
+  /// (milling_engagement.hpp); the point cuts when the move is not rapid and engages material
+  /// (rule 2 is replaced). The chains re-decide it on their real paths.
   std::optional<MillingEngagement> engagement;
+  bool rapid{false};  ///< rule 1: a rapid move (breaks the chain of moves of the engagement)
 };
 /// The cutting decision of every point (rules above). `T_W_wobj`: the cell's workobject.
 std::vector<CuttingDecision> decideCutting(const MillingSpec& s, const Pose& T_W_wobj,
@@ -63,13 +82,22 @@ struct PathPointCompensation {
   std::string reason;
   bool cutting{true};
   std::string cutting_reason;
-  double ae{0}, ap{0};  ///< the engagement the point was coupled with [m] (cutting points)
+  /// The engagement the uncompensated coupling used [m] (cutting points): the cell's, or with a
+  /// box stock the real path's (earlier passes where the uncompensated tool really went).
+  double ae{0}, ap{0};
+  /// The compensated chain's: cutting, and the engagement its coupling used [m] (with a box stock
+  /// its own real path's: the earlier passes where the compensated tool really went).
+  bool cutting_after{true};
+  double ae_after{0}, ap_after{0};
   Vec6 theta_d{Vec6::Zero()};
   Vec6 theta_cmd{Vec6::Zero()};
   Pose T_programmed{Pose::Identity()};
   Vec3 deviation_before{Vec3::Zero()};  ///< m, base frame, uncompensated (coupled force)
-  Vec3 residual{Vec3::Zero()};          ///< m, base frame, after compensation
-  Vec3 force{Vec3::Zero()};             ///< converged force on the tool, milling frame, N
+  /// m, base frame, uncompensated without the milling force (box stock, not rapid: where the
+  /// engagement was queried, path point + this; else zero)
+  Vec3 deviation_free{Vec3::Zero()};
+  Vec3 residual{Vec3::Zero()};  ///< m, base frame, after compensation
+  Vec3 force{Vec3::Zero()};     ///< converged force on the tool, milling frame, N
   int force_iterations{0};
   int coupling_iterations{0};
   bool coupling_converged{false};
@@ -107,8 +135,10 @@ struct PathPointCompensation {
   double mode_coupling_hz{0};         ///< frequency of the root crossing at the limit [Hz]
   bool mode_coupling_flutter{false};  ///< that root is a complex pair (else: static divergence)
   /// Tooth passes between the previous path point and this one that the feed term uses (the
-  /// cell's teeth_between_points, or point_spacing_mm / fz).
+  /// cell's teeth_between_points or point_spacing_mm / fz when it gives one, else the program's
+  /// spacing / fz: teeth_from_cell says which).
   double teeth_between_points{0};
+  bool teeth_from_cell{false};
   double before_fz_effective{0};  ///< fz_eff of the uncompensated solve [m]
   /// The deviation normal to the wall, + into the material (an overcut), [m]: the surface error
   /// a machinist measures. Before: the uncompensated tool; after: the predicted residual.
@@ -132,6 +162,26 @@ struct PathPointCompensation {
   }
 };
 
+/// The update of the compensated force fixed point F = Φ(F).
+enum class ForceUpdate {
+  kBroyden,  ///< Broyden's method on r(F) = Φ(F) − F (first step: the plain one), halving a step
+             ///< whose Φ cannot be evaluated (default)
+  kPlain,    ///< F ← Φ(F) (diverges when ∂Φ/∂F has a spectral radius above 1)
+};
+struct ForceFixedPoint {
+  Vec3 force{Vec3::Zero()};  ///< Φ(F) at the last evaluated F (the fixed point when converged)
+  int evaluations{0};        ///< of Φ
+  bool converged{false};     ///< |Φ(F) − F| ≤ tolerance
+  bool map_failed{false};    ///< Φ could not be evaluated (its last call returned false)
+};
+/// Solves F = Φ(F) from F0. `phi(F, out)` returns false when Φ cannot be evaluated at F.
+/// `jacobian` (Broyden): the initial estimate of ∂(Φ(F) − F)/∂F (none: −I, the first step then
+/// the plain one), and on return the updated estimate (a path warm-starts each point with the
+/// previous point's: Φ changes little from point to point).
+ForceFixedPoint solveForceFixedPoint(const std::function<bool(const Vec3&, Vec3&)>& phi,
+                                     const Vec3& F0, ForceUpdate update, double tolerance = 1e-9,
+                                     int max_evaluations = 20, Mat3* jacobian = nullptr);
+
 /// What compensateMillingPath computes beyond the compensation, and on how many workers.
 struct MillingPathOptions {
   /// Resolve the revolution by edge angle at every cutting point (the `edges_*`, `tooth_feed`,
@@ -144,6 +194,11 @@ struct MillingPathOptions {
   int threads{1};
   /// Points per block of the pipeline (>= 1).
   size_t block{512};
+  /// The stock's (workobject) frame in the base frame: where a box stock is (the engagement of
+  /// the real paths).
+  Pose T_W_stock{Pose::Identity()};
+  /// The compensated force fixed point's update (kPlain only to compare).
+  ForceUpdate force_update{ForceUpdate::kBroyden};
 };
 
 /// `m` must carry a milling process. Points are nominal TCP poses in the base frame (path order);

@@ -48,28 +48,53 @@ double EngagementTracker::topAt(const Eigen::Vector2d& p) const {
   return top;
 }
 
-MillingEngagement EngagementTracker::cut(const Vec3& a, const Vec3& b) {
+bool EngagementTracker::engaged(const Eigen::Vector2d& b, double bz, const Eigen::Vector2d& f,
+                                const Eigen::Vector2d& l, double s, double& depth) const {
+  const Eigen::Vector2d p = b + s * l + std::sqrt(std::max(0.0, R_ * R_ - s * s)) * f;
+  depth = topAt(p) - bz;
+  return depth > kEngagedDepth;
+}
+
+double EngagementTracker::boundary(const Eigen::Vector2d& b, double bz, const Eigen::Vector2d& f,
+                                   const Eigen::Vector2d& l, double s_in, double s_out) const {
+  double depth = 0;
+  while (std::abs(s_out - s_in) > kBoundaryResolution) {
+    const double mid = 0.5 * (s_in + s_out);
+    (engaged(b, bz, f, l, mid, depth) ? s_in : s_out) = mid;
+  }
+  return 0.5 * (s_in + s_out);
+}
+
+MillingEngagement EngagementTracker::engagementAt(const Vec3& a, const Vec3& b) const {
   MillingEngagement e;
-  const Eigen::Vector2d a2 = a.head<2>();
   const Eigen::Vector2d b2 = b.head<2>();
-  const Eigen::Vector2d d = b2 - a2;
+  const Eigen::Vector2d d = b2 - a.head<2>();
   if (!(d.norm() > 0)) return e;
   const Eigen::Vector2d f = d / d.norm();
   const Eigen::Vector2d l(-f.y(), f.x());
-  const double D = 2 * R_;
-  int engaged = 0;
+  const double step = 2 * R_ / samples_;
+  const auto offset = [&](int k) { return -R_ + (k + 0.5) * step; };
+  bool prev = false;
+  double lo = -R_;
   for (int k = 0; k < samples_; ++k) {
-    const double s = -R_ + (k + 0.5) * D / samples_;
-    const Eigen::Vector2d p = b2 + s * l + std::sqrt(R_ * R_ - s * s) * f;
-    const double depth = topAt(p) - b.z();
-    if (depth > kEngagedDepth) {
-      ++engaged;
-      e.ap = std::max(e.ap, depth);
-    }
+    double depth = 0;
+    const bool in = engaged(b2, b.z(), f, l, offset(k), depth);
+    if (in) e.ap = std::max(e.ap, depth);
+    if (in && !prev) lo = k == 0 ? -R_ : boundary(b2, b.z(), f, l, offset(k), offset(k - 1));
+    if (!in && prev) e.ae += boundary(b2, b.z(), f, l, offset(k - 1), offset(k)) - lo;
+    prev = in;
   }
-  e.ae = engaged * D / samples_;
-  if (engaged == 0) e.ap = 0;
-  // record the move: every grid cell its capsule's bounding box touches
+  if (prev) e.ae += R_ - lo;
+  if (!(e.ae > 0)) e = MillingEngagement{};
+  return e;
+}
+
+void EngagementTracker::record(const Vec3& a, const Vec3& b) {
+  const Eigen::Vector2d a2 = a.head<2>();
+  const Eigen::Vector2d b2 = b.head<2>();
+  if (!((b2 - a2).norm() > 0)) return;
+  const double D = 2 * R_;
+  // every grid cell its capsule's bounding box touches
   moves_.push_back({a2, b2, std::min(a.z(), b.z())});
   const auto idx = static_cast<std::uint32_t>(moves_.size() - 1);
   const Eigen::Vector2d lo = a2.cwiseMin(b2).array() - R_;
@@ -77,6 +102,11 @@ MillingEngagement EngagementTracker::cut(const Vec3& a, const Vec3& b) {
   for (std::int64_t ix = cellIndex(lo.x(), D); ix <= cellIndex(hi.x(), D); ++ix)
     for (std::int64_t iy = cellIndex(lo.y(), D); iy <= cellIndex(hi.y(), D); ++iy)
       grid_[cellKey(ix, iy)].push_back(idx);
+}
+
+MillingEngagement EngagementTracker::cut(const Vec3& a, const Vec3& b) {
+  const MillingEngagement e = engagementAt(a, b);
+  record(a, b);
   return e;
 }
 

@@ -13,11 +13,18 @@
 ///   the leading half of the tool's circle is sampled at K lateral offsets
 ///   s_k = −R + (k + ½) D/K:   p_k = b + s_k l + √(R² − s_k²) f;
 ///   the material there is engaged when top(p_k) − b.z > 1 µm (top from the stock and every
-///   earlier move, the current one excluded). Then
-///     ae = (number of engaged samples) · D/K   (the width cut across the feed; D for a slot),
+///   earlier move, the current one excluded). Each run of engaged samples spans [lo, hi] in s:
+///   its ends are refined by bisection on the engaged test between the engaged sample and its
+///   neighbour to kBoundaryResolution (a run reaching the first or last sample ends at ∓R). Then
+///     ae = Σ_runs (hi − lo)                       (the width cut across the feed; D for a slot),
 ///     ap = max_k (top(p_k) − b.z)               (the depth of the deepest engaged column).
-///   ae is exact to D/K for a straight wall (the engaged samples form one run); ap is exact when
-///   the material top is flat over the leading half.
+///   The point on the circle at offset s lies at s across the feed, so ae is exact (to
+///   kBoundaryResolution) for a straight wall parallel to the feed and for the chord at a straight
+///   entry face; features narrower than D/K between two samples are missed. ap is exact when the
+///   material top is flat over the leading half.
+/// A chain of moves along the real tool path queries the engagement at the tool's position
+/// (engagementAt) and records the move once it knows where the tool really went (record): the
+/// next pass then cuts what this one really left (milling_compensation.hpp).
 /// Earlier moves are kept in a uniform grid of cells D × D (each move listed in every cell its
 /// capsule's bounding box touches): a query visits one cell, so a path costs O(n) with O(n) memory
 /// for the moves.
@@ -30,6 +37,9 @@
 #include "compensator/support/rotation.hpp"
 
 namespace roprec {
+
+/// The ends of an engaged run of lateral samples are refined to this [m].
+constexpr double kBoundaryResolution = 1e-9;
 
 struct StockShape {
   double top_z{0};                       ///< [m], workobject frame
@@ -45,9 +55,12 @@ struct MillingEngagement {
 class EngagementTracker {
  public:
   EngagementTracker(const StockShape& stock, double diameter, int lateral_samples = 200);
-  /// The engagement at the end of the cutting move a → b (tool tips, workobject frame [m]); then
-  /// records the move as removed material. A move without XY length engages nothing (and is not
-  /// recorded).
+  /// The engagement at the end of the cutting move a → b (tool tips, workobject frame [m]) in the
+  /// material left by the stock and the recorded moves. A move without XY length engages nothing.
+  [[nodiscard]] MillingEngagement engagementAt(const Vec3& a, const Vec3& b) const;
+  /// Records the move a → b as removed material (a move without XY length is not recorded).
+  void record(const Vec3& a, const Vec3& b);
+  /// engagementAt(a, b), then record(a, b).
   MillingEngagement cut(const Vec3& a, const Vec3& b);
 
  private:
@@ -56,6 +69,13 @@ class EngagementTracker {
     double z;
   };
   [[nodiscard]] double topAt(const Eigen::Vector2d& p) const;
+  /// Whether the leading circle's point at lateral offset s of the move ending at b (feed f, left
+  /// normal l) is in material deeper than 1 µm; its depth into `depth`.
+  [[nodiscard]] bool engaged(const Eigen::Vector2d& b, double bz, const Eigen::Vector2d& f,
+                             const Eigen::Vector2d& l, double s, double& depth) const;
+  /// The offset between s_in (engaged) and s_out (not) where the engagement ends.
+  [[nodiscard]] double boundary(const Eigen::Vector2d& b, double bz, const Eigen::Vector2d& f,
+                                const Eigen::Vector2d& l, double s_in, double s_out) const;
   [[nodiscard]] std::int64_t cellKey(std::int64_t ix, std::int64_t iy) const;
   StockShape stock_;
   double R_;

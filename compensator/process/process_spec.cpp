@@ -561,6 +561,7 @@ void parseMill(const XmlNode& proc, const XmlNode& t, MillingSpec& s) {
     if (!(tb >= 1 && tb <= 1e6 && tb == std::floor(tb)))
       cp->fail("<coupling> teeth_between_points must be an integer >= 1");
     s.coupling.teeth_between_points = static_cast<int>(tb);
+    s.teeth_between_points_given = cp->has("teeth_between_points") || cp->has("point_spacing_mm");
     if (cp->has("point_spacing_mm")) {
       const double spacing = positive(*cp, "point_spacing_mm", 0, false) * kMm;
       s.coupling.teeth_between_points =

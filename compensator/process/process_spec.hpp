@@ -96,6 +96,9 @@ struct MillingSpec {
   MeanForceLaw mean_law{MeanForceLaw::kInstantaneous};
   std::string coeff_source;
   CouplingOptions coupling;
+  /// <coupling> gives teeth_between_points or point_spacing_mm (else a path takes the tooth
+  /// passes between its points from its spacing, milling_compensation.hpp).
+  bool teeth_between_points_given{false};
   std::optional<Mat3> compliance;     ///< [m/N] milling frame, from <coupling compliance_um_per_N>
   std::optional<double> stock_top_z;  ///< [m] workobject frame, from <stock top_z_mm>
   /// A box stock (<stock box_min_mm box_max_mm>, workobject frame [m]): the engagement ae/ap per

@@ -824,8 +824,10 @@ void compensateMillRuns(MillingCompensationResult& r, const std::vector<MillingP
     }
     std::vector<CuttingDecision> cutting =
         decideCutting(m.process.milling, T_W_stock, whole ? path : run_copy);
+    MillingPathOptions with_stock = options;
+    with_stock.T_W_stock = T_W_stock;
     std::vector<PathPointCompensation> comp = compensateMillingPath(
-        m, whole ? r.points : points_copy, &cutting, seed ? &*seed : nullptr, options);
+        m, whole ? r.points : points_copy, &cutting, seed ? &*seed : nullptr, with_stock);
     for (const PathPointCompensation& p : comp)
       if (p.ok) seed = p.theta_d;
     if (whole) {

@@ -417,6 +417,7 @@ Json pathPointJson(const MillingCompensationResult& r, size_t i) {
   if (p.cutting) {
     j.set("surface_error_um", Json::number(p.surface_error_before * 1e6, 3));
     j.set("teeth_between_points", Json::number(p.teeth_between_points, 2));
+    j.set("teeth_between_points_from", Json::str(p.teeth_from_cell ? "cell" : "point_spacing"));
     j.set("fz_effective_mm", Json::number(p.before_fz_effective / kMm, 6));
   }
   Json c = Json::object();
@@ -427,12 +428,19 @@ Json pathPointJson(const MillingCompensationResult& r, size_t i) {
   c.set("residual_um", Json::number(p.coupling_residual * 1e6, 5));
   c.set("force_N", vec3(p.force, 2));
   c.set("predicted_residual_um", Json::number(p.residual.norm() * 1e6, 4));
-  if (p.cutting) c.set("surface_error_um", Json::number(p.surface_error * 1e6, 4));
+  if (p.cutting_after) c.set("surface_error_um", Json::number(p.surface_error * 1e6, 4));
+  // box stock: the engagement each coupling used (the real paths') and the programmed path's
+  const std::optional<MillingEngagement>& engaged = r.cutting[i].engagement;
+  if (engaged && p.cutting_after) {
+    c.set("ae_mm", Json::number(p.ae_after / kMm, 4));
+    c.set("ap_mm", Json::number(p.ap_after / kMm, 4));
+  }
   j.set("compensated", c);
-  const bool engaged = r.cutting[i].engagement.has_value();
   if (p.cutting && engaged) {
     j.set("ae_mm", Json::number(p.ae / kMm, 4));
     j.set("ap_mm", Json::number(p.ap / kMm, 4));
+    j.set("programmed_ae_mm", Json::number(engaged->ae / kMm, 4));
+    j.set("programmed_ap_mm", Json::number(engaged->ap / kMm, 4));
   }
   const double ap_i = pathPointAp(r, i);
   if (p.cutting) j.set("stability", pathPointStabilityJson(p, ap_i));
