@@ -15,46 +15,16 @@
 #include "plugin/api/prediction_setup.hpp"
 #include "postproc/edited_file_writer.hpp"
 #include "postproc/program.hpp"
+#include "tests/support/compensation_compare.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace roprec {
 namespace {
 
-using test::sameBits;
+using test::expectSameHole;
+using test::expectSameStats;
 
 std::string sharedTargetJob(const std::string& dir);
-
-void expectSameHole(const HoleCompensation& a, const HoleCompensation& b) {
-  SCOPED_TRACE(a.id);
-  EXPECT_EQ(a.id, b.id);
-  EXPECT_EQ(a.ok, b.ok);
-  EXPECT_EQ(a.reason, b.reason);
-  EXPECT_TRUE(sameBits(a.psi, b.psi));
-  EXPECT_TRUE(sameBits(a.T_programmed.data(), b.T_programmed.data(), 16));
-  EXPECT_TRUE(sameBits(a.theta_cmd.data(), b.theta_cmd.data(), 6));
-  EXPECT_TRUE(sameBits(a.theta_d.data(), b.theta_d.data(), 6));
-  EXPECT_TRUE(sameBits(a.residual.data(), b.residual.data(), 3));
-  EXPECT_TRUE(sameBits(a.before.joints.data(), b.before.joints.data(), 6));
-  EXPECT_TRUE(sameBits(a.after.U_work_exact, b.after.U_work_exact));
-  EXPECT_TRUE(sameBits(a.U_work_keep, b.U_work_keep));
-  EXPECT_EQ(a.config_text, b.config_text);
-  EXPECT_EQ(a.config_reason, b.config_reason);
-  EXPECT_EQ(a.psi_reason, b.psi_reason);
-  EXPECT_EQ(a.note, b.note);
-  EXPECT_EQ(a.branch, b.branch);
-}
-
-void expectSameStats(const CompensationStats& a, const CompensationStats& b) {
-  EXPECT_EQ(a.dp_nodes, b.dp_nodes);
-  EXPECT_EQ(a.infeasible_nodes, b.infeasible_nodes);
-  EXPECT_EQ(a.refined, b.refined);
-  EXPECT_EQ(a.nlopt_evaluations, b.nlopt_evaluations);
-  EXPECT_EQ(a.relaxed_wrist, b.relaxed_wrist);
-  EXPECT_EQ(a.psi_changed, b.psi_changed);
-  EXPECT_EQ(a.config_changed, b.config_changed);
-  EXPECT_TRUE(sameBits(a.U_work_sum, b.U_work_sum));
-  EXPECT_TRUE(sameBits(a.jump_threshold_used, b.jump_threshold_used));
-}
 
 TEST(CompensateThreads, HolesAreBitIdenticalForOneTwoThreeThreads) {
   api::PredictionContext c = api::loadPredictionContext(

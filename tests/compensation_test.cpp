@@ -27,6 +27,7 @@
 
 #include "compensator/robot/geometry_calibration.hpp"
 #include "plugin/api/prediction_setup.hpp"
+#include "tests/support/compensation_compare.hpp"
 #include "tests/support/kdl_support.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -402,29 +403,8 @@ TEST(CompensationOrientation, BlocksOfAnySizeGiveTheResultOfOneBlock) {
         CompensationStats st;
         const std::vector<HoleCompensation> got = compensateHoles(c.model, req, o, &st);
         ASSERT_EQ(got.size(), ref.size());
-        for (size_t i = 0; i < ref.size(); ++i) {
-          SCOPED_TRACE(ref[i].id);
-          EXPECT_EQ(got[i].ok, ref[i].ok);
-          EXPECT_EQ(got[i].reason, ref[i].reason);
-          EXPECT_TRUE(test::sameBits(got[i].psi, ref[i].psi));
-          EXPECT_TRUE(test::sameBits(got[i].T_programmed.data(), ref[i].T_programmed.data(), 16));
-          EXPECT_TRUE(test::sameBits(got[i].theta_cmd.data(), ref[i].theta_cmd.data(), 6));
-          EXPECT_TRUE(test::sameBits(got[i].before.joints.data(), ref[i].before.joints.data(), 6));
-          EXPECT_TRUE(test::sameBits(got[i].after.U_work_exact, ref[i].after.U_work_exact));
-          EXPECT_TRUE(test::sameBits(got[i].U_work_keep, ref[i].U_work_keep));
-          EXPECT_EQ(got[i].psi_reason, ref[i].psi_reason);
-          EXPECT_EQ(got[i].config_text, ref[i].config_text);
-          EXPECT_EQ(got[i].note, ref[i].note);
-        }
-        EXPECT_EQ(st.dp_nodes, ref_st.dp_nodes);
-        EXPECT_EQ(st.infeasible_nodes, ref_st.infeasible_nodes);
-        EXPECT_EQ(st.refined, ref_st.refined);
-        EXPECT_EQ(st.nlopt_evaluations, ref_st.nlopt_evaluations);
-        EXPECT_EQ(st.psi_changed, ref_st.psi_changed);
-        EXPECT_EQ(st.psi_for_jumps, ref_st.psi_for_jumps);
-        EXPECT_EQ(st.stiffness_compared, ref_st.stiffness_compared);
-        EXPECT_TRUE(test::sameBits(st.U_work_sum, ref_st.U_work_sum));
-        EXPECT_TRUE(test::sameBits(st.jump_threshold_used, ref_st.jump_threshold_used));
+        for (size_t i = 0; i < ref.size(); ++i) test::expectSameHole(got[i], ref[i]);
+        test::expectSameStats(st, ref_st);
       }
     }
   }
