@@ -252,14 +252,52 @@ TEST(MillingCompensation, TargetsExportFollowsTheExtension) {
     std::vector<std::string> f;
     std::istringstream ls(line);
     for (std::string c; std::getline(ls, c, ',');) f.push_back(c);
-    ASSERT_GE(f.size(), 8u);
-    const auto& pos = t["points"][rows]["programmed"]["position_mm"];
+    ASSERT_GE(f.size(), 12u);
+    const auto& p = t["points"][rows];
+    const auto& pos = p["programmed"]["position_mm"];
     for (int k = 0; k < 3; ++k)
       EXPECT_NEAR(std::stod(f[static_cast<size_t>(5 + k)]),
                   pos[static_cast<size_t>(k)].get<double>(), 1e-3);
+    // the surface error normal to the wall (the sample's wall normal is the base y axis) before
+    // and after compensation, in both exports, only where the tool cuts
+    if (p["cutting"].get<bool>()) {
+      const double before = p["before"]["surface_error_um"].get<double>();
+      EXPECT_NEAR(before, p["before"]["deviation_um"][1].get<double>(), 1e-3);
+      EXPECT_GT(std::abs(before), 10.0);
+      EXPECT_NEAR(std::stod(f[10]), before, 1e-3);
+      EXPECT_NEAR(std::stod(f[11]), p["surface_error_um"].get<double>(), 1e-4);
+      EXPECT_LT(std::abs(std::stod(f[11])), 0.01);
+    } else {
+      EXPECT_TRUE(f[10].empty() && f[11].empty()) << line;
+      EXPECT_FALSE(p["before"].contains("surface_error_um"));
+    }
     ++rows;
   }
   EXPECT_EQ(rows, t["points"].size());
+}
+
+// With a box stock the targets export carries each chain's engagement: pass 2 without
+// compensation cuts what pass 1 really left (not the programmed ae), the compensated tool the
+// programmed engagement (pass 1 compensated leaves the wall where it was programmed).
+TEST(MillingCompensation, TargetsExportCarriesBothChainsEngagement) {
+  const std::string dir = test::tempDir("millbox");
+  const auto r = test::runRoprec("compensate --cell '" + test::sourceDir() +
+                                 "/samples/milling/box-stock-7075.xml' '" + test::sourceDir() +
+                                 "/samples/milling/box_passes.src' -o '" + dir +
+                                 "/c.src' --targets '" + dir + "/t.json'");
+  ASSERT_LE(r.exit_code, 1) << r.err;  // 1: the sample's chatter points
+  const auto t = nlohmann::json::parse(test::readFile(dir + "/t.json"));
+  int engaged = 0;
+  int moved = 0;
+  for (const auto& p : t["points"]) {
+    if (!p.contains("programmed_ae_mm") || !p["before"].contains("ae_mm")) continue;
+    ++engaged;
+    const double programmed = p["programmed_ae_mm"].get<double>();
+    EXPECT_NEAR(p["ae_mm"].get<double>(), programmed, 1e-3);
+    if (std::abs(p["before"]["ae_mm"].get<double>() - programmed) > 0.005) ++moved;
+  }
+  EXPECT_GT(engaged, 20);
+  EXPECT_GT(moved, 5);
 }
 
 /// A milling cell on the KR120 (the sample wall pass's cell) with the given <mill>s; the process

@@ -802,6 +802,14 @@ Json millingPointJson(const MillingCompensationResult& r, size_t i) {
   b.set("coupling_residual_um", Json::number(p.before_residual * 1e6, 4));
   b.set("loop_gain", Json::number(p.before_loop_gain, 4));
   b.set("force_N", Json::vector(p.before_force, 3));
+  const std::optional<MillingEngagement>& engaged = r.cutting[i].engagement;  // box stock
+  if (p.cutting) {
+    b.set("surface_error_um", Json::number(p.surface_error_before * 1e6, 3));
+    if (engaged) {
+      b.set("ae_mm", Json::number(p.ae * 1e3, 4));
+      b.set("ap_mm", Json::number(p.ap * 1e3, 4));
+    }
+  }
   j.set("before", b);
   Json pr = poseJsonContract(p.T_programmed);
   pr.set("joints_deg", Json::vector(p.theta_cmd / kDeg, 6));
@@ -810,6 +818,15 @@ Json millingPointJson(const MillingCompensationResult& r, size_t i) {
   pr.set("config", Json::str(p.config_text));
   j.set("programmed", pr);
   j.set("residual_um", Json::number(p.residual.norm() * 1e6, 4));
+  if (p.cutting_after) {
+    j.set("surface_error_um", Json::number(p.surface_error * 1e6, 4));
+    if (engaged) {
+      j.set("ae_mm", Json::number(p.ae_after * 1e3, 4));
+      j.set("ap_mm", Json::number(p.ap_after * 1e3, 4));
+      j.set("programmed_ae_mm", Json::number(engaged->ae * 1e3, 4));
+      j.set("programmed_ap_mm", Json::number(engaged->ap * 1e3, 4));
+    }
+  }
   j.set("force_N", Json::vector(p.force, 3));
   Json cp = Json::object();
   cp.set("converged", Json::boolean(p.coupling_converged));
@@ -833,7 +850,9 @@ void millingPointCsv(const MillingCompensationResult& r, size_t i, std::string& 
   const Vec3 x = p.T_programmed.translation() * 1e3;
   for (int k = 0; k < 3; ++k) s += "," + formatNumber(x[k], 5);
   s += "," + formatNumber(p.deviation_before.norm() * 1e6, 3) + "," +
-       formatNumber(p.residual.norm() * 1e6, 4);
+       formatNumber(p.residual.norm() * 1e6, 4) + "," +
+       (p.cutting ? formatNumber(p.surface_error_before * 1e6, 3) : std::string()) + "," +
+       (p.cutting_after ? formatNumber(p.surface_error * 1e6, 4) : std::string());
   for (int k = 0; k < 3; ++k) s += "," + formatNumber(p.force[k], 3);
   csvQuoted(s, p.coupling_status);
   const bool bounded = p.cutting && p.stability_checked && p.stability_bounded;
@@ -851,8 +870,9 @@ void writeMillingTargets(const MillingCompensationResult& r, const std::string& 
                          bool csv, const ByteSink& sink) {
   if (csv) {
     std::string s =
-        "point,target,line,cutting,ok,x_mm,y_mm,z_mm,deviation_before_um,residual_um,Fx_N,Fy_N,"
-        "Fz_N,coupling,ap_limit_mm,chatter_margin,reason\n";
+        "point,target,line,cutting,ok,x_mm,y_mm,z_mm,deviation_before_um,residual_um,"
+        "surface_error_before_um,surface_error_um,Fx_N,Fy_N,Fz_N,coupling,ap_limit_mm,"
+        "chatter_margin,reason\n";
     for (size_t i = 0; i < r.points_comp.size(); ++i) {
       millingPointCsv(r, i, s);
       if (s.size() >= kSinkPiece) {
