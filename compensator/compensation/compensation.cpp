@@ -1028,6 +1028,12 @@ struct RunOutput {
   std::vector<HoleCompensation>* whole{nullptr};
 };
 
+/// The IK branch a hole's grid is solved in: its original solution's, unless a branch change is
+/// allowed or it has none (−1: any).
+int gridBranch(const HolePrediction& b, const CompensationOptions& o) {
+  return (b.status == HoleStatus::kOk && !o.allow_branch_change) ? b.branch : -1;
+}
+
 /// The per-thread evaluators of a run (their scratch first: an Evaluator holds a reference).
 struct Workers {
   std::vector<PredictionData> scratch;
@@ -1112,9 +1118,8 @@ void keepRun(Workers& w, const std::vector<HoleRequest>& holes, const std::optio
     parallelFor(e - b, threads, [&](int wk, size_t j) {
       const HolePrediction& bp = out[j].before;
       if (bp.status != HoleStatus::kOk) return;
-      counts[j] =
-          holeNodes(evs[static_cast<size_t>(wk)], holes[b + j], bp.joints,
-                    evs[0].o.allow_branch_change ? -1 : bp.branch, 1, std::span<Node>(&node[j], 1));
+      counts[j] = holeNodes(evs[static_cast<size_t>(wk)], holes[b + j], bp.joints,
+                            gridBranch(bp, evs[0].o), 1, std::span<Node>(&node[j], 1));
     });
     for (size_t j = 0; j < e - b; ++j) {
       if (out[j].before.status != HoleStatus::kOk)
@@ -1339,6 +1344,14 @@ class FlipFreeForward {
   std::vector<Cost> cost_;
 };
 
+/// Hole i's set-up in the tables: its own joints as the grid's seed when its prediction is
+/// admissible, else `seed` (the latest admissible candidate before it); its grid branch.
+void recordSetUp(SequenceTables& t, size_t i, const HolePrediction& h, const Vec6& seed,
+                 const CompensationOptions& o) {
+  t.seed[i] = h.status == HoleStatus::kOk ? h.joints : seed;
+  t.branch[i] = static_cast<std::int8_t>(gridBranch(h, o));
+}
+
 /// Stages 1 to 3 at the jump threshold thr, a block of holes at a time: the
 /// block predicted (stage 1, the continuity seed carried), then, 1,024 holes at a time
 /// (pipelinedFor), the workers evaluate the grids (holeNodes) while the holes before are finished
@@ -1365,9 +1378,6 @@ bool forwardPass(Workers& w, const std::vector<HoleRequest>& holes,
   std::vector<NodeCount> counts(cap);
   PredictionData serial_scratch(m);
   Evaluator serial{m, serial_scratch, o, true};
-  auto branchOf = [&](const HolePrediction& b) {
-    return (b.status == HoleStatus::kOk && !o.allow_branch_change) ? b.branch : -1;
-  };
   std::optional<Vec6> prev = first;
   Vec6 seed = m.reference_pose;
   DpFrontier f;
@@ -1386,15 +1396,12 @@ bool forwardPass(Workers& w, const std::vector<HoleRequest>& holes,
         const HolePrediction& b = before[j];
         if (b.status == HoleStatus::kOk)
           zero[j] = evs[static_cast<size_t>(wk)].evaluate(holes[b0 + j], gridPsi(0, grid),
-                                                          branchOf(b), b.joints, true, true);
+                                                          gridBranch(b, o), b.joints, true, true);
       });
       for (size_t j = 0; j < e0 - b0; ++j) {
         const size_t i = b0 + j;
-        const HolePrediction& h = before[j];
-        const bool ok = h.status == HoleStatus::kOk;
-        t.seed[i] = ok ? h.joints : seed;
-        t.branch[i] = static_cast<std::int8_t>(branchOf(h));
-        ff->add(i, ok, zero[j]);
+        recordSetUp(t, i, before[j], seed, o);
+        ff->add(i, before[j].status == HoleStatus::kOk, zero[j]);
       }
       continue;
     }
@@ -1402,17 +1409,15 @@ bool forwardPass(Workers& w, const std::vector<HoleRequest>& holes,
       const HolePrediction& b = before[j];
       counts[j] = NodeCount{};
       if (b.status != HoleStatus::kOk) return;
-      counts[j] = holeNodes(evs[static_cast<size_t>(wk)], holes[b0 + j], b.joints, branchOf(b),
+      counts[j] = holeNodes(evs[static_cast<size_t>(wk)], holes[b0 + j], b.joints, gridBranch(b, o),
                             grid, nodes[j]);
     };
     auto inOrder = [&](size_t b, size_t e) {
       for (size_t j = b; j < e; ++j) {
         const size_t i = b0 + j;
-        const HolePrediction& h = before[j];
-        const bool ok = h.status == HoleStatus::kOk;
-        t.seed[i] = ok ? h.joints : seed;
-        t.branch[i] = static_cast<std::int8_t>(branchOf(h));
-        if (!ok) counts[j] = holeNodes(serial, holes[i], seed, branchOf(h), grid, nodes[j]);
+        recordSetUp(t, i, before[j], seed, o);
+        if (before[j].status != HoleStatus::kOk)
+          counts[j] = holeNodes(serial, holes[i], seed, t.branch[i], grid, nodes[j]);
         t.enforced[i] = counts[j].enforced ? 1 : 0;
         t.relaxed[i] = counts[j].relaxed_wrist ? 1 : 0;
         if (count) {
@@ -1723,7 +1728,7 @@ void compensateTarget(const PredictionModel& base, PredictionData& d, const Hole
     node.feasible = true;
     node.why = Why::kNone;
   } else if (b.status == HoleStatus::kOk) {  // stage 2 of keep: ψ = 0 in the programmed branch
-    node = ev.evaluate(h, 0.0, o.allow_branch_change ? -1 : b.branch, b.joints, false, false);
+    node = ev.evaluate(h, 0.0, gridBranch(b, o), b.joints, false, false);
   }
   std::string why = notCompensatedReason(out, node);
   if (!why.empty()) {
