@@ -69,6 +69,9 @@ struct Node {
   Why why{Why::kNone};          ///< when not feasible
   std::int8_t limit_joint{-1};  ///< kLimits: a joint (0-based) outside its limits
   bool feasible{false};
+  /// a solution was passed over for |θ5| < margin (enforce_wrist): without the requirement the
+  /// evaluation may differ; without such a solution it is this node, bit for bit
+  bool wrist_rejected{false};
 };
 static_assert(sizeof(Node) <= 96, "a grid holds many of them");
 
@@ -150,6 +153,7 @@ struct Evaluator {
       }
       if (enforce_wrist && s.branch.wrist_margin_rad < std::sin(o.wrist_margin)) {
         worse(Why::kWrist);
+        n.wrist_rejected = true;
         n.wrist = s.branch.wrist_margin_rad;
         continue;
       }
@@ -1156,9 +1160,10 @@ void keepRun(Workers& w, const std::vector<HoleRequest>& holes, const std::optio
 /// What flip-free and stiffest keep of each hole between their passes over the run (the
 /// predictions, grids and path costs are held a block at a time): the DP's tables (DpRow), what
 /// rebuilds a node of the hole's grid (gridNode: the seed, the branch, NodeCount::enforced),
-/// whether the wrist margin was relaxed there, and the prediction seed of each block of
-/// CompensationOptions::block holes (stage 1 is made again block by block as the holes are
-/// finished).
+/// whether the wrist margin was relaxed there, node 0 of its grid (ψ = 0: the chosen node of most
+/// holes, the ψ = 0 candidate psiReason reads, stiffest's programmed posture; kept rather than
+/// evaluated again), and the prediction seed of each block of CompensationOptions::block holes
+/// (stage 1 is made again block by block as the holes are finished).
 struct SequenceTables {
   Grid<std::int16_t> from;
   std::vector<std::int16_t> best;
@@ -1166,6 +1171,7 @@ struct SequenceTables {
   std::vector<std::int8_t> branch;
   std::vector<char> enforced;
   std::vector<char> relaxed;
+  std::vector<Node> zero;
   std::vector<std::optional<Vec6>> block_seed;
 
   SequenceTables(size_t n, int grid, int threads, size_t block)
@@ -1175,6 +1181,7 @@ struct SequenceTables {
         branch(n, -1),
         enforced(n, 1),
         relaxed(n, 0),
+        zero(n),
         block_seed((n + block - 1) / block) {}
   /// Node k of hole i's grid.
   Node node(Evaluator& ev, const std::vector<HoleRequest>& holes, size_t i, int k, int grid) const {
@@ -1308,6 +1315,7 @@ class FlipFreeForward {
   void through(size_t i, const NodeCount& c, std::span<const Node> row) {
     t_.enforced[i] = c.enforced ? 1 : 0;
     t_.relaxed[i] = c.relaxed_wrist ? 1 : 0;
+    t_.zero[i] = row[0];
     if (count_) {
       st_.dp_nodes += c.nodes;
       st_.infeasible_nodes += c.infeasible;
@@ -1420,6 +1428,7 @@ bool forwardPass(Workers& w, const std::vector<HoleRequest>& holes,
           counts[j] = holeNodes(serial, holes[i], seed, t.branch[i], grid, nodes[j]);
         t.enforced[i] = counts[j].enforced ? 1 : 0;
         t.relaxed[i] = counts[j].relaxed_wrist ? 1 : 0;
+        t.zero[i] = nodes[j][0];
         if (count) {
           st.dp_nodes += counts[j].nodes;
           st.infeasible_nodes += counts[j].infeasible;
@@ -1441,22 +1450,24 @@ bool forwardPass(Workers& w, const std::vector<HoleRequest>& holes,
 }
 
 /// What stages 2 and 3 give the holes' finishing: the chosen node per hole (not feasible: none),
-/// the ψ = 0 candidate of each hole whose chosen node is turned (by hole index: psiReason reads
-/// it; the refinement and stiffest only turn holes back), whether the wrist margin was relaxed,
-/// and the prediction seeds of the blocks (SequenceTables::block_seed).
+/// node 0 of each hole's grid (its ψ = 0 candidate: psiReason reads it; SequenceTables::zero) and
+/// whether that grid enforced |θ5| ≥ margin, whether the wrist margin was relaxed, and the
+/// prediction seeds of the blocks (SequenceTables::block_seed).
 struct Sequence {
   std::vector<Node> chosen;
-  std::vector<std::pair<size_t, Node>> zero;
+  std::vector<Node> zero;
+  std::vector<char> enforced;
   std::vector<char> relaxed;
   std::vector<std::optional<Vec6>> block_seed;
 
-  /// The ψ = 0 candidate of turned hole i.
-  [[nodiscard]] const Node& zeroOf(size_t i) const {
-    const auto it = std::lower_bound(zero.begin(), zero.end(), i,
-                                     [](const auto& z, size_t k) { return z.first < k; });
-    if (it == zero.end() || it->first != i)
-      throw std::logic_error("compensateHoles: a hole turned after the sequence was chosen");
-    return it->second;
+  /// Stiffest's programmed posture of hole i (ψ = 0 without the wrist requirement, in the
+  /// branch of its prediction `b`, seeded with its joints): node 0 of its grid when that is the
+  /// same evaluation (the grid's branch and seed are those of the prediction, and no solution was
+  /// passed over for the wrist margin, or the grid did not enforce it), else evaluated.
+  Node programmed(Evaluator& ev, const HoleRequest& h, const HolePrediction& b, size_t i) const {
+    const Node& z = zero[i];
+    if (gridBranch(b, ev.o) == b.branch && (!enforced[i] || !z.wrist_rejected)) return z;
+    return ev.evaluate(h, 0.0, b.branch, b.joints, false, true);
   }
 };
 
@@ -1486,21 +1497,13 @@ Sequence chooseSequence(Workers& w, const std::vector<HoleRequest>& holes,
   Sequence q;
   q.chosen.resize(n);
   parallelFor(n, w.threads(), [&](int wk, size_t i) {
-    if (choice[i] >= 0)
+    if (choice[i] == 0)
+      q.chosen[i] = t.zero[i];
+    else if (choice[i] > 0)
       q.chosen[i] = t.node(w.evs[static_cast<size_t>(wk)], holes, i, choice[i], grid);
   });
-  auto turned = [&](size_t i) {
-    return q.chosen[i].feasible && std::abs(q.chosen[i].psi) > kPsiKept;
-  };
-  size_t count = 0;
-  for (size_t i = 0; i < n; ++i) count += turned(i) ? 1 : 0;
-  q.zero.resize(count);
-  for (size_t i = 0, k = 0; i < n; ++i) {
-    if (turned(i)) q.zero[k++].first = i;
-  }
-  parallelFor(q.zero.size(), w.threads(), [&](int wk, size_t k) {
-    q.zero[k].second = t.node(w.evs[static_cast<size_t>(wk)], holes, q.zero[k].first, 0, grid);
-  });
+  q.zero = std::move(t.zero);
+  q.enforced = std::move(t.enforced);
   q.relaxed = std::move(t.relaxed);
   q.block_seed = std::move(t.block_seed);
   return q;
@@ -1559,7 +1562,7 @@ void sequenceRun(Workers& w, const std::vector<HoleRequest>& holes,
       if (stiffest) {
         programmed[j] = Node{};
         if (c.before.status == HoleStatus::kOk)
-          programmed[j] = ev.evaluate(holes[i], 0.0, c.before.branch, c.before.joints, false, true);
+          programmed[j] = q.programmed(ev, holes[i], c.before, i);
       }
       if (q.relaxed[i]) c.note = kRelaxedWristNote;
       std::string why = notCompensatedReason(c, chosen[i]);
@@ -1584,7 +1587,7 @@ void sequenceRun(Workers& w, const std::vector<HoleRequest>& holes,
     const std::span<HoleCompensation> done(pend.data(), upto - ready);
     zero.assign(done.size(), Node{});
     for (size_t j = 0; j < done.size(); ++j) {
-      if (done[j].ok && std::abs(done[j].psi) > kPsiKept) zero[j] = q.zeroOf(ready + j);
+      if (done[j].ok && std::abs(done[j].psi) > kPsiKept) zero[j] = q.zero[ready + j];
     }
     countFinished(evs[0], holes, chosen, zero, thr, done, ready, st);
     if (handing.valid()) handing.get();  // the holes before are handed over (or its error thrown)
