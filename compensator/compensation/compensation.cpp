@@ -600,18 +600,22 @@ void refineTurned(std::vector<Evaluator>& evs, const std::vector<HoleRequest>& h
   std::vector<std::unique_ptr<Refiner>> refiners;  // one per thread
   refiners.reserve(evs.size());
   for (Evaluator& ev : evs) refiners.push_back(std::make_unique<Refiner>(ev));
-  std::vector<Refined> spec(n);
-  parallelFor(n, static_cast<int>(evs.size()), [&](int w, size_t i) {
-    if (turned(i))
-      spec[i] = refiners[static_cast<size_t>(w)]->refine(holes, chosen, i, !relaxed[i], grid, thr);
+  std::vector<size_t> turns;  // the turned holes, in hole order
+  for (size_t i = 0; i < n; ++i) {
+    if (turned(i)) turns.push_back(i);
+  }
+  std::vector<Refined> spec(turns.size());
+  parallelFor(turns.size(), static_cast<int>(evs.size()), [&](int w, size_t k) {
+    const size_t i = turns[k];
+    spec[k] = refiners[static_cast<size_t>(w)]->refine(holes, chosen, i, !relaxed[i], grid, thr);
   });
   std::vector<char> changed(n, 0);
-  for (size_t i = 0; i < n; ++i) {
-    if (!turned(i)) continue;
+  for (size_t k = 0; k < turns.size(); ++k) {
+    const size_t i = turns[k];
     const size_t p = previousFeasible(chosen, i);
     const Refined r = p < n && changed[p]
                           ? refiners[0]->refine(holes, chosen, i, !relaxed[i], grid, thr)
-                          : std::move(spec[i]);
+                          : std::move(spec[k]);
     st.nlopt_evaluations += r.evaluations;
     if (!r.changed) continue;
     chosen[i] = r.node;

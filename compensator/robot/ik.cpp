@@ -87,6 +87,10 @@ Mat3 linkThreeRotation(const IkModel& m, double q1, double q2, double q3) {
   return R;
 }
 
+/// |x| (m) and sin ψ beyond which rawSolutions knows a raw solution's shoulder and elbow labels
+/// before computing it (round-off moves ikBranch's x and ψ by ≲ 1e-13 m, 1e-15 rad).
+constexpr double kLabelMargin = 1e-6;
+
 /// ikBranch's x of the wrist centre in the arm plane (lateral offset removed) at q2, q3.
 double shoulderX(const IkModel& m, double q2, double q3) {
   const Eigen::Vector2d arm = rotY(q2, m.u0 + rotY(m.sigma3 * q3, m.v0));
@@ -511,8 +515,8 @@ namespace {
 /// `seed_used` (may be null) is set when opt.seed chose a joint (wrist centre on axis 1, or a
 /// wrist-singular branch). `only` ≥ 0 (0..7): the raw solutions of other branches — by
 /// ikBranch of their wrapped q, the labels solveIk filters an exact chain's raw solutions by —
-/// are not finished (the shoulder and elbow labels are known from q2, q3, the wrist label from
-/// q5): those of `only` are the same values, in the same order.
+/// are not computed (the shoulder and elbow labels are known beforehand — see kLabelMargin — or
+/// from q2, q3, the wrist label from q5): those of `only` are the same values, in the same order.
 int rawSolutions(const IkModel& m, const Pose& target, const IkOptions& opt,
                  std::array<IkSolution, 8>& raw, IkFailure& failure, double& failure_value,
                  bool* seed_used, int only = -1) {
@@ -545,15 +549,10 @@ int rawSolutions(const IkModel& m, const Pose& target, const IkOptions& opt,
   double near_excess = -1.0;
   for (int s = 0; s < 2; ++s) {
     const double x = (s == 0 ? 1.0 : -1.0) * m.shoulder_sign * xabs;
-    double q1 = 0.0;
-    if (on_axis) {
-      if (seed_used) *seed_used = true;
-      q1 = (opt.seed ? (*opt.seed)[0] : 0.0) + (s == 0 ? 0.0 : kPi);
-    } else {
-      q1 = std::atan2(c.y(), c.x()) - std::atan2(m.b, x);
-    }
+    if (on_axis && seed_used) *seed_used = true;
     const Eigen::Vector2d d(x - m.p2x, c.z());
     double cpsi = (d.squaredNorm() - m.L2 * m.L2 - m.L3 * m.L3) / (2.0 * m.L2 * m.L3);
+    const bool clamped = cpsi > 1.0 || cpsi < -1.0;
     if (cpsi > 1.0) {
       if (cpsi > 1.0 + m.reach_slack) {
         const double excess = d.norm() - (m.L2 + m.L3);
@@ -571,12 +570,25 @@ int rawSolutions(const IkModel& m, const Pose& target, const IkOptions& opt,
     }
     reached = true;
     const double spsi = std::sqrt(std::max(0.0, 1.0 - cpsi * cpsi));
+    // Labels of (s, e) known beforehand: ikBranch rebuilds x and sin ψ from the wrapped q2, q3 —
+    // the same x (Ry(q2) w = d when |w| = |d|, i.e. cos ψ not clamped) and an angle ψ + 2πk, up
+    // to round-off (≲ 1e-13 m, 1e-15 rad): with |x| and sin ψ beyond kLabelMargin their signs,
+    // hence the labels s and e, are certain.
+    const bool known = only >= 0 && !clamped && xabs > kLabelMargin && spsi > kLabelMargin;
+    double q1 = 0.0;
+    bool have_q1 = false;
     for (int e = 0; e < 2; ++e) {
+      if (known && 4 * s + 2 * e != (only & 6)) continue;
       const double psi = std::atan2((e == 0 ? 1.0 : -1.0) * m.elbow_sign * spsi, cpsi);
       const double q3 = m.sigma3 * (psi - m.psi0);
       const Eigen::Vector2d w = m.u0 + rotY(psi - m.psi0, m.v0);
       const double q2 = ang(d) - ang(w);
-      if (only >= 0 && armLabels(m, wrapAngle(q2), wrapAngle(q3)) != (only & 6)) continue;
+      if (only >= 0 && !known && armLabels(m, wrapAngle(q2), wrapAngle(q3)) != (only & 6)) continue;
+      if (!have_q1) {
+        q1 = on_axis ? (opt.seed ? (*opt.seed)[0] : 0.0) + (s == 0 ? 0.0 : kPi)
+                     : std::atan2(c.y(), c.x()) - std::atan2(m.b, x);
+        have_q1 = true;
+      }
       const Mat3 R3 = linkThreeRotation(m, q1, q2, q3);
       const Mat3 N = m.E.transpose() * R3.transpose() * R_T * m.B;
       const double c5 = N(0, 0);
