@@ -106,11 +106,49 @@ class Grid {
   std::unique_ptr<T, Free> v_;
 };
 
+/// What every candidate of a run evaluates with, computed once (the same values as computed per
+/// candidate): the TCP → flange inverse, sin of the wrist margins, the effective joint stiffness.
+struct EvaluatorConstants {
+  Pose tcp_inverse;  ///< T_L6_tcp⁻¹ (of m.model)
+  double sin_margin;
+  double sin_twice_margin;
+  nc::Vec6 keff;
+  EvaluatorConstants(const PredictionModel& m, const CompensationOptions& o)
+      : tcp_inverse(m.model.T_L6_tcp.inverse()),
+        sin_margin(std::sin(o.wrist_margin)),
+        sin_twice_margin(std::sin(2.0 * o.wrist_margin)),
+        keff(m.compliance.effective()) {}
+};
+
+/// The ψ grid's rotations Rz(ψ_k) (gridPsi), made once per thread and grid size.
+class GridRotations {
+ public:
+  const Pose& at(int k, int grid) {
+    if (grid_ != grid) {
+      rot_.resize(static_cast<size_t>(grid));
+      for (int j = 0; j < grid; ++j) rot_[static_cast<size_t>(j)] = rotZ(gridPsiOf(j, grid));
+      grid_ = grid;
+    }
+    return rot_[static_cast<size_t>(k)];
+  }
+  /// ψ_k = 2πk/grid wrapped to (−π, π]: node 0 is the programmed rotation ψ = 0.
+  static double gridPsiOf(int k, int grid) {
+    const double psi = 2.0 * kPi * k / grid;
+    return psi > kPi + 1e-12 ? psi - 2.0 * kPi : psi;
+  }
+
+ private:
+  int grid_{0};
+  std::vector<Pose> rot_;
+};
+
 struct Evaluator {
   const PredictionModel& m;
   PredictionData& d;
   const CompensationOptions& o;
   bool after_budget{true};  ///< assemble re-predicts the compensated target (budget, verdict)
+  EvaluatorConstants c{m, o};
+  GridRotations grid_rot{};
 
   nc::Loads loadsFor(const ProcessAtDiameter* proc) const { return processLoads(m, proc); }
 
@@ -122,14 +160,42 @@ struct Evaluator {
   /// `branch` (−1: any) nearest `seed`; `enforce_wrist`: |θ5| ≥ margin.
   Node evaluate(const HoleRequest& h, double psi, int branch, const Vec6& seed, bool enforce_wrist,
                 bool with_cost) {
+    return evaluate(h, psi, rotZ(psi), branch, seed, enforce_wrist, with_cost);
+  }
+  /// evaluate at node k of the ψ grid (its rotation made once).
+  Node evaluateGrid(const HoleRequest& h, int k, int grid, int branch, const Vec6& seed,
+                    bool enforce_wrist, bool with_cost) {
+    return evaluate(h, GridRotations::gridPsiOf(k, grid), grid_rot.at(k, grid), branch, seed,
+                    enforce_wrist, with_cost);
+  }
+
+ private:
+  /// evaluate with Rz = rotZ(psi).
+  Node evaluate(const HoleRequest& h, double psi, const Pose& Rz, int branch, const Vec6& seed,
+                bool enforce_wrist, bool with_cost) {
     Node n;
     n.psi = psi;
-    const Pose T = h.T_W_tcp * rotZ(psi);
-    const Pose T_flange = T * m.model.T_L6_tcp.inverse() * m.model.T_L6_flange;
+    const Pose T = h.T_W_tcp * Rz;
+    const Pose T_flange = T * c.tcp_inverse * m.model.T_L6_flange;
     IkOptions opt;
     opt.seed = &seed;
     opt.branch = branch;  // the other branches are never candidates: not solved
     solveIk(realIk(m), T_flange, opt, d.ik);
+    pickSolution(branch, seed, enforce_wrist, n);
+    if (!n.feasible || !with_cost) return n;
+    n.penalty = proximityPenalty(n);
+    n.u_def = deflectionUncertainty(h, T, n.q);
+    // one bad hole (e.g. a non-finite load) must not poison the sequence's DP: it has no
+    // admissible candidate, and the hole is reported as not compensated
+    if (!std::isfinite(n.u_def) || !std::isfinite(n.penalty)) {
+      n.feasible = false;
+      n.why = Why::kUnreachable;
+    }
+    return n;
+  }
+
+  /// The admissible solution of d.ik in `branch` nearest `seed` into n (else why none is).
+  void pickSolution(int branch, const Vec6& seed, bool enforce_wrist, Node& n) const {
     double best = kInf;
     n.why = Why::kUnreachable;
     auto worse = [&](Why w) {
@@ -151,7 +217,7 @@ struct Evaluator {
         worse(Why::kSingular);
         continue;
       }
-      if (enforce_wrist && s.branch.wrist_margin_rad < std::sin(o.wrist_margin)) {
+      if (enforce_wrist && s.branch.wrist_margin_rad < c.sin_margin) {
         worse(Why::kWrist);
         n.wrist_rejected = true;
         n.wrist = s.branch.wrist_margin_rad;
@@ -167,20 +233,27 @@ struct Evaluator {
       }
     }
     if (n.feasible) n.why = Why::kNone;
-    if (!n.feasible || !with_cost) return n;
-    // penalties: joint-limit proximity and wrist proximity
+  }
+
+  /// Joint-limit and wrist proximity penalties of n (dimensionless).
+  double proximityPenalty(const Node& n) const {
+    double penalty = 0.0;
     for (int j = 0; j < 6; ++j) {
       const double margin = std::min(n.q[j] - m.ik.lower[j], m.ik.upper[j] - n.q[j]);
       if (margin < o.limit_margin)
-        n.penalty += std::pow((o.limit_margin - margin) / o.limit_margin, 2);
+        penalty += std::pow((o.limit_margin - margin) / o.limit_margin, 2);
     }
-    const double s2 = std::sin(2.0 * o.wrist_margin);
-    if (n.wrist < s2) n.penalty += std::pow((s2 - n.wrist) / s2, 2);
-    // stiffness proxy: linearised deflection-model uncertainty ⊥ the axis
-    const ProcessAtDiameter* proc = processFor(h);
-    const nc::Loads loads = loadsFor(proc);
-    // frame recursion (fast_equilibrium.hpp; the model of record's τ and J to 1e-9 relative)
-    nc::chainFrames(m.model, d.nc, n.q);
+    const double s2 = c.sin_twice_margin;
+    if (n.wrist < s2) penalty += std::pow((s2 - n.wrist) / s2, 2);
+    return penalty;
+  }
+
+  /// The stiffness proxy at q for the TCP pose T: the linearised deflection-model uncertainty ⊥
+  /// the axis (m), from the frame recursion (fast_equilibrium.hpp; the model of record's τ and J
+  /// to 1e-9 relative).
+  double deflectionUncertainty(const HoleRequest& h, const Pose& T, const Vec6& q) {
+    const nc::Loads loads = loadsFor(processFor(h));
+    nc::chainFrames(m.model, d.nc, q);
     nc::Vec6 tau;
     nc::StaticLoadSums sums;
     nc::staticTorquesFromFrames(m.model, d.nc, loads, tau, sums);
@@ -188,20 +261,12 @@ struct Evaluator {
     const Mat3 R = T.linear();
     const Vec3 e1 = R.col(0);
     const Vec3 e2 = R.col(1);
-    const nc::Vec6 keff = m.compliance.effective();
     double var = 0;
     for (int i = 0; i < 6; ++i) {
-      const Vec3 v = J.block<3, 1>(0, i) * (tau[i] / keff[i]) * m.uncertainty.stiffness_rel;
+      const Vec3 v = J.block<3, 1>(0, i) * (tau[i] / c.keff[i]) * m.uncertainty.stiffness_rel;
       var += 0.5 * (std::pow(v.dot(e1), 2) + std::pow(v.dot(e2), 2));
     }
-    n.u_def = std::sqrt(var);
-    // one bad hole (e.g. a non-finite load) must not poison the sequence's DP: it has no
-    // admissible candidate, and the hole is reported as not compensated
-    if (!std::isfinite(n.u_def) || !std::isfinite(n.penalty)) {
-      n.feasible = false;
-      n.why = Why::kUnreachable;
-    }
-    return n;
+    return std::sqrt(var);
   }
 };
 
@@ -300,12 +365,6 @@ void predictOriginal(const PredictionModel& m, PredictionData& d,
 
 // ---- stage 2: candidate rotations about each drill axis
 
-/// ψ_k = 2πk/grid wrapped to (−π, π]: node 0 is the programmed rotation ψ = 0.
-double gridPsi(int k, int grid) {
-  const double psi = 2.0 * kPi * k / grid;
-  return psi > kPi + 1e-12 ? psi - 2.0 * kPi : psi;
-}
-
 /// Counters of one hole's candidates (summed into CompensationStats in hole order).
 struct NodeCount {
   int nodes{0};
@@ -327,7 +386,7 @@ NodeCount holeNodes(Evaluator& ev, const HoleRequest& h, const Vec6& s, int bran
   bool any = false;
   for (int k = 0; k < grid; ++k) {
     Node& nd = nodes[static_cast<size_t>(k)];
-    nd = ev.evaluate(h, gridPsi(k, grid), branch, s, choose, choose);
+    nd = ev.evaluateGrid(h, k, grid, branch, s, choose, choose);
     ++count.nodes;
     if (!nd.feasible) ++count.infeasible;
     any |= nd.feasible;
@@ -337,7 +396,7 @@ NodeCount holeNodes(Evaluator& ev, const HoleRequest& h, const Vec6& s, int bran
     // With the drill on the flange axis, ψ turns axis 6 only: if |θ5| < margin for every ψ the
     // margin cannot be met here. Keep it as a penalty and say so, rather than drop the hole.
     for (int k = 0; k < grid; ++k) {
-      nodes[static_cast<size_t>(k)] = ev.evaluate(h, gridPsi(k, grid), branch, s, false, true);
+      nodes[static_cast<size_t>(k)] = ev.evaluateGrid(h, k, grid, branch, s, false, true);
       any |= nodes[static_cast<size_t>(k)].feasible;
     }
     if (any) count.relaxed_wrist = true;
@@ -349,7 +408,7 @@ NodeCount holeNodes(Evaluator& ev, const HoleRequest& h, const Vec6& s, int bran
 /// `branch`; `enforced`: NodeCount::enforced of that grid), evaluated again: the same node.
 Node gridNode(Evaluator& ev, const HoleRequest& h, const Vec6& s, int branch, int k, int grid,
               bool enforced) {
-  return ev.evaluate(h, gridPsi(k, grid), branch, s, enforced, true);
+  return ev.evaluateGrid(h, k, grid, branch, s, enforced, true);
 }
 
 // ---- stage 3: dynamic programming over the whole sequence
@@ -1407,8 +1466,8 @@ bool forwardPass(Workers& w, const std::vector<HoleRequest>& holes,
       parallelFor(e0 - b0, threads, [&](int wk, size_t j) {
         const HolePrediction& b = before[j];
         if (b.status == HoleStatus::kOk)
-          zero[j] = evs[static_cast<size_t>(wk)].evaluate(holes[b0 + j], gridPsi(0, grid),
-                                                          gridBranch(b, o), b.joints, true, true);
+          zero[j] = evs[static_cast<size_t>(wk)].evaluateGrid(
+              holes[b0 + j], 0, grid, gridBranch(b, o), b.joints, true, true);
       });
       for (size_t j = 0; j < e0 - b0; ++j) {
         const size_t i = b0 + j;

@@ -513,10 +513,10 @@ namespace {
 /// The analytic solutions of the ideal model before refinement and turn expansion (wrapped q, at
 /// most 8, in branch-construction order). Sets `failure` and `failure_value` when none.
 /// `seed_used` (may be null) is set when opt.seed chose a joint (wrist centre on axis 1, or a
-/// wrist-singular branch). `only` ≥ 0 (0..7): the raw solutions of other branches — by
-/// ikBranch of their wrapped q, the labels solveIk filters an exact chain's raw solutions by —
-/// are not computed (the shoulder and elbow labels are known beforehand — see kLabelMargin — or
-/// from q2, q3, the wrist label from q5): those of `only` are the same values, in the same order.
+/// wrist-singular branch). `only` ≥ 0 (0..7): only the raw solutions of that branch — by ikBranch
+/// of their wrapped q, the labels solveIk filters an exact chain's raw solutions by — are
+/// computed (the shoulder and elbow labels are known beforehand — see kLabelMargin — or from q2,
+/// q3, the wrist label from q5): the same values, in the same order, as the unfiltered list's.
 int rawSolutions(const IkModel& m, const Pose& target, const IkOptions& opt,
                  std::array<IkSolution, 8>& raw, IkFailure& failure, double& failure_value,
                  bool* seed_used, int only = -1) {
@@ -616,6 +616,7 @@ int rawSolutions(const IkModel& m, const Pose& target, const IkOptions& opt,
             q5p = kPi;
             q6 = q4 - rot;
           }
+          if (only >= 0 && wristLabel(m, wrapAngle(q5p - m.alpha)) != (only & 1)) continue;
         }
         IkSolution& sol = raw[static_cast<size_t>(nraw++)];
         sol = IkSolution{};
@@ -686,8 +687,6 @@ void solveIk(const IkModel& m, const Pose& target, const IkOptions& opt, IkResul
   const int nraw = rawSolutions(m, target, opt, raw, result, one_branch ? opt.branch : -1);
   for (int k = 0; k < nraw; ++k) {
     IkSolution& sol = raw[static_cast<size_t>(k)];
-    // an exact chain's refinement leaves q as it is: its branch is known before finishing
-    if (opt.branch >= 0 && m.deviation.exact && ikBranch(m, sol.q).index() != opt.branch) continue;
     finishSolution(m, target, opt, sol);
     if (opt.branch >= 0 && sol.branch.index() != opt.branch) continue;
     expandTurns(m, sol, opt, result);
