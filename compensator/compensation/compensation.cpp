@@ -659,7 +659,10 @@ void refineTurned(std::vector<Evaluator>& evs, const std::vector<HoleRequest>& h
   std::vector<std::unique_ptr<Refiner>> refiners;  // one per thread
   refiners.reserve(evs.size());
   for (Evaluator& ev : evs) refiners.push_back(std::make_unique<Refiner>(ev));
-  std::vector<size_t> turns;  // the turned holes, in hole order
+  std::vector<size_t> turns;  // the turned holes, in hole order (one allocation)
+  turns.reserve(static_cast<size_t>(std::count_if(chosen.begin(), chosen.end(), [&](const Node& c) {
+    return c.feasible && std::abs(c.psi) > kPsiKept;
+  })));
   for (size_t i = 0; i < n; ++i) {
     if (turned(i)) turns.push_back(i);
   }
@@ -1252,6 +1255,42 @@ struct SequenceTables {
   }
 };
 
+/// What the forward pass carries from hole to hole in hole order: the tables, the counters (when
+/// `count`), the DP's frontier and the serial seed (the first admissible candidate of the latest
+/// hole that has one, else the reference pose: a hole without an admissible prediction is seeded
+/// with it).
+struct OrderedPass {
+  const std::vector<HoleRequest>& holes;
+  OrientationMode mode;
+  double thr;
+  bool count;
+  SequenceTables& t;
+  CompensationStats& st;
+  DpFrontier f{};
+  Vec6 seed{Vec6::Zero()};
+  std::vector<Cost> cost{};  ///< dpForwardHole's scratch
+
+  /// Hole i's candidates `row` (counted by c) through the tables, the counters, the serial seed
+  /// and the DP.
+  void through(size_t i, const NodeCount& c, std::span<const Node> row) {
+    t.enforced[i] = c.enforced ? 1 : 0;
+    t.relaxed[i] = c.relaxed_wrist ? 1 : 0;
+    t.zero[i] = row[0];
+    if (count) {
+      st.dp_nodes += c.nodes;
+      st.infeasible_nodes += c.infeasible;
+      if (c.relaxed_wrist) ++st.relaxed_wrist;
+    }
+    for (const Node& nd : row) {
+      if (nd.feasible) {
+        seed = nd.q;
+        break;
+      }
+    }
+    dpForwardHole(row, holes, i, mode, thr, f, DpRow{t.from[i], t.best[i]}, cost);
+  }
+};
+
 /// flip-free's forward pass over holes whose ψ = 0 candidate (node 0) is known first. A run of
 /// holes S = [s, e) whose node 0 is admissible at every hole and connects within thr from hole to
 /// hole, where the DP's link into S and out of it is not jump-limited (S starts the program or
@@ -1269,19 +1308,18 @@ struct SequenceTables {
 /// time on the workers.
 class FlipFreeForward {
  public:
-  FlipFreeForward(Workers& w, Evaluator& serial, const std::vector<HoleRequest>& holes, int grid,
-                  double thr, bool count, SequenceTables& t, CompensationStats& st, DpFrontier& f,
-                  Vec6& seed, Grid<Node>& nodes)
+  FlipFreeForward(Workers& w, Evaluator& serial, int grid, OrderedPass& pass, Grid<Node>& nodes)
       : w_(w),
         serial_(serial),
-        holes_(holes),
+        holes_(pass.holes),
         grid_(grid),
-        thr_(thr),
-        count_(count),
-        t_(t),
-        st_(st),
-        f_(f),
-        seed_(seed),
+        thr_(pass.thr),
+        count_(pass.count),
+        t_(pass.t),
+        st_(pass.st),
+        f_(pass.f),
+        seed_(pass.seed),
+        pass_(pass),
         nodes_(nodes),
         row_(static_cast<size_t>(grid), Node{}) {}
 
@@ -1374,24 +1412,8 @@ class FlipFreeForward {
     }
     full_begin_ = full_end_ = 0;
   }
-  /// Hole i's candidates `row` (counted by c) through the counters, the serial seed and the DP.
   void through(size_t i, const NodeCount& c, std::span<const Node> row) {
-    t_.enforced[i] = c.enforced ? 1 : 0;
-    t_.relaxed[i] = c.relaxed_wrist ? 1 : 0;
-    t_.zero[i] = row[0];
-    if (count_) {
-      st_.dp_nodes += c.nodes;
-      st_.infeasible_nodes += c.infeasible;
-      if (c.relaxed_wrist) ++st_.relaxed_wrist;
-    }
-    for (const Node& nd : row) {
-      if (nd.feasible) {
-        seed_ = nd.q;
-        break;
-      }
-    }
-    dpForwardHole(row, holes_, i, OrientationMode::kFlipFree, thr_, f_,
-                  DpRow{t_.from[i], t_.best[i]}, cost_);
+    pass_.through(i, c, row);
   }
 
   Workers& w_;
@@ -1404,6 +1426,7 @@ class FlipFreeForward {
   CompensationStats& st_;
   DpFrontier& f_;
   Vec6& seed_;
+  OrderedPass& pass_;
   Grid<Node>& nodes_;
   std::vector<Node> row_;  ///< node 0 and grid − 1 candidates that are not admissible
   size_t run_begin_{0};    ///< the run: holes [run_begin_, run_begin_ + run_size_)
@@ -1412,7 +1435,6 @@ class FlipFreeForward {
   DpFrontier f0_;                       ///< the DP's frontier before the run
   size_t full_begin_{0}, full_end_{0};  ///< holes waiting for their grids
   std::vector<NodeCount> counts_;
-  std::vector<Cost> cost_;
 };
 
 /// Hole i's set-up in the tables: its own joints as the grid's seed when its prediction is
@@ -1423,93 +1445,91 @@ void recordSetUp(SequenceTables& t, size_t i, const HolePrediction& h, const Vec
   t.branch[i] = static_cast<std::int8_t>(gridBranch(h, o));
 }
 
-/// Stages 1 to 3 at the jump threshold thr, a block of holes at a time: the
-/// block predicted (stage 1, the continuity seed carried), then, 1,024 holes at a time
-/// (pipelinedFor), the workers evaluate the grids (holeNodes) while the holes before are finished
-/// in hole order on a task of its own (the serial seeds, the counters when `count`, the DP's
-/// forward pass). One block's predictions and grids are held. False when a reachable hole cannot
-/// be connected within thr.
-///  - Grids are in the branch of the original solution unless a branch change is allowed. A hole
-///    with an admissible original prediction is seeded with its joints (on the workers); the
-///    others, in hole order, with the first admissible candidate of the latest hole before them
-///    that has one (else the reference pose), on the ordered pass's own evaluator.
+/// The candidate grids of a block of predicted holes (`before`: holes b0, b0 + 1, ...) through
+/// the ordered pass: 1,024 holes at a time (pipelinedFor), the workers evaluate the grids of the
+/// holes with an admissible prediction (holeNodes, seeded with their joints) while the holes
+/// before go through `pass` in hole order on a task of its own; a hole without one gets its grid
+/// there, seeded with the serial seed (on `serial`).
+void gridBlock(Workers& w, Evaluator& serial, std::span<const HolePrediction> before, size_t b0,
+               int grid, Grid<Node>& nodes, std::vector<NodeCount>& counts, OrderedPass& pass) {
+  constexpr size_t kBlock = 1024;  // holes per block of the pipeline (a block boundary costs
+                                   // a wait for its slowest worker)
+  const std::vector<HoleRequest>& holes = pass.holes;
+  const CompensationOptions& o = serial.o;
+  auto onWorker = [&](int wk, size_t j) {
+    const HolePrediction& b = before[j];
+    counts[j] = NodeCount{};
+    if (b.status != HoleStatus::kOk) return;
+    counts[j] = holeNodes(w.evs[static_cast<size_t>(wk)], holes[b0 + j], b.joints, gridBranch(b, o),
+                          grid, nodes[j]);
+  };
+  auto inOrder = [&](size_t b, size_t e) {
+    for (size_t j = b; j < e; ++j) {
+      const size_t i = b0 + j;
+      recordSetUp(pass.t, i, before[j], pass.seed, o);
+      if (before[j].status != HoleStatus::kOk)
+        counts[j] = holeNodes(serial, holes[i], pass.seed, pass.t.branch[i], grid, nodes[j]);
+      pass.through(i, counts[j], nodes[j]);
+    }
+  };
+  pipelinedFor(before.size(), std::min(kBlock, w.block), w.threads(), onWorker, inOrder);
+}
+
+/// flip-free's block of predicted holes: node 0 of the holes with an admissible prediction on the
+/// workers (into `zero`), then the holes in order through FlipFreeForward.
+void flipFreeBlock(Workers& w, std::span<const HolePrediction> before, size_t b0, int grid,
+                   std::vector<Node>& zero, OrderedPass& pass, FlipFreeForward& ff) {
+  const std::vector<HoleRequest>& holes = pass.holes;
+  const CompensationOptions& o = w.evs[0].o;
+  parallelFor(before.size(), w.threads(), [&](int wk, size_t j) {
+    const HolePrediction& b = before[j];
+    if (b.status == HoleStatus::kOk)
+      zero[j] = w.evs[static_cast<size_t>(wk)].evaluateGrid(holes[b0 + j], 0, grid,
+                                                            gridBranch(b, o), b.joints, true, true);
+  });
+  for (size_t j = 0; j < before.size(); ++j) {
+    const size_t i = b0 + j;
+    recordSetUp(pass.t, i, before[j], pass.seed, o);
+    ff.add(i, before[j].status == HoleStatus::kOk, zero[j]);
+  }
+}
+
+/// Stages 1 to 3 at the jump threshold thr, a block of holes at a time: the block predicted
+/// (stage 1, the continuity seed carried), then its candidate grids through the DP's forward
+/// pass in hole order (gridBlock; flip-free: flipFreeBlock), the counters when `count`. One
+/// block's predictions and grids are held. False when a reachable hole cannot be connected within
+/// thr. Grids are in the branch of the original solution unless a branch change is allowed.
 bool forwardPass(Workers& w, const std::vector<HoleRequest>& holes,
                  const std::optional<Vec6>& first, int grid, double thr, bool count,
                  SequenceTables& t, CompensationStats& st) {
-  constexpr size_t kBlock = 1024;  // holes per block of the pipeline (a block boundary costs
-                                   // a wait for its slowest worker)
-  std::vector<Evaluator>& evs = w.evs;
-  const PredictionModel& m = evs[0].m;
-  const CompensationOptions& o = evs[0].o;
-  const int threads = w.threads();
+  const PredictionModel& m = w.evs[0].m;
+  const CompensationOptions& o = w.evs[0].o;
   const size_t n = holes.size();
   const size_t cap = std::min(n, w.block);
   std::vector<HolePrediction> before(cap);
-  Grid<Node> nodes(cap, static_cast<size_t>(grid), Node{}, threads);
+  Grid<Node> nodes(cap, static_cast<size_t>(grid), Node{}, w.threads());
   std::vector<NodeCount> counts(cap);
   PredictionData serial_scratch(m);
   Evaluator serial{m, serial_scratch, o, true};
-  std::optional<Vec6> prev = first;
-  Vec6 seed = m.reference_pose;
-  DpFrontier f;
-  std::vector<Cost> cost;
+  OrderedPass pass{holes, o.mode, thr, count, t, st};
+  pass.seed = m.reference_pose;
   std::optional<FlipFreeForward> ff;
-  if (o.mode == OrientationMode::kFlipFree)
-    ff.emplace(w, serial, holes, grid, thr, count, t, st, f, seed, nodes);
+  if (o.mode == OrientationMode::kFlipFree) ff.emplace(w, serial, grid, pass, nodes);
   std::vector<Node> zero(ff ? cap : 0);
+  std::optional<Vec6> prev = first;
   for (size_t b0 = 0; b0 < n; b0 += w.block) {
     const size_t e0 = std::min(n, b0 + w.block);
     t.block_seed[b0 / w.block] = prev;
-    predictBlock(m, w.scratch[0], std::span<const HoleRequest>(holes).subspan(b0, e0 - b0), threads,
-                 prev, [&](size_t j) -> HolePrediction& { return before[j]; });
-    if (ff) {  // node 0 of the admissible holes on the workers, then the holes in order
-      parallelFor(e0 - b0, threads, [&](int wk, size_t j) {
-        const HolePrediction& b = before[j];
-        if (b.status == HoleStatus::kOk)
-          zero[j] = evs[static_cast<size_t>(wk)].evaluateGrid(
-              holes[b0 + j], 0, grid, gridBranch(b, o), b.joints, true, true);
-      });
-      for (size_t j = 0; j < e0 - b0; ++j) {
-        const size_t i = b0 + j;
-        recordSetUp(t, i, before[j], seed, o);
-        ff->add(i, before[j].status == HoleStatus::kOk, zero[j]);
-      }
-      continue;
-    }
-    auto onWorker = [&](int wk, size_t j) {
-      const HolePrediction& b = before[j];
-      counts[j] = NodeCount{};
-      if (b.status != HoleStatus::kOk) return;
-      counts[j] = holeNodes(evs[static_cast<size_t>(wk)], holes[b0 + j], b.joints, gridBranch(b, o),
-                            grid, nodes[j]);
-    };
-    auto inOrder = [&](size_t b, size_t e) {
-      for (size_t j = b; j < e; ++j) {
-        const size_t i = b0 + j;
-        recordSetUp(t, i, before[j], seed, o);
-        if (before[j].status != HoleStatus::kOk)
-          counts[j] = holeNodes(serial, holes[i], seed, t.branch[i], grid, nodes[j]);
-        t.enforced[i] = counts[j].enforced ? 1 : 0;
-        t.relaxed[i] = counts[j].relaxed_wrist ? 1 : 0;
-        t.zero[i] = nodes[j][0];
-        if (count) {
-          st.dp_nodes += counts[j].nodes;
-          st.infeasible_nodes += counts[j].infeasible;
-          if (counts[j].relaxed_wrist) ++st.relaxed_wrist;
-        }
-        for (const Node& nd : nodes[j]) {
-          if (nd.feasible) {
-            seed = nd.q;
-            break;
-          }
-        }
-        dpForwardHole(nodes[j], holes, i, o.mode, thr, f, DpRow{t.from[i], t.best[i]}, cost);
-      }
-    };
-    pipelinedFor(e0 - b0, std::min(kBlock, w.block), threads, onWorker, inOrder);
+    predictBlock(m, w.scratch[0], std::span<const HoleRequest>(holes).subspan(b0, e0 - b0),
+                 w.threads(), prev, [&](size_t j) -> HolePrediction& { return before[j]; });
+    const std::span<const HolePrediction> block(before.data(), e0 - b0);
+    if (ff)
+      flipFreeBlock(w, block, b0, grid, zero, pass, *ff);
+    else
+      gridBlock(w, serial, block, b0, grid, nodes, counts, pass);
   }
   if (ff) ff->finish();
-  return f.all_connected;
+  return pass.f.all_connected;
 }
 
 /// What stages 2 and 3 give the holes' finishing: the chosen node per hole (not feasible: none),

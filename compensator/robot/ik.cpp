@@ -132,12 +132,13 @@ int refine(const IkModel& m, const Pose& target, Vec6& q, int max_iterations, do
   Pose T;
   Mat6 J;
   for (int it = 0;; ++it) {
-    ikForwardKinematicsJacobian(m, q, T, J);
+    T = ikForwardKinematics(m, q);  // the pose of ikForwardKinematicsJacobian, bit for bit
     Vec6 e;
     e.head<3>() = target.translation() - T.translation();
     e.tail<3>() = rotationError(target.linear(), T.linear(), residual.rotation);
     residual.position = e.head<3>().norm();
     if ((residual.position <= tol && residual.rotation <= tol) || it >= max_iterations) return it;
+    ikForwardKinematicsJacobian(m, q, T, J);  // J only where a step is taken
     const Eigen::PartialPivLU<Mat6> lu(J);
     Vec6 dq = lu.solve(e);
     if (!dq.allFinite() || std::abs(lu.determinant()) < 1e-14) {
