@@ -682,7 +682,8 @@ bool admissible(const IkSolution& s) {
 }  // namespace
 
 void solveIk(const IkModel& m, const Pose& target, const IkOptions& opt, IkResult& result) {
-  std::array<IkSolution, 8> raw;
+  // set up once per thread (8 solutions, ~1 kB): rawSolutions writes every entry it returns
+  thread_local std::array<IkSolution, 8> raw;
   // an exact chain's refinement leaves q as it is: the other branches' raw solutions are skipped
   const bool one_branch = opt.branch >= 0 && m.deviation.exact;
   const int nraw = rawSolutions(m, target, opt, raw, result, one_branch ? opt.branch : -1);
