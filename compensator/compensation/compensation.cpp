@@ -184,6 +184,8 @@ struct Evaluator {
     pickSolution(branch, seed, enforce_wrist, n);
     if (!n.feasible || !with_cost) return n;
     n.penalty = proximityPenalty(n);
+    // flip-free reads u_def only through the finiteness check below (its costs and refinement
+    // never read it): about a quarter of a flip-free candidate's cost goes to that check
     n.u_def = deflectionUncertainty(h, T, n.q);
     // one bad hole (e.g. a non-finite load) must not poison the sequence's DP: it has no
     // admissible candidate, and the hole is reported as not compensated
@@ -1005,7 +1007,9 @@ constexpr size_t kKeepBlock = 4096;
 
 /// Stiffest, hole i in hole order with its keep result k: records U_work(keep); a hole at ψ = 0
 /// takes k; a turned hole goes back to it unless the turn gains at least kStiffnessGainMin of
-/// U_work, when the jump constraints with the final neighbours allow it.
+/// U_work, when the jump constraints with the final neighbours allow it. (So a hole at ψ = 0 has
+/// its exact compensation c made only for c.ok — and for its result where k fails — when both
+/// succeed, the common case, k replaces it.)
 void takeKeepWhereStiffEnough(const std::vector<HoleRequest>& holes, const Node& programmed,
                               double thr, size_t i, HoleCompensation& k, std::vector<Node>& chosen,
                               HoleCompensation& c) {
