@@ -69,6 +69,9 @@ struct Node {
   Why why{Why::kNone};          ///< when not feasible
   std::int8_t limit_joint{-1};  ///< kLimits: a joint (0-based) outside its limits
   bool feasible{false};
+  /// a solution was passed over for |θ5| < margin (enforce_wrist): without the requirement the
+  /// evaluation may differ; without such a solution it is this node, bit for bit
+  bool wrist_rejected{false};
 };
 static_assert(sizeof(Node) <= 96, "a grid holds many of them");
 
@@ -103,11 +106,49 @@ class Grid {
   std::unique_ptr<T, Free> v_;
 };
 
+/// What every candidate of a run evaluates with, computed once (the same values as computed per
+/// candidate): the TCP → flange inverse, sin of the wrist margins, the effective joint stiffness.
+struct EvaluatorConstants {
+  Pose tcp_inverse;  ///< T_L6_tcp⁻¹ (of m.model)
+  double sin_margin;
+  double sin_twice_margin;
+  nc::Vec6 keff;
+  EvaluatorConstants(const PredictionModel& m, const CompensationOptions& o)
+      : tcp_inverse(m.model.T_L6_tcp.inverse()),
+        sin_margin(std::sin(o.wrist_margin)),
+        sin_twice_margin(std::sin(2.0 * o.wrist_margin)),
+        keff(m.compliance.effective()) {}
+};
+
+/// The ψ grid's rotations Rz(ψ_k) (gridPsi), made once per thread and grid size.
+class GridRotations {
+ public:
+  const Pose& at(int k, int grid) {
+    if (grid_ != grid) {
+      rot_.resize(static_cast<size_t>(grid));
+      for (int j = 0; j < grid; ++j) rot_[static_cast<size_t>(j)] = rotZ(gridPsiOf(j, grid));
+      grid_ = grid;
+    }
+    return rot_[static_cast<size_t>(k)];
+  }
+  /// ψ_k = 2πk/grid wrapped to (−π, π]: node 0 is the programmed rotation ψ = 0.
+  static double gridPsiOf(int k, int grid) {
+    const double psi = 2.0 * kPi * k / grid;
+    return psi > kPi + 1e-12 ? psi - 2.0 * kPi : psi;
+  }
+
+ private:
+  int grid_{0};
+  std::vector<Pose> rot_;
+};
+
 struct Evaluator {
   const PredictionModel& m;
   PredictionData& d;
   const CompensationOptions& o;
   bool after_budget{true};  ///< assemble re-predicts the compensated target (budget, verdict)
+  EvaluatorConstants c{m, o};
+  GridRotations grid_rot{};
 
   nc::Loads loadsFor(const ProcessAtDiameter* proc) const { return processLoads(m, proc); }
 
@@ -119,14 +160,44 @@ struct Evaluator {
   /// `branch` (−1: any) nearest `seed`; `enforce_wrist`: |θ5| ≥ margin.
   Node evaluate(const HoleRequest& h, double psi, int branch, const Vec6& seed, bool enforce_wrist,
                 bool with_cost) {
+    return evaluate(h, psi, rotZ(psi), branch, seed, enforce_wrist, with_cost);
+  }
+  /// evaluate at node k of the ψ grid (its rotation made once).
+  Node evaluateGrid(const HoleRequest& h, int k, int grid, int branch, const Vec6& seed,
+                    bool enforce_wrist, bool with_cost) {
+    return evaluate(h, GridRotations::gridPsiOf(k, grid), grid_rot.at(k, grid), branch, seed,
+                    enforce_wrist, with_cost);
+  }
+
+ private:
+  /// evaluate with Rz = rotZ(psi).
+  Node evaluate(const HoleRequest& h, double psi, const Pose& Rz, int branch, const Vec6& seed,
+                bool enforce_wrist, bool with_cost) {
     Node n;
     n.psi = psi;
-    const Pose T = h.T_W_tcp * rotZ(psi);
-    const Pose T_flange = T * m.model.T_L6_tcp.inverse() * m.model.T_L6_flange;
+    const Pose T = h.T_W_tcp * Rz;
+    const Pose T_flange = T * c.tcp_inverse * m.model.T_L6_flange;
     IkOptions opt;
     opt.seed = &seed;
     opt.branch = branch;  // the other branches are never candidates: not solved
     solveIk(realIk(m), T_flange, opt, d.ik);
+    pickSolution(branch, seed, enforce_wrist, n);
+    if (!n.feasible || !with_cost) return n;
+    n.penalty = proximityPenalty(n);
+    // flip-free reads u_def only through the finiteness check below (its costs and refinement
+    // never read it): about a quarter of a flip-free candidate's cost goes to that check
+    n.u_def = deflectionUncertainty(h, T, n.q);
+    // one bad hole (e.g. a non-finite load) must not poison the sequence's DP: it has no
+    // admissible candidate, and the hole is reported as not compensated
+    if (!std::isfinite(n.u_def) || !std::isfinite(n.penalty)) {
+      n.feasible = false;
+      n.why = Why::kUnreachable;
+    }
+    return n;
+  }
+
+  /// The admissible solution of d.ik in `branch` nearest `seed` into n (else why none is).
+  void pickSolution(int branch, const Vec6& seed, bool enforce_wrist, Node& n) const {
     double best = kInf;
     n.why = Why::kUnreachable;
     auto worse = [&](Why w) {
@@ -148,8 +219,9 @@ struct Evaluator {
         worse(Why::kSingular);
         continue;
       }
-      if (enforce_wrist && s.branch.wrist_margin_rad < std::sin(o.wrist_margin)) {
+      if (enforce_wrist && s.branch.wrist_margin_rad < c.sin_margin) {
         worse(Why::kWrist);
+        n.wrist_rejected = true;
         n.wrist = s.branch.wrist_margin_rad;
         continue;
       }
@@ -163,20 +235,27 @@ struct Evaluator {
       }
     }
     if (n.feasible) n.why = Why::kNone;
-    if (!n.feasible || !with_cost) return n;
-    // penalties: joint-limit proximity and wrist proximity
+  }
+
+  /// Joint-limit and wrist proximity penalties of n (dimensionless).
+  double proximityPenalty(const Node& n) const {
+    double penalty = 0.0;
     for (int j = 0; j < 6; ++j) {
       const double margin = std::min(n.q[j] - m.ik.lower[j], m.ik.upper[j] - n.q[j]);
       if (margin < o.limit_margin)
-        n.penalty += std::pow((o.limit_margin - margin) / o.limit_margin, 2);
+        penalty += std::pow((o.limit_margin - margin) / o.limit_margin, 2);
     }
-    const double s2 = std::sin(2.0 * o.wrist_margin);
-    if (n.wrist < s2) n.penalty += std::pow((s2 - n.wrist) / s2, 2);
-    // stiffness proxy: linearised deflection-model uncertainty ⊥ the axis
-    const ProcessAtDiameter* proc = processFor(h);
-    const nc::Loads loads = loadsFor(proc);
-    // frame recursion (fast_equilibrium.hpp; the model of record's τ and J to 1e-9 relative)
-    nc::chainFrames(m.model, d.nc, n.q);
+    const double s2 = c.sin_twice_margin;
+    if (n.wrist < s2) penalty += std::pow((s2 - n.wrist) / s2, 2);
+    return penalty;
+  }
+
+  /// The stiffness proxy at q for the TCP pose T: the linearised deflection-model uncertainty ⊥
+  /// the axis (m), from the frame recursion (fast_equilibrium.hpp; the model of record's τ and J
+  /// to 1e-9 relative).
+  double deflectionUncertainty(const HoleRequest& h, const Pose& T, const Vec6& q) {
+    const nc::Loads loads = loadsFor(processFor(h));
+    nc::chainFrames(m.model, d.nc, q);
     nc::Vec6 tau;
     nc::StaticLoadSums sums;
     nc::staticTorquesFromFrames(m.model, d.nc, loads, tau, sums);
@@ -184,20 +263,12 @@ struct Evaluator {
     const Mat3 R = T.linear();
     const Vec3 e1 = R.col(0);
     const Vec3 e2 = R.col(1);
-    const nc::Vec6 keff = m.compliance.effective();
     double var = 0;
     for (int i = 0; i < 6; ++i) {
-      const Vec3 v = J.block<3, 1>(0, i) * (tau[i] / keff[i]) * m.uncertainty.stiffness_rel;
+      const Vec3 v = J.block<3, 1>(0, i) * (tau[i] / c.keff[i]) * m.uncertainty.stiffness_rel;
       var += 0.5 * (std::pow(v.dot(e1), 2) + std::pow(v.dot(e2), 2));
     }
-    n.u_def = std::sqrt(var);
-    // one bad hole (e.g. a non-finite load) must not poison the sequence's DP: it has no
-    // admissible candidate, and the hole is reported as not compensated
-    if (!std::isfinite(n.u_def) || !std::isfinite(n.penalty)) {
-      n.feasible = false;
-      n.why = Why::kUnreachable;
-    }
-    return n;
+    return std::sqrt(var);
   }
 };
 
@@ -296,12 +367,6 @@ void predictOriginal(const PredictionModel& m, PredictionData& d,
 
 // ---- stage 2: candidate rotations about each drill axis
 
-/// ψ_k = 2πk/grid wrapped to (−π, π]: node 0 is the programmed rotation ψ = 0.
-double gridPsi(int k, int grid) {
-  const double psi = 2.0 * kPi * k / grid;
-  return psi > kPi + 1e-12 ? psi - 2.0 * kPi : psi;
-}
-
 /// Counters of one hole's candidates (summed into CompensationStats in hole order).
 struct NodeCount {
   int nodes{0};
@@ -323,7 +388,7 @@ NodeCount holeNodes(Evaluator& ev, const HoleRequest& h, const Vec6& s, int bran
   bool any = false;
   for (int k = 0; k < grid; ++k) {
     Node& nd = nodes[static_cast<size_t>(k)];
-    nd = ev.evaluate(h, gridPsi(k, grid), branch, s, choose, choose);
+    nd = ev.evaluateGrid(h, k, grid, branch, s, choose, choose);
     ++count.nodes;
     if (!nd.feasible) ++count.infeasible;
     any |= nd.feasible;
@@ -333,7 +398,7 @@ NodeCount holeNodes(Evaluator& ev, const HoleRequest& h, const Vec6& s, int bran
     // With the drill on the flange axis, ψ turns axis 6 only: if |θ5| < margin for every ψ the
     // margin cannot be met here. Keep it as a penalty and say so, rather than drop the hole.
     for (int k = 0; k < grid; ++k) {
-      nodes[static_cast<size_t>(k)] = ev.evaluate(h, gridPsi(k, grid), branch, s, false, true);
+      nodes[static_cast<size_t>(k)] = ev.evaluateGrid(h, k, grid, branch, s, false, true);
       any |= nodes[static_cast<size_t>(k)].feasible;
     }
     if (any) count.relaxed_wrist = true;
@@ -345,7 +410,7 @@ NodeCount holeNodes(Evaluator& ev, const HoleRequest& h, const Vec6& s, int bran
 /// `branch`; `enforced`: NodeCount::enforced of that grid), evaluated again: the same node.
 Node gridNode(Evaluator& ev, const HoleRequest& h, const Vec6& s, int branch, int k, int grid,
               bool enforced) {
-  return ev.evaluate(h, gridPsi(k, grid), branch, s, enforced, true);
+  return ev.evaluateGrid(h, k, grid, branch, s, enforced, true);
 }
 
 // ---- stage 3: dynamic programming over the whole sequence
@@ -596,18 +661,25 @@ void refineTurned(std::vector<Evaluator>& evs, const std::vector<HoleRequest>& h
   std::vector<std::unique_ptr<Refiner>> refiners;  // one per thread
   refiners.reserve(evs.size());
   for (Evaluator& ev : evs) refiners.push_back(std::make_unique<Refiner>(ev));
-  std::vector<Refined> spec(n);
-  parallelFor(n, static_cast<int>(evs.size()), [&](int w, size_t i) {
-    if (turned(i))
-      spec[i] = refiners[static_cast<size_t>(w)]->refine(holes, chosen, i, !relaxed[i], grid, thr);
+  std::vector<size_t> turns;  // the turned holes, in hole order (one allocation)
+  turns.reserve(static_cast<size_t>(std::count_if(chosen.begin(), chosen.end(), [&](const Node& c) {
+    return c.feasible && std::abs(c.psi) > kPsiKept;
+  })));
+  for (size_t i = 0; i < n; ++i) {
+    if (turned(i)) turns.push_back(i);
+  }
+  std::vector<Refined> spec(turns.size());
+  parallelFor(turns.size(), static_cast<int>(evs.size()), [&](int w, size_t k) {
+    const size_t i = turns[k];
+    spec[k] = refiners[static_cast<size_t>(w)]->refine(holes, chosen, i, !relaxed[i], grid, thr);
   });
   std::vector<char> changed(n, 0);
-  for (size_t i = 0; i < n; ++i) {
-    if (!turned(i)) continue;
+  for (size_t k = 0; k < turns.size(); ++k) {
+    const size_t i = turns[k];
     const size_t p = previousFeasible(chosen, i);
     const Refined r = p < n && changed[p]
                           ? refiners[0]->refine(holes, chosen, i, !relaxed[i], grid, thr)
-                          : std::move(spec[i]);
+                          : std::move(spec[k]);
     st.nlopt_evaluations += r.evaluations;
     if (!r.changed) continue;
     chosen[i] = r.node;
@@ -935,7 +1007,9 @@ constexpr size_t kKeepBlock = 4096;
 
 /// Stiffest, hole i in hole order with its keep result k: records U_work(keep); a hole at ψ = 0
 /// takes k; a turned hole goes back to it unless the turn gains at least kStiffnessGainMin of
-/// U_work, when the jump constraints with the final neighbours allow it.
+/// U_work, when the jump constraints with the final neighbours allow it. (So a hole at ψ = 0 has
+/// its exact compensation c made only for c.ok — and for its result where k fails — when both
+/// succeed, the common case, k replaces it.)
 void takeKeepWhereStiffEnough(const std::vector<HoleRequest>& holes, const Node& programmed,
                               double thr, size_t i, HoleCompensation& k, std::vector<Node>& chosen,
                               HoleCompensation& c) {
@@ -1156,9 +1230,10 @@ void keepRun(Workers& w, const std::vector<HoleRequest>& holes, const std::optio
 /// What flip-free and stiffest keep of each hole between their passes over the run (the
 /// predictions, grids and path costs are held a block at a time): the DP's tables (DpRow), what
 /// rebuilds a node of the hole's grid (gridNode: the seed, the branch, NodeCount::enforced),
-/// whether the wrist margin was relaxed there, and the prediction seed of each block of
-/// CompensationOptions::block holes (stage 1 is made again block by block as the holes are
-/// finished).
+/// whether the wrist margin was relaxed there, node 0 of its grid (ψ = 0: the chosen node of most
+/// holes, the ψ = 0 candidate psiReason reads, stiffest's programmed posture; kept rather than
+/// evaluated again), and the prediction seed of each block of CompensationOptions::block holes
+/// (stage 1 is made again block by block as the holes are finished).
 struct SequenceTables {
   Grid<std::int16_t> from;
   std::vector<std::int16_t> best;
@@ -1166,6 +1241,7 @@ struct SequenceTables {
   std::vector<std::int8_t> branch;
   std::vector<char> enforced;
   std::vector<char> relaxed;
+  std::vector<Node> zero;
   std::vector<std::optional<Vec6>> block_seed;
 
   SequenceTables(size_t n, int grid, int threads, size_t block)
@@ -1175,10 +1251,47 @@ struct SequenceTables {
         branch(n, -1),
         enforced(n, 1),
         relaxed(n, 0),
+        zero(n),
         block_seed((n + block - 1) / block) {}
   /// Node k of hole i's grid.
   Node node(Evaluator& ev, const std::vector<HoleRequest>& holes, size_t i, int k, int grid) const {
     return gridNode(ev, holes[i], seed[i], branch[i], k, grid, enforced[i] != 0);
+  }
+};
+
+/// What the forward pass carries from hole to hole in hole order: the tables, the counters (when
+/// `count`), the DP's frontier and the serial seed (the first admissible candidate of the latest
+/// hole that has one, else the reference pose: a hole without an admissible prediction is seeded
+/// with it).
+struct OrderedPass {
+  const std::vector<HoleRequest>& holes;
+  OrientationMode mode;
+  double thr;
+  bool count;
+  SequenceTables& t;
+  CompensationStats& st;
+  DpFrontier f{};
+  Vec6 seed{Vec6::Zero()};
+  std::vector<Cost> cost{};  ///< dpForwardHole's scratch
+
+  /// Hole i's candidates `row` (counted by c) through the tables, the counters, the serial seed
+  /// and the DP.
+  void through(size_t i, const NodeCount& c, std::span<const Node> row) {
+    t.enforced[i] = c.enforced ? 1 : 0;
+    t.relaxed[i] = c.relaxed_wrist ? 1 : 0;
+    t.zero[i] = row[0];
+    if (count) {
+      st.dp_nodes += c.nodes;
+      st.infeasible_nodes += c.infeasible;
+      if (c.relaxed_wrist) ++st.relaxed_wrist;
+    }
+    for (const Node& nd : row) {
+      if (nd.feasible) {
+        seed = nd.q;
+        break;
+      }
+    }
+    dpForwardHole(row, holes, i, mode, thr, f, DpRow{t.from[i], t.best[i]}, cost);
   }
 };
 
@@ -1199,19 +1312,18 @@ struct SequenceTables {
 /// time on the workers.
 class FlipFreeForward {
  public:
-  FlipFreeForward(Workers& w, Evaluator& serial, const std::vector<HoleRequest>& holes, int grid,
-                  double thr, bool count, SequenceTables& t, CompensationStats& st, DpFrontier& f,
-                  Vec6& seed, Grid<Node>& nodes)
+  FlipFreeForward(Workers& w, Evaluator& serial, int grid, OrderedPass& pass, Grid<Node>& nodes)
       : w_(w),
         serial_(serial),
-        holes_(holes),
+        holes_(pass.holes),
         grid_(grid),
-        thr_(thr),
-        count_(count),
-        t_(t),
-        st_(st),
-        f_(f),
-        seed_(seed),
+        thr_(pass.thr),
+        count_(pass.count),
+        t_(pass.t),
+        st_(pass.st),
+        f_(pass.f),
+        seed_(pass.seed),
+        pass_(pass),
         nodes_(nodes),
         row_(static_cast<size_t>(grid), Node{}) {}
 
@@ -1304,23 +1416,8 @@ class FlipFreeForward {
     }
     full_begin_ = full_end_ = 0;
   }
-  /// Hole i's candidates `row` (counted by c) through the counters, the serial seed and the DP.
   void through(size_t i, const NodeCount& c, std::span<const Node> row) {
-    t_.enforced[i] = c.enforced ? 1 : 0;
-    t_.relaxed[i] = c.relaxed_wrist ? 1 : 0;
-    if (count_) {
-      st_.dp_nodes += c.nodes;
-      st_.infeasible_nodes += c.infeasible;
-      if (c.relaxed_wrist) ++st_.relaxed_wrist;
-    }
-    for (const Node& nd : row) {
-      if (nd.feasible) {
-        seed_ = nd.q;
-        break;
-      }
-    }
-    dpForwardHole(row, holes_, i, OrientationMode::kFlipFree, thr_, f_,
-                  DpRow{t_.from[i], t_.best[i]}, cost_);
+    pass_.through(i, c, row);
   }
 
   Workers& w_;
@@ -1333,6 +1430,7 @@ class FlipFreeForward {
   CompensationStats& st_;
   DpFrontier& f_;
   Vec6& seed_;
+  OrderedPass& pass_;
   Grid<Node>& nodes_;
   std::vector<Node> row_;  ///< node 0 and grid − 1 candidates that are not admissible
   size_t run_begin_{0};    ///< the run: holes [run_begin_, run_begin_ + run_size_)
@@ -1341,7 +1439,6 @@ class FlipFreeForward {
   DpFrontier f0_;                       ///< the DP's frontier before the run
   size_t full_begin_{0}, full_end_{0};  ///< holes waiting for their grids
   std::vector<NodeCount> counts_;
-  std::vector<Cost> cost_;
 };
 
 /// Hole i's set-up in the tables: its own joints as the grid's seed when its prediction is
@@ -1352,111 +1449,112 @@ void recordSetUp(SequenceTables& t, size_t i, const HolePrediction& h, const Vec
   t.branch[i] = static_cast<std::int8_t>(gridBranch(h, o));
 }
 
-/// Stages 1 to 3 at the jump threshold thr, a block of holes at a time: the
-/// block predicted (stage 1, the continuity seed carried), then, 1,024 holes at a time
-/// (pipelinedFor), the workers evaluate the grids (holeNodes) while the holes before are finished
-/// in hole order on a task of its own (the serial seeds, the counters when `count`, the DP's
-/// forward pass). One block's predictions and grids are held. False when a reachable hole cannot
-/// be connected within thr.
-///  - Grids are in the branch of the original solution unless a branch change is allowed. A hole
-///    with an admissible original prediction is seeded with its joints (on the workers); the
-///    others, in hole order, with the first admissible candidate of the latest hole before them
-///    that has one (else the reference pose), on the ordered pass's own evaluator.
+/// The candidate grids of a block of predicted holes (`before`: holes b0, b0 + 1, ...) through
+/// the ordered pass: 1,024 holes at a time (pipelinedFor), the workers evaluate the grids of the
+/// holes with an admissible prediction (holeNodes, seeded with their joints) while the holes
+/// before go through `pass` in hole order on a task of its own; a hole without one gets its grid
+/// there, seeded with the serial seed (on `serial`).
+void gridBlock(Workers& w, Evaluator& serial, std::span<const HolePrediction> before, size_t b0,
+               int grid, Grid<Node>& nodes, std::vector<NodeCount>& counts, OrderedPass& pass) {
+  constexpr size_t kBlock = 1024;  // holes per block of the pipeline (a block boundary costs
+                                   // a wait for its slowest worker)
+  const std::vector<HoleRequest>& holes = pass.holes;
+  const CompensationOptions& o = serial.o;
+  auto onWorker = [&](int wk, size_t j) {
+    const HolePrediction& b = before[j];
+    counts[j] = NodeCount{};
+    if (b.status != HoleStatus::kOk) return;
+    counts[j] = holeNodes(w.evs[static_cast<size_t>(wk)], holes[b0 + j], b.joints, gridBranch(b, o),
+                          grid, nodes[j]);
+  };
+  auto inOrder = [&](size_t b, size_t e) {
+    for (size_t j = b; j < e; ++j) {
+      const size_t i = b0 + j;
+      recordSetUp(pass.t, i, before[j], pass.seed, o);
+      if (before[j].status != HoleStatus::kOk)
+        counts[j] = holeNodes(serial, holes[i], pass.seed, pass.t.branch[i], grid, nodes[j]);
+      pass.through(i, counts[j], nodes[j]);
+    }
+  };
+  pipelinedFor(before.size(), std::min(kBlock, w.block), w.threads(), onWorker, inOrder);
+}
+
+/// flip-free's block of predicted holes: node 0 of the holes with an admissible prediction on the
+/// workers (into `zero`), then the holes in order through FlipFreeForward.
+void flipFreeBlock(Workers& w, std::span<const HolePrediction> before, size_t b0, int grid,
+                   std::vector<Node>& zero, OrderedPass& pass, FlipFreeForward& ff) {
+  const std::vector<HoleRequest>& holes = pass.holes;
+  const CompensationOptions& o = w.evs[0].o;
+  parallelFor(before.size(), w.threads(), [&](int wk, size_t j) {
+    const HolePrediction& b = before[j];
+    if (b.status == HoleStatus::kOk)
+      zero[j] = w.evs[static_cast<size_t>(wk)].evaluateGrid(holes[b0 + j], 0, grid,
+                                                            gridBranch(b, o), b.joints, true, true);
+  });
+  for (size_t j = 0; j < before.size(); ++j) {
+    const size_t i = b0 + j;
+    recordSetUp(pass.t, i, before[j], pass.seed, o);
+    ff.add(i, before[j].status == HoleStatus::kOk, zero[j]);
+  }
+}
+
+/// Stages 1 to 3 at the jump threshold thr, a block of holes at a time: the block predicted
+/// (stage 1, the continuity seed carried), then its candidate grids through the DP's forward
+/// pass in hole order (gridBlock; flip-free: flipFreeBlock), the counters when `count`. One
+/// block's predictions and grids are held. False when a reachable hole cannot be connected within
+/// thr. Grids are in the branch of the original solution unless a branch change is allowed.
 bool forwardPass(Workers& w, const std::vector<HoleRequest>& holes,
                  const std::optional<Vec6>& first, int grid, double thr, bool count,
                  SequenceTables& t, CompensationStats& st) {
-  constexpr size_t kBlock = 1024;  // holes per block of the pipeline (a block boundary costs
-                                   // a wait for its slowest worker)
-  std::vector<Evaluator>& evs = w.evs;
-  const PredictionModel& m = evs[0].m;
-  const CompensationOptions& o = evs[0].o;
-  const int threads = w.threads();
+  const PredictionModel& m = w.evs[0].m;
+  const CompensationOptions& o = w.evs[0].o;
   const size_t n = holes.size();
   const size_t cap = std::min(n, w.block);
   std::vector<HolePrediction> before(cap);
-  Grid<Node> nodes(cap, static_cast<size_t>(grid), Node{}, threads);
+  Grid<Node> nodes(cap, static_cast<size_t>(grid), Node{}, w.threads());
   std::vector<NodeCount> counts(cap);
   PredictionData serial_scratch(m);
   Evaluator serial{m, serial_scratch, o, true};
-  std::optional<Vec6> prev = first;
-  Vec6 seed = m.reference_pose;
-  DpFrontier f;
-  std::vector<Cost> cost;
+  OrderedPass pass{holes, o.mode, thr, count, t, st};
+  pass.seed = m.reference_pose;
   std::optional<FlipFreeForward> ff;
-  if (o.mode == OrientationMode::kFlipFree)
-    ff.emplace(w, serial, holes, grid, thr, count, t, st, f, seed, nodes);
+  if (o.mode == OrientationMode::kFlipFree) ff.emplace(w, serial, grid, pass, nodes);
   std::vector<Node> zero(ff ? cap : 0);
+  std::optional<Vec6> prev = first;
   for (size_t b0 = 0; b0 < n; b0 += w.block) {
     const size_t e0 = std::min(n, b0 + w.block);
     t.block_seed[b0 / w.block] = prev;
-    predictBlock(m, w.scratch[0], std::span<const HoleRequest>(holes).subspan(b0, e0 - b0), threads,
-                 prev, [&](size_t j) -> HolePrediction& { return before[j]; });
-    if (ff) {  // node 0 of the admissible holes on the workers, then the holes in order
-      parallelFor(e0 - b0, threads, [&](int wk, size_t j) {
-        const HolePrediction& b = before[j];
-        if (b.status == HoleStatus::kOk)
-          zero[j] = evs[static_cast<size_t>(wk)].evaluate(holes[b0 + j], gridPsi(0, grid),
-                                                          gridBranch(b, o), b.joints, true, true);
-      });
-      for (size_t j = 0; j < e0 - b0; ++j) {
-        const size_t i = b0 + j;
-        recordSetUp(t, i, before[j], seed, o);
-        ff->add(i, before[j].status == HoleStatus::kOk, zero[j]);
-      }
-      continue;
-    }
-    auto onWorker = [&](int wk, size_t j) {
-      const HolePrediction& b = before[j];
-      counts[j] = NodeCount{};
-      if (b.status != HoleStatus::kOk) return;
-      counts[j] = holeNodes(evs[static_cast<size_t>(wk)], holes[b0 + j], b.joints, gridBranch(b, o),
-                            grid, nodes[j]);
-    };
-    auto inOrder = [&](size_t b, size_t e) {
-      for (size_t j = b; j < e; ++j) {
-        const size_t i = b0 + j;
-        recordSetUp(t, i, before[j], seed, o);
-        if (before[j].status != HoleStatus::kOk)
-          counts[j] = holeNodes(serial, holes[i], seed, t.branch[i], grid, nodes[j]);
-        t.enforced[i] = counts[j].enforced ? 1 : 0;
-        t.relaxed[i] = counts[j].relaxed_wrist ? 1 : 0;
-        if (count) {
-          st.dp_nodes += counts[j].nodes;
-          st.infeasible_nodes += counts[j].infeasible;
-          if (counts[j].relaxed_wrist) ++st.relaxed_wrist;
-        }
-        for (const Node& nd : nodes[j]) {
-          if (nd.feasible) {
-            seed = nd.q;
-            break;
-          }
-        }
-        dpForwardHole(nodes[j], holes, i, o.mode, thr, f, DpRow{t.from[i], t.best[i]}, cost);
-      }
-    };
-    pipelinedFor(e0 - b0, std::min(kBlock, w.block), threads, onWorker, inOrder);
+    predictBlock(m, w.scratch[0], std::span<const HoleRequest>(holes).subspan(b0, e0 - b0),
+                 w.threads(), prev, [&](size_t j) -> HolePrediction& { return before[j]; });
+    const std::span<const HolePrediction> block(before.data(), e0 - b0);
+    if (ff)
+      flipFreeBlock(w, block, b0, grid, zero, pass, *ff);
+    else
+      gridBlock(w, serial, block, b0, grid, nodes, counts, pass);
   }
   if (ff) ff->finish();
-  return f.all_connected;
+  return pass.f.all_connected;
 }
 
 /// What stages 2 and 3 give the holes' finishing: the chosen node per hole (not feasible: none),
-/// the ψ = 0 candidate of each hole whose chosen node is turned (by hole index: psiReason reads
-/// it; the refinement and stiffest only turn holes back), whether the wrist margin was relaxed,
-/// and the prediction seeds of the blocks (SequenceTables::block_seed).
+/// node 0 of each hole's grid (its ψ = 0 candidate: psiReason reads it; SequenceTables::zero) and
+/// whether that grid enforced |θ5| ≥ margin, whether the wrist margin was relaxed, and the
+/// prediction seeds of the blocks (SequenceTables::block_seed).
 struct Sequence {
   std::vector<Node> chosen;
-  std::vector<std::pair<size_t, Node>> zero;
+  std::vector<Node> zero;
+  std::vector<char> enforced;
   std::vector<char> relaxed;
   std::vector<std::optional<Vec6>> block_seed;
 
-  /// The ψ = 0 candidate of turned hole i.
-  [[nodiscard]] const Node& zeroOf(size_t i) const {
-    const auto it = std::lower_bound(zero.begin(), zero.end(), i,
-                                     [](const auto& z, size_t k) { return z.first < k; });
-    if (it == zero.end() || it->first != i)
-      throw std::logic_error("compensateHoles: a hole turned after the sequence was chosen");
-    return it->second;
+  /// Stiffest's programmed posture of hole i (ψ = 0 without the wrist requirement, in the
+  /// branch of its prediction `b`, seeded with its joints): node 0 of its grid when that is the
+  /// same evaluation (the grid's branch and seed are those of the prediction, and no solution was
+  /// passed over for the wrist margin, or the grid did not enforce it), else evaluated.
+  Node programmed(Evaluator& ev, const HoleRequest& h, const HolePrediction& b, size_t i) const {
+    const Node& z = zero[i];
+    if (gridBranch(b, ev.o) == b.branch && (!enforced[i] || !z.wrist_rejected)) return z;
+    return ev.evaluate(h, 0.0, b.branch, b.joints, false, true);
   }
 };
 
@@ -1486,21 +1584,13 @@ Sequence chooseSequence(Workers& w, const std::vector<HoleRequest>& holes,
   Sequence q;
   q.chosen.resize(n);
   parallelFor(n, w.threads(), [&](int wk, size_t i) {
-    if (choice[i] >= 0)
+    if (choice[i] == 0)
+      q.chosen[i] = t.zero[i];
+    else if (choice[i] > 0)
       q.chosen[i] = t.node(w.evs[static_cast<size_t>(wk)], holes, i, choice[i], grid);
   });
-  auto turned = [&](size_t i) {
-    return q.chosen[i].feasible && std::abs(q.chosen[i].psi) > kPsiKept;
-  };
-  size_t count = 0;
-  for (size_t i = 0; i < n; ++i) count += turned(i) ? 1 : 0;
-  q.zero.resize(count);
-  for (size_t i = 0, k = 0; i < n; ++i) {
-    if (turned(i)) q.zero[k++].first = i;
-  }
-  parallelFor(q.zero.size(), w.threads(), [&](int wk, size_t k) {
-    q.zero[k].second = t.node(w.evs[static_cast<size_t>(wk)], holes, q.zero[k].first, 0, grid);
-  });
+  q.zero = std::move(t.zero);
+  q.enforced = std::move(t.enforced);
   q.relaxed = std::move(t.relaxed);
   q.block_seed = std::move(t.block_seed);
   return q;
@@ -1559,7 +1649,7 @@ void sequenceRun(Workers& w, const std::vector<HoleRequest>& holes,
       if (stiffest) {
         programmed[j] = Node{};
         if (c.before.status == HoleStatus::kOk)
-          programmed[j] = ev.evaluate(holes[i], 0.0, c.before.branch, c.before.joints, false, true);
+          programmed[j] = q.programmed(ev, holes[i], c.before, i);
       }
       if (q.relaxed[i]) c.note = kRelaxedWristNote;
       std::string why = notCompensatedReason(c, chosen[i]);
@@ -1584,7 +1674,7 @@ void sequenceRun(Workers& w, const std::vector<HoleRequest>& holes,
     const std::span<HoleCompensation> done(pend.data(), upto - ready);
     zero.assign(done.size(), Node{});
     for (size_t j = 0; j < done.size(); ++j) {
-      if (done[j].ok && std::abs(done[j].psi) > kPsiKept) zero[j] = q.zeroOf(ready + j);
+      if (done[j].ok && std::abs(done[j].psi) > kPsiKept) zero[j] = q.zero[ready + j];
     }
     countFinished(evs[0], holes, chosen, zero, thr, done, ready, st);
     if (handing.valid()) handing.get();  // the holes before are handed over (or its error thrown)

@@ -438,7 +438,9 @@ ConfiguredSolution solveIkWithConfiguration(const IkModel& model, const RobotCar
                                             const ConfigurationOptions& options,
                                             const ConfigurationMatch& match) {
   ConfiguredSolution out;
-  IkResult all;
+  // 128 solutions (~16 kB) set up once per thread, not per call: solveIk fills what it returns
+  // (count, failure) and only solutions[0, count) are read
+  thread_local IkResult all;
   IkOptions o;
   o.turns = IkTurns::kAll;
   o.seed = match.seed;

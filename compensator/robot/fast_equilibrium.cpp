@@ -166,10 +166,13 @@ void staticTorquesFromFrames(const Model& model, const Data& data, const Loads& 
     const size_t s = static_cast<size_t>(j);
     const Body& b = model.bodies[s];
     if (gravity && b.mass > 0.0) {
-      sums.f[s] = b.mass * model.gravity;
-      sums.r[s] = f.p[s] + f.R[s] * b.com;
-      Fs += sums.f[s];
-      Ms += sums.r[s].cross(sums.f[s]);
+      // formed in registers, then stored: reading them back from `sums` stalled on the stores
+      const Vec3 fk = b.mass * model.gravity;
+      const Vec3 rk = f.p[s] + f.R[s] * b.com;
+      sums.f[s] = fk;
+      sums.r[s] = rk;
+      Fs += fk;
+      Ms += rk.cross(fk);
     } else {
       sums.f[s].setZero();
       sums.r[s] = f.p[s];

@@ -87,6 +87,32 @@ Mat3 linkThreeRotation(const IkModel& m, double q1, double q2, double q3) {
   return R;
 }
 
+/// |x| (m) and sin ψ beyond which rawSolutions knows a raw solution's shoulder and elbow labels
+/// before computing it (round-off moves ikBranch's x and ψ by ≲ 1e-13 m, 1e-15 rad).
+constexpr double kLabelMargin = 1e-6;
+
+/// ikBranch's x of the wrist centre in the arm plane (lateral offset removed) at q2, q3.
+double shoulderX(const IkModel& m, double q2, double q3) {
+  const Eigen::Vector2d arm = rotY(q2, m.u0 + rotY(m.sigma3 * q3, m.v0));
+  return m.p2x + arm.x();
+}
+
+/// ikBranch's sin ψ at q3.
+double elbowSine(const IkModel& m, double q3) { return std::sin(m.psi0 + m.sigma3 * q3); }
+
+/// ikBranch's wrist label (0 or 1) at q5.
+int wristLabel(const IkModel& m, double q5) {
+  const double t5 = wrapAngle(m.ctrl_sign5 * q5 + m.ctrl_offset5);
+  return (t5 < 0.0 || t5 >= kPi) ? 1 : 0;
+}
+
+/// ikBranch's shoulder and elbow labels at q2, q3 as 4 s + 2 e (its index without the wrist).
+int armLabels(const IkModel& m, double q2, double q3) {
+  const int shoulder = m.shoulder_sign * shoulderX(m, q2, q3) >= 0.0 ? 0 : 1;
+  const int elbow = m.elbow_sign * elbowSine(m, q3) >= 0.0 ? 0 : 1;
+  return 4 * shoulder + 2 * elbow;
+}
+
 /// Rotation error ω with R_target = Exp(ω) R and its exact angle.
 Vec3 rotationError(const Mat3& R_target, const Mat3& R, double& angle) {
   const Mat3 Re = R_target * R.transpose();
@@ -106,12 +132,13 @@ int refine(const IkModel& m, const Pose& target, Vec6& q, int max_iterations, do
   Pose T;
   Mat6 J;
   for (int it = 0;; ++it) {
-    ikForwardKinematicsJacobian(m, q, T, J);
+    T = ikForwardKinematics(m, q);  // the pose of ikForwardKinematicsJacobian, bit for bit
     Vec6 e;
     e.head<3>() = target.translation() - T.translation();
     e.tail<3>() = rotationError(target.linear(), T.linear(), residual.rotation);
     residual.position = e.head<3>().norm();
     if ((residual.position <= tol && residual.rotation <= tol) || it >= max_iterations) return it;
+    ikForwardKinematicsJacobian(m, q, T, J);  // J only where a step is taken
     const Eigen::PartialPivLU<Mat6> lu(J);
     Vec6 dq = lu.solve(e);
     if (!dq.allFinite() || std::abs(lu.determinant()) < 1e-14) {
@@ -465,13 +492,11 @@ IkResidual ikResidual(const IkModel& m, const Vec6& q, const Pose& target) {
 
 IkBranch ikBranch(const IkModel& m, const Vec6& q) {
   IkBranch b;
-  const Eigen::Vector2d arm = rotY(q[1], m.u0 + rotY(m.sigma3 * q[2], m.v0));
-  const double x = m.p2x + arm.x();
-  const double spsi = std::sin(m.psi0 + m.sigma3 * q[2]);
+  const double x = shoulderX(m, q[1], q[2]);
+  const double spsi = elbowSine(m, q[2]);
   b.shoulder = m.shoulder_sign * x >= 0.0 ? 0 : 1;
   b.elbow = m.elbow_sign * spsi >= 0.0 ? 0 : 1;
-  const double t5 = wrapAngle(m.ctrl_sign5 * q[4] + m.ctrl_offset5);
-  b.wrist = (t5 < 0.0 || t5 >= kPi) ? 1 : 0;
+  b.wrist = wristLabel(m, q[4]);
   b.shoulder_margin_m = std::abs(x);
   b.elbow_margin_rad = std::abs(spsi);
   b.wrist_margin_rad = std::abs(std::sin(q[4] + m.alpha));
@@ -489,10 +514,13 @@ namespace {
 /// The analytic solutions of the ideal model before refinement and turn expansion (wrapped q, at
 /// most 8, in branch-construction order). Sets `failure` and `failure_value` when none.
 /// `seed_used` (may be null) is set when opt.seed chose a joint (wrist centre on axis 1, or a
-/// wrist-singular branch).
+/// wrist-singular branch). `only` ≥ 0 (0..7): only the raw solutions of that branch — by ikBranch
+/// of their wrapped q, the labels solveIk filters an exact chain's raw solutions by — are
+/// computed (the shoulder and elbow labels are known beforehand — see kLabelMargin — or from q2,
+/// q3, the wrist label from q5): the same values, in the same order, as the unfiltered list's.
 int rawSolutions(const IkModel& m, const Pose& target, const IkOptions& opt,
                  std::array<IkSolution, 8>& raw, IkFailure& failure, double& failure_value,
-                 bool* seed_used) {
+                 bool* seed_used, int only = -1) {
   failure = IkFailure::kNone;
   failure_value = 0.0;
   if (!finitePose(target)) {
@@ -517,19 +545,15 @@ int rawSolutions(const IkModel& m, const Pose& target, const IkOptions& opt,
   const Mat3 R_T = target.linear();
 
   int nraw = 0;
+  bool reached = false;  // some (shoulder, elbow) pair is within reach (else `failure` is set)
   double far_excess = -1.0;
   double near_excess = -1.0;
   for (int s = 0; s < 2; ++s) {
     const double x = (s == 0 ? 1.0 : -1.0) * m.shoulder_sign * xabs;
-    double q1 = 0.0;
-    if (on_axis) {
-      if (seed_used) *seed_used = true;
-      q1 = (opt.seed ? (*opt.seed)[0] : 0.0) + (s == 0 ? 0.0 : kPi);
-    } else {
-      q1 = std::atan2(c.y(), c.x()) - std::atan2(m.b, x);
-    }
+    if (on_axis && seed_used) *seed_used = true;
     const Eigen::Vector2d d(x - m.p2x, c.z());
     double cpsi = (d.squaredNorm() - m.L2 * m.L2 - m.L3 * m.L3) / (2.0 * m.L2 * m.L3);
+    const bool clamped = cpsi > 1.0 || cpsi < -1.0;
     if (cpsi > 1.0) {
       if (cpsi > 1.0 + m.reach_slack) {
         const double excess = d.norm() - (m.L2 + m.L3);
@@ -545,12 +569,27 @@ int rawSolutions(const IkModel& m, const Pose& target, const IkOptions& opt,
       }
       cpsi = -1.0;
     }
+    reached = true;
     const double spsi = std::sqrt(std::max(0.0, 1.0 - cpsi * cpsi));
+    // Labels of (s, e) known beforehand: ikBranch rebuilds x and sin ψ from the wrapped q2, q3 —
+    // the same x (Ry(q2) w = d when |w| = |d|, i.e. cos ψ not clamped) and an angle ψ + 2πk, up
+    // to round-off (≲ 1e-13 m, 1e-15 rad): with |x| and sin ψ beyond kLabelMargin their signs,
+    // hence the labels s and e, are certain.
+    const bool known = only >= 0 && !clamped && xabs > kLabelMargin && spsi > kLabelMargin;
+    double q1 = 0.0;
+    bool have_q1 = false;
     for (int e = 0; e < 2; ++e) {
+      if (known && 4 * s + 2 * e != (only & 6)) continue;
       const double psi = std::atan2((e == 0 ? 1.0 : -1.0) * m.elbow_sign * spsi, cpsi);
       const double q3 = m.sigma3 * (psi - m.psi0);
       const Eigen::Vector2d w = m.u0 + rotY(psi - m.psi0, m.v0);
       const double q2 = ang(d) - ang(w);
+      if (only >= 0 && !known && armLabels(m, wrapAngle(q2), wrapAngle(q3)) != (only & 6)) continue;
+      if (!have_q1) {
+        q1 = on_axis ? (opt.seed ? (*opt.seed)[0] : 0.0) + (s == 0 ? 0.0 : kPi)
+                     : std::atan2(c.y(), c.x()) - std::atan2(m.b, x);
+        have_q1 = true;
+      }
       const Mat3 R3 = linkThreeRotation(m, q1, q2, q3);
       const Mat3 N = m.E.transpose() * R3.transpose() * R_T * m.B;
       const double c5 = N(0, 0);
@@ -562,6 +601,7 @@ int rawSolutions(const IkModel& m, const Pose& target, const IkOptions& opt,
         double q6 = 0.0;
         if (s5 > 1e-10) {
           q5p = std::atan2(sg * s5, c5);
+          if (only >= 0 && wristLabel(m, wrapAngle(q5p - m.alpha)) != (only & 1)) continue;
           q4 = std::atan2(sg * N(1, 0), -sg * N(2, 0));
           q6 = std::atan2(sg * N(0, 1), sg * N(0, 2));
         } else {
@@ -577,6 +617,7 @@ int rawSolutions(const IkModel& m, const Pose& target, const IkOptions& opt,
             q5p = kPi;
             q6 = q4 - rot;
           }
+          if (only >= 0 && wristLabel(m, wrapAngle(q5p - m.alpha)) != (only & 1)) continue;
         }
         IkSolution& sol = raw[static_cast<size_t>(nraw++)];
         sol = IkSolution{};
@@ -585,7 +626,7 @@ int rawSolutions(const IkModel& m, const Pose& target, const IkOptions& opt,
       }
     }
   }
-  if (nraw == 0) {
+  if (!reached) {
     if (far_excess >= 0.0) {
       failure = IkFailure::kOutOfReach;
       failure_value = far_excess;
@@ -598,10 +639,10 @@ int rawSolutions(const IkModel& m, const Pose& target, const IkOptions& opt,
 }
 
 int rawSolutions(const IkModel& m, const Pose& target, const IkOptions& opt,
-                 std::array<IkSolution, 8>& raw, IkResult& result) {
+                 std::array<IkSolution, 8>& raw, IkResult& result, int only = -1) {
   result.count = 0;
   result.truncated = false;
-  return rawSolutions(m, target, opt, raw, result.failure, result.failure_value, nullptr);
+  return rawSolutions(m, target, opt, raw, result.failure, result.failure_value, nullptr, only);
 }
 
 /// The primary-turn representative of a wrapped q (what expandTurns keeps in kPrimary mode: per
@@ -641,12 +682,13 @@ bool admissible(const IkSolution& s) {
 }  // namespace
 
 void solveIk(const IkModel& m, const Pose& target, const IkOptions& opt, IkResult& result) {
-  std::array<IkSolution, 8> raw;
-  const int nraw = rawSolutions(m, target, opt, raw, result);
+  // set up once per thread (8 solutions, ~1 kB): rawSolutions writes every entry it returns
+  thread_local std::array<IkSolution, 8> raw;
+  // an exact chain's refinement leaves q as it is: the other branches' raw solutions are skipped
+  const bool one_branch = opt.branch >= 0 && m.deviation.exact;
+  const int nraw = rawSolutions(m, target, opt, raw, result, one_branch ? opt.branch : -1);
   for (int k = 0; k < nraw; ++k) {
     IkSolution& sol = raw[static_cast<size_t>(k)];
-    // an exact chain's refinement leaves q as it is: its branch is known before finishing
-    if (opt.branch >= 0 && m.deviation.exact && ikBranch(m, sol.q).index() != opt.branch) continue;
     finishSolution(m, target, opt, sol);
     if (opt.branch >= 0 && sol.branch.index() != opt.branch) continue;
     expandTurns(m, sol, opt, result);
