@@ -103,7 +103,9 @@ int run(Args& args, CommandContext& ctx) {
         },
         step);
     js->finish(r.summary);
-    if (report) writeFileAtomic(*report_out, report->finish(r));
+    if (report) {  // written as it is rendered: no whole-document string
+      writeFileAtomicStream(*report_out, [&](const ByteWriter& w) { report->finish(r, w); });
+    }
     notes = r.context.job.notes;
     summary = r.summary;
     keepUntilExit(std::move(r));

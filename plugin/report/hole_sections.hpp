@@ -4,6 +4,7 @@
 /// verdicts (hole_report.cpp), the deviation maps (hole_maps.cpp), the uncertainty budget
 /// (hole_budget.cpp) and the per-hole table (hole_table.cpp). Internal to plugin/report.
 
+#include <span>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,14 @@ struct HoleViews {
   std::vector<HoleView> views;
 };
 HoleViews holeViews(const ReportInput& in);
+/// The views of streamed holes (ReportInput::predicted) appended to `out`, in order (positions
+/// and axes into the part frame by T_part_W); `prev_branch`: the IK branch of the last predicted
+/// hole before them (-1: none), carried on.
+void appendPredictedViews(std::vector<HoleView>& out, std::span<const api::PredictedHole> holes,
+                          const Pose& T_part_W, int& prev_branch);
+/// The budget terms of the predicted holes of `hv` not in `names` yet appended to it, in the
+/// order first seen (the table's budget columns).
+void addBudgetNames(std::vector<std::string>& names, std::span<const HoleView> hv);
 
 /// The verdict a hole ends with: after compensation when it was compensated, else as predicted.
 Verdict finalVerdict(const HoleView& h);

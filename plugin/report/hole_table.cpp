@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 
 #include "compensator/precision/parallel.hpp"
 #include "compensator/robot/robot_card.hpp"
@@ -21,6 +22,7 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 constexpr size_t kTableRowsPerPage = 200;  ///< rows a page of a large job's table
+constexpr size_t kRowsPerRound = 2048;     ///< rows of a large table rendered at a time
 
 struct Column {
   std::string head;  ///< markup
@@ -38,13 +40,7 @@ struct TableLayout {
 
 std::vector<std::string> budgetNames(const std::vector<HoleView>& hv) {
   std::vector<std::string> names;
-  for (const HoleView& h : hv) {
-    if (!h.ok) continue;
-    for (const BudgetTerm& b : h.p->budget) {
-      const std::string n = b.name ? b.name : "";
-      if (std::find(names.begin(), names.end(), n) == names.end()) names.push_back(n);
-    }
-  }
+  addBudgetNames(names, hv);
   return names;
 }
 
@@ -374,28 +370,58 @@ void renderRows(Html& h, const TableLayout& t, const std::vector<HoleView>& hv) 
   for (size_t i = 0; i < hv.size(); ++i) h.markup(rowOf(t, hv[i], i));
 }
 
-/// A large job's rows as the items of the script array ROPREC_ROWS (packed JavaScript strings,
-/// ",\n" between them). Runs of rows are rendered on t.in.threads workers, a bounded number at
-/// a time, and appended in order: the bytes of rendering them one after the other.
-void renderPackedRows(Html& h, const TableLayout& t, const std::vector<HoleView>& hv) {
-  constexpr size_t kRun = 256;  // rows a worker renders into one text
-  const size_t workers = static_cast<size_t>(std::max(1, t.in.threads));
-  std::vector<std::string> texts(4 * workers);  // runs rendered at a time
-  for (size_t b = 0; b < hv.size(); b += texts.size() * kRun) {
-    const size_t runs = std::min(texts.size(), (hv.size() - b + kRun - 1) / kRun);
-    parallelFor(runs, t.in.threads, [&](int, size_t k) {
-      std::string& text = texts[k];
-      text.clear();
-      std::string packed;
-      const size_t r0 = b + k * kRun;
-      for (size_t i = r0; i < std::min(hv.size(), r0 + kRun); ++i) {
-        if (i > 0) text += ",\n";
-        packRow(rowOf(t, hv[i], i), packed);
-        appendJsString(text, packed);
-      }
-    });
-    for (size_t k = 0; k < runs; ++k) h.markup(texts[k]);
+/// Row i (view `hole`) as an item of the script array ROPREC_ROWS into `item`: a packed
+/// JavaScript string, ",\n" before it unless it is the first; `packed`: scratch.
+void rowItem(const TableLayout& t, const HoleView& hole, size_t i, std::string& item,
+             std::string& packed) {
+  item.clear();
+  if (i > 0) item += ",\n";
+  packRow(rowOf(t, hole, i), packed);
+  appendJsString(item, packed);
+}
+
+/// The items of rows first.. (views `hv`), one per slot of `items` (resized), on `threads`
+/// workers: each row's bytes do not depend on the count.
+void rowItems(const TableLayout& t, std::span<const HoleView> hv, size_t first, int threads,
+              std::vector<std::string>& items) {
+  if (items.size() < hv.size()) items.resize(hv.size());
+  std::vector<std::string> packed(static_cast<size_t>(std::max(1, threads)));
+  parallelFor(hv.size(), threads, [&](int w, size_t k) {
+    rowItem(t, hv[k], first + k, items[k], packed[static_cast<size_t>(w)]);
+  });
+}
+
+/// Rows [b, e) of a large job as the items of the script array, rendered on t.in.threads workers
+/// a round at a time and appended in order.
+void renderItemRange(Html& h, const TableLayout& t, const std::vector<HoleView>& hv, size_t b,
+                     size_t e, std::vector<std::string>& items) {
+  const std::span<const HoleView> all(hv);
+  for (size_t r = b; r < e; r += kRowsPerRound) {
+    const size_t n = std::min(kRowsPerRound, e - r);
+    rowItems(t, all.subspan(r, n), r, t.in.threads, items);
+    for (size_t k = 0; k < n; ++k) h.markup(items[k]);
+    h.flush(1 << 20);
   }
+}
+
+/// A large job's rows as the items of the script array ROPREC_ROWS (packed JavaScript strings,
+/// ",\n" between them): the runs rendered ahead (ReportInput::rows_ahead) with the table's
+/// columns as they are, the other rows rendered on t.in.threads workers: the bytes of rendering
+/// them one after the other.
+void renderPackedRows(Html& h, const TableLayout& t, const std::vector<HoleView>& hv) {
+  std::vector<std::string> items;
+  size_t next = 0;  // the first row not written
+  for (const api::RenderedRows& run : t.in.rows_ahead) {
+    if (run.first != next || run.count > hv.size() - next)
+      throw std::invalid_argument("renderReport: rows rendered ahead out of order");
+    if (run.terms == t.terms.size() && run.split_columns == t.has_split) {
+      h.bulk(run.text);
+    } else {
+      renderItemRange(h, t, hv, run.first, run.first + run.count, items);
+    }
+    next += run.count;
+  }
+  renderItemRange(h, t, hv, next, hv.size(), items);
 }
 
 /// The table's script; a large job's rows packed into its array ROPREC_ROWS, written row by row.
@@ -445,4 +471,44 @@ void renderTable(Html& h, const ReportInput& in, const std::vector<HoleView>& hv
   renderScript(h, t, hv);
 }
 
+void addBudgetNames(std::vector<std::string>& names, std::span<const HoleView> hv) {
+  for (const HoleView& h : hv) {
+    if (!h.ok) continue;
+    for (const BudgetTerm& b : h.p->budget) {
+      const std::string_view n = b.name ? b.name : "";
+      if (std::find(names.begin(), names.end(), n) == names.end()) names.emplace_back(n);
+    }
+  }
+}
+
 }  // namespace roprec::report
+
+namespace roprec::api {
+
+RowsAheadRenderer::RowsAheadRenderer(const RobotCard* card) { in_.card = card; }
+
+void RowsAheadRenderer::render(std::span<const PredictedHole> holes, size_t first, int threads,
+                               std::vector<RenderedRows>& out) {
+  using namespace report;
+  // what a row depends on beyond its hole, as far as the holes went: the IK branch before it,
+  // the budget terms and whether a split was seen (positions are not shown in the table)
+  std::vector<HoleView> hv;
+  hv.reserve(holes.size());
+  appendPredictedViews(hv, holes, Pose::Identity(), prev_branch_);
+  addBudgetNames(terms_, hv);
+  split_ = split_ || std::any_of(holes.begin(), holes.end(),
+                                 [](const PredictedHole& h) { return h.split.has_value(); });
+  const TableLayout t{in_, terms_, split_, true};
+  rowItems(t, hv, first, threads, items_);
+  RenderedRows& run = out.emplace_back();
+  run.first = first;
+  run.count = holes.size();
+  run.terms = terms_.size();
+  run.split_columns = split_;
+  size_t bytes = 0;
+  for (size_t k = 0; k < holes.size(); ++k) bytes += items_[k].size();
+  run.text.reserve(bytes);
+  for (size_t k = 0; k < holes.size(); ++k) run.text += items_[k];
+}
+
+}  // namespace roprec::api

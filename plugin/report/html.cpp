@@ -86,4 +86,19 @@ Html& Html::number(double v, int decimals) {
   return *this;
 }
 
+Html& Html::bulk(std::string_view s) {
+  if (sink_ == nullptr) return markup(s);
+  flush();
+  (*sink_)(s);
+  return *this;
+}
+
+Html& Html::flush(size_t at_least) {
+  if (sink_ != nullptr && !out_.empty() && out_.size() >= at_least) {
+    (*sink_)(out_);
+    out_.clear();
+  }
+  return *this;
+}
+
 }  // namespace roprec::report
