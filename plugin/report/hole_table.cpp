@@ -164,7 +164,9 @@ void renderNote(Html& h, const TableLayout& t) {
 
 // ------------------------------------------------------------------ cells
 
-void numCell(Html& h, double v, int decimals) { h.element("td", {}, num(v, decimals)); }
+void numCell(Html& h, double v, int decimals) {
+  h.markup("<td>").number(v, decimals).markup("</td>");
+}
 void dashCells(Html& h, int n) {
   for (int i = 0; i < n; ++i) h.element("td", {}, kDash);
 }
@@ -301,9 +303,10 @@ void compensationCells(Html& h, const HoleView& hole) {
   optionalCell(h, rh.residual_um, 1);
 }
 
-std::string rowOf(const TableLayout& t, const HoleView& hole, size_t i) {
+/// Row i (view `hole`) into `row` (cleared first).
+void rowInto(std::string& row, const TableLayout& t, const HoleView& hole, size_t i) {
   const api::ReportPrediction& p = *hole.p;
-  std::string row;
+  row.clear();
   Html h(row);
   if (passes(hole)) {
     h.open("tr", {{"class", "pass"}});
@@ -322,20 +325,32 @@ std::string rowOf(const TableLayout& t, const HoleView& hole, size_t i) {
   numCell(h, p.mc_time, 2);
   if (t.in.compensation) compensationCells(h, hole);
   h.close("tr");
-  return row;
 }
 
 // ------------------------------------------------------------------ large jobs
 
-/// Appends a string as a JavaScript string literal (no "</" so it cannot end the script element).
-void appendJsString(std::string& s, std::string_view v) {
+/// `row` as a JavaScript string literal appended to `s` (no "</" so it cannot end the script
+/// element), each "</td><td" packed into the unit separator (JS "\x1f"): the rows are half the
+/// bytes; the script joins them back for the page it shows.
+void appendPackedJs(std::string& s, std::string_view row) {
+  constexpr std::string_view kCut = "</td><td";
   s += '"';
   size_t run = 0;  // start of the bytes not appended yet (none of them needs an escape)
-  for (size_t i = 0; i < v.size(); ++i) {
-    const char c = v[i];
-    const bool slash = c == '/' && i > 0 && v[i - 1] == '<';
+  char prev = 0;   // the byte before, packed
+  for (size_t i = 0; i < row.size(); ++i) {
+    const char c = row[i];
+    if (c == '<' && row.compare(i, kCut.size(), kCut) == 0) {
+      s.append(row.data() + run, i - run);
+      s += "\\x1f";
+      i += kCut.size() - 1;
+      run = i + 1;
+      prev = '\x1f';
+      continue;
+    }
+    const bool slash = c == '/' && prev == '<';
+    prev = c;
     if (c != '\\' && c != '"' && !slash && c != '\n' && c != '\x1f') continue;
-    s.append(v.data() + run, i - run);
+    s.append(row.data() + run, i - run);
     run = i + 1;
     if (c == '\n') {
       s += "\\n";
@@ -346,38 +361,27 @@ void appendJsString(std::string& s, std::string_view v) {
       s += c;
     }
   }
-  s.append(v.data() + run, v.size() - run);
+  s.append(row.data() + run, row.size() - run);
   s += '"';
-}
-
-/// `row` with "</td><td" → the unit separator (JS "\x1f") into `packed`: the rows are half the
-/// bytes; the script joins them back for the page it shows.
-void packRow(const std::string& row, std::string& packed) {
-  constexpr std::string_view kCut = "</td><td";
-  packed.clear();
-  packed.reserve(row.size());
-  size_t k = 0;
-  for (size_t at = row.find(kCut); at != std::string::npos; at = row.find(kCut, k)) {
-    packed.append(row, k, at - k);
-    packed += '\x1f';
-    k = at + kCut.size();
-  }
-  packed.append(row, k, std::string::npos);
 }
 
 /// The rows in the table body (a small job's).
 void renderRows(Html& h, const TableLayout& t, const std::vector<HoleView>& hv) {
-  for (size_t i = 0; i < hv.size(); ++i) h.markup(rowOf(t, hv[i], i));
+  std::string row;
+  for (size_t i = 0; i < hv.size(); ++i) {
+    rowInto(row, t, hv[i], i);
+    h.markup(row);
+  }
 }
 
 /// Row i (view `hole`) as an item of the script array ROPREC_ROWS into `item`: a packed
-/// JavaScript string, ",\n" before it unless it is the first; `packed`: scratch.
+/// JavaScript string, ",\n" before it unless it is the first; `row`: scratch.
 void rowItem(const TableLayout& t, const HoleView& hole, size_t i, std::string& item,
-             std::string& packed) {
+             std::string& row) {
+  rowInto(row, t, hole, i);
   item.clear();
   if (i > 0) item += ",\n";
-  packRow(rowOf(t, hole, i), packed);
-  appendJsString(item, packed);
+  appendPackedJs(item, row);
 }
 
 /// The items of rows first.. (views `hv`), one per slot of `items` (resized), on `threads`
@@ -385,9 +389,9 @@ void rowItem(const TableLayout& t, const HoleView& hole, size_t i, std::string& 
 void rowItems(const TableLayout& t, std::span<const HoleView> hv, size_t first, int threads,
               std::vector<std::string>& items) {
   if (items.size() < hv.size()) items.resize(hv.size());
-  std::vector<std::string> packed(static_cast<size_t>(std::max(1, threads)));
+  std::vector<std::string> rows(static_cast<size_t>(std::max(1, threads)));
   parallelFor(hv.size(), threads, [&](int w, size_t k) {
-    rowItem(t, hv[k], first + k, items[k], packed[static_cast<size_t>(w)]);
+    rowItem(t, hv[k], first + k, items[k], rows[static_cast<size_t>(w)]);
   });
 }
 
