@@ -1461,6 +1461,25 @@ TEST(Report, LargeTableRowsOnWorkersAreTheRowsOfTheSmallTable) {
   for (size_t i = 0; i < small; ++i) ASSERT_EQ(large[i], rows[i]) << i;
 }
 
+/// The maps' panels are drawn on the workers, each on its own: the bytes of one thread, for a
+/// small job of two faces (markers) and a large one (bins), predict and compensate panels.
+TEST(Report, MapsDrawnOnWorkersHaveTheBytesOfOneThread) {
+  const Synthetic small = makeSynthetic(77);
+  const Synthetic large = makeLarge(api::kReportAggregateAbove + 500);
+  for (const auto& [s, compensation] :
+       {std::pair<const Synthetic*, bool>{&small, false}, {&small, true}, {&large, false}}) {
+    api::ReportInput in = makeInput(*s, compensation);
+    const std::string one = api::renderReport(in);
+    if (s == &small) {
+      ASSERT_NE(one.find("Face B"), std::string::npos) << "two faces";
+    }
+    for (const int threads : {2, 5}) {
+      in.threads = threads;
+      EXPECT_TRUE(api::renderReport(in) == one) << threads << " threads";
+    }
+  }
+}
+
 /// verify's report: faces in the workobject frame with named axes, the decision on every residual
 /// marker, the ids of failing holes written, a table with units and a "failing only" filter.
 TEST(ReportSample, VerifyReportNamesAxesDecisionsAndFailingHoles) {

@@ -151,7 +151,7 @@ class RowsAheadRenderer {
   /// `card`: ReportInput::card of the report (the joints' convention); must outlive this.
   explicit RowsAheadRenderer(const RobotCard* card);
   /// The rows of the job's next holes `holes`, in order, the first being row `first`, on
-  /// `threads` workers (the same bytes for any count), appended to `out` as one run.
+  /// `threads` workers (the same bytes for any count), appended to `out` as runs.
   void render(std::span<const PredictedHole> holes, size_t first, int threads,
               std::vector<RenderedRows>& out);
 
@@ -160,7 +160,6 @@ class RowsAheadRenderer {
   std::vector<std::string> terms_;  ///< budget terms, first-seen order
   bool split_{false};               ///< a hole had a split
   int prev_branch_{-1};             ///< IK branch of the last predicted hole
-  std::vector<std::string> items_;  ///< per row
 };
 
 /// The reports' inline table script (no network, no library): a click on a head of the table

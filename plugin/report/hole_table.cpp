@@ -503,16 +503,26 @@ void RowsAheadRenderer::render(std::span<const PredictedHole> holes, size_t firs
   split_ = split_ || std::any_of(holes.begin(), holes.end(),
                                  [](const PredictedHole& h) { return h.split.has_value(); });
   const TableLayout t{in_, terms_, split_, true};
-  rowItems(t, hv, first, threads, items_);
-  RenderedRows& run = out.emplace_back();
-  run.first = first;
-  run.count = holes.size();
-  run.terms = terms_.size();
-  run.split_columns = split_;
-  size_t bytes = 0;
-  for (size_t k = 0; k < holes.size(); ++k) bytes += items_[k].size();
-  run.text.reserve(bytes);
-  for (size_t k = 0; k < holes.size(); ++k) run.text += items_[k];
+  // runs of rows, each rendered straight into its text by one worker
+  constexpr size_t kRun = 128;
+  const size_t runs = (holes.size() + kRun - 1) / kRun, at = out.size();
+  for (size_t r = 0; r < runs; ++r) {
+    RenderedRows& run = out.emplace_back();
+    run.first = first + r * kRun;
+    run.count = std::min(kRun, holes.size() - r * kRun);
+    run.terms = terms_.size();
+    run.split_columns = split_;
+  }
+  eachOnThreads(runs, threads, [&](size_t r) {
+    RenderedRows& run = out[at + r];
+    std::string row, text;  // text: grown here, kept at its size (no spare capacity)
+    for (size_t k = run.first - first; k < run.first - first + run.count; ++k) {
+      rowInto(row, t, hv[k], first + k);
+      if (first + k > 0) text += ",\n";
+      appendPackedJs(text, row);
+    }
+    run.text = text;
+  });
 }
 
 }  // namespace roprec::api
