@@ -566,9 +566,14 @@ void renderArrows(Html& h, const PanelView& pv) {
   for (size_t k = 0; k < f.members.size(); ++k) {
     if (pv.hole(k).ok && pv.value(k)) order.push_back(k);
   }
-  std::stable_sort(order.begin(), order.end(),
-                   [&](size_t a, size_t b) { return *pv.value(a) > *pv.value(b); });
-  if (order.size() > 3) order.resize(3);
+  // the three largest values, ties in member order (a stable sort's first three)
+  const size_t top = std::min<size_t>(3, order.size());
+  std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(top), order.end(),
+                    [&](size_t a, size_t b) {
+                      const double va = *pv.value(a), vb = *pv.value(b);
+                      return va > vb || (!(vb > va) && a < b);
+                    });
+  order.resize(top);
   for (const size_t k : order) {
     const api::ReportPrediction& p = *pv.hole(k).p;
     const Vec3 d = f.R_part_W * (pv.pn.arrows == ArrowOf::kRobot ? p.d_robot : p.d_work);

@@ -38,12 +38,6 @@ struct TableLayout {
   bool large{false};               ///< rows in a script array, a page at a time
 };
 
-std::vector<std::string> budgetNames(const std::vector<HoleView>& hv) {
-  std::vector<std::string> names;
-  addBudgetNames(names, hv);
-  return names;
-}
-
 const char* shortTerm(const std::string& name) {
   static constexpr std::array<std::array<const char*, 2>, 7> kShort{{
       {"robot_repeatability", "u repeat."},
@@ -444,12 +438,13 @@ void renderScript(Html& h, const TableLayout& t, const std::vector<HoleView>& hv
 }  // namespace
 
 void renderTable(Html& h, const ReportInput& in, const std::vector<HoleView>& hv) {
-  const TableLayout t{
-      in, budgetNames(hv),
-      std::any_of(hv.begin(), hv.end(), [](const HoleView& v) { return v.split->has_value(); }),
-      hv.size() > api::kReportAggregateAbove};
-  const long n_fail =
-      std::count_if(hv.begin(), hv.end(), [](const HoleView& v) { return !passes(v); });
+  TableLayout t{in, {}, false, hv.size() > api::kReportAggregateAbove};
+  long n_fail = 0;
+  for (const HoleView& v : hv) {  // one pass over the holes: terms, split, not conforming
+    addBudgetNames(t.terms, std::span(&v, 1));
+    t.has_split = t.has_split || v.split->has_value();
+    n_fail += passes(v) ? 0 : 1;
+  }
   h.open("section", {{"id", "holes"}}).element("h2", {}, "Per-hole results");
   renderNote(h, t);
   if (t.large) {
