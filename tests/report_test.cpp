@@ -965,6 +965,129 @@ TEST(ReportSample, StreamedReportHasTheBytesOfTheWholeJobsReport) {
   }
 }
 
+/// A generated KRL drilling job of `n` holes on the housing's top face (KR 120 sample cell), like
+/// scripts/gen-drill-job.py: approach, feed, dwell, retract on a 1.2 mm grid.
+std::string writeDrillJob(const std::string& path, int n) {
+  const int cols = static_cast<int>(std::ceil(std::sqrt(n * 1.2)));
+  const double x0 = -0.6 * (cols - 1), y0 = -0.6 * ((n + cols - 1) / cols - 1);
+  std::ostringstream f;
+  f << "&ACCESS RVP\n&REL 1\nDEF drill_job ( )\n;FOLD INI\nBAS (#INITMOV,0 )\n;ENDFOLD (INI)\n"
+    << "$BASE = {FRAME: X 1350.000,Y 0.000,Z 300.000,A 0.000,B 0.000,C 0.000}\n"
+    << "$TOOL = {FRAME: X 0.000,Y 0.000,Z 320.000,A 0.000,B 0.000,C 0.000}\n";
+  char p[160];
+  for (int k = 0; k < n; ++k) {
+    const double x = x0 + 1.2 * (k % cols), y = y0 + 1.2 * (k / cols);
+    f << "; B" << k + 1 << " drill D6.8 depth 16.0\n$VEL.CP = 0.25000\n";
+    for (const auto& [move, z] : {std::pair<const char*, double>{"PTP", 300.0},
+                                  {"LIN", 252.0},
+                                  {"LIN", 234.0},
+                                  {"LIN", 300.0}}) {
+      std::snprintf(p, sizeof p, "%s {X %.3f,Y %.3f,Z %.3f,A 0.000,B 0.000,C 180.000}\n", move, x,
+                    y, z);
+      f << p;
+      if (z == 234.0) f << "WAIT SEC 0.3\n";
+    }
+  }
+  f << "END\n";
+  test::writeFile(path, f.str());
+  return path;
+}
+
+/// A large job (more than kReportAggregateAbove holes, several blocks) streamed on 1 and 2
+/// threads: its rows rendered ahead as the holes go past, the document written piece by piece or
+/// as one string, the bytes of the whole job's report.
+TEST(ReportSample, StreamedLargeReportHasTheBytesOfTheWholeJobsReport) {
+  const std::string dir = test::tempDir("report-stream-large");
+  const std::string cell = sample("cells/housing-kr120.xml");
+  const std::string program =
+      writeDrillJob(dir + "/job.src", static_cast<int>(api::kReportAggregateAbove) + 333);
+  const api::PredictionResult whole = api::predictJob(cell, program);
+  ASSERT_GT(whole.holes.size(), api::kReportAggregateAbove);
+  const std::string expected = api::predictionReport(whole);
+  for (const int threads : {1, 2}) {
+    api::JobOptions o;
+    o.threads = threads;
+    std::optional<api::PredictionReportStream> report;
+    int blocks = 0;
+    const api::PredictionResult r = api::predictJobStreaming(
+        cell, program, o,
+        [&](size_t, std::span<const HolePrediction> holes, std::span<const HoleRequest> requests,
+            int t) {
+          ++blocks;
+          report->holes(holes, requests, t);
+        },
+        [&](const api::PredictionContext& c) { report.emplace(c, threads); });
+    EXPECT_GT(blocks, 1);
+    std::string pieces;
+    size_t n_pieces = 0;
+    report->finish(r, [&](std::string_view b) {
+      pieces += b;
+      ++n_pieces;
+    });
+    EXPECT_GT(n_pieces, 2u) << "written piece by piece";
+    EXPECT_TRUE(pieces == expected) << threads << " threads";
+  }
+  fs::remove_all(dir);
+}
+
+Synthetic makeLarge(size_t n);
+
+/// The streamed holes of a synthetic job as a streamed report keeps them.
+std::vector<api::PredictedHole> predictedHoles(const Synthetic& s) {
+  std::vector<api::PredictedHole> out;
+  for (size_t i = 0; i < s.preds.size(); ++i) {
+    api::PredictedHole& h = out.emplace_back();
+    h.prediction = api::reportPrediction(s.preds[i]);
+    h.position = s.poses[i].translation();
+    h.axis = s.poses[i].linear().col(2);
+  }
+  return out;
+}
+
+/// Rows rendered ahead before a later hole brought another budget term or the first δrobot split
+/// (the table then has more columns) are rendered again: the bytes of the report rendered with no
+/// row ahead, whatever the runs and their worker count.
+TEST(Report, RowsRenderedAheadWithOtherColumnsAreRenderedAgain) {
+  const size_t n = api::kReportAggregateAbove + 900;
+  const Synthetic s = makeLarge(n);
+  std::vector<api::PredictedHole> holes = predictedHoles(s);
+  // from hole 1500 on a second budget term, from hole 2400 a split
+  for (size_t i = 1500; i < n; ++i) {
+    if (holes[i].prediction.status != HoleStatus::kOk) continue;
+    holes[i].prediction.budget.push_back({"mach_runout", 3.5e-6, true});
+    if (i >= 2400) holes[i].split = api::DeviationSplit{};
+  }
+  api::ReportInput in = makeInput(Synthetic{}, false);
+  in.summary = summarize(s.preds);
+  RobotCard card;
+  in.card = &card;
+  in.predicted = holes;
+  in.threads = 2;
+  const std::string expected = api::renderReport(in);
+  ASSERT_NE(expected.find("u runout"), std::string::npos);
+  ASSERT_NE(expected.find("\u2192 gravity"), std::string::npos);
+  for (const int threads : {1, 3}) {
+    api::RowsAheadRenderer ahead(&card);
+    std::vector<api::RenderedRows> rows;
+    for (size_t b = 0; b < n - 100; b += 700) {  // the last 100 rows are left to renderReport
+      const size_t e = std::min(n - 100, b + 700);
+      ahead.render(std::span(holes).subspan(b, e - b), b, threads, rows);
+    }
+    ASSERT_GE(rows.size(), 4u);
+    EXPECT_EQ(rows.front().terms, 1u);
+    EXPECT_FALSE(rows.front().split_columns);
+    EXPECT_TRUE(rows.back().split_columns);
+    in.rows_ahead = rows;
+    EXPECT_TRUE(api::renderReport(in) == expected) << threads;
+    std::string pieces;
+    api::renderReport(in, [&](std::string_view b) { pieces += b; });
+    EXPECT_TRUE(pieces == expected) << threads;
+    // runs that do not start where the one before ended are refused
+    in.rows_ahead.erase(in.rows_ahead.begin() + 1);
+    EXPECT_THROW(api::renderReport(in), std::invalid_argument);
+  }
+}
+
 /// Compensation: the offset per target (mm, deg), flags before → after, verdict before → after.
 TEST(Report, CompensationShowsOffsetsFlagsAndVerdictsBeforeAfter) {
   const Synthetic s = makeSynthetic(20201);
@@ -1336,6 +1459,25 @@ TEST(Report, LargeTableRowsOnWorkersAreTheRowsOfTheSmallTable) {
   const std::vector<std::string> rows = bodyRows(api::renderReport(makeInput(first, false)));
   ASSERT_EQ(rows.size(), small);
   for (size_t i = 0; i < small; ++i) ASSERT_EQ(large[i], rows[i]) << i;
+}
+
+/// The maps' panels are drawn on the workers, each on its own: the bytes of one thread, for a
+/// small job of two faces (markers) and a large one (bins), predict and compensate panels.
+TEST(Report, MapsDrawnOnWorkersHaveTheBytesOfOneThread) {
+  const Synthetic small = makeSynthetic(77);
+  const Synthetic large = makeLarge(api::kReportAggregateAbove + 500);
+  for (const auto& [s, compensation] :
+       {std::pair<const Synthetic*, bool>{&small, false}, {&small, true}, {&large, false}}) {
+    api::ReportInput in = makeInput(*s, compensation);
+    const std::string one = api::renderReport(in);
+    if (s == &small) {
+      ASSERT_NE(one.find("Face B"), std::string::npos) << "two faces";
+    }
+    for (const int threads : {2, 5}) {
+      in.threads = threads;
+      EXPECT_TRUE(api::renderReport(in) == one) << threads << " threads";
+    }
+  }
 }
 
 /// verify's report: faces in the workobject frame with named axes, the decision on every residual

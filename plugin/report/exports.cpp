@@ -656,29 +656,46 @@ void writeCompensationTargets(const CompensationResult& r, const std::string& pr
 // ---- streamed prediction report
 
 PredictionReportStream::PredictionReportStream(const PredictionContext& c, int threads)
-    : splitter_(c.model, c.tool, std::max(1, threads)), workers_(std::max(1, threads)) {
-  holes_.reserve(c.job.deferred ? c.job.hole_count : c.job.requests.size());
+    : splitter_(c.model, c.tool, std::max(1, threads)),
+      workers_(std::max(1, threads)),
+      card_(c.robot.card) {
+  const size_t n = c.job.deferred ? c.job.hole_count : c.job.requests.size();
+  holes_.reserve(n);
+  if (n > kReportAggregateAbove) rows_.emplace(&card_);
 }
 
 void PredictionReportStream::holes(std::span<const HolePrediction> h,
                                    std::span<const HoleRequest> r, int threads) {
   const size_t first = holes_.size();
+  const int t = std::min(threads, workers_);
   holes_.resize(first + h.size());
-  parallelFor(h.size(), std::min(threads, workers_), [&](int w, size_t k) {
+  parallelFor(h.size(), t, [&](int w, size_t k) {
     PredictedHole& ph = holes_[first + k];
     ph.prediction = reportPrediction(h[k]);
     ph.position = r[k].T_W_tcp.translation();
     ph.axis = r[k].T_W_tcp.linear().col(2);
     ph.split = splitter_.split(r[k], h[k].status, h[k].joints, h[k].d_robot, w);
   });
+  if (rows_) rows_->render(std::span(holes_).subspan(first), first, t, rows_ahead_);
 }
 
-std::string PredictionReportStream::finish(const PredictionResult& r) {
+ReportInput PredictionReportStream::input(const PredictionResult& r) {
   ReportInput in = predictionReportHeader(r.context, r.summary);
   setPartFrame(in, r.context, r.frames);
   in.predicted = std::move(holes_);
   in.threads = workers_;
-  return renderReport(in);
+  // the rows rendered ahead belong to a large table (a job of fewer holes than announced has
+  // its rows rendered by renderReport)
+  if (in.predicted.size() > kReportAggregateAbove) in.rows_ahead = std::move(rows_ahead_);
+  return in;
+}
+
+std::string PredictionReportStream::finish(const PredictionResult& r) {
+  return renderReport(input(r));
+}
+
+void PredictionReportStream::finish(const PredictionResult& r, const ByteSink& sink) {
+  renderReport(input(r), sink);
 }
 
 // ---- streamed prediction JSON

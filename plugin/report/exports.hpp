@@ -5,6 +5,7 @@
 /// Pure functions of a job result; deterministic bytes for identical inputs.
 
 #include <functional>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -46,7 +47,9 @@ class PredictionJsonStream {
 
 /// Gathers a prediction's HTML report while its holes stream past (predictJobStreaming's
 /// blocks): each hole's compact record (PredictedHole, ~0.6 kB) and its δrobot split from its
-/// joints, on the workers; finish() renders the document: the same bytes as predictionReport.
+/// joints, on the workers, and for a large job (more than kReportAggregateAbove holes) its table
+/// row (RowsAheadRenderer, ~0.5 kB); finish() renders the rest of the document: the same bytes as
+/// predictionReport.
 class PredictionReportStream {
  public:
   /// `threads`: the most workers holes() is given.
@@ -55,11 +58,17 @@ class PredictionReportStream {
   void holes(std::span<const HolePrediction> h, std::span<const HoleRequest> r, int threads);
   /// The report of the job `r` (its context, summary and shared frame) with every hole given.
   std::string finish(const PredictionResult& r);
+  /// The same bytes given to `sink` piece by piece (no whole-document string).
+  void finish(const PredictionResult& r, const ByteSink& sink);
 
  private:
+  ReportInput input(const PredictionResult& r);
   DeviationSplitter splitter_;
   int workers_;
   std::vector<PredictedHole> holes_;
+  RobotCard card_;                         ///< the rows' joint convention
+  std::optional<RowsAheadRenderer> rows_;  ///< a large job's rows, rendered as they come
+  std::vector<RenderedRows> rows_ahead_;
 };
 
 /// `item`, or when one of its numbers is not finite (a bug or an input that escaped the range

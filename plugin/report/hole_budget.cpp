@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <string_view>
 #include <utility>
 
 #include "compensator/support/str_cat.hpp"
@@ -74,12 +75,12 @@ struct BudgetStats {
 void addTerms(BudgetStats& b, const api::ReportPrediction& p) {
   const double uw2 = p.u_work * p.u_work;
   for (const BudgetTerm& t : p.budget) {
-    const std::string name = t.name ? t.name : "";
+    const std::string_view name = t.name ? t.name : "";
     auto it = std::find_if(b.terms.begin(), b.terms.end(),
                            [&](const TermStats& s) { return s.name == name; });
     if (it == b.terms.end()) {
       TermStats fresh;
-      fresh.name = name;
+      fresh.name = std::string(name);
       fresh.process = t.process;
       b.terms.push_back(std::move(fresh));
       it = b.terms.end() - 1;

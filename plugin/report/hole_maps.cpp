@@ -16,6 +16,7 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
+#include <span>
 
 #include "plugin/report/hole_sections.hpp"
 #include "plugin/report/palette.hpp"
@@ -565,9 +566,14 @@ void renderArrows(Html& h, const PanelView& pv) {
   for (size_t k = 0; k < f.members.size(); ++k) {
     if (pv.hole(k).ok && pv.value(k)) order.push_back(k);
   }
-  std::stable_sort(order.begin(), order.end(),
-                   [&](size_t a, size_t b) { return *pv.value(a) > *pv.value(b); });
-  if (order.size() > 3) order.resize(3);
+  // the three largest values, ties in member order (a stable sort's first three)
+  const size_t top = std::min<size_t>(3, order.size());
+  std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(top), order.end(),
+                    [&](size_t a, size_t b) {
+                      const double va = *pv.value(a), vb = *pv.value(b);
+                      return va > vb || (!(vb > va) && a < b);
+                    });
+  order.resize(top);
   for (const size_t k : order) {
     const api::ReportPrediction& p = *pv.hole(k).p;
     const Vec3 d = f.R_part_W * (pv.pn.arrows == ArrowOf::kRobot ? p.d_robot : p.d_work);
@@ -883,9 +889,10 @@ void renderLegend(Html& h, const std::vector<HoleView>& hv) {
   h.close("div");
 }
 
-/// "Face A · drilling direction −Z (part frame) · 12 holes, 12 reachable" and its panels.
+/// "Face A · drilling direction −Z (part frame) · 12 holes, 12 reachable" and its panels (each
+/// panel's markup in `drawn`, in order).
 void renderFace(Html& h, const FaceGroup& f, const std::string& name,
-                const std::vector<HoleView>& hv, const std::vector<Panel>& panels) {
+                const std::vector<HoleView>& hv, std::span<const std::string> drawn) {
   const long reach =
       std::count_if(f.members.begin(), f.members.end(), [&](size_t i) { return hv[i].ok; });
   h.open("h3", {{"class", "face"}})
@@ -896,8 +903,8 @@ void renderFace(Html& h, const FaceGroup& f, const std::string& name,
             std::to_string(reach) + " reachable")
       .close("small")
       .close("h3");
-  h.open("div", {{"class", panels.size() == 4 ? "maps four" : "maps"}});
-  for (const Panel& p : panels) renderPanel(h, f, hv, p);
+  h.open("div", {{"class", drawn.size() == 4 ? "maps four" : "maps"}});
+  for (const std::string& d : drawn) h.markup(d);
   h.close("div");
 }
 
@@ -913,10 +920,17 @@ void renderMaps(Html& h, const ReportInput& in, const std::vector<HoleView>& hv)
   h.open("section", {{"id", "maps"}}).element("h2", {}, "Deviation maps over the work area");
   renderMapsNote(h, in, hv.size());
   renderLegend(h, hv);
+  // every face's panels drawn on the workers (each panel on its own), written in order
+  std::vector<std::string> drawn(faces.size() * panels.size());
+  eachOnThreads(drawn.size(), in.threads, [&](size_t k) {
+    Html d(drawn[k]);
+    renderPanel(d, faces[k / panels.size()], hv, panels[k % panels.size()]);
+  });
   for (size_t g = 0; g < faces.size(); ++g) {
     const std::string name =
         faces.size() <= 26 ? std::string(1, static_cast<char>('A' + g)) : std::to_string(g + 1);
-    renderFace(h, faces[g], name, hv, panels);
+    renderFace(h, faces[g], name, hv,
+               std::span<const std::string>(drawn).subspan(g * panels.size(), panels.size()));
   }
   h.close("section");
 }

@@ -39,15 +39,20 @@ HoleView viewOf(const Pose& T_part_W, const Vec3& position, const Vec3& axis,
 
 }  // namespace
 
+void appendPredictedViews(std::vector<HoleView>& out, std::span<const api::PredictedHole> holes,
+                          const Pose& T_part_W, int& prev_branch) {
+  for (const api::PredictedHole& ph : holes) {
+    out.push_back(viewOf(T_part_W, ph.position, ph.axis, ph.prediction, prev_branch));
+    out.back().split = &ph.split;
+  }
+}
+
 HoleViews holeViews(const ReportInput& in) {
   HoleViews out;
   int prev_branch = -1;
   const Pose T_part_W = in.T_W_part.inverse();
   out.views.reserve(in.holes.size() + in.predicted.size());
-  for (const api::PredictedHole& ph : in.predicted) {
-    out.views.push_back(viewOf(T_part_W, ph.position, ph.axis, ph.prediction, prev_branch));
-    out.views.back().split = &ph.split;
-  }
+  appendPredictedViews(out.views, in.predicted, T_part_W, prev_branch);
   // a ReportHole's predictions converted (stable addresses: reserved once)
   out.own.reserve(2 * in.holes.size());
   for (const ReportHole& rh : in.holes) {
@@ -373,15 +378,17 @@ ReportPrediction reportPrediction(const HolePrediction& p) {
   return r;
 }
 
-std::string renderReport(const ReportInput& in) {
+namespace {
+
+/// The document into `o` (and, with a sink, on to it).
+void renderDocument(const ReportInput& in, std::string& o, const report::Html::Sink* sink) {
   using namespace report;
   if (!in.holes.empty() && !in.predicted.empty())
     throw std::invalid_argument("renderReport: holes and predicted holes at once");
   const HoleViews views = holeViews(in);
   const std::vector<HoleView>& hv = views.views;
-  std::string o;
-  o.reserve(65536 + 640 * hv.size());  // about 0.54 KB a hole
-  Html h(o);
+  if (sink == nullptr) o.reserve(65536 + 640 * hv.size());  // about 0.54 KB a hole
+  Html h(o, sink);
   renderHead(h, in);
   renderHeader(h, in, hv);
   h.markup("\n");
@@ -395,7 +402,21 @@ std::string renderReport(const ReportInput& in) {
   h.markup("\n");
   renderFooter(h, in);
   h.markup("\n</main></body></html>\n");
+  h.flush();
+}
+
+}  // namespace
+
+std::string renderReport(const ReportInput& in) {
+  std::string o;
+  renderDocument(in, o, nullptr);
   return o;
+}
+
+void renderReport(const ReportInput& in, const std::function<void(std::string_view)>& sink) {
+  std::string o;
+  o.reserve(1 << 20);
+  renderDocument(in, o, &sink);
 }
 
 }  // namespace roprec::api

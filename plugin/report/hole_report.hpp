@@ -7,8 +7,11 @@
 /// the capability summary. No network, no external scripts or fonts; deterministic bytes.
 /// Drawn by hole_report.cpp and one file per section (hole_sections.hpp: maps, budget, table).
 
+#include <functional>
 #include <optional>
+#include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "compensator/precision/prediction.hpp"
@@ -60,6 +63,17 @@ struct PredictedHole {
   std::optional<DeviationSplit> split;
 };
 
+/// A run of a large streamed prediction report's table rows rendered ahead, as its holes went
+/// past (RowsAheadRenderer): the items of the table's script array for rows [first, first +
+/// count) (",\n" before each but the job's first), rendered with the first `terms` budget-term
+/// columns and with or without the δrobot split columns.
+struct RenderedRows {
+  size_t first{0}, count{0};
+  size_t terms{0};
+  bool split_columns{false};
+  std::string text;
+};
+
 struct ReportHole {
   const HolePrediction* prediction{nullptr};
   Pose T_W_tcp{Pose::Identity()};  ///< nominal TCP pose at the drill point, base frame
@@ -102,6 +116,10 @@ struct ReportInput {
   /// A prediction report's holes kept compactly as they stream past (instead of `holes`, which
   /// must then be empty).
   std::vector<PredictedHole> predicted;
+  /// A large job's rows of `predicted` rendered ahead (RowsAheadRenderer), in order from the first
+  /// hole (they may end before the last): written as they are where the table has the columns
+  /// they were rendered with, the others rendered again.
+  std::vector<RenderedRows> rows_ahead;
   /// The part (workobject) frame the maps are drawn in, and its name ("cell workobject",
   /// "BASE_DATA[2]", ...): hole positions and directions are expressed in it, axes named after it.
   Pose T_W_part{Pose::Identity()};
@@ -120,6 +138,29 @@ inline constexpr size_t kReportAggregateAbove = 2000;
 
 /// The whole HTML document (plugin/api/report_input.hpp fills the part frame and the split).
 std::string renderReport(const ReportInput& in);
+/// The same bytes given to `sink` piece by piece, in order: the rows rendered ahead straight
+/// from `in`, the rest in pieces of about 1 MiB (no whole-document string).
+void renderReport(const ReportInput& in, const std::function<void(std::string_view)>& sink);
+
+/// Renders the table rows of a large streamed prediction's report (more than
+/// kReportAggregateAbove holes) as its holes go past: the bytes renderReport writes for them,
+/// given the budget terms and the split seen so far (a row rendered before a hole brings a new
+/// term or the first split is rendered again by renderReport).
+class RowsAheadRenderer {
+ public:
+  /// `card`: ReportInput::card of the report (the joints' convention); must outlive this.
+  explicit RowsAheadRenderer(const RobotCard* card);
+  /// The rows of the job's next holes `holes`, in order, the first being row `first`, on
+  /// `threads` workers (the same bytes for any count), appended to `out` as runs.
+  void render(std::span<const PredictedHole> holes, size_t first, int threads,
+              std::vector<RenderedRows>& out);
+
+ private:
+  ReportInput in_;                  ///< the card only
+  std::vector<std::string> terms_;  ///< budget terms, first-seen order
+  bool split_{false};               ///< a hole had a split
+  int prev_branch_{-1};             ///< IK branch of the last predicted hole
+};
 
 /// The reports' inline table script (no network, no library): a click on a head of the table
 /// `#holetable` sorts its body by that column (numbers numerically, `data-t="1"` heads as text;

@@ -4,7 +4,12 @@
 /// verdicts (hole_report.cpp), the deviation maps (hole_maps.cpp), the uncertainty budget
 /// (hole_budget.cpp) and the per-hole table (hole_table.cpp). Internal to plugin/report.
 
+#include <algorithm>
+#include <atomic>
+#include <exception>
+#include <span>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "plugin/report/hole_report.hpp"
@@ -38,6 +43,14 @@ struct HoleViews {
   std::vector<HoleView> views;
 };
 HoleViews holeViews(const ReportInput& in);
+/// The views of streamed holes (ReportInput::predicted) appended to `out`, in order (positions
+/// and axes into the part frame by T_part_W); `prev_branch`: the IK branch of the last predicted
+/// hole before them (-1: none), carried on.
+void appendPredictedViews(std::vector<HoleView>& out, std::span<const api::PredictedHole> holes,
+                          const Pose& T_part_W, int& prev_branch);
+/// The budget terms of the predicted holes of `hv` not in `names` yet appended to it, in the
+/// order first seen (the table's budget columns).
+void addBudgetNames(std::vector<std::string>& names, std::span<const HoleView> hv);
 
 /// The verdict a hole ends with: after compensation when it was compensated, else as predicted.
 Verdict finalVerdict(const HoleView& h);
@@ -51,6 +64,31 @@ double pct(double part, double whole);
 void renderMaps(Html& h, const ReportInput& in, const std::vector<HoleView>& hv);
 void renderBudget(Html& h, const std::vector<HoleView>& hv);
 void renderTable(Html& h, const ReportInput& in, const std::vector<HoleView>& hv);
+
+/// Runs work(k) for every k in [0, n) on min(threads, n) threads, the calling thread one of
+/// them, one k at a time (each k writes only its own slot); the first exception is rethrown after
+/// every thread joined.
+template <class Work>
+void eachOnThreads(size_t n, int threads, const Work& work) {
+  const size_t t = std::min(n, static_cast<size_t>(std::max(1, threads)));
+  std::atomic<size_t> next{0};
+  std::vector<std::exception_ptr> errors(t);
+  auto run = [&](size_t w) {
+    try {
+      for (size_t k = next++; k < n; k = next++) work(k);
+    } catch (...) {
+      errors[w] = std::current_exception();
+      next.store(n);
+    }
+  };
+  std::vector<std::thread> pool;
+  for (size_t w = 1; w < t; ++w) pool.emplace_back(run, w);
+  run(0);
+  for (std::thread& th : pool) th.join();
+  for (const std::exception_ptr& e : errors) {
+    if (e) std::rethrow_exception(e);
+  }
+}
 
 /// The reports' stylesheet and table scripts (report_assets.cpp).
 extern const char* const kReportCss;

@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 
 #include "compensator/precision/parallel.hpp"
 #include "compensator/robot/robot_card.hpp"
@@ -21,6 +22,7 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 constexpr size_t kTableRowsPerPage = 200;  ///< rows a page of a large job's table
+constexpr size_t kRowsPerRound = 2048;     ///< rows of a large table rendered at a time
 
 struct Column {
   std::string head;  ///< markup
@@ -35,18 +37,6 @@ struct TableLayout {
   bool has_split{false};           ///< the δrobot split columns
   bool large{false};               ///< rows in a script array, a page at a time
 };
-
-std::vector<std::string> budgetNames(const std::vector<HoleView>& hv) {
-  std::vector<std::string> names;
-  for (const HoleView& h : hv) {
-    if (!h.ok) continue;
-    for (const BudgetTerm& b : h.p->budget) {
-      const std::string n = b.name ? b.name : "";
-      if (std::find(names.begin(), names.end(), n) == names.end()) names.push_back(n);
-    }
-  }
-  return names;
-}
 
 const char* shortTerm(const std::string& name) {
   static constexpr std::array<std::array<const char*, 2>, 7> kShort{{
@@ -168,7 +158,9 @@ void renderNote(Html& h, const TableLayout& t) {
 
 // ------------------------------------------------------------------ cells
 
-void numCell(Html& h, double v, int decimals) { h.element("td", {}, num(v, decimals)); }
+void numCell(Html& h, double v, int decimals) {
+  h.markup("<td>").number(v, decimals).markup("</td>");
+}
 void dashCells(Html& h, int n) {
   for (int i = 0; i < n; ++i) h.element("td", {}, kDash);
 }
@@ -305,9 +297,10 @@ void compensationCells(Html& h, const HoleView& hole) {
   optionalCell(h, rh.residual_um, 1);
 }
 
-std::string rowOf(const TableLayout& t, const HoleView& hole, size_t i) {
+/// Row i (view `hole`) into `row` (cleared first).
+void rowInto(std::string& row, const TableLayout& t, const HoleView& hole, size_t i) {
   const api::ReportPrediction& p = *hole.p;
-  std::string row;
+  row.clear();
   Html h(row);
   if (passes(hole)) {
     h.open("tr", {{"class", "pass"}});
@@ -326,20 +319,32 @@ std::string rowOf(const TableLayout& t, const HoleView& hole, size_t i) {
   numCell(h, p.mc_time, 2);
   if (t.in.compensation) compensationCells(h, hole);
   h.close("tr");
-  return row;
 }
 
 // ------------------------------------------------------------------ large jobs
 
-/// Appends a string as a JavaScript string literal (no "</" so it cannot end the script element).
-void appendJsString(std::string& s, std::string_view v) {
+/// `row` as a JavaScript string literal appended to `s` (no "</" so it cannot end the script
+/// element), each "</td><td" packed into the unit separator (JS "\x1f"): the rows are half the
+/// bytes; the script joins them back for the page it shows.
+void appendPackedJs(std::string& s, std::string_view row) {
+  constexpr std::string_view kCut = "</td><td";
   s += '"';
   size_t run = 0;  // start of the bytes not appended yet (none of them needs an escape)
-  for (size_t i = 0; i < v.size(); ++i) {
-    const char c = v[i];
-    const bool slash = c == '/' && i > 0 && v[i - 1] == '<';
+  char prev = 0;   // the byte before, packed
+  for (size_t i = 0; i < row.size(); ++i) {
+    const char c = row[i];
+    if (c == '<' && row.compare(i, kCut.size(), kCut) == 0) {
+      s.append(row.data() + run, i - run);
+      s += "\\x1f";
+      i += kCut.size() - 1;
+      run = i + 1;
+      prev = '\x1f';
+      continue;
+    }
+    const bool slash = c == '/' && prev == '<';
+    prev = c;
     if (c != '\\' && c != '"' && !slash && c != '\n' && c != '\x1f') continue;
-    s.append(v.data() + run, i - run);
+    s.append(row.data() + run, i - run);
     run = i + 1;
     if (c == '\n') {
       s += "\\n";
@@ -350,52 +355,71 @@ void appendJsString(std::string& s, std::string_view v) {
       s += c;
     }
   }
-  s.append(v.data() + run, v.size() - run);
+  s.append(row.data() + run, row.size() - run);
   s += '"';
-}
-
-/// `row` with "</td><td" → the unit separator (JS "\x1f") into `packed`: the rows are half the
-/// bytes; the script joins them back for the page it shows.
-void packRow(const std::string& row, std::string& packed) {
-  constexpr std::string_view kCut = "</td><td";
-  packed.clear();
-  packed.reserve(row.size());
-  size_t k = 0;
-  for (size_t at = row.find(kCut); at != std::string::npos; at = row.find(kCut, k)) {
-    packed.append(row, k, at - k);
-    packed += '\x1f';
-    k = at + kCut.size();
-  }
-  packed.append(row, k, std::string::npos);
 }
 
 /// The rows in the table body (a small job's).
 void renderRows(Html& h, const TableLayout& t, const std::vector<HoleView>& hv) {
-  for (size_t i = 0; i < hv.size(); ++i) h.markup(rowOf(t, hv[i], i));
+  std::string row;
+  for (size_t i = 0; i < hv.size(); ++i) {
+    rowInto(row, t, hv[i], i);
+    h.markup(row);
+  }
+}
+
+/// Row i (view `hole`) as an item of the script array ROPREC_ROWS into `item`: a packed
+/// JavaScript string, ",\n" before it unless it is the first; `row`: scratch.
+void rowItem(const TableLayout& t, const HoleView& hole, size_t i, std::string& item,
+             std::string& row) {
+  rowInto(row, t, hole, i);
+  item.clear();
+  if (i > 0) item += ",\n";
+  appendPackedJs(item, row);
+}
+
+/// The items of rows first.. (views `hv`), one per slot of `items` (resized), on `threads`
+/// workers: each row's bytes do not depend on the count.
+void rowItems(const TableLayout& t, std::span<const HoleView> hv, size_t first, int threads,
+              std::vector<std::string>& items) {
+  if (items.size() < hv.size()) items.resize(hv.size());
+  std::vector<std::string> rows(static_cast<size_t>(std::max(1, threads)));
+  parallelFor(hv.size(), threads, [&](int w, size_t k) {
+    rowItem(t, hv[k], first + k, items[k], rows[static_cast<size_t>(w)]);
+  });
+}
+
+/// Rows [b, e) of a large job as the items of the script array, rendered on t.in.threads workers
+/// a round at a time and appended in order.
+void renderItemRange(Html& h, const TableLayout& t, const std::vector<HoleView>& hv, size_t b,
+                     size_t e, std::vector<std::string>& items) {
+  const std::span<const HoleView> all(hv);
+  for (size_t r = b; r < e; r += kRowsPerRound) {
+    const size_t n = std::min(kRowsPerRound, e - r);
+    rowItems(t, all.subspan(r, n), r, t.in.threads, items);
+    for (size_t k = 0; k < n; ++k) h.markup(items[k]);
+    h.flush(1 << 20);
+  }
 }
 
 /// A large job's rows as the items of the script array ROPREC_ROWS (packed JavaScript strings,
-/// ",\n" between them). Runs of rows are rendered on t.in.threads workers, a bounded number at
-/// a time, and appended in order: the bytes of rendering them one after the other.
+/// ",\n" between them): the runs rendered ahead (ReportInput::rows_ahead) with the table's
+/// columns as they are, the other rows rendered on t.in.threads workers: the bytes of rendering
+/// them one after the other.
 void renderPackedRows(Html& h, const TableLayout& t, const std::vector<HoleView>& hv) {
-  constexpr size_t kRun = 256;  // rows a worker renders into one text
-  const size_t workers = static_cast<size_t>(std::max(1, t.in.threads));
-  std::vector<std::string> texts(4 * workers);  // runs rendered at a time
-  for (size_t b = 0; b < hv.size(); b += texts.size() * kRun) {
-    const size_t runs = std::min(texts.size(), (hv.size() - b + kRun - 1) / kRun);
-    parallelFor(runs, t.in.threads, [&](int, size_t k) {
-      std::string& text = texts[k];
-      text.clear();
-      std::string packed;
-      const size_t r0 = b + k * kRun;
-      for (size_t i = r0; i < std::min(hv.size(), r0 + kRun); ++i) {
-        if (i > 0) text += ",\n";
-        packRow(rowOf(t, hv[i], i), packed);
-        appendJsString(text, packed);
-      }
-    });
-    for (size_t k = 0; k < runs; ++k) h.markup(texts[k]);
+  std::vector<std::string> items;
+  size_t next = 0;  // the first row not written
+  for (const api::RenderedRows& run : t.in.rows_ahead) {
+    if (run.first != next || run.count > hv.size() - next)
+      throw std::invalid_argument("renderReport: rows rendered ahead out of order");
+    if (run.terms == t.terms.size() && run.split_columns == t.has_split) {
+      h.bulk(run.text);
+    } else {
+      renderItemRange(h, t, hv, run.first, run.first + run.count, items);
+    }
+    next += run.count;
   }
+  renderItemRange(h, t, hv, next, hv.size(), items);
 }
 
 /// The table's script; a large job's rows packed into its array ROPREC_ROWS, written row by row.
@@ -414,12 +438,13 @@ void renderScript(Html& h, const TableLayout& t, const std::vector<HoleView>& hv
 }  // namespace
 
 void renderTable(Html& h, const ReportInput& in, const std::vector<HoleView>& hv) {
-  const TableLayout t{
-      in, budgetNames(hv),
-      std::any_of(hv.begin(), hv.end(), [](const HoleView& v) { return v.split->has_value(); }),
-      hv.size() > api::kReportAggregateAbove};
-  const long n_fail =
-      std::count_if(hv.begin(), hv.end(), [](const HoleView& v) { return !passes(v); });
+  TableLayout t{in, {}, false, hv.size() > api::kReportAggregateAbove};
+  long n_fail = 0;
+  for (const HoleView& v : hv) {  // one pass over the holes: terms, split, not conforming
+    addBudgetNames(t.terms, std::span(&v, 1));
+    t.has_split = t.has_split || v.split->has_value();
+    n_fail += passes(v) ? 0 : 1;
+  }
   h.open("section", {{"id", "holes"}}).element("h2", {}, "Per-hole results");
   renderNote(h, t);
   if (t.large) {
@@ -445,4 +470,54 @@ void renderTable(Html& h, const ReportInput& in, const std::vector<HoleView>& hv
   renderScript(h, t, hv);
 }
 
+void addBudgetNames(std::vector<std::string>& names, std::span<const HoleView> hv) {
+  for (const HoleView& h : hv) {
+    if (!h.ok) continue;
+    for (const BudgetTerm& b : h.p->budget) {
+      const std::string_view n = b.name ? b.name : "";
+      if (std::find(names.begin(), names.end(), n) == names.end()) names.emplace_back(n);
+    }
+  }
+}
+
 }  // namespace roprec::report
+
+namespace roprec::api {
+
+RowsAheadRenderer::RowsAheadRenderer(const RobotCard* card) { in_.card = card; }
+
+void RowsAheadRenderer::render(std::span<const PredictedHole> holes, size_t first, int threads,
+                               std::vector<RenderedRows>& out) {
+  using namespace report;
+  // what a row depends on beyond its hole, as far as the holes went: the IK branch before it,
+  // the budget terms and whether a split was seen (positions are not shown in the table)
+  std::vector<HoleView> hv;
+  hv.reserve(holes.size());
+  appendPredictedViews(hv, holes, Pose::Identity(), prev_branch_);
+  addBudgetNames(terms_, hv);
+  split_ = split_ || std::any_of(holes.begin(), holes.end(),
+                                 [](const PredictedHole& h) { return h.split.has_value(); });
+  const TableLayout t{in_, terms_, split_, true};
+  // runs of rows, each rendered straight into its text by one worker
+  constexpr size_t kRun = 128;
+  const size_t runs = (holes.size() + kRun - 1) / kRun, at = out.size();
+  for (size_t r = 0; r < runs; ++r) {
+    RenderedRows& run = out.emplace_back();
+    run.first = first + r * kRun;
+    run.count = std::min(kRun, holes.size() - r * kRun);
+    run.terms = terms_.size();
+    run.split_columns = split_;
+  }
+  eachOnThreads(runs, threads, [&](size_t r) {
+    RenderedRows& run = out[at + r];
+    std::string row, text;  // text: grown here, kept at its size (no spare capacity)
+    for (size_t k = run.first - first; k < run.first - first + run.count; ++k) {
+      rowInto(row, t, hv[k], first + k);
+      if (first + k > 0) text += ",\n";
+      appendPackedJs(text, row);
+    }
+    run.text = text;
+  });
+}
+
+}  // namespace roprec::api

@@ -2,6 +2,7 @@
 /// The reports' element builder (see html.hpp).
 #include "plugin/report/html.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -71,8 +72,25 @@ Html& Html::markupElement(std::string_view tag, Attrs attrs, std::string_view ma
   return open(tag, attrs).markup(markup).close(tag);
 }
 
+namespace {
+
+/// `s` is its own escapeXml: printable ASCII, tabs and line ends, none of & < > " '.
+bool plainText(std::string_view s) {
+  return std::all_of(s.begin(), s.end(), [](char c) {
+    const auto u = static_cast<unsigned char>(c);
+    return u < 0x80 && (u >= 0x20 || c == '\n' || c == '\t') && c != '&' && c != '<' && c != '>' &&
+           c != '"' && c != '\'';
+  });
+}
+
+}  // namespace
+
 Html& Html::text(std::string_view s) {
-  out_ += esc(s);
+  if (plainText(s)) {
+    out_ += s;
+  } else {
+    out_ += esc(s);
+  }
   return *this;
 }
 
@@ -82,7 +100,26 @@ Html& Html::markup(std::string_view s) {
 }
 
 Html& Html::number(double v, int decimals) {
-  out_ += num(v, decimals);
+  if (std::isfinite(v)) {
+    appendFixed(out_, v, decimals);
+  } else {
+    out_ += kDash;
+  }
+  return *this;
+}
+
+Html& Html::bulk(std::string_view s) {
+  if (sink_ == nullptr) return markup(s);
+  flush();
+  (*sink_)(s);
+  return *this;
+}
+
+Html& Html::flush(size_t at_least) {
+  if (sink_ != nullptr && !out_.empty() && out_.size() >= at_least) {
+    (*sink_)(out_);
+    out_.clear();
+  }
   return *this;
 }
 

@@ -13,6 +13,7 @@
 ///   h.element("text", {{"x", fixed(x, 1)}}, label);                    // <text
 ///   x="..">label</text> h.close("g");
 
+#include <functional>
 #include <initializer_list>
 #include <span>
 #include <string>
@@ -60,10 +61,12 @@ class Attr {
 
 using Attrs = std::initializer_list<Attr>;
 
-/// Appends elements to a string it does not own.
+/// Appends elements to a string it does not own; with a sink, large pieces (bulk()) and the
+/// string so far (flush()) go on to the sink instead of staying in the string.
 class Html {
  public:
-  explicit Html(std::string& out) : out_(out) {}
+  using Sink = std::function<void(std::string_view)>;
+  explicit Html(std::string& out, const Sink* sink = nullptr) : out_(out), sink_(sink) {}
 
   /// `<tag a="v" …>`
   Html& open(std::string_view tag, std::span<const Attr> attrs);
@@ -83,6 +86,11 @@ class Html {
   Html& markup(std::string_view s);
   /// num(v, decimals) as text.
   Html& number(double v, int decimals);
+  /// Markup written as it is, a large piece: with a sink, the string so far and then `s` go to
+  /// the sink (not copied into the string).
+  Html& bulk(std::string_view s);
+  /// With a sink: the string so far to the sink once it holds `at_least` bytes, then cleared.
+  Html& flush(size_t at_least = 0);
 
   [[nodiscard]] std::string& out() { return out_; }
 
@@ -90,6 +98,7 @@ class Html {
   static std::span<const Attr> span(Attrs a) { return {a.begin(), a.size()}; }
   void attributes(std::span<const Attr> attrs);
   std::string& out_;
+  const Sink* sink_;
 };
 
 /// The value of an SVG `points` attribute: "x,y x,y …" with `decimals` places.
