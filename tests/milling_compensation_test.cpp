@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <functional>
+#include <span>
 #include <sstream>
 
 #include "compensator/robot/counterbalance.hpp"
@@ -754,6 +755,65 @@ TEST(MillingCompensation, PipelinedBlocksOnTwoThreadsGiveTheOneThreadResults) {
     edges += x.edges_checked ? 1 : 0;
   }
   EXPECT_GT(edges, 3 * static_cast<int>(two.block));  // the revolutions were resolved
+}
+
+// The results handed block by block (compensateMillingPath with a sink, the path's results never
+// all in memory): every block size (1 point, 5, the whole path) on 1 and 2 threads hands each
+// point exactly once, in path order, in blocks of the asked size, with every field bit for bit as
+// the whole-path vector on one thread.
+TEST(MillingCompensation, ResultsHandedBlockByBlockAreTheWholePathResults) {
+  const std::string cell = test::sourceDir() + "/samples/cells/alu-milling-7075.xml";
+  const std::string prog = test::sourceDir() + "/samples/milling/wall_pass.src";
+  const api::PredictionContext c =
+      api::loadPredictionContext(cell, prog, std::nullopt, "", 0.5, false);
+  const postproc::Program& p = *c.job.program;
+  std::vector<Pose> points;
+  for (const postproc::Motion& m : p.motions) {
+    if (m.type != postproc::MotionType::kLinear || m.target < 0) continue;
+    const postproc::Frame& f = p.frames[static_cast<size_t>(m.base)];
+    ASSERT_TRUE(f.resolved);
+    points.push_back(f.pose * postproc::targetPose(p, p.targets()[static_cast<size_t>(m.target)]));
+  }
+  ASSERT_GE(points.size(), 25u);
+  MillingPathOptions whole;
+  whole.block = points.size();
+  const std::vector<PathPointCompensation> ref =
+      compensateMillingPath(c.model, points, nullptr, nullptr, whole);
+  for (const size_t block : {size_t{1}, size_t{5}, points.size()}) {
+    for (const int threads : {1, 2}) {
+      MillingPathOptions o;
+      o.block = block;
+      o.threads = threads;
+      size_t next = 0;
+      int blocks = 0;
+      compensateMillingPath(
+          c.model, points, nullptr, nullptr, o,
+          [&](size_t first, std::span<PathPointCompensation> got) {
+            ++blocks;
+            ASSERT_EQ(first, next) << "block " << block << ", threads " << threads;
+            ASSERT_EQ(got.size(), std::min(block, points.size() - first));
+            for (size_t k = 0; k < got.size(); ++k) {
+              const PathPointCompensation& x = ref[first + k];
+              const PathPointCompensation& y = got[k];
+              EXPECT_EQ(x.ok, y.ok) << first + k;
+              EXPECT_EQ(x.theta_d, y.theta_d) << first + k;
+              EXPECT_EQ(x.theta_cmd, y.theta_cmd) << first + k;
+              EXPECT_EQ(x.T_programmed.matrix(), y.T_programmed.matrix()) << first + k;
+              EXPECT_EQ(x.deviation_before, y.deviation_before) << first + k;
+              EXPECT_EQ(x.residual, y.residual) << first + k;
+              EXPECT_EQ(x.force, y.force) << first + k;
+              EXPECT_EQ(x.loop_gain, y.loop_gain) << first + k;
+              EXPECT_EQ(x.teeth_between_points, y.teeth_between_points) << first + k;
+              EXPECT_EQ(x.ap_limit, y.ap_limit) << first + k;
+              EXPECT_EQ(x.tooth_feed, y.tooth_feed) << first + k;
+              EXPECT_EQ(x.config_text, y.config_text) << first + k;
+            }
+            next = first + got.size();
+          });
+      EXPECT_EQ(next, points.size()) << "block " << block << ", threads " << threads;
+      EXPECT_EQ(blocks, static_cast<int>((points.size() + block - 1) / block));
+    }
+  }
 }
 
 // A milling cell with a <part_registration> (verify --write-cell): every path point is aimed

@@ -7,6 +7,8 @@
 #include <regex>
 #include <string>
 
+#include "plugin/api/job.hpp"
+#include "plugin/report/milling_report.hpp"
 #include "support/test_support.hpp"
 
 namespace roprec {
@@ -46,6 +48,48 @@ TEST(MillingReport, CompensateWritesItWithOneRowPerPathPoint) {
       "/samples/milling/wall_pass.src' -o '" + dir + "/d.src' --report '" + dir + "/no/r.html'");
   EXPECT_EQ(bad.exit_code, 2) << bad.err;
   EXPECT_FALSE(std::filesystem::exists(dir + "/d.src"));
+}
+
+// The exports written as the path streams past in blocks of 4 points (compensateMillingJob with a
+// sink: the targets export as CSV and JSON point by point, the report from its per-point summary
+// and its rows replayed after the plots) are the bytes of the whole-path writers, on passes with a
+// box stock (rows that change engagement) and on the wall pass.
+TEST(MillingReport, ExportsWrittenBlockByBlockAreTheWholePathBytes) {
+  const std::string src = test::sourceDir();
+  const std::pair<std::string, std::string> jobs[] = {
+      {src + "/samples/cells/alu-milling-7075.xml", src + "/samples/milling/wall_pass.src"},
+      {src + "/samples/milling/box-stock-7075.xml", src + "/samples/milling/box_passes.src"}};
+  for (const auto& [cell, prog] : jobs) {
+    MillingPathOptions o;
+    o.resolve_edges = false;
+    o.block = 4;
+    const api::MillingCompensationResult whole = api::compensateMillingJob(cell, prog, false, o);
+    std::string csv, json, rows;
+    api::MillingTargetsStream c(true, prog, [&csv](std::string_view v) { csv += v; });
+    api::MillingTargetsStream j(false, prog, [&json](std::string_view v) { json += v; });
+    api::MillingReportSummary sum;
+    int blocks = 0;
+    const api::MillingCompensationResult streamed = api::compensateMillingJob(
+        cell, prog, false, o, [&](const api::MillingCompensationResult& blk) {
+          ++blocks;
+          EXPECT_LE(blk.points_comp.size(), o.block);
+          c.points(blk);
+          j.points(blk);
+          api::addMillingReportPoints(sum, blk);
+          api::writeMillingReportRows(blk, [&rows](std::string_view v) { rows += v; });
+        });
+    c.finish(streamed);
+    j.finish(streamed);
+    std::string report;
+    api::writeMillingReport(
+        sum, streamed, prog, [&rows](const api::ByteSink& sink) { sink(rows); },
+        [&report](std::string_view v) { report += v; });
+    EXPECT_TRUE(streamed.points_comp.empty());
+    EXPECT_GT(blocks, 3) << prog;
+    EXPECT_EQ(csv, api::millingTargetsCsv(whole)) << prog;
+    EXPECT_EQ(json, api::millingTargetsJson(whole, prog)) << prog;
+    EXPECT_EQ(report, api::millingCompensationReport(whole, prog)) << prog;
+  }
 }
 
 }  // namespace

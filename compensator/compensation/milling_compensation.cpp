@@ -7,6 +7,7 @@
 #include <future>
 #include <memory>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <utility>
 
@@ -768,8 +769,9 @@ void CompensatedChain::compensate(size_t i, const std::shared_ptr<const PointCut
   // the first chain's compliance, or the point's own where only the compensated tool cuts
   const Mat3 C =
       cutting && C_first.isZero() ? pointCompliance(s_, p.theta_d, cut.F_nom).C : C_first;
-  bool from_cell = false;
-  CouplingOptions copt = pointCoupling(s_, i, from_cell);
+  // the first chain's tooth passes since the previous point (pointCoupling)
+  CouplingOptions copt = s_.copt;
+  copt.teeth_between_points = static_cast<int>(p.teeth_between_points);
   copt.loop_gain = false;  // the loop gain only of the last solve (it is what is reported)
   nc::forwardKinematics(m.model, d_.nc, p.theta_d);
   const Eigen::ColPivHouseholderQR<Mat6> J_qr(nc::tcpJacobian(m.model, d_.nc));
@@ -826,10 +828,11 @@ void CompensatedChain::compensate(size_t i, const std::shared_ptr<const PointCut
   if (!p.ok) p.reason = "the compliance equilibrium did not converge at the compensated command";
 }
 
-/// One block [b, e) of the path after the first chain: the points it found an IK for, their
-/// cuts and revolutions.
+/// One block [b, e) of the path after the first chain: its results (the first chain's part),
+/// the points it found an IK for, their cuts, tooth passes and revolutions.
 struct PathBlock {
   size_t b{0}, e{0};
+  std::vector<PathPointCompensation> out;  ///< point b + k at k
   std::vector<char> found;
   std::vector<std::shared_ptr<const PointCut>> cut;
   std::vector<Mat3> compliance;  ///< linearised, per point (cutting points)
@@ -837,9 +840,9 @@ struct PathBlock {
   std::vector<EdgeRef> jobs;  ///< the revolutions first needed in this block
 };
 
-void runFirstChain(UncompensatedChain& chain, std::vector<PathPointCompensation>& out,
-                   PathBlock& blk) {
+void runFirstChain(UncompensatedChain& chain, PathBlock& blk) {
   const size_t n = blk.e - blk.b;
+  blk.out.assign(n, PathPointCompensation{});
   blk.found.assign(n, 0);
   blk.cut.assign(n, nullptr);
   blk.compliance.assign(n, Mat3::Zero());
@@ -847,37 +850,38 @@ void runFirstChain(UncompensatedChain& chain, std::vector<PathPointCompensation>
   blk.jobs.clear();
   for (size_t k = 0; k < n; ++k) {
     blk.found[k] =
-        chain.run(blk.b + k, out[blk.b + k], blk.cut[k], blk.compliance[k], blk.edges[k], blk.jobs)
-            ? 1
-            : 0;
+        chain.run(blk.b + k, blk.out[k], blk.cut[k], blk.compliance[k], blk.edges[k], blk.jobs) ? 1
+                                                                                                : 0;
   }
 }
 
-void resolveBlockEdges(PathBlock& blk, std::vector<PathPointCompensation>& out, int threads) {
+void resolveBlockEdges(PathBlock& blk, int threads) {
   parallelFor(blk.jobs.size(), threads, [&](int, size_t k) {
     EdgeJob& j = *blk.jobs[k];
     j.result = edgeRevolution(j.cut->model, j.dyn, j.fz, j.ae, j.ap);
   });
-  for (size_t k = 0; k < blk.edges.size(); ++k) reportEdges(blk.edges[k], out[blk.b + k]);
+  for (size_t k = 0; k < blk.edges.size(); ++k) reportEdges(blk.edges[k], blk.out[k]);
 }
 
-void runSecondChain(CompensatedChain& chain, const PathBlock& blk,
-                    std::vector<PathPointCompensation>& out) {
+void runSecondChain(CompensatedChain& chain, PathBlock& blk) {
   for (size_t k = 0; k < blk.e - blk.b; ++k) {
     if (blk.found[k]) {
-      chain.run(blk.b + k, blk.cut[k], blk.compliance[k], out[blk.b + k]);
+      chain.run(blk.b + k, blk.cut[k], blk.compliance[k], blk.out[k]);
     } else {
       chain.skip(blk.b + k);
     }
   }
+  // the block's revolutions and cuts are not needed any more (the chains keep their own)
+  blk.edges.clear();
+  blk.jobs.clear();
+  blk.cut.clear();
 }
 
 }  // namespace
 
-std::vector<PathPointCompensation> compensateMillingPath(
-    const PredictionModel& m, const std::vector<Pose>& points,
-    const std::vector<CuttingDecision>* cutting, const Vec6* seed,
-    const MillingPathOptions& options) {
+void compensateMillingPath(const PredictionModel& m, const std::vector<Pose>& points,
+                           const std::vector<CuttingDecision>* cutting, const Vec6* seed,
+                           const MillingPathOptions& options, const MillingPathSink& sink) {
   if (!m.has_process || m.process.type != ProcessType::kMilling) {
     throw std::invalid_argument("compensateMillingPath needs a milling process");
   }
@@ -888,29 +892,48 @@ std::vector<PathPointCompensation> compensateMillingPath(
                         m.process.milling.coupling,
                         options};
   const int threads = std::max(1, options.threads);
-  std::vector<PathPointCompensation> out(points.size());
   UncompensatedChain first(setup, seed);
   CompensatedChain second(setup);
   // pipeline: the first chain over block k (and its revolutions) while the second chain runs
-  // over block k − 1 on a task of its own (inline with one thread)
+  // over block k − 1 on a task of its own (inline with one thread); block k − 1 goes to the sink
+  // while the second chain runs over block k
   PathBlock blocks[2];
   std::future<void> pending;
+  PathBlock* done = nullptr;  // the block whose second chain ran, not yet handed to the sink
+  const auto hand = [&sink](PathBlock& blk) {
+    sink(blk.b, std::span<PathPointCompensation>(blk.out));
+    blk.out.clear();
+  };
   const size_t block = std::max<size_t>(1, options.block);
   for (size_t b = 0, k = 0; b < points.size(); b += block, ++k) {
     PathBlock& blk = blocks[k % 2];
     blk.b = b;
     blk.e = std::min(points.size(), b + block);
-    runFirstChain(first, out, blk);
-    resolveBlockEdges(blk, out, threads > 1 ? threads - 1 : 1);
+    runFirstChain(first, blk);
+    resolveBlockEdges(blk, threads > 1 ? threads - 1 : 1);
     if (pending.valid()) pending.get();
     if (threads > 1) {
-      pending = std::async(std::launch::async,
-                           [&second, &blk, &out] { runSecondChain(second, blk, out); });
+      pending = std::async(std::launch::async, [&second, &blk] { runSecondChain(second, blk); });
     } else {
-      runSecondChain(second, blk, out);
+      runSecondChain(second, blk);
     }
+    if (done != nullptr) hand(*done);
+    done = &blk;
   }
   if (pending.valid()) pending.get();
+  if (done != nullptr) hand(*done);
+}
+
+std::vector<PathPointCompensation> compensateMillingPath(
+    const PredictionModel& m, const std::vector<Pose>& points,
+    const std::vector<CuttingDecision>* cutting, const Vec6* seed,
+    const MillingPathOptions& options) {
+  std::vector<PathPointCompensation> out(points.size());
+  compensateMillingPath(m, points, cutting, seed, options,
+                        [&out](size_t first, std::span<PathPointCompensation> block) {
+                          std::move(block.begin(), block.end(),
+                                    out.begin() + static_cast<std::ptrdiff_t>(first));
+                        });
   return out;
 }
 

@@ -42,10 +42,10 @@
 /// A non-cutting point is compensated for gravity and the tool weight only (force 0) and resets
 /// the coupling's memory (the tool left the material).
 #include <functional>
+#include <optional>
+#include <span>
 #include <string>
 #include <vector>
-
-#include <optional>
 
 #include "compensator/precision/prediction.hpp"
 #include "compensator/process/milling_engagement.hpp"
@@ -208,5 +208,17 @@ std::vector<PathPointCompensation> compensateMillingPath(
     const PredictionModel& m, const std::vector<Pose>& points,
     const std::vector<CuttingDecision>* cutting = nullptr, const Vec6* seed = nullptr,
     const MillingPathOptions& options = {});
+
+/// Receives the results of points [first, first + block.size()) — blocks of options.block points,
+/// in path order, each once — and may move from them: they are not kept after the call (a path's
+/// results are never all in memory at once).
+using MillingPathSink =
+    std::function<void(std::size_t first, std::span<PathPointCompensation> block)>;
+/// compensateMillingPath handing each block of results to `sink` as soon as both chains are done
+/// with it (on the calling thread, while the compensated chain runs over the next block); the
+/// same results, bit for bit, whatever options.block and options.threads.
+void compensateMillingPath(const PredictionModel& m, const std::vector<Pose>& points,
+                           const std::vector<CuttingDecision>* cutting, const Vec6* seed,
+                           const MillingPathOptions& options, const MillingPathSink& sink);
 
 }  // namespace roprec

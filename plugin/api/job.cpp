@@ -790,19 +790,46 @@ std::vector<int> millsOfPath(const ProcessSpec& spec, const postproc::Program& p
   return out;
 }
 
+/// The program's target edits of the compensated points [first, first + block.size()) (their
+/// frames `frame`), and the failures and refusals among them, in path order.
+void editMillingTargets(MillingCompensationResult& r, const std::vector<const Pose*>& frame,
+                        std::size_t first, std::span<const PathPointCompensation> block) {
+  postproc::Program& prog = *r.context.job.program;
+  for (size_t k = 0; k < block.size(); ++k) {
+    const size_t i = first + k;
+    const postproc::Target& t = prog.targets()[static_cast<size_t>(r.targets[i])];
+    const PathPointCompensation& p = block[k];
+    if (!p.ok) {
+      r.failures.push_back("path point " + std::to_string(i + 1) + " (" +
+                           prog.files[static_cast<size_t>(t.file)].path + ":" +
+                           std::to_string(t.line) + "): not compensated: " + p.reason);
+      continue;
+    }
+    std::optional<postproc::Configuration> cfg;
+    if (t.config.present()) cfg = postproc::parseConfigurationText(p.config_text);
+    const postproc::EditResult er =
+        postproc::replaceTargetPose(prog, r.targets[i], frame[i]->inverse() * p.T_programmed, cfg);
+    if (!er.ok) r.refused.push_back("path point " + std::to_string(i + 1) + ": " + er.reason);
+  }
+}
+
 /// Every run of points with one mill (r.mill) decided and compensated as a path of its own with
-/// that mill's process and TCP model, seeded with the joints of the run before it.
-void compensateMillRuns(MillingCompensationResult& r, const std::vector<MillingPathPoint>& path,
-                        const MillingPathOptions& options) {
+/// that mill's process and TCP model, seeded with the joints of the run before it; each block of
+/// points edited in the program and kept in r.points_comp (no sink) or handed to `sink`.
+/// `path` is emptied once the runs' cutting decisions are made.
+void compensateMillRuns(MillingCompensationResult& r, std::vector<MillingPathPoint>& path,
+                        const std::vector<const Pose*>& frame, const MillingPathOptions& options,
+                        const MillingPointsSink& sink) {
   const PredictionModel& cell = r.context.model;
   // the stock (workobject frame) moves with the part
   const Pose T_W_stock = r.context.cell.part_registration
                              ? partMotion(r.context.cell) * r.context.cell.T_base_wobj
                              : r.context.cell.T_base_wobj;
   std::optional<Vec6> seed;
-  for (size_t b = 0; b < path.size();) {
+  const size_t n = path.size();
+  for (size_t b = 0; b < n;) {
     size_t e = b;
-    while (e < path.size() && r.mill[e] == r.mill[b]) ++e;
+    while (e < n && r.mill[e] == r.mill[b]) ++e;
     const size_t i = static_cast<size_t>(r.mill[b]);
     const PredictionModel& own =
         i < cell.drill_models.size() && cell.drill_models[i] ? *cell.drill_models[i] : cell;
@@ -813,7 +840,7 @@ void compensateMillRuns(MillingCompensationResult& r, const std::vector<MillingP
     }
     const PredictionModel& m = with ? *with : own;
     // one run (the usual path): the job's own vectors, no copies
-    const bool whole = b == 0 && e == path.size();
+    const bool whole = b == 0 && e == n;
     std::vector<MillingPathPoint> run_copy;
     std::vector<Pose> points_copy;
     if (!whole) {
@@ -824,23 +851,36 @@ void compensateMillRuns(MillingCompensationResult& r, const std::vector<MillingP
     }
     std::vector<CuttingDecision> cutting =
         decideCutting(m.process.milling, T_W_stock, whole ? path : run_copy);
-    MillingPathOptions with_stock = options;
-    with_stock.T_W_stock = T_W_stock;
-    std::vector<PathPointCompensation> comp = compensateMillingPath(
-        m, whole ? r.points : points_copy, &cutting, seed ? &*seed : nullptr, with_stock);
-    for (const PathPointCompensation& p : comp)
-      if (p.ok) seed = p.theta_d;
+    // r.cutting holds the decisions of the points handed over (the exports read them)
     if (whole) {
       r.cutting = std::move(cutting);
-      r.points_comp = std::move(comp);
+      std::vector<MillingPathPoint>().swap(path);
     } else {
-      r.cutting.insert(r.cutting.end(), std::make_move_iterator(cutting.begin()),
-                       std::make_move_iterator(cutting.end()));
-      r.points_comp.insert(r.points_comp.end(), std::make_move_iterator(comp.begin()),
-                           std::make_move_iterator(comp.end()));
+      r.cutting.insert(r.cutting.end(), cutting.begin(), cutting.end());
     }
+    MillingPathOptions with_stock = options;
+    with_stock.T_W_stock = T_W_stock;
+    std::optional<Vec6> run_seed = seed;
+    const auto each = [&](size_t first, std::span<PathPointCompensation> block) {
+      for (const PathPointCompensation& p : block)
+        if (p.ok) seed = p.theta_d;
+      editMillingTargets(r, frame, b + first, block);
+      if (sink) {
+        r.points_comp.assign(std::make_move_iterator(block.begin()),
+                             std::make_move_iterator(block.end()));
+        r.first = b + first;
+        sink(r);
+        r.points_comp.clear();
+      } else {
+        r.points_comp.insert(r.points_comp.end(), std::make_move_iterator(block.begin()),
+                             std::make_move_iterator(block.end()));
+      }
+    };
+    compensateMillingPath(m, whole ? r.points : points_copy, whole ? &r.cutting : &cutting,
+                          run_seed ? &*run_seed : nullptr, with_stock, each);
     b = e;
   }
+  r.first = 0;
 }
 
 }  // namespace
@@ -854,13 +894,20 @@ const MillingSpec& millOf(const MillingCompensationResult& r, std::size_t i) {
 MillingCompensationResult compensateMillingJob(const std::string& cell_path,
                                                const std::string& program_path, bool force,
                                                const MillingPathOptions& options) {
+  return compensateMillingJob(cell_path, program_path, force, options, nullptr);
+}
+
+MillingCompensationResult compensateMillingJob(const std::string& cell_path,
+                                               const std::string& program_path, bool force,
+                                               const MillingPathOptions& options,
+                                               const MillingPointsSink& sink) {
   MillingCompensationResult r;
   r.context = loadContext(cell_path, program_path, {}, false);
   postproc::Program& prog = *r.context.job.program;
   if (const auto note = checkNotCompensated(prog, force)) r.context.job.notes.push_back(*note);
   postproc::markCompensated(prog, markerText(r.context.cell, "milling path"));
   prog.position_min_decimals = 5;
-  std::vector<Pose> frame;  // T_W_frame per point
+  std::vector<const Pose*> frame;  // T_W_frame per point (the program's frame or the cell's)
   std::vector<MillingPathPoint> path;
   std::vector<int> motions;  // the motion of each point
   std::vector<bool> seen(prog.targets().size(), false);
@@ -875,10 +922,10 @@ MillingCompensationResult compensateMillingJob(const std::string& cell_path,
     seen[static_cast<size_t>(mo.target)] = true;
     const postproc::Frame* base =
         mo.base >= 0 ? &prog.frames[static_cast<size_t>(mo.base)] : nullptr;
-    const Pose T_W_frame = base && base->resolved ? base->pose : r.context.cell.T_base_wobj;
+    const Pose* T_W_frame = base && base->resolved ? &base->pose : &r.context.cell.T_base_wobj;
     r.targets.push_back(mo.target);
     frame.push_back(T_W_frame);
-    r.points.push_back(T_W_frame * postproc::targetPose(prog, t));
+    r.points.push_back(*T_W_frame * postproc::targetPose(prog, t));
     // on the part where the cell's <part_registration> found it, as a drilled hole is aimed
     if (r.context.cell.part_registration)
       r.points.back() = partMotion(r.context.cell) * r.points.back();
@@ -890,22 +937,8 @@ MillingCompensationResult compensateMillingJob(const std::string& cell_path,
                      "no linear path points (LIN/MoveL/L to Cartesian targets) in the program");
   }
   r.mill = millsOfPath(r.context.model.process, prog, motions);
-  compensateMillRuns(r, path, options);
-  for (size_t i = 0; i < r.points_comp.size(); ++i) {
-    const postproc::Target& t = prog.targets()[static_cast<size_t>(r.targets[i])];
-    const PathPointCompensation& p = r.points_comp[i];
-    if (!p.ok) {
-      r.failures.push_back("path point " + std::to_string(i + 1) + " (" +
-                           prog.files[static_cast<size_t>(t.file)].path + ":" +
-                           std::to_string(t.line) + "): not compensated: " + p.reason);
-      continue;
-    }
-    std::optional<postproc::Configuration> cfg;
-    if (t.config.present()) cfg = postproc::parseConfigurationText(p.config_text);
-    const postproc::EditResult er =
-        postproc::replaceTargetPose(prog, r.targets[i], frame[i].inverse() * p.T_programmed, cfg);
-    if (!er.ok) r.refused.push_back("path point " + std::to_string(i + 1) + ": " + er.reason);
-  }
+  std::vector<int>().swap(motions);
+  compensateMillRuns(r, path, frame, options, sink);
   return r;
 }
 

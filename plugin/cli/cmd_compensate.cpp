@@ -25,30 +25,28 @@
 namespace roprec::cli {
 namespace {
 
-/// The cutting points whose ap is above the chatter limit, one line each on stderr: 1 if any.
-int reportUnstable(CommandContext& ctx, const MillingCompensationResult& r) {
+/// The cutting points of the block r.points_comp whose ap is above the chatter limit, one line
+/// each into `lines`; returns how many.
+int unstablePoints(const MillingCompensationResult& r, std::string& lines) {
   int n = 0;
-  for (size_t i = 0; i < r.points_comp.size(); ++i) {
-    const PathPointCompensation& p = r.points_comp[i];
+  for (size_t i = r.first; i < r.first + r.points_comp.size(); ++i) {
+    const PathPointCompensation& p = r.point(i);
     const double ap = millOf(r, i).cut.ap;
     if (!p.unstable(ap)) continue;
     ++n;
     if (p.regenerativeUnstable(ap)) {
-      ctx.err << "roprec: path point " << i + 1 << ": chatter: ap " << formatNumber(ap * 1e3, 3)
-              << " mm > limit " << formatNumber(p.ap_limit * 1e3, 3) << " mm (chatter at "
-              << formatNumber(p.chatter_hz, 1) << " Hz)\n";
+      lines += "roprec: path point " + std::to_string(i + 1) + ": chatter: ap " +
+               formatNumber(ap * 1e3, 3) + " mm > limit " + formatNumber(p.ap_limit * 1e3, 3) +
+               " mm (chatter at " + formatNumber(p.chatter_hz, 1) + " Hz)\n";
     }
     if (p.modeCouplingUnstable(ap)) {
-      ctx.err << "roprec: path point " << i + 1 << ": mode-coupling chatter: ap "
-              << formatNumber(ap * 1e3, 3) << " mm > limit "
-              << formatNumber(p.mode_coupling_ap_limit * 1e3, 3) << " mm (at "
-              << formatNumber(p.mode_coupling_hz, 1) << " Hz)\n";
+      lines += "roprec: path point " + std::to_string(i + 1) + ": mode-coupling chatter: ap " +
+               formatNumber(ap * 1e3, 3) + " mm > limit " +
+               formatNumber(p.mode_coupling_ap_limit * 1e3, 3) + " mm (at " +
+               formatNumber(p.mode_coupling_hz, 1) + " Hz)\n";
     }
   }
-  if (n > 0)
-    ctx.err << "roprec: " << n << " cutting path points are above the chatter limit (outputs "
-            << "written; the static compensation does not remove chatter)\n";
-  return n > 0 ? 1 : 0;
+  return n;
 }
 
 CompensationOptions parseCompensationOptions(Args& args) {
@@ -151,8 +149,43 @@ std::vector<std::string> writeOutputsTogether(
   return written;
 }
 
+/// A temporary file that the report's table rows are spilled to while the path streams past
+/// (removed when closed).
+class RowSpill {
+ public:
+  RowSpill() : f_(std::tmpfile()) {
+    if (f_ == nullptr) throw InputError("", 0, "cannot create a temporary file for the report");
+  }
+  ~RowSpill() { std::fclose(f_); }
+  RowSpill(const RowSpill&) = delete;
+  RowSpill& operator=(const RowSpill&) = delete;
+  void write(std::string_view v) {
+    if (std::fwrite(v.data(), 1, v.size(), f_) != v.size())
+      throw InputError("", 0, "cannot write the report's temporary file");
+  }
+  /// Hands everything written, in order, to `sink`.
+  void replay(const api::ByteSink& sink) {
+    if (std::fflush(f_) != 0 || std::fseek(f_, 0, SEEK_SET) != 0)
+      throw InputError("", 0, "cannot read the report's temporary file");
+    std::string buf(std::size_t{64} * 1024, '\0');
+    std::size_t got = 0;
+    while ((got = std::fread(buf.data(), 1, buf.size(), f_)) > 0) sink({buf.data(), got});
+    if (std::ferror(f_) != 0) throw InputError("", 0, "cannot read the report's temporary file");
+  }
+
+ private:
+  std::FILE* f_;
+};
+
+/// Thrown out of the staged targets export when the job must write nothing (its temporary is
+/// removed).
+struct NothingWritten {};
+
 /// Milling: every linear path point of the program is compensated with the coupled force
-/// iteration (compensator/compensation/milling_compensation.hpp).
+/// iteration (compensator/compensation/milling_compensation.hpp). The points stream past block by
+/// block: the --targets export is written as they come, the report's rows are spilled to a
+/// temporary file and only its plots' few numbers per point are kept (constant memory in the
+/// number of points but for the program itself).
 int runMillingPath(CommandContext& ctx, const std::string& cell, const std::string& program,
                    const std::string& out, const std::optional<std::string>& targets,
                    const std::optional<std::string>& report, bool force, int threads) {
@@ -160,11 +193,43 @@ int runMillingPath(CommandContext& ctx, const std::string& cell, const std::stri
   MillingPathOptions path;
   path.resolve_edges = false;
   path.threads = threads;
-  MillingCompensationResult r = compensateMillingJob(cell, program, force, path);
+  const bool csv = targets && targets->size() > 4 && targets->substr(targets->size() - 4) == ".csv";
+  MillingReportSummary sum;  // the report's plots (with --report) and the maxima
+  std::optional<RowSpill> spill;
+  if (report) spill.emplace();
+  std::string unstable_lines;
+  int unstable = 0;
+  std::optional<MillingCompensationResult> result;
+  const auto run = [&](MillingTargetsStream* targets_out) {
+    result =
+        compensateMillingJob(cell, program, force, path, [&](const MillingCompensationResult& blk) {
+          addMillingReportPoints(sum, blk);
+          if (!spill) sum.points.clear();  // only the maxima
+          unstable += unstablePoints(blk, unstable_lines);
+          if (!blk.failures.empty() || !blk.refused.empty()) return;  // nothing will be written
+          if (targets_out != nullptr) targets_out->points(blk);
+          if (spill) writeMillingReportRows(blk, [&](std::string_view v) { spill->write(v); });
+        });
+    if (!result->failures.empty() || !result->refused.empty()) throw NothingWritten{};
+  };
+  try {
+    if (targets) {
+      writeFileAtomicStream(*targets, [&](const ByteWriter& write) {
+        MillingTargetsStream t(csv, program, write);
+        run(&t);
+        t.finish(*result);
+      });
+    } else {
+      run(nullptr);
+    }
+  } catch (const NothingWritten&) {
+  }
+  MillingCompensationResult& r = *result;
+  const size_t points = result->points.size();
   printJobNotes(ctx, r.context.job.notes);
   for (const auto& f : r.failures) ctx.err << "roprec: " << f << "\n";
   if (!r.failures.empty()) {
-    ctx.err << "roprec: " << r.failures.size() << " of " << r.points_comp.size()
+    ctx.err << "roprec: " << r.failures.size() << " of " << points
             << " path points could not be compensated; nothing written\n";
     return 1;
   }
@@ -182,42 +247,31 @@ int runMillingPath(CommandContext& ctx, const std::string& cell, const std::stri
   outs.insert(outs.end(), extra.begin(), extra.end());
   std::sort(outs.begin(), outs.end());
   const bool distinct = std::adjacent_find(outs.begin(), outs.end()) == outs.end();
-  const bool csv = targets && targets->size() > 4 && targets->substr(targets->size() - 4) == ".csv";
-  auto writeTargets = [&] {  // written point by point into its staged file
-    writeFileAtomicStream(
-        *targets, [&](const ByteWriter& write) { writeMillingTargets(r, program, csv, write); });
-  };
-  auto writeReport = [&] {  // written point by point into its staged file
+  auto writeReport = [&] {  // the plots from the summary, the rows from the spill
     writeFileAtomicStream(*report, [&](const ByteWriter& write) {
-      writeMillingCompensationReport(r, program, write);
+      writeMillingReport(
+          sum, r, program, [&](const api::ByteSink& sink) { spill->replay(sink); }, write);
     });
   };
   std::vector<std::string> written = writeOutputsTogether(
-      threads, distinct, [&] { return writeCompensatedProgram(r.context, out, {}); },
-      targets ? std::function<void()>(writeTargets) : nullptr,
+      threads, distinct, [&] { return writeCompensatedProgram(r.context, out, {}); }, nullptr,
       report ? std::function<void()>(writeReport) : nullptr);
   if (targets) written.push_back(*targets);
   if (report) written.push_back(*report);
   if (!ctx.quiet) {
-    double before = 0;
-    double after = 0;
-    double wall_before = 0;  // the largest |surface error normal to the wall|
-    double wall_after = 0;
-    for (const auto& p : r.points_comp) {
-      before = std::max(before, p.deviation_before.norm());
-      after = std::max(after, p.residual.norm());
-      wall_before = std::max(wall_before, std::abs(p.surface_error_before));
-      wall_after = std::max(wall_after, std::abs(p.surface_error));
-    }
-    ctx.out << "roprec compensate (milling path): " << r.points_comp.size()
-            << " path points compensated\n";
-    ctx.out << "  deviation before (coupled force) max " << formatNumber(before * 1e6, 3)
-            << " µm; predicted residual max " << formatNumber(after * 1e6, 4) << " µm\n";
-    ctx.out << "  surface error normal to the wall max " << formatNumber(wall_before * 1e6, 3)
-            << " µm before; " << formatNumber(wall_after * 1e6, 4) << " µm compensated\n";
+    ctx.out << "roprec compensate (milling path): " << points << " path points compensated\n";
+    ctx.out << "  deviation before (coupled force) max " << formatNumber(sum.before * 1e6, 3)
+            << " µm; predicted residual max " << formatNumber(sum.after * 1e6, 4) << " µm\n";
+    ctx.out << "  surface error normal to the wall max " << formatNumber(sum.wall_before * 1e6, 3)
+            << " µm before; " << formatNumber(sum.wall_after * 1e6, 4) << " µm compensated\n";
     for (const auto& pth : written) ctx.out << "  wrote " << pth << "\n";
   }
-  return reportUnstable(ctx, r);
+  ctx.err << unstable_lines;
+  if (unstable > 0)
+    ctx.err << "roprec: " << unstable
+            << " cutting path points are above the chatter limit (outputs "
+            << "written; the static compensation does not remove chatter)\n";
+  return unstable > 0 ? 1 : 0;
 }
 
 std::string stat(std::vector<double> v) {

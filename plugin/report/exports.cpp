@@ -803,7 +803,7 @@ namespace {
 /// Path point i of the milling export as a JSON object.
 Json millingPointJson(const MillingCompensationResult& r, size_t i) {
   const PredictionContext& c = r.context;
-  const PathPointCompensation& p = r.points_comp[i];
+  const PathPointCompensation& p = r.point(i);
   Json j = Json::object();
   j.set("point", Json::integer(static_cast<std::int64_t>(i + 1)));
   j.set("ok", Json::boolean(p.ok));
@@ -859,7 +859,7 @@ Json millingPointJson(const MillingCompensationResult& r, size_t i) {
 
 /// The CSV row of path point i.
 void millingPointCsv(const MillingCompensationResult& r, size_t i, std::string& s) {
-  const PathPointCompensation& p = r.points_comp[i];
+  const PathPointCompensation& p = r.point(i);
   const postproc::Target& t = r.context.job.program->targets()[static_cast<size_t>(r.targets[i])];
   s += std::to_string(i + 1);
   csvQuoted(s, t.name);
@@ -883,44 +883,67 @@ constexpr size_t kSinkPiece = 64 * 1024;
 
 }  // namespace
 
-void writeMillingTargets(const MillingCompensationResult& r, const std::string& program_path,
-                         bool csv, const ByteSink& sink) {
-  if (csv) {
-    std::string s =
-        "point,target,line,cutting,ok,x_mm,y_mm,z_mm,deviation_before_um,residual_um,"
-        "surface_error_before_um,surface_error_um,Fx_N,Fy_N,Fz_N,coupling,ap_limit_mm,"
-        "chatter_margin,reason\n";
-    for (size_t i = 0; i < r.points_comp.size(); ++i) {
-      millingPointCsv(r, i, s);
-      if (s.size() >= kSinkPiece) {
-        sink(s);
-        s.clear();
-      }
-    }
-    sink(s);
+MillingTargetsStream::MillingTargetsStream(bool csv, std::string program_path, ByteSink sink)
+    : csv_(csv), program_path_(std::move(program_path)), sink_(std::move(sink)) {}
+
+void MillingTargetsStream::begin(const MillingCompensationResult& r) {
+  begun_ = true;
+  if (csv_) {
+    s_ = "point,target,line,cutting,ok,x_mm,y_mm,z_mm,deviation_before_um,residual_um,"
+         "surface_error_before_um,surface_error_um,Fx_N,Fy_N,Fz_N,coupling,ap_limit_mm,"
+         "chatter_margin,reason\n";
     return;
   }
   const PredictionContext& c = r.context;
-  JsonWriter w;
-  w.beginObject();
-  jobIdentityJson(w, c, program_path);
-  w.key("process");
-  w.str(c.process_description);
-  w.key("points");
-  w.beginArray();
+  w_.beginObject();
+  jobIdentityJson(w_, c, program_path_);
+  w_.key("process");
+  w_.str(c.process_description);
+  w_.key("points");
+  w_.beginArray();
+}
+
+void MillingTargetsStream::points(const MillingCompensationResult& r) {
+  if (!begun_) begin(r);
+  const size_t end = r.first + r.points_comp.size();
   std::string piece;
-  for (size_t i = 0; i < r.points_comp.size(); ++i) {
-    w.value(millingPointJson(r, i));  // one point's tree at a time
-    if (w.out().size() >= kSinkPiece) {
-      w.take(piece);
-      sink(piece);
+  for (size_t i = r.first; i < end; ++i) {
+    if (csv_) {
+      millingPointCsv(r, i, s_);
+      if (s_.size() >= kSinkPiece) {
+        sink_(s_);
+        s_.clear();
+      }
+      continue;
+    }
+    w_.value(millingPointJson(r, i));  // one point's tree at a time
+    if (w_.out().size() >= kSinkPiece) {
+      w_.take(piece);
+      sink_(piece);
     }
   }
-  w.endArray();
-  w.endObject();
-  w.finish();
-  w.take(piece);
-  sink(piece);
+}
+
+void MillingTargetsStream::finish(const MillingCompensationResult& r) {
+  if (!begun_) begin(r);
+  if (csv_) {
+    sink_(s_);
+    s_.clear();
+    return;
+  }
+  w_.endArray();
+  w_.endObject();
+  w_.finish();
+  std::string piece;
+  w_.take(piece);
+  sink_(piece);
+}
+
+void writeMillingTargets(const MillingCompensationResult& r, const std::string& program_path,
+                         bool csv, const ByteSink& sink) {
+  MillingTargetsStream out(csv, program_path, sink);
+  out.points(r);
+  out.finish(r);
 }
 
 std::string millingTargetsCsv(const MillingCompensationResult& r) {

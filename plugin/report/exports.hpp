@@ -121,5 +121,22 @@ std::string millingTargetsCsv(const MillingCompensationResult& r);
 /// about 64 KiB: no whole-document tree or string.
 void writeMillingTargets(const MillingCompensationResult& r, const std::string& program_path,
                          bool csv, const ByteSink& sink);
+/// The same bytes written as the points come (compensateMillingJob's MillingPointsSink): points()
+/// for every block (r.points_comp; the first call writes the head), then finish().
+class MillingTargetsStream {
+ public:
+  MillingTargetsStream(bool csv, std::string program_path, ByteSink sink);
+  void points(const MillingCompensationResult& r);
+  void finish(const MillingCompensationResult& r);
+
+ private:
+  void begin(const MillingCompensationResult& r);
+  bool csv_;
+  std::string program_path_;
+  ByteSink sink_;
+  JsonWriter w_;
+  std::string s_;  ///< CSV text not yet handed to the sink
+  bool begun_{false};
+};
 
 }  // namespace roprec::api

@@ -29,10 +29,10 @@ void flush(std::string& s, const ByteSink& sink, bool all = false) {
 }
 
 /// |deviation before| and |residual after| (µm) along the path as two polylines.
-void pathPlot(const MillingCompensationResult& r, std::string& s, const ByteSink& sink) {
-  const std::size_t n = r.points_comp.size();
+void pathPlot(const MillingReportSummary& sum, std::string& s, const ByteSink& sink) {
+  const std::size_t n = sum.points.size();
   double top = 1.0;
-  for (const auto& p : r.points_comp) top = std::max(top, p.deviation_before.norm() * 1e6);
+  for (const auto& p : sum.points) top = std::max(top, p.before_um);
   const double w = 760;
   const double h = 220;
   const double x0 = 60;
@@ -56,26 +56,28 @@ void pathPlot(const MillingCompensationResult& r, std::string& s, const ByteSink
     s += std::string("<polyline fill=\"none\" stroke=\"") + colour +
          "\" stroke-width=\"1.5\" points=\"";
     for (std::size_t i = 0; i < n; ++i) {
-      s += num(px(i), 1, "x") + "," + num(py(micrometres(r.points_comp[i])), 1, what) + " ";
+      s += num(px(i), 1, "x") + "," + num(py(micrometres(sum.points[i])), 1, what) + " ";
       flush(s, sink);
     }
     s += "\"/>\n";
   };
   polyline("#c0392b", "deviation",
-           [](const PathPointCompensation& p) { return p.deviation_before.norm() * 1e6; });
+           [](const MillingReportSummary::Point& p) { return p.before_um; });
   polyline("#1e7b34", "residual",
-           [](const PathPointCompensation& p) { return p.residual.norm() * 1e6; });
+           [](const MillingReportSummary::Point& p) { return p.residual_um; });
   s += "<text x=\"" + num(x0 + 10, 0, "") + "\" y=\"" + num(y0 + 14, 0, "") +
        "\" font-size=\"12\" fill=\"#c0392b\">|deviation| before (coupled force)</text>\n";
   s += "<text x=\"" + num(x0 + 260, 0, "") + "\" y=\"" + num(y0 + 14, 0, "") +
        "\" font-size=\"12\" fill=\"#1e7b34\">|residual| after compensation</text>\n</svg>\n";
 }
 
+constexpr double kMarginTop = 5.0;  ///< the margin plot's clip
+
 /// The chatter margin ap_limit/ap of the cutting points along the path (1 = the limit), clipped at
 /// 5; points without a bounded limit at the top.
-void marginPlot(const MillingCompensationResult& r, std::string& out, const ByteSink& sink) {
-  const std::size_t n = r.points_comp.size();
-  const double top = 5.0;
+void marginPlot(const MillingReportSummary& sum, std::string& out, const ByteSink& sink) {
+  const std::size_t n = sum.points.size();
+  const double top = kMarginTop;
   const double w = 760;
   const double h = 160;
   const double x0 = 60;
@@ -95,12 +97,10 @@ void marginPlot(const MillingCompensationResult& r, std::string& out, const Byte
        "\" font-size=\"12\">chatter margin ap_limit / ap per cutting point (below 1: "
        "chatter; clipped at 5)</text>\n";
   for (std::size_t i = 0; i < n; ++i) {
-    const PathPointCompensation& p = r.points_comp[i];
-    if (!p.cutting || !p.stability_checked) continue;
-    const double ap = millOf(r, i).cut.ap;
-    const double margin = p.stability_bounded ? p.ap_limit / ap : top;
-    s += "<circle cx=\"" + num(px(i), 1, "x") + "\" cy=\"" + num(py(margin), 1, "margin") +
-         "\" r=\"3\" fill=\"" + (p.unstable(ap) ? "#c0392b" : "#1e7b34") + "\"/>\n";
+    const MillingReportSummary::Point& p = sum.points[i];
+    if (!p.checked) continue;
+    s += "<circle cx=\"" + num(px(i), 1, "x") + "\" cy=\"" + num(py(p.margin), 1, "margin") +
+         "\" r=\"3\" fill=\"" + (p.unstable ? "#c0392b" : "#1e7b34") + "\"/>\n";
     flush(s, sink);
   }
   s += "</svg>\n";
@@ -108,14 +108,14 @@ void marginPlot(const MillingCompensationResult& r, std::string& out, const Byte
 
 /// The chatter margin cell: limit/ap, "—" when not cutting or not checked, "∞" when unbounded.
 std::string margin(const MillingCompensationResult& r, std::size_t i) {
-  const PathPointCompensation& p = r.points_comp[i];
+  const PathPointCompensation& p = r.point(i);
   if (!p.cutting || !p.stability_checked) return "—";
   if (!p.stability_bounded) return "∞";
   return num(p.ap_limit / millOf(r, i).cut.ap, 2, "margin");
 }
 
 std::string pointRow(const MillingCompensationResult& r, std::size_t i) {
-  const PathPointCompensation& p = r.points_comp[i];
+  const PathPointCompensation& p = r.point(i);
   const postproc::Target& t =
       r.context.job.program->targets()[static_cast<std::size_t>(r.targets[i])];
   const Vec3 b = p.deviation_before * 1e6;
@@ -136,21 +136,40 @@ std::string pointRow(const MillingCompensationResult& r, std::size_t i) {
 
 }  // namespace
 
-void writeMillingCompensationReport(const MillingCompensationResult& r,
-                                    const std::string& program_path, const ByteSink& sink) {
-  const PredictionContext& c = r.context;
-  double before = 0;
-  double after = 0;
-  double wall_before = 0;  // the largest |surface error normal to the wall|
-  double wall_after = 0;
-  int cutting = 0;
-  for (const auto& p : r.points_comp) {
-    before = std::max(before, p.deviation_before.norm());
-    after = std::max(after, p.residual.norm());
-    wall_before = std::max(wall_before, std::abs(p.surface_error_before));
-    wall_after = std::max(wall_after, std::abs(p.surface_error));
-    cutting += p.cutting ? 1 : 0;
+void addMillingReportPoints(MillingReportSummary& s, const MillingCompensationResult& r) {
+  for (std::size_t k = 0; k < r.points_comp.size(); ++k) {
+    const PathPointCompensation& p = r.points_comp[k];
+    s.before = std::max(s.before, p.deviation_before.norm());
+    s.after = std::max(s.after, p.residual.norm());
+    s.wall_before = std::max(s.wall_before, std::abs(p.surface_error_before));
+    s.wall_after = std::max(s.wall_after, std::abs(p.surface_error));
+    s.cutting += p.cutting ? 1 : 0;
+    MillingReportSummary::Point q;
+    q.before_um = p.deviation_before.norm() * 1e6;
+    q.residual_um = p.residual.norm() * 1e6;
+    q.checked = p.cutting && p.stability_checked;
+    if (q.checked) {
+      const double ap = millOf(r, r.first + k).cut.ap;
+      q.margin = p.stability_bounded ? p.ap_limit / ap : kMarginTop;
+      q.unstable = p.unstable(ap);
+    }
+    s.points.push_back(q);
   }
+}
+
+void writeMillingReportRows(const MillingCompensationResult& r, const ByteSink& sink) {
+  std::string s;
+  for (std::size_t i = r.first; i < r.first + r.points_comp.size(); ++i) {
+    s += pointRow(r, i);
+    flush(s, sink);
+  }
+  flush(s, sink, true);
+}
+
+void writeMillingReport(const MillingReportSummary& sum, const MillingCompensationResult& r,
+                        const std::string& program_path,
+                        const std::function<void(const ByteSink&)>& rows, const ByteSink& sink) {
+  const PredictionContext& c = r.context;
   std::string s =
       "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>roprec milling "
       "compensation — " +
@@ -163,29 +182,35 @@ void writeMillingCompensationReport(const MillingCompensationResult& r,
   s += "<h1>Milling path compensation</h1>\n<p>program <b>" + esc(program_path) + "</b>, cell <b>" +
        esc(c.cell.name) + "</b>, robot <b>" + esc(c.robot.card.name) +
        "</b><br>process: " + esc(c.process_description) + "</p>\n";
-  s += "<p>" + std::to_string(r.points_comp.size()) + " linear path points, " +
-       std::to_string(cutting) + " cutting; deviation before (coupled force) max <b>" +
-       num(before * 1e6, 2, "deviation") + " µm</b>; predicted residual after max <b>" +
-       num(after * 1e6, 4, "residual") + " µm</b>; surface error normal to the wall max <b>" +
-       num(wall_before * 1e6, 2, "surface error") + " µm</b> before, <b>" +
-       num(wall_after * 1e6, 4, "surface error") + " µm</b> compensated.</p>\n";
+  s += "<p>" + std::to_string(sum.points.size()) + " linear path points, " +
+       std::to_string(sum.cutting) + " cutting; deviation before (coupled force) max <b>" +
+       num(sum.before * 1e6, 2, "deviation") + " µm</b>; predicted residual after max <b>" +
+       num(sum.after * 1e6, 4, "residual") + " µm</b>; surface error normal to the wall max <b>" +
+       num(sum.wall_before * 1e6, 2, "surface error") + " µm</b> before, <b>" +
+       num(sum.wall_after * 1e6, 4, "surface error") + " µm</b> compensated.</p>\n";
   for (const auto& n : c.job.notes) s += "<p class=\"note\">note: " + esc(n) + "</p>\n";
-  pathPlot(r, s, sink);
-  marginPlot(r, s, sink);
+  pathPlot(sum, s, sink);
+  marginPlot(sum, s, sink);
   s += "<table>\n<tr><th>point</th><th>target</th><th>line</th><th>cuts</th><th>why</th>"
        "<th>|F| [N]</th><th>δx before [µm]</th><th>δy before [µm]</th><th>δz before [µm]</th>"
        "<th>|δ| before [µm]</th><th>|residual| after [µm]</th><th>coupling</th><th>iterations</th>"
        "<th>loop gain</th><th>chatter margin</th><th>configuration</th><th>status</th>"
        "<th>wall error before [µm]</th><th>wall error after [µm]</th></tr>\n";
-  for (std::size_t i = 0; i < r.points_comp.size(); ++i) {
-    s += pointRow(r, i);
-    flush(s, sink);
-  }
+  flush(s, sink, true);
+  rows(sink);
   s += "</table>\n<p>Deviations in the robot base frame; the force in the milling frame; the wall "
        "error is the deviation normal to the wall, + into the material. "
        "roprec " +
        std::string(version()) + "</p>\n</body></html>\n";
   flush(s, sink, true);
+}
+
+void writeMillingCompensationReport(const MillingCompensationResult& r,
+                                    const std::string& program_path, const ByteSink& sink) {
+  MillingReportSummary sum;
+  addMillingReportPoints(sum, r);
+  writeMillingReport(
+      sum, r, program_path, [&r](const ByteSink& out) { writeMillingReportRows(r, out); }, sink);
 }
 
 std::string millingCompensationReport(const MillingCompensationResult& r,
