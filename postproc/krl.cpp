@@ -84,6 +84,222 @@ int sigDigits(std::string_view s) {
   return n;
 }
 
+// The aggregate at c ('{'), its components appended to `comps` (a nested aggregate's own
+// components are dropped again); Aggregate::comps is left to the caller. Reads only the tokens
+// and bytes of c's file, so the reader and the read-ahead of a window (KrlStream::lexWindow)
+// give the same aggregate. Throws InputError (failAt) where the reader stops.
+Aggregate readComponents(TokenCursor& c, std::vector<Component>& comps) {
+  const SourceFile& f = c.file();
+  Aggregate a;
+  const Token& open = c.next();  // '{'
+  a.open = open.offset;
+  if (c.isKind(TokenKind::kIdentifier) && c.isPunct(':', 1)) {
+    a.type = c.text();
+    c.next();
+    c.next();
+  }
+  while (true) {
+    if (c.done() || c.isKind(TokenKind::kNewline) || c.isKind(TokenKind::kComment)) {
+      failAt(f, open.offset, "unterminated aggregate (missing '}')");
+    }
+    if (c.isPunct('}')) {
+      a.close = c.next().offset;
+      return a;
+    }
+    if (c.isPunct(',')) {
+      c.next();
+      continue;
+    }
+    Component comp;
+    if (!c.isKind(TokenKind::kIdentifier))
+      failAt(f, c.peek().offset, "expected a component name in aggregate");
+    comp.name = c.text();
+    c.next();
+    if (c.isPunct('[')) {  // POINT2[]
+      while (!c.done() && !c.isPunct(']') && !c.isKind(TokenKind::kNewline)) c.next();
+      if (c.isPunct(']')) c.next();
+    }
+    if (c.isPunct('{')) {
+      const std::size_t mark = comps.size();
+      const Aggregate nested = readComponents(c, comps);
+      comps.resize(mark);
+      comp.kind = Component::kNested;
+      comp.begin = nested.open;
+      comp.end = nested.close + 1;
+      comps.push_back(comp);
+      continue;
+    }
+    const std::size_t start = c.index();
+    while (!c.done() && !c.isPunct(',') && !c.isPunct('}') && !c.isKind(TokenKind::kNewline) &&
+           !c.isKind(TokenKind::kComment)) {
+      c.next();
+    }
+    const std::size_t stop = c.index();
+    if (stop == start)
+      failAt(f, c.peek().offset, "component " + upper(comp.name) + " has no value");
+    const Token& t0 = f.tokens[start];
+    const Token& tl = f.tokens[stop - 1];
+    comp.begin = t0.offset;
+    comp.end = tl.offset + tl.length;
+    const bool signed_start =
+        t0.kind == TokenKind::kPunct && (f.bytes[t0.offset] == '-' || f.bytes[t0.offset] == '+');
+    if (t0.kind == TokenKind::kNumber || signed_start) {
+      const bool one =
+          (stop - start == 1 && !signed_start) ||
+          (stop - start == 2 && signed_start && f.tokens[start + 1].kind == TokenKind::kNumber);
+      const std::string_view txt =
+          std::string_view(f.bytes).substr(comp.begin, comp.end - comp.begin);
+      if (!one)
+        failAt(f, comp.begin,
+               "broken number '" + std::string(txt) + "' in component " + upper(comp.name));
+      const auto v = parseNumber(txt);
+      if (!v) failAt(f, comp.begin, "broken number '" + std::string(txt) + "'");
+      comp.kind = Component::kNumber;
+      comp.value = *v;
+    } else if (t0.kind == TokenKind::kString) {
+      const std::string_view s = f.text(t0);
+      if (s.size() < 2 || s.back() != s.front()) failAt(f, t0.offset, "unterminated string");
+      comp.kind = Component::kString;
+      if (const auto v = parseKrlLiteralInt(s)) {
+        comp.kind = Component::kLiteral;
+        comp.value = *v;
+      }
+    } else {
+      comp.kind = Component::kOther;
+    }
+    comps.push_back(comp);
+  }
+}
+
+bool isApprox(std::string_view w) {
+  return iequals(w, "C_DIS") || iequals(w, "C_PTP") || iequals(w, "C_VEL") || iequals(w, "C_ORI") ||
+         iequals(w, "C_SPL");
+}
+
+bool isMotionKeyword(std::string_view w) {
+  static constexpr std::string_view kw[] = {
+      "PTP",     "LIN",      "CIRC",     "SPTP",     "SLIN",      "SCIRC", "PTP_REL",
+      "LIN_REL", "CIRC_REL", "SPTP_REL", "SLIN_REL", "SCIRC_REL", "SPL"};
+  for (const std::string_view k : kw) {
+    if (iequals(w, k)) return true;
+  }
+  return false;
+}
+
+// A motion's target expressions, tokens [from, e) of f after its keyword: split into `exprs` at
+// top-level ',' up to an approximation/WITH/CA/# keyword, whose token index it returns (e when
+// there is none).
+std::size_t splitTargets(const SourceFile& f, std::size_t from, std::size_t e,
+                         std::vector<std::pair<std::size_t, std::size_t>>& exprs) {
+  exprs.clear();
+  std::size_t start = from;
+  int depth = 0;
+  std::size_t k = from;
+  for (; k < e; ++k) {
+    const Token& t = f.tokens[k];
+    const std::string_view tx = f.text(t);
+    if (t.kind == TokenKind::kPunct && (is1(tx, '{') || is1(tx, '(') || is1(tx, '['))) ++depth;
+    if (t.kind == TokenKind::kPunct && (is1(tx, '}') || is1(tx, ')') || is1(tx, ']'))) --depth;
+    if (depth > 0) continue;
+    if (t.kind == TokenKind::kPunct && is1(tx, ',')) {
+      exprs.emplace_back(start, k);
+      start = k + 1;
+      continue;
+    }
+    if (t.kind == TokenKind::kIdentifier &&
+        (isApprox(tx) || iequals(tx, "WITH") || iequals(tx, "CA")))
+      break;
+    if (t.kind == TokenKind::kPunct && is1(tx, '#')) break;
+  }
+  exprs.emplace_back(start, k);
+  return k;
+}
+
+}  // namespace
+
+/// A target aggregate of a motion line parsed ahead: tokens [open_token, expr_end) are the
+/// target expression (splitTargets), the aggregate ends before token `after`; its components
+/// are comps[comp_begin, comp_end), their names (and its type) as offsets into the window.
+struct KrlAhead {
+  struct Aggregate {
+    std::uint32_t open_token{0};
+    std::uint32_t expr_end{0};
+    std::uint32_t after{0};
+    std::uint32_t comp_begin{0};
+    std::uint32_t comp_end{0};
+    std::uint32_t type_offset{0};
+    std::uint32_t type_length{0};
+    std::uint32_t open{0};
+    std::uint32_t close{0};
+  };
+  struct Component {
+    postproc::Component comp;  ///< its name left empty
+    std::uint32_t name_offset{0};
+    std::uint32_t name_length{0};
+  };
+  std::vector<Aggregate> aggregates;  ///< in token order
+  std::vector<Component> comps;
+};
+
+namespace {
+
+std::uint32_t offsetIn(const SourceFile& f, std::string_view s) {
+  return s.empty() ? 0 : static_cast<std::uint32_t>(s.data() - f.bytes.data());
+}
+
+// The target aggregates of the motion lines of a lexed window into `out`, each read by
+// readComponents over the tokens motion() gives it; one that does not read is left to the
+// reader (which then stops there with its error).
+void readAhead(const SourceFile& f, KrlAhead& out) {
+  std::vector<std::pair<std::size_t, std::size_t>> exprs;
+  std::vector<Component> comps;
+  const std::size_t n = f.tokens.size();
+  const auto ident = [&f](std::size_t k, std::string_view w) {
+    return f.tokens[k].kind == TokenKind::kIdentifier && iequals(f.text(f.tokens[k]), w);
+  };
+  for (std::size_t b = 0; b < n;) {
+    std::size_t j = b;
+    while (j < n && f.tokens[j].kind != TokenKind::kNewline) ++j;
+    std::size_t e = j;
+    while (e > b && f.tokens[e - 1].kind == TokenKind::kComment) --e;
+    std::size_t k = b < e && ident(b, "GLOBAL") ? b + 1 : b;
+    if (k < e && f.tokens[k].kind == TokenKind::kIdentifier &&
+        isMotionKeyword(f.text(f.tokens[k]))) {
+      splitTargets(f, k + 1, e, exprs);
+      for (const auto& [x0, x1] : exprs) {
+        if (x0 >= x1 || f.tokens[x0].kind != TokenKind::kPunct || f.text(f.tokens[x0]) != "{")
+          continue;
+        TokenCursor c(f, x0, x1);
+        comps.clear();
+        Aggregate a;
+        try {
+          a = readComponents(c, comps);
+        } catch (const InputError&) {
+          continue;
+        }
+        KrlAhead::Aggregate g;
+        g.open_token = static_cast<std::uint32_t>(x0);
+        g.expr_end = static_cast<std::uint32_t>(x1);
+        g.after = static_cast<std::uint32_t>(c.index());
+        g.comp_begin = static_cast<std::uint32_t>(out.comps.size());
+        for (const Component& comp : comps) {
+          KrlAhead::Component ac{comp, offsetIn(f, comp.name),
+                                 static_cast<std::uint32_t>(comp.name.size())};
+          ac.comp.name = {};
+          out.comps.push_back(ac);
+        }
+        g.comp_end = static_cast<std::uint32_t>(out.comps.size());
+        g.type_offset = offsetIn(f, a.type);
+        g.type_length = static_cast<std::uint32_t>(a.type.size());
+        g.open = a.open;
+        g.close = a.close;
+        out.aggregates.push_back(g);
+      }
+    }
+    b = j + 1;
+  }
+}
+
 /// The tokenizer options of KRL (`;` comments, `&` header lines, quoted literals).
 LexOptions krlLexOptions() {
   LexOptions o;
@@ -133,9 +349,12 @@ class KrlReader {
     forEachLine([&](std::size_t b, std::size_t e, std::size_t j) { srcLine(b, e, j); });
   }
   /// readSrcLines() over the window's tokens lexed already (KrlStream::lexWindow).
-  void readLexedSrcLines() {
+  void readLexedSrcLines(const KrlAhead* ahead) {
     file_ = 0;
+    ahead_ = ahead;
+    ahead_next_ = 0;
     forEachLexedLine([&](std::size_t b, std::size_t e, std::size_t j) { srcLine(b, e, j); });
+    ahead_ = nullptr;
   }
 
   /// After the .src's last line: its DEF ... END checked.
@@ -161,8 +380,9 @@ class KrlReader {
   // named frames too: found in targets_ and read back from the target (namedFrameIndex), so a
   // 100,000-point .dat keeps no second copy of its poses and no second table entry.
   NameMap<int> named_frames_;
-  std::vector<Component> comps_;  // parseAggregate's scratch (see Aggregate)
-  int aggregate_depth_{0};
+  std::vector<Component> comps_;    // parseAggregate's scratch (see Aggregate)
+  const KrlAhead* ahead_{nullptr};  // the window's aggregates read ahead (readLexedSrcLines)
+  std::size_t ahead_next_{0};       // the first of them not taken yet
   std::vector<Frame> frame_decls_;
   std::unordered_map<int, Frame> base_data_;
   std::unordered_map<int, Frame> tool_data_;
@@ -254,96 +474,36 @@ class KrlReader {
   }
 
   Aggregate parseAggregate(TokenCursor& c) {
-    if (aggregate_depth_ == 0) comps_.clear();
-    ++aggregate_depth_;
-    const std::size_t first = comps_.size();
-    Aggregate a = parseComponents(c);
-    --aggregate_depth_;
-    a.comps = std::span<const Component>(comps_).subspan(first);
+    comps_.clear();
+    Aggregate a = readComponents(c, comps_);
+    a.comps = comps_;
     return a;
   }
 
-  // Components into comps_ (a nested aggregate's own components are dropped again).
-  Aggregate parseComponents(TokenCursor& c) {
+  // parseAggregate(c) of a motion's target expression [c.index(), e): the aggregate read ahead
+  // there (readAhead: the same tokens read by the same readComponents) when there is one.
+  Aggregate targetAggregate(TokenCursor& c, std::size_t e) {
+    if (ahead_ == nullptr) return parseAggregate(c);
+    const std::vector<KrlAhead::Aggregate>& list = ahead_->aggregates;
+    while (ahead_next_ < list.size() && list[ahead_next_].open_token < c.index()) ++ahead_next_;
+    if (ahead_next_ == list.size() || list[ahead_next_].open_token != c.index() ||
+        list[ahead_next_].expr_end != e)
+      return parseAggregate(c);
+    const KrlAhead::Aggregate& g = list[ahead_next_++];
+    const std::string_view bytes = file().bytes;
+    comps_.clear();
+    for (std::size_t k = g.comp_begin; k < g.comp_end; ++k) {
+      const KrlAhead::Component& ac = ahead_->comps[k];
+      comps_.push_back(ac.comp);
+      comps_.back().name = bytes.substr(ac.name_offset, ac.name_length);
+    }
     Aggregate a;
-    const Token& open = c.next();  // '{'
-    a.open = open.offset;
-    if (c.isKind(TokenKind::kIdentifier) && c.isPunct(':', 1)) {
-      a.type = c.text();
-      c.next();
-      c.next();
-    }
-    while (true) {
-      if (c.done() || c.isKind(TokenKind::kNewline) || c.isKind(TokenKind::kComment)) {
-        fail(open.offset, "unterminated aggregate (missing '}')");
-      }
-      if (c.isPunct('}')) {
-        a.close = c.next().offset;
-        return a;
-      }
-      if (c.isPunct(',')) {
-        c.next();
-        continue;
-      }
-      Component comp;
-      if (!c.isKind(TokenKind::kIdentifier))
-        fail(c.peek().offset, "expected a component name in aggregate");
-      comp.name = c.text();
-      c.next();
-      if (c.isPunct('[')) {  // POINT2[]
-        while (!c.done() && !c.isPunct(']') && !c.isKind(TokenKind::kNewline)) c.next();
-        if (c.isPunct(']')) c.next();
-      }
-      if (c.isPunct('{')) {
-        const std::size_t mark = comps_.size();
-        const Aggregate nested = parseAggregate(c);
-        comps_.resize(mark);
-        comp.kind = Component::kNested;
-        comp.begin = nested.open;
-        comp.end = nested.close + 1;
-        comps_.push_back(comp);
-        continue;
-      }
-      const std::size_t start = c.index();
-      while (!c.done() && !c.isPunct(',') && !c.isPunct('}') && !c.isKind(TokenKind::kNewline) &&
-             !c.isKind(TokenKind::kComment)) {
-        c.next();
-      }
-      const std::size_t stop = c.index();
-      if (stop == start) fail(c.peek().offset, "component " + upper(comp.name) + " has no value");
-      const SourceFile& f = file();
-      const Token& t0 = f.tokens[start];
-      const Token& tl = f.tokens[stop - 1];
-      comp.begin = t0.offset;
-      comp.end = tl.offset + tl.length;
-      const bool signed_start =
-          t0.kind == TokenKind::kPunct && (f.bytes[t0.offset] == '-' || f.bytes[t0.offset] == '+');
-      if (t0.kind == TokenKind::kNumber || signed_start) {
-        const bool one =
-            (stop - start == 1 && !signed_start) ||
-            (stop - start == 2 && signed_start && f.tokens[start + 1].kind == TokenKind::kNumber);
-        const std::string_view txt =
-            std::string_view(f.bytes).substr(comp.begin, comp.end - comp.begin);
-        if (!one)
-          fail(comp.begin,
-               "broken number '" + std::string(txt) + "' in component " + upper(comp.name));
-        const auto v = parseNumber(txt);
-        if (!v) fail(comp.begin, "broken number '" + std::string(txt) + "'");
-        comp.kind = Component::kNumber;
-        comp.value = *v;
-      } else if (t0.kind == TokenKind::kString) {
-        const std::string_view s = f.text(t0);
-        if (s.size() < 2 || s.back() != s.front()) fail(t0.offset, "unterminated string");
-        comp.kind = Component::kString;
-        if (const auto v = parseKrlLiteralInt(s)) {
-          comp.kind = Component::kLiteral;
-          comp.value = *v;
-        }
-      } else {
-        comp.kind = Component::kOther;
-      }
-      comps_.push_back(comp);
-    }
+    a.type = bytes.substr(g.type_offset, g.type_length);
+    a.open = g.open;
+    a.close = g.close;
+    a.comps = comps_;
+    c.seek(g.after);
+    return a;
   }
 
   NumberField field(const Component& c) const {
@@ -665,11 +825,6 @@ class KrlReader {
 
   void addMarker(const std::string& m) { p_.addMarker(m); }
 
-  static bool isApprox(std::string_view w) {
-    return iequals(w, "C_DIS") || iequals(w, "C_PTP") || iequals(w, "C_VEL") ||
-           iequals(w, "C_ORI") || iequals(w, "C_SPL");
-  }
-
   // Resolves one target expression [b, e) of a motion; returns the target index or -1.
   int motionTarget(std::size_t b, std::size_t e, Motion& m, bool relative) {
     const SourceFile& f = file();
@@ -681,7 +836,7 @@ class KrlReader {
     const std::string_view text = std::string_view(f.bytes).substr(s, en - s);
     if (!c.isPunct('{')) m.target_text = p_.addUniqueText(text);  // literal targets: the text
     if (c.isPunct('{')) {
-      const Aggregate a = parseAggregate(c);
+      const Aggregate a = targetAggregate(c, e);
       if (!c.done() || relative) {
         m.derivation = relative ? m.instruction : p_.addText(":");
         m.target_text = p_.addUniqueText(text);
@@ -755,29 +910,8 @@ class KrlReader {
       m.type = MotionType::kLinear;
     }
     m.config_honoured = m.type == MotionType::kJoint;
-    // split target expressions at top-level ',' until an approximation/WITH/CA/# keyword
     std::vector<std::pair<std::size_t, std::size_t>>& exprs = exprs_;
-    exprs.clear();
-    std::size_t start = c.index();
-    int depth = 0;
-    std::size_t k = c.index();
-    for (; k < e; ++k) {
-      const Token& t = f.tokens[k];
-      const std::string_view tx = f.text(t);
-      if (t.kind == TokenKind::kPunct && (is1(tx, '{') || is1(tx, '(') || is1(tx, '['))) ++depth;
-      if (t.kind == TokenKind::kPunct && (is1(tx, '}') || is1(tx, ')') || is1(tx, ']'))) --depth;
-      if (depth > 0) continue;
-      if (t.kind == TokenKind::kPunct && is1(tx, ',')) {
-        exprs.emplace_back(start, k);
-        start = k + 1;
-        continue;
-      }
-      if (t.kind == TokenKind::kIdentifier &&
-          (isApprox(tx) || iequals(tx, "WITH") || iequals(tx, "CA")))
-        break;
-      if (t.kind == TokenKind::kPunct && is1(tx, '#')) break;
-    }
-    exprs.emplace_back(start, k);
+    const std::size_t k = splitTargets(f, c.index(), e, exprs);
     if (m.type == MotionType::kCircular && exprs.size() >= 2) {
       Motion aux_dummy = m;
       m.aux = motionTarget(exprs[0].first, exprs[0].second, aux_dummy, relative);
@@ -878,16 +1012,6 @@ class KrlReader {
                                           : std::string("the motion")) +
                          " would not move); hint: a path velocity is > 0 m/s, e.g. $VEL.CP = 0.02 "
                          "for a 20 mm/s feed");
-  }
-
-  static bool isMotionKeyword(std::string_view w) {
-    static constexpr std::string_view kw[] = {
-        "PTP",     "LIN",      "CIRC",     "SPTP",     "SLIN",      "SCIRC", "PTP_REL",
-        "LIN_REL", "CIRC_REL", "SPTP_REL", "SLIN_REL", "SCIRC_REL", "SPL"};
-    for (const std::string_view k : kw) {
-      if (iequals(w, k)) return true;
-    }
-    return false;
   }
 
   void statement(std::size_t b, std::size_t e) {
@@ -1070,13 +1194,17 @@ struct KrlStream::Reader : KrlReader {
 KrlStream::KrlStream(Program& p) : r_(std::make_unique<Reader>(p)) { r_->start(false); }
 KrlStream::~KrlStream() = default;
 void KrlStream::lines() { r_->readSrcLines(); }
-void KrlStream::lexedLines() { r_->readLexedSrcLines(); }
-void KrlStream::lexWindow(SourceFile& f) {
+void KrlStream::lexedLines(const KrlAhead* ahead) { r_->readLexedSrcLines(ahead); }
+std::shared_ptr<const KrlAhead> KrlStream::lexWindow(SourceFile& f) {
   const LexOptions o = krlLexOptions();
   f.tokens.clear();
   f.tokens.reserve(f.bytes.size() / 3 + 16);
   for (std::size_t pos = 0; pos < f.bytes.size();) pos = lexLine(f, o, pos, f.tokens);
+  auto ahead = std::make_shared<KrlAhead>();
+  readAhead(f, *ahead);
+  return ahead;
 }
+std::size_t aggregatesReadAhead(const KrlAhead& a) { return a.aggregates.size(); }
 void KrlStream::finish() { r_->finish(); }
 int KrlStream::heldMotion() const { return r_->heldMotion(); }
 void KrlStream::retired(std::size_t m) { r_->retired(m); }

@@ -103,13 +103,14 @@ void ProgramStream::installWindow(SourceFile&& w) {
 
 void ProgramStream::startAhead() {
   ahead_ = std::async(std::launch::async, [this] {
-    SourceFile w;
+    Ahead a;
+    SourceFile& w = a.file;
     readWindowBytes(w.bytes);
-    if (w.bytes.empty()) return w;
+    if (w.bytes.empty()) return a;
     w.indexLines();
     w.bom = false;  // not the file's first bytes
-    KrlStream::lexWindow(w);
-    return w;
+    a.read = KrlStream::lexWindow(w);
+    return a;
   });
 }
 
@@ -157,14 +158,16 @@ bool ProgramStream::next() {
   }
   bool more = true;
   bool lexed = false;
-  if (pending_) {  // the constructor's window
+  std::shared_ptr<const KrlAhead> read;  // what the read-ahead read of the window
+  if (pending_) {                        // the constructor's window
     pending_ = false;
   } else if (read_ahead_) {
     more = ahead_.valid();  // none after the window that ended the file
     if (more) {
-      SourceFile w = ahead_.get();  // its read error, where readWindow() would throw it
-      more = lexed = !w.bytes.empty();
-      if (more) installWindow(std::move(w));
+      Ahead w = ahead_.get();  // its read error, where readWindow() would throw it
+      more = lexed = !w.file.bytes.empty();
+      if (more) installWindow(std::move(w.file));
+      read = std::move(w.read);
     }
   } else {
     more = readWindow();
@@ -178,7 +181,7 @@ bool ProgramStream::next() {
   }
   if (read_ahead_ && !eof_) startAhead();  // the window after, while this one is read
   if (lexed) {
-    krl_->lexedLines();
+    krl_->lexedLines(read.get());
   } else {
     krl_->lines();
   }

@@ -30,6 +30,7 @@ namespace roprec::postproc {
 
 class KrlStream;
 class HoleRecognizer;
+struct KrlAhead;
 
 /// What retire() dropped: motions [0, motions) and targets [target_begin, target_end) of the
 /// window; the indices after them shift down by as many.
@@ -68,6 +69,11 @@ class ProgramStream {
   bool readWindow();
   /// The next window's bytes of whole lines into `buf` (empty at the end of the file).
   void readWindowBytes(std::string& buf);
+  /// A window read, indexed and lexed ahead, with what KrlStream::lexWindow read of it.
+  struct Ahead {
+    SourceFile file;
+    std::shared_ptr<const KrlAhead> read;
+  };
   /// Makes `w` (the bytes, line index and tokens of the window after the last one) p_.files[0].
   void installWindow(SourceFile&& w);
   /// Starts reading, indexing and lexing the next window on a task of its own (read_ahead).
@@ -88,7 +94,7 @@ class ProgramStream {
   std::size_t pinned_{0};  ///< targets that always stay (the .dat's)
   std::exception_ptr range_error_;
   bool read_ahead_{false};
-  std::future<SourceFile> ahead_;  ///< the next window (read_ahead); last: joined first
+  std::future<Ahead> ahead_;  ///< the next window (read_ahead); last: joined first
 };
 
 }  // namespace roprec::postproc
