@@ -44,9 +44,10 @@ class KrlStream {
   void lexedLines(const KrlAhead* ahead = nullptr);
   void finish();
   /// Lexes a window of whole lines of a .src (not its first: no byte-order mark) into f.tokens
-  /// as lines() would, line after line, and parses the target aggregates of its motion lines:
-  /// lexedLines() then reads them (this may run on another thread, ahead of the reader).
-  static std::shared_ptr<const KrlAhead> lexWindow(SourceFile& f);
+  /// as lines() would, line after line, and parses the target aggregates of its motion lines
+  /// into `ahead` (made when null, else refilled: its memory is reused): lexedLines() then
+  /// reads them (this may run on another thread, ahead of the reader).
+  static void lexWindow(SourceFile& f, std::shared_ptr<KrlAhead>& ahead);
   /// The motion the reader may still change (the last segment of a SPLINE block being read),
   /// -1 when none: motions from it on may not be retired.
   [[nodiscard]] int heldMotion() const;

@@ -172,18 +172,26 @@ Aggregate readComponents(TokenCursor& c, std::vector<Component>& comps) {
 }
 
 bool isApprox(std::string_view w) {
-  return iequals(w, "C_DIS") || iequals(w, "C_PTP") || iequals(w, "C_VEL") || iequals(w, "C_ORI") ||
-         iequals(w, "C_SPL");
+  return w.size() == 5 && (iequals(w, "C_DIS") || iequals(w, "C_PTP") || iequals(w, "C_VEL") ||
+                           iequals(w, "C_ORI") || iequals(w, "C_SPL"));
 }
 
 bool isMotionKeyword(std::string_view w) {
   static constexpr std::string_view kw[] = {
       "PTP",     "LIN",      "CIRC",     "SPTP",     "SLIN",      "SCIRC", "PTP_REL",
       "LIN_REL", "CIRC_REL", "SPTP_REL", "SLIN_REL", "SCIRC_REL", "SPL"};
+  if (w.size() < 3 || w.size() > 9) return false;
+  const char c = asciiUpper(w[0]);  // most other lines start with none of these letters
+  if (c != 'P' && c != 'L' && c != 'C' && c != 'S') return false;
   for (const std::string_view k : kw) {
     if (iequals(w, k)) return true;
   }
   return false;
+}
+
+// The byte of a one-byte punctuation token, else 0.
+char punct1(const SourceFile& f, const Token& t) {
+  return t.kind == TokenKind::kPunct && t.length == 1 ? f.bytes[t.offset] : '\0';
 }
 
 // A motion's target expressions, tokens [from, e) of f after its keyword: split into `exprs` at
@@ -197,19 +205,20 @@ std::size_t splitTargets(const SourceFile& f, std::size_t from, std::size_t e,
   std::size_t k = from;
   for (; k < e; ++k) {
     const Token& t = f.tokens[k];
-    const std::string_view tx = f.text(t);
-    if (t.kind == TokenKind::kPunct && (is1(tx, '{') || is1(tx, '(') || is1(tx, '['))) ++depth;
-    if (t.kind == TokenKind::kPunct && (is1(tx, '}') || is1(tx, ')') || is1(tx, ']'))) --depth;
+    const char p = punct1(f, t);
+    if (p == '{' || p == '(' || p == '[') ++depth;
+    if (p == '}' || p == ')' || p == ']') --depth;
     if (depth > 0) continue;
-    if (t.kind == TokenKind::kPunct && is1(tx, ',')) {
+    if (p == ',') {
       exprs.emplace_back(start, k);
       start = k + 1;
       continue;
     }
-    if (t.kind == TokenKind::kIdentifier &&
-        (isApprox(tx) || iequals(tx, "WITH") || iequals(tx, "CA")))
-      break;
-    if (t.kind == TokenKind::kPunct && is1(tx, '#')) break;
+    if (p == '#') break;
+    if (t.kind == TokenKind::kIdentifier) {
+      const std::string_view tx = f.text(t);
+      if (isApprox(tx) || iequals(tx, "WITH") || iequals(tx, "CA")) break;
+    }
   }
   exprs.emplace_back(start, k);
   return k;
@@ -217,13 +226,12 @@ std::size_t splitTargets(const SourceFile& f, std::size_t from, std::size_t e,
 
 }  // namespace
 
-/// A target aggregate of a motion line parsed ahead: tokens [open_token, expr_end) are the
-/// target expression (splitTargets), the aggregate ends before token `after`; its components
-/// are comps[comp_begin, comp_end), their names (and its type) as offsets into the window.
+/// The target aggregates of a window's motion lines, parsed ahead: the aggregate whose '{' is
+/// token `open_token` ends before token `after`; its components are comps[comp_begin,
+/// comp_end), their names (and its type) as offsets into the window.
 struct KrlAhead {
   struct Aggregate {
     std::uint32_t open_token{0};
-    std::uint32_t expr_end{0};
     std::uint32_t after{0};
     std::uint32_t comp_begin{0};
     std::uint32_t comp_end{0};
@@ -247,56 +255,46 @@ std::uint32_t offsetIn(const SourceFile& f, std::string_view s) {
   return s.empty() ? 0 : static_cast<std::uint32_t>(s.data() - f.bytes.data());
 }
 
-// The target aggregates of the motion lines of a lexed window into `out`, each read by
-// readComponents over the tokens motion() gives it; one that does not read is left to the
-// reader (which then stops there with its error).
-void readAhead(const SourceFile& f, KrlAhead& out) {
-  std::vector<std::pair<std::size_t, std::size_t>> exprs;
-  std::vector<Component> comps;
-  const std::size_t n = f.tokens.size();
-  const auto ident = [&f](std::size_t k, std::string_view w) {
-    return f.tokens[k].kind == TokenKind::kIdentifier && iequals(f.text(f.tokens[k]), w);
-  };
-  for (std::size_t b = 0; b < n;) {
-    std::size_t j = b;
-    while (j < n && f.tokens[j].kind != TokenKind::kNewline) ++j;
-    std::size_t e = j;
-    while (e > b && f.tokens[e - 1].kind == TokenKind::kComment) --e;
-    std::size_t k = b < e && ident(b, "GLOBAL") ? b + 1 : b;
-    if (k < e && f.tokens[k].kind == TokenKind::kIdentifier &&
-        isMotionKeyword(f.text(f.tokens[k]))) {
-      splitTargets(f, k + 1, e, exprs);
-      for (const auto& [x0, x1] : exprs) {
-        if (x0 >= x1 || f.tokens[x0].kind != TokenKind::kPunct || f.text(f.tokens[x0]) != "{")
-          continue;
-        TokenCursor c(f, x0, x1);
-        comps.clear();
-        Aggregate a;
-        try {
-          a = readComponents(c, comps);
-        } catch (const InputError&) {
-          continue;
-        }
-        KrlAhead::Aggregate g;
-        g.open_token = static_cast<std::uint32_t>(x0);
-        g.expr_end = static_cast<std::uint32_t>(x1);
-        g.after = static_cast<std::uint32_t>(c.index());
-        g.comp_begin = static_cast<std::uint32_t>(out.comps.size());
-        for (const Component& comp : comps) {
-          KrlAhead::Component ac{comp, offsetIn(f, comp.name),
-                                 static_cast<std::uint32_t>(comp.name.size())};
-          ac.comp.name = {};
-          out.comps.push_back(ac);
-        }
-        g.comp_end = static_cast<std::uint32_t>(out.comps.size());
-        g.type_offset = offsetIn(f, a.type);
-        g.type_length = static_cast<std::uint32_t>(a.type.size());
-        g.open = a.open;
-        g.close = a.close;
-        out.aggregates.push_back(g);
-      }
+// The aggregates of tokens [b, j) of f, one lexed line, into `out` when it is a motion: each
+// '{' after the keyword read by readComponents up to the line's end (its trailing comments
+// excluded); one that does not read is left to the reader (which stops there with its error).
+// readComponents looks at no token past the aggregate's '}', so the aggregate is the one the
+// reader reads over any target expression that holds it (KrlReader::targetAggregate).
+void readAheadLine(const SourceFile& f, std::size_t b, std::size_t j,
+                   std::vector<Component>& scratch, KrlAhead& out) {
+  std::size_t e = j;
+  while (e > b && f.tokens[e - 1].kind == TokenKind::kComment) --e;
+  std::size_t k = b;
+  const auto ident = [&f](std::size_t i) { return f.tokens[i].kind == TokenKind::kIdentifier; };
+  if (k < e && ident(k) && iequals(f.text(f.tokens[k]), "GLOBAL")) ++k;
+  if (k >= e || !ident(k) || !isMotionKeyword(f.text(f.tokens[k]))) return;
+  for (++k; k < e; ++k) {
+    if (punct1(f, f.tokens[k]) != '{') continue;
+    TokenCursor c(f, k, e);
+    scratch.clear();
+    Aggregate a;
+    try {
+      a = readComponents(c, scratch);
+    } catch (const InputError&) {
+      continue;
     }
-    b = j + 1;
+    KrlAhead::Aggregate g;
+    g.open_token = static_cast<std::uint32_t>(k);
+    g.after = static_cast<std::uint32_t>(c.index());
+    g.comp_begin = static_cast<std::uint32_t>(out.comps.size());
+    for (const Component& comp : scratch) {
+      KrlAhead::Component ac{comp, offsetIn(f, comp.name),
+                             static_cast<std::uint32_t>(comp.name.size())};
+      ac.comp.name = {};
+      out.comps.push_back(ac);
+    }
+    g.comp_end = static_cast<std::uint32_t>(out.comps.size());
+    g.type_offset = offsetIn(f, a.type);
+    g.type_length = static_cast<std::uint32_t>(a.type.size());
+    g.open = a.open;
+    g.close = a.close;
+    out.aggregates.push_back(g);
+    k = c.index() - 1;  // on after the aggregate
   }
 }
 
@@ -481,13 +479,14 @@ class KrlReader {
   }
 
   // parseAggregate(c) of a motion's target expression [c.index(), e): the aggregate read ahead
-  // there (readAhead: the same tokens read by the same readComponents) when there is one.
+  // there when there is one within it (readAheadLine: the same tokens read by the same
+  // readComponents, which looks at no token past the aggregate's '}').
   Aggregate targetAggregate(TokenCursor& c, std::size_t e) {
     if (ahead_ == nullptr) return parseAggregate(c);
     const std::vector<KrlAhead::Aggregate>& list = ahead_->aggregates;
     while (ahead_next_ < list.size() && list[ahead_next_].open_token < c.index()) ++ahead_next_;
     if (ahead_next_ == list.size() || list[ahead_next_].open_token != c.index() ||
-        list[ahead_next_].expr_end != e)
+        list[ahead_next_].after > e)
       return parseAggregate(c);
     const KrlAhead::Aggregate& g = list[ahead_next_++];
     const std::string_view bytes = file().bytes;
@@ -1195,14 +1194,21 @@ KrlStream::KrlStream(Program& p) : r_(std::make_unique<Reader>(p)) { r_->start(f
 KrlStream::~KrlStream() = default;
 void KrlStream::lines() { r_->readSrcLines(); }
 void KrlStream::lexedLines(const KrlAhead* ahead) { r_->readLexedSrcLines(ahead); }
-std::shared_ptr<const KrlAhead> KrlStream::lexWindow(SourceFile& f) {
+void KrlStream::lexWindow(SourceFile& f, std::shared_ptr<KrlAhead>& ahead) {
   const LexOptions o = krlLexOptions();
   f.tokens.clear();
   f.tokens.reserve(f.bytes.size() / 3 + 16);
-  for (std::size_t pos = 0; pos < f.bytes.size();) pos = lexLine(f, o, pos, f.tokens);
-  auto ahead = std::make_shared<KrlAhead>();
-  readAhead(f, *ahead);
-  return ahead;
+  if (!ahead) ahead = std::make_shared<KrlAhead>();
+  ahead->aggregates.clear();
+  ahead->comps.clear();
+  std::vector<Component> scratch;
+  for (std::size_t pos = 0; pos < f.bytes.size();) {
+    const std::size_t b = f.tokens.size();
+    pos = lexLine(f, o, pos, f.tokens);
+    std::size_t j = f.tokens.size();
+    if (j > b && f.tokens[j - 1].kind == TokenKind::kNewline) --j;
+    readAheadLine(f, b, j, scratch, *ahead);
+  }
 }
 std::size_t aggregatesReadAhead(const KrlAhead& a) { return a.aggregates.size(); }
 void KrlStream::finish() { r_->finish(); }

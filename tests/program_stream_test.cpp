@@ -223,7 +223,8 @@ TEST(ProgramStream, TargetsReadAheadAreThoseTheReaderReads) {
   postproc::SourceFile w;
   w.bytes = "LIN {X 1,Y 2}\nCIRC {X 1},{Y 2} C_DIS\n$BASE = {X 1}\nPTP {X 1\nPTP XP1\n";
   w.indexLines();
-  const std::shared_ptr<const postproc::KrlAhead> a = postproc::KrlStream::lexWindow(w);
+  std::shared_ptr<postproc::KrlAhead> a;
+  postproc::KrlStream::lexWindow(w, a);
   EXPECT_EQ(postproc::aggregatesReadAhead(*a), 3U);
 }
 
