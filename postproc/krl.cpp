@@ -379,6 +379,7 @@ class KrlReader {
   // 100,000-point .dat keeps no second copy of its poses and no second table entry.
   NameMap<int> named_frames_;
   std::vector<Component> comps_;    // parseAggregate's scratch (see Aggregate)
+  std::string marker_;              // addMarker's buffer
   const KrlAhead* ahead_{nullptr};  // the window's aggregates read ahead (readLexedSrcLines)
   std::size_t ahead_next_{0};       // the first of them not taken yet
   std::vector<Frame> frame_decls_;
@@ -822,7 +823,13 @@ class KrlReader {
     return fd;
   }
 
-  void addMarker(const std::string& m) { p_.addMarker(m); }
+  // Adds the marker a + b + c, built in a buffer kept from marker to marker (no allocation).
+  void addMarker(std::string_view a, std::string_view b, std::string_view c = {}) {
+    marker_.assign(a);
+    marker_.append(b);
+    marker_.append(c);
+    p_.addMarker(marker_);
+  }
 
   // Resolves one target expression [b, e) of a motion; returns the target index or -1.
   int motionTarget(std::size_t b, std::size_t e, Motion& m, bool relative) {
@@ -1045,7 +1052,7 @@ class KrlReader {
       return;
     }
     if (c.isIdent("WAIT") && c.isIdent("SEC", 1)) {
-      addMarker("dwell " + std::string(c.text(2)) + " s");
+      addMarker("dwell ", c.text(2), " s");
       return;
     }
     if (c.isIdent("BAS") && c.isPunct('(', 1) && c.isPunct('#', 2)) {
@@ -1059,7 +1066,7 @@ class KrlReader {
       return;
     }
     if (c.isKind(TokenKind::kIdentifier)) {
-      const std::string n = upper(w);
+      const auto n = [w](std::string_view u) { return iequals(w, u); };  // u upper case
       // assignments
       std::size_t eq = b;
       while (eq < e &&
@@ -1067,26 +1074,25 @@ class KrlReader {
         ++eq;
       if (eq < e && eq + 1 < e) {
         const std::size_t off = f.tokens[b].offset;
-        if (n == "$BASE" && eq == b + 1) {
+        if (n("$BASE") && eq == b + 1) {
           base_ = evalFrame(eq + 1, e);
           if (base_.ref.empty() || base_.ref == "{...}") base_.ref = "$BASE";
           return;
         }
-        if (n == "$TOOL" && eq == b + 1) {
+        if (n("$TOOL") && eq == b + 1) {
           tool_ = evalFrame(eq + 1, e);
           if (tool_.ref.empty() || tool_.ref == "{...}") tool_.ref = "$TOOL";
           return;
         }
-        if ((n == "BASE_DATA" || n == "TOOL_DATA") && eq == b + 4 &&
-            c.isKind(TokenKind::kNumber, 2)) {
+        if ((n("BASE_DATA") || n("TOOL_DATA")) && eq == b + 4 && c.isKind(TokenKind::kNumber, 2)) {
           const int idx = toInt(parseNumber(c.text(2)).value_or(-1));
           Frame fr = evalFrame(eq + 1, e);
-          fr.ref = n + "[" + std::to_string(idx) + "]";
-          (n == "BASE_DATA" ? base_data_ : tool_data_)[idx] = fr;
+          fr.ref = upper(w) + "[" + std::to_string(idx) + "]";
+          (n("BASE_DATA") ? base_data_ : tool_data_)[idx] = fr;
           reported_.erase(upper(fr.ref));
           return;
         }
-        if (n == "FDAT_ACT" && eq == b + 1) {
+        if (n("FDAT_ACT") && eq == b + 1) {
           TokenCursor v(f, eq + 1, e);
           if (v.isPunct('{')) {
             fdat_ = fdatFromAggregate(parseAggregate(v));
@@ -1100,7 +1106,7 @@ class KrlReader {
           }
           return;
         }
-        if (n == "LDAT_ACT" && eq == b + 1) {
+        if (n("LDAT_ACT") && eq == b + 1) {
           TokenCursor v(f, eq + 1, e);
           if (v.isKind(TokenKind::kIdentifier)) {
             if (const double* it = ldat_vel_.find(v.text())) vel_cp_ = *it;
@@ -1113,7 +1119,7 @@ class KrlReader {
           vel_zero_line_ = vel_cp_ <= 0 && vel_cp_ != -1 ? file().lineOf(off) : 0;
           return;
         }
-        if (n == "$VEL" && c.isPunct('.', 1) && c.isIdent("CP", 2) && eq == b + 3) {
+        if (n("$VEL") && c.isPunct('.', 1) && c.isIdent("CP", 2) && eq == b + 3) {
           TokenCursor v(f, eq + 1, e);
           const std::size_t vb = v.peek().offset;
           const Token& last = f.tokens[e - 1];
@@ -1146,7 +1152,7 @@ class KrlReader {
       if (c.isPunct('(', 1)) {
         const std::string name = upper(w);
         if (name.find("SPINDLE") != std::string::npos || name.find("DRILL") != std::string::npos)
-          addMarker("call " + std::string(w));
+          addMarker("call ", w);
       }
     }
   }
@@ -1161,7 +1167,7 @@ class KrlReader {
         const std::string_view u = f.text(f.tokens[k]);
         if (istartsWith(u, ";FOLD") || istartsWith(u, ";ENDFOLD") || istartsWith(u, "&")) continue;
         if (icontains(u, "PLUNGE") || icontains(u, "DRILL")) {
-          addMarker("comment " + std::string(f.text(f.tokens[k])));
+          addMarker("comment ", f.text(f.tokens[k]));
         }
       }
       return;
