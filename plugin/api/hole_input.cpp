@@ -548,14 +548,7 @@ class ProgramHoles {
       : stream_(path, postproc::ProgramStream::kWindowBytes, threads > 1) {}
   ProgramHoles(const ProgramHoles&) = delete;
   ProgramHoles& operator=(const ProgramHoles&) = delete;
-  ~ProgramHoles() {  // the set-up task stopped (its errors are no one's any more)
-    {
-      const std::lock_guard<std::mutex> lock(mutex_);
-      stop_ = true;
-    }
-    changed_.notify_all();
-    if (producer_.valid()) producer_.wait();
-  }
+  ~ProgramHoles() { stopProducer(); }
   [[nodiscard]] bool windowed() const { return stream_.windowed(); }
   /// Reads on to the next holes: false once the program is read and every hole given.
   bool next() {
@@ -598,6 +591,7 @@ class ProgramHoles {
       ++ready_;
       ++given_;
     }
+    if (given_ == job.hole_count) stopProducer();  // it reads nothing the job needs any more
   }
 
  private:
@@ -641,7 +635,8 @@ class ProgramHoles {
     bool end{false};
   };
   static constexpr size_t kBatches = 2;
-  /// The task: batch after batch until the end, an error, or the destructor stops it.
+  /// The task: batch after batch until the end, an error, or stopProducer(). `job`: the base
+  /// frames alone (a copy: the task never reads the job, which may go first).
   void produce(const JobHoles& job, const CellSpec& cell, const Robot& robot) {
     try {
       while (true) {
@@ -666,11 +661,23 @@ class ProgramHoles {
     changed_.notify_all();
     return true;
   }
+  /// Stops the task and waits for it (its errors are no one's any more). The cell and robot it
+  /// reads outlive it: it is stopped once the job's last hole is taken, or by the destructor
+  /// (the job's, before the cell's and the robot's: PredictionContext).
+  void stopProducer() {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    changed_.notify_all();
+    if (producer_.valid()) producer_.wait();
+  }
   /// The next batch into the ready list (the task started on the first call).
   void takeBatch(const JobHoles& job, const CellSpec& cell, const Robot& robot) {
     if (!producer_.valid()) {
-      producer_ = std::async(std::launch::async,
-                             [this, &job, &cell, &robot] { produce(job, cell, robot); });
+      frames_.base_frames = job.base_frames;
+      producer_ =
+          std::async(std::launch::async, [this, &cell, &robot] { produce(frames_, cell, robot); });
     }
     Batch b;
     {
@@ -700,7 +707,8 @@ class ProgramHoles {
   std::condition_variable changed_;
   std::deque<Batch> batches_;
   bool stop_{false};
-  std::future<void> producer_;  ///< the set-up task (threads > 1)
+  JobHoles frames_;             ///< the job's base frames, for the set-up task
+  std::future<void> producer_;  ///< the set-up task (threads > 1); last: stopped first
 };
 
 namespace {
