@@ -23,6 +23,12 @@ void parseJson(Program& p);
 /// none) and its `.dat` ("" when there is none beside it).
 std::pair<std::string, std::string> krlFiles(const std::string& path);
 
+/// What KrlStream::lexWindow() reads of a window besides its tokens: the target aggregates of
+/// its motion lines, parsed as the reader parses them (defined in krl.cpp).
+struct KrlAhead;
+/// The target aggregates a KrlAhead holds.
+std::size_t aggregatesReadAhead(const KrlAhead& a);
+
 /// The KRL reader a window of the .src at a time (ProgramStream): constructed once p.files holds
 /// the .src's first window and the .dat (read then); lines() reads the lines of the window
 /// p.files[0] holds now, finish() checks the .src's end after the last window.
@@ -33,13 +39,15 @@ class KrlStream {
   KrlStream(const KrlStream&) = delete;
   KrlStream& operator=(const KrlStream&) = delete;
   void lines();
-  /// lines() of a window whose tokens lexWindow() put in p.files[0].tokens already.
-  void lexedLines();
+  /// lines() of a window whose tokens lexWindow() put in p.files[0].tokens already; `ahead`:
+  /// what lexWindow() returned for them (its aggregates are taken instead of parsed again).
+  void lexedLines(const KrlAhead* ahead = nullptr);
   void finish();
   /// Lexes a window of whole lines of a .src (not its first: no byte-order mark) into f.tokens
-  /// as lines() would, line after line: lexedLines() then reads them (the lexing may run on
-  /// another thread, ahead of the reader).
-  static void lexWindow(SourceFile& f);
+  /// as lines() would, line after line, and parses the target aggregates of its motion lines
+  /// into `ahead` (made when null, else refilled: its memory is reused): lexedLines() then
+  /// reads them (this may run on another thread, ahead of the reader).
+  static void lexWindow(SourceFile& f, std::shared_ptr<KrlAhead>& ahead);
   /// The motion the reader may still change (the last segment of a SPLINE block being read),
   /// -1 when none: motions from it on may not be retired.
   [[nodiscard]] int heldMotion() const;

@@ -84,6 +84,220 @@ int sigDigits(std::string_view s) {
   return n;
 }
 
+// The aggregate at c ('{'), its components appended to `comps` (a nested aggregate's own
+// components are dropped again); Aggregate::comps is left to the caller. Reads only the tokens
+// and bytes of c's file, so the reader and the read-ahead of a window (KrlStream::lexWindow)
+// give the same aggregate. Throws InputError (failAt) where the reader stops.
+Aggregate readComponents(TokenCursor& c, std::vector<Component>& comps) {
+  const SourceFile& f = c.file();
+  Aggregate a;
+  const Token& open = c.next();  // '{'
+  a.open = open.offset;
+  if (c.isKind(TokenKind::kIdentifier) && c.isPunct(':', 1)) {
+    a.type = c.text();
+    c.next();
+    c.next();
+  }
+  while (true) {
+    if (c.done() || c.isKind(TokenKind::kNewline) || c.isKind(TokenKind::kComment)) {
+      failAt(f, open.offset, "unterminated aggregate (missing '}')");
+    }
+    if (c.isPunct('}')) {
+      a.close = c.next().offset;
+      return a;
+    }
+    if (c.isPunct(',')) {
+      c.next();
+      continue;
+    }
+    Component comp;
+    if (!c.isKind(TokenKind::kIdentifier))
+      failAt(f, c.peek().offset, "expected a component name in aggregate");
+    comp.name = c.text();
+    c.next();
+    if (c.isPunct('[')) {  // POINT2[]
+      while (!c.done() && !c.isPunct(']') && !c.isKind(TokenKind::kNewline)) c.next();
+      if (c.isPunct(']')) c.next();
+    }
+    if (c.isPunct('{')) {
+      const std::size_t mark = comps.size();
+      const Aggregate nested = readComponents(c, comps);
+      comps.resize(mark);
+      comp.kind = Component::kNested;
+      comp.begin = nested.open;
+      comp.end = nested.close + 1;
+      comps.push_back(comp);
+      continue;
+    }
+    const std::size_t start = c.index();
+    while (!c.done() && !c.isPunct(',') && !c.isPunct('}') && !c.isKind(TokenKind::kNewline) &&
+           !c.isKind(TokenKind::kComment)) {
+      c.next();
+    }
+    const std::size_t stop = c.index();
+    if (stop == start)
+      failAt(f, c.peek().offset, "component " + upper(comp.name) + " has no value");
+    const Token& t0 = f.tokens[start];
+    const Token& tl = f.tokens[stop - 1];
+    comp.begin = t0.offset;
+    comp.end = tl.offset + tl.length;
+    const bool signed_start =
+        t0.kind == TokenKind::kPunct && (f.bytes[t0.offset] == '-' || f.bytes[t0.offset] == '+');
+    if (t0.kind == TokenKind::kNumber || signed_start) {
+      const bool one =
+          (stop - start == 1 && !signed_start) ||
+          (stop - start == 2 && signed_start && f.tokens[start + 1].kind == TokenKind::kNumber);
+      const std::string_view txt =
+          std::string_view(f.bytes).substr(comp.begin, comp.end - comp.begin);
+      if (!one)
+        failAt(f, comp.begin,
+               "broken number '" + std::string(txt) + "' in component " + upper(comp.name));
+      const auto v = parseNumber(txt);
+      if (!v) failAt(f, comp.begin, "broken number '" + std::string(txt) + "'");
+      comp.kind = Component::kNumber;
+      comp.value = *v;
+    } else if (t0.kind == TokenKind::kString) {
+      const std::string_view s = f.text(t0);
+      if (s.size() < 2 || s.back() != s.front()) failAt(f, t0.offset, "unterminated string");
+      comp.kind = Component::kString;
+      if (const auto v = parseKrlLiteralInt(s)) {
+        comp.kind = Component::kLiteral;
+        comp.value = *v;
+      }
+    } else {
+      comp.kind = Component::kOther;
+    }
+    comps.push_back(comp);
+  }
+}
+
+bool isApprox(std::string_view w) {
+  return w.size() == 5 && (iequals(w, "C_DIS") || iequals(w, "C_PTP") || iequals(w, "C_VEL") ||
+                           iequals(w, "C_ORI") || iequals(w, "C_SPL"));
+}
+
+bool isMotionKeyword(std::string_view w) {
+  static constexpr std::string_view kw[] = {
+      "PTP",     "LIN",      "CIRC",     "SPTP",     "SLIN",      "SCIRC", "PTP_REL",
+      "LIN_REL", "CIRC_REL", "SPTP_REL", "SLIN_REL", "SCIRC_REL", "SPL"};
+  if (w.size() < 3 || w.size() > 9) return false;
+  const char c = asciiUpper(w[0]);  // most other lines start with none of these letters
+  if (c != 'P' && c != 'L' && c != 'C' && c != 'S') return false;
+  for (const std::string_view k : kw) {
+    if (iequals(w, k)) return true;
+  }
+  return false;
+}
+
+// The byte of a one-byte punctuation token, else 0.
+char punct1(const SourceFile& f, const Token& t) {
+  return t.kind == TokenKind::kPunct && t.length == 1 ? f.bytes[t.offset] : '\0';
+}
+
+// A motion's target expressions, tokens [from, e) of f after its keyword: split into `exprs` at
+// top-level ',' up to an approximation/WITH/CA/# keyword, whose token index it returns (e when
+// there is none).
+std::size_t splitTargets(const SourceFile& f, std::size_t from, std::size_t e,
+                         std::vector<std::pair<std::size_t, std::size_t>>& exprs) {
+  exprs.clear();
+  std::size_t start = from;
+  int depth = 0;
+  std::size_t k = from;
+  for (; k < e; ++k) {
+    const Token& t = f.tokens[k];
+    const char p = punct1(f, t);
+    if (p == '{' || p == '(' || p == '[') ++depth;
+    if (p == '}' || p == ')' || p == ']') --depth;
+    if (depth > 0) continue;
+    if (p == ',') {
+      exprs.emplace_back(start, k);
+      start = k + 1;
+      continue;
+    }
+    if (p == '#') break;
+    if (t.kind == TokenKind::kIdentifier) {
+      const std::string_view tx = f.text(t);
+      if (isApprox(tx) || iequals(tx, "WITH") || iequals(tx, "CA")) break;
+    }
+  }
+  exprs.emplace_back(start, k);
+  return k;
+}
+
+}  // namespace
+
+/// The target aggregates of a window's motion lines, parsed ahead: the aggregate whose '{' is
+/// token `open_token` ends before token `after`; its components are comps[comp_begin,
+/// comp_end), their names (and its type) as offsets into the window.
+struct KrlAhead {
+  struct Aggregate {
+    std::uint32_t open_token{0};
+    std::uint32_t after{0};
+    std::uint32_t comp_begin{0};
+    std::uint32_t comp_end{0};
+    std::uint32_t type_offset{0};
+    std::uint32_t type_length{0};
+    std::uint32_t open{0};
+    std::uint32_t close{0};
+  };
+  struct Component {
+    postproc::Component comp;  ///< its name left empty
+    std::uint32_t name_offset{0};
+    std::uint32_t name_length{0};
+  };
+  std::vector<Aggregate> aggregates;  ///< in token order
+  std::vector<Component> comps;
+};
+
+namespace {
+
+std::uint32_t offsetIn(const SourceFile& f, std::string_view s) {
+  return s.empty() ? 0 : static_cast<std::uint32_t>(s.data() - f.bytes.data());
+}
+
+// The aggregates of tokens [b, j) of f, one lexed line, into `out` when it is a motion: each
+// '{' after the keyword read by readComponents up to the line's end (its trailing comments
+// excluded); one that does not read is left to the reader (which stops there with its error).
+// readComponents looks at no token past the aggregate's '}', so the aggregate is the one the
+// reader reads over any target expression that holds it (KrlReader::targetAggregate).
+void readAheadLine(const SourceFile& f, std::size_t b, std::size_t j,
+                   std::vector<Component>& scratch, KrlAhead& out) {
+  std::size_t e = j;
+  while (e > b && f.tokens[e - 1].kind == TokenKind::kComment) --e;
+  std::size_t k = b;
+  const auto ident = [&f](std::size_t i) { return f.tokens[i].kind == TokenKind::kIdentifier; };
+  if (k < e && ident(k) && iequals(f.text(f.tokens[k]), "GLOBAL")) ++k;
+  if (k >= e || !ident(k) || !isMotionKeyword(f.text(f.tokens[k]))) return;
+  for (++k; k < e; ++k) {
+    if (punct1(f, f.tokens[k]) != '{') continue;
+    TokenCursor c(f, k, e);
+    scratch.clear();
+    Aggregate a;
+    try {
+      a = readComponents(c, scratch);
+    } catch (const InputError&) {
+      continue;
+    }
+    KrlAhead::Aggregate g;
+    g.open_token = static_cast<std::uint32_t>(k);
+    g.after = static_cast<std::uint32_t>(c.index());
+    g.comp_begin = static_cast<std::uint32_t>(out.comps.size());
+    for (const Component& comp : scratch) {
+      KrlAhead::Component ac{comp, offsetIn(f, comp.name),
+                             static_cast<std::uint32_t>(comp.name.size())};
+      ac.comp.name = {};
+      out.comps.push_back(ac);
+    }
+    g.comp_end = static_cast<std::uint32_t>(out.comps.size());
+    g.type_offset = offsetIn(f, a.type);
+    g.type_length = static_cast<std::uint32_t>(a.type.size());
+    g.open = a.open;
+    g.close = a.close;
+    out.aggregates.push_back(g);
+    k = c.index() - 1;  // on after the aggregate
+  }
+}
+
 /// The tokenizer options of KRL (`;` comments, `&` header lines, quoted literals).
 LexOptions krlLexOptions() {
   LexOptions o;
@@ -133,9 +347,12 @@ class KrlReader {
     forEachLine([&](std::size_t b, std::size_t e, std::size_t j) { srcLine(b, e, j); });
   }
   /// readSrcLines() over the window's tokens lexed already (KrlStream::lexWindow).
-  void readLexedSrcLines() {
+  void readLexedSrcLines(const KrlAhead* ahead) {
     file_ = 0;
+    ahead_ = ahead;
+    ahead_next_ = 0;
     forEachLexedLine([&](std::size_t b, std::size_t e, std::size_t j) { srcLine(b, e, j); });
+    ahead_ = nullptr;
   }
 
   /// After the .src's last line: its DEF ... END checked.
@@ -161,8 +378,10 @@ class KrlReader {
   // named frames too: found in targets_ and read back from the target (namedFrameIndex), so a
   // 100,000-point .dat keeps no second copy of its poses and no second table entry.
   NameMap<int> named_frames_;
-  std::vector<Component> comps_;  // parseAggregate's scratch (see Aggregate)
-  int aggregate_depth_{0};
+  std::vector<Component> comps_;    // parseAggregate's scratch (see Aggregate)
+  std::string marker_;              // addMarker's buffer
+  const KrlAhead* ahead_{nullptr};  // the window's aggregates read ahead (readLexedSrcLines)
+  std::size_t ahead_next_{0};       // the first of them not taken yet
   std::vector<Frame> frame_decls_;
   std::unordered_map<int, Frame> base_data_;
   std::unordered_map<int, Frame> tool_data_;
@@ -254,96 +473,37 @@ class KrlReader {
   }
 
   Aggregate parseAggregate(TokenCursor& c) {
-    if (aggregate_depth_ == 0) comps_.clear();
-    ++aggregate_depth_;
-    const std::size_t first = comps_.size();
-    Aggregate a = parseComponents(c);
-    --aggregate_depth_;
-    a.comps = std::span<const Component>(comps_).subspan(first);
+    comps_.clear();
+    Aggregate a = readComponents(c, comps_);
+    a.comps = comps_;
     return a;
   }
 
-  // Components into comps_ (a nested aggregate's own components are dropped again).
-  Aggregate parseComponents(TokenCursor& c) {
+  // parseAggregate(c) of a motion's target expression [c.index(), e): the aggregate read ahead
+  // there when there is one within it (readAheadLine: the same tokens read by the same
+  // readComponents, which looks at no token past the aggregate's '}').
+  Aggregate targetAggregate(TokenCursor& c, std::size_t e) {
+    if (ahead_ == nullptr) return parseAggregate(c);
+    const std::vector<KrlAhead::Aggregate>& list = ahead_->aggregates;
+    while (ahead_next_ < list.size() && list[ahead_next_].open_token < c.index()) ++ahead_next_;
+    if (ahead_next_ == list.size() || list[ahead_next_].open_token != c.index() ||
+        list[ahead_next_].after > e)
+      return parseAggregate(c);
+    const KrlAhead::Aggregate& g = list[ahead_next_++];
+    const std::string_view bytes = file().bytes;
+    comps_.clear();
+    for (std::size_t k = g.comp_begin; k < g.comp_end; ++k) {
+      const KrlAhead::Component& ac = ahead_->comps[k];
+      comps_.push_back(ac.comp);
+      comps_.back().name = bytes.substr(ac.name_offset, ac.name_length);
+    }
     Aggregate a;
-    const Token& open = c.next();  // '{'
-    a.open = open.offset;
-    if (c.isKind(TokenKind::kIdentifier) && c.isPunct(':', 1)) {
-      a.type = c.text();
-      c.next();
-      c.next();
-    }
-    while (true) {
-      if (c.done() || c.isKind(TokenKind::kNewline) || c.isKind(TokenKind::kComment)) {
-        fail(open.offset, "unterminated aggregate (missing '}')");
-      }
-      if (c.isPunct('}')) {
-        a.close = c.next().offset;
-        return a;
-      }
-      if (c.isPunct(',')) {
-        c.next();
-        continue;
-      }
-      Component comp;
-      if (!c.isKind(TokenKind::kIdentifier))
-        fail(c.peek().offset, "expected a component name in aggregate");
-      comp.name = c.text();
-      c.next();
-      if (c.isPunct('[')) {  // POINT2[]
-        while (!c.done() && !c.isPunct(']') && !c.isKind(TokenKind::kNewline)) c.next();
-        if (c.isPunct(']')) c.next();
-      }
-      if (c.isPunct('{')) {
-        const std::size_t mark = comps_.size();
-        const Aggregate nested = parseAggregate(c);
-        comps_.resize(mark);
-        comp.kind = Component::kNested;
-        comp.begin = nested.open;
-        comp.end = nested.close + 1;
-        comps_.push_back(comp);
-        continue;
-      }
-      const std::size_t start = c.index();
-      while (!c.done() && !c.isPunct(',') && !c.isPunct('}') && !c.isKind(TokenKind::kNewline) &&
-             !c.isKind(TokenKind::kComment)) {
-        c.next();
-      }
-      const std::size_t stop = c.index();
-      if (stop == start) fail(c.peek().offset, "component " + upper(comp.name) + " has no value");
-      const SourceFile& f = file();
-      const Token& t0 = f.tokens[start];
-      const Token& tl = f.tokens[stop - 1];
-      comp.begin = t0.offset;
-      comp.end = tl.offset + tl.length;
-      const bool signed_start =
-          t0.kind == TokenKind::kPunct && (f.bytes[t0.offset] == '-' || f.bytes[t0.offset] == '+');
-      if (t0.kind == TokenKind::kNumber || signed_start) {
-        const bool one =
-            (stop - start == 1 && !signed_start) ||
-            (stop - start == 2 && signed_start && f.tokens[start + 1].kind == TokenKind::kNumber);
-        const std::string_view txt =
-            std::string_view(f.bytes).substr(comp.begin, comp.end - comp.begin);
-        if (!one)
-          fail(comp.begin,
-               "broken number '" + std::string(txt) + "' in component " + upper(comp.name));
-        const auto v = parseNumber(txt);
-        if (!v) fail(comp.begin, "broken number '" + std::string(txt) + "'");
-        comp.kind = Component::kNumber;
-        comp.value = *v;
-      } else if (t0.kind == TokenKind::kString) {
-        const std::string_view s = f.text(t0);
-        if (s.size() < 2 || s.back() != s.front()) fail(t0.offset, "unterminated string");
-        comp.kind = Component::kString;
-        if (const auto v = parseKrlLiteralInt(s)) {
-          comp.kind = Component::kLiteral;
-          comp.value = *v;
-        }
-      } else {
-        comp.kind = Component::kOther;
-      }
-      comps_.push_back(comp);
-    }
+    a.type = bytes.substr(g.type_offset, g.type_length);
+    a.open = g.open;
+    a.close = g.close;
+    a.comps = comps_;
+    c.seek(g.after);
+    return a;
   }
 
   NumberField field(const Component& c) const {
@@ -663,11 +823,12 @@ class KrlReader {
     return fd;
   }
 
-  void addMarker(const std::string& m) { p_.addMarker(m); }
-
-  static bool isApprox(std::string_view w) {
-    return iequals(w, "C_DIS") || iequals(w, "C_PTP") || iequals(w, "C_VEL") ||
-           iequals(w, "C_ORI") || iequals(w, "C_SPL");
+  // Adds the marker a + b + c, built in a buffer kept from marker to marker (no allocation).
+  void addMarker(std::string_view a, std::string_view b, std::string_view c = {}) {
+    marker_.assign(a);
+    marker_.append(b);
+    marker_.append(c);
+    p_.addMarker(marker_);
   }
 
   // Resolves one target expression [b, e) of a motion; returns the target index or -1.
@@ -681,7 +842,7 @@ class KrlReader {
     const std::string_view text = std::string_view(f.bytes).substr(s, en - s);
     if (!c.isPunct('{')) m.target_text = p_.addUniqueText(text);  // literal targets: the text
     if (c.isPunct('{')) {
-      const Aggregate a = parseAggregate(c);
+      const Aggregate a = targetAggregate(c, e);
       if (!c.done() || relative) {
         m.derivation = relative ? m.instruction : p_.addText(":");
         m.target_text = p_.addUniqueText(text);
@@ -755,29 +916,8 @@ class KrlReader {
       m.type = MotionType::kLinear;
     }
     m.config_honoured = m.type == MotionType::kJoint;
-    // split target expressions at top-level ',' until an approximation/WITH/CA/# keyword
     std::vector<std::pair<std::size_t, std::size_t>>& exprs = exprs_;
-    exprs.clear();
-    std::size_t start = c.index();
-    int depth = 0;
-    std::size_t k = c.index();
-    for (; k < e; ++k) {
-      const Token& t = f.tokens[k];
-      const std::string_view tx = f.text(t);
-      if (t.kind == TokenKind::kPunct && (is1(tx, '{') || is1(tx, '(') || is1(tx, '['))) ++depth;
-      if (t.kind == TokenKind::kPunct && (is1(tx, '}') || is1(tx, ')') || is1(tx, ']'))) --depth;
-      if (depth > 0) continue;
-      if (t.kind == TokenKind::kPunct && is1(tx, ',')) {
-        exprs.emplace_back(start, k);
-        start = k + 1;
-        continue;
-      }
-      if (t.kind == TokenKind::kIdentifier &&
-          (isApprox(tx) || iequals(tx, "WITH") || iequals(tx, "CA")))
-        break;
-      if (t.kind == TokenKind::kPunct && is1(tx, '#')) break;
-    }
-    exprs.emplace_back(start, k);
+    const std::size_t k = splitTargets(f, c.index(), e, exprs);
     if (m.type == MotionType::kCircular && exprs.size() >= 2) {
       Motion aux_dummy = m;
       m.aux = motionTarget(exprs[0].first, exprs[0].second, aux_dummy, relative);
@@ -880,16 +1020,6 @@ class KrlReader {
                          "for a 20 mm/s feed");
   }
 
-  static bool isMotionKeyword(std::string_view w) {
-    static constexpr std::string_view kw[] = {
-        "PTP",     "LIN",      "CIRC",     "SPTP",     "SLIN",      "SCIRC", "PTP_REL",
-        "LIN_REL", "CIRC_REL", "SPTP_REL", "SLIN_REL", "SCIRC_REL", "SPL"};
-    for (const std::string_view k : kw) {
-      if (iequals(w, k)) return true;
-    }
-    return false;
-  }
-
   void statement(std::size_t b, std::size_t e) {
     const SourceFile& f = file();
     TokenCursor c(f, b, e);
@@ -922,7 +1052,7 @@ class KrlReader {
       return;
     }
     if (c.isIdent("WAIT") && c.isIdent("SEC", 1)) {
-      addMarker("dwell " + std::string(c.text(2)) + " s");
+      addMarker("dwell ", c.text(2), " s");
       return;
     }
     if (c.isIdent("BAS") && c.isPunct('(', 1) && c.isPunct('#', 2)) {
@@ -936,7 +1066,7 @@ class KrlReader {
       return;
     }
     if (c.isKind(TokenKind::kIdentifier)) {
-      const std::string n = upper(w);
+      const auto n = [w](std::string_view u) { return iequals(w, u); };  // u upper case
       // assignments
       std::size_t eq = b;
       while (eq < e &&
@@ -944,26 +1074,25 @@ class KrlReader {
         ++eq;
       if (eq < e && eq + 1 < e) {
         const std::size_t off = f.tokens[b].offset;
-        if (n == "$BASE" && eq == b + 1) {
+        if (n("$BASE") && eq == b + 1) {
           base_ = evalFrame(eq + 1, e);
           if (base_.ref.empty() || base_.ref == "{...}") base_.ref = "$BASE";
           return;
         }
-        if (n == "$TOOL" && eq == b + 1) {
+        if (n("$TOOL") && eq == b + 1) {
           tool_ = evalFrame(eq + 1, e);
           if (tool_.ref.empty() || tool_.ref == "{...}") tool_.ref = "$TOOL";
           return;
         }
-        if ((n == "BASE_DATA" || n == "TOOL_DATA") && eq == b + 4 &&
-            c.isKind(TokenKind::kNumber, 2)) {
+        if ((n("BASE_DATA") || n("TOOL_DATA")) && eq == b + 4 && c.isKind(TokenKind::kNumber, 2)) {
           const int idx = toInt(parseNumber(c.text(2)).value_or(-1));
           Frame fr = evalFrame(eq + 1, e);
-          fr.ref = n + "[" + std::to_string(idx) + "]";
-          (n == "BASE_DATA" ? base_data_ : tool_data_)[idx] = fr;
+          fr.ref = upper(w) + "[" + std::to_string(idx) + "]";
+          (n("BASE_DATA") ? base_data_ : tool_data_)[idx] = fr;
           reported_.erase(upper(fr.ref));
           return;
         }
-        if (n == "FDAT_ACT" && eq == b + 1) {
+        if (n("FDAT_ACT") && eq == b + 1) {
           TokenCursor v(f, eq + 1, e);
           if (v.isPunct('{')) {
             fdat_ = fdatFromAggregate(parseAggregate(v));
@@ -977,7 +1106,7 @@ class KrlReader {
           }
           return;
         }
-        if (n == "LDAT_ACT" && eq == b + 1) {
+        if (n("LDAT_ACT") && eq == b + 1) {
           TokenCursor v(f, eq + 1, e);
           if (v.isKind(TokenKind::kIdentifier)) {
             if (const double* it = ldat_vel_.find(v.text())) vel_cp_ = *it;
@@ -990,7 +1119,7 @@ class KrlReader {
           vel_zero_line_ = vel_cp_ <= 0 && vel_cp_ != -1 ? file().lineOf(off) : 0;
           return;
         }
-        if (n == "$VEL" && c.isPunct('.', 1) && c.isIdent("CP", 2) && eq == b + 3) {
+        if (n("$VEL") && c.isPunct('.', 1) && c.isIdent("CP", 2) && eq == b + 3) {
           TokenCursor v(f, eq + 1, e);
           const std::size_t vb = v.peek().offset;
           const Token& last = f.tokens[e - 1];
@@ -1023,7 +1152,7 @@ class KrlReader {
       if (c.isPunct('(', 1)) {
         const std::string name = upper(w);
         if (name.find("SPINDLE") != std::string::npos || name.find("DRILL") != std::string::npos)
-          addMarker("call " + std::string(w));
+          addMarker("call ", w);
       }
     }
   }
@@ -1038,7 +1167,7 @@ class KrlReader {
         const std::string_view u = f.text(f.tokens[k]);
         if (istartsWith(u, ";FOLD") || istartsWith(u, ";ENDFOLD") || istartsWith(u, "&")) continue;
         if (icontains(u, "PLUNGE") || icontains(u, "DRILL")) {
-          addMarker("comment " + std::string(f.text(f.tokens[k])));
+          addMarker("comment ", f.text(f.tokens[k]));
         }
       }
       return;
@@ -1070,13 +1199,24 @@ struct KrlStream::Reader : KrlReader {
 KrlStream::KrlStream(Program& p) : r_(std::make_unique<Reader>(p)) { r_->start(false); }
 KrlStream::~KrlStream() = default;
 void KrlStream::lines() { r_->readSrcLines(); }
-void KrlStream::lexedLines() { r_->readLexedSrcLines(); }
-void KrlStream::lexWindow(SourceFile& f) {
+void KrlStream::lexedLines(const KrlAhead* ahead) { r_->readLexedSrcLines(ahead); }
+void KrlStream::lexWindow(SourceFile& f, std::shared_ptr<KrlAhead>& ahead) {
   const LexOptions o = krlLexOptions();
   f.tokens.clear();
   f.tokens.reserve(f.bytes.size() / 3 + 16);
-  for (std::size_t pos = 0; pos < f.bytes.size();) pos = lexLine(f, o, pos, f.tokens);
+  if (!ahead) ahead = std::make_shared<KrlAhead>();
+  ahead->aggregates.clear();
+  ahead->comps.clear();
+  std::vector<Component> scratch;
+  for (std::size_t pos = 0; pos < f.bytes.size();) {
+    const std::size_t b = f.tokens.size();
+    pos = lexLine(f, o, pos, f.tokens);
+    std::size_t j = f.tokens.size();
+    if (j > b && f.tokens[j - 1].kind == TokenKind::kNewline) --j;
+    readAheadLine(f, b, j, scratch, *ahead);
+  }
 }
+std::size_t aggregatesReadAhead(const KrlAhead& a) { return a.aggregates.size(); }
 void KrlStream::finish() { r_->finish(); }
 int KrlStream::heldMotion() const { return r_->heldMotion(); }
 void KrlStream::retired(std::size_t m) { r_->retired(m); }

@@ -76,12 +76,20 @@ ProgramStream::~ProgramStream() {
   if (ahead_.valid()) ahead_.wait();  // its errors are no one's any more
 }
 
-bool ProgramStream::readWindow() {
-  std::string buf;
-  readWindowBytes(buf);
-  if (buf.empty()) return false;
+SourceFile ProgramStream::fromSpare(Spare& s) {
   SourceFile w;
-  w.bytes = std::move(buf);
+  w.bytes = std::move(s.bytes);
+  w.line_starts = std::move(s.line_starts);
+  w.line_ends = std::move(s.line_ends);
+  w.tokens = std::move(s.tokens);
+  w.tokens.clear();
+  return w;
+}
+
+bool ProgramStream::readWindow() {
+  SourceFile w = fromSpare(spare_);
+  readWindowBytes(w.bytes);
+  if (w.bytes.empty()) return false;
   w.indexLines();
   installWindow(std::move(w));
   return true;
@@ -91,31 +99,39 @@ void ProgramStream::installWindow(SourceFile&& w) {
   SourceFile& f = p_.files[0];
   const bool first = f.line_starts.empty();
   const int lines = first ? 0 : f.line_base + static_cast<int>(f.line_starts.size());
-  f.bytes = std::move(w.bytes);
-  f.line_starts = std::move(w.line_starts);
-  f.line_ends = std::move(w.line_ends);
+  // the window's memory in, the previous window's out to the spare
+  std::swap(f.bytes, w.bytes);
+  std::swap(f.line_starts, w.line_starts);
+  std::swap(f.line_ends, w.line_ends);
+  std::swap(f.tokens, w.tokens);
   f.bare_fractions = f.bare_fractions || w.bare_fractions;  // the flags of the file so far
   f.zero_fractions = f.zero_fractions || w.zero_fractions;
   f.bom = first && w.bom;
   f.line_base = lines;
-  f.tokens = std::move(w.tokens);
+  spare_.bytes = std::move(w.bytes);
+  spare_.line_starts = std::move(w.line_starts);
+  spare_.line_ends = std::move(w.line_ends);
+  spare_.tokens = std::move(w.tokens);
 }
 
 void ProgramStream::startAhead() {
-  ahead_ = std::async(std::launch::async, [this] {
-    SourceFile w;
+  Ahead a;  // on the spare's memory, taken here (the reader refills the spare meanwhile)
+  a.file = fromSpare(spare_);
+  a.read = std::move(spare_.read);
+  ahead_ = std::async(std::launch::async, [this, a = std::move(a)]() mutable {
+    SourceFile& w = a.file;
     readWindowBytes(w.bytes);
-    if (w.bytes.empty()) return w;
+    if (w.bytes.empty()) return std::move(a);
     w.indexLines();
     w.bom = false;  // not the file's first bytes
-    KrlStream::lexWindow(w);
-    return w;
+    KrlStream::lexWindow(w, a.read);
+    return std::move(a);
   });
 }
 
 void ProgramStream::readWindowBytes(std::string& buf) {
   const std::string& path = src_;  // not p_ (the reader may change it meanwhile)
-  buf = std::move(rest_);
+  buf.assign(rest_);               // into buf's own memory (a spare window's)
   rest_.clear();
   std::size_t cut = std::string::npos;
   while (!eof_) {  // whole lines: up to the last line end, more when the window has none
@@ -157,14 +173,16 @@ bool ProgramStream::next() {
   }
   bool more = true;
   bool lexed = false;
-  if (pending_) {  // the constructor's window
+  std::shared_ptr<KrlAhead> read;  // what the read-ahead read of the window
+  if (pending_) {                  // the constructor's window
     pending_ = false;
   } else if (read_ahead_) {
     more = ahead_.valid();  // none after the window that ended the file
     if (more) {
-      SourceFile w = ahead_.get();  // its read error, where readWindow() would throw it
-      more = lexed = !w.bytes.empty();
-      if (more) installWindow(std::move(w));
+      Ahead w = ahead_.get();  // its read error, where readWindow() would throw it
+      more = lexed = !w.file.bytes.empty();
+      if (more) installWindow(std::move(w.file));
+      read = std::move(w.read);
     }
   } else {
     more = readWindow();
@@ -178,7 +196,8 @@ bool ProgramStream::next() {
   }
   if (read_ahead_ && !eof_) startAhead();  // the window after, while this one is read
   if (lexed) {
-    krl_->lexedLines();
+    krl_->lexedLines(read.get());
+    spare_.read = std::move(read);  // refilled by the window after next
   } else {
     krl_->lines();
   }

@@ -22,6 +22,7 @@
 #include <future>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "compensator/support/platform.hpp"
 #include "postproc/program.hpp"
@@ -30,6 +31,7 @@ namespace roprec::postproc {
 
 class KrlStream;
 class HoleRecognizer;
+struct KrlAhead;
 
 /// What retire() dropped: motions [0, motions) and targets [target_begin, target_end) of the
 /// window; the indices after them shift down by as many.
@@ -68,6 +70,22 @@ class ProgramStream {
   bool readWindow();
   /// The next window's bytes of whole lines into `buf` (empty at the end of the file).
   void readWindowBytes(std::string& buf);
+  /// A window read, indexed and lexed ahead, with what KrlStream::lexWindow read of it.
+  struct Ahead {
+    SourceFile file;
+    std::shared_ptr<KrlAhead> read;
+  };
+  /// The memory of a window done with (its capacity kept), for the window read after it: no
+  /// new pages per window.
+  struct Spare {
+    std::string bytes;
+    std::vector<std::uint32_t> line_starts;
+    std::vector<LineEnd> line_ends;
+    std::vector<Token> tokens;
+    std::shared_ptr<KrlAhead> read;
+  };
+  /// A SourceFile for the next window, on the spare's memory (taken).
+  static SourceFile fromSpare(Spare& s);
   /// Makes `w` (the bytes, line index and tokens of the window after the last one) p_.files[0].
   void installWindow(SourceFile&& w);
   /// Starts reading, indexing and lexing the next window on a task of its own (read_ahead).
@@ -87,8 +105,9 @@ class ProgramStream {
   bool pending_{false};    ///< the window the constructor read is not parsed yet
   std::size_t pinned_{0};  ///< targets that always stay (the .dat's)
   std::exception_ptr range_error_;
+  Spare spare_;  ///< the window before the one p_ holds (read_ahead: taken by the next task)
   bool read_ahead_{false};
-  std::future<SourceFile> ahead_;  ///< the next window (read_ahead); last: joined first
+  std::future<Ahead> ahead_;  ///< the next window (read_ahead); last: joined first
 };
 
 }  // namespace roprec::postproc

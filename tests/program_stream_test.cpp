@@ -3,7 +3,8 @@
 // same ids, points, axes, depths, frames, lines and evidence, whatever its line ends, while the
 // window holds a bounded number of motions. Errors are readProgram's, in its order (a reader's
 // error before a value out of range met earlier), also when each next window is read and lexed
-// ahead on a task of its own.
+// ahead on a task of its own, its motion lines' target aggregates parsed there as the reader
+// parses them.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "compensator/support/error.hpp"
+#include "postproc/dialects.hpp"
 #include "postproc/drill.hpp"
 #include "postproc/program_stream.hpp"
 #include "tests/support/test_support.hpp"
@@ -124,6 +126,106 @@ TEST(ProgramStream, WindowsWithRetiredMotionsGiveTheHolesOfTheWholeProgram) {
   // 300 cycles of 4 motions in 4 kB windows: the window never holds more than a few cycles'
   const Streamed st = readStreamed(dir + "/big.src", 4096);
   EXPECT_LT(st.max_window_motions, 200U);
+}
+
+/// What a motion and its targets read to, without file offsets (a window's are its own).
+std::string motionText(const postproc::Program& p, const postproc::Motion& m) {
+  std::string s = std::to_string(static_cast<int>(m.type)) + " line " + std::to_string(m.line) +
+                  (m.fine ? " fine" : "") + (m.config_honoured ? " conf" : "") + " v " +
+                  std::to_string(m.speed_mm_s) + " [" + p.text(m.instruction) + "|" +
+                  p.text(m.zone_text) + "|" + p.text(m.target_text) + "|" + p.text(m.derivation) +
+                  "|" + p.text(m.speed_text) + "] markers " + std::to_string(m.marker_count);
+  const auto fields = [&s](const auto& block, std::size_t n) {
+    for (std::size_t k = 0; k < n; ++k) {
+      const postproc::NumberField& f = block[k];
+      s += f.present() ? " " + std::to_string(f.value) + "/" + std::to_string(f.length) : " -";
+    }
+  };
+  for (const int t : {m.aux, m.target}) {
+    if (t < 0) continue;
+    const postproc::Target& tg = p.targets()[static_cast<size_t>(t)];
+    s += " {" + tg.name + " kind " + std::to_string(static_cast<int>(tg.kind)) + " orient " +
+         std::to_string(static_cast<int>(tg.orientation)) + " line " + std::to_string(tg.line) +
+         " S " + std::to_string(tg.config.status) + " T " + std::to_string(tg.config.turn);
+    fields(tg.pos, 3);
+    fields(tg.rot, 4);
+    fields(tg.joints, 6);
+    fields(tg.ext, 6);
+    fields(tg.config_fields, 2);
+    s += "}";
+  }
+  return s;
+}
+
+/// Every motion of `path` read by windows of `window` bytes (none retired), as motionText.
+std::vector<std::string> streamedMotions(const std::string& path, size_t window, bool ahead) {
+  postproc::ProgramStream s(path, window, ahead);
+  while (s.next()) {
+  }
+  std::vector<std::string> out;
+  for (const postproc::Motion& m : s.program().motions) out.push_back(motionText(s.program(), m));
+  return out;
+}
+
+/// KRL motion lines of every target shape the reader parses: joint and Cartesian aggregates,
+/// typed or not, signed numbers (a space after the sign), exponents, literals, CIRC's two
+/// targets, a WITH list, a relative motion, a `:` expression, lower case, trailing comments.
+std::string krlTargetShapes(int n) {
+  std::string s = "DEF shapes()\n" + std::string(test::kHousingBase) + "\n$VEL.CP = 0.2\n";
+  for (int i = 0; i < n; ++i) {
+    const std::string x = std::to_string(i % 97) + "." + std::to_string(i % 7);
+    s += "PTP {A1 " + x + ",A2 -90,A3 90,A4 0,A5 " + x + ",A6 0}\n";
+    s += "PTP {E6POS: X " + x + ",Y -2,Z 300,A 0,B 90,C 180,S 'B010',T 2,E1 0} C_PTP\n";
+    s += "LIN {X 1, Y " + x + ", Z 3, A 0, B 0, C 0} C_DIS ; a comment {X 9}\n";
+    s += "LIN {X - 5,Y +" + x + ",Z 7.25e1,A 0,B 0,C 0}\n";
+    s += "CIRC {X 1,Y 2,Z 3},{X " + x + ",Y 5,Z 6,A 0,B 0,C 0} C_VEL\n";
+    s += "SLIN {X 1,Y 2,Z " + x + ",A 0,B 0,C 0} WITH $VEL.CP = 0.1 C_SPL\n";
+    s += "LIN_REL {X " + x + "} C_DIS\n";
+    s += "lin {x 1,y 2,z " + x + ",a 4,b 5,c 6}\n";
+    s += "PTP {POS: X 1,Y 2,Z 3,A 0,B 0,C 0,S 6,T 27}\n";
+    s += "LIN {X 1,Y 2,Z 3,A 0,B 0,C 0}:{X " + x + ",Y 0,Z 10,A 0,B 0,C 0}\n";
+    s += "SPTP {A1 10,A2 -80,A3 80,A4 0,A5 10,A6 0, E1 " + x + "}\n";
+    s += "LIN {X 1,Y 2,Z 3,A 0,B 0,C 0,S 2,T 35}  C_DIS  ; " + x + "\n";
+  }
+  return s + "END\n";
+}
+
+TEST(ProgramStream, TargetsReadAheadAreThoseTheReaderReads) {
+  // the read-ahead (KrlStream::lexWindow) parses the motion lines' target aggregates on a task
+  // of its own; the reader takes them instead of parsing them again: every motion and target
+  // reads as in the program read whole, on real programs and on every target shape
+  const std::string dir = test::tempDir("program_stream_ahead");
+  std::vector<std::string> programs = {dir + "/shapes.src"};
+  test::writeFile(programs[0], krlTargetShapes(120));
+  for (const char* f :
+       {"emotor-housing/housing_kr120.src", "emotor-housing/housing_kr120_tools.src",
+        "verification/test_kr120.src", "verification/geometry_kr120.src", "milling/wall_pass.src",
+        "milling/box_passes.src"})
+    programs.push_back(test::sourceDir() + "/samples/" + f);
+  if (const std::string corpus = test::corpusDir(); !corpus.empty()) {
+    for (const char* f : {"DrillKRC2DAT.src", "DrillKRC4.src"})
+      programs.push_back(corpus + "/robodk/" + f);
+  }
+  for (const std::string& path : programs) {
+    SCOPED_TRACE(path);
+    const postproc::Program whole = postproc::readProgram(path);
+    std::vector<std::string> expected;
+    for (const postproc::Motion& m : whole.motions) expected.push_back(motionText(whole, m));
+    ASSERT_FALSE(expected.empty());
+    for (const size_t window : {size_t{4096}, size_t{10000}}) {
+      SCOPED_TRACE(window);
+      EXPECT_EQ(streamedMotions(path, window, true), expected);
+      EXPECT_EQ(streamedMotions(path, window, false), expected);
+    }
+  }
+  // the read-ahead does read the aggregates (the reader would otherwise read them alone): one
+  // per target expression of the shapes' motion lines, none for a line that is not a motion
+  postproc::SourceFile w;
+  w.bytes = "LIN {X 1,Y 2}\nCIRC {X 1},{Y 2} C_DIS\n$BASE = {X 1}\nPTP {X 1\nPTP XP1\n";
+  w.indexLines();
+  std::shared_ptr<postproc::KrlAhead> a;
+  postproc::KrlStream::lexWindow(w, a);
+  EXPECT_EQ(postproc::aggregatesReadAhead(*a), 3U);
 }
 
 std::string errorOf(const std::function<void()>& f) {

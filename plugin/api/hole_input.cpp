@@ -1,9 +1,12 @@
 #include "plugin/api/hole_input.hpp"
 
 #include <algorithm>
+#include <condition_variable>
 #include <cstdio>
+#include <deque>
 #include <exception>
 #include <future>
+#include <mutex>
 #include <unordered_map>
 
 #include "compensator/precision/parallel.hpp"
@@ -543,6 +546,9 @@ class ProgramHoles {
   /// With threads > 1 the program's next window is read and lexed ahead on a task of its own.
   ProgramHoles(const std::string& path, int threads)
       : stream_(path, postproc::ProgramStream::kWindowBytes, threads > 1) {}
+  ProgramHoles(const ProgramHoles&) = delete;
+  ProgramHoles& operator=(const ProgramHoles&) = delete;
+  ~ProgramHoles() { stopProducer(); }
   [[nodiscard]] bool windowed() const { return stream_.windowed(); }
   /// Reads on to the next holes: false once the program is read and every hole given.
   bool next() {
@@ -573,12 +579,19 @@ class ProgramHoles {
     requests.clear();
     sources.clear();
     while (given_ < end) {
-      if (ready_ == ready_r_.size()) setUpNext(job, cell, robot, threads);
+      if (ready_ == ready_r_.size()) {
+        if (threads > 1) {
+          takeBatch(job, cell, robot);
+        } else {
+          setUpNext(job, cell, robot, threads);
+        }
+      }
       requests.push_back(std::move(ready_r_[ready_]));
       sources.push_back(std::move(ready_s_[ready_]));
       ++ready_;
       ++given_;
     }
+    if (given_ == job.hole_count) stopProducer();  // it reads nothing the job needs any more
   }
 
  private:
@@ -593,20 +606,92 @@ class ProgramHoles {
     holes_.push_back(std::move(last));
     first_new_ = 1;
   }
-  /// The next window's holes set up (base frames applied) into the ready list. With threads > 1
-  /// the window after is then read on a task of its own while these holes are predicted (the
-  /// set-up reads the window; the list holds what the holes need of it).
+  /// The next window's holes set up (base frames applied) into the ready list (one thread).
   void setUpNext(const JobHoles& job, const CellSpec& cell, const Robot& robot, int threads) {
-    const bool more = reading_.valid() ? reading_.get() : next();
-    if (!more) throw InternalError("ProgramHoles: fewer holes than the first reading found");
-    const size_t n = holes_.size() - first_new_;
-    ready_r_.assign(n, HoleRequest{});
-    ready_s_.assign(n, HoleSource{});
-    setUpRange(program(), holes_, cell, robot, {}, {}, first_new_, holes_.size(), threads,
-               ready_r_.data(), ready_s_.data());
-    for (size_t k = 0; k < n; ++k) applyBaseFrame(job, ready_r_[k], ready_s_[k]);
+    if (!next()) throw InternalError("ProgramHoles: fewer holes than the first reading found");
+    setUpWindow(job, cell, robot, threads, ready_r_, ready_s_);
     ready_ = 0;
-    if (threads > 1) reading_ = std::async(std::launch::async, [this] { return next(); });
+  }
+  /// The new holes of the window read last, set up (base frames applied) into r and s.
+  void setUpWindow(const JobHoles& job, const CellSpec& cell, const Robot& robot, int threads,
+                   std::vector<HoleRequest>& r, std::vector<HoleSource>& s) {
+    const size_t n = holes_.size() - first_new_;
+    r.assign(n, HoleRequest{});
+    s.assign(n, HoleSource{});
+    setUpRange(program(), holes_, cell, robot, {}, {}, first_new_, holes_.size(), threads, r.data(),
+               s.data());
+    for (size_t k = 0; k < n; ++k) applyBaseFrame(job, r[k], s[k]);
+  }
+
+  /// With threads > 1 a task of its own reads the program on and sets its windows' holes up,
+  /// up to kBatches windows ahead of the holes taken: the reading runs whenever a core is free,
+  /// not in step with the prediction. A batch holds one window's holes, or the error that
+  /// stopped the task (the reader's or a set-up's, where the one-thread reading throws it), or
+  /// the end of the program.
+  struct Batch {
+    std::vector<HoleRequest> requests;
+    std::vector<HoleSource> sources;
+    std::exception_ptr error;
+    bool end{false};
+  };
+  static constexpr size_t kBatches = 2;
+  /// The task: batch after batch until the end, an error, or stopProducer(). `job`: the base
+  /// frames alone (a copy: the task never reads the job, which may go first).
+  void produce(const JobHoles& job, const CellSpec& cell, const Robot& robot) {
+    try {
+      while (true) {
+        Batch b;
+        b.end = !next();
+        if (!b.end) setUpWindow(job, cell, robot, 1, b.requests, b.sources);
+        const bool end = b.end;
+        if (!push(std::move(b)) || end) return;
+      }
+    } catch (...) {
+      Batch b;
+      b.error = std::current_exception();
+      push(std::move(b));
+    }
+  }
+  /// Queues `b` once there is room; false when stopped.
+  bool push(Batch&& b) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    changed_.wait(lock, [this] { return stop_ || batches_.size() < kBatches; });
+    if (stop_) return false;
+    batches_.push_back(std::move(b));
+    changed_.notify_all();
+    return true;
+  }
+  /// Stops the task and waits for it (its errors are no one's any more). The cell and robot it
+  /// reads outlive it: it is stopped once the job's last hole is taken, or by the destructor
+  /// (the job's, before the cell's and the robot's: PredictionContext).
+  void stopProducer() {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    changed_.notify_all();
+    if (producer_.valid()) producer_.wait();
+  }
+  /// The next batch into the ready list (the task started on the first call).
+  void takeBatch(const JobHoles& job, const CellSpec& cell, const Robot& robot) {
+    if (!producer_.valid()) {
+      frames_.base_frames = job.base_frames;
+      producer_ =
+          std::async(std::launch::async, [this, &cell, &robot] { produce(frames_, cell, robot); });
+    }
+    Batch b;
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      changed_.wait(lock, [this] { return !batches_.empty(); });
+      b = std::move(batches_.front());
+      batches_.pop_front();
+    }
+    changed_.notify_all();
+    if (b.error) std::rethrow_exception(b.error);
+    if (b.end) throw InternalError("ProgramHoles: fewer holes than the first reading found");
+    ready_r_ = std::move(b.requests);
+    ready_s_ = std::move(b.sources);
+    ready_ = 0;
   }
 
   postproc::ProgramStream stream_;
@@ -618,7 +703,12 @@ class ProgramHoles {
   std::vector<HoleSource> ready_s_;
   size_t ready_{0};
   size_t given_{0};
-  std::future<bool> reading_;  ///< next() of the window after the ready list's; last: joined first
+  std::mutex mutex_;  ///< guards batches_ and stop_
+  std::condition_variable changed_;
+  std::deque<Batch> batches_;
+  bool stop_{false};
+  JobHoles frames_;             ///< the job's base frames, for the set-up task
+  std::future<void> producer_;  ///< the set-up task (threads > 1); last: stopped first
 };
 
 namespace {

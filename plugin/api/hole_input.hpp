@@ -109,7 +109,8 @@ void applyBaseFrame(const JobHoles& job, HoleRequest& r, HoleSource& src);
 /// The requests and sources of holes [begin, end) of a deferred job (JobHoles::deferred), set up
 /// on `threads` workers with the job's base frames applied: the values loadJobHoles gives when
 /// it does not defer. Throws InputError as loadJobHoles does (the first failing hole in order).
-/// A streamed job's holes are asked for in order (`begin` = the previous call's `end`).
+/// A streamed job's holes are asked for in order (`begin` = the previous call's `end`); with
+/// threads > 1 a task of its own reads and sets them up, up to two windows ahead.
 void setUpHoles(const JobHoles& job, const CellSpec& cell, const Robot& robot, size_t begin,
                 size_t end, int threads, std::vector<HoleRequest>& requests,
                 std::vector<HoleSource>& sources);
