@@ -390,7 +390,7 @@ TEST(CompensateThreads, SharedTargetsAreEditedInHoleOrder) {
 namespace roprec {
 namespace {
 
-/// compensateStreamedProgram (the program read by windows, three times) against compensateJob on
+/// compensateStreamedProgram (the program read by windows, twice) against compensateJob on
 /// the program read whole: the program's files, the targets CSV of the holes the sink gets and
 /// the job's counters.
 void expectStreamedLikeWhole(const std::string& program, OrientationMode mode, int threads) {

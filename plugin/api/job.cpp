@@ -288,13 +288,13 @@ void resolveFramesAndTool(PredictionContext& c, const JobOptions& o) {
 }
 
 PredictionContext loadContext(const std::string& cell_path, const std::string& program_path,
-                              const JobOptions& o, bool load_holes = true,
-                              bool defer_setup = false) {
+                              const JobOptions& o, bool load_holes = true, bool defer_setup = false,
+                              bool keep_requests = false) {
   if (!o.tool.empty() && o.tool != "program" && o.tool != "cell")
     throw UsageError("--tool must be program or cell");
   PredictionContext c =
       loadPredictionContext(cell_path, program_path, o.holes, o.uncertainty, o.match_tol_mm,
-                            load_holes, resolvedThreads(o.threads), defer_setup);
+                            load_holes, resolvedThreads(o.threads), defer_setup, keep_requests);
   if (o.fanuc_turn_axes) {
     c.model.config_options.fanuc_turn_axes = *o.fanuc_turn_axes;
     if (c.job.program) c.job.program->fanuc_turn_axes = *o.fanuc_turn_axes;
@@ -1135,9 +1135,12 @@ CompensationResult loadStreamedCompensationJob(const std::string& cell_path,
                                                const std::string& program_path,
                                                const CompensationJob& job) {
   CompensationResult r;
-  r.context = loadContext(cell_path, program_path, job.job, true, true);
+  r.context = loadContext(cell_path, program_path, job.job, true, true, true);
   if (!r.context.job.program || !r.context.job.streamed)
     throw InternalError("loadStreamedCompensationJob: the program is not read by windows");
+  // the frames the options give the base frames the program does not define (resolved above)
+  applyBaseFrames(r.context.job, r.context.cell);
+  std::vector<int>().swap(r.context.job.undefined_base);
   r.orientation = orientationModeName(job.options.mode);
   return r;
 }
@@ -1146,25 +1149,15 @@ void compensateStreamedProgram(CompensationResult& r, const CompensationJob& job
                                const ByteWriter& write_src, std::optional<std::string>& dat,
                                const StreamedBlockSink& sink) {
   const int threads = resolvedThreads(job.job.threads);
-  JobHoles& holes = r.context.job;
-  const size_t n = holes.hole_count;
-  // the second reading: every hole's request (the sequence is chosen over the whole program)
-  std::vector<HoleRequest>& req = holes.requests;
-  req.clear();
-  req.reserve(n);
-  {
-    std::vector<HoleRequest> blk;
-    std::vector<HoleSource> src;
-    for (size_t b = 0; b < n; b += kCompensationBlock) {
-      const size_t e = std::min(n, b + kCompensationBlock);
-      setUpHoles(holes, r.context.cell, r.context.robot, b, e, threads, blk, src);
-      for (HoleRequest& q : blk) req.push_back(std::move(q));
-    }
-    holes.stream.reset();
-  }
+  // every hole's request, kept from the first reading (the sequence is chosen over the whole
+  // program)
+  const std::vector<HoleRequest>& req = r.context.job.requests;
+  const size_t n = req.size();
+  if (n != r.context.job.hole_count)
+    throw InternalError("compensateStreamedProgram: the job's requests were not kept");
   CompensationOptions options = job.options;
   options.threads = threads;  // the same bytes for any count
-  // the third reading edits the program as the holes are compensated
+  // the second reading edits the program as the holes are compensated
   StreamedProgramEdits edits(r, threads, write_src);
   StatsCarry carry;
   const CompensationSink each = [&](size_t first, std::span<HoleCompensation> done) {

@@ -196,8 +196,9 @@ void compensateLoadedStreaming(CompensationResult& r, const CompensationJob& job
 /// files (a marked program takes the whole-program path, which states where the marker is).
 bool compensationStreams(const std::string& program_path, const CompensationJob& job);
 /// loadCompensationJob of a program compensationStreams() accepts, read by windows: every hole
-/// checked on a first reading (the same errors and notes) that keeps the program's frames, files
-/// and notes, not its motions or bytes; context.job is a streamed job (JobHoles::streamed).
+/// checked and its request kept on a first reading (the same errors, notes and requests) that
+/// keeps the program's frames, files and notes, not its motions or bytes; context.job is a
+/// streamed job (JobHoles::streamed) with every request.
 CompensationResult loadStreamedCompensationJob(const std::string& cell_path,
                                                const std::string& program_path,
                                                const CompensationJob& job);
@@ -206,12 +207,12 @@ CompensationResult loadStreamedCompensationJob(const std::string& cell_path,
 using StreamedBlockSink =
     std::function<void(std::size_t first, std::span<const HoleCompensation> holes,
                        std::span<const HoleRequest> requests)>;
-/// compensateLoadedStreaming of a job loadStreamedCompensationJob loaded: the holes' requests
-/// are set up on a second reading (kept for the sequence), then the holes are compensated a
-/// block at a time while a third reading edits the program window by window; the first file's
-/// bytes no later edit can change are written to `write_src` as they are final (the rest once
-/// the program may be written), and `dat` receives the edited `.dat` (when the program has one
-/// and may be written). The bytes, `failed`, `stats`, `refused`, `summary`, `writable` and
+/// compensateLoadedStreaming of a job loadStreamedCompensationJob loaded (its first reading kept
+/// every hole's request: the sequence is chosen over the whole program): the holes are
+/// compensated a block at a time while a second reading edits the program window by window; the
+/// first file's bytes no later edit can change are written to `write_src` as they are final (the
+/// rest once the program may be written), and `dat` receives the edited `.dat` (when the program
+/// has one and may be written). The bytes, `failed`, `stats`, `refused`, `summary`, `writable` and
 /// `why_not_writable` are those of compensateJob; memory does not hold the program.
 void compensateStreamedProgram(CompensationResult& r, const CompensationJob& job,
                                const ByteWriter& write_src, std::optional<std::string>& dat,
