@@ -962,8 +962,12 @@ class StreamedProgramEdits {
     }
     if (e.at < written_)
       throw std::logic_error("overlapping edits in " + r_.context.job.program->files[0].path);
+    // the edits come mostly in file order: one past the last pending is appended
+    const bool after = edits_.empty() || e.at > edits_.rbegin()->first;
     if (e.erase) {
-      edits_.erase(e.at);
+      if (!after) edits_.erase(e.at);
+    } else if (after) {
+      edits_.emplace_hint(edits_.end(), e.at, Pending{e.length, std::move(e.text)});
     } else {
       edits_[e.at] = Pending{e.length, std::move(e.text)};
     }

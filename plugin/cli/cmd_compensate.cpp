@@ -574,8 +574,9 @@ const CommandRegistration reg{
      "chains (0 = every core; default 1); the outputs are byte-identical for any N. Without\n"
      "--report the holes are compensated and written out a block at a time (the program's bytes\n"
      "up to the next hole's targets, the --targets rows): memory does not grow with the per-hole\n"
-     "results; --report keeps them all (it draws them). A milling path's --targets export is\n"
-     "written point by point.\n",
+     "results; --report keeps them all (it draws them). Without --report or --holes a KUKA KRL\n"
+     "program is read by windows, twice (the holes, then the edits), and never held whole. A\n"
+     "milling path's --targets export is written point by point.\n",
      50, run}};
 
 }  // namespace
