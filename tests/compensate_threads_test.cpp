@@ -458,7 +458,8 @@ TEST(CompensateThreads, StreamedProgramWritesTheBytesOfTheWholeJob) {
 }
 
 // A program that carries the compensation marker, or a hole list, takes the whole-program path
-// (it says where the marker is); another dialect too.
+// (it says where the marker is), and so does one whose .dat, held whole either way, is the larger
+// file and above a window.
 TEST(CompensateThreads, MarkedProgramsAndHoleListsAreNotStreamed) {
   const std::string dir = test::tempDir("compensate_threads_not_streamed");
   const std::string marked = dir + "/marked.src";
@@ -470,6 +471,13 @@ TEST(CompensateThreads, MarkedProgramsAndHoleListsAreNotStreamed) {
   test::writeFile(plain, test::krlDrillCycles(3));
   EXPECT_TRUE(api::compensationStreams(plain, job));
   job.job.holes = test::sourceDir() + "/samples/emotor-housing/holes.csv";
+  EXPECT_FALSE(api::compensationStreams(plain, job));
+  job.job.holes.reset();
+  std::string dat = "DEFDAT plain\n";
+  while (dat.size() <= 2 * postproc::ProgramStream::kWindowBytes)
+    dat += "DECL E6POS XP" + std::to_string(dat.size()) +
+           "={X 1.000,Y 2.000,Z 3.000,A 0.000,B 0.000,C 180.000}\n";
+  test::writeFile(dir + "/plain.dat", dat + "ENDDAT\n");
   EXPECT_FALSE(api::compensationStreams(plain, job));
 }
 

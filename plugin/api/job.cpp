@@ -952,24 +952,17 @@ class StreamedProgramEdits {
   }
 
   void put(FileEdit&& e) {
-    if (e.file != 0) {
-      if (e.erase) {
-        dat_edits_.erase(e.at);
-      } else {
-        dat_edits_[e.at] = Pending{e.length, std::move(e.text)};
-      }
-      return;
-    }
-    if (e.at < written_)
+    if (e.file == 0 && e.at < written_)
       throw std::logic_error("overlapping edits in " + r_.context.job.program->files[0].path);
+    std::map<std::uint64_t, Pending>& edits = e.file == 0 ? edits_ : dat_edits_;
     // the edits come mostly in file order: one past the last pending is appended
-    const bool after = edits_.empty() || e.at > edits_.rbegin()->first;
+    const bool after = edits.empty() || e.at > edits.rbegin()->first;
     if (e.erase) {
-      if (!after) edits_.erase(e.at);
+      if (!after) edits.erase(e.at);
     } else if (after) {
-      edits_.emplace_hint(edits_.end(), e.at, Pending{e.length, std::move(e.text)});
+      edits.emplace_hint(edits.end(), e.at, Pending{e.length, std::move(e.text)});
     } else {
-      edits_[e.at] = Pending{e.length, std::move(e.text)};
+      edits[e.at] = Pending{e.length, std::move(e.text)};
     }
   }
 
@@ -1041,20 +1034,20 @@ class StreamedProgramEdits {
   /// this window edited on the workers, the others in hole order; the edits queued in hole order.
   void editBatch(std::span<const HoleCompensation> res) {
     const size_t m = res.size();
-    const postproc::Program& p = stream_.program();
     serial_.assign(m, 0);
-    std::vector<int> users(p.targets().size(), 0);
+    // (target, hole) of the batch, sorted: a target two holes list is shared
+    uses_.clear();
     for (size_t k = 0; k < m; ++k) {
       const postproc::Hole& h = holes_[pending_ + k];
-      std::vector<int> own = h.targets;
-      std::sort(own.begin(), own.end());
-      own.erase(std::unique(own.begin(), own.end()), own.end());
-      for (const int t : own) ++users[static_cast<size_t>(t)];
+      for (const int t : h.targets) uses_.emplace_back(t, k);
       if (inEarlierWindow(h)) serial_[k] = 1;
     }
-    for (size_t k = 0; k < m; ++k) {
-      for (const int t : holes_[pending_ + k].targets)
-        if (users[static_cast<size_t>(t)] > 1) serial_[k] = 1;
+    std::sort(uses_.begin(), uses_.end());
+    uses_.erase(std::unique(uses_.begin(), uses_.end()), uses_.end());
+    for (size_t u = 0; u + 1 < uses_.size(); ++u) {
+      if (uses_[u].first != uses_[u + 1].first) continue;
+      serial_[uses_[u].second] = 1;
+      serial_[uses_[u + 1].second] = 1;
     }
     if (logs_.size() < m) {
       logs_.resize(m);
@@ -1095,6 +1088,7 @@ class StreamedProgramEdits {
   std::map<std::uint64_t, Pending> dat_edits_;
   std::string out_;
   std::vector<char> serial_;
+  std::vector<std::pair<int, size_t>> uses_;
   std::vector<std::vector<FileEdit>> logs_;
   std::vector<std::vector<std::string>> refusals_;
 };
@@ -1126,7 +1120,15 @@ bool compensationStreams(const std::string& program_path, const CompensationJob&
   try {
     postproc::ProgramStream s(program_path);
     if (!s.windowed()) return false;
-    for (const postproc::SourceFile& f : s.program().files) {
+    const std::vector<postproc::SourceFile>& files = s.program().files;
+    // the .dat is held whole either way (its targets stay): a program whose .dat is the larger
+    // file, above a window, gains nothing from a .src read by windows, read twice
+    std::error_code ec;
+    const auto src_bytes = std::filesystem::file_size(files[0].path, ec);
+    if (files.size() > 1 && !ec && files[1].bytes.size() > postproc::ProgramStream::kWindowBytes &&
+        files[1].bytes.size() >= src_bytes)
+      return false;
+    for (const postproc::SourceFile& f : files) {
       if (fileHoldsMarker(f.path)) return false;
     }
   } catch (const InputError&) {
