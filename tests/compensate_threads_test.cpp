@@ -6,6 +6,7 @@
 // below have unreachable holes and turned holes next to each other.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
@@ -15,6 +16,7 @@
 #include "plugin/api/prediction_setup.hpp"
 #include "postproc/edited_file_writer.hpp"
 #include "postproc/program.hpp"
+#include "postproc/program_stream.hpp"
 #include "tests/support/compensation_compare.hpp"
 #include "tests/support/test_support.hpp"
 
@@ -380,6 +382,128 @@ TEST(CompensateThreads, SharedTargetsAreEditedInHoleOrder) {
     // the marker line differs (cell name, version): compare the .dat, where the targets are
     EXPECT_TRUE(got[1] == ref[1]);
   }
+}
+
+}  // namespace
+}  // namespace roprec
+
+namespace roprec {
+namespace {
+
+/// compensateStreamedProgram (the program read by windows, twice) against compensateJob on
+/// the program read whole: the program's files, the targets CSV of the holes the sink gets and
+/// the job's counters.
+void expectStreamedLikeWhole(const std::string& program, OrientationMode mode, int threads) {
+  SCOPED_TRACE(program + " " + orientationModeName(mode) + " threads " + std::to_string(threads));
+  const std::string cell = test::sourceDir() + "/samples/cells/housing-kr120.xml";
+  api::CompensationJob job;
+  job.options.mode = mode;
+  job.job.threads = threads;
+  const api::CompensationResult whole = api::compensateJob(cell, program, job);
+  const std::vector<std::string> want = postproc::renderFiles(*whole.context.job.program);
+  ASSERT_TRUE(api::compensationStreams(program, job));
+  api::CompensationResult r = api::loadStreamedCompensationJob(cell, program, job);
+  EXPECT_TRUE(r.context.job.streamed);
+  std::string src, csv;
+  std::optional<std::string> dat;
+  api::CompensationTargetsStream rows(
+      r.context, r.orientation, program, true, [&](std::string_view b) { csv.append(b); }, threads);
+  size_t next = 0;
+  api::compensateStreamedProgram(
+      r, job, [&](std::string_view b) { src.append(b); }, dat,
+      [&](size_t first, std::span<const HoleCompensation> holes, std::span<const HoleRequest> q) {
+        EXPECT_EQ(first, next);
+        next += holes.size();
+        rows.holes(holes, q);
+      });
+  rows.finish();
+  ASSERT_TRUE(r.writable);
+  EXPECT_EQ(next, whole.holes.size());
+  EXPECT_EQ(src.size(), want[0].size());
+  EXPECT_TRUE(src == want[0]);
+  ASSERT_EQ(dat.has_value(), want.size() > 1);
+  if (dat) {
+    EXPECT_TRUE(*dat == want[1]);
+  }
+  EXPECT_TRUE(csv == api::compensationTargets(whole, program, true));
+  EXPECT_EQ(r.hole_count, whole.holes.size());
+  EXPECT_EQ(r.failed, whole.failed);
+  EXPECT_EQ(r.refused, whole.refused);
+  EXPECT_EQ(r.summary.error_before_um, whole.summary.error_before_um);
+  EXPECT_EQ(r.summary.residual_after_um, whole.summary.residual_after_um);
+  EXPECT_EQ(r.summary.conform_before, whole.summary.conform_before);
+  EXPECT_EQ(r.summary.conform_after, whole.summary.conform_after);
+  EXPECT_EQ(r.summary.jumps_before, whole.summary.jumps_before);
+  EXPECT_EQ(r.summary.jumps_after, whole.summary.jumps_after);
+  expectSameStats(r.stats, whole.stats);
+}
+
+// A KRL program is compensated reading it by windows: the bytes of the program read whole, for
+// targets in the .dat shared by two holes, the sample job, and a program of several windows
+// (holes whose cycles cross a window's end, targets edited in the window before).
+TEST(CompensateThreads, StreamedProgramWritesTheBytesOfTheWholeJob) {
+  const std::string dir = test::tempDir("compensate_threads_streamed_program");
+  for (const std::string& program :
+       {sharedTargetJob(dir), test::sourceDir() + "/samples/emotor-housing/housing_kr120.src"}) {
+    for (const OrientationMode mode :
+         {OrientationMode::kKeep, OrientationMode::kFlipFree, OrientationMode::kStiffest}) {
+      for (const int threads : {1, 2}) expectStreamedLikeWhole(program, mode, threads);
+    }
+  }
+  const std::string big = dir + "/big.src";
+  test::writeFile(big, test::krlDrillCycles(9000, test::kHousingBase, true));
+  ASSERT_GT(std::filesystem::file_size(big), 2 * postproc::ProgramStream::kWindowBytes);
+  for (const int threads : {1, 2}) expectStreamedLikeWhole(big, OrientationMode::kKeep, threads);
+  expectStreamedLikeWhole(big, OrientationMode::kFlipFree, 2);
+}
+
+// A program that carries the compensation marker, or a hole list, takes the whole-program path
+// (it says where the marker is), and so does one whose .dat, held whole either way, is the larger
+// file and above a window.
+TEST(CompensateThreads, MarkedProgramsAndHoleListsAreNotStreamed) {
+  const std::string dir = test::tempDir("compensate_threads_not_streamed");
+  const std::string marked = dir + "/marked.src";
+  test::writeFile(
+      marked, test::krlDrillCycles(3, test::kHousingBase, false, ";roprec compensated: cell x\n"));
+  api::CompensationJob job;
+  EXPECT_FALSE(api::compensationStreams(marked, job));
+  const std::string plain = dir + "/plain.src";
+  test::writeFile(plain, test::krlDrillCycles(3));
+  EXPECT_TRUE(api::compensationStreams(plain, job));
+  job.job.holes = test::sourceDir() + "/samples/emotor-housing/holes.csv";
+  EXPECT_FALSE(api::compensationStreams(plain, job));
+  job.job.holes.reset();
+  std::string dat = "DEFDAT plain\n";
+  while (dat.size() <= 2 * postproc::ProgramStream::kWindowBytes)
+    dat += "DECL E6POS XP" + std::to_string(dat.size()) +
+           "={X 1.000,Y 2.000,Z 3.000,A 0.000,B 0.000,C 180.000}\n";
+  test::writeFile(dir + "/plain.dat", dat + "ENDDAT\n");
+  EXPECT_FALSE(api::compensationStreams(plain, job));
+}
+
+// An error far into a streamed program (an aggregate left open in its last cycle, windows after
+// the first) stops the CLI with exit 2 at that line before anything is written: no output, no
+// temporary.
+TEST(CompensateThreads, CliErrorLateInAStreamedProgramWritesNothing) {
+  const std::string dir = test::tempDir("compensate_threads_late_error");
+  std::string text = test::krlDrillCycles(9000, test::kHousingBase, true);
+  const size_t last = text.rfind("LIN {");
+  text.erase(text.find('}', last), 1);
+  const std::string src = dir + "/late.src";
+  test::writeFile(src, text);
+  ASSERT_GT(text.size(), 2 * postproc::ProgramStream::kWindowBytes);
+  const int line = static_cast<int>(std::count(text.begin(), text.begin() + last, '\n')) + 1;
+  api::CompensationJob job;
+  ASSERT_TRUE(api::compensationStreams(src, job));
+  const std::string cell = test::sourceDir() + "/samples/cells/housing-kr120.xml";
+  const auto r = test::runRoprec("compensate --cell '" + cell + "' '" + src + "' --quiet -o '" +
+                                 dir + "/o.src' --targets '" + dir + "/o.csv' --threads 2");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("late.src:" + std::to_string(line)), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/o.src"));
+  EXPECT_FALSE(std::filesystem::exists(dir + "/o.csv"));
+  for (const auto& e : std::filesystem::directory_iterator(dir))  // no temporaries left
+    EXPECT_FALSE(isOutputTemporaryName(e.path().filename().string(), nullptr)) << e.path();
 }
 
 }  // namespace

@@ -718,7 +718,7 @@ namespace {
 /// (a hole's set-up error before a change of tools, wherever they are met); the holes are set
 /// up on a second reading (setUpHoles).
 JobHoles loadStreamedHoles(const std::string& path, const CellSpec& cell, const Robot& robot,
-                           int threads, ProgramHoles& first) {
+                           int threads, ProgramHoles& first, bool keep_requests) {
   JobHoles job;
   job.path = path;
   job.deferred = true;
@@ -728,13 +728,35 @@ JobHoles loadStreamedHoles(const std::string& path, const CellSpec& cell, const 
   std::string base_note;
   std::exception_ptr setup_error;
   std::exception_ptr tool_error;
+  // keep_requests: the requests in chunks of their own (each freed at once as it is moved into
+  // the job's vector of their count: about one chunk more than the requests at the peak)
+  constexpr size_t kKeptChunk = 65536;  // 37 MB: above the allocator's largest heap block
+  std::vector<std::vector<HoleRequest>> kept;
+  std::vector<HoleRequest> window;
+  std::vector<HoleSource> src;
   while (first.next()) {  // a reader's error is thrown where it is met
     if (setup_error) continue;
     const postproc::Program& p = first.program();
     const std::vector<postproc::Hole>& hs = first.holes();
     try {
-      setUpRange(p, hs, cell, robot, {}, {}, first.firstNew(), hs.size(), threads, nullptr,
-                 nullptr);
+      if (keep_requests) {
+        const size_t n = hs.size() - first.firstNew();
+        window.assign(n, HoleRequest{});
+        src.assign(n, HoleSource{});
+        setUpRange(p, hs, cell, robot, {}, {}, first.firstNew(), hs.size(), threads, window.data(),
+                   src.data());
+        for (size_t k = 0; k < n; ++k) {
+          if (kept.empty() || kept.back().size() == kKeptChunk) {
+            kept.emplace_back();
+            kept.back().reserve(kKeptChunk);
+          }
+          kept.back().push_back(std::move(window[k]));
+          job.undefined_base.push_back(src[k].frame_resolved ? -1 : src[k].base);
+        }
+      } else {
+        setUpRange(p, hs, cell, robot, {}, {}, first.firstNew(), hs.size(), threads, nullptr,
+                   nullptr);
+      }
     } catch (const InputError&) {
       setup_error = std::current_exception();
       continue;
@@ -767,7 +789,12 @@ JobHoles loadStreamedHoles(const std::string& path, const CellSpec& cell, const 
   std::vector<postproc::Motion>().swap(job.program->motions);
   std::vector<postproc::Target>().swap(job.program->target_list);
   std::vector<postproc::TextId>().swap(job.program->marker_texts);
-  job.stream = std::make_shared<ProgramHoles>(path, threads);
+  job.requests.reserve(job.hole_count);
+  for (std::vector<HoleRequest>& w : kept) {
+    for (HoleRequest& r : w) job.requests.push_back(std::move(r));
+    std::vector<HoleRequest>().swap(w);
+  }
+  if (!keep_requests) job.stream = std::make_shared<ProgramHoles>(path, threads);
   return job;
 }
 
@@ -782,6 +809,17 @@ void applyBaseFrame(const JobHoles& job, HoleRequest& r, HoleSource& src) {
   r.T_W_tcp = *T * src.T_W_frame.inverse() * r.T_W_tcp;
   src.T_W_frame = *T;
   src.frame_resolved = true;
+}
+
+void applyBaseFrames(JobHoles& job, const CellSpec& cell) {
+  for (size_t i = 0; i < job.undefined_base.size() && i < job.requests.size(); ++i) {
+    if (job.undefined_base[i] < 0) continue;
+    HoleSource src;  // what setUpHole gives a hole whose base frame the program does not define
+    src.hole = static_cast<int>(i);
+    src.base = job.undefined_base[i];
+    src.T_W_frame = cell.T_base_wobj;
+    applyBaseFrame(job, job.requests[i], src);
+  }
 }
 
 void setUpHoles(const JobHoles& job, const CellSpec& cell, const Robot& robot, size_t begin,
@@ -820,10 +858,11 @@ void refuseToolConflicts(const postproc::Program& p) {
 
 JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot& robot,
                       const std::optional<std::string>& hole_list, double match_tol_mm, int threads,
-                      bool defer_setup) {
+                      bool defer_setup, bool keep_requests) {
   if (defer_setup && !hole_list) {  // a KRL program is read by windows (twice)
     auto holes = std::make_shared<ProgramHoles>(path, threads);
-    if (holes->windowed()) return loadStreamedHoles(path, cell, robot, threads, *holes);
+    if (holes->windowed())
+      return loadStreamedHoles(path, cell, robot, threads, *holes, keep_requests);
   }
   JobHoles job;
   job.path = path;

@@ -95,6 +95,10 @@ struct JobHoles {
   std::string first_hole_id;
   std::vector<HoleFrameUse> frame_uses;
   std::shared_ptr<ProgramHoles> stream;  ///< streamed: the second reading (setUpHoles)
+  /// Streamed with its requests kept (loadJobHoles' keep_requests): per hole the program frame
+  /// of its base when the program does not define it (-1: defined, or none named), the frame
+  /// JobHoles::base_frames may give it (applyBaseFrames).
+  std::vector<int> undefined_base;
   /// Per program frame (index into program->frames): the pose the job gives a base frame the
   /// program does not define (--frame, --frame cell: see resolveFramesAndTool in job.cpp), for
   /// the holes drilled in that frame (applyBaseFrame).
@@ -105,6 +109,10 @@ struct JobHoles {
 /// frame, when it has one and the program does not define that frame:
 /// T_W_tcp ← T · T_W_frame⁻¹ · T_W_tcp, T_W_frame ← T.
 void applyBaseFrame(const JobHoles& job, HoleRequest& r, HoleSource& src);
+
+/// Moves the requests a streamed job kept (loadJobHoles' keep_requests) into the poses
+/// JobHoles::base_frames gives their base frames (applyBaseFrame, hole by hole).
+void applyBaseFrames(JobHoles& job, const CellSpec& cell);
 
 /// The requests and sources of holes [begin, end) of a deferred job (JobHoles::deferred), set up
 /// on `threads` workers with the job's base frames applied: the values loadJobHoles gives when
@@ -158,8 +166,11 @@ Mat3 holeFrame(const Vec3& direction);
 /// targets, motions and frames stay; its files keep their paths and lines). A deferred KRL
 /// program is read by windows instead (JobHoles::streamed): every hole checked on a first
 /// reading that keeps no motion behind the window, the holes set up on a second.
+/// `keep_requests` (a streamed program): the first reading keeps every hole's request as set up
+/// there (`requests`, no base frame of JobHoles::base_frames applied yet: applyBaseFrames) and
+/// gives no second reading (`stream` stays empty).
 JobHoles loadJobHoles(const std::string& path, const CellSpec& cell, const Robot& robot,
                       const std::optional<std::string>& hole_list, double match_tol_mm = 0.5,
-                      int threads = 1, bool defer_setup = false);
+                      int threads = 1, bool defer_setup = false, bool keep_requests = false);
 
 }  // namespace roprec::api

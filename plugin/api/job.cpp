@@ -4,9 +4,14 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <deque>
 #include <filesystem>
 #include <future>
 #include <iterator>
+#include <limits>
+#include <map>
 #include <system_error>
 #include <thread>
 
@@ -14,6 +19,8 @@
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
 #include "plugin/api/robot_compliance.hpp"
+#include "postproc/drill.hpp"
+#include "postproc/program_stream.hpp"
 
 namespace roprec::api {
 
@@ -281,13 +288,13 @@ void resolveFramesAndTool(PredictionContext& c, const JobOptions& o) {
 }
 
 PredictionContext loadContext(const std::string& cell_path, const std::string& program_path,
-                              const JobOptions& o, bool load_holes = true,
-                              bool defer_setup = false) {
+                              const JobOptions& o, bool load_holes = true, bool defer_setup = false,
+                              bool keep_requests = false) {
   if (!o.tool.empty() && o.tool != "program" && o.tool != "cell")
     throw UsageError("--tool must be program or cell");
   PredictionContext c =
       loadPredictionContext(cell_path, program_path, o.holes, o.uncertainty, o.match_tol_mm,
-                            load_holes, resolvedThreads(o.threads), defer_setup);
+                            load_holes, resolvedThreads(o.threads), defer_setup, keep_requests);
   if (o.fanuc_turn_axes) {
     c.model.config_options.fanuc_turn_axes = *o.fanuc_turn_axes;
     if (c.job.program) c.job.program->fanuc_turn_axes = *o.fanuc_turn_axes;
@@ -718,6 +725,466 @@ void compensateLoadedStreaming(CompensationResult& r, const CompensationJob& job
   }
   r.hole_count = n;
   settleWritable(r, job, n);
+}
+
+namespace {
+
+/// The compensation edits of a KRL program read again by windows (postproc::ProgramStream), in
+/// hole order: each hole's targets are edited in the window that holds them (a target of an
+/// earlier window in that window's bytes), and the first file is written out up to the first
+/// byte a later hole can still change (the line of the earliest target the reader keeps). The
+/// edits and the bytes are those of editProgram on the program read whole.
+class StreamedProgramEdits {
+ public:
+  StreamedProgramEdits(CompensationResult& r, int threads, ByteWriter write)
+      : r_(r),
+        threads_(threads),
+        write_(std::move(write)),
+        stream_(r.context.job.path, postproc::ProgramStream::kWindowBytes, threads > 1),
+        marker_(markerText(r.context.cell, r.orientation)) {
+    if (!stream_.windowed()) throw InternalError("StreamedProgramEdits: not a windowed program");
+    postproc::Program& p = stream_.program();
+    p.position_min_decimals = 5;  // 0.01 µm: the written target carries the compensation
+    p.fanuc_turn_axes = r.context.job.program->fanuc_turn_axes;
+    out_.reserve(kOutBytes + 4096);
+    pinned_ = p.target_list.size();  // the .dat's: they stay, the reader numbers them first
+  }
+
+  /// Edits holes [first, first + holes.size()) (their results `holes`), refusals appended to
+  /// r.refused in hole order.
+  void edit(size_t first, std::span<const HoleCompensation> holes) {
+    if (first != edited_) throw InternalError("StreamedProgramEdits: holes out of order");
+    size_t k = 0;
+    while (k < holes.size()) {
+      if (pending_ == holes_.size()) {
+        advance();
+        continue;
+      }
+      const size_t m = std::min(holes_.size() - pending_, holes.size() - k);
+      editBatch(holes.subspan(k, m));
+      pending_ += m;
+      k += m;
+      edited_ += m;
+    }
+  }
+
+  /// Reads the program to its end and writes the rest of the first file.
+  void finish() {
+    while (!ended_) {
+      if (stream_.next()) {
+        installed();
+      } else {
+        ended_ = true;
+      }
+    }
+    flush(total_);
+    // an insertion at the very end of the file (offset == size) is not before it
+    for (auto& [at, e] : edits_) {
+      if (at != written_ || e.length != 0)
+        throw std::logic_error("overlapping edits in " + r_.context.job.program->files[0].path);
+      emit(e.text);
+    }
+    edits_.clear();
+    if (!out_.empty()) write_(out_);
+    out_.clear();
+  }
+
+  /// The `.dat` with its edits, nullopt for a program without one.
+  std::optional<std::string> dat() {
+    const postproc::Program& p = stream_.program();
+    if (p.files.size() < 2) return std::nullopt;
+    const std::string& b = p.files[1].bytes;
+    std::string s;
+    s.reserve(b.size() + 64);
+    std::uint64_t pos = 0;
+    for (const auto& [at, e] : dat_edits_) {
+      if (at < pos || at + e.length > b.size())
+        throw std::logic_error("overlapping edits in " + p.files[1].path);
+      s.append(b, pos, at - pos);
+      s += e.text;
+      pos = at + e.length;
+    }
+    s.append(b, pos, std::string::npos);
+    return s;
+  }
+
+ private:
+  static constexpr size_t kOutBytes = size_t{1} << 20U;
+  /// A window of the first file: its first byte in the file, its lines and bytes.
+  struct Window {
+    std::uint64_t start{0};
+    int line_base{0};
+    std::vector<std::uint32_t> line_starts;
+    std::string bytes;
+  };
+  /// An edit at a byte of the first file (or of the .dat), as EditLog::Op.
+  struct FileEdit {
+    bool erase{false};
+    int file{0};
+    std::uint64_t at{0};
+    std::uint32_t length{0};
+    std::string text;
+  };
+  struct Pending {
+    std::uint32_t length{0};
+    std::string text;
+  };
+
+  /// The window that holds line `line` of the first file (1-based).
+  Window& windowOf(int line) {
+    for (auto it = windows_.rbegin(); it != windows_.rend(); ++it) {
+      if (line > it->line_base && line <= it->line_base + static_cast<int>(it->line_starts.size()))
+        return *it;
+    }
+    throw InternalError("StreamedProgramEdits: line " + std::to_string(line) +
+                        " is no longer held");
+  }
+
+  /// The window after the last one is in the stream's program: its bytes kept, the whole-file
+  /// number style of the first reading, the marker queued once the DEF line is met.
+  void installed() {
+    postproc::Program& p = stream_.program();
+    postproc::SourceFile& f = p.files[0];
+    const postproc::SourceFile& whole = r_.context.job.program->files[0];
+    f.bare_fractions = whole.bare_fractions;
+    f.zero_fractions = whole.zero_fractions;
+    f.significant9 = whole.significant9;
+    Window w;
+    w.start = total_;
+    w.line_base = f.line_base;
+    w.line_starts = f.line_starts;
+    w.bytes = f.bytes;
+    total_ += w.bytes.size();
+    windows_.push_back(std::move(w));
+    if (!marked_) {
+      p.edits.clear();
+      marked_ = postproc::markCompensated(p, marker_);
+      for (auto& [key, e] : p.edits)
+        put(FileEdit{false, 0, windows_.back().start + e.offset, e.length, std::move(e.text)});
+      p.edits.clear();
+    }
+  }
+
+  /// Retires what no later hole reads, writes what no later edit changes, and reads on to the
+  /// next holes.
+  void advance() {
+    if (!holes_.empty()) {
+      const postproc::Hole& last = holes_.back();
+      const size_t keep = std::min(static_cast<size_t>(last.bottom_motion), rec_.nextMotion() - 1);
+      const postproc::Retired t = stream_.retire(keep);
+      rec_.retired(t.motions, t.target_begin, t.target_end);
+      retired_targets_ += t.target_end - t.target_begin;
+    }
+    holes_.clear();
+    pending_ = 0;
+    while (true) {
+      flush(bound());
+      if (ended_) throw InternalError("StreamedProgramEdits: fewer holes than the first reading");
+      if (stream_.next()) {
+        installed();
+        rec_.advance(stream_.program(), false);
+      } else {
+        ended_ = true;
+        // the stream releases the last window's bytes at the end: its last holes read them
+        if (!windows_.empty()) stream_.program().files[0].bytes = windows_.back().bytes;
+        rec_.advance(stream_.program(), true);
+      }
+      holes_ = rec_.take();
+      if (!holes_.empty()) return;
+    }
+  }
+
+  /// The first byte of the first file a later edit may change: the start of the line of the
+  /// earliest target the stream's program holds (0 until the marker is queued).
+  std::uint64_t bound() {
+    if (!marked_) return 0;
+    const postproc::Program& p = stream_.program();
+    int line = std::numeric_limits<int>::max();
+    for (const postproc::Target& t : p.target_list) {
+      if (t.file == 0 && t.line >= 1) line = std::min(line, t.line);
+    }
+    if (line == std::numeric_limits<int>::max()) return total_;
+    const Window& w = windowOf(line);
+    return w.start + w.line_starts[static_cast<size_t>(line - 1 - w.line_base)];
+  }
+
+  void emit(std::string_view b) {
+    out_.append(b);
+    if (out_.size() >= kOutBytes) {
+      write_(out_);
+      out_.clear();
+    }
+  }
+
+  /// Bytes [a, b) of the first file, unedited.
+  void emitBytes(std::uint64_t a, std::uint64_t b) {
+    for (const Window& w : windows_) {
+      const std::uint64_t e = w.start + w.bytes.size();
+      if (e <= a || w.start >= b) continue;
+      const std::uint64_t x = std::max(a, w.start);
+      const std::uint64_t y = std::min(b, e);
+      emit(std::string_view(w.bytes).substr(x - w.start, y - x));
+    }
+  }
+
+  /// Writes the first file's bytes before `upto` with their edits (an edit that reaches past it
+  /// waits), and drops the windows written.
+  void flush(std::uint64_t upto) {
+    upto = std::min(upto, total_);
+    if (upto <= written_) return;
+    auto it = edits_.begin();
+    for (; it != edits_.end() && it->first < upto; ++it) {
+      if (it->first + it->second.length > upto) {
+        upto = it->first;
+        break;
+      }
+      emitBytes(written_, it->first);
+      emit(it->second.text);
+      written_ = it->first + it->second.length;
+    }
+    edits_.erase(edits_.begin(), it);
+    if (upto > written_) {
+      emitBytes(written_, upto);
+      written_ = upto;
+    }
+    while (!windows_.empty() && windows_.front().start + windows_.front().bytes.size() <= written_)
+      windows_.pop_front();
+  }
+
+  void put(FileEdit&& e) {
+    if (e.file == 0 && e.at < written_)
+      throw std::logic_error("overlapping edits in " + r_.context.job.program->files[0].path);
+    std::map<std::uint64_t, Pending>& edits = e.file == 0 ? edits_ : dat_edits_;
+    // the edits come mostly in file order: one past the last pending is appended
+    const bool after = edits.empty() || e.at > edits.rbegin()->first;
+    if (e.erase) {
+      if (!after) edits.erase(e.at);
+    } else if (after) {
+      edits.emplace_hint(edits.end(), e.at, Pending{e.length, std::move(e.text)});
+    } else {
+      edits[e.at] = Pending{e.length, std::move(e.text)};
+    }
+  }
+
+  /// Whether a target of `h` lies in a window before the stream's current one.
+  bool inEarlierWindow(const postproc::Hole& h) {
+    const postproc::Program& p = stream_.program();
+    const int first_line = p.files[0].line_base + 1;
+    return std::any_of(h.targets.begin(), h.targets.end(), [&](int t) {
+      const postproc::Target& tg = p.targets()[static_cast<size_t>(t)];
+      return tg.file == 0 && tg.line < first_line;
+    });
+  }
+
+  /// The edits of hole `h` (result `c`) into `log`, its refusals into `refused`: editHoleTargets
+  /// on the window's program. `swap`: a target of an earlier window is edited in its window's
+  /// bytes (one thread at a time).
+  void editHole(const postproc::Hole& h, const HoleCompensation& c, bool swap,
+                std::vector<FileEdit>& log, std::vector<std::string>& refused) {
+    postproc::Program& prog = stream_.program();
+    const Pose T_W_frame = frameOf(h);
+    postproc::EditLog one;
+    for (const int t : h.targets) {
+      const postproc::Target& tg = prog.targets()[static_cast<size_t>(t)];
+      const Pose T_W_t = T_W_frame * postproc::targetPose(prog, tg);
+      const Pose T_W_new =
+          (r_.context.cell.part_registration ? c.delta * partMotion(r_.context.cell) * T_W_t
+                                             : c.delta * T_W_t) *
+          Pose(Eigen::AngleAxisd(c.psi, Vec3::UnitZ()));
+      std::optional<postproc::Configuration> cfg;
+      if (tg.config.present() && c.config_changed)
+        cfg = postproc::parseConfigurationText(c.config_text);
+      Window* w = tg.file == 0 ? &windowOf(tg.line) : nullptr;
+      const bool other = swap && w != nullptr && w != &windows_.back();
+      if (other) std::swap(prog.files[0].bytes, w->bytes);
+      one.ops.clear();
+      const postproc::EditResult er =
+          postproc::replaceTargetPose(prog, t, T_W_frame.inverse() * T_W_new, cfg, one);
+      if (other) std::swap(prog.files[0].bytes, w->bytes);
+      for (postproc::EditLog::Op& op : one.ops) {
+        const std::uint64_t base = op.edit.file == 0 ? w->start : 0;
+        log.push_back(FileEdit{op.erase, op.edit.file, base + op.edit.offset, op.edit.length,
+                               std::move(op.edit.text)});
+      }
+      if (!er.ok) {
+        // the target's index in the program read whole: the targets retired before it counted
+        const size_t global = static_cast<size_t>(t) >= pinned_
+                                  ? static_cast<size_t>(t) + retired_targets_
+                                  : static_cast<size_t>(t);
+        refused.push_back("hole " + c.id + " target " +
+                          (tg.name.empty() ? std::to_string(global) : tg.name) + ": " + er.reason);
+      }
+    }
+  }
+
+  /// The base frame of hole `h`'s targets (setUpHole's T_W_frame with the job's base frames:
+  /// applyBaseFrame).
+  Pose frameOf(const postproc::Hole& h) {
+    const postproc::Program& p = stream_.program();
+    const postproc::Frame* base = h.base >= 0 ? &p.frames[static_cast<size_t>(h.base)] : nullptr;
+    if (base && base->resolved) return base->pose;
+    const auto& given = r_.context.job.base_frames;
+    if (h.base >= 0 && static_cast<size_t>(h.base) < given.size() &&
+        given[static_cast<size_t>(h.base)])
+      return *given[static_cast<size_t>(h.base)];
+    return r_.context.cell.T_base_wobj;
+  }
+
+  /// Holes holes_[pending_ ..) with results `res`: the holes whose targets are their own and in
+  /// this window edited on the workers, the others in hole order; the edits queued in hole order.
+  void editBatch(std::span<const HoleCompensation> res) {
+    const size_t m = res.size();
+    serial_.assign(m, 0);
+    // (target, hole) of the batch, sorted: a target two holes list is shared
+    uses_.clear();
+    for (size_t k = 0; k < m; ++k) {
+      const postproc::Hole& h = holes_[pending_ + k];
+      for (const int t : h.targets) uses_.emplace_back(t, k);
+      if (inEarlierWindow(h)) serial_[k] = 1;
+    }
+    std::sort(uses_.begin(), uses_.end());
+    uses_.erase(std::unique(uses_.begin(), uses_.end()), uses_.end());
+    for (size_t u = 0; u + 1 < uses_.size(); ++u) {
+      if (uses_[u].first != uses_[u + 1].first) continue;
+      serial_[uses_[u].second] = 1;
+      serial_[uses_[u + 1].second] = 1;
+    }
+    if (logs_.size() < m) {
+      logs_.resize(m);
+      refusals_.resize(m);
+    }
+    parallelFor(m, threads_, [&](int, size_t k) {
+      logs_[k].clear();
+      refusals_[k].clear();
+      if (res[k].ok && !serial_[k])
+        editHole(holes_[pending_ + k], res[k], false, logs_[k], refusals_[k]);
+    });
+    for (size_t k = 0; k < m; ++k) {
+      if (!res[k].ok) continue;
+      if (serial_[k]) editHole(holes_[pending_ + k], res[k], true, logs_[k], refusals_[k]);
+      for (FileEdit& e : logs_[k]) put(std::move(e));
+      logs_[k].clear();
+      for (std::string& x : refusals_[k]) r_.refused.push_back(std::move(x));
+    }
+  }
+
+  CompensationResult& r_;
+  int threads_;
+  ByteWriter write_;
+  postproc::ProgramStream stream_;
+  postproc::HoleRecognizer rec_;
+  std::string marker_;
+  std::vector<postproc::Hole> holes_;  ///< the holes recognised in the window
+  size_t pending_{0};                  ///< holes_[pending_ ..] not edited yet
+  size_t edited_{0};                   ///< holes edited so far
+  bool ended_{false};
+  bool marked_{false};
+  size_t retired_targets_{0};
+  size_t pinned_{0};
+  std::deque<Window> windows_;
+  std::uint64_t total_{0};    ///< bytes of the first file read
+  std::uint64_t written_{0};  ///< bytes of the first file written (edits applied)
+  std::map<std::uint64_t, Pending> edits_;
+  std::map<std::uint64_t, Pending> dat_edits_;
+  std::string out_;
+  std::vector<char> serial_;
+  std::vector<std::pair<int, size_t>> uses_;
+  std::vector<std::vector<FileEdit>> logs_;
+  std::vector<std::vector<std::string>> refusals_;
+};
+
+/// Whether `path` holds the bytes of the compensation marker (read in pieces).
+bool fileHoldsMarker(const std::string& path) {
+  static constexpr std::string_view kMarker = "roprec compensated";
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (f == nullptr) return true;  // the whole-program path states why it cannot be read
+  std::string buf(std::size_t{4} << 20U, '\0');
+  std::size_t kept = 0;
+  bool found = false;
+  while (!found) {
+    const std::size_t n = std::fread(buf.data() + kept, 1, buf.size() - kept, f);
+    if (n == 0) break;
+    const std::string_view v(buf.data(), kept + n);
+    found = v.find(kMarker) != std::string_view::npos;
+    kept = std::min(v.size(), kMarker.size() - 1);
+    std::memmove(buf.data(), buf.data() + v.size() - kept, kept);
+  }
+  std::fclose(f);
+  return found;
+}
+
+}  // namespace
+
+bool compensationStreams(const std::string& program_path, const CompensationJob& job) {
+  if (job.job.holes) return false;
+  try {
+    postproc::ProgramStream s(program_path);
+    if (!s.windowed()) return false;
+    const std::vector<postproc::SourceFile>& files = s.program().files;
+    // the .dat is held whole either way (its targets stay): a program whose .dat is the larger
+    // file, above a window, gains nothing from a .src read by windows, read twice
+    std::error_code ec;
+    const auto src_bytes = std::filesystem::file_size(files[0].path, ec);
+    if (files.size() > 1 && !ec && files[1].bytes.size() > postproc::ProgramStream::kWindowBytes &&
+        files[1].bytes.size() >= src_bytes)
+      return false;
+    for (const postproc::SourceFile& f : files) {
+      if (fileHoldsMarker(f.path)) return false;
+    }
+  } catch (const InputError&) {
+    return false;  // the whole-program path gives the error
+  }
+  return true;
+}
+
+CompensationResult loadStreamedCompensationJob(const std::string& cell_path,
+                                               const std::string& program_path,
+                                               const CompensationJob& job) {
+  CompensationResult r;
+  r.context = loadContext(cell_path, program_path, job.job, true, true, true);
+  if (!r.context.job.program || !r.context.job.streamed)
+    throw InternalError("loadStreamedCompensationJob: the program is not read by windows");
+  // the frames the options give the base frames the program does not define (resolved above)
+  applyBaseFrames(r.context.job, r.context.cell);
+  std::vector<int>().swap(r.context.job.undefined_base);
+  r.orientation = orientationModeName(job.options.mode);
+  return r;
+}
+
+void compensateStreamedProgram(CompensationResult& r, const CompensationJob& job,
+                               const ByteWriter& write_src, std::optional<std::string>& dat,
+                               const StreamedBlockSink& sink) {
+  const int threads = resolvedThreads(job.job.threads);
+  // every hole's request, kept from the first reading (the sequence is chosen over the whole
+  // program)
+  const std::vector<HoleRequest>& req = r.context.job.requests;
+  const size_t n = req.size();
+  if (n != r.context.job.hole_count)
+    throw InternalError("compensateStreamedProgram: the job's requests were not kept");
+  CompensationOptions options = job.options;
+  options.threads = threads;  // the same bytes for any count
+  // the second reading edits the program as the holes are compensated
+  StreamedProgramEdits edits(r, threads, write_src);
+  StatsCarry carry;
+  const CompensationSink each = [&](size_t first, std::span<HoleCompensation> done) {
+    for (size_t k = 0; k < done.size(); ++k) {
+      addHoleStats(r.summary, carry, req, first + k, done[k], job.options.jump_threshold);
+      if (!done[k].ok) ++r.failed;
+    }
+    edits.edit(first, done);
+    sink(first, done, std::span<const HoleRequest>(req).subspan(first, done.size()));
+  };
+  if (r.context.cell.part_registration) {
+    const std::vector<HoleRequest> aimed = registeredHoles(r.context);
+    compensateHoles(r.context.model, aimed, options, each, &r.stats);
+  } else {
+    compensateHoles(r.context.model, req, options, each, &r.stats);
+  }
+  r.hole_count = n;
+  settleWritable(r, job, n);
+  if (!r.writable) return;
+  edits.finish();
+  dat = edits.dat();
 }
 
 void editCompensatedProgram(CompensationResult& r, const CompensationJob& job) {

@@ -20,6 +20,7 @@
 #include "compensator/compensation/compensation.hpp"
 #include "compensator/compensation/milling_compensation.hpp"
 #include "compensator/precision/prediction.hpp"
+#include "compensator/support/atomic_file.hpp"
 #include "plugin/api/prediction_setup.hpp"
 #include "plugin/api/program_frames.hpp"
 #include "plugin/report/json.hpp"
@@ -189,6 +190,33 @@ using CompensatedBlockSink =
 /// are those of compensateJob (the edits and the program's bytes too).
 void compensateLoadedStreaming(CompensationResult& r, const CompensationJob& job,
                                const CompensatedBlockSink& sink);
+
+/// Whether compensate reads `program_path` by windows (loadStreamedCompensationJob): a KUKA KRL
+/// program (postproc::ProgramStream), no hole list, and no "roprec compensated" marker in its
+/// files (a marked program takes the whole-program path, which states where the marker is).
+bool compensationStreams(const std::string& program_path, const CompensationJob& job);
+/// loadCompensationJob of a program compensationStreams() accepts, read by windows: every hole
+/// checked and its request kept on a first reading (the same errors, notes and requests) that
+/// keeps the program's frames, files and notes, not its motions or bytes; context.job is a
+/// streamed job (JobHoles::streamed) with every request.
+CompensationResult loadStreamedCompensationJob(const std::string& cell_path,
+                                               const std::string& program_path,
+                                               const CompensationJob& job);
+/// Receives the compensated holes of compensateStreamedProgram a block at a time, in hole
+/// order, with their requests (holes[k] is hole first + k); the holes are dropped after the call.
+using StreamedBlockSink =
+    std::function<void(std::size_t first, std::span<const HoleCompensation> holes,
+                       std::span<const HoleRequest> requests)>;
+/// compensateLoadedStreaming of a job loadStreamedCompensationJob loaded (its first reading kept
+/// every hole's request: the sequence is chosen over the whole program): the holes are
+/// compensated a block at a time while a second reading edits the program window by window; the
+/// first file's bytes no later edit can change are written to `write_src` as they are final (the
+/// rest once the program may be written), and `dat` receives the edited `.dat` (when the program
+/// has one and may be written). The bytes, `failed`, `stats`, `refused`, `summary`, `writable` and
+/// `why_not_writable` are those of compensateJob; memory does not hold the program.
+void compensateStreamedProgram(CompensationResult& r, const CompensationJob& job,
+                               const ByteWriter& write_src, std::optional<std::string>& dat,
+                               const StreamedBlockSink& sink);
 
 /// compensateJob's second stage: every compensated hole's targets edited in the program, the
 /// compensation marker, the before/after summary and whether the program may be written.

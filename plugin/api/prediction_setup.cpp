@@ -194,7 +194,7 @@ PredictionContext loadPredictionContext(const std::string& cell_path, const std:
                                         const std::optional<std::string>& hole_list,
                                         const std::string& uncertainty_override,
                                         double match_tol_mm, bool load_holes, int threads,
-                                        bool defer_setup) {
+                                        bool defer_setup, bool keep_requests) {
   PredictionContext c;
   c.cell = loadCell(cell_path);
   try {
@@ -229,7 +229,8 @@ PredictionContext loadPredictionContext(const std::string& cell_path, const std:
     c.process_description = "no process (gravity and tool weight only)";
   }
   if (load_holes) {
-    c.job = loadJobHoles(job_path, c.cell, c.robot, hole_list, match_tol_mm, threads, defer_setup);
+    c.job = loadJobHoles(job_path, c.cell, c.robot, hole_list, match_tol_mm, threads, defer_setup,
+                         keep_requests);
   } else if (!job_path.empty()) {
     c.job.path = job_path;
     c.job.program = postproc::readProgram(job_path);

@@ -36,12 +36,14 @@ struct PredictionContext {
 /// `uncertainty_override`: "linear" / "montecarlo" from the command line (empty: the cell's).
 /// `load_holes` false: the program is read (not its holes); an empty `job_path` then loads the
 /// cell alone (per-target sessions). `threads`: workers for setting up the holes.
-/// `defer_setup`: see loadJobHoles (the holes' requests are set up later, block by block).
+/// `defer_setup`: see loadJobHoles (the holes' requests are set up later, block by block);
+/// `keep_requests`: see loadJobHoles (a streamed program's requests kept from its first reading).
 PredictionContext loadPredictionContext(const std::string& cell_path, const std::string& job_path,
                                         const std::optional<std::string>& hole_list,
                                         const std::string& uncertainty_override,
                                         double match_tol_mm = 0.5, bool load_holes = true,
-                                        int threads = 1, bool defer_setup = false);
+                                        int threads = 1, bool defer_setup = false,
+                                        bool keep_requests = false);
 
 /// The TCP and mass data of each drill of the cell's tool table that has a <tcp> of its own
 /// (PredictionSetup::drill_tools), with the calibration load the cell's <controller> implies

@@ -346,6 +346,33 @@ void stageOptional(OutputSet& set, const std::optional<std::string>& path,
   set.stageStream(*path, [&](const ByteWriter& write) { produce(&write); });
 }
 
+/// The end of a streamed compensate: the job's messages, then the staged outputs `sets` handed
+/// to the command's set (or committed) when the program may be written.
+int finishStreaming(CommandContext& ctx, const CompensationResult& r, const CompensationJob& job,
+                    const std::string& program, const std::vector<std::string>& prog_outs,
+                    const std::optional<std::string>& targets,
+                    const std::vector<NotCompensated>& failed,
+                    std::initializer_list<OutputSet*> sets) {
+  printJobNotes(ctx, r.context.job.notes);
+  printNotCompensated(ctx, program, failed);
+  for (const auto& x : r.refused) ctx.err << "roprec: " << x << "\n";
+  if (!r.writable) {
+    ctx.err << "roprec: " << r.why_not_writable << "\n";
+    return 1;  // the sets' temporaries are removed with them
+  }
+  std::vector<std::string> written = prog_outs;
+  for (OutputSet* set : sets) {
+    if (OutputSet* active = activeOutputSet()) {
+      active->adopt(std::move(*set));
+    } else {
+      set->commit();
+    }
+  }
+  if (targets) written.push_back(*targets);
+  if (!ctx.quiet) printSummary(ctx, r, job.options, written);
+  return r.failed ? 1 : 0;
+}
+
 /// compensate without a report, in bounded memory for the per-hole results: the holes are
 /// compensated a block at a time and each block goes to its outputs at once — the program's first
 /// file written up to the bytes no later edit changes (EditedFileWriter), the targets export's
@@ -387,24 +414,41 @@ int runStreaming(CommandContext& ctx, CompensationResult& r, const CompensationJ
     w.finish();
     program_set.stage(prog_outs[1], dat);
   }
-  printJobNotes(ctx, r.context.job.notes);
-  printNotCompensated(ctx, program, failed);
-  for (const auto& x : r.refused) ctx.err << "roprec: " << x << "\n";
-  if (!r.writable) {
-    ctx.err << "roprec: " << r.why_not_writable << "\n";
-    return 1;  // the sets' temporaries are removed with them
-  }
-  std::vector<std::string> written = prog_outs;
-  for (OutputSet* set : {&program_set, &targets_set}) {
-    if (OutputSet* active = activeOutputSet()) {
-      active->adopt(std::move(*set));
-    } else {
-      set->commit();
-    }
-  }
-  if (targets) written.push_back(*targets);
-  if (!ctx.quiet) printSummary(ctx, r, job.options, written);
-  return r.failed ? 1 : 0;
+  return finishStreaming(ctx, r, job, program, prog_outs, targets, failed,
+                         {&program_set, &targets_set});
+}
+
+/// compensate of a KRL program read by windows (compensationStreams), without a report: the
+/// holes' requests are set up first (the sequence is chosen over the whole program), then each
+/// block of compensated holes goes to its outputs at once, as runStreaming does, while the
+/// program is read again and edited window by window: the program is never held whole.
+int runStreamedProgram(CommandContext& ctx, CompensationResult& r, const CompensationJob& job,
+                       const std::string& program, const std::string& out,
+                       const std::optional<std::string>& targets, bool csv, int threads) {
+  const std::vector<std::string> prog_outs = postproc::outputPaths(*r.context.job.program, out);
+  std::vector<NotCompensated> failed;
+  OutputSet program_set;
+  OutputSet targets_set;
+  std::optional<std::string> dat;
+  program_set.stageStream(out, [&](const ByteWriter& write_src) {
+    stageOptional(targets_set, targets, [&](const ByteWriter* write_targets) {
+      std::optional<CompensationTargetsStream> export_rows;
+      if (write_targets)
+        export_rows.emplace(r.context, r.orientation, program, csv, *write_targets, threads);
+      compensateStreamedProgram(
+          r, job, write_src, dat,
+          [&](size_t, std::span<const HoleCompensation> holes, std::span<const HoleRequest> req) {
+            for (size_t k = 0; k < holes.size(); ++k) {
+              if (!holes[k].ok) failed.push_back({holes[k].id, req[k].line, holes[k].reason});
+            }
+            if (export_rows) export_rows->holes(holes, req);
+          });
+      if (export_rows && r.writable) export_rows->finish();
+    });
+  });
+  if (r.writable && prog_outs.size() > 1 && dat) program_set.stage(prog_outs[1], *dat);
+  return finishStreaming(ctx, r, job, program, prog_outs, targets, failed,
+                         {&program_set, &targets_set});
 }
 
 /// Whether a file of the compensated program (OUT, its .dat) is one of the program's input files.
@@ -416,6 +460,26 @@ bool overwritesInput(const CompensationResult& r, const std::string& out) {
     return true;
   }
   return false;
+}
+
+/// runStreamedProgram when the outputs are distinct and none is an input file, else -1 (the
+/// whole-program path then says what is wrong, after the job, as it always has).
+int streamedRun(CommandContext& ctx, CompensationResult& r, const CompensationJob& job,
+                const std::string& program, const std::string& out,
+                const std::optional<std::string>& targets, bool csv, int threads) {
+  std::vector<std::string> outs = postproc::outputPaths(*r.context.job.program, out);
+  if (targets) outs.push_back(*targets);
+  std::sort(outs.begin(), outs.end());
+  if (std::adjacent_find(outs.begin(), outs.end()) != outs.end()) return -1;
+  if (overwritesInput(r, out)) return -1;
+  if (targets) {
+    try {
+      refuseOverwritingInput(*r.context.job.program, {*targets});
+    } catch (const UsageError&) {
+      return -1;
+    }
+  }
+  return runStreamedProgram(ctx, r, job, program, out, targets, csv, threads);
 }
 
 int run(Args& args, CommandContext& ctx) {
@@ -447,11 +511,18 @@ int run(Args& args, CommandContext& ctx) {
                           resolvedThreads(job.job.threads));
 
   const int threads = resolvedThreads(job.job.threads);
+  const bool csv = targets && targets->size() > 4 && targets->substr(targets->size() - 4) == ".csv";
+  if (!report && compensationStreams(pos[0], job)) {
+    CompensationResult r = loadStreamedCompensationJob(*cell, pos[0], job);
+    if (const int rc = streamedRun(ctx, r, job, pos[0], *out, targets, csv, threads); rc >= 0) {
+      keepUntilExit(std::move(r));
+      return rc;
+    }
+  }
   CompensationResult r = loadCompensationJob(*cell, pos[0], job);
   std::vector<std::string> extra;  // checked against the inputs before anything is staged
   if (targets) extra.push_back(*targets);
   if (report) extra.push_back(*report);
-  const bool csv = targets && targets->size() > 4 && targets->substr(targets->size() - 4) == ".csv";
   auto writeTargets = [&] {  // written hole by hole into its staged file
     writeFileAtomicStream(*targets, [&](const ByteWriter& write) {
       writeCompensationTargets(r, pos[0], csv, write, threads);
@@ -557,8 +628,9 @@ const CommandRegistration reg{
      "chains (0 = every core; default 1); the outputs are byte-identical for any N. Without\n"
      "--report the holes are compensated and written out a block at a time (the program's bytes\n"
      "up to the next hole's targets, the --targets rows): memory does not grow with the per-hole\n"
-     "results; --report keeps them all (it draws them). A milling path's --targets export is\n"
-     "written point by point.\n",
+     "results; --report keeps them all (it draws them). Without --report or --holes a KUKA KRL\n"
+     "program is read by windows, twice (the holes, then the edits), and never held whole. A\n"
+     "milling path's --targets export is written point by point.\n",
      50, run}};
 
 }  // namespace
