@@ -2,6 +2,7 @@
 # README's "Performance" table from one run of the benchmarks (a
 # script, not a timed test): runs
 #   build/bin/roprec_bench  (static deviation kernel vs KDL's linear kernel, PredictHole,
+#                            the host's filter_target per call (Session),
 #                            Compensate1000 keep / flip-free with allocations per hole,
 #                            PredictHoles1000 allocations per hole, program ReadWrite per dialect,
 #                            the 2 s drilling-cycle transient)
@@ -29,7 +30,7 @@ REPS="${BENCH_REPS:-3}"
 OUT="$(mktemp -d)"
 trap 'rm -rf "$OUT"' EXIT
 
-FILTER='BM_Roprec_StaticDeviation$|BM_KDL_LinearCompliance$|BM_PredictHole$|BM_PredictHoles1000/1|BM_Compensate1000|BM_ReadWrite|BM_DrillingCycle2s_Default$'
+FILTER='BM_Roprec_StaticDeviation$|BM_KDL_LinearCompliance$|BM_PredictHole$|BM_Session_FilterTargetCellDrill$|BM_PredictHoles1000/1|BM_Compensate1000|BM_ReadWrite|BM_DrillingCycle2s_Default$'
 "$BENCH" --benchmark_filter="$FILTER" --benchmark_repetitions="$REPS" \
   --benchmark_report_aggregates_only=true --benchmark_format=json >"$OUT/bench.json" \
   2>"$OUT/bench.err" || { cat "$OUT/bench.err" >&2; exit 1; }
@@ -85,6 +86,8 @@ row("static deviation kernel / KDL linear kernel", "%.2f us / %.2f us = %.2fx" %
     k / kdl <= 0.5, "<= 0.5x")
 ph = cpu("BM_PredictHole", "us")
 row("IK + full prediction per hole (PredictHole)", "%.2f us" % ph, ph <= 5.0, "<= 5 us")
+ft = cpu("BM_Session_FilterTargetCellDrill", "us")
+row("host filter_target per call (Session)", "%.2f us" % ft, ft <= 8.0, "<= 8 us")
 c1 = real("BM_Compensate1000/1/iterations:1", "s")
 row("1,000-hole compensation flip-free, one core", "%.3f s" % c1, c1 <= 0.15, "<= 0.15 s")
 s = cli.get("compensate 10000: 2 vs 1 threads")
