@@ -230,6 +230,26 @@ TEST(ForcesCli, SoftComplianceFixedPointFailsNewtonConverges) {
   EXPECT_NE(bad_solver.err.find("solver must be 'newton' or 'fixed_point'"), std::string::npos);
 }
 
+// --program streams its points into the --json file: the same bytes as on standard output, the
+// same curve CSV, with 1 and 2 threads; the exit code keeps flagging the chatter points.
+TEST(ForcesCli, MillingProgramJsonFileAndThreadsGiveTheSameBytes) {
+  const std::string dir = test::tempDir("forces_program_threads");
+  const std::string prog = " --program '" + test::sourceDir() + "/samples/milling/wall_pass.src'";
+  const auto one = runRoprec("forces --cell " + sample("alu-milling-7075.xml") + prog + " --csv '" +
+                             dir + "/one.csv'");
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  const auto two =
+      runRoprec("forces --cell " + sample("alu-milling-7075.xml") + prog + " --threads 2 --csv '" +
+                dir + "/two.csv' --json '" + dir + "/two.json'");
+  ASSERT_EQ(two.exit_code, 0) << two.err;
+  EXPECT_EQ(test::readFile(dir + "/two.json"), one.out);
+  EXPECT_EQ(test::readFile(dir + "/two.csv"), test::readFile(dir + "/one.csv"));
+  const auto bad = runRoprec("forces --cell " + sample("alu-milling-7075.xml") + prog +
+                             " --threads x --json '" + dir + "/bad.json'");
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_FALSE(fs::exists(dir + "/bad.json"));
+}
+
 // wall_pass.src with the KR 120 card: the approach (LIN at 250 mm/s) and the retract are not
 // cutting (zero force, reason given); every cutting point converges with |r| ≤ 0.1 µm.
 TEST(ForcesCli, MillingProgramPathCuttingDecisionAndConvergence) {

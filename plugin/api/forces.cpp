@@ -107,21 +107,46 @@ std::string unstablePointText(size_t i, const postproc::Target& t, const PathPoi
          " mm (chatter at " + fixed(p.chatter_hz, 1) + " Hz)";
 }
 
-/// `--program`: every linear point of the program compensated; whether each converged and which
-/// chatter.
-MillingCompensationResult millingPath(const ForcesRequest& req, bool& converged,
-                                      std::vector<std::string>& unstable) {
-  MillingCompensationResult r = compensateMillingJob(req.cell, *req.program);
+/// Whether the points of the block `r` converged and which chatter (one line each, in order).
+void notePathBlock(const MillingCompensationResult& r, bool& converged,
+                   std::vector<std::string>& unstable) {
   const postproc::Program& prog = *r.context.job.program;
-  for (size_t i = 0; i < r.points_comp.size(); ++i) {
-    const PathPointCompensation& p = r.points_comp[i];
+  for (size_t i = r.first; i < r.first + r.points_comp.size(); ++i) {
+    const PathPointCompensation& p = r.point(i);
     const postproc::Target& t = prog.targets()[static_cast<size_t>(r.targets[i])];
     const bool before_ok = !p.cutting || p.before_status == "converged";
     const double ap_i = pathPointAp(r, i);
     if (!before_ok || !p.ok) converged = false;
     if (p.unstable(ap_i)) unstable.push_back(unstablePointText(i, t, p, ap_i));
   }
+}
+
+MillingPathOptions pathOptions(const ForcesRequest& req) {
+  MillingPathOptions o;
+  o.threads = req.threads;
+  o.block = req.block;
+  return o;
+}
+
+/// `--program`: every linear point of the program compensated; whether each converged and which
+/// chatter.
+MillingCompensationResult millingPath(const ForcesRequest& req, bool& converged,
+                                      std::vector<std::string>& unstable) {
+  MillingCompensationResult r =
+      compensateMillingJob(req.cell, *req.program, false, pathOptions(req));
+  notePathBlock(r, converged, unstable);
   return r;
+}
+
+/// millingPath handing each block of points to `sink` (after `head` got the result so far).
+MillingCompensationResult millingPathStreamed(const ForcesRequest& req, const ForcesPathSink& sink,
+                                              ForcesResult& out) {
+  if (sink.head) sink.head(out);
+  return compensateMillingJob(req.cell, *req.program, false, pathOptions(req),
+                              [&](const MillingCompensationResult& blk) {
+                                notePathBlock(blk, out.converged, out.unstable);
+                                if (sink.points) sink.points(blk);
+                              });
 }
 
 /// The cell's robot model and joint compliance (milling with --joints).
@@ -135,7 +160,7 @@ CellRobot cellRobot(const CellSpec& cell) {
 }
 
 void millingForcesOf(const CellSpec& cell, const MillingSpec& s, const ForcesRequest& req,
-                     ForcesResult& out) {
+                     const ForcesPathSink* sink, ForcesResult& out) {
   MillingForcesData& d = out.milling.emplace();
   d.spec = s;
   std::optional<ComplianceFunction> robot;
@@ -152,8 +177,9 @@ void millingForcesOf(const CellSpec& cell, const MillingSpec& s, const ForcesReq
   if (s.compliance || robot)
     d.coupling = millingCoupling(d.model, s, req.points, robot, dyn, out.converged);
   if (req.program) {
-    d.path = millingPath(req, out.converged, out.unstable);
     d.program = *req.program;
+    d.path = sink != nullptr ? millingPathStreamed(req, *sink, out)
+                             : millingPath(req, out.converged, out.unstable);
   }
 }
 
@@ -169,12 +195,14 @@ void wrenchForcesOf(const CellSpec& cell, const WrenchSpec& w, const ForcesReque
 }  // namespace
 
 double pathPointAp(const MillingCompensationResult& r, size_t i) {
-  const PathPointCompensation& p = r.points_comp[i];
+  const PathPointCompensation& p = r.point(i);
   const bool engaged = r.cutting[i].engagement.has_value();
   return p.cutting && engaged ? p.ap : millOf(r, i).cut.ap;
 }
 
-ForcesResult processForces(const ForcesRequest& request) {
+namespace {
+
+ForcesResult forcesOf(const ForcesRequest& request, const ForcesPathSink* sink) {
   const CellSpec cell = loadCell(request.cell);
   if (!cell.has_process)
     throw InputError(cell.file, cell.root.line, "the cell has no <process> element");
@@ -204,13 +232,21 @@ ForcesResult processForces(const ForcesRequest& request) {
       drillingForcesOf(with, spec.drills[k], request, out);
       break;
     case ProcessType::kMilling:
-      millingForcesOf(with, request.program ? spec.milling : spec.mills[k], request, out);
+      millingForcesOf(with, request.program ? spec.milling : spec.mills[k], request, sink, out);
       break;
     case ProcessType::kWrench:
       wrenchForcesOf(cell, spec.wrench, request, out);
       break;
   }
   return out;
+}
+
+}  // namespace
+
+ForcesResult processForces(const ForcesRequest& request) { return forcesOf(request, nullptr); }
+
+ForcesResult processForces(const ForcesRequest& request, const ForcesPathSink& sink) {
+  return forcesOf(request, &sink);
 }
 
 }  // namespace roprec::api

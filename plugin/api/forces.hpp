@@ -15,6 +15,8 @@
 /// non-drilling process or a curve of a wrench process; UsageError for a calibrated cell asked
 /// without a calibration. These messages name the CLI's options (--calibrate, -o, --csv).
 
+#include <cstddef>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -48,6 +50,10 @@ struct ForcesRequest {
   /// The drill or mill of the cell's tool table (its tool number or name; needed when the table
   /// holds several); with `program` the program's active tool selects instead.
   std::optional<std::string> tool;
+  /// milling `program`: workers of the path (MillingPathOptions::threads, >= 1; the same results
+  /// whatever the count) and points per block handed to a ForcesPathSink (>= 1).
+  int threads{1};
+  std::size_t block{512};
 };
 
 /// Drilling: the spec (after the calibration), the steady forces, the curve over depth and, with
@@ -102,5 +108,19 @@ double pathPointAp(const MillingCompensationResult& r, size_t i);
 
 /// Computes the forces of the cell's process; the robot is loaded only for `joints`.
 ForcesResult processForces(const ForcesRequest& request);
+
+/// Receives a milling `program`'s path as it is computed: `head` once, with everything but the
+/// path's points (milling->path holds the program, its targets and decisions, no points_comp),
+/// before the first block; then `points` for each block of path points, in path order
+/// (MillingPointsSink: r.points_comp holds points [r.first, r.first + size)).
+struct ForcesPathSink {
+  std::function<void(const ForcesResult& head)> head;
+  MillingPointsSink points;
+};
+/// processForces handing a milling program's path to `sink` a block at a time: the points'
+/// results are never all in memory (milling->path->points_comp is empty in the result). Without
+/// a program it is processForces (the sink is not called). `converged` and `unstable` are those
+/// of processForces.
+ForcesResult processForces(const ForcesRequest& request, const ForcesPathSink& sink);
 
 }  // namespace roprec::api

@@ -68,6 +68,31 @@ void parseNumbers(ForcesRequest& req, const std::optional<std::string>& step_mm,
   }
 }
 
+/// `--program` (milling): the JSON written as the path's blocks of points arrive, into its staged
+/// file (or standard output's buffer); the curve CSV (from the result before the path) first.
+ForcesResult runProgram(CommandContext& ctx, const ForcesRequest& req,
+                        const std::optional<std::string>& csv_path,
+                        const std::optional<std::string>& json_path) {
+  const auto stream = [&](const ByteWriter& write) {
+    ForcesJsonStream json(write);
+    ForcesPathSink sink;
+    sink.head = [&](const ForcesResult& head) {
+      if (csv_path) emit(ctx, *csv_path, forcesOutput(head).curve_csv);
+      (void)json.head(head);
+    };
+    sink.points = [&](const MillingCompensationResult& block) { json.points(block); };
+    ForcesResult r = processForces(req, sink);
+    json.finish();
+    write("\n");
+    return r;
+  };
+  if (!json_path || json_path->empty() || *json_path == "-")
+    return stream([&](std::string_view bytes) { ctx.out << bytes; });
+  ForcesResult r;
+  writeFileAtomicStream(*json_path, [&](const ByteWriter& write) { r = stream(write); });
+  return r;
+}
+
 int run(Args& args, CommandContext& ctx) {
   const auto cell_path = args.option("cell");
   const auto csv_path = args.option("csv");
@@ -80,6 +105,7 @@ int run(Args& args, CommandContext& ctx) {
   const auto joints = args.option("joints");
   const auto program = args.option("program");
   const auto tool = args.option("tool");
+  const int threads = parseThreadsOption(args);
   args.finish();
   if (!cell_path) throw UsageError("give --cell CELL.xml");
   ForcesRequest req;
@@ -92,6 +118,12 @@ int run(Args& args, CommandContext& ctx) {
   req.tool = tool;
   req.calibrated_cell = out_xml.has_value();
   req.curve = csv_path.has_value();
+  req.threads = resolvedThreads(threads);
+  if (req.program && cellIsMilling(req.cell)) {  // the path streamed (else the errors of below)
+    const ForcesResult r = runProgram(ctx, req, csv_path, json_path);
+    for (const std::string& u : r.unstable) ctx.err << "roprec: " << u << "\n";
+    return r.converged && r.unstable.empty() ? 0 : 1;
+  }
 
   const ForcesResult r = processForces(req);
   const ForcesOutput o = forcesOutput(r);
@@ -114,7 +146,7 @@ const CommandRegistration reg{
      "N]\n"
      "                     [--axial-compliance-um-per-N C] [--joints \"j1 .. j6\"] [--program "
      "P.src]\n"
-     "                     [--tool N]\n\n"
+     "                     [--tool N] [--threads N]\n\n"
      "Computes the process forces of the cell's <process> (the robot is loaded only with "
      "--joints).\n"
      "  drilling: steady thrust, torque, rotating runout force Fr, per-lip forces, chisel share, "
@@ -154,6 +186,10 @@ const CommandRegistration reg{
      "geometry, cut and TCP); needed when the table holds several; with --program the program's "
      "active\n"
      "tool selects the mill of each point instead.\n"
+     "--threads N (with --program): worker threads of the path's two pipelined chains (0 = every\n"
+     "core; default 1); the output is byte-identical for any N. The path's points are written a\n"
+     "block at a time as they are computed: memory does not grow with the per-point results (the\n"
+     "JSON on standard output is held until the end; give --json F.json for a long path).\n"
      "--calibrate identifies kst0 and ksa0 from one measured thrust and torque at the cell's "
      "diameter and\n"
      "feed; -o OUT.xml writes a copy of the cell with the calibrated <coefficients> "

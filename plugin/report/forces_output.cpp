@@ -400,7 +400,7 @@ Json pathPointEdgesJson(const PathPointCompensation& p) {
 /// deviation_um), and the compensated point ("compensated").
 Json pathPointJson(const MillingCompensationResult& r, size_t i) {
   const postproc::Program& prog = *r.context.job.program;
-  const PathPointCompensation& p = r.points_comp[i];
+  const PathPointCompensation& p = r.point(i);
   const postproc::Target& t = prog.targets()[static_cast<size_t>(r.targets[i])];
   Json j = Json::object();
   j.set("point", Json::integer(static_cast<std::int64_t>(i + 1)));
@@ -503,6 +503,44 @@ ForcesOutput forcesOutput(const ForcesResult& r) {
     out.json.set("wrench_tool", wrenchJson(*r.wrench));
   }
   return out;
+}
+
+std::string ForcesJsonStream::head(const ForcesResult& r) {
+  ForcesOutput o = forcesOutput(r);  // no "path" yet: the milling root's last member
+  const std::string text = o.json.dump();
+  const std::string_view end = "\n}\n";
+  if (!r.milling || r.milling->path || text.size() < end.size() ||
+      text.compare(text.size() - end.size(), end.size(), end) != 0)
+    throw InternalError("ForcesJsonStream::head: not a milling result before its path");
+  write_(std::string_view(text).substr(0, text.size() - end.size()));
+  write_(",");
+  // the writer's own "{" stands for the root opened above
+  json_.beginObject();
+  json_.key("path");
+  json_.beginObject();
+  json_.key("program");
+  json_.str(r.milling->program);
+  json_.key("points");
+  json_.beginArray();
+  json_.take(text_);
+  write_(std::string_view(text_).substr(1));
+  return std::move(o.curve_csv);
+}
+
+void ForcesJsonStream::points(const MillingCompensationResult& block) {
+  for (size_t i = block.first; i < block.first + block.points_comp.size(); ++i)
+    json_.value(pathPointJson(block, i));
+  json_.take(text_);
+  write_(text_);
+}
+
+void ForcesJsonStream::finish() {
+  json_.endArray();
+  json_.endObject();
+  json_.endObject();
+  json_.finish();
+  json_.take(text_);
+  write_(text_);
 }
 
 }  // namespace roprec::api

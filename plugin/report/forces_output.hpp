@@ -7,7 +7,9 @@
 /// X = feed, φ clockwise from +Y, Z from the tool tip toward the spindle, forces on the tool.
 
 #include <string>
+#include <utility>
 
+#include "compensator/support/atomic_file.hpp"
 #include "plugin/api/forces.hpp"
 #include "plugin/report/json.hpp"
 
@@ -23,5 +25,23 @@ struct ForcesOutput {
 };
 
 ForcesOutput forcesOutput(const ForcesResult& r);
+
+/// The forces JSON of a milling `--program` written as processForces(request, ForcesPathSink)
+/// computes it: head() with the ForcesPathSink's head (everything but the path's points; gives
+/// the curve CSV), points() with each block, finish() at the end. The bytes handed to `write`
+/// are forcesOutput(r).json.dump() of the whole result; the points are never all in memory.
+class ForcesJsonStream {
+ public:
+  explicit ForcesJsonStream(ByteWriter write) : write_(std::move(write)) {}
+  /// Writes the JSON up to the path's first point; returns the curve CSV (ForcesOutput).
+  std::string head(const ForcesResult& r);
+  void points(const MillingCompensationResult& block);
+  void finish();
+
+ private:
+  ByteWriter write_;
+  JsonWriter json_;
+  std::string text_;
+};
 
 }  // namespace roprec::api
