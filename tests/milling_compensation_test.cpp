@@ -30,6 +30,16 @@
 namespace roprec {
 namespace {
 
+/// The world poses of the program's linear targets, in program order (every base frame resolved).
+void linearPathPoints(const postproc::Program& p, std::vector<Pose>& points) {
+  for (const postproc::Motion& m : p.motions) {
+    if (m.type != postproc::MotionType::kLinear || m.target < 0) continue;
+    const postproc::Frame& f = p.frames[static_cast<size_t>(m.base)];
+    ASSERT_TRUE(f.resolved);
+    points.push_back(f.pose * postproc::targetPose(p, p.targets()[static_cast<size_t>(m.target)]));
+  }
+}
+
 TEST(MillingCompensation, PathLandsOnTheNominalPathAgainstKdl) {
   const std::string cell = test::sourceDir() + "/samples/cells/alu-milling-7075.xml";
   const std::string prog = test::sourceDir() + "/samples/milling/wall_pass.src";
@@ -37,12 +47,7 @@ TEST(MillingCompensation, PathLandsOnTheNominalPathAgainstKdl) {
       api::loadPredictionContext(cell, prog, std::nullopt, "", 0.5, false);
   const postproc::Program& p = *c.job.program;
   std::vector<Pose> points;
-  for (const postproc::Motion& m : p.motions) {
-    if (m.type != postproc::MotionType::kLinear || m.target < 0) continue;
-    const postproc::Frame& f = p.frames[static_cast<size_t>(m.base)];
-    ASSERT_TRUE(f.resolved);
-    points.push_back(f.pose * postproc::targetPose(p, p.targets()[static_cast<size_t>(m.target)]));
-  }
+  ASSERT_NO_FATAL_FAILURE(linearPathPoints(p, points));
   ASSERT_GE(points.size(), 25u);
   const auto comp = compensateMillingPath(c.model, points);
   // KDL: chain + tool segment; the milling force acts on the tool in the TCP frame (X feed = tool
@@ -768,12 +773,7 @@ TEST(MillingCompensation, ResultsHandedBlockByBlockAreTheWholePathResults) {
       api::loadPredictionContext(cell, prog, std::nullopt, "", 0.5, false);
   const postproc::Program& p = *c.job.program;
   std::vector<Pose> points;
-  for (const postproc::Motion& m : p.motions) {
-    if (m.type != postproc::MotionType::kLinear || m.target < 0) continue;
-    const postproc::Frame& f = p.frames[static_cast<size_t>(m.base)];
-    ASSERT_TRUE(f.resolved);
-    points.push_back(f.pose * postproc::targetPose(p, p.targets()[static_cast<size_t>(m.target)]));
-  }
+  ASSERT_NO_FATAL_FAILURE(linearPathPoints(p, points));
   ASSERT_GE(points.size(), 25u);
   MillingPathOptions whole;
   whole.block = points.size();

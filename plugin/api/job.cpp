@@ -324,6 +324,18 @@ std::vector<HoleRequest> registeredHoles(const PredictionContext& c) {
   return out;
 }
 
+/// compensateHoles over the job's holes (`req`), aimed at the registered part when the cell has
+/// one, each finished block handed to `each`; the statistics into r.stats.
+void compensateJobHolesInBlocks(CompensationResult& r, const std::vector<HoleRequest>& req,
+                                const CompensationOptions& options, const CompensationSink& each) {
+  if (r.context.cell.part_registration) {
+    const std::vector<HoleRequest> aimed = registeredHoles(r.context);
+    compensateHoles(r.context.model, aimed, options, each, &r.stats);
+  } else {
+    compensateHoles(r.context.model, req, options, each, &r.stats);
+  }
+}
+
 /// Does a prediction job aim its holes at the registered part (JobOptions::registered_part)?
 bool aimsAtRegisteredPart(const PredictionContext& c, const JobOptions& o) {
   return o.registered_part && c.cell.part_registration.has_value();
@@ -717,12 +729,7 @@ void compensateLoadedStreaming(CompensationResult& r, const CompensationJob& job
     }
     sink(r, first, holes, stable[first + holes.size()]);
   };
-  if (r.context.cell.part_registration) {
-    const std::vector<HoleRequest> aimed = registeredHoles(r.context);
-    compensateHoles(r.context.model, aimed, options, each, &r.stats);
-  } else {
-    compensateHoles(r.context.model, req, options, each, &r.stats);
-  }
+  compensateJobHolesInBlocks(r, req, options, each);
   r.hole_count = n;
   settleWritable(r, job, n);
 }
@@ -1174,12 +1181,7 @@ void compensateStreamedProgram(CompensationResult& r, const CompensationJob& job
     edits.edit(first, done);
     sink(first, done, std::span<const HoleRequest>(req).subspan(first, done.size()));
   };
-  if (r.context.cell.part_registration) {
-    const std::vector<HoleRequest> aimed = registeredHoles(r.context);
-    compensateHoles(r.context.model, aimed, options, each, &r.stats);
-  } else {
-    compensateHoles(r.context.model, req, options, each, &r.stats);
-  }
+  compensateJobHolesInBlocks(r, req, options, each);
   r.hole_count = n;
   settleWritable(r, job, n);
   if (!r.writable) return;
