@@ -24,6 +24,7 @@ namespace roprec {
 namespace {
 
 using test::expectSameHole;
+using test::expectSameJobResult;
 using test::expectSameStats;
 
 std::string sharedTargetJob(const std::string& dir);
@@ -176,16 +177,7 @@ TEST(CompensateThreads, StreamedJobWritesTheBytesOfTheWholeJob) {
       }
       EXPECT_TRUE(csv == api::compensationTargets(whole, program, true));
       EXPECT_TRUE(json == api::compensationTargets(whole, program, false));
-      EXPECT_EQ(r.hole_count, whole.holes.size());
-      EXPECT_EQ(r.failed, whole.failed);
-      EXPECT_EQ(r.writable, whole.writable);
-      EXPECT_EQ(r.refused, whole.refused);
-      EXPECT_EQ(r.summary.error_before_um, whole.summary.error_before_um);
-      EXPECT_EQ(r.summary.residual_after_um, whole.summary.residual_after_um);
-      EXPECT_EQ(r.summary.conform_after, whole.summary.conform_after);
-      EXPECT_EQ(r.summary.jumps_before, whole.summary.jumps_before);
-      EXPECT_EQ(r.summary.jumps_after, whole.summary.jumps_after);
-      expectSameStats(r.stats, whole.stats);
+      expectSameJobResult(r, whole);
     }
   }
 }
@@ -426,16 +418,7 @@ void expectStreamedLikeWhole(const std::string& program, OrientationMode mode, i
     EXPECT_TRUE(*dat == want[1]);
   }
   EXPECT_TRUE(csv == api::compensationTargets(whole, program, true));
-  EXPECT_EQ(r.hole_count, whole.holes.size());
-  EXPECT_EQ(r.failed, whole.failed);
-  EXPECT_EQ(r.refused, whole.refused);
-  EXPECT_EQ(r.summary.error_before_um, whole.summary.error_before_um);
-  EXPECT_EQ(r.summary.residual_after_um, whole.summary.residual_after_um);
-  EXPECT_EQ(r.summary.conform_before, whole.summary.conform_before);
-  EXPECT_EQ(r.summary.conform_after, whole.summary.conform_after);
-  EXPECT_EQ(r.summary.jumps_before, whole.summary.jumps_before);
-  EXPECT_EQ(r.summary.jumps_after, whole.summary.jumps_after);
-  expectSameStats(r.stats, whole.stats);
+  expectSameJobResult(r, whole);
 }
 
 // A KRL program is compensated reading it by windows: the bytes of the program read whole, for

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "compensator/compensation/compensation.hpp"
+#include "plugin/api/job.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace roprec::test {
@@ -40,6 +41,23 @@ inline void expectSameStats(const CompensationStats& a, const CompensationStats&
   EXPECT_EQ(a.config_changed, b.config_changed);
   EXPECT_TRUE(sameBits(a.U_work_sum, b.U_work_sum));
   EXPECT_TRUE(sameBits(a.jump_threshold_used, b.jump_threshold_used));
+}
+
+/// A streamed compensate job against the whole job: the counts, the refusals, whether it may be
+/// written, the summary and the statistics, bit for bit.
+inline void expectSameJobResult(const api::CompensationResult& a,
+                                const api::CompensationResult& whole) {
+  EXPECT_EQ(a.hole_count, whole.holes.size());
+  EXPECT_EQ(a.failed, whole.failed);
+  EXPECT_EQ(a.writable, whole.writable);
+  EXPECT_EQ(a.refused, whole.refused);
+  EXPECT_EQ(a.summary.error_before_um, whole.summary.error_before_um);
+  EXPECT_EQ(a.summary.residual_after_um, whole.summary.residual_after_um);
+  EXPECT_EQ(a.summary.conform_before, whole.summary.conform_before);
+  EXPECT_EQ(a.summary.conform_after, whole.summary.conform_after);
+  EXPECT_EQ(a.summary.jumps_before, whole.summary.jumps_before);
+  EXPECT_EQ(a.summary.jumps_after, whole.summary.jumps_after);
+  expectSameStats(a.stats, whole.stats);
 }
 
 }  // namespace roprec::test
