@@ -343,6 +343,26 @@ bool aimsAtRegisteredPart(const PredictionContext& c, const JobOptions& o) {
 
 // ---- compensation stages after compensateHoles
 
+/// A hole's compensated target: its world pose T_new = ΔT · (G ·) T · Rz(ψ) (with a part
+/// registration the target first moves with the part, G, then compensates) and the configuration
+/// to write (none: the program's own flag bytes stay unless the compensated target needs others).
+struct CompensatedTarget {
+  Pose T_W;
+  std::optional<postproc::Configuration> config;
+};
+
+CompensatedTarget compensatedTarget(const CellSpec& cell, const HoleCompensation& h,
+                                    const Pose& T_W_frame, const postproc::Program& prog,
+                                    const postproc::Target& tg) {
+  const Pose T_W_t = T_W_frame * postproc::targetPose(prog, tg);
+  CompensatedTarget out;
+  out.T_W = (cell.part_registration ? h.delta * partMotion(cell) * T_W_t : h.delta * T_W_t) *
+            Pose(Eigen::AngleAxisd(h.psi, Vec3::UnitZ()));
+  if (tg.config.present() && h.config_changed)
+    out.config = postproc::parseConfigurationText(h.config_text);
+  return out;
+}
+
 /// The edits of hole i's targets (T_new = ΔT · T · Rz(ψ)) queued into `log`, its refusals
 /// appended to `refused`. Writes only the hole's own targets.
 void editHoleTargets(CompensationResult& r, const HoleCompensation& h, size_t i,
@@ -351,18 +371,9 @@ void editHoleTargets(CompensationResult& r, const HoleCompensation& h, size_t i,
   const HoleSource& src = r.context.job.sources[i];
   for (const int t : src.targets) {
     const postproc::Target& tg = prog.targets()[static_cast<size_t>(t)];
-    const Pose T_W_t = src.T_W_frame * postproc::targetPose(prog, tg);
-    // with a part registration the target first moves with the part (G), then compensates
-    const Pose T_W_new =
-        (r.context.cell.part_registration ? h.delta * partMotion(r.context.cell) * T_W_t
-                                          : h.delta * T_W_t) *
-        Pose(Eigen::AngleAxisd(h.psi, Vec3::UnitZ()));
-    std::optional<postproc::Configuration> cfg;
-    // the program's own flag bytes stay unless the compensated target needs others
-    if (tg.config.present() && h.config_changed)
-      cfg = postproc::parseConfigurationText(h.config_text);
+    const CompensatedTarget ct = compensatedTarget(r.context.cell, h, src.T_W_frame, prog, tg);
     const postproc::EditResult er =
-        postproc::replaceTargetPose(prog, t, src.T_W_frame.inverse() * T_W_new, cfg, log);
+        postproc::replaceTargetPose(prog, t, src.T_W_frame.inverse() * ct.T_W, ct.config, log);
     if (!er.ok) {
       refused.push_back("hole " + h.id + " target " +
                         (tg.name.empty() ? std::to_string(t) : tg.name) + ": " + er.reason);
@@ -993,20 +1004,13 @@ class StreamedProgramEdits {
     postproc::EditLog one;
     for (const int t : h.targets) {
       const postproc::Target& tg = prog.targets()[static_cast<size_t>(t)];
-      const Pose T_W_t = T_W_frame * postproc::targetPose(prog, tg);
-      const Pose T_W_new =
-          (r_.context.cell.part_registration ? c.delta * partMotion(r_.context.cell) * T_W_t
-                                             : c.delta * T_W_t) *
-          Pose(Eigen::AngleAxisd(c.psi, Vec3::UnitZ()));
-      std::optional<postproc::Configuration> cfg;
-      if (tg.config.present() && c.config_changed)
-        cfg = postproc::parseConfigurationText(c.config_text);
+      const CompensatedTarget ct = compensatedTarget(r_.context.cell, c, T_W_frame, prog, tg);
       Window* w = tg.file == 0 ? &windowOf(tg.line) : nullptr;
       const bool other = swap && w != nullptr && w != &windows_.back();
       if (other) std::swap(prog.files[0].bytes, w->bytes);
       one.ops.clear();
       const postproc::EditResult er =
-          postproc::replaceTargetPose(prog, t, T_W_frame.inverse() * T_W_new, cfg, one);
+          postproc::replaceTargetPose(prog, t, T_W_frame.inverse() * ct.T_W, ct.config, one);
       if (other) std::swap(prog.files[0].bytes, w->bytes);
       for (postproc::EditLog::Op& op : one.ops) {
         const std::uint64_t base = op.edit.file == 0 ? w->start : 0;
