@@ -51,6 +51,16 @@ int expectBranchesAreSubsetsOfAll(const IkModel& m, const Pose& T, const Vec6& s
   return compared;
 }
 
+/// Seeded random joints within the model's limits, clipped to ±3 rad.
+Vec6 jointsWithinLimits(const IkModel& m, std::mt19937& rng) {
+  Vec6 q;
+  for (int i = 0; i < 6; ++i) {
+    std::uniform_real_distribution<double> u(std::max(m.lower[i], -3.0), std::min(m.upper[i], 3.0));
+    q[i] = u(rng);
+  }
+  return q;
+}
+
 TEST(IkBranch, OneBranchEqualsTheMatchingSubsetOfAll) {
   const auto names = bundledRobotNames();
   ASSERT_FALSE(names.empty());
@@ -63,12 +73,7 @@ TEST(IkBranch, OneBranchEqualsTheMatchingSubsetOfAll) {
     std::mt19937 rng(31);
     int compared = 0;
     for (int n = 0; n < 200; ++n) {
-      Vec6 q;
-      for (int i = 0; i < 6; ++i) {
-        std::uniform_real_distribution<double> u(std::max(m.lower[i], -3.0),
-                                                 std::min(m.upper[i], 3.0));
-        q[i] = u(rng);
-      }
+      const Vec6 q = jointsWithinLimits(m, rng);
       compared += expectBranchesAreSubsetsOfAll(m, ikForwardKinematics(m, q), q, *all, *one);
       // the original joints are among their own branch's solutions (kAll)
       IkOptions o;
@@ -104,12 +109,7 @@ TEST(IkBranch, OneBranchEqualsTheMatchingSubsetNearTheLabelBoundaries) {
     std::mt19937 rng(7);
     int compared = 0;
     for (int n = 0; n < 20; ++n) {
-      Vec6 q;
-      for (int i = 0; i < 6; ++i) {
-        std::uniform_real_distribution<double> u(std::max(m.lower[i], -3.0),
-                                                 std::min(m.upper[i], 3.0));
-        q[i] = u(rng);
-      }
+      const Vec6 q = jointsWithinLimits(m, rng);
       for (const double off : offsets) {
         // elbow: ψ0 + σ3 q3 = off (sin ψ ≈ off)
         Vec6 qe = q;
