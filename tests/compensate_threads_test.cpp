@@ -80,7 +80,9 @@ TEST(CompensateThreads, HolesAreBitIdenticalForOneTwoThreeThreads) {
 
 // The sink overload hands over the holes of the vector result, in order, a block at a time
 // (more than one block here; stiffest may hold a hole back until its next neighbour is final),
-// bit for bit, with the same counters, for one and two threads.
+// bit for bit, with the same counters, for one and two threads. keep also with blocks of 5
+// holes: its results' memory is reused every other block, so a failed hole (a reason, nothing
+// compensated) takes the place of a compensated one the sink moved from, and the other way.
 TEST(CompensateThreads, SinkGetsTheVectorResultBlockByBlock) {
   api::PredictionContext c = api::loadPredictionContext(
       test::sourceDir() + "/samples/cells/housing-kr120.xml",
@@ -107,9 +109,13 @@ TEST(CompensateThreads, SinkGetsTheVectorResultBlockByBlock) {
     o.grid = 12;
     CompensationStats ref_stats;
     const std::vector<HoleCompensation> ref = compensateHoles(c.model, req, o, &ref_stats);
-    for (const int threads : {1, 2}) {
-      SCOPED_TRACE(threads);
+    for (const auto& [threads, block] :
+         {std::pair{1, kCompensationBlock}, std::pair{2, kCompensationBlock},
+          std::pair{1, size_t{5}}, std::pair{2, size_t{5}}}) {
+      if (block != kCompensationBlock && mode != OrientationMode::kKeep) continue;
+      SCOPED_TRACE(testing::Message() << "threads " << threads << ", block " << block);
       o.threads = threads;
+      o.block = block;
       std::vector<HoleCompensation> got;
       int blocks = 0;
       const CompensationSink sink = [&](size_t first, std::span<HoleCompensation> holes) {
@@ -438,6 +444,17 @@ TEST(CompensateThreads, StreamedProgramWritesTheBytesOfTheWholeJob) {
   ASSERT_GT(std::filesystem::file_size(big), 2 * postproc::ProgramStream::kWindowBytes);
   for (const int threads : {1, 2}) expectStreamedLikeWhole(big, OrientationMode::kKeep, threads);
   expectStreamedLikeWhole(big, OrientationMode::kFlipFree, 2);
+  // a prologue of comments two windows long: the first window with holes holds a few dozen, so
+  // the holes it foretells are far fewer than the program's and most requests go past the ones
+  // the first reading reserved (kept in chunks of their own, moved in at the end, in hole order)
+  std::string sparse = test::krlDrillCycles(9000, test::kHousingBase, true);
+  std::string prologue;
+  while (prologue.size() < 2 * postproc::ProgramStream::kWindowBytes - 20000)
+    prologue += "; the cell's set-up sheet, one line of many ...........................\n";
+  sparse.insert(sparse.find('\n', sparse.find("$TOOL")) + 1, prologue);
+  const std::string late = dir + "/late_holes.src";
+  test::writeFile(late, sparse);
+  for (const int threads : {1, 2}) expectStreamedLikeWhole(late, OrientationMode::kKeep, threads);
 }
 
 // A program that carries the compensation marker, or a hole list, takes the whole-program path

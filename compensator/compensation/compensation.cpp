@@ -1178,10 +1178,9 @@ void keepRun(Workers& w, const std::vector<HoleRequest>& holes, const std::optio
     const size_t e = std::min(n, b + w.block);
     std::vector<HoleCompensation>& blk = to.whole ? *to.whole : own[static_cast<size_t>(k)];
     const size_t o0 = to.whole ? b : 0;  // the block's first hole in blk
-    if (!to.whole) {
-      blk.clear();
-      blk.resize(e - b);
-    }
+    // a block's results are reused by the block after the next: every field is written again
+    // (finalizeHole's fresh result, or stage 1's with the reason: a result as a fresh one)
+    if (!to.whole && blk.size() != e - b) blk.resize(e - b);
     const std::span<HoleCompensation> out(blk.data() + o0, e - b);
     // stage 1 with the continuity seed carried from block to block (predictHoles' seeds over the
     // run)
@@ -1200,6 +1199,7 @@ void keepRun(Workers& w, const std::vector<HoleRequest>& holes, const std::optio
         counts[j] = holeNodes(serial, holes[b + j], seed, -1, 1, std::span<Node>(&node[j], 1));
       st.dp_nodes += counts[j].nodes;
       st.infeasible_nodes += counts[j].infeasible;
+      out[j].note.clear();
       if (counts[j].relaxed_wrist) {
         ++st.relaxed_wrist;
         out[j].note = kRelaxedWristNote;
@@ -1209,7 +1209,9 @@ void keepRun(Workers& w, const std::vector<HoleRequest>& holes, const std::optio
     parallelFor(e - b, threads, [&](int wk, size_t j) {
       std::string why = notCompensatedReason(out[j], node[j]);
       if (!why.empty()) {
-        out[j].reason = std::move(why);
+        HoleCompensation kept = stageOne(out[j]);
+        kept.reason = std::move(why);
+        out[j] = std::move(kept);
         return;
       }
       out[j] = finalizeHole(evs[static_cast<size_t>(wk)], holes[b + j], std::move(out[j]), node[j],

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <deque>
 #include <exception>
+#include <filesystem>
 #include <future>
 #include <mutex>
 #include <unordered_map>
@@ -713,6 +714,65 @@ class ProgramHoles {
 
 namespace {
 
+/// The requests a streamed job keeps (loadJobHoles' keep_requests), set up in place: `to` is
+/// reserved once, when the first holes are met, for the holes the whole file holds at the first
+/// window's holes per byte (and a quarter more); its pages are touched only as the requests
+/// fill it, so a reservation above the count costs no memory. Holes past it (a program denser
+/// in holes further on) go to chunks of their own, moved into `to` at the end (their pages
+/// touched twice, as a request in a chunk is freed once moved: about one chunk more than the
+/// requests at the peak).
+class KeptRequests {
+ public:
+  explicit KeptRequests(std::vector<HoleRequest>& to) : to_(to) {}
+  /// Room for the next `n` requests (default values), `window`: the window they were read in.
+  HoleRequest* add(size_t n, const postproc::SourceFile& window) {
+    if (!reserved_) reserve(n, window);
+    if (chunks_.empty() && to_.size() + n <= to_.capacity()) {
+      to_.resize(to_.size() + n);
+      return to_.data() + to_.size() - n;
+    }
+    if (chunks_.empty() || chunks_.back().size() + n > std::max(kChunk, n)) {
+      chunks_.emplace_back();
+      chunks_.back().reserve(std::max(kChunk, n));
+    }
+    std::vector<HoleRequest>& c = chunks_.back();
+    c.resize(c.size() + n);
+    return c.data() + c.size() - n;
+  }
+  /// Moves the chunks' requests into `to` (after the requests set up in place).
+  void finish() {
+    if (chunks_.empty()) return;
+    size_t count = to_.size();
+    for (const std::vector<HoleRequest>& c : chunks_) count += c.size();
+    to_.reserve(count);
+    for (std::vector<HoleRequest>& c : chunks_) {
+      for (HoleRequest& r : c) to_.push_back(std::move(r));
+      std::vector<HoleRequest>().swap(c);
+    }
+    chunks_.clear();
+  }
+
+ private:
+  static constexpr size_t kChunk = 65536;  // 37 MB: above the allocator's largest heap block
+  void reserve(size_t n, const postproc::SourceFile& window) {
+    reserved_ = true;
+    std::error_code ec;
+    const auto file = std::filesystem::file_size(window.path, ec);
+    if (ec || window.bytes.empty()) return;
+    const double holes = static_cast<double>(n) * static_cast<double>(file) /
+                         static_cast<double>(window.bytes.size());
+    try {
+      to_.reserve(static_cast<size_t>(holes * 1.25) + n + 1024);
+    } catch (const std::bad_alloc&) {
+      // no such address range: the chunks take them all
+    } catch (const std::length_error&) {
+    }
+  }
+  std::vector<HoleRequest>& to_;
+  std::vector<std::vector<HoleRequest>> chunks_;
+  bool reserved_{false};
+};
+
 /// loadJobHoles of a deferred KRL program read by windows (`first`: its first reading): every
 /// hole checked and counted, the notes and errors of the program read whole, in their order
 /// (a hole's set-up error before a change of tools, wherever they are met); the holes are set
@@ -728,11 +788,10 @@ JobHoles loadStreamedHoles(const std::string& path, const CellSpec& cell, const 
   std::string base_note;
   std::exception_ptr setup_error;
   std::exception_ptr tool_error;
-  // keep_requests: the requests in chunks of their own (each freed at once as it is moved into
-  // the job's vector of their count: about one chunk more than the requests at the peak)
-  constexpr size_t kKeptChunk = 65536;  // 37 MB: above the allocator's largest heap block
-  std::vector<std::vector<HoleRequest>> kept;
-  std::vector<HoleRequest> window;
+  // keep_requests: the requests set up in place in the job's vector, reserved once for the
+  // program's holes as the first window's holes per byte foretell them (KeptRequests); the
+  // holes past that in chunks moved in at the end
+  KeptRequests kept(job.requests);
   std::vector<HoleSource> src;
   while (first.next()) {  // a reader's error is thrown where it is met
     if (setup_error) continue;
@@ -741,18 +800,12 @@ JobHoles loadStreamedHoles(const std::string& path, const CellSpec& cell, const 
     try {
       if (keep_requests) {
         const size_t n = hs.size() - first.firstNew();
-        window.assign(n, HoleRequest{});
         src.assign(n, HoleSource{});
-        setUpRange(p, hs, cell, robot, {}, {}, first.firstNew(), hs.size(), threads, window.data(),
+        HoleRequest* at = kept.add(n, p.files[0]);
+        setUpRange(p, hs, cell, robot, {}, {}, first.firstNew(), hs.size(), threads, at,
                    src.data());
-        for (size_t k = 0; k < n; ++k) {
-          if (kept.empty() || kept.back().size() == kKeptChunk) {
-            kept.emplace_back();
-            kept.back().reserve(kKeptChunk);
-          }
-          kept.back().push_back(std::move(window[k]));
+        for (size_t k = 0; k < n; ++k)
           job.undefined_base.push_back(src[k].frame_resolved ? -1 : src[k].base);
-        }
       } else {
         setUpRange(p, hs, cell, robot, {}, {}, first.firstNew(), hs.size(), threads, nullptr,
                    nullptr);
@@ -789,11 +842,7 @@ JobHoles loadStreamedHoles(const std::string& path, const CellSpec& cell, const 
   std::vector<postproc::Motion>().swap(job.program->motions);
   std::vector<postproc::Target>().swap(job.program->target_list);
   std::vector<postproc::TextId>().swap(job.program->marker_texts);
-  job.requests.reserve(job.hole_count);
-  for (std::vector<HoleRequest>& w : kept) {
-    for (HoleRequest& r : w) job.requests.push_back(std::move(r));
-    std::vector<HoleRequest>().swap(w);
-  }
+  kept.finish();
   if (!keep_requests) job.stream = std::make_shared<ProgramHoles>(path, threads);
   return job;
 }
