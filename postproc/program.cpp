@@ -337,8 +337,17 @@ bool allZeroDigits(const std::string& t) {
 
 }  // namespace
 
-std::string formatLike(std::string_view original, double value, const NumberHints& h) {
-  const NumStyle st = styleOf(original);
+namespace {
+
+/// The places of the fixed notation formatLike writes a number of style `st` with, whatever its
+/// value; -1 when they depend on the value (exponent notation, nine significant digits).
+int fixedPlaces(const NumStyle& st, const NumberHints& h) {
+  if (st.exp || h.significant9) return -1;
+  return std::clamp(std::max(st.has_point ? st.frac : 0, h.min_decimals), 0, 20);
+}
+
+/// formatLike of a number written in the style `st`.
+std::string formatStyled(const NumStyle& st, double value, const NumberHints& h) {
   // printf's %.*f / %.*g / %.*G in the "C" locale whatever the host's locale (std::to_chars)
   auto print = [](char kind, int prec, double v) {
     std::string s = kind == 'f' ? cFixed(v, prec) : cGeneral(v, prec);
@@ -376,6 +385,12 @@ std::string formatLike(std::string_view original, double value, const NumberHint
   }
   if (st.plus && value >= 0) t.insert(0, "+");
   return t;
+}
+
+}  // namespace
+
+std::string formatLike(std::string_view original, double value, const NumberHints& h) {
+  return formatStyled(styleOf(original), value, h);
 }
 
 void EditQueue::put(int file, std::uint32_t offset, std::uint32_t length, std::string text) {
@@ -424,11 +439,17 @@ void setNumber(const Program& p, EditQueue& q, NumberField& f, double value, con
   const SourceFile& sf = p.files[static_cast<std::size_t>(f.file)];
   const std::string_view orig = std::string_view(sf.bytes).substr(f.offset, f.length);
   const double orig_value = parseNumber(orig).value_or(0.0);
-  const std::string a = formatLike(orig, orig_value, h);
-  std::string b = formatLike(orig, value, h);
+  const NumStyle st = styleOf(orig);
+  std::string b = formatStyled(st, value, h);
   f.value = value;
   const std::uint32_t start = f.offset - f.pad;
-  if (a == b) {
+  // Values more than two units of the last place apart round to numbers more than one unit
+  // apart: their texts differ (every step after the rounding keeps the number the text reads),
+  // and the original's is not written.
+  const int d = fixedPlaces(st, h);
+  const bool apart = d >= 0 && std::isfinite(value) && std::isfinite(orig_value) &&
+                     std::fabs(value - orig_value) > 2.0 * std::pow(10.0, -d);
+  if (!apart && formatStyled(st, orig_value, h) == b) {
     q.erase(f.file, start);
     return;
   }

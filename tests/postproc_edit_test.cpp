@@ -1,7 +1,9 @@
 // Edits: number style, only the changed tokens change, configuration flags, refusals.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
+#include <random>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -97,6 +99,49 @@ void expectOnlyTargetChanges(const std::string& path, const std::string& name) {
     EXPECT_LT((T2.linear().col(2) - T.linear().col(2)).norm(), 2e-6);
   } else {
     EXPECT_LT(smallRotationDifference(T2.linear(), T.linear()).norm(), 2e-5);
+  }
+}
+
+// setNumber queues a token's new text exactly when it differs from the text of the token's own
+// value in the same style (else it drops the pending edit): values a few units of the last place
+// apart, on both sides of each rounding, in the styles of positions, KSS, FANUC, RAPID's %G and
+// signed or integer tokens, and seeded values far apart.
+TEST(PostprocEdit, SetNumberWritesATokenWhenItsTextChanges) {
+  const std::vector<std::pair<const char*, NumberHints>> cases = {
+      {"-293.400", {5, false, false}}, {"300.000", {3, false, false}},
+      {"0", {3, false, false}},        {"-31.6425190", {3, true, false}},
+      {"-.242", {3, false, true}},     {"+5.0", {3, false, false}},
+      {"-0.000", {3, false, false}},   {"1.5E-03", {3, false, false}},
+      {"0.999998", {9, false, false}}, {"1400", {0, false, false}}};
+  std::mt19937 rng(20261128);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (const auto& [token, h] : cases) {
+    SCOPED_TRACE(token);
+    const double v0 = *parseNumber(token);
+    std::vector<double> values{v0, -v0, 0.0};
+    for (int d = 0; d <= 10; ++d) {
+      const double place = std::pow(10.0, -d);
+      for (const double k : {0.3, 0.5, 0.7, 1.0, 1.5, 1.9, 2.0, 2.1, 2.5, 3.0, 7.0})
+        for (const double sign : {-1.0, 1.0}) values.push_back(v0 + sign * k * place);
+      for (int i = 0; i < 20; ++i) values.push_back(v0 + unit(rng) * 5.0 * place);
+    }
+    for (int i = 0; i < 50; ++i) values.push_back(unit(rng) * 1e4);
+    for (const double v : values) {
+      Program p;
+      p.files.push_back(SourceFile{});
+      p.files[0].bytes = token;
+      NumberField f;
+      f.file = 0;
+      f.length = static_cast<std::uint16_t>(p.files[0].bytes.size());
+      f.value = v0;
+      setNumber(p, f, v, h);
+      const std::string want = formatLike(token, v, h);
+      const bool changed = want != formatLike(token, v0, h);
+      ASSERT_EQ(p.edits.size(), changed ? 1U : 0U) << v;
+      if (changed) {
+        EXPECT_EQ(p.edits.begin()->second.text, want) << v;
+      }
+    }
   }
 }
 

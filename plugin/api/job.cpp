@@ -11,7 +11,6 @@
 #include <future>
 #include <iterator>
 #include <limits>
-#include <map>
 #include <system_error>
 #include <thread>
 
@@ -797,12 +796,12 @@ class StreamedProgramEdits {
     }
     flush(total_);
     // an insertion at the very end of the file (offset == size) is not before it
-    for (auto& [at, e] : edits_) {
+    for (auto& [at, e] : edits_.items()) {
       if (at != written_ || e.length != 0)
         throw std::logic_error("overlapping edits in " + r_.context.job.program->files[0].path);
       emit(e.text);
     }
-    edits_.clear();
+    edits_.items().clear();
     if (!out_.empty()) write_(out_);
     out_.clear();
   }
@@ -815,7 +814,7 @@ class StreamedProgramEdits {
     std::string s;
     s.reserve(b.size() + 64);
     std::uint64_t pos = 0;
-    for (const auto& [at, e] : dat_edits_) {
+    for (const auto& [at, e] : dat_edits_.items()) {
       if (at < pos || at + e.length > b.size())
         throw std::logic_error("overlapping edits in " + p.files[1].path);
       s.append(b, pos, at - pos);
@@ -846,6 +845,41 @@ class StreamedProgramEdits {
   struct Pending {
     std::uint32_t length{0};
     std::string text;
+  };
+  /// A file's pending edits by their first byte, in order: a map's put and erase on a deque (the
+  /// edits come in file order almost always: appended, and written from the front).
+  class PendingEdits {
+   public:
+    using Item = std::pair<std::uint64_t, Pending>;
+    /// The edit at `at` (replacing one there).
+    void put(std::uint64_t at, Pending&& p) {
+      if (items_.empty() || at > items_.back().first) {
+        items_.emplace_back(at, std::move(p));
+        return;
+      }
+      const auto it = lowerBound(at);
+      if (it != items_.end() && it->first == at) {
+        it->second = std::move(p);
+      } else {
+        items_.emplace(it, at, std::move(p));
+      }
+    }
+    /// Drops the edit at `at`, if any.
+    void erase(std::uint64_t at) {
+      const auto it = lowerBound(at);
+      if (it != items_.end() && it->first == at) items_.erase(it);
+    }
+    [[nodiscard]] bool after(std::uint64_t at) const {
+      return items_.empty() || at > items_.back().first;
+    }
+    std::deque<Item>& items() { return items_; }
+
+   private:
+    std::deque<Item>::iterator lowerBound(std::uint64_t at) {
+      return std::lower_bound(items_.begin(), items_.end(), at,
+                              [](const Item& x, std::uint64_t a) { return x.first < a; });
+    }
+    std::deque<Item> items_;
   };
 
   /// The window that holds line `line` of the first file (1-based).
@@ -950,8 +984,9 @@ class StreamedProgramEdits {
   void flush(std::uint64_t upto) {
     upto = std::min(upto, total_);
     if (upto <= written_) return;
-    auto it = edits_.begin();
-    for (; it != edits_.end() && it->first < upto; ++it) {
+    std::deque<PendingEdits::Item>& q = edits_.items();
+    auto it = q.begin();
+    for (; it != q.end() && it->first < upto; ++it) {
       if (it->first + it->second.length > upto) {
         upto = it->first;
         break;
@@ -960,7 +995,7 @@ class StreamedProgramEdits {
       emit(it->second.text);
       written_ = it->first + it->second.length;
     }
-    edits_.erase(edits_.begin(), it);
+    q.erase(q.begin(), it);
     if (upto > written_) {
       emitBytes(written_, upto);
       written_ = upto;
@@ -972,15 +1007,11 @@ class StreamedProgramEdits {
   void put(FileEdit&& e) {
     if (e.file == 0 && e.at < written_)
       throw std::logic_error("overlapping edits in " + r_.context.job.program->files[0].path);
-    std::map<std::uint64_t, Pending>& edits = e.file == 0 ? edits_ : dat_edits_;
-    // the edits come mostly in file order: one past the last pending is appended
-    const bool after = edits.empty() || e.at > edits.rbegin()->first;
+    PendingEdits& edits = e.file == 0 ? edits_ : dat_edits_;
     if (e.erase) {
-      if (!after) edits.erase(e.at);
-    } else if (after) {
-      edits.emplace_hint(edits.end(), e.at, Pending{e.length, std::move(e.text)});
+      if (!edits.after(e.at)) edits.erase(e.at);
     } else {
-      edits[e.at] = Pending{e.length, std::move(e.text)};
+      edits.put(e.at, Pending{e.length, std::move(e.text)});
     }
   }
 
@@ -1095,8 +1126,8 @@ class StreamedProgramEdits {
   std::deque<Window> windows_;
   std::uint64_t total_{0};    ///< bytes of the first file read
   std::uint64_t written_{0};  ///< bytes of the first file written (edits applied)
-  std::map<std::uint64_t, Pending> edits_;
-  std::map<std::uint64_t, Pending> dat_edits_;
+  PendingEdits edits_;
+  PendingEdits dat_edits_;
   std::string out_;
   std::vector<char> serial_;
   std::vector<std::pair<int, size_t>> uses_;
