@@ -7,8 +7,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <thread>
 
 #include "compensator/support/atomic_file.hpp"
 #include "plugin/api/hole_input.hpp"
@@ -81,8 +83,10 @@ TEST(CompensateThreads, HolesAreBitIdenticalForOneTwoThreeThreads) {
 // The sink overload hands over the holes of the vector result, in order, a block at a time
 // (more than one block here; stiffest may hold a hole back until its next neighbour is final),
 // bit for bit, with the same counters, for one and two threads. keep also with blocks of 5
-// holes: its results' memory is reused every other block, so a failed hole (a reason, nothing
-// compensated) takes the place of a compensated one the sink moved from, and the other way.
+// holes and a sink that sleeps now and then (the computation runs ahead of it, as far as it
+// may): the memory of a block's results is reused a few blocks later, so a failed hole (a
+// reason, nothing compensated) takes the place of a compensated one the sink moved from, and the
+// other way.
 TEST(CompensateThreads, SinkGetsTheVectorResultBlockByBlock) {
   api::PredictionContext c = api::loadPredictionContext(
       test::sourceDir() + "/samples/cells/housing-kr120.xml",
@@ -124,6 +128,8 @@ TEST(CompensateThreads, SinkGetsTheVectorResultBlockByBlock) {
         EXPECT_LE(holes.size(), 2 * kCompensationBlock);
         ++blocks;
         for (HoleCompensation& h : holes) got.push_back(std::move(h));
+        if (block != kCompensationBlock && blocks % 16 == 0)
+          std::this_thread::sleep_for(std::chrono::milliseconds(20));
       };
       CompensationStats stats;
       compensateHoles(c.model, req, o, sink, &stats);

@@ -1151,9 +1151,13 @@ void countFinished(const Evaluator& ev, const std::vector<HoleRequest>& holes,
   }
 }
 
+/// Blocks keepRun computes ahead of the sink's at most (each a block of results held).
+constexpr size_t kHandedAhead = 2;
+
 /// keep, block by block: each block of holes predicted (stage 1), its ψ = 0 candidate (stage 2;
 /// keep's sequence is the candidate of every hole: no jump limit, one node), compensated
-/// (stage 5) and handed over before the next block starts. The results and counters of
+/// (stage 5) and handed over in order (with workers, while the next blocks are computed:
+/// kHandedAhead). The results and counters of
 /// chooseSequence and the stage-5 pass over the whole run.
 void keepRun(Workers& w, const std::vector<HoleRequest>& holes, const std::optional<Vec6>& first,
              CompensationStats& st, const RunOutput& to) {
@@ -1166,19 +1170,25 @@ void keepRun(Workers& w, const std::vector<HoleRequest>& holes, const std::optio
   std::optional<Vec6> prev = first;
   Vec6 seed = m.reference_pose;  // the serial candidates' seed (holes not predicted as they are)
   const size_t cap = std::min(n, w.block);
-  // with workers, block k goes to the sink on a task of its own while block k + 1 is computed
-  // (the sink sees the blocks one at a time, in order): two blocks of results
-  std::array<std::vector<HoleCompensation>, 2> own;
+  // with workers, each block goes to the sink on a task of its own that first waits for the
+  // block before's (the sink sees the blocks one at a time, in order) while the next blocks are
+  // computed: the computation runs up to kHandedAhead blocks ahead of the sink (a sink slower
+  // for a block or two does not stop it), kHandedAhead + 1 blocks of results
+  constexpr size_t kSlots = kHandedAhead + 1;
+  std::array<std::vector<HoleCompensation>, kSlots> own;
   std::vector<Node> node(cap);
   std::vector<NodeCount> counts(cap);
   if (to.whole) to.whole->resize(n);
-  std::future<void> handing;  // the sink's call for the block before
-  int k = 0;
-  for (size_t b = 0; b < n; b += w.block, k ^= 1) {
+  std::array<std::shared_future<void>, kSlots> handing;  // the sink's task of each slot's block
+  std::shared_future<void> last;                         // the task of the block before
+  size_t slot = 0;
+  for (size_t b = 0; b < n; b += w.block, slot = (slot + 1) % kSlots) {
     const size_t e = std::min(n, b + w.block);
-    std::vector<HoleCompensation>& blk = to.whole ? *to.whole : own[static_cast<size_t>(k)];
+    // the slot's block before is handed over (or its error, or an earlier block's, thrown)
+    if (handing[slot].valid()) handing[slot].get();
+    std::vector<HoleCompensation>& blk = to.whole ? *to.whole : own[slot];
     const size_t o0 = to.whole ? b : 0;  // the block's first hole in blk
-    // a block's results are reused by the block after the next: every field is written again
+    // a slot's results are reused kSlots blocks later: every field is written again
     // (finalizeHole's fresh result, or stage 1's with the reason: a result as a fresh one)
     if (!to.whole && blk.size() != e - b) blk.resize(e - b);
     const std::span<HoleCompensation> out(blk.data() + o0, e - b);
@@ -1218,14 +1228,17 @@ void keepRun(Workers& w, const std::vector<HoleRequest>& holes, const std::optio
                             true);
     });
     countFinished(evs[0], holes, {}, {}, 0.0, out, b, st);
-    if (handing.valid()) handing.get();  // the block before is handed over (or its error thrown)
     if (to.sink && threads > 1) {
-      handing = std::async(std::launch::async, [&to, b, out] { (*to.sink)(to.offset + b, out); });
+      handing[slot] = std::async(std::launch::async, [&to, b, out, before = last] {
+                        if (before.valid()) before.get();  // an error there ends this one
+                        (*to.sink)(to.offset + b, out);
+                      }).share();
+      last = handing[slot];
     } else if (to.sink) {
       (*to.sink)(to.offset + b, out);
     }
   }
-  if (handing.valid()) handing.get();
+  if (last.valid()) last.get();  // every block handed over (the tasks end in order)
   st.jump_threshold_used = evs[0].o.jump_threshold;
 }
 
