@@ -1151,7 +1151,8 @@ void countFinished(const Evaluator& ev, const std::vector<HoleRequest>& holes,
   }
 }
 
-/// Blocks keepRun computes ahead of the sink's at most (each a block of results held).
+/// Blocks keepRun and sequenceRun finish ahead of the sink at most (each a block of results
+/// held).
 constexpr size_t kHandedAhead = 2;
 
 /// keep, block by block: each block of holes predicted (stage 1), its ψ = 0 candidate (stage 2;
@@ -1639,18 +1640,22 @@ void sequenceRun(Workers& w, const std::vector<HoleRequest>& holes,
   std::vector<Node> zero;  // the ψ = 0 candidates of the turned holes handed over (psiReason)
   if (to.whole) to.whole->reserve(to.whole->size() + n);
   // the finished holes [ready, e) not handed over yet are in bufs[k]; with workers, those handed
-  // over go to the sink on a task of its own while the next block is finished (the holes that
-  // wait move to the other buffer first)
-  std::array<std::vector<HoleCompensation>, 2> bufs;
-  std::future<void> handing;  // the sink's call for the holes before
-  int k = 0;
+  // over go to the sink on a task of their own that first waits for the task before (the sink
+  // sees them in order, one call at a time) while the next blocks are finished, up to
+  // kHandedAhead blocks ahead of the sink (the holes that wait move to the next buffer first,
+  // once its holes are handed over)
+  constexpr size_t kSlots = kHandedAhead + 1;
+  std::array<std::vector<HoleCompensation>, kSlots> bufs;
+  std::array<std::shared_future<void>, kSlots> handing;  // the sink's task of each buffer
+  std::shared_future<void> last;                         // the task of the holes before
+  size_t k = 0;
   size_t ready = 0;
   for (size_t b = 0; b < n; b += w.block) {
     const size_t e = std::min(n, b + w.block);
     std::optional<Vec6> seed = q.block_seed[b / w.block];
     predictBlock(m, w.scratch[0], std::span<const HoleRequest>(holes).subspan(b, e - b), threads,
                  seed, [&](size_t j) -> HolePrediction& { return before[j]; });
-    std::vector<HoleCompensation>& pend = bufs[static_cast<size_t>(k)];
+    std::vector<HoleCompensation>& pend = bufs[k];
     const size_t p0 = pend.size();  // hole b in pend
     pend.resize(p0 + (e - b));
     // the stage-1 part (id, prediction, note) taken over; stiffest compares with the keep result
@@ -1692,23 +1697,28 @@ void sequenceRun(Workers& w, const std::vector<HoleRequest>& holes,
       if (done[j].ok && std::abs(done[j].psi) > kPsiKept) zero[j] = q.zero[ready + j];
     }
     countFinished(evs[0], holes, chosen, zero, thr, done, ready, st);
-    if (handing.valid()) handing.get();  // the holes before are handed over (or its error thrown)
-    std::vector<HoleCompensation>& next = bufs[static_cast<size_t>(k ^ 1)];
+    const size_t nk = (k + 1) % kSlots;
+    // the next buffer's holes are handed over (or its error, or an earlier one's, thrown)
+    if (handing[nk].valid()) handing[nk].get();
+    std::vector<HoleCompensation>& next = bufs[nk];
     next.clear();
     for (size_t j = upto - ready; j < pend.size(); ++j) next.push_back(std::move(pend[j]));
     pend.resize(upto - ready);
     if (to.whole) {
       for (HoleCompensation& c : pend) to.whole->push_back(std::move(c));
     } else if (to.sink && threads > 1) {
-      handing = std::async(std::launch::async,
-                           [&to, ready, &pend] { (*to.sink)(to.offset + ready, pend); });
+      handing[k] = std::async(std::launch::async, [&to, ready, &pend, before = last] {
+                     if (before.valid()) before.get();  // an error there ends this one
+                     (*to.sink)(to.offset + ready, pend);
+                   }).share();
+      last = handing[k];
     } else if (to.sink) {
       (*to.sink)(to.offset + ready, pend);
     }
     ready = upto;
-    k ^= 1;
+    k = nk;
   }
-  if (handing.valid()) handing.get();
+  if (last.valid()) last.get();  // every hole handed over (the tasks end in order)
 }
 
 /// compensateHoles over holes that share one model (one TCP), the first seeded with `first`.
