@@ -1,6 +1,7 @@
 #include "postproc/program.hpp"
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -446,9 +447,12 @@ void setNumber(const Program& p, EditQueue& q, NumberField& f, double value, con
   // Values more than two units of the last place apart round to numbers more than one unit
   // apart: their texts differ (every step after the rounding keeps the number the text reads),
   // and the original's is not written.
+  static constexpr std::array<double, 21> kPlace{1.0,   1e-1,  1e-2,  1e-3,  1e-4,  1e-5,  1e-6,
+                                                 1e-7,  1e-8,  1e-9,  1e-10, 1e-11, 1e-12, 1e-13,
+                                                 1e-14, 1e-15, 1e-16, 1e-17, 1e-18, 1e-19, 1e-20};
   const int d = fixedPlaces(st, h);
   const bool apart = d >= 0 && std::isfinite(value) && std::isfinite(orig_value) &&
-                     std::fabs(value - orig_value) > 2.0 * std::pow(10.0, -d);
+                     std::fabs(value - orig_value) > 2.0 * kPlace[static_cast<std::size_t>(d)];
   if (!apart && formatStyled(st, orig_value, h) == b) {
     q.erase(f.file, start);
     return;
