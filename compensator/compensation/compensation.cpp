@@ -882,8 +882,9 @@ void assemble(Evaluator& ev, const HoleRequest& h, const nc::Loads& loads, bool 
 }
 
 /// Compensation of hole h at `node` (positions_only: keep the programmed orientation).
-/// `original` (the stage-1 result of the hole: id, prediction, note) is taken over.
-HoleCompensation finalizeHole(Evaluator& ev, const HoleRequest& h, HoleCompensation original,
+/// `original` (the stage-1 result of the hole: id, prediction, note) is taken over (moved from:
+/// a reference, so that the caller's result is not copied first).
+HoleCompensation finalizeHole(Evaluator& ev, const HoleRequest& h, HoleCompensation&& original,
                               const Node& node, bool positions_only) {
   HoleCompensation c;
   c.id = std::move(original.id);
@@ -1677,7 +1678,12 @@ void sequenceRun(Workers& w, const std::vector<HoleRequest>& holes,
         c.reason = std::move(why);
         return;
       }
-      c = finalizeHole(ev, holes[i], stiffest ? stageOne(c) : std::move(c), chosen[i], false);
+      // (not one conditional expression: its prvalue would copy c when it is not stiffest)
+      if (stiffest) {
+        c = finalizeHole(ev, holes[i], stageOne(c), chosen[i], false);
+      } else {
+        c = finalizeHole(ev, holes[i], std::move(c), chosen[i], false);
+      }
     });
     if (stiffest)
       stiffestAgainstKeep(evs, holes, std::span<const Node>(programmed.data(), e - b), chosen, thr,
