@@ -1159,8 +1159,8 @@ constexpr size_t kHandedAhead = 2;
 /// keep, block by block: each block of holes predicted (stage 1), its ψ = 0 candidate (stage 2;
 /// keep's sequence is the candidate of every hole: no jump limit, one node), compensated
 /// (stage 5) and handed over in order (with workers, while the next blocks are computed:
-/// kHandedAhead). The results and counters of
-/// chooseSequence and the stage-5 pass over the whole run.
+/// kHandedAhead). The results and counters of chooseSequence and the stage-5 pass over the
+/// whole run.
 void keepRun(Workers& w, const std::vector<HoleRequest>& holes, const std::optional<Vec6>& first,
              CompensationStats& st, const RunOutput& to) {
   std::vector<Evaluator>& evs = w.evs;
