@@ -168,11 +168,11 @@ std::vector<HoleCompensation> compensateHoles(const PredictionModel& m,
 using CompensationSink = std::function<void(std::size_t first, std::span<HoleCompensation> holes)>;
 
 /// compensateHoles with the results handed to `sink` block by block instead of returned (the same
-/// holes, bytes and statistics). keep holds one block of results at a time (each block of holes is
-/// predicted, compensated and handed over in turn); flip-free and stiffest choose the sequence
-/// over the whole program first (a block of predictions and candidate grids at a time, the DP's
-/// predecessor table and the chosen candidates for the whole program), then predict again,
-/// finish and hand over the holes a block at a time.
+/// holes, bytes and statistics). keep holds a few blocks of results at a time (each block of holes
+/// is predicted, compensated and handed over in turn, with workers up to two blocks ahead of the
+/// sink); flip-free and stiffest choose the sequence over the whole program first (predictions and
+/// grids a block at a time, the DP's predecessor table and chosen candidates for the program),
+/// then predict again, finish and hand over the holes a block at a time (as keep).
 void compensateHoles(const PredictionModel& m, const std::vector<HoleRequest>& holes,
                      const CompensationOptions& options, const CompensationSink& sink,
                      CompensationStats* stats = nullptr);
