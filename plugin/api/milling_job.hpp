@@ -7,10 +7,13 @@
 
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "compensator/compensation/milling_compensation.hpp"
+#include "compensator/support/atomic_file.hpp"
 #include "plugin/api/prediction_setup.hpp"
 
 namespace roprec::api {
@@ -34,6 +37,32 @@ struct MillingCompensationResult {
   [[nodiscard]] const PathPointCompensation& point(std::size_t i) const {
     return points_comp[i - first];
   }
+  /// A job read by windows (compensateStreamedMillingJob) keeps none of the per-point vectors
+  /// above: what the exports read of the points of the block being handed over (point first + k
+  /// at k), and the number of path points.
+  struct BlockPoint {
+    std::string target;  ///< the program target's name
+    int line{0};         ///< its line
+    Pose nominal{Pose::Identity()};
+    std::optional<MillingEngagement> engagement;  ///< its cutting decision's (box stock)
+    int mill{0};
+  };
+  bool streamed{false};
+  std::vector<BlockPoint> block;
+  std::size_t streamed_points{0};
+  /// Read by windows: the first point and the mill of each run of points of one mill.
+  std::vector<std::pair<std::size_t, int>> runs;
+  /// Path points (compensated or not).
+  [[nodiscard]] std::size_t pointCount() const {
+    return streamed ? streamed_points : points.size();
+  }
+  /// Path point i's target name and line (i in the block handed over, or any of a whole job).
+  [[nodiscard]] const std::string& targetName(std::size_t i) const;
+  [[nodiscard]] int targetLine(std::size_t i) const;
+  /// Path point i's nominal TCP (base frame).
+  [[nodiscard]] const Pose& nominal(std::size_t i) const;
+  /// Path point i's engagement on the programmed path (box stock), none without a box stock.
+  [[nodiscard]] const std::optional<MillingEngagement>& engagement(std::size_t i) const;
 };
 /// Receives each block of compensated path points, in path order: r.points_comp holds points
 /// [r.first, r.first + r.points_comp.size()), their target edits applied to the program and
@@ -54,6 +83,28 @@ MillingCompensationResult compensateMillingJob(const std::string& cell_path,
                                                const std::string& program_path, bool force,
                                                const MillingPathOptions& path,
                                                const MillingPointsSink& sink);
+/// Whether compensate reads a milling program by windows (compensateStreamedMillingJob): a KUKA
+/// KRL program without the "roprec compensated" marker (compensationStreams).
+bool millingStreams(const std::string& program_path);
+/// compensateMillingJob's loading of a program millingStreams() accepts, read by windows: the
+/// cell and a first reading that checks every path point (the same errors, in the same order:
+/// the program's, then its points' mills, then a program without a path point) and keeps only
+/// the runs of points of one mill; context.job.program then holds the program's files (their
+/// number style, the `.dat` whole), frames and notes, not its motions.
+MillingCompensationResult loadStreamedMillingJob(const std::string& cell_path,
+                                                 const std::string& program_path);
+/// compensateMillingJob of a job loadStreamedMillingJob loaded, memory constant in the number of
+/// points: a second reading hands the path points to the chains block by block
+/// (compensateMillingPath's MillingPathSource, the cutting decided point by point) and edits the
+/// program as the blocks come back (r.block: what the exports read of them) — `sink` as
+/// compensateMillingJob's. The first file's bytes no later edit can change go to `write_src` as
+/// they are final (the rest at the end, when nothing failed and no edit was refused), and `dat`
+/// receives the edited `.dat` (a program with one). The bytes, the blocks, `failures` and `refused`
+/// are those of compensateMillingJob.
+void compensateStreamedMillingJob(MillingCompensationResult& r, const MillingPathOptions& path,
+                                  const ByteWriter& write_src, std::optional<std::string>& dat,
+                                  const MillingPointsSink& sink);
+
 /// The mill of path point `i` (MillingCompensationResult::mill).
 const MillingSpec& millOf(const MillingCompensationResult& r, std::size_t i);
 
