@@ -237,9 +237,11 @@ struct HeldPoint {
 /// held point needs any more are retired before each window.
 class StreamedPath {
  public:
-  StreamedPath(const PredictionContext& c, const std::string& path, bool read_ahead)
+  StreamedPath(const PredictionContext& c, const std::string& path, size_t window_bytes,
+               bool read_ahead)
       : c_(c),
-        stream_(path, postproc::ProgramStream::kWindowBytes, read_ahead),
+        stream_(path, window_bytes > 0 ? window_bytes : postproc::ProgramStream::kWindowBytes,
+                read_ahead),
         mills_(c.model.process) {}
   postproc::ProgramStream& stream() { return stream_; }
   /// Appends the next path point to `held`; false at the end of the program. `on_window` is
@@ -419,12 +421,13 @@ bool millingStreams(const std::string& program_path) {
 }
 
 MillingCompensationResult loadStreamedMillingJob(const std::string& cell_path,
-                                                 const std::string& program_path) {
+                                                 const std::string& program_path,
+                                                 std::size_t window_bytes) {
   MillingCompensationResult r;
   r.streamed = true;
   r.context = loadPredictionContext(cell_path, "", std::nullopt, "", 0.5, false, 1);
   r.context.job.path = program_path;
-  StreamedPath path(r.context, program_path, false);
+  StreamedPath path(r.context, program_path, window_bytes, false);
   std::deque<HeldPoint> held;
   while (path.next(held, [] {})) {
     const HeldPoint& h = held.back();
@@ -444,11 +447,11 @@ MillingCompensationResult loadStreamedMillingJob(const std::string& cell_path,
 
 void compensateStreamedMillingJob(MillingCompensationResult& r, const MillingPathOptions& options,
                                   const ByteWriter& write_src, std::optional<std::string>& dat,
-                                  const MillingPointsSink& sink) {
+                                  const MillingPointsSink& sink, std::size_t window_bytes) {
   if (!r.streamed || !r.context.job.program)
     throw InternalError("compensateStreamedMillingJob: the job was not loaded by windows");
   const PredictionModel& cell = r.context.model;
-  StreamedPath path(r.context, r.context.job.path, options.threads > 1);
+  StreamedPath path(r.context, r.context.job.path, window_bytes, options.threads > 1);
   postproc::Program& prog = path.stream().program();
   prog.position_min_decimals = 5;
   prog.fanuc_turn_axes = r.context.job.program->fanuc_turn_axes;

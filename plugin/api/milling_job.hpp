@@ -91,8 +91,10 @@ bool millingStreams(const std::string& program_path);
 /// the program's, then its points' mills, then a program without a path point) and keeps only
 /// the runs of points of one mill; context.job.program then holds the program's files (their
 /// number style, the `.dat` whole), frames and notes, not its motions.
+/// `window_bytes`: the windows' size (0: postproc::ProgramStream::kWindowBytes).
 MillingCompensationResult loadStreamedMillingJob(const std::string& cell_path,
-                                                 const std::string& program_path);
+                                                 const std::string& program_path,
+                                                 std::size_t window_bytes = 0);
 /// compensateMillingJob of a job loadStreamedMillingJob loaded, memory constant in the number of
 /// points: a second reading hands the path points to the chains block by block
 /// (compensateMillingPath's MillingPathSource, the cutting decided point by point) and edits the
@@ -103,7 +105,7 @@ MillingCompensationResult loadStreamedMillingJob(const std::string& cell_path,
 /// are those of compensateMillingJob.
 void compensateStreamedMillingJob(MillingCompensationResult& r, const MillingPathOptions& path,
                                   const ByteWriter& write_src, std::optional<std::string>& dat,
-                                  const MillingPointsSink& sink);
+                                  const MillingPointsSink& sink, std::size_t window_bytes = 0);
 
 /// The mill of path point `i` (MillingCompensationResult::mill).
 const MillingSpec& millOf(const MillingCompensationResult& r, std::size_t i);
