@@ -67,6 +67,8 @@ EditResult StreamedEdits::replaceTargetPose(int index, const Pose& T_frame_tcp,
   }
   if (w != nullptr) std::swap(p.files[0].bytes, w->bytes);
   for (EditLog::Op& op : log.ops) {
+    if (op.edit.file == 0 && w == nullptr)
+      throw InternalError("StreamedEdits: an edit of the first file for a target of another");
     const std::uint64_t base = op.edit.file == 0 ? w->start : 0;
     put(op.erase, op.edit.file, base + op.edit.offset, op.edit.length, std::move(op.edit.text));
   }
