@@ -121,8 +121,8 @@ TEST(MillingJob, WindowedReadingWritesTheBytesOfTheWholeProgramJob) {
     for (const size_t block : {size_t{7}, size_t{512}}) {
       for (const int threads : {1, 2}) {
         expectSameOutputs(whole, streamedJob(cell, prog, threads, block, window),
-                          "window " + std::to_string(window) + " block " +
-                              std::to_string(block) + " threads " + std::to_string(threads));
+                          "window " + std::to_string(window) + " block " + std::to_string(block) +
+                              " threads " + std::to_string(threads));
       }
     }
   }
@@ -137,8 +137,7 @@ TEST(MillingJob, BoxStockPassesOverManyWindowsAreTheWholeProgramJobs) {
   for (const size_t window : {size_t{512}, size_t{0}}) {
     for (const int threads : {1, 2}) {
       expectSameOutputs(whole, streamedJob(cell, prog, threads, 16, window),
-                        "window " + std::to_string(window) + " threads " +
-                            std::to_string(threads));
+                        "window " + std::to_string(window) + " threads " + std::to_string(threads));
     }
   }
 }
@@ -184,7 +183,8 @@ TEST(MillingJob, RunsOfTwoMillsAcrossWindowsAreTheWholeProgramJobs) {
   const std::string dir = test::tempDir("milling_job");
   test::writeFile(dir + "/two.xml", twoMillCell());
   const std::string prog = dir + "/mills.src";
-  test::writeFile(prog, millProgram(millPass(1, 0, 80) + millPass(2, 20, 70) + millPass(1, 40, 60)));
+  test::writeFile(prog,
+                  millProgram(millPass(1, 0, 80) + millPass(2, 20, 70) + millPass(1, 40, 60)));
   const api::MillingCompensationResult r = api::loadStreamedMillingJob(dir + "/two.xml", prog);
   ASSERT_EQ(r.runs.size(), 3u);
   EXPECT_EQ(r.runs[1].second, 1);
@@ -192,8 +192,7 @@ TEST(MillingJob, RunsOfTwoMillsAcrossWindowsAreTheWholeProgramJobs) {
   for (const size_t window : {size_t{1024}, size_t{0}}) {
     for (const int threads : {1, 2}) {
       expectSameOutputs(whole, streamedJob(dir + "/two.xml", prog, threads, 32, window),
-                        "window " + std::to_string(window) + " threads " +
-                            std::to_string(threads));
+                        "window " + std::to_string(window) + " threads " + std::to_string(threads));
     }
   }
 }
@@ -212,9 +211,10 @@ TEST(MillingJob, LateToolErrorExitsTwoWithNothingWritten) {
                       "/out.src' --targets '" + dir + "/t.csv' --report '" + dir + "/r.html'");
   EXPECT_EQ(r.exit_code, 2) << r.err;
   const size_t line = static_cast<size_t>(
-      std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(text.find(
-                                                   "LIN", text.find("TOOL_DATA[3]"))),
-                 '\n') +
+      std::count(
+          text.begin(),
+          text.begin() + static_cast<std::ptrdiff_t>(text.find("LIN", text.find("TOOL_DATA[3]"))),
+          '\n') +
       1);
   EXPECT_NE(r.err.find("late.src:" + std::to_string(line) + ":"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("not a mill of the cell's tool table"), std::string::npos) << r.err;
