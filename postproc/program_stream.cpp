@@ -211,6 +211,13 @@ bool ProgramStream::next() {
   return true;
 }
 
+std::size_t ProgramStream::settledMotions() const {
+  if (!krl_ || finished_) return p_.motions.size();
+  const int held = krl_->heldMotion();
+  return held >= 0 ? std::min(p_.motions.size(), static_cast<std::size_t>(held))
+                   : p_.motions.size();
+}
+
 Retired ProgramStream::retire(std::size_t m) {
   Program& p = p_;
   if (!krl_ || p.motions.empty()) return {};

@@ -60,6 +60,9 @@ class ProgramStream {
   [[nodiscard]] Program& program() { return p_; }
   /// Whether the program is read by windows (KRL); false: next() reads it whole once.
   [[nodiscard]] bool windowed() const { return krl_ != nullptr; }
+  /// The window's motions [0, settledMotions()) the reader will not change any more: all of them
+  /// but from the held segment of a SPLINE block being read (every one once the program is read).
+  [[nodiscard]] std::size_t settledMotions() const;
   /// Drops the window's motions before `m` (fewer when the reader may still change one of them;
   /// the last motion always stays: a marker after it belongs to it) and the unnamed targets only
   /// they use, their texts released. A whole-read program drops nothing.

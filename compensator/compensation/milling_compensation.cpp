@@ -2,9 +2,12 @@
 
 #include <Eigen/QR>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <future>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <span>
@@ -222,52 +225,50 @@ ForceFixedPoint solveForceFixedPoint(const std::function<bool(const Vec3&, Vec3&
   }
 }
 
-std::vector<CuttingDecision> decideCutting(const MillingSpec& s, const Pose& T_W_wobj,
-                                           const std::vector<MillingPathPoint>& points) {
+CuttingDecider::CuttingDecider(const MillingSpec& s, const Pose& T_W_wobj)
+    : s_(s), T_wobj_W_(T_W_wobj.inverse()), tracker_(boxStockTracker(s)) {}
+
+CuttingDecision CuttingDecider::operator()(const MillingPathPoint& p) {
+  const MillingSpec& s = s_;
   const double vf = s.cut.fz * s.tool.teeth * s.cut.spindle_rpm / 60.0;  // m/s
   const double v_max = kRapidSpeedFactor * vf;
-  const Pose T_wobj_W = T_W_wobj.inverse();
-  std::optional<double> z_ref;  // tool height at the first non-rapid point (no <stock>)
-  std::optional<EngagementTracker> tracker = boxStockTracker(s);  // the engagement of every move
-  std::optional<Vec3> prev_tip;
-  std::vector<CuttingDecision> out(points.size());
-  for (size_t i = 0; i < points.size(); ++i) {
-    const MillingPathPoint& p = points[i];
-    CuttingDecision& c = out[i];
-    const Vec3 tip = (T_wobj_W * p.T_W_tcp).translation();
-    const double z = tip.z();
-    if (p.speed > v_max) {
-      prev_tip.reset();  // a rapid move removes nothing (and breaks the chain of moves)
-      c = decision(false, "rapid: programmed " + fmt(p.speed * 1e3, 1) + " mm/s > " +
-                              fmt(kRapidSpeedFactor, 2) + " x feed speed " + fmt(vf * 1e3, 1) +
-                              " mm/s");
-      c.rapid = true;
-      continue;
-    }
-    if (tracker) {
-      c = engagedDecision(*tracker, prev_tip, tip);
-      prev_tip = tip;
-      continue;
-    }
-    if (s.stock_top_z) {
-      const double depth = *s.stock_top_z - z;
-      if (depth >= s.cut.ap - kDepthTolerance) {
-        c = decision(true, "feed move at depth " + mm(depth) + " mm below the stock top (ap " +
-                               mm(s.cut.ap) + " mm)");
-      } else {
-        c = decision(false, depth <= 0 ? "above the stock top by " + mm(-depth) + " mm"
-                                       : "depth " + mm(depth) + " mm < ap " + mm(s.cut.ap) +
-                                             " mm: not at the cutting depth");
-      }
-      continue;
-    }
-    if (!z_ref) z_ref = z;
-    if (std::abs(z - *z_ref) <= kDepthTolerance) {
-      c = decision(true, "feed move at the depth of the first feed move");
-    } else {
-      c = decision(false, "tool " + mm(z - *z_ref) + " mm from the depth of the first feed move");
-    }
+  CuttingDecision c;
+  const Vec3 tip = (T_wobj_W_ * p.T_W_tcp).translation();
+  const double z = tip.z();
+  if (p.speed > v_max) {
+    prev_tip_.reset();  // a rapid move removes nothing (and breaks the chain of moves)
+    c = decision(false, "rapid: programmed " + fmt(p.speed * 1e3, 1) + " mm/s > " +
+                            fmt(kRapidSpeedFactor, 2) + " x feed speed " + fmt(vf * 1e3, 1) +
+                            " mm/s");
+    c.rapid = true;
+    return c;
   }
+  if (tracker_) {
+    c = engagedDecision(*tracker_, prev_tip_, tip);
+    prev_tip_ = tip;
+    return c;
+  }
+  if (s.stock_top_z) {
+    const double depth = *s.stock_top_z - z;
+    if (depth >= s.cut.ap - kDepthTolerance) {
+      return decision(true, "feed move at depth " + mm(depth) + " mm below the stock top (ap " +
+                                mm(s.cut.ap) + " mm)");
+    }
+    return decision(false, depth <= 0 ? "above the stock top by " + mm(-depth) + " mm"
+                                      : "depth " + mm(depth) + " mm < ap " + mm(s.cut.ap) +
+                                            " mm: not at the cutting depth");
+  }
+  if (!z_ref_) z_ref_ = z;
+  if (std::abs(z - *z_ref_) <= kDepthTolerance)
+    return decision(true, "feed move at the depth of the first feed move");
+  return decision(false, "tool " + mm(z - *z_ref_) + " mm from the depth of the first feed move");
+}
+
+std::vector<CuttingDecision> decideCutting(const MillingSpec& s, const Pose& T_W_wobj,
+                                           const std::vector<MillingPathPoint>& points) {
+  CuttingDecider decide(s, T_W_wobj);
+  std::vector<CuttingDecision> out(points.size());
+  for (size_t i = 0; i < points.size(); ++i) out[i] = decide(points[i]);
   return out;
 }
 
@@ -288,11 +289,35 @@ std::shared_ptr<const PointCut> pointCut(MillingModel model) {
   return c;
 }
 
+/// A path's points (or cutting decisions) by path index: a whole vector, or — a path read block
+/// by block — the two blocks the pipeline holds (block k of `block` elements in slot k % 2: the
+/// first chain's block and the block before it, which the second chain reads). size(): the
+/// vector's, or (block by block) every index asked for is held.
+template <class T>
+class PathWindow {
+ public:
+  explicit PathWindow(const std::vector<T>& whole) : whole_(&whole) {}
+  explicit PathWindow(size_t block) : block_(block) {}
+  const T& operator[](size_t i) const {
+    return whole_ != nullptr ? (*whole_)[i] : slots_[(i / block_) % 2][i % block_];
+  }
+  [[nodiscard]] size_t size() const {
+    return whole_ != nullptr ? whole_->size() : std::numeric_limits<size_t>::max();
+  }
+  /// The slot of block k (block by block), to be filled.
+  std::vector<T>& slot(size_t k) { return slots_[k % 2]; }
+
+ private:
+  const std::vector<T>* whole_{nullptr};
+  size_t block_{1};
+  std::array<std::vector<T>, 2> slots_;
+};
+
 /// What both chains of the path read.
 struct PathSetup {
   const PredictionModel& m;
-  const std::vector<Pose>& points;
-  const std::vector<CuttingDecision>* cutting;
+  const PathWindow<Pose>& points;
+  const PathWindow<CuttingDecision>* cutting;
   Mat3 C_tool;
   CouplingOptions copt;
   MillingPathOptions options;
@@ -877,20 +902,15 @@ void runSecondChain(CompensatedChain& chain, PathBlock& blk) {
   blk.cut.clear();
 }
 
-}  // namespace
-
-void compensateMillingPath(const PredictionModel& m, const std::vector<Pose>& points,
-                           const std::vector<CuttingDecision>* cutting, const Vec6* seed,
-                           const MillingPathOptions& options, const MillingPathSink& sink) {
+/// The two chains over the path as a pipeline: `fill(k, b)` makes block k (its first point b)
+/// readable through the setup's windows and returns its end (b: the path ended).
+void runPipeline(const PathSetup& setup, const Vec6* seed, const MillingPathSink& sink,
+                 const std::function<size_t(size_t, size_t)>& fill) {
+  const PredictionModel& m = setup.m;
   if (!m.has_process || m.process.type != ProcessType::kMilling) {
     throw std::invalid_argument("compensateMillingPath needs a milling process");
   }
-  const PathSetup setup{m,
-                        points,
-                        cutting,
-                        toolStaticCompliance(m.process.milling.tool_mode),
-                        m.process.milling.coupling,
-                        options};
+  const MillingPathOptions& options = setup.options;
   const int threads = std::max(1, options.threads);
   UncompensatedChain first(setup, seed);
   CompensatedChain second(setup);
@@ -904,11 +924,13 @@ void compensateMillingPath(const PredictionModel& m, const std::vector<Pose>& po
     sink(blk.b, std::span<PathPointCompensation>(blk.out));
     blk.out.clear();
   };
-  const size_t block = std::max<size_t>(1, options.block);
-  for (size_t b = 0, k = 0; b < points.size(); b += block, ++k) {
+  for (size_t b = 0, k = 0;; ++k) {
+    const size_t e = fill(k, b);
+    if (e <= b) break;
     PathBlock& blk = blocks[k % 2];
     blk.b = b;
-    blk.e = std::min(points.size(), b + block);
+    blk.e = e;
+    b = e;
     runFirstChain(first, blk);
     resolveBlockEdges(blk, threads > 1 ? threads - 1 : 1);
     if (pending.valid()) pending.get();
@@ -922,6 +944,53 @@ void compensateMillingPath(const PredictionModel& m, const std::vector<Pose>& po
   }
   if (pending.valid()) pending.get();
   if (done != nullptr) hand(*done);
+}
+
+}  // namespace
+
+void compensateMillingPath(const PredictionModel& m, const std::vector<Pose>& points,
+                           const std::vector<CuttingDecision>* cutting, const Vec6* seed,
+                           const MillingPathOptions& options, const MillingPathSink& sink) {
+  const PathWindow<Pose> path(points);
+  std::optional<PathWindow<CuttingDecision>> cuts;
+  if (cutting != nullptr) cuts.emplace(*cutting);
+  const PathSetup setup{m,
+                        path,
+                        cuts ? &*cuts : nullptr,
+                        toolStaticCompliance(m.process.milling.tool_mode),
+                        m.process.milling.coupling,
+                        options};
+  const size_t block = std::max<size_t>(1, options.block);
+  runPipeline(setup, seed, sink,
+              [&](size_t, size_t b) { return std::min(points.size(), b + block); });
+}
+
+void compensateMillingPath(const PredictionModel& m, const MillingPathSource& source,
+                           bool with_cutting, const Vec6* seed, const MillingPathOptions& options,
+                           const MillingPathSink& sink) {
+  const size_t block = std::max<size_t>(1, options.block);
+  PathWindow<Pose> path(block);
+  PathWindow<CuttingDecision> cuts(block);
+  const PathSetup setup{m,
+                        path,
+                        with_cutting ? &cuts : nullptr,
+                        toolStaticCompliance(m.process.milling.tool_mode),
+                        m.process.milling.coupling,
+                        options};
+  bool ended = false;
+  runPipeline(setup, seed, sink, [&](size_t k, size_t b) {
+    if (ended) return b;
+    // slot k % 2 held block k − 2: both chains and the sink are done with it
+    std::vector<Pose>& points = path.slot(k);
+    std::vector<CuttingDecision>& cutting = cuts.slot(k);
+    points.clear();
+    cutting.clear();
+    const size_t n = source(block, points, cutting);
+    if (n > block || points.size() != n || (with_cutting && cutting.size() != n))
+      throw std::logic_error("compensateMillingPath: the source gave a block of the wrong size");
+    ended = n < block;
+    return b + n;
+  });
 }
 
 std::vector<PathPointCompensation> compensateMillingPath(

@@ -76,6 +76,22 @@ struct CuttingDecision {
 /// The cutting decision of every point (rules above). `T_W_wobj`: the cell's workobject.
 std::vector<CuttingDecision> decideCutting(const MillingSpec& s, const Pose& T_W_wobj,
                                            const std::vector<MillingPathPoint>& points);
+/// decideCutting one point at a time, in path order (a path read block by block): the same
+/// decisions, with what the rules carry from point to point (the first feed move's height, the
+/// box stock's material removed by the earlier moves).
+class CuttingDecider {
+ public:
+  CuttingDecider(const MillingSpec& s, const Pose& T_W_wobj);
+  /// The decision of the path's next point.
+  CuttingDecision operator()(const MillingPathPoint& p);
+
+ private:
+  MillingSpec s_;
+  Pose T_wobj_W_;
+  std::optional<EngagementTracker> tracker_;
+  std::optional<Vec3> prev_tip_;
+  std::optional<double> z_ref_;
+};
 
 struct PathPointCompensation {
   bool ok{false};
@@ -220,5 +236,18 @@ using MillingPathSink =
 void compensateMillingPath(const PredictionModel& m, const std::vector<Pose>& points,
                            const std::vector<CuttingDecision>* cutting, const Vec6* seed,
                            const MillingPathOptions& options, const MillingPathSink& sink);
+
+/// Gives the path's next points, in path order: appends up to `count` nominal TCP poses (base
+/// frame) to `points` and, for a path with cutting decisions, as many decisions to `cutting`;
+/// returns how many (fewer than `count`: the path ends with them).
+using MillingPathSource = std::function<std::size_t(std::size_t count, std::vector<Pose>& points,
+                                                    std::vector<CuttingDecision>& cutting)>;
+/// compensateMillingPath of a path read block by block from `source` (blocks of options.block
+/// points; two of them held at a time: memory does not grow with the path). `with_cutting`: the
+/// source gives every point's cutting decision (else every point cuts). The same results, bit for
+/// bit, as the path read whole.
+void compensateMillingPath(const PredictionModel& m, const MillingPathSource& source,
+                           bool with_cutting, const Vec6* seed, const MillingPathOptions& options,
+                           const MillingPathSink& sink);
 
 }  // namespace roprec

@@ -21,6 +21,7 @@
 #include "compensator/compensation/milling_compensation.hpp"
 #include "compensator/precision/prediction.hpp"
 #include "compensator/support/atomic_file.hpp"
+#include "plugin/api/milling_job.hpp"
 #include "plugin/api/prediction_setup.hpp"
 #include "plugin/api/program_frames.hpp"
 #include "plugin/report/json.hpp"
@@ -222,47 +223,8 @@ void compensateStreamedProgram(CompensationResult& r, const CompensationJob& job
 /// compensation marker, the before/after summary and whether the program may be written.
 void editCompensatedProgram(CompensationResult& r, const CompensationJob& job);
 
-/// Milling path compensation (every linear path point, coupled force iteration).
-struct MillingCompensationResult {
-  PredictionContext context;
-  std::vector<int> targets;              ///< program target per point
-  std::vector<Pose> points;              ///< nominal TCP, base frame
-  std::vector<CuttingDecision> cutting;  ///< per point: cuts or not, and why (§4.5)
-  /// Per point: its mill (ProcessSpec::mills index), the one the motion's active tool selects
-  /// (docs/process.md §8, tool table); 0 for a single-mill cell.
-  std::vector<int> mill;
-  /// Path point first + k at k: every point (first = 0), or with a MillingPointsSink the block
-  /// being handed over (empty after the job).
-  std::vector<PathPointCompensation> points_comp;
-  std::size_t first{0};
-  std::vector<std::string> failures;  ///< "path point N (FILE:LINE): not compensated: why"
-  std::vector<std::string> refused;
-  /// Path point i's results (it must be in points_comp: i - first < points_comp.size()).
-  [[nodiscard]] const PathPointCompensation& point(std::size_t i) const {
-    return points_comp[i - first];
-  }
-};
-/// Receives each block of compensated path points, in path order: r.points_comp holds points
-/// [r.first, r.first + r.points_comp.size()), their target edits applied to the program and
-/// their failures and refusals recorded; the block is dropped after the call (a CAM-size path's
-/// results are never all in memory).
-using MillingPointsSink = std::function<void(const MillingCompensationResult& r)>;
-/// Each run of path points with one mill is compensated as a path of its own with that mill's
-/// process and TCP (a tool change leaves the material), seeded with the joints before it. Throws
-/// InputError at a path motion whose tool the cell's mills do not have, at one that selects no
-/// tool when the cell has several mills, and at the first motion of a second tool when it has one.
-/// `path`: the revolutions resolved by edge angle or not, and the workers (the same results
-/// whatever their count; compensateMillingPath).
-MillingCompensationResult compensateMillingJob(const std::string& cell_path,
-                                               const std::string& program_path, bool force = false,
-                                               const MillingPathOptions& path = {});
-/// compensateMillingJob handing every block of points to `sink` (points_comp is empty after it).
-MillingCompensationResult compensateMillingJob(const std::string& cell_path,
-                                               const std::string& program_path, bool force,
-                                               const MillingPathOptions& path,
-                                               const MillingPointsSink& sink);
-/// The mill of path point `i` (MillingCompensationResult::mill).
-const MillingSpec& millOf(const MillingCompensationResult& r, std::size_t i);
+/// The marker line written into every compensated program (cell, version, mode).
+std::string markerText(const CellSpec& cell, const std::string& mode);
 
 /// Throws InputError (the marker's FILE:LINE) when the program carries roprec's "compensated"
 /// marker and `force` is false; with `force` returns a note saying it was compensated again.
@@ -271,9 +233,6 @@ std::optional<std::string> checkNotCompensated(const postproc::Program& program,
 /// Throws UsageError when an output path (the program's, its `.dat`, or an extra one) is one of
 /// the program's input files (same path or same file by inode).
 void refuseOverwritingInput(const postproc::Program& program, const std::vector<std::string>& outs);
-
-/// True when the cell's process is milling (compensate then runs compensateMillingJob).
-bool cellIsMilling(const std::string& cell_path);
 
 /// Writes the outputs of a compensation all together: the program (and its .dat etc.) to
 /// `program_out`, and each (path, text) of `extra`. Returns the paths written. Refuses (UsageError)

@@ -181,11 +181,28 @@ class RowSpill {
 /// removed).
 struct NothingWritten {};
 
+/// Whether the outputs of a milling job read by windows (its program's files, --targets,
+/// --report) are distinct and none of them is an input file: else the whole-program path says
+/// what is wrong, after the job, as it always has.
+bool streamedOutputsFine(const MillingCompensationResult& r, const std::vector<std::string>& outs) {
+  std::vector<std::string> sorted = outs;
+  std::sort(sorted.begin(), sorted.end());
+  if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) return false;
+  try {
+    refuseOverwritingInput(*r.context.job.program, outs);
+  } catch (const UsageError&) {
+    return false;
+  }
+  return true;
+}
+
 /// Milling: every linear path point of the program is compensated with the coupled force
 /// iteration (compensator/compensation/milling_compensation.hpp). The points stream past block by
 /// block: the --targets export is written as they come, the report's rows are spilled to a
-/// temporary file and only its plots' few numbers per point are kept (constant memory in the
-/// number of points but for the program itself).
+/// temporary file and only its plots' few numbers per point are kept. A KRL program is read by
+/// windows (millingStreams) and its compensated program written as the blocks come: memory is
+/// then constant in the number of points but for the report's few numbers per point; another
+/// program is read whole.
 int runMillingPath(CommandContext& ctx, const std::string& cell, const std::string& program,
                    const std::string& out, const std::optional<std::string>& targets,
                    const std::optional<std::string>& report, bool force, int threads) {
@@ -200,32 +217,65 @@ int runMillingPath(CommandContext& ctx, const std::string& cell, const std::stri
   std::string unstable_lines;
   int unstable = 0;
   std::optional<MillingCompensationResult> result;
-  const auto run = [&](MillingTargetsStream* targets_out) {
-    result =
-        compensateMillingJob(cell, program, force, path, [&](const MillingCompensationResult& blk) {
-          addMillingReportPoints(sum, blk);
-          if (!spill) sum.points.clear();  // only the maxima
-          unstable += unstablePoints(blk, unstable_lines);
-          if (!blk.failures.empty() || !blk.refused.empty()) return;  // nothing will be written
-          if (targets_out != nullptr) targets_out->points(blk);
-          if (spill) writeMillingReportRows(blk, [&](std::string_view v) { spill->write(v); });
-        });
-    if (!result->failures.empty() || !result->refused.empty()) throw NothingWritten{};
+  const auto blockSink = [&](MillingTargetsStream* targets_out) {
+    return [&, targets_out](const MillingCompensationResult& blk) {
+      addMillingReportPoints(sum, blk);
+      if (!spill) sum.points.clear();  // only the maxima
+      unstable += unstablePoints(blk, unstable_lines);
+      if (!blk.failures.empty() || !blk.refused.empty()) return;  // nothing will be written
+      if (targets_out != nullptr) targets_out->points(blk);
+      if (spill) writeMillingReportRows(blk, [&](std::string_view v) { spill->write(v); });
+    };
   };
-  try {
-    if (targets) {
-      writeFileAtomicStream(*targets, [&](const ByteWriter& write) {
-        MillingTargetsStream t(csv, program, write);
-        run(&t);
-        t.finish(*result);
-      });
-    } else {
-      run(nullptr);
+  const auto withTargets = [&](const std::function<void(MillingTargetsStream*)>& run) {
+    try {
+      if (targets) {
+        writeFileAtomicStream(*targets, [&](const ByteWriter& write) {
+          MillingTargetsStream t(csv, program, write);
+          run(&t);
+          t.finish(*result);
+        });
+      } else {
+        run(nullptr);
+      }
+    } catch (const NothingWritten&) {
     }
-  } catch (const NothingWritten&) {
+  };
+  std::vector<std::string> extra;
+  if (targets) extra.push_back(*targets);
+  if (report) extra.push_back(*report);
+  // a KRL program read by windows, its program written as the points come
+  std::optional<std::vector<std::string>> prog_outs;
+  std::optional<std::string> dat;
+  if (millingStreams(program)) {
+    result = loadStreamedMillingJob(cell, program);
+    std::vector<std::string> outs = postproc::outputPaths(*result->context.job.program, out);
+    outs.insert(outs.end(), extra.begin(), extra.end());
+    if (streamedOutputsFine(*result, outs)) {
+      prog_outs = postproc::outputPaths(*result->context.job.program, out);
+    } else {
+      result.reset();
+    }
+  }
+  if (prog_outs) {
+    try {
+      writeFileAtomicStream(out, [&](const ByteWriter& write_src) {
+        withTargets([&](MillingTargetsStream* targets_out) {
+          compensateStreamedMillingJob(*result, path, write_src, dat, blockSink(targets_out));
+          if (!result->failures.empty() || !result->refused.empty()) throw NothingWritten{};
+        });
+        if (!result->failures.empty() || !result->refused.empty()) throw NothingWritten{};
+      });
+    } catch (const NothingWritten&) {
+    }
+  } else {
+    withTargets([&](MillingTargetsStream* targets_out) {
+      result = compensateMillingJob(cell, program, force, path, blockSink(targets_out));
+      if (!result->failures.empty() || !result->refused.empty()) throw NothingWritten{};
+    });
   }
   MillingCompensationResult& r = *result;
-  const size_t points = result->points.size();
+  const size_t points = r.pointCount();
   printJobNotes(ctx, r.context.job.notes);
   for (const auto& f : r.failures) ctx.err << "roprec: " << f << "\n";
   if (!r.failures.empty()) {
@@ -239,9 +289,6 @@ int runMillingPath(CommandContext& ctx, const std::string& cell, const std::stri
             << " target edits; nothing written\n";
     return 1;
   }
-  std::vector<std::string> extra;
-  if (targets) extra.push_back(*targets);
-  if (report) extra.push_back(*report);
   refuseOverwritingInput(*r.context.job.program, extra);
   std::vector<std::string> outs = postproc::outputPaths(*r.context.job.program, out);
   outs.insert(outs.end(), extra.begin(), extra.end());
@@ -253,9 +300,14 @@ int runMillingPath(CommandContext& ctx, const std::string& cell, const std::stri
           sum, r, program, [&](const api::ByteSink& sink) { spill->replay(sink); }, write);
     });
   };
-  std::vector<std::string> written = writeOutputsTogether(
-      threads, distinct, [&] { return writeCompensatedProgram(r.context, out, {}); }, nullptr,
-      report ? std::function<void()>(writeReport) : nullptr);
+  const auto writeProgram = [&] {
+    if (!prog_outs) return writeCompensatedProgram(r.context, out, {});
+    if (prog_outs->size() > 1 && dat) writeFileAtomic((*prog_outs)[1], *dat);
+    return *prog_outs;  // the .src staged as it was written
+  };
+  std::vector<std::string> written =
+      writeOutputsTogether(threads, distinct, writeProgram, nullptr,
+                           report ? std::function<void()>(writeReport) : nullptr);
   if (targets) written.push_back(*targets);
   if (report) written.push_back(*report);
   if (!ctx.quiet) {

@@ -808,8 +808,8 @@ Json millingPointJson(const MillingCompensationResult& r, size_t i) {
   j.set("point", Json::integer(static_cast<std::int64_t>(i + 1)));
   j.set("ok", Json::boolean(p.ok));
   if (!p.reason.empty()) j.set("reason", Json::str(p.reason));
-  j.set("target", Json::str(c.job.program->targets()[static_cast<size_t>(r.targets[i])].name));
-  j.set("nominal", poseJsonContract(r.points[i]));
+  j.set("target", Json::str(r.targetName(i)));
+  j.set("nominal", poseJsonContract(r.nominal(i)));
   j.set("cutting", Json::boolean(p.cutting));
   j.set("cutting_reason", Json::str(p.cutting_reason));
   Json b = Json::object();
@@ -819,7 +819,7 @@ Json millingPointJson(const MillingCompensationResult& r, size_t i) {
   b.set("coupling_residual_um", Json::number(p.before_residual * 1e6, 4));
   b.set("loop_gain", Json::number(p.before_loop_gain, 4));
   b.set("force_N", Json::vector(p.before_force, 3));
-  const std::optional<MillingEngagement>& engaged = r.cutting[i].engagement;  // box stock
+  const std::optional<MillingEngagement>& engaged = r.engagement(i);  // box stock
   if (p.cutting) {
     b.set("surface_error_um", Json::number(p.surface_error_before * 1e6, 3));
     if (engaged) {
@@ -860,10 +860,10 @@ Json millingPointJson(const MillingCompensationResult& r, size_t i) {
 /// The CSV row of path point i.
 void millingPointCsv(const MillingCompensationResult& r, size_t i, std::string& s) {
   const PathPointCompensation& p = r.point(i);
-  const postproc::Target& t = r.context.job.program->targets()[static_cast<size_t>(r.targets[i])];
   s += std::to_string(i + 1);
-  csvQuoted(s, t.name);
-  s += "," + std::to_string(t.line) + "," + (p.cutting ? "1" : "0") + "," + (p.ok ? "1" : "0");
+  csvQuoted(s, r.targetName(i));
+  s += "," + std::to_string(r.targetLine(i)) + "," + (p.cutting ? "1" : "0") + "," +
+       (p.ok ? "1" : "0");
   const Vec3 x = p.T_programmed.translation() * 1e3;
   for (int k = 0; k < 3; ++k) s += "," + formatNumber(x[k], 5);
   s += "," + formatNumber(p.deviation_before.norm() * 1e6, 3) + "," +

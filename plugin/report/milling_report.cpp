@@ -116,14 +116,13 @@ std::string margin(const MillingCompensationResult& r, std::size_t i) {
 
 std::string pointRow(const MillingCompensationResult& r, std::size_t i) {
   const PathPointCompensation& p = r.point(i);
-  const postproc::Target& t =
-      r.context.job.program->targets()[static_cast<std::size_t>(r.targets[i])];
   const Vec3 b = p.deviation_before * 1e6;
   const Vec3 a = p.residual * 1e6;
   std::string s = "<tr" + std::string(p.ok ? "" : " class=\"bad\"") + "><td>" +
-                  std::to_string(i + 1) + "</td><td>" + esc(t.name) + "</td><td>" +
-                  std::to_string(t.line) + "</td><td>" + (p.cutting ? "yes" : "no") + "</td><td>" +
-                  esc(p.cutting_reason) + "</td><td>" + num(p.force.norm(), 1, "force") + "</td>";
+                  std::to_string(i + 1) + "</td><td>" + esc(r.targetName(i)) + "</td><td>" +
+                  std::to_string(r.targetLine(i)) + "</td><td>" + (p.cutting ? "yes" : "no") +
+                  "</td><td>" + esc(p.cutting_reason) + "</td><td>" +
+                  num(p.force.norm(), 1, "force") + "</td>";
   for (int k = 0; k < 3; ++k) s += "<td>" + num(b[k], 2, "deviation") + "</td>";
   s += "<td>" + num(b.norm(), 2, "deviation") + "</td><td>" + num(a.norm(), 4, "residual") +
        "</td><td>" + esc(p.coupling_status) + "</td><td>" + std::to_string(p.coupling_iterations) +

@@ -1,0 +1,226 @@
+// The milling job read by windows (compensateStreamedMillingJob) against the same job read whole
+// (compensateMillingJob): the compensated program, the --targets exports (CSV and JSON) and the
+// report are the same bytes whatever the window size (a window boundary inside a run of one mill,
+// box stock passes spread over many windows), the block size and the thread count; an error the
+// first reading finds late in the program exits 2 with nothing written.
+#include "plugin/api/milling_job.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "compensator/support/c_format.hpp"
+#include "plugin/api/job.hpp"
+#include "plugin/report/milling_report.hpp"
+#include "postproc/program.hpp"
+#include "tests/support/test_support.hpp"
+
+namespace roprec {
+namespace {
+
+/// What compensate writes of a milling job.
+struct MillingOutputs {
+  std::string src, dat, csv, json, report;
+  std::vector<std::string> failures, refused;
+};
+
+MillingPathOptions pathOptions(int threads, size_t block) {
+  MillingPathOptions o;
+  o.resolve_edges = false;  // as compensate
+  o.threads = threads;
+  o.block = block;
+  return o;
+}
+
+/// The job read whole: its edited program rendered, its exports and report.
+MillingOutputs wholeJob(const std::string& cell, const std::string& prog, int threads,
+                        size_t block) {
+  const api::MillingCompensationResult r =
+      api::compensateMillingJob(cell, prog, false, pathOptions(threads, block));
+  MillingOutputs o;
+  const std::vector<std::string> files = postproc::renderFiles(*r.context.job.program);
+  o.src = files.at(0);
+  if (files.size() > 1) o.dat = files[1];
+  o.csv = api::millingTargetsCsv(r);
+  o.json = api::millingTargetsJson(r, prog);
+  o.report = api::millingCompensationReport(r, prog);
+  o.failures = r.failures;
+  o.refused = r.refused;
+  return o;
+}
+
+/// The job read by windows of `window` bytes: the program as written, the exports and the report
+/// from the blocks as they come.
+MillingOutputs streamedJob(const std::string& cell, const std::string& prog, int threads,
+                           size_t block, size_t window) {
+  api::MillingCompensationResult r = api::loadStreamedMillingJob(cell, prog, window);
+  MillingOutputs o;
+  api::MillingTargetsStream csv(true, prog, [&](std::string_view v) { o.csv += v; });
+  api::MillingTargetsStream json(false, prog, [&](std::string_view v) { o.json += v; });
+  api::MillingReportSummary sum;
+  std::string rows;
+  std::optional<std::string> dat;
+  api::compensateStreamedMillingJob(
+      r, pathOptions(threads, block), [&](std::string_view v) { o.src += v; }, dat,
+      [&](const api::MillingCompensationResult& blk) {
+        csv.points(blk);
+        json.points(blk);
+        api::addMillingReportPoints(sum, blk);
+        api::writeMillingReportRows(blk, [&](std::string_view v) { rows += v; });
+      },
+      window);
+  csv.finish(r);
+  json.finish(r);
+  api::writeMillingReport(
+      sum, r, prog, [&](const api::ByteSink& sink) { sink(rows); },
+      [&](std::string_view v) { o.report += v; });
+  if (dat) o.dat = *dat;
+  o.failures = r.failures;
+  o.refused = r.refused;
+  return o;
+}
+
+void expectSameOutputs(const MillingOutputs& a, const MillingOutputs& b, const std::string& what) {
+  EXPECT_EQ(a.src, b.src) << what;
+  EXPECT_EQ(a.dat, b.dat) << what;
+  EXPECT_EQ(a.csv, b.csv) << what;
+  EXPECT_EQ(a.json, b.json) << what;
+  EXPECT_EQ(a.report, b.report) << what;
+  EXPECT_EQ(a.failures, b.failures) << what;
+  EXPECT_EQ(a.refused, b.refused) << what;
+}
+
+/// The sample wall pass with `n` feed points over its 120 mm (scripts/bench-milling.sh's).
+std::string wallPass(int n) {
+  const std::string sample = test::readFile(test::sourceDir() + "/samples/milling/wall_pass.src");
+  const size_t head = sample.find('\n', sample.find("$VEL.CP = 0.06000")) + 1;
+  const size_t tail = sample.find("LIN {X 70.000");
+  std::string s = sample.substr(0, head);
+  for (int i = 0; i < n; ++i) {
+    s += "LIN {X " + cFixed(-50 + 120.0 * i / n, 4) +
+         ",Y 0.000,Z -5.000,A 0.000,B 0.000,C 180.000} C_DIS\n";
+  }
+  return s + sample.substr(tail);
+}
+
+// A wall pass of 600 points: windows of 2 KB (about 30 points: boundaries everywhere, inside
+// the blocks of the chains), 16 KB and the default, blocks of 7 and 512 points, 1 and 2 threads.
+TEST(MillingJob, WindowedReadingWritesTheBytesOfTheWholeProgramJob) {
+  const std::string dir = test::tempDir("milling_job");
+  const std::string prog = dir + "/wall.src";
+  test::writeFile(prog, wallPass(600));
+  const std::string cell = test::sourceDir() + "/samples/cells/alu-milling-7075.xml";
+  ASSERT_TRUE(api::millingStreams(prog));
+  const MillingOutputs whole = wholeJob(cell, prog, 1, 512);
+  ASSERT_TRUE(whole.failures.empty());
+  ASSERT_NE(whole.src, test::readFile(prog));  // the targets moved
+  for (const size_t window : {size_t{2048}, size_t{16384}, size_t{0}}) {
+    for (const size_t block : {size_t{7}, size_t{512}}) {
+      for (const int threads : {1, 2}) {
+        expectSameOutputs(whole, streamedJob(cell, prog, threads, block, window),
+                          "window " + std::to_string(window) + " block " + std::to_string(block) +
+                              " threads " + std::to_string(threads));
+      }
+    }
+  }
+}
+
+// The box stock sample: each pass engages what the earlier passes left (the engagement tracked
+// along the real paths across windows of 512 bytes, a few lines each).
+TEST(MillingJob, BoxStockPassesOverManyWindowsAreTheWholeProgramJobs) {
+  const std::string cell = test::sourceDir() + "/samples/milling/box-stock-7075.xml";
+  const std::string prog = test::sourceDir() + "/samples/milling/box_passes.src";
+  const MillingOutputs whole = wholeJob(cell, prog, 1, 16);
+  for (const size_t window : {size_t{512}, size_t{0}}) {
+    for (const int threads : {1, 2}) {
+      expectSameOutputs(whole, streamedJob(cell, prog, threads, 16, window),
+                        "window " + std::to_string(window) + " threads " + std::to_string(threads));
+    }
+  }
+}
+
+/// A milling cell of two mills (tool table) on the KR120.
+std::string twoMillCell() {
+  return "<cell name=\"mills\">\n  <robot ref=\"kuka-kr120-r2500-pro\"/>\n"
+         "  <tool name=\"spindle\" xyz=\"0 0 300\" rpy=\"0 0 0\" mass_kg=\"30\" com_mm=\"0 0 "
+         "140\"/>\n  <workobject xyz=\"1600 0 400\" rpy=\"0 0 0\"/>\n"
+         "  <process type=\"milling\">\n"
+         "    <mill tool=\"1\" diameter_mm=\"10\" teeth=\"3\" helix_angle_deg=\"30\"/>\n"
+         "    <mill tool=\"2\" diameter_mm=\"6\" teeth=\"4\" helix_angle_deg=\"35\">"
+         "<cut ae_mm=\"1\" fz_mm=\"0.06\"/></mill>\n"
+         "    <cut ap_mm=\"5\" ae_mm=\"2\" fz_mm=\"0.1\" mode=\"up\" spindle_rpm=\"12000\"/>\n"
+         "    <material name=\"Al 7075-T6\"/>\n    <stock top_z_mm=\"0\"/>\n"
+         "  </process>\n</cell>\n";
+}
+
+/// A KRL pass with tool `tool`: plunge, `n` feed points along x at y, retract.
+std::string millPass(int tool, double y, int n) {
+  const auto pt = [&](double x, double z) {
+    return "LIN {X " + cFixed(x, 4) + ",Y " + cFixed(y, 3) + ",Z " + cFixed(z, 3) +
+           ",A 0.0,B 0.0,C 180.0} C_DIS\n";
+  };
+  std::string s = "$TOOL = TOOL_DATA[" + std::to_string(tool) + "]\n$VEL.CP = 0.25\n" +
+                  pt(-60, 50) + pt(-60, -5) + "$VEL.CP = 0.06\n";
+  for (int k = 0; k < n; ++k) s += pt(-50 + 60.0 * k / n, -5);
+  return s + "$VEL.CP = 0.25\n" + pt(-10, 50);
+}
+
+std::string millProgram(const std::string& passes) {
+  return "DEF mills ( )\nBAS (#INITMOV,0 )\n"
+         "$BASE = {FRAME: X 1600.0,Y 0.0,Z 400.0,A 0.0,B 0.0,C 0.0}\n"
+         "TOOL_DATA[1] = {X 0.0,Y 0.0,Z 300.0,A 0.0,B 0.0,C 0.0}\n"
+         "TOOL_DATA[2] = {X 0.0,Y 0.0,Z 300.0,A 0.0,B 0.0,C 0.0}\n"
+         "PTP {X -60.0,Y 0.0,Z 80.0,A 0.0,B 0.0,C 180.0}\n" +
+         passes + "END\n";
+}
+
+// Three runs of two mills (a tool change between passes), each run spread over several windows
+// and blocks: each run restarts its cutting decisions and chains as the whole-program job does.
+TEST(MillingJob, RunsOfTwoMillsAcrossWindowsAreTheWholeProgramJobs) {
+  const std::string dir = test::tempDir("milling_job");
+  test::writeFile(dir + "/two.xml", twoMillCell());
+  const std::string prog = dir + "/mills.src";
+  test::writeFile(prog,
+                  millProgram(millPass(1, 0, 80) + millPass(2, 20, 70) + millPass(1, 40, 60)));
+  const api::MillingCompensationResult r = api::loadStreamedMillingJob(dir + "/two.xml", prog);
+  ASSERT_EQ(r.runs.size(), 3u);
+  EXPECT_EQ(r.runs[1].second, 1);
+  const MillingOutputs whole = wholeJob(dir + "/two.xml", prog, 1, 512);
+  for (const size_t window : {size_t{1024}, size_t{0}}) {
+    for (const int threads : {1, 2}) {
+      expectSameOutputs(whole, streamedJob(dir + "/two.xml", prog, threads, 32, window),
+                        "window " + std::to_string(window) + " threads " + std::to_string(threads));
+    }
+  }
+}
+
+// A tool the cell's mills do not have at the last pass of a long program: the first reading
+// finds it before any point is compensated; compensate exits 2 at its line, nothing written.
+TEST(MillingJob, LateToolErrorExitsTwoWithNothingWritten) {
+  const std::string dir = test::tempDir("milling_job");
+  test::writeFile(dir + "/two.xml", twoMillCell());
+  const std::string prog = dir + "/late.src";
+  const std::string text = millProgram(millPass(1, 0, 3000) + millPass(3, 20, 5));
+  test::writeFile(prog, text);
+  ASSERT_TRUE(api::millingStreams(prog));
+  const test::RunResult r =
+      test::runRoprec("compensate --cell '" + dir + "/two.xml' '" + prog + "' -o '" + dir +
+                      "/out.src' --targets '" + dir + "/t.csv' --report '" + dir + "/r.html'");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  const size_t line = static_cast<size_t>(
+      std::count(
+          text.begin(),
+          text.begin() + static_cast<std::ptrdiff_t>(text.find("LIN", text.find("TOOL_DATA[3]"))),
+          '\n') +
+      1);
+  EXPECT_NE(r.err.find("late.src:" + std::to_string(line) + ":"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("not a mill of the cell's tool table"), std::string::npos) << r.err;
+  for (const char* f : {"out.src", "t.csv", "r.html"})
+    EXPECT_FALSE(std::filesystem::exists(dir + "/" + f)) << f;
+}
+
+}  // namespace
+}  // namespace roprec
