@@ -938,6 +938,30 @@ TEST(ReportSample, SplitIsNearlyAdditiveAndIndependentOfTheProgram) {
   RecordProperty("worst_relative_non_additivity", std::to_string(worst));
 }
 
+/// The reports' split leaves out the process load alone (not shown): one re-evaluation less, the
+/// four parts shown the very same numbers.
+TEST(ReportSample, SplitWithoutTheProcessAloneHasTheSameParts) {
+  const api::PredictionResult r = api::predictJob(sample("cells/housing-kr120.xml"),
+                                                  sample("emotor-housing/housing_kr120.src"));
+  std::vector<const HolePrediction*> preds;
+  for (const HolePrediction& p : r.holes) preds.push_back(&p);
+  const auto& req = r.context.job.requests;
+  const auto full = api::splitRobotDeviations(r.context.model, r.context.tool, req, preds, 2);
+  const auto shown =
+      api::splitRobotDeviations(r.context.model, r.context.tool, req, preds, 2, false);
+  ASSERT_EQ(full.size(), shown.size());
+  for (size_t i = 0; i < full.size(); ++i) {
+    ASSERT_EQ(full[i].has_value(), shown[i].has_value()) << i;
+    if (!full[i]) continue;
+    EXPECT_TRUE(full[i]->gravity == shown[i]->gravity) << i;
+    EXPECT_TRUE(full[i]->tool == shown[i]->tool) << i;
+    EXPECT_TRUE(full[i]->process == shown[i]->process) << i;
+    EXPECT_TRUE(full[i]->controller == shown[i]->controller) << i;
+    EXPECT_GT(full[i]->process_alone.norm(), 0) << i;
+    EXPECT_TRUE(shown[i]->process_alone.isZero(0)) << i;
+  }
+}
+
 TEST(ReportSample, StreamedReportHasTheBytesOfTheWholeJobsReport) {
   // one drill, and a tool table whose drills have TCPs of their own (a split model per drill)
   for (const auto& [cell, program] :

@@ -608,7 +608,8 @@ std::string predictionReport(const PredictionResult& r, int threads) {
     rh.T_W_tcp = c.job.requests[i].T_W_tcp;
     in.holes.push_back(std::move(rh));
   }
-  addPartFrameAndSplit(in, c, threads);  // report_input.hpp: part frame and the δrobot split
+  // report_input.hpp: part frame and the δrobot split (the report shows no process_alone)
+  addPartFrameAndSplit(in, c, threads, false);
   return renderReport(in);
 }
 
@@ -656,7 +657,7 @@ void writeCompensationTargets(const CompensationResult& r, const std::string& pr
 // ---- streamed prediction report
 
 PredictionReportStream::PredictionReportStream(const PredictionContext& c, int threads)
-    : splitter_(c.model, c.tool, std::max(1, threads)),
+    : splitter_(c.model, c.tool, std::max(1, threads), false),  // no process_alone: not shown
       workers_(std::max(1, threads)),
       card_(c.robot.card) {
   const size_t n = c.job.deferred ? c.job.hole_count : c.job.requests.size();
