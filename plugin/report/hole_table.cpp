@@ -352,28 +352,41 @@ void rowInto(std::string& row, const TableLayout& t, const HoleView& hole, size_
 /// offset inside a packed "</td><td": just after its unit separator).
 void appendPackedJs(std::string& s, std::string_view row, std::span<size_t> marks = {}) {
   constexpr std::string_view kCut = "</td><td";
+  // the bytes that may need packing: a cut's or "</"'s '<', and those escaped
+  static constexpr std::array<bool, 256> kSpecial = [] {
+    std::array<bool, 256> t{};
+    for (const char c : {'<', '\\', '"', '\n', '\x1f'}) t[static_cast<unsigned char>(c)] = true;
+    return t;
+  }();
   s += '"';
+  const size_t n = row.size();
   size_t run = 0;  // start of the bytes not appended yet (none of them needs an escape)
-  char prev = 0;   // the byte before, packed
   size_t mk = 0;   // the next mark
-  for (size_t i = 0; i < row.size(); ++i) {
-    if (mk < marks.size() && marks[mk] <= i) {
-      s.append(row.data() + run, i - run);
-      run = i;
-      while (mk < marks.size() && marks[mk] <= i) marks[mk++] = s.size();
-    }
+  // the marks up to i: the bytes from run on go to s as they are (a mark inside a cut before
+  // run: just after its separator)
+  const auto markUpTo = [&](size_t i) {
+    for (; mk < marks.size() && marks[mk] <= i; ++mk)
+      marks[mk] = s.size() + (std::max(marks[mk], run) - run);
+  };
+  for (size_t i = 0; i < n; ++i) {
     const char c = row[i];
-    if (c == '<' && row.compare(i, kCut.size(), kCut) == 0) {
-      s.append(row.data() + run, i - run);
-      s += "\\x1f";
-      i += kCut.size() - 1;
-      run = i + 1;
-      prev = '\x1f';
+    if (!kSpecial[static_cast<unsigned char>(c)]) continue;
+    markUpTo(i);
+    if (c == '<') {
+      if (row.compare(i, kCut.size(), kCut) == 0) {
+        s.append(row.data() + run, i - run);
+        s += "\\x1f";
+        i += kCut.size() - 1;
+        run = i + 1;
+      } else if (i + 1 < n && row[i + 1] == '/') {  // "</": its '/' escaped
+        markUpTo(i + 1);
+        s.append(row.data() + run, i + 1 - run);
+        s += "\\/";
+        run = i + 2;
+        ++i;
+      }
       continue;
     }
-    const bool slash = c == '/' && prev == '<';
-    prev = c;
-    if (c != '\\' && c != '"' && !slash && c != '\n' && c != '\x1f') continue;
     s.append(row.data() + run, i - run);
     run = i + 1;
     if (c == '\n') {
@@ -385,8 +398,8 @@ void appendPackedJs(std::string& s, std::string_view row, std::span<size_t> mark
       s += c;
     }
   }
-  s.append(row.data() + run, row.size() - run);
-  while (mk < marks.size()) marks[mk++] = s.size();
+  markUpTo(n);
+  s.append(row.data() + run, n - run);
   s += '"';
 }
 
