@@ -513,22 +513,24 @@ Failing failingMembers(const PanelView& pv, size_t limit) {
   // by the value as the tooltip prints it (0.1 µm), ties in program order: the order does not
   // hang on a value's last bits (another platform's libm)
   const auto shown = [](std::optional<double> v) { return v ? std::round(*v * 10.0) : -1.0; };
-  std::vector<Key> keys;
-  for (size_t k = 0; k < pv.f.members.size(); ++k) {
-    const int s = severity(pv.verdict(k));
-    if (s > 0) keys.push_back({s, shown(pv.value(k)), k});
-  }
   const auto before = [](const Key& a, const Key& b) {
     if (a.severity != b.severity) return a.severity > b.severity;
     if (a.shown != b.shown) return a.shown > b.shown;
     return a.k < b.k;
   };
-  const size_t n = std::min(limit, keys.size());
-  std::partial_sort(keys.begin(), keys.begin() + static_cast<std::ptrdiff_t>(n), keys.end(),
-                    before);
   Failing out;
-  out.count = keys.size();
-  for (size_t i = 0; i < n; ++i) out.first.push_back(keys[i].k);
+  std::vector<Key> first;  // the first `limit` keys so far, in order (keys are distinct: k)
+  first.reserve(limit + 1);
+  for (size_t k = 0; k < pv.f.members.size(); ++k) {
+    const int s = severity(pv.verdict(k));
+    if (s <= 0) continue;
+    ++out.count;
+    const Key key{s, shown(pv.value(k)), k};
+    if (first.size() == limit && (limit == 0 || !before(key, first.back()))) continue;
+    first.insert(std::upper_bound(first.begin(), first.end(), key, before), key);
+    if (first.size() > limit) first.pop_back();
+  }
+  for (const Key& key : first) out.first.push_back(key.k);
   return out;
 }
 
@@ -562,18 +564,19 @@ void renderFailLabels(Html& h, const PanelView& pv) {
 void renderArrows(Html& h, const PanelView& pv) {
   if (pv.pn.arrows == ArrowOf::kNone) return;
   const FaceGroup& f = pv.f;
-  std::vector<size_t> order;
-  for (size_t k = 0; k < f.members.size(); ++k) {
-    if (pv.hole(k).ok && pv.value(k)) order.push_back(k);
-  }
   // the three largest values, ties in member order (a stable sort's first three)
-  const size_t top = std::min<size_t>(3, order.size());
-  std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(top), order.end(),
-                    [&](size_t a, size_t b) {
-                      const double va = *pv.value(a), vb = *pv.value(b);
-                      return va > vb || (!(vb > va) && a < b);
-                    });
-  order.resize(top);
+  const auto before = [&](size_t a, size_t b) {
+    const double va = *pv.value(a), vb = *pv.value(b);
+    return va > vb || (!(vb > va) && a < b);
+  };
+  std::vector<size_t> order;  // the first three so far, in order
+  order.reserve(4);
+  for (size_t k = 0; k < f.members.size(); ++k) {
+    if (!pv.hole(k).ok || !pv.value(k)) continue;
+    if (order.size() == 3 && !before(k, order.back())) continue;
+    order.insert(std::upper_bound(order.begin(), order.end(), k, before), k);
+    if (order.size() > 3) order.pop_back();
+  }
   for (const size_t k : order) {
     const api::MapFacts& p = *pv.hole(k).f;
     const Vec3 d = f.R_part_W * (pv.pn.arrows == ArrowOf::kRobot ? p.d_robot : p.d_work);
