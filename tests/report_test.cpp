@@ -938,6 +938,30 @@ TEST(ReportSample, SplitIsNearlyAdditiveAndIndependentOfTheProgram) {
   RecordProperty("worst_relative_non_additivity", std::to_string(worst));
 }
 
+/// The reports' split leaves out the process load alone (not shown): one re-evaluation less, the
+/// four parts shown the very same numbers.
+TEST(ReportSample, SplitWithoutTheProcessAloneHasTheSameParts) {
+  const api::PredictionResult r = api::predictJob(sample("cells/housing-kr120.xml"),
+                                                  sample("emotor-housing/housing_kr120.src"));
+  std::vector<const HolePrediction*> preds;
+  for (const HolePrediction& p : r.holes) preds.push_back(&p);
+  const auto& req = r.context.job.requests;
+  const auto full = api::splitRobotDeviations(r.context.model, r.context.tool, req, preds, 2);
+  const auto shown =
+      api::splitRobotDeviations(r.context.model, r.context.tool, req, preds, 2, false);
+  ASSERT_EQ(full.size(), shown.size());
+  for (size_t i = 0; i < full.size(); ++i) {
+    ASSERT_EQ(full[i].has_value(), shown[i].has_value()) << i;
+    if (!full[i]) continue;
+    EXPECT_TRUE(full[i]->gravity == shown[i]->gravity) << i;
+    EXPECT_TRUE(full[i]->tool == shown[i]->tool) << i;
+    EXPECT_TRUE(full[i]->process == shown[i]->process) << i;
+    EXPECT_TRUE(full[i]->controller == shown[i]->controller) << i;
+    EXPECT_GT(full[i]->process_alone.norm(), 0) << i;
+    EXPECT_TRUE(shown[i]->process_alone.isZero(0)) << i;
+  }
+}
+
 TEST(ReportSample, StreamedReportHasTheBytesOfTheWholeJobsReport) {
   // one drill, and a tool table whose drills have TCPs of their own (a split model per drill)
   for (const auto& [cell, program] :
@@ -1084,6 +1108,61 @@ TEST(Report, RowsRenderedAheadWithOtherColumnsAreRenderedAgain) {
     EXPECT_TRUE(pieces == expected) << threads;
     // runs that do not start where the one before ended are refused
     in.rows_ahead.erase(in.rows_ahead.begin() + 1);
+    EXPECT_THROW(api::renderReport(in), std::invalid_argument);
+  }
+}
+
+/// A large streamed report keeps of each hole only what its maps read (MappedHole), with the
+/// totals counted as the holes went past and every row rendered ahead: rows rendered before a
+/// later hole brought another budget term or the first δrobot split are widened (a dash cell for
+/// each column they lacked, an unpredicted hole's reason spanning them): the bytes of the report
+/// rendered from every hole, whatever the runs and their worker count.
+TEST(Report, MappedHolesWidenTheRowsRenderedWithFewerColumns) {
+  const size_t n = api::kReportAggregateAbove + 900;
+  const Synthetic s = makeLarge(n);
+  std::vector<api::PredictedHole> holes = predictedHoles(s);
+  // from hole 1500 on a second budget term, from hole 2400 a split
+  for (size_t i = 1500; i < n; ++i) {
+    if (holes[i].prediction.status != HoleStatus::kOk) continue;
+    holes[i].prediction.budget.push_back({"mach_runout", 3.5e-6, true});
+    if (i >= 2400) holes[i].split = api::DeviationSplit{Vec3(1e-6, 0, 0), Vec3(0, 2e-6, 0)};
+  }
+  api::ReportInput in = makeInput(Synthetic{}, false);
+  in.summary = summarize(s.preds);
+  RobotCard card;
+  in.card = &card;
+  in.predicted = holes;
+  in.threads = 2;
+  const std::string expected = api::renderReport(in);
+  ASSERT_NE(expected.find("u runout"), std::string::npos);
+  ASSERT_NE(expected.find("\u2192 gravity"), std::string::npos);
+  in.predicted.clear();
+  for (const int threads : {1, 3}) {
+    api::RowsAheadRenderer ahead(&card);
+    api::StreamedTotals totals;
+    std::vector<api::RenderedRows> rows;
+    std::vector<api::MappedHole> mapped;
+    for (size_t b = 0; b < n; b += 700) {
+      const std::span<const api::PredictedHole> block =
+          std::span(holes).subspan(b, std::min(n, b + 700) - b);
+      totals.add(block);
+      ahead.render(block, b, threads, rows);
+      for (const api::PredictedHole& h : block)
+        mapped.push_back({h.prediction, h.position, h.axis});
+    }
+    ASSERT_GE(rows.size(), 4u);
+    EXPECT_EQ(rows.front().terms, 1u);
+    EXPECT_FALSE(rows.front().split_columns);
+    EXPECT_TRUE(rows.back().split_columns);
+    in.mapped = mapped;
+    in.totals = totals;
+    in.rows_ahead = rows;
+    EXPECT_TRUE(api::renderReport(in) == expected) << threads;
+    std::string pieces;
+    api::renderReport(in, [&](std::string_view b) { pieces += b; });
+    EXPECT_TRUE(pieces == expected) << threads;
+    // every row of a mapped job is rendered ahead
+    in.rows_ahead.pop_back();
     EXPECT_THROW(api::renderReport(in), std::invalid_argument);
   }
 }

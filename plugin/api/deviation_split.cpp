@@ -68,8 +68,8 @@ struct DeviationSplitter::Models {
 };
 
 DeviationSplitter::DeviationSplitter(const PredictionModel& m, const nc::ToolAttachment& tool,
-                                     int workers)
-    : m_(m) {
+                                     int workers, bool process_alone)
+    : m_(m), process_alone_(process_alone) {
   models_.push_back(std::make_unique<Models>(m, tool.T_flange_tcp, workers));
   // drills with TCPs of their own: the holes of each drill split with its model
   for (const std::shared_ptr<PredictionModel>& d : m.drill_models) {
@@ -91,7 +91,7 @@ std::optional<DeviationSplit> DeviationSplitter::split(const HoleRequest& r, Hol
     if (models_[i] && &models_[i]->m == own) set = models_[i].get();
   std::array<PredictionData, 4>& d = set->scratch[static_cast<size_t>(worker)];
   std::array<Vec3, 4> delta;
-  for (size_t k = 0; k < 4; ++k) {
+  for (size_t k = 0; k < (process_alone_ ? 4U : 3U); ++k) {
     const std::optional<Vec3> dk = robotDeviationAt(set->v[k], d[k], r, joints);
     if (!dk) return std::nullopt;
     delta[k] = *dk;
@@ -107,16 +107,16 @@ std::optional<DeviationSplit> DeviationSplitter::split(const HoleRequest& r, Hol
   s.tool = delta[1] - delta[0];
   s.process = delta[2] - delta[1];
   s.controller = d_robot - delta[2];
-  s.process_alone = delta[3] - s.geometry;
+  if (process_alone_) s.process_alone = delta[3] - s.geometry;
   return s;
 }
 
 std::vector<std::optional<DeviationSplit>> splitRobotDeviations(
     const PredictionModel& m, const nc::ToolAttachment& tool,
     const std::vector<HoleRequest>& requests, const std::vector<const HolePrediction*>& preds,
-    int threads) {
+    int threads, bool process_alone) {
   const int workers = std::max(1, threads);
-  const DeviationSplitter splitter(m, tool, workers);
+  const DeviationSplitter splitter(m, tool, workers, process_alone);
   std::vector<std::optional<DeviationSplit>> out(preds.size());
   parallelFor(std::min(preds.size(), requests.size()), workers, [&](int w, size_t i) {
     const HolePrediction* p = preds[i];

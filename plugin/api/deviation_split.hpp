@@ -42,8 +42,11 @@ struct DeviationSplit {
 /// with its own worker index). The split of a hole does not depend on the worker.
 class DeviationSplitter {
  public:
-  /// `tool` is the tool attachment `m` was built with (PredictionContext::tool).
-  DeviationSplitter(const PredictionModel& m, const nc::ToolAttachment& tool, int workers);
+  /// `tool` is the tool attachment `m` was built with (PredictionContext::tool). Without
+  /// `process_alone` the splits leave DeviationSplit::process_alone zero (one re-evaluation less:
+  /// the reports do not show it).
+  DeviationSplitter(const PredictionModel& m, const nc::ToolAttachment& tool, int workers,
+                    bool process_alone = true);
   ~DeviationSplitter();
   DeviationSplitter(const DeviationSplitter&) = delete;
   DeviationSplitter& operator=(const DeviationSplitter&) = delete;
@@ -58,6 +61,7 @@ class DeviationSplitter {
   struct Models;
   const PredictionModel& m_;
   std::vector<std::unique_ptr<Models>> models_;  ///< m_'s, then each drill model's
+  bool process_alone_;
 };
 
 /// The split of each hole with status kOk (nullopt otherwise or when a re-evaluation does not
@@ -68,6 +72,6 @@ class DeviationSplitter {
 std::vector<std::optional<DeviationSplit>> splitRobotDeviations(
     const PredictionModel& m, const nc::ToolAttachment& tool,
     const std::vector<HoleRequest>& requests, const std::vector<const HolePrediction*>& preds,
-    int threads = 1);
+    int threads = 1, bool process_alone = true);
 
 }  // namespace roprec::api

@@ -20,7 +20,8 @@ void setPartFrame(ReportInput& in, const PredictionContext& c, const SharedFrame
   }
 }
 
-void addPartFrameAndSplit(ReportInput& in, const PredictionContext& c, int threads) {
+void addPartFrameAndSplit(ReportInput& in, const PredictionContext& c, int threads,
+                          bool process_alone) {
   const JobHoles& job = c.job;
   if (in.holes.size() != job.requests.size())
     throw std::invalid_argument("addPartFrameAndSplit: one report hole per request expected");
@@ -30,7 +31,8 @@ void addPartFrameAndSplit(ReportInput& in, const PredictionContext& c, int threa
   std::vector<const HolePrediction*> preds;
   preds.reserve(in.holes.size());
   for (const ReportHole& h : in.holes) preds.push_back(h.prediction);
-  const auto splits = splitRobotDeviations(c.model, c.tool, job.requests, preds, threads);
+  const auto splits =
+      splitRobotDeviations(c.model, c.tool, job.requests, preds, threads, process_alone);
   for (size_t i = 0; i < in.holes.size(); ++i) in.holes[i].split = splits[i];
 }
 

@@ -18,7 +18,8 @@ void setPartFrame(ReportInput& in, const PredictionContext& c, const SharedFrame
 /// shares, else the cell's <workobject>, named after it) and each predicted hole's δrobot split
 /// (splitRobotDeviations with the context's model and tool). Call after `in.holes` has one entry
 /// per context.job.requests entry, in that order. Throws std::invalid_argument otherwise. The
-/// split runs on `threads` workers (the same bytes).
-void addPartFrameAndSplit(ReportInput& in, const PredictionContext& c, int threads = 1);
+/// split runs on `threads` workers (the same bytes); `process_alone`: DeviationSplitter's.
+void addPartFrameAndSplit(ReportInput& in, const PredictionContext& c, int threads = 1,
+                          bool process_alone = true);
 
 }  // namespace roprec::api

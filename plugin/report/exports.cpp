@@ -608,7 +608,8 @@ std::string predictionReport(const PredictionResult& r, int threads) {
     rh.T_W_tcp = c.job.requests[i].T_W_tcp;
     in.holes.push_back(std::move(rh));
   }
-  addPartFrameAndSplit(in, c, threads);  // report_input.hpp: part frame and the δrobot split
+  // report_input.hpp: part frame and the δrobot split (the report shows no process_alone)
+  addPartFrameAndSplit(in, c, threads, false);
   return renderReport(in);
 }
 
@@ -656,37 +657,50 @@ void writeCompensationTargets(const CompensationResult& r, const std::string& pr
 // ---- streamed prediction report
 
 PredictionReportStream::PredictionReportStream(const PredictionContext& c, int threads)
-    : splitter_(c.model, c.tool, std::max(1, threads)),
+    : splitter_(c.model, c.tool, std::max(1, threads), false),  // no process_alone: not shown
       workers_(std::max(1, threads)),
       card_(c.robot.card) {
   const size_t n = c.job.deferred ? c.job.hole_count : c.job.requests.size();
-  holes_.reserve(n);
-  if (n > kReportAggregateAbove) rows_.emplace(&card_);
+  if (n > kReportAggregateAbove) {
+    rows_.emplace(&card_);
+    mapped_.reserve(n);
+  } else {
+    holes_.reserve(n);
+  }
 }
 
 void PredictionReportStream::holes(std::span<const HolePrediction> h,
                                    std::span<const HoleRequest> r, int threads) {
-  const size_t first = holes_.size();
   const int t = std::min(threads, workers_);
-  holes_.resize(first + h.size());
+  // a large job: the block's records, released once its rows are rendered and its totals counted
+  const size_t first = rows_ ? 0 : holes_.size(), at = mapped_.size();
+  if (holes_.size() < first + h.size()) holes_.resize(first + h.size());
+  if (rows_) mapped_.resize(at + h.size());
   parallelFor(h.size(), t, [&](int w, size_t k) {
     PredictedHole& ph = holes_[first + k];
-    ph.prediction = reportPrediction(h[k]);
+    reportPrediction(h[k], ph.prediction);
     ph.position = r[k].T_W_tcp.translation();
     ph.axis = r[k].T_W_tcp.linear().col(2);
     ph.split = splitter_.split(r[k], h[k].status, h[k].joints, h[k].d_robot, w);
+    if (rows_) mapped_[at + k] = {ph.prediction, ph.position, ph.axis};
   });
-  if (rows_) rows_->render(std::span(holes_).subspan(first), first, t, rows_ahead_);
+  if (!rows_) return;
+  const std::span<const PredictedHole> block = std::span(holes_).first(h.size());
+  totals_.add(block);
+  rows_->render(block, at, t, rows_ahead_);
 }
 
 ReportInput PredictionReportStream::input(const PredictionResult& r) {
   ReportInput in = predictionReportHeader(r.context, r.summary);
   setPartFrame(in, r.context, r.frames);
-  in.predicted = std::move(holes_);
   in.threads = workers_;
-  // the rows rendered ahead belong to a large table (a job of fewer holes than announced has
-  // its rows rendered by renderReport)
-  if (in.predicted.size() > kReportAggregateAbove) in.rows_ahead = std::move(rows_ahead_);
+  if (rows_) {  // a large job: its holes as the maps need them, its rows rendered ahead
+    in.mapped = std::move(mapped_);
+    in.totals = std::move(totals_);
+    in.rows_ahead = std::move(rows_ahead_);
+  } else {
+    in.predicted = std::move(holes_);
+  }
   return in;
 }
 

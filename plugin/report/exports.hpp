@@ -46,10 +46,11 @@ class PredictionJsonStream {
 };
 
 /// Gathers a prediction's HTML report while its holes stream past (predictJobStreaming's
-/// blocks): each hole's compact record (PredictedHole, ~0.6 kB) and its δrobot split from its
-/// joints, on the workers, and for a large job (more than kReportAggregateAbove holes) its table
-/// row (RowsAheadRenderer, ~0.5 kB); finish() renders the rest of the document: the same bytes as
-/// predictionReport.
+/// blocks): each hole's δrobot split from its joints, on the workers, and its compact record
+/// (PredictedHole, ~0.8 kB); for a large job (more than kReportAggregateAbove holes) instead its
+/// table row (RowsAheadRenderer, ~0.5 kB) and what the maps read of it (MappedHole, ~0.16 kB),
+/// the budget and the table's totals counted as they go past (StreamedTotals). finish() renders
+/// the rest of the document: the same bytes as predictionReport.
 class PredictionReportStream {
  public:
   /// `threads`: the most workers holes() is given.
@@ -65,7 +66,9 @@ class PredictionReportStream {
   ReportInput input(const PredictionResult& r);
   DeviationSplitter splitter_;
   int workers_;
-  std::vector<PredictedHole> holes_;
+  std::vector<PredictedHole> holes_;       ///< a small job's; a large job's block (reused)
+  std::vector<MappedHole> mapped_;         ///< a large job's
+  StreamedTotals totals_;                  ///< a large job's
   RobotCard card_;                         ///< the rows' joint convention
   std::optional<RowsAheadRenderer> rows_;  ///< a large job's rows, rendered as they come
   std::vector<RenderedRows> rows_ahead_;

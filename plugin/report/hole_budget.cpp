@@ -46,24 +46,15 @@ constexpr std::array<const char*, 4> kRobotColours{"#1f4e79", "#3a7dbf", "#8fbbe
 constexpr std::array<const char*, 5> kProcessColours{"#b45309", "#e8892b", "#f5b971", "#fbd9a6",
                                                      "#fdebd0"};
 
-struct TermStats {
-  std::string name;
-  bool process{false};
-  double sum_u{0}, max_u{0}, sum_share{0};
-  int n{0};
+/// A budget term as the section shows it: its sums and its colour.
+struct TermStats : api::BudgetSums::Term {
   std::string colour;  ///< robot terms blue, process terms orange, in order of appearance
   bool light{false};   ///< a light colour: dark text on it
 };
 
-struct Sum {
-  double sum{0}, max{0};
-  void add(double v) {
-    sum += v;
-    max = std::max(max, v);
-  }
-};
+using Sum = api::BudgetSums::Sum;
 
-/// The budget over the predicted holes.
+/// The budget over the predicted holes, its terms coloured.
 struct BudgetStats {
   int n_ok{0};
   double k{0};  ///< coverage factor of the first predicted hole
@@ -71,26 +62,6 @@ struct BudgetStats {
   std::array<Sum, 6> combined{};  ///< u_robot u_mach u_work U_robot U_mach U_work
   Sum process_share;
 };
-
-void addTerms(BudgetStats& b, const api::ReportPrediction& p) {
-  const double uw2 = p.u_work * p.u_work;
-  for (const BudgetTerm& t : p.budget) {
-    const std::string_view name = t.name ? t.name : "";
-    auto it = std::find_if(b.terms.begin(), b.terms.end(),
-                           [&](const TermStats& s) { return s.name == name; });
-    if (it == b.terms.end()) {
-      TermStats fresh;
-      fresh.name = std::string(name);
-      fresh.process = t.process;
-      b.terms.push_back(std::move(fresh));
-      it = b.terms.end() - 1;
-    }
-    it->sum_u += t.u;
-    it->max_u = std::max(it->max_u, t.u);
-    it->sum_share += uw2 > 0 ? t.u * t.u / uw2 : 0.0;
-    ++it->n;
-  }
-}
 
 void colourTerms(std::vector<TermStats>& terms) {
   size_t nr = 0, np = 0;
@@ -103,21 +74,32 @@ void colourTerms(std::vector<TermStats>& terms) {
   }
 }
 
-BudgetStats budgetStats(const std::vector<HoleView>& hv) {
+BudgetStats budgetStats(const api::BudgetSums& sums) {
   BudgetStats b;
-  for (const HoleView& h : hv) {
-    if (!h.ok) continue;
-    const api::ReportPrediction& p = *h.p;
-    ++b.n_ok;
-    if (b.k == 0) b.k = p.k;
-    addTerms(b, p);
-    const std::array<double, 6> v{p.u_robot, p.u_mach, p.u_work, p.U_robot, p.U_mach, p.U_work};
-    for (size_t i = 0; i < 6; ++i) b.combined[i].add(v[i]);
-    b.process_share.add(p.process_share);
+  b.n_ok = sums.n_ok;
+  b.k = sums.k;
+  b.combined = sums.combined;
+  b.process_share = sums.process_share;
+  for (const api::BudgetSums::Term& t : sums.terms) {
+    TermStats s;
+    static_cast<api::BudgetSums::Term&>(s) = t;
+    b.terms.push_back(std::move(s));
   }
   colourTerms(b.terms);
   return b;
 }
+
+}  // namespace
+
+api::BudgetSums budgetSums(const std::vector<HoleView>& hv) {
+  api::BudgetSums b;
+  for (const HoleView& h : hv) {
+    if (h.ok) b.add(*h.p);
+  }
+  return b;
+}
+
+namespace {
 
 /// The term's label (markup): the known label, else its escaped name.
 std::string labelOf(const TermStats& t) {
@@ -222,8 +204,8 @@ void renderCoverage(Html& h, const BudgetStats& b) {
 
 }  // namespace
 
-void renderBudget(Html& h, const std::vector<HoleView>& hv) {
-  const BudgetStats b = budgetStats(hv);
+void renderBudget(Html& h, const api::BudgetSums& sums) {
+  const BudgetStats b = budgetStats(sums);
   h.open("section", {{"id", "budget"}}).element("h2", {}, "Uncertainty budget");
   if (b.n_ok == 0) {
     h.element("p", {}, "No hole could be predicted, so there is no budget to show.")
@@ -242,3 +224,32 @@ void renderBudget(Html& h, const std::vector<HoleView>& hv) {
 }
 
 }  // namespace roprec::report
+
+namespace roprec::api {
+
+void BudgetSums::add(const ReportPrediction& p) {
+  ++n_ok;
+  if (k == 0) k = p.k;
+  const double uw2 = p.u_work * p.u_work;
+  for (const BudgetTerm& t : p.budget) {
+    const std::string_view name = t.name ? t.name : "";
+    auto it =
+        std::find_if(terms.begin(), terms.end(), [&](const Term& s) { return s.name == name; });
+    if (it == terms.end()) {
+      Term fresh;
+      fresh.name = std::string(name);
+      fresh.process = t.process;
+      terms.push_back(std::move(fresh));
+      it = terms.end() - 1;
+    }
+    it->sum_u += t.u;
+    it->max_u = std::max(it->max_u, t.u);
+    it->sum_share += uw2 > 0 ? t.u * t.u / uw2 : 0.0;
+    ++it->n;
+  }
+  const std::array<double, 6> v{p.u_robot, p.u_mach, p.u_work, p.U_robot, p.U_mach, p.U_work};
+  for (size_t i = 0; i < 6; ++i) combined[i].add(v[i]);
+  process_share.add(p.process_share);
+}
+
+}  // namespace roprec::api

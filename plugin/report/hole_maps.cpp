@@ -326,7 +326,7 @@ struct PanelView {
   [[nodiscard]] Verdict verdict(size_t k) const {
     const HoleView& h = hole(k);
     if (pn.after && h.after != nullptr) return h.after->verdict;
-    return h.p->verdict;
+    return h.f->verdict;
   }
 };
 
@@ -484,7 +484,7 @@ void renderBins(Html& h, const PanelView& pv) {
       std::string tip = plural(b.count, "hole", "holes") + " \u00b7 max " +
                         (b.max ? num(*b.max, 1) + " \u00b5m" : std::string("n/a")) +
                         " \u00b7 worst " + verdictName(v);
-      for (const size_t k : b.ids) tip += " \u00b7 " + pv.hole(k).p->id;
+      for (const size_t k : b.ids) tip += " \u00b7 " + pv.hole(k).f->id;
       h.open("rect", {{"class", std::string("bin v-") + styleOf(v).cls},
                       {"x", fixed(kMarginL + bx * kBin, 1)},
                       {"y", fixed(kMarginT + by * kBin, 1)},
@@ -513,22 +513,24 @@ Failing failingMembers(const PanelView& pv, size_t limit) {
   // by the value as the tooltip prints it (0.1 µm), ties in program order: the order does not
   // hang on a value's last bits (another platform's libm)
   const auto shown = [](std::optional<double> v) { return v ? std::round(*v * 10.0) : -1.0; };
-  std::vector<Key> keys;
-  for (size_t k = 0; k < pv.f.members.size(); ++k) {
-    const int s = severity(pv.verdict(k));
-    if (s > 0) keys.push_back({s, shown(pv.value(k)), k});
-  }
   const auto before = [](const Key& a, const Key& b) {
     if (a.severity != b.severity) return a.severity > b.severity;
     if (a.shown != b.shown) return a.shown > b.shown;
     return a.k < b.k;
   };
-  const size_t n = std::min(limit, keys.size());
-  std::partial_sort(keys.begin(), keys.begin() + static_cast<std::ptrdiff_t>(n), keys.end(),
-                    before);
   Failing out;
-  out.count = keys.size();
-  for (size_t i = 0; i < n; ++i) out.first.push_back(keys[i].k);
+  std::vector<Key> first;  // the first `limit` keys so far, in order (keys are distinct: k)
+  first.reserve(limit + 1);
+  for (size_t k = 0; k < pv.f.members.size(); ++k) {
+    const int s = severity(pv.verdict(k));
+    if (s <= 0) continue;
+    ++out.count;
+    const Key key{s, shown(pv.value(k)), k};
+    if (first.size() == limit && (limit == 0 || !before(key, first.back()))) continue;
+    first.insert(std::upper_bound(first.begin(), first.end(), key, before), key);
+    if (first.size() > limit) first.pop_back();
+  }
+  for (const Key& key : first) out.first.push_back(key.k);
   return out;
 }
 
@@ -538,7 +540,7 @@ void renderFailLabels(Html& h, const PanelView& pv) {
   const FaceGroup& f = pv.f;
   const double r = f.marker_r;
   for (const size_t k : failing.first) {
-    const std::string& id = pv.hole(k).p->id;
+    const std::string& id = pv.hole(k).f->id;
     const Eigen::Vector2d c = f.screen(k);
     const bool right = c.x() + r + 4 + 6.2 * static_cast<double>(id.size()) < kMarginL + f.plot_w;
     h.element("text",
@@ -562,20 +564,21 @@ void renderFailLabels(Html& h, const PanelView& pv) {
 void renderArrows(Html& h, const PanelView& pv) {
   if (pv.pn.arrows == ArrowOf::kNone) return;
   const FaceGroup& f = pv.f;
-  std::vector<size_t> order;
-  for (size_t k = 0; k < f.members.size(); ++k) {
-    if (pv.hole(k).ok && pv.value(k)) order.push_back(k);
-  }
   // the three largest values, ties in member order (a stable sort's first three)
-  const size_t top = std::min<size_t>(3, order.size());
-  std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(top), order.end(),
-                    [&](size_t a, size_t b) {
-                      const double va = *pv.value(a), vb = *pv.value(b);
-                      return va > vb || (!(vb > va) && a < b);
-                    });
-  order.resize(top);
+  const auto before = [&](size_t a, size_t b) {
+    const double va = *pv.value(a), vb = *pv.value(b);
+    return va > vb || (!(vb > va) && a < b);
+  };
+  std::vector<size_t> order;  // the first three so far, in order
+  order.reserve(4);
+  for (size_t k = 0; k < f.members.size(); ++k) {
+    if (!pv.hole(k).ok || !pv.value(k)) continue;
+    if (order.size() == 3 && !before(k, order.back())) continue;
+    order.insert(std::upper_bound(order.begin(), order.end(), k, before), k);
+    if (order.size() > 3) order.pop_back();
+  }
   for (const size_t k : order) {
-    const api::ReportPrediction& p = *pv.hole(k).p;
+    const api::MapFacts& p = *pv.hole(k).f;
     const Vec3 d = f.R_part_W * (pv.pn.arrows == ArrowOf::kRobot ? p.d_robot : p.d_work);
     const Eigen::Vector2d q(d.dot(f.u), -d.dot(f.v));
     if (q.norm() < 1e-3 * std::max(d.norm(), 1e-15) || q.norm() <= 0) continue;
@@ -611,7 +614,7 @@ void renderMaxLabel(Html& h, const PanelView& pv, size_t worst) {
   if (worst >= pv.f.members.size()) return;
   const FaceGroup& f = pv.f;
   const double r = f.marker_r;
-  const std::string& id = pv.hole(worst).p->id;
+  const std::string& id = pv.hole(worst).f->id;
   const Eigen::Vector2d c = f.screen(worst);
   const double est_w = 6.2 * static_cast<double>(id.size() + 10);
   const bool right = c.x() + r + 5 + est_w < kMarginL + f.plot_w;
@@ -629,7 +632,7 @@ void renderToleranceMarks(Html& h, const PanelView& pv, double bx, double bw, do
   const ColourScale& sc = *pv.pn.scale;
   std::vector<double> halves;
   for (const size_t i : pv.f.members) {
-    const double t2 = 0.5 * pv.hv[i].p->tolerance * 1e6;
+    const double t2 = 0.5 * pv.hv[i].f->tolerance * 1e6;
     if (t2 > 0 && std::find(halves.begin(), halves.end(), t2) == halves.end()) halves.push_back(t2);
   }
   std::sort(halves.begin(), halves.end());
@@ -737,7 +740,7 @@ MapValues mapValues(const std::vector<HoleView>& hv) {
   MapValues q{Values(n), Values(n), Values(n), Values(n)};
   for (size_t i = 0; i < n; ++i) {
     if (!hv[i].ok) continue;
-    const api::ReportPrediction& p = *hv[i].p;
+    const api::MapFacts& p = *hv[i].f;
     q.robot[i] = p.d_robot.norm() * 1e6;
     q.err[i] = p.position_error * 1e6;
     q.U[i] = p.U_work_exact * 1e6;
@@ -816,12 +819,13 @@ void legendEntry(Html& h, const DrawIcon& icon, const std::string& text) {
 }
 
 /// The IK branches present (ascending) with the configuration of their first hole.
-std::vector<std::pair<int, std::string>> branchesPresent(const std::vector<HoleView>& hv) {
+std::vector<std::pair<int, std::string>> branchesPresent(const ReportInput& in,
+                                                         const std::vector<HoleView>& hv) {
   std::vector<std::pair<int, std::string>> b;
+  if (!in.mapped.empty()) b = in.totals.branches;  // counted as the holes went past
   for (const HoleView& v : hv) {
-    if (!v.ok) continue;
-    const auto seen = [&](const auto& e) { return e.first == v.p->branch; };
-    if (std::none_of(b.begin(), b.end(), seen)) b.emplace_back(v.p->branch, v.p->config);
+    if (!v.ok || v.p == nullptr) continue;
+    addBranch(b, v.p->branch, v.p->config);
   }
   std::stable_sort(b.begin(), b.end(),
                    [](const auto& x, const auto& y) { return x.first < y.first; });
@@ -830,9 +834,9 @@ std::vector<std::pair<int, std::string>> branchesPresent(const std::vector<HoleV
 
 /// Shapes by branch (those present), configuration change, verdict outlines, crosses, arrows and
 /// the program path.
-void renderLegend(Html& h, const std::vector<HoleView>& hv) {
+void renderLegend(Html& h, const ReportInput& in, const std::vector<HoleView>& hv) {
   h.open("div", {{"class", "legend"}}).markup("<strong>Marker shape = IK branch:</strong>");
-  for (const auto& b : branchesPresent(hv)) {
+  for (const auto& b : branchesPresent(in, hv)) {
     const int branch = b.first;
     const std::string& config = b.second;
     legendEntry(
@@ -919,7 +923,7 @@ void renderMaps(Html& h, const ReportInput& in, const std::vector<HoleView>& hv)
   const std::vector<FaceGroup> faces = faceGroups(in, hv);
   h.open("section", {{"id", "maps"}}).element("h2", {}, "Deviation maps over the work area");
   renderMapsNote(h, in, hv.size());
-  renderLegend(h, hv);
+  renderLegend(h, in, hv);
   // every face's panels drawn on the workers (each panel on its own), written in order
   std::vector<std::string> drawn(faces.size() * panels.size());
   eachOnThreads(drawn.size(), in.threads, [&](size_t k) {

@@ -22,9 +22,9 @@ namespace {
 
 /// The view of one hole: its position and axis in the part frame, its branch change.
 HoleView viewOf(const Pose& T_part_W, const Vec3& position, const Vec3& axis,
-                const api::ReportPrediction& p, int& prev_branch) {
+                const api::MapFacts& p, int& prev_branch) {
   HoleView h;
-  h.p = &p;
+  h.f = &p;
   h.pos_mm = (T_part_W * position) * 1e3;
   const Vec3 a = T_part_W.linear() * axis;
   h.axis = a.norm() > 0 ? Vec3(a.normalized()) : Vec3(Vec3::UnitZ());
@@ -43,16 +43,24 @@ void appendPredictedViews(std::vector<HoleView>& out, std::span<const api::Predi
                           const Pose& T_part_W, int& prev_branch) {
   for (const api::PredictedHole& ph : holes) {
     out.push_back(viewOf(T_part_W, ph.position, ph.axis, ph.prediction, prev_branch));
+    out.back().p = &ph.prediction;
     out.back().split = &ph.split;
   }
+}
+
+void appendMappedViews(std::vector<HoleView>& out, std::span<const api::MappedHole> holes,
+                       const Pose& T_part_W, int& prev_branch) {
+  for (const api::MappedHole& mh : holes)
+    out.push_back(viewOf(T_part_W, mh.position, mh.axis, mh.facts, prev_branch));
 }
 
 HoleViews holeViews(const ReportInput& in) {
   HoleViews out;
   int prev_branch = -1;
   const Pose T_part_W = in.T_W_part.inverse();
-  out.views.reserve(in.holes.size() + in.predicted.size());
+  out.views.reserve(in.holes.size() + in.predicted.size() + in.mapped.size());
   appendPredictedViews(out.views, in.predicted, T_part_W, prev_branch);
+  appendMappedViews(out.views, in.mapped, T_part_W, prev_branch);
   // a ReportHole's predictions converted (stable addresses: reserved once)
   out.own.reserve(2 * in.holes.size());
   for (const ReportHole& rh : in.holes) {
@@ -61,6 +69,7 @@ HoleViews holeViews(const ReportInput& in) {
     const api::ReportPrediction& p = out.own.emplace_back(api::reportPrediction(*rh.prediction));
     HoleView h =
         viewOf(T_part_W, rh.T_W_tcp.translation(), rh.T_W_tcp.linear().col(2), p, prev_branch);
+    h.p = &p;
     h.rh = &rh;
     h.split = &rh.split;
     if (rh.after != nullptr) h.after = &out.own.emplace_back(api::reportPrediction(*rh.after));
@@ -70,7 +79,13 @@ HoleViews holeViews(const ReportInput& in) {
 }
 
 Verdict finalVerdict(const HoleView& h) {
-  return h.after != nullptr ? h.after->verdict : h.p->verdict;
+  return h.after != nullptr ? h.after->verdict : h.f->verdict;
+}
+
+void addBranch(std::vector<std::pair<int, std::string>>& branches, int branch,
+               const std::string& config) {
+  const auto seen = [&](const auto& e) { return e.first == branch; };
+  if (std::none_of(branches.begin(), branches.end(), seen)) branches.emplace_back(branch, config);
 }
 
 bool passes(const HoleView& h) { return finalVerdict(h) == Verdict::kConforms; }
@@ -350,6 +365,11 @@ const char* reportTableScript() { return report::kTableScript; }
 
 ReportPrediction reportPrediction(const HolePrediction& p) {
   ReportPrediction r;
+  reportPrediction(p, r);
+  return r;
+}
+
+void reportPrediction(const HolePrediction& p, ReportPrediction& r) {
   r.id = p.id;
   r.status = p.status;
   r.verdict = p.verdict;
@@ -375,7 +395,21 @@ ReportPrediction reportPrediction(const HolePrediction& p) {
   r.tolerance = p.tolerance;
   r.mc_time = p.mc_time;
   r.diameter = p.diameter;
-  return r;
+}
+
+void StreamedTotals::add(std::span<const PredictedHole> holes) {
+  for (const PredictedHole& h : holes) {
+    const ReportPrediction& p = h.prediction;
+    split = split || h.split.has_value();
+    not_conforming += p.verdict == Verdict::kConforms ? 0 : 1;
+    if (p.status != HoleStatus::kOk) continue;
+    for (const BudgetTerm& b : p.budget) {  // as report::addBudgetNames
+      const std::string_view n = b.name ? b.name : "";
+      if (std::find(terms.begin(), terms.end(), n) == terms.end()) terms.emplace_back(n);
+    }
+    report::addBranch(branches, p.branch, p.config);
+    budget.add(p);
+  }
 }
 
 namespace {
@@ -383,8 +417,10 @@ namespace {
 /// The document into `o` (and, with a sink, on to it).
 void renderDocument(const ReportInput& in, std::string& o, const report::Html::Sink* sink) {
   using namespace report;
-  if (!in.holes.empty() && !in.predicted.empty())
+  if (int(!in.holes.empty()) + int(!in.predicted.empty()) + int(!in.mapped.empty()) > 1)
     throw std::invalid_argument("renderReport: holes and predicted holes at once");
+  if (!in.mapped.empty() && in.mapped.size() <= api::kReportAggregateAbove)
+    throw std::invalid_argument("renderReport: mapped holes of a small job");
   const HoleViews views = holeViews(in);
   const std::vector<HoleView>& hv = views.views;
   if (sink == nullptr) o.reserve(65536 + 640 * hv.size());  // about 0.54 KB a hole
@@ -396,7 +432,7 @@ void renderDocument(const ReportInput& in, std::string& o, const report::Html::S
   h.markup("\n");
   renderVerdicts(h, in);
   h.markup("\n");
-  renderBudget(h, hv);
+  renderBudget(h, in.mapped.empty() ? budgetSums(hv) : in.totals.budget);
   h.markup("\n");
   renderTable(h, in, hv);
   h.markup("\n");

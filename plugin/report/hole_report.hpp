@@ -7,6 +7,9 @@
 /// the capability summary. No network, no external scripts or fonts; deterministic bytes.
 /// Drawn by hole_report.cpp and one file per section (hole_sections.hpp: maps, budget, table).
 
+#include <algorithm>
+#include <array>
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <span>
@@ -23,35 +26,74 @@ struct RobotCard;
 
 namespace roprec::api {
 
-/// What the report shows of a hole's prediction (HolePrediction's fields the sections read): a
-/// compact copy, so a streamed job keeps ~0.6 kB a hole for its report instead of every
-/// prediction (reportPrediction).
-struct ReportPrediction {
+/// What the deviation maps read of a hole's prediction (a large job's maps: the holes binned).
+struct MapFacts {
   std::string id;
   HoleStatus status{HoleStatus::kOk};
   Verdict verdict{Verdict::kConforms};
-  std::string reason;
-  std::string config;
   int branch{0};
-  Vec6 joints{Vec6::Zero()};
   Vec3 d_robot{Vec3::Zero()};
-  Vec3 d_mach{Vec3::Zero()};
   Vec3 d_work{Vec3::Zero()};
   double position_error{0};
+  double U_work_exact{0};
+  double tolerance{0};
+};
+
+/// What the report shows of a hole's prediction (HolePrediction's fields the sections read): a
+/// compact copy, so a streamed job keeps ~0.6 kB a hole for its report instead of every
+/// prediction (reportPrediction).
+struct ReportPrediction : MapFacts {
+  std::string reason;
+  std::string config;
+  Vec6 joints{Vec6::Zero()};
+  Vec3 d_mach{Vec3::Zero()};
   double axis_tilt{0};
   InlineVector<BudgetTerm, kMaxBudgetTerms> budget;
   double u_robot{0}, u_mach{0}, u_work{0};
   double k{0};
   double U_robot{0}, U_mach{0}, U_work{0};
-  double U_work_exact{0};
   double process_share{0};
-  double tolerance{0};
   double mc_time{0};
   double diameter{0};
 };
 
 /// The report's copy of a prediction.
 ReportPrediction reportPrediction(const HolePrediction& p);
+/// The same into `r` (its strings' storage reused).
+void reportPrediction(const HolePrediction& p, ReportPrediction& r);
+
+/// A hole of a large streamed prediction's report as its maps need it (ReportInput::mapped,
+/// ~0.16 kB): what the maps read of its prediction, its nominal drill point and drilling axis
+/// (base frame). Its table row is rendered and its budget counted as it goes past.
+struct MappedHole {
+  MapFacts facts;
+  Vec3 position{Vec3::Zero()};
+  Vec3 axis{Vec3::UnitZ()};
+};
+
+/// The uncertainty budget summed over the predicted holes, in program order (the budget section).
+struct BudgetSums {
+  struct Term {
+    std::string name;
+    bool process{false};
+    double sum_u{0}, max_u{0}, sum_share{0};
+    int n{0};
+  };
+  struct Sum {
+    double sum{0}, max{0};
+    void add(double v) {
+      sum += v;
+      max = std::max(max, v);
+    }
+  };
+  int n_ok{0};
+  double k{0};  ///< coverage factor of the first predicted hole
+  std::vector<Term> terms;
+  std::array<Sum, 6> combined{};  ///< u_robot u_mach u_work U_robot U_mach U_work
+  Sum process_share;
+  /// Counts a predicted hole (status kOk).
+  void add(const ReportPrediction& p);
+};
 
 /// A hole of a streamed prediction's report (ReportInput::predicted): its prediction, the
 /// nominal drill point and drilling axis (base frame: T_W_tcp's translation and z column) and
@@ -72,6 +114,26 @@ struct RenderedRows {
   size_t terms{0};
   bool split_columns{false};
   std::string text;
+  /// Where a row takes the columns the table may gain after it was rendered, two offsets into
+  /// `text` a row: a predicted hole's row the place of the δrobot split cells and the place after
+  /// its last budget-term cell; another row the digits of its reason cell's colspan (the first
+  /// offset with kColspanMark set) and their count.
+  std::vector<std::uint32_t> marks;
+  static constexpr std::uint32_t kColspanMark = 0x80000000u;
+};
+
+/// What a large streamed prediction's report (ReportInput::mapped) counts of its holes as they go
+/// past, in program order: the sections' figures that read every hole.
+struct StreamedTotals {
+  std::vector<std::string> terms;  ///< budget terms, first-seen order (the table's columns)
+  bool split{false};               ///< a hole had a δrobot split (the table's split columns)
+  long not_conforming{0};          ///< holes that do not conform (the table's filter)
+  /// the IK branches of the predicted holes with the configuration of their first hole, in the
+  /// order first seen (the maps' legend)
+  std::vector<std::pair<int, std::string>> branches;
+  BudgetSums budget;
+  /// Counts the next holes, in order.
+  void add(std::span<const PredictedHole> holes);
 };
 
 struct ReportHole {
@@ -116,6 +178,11 @@ struct ReportInput {
   /// A prediction report's holes kept compactly as they stream past (instead of `holes`, which
   /// must then be empty).
   std::vector<PredictedHole> predicted;
+  /// A large prediction report's holes as its maps need them (instead of `holes` and
+  /// `predicted`, which must then be empty): the other sections read `totals`, and every row
+  /// is in `rows_ahead`.
+  std::vector<MappedHole> mapped;
+  StreamedTotals totals;
   /// A large job's rows of `predicted` rendered ahead (RowsAheadRenderer), in order from the first
   /// hole (they may end before the last): written as they are where the table has the columns
   /// they were rendered with, the others rendered again.

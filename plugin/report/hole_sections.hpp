@@ -26,7 +26,9 @@ using api::ReportInput;
 struct HoleView {
   /// null for a streamed prediction's hole (ReportInput::predicted)
   const ReportHole* rh{nullptr};
+  /// null for a large streamed prediction's hole (ReportInput::mapped: the maps only read it)
   const api::ReportPrediction* p{nullptr};
+  const api::MapFacts* f{nullptr};              ///< what the maps read: p, or the mapped hole's
   const api::ReportPrediction* after{nullptr};  ///< compensate: the prediction after
   const std::optional<api::DeviationSplit>* split{nullptr};
   Vec3 pos_mm{Vec3::Zero()};  ///< part frame
@@ -48,9 +50,18 @@ HoleViews holeViews(const ReportInput& in);
 /// hole before them (-1: none), carried on.
 void appendPredictedViews(std::vector<HoleView>& out, std::span<const api::PredictedHole> holes,
                           const Pose& T_part_W, int& prev_branch);
+/// The same for the holes of a large streamed prediction (ReportInput::mapped).
+void appendMappedViews(std::vector<HoleView>& out, std::span<const api::MappedHole> holes,
+                       const Pose& T_part_W, int& prev_branch);
 /// The budget terms of the predicted holes of `hv` not in `names` yet appended to it, in the
 /// order first seen (the table's budget columns).
 void addBudgetNames(std::vector<std::string>& names, std::span<const HoleView> hv);
+
+/// `branch` with `config` appended to `branches` unless it is there (first seen first).
+void addBranch(std::vector<std::pair<int, std::string>>& branches, int branch,
+               const std::string& config);
+/// The budget over the predicted holes of `hv`.
+api::BudgetSums budgetSums(const std::vector<HoleView>& hv);
 
 /// The verdict a hole ends with: after compensation when it was compensated, else as predicted.
 Verdict finalVerdict(const HoleView& h);
@@ -62,7 +73,8 @@ std::string plural(long n, const char* one, const char* many);
 double pct(double part, double whole);
 
 void renderMaps(Html& h, const ReportInput& in, const std::vector<HoleView>& hv);
-void renderBudget(Html& h, const std::vector<HoleView>& hv);
+/// The budget section of the budget summed over the predicted holes.
+void renderBudget(Html& h, const api::BudgetSums& sums);
 void renderTable(Html& h, const ReportInput& in, const std::vector<HoleView>& hv);
 
 /// Runs work(k) for every k in [0, n) on min(threads, n) threads, the calling thread one of

@@ -54,6 +54,14 @@ const char* shortTerm(const std::string& name) {
   return nullptr;
 }
 
+/// Where a row takes the columns the table may gain (RenderedRows::marks), offsets into the row:
+/// a predicted hole's the place of the split cells and the place after its last budget term, or
+/// another's colspan digits and their count.
+struct RowMarks {
+  size_t split{0}, terms{0};
+  bool colspan{false};
+};
+
 // ------------------------------------------------------------------ head
 
 std::vector<Column> columns(const TableLayout& t) {
@@ -208,12 +216,13 @@ void splitCells(Html& h, const TableLayout& t, const HoleView& hole) {
 
 /// e⊥, U, the verdict's sum, t/2, δrobot (and its split), δmach, the tilt, the budget terms and
 /// the expanded robot and process uncertainties of a predicted hole.
-void deviationCells(Html& h, const TableLayout& t, const HoleView& hole) {
+void deviationCells(Html& h, const TableLayout& t, const HoleView& hole, RowMarks* marks) {
   const api::ReportPrediction& p = *hole.p;
   const double e = p.position_error * 1e6, U = p.U_work_exact * 1e6;
   h.open("td").element("strong", {}, num(e, 1)).close("td");
   for (const double v : {U, e + U, 0.5 * p.tolerance * 1e6, p.d_robot.norm() * 1e6})
     numCell(h, v, 1);
+  if (marks != nullptr) marks->split = h.out().size();
   if (t.has_split) splitCells(h, t, hole);
   for (int k = 0; k < 3; ++k) numCell(h, p.d_robot[k] * 1e6, 1);
   for (int k = 0; k < 3; ++k) numCell(h, p.d_mach[k] * 1e6, 1);
@@ -228,15 +237,27 @@ void deviationCells(Html& h, const TableLayout& t, const HoleView& hole) {
       numCell(h, it->u * 1e6, 2);
     }
   }
+  if (marks != nullptr) marks->terms = h.out().size();
   numCell(h, p.U_robot * 1e6, 1);
   numCell(h, p.U_mach * 1e6, 1);
 }
 
 /// A hole that was not predicted: its reason over the deviation columns.
-void reasonSpan(Html& h, const TableLayout& t, const api::ReportPrediction& p) {
-  const int span = 14 + (t.has_split ? 4 : 0) + static_cast<int>(t.terms.size());
+int reasonColumns(size_t terms, bool split) {
+  return 14 + (split ? 4 : 0) + static_cast<int>(terms);
+}
+
+void reasonSpan(Html& h, const TableLayout& t, const api::ReportPrediction& p, RowMarks* marks) {
+  const int span = reasonColumns(t.terms.size(), t.has_split);
+  const size_t at = h.out().size();
   h.element("td", {{"class", "reason"}, {"colspan", span}},
             p.reason.empty() ? std::string(verdictName(p.verdict)) : p.reason);
+  if (marks != nullptr) {
+    constexpr std::string_view kColspan = "colspan=\"";
+    marks->split = h.out().find(kColspan, at) + kColspan.size();
+    marks->terms = marks->split + std::to_string(span).size();
+    marks->colspan = true;
+  }
 }
 
 /// Diameter, configuration flags, IK branch (ringed on a change) and the joints.
@@ -297,8 +318,9 @@ void compensationCells(Html& h, const HoleView& hole) {
   optionalCell(h, rh.residual_um, 1);
 }
 
-/// Row i (view `hole`) into `row` (cleared first).
-void rowInto(std::string& row, const TableLayout& t, const HoleView& hole, size_t i) {
+/// Row i (view `hole`) into `row` (cleared first); `marks`: where it takes more columns.
+void rowInto(std::string& row, const TableLayout& t, const HoleView& hole, size_t i,
+             RowMarks* marks = nullptr) {
   const api::ReportPrediction& p = *hole.p;
   row.clear();
   Html h(row);
@@ -311,9 +333,9 @@ void rowInto(std::string& row, const TableLayout& t, const HoleView& hole, size_
       .element("td", {{"class", "id c1"}}, p.id);
   verdictBadge(h, p.verdict);
   if (hole.ok) {
-    deviationCells(h, t, hole);
+    deviationCells(h, t, hole, marks);
   } else {
-    reasonSpan(h, t, p);
+    reasonSpan(h, t, p, marks);
   }
   postureCells(h, t.in, hole);
   numCell(h, p.mc_time, 2);
@@ -326,24 +348,45 @@ void rowInto(std::string& row, const TableLayout& t, const HoleView& hole, size_
 /// `row` as a JavaScript string literal appended to `s` (no "</" so it cannot end the script
 /// element), each "</td><td" packed into the unit separator (JS "\x1f"): the rows are half the
 /// bytes; the script joins them back for the page it shows.
-void appendPackedJs(std::string& s, std::string_view row) {
+/// `marks` (ascending offsets into `row`) get the offsets into `s` where their bytes went (an
+/// offset inside a packed "</td><td": just after its unit separator).
+void appendPackedJs(std::string& s, std::string_view row, std::span<size_t> marks = {}) {
   constexpr std::string_view kCut = "</td><td";
+  // the bytes that may need packing: a cut's or "</"'s '<', and those escaped
+  static constexpr std::array<bool, 256> kSpecial = [] {
+    std::array<bool, 256> t{};
+    for (const char c : {'<', '\\', '"', '\n', '\x1f'}) t[static_cast<unsigned char>(c)] = true;
+    return t;
+  }();
   s += '"';
+  const size_t n = row.size();
   size_t run = 0;  // start of the bytes not appended yet (none of them needs an escape)
-  char prev = 0;   // the byte before, packed
-  for (size_t i = 0; i < row.size(); ++i) {
+  size_t mk = 0;   // the next mark
+  // the marks up to i: the bytes from run on go to s as they are (a mark inside a cut before
+  // run: just after its separator)
+  const auto markUpTo = [&](size_t i) {
+    for (; mk < marks.size() && marks[mk] <= i; ++mk)
+      marks[mk] = s.size() + (std::max(marks[mk], run) - run);
+  };
+  for (size_t i = 0; i < n; ++i) {
     const char c = row[i];
-    if (c == '<' && row.compare(i, kCut.size(), kCut) == 0) {
-      s.append(row.data() + run, i - run);
-      s += "\\x1f";
-      i += kCut.size() - 1;
-      run = i + 1;
-      prev = '\x1f';
+    if (!kSpecial[static_cast<unsigned char>(c)]) continue;
+    markUpTo(i);
+    if (c == '<') {
+      if (row.compare(i, kCut.size(), kCut) == 0) {
+        s.append(row.data() + run, i - run);
+        s += "\\x1f";
+        i += kCut.size() - 1;
+        run = i + 1;
+      } else if (i + 1 < n && row[i + 1] == '/') {  // "</": its '/' escaped
+        markUpTo(i + 1);
+        s.append(row.data() + run, i + 1 - run);
+        s += "\\/";
+        run = i + 2;
+        ++i;
+      }
       continue;
     }
-    const bool slash = c == '/' && prev == '<';
-    prev = c;
-    if (c != '\\' && c != '"' && !slash && c != '\n' && c != '\x1f') continue;
     s.append(row.data() + run, i - run);
     run = i + 1;
     if (c == '\n') {
@@ -355,7 +398,8 @@ void appendPackedJs(std::string& s, std::string_view row) {
       s += c;
     }
   }
-  s.append(row.data() + run, row.size() - run);
+  markUpTo(n);
+  s.append(row.data() + run, n - run);
   s += '"';
 }
 
@@ -402,6 +446,53 @@ void renderItemRange(Html& h, const TableLayout& t, const std::vector<HoleView>&
   }
 }
 
+/// A run rendered ahead with fewer columns than the table has (RenderedRows::marks): a predicted
+/// hole's row gains a dash cell per column it did not have (it had no split, none of the later
+/// terms), another row's reason cell spans them.
+std::string widenedRun(const api::RenderedRows& run, size_t terms, bool split) {
+  const std::string dash = std::string(">") + kDash + "\\x1f";  // "<td>—</td>" packed
+  const size_t rows = run.marks.size() / 2;
+  std::string out;
+  out.reserve(run.text.size() + rows * (4 + terms - run.terms) * dash.size());
+  size_t at = 0;
+  for (size_t k = 0; k + 1 < run.marks.size(); k += 2) {
+    const std::uint32_t a = run.marks[k], b = run.marks[k + 1];
+    if ((a & api::RenderedRows::kColspanMark) != 0) {
+      const size_t digits = a & ~api::RenderedRows::kColspanMark;
+      out.append(run.text, at, digits - at);
+      out += std::to_string(reasonColumns(terms, split));
+      at = digits + b;
+      continue;
+    }
+    out.append(run.text, at, a - at);
+    if (split && !run.split_columns) {
+      for (int c = 0; c < 4; ++c) out += dash;
+    }
+    out.append(run.text, a, b - a);
+    for (size_t n = run.terms; n < terms; ++n) out += dash;
+    at = b;
+  }
+  out.append(run.text, at);
+  return out;
+}
+
+/// A large streamed job's rows (ReportInput::mapped): every row rendered ahead, a run with fewer
+/// columns than the table widened.
+void renderMappedRows(Html& h, const TableLayout& t, size_t n) {
+  size_t next = 0;  // the first row not written
+  for (const api::RenderedRows& run : t.in.rows_ahead) {
+    if (run.first != next || run.count > n - next || run.marks.size() != 2 * run.count)
+      throw std::invalid_argument("renderReport: rows rendered ahead out of order");
+    if (run.terms == t.terms.size() && run.split_columns == t.has_split) {
+      h.bulk(run.text);
+    } else {
+      h.bulk(widenedRun(run, t.terms.size(), t.has_split));
+    }
+    next += run.count;
+  }
+  if (next != n) throw std::invalid_argument("renderReport: rows of mapped holes not rendered");
+}
+
 /// A large job's rows as the items of the script array ROPREC_ROWS (packed JavaScript strings,
 /// ",\n" between them): the runs rendered ahead (ReportInput::rows_ahead) with the table's
 /// columns as they are, the other rows rendered on t.in.threads workers: the bytes of rendering
@@ -427,7 +518,11 @@ void renderScript(Html& h, const TableLayout& t, const std::vector<HoleView>& hv
   h.open("script");
   if (t.large) {
     h.markup("var ROPREC_ROWS=[");
-    renderPackedRows(h, t, hv);
+    if (t.in.mapped.empty()) {
+      renderPackedRows(h, t, hv);
+    } else {
+      renderMappedRows(h, t, hv.size());
+    }
     h.markup("];").markup(kPagedTableScript);
   } else {
     h.markup(kTableScript);
@@ -440,7 +535,13 @@ void renderScript(Html& h, const TableLayout& t, const std::vector<HoleView>& hv
 void renderTable(Html& h, const ReportInput& in, const std::vector<HoleView>& hv) {
   TableLayout t{in, {}, false, hv.size() > api::kReportAggregateAbove};
   long n_fail = 0;
+  if (!in.mapped.empty()) {  // counted as the holes went past
+    t.terms = in.totals.terms;
+    t.has_split = in.totals.split;
+    n_fail = in.totals.not_conforming;
+  }
   for (const HoleView& v : hv) {  // one pass over the holes: terms, split, not conforming
+    if (v.p == nullptr) break;
     addBudgetNames(t.terms, std::span(&v, 1));
     t.has_split = t.has_split || v.split->has_value();
     n_fail += passes(v) ? 0 : 1;
@@ -511,10 +612,20 @@ void RowsAheadRenderer::render(std::span<const PredictedHole> holes, size_t firs
   eachOnThreads(runs, threads, [&](size_t r) {
     RenderedRows& run = out[at + r];
     std::string row, text;  // text: grown here, kept at its size (no spare capacity)
-    for (size_t k = run.first - first; k < run.first - first + run.count; ++k) {
-      rowInto(row, t, hv[k], first + k);
+    run.marks.resize(2 * run.count);
+    for (size_t k = run.first - first, j = 0; k < run.first - first + run.count; ++k, j += 2) {
+      RowMarks m;
+      rowInto(row, t, hv[k], first + k, &m);
       if (first + k > 0) text += ",\n";
-      appendPackedJs(text, row);
+      std::array<size_t, 2> at_packed{m.split, m.terms};
+      appendPackedJs(text, row, at_packed);
+      if (m.colspan) {
+        run.marks[j] = static_cast<std::uint32_t>(at_packed[0]) | RenderedRows::kColspanMark;
+        run.marks[j + 1] = static_cast<std::uint32_t>(at_packed[1] - at_packed[0]);
+      } else {
+        run.marks[j] = static_cast<std::uint32_t>(at_packed[0]);
+        run.marks[j + 1] = static_cast<std::uint32_t>(at_packed[1]);
+      }
     }
     run.text = text;
   });
