@@ -410,6 +410,41 @@ TEST(CompensationOrientation, BlocksOfAnySizeGiveTheResultOfOneBlock) {
   }
 }
 
+// The refinement (COBYLA on ψ) keeps each hole's evaluations and answers a ψ asked again from
+// them: every turned hole's link-side joints are the real robot's IK at its own rotation — its
+// forward kinematics reach T_W_tcp · Rz(ψ) to 1e-9 — also where ψ is a refined value off the grid
+// (a node kept from another hole or another ψ would not).
+TEST(CompensationOrientation, RefinedHolesAreTheRealIkAtTheirOwnRotation) {
+  const api::PredictionContext c = demoContext();
+  std::vector<HoleRequest> req = c.job.requests;
+  for (size_t i = 1; i < req.size(); i += 5)
+    req[i].T_W_tcp.linear() *= Eigen::AngleAxisd(90.0 * kDeg, Vec3::UnitZ()).toRotationMatrix();
+  const nc::Model& real = c.model.model;
+  for (const OrientationMode mode : {OrientationMode::kFlipFree, OrientationMode::kStiffest}) {
+    SCOPED_TRACE(orientationModeName(mode));
+    CompensationOptions o;
+    o.mode = mode;
+    o.threads = 2;
+    CompensationStats st;
+    const std::vector<HoleCompensation> got = compensateHoles(c.model, req, o, &st);
+    EXPECT_GT(st.refined, 0);
+    int off_grid = 0;
+    for (size_t i = 0; i < got.size(); ++i) {
+      const HoleCompensation& h = got[i];
+      if (!h.ok || std::abs(h.psi) <= 1e-9) continue;
+      const double steps = h.psi / (2.0 * kPi / o.grid);
+      if (std::abs(steps - std::round(steps)) > 1e-6) ++off_grid;
+      const Pose target = req[i].T_W_tcp *
+                          Pose(Eigen::AngleAxisd(h.psi, Vec3::UnitZ()).toRotationMatrix()) *
+                          real.T_L6_tcp.inverse() * real.T_L6_flange;
+      const IkResidual r = ikResidual(realIk(c.model), h.theta_d, target);
+      EXPECT_LT(r.position, 1e-9) << h.id << " at " << h.psi / kDeg << " deg";
+      EXPECT_LT(r.rotation, 1e-9) << h.id << " at " << h.psi / kDeg << " deg";
+    }
+    EXPECT_GT(off_grid, 0);
+  }
+}
+
 TEST(CompensationFlags, ASignBoundaryKeepsTheProgrammedKukaTurn) {
   // Hand-written KRL: PTP approaches with S 2 T 2 to holes on the robot's x axis (A1 = A4 = 0
   // exactly). The compensation moves A4 by ~1e-4 deg to the negative side; T stays 2.

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <memory>
@@ -130,6 +131,73 @@ TEST(Ik, RandomRoundTripAllRobots) {
     }
     EXPECT_GT(full_branch_sets, 100)
         << "all 8 distinct branches should appear for many random poses";
+  }
+}
+
+/// a and b are the same bits (−0 and +0 differ, NaN equals itself).
+bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+void expectSameSolutions(const IkResult& a, const IkResult& b) {
+  ASSERT_EQ(a.count, b.count);
+  EXPECT_EQ(a.failure, b.failure);
+  for (int k = 0; k < a.count; ++k) {
+    const IkSolution& x = a.solutions[static_cast<size_t>(k)];
+    const IkSolution& y = b.solutions[static_cast<size_t>(k)];
+    for (int i = 0; i < 6; ++i) EXPECT_TRUE(sameBits(x.q[i], y.q[i])) << "joint " << i + 1;
+    EXPECT_TRUE(sameBits(x.residual.position, y.residual.position));
+    EXPECT_TRUE(sameBits(x.residual.rotation, y.residual.rotation));
+    EXPECT_EQ(x.branch.index(), y.branch.index());
+    EXPECT_TRUE(sameBits(x.branch.shoulder_margin_m, y.branch.shoulder_margin_m));
+    EXPECT_TRUE(sameBits(x.branch.elbow_margin_rad, y.branch.elbow_margin_rad));
+    EXPECT_TRUE(sameBits(x.branch.wrist_margin_rad, y.branch.wrist_margin_rad));
+    EXPECT_EQ(x.converged, y.converged);
+    EXPECT_EQ(x.iterations, y.iterations);
+    EXPECT_EQ(x.within_limits, y.within_limits);
+    EXPECT_EQ(x.singular_wrist, y.singular_wrist);
+    EXPECT_EQ(x.singular_shoulder, y.singular_shoulder);
+  }
+}
+
+// An IkArmCache reuses joints 1–3's forward kinematics and the shoulder/elbow margins where the
+// joints are the same bits: one cache over random drill targets, each solved at 24 rotations about
+// its axis (mostly the same wrist centre and joints 1–3, with runs of new ones), in one branch and
+// in all, gives every solution of solveIk without it, bit for bit.
+TEST(Ik, AnArmCacheGivesTheSolutionsOfSolveIkWithoutIt) {
+  for (const std::string& name :
+       {std::string("kuka-kr120-r2500-pro"), std::string("abb-irb6640-185-280")}) {
+    SCOPED_TRACE(name);
+    const Robot r = loadRobot({name, "", ""});
+    const IkModel m = buildIkModel(r);
+    std::mt19937 rng(20261129);
+    auto plain = std::make_unique<IkResult>();
+    auto cached = std::make_unique<IkResult>();
+    IkArmCache cache;
+    int same_arm = 0;
+    for (int n = 0; n < 200; ++n) {
+      const Vec6 q = randomWithinLimits(r.chain, rng);
+      const Pose T = chainForwardKinematics(r.chain, q);
+      const int branch = ikBranch(m, q).index();
+      for (int k = 0; k < 24; ++k) {
+        Pose Tk = T;
+        Tk.linear() = T.linear() * Eigen::AngleAxisd(2.0 * kPi * k / 24, Vec3::UnitZ()).matrix();
+        for (const int b : {branch, -1}) {
+          IkOptions o;
+          o.seed = &q;
+          o.branch = b;
+          solveIk(m, Tk, o, *plain);
+          o.arm_cache = &cache;
+          const std::array<double, 3> before = cache.fk_q;
+          solveIk(m, Tk, o, *cached);
+          if (k > 0 && cached->count > 0 && sameBits(before[0], cache.fk_q[0]) &&
+              sameBits(before[1], cache.fk_q[1]) && sameBits(before[2], cache.fk_q[2]))
+            ++same_arm;
+          SCOPED_TRACE(testing::Message()
+                       << "target " << n << ", rotation " << k << ", branch " << b);
+          expectSameSolutions(*cached, *plain);
+        }
+      }
+    }
+    EXPECT_GT(same_arm, 2000);  // the cache was read, not only written
   }
 }
 

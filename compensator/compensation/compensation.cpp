@@ -149,6 +149,9 @@ struct Evaluator {
   bool after_budget{true};  ///< assemble re-predicts the compensated target (budget, verdict)
   EvaluatorConstants c{m, o};
   GridRotations grid_rot{};
+  /// solveIk's scratch between the candidates (realIk(m) only): the rotations of a hole about its
+  /// axis mostly share the wrist centre, hence joints 1–3, to the last bit
+  IkArmCache ik_cache{};
 
   nc::Loads loadsFor(const ProcessAtDiameter* proc) const { return processLoads(m, proc); }
 
@@ -160,19 +163,25 @@ struct Evaluator {
   /// `branch` (−1: any) nearest `seed`; `enforce_wrist`: |θ5| ≥ margin.
   Node evaluate(const HoleRequest& h, double psi, int branch, const Vec6& seed, bool enforce_wrist,
                 bool with_cost) {
-    return evaluate(h, psi, rotZ(psi), branch, seed, enforce_wrist, with_cost);
+    return evaluate(h, loadsFor(processFor(h)), psi, branch, seed, enforce_wrist, with_cost);
   }
-  /// evaluate at node k of the ψ grid (its rotation made once).
-  Node evaluateGrid(const HoleRequest& h, int k, int grid, int branch, const Vec6& seed,
-                    bool enforce_wrist, bool with_cost) {
-    return evaluate(h, GridRotations::gridPsiOf(k, grid), grid_rot.at(k, grid), branch, seed,
+  /// evaluate with h's loads (loadsFor(processFor(h))) given: a caller evaluating many rotations
+  /// of one hole looks its process up once.
+  Node evaluate(const HoleRequest& h, const nc::Loads& loads, double psi, int branch,
+                const Vec6& seed, bool enforce_wrist, bool with_cost) {
+    return evaluate(h, loads, psi, rotZ(psi), branch, seed, enforce_wrist, with_cost);
+  }
+  /// evaluate at node k of the ψ grid (its rotation made once), h's loads given.
+  Node evaluateGrid(const HoleRequest& h, const nc::Loads& loads, int k, int grid, int branch,
+                    const Vec6& seed, bool enforce_wrist, bool with_cost) {
+    return evaluate(h, loads, GridRotations::gridPsiOf(k, grid), grid_rot.at(k, grid), branch, seed,
                     enforce_wrist, with_cost);
   }
 
  private:
   /// evaluate with Rz = rotZ(psi).
-  Node evaluate(const HoleRequest& h, double psi, const Pose& Rz, int branch, const Vec6& seed,
-                bool enforce_wrist, bool with_cost) {
+  Node evaluate(const HoleRequest& h, const nc::Loads& loads, double psi, const Pose& Rz,
+                int branch, const Vec6& seed, bool enforce_wrist, bool with_cost) {
     Node n;
     n.psi = psi;
     const Pose T = h.T_W_tcp * Rz;
@@ -180,13 +189,14 @@ struct Evaluator {
     IkOptions opt;
     opt.seed = &seed;
     opt.branch = branch;  // the other branches are never candidates: not solved
+    opt.arm_cache = &ik_cache;
     solveIk(realIk(m), T_flange, opt, d.ik);
     pickSolution(branch, seed, enforce_wrist, n);
     if (!n.feasible || !with_cost) return n;
     n.penalty = proximityPenalty(n);
     // flip-free reads u_def only through the finiteness check below (its costs and refinement
     // never read it): about a quarter of a flip-free candidate's cost goes to that check
-    n.u_def = deflectionUncertainty(h, T, n.q);
+    n.u_def = deflectionUncertainty(loads, T, n.q);
     // one bad hole (e.g. a non-finite load) must not poison the sequence's DP: it has no
     // admissible candidate, and the hole is reported as not compensated
     if (!std::isfinite(n.u_def) || !std::isfinite(n.penalty)) {
@@ -250,22 +260,24 @@ struct Evaluator {
     return penalty;
   }
 
-  /// The stiffness proxy at q for the TCP pose T: the linearised deflection-model uncertainty ⊥
-  /// the axis (m), from the frame recursion (fast_equilibrium.hpp; the model of record's τ and J
-  /// to 1e-9 relative).
-  double deflectionUncertainty(const HoleRequest& h, const Pose& T, const Vec6& q) {
-    const nc::Loads loads = loadsFor(processFor(h));
+  /// The stiffness proxy at q for the TCP pose T under `loads`: the linearised deflection-model
+  /// uncertainty ⊥ the axis (m), from the frame recursion (fast_equilibrium.hpp; the model of
+  /// record's τ and J to 1e-9 relative). Only the linear rows of the TCP Jacobian are read: each
+  /// column is formed as tcpJacobianFromFrames forms it (the same bits), none is stored.
+  double deflectionUncertainty(const nc::Loads& loads, const Pose& T, const Vec6& q) {
     nc::chainFrames(m.model, d.nc, q);
     nc::Vec6 tau;
     nc::StaticLoadSums sums;
     nc::staticTorquesFromFrames(m.model, d.nc, loads, tau, sums);
-    const nc::Mat6& J = nc::tcpJacobianFromFrames(m.model, d.nc);
+    const nc::Data::ChainFrames& f = d.nc.frames;
     const Mat3 R = T.linear();
     const Vec3 e1 = R.col(0);
     const Vec3 e2 = R.col(1);
     double var = 0;
     for (int i = 0; i < 6; ++i) {
-      const Vec3 v = J.block<3, 1>(0, i) * (tau[i] / c.keff[i]) * m.uncertainty.stiffness_rel;
+      const size_t s = static_cast<size_t>(i);
+      const Vec3 Jv = f.u[s].cross(f.p_tcp - f.p[s]);
+      const Vec3 v = Jv * (tau[i] / c.keff[i]) * m.uncertainty.stiffness_rel;
       var += 0.5 * (std::pow(v.dot(e1), 2) + std::pow(v.dot(e2), 2));
     }
     return std::sqrt(var);
@@ -384,11 +396,12 @@ constexpr const char* kRelaxedWristNote =
 NodeCount holeNodes(Evaluator& ev, const HoleRequest& h, const Vec6& s, int branch, int grid,
                     std::span<Node> nodes) {
   const bool choose = ev.o.mode != OrientationMode::kKeep;
+  const nc::Loads loads = ev.loadsFor(ev.processFor(h));  // one process look-up per hole
   NodeCount count;
   bool any = false;
   for (int k = 0; k < grid; ++k) {
     Node& nd = nodes[static_cast<size_t>(k)];
-    nd = ev.evaluateGrid(h, k, grid, branch, s, choose, choose);
+    nd = ev.evaluateGrid(h, loads, k, grid, branch, s, choose, choose);
     ++count.nodes;
     if (!nd.feasible) ++count.infeasible;
     any |= nd.feasible;
@@ -398,7 +411,7 @@ NodeCount holeNodes(Evaluator& ev, const HoleRequest& h, const Vec6& s, int bran
     // With the drill on the flange axis, ψ turns axis 6 only: if |θ5| < margin for every ψ the
     // margin cannot be met here. Keep it as a penalty and say so, rather than drop the hole.
     for (int k = 0; k < grid; ++k) {
-      nodes[static_cast<size_t>(k)] = ev.evaluateGrid(h, k, grid, branch, s, false, true);
+      nodes[static_cast<size_t>(k)] = ev.evaluateGrid(h, loads, k, grid, branch, s, false, true);
       any |= nodes[static_cast<size_t>(k)].feasible;
     }
     if (any) count.relaxed_wrist = true;
@@ -410,7 +423,7 @@ NodeCount holeNodes(Evaluator& ev, const HoleRequest& h, const Vec6& s, int bran
 /// `branch`; `enforced`: NodeCount::enforced of that grid), evaluated again: the same node.
 Node gridNode(Evaluator& ev, const HoleRequest& h, const Vec6& s, int branch, int k, int grid,
               bool enforced) {
-  return ev.evaluateGrid(h, k, grid, branch, s, enforced, true);
+  return ev.evaluateGrid(h, ev.loadsFor(ev.processFor(h)), k, grid, branch, s, enforced, true);
 }
 
 // ---- stage 3: dynamic programming over the whole sequence
@@ -586,6 +599,7 @@ class Refiner {
     Vec6 seed_q{Vec6::Zero()};
     bool enforce_wrist{false};
     double thr{0.0};
+    nc::Loads loads{};  ///< the hole's (loadsFor), looked up once
   };
 
   void setHole(const std::vector<HoleRequest>& holes, const std::vector<Node>& chosen, size_t i,
@@ -601,16 +615,23 @@ class Refiner {
     h_.seed_q = chosen[i].q;
     h_.enforce_wrist = enforce_wrist;
     h_.thr = thr;
-    cached_psi_ = std::numeric_limits<double>::quiet_NaN();
+    h_.loads = ev_.loadsFor(ev_.processFor(holes[i]));
+    cached_count_ = 0;
   }
 
-  /// COBYLA asks for the objective and the four constraints at the same ψ: evaluated once.
+  /// The hole's node at ψ, each ψ evaluated once: COBYLA asks for the objective and the four
+  /// constraints at the same ψ, and the result is a ψ it has evaluated before. The evaluation
+  /// depends on ψ and the hole's set-up only, so a node kept is the one evaluating would give.
   const Node& evalAt(double psi) {
-    if (psi != cached_psi_) {
-      cached_ = ev_.evaluate(*h_.hole, psi, h_.branch, h_.seed_q, h_.enforce_wrist, true);
-      cached_psi_ = psi;
+    const size_t held = std::min(cached_count_, kCached);
+    for (size_t k = 0; k < held; ++k) {
+      if (cached_psi_[k] == psi) return cached_[k];
     }
-    return cached_;
+    const size_t slot = cached_count_++ % kCached;
+    cached_[slot] =
+        ev_.evaluate(*h_.hole, h_.loads, psi, h_.branch, h_.seed_q, h_.enforce_wrist, true);
+    cached_psi_[slot] = psi;
+    return cached_[slot];
   }
 
   double total(const Node& nd) const {
@@ -636,8 +657,11 @@ class Refiner {
   NloptProblem prob_{NLOPT_LN_COBYLA, 1};
   std::vector<double> x_{0.0};
   Hole h_;
-  double cached_psi_{std::numeric_limits<double>::quiet_NaN()};
-  Node cached_;
+  /// the hole's evaluations (evalAt): ψ and node, the latest kCached of them
+  static constexpr size_t kCached = 32;
+  std::array<double, kCached> cached_psi_{};
+  std::array<Node, kCached> cached_{};
+  size_t cached_count_{0};
 };
 
 /// Index of the nearest chosen feasible node before hole i, or n when there is none.
@@ -1504,9 +1528,11 @@ void flipFreeBlock(Workers& w, std::span<const HolePrediction> before, size_t b0
   const CompensationOptions& o = w.evs[0].o;
   parallelFor(before.size(), w.threads(), [&](int wk, size_t j) {
     const HolePrediction& b = before[j];
-    if (b.status == HoleStatus::kOk)
-      zero[j] = w.evs[static_cast<size_t>(wk)].evaluateGrid(holes[b0 + j], 0, grid,
-                                                            gridBranch(b, o), b.joints, true, true);
+    if (b.status != HoleStatus::kOk) return;
+    Evaluator& ev = w.evs[static_cast<size_t>(wk)];
+    const HoleRequest& h = holes[b0 + j];
+    zero[j] = ev.evaluateGrid(h, ev.loadsFor(ev.processFor(h)), 0, grid, gridBranch(b, o), b.joints,
+                              true, true);
   });
   for (size_t j = 0; j < before.size(); ++j) {
     const size_t i = b0 + j;

@@ -2,7 +2,9 @@
 
 #include <Eigen/LU>
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <sstream>
 
 #include "compensator/support/error.hpp"
@@ -113,6 +115,71 @@ int armLabels(const IkModel& m, double q2, double q3) {
   return 4 * shoulder + 2 * elbow;
 }
 
+/// a and b are the same bits (IkArmCache's keys: −0 and +0 differ, as they may in atan2).
+bool sameBits(double a, double b) {
+  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
+}
+
+/// ikForwardKinematics' recursion from joint `first` on, with R and t those before it.
+Pose forwardFrom(const IkModel& m, const Vec6& q, size_t first, Mat3 R, Vec3 t) {
+  for (size_t i = first; i < 6; ++i) {
+    t = t + R * m.origin_p[i];
+    applyOrigin(m, i, R);
+    rotateJoint(m, i, q[static_cast<int>(i)], R);
+  }
+  Pose T = Pose::Identity();
+  T.translation() = t + R * m.tip_p;
+  T.linear() = R * m.tip_R;
+  return T;
+}
+
+/// ikForwardKinematics, with joints 1–3's part taken from `cache` when q's joints 1–3 are the
+/// bits it was made at (else made and kept): the same pose, bit for bit.
+Pose forwardKinematics(const IkModel& m, const Vec6& q, IkArmCache* cache) {
+  if (cache == nullptr) return forwardFrom(m, q, 0, Mat3::Identity(), Vec3::Zero());
+  if (!(cache->fk_valid && sameBits(cache->fk_q[0], q[0]) && sameBits(cache->fk_q[1], q[1]) &&
+        sameBits(cache->fk_q[2], q[2]))) {
+    Mat3 R = Mat3::Identity();
+    Vec3 t = Vec3::Zero();
+    for (size_t i = 0; i < 3; ++i) {
+      t = t + R * m.origin_p[i];
+      applyOrigin(m, i, R);
+      rotateJoint(m, i, q[static_cast<int>(i)], R);
+    }
+    cache->fk_valid = true;
+    cache->fk_q = {q[0], q[1], q[2]};
+    cache->fk_R = R;
+    cache->fk_t = t;
+  }
+  return forwardFrom(m, q, 3, cache->fk_R, cache->fk_t);
+}
+
+/// ikBranch with the arm's x (shoulderX) and sin ψ (elbowSine) of q's joints 2, 3 given.
+IkBranch branchOf(const IkModel& m, const Vec6& q, double x, double spsi) {
+  IkBranch b;
+  b.shoulder = m.shoulder_sign * x >= 0.0 ? 0 : 1;
+  b.elbow = m.elbow_sign * spsi >= 0.0 ? 0 : 1;
+  b.wrist = wristLabel(m, q[4]);
+  b.shoulder_margin_m = std::abs(x);
+  b.elbow_margin_rad = std::abs(spsi);
+  b.wrist_margin_rad = std::abs(std::sin(q[4] + m.alpha));
+  return b;
+}
+
+/// ikBranch, with x and sin ψ taken from `cache` when q's joints 2, 3 are the bits they were made
+/// at (else made and kept): the same labels and margins, bit for bit.
+IkBranch branchOf(const IkModel& m, const Vec6& q, IkArmCache* cache) {
+  if (cache == nullptr) return branchOf(m, q, shoulderX(m, q[1], q[2]), elbowSine(m, q[2]));
+  if (!(cache->branch_valid && sameBits(cache->branch_q[0], q[1]) &&
+        sameBits(cache->branch_q[1], q[2]))) {
+    cache->branch_valid = true;
+    cache->branch_q = {q[1], q[2]};
+    cache->branch_x = shoulderX(m, q[1], q[2]);
+    cache->branch_spsi = elbowSine(m, q[2]);
+  }
+  return branchOf(m, q, cache->branch_x, cache->branch_spsi);
+}
+
 /// Rotation error ω with R_target = Exp(ω) R and its exact angle.
 Vec3 rotationError(const Mat3& R_target, const Mat3& R, double& angle) {
   const Mat3 Re = R_target * R.transpose();
@@ -127,12 +194,13 @@ Vec3 rotationError(const Mat3& R_target, const Mat3& R, double& angle) {
 bool finitePose(const Pose& T) { return T.matrix().allFinite(); }
 
 /// Newton iterations on the exact chain; returns the steps taken and the residual at the final q.
+/// `cache` (may be null): forwardKinematics' scratch.
 int refine(const IkModel& m, const Pose& target, Vec6& q, int max_iterations, double tol,
-           double max_step, IkResidual& residual) {
+           double max_step, IkResidual& residual, IkArmCache* cache = nullptr) {
   Pose T;
   Mat6 J;
   for (int it = 0;; ++it) {
-    T = ikForwardKinematics(m, q);  // the pose of ikForwardKinematicsJacobian, bit for bit
+    T = forwardKinematics(m, q, cache);  // the pose of ikForwardKinematicsJacobian, bit for bit
     Vec6 e;
     e.head<3>() = target.translation() - T.translation();
     e.tail<3>() = rotationError(target.linear(), T.linear(), residual.rotation);
@@ -153,10 +221,11 @@ int refine(const IkModel& m, const Pose& target, Vec6& q, int max_iterations, do
 }
 
 void finishSolution(const IkModel& m, const Pose& target, const IkOptions& opt, IkSolution& s) {
-  s.iterations = refine(m, target, s.q, opt.max_refine_iterations, kRefineTol, 0.5, s.residual);
+  s.iterations =
+      refine(m, target, s.q, opt.max_refine_iterations, kRefineTol, 0.5, s.residual, opt.arm_cache);
   for (int i = 0; i < 6; ++i) s.q[i] = wrapAngle(s.q[i]);
   s.converged = s.residual.position <= kConvergedTol && s.residual.rotation <= kConvergedTol;
-  s.branch = ikBranch(m, s.q);
+  s.branch = branchOf(m, s.q, opt.arm_cache);
   s.singular_wrist = s.branch.wrist_margin_rad < opt.singular_angle;
   s.singular_elbow = s.branch.elbow_margin_rad < opt.singular_angle;
   s.singular_shoulder = s.branch.shoulder_margin_m < opt.singular_distance;
@@ -446,17 +515,7 @@ IkModel buildIkModel(const ChainDescription& chain, const IkModelOptions& option
 }
 
 Pose ikForwardKinematics(const IkModel& m, const Vec6& q) {
-  Mat3 R = Mat3::Identity();
-  Vec3 t = Vec3::Zero();
-  for (size_t i = 0; i < 6; ++i) {
-    t = t + R * m.origin_p[i];
-    applyOrigin(m, i, R);
-    rotateJoint(m, i, q[static_cast<int>(i)], R);
-  }
-  Pose T = Pose::Identity();
-  T.translation() = t + R * m.tip_p;
-  T.linear() = R * m.tip_R;
-  return T;
+  return forwardKinematics(m, q, nullptr);
 }
 
 void ikForwardKinematicsJacobian(const IkModel& m, const Vec6& q, Pose& T, Mat6& J) {
@@ -490,18 +549,7 @@ IkResidual ikResidual(const IkModel& m, const Vec6& q, const Pose& target) {
   return r;
 }
 
-IkBranch ikBranch(const IkModel& m, const Vec6& q) {
-  IkBranch b;
-  const double x = shoulderX(m, q[1], q[2]);
-  const double spsi = elbowSine(m, q[2]);
-  b.shoulder = m.shoulder_sign * x >= 0.0 ? 0 : 1;
-  b.elbow = m.elbow_sign * spsi >= 0.0 ? 0 : 1;
-  b.wrist = wristLabel(m, q[4]);
-  b.shoulder_margin_m = std::abs(x);
-  b.elbow_margin_rad = std::abs(spsi);
-  b.wrist_margin_rad = std::abs(std::sin(q[4] + m.alpha));
-  return b;
-}
+IkBranch ikBranch(const IkModel& m, const Vec6& q) { return branchOf(m, q, nullptr); }
 
 bool withinLimits(const IkModel& m, const Vec6& q) {
   for (int i = 0; i < 6; ++i) {

@@ -209,6 +209,25 @@ enum class IkTurns : std::uint8_t {
   kAll,      ///< per branch every in-limit combination of ±360° turns
 };
 
+/// What solveIk keeps from one call to the next for solutions that share joints 1–3 to the last
+/// bit (e.g. the rotations of one drill target about its axis, whose wrist centre is one point):
+/// the forward kinematics up to joint 3 and the shoulder/elbow margins of the last solution,
+/// reused only where joints 1–3 are the same bits, so the result is solveIk's without it, bit
+/// for bit. Caller-owned scratch for one IkModel: a caller that solves with another model starts
+/// a new one. No allocation.
+struct IkArmCache {
+  // ikForwardKinematics up to joint 3 at fk_q (joints 1–3)
+  bool fk_valid{false};
+  std::array<double, 3> fk_q{};
+  Mat3 fk_R{Mat3::Identity()};
+  Vec3 fk_t{Vec3::Zero()};
+  // ikBranch's x and sin ψ at joints 2, 3
+  bool branch_valid{false};
+  std::array<double, 2> branch_q{};
+  double branch_x{0.0};
+  double branch_spsi{0.0};
+};
+
 struct IkOptions {
   IkTurns turns{IkTurns::kPrimary};
   const Vec6* seed{nullptr};       ///< resolves singular joints and the primary turn choice
@@ -219,6 +238,8 @@ struct IkOptions {
   /// branch, not eight (its raw solution is finished and expanded alone; an exact chain skips the
   /// other branches' refinement too). −1: every branch.
   int branch{-1};
+  /// Scratch kept between calls with one IkModel (null: none); solveIk only.
+  IkArmCache* arm_cache{nullptr};
 };
 
 constexpr int kIkMaxTurnsPerBranch = 16;
