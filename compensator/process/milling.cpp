@@ -359,42 +359,54 @@ Vec3 newtonDirection(const Mat3& G, const Vec3& r) {
   return -r;
 }
 
-/// Newton with backtracking line search on |r|: converges whatever the loop gain.
+/// Newton with backtracking line search on |r|: converges whatever the loop gain. A warm start
+/// (options.start_gain) takes its first step with the given G.
 void solveNewton(CoupledMap& map, const CouplingOptions& o, Vec3& d, CouplingResult& res) {
   Vec3 Cd = map.image(d);
   Vec3 r = d - Cd;
   double norm = r.norm();
+  // a step along p, halved until it lowers |r| (Armijo)
+  const auto lineSearch = [&](const Vec3& p) {
+    double alpha = 1.0;
+    for (int ls = 0; ls <= 30; ++ls, alpha *= 0.5) {
+      const Vec3 dt = d + alpha * p;
+      const Vec3 Ct = map.image(dt);
+      const double nt = (dt - Ct).norm();
+      if (nt <= (1.0 - 1e-4 * alpha) * norm) {
+        res.step = alpha * p.norm();
+        d = dt;
+        Cd = Ct;
+        r = d - Cd;
+        norm = nt;
+        return true;
+      }
+    }
+    return false;
+  };
   res.status = CouplingStatus::kMaxIterations;
+  // a warm start's solve goes on to |r| <= tolerance / 100 (or until no step lowers |r|): its
+  // first step is a chord step, and a cold start's last (full Newton) step usually ends there
+  const bool warm = o.start_gain.has_value();
+  const double target = warm ? 1e-2 * o.tolerance : o.tolerance;
   for (int k = 0;; ++k) {
-    if (norm <= o.tolerance) {
+    if (norm <= target) {
       res.status = CouplingStatus::kConverged;
       break;
     }
-    if (k >= o.max_iterations) break;
+    if (k >= o.max_iterations) {
+      if (norm <= o.tolerance) res.status = CouplingStatus::kConverged;
+      break;
+    }
+    if (warm && k == 0 && lineSearch(newtonDirection(*o.start_gain, r))) {
+      res.iterations = 1;
+      continue;
+    }
     res.iterations = k + 1;
     // Newton direction first; if no step along it lowers |r| (a kink of F: the chip or the
     // engagement reaching zero), the plain fixed-point direction −r.
-    const Vec3 directions[2] = {newtonDirection(map.gain(d, Cd), r), -r};
-    bool accepted = false;
-    for (const Vec3& p : directions) {
-      double alpha = 1.0;
-      for (int ls = 0; ls <= 30 && !accepted; ++ls, alpha *= 0.5) {
-        const Vec3 dt = d + alpha * p;
-        const Vec3 Ct = map.image(dt);
-        const double nt = (dt - Ct).norm();
-        if (nt <= (1.0 - 1e-4 * alpha) * norm) {
-          res.step = alpha * p.norm();
-          d = dt;
-          Cd = Ct;
-          r = d - Cd;
-          norm = nt;
-          accepted = true;
-        }
-      }
-      if (accepted) break;
-    }
-    if (!accepted) {
-      res.status = CouplingStatus::kNoDescent;
+    if (!lineSearch(newtonDirection(map.gain(d, Cd), r)) && !lineSearch(-r)) {
+      // nothing lower than a converged |r| (a warm start's refinement): converged as it is
+      res.status = norm <= o.tolerance ? CouplingStatus::kConverged : CouplingStatus::kNoDescent;
       break;
     }
   }
@@ -441,9 +453,13 @@ CouplingResult couplePoint(const MillingModel& m, const ComplianceFunction& comp
   r.force_nominal = map.staticForce(CutAt{m.cut.fz + state.uncut_prev, m.cut.ae, m.cut.ap, true});
   Vec3 d = Vec3::Zero();
   try {
-    d = map.image(Vec3::Zero());  // first iterate: the deflection under the nominal force
+    // first iterate: the warm start's, or the deflection under the nominal force
+    const bool warm = o.method == CouplingMethod::kNewton && o.start && o.start_gain;
+    d = warm ? *o.start : map.image(Vec3::Zero());
     if (o.method == CouplingMethod::kNewton) {
-      solveNewton(map, o, d, r);
+      CouplingOptions ow = o;
+      if (!warm) ow.start_gain.reset();
+      solveNewton(map, ow, d, r);
     } else {
       // a diverged plain iteration ends where the tool left the cut (G = 0): the gain at the
       // nominal cut (δ = 0) is the informative one
@@ -456,7 +472,9 @@ CouplingResult couplePoint(const MillingModel& m, const ComplianceFunction& comp
     }
     if (o.loop_gain || o.method != CouplingMethod::kNewton) {
       const Vec3 Cd = map.image(d);
-      r.loop_gain = std::max(r.loop_gain, spectralRadius(map.gain(d, Cd)));
+      const Mat3 G = map.gain(d, Cd);
+      r.gain = G;
+      r.loop_gain = std::max(r.loop_gain, spectralRadius(G));
     }
   } catch (const ComplianceFailure&) {
     r.status = CouplingStatus::kComplianceFailed;
