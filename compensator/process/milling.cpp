@@ -154,7 +154,10 @@ Vec3 arcIntegral(const MillingModel& m, double fz, const std::vector<double>& c,
 /// changes.
 Vec3 toothMeanForce(const MillingModel& m, int j, double fz, const ImmersionAngles& a) {
   const int Nt = m.tool.teeth;
-  std::vector<double> c(static_cast<size_t>(Nt));
+  // the offsets and the arc's break points in buffers of the thread (no allocation per call)
+  thread_local std::vector<double> c;
+  thread_local std::vector<double> breaks;
+  c.assign(static_cast<size_t>(Nt), 0.0);
   double smin = -1;  // h_j ≥ h_min ⇔ sin φ ≥ smin
   for (int k = 1; k <= Nt; ++k) {
     c[static_cast<size_t>(k - 1)] = m.tooth_radius[static_cast<size_t>(j)] -
@@ -166,7 +169,7 @@ Vec3 toothMeanForce(const MillingModel& m, int j, double fz, const ImmersionAngl
   const double lo = std::max(a.start, cut);
   const double hi = std::min(a.exit, kPi - cut);
   if (!(hi > lo)) return Vec3::Zero();
-  std::vector<double> breaks{lo, hi};
+  breaks.assign({lo, hi});
   for (int k1 = 1; k1 <= Nt; ++k1) {
     for (int k2 = k1 + 1; k2 <= Nt; ++k2) {
       const double sx =
