@@ -468,7 +468,7 @@ TEST(Milling, FixedPointWithThePathsMemoryMatchesIndependentQuadrature) {
 // The warm start of a path's next point (the previous point's δ and G, as the milling path's
 // uncompensated chain does) against cold solves from the same memory, along 20 points whose
 // compliance drifts, one tooth pass apart (loop gain above 1: the plain iteration diverges): each
-// warm solve ends at |r| <= tolerance / 100, at the cold fixed point within what the residuals
+// warm solve ends at |r| <= tolerance / 10⁴, at the cold fixed point within what the residuals
 // allow, ‖(I − G)⁻¹‖ (|r_warm| + |r_cold|), and the last one agrees with the independent
 // quadrature + bisection (0.5 %); the warm path needs under half the compliance evaluations.
 TEST(Milling, WarmStartedSolvesReachTheColdFixedPointsWithFewerEvaluations) {
@@ -494,11 +494,11 @@ TEST(Milling, WarmStartedSolvesReachTheColdFixedPointsWithFewerEvaluations) {
       warm_options.start_gain = gain;
       const CouplingResult warm = coupleMillingPoint(m, C, st, warm_options);
       ASSERT_TRUE(warm.converged) << i << " " << couplingStatusName(warm.status);
-      EXPECT_LE(warm.residual, 1e-2 * o.tolerance) << i;
+      EXPECT_LE(warm.residual, 1e-4 * o.tolerance) << i;
       const double bound =
           (Mat3::Identity() - *cold.gain).inverse().norm() * (warm.residual + cold.residual);
       EXPECT_LE((warm.delta - cold.delta).norm(), bound) << i;
-      EXPECT_LT(warm.iterations, cold.iterations) << i;
+      EXPECT_LE(warm.iterations, cold.iterations) << i;
       warm_evaluations += warm.evaluations;
       if (i == 19) {
         const ReferencePoint ref =

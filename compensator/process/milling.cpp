@@ -387,10 +387,11 @@ void solveNewton(CoupledMap& map, const CouplingOptions& o, Vec3& d, CouplingRes
     return false;
   };
   res.status = CouplingStatus::kMaxIterations;
-  // a warm start's solve goes on to |r| <= tolerance / 100 (or until no step lowers |r|): its
-  // first step is a chord step, and a cold start's last (full Newton) step usually ends there
+  // a warm start's solve goes on to |r| <= tolerance / 10⁴ (or until no step lowers |r|): chord
+  // steps with the given G while each lowers |r| tenfold, then finite-difference Newton steps
   const bool warm = o.start_gain.has_value();
-  const double target = warm ? 1e-2 * o.tolerance : o.tolerance;
+  const double target = warm ? 1e-4 * o.tolerance : o.tolerance;
+  bool chord = warm;
   for (int k = 0;; ++k) {
     if (norm <= target) {
       res.status = CouplingStatus::kConverged;
@@ -400,9 +401,14 @@ void solveNewton(CoupledMap& map, const CouplingOptions& o, Vec3& d, CouplingRes
       if (norm <= o.tolerance) res.status = CouplingStatus::kConverged;
       break;
     }
-    if (warm && k == 0 && lineSearch(newtonDirection(*o.start_gain, r))) {
-      res.iterations = 1;
-      continue;
+    if (chord) {
+      const double before = norm;
+      if (lineSearch(newtonDirection(*o.start_gain, r))) {
+        res.iterations = k + 1;
+        chord = norm <= 0.1 * before;
+        continue;
+      }
+      chord = false;
     }
     res.iterations = k + 1;
     // Newton direction first; if no step along it lowers |r| (a kink of F: the chip or the

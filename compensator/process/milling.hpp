@@ -170,11 +170,13 @@ struct CouplingOptions {
   /// times reports it of the last solve only (couplingLoopGain).
   bool loop_gain{true};
   /// Warm start (Newton; a path's next point): the iteration starts at `start` (e.g. the
-  /// previous point's δ) instead of C(F(0)), its first step uses `start_gain` (G at a nearby δ,
-  /// e.g. CouplingResult::gain of the previous point) instead of a finite-difference G, and it
-  /// goes on (finite-difference Newton) until |r| <= tolerance / 100 — where a cold start's final
-  /// full Newton step usually lands — or no step lowers |r| (converged if |r| <= tolerance). Both
-  /// or neither (start without start_gain: the cold start).
+  /// previous point's δ) instead of C(F(0)), its steps use `start_gain` (G at a nearby δ, e.g.
+  /// CouplingResult::gain of the previous point) instead of a finite-difference G while each
+  /// lowers |r| tenfold (then finite-difference Newton), and it goes on until |r| <= tolerance /
+  /// 10⁴ — below where a cold start's final full Newton step usually lands: along a path with
+  /// few tooth passes between points the point-to-point memory carries each point's error on —
+  /// or no step lowers |r| (converged if |r| <= tolerance). Both or neither (start without
+  /// start_gain: the cold start).
   std::optional<Vec3> start;
   std::optional<Mat3> start_gain;
 };
