@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <stdexcept>
 
 namespace roprec {
@@ -462,6 +463,57 @@ TEST(Milling, FixedPointWithThePathsMemoryMatchesIndependentQuadrature) {
     EXPECT_LE((e.point.force - ref.force).norm(), 0.005 * ref.force.norm());
     EXPECT_LT((e.point.force - e.edges.mean).norm(), 1e-12);
   }
+}
+
+// The warm start of a path's next point (the previous point's δ and G, as the milling path's
+// uncompensated chain does) against cold solves from the same memory, along 20 points whose
+// compliance drifts, one tooth pass apart (loop gain above 1: the plain iteration diverges): each
+// warm solve ends at |r| <= tolerance / 10⁴, at the cold fixed point within what the residuals
+// allow, ‖(I − G)⁻¹‖ (|r_warm| + |r_cold|), and the last one agrees with the independent
+// quadrature + bisection (0.5 %); the warm path needs under half the compliance evaluations.
+TEST(Milling, WarmStartedSolvesReachTheColdFixedPointsWithFewerEvaluations) {
+  const MillingModel m = model(2, 0.1, MillingMode::kUp, 5, 360);
+  CouplingOptions o;
+  o.teeth_between_points = 1;
+  CouplingState st;
+  std::optional<Mat3> gain;
+  int cold_evaluations = 0;
+  int warm_evaluations = 0;
+  Vec3 c = Vec3::Zero();
+  for (int i = 0; i < 20; ++i) {
+    c = Vec3(2, 1, 20) * 1e-6 * (1 + 0.01 * i);
+    const ComplianceFunction C = linearCompliance(c.asDiagonal());
+    const CouplingResult cold = coupleMillingPoint(m, C, st, o);
+    ASSERT_TRUE(cold.converged) << i << " " << couplingStatusName(cold.status);
+    ASSERT_TRUE(cold.gain.has_value());
+    EXPECT_GT(cold.loop_gain, 1.0);
+    cold_evaluations += cold.evaluations;
+    if (gain) {
+      CouplingOptions warm_options = o;
+      warm_options.start = st.delta_prev;
+      warm_options.start_gain = gain;
+      const CouplingResult warm = coupleMillingPoint(m, C, st, warm_options);
+      ASSERT_TRUE(warm.converged) << i << " " << couplingStatusName(warm.status);
+      EXPECT_LE(warm.residual, 1e-4 * o.tolerance) << i;
+      const double bound =
+          (Mat3::Identity() - *cold.gain).inverse().norm() * (warm.residual + cold.residual);
+      EXPECT_LE((warm.delta - cold.delta).norm(), bound) << i;
+      EXPECT_LE(warm.iterations, cold.iterations) << i;
+      warm_evaluations += warm.evaluations;
+      if (i == 19) {
+        const ReferencePoint ref =
+            referenceFixedPoint(MillingMode::kUp, c, 1, 5e-6, st.delta_prev.x(), st.uncut_prev);
+        EXPECT_LE((warm.delta - ref.delta).norm(), 0.005 * ref.delta.norm())
+            << warm.delta.transpose() << " | " << ref.delta.transpose();
+        EXPECT_LE((warm.force - ref.force).norm(), 0.005 * ref.force.norm());
+      }
+    } else {
+      warm_evaluations += cold.evaluations;
+    }
+    gain = cold.gain;
+    st = cold.next;
+  }
+  EXPECT_LT(2 * warm_evaluations, cold_evaluations) << warm_evaluations << " " << cold_evaluations;
 }
 
 // Genuinely non-convergent cases are values, never a throw, NaN or inf: (1) up-milling pulled into

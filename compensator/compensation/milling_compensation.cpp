@@ -474,6 +474,10 @@ class UncompensatedChain {
   PredictionData d_;
   std::optional<Vec6> prev_;
   CouplingState state_;  // the uncompensated path's memory (for the "before" deviation)
+  /// G at the previous point's converged solve with the current cut: the warm start of the
+  /// next solve (from the previous δ); none after a point that did not cut, did not converge or
+  /// used another cut
+  std::optional<Mat3> warm_gain_;
   StabilityCache stability_cache_;
   ModeCouplingCache mode_coupling_cache_;
   EdgeCache edge_cache_;
@@ -541,6 +545,7 @@ void UncompensatedChain::reuseOrQueueEdges(const ModalModel& dyn, const Coupling
 void UncompensatedChain::useEngagement(const MillingEngagement& e) {
   if (sameEngagement(cut_->model.cut, e)) return;
   cut_ = pointCut(engagedModel(cell_->model, e));
+  warm_gain_.reset();
   stability_cache_.valid = false;
   mode_coupling_cache_.valid = false;
   edge_cache_ = EdgeCache{};
@@ -612,14 +617,19 @@ bool UncompensatedChain::run(size_t i, PathPointCompensation& p,
   p.ap = cut_->model.cut.ap;
   // uncompensated: the robot at θ_d under the coupled force
   Vec3 F_before = Vec3::Zero();
-  const CouplingOptions copt = pointCoupling(s_, i, p.teeth_from_cell);
+  CouplingOptions copt = pointCoupling(s_, i, p.teeth_from_cell);
   p.teeth_between_points = copt.teeth_between_points;
   if (p.cutting) {
     const LinearCompliance lc = pointCompliance(s_, p.theta_d, cut_->F_nom);
     compliance = lc.C;
+    if (warm_gain_) {
+      copt.start = state_.delta_prev;
+      copt.start_gain = warm_gain_;
+    }
     const CouplingResult cb = coupleMillingPoint(
         cut_->model, [&lc](const Vec3& G) { return lc(G); }, state_, copt, &memo_(cut_));
     state_ = cb.next;
+    warm_gain_ = cb.converged ? cb.gain : std::nullopt;
     p.before_fz_effective = cb.fz_effective;
     F_before = cb.force;
     p.before_status = couplingStatusName(cb.status);
@@ -634,6 +644,7 @@ bool UncompensatedChain::run(size_t i, PathPointCompensation& p,
     }
   } else {
     state_ = CouplingState{};  // the tool left the material
+    warm_gain_.reset();
     p.before_status = "not_cutting";
   }
   // its deviation from the path point under the coupled force: where the tool really goes
@@ -700,6 +711,10 @@ class CompensatedChain {
   std::shared_ptr<const PointCut> own_;  ///< the cut of its own engagement when it differs
   /// Broyden's estimate of ∂(Φ(F) − F)/∂F, carried from point to point
   Mat3 force_jacobian_{-Mat3::Identity()};
+  /// The previous point's converged force and its cut: the start of the next point's force
+  /// fixed point with the same cut (none after a point that did not cut or did not converge)
+  std::optional<Vec3> last_force_;
+  std::shared_ptr<const PointCut> last_cut_;
 };
 
 /// Box stock: the compensated path's engagement of the move into point i (queried at the path
@@ -817,8 +832,9 @@ void CompensatedChain::compensate(size_t i, const std::shared_ptr<const PointCut
   bool conv = !cutting;
   p.force_iterations = 0;
   if (cutting) {
+    const Vec3 F0 = last_force_ && last_cut_ == cut_ref ? *last_force_ : cut.F_nom;
     const ForceFixedPoint fp =
-        solveForceFixedPoint(phi, cut.F_nom, s_.options.force_update, 1e-9, 20, &force_jacobian_);
+        solveForceFixedPoint(phi, F0, s_.options.force_update, 1e-9, 20, &force_jacobian_);
     F = fp.force;
     conv = fp.converged;
     p.force_iterations = fp.evaluations;
@@ -829,6 +845,7 @@ void CompensatedChain::compensate(size_t i, const std::shared_ptr<const PointCut
   p.coupling_residual = ca.residual;
   if (cutting) p.loop_gain = couplingLoopGain(cut.model, compliance, state_, copt, ca, &memo);
   p.force = F;
+  last_force_.reset();  // set again when the point converges
   if (!conv) {
     p.reason = ca.converged ? "the force fixed point did not converge"
                             : std::string("the coupled milling iteration did not converge (") +
@@ -836,6 +853,8 @@ void CompensatedChain::compensate(size_t i, const std::shared_ptr<const PointCut
     return;
   }
   state_ = cutting ? ca.next : CouplingState{};
+  last_force_ = cutting ? std::optional<Vec3>(F) : std::nullopt;
+  last_cut_ = cut_ref;
   p.theta_cmd = commandFor(i, p, J_qr, F);
   if (!withinLimits(m.ik, p.theta_cmd)) {
     p.reason = "the compensated command leaves the joint limits";

@@ -7,8 +7,9 @@
 ///   2. fixed point on the force F = Φ(F): θ_m(F) = θ_d + K⁻¹τ(θ_d; F) (exact inverse); Φ(F) is
 ///      the converged force of the coupled iteration of milling.hpp with the compensated robot's
 ///      compliance at θ_m(F) (δ(G) = real − nominal tool position under G, milling frame) from the
-///      previous point's state. Solved from F⁽⁰⁾ = F(fz, ae) nominal by Broyden's method on
-///      r(F) = Φ(F) − F (solveForceFixedPoint, its Jacobian estimate carried from point to point)
+///      previous point's state. Solved from F⁽⁰⁾ = the previous point's converged force (same
+///      cut; else F(fz, ae) nominal) by Broyden's method on r(F) = Φ(F) − F
+///      (solveForceFixedPoint, its Jacobian estimate carried from point to point)
 ///      until |r| ≤ 1e-9 N — with an exact compensation the
 ///      tool stays on the path, the chip is nominal and this converges at the first check; the
 ///      plain iteration F ← Φ(F) diverges when the previous-edge coupling is strong (a tooth pass
@@ -118,6 +119,8 @@ struct PathPointCompensation {
   int coupling_iterations{0};
   bool coupling_converged{false};
   /// The uncompensated robot's coupled solve (the "before" deviation): the real test of the solver.
+  /// Warm-started (milling.hpp CouplingOptions::start) from the previous point's δ and G while
+  /// the previous point cut with the same cut and converged; else cold.
   std::string before_status;  ///< couplingStatusName, or "not_cutting"
   int before_iterations{0};
   double before_residual{0};  ///< |δ − C(F(δ))| [m]

@@ -154,7 +154,10 @@ Vec3 arcIntegral(const MillingModel& m, double fz, const std::vector<double>& c,
 /// changes.
 Vec3 toothMeanForce(const MillingModel& m, int j, double fz, const ImmersionAngles& a) {
   const int Nt = m.tool.teeth;
-  std::vector<double> c(static_cast<size_t>(Nt));
+  // the offsets and the arc's break points in buffers of the thread (no allocation per call)
+  thread_local std::vector<double> c;
+  thread_local std::vector<double> breaks;
+  c.assign(static_cast<size_t>(Nt), 0.0);
   double smin = -1;  // h_j ≥ h_min ⇔ sin φ ≥ smin
   for (int k = 1; k <= Nt; ++k) {
     c[static_cast<size_t>(k - 1)] = m.tooth_radius[static_cast<size_t>(j)] -
@@ -166,7 +169,7 @@ Vec3 toothMeanForce(const MillingModel& m, int j, double fz, const ImmersionAngl
   const double lo = std::max(a.start, cut);
   const double hi = std::min(a.exit, kPi - cut);
   if (!(hi > lo)) return Vec3::Zero();
-  std::vector<double> breaks{lo, hi};
+  breaks.assign({lo, hi});
   for (int k1 = 1; k1 <= Nt; ++k1) {
     for (int k2 = k1 + 1; k2 <= Nt; ++k2) {
       const double sx =
@@ -359,42 +362,60 @@ Vec3 newtonDirection(const Mat3& G, const Vec3& r) {
   return -r;
 }
 
-/// Newton with backtracking line search on |r|: converges whatever the loop gain.
+/// Newton with backtracking line search on |r|: converges whatever the loop gain. A warm start
+/// (options.start_gain) takes its first step with the given G.
 void solveNewton(CoupledMap& map, const CouplingOptions& o, Vec3& d, CouplingResult& res) {
   Vec3 Cd = map.image(d);
   Vec3 r = d - Cd;
   double norm = r.norm();
+  // a step along p, halved until it lowers |r| (Armijo)
+  const auto lineSearch = [&](const Vec3& p) {
+    double alpha = 1.0;
+    for (int ls = 0; ls <= 30; ++ls, alpha *= 0.5) {
+      const Vec3 dt = d + alpha * p;
+      const Vec3 Ct = map.image(dt);
+      const double nt = (dt - Ct).norm();
+      if (nt <= (1.0 - 1e-4 * alpha) * norm) {
+        res.step = alpha * p.norm();
+        d = dt;
+        Cd = Ct;
+        r = d - Cd;
+        norm = nt;
+        return true;
+      }
+    }
+    return false;
+  };
   res.status = CouplingStatus::kMaxIterations;
+  // a warm start's solve goes on to |r| <= tolerance / 10⁴ (or until no step lowers |r|): chord
+  // steps with the given G while each lowers |r| tenfold, then finite-difference Newton steps
+  const bool warm = o.start_gain.has_value();
+  const double target = warm ? 1e-4 * o.tolerance : o.tolerance;
+  bool chord = warm;
   for (int k = 0;; ++k) {
-    if (norm <= o.tolerance) {
+    if (norm <= target) {
       res.status = CouplingStatus::kConverged;
       break;
     }
-    if (k >= o.max_iterations) break;
+    if (k >= o.max_iterations) {
+      if (norm <= o.tolerance) res.status = CouplingStatus::kConverged;
+      break;
+    }
+    if (chord) {
+      const double before = norm;
+      if (lineSearch(newtonDirection(*o.start_gain, r))) {
+        res.iterations = k + 1;
+        chord = norm <= 0.1 * before;
+        continue;
+      }
+      chord = false;
+    }
     res.iterations = k + 1;
     // Newton direction first; if no step along it lowers |r| (a kink of F: the chip or the
     // engagement reaching zero), the plain fixed-point direction −r.
-    const Vec3 directions[2] = {newtonDirection(map.gain(d, Cd), r), -r};
-    bool accepted = false;
-    for (const Vec3& p : directions) {
-      double alpha = 1.0;
-      for (int ls = 0; ls <= 30 && !accepted; ++ls, alpha *= 0.5) {
-        const Vec3 dt = d + alpha * p;
-        const Vec3 Ct = map.image(dt);
-        const double nt = (dt - Ct).norm();
-        if (nt <= (1.0 - 1e-4 * alpha) * norm) {
-          res.step = alpha * p.norm();
-          d = dt;
-          Cd = Ct;
-          r = d - Cd;
-          norm = nt;
-          accepted = true;
-        }
-      }
-      if (accepted) break;
-    }
-    if (!accepted) {
-      res.status = CouplingStatus::kNoDescent;
+    if (!lineSearch(newtonDirection(map.gain(d, Cd), r)) && !lineSearch(-r)) {
+      // nothing lower than a converged |r| (a warm start's refinement): converged as it is
+      res.status = norm <= o.tolerance ? CouplingStatus::kConverged : CouplingStatus::kNoDescent;
       break;
     }
   }
@@ -441,9 +462,13 @@ CouplingResult couplePoint(const MillingModel& m, const ComplianceFunction& comp
   r.force_nominal = map.staticForce(CutAt{m.cut.fz + state.uncut_prev, m.cut.ae, m.cut.ap, true});
   Vec3 d = Vec3::Zero();
   try {
-    d = map.image(Vec3::Zero());  // first iterate: the deflection under the nominal force
+    // first iterate: the warm start's, or the deflection under the nominal force
+    const bool warm = o.method == CouplingMethod::kNewton && o.start && o.start_gain;
+    d = warm ? *o.start : map.image(Vec3::Zero());
     if (o.method == CouplingMethod::kNewton) {
-      solveNewton(map, o, d, r);
+      CouplingOptions ow = o;
+      if (!warm) ow.start_gain.reset();
+      solveNewton(map, ow, d, r);
     } else {
       // a diverged plain iteration ends where the tool left the cut (G = 0): the gain at the
       // nominal cut (δ = 0) is the informative one
@@ -456,7 +481,9 @@ CouplingResult couplePoint(const MillingModel& m, const ComplianceFunction& comp
     }
     if (o.loop_gain || o.method != CouplingMethod::kNewton) {
       const Vec3 Cd = map.image(d);
-      r.loop_gain = std::max(r.loop_gain, spectralRadius(map.gain(d, Cd)));
+      const Mat3 G = map.gain(d, Cd);
+      r.gain = G;
+      r.loop_gain = std::max(r.loop_gain, spectralRadius(G));
     }
   } catch (const ComplianceFailure&) {
     r.status = CouplingStatus::kComplianceFailed;

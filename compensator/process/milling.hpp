@@ -43,6 +43,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -168,6 +169,16 @@ struct CouplingOptions {
   /// force law and the compliance); false leaves it 0 — a caller that solves a point several
   /// times reports it of the last solve only (couplingLoopGain).
   bool loop_gain{true};
+  /// Warm start (Newton; a path's next point): the iteration starts at `start` (e.g. the
+  /// previous point's δ) instead of C(F(0)), its steps use `start_gain` (G at a nearby δ, e.g.
+  /// CouplingResult::gain of the previous point) instead of a finite-difference G while each
+  /// lowers |r| tenfold (then finite-difference Newton), and it goes on until |r| <= tolerance /
+  /// 10⁴ — below where a cold start's final full Newton step usually lands: along a path with
+  /// few tooth passes between points the point-to-point memory carries each point's error on —
+  /// or no step lowers |r| (converged if |r| <= tolerance). Both or neither (start without
+  /// start_gain: the cold start).
+  std::optional<Vec3> start;
+  std::optional<Mat3> start_gain;
 };
 
 struct CouplingState {
@@ -205,6 +216,9 @@ struct CouplingResult {
   double ae_effective{0};  ///< [m]
   double ap_effective{0};  ///< ap − δ·Z [m]
   CouplingState next;      ///< state to pass to the next path point
+  /// G = ∂(C∘F)/∂δ at the returned δ when the solve computed it (Newton with options.loop_gain,
+  /// or the plain iteration): a warm start for the next point (CouplingOptions::start_gain).
+  std::optional<Mat3> gain;
 };
 
 /// One path point: solves δ = C(F(fz_i(δ), ae_i(δ))) with options.method. Never throws for a
