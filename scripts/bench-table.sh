@@ -122,15 +122,21 @@ row("drilling-cycle transient (2 s cycle)", "%.1f ms = %.0fx real time" % (t * 1
 # ---- large jobs (bench-large.sh): wall time and peak RSS against the goal of each workload; a
 # row measured on a smaller job than the goal's (BENCH_LARGE_*) is shown but not met
 MB, GB = 1e6 / 2**20, 1e9 / 2**20  # MiB per MB and per GB
+# The goals are for the 2-core machine: a row is judged on its 2-thread runs (its 1-thread run,
+# where there is one, is shown beside them). Runs of the goal's size are preferred to smaller ones
+# (bench-cli.sh's 10,000-hole runs match the same names).
 def large(what, pattern, wall_goal, rss_goal_mib, goal_text, size=None):
     got = [(k, cli[k]) for k in sorted(cli) if re.match(pattern, k) and isinstance(cli[k], tuple)]
+    if size is not None and any(k.split()[1] == str(size) for k, _ in got):
+        got = [(k, v) for k, v in got if k.split()[1] == str(size)]
     if not got:
         row(what, "not run", False, goal_text)
         return
     text = "; ".join("%.2f s / %d MiB (%s)" % (w, m, k.split(" ", 1)[1]) for k, (w, m) in got)
-    ok = all(w <= wall_goal and m <= rss_goal_mib for _, (w, m) in got)
+    judged = [(k, v) for k, v in got if k.endswith("--threads 2")] or got
+    ok = all(w <= wall_goal and m <= rss_goal_mib for _, (w, m) in judged)
     if size is not None:
-        ok = ok and all(k.split()[1] == str(size) for k, _ in got)
+        ok = ok and all(k.split()[1] == str(size) for k, _ in judged)
     row(what, text, ok, goal_text)
 
 large("predict 1,000,000 holes --json", r"predict \d+ --json", 10, 500 * MB,
