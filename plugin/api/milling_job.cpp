@@ -138,6 +138,23 @@ Pose stockFrame(const CellSpec& cell) {
   return cell.part_registration ? partMotion(cell) * cell.T_base_wobj : cell.T_base_wobj;
 }
 
+/// Path point i (its target t, its result p): a failure is recorded; otherwise its target is
+/// edited by `replace(configuration)` and a refused edit recorded, both in path order.
+template <class Replace>
+void editPathPoint(MillingCompensationResult& r, const postproc::Program& prog, std::size_t i,
+                   const postproc::Target& t, const PathPointCompensation& p, Replace&& replace) {
+  if (!p.ok) {
+    r.failures.push_back("path point " + std::to_string(i + 1) + " (" +
+                         prog.files[static_cast<size_t>(t.file)].path + ":" +
+                         std::to_string(t.line) + "): not compensated: " + p.reason);
+    return;
+  }
+  std::optional<postproc::Configuration> cfg;
+  if (t.config.present()) cfg = postproc::parseConfigurationText(p.config_text);
+  const postproc::EditResult er = replace(cfg);
+  if (!er.ok) r.refused.push_back("path point " + std::to_string(i + 1) + ": " + er.reason);
+}
+
 /// The program's target edits of the compensated points [first, first + block.size()) (their
 /// frames `frame`), and the failures and refusals among them, in path order.
 void editMillingTargets(MillingCompensationResult& r, const std::vector<const Pose*>& frame,
@@ -147,17 +164,10 @@ void editMillingTargets(MillingCompensationResult& r, const std::vector<const Po
     const size_t i = first + k;
     const postproc::Target& t = prog.targets()[static_cast<size_t>(r.targets[i])];
     const PathPointCompensation& p = block[k];
-    if (!p.ok) {
-      r.failures.push_back("path point " + std::to_string(i + 1) + " (" +
-                           prog.files[static_cast<size_t>(t.file)].path + ":" +
-                           std::to_string(t.line) + "): not compensated: " + p.reason);
-      continue;
-    }
-    std::optional<postproc::Configuration> cfg;
-    if (t.config.present()) cfg = postproc::parseConfigurationText(p.config_text);
-    const postproc::EditResult er =
-        postproc::replaceTargetPose(prog, r.targets[i], frame[i]->inverse() * p.T_programmed, cfg);
-    if (!er.ok) r.refused.push_back("path point " + std::to_string(i + 1) + ": " + er.reason);
+    editPathPoint(r, prog, i, t, p, [&](const std::optional<postproc::Configuration>& cfg) {
+      return postproc::replaceTargetPose(prog, r.targets[i], frame[i]->inverse() * p.T_programmed,
+                                         cfg);
+    });
   }
 }
 
@@ -334,17 +344,9 @@ void editStreamedTargets(MillingCompensationResult& r, const postproc::Program& 
     const postproc::Target& t = prog.targets()[static_cast<size_t>(h.target)];
     r.block.push_back({t.name, t.line, h.path.T_W_tcp, h.engagement, h.mill});
     const PathPointCompensation& p = block[k];
-    if (!p.ok) {
-      r.failures.push_back("path point " + std::to_string(i + 1) + " (" +
-                           prog.files[static_cast<size_t>(t.file)].path + ":" +
-                           std::to_string(t.line) + "): not compensated: " + p.reason);
-      continue;
-    }
-    std::optional<postproc::Configuration> cfg;
-    if (t.config.present()) cfg = postproc::parseConfigurationText(p.config_text);
-    const postproc::EditResult er =
-        edits.replaceTargetPose(h.target, h.T_W_frame.inverse() * p.T_programmed, cfg);
-    if (!er.ok) r.refused.push_back("path point " + std::to_string(i + 1) + ": " + er.reason);
+    editPathPoint(r, prog, i, t, p, [&](const std::optional<postproc::Configuration>& cfg) {
+      return edits.replaceTargetPose(h.target, h.T_W_frame.inverse() * p.T_programmed, cfg);
+    });
   }
 }
 
