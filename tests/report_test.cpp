@@ -1068,25 +1068,40 @@ std::vector<api::PredictedHole> predictedHoles(const Synthetic& s) {
   return out;
 }
 
+/// The predicted holes of s with more columns late in the job: from hole 1500 on a second budget
+/// term, from hole 2400 the δrobot split `split`.
+std::vector<api::PredictedHole> holesWithLateColumns(const Synthetic& s,
+                                                     const api::DeviationSplit& split) {
+  std::vector<api::PredictedHole> holes = predictedHoles(s);
+  for (size_t i = 1500; i < holes.size(); ++i) {
+    if (holes[i].prediction.status != HoleStatus::kOk) continue;
+    holes[i].prediction.budget.push_back({"mach_runout", 3.5e-6, true});
+    if (i >= 2400) holes[i].split = split;
+  }
+  return holes;
+}
+
+/// The report input of the large job s with its holes `holes` on 2 threads (card: an empty card
+/// that outlives the input).
+api::ReportInput largeReportInput(const Synthetic& s, const std::vector<api::PredictedHole>& holes,
+                                  const RobotCard& card) {
+  api::ReportInput in = makeInput(Synthetic{}, false);
+  in.summary = summarize(s.preds);
+  in.card = &card;
+  in.predicted = holes;
+  in.threads = 2;
+  return in;
+}
+
 /// Rows rendered ahead before a later hole brought another budget term or the first δrobot split
 /// (the table then has more columns) are rendered again: the bytes of the report rendered with no
 /// row ahead, whatever the runs and their worker count.
 TEST(Report, RowsRenderedAheadWithOtherColumnsAreRenderedAgain) {
   const size_t n = api::kReportAggregateAbove + 900;
   const Synthetic s = makeLarge(n);
-  std::vector<api::PredictedHole> holes = predictedHoles(s);
-  // from hole 1500 on a second budget term, from hole 2400 a split
-  for (size_t i = 1500; i < n; ++i) {
-    if (holes[i].prediction.status != HoleStatus::kOk) continue;
-    holes[i].prediction.budget.push_back({"mach_runout", 3.5e-6, true});
-    if (i >= 2400) holes[i].split = api::DeviationSplit{};
-  }
-  api::ReportInput in = makeInput(Synthetic{}, false);
-  in.summary = summarize(s.preds);
-  RobotCard card;
-  in.card = &card;
-  in.predicted = holes;
-  in.threads = 2;
+  const std::vector<api::PredictedHole> holes = holesWithLateColumns(s, api::DeviationSplit{});
+  const RobotCard card{};
+  api::ReportInput in = largeReportInput(s, holes, card);
   const std::string expected = api::renderReport(in);
   ASSERT_NE(expected.find("u runout"), std::string::npos);
   ASSERT_NE(expected.find("\u2192 gravity"), std::string::npos);
@@ -1120,19 +1135,10 @@ TEST(Report, RowsRenderedAheadWithOtherColumnsAreRenderedAgain) {
 TEST(Report, MappedHolesWidenTheRowsRenderedWithFewerColumns) {
   const size_t n = api::kReportAggregateAbove + 900;
   const Synthetic s = makeLarge(n);
-  std::vector<api::PredictedHole> holes = predictedHoles(s);
-  // from hole 1500 on a second budget term, from hole 2400 a split
-  for (size_t i = 1500; i < n; ++i) {
-    if (holes[i].prediction.status != HoleStatus::kOk) continue;
-    holes[i].prediction.budget.push_back({"mach_runout", 3.5e-6, true});
-    if (i >= 2400) holes[i].split = api::DeviationSplit{Vec3(1e-6, 0, 0), Vec3(0, 2e-6, 0)};
-  }
-  api::ReportInput in = makeInput(Synthetic{}, false);
-  in.summary = summarize(s.preds);
-  RobotCard card;
-  in.card = &card;
-  in.predicted = holes;
-  in.threads = 2;
+  const std::vector<api::PredictedHole> holes =
+      holesWithLateColumns(s, api::DeviationSplit{Vec3(1e-6, 0, 0), Vec3(0, 2e-6, 0)});
+  const RobotCard card{};
+  api::ReportInput in = largeReportInput(s, holes, card);
   const std::string expected = api::renderReport(in);
   ASSERT_NE(expected.find("u runout"), std::string::npos);
   ASSERT_NE(expected.find("\u2192 gravity"), std::string::npos);
