@@ -75,19 +75,39 @@ EditResult StreamedEdits::replaceTargetPose(int index, const Pose& T_frame_tcp,
   return r;
 }
 
+void StreamedEdits::PendingEdits::put(std::uint64_t at, Pending&& p) {
+  if (after(at)) {
+    items_.emplace_back(at, std::move(p));
+    return;
+  }
+  const auto it = lowerBound(at);
+  if (it != items_.end() && it->first == at) {
+    it->second = std::move(p);
+  } else {
+    items_.emplace(it, at, std::move(p));
+  }
+}
+
+void StreamedEdits::PendingEdits::erase(std::uint64_t at) {
+  const auto it = lowerBound(at);
+  if (it != items_.end() && it->first == at) items_.erase(it);
+}
+
+std::deque<StreamedEdits::PendingEdits::Item>::iterator StreamedEdits::PendingEdits::lowerBound(
+    std::uint64_t at) {
+  return std::lower_bound(items_.begin(), items_.end(), at,
+                          [](const Item& x, std::uint64_t a) { return x.first < a; });
+}
+
 void StreamedEdits::put(bool erase, int file, std::uint64_t at, std::uint32_t length,
                         std::string&& text) {
   if (file == 0 && at < written_)
     throw std::logic_error("overlapping edits in " + stream_.program().files[0].path);
-  std::map<std::uint64_t, Pending>& edits = file == 0 ? edits_ : dat_edits_;
-  // the edits come mostly in file order: one past the last pending is appended
-  const bool after = edits.empty() || at > edits.rbegin()->first;
+  PendingEdits& edits = file == 0 ? edits_ : dat_edits_;
   if (erase) {
-    if (!after) edits.erase(at);
-  } else if (after) {
-    edits.emplace_hint(edits.end(), at, Pending{length, std::move(text)});
+    if (!edits.after(at)) edits.erase(at);
   } else {
-    edits[at] = Pending{length, std::move(text)};
+    edits.put(at, Pending{length, std::move(text)});
   }
 }
 
@@ -127,8 +147,9 @@ void StreamedEdits::emitBytes(std::uint64_t a, std::uint64_t b) {
 void StreamedEdits::flushBefore(std::uint64_t upto) {
   upto = std::min(upto, total_);
   if (upto <= written_) return;
-  auto it = edits_.begin();
-  for (; it != edits_.end() && it->first < upto; ++it) {
+  std::deque<PendingEdits::Item>& q = edits_.items();
+  auto it = q.begin();
+  for (; it != q.end() && it->first < upto; ++it) {
     if (it->first + it->second.length > upto) {
       upto = it->first;
       break;
@@ -137,7 +158,7 @@ void StreamedEdits::flushBefore(std::uint64_t upto) {
     emit(it->second.text);
     written_ = it->first + it->second.length;
   }
-  edits_.erase(edits_.begin(), it);
+  q.erase(q.begin(), it);
   if (upto > written_) {
     emitBytes(written_, upto);
     written_ = upto;
@@ -149,12 +170,12 @@ void StreamedEdits::flushBefore(std::uint64_t upto) {
 void StreamedEdits::finish() {
   flushBefore(total_);
   // an insertion at the very end of the file (offset == size) is not before it
-  for (auto& [at, e] : edits_) {
+  for (auto& [at, e] : edits_.items()) {
     if (at != written_ || e.length != 0)
       throw std::logic_error("overlapping edits in " + stream_.program().files[0].path);
     emit(e.text);
   }
-  edits_.clear();
+  edits_.items().clear();
   if (!out_.empty()) write_(out_);
   out_.clear();
 }
@@ -166,7 +187,7 @@ std::optional<std::string> StreamedEdits::dat() const {
   std::string s;
   s.reserve(b.size() + 64);
   std::uint64_t pos = 0;
-  for (const auto& [at, e] : dat_edits_) {
+  for (const auto& [at, e] : dat_edits_.items()) {
     if (at < pos || at + e.length > b.size())
       throw std::logic_error("overlapping edits in " + p.files[1].path);
     s.append(b, pos, at - pos);

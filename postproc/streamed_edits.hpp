@@ -15,7 +15,6 @@
 
 #include <cstdint>
 #include <deque>
-#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -28,6 +27,14 @@ namespace roprec::postproc {
 
 class StreamedEdits {
  public:
+  /// A window of the first file: its first byte in the file, its lines and bytes.
+  struct Window {
+    std::uint64_t start{0};
+    int line_base{0};
+    std::vector<std::uint32_t> line_starts;
+    std::string bytes;
+  };
+
   /// `stream` read by windows (windowed()), before its first next(); `write` receives the first
   /// file's bytes in order; `marker` (markCompensated) is queued once the window with the DEF
   /// line is installed; `style`: the first file's number style read over the whole file (a first
@@ -49,21 +56,40 @@ class StreamedEdits {
   /// The `.dat` with its edits, nullopt for a program without one.
   [[nodiscard]] std::optional<std::string> dat() const;
 
+  /// For a caller that makes the edits itself (an EditLog in a window's bytes, e.g. on workers):
+  /// the window that holds line `line` of the first file (1-based), the latest window installed,
+  /// and the queueing of one edit at byte `at` of file `file` (0: the first file, offsets in the
+  /// whole file; erase: drop the edit queued there).
+  Window& windowOf(int line);
+  Window* latestWindow() { return windows_.empty() ? nullptr : &windows_.back(); }
+  void put(bool erase, int file, std::uint64_t at, std::uint32_t length, std::string&& text);
+
  private:
   static constexpr std::size_t kOutBytes = std::size_t{1} << 20U;
-  /// A window of the first file: its first byte in the file, its lines and bytes.
-  struct Window {
-    std::uint64_t start{0};
-    int line_base{0};
-    std::vector<std::uint32_t> line_starts;
-    std::string bytes;
-  };
   struct Pending {
     std::uint32_t length{0};
     std::string text;
   };
-  Window& windowOf(int line);
-  void put(bool erase, int file, std::uint64_t at, std::uint32_t length, std::string&& text);
+  /// A file's pending edits by their first byte, in order: a map's put and erase on a deque (the
+  /// edits come in file order almost always: appended, and written from the front).
+  class PendingEdits {
+   public:
+    using Item = std::pair<std::uint64_t, Pending>;
+    /// The edit at `at` (replacing one there).
+    void put(std::uint64_t at, Pending&& p);
+    /// Drops the edit at `at`, if any.
+    void erase(std::uint64_t at);
+    /// Whether `at` lies after every pending edit.
+    [[nodiscard]] bool after(std::uint64_t at) const {
+      return items_.empty() || at > items_.back().first;
+    }
+    std::deque<Item>& items() { return items_; }
+    [[nodiscard]] const std::deque<Item>& items() const { return items_; }
+
+   private:
+    std::deque<Item>::iterator lowerBound(std::uint64_t at);
+    std::deque<Item> items_;
+  };
   void emit(std::string_view b);
   void emitBytes(std::uint64_t a, std::uint64_t b);
   void flushBefore(std::uint64_t upto);
@@ -76,8 +102,8 @@ class StreamedEdits {
   std::deque<Window> windows_;
   std::uint64_t total_{0};    ///< bytes of the first file read
   std::uint64_t written_{0};  ///< bytes of the first file written (edits applied)
-  std::map<std::uint64_t, Pending> edits_;
-  std::map<std::uint64_t, Pending> dat_edits_;
+  PendingEdits edits_;
+  PendingEdits dat_edits_;
   std::string out_;
 };
 

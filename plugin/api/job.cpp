@@ -20,6 +20,7 @@
 #include "plugin/api/robot_compliance.hpp"
 #include "postproc/drill.hpp"
 #include "postproc/program_stream.hpp"
+#include "postproc/streamed_edits.hpp"
 
 namespace roprec::api {
 
@@ -760,14 +761,12 @@ class StreamedProgramEdits {
   StreamedProgramEdits(CompensationResult& r, int threads, ByteWriter write)
       : r_(r),
         threads_(threads),
-        write_(std::move(write)),
         stream_(r.context.job.path, postproc::ProgramStream::kWindowBytes, threads > 1),
-        marker_(markerText(r.context.cell, r.orientation)) {
-    if (!stream_.windowed()) throw InternalError("StreamedProgramEdits: not a windowed program");
+        edits_(stream_, std::move(write), markerText(r.context.cell, r.orientation),
+               r.context.job.program->files[0]) {
     postproc::Program& p = stream_.program();
     p.position_min_decimals = 5;  // 0.01 µm: the written target carries the compensation
     p.fanuc_turn_axes = r.context.job.program->fanuc_turn_axes;
-    out_.reserve(kOutBytes + 4096);
     pinned_ = p.target_list.size();  // the .dat's: they stay, the reader numbers them first
   }
 
@@ -793,51 +792,18 @@ class StreamedProgramEdits {
   void finish() {
     while (!ended_) {
       if (stream_.next()) {
-        installed();
+        edits_.installed();
       } else {
         ended_ = true;
       }
     }
-    flush(total_);
-    // an insertion at the very end of the file (offset == size) is not before it
-    for (auto& [at, e] : edits_.items()) {
-      if (at != written_ || e.length != 0)
-        throw std::logic_error("overlapping edits in " + r_.context.job.program->files[0].path);
-      emit(e.text);
-    }
-    edits_.items().clear();
-    if (!out_.empty()) write_(out_);
-    out_.clear();
+    edits_.finish();
   }
 
   /// The `.dat` with its edits, nullopt for a program without one.
-  std::optional<std::string> dat() {
-    const postproc::Program& p = stream_.program();
-    if (p.files.size() < 2) return std::nullopt;
-    const std::string& b = p.files[1].bytes;
-    std::string s;
-    s.reserve(b.size() + 64);
-    std::uint64_t pos = 0;
-    for (const auto& [at, e] : dat_edits_.items()) {
-      if (at < pos || at + e.length > b.size())
-        throw std::logic_error("overlapping edits in " + p.files[1].path);
-      s.append(b, pos, at - pos);
-      s += e.text;
-      pos = at + e.length;
-    }
-    s.append(b, pos, std::string::npos);
-    return s;
-  }
+  std::optional<std::string> dat() { return edits_.dat(); }
 
  private:
-  static constexpr size_t kOutBytes = size_t{1} << 20U;
-  /// A window of the first file: its first byte in the file, its lines and bytes.
-  struct Window {
-    std::uint64_t start{0};
-    int line_base{0};
-    std::vector<std::uint32_t> line_starts;
-    std::string bytes;
-  };
   /// An edit at a byte of the first file (or of the .dat), as EditLog::Op.
   struct FileEdit {
     bool erase{false};
@@ -846,81 +812,6 @@ class StreamedProgramEdits {
     std::uint32_t length{0};
     std::string text;
   };
-  struct Pending {
-    std::uint32_t length{0};
-    std::string text;
-  };
-  /// A file's pending edits by their first byte, in order: a map's put and erase on a deque (the
-  /// edits come in file order almost always: appended, and written from the front).
-  class PendingEdits {
-   public:
-    using Item = std::pair<std::uint64_t, Pending>;
-    /// The edit at `at` (replacing one there).
-    void put(std::uint64_t at, Pending&& p) {
-      if (items_.empty() || at > items_.back().first) {
-        items_.emplace_back(at, std::move(p));
-        return;
-      }
-      const auto it = lowerBound(at);
-      if (it != items_.end() && it->first == at) {
-        it->second = std::move(p);
-      } else {
-        items_.emplace(it, at, std::move(p));
-      }
-    }
-    /// Drops the edit at `at`, if any.
-    void erase(std::uint64_t at) {
-      const auto it = lowerBound(at);
-      if (it != items_.end() && it->first == at) items_.erase(it);
-    }
-    [[nodiscard]] bool after(std::uint64_t at) const {
-      return items_.empty() || at > items_.back().first;
-    }
-    std::deque<Item>& items() { return items_; }
-
-   private:
-    std::deque<Item>::iterator lowerBound(std::uint64_t at) {
-      return std::lower_bound(items_.begin(), items_.end(), at,
-                              [](const Item& x, std::uint64_t a) { return x.first < a; });
-    }
-    std::deque<Item> items_;
-  };
-
-  /// The window that holds line `line` of the first file (1-based).
-  Window& windowOf(int line) {
-    for (auto it = windows_.rbegin(); it != windows_.rend(); ++it) {
-      if (line > it->line_base && line <= it->line_base + static_cast<int>(it->line_starts.size()))
-        return *it;
-    }
-    throw InternalError("StreamedProgramEdits: line " + std::to_string(line) +
-                        " is no longer held");
-  }
-
-  /// The window after the last one is in the stream's program: its bytes kept, the whole-file
-  /// number style of the first reading, the marker queued once the DEF line is met.
-  void installed() {
-    postproc::Program& p = stream_.program();
-    postproc::SourceFile& f = p.files[0];
-    const postproc::SourceFile& whole = r_.context.job.program->files[0];
-    f.bare_fractions = whole.bare_fractions;
-    f.zero_fractions = whole.zero_fractions;
-    f.significant9 = whole.significant9;
-    Window w;
-    w.start = total_;
-    w.line_base = f.line_base;
-    w.line_starts = f.line_starts;
-    w.bytes = f.bytes;
-    total_ += w.bytes.size();
-    windows_.push_back(std::move(w));
-    if (!marked_) {
-      p.edits.clear();
-      marked_ = postproc::markCompensated(p, marker_);
-      for (auto& [key, e] : p.edits)
-        put(FileEdit{false, 0, windows_.back().start + e.offset, e.length, std::move(e.text)});
-      p.edits.clear();
-    }
-  }
-
   /// Retires what no later hole reads, writes what no later edit changes, and reads on to the
   /// next holes.
   void advance() {
@@ -934,88 +825,19 @@ class StreamedProgramEdits {
     holes_.clear();
     pending_ = 0;
     while (true) {
-      flush(bound());
+      edits_.flush();
       if (ended_) throw InternalError("StreamedProgramEdits: fewer holes than the first reading");
       if (stream_.next()) {
-        installed();
+        edits_.installed();
         rec_.advance(stream_.program(), false);
       } else {
         ended_ = true;
         // the stream releases the last window's bytes at the end: its last holes read them
-        if (!windows_.empty()) stream_.program().files[0].bytes = windows_.back().bytes;
+        if (const auto* w = edits_.latestWindow()) stream_.program().files[0].bytes = w->bytes;
         rec_.advance(stream_.program(), true);
       }
       holes_ = rec_.take();
       if (!holes_.empty()) return;
-    }
-  }
-
-  /// The first byte of the first file a later edit may change: the start of the line of the
-  /// earliest target the stream's program holds (0 until the marker is queued).
-  std::uint64_t bound() {
-    if (!marked_) return 0;
-    const postproc::Program& p = stream_.program();
-    int line = std::numeric_limits<int>::max();
-    for (const postproc::Target& t : p.target_list) {
-      if (t.file == 0 && t.line >= 1) line = std::min(line, t.line);
-    }
-    if (line == std::numeric_limits<int>::max()) return total_;
-    const Window& w = windowOf(line);
-    return w.start + w.line_starts[static_cast<size_t>(line - 1 - w.line_base)];
-  }
-
-  void emit(std::string_view b) {
-    out_.append(b);
-    if (out_.size() >= kOutBytes) {
-      write_(out_);
-      out_.clear();
-    }
-  }
-
-  /// Bytes [a, b) of the first file, unedited.
-  void emitBytes(std::uint64_t a, std::uint64_t b) {
-    for (const Window& w : windows_) {
-      const std::uint64_t e = w.start + w.bytes.size();
-      if (e <= a || w.start >= b) continue;
-      const std::uint64_t x = std::max(a, w.start);
-      const std::uint64_t y = std::min(b, e);
-      emit(std::string_view(w.bytes).substr(x - w.start, y - x));
-    }
-  }
-
-  /// Writes the first file's bytes before `upto` with their edits (an edit that reaches past it
-  /// waits), and drops the windows written.
-  void flush(std::uint64_t upto) {
-    upto = std::min(upto, total_);
-    if (upto <= written_) return;
-    std::deque<PendingEdits::Item>& q = edits_.items();
-    auto it = q.begin();
-    for (; it != q.end() && it->first < upto; ++it) {
-      if (it->first + it->second.length > upto) {
-        upto = it->first;
-        break;
-      }
-      emitBytes(written_, it->first);
-      emit(it->second.text);
-      written_ = it->first + it->second.length;
-    }
-    q.erase(q.begin(), it);
-    if (upto > written_) {
-      emitBytes(written_, upto);
-      written_ = upto;
-    }
-    while (!windows_.empty() && windows_.front().start + windows_.front().bytes.size() <= written_)
-      windows_.pop_front();
-  }
-
-  void put(FileEdit&& e) {
-    if (e.file == 0 && e.at < written_)
-      throw std::logic_error("overlapping edits in " + r_.context.job.program->files[0].path);
-    PendingEdits& edits = e.file == 0 ? edits_ : dat_edits_;
-    if (e.erase) {
-      if (!edits.after(e.at)) edits.erase(e.at);
-    } else {
-      edits.put(e.at, Pending{e.length, std::move(e.text)});
     }
   }
 
@@ -1040,8 +862,8 @@ class StreamedProgramEdits {
     for (const int t : h.targets) {
       const postproc::Target& tg = prog.targets()[static_cast<size_t>(t)];
       const CompensatedTarget ct = compensatedTarget(r_.context.cell, c, T_W_frame, prog, tg);
-      Window* w = tg.file == 0 ? &windowOf(tg.line) : nullptr;
-      const bool other = swap && w != nullptr && w != &windows_.back();
+      postproc::StreamedEdits::Window* w = tg.file == 0 ? &edits_.windowOf(tg.line) : nullptr;
+      const bool other = swap && w != nullptr && w != edits_.latestWindow();
       if (other) std::swap(prog.files[0].bytes, w->bytes);
       one.ops.clear();
       const postproc::EditResult er =
@@ -1108,7 +930,7 @@ class StreamedProgramEdits {
     for (size_t k = 0; k < m; ++k) {
       if (!res[k].ok) continue;
       if (serial_[k]) editHole(holes_[pending_ + k], res[k], true, logs_[k], refusals_[k]);
-      for (FileEdit& e : logs_[k]) put(std::move(e));
+      for (FileEdit& e : logs_[k]) edits_.put(e.erase, e.file, e.at, e.length, std::move(e.text));
       logs_[k].clear();
       for (std::string& x : refusals_[k]) r_.refused.push_back(std::move(x));
     }
@@ -1116,23 +938,15 @@ class StreamedProgramEdits {
 
   CompensationResult& r_;
   int threads_;
-  ByteWriter write_;
   postproc::ProgramStream stream_;
+  postproc::StreamedEdits edits_;  ///< the windows' bytes, the queued edits, the writing
   postproc::HoleRecognizer rec_;
-  std::string marker_;
   std::vector<postproc::Hole> holes_;  ///< the holes recognised in the window
   size_t pending_{0};                  ///< holes_[pending_ ..] not edited yet
   size_t edited_{0};                   ///< holes edited so far
   bool ended_{false};
-  bool marked_{false};
   size_t retired_targets_{0};
   size_t pinned_{0};
-  std::deque<Window> windows_;
-  std::uint64_t total_{0};    ///< bytes of the first file read
-  std::uint64_t written_{0};  ///< bytes of the first file written (edits applied)
-  PendingEdits edits_;
-  PendingEdits dat_edits_;
-  std::string out_;
   std::vector<char> serial_;
   std::vector<std::pair<int, size_t>> uses_;
   std::vector<std::vector<FileEdit>> logs_;
