@@ -764,6 +764,7 @@ class StreamedProgramEdits {
         stream_(r.context.job.path, postproc::ProgramStream::kWindowBytes, threads > 1),
         edits_(stream_, std::move(write), markerText(r.context.cell, r.orientation),
                r.context.job.program->files[0]) {
+    stream_.skipValueRanges();  // the first reading checked them
     postproc::Program& p = stream_.program();
     p.position_min_decimals = 5;  // 0.01 µm: the written target carries the compensation
     p.fanuc_turn_axes = r.context.job.program->fanuc_turn_axes;
