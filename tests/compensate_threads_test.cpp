@@ -10,6 +10,8 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <string>
+#include <string_view>
 #include <thread>
 
 #include "compensator/support/atomic_file.hpp"
@@ -474,6 +476,33 @@ TEST(CompensateThreads, MarkedProgramsAndHoleListsAreNotStreamed) {
   const std::string plain = dir + "/plain.src";
   test::writeFile(plain, test::krlDrillCycles(3));
   EXPECT_TRUE(api::compensationStreams(plain, job));
+  // a large program's halves are searched on two threads: a marker across the middle, at the
+  // start or at the end is found
+  const std::string program = test::krlDrillCycles(3);
+  std::string filler;
+  while (filler.size() < (std::size_t{17} << 20U))
+    filler += "; the cell's set-up sheet, one line of many ...........................\n";
+  const std::string large =
+      program.substr(0, program.find('\n') + 1) + filler + program.substr(program.find('\n') + 1);
+  const std::string marker = "roprec compensated";
+  for (const std::string_view where : {"middle", "start", "end", "none"}) {
+    SCOPED_TRACE(std::string(where));
+    std::string text = large;
+    if (where == "middle") {
+      const std::size_t q = (text.size() + marker.size()) / 2 - marker.size() / 2;
+      ASSERT_NE(text[q - 1], '\n');
+      text.insert(q, marker);
+      ASSERT_LT(q, text.size() / 2);
+      ASSERT_GT(q + marker.size(), text.size() / 2);
+    } else if (where == "start") {
+      text.insert(0, ";" + marker + "\n");
+    } else if (where == "end") {
+      text += ";" + marker;
+    }
+    const std::string path = dir + "/large.src";
+    test::writeFile(path, text);
+    EXPECT_EQ(api::compensationStreams(path, job), where == "none");
+  }
   job.job.holes = test::sourceDir() + "/samples/emotor-housing/holes.csv";
   EXPECT_FALSE(api::compensationStreams(plain, job));
   job.job.holes.reset();
