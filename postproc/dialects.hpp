@@ -24,10 +24,13 @@ void parseJson(Program& p);
 std::pair<std::string, std::string> krlFiles(const std::string& path);
 
 /// What KrlStream::lexWindow() reads of a window besides its tokens: the target aggregates of
-/// its motion lines, parsed as the reader parses them (defined in krl.cpp).
+/// its motion lines and the targets they make, parsed as the reader parses them, and the lines'
+/// target expressions split as the reader splits them (defined in krl.cpp).
 struct KrlAhead;
 /// The target aggregates a KrlAhead holds.
 std::size_t aggregatesReadAhead(const KrlAhead& a);
+/// The targets those aggregates made (not taken yet).
+std::size_t targetsReadAhead(const KrlAhead& a);
 
 /// The KRL reader a window of the .src at a time (ProgramStream): constructed once p.files holds
 /// the .src's first window and the .dat (read then); lines() reads the lines of the window
@@ -40,13 +43,15 @@ class KrlStream {
   KrlStream& operator=(const KrlStream&) = delete;
   void lines();
   /// lines() of a window whose tokens lexWindow() put in p.files[0].tokens already; `ahead`:
-  /// what lexWindow() returned for them (its aggregates are taken instead of parsed again).
-  void lexedLines(const KrlAhead* ahead = nullptr);
+  /// what lexWindow() returned for them (its aggregates, targets and splits are taken instead of
+  /// read again; its targets are moved from).
+  void lexedLines(KrlAhead* ahead = nullptr);
   void finish();
   /// Lexes a window of whole lines of a .src (not its first: no byte-order mark) into f.tokens
-  /// as lines() would, line after line, and parses the target aggregates of its motion lines
-  /// into `ahead` (made when null, else refilled: its memory is reused): lexedLines() then
-  /// reads them (this may run on another thread, ahead of the reader).
+  /// as lines() would, line after line, and reads its motion lines (their target aggregates,
+  /// the targets they make, their target expressions) into `ahead` (made when null, else
+  /// refilled: its memory is reused): lexedLines() then takes them (this may run on another
+  /// thread, ahead of the reader).
   static void lexWindow(SourceFile& f, std::shared_ptr<KrlAhead>& ahead);
   /// The motion the reader may still change (the last segment of a SPLINE block being read),
   /// -1 when none: motions from it on may not be retired.

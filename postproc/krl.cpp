@@ -224,11 +224,96 @@ std::size_t splitTargets(const SourceFile& f, std::size_t from, std::size_t e,
   return k;
 }
 
+// Slot of a position component in a target: X Y Z A B C, S T, A1..A6, E1..E6 (kNone: other).
+enum class Slot { kNone, kPos, kRot, kStatus, kTurn, kJoint, kExt };
+struct SlotIndex {
+  Slot slot{Slot::kNone};
+  std::size_t k{0};
+};
+SlotIndex slotOf(std::string_view n) {
+  if (n.size() == 1) {
+    const char c = asciiUpper(n[0]);
+    if (c >= 'X' && c <= 'Z') return {Slot::kPos, static_cast<std::size_t>(c - 'X')};
+    if (c >= 'A' && c <= 'C') return {Slot::kRot, static_cast<std::size_t>(c - 'A')};
+    if (c == 'S') return {Slot::kStatus, 0};
+    if (c == 'T') return {Slot::kTurn, 0};
+  } else if (n.size() == 2 && n[1] >= '1' && n[1] <= '6') {
+    const char c = asciiUpper(n[0]);
+    const auto k = static_cast<std::size_t>(n[1] - '1');
+    if (c == 'A') return {Slot::kJoint, k};
+    if (c == 'E') return {Slot::kExt, k};
+  }
+  return {};
+}
+
+// Stores component c (a number or a KRL literal) of file f (index `file`) in its slot of t.
+void setComponent(const SourceFile& f, int file, Target& t, const Component& c, SlotIndex s) {
+  if (c.kind == Component::kLiteral && s.slot != Slot::kStatus && s.slot != Slot::kTurn)
+    failAt(f, c.begin, "component " + upper(c.name) + " is not a number");
+  const NumberField n = tokenField(f, file, c.begin, c.end, c.value);
+  switch (s.slot) {
+    case Slot::kPos:
+      t.pos[s.k] = n;
+      break;
+    case Slot::kRot:
+      t.rot[s.k] = n;
+      break;
+    case Slot::kStatus:
+    case Slot::kTurn:
+      if (c.value < 0 || c.value != std::floor(c.value) || c.value > 1e6)
+        failAt(f, c.begin, upper(c.name) + " must be a non-negative integer");
+      (s.slot == Slot::kStatus ? t.statusField() : t.turnField()) = n;
+      (s.slot == Slot::kStatus ? t.config.status : t.config.turn) = toInt(c.value);
+      break;
+    case Slot::kJoint:
+      t.joints[s.k] = n;
+      break;
+    case Slot::kExt:
+      t.ext[s.k] = n;
+      break;
+    case Slot::kNone:
+      break;
+  }
+}
+
+// The target of position aggregate `a` (of type `type`) of file f (index `file`), as the reader
+// makes it: every member but its name, line and uses. Throws InputError (failAt) where the reader
+// stops. `check9`: returns whether a Cartesian component is written with 9 significant digits
+// (KSS style: SourceFile::significant9), else false.
+bool fillTarget(const SourceFile& f, int file, const Aggregate& a, std::string_view type,
+                bool check9, Target& t) {
+  t.file = file;
+  t.aggregate_end = a.close;
+  t.config.vendor = Vendor::kKuka;
+  const bool joint =
+      iequals(type, "AXIS") || iequals(type, "E6AXIS") || (type.empty() && a.find("A1") != nullptr);
+  t.kind = joint ? TargetKind::kJoint : TargetKind::kCartesian;
+  t.orientation = joint ? Orientation::kNone : Orientation::kKukaAbc;
+  for (const Component& c : a.comps) {
+    const SlotIndex s = slotOf(c.name);
+    if (c.kind != Component::kNumber && c.kind != Component::kLiteral) {
+      if (s.slot != Slot::kNone)
+        failAt(f, c.begin, "component " + upper(c.name) + " is not a number");
+      continue;
+    }
+    setComponent(f, file, t, c, s);
+  }
+  if (joint || !check9) return false;
+  for (const NumberField* n : {&t.pos[0], &t.pos[1], &t.pos[2], &t.rot[0], &t.rot[1], &t.rot[2]}) {
+    if (n->present() && n->length >= 9 &&
+        sigDigits(std::string_view(f.bytes).substr(n->offset, n->length)) >= 9)
+      return true;
+  }
+  return false;
+}
+
 }  // namespace
 
-/// The target aggregates of a window's motion lines, parsed ahead: the aggregate whose '{' is
-/// token `open_token` ends before token `after`; its components are comps[comp_begin,
-/// comp_end), their names (and its type) as offsets into the window.
+/// The motion lines of a window read ahead: their target aggregates parsed (the aggregate whose
+/// '{' is token `open_token` ends before token `after`; its components are comps[comp_begin,
+/// comp_end), their names (and its type) as offsets into the window), the target each of them
+/// makes (`target`: 1 + its index in `targets`; 0: none, the reader makes it and stops there with
+/// its error) and each line's target expressions split (`motions`, in token order).
 struct KrlAhead {
   struct Aggregate {
     std::uint32_t open_token{0};
@@ -239,14 +324,28 @@ struct KrlAhead {
     std::uint32_t type_length{0};
     std::uint32_t open{0};
     std::uint32_t close{0};
+    std::uint32_t target{0};
+    bool significant9{false};  ///< its target is written with 9 significant digits
   };
   struct Component {
     postproc::Component comp;  ///< its name left empty
     std::uint32_t name_offset{0};
     std::uint32_t name_length{0};
   };
+  /// splitTargets of the motion whose keyword is token `keyword`, its line's tokens ending
+  /// before `end`: it returned `split` and `count` expressions, the first two kept.
+  struct Motion {
+    std::uint32_t keyword{0};
+    std::uint32_t end{0};
+    std::uint32_t split{0};
+    std::uint32_t count{0};
+    std::array<std::pair<std::uint32_t, std::uint32_t>, 2> exprs{};
+  };
   std::vector<Aggregate> aggregates;  ///< in token order
   std::vector<Component> comps;
+  std::vector<Target> targets;                             ///< taken (moved from) by the reader
+  std::vector<Motion> motions;                             ///< in token order
+  std::vector<std::pair<std::size_t, std::size_t>> exprs;  ///< splitTargets' scratch
 };
 
 namespace {
@@ -257,9 +356,10 @@ std::uint32_t offsetIn(const SourceFile& f, std::string_view s) {
 
 // The aggregates of tokens [b, j) of f, one lexed line, into `out` when it is a motion: each
 // '{' after the keyword read by readComponents up to the line's end (its trailing comments
-// excluded); one that does not read is left to the reader (which stops there with its error).
-// readComponents looks at no token past the aggregate's '}', so the aggregate is the one the
-// reader reads over any target expression that holds it (KrlReader::targetAggregate).
+// excluded) and the target it makes (fillTarget); one that does not read is left to the reader
+// (which stops there with its error). readComponents looks at no token past the aggregate's '}',
+// so the aggregate is the one the reader reads over any target expression that holds it
+// (KrlReader::targetAggregate). The line's target expressions split as the reader splits them.
 void readAheadLine(const SourceFile& f, std::size_t b, std::size_t j,
                    std::vector<Component>& scratch, KrlAhead& out) {
   std::size_t e = j;
@@ -268,6 +368,16 @@ void readAheadLine(const SourceFile& f, std::size_t b, std::size_t j,
   const auto ident = [&f](std::size_t i) { return f.tokens[i].kind == TokenKind::kIdentifier; };
   if (k < e && ident(k) && iequals(f.text(f.tokens[k]), "GLOBAL")) ++k;
   if (k >= e || !ident(k) || !isMotionKeyword(f.text(f.tokens[k]))) return;
+  KrlAhead::Motion mo;
+  mo.keyword = static_cast<std::uint32_t>(k);
+  mo.end = static_cast<std::uint32_t>(e);
+  mo.split = static_cast<std::uint32_t>(splitTargets(f, k + 1, e, out.exprs));
+  mo.count = static_cast<std::uint32_t>(out.exprs.size());
+  for (std::size_t x = 0; x < mo.exprs.size() && x < out.exprs.size(); ++x) {
+    mo.exprs[x] = {static_cast<std::uint32_t>(out.exprs[x].first),
+                   static_cast<std::uint32_t>(out.exprs[x].second)};
+  }
+  out.motions.push_back(mo);
   for (++k; k < e; ++k) {
     if (punct1(f, f.tokens[k]) != '{') continue;
     TokenCursor c(f, k, e);
@@ -293,6 +403,14 @@ void readAheadLine(const SourceFile& f, std::size_t b, std::size_t j,
     g.type_length = static_cast<std::uint32_t>(a.type.size());
     g.open = a.open;
     g.close = a.close;
+    a.comps = scratch;
+    Target& t = out.targets.emplace_back();
+    try {
+      g.significant9 = fillTarget(f, 0, a, a.type, true, t);
+      g.target = static_cast<std::uint32_t>(out.targets.size());
+    } catch (const InputError&) {
+      out.targets.pop_back();
+    }
     out.aggregates.push_back(g);
     k = c.index() - 1;  // on after the aggregate
   }
@@ -347,10 +465,11 @@ class KrlReader {
     forEachLine([&](std::size_t b, std::size_t e, std::size_t j) { srcLine(b, e, j); });
   }
   /// readSrcLines() over the window's tokens lexed already (KrlStream::lexWindow).
-  void readLexedSrcLines(const KrlAhead* ahead) {
+  void readLexedSrcLines(KrlAhead* ahead) {
     file_ = 0;
     ahead_ = ahead;
     ahead_next_ = 0;
+    ahead_motion_ = 0;
     forEachLexedLine([&](std::size_t b, std::size_t e, std::size_t j) { srcLine(b, e, j); });
     ahead_ = nullptr;
   }
@@ -378,10 +497,11 @@ class KrlReader {
   // named frames too: found in targets_ and read back from the target (namedFrameIndex), so a
   // 100,000-point .dat keeps no second copy of its poses and no second table entry.
   NameMap<int> named_frames_;
-  std::vector<Component> comps_;    // parseAggregate's scratch (see Aggregate)
-  std::string marker_;              // addMarker's buffer
-  const KrlAhead* ahead_{nullptr};  // the window's aggregates read ahead (readLexedSrcLines)
-  std::size_t ahead_next_{0};       // the first of them not taken yet
+  std::vector<Component> comps_;  // parseAggregate's scratch (see Aggregate)
+  std::string marker_;            // addMarker's buffer
+  KrlAhead* ahead_{nullptr};      // the window's motion lines read ahead (readLexedSrcLines)
+  std::size_t ahead_next_{0};     // the first of its aggregates not taken yet
+  std::size_t ahead_motion_{0};   // the first of its motions not taken yet
   std::vector<Frame> frame_decls_;
   std::unordered_map<int, Frame> base_data_;
   std::unordered_map<int, Frame> tool_data_;
@@ -483,13 +603,10 @@ class KrlReader {
   // there when there is one within it (readAheadLine: the same tokens read by the same
   // readComponents, which looks at no token past the aggregate's '}').
   Aggregate targetAggregate(TokenCursor& c, std::size_t e) {
-    if (ahead_ == nullptr) return parseAggregate(c);
-    const std::vector<KrlAhead::Aggregate>& list = ahead_->aggregates;
-    while (ahead_next_ < list.size() && list[ahead_next_].open_token < c.index()) ++ahead_next_;
-    if (ahead_next_ == list.size() || list[ahead_next_].open_token != c.index() ||
-        list[ahead_next_].after > e)
-      return parseAggregate(c);
-    const KrlAhead::Aggregate& g = list[ahead_next_++];
+    const KrlAhead::Aggregate* read = aggregateReadAhead(c, e);
+    if (read == nullptr) return parseAggregate(c);
+    const KrlAhead::Aggregate& g = *read;
+    ++ahead_next_;
     const std::string_view bytes = file().bytes;
     comps_.clear();
     for (std::size_t k = g.comp_begin; k < g.comp_end; ++k) {
@@ -506,91 +623,51 @@ class KrlReader {
     return a;
   }
 
-  NumberField field(const Component& c) const {
-    return tokenField(file(), file_, c.begin, c.end, c.value);
+  // The aggregate read ahead whose '{' is token c.index(), ending within [c.index(), e); null
+  // when there is none (the reader parses it).
+  const KrlAhead::Aggregate* aggregateReadAhead(const TokenCursor& c, std::size_t e) {
+    if (ahead_ == nullptr) return nullptr;
+    const std::vector<KrlAhead::Aggregate>& list = ahead_->aggregates;
+    while (ahead_next_ < list.size() && list[ahead_next_].open_token < c.index()) ++ahead_next_;
+    if (ahead_next_ == list.size() || list[ahead_next_].open_token != c.index() ||
+        list[ahead_next_].after > e)
+      return nullptr;
+    return &list[ahead_next_];
   }
 
-  // Slot of a position component in a target: X Y Z A B C, S T, A1..A6, E1..E6 (kNone: other).
-  enum class Slot { kNone, kPos, kRot, kStatus, kTurn, kJoint, kExt };
-  struct SlotIndex {
-    Slot slot{Slot::kNone};
-    std::size_t k{0};
-  };
-  static SlotIndex slotOf(std::string_view n) {
-    if (n.size() == 1) {
-      const char c = asciiUpper(n[0]);
-      if (c >= 'X' && c <= 'Z') return {Slot::kPos, static_cast<std::size_t>(c - 'X')};
-      if (c >= 'A' && c <= 'C') return {Slot::kRot, static_cast<std::size_t>(c - 'A')};
-      if (c == 'S') return {Slot::kStatus, 0};
-      if (c == 'T') return {Slot::kTurn, 0};
-    } else if (n.size() == 2 && n[1] >= '1' && n[1] <= '6') {
-      const char c = asciiUpper(n[0]);
-      const auto k = static_cast<std::size_t>(n[1] - '1');
-      if (c == 'A') return {Slot::kJoint, k};
-      if (c == 'E') return {Slot::kExt, k};
-    }
-    return {};
+  // The target the read-ahead made of aggregate g (makeTarget(a, "", a.type) of it), taken;
+  // returns its index.
+  int takeTarget(const KrlAhead::Aggregate& g) {
+    p_.target_list.push_back(std::move(ahead_->targets[g.target - 1]));
+    p_.target_list.back().line = lineAt(g.open);
+    if (g.significant9) p_.files[static_cast<std::size_t>(file_)].significant9 = true;
+    return static_cast<int>(p_.target_list.size() - 1);
   }
 
-  // Stores component c (a number or a KRL literal) in its slot of t.
-  void setComponent(Target& t, const Component& c, SlotIndex s) {
-    if (c.kind == Component::kLiteral && s.slot != Slot::kStatus && s.slot != Slot::kTurn)
-      fail(c.begin, "component " + upper(c.name) + " is not a number");
-    const NumberField f = field(c);
-    switch (s.slot) {
-      case Slot::kPos:
-        t.pos[s.k] = f;
-        break;
-      case Slot::kRot:
-        t.rot[s.k] = f;
-        break;
-      case Slot::kStatus:
-      case Slot::kTurn:
-        if (c.value < 0 || c.value != std::floor(c.value) || c.value > 1e6)
-          fail(c.begin, upper(c.name) + " must be a non-negative integer");
-        (s.slot == Slot::kStatus ? t.statusField() : t.turnField()) = f;
-        (s.slot == Slot::kStatus ? t.config.status : t.config.turn) = toInt(c.value);
-        break;
-      case Slot::kJoint:
-        t.joints[s.k] = f;
-        break;
-      case Slot::kExt:
-        t.ext[s.k] = f;
-        break;
-      case Slot::kNone:
-        break;
-    }
+  // splitTargets of the motion whose keyword is token `keyword` (its expressions from token
+  // `from`, its line's tokens ending before e): the read-ahead's split when it made one.
+  std::size_t splitMotion(std::size_t keyword, std::size_t from, std::size_t e,
+                          std::vector<std::pair<std::size_t, std::size_t>>& exprs) {
+    if (ahead_ == nullptr) return splitTargets(file(), from, e, exprs);
+    const std::vector<KrlAhead::Motion>& list = ahead_->motions;
+    while (ahead_motion_ < list.size() && list[ahead_motion_].keyword < keyword) ++ahead_motion_;
+    if (ahead_motion_ == list.size() || list[ahead_motion_].keyword != keyword ||
+        list[ahead_motion_].end != e || from != keyword + 1)
+      return splitTargets(file(), from, e, exprs);
+    const KrlAhead::Motion& mo = list[ahead_motion_++];
+    exprs.clear();
+    for (std::size_t x = 0; x < mo.exprs.size() && x < mo.count; ++x)
+      exprs.emplace_back(mo.exprs[x].first, mo.exprs[x].second);
+    return mo.split;
   }
 
   // Builds a target from a position aggregate; returns its index.
   int makeTarget(const Aggregate& a, std::string_view name, std::string_view type) {
     Target& t = p_.target_list.emplace_back();
     t.name = std::string(name);
-    t.file = file_;
     t.line = lineAt(a.open);
-    t.aggregate_end = a.close;
-    t.config.vendor = Vendor::kKuka;
-    const bool joint = iequals(type, "AXIS") || iequals(type, "E6AXIS") ||
-                       (type.empty() && a.find("A1") != nullptr);
-    t.kind = joint ? TargetKind::kJoint : TargetKind::kCartesian;
-    t.orientation = joint ? Orientation::kNone : Orientation::kKukaAbc;
-    for (const Component& c : a.comps) {
-      const SlotIndex s = slotOf(c.name);
-      if (c.kind != Component::kNumber && c.kind != Component::kLiteral) {
-        if (s.slot != Slot::kNone) fail(c.begin, "component " + upper(c.name) + " is not a number");
-        continue;
-      }
-      setComponent(t, c, s);
-    }
-    if (!joint && !file().significant9) {
-      for (const NumberField* f :
-           {&t.pos[0], &t.pos[1], &t.pos[2], &t.rot[0], &t.rot[1], &t.rot[2]}) {
-        if (f->present() && f->length >= 9 &&
-            sigDigits(std::string_view(file().bytes).substr(f->offset, f->length)) >= 9) {
-          p_.files[static_cast<std::size_t>(file_)].significant9 = true;
-        }
-      }
-    }
+    if (fillTarget(file(), file_, a, type, !file().significant9, t))
+      p_.files[static_cast<std::size_t>(file_)].significant9 = true;
     const int idx = static_cast<int>(p_.target_list.size() - 1);
     if (!name.empty()) targets_[name] = idx;
     return idx;
@@ -842,6 +919,13 @@ class KrlReader {
     const std::string_view text = std::string_view(f.bytes).substr(s, en - s);
     if (!c.isPunct('{')) m.target_text = p_.addUniqueText(text);  // literal targets: the text
     if (c.isPunct('{')) {
+      // the target the read-ahead made, when the expression is the aggregate alone
+      if (const KrlAhead::Aggregate* g = aggregateReadAhead(c, e);
+          g != nullptr && g->target > 0 && g->after == e && !relative) {
+        ++ahead_next_;
+        c.seek(g->after);
+        return takeTarget(*g);
+      }
       const Aggregate a = targetAggregate(c, e);
       if (!c.done() || relative) {
         m.derivation = relative ? m.instruction : p_.addText(":");
@@ -904,6 +988,7 @@ class KrlReader {
     const std::string_view kw = c.text();
     m.instruction = p_.addText(kw);
     const std::size_t kw_off = c.peek().offset;
+    const std::size_t kw_token = c.index();
     c.next();
     m.file = file_;
     m.line = lineAt(kw_off);
@@ -917,7 +1002,7 @@ class KrlReader {
     }
     m.config_honoured = m.type == MotionType::kJoint;
     std::vector<std::pair<std::size_t, std::size_t>>& exprs = exprs_;
-    const std::size_t k = splitTargets(f, c.index(), e, exprs);
+    const std::size_t k = splitMotion(kw_token, c.index(), e, exprs);
     if (m.type == MotionType::kCircular && exprs.size() >= 2) {
       Motion aux_dummy = m;
       m.aux = motionTarget(exprs[0].first, exprs[0].second, aux_dummy, relative);
@@ -1199,7 +1284,7 @@ struct KrlStream::Reader : KrlReader {
 KrlStream::KrlStream(Program& p) : r_(std::make_unique<Reader>(p)) { r_->start(false); }
 KrlStream::~KrlStream() = default;
 void KrlStream::lines() { r_->readSrcLines(); }
-void KrlStream::lexedLines(const KrlAhead* ahead) { r_->readLexedSrcLines(ahead); }
+void KrlStream::lexedLines(KrlAhead* ahead) { r_->readLexedSrcLines(ahead); }
 void KrlStream::lexWindow(SourceFile& f, std::shared_ptr<KrlAhead>& ahead) {
   const LexOptions o = krlLexOptions();
   f.tokens.clear();
@@ -1207,6 +1292,8 @@ void KrlStream::lexWindow(SourceFile& f, std::shared_ptr<KrlAhead>& ahead) {
   if (!ahead) ahead = std::make_shared<KrlAhead>();
   ahead->aggregates.clear();
   ahead->comps.clear();
+  ahead->targets.clear();
+  ahead->motions.clear();
   std::vector<Component> scratch;
   for (std::size_t pos = 0; pos < f.bytes.size();) {
     const std::size_t b = f.tokens.size();
@@ -1217,6 +1304,10 @@ void KrlStream::lexWindow(SourceFile& f, std::shared_ptr<KrlAhead>& ahead) {
   }
 }
 std::size_t aggregatesReadAhead(const KrlAhead& a) { return a.aggregates.size(); }
+std::size_t targetsReadAhead(const KrlAhead& a) {
+  return static_cast<std::size_t>(std::count_if(a.aggregates.begin(), a.aggregates.end(),
+                                                [](const auto& g) { return g.target > 0; }));
+}
 void KrlStream::finish() { r_->finish(); }
 int KrlStream::heldMotion() const { return r_->heldMotion(); }
 void KrlStream::retired(std::size_t m) { r_->retired(m); }

@@ -201,7 +201,7 @@ bool ProgramStream::next() {
   } else {
     krl_->lines();
   }
-  if (!range_error_) {
+  if (!range_error_ && !skip_ranges_) {
     try {
       checkValueRanges(p_);
     } catch (const InputError&) {

@@ -58,6 +58,9 @@ class ProgramStream {
   /// was read: the end-of-file checks are then done and a value out of range thrown.
   bool next();
   [[nodiscard]] Program& program() { return p_; }
+  /// A reading of a program read (and checked) whole before: next() checks no value range any
+  /// more (checkValueRanges), the reader's errors stay.
+  void skipValueRanges() { skip_ranges_ = true; }
   /// Whether the program is read by windows (KRL); false: next() reads it whole once.
   [[nodiscard]] bool windowed() const { return krl_ != nullptr; }
   /// The window's motions [0, settledMotions()) the reader will not change any more: all of them
@@ -110,6 +113,7 @@ class ProgramStream {
   std::exception_ptr range_error_;
   Spare spare_;  ///< the window before the one p_ holds (read_ahead: taken by the next task)
   bool read_ahead_{false};
+  bool skip_ranges_{false};
   std::future<Ahead> ahead_;  ///< the next window (read_ahead); last: joined first
 };
 

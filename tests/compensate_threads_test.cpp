@@ -10,6 +10,8 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <string>
+#include <string_view>
 #include <thread>
 
 #include "compensator/support/atomic_file.hpp"
@@ -395,12 +397,16 @@ namespace {
 /// compensateStreamedProgram (the program read by windows, twice) against compensateJob on
 /// the program read whole: the program's files, the targets CSV of the holes the sink gets and
 /// the job's counters.
-void expectStreamedLikeWhole(const std::string& program, OrientationMode mode, int threads) {
-  SCOPED_TRACE(program + " " + orientationModeName(mode) + " threads " + std::to_string(threads));
+/// `block`: the holes compensated (and edited) at a time, 0: the default.
+void expectStreamedLikeWhole(const std::string& program, OrientationMode mode, int threads,
+                             size_t block = 0) {
+  SCOPED_TRACE(program + " " + orientationModeName(mode) + " threads " + std::to_string(threads) +
+               " block " + std::to_string(block));
   const std::string cell = test::sourceDir() + "/samples/cells/housing-kr120.xml";
   api::CompensationJob job;
   job.options.mode = mode;
   job.job.threads = threads;
+  if (block > 0) job.options.block = block;
   const api::CompensationResult whole = api::compensateJob(cell, program, job);
   const std::vector<std::string> want = postproc::renderFiles(*whole.context.job.program);
   ASSERT_TRUE(api::compensationStreams(program, job));
@@ -448,6 +454,10 @@ TEST(CompensateThreads, StreamedProgramWritesTheBytesOfTheWholeJob) {
   ASSERT_GT(std::filesystem::file_size(big), 2 * postproc::ProgramStream::kWindowBytes);
   for (const int threads : {1, 2}) expectStreamedLikeWhole(big, OrientationMode::kKeep, threads);
   expectStreamedLikeWhole(big, OrientationMode::kFlipFree, 2);
+  // a block of holes larger than the program (every window's holes edited in one block), and
+  // blocks of a few holes (many blocks a window, one across each window's end)
+  for (const size_t block : {size_t{16384}, size_t{100}})
+    expectStreamedLikeWhole(big, OrientationMode::kKeep, 2, block);
   // a prologue of comments two windows long: the first window with holes holds a few dozen, so
   // the holes it foretells are far fewer than the program's and most requests go past the ones
   // the first reading reserved (kept in chunks of their own, moved in at the end, in hole order)
@@ -474,6 +484,33 @@ TEST(CompensateThreads, MarkedProgramsAndHoleListsAreNotStreamed) {
   const std::string plain = dir + "/plain.src";
   test::writeFile(plain, test::krlDrillCycles(3));
   EXPECT_TRUE(api::compensationStreams(plain, job));
+  // a large program's halves are searched on two threads: a marker across the middle, at the
+  // start or at the end is found
+  const std::string program = test::krlDrillCycles(3);
+  std::string filler;
+  while (filler.size() < (std::size_t{17} << 20U))
+    filler += "; the cell's set-up sheet, one line of many ...........................\n";
+  const std::string large =
+      program.substr(0, program.find('\n') + 1) + filler + program.substr(program.find('\n') + 1);
+  const std::string marker = "roprec compensated";
+  for (const std::string_view where : {"middle", "start", "end", "none"}) {
+    SCOPED_TRACE(std::string(where));
+    std::string text = large;
+    if (where == "middle") {
+      const std::size_t q = (text.size() + marker.size()) / 2 - marker.size() / 2;
+      ASSERT_NE(text[q - 1], '\n');
+      text.insert(q, marker);
+      ASSERT_LT(q, text.size() / 2);
+      ASSERT_GT(q + marker.size(), text.size() / 2);
+    } else if (where == "start") {
+      text.insert(0, ";" + marker + "\n");
+    } else if (where == "end") {
+      text += ";" + marker;
+    }
+    const std::string path = dir + "/large.src";
+    test::writeFile(path, text);
+    EXPECT_EQ(api::compensationStreams(path, job), where == "none");
+  }
   job.job.holes = test::sourceDir() + "/samples/emotor-housing/holes.csv";
   EXPECT_FALSE(api::compensationStreams(plain, job));
   job.job.holes.reset();
@@ -485,29 +522,42 @@ TEST(CompensateThreads, MarkedProgramsAndHoleListsAreNotStreamed) {
   EXPECT_FALSE(api::compensationStreams(plain, job));
 }
 
-// An error far into a streamed program (an aggregate left open in its last cycle, windows after
-// the first) stops the CLI with exit 2 at that line before anything is written: no output, no
-// temporary.
+// An error far into a streamed program (in its last cycle, windows after the first: an aggregate
+// left open, which the read-ahead does not read, or a literal where a number belongs, whose
+// target the read-ahead does not make) stops the CLI with exit 2 at that line before anything is
+// written, on one thread and on two: no output, no temporary.
 TEST(CompensateThreads, CliErrorLateInAStreamedProgramWritesNothing) {
   const std::string dir = test::tempDir("compensate_threads_late_error");
-  std::string text = test::krlDrillCycles(9000, test::kHousingBase, true);
-  const size_t last = text.rfind("LIN {");
-  text.erase(text.find('}', last), 1);
-  const std::string src = dir + "/late.src";
-  test::writeFile(src, text);
-  ASSERT_GT(text.size(), 2 * postproc::ProgramStream::kWindowBytes);
-  const int line = static_cast<int>(std::count(text.begin(), text.begin() + last, '\n')) + 1;
-  api::CompensationJob job;
-  ASSERT_TRUE(api::compensationStreams(src, job));
+  const std::string cycles = test::krlDrillCycles(9000, test::kHousingBase, true);
+  const size_t last = cycles.rfind("LIN {");
+  std::string open = cycles;
+  open.erase(open.find('}', last), 1);
+  std::string literal = cycles;
+  const size_t x = literal.find("X ", last) + 2;
+  literal.replace(x, literal.find(',', x) - x, "'B01'");
+  const int line = static_cast<int>(std::count(cycles.begin(), cycles.begin() + last, '\n')) + 1;
   const std::string cell = test::sourceDir() + "/samples/cells/housing-kr120.xml";
-  const auto r = test::runRoprec("compensate --cell '" + cell + "' '" + src + "' --quiet -o '" +
-                                 dir + "/o.src' --targets '" + dir + "/o.csv' --threads 2");
-  EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("late.src:" + std::to_string(line)), std::string::npos) << r.err;
-  EXPECT_FALSE(std::filesystem::exists(dir + "/o.src"));
-  EXPECT_FALSE(std::filesystem::exists(dir + "/o.csv"));
-  for (const auto& e : std::filesystem::directory_iterator(dir))  // no temporaries left
-    EXPECT_FALSE(isOutputTemporaryName(e.path().filename().string(), nullptr)) << e.path();
+  for (const auto& [text, what] :
+       {std::pair{open, "aggregate"}, std::pair{literal, "not a number"}}) {
+    for (const int threads : {1, 2}) {
+      SCOPED_TRACE(std::string(what) + " threads " + std::to_string(threads));
+      const std::string src = dir + "/late.src";
+      test::writeFile(src, text);
+      ASSERT_GT(text.size(), 2 * postproc::ProgramStream::kWindowBytes);
+      api::CompensationJob job;
+      ASSERT_TRUE(api::compensationStreams(src, job));
+      const auto r = test::runRoprec("compensate --cell '" + cell + "' '" + src + "' --quiet -o '" +
+                                     dir + "/o.src' --targets '" + dir + "/o.csv' --threads " +
+                                     std::to_string(threads));
+      EXPECT_EQ(r.exit_code, 2);
+      EXPECT_NE(r.err.find("late.src:" + std::to_string(line)), std::string::npos) << r.err;
+      EXPECT_NE(r.err.find(what), std::string::npos) << r.err;
+      EXPECT_FALSE(std::filesystem::exists(dir + "/o.src"));
+      EXPECT_FALSE(std::filesystem::exists(dir + "/o.csv"));
+      for (const auto& e : std::filesystem::directory_iterator(dir))  // no temporaries left
+        EXPECT_FALSE(isOutputTemporaryName(e.path().filename().string(), nullptr)) << e.path();
+    }
+  }
 }
 
 }  // namespace

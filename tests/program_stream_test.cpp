@@ -47,9 +47,12 @@ struct Streamed {
 
 /// Reads `path` by windows of `window` bytes, retiring the motions before the last hole's bottom;
 /// `ahead`: each next window read and lexed on a task of its own (ProgramStream's read_ahead).
-Streamed readStreamed(const std::string& path, size_t window, bool ahead = false) {
+/// `skip_ranges`: a second reading (ProgramStream::skipValueRanges).
+Streamed readStreamed(const std::string& path, size_t window, bool ahead = false,
+                      bool skip_ranges = false) {
   Streamed out;
   postproc::ProgramStream s(path, window, ahead);
+  if (skip_ranges) s.skipValueRanges();
   postproc::HoleRecognizer rec;
   auto take = [&] {
     const postproc::Program& p = s.program();
@@ -157,6 +160,12 @@ std::string motionText(const postproc::Program& p, const postproc::Motion& m) {
   return s;
 }
 
+/// What the reader tells of the program's first file besides its motions (the style a writer
+/// keeps).
+std::string fileText(const postproc::Program& p) {
+  return std::string("significant9 ") + (p.files[0].significant9 ? "yes" : "no");
+}
+
 /// Every motion of `path` read by windows of `window` bytes (none retired), as motionText.
 std::vector<std::string> streamedMotions(const std::string& path, size_t window, bool ahead) {
   postproc::ProgramStream s(path, window, ahead);
@@ -164,12 +173,14 @@ std::vector<std::string> streamedMotions(const std::string& path, size_t window,
   }
   std::vector<std::string> out;
   for (const postproc::Motion& m : s.program().motions) out.push_back(motionText(s.program(), m));
+  out.push_back(fileText(s.program()));
   return out;
 }
 
 /// KRL motion lines of every target shape the reader parses: joint and Cartesian aggregates,
 /// typed or not, signed numbers (a space after the sign), exponents, literals, CIRC's two
-/// targets, a WITH list, a relative motion, a `:` expression, lower case, trailing comments.
+/// targets (and a third expression), WITH lists, a relative motion, a `:` expression, lower case,
+/// GLOBAL, trailing comments, and a position of 9 significant digits in the last window.
 std::string krlTargetShapes(int n) {
   std::string s = "DEF shapes()\n" + std::string(test::kHousingBase) + "\n$VEL.CP = 0.2\n";
   for (int i = 0; i < n; ++i) {
@@ -186,6 +197,10 @@ std::string krlTargetShapes(int n) {
     s += "LIN {X 1,Y 2,Z 3,A 0,B 0,C 0}:{X " + x + ",Y 0,Z 10,A 0,B 0,C 0}\n";
     s += "SPTP {A1 10,A2 -80,A3 80,A4 0,A5 10,A6 0, E1 " + x + "}\n";
     s += "LIN {X 1,Y 2,Z 3,A 0,B 0,C 0,S 2,T 35}  C_DIS  ; " + x + "\n";
+    s += "CIRC {X 1,Y 2,Z 3},{X " + x + ",Y 5,Z 6,A 0,B 0,C 0},{X 7} C_DIS\n";
+    s += "LIN {X 1,Y 2,Z 3,A 0,B 0,C 0} WITH $APO.CDIS = 2, $VEL.CP = 0.3 C_DIS\n";
+    s += "GLOBAL LIN {X 1,Y 2,Z " + x + ",A 0,B 0,C 0}\n";
+    if (i + 1 == n) s += "LIN {X 1234.56789,Y 2,Z 3,A 0,B 0,C 0}\n";  // 9 digits, far in
   }
   return s + "END\n";
 }
@@ -212,6 +227,7 @@ TEST(ProgramStream, TargetsReadAheadAreThoseTheReaderReads) {
     std::vector<std::string> expected;
     for (const postproc::Motion& m : whole.motions) expected.push_back(motionText(whole, m));
     ASSERT_FALSE(expected.empty());
+    expected.push_back(fileText(whole));
     for (const size_t window : {size_t{4096}, size_t{10000}}) {
       SCOPED_TRACE(window);
       EXPECT_EQ(streamedMotions(path, window, true), expected);
@@ -226,6 +242,14 @@ TEST(ProgramStream, TargetsReadAheadAreThoseTheReaderReads) {
   std::shared_ptr<postproc::KrlAhead> a;
   postproc::KrlStream::lexWindow(w, a);
   EXPECT_EQ(postproc::aggregatesReadAhead(*a), 3U);
+  EXPECT_EQ(postproc::targetsReadAhead(*a), 3U);  // each makes its target
+  // an aggregate that reads but makes no target (a literal where a number belongs) is left to
+  // the reader, which stops there with its error
+  w.bytes = "LIN {X 'B01',Y 2}\nLIN {X 1,Y 2}\n";
+  w.indexLines();
+  postproc::KrlStream::lexWindow(w, a);
+  EXPECT_EQ(postproc::aggregatesReadAhead(*a), 2U);
+  EXPECT_EQ(postproc::targetsReadAhead(*a), 1U);
 }
 
 std::string errorOf(const std::function<void()>& f) {
@@ -265,6 +289,9 @@ TEST(ProgramStream, ErrorsAreThoseOfTheWholeReadInItsOrder) {
     ASSERT_NE(whole, "(no error)");
     EXPECT_EQ(errorOf([&] { (void)readStreamed(path, 4096); }), whole);
     EXPECT_EQ(errorOf([&] { (void)readStreamed(path, 4096, true); }), whole);
+    // a second reading (the first one checked the values) stops at the reader's errors alone
+    const std::string second = errorOf([&] { (void)readStreamed(path, 4096, true, true); });
+    EXPECT_EQ(second, name == "range.src" ? "(no error)" : whole);
   }
 }
 

@@ -764,6 +764,7 @@ class StreamedProgramEdits {
         stream_(r.context.job.path, postproc::ProgramStream::kWindowBytes, threads > 1),
         edits_(stream_, std::move(write), markerText(r.context.cell, r.orientation),
                r.context.job.program->files[0]) {
+    stream_.skipValueRanges();  // the first reading checked them
     postproc::Program& p = stream_.program();
     p.position_min_decimals = 5;  // 0.01 µm: the written target carries the compensation
     p.fanuc_turn_axes = r.context.job.program->fanuc_turn_axes;
@@ -953,17 +954,27 @@ class StreamedProgramEdits {
   std::vector<std::vector<std::string>> refusals_;
 };
 
-/// Whether `path` holds the bytes of the compensation marker (read in pieces).
-bool fileHoldsMarker(const std::string& path) {
-  static constexpr std::string_view kMarker = "roprec compensated";
+constexpr std::string_view kMarker = "roprec compensated";
+
+/// Whether bytes [begin, end) of `path` hold the compensation marker (read in pieces); true
+/// when the file cannot be read (the whole-program path states why).
+bool rangeHoldsMarker(const std::string& path, std::uint64_t begin, std::uint64_t end) {
   std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (f == nullptr) return true;  // the whole-program path states why it cannot be read
+  if (f == nullptr) return true;
+  if (begin > 0 && std::fseek(f, static_cast<long>(begin), SEEK_SET) != 0) {
+    std::fclose(f);
+    return true;
+  }
   std::string buf(std::size_t{4} << 20U, '\0');
   std::size_t kept = 0;
+  std::uint64_t at = begin;
   bool found = false;
-  while (!found) {
-    const std::size_t n = std::fread(buf.data() + kept, 1, buf.size() - kept, f);
+  while (!found && at < end) {
+    const std::size_t want =
+        static_cast<std::size_t>(std::min<std::uint64_t>(buf.size() - kept, end - at));
+    const std::size_t n = std::fread(buf.data() + kept, 1, want, f);
     if (n == 0) break;
+    at += n;
     const std::string_view v(buf.data(), kept + n);
     found = v.find(kMarker) != std::string_view::npos;
     kept = std::min(v.size(), kMarker.size() - 1);
@@ -971,6 +982,22 @@ bool fileHoldsMarker(const std::string& path) {
   }
   std::fclose(f);
   return found;
+}
+
+/// Whether `path` holds the bytes of the compensation marker: a large file's halves read on two
+/// threads (the second half from the marker's length before the middle on).
+bool fileHoldsMarker(const std::string& path) {
+  constexpr std::uint64_t kSplit = std::uint64_t{16} << 20U;  // below: one thread
+  std::error_code ec;
+  const std::uint64_t size = std::filesystem::file_size(path, ec);
+  if (ec || size < kSplit)
+    return rangeHoldsMarker(path, 0, std::numeric_limits<std::uint64_t>::max());
+  const std::uint64_t mid = size / 2;
+  auto second = std::async(std::launch::async, [&path, mid] {
+    return rangeHoldsMarker(path, mid - kMarker.size(), std::numeric_limits<std::uint64_t>::max());
+  });
+  const bool first = rangeHoldsMarker(path, 0, mid);
+  return second.get() || first;
 }
 
 }  // namespace
