@@ -8,6 +8,7 @@
 #include <cstring>
 #include <deque>
 #include <filesystem>
+#include <fstream>
 #include <future>
 #include <iterator>
 #include <limits>
@@ -959,12 +960,8 @@ constexpr std::string_view kMarker = "roprec compensated";
 /// Whether bytes [begin, end) of `path` hold the compensation marker (read in pieces); true
 /// when the file cannot be read (the whole-program path states why).
 bool rangeHoldsMarker(const std::string& path, std::uint64_t begin, std::uint64_t end) {
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (f == nullptr) return true;
-  if (begin > 0 && std::fseek(f, static_cast<long>(begin), SEEK_SET) != 0) {
-    std::fclose(f);
-    return true;
-  }
+  std::ifstream in(path, std::ios::binary);  // a 64-bit offset on every platform
+  if (!in || !in.seekg(static_cast<std::streamoff>(begin))) return true;
   std::string buf(std::size_t{4} << 20U, '\0');
   std::size_t kept = 0;
   std::uint64_t at = begin;
@@ -972,7 +969,8 @@ bool rangeHoldsMarker(const std::string& path, std::uint64_t begin, std::uint64_
   while (!found && at < end) {
     const std::size_t want =
         static_cast<std::size_t>(std::min<std::uint64_t>(buf.size() - kept, end - at));
-    const std::size_t n = std::fread(buf.data() + kept, 1, want, f);
+    in.read(buf.data() + kept, static_cast<std::streamsize>(want));
+    const auto n = static_cast<std::size_t>(in.gcount());
     if (n == 0) break;
     at += n;
     const std::string_view v(buf.data(), kept + n);
@@ -980,7 +978,6 @@ bool rangeHoldsMarker(const std::string& path, std::uint64_t begin, std::uint64_
     kept = std::min(v.size(), kMarker.size() - 1);
     std::memmove(buf.data(), buf.data() + v.size() - kept, kept);
   }
-  std::fclose(f);
   return found;
 }
 
