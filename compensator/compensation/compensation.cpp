@@ -1101,15 +1101,18 @@ std::string notCompensatedReason(const HoleCompensation& c, const Node& chosen) 
 /// Stage 1 of the holes `req` seeded with `prev` (then the last admissible joints among them, the
 /// seed of the next block): predictHoles on `threads` workers, the continuity seeds of `roprec
 /// predict`; a hole whose prediction throws makes the block fall back to the sequential loop,
-/// which isolates it. `at(j)`: where hole j's prediction goes.
+/// which isolates it. `at(j)`: where hole j's prediction goes. `budget` false: the predictions
+/// go as far as their status, joints and branch (PredictOptions::budget; the fallback predicts
+/// them whole).
 void predictBlock(const PredictionModel& m, PredictionData& d, std::span<const HoleRequest> req,
                   int threads, std::optional<Vec6>& prev,
-                  const std::function<HolePrediction&(size_t)>& at) {
+                  const std::function<HolePrediction&(size_t)>& at, bool budget = true) {
   for (size_t j = 0; j < req.size(); ++j) at(j) = HolePrediction{};  // what predictHoles expects
   try {
     PredictOptions po;
     po.threads = threads;
     po.seed = prev;
+    po.budget = budget;
     predictHoles(m, req, po, at);
   } catch (const std::exception&) {
     predictOriginal(m, d, req, prev, at);
@@ -1567,8 +1570,10 @@ bool forwardPass(Workers& w, const std::vector<HoleRequest>& holes,
   for (size_t b0 = 0; b0 < n; b0 += w.block) {
     const size_t e0 = std::min(n, b0 + w.block);
     t.block_seed[b0 / w.block] = prev;
-    predictBlock(m, w.scratch[0], std::span<const HoleRequest>(holes).subspan(b0, e0 - b0),
-                 w.threads(), prev, [&](size_t j) -> HolePrediction& { return before[j]; });
+    // the search reads each prediction's status, joints and branch only: no budgets
+    predictBlock(
+        m, w.scratch[0], std::span<const HoleRequest>(holes).subspan(b0, e0 - b0), w.threads(),
+        prev, [&](size_t j) -> HolePrediction& { return before[j]; }, false);
     const std::span<const HolePrediction> block(before.data(), e0 - b0);
     if (ff)
       flipFreeBlock(w, block, b0, grid, zero, pass, *ff);
