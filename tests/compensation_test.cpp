@@ -368,6 +368,33 @@ TEST(CompensationOrientation, StiffestObeysTheJumpLimitAndReportsItsGain) {
       st.U_work_gain_max * 1e6, st.psi_changed);
 }
 
+// Stiffest keeps a hole at ψ = 0 only with its keep result (made only as far as whether it is ok,
+// when both are): every hole of the demo stiffest leaves at ψ = 0 is keep's result for it, bit for
+// bit (the programmed pose, the command, the budget after), with the U_work of keep it reports.
+TEST(CompensationOrientation, StiffestHolesAtTheProgrammedRotationAreKeepsResults) {
+  const api::PredictionContext c = demoContext();
+  const auto& req = c.job.requests;
+  CompensationOptions o;
+  const std::vector<HoleCompensation> keep = compensateHoles(c.model, req, o);
+  o.mode = OrientationMode::kStiffest;
+  const std::vector<HoleCompensation> s = compensateHoles(c.model, req, o);
+  ASSERT_EQ(s.size(), keep.size());
+  int kept = 0;
+  for (size_t i = 0; i < s.size(); ++i) {
+    SCOPED_TRACE(s[i].id);
+    ASSERT_TRUE(s[i].ok) << s[i].reason;
+    if (std::abs(s[i].psi) > 1e-9) continue;
+    ++kept;
+    EXPECT_TRUE(test::sameBits(s[i].T_programmed.matrix().data(),
+                               keep[i].T_programmed.matrix().data(), 16));
+    EXPECT_TRUE(test::sameBits(s[i].theta_cmd.data(), keep[i].theta_cmd.data(), 6));
+    EXPECT_TRUE(test::sameBits(s[i].after.U_work_exact, keep[i].after.U_work_exact));
+    EXPECT_TRUE(test::sameBits(s[i].U_work_keep, keep[i].after.U_work_exact));
+    EXPECT_EQ(s[i].config_text, keep[i].config_text);
+  }
+  EXPECT_GT(kept, static_cast<int>(s.size()) / 2);
+}
+
 // flip-free and stiffest hold one block of predictions and candidate grids at a time (the DP
 // keeps its last reachable hole and a table of predecessors, the chosen nodes are evaluated again,
 // the predictions made again block by block): blocks of 1, 3 and 50 holes give the result of one

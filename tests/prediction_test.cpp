@@ -453,6 +453,59 @@ TEST(Prediction, AHoleDeeperThanTheDrillCutsFailsAloneAndLeavesTheOthersAsTheyWe
   }
 }
 
+/// part (a prediction without the budget) has full's solution, status and deflection, bit for
+/// bit, and no budget.
+void expectFullWithoutTheBudget(const HolePrediction& part, const HolePrediction& full) {
+  EXPECT_EQ(part.status, full.status);
+  EXPECT_EQ(part.reason, full.reason);
+  EXPECT_EQ(part.branch, full.branch);
+  EXPECT_EQ(part.config, full.config);
+  EXPECT_TRUE(test::sameBits(part.joints.data(), full.joints.data(), 6));
+  EXPECT_TRUE(test::sameBits(part.d_robot.data(), full.d_robot.data(), 3));
+  if (full.status != HoleStatus::kOk) return;
+  EXPECT_GT(full.U_work_exact, 0.0);
+  EXPECT_EQ(part.U_work_exact, 0.0);  // not made
+  EXPECT_TRUE(part.budget.empty());
+}
+
+// Without the budget (PredictOptions::budget false, predictHoleStatus) every hole takes the
+// solution, status and deflection of the full prediction, bit for bit, on one thread and two
+// (holes out of reach among them break the continuity chain); the budget is not made.
+TEST(Prediction, WithoutTheBudgetEachHoleTakesTheFullPredictionsSolutionAndStatus) {
+  const api::PredictionContext c = api::loadPredictionContext(
+      test::sourceDir() + "/samples/cells/housing-kr120.xml",
+      test::sourceDir() + "/samples/emotor-housing/holes.csv", std::nullopt, "");
+  std::vector<HoleRequest> req = c.job.requests;
+  for (size_t i = 0; i < req.size(); i += 9) req[i].T_W_tcp.translation().x() += 3.0;
+  for (const int threads : {1, 2}) {
+    SCOPED_TRACE(threads);
+    PredictOptions o;
+    o.threads = threads;
+    const std::vector<HolePrediction> full = predictHoles(c.model, req, o);
+    o.budget = false;
+    const std::vector<HolePrediction> part = predictHoles(c.model, req, o);
+    ASSERT_EQ(part.size(), full.size());
+    int ok = 0;
+    for (size_t i = 0; i < req.size(); ++i) {
+      SCOPED_TRACE(req[i].id);
+      expectFullWithoutTheBudget(part[i], full[i]);
+      ok += full[i].status == HoleStatus::kOk ? 1 : 0;
+    }
+    EXPECT_GT(ok, 100);
+    EXPECT_LT(ok, static_cast<int>(req.size()) - 10);
+  }
+  PredictionData d(c.model);
+  std::optional<Vec6> prev;
+  for (const HoleRequest& h : req) {
+    SCOPED_TRACE(h.id);
+    const HolePrediction full = predictHole(c.model, d, h, prev ? &*prev : nullptr);
+    HolePrediction part;
+    predictHoleStatus(c.model, d, h, prev ? &*prev : nullptr, part);
+    expectFullWithoutTheBudget(part, full);
+    if (full.status == HoleStatus::kOk) prev = full.joints;
+  }
+}
+
 TEST(Prediction, TheDrillsFluteLengthLimitsTheDepthItCuts) {
   // a cell stating <drill flute_length_mm="20">: a 26 mm hole fails, a 20 mm one does not
   std::string xml = test::readFile(test::sourceDir() + "/samples/cells/housing-kr120.xml");

@@ -837,10 +837,15 @@ void settleFlags(Evaluator& ev, const HoleRequest& h, const Pose& T_flange, Hole
   configReason(ev, cs, want, stated.has_value(), c);
 }
 
+/// How far finalizeHole goes: the whole result, or only as far as decides whether it is ok (the
+/// re-prediction up to its status: no budget or verdict after).
+enum class Finish : std::uint8_t { kWhole, kOkOnly };
+
 /// The programmed pose, flags, residual and re-predicted budget at the command c.theta_cmd.
 /// Sets c.reason and returns with c.ok false when something fails.
 void assemble(Evaluator& ev, const HoleRequest& h, const nc::Loads& loads, bool positions_only,
-              HoleCompensation& c, const nc::Deflection* at_command = nullptr) {
+              HoleCompensation& c, const nc::Deflection* at_command = nullptr,
+              Finish finish = Finish::kWhole) {
   const PredictionModel& m = ev.m;
   PredictionData& d = ev.d;
   const nc::Model& controller = controllerModel(m);  // the programmed target is FK_nom(θ_cmd)
@@ -894,6 +899,11 @@ void assemble(Evaluator& ev, const HoleRequest& h, const nc::Loads& loads, bool 
     c.ok = true;
     return;
   }
+  if (finish == Finish::kOkOnly) {
+    predictHoleStatus(m, d, after, &c.theta_cmd, c.after);
+    c.ok = c.after.status == HoleStatus::kOk;
+    return;
+  }
   c.after = predictHole(m, d, after, &c.theta_cmd);
   if (c.after.status != HoleStatus::kOk) {
     c.reason = "re-prediction of the compensated target failed: " + c.after.reason;
@@ -907,9 +917,11 @@ void assemble(Evaluator& ev, const HoleRequest& h, const nc::Loads& loads, bool 
 
 /// Compensation of hole h at `node` (positions_only: keep the programmed orientation).
 /// `original` (the stage-1 result of the hole: id, prediction, note) is taken over (moved from:
-/// a reference, so that the caller's result is not copied first).
+/// a reference, so that the caller's result is not copied first). Finish::kOkOnly: a result whose
+/// `ok` (and what decides it) is the whole result's, the rest not made.
 HoleCompensation finalizeHole(Evaluator& ev, const HoleRequest& h, HoleCompensation&& original,
-                              const Node& node, bool positions_only) {
+                              const Node& node, bool positions_only,
+                              Finish finish = Finish::kWhole) {
   HoleCompensation c;
   c.id = std::move(original.id);
   c.before = std::move(original.before);
@@ -934,7 +946,7 @@ HoleCompensation finalizeHole(Evaluator& ev, const HoleRequest& h, HoleCompensat
   } else {
     c.theta_cmd = exactCommand(ev, c.theta_d, loads);
   }
-  assemble(ev, h, loads, positions_only, c, last ? &*last : nullptr);
+  assemble(ev, h, loads, positions_only, c, last ? &*last : nullptr, finish);
   return c;
 }
 
@@ -1032,9 +1044,9 @@ constexpr size_t kKeepBlock = 4096;
 
 /// Stiffest, hole i in hole order with its keep result k: records U_work(keep); a hole at ψ = 0
 /// takes k; a turned hole goes back to it unless the turn gains at least kStiffnessGainMin of
-/// U_work, when the jump constraints with the final neighbours allow it. (So a hole at ψ = 0 has
-/// its exact compensation c made only for c.ok — and for its result where k fails — when both
-/// succeed, the common case, k replaces it.)
+/// U_work, when the jump constraints with the final neighbours allow it. (So a hole at ψ = 0 takes
+/// k whenever both are ok: its exact compensation c is made only as far as c.ok then, and whole
+/// where either fails — settleDeferred.)
 void takeKeepWhereStiffEnough(const std::vector<HoleRequest>& holes, const Node& programmed,
                               double thr, size_t i, HoleCompensation& k, std::vector<Node>& chosen,
                               HoleCompensation& c) {
@@ -1055,14 +1067,41 @@ void takeKeepWhereStiffEnough(const std::vector<HoleRequest>& holes, const Node&
   c = std::move(k);
 }
 
-/// Stiffest, holes [first, last) (`programmed`: their programmed postures): the keep result (ψ =
-/// 0, positions only) of every hole with a ψ = 0 posture (holes in parallel, kKeepBlock holes at
-/// a time), then takeKeepWhereStiffEnough for each hole of the block in hole order (a keep result
-/// depends on no other hole's choice, so the blocks change nothing but the memory). A compensated
-/// hole's result carries its stage-1 part (stageOne).
+/// Whether stiffest defers hole i's exact compensation at its chosen node to stiffestAgainstKeep
+/// (`programmed`: its programmed posture; `why`: notCompensatedReason): a hole kept at ψ = 0 with
+/// a programmed posture, whose result is its keep result whenever both are ok.
+bool deferredToKeep(const Node& chosen, const Node& programmed, const std::string& why) {
+  return why.empty() && programmed.feasible && std::abs(chosen.psi) <= kPsiKept;
+}
+
+/// Stiffest, a hole kept at ψ = 0 (deferredToKeep; `c`: its stage-1 result) at its chosen node
+/// and its programmed posture: the keep result into `keep`; then, where it is ok, whether the
+/// exact compensation at the chosen node is (Finish::kOkOnly, into c: all that
+/// takeKeepWhereStiffEnough reads of it before the keep result replaces it); else the exact
+/// compensation whole (the result as without the deferral).
+void settleDeferred(Evaluator& ev, const HoleRequest& h, const Node& chosen, const Node& programmed,
+                    HoleCompensation& keep, HoleCompensation& c) {
+  keep = finalizeHole(ev, h, stageOne(c), programmed, true);
+  if (keep.ok) {
+    HoleCompensation exact = finalizeHole(ev, h, stageOne(c), chosen, false, Finish::kOkOnly);
+    if (exact.ok) {
+      c = std::move(exact);
+      return;
+    }
+  }
+  c = finalizeHole(ev, h, stageOne(c), chosen, false);
+}
+
+/// Stiffest, holes [first, last) (`programmed`: their programmed postures; `deferred`: the holes
+/// whose exact compensation was deferred, deferredToKeep): the keep result (ψ = 0, positions only)
+/// of every hole with a ψ = 0 posture (holes in parallel, kKeepBlock holes at a time;
+/// settleDeferred for the deferred ones), then takeKeepWhereStiffEnough for each hole of the block
+/// in hole order (a keep result depends on no other hole's choice, so the blocks change nothing
+/// but the memory). A compensated hole's result carries its stage-1 part (stageOne).
 void stiffestAgainstKeep(std::vector<Evaluator>& evs, const std::vector<HoleRequest>& holes,
-                         std::span<const Node> programmed, std::vector<Node>& chosen, double thr,
-                         std::span<HoleCompensation> res, size_t first) {
+                         std::span<const Node> programmed, std::span<const char> deferred,
+                         std::vector<Node>& chosen, double thr, std::span<HoleCompensation> res,
+                         size_t first) {
   const size_t n = first + res.size();
   auto out = [&](size_t i) -> HoleCompensation& { return res[i - first]; };
   auto posture = [&](size_t i) -> const Node& { return programmed[i - first]; };
@@ -1072,9 +1111,11 @@ void stiffestAgainstKeep(std::vector<Evaluator>& evs, const std::vector<HoleRequ
     keep.assign(e - b, HoleCompensation{});
     parallelFor(e - b, static_cast<int>(evs.size()), [&](int w, size_t j) {
       const size_t i = b + j;
-      if (out(i).ok && posture(i).feasible)
-        keep[j] =
-            finalizeHole(evs[static_cast<size_t>(w)], holes[i], stageOne(out(i)), posture(i), true);
+      Evaluator& ev = evs[static_cast<size_t>(w)];
+      if (deferred[i - first])
+        settleDeferred(ev, holes[i], chosen[i], posture(i), keep[j], out(i));
+      else if (out(i).ok && posture(i).feasible)
+        keep[j] = finalizeHole(ev, holes[i], stageOne(out(i)), posture(i), true);
     });
     for (size_t i = b; i < e; ++i)
       takeKeepWhereStiffEnough(holes, posture(i), thr, i, keep[i - b], chosen, out(i));
@@ -1101,15 +1142,18 @@ std::string notCompensatedReason(const HoleCompensation& c, const Node& chosen) 
 /// Stage 1 of the holes `req` seeded with `prev` (then the last admissible joints among them, the
 /// seed of the next block): predictHoles on `threads` workers, the continuity seeds of `roprec
 /// predict`; a hole whose prediction throws makes the block fall back to the sequential loop,
-/// which isolates it. `at(j)`: where hole j's prediction goes.
+/// which isolates it. `at(j)`: where hole j's prediction goes. `budget` false: the predictions
+/// go as far as their status, joints and branch (PredictOptions::budget; the fallback predicts
+/// them whole).
 void predictBlock(const PredictionModel& m, PredictionData& d, std::span<const HoleRequest> req,
                   int threads, std::optional<Vec6>& prev,
-                  const std::function<HolePrediction&(size_t)>& at) {
+                  const std::function<HolePrediction&(size_t)>& at, bool budget = true) {
   for (size_t j = 0; j < req.size(); ++j) at(j) = HolePrediction{};  // what predictHoles expects
   try {
     PredictOptions po;
     po.threads = threads;
     po.seed = prev;
+    po.budget = budget;
     predictHoles(m, req, po, at);
   } catch (const std::exception&) {
     predictOriginal(m, d, req, prev, at);
@@ -1567,8 +1611,10 @@ bool forwardPass(Workers& w, const std::vector<HoleRequest>& holes,
   for (size_t b0 = 0; b0 < n; b0 += w.block) {
     const size_t e0 = std::min(n, b0 + w.block);
     t.block_seed[b0 / w.block] = prev;
-    predictBlock(m, w.scratch[0], std::span<const HoleRequest>(holes).subspan(b0, e0 - b0),
-                 w.threads(), prev, [&](size_t j) -> HolePrediction& { return before[j]; });
+    // the search reads each prediction's status, joints and branch only: no budgets
+    predictBlock(
+        m, w.scratch[0], std::span<const HoleRequest>(holes).subspan(b0, e0 - b0), w.threads(),
+        prev, [&](size_t j) -> HolePrediction& { return before[j]; }, false);
     const std::span<const HolePrediction> block(before.data(), e0 - b0);
     if (ff)
       flipFreeBlock(w, block, b0, grid, zero, pass, *ff);
@@ -1664,6 +1710,7 @@ void sequenceRun(Workers& w, const std::vector<HoleRequest>& holes,
   // the programmed posture (ψ = 0, no wrist requirement) of each hole of a block: stiffest's
   // reference
   std::vector<Node> programmed(stiffest ? cap : 0);
+  std::vector<char> deferred(stiffest ? cap : 0);  // deferredToKeep of each hole of a block
   std::vector<Node> zero;  // the ψ = 0 candidates of the turned holes handed over (psiReason)
   if (to.whole) to.whole->reserve(to.whole->size() + n);
   // the finished holes [ready, e) not handed over yet are in bufs[k]; with workers, those handed
@@ -1700,19 +1747,21 @@ void sequenceRun(Workers& w, const std::vector<HoleRequest>& holes,
       }
       if (q.relaxed[i]) c.note = kRelaxedWristNote;
       std::string why = notCompensatedReason(c, chosen[i]);
+      if (stiffest) deferred[j] = deferredToKeep(chosen[i], programmed[j], why) ? 1 : 0;
       if (!why.empty()) {
         c.reason = std::move(why);
         return;
       }
       // (not one conditional expression: its prvalue would copy c when it is not stiffest)
       if (stiffest) {
-        c = finalizeHole(ev, holes[i], stageOne(c), chosen[i], false);
+        if (!deferred[j]) c = finalizeHole(ev, holes[i], stageOne(c), chosen[i], false);
       } else {
         c = finalizeHole(ev, holes[i], std::move(c), chosen[i], false);
       }
     });
     if (stiffest)
-      stiffestAgainstKeep(evs, holes, std::span<const Node>(programmed.data(), e - b), chosen, thr,
+      stiffestAgainstKeep(evs, holes, std::span<const Node>(programmed.data(), e - b),
+                          std::span<const char>(deferred.data(), e - b), chosen, thr,
                           std::span<HoleCompensation>(pend).subspan(p0), b);
     size_t upto = e;  // stiffest: the last hole with a posture waits for the next block
     if (stiffest && e < n) {

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "compensator/precision/parallel.hpp"
 #include "compensator/precision/uncertainty.hpp"
@@ -387,8 +388,12 @@ const Vec6& seedOf(const PredictionModel& m, const HoleRequest& h, const Vec6* s
   return h.ik_seed ? *h.ik_seed : seed ? *seed : m.reference_pose;
 }
 
+/// How far a prediction goes: the whole (kFull), or up to the compliance equilibrium (kStatus:
+/// PredictOptions::budget false).
+enum class Depth : std::uint8_t { kFull, kStatus };
+
 void predictAtSolution(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
-                       const IkSolution& sol, HolePrediction& p);
+                       const IkSolution& sol, HolePrediction& p, Depth depth = Depth::kFull);
 
 void holeFigures(const PredictionModel& m, const HoleRequest& h, const ProcessAtDiameter* proc,
                  HolePrediction& p);
@@ -432,13 +437,27 @@ HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const Ho
   return p;
 }
 
-void predictHole(const PredictionModel& base, PredictionData& d, const HoleRequest& h,
-                 const Vec6* seed, HolePrediction& p) {
+namespace {
+/// predictHole to `depth`.
+void predictHoleTo(const PredictionModel& base, PredictionData& d, const HoleRequest& h,
+                   const Vec6* seed, HolePrediction& p, Depth depth) {
   const PredictionModel& m = modelFor(base, h);
   resetPrediction(h, p);
   IkSolution sol;
   chooseSolution(m, d, h, flangeTarget(m, h), seedOf(m, h, seed), p, sol);
-  predictAtSolution(m, d, h, sol, p);  // without a solution: the per-hole process figures only
+  // without a solution: the per-hole process figures only
+  predictAtSolution(m, d, h, sol, p, depth);
+}
+}  // namespace
+
+void predictHole(const PredictionModel& base, PredictionData& d, const HoleRequest& h,
+                 const Vec6* seed, HolePrediction& p) {
+  predictHoleTo(base, d, h, seed, p, Depth::kFull);
+}
+
+void predictHoleStatus(const PredictionModel& base, PredictionData& d, const HoleRequest& h,
+                       const Vec6* seed, HolePrediction& p) {
+  predictHoleTo(base, d, h, seed, p, Depth::kStatus);
 }
 
 void chooseHoleSolution(const PredictionModel& base, PredictionData& d, const HoleRequest& h,
@@ -686,7 +705,7 @@ void uncertaintyBudget(const PredictionModel& m, const ProcessAtDiameter* proc,
 /// with δwork and the errors ⊥ the axis, the uncertainty budget and the verdict. A hole without a
 /// solution (p.status set by the IK choice) gets its figures only.
 void predictAtSolution(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
-                       const IkSolution& sol, HolePrediction& p) {
+                       const IkSolution& sol, HolePrediction& p, Depth depth) {
   const ProcessAtDiameter* proc = processFor(m, h);
   holeFigures(m, h, proc, p);
   if (p.status != HoleStatus::kOk || !takeSolution(m, sol, p)) return;
@@ -696,7 +715,7 @@ void predictAtSolution(const PredictionModel& m, PredictionData& d, const HoleRe
   const Vec6 w_base = processWrenchBase(R_tcp, loads);
   p.force_base = w_base.head<3>();
   const Vec6 offset = controllerOffset(m, d.nc, sol.q);
-  if (!robotDeviation(m, d, sol, loads, offset, p)) return;
+  if (!robotDeviation(m, d, sol, loads, offset, p) || depth == Depth::kStatus) return;
 
   const HolePlane plane = holePlane(R_tcp);
   workDeviation(h, proc, R_tcp, plane, p);
@@ -793,16 +812,18 @@ void predictHoles(const PredictionModel& m, std::span<const HoleRequest> holes,
   std::vector<char> chosen(n, 0);
   std::vector<std::optional<Vec6>> seed(n);
   chooseInOrder(m, scratch[0], holes, options.seed, threads, sol, chosen, seed);
+  const Depth depth = options.budget ? Depth::kFull : Depth::kStatus;
   // 2. the rest of every hole, in parallel (per-worker scratch; each hole depends only on its
   //    request, its seed and the model, so the output does not depend on the thread count)
   parallelFor(n, threads, [&](int w, size_t i) {
     HolePrediction& p = at(i);
     p.id = holes[i].id;
     if (chosen[i]) {
-      predictAtSolution(modelFor(m, holes[i]), scratch[static_cast<size_t>(w)], holes[i], sol[i],
-                        p);
+      predictAtSolution(modelFor(m, holes[i]), scratch[static_cast<size_t>(w)], holes[i], sol[i], p,
+                        depth);
     } else {
-      predictHole(m, scratch[static_cast<size_t>(w)], holes[i], seed[i] ? &*seed[i] : nullptr, p);
+      predictHoleTo(m, scratch[static_cast<size_t>(w)], holes[i], seed[i] ? &*seed[i] : nullptr, p,
+                    depth);
     }
   });
   // 3. the rare hole whose full prediction failed after an admissible IK (equilibrium not
@@ -811,7 +832,7 @@ void predictHoles(const PredictionModel& m, std::span<const HoleRequest> holes,
   for (size_t i = 0; i < n; ++i) {
     const bool same = prev.has_value() == seed[i].has_value() && (!prev || *prev == *seed[i]);
     HolePrediction& p = at(i);
-    if (!same) predictHole(m, scratch[0], holes[i], prev ? &*prev : nullptr, p);
+    if (!same) predictHoleTo(m, scratch[0], holes[i], prev ? &*prev : nullptr, p, depth);
     if (p.status == HoleStatus::kOk) prev = p.joints;
   }
 }

@@ -345,6 +345,10 @@ HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const Ho
 /// samples). A fresh prediction allocates only for strings beyond the short-string buffer.
 void predictHole(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
                  const Vec6* seed, HolePrediction& out);
+/// predictHole up to the compliance equilibrium (as PredictOptions::budget false): the same
+/// status, reason, joints, branch, flags, figures and deflection, no δwork, budget or verdict.
+void predictHoleStatus(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
+                       const Vec6* seed, HolePrediction& out);
 
 /// Step 1 of predictHole alone (the IK choice) into `out`: status and reason, joints, branch,
 /// wrist margin and flags, and the hole's process figures (tolerance, diameter, depth, drill, feed,
@@ -371,6 +375,11 @@ struct PredictOptions {
   /// Continuity seed before the first hole (the last admissible joints of a previous block, rad):
   /// predicting a sequence block by block with it gives the same result as in one call.
   std::optional<Vec6> seed;
+  /// false: each hole up to its compliance equilibrium only — status, reason, joints, branch,
+  /// flags, the hole's figures and the deflection, the same values as with it — without δwork,
+  /// the uncertainty budget and the verdict (a caller that reads only which solution each hole
+  /// takes and whether it is predicted).
+  bool budget{true};
 };
 
 /// Predicts a sequence, each hole seeded with the previous admissible solution.
