@@ -331,11 +331,11 @@ class StreamedPath {
   bool ended_{false};
 };
 
-/// The edits of the compensated points held[0, block.size()) of a program read by windows, as
-/// editMillingTargets makes them (path point `first` is held[0]); what the exports read of them
-/// into r.block.
+/// The compensated points held[0, block.size()) of a program read by windows (path point `first`
+/// is held[0]): what the exports read of them into r.block, and their failures in path order;
+/// with `edits`, their target edits as editMillingTargets makes them and the refused ones.
 void editStreamedTargets(MillingCompensationResult& r, const postproc::Program& prog,
-                         postproc::StreamedEdits& edits, const std::deque<HeldPoint>& held,
+                         postproc::StreamedEdits* edits, const std::deque<HeldPoint>& held,
                          std::size_t first, std::span<const PathPointCompensation> block) {
   r.block.clear();
   for (size_t k = 0; k < block.size(); ++k) {
@@ -345,9 +345,70 @@ void editStreamedTargets(MillingCompensationResult& r, const postproc::Program& 
     r.block.push_back({t.name, t.line, h.path.T_W_tcp, h.engagement, h.mill});
     const PathPointCompensation& p = block[k];
     editPathPoint(r, prog, i, t, p, [&](const std::optional<postproc::Configuration>& cfg) {
-      return edits.replaceTargetPose(h.target, h.T_W_frame.inverse() * p.T_programmed, cfg);
+      if (edits == nullptr) return postproc::EditResult{true, ""};
+      return edits->replaceTargetPose(h.target, h.T_W_frame.inverse() * p.T_programmed, cfg);
     });
   }
+}
+
+/// The path points of a job loadStreamedMillingJob loaded, read again by `path` and handed to the
+/// chains run by run, block by block (compensateStreamedMillingJob); `edits` (none: the program
+/// is not written) receives the target edits and writes the bytes no later edit can change.
+void streamMillRuns(MillingCompensationResult& r, const MillingPathOptions& options,
+                    StreamedPath& path, postproc::StreamedEdits* edits,
+                    const MillingPointsSink& sink) {
+  const PredictionModel& cell = r.context.model;
+  const postproc::Program& prog = path.stream().program();
+  const auto on_window = [edits] {
+    if (edits == nullptr) return;
+    edits->installed();
+    edits->flush();
+  };
+  std::deque<HeldPoint> held;  // read, not edited yet
+  size_t given = 0;            // held[given ..] not handed to the chains yet
+  MillingPathOptions with_stock = options;
+  with_stock.T_W_stock = stockFrame(r.context.cell);
+  std::optional<Vec6> seed;
+  for (size_t run = 0; run < r.runs.size(); ++run) {
+    const size_t begin = r.runs[run].first;
+    const size_t end = run + 1 < r.runs.size() ? r.runs[run + 1].first : r.streamed_points;
+    std::optional<PredictionModel> with;
+    const PredictionModel& m = runModel(cell, static_cast<size_t>(r.runs[run].second), with);
+    CuttingDecider decide(m.process.milling, with_stock.T_W_stock);
+    size_t left = end - begin;
+    const MillingPathSource source = [&](size_t count, std::vector<Pose>& points,
+                                         std::vector<CuttingDecision>& cutting) {
+      size_t n = 0;
+      for (; n < count && left > 0; ++n, --left) {
+        if (given == held.size() && !path.next(held, on_window))
+          throw InternalError("the program has fewer path points than its first reading");
+        HeldPoint& h = held[given++];
+        points.push_back(h.path.T_W_tcp);
+        cutting.push_back(decide(h.path));
+        h.engagement = cutting.back().engagement;
+      }
+      return n;
+    };
+    std::optional<Vec6> run_seed = seed;
+    const MillingPathSink each = [&](size_t first, std::span<PathPointCompensation> block) {
+      for (const PathPointCompensation& p : block)
+        if (p.ok) seed = p.theta_d;
+      editStreamedTargets(r, prog, edits, held, begin + first, block);
+      r.points_comp.assign(std::make_move_iterator(block.begin()),
+                           std::make_move_iterator(block.end()));
+      r.first = begin + first;
+      if (sink) sink(r);
+      r.points_comp.clear();
+      held.erase(held.begin(), held.begin() + static_cast<std::ptrdiff_t>(block.size()));
+      given -= block.size();
+      if (edits != nullptr) edits->flush();
+    };
+    compensateMillingPath(m, source, true, run_seed ? &*run_seed : nullptr, with_stock, each);
+  }
+  r.first = 0;
+  r.block.clear();
+  if (path.next(held, on_window) || path.millError())
+    throw InternalError("the program's path points are not those of its first reading");
 }
 
 }  // namespace
@@ -452,7 +513,6 @@ void compensateStreamedMillingJob(MillingCompensationResult& r, const MillingPat
                                   const MillingPointsSink& sink, std::size_t window_bytes) {
   if (!r.streamed || !r.context.job.program)
     throw InternalError("compensateStreamedMillingJob: the job was not loaded by windows");
-  const PredictionModel& cell = r.context.model;
   StreamedPath path(r.context, r.context.job.path, window_bytes, options.threads > 1);
   postproc::Program& prog = path.stream().program();
   prog.position_min_decimals = 5;
@@ -460,58 +520,18 @@ void compensateStreamedMillingJob(MillingCompensationResult& r, const MillingPat
   postproc::StreamedEdits edits(path.stream(), write_src,
                                 markerText(r.context.cell, "milling path"),
                                 r.context.job.program->files[0]);
-  const auto on_window = [&edits] {
-    edits.installed();
-    edits.flush();
-  };
-  std::deque<HeldPoint> held;  // read, not edited yet
-  size_t given = 0;            // held[given ..] not handed to the chains yet
-  MillingPathOptions with_stock = options;
-  with_stock.T_W_stock = stockFrame(r.context.cell);
-  std::optional<Vec6> seed;
-  for (size_t run = 0; run < r.runs.size(); ++run) {
-    const size_t begin = r.runs[run].first;
-    const size_t end = run + 1 < r.runs.size() ? r.runs[run + 1].first : r.streamed_points;
-    std::optional<PredictionModel> with;
-    const PredictionModel& m = runModel(cell, static_cast<size_t>(r.runs[run].second), with);
-    CuttingDecider decide(m.process.milling, with_stock.T_W_stock);
-    size_t left = end - begin;
-    const MillingPathSource source = [&](size_t count, std::vector<Pose>& points,
-                                         std::vector<CuttingDecision>& cutting) {
-      size_t n = 0;
-      for (; n < count && left > 0; ++n, --left) {
-        if (given == held.size() && !path.next(held, on_window))
-          throw InternalError("the program has fewer path points than its first reading");
-        HeldPoint& h = held[given++];
-        points.push_back(h.path.T_W_tcp);
-        cutting.push_back(decide(h.path));
-        h.engagement = cutting.back().engagement;
-      }
-      return n;
-    };
-    std::optional<Vec6> run_seed = seed;
-    const MillingPathSink each = [&](size_t first, std::span<PathPointCompensation> block) {
-      for (const PathPointCompensation& p : block)
-        if (p.ok) seed = p.theta_d;
-      editStreamedTargets(r, prog, edits, held, begin + first, block);
-      r.points_comp.assign(std::make_move_iterator(block.begin()),
-                           std::make_move_iterator(block.end()));
-      r.first = begin + first;
-      sink(r);
-      r.points_comp.clear();
-      held.erase(held.begin(), held.begin() + static_cast<std::ptrdiff_t>(block.size()));
-      given -= block.size();
-      edits.flush();
-    };
-    compensateMillingPath(m, source, true, run_seed ? &*run_seed : nullptr, with_stock, each);
-  }
-  r.first = 0;
-  r.block.clear();
-  if (path.next(held, on_window) || path.millError())
-    throw InternalError("the program's path points are not those of its first reading");
+  streamMillRuns(r, options, path, &edits, sink);
   if (!r.failures.empty() || !r.refused.empty()) return;  // nothing is written
   edits.finish();
   dat = edits.dat();
+}
+
+void computeStreamedMillingPath(MillingCompensationResult& r, const MillingPathOptions& options,
+                                const MillingPointsSink& sink, std::size_t window_bytes) {
+  if (!r.streamed || !r.context.job.program)
+    throw InternalError("computeStreamedMillingPath: the job was not loaded by windows");
+  StreamedPath path(r.context, r.context.job.path, window_bytes, options.threads > 1);
+  streamMillRuns(r, options, path, nullptr, sink);
 }
 
 }  // namespace roprec::api

@@ -107,6 +107,12 @@ void compensateStreamedMillingJob(MillingCompensationResult& r, const MillingPat
                                   const ByteWriter& write_src, std::optional<std::string>& dat,
                                   const MillingPointsSink& sink, std::size_t window_bytes = 0);
 
+/// compensateStreamedMillingJob without the program's edits, for a job that writes no program
+/// (`roprec forces --program`): the same blocks, in the same order, and the same `failures`;
+/// `refused` stays empty (no edit is made).
+void computeStreamedMillingPath(MillingCompensationResult& r, const MillingPathOptions& path,
+                                const MillingPointsSink& sink, std::size_t window_bytes = 0);
+
 /// The mill of path point `i` (MillingCompensationResult::mill).
 const MillingSpec& millOf(const MillingCompensationResult& r, std::size_t i);
 
