@@ -64,9 +64,9 @@ testing::AssertionResult sameBytes(const std::string& a, const std::string& b) {
   if (a == b) return testing::AssertionSuccess();
   size_t k = 0;
   while (k < a.size() && k < b.size() && a[k] == b[k]) ++k;
-  return testing::AssertionFailure() << "sizes " << a.size() << " and " << b.size()
-                                     << ", first difference at byte " << k << ": '"
-                                     << a.substr(k, 80) << "' vs '" << b.substr(k, 80) << "'";
+  return testing::AssertionFailure()
+         << "sizes " << a.size() << " and " << b.size() << ", first difference at byte " << k
+         << ": '" << a.substr(k, 80) << "' vs '" << b.substr(k, 80) << "'";
 }
 
 void expectSame(const ForcesOutputs& a, const ForcesOutputs& b, const std::string& what) {
@@ -146,13 +146,13 @@ TEST(Forces, RunsOfTwoMillsReadByWindowsGiveTheWholeProgramsJson) {
   const std::string dir = test::tempDir("forces_windows");
   test::writeFile(dir + "/two.xml", twoMillCell());
   const std::string prog = dir + "/mills.src";
-  test::writeFile(prog, "DEF mills ( )\nBAS (#INITMOV,0 )\n"
-                        "$BASE = {FRAME: X 1600.0,Y 0.0,Z 400.0,A 0.0,B 0.0,C 0.0}\n"
-                        "TOOL_DATA[1] = {X 0.0,Y 0.0,Z 300.0,A 0.0,B 0.0,C 0.0}\n"
-                        "TOOL_DATA[2] = {X 0.0,Y 0.0,Z 300.0,A 0.0,B 0.0,C 0.0}\n"
-                        "PTP {X -60.0,Y 0.0,Z 80.0,A 0.0,B 0.0,C 180.0}\n" +
-                            millPass(1, 0, 50) + millPass(2, 20, 40) + millPass(1, 40, 30) +
-                            "END\n");
+  test::writeFile(prog,
+                  "DEF mills ( )\nBAS (#INITMOV,0 )\n"
+                  "$BASE = {FRAME: X 1600.0,Y 0.0,Z 400.0,A 0.0,B 0.0,C 0.0}\n"
+                  "TOOL_DATA[1] = {X 0.0,Y 0.0,Z 300.0,A 0.0,B 0.0,C 0.0}\n"
+                  "TOOL_DATA[2] = {X 0.0,Y 0.0,Z 300.0,A 0.0,B 0.0,C 0.0}\n"
+                  "PTP {X -60.0,Y 0.0,Z 80.0,A 0.0,B 0.0,C 180.0}\n" +
+                      millPass(1, 0, 50) + millPass(2, 20, 40) + millPass(1, 40, 30) + "END\n");
   const api::ForcesRequest req = programRequest(dir + "/two.xml", prog);
   const ForcesOutputs whole = wholeForces(req);
   ASSERT_NE(whole.json.find("\"tool\": \"2\""), std::string::npos);
