@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <deque>
 #include <exception>
+#include <filesystem>
 #include <functional>
 #include <iterator>
 #include <optional>
@@ -22,6 +23,9 @@ bool cellIsMilling(const std::string& cell_path) {
 }
 
 namespace {
+
+/// The compensation marker's words (postproc::markCompensated, postproc::findCompensationMarker).
+constexpr std::string_view kCompensatedMarker = "roprec compensated";
 
 std::string millTable(const ProcessSpec& spec) {
   std::string t;
@@ -483,24 +487,64 @@ bool millingStreams(const std::string& program_path) {
   return compensationStreams(program_path, CompensationJob{});
 }
 
+bool millingStreams(const std::string& program_path, bool force) {
+  if (millingStreams(program_path)) return true;
+  if (!force) return false;
+  // compensationStreams' reasons but the marker: a KRL program whose .dat is not the larger file
+  try {
+    postproc::ProgramStream s(program_path);
+    if (!s.windowed()) return false;
+    const std::vector<postproc::SourceFile>& files = s.program().files;
+    std::error_code ec;
+    const auto src_bytes = std::filesystem::file_size(files[0].path, ec);
+    return ec || files.size() < 2 ||
+           files[1].bytes.size() <= postproc::ProgramStream::kWindowBytes ||
+           files[1].bytes.size() < src_bytes;
+  } catch (const InputError&) {
+    return false;  // the whole-program path gives the error
+  }
+}
+
 MillingCompensationResult loadStreamedMillingJob(const std::string& cell_path,
                                                  const std::string& program_path,
-                                                 std::size_t window_bytes) {
+                                                 std::size_t window_bytes, bool force) {
   MillingCompensationResult r;
   r.streamed = true;
   r.context = loadPredictionContext(cell_path, "", std::nullopt, "", 0.5, false, 1);
   r.context.job.path = program_path;
   StreamedPath path(r.context, program_path, window_bytes, false);
+  // the first file's window that holds the compensation marker (checkNotCompensated)
+  std::optional<postproc::SourceFile> marked;
+  const auto on_window = [&] {
+    const postproc::SourceFile& f = path.stream().program().files[0];
+    if (marked || f.bytes.find(kCompensatedMarker) == std::string::npos) return;
+    marked.emplace();
+    marked->path = f.path;
+    marked->bytes = f.bytes;
+    marked->line_starts = f.line_starts;
+    marked->line_base = f.line_base;
+  };
   std::deque<HeldPoint> held;
-  while (path.next(held, [] {})) {
+  while (path.next(held, on_window)) {
     const HeldPoint& h = held.back();
     if (r.runs.empty() || r.runs.back().second != h.mill)
       r.runs.emplace_back(path.count() - 1, h.mill);
     held.clear();
   }
+  r.context.job.program = std::move(path.stream().program());
+  // the marker where the whole program has it first (its first file's window, else the .dat):
+  // refused, or noted with `force`, before the path's errors as compensateMillingJob does
+  std::optional<std::string> note;
+  if (marked) {
+    postproc::Program scratch;
+    scratch.files.push_back(std::move(*marked));
+    note = checkNotCompensated(scratch, force);
+  } else {
+    note = checkNotCompensated(*r.context.job.program, force);
+  }
+  if (note) r.context.job.notes.push_back(*note);
   if (path.millError()) std::rethrow_exception(path.millError());
   r.streamed_points = path.count();
-  r.context.job.program = std::move(path.stream().program());
   if (r.streamed_points == 0) {
     throw InputError(program_path, 0,
                      "no linear path points (LIN/MoveL/L to Cartesian targets) in the program");
