@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <iomanip>
+#include <locale>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <sstream>
@@ -248,6 +250,80 @@ TEST(ForcesCli, MillingProgramJsonFileAndThreadsGiveTheSameBytes) {
                              " --threads x --json '" + dir + "/bad.json'");
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_FALSE(fs::exists(dir + "/bad.json"));
+}
+
+/// a == b, else where they first differ (gtest's diff of two large texts takes too long).
+testing::AssertionResult sameBytes(const std::string& a, const std::string& b) {
+  if (a == b) return testing::AssertionSuccess();
+  size_t k = 0;
+  while (k < a.size() && k < b.size() && a[k] == b[k]) ++k;
+  return testing::AssertionFailure()
+         << "sizes " << a.size() << " and " << b.size() << ", first difference at byte " << k
+         << ": '" << a.substr(k, 80) << "' vs '" << b.substr(k, 80) << "'";
+}
+
+/// The sample wall pass with `n` feed points over its 120 mm (scripts/bench-milling.sh's).
+std::string wallPass(int n) {
+  const std::string sample = test::readFile(test::sourceDir() + "/samples/milling/wall_pass.src");
+  const size_t head = sample.find('\n', sample.find("$VEL.CP = 0.06000")) + 1;
+  const size_t tail = sample.find("LIN {X 70.000");
+  std::string s = sample.substr(0, head);
+  for (int i = 0; i < n; ++i) {
+    std::ostringstream x;
+    x.imbue(std::locale::classic());
+    x << std::fixed << std::setprecision(4) << -50 + 120.0 * i / n;
+    s += "LIN {X " + x.str() + ",Y 0.000,Z -5.000,A 0.000,B 0.000,C 180.000} C_DIS\n";
+  }
+  return s + sample.substr(tail);
+}
+
+// A program read by windows (a KRL pass of 6000 points, several windows): the JSON on standard
+// output (held in a temporary file, not in memory) is the bytes of the --json file, and with
+// --csv - the curve CSV comes first on standard output, as the file --csv writes it.
+TEST(ForcesCli, MillingProgramByWindowsStdoutIsTheJsonFilesBytes) {
+  const std::string dir = test::tempDir("forces_program_stdout");
+  test::writeFile(dir + "/wall.src", wallPass(6000));
+  const std::string cmd =
+      "forces --cell " + sample("alu-milling-7075.xml") + " --program '" + dir + "/wall.src'";
+  const auto file = runRoprec(cmd + " --json '" + dir + "/f.json' --csv '" + dir + "/f.csv'");
+  ASSERT_EQ(file.exit_code, 0) << file.err;
+  EXPECT_TRUE(file.out.empty());
+  const std::string json = test::readFile(dir + "/f.json");
+  ASSERT_NE(json.find("\"point\": 6003"), std::string::npos);  // every point
+  const auto out = runRoprec(cmd);
+  ASSERT_EQ(out.exit_code, 0) << out.err;
+  EXPECT_TRUE(sameBytes(out.out, json));
+  const auto both = runRoprec(cmd + " --csv -");
+  ASSERT_EQ(both.exit_code, 0) << both.err;
+  EXPECT_TRUE(sameBytes(both.out, test::readFile(dir + "/f.csv") + json));
+}
+
+// A tool the cell's mills do not have at the last pass of a long program (many windows): the
+// first reading finds it before any point is computed; exit 2 at its line, nothing written
+// (neither standard output nor the --csv and --json files).
+TEST(ForcesCli, MillingProgramLateToolErrorExitsTwoWithNothingWritten) {
+  const std::string dir = test::tempDir("forces_program_late");
+  std::string text = wallPass(60000);
+  const std::string tool = "$TOOL = {FRAME: X 0.000,Y 0.000,Z 300.000,A 0.000,B 0.000,C 0.000}\r\n";
+  ASSERT_NE(text.find(tool), std::string::npos);
+  text.replace(text.find(tool), tool.size(),
+               "TOOL_DATA[1] = {X 0.0,Y 0.0,Z 300.0,A 0.0,B 0.0,C 0.0}\n"
+               "TOOL_DATA[2] = {X 0.0,Y 0.0,Z 300.0,A 0.0,B 0.0,C 0.0}\n$TOOL = TOOL_DATA[1]\n");
+  const size_t at = text.find("LIN {X 70.000");
+  text.insert(at, "$TOOL = TOOL_DATA[2]\n");  // the one mill's second tool
+  test::writeFile(dir + "/late.src", text);
+  const auto line =
+      std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(at), '\n') + 2;
+  const std::string cmd = "forces --cell " + sample("alu-milling-7075.xml") + " --program '" + dir +
+                          "/late.src' --csv '" + dir + "/c.csv'";
+  for (const std::string& json : {std::string(), " --json '" + dir + "/j.json'"}) {
+    const auto r = runRoprec(cmd + json);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out.substr(0, 200);
+    EXPECT_NE(r.err.find("late.src:" + std::to_string(line) + ":"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir + "/c.csv"));
+    EXPECT_FALSE(fs::exists(dir + "/j.json"));
+  }
 }
 
 // wall_pass.src with the KR 120 card: the approach (LIN at 250 mm/s) and the retract are not

@@ -46,7 +46,7 @@ std::string streamedJson(api::ForcesRequest req, std::size_t block, int threads,
   };
   result = api::processForces(req, sink);
   json.finish();
-  EXPECT_EQ(next, result.milling->path->points.size());  // every point handed over
+  EXPECT_EQ(next, result.milling->path->pointCount());  // every point handed over
   EXPECT_TRUE(result.milling->path->points_comp.empty());
   return bytes;
 }

@@ -25,7 +25,15 @@ namespace {
 struct MillingOutputs {
   std::string src, dat, csv, json, report;
   std::vector<std::string> failures, refused;
+  std::vector<std::string> force_notes;  ///< the job's "--force: ..." notes
 };
+
+std::vector<std::string> forceNotes(const std::vector<std::string>& notes) {
+  std::vector<std::string> out;
+  for (const std::string& n : notes)
+    if (n.rfind("--force", 0) == 0) out.push_back(n);
+  return out;
+}
 
 MillingPathOptions pathOptions(int threads, size_t block) {
   MillingPathOptions o;
@@ -36,10 +44,10 @@ MillingPathOptions pathOptions(int threads, size_t block) {
 }
 
 /// The job read whole: its edited program rendered, its exports and report.
-MillingOutputs wholeJob(const std::string& cell, const std::string& prog, int threads,
-                        size_t block) {
+MillingOutputs wholeJob(const std::string& cell, const std::string& prog, int threads, size_t block,
+                        bool force = false) {
   const api::MillingCompensationResult r =
-      api::compensateMillingJob(cell, prog, false, pathOptions(threads, block));
+      api::compensateMillingJob(cell, prog, force, pathOptions(threads, block));
   MillingOutputs o;
   const std::vector<std::string> files = postproc::renderFiles(*r.context.job.program);
   o.src = files.at(0);
@@ -49,14 +57,15 @@ MillingOutputs wholeJob(const std::string& cell, const std::string& prog, int th
   o.report = api::millingCompensationReport(r, prog);
   o.failures = r.failures;
   o.refused = r.refused;
+  o.force_notes = forceNotes(r.context.job.notes);
   return o;
 }
 
 /// The job read by windows of `window` bytes: the program as written, the exports and the report
 /// from the blocks as they come.
 MillingOutputs streamedJob(const std::string& cell, const std::string& prog, int threads,
-                           size_t block, size_t window) {
-  api::MillingCompensationResult r = api::loadStreamedMillingJob(cell, prog, window);
+                           size_t block, size_t window, bool force = false) {
+  api::MillingCompensationResult r = api::loadStreamedMillingJob(cell, prog, window, force);
   MillingOutputs o;
   api::MillingTargetsStream csv(true, prog, [&](std::string_view v) { o.csv += v; });
   api::MillingTargetsStream json(false, prog, [&](std::string_view v) { o.json += v; });
@@ -80,6 +89,7 @@ MillingOutputs streamedJob(const std::string& cell, const std::string& prog, int
   if (dat) o.dat = *dat;
   o.failures = r.failures;
   o.refused = r.refused;
+  o.force_notes = forceNotes(r.context.job.notes);
   return o;
 }
 
@@ -91,6 +101,7 @@ void expectSameOutputs(const MillingOutputs& a, const MillingOutputs& b, const s
   EXPECT_EQ(a.report, b.report) << what;
   EXPECT_EQ(a.failures, b.failures) << what;
   EXPECT_EQ(a.refused, b.refused) << what;
+  EXPECT_EQ(a.force_notes, b.force_notes) << what;
 }
 
 /// The sample wall pass with `n` feed points over its 120 mm (scripts/bench-milling.sh's).
@@ -125,6 +136,41 @@ TEST(MillingJob, WindowedReadingWritesTheBytesOfTheWholeProgramJob) {
                               " threads " + std::to_string(threads));
       }
     }
+  }
+}
+
+// A program roprec already compensated (its marker after the DEF line), compensated again with
+// --force: read by windows too, the same bytes and the same "--force" note at the marker's line;
+// without --force the same refusal.
+TEST(MillingJob, ForcedCompensatedProgramByWindowsIsTheWholeProgramJob) {
+  const std::string dir = test::tempDir("milling_job");
+  const std::string cell = test::sourceDir() + "/samples/cells/alu-milling-7075.xml";
+  test::writeFile(dir + "/wall.src", wallPass(300));
+  const std::string prog = dir + "/marked.src";
+  test::writeFile(prog, wholeJob(cell, dir + "/wall.src", 1, 512).src);
+  ASSERT_FALSE(api::millingStreams(prog, false));
+  ASSERT_TRUE(api::millingStreams(prog, true));
+  const MillingOutputs whole = wholeJob(cell, prog, 1, 512, true);
+  ASSERT_EQ(whole.force_notes.size(), 1u);
+  EXPECT_NE(whole.force_notes[0].find("marked.src:5)"), std::string::npos) << whole.force_notes[0];
+  for (const size_t window : {size_t{2048}, size_t{0}}) {
+    for (const int threads : {1, 2}) {
+      expectSameOutputs(whole, streamedJob(cell, prog, threads, 7, window, true),
+                        "window " + std::to_string(window) + " threads " + std::to_string(threads));
+    }
+  }
+  std::string whole_error;
+  try {
+    (void)api::compensateMillingJob(cell, prog);
+  } catch (const InputError& e) {
+    whole_error = e.what();
+  }
+  ASSERT_NE(whole_error.find("already compensated"), std::string::npos) << whole_error;
+  try {
+    (void)api::loadStreamedMillingJob(cell, prog, 2048);
+    ADD_FAILURE() << "a marked program read by windows without force";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), whole_error);
   }
 }
 

@@ -94,10 +94,9 @@ MillingCouplingData millingCoupling(const MillingModel& m, const MillingSpec& s,
   return cp;
 }
 
-std::string unstablePointText(size_t i, const postproc::Target& t, const PathPointCompensation& p,
-                              double ap) {
+std::string unstablePointText(size_t i, int line, const PathPointCompensation& p, double ap) {
   const std::string at =
-      "path point " + std::to_string(i + 1) + " (line " + std::to_string(t.line) + "): ";
+      "path point " + std::to_string(i + 1) + " (line " + std::to_string(line) + "): ";
   if (!p.regenerativeUnstable(ap)) {
     return at + "mode-coupling chatter: ap " + fixed(ap / kMm, 3) + " mm > limit " +
            fixed(p.mode_coupling_ap_limit / kMm, 3) + " mm (at " + fixed(p.mode_coupling_hz, 1) +
@@ -110,14 +109,12 @@ std::string unstablePointText(size_t i, const postproc::Target& t, const PathPoi
 /// Whether the points of the block `r` converged and which chatter (one line each, in order).
 void notePathBlock(const MillingCompensationResult& r, bool& converged,
                    std::vector<std::string>& unstable) {
-  const postproc::Program& prog = *r.context.job.program;
   for (size_t i = r.first; i < r.first + r.points_comp.size(); ++i) {
     const PathPointCompensation& p = r.point(i);
-    const postproc::Target& t = prog.targets()[static_cast<size_t>(r.targets[i])];
     const bool before_ok = !p.cutting || p.before_status == "converged";
     const double ap_i = pathPointAp(r, i);
     if (!before_ok || !p.ok) converged = false;
-    if (p.unstable(ap_i)) unstable.push_back(unstablePointText(i, t, p, ap_i));
+    if (p.unstable(ap_i)) unstable.push_back(unstablePointText(i, r.targetLine(i), p, ap_i));
   }
 }
 
@@ -138,15 +135,24 @@ MillingCompensationResult millingPath(const ForcesRequest& req, bool& converged,
   return r;
 }
 
-/// millingPath handing each block of points to `sink` (after `head` got the result so far).
+/// millingPath handing each block of points to `sink` (after `head` got the result so far). A
+/// program compensate reads by windows (millingStreams) is read so here too: a first reading
+/// checks it whole (its errors before `head`), a second hands its points to the chains a block at
+/// a time; memory is then constant in the number of points.
 MillingCompensationResult millingPathStreamed(const ForcesRequest& req, const ForcesPathSink& sink,
                                               ForcesResult& out) {
+  const MillingPointsSink each = [&](const MillingCompensationResult& blk) {
+    notePathBlock(blk, out.converged, out.unstable);
+    if (sink.points) sink.points(blk);
+  };
+  if (millingStreams(*req.program)) {
+    MillingCompensationResult r = loadStreamedMillingJob(req.cell, *req.program, req.window_bytes);
+    if (sink.head) sink.head(out);
+    computeStreamedMillingPath(r, pathOptions(req), each, req.window_bytes);
+    return r;
+  }
   if (sink.head) sink.head(out);
-  return compensateMillingJob(req.cell, *req.program, false, pathOptions(req),
-                              [&](const MillingCompensationResult& blk) {
-                                notePathBlock(blk, out.converged, out.unstable);
-                                if (sink.points) sink.points(blk);
-                              });
+  return compensateMillingJob(req.cell, *req.program, false, pathOptions(req), each);
 }
 
 /// The cell's robot model and joint compliance (milling with --joints).
@@ -196,7 +202,7 @@ void wrenchForcesOf(const CellSpec& cell, const WrenchSpec& w, const ForcesReque
 
 double pathPointAp(const MillingCompensationResult& r, size_t i) {
   const PathPointCompensation& p = r.point(i);
-  const bool engaged = r.cutting[i].engagement.has_value();
+  const bool engaged = r.engagement(i).has_value();
   return p.cutting && engaged ? p.ap : millOf(r, i).cut.ap;
 }
 

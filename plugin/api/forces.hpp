@@ -54,6 +54,9 @@ struct ForcesRequest {
   /// whatever the count) and points per block handed to a ForcesPathSink (>= 1).
   int threads{1};
   std::size_t block{512};
+  /// milling `program` read by windows (a ForcesPathSink and a program millingStreams() accepts):
+  /// the windows' size in bytes (0: postproc::ProgramStream::kWindowBytes; tests give small ones).
+  std::size_t window_bytes{0};
 };
 
 /// Drilling: the spec (after the calibration), the steady forces, the curve over depth and, with
@@ -118,9 +121,12 @@ struct ForcesPathSink {
   MillingPointsSink points;
 };
 /// processForces handing a milling program's path to `sink` a block at a time: the points'
-/// results are never all in memory (milling->path->points_comp is empty in the result). Without
-/// a program it is processForces (the sink is not called). `converged` and `unstable` are those
-/// of processForces.
+/// results are never all in memory (milling->path->points_comp is empty in the result). A program
+/// compensate reads by windows (millingStreams) is read by windows here too: the program is then
+/// never whole in memory either (milling->path is a streamed result: its per-point vectors are
+/// empty; read a block's points with its accessors, targetLine() and engagement()). Without a
+/// program it is processForces (the sink is not called). `converged` and `unstable` are those of
+/// processForces.
 ForcesResult processForces(const ForcesRequest& request, const ForcesPathSink& sink);
 
 }  // namespace roprec::api

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <deque>
 #include <exception>
+#include <filesystem>
 #include <functional>
 #include <iterator>
 #include <optional>
@@ -22,6 +23,9 @@ bool cellIsMilling(const std::string& cell_path) {
 }
 
 namespace {
+
+/// The compensation marker's words (postproc::markCompensated, postproc::findCompensationMarker).
+constexpr std::string_view kCompensatedMarker = "roprec compensated";
 
 std::string millTable(const ProcessSpec& spec) {
   std::string t;
@@ -331,11 +335,11 @@ class StreamedPath {
   bool ended_{false};
 };
 
-/// The edits of the compensated points held[0, block.size()) of a program read by windows, as
-/// editMillingTargets makes them (path point `first` is held[0]); what the exports read of them
-/// into r.block.
+/// The compensated points held[0, block.size()) of a program read by windows (path point `first`
+/// is held[0]): what the exports read of them into r.block, and their failures in path order;
+/// with `edits`, their target edits as editMillingTargets makes them and the refused ones.
 void editStreamedTargets(MillingCompensationResult& r, const postproc::Program& prog,
-                         postproc::StreamedEdits& edits, const std::deque<HeldPoint>& held,
+                         postproc::StreamedEdits* edits, const std::deque<HeldPoint>& held,
                          std::size_t first, std::span<const PathPointCompensation> block) {
   r.block.clear();
   for (size_t k = 0; k < block.size(); ++k) {
@@ -345,9 +349,70 @@ void editStreamedTargets(MillingCompensationResult& r, const postproc::Program& 
     r.block.push_back({t.name, t.line, h.path.T_W_tcp, h.engagement, h.mill});
     const PathPointCompensation& p = block[k];
     editPathPoint(r, prog, i, t, p, [&](const std::optional<postproc::Configuration>& cfg) {
-      return edits.replaceTargetPose(h.target, h.T_W_frame.inverse() * p.T_programmed, cfg);
+      if (edits == nullptr) return postproc::EditResult{true, ""};
+      return edits->replaceTargetPose(h.target, h.T_W_frame.inverse() * p.T_programmed, cfg);
     });
   }
+}
+
+/// The path points of a job loadStreamedMillingJob loaded, read again by `path` and handed to the
+/// chains run by run, block by block (compensateStreamedMillingJob); `edits` (none: the program
+/// is not written) receives the target edits and writes the bytes no later edit can change.
+void streamMillRuns(MillingCompensationResult& r, const MillingPathOptions& options,
+                    StreamedPath& path, postproc::StreamedEdits* edits,
+                    const MillingPointsSink& sink) {
+  const PredictionModel& cell = r.context.model;
+  const postproc::Program& prog = path.stream().program();
+  const auto on_window = [edits] {
+    if (edits == nullptr) return;
+    edits->installed();
+    edits->flush();
+  };
+  std::deque<HeldPoint> held;  // read, not edited yet
+  size_t given = 0;            // held[given ..] not handed to the chains yet
+  MillingPathOptions with_stock = options;
+  with_stock.T_W_stock = stockFrame(r.context.cell);
+  std::optional<Vec6> seed;
+  for (size_t run = 0; run < r.runs.size(); ++run) {
+    const size_t begin = r.runs[run].first;
+    const size_t end = run + 1 < r.runs.size() ? r.runs[run + 1].first : r.streamed_points;
+    std::optional<PredictionModel> with;
+    const PredictionModel& m = runModel(cell, static_cast<size_t>(r.runs[run].second), with);
+    CuttingDecider decide(m.process.milling, with_stock.T_W_stock);
+    size_t left = end - begin;
+    const MillingPathSource source = [&](size_t count, std::vector<Pose>& points,
+                                         std::vector<CuttingDecision>& cutting) {
+      size_t n = 0;
+      for (; n < count && left > 0; ++n, --left) {
+        if (given == held.size() && !path.next(held, on_window))
+          throw InternalError("the program has fewer path points than its first reading");
+        HeldPoint& h = held[given++];
+        points.push_back(h.path.T_W_tcp);
+        cutting.push_back(decide(h.path));
+        h.engagement = cutting.back().engagement;
+      }
+      return n;
+    };
+    std::optional<Vec6> run_seed = seed;
+    const MillingPathSink each = [&](size_t first, std::span<PathPointCompensation> block) {
+      for (const PathPointCompensation& p : block)
+        if (p.ok) seed = p.theta_d;
+      editStreamedTargets(r, prog, edits, held, begin + first, block);
+      r.points_comp.assign(std::make_move_iterator(block.begin()),
+                           std::make_move_iterator(block.end()));
+      r.first = begin + first;
+      if (sink) sink(r);
+      r.points_comp.clear();
+      held.erase(held.begin(), held.begin() + static_cast<std::ptrdiff_t>(block.size()));
+      given -= block.size();
+      if (edits != nullptr) edits->flush();
+    };
+    compensateMillingPath(m, source, true, run_seed ? &*run_seed : nullptr, with_stock, each);
+  }
+  r.first = 0;
+  r.block.clear();
+  if (path.next(held, on_window) || path.millError())
+    throw InternalError("the program's path points are not those of its first reading");
 }
 
 }  // namespace
@@ -422,24 +487,64 @@ bool millingStreams(const std::string& program_path) {
   return compensationStreams(program_path, CompensationJob{});
 }
 
+bool millingStreams(const std::string& program_path, bool force) {
+  if (millingStreams(program_path)) return true;
+  if (!force) return false;
+  // compensationStreams' reasons but the marker: a KRL program whose .dat is not the larger file
+  try {
+    postproc::ProgramStream s(program_path);
+    if (!s.windowed()) return false;
+    const std::vector<postproc::SourceFile>& files = s.program().files;
+    std::error_code ec;
+    const auto src_bytes = std::filesystem::file_size(files[0].path, ec);
+    return ec || files.size() < 2 ||
+           files[1].bytes.size() <= postproc::ProgramStream::kWindowBytes ||
+           files[1].bytes.size() < src_bytes;
+  } catch (const InputError&) {
+    return false;  // the whole-program path gives the error
+  }
+}
+
 MillingCompensationResult loadStreamedMillingJob(const std::string& cell_path,
                                                  const std::string& program_path,
-                                                 std::size_t window_bytes) {
+                                                 std::size_t window_bytes, bool force) {
   MillingCompensationResult r;
   r.streamed = true;
   r.context = loadPredictionContext(cell_path, "", std::nullopt, "", 0.5, false, 1);
   r.context.job.path = program_path;
   StreamedPath path(r.context, program_path, window_bytes, false);
+  // the first file's window that holds the compensation marker (checkNotCompensated)
+  std::optional<postproc::SourceFile> marked;
+  const auto on_window = [&] {
+    const postproc::SourceFile& f = path.stream().program().files[0];
+    if (marked || f.bytes.find(kCompensatedMarker) == std::string::npos) return;
+    marked.emplace();
+    marked->path = f.path;
+    marked->bytes = f.bytes;
+    marked->line_starts = f.line_starts;
+    marked->line_base = f.line_base;
+  };
   std::deque<HeldPoint> held;
-  while (path.next(held, [] {})) {
+  while (path.next(held, on_window)) {
     const HeldPoint& h = held.back();
     if (r.runs.empty() || r.runs.back().second != h.mill)
       r.runs.emplace_back(path.count() - 1, h.mill);
     held.clear();
   }
+  r.context.job.program = std::move(path.stream().program());
+  // the marker where the whole program has it first (its first file's window, else the .dat):
+  // refused, or noted with `force`, before the path's errors as compensateMillingJob does
+  std::optional<std::string> note;
+  if (marked) {
+    postproc::Program scratch;
+    scratch.files.push_back(std::move(*marked));
+    note = checkNotCompensated(scratch, force);
+  } else {
+    note = checkNotCompensated(*r.context.job.program, force);
+  }
+  if (note) r.context.job.notes.push_back(*note);
   if (path.millError()) std::rethrow_exception(path.millError());
   r.streamed_points = path.count();
-  r.context.job.program = std::move(path.stream().program());
   if (r.streamed_points == 0) {
     throw InputError(program_path, 0,
                      "no linear path points (LIN/MoveL/L to Cartesian targets) in the program");
@@ -452,7 +557,6 @@ void compensateStreamedMillingJob(MillingCompensationResult& r, const MillingPat
                                   const MillingPointsSink& sink, std::size_t window_bytes) {
   if (!r.streamed || !r.context.job.program)
     throw InternalError("compensateStreamedMillingJob: the job was not loaded by windows");
-  const PredictionModel& cell = r.context.model;
   StreamedPath path(r.context, r.context.job.path, window_bytes, options.threads > 1);
   postproc::Program& prog = path.stream().program();
   prog.position_min_decimals = 5;
@@ -460,58 +564,18 @@ void compensateStreamedMillingJob(MillingCompensationResult& r, const MillingPat
   postproc::StreamedEdits edits(path.stream(), write_src,
                                 markerText(r.context.cell, "milling path"),
                                 r.context.job.program->files[0]);
-  const auto on_window = [&edits] {
-    edits.installed();
-    edits.flush();
-  };
-  std::deque<HeldPoint> held;  // read, not edited yet
-  size_t given = 0;            // held[given ..] not handed to the chains yet
-  MillingPathOptions with_stock = options;
-  with_stock.T_W_stock = stockFrame(r.context.cell);
-  std::optional<Vec6> seed;
-  for (size_t run = 0; run < r.runs.size(); ++run) {
-    const size_t begin = r.runs[run].first;
-    const size_t end = run + 1 < r.runs.size() ? r.runs[run + 1].first : r.streamed_points;
-    std::optional<PredictionModel> with;
-    const PredictionModel& m = runModel(cell, static_cast<size_t>(r.runs[run].second), with);
-    CuttingDecider decide(m.process.milling, with_stock.T_W_stock);
-    size_t left = end - begin;
-    const MillingPathSource source = [&](size_t count, std::vector<Pose>& points,
-                                         std::vector<CuttingDecision>& cutting) {
-      size_t n = 0;
-      for (; n < count && left > 0; ++n, --left) {
-        if (given == held.size() && !path.next(held, on_window))
-          throw InternalError("the program has fewer path points than its first reading");
-        HeldPoint& h = held[given++];
-        points.push_back(h.path.T_W_tcp);
-        cutting.push_back(decide(h.path));
-        h.engagement = cutting.back().engagement;
-      }
-      return n;
-    };
-    std::optional<Vec6> run_seed = seed;
-    const MillingPathSink each = [&](size_t first, std::span<PathPointCompensation> block) {
-      for (const PathPointCompensation& p : block)
-        if (p.ok) seed = p.theta_d;
-      editStreamedTargets(r, prog, edits, held, begin + first, block);
-      r.points_comp.assign(std::make_move_iterator(block.begin()),
-                           std::make_move_iterator(block.end()));
-      r.first = begin + first;
-      sink(r);
-      r.points_comp.clear();
-      held.erase(held.begin(), held.begin() + static_cast<std::ptrdiff_t>(block.size()));
-      given -= block.size();
-      edits.flush();
-    };
-    compensateMillingPath(m, source, true, run_seed ? &*run_seed : nullptr, with_stock, each);
-  }
-  r.first = 0;
-  r.block.clear();
-  if (path.next(held, on_window) || path.millError())
-    throw InternalError("the program's path points are not those of its first reading");
+  streamMillRuns(r, options, path, &edits, sink);
   if (!r.failures.empty() || !r.refused.empty()) return;  // nothing is written
   edits.finish();
   dat = edits.dat();
+}
+
+void computeStreamedMillingPath(MillingCompensationResult& r, const MillingPathOptions& options,
+                                const MillingPointsSink& sink, std::size_t window_bytes) {
+  if (!r.streamed || !r.context.job.program)
+    throw InternalError("computeStreamedMillingPath: the job was not loaded by windows");
+  StreamedPath path(r.context, r.context.job.path, window_bytes, options.threads > 1);
+  streamMillRuns(r, options, path, nullptr, sink);
 }
 
 }  // namespace roprec::api

@@ -86,15 +86,20 @@ MillingCompensationResult compensateMillingJob(const std::string& cell_path,
 /// Whether compensate reads a milling program by windows (compensateStreamedMillingJob): a KUKA
 /// KRL program without the "roprec compensated" marker (compensationStreams).
 bool millingStreams(const std::string& program_path);
+/// millingStreams(), and with `force` (compensate --force) also a KRL program that carries the
+/// marker: read by windows as well (loadStreamedMillingJob with `force`).
+bool millingStreams(const std::string& program_path, bool force);
 /// compensateMillingJob's loading of a program millingStreams() accepts, read by windows: the
 /// cell and a first reading that checks every path point (the same errors, in the same order:
 /// the program's, then its points' mills, then a program without a path point) and keeps only
 /// the runs of points of one mill; context.job.program then holds the program's files (their
 /// number style, the `.dat` whole), frames and notes, not its motions.
-/// `window_bytes`: the windows' size (0: postproc::ProgramStream::kWindowBytes).
+/// `window_bytes`: the windows' size (0: postproc::ProgramStream::kWindowBytes). A program that
+/// carries the compensation marker is refused unless `force` (checkNotCompensated: the same
+/// error, or with `force` the same note in context.job.notes, as compensateMillingJob's).
 MillingCompensationResult loadStreamedMillingJob(const std::string& cell_path,
                                                  const std::string& program_path,
-                                                 std::size_t window_bytes = 0);
+                                                 std::size_t window_bytes = 0, bool force = false);
 /// compensateMillingJob of a job loadStreamedMillingJob loaded, memory constant in the number of
 /// points: a second reading hands the path points to the chains block by block
 /// (compensateMillingPath's MillingPathSource, the cutting decided point by point) and edits the
@@ -106,6 +111,12 @@ MillingCompensationResult loadStreamedMillingJob(const std::string& cell_path,
 void compensateStreamedMillingJob(MillingCompensationResult& r, const MillingPathOptions& path,
                                   const ByteWriter& write_src, std::optional<std::string>& dat,
                                   const MillingPointsSink& sink, std::size_t window_bytes = 0);
+
+/// compensateStreamedMillingJob without the program's edits, for a job that writes no program
+/// (`roprec forces --program`): the same blocks, in the same order, and the same `failures`;
+/// `refused` stays empty (no edit is made).
+void computeStreamedMillingPath(MillingCompensationResult& r, const MillingPathOptions& path,
+                                const MillingPointsSink& sink, std::size_t window_bytes = 0);
 
 /// The mill of path point `i` (MillingCompensationResult::mill).
 const MillingSpec& millOf(const MillingCompensationResult& r, std::size_t i);

@@ -200,9 +200,9 @@ bool streamedOutputsFine(const MillingCompensationResult& r, const std::vector<s
 /// iteration (compensator/compensation/milling_compensation.hpp). The points stream past block by
 /// block: the --targets export is written as they come, the report's rows are spilled to a
 /// temporary file and only its plots' few numbers per point are kept. A KRL program is read by
-/// windows (millingStreams) and its compensated program written as the blocks come: memory is
-/// then constant in the number of points but for the report's few numbers per point; another
-/// program is read whole.
+/// windows (millingStreams; one carrying the compensation marker too with --force) and its
+/// compensated program written as the blocks come: memory is then constant in the number of
+/// points but for the report's few numbers per point; another program is read whole.
 int runMillingPath(CommandContext& ctx, const std::string& cell, const std::string& program,
                    const std::string& out, const std::optional<std::string>& targets,
                    const std::optional<std::string>& report, bool force, int threads) {
@@ -247,8 +247,8 @@ int runMillingPath(CommandContext& ctx, const std::string& cell, const std::stri
   // a KRL program read by windows, its program written as the points come
   std::optional<std::vector<std::string>> prog_outs;
   std::optional<std::string> dat;
-  if (millingStreams(program)) {
-    result = loadStreamedMillingJob(cell, program);
+  if (millingStreams(program, force)) {
+    result = loadStreamedMillingJob(cell, program, 0, force);
     std::vector<std::string> outs = postproc::outputPaths(*result->context.job.program, out);
     outs.insert(outs.end(), extra.begin(), extra.end());
     if (streamedOutputsFine(*result, outs)) {

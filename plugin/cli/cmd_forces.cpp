@@ -2,9 +2,14 @@
 /// steady values as JSON, curves vs depth (drilling) or vs cutter angle (milling) as CSV, and the
 /// single-test calibration of kst0/ksa0.
 #include <cmath>
+#include <cstdio>
+#include <optional>
 #include <sstream>
+#include <stdexcept>
+#include <string>
 
 #include "compensator/support/error.hpp"
+#include "compensator/support/platform.hpp"
 #include "plugin/api/job.hpp"
 #include "plugin/cli/cli.hpp"
 #include "plugin/report/forces_output.hpp"
@@ -68,16 +73,63 @@ void parseNumbers(ForcesRequest& req, const std::optional<std::string>& step_mm,
   }
 }
 
+/// Standard output's bytes held in a temporary file, not in memory, until the command is done
+/// (then copied to standard output a chunk at a time): nothing is written when it fails.
+class StdoutSpill {
+ public:
+  StdoutSpill() : f_(std::tmpfile()) {
+    if (f_ == nullptr)
+      throw InputError("", 0, "cannot create a temporary file for standard output");
+  }
+  ~StdoutSpill() { std::fclose(f_); }
+  StdoutSpill(const StdoutSpill&) = delete;
+  StdoutSpill& operator=(const StdoutSpill&) = delete;
+  void write(std::string_view v) {
+    if (std::fwrite(v.data(), 1, v.size(), f_) != v.size())
+      throw InputError("", 0, "cannot write standard output's temporary file");
+  }
+  /// Writes everything held to standard output (before the staged files are renamed, as main()
+  /// writes it); a failed write is main()'s "cannot write to standard output" error.
+  void copyToStdout() {
+    if (std::fflush(f_) != 0 || std::fseek(f_, 0, SEEK_SET) != 0)
+      throw InputError("", 0, "cannot read standard output's temporary file");
+    std::string buf(std::size_t{1} << 20U, '\0');
+    std::size_t got = 0;
+    while ((got = std::fread(buf.data(), 1, buf.size(), f_)) > 0) {
+      if (const int e = writeStdout({buf.data(), got}); e != 0) {
+        throw std::runtime_error("cannot write to standard output: " + platform::errorText(e) +
+                                 "; nothing written");
+      }
+    }
+    if (std::ferror(f_) != 0)
+      throw InputError("", 0, "cannot read standard output's temporary file");
+  }
+
+ private:
+  std::FILE* f_;
+};
+
 /// `--program` (milling): the JSON written as the path's blocks of points arrive, into its staged
-/// file (or standard output's buffer); the curve CSV (from the result before the path) first.
+/// file or, for standard output, a temporary file copied to it at the end (with the CSV before it
+/// when that goes to standard output too); the curve CSV (from the result before the path) first.
 ForcesResult runProgram(CommandContext& ctx, const ForcesRequest& req,
                         const std::optional<std::string>& csv_path,
                         const std::optional<std::string>& json_path) {
+  const bool to_stdout = !json_path || json_path->empty() || *json_path == "-";
+  std::optional<StdoutSpill> spill;
+  if (to_stdout) spill.emplace();
   const auto stream = [&](const ByteWriter& write) {
     ForcesJsonStream json(write);
     ForcesPathSink sink;
     sink.head = [&](const ForcesResult& head) {
-      if (csv_path) emit(ctx, *csv_path, forcesOutput(head).curve_csv);
+      if (csv_path) {
+        std::string csv = forcesOutput(head).curve_csv;
+        if (spill && (csv_path->empty() || *csv_path == "-")) {
+          spill->write(csv);
+        } else {
+          emit(ctx, *csv_path, csv);
+        }
+      }
       (void)json.head(head);
     };
     sink.points = [&](const MillingCompensationResult& block) { json.points(block); };
@@ -86,8 +138,11 @@ ForcesResult runProgram(CommandContext& ctx, const ForcesRequest& req,
     write("\n");
     return r;
   };
-  if (!json_path || json_path->empty() || *json_path == "-")
-    return stream([&](std::string_view bytes) { ctx.out << bytes; });
+  if (spill) {
+    ForcesResult r = stream([&](std::string_view bytes) { spill->write(bytes); });
+    spill->copyToStdout();
+    return r;
+  }
   ForcesResult r;
   writeFileAtomicStream(*json_path, [&](const ByteWriter& write) { r = stream(write); });
   return r;
@@ -188,8 +243,10 @@ const CommandRegistration reg{
      "tool selects the mill of each point instead.\n"
      "--threads N (with --program): worker threads of the path's two pipelined chains (0 = every\n"
      "core; default 1); the output is byte-identical for any N. The path's points are written a\n"
-     "block at a time as they are computed: memory does not grow with the per-point results (the\n"
-     "JSON on standard output is held until the end; give --json F.json for a long path).\n"
+     "block at a time as they are computed (on standard output through a temporary file, written\n"
+     "out once the whole path is done); a KUKA KRL program is read by windows, so memory does not\n"
+     "grow with its number of points (a RAPID or FANUC TP program is read whole, ~1.5 KB a "
+     "point).\n"
      "--calibrate identifies kst0 and ksa0 from one measured thrust and torque at the cell's "
      "diameter and\n"
      "feed; -o OUT.xml writes a copy of the cell with the calibrated <coefficients> "

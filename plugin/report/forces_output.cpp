@@ -399,12 +399,10 @@ Json pathPointEdgesJson(const PathPointCompensation& p) {
 /// compliance at the point (uncompensated: status, iterations, residual_um, force_N,
 /// deviation_um), and the compensated point ("compensated").
 Json pathPointJson(const MillingCompensationResult& r, size_t i) {
-  const postproc::Program& prog = *r.context.job.program;
   const PathPointCompensation& p = r.point(i);
-  const postproc::Target& t = prog.targets()[static_cast<size_t>(r.targets[i])];
   Json j = Json::object();
   j.set("point", Json::integer(static_cast<std::int64_t>(i + 1)));
-  j.set("line", Json::integer(t.line));
+  j.set("line", Json::integer(r.targetLine(i)));
   if (r.context.model.process.mills.size() > 1) j.set("tool", Json::str(millOf(r, i).tool_key));
   j.set("cutting", Json::boolean(p.cutting));
   j.set("cutting_reason", Json::str(p.cutting_reason));
@@ -430,7 +428,7 @@ Json pathPointJson(const MillingCompensationResult& r, size_t i) {
   c.set("predicted_residual_um", Json::number(p.residual.norm() * 1e6, 4));
   if (p.cutting_after) c.set("surface_error_um", Json::number(p.surface_error * 1e6, 4));
   // box stock: the engagement each coupling used (the real paths') and the programmed path's
-  const std::optional<MillingEngagement>& engaged = r.cutting[i].engagement;
+  const std::optional<MillingEngagement>& engaged = r.engagement(i);
   if (engaged && p.cutting_after) {
     c.set("ae_mm", Json::number(p.ae_after / kMm, 4));
     c.set("ap_mm", Json::number(p.ap_after / kMm, 4));

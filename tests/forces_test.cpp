@@ -1,0 +1,164 @@
+// `roprec forces --program` read by windows (processForces with a ForcesPathSink on a program
+// compensate reads by windows) against the same request computed on the program read whole
+// (processForces without a sink): the JSON bytes, the curve CSV, the convergence and the chatter
+// lines are the same whatever the window size (windows of a few points: blocks cross windows),
+// the block size and the thread count, for one pass, the box stock's passes and two mills.
+#include "plugin/api/forces.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <string_view>
+
+#include "compensator/support/c_format.hpp"
+#include "plugin/report/forces_output.hpp"
+#include "tests/support/test_support.hpp"
+
+namespace roprec {
+namespace {
+
+/// What `roprec forces --program` writes of a request, and its exit status's inputs.
+struct ForcesOutputs {
+  std::string json, csv;
+  bool converged{true};
+  std::vector<std::string> unstable;
+};
+
+api::ForcesRequest programRequest(const std::string& cell, const std::string& prog) {
+  api::ForcesRequest req;
+  req.cell = cell;
+  req.program = prog;
+  return req;
+}
+
+/// The request computed on the program read whole (no sink).
+ForcesOutputs wholeForces(const api::ForcesRequest& req) {
+  const api::ForcesResult r = api::processForces(req);
+  EXPECT_FALSE(r.milling->path->streamed);
+  const api::ForcesOutput o = api::forcesOutput(r);
+  return {o.json.dump(), o.curve_csv, r.converged, r.unstable};
+}
+
+/// The request streamed block by block from the program read by windows of `window` bytes.
+ForcesOutputs windowedForces(api::ForcesRequest req, std::size_t window, std::size_t block,
+                             int threads) {
+  req.window_bytes = window;
+  req.block = block;
+  req.threads = threads;
+  ForcesOutputs o;
+  api::ForcesJsonStream json([&](std::string_view v) { o.json.append(v); });
+  api::ForcesPathSink sink;
+  sink.head = [&](const api::ForcesResult& head) { o.csv = json.head(head); };
+  sink.points = [&](const api::MillingCompensationResult& b) { json.points(b); };
+  const api::ForcesResult r = api::processForces(req, sink);
+  json.finish();
+  EXPECT_TRUE(r.milling->path->streamed);  // read by windows, not whole
+  EXPECT_TRUE(r.milling->path->points.empty());
+  o.converged = r.converged;
+  o.unstable = r.unstable;
+  return o;
+}
+
+/// a == b, else where they first differ (gtest's diff of two large texts takes too long).
+testing::AssertionResult sameBytes(const std::string& a, const std::string& b) {
+  if (a == b) return testing::AssertionSuccess();
+  size_t k = 0;
+  while (k < a.size() && k < b.size() && a[k] == b[k]) ++k;
+  return testing::AssertionFailure()
+         << "sizes " << a.size() << " and " << b.size() << ", first difference at byte " << k
+         << ": '" << a.substr(k, 80) << "' vs '" << b.substr(k, 80) << "'";
+}
+
+void expectSame(const ForcesOutputs& a, const ForcesOutputs& b, const std::string& what) {
+  EXPECT_TRUE(sameBytes(a.json, b.json)) << what;
+  EXPECT_TRUE(sameBytes(a.csv, b.csv)) << what;
+  EXPECT_EQ(a.converged, b.converged) << what;
+  EXPECT_EQ(a.unstable, b.unstable) << what;
+}
+
+/// The sample wall pass with `n` feed points over its 120 mm (scripts/bench-milling.sh's).
+std::string wallPass(int n) {
+  const std::string sample = test::readFile(test::sourceDir() + "/samples/milling/wall_pass.src");
+  const size_t head = sample.find('\n', sample.find("$VEL.CP = 0.06000")) + 1;
+  const size_t tail = sample.find("LIN {X 70.000");
+  std::string s = sample.substr(0, head);
+  for (int i = 0; i < n; ++i) {
+    s += "LIN {X " + cFixed(-50 + 120.0 * i / n, 4) +
+         ",Y 0.000,Z -5.000,A 0.000,B 0.000,C 180.000} C_DIS\n";
+  }
+  return s + sample.substr(tail);
+}
+
+// A wall pass of 150 points: windows of 2 KB (about 30 points: boundaries inside the blocks of
+// the chains) with blocks of 7 points on 1 and 2 threads, and the default window and block.
+TEST(Forces, ProgramReadByWindowsGivesTheWholeProgramsJson) {
+  const std::string dir = test::tempDir("forces_windows");
+  const std::string prog = dir + "/wall.src";
+  test::writeFile(prog, wallPass(150));
+  const api::ForcesRequest req =
+      programRequest(test::sourceDir() + "/samples/cells/alu-milling-7075.xml", prog);
+  const ForcesOutputs whole = wholeForces(req);
+  ASSERT_NE(whole.json.find("\"point\": 153"), std::string::npos);  // every point is there
+  expectSame(whole, windowedForces(req, 2048, 7, 1), "2 KB windows, 1 thread");
+  expectSame(whole, windowedForces(req, 2048, 7, 2), "2 KB windows, 2 threads");
+  expectSame(whole, windowedForces(req, 0, 512, 2), "default windows");
+}
+
+// The box stock sample (each pass engages what the earlier ones left: the engagements in the
+// JSON) read by the smallest windows, a few lines each, on 2 threads (the read-ahead).
+TEST(Forces, BoxStockPassesReadByWindowsGiveTheWholeProgramsJson) {
+  const api::ForcesRequest req =
+      programRequest(test::sourceDir() + "/samples/milling/box-stock-7075.xml",
+                     test::sourceDir() + "/samples/milling/box_passes.src");
+  const ForcesOutputs whole = wholeForces(req);
+  ASSERT_NE(whole.json.find("\"programmed_ae_mm\""), std::string::npos);
+  expectSame(whole, windowedForces(req, 512, 16, 2), "512-byte windows");
+}
+
+/// A milling cell of two mills (tool table) on the KR120.
+std::string twoMillCell() {
+  return "<cell name=\"mills\">\n  <robot ref=\"kuka-kr120-r2500-pro\"/>\n"
+         "  <tool name=\"spindle\" xyz=\"0 0 300\" rpy=\"0 0 0\" mass_kg=\"30\" com_mm=\"0 0 "
+         "140\"/>\n  <workobject xyz=\"1600 0 400\" rpy=\"0 0 0\"/>\n"
+         "  <process type=\"milling\">\n"
+         "    <mill tool=\"1\" diameter_mm=\"10\" teeth=\"3\" helix_angle_deg=\"30\"/>\n"
+         "    <mill tool=\"2\" diameter_mm=\"6\" teeth=\"4\" helix_angle_deg=\"35\">"
+         "<cut ae_mm=\"1\" fz_mm=\"0.06\"/></mill>\n"
+         "    <cut ap_mm=\"5\" ae_mm=\"2\" fz_mm=\"0.1\" mode=\"up\" spindle_rpm=\"12000\"/>\n"
+         "    <material name=\"Al 7075-T6\"/>\n    <stock top_z_mm=\"0\"/>\n"
+         "  </process>\n</cell>\n";
+}
+
+/// A KRL pass with tool `tool`: plunge, `n` feed points along x at y, retract.
+std::string millPass(int tool, double y, int n) {
+  const auto pt = [&](double x, double z) {
+    return "LIN {X " + cFixed(x, 4) + ",Y " + cFixed(y, 3) + ",Z " + cFixed(z, 3) +
+           ",A 0.0,B 0.0,C 180.0} C_DIS\n";
+  };
+  std::string s = "$TOOL = TOOL_DATA[" + std::to_string(tool) + "]\n$VEL.CP = 0.25\n" +
+                  pt(-60, 50) + pt(-60, -5) + "$VEL.CP = 0.06\n";
+  for (int k = 0; k < n; ++k) s += pt(-50 + 60.0 * k / n, -5);
+  return s + "$VEL.CP = 0.25\n" + pt(-10, 50);
+}
+
+// Three runs of two mills (the "tool" of each point in the JSON) across windows of 1 KB.
+TEST(Forces, RunsOfTwoMillsReadByWindowsGiveTheWholeProgramsJson) {
+  const std::string dir = test::tempDir("forces_windows");
+  test::writeFile(dir + "/two.xml", twoMillCell());
+  const std::string prog = dir + "/mills.src";
+  test::writeFile(prog,
+                  "DEF mills ( )\nBAS (#INITMOV,0 )\n"
+                  "$BASE = {FRAME: X 1600.0,Y 0.0,Z 400.0,A 0.0,B 0.0,C 0.0}\n"
+                  "TOOL_DATA[1] = {X 0.0,Y 0.0,Z 300.0,A 0.0,B 0.0,C 0.0}\n"
+                  "TOOL_DATA[2] = {X 0.0,Y 0.0,Z 300.0,A 0.0,B 0.0,C 0.0}\n"
+                  "PTP {X -60.0,Y 0.0,Z 80.0,A 0.0,B 0.0,C 180.0}\n" +
+                      millPass(1, 0, 50) + millPass(2, 20, 40) + millPass(1, 40, 30) + "END\n");
+  const api::ForcesRequest req = programRequest(dir + "/two.xml", prog);
+  const ForcesOutputs whole = wholeForces(req);
+  ASSERT_NE(whole.json.find("\"tool\": \"2\""), std::string::npos);
+  for (const int threads : {1, 2})
+    expectSame(whole, windowedForces(req, 1024, 32, threads), "threads " + std::to_string(threads));
+}
+
+}  // namespace
+}  // namespace roprec
