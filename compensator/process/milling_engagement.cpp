@@ -149,12 +149,20 @@ bool EngagementTracker::reaches(const Move& m, const Region& r) const {
 }
 
 bool EngagementTracker::covers(const Move& m, const Region& r) const {
-  // the capsule {dist < R_in} is convex: its corners inside (by the margin) hold the region
+  // the region's points topAt reads the grid for: those in the (closed) box, exactly
+  double x0 = r.x0, y0 = r.y0, x1 = r.x1, y1 = r.y1;
+  if (stock_.box_min && stock_.box_max) {
+    x0 = std::max(x0, stock_.box_min->x());
+    y0 = std::max(y0, stock_.box_min->y());
+    x1 = std::min(x1, stock_.box_max->x());
+    y1 = std::min(y1, stock_.box_max->y());
+  }
+  // the capsule {dist < R_in} is convex: its corners inside (by the margin) hold the rectangle
   const double inside = R_in_ - r.margin;
-  return segmentDistance({r.x0, r.y0}, m.a, m.b) < inside &&
-         segmentDistance({r.x1, r.y0}, m.a, m.b) < inside &&
-         segmentDistance({r.x0, r.y1}, m.a, m.b) < inside &&
-         segmentDistance({r.x1, r.y1}, m.a, m.b) < inside;
+  return segmentDistance({x0, y0}, m.a, m.b) < inside &&
+         segmentDistance({x1, y0}, m.a, m.b) < inside &&
+         segmentDistance({x0, y1}, m.a, m.b) < inside &&
+         segmentDistance({x1, y1}, m.a, m.b) < inside;
 }
 
 template <class Drop>
