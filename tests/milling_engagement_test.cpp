@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
+#include <vector>
 
 namespace roprec {
 namespace {
@@ -128,6 +130,212 @@ TEST(MillingEngagement, AWallLeftOffsetByDChangesTheNextPassesAeByD) {
       EXPECT_NEAR(g.ap, 5e-3, 1e-12);
     }
   }
+}
+
+// The reference of the bounded tracker: the stock and every recorded move in a plain list, the
+// top at p the lowest tip height of a move whose capsule holds p, and the engagement found from it
+// as milling_engagement.hpp states it (K samples of the leading half, runs refined by bisection).
+class PlainListEngagement {
+ public:
+  PlainListEngagement(const StockShape& stock, double diameter)
+      : stock_(stock), R_(0.5 * diameter) {}
+  void record(const Vec3& a, const Vec3& b) {
+    if ((b.head<2>() - a.head<2>()).norm() > 0)
+      moves_.push_back({a.head<2>(), b.head<2>(), std::min(a.z(), b.z())});
+  }
+  [[nodiscard]] MillingEngagement engagementAt(const Vec3& a, const Vec3& b) const {
+    MillingEngagement e;
+    const Eigen::Vector2d b2 = b.head<2>();
+    const Eigen::Vector2d d = b2 - a.head<2>();
+    if (!(d.norm() > 0)) return e;
+    const Eigen::Vector2d f = d / d.norm();
+    const Eigen::Vector2d l(-f.y(), f.x());
+    const auto depth = [&](double s) {
+      return top(b2 + s * l + std::sqrt(std::max(0.0, R_ * R_ - s * s)) * f) - b.z();
+    };
+    const auto edge = [&](double in, double out) {
+      while (std::abs(out - in) > kBoundaryResolution) {
+        const double mid = 0.5 * (in + out);
+        (depth(mid) > 1e-6 ? in : out) = mid;
+      }
+      return 0.5 * (in + out);
+    };
+    const double step = 2 * R_ / kSamples;
+    const auto offset = [&](int k) { return -R_ + (k + 0.5) * step; };
+    bool prev = false;
+    double lo = -R_;
+    for (int k = 0; k < kSamples; ++k) {
+      const double h = depth(offset(k));
+      const bool in = h > 1e-6;
+      if (in) e.ap = std::max(e.ap, h);
+      if (in && !prev) lo = k == 0 ? -R_ : edge(offset(k), offset(k - 1));
+      if (!in && prev) e.ae += edge(offset(k - 1), offset(k)) - lo;
+      prev = in;
+    }
+    if (prev) e.ae += R_ - lo;
+    if (!(e.ae > 0)) e = MillingEngagement{};
+    return e;
+  }
+
+ private:
+  static constexpr int kSamples = 200;
+  struct Move {
+    Eigen::Vector2d a, b;
+    double z;
+  };
+  [[nodiscard]] double top(const Eigen::Vector2d& p) const {
+    if (stock_.box_min && (p.x() < stock_.box_min->x() || p.x() > stock_.box_max->x() ||
+                           p.y() < stock_.box_min->y() || p.y() > stock_.box_max->y()))
+      return -1e300;
+    double t = stock_.box_max ? std::min(stock_.top_z, stock_.box_max->z()) : stock_.top_z;
+    for (const Move& m : moves_) {
+      const Eigen::Vector2d ab = m.b - m.a;
+      const double s = std::clamp((p - m.a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+      if ((p - (m.a + s * ab)).norm() < R_ * (1 - 1e-9)) t = std::min(t, m.z);
+    }
+    return t;
+  }
+  StockShape stock_;
+  double R_;
+  std::vector<Move> moves_;
+};
+
+/// Cuts the moves `path` (a polyline; a NaN point lifts the tool: no move into the next point)
+/// with the tracker and the plain list; every engagement must be the same doubles.
+void expectSameAsPlainList(const StockShape& stock, const std::vector<Vec3>& path,
+                           const char* what) {
+  EngagementTracker t(stock, kD);
+  PlainListEngagement ref(stock, kD);
+  int cutting = 0;
+  for (size_t i = 1; i < path.size(); ++i) {
+    if (std::isnan(path[i - 1].x()) || std::isnan(path[i].x())) continue;
+    const MillingEngagement e = t.cut(path[i - 1], path[i]);
+    const MillingEngagement r = ref.engagementAt(path[i - 1], path[i]);
+    ref.record(path[i - 1], path[i]);
+    ASSERT_EQ(e.ae, r.ae) << what << " move " << i;
+    ASSERT_EQ(e.ap, r.ap) << what << " move " << i;
+    cutting += e.cuts() ? 1 : 0;
+  }
+  EXPECT_GT(cutting, 10) << what;  // the paths do cut
+}
+
+const Vec3 kLift(std::nan(""), 0, 0);
+
+/// A raster pocket over box(0, 0, −0.02, 0.1, 0.05, 0): passes along ±x (zig-zag) at stepover
+/// `stepover`, points every `step`, `layers` layers 1.5 mm apart; each point moved by a seeded
+/// deviation of up to `wobble` (a real path's), none for 0.
+std::vector<Vec3> rasterPocket(double stepover, double step, int layers, double wobble,
+                               std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> dev(-wobble, wobble);
+  std::vector<Vec3> path;
+  for (int k = 0; k < layers; ++k) {
+    const double z = -1.5e-3 * (k + 1);
+    bool forward = true;
+    for (double y = 0.01; y <= 0.04 + 1e-12; y += stepover, forward = !forward) {
+      for (double x = 0.015; x <= 0.085 + 1e-12; x += step) {
+        const double px = forward ? x : 0.1 - x;
+        path.emplace_back(px + dev(rng), y + dev(rng), z);
+      }
+    }
+    path.push_back(kLift);
+  }
+  return path;
+}
+
+/// `passes` wall passes along the box face y = 0 (ae 2 mm, ap 5 mm), each a lifted pass of 1 mm
+/// moves with seeded deviations of up to `wobble`.
+std::vector<Vec3> wallPasses(int passes, double wobble, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> dev(-wobble, wobble);
+  std::vector<Vec3> path;
+  for (int k = 0; k < passes; ++k) {
+    for (double x = -0.01; x <= 0.11 + 1e-12; x += 1e-3)
+      path.emplace_back(x + dev(rng), -kD / 2 + 2e-3 + dev(rng), -5e-3);
+    path.push_back(kLift);
+  }
+  return path;
+}
+
+// The tracker keeps in its cells only what can still set a top (the floor of a cell a capsule
+// holds, a segment again at the same or a lower height, nothing outside the box): the engagement
+// of every move is the same doubles as from the stock and every earlier move in a plain list, on
+// seeded random moves (short and long, all directions, a few heights so that floors and repeats
+// occur, segments repeated exactly, some above the stock and some outside the box), raster pockets
+// and repeated wall passes, exact and with µm deviations, in a box and in a plane stock.
+TEST(MillingEngagement, BoundedCellsGiveThePlainListsEngagement) {
+  const StockShape b = box(0, 0, -0.02, 0.1, 0.05, 0);
+  StockShape plane;
+  plane.top_z = 0;
+  for (const std::uint32_t seed : {1u, 2u, 3u}) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1);
+    std::vector<Vec3> path{Vec3(0.05, 0.025, -2e-3)};
+    for (int i = 0; i < 600; ++i) {
+      const Vec3& p = path.back();
+      const double r = u(rng);
+      if (r < 0.05 && path.size() > 20) {  // a segment repeated, as low or a step lower
+        const size_t j = 1 + static_cast<size_t>(u(rng) * (path.size() - 2));
+        if (std::isnan(path[j - 1].x()) || std::isnan(path[j].x())) continue;
+        const double dz = u(rng) < 0.5 ? 0.0 : -1e-3;
+        path.push_back(kLift);
+        path.push_back(path[j - 1] + Vec3(0, 0, dz));
+        path.push_back(path[j] + Vec3(0, 0, dz));
+        continue;
+      }
+      const double len = r < 0.5 ? 0.3e-3 + u(rng) * 1.5e-3 : u(rng) * 25e-3;
+      const double angle = 2 * M_PI * u(rng);
+      const double z = r < 0.9 ? -1e-3 * std::floor(1 + 4 * u(rng)) : 1e-3;
+      const Vec3 q(std::clamp(p.x() + len * std::cos(angle), -0.01, 0.11),
+                   std::clamp(p.y() + len * std::sin(angle), -0.01, 0.06), z);
+      path.push_back(q);
+    }
+    expectSameAsPlainList(b, path, "random moves, box");
+    expectSameAsPlainList(plane, path, "random moves, plane");
+  }
+  expectSameAsPlainList(b, rasterPocket(4e-3, 1e-3, 3, 0, 7), "raster pocket");
+  expectSameAsPlainList(b, rasterPocket(6e-3, 0.7e-3, 3, 3e-6, 8), "raster pocket, deviations");
+  expectSameAsPlainList(plane, rasterPocket(8.5e-3, 2e-3, 2, 1e-6, 9), "raster pocket, plane");
+  expectSameAsPlainList(b, wallPasses(6, 0, 10), "wall passes");
+  expectSameAsPlainList(b, wallPasses(6, 2e-6, 11), "wall passes, deviations");
+}
+
+// The memory is bounded by the area swept, not the path: a wall pass repeated exactly holds the
+// same moves after 100 passes as after 2, and a raster pocket cut again layer by layer holds the
+// same count after 25 layers as after 2 (each layer's moves replace the one above where they do
+// not make a cell's floor), all of it far below the moves recorded.
+TEST(MillingEngagement, HeldMovesStayBoundedOnARepeatedPath) {
+  const StockShape b = box(0, 0, -0.02, 0.1, 0.05, 0);
+  EngagementTracker wall(b, kD);
+  size_t after_two = 0;
+  const std::vector<Vec3> passes = wallPasses(100, 0, 1);
+  size_t recorded = 0;
+  for (size_t i = 1, pass = 0; i < passes.size(); ++i) {
+    if (std::isnan(passes[i].x())) {
+      if (++pass == 2) after_two = wall.movesHeld();
+      continue;
+    }
+    if (std::isnan(passes[i - 1].x())) continue;
+    wall.cut(passes[i - 1], passes[i]);
+    ++recorded;
+  }
+  EXPECT_GT(after_two, 0u);
+  EXPECT_EQ(wall.movesHeld(), after_two);
+  EXPECT_LT(wall.movesHeld(), recorded / 40);
+  EngagementTracker pocket(b, kD);
+  size_t layer = 0, held_two = 0, moves = 0;
+  for (int k = 0; k < 25; ++k) {
+    const std::vector<Vec3> one = rasterPocket(5e-3, 1e-3, 1, 0, 3);
+    for (size_t i = 1; i < one.size(); ++i) {
+      if (std::isnan(one[i].x())) continue;
+      pocket.cut(one[i - 1] - Vec3(0, 0, 1e-3 * k), one[i] - Vec3(0, 0, 1e-3 * k));
+      ++moves;
+    }
+    if (++layer == 2) held_two = pocket.movesHeld();
+  }
+  EXPECT_GT(held_two, 0u);
+  EXPECT_EQ(pocket.movesHeld(), held_two);
+  EXPECT_LT(pocket.movesHeld(), moves / 10);
 }
 
 }  // namespace

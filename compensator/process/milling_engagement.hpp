@@ -25,11 +25,29 @@
 /// A chain of moves along the real tool path queries the engagement at the tool's position
 /// (engagementAt) and records the move once it knows where the tool really went (record): the
 /// next pass then cuts what this one really left (milling_compensation.hpp).
-/// Earlier moves are kept in a uniform grid of cells D × D (each move listed in every cell its
-/// capsule's bounding box touches): a query visits one cell, so a path costs O(n) with O(n) memory
-/// for the moves.
+/// Earlier moves are kept in a uniform grid of cells D/4 × D/4; a query at p visits p's cell only,
+/// where top(p) = min(stock top, floor, z of every listed move whose capsule holds p). The cells
+/// hold only what can still set a top there, so the memory is bounded by the cells of the stock
+/// area swept, not by the moves recorded (a move listed in no cell is freed, its slot reused):
+/// - floor: the lowest z of a move whose capsule holds the whole cell (the capsule is convex: its
+///   four corners); every point of the cell is at most that high, so no move at z' ≥ floor is
+///   listed there, now or later;
+/// - a move whose XY segment is that of a listed move at z' ≤ z (the same doubles, so the same
+///   distances) is not listed, and it replaces a listed one at z' ≥ z;
+/// - a cell outside the box (topAt never reads it) or out of the capsule's reach lists nothing,
+///   and a move not below the stock's top is not kept at all.
+/// Each rule drops a move only where another kept one (or the floor) already gives a top ≤ its z,
+/// so topAt is exactly (bit for bit: a min of the same doubles) that of the plain list of every
+/// move; the tests check it against such a list. The tests of cover and reach use the distances
+/// with a margin of 1e-12 (1 + S) m for coordinates of magnitude S, above 10⁴ times their rounding.
+/// What remains listed is at the edge of the area swept: a cell the boundary of the capsules
+/// crosses keeps each move whose capsule reaches into it unless one of the rules drops it, so a
+/// path repeated exactly holds a bounded number of moves, while passes whose edges differ (a
+/// real path's µm deviations) add their edge moves there (the interior stays bounded).
 
+#include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <unordered_map>
 #include <vector>
@@ -62,11 +80,33 @@ class EngagementTracker {
   void record(const Vec3& a, const Vec3& b);
   /// engagementAt(a, b), then record(a, b).
   MillingEngagement cut(const Vec3& a, const Vec3& b);
+  /// The moves held (listed in at least one cell) and the cells: what the tracker's memory grows
+  /// with.
+  [[nodiscard]] std::size_t movesHeld() const { return moves_.size() - free_.size(); }
+  [[nodiscard]] std::size_t cellsHeld() const { return grid_.size(); }
 
  private:
   struct Move {
     Eigen::Vector2d a, b;
     double z;
+    std::uint32_t cells;  ///< the cells listing it (0: a free slot)
+  };
+  struct Cell {
+    double floor{std::numeric_limits<double>::infinity()};
+    std::vector<std::uint32_t> moves;
+  };
+  struct CellKey {
+    std::int64_t ix, iy;
+    bool operator==(const CellKey&) const = default;
+  };
+  struct CellHash {
+    std::size_t operator()(const CellKey& k) const {
+      return static_cast<std::size_t>(k.ix * 73856093LL ^ k.iy * 19349663LL);
+    }
+  };
+  /// The points a cell's index maps to, widened by the margin.
+  struct Region {
+    double x0, y0, x1, y1, margin;
   };
   [[nodiscard]] double topAt(const Eigen::Vector2d& p) const;
   /// Whether the leading circle's point at lateral offset s of the move ending at b (feed f, left
@@ -76,12 +116,26 @@ class EngagementTracker {
   /// The offset between s_in (engaged) and s_out (not) where the engagement ends.
   [[nodiscard]] double boundary(const Eigen::Vector2d& b, double bz, const Eigen::Vector2d& f,
                                 const Eigen::Vector2d& l, double s_in, double s_out) const;
-  [[nodiscard]] std::int64_t cellKey(std::int64_t ix, std::int64_t iy) const;
+  [[nodiscard]] Region region(std::int64_t ix, std::int64_t iy, const Move& m) const;
+  [[nodiscard]] bool outsideStock(const Region& r) const;
+  /// Whether the move's capsule can hold a point of the region / holds all of it.
+  [[nodiscard]] bool reaches(const Move& m, const Region& r) const;
+  [[nodiscard]] bool covers(const Move& m, const Region& r) const;
+  /// Lists move `id` in the cell (ix, iy) unless the cell's rules drop it there.
+  void listIn(std::int64_t ix, std::int64_t iy, std::uint32_t id);
+  /// Unlists the cell's moves `drop` selects; a move listed nowhere any more is freed.
+  template <class Drop>
+  void unlist(Cell& c, Drop drop);
+  std::uint32_t allocate(const Move& m);
   StockShape stock_;
   double R_;
+  double R_in_;  ///< a capsule holds p when dist(p, segment) < R_in_ = R (1 − 1e-9)
+  double cell_;  ///< the cells' side D/4
+  double base_top_;
   int samples_;
   std::vector<Move> moves_;
-  std::unordered_map<std::int64_t, std::vector<std::uint32_t>> grid_;
+  std::vector<std::uint32_t> free_;
+  std::unordered_map<CellKey, Cell, CellHash> grid_;
 };
 
 }  // namespace roprec
