@@ -5,8 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <iomanip>
-#include <locale>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <sstream>
@@ -15,6 +13,7 @@
 
 #include "compensator/process/drilling_forces.hpp"
 #include "compensator/support/rotation.hpp"
+#include "tests/support/same_bytes.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace roprec {
@@ -252,50 +251,26 @@ TEST(ForcesCli, MillingProgramJsonFileAndThreadsGiveTheSameBytes) {
   EXPECT_FALSE(fs::exists(dir + "/bad.json"));
 }
 
-/// a == b, else where they first differ (gtest's diff of two large texts takes too long).
-testing::AssertionResult sameBytes(const std::string& a, const std::string& b) {
-  if (a == b) return testing::AssertionSuccess();
-  size_t k = 0;
-  while (k < a.size() && k < b.size() && a[k] == b[k]) ++k;
-  return testing::AssertionFailure()
-         << "sizes " << a.size() << " and " << b.size() << ", first difference at byte " << k
-         << ": '" << a.substr(k, 80) << "' vs '" << b.substr(k, 80) << "'";
-}
-
-/// The sample wall pass with `n` feed points over its 120 mm (scripts/bench-milling.sh's).
-std::string wallPass(int n) {
-  const std::string sample = test::readFile(test::sourceDir() + "/samples/milling/wall_pass.src");
-  const size_t head = sample.find('\n', sample.find("$VEL.CP = 0.06000")) + 1;
-  const size_t tail = sample.find("LIN {X 70.000");
-  std::string s = sample.substr(0, head);
-  for (int i = 0; i < n; ++i) {
-    std::ostringstream x;
-    x.imbue(std::locale::classic());
-    x << std::fixed << std::setprecision(4) << -50 + 120.0 * i / n;
-    s += "LIN {X " + x.str() + ",Y 0.000,Z -5.000,A 0.000,B 0.000,C 180.000} C_DIS\n";
-  }
-  return s + sample.substr(tail);
-}
-
-// A program read by windows (a KRL pass of 6000 points, several windows): the JSON on standard
-// output (held in a temporary file, not in memory) is the bytes of the --json file, and with
-// --csv - the curve CSV comes first on standard output, as the file --csv writes it.
+// A program read by windows (a KRL pass of 1200 points: a JSON of about 2 MB, copied to standard
+// output in more than one piece): the JSON on standard output (held in a temporary file, not in
+// memory) is the bytes of the --json file, and with --csv - the curve CSV comes first on standard
+// output, as the file --csv writes it.
 TEST(ForcesCli, MillingProgramByWindowsStdoutIsTheJsonFilesBytes) {
   const std::string dir = test::tempDir("forces_program_stdout");
-  test::writeFile(dir + "/wall.src", wallPass(6000));
+  test::writeFile(dir + "/wall.src", test::krlWallPass(1200));
   const std::string cmd =
       "forces --cell " + sample("alu-milling-7075.xml") + " --program '" + dir + "/wall.src'";
   const auto file = runRoprec(cmd + " --json '" + dir + "/f.json' --csv '" + dir + "/f.csv'");
   ASSERT_EQ(file.exit_code, 0) << file.err;
   EXPECT_TRUE(file.out.empty());
   const std::string json = test::readFile(dir + "/f.json");
-  ASSERT_NE(json.find("\"point\": 6003"), std::string::npos);  // every point
+  ASSERT_NE(json.find("\"point\": 1203"), std::string::npos);  // every point
   const auto out = runRoprec(cmd);
   ASSERT_EQ(out.exit_code, 0) << out.err;
-  EXPECT_TRUE(sameBytes(out.out, json));
+  EXPECT_TRUE(test::sameBytes(out.out, json));
   const auto both = runRoprec(cmd + " --csv -");
   ASSERT_EQ(both.exit_code, 0) << both.err;
-  EXPECT_TRUE(sameBytes(both.out, test::readFile(dir + "/f.csv") + json));
+  EXPECT_TRUE(test::sameBytes(both.out, test::readFile(dir + "/f.csv") + json));
 }
 
 // A tool the cell's mills do not have at the last pass of a long program (many windows): the
@@ -303,7 +278,7 @@ TEST(ForcesCli, MillingProgramByWindowsStdoutIsTheJsonFilesBytes) {
 // (neither standard output nor the --csv and --json files).
 TEST(ForcesCli, MillingProgramLateToolErrorExitsTwoWithNothingWritten) {
   const std::string dir = test::tempDir("forces_program_late");
-  std::string text = wallPass(60000);
+  std::string text = test::krlWallPass(60000);
   const std::string tool = "$TOOL = {FRAME: X 0.000,Y 0.000,Z 300.000,A 0.000,B 0.000,C 0.000}\r\n";
   ASSERT_NE(text.find(tool), std::string::npos);
   text.replace(text.find(tool), tool.size(),

@@ -7,11 +7,13 @@
 
 #include <gtest/gtest.h>
 
+#include <sstream>
 #include <string>
 #include <string_view>
 
 #include "compensator/support/c_format.hpp"
 #include "plugin/report/forces_output.hpp"
+#include "tests/support/same_bytes.hpp"
 #include "tests/support/test_support.hpp"
 
 namespace roprec {
@@ -59,57 +61,54 @@ ForcesOutputs windowedForces(api::ForcesRequest req, std::size_t window, std::si
   return o;
 }
 
-/// a == b, else where they first differ (gtest's diff of two large texts takes too long).
-testing::AssertionResult sameBytes(const std::string& a, const std::string& b) {
-  if (a == b) return testing::AssertionSuccess();
-  size_t k = 0;
-  while (k < a.size() && k < b.size() && a[k] == b[k]) ++k;
-  return testing::AssertionFailure()
-         << "sizes " << a.size() << " and " << b.size() << ", first difference at byte " << k
-         << ": '" << a.substr(k, 80) << "' vs '" << b.substr(k, 80) << "'";
-}
-
 void expectSame(const ForcesOutputs& a, const ForcesOutputs& b, const std::string& what) {
-  EXPECT_TRUE(sameBytes(a.json, b.json)) << what;
-  EXPECT_TRUE(sameBytes(a.csv, b.csv)) << what;
+  EXPECT_TRUE(test::sameBytes(a.json, b.json)) << what;
+  EXPECT_TRUE(test::sameBytes(a.csv, b.csv)) << what;
   EXPECT_EQ(a.converged, b.converged) << what;
   EXPECT_EQ(a.unstable, b.unstable) << what;
 }
 
-/// The sample wall pass with `n` feed points over its 120 mm (scripts/bench-milling.sh's).
-std::string wallPass(int n) {
-  const std::string sample = test::readFile(test::sourceDir() + "/samples/milling/wall_pass.src");
-  const size_t head = sample.find('\n', sample.find("$VEL.CP = 0.06000")) + 1;
-  const size_t tail = sample.find("LIN {X 70.000");
-  std::string s = sample.substr(0, head);
-  for (int i = 0; i < n; ++i) {
-    s += "LIN {X " + cFixed(-50 + 120.0 * i / n, 4) +
-         ",Y 0.000,Z -5.000,A 0.000,B 0.000,C 180.000} C_DIS\n";
-  }
-  return s + sample.substr(tail);
-}
-
-// A wall pass of 150 points: windows of 2 KB (about 30 points: boundaries inside the blocks of
-// the chains) with blocks of 7 points on 1 and 2 threads, and the default window and block.
+// A wall pass of 60 points: windows of 1 KB (about 15 points: boundaries inside the blocks of
+// the chains) with blocks of 7 points on 1 and 2 threads (the default window and block:
+// ForcesCli.MillingProgramByWindowsStdoutIsTheJsonFilesBytes).
 TEST(Forces, ProgramReadByWindowsGivesTheWholeProgramsJson) {
   const std::string dir = test::tempDir("forces_windows");
   const std::string prog = dir + "/wall.src";
-  test::writeFile(prog, wallPass(150));
+  test::writeFile(prog, test::krlWallPass(60));
   const api::ForcesRequest req =
       programRequest(test::sourceDir() + "/samples/cells/alu-milling-7075.xml", prog);
   const ForcesOutputs whole = wholeForces(req);
-  ASSERT_NE(whole.json.find("\"point\": 153"), std::string::npos);  // every point is there
-  expectSame(whole, windowedForces(req, 2048, 7, 1), "2 KB windows, 1 thread");
-  expectSame(whole, windowedForces(req, 2048, 7, 2), "2 KB windows, 2 threads");
-  expectSame(whole, windowedForces(req, 0, 512, 2), "default windows");
+  ASSERT_NE(whole.json.find("\"point\": 63"), std::string::npos);  // every point is there
+  expectSame(whole, windowedForces(req, 1024, 7, 1), "1 KB windows, 1 thread");
+  expectSame(whole, windowedForces(req, 1024, 7, 2), "1 KB windows, 2 threads");
 }
 
-// The box stock sample (each pass engages what the earlier ones left: the engagements in the
-// JSON) read by the smallest windows, a few lines each, on 2 threads (the read-ahead).
+/// The box stock sample's first two passes, each cut after its first `feed_points` feed points
+/// (the second pass still cuts what the first left; the third pass is left out).
+std::string boxPassesHead(int feed_points) {
+  std::istringstream sample(test::readFile(test::sourceDir() + "/samples/milling/box_passes.src"));
+  std::string s, line;
+  bool third_pass = false;
+  int fed = -1;  // feed points of the current pass, -1 outside the feed
+  while (std::getline(sample, line)) {
+    if (line.rfind("; pass 3", 0) == 0) third_pass = true;
+    if (line.rfind("SPINDLE_OFF", 0) == 0) third_pass = false;
+    if (line.rfind("$VEL.CP", 0) == 0) fed = line == "$VEL.CP = 0.06000" ? 0 : -1;
+    const bool feed = fed >= 0 && line.rfind("LIN", 0) == 0;
+    if (third_pass || (feed && fed++ >= feed_points)) continue;
+    s += line + "\n";
+  }
+  return s;
+}
+
+// The box stock sample's first passes (the second engages what the first left: the engagements
+// in the JSON) read by the smallest windows, a few lines each, on 2 threads (the read-ahead).
 TEST(Forces, BoxStockPassesReadByWindowsGiveTheWholeProgramsJson) {
+  const std::string dir = test::tempDir("forces_windows");
+  const std::string prog = dir + "/box.src";
+  test::writeFile(prog, boxPassesHead(10));
   const api::ForcesRequest req =
-      programRequest(test::sourceDir() + "/samples/milling/box-stock-7075.xml",
-                     test::sourceDir() + "/samples/milling/box_passes.src");
+      programRequest(test::sourceDir() + "/samples/milling/box-stock-7075.xml", prog);
   const ForcesOutputs whole = wholeForces(req);
   ASSERT_NE(whole.json.find("\"programmed_ae_mm\""), std::string::npos);
   expectSame(whole, windowedForces(req, 512, 16, 2), "512-byte windows");

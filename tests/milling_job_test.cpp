@@ -104,25 +104,12 @@ void expectSameOutputs(const MillingOutputs& a, const MillingOutputs& b, const s
   EXPECT_EQ(a.force_notes, b.force_notes) << what;
 }
 
-/// The sample wall pass with `n` feed points over its 120 mm (scripts/bench-milling.sh's).
-std::string wallPass(int n) {
-  const std::string sample = test::readFile(test::sourceDir() + "/samples/milling/wall_pass.src");
-  const size_t head = sample.find('\n', sample.find("$VEL.CP = 0.06000")) + 1;
-  const size_t tail = sample.find("LIN {X 70.000");
-  std::string s = sample.substr(0, head);
-  for (int i = 0; i < n; ++i) {
-    s += "LIN {X " + cFixed(-50 + 120.0 * i / n, 4) +
-         ",Y 0.000,Z -5.000,A 0.000,B 0.000,C 180.000} C_DIS\n";
-  }
-  return s + sample.substr(tail);
-}
-
 // A wall pass of 600 points: windows of 2 KB (about 30 points: boundaries everywhere, inside
 // the blocks of the chains), 16 KB and the default, blocks of 7 and 512 points, 1 and 2 threads.
 TEST(MillingJob, WindowedReadingWritesTheBytesOfTheWholeProgramJob) {
   const std::string dir = test::tempDir("milling_job");
   const std::string prog = dir + "/wall.src";
-  test::writeFile(prog, wallPass(600));
+  test::writeFile(prog, test::krlWallPass(600));
   const std::string cell = test::sourceDir() + "/samples/cells/alu-milling-7075.xml";
   ASSERT_TRUE(api::millingStreams(prog));
   const MillingOutputs whole = wholeJob(cell, prog, 1, 512);
@@ -145,7 +132,7 @@ TEST(MillingJob, WindowedReadingWritesTheBytesOfTheWholeProgramJob) {
 TEST(MillingJob, ForcedCompensatedProgramByWindowsIsTheWholeProgramJob) {
   const std::string dir = test::tempDir("milling_job");
   const std::string cell = test::sourceDir() + "/samples/cells/alu-milling-7075.xml";
-  test::writeFile(dir + "/wall.src", wallPass(300));
+  test::writeFile(dir + "/wall.src", test::krlWallPass(300));
   const std::string prog = dir + "/marked.src";
   test::writeFile(prog, wholeJob(cell, dir + "/wall.src", 1, 512).src);
   ASSERT_FALSE(api::millingStreams(prog, false));

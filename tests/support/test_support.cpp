@@ -14,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include "compensator/support/c_format.hpp"
 #include "compensator/support/platform.hpp"
 #include "tests/support/process.hpp"
 
@@ -156,6 +157,18 @@ RunResult runCommand(const std::string& command) {
   if (!plain) return runShell(command);
   const ProcessResult p = runProcess(words, env);
   return RunResult{p.exit_code, p.out, p.err};
+}
+
+std::string krlWallPass(int n) {
+  const std::string sample = readFile(sourceDir() + "/samples/milling/wall_pass.src");
+  const size_t head = sample.find('\n', sample.find("$VEL.CP = 0.06000")) + 1;
+  const size_t tail = sample.find("LIN {X 70.000");
+  std::string s = sample.substr(0, head);
+  for (int i = 0; i < n; ++i) {
+    s += "LIN {X " + cFixed(-50 + 120.0 * i / n, 4) +
+         ",Y 0.000,Z -5.000,A 0.000,B 0.000,C 180.000} C_DIS\n";
+  }
+  return s + sample.substr(tail);
 }
 
 }  // namespace roprec::test

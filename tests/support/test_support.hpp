@@ -55,5 +55,8 @@ std::string krlDrillCycles(int n, const std::string& base = kHousingBase,
 /// x on the housing's top face: PTP approach at z 300, feed at a slower $VEL.CP to z 300 − depth,
 /// retract; hole k's drill point is on line 7 + 6k.
 std::string krlCyclesOfDepths(const std::vector<double>& depths_mm);
+/// The sample wall pass (samples/milling/wall_pass.src) with `n` feed points over its 120 mm
+/// instead of its own (scripts/bench-milling.sh's path): 3 lines before the feed points.
+std::string krlWallPass(int n);
 
 }  // namespace roprec::test
