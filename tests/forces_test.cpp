@@ -114,36 +114,10 @@ TEST(Forces, BoxStockPassesReadByWindowsGiveTheWholeProgramsJson) {
   expectSame(whole, windowedForces(req, 512, 16, 2), "512-byte windows");
 }
 
-/// A milling cell of two mills (tool table) on the KR120.
-std::string twoMillCell() {
-  return "<cell name=\"mills\">\n  <robot ref=\"kuka-kr120-r2500-pro\"/>\n"
-         "  <tool name=\"spindle\" xyz=\"0 0 300\" rpy=\"0 0 0\" mass_kg=\"30\" com_mm=\"0 0 "
-         "140\"/>\n  <workobject xyz=\"1600 0 400\" rpy=\"0 0 0\"/>\n"
-         "  <process type=\"milling\">\n"
-         "    <mill tool=\"1\" diameter_mm=\"10\" teeth=\"3\" helix_angle_deg=\"30\"/>\n"
-         "    <mill tool=\"2\" diameter_mm=\"6\" teeth=\"4\" helix_angle_deg=\"35\">"
-         "<cut ae_mm=\"1\" fz_mm=\"0.06\"/></mill>\n"
-         "    <cut ap_mm=\"5\" ae_mm=\"2\" fz_mm=\"0.1\" mode=\"up\" spindle_rpm=\"12000\"/>\n"
-         "    <material name=\"Al 7075-T6\"/>\n    <stock top_z_mm=\"0\"/>\n"
-         "  </process>\n</cell>\n";
-}
-
-/// A KRL pass with tool `tool`: plunge, `n` feed points along x at y, retract.
-std::string millPass(int tool, double y, int n) {
-  const auto pt = [&](double x, double z) {
-    return "LIN {X " + cFixed(x, 4) + ",Y " + cFixed(y, 3) + ",Z " + cFixed(z, 3) +
-           ",A 0.0,B 0.0,C 180.0} C_DIS\n";
-  };
-  std::string s = "$TOOL = TOOL_DATA[" + std::to_string(tool) + "]\n$VEL.CP = 0.25\n" +
-                  pt(-60, 50) + pt(-60, -5) + "$VEL.CP = 0.06\n";
-  for (int k = 0; k < n; ++k) s += pt(-50 + 60.0 * k / n, -5);
-  return s + "$VEL.CP = 0.25\n" + pt(-10, 50);
-}
-
 // Three runs of two mills (the "tool" of each point in the JSON) across windows of 1 KB.
 TEST(Forces, RunsOfTwoMillsReadByWindowsGiveTheWholeProgramsJson) {
   const std::string dir = test::tempDir("forces_windows");
-  test::writeFile(dir + "/two.xml", twoMillCell());
+  test::writeFile(dir + "/two.xml", test::twoMillCell());
   const std::string prog = dir + "/mills.src";
   test::writeFile(prog,
                   "DEF mills ( )\nBAS (#INITMOV,0 )\n"
@@ -151,7 +125,8 @@ TEST(Forces, RunsOfTwoMillsReadByWindowsGiveTheWholeProgramsJson) {
                   "TOOL_DATA[1] = {X 0.0,Y 0.0,Z 300.0,A 0.0,B 0.0,C 0.0}\n"
                   "TOOL_DATA[2] = {X 0.0,Y 0.0,Z 300.0,A 0.0,B 0.0,C 0.0}\n"
                   "PTP {X -60.0,Y 0.0,Z 80.0,A 0.0,B 0.0,C 180.0}\n" +
-                      millPass(1, 0, 50) + millPass(2, 20, 40) + millPass(1, 40, 30) + "END\n");
+                      test::krlMillPass(1, 0, 50) + test::krlMillPass(2, 20, 40) +
+                      test::krlMillPass(1, 40, 30) + "END\n");
   const api::ForcesRequest req = programRequest(dir + "/two.xml", prog);
   const ForcesOutputs whole = wholeForces(req);
   ASSERT_NE(whole.json.find("\"tool\": \"2\""), std::string::npos);

@@ -175,32 +175,6 @@ TEST(MillingJob, BoxStockPassesOverManyWindowsAreTheWholeProgramJobs) {
   }
 }
 
-/// A milling cell of two mills (tool table) on the KR120.
-std::string twoMillCell() {
-  return "<cell name=\"mills\">\n  <robot ref=\"kuka-kr120-r2500-pro\"/>\n"
-         "  <tool name=\"spindle\" xyz=\"0 0 300\" rpy=\"0 0 0\" mass_kg=\"30\" com_mm=\"0 0 "
-         "140\"/>\n  <workobject xyz=\"1600 0 400\" rpy=\"0 0 0\"/>\n"
-         "  <process type=\"milling\">\n"
-         "    <mill tool=\"1\" diameter_mm=\"10\" teeth=\"3\" helix_angle_deg=\"30\"/>\n"
-         "    <mill tool=\"2\" diameter_mm=\"6\" teeth=\"4\" helix_angle_deg=\"35\">"
-         "<cut ae_mm=\"1\" fz_mm=\"0.06\"/></mill>\n"
-         "    <cut ap_mm=\"5\" ae_mm=\"2\" fz_mm=\"0.1\" mode=\"up\" spindle_rpm=\"12000\"/>\n"
-         "    <material name=\"Al 7075-T6\"/>\n    <stock top_z_mm=\"0\"/>\n"
-         "  </process>\n</cell>\n";
-}
-
-/// A KRL pass with tool `tool`: plunge, `n` feed points along x at y, retract.
-std::string millPass(int tool, double y, int n) {
-  const auto pt = [&](double x, double z) {
-    return "LIN {X " + cFixed(x, 4) + ",Y " + cFixed(y, 3) + ",Z " + cFixed(z, 3) +
-           ",A 0.0,B 0.0,C 180.0} C_DIS\n";
-  };
-  std::string s = "$TOOL = TOOL_DATA[" + std::to_string(tool) + "]\n$VEL.CP = 0.25\n" +
-                  pt(-60, 50) + pt(-60, -5) + "$VEL.CP = 0.06\n";
-  for (int k = 0; k < n; ++k) s += pt(-50 + 60.0 * k / n, -5);
-  return s + "$VEL.CP = 0.25\n" + pt(-10, 50);
-}
-
 std::string millProgram(const std::string& passes) {
   return "DEF mills ( )\nBAS (#INITMOV,0 )\n"
          "$BASE = {FRAME: X 1600.0,Y 0.0,Z 400.0,A 0.0,B 0.0,C 0.0}\n"
@@ -214,10 +188,10 @@ std::string millProgram(const std::string& passes) {
 // and blocks: each run restarts its cutting decisions and chains as the whole-program job does.
 TEST(MillingJob, RunsOfTwoMillsAcrossWindowsAreTheWholeProgramJobs) {
   const std::string dir = test::tempDir("milling_job");
-  test::writeFile(dir + "/two.xml", twoMillCell());
+  test::writeFile(dir + "/two.xml", test::twoMillCell());
   const std::string prog = dir + "/mills.src";
-  test::writeFile(prog,
-                  millProgram(millPass(1, 0, 80) + millPass(2, 20, 70) + millPass(1, 40, 60)));
+  test::writeFile(prog, millProgram(test::krlMillPass(1, 0, 80) + test::krlMillPass(2, 20, 70) +
+                                    test::krlMillPass(1, 40, 60)));
   const api::MillingCompensationResult r = api::loadStreamedMillingJob(dir + "/two.xml", prog);
   ASSERT_EQ(r.runs.size(), 3u);
   EXPECT_EQ(r.runs[1].second, 1);
@@ -234,9 +208,9 @@ TEST(MillingJob, RunsOfTwoMillsAcrossWindowsAreTheWholeProgramJobs) {
 // finds it before any point is compensated; compensate exits 2 at its line, nothing written.
 TEST(MillingJob, LateToolErrorExitsTwoWithNothingWritten) {
   const std::string dir = test::tempDir("milling_job");
-  test::writeFile(dir + "/two.xml", twoMillCell());
+  test::writeFile(dir + "/two.xml", test::twoMillCell());
   const std::string prog = dir + "/late.src";
-  const std::string text = millProgram(millPass(1, 0, 3000) + millPass(3, 20, 5));
+  const std::string text = millProgram(test::krlMillPass(1, 0, 3000) + test::krlMillPass(3, 20, 5));
   test::writeFile(prog, text);
   ASSERT_TRUE(api::millingStreams(prog));
   const test::RunResult r =

@@ -999,7 +999,8 @@ bool fileHoldsMarker(const std::string& path) {
 
 }  // namespace
 
-bool compensationStreams(const std::string& program_path, const CompensationJob& job) {
+bool compensationStreams(const std::string& program_path, const CompensationJob& job,
+                         bool marked_too) {
   if (job.job.holes) return false;
   try {
     postproc::ProgramStream s(program_path);
@@ -1012,6 +1013,7 @@ bool compensationStreams(const std::string& program_path, const CompensationJob&
     if (files.size() > 1 && !ec && files[1].bytes.size() > postproc::ProgramStream::kWindowBytes &&
         files[1].bytes.size() >= src_bytes)
       return false;
+    if (marked_too) return true;
     for (const postproc::SourceFile& f : files) {
       if (fileHoldsMarker(f.path)) return false;
     }

@@ -194,8 +194,10 @@ void compensateLoadedStreaming(CompensationResult& r, const CompensationJob& job
 
 /// Whether compensate reads `program_path` by windows (loadStreamedCompensationJob): a KUKA KRL
 /// program (postproc::ProgramStream), no hole list, and no "roprec compensated" marker in its
-/// files (a marked program takes the whole-program path, which states where the marker is).
-bool compensationStreams(const std::string& program_path, const CompensationJob& job);
+/// files (a marked program takes the whole-program path, which states where the marker is);
+/// with `marked_too` a marked program as well (the marker is not searched).
+bool compensationStreams(const std::string& program_path, const CompensationJob& job,
+                         bool marked_too = false);
 /// loadCompensationJob of a program compensationStreams() accepts, read by windows: every hole
 /// checked and its request kept on a first reading (the same errors, notes and requests) that
 /// keeps the program's frames, files and notes, not its motions or bytes; context.job is a

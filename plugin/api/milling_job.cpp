@@ -488,21 +488,7 @@ bool millingStreams(const std::string& program_path) {
 }
 
 bool millingStreams(const std::string& program_path, bool force) {
-  if (millingStreams(program_path)) return true;
-  if (!force) return false;
-  // compensationStreams' reasons but the marker: a KRL program whose .dat is not the larger file
-  try {
-    postproc::ProgramStream s(program_path);
-    if (!s.windowed()) return false;
-    const std::vector<postproc::SourceFile>& files = s.program().files;
-    std::error_code ec;
-    const auto src_bytes = std::filesystem::file_size(files[0].path, ec);
-    return ec || files.size() < 2 ||
-           files[1].bytes.size() <= postproc::ProgramStream::kWindowBytes ||
-           files[1].bytes.size() < src_bytes;
-  } catch (const InputError&) {
-    return false;  // the whole-program path gives the error
-  }
+  return compensationStreams(program_path, CompensationJob{}, force);
 }
 
 MillingCompensationResult loadStreamedMillingJob(const std::string& cell_path,

@@ -171,4 +171,28 @@ std::string krlWallPass(int n) {
   return s + sample.substr(tail);
 }
 
+std::string twoMillCell() {
+  return "<cell name=\"mills\">\n  <robot ref=\"kuka-kr120-r2500-pro\"/>\n"
+         "  <tool name=\"spindle\" xyz=\"0 0 300\" rpy=\"0 0 0\" mass_kg=\"30\" com_mm=\"0 0 "
+         "140\"/>\n  <workobject xyz=\"1600 0 400\" rpy=\"0 0 0\"/>\n"
+         "  <process type=\"milling\">\n"
+         "    <mill tool=\"1\" diameter_mm=\"10\" teeth=\"3\" helix_angle_deg=\"30\"/>\n"
+         "    <mill tool=\"2\" diameter_mm=\"6\" teeth=\"4\" helix_angle_deg=\"35\">"
+         "<cut ae_mm=\"1\" fz_mm=\"0.06\"/></mill>\n"
+         "    <cut ap_mm=\"5\" ae_mm=\"2\" fz_mm=\"0.1\" mode=\"up\" spindle_rpm=\"12000\"/>\n"
+         "    <material name=\"Al 7075-T6\"/>\n    <stock top_z_mm=\"0\"/>\n"
+         "  </process>\n</cell>\n";
+}
+
+std::string krlMillPass(int tool, double y, int n) {
+  const auto pt = [&](double x, double z) {
+    return "LIN {X " + cFixed(x, 4) + ",Y " + cFixed(y, 3) + ",Z " + cFixed(z, 3) +
+           ",A 0.0,B 0.0,C 180.0} C_DIS\n";
+  };
+  std::string s = "$TOOL = TOOL_DATA[" + std::to_string(tool) + "]\n$VEL.CP = 0.25\n" +
+                  pt(-60, 50) + pt(-60, -5) + "$VEL.CP = 0.06\n";
+  for (int k = 0; k < n; ++k) s += pt(-50 + 60.0 * k / n, -5);
+  return s + "$VEL.CP = 0.25\n" + pt(-10, 50);
+}
+
 }  // namespace roprec::test

@@ -58,5 +58,11 @@ std::string krlCyclesOfDepths(const std::vector<double>& depths_mm);
 /// The sample wall pass (samples/milling/wall_pass.src) with `n` feed points over its 120 mm
 /// instead of its own (scripts/bench-milling.sh's path): 3 lines before the feed points.
 std::string krlWallPass(int n);
+/// A milling cell of two mills (a tool table: tool 1 Ø10 mm, 3 teeth; tool 2 Ø6 mm, 4 teeth, its
+/// own ae and fz) on the KR 120, plane stock at z 0 of the workobject (1600, 0, 400) mm.
+std::string twoMillCell();
+/// A KRL pass with tool `tool`: plunge at x −60 mm to z −5, `n` feed points along x from −50 mm
+/// at y (mm), retract (no DEF/END).
+std::string krlMillPass(int tool, double y, int n);
 
 }  // namespace roprec::test
