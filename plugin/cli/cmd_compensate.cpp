@@ -18,6 +18,7 @@
 #include "plugin/api/job.hpp"
 #include "plugin/cli/cli.hpp"
 #include "plugin/cli/robot_options.hpp"
+#include "plugin/cli/temp_spill.hpp"
 #include "plugin/report/milling_report.hpp"
 #include "postproc/edited_file_writer.hpp"
 #include "postproc/program.hpp"
@@ -149,34 +150,6 @@ std::vector<std::string> writeOutputsTogether(
   return written;
 }
 
-/// A temporary file that the report's table rows are spilled to while the path streams past
-/// (removed when closed).
-class RowSpill {
- public:
-  RowSpill() : f_(std::tmpfile()) {
-    if (f_ == nullptr) throw InputError("", 0, "cannot create a temporary file for the report");
-  }
-  ~RowSpill() { std::fclose(f_); }
-  RowSpill(const RowSpill&) = delete;
-  RowSpill& operator=(const RowSpill&) = delete;
-  void write(std::string_view v) {
-    if (std::fwrite(v.data(), 1, v.size(), f_) != v.size())
-      throw InputError("", 0, "cannot write the report's temporary file");
-  }
-  /// Hands everything written, in order, to `sink`.
-  void replay(const api::ByteSink& sink) {
-    if (std::fflush(f_) != 0 || std::fseek(f_, 0, SEEK_SET) != 0)
-      throw InputError("", 0, "cannot read the report's temporary file");
-    std::string buf(std::size_t{64} * 1024, '\0');
-    std::size_t got = 0;
-    while ((got = std::fread(buf.data(), 1, buf.size(), f_)) > 0) sink({buf.data(), got});
-    if (std::ferror(f_) != 0) throw InputError("", 0, "cannot read the report's temporary file");
-  }
-
- private:
-  std::FILE* f_;
-};
-
 /// Thrown out of the staged targets export when the job must write nothing (its temporary is
 /// removed).
 struct NothingWritten {};
@@ -211,9 +184,9 @@ int runMillingPath(CommandContext& ctx, const std::string& cell, const std::stri
   path.resolve_edges = false;
   path.threads = threads;
   const bool csv = targets && targets->size() > 4 && targets->substr(targets->size() - 4) == ".csv";
-  MillingReportSummary sum;  // the report's plots (with --report) and the maxima
-  std::optional<RowSpill> spill;
-  if (report) spill.emplace();
+  MillingReportSummary sum;        // the report's plots (with --report) and the maxima
+  std::optional<TempSpill> spill;  // the report's table rows while the path streams past
+  if (report) spill.emplace("the report");
   std::string unstable_lines;
   int unstable = 0;
   std::optional<MillingCompensationResult> result;
@@ -297,7 +270,8 @@ int runMillingPath(CommandContext& ctx, const std::string& cell, const std::stri
   auto writeReport = [&] {  // the plots from the summary, the rows from the spill
     writeFileAtomicStream(*report, [&](const ByteWriter& write) {
       writeMillingReport(
-          sum, r, program, [&](const api::ByteSink& sink) { spill->replay(sink); }, write);
+          sum, r, program,
+          [&](const api::ByteSink& sink) { spill->replay(sink, std::size_t{64} * 1024); }, write);
     });
   };
   const auto writeProgram = [&] {

@@ -12,6 +12,7 @@
 #include "compensator/support/platform.hpp"
 #include "plugin/api/job.hpp"
 #include "plugin/cli/cli.hpp"
+#include "plugin/cli/temp_spill.hpp"
 #include "plugin/report/forces_output.hpp"
 
 namespace roprec::cli {
@@ -73,41 +74,19 @@ void parseNumbers(ForcesRequest& req, const std::optional<std::string>& step_mm,
   }
 }
 
-/// Standard output's bytes held in a temporary file, not in memory, until the command is done
-/// (then copied to standard output a chunk at a time): nothing is written when it fails.
-class StdoutSpill {
- public:
-  StdoutSpill() : f_(std::tmpfile()) {
-    if (f_ == nullptr)
-      throw InputError("", 0, "cannot create a temporary file for standard output");
-  }
-  ~StdoutSpill() { std::fclose(f_); }
-  StdoutSpill(const StdoutSpill&) = delete;
-  StdoutSpill& operator=(const StdoutSpill&) = delete;
-  void write(std::string_view v) {
-    if (std::fwrite(v.data(), 1, v.size(), f_) != v.size())
-      throw InputError("", 0, "cannot write standard output's temporary file");
-  }
-  /// Writes everything held to standard output (before the staged files are renamed, as main()
-  /// writes it); a failed write is main()'s "cannot write to standard output" error.
-  void copyToStdout() {
-    if (std::fflush(f_) != 0 || std::fseek(f_, 0, SEEK_SET) != 0)
-      throw InputError("", 0, "cannot read standard output's temporary file");
-    std::string buf(std::size_t{1} << 20U, '\0');
-    std::size_t got = 0;
-    while ((got = std::fread(buf.data(), 1, buf.size(), f_)) > 0) {
-      if (const int e = writeStdout({buf.data(), got}); e != 0) {
-        throw std::runtime_error("cannot write to standard output: " + platform::errorText(e) +
-                                 "; nothing written");
-      }
-    }
-    if (std::ferror(f_) != 0)
-      throw InputError("", 0, "cannot read standard output's temporary file");
-  }
-
- private:
-  std::FILE* f_;
-};
+/// Writes everything `spill` holds to standard output, 1 MB at a time (before the staged files
+/// are renamed, as main() writes it); a failed write is main()'s "cannot write to standard
+/// output" error.
+void copyToStdout(TempSpill& spill) {
+  spill.replay(
+      [](std::string_view v) {
+        if (const int e = writeStdout(v); e != 0) {
+          throw std::runtime_error("cannot write to standard output: " + platform::errorText(e) +
+                                   "; nothing written");
+        }
+      },
+      std::size_t{1} << 20U);
+}
 
 /// `--program` (milling): the JSON written as the path's blocks of points arrive, into its staged
 /// file or, for standard output, a temporary file copied to it at the end (with the CSV before it
@@ -116,8 +95,8 @@ ForcesResult runProgram(CommandContext& ctx, const ForcesRequest& req,
                         const std::optional<std::string>& csv_path,
                         const std::optional<std::string>& json_path) {
   const bool to_stdout = !json_path || json_path->empty() || *json_path == "-";
-  std::optional<StdoutSpill> spill;
-  if (to_stdout) spill.emplace();
+  std::optional<TempSpill> spill;
+  if (to_stdout) spill.emplace("standard output");
   const auto stream = [&](const ByteWriter& write) {
     ForcesJsonStream json(write);
     ForcesPathSink sink;
@@ -140,7 +119,7 @@ ForcesResult runProgram(CommandContext& ctx, const ForcesRequest& req,
   };
   if (spill) {
     ForcesResult r = stream([&](std::string_view bytes) { spill->write(bytes); });
-    spill->copyToStdout();
+    copyToStdout(*spill);
     return r;
   }
   ForcesResult r;
