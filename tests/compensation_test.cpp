@@ -437,6 +437,87 @@ TEST(CompensationOrientation, BlocksOfAnySizeGiveTheResultOfOneBlock) {
   }
 }
 
+/// The demo's job on the sample cell with its tool line `from` replaced by `to` (test::tempDir).
+api::PredictionContext demoContextWithTool(const std::string& from, const std::string& to) {
+  std::string text = test::readFile(test::sourceDir() + "/samples/cells/housing-kr120.xml");
+  const std::size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  const std::string cell = test::tempDir("compensation-tool") + "/cell.xml";
+  test::writeFile(cell, text);
+  return api::loadPredictionContext(cell,
+                                    test::sourceDir() + "/samples/emotor-housing/housing_kr120.src",
+                                    test::sourceDir() + "/samples/emotor-housing/holes.csv", "");
+}
+
+// flip-free and stiffest evaluate only node 0 (ψ = 0) of a run of holes where that node is proven
+// to be the DP's choice (stiffest: its turn gap, a bound on what any rotation can gain, exceeds
+// the links beside it): the result is the one of every grid evaluated, bit for bit, with the same
+// counters but the candidates evaluated. On the demo with every fifth hole turned by 90° (turned
+// back for the jump limit) and three holes out of reach, and with the tool changed: its centre of
+// mass 150 mm off the drill axis and 60 kg (a rotation about the axis moves that weight, and
+// stiffest turns holes for it: a bound that left the weight out would keep them), and its TCP
+// 40 mm off joint 6's axis (no bound: stiffest evaluates every grid).
+TEST(CompensationOrientation, ProvenRunsGiveTheResultOfEveryGrid) {
+  struct Case {
+    const char* name;
+    api::PredictionContext c;
+  };
+  const std::string tool = "xyz=\"0 0 320\" rpy=\"0 0 0\" mass_kg=\"25.8\" com_mm=\"0 0 120\"";
+  std::vector<Case> cases;
+  cases.push_back({"demo", demoContext()});
+  cases.push_back(
+      {"weight off the axis", demoContextWithTool(tool,
+                                                  "xyz=\"0 0 320\" rpy=\"0 0 0\" mass_kg=\"60\" "
+                                                  "com_mm=\"150 0 120\"")});
+  cases.push_back(
+      {"TCP off the axis", demoContextWithTool(tool,
+                                               "xyz=\"40 0 320\" rpy=\"0 0 0\" mass_kg=\"25.8\" "
+                                               "com_mm=\"0 0 120\"")});
+  for (const Case& k : cases) {
+    std::vector<HoleRequest> changed = k.c.job.requests;
+    for (size_t i = 1; i < changed.size(); i += 5)
+      changed[i].T_W_tcp.linear() *=
+          Eigen::AngleAxisd(90.0 * kDeg, Vec3::UnitZ()).toRotationMatrix();
+    for (const size_t i : {30, 31, 100}) changed[i].T_W_tcp.translation().x() += 3.0;
+    for (const bool as_programmed : {true, false}) {
+      const std::vector<HoleRequest>& req = as_programmed ? k.c.job.requests : changed;
+      for (const OrientationMode mode : {OrientationMode::kFlipFree, OrientationMode::kStiffest}) {
+        SCOPED_TRACE(testing::Message() << k.name << (as_programmed ? "" : ", turned holes") << ", "
+                                        << orientationModeName(mode));
+        CompensationOptions o;
+        o.mode = mode;
+        o.skip_proven_grids = false;
+        CompensationStats every_st;
+        const std::vector<HoleCompensation> every = compensateHoles(k.c.model, req, o, &every_st);
+        o.skip_proven_grids = true;
+        CompensationStats st;
+        const std::vector<HoleCompensation> got = compensateHoles(k.c.model, req, o, &st);
+        ASSERT_EQ(got.size(), every.size());
+        for (size_t i = 0; i < every.size(); ++i) test::expectSameHole(got[i], every[i]);
+        const int evaluated = st.dp_nodes;
+        st.dp_nodes = every_st.dp_nodes;  // the candidates evaluated differ, nothing else
+        st.infeasible_nodes = every_st.infeasible_nodes;
+        test::expectSameStats(st, every_st);
+        const std::string name = k.name;
+        const bool stiffest = mode == OrientationMode::kStiffest;
+        if (as_programmed && name == "demo") {
+          EXPECT_LT(evaluated, every_st.dp_nodes / 2);
+        }
+        if (stiffest && name == "TCP off the axis") {
+          EXPECT_EQ(evaluated, every_st.dp_nodes);  // no bound
+        }
+        if (stiffest && as_programmed && name == "weight off the axis") {
+          EXPECT_GT(every_st.psi_changed, 100);  // turned for stiffness: the bound must not hold
+        }
+        std::printf("%s%s, %s: %d holes turned (%d for stiffness), %d of %d candidates\n", k.name,
+                    as_programmed ? "" : ", turned holes", orientationModeName(mode),
+                    every_st.psi_changed, every_st.psi_for_stiffness, evaluated, every_st.dp_nodes);
+      }
+    }
+  }
+}
+
 // The refinement (COBYLA on ψ) keeps each hole's evaluations and answers a ψ asked again from
 // them: every turned hole's link-side joints are the real robot's IK at its own rotation — its
 // forward kinematics reach T_W_tcp · Rz(ψ) to 1e-9 — also where ψ is a refined value off the grid

@@ -468,7 +468,7 @@ void expectFullWithoutTheBudget(const HolePrediction& part, const HolePrediction
   EXPECT_TRUE(part.budget.empty());
 }
 
-// Without the budget (PredictOptions::budget false, predictHoleStatus) every hole takes the
+// Without the budget (PredictOptions::budget false) every hole takes the
 // solution, status and deflection of the full prediction, bit for bit, on one thread and two
 // (holes out of reach among them break the continuity chain); the budget is not made.
 TEST(Prediction, WithoutTheBudgetEachHoleTakesTheFullPredictionsSolutionAndStatus) {
@@ -493,16 +493,6 @@ TEST(Prediction, WithoutTheBudgetEachHoleTakesTheFullPredictionsSolutionAndStatu
     }
     EXPECT_GT(ok, 100);
     EXPECT_LT(ok, static_cast<int>(req.size()) - 10);
-  }
-  PredictionData d(c.model);
-  std::optional<Vec6> prev;
-  for (const HoleRequest& h : req) {
-    SCOPED_TRACE(h.id);
-    const HolePrediction full = predictHole(c.model, d, h, prev ? &*prev : nullptr);
-    HolePrediction part;
-    predictHoleStatus(c.model, d, h, prev ? &*prev : nullptr, part);
-    expectFullWithoutTheBudget(part, full);
-    if (full.status == HoleStatus::kOk) prev = full.joints;
   }
 }
 

@@ -65,6 +65,9 @@ struct Node {
   double u_def{0.0};    ///< m: linearised deflection-model uncertainty (stiffness proxy)
   double penalty{0.0};  ///< limits + wrist proximity (dimensionless)
   double wrist{0.0};    ///< |sin(θ5 + α)|
+  /// stiffest, ψ = 0 in a fixed branch: a bound on |u_def(ψ) − u_def| over every rotation ψ
+  /// about the drill axis (m; Evaluator::rotationSpread), +inf where none is known
+  double u_spread{kInf};
   std::int8_t branch{-1};
   Why why{Why::kNone};          ///< when not feasible
   std::int8_t limit_joint{-1};  ///< kLimits: a joint (0-based) outside its limits
@@ -197,6 +200,8 @@ struct Evaluator {
     // flip-free reads u_def only through the finiteness check below (its costs and refinement
     // never read it): about a quarter of a flip-free candidate's cost goes to that check
     n.u_def = deflectionUncertainty(loads, T, n.q);
+    if (o.mode == OrientationMode::kStiffest && psi == 0.0 && branch >= 0)
+      n.u_spread = rotationSpread(loads, T, n.u_def);
     // one bad hole (e.g. a non-finite load) must not poison the sequence's DP: it has no
     // admissible candidate, and the hole is reported as not compensated
     if (!std::isfinite(n.u_def) || !std::isfinite(n.penalty)) {
@@ -281,6 +286,42 @@ struct Evaluator {
       var += 0.5 * (std::pow(v.dot(e1), 2) + std::pow(v.dot(e2), 2));
     }
     return std::sqrt(var);
+  }
+
+  /// After deflectionUncertainty at ψ = 0 (its frames in d.nc, its result u): a bound on
+  /// |u_def(ψ) − u| over every rotation ψ about the drill axis in the same branch (m), +inf
+  /// unless the drill axis is joint 6's axis (to 1e-9). On that axis T · Rz(ψ) is reached by
+  /// turning joint 6 alone: the branch's solution is (θ1..θ5, θ6 + ψ) up to whole turns, so the
+  /// linear Jacobian columns u_j × (p_tcp − p_j) and the plane ⊥ the axis stay, and τ changes only
+  /// through what turns with joint 6 — body 6's weight off the axis (its centre of mass moves by
+  /// ≤ 2 r⊥) and the tool-fixed force and couple ⊥ the axis (each changes by ≤ twice its ⊥ part):
+  /// |Δτ_j| ≤ 2 (m₆ g r⊥ + |F⊥| |p_tcp − p_j| + |N⊥|). With v_j as in deflectionUncertainty,
+  /// |Δv_j| ≤ |J_j| |Δτ_j| s / k_j and, u being a Euclidean norm of the projected v_j over √2,
+  /// |Δu| ≤ √(½ Σ |Δv_j|²). Added: 1e-6 u for the round-off of the rotated solutions (the IK's
+  /// and the frames' last bits, the refinement's tolerance on a calibrated chain).
+  double rotationSpread(const nc::Loads& loads, const Pose& T, double u) const {
+    constexpr double kOnAxis = 1e-9;
+    const nc::Data::ChainFrames& f = d.nc.frames;
+    const Vec3& axis = f.u[5];
+    const Vec3 to_tcp = f.p_tcp - f.p[5];
+    if (axis.cross(T.linear().col(2)).norm() > kOnAxis || axis.cross(to_tcp).norm() > kOnAxis)
+      return kInf;
+    const nc::Body& b6 = m.model.bodies[5];
+    const bool gravity = loads.gravity && !m.model.gravity.isZero(0.0);
+    const double weight_moment =
+        gravity ? b6.mass * m.model.gravity.norm() * axis.cross(f.R[5] * b6.com).norm() : 0.0;
+    const double f_perp = axis.cross(f.R_tcp * loads.tcp_tool.force).norm();
+    const double n_perp = axis.cross(f.R_tcp * loads.tcp_tool.moment).norm();
+    double var = 0.0;
+    for (int i = 0; i < 6; ++i) {
+      const size_t s = static_cast<size_t>(i);
+      const Vec3 lever = f.p_tcp - f.p[s];
+      const double dtau = 2.0 * (weight_moment + f_perp * lever.norm() + n_perp);
+      const double dv = f.u[s].cross(lever).norm() * dtau / c.keff[i] * m.uncertainty.stiffness_rel;
+      var += 0.5 * dv * dv;
+    }
+    const double spread = std::sqrt(var) + 1e-6 * u;
+    return std::isfinite(spread) ? spread : kInf;
   }
 };
 
@@ -839,13 +880,10 @@ void settleFlags(Evaluator& ev, const HoleRequest& h, const Pose& T_flange, Hole
 
 /// How far finalizeHole goes: the whole result, or only as far as decides whether it is ok (the
 /// re-prediction up to its status: no budget or verdict after).
-enum class Finish : std::uint8_t { kWhole, kOkOnly };
-
 /// The programmed pose, flags, residual and re-predicted budget at the command c.theta_cmd.
 /// Sets c.reason and returns with c.ok false when something fails.
 void assemble(Evaluator& ev, const HoleRequest& h, const nc::Loads& loads, bool positions_only,
-              HoleCompensation& c, const nc::Deflection* at_command = nullptr,
-              Finish finish = Finish::kWhole) {
+              HoleCompensation& c, const nc::Deflection* at_command = nullptr) {
   const PredictionModel& m = ev.m;
   PredictionData& d = ev.d;
   const nc::Model& controller = controllerModel(m);  // the programmed target is FK_nom(θ_cmd)
@@ -899,11 +937,6 @@ void assemble(Evaluator& ev, const HoleRequest& h, const nc::Loads& loads, bool 
     c.ok = true;
     return;
   }
-  if (finish == Finish::kOkOnly) {
-    predictHoleStatus(m, d, after, &c.theta_cmd, c.after);
-    c.ok = c.after.status == HoleStatus::kOk;
-    return;
-  }
   c.after = predictHole(m, d, after, &c.theta_cmd);
   if (c.after.status != HoleStatus::kOk) {
     c.reason = "re-prediction of the compensated target failed: " + c.after.reason;
@@ -917,11 +950,9 @@ void assemble(Evaluator& ev, const HoleRequest& h, const nc::Loads& loads, bool 
 
 /// Compensation of hole h at `node` (positions_only: keep the programmed orientation).
 /// `original` (the stage-1 result of the hole: id, prediction, note) is taken over (moved from:
-/// a reference, so that the caller's result is not copied first). Finish::kOkOnly: a result whose
-/// `ok` (and what decides it) is the whole result's, the rest not made.
+/// a reference, so that the caller's result is not copied first).
 HoleCompensation finalizeHole(Evaluator& ev, const HoleRequest& h, HoleCompensation&& original,
-                              const Node& node, bool positions_only,
-                              Finish finish = Finish::kWhole) {
+                              const Node& node, bool positions_only) {
   HoleCompensation c;
   c.id = std::move(original.id);
   c.before = std::move(original.before);
@@ -946,7 +977,7 @@ HoleCompensation finalizeHole(Evaluator& ev, const HoleRequest& h, HoleCompensat
   } else {
     c.theta_cmd = exactCommand(ev, c.theta_d, loads);
   }
-  assemble(ev, h, loads, positions_only, c, last ? &*last : nullptr, finish);
+  assemble(ev, h, loads, positions_only, c, last ? &*last : nullptr);
   return c;
 }
 
@@ -1044,13 +1075,14 @@ constexpr size_t kKeepBlock = 4096;
 
 /// Stiffest, hole i in hole order with its keep result k: records U_work(keep); a hole at ψ = 0
 /// takes k; a turned hole goes back to it unless the turn gains at least kStiffnessGainMin of
-/// U_work, when the jump constraints with the final neighbours allow it. (So a hole at ψ = 0 takes
-/// k whenever both are ok: its exact compensation c is made only as far as c.ok then, and whole
-/// where either fails — settleDeferred.)
+/// U_work, when the jump constraints with the final neighbours allow it. A hole whose exact
+/// compensation was deferred (`deferred`, deferredToKeep: at ψ = 0 the keep result is the
+/// stiffest's) takes k whenever k is ok; its exact compensation c is made only where k fails
+/// (settleDeferred).
 void takeKeepWhereStiffEnough(const std::vector<HoleRequest>& holes, const Node& programmed,
-                              double thr, size_t i, HoleCompensation& k, std::vector<Node>& chosen,
-                              HoleCompensation& c) {
-  if (!c.ok || !programmed.feasible || !k.ok) return;
+                              double thr, size_t i, bool deferred, HoleCompensation& k,
+                              std::vector<Node>& chosen, HoleCompensation& c) {
+  if (!(c.ok || deferred) || !programmed.feasible || !k.ok) return;
   c.U_work_keep = k.after.U_work_exact;
   const bool turned = std::abs(c.psi) > kPsiKept;
   if (turned && k.after.U_work_exact * (1.0 - kStiffnessGainMin) >= c.after.U_work_exact)
@@ -1069,27 +1101,20 @@ void takeKeepWhereStiffEnough(const std::vector<HoleRequest>& holes, const Node&
 
 /// Whether stiffest defers hole i's exact compensation at its chosen node to stiffestAgainstKeep
 /// (`programmed`: its programmed posture; `why`: notCompensatedReason): a hole kept at ψ = 0 with
-/// a programmed posture, whose result is its keep result whenever both are ok.
+/// a programmed posture, whose result is its keep result whenever that is ok (at ψ = 0 keep is the
+/// stiffest's own rotation: a hole keep compensates is not reported failed for its exact
+/// compensation).
 bool deferredToKeep(const Node& chosen, const Node& programmed, const std::string& why) {
   return why.empty() && programmed.feasible && std::abs(chosen.psi) <= kPsiKept;
 }
 
 /// Stiffest, a hole kept at ψ = 0 (deferredToKeep; `c`: its stage-1 result) at its chosen node
-/// and its programmed posture: the keep result into `keep`; then, where it is ok, whether the
-/// exact compensation at the chosen node is (Finish::kOkOnly, into c: all that
-/// takeKeepWhereStiffEnough reads of it before the keep result replaces it); else the exact
-/// compensation whole (the result as without the deferral).
+/// and its programmed posture: the keep result into `keep`, which takeKeepWhereStiffEnough gives
+/// the hole where it is ok; else the exact compensation at the chosen node into c.
 void settleDeferred(Evaluator& ev, const HoleRequest& h, const Node& chosen, const Node& programmed,
                     HoleCompensation& keep, HoleCompensation& c) {
   keep = finalizeHole(ev, h, stageOne(c), programmed, true);
-  if (keep.ok) {
-    HoleCompensation exact = finalizeHole(ev, h, stageOne(c), chosen, false, Finish::kOkOnly);
-    if (exact.ok) {
-      c = std::move(exact);
-      return;
-    }
-  }
-  c = finalizeHole(ev, h, stageOne(c), chosen, false);
+  if (!keep.ok) c = finalizeHole(ev, h, stageOne(c), chosen, false);
 }
 
 /// Stiffest, holes [first, last) (`programmed`: their programmed postures; `deferred`: the holes
@@ -1117,8 +1142,10 @@ void stiffestAgainstKeep(std::vector<Evaluator>& evs, const std::vector<HoleRequ
       else if (out(i).ok && posture(i).feasible)
         keep[j] = finalizeHole(ev, holes[i], stageOne(out(i)), posture(i), true);
     });
-    for (size_t i = b; i < e; ++i)
-      takeKeepWhereStiffEnough(holes, posture(i), thr, i, keep[i - b], chosen, out(i));
+    for (size_t i = b; i < e; ++i) {
+      takeKeepWhereStiffEnough(holes, posture(i), thr, i, deferred[i - first] != 0, keep[i - b],
+                               chosen, out(i));
+    }
   }
 }
 
@@ -1380,30 +1407,63 @@ struct OrderedPass {
   }
 };
 
-/// flip-free's forward pass over holes whose ψ = 0 candidate (node 0) is known first. A run of
-/// holes S = [s, e) whose node 0 is admissible at every hole and connects within thr from hole to
-/// hole, where the DP's link into S and out of it is not jump-limited (S starts the program or
-/// follows its latest reachable hole s − 1 on another face or after a joint target, and ends the
-/// program or is followed by hole e on such a link with an admissible node 0), is node 0
-/// throughout in the DP's result: a path with a turned hole in S has more changes, the first
-/// term of the lexicographic cost, than the same path with node 0 throughout S, which is
-/// admissible whatever the nodes before and after it (no jump limit on the links). Node 0 of each
-/// hole of S has the fewest changes among its paths, so the DP's predecessor of node 0 inside S,
-/// of every node of hole e and the chain's end are node 0: the other nodes of S are never read.
-/// Their grids are not evaluated; S's holes go through dpForwardHole with node 0 alone (the same
-/// path costs, bit for bit) as they come, the DP's frontier before S kept: a run that turns out
-/// not to be such an S goes back to it, and its holes' grids are evaluated. Every other hole's
-/// grid is evaluated (holeNodes), in hole order through the DP as before, a chunk of holes at a
-/// time on the workers.
-class FlipFreeForward {
+/// Stiffest: a lower bound of the node cost of any rotation of a hole other than ψ = 0, less the
+/// cost of node 0 `zero` (nodeCost: a turned node pays ×(1 + kStiffnessGainMin) on its u_def,
+/// which is at least zero.u_def − zero.u_spread, and a penalty ≥ 0); −inf when no bound is known.
+double turnGap(const Node& zero) {
+  if (!std::isfinite(zero.u_spread)) return -kInf;
+  Node turned;
+  turned.psi = kPi;
+  turned.u_def = std::max(0.0, zero.u_def - zero.u_spread);
+  turned.penalty = 0.0;
+  return nodeCost(turned, OrientationMode::kStiffest).rest -
+         nodeCost(zero, OrientationMode::kStiffest).rest;
+}
+
+/// Stiffest: the dearest link from q to any posture within the joint limits `lower`, `upper`
+/// (transitionCost; every admissible node is within them).
+double dearestLink(const Vec6& q, const Vec6& lower, const Vec6& upper) {
+  Node from;
+  from.q = q;
+  Node far;
+  for (int j = 0; j < 6; ++j) far.q[j] = q[j] - lower[j] > upper[j] - q[j] ? lower[j] : upper[j];
+  return transitionCost(from, far, OrientationMode::kStiffest).rest;
+}
+
+/// flip-free's and stiffest's forward pass over holes whose ψ = 0 candidate (node 0) is known
+/// first. A run of holes S = [s, e) whose node 0 is admissible at every hole and connects within
+/// thr from hole to hole, where the DP's link into S and out of it is not jump-limited (S starts
+/// the program or follows its latest reachable hole s − 1 on another face or after a joint
+/// target, and ends the program or is followed by hole e on such a link with an admissible
+/// node 0), can be node 0 throughout whatever the nodes before and after it (no jump limit on the
+/// links). It is node 0 throughout in the DP's result:
+///  - flip-free: a path with a turned hole in S has more changes, the first term of the
+///    lexicographic cost, than the same path with node 0 throughout S;
+///  - stiffest (the cost is a sum: node costs and 10⁻³ travel per link): when every hole i of S
+///    has a turn gap g_i (turnGap: any turned node's cost less node 0's is at least g_i) larger
+///    than the node-0 links beside it — the link before (from node 0 of i − 1; at s from the
+///    dearest node of the DP's frontier) plus the link after (to node 0 of i + 1; at e − 1 to
+///    any posture within the joint limits, dearestLink; none at the program's end) — with a
+///    margin for the round-off of the path costs (kRunMargin). A path that turns holes T ⊂ S
+///    costs more than the same path with node 0 throughout S by at least Σ_T (g_i − its links),
+///    > 0; step by step, every turned node's path cost at hole i exceeds node 0's by more than
+///    the link after i, so node 0's predecessor is node 0.
+/// So the DP's predecessor of node 0 inside S, of every node of hole e and the chain's end are
+/// node 0: the other nodes of S are never read. Their grids are not evaluated; S's holes go
+/// through dpForwardHole with node 0 alone (the same path costs, bit for bit) as they come, the
+/// DP's frontier before S kept: a run that turns out not to be such an S goes back to it, and its
+/// holes' grids are evaluated. Every other hole's grid is evaluated (holeNodes), in hole order
+/// through the DP as before, a chunk of holes at a time on the workers.
+class ZeroRunForward {
  public:
-  FlipFreeForward(Workers& w, Evaluator& serial, int grid, OrderedPass& pass, Grid<Node>& nodes)
+  ZeroRunForward(Workers& w, Evaluator& serial, int grid, OrderedPass& pass, Grid<Node>& nodes)
       : w_(w),
         serial_(serial),
         holes_(pass.holes),
         grid_(grid),
         thr_(pass.thr),
         count_(pass.count),
+        stiffest_(pass.mode == OrientationMode::kStiffest),
         t_(pass.t),
         st_(pass.st),
         f_(pass.f),
@@ -1429,8 +1489,8 @@ class FlipFreeForward {
     }
     if (run_size_ > 0) {
       if (!jumpLimited(holes_[i - 1], holes_[i])) {
-        closeRun();
-      } else if (!jumpOk(run_last_, zero.q, thr_)) {
+        closeRun(true);
+      } else if (!jumpOk(run_last_.q, zero.q, thr_) || !gapHolds(zero)) {
         breakRun();
         waitFull(i);
         return;
@@ -1446,7 +1506,7 @@ class FlipFreeForward {
       return;
     }
     const bool starts = f_.last < 0 || (free_link && f_.last == static_cast<std::ptrdiff_t>(i) - 1);
-    if (!starts) {
+    if (!starts || !startGapHolds(zero)) {
       waitFull(i);
       return;
     }
@@ -1457,10 +1517,44 @@ class FlipFreeForward {
   /// The end of the program: the waiting holes' grids, the run closed.
   void finish() {
     flush();
-    closeRun();
+    closeRun(false);
   }
 
  private:
+  /// Stiffest: the margin a gap keeps over the links beside it, for the round-off of path costs
+  /// of the DP's size (10⁻¹² of the dearest finite path cost of the frontier, and 10⁻⁹).
+  [[nodiscard]] double margin() const {
+    double scale = 0.0;
+    for (const Cost& c : f_.cost) {
+      if (isFinite(c)) scale = std::max(scale, std::abs(c.rest));
+    }
+    return 1e-9 + 1e-12 * scale;
+  }
+  /// Stiffest: whether hole `zero` can start a run after the DP's frontier: its gap less the
+  /// dearest link into it stays above the margin (flip-free: always).
+  bool startGapHolds(const Node& zero) {
+    if (!stiffest_) return true;
+    double into = 0.0;
+    if (f_.last >= 0) {
+      for (size_t l = 0; l < f_.nodes.size(); ++l) {
+        if (isFinite(f_.cost[l]))
+          into = std::max(into, transitionCost(f_.nodes[l], zero, OrientationMode::kStiffest).rest);
+      }
+    }
+    rest_ = turnGap(zero) - into;
+    return rest_ > margin();
+  }
+  /// Stiffest: whether hole `zero` extends the run: the run's last hole keeps its margin over the
+  /// link to it, and so does its own gap (flip-free: always).
+  bool gapHolds(const Node& zero) {
+    if (!stiffest_) return true;
+    const double link = transitionCost(run_last_, zero, OrientationMode::kStiffest).rest;
+    const double m = margin();
+    const double rest = turnGap(zero) - link;
+    if (!(rest_ - link > m) || !(rest > m)) return false;
+    rest_ = rest;
+    return true;
+  }
   void waitFull(size_t i) {
     if (full_end_ == full_begin_) full_begin_ = i;
     full_end_ = i + 1;
@@ -1469,7 +1563,7 @@ class FlipFreeForward {
   void extendRun(size_t i, const Node& zero) {
     row_[0] = zero;
     through(i, NodeCount{}, row_);
-    run_last_ = zero.q;
+    run_last_ = zero;
     ++run_size_;
   }
   /// The run cannot be node 0 throughout: the DP goes back to its frontier before the run, whose
@@ -1480,8 +1574,16 @@ class FlipFreeForward {
     full_end_ = run_begin_ + run_size_;
     run_size_ = 0;
   }
-  /// The run is an S: one candidate evaluated per hole.
-  void closeRun() {
+  /// The run ends (`link_after`: on a free link to a next hole, else at the program's end): an S
+  /// with one candidate evaluated per hole, unless stiffest's last hole cannot pay the dearest
+  /// link out of it (the run's grids are then evaluated).
+  void closeRun(bool link_after) {
+    if (run_size_ == 0) return;
+    if (stiffest_ && link_after &&
+        !(rest_ - dearestLink(run_last_.q, serial_.m.ik.lower, serial_.m.ik.upper) > margin())) {
+      breakRun();
+      return;
+    }
     if (count_) st_.dp_nodes += static_cast<int>(run_size_);
     run_size_ = 0;
   }
@@ -1511,6 +1613,7 @@ class FlipFreeForward {
   int grid_;
   double thr_;
   bool count_;
+  bool stiffest_;
   SequenceTables& t_;
   CompensationStats& st_;
   DpFrontier& f_;
@@ -1520,8 +1623,9 @@ class FlipFreeForward {
   std::vector<Node> row_;  ///< node 0 and grid − 1 candidates that are not admissible
   size_t run_begin_{0};    ///< the run: holes [run_begin_, run_begin_ + run_size_)
   size_t run_size_{0};
-  Vec6 run_last_{Vec6::Zero()};         ///< node 0's joints at the run's last hole
-  DpFrontier f0_;                       ///< the DP's frontier before the run
+  Node run_last_;     ///< node 0 of the run's last hole
+  double rest_{0.0};  ///< stiffest: the run's last hole's gap less the links beside it so far
+  DpFrontier f0_;     ///< the DP's frontier before the run
   size_t full_begin_{0}, full_end_{0};  ///< holes waiting for their grids
   std::vector<NodeCount> counts_;
 };
@@ -1564,10 +1668,10 @@ void gridBlock(Workers& w, Evaluator& serial, std::span<const HolePrediction> be
   pipelinedFor(before.size(), std::min(kBlock, w.block), w.threads(), onWorker, inOrder);
 }
 
-/// flip-free's block of predicted holes: node 0 of the holes with an admissible prediction on the
-/// workers (into `zero`), then the holes in order through FlipFreeForward.
-void flipFreeBlock(Workers& w, std::span<const HolePrediction> before, size_t b0, int grid,
-                   std::vector<Node>& zero, OrderedPass& pass, FlipFreeForward& ff) {
+/// flip-free's and stiffest's block of predicted holes: node 0 of the holes with an admissible
+/// prediction on the workers (into `zero`), then the holes in order through ZeroRunForward.
+void zeroRunBlock(Workers& w, std::span<const HolePrediction> before, size_t b0, int grid,
+                  std::vector<Node>& zero, OrderedPass& pass, ZeroRunForward& ff) {
   const std::vector<HoleRequest>& holes = pass.holes;
   const CompensationOptions& o = w.evs[0].o;
   parallelFor(before.size(), w.threads(), [&](int wk, size_t j) {
@@ -1587,7 +1691,8 @@ void flipFreeBlock(Workers& w, std::span<const HolePrediction> before, size_t b0
 
 /// Stages 1 to 3 at the jump threshold thr, a block of holes at a time: the block predicted
 /// (stage 1, the continuity seed carried), then its candidate grids through the DP's forward
-/// pass in hole order (gridBlock; flip-free: flipFreeBlock), the counters when `count`. One
+/// pass in hole order (gridBlock; flip-free and stiffest: zeroRunBlock, unless
+/// CompensationOptions::skip_proven_grids is off), the counters when `count`. One
 /// block's predictions and grids are held. False when a reachable hole cannot be connected within
 /// thr. Grids are in the branch of the original solution unless a branch change is allowed.
 bool forwardPass(Workers& w, const std::vector<HoleRequest>& holes,
@@ -1604,8 +1709,9 @@ bool forwardPass(Workers& w, const std::vector<HoleRequest>& holes,
   Evaluator serial{m, serial_scratch, o, true};
   OrderedPass pass{holes, o.mode, thr, count, t, st};
   pass.seed = m.reference_pose;
-  std::optional<FlipFreeForward> ff;
-  if (o.mode == OrientationMode::kFlipFree) ff.emplace(w, serial, grid, pass, nodes);
+  std::optional<ZeroRunForward> ff;
+  if (o.mode != OrientationMode::kKeep && o.skip_proven_grids)
+    ff.emplace(w, serial, grid, pass, nodes);
   std::vector<Node> zero(ff ? cap : 0);
   std::optional<Vec6> prev = first;
   for (size_t b0 = 0; b0 < n; b0 += w.block) {
@@ -1617,7 +1723,7 @@ bool forwardPass(Workers& w, const std::vector<HoleRequest>& holes,
         prev, [&](size_t j) -> HolePrediction& { return before[j]; }, false);
     const std::span<const HolePrediction> block(before.data(), e0 - b0);
     if (ff)
-      flipFreeBlock(w, block, b0, grid, zero, pass, *ff);
+      zeroRunBlock(w, block, b0, grid, zero, pass, *ff);
     else
       gridBlock(w, serial, block, b0, grid, nodes, counts, pass);
   }

@@ -28,8 +28,9 @@
 ///              go to the smallest change), (3) joint travel and limit/wrist proximity. Every hole
 ///              with ψ ≠ 0 carries its reason (limit, wrist margin, or the jump ψ = 0 would make);
 ///   stiffest   minimise the predicted U_work (stiffness proxy) under the same constraints; a hole
-///              whose keep result is stiffer goes back to ψ = 0 when the constraints allow it; the
-///              gain U_work(keep) − U_work per hole and in the summary.
+///              whose keep result is stiffer goes back to ψ = 0 when the constraints allow it, and
+///              a hole at ψ = 0 takes its keep result (its exact compensation is made only where
+///              keep fails); the gain U_work(keep) − U_work per hole and in the summary.
 /// Sequence level: dynamic programming over a ψ grid (ψ = 0 is always node 0) for the whole
 /// program (not hole by hole), then NLopt (COBYLA, 1-D, constraints as above) refines each changed
 /// hole's ψ with its neighbours fixed (flip-free: smallest |ψ|; stiffest: smallest U).
@@ -75,6 +76,11 @@ struct CompensationOptions {
   /// turn; flip-free and stiffest also evaluate their candidate grids a block at a time. The
   /// result is the same for every size (tests make it small).
   std::size_t block{kCompensationBlock};
+  /// flip-free and stiffest: a run of holes whose programmed rotation (ψ = 0) is provably the
+  /// sequence's choice evaluates that candidate alone, not its grid (flip-free: fewer changes;
+  /// stiffest: a bound on how much a rotation can gain, see compensation.cpp). Off: every grid
+  /// is evaluated — the same result (tests compare), more candidates (dp_nodes).
+  bool skip_proven_grids{true};
 };
 
 /// What compensateTarget computes beyond the compensated target.
@@ -133,7 +139,7 @@ struct HoleCompensation {
 };
 
 struct CompensationStats {
-  int dp_nodes{0};  ///< candidates evaluated for the DP (flip-free skips runs that keep ψ = 0)
+  int dp_nodes{0};  ///< candidates evaluated for the DP (skip_proven_grids: runs that keep ψ = 0)
   int infeasible_nodes{0};
   int refined{0};
   int nlopt_evaluations{0};

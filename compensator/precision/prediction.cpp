@@ -455,11 +455,6 @@ void predictHole(const PredictionModel& base, PredictionData& d, const HoleReque
   predictHoleTo(base, d, h, seed, p, Depth::kFull);
 }
 
-void predictHoleStatus(const PredictionModel& base, PredictionData& d, const HoleRequest& h,
-                       const Vec6* seed, HolePrediction& p) {
-  predictHoleTo(base, d, h, seed, p, Depth::kStatus);
-}
-
 void chooseHoleSolution(const PredictionModel& base, PredictionData& d, const HoleRequest& h,
                         const Vec6* seed, HolePrediction& p) {
   const PredictionModel& m = modelFor(base, h);

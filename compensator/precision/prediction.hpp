@@ -345,10 +345,6 @@ HolePrediction predictHole(const PredictionModel& m, PredictionData& d, const Ho
 /// samples). A fresh prediction allocates only for strings beyond the short-string buffer.
 void predictHole(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
                  const Vec6* seed, HolePrediction& out);
-/// predictHole up to the compliance equilibrium (as PredictOptions::budget false): the same
-/// status, reason, joints, branch, flags, figures and deflection, no δwork, budget or verdict.
-void predictHoleStatus(const PredictionModel& m, PredictionData& d, const HoleRequest& h,
-                       const Vec6* seed, HolePrediction& out);
 
 /// Step 1 of predictHole alone (the IK choice) into `out`: status and reason, joints, branch,
 /// wrist margin and flags, and the hole's process figures (tolerance, diameter, depth, drill, feed,
