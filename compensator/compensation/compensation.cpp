@@ -1171,23 +1171,29 @@ std::string notCompensatedReason(const HoleCompensation& c, const Node& chosen) 
 /// predict`; a hole whose prediction throws makes the block fall back to the sequential loop,
 /// which isolates it. `at(j)`: where hole j's prediction goes. `budget` false: the predictions
 /// go as far as their status, joints and branch (PredictOptions::budget; the fallback predicts
-/// them whole).
-void predictBlock(const PredictionModel& m, PredictionData& d, std::span<const HoleRequest> req,
+/// them whole). `choice`: the block's IK choice, kept or given (PredictOptions::choice). Returns
+/// false when the block fell back to the sequential loop (a kept choice is then not made).
+bool predictBlock(const PredictionModel& m, PredictionData& d, std::span<const HoleRequest> req,
                   int threads, std::optional<Vec6>& prev,
-                  const std::function<HolePrediction&(size_t)>& at, bool budget = true) {
+                  const std::function<HolePrediction&(size_t)>& at, bool budget = true,
+                  const IkChoice& choice = {}) {
   for (size_t j = 0; j < req.size(); ++j) at(j) = HolePrediction{};  // what predictHoles expects
+  bool whole = true;
   try {
     PredictOptions po;
     po.threads = threads;
     po.seed = prev;
     po.budget = budget;
+    po.choice = choice;
     predictHoles(m, req, po, at);
   } catch (const std::exception&) {
     predictOriginal(m, d, req, prev, at);
+    whole = false;
   }
   for (size_t j = 0; j < req.size(); ++j) {
     if (at(j).status == HoleStatus::kOk) prev = at(j).joints;
   }
+  return whole;
 }
 
 /// Where a run's finished holes go: handed to a sink a block at a time, or (`whole`) kept in
@@ -1355,6 +1361,11 @@ struct SequenceTables {
   std::vector<char> relaxed;
   std::vector<Node> zero;
   std::vector<std::optional<Vec6>> block_seed;
+  /// the IK choice of the stage-1 predictions (PredictOptions::choice), kept for their second
+  /// prediction; `choice_kept[b]`: block b's was made (its predictions did not fall back)
+  std::vector<IkSolution> choice;
+  std::vector<char> chosen;
+  std::vector<char> choice_kept;
 
   SequenceTables(size_t n, int grid, int threads, size_t block)
       : from(n, static_cast<size_t>(grid), std::int16_t{-1}, threads),
@@ -1364,7 +1375,10 @@ struct SequenceTables {
         enforced(n, 1),
         relaxed(n, 0),
         zero(n),
-        block_seed((n + block - 1) / block) {}
+        block_seed((n + block - 1) / block),
+        choice(n),
+        chosen(n, 0),
+        choice_kept(block_seed.size(), 0) {}
   /// Node k of hole i's grid.
   Node node(Evaluator& ev, const std::vector<HoleRequest>& holes, size_t i, int k, int grid) const {
     return gridNode(ev, holes[i], seed[i], branch[i], k, grid, enforced[i] != 0);
@@ -1717,10 +1731,16 @@ bool forwardPass(Workers& w, const std::vector<HoleRequest>& holes,
   for (size_t b0 = 0; b0 < n; b0 += w.block) {
     const size_t e0 = std::min(n, b0 + w.block);
     t.block_seed[b0 / w.block] = prev;
-    // the search reads each prediction's status, joints and branch only: no budgets
-    predictBlock(
-        m, w.scratch[0], std::span<const HoleRequest>(holes).subspan(b0, e0 - b0), w.threads(),
-        prev, [&](size_t j) -> HolePrediction& { return before[j]; }, false);
+    // the search reads each prediction's status, joints and branch only: no budgets; the IK
+    // choice is kept for the holes' second prediction (sequenceRun)
+    const IkChoice choice{std::span<IkSolution>(t.choice).subspan(b0, e0 - b0),
+                          std::span<char>(t.chosen).subspan(b0, e0 - b0), false};
+    t.choice_kept[b0 / w.block] =
+        predictBlock(
+            m, w.scratch[0], std::span<const HoleRequest>(holes).subspan(b0, e0 - b0), w.threads(),
+            prev, [&](size_t j) -> HolePrediction& { return before[j]; }, false, choice)
+            ? 1
+            : 0;
     const std::span<const HolePrediction> block(before.data(), e0 - b0);
     if (ff)
       zeroRunBlock(w, block, b0, grid, zero, pass, *ff);
@@ -1741,6 +1761,16 @@ struct Sequence {
   std::vector<char> enforced;
   std::vector<char> relaxed;
   std::vector<std::optional<Vec6>> block_seed;
+  std::vector<IkSolution> choice;  ///< SequenceTables::choice, chosen and choice_kept
+  std::vector<char> ik_chosen;
+  std::vector<char> choice_kept;
+
+  /// The IK choice of block b (holes [b0, e0)) to predict it again with, when it was made.
+  [[nodiscard]] IkChoice choiceOf(size_t b, size_t b0, size_t e0) {
+    if (!choice_kept[b]) return {};
+    return {std::span<IkSolution>(choice).subspan(b0, e0 - b0),
+            std::span<char>(ik_chosen).subspan(b0, e0 - b0), true};
+  }
 
   /// Stiffest's programmed posture of hole i (ψ = 0 without the wrist requirement, in the
   /// branch of its prediction `b`, seeded with its joints): node 0 of its grid when that is the
@@ -1788,6 +1818,9 @@ Sequence chooseSequence(Workers& w, const std::vector<HoleRequest>& holes,
   q.enforced = std::move(t.enforced);
   q.relaxed = std::move(t.relaxed);
   q.block_seed = std::move(t.block_seed);
+  q.choice = std::move(t.choice);
+  q.ik_chosen = std::move(t.chosen);
+  q.choice_kept = std::move(t.choice_kept);
   return q;
 }
 
@@ -1833,8 +1866,10 @@ void sequenceRun(Workers& w, const std::vector<HoleRequest>& holes,
   for (size_t b = 0; b < n; b += w.block) {
     const size_t e = std::min(n, b + w.block);
     std::optional<Vec6> seed = q.block_seed[b / w.block];
-    predictBlock(m, w.scratch[0], std::span<const HoleRequest>(holes).subspan(b, e - b), threads,
-                 seed, [&](size_t j) -> HolePrediction& { return before[j]; });
+    predictBlock(
+        m, w.scratch[0], std::span<const HoleRequest>(holes).subspan(b, e - b), threads, seed,
+        [&](size_t j) -> HolePrediction& { return before[j]; }, true,
+        q.choiceOf(b / w.block, b, e));
     std::vector<HoleCompensation>& pend = bufs[k];
     const size_t p0 = pend.size();  // hole b in pend
     pend.resize(p0 + (e - b));

@@ -759,6 +759,12 @@ namespace {
 /// Holes whose IK candidates predictHoles computes ahead at a time (~0.4 kB each).
 constexpr size_t kIkCandidateChunk = 4096;
 
+/// Whether a hole's chosen solution seeds the next hole's choice (an admissible, non-singular
+/// one).
+bool seedsNext(char chosen, const IkSolution& sol) {
+  return chosen != 0 && !sol.singular_wrist && !sol.singular_shoulder;
+}
+
 /// predictHoles' first stage: the IK choice of every hole in order, each seeded with the previous
 /// admissible solution (continuity; `first` before the first hole): sol[i], chosen[i] and the
 /// seed[i] it was chosen with. With more than one thread, the analytic candidates of a chunk of
@@ -766,8 +772,8 @@ constexpr size_t kIkCandidateChunk = 4096;
 /// the workers first and only the choice runs in order. An inexact chain's IK finishes every
 /// branch from the start: nothing to compute ahead there.
 void chooseInOrder(const PredictionModel& m, PredictionData& d, std::span<const HoleRequest> holes,
-                   const std::optional<Vec6>& first, int threads, std::vector<IkSolution>& sol,
-                   std::vector<char>& chosen, std::vector<std::optional<Vec6>>& seed) {
+                   const std::optional<Vec6>& first, int threads, std::span<IkSolution> sol,
+                   std::span<char> chosen, std::vector<std::optional<Vec6>>& seed) {
   const size_t n = holes.size();
   const bool compute_ahead = threads > 1 && m.ik.deviation.exact;
   std::vector<IkCandidates> ahead(compute_ahead ? std::min(n, kIkCandidateChunk) : 0);
@@ -789,8 +795,18 @@ void chooseInOrder(const PredictionModel& m, PredictionData& d, std::span<const 
       chosen[i] = chooseSolution(mi, d, holes[i], flangeTarget(mi, holes[i]),
                                  seedOf(mi, holes[i], prev ? &*prev : nullptr), probe, sol[i],
                                  compute_ahead ? &ahead[i - c0] : nullptr);
-      if (chosen[i] && !sol[i].singular_wrist && !sol[i].singular_shoulder) prev = sol[i].q;
+      if (seedsNext(chosen[i], sol[i])) prev = sol[i].q;
     }
+  }
+}
+
+/// The seeds chooseInOrder chose the holes with, from its choice (sol, chosen) and `first`.
+void seedsOfChoice(const std::optional<Vec6>& first, std::span<const IkSolution> sol,
+                   std::span<const char> chosen, std::vector<std::optional<Vec6>>& seed) {
+  std::optional<Vec6> prev = first;
+  for (size_t i = 0; i < sol.size(); ++i) {
+    seed[i] = prev;
+    if (seedsNext(chosen[i], sol[i])) prev = sol[i].q;
   }
 }
 }  // namespace
@@ -802,11 +818,18 @@ void predictHoles(const PredictionModel& m, std::span<const HoleRequest> holes,
   std::vector<PredictionData> scratch;
   scratch.reserve(static_cast<size_t>(threads));
   for (int w = 0; w < threads; ++w) scratch.emplace_back(m);
-  // 1. the IK choice of every hole, in order (each seeds the next)
-  std::vector<IkSolution> sol(n);
-  std::vector<char> chosen(n, 0);
+  // 1. the IK choice of every hole, in order (each seeds the next), or the one given
+  std::vector<IkSolution> own_sol(options.choice.sol.empty() ? n : 0);
+  std::vector<char> own_chosen(options.choice.sol.empty() ? n : 0, 0);
+  const std::span<IkSolution> sol = options.choice.sol.empty() ? own_sol : options.choice.sol;
+  const std::span<char> chosen = options.choice.sol.empty() ? own_chosen : options.choice.chosen;
+  if (sol.size() != n || chosen.size() != n)
+    throw std::invalid_argument("predictHoles: the IK choice is not one per hole");
   std::vector<std::optional<Vec6>> seed(n);
-  chooseInOrder(m, scratch[0], holes, options.seed, threads, sol, chosen, seed);
+  if (options.choice.given)
+    seedsOfChoice(options.seed, sol, chosen, seed);
+  else
+    chooseInOrder(m, scratch[0], holes, options.seed, threads, sol, chosen, seed);
   const Depth depth = options.budget ? Depth::kFull : Depth::kStatus;
   // 2. the rest of every hole, in parallel (per-worker scratch; each hole depends only on its
   //    request, its seed and the model, so the output does not depend on the thread count)

@@ -361,6 +361,18 @@ void chooseHoleSolution(const PredictionModel& m, PredictionData& d, const HoleR
 std::optional<Vec3> robotDeviationAt(const PredictionModel& m, PredictionData& d,
                                      const HoleRequest& h, const Vec6& joints);
 
+/// The IK choice of a sequence of holes (predictHoles' first step: per hole, in order, the
+/// solution nearest the previous admissible one; `chosen[i]` 0: none, the hole is predicted from
+/// its seed alone), in storage the caller owns: one entry per hole.
+struct IkChoice {
+  std::span<IkSolution> sol;
+  std::span<char> chosen;
+  /// false: predictHoles makes the choice and writes it here; true: it was made by a call for
+  /// the same holes, model and PredictOptions::seed, and is not made again (the same result, bit
+  /// for bit: a caller predicting the holes twice keeps it between the calls).
+  bool given{false};
+};
+
 struct PredictOptions {
   /// Worker threads over holes (≥ 1; 1: the calling thread only). The output is byte-identical
   /// for every count: a sequential pass fixes the IK choice that seeds each next hole (the
@@ -376,6 +388,8 @@ struct PredictOptions {
   /// the uncertainty budget and the verdict (a caller that reads only which solution each hole
   /// takes and whether it is predicted).
   bool budget{true};
+  /// Where the IK choice goes or comes from (IkChoice); empty: predictHoles' own.
+  IkChoice choice{};
 };
 
 /// Predicts a sequence, each hole seeded with the previous admissible solution.
