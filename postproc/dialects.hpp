@@ -67,10 +67,11 @@ class KrlStream {
 /// The RAPID reader a window of whole lines of the module at a time (ProgramStream): constructed
 /// once p.files holds the first window; lines() reads the constructs of the window p.files[0]
 /// holds now (`last`: no bytes follow it) up to one the window ends inside, whose line (from
-/// carry(), its tokens before it skipped) starts the next window; finish() checks the module's
-/// end after the last window. The reader's state (declarations, tools, work objects, numbers,
-/// nesting) is that of the whole read at the same point: the same targets, motions, frames,
-/// notes and errors, in the same order.
+/// carry(), its tokens before it skipped) starts the next window (a construct longer than a window
+/// grows the next one until it holds it; the module's header likewise); finish() checks the
+/// module's end after the last window. The reader's state (declarations, tools, work objects,
+/// numbers, nesting) is that of the whole read at the same point: the same targets, motions,
+/// frames, notes and errors, in the same order.
 class RapidStream {
  public:
   explicit RapidStream(Program& p);

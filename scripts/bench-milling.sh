@@ -15,7 +15,8 @@
 # BENCH_MILLING_THREADS  thread counts to run (default "1 2")
 # BENCH_MILLING_EXPORTS  which --targets formats (default "csv json")
 # BENCH_MILLING_DIALECT  krl (default), rapid or tp: the program's language (the rows' key names
-#                        it when not krl)
+#                        it when not krl); the cell is samples/cells/alu-milling-7075.xml with a
+#                        robot of that vendor (KR 120, IRB 6700, R-2000iC/165F)
 # BENCH_MILLING_COMMAND  compensate (default) or forces: `roprec forces --program` (its JSON on
 #                        stdout; BENCH_MILLING_EXPORTS does not apply, one run per thread count)
 set -euo pipefail
@@ -65,16 +66,16 @@ case "$DIALECT" in
         print "ENDMODULE" }' >"$PROG"
     points=$(grep -c '^    MoveL' "$PROG")
     ;;
-  tp) # UFRAME 0 (the cell's workobject) and UTOOL 1 (the cell's tool), P[n] in /POS at the end
+  tp) # UFRAME 1 and UTOOL 1 live in the controller: the cell's workobject and tool; P[n] in /POS
     PROG="$WORK/pass.ls"
     awk -v n="$N" 'function pos(k, x, z) {
-        printf "P[%d]{\n   GP1:\n\tUF : 0, UT : 1,\t\tCONFIG : '"'"'N U T, 0, 0, 0'"'"',\n", k
+        printf "P[%d]{\n   GP1:\n\tUF : 1, UT : 1,\t\tCONFIG : '"'"'N U T, 0, 0, 0'"'"',\n", k
         printf "\tX = %9.4f  mm,\tY =     0.000  mm,\tZ = %9.3f  mm,\n", x, z
         printf "\tW =   180.000 deg,\tP =     0.000 deg,\tR =     0.000 deg\n};\n" }
       BEGIN {
         m = n + 4
         print "/PROG  WALL_PASS"; print "/ATTR"; print "LINE_COUNT\t= " m + 2 ";"; print "/MN"
-        print "   1:  UFRAME_NUM=0 ;"; print "   2:  UTOOL_NUM=1 ;"
+        print "   1:  UFRAME_NUM=1 ;"; print "   2:  UTOOL_NUM=1 ;"
         print "   3:J P[1] 50% CNT50 ;"; print "   4:L P[2] 250mm/sec CNT10 ;"
         for (i = 0; i < n; ++i) printf "%4d:L P[%d] 60mm/sec CNT100 ;\n", i + 5, i + 3
         printf "%4d:L P[%d] 60mm/sec CNT100 ;\n", n + 5, n + 3
@@ -90,6 +91,14 @@ case "$DIALECT" in
 esac
 KIND="milling"
 [ "$DIALECT" = krl ] || KIND="milling $DIALECT"
+# the sample cell with a robot of the program's vendor (compensate writes its configuration)
+CELL="$WORK/cell.xml"
+case "$DIALECT" in
+  krl) ROBOT="kuka-kr120-r2500-pro" ;;
+  rapid) ROBOT="abb-irb6700-200-260" ;;
+  tp) ROBOT="fanuc-r2000ic-165f" ;;
+esac
+sed "s|<robot ref=\"[^\"]*\"/>|<robot ref=\"$ROBOT\"/>|" "$ROOT/samples/cells/alu-milling-7075.xml" >"$CELL"
 echo "bench-milling: $points linear points ($DIALECT, $COMMAND), memory limit ${MEM_MB} MB," \
   "threads: $THREADS"
 status=0
@@ -101,12 +110,12 @@ for e in $EXPORTS; do
     mkdir -p "$out"
     if [ "$COMMAND" = forces ]; then
       MEASURE_STDOUT="$out/f.json" measure "$out" bash -c 'ulimit -v $(('"$MEM_MB"' * 1024)); exec "$@"' \
-        _ "$BIN" forces --threads "$t" --cell "$ROOT/samples/cells/alu-milling-7075.xml" --program "$PROG"
+        _ "$BIN" forces --threads "$t" --cell "$CELL" --program "$PROG"
       key="$KIND $N forces --program, --threads $t"
       outputs=(f.json)
     else
       measure "$out" bash -c 'ulimit -v $(('"$MEM_MB"' * 1024)); exec "$@"' _ "$BIN" compensate \
-        --quiet --threads "$t" --cell "$ROOT/samples/cells/alu-milling-7075.xml" "$PROG" \
+        --quiet --threads "$t" --cell "$CELL" "$PROG" \
         -o "$out/out.${PROG##*.}" --targets "$out/t.$e" --report "$out/r.html"
       key="$KIND $N --targets $e --report, --threads $t"
       outputs=("out.${PROG##*.}" "t.$e" r.html)

@@ -361,15 +361,23 @@ std::vector<std::string> rapidStreamed(const std::string& path, size_t window, s
 }
 
 // An ABB RAPID module read by windows of 4 KB (statements over two lines cut by a window's end,
-// targets declared before and after their motions, markers) and of 10 KB, its motions retired
+// targets declared before and after their motions, markers, a statement longer than two
+// windows after a %%% header) and of 10 KB, its motions retired
 // window by window: the motions, targets, frames, unresolved references and notes of the whole
 // read, in its order; the inline targets go with their motions (a window holds the declared
 // ones and a window's worth of the others).
 TEST(ProgramStream, RapidModuleByWindowsReadsAsTheWholeModule) {
   const std::string dir = test::tempDir("program_stream_rapid");
   test::writeFile(dir + "/wall.mod", test::rapidWallPass(600));
+  // a statement longer than two windows (comment lines inside it) after the %%% header
+  std::string padded = test::rapidWallPass(100);
+  std::string comments;
+  for (int k = 0; k < 300; ++k) comments += "      ! a comment line inside a statement\n";
+  padded.insert(padded.find("v60", padded.find("MoveL [[")), comments + "      ");
+  test::writeFile(dir + "/long.mod", "%%%\n  VERSION:1\n  LANGUAGE:ENGLISH\n%%%\n\n" + padded);
   std::vector<std::string> programs = {
-      dir + "/wall.mod", test::sourceDir() + "/samples/emotor-housing/housing_irb6640.mod"};
+      dir + "/wall.mod", dir + "/long.mod",
+      test::sourceDir() + "/samples/emotor-housing/housing_irb6640.mod"};
   if (const std::string corpus = test::corpusDir(); !corpus.empty())
     programs.push_back(corpus + "/robodk/DrillIRC5.mod");
   for (const std::string& path : programs) {
