@@ -64,6 +64,32 @@ class KrlStream {
   std::unique_ptr<Reader> r_;
 };
 
+/// The RAPID reader a window of whole lines of the module at a time (ProgramStream): constructed
+/// once p.files holds the first window; lines() reads the constructs of the window p.files[0]
+/// holds now (`last`: no bytes follow it) up to one the window ends inside, whose line (from
+/// carry(), its tokens before it skipped) starts the next window (a construct longer than a window
+/// grows the next one until it holds it; the module's header likewise); finish() checks the
+/// module's end after the last window. The reader's state (declarations, tools, work objects,
+/// numbers, nesting) is that of the whole read at the same point: the same targets, motions,
+/// frames, notes and errors, in the same order.
+class RapidStream {
+ public:
+  explicit RapidStream(Program& p);
+  ~RapidStream();
+  RapidStream(const RapidStream&) = delete;
+  RapidStream& operator=(const RapidStream&) = delete;
+  void lines(bool last);
+  /// The offset in p.files[0] (a line start) the next window starts with; its size when none.
+  [[nodiscard]] std::size_t carry() const;
+  void finish();
+  /// Targets [begin, end) of p.target_list were dropped (none of them declared by name).
+  void retiredTargets(std::size_t begin, std::size_t end);
+
+ private:
+  struct Reader;
+  std::unique_ptr<Reader> r_;
+};
+
 /// Where the edit functions queue their edits: Program::edits, or an EditLog replayed later.
 class EditQueue {
  public:

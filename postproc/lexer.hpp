@@ -89,6 +89,11 @@ class NameMap {
     return slot != 0 ? &entries_[slot - 1].value : nullptr;
   }
   [[nodiscard]] std::size_t size() const { return entries_.size(); }
+  /// Calls f(value) for every entry, in insertion order (the values may change).
+  template <class F>
+  void forEachValue(F&& f) {
+    for (Entry& e : entries_) f(e.value);
+  }
 
  private:
   struct Entry {

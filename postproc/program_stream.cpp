@@ -14,7 +14,8 @@ namespace roprec::postproc {
 
 namespace fs = std::filesystem;
 
-ProgramStream::ProgramStream(const std::string& path, std::size_t window_bytes, bool read_ahead)
+ProgramStream::ProgramStream(const std::string& path, std::size_t window_bytes, bool read_ahead,
+                             bool rapid)
     : path_(path),
       window_bytes_(std::max<std::size_t>(window_bytes, 4096)),
       read_ahead_(read_ahead) {
@@ -37,18 +38,34 @@ ProgramStream::ProgramStream(const std::string& path, std::size_t window_bytes, 
     if (n < 0) refuse(path);
     head.resize(static_cast<std::size_t>(n));
   }
-  if (detectDialect(path, head) != Dialect::kKrl) {
+  const Dialect dialect = detectDialect(path, head);
+  if (dialect == Dialect::kRapid && rapid) {
+    p_.dialect = Dialect::kRapid;
+    openWindows(path);
+    SourceFile s;
+    s.path = path;
+    p_.files.push_back(std::move(s));
+    noteInputFile(path);
+    if (!readWindow()) {  // an empty module: read whole, as readProgram does
+      file_.close();
+      whole_read_ = true;
+      p_ = Program{};
+      return;
+    }
+    checkInputText(p_.files[0].bytes, path);
+    read_ahead_ = false;
+    rapid_ = std::make_unique<RapidStream>(p_);
+    pending_ = true;
+    return;
+  }
+  if (dialect != Dialect::kKrl) {
     whole_read_ = true;
     return;
   }
   const auto [src, dat] = krlFiles(path);
   p_.dialect = Dialect::kKrl;
   p_.dat_path = dat.empty() ? fs::path(src).replace_extension(".dat").string() : dat;
-  if (file_.openRead(src) != 0) refuse(src);
-  const platform::Status st = file_.status();
-  if (st.kind != platform::Kind::kRegular || st.size > inputSizeLimit(InputKind::kProgram))
-    refuse(src);
-  src_ = src;
+  openWindows(src);
   SourceFile s;
   s.path = src;
   p_.files.push_back(std::move(s));
@@ -72,6 +89,18 @@ ProgramStream::ProgramStream(const std::string& path, std::size_t window_bytes, 
   pending_ = true;
 }
 
+void ProgramStream::openWindows(const std::string& path) {
+  const auto refuse = [&] {
+    (void)readInputFile(path, InputKind::kProgram);
+    throw InputError(path, 0, "cannot open file");  // not reached: readInputFile threw
+  };
+  if (file_.openRead(path) != 0) refuse();
+  const platform::Status st = file_.status();
+  if (st.kind != platform::Kind::kRegular || st.size > inputSizeLimit(InputKind::kProgram))
+    refuse();
+  src_ = path;
+}
+
 ProgramStream::~ProgramStream() {
   if (ahead_.valid()) ahead_.wait();  // its errors are no one's any more
 }
@@ -92,6 +121,25 @@ bool ProgramStream::readWindow() {
   if (w.bytes.empty()) return false;
   w.indexLines();
   installWindow(std::move(w));
+  return true;
+}
+
+bool ProgramStream::readRapidWindow() {
+  SourceFile& f = p_.files[0];
+  const std::size_t cut = rapid_->carry();
+  int base = f.line_base + static_cast<int>(f.line_starts.size());
+  if (cut < f.bytes.size()) {  // a construct the window ended inside: from its line again
+    const auto it = std::upper_bound(f.line_starts.begin(), f.line_starts.end(),
+                                     static_cast<std::uint32_t>(cut));
+    base = f.line_base + static_cast<int>(it - f.line_starts.begin()) - 1;
+    rest_.insert(0, f.bytes, cut, std::string::npos);
+  }
+  SourceFile w = fromSpare(spare_);
+  readWindowBytes(w.bytes);
+  if (w.bytes.empty()) return false;
+  w.indexLines();
+  installWindow(std::move(w));
+  f.line_base = base;
   return true;
 }
 
@@ -163,6 +211,20 @@ void ProgramStream::readWindowBytes(std::string& buf) {
 
 bool ProgramStream::next() {
   if (finished_) return false;
+  if (rapid_) {
+    if (pending_) {
+      pending_ = false;
+    } else if (!readRapidWindow()) {
+      finished_ = true;
+      rapid_->finish();
+      rapid_ranges_.rethrow();
+      std::string().swap(p_.files[0].bytes);
+      return false;
+    }
+    rapid_->lines(eof_ && rest_.empty());
+    checkRanges();
+    return true;
+  }
   if (whole_read_) {
     if (!p_.files.empty()) {
       finished_ = true;
@@ -201,14 +263,21 @@ bool ProgramStream::next() {
   } else {
     krl_->lines();
   }
-  if (!range_error_ && !skip_ranges_) {
-    try {
-      checkValueRanges(p_);
-    } catch (const InputError&) {
-      range_error_ = std::current_exception();
-    }
-  }
+  checkRanges();
   return true;
+}
+
+void ProgramStream::checkRanges() {
+  if (rapid_ && !skip_ranges_) {  // the first error of each kind: thrown in the whole read's order
+    checkValueRanges(p_, rapid_ranges_);
+    return;
+  }
+  if (range_error_ || skip_ranges_) return;
+  try {
+    checkValueRanges(p_);
+  } catch (const InputError&) {
+    range_error_ = std::current_exception();
+  }
 }
 
 std::size_t ProgramStream::settledMotions() const {
@@ -220,10 +289,16 @@ std::size_t ProgramStream::settledMotions() const {
 
 Retired ProgramStream::retire(std::size_t m) {
   Program& p = p_;
-  if (!krl_ || p.motions.empty()) return {};
+  if ((!krl_ && !rapid_) || p.motions.empty()) return {};
   m = std::min(m, p.motions.size() - 1);
-  if (const int held = krl_->heldMotion(); held >= 0)
-    m = std::min(m, static_cast<std::size_t>(held));
+  if (krl_) {
+    if (const int held = krl_->heldMotion(); held >= 0)
+      m = std::min(m, static_cast<std::size_t>(held));
+  } else {
+    // RAPID: the targets declared by name before the first one that may go stay for good (the
+    // reader finds them by name); those declared after wait until the ones before them went
+    while (pinned_ < p.target_list.size() && !p.target_list[pinned_].name.empty()) ++pinned_;
+  }
   if (m == 0) return {};
   // the unnamed targets after the pinned ones that no remaining motion uses
   const std::size_t t0 = pinned_;
@@ -282,7 +357,8 @@ Retired ProgramStream::retire(std::size_t m) {
     }
     tg.uses = std::move(uses);
   }
-  krl_->retired(m);
+  if (krl_) krl_->retired(m);
+  if (rapid_ && t1 > t0) rapid_->retiredTargets(t0, t1);
   return {m, t0, t1};
 }
 

@@ -7,10 +7,16 @@
 /// window Program holds the motions and targets read since the last retire() (every target of
 /// the `.dat` and every named target stays), and the frames, notes and unresolved references of
 /// everything read so far; its `.src` SourceFile holds the window's bytes (lineOf() gives the
-/// file's line: SourceFile::line_base). The other dialects are read whole, as one window.
+/// file's line: SourceFile::line_base). With `rapid`, an ABB RAPID module is read by windows of
+/// whole lines too (RapidStream: a statement a window ends inside is read again from its line at
+/// the start of the next window); its targets declared by name stay, its inline targets go with
+/// their motions. The other dialects are read whole, as one window.
 ///
 /// Errors are those readProgram gives, in the same order: a reader's error where it is met, a
-/// value out of range (checkValueRanges) once the whole program is read without one.
+/// value out of range (checkValueRanges) once the whole program is read without one (RAPID: the
+/// first target's, else frame's, else motion's, as checkValueRanges orders them; within a kind the
+/// first met, which is the whole read's unless a robtarget declared early is out of range and
+/// first used after another target out of range).
 ///
 ///   ProgramStream s(path);
 ///   HoleRecognizer rec;
@@ -26,10 +32,12 @@
 
 #include "compensator/support/platform.hpp"
 #include "postproc/program.hpp"
+#include "postproc/value_ranges.hpp"
 
 namespace roprec::postproc {
 
 class KrlStream;
+class RapidStream;
 class HoleRecognizer;
 struct KrlAhead;
 
@@ -48,8 +56,9 @@ class ProgramStream {
   /// `read_ahead`: a KRL .src's next window is read, indexed and lexed on a task of its own
   /// while the reader reads the window before (the same windows, tokens and errors, in the same
   /// order; for a caller with a second core).
+  /// `rapid`: a RAPID module is read by windows as well (read_ahead does not apply to it).
   explicit ProgramStream(const std::string& path, std::size_t window_bytes = kWindowBytes,
-                         bool read_ahead = false);
+                         bool read_ahead = false, bool rapid = false);
   ~ProgramStream();
   ProgramStream(const ProgramStream&) = delete;
   ProgramStream& operator=(const ProgramStream&) = delete;
@@ -61,8 +70,9 @@ class ProgramStream {
   /// A reading of a program read (and checked) whole before: next() checks no value range any
   /// more (checkValueRanges), the reader's errors stay.
   void skipValueRanges() { skip_ranges_ = true; }
-  /// Whether the program is read by windows (KRL); false: next() reads it whole once.
-  [[nodiscard]] bool windowed() const { return krl_ != nullptr; }
+  /// Whether the program is read by windows (KRL; RAPID with `rapid`); false: next() reads it
+  /// whole once.
+  [[nodiscard]] bool windowed() const { return krl_ != nullptr || rapid_ != nullptr; }
   /// The window's motions [0, settledMotions()) the reader will not change any more: all of them
   /// but from the held segment of a SPLINE block being read (every one once the program is read).
   [[nodiscard]] std::size_t settledMotions() const;
@@ -74,6 +84,10 @@ class ProgramStream {
  private:
   /// Fills p_.files[0].bytes with the next window of whole lines; false at the end of the file.
   bool readWindow();
+  /// readWindow() of a RAPID module: the window starts with the reader's carry (RapidStream).
+  bool readRapidWindow();
+  /// Opens the file the windows are read from (readInputFile's errors).
+  void openWindows(const std::string& path);
   /// The next window's bytes of whole lines into `buf` (empty at the end of the file).
   void readWindowBytes(std::string& buf);
   /// A window read, indexed and lexed ahead, with what KrlStream::lexWindow read of it.
@@ -94,6 +108,8 @@ class ProgramStream {
   static SourceFile fromSpare(Spare& s);
   /// Makes `w` (the bytes, line index and tokens of the window after the last one) p_.files[0].
   void installWindow(SourceFile&& w);
+  /// checkValueRanges of the window: its first error kept for the end.
+  void checkRanges();
   /// Starts reading, indexing and lexing the next window on a task of its own (read_ahead).
   void startAhead();
 
@@ -102,6 +118,7 @@ class ProgramStream {
   std::size_t window_bytes_;
   Program p_;
   std::unique_ptr<KrlStream> krl_;
+  std::unique_ptr<RapidStream> rapid_;
   platform::File file_;
   std::string rest_;     ///< bytes read after the window's last line
   std::size_t read_{0};  ///< bytes of the .src read so far
@@ -111,6 +128,7 @@ class ProgramStream {
   bool pending_{false};    ///< the window the constructor read is not parsed yet
   std::size_t pinned_{0};  ///< targets that always stay (the .dat's)
   std::exception_ptr range_error_;
+  RangeErrors rapid_ranges_;  ///< RAPID: the first value out of range of each kind
   Spare spare_;  ///< the window before the one p_ holds (read_ahead: taken by the next task)
   bool read_ahead_{false};
   bool skip_ranges_{false};

@@ -1,6 +1,8 @@
 /// ABB RAPID reader (`.mod`, `.prg`, `.sys`), docs/programs.md §3.
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <deque>
 #include <functional>
 #include <optional>
 #include <unordered_map>
@@ -33,27 +35,84 @@ struct ToolState {
 
 class RapidReader {
  public:
-  explicit RapidReader(Program& p) : p_(p), f_(p.files[0]) {}
+  /// `streamed`: p.files[0] holds one window of whole lines at a time (RapidStream).
+  explicit RapidReader(Program& p, bool streamed = false)
+      : p_(p), f_(p.files[0]), streamed_(streamed) {}
 
   void run() {
+    start();
+    lines(true);
+    finish();
+  }
+
+  void start() {
     opt_.comment = '!';
     opt_.rapid_assign = true;
     opt_.percent_header = true;
     tools_["TOOL0"] = ToolState{Pose::Identity(), true, false, 0};
     wobjs_["WOBJ0"] = ToolState{Pose::Identity(), true, false, 0};
-    std::size_t i = skipHeader();
-    Nesting n;
-    while (has(i)) {
-      if (tok_[i].kind == TokenKind::kNewline || tok_[i].kind == TokenKind::kComment) {
-        ++i;
-        continue;
-      }
-      tok_.erase(tok_.begin(), tok_.begin() + static_cast<std::ptrdiff_t>(i));
-      i = topLevel(n);
+  }
+
+  /// Reads the constructs of the window f_ holds (the whole file: `last`). Read by windows, a
+  /// construct the window ends inside is left to the next window: carry() is then the offset of
+  /// the line it starts on, its tokens before it (on that line) skipped there.
+  void lines(bool last) {
+    last_ = last;
+    tok_.clear();
+    next_line_ = 0;
+    carry_ = f_.bytes.size();
+    if (skip_ > 0 && !f_.bytes.empty()) {  // the carried line's tokens read before
+      next_line_ = lexLine(f_, opt_, 0, tok_);
+      std::size_t k = 0;
+      while (k < tok_.size() && tok_[k].offset < skip_) ++k;
+      tok_.erase(tok_.begin(), tok_.begin() + static_cast<std::ptrdiff_t>(k));
     }
-    if (!n.any_module) failAt(f_, 0, "no MODULE found: not a RAPID module");
-    if (n.modules != 0) failAt(f_, f_.bytes.size(), "truncated file: MODULE without ENDMODULE");
-    if (n.routines != 0) failAt(f_, f_.bytes.size(), "truncated file: routine without its END");
+    skip_ = 0;
+    bool construct = false;
+    try {
+      std::size_t i = 0;
+      if (!header_read_) {
+        i = skipHeader();
+        header_read_ = true;
+      }
+      while (has(i)) {
+        if (tok_[i].kind == TokenKind::kNewline || tok_[i].kind == TokenKind::kComment) {
+          ++i;
+          continue;
+        }
+        tok_.erase(tok_.begin(), tok_.begin() + static_cast<std::ptrdiff_t>(i));
+        construct = true;
+        i = topLevel(n_);
+        construct = false;
+      }
+    } catch (const MoreBytes&) {
+      if (!header_read_) {  // the header again, with the next window's bytes
+        carry_ = 0;
+      } else if (construct) {  // tok_[0] starts it: its line again
+        const std::uint32_t at = tok_[0].offset;
+        const auto it = std::upper_bound(f_.line_starts.begin(), f_.line_starts.end(), at);
+        carry_ = *(it - 1);
+        skip_ = at - static_cast<std::uint32_t>(carry_);
+      }
+    }
+  }
+
+  /// The offset of the window's first byte the next window starts with (lines()).
+  [[nodiscard]] std::size_t carry() const { return carry_; }
+
+  /// After the last window: the module's structure checked.
+  void finish() {
+    if (!n_.any_module) throw InputError(f_.path, 1, "no MODULE found: not a RAPID module");
+    if (n_.modules != 0) failAt(f_, f_.bytes.size(), "truncated file: MODULE without ENDMODULE");
+    if (n_.routines != 0) failAt(f_, f_.bytes.size(), "truncated file: routine without its END");
+  }
+
+  /// The targets [begin, end) of p_ were dropped (none declared): the later ones shift down.
+  void retiredTargets(std::size_t begin, std::size_t end) {
+    const auto n = static_cast<int>(end - begin);
+    targets_.forEachValue([&](int& idx) {
+      if (idx >= static_cast<int>(end)) idx -= n;
+    });
   }
 
  private:
@@ -64,17 +123,29 @@ class RapidReader {
   /// (the file never has a whole-file token index).
   std::vector<Token> tok_;
   std::size_t next_line_{0};  ///< byte offset of the first line not lexed yet
+  /// Thrown by has() at the end of a window that is not the file's last (streamed_).
+  struct MoreBytes {};
+  bool streamed_{false};
+  bool last_{true};                ///< no bytes after f_'s
+  bool header_read_{false};        ///< skipHeader() done
+  std::size_t carry_{0};           ///< lines(): where the next window starts in this one
+  std::uint32_t skip_{0};          ///< the bytes of the first line read before (carried)
+  std::deque<std::string> names_;  ///< streamed_: the declared names targets_ keys view
 
   struct Nesting {
     int modules{0};
     int routines{0};
     bool any_module{false};
   };
+  Nesting n_;
 
   /// Whether tok_[k] exists, lexing further lines as needed.
   bool has(std::size_t k) {
     while (k >= tok_.size()) {
-      if (next_line_ >= f_.bytes.size()) return false;
+      if (next_line_ >= f_.bytes.size()) {
+        if (streamed_ && !last_) throw MoreBytes{};
+        return false;
+      }
       next_line_ = lexLine(f_, opt_, next_line_, tok_);
     }
     return true;
@@ -558,7 +629,14 @@ class RapidReader {
   int add(Target t, std::string_view name) {
     p_.target_list.push_back(std::move(t));
     const int idx = static_cast<int>(p_.target_list.size() - 1);
-    if (!name.empty()) targets_[name] = idx;
+    if (name.empty()) return idx;
+    if (!streamed_) {
+      targets_[name] = idx;
+    } else if (targets_.find(name) != nullptr) {  // a later declaration replaces it
+      targets_[name] = idx;
+    } else {  // the window's bytes go: the key is a name of the reader's own
+      targets_[std::string_view(names_.emplace_back(name))] = idx;
+    }
     return idx;
   }
 
@@ -990,5 +1068,18 @@ class RapidReader {
 }  // namespace
 
 void parseRapid(Program& p) { RapidReader(p).run(); }
+
+struct RapidStream::Reader : RapidReader {
+  using RapidReader::RapidReader;
+};
+
+RapidStream::RapidStream(Program& p) : r_(std::make_unique<Reader>(p, true)) { r_->start(); }
+RapidStream::~RapidStream() = default;
+void RapidStream::lines(bool last) { r_->lines(last); }
+std::size_t RapidStream::carry() const { return r_->carry(); }
+void RapidStream::finish() { r_->finish(); }
+void RapidStream::retiredTargets(std::size_t begin, std::size_t end) {
+  r_->retiredTargets(begin, end);
+}
 
 }  // namespace roprec::postproc

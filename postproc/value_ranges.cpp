@@ -154,6 +154,32 @@ void checkMotion(const Program& p, const Motion& m) {
 
 }  // namespace
 
+void checkValueRanges(const Program& p, RangeErrors& first) {
+  const auto keep = [](std::exception_ptr& e, const auto& check) {
+    if (e) return;
+    try {
+      check();
+    } catch (const InputError&) {
+      e = std::current_exception();
+    }
+  };
+  keep(first.target, [&] {
+    for (const Target& t : p.target_list)
+      if (!t.uses.empty()) checkTarget(p, t);
+  });
+  keep(first.frame, [&] {
+    for (const Frame& f : p.frames) checkFrame(p, f);
+  });
+  keep(first.motion, [&] {
+    for (const Motion& m : p.motions) checkMotion(p, m);
+  });
+}
+
+void RangeErrors::rethrow() const {
+  for (const std::exception_ptr& e : {target, frame, motion})
+    if (e) std::rethrow_exception(e);
+}
+
 void checkValueRanges(const Program& p) {
   // only the targets a motion moves to: an unused placeholder point (`Xp9={X 666666.688,…}` in a
   // .dat) places nothing

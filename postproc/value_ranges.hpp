@@ -18,6 +18,8 @@
 ///     speed; at 0 the motion would not move).
 /// Values a program states by name or expression are checked when roprec could evaluate them.
 
+#include <exception>
+
 #include "postproc/program.hpp"
 
 namespace roprec::postproc {
@@ -25,5 +27,16 @@ namespace roprec::postproc {
 /// Throws InputError(file, line, what is out of range + the accepted range) at the first value
 /// outside its range.
 void checkValueRanges(const Program& p);
+
+/// The first error of each kind checkValueRanges checks, in its order: targets, frames, motions.
+struct RangeErrors {
+  std::exception_ptr target, frame, motion;
+  /// Throws the error checkValueRanges would throw of the values checked: the first target's,
+  /// else the first frame's, else the first motion's; nothing when there is none.
+  void rethrow() const;
+};
+/// checkValueRanges of a part of a program read by windows (ProgramStream): the first error of
+/// each kind kept in `first` (one already kept stays) instead of thrown.
+void checkValueRanges(const Program& p, RangeErrors& first);
 
 }  // namespace roprec::postproc

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <filesystem>
 #include <sstream>
 #include <string>
 #include <string_view>
@@ -132,6 +134,49 @@ TEST(Forces, RunsOfTwoMillsReadByWindowsGiveTheWholeProgramsJson) {
   ASSERT_NE(whole.json.find("\"tool\": \"2\""), std::string::npos);
   for (const int threads : {1, 2})
     expectSame(whole, windowedForces(req, 1024, 32, threads), "threads " + std::to_string(threads));
+}
+
+// An ABB RAPID wall pass (inline targets over two lines, robtargets declared before the routine,
+// some after it: not path points) read by windows of 4 KB, a few points each, with blocks of 7
+// points on 1 and 2 threads: the JSON of the module read whole.
+TEST(Forces, RapidModuleReadByWindowsGivesTheWholeProgramsJson) {
+  const std::string dir = test::tempDir("forces_windows");
+  const std::string prog = dir + "/wall.mod";
+  test::writeFile(prog, test::rapidWallPass(60));
+  const api::ForcesRequest req =
+      programRequest(test::sourceDir() + "/samples/cells/alu-milling-7075.xml", prog);
+  ASSERT_TRUE(api::millingPathStreams(prog));
+  const ForcesOutputs whole = wholeForces(req);
+  // 30 inline, 24 declared before the routine, the retract: 55 points (6 declared after it)
+  ASSERT_NE(whole.json.find("\"point\": 55,"), std::string::npos);
+  ASSERT_EQ(whole.json.find("\"point\": 56,"), std::string::npos);
+  expectSame(whole, windowedForces(req, 4096, 7, 1), "4 KB windows, 1 thread");
+  expectSame(whole, windowedForces(req, 4096, 7, 2), "4 KB windows, 2 threads");
+}
+
+// A robtarget of the wrong shape at the end of a RAPID module read by windows: `roprec forces
+// --program` exits 2 at its line, as the whole read does, and writes nothing (the first reading
+// finds it before the JSON's head).
+TEST(Forces, LateRapidErrorExitsTwoWithNothingWritten) {
+  const std::string dir = test::tempDir("forces_windows");
+  std::string text = test::rapidWallPass(10000);
+  const size_t late = text.find("[0,1,0,0]", text.rfind("MoveL p"));
+  text.replace(late, 9, "[0,1,0]");
+  const std::string prog = dir + "/late.mod";
+  test::writeFile(prog, text);
+  ASSERT_GT(text.size(), size_t{1} << 20U);  // more than one window of 1 MB
+  ASSERT_TRUE(api::millingPathStreams(prog));
+  const test::RunResult r = test::runRoprec("forces --cell '" + test::sourceDir() +
+                                            "/samples/cells/alu-milling-7075.xml' --program '" +
+                                            prog + "' --json '" + dir + "/f.json'");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  const auto line =
+      std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(late), '\n') + 1;
+  EXPECT_NE(r.err.find("late.mod:" + std::to_string(line) + ": robtarget rot needs 4 elements"),
+            std::string::npos)
+      << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/f.json"));
 }
 
 }  // namespace

@@ -295,5 +295,143 @@ TEST(ProgramStream, ErrorsAreThoseOfTheWholeReadInItsOrder) {
   }
 }
 
+/// motionText, and the frames, markers and configuration numbers a motion refers to.
+std::string rapidMotionText(const postproc::Program& p, const postproc::Motion& m) {
+  std::string s = motionText(p, m);
+  for (const int t : {m.target, m.aux}) {
+    if (t < 0) continue;
+    for (const postproc::NumberField& f : p.targets()[static_cast<size_t>(t)].cf_fields)
+      s += " cf " + std::to_string(f.value) + "/" + p.exprText(f);
+  }
+  for (const int f : {m.tool, m.base}) {
+    if (f < 0) continue;
+    const postproc::Frame& fr = p.frames[static_cast<size_t>(f)];
+    s += " frame " + fr.ref + (fr.resolved ? " resolved" : "") + " line " + std::to_string(fr.line);
+    for (int k = 0; k < 12; ++k) s += " " + std::to_string(fr.pose.matrix()(k / 4, k % 4));
+  }
+  for (const std::string& mk : p.markers(m)) s += " marker " + mk;
+  return s;
+}
+
+/// The motions, then the unresolved references and notes, of a program.
+std::vector<std::string> programText(const postproc::Program& p,
+                                     const std::vector<std::string>& motions) {
+  std::vector<std::string> out = motions;
+  for (const postproc::Unresolved& u : p.unresolved)
+    out.push_back("unresolved " + u.ref + "@" + std::to_string(u.line) + ": " + u.what);
+  for (const std::string& n : p.notes) out.push_back("note " + n);
+  return out;
+}
+
+/// The first entry where `a` and `b` differ ("" when they are equal).
+std::string firstDifference(const std::vector<std::string>& a, const std::vector<std::string>& b) {
+  for (size_t k = 0; k < std::max(a.size(), b.size()); ++k) {
+    const std::string x = k < a.size() ? a[k] : "(none)";
+    const std::string y = k < b.size() ? b[k] : "(none)";
+    if (x != y) return "entry " + std::to_string(k) + ":\n  " + x + "\n  " + y;
+  }
+  return "";
+}
+
+std::vector<std::string> rapidWhole(const std::string& path) {
+  const postproc::Program p = postproc::readProgram(path);
+  std::vector<std::string> motions;
+  for (const postproc::Motion& m : p.motions) motions.push_back(rapidMotionText(p, m));
+  return programText(p, motions);
+}
+
+/// `path` read by windows of `window` bytes (RAPID too), every motion but the last retired after
+/// each window; `most`: the most targets a window held.
+std::vector<std::string> rapidStreamed(const std::string& path, size_t window, size_t* most) {
+  postproc::ProgramStream s(path, window, false, true);
+  std::vector<std::string> motions;
+  size_t done = 0;  // the window's motions described
+  while (s.next()) {
+    const postproc::Program& p = s.program();
+    if (most != nullptr) *most = std::max(*most, p.targets().size());
+    // the last motion may get a marker of the next window yet
+    for (; done + 1 < p.motions.size(); ++done)
+      motions.push_back(rapidMotionText(p, p.motions[done]));
+    done -= s.retire(done).motions;
+  }
+  const postproc::Program& p = s.program();
+  for (; done < p.motions.size(); ++done) motions.push_back(rapidMotionText(p, p.motions[done]));
+  EXPECT_TRUE(s.windowed()) << path;
+  return programText(p, motions);
+}
+
+// An ABB RAPID module read by windows of 4 KB (statements over two lines cut by a window's end,
+// targets declared before and after their motions, markers, a statement longer than two
+// windows after a %%% header) and of 10 KB, its motions retired
+// window by window: the motions, targets, frames, unresolved references and notes of the whole
+// read, in its order; the inline targets go with their motions (a window holds the declared
+// ones and a window's worth of the others).
+TEST(ProgramStream, RapidModuleByWindowsReadsAsTheWholeModule) {
+  const std::string dir = test::tempDir("program_stream_rapid");
+  test::writeFile(dir + "/wall.mod", test::rapidWallPass(600));
+  // a statement longer than two windows (comment lines inside it) after the %%% header
+  std::string padded = test::rapidWallPass(100);
+  std::string comments;
+  for (int k = 0; k < 300; ++k) comments += "      ! a comment line inside a statement\n";
+  padded.insert(padded.find("v60", padded.find("MoveL [[")), comments + "      ");
+  test::writeFile(dir + "/long.mod", "%%%\n  VERSION:1\n  LANGUAGE:ENGLISH\n%%%\n\n" + padded);
+  std::vector<std::string> programs = {
+      dir + "/wall.mod", dir + "/long.mod",
+      test::sourceDir() + "/samples/emotor-housing/housing_irb6640.mod"};
+  if (const std::string corpus = test::corpusDir(); !corpus.empty())
+    programs.push_back(corpus + "/robodk/DrillIRC5.mod");
+  for (const std::string& path : programs) {
+    SCOPED_TRACE(path);
+    const std::vector<std::string> whole = rapidWhole(path);
+    ASSERT_GT(whole.size(), 10U);
+    for (const size_t window : {size_t{4096}, size_t{10000}}) {
+      size_t most = 0;
+      EXPECT_EQ(firstDifference(whole, rapidStreamed(path, window, &most)), "")
+          << "window " << window;
+      if (path == dir + "/wall.mod") {
+        EXPECT_LT(most, 300U + 90U) << "window " << window;
+      }
+    }
+  }
+}
+
+// RAPID errors by windows: a missing ';', an aggregate of the wrong shape and a truncated module
+// far into the file, a module without MODULE; a value out of range in the first window before a
+// reader's error in a later one (the reader's error, as the whole read gives it), a motion's
+// before a target's (the target's).
+TEST(ProgramStream, RapidErrorsAreThoseOfTheWholeRead) {
+  const std::string dir = test::tempDir("program_stream_rapid_errors");
+  const std::string wall = test::rapidWallPass(400);
+  const size_t late = wall.rfind("MoveL p");
+  std::string semicolon = wall;
+  semicolon.erase(semicolon.find(';', late), 1);
+  std::string shape = wall;
+  shape.replace(shape.find("[0,1,0,0]", late), 9, "[0,1,0]");
+  std::string range = shape;
+  range.replace(range.find("[0,1,0,0]"), 9, "[0,2,0,0]");
+  // a speed out of range in the first window, a quaternion far after it: the quaternion (the
+  // whole read checks the targets before the motions)
+  std::string kinds = wall;
+  kinds.replace(kinds.find("v60"), 3, "v99999");
+  kinds.replace(kinds.find("[0,1,0,0]", kinds.rfind("MoveL [[")), 9, "[0,2,0,0]");
+  const std::string truncated = wall.substr(0, wall.rfind("ENDMODULE"));
+  std::string nomodule = wall;
+  nomodule.erase(0, nomodule.find('\n') + 1);
+  nomodule.erase(nomodule.rfind("ENDMODULE"));
+  for (const auto& [name, text] : {std::pair<std::string, std::string>{"semicolon.mod", semicolon},
+                                   {"shape.mod", shape},
+                                   {"range.mod", range},
+                                   {"kinds.mod", kinds},
+                                   {"truncated.mod", truncated},
+                                   {"nomodule.mod", nomodule}}) {
+    SCOPED_TRACE(name);
+    const std::string path = dir + "/" + name;
+    test::writeFile(path, text);
+    const std::string whole = errorOf([&] { (void)postproc::readProgram(path); });
+    ASSERT_NE(whole, "(no error)");
+    EXPECT_EQ(errorOf([&] { (void)rapidStreamed(path, 4096, nullptr); }), whole);
+  }
+}
+
 }  // namespace
 }  // namespace roprec

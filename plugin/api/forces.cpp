@@ -136,7 +136,8 @@ MillingCompensationResult millingPath(const ForcesRequest& req, bool& converged,
 }
 
 /// millingPath handing each block of points to `sink` (after `head` got the result so far). A
-/// program compensate reads by windows (millingStreams) is read so here too: a first reading
+/// program compensate reads by windows (millingStreams), or a RAPID module (millingPathStreams),
+/// is read so here: a first reading
 /// checks it whole (its errors before `head`), a second hands its points to the chains a block at
 /// a time; memory is then constant in the number of points.
 MillingCompensationResult millingPathStreamed(const ForcesRequest& req, const ForcesPathSink& sink,
@@ -145,7 +146,7 @@ MillingCompensationResult millingPathStreamed(const ForcesRequest& req, const Fo
     notePathBlock(blk, out.converged, out.unstable);
     if (sink.points) sink.points(blk);
   };
-  if (millingStreams(*req.program)) {
+  if (millingPathStreams(*req.program)) {
     MillingCompensationResult r = loadStreamedMillingJob(req.cell, *req.program, req.window_bytes);
     if (sink.head) sink.head(out);
     computeStreamedMillingPath(r, pathOptions(req), each, req.window_bytes);

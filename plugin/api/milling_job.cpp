@@ -255,7 +255,7 @@ class StreamedPath {
                bool read_ahead)
       : c_(c),
         stream_(path, window_bytes > 0 ? window_bytes : postproc::ProgramStream::kWindowBytes,
-                read_ahead),
+                read_ahead, true),
         mills_(c.model.process) {}
   postproc::ProgramStream& stream() { return stream_; }
   /// Appends the next path point to `held`; false at the end of the program. `on_window` is
@@ -491,6 +491,16 @@ bool millingStreams(const std::string& program_path, bool force) {
   return compensationStreams(program_path, CompensationJob{}, force);
 }
 
+bool millingPathStreams(const std::string& program_path) {
+  if (millingStreams(program_path)) return true;
+  try {
+    postproc::ProgramStream s(program_path, postproc::ProgramStream::kWindowBytes, false, true);
+    return s.windowed() && s.program().dialect == postproc::Dialect::kRapid;
+  } catch (const InputError&) {
+    return false;  // the whole-program path gives the error
+  }
+}
+
 MillingCompensationResult loadStreamedMillingJob(const std::string& cell_path,
                                                  const std::string& program_path,
                                                  std::size_t window_bytes, bool force) {
@@ -518,6 +528,10 @@ MillingCompensationResult loadStreamedMillingJob(const std::string& cell_path,
     held.clear();
   }
   r.context.job.program = std::move(path.stream().program());
+  // the files, frames and notes stay; the second reading has the motions and targets again
+  std::vector<postproc::Motion>().swap(r.context.job.program->motions);
+  std::vector<postproc::Target>().swap(r.context.job.program->target_list);
+  std::vector<postproc::TextId>().swap(r.context.job.program->marker_texts);
   // the marker where the whole program has it first (its first file's window, else the .dat):
   // refused, or noted with `force`, before the path's errors as compensateMillingJob does
   std::optional<std::string> note;

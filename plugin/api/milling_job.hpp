@@ -89,14 +89,20 @@ bool millingStreams(const std::string& program_path);
 /// millingStreams(), and with `force` (compensate --force) also a KRL program that carries the
 /// marker: read by windows as well (loadStreamedMillingJob with `force`).
 bool millingStreams(const std::string& program_path, bool force);
-/// compensateMillingJob's loading of a program millingStreams() accepts, read by windows: the
-/// cell and a first reading that checks every path point (the same errors, in the same order:
-/// the program's, then its points' mills, then a program without a path point) and keeps only
-/// the runs of points of one mill; context.job.program then holds the program's files (their
-/// number style, the `.dat` whole), frames and notes, not its motions.
-/// `window_bytes`: the windows' size (0: postproc::ProgramStream::kWindowBytes). A program that
-/// carries the compensation marker is refused unless `force` (checkNotCompensated: the same
-/// error, or with `force` the same note in context.job.notes, as compensateMillingJob's).
+/// Whether a job that writes no program (`roprec forces --program`) reads a milling program by
+/// windows (loadStreamedMillingJob, computeStreamedMillingPath): a program millingStreams()
+/// accepts, or an ABB RAPID module (postproc::ProgramStream with `rapid`; one that carries the
+/// compensation marker gets checkNotCompensated's error as the whole-program job does). Other
+/// dialects (FANUC TP, CSV, JSON) are read whole.
+bool millingPathStreams(const std::string& program_path);
+/// compensateMillingJob's loading of a program millingStreams() or millingPathStreams() accepts,
+/// read by windows: the cell and a first reading that checks every path point (the same errors, in
+/// the same order: the program's, then its points' mills, then a program without a path point) and
+/// keeps only the runs of points of one mill; context.job.program then holds the program's files
+/// (their number style, the `.dat` whole), frames and notes, not its motions. `window_bytes`: the
+/// windows' size (0: postproc::ProgramStream::kWindowBytes). A program that carries the
+/// compensation marker is refused unless `force` (checkNotCompensated: the same error, or with
+/// `force` the same note in context.job.notes, as compensateMillingJob's).
 MillingCompensationResult loadStreamedMillingJob(const std::string& cell_path,
                                                  const std::string& program_path,
                                                  std::size_t window_bytes = 0, bool force = false);

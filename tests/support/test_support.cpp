@@ -171,6 +171,36 @@ std::string krlWallPass(int n) {
   return s + sample.substr(tail);
 }
 
+std::string rapidWallPass(int n) {
+  const auto target = [](double x, double z) {
+    return "[[" + cFixed(x, 4) + ",0.000," + cFixed(z, 3) +
+           "],[0,1,0,0],[0,0,0,0],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]]";
+  };
+  const std::string args = ", v60, z1, tSpindle \\WObj:=wPart;\n";
+  std::string declared, late, body;
+  for (int i = 0; i < n; ++i) {
+    const double x = -50 + 120.0 * i / n;
+    const std::string name = "p" + std::to_string(i);
+    if (i % 2 == 0) {  // every other one after a WaitTime on its line
+      body += std::string(i % 4 == 0 ? "    WaitTime 0.1; MoveL " : "    MoveL ") + target(x, -5) +
+              ",\n      v60, z1, tSpindle \\WObj:=wPart;\n";
+    } else {
+      (i % 10 == 9 ? late : declared) +=
+          "  CONST robtarget " + name + " := " + target(x, -5) + ";\n";
+      body += "    MoveL " + name + args;
+    }
+  }
+  return "MODULE wall_pass\n"
+         "  ! pocket wall finishing pass (roprec test)\n"
+         "  PERS tooldata tSpindle := "
+         "[TRUE,[[0,0,300],[1,0,0,0]],[30,[0,0,140],[1,0,0,0],0,0,0]];\n"
+         "  PERS wobjdata wPart := "
+         "[FALSE,TRUE,\"\",[[1600,0,400],[1,0,0,0]],[[0,0,0],[1,0,0,0]]];\n" +
+         declared + "  PROC main()\n    ConfL \\Off;\n    MoveJ " + target(-60, 50) +
+         ", v1000, z10, tSpindle \\WObj:=wPart;\n" + body + "    MoveL " + target(70, 50) +
+         ", v1000, z10, tSpindle \\WObj:=wPart;\n  ENDPROC\n" + late + "ENDMODULE\n";
+}
+
 std::string twoMillCell() {
   return "<cell name=\"mills\">\n  <robot ref=\"kuka-kr120-r2500-pro\"/>\n"
          "  <tool name=\"spindle\" xyz=\"0 0 300\" rpy=\"0 0 0\" mass_kg=\"30\" com_mm=\"0 0 "

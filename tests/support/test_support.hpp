@@ -58,6 +58,13 @@ std::string krlCyclesOfDepths(const std::vector<double>& depths_mm);
 /// The sample wall pass (samples/milling/wall_pass.src) with `n` feed points over its 120 mm
 /// instead of its own (scripts/bench-milling.sh's path): 3 lines before the feed points.
 std::string krlWallPass(int n);
+/// The sample wall pass as an ABB RAPID module (tool tSpindle, work object wPart: the KRL
+/// sample's $TOOL and $BASE) with `n` feed points, every target shape a RAPID reader meets: the
+/// even points inline targets written over two lines, the odd ones robtargets declared by name
+/// before the routine, every tenth point's declared after the routine (the reader does not know
+/// it where the motion is: an unresolved target, not a path point), every fourth point's motion
+/// after a WaitTime on its line.
+std::string rapidWallPass(int n);
 /// A milling cell of two mills (a tool table: tool 1 Ø10 mm, 3 teeth; tool 2 Ø6 mm, 4 teeth, its
 /// own ae and fz) on the KR 120, plane stock at z 0 of the workobject (1600, 0, 400) mm.
 std::string twoMillCell();
