@@ -204,9 +204,9 @@ TEST(Transient, FreeMotionConservesEnergy) {
   y0.segment<6>(6) = rate;
   y0.segment<6>(12) += twist;
   y0.segment<6>(18) = -0.5 * rate;
-  const nc::TransientResult r = sim.run(0.0, y0, 1.0);
+  const nc::TransientResult r = sim.run(0.0, y0, 0.5);
   ASSERT_TRUE(r.ok) << r.message;
-  ASSERT_EQ(r.samples.size(), 101u);
+  ASSERT_EQ(r.samples.size(), 51u);
   nc::Data data(k.model);
   auto energy = [&](const Vec6& th, const Vec6& thd, const Vec6& thm, const Vec6& thmd) {
     nc::solvePosition(k.model, data, th);
@@ -221,7 +221,7 @@ TEST(Transient, FreeMotionConservesEnergy) {
   // sampled angles with rates from a second run segment by segment
   double worst = 0.0;
   Eigen::VectorXd y = y0;
-  for (int seg = 1; seg <= 4; ++seg) {
+  for (int seg = 1; seg <= 2; ++seg) {
     const nc::TransientResult rs = sim.run(0.25 * (seg - 1), y, 0.25 * seg);
     ASSERT_TRUE(rs.ok) << rs.message;
     y = rs.y_final;
@@ -232,7 +232,7 @@ TEST(Transient, FreeMotionConservesEnergy) {
   // the arm really moved (large motion, nonlinear Sc terms exercised)
   EXPECT_GT((y.segment<6>(0) - y0.segment<6>(0)).norm(), 0.2);
   EXPECT_LE((r.y_final - y).norm(), 1e-6 * y.norm());
-  std::printf("energy drift over 1 s: %.3e relative (steps %ld)\n", worst, r.stats.steps);
+  std::printf("energy drift over 0.5 s: %.3e relative (steps %ld)\n", worst, r.stats.steps);
 }
 
 /// Single massive link on joint 2 (tests/data/single_link_6r.urdf: 50 kg at 1 m), other joints

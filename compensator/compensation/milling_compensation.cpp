@@ -951,7 +951,9 @@ void runPipeline(const PathSetup& setup, const Vec6* seed, const MillingPathSink
     blk.e = e;
     b = e;
     runFirstChain(first, blk);
-    resolveBlockEdges(blk, threads > 1 ? threads - 1 : 1);
+    // the revolutions on all the workers (each writes only its own job), beside the second
+    // chain's task over the block before: they are most of a resolved block's work
+    resolveBlockEdges(blk, threads);
     if (pending.valid()) pending.get();
     if (threads > 1) {
       pending = std::async(std::launch::async, [&second, &blk] { runSecondChain(second, blk); });

@@ -624,13 +624,15 @@ class HarmonicResponse {
   std::vector<std::complex<double>> back_;
 };
 
-/// The cutter's geometry over the revolution, the same at every iteration: for each sample n,
-/// tooth j and slice s, the edge angle φ wrapped to [0, 2π) (what inArc compares) with its sine and
-/// cosine, and the samples the earlier passes cut at.
+/// The cut a revolution is resolved at.
 struct EdgeCut {
   double fz, ae, ap;
   int per;  ///< samples per tooth
 };
+
+/// The cutter's geometry over the revolution, the same at every iteration: for each sample n,
+/// tooth j and slice s, the edge angle φ wrapped to [0, 2π) (what inArc compares) with its sine and
+/// cosine; the samples the earlier passes cut at; the teeth's radius steps.
 struct EdgeGeometry {
   std::vector<double> wrapped, sine, cosine;  ///< index (n·Nt + j)·slices + s
   std::vector<size_t> earlier;      ///< index n·Nt + (k − 1): sample n − k·per mod N
