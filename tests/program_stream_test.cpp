@@ -433,5 +433,64 @@ TEST(ProgramStream, RapidErrorsAreThoseOfTheWholeRead) {
   }
 }
 
+// The same errors by windows of 20 sizes from 16 bytes (a window a fraction of a statement) to 3 KB
+// (the whole module), on a short module: a window's end falls at every kind of place.
+TEST(ProgramStream, RapidErrorsByWindowsOfAnySizeAreThoseOfTheWholeRead) {
+  const std::string dir = test::tempDir("program_stream_rapid_errors_sizes");
+  const std::string wall = test::rapidWallPass(40);
+  const size_t late = wall.rfind("MoveL p");
+  std::string semicolon = wall;
+  semicolon.erase(semicolon.find(';', late), 1);
+  std::string shape = wall;
+  shape.replace(shape.find("[0,1,0,0]", late), 9, "[0,1,0]");
+  std::string range = shape;
+  range.replace(range.find("[0,1,0,0]"), 9, "[0,2,0,0]");
+  std::string kinds = wall;
+  kinds.replace(kinds.find("v60"), 3, "v99999");
+  kinds.replace(kinds.find("[0,1,0,0]", kinds.rfind("MoveL [[")), 9, "[0,2,0,0]");
+  const std::string truncated = wall.substr(0, wall.rfind("ENDMODULE"));
+  std::string nomodule = wall;
+  nomodule.erase(0, nomodule.find('\n') + 1);
+  nomodule.erase(nomodule.rfind("ENDMODULE"));
+  for (const auto& [name, text] : {std::pair<std::string, std::string>{"semicolon.mod", semicolon},
+                                   {"shape.mod", shape},
+                                   {"range.mod", range},
+                                   {"kinds.mod", kinds},
+                                   {"truncated.mod", truncated},
+                                   {"nomodule.mod", nomodule}}) {
+    SCOPED_TRACE(name);
+    const std::string path = dir + "/" + name;
+    test::writeFile(path, text);
+    const std::string whole = errorOf([&] { (void)postproc::readProgram(path); });
+    ASSERT_NE(whole, "(no error)");
+    for (size_t window = 16; window < 3000; window += 157)
+      EXPECT_EQ(errorOf([&] { (void)rapidStreamed(path, window, nullptr); }), whole) << window;
+  }
+}
+
+// A module read by windows of 20 sizes from 16 bytes to 3 KB (a statement over several windows,
+// a window's end at every kind of place: in a number, a name, a comment, between a statement's
+// lines): the whole read's motions, targets, frames, unresolved references and notes.
+TEST(ProgramStream, RapidWindowsOfAnySizeReadAsTheWholeModule) {
+  const std::string dir = test::tempDir("program_stream_rapid_sizes");
+  std::string padded = test::rapidWallPass(60);
+  std::string comments;
+  for (int k = 0; k < 30; ++k) comments += "      ! a comment line inside a statement\n";
+  padded.insert(padded.find("v60", padded.find("MoveL [[")), comments + "      ");
+  test::writeFile(dir + "/long.mod", "%%%\n  VERSION:1\n  LANGUAGE:ENGLISH\n%%%\n\n" + padded);
+  std::vector<std::string> programs = {
+      dir + "/long.mod", test::sourceDir() + "/samples/emotor-housing/housing_irb6640.mod"};
+  if (const std::string corpus = test::corpusDir(); !corpus.empty())
+    programs.push_back(corpus + "/robodk/DrillIRC5.mod");
+  for (const std::string& path : programs) {
+    SCOPED_TRACE(path);
+    const std::vector<std::string> whole = rapidWhole(path);
+    for (size_t window = 16; window < 3000; window += 157) {
+      EXPECT_EQ(firstDifference(whole, rapidStreamed(path, window, nullptr)), "")
+          << "window " << window;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace roprec
