@@ -21,6 +21,7 @@ import shutil
 import subprocess
 import tempfile
 import threading
+import time
 import unittest
 from pathlib import Path
 
@@ -713,6 +714,64 @@ class PythonApiTest(unittest.TestCase):
         for a, b, c in zip(serial, results, shared_results):
             np.testing.assert_array_equal(a, b)
             np.testing.assert_array_equal(a, c)
+
+
+    def test_a_ctypes_session_shared_by_threads_serialises_its_calls(self):
+        """The ctypes backend's Session over one C session (which must not be used by two threads at
+        once, roprec.h): four threads calling filter_target, filter_targets and predict_joints on
+        it, each C call held 2 ms by a counting stand-in for the library, are never inside the
+        library together, and give the answers of calls made one after the other."""
+        from roprec import _cabi
+
+        class Counting(object):
+            def __init__(self, lib):
+                self.lib, self.inside, self.most, self.count = lib, 0, 0, threading.Lock()
+
+            def __getattr__(self, name):
+                f = getattr(self.lib, name)
+                if name not in ("roprec_filter_target_hole", "roprec_filter_targets_json",
+                                "roprec_predict_joints_hole_json"):
+                    return f
+
+                def held(*args):
+                    with self.count:
+                        self.inside += 1
+                        self.most = max(self.most, self.inside)
+                    try:
+                        time.sleep(0.002)
+                        return f(*args)
+                    finally:
+                        with self.count:
+                            self.inside -= 1
+                return held
+
+        holes = roprec.predict(CELL, HOLES)[:8]
+        poses = [h["nominal_pose_mm"] for h in holes]
+        one = _cabi.Session(CELL)
+        want = [(one.filter_target(p)[0], one.filter_targets(np.asarray([p]))["poses_mm"][0],
+                 one.predict_joints(h["controller_joints_deg"])["deviation_um"]) for p, h in zip(poses, holes)]
+        shared = _cabi.Session(CELL)
+        got = [[None] * len(holes) for _ in range(4)]
+        real, _cabi._lib = _cabi._lib, Counting(_cabi._lib)
+        try:
+            def work(k):
+                for i in range(len(holes)):
+                    got[k][i] = (shared.filter_target(poses[i])[0],
+                                 shared.filter_targets(np.asarray([poses[i]]))["poses_mm"][0],
+                                 shared.predict_joints(holes[i]["controller_joints_deg"])["deviation_um"])
+            threads = [threading.Thread(target=work, args=(k,)) for k in range(4)]
+            for t in threads:
+                t.start()
+            for t in threads:
+                t.join()
+            most = _cabi._lib.most
+        finally:
+            _cabi._lib = real
+        self.assertEqual(most, 1)
+        for k in range(4):
+            for i in range(len(holes)):
+                for a, b in zip(want[i], got[k][i]):
+                    np.testing.assert_array_equal(np.asarray(a), np.asarray(b))
 
 
 if __name__ == "__main__":

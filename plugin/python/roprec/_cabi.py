@@ -20,6 +20,7 @@ import posixpath
 import re
 import sys
 import tempfile
+import threading
 
 try:
     import numpy as _np
@@ -276,9 +277,12 @@ def _hole_frame(d):
 
 
 class Session(object):
-    """A cell loaded once for per-target calls (the RoboDK FilterTarget analogue); see roprec.Session."""
+    """A cell loaded once for per-target calls (the RoboDK FilterTarget analogue); see roprec.Session.
+    One Session may be shared by threads: its calls on the C session are serialised (roprec.h asks
+    it of the caller; ctypes releases the GIL during a foreign call)."""
 
     def __init__(self, cell_path):
+        self._lock = threading.Lock()
         self._s = _V()
         err = ctypes.create_string_buffer(_LEN)
         rc = _lib.roprec_open(_b(cell_path), ctypes.byref(self._s), err, _LEN)
@@ -300,16 +304,19 @@ class Session(object):
         pose, keep = _numbers(pose_mm, 16, "pose_mm")
         seed, keep_seed = (None, None) if seed_joints_deg is None else _numbers(seed_joints_deg, 6, "seed_joints_deg")
         if details:
-            d = _floats(_call(_lib.roprec_filter_target_hole_json, self._s, pose, seed, _ref(hole), size=8192)[1])
-            return _arrays(d, {"pose_mm": (4, 4)})
+            with self._lock:
+                text = _call(_lib.roprec_filter_target_hole_json, self._s, pose, seed, _ref(hole), size=8192)[1]
+            return _arrays(_floats(text), {"pose_mm": (4, 4)})
         err = ctypes.create_string_buffer(1024)
         if _np is not None:
             out, joints = _np.empty((4, 4)), _np.empty(6)
-            rc = _lib.roprec_filter_target_hole(self._s, pose, seed, _ref(hole), out.ctypes.data_as(_D),
-                                                joints.ctypes.data_as(_D), None, err, 1024)
+            with self._lock:
+                rc = _lib.roprec_filter_target_hole(self._s, pose, seed, _ref(hole), out.ctypes.data_as(_D),
+                                                    joints.ctypes.data_as(_D), None, err, 1024)
         else:
             out, joints = (ctypes.c_double * 16)(), (ctypes.c_double * 6)()
-            rc = _lib.roprec_filter_target_hole(self._s, pose, seed, _ref(hole), out, joints, None, err, 1024)
+            with self._lock:
+                rc = _lib.roprec_filter_target_hole(self._s, pose, seed, _ref(hole), out, joints, None, err, 1024)
             out, joints = _array(out[:], (4, 4)), _array(joints[:])
         if rc:
             _raise(rc, err)
@@ -343,8 +350,9 @@ class Session(object):
             if len(given) != n:
                 raise UsageError("holes: None or one dict per pose is expected")
             processes = (_HoleProcess * n)(*given)
-        rc, text, err = _call(_lib.roprec_filter_targets_json, self._s, n, poses, seeds, processes, item_ok=True,
-                              size=4096 + 2048 * n)
+        with self._lock:
+            rc, text, err = _call(_lib.roprec_filter_targets_json, self._s, n, poses, seeds, processes,
+                                  item_ok=True, size=4096 + 2048 * n)
         d = _floats(text)
         nan = float("nan")
         joints = [[nan] * 6 if q is None else q for q in d["joints_deg"]]
@@ -359,9 +367,10 @@ class Session(object):
         """The predicted TCP deviation at these joints drilling with the hole's process (None: the
         cell's), a dict; see roprec.Session."""
         hole = _process_args(tool, diameter_mm, depth_mm, feed_mm_per_rev, spindle_rpm)
-        d = _floats(_call(_lib.roprec_predict_joints_hole_json, self._s, _numbers(joints_deg, 6, "joints_deg")[0],
-                          _ref(hole), size=8192)[1])
-        return _arrays(d, {})
+        joints = _numbers(joints_deg, 6, "joints_deg")[0]
+        with self._lock:
+            text = _call(_lib.roprec_predict_joints_hole_json, self._s, joints, _ref(hole), size=8192)[1]
+        return _arrays(_floats(text), {})
 
     def hole_pose(self, position_mm, direction):
         """The TCP pose roprec uses for a hole-list row (workobject frame); see roprec.Session."""
