@@ -890,6 +890,33 @@ TEST(Milling, EdgeRevolutionVibrationIsTheDirectHarmonicSumOfItsForces) {
   }
 }
 
+// The fixed point stops as soon as it diverges: past the chatter limit (the tool mode of the
+// time-domain case at ap 20 mm instead of 1) the relaxed update grows at the smallest ω, and the
+// revolution ends unconverged after `diverging_iterations` such updates in a row, long before
+// max_iterations (which it runs to without the rule), with a finite vibration; below the limit
+// the rule changes nothing (bit for bit).
+TEST(Milling, EdgeRevolutionStopsOnceItDiverges) {
+  const MillingCut c = regenerativeCut(MillingMode::kUp);
+  const MillingModel m = regenerativeCutModel(c);
+  const ModalModel tool = toolMode(20, 1500, 0.05);
+  EdgeRevolutionOptions without;
+  without.diverging_iterations = 1000000;
+  const EdgeRevolution chatter = edgeRevolution(m, tool, c.fz, c.ae, 20e-3);
+  EXPECT_FALSE(chatter.converged);
+  EXPECT_LT(chatter.iterations, 150) << chatter.update;
+  EXPECT_GE(chatter.iterations, 20);
+  for (const Vec3& x : chatter.vibration) ASSERT_TRUE(x.allFinite());
+  const EdgeRevolution all = edgeRevolution(m, tool, c.fz, c.ae, 20e-3, without);
+  EXPECT_FALSE(all.converged);
+  EXPECT_EQ(all.iterations, without.max_iterations);
+  const EdgeRevolution stable = edgeRevolution(m, tool, c.fz, c.ae, c.ap);
+  const EdgeRevolution stable_without = edgeRevolution(m, tool, c.fz, c.ae, c.ap, without);
+  ASSERT_TRUE(stable.converged);
+  EXPECT_EQ(stable.iterations, stable_without.iterations);
+  EXPECT_EQ(stable.mean, stable_without.mean);
+  EXPECT_EQ(stable.vibration, stable_without.vibration);
+}
+
 // The edge-consistent static solve against the time-domain march of the vibrating cut: a tool mode
 // (20 N/µm, 1500 Hz, ζ 0.05; its static compliance 0.05 µm/N is the solve's compliance in X and Y)
 // with 10 µm runout, ap 1 mm, in steady state (the feed term off: δ_{i−1} = δ). The march's mean

@@ -741,8 +741,10 @@ EdgeRevolution edgeRevolution(const MillingModel& m, const ModalModel& dynamics,
   HarmonicResponse response(harmonicReceptances(dynamics, m.cut.spindle_rpm, (N - 1) / 2), N);
   const EdgeGeometry geometry = edgeGeometry(m, c, static_cast<int>(N));
   std::vector<Vec3> next(N, Vec3::Zero());
-  double omega = std::clamp(o.relaxation, 1.0 / 64, 1.0);
+  constexpr double kSmallestOmega = 1.0 / 64;
+  double omega = std::clamp(o.relaxation, kSmallestOmega, 1.0);
   double last = 1e300;
+  int growing = 0;  // the updates in a row larger than the one before
   r.converged = dynamics.modes.empty();
   for (int it = 1; !r.converged && it <= o.max_iterations; ++it) {
     edgeForces(m, c, geometry, r.vibration, r.force, nullptr);
@@ -750,7 +752,8 @@ EdgeRevolution edgeRevolution(const MillingModel& m, const ModalModel& dynamics,
     double update = 0;
     for (size_t n = 0; n < N; ++n) update = std::max(update, (next[n] - r.vibration[n]).norm());
     if (!std::isfinite(update)) break;
-    if (update > last) omega = std::max(omega * 0.5, 1.0 / 64);
+    growing = update > last ? growing + 1 : 0;
+    if (update > last) omega = std::max(omega * 0.5, kSmallestOmega);
     last = update;
     r.iterations = it;
     r.update = update;
@@ -760,6 +763,7 @@ EdgeRevolution edgeRevolution(const MillingModel& m, const ModalModel& dynamics,
       break;
     }
     for (size_t n = 0; n < N; ++n) r.vibration[n] += omega * (next[n] - r.vibration[n]);
+    if (omega == kSmallestOmega && growing >= o.diverging_iterations) break;  // it diverges
   }
   if (!r.converged) {
     // no periodic cut (past the chatter limit, or not settled): the vibration of the last

@@ -254,7 +254,9 @@ std::vector<CouplingResult> coupleMillingPath(
 /// max_n |Δx| ≤ tolerance. Without modes x = 0 and this is the rigid profile at (fz, ae, ap). A
 /// regenerative loop too strong for the iteration (near or past the chatter limit; whether the cut
 /// chatters is milling_stability's verdict) ends with converged = false and the last iterate,
-/// never a throw or NaN.
+/// never a throw or NaN: after max_iterations, or as soon as the update has grown
+/// `diverging_iterations` times in a row at the smallest ω (the relaxed map itself expands: it
+/// will not settle).
 /// Per tooth, the effective feed is the chip-area equivalent
 ///   fz_j = Σ_{in cut} h_j / Σ_{static arc} sin φ  (over the revolution's angles and slices; the
 ///   denominator over the arc of ae, the same for every tooth),
@@ -266,6 +268,7 @@ struct EdgeRevolutionOptions {
   double tolerance{1e-9};  ///< on max_n |Δx| [m]
   int max_iterations{300};
   double relaxation{1.0};  ///< initial ω
+  int diverging_iterations{20};
 };
 struct EdgeRevolution {
   bool converged{false};
