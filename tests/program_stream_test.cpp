@@ -395,13 +395,14 @@ TEST(ProgramStream, RapidModuleByWindowsReadsAsTheWholeModule) {
   }
 }
 
-// RAPID errors by windows: a missing ';', an aggregate of the wrong shape and a truncated module
-// far into the file, a module without MODULE; a value out of range in the first window before a
-// reader's error in a later one (the reader's error, as the whole read gives it), a motion's
-// before a target's (the target's).
-TEST(ProgramStream, RapidErrorsAreThoseOfTheWholeRead) {
-  const std::string dir = test::tempDir("program_stream_rapid_errors");
-  const std::string wall = test::rapidWallPass(400);
+/// Faulty RAPID modules from a wall pass of `points` points: a missing ';', an aggregate of the
+/// wrong shape and a truncated module far into the file, a module without MODULE; a value out of
+/// range in the first window before a reader's error in a later one (the reader's error, as the
+/// whole read gives it), a motion's before a target's (the target's). Each read by windows of
+/// every size in `windows` gives the whole read's error.
+void expectRapidErrorsOfTheWholeRead(const std::string& dir, int points,
+                                     const std::vector<size_t>& windows) {
+  const std::string wall = test::rapidWallPass(points);
   const size_t late = wall.rfind("MoveL p");
   std::string semicolon = wall;
   semicolon.erase(semicolon.find(';', late), 1);
@@ -429,43 +430,22 @@ TEST(ProgramStream, RapidErrorsAreThoseOfTheWholeRead) {
     test::writeFile(path, text);
     const std::string whole = errorOf([&] { (void)postproc::readProgram(path); });
     ASSERT_NE(whole, "(no error)");
-    EXPECT_EQ(errorOf([&] { (void)rapidStreamed(path, 4096, nullptr); }), whole);
+    for (const size_t window : windows)
+      EXPECT_EQ(errorOf([&] { (void)rapidStreamed(path, window, nullptr); }), whole) << window;
   }
 }
 
+// RAPID errors by windows of 4 KB (expectRapidErrorsOfTheWholeRead) on a 400-point module.
+TEST(ProgramStream, RapidErrorsAreThoseOfTheWholeRead) {
+  expectRapidErrorsOfTheWholeRead(test::tempDir("program_stream_rapid_errors"), 400, {4096});
+}
+
 // The same errors by windows of 20 sizes from 16 bytes (a window a fraction of a statement) to 3 KB
-// (the whole module), on a short module: a window's end falls at every kind of place.
+// (the whole module), on a 40-point module: a window's end falls at every kind of place.
 TEST(ProgramStream, RapidErrorsByWindowsOfAnySizeAreThoseOfTheWholeRead) {
-  const std::string dir = test::tempDir("program_stream_rapid_errors_sizes");
-  const std::string wall = test::rapidWallPass(40);
-  const size_t late = wall.rfind("MoveL p");
-  std::string semicolon = wall;
-  semicolon.erase(semicolon.find(';', late), 1);
-  std::string shape = wall;
-  shape.replace(shape.find("[0,1,0,0]", late), 9, "[0,1,0]");
-  std::string range = shape;
-  range.replace(range.find("[0,1,0,0]"), 9, "[0,2,0,0]");
-  std::string kinds = wall;
-  kinds.replace(kinds.find("v60"), 3, "v99999");
-  kinds.replace(kinds.find("[0,1,0,0]", kinds.rfind("MoveL [[")), 9, "[0,2,0,0]");
-  const std::string truncated = wall.substr(0, wall.rfind("ENDMODULE"));
-  std::string nomodule = wall;
-  nomodule.erase(0, nomodule.find('\n') + 1);
-  nomodule.erase(nomodule.rfind("ENDMODULE"));
-  for (const auto& [name, text] : {std::pair<std::string, std::string>{"semicolon.mod", semicolon},
-                                   {"shape.mod", shape},
-                                   {"range.mod", range},
-                                   {"kinds.mod", kinds},
-                                   {"truncated.mod", truncated},
-                                   {"nomodule.mod", nomodule}}) {
-    SCOPED_TRACE(name);
-    const std::string path = dir + "/" + name;
-    test::writeFile(path, text);
-    const std::string whole = errorOf([&] { (void)postproc::readProgram(path); });
-    ASSERT_NE(whole, "(no error)");
-    for (size_t window = 16; window < 3000; window += 157)
-      EXPECT_EQ(errorOf([&] { (void)rapidStreamed(path, window, nullptr); }), whole) << window;
-  }
+  std::vector<size_t> windows;
+  for (size_t window = 16; window < 3000; window += 157) windows.push_back(window);
+  expectRapidErrorsOfTheWholeRead(test::tempDir("program_stream_rapid_errors_sizes"), 40, windows);
 }
 
 // A module read by windows of 20 sizes from 16 bytes to 3 KB (a statement over several windows,
