@@ -41,16 +41,7 @@ Mat3c receptance(const ModalModel& model, double omega) {
   Mat3c H = Mat3c::Zero();
   for (const VibrationMode& m : model.modes) {
     const std::complex<double> den(m.omega * m.omega - omega * omega, 2 * m.zeta * m.omega * omega);
-    // the term φφᵀ/den is symmetric and, for a tool mode, zero but in one entry: each distinct
-    // non-zero entry is divided once (the same quotients as the whole matrix's)
-    for (int i = 0; i < 3; ++i)
-      for (int j = i; j < 3; ++j) {
-        const double a = m.tcp(i) * m.tcp(j);
-        if (a == 0.0 && den != 0.0) continue;
-        const std::complex<double> q = std::complex<double>(a, 0.0) / den;
-        H(i, j) += q;
-        if (j != i) H(j, i) += q;
-      }
+    H += (m.tcp * m.tcp.transpose()).cast<std::complex<double>>() / den;
   }
   return H;
 }

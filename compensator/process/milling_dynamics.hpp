@@ -80,7 +80,9 @@ ModalModel robotModes(const nc::Model& model, const nc::JointCompliance& complia
                       const nc::Vec6& theta, double damping_ratio);
 
 /// Dynamic part of the steady periodic displacement (see the file comment) at the samples of
-/// `force` (one revolution, equally spaced in the cutter angle) for a spindle at `spindle_rpm`.
+/// `force` (one revolution, equally spaced in the cutter angle) for a spindle at `spindle_rpm`:
+/// the harmonic sum term by term, O(N·K) — the plain form of what milling.cpp's resolved
+/// revolution takes by FFT at every iteration, and the tests' reference for it.
 std::vector<Vec3> periodicResponse(const ModalModel& model, const std::vector<Vec3>& force,
                                    double spindle_rpm);
 
