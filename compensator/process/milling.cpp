@@ -18,10 +18,15 @@ namespace {
 constexpr double kH0 = 1e-3;                 // Kienzle reference chip thickness
 constexpr double kMaxFeedPerDiameter = 0.2;  // fz_eff above 0.2 D: out of the model's range
 
-bool inArc(double phi, const ImmersionAngles& a) {
-  const double p = std::fmod(std::fmod(phi, 2 * kPi) + 2 * kPi, 2 * kPi);
-  return p >= a.start && p <= a.exit;
+/// φ wrapped to [0, 2π).
+double wrappedAngle(double phi) { return std::fmod(std::fmod(phi, 2 * kPi) + 2 * kPi, 2 * kPi); }
+
+/// Whether a wrapped angle lies in the arc.
+bool inArcWrapped(double wrapped, const ImmersionAngles& a) {
+  return wrapped >= a.start && wrapped <= a.exit;
 }
+
+bool inArc(double phi, const ImmersionAngles& a) { return inArcWrapped(wrappedAngle(phi), a); }
 
 Eigen::Vector2d radial(double phi) { return {std::sin(phi), std::cos(phi)}; }
 
@@ -650,7 +655,7 @@ EdgeGeometry edgeGeometry(const MillingModel& m, const EdgeCut& c, int N) {
     for (int j = 0; j < Nt; ++j)
       for (int s = 0; s < m.slices; ++s) {
         const double phi = angle + j * 2 * kPi / Nt - m.slice_lag[static_cast<size_t>(s)];
-        g.wrapped.push_back(std::fmod(std::fmod(phi, 2 * kPi) + 2 * kPi, 2 * kPi));
+        g.wrapped.push_back(wrappedAngle(phi));
         g.sine.push_back(std::sin(phi));
         g.cosine.push_back(std::cos(phi));
       }
@@ -662,10 +667,6 @@ EdgeGeometry edgeGeometry(const MillingModel& m, const EdgeCut& c, int N) {
       g.radius_step.push_back(m.tooth_radius[static_cast<size_t>(j)] -
                               m.tooth_radius[static_cast<size_t>(((j - k) % Nt + Nt) % Nt)]);
   return g;
-}
-
-bool inArcWrapped(double wrapped, const ImmersionAngles& a) {
-  return wrapped >= a.start && wrapped <= a.exit;
 }
 
 /// One pass over the revolution: the forces under the vibration x (see edgeRevolution), and,
