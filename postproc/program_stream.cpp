@@ -128,7 +128,8 @@ bool ProgramStream::readRapidWindow() {
   SourceFile& f = p_.files[0];
   const std::size_t cut = rapid_->carry();
   int base = f.line_base + static_cast<int>(f.line_starts.size());
-  if (cut < f.bytes.size()) {  // a construct the window ended inside: from its line again
+  const std::size_t carried = cut < f.bytes.size() ? f.bytes.size() - cut : 0;
+  if (carried > 0) {  // a construct the window ended inside: from its line again
     const auto it = std::upper_bound(f.line_starts.begin(), f.line_starts.end(),
                                      static_cast<std::uint32_t>(cut));
     base = f.line_base + static_cast<int>(it - f.line_starts.begin()) - 1;
@@ -140,13 +141,51 @@ bool ProgramStream::readRapidWindow() {
   w.indexLines();
   installWindow(std::move(w));
   f.line_base = base;
+  if (carried > 0) {
+    window_start_ -= carried;
+    moveCarriedTargets(base + 1, static_cast<std::uint32_t>(cut));
+  }
   return true;
+}
+
+namespace {
+
+/// A field of a token of the first file `shift` bytes earlier in its new window.
+void shiftField(NumberField& f, std::uint32_t shift) {
+  if (f.file == 0) f.offset -= shift;
+}
+
+template <std::size_t N>
+void shiftFields(FieldBlock<N>& b, std::uint32_t shift) {
+  if (!b.stored()) return;
+  for (std::size_t i = 0; i < N; ++i) shiftField(b[i], shift);
+}
+
+}  // namespace
+
+void ProgramStream::moveCarriedTargets(int line, std::uint32_t cut) {
+  for (Target& t : p_.target_list) {
+    if (t.file != 0 || t.line != line) continue;
+    for (NumberField& f : t.pos) shiftField(f, cut);
+    for (NumberField& f : t.rot) shiftField(f, cut);
+    shiftFields(t.joints, cut);
+    shiftFields(t.ext, cut);
+    shiftFields(t.cf_fields, cut);
+    shiftFields(t.config_fields, cut);
+    if (t.aggregate_end >= cut) t.aggregate_end -= cut;
+  }
+}
+
+std::uint64_t ProgramStream::settledEnd() const {
+  const std::size_t end = rapid_ ? rapid_->carry() : p_.files[0].bytes.size();
+  return window_start_ + end;
 }
 
 void ProgramStream::installWindow(SourceFile&& w) {
   SourceFile& f = p_.files[0];
   const bool first = f.line_starts.empty();
   const int lines = first ? 0 : f.line_base + static_cast<int>(f.line_starts.size());
+  if (!first) window_start_ += f.bytes.size();
   // the window's memory in, the previous window's out to the spare
   std::swap(f.bytes, w.bytes);
   std::swap(f.line_starts, w.line_starts);

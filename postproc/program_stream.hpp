@@ -24,6 +24,7 @@
 ///   rec.advance(s.program(), true);
 
 #include <cstddef>
+#include <cstdint>
 #include <exception>
 #include <future>
 #include <memory>
@@ -67,6 +68,7 @@ class ProgramStream {
   /// was read: the end-of-file checks are then done and a value out of range thrown.
   bool next();
   [[nodiscard]] Program& program() { return p_; }
+  [[nodiscard]] const Program& program() const { return p_; }
   /// A reading of a program read (and checked) whole before: next() checks no value range any
   /// more (checkValueRanges), the reader's errors stay.
   void skipValueRanges() { skip_ranges_ = true; }
@@ -80,12 +82,23 @@ class ProgramStream {
   /// the last motion always stays: a marker after it belongs to it) and the unnamed targets only
   /// they use, their texts released. A whole-read program drops nothing.
   Retired retire(std::size_t m);
+  /// The byte of the file (the KRL `.src`, the RAPID module) program().files[0] starts at: the
+  /// window's first byte. A RAPID window starts with the line of a statement the window before
+  /// ended inside, so windows may overlap there; the targets read on that line before the window
+  /// changed are moved to the new window's offsets (the same bytes).
+  [[nodiscard]] std::uint64_t windowStart() const { return window_start_; }
+  /// The byte of the file the next window starts at: the end of the bytes no later window reads
+  /// again (a RAPID window's carried line; the end of a KRL window).
+  [[nodiscard]] std::uint64_t settledEnd() const;
 
  private:
   /// Fills p_.files[0].bytes with the next window of whole lines; false at the end of the file.
   bool readWindow();
   /// readWindow() of a RAPID module: the window starts with the reader's carry (RapidStream).
   bool readRapidWindow();
+  /// The first file's targets on line `line`, read in the window before from byte `cut` of it on,
+  /// moved to the offsets of the window that starts with that line (windowStart()).
+  void moveCarriedTargets(int line, std::uint32_t cut);
   /// Opens the file the windows are read from (readInputFile's errors).
   void openWindows(const std::string& path);
   /// The next window's bytes of whole lines into `buf` (empty at the end of the file).
@@ -120,8 +133,9 @@ class ProgramStream {
   std::unique_ptr<KrlStream> krl_;
   std::unique_ptr<RapidStream> rapid_;
   platform::File file_;
-  std::string rest_;     ///< bytes read after the window's last line
-  std::size_t read_{0};  ///< bytes of the .src read so far
+  std::string rest_;               ///< bytes read after the window's last line
+  std::size_t read_{0};            ///< bytes of the .src read so far
+  std::uint64_t window_start_{0};  ///< windowStart()
   bool eof_{false};
   bool whole_read_{false};
   bool finished_{false};

@@ -26,11 +26,11 @@ void StreamedEdits::installed() {
   f.zero_fractions = style_.zero_fractions;
   f.significant9 = style_.significant9;
   Window w;
-  w.start = total_;
+  w.start = stream_.windowStart();  // a RAPID window may start inside the one before
   w.line_base = f.line_base;
   w.line_starts = f.line_starts;
   w.bytes = f.bytes;
-  total_ += w.bytes.size();
+  total_ = w.start + w.bytes.size();
   windows_.push_back(std::move(w));
   if (!marked_) {
     p.edits.clear();
@@ -112,18 +112,23 @@ void StreamedEdits::put(bool erase, int file, std::uint64_t at, std::uint32_t le
 }
 
 void StreamedEdits::flush() {
-  if (!marked_) return;
-  const Program& p = stream_.program();
   int line = std::numeric_limits<int>::max();
-  for (const Target& t : p.target_list) {
+  for (const Target& t : stream_.program().target_list) {
     if (t.file == 0 && t.line >= 1) line = std::min(line, t.line);
   }
-  if (line == std::numeric_limits<int>::max()) {
-    flushBefore(total_);
-    return;
+  flushBeforeLine(line);
+}
+
+void StreamedEdits::flushBeforeLine(int line) {
+  if (!marked_) return;
+  // never past the bytes the next window reads again (a RAPID statement carried over)
+  std::uint64_t upto = std::min(total_, stream_.settledEnd());
+  if (line != std::numeric_limits<int>::max()) {
+    const Window& w = windowOf(line);
+    upto =
+        std::min(upto, w.start + w.line_starts[static_cast<std::size_t>(line - 1 - w.line_base)]);
   }
-  const Window& w = windowOf(line);
-  flushBefore(w.start + w.line_starts[static_cast<std::size_t>(line - 1 - w.line_base)]);
+  flushBefore(upto);
 }
 
 void StreamedEdits::emit(std::string_view b) {
@@ -135,12 +140,14 @@ void StreamedEdits::emit(std::string_view b) {
 }
 
 void StreamedEdits::emitBytes(std::uint64_t a, std::uint64_t b) {
+  // the windows in file order; where two overlap (a RAPID carried line) the bytes are the same
   for (const Window& w : windows_) {
     const std::uint64_t e = w.start + w.bytes.size();
     if (e <= a || w.start >= b) continue;
     const std::uint64_t x = std::max(a, w.start);
     const std::uint64_t y = std::min(b, e);
     emit(std::string_view(w.bytes).substr(x - w.start, y - x));
+    a = y;
   }
 }
 

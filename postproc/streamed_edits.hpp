@@ -1,9 +1,9 @@
 #pragma once
 /// \file streamed_edits.hpp
-/// The target edits of a KRL program read by windows (ProgramStream) and written out as they
-/// become final: the first file's windows are kept from the first byte not written yet, an edit
-/// of a target is made in the bytes of the window that holds it and queued at its byte of the
-/// file, and the bytes before the line of the earliest target the stream's program still holds
+/// The target edits of a KRL program or a RAPID module read by windows (ProgramStream) and written
+/// out as they become final: the first file's windows are kept from the first byte not written yet,
+/// an edit of a target is made in the bytes of the window that holds it and queued at its byte of
+/// the file, and the bytes before the line of the earliest target the stream's program still holds
 /// (no later edit can reach them) go to the writer. The `.dat` is held whole (ProgramStream) and
 /// its edits applied at the end. The bytes are those writeProgram gives of the program read
 /// whole with the same edits and the same compensation marker.
@@ -50,6 +50,9 @@ class StreamedEdits {
   /// Writes the first file's bytes before the line of the earliest target of file 0 the stream's
   /// program holds (an edit reaching past it waits), and drops the windows written.
   void flush();
+  /// flush() for a caller that knows where the next edit can be: the first file's bytes before
+  /// line `line` (INT_MAX: every byte read whose line no later window reads again).
+  void flushBeforeLine(int line);
   /// Once the stream is read to its end (next() returned false) and every edit made: the rest of
   /// the first file.
   void finish();

@@ -126,6 +126,75 @@ TEST(MillingJob, WindowedReadingWritesTheBytesOfTheWholeProgramJob) {
   }
 }
 
+/// A RAPID wall pass of `n` points (n even) with two motions on each line, the second one ending
+/// on the next line (a window ending inside it reads that line again after the first motion's
+/// inline target), every fifth pair to robtargets declared by name two on one line, the second
+/// declaration over two lines.
+std::string rapidTwoPerLine(int n) {
+  const auto target = [](double x) {
+    return "[[" + cFixed(x, 4) +
+           ",0.000,-5.000],[0,1,0,0],[0,0,0,0],[9E+09,9E+09,9E+09,9E+09,9E+09,9E+09]]";
+  };
+  const std::string args = ", v60, z1, tSpindle \\WObj:=wPart;";
+  std::string declared, body;
+  for (int i = 0; i < n; i += 2) {
+    const double x = -50 + 120.0 * i / n;
+    const double x2 = -50 + 120.0 * (i + 1) / n;
+    std::string a = target(x), b = target(x2);
+    if (i % 10 == 4) {
+      const std::string qa = "q" + std::to_string(i), qb = "q" + std::to_string(i + 1);
+      declared += "  CONST robtarget " + qa + " := " + a + "; CONST robtarget " + qb + " :=\n    " +
+                  b + ";\n";
+      a = qa;
+      b = qb;
+    }
+    body += "    MoveL " + a + args + " MoveL " + b + ",\n     " + args.substr(1) + "\n";
+  }
+  return "MODULE wall_pass\n"
+         "  PERS tooldata tSpindle := "
+         "[TRUE,[[0,0,300],[1,0,0,0]],[30,[0,0,140],[1,0,0,0],0,0,0]];\n"
+         "  PERS wobjdata wPart := "
+         "[FALSE,TRUE,\"\",[[1600,0,400],[1,0,0,0]],[[0,0,0],[1,0,0,0]]];\n" +
+         declared + "  PROC main()\n    MoveJ " + target(-60) +
+         ", v1000, z10, tSpindle \\WObj:=wPart;\n" + body + "  ENDPROC\nENDMODULE\n";
+}
+
+/// The sample milling cell with an ABB robot (compensate writes the robtargets' configuration).
+std::string abbMillingCell(const std::string& dir) {
+  std::string text = test::readFile(test::sourceDir() + "/samples/cells/alu-milling-7075.xml");
+  const size_t robot = text.find("<robot ref=\"");
+  EXPECT_NE(robot, std::string::npos);
+  text.replace(robot, text.find("/>", robot) + 2 - robot, "<robot ref=\"abb-irb6700-200-260\"/>");
+  test::writeFile(dir + "/abb-milling.xml", text);
+  return dir + "/abb-milling.xml";
+}
+
+// ABB RAPID modules: inline targets (the CAM style), robtargets declared by name before and after
+// the routine, statements over two lines, two on one line: read by windows of sizes that end
+// inside statements (the next window reads such a line again) and of the default size, blocks of
+// 7 points on 2 threads and of 512 on 1: the bytes of the whole-program job.
+TEST(MillingJob, RapidModuleByWindowsWritesTheBytesOfTheWholeProgramJob) {
+  const std::string dir = test::tempDir("milling_job");
+  const std::string cell = abbMillingCell(dir);
+  test::writeFile(dir + "/wall.mod", test::rapidWallPass(160));
+  test::writeFile(dir + "/pairs.mod", rapidTwoPerLine(120));
+  for (const std::string name : {"wall.mod", "pairs.mod"}) {
+    const std::string prog = dir + "/" + name;
+    ASSERT_TRUE(api::millingStreams(prog)) << name;
+    const MillingOutputs whole = wholeJob(cell, prog, 1, 512);
+    ASSERT_TRUE(whole.failures.empty()) << name;
+    ASSERT_TRUE(whole.refused.empty()) << name << ": " << whole.refused.front();
+    ASSERT_NE(whole.src, test::readFile(prog)) << name;  // the targets moved
+    for (const size_t window : {size_t{97}, size_t{250}, size_t{1000}, size_t{4096}, size_t{0}}) {
+      for (const auto& [block, threads] : {std::pair<size_t, int>{7, 2}, {512, 1}}) {
+        expectSameOutputs(whole, streamedJob(cell, prog, threads, block, window),
+                          name + " window " + std::to_string(window) + " block " +
+                              std::to_string(block) + " threads " + std::to_string(threads));
+      }
+    }
+  }
+}
+
 // A program roprec already compensated (its marker after the DEF line), compensated again with
 // --force: read by windows too, the same bytes and the same "--force" note at the marker's line;
 // without --force the same refusal.

@@ -981,8 +981,8 @@ bool rangeHoldsMarker(const std::string& path, std::uint64_t begin, std::uint64_
   return found;
 }
 
-/// Whether `path` holds the bytes of the compensation marker: a large file's halves read on two
-/// threads (the second half from the marker's length before the middle on).
+}  // namespace
+
 bool fileHoldsMarker(const std::string& path) {
   constexpr std::uint64_t kSplit = std::uint64_t{16} << 20U;  // below: one thread
   std::error_code ec;
@@ -996,8 +996,6 @@ bool fileHoldsMarker(const std::string& path) {
   const bool first = rangeHoldsMarker(path, 0, mid);
   return second.get() || first;
 }
-
-}  // namespace
 
 bool compensationStreams(const std::string& program_path, const CompensationJob& job,
                          bool marked_too) {

@@ -192,6 +192,9 @@ using CompensatedBlockSink =
 void compensateLoadedStreaming(CompensationResult& r, const CompensationJob& job,
                                const CompensatedBlockSink& sink);
 
+/// Whether the file `path` holds the bytes of the compensation marker (postproc::kMarker): a
+/// large file's halves read on two threads.
+bool fileHoldsMarker(const std::string& path);
 /// Whether compensate reads `program_path` by windows (loadStreamedCompensationJob): a KUKA KRL
 /// program (postproc::ProgramStream), no hole list, and no "roprec compensated" marker in its
 /// files (a marked program takes the whole-program path, which states where the marker is);

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <functional>
 #include <iterator>
+#include <limits>
 #include <optional>
 #include <span>
 
@@ -251,12 +252,16 @@ struct HeldPoint {
 /// held point needs any more are retired before each window.
 class StreamedPath {
  public:
+  /// `named`: the first reading's MillingCompensationResult::named_lines (none in the first).
   StreamedPath(const PredictionContext& c, const std::string& path, size_t window_bytes,
-               bool read_ahead)
+               bool read_ahead, const std::vector<int>* named = nullptr)
       : c_(c),
         stream_(path, window_bytes > 0 ? window_bytes : postproc::ProgramStream::kWindowBytes,
                 read_ahead, true),
-        mills_(c.model.process) {}
+        mills_(c.model.process),
+        named_(named) {
+    if (named_ != nullptr) named_read_.assign(named_->size(), 0);
+  }
   postproc::ProgramStream& stream() { return stream_; }
   /// Appends the next path point to `held`; false at the end of the program. `on_window` is
   /// called after each window is read.
@@ -277,6 +282,28 @@ class StreamedPath {
   [[nodiscard]] size_t count() const { return count_; }
   /// The first path point's mill error (PathMills), none when every mill is known.
   [[nodiscard]] std::exception_ptr millError() const { return mill_error_; }
+  /// The first line of the first file a later target edit can reach (INT_MAX: none): a held
+  /// point's target, the motion looked at next (its target inline), or a target declared by name
+  /// that a path point not read yet uses.
+  [[nodiscard]] int firstEditableLine(const std::deque<HeldPoint>& held) const {
+    const postproc::Program& p = stream_.program();
+    int line = std::numeric_limits<int>::max();
+    const auto inFirstFile = [&](int target) {
+      if (target < 0) return;
+      const postproc::Target& t = p.targets()[static_cast<size_t>(target)];
+      if (t.file == 0) line = std::min(line, t.line);
+    };
+    for (const HeldPoint& h : held) inFirstFile(h.target);
+    if (done_ < p.motions.size()) {
+      const postproc::Motion& mo = p.motions[done_];
+      line = std::min(line, mo.line);
+      if (mo.target >= 0 && p.targets()[static_cast<size_t>(mo.target)].name.empty())
+        inFirstFile(mo.target);
+    }
+    if (named_ != nullptr && named_next_ < named_->size())
+      line = std::min(line, (*named_)[named_next_]);
+    return line;
+  }
 
  private:
   bool nextOfWindow(std::deque<HeldPoint>& held) {
@@ -290,6 +317,7 @@ class StreamedPath {
       char& seen = seen_[static_cast<size_t>(mo.target)];
       if (seen != 0) continue;
       seen = 1;
+      readNamed(p.targets()[static_cast<size_t>(mo.target)]);
       HeldPoint h;
       h.motion = m;
       h.target = mo.target;
@@ -324,11 +352,25 @@ class StreamedPath {
     }
   }
 
+  /// A path point's target declared by name in the first file: its entry of named_ read.
+  void readNamed(const postproc::Target& t) {
+    if (named_ == nullptr || t.name.empty() || t.file != 0) return;
+    const std::vector<int>& lines = *named_;
+    auto k =
+        static_cast<size_t>(std::lower_bound(lines.begin(), lines.end(), t.line) - lines.begin());
+    while (k < lines.size() && lines[k] == t.line && named_read_[k] != 0) ++k;
+    if (k < lines.size() && lines[k] == t.line) named_read_[k] = 1;
+    while (named_next_ < lines.size() && named_read_[named_next_] != 0) ++named_next_;
+  }
+
   const PredictionContext& c_;
   postproc::ProgramStream stream_;
   PathMills mills_;
-  std::vector<char> seen_;  ///< per target of the stream's program: a path point's
-  size_t done_{0};          ///< the stream's motions looked at
+  const std::vector<int>* named_;  ///< lines of the named targets path points use
+  std::vector<char> named_read_;   ///< per entry of named_: its path point was read
+  size_t named_next_{0};           ///< the first entry not read
+  std::vector<char> seen_;         ///< per target of the stream's program: a path point's
+  size_t done_{0};                 ///< the stream's motions looked at
   size_t count_{0};
   std::exception_ptr mill_error_;
   bool started_{false};
@@ -363,13 +405,13 @@ void streamMillRuns(MillingCompensationResult& r, const MillingPathOptions& opti
                     const MillingPointsSink& sink) {
   const PredictionModel& cell = r.context.model;
   const postproc::Program& prog = path.stream().program();
-  const auto on_window = [edits] {
+  std::deque<HeldPoint> held;  // read, not edited yet
+  const auto on_window = [&] {
     if (edits == nullptr) return;
     edits->installed();
-    edits->flush();
+    edits->flushBeforeLine(path.firstEditableLine(held));
   };
-  std::deque<HeldPoint> held;  // read, not edited yet
-  size_t given = 0;            // held[given ..] not handed to the chains yet
+  size_t given = 0;  // held[given ..] not handed to the chains yet
   MillingPathOptions with_stock = options;
   with_stock.T_W_stock = stockFrame(r.context.cell);
   std::optional<Vec6> seed;
@@ -405,7 +447,7 @@ void streamMillRuns(MillingCompensationResult& r, const MillingPathOptions& opti
       r.points_comp.clear();
       held.erase(held.begin(), held.begin() + static_cast<std::ptrdiff_t>(block.size()));
       given -= block.size();
-      if (edits != nullptr) edits->flush();
+      if (edits != nullptr) edits->flushBeforeLine(path.firstEditableLine(held));
     };
     compensateMillingPath(m, source, true, run_seed ? &*run_seed : nullptr, with_stock, each);
   }
@@ -483,22 +525,30 @@ MillingCompensationResult compensateMillingJob(const std::string& cell_path,
   return r;
 }
 
-bool millingStreams(const std::string& program_path) {
-  return compensationStreams(program_path, CompensationJob{});
-}
+namespace {
 
-bool millingStreams(const std::string& program_path, bool force) {
-  return compensationStreams(program_path, CompensationJob{}, force);
-}
-
-bool millingPathStreams(const std::string& program_path) {
-  if (millingStreams(program_path)) return true;
+/// Whether `program_path` is an ABB RAPID module ProgramStream reads by windows.
+bool rapidModuleStreams(const std::string& program_path) {
   try {
     postproc::ProgramStream s(program_path, postproc::ProgramStream::kWindowBytes, false, true);
     return s.windowed() && s.program().dialect == postproc::Dialect::kRapid;
   } catch (const InputError&) {
     return false;  // the whole-program path gives the error
   }
+}
+
+}  // namespace
+
+bool millingStreams(const std::string& program_path) { return millingStreams(program_path, false); }
+
+bool millingStreams(const std::string& program_path, bool force) {
+  if (compensationStreams(program_path, CompensationJob{}, force)) return true;
+  // a marked module without --force takes the whole-program path, which names the marker's line
+  return rapidModuleStreams(program_path) && (force || !fileHoldsMarker(program_path));
+}
+
+bool millingPathStreams(const std::string& program_path) {
+  return millingStreams(program_path) || rapidModuleStreams(program_path);
 }
 
 MillingCompensationResult loadStreamedMillingJob(const std::string& cell_path,
@@ -525,8 +575,11 @@ MillingCompensationResult loadStreamedMillingJob(const std::string& cell_path,
     const HeldPoint& h = held.back();
     if (r.runs.empty() || r.runs.back().second != h.mill)
       r.runs.emplace_back(path.count() - 1, h.mill);
+    const postproc::Target& t = path.stream().program().targets()[static_cast<size_t>(h.target)];
+    if (!t.name.empty() && t.file == 0) r.named_lines.push_back(t.line);
     held.clear();
   }
+  std::sort(r.named_lines.begin(), r.named_lines.end());
   r.context.job.program = std::move(path.stream().program());
   // the files, frames and notes stay; the second reading has the motions and targets again
   std::vector<postproc::Motion>().swap(r.context.job.program->motions);
@@ -557,7 +610,8 @@ void compensateStreamedMillingJob(MillingCompensationResult& r, const MillingPat
                                   const MillingPointsSink& sink, std::size_t window_bytes) {
   if (!r.streamed || !r.context.job.program)
     throw InternalError("compensateStreamedMillingJob: the job was not loaded by windows");
-  StreamedPath path(r.context, r.context.job.path, window_bytes, options.threads > 1);
+  StreamedPath path(r.context, r.context.job.path, window_bytes, options.threads > 1,
+                    &r.named_lines);
   postproc::Program& prog = path.stream().program();
   prog.position_min_decimals = 5;
   prog.fanuc_turn_axes = r.context.job.program->fanuc_turn_axes;
@@ -574,7 +628,8 @@ void computeStreamedMillingPath(MillingCompensationResult& r, const MillingPathO
                                 const MillingPointsSink& sink, std::size_t window_bytes) {
   if (!r.streamed || !r.context.job.program)
     throw InternalError("computeStreamedMillingPath: the job was not loaded by windows");
-  StreamedPath path(r.context, r.context.job.path, window_bytes, options.threads > 1);
+  StreamedPath path(r.context, r.context.job.path, window_bytes, options.threads > 1,
+                    &r.named_lines);
   streamMillRuns(r, options, path, nullptr, sink);
 }
 

@@ -52,6 +52,10 @@ struct MillingCompensationResult {
   std::size_t streamed_points{0};
   /// Read by windows: the first point and the mill of each run of points of one mill.
   std::vector<std::pair<std::size_t, int>> runs;
+  /// Read by windows: the lines (first file, sorted) of the targets declared by name that path
+  /// points use, each once: the program's bytes from the first of them not compensated yet are
+  /// held until it is (a module that declares every point holds its declarations).
+  std::vector<int> named_lines;
   /// Path points (compensated or not).
   [[nodiscard]] std::size_t pointCount() const {
     return streamed ? streamed_points : points.size();
@@ -84,16 +88,17 @@ MillingCompensationResult compensateMillingJob(const std::string& cell_path,
                                                const MillingPathOptions& path,
                                                const MillingPointsSink& sink);
 /// Whether compensate reads a milling program by windows (compensateStreamedMillingJob): a KUKA
-/// KRL program without the "roprec compensated" marker (compensationStreams).
+/// KRL program (compensationStreams) or an ABB RAPID module (postproc::ProgramStream with
+/// `rapid`) without the "roprec compensated" marker.
 bool millingStreams(const std::string& program_path);
-/// millingStreams(), and with `force` (compensate --force) also a KRL program that carries the
+/// millingStreams(), and with `force` (compensate --force) also such a program that carries the
 /// marker: read by windows as well (loadStreamedMillingJob with `force`).
 bool millingStreams(const std::string& program_path, bool force);
 /// Whether a job that writes no program (`roprec forces --program`) reads a milling program by
-/// windows (loadStreamedMillingJob, computeStreamedMillingPath): a program millingStreams()
-/// accepts, or an ABB RAPID module (postproc::ProgramStream with `rapid`; one that carries the
-/// compensation marker gets checkNotCompensated's error as the whole-program job does). Other
-/// dialects (FANUC TP, CSV, JSON) are read whole.
+/// windows (loadStreamedMillingJob, computeStreamedMillingPath): a KRL program millingStreams()
+/// accepts, or any ABB RAPID module (one that carries the compensation marker gets
+/// checkNotCompensated's error as the whole-program job does). Other dialects (FANUC TP, CSV,
+/// JSON) are read whole.
 bool millingPathStreams(const std::string& program_path);
 /// compensateMillingJob's loading of a program millingStreams() or millingPathStreams() accepts,
 /// read by windows: the cell and a first reading that checks every path point (the same errors, in
