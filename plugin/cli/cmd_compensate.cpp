@@ -172,10 +172,10 @@ bool streamedOutputsFine(const MillingCompensationResult& r, const std::vector<s
 /// Milling: every linear path point of the program is compensated with the coupled force
 /// iteration (compensator/compensation/milling_compensation.hpp). The points stream past block by
 /// block: the --targets export is written as they come, the report's rows are spilled to a
-/// temporary file and only its plots' few numbers per point are kept. A KRL program is read by
-/// windows (millingStreams; one carrying the compensation marker too with --force) and its
-/// compensated program written as the blocks come: memory is then constant in the number of
-/// points but for the report's few numbers per point; another program is read whole.
+/// temporary file and only its plots' few numbers per point are kept. A KRL program or a RAPID
+/// module is read by windows (millingStreams; one carrying the compensation marker too with
+/// --force) and its compensated program written as the blocks come: memory is then constant in
+/// the number of points but for the report's few numbers per point; a TP program is read whole.
 int runMillingPath(CommandContext& ctx, const std::string& cell, const std::string& program,
                    const std::string& out, const std::optional<std::string>& targets,
                    const std::optional<std::string>& report, bool force, int threads) {
@@ -217,7 +217,7 @@ int runMillingPath(CommandContext& ctx, const std::string& cell, const std::stri
   std::vector<std::string> extra;
   if (targets) extra.push_back(*targets);
   if (report) extra.push_back(*report);
-  // a KRL program read by windows, its program written as the points come
+  // a KRL program or a RAPID module read by windows, its program written as the points come
   std::optional<std::vector<std::string>> prog_outs;
   std::optional<std::string> dat;
   if (millingStreams(program, force)) {
@@ -656,7 +656,8 @@ const CommandRegistration reg{
      "up to the next hole's targets, the --targets rows): memory does not grow with the per-hole\n"
      "results; --report keeps them all (it draws them). Without --report or --holes a KUKA KRL\n"
      "program is read by windows, twice (the holes, then the edits), and never held whole. A\n"
-     "milling path's --targets export is written point by point.\n",
+     "milling path's --targets export is written point by point, and its KRL program or RAPID\n"
+     "module read by windows twice and written as the points come (a TP program is read whole).\n",
      50, run}};
 
 }  // namespace
