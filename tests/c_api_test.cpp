@@ -1034,6 +1034,40 @@ TEST(CApi, CompensateFileExForceAndFrameOptions) {
   std::filesystem::remove_all(dir);
 }
 
+// A milling cell: a RAPID module (read by windows) compensated on two threads with a CSV export
+// gives the bytes of the CLI's job on one thread, and the summary counts its path points.
+TEST(CApi, CompensateFileExOfAMillingModuleIsTheClisJob) {
+  const std::string dir = tempDir("capi-milling");
+  std::string cell_text = readFile(test::sourceDir() + "/samples/cells/alu-milling-7075.xml");
+  const size_t robot = cell_text.find("<robot ref=\"");
+  ASSERT_NE(robot, std::string::npos);
+  cell_text.replace(robot, cell_text.find("/>", robot) + 2 - robot,
+                    "<robot ref=\"abb-irb6700-200-260\"/>");
+  const std::string cell = dir + "/abb-milling.xml";
+  test::writeFile(cell, cell_text);
+  const std::string program = dir + "/wall.mod";
+  test::writeFile(program, test::rapidWallPass(60));
+  const test::RunResult cli = runRoprec("compensate --cell '" + cell + "' '" + program + "' -o '" +
+                                        dir + "/cli.mod' --targets '" + dir + "/cli.csv' --quiet");
+  ASSERT_EQ(cli.exit_code, 0) << cli.err;
+  Options opt;
+  ASSERT_EQ(opt.set("threads", "2"), ROPREC_OK) << opt.err;
+  char summary[ROPREC_SUMMARY_LEN];
+  ASSERT_EQ(roprec_compensate_file_ex(cell.c_str(), program.c_str(), opt.o,
+                                      (dir + "/c.mod").c_str(), (dir + "/c.csv").c_str(), summary,
+                                      sizeof summary, opt.err, sizeof opt.err),
+            ROPREC_OK)
+      << opt.err;
+  EXPECT_EQ(readFile(dir + "/c.mod"), readFile(dir + "/cli.mod"));
+  EXPECT_EQ(readFile(dir + "/c.csv"), readFile(dir + "/cli.csv"));
+  const auto j = nlohmann::json::parse(summary);
+  EXPECT_EQ(j.at("process"), "milling");
+  EXPECT_EQ(j.at("points"), 55);  // rapidWallPass(60): 55 linear path points
+  EXPECT_EQ(j.at("failed"), 0);
+  EXPECT_EQ(j.at("written"), nlohmann::json::array({dir + "/c.mod", dir + "/c.csv"}));
+  std::filesystem::remove_all(dir);
+}
+
 TEST(CApi, VerifyFileExWritesTheCliCardCellAndJsonByteForByte) {
   const std::string dir = tempDir("capi-verify-ex");
   const std::string v = sourceDir() + "/samples/verification/";

@@ -390,6 +390,19 @@ class PythonApiTest(unittest.TestCase):
         compare_trees({k: v for k, v in res.items() if k != "written"},
                       {k: v for k, v in c_summary.items() if k != "written"})
 
+    def test_milling_export_named_csv_is_the_clis_csv(self):
+        cell = str(SRC / "samples" / "cells" / "alu-milling-7075.xml")
+        program = str(SRC / "samples" / "milling" / "wall_pass.src")
+        r = cli("compensate", "--cell", cell, program, "-o", self.tmp / "cli.src", "--targets", self.tmp / "cli.csv",
+                "--quiet")
+        self.assertEqual(r.returncode, 0, r.stderr)
+        self.assertFalse((self.tmp / "cli.csv").read_text().startswith("{"))
+        roprec.compensate(cell, program, self.tmp / "py.src", targets=self.tmp / "py.csv")
+        rc, _, err = C.compensate_file(cell, program, None, self.tmp / "c.src", None, self.tmp / "c.csv")
+        self.assertEqual(rc, 0, err)
+        for stem in ("py", "c"):
+            self.assertEqual((self.tmp / (stem + ".csv")).read_bytes(), (self.tmp / "cli.csv").read_bytes())
+
     def test_session_equals_the_c_session(self):
         s = roprec.Session(CELL)
         cs = C.open(CELL)

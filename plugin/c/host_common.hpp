@@ -17,6 +17,7 @@
 #include "compensator/support/platform.hpp"
 #include "compensator/support/rotation.hpp"
 #include "plugin/api/job.hpp"
+#include "plugin/api/milling_files.hpp"
 #include "plugin/api/verify.hpp"
 #include "plugin/report/verify_json.hpp"
 #include "postproc/program.hpp"
@@ -131,12 +132,13 @@ inline std::string compensationProblems(const api::CompensationResult& r,
 }
 
 /// Why a milling compensation may not be written (empty when it may).
-inline std::string millingProblems(const api::MillingCompensationResult& r) {
+inline std::string millingProblems(const api::MillingFilesResult& res) {
+  const api::MillingCompensationResult& r = res.job;
   if (r.failures.empty() && r.refused.empty()) return {};
   std::vector<std::string> problems = r.failures;
   problems.insert(problems.end(), r.refused.begin(), r.refused.end());
   return joinLines(problems) + "\n" + std::to_string(r.failures.size()) + " of " +
-         std::to_string(r.points_comp.size()) + " path points not compensated, " +
+         std::to_string(r.pointCount()) + " path points not compensated, " +
          std::to_string(r.refused.size()) + " edits refused; nothing written";
 }
 
@@ -194,23 +196,26 @@ inline api::Json compensationSummary(const api::CompensationResult& r,
   return s;
 }
 
-inline api::Json millingSummary(const api::MillingCompensationResult& r,
-                                const std::vector<std::string>& written) {
-  std::vector<double> before;
-  std::vector<double> after;
-  for (const auto& p : r.points_comp) {
-    before.push_back(p.deviation_before.norm() * 1e6);
-    after.push_back(p.residual.norm() * 1e6);
-  }
-  const auto failed = static_cast<std::int64_t>(std::count_if(
-      r.points_comp.begin(), r.points_comp.end(), [](const auto& p) { return !p.ok; }));
+inline api::Json millingSummary(const api::MillingFilesResult& res) {
+  const api::MillingPointStats& st = res.stats;
+  const auto meanMaxOf = [&](double sum, double max) {
+    api::Json j = api::Json::object();
+    if (st.points == 0) {
+      j.set("mean", api::Json());
+      j.set("max", api::Json());
+      return j;
+    }
+    j.set("mean", api::Json::number(sum / static_cast<double>(st.points), 4));
+    j.set("max", api::Json::number(max, 4));
+    return j;
+  };
   api::Json s = api::Json::object();
   s.set("process", api::Json::str("milling"));
-  s.set("points", api::Json::integer(static_cast<std::int64_t>(r.points_comp.size())));
-  s.set("failed", api::Json::integer(failed));
-  s.set("deviation_before_um", meanMax(before));
-  s.set("residual_after_um", meanMax(after));
-  s.set("written", pathList(written));
+  s.set("points", api::Json::integer(static_cast<std::int64_t>(st.points)));
+  s.set("failed", api::Json::integer(static_cast<std::int64_t>(st.failed)));
+  s.set("deviation_before_um", meanMaxOf(st.before_sum_um, st.before_max_um));
+  s.set("residual_after_um", meanMaxOf(st.after_sum_um, st.after_max_um));
+  s.set("written", pathList(res.written));
   return s;
 }
 

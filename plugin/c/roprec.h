@@ -265,7 +265,9 @@ ROPREC_API int roprec_predict_file(const char* cell_path, const char* program_pa
  * the writer accepted every edit; otherwise 1 is returned, nothing is written and err lists the
  * holes/edits. A milling cell compensates every linear path point instead (summary: "process",
  * "points", "failed", "deviation_before_um", "residual_after_um", "written"; orientation and
- * holes_path are ignored).
+ * holes_path are ignored; the export is CSV or JSON by its name as above; the job is that of
+ * `roprec compensate`: a KRL program or a RAPID module is read by windows and written as its
+ * points come, in memory that does not grow with them).
  * The program may be any file roprec_predict_file reads (a hole-list CSV is rewritten as such).
  * 2: bad input (unreadable program, program without holes, bad orientation). */
 ROPREC_API int roprec_compensate_file(const char* cell_path, const char* program_path,
@@ -299,8 +301,9 @@ ROPREC_API void roprec_options_free(roprec_options* options);
  *                   base frame: every such frame) or "REF=x y z a b c[;REF=...]" (by name)
  *   "tool"          a program tool that differs from the cell's, or only the      --tool
  *                   controller defines: "program" (the program's TCP is the real one) or "cell"
- *   "threads"       worker threads for the per-hole work: "0" (every core) or    --threads
- *                   "1".."1024" (default "1"); the outputs are the same bytes whatever the count
+ *   "threads"       worker threads for the per-hole work (a milling path's two    --threads
+ *                   pipelined chains): "0" (every core) or "1".."1024" (default "1"); the
+ *                   outputs are the same bytes whatever the count
  *   "orientation"   "keep" (default), "flip-free" or "stiffest" (compensate only) --orientation
  *   "force"         "1": compensate a program that carries roprec's compensation   --force
  *                   marker again (with a note); "0" (default): such a program is refused (2)

@@ -175,16 +175,24 @@ int writeCompensation(roprec::api::PredictionContext& context, const std::string
   return ROPREC_OK;
 }
 
+/// The milling job of roprec_compensate_file(_ex): its files staged (committed with the call's
+/// outputs), then the summary copied, or the failures and refused edits (nothing written).
 int compensateMilling(const std::string& cell, const std::string& program, const std::string& out,
-                      const std::string& targets, bool force, char* summary, size_t summary_len) {
-  roprec::api::MillingCompensationResult r =
-      roprec::api::compensateMillingJob(cell, program, force);
+                      const std::string& targets, const roprec::api::CompensationJob& job,
+                      char* summary, size_t summary_len) {
+  roprec::api::MillingFilesJob files;
+  files.cell = cell;
+  files.program = program;
+  files.out = out;
+  if (!targets.empty()) files.targets = targets;
+  files.force = job.force;
+  files.threads = roprec::api::resolvedThreads(job.job.threads);
+  const roprec::api::MillingFilesResult r = roprec::api::compensateMillingFiles(files);
   if (const std::string why = host::millingProblems(r); !why.empty()) throw ItemFailure{why};
-  std::vector<std::pair<std::string, std::string>> extra;
-  if (!targets.empty()) extra.emplace_back(targets, roprec::api::millingTargetsJson(r, program));
-  const std::string text =
-      host::millingSummary(r, host::compensationPaths(r.context, out, targets)).dump(0);
-  return writeCompensation(r.context, out, extra, text, summary, summary_len);
+  const std::string text = host::millingSummary(r).dump(0);
+  checkFits(text, summary, summary_len, "summary_json");
+  copyText(text, summary);
+  return ROPREC_OK;
 }
 
 /// A pose as 16 numbers, row-major, mm (shortest round-trip text).
@@ -313,7 +321,7 @@ int compensateFile(const char* cell_path, const char* program_path,
   const std::string targets = optionalArg(targets_out_path);
   checkTextBuffer(summary_json, summary_len, "summary_json");
   if (roprec::api::cellIsMilling(cell))
-    return compensateMilling(cell, program, out, targets, job.force, summary_json, summary_len);
+    return compensateMilling(cell, program, out, targets, job, summary_json, summary_len);
 
   roprec::api::CompensationResult r = roprec::api::compensateJob(cell, program, job);
   if (const std::string why = host::compensationProblems(r, program); !why.empty())

@@ -16,39 +16,16 @@
 #include "compensator/support/c_format.hpp"
 #include "compensator/support/error.hpp"
 #include "plugin/api/job.hpp"
+#include "plugin/api/milling_files.hpp"
+#include "plugin/api/outputs_together.hpp"
 #include "plugin/cli/cli.hpp"
 #include "plugin/cli/robot_options.hpp"
-#include "plugin/cli/temp_spill.hpp"
 #include "plugin/report/milling_report.hpp"
 #include "postproc/edited_file_writer.hpp"
 #include "postproc/program.hpp"
 
 namespace roprec::cli {
 namespace {
-
-/// The cutting points of the block r.points_comp whose ap is above the chatter limit, one line
-/// each into `lines`; returns how many.
-int unstablePoints(const MillingCompensationResult& r, std::string& lines) {
-  int n = 0;
-  for (size_t i = r.first; i < r.first + r.points_comp.size(); ++i) {
-    const PathPointCompensation& p = r.point(i);
-    const double ap = millOf(r, i).cut.ap;
-    if (!p.unstable(ap)) continue;
-    ++n;
-    if (p.regenerativeUnstable(ap)) {
-      lines += "roprec: path point " + std::to_string(i + 1) + ": chatter: ap " +
-               formatNumber(ap * 1e3, 3) + " mm > limit " + formatNumber(p.ap_limit * 1e3, 3) +
-               " mm (chatter at " + formatNumber(p.chatter_hz, 1) + " Hz)\n";
-    }
-    if (p.modeCouplingUnstable(ap)) {
-      lines += "roprec: path point " + std::to_string(i + 1) + ": mode-coupling chatter: ap " +
-               formatNumber(ap * 1e3, 3) + " mm > limit " +
-               formatNumber(p.mode_coupling_ap_limit * 1e3, 3) + " mm (at " +
-               formatNumber(p.mode_coupling_hz, 1) + " Hz)\n";
-    }
-  }
-  return n;
-}
 
 CompensationOptions parseCompensationOptions(Args& args) {
   CompensationOptions opt;
@@ -90,166 +67,13 @@ std::optional<std::array<int, 3>> parseTurnAxes(const std::optional<std::string>
   return a;
 }
 
-/// What a writer on a task of its own staged (stagedApart).
-using StagedOutputs = std::future<std::unique_ptr<OutputSet>>;
-
-/// Runs `write` on a task of its own, staging into a set of its own (see writeOutputsTogether).
-StagedOutputs stagedApart(const std::function<void()>& write) {
-  return std::async(std::launch::async, [write] {
-    auto set = std::make_unique<OutputSet>();
-    const ScopedOutputSet scope(*set);
-    write();
-    return set;
-  });
-}
-
-/// Runs `program` (which returns the paths it wrote) and the optional `targets` and `report`
-/// writers: one after the other with one thread (or when two outputs share a path), else at the
-/// same time — they only read the result. A writer on another thread stages into a set of its
-/// own, handed to the caller's set (ScopedOutputSet, the CLI's all-or-nothing commit) after the
-/// program's outputs, so the files, their bytes and the commit order are those of one thread.
-/// Waits for every writer before rethrowing the first error (program, targets, report).
-/// `targets_started`: the targets writer already started by stagedApart (then `targets` is not
-/// run again).
-std::vector<std::string> writeOutputsTogether(
-    int threads, bool distinct_paths, const std::function<std::vector<std::string>()>& program,
-    const std::function<void()>& targets, const std::function<void()>& report,
-    StagedOutputs targets_started = {}) {
-  if (!targets_started.valid() && (threads <= 1 || !distinct_paths || (!targets && !report))) {
-    std::vector<std::string> written = program();
-    if (targets) targets();
-    if (report) report();
-    return written;
-  }
-  StagedOutputs t = std::move(targets_started);
-  StagedOutputs rep;
-  if (targets && !t.valid()) t = stagedApart(targets);
-  if (report) rep = stagedApart(report);
-  std::vector<std::string> written;
-  std::exception_ptr first;
-  try {
-    written = program();
-  } catch (...) {
-    first = std::current_exception();
-  }
-  for (StagedOutputs* f : {&t, &rep}) {
-    if (!f->valid()) continue;
-    try {
-      std::unique_ptr<OutputSet> set = f->get();
-      if (first) continue;  // its temporaries are removed with it
-      if (OutputSet* active = activeOutputSet()) {
-        active->adopt(std::move(*set));
-      } else {
-        set->commit();
-      }
-    } catch (...) {
-      if (!first) first = std::current_exception();
-    }
-  }
-  if (first) std::rethrow_exception(first);
-  return written;
-}
-
-/// Thrown out of the staged targets export when the job must write nothing (its temporary is
-/// removed).
-struct NothingWritten {};
-
-/// Whether the outputs of a milling job read by windows (its program's files, --targets,
-/// --report) are distinct and none of them is an input file: else the whole-program path says
-/// what is wrong, after the job, as it always has.
-bool streamedOutputsFine(const MillingCompensationResult& r, const std::vector<std::string>& outs) {
-  std::vector<std::string> sorted = outs;
-  std::sort(sorted.begin(), sorted.end());
-  if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) return false;
-  try {
-    refuseOverwritingInput(*r.context.job.program, outs);
-  } catch (const UsageError&) {
-    return false;
-  }
-  return true;
-}
-
-/// Milling: every linear path point of the program is compensated with the coupled force
-/// iteration (compensator/compensation/milling_compensation.hpp). The points stream past block by
-/// block: the --targets export is written as they come, the report's rows are spilled to a
-/// temporary file and only its plots' few numbers per point are kept. A KRL program or a RAPID
-/// module is read by windows (millingStreams; one carrying the compensation marker too with
-/// --force) and its compensated program written as the blocks come: memory is then constant in
-/// the number of points but for the report's few numbers per point; a TP program is read whole.
-int runMillingPath(CommandContext& ctx, const std::string& cell, const std::string& program,
-                   const std::string& out, const std::optional<std::string>& targets,
-                   const std::optional<std::string>& report, bool force, int threads) {
-  // the compensate outputs report no revolution by edge angle: not resolved
-  MillingPathOptions path;
-  path.resolve_edges = false;
-  path.threads = threads;
-  const bool csv = targets && targets->size() > 4 && targets->substr(targets->size() - 4) == ".csv";
-  MillingReportSummary sum;        // the report's plots (with --report) and the maxima
-  std::optional<TempSpill> spill;  // the report's table rows while the path streams past
-  if (report) spill.emplace("the report");
-  std::string unstable_lines;
-  int unstable = 0;
-  std::optional<MillingCompensationResult> result;
-  const auto blockSink = [&](MillingTargetsStream* targets_out) {
-    return [&, targets_out](const MillingCompensationResult& blk) {
-      addMillingReportPoints(sum, blk);
-      if (!spill) sum.points.clear();  // only the maxima
-      unstable += unstablePoints(blk, unstable_lines);
-      if (!blk.failures.empty() || !blk.refused.empty()) return;  // nothing will be written
-      if (targets_out != nullptr) targets_out->points(blk);
-      if (spill) writeMillingReportRows(blk, [&](std::string_view v) { spill->write(v); });
-    };
-  };
-  const auto withTargets = [&](const std::function<void(MillingTargetsStream*)>& run) {
-    try {
-      if (targets) {
-        writeFileAtomicStream(*targets, [&](const ByteWriter& write) {
-          MillingTargetsStream t(csv, program, write);
-          run(&t);
-          t.finish(*result);
-        });
-      } else {
-        run(nullptr);
-      }
-    } catch (const NothingWritten&) {
-    }
-  };
-  std::vector<std::string> extra;
-  if (targets) extra.push_back(*targets);
-  if (report) extra.push_back(*report);
-  // a KRL program or a RAPID module read by windows, its program written as the points come
-  std::optional<std::vector<std::string>> prog_outs;
-  std::optional<std::string> dat;
-  if (millingStreams(program, force)) {
-    result = loadStreamedMillingJob(cell, program, 0, force);
-    std::vector<std::string> outs = postproc::outputPaths(*result->context.job.program, out);
-    outs.insert(outs.end(), extra.begin(), extra.end());
-    if (streamedOutputsFine(*result, outs)) {
-      prog_outs = postproc::outputPaths(*result->context.job.program, out);
-    } else {
-      result.reset();
-    }
-  }
-  if (prog_outs) {
-    try {
-      writeFileAtomicStream(out, [&](const ByteWriter& write_src) {
-        withTargets([&](MillingTargetsStream* targets_out) {
-          compensateStreamedMillingJob(*result, path, write_src, dat, blockSink(targets_out));
-          if (!result->failures.empty() || !result->refused.empty()) throw NothingWritten{};
-        });
-        if (!result->failures.empty() || !result->refused.empty()) throw NothingWritten{};
-      });
-    } catch (const NothingWritten&) {
-    }
-  } else {
-    withTargets([&](MillingTargetsStream* targets_out) {
-      result = compensateMillingJob(cell, program, force, path, blockSink(targets_out));
-      if (!result->failures.empty() || !result->refused.empty()) throw NothingWritten{};
-    });
-  }
-  MillingCompensationResult& r = *result;
+/// Milling: compensateMillingFiles (plugin/api/milling_files.hpp), its notes, failures,
+/// summary and chatter lines printed.
+int runMillingPath(CommandContext& ctx, const MillingFilesJob& job) {
+  const MillingFilesResult res = compensateMillingFiles(
+      job, [&](const MillingCompensationResult& r) { printJobNotes(ctx, r.context.job.notes); });
+  const MillingCompensationResult& r = res.job;
   const size_t points = r.pointCount();
-  printJobNotes(ctx, r.context.job.notes);
   for (const auto& f : r.failures) ctx.err << "roprec: " << f << "\n";
   if (!r.failures.empty()) {
     ctx.err << "roprec: " << r.failures.size() << " of " << points
@@ -262,42 +86,21 @@ int runMillingPath(CommandContext& ctx, const std::string& cell, const std::stri
             << " target edits; nothing written\n";
     return 1;
   }
-  refuseOverwritingInput(*r.context.job.program, extra);
-  std::vector<std::string> outs = postproc::outputPaths(*r.context.job.program, out);
-  outs.insert(outs.end(), extra.begin(), extra.end());
-  std::sort(outs.begin(), outs.end());
-  const bool distinct = std::adjacent_find(outs.begin(), outs.end()) == outs.end();
-  auto writeReport = [&] {  // the plots from the summary, the rows from the spill
-    writeFileAtomicStream(*report, [&](const ByteWriter& write) {
-      writeMillingReport(
-          sum, r, program,
-          [&](const api::ByteSink& sink) { spill->replay(sink, std::size_t{64} * 1024); }, write);
-    });
-  };
-  const auto writeProgram = [&] {
-    if (!prog_outs) return writeCompensatedProgram(r.context, out, {});
-    if (prog_outs->size() > 1 && dat) writeFileAtomic((*prog_outs)[1], *dat);
-    return *prog_outs;  // the .src staged as it was written
-  };
-  std::vector<std::string> written =
-      writeOutputsTogether(threads, distinct, writeProgram, nullptr,
-                           report ? std::function<void()>(writeReport) : nullptr);
-  if (targets) written.push_back(*targets);
-  if (report) written.push_back(*report);
+  const MillingReportSummary& sum = res.summary;
   if (!ctx.quiet) {
     ctx.out << "roprec compensate (milling path): " << points << " path points compensated\n";
     ctx.out << "  deviation before (coupled force) max " << formatNumber(sum.before * 1e6, 3)
             << " µm; predicted residual max " << formatNumber(sum.after * 1e6, 4) << " µm\n";
     ctx.out << "  surface error normal to the wall max " << formatNumber(sum.wall_before * 1e6, 3)
             << " µm before; " << formatNumber(sum.wall_after * 1e6, 4) << " µm compensated\n";
-    for (const auto& pth : written) ctx.out << "  wrote " << pth << "\n";
+    for (const auto& pth : res.written) ctx.out << "  wrote " << pth << "\n";
   }
-  ctx.err << unstable_lines;
-  if (unstable > 0)
-    ctx.err << "roprec: " << unstable
+  ctx.err << res.unstable_lines;
+  if (res.unstable > 0)
+    ctx.err << "roprec: " << res.unstable
             << " cutting path points are above the chatter limit (outputs "
             << "written; the static compensation does not remove chatter)\n";
-  return unstable > 0 ? 1 : 0;
+  return res.unstable > 0 ? 1 : 0;
 }
 
 std::string stat(std::vector<double> v) {
@@ -532,9 +335,17 @@ int run(Args& args, CommandContext& ctx) {
       throw UsageError("output " + *out + " is the input file " + pos[0] +
                        ": write the compensated program to another file (nothing written)");
   }
-  if (cellIsMilling(*cell))
-    return runMillingPath(ctx, *cell, pos[0], *out, targets, report, job.force,
-                          resolvedThreads(job.job.threads));
+  if (cellIsMilling(*cell)) {
+    MillingFilesJob milling;
+    milling.cell = *cell;
+    milling.program = pos[0];
+    milling.out = *out;
+    milling.targets = targets;
+    milling.report = report;
+    milling.force = job.force;
+    milling.threads = resolvedThreads(job.job.threads);
+    return runMillingPath(ctx, milling);
+  }
 
   const int threads = resolvedThreads(job.job.threads);
   const bool csv = targets && targets->size() > 4 && targets->substr(targets->size() - 4) == ".csv";

@@ -11,8 +11,8 @@
 #include "compensator/support/error.hpp"
 #include "compensator/support/platform.hpp"
 #include "plugin/api/job.hpp"
+#include "plugin/api/temp_spill.hpp"
 #include "plugin/cli/cli.hpp"
-#include "plugin/cli/temp_spill.hpp"
 #include "plugin/report/forces_output.hpp"
 
 namespace roprec::cli {

@@ -507,17 +507,15 @@ py::dict compensate(const std::string& cell, const std::string& program, const s
   if (api::cellIsMilling(cell)) {
     py::gil_scoped_release release;
     RunScope run;
-    api::MillingCompensationResult r = api::compensateMillingJob(cell, program, force);
+    api::MillingFilesJob files;
+    files.cell = cell;
+    files.program = program;
+    files.out = out;
+    files.targets = targets;
+    files.force = force;
+    const api::MillingFilesResult r = api::compensateMillingFiles(files);
     problems = host::millingProblems(r);
-    const bool write = problems.empty();
-    summary = host::millingSummary(r, write ? host::compensationPaths(r.context, out, targets_path)
-                                            : std::vector<std::string>{})
-                  .dump(0);
-    if (write) {
-      std::vector<std::pair<std::string, std::string>> extra;
-      if (targets) extra.emplace_back(*targets, api::millingTargetsJson(r, program));
-      writeAllOrNone([&] { api::writeCompensatedProgram(r.context, out, extra); });
-    }
+    summary = host::millingSummary(r).dump(0);
     run.commit();
   } else {
     std::optional<api::CompensationResult> r;

@@ -11,7 +11,7 @@
 
 #include "compensator/support/error.hpp"
 
-namespace roprec::cli {
+namespace roprec::api {
 
 class TempSpill {
  public:
@@ -43,4 +43,4 @@ class TempSpill {
   std::FILE* f_;
 };
 
-}  // namespace roprec::cli
+}  // namespace roprec::api
