@@ -16,9 +16,7 @@ namespace fs = std::filesystem;
 
 ProgramStream::ProgramStream(const std::string& path, std::size_t window_bytes, bool read_ahead,
                              bool rapid)
-    : path_(path),
-      window_bytes_(std::max<std::size_t>(window_bytes, 4096)),
-      read_ahead_(read_ahead) {
+    : path_(path), window_bytes_(std::max<std::size_t>(window_bytes, 1)), read_ahead_(read_ahead) {
   // a file that cannot be read in windows (missing, not a regular file, above the size limit)
   // gets readInputFile's error
   const auto refuse = [&](const std::string& p) {

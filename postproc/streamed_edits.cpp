@@ -123,7 +123,9 @@ void StreamedEdits::flushBeforeLine(int line) {
   if (!marked_) return;
   // never past the bytes the next window reads again (a RAPID statement carried over)
   std::uint64_t upto = std::min(total_, stream_.settledEnd());
-  if (line != std::numeric_limits<int>::max()) {
+  const Window* last = latestWindow();
+  // a line not read yet (a robtarget declared further on) holds nothing read so far
+  if (last != nullptr && line <= last->line_base + static_cast<int>(last->line_starts.size())) {
     const Window& w = windowOf(line);
     upto =
         std::min(upto, w.start + w.line_starts[static_cast<std::size_t>(line - 1 - w.line_base)]);

@@ -51,7 +51,8 @@ class StreamedEdits {
   /// program holds (an edit reaching past it waits), and drops the windows written.
   void flush();
   /// flush() for a caller that knows where the next edit can be: the first file's bytes before
-  /// line `line` (INT_MAX: every byte read whose line no later window reads again).
+  /// line `line` (a line not read yet, e.g. INT_MAX: every byte read whose line no later window
+  /// reads again).
   void flushBeforeLine(int line);
   /// Once the stream is read to its end (next() returned false) and every edit made: the rest of
   /// the first file.

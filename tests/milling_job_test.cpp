@@ -172,16 +172,16 @@ std::string abbMillingCell(const std::string& dir) {
 }
 
 // ABB RAPID modules: inline targets (the CAM style), robtargets declared by name before and after
-// the routine, statements over two lines, two on one line: read by windows of 4 KB (the smallest)
-// to 6 KB that end inside statements (the next window reads such a line again) and of the default
-// size, blocks of 7 points on 2 threads and of 512 on 1: the bytes of the whole-program job.
+// the routine, statements over two lines, two on one line: read by windows of 300 B to 4 KB that
+// end inside statements (the next window reads such a line again) and of the default size, blocks
+// of 7 points on 2 threads and of 512 on 1: the bytes of the whole-program job.
 TEST(MillingJob, RapidModuleByWindowsWritesTheBytesOfTheWholeProgramJob) {
   const std::string dir = test::tempDir("milling_job");
   const std::string cell = abbMillingCell(dir);
   test::writeFile(dir + "/wall.mod", test::rapidWallPass(100));
   test::writeFile(dir + "/pairs.mod", rapidTwoPerLine(120));
   const std::vector<std::pair<std::string, std::vector<size_t>>> modules = {
-      {"wall.mod", {4096, 0}}, {"pairs.mod", {4096, 5000, 6000}}};
+      {"wall.mod", {700, 0}}, {"pairs.mod", {300, 1000, 4096}}};
   for (const auto& [name, windows] : modules) {
     const std::string prog = dir + "/" + name;
     ASSERT_TRUE(api::millingStreams(prog)) << name;

@@ -61,7 +61,8 @@ std::string streamedModuleEdited(const std::string& path, const SourceFile& styl
   ProgramStream s(path, window, false, true);
   EXPECT_TRUE(s.windowed());
   std::string out;
-  StreamedEdits e(s, [&](std::string_view v) { out += v; }, kMarker, style);
+  StreamedEdits e(
+      s, [&](std::string_view v) { out += v; }, kMarker, style);
   std::size_t done = 0;  // the stream's motions edited
   const auto editUpTo = [&](std::size_t end) {
     Program& p = s.program();
@@ -85,7 +86,7 @@ std::string streamedModuleEdited(const std::string& path, const SourceFile& styl
   return out;
 }
 
-// Windows of 4 KB (the smallest) to 7 KB end inside statements all along a 45 KB module (a line's
+// Windows of 300 B to 7 KB end inside statements all along a 45 KB module (a line's
 // first MoveL read in one window, its second in the next), its targets edited as each window is
 // read or three motions later: the bytes of the whole module's edits.
 TEST(StreamedEdits, RapidModuleByWindowsWritesTheWholeModulesEdits) {
@@ -95,7 +96,7 @@ TEST(StreamedEdits, RapidModuleByWindowsWritesTheWholeModulesEdits) {
   const std::string whole = wholeModuleEdited(path);
   ASSERT_NE(whole, test::readFile(path));
   const Program style = readProgram(path);
-  for (const std::size_t window : {4096, 4500, 5000, 6000, 7000}) {
+  for (const std::size_t window : {300, 700, 1500, 4096, 7000}) {
     for (const std::size_t lag : {0, 3}) {
       EXPECT_EQ(streamedModuleEdited(path, style.files[0], window, lag), whole)
           << "window " << window << " lag " << lag;
