@@ -46,8 +46,8 @@ std::string wholeModuleEdited(const std::string& path) {
   Program p = readProgram(path);
   markCompensated(p, kMarker);
   for (const Motion& mo : p.motions) {
-    if (mo.type == MotionType::kLinear && mo.target >= 0)
-      EXPECT_TRUE(replaceTargetPose(p, mo.target, moved(p, p.targets()[mo.target])).ok);
+    if (mo.type != MotionType::kLinear || mo.target < 0) continue;
+    EXPECT_TRUE(replaceTargetPose(p, mo.target, moved(p, p.targets()[mo.target])).ok);
   }
   return renderFiles(p).at(0);
 }
