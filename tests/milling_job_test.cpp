@@ -172,13 +172,18 @@ std::string abbMillingCell(const std::string& dir) {
 }
 
 // ABB RAPID modules: inline targets (the CAM style), robtargets declared by name before and after
-// the routine, statements over two lines, two on one line: read by windows of 300 B to 4 KB that
-// end inside statements (the next window reads such a line again) and of the default size, blocks
-// of 7 points on 2 threads and of 512 on 1: the bytes of the whole-program job.
+// the routine, a header longer than a window before MODULE, statements over two lines, two on one
+// line: read by windows of 300 B to 4 KB that end inside statements (the next window reads such a
+// line again) and of the default size, blocks of 7 points on 2 threads and of 512 on 1: the bytes
+// of the whole-program job.
 TEST(MillingJob, RapidModuleByWindowsWritesTheBytesOfTheWholeProgramJob) {
   const std::string dir = test::tempDir("milling_job");
   const std::string cell = abbMillingCell(dir);
-  test::writeFile(dir + "/wall.mod", test::rapidWallPass(100));
+  // a controller's header and comments over a window before MODULE (the marker's line)
+  std::string header = "%%%\n  VERSION:1\n  LANGUAGE:ENGLISH\n%%%\n";
+  for (int k = 0; k < 20; ++k)
+    header += "! CAM post-processor header line " + std::to_string(k) + "\n";
+  test::writeFile(dir + "/wall.mod", header + test::rapidWallPass(100));
   test::writeFile(dir + "/pairs.mod", rapidTwoPerLine(120));
   const std::vector<std::pair<std::string, std::vector<size_t>>> modules = {
       {"wall.mod", {700, 0}}, {"pairs.mod", {300, 1000, 4096}}};
