@@ -1038,13 +1038,7 @@ TEST(CApi, CompensateFileExForceAndFrameOptions) {
 // gives the bytes of the CLI's job on one thread, and the summary counts its path points.
 TEST(CApi, CompensateFileExOfAMillingModuleIsTheClisJob) {
   const std::string dir = tempDir("capi-milling");
-  std::string cell_text = readFile(test::sourceDir() + "/samples/cells/alu-milling-7075.xml");
-  const size_t robot = cell_text.find("<robot ref=\"");
-  ASSERT_NE(robot, std::string::npos);
-  cell_text.replace(robot, cell_text.find("/>", robot) + 2 - robot,
-                    "<robot ref=\"abb-irb6700-200-260\"/>");
-  const std::string cell = dir + "/abb-milling.xml";
-  test::writeFile(cell, cell_text);
+  const std::string cell = test::abbMillingCell(dir);
   const std::string program = dir + "/wall.mod";
   test::writeFile(program, test::rapidWallPass(60));
   const test::RunResult cli = runRoprec("compensate --cell '" + cell + "' '" + program + "' -o '" +

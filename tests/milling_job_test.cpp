@@ -161,16 +161,6 @@ std::string rapidTwoPerLine(int n) {
          ", v1000, z10, tSpindle \\WObj:=wPart;\n" + body + "  ENDPROC\nENDMODULE\n";
 }
 
-/// The sample milling cell with an ABB robot (compensate writes the robtargets' configuration).
-std::string abbMillingCell(const std::string& dir) {
-  std::string text = test::readFile(test::sourceDir() + "/samples/cells/alu-milling-7075.xml");
-  const size_t robot = text.find("<robot ref=\"");
-  EXPECT_NE(robot, std::string::npos);
-  text.replace(robot, text.find("/>", robot) + 2 - robot, "<robot ref=\"abb-irb6700-200-260\"/>");
-  test::writeFile(dir + "/abb-milling.xml", text);
-  return dir + "/abb-milling.xml";
-}
-
 // ABB RAPID modules: inline targets (the CAM style), robtargets declared by name before and after
 // the routine, a header longer than a window before MODULE, statements over two lines, two on one
 // line: read by windows of 300 B to 4 KB that end inside statements (the next window reads such a
@@ -178,7 +168,7 @@ std::string abbMillingCell(const std::string& dir) {
 // of the whole-program job.
 TEST(MillingJob, RapidModuleByWindowsWritesTheBytesOfTheWholeProgramJob) {
   const std::string dir = test::tempDir("milling_job");
-  const std::string cell = abbMillingCell(dir);
+  const std::string cell = test::abbMillingCell(dir);
   // a controller's header and comments over a window before MODULE (the marker's line)
   std::string header = "%%%\n  VERSION:1\n  LANGUAGE:ENGLISH\n%%%\n";
   for (int k = 0; k < 20; ++k)

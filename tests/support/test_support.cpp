@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 
 #include <gtest/gtest.h>
 
@@ -199,6 +200,15 @@ std::string rapidWallPass(int n) {
          declared + "  PROC main()\n    ConfL \\Off;\n    MoveJ " + target(-60, 50) +
          ", v1000, z10, tSpindle \\WObj:=wPart;\n" + body + "    MoveL " + target(70, 50) +
          ", v1000, z10, tSpindle \\WObj:=wPart;\n  ENDPROC\n" + late + "ENDMODULE\n";
+}
+
+std::string abbMillingCell(const std::string& dir) {
+  std::string text = readFile(sourceDir() + "/samples/cells/alu-milling-7075.xml");
+  const size_t robot = text.find("<robot ref=\"");
+  if (robot == std::string::npos) throw std::runtime_error("abbMillingCell: no <robot ref=");
+  text.replace(robot, text.find("/>", robot) + 2 - robot, "<robot ref=\"abb-irb6700-200-260\"/>");
+  writeFile(dir + "/abb-milling.xml", text);
+  return dir + "/abb-milling.xml";
 }
 
 std::string twoMillCell() {

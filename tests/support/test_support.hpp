@@ -65,6 +65,10 @@ std::string krlWallPass(int n);
 /// it where the motion is: an unresolved target, not a path point), every fourth point's motion
 /// after a WaitTime on its line.
 std::string rapidWallPass(int n);
+/// samples/cells/alu-milling-7075.xml with the ABB IRB 6700 (compensate writes a RAPID module's
+/// robtarget configuration only for a robot of its vendor), written to `dir`/abb-milling.xml;
+/// returns its path.
+std::string abbMillingCell(const std::string& dir);
 /// A milling cell of two mills (a tool table: tool 1 Ø10 mm, 3 teeth; tool 2 Ø6 mm, 4 teeth, its
 /// own ae and fz) on the KR 120, plane stock at z 0 of the workobject (1600, 0, 400) mm.
 std::string twoMillCell();
