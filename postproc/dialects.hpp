@@ -90,6 +90,37 @@ class RapidStream {
   std::unique_ptr<Reader> r_;
 };
 
+/// The FANUC TP reader a window of whole lines at a time (ProgramStream): constructed once
+/// p.files holds the first window; lines() reads the window p.files[0] holds now (`last`: no bytes
+/// follow it) up to a /POS record the window ends inside, whose line (carry()) starts the next
+/// window. The motions of /MN stay until their positions' records are read: from the end of /MN
+/// on they are bound in order as the records come (settled()), with the unresolved entries,
+/// frames and uses of the whole read in the same order. finish() checks the file's end and binds
+/// the rest (positions not in /POS).
+class TpStream {
+ public:
+  explicit TpStream(Program& p);
+  ~TpStream();
+  TpStream(const TpStream&) = delete;
+  TpStream& operator=(const TpStream&) = delete;
+  void lines(bool last);
+  /// The offset in p.files[0] (a line start) the next window starts with; its size when none.
+  [[nodiscard]] std::size_t carry() const;
+  void finish();
+  /// Motions [0, settled()) are bound (the reader changes them no more).
+  [[nodiscard]] std::size_t settled() const;
+  /// Whether target `target`'s position is named by a motion not bound yet (it must stay).
+  [[nodiscard]] bool needed(std::size_t target) const;
+  /// Motions [0, m) were dropped.
+  void retired(std::size_t m);
+  /// Targets [begin, end) were dropped.
+  void retiredTargets(std::size_t begin, std::size_t end);
+
+ private:
+  struct Reader;
+  std::unique_ptr<Reader> r_;
+};
+
 /// Where the edit functions queue their edits: Program::edits, or an EditLog replayed later.
 class EditQueue {
  public:

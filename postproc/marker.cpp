@@ -1,6 +1,7 @@
 /// The "compensated by roprec" marker (docs/programs.md §15): a comment line in the dialect's own
 /// comment syntax that `roprec compensate` adds to every program it writes, and the check that
 /// refuses to compensate a marked program again.
+#include <algorithm>
 #include <cctype>
 #include <cstdio>
 #include <string_view>
@@ -60,6 +61,47 @@ std::string terminatorOf(const SourceFile& f, std::size_t line) {
 }
 
 /// FANUC TP: a remark as the new line 1 of /MN, every /MN line renumbered, LINE_COUNT + 1.
+/// The edit of a numbered /MN line `t` (its first byte `at`) whose number goes up by one, with
+/// the remark before it when `first`; false for a line with no number (a continuation line).
+bool renumberTpLine(std::string_view t, bool first, const std::string& remark,
+                    const std::string& eol, std::uint32_t& length, std::string& repl) {
+  std::size_t k = 0;
+  while (k < t.size() && t[k] == ' ') ++k;
+  std::size_t d = k;
+  while (d < t.size() && std::isdigit(static_cast<unsigned char>(t[d]))) ++d;
+  if (d == k || d >= t.size() || t[d] != ':') return false;
+  const int n = std::stoi(std::string(t.substr(k, d - k)));
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%*d", static_cast<int>(d), n + 1);
+  repl = buf;
+  if (first) {
+    char one[32];
+    std::snprintf(one, sizeof one, "%*d", static_cast<int>(d), 1);
+    repl = strCat(one, ":  !", remark, " ;", eol, repl);
+  }
+  length = static_cast<std::uint32_t>(d);
+  return true;
+}
+
+/// `LINE_COUNT = n` (line text `t`): the offset and length of n in the line and n + 1; false when
+/// the line has no such number.
+bool lineCountEdit(std::string_view t, std::size_t& offset, std::size_t& length,
+                   std::string& repl) {
+  const std::size_t eq = t.find('=');
+  if (eq == std::string_view::npos) return false;
+  std::size_t a = eq + 1;
+  while (a < t.size() && (t[a] == ' ' || t[a] == '\t')) ++a;
+  std::size_t b = a;
+  while (b < t.size() && std::isdigit(static_cast<unsigned char>(t[b]))) ++b;
+  if (b == a) return false;
+  offset = a;
+  length = b - a;
+  repl = std::to_string(std::stoi(std::string(t.substr(a, b - a))) + 1);
+  return true;
+}
+
+bool isLineCount(std::string_view t) { return upperCopy(trimLeft(t)).rfind("LINE_COUNT", 0) == 0; }
+
 bool markTp(Program& p, const std::string& text) {
   const int fi = 0;
   const SourceFile& f = p.files[0];
@@ -67,27 +109,14 @@ bool markTp(Program& p, const std::string& text) {
   if (!afterLineStarting(f, {"/MN"}, &mn)) return false;
   const std::string eol = f.dominantLineEnd();
   bool first = true;
-  int count = 0;
   for (std::size_t l = mn + 1; l < f.line_starts.size(); ++l) {
     const std::string_view t = lineText(f, l);
     if (!t.empty() && t.front() == '/') break;
-    std::size_t k = 0;
-    while (k < t.size() && t[k] == ' ') ++k;
-    std::size_t d = k;
-    while (d < t.size() && std::isdigit(static_cast<unsigned char>(t[d]))) ++d;
-    if (d == k || d >= t.size() || t[d] != ':') continue;  // a C-motion continuation line
-    const int n = std::stoi(std::string(t.substr(k, d - k)));
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%*d", static_cast<int>(d), n + 1);
-    std::string repl = buf;
-    if (first) {
-      char one[32];
-      std::snprintf(one, sizeof one, "%*d", static_cast<int>(d), 1);
-      repl = strCat(one, ":  !", text, " ;", eol, repl);
-      first = false;
-    }
-    queueEdit(p, fi, f.line_starts[l], static_cast<std::uint32_t>(d), repl);
-    ++count;
+    std::uint32_t length = 0;
+    std::string repl;
+    if (!renumberTpLine(t, first, text, eol, length, repl)) continue;  // a C continuation line
+    queueEdit(p, fi, f.line_starts[l], length, repl);
+    first = false;
   }
   if (first) {  // empty /MN: the remark is the only line
     const std::uint32_t at = mn + 1 < f.line_starts.size()
@@ -98,24 +127,79 @@ bool markTp(Program& p, const std::string& text) {
   // LINE_COUNT = n;
   for (std::size_t l = 0; l < mn; ++l) {
     const std::string_view t = lineText(f, l);
-    if (upperCopy(trimLeft(t)).rfind("LINE_COUNT", 0) != 0) continue;
-    const std::size_t eq = t.find('=');
-    if (eq == std::string_view::npos) break;
-    std::size_t a = eq + 1;
-    while (a < t.size() && (t[a] == ' ' || t[a] == '\t')) ++a;
-    std::size_t b = a;
-    while (b < t.size() && std::isdigit(static_cast<unsigned char>(t[b]))) ++b;
-    if (b == a) break;
-    queueEdit(p, fi, static_cast<std::uint32_t>(f.line_starts[l] + a),
-              static_cast<std::uint32_t>(b - a),
-              std::to_string(std::stoi(std::string(t.substr(a, b - a))) + 1));
+    if (!isLineCount(t)) continue;
+    std::size_t offset = 0;
+    std::size_t length = 0;
+    std::string repl;
+    if (lineCountEdit(t, offset, length, repl)) {
+      queueEdit(p, fi, static_cast<std::uint32_t>(f.line_starts[l] + offset),
+                static_cast<std::uint32_t>(length), repl);
+    }
     break;
   }
-  (void)count;
   return true;
 }
 
+/// Whether `t` (a line's text) is the `/MN` line markTp anchors at.
+bool isMnLine(std::string_view t) {
+  const std::string u = upperCopy(trimLeft(t));
+  return u.rfind("/MN", 0) == 0 &&
+         (u.size() == 3 || !std::isalnum(static_cast<unsigned char>(u[3])));
+}
+
 }  // namespace
+
+TpMarkStream::TpMarkStream(const std::string& what, std::string eol)
+    : text_(std::string(kMarker) + ": " + what), eol_(std::move(eol)) {}
+
+void TpMarkStream::window(const SourceFile& f, std::uint64_t start, const Put& put) {
+  for (std::size_t l = 0; l < f.line_starts.size() && phase_ != Phase::kDone; ++l) {
+    const std::uint64_t at = start + f.line_starts[l];
+    const std::uint64_t next =
+        start + (l + 1 < f.line_starts.size() ? f.line_starts[l + 1] : f.bytes.size());
+    if (at < seen_) continue;  // a line read again (a record carried over)
+    line(lineText(f, l), at, next, put);
+  }
+  seen_ = std::max(seen_, start + f.bytes.size());
+}
+
+void TpMarkStream::line(std::string_view t, std::uint64_t at, std::uint64_t next, const Put& put) {
+  if (phase_ == Phase::kHeader) {
+    if (isMnLine(t)) {
+      phase_ = Phase::kMn;
+      after_mn_ = next;
+      if (line_count_) put(line_count_->at, line_count_->length, std::move(line_count_->text));
+      line_count_.reset();
+    } else if (!line_count_seen_ && isLineCount(t)) {
+      line_count_seen_ = true;
+      std::size_t offset = 0;
+      std::size_t length = 0;
+      std::string repl;
+      if (lineCountEdit(t, offset, length, repl))
+        line_count_ = Edit{at + offset, static_cast<std::uint32_t>(length), std::move(repl)};
+    }
+    return;
+  }
+  if (!t.empty() && t.front() == '/') {
+    endMn(put);
+    return;
+  }
+  std::uint32_t length = 0;
+  std::string repl;
+  if (!renumberTpLine(t, first_, text_, eol_, length, repl)) return;
+  put(at, length, std::move(repl));
+  first_ = false;
+}
+
+void TpMarkStream::endMn(const Put& put) {
+  if (first_) put(after_mn_, 0, "   1:  !" + text_ + " ;" + eol_);
+  first_ = false;
+  phase_ = Phase::kDone;
+}
+
+void TpMarkStream::finish(const Put& put) {
+  if (phase_ == Phase::kMn) endMn(put);
+}
 
 std::optional<MarkerLocation> findCompensationMarker(const Program& p) {
   for (std::size_t fi = 0; fi < p.files.size(); ++fi) {

@@ -121,7 +121,7 @@ int SourceFile::lineOf(std::size_t offset) const {
 }
 
 std::string SourceFile::dominantLineEnd() const {
-  std::array<std::size_t, 5> count{};
+  std::array<std::uint64_t, 5> count = earlier_ends;
   for (const LineEnd e : line_ends) ++count[static_cast<std::size_t>(e)];
   const std::size_t best =
       static_cast<std::size_t>(std::max_element(count.begin() + 1, count.end()) - count.begin());

@@ -76,6 +76,8 @@ struct SourceFile {
   /// Lines of the file before `bytes`: a file read a window at a time (ProgramStream) holds one
   /// window of whole lines; offsets are the window's, lineOf() the file's line.
   int line_base{0};
+  /// A window's file: the line ends of the lines before `bytes`, by kind (LineEnd).
+  std::array<std::uint64_t, 5> earlier_ends{};
 
   /// Builds line_starts/line_ends and the fraction-style flags.
   void indexLines();
@@ -84,7 +86,8 @@ struct SourceFile {
   [[nodiscard]] std::string_view text(const Token& t) const {
     return std::string_view(bytes.data() + t.offset, t.length);  // tokens lie inside bytes
   }
-  /// The most frequent line terminator ("\n" when the file has none).
+  /// The most frequent line terminator ("\n" when the file has none); a window's file counts the
+  /// lines before it too (earlier_ends).
   [[nodiscard]] std::string dominantLineEnd() const;
 };
 
@@ -581,6 +584,43 @@ std::optional<MarkerLocation> findCompensationMarker(const Program& p);
 /// (the lines after it renumbered, `LINE_COUNT` + 1), CSV `#` as the first line. Returns false
 /// when the dialect has no comment syntax (JSON) or the anchor line is missing.
 bool markCompensated(Program& p, const std::string& what);
+
+/// markCompensated of a FANUC TP program read by windows of whole lines (StreamedEdits): fed each
+/// window in file order, it gives the edits markCompensated gives of the whole file that fall in
+/// that window or before it (the remark, the /MN lines renumbered, `LINE_COUNT` + 1 once /MN is
+/// found), each as (byte of the file, length replaced, text).
+class TpMarkStream {
+ public:
+  using Put = std::function<void(std::uint64_t at, std::uint32_t length, std::string text)>;
+  /// `eol`: the whole file's dominant line end (the remark's).
+  TpMarkStream(const std::string& what, std::string eol);
+  /// The edits of window `f`, whose first byte is byte `start` of the file; its lines that start
+  /// before the end of the windows fed before (a line read again) are not looked at again.
+  void window(const SourceFile& f, std::uint64_t start, const Put& put);
+  /// After the last window: the remark of a /MN with no numbered line that the file ends in.
+  void finish(const Put& put);
+  /// Whether the /MN line was found: the marker is made.
+  [[nodiscard]] bool marked() const { return phase_ != Phase::kHeader; }
+
+ private:
+  enum class Phase { kHeader, kMn, kDone };
+  /// A line's text `t`, its first byte `at` in the file and the byte after it `next`.
+  void line(std::string_view text, std::uint64_t at, std::uint64_t next, const Put& put);
+  void endMn(const Put& put);
+  std::string text_;
+  std::string eol_;
+  Phase phase_{Phase::kHeader};
+  std::uint64_t seen_{0};      ///< the bytes of the file looked at
+  bool first_{true};           ///< no numbered /MN line yet
+  std::uint64_t after_mn_{0};  ///< the byte after the /MN line
+  struct Edit {
+    std::uint64_t at{0};
+    std::uint32_t length{0};
+    std::string text;
+  };
+  std::optional<Edit> line_count_;  ///< `LINE_COUNT = n` + 1, put once /MN is found
+  bool line_count_seen_{false};
+};
 
 /// The program's files after the pending edits: (path suffix role, bytes). KRL: [.src, .dat].
 std::vector<std::string> renderFiles(const Program& p);

@@ -37,8 +37,8 @@ ProgramStream::ProgramStream(const std::string& path, std::size_t window_bytes, 
     head.resize(static_cast<std::size_t>(n));
   }
   const Dialect dialect = detectDialect(path, head);
-  if (dialect == Dialect::kRapid && rapid) {
-    p_.dialect = Dialect::kRapid;
+  if ((dialect == Dialect::kRapid || dialect == Dialect::kTp) && rapid) {
+    p_.dialect = dialect;
     openWindows(path);
     SourceFile s;
     s.path = path;
@@ -52,7 +52,11 @@ ProgramStream::ProgramStream(const std::string& path, std::size_t window_bytes, 
     }
     checkInputText(p_.files[0].bytes, path);
     read_ahead_ = false;
-    rapid_ = std::make_unique<RapidStream>(p_);
+    if (dialect == Dialect::kTp) {
+      tp_ = std::make_unique<TpStream>(p_);
+    } else {
+      rapid_ = std::make_unique<RapidStream>(p_);
+    }
     pending_ = true;
     return;
   }
@@ -122,9 +126,15 @@ bool ProgramStream::readWindow() {
   return true;
 }
 
+std::size_t ProgramStream::carry() const {
+  if (rapid_) return rapid_->carry();
+  if (tp_) return tp_->carry();
+  return p_.files[0].bytes.size();
+}
+
 bool ProgramStream::readRapidWindow() {
   SourceFile& f = p_.files[0];
-  const std::size_t cut = rapid_->carry();
+  const std::size_t cut = carry();
   int base = f.line_base + static_cast<int>(f.line_starts.size());
   const std::size_t carried = cut < f.bytes.size() ? f.bytes.size() - cut : 0;
   if (carried > 0) {  // a construct the window ended inside: from its line again
@@ -137,7 +147,7 @@ bool ProgramStream::readRapidWindow() {
   readWindowBytes(w.bytes);
   if (w.bytes.empty()) return false;
   w.indexLines();
-  installWindow(std::move(w));
+  installWindow(std::move(w), static_cast<std::size_t>(base - f.line_base));
   f.line_base = base;
   if (carried > 0) {
     window_start_ -= carried;
@@ -174,14 +184,14 @@ void ProgramStream::moveCarriedTargets(int line, std::uint32_t cut) {
   }
 }
 
-std::uint64_t ProgramStream::settledEnd() const {
-  const std::size_t end = rapid_ ? rapid_->carry() : p_.files[0].bytes.size();
-  return window_start_ + end;
-}
+std::uint64_t ProgramStream::settledEnd() const { return window_start_ + carry(); }
 
-void ProgramStream::installWindow(SourceFile&& w) {
+void ProgramStream::installWindow(SourceFile&& w, std::size_t lines_done) {
   SourceFile& f = p_.files[0];
   const bool first = f.line_starts.empty();
+  lines_done = std::min(lines_done, f.line_ends.size());
+  for (std::size_t l = 0; l < lines_done; ++l)
+    ++f.earlier_ends[static_cast<std::size_t>(f.line_ends[l])];
   const int lines = first ? 0 : f.line_base + static_cast<int>(f.line_starts.size());
   if (!first) window_start_ += f.bytes.size();
   // the window's memory in, the previous window's out to the spare
@@ -248,17 +258,27 @@ void ProgramStream::readWindowBytes(std::string& buf) {
 
 bool ProgramStream::next() {
   if (finished_) return false;
-  if (rapid_) {
+  if (rapid_ || tp_) {
     if (pending_) {
       pending_ = false;
     } else if (!readRapidWindow()) {
       finished_ = true;
-      rapid_->finish();
+      if (rapid_) {
+        rapid_->finish();
+      } else {
+        tp_->finish();
+        checkRanges();  // the motions bound last (positions not in /POS)
+      }
       rapid_ranges_.rethrow();
       std::string().swap(p_.files[0].bytes);
       return false;
     }
-    rapid_->lines(eof_ && rest_.empty());
+    const bool last = eof_ && rest_.empty();
+    if (rapid_) {
+      rapid_->lines(last);
+    } else {
+      tp_->lines(last);
+    }
     checkRanges();
     return true;
   }
@@ -305,7 +325,8 @@ bool ProgramStream::next() {
 }
 
 void ProgramStream::checkRanges() {
-  if (rapid_ && !skip_ranges_) {  // the first error of each kind: thrown in the whole read's order
+  if ((rapid_ || tp_) &&
+      !skip_ranges_) {  // the first error of each kind: thrown in the whole read's order
     checkValueRanges(p_, rapid_ranges_);
     return;
   }
@@ -318,6 +339,7 @@ void ProgramStream::checkRanges() {
 }
 
 std::size_t ProgramStream::settledMotions() const {
+  if (tp_ && !finished_) return tp_->settled();
   if (!krl_ || finished_) return p_.motions.size();
   const int held = krl_->heldMotion();
   return held >= 0 ? std::min(p_.motions.size(), static_cast<std::size_t>(held))
@@ -326,9 +348,11 @@ std::size_t ProgramStream::settledMotions() const {
 
 Retired ProgramStream::retire(std::size_t m) {
   Program& p = p_;
-  if ((!krl_ && !rapid_) || p.motions.empty()) return {};
+  if ((!krl_ && !rapid_ && !tp_) || p.motions.empty()) return {};
   m = std::min(m, p.motions.size() - 1);
-  if (krl_) {
+  if (tp_) {
+    m = std::min(m, settledMotions());
+  } else if (krl_) {
     if (const int held = krl_->heldMotion(); held >= 0)
       m = std::min(m, static_cast<std::size_t>(held));
   } else {
@@ -337,8 +361,12 @@ Retired ProgramStream::retire(std::size_t m) {
     while (pinned_ < p.target_list.size() && !p.target_list[pinned_].name.empty()) ++pinned_;
   }
   if (m == 0) return {};
-  // the unnamed targets after the pinned ones that no remaining motion uses
-  const std::size_t t0 = pinned_;
+  // the unnamed targets after the pinned ones that no remaining motion uses (TP: from the first
+  // one no motion not bound yet names; a home position named again at the end stays before them)
+  std::size_t t0 = pinned_;
+  if (tp_) {
+    while (t0 < p.target_list.size() && tp_->needed(t0)) ++t0;
+  }
   std::size_t t1 = p.target_list.size();
   auto lowest = [&](int t) {
     if (t >= 0 && static_cast<std::size_t>(t) >= t0) t1 = std::min(t1, static_cast<std::size_t>(t));
@@ -347,8 +375,9 @@ Retired ProgramStream::retire(std::size_t m) {
     lowest(p.motions[k].target);
     lowest(p.motions[k].aux);
   }
+  // TP: a position a motion not bound yet names stays; RAPID, KRL: a target declared by name
   for (std::size_t t = t0; t < t1; ++t) {
-    if (!p.target_list[t].name.empty()) {
+    if (tp_ ? tp_->needed(t) : !p.target_list[t].name.empty()) {
       t1 = t;
       break;
     }
@@ -396,6 +425,10 @@ Retired ProgramStream::retire(std::size_t m) {
   }
   if (krl_) krl_->retired(m);
   if (rapid_ && t1 > t0) rapid_->retiredTargets(t0, t1);
+  if (tp_) {
+    if (t1 > t0) tp_->retiredTargets(t0, t1);
+    tp_->retired(m);
+  }
   return {m, t0, t1};
 }
 

@@ -10,13 +10,18 @@
 /// file's line: SourceFile::line_base). With `rapid`, an ABB RAPID module is read by windows of
 /// whole lines too (RapidStream: a statement a window ends inside is read again from its line at
 /// the start of the next window); its targets declared by name stay, its inline targets go with
-/// their motions. The other dialects are read whole, as one window.
+/// their motions. With `rapid` too, a FANUC TP program is read by windows of whole lines
+/// (TpStream: a /POS record a window ends inside is read again from its line): the motions of /MN
+/// stay until the records of their positions are read (about 200 bytes a motion: /POS follows
+/// /MN), then go with the targets only they use, settled in order as the records come. The other
+/// dialects are read whole, as one window.
 ///
 /// Errors are those readProgram gives, in the same order: a reader's error where it is met, a
 /// value out of range (checkValueRanges) once the whole program is read without one (RAPID: the
 /// first target's, else frame's, else motion's, as checkValueRanges orders them; within a kind the
 /// first met, which is the whole read's unless a robtarget declared early is out of range and
-/// first used after another target out of range).
+/// first used after another target out of range; TP: unless a position record out of range is
+/// first used after another out of range that follows it in /POS).
 ///
 ///   ProgramStream s(path);
 ///   HoleRecognizer rec;
@@ -39,6 +44,7 @@ namespace roprec::postproc {
 
 class KrlStream;
 class RapidStream;
+class TpStream;
 class HoleRecognizer;
 struct KrlAhead;
 
@@ -57,7 +63,8 @@ class ProgramStream {
   /// `read_ahead`: a KRL .src's next window is read, indexed and lexed on a task of its own
   /// while the reader reads the window before (the same windows, tokens and errors, in the same
   /// order; for a caller with a second core).
-  /// `rapid`: a RAPID module is read by windows as well (read_ahead does not apply to it).
+  /// `rapid`: a RAPID module or a TP program is read by windows as well (read_ahead does not
+  /// apply to them).
   explicit ProgramStream(const std::string& path, std::size_t window_bytes = kWindowBytes,
                          bool read_ahead = false, bool rapid = false);
   ~ProgramStream();
@@ -72,9 +79,11 @@ class ProgramStream {
   /// A reading of a program read (and checked) whole before: next() checks no value range any
   /// more (checkValueRanges), the reader's errors stay.
   void skipValueRanges() { skip_ranges_ = true; }
-  /// Whether the program is read by windows (KRL; RAPID with `rapid`); false: next() reads it
-  /// whole once.
-  [[nodiscard]] bool windowed() const { return krl_ != nullptr || rapid_ != nullptr; }
+  /// Whether the program is read by windows (KRL; RAPID and TP with `rapid`); false: next() reads
+  /// it whole once.
+  [[nodiscard]] bool windowed() const {
+    return krl_ != nullptr || rapid_ != nullptr || tp_ != nullptr;
+  }
   /// The window's motions [0, settledMotions()) the reader will not change any more: all of them
   /// but from the held segment of a SPLINE block being read (every one once the program is read).
   [[nodiscard]] std::size_t settledMotions() const;
@@ -94,8 +103,11 @@ class ProgramStream {
  private:
   /// Fills p_.files[0].bytes with the next window of whole lines; false at the end of the file.
   bool readWindow();
-  /// readWindow() of a RAPID module: the window starts with the reader's carry (RapidStream).
+  /// readWindow() of a RAPID module or a TP program: the window starts with the reader's carry.
   bool readRapidWindow();
+  /// The offset in the window the next window starts at (a RAPID statement, a TP position
+  /// record the window ended inside); the window's size when none.
+  [[nodiscard]] std::size_t carry() const;
   /// The first file's targets on line `line`, read in the window before from byte `cut` of it on,
   /// moved to the offsets of the window that starts with that line (windowStart()).
   void moveCarriedTargets(int line, std::uint32_t cut);
@@ -119,8 +131,10 @@ class ProgramStream {
   };
   /// A SourceFile for the next window, on the spare's memory (taken).
   static SourceFile fromSpare(Spare& s);
-  /// Makes `w` (the bytes, line index and tokens of the window after the last one) p_.files[0].
-  void installWindow(SourceFile&& w);
+  /// Makes `w` (the bytes, line index and tokens of the window after the last one) p_.files[0];
+  /// the line ends of the first `lines_done` lines of the window before are counted as earlier
+  /// lines' (SourceFile::earlier_ends; the others are read again).
+  void installWindow(SourceFile&& w, std::size_t lines_done = SIZE_MAX);
   /// checkValueRanges of the window: its first error kept for the end.
   void checkRanges();
   /// Starts reading, indexing and lexing the next window on a task of its own (read_ahead).
@@ -132,6 +146,7 @@ class ProgramStream {
   Program p_;
   std::unique_ptr<KrlStream> krl_;
   std::unique_ptr<RapidStream> rapid_;
+  std::unique_ptr<TpStream> tp_;
   platform::File file_;
   std::string rest_;               ///< bytes read after the window's last line
   std::size_t read_{0};            ///< bytes of the .src read so far

@@ -16,6 +16,8 @@ StreamedEdits::StreamedEdits(ProgramStream& stream, ByteWriter write, std::strin
   style_.bare_fractions = style.bare_fractions;
   style_.zero_fractions = style.zero_fractions;
   style_.significant9 = style.significant9;
+  if (stream_.program().dialect == Dialect::kTp)
+    tp_mark_.emplace(marker_, style.dominantLineEnd());  // the whole file's (a first reading's)
   out_.reserve(kOutBytes + 4096);
 }
 
@@ -32,6 +34,14 @@ void StreamedEdits::installed() {
   w.bytes = f.bytes;
   total_ = w.start + w.bytes.size();
   windows_.push_back(std::move(w));
+  if (tp_mark_) {  // the marker's edits of every /MN line
+    const Window& last = windows_.back();
+    tp_mark_->window(f, last.start, [&](std::uint64_t at, std::uint32_t length, std::string text) {
+      put(false, 0, at, length, std::move(text));
+    });
+    marked_ = tp_mark_->marked();
+    return;
+  }
   if (!marked_) {
     p.edits.clear();
     marked_ = markCompensated(p, marker_);
@@ -177,6 +187,11 @@ void StreamedEdits::flushBefore(std::uint64_t upto) {
 }
 
 void StreamedEdits::finish() {
+  if (tp_mark_) {
+    tp_mark_->finish([&](std::uint64_t at, std::uint32_t length, std::string text) {
+      put(false, 0, at, length, std::move(text));
+    });
+  }
   flushBefore(total_);
   // an insertion at the very end of the file (offset == size) is not before it
   for (auto& [at, e] : edits_.items()) {

@@ -1,12 +1,12 @@
 #pragma once
 /// \file streamed_edits.hpp
-/// The target edits of a KRL program or a RAPID module read by windows (ProgramStream) and written
-/// out as they become final: the first file's windows are kept from the first byte not written yet,
-/// an edit of a target is made in the bytes of the window that holds it and queued at its byte of
-/// the file, and the bytes before the line of the earliest target the stream's program still holds
-/// (no later edit can reach them) go to the writer. The `.dat` is held whole (ProgramStream) and
-/// its edits applied at the end. The bytes are those writeProgram gives of the program read
-/// whole with the same edits and the same compensation marker.
+/// The target edits of a KRL program, a RAPID module or a TP program read by windows
+/// (ProgramStream) and written out as they become final: the first file's windows are kept from the
+/// first byte not written yet, an edit of a target is made in the bytes of the window that holds it
+/// and queued at its byte of the file, and the bytes before the line of the earliest target the
+/// stream's program still holds (no later edit can reach them) go to the writer. The `.dat` is held
+/// whole (ProgramStream) and its edits applied at the end. The bytes are those writeProgram gives
+/// of the program read whole with the same edits and the same compensation marker.
 ///
 ///   ProgramStream s(path);
 ///   StreamedEdits e(s, write, marker, style);
@@ -103,6 +103,7 @@ class StreamedEdits {
   std::string marker_;
   SourceFile style_;
   bool marked_{false};
+  std::optional<TpMarkStream> tp_mark_;  ///< a TP program's marker, window by window
   std::deque<Window> windows_;
   std::uint64_t total_{0};    ///< bytes of the first file read
   std::uint64_t written_{0};  ///< bytes of the first file written (edits applied)

@@ -3,8 +3,10 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <deque>
 #include <iterator>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "compensator/support/error.hpp"
 #include "postproc/dialects.hpp"
@@ -15,14 +17,34 @@ namespace {
 
 class TpReader {
  public:
-  explicit TpReader(Program& p) : p_(p), f_(p.files[0]) {}
+  /// `windowed`: p.files[0] holds one window of whole lines at a time (TpStream); the motions
+  /// are bound to their positions as the /POS records come, in motion order.
+  explicit TpReader(Program& p, bool windowed = false)
+      : p_(p), f_(p.files[0]), windowed_(windowed) {}
 
+  /// The whole file.
   void run() {
+    lines(true);
+    finish();
+  }
+
+  /// The lines of the window p.files[0] holds (`last`: no bytes follow it) up to a /POS record
+  /// the window ends inside, whose line starts the next window (carry()).
+  void lines(bool last) {
     opt_.comment = 0;
     opt_.single_quote_string = true;
-    enum class Section { kNone, kProg, kAttr, kAppl, kMn, kPos, kEnd } sec = Section::kNone;
-    bool seen_prog = false;
+    last_ = last;
+    next_line_ = 0;
+    carry_ = f_.bytes.size();
+    tok_.clear();
     bool pending = false;  // tok_ holds the rest of the line where /POS stopped
+    if (sec_ == Section::kPos) {
+      pending = positions();
+      if (!pending) {
+        bindSettled(false);
+        return;
+      }
+    }
     while (true) {
       if (!pending) {
         tok_.clear();
@@ -34,38 +56,63 @@ class TpReader {
       // line [0, j)
       if (j > 0 && punct(0, '/') && 1 < j && tok_[1].offset == tok_[0].offset + 1 &&
           tok_[1].kind == TokenKind::kIdentifier && atLineStart(tok_[0].offset)) {
-        const std::string_view s = tx(1);
-        if (iequals(s, "PROG")) {
-          sec = Section::kProg;
-          seen_prog = true;
-        } else if (iequals(s, "ATTR")) {
-          sec = Section::kAttr;
-        } else if (iequals(s, "APPL")) {
-          sec = Section::kAppl;
-        } else if (iequals(s, "MN")) {
-          sec = Section::kMn;
-        } else if (iequals(s, "POS")) {
-          sec = Section::kPos;
-        } else if (iequals(s, "END")) {
-          sec = Section::kEnd;
-        }
-        if (sec == Section::kPos) {
+        section(tx(1));
+        if (sec_ == Section::kPos) {
           tok_.clear();
           pending = positions();
           if (!pending) break;
         }
         continue;
       }
-      if (sec == Section::kMn && j > 0) mnLine(0, j);
+      if (sec_ == Section::kMn && j > 0) mnLine(0, j);
     }
-    if (!seen_prog) failAt(f_, 0, "no /PROG header: not a FANUC TP .ls file");
-    if (sec != Section::kEnd) failAt(f_, f_.bytes.size(), "truncated file: no /END");
-    finish();
+    bindSettled(false);
+  }
+
+  /// After the last window: the file's end checked, every motion bound.
+  void finish() {
+    if (!seen_prog_) throw InputError(f_.path, 1, "no /PROG header: not a FANUC TP .ls file");
+    if (sec_ != Section::kEnd) failAt(f_, f_.bytes.size(), "truncated file: no /END");
+    bindSettled(true);
+  }
+
+  /// The offset in p.files[0] (a line start) the next window starts with; its size when none.
+  [[nodiscard]] std::size_t carry() const { return carry_; }
+  /// Motions [0, settled()) are bound to their positions (the reader changes them no more).
+  [[nodiscard]] std::size_t settled() const {
+    return pending_.empty() ? p_.motions.size() : static_cast<std::size_t>(pending_.front().motion);
+  }
+  /// Whether a motion not bound yet names target `t`'s position.
+  [[nodiscard]] bool needed(std::size_t t) const {
+    return t < numbers_.size() && refs_.count(numbers_[t]) != 0;
+  }
+  /// Motions [0, m) were dropped.
+  void retired(std::size_t m) {
+    const auto shift = static_cast<int>(m);
+    for (Pending& pd : pending_) pd.motion -= shift;
+    if (last_motion_line_ >= 0) last_motion_line_ -= shift;
+  }
+  /// Targets [begin, end) were dropped: their numbers are found no more.
+  void retiredTargets(std::size_t begin, std::size_t end) {
+    for (std::size_t t = begin; t < end && t < numbers_.size(); ++t) by_number_.erase(numbers_[t]);
+    numbers_.erase(numbers_.begin() + static_cast<std::ptrdiff_t>(begin),
+                   numbers_.begin() + static_cast<std::ptrdiff_t>(std::min(end, numbers_.size())));
+    const auto shift = static_cast<int>(end - begin);
+    for (auto& [number, target] : by_number_) {
+      if (target >= static_cast<int>(end)) target -= shift;
+    }
   }
 
  private:
+  enum class Section { kNone, kProg, kAttr, kAppl, kMn, kPos, kEnd };
   Program& p_;
   const SourceFile& f_;
+  bool windowed_{false};
+  bool last_{true};       ///< no bytes follow the window
+  std::size_t carry_{0};  ///< carry()
+  Section sec_{Section::kNone};
+  bool seen_prog_{false};
+  bool mn_done_{false};  ///< a section after /MN began: every motion is read
   LexOptions opt_;
   std::vector<Token> tok_;    ///< tokens of the current line (/MN) or position record (/POS)
   std::size_t next_line_{0};  ///< byte offset of the first line not lexed yet
@@ -103,11 +150,56 @@ class TpReader {
       tok_.insert(tok_.begin() + static_cast<std::ptrdiff_t>(k + 1), rest.begin(), rest.end());
     }
   }
+  /// A section header `/NAME` at a line start.
+  void section(std::string_view s) {
+    const Section before = sec_;
+    if (iequals(s, "PROG")) {
+      sec_ = Section::kProg;
+      seen_prog_ = true;
+    } else if (iequals(s, "ATTR")) {
+      sec_ = Section::kAttr;
+    } else if (iequals(s, "APPL")) {
+      sec_ = Section::kAppl;
+    } else if (iequals(s, "MN")) {
+      sec_ = Section::kMn;
+    } else if (iequals(s, "POS")) {
+      sec_ = Section::kPos;
+    } else if (iequals(s, "END")) {
+      sec_ = Section::kEnd;
+    }
+    if (before == Section::kMn && sec_ != Section::kMn) mn_done_ = true;
+  }
   bool atLineStart(std::uint32_t offset) const {
-    const int line = f_.lineOf(offset);
+    const int line = f_.lineOf(offset) - f_.line_base;  // in the window
     return line != 0 && f_.line_starts[static_cast<std::size_t>(line - 1)] == offset;
   }
   std::unordered_map<int, int> by_number_;  // P number -> target
+  /// Read by windows: the P number of each target (target_list order), and per P number the
+  /// references of motions not bound yet.
+  std::deque<int> numbers_;
+  std::unordered_map<int, int> refs_;
+  /// The P numbers of every record read (a record read twice is an error, also once the first
+  /// was dropped).
+  class Numbers {
+   public:
+    /// false when `n` was inserted before.
+    bool insert(int n) {
+      if (n >= 0 && n < kDense) {
+        const auto k = static_cast<std::size_t>(n);
+        if (k >= dense_.size()) dense_.resize(std::max<std::size_t>(k + 1, 2 * dense_.size()));
+        if (dense_[k]) return false;
+        dense_[k] = true;
+        return true;
+      }
+      return sparse_.insert(n).second;
+    }
+
+   private:
+    static constexpr int kDense = 1 << 24;
+    std::vector<bool> dense_;
+    std::unordered_set<int> sparse_;
+  };
+  Numbers defined_;
   /// P number -> line of a record never taught (negated once a motion to it is reported)
   std::unordered_map<int, int> untaught_;
   bool other_config_noted_{false};
@@ -118,7 +210,7 @@ class TpReader {
     int utool;       ///< the UTOOL_NUM active at the motion (-1: none, -2: a register)
     int utool_line;  ///< its line
   };
-  std::vector<Pending> pending_;
+  std::deque<Pending> pending_;  ///< motions not bound yet, in order
   int uframe_{-1};
   int utool_{-1};
   int utool_line_{0};
@@ -323,6 +415,7 @@ class TpReader {
       p_.motions.push_back(std::move(m));
       pending_.push_back(
           Pending{static_cast<int>(p_.motions.size() - 1), -1, pnum, utool_, utool_line_});
+      reference(pnum);
       last_motion_line_ = static_cast<int>(p_.motions.size() - 1);
       return;
     }
@@ -330,6 +423,7 @@ class TpReader {
     p_.motions.push_back(std::move(m));
     pending_.push_back(
         Pending{static_cast<int>(p_.motions.size() - 1), pnum, -1, utool_, utool_line_});
+    reference(pnum);
     optionCalls(after, e);
   }
 
@@ -362,6 +456,7 @@ class TpReader {
     optionCalls(after, e);
     if (iequals(ref, "P") && number >= 0) {
       pending_.back().number = number;
+      reference(number);
     } else {
       if (iequals(ref, "PR")) m.derivation = p_.addText("PR");
       runtimePosition(k, after, f_.lineOf(tok_[k].offset));
@@ -407,21 +502,22 @@ class TpReader {
     return f;
   }
 
-  /// Lexes lines onto tok_ until it holds a `}` or a `/END` (or the file ends).
-  void bufferRecord() {
+  /// Lexes lines onto tok_ until it holds a `}` or a `/END`; false when the window ended first.
+  bool bufferRecord() {
     std::size_t k = 0;
     while (true) {
       for (; k < tok_.size(); ++k) {
-        if (punct(k, '}')) return;
-        if (punct(k, '/') && k + 1 < tok_.size() && iequals(tx(k + 1), "END")) return;
+        if (punct(k, '}')) return true;
+        if (punct(k, '/') && k + 1 < tok_.size() && iequals(tx(k + 1), "END")) return true;
       }
-      if (!lexMore()) return;
+      if (!lexMore()) return false;
       if (k > 0 && punct(k - 1, '/')) --k;  // `/` was the last token: look at it again
     }
   }
 
   /// Reads the /POS records, lexing one record at a time. Returns true when it stopped at a
-  /// `/END` (tok_ then holds the rest of that line, from the `/`), false at the end of the file.
+  /// `/END` (tok_ then holds the rest of that line, from the `/`), false at the end of the
+  /// window (a record the window ends inside, not the file's last: carry() is its line).
   bool positions() {
     std::size_t i = 0;
     while (true) {
@@ -436,7 +532,12 @@ class TpReader {
         continue;
       }
       tok_.erase(tok_.begin(), tok_.begin() + static_cast<std::ptrdiff_t>(i));
-      bufferRecord();
+      if (!bufferRecord() && !last_) {
+        const int line = f_.lineOf(tok_[0].offset);
+        carry_ = f_.line_starts[static_cast<std::size_t>(line - 1 - f_.line_base)];
+        tok_.clear();
+        return false;
+      }
       // '/END' ends the section
       if (punct(0, '/') && 1 < tok_.size() && iequals(tx(1), "END")) return true;
       i = positionRecord();
@@ -557,7 +658,7 @@ class TpReader {
       ++q;
     }
     if (!gp1) p_.notes.push_back(t.name + ": no GP1 group; kept verbatim");
-    if (by_number_.count(number) != 0 || untaught_.count(number) != 0)
+    if (!defined_.insert(number))
       fail(tok_[rec].offset, "position P[" + std::to_string(number) + "] defined twice");
     if (untaught) {
       // a record the controller wrote for a position never taught: kept verbatim, no target;
@@ -572,6 +673,7 @@ class TpReader {
     t.orientation = t.kind == TargetKind::kCartesian ? Orientation::kFanucWpr : Orientation::kNone;
     p_.target_list.push_back(std::move(t));
     by_number_[number] = static_cast<int>(p_.target_list.size() - 1);
+    if (windowed_) numbers_.push_back(number);
   }
 
   /// A 6-axis arm's CONFIG `F|N U|D T|B, t1, t2, t3` into c; false (c unchanged) for any other
@@ -679,47 +781,92 @@ class TpReader {
     }
   }
 
-  void finish() {
-    for (const Pending& pd : pending_) {
-      Motion& m = p_.motions[static_cast<std::size_t>(pd.motion)];
-      auto bind = [&](int number) -> int {
-        if (number < 0) return -1;
-        if (auto u = untaught_.find(number); u != untaught_.end()) {
-          m.derivation = p_.addText("untaught");
-          if (u->second < 0) return -1;  // reported at its first motion
-          p_.unresolved.push_back(Unresolved{
-              "P[" + std::to_string(number) + "]", 0, m.line,
-              "position never taught (UF : F / ******** at line " + std::to_string(u->second) +
-                  "): its pose is not known (not predicted, not compensated)"});
-          u->second = -u->second;
-          return -1;
-        }
-        const auto it = by_number_.find(number);
-        if (it == by_number_.end()) {
-          p_.unresolved.push_back(
-              Unresolved{"P[" + std::to_string(number) + "]", 0, m.line, "position not in /POS"});
-          return -1;
-        }
-        return it->second;
-      };
-      m.target = bind(pd.number);
-      m.aux = bind(pd.aux_number);
-      const int ti = m.target >= 0 ? m.target : m.aux;
-      if (ti >= 0) {
-        const Target& t = p_.target_list[static_cast<std::size_t>(ti)];
-        if (!t.frame_ref.empty()) m.base = frameIndex(t.frame_ref, false);
-        if (!t.tool_ref.empty()) m.tool = frameIndex(t.tool_ref, true);
-      }
-      selectedTool(pd, m);
-      if (m.target >= 0)
-        p_.target_list[static_cast<std::size_t>(m.target)].uses.push_back(pd.motion);
-      if (m.aux >= 0) p_.target_list[static_cast<std::size_t>(m.aux)].uses.push_back(pd.motion);
+  /// A motion not bound yet names position `number` (read by windows: its record stays).
+  void reference(int number) {
+    if (windowed_ && number >= 0) ++refs_[number];
+  }
+  void unreference(int number) {
+    if (!windowed_ || number < 0) return;
+    const auto it = refs_.find(number);
+    if (it != refs_.end() && --it->second == 0) refs_.erase(it);
+  }
+  /// Whether position `number` (-1: none) is bound as the whole read binds it: its record read,
+  /// or none to come.
+  bool known(int number) const {
+    return number < 0 || by_number_.count(number) != 0 || untaught_.count(number) != 0;
+  }
+
+  /// Binds the motions not bound yet, in order, while their positions are known (`all`: every
+  /// one, those not in /POS unresolved): not before /MN is read whole, as the whole read binds
+  /// them after it (the same unresolved entries, frames and uses in the same order).
+  void bindSettled(bool all) {
+    if (!all && !mn_done_) return;
+    while (!pending_.empty()) {
+      const Pending& pd = pending_.front();
+      if (!all && (pd.motion == last_motion_line_ || !known(pd.number) || !known(pd.aux_number)))
+        break;
+      bind(pd);
+      unreference(pd.number);
+      unreference(pd.aux_number);
+      pending_.pop_front();
     }
+  }
+
+  /// Motion pd.motion bound to its positions, frames and tool.
+  void bind(const Pending& pd) {
+    Motion& m = p_.motions[static_cast<std::size_t>(pd.motion)];
+    auto bindNumber = [&](int number) -> int {
+      if (number < 0) return -1;
+      if (auto u = untaught_.find(number); u != untaught_.end()) {
+        m.derivation = p_.addText("untaught");
+        if (u->second < 0) return -1;  // reported at its first motion
+        p_.unresolved.push_back(Unresolved{
+            "P[" + std::to_string(number) + "]", 0, m.line,
+            "position never taught (UF : F / ******** at line " + std::to_string(u->second) +
+                "): its pose is not known (not predicted, not compensated)"});
+        u->second = -u->second;
+        return -1;
+      }
+      const auto it = by_number_.find(number);
+      if (it == by_number_.end()) {
+        p_.unresolved.push_back(
+            Unresolved{"P[" + std::to_string(number) + "]", 0, m.line, "position not in /POS"});
+        return -1;
+      }
+      return it->second;
+    };
+    m.target = bindNumber(pd.number);
+    m.aux = bindNumber(pd.aux_number);
+    const int ti = m.target >= 0 ? m.target : m.aux;
+    if (ti >= 0) {
+      const Target& t = p_.target_list[static_cast<std::size_t>(ti)];
+      if (!t.frame_ref.empty()) m.base = frameIndex(t.frame_ref, false);
+      if (!t.tool_ref.empty()) m.tool = frameIndex(t.tool_ref, true);
+    }
+    selectedTool(pd, m);
+    if (m.target >= 0) p_.target_list[static_cast<std::size_t>(m.target)].uses.push_back(pd.motion);
+    if (m.aux >= 0) p_.target_list[static_cast<std::size_t>(m.aux)].uses.push_back(pd.motion);
   }
 };
 
 }  // namespace
 
 void parseTp(Program& p) { TpReader(p).run(); }
+
+struct TpStream::Reader : TpReader {
+  using TpReader::TpReader;
+};
+
+TpStream::TpStream(Program& p) : r_(std::make_unique<Reader>(p, true)) {}
+TpStream::~TpStream() = default;
+void TpStream::lines(bool last) { r_->lines(last); }
+std::size_t TpStream::carry() const { return r_->carry(); }
+void TpStream::finish() { r_->finish(); }
+std::size_t TpStream::settled() const { return r_->settled(); }
+bool TpStream::needed(std::size_t target) const { return r_->needed(target); }
+void TpStream::retired(std::size_t m) { r_->retired(m); }
+void TpStream::retiredTargets(std::size_t begin, std::size_t end) {
+  r_->retiredTargets(begin, end);
+}
 
 }  // namespace roprec::postproc

@@ -153,6 +153,21 @@ TEST(Forces, RapidModuleReadByWindowsGivesTheWholeProgramsJson) {
   expectSame(whole, windowedForces(req, 4096, 7, 2), "4 KB windows, 2 threads");
 }
 
+// A FANUC TP wall pass (records swapped and one last, positions not known) read by windows of
+// 2 KB, with blocks of 7 points on 2 threads: the JSON of the program read whole.
+TEST(Forces, TpProgramReadByWindowsGivesTheWholeProgramsJson) {
+  const std::string dir = test::tempDir("forces_windows");
+  const std::string prog = dir + "/wall.ls";
+  test::writeFile(prog, test::tpWallPass(60));
+  const api::ForcesRequest req = programRequest(test::fanucMillingCell(dir), prog);
+  ASSERT_TRUE(api::millingPathStreams(prog));
+  const ForcesOutputs whole = wholeForces(req);
+  // the approach, 60 feed points, the end of the pass and the retract
+  ASSERT_NE(whole.json.find("\"point\": 63,"), std::string::npos);
+  ASSERT_EQ(whole.json.find("\"point\": 64,"), std::string::npos);
+  expectSame(whole, windowedForces(req, 2048, 7, 2), "2 KB windows, 2 threads");
+}
+
 // A robtarget of the wrong shape at the end of a RAPID module read by windows: `roprec forces
 // --program` exits 2 at its line, as the whole read does, and writes nothing (the first reading
 // finds it before the JSON's head).

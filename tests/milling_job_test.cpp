@@ -194,6 +194,34 @@ TEST(MillingJob, RapidModuleByWindowsWritesTheBytesOfTheWholeProgramJob) {
   }
 }
 
+// FANUC TP programs (tpWallPass: records swapped and one last, a position never taught and one not
+// in /POS, home used again, a header over several windows; LF and CRLF): read by windows of 300 B
+// to 4 KB that end inside records and of the default size, blocks of 7 points on 2 threads and of
+// 512 on 1: the bytes of the whole-program job (the marker renumbers every /MN line).
+TEST(MillingJob, TpProgramByWindowsWritesTheBytesOfTheWholeProgramJob) {
+  const std::string dir = test::tempDir("milling_job");
+  const std::string cell = test::fanucMillingCell(dir);
+  test::writeFile(dir + "/wall.ls", test::tpWallPass(90));
+  test::writeFile(dir + "/crlf.ls", test::tpWallPass(40, "\r\n"));
+  const std::vector<std::pair<std::string, std::vector<size_t>>> programs = {
+      {"wall.ls", {300, 4096, 0}}, {"crlf.ls", {700, 1500}}};
+  for (const auto& [name, windows] : programs) {
+    const std::string prog = dir + "/" + name;
+    ASSERT_TRUE(api::millingStreams(prog)) << name;
+    const MillingOutputs whole = wholeJob(cell, prog, 1, 512);
+    ASSERT_TRUE(whole.failures.empty()) << name << ": " << whole.failures.front();
+    ASSERT_TRUE(whole.refused.empty()) << name << ": " << whole.refused.front();
+    ASSERT_NE(whole.src.find("roprec compensated"), std::string::npos) << name;
+    for (const size_t window : windows) {
+      for (const auto& [block, threads] : {std::pair<size_t, int>{7, 2}, {512, 1}}) {
+        expectSameOutputs(whole, streamedJob(cell, prog, threads, block, window),
+                          name + " window " + std::to_string(window) + " block " +
+                              std::to_string(block) + " threads " + std::to_string(threads));
+      }
+    }
+  }
+}
+
 // A program roprec already compensated (its marker after the DEF line), compensated again with
 // --force: read by windows too, the same bytes and the same "--force" note at the marker's line;
 // without --force the same refusal.

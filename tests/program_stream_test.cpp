@@ -340,8 +340,8 @@ std::vector<std::string> rapidWhole(const std::string& path) {
   return programText(p, motions);
 }
 
-/// `path` read by windows of `window` bytes (RAPID too), every motion but the last retired after
-/// each window; `most`: the most targets a window held.
+/// `path` read by windows of `window` bytes (RAPID and TP too), every settled motion but the last
+/// retired after each window; `most`: the most targets a window held.
 std::vector<std::string> rapidStreamed(const std::string& path, size_t window, size_t* most) {
   postproc::ProgramStream s(path, window, false, true);
   std::vector<std::string> motions;
@@ -350,7 +350,8 @@ std::vector<std::string> rapidStreamed(const std::string& path, size_t window, s
     const postproc::Program& p = s.program();
     if (most != nullptr) *most = std::max(*most, p.targets().size());
     // the last motion may get a marker of the next window yet
-    for (; done + 1 < p.motions.size(); ++done)
+    // (TP: the motions bound to their positions so far)
+    for (; done + 1 < p.motions.size() && done < s.settledMotions(); ++done)
       motions.push_back(rapidMotionText(p, p.motions[done]));
     done -= s.retire(done).motions;
   }
@@ -470,6 +471,105 @@ TEST(ProgramStream, RapidWindowsOfAnySizeReadAsTheWholeModule) {
           << "window " << window;
     }
   }
+}
+
+// FANUC TP programs read by windows of 4 KB and 10 KB (a /POS record cut by a window's end, a
+// header and /MN over several windows, every shape tpWallPass writes: swapped records, one record
+// last, a position never taught, one not in /POS, a register, a circular motion) in LF and CRLF,
+// the samples' and the corpus's: the motions, targets, frames, unresolved references and notes of
+// the whole read, in its order. The motions stay until their records come, then go with them: a
+// program whose records follow its motions holds a window's worth of targets.
+TEST(ProgramStream, TpProgramByWindowsReadsAsTheWholeProgram) {
+  const std::string dir = test::tempDir("program_stream_tp");
+  test::writeFile(dir + "/wall.ls", test::tpWallPass(300));
+  test::writeFile(dir + "/crlf.ls", test::tpWallPass(300, "\r\n"));
+  test::writeFile(dir + "/ordered.ls", test::tpWallPass(600, "\n", false));
+  std::vector<std::string> programs = {
+      dir + "/wall.ls", dir + "/crlf.ls", dir + "/ordered.ls",
+      test::sourceDir() + "/samples/emotor-housing/housing_r2000.ls"};
+  if (const std::string corpus = test::corpusDir(); !corpus.empty())
+    programs.push_back(corpus + "/robodk/DRILLR30IA.LS");
+  for (const std::string& path : programs) {
+    SCOPED_TRACE(path);
+    const std::vector<std::string> whole = rapidWhole(path);
+    ASSERT_GT(whole.size(), 10U);
+    for (const size_t window : {size_t{4096}, size_t{10000}}) {
+      size_t most = 0;
+      EXPECT_EQ(firstDifference(whole, rapidStreamed(path, window, &most)), "")
+          << "window " << window;
+      if (path == dir + "/ordered.ls") {  // a record is about 150 bytes
+        EXPECT_LT(most, window / 100) << "window " << window;
+      }
+    }
+  }
+}
+
+// A TP program read by windows of 20 sizes from 16 bytes to 3 KB (a record over many windows, a
+// window's end at every kind of place): the whole read's motions, targets, frames, unresolved
+// references and notes.
+TEST(ProgramStream, TpWindowsOfAnySizeReadAsTheWholeProgram) {
+  const std::string dir = test::tempDir("program_stream_tp_sizes");
+  test::writeFile(dir + "/wall.ls", test::tpWallPass(12));
+  test::writeFile(dir + "/crlf.ls", test::tpWallPass(12, "\r\n"));
+  for (const std::string& path : {dir + "/wall.ls", dir + "/crlf.ls"}) {
+    SCOPED_TRACE(path);
+    const std::vector<std::string> whole = rapidWhole(path);
+    for (size_t window = 16; window < 3000; window += 157) {
+      EXPECT_EQ(firstDifference(whole, rapidStreamed(path, window, nullptr)), "")
+          << "window " << window;
+    }
+  }
+}
+
+/// Faulty TP programs from a wall pass of `points` points: a damaged /MN line, a broken number in
+/// a record and a record defined twice far into the file, no /END, no /PROG; a value out of range
+/// in an early record before a reader's error in a later one (the reader's error), a motion's
+/// speed before a record's value (the record's). Each read by windows of every size in `windows`
+/// gives the whole read's error.
+void expectTpErrorsOfTheWholeRead(const std::string& dir, int points,
+                                  const std::vector<size_t>& windows) {
+  const std::string wall = test::tpWallPass(points);
+  const size_t last_motion = wall.rfind("60mm/sec CNT100", wall.find("/POS"));
+  std::string line = wall;
+  line.replace(line.rfind('\n', last_motion) + 1, 4, " x 1");
+  const size_t late_record = wall.rfind("Z = ");
+  std::string number = wall;
+  number.replace(late_record, 10, "Z = -5.0.0");
+  std::string twice = wall;
+  const size_t rec = twice.rfind("P[", twice.rfind("GP1"));
+  twice.insert(twice.find("/END"), twice.substr(rec, twice.find("};", rec) + 3 - rec));
+  const std::string truncated = wall.substr(0, wall.rfind("/END"));
+  std::string noprog = wall;
+  noprog.erase(0, noprog.find('\n') + 1);
+  std::string range = number;
+  range.replace(range.find("Z = ", range.find("/POS")), 10, "Z = 9e9   ");
+  std::string kinds = wall;
+  kinds.replace(kinds.find("60mm/sec"), 8, "99999mm/sec");
+  kinds.replace(kinds.rfind("Z = "), 9, "Z = 9e9  ");
+  for (const auto& [name, text] : {std::pair<std::string, std::string>{"line.ls", line},
+                                   {"number.ls", number},
+                                   {"twice.ls", twice},
+                                   {"truncated.ls", truncated},
+                                   {"noprog.ls", noprog},
+                                   {"range.ls", range},
+                                   {"kinds.ls", kinds}}) {
+    SCOPED_TRACE(name);
+    const std::string path = dir + "/" + name;
+    test::writeFile(path, text);
+    const std::string whole = errorOf([&] { (void)postproc::readProgram(path); });
+    ASSERT_NE(whole, "(no error)");
+    for (const size_t window : windows)
+      EXPECT_EQ(errorOf([&] { (void)rapidStreamed(path, window, nullptr); }), whole) << window;
+  }
+}
+
+// TP errors by windows of 4 KB on a 400-point program, and by windows of 20 sizes from 16 bytes to
+// 3 KB on a 30-point one.
+TEST(ProgramStream, TpErrorsByWindowsAreThoseOfTheWholeRead) {
+  expectTpErrorsOfTheWholeRead(test::tempDir("program_stream_tp_errors"), 400, {4096});
+  std::vector<size_t> windows;
+  for (size_t window = 16; window < 3000; window += 157) windows.push_back(window);
+  expectTpErrorsOfTheWholeRead(test::tempDir("program_stream_tp_errors_sizes"), 30, windows);
 }
 
 }  // namespace

@@ -294,7 +294,9 @@ class StreamedPath {
       if (t.file == 0) line = std::min(line, t.line);
     };
     for (const HeldPoint& h : held) inFirstFile(h.target);
-    if (done_ < p.motions.size()) {
+    // a TP motion's position lies in /POS, after it: named_ (every TP position is named) holds
+    // the lines of those path points use
+    if (done_ < p.motions.size() && p.dialect != postproc::Dialect::kTp) {
       const postproc::Motion& mo = p.motions[done_];
       line = std::min(line, mo.line);
       if (mo.target >= 0 && p.targets()[static_cast<size_t>(mo.target)].name.empty())
@@ -527,11 +529,13 @@ MillingCompensationResult compensateMillingJob(const std::string& cell_path,
 
 namespace {
 
-/// Whether `program_path` is an ABB RAPID module ProgramStream reads by windows.
-bool rapidModuleStreams(const std::string& program_path) {
+/// Whether `program_path` is an ABB RAPID module or a FANUC TP program ProgramStream reads by
+/// windows.
+bool windowedModuleStreams(const std::string& program_path) {
   try {
     postproc::ProgramStream s(program_path, postproc::ProgramStream::kWindowBytes, false, true);
-    return s.windowed() && s.program().dialect == postproc::Dialect::kRapid;
+    const postproc::Dialect d = s.program().dialect;
+    return s.windowed() && (d == postproc::Dialect::kRapid || d == postproc::Dialect::kTp);
   } catch (const InputError&) {
     return false;  // the whole-program path gives the error
   }
@@ -544,11 +548,11 @@ bool millingStreams(const std::string& program_path) { return millingStreams(pro
 bool millingStreams(const std::string& program_path, bool force) {
   if (compensationStreams(program_path, CompensationJob{}, force)) return true;
   // a marked module without --force takes the whole-program path, which names the marker's line
-  return rapidModuleStreams(program_path) && (force || !fileHoldsMarker(program_path));
+  return windowedModuleStreams(program_path) && (force || !fileHoldsMarker(program_path));
 }
 
 bool millingPathStreams(const std::string& program_path) {
-  return millingStreams(program_path) || rapidModuleStreams(program_path);
+  return millingStreams(program_path) || windowedModuleStreams(program_path);
 }
 
 MillingCompensationResult loadStreamedMillingJob(const std::string& cell_path,

@@ -88,16 +88,16 @@ MillingCompensationResult compensateMillingJob(const std::string& cell_path,
                                                const MillingPathOptions& path,
                                                const MillingPointsSink& sink);
 /// Whether compensate reads a milling program by windows (compensateStreamedMillingJob): a KUKA
-/// KRL program (compensationStreams) or an ABB RAPID module (postproc::ProgramStream with
-/// `rapid`) without the "roprec compensated" marker.
+/// KRL program (compensationStreams), an ABB RAPID module or a FANUC TP program
+/// (postproc::ProgramStream with `rapid`) without the "roprec compensated" marker.
 bool millingStreams(const std::string& program_path);
 /// millingStreams(), and with `force` (compensate --force) also such a program that carries the
 /// marker: read by windows as well (loadStreamedMillingJob with `force`).
 bool millingStreams(const std::string& program_path, bool force);
 /// Whether a job that writes no program (`roprec forces --program`) reads a milling program by
 /// windows (loadStreamedMillingJob, computeStreamedMillingPath): a KRL program millingStreams()
-/// accepts, or any ABB RAPID module (one that carries the compensation marker gets
-/// checkNotCompensated's error as the whole-program job does). Other dialects (FANUC TP, CSV,
+/// accepts, or any ABB RAPID module or FANUC TP program (one that carries the compensation marker
+/// gets checkNotCompensated's error as the whole-program job does). Other dialects (CSV,
 /// JSON) are read whole.
 bool millingPathStreams(const std::string& program_path);
 /// compensateMillingJob's loading of a program millingStreams() or millingPathStreams() accepts,

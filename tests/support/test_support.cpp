@@ -211,6 +211,93 @@ std::string abbMillingCell(const std::string& dir) {
   return dir + "/abb-milling.xml";
 }
 
+std::string fanucMillingCell(const std::string& dir) {
+  std::string text = readFile(sourceDir() + "/samples/cells/alu-milling-7075.xml");
+  const size_t robot = text.find("<robot ref=\"");
+  if (robot == std::string::npos) throw std::runtime_error("fanucMillingCell: no <robot ref=");
+  text.replace(robot, text.find("/>", robot) + 2 - robot, "<robot ref=\"fanuc-r2000ic-165f\"/>");
+  writeFile(dir + "/fanuc-milling.xml", text);
+  return dir + "/fanuc-milling.xml";
+}
+
+std::string tpWallPass(int n, const std::string& eol, bool late_record) {
+  const auto record = [&](int k, double x, double z) {
+    return "P[" + std::to_string(k) + "]{" + eol + "   GP1:" + eol +
+           "\tUF : 1, UT : 1,\t\tCONFIG : 'N U T, 0, 0, 0'," + eol + "\tX = " + cFixed(x, 4) +
+           "  mm,\tY =     0.000  mm,\tZ = " + cFixed(z, 3) + "  mm," + eol +
+           "\tW =   180.000 deg,\tP =     0.000 deg,\tR =     0.000 deg" + eol + "};" + eol;
+  };
+  std::vector<std::string> mn = {"UFRAME_NUM=1 ;", "UTOOL_NUM=1 ;", "J PR[1] 50% CNT50 ;",
+                                 "! wall pass ;",
+                                 "J P[1:home] 50% CNT50 TB    .50sec,CALL SPINDLE_ON ;"};
+  std::vector<std::string> sub = {"      1:  DO[3]=ON ;", "       ------ ;"};
+  mn.push_back("L P[2] 250mm/sec CNT10 ;");
+  std::vector<std::pair<int, std::string>> pos;  // (number, record) in /POS order
+  pos.emplace_back(1, record(1, -60, 50));
+  pos.emplace_back(2, record(2, -60, -5));
+  const int first = 3;
+  for (int i = 0; i < n; ++i) {
+    const int k = first + i;
+    mn.push_back("L P[" + std::to_string(k) + "] 60mm/sec CNT100 ;");
+    if (i % 7 == 3) mn.push_back("WAIT    .10(sec) ;");
+    pos.emplace_back(k, record(k, -50 + 120.0 * i / n, -5));
+  }
+  const int end = first + n;
+  mn.push_back("L P[" + std::to_string(end) + "] 60mm/sec CNT100 ;");
+  mn.push_back("C P[" + std::to_string(end + 1) + "] ");
+  mn.push_back(":  P[" + std::to_string(end + 2) + "] 60mm/sec CNT100 ;");
+  mn.push_back("L PR[3] 60mm/sec FINE ;");
+  mn.push_back("L P[R[4]] 60mm/sec FINE ;");
+  mn.push_back("L P[" + std::to_string(end + 3) + "] 60mm/sec FINE ;");  // never taught
+  mn.push_back("L P[" + std::to_string(end + 9) + "] 60mm/sec FINE ;");  // not in /POS
+  mn.push_back("L P[" + std::to_string(end + 4) + "] 250mm/sec CNT50 ;");
+  mn.push_back("J P[1:home] 50% CNT50 ;");
+  pos.emplace_back(end, record(end, 70, -5));
+  pos.emplace_back(end + 1, record(end + 1, 75, 0));
+  pos.emplace_back(end + 2, record(end + 2, 70, 5));
+  pos.emplace_back(end + 3, "P[" + std::to_string(end + 3) + "]{" + eol + "   GP1:" + eol +
+                                "\tUF : F, UT : F,\t\tCONFIG : 'N U T, 0, 0, 0'," + eol +
+                                "\tX = ********  mm,\tY = ********  mm,\tZ = ********  mm," + eol +
+                                "\tW = ******** deg,\tP = ******** deg,\tR = ******** deg" + eol +
+                                "};" + eol);
+  pos.emplace_back(end + 4, record(end + 4, 70, 50));
+  pos.emplace_back(end + 5, "P[" + std::to_string(end + 5) + "]{" + eol + "   GP2:" + eol +
+                                "\tUF : 1, UT : 1," + eol + "\tJ1=     0.000  mm" + eol + "};" +
+                                eol);
+  pos.emplace_back(
+      end + 6, "P[" + std::to_string(end + 6) + "]{" + eol + "   GP1:" + eol + "\tUF : 1, UT : 1," +
+                   eol + "\tJ1=     0.000 deg,\tJ2=   -10.000 deg,\tJ3=   -16.000 deg," + eol +
+                   "\tJ4=     0.000 deg,\tJ5=   -73.000 deg,\tJ6=     0.000 deg" + eol + "};" +
+                   eol);
+  for (size_t k = first + 5; k + 1 < pos.size() && k < static_cast<size_t>(end); k += 5)
+    std::swap(pos[k], pos[k + 1]);
+  if (late_record && n > 4) {  // the fourth feed point's record last
+    std::pair<int, std::string> late = pos[first + 3 - 1];
+    pos.erase(pos.begin() + first + 3 - 1);
+    pos.push_back(late);
+  }
+  std::string s = "/PROG  WALL_PASS" + eol + "/ATTR" + eol + "OWNER\t\t= MNEDITOR;" + eol +
+                  "COMMENT\t\t= \"roprec test\";" + eol;
+  for (int k = 0; k < 36; ++k)
+    s += "/* CAM post header line " + std::to_string(k) + " */" + eol;  // ignored outside /MN
+  s += "LINE_COUNT\t= " + std::to_string(mn.size()) + ";" + eol + "/MN" + eol;
+  int line = 0;
+  for (const std::string& m : mn) {
+    if (m[0] == ':') {  // the continuation line of a circular motion
+      s += "    " + m + eol;
+      continue;
+    }
+    const std::string number = std::to_string(++line);
+    s += std::string(4 - std::min<size_t>(4, number.size()), ' ') + number + ":" +
+         (m[0] == 'J' || m[0] == 'L' || m[0] == 'C' ? "" : "  ") + m + eol;
+    if (m.find("TB ") != std::string::npos)
+      for (const std::string& b : sub) s += b + eol;
+  }
+  s += "/POS" + eol;
+  for (const auto& [number, text] : pos) s += text;
+  return s + "/END" + eol;
+}
+
 std::string twoMillCell() {
   return "<cell name=\"mills\">\n  <robot ref=\"kuka-kr120-r2500-pro\"/>\n"
          "  <tool name=\"spindle\" xyz=\"0 0 300\" rpy=\"0 0 0\" mass_kg=\"30\" com_mm=\"0 0 "

@@ -69,6 +69,18 @@ std::string rapidWallPass(int n);
 /// robtarget configuration only for a robot of its vendor), written to `dir`/abb-milling.xml;
 /// returns its path.
 std::string abbMillingCell(const std::string& dir);
+/// The sample wall pass as a FANUC TP program (UFRAME 1 and UTOOL 1: the cell's workobject and
+/// tool) with `n` feed points, with what TP readers meet: a header of 40 lines, remarks, point
+/// logic with its sub-block, WAIT lines, a circular motion and its continuation line, motions to
+/// position registers (the first motion), to P[R[4]], to a position never taught and to one not
+/// in /POS; in /POS
+/// every fifth pair of records swapped, one record (the fourth feed point's) last, a record of a
+/// second group only, a joint record, and home P[1] used again at the end. `eol`: the line end;
+/// `late_record`: without it no record is out of place by more than one.
+std::string tpWallPass(int n, const std::string& eol = "\n", bool late_record = true);
+/// samples/cells/alu-milling-7075.xml with the FANUC R-2000iC/165F, written to
+/// `dir`/fanuc-milling.xml; returns its path.
+std::string fanucMillingCell(const std::string& dir);
 /// A milling cell of two mills (a tool table: tool 1 Ø10 mm, 3 teeth; tool 2 Ø6 mm, 4 teeth, its
 /// own ae and fz) on the KR 120, plane stock at z 0 of the workobject (1600, 0, 400) mm.
 std::string twoMillCell();
