@@ -90,13 +90,18 @@ class RapidStream {
   std::unique_ptr<Reader> r_;
 };
 
-/// The FANUC TP reader a window of whole lines at a time (ProgramStream): constructed once
-/// p.files holds the first window; lines() reads the window p.files[0] holds now (`last`: no bytes
-/// follow it) up to a /POS record the window ends inside, whose line (carry()) starts the next
-/// window. The motions of /MN stay until their positions' records are read: from the end of /MN
-/// on they are bound in order as the records come (settled()), with the unresolved entries,
-/// frames and uses of the whole read in the same order. finish() checks the file's end and binds
-/// the rest (positions not in /POS).
+/// The FANUC TP reader a window of whole lines at a time (ProgramStream), as two readers over the
+/// same file: a scan, constructed once p.files holds the first window, reads the windows of
+/// p.files[0] in order (lines(); `last`: no bytes follow it) up to a /POS record a window ends
+/// inside, whose line (carry()) starts the next window: its errors, notes and unresolved
+/// references, and the records; the motions it reads in /MN it drops, counting the references to
+/// each position. Once it has read /MN, a second reader reads /MN again by windows of
+/// motionFile() (motionLines()), behind it, and makes the motions; the scan binds them to the
+/// records in order as both come (settled()), with the whole read's unresolved entries, frames and
+/// uses in the same order. wantsMotions() says which reader reads next: the motions' while none
+/// waits for a record. finish() checks the file's end after the scan's last window, end() binds
+/// the rest once both are read (positions not in /POS). A record goes once no motion to come
+/// names it (needed()).
 class TpStream {
  public:
   explicit TpStream(Program& p);
@@ -107,6 +112,14 @@ class TpStream {
   /// The offset in p.files[0] (a line start) the next window starts with; its size when none.
   [[nodiscard]] std::size_t carry() const;
   void finish();
+  /// Whether the motions' reader reads its next window now.
+  [[nodiscard]] bool wantsMotions() const;
+  /// The motions' reader's window (its path set; the caller fills its bytes and lines).
+  SourceFile& motionFile();
+  void motionLines(bool last);
+  /// Whether the motions' reader has read /MN whole.
+  [[nodiscard]] bool motionsRead() const;
+  void end();
   /// Motions [0, settled()) are bound (the reader changes them no more).
   [[nodiscard]] std::size_t settled() const;
   /// Whether target `target`'s position is named by a motion not bound yet (it must stay).

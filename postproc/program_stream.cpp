@@ -189,6 +189,7 @@ std::uint64_t ProgramStream::settledEnd() const { return window_start_ + carry()
 void ProgramStream::installWindow(SourceFile&& w, std::size_t lines_done) {
   SourceFile& f = p_.files[0];
   const bool first = f.line_starts.empty();
+  ++window_count_;
   lines_done = std::min(lines_done, f.line_ends.size());
   for (std::size_t l = 0; l < lines_done; ++l)
     ++f.earlier_ends[static_cast<std::size_t>(f.line_ends[l])];
@@ -224,21 +225,24 @@ void ProgramStream::startAhead() {
   });
 }
 
-void ProgramStream::readWindowBytes(std::string& buf) {
+void ProgramStream::readWindowBytes(std::string& buf) { readLines(file_, rest_, eof_, read_, buf); }
+
+void ProgramStream::readLines(platform::File& file, std::string& rest, bool& eof, std::size_t& read,
+                              std::string& buf) const {
   const std::string& path = src_;  // not p_ (the reader may change it meanwhile)
-  buf.assign(rest_);               // into buf's own memory (a spare window's)
-  rest_.clear();
+  buf.assign(rest);                // into buf's own memory (a spare window's)
+  rest.clear();
   std::size_t cut = std::string::npos;
-  while (!eof_) {  // whole lines: up to the last line end, more when the window has none
+  while (!eof) {  // whole lines: up to the last line end, more when the window has none
     const std::size_t old = buf.size();
     buf.resize(old + window_bytes_);
     int e = 0;
-    const long long n = file_.read(buf.data() + old, window_bytes_, &e);
+    const long long n = file.read(buf.data() + old, window_bytes_, &e);
     if (n < 0) (void)readInputFile(path, InputKind::kProgram);  // its read error
     buf.resize(old + static_cast<std::size_t>(std::max(0LL, n)));
-    if (n <= 0) eof_ = true;
-    read_ += static_cast<std::size_t>(std::max(0LL, n));
-    if (read_ > inputSizeLimit(InputKind::kProgram))  // a file grown past the limit as it is read
+    if (n <= 0) eof = true;
+    read += static_cast<std::size_t>(std::max(0LL, n));
+    if (read > inputSizeLimit(InputKind::kProgram))  // a file grown past the limit as it is read
       (void)readInputFile(path, InputKind::kProgram);
     if (std::memchr(buf.data() + old, '\0', buf.size() - old) != nullptr)
       (void)readInputFile(path, InputKind::kProgram);  // the NUL byte at its line and column
@@ -250,8 +254,8 @@ void ProgramStream::readWindowBytes(std::string& buf) {
     }
     if (cut != std::string::npos) break;
   }
-  if (!buf.empty() && !eof_ && cut != std::string::npos) {
-    rest_.assign(buf, cut + 1, std::string::npos);
+  if (!buf.empty() && !eof && cut != std::string::npos) {
+    rest.assign(buf, cut + 1, std::string::npos);
     buf.resize(cut + 1);
   }
 }
@@ -261,14 +265,11 @@ bool ProgramStream::next() {
   if (rapid_ || tp_) {
     if (pending_) {
       pending_ = false;
+    } else if (tp_) {
+      return nextTp();
     } else if (!readRapidWindow()) {
       finished_ = true;
-      if (rapid_) {
-        rapid_->finish();
-      } else {
-        tp_->finish();
-        checkRanges();  // the motions bound last (positions not in /POS)
-      }
+      rapid_->finish();
       rapid_ranges_.rethrow();
       std::string().swap(p_.files[0].bytes);
       return false;
@@ -322,6 +323,37 @@ bool ProgramStream::next() {
   }
   checkRanges();
   return true;
+}
+
+bool ProgramStream::nextTp() {
+  if (!tp_done_ && !tp_->wantsMotions()) {  // the scan's next window
+    if (readRapidWindow()) {
+      tp_->lines(eof_ && rest_.empty());
+    } else {
+      tp_done_ = true;
+      tp_->finish();
+    }
+    checkRanges();
+    return true;
+  }
+  if (!tp_->motionsRead()) {  // the motions' next window
+    if (!mn_file_.isOpen()) {
+      if (mn_file_.openRead(src_) != 0) (void)readInputFile(src_, InputKind::kProgram);
+    }
+    SourceFile& f = tp_->motionFile();
+    f.line_base += static_cast<int>(f.line_starts.size());
+    readLines(mn_file_, mn_rest_, mn_eof_, mn_read_, f.bytes);
+    f.indexLines();
+    tp_->motionLines(f.bytes.empty() || (mn_eof_ && mn_rest_.empty()));
+    checkRanges();
+    return true;
+  }
+  finished_ = true;  // both read: the rest bound (positions not in /POS)
+  tp_->end();
+  checkRanges();
+  rapid_ranges_.rethrow();
+  std::string().swap(p_.files[0].bytes);
+  return false;
 }
 
 void ProgramStream::checkRanges() {

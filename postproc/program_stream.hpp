@@ -10,11 +10,13 @@
 /// file's line: SourceFile::line_base). With `rapid`, an ABB RAPID module is read by windows of
 /// whole lines too (RapidStream: a statement a window ends inside is read again from its line at
 /// the start of the next window); its targets declared by name stay, its inline targets go with
-/// their motions. With `rapid` too, a FANUC TP program is read by windows of whole lines
-/// (TpStream: a /POS record a window ends inside is read again from its line): the motions of /MN
-/// stay until the records of their positions are read (about 200 bytes a motion: /POS follows
-/// /MN), then go with the targets only they use, settled in order as the records come. The other
-/// dialects are read whole, as one window.
+/// their motions. With `rapid` too, a FANUC TP program is read by windows of whole lines by two
+/// readers (TpStream): a scan of the whole file in order (a /POS record a window ends inside is read
+/// again from its line), whose windows are program().files[0], and a second reading of /MN behind
+/// it, from a window of its own, that makes the motions; they are bound to the records in order as
+/// both come, and a record goes once no motion to come names it (a home position named again at
+/// the end stays until then; records far out of the motions' order hold the records between).
+/// The other dialects are read whole, as one window.
 ///
 /// Errors are those readProgram gives, in the same order: a reader's error where it is met, a
 /// value out of range (checkValueRanges) once the whole program is read without one (RAPID: the
@@ -99,8 +101,17 @@ class ProgramStream {
   /// The byte of the file the next window starts at: the end of the bytes no later window reads
   /// again (a RAPID window's carried line; the end of a KRL window).
   [[nodiscard]] std::uint64_t settledEnd() const;
+  /// Windows of the first file read so far: next() may return without a new one (a TP program's
+  /// motions are read from a second window of their own).
+  [[nodiscard]] std::uint64_t windowCount() const { return window_count_; }
 
  private:
+  /// next() of a TP program: the scan's next window or the motions' (TpStream::wantsMotions()).
+  bool nextTp();
+  /// The next window's bytes of whole lines of `file` into `buf` (empty at the end of the file),
+  /// the bytes read after its last line kept in `rest`.
+  void readLines(platform::File& file, std::string& rest, bool& eof, std::size_t& read,
+                 std::string& buf) const;
   /// Fills p_.files[0].bytes with the next window of whole lines; false at the end of the file.
   bool readWindow();
   /// readWindow() of a RAPID module or a TP program: the window starts with the reader's carry.
@@ -147,6 +158,12 @@ class ProgramStream {
   std::unique_ptr<KrlStream> krl_;
   std::unique_ptr<RapidStream> rapid_;
   std::unique_ptr<TpStream> tp_;
+  platform::File mn_file_;  ///< TP: the file again, for the motions' reader (TpStream)
+  std::string mn_rest_;
+  bool mn_eof_{false};
+  std::size_t mn_read_{0};
+  bool tp_done_{false};  ///< TP: the scan read the whole file
+  std::uint64_t window_count_{0};
   platform::File file_;
   std::string rest_;               ///< bytes read after the window's last line
   std::size_t read_{0};            ///< bytes of the .src read so far

@@ -22,6 +22,8 @@ StreamedEdits::StreamedEdits(ProgramStream& stream, ByteWriter write, std::strin
 }
 
 void StreamedEdits::installed() {
+  if (stream_.windowCount() == installed_) return;  // no new window (a TP program's motions)
+  installed_ = stream_.windowCount();
   Program& p = stream_.program();
   SourceFile& f = p.files[0];
   f.bare_fractions = style_.bare_fractions;

@@ -41,7 +41,8 @@ class StreamedEdits {
   /// reading's SourceFile).
   StreamedEdits(ProgramStream& stream, ByteWriter write, std::string marker,
                 const SourceFile& style);
-  /// After each next() of the stream that returned true: keeps the window's bytes.
+  /// After each next() of the stream that returned true: keeps the window's bytes (when it read
+  /// one).
   void installed();
   /// replaceTargetPose of target `index` of the stream's program, made in the bytes of the window
   /// that holds it and queued (the target must still be in the stream's program).
@@ -103,6 +104,7 @@ class StreamedEdits {
   std::string marker_;
   SourceFile style_;
   bool marked_{false};
+  std::uint64_t installed_{0};  ///< ProgramStream::windowCount() when installed() last kept one
   std::optional<TpMarkStream> tp_mark_;  ///< a TP program's marker, window by window
   std::deque<Window> windows_;
   std::uint64_t total_{0};    ///< bytes of the first file read

@@ -17,10 +17,15 @@ namespace {
 
 class TpReader {
  public:
-  /// `windowed`: p.files[0] holds one window of whole lines at a time (TpStream); the motions
-  /// are bound to their positions as the /POS records come, in motion order.
-  explicit TpReader(Program& p, bool windowed = false)
-      : p_(p), f_(p.files[0]), windowed_(windowed) {}
+  /// How the reader reads. kWhole: the whole file, once. Read by windows of whole lines
+  /// (TpStream) by two readers over the same file: kScan reads every line in order (p.files[0]):
+  /// its errors, notes and unresolved references, the position records, and the references of /MN
+  /// counted (the motions it reads there are dropped); kMotions reads /MN again, behind it, and
+  /// makes the motions, which the scan binds to the records in order as both come.
+  enum class Mode { kWhole, kScan, kMotions };
+
+  TpReader(Program& p, const SourceFile& f, Mode mode) : p_(p), f_(f), mode_(mode) {}
+  explicit TpReader(Program& p) : TpReader(p, p.files[0], Mode::kWhole) {}
 
   /// The whole file.
   void run() {
@@ -28,8 +33,14 @@ class TpReader {
     finish();
   }
 
-  /// The lines of the window p.files[0] holds (`last`: no bytes follow it) up to a /POS record
-  /// the window ends inside, whose line starts the next window (carry()).
+  /// A kScan reader's kMotions reader (and the other way round).
+  void pair(TpReader& motions) {
+    motions_ = &motions;
+    motions.binder_ = this;
+  }
+
+  /// The lines of the window f_ holds (`last`: no bytes follow it) up to a /POS record the window
+  /// ends inside, whose line starts the next window (carry()); kMotions: up to the end of /MN.
   void lines(bool last) {
     opt_.comment = 0;
     opt_.single_quote_string = true;
@@ -38,14 +49,14 @@ class TpReader {
     carry_ = f_.bytes.size();
     tok_.clear();
     bool pending = false;  // tok_ holds the rest of the line where /POS stopped
-    if (sec_ == Section::kPos) {
+    if (sec_ == Section::kPos && mode_ != Mode::kMotions) {
       pending = positions();
       if (!pending) {
-        bindSettled(false);
+        windowEnd();
         return;
       }
     }
-    while (true) {
+    while (!(mode_ == Mode::kMotions && mn_done_)) {
       if (!pending) {
         tok_.clear();
         if (!lexMore()) break;
@@ -57,7 +68,7 @@ class TpReader {
       if (j > 0 && punct(0, '/') && 1 < j && tok_[1].offset == tok_[0].offset + 1 &&
           tok_[1].kind == TokenKind::kIdentifier && atLineStart(tok_[0].offset)) {
         section(tx(1));
-        if (sec_ == Section::kPos) {
+        if (sec_ == Section::kPos && mode_ != Mode::kMotions) {
           tok_.clear();
           pending = positions();
           if (!pending) break;
@@ -66,31 +77,50 @@ class TpReader {
       }
       if (sec_ == Section::kMn && j > 0) mnLine(0, j);
     }
-    bindSettled(false);
+    if (mode_ == Mode::kMotions && last) mn_done_ = true;  // a file that ends in /MN
+    windowEnd();
   }
 
-  /// After the last window: the file's end checked, every motion bound.
+  /// After the last window: the file's end checked; kWhole: every motion bound.
   void finish() {
     if (!seen_prog_) throw InputError(f_.path, 1, "no /PROG header: not a FANUC TP .ls file");
     if (sec_ != Section::kEnd) failAt(f_, f_.bytes.size(), "truncated file: no /END");
-    bindSettled(true);
+    finished_ = true;
+    bindSettled(mode_ == Mode::kWhole);
   }
+  /// kScan, once both readers read their last window: the motions left bound (positions not in
+  /// /POS unresolved).
+  void end() { bindSettled(true); }
 
-  /// The offset in p.files[0] (a line start) the next window starts with; its size when none.
+  /// The offset in f_ (a line start) the next window starts with; its size when none.
   [[nodiscard]] std::size_t carry() const { return carry_; }
+  /// kScan: the kMotions reader is to read its next window: /MN was read here, the motions read
+  /// there are all bound (or the first waits for its continuation line) and it has not read /MN
+  /// whole.
+  [[nodiscard]] bool wantsMotions() const {
+    if (!mn_done_ || motions_ == nullptr || motions_->mn_done_) return false;
+    // none waits, or the first waits for its end point (a circular motion's next line)
+    return pending_.empty() || pending_.front().motion == motions_->last_motion_line_;
+  }
+  /// Whether /MN was read whole.
+  [[nodiscard]] bool mnRead() const { return mn_done_; }
   /// Motions [0, settled()) are bound to their positions (the reader changes them no more).
   [[nodiscard]] std::size_t settled() const {
+    if (mode_ == Mode::kScan && !mn_done_) return 0;  // the scan's own motions: dropped
     return pending_.empty() ? p_.motions.size() : static_cast<std::size_t>(pending_.front().motion);
   }
-  /// Whether a motion not bound yet names target `t`'s position.
+  /// Whether a motion not bound yet names target `t`'s position (kScan: every reference of /MN
+  /// counted, so a position named again later stays until then).
   [[nodiscard]] bool needed(std::size_t t) const {
-    return t < numbers_.size() && refs_.count(numbers_[t]) != 0;
+    if (!mn_done_) return true;
+    return t < numbers_.size() && refs_.count(numbers_[t]) != 0U;
   }
   /// Motions [0, m) were dropped.
   void retired(std::size_t m) {
     const auto shift = static_cast<int>(m);
     for (Pending& pd : pending_) pd.motion -= shift;
-    if (last_motion_line_ >= 0) last_motion_line_ -= shift;
+    TpReader& open = motions_ != nullptr ? *motions_ : *this;
+    if (open.last_motion_line_ >= 0) open.last_motion_line_ -= shift;
   }
   /// Targets [begin, end) were dropped: their numbers are found no more.
   void retiredTargets(std::size_t begin, std::size_t end) {
@@ -107,12 +137,16 @@ class TpReader {
   enum class Section { kNone, kProg, kAttr, kAppl, kMn, kPos, kEnd };
   Program& p_;
   const SourceFile& f_;
-  bool windowed_{false};
-  bool last_{true};       ///< no bytes follow the window
-  std::size_t carry_{0};  ///< carry()
+  Mode mode_{Mode::kWhole};
+  TpReader* binder_{this};      ///< the reader whose pending_ a motion joins (kMotions: the scan)
+  TpReader* motions_{nullptr};  ///< kScan: the reader that makes the motions
+  bool finished_{false};        ///< the file's end was read
+  bool started_{false};         ///< kMotions: a window was read
+  bool last_{true};             ///< no bytes follow the window
+  std::size_t carry_{0};        ///< carry()
   Section sec_{Section::kNone};
   bool seen_prog_{false};
-  bool mn_done_{false};  ///< a section after /MN began: every motion is read
+  bool mn_done_{false};  ///< a section after /MN began: every motion is read (kMotions: made)
   LexOptions opt_;
   std::vector<Token> tok_;    ///< tokens of the current line (/MN) or position record (/POS)
   std::size_t next_line_{0};  ///< byte offset of the first line not lexed yet
@@ -177,7 +211,41 @@ class TpReader {
   /// Read by windows: the P number of each target (target_list order), and per P number the
   /// references of motions not bound yet.
   std::deque<int> numbers_;
-  std::unordered_map<int, int> refs_;
+  /// Counts by P number: a 32-bit count per number below 2^24, a map for the others.
+  class Counts {
+   public:
+    void add(int n) {
+      if (n >= 0 && n < kDense) {
+        const auto k = static_cast<std::size_t>(n);
+        if (k >= dense_.size()) dense_.resize(std::max<std::size_t>(k + 1, 2 * dense_.size()));
+        ++dense_[k];
+      } else {
+        ++sparse_[n];
+      }
+    }
+    void remove(int n) {
+      if (n >= 0 && n < kDense) {
+        const auto k = static_cast<std::size_t>(n);
+        if (k < dense_.size() && dense_[k] > 0) --dense_[k];
+      } else if (const auto it = sparse_.find(n); it != sparse_.end() && --it->second == 0) {
+        sparse_.erase(it);
+      }
+    }
+    [[nodiscard]] std::uint32_t count(int n) const {
+      if (n >= 0 && n < kDense) {
+        const auto k = static_cast<std::size_t>(n);
+        return k < dense_.size() ? dense_[k] : 0U;
+      }
+      const auto it = sparse_.find(n);
+      return it == sparse_.end() ? 0U : it->second;
+    }
+
+   private:
+    static constexpr int kDense = 1 << 24;
+    std::vector<std::uint32_t> dense_;
+    std::unordered_map<int, std::uint32_t> sparse_;
+  };
+  Counts refs_;
   /// The P numbers of every record read (a record read twice is an error, also once the first
   /// was dropped).
   class Numbers {
@@ -413,24 +481,20 @@ class TpReader {
       // C P[aux] [speed...] ; then the end point on the continuation line
       tail(m, after, e);
       p_.motions.push_back(std::move(m));
-      pending_.push_back(
-          Pending{static_cast<int>(p_.motions.size() - 1), -1, pnum, utool_, utool_line_});
-      reference(pnum);
+      addPending(Pending{static_cast<int>(p_.motions.size() - 1), -1, pnum, utool_, utool_line_});
       last_motion_line_ = static_cast<int>(p_.motions.size() - 1);
       return;
     }
     tail(m, after, e);
     p_.motions.push_back(std::move(m));
-    pending_.push_back(
-        Pending{static_cast<int>(p_.motions.size() - 1), pnum, -1, utool_, utool_line_});
-    reference(pnum);
+    addPending(Pending{static_cast<int>(p_.motions.size() - 1), pnum, -1, utool_, utool_line_});
     optionCalls(after, e);
   }
 
   /// `UTOOL_NUM=R[i]` (tokens [k, e)): the tool is known only at run time; noted once, each
   /// position's own UT is then its tool.
   void utoolFromRegister(std::size_t k, std::size_t e) {
-    if (utool_register_noted_) return;
+    if (utool_register_noted_ || mode_ == Mode::kMotions) return;  // the scan reported it
     utool_register_noted_ = true;
     p_.unresolved.push_back(Unresolved{
         std::string(spanText(k, e)), 0, utool_line_,
@@ -455,8 +519,11 @@ class TpReader {
     tail(m, after, e);
     optionCalls(after, e);
     if (iequals(ref, "P") && number >= 0) {
-      pending_.back().number = number;
-      reference(number);
+      if (mode_ == Mode::kScan) {
+        reference(number);
+      } else {
+        binder_->pending_.back().number = number;
+      }
     } else {
       if (iequals(ref, "PR")) m.derivation = p_.addText("PR");
       runtimePosition(k, after, f_.lineOf(tok_[k].offset));
@@ -468,6 +535,7 @@ class TpReader {
   /// or `P[...]` whose index is not a number (`P[R[4]]`, a typo): reported as unresolved, with
   /// its line, so the holes it belongs to are not dropped without a word.
   void runtimePosition(std::size_t k, std::size_t after, int line) {
+    if (mode_ == Mode::kMotions) return;  // the scan reported it
     const std::string ref(spanText(k, after));
     p_.unresolved.push_back(Unresolved{
         ref, 0, line,
@@ -673,7 +741,7 @@ class TpReader {
     t.orientation = t.kind == TargetKind::kCartesian ? Orientation::kFanucWpr : Orientation::kNone;
     p_.target_list.push_back(std::move(t));
     by_number_[number] = static_cast<int>(p_.target_list.size() - 1);
-    if (windowed_) numbers_.push_back(number);
+    if (mode_ == Mode::kScan) numbers_.push_back(number);
   }
 
   /// A 6-axis arm's CONFIG `F|N U|D T|B, t1, t2, t3` into c; false (c unchanged) for any other
@@ -781,19 +849,64 @@ class TpReader {
     }
   }
 
-  /// A motion not bound yet names position `number` (read by windows: its record stays).
+  /// A motion's positions to bind: kScan counts its references (the motion is dropped), kMotions
+  /// queues it on the scan, kWhole on itself.
+  void addPending(const Pending& pd) {
+    if (mode_ == Mode::kScan) {
+      reference(pd.number);
+      reference(pd.aux_number);
+    } else {
+      binder_->pending_.push_back(pd);
+    }
+  }
+  /// /MN names position `number` once more (kScan: its record stays until that motion is bound).
   void reference(int number) {
-    if (windowed_ && number >= 0) ++refs_[number];
+    if (mode_ == Mode::kScan && number >= 0) refs_.add(number);
   }
   void unreference(int number) {
-    if (!windowed_ || number < 0) return;
-    const auto it = refs_.find(number);
-    if (it != refs_.end() && --it->second == 0) refs_.erase(it);
+    if (mode_ != Mode::kScan || number < 0) return;
+    refs_.remove(number);
   }
   /// Whether position `number` (-1: none) is bound as the whole read binds it: its record read,
   /// or none to come.
   bool known(int number) const {
-    return number < 0 || by_number_.count(number) != 0 || untaught_.count(number) != 0;
+    return number < 0 || finished_ || by_number_.count(number) != 0 || untaught_.count(number) != 0;
+  }
+
+  /// kScan: its own motions (read to check /MN, count its references and report what it
+  /// reports) dropped but the last one (`keep_last`: a continuation line may follow).
+  void dropScanMotions(bool keep_last) {
+    const std::size_t n = p_.motions.size() - (keep_last && !p_.motions.empty() ? 1 : 0);
+    if (n == 0) return;
+    std::size_t marker_cut = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      const Motion& mo = p_.motions[k];
+      p_.texts.release(mo.target_text);
+      for (std::uint32_t j = 0; j < mo.marker_count; ++j)
+        p_.texts.release(p_.marker_texts[mo.marker_begin + j]);
+      if (mo.marker_count > 0) marker_cut = mo.marker_begin + mo.marker_count;
+    }
+    p_.marker_texts.erase(p_.marker_texts.begin(),
+                          p_.marker_texts.begin() + static_cast<std::ptrdiff_t>(marker_cut));
+    p_.motions.erase(p_.motions.begin(), p_.motions.begin() + static_cast<std::ptrdiff_t>(n));
+    for (Motion& mo : p_.motions)
+      if (mo.marker_count > 0) mo.marker_begin -= static_cast<std::uint32_t>(marker_cut);
+    last_motion_line_ =
+        last_motion_line_ >= static_cast<int>(n) ? last_motion_line_ - static_cast<int>(n) : -1;
+  }
+
+  /// The end of a window's lines: the scan's motions dropped, what can be bound bound.
+  void windowEnd() {
+    if (mode_ == Mode::kScan && p_.motions.size() > 0 && (!motions_ || !motions_->started_)) {
+      dropScanMotions(!mn_done_);
+      if (mn_done_) last_motion_line_ = -1;
+    }
+    if (mode_ == Mode::kMotions) {
+      started_ = true;
+      binder_->bindSettled(false);
+      return;
+    }
+    bindSettled(false);
   }
 
   /// Binds the motions not bound yet, in order, while their positions are known (`all`: every
@@ -801,10 +914,12 @@ class TpReader {
   /// them after it (the same unresolved entries, frames and uses in the same order).
   void bindSettled(bool all) {
     if (!all && !mn_done_) return;
+    // a circular motion whose end point the next line may give
+    const TpReader& maker = motions_ != nullptr ? *motions_ : *this;
+    const int open = motions_ != nullptr && motions_->mn_done_ ? -1 : maker.last_motion_line_;
     while (!pending_.empty()) {
       const Pending& pd = pending_.front();
-      if (!all && (pd.motion == last_motion_line_ || !known(pd.number) || !known(pd.aux_number)))
-        break;
+      if (!all && (pd.motion == open || !known(pd.number) || !known(pd.aux_number))) break;
       bind(pd);
       unreference(pd.number);
       unreference(pd.aux_number);
@@ -853,20 +968,32 @@ class TpReader {
 
 void parseTp(Program& p) { TpReader(p).run(); }
 
-struct TpStream::Reader : TpReader {
-  using TpReader::TpReader;
+struct TpStream::Reader {
+  explicit Reader(Program& p)
+      : scan(p, p.files[0], TpReader::Mode::kScan), motions(p, mn, TpReader::Mode::kMotions) {
+    mn.path = p.files[0].path;
+    scan.pair(motions);
+  }
+  SourceFile mn;  ///< the window of /MN the motions are read from
+  TpReader scan;
+  TpReader motions;
 };
 
-TpStream::TpStream(Program& p) : r_(std::make_unique<Reader>(p, true)) {}
+TpStream::TpStream(Program& p) : r_(std::make_unique<Reader>(p)) {}
 TpStream::~TpStream() = default;
-void TpStream::lines(bool last) { r_->lines(last); }
-std::size_t TpStream::carry() const { return r_->carry(); }
-void TpStream::finish() { r_->finish(); }
-std::size_t TpStream::settled() const { return r_->settled(); }
-bool TpStream::needed(std::size_t target) const { return r_->needed(target); }
-void TpStream::retired(std::size_t m) { r_->retired(m); }
+void TpStream::lines(bool last) { r_->scan.lines(last); }
+std::size_t TpStream::carry() const { return r_->scan.carry(); }
+void TpStream::finish() { r_->scan.finish(); }
+bool TpStream::wantsMotions() const { return r_->scan.wantsMotions(); }
+SourceFile& TpStream::motionFile() { return r_->mn; }
+void TpStream::motionLines(bool last) { r_->motions.lines(last); }
+bool TpStream::motionsRead() const { return r_->motions.mnRead(); }
+void TpStream::end() { r_->scan.end(); }
+std::size_t TpStream::settled() const { return r_->scan.settled(); }
+bool TpStream::needed(std::size_t target) const { return r_->scan.needed(target); }
+void TpStream::retired(std::size_t m) { r_->scan.retired(m); }
 void TpStream::retiredTargets(std::size_t begin, std::size_t end) {
-  r_->retiredTargets(begin, end);
+  r_->scan.retiredTargets(begin, end);
 }
 
 }  // namespace roprec::postproc

@@ -341,14 +341,17 @@ std::vector<std::string> rapidWhole(const std::string& path) {
 }
 
 /// `path` read by windows of `window` bytes (RAPID and TP too), every settled motion but the last
-/// retired after each window; `most`: the most targets a window held.
-std::vector<std::string> rapidStreamed(const std::string& path, size_t window, size_t* most) {
+/// retired after each window; `most`: the most targets a window held, `most_motions` the most
+/// motions.
+std::vector<std::string> rapidStreamed(const std::string& path, size_t window, size_t* most,
+                                       size_t* most_motions = nullptr) {
   postproc::ProgramStream s(path, window, false, true);
   std::vector<std::string> motions;
   size_t done = 0;  // the window's motions described
   while (s.next()) {
     const postproc::Program& p = s.program();
     if (most != nullptr) *most = std::max(*most, p.targets().size());
+    if (most_motions != nullptr) *most_motions = std::max(*most_motions, p.motions.size());
     // the last motion may get a marker of the next window yet
     // (TP: the motions bound to their positions so far)
     for (; done + 1 < p.motions.size() && done < s.settledMotions(); ++done)
@@ -477,8 +480,8 @@ TEST(ProgramStream, RapidWindowsOfAnySizeReadAsTheWholeModule) {
 // header and /MN over several windows, every shape tpWallPass writes: swapped records, one record
 // last, a position never taught, one not in /POS, a register, a circular motion) in LF and CRLF,
 // the samples' and the corpus's: the motions, targets, frames, unresolved references and notes of
-// the whole read, in its order. The motions stay until their records come, then go with them: a
-// program whose records follow its motions holds a window's worth of targets.
+// the whole read, in its order. /MN is read again behind the scan of the file, so a program whose
+// records follow the order of its motions holds about a window's worth of motions and targets.
 TEST(ProgramStream, TpProgramByWindowsReadsAsTheWholeProgram) {
   const std::string dir = test::tempDir("program_stream_tp");
   test::writeFile(dir + "/wall.ls", test::tpWallPass(300));
@@ -495,10 +498,12 @@ TEST(ProgramStream, TpProgramByWindowsReadsAsTheWholeProgram) {
     ASSERT_GT(whole.size(), 10U);
     for (const size_t window : {size_t{4096}, size_t{10000}}) {
       size_t most = 0;
-      EXPECT_EQ(firstDifference(whole, rapidStreamed(path, window, &most)), "")
+      size_t most_motions = 0;
+      EXPECT_EQ(firstDifference(whole, rapidStreamed(path, window, &most, &most_motions)), "")
           << "window " << window;
-      if (path == dir + "/ordered.ls") {  // a record is about 150 bytes
+      if (path == dir + "/ordered.ls") {  // a record is about 150 bytes, a motion line 30
         EXPECT_LT(most, window / 100) << "window " << window;
+        EXPECT_LT(most_motions, window / 20) << "window " << window;
       }
     }
   }

@@ -267,8 +267,7 @@ ROPREC_API int roprec_predict_file(const char* cell_path, const char* program_pa
  * "points", "failed", "deviation_before_um", "residual_after_um", "written"; orientation and
  * holes_path are ignored; the export is CSV or JSON by its name as above; the job is that of
  * `roprec compensate`: a KRL program, a RAPID module or a TP program is read by windows and
- * written as its points come, in memory that does not grow with them; a TP program's motions stay
- * until /POS gives their positions, about 230 bytes each).
+ * written as its points come, in memory that does not grow with them).
  * The program may be any file roprec_predict_file reads (a hole-list CSV is rewritten as such).
  * 2: bad input (unreadable program, program without holes, bad orientation). */
 ROPREC_API int roprec_compensate_file(const char* cell_path, const char* program_path,

@@ -468,8 +468,8 @@ const CommandRegistration reg{
      "results; --report keeps them all (it draws them). Without --report or --holes a KUKA KRL\n"
      "program is read by windows, twice (the holes, then the edits), and never held whole. A\n"
      "milling path's --targets export is written point by point, and its KRL program, RAPID\n"
-     "module or TP program read by windows twice and written as the points come (a TP program's\n"
-     "motions stay until /POS gives their positions, ~230 B each).\n",
+     "module or TP program read by windows twice and written as the points come (a TP\n"
+     "program's /MN is read again behind its /POS).\n",
      50, run}};
 
 }  // namespace
