@@ -194,6 +194,24 @@ void Program::addMarker(std::string_view marker) {
   ++m.marker_count;
 }
 
+void dropFirstMotions(Program& p, std::size_t n) {
+  n = std::min(n, p.motions.size());
+  if (n == 0) return;
+  std::size_t marker_cut = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const Motion& mo = p.motions[k];
+    p.texts.release(mo.target_text);
+    for (std::uint32_t j = 0; j < mo.marker_count; ++j)
+      p.texts.release(p.marker_texts[mo.marker_begin + j]);
+    if (mo.marker_count > 0) marker_cut = mo.marker_begin + mo.marker_count;
+  }
+  p.marker_texts.erase(p.marker_texts.begin(),
+                       p.marker_texts.begin() + static_cast<std::ptrdiff_t>(marker_cut));
+  p.motions.erase(p.motions.begin(), p.motions.begin() + static_cast<std::ptrdiff_t>(n));
+  for (Motion& mo : p.motions)
+    if (mo.marker_count > 0) mo.marker_begin -= static_cast<std::uint32_t>(marker_cut);
+}
+
 void failAt(const SourceFile& f, std::size_t offset, const std::string& msg) {
   throw InputError(f.path, f.lineOf(offset), msg);
 }

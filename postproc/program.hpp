@@ -571,6 +571,10 @@ void applyEdits(Program& p, EditLog&& log);
 /// program, `BASE_DATA[3]` of a KRL program from $config.dat). Returns how many uses resolved.
 int resolveFrame(Program& p, const std::string& ref, const Pose& pose);
 
+/// Drops motions [0, n) of `p` (a program read by windows), their target texts and their markers
+/// (the motions after them keep theirs); targets and uses are the caller's.
+void dropFirstMotions(Program& p, std::size_t n);
+
 /// The "roprec compensated" marker (docs/programs.md §15) found in a program's files.
 struct MarkerLocation {
   int file{-1};

@@ -427,23 +427,11 @@ Retired ProgramStream::retire(std::size_t m) {
   }
   std::sort(touched.begin(), touched.end());
   touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
-  // the retired motions' own texts and markers
-  std::size_t marker_cut = 0;
-  for (std::size_t k = 0; k < m; ++k) {
-    const Motion& mo = p.motions[k];
-    p.texts.release(mo.target_text);
-    for (std::uint32_t j = 0; j < mo.marker_count; ++j)
-      p.texts.release(p.marker_texts[mo.marker_begin + j]);
-    if (mo.marker_count > 0) marker_cut = mo.marker_begin + mo.marker_count;
-  }
-  p.marker_texts.erase(p.marker_texts.begin(),
-                       p.marker_texts.begin() + static_cast<std::ptrdiff_t>(marker_cut));
-  p.motions.erase(p.motions.begin(), p.motions.begin() + static_cast<std::ptrdiff_t>(m));
+  dropFirstMotions(p, m);
   p.target_list.erase(p.target_list.begin() + static_cast<std::ptrdiff_t>(t0),
                       p.target_list.begin() + static_cast<std::ptrdiff_t>(t1));
   const auto shift = static_cast<int>(t1 - t0);
   for (Motion& mo : p.motions) {
-    if (mo.marker_count > 0) mo.marker_begin -= static_cast<std::uint32_t>(marker_cut);
     if (mo.target >= static_cast<int>(t1)) mo.target -= shift;
     if (mo.aux >= static_cast<int>(t1)) mo.aux -= shift;
   }

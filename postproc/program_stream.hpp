@@ -11,12 +11,12 @@
 /// whole lines too (RapidStream: a statement a window ends inside is read again from its line at
 /// the start of the next window); its targets declared by name stay, its inline targets go with
 /// their motions. With `rapid` too, a FANUC TP program is read by windows of whole lines by two
-/// readers (TpStream): a scan of the whole file in order (a /POS record a window ends inside is read
-/// again from its line), whose windows are program().files[0], and a second reading of /MN behind
-/// it, from a window of its own, that makes the motions; they are bound to the records in order as
-/// both come, and a record goes once no motion to come names it (a home position named again at
-/// the end stays until then; records far out of the motions' order hold the records between).
-/// The other dialects are read whole, as one window.
+/// readers (TpStream): a scan of the whole file in order (a /POS record a window ends inside is
+/// read again from its line), whose windows are program().files[0], and a second reading of /MN
+/// behind it, from a window of its own, that makes the motions; they are bound to the records in
+/// order as both come, and a record goes once no motion to come names it (a home position named
+/// again at the end stays until then; records far out of the motions' order hold the records
+/// between). The other dialects are read whole, as one window.
 ///
 /// Errors are those readProgram gives, in the same order: a reader's error where it is met, a
 /// value out of range (checkValueRanges) once the whole program is read without one (RAPID: the

@@ -246,28 +246,9 @@ class TpReader {
     std::unordered_map<int, std::uint32_t> sparse_;
   };
   Counts refs_;
-  /// The P numbers of every record read (a record read twice is an error, also once the first
-  /// was dropped).
-  class Numbers {
-   public:
-    /// false when `n` was inserted before.
-    bool insert(int n) {
-      if (n >= 0 && n < kDense) {
-        const auto k = static_cast<std::size_t>(n);
-        if (k >= dense_.size()) dense_.resize(std::max<std::size_t>(k + 1, 2 * dense_.size()));
-        if (dense_[k]) return false;
-        dense_[k] = true;
-        return true;
-      }
-      return sparse_.insert(n).second;
-    }
-
-   private:
-    static constexpr int kDense = 1 << 24;
-    std::vector<bool> dense_;
-    std::unordered_set<int> sparse_;
-  };
-  Numbers defined_;
+  /// The records read by P number (a record read twice is an error, also once the first was
+  /// dropped).
+  Counts defined_;
   /// P number -> line of a record never taught (negated once a motion to it is reported)
   std::unordered_map<int, int> untaught_;
   bool other_config_noted_{false};
@@ -726,8 +707,9 @@ class TpReader {
       ++q;
     }
     if (!gp1) p_.notes.push_back(t.name + ": no GP1 group; kept verbatim");
-    if (!defined_.insert(number))
+    if (defined_.count(number) != 0U)
       fail(tok_[rec].offset, "position P[" + std::to_string(number) + "] defined twice");
+    defined_.add(number);
     if (untaught) {
       // a record the controller wrote for a position never taught: kept verbatim, no target;
       // a motion to it is unresolved (finish()), an error only where a job needs its pose
@@ -877,20 +859,7 @@ class TpReader {
   /// reports) dropped but the last one (`keep_last`: a continuation line may follow).
   void dropScanMotions(bool keep_last) {
     const std::size_t n = p_.motions.size() - (keep_last && !p_.motions.empty() ? 1 : 0);
-    if (n == 0) return;
-    std::size_t marker_cut = 0;
-    for (std::size_t k = 0; k < n; ++k) {
-      const Motion& mo = p_.motions[k];
-      p_.texts.release(mo.target_text);
-      for (std::uint32_t j = 0; j < mo.marker_count; ++j)
-        p_.texts.release(p_.marker_texts[mo.marker_begin + j]);
-      if (mo.marker_count > 0) marker_cut = mo.marker_begin + mo.marker_count;
-    }
-    p_.marker_texts.erase(p_.marker_texts.begin(),
-                          p_.marker_texts.begin() + static_cast<std::ptrdiff_t>(marker_cut));
-    p_.motions.erase(p_.motions.begin(), p_.motions.begin() + static_cast<std::ptrdiff_t>(n));
-    for (Motion& mo : p_.motions)
-      if (mo.marker_count > 0) mo.marker_begin -= static_cast<std::uint32_t>(marker_cut);
+    dropFirstMotions(p_, n);
     last_motion_line_ =
         last_motion_line_ >= static_cast<int>(n) ? last_motion_line_ - static_cast<int>(n) : -1;
   }

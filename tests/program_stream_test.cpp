@@ -399,6 +399,22 @@ TEST(ProgramStream, RapidModuleByWindowsReadsAsTheWholeModule) {
   }
 }
 
+/// Each faulty program (file name, text), written to `dir` and read by windows of every size in
+/// `windows`, gives the error of its whole read.
+void expectStreamedErrorsOfTheWholeRead(
+    const std::string& dir, const std::vector<std::pair<std::string, std::string>>& programs,
+    const std::vector<size_t>& windows) {
+  for (const auto& [name, text] : programs) {
+    SCOPED_TRACE(name);
+    const std::string path = dir + "/" + name;
+    test::writeFile(path, text);
+    const std::string whole = errorOf([&] { (void)postproc::readProgram(path); });
+    ASSERT_NE(whole, "(no error)");
+    for (const size_t window : windows)
+      EXPECT_EQ(errorOf([&] { (void)rapidStreamed(path, window, nullptr); }), whole) << window;
+  }
+}
+
 /// Faulty RAPID modules from a wall pass of `points` points: a missing ';', an aggregate of the
 /// wrong shape and a truncated module far into the file, a module without MODULE; a value out of
 /// range in the first window before a reader's error in a later one (the reader's error, as the
@@ -423,20 +439,14 @@ void expectRapidErrorsOfTheWholeRead(const std::string& dir, int points,
   std::string nomodule = wall;
   nomodule.erase(0, nomodule.find('\n') + 1);
   nomodule.erase(nomodule.rfind("ENDMODULE"));
-  for (const auto& [name, text] : {std::pair<std::string, std::string>{"semicolon.mod", semicolon},
-                                   {"shape.mod", shape},
-                                   {"range.mod", range},
-                                   {"kinds.mod", kinds},
-                                   {"truncated.mod", truncated},
-                                   {"nomodule.mod", nomodule}}) {
-    SCOPED_TRACE(name);
-    const std::string path = dir + "/" + name;
-    test::writeFile(path, text);
-    const std::string whole = errorOf([&] { (void)postproc::readProgram(path); });
-    ASSERT_NE(whole, "(no error)");
-    for (const size_t window : windows)
-      EXPECT_EQ(errorOf([&] { (void)rapidStreamed(path, window, nullptr); }), whole) << window;
-  }
+  expectStreamedErrorsOfTheWholeRead(dir,
+                                     {{"semicolon.mod", semicolon},
+                                      {"shape.mod", shape},
+                                      {"range.mod", range},
+                                      {"kinds.mod", kinds},
+                                      {"truncated.mod", truncated},
+                                      {"nomodule.mod", nomodule}},
+                                     windows);
 }
 
 // RAPID errors by windows of 4 KB (expectRapidErrorsOfTheWholeRead) on a 400-point module.
@@ -551,21 +561,15 @@ void expectTpErrorsOfTheWholeRead(const std::string& dir, int points,
   std::string kinds = wall;
   kinds.replace(kinds.find("60mm/sec"), 8, "99999mm/sec");
   kinds.replace(kinds.rfind("Z = "), 9, "Z = 9e9  ");
-  for (const auto& [name, text] : {std::pair<std::string, std::string>{"line.ls", line},
-                                   {"number.ls", number},
-                                   {"twice.ls", twice},
-                                   {"truncated.ls", truncated},
-                                   {"noprog.ls", noprog},
-                                   {"range.ls", range},
-                                   {"kinds.ls", kinds}}) {
-    SCOPED_TRACE(name);
-    const std::string path = dir + "/" + name;
-    test::writeFile(path, text);
-    const std::string whole = errorOf([&] { (void)postproc::readProgram(path); });
-    ASSERT_NE(whole, "(no error)");
-    for (const size_t window : windows)
-      EXPECT_EQ(errorOf([&] { (void)rapidStreamed(path, window, nullptr); }), whole) << window;
-  }
+  expectStreamedErrorsOfTheWholeRead(dir,
+                                     {{"line.ls", line},
+                                      {"number.ls", number},
+                                      {"twice.ls", twice},
+                                      {"truncated.ls", truncated},
+                                      {"noprog.ls", noprog},
+                                      {"range.ls", range},
+                                      {"kinds.ls", kinds}},
+                                     windows);
 }
 
 // TP errors by windows of 4 KB on a 400-point program, and by windows of 20 sizes from 16 bytes to
