@@ -104,5 +104,57 @@ TEST(StreamedEdits, RapidModuleByWindowsWritesTheWholeModulesEdits) {
   }
 }
 
+/// The style of `path` as a first reading by windows of `window` bytes leaves it (the job's): its
+/// last window's file, whose line ends count the windows before.
+SourceFile firstReadingStyle(const std::string& path, std::size_t window) {
+  ProgramStream s(path, window, false, true);
+  while (s.next()) {
+  }
+  return s.program().files[0];
+}
+
+// The compensation marker of FANUC TP programs (the remark as /MN line 1, every /MN line
+// renumbered, LINE_COUNT + 1) made window by window: the bytes of the whole program's marker, for
+// a header longer than a window, CRLF, a file whose last 60 lines end in CRLF and the others in LF
+// (the remark takes the whole file's line end, LF, which its last windows' lines do not show), an
+// empty /MN, and a LINE_COUNT without a number.
+TEST(StreamedEdits, TpMarkerByWindowsIsTheWholeProgramsMarker) {
+  const std::string dir = test::tempDir("streamed_edits_tp");
+  std::string mixed = test::tpWallPass(40);
+  for (std::size_t k = 0, at = mixed.size(); k < 60; ++k) {  // the last 60 lines end in CRLF
+    at = mixed.rfind('\n', at - 1);
+    mixed.insert(at, 1, '\r');
+  }
+  const std::string empty =
+      "/PROG  EMPTY\n/ATTR\nLINE_COUNT\t= ;\n/MN\n/POS\nP[1]{\n   GP1:\n\tUF : 0, UT : 1,\n"
+      "\tX = 1.000  mm,\tY = 0.000  mm,\tZ = 0.000  mm,\n\tW = 0.000 deg,\tP = 0.000 deg,"
+      "\tR = 0.000 deg\n};\n/END\n";
+  const std::vector<std::pair<std::string, std::string>> programs = {
+      {"wall.ls", test::tpWallPass(40)},
+      {"crlf.ls", test::tpWallPass(40, "\r\n")},
+      {"mixed.ls", mixed},
+      {"empty.ls", empty}};
+  for (const auto& [name, text] : programs) {
+    const std::string path = dir + "/" + name;
+    test::writeFile(path, text);
+    Program p = readProgram(path);
+    ASSERT_TRUE(markCompensated(p, kMarker)) << name;
+    const std::string whole = renderFiles(p).at(0);
+    ASSERT_NE(whole, text) << name;
+    for (const std::size_t window : {std::size_t{64}, std::size_t{300}, std::size_t{2000}}) {
+      ProgramStream s(path, window, false, true);
+      std::string out;
+      StreamedEdits e(
+          s, [&](std::string_view v) { out += v; }, kMarker, firstReadingStyle(path, window));
+      while (s.next()) {
+        e.installed();
+        e.flushBeforeLine(std::numeric_limits<int>::max());
+      }
+      e.finish();
+      EXPECT_EQ(out, whole) << name << " window " << window;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace roprec::postproc
