@@ -1,7 +1,6 @@
 #include "postproc/program_stream.hpp"
 
 #include <algorithm>
-#include <cstring>
 #include <filesystem>
 
 #include "compensator/support/atomic_file.hpp"
@@ -244,7 +243,7 @@ void ProgramStream::readLines(platform::File& file, std::string& rest, bool& eof
     read += static_cast<std::size_t>(std::max(0LL, n));
     if (read > inputSizeLimit(InputKind::kProgram))  // a file grown past the limit as it is read
       (void)readInputFile(path, InputKind::kProgram);
-    if (std::memchr(buf.data() + old, '\0', buf.size() - old) != nullptr)
+    if (buf.find('\0', old) != std::string::npos)
       (void)readInputFile(path, InputKind::kProgram);  // the NUL byte at its line and column
     for (std::size_t k = buf.size(); k > old; --k) {   // the bytes read before have none
       if (buf[k - 1] == '\n') {
