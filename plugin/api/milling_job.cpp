@@ -205,8 +205,10 @@ void compensateMillRuns(MillingCompensationResult& r, std::vector<MillingPathPoi
     std::vector<CuttingDecision> cutting =
         decideCutting(m.process.milling, T_W_stock, whole ? path : run_copy);
     // r.cutting holds the decisions of the points handed over (the exports read them)
+    std::vector<CuttingDecision>* run_cutting = &cutting;
     if (whole) {
       r.cutting = std::move(cutting);
+      run_cutting = &r.cutting;
       std::vector<MillingPathPoint>().swap(path);
     } else {
       r.cutting.insert(r.cutting.end(), cutting.begin(), cutting.end());
@@ -229,7 +231,7 @@ void compensateMillRuns(MillingCompensationResult& r, std::vector<MillingPathPoi
                              std::make_move_iterator(block.end()));
       }
     };
-    compensateMillingPath(m, whole ? r.points : points_copy, whole ? &r.cutting : &cutting,
+    compensateMillingPath(m, whole ? r.points : points_copy, run_cutting,
                           run_seed ? &*run_seed : nullptr, with_stock, each);
     b = e;
   }
