@@ -202,22 +202,28 @@ std::string rapidWallPass(int n) {
          ", v1000, z10, tSpindle \\WObj:=wPart;\n  ENDPROC\n" + late + "ENDMODULE\n";
 }
 
-std::string abbMillingCell(const std::string& dir) {
+namespace {
+
+/// samples/cells/alu-milling-7075.xml with robot `robot`, written to `dir`/`name`; returns its
+/// path.
+std::string millingCellWithRobot(const std::string& dir, const std::string& robot,
+                                 const std::string& name) {
   std::string text = readFile(sourceDir() + "/samples/cells/alu-milling-7075.xml");
-  const size_t robot = text.find("<robot ref=\"");
-  if (robot == std::string::npos) throw std::runtime_error("abbMillingCell: no <robot ref=");
-  text.replace(robot, text.find("/>", robot) + 2 - robot, "<robot ref=\"abb-irb6700-200-260\"/>");
-  writeFile(dir + "/abb-milling.xml", text);
-  return dir + "/abb-milling.xml";
+  const size_t at = text.find("<robot ref=\"");
+  if (at == std::string::npos) throw std::runtime_error("milling sample cell: no <robot ref=");
+  text.replace(at, text.find("/>", at) + 2 - at, "<robot ref=\"" + robot + "\"/>");
+  writeFile(dir + "/" + name, text);
+  return dir + "/" + name;
+}
+
+}  // namespace
+
+std::string abbMillingCell(const std::string& dir) {
+  return millingCellWithRobot(dir, "abb-irb6700-200-260", "abb-milling.xml");
 }
 
 std::string fanucMillingCell(const std::string& dir) {
-  std::string text = readFile(sourceDir() + "/samples/cells/alu-milling-7075.xml");
-  const size_t robot = text.find("<robot ref=\"");
-  if (robot == std::string::npos) throw std::runtime_error("fanucMillingCell: no <robot ref=");
-  text.replace(robot, text.find("/>", robot) + 2 - robot, "<robot ref=\"fanuc-r2000ic-165f\"/>");
-  writeFile(dir + "/fanuc-milling.xml", text);
-  return dir + "/fanuc-milling.xml";
+  return millingCellWithRobot(dir, "fanuc-r2000ic-165f", "fanuc-milling.xml");
 }
 
 std::string tpWallPass(int n, const std::string& eol, bool late_record) {
