@@ -364,6 +364,34 @@ std::vector<std::string> rapidStreamed(const std::string& path, size_t window, s
   return programText(p, motions);
 }
 
+/// The most targets and motions a window held.
+struct WindowHeld {
+  size_t targets{0};
+  size_t motions{0};
+};
+
+/// Each of `programs`, and the corpus's `corpus_program`, read by windows of 4 KB and 10 KB:
+/// the whole read's motions, unresolved references and notes; `held` checks what its windows
+/// held.
+void expectWindowsReadAsTheWhole(
+    std::vector<std::string> programs, const std::string& corpus_program,
+    const std::function<void(const std::string&, size_t, const WindowHeld&)>& held) {
+  if (const std::string corpus = test::corpusDir(); !corpus.empty())
+    programs.push_back(corpus + "/" + corpus_program);
+  for (const std::string& path : programs) {
+    SCOPED_TRACE(path);
+    const std::vector<std::string> whole = rapidWhole(path);
+    ASSERT_GT(whole.size(), 10U);
+    for (const size_t window : {size_t{4096}, size_t{10000}}) {
+      WindowHeld most;
+      EXPECT_EQ(firstDifference(whole, rapidStreamed(path, window, &most.targets, &most.motions)),
+                "")
+          << "window " << window;
+      held(path, window, most);
+    }
+  }
+}
+
 // An ABB RAPID module read by windows of 4 KB (statements over two lines cut by a window's end,
 // targets declared before and after their motions, markers, a statement longer than two
 // windows after a %%% header) and of 10 KB, its motions retired
@@ -379,24 +407,13 @@ TEST(ProgramStream, RapidModuleByWindowsReadsAsTheWholeModule) {
   for (int k = 0; k < 300; ++k) comments += "      ! a comment line inside a statement\n";
   padded.insert(padded.find("v60", padded.find("MoveL [[")), comments + "      ");
   test::writeFile(dir + "/long.mod", "%%%\n  VERSION:1\n  LANGUAGE:ENGLISH\n%%%\n\n" + padded);
-  std::vector<std::string> programs = {
-      dir + "/wall.mod", dir + "/long.mod",
-      test::sourceDir() + "/samples/emotor-housing/housing_irb6640.mod"};
-  if (const std::string corpus = test::corpusDir(); !corpus.empty())
-    programs.push_back(corpus + "/robodk/DrillIRC5.mod");
-  for (const std::string& path : programs) {
-    SCOPED_TRACE(path);
-    const std::vector<std::string> whole = rapidWhole(path);
-    ASSERT_GT(whole.size(), 10U);
-    for (const size_t window : {size_t{4096}, size_t{10000}}) {
-      size_t most = 0;
-      EXPECT_EQ(firstDifference(whole, rapidStreamed(path, window, &most)), "")
-          << "window " << window;
-      if (path == dir + "/wall.mod") {
-        EXPECT_LT(most, 300U + 90U) << "window " << window;
-      }
-    }
-  }
+  expectWindowsReadAsTheWhole({dir + "/wall.mod", dir + "/long.mod",
+                               test::sourceDir() + "/samples/emotor-housing/housing_irb6640.mod"},
+                              "robodk/DrillIRC5.mod",
+                              [&](const std::string& path, size_t window, const WindowHeld& held) {
+                                if (path != dir + "/wall.mod") return;
+                                EXPECT_LT(held.targets, 300U + 90U) << "window " << window;
+                              });
 }
 
 /// Each faulty program (file name, text), written to `dir` and read by windows of every size in
@@ -497,26 +514,15 @@ TEST(ProgramStream, TpProgramByWindowsReadsAsTheWholeProgram) {
   test::writeFile(dir + "/wall.ls", test::tpWallPass(300));
   test::writeFile(dir + "/crlf.ls", test::tpWallPass(300, "\r\n"));
   test::writeFile(dir + "/ordered.ls", test::tpWallPass(600, "\n", false));
-  std::vector<std::string> programs = {
-      dir + "/wall.ls", dir + "/crlf.ls", dir + "/ordered.ls",
-      test::sourceDir() + "/samples/emotor-housing/housing_r2000.ls"};
-  if (const std::string corpus = test::corpusDir(); !corpus.empty())
-    programs.push_back(corpus + "/robodk/DRILLR30IA.LS");
-  for (const std::string& path : programs) {
-    SCOPED_TRACE(path);
-    const std::vector<std::string> whole = rapidWhole(path);
-    ASSERT_GT(whole.size(), 10U);
-    for (const size_t window : {size_t{4096}, size_t{10000}}) {
-      size_t most = 0;
-      size_t most_motions = 0;
-      EXPECT_EQ(firstDifference(whole, rapidStreamed(path, window, &most, &most_motions)), "")
-          << "window " << window;
-      if (path == dir + "/ordered.ls") {  // a record is about 150 bytes, a motion line 30
-        EXPECT_LT(most, window / 100) << "window " << window;
-        EXPECT_LT(most_motions, window / 20) << "window " << window;
-      }
-    }
-  }
+  expectWindowsReadAsTheWhole({dir + "/wall.ls", dir + "/crlf.ls", dir + "/ordered.ls",
+                               test::sourceDir() + "/samples/emotor-housing/housing_r2000.ls"},
+                              "robodk/DRILLR30IA.LS",
+                              [&](const std::string& path, size_t window, const WindowHeld& held) {
+                                if (path != dir + "/ordered.ls") return;
+                                // a record is about 150 bytes, a motion line 30
+                                EXPECT_LT(held.targets, window / 100) << "window " << window;
+                                EXPECT_LT(held.motions, window / 20) << "window " << window;
+                              });
 }
 
 // A TP program read by windows of 20 sizes from 16 bytes to 3 KB (a record over many windows, a
