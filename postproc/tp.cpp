@@ -6,7 +6,6 @@
 #include <deque>
 #include <iterator>
 #include <unordered_map>
-#include <unordered_set>
 
 #include "compensator/support/error.hpp"
 #include "postproc/dialects.hpp"
@@ -208,8 +207,8 @@ class TpReader {
     return line != 0 && f_.line_starts[static_cast<std::size_t>(line - 1)] == offset;
   }
   std::unordered_map<int, int> by_number_;  // P number -> target
-  /// Read by windows: the P number of each target (target_list order), and per P number the
-  /// references of motions not bound yet.
+  /// kScan: the P number of each target (target_list order), and per P number the references of
+  /// /MN not bound yet (refs_).
   std::deque<int> numbers_;
   /// Counts by P number: a 32-bit count per number below 2^24, a map for the others.
   class Counts {
