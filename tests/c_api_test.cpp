@@ -1034,31 +1034,44 @@ TEST(CApi, CompensateFileExForceAndFrameOptions) {
   std::filesystem::remove_all(dir);
 }
 
-// A milling cell: a RAPID module (read by windows) compensated on two threads with a CSV export
-// gives the bytes of the CLI's job on one thread, and the summary counts its path points.
-TEST(CApi, CompensateFileExOfAMillingModuleIsTheClisJob) {
+// A milling cell: a RAPID module and a FANUC TP program (each read by windows) compensated on two
+// threads with a CSV export give the bytes of the CLI's job on one thread, and the summary counts
+// their path points.
+TEST(CApi, CompensateFileExOfMillingProgramsIsTheClisJob) {
   const std::string dir = tempDir("capi-milling");
-  const std::string cell = test::abbMillingCell(dir);
-  const std::string program = dir + "/wall.mod";
-  test::writeFile(program, test::rapidWallPass(60));
-  const test::RunResult cli = runRoprec("compensate --cell '" + cell + "' '" + program + "' -o '" +
-                                        dir + "/cli.mod' --targets '" + dir + "/cli.csv' --quiet");
-  ASSERT_EQ(cli.exit_code, 0) << cli.err;
-  Options opt;
-  ASSERT_EQ(opt.set("threads", "2"), ROPREC_OK) << opt.err;
-  char summary[ROPREC_SUMMARY_LEN];
-  ASSERT_EQ(roprec_compensate_file_ex(cell.c_str(), program.c_str(), opt.o,
-                                      (dir + "/c.mod").c_str(), (dir + "/c.csv").c_str(), summary,
-                                      sizeof summary, opt.err, sizeof opt.err),
-            ROPREC_OK)
-      << opt.err;
-  EXPECT_EQ(readFile(dir + "/c.mod"), readFile(dir + "/cli.mod"));
-  EXPECT_EQ(readFile(dir + "/c.csv"), readFile(dir + "/cli.csv"));
-  const auto j = nlohmann::json::parse(summary);
-  EXPECT_EQ(j.at("process"), "milling");
-  EXPECT_EQ(j.at("points"), 55);  // rapidWallPass(60): 55 linear path points
-  EXPECT_EQ(j.at("failed"), 0);
-  EXPECT_EQ(j.at("written"), nlohmann::json::array({dir + "/c.mod", dir + "/c.csv"}));
+  struct Case {
+    std::string cell, program, ext;
+    int points;
+  };
+  const std::vector<Case> cases = {// rapidWallPass(60): 55 linear path points; tpWallPass(60): 63
+                                   {test::abbMillingCell(dir), dir + "/wall.mod", ".mod", 55},
+                                   {test::fanucMillingCell(dir), dir + "/wall.ls", ".ls", 63}};
+  test::writeFile(dir + "/wall.mod", test::rapidWallPass(60));
+  test::writeFile(dir + "/wall.ls", test::tpWallPass(60));
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.program);
+    const std::string cli_out = dir + "/cli" + c.ext;
+    const std::string c_out = dir + "/c" + c.ext;
+    const test::RunResult cli =
+        runRoprec("compensate --cell '" + c.cell + "' '" + c.program + "' -o '" + cli_out +
+                  "' --targets '" + dir + "/cli.csv' --quiet");
+    ASSERT_EQ(cli.exit_code, 0) << cli.err;
+    Options opt;
+    ASSERT_EQ(opt.set("threads", "2"), ROPREC_OK) << opt.err;
+    char summary[ROPREC_SUMMARY_LEN];
+    ASSERT_EQ(roprec_compensate_file_ex(c.cell.c_str(), c.program.c_str(), opt.o, c_out.c_str(),
+                                        (dir + "/c.csv").c_str(), summary, sizeof summary, opt.err,
+                                        sizeof opt.err),
+              ROPREC_OK)
+        << opt.err;
+    EXPECT_EQ(readFile(c_out), readFile(cli_out));
+    EXPECT_EQ(readFile(dir + "/c.csv"), readFile(dir + "/cli.csv"));
+    const auto j = nlohmann::json::parse(summary);
+    EXPECT_EQ(j.at("process"), "milling");
+    EXPECT_EQ(j.at("points"), c.points);
+    EXPECT_EQ(j.at("failed"), 0);
+    EXPECT_EQ(j.at("written"), nlohmann::json::array({c_out, dir + "/c.csv"}));
+  }
   std::filesystem::remove_all(dir);
 }
 
