@@ -60,9 +60,9 @@ std::string terminatorOf(const SourceFile& f, std::size_t line) {
   return e.empty() ? f.dominantLineEnd() : e;
 }
 
-/// FANUC TP: a remark as the new line 1 of /MN, every /MN line renumbered, LINE_COUNT + 1.
-/// The edit of a numbered /MN line `t` (its first byte `at`) whose number goes up by one, with
-/// the remark before it when `first`; false for a line with no number (a continuation line).
+/// The edit of a numbered /MN line `t`: its first `length` bytes replaced by `repl`, its number
+/// gone up by one, with the remark line before it when `first`; false for a line with no number
+/// (a circular motion's continuation line).
 bool renumberTpLine(std::string_view t, bool first, const std::string& remark,
                     const std::string& eol, std::uint32_t& length, std::string& repl) {
   std::size_t k = 0;
@@ -102,6 +102,7 @@ bool lineCountEdit(std::string_view t, std::size_t& offset, std::size_t& length,
 
 bool isLineCount(std::string_view t) { return upperCopy(trimLeft(t)).rfind("LINE_COUNT", 0) == 0; }
 
+/// FANUC TP: a remark as the new line 1 of /MN, every /MN line renumbered, LINE_COUNT + 1.
 bool markTp(Program& p, const std::string& text) {
   const int fi = 0;
   const SourceFile& f = p.files[0];

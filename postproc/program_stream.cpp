@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <utility>
 
 #include "compensator/support/atomic_file.hpp"
 #include "compensator/support/error.hpp"
@@ -131,7 +132,7 @@ std::size_t ProgramStream::carry() const {
   return p_.files[0].bytes.size();
 }
 
-bool ProgramStream::readRapidWindow() {
+bool ProgramStream::readCarriedWindow() {
   SourceFile& f = p_.files[0];
   const std::size_t cut = carry();
   int base = f.line_base + static_cast<int>(f.line_starts.size());
@@ -261,24 +262,18 @@ void ProgramStream::readLines(platform::File& file, std::string& rest, bool& eof
 
 bool ProgramStream::next() {
   if (finished_) return false;
-  if (rapid_ || tp_) {
+  if (tp_) return nextTp();
+  if (rapid_) {
     if (pending_) {
       pending_ = false;
-    } else if (tp_) {
-      return nextTp();
-    } else if (!readRapidWindow()) {
+    } else if (!readCarriedWindow()) {
       finished_ = true;
       rapid_->finish();
       rapid_ranges_.rethrow();
       std::string().swap(p_.files[0].bytes);
       return false;
     }
-    const bool last = eof_ && rest_.empty();
-    if (rapid_) {
-      rapid_->lines(last);
-    } else {
-      tp_->lines(last);
-    }
+    rapid_->lines(eof_ && rest_.empty());
     checkRanges();
     return true;
   }
@@ -325,8 +320,8 @@ bool ProgramStream::next() {
 }
 
 bool ProgramStream::nextTp() {
-  if (!tp_done_ && !tp_->wantsMotions()) {  // the scan's next window
-    if (readRapidWindow()) {
+  if (pending_ || (!tp_done_ && !tp_->wantsMotions())) {  // the scan's next window
+    if (std::exchange(pending_, false) || readCarriedWindow()) {
       tp_->lines(eof_ && rest_.empty());
     } else {
       tp_done_ = true;
@@ -356,8 +351,8 @@ bool ProgramStream::nextTp() {
 }
 
 void ProgramStream::checkRanges() {
-  if ((rapid_ || tp_) &&
-      !skip_ranges_) {  // the first error of each kind: thrown in the whole read's order
+  // RAPID and TP: the first error of each kind, thrown in the whole read's order
+  if ((rapid_ || tp_) && !skip_ranges_) {
     checkValueRanges(p_, rapid_ranges_);
     return;
   }
@@ -381,11 +376,8 @@ Retired ProgramStream::retire(std::size_t m) {
   Program& p = p_;
   if ((!krl_ && !rapid_ && !tp_) || p.motions.empty()) return {};
   m = std::min(m, p.motions.size() - 1);
-  if (tp_) {
-    m = std::min(m, settledMotions());
-  } else if (krl_) {
-    if (const int held = krl_->heldMotion(); held >= 0)
-      m = std::min(m, static_cast<std::size_t>(held));
+  if (krl_ || tp_) {
+    m = std::min(m, settledMotions());  // not the motions the reader may still change
   } else {
     // RAPID: the targets declared by name before the first one that may go stay for good (the
     // reader finds them by name); those declared after wait until the ones before them went

@@ -115,7 +115,7 @@ class ProgramStream {
   /// Fills p_.files[0].bytes with the next window of whole lines; false at the end of the file.
   bool readWindow();
   /// readWindow() of a RAPID module or a TP program: the window starts with the reader's carry.
-  bool readRapidWindow();
+  bool readCarriedWindow();
   /// The offset in the window the next window starts at (a RAPID statement, a TP position
   /// record the window ended inside); the window's size when none.
   [[nodiscard]] std::size_t carry() const;

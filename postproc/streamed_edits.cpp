@@ -38,9 +38,7 @@ void StreamedEdits::installed() {
   windows_.push_back(std::move(w));
   if (tp_mark_) {  // the marker's edits of every /MN line
     const Window& last = windows_.back();
-    tp_mark_->window(f, last.start, [&](std::uint64_t at, std::uint32_t length, std::string text) {
-      put(false, 0, at, length, std::move(text));
-    });
+    tp_mark_->window(f, last.start, queueMark());
     marked_ = tp_mark_->marked();
     return;
   }
@@ -51,6 +49,12 @@ void StreamedEdits::installed() {
       put(false, 0, windows_.back().start + e.offset, e.length, std::move(e.text));
     p.edits.clear();
   }
+}
+
+TpMarkStream::Put StreamedEdits::queueMark() {
+  return [this](std::uint64_t at, std::uint32_t length, std::string text) {
+    put(false, 0, at, length, std::move(text));
+  };
 }
 
 StreamedEdits::Window& StreamedEdits::windowOf(int line) {
@@ -190,9 +194,7 @@ void StreamedEdits::flushBefore(std::uint64_t upto) {
 
 void StreamedEdits::finish() {
   if (tp_mark_) {
-    tp_mark_->finish([&](std::uint64_t at, std::uint32_t length, std::string text) {
-      put(false, 0, at, length, std::move(text));
-    });
+    tp_mark_->finish(queueMark());
   }
   flushBefore(total_);
   // an insertion at the very end of the file (offset == size) is not before it

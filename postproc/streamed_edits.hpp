@@ -95,6 +95,8 @@ class StreamedEdits {
     std::deque<Item>::iterator lowerBound(std::uint64_t at);
     std::deque<Item> items_;
   };
+  /// The TP marker's edits queued in the first file.
+  TpMarkStream::Put queueMark();
   void emit(std::string_view b);
   void emitBytes(std::uint64_t a, std::uint64_t b);
   void flushBefore(std::uint64_t upto);
